@@ -1,0 +1,60 @@
+/* The bench dispatcher and the small timing helpers every stage shares. */
+#define _POSIX_C_SOURCE 200809L
+#include "bench/bench.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+typedef struct bench_stage {
+  const char *name;
+  const char *summary;
+  int (*run)(int argc, char **argv);
+} bench_stage;
+
+static const bench_stage stages[] = {
+#define FOG_BENCH(name, summary) {#name, summary, bench_##name},
+#include "bench/stages.def"
+#undef FOG_BENCH
+    {NULL, NULL, NULL}};
+
+static void print_stages(FILE *out) {
+  fprintf(out, "usage: fogpipe bench STAGE [options]\n\nstages:\n");
+  for (int i = 0; stages[i].name; i++)
+    fprintf(out, "  %-10s %s\n", stages[i].name, stages[i].summary);
+}
+
+int bench_main(int argc, char **argv) {
+  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+    print_stages(argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  for (int i = 0; stages[i].name; i++)
+    if (!strcmp(argv[1], stages[i].name)) return stages[i].run(argc - 1, argv + 1);
+  fprintf(stderr, "fogpipe bench: unknown stage '%s'\n\n", argv[1]);
+  print_stages(stderr);
+  return 2;
+}
+
+double bench_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int compare_doubles(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+double bench_median(double *values, int n) {
+  qsort(values, (size_t)n, sizeof *values, compare_doubles);
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+void bench_print_build(void) {
+  printf("build: %s, %s, gcc %d.%d\n", FOGPIPE_BUILD_TYPE,
+         FOGPIPE_NATIVE_BUILD ? "-march=native" : "portable (no -march=native)",
+         __GNUC__, __GNUC_MINOR__);
+}

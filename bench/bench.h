@@ -1,0 +1,21 @@
+/* fogpipe benchmarks: `fogpipe bench STAGE`. Speed targets live here, never in tests.
+ * Each stage measures its figures side by side in one run and ends with one line
+ * `STAGE: key=value ...`. */
+#ifndef FOGPIPE_BENCH_H
+#define FOGPIPE_BENCH_H
+
+#define FOG_BENCH(name, summary) int bench_##name(int argc, char **argv);
+#include "bench/stages.def"
+#undef FOG_BENCH
+
+/* Runs the stage named argv[0]; prints the list of stages for --help. */
+int bench_main(int argc, char **argv);
+
+/* Monotonic wall-clock time in seconds. */
+double bench_now(void);
+/* Median of n values (sorts the array in place). */
+double bench_median(double *values, int n);
+/* Prints one line naming the build measured (type, -march=native or portable, compiler). */
+void bench_print_build(void);
+
+#endif

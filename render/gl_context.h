@@ -1,0 +1,45 @@
+/* The GL context behind one small interface with two backends, so the renderer never
+ * knows which one it runs in (GLFW's platform files are the model):
+ *   - headless: EGL surfaceless (Mesa llvmpipe here; EGL_EXT_device_enumeration on NVIDIA),
+ *     rendering into FBOs only;
+ *   - window: a GLFW window (needs a display).
+ * Both ask for OpenGL 4.5 core and fall back to 4.3 (PLATFORM-NOTES.md: 4.6 is refused).
+ * GL entry points come from <GL/glcorearb.h> with GL_GLEXT_PROTOTYPES via libOpenGL. */
+#ifndef FOGPIPE_RENDER_GL_CONTEXT_H
+#define FOGPIPE_RENDER_GL_CONTEXT_H
+
+#include <stdbool.h>
+
+#include "render/render_error.h"
+
+typedef enum gl_context_kind {
+  GL_CONTEXT_HEADLESS = 0, /* default */
+  GL_CONTEXT_WINDOW,
+} gl_context_kind;
+
+typedef struct gl_context_desc {
+  gl_context_kind kind;
+  int width, height;  /* window size (0: 1280x720); ignored headless */
+  const char *title;  /* window title (NULL: "fogpipe") */
+  bool vsync;
+} gl_context_desc;
+
+typedef struct gl_context gl_context;
+
+/* Creates the context and makes it current on the calling thread. Returns NULL and fills
+ * err when no context can be made (e.g. no display for a window). */
+gl_context *gl_context_create(const gl_context_desc *desc, render_error *err);
+void gl_context_destroy(gl_context *ctx);
+
+/* "4.5 (Core Profile) Mesa 22.3.6" and the renderer string, for logs and benchmarks. */
+const char *gl_context_version(const gl_context *ctx);
+const char *gl_context_renderer(const gl_context *ctx);
+
+/* Window backend only (no-ops headless): the GLFW window, events, buffer swap, close. */
+void *gl_context_glfw_window(gl_context *ctx); /* GLFWwindow*, NULL headless */
+bool gl_context_should_close(gl_context *ctx);
+void gl_context_poll_events(gl_context *ctx);
+void gl_context_swap_buffers(gl_context *ctx);
+void gl_context_framebuffer_size(gl_context *ctx, int *width, int *height);
+
+#endif

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages fogpipe needs, and only the missing ones.
+# Idempotent and quiet when everything is present; used by `make demo` and `make test`.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  # fogmaps and recordings: OpenEXR 3 C API, PNG
+  libopenexr-dev libspng-dev
+  # simulation
+  libfftw3-dev
+  # VDB import (Debian's libopenvdb-dev misses boost headers), vdb_render for the bench
+  libopenvdb-dev libboost-dev libboost-iostreams-dev libopenvdb-tools
+  # rendering: headless EGL on Mesa llvmpipe, a GLFW window, the ImGui panel
+  libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 libglfw3-dev libimgui-dev
+  # scene configs
+  libinih-dev
+  # references used only by tests and benchmarks: GSL, PyWavelets (Debian's python3)
+  libgsl-dev python3 python3-numpy python3-pywt
+  # screenshots of the real window without a display
+  xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  [[ $p == \#* ]] && continue
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ $status == "install ok installed" ]] || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "install-deps: installing ${#missing[@]} missing Debian packages: ${missing[*]}"
+sudo=()
+if [[ $(id -u) -ne 0 ]]; then
+  if command -v sudo >/dev/null 2>&1; then sudo=(sudo); else
+    echo "install-deps: not root and no sudo; install these packages first: ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+if ! command -v apt-get >/dev/null 2>&1; then
+  echo "install-deps: apt-get not found; fogpipe's set-up expects Debian 12. Missing: ${missing[*]}" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq || { echo "install-deps: apt-get update failed (no network to the Debian mirror?)" >&2; exit 1; }
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null \
+  || { echo "install-deps: apt-get install failed for: ${missing[*]}" >&2; exit 1; }
+echo "install-deps: done"

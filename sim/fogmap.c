@@ -1,0 +1,26 @@
+/* Fogmap allocation. Image I/O lives in fogmap_io.c. */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "sim/fogmap.h"
+
+int fogmap_create(fogmap *map, int width, int height, sim_error *err) {
+  *map = (fogmap){.width = width, .height = height};
+  if (width <= 0 || height <= 0) {
+    snprintf(err->message, sizeof err->message, "fogmap size %dx%d: both must be positive",
+             width, height);
+    return 1;
+  }
+  map->density = calloc((size_t)width * (size_t)height, sizeof(float));
+  if (!map->density) {
+    snprintf(err->message, sizeof err->message, "out of memory for a %dx%d fogmap", width,
+             height);
+    return 1;
+  }
+  return 0;
+}
+
+void fogmap_destroy(fogmap *map) {
+  free(map->density);
+  *map = (fogmap){0};
+}

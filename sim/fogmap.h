@@ -1,0 +1,59 @@
+/* Fogmaps: a 2D density grid f(x, z), one float per cell, and its image I/O.
+ * (Part of the sim library; include "sim/sim.h".) */
+#ifndef FOGPIPE_SIM_FOGMAP_H
+#define FOGPIPE_SIM_FOGMAP_H
+
+/* Errors are returned, never printed: a failing call fills message (naming the file and,
+ * for bad pixels, the first offending pixel) and returns non-zero. */
+typedef struct sim_error {
+  char message[512];
+} sim_error;
+
+/* Row-major, x fastest: density[z * width + x]. Image row r is fogmap row z = r (the top
+ * image row is z = 0). Densities are extinction coefficients per world unit times the
+ * scene's density scale; never negative, never NaN. */
+typedef struct fogmap {
+  int width, height;
+  float *density;  /* owned; fogmap_destroy frees it */
+} fogmap;
+
+/* Allocates a zeroed width x height fogmap. */
+int fogmap_create(fogmap *map, int width, int height, sim_error *err);
+void fogmap_destroy(fogmap *map);
+
+typedef struct fogmap_load_desc {
+  float density_scale;  /* multiplies the loaded values; 0 means 1 */
+  /* Which channel of a multi-channel image to use: an EXR channel name ("R", "Y", ...),
+   * or for PNG one of "R", "G", "B", "A". NULL: the image must have one channel (a grey
+   * PNG, grey+alpha uses grey only if named "grey"), or loading fails naming the
+   * channels that exist. */
+  const char *channel;
+} fogmap_load_desc;
+
+/* Loads a greyscale PNG (8 or 16 bit: value / 255 or / 65535) or an EXR channel (half or
+ * float) into a new fogmap. Fails (nothing allocated) on unreadable or non-image files,
+ * ambiguous channels, NaN or negative values (the first such pixel is named). */
+int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, sim_error *err);
+
+/* One channel of an EXR image to write. */
+typedef struct image_channel {
+  const char *name;     /* "R", "G", "B", "A", "Y", "transmittance", "depth", ... */
+  const float *pixels;  /* width*height values, row-major, top row first */
+  int as_half;          /* 0: 32-bit float, 1: 16-bit half */
+} image_channel;
+
+/* Writes a scanline EXR with the given channels (any order; written sorted by name as EXR
+ * requires). The file is written to a temporary name beside path and renamed, so a
+ * failure never leaves a partial file at path. */
+int image_write_exr(const char *path, int width, int height, const image_channel *channels,
+                    int channel_count, sim_error *err);
+
+/* Writes an 8-bit PNG (1 channel grey, 3 RGB or 4 RGBA) from interleaved float values in
+ * [0,1] (clamped), top row first; temporary file + rename like image_write_exr. */
+int image_write_png(const char *path, int width, int height, int channels,
+                    const float *interleaved, sim_error *err);
+
+/* Saves a fogmap as a single float channel "Y" EXR (what fogmap_load reads back exactly). */
+int fogmap_save_exr(const char *path, const fogmap *map, sim_error *err);
+
+#endif

@@ -1,0 +1,9 @@
+/* fogpipe sim: where fog comes from. The public header of the sim library: fogmaps
+ * (the 2D density grid, image I/O, designed fog), the FFT stable-fluid simulation and
+ * OpenVDB import. Each part has its own header, included here. */
+#ifndef FOGPIPE_SIM_H
+#define FOGPIPE_SIM_H
+
+#include "sim/fogmap.h"
+
+#endif
