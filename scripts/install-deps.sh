@@ -17,6 +17,8 @@ packages=(
   libinih-dev
   # references used only by tests and benchmarks: GSL, PyWavelets (Debian's python3)
   libgsl-dev python3 python3-numpy python3-pywt
+  # speed/accuracy charts (CSV -> PNG)
+  gnuplot-nox
   # screenshots of the real window without a display
   xvfb xauth
 )

@@ -32,7 +32,10 @@ typedef struct fogmap_load_desc {
 
 /* Loads a greyscale PNG (8 or 16 bit: value / 255 or / 65535) or an EXR channel (half or
  * float) into a new fogmap. Fails (nothing allocated) on unreadable or non-image files,
- * ambiguous channels, NaN or negative values (the first such pixel is named). */
+ * ambiguous channels, NaN or negative values (the first such pixel is named). Also:
+ * infinite values are rejected; PNG samples are taken as stored (no gamma: a fogmap is
+ * data), indexed PNGs are expanded to "R", "G", "B", "A", grey bit depths below 8 are
+ * refused; EXR reads part 0, scanline or tiled (the full-resolution level). */
 int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, sim_error *err);
 
 /* One channel of an EXR image to write. */
@@ -43,8 +46,8 @@ typedef struct image_channel {
 } image_channel;
 
 /* Writes a scanline EXR with the given channels (any order; written sorted by name as EXR
- * requires). The file is written to a temporary name beside path and renamed, so a
- * failure never leaves a partial file at path. */
+ * requires), ZIP-compressed (lossless, 16 scanlines per chunk). The file is written to a
+ * temporary name beside path and renamed, so a failure never leaves a partial file at path. */
 int image_write_exr(const char *path, int width, int height, const image_channel *channels,
                     int channel_count, sim_error *err);
 
@@ -55,5 +58,14 @@ int image_write_png(const char *path, int width, int height, int channels,
 
 /* Saves a fogmap as a single float channel "Y" EXR (what fogmap_load reads back exactly). */
 int fogmap_save_exr(const char *path, const fogmap *map, sim_error *err);
+
+/* The largest density of the map (0 for an all-zero map). */
+float fogmap_max_density(const fogmap *map);
+
+/* Saves a fogmap as a 16-bit greyscale PNG: pixel = round(density / max_density * 65535),
+ * clamped to [0, 65535]; max_density 0 means fogmap_max_density(map) (1 if that is 0).
+ * fogmap_load with density_scale = max_density reads it back within max_density / 131070.
+ * Temporary file + rename like image_write_exr. */
+int fogmap_save_png16(const char *path, const fogmap *map, float max_density, sim_error *err);
 
 #endif

@@ -5,5 +5,6 @@
 #define FOGPIPE_SIM_H
 
 #include "sim/fogmap.h"
+#include "sim/designed_fog.h"
 
 #endif

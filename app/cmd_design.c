@@ -1,0 +1,279 @@
+/* fogpipe design: writes a designed fogmap (Perlin turbulence, Gaussian blobs, or
+ * turbulence modulated by blobs) to EXR or PNG. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/commands.h"
+#include "sim/designed_fog.h"
+#include "sim/fogmap.h"
+
+enum { max_blobs = 256 };
+
+static void print_help(FILE *out) {
+  fprintf(out,
+          "usage: fogpipe design (--perlin | --blobs N | --blob X,Z,SIGMA,PEAK)... --size WxH\n"
+          "                      --out FILE.exr|FILE.png [options]\n"
+          "\n"
+          "Writes a designed fogmap. Perlin turbulence (Perlin 2002 improved noise, summed\n"
+          "over octaves, drifting with --velocity over --time as in Zdrojewska 2004), Gaussian\n"
+          "blobs c*exp(-|x-b|^2/(2 sigma^2)), or, with both, the turbulence multiplied by\n"
+          "(--blob-base + the blob sum): turbulence modulated by Gaussian banks.\n"
+          "Positions and sizes are in fogmap cells; cell (x, z) is at (x, z), z = image row.\n"
+          "\n"
+          "what:\n"
+          "  --perlin               Perlin turbulence base + gain * T(p - velocity * time)\n"
+          "  --blobs N              N Gaussian blobs placed at random from --seed\n"
+          "  --blob X,Z,SIGMA,PEAK  one Gaussian blob (repeatable, at most %d blobs in all)\n"
+          "output:\n"
+          "  --size WxH             fogmap size in cells (required)\n"
+          "  --out FILE             .exr: one float channel \"Y\" (exactly what fogmap_load reads);\n"
+          "                         .png: 16-bit grey, density / png-max * 65535 (required)\n"
+          "  --half                 EXR: store the channel as 16-bit half floats\n"
+          "  --png-max D            PNG: the density stored as 65535 (default: the map's maximum;\n"
+          "                         load the PNG with density_scale D to get densities back)\n"
+          "Perlin turbulence:\n"
+          "  --seed N               permutation seed, also places random blobs (default 1;\n"
+          "                         0 is Perlin's reference permutation)\n"
+          "  --time T               animation time (default 0)\n"
+          "  --velocity VX,VZ       drift of the noise in cells per unit time (default 0,0)\n"
+          "  --feature-size S       noise lattice spacing in cells, the largest eddies (default 32)\n"
+          "  --octaves N            turbulence octaves (default 4)\n"
+          "  --gain G               turbulence gain (default 1)\n"
+          "  --base B               density added to the turbulence (default 0)\n"
+          "  --slice S              the noise's third coordinate (default 0)\n"
+          "  --slice-rate R         slice change per unit time: evolving, not only drifting fog\n"
+          "blobs:\n"
+          "  --blob-base B          density added to the blob sum (default 0; with --perlin it\n"
+          "                         is the turbulence left between the banks)\n"
+          "  --help                 this text\n",
+          max_blobs);
+}
+
+static int usage_error(const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+static int usage_error(const char *format, ...) {
+  va_list args;
+  va_start(args, format);
+  fprintf(stderr, "fogpipe design: ");
+  vfprintf(stderr, format, args);
+  fprintf(stderr, "\n(fogpipe design --help lists the options)\n");
+  va_end(args);
+  return 2;
+}
+
+static int takes_value(const char *opt) {
+  static const char *const valued[] = {
+      "--size",  "--out",  "--seed", "--blobs", "--blob",  "--time",       "--velocity",
+      "--feature-size", "--octaves", "--gain", "--base", "--slice", "--slice-rate",
+      "--blob-base", "--png-max"};
+  for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
+    if (!strcmp(opt, valued[i])) return 1;
+  return 0;
+}
+
+/* Parses exactly `count` comma-separated finite numbers. */
+static int parse_numbers(const char *text, double *values, int count) {
+  const char *p = text;
+  for (int i = 0; i < count; i++) {
+    char *end;
+    values[i] = strtod(p, &end);
+    if (end == p || !isfinite(values[i])) return 1;
+    p = end;
+    if (i + 1 < count) {
+      if (*p != ',') return 1;
+      p++;
+    }
+  }
+  return *p != '\0';
+}
+
+static int parse_int(const char *text, long lo, long hi, long *value) {
+  char *end;
+  *value = strtol(text, &end, 10);
+  return end == text || *end != '\0' || *value < lo || *value > hi;
+}
+
+static int ends_with(const char *s, const char *suffix) {
+  size_t n = strlen(s), m = strlen(suffix);
+  if (n < m) return 0;
+  for (size_t i = 0; i < m; i++) {
+    char c = s[n - m + i];
+    if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
+    if (c != suffix[i]) return 0;
+  }
+  return 1;
+}
+
+/* splitmix64: random blob placement from the seed, the same on every platform. */
+static double next_uniform(uint64_t *state) {
+  uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  z ^= z >> 31;
+  return (double)(z >> 11) / 9007199254740992.0;
+}
+
+int cmd_design(int argc, char **argv) {
+  int perlin = 0, half = 0, random_blobs = 0, blob_count = 0;
+  long width = 0, height = 0;
+  const char *out = NULL;
+  double png_max = 0.0, blob_base = 0.0;
+  fog_blob blobs[max_blobs];
+  long seed = 1;
+  perlin_fog_desc noise = {0};
+
+  for (int i = 1; i < argc; i++) {
+    const char *opt = argv[i];
+    if (!strcmp(opt, "--help") || !strcmp(opt, "-h")) {
+      print_help(stdout);
+      return 0;
+    }
+    if (!strcmp(opt, "--perlin")) {
+      perlin = 1;
+      continue;
+    }
+    if (!strcmp(opt, "--half")) {
+      half = 1;
+      continue;
+    }
+    if (!takes_value(opt)) return usage_error("unknown option '%s'", opt);
+    if (i + 1 >= argc) return usage_error("%s needs a value", opt);
+    const char *value = argv[++i];
+    double v[4];
+    long n;
+    if (!strcmp(opt, "--size")) {
+      char *x = strchr(value, 'x');
+      char w_text[32];
+      if (!x || x - value >= (long)sizeof w_text)
+        return usage_error("--size expects WxH (e.g. 256x256), got '%s'", value);
+      memcpy(w_text, value, (size_t)(x - value));
+      w_text[x - value] = '\0';
+      if (parse_int(w_text, 1, 16384, &width) || parse_int(x + 1, 1, 16384, &height))
+        return usage_error("--size expects WxH with both 1 to 16384, got '%s'", value);
+    } else if (!strcmp(opt, "--out")) {
+      out = value;
+    } else if (!strcmp(opt, "--seed")) {
+      if (parse_int(value, 0, 0x7fffffffL, &seed))
+        return usage_error("--seed expects an integer 0 to 2147483647, got '%s'", value);
+    } else if (!strcmp(opt, "--blobs")) {
+      if (parse_int(value, 1, max_blobs, &n))
+        return usage_error("--blobs expects a count 1 to 256, got '%s'", value);
+      random_blobs = (int)n;
+    } else if (!strcmp(opt, "--blob")) {
+      if (parse_numbers(value, v, 4) || !(v[2] > 0) || !(v[3] >= 0))
+        return usage_error("--blob expects X,Z,SIGMA,PEAK with SIGMA > 0 and PEAK >= 0, got "
+                           "'%s'", value);
+      if (blob_count >= max_blobs) return usage_error("more than 256 blobs");
+      blobs[blob_count++] = (fog_blob){(float)v[0], (float)v[1], (float)v[2], (float)v[3]};
+    } else if (!strcmp(opt, "--time")) {
+      if (parse_numbers(value, v, 1)) return usage_error("--time expects a number, got '%s'", value);
+      noise.time = (float)v[0];
+    } else if (!strcmp(opt, "--velocity")) {
+      if (parse_numbers(value, v, 2))
+        return usage_error("--velocity expects VX,VZ (two numbers), got '%s'", value);
+      noise.velocity[0] = (float)v[0];
+      noise.velocity[1] = (float)v[1];
+    } else if (!strcmp(opt, "--feature-size")) {
+      if (parse_numbers(value, v, 1) || !(v[0] > 0))
+        return usage_error("--feature-size expects a positive number of cells, got '%s'",
+                           value);
+      noise.feature_size = (float)v[0];
+    } else if (!strcmp(opt, "--octaves")) {
+      if (parse_int(value, 1, 30, &n))
+        return usage_error("--octaves expects 1 to 30, got '%s'", value);
+      noise.octaves = (int)n;
+    } else if (!strcmp(opt, "--gain")) {
+      if (parse_numbers(value, v, 1) || !(v[0] > 0))
+        return usage_error("--gain expects a positive number, got '%s'", value);
+      noise.gain = (float)v[0];
+    } else if (!strcmp(opt, "--base")) {
+      if (parse_numbers(value, v, 1) || !(v[0] >= 0))
+        return usage_error("--base expects a number >= 0, got '%s'", value);
+      noise.base = (float)v[0];
+    } else if (!strcmp(opt, "--slice")) {
+      if (parse_numbers(value, v, 1)) return usage_error("--slice expects a number, got '%s'", value);
+      noise.slice = (float)v[0];
+    } else if (!strcmp(opt, "--slice-rate")) {
+      if (parse_numbers(value, v, 1))
+        return usage_error("--slice-rate expects a number, got '%s'", value);
+      noise.slice_rate = (float)v[0];
+    } else if (!strcmp(opt, "--blob-base")) {
+      if (parse_numbers(value, v, 1) || !(v[0] >= 0))
+        return usage_error("--blob-base expects a number >= 0, got '%s'", value);
+      blob_base = v[0];
+    } else if (!strcmp(opt, "--png-max")) {
+      if (parse_numbers(value, v, 1) || !(v[0] > 0))
+        return usage_error("--png-max expects a positive density, got '%s'", value);
+      png_max = v[0];
+    } else {
+      return usage_error("unknown option '%s'", opt);
+    }
+  }
+  if (!perlin && !random_blobs && !blob_count)
+    return usage_error("say what to design: --perlin, --blobs N and/or --blob X,Z,SIGMA,PEAK");
+  if (!width) return usage_error("--size WxH is required");
+  if (!out) return usage_error("--out FILE.exr or FILE.png is required");
+  int png = ends_with(out, ".png");
+  if (!png && !ends_with(out, ".exr"))
+    return usage_error("--out '%s': the name must end in .exr or .png", out);
+  if (random_blobs + blob_count > max_blobs)
+    return usage_error("more than 256 blobs");
+
+  /* Random banks: centres inside the middle 80%, widths 1/16 to 1/5 of the smaller side. */
+  uint64_t state = (uint64_t)seed * 0x2545f4914f6cdd1dull + 1;
+  double side = width < height ? (double)width : (double)height;
+  for (int i = 0; i < random_blobs; i++) {
+    double x = width * (0.1 + 0.8 * next_uniform(&state));
+    double z = height * (0.1 + 0.8 * next_uniform(&state));
+    double sigma = side * (1.0 / 16 + (1.0 / 5 - 1.0 / 16) * next_uniform(&state));
+    double peak = 0.4 + 0.6 * next_uniform(&state);
+    blobs[blob_count++] = (fog_blob){(float)x, (float)z, (float)sigma, (float)peak};
+  }
+
+  sim_error err;
+  fogmap map = {0}, banks = {0};
+  int status = fogmap_create(&map, (int)width, (int)height, &err);
+  noise.seed = (uint64_t)seed;
+  if (!status && perlin) status = designed_fog_perlin(&map, &noise, &err);
+  if (!status && blob_count) {
+    fogmap *target = perlin ? &banks : &map;
+    if (perlin) status = fogmap_create(&banks, (int)width, (int)height, &err);
+    if (!status)
+      status = designed_fog_blobs(target, &(blob_fog_desc){.blobs = blobs, .blob_count = blob_count},
+                                  &err);
+    for (size_t i = 0; !status && i < (size_t)width * (size_t)height; i++)
+      target->density[i] += (float)blob_base;
+    if (!status && perlin) status = designed_fog_multiply(&map, &banks, &err);
+  }
+  float max = status ? 0.0f : fogmap_max_density(&map);
+  if (!status) {
+    if (png) {
+      status = fogmap_save_png16(out, &map, (float)png_max, &err);
+    } else {
+      image_channel y = {.name = "Y", .pixels = map.density, .as_half = half};
+      status = image_write_exr(out, map.width, map.height, &y, 1, &err);
+    }
+  }
+  if (status) {
+    fprintf(stderr, "fogpipe design: %s\n", err.message);
+  } else {
+    float min = map.density[0];
+    for (size_t i = 0; i < (size_t)width * (size_t)height; i++)
+      if (map.density[i] < min) min = map.density[i];
+    printf("fogpipe design: wrote %s (%ldx%ld, densities %g to %g", out, width, height,
+           (double)min, (double)max);
+    double full_scale = png_max ? png_max : (max > 0.0f ? (double)max : 1.0);
+    if (png) printf("; PNG full scale %g: load with density_scale %g", full_scale, full_scale);
+    printf(")\n");
+  }
+  fogmap_destroy(&banks);
+  fogmap_destroy(&map);
+  return status ? 1 : 0;
+}

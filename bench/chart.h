@@ -1,0 +1,27 @@
+/* Speed/accuracy charts: a CSV of (series, x, y) points and a PNG plot drawn by gnuplot
+ * (Debian's gnuplot-nox, pngcairo), one line per series. Used by the benchmarks and by
+ * `fogpipe import --report`. */
+#ifndef FOGPIPE_BENCH_CHART_H
+#define FOGPIPE_BENCH_CHART_H
+
+#include <stdbool.h>
+
+typedef struct chart_point {
+  const char *series; /* points of one series are joined in the order given */
+  double x, y;
+} chart_point;
+
+typedef struct chart_desc {
+  const char *title;
+  const char *x_label, *y_label;
+  bool log_x, log_y;
+  int width, height;  /* pixels; 0 means 960 x 600 */
+} chart_desc;
+
+/* Writes csv_path (columns series,x,y) and, when png_path is not NULL, the PNG chart.
+ * Both are written to temporary names and renamed. Returns 0, or non-zero with a message
+ * in error (size error_size) naming the file or the missing gnuplot. */
+int chart_write(const chart_desc *desc, const chart_point *points, int count,
+                const char *csv_path, const char *png_path, char *error, int error_size);
+
+#endif

@@ -1,0 +1,374 @@
+/* OpenEXR through the OpenEXR 3 Core C API (openexr.h).
+ *
+ * Reading: part 0, one channel (half or float) to float; scanline files, and tiled files
+ * at their full-resolution level (0, 0). Writing: one scanline part, ZIP compression
+ * (lossless, 16 scanlines per chunk; smooth fog compresses well and every EXR reader
+ * supports it), channels sorted by name as EXR requires.
+ *
+ * Both directions use our own stream callbacks on a file descriptor we opened: the
+ * library's own file handling would hide the errno (missing file, disk full) we must
+ * report, and writes must go to an atomic_file temporary. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <fcntl.h>
+#include <openexr.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "sim/image_io.h"
+
+/* Our stream: a file descriptor and the last message the library reported. */
+typedef struct exr_stream {
+  int fd;
+  int64_t size;
+  atomic_file *out;  /* when writing */
+  char message[256]; /* the library's last error message */
+} exr_stream;
+
+static void remember_error(exr_const_context_t ctxt, exr_result_t code, const char *msg) {
+  void *user = NULL;
+  if (exr_get_user_data(ctxt, &user) == EXR_ERR_SUCCESS && user) {
+    exr_stream *stream = user;
+    snprintf(stream->message, sizeof stream->message, "%s", msg ? msg : "");
+  }
+}
+
+static int64_t stream_read(exr_const_context_t ctxt, void *user, void *buffer, uint64_t size,
+                           uint64_t offset, exr_stream_error_func_ptr_t error_cb) {
+  exr_stream *stream = user;
+  uint8_t *p = buffer;
+  uint64_t done = 0;
+  while (done < size) {
+    ssize_t n = pread(stream->fd, p + done, size - done, (off_t)(offset + done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      error_cb(ctxt, EXR_ERR_READ_IO, "read failed: %s", strerror(errno));
+      return -1;
+    }
+    if (n == 0) break; /* end of file: the library reports a short read */
+    done += (uint64_t)n;
+  }
+  return (int64_t)done;
+}
+
+static int64_t stream_size(exr_const_context_t ctxt, void *user) { return ((exr_stream *)user)->size; }
+
+static int64_t stream_write(exr_const_context_t ctxt, void *user, const void *buffer,
+                            uint64_t size, uint64_t offset,
+                            exr_stream_error_func_ptr_t error_cb) {
+  exr_stream *stream = user;
+  if (atomic_file_pwrite(stream->out, buffer, size, offset)) {
+    error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed: %s", strerror(stream->out->write_errno));
+    return -1;
+  }
+  return (int64_t)size;
+}
+
+/* "the library's message" or, when it gave none, the generic text of the code. */
+static const char *exr_reason(const exr_stream *stream, exr_result_t code) {
+  return stream->message[0] ? stream->message : exr_get_default_error_message(code);
+}
+
+static void list_channels(const exr_attr_chlist_t *list, char *out, size_t size) {
+  out[0] = '\0';
+  for (int c = 0; c < list->num_channels; c++) {
+    size_t used = strlen(out);
+    if (used + 8 >= size) {
+      snprintf(out + used, size - used, ", ...");
+      break;
+    }
+    snprintf(out + used, size - used, "%s\"%s\"", c ? ", " : "", list->entries[c].name.str);
+  }
+}
+
+/* Points the chosen channel of this chunk at its place in the output image (rows of
+ * `width` floats) and every other channel at a scratch chunk that is thrown away.
+ * (Leaving the other channels' pointers NULL, which the API documents as "skip", crashes
+ * OpenEXR 3.1.5's unpack routines for half channels; decoding them costs little.) */
+static void aim_channels(exr_decode_pipeline_t *decode, const char *name, float *chunk_origin,
+                         int width, float *scratch) {
+  for (int c = 0; c < decode->channel_count; c++) {
+    exr_coding_channel_info_t *info = &decode->channels[c];
+    int chosen = !strcmp(info->channel_name, name);
+    info->decode_to_ptr = (uint8_t *)(chosen ? chunk_origin : scratch);
+    info->user_pixel_stride = (int32_t)sizeof(float);
+    info->user_line_stride =
+        (int32_t)(sizeof(float) * (size_t)(chosen ? width : info->width));
+    info->user_bytes_per_element = (int16_t)sizeof(float);
+    info->user_data_type = EXR_PIXEL_FLOAT; /* half is converted by the library */
+  }
+}
+
+/* Decodes one chunk (a scanline block or a tile) into the output image. */
+static exr_result_t decode_chunk(exr_context_t ctxt, const exr_chunk_info_t *chunk,
+                                 exr_decode_pipeline_t *decode, int *initialised,
+                                 const char *name, float *origin, int width,
+                                 float *scratch) {
+  exr_result_t rv;
+  if (!*initialised) {
+    rv = exr_decoding_initialize(ctxt, 0, chunk, decode);
+    if (rv != EXR_ERR_SUCCESS) return rv;
+    *initialised = 1;
+    aim_channels(decode, name, origin, width, scratch);
+    rv = exr_decoding_choose_default_routines(ctxt, 0, decode);
+  } else {
+    rv = exr_decoding_update(ctxt, 0, chunk, decode);
+    aim_channels(decode, name, origin, width, scratch);
+  }
+  if (rv != EXR_ERR_SUCCESS) return rv;
+  return exr_decoding_run(ctxt, 0, decode);
+}
+
+int exr_read_channel(const char *path, const char *channel, int *width_out,
+                     int *height_out, float **pixels, sim_error *err) {
+  exr_stream stream = {.fd = open(path, O_RDONLY | O_CLOEXEC)};
+  if (stream.fd < 0) return sim_fail(err, "%s: cannot open: %s", path, strerror(errno));
+  struct stat st;
+  stream.size = fstat(stream.fd, &st) == 0 ? (int64_t)st.st_size : -1;
+
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = remember_error;
+  init.user_data = &stream;
+  init.read_fn = stream_read;
+  init.size_fn = stream_size;
+  exr_context_t ctxt = NULL;
+  float *out = NULL, *scratch = NULL;
+  int status = 1;
+  exr_decode_pipeline_t decode = EXR_DECODE_PIPELINE_INITIALIZER;
+  int initialised = 0;
+
+  exr_result_t rv = exr_start_read(&ctxt, path, &init);
+  if (rv != EXR_ERR_SUCCESS) {
+    sim_fail(err, "%s: not a readable EXR: %s", path, exr_reason(&stream, rv));
+    goto done;
+  }
+  exr_storage_t storage;
+  exr_attr_box2i_t window;
+  const exr_attr_chlist_t *list = NULL;
+  rv = exr_get_storage(ctxt, 0, &storage);
+  if (rv == EXR_ERR_SUCCESS) rv = exr_get_data_window(ctxt, 0, &window);
+  if (rv == EXR_ERR_SUCCESS) rv = exr_get_channels(ctxt, 0, &list);
+  if (rv != EXR_ERR_SUCCESS || !list) {
+    sim_fail(err, "%s: EXR header incomplete: %s", path, exr_reason(&stream, rv));
+    goto done;
+  }
+  if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) {
+    sim_fail(err, "%s: deep EXR data; expected a scanline or tiled image", path);
+    goto done;
+  }
+  int64_t width = (int64_t)window.max.x - window.min.x + 1;
+  int64_t height = (int64_t)window.max.y - window.min.y + 1;
+  if (width <= 0 || height <= 0) {
+    sim_fail(err, "%s: EXR data window has zero size (%lldx%lld)", path, (long long)width,
+             (long long)height);
+    goto done;
+  }
+  if (width > 1 << 20 || height > 1 << 20 || width * height > (int64_t)1 << 28) {
+    sim_fail(err, "%s: EXR size %lldx%lld is too large for a fogmap", path, (long long)width,
+             (long long)height);
+    goto done;
+  }
+
+  char names[256];
+  list_channels(list, names, sizeof names);
+  const exr_attr_chlist_entry_t *entry = NULL;
+  if (list->num_channels == 0) {
+    sim_fail(err, "%s: EXR has no channels", path);
+    goto done;
+  }
+  if (!channel) {
+    if (list->num_channels != 1) {
+      sim_fail(err, "%s: EXR has %d channels (%s); name the one to load (fogmap channel)",
+               path, list->num_channels, names);
+      goto done;
+    }
+    entry = &list->entries[0];
+  } else {
+    for (int c = 0; c < list->num_channels; c++)
+      if (!strcmp(list->entries[c].name.str, channel)) entry = &list->entries[c];
+    if (!entry) {
+      sim_fail(err, "%s: EXR has no channel \"%s\"; it has %s", path, channel, names);
+      goto done;
+    }
+  }
+  if (entry->pixel_type != EXR_PIXEL_HALF && entry->pixel_type != EXR_PIXEL_FLOAT) {
+    sim_fail(err, "%s: EXR channel \"%s\" holds 32-bit unsigned integers; expected half or "
+             "float", path, entry->name.str);
+    goto done;
+  }
+  if (entry->x_sampling != 1 || entry->y_sampling != 1) {
+    sim_fail(err, "%s: EXR channel \"%s\" is subsampled (%d x %d); expected one value per "
+             "pixel", path, entry->name.str, entry->x_sampling, entry->y_sampling);
+    goto done;
+  }
+  const char *name = entry->name.str;
+
+  out = calloc((size_t)width * (size_t)height, sizeof *out);
+  if (!out) {
+    sim_fail(err, "%s: out of memory for a %lldx%lld fogmap", path, (long long)width,
+             (long long)height);
+    goto done;
+  }
+
+  /* The scratch chunk for the channels not loaded: one chunk of floats. */
+  uint64_t chunk_bytes = 0;
+  rv = exr_get_chunk_unpacked_size(ctxt, 0, &chunk_bytes);
+  if (rv == EXR_ERR_SUCCESS) {
+    /* unpacked size counts half channels at 2 bytes; floats need at most twice that */
+    scratch = malloc(2 * (size_t)chunk_bytes + sizeof(float));
+    if (!scratch) {
+      sim_fail(err, "%s: out of memory for an EXR chunk", path);
+      goto done;
+    }
+  }
+
+  if (rv != EXR_ERR_SUCCESS) {
+  } else if (storage == EXR_STORAGE_SCANLINE) {
+    int32_t lines_per_chunk = 1;
+    rv = exr_get_scanlines_per_chunk(ctxt, 0, &lines_per_chunk);
+    for (int32_t y = window.min.y; rv == EXR_ERR_SUCCESS && y <= window.max.y;
+         y += lines_per_chunk) {
+      exr_chunk_info_t chunk;
+      rv = exr_read_scanline_chunk_info(ctxt, 0, y, &chunk);
+      if (rv != EXR_ERR_SUCCESS) break;
+      float *origin = out + (size_t)(chunk.start_y - window.min.y) * (size_t)width;
+      rv = decode_chunk(ctxt, &chunk, &decode, &initialised, name, origin, (int)width,
+                          scratch);
+    }
+  } else {
+    /* Tiled: the full-resolution level (0, 0) only; tile (tx, ty) starts at pixel
+     * (tx * tile_w, ty * tile_h) of the data window. */
+    uint32_t tile_w = 0, tile_h = 0;
+    exr_tile_level_mode_t level_mode;
+    exr_tile_round_mode_t round_mode;
+    rv = exr_get_tile_descriptor(ctxt, 0, &tile_w, &tile_h, &level_mode, &round_mode);
+    if (rv == EXR_ERR_SUCCESS && (tile_w == 0 || tile_h == 0)) rv = EXR_ERR_INVALID_ATTR;
+    int64_t tiles_x = rv == EXR_ERR_SUCCESS ? (width + tile_w - 1) / tile_w : 0;
+    int64_t tiles_y = rv == EXR_ERR_SUCCESS ? (height + tile_h - 1) / tile_h : 0;
+    for (int64_t ty = 0; rv == EXR_ERR_SUCCESS && ty < tiles_y; ty++)
+      for (int64_t tx = 0; rv == EXR_ERR_SUCCESS && tx < tiles_x; tx++) {
+        exr_chunk_info_t chunk;
+        rv = exr_read_tile_chunk_info(ctxt, 0, (int)tx, (int)ty, 0, 0, &chunk);
+        if (rv != EXR_ERR_SUCCESS) break;
+        float *origin = out + (size_t)(ty * tile_h) * (size_t)width + (size_t)(tx * tile_w);
+        rv = decode_chunk(ctxt, &chunk, &decode, &initialised, name, origin, (int)width,
+                          scratch);
+      }
+  }
+  if (rv != EXR_ERR_SUCCESS) {
+    sim_fail(err, "%s: EXR pixel data unreadable (damaged or truncated?): %s", path,
+             exr_reason(&stream, rv));
+    goto done;
+  }
+  *width_out = (int)width;
+  *height_out = (int)height;
+  *pixels = out;
+  out = NULL;
+  status = 0;
+done:
+  if (initialised) exr_decoding_destroy(ctxt, &decode);
+  if (ctxt) exr_finish(&ctxt);
+  close(stream.fd);
+  free(out);
+  free(scratch);
+  return status;
+}
+
+static int by_name(const void *a, const void *b) {
+  return strcmp(((const image_channel *)a)->name, ((const image_channel *)b)->name);
+}
+
+int image_write_exr(const char *path, int width, int height, const image_channel *channels,
+                    int channel_count, sim_error *err) {
+  if (width <= 0 || height <= 0)
+    return sim_fail(err, "%s: image size %dx%d: both must be positive", path, width, height);
+  if (channel_count <= 0 || channel_count > 64)
+    return sim_fail(err, "%s: an EXR needs 1 to 64 channels, not %d", path, channel_count);
+  image_channel sorted[64];
+  for (int c = 0; c < channel_count; c++) {
+    sorted[c] = channels[c];
+    if (!sorted[c].name || !sorted[c].name[0] || strlen(sorted[c].name) > 31 ||
+        !sorted[c].pixels)
+      return sim_fail(err, "%s: channel %d needs a name (1 to 31 characters) and pixels", path,
+                      c);
+  }
+  /* EXR requires channels sorted by name (the channel list attribute is sorted). */
+  qsort(sorted, (size_t)channel_count, sizeof sorted[0], by_name);
+  for (int c = 1; c < channel_count; c++)
+    if (!strcmp(sorted[c - 1].name, sorted[c].name))
+      return sim_fail(err, "%s: channel \"%s\" given twice", path, sorted[c].name);
+
+  atomic_file file;
+  if (atomic_file_open(&file, path, err)) return 1;
+  exr_stream stream = {.fd = file.fd, .out = &file};
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = remember_error;
+  init.user_data = &stream;
+  init.write_fn = stream_write;
+  exr_context_t ctxt = NULL;
+  exr_encode_pipeline_t encode = EXR_ENCODE_PIPELINE_INITIALIZER;
+  int initialised = 0;
+  int part = 0;
+  const char *stage = "starting the file";
+  exr_result_t rv = exr_start_write(&ctxt, path, EXR_WRITE_FILE_DIRECTLY, &init);
+  if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(ctxt, "fogpipe", EXR_STORAGE_SCANLINE, &part);
+  if (rv == EXR_ERR_SUCCESS)
+    rv = exr_initialize_required_attr_simple(ctxt, part, width, height, EXR_COMPRESSION_ZIP);
+  for (int c = 0; rv == EXR_ERR_SUCCESS && c < channel_count; c++)
+    rv = exr_add_channel(ctxt, part, sorted[c].name,
+                         sorted[c].as_half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT,
+                         EXR_PERCEPTUALLY_LINEAR, 1, 1);
+  if (rv == EXR_ERR_SUCCESS) {
+    stage = "writing the header";
+    rv = exr_write_header(ctxt);
+  }
+  int32_t lines_per_chunk = 1;
+  if (rv == EXR_ERR_SUCCESS) rv = exr_get_scanlines_per_chunk(ctxt, part, &lines_per_chunk);
+  if (rv == EXR_ERR_SUCCESS) stage = "writing pixels";
+  for (int y = 0; rv == EXR_ERR_SUCCESS && y < height; y += lines_per_chunk) {
+    exr_chunk_info_t chunk;
+    rv = exr_write_scanline_chunk_info(ctxt, part, y, &chunk);
+    if (rv != EXR_ERR_SUCCESS) break;
+    rv = initialised ? exr_encoding_update(ctxt, part, &chunk, &encode)
+                     : exr_encoding_initialize(ctxt, part, &chunk, &encode);
+    if (rv != EXR_ERR_SUCCESS) break;
+    /* The encoder's channels are in file (sorted) order, as is `sorted`; match by name
+     * anyway rather than rely on that. */
+    for (int c = 0; c < encode.channel_count; c++) {
+      exr_coding_channel_info_t *info = &encode.channels[c];
+      const image_channel *source = NULL;
+      for (int s = 0; s < channel_count; s++)
+        if (!strcmp(sorted[s].name, info->channel_name)) source = &sorted[s];
+      info->encode_from_ptr =
+          (const uint8_t *)(source->pixels + (size_t)chunk.start_y * (size_t)width);
+      info->user_pixel_stride = (int32_t)sizeof(float);
+      info->user_line_stride = (int32_t)(sizeof(float) * (size_t)width);
+      info->user_bytes_per_element = (int16_t)sizeof(float);
+      info->user_data_type = EXR_PIXEL_FLOAT; /* float -> half done by the library */
+    }
+    if (!initialised) {
+      initialised = 1;
+      rv = exr_encoding_choose_default_routines(ctxt, part, &encode);
+      if (rv != EXR_ERR_SUCCESS) break;
+    }
+    rv = exr_encoding_run(ctxt, part, &encode);
+  }
+  if (initialised) exr_encoding_destroy(ctxt, &encode);
+  if (rv == EXR_ERR_SUCCESS) stage = "finishing (writing the chunk table)";
+  /* exr_finish writes the chunk offset table; its failure (a full disk) matters too. */
+  exr_result_t finish = ctxt ? exr_finish(&ctxt) : EXR_ERR_SUCCESS;
+  if (rv == EXR_ERR_SUCCESS) rv = finish;
+  if (rv != EXR_ERR_SUCCESS || file.write_errno) {
+    if (file.write_errno)
+      sim_fail(err, "%s: write failed while %s: %s", path, stage, strerror(file.write_errno));
+    else
+      sim_fail(err, "%s: EXR writing failed while %s: %s", path, stage,
+               exr_reason(&stream, rv));
+    atomic_file_abandon(&file);
+    return 1;
+  }
+  return atomic_file_commit(&file, err);
+}

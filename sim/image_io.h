@@ -1,0 +1,52 @@
+/* Internal to the sim library (not part of its public API, not included by sim/sim.h):
+ * the pieces fogmap_io.c, image_png.c and image_exr.c share.
+ *
+ * Output files are written through an atomic_file: a temporary ".NAME.tmp.XXXXXX" made
+ * with mkstemp in the target's own folder (so rename(2) is atomic: same file system),
+ * renamed over the target only once everything was written; any failure unlinks the
+ * temporary and leaves the target as it was. */
+#ifndef FOGPIPE_SIM_IMAGE_IO_H
+#define FOGPIPE_SIM_IMAGE_IO_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "sim/fogmap.h"
+
+typedef struct atomic_file {
+  const char *path;     /* the target (not owned) */
+  char temp_path[4096]; /* the temporary beside it */
+  int fd;               /* -1 once closed */
+  int write_errno;      /* first failed write's errno, 0 if none */
+} atomic_file;
+
+/* Creates the temporary; fails naming the target's folder and the reason. */
+int atomic_file_open(atomic_file *file, const char *path, sim_error *err);
+/* pwrite of all n bytes at offset; on failure remembers errno (the first one) and fails. */
+int atomic_file_pwrite(atomic_file *file, const void *bytes, size_t n, uint64_t offset);
+/* Closes, sets the usual 0644 permissions and renames over the target; on failure (a
+ * remembered write error, close or rename failing) removes the temporary and fails. */
+int atomic_file_commit(atomic_file *file, sim_error *err);
+/* Closes and removes the temporary (after a failure elsewhere). */
+void atomic_file_abandon(atomic_file *file);
+
+/* Decoded single-channel float images: both readers allocate *pixels (width*height
+ * floats, top row first) only on success. */
+int png_read_channel(const char *path, const unsigned char *bytes, size_t size,
+                     const char *channel, int *width, int *height, float **pixels,
+                     sim_error *err);
+int exr_read_channel(const char *path, const char *channel, int *width, int *height,
+                     float **pixels, sim_error *err);
+
+/* Writes an 8- or 16-bit PNG of interleaved samples (uint8_t or host-endian uint16_t). */
+int png_write_samples(const char *path, int width, int height, int channels, int bit_depth,
+                      const void *samples, sim_error *err);
+
+/* snprintf into err->message; returns 1 (the failing status) for `return fail(...)`. */
+int sim_fail(sim_error *err, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+#endif

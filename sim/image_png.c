@@ -1,0 +1,198 @@
+/* PNG through libspng: one channel of a PNG to floats, and 8/16-bit PNG writing.
+ * Samples are taken as stored (no gamma or sRGB decoding): a fogmap PNG holds data, not
+ * colour, and value / (2^depth - 1) must read back exactly what was written. */
+#include <math.h>
+#include <spng.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sim/image_io.h"
+
+typedef struct png_layout {
+  int channels;              /* samples per pixel after decoding */
+  const char *names[4];      /* what desc.channel may name */
+  const char *kind;          /* for messages */
+} png_layout;
+
+static png_layout layout_of(int color_type) {
+  switch (color_type) {
+    case SPNG_COLOR_TYPE_GRAYSCALE: return (png_layout){1, {"grey"}, "greyscale"};
+    case SPNG_COLOR_TYPE_GRAYSCALE_ALPHA:
+      return (png_layout){2, {"grey", "A"}, "grey+alpha"};
+    case SPNG_COLOR_TYPE_TRUECOLOR: return (png_layout){3, {"R", "G", "B"}, "RGB"};
+    case SPNG_COLOR_TYPE_TRUECOLOR_ALPHA:
+      return (png_layout){4, {"R", "G", "B", "A"}, "RGBA"};
+    /* Indexed colour is expanded through its palette to 8-bit RGBA. */
+    case SPNG_COLOR_TYPE_INDEXED: return (png_layout){4, {"R", "G", "B", "A"}, "indexed-colour"};
+    default: return (png_layout){0, {0}, "unknown"};
+  }
+}
+
+static void list_names(const png_layout *layout, char *out, size_t size) {
+  out[0] = '\0';
+  for (int c = 0; c < layout->channels; c++) {
+    size_t used = strlen(out);
+    snprintf(out + used, size - used, "%s\"%s\"", c ? ", " : "", layout->names[c]);
+  }
+}
+
+int png_read_channel(const char *path, const unsigned char *bytes, size_t size,
+                     const char *channel, int *width, int *height, float **pixels,
+                     sim_error *err) {
+  spng_ctx *ctx = spng_ctx_new(0);
+  if (!ctx) return sim_fail(err, "%s: out of memory starting the PNG decoder", path);
+  unsigned char *samples = NULL;
+  float *out = NULL;
+  int status = 1;
+  struct spng_ihdr ihdr;
+  int e = spng_set_png_buffer(ctx, bytes, size);
+  if (!e) e = spng_get_ihdr(ctx, &ihdr);
+  if (e) {
+    if (e == SPNG_EWIDTH || e == SPNG_EHEIGHT)
+      sim_fail(err, "%s: PNG header has an invalid (zero or too large) size: %s", path,
+               spng_strerror(e));
+    else
+      sim_fail(err, "%s: not a valid PNG (header): %s", path, spng_strerror(e));
+    goto done;
+  }
+  if (ihdr.width == 0 || ihdr.height == 0) {
+    sim_fail(err, "%s: PNG has zero size %ux%u", path, ihdr.width, ihdr.height);
+    goto done;
+  }
+  if (ihdr.width > 1u << 20 || ihdr.height > 1u << 20 ||
+      (uint64_t)ihdr.width * ihdr.height > (uint64_t)1 << 28) {
+    sim_fail(err, "%s: PNG size %ux%u is too large for a fogmap", path, ihdr.width,
+             ihdr.height);
+    goto done;
+  }
+  png_layout layout = layout_of(ihdr.color_type);
+  int indexed = ihdr.color_type == SPNG_COLOR_TYPE_INDEXED;
+  int depth = indexed ? 8 : ihdr.bit_depth;
+  if (!layout.channels || (depth != 8 && depth != 16)) {
+    sim_fail(err, "%s: %d-bit %s PNG; expected 8 or 16 bits per sample", path,
+             ihdr.bit_depth, layout.kind);
+    goto done;
+  }
+
+  /* Which sample of each pixel: a one-channel PNG needs no name (but "grey" is fine). */
+  char names[64];
+  list_names(&layout, names, sizeof names);
+  int pick = -1;
+  if (!channel) {
+    if (layout.channels != 1) {
+      sim_fail(err, "%s: %s PNG has channels %s; name the one to load (fogmap channel)",
+               path, layout.kind, names);
+      goto done;
+    }
+    pick = 0;
+  } else {
+    for (int c = 0; c < layout.channels; c++)
+      if (!strcmp(channel, layout.names[c])) pick = c;
+    if (pick < 0) {
+      sim_fail(err, "%s: %s PNG has no channel \"%s\"; it has %s", path, layout.kind,
+               channel, names);
+      goto done;
+    }
+  }
+
+  int fmt = indexed ? SPNG_FMT_RGBA8 : SPNG_FMT_PNG; /* SPNG_FMT_PNG: host-endian 16-bit */
+  size_t decoded_size;
+  e = spng_decoded_image_size(ctx, fmt, &decoded_size);
+  if (!e) {
+    samples = malloc(decoded_size);
+    if (!samples) {
+      sim_fail(err, "%s: out of memory decoding a %ux%u PNG", path, ihdr.width, ihdr.height);
+      goto done;
+    }
+    e = spng_decode_image(ctx, samples, decoded_size, fmt, 0);
+  }
+  if (e) {
+    sim_fail(err, "%s: PNG image data is damaged: %s", path, spng_strerror(e));
+    goto done;
+  }
+  size_t count = (size_t)ihdr.width * ihdr.height;
+  out = malloc(count * sizeof *out);
+  if (!out) {
+    sim_fail(err, "%s: out of memory for a %ux%u fogmap", path, ihdr.width, ihdr.height);
+    goto done;
+  }
+  if (depth == 8) {
+    for (size_t i = 0; i < count; i++)
+      out[i] = (float)samples[i * layout.channels + pick] / 255.0f;
+  } else {
+    const uint16_t *s16 = (const uint16_t *)samples;
+    for (size_t i = 0; i < count; i++)
+      out[i] = (float)s16[i * layout.channels + pick] / 65535.0f;
+  }
+  *width = (int)ihdr.width;
+  *height = (int)ihdr.height;
+  *pixels = out;
+  out = NULL;
+  status = 0;
+done:
+  free(out);
+  free(samples);
+  spng_ctx_free(ctx);
+  return status;
+}
+
+int png_write_samples(const char *path, int width, int height, int channels, int bit_depth,
+                      const void *samples, sim_error *err) {
+  static const uint8_t color_types[5] = {0, SPNG_COLOR_TYPE_GRAYSCALE,
+                                         SPNG_COLOR_TYPE_GRAYSCALE_ALPHA,
+                                         SPNG_COLOR_TYPE_TRUECOLOR,
+                                         SPNG_COLOR_TYPE_TRUECOLOR_ALPHA};
+  if (width <= 0 || height <= 0)
+    return sim_fail(err, "%s: image size %dx%d: both must be positive", path, width, height);
+  if (channels < 1 || channels > 4 || (bit_depth != 8 && bit_depth != 16))
+    return sim_fail(err, "%s: cannot write a %d-channel %d-bit PNG", path, channels,
+                    bit_depth);
+  spng_ctx *ctx = spng_ctx_new(SPNG_CTX_ENCODER);
+  if (!ctx) return sim_fail(err, "%s: out of memory starting the PNG encoder", path);
+  struct spng_ihdr ihdr = {.width = (uint32_t)width,
+                           .height = (uint32_t)height,
+                           .bit_depth = (uint8_t)bit_depth,
+                           .color_type = color_types[channels]};
+  size_t size = (size_t)width * height * channels * (bit_depth / 8);
+  /* Encode to memory, then write through atomic_file: the file appears only complete. */
+  int e = spng_set_option(ctx, SPNG_ENCODE_TO_BUFFER, 1);
+  if (!e) e = spng_set_ihdr(ctx, &ihdr);
+  if (!e) e = spng_encode_image(ctx, samples, size, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
+  size_t png_size = 0;
+  void *png = NULL;
+  if (!e) png = spng_get_png_buffer(ctx, &png_size, &e);
+  spng_ctx_free(ctx);
+  if (e || !png) {
+    free(png);
+    return sim_fail(err, "%s: PNG encoding failed: %s", path, spng_strerror(e));
+  }
+  atomic_file file;
+  if (atomic_file_open(&file, path, err)) {
+    free(png);
+    return 1;
+  }
+  atomic_file_pwrite(&file, png, png_size, 0);
+  free(png);
+  return atomic_file_commit(&file, err);
+}
+
+int image_write_png(const char *path, int width, int height, int channels,
+                    const float *interleaved, sim_error *err) {
+  if (channels != 1 && channels != 3 && channels != 4)
+    return sim_fail(err, "%s: PNG writing takes 1 (grey), 3 (RGB) or 4 (RGBA) channels, not %d",
+                    path, channels);
+  if (width <= 0 || height <= 0)
+    return sim_fail(err, "%s: image size %dx%d: both must be positive", path, width, height);
+  size_t count = (size_t)width * height * channels;
+  uint8_t *samples = malloc(count);
+  if (!samples) return sim_fail(err, "%s: out of memory for a %dx%d PNG", path, width, height);
+  for (size_t i = 0; i < count; i++) {
+    float v = interleaved[i];
+    v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; /* clamps, and NaN -> 0 */
+    samples[i] = (uint8_t)lrintf(v * 255.0f);
+  }
+  int status = png_write_samples(path, width, height, channels, 8, samples, err);
+  free(samples);
+  return status;
+}
