@@ -1,0 +1,431 @@
+/* fogpipe transform: wavelet-decompose a fogmap into its B-spline pyramid, or (with
+ * --inverse) rebuild the fogmap from such a folder. The maths is in transform/ and
+ * docs/transform.md; this file parses options, reads and writes files. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <OpenEXR/openexr.h>
+
+#include "app/commands.h"
+#include "sim/sim.h"
+#include "transform/transform.h"
+
+static const char *const orientation_names[3] = {"x", "y", "xy"};
+
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: fogpipe transform IN --levels J --out DIR [options]\n"
+          "       fogpipe transform --inverse DIR --out FILE\n\n"
+          "Decomposes the fogmap IN (PNG or one-channel EXR) in a B-spline wavelet basis\n"
+          "(Mallat's algorithm, unnormalised lifting; docs/transform.md) and writes to DIR:\n"
+          "  approx_L.exr            approximation pyramid A_L, L = 0 (coarsest) .. J\n"
+          "  detail_L_{x,y,xy}.exr   detail band L (1 = coarsest .. J), by orientation\n"
+          "  deconstructed_L.exr     band L pushed through the synthesis filters once: a\n"
+          "                          scaling grid at level L (A_L = refine(A_L-1) + it)\n"
+          "  transform.ini           basis, levels, mode, sizes, grid origins, energies\n"
+          "With --inverse, reads such a folder and writes the reconstructed fogmap EXR.\n\n"
+          "options:\n"
+          "  --basis haar|linear|quadratic   B-spline degree 0, 1 (CDF 5/3), 2 (bior3.3);\n"
+          "                                  default linear\n"
+          "  --levels J                      decomposition levels (required; too many for\n"
+          "                                  the size is an error naming the largest J)\n"
+          "  --mode symmetric|periodic       boundary extension; default symmetric\n"
+          "                                  (periodic needs sizes divisible by 2^J)\n"
+          "  --standard                      standard decomposition (default: non-standard)\n"
+          "  --threads 1|2                   default 1\n"
+          "  --out DIR|FILE                  output folder (forward) or EXR file (--inverse)\n"
+          "  --inverse DIR                   reconstruct from DIR\n"
+          "  --help                          this text\n");
+}
+
+static int failf(const char *format, ...) {
+  va_list ap;
+  va_start(ap, format);
+  fprintf(stderr, "fogpipe transform: ");
+  vfprintf(stderr, format, ap);
+  fputc('\n', stderr);
+  va_end(ap);
+  return 1;
+}
+
+static const char *basis_word(transform_basis b) {
+  return b == TRANSFORM_HAAR ? "haar" : b == TRANSFORM_LINEAR ? "linear" : "quadratic";
+}
+
+static int parse_basis(const char *s, transform_basis *b) {
+  if (!strcmp(s, "haar")) *b = TRANSFORM_HAAR;
+  else if (!strcmp(s, "linear")) *b = TRANSFORM_LINEAR;
+  else if (!strcmp(s, "quadratic")) *b = TRANSFORM_QUADRATIC;
+  else return 1;
+  return 0;
+}
+
+static int parse_int(const char *s, int *out) {
+  char *end;
+  errno = 0;
+  long v = strtol(s, &end, 10);
+  if (errno || end == s || *end || v < 0 || v > 1000000) return 1;
+  *out = (int)v;
+  return 0;
+}
+
+/* ---- a signed EXR channel reader (fogmap_load rejects negative values, but detail
+ * coefficients are signed): channel "Y" of a scanline EXR, half or float. ---- */
+
+static int read_signed_exr(const char *path, int *w_out, int *h_out, float **pixels,
+                           char *msg, size_t msg_size) {
+  exr_context_t ctxt = NULL;
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = NULL;
+  exr_decode_pipeline_t decode = EXR_DECODE_PIPELINE_INITIALIZER;
+  int initialised = 0, status = 1;
+  float *out = NULL;
+  if (exr_start_read(&ctxt, path, &init) != EXR_ERR_SUCCESS) {
+    snprintf(msg, msg_size, "%s: missing or not a readable EXR", path);
+    return 1;
+  }
+  exr_storage_t storage;
+  exr_attr_box2i_t win;
+  const exr_attr_chlist_t *list = NULL;
+  if (exr_get_storage(ctxt, 0, &storage) || exr_get_data_window(ctxt, 0, &win) ||
+      exr_get_channels(ctxt, 0, &list) || storage != EXR_STORAGE_SCANLINE || !list ||
+      list->num_channels != 1 || strcmp(list->entries[0].name.str, "Y")) {
+    snprintf(msg, msg_size, "%s: expected a scanline EXR with one channel \"Y\"", path);
+    goto done;
+  }
+  int w = win.max.x - win.min.x + 1, h = win.max.y - win.min.y + 1;
+  if (w <= 0 || h <= 0 || (int64_t)w * h > (int64_t)1 << 28) {
+    snprintf(msg, msg_size, "%s: bad EXR size %dx%d", path, w, h);
+    goto done;
+  }
+  out = malloc(sizeof(float) * (size_t)w * (size_t)h);
+  int32_t lines = 1;
+  exr_result_t rv = out ? exr_get_scanlines_per_chunk(ctxt, 0, &lines) : EXR_ERR_OUT_OF_MEMORY;
+  for (int32_t y = win.min.y; rv == EXR_ERR_SUCCESS && y <= win.max.y; y += lines) {
+    exr_chunk_info_t chunk;
+    rv = exr_read_scanline_chunk_info(ctxt, 0, y, &chunk);
+    if (rv != EXR_ERR_SUCCESS) break;
+    rv = initialised ? exr_decoding_update(ctxt, 0, &chunk, &decode)
+                     : exr_decoding_initialize(ctxt, 0, &chunk, &decode);
+    if (rv != EXR_ERR_SUCCESS) break;
+    exr_coding_channel_info_t *c = &decode.channels[0];
+    c->decode_to_ptr = (uint8_t *)(out + (size_t)(chunk.start_y - win.min.y) * (size_t)w);
+    c->user_pixel_stride = sizeof(float);
+    c->user_line_stride = (int32_t)(sizeof(float) * (size_t)w);
+    c->user_bytes_per_element = sizeof(float);
+    c->user_data_type = EXR_PIXEL_FLOAT;
+    if (!initialised) {
+      rv = exr_decoding_choose_default_routines(ctxt, 0, &decode);
+      initialised = 1;
+      if (rv != EXR_ERR_SUCCESS) break;
+    }
+    rv = exr_decoding_run(ctxt, 0, &decode);
+  }
+  if (rv != EXR_ERR_SUCCESS) {
+    snprintf(msg, msg_size, "%s: EXR decoding failed: %s", path, exr_get_default_error_message(rv));
+    goto done;
+  }
+  *w_out = w, *h_out = h, *pixels = out;
+  out = NULL;
+  status = 0;
+done:
+  if (initialised) exr_decoding_destroy(ctxt, &decode);
+  exr_finish(&ctxt);
+  free(out);
+  return status;
+}
+
+/* ---- forward ---- */
+
+static int write_exr(const char *dir, const char *name, int w, int h, const float *v) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  image_channel y = {.name = "Y", .pixels = v, .as_half = 0};
+  sim_error err;
+  if (image_write_exr(path, w, h, &y, 1, &err)) return failf("%s", err.message);
+  return 0;
+}
+
+static int write_manifest(const char *dir, transform_plan *plan, const char *input,
+                          const double *energy) {
+  const transform_desc *d = transform_plan_desc(plan);
+  char path[4096], temp[4200];
+  snprintf(path, sizeof path, "%s/transform.ini", dir);
+  snprintf(temp, sizeof temp, "%s/.transform.ini.tmp.%ld", dir, (long)getpid());
+  FILE *f = fopen(temp, "w");
+  if (!f) return failf("%s: cannot write: %s", temp, strerror(errno));
+  fprintf(f, "# fogpipe transform of %s (docs/transform.md)\n[transform]\n", input);
+  fprintf(f, "basis = %s\ndegree = %d\nlevels = %d\nmode = %s\ndecomposition = %s\n",
+          basis_word(d->basis), transform_basis_degree(d->basis), d->levels,
+          d->boundary == TRANSFORM_PERIODIC ? "periodic" : "symmetric",
+          d->decomposition == TRANSFORM_STANDARD ? "standard" : "nonstandard");
+  fprintf(f, "width = %d\nheight = %d\n", d->width, d->height);
+  for (int l = 0; l <= d->levels; l++) {
+    int w, h, gw, gh;
+    transform_level_size(plan, l, &w, &h);
+    transform_grid_size(plan, l, &gw, &gh);
+    double s = ldexp(1.0, d->levels - l);
+    double first = transform_basis_degree(d->basis) == 1 ? 0.0 : 0.5 * (s - 1.0);
+    fprintf(f, "\n[level %d]\nwidth = %d\nheight = %d\nspacing = %.17g\n"
+            "# fine-sample position of stored coefficient (0,0) (EXRs hold no ghosts)\n"
+            "origin = %.17g\n", l, w, h, s, first);
+    if (l > 0)
+      fprintf(f, "energy_x = %.17g\nenergy_y = %.17g\nenergy_xy = %.17g\n", energy[3 * l],
+              energy[3 * l + 1], energy[3 * l + 2]);
+  }
+  int bad = ferror(f);
+  bad |= fclose(f) != 0;
+  if (bad || rename(temp, path)) {
+    unlink(temp);
+    return failf("%s: cannot write: %s", path, strerror(errno));
+  }
+  return 0;
+}
+
+static int run_forward(const char *in, const char *dir, transform_desc desc) {
+  fogmap map;
+  sim_error serr;
+  if (fogmap_load(in, NULL, &map, &serr)) return failf("%s", serr.message);
+  desc.width = map.width, desc.height = map.height;
+  transform_plan *plan = NULL;
+  transform_error terr;
+  int status = 1;
+  size_t n = (size_t)map.width * map.height;
+  float *coef = NULL, *approx[64] = {0}, *detail[64] = {0}, *band = NULL;
+  double *energy = NULL;
+  if (desc.levels > 60) {
+    failf("%s: %d levels is too many", in, desc.levels);
+    goto done;
+  }
+  if (transform_plan_create(&plan, &desc, &terr)) {
+    failf("%s: %s", in, terr.message);
+    goto done;
+  }
+  int J = desc.levels;
+  coef = malloc(n * sizeof *coef);
+  band = malloc(n * sizeof *band);
+  energy = calloc(3 * (size_t)(J + 1), sizeof *energy);
+  int ok = coef && band && energy;
+  for (int l = 0; ok && l <= J; l++) {
+    int w, h;
+    transform_level_size(plan, l, &w, &h);
+    approx[l] = malloc((size_t)w * h * sizeof(float));
+    detail[l] = malloc((size_t)w * h * sizeof(float));
+    ok = approx[l] && detail[l];
+  }
+  if (!ok) {
+    failf("%s: out of memory", in);
+    goto done;
+  }
+  transform_forward(plan, map.density, coef);
+  transform_pyramid(plan, coef, approx);
+  transform_details(plan, coef, detail);
+  transform_detail_energy(plan, coef, energy);
+  /* only now touch DIR */
+  if (mkdir(dir, 0755) && errno != EEXIST) {
+    failf("%s: cannot create folder: %s", dir, strerror(errno));
+    goto done;
+  }
+  char name[64];
+  for (int l = 0; l <= J; l++) {
+    int w, h;
+    transform_level_size(plan, l, &w, &h);
+    snprintf(name, sizeof name, "approx_%d.exr", l);
+    if (write_exr(dir, name, w, h, approx[l])) goto done;
+    if (l == 0) continue;
+    snprintf(name, sizeof name, "deconstructed_%d.exr", l);
+    if (write_exr(dir, name, w, h, detail[l])) goto done;
+    for (int o = 0; o < 3; o++) {
+      int x, y, bw, bh;
+      transform_band_rect(plan, l, (transform_orientation)o, &x, &y, &bw, &bh);
+      for (int j = 0; j < bh; j++)
+        memcpy(band + (size_t)j * bw, coef + (size_t)(y + j) * map.width + x,
+               sizeof(float) * (size_t)bw);
+      snprintf(name, sizeof name, "detail_%d_%s.exr", l, orientation_names[o]);
+      if (write_exr(dir, name, bw, bh, band)) goto done;
+    }
+  }
+  if (write_manifest(dir, plan, in, energy)) goto done;
+  status = 0;
+done:
+  for (int l = 0; l < 64; l++) free(approx[l]), free(detail[l]);
+  free(coef), free(band), free(energy);
+  transform_plan_destroy(plan);
+  fogmap_destroy(&map);
+  return status;
+}
+
+/* ---- inverse ---- */
+
+static int read_manifest(const char *dir, transform_desc *desc, char *msg, size_t msg_size) {
+  char path[4096], line[512], word[64];
+  snprintf(path, sizeof path, "%s/transform.ini", dir);
+  FILE *f = fopen(path, "r");
+  if (!f) {
+    snprintf(msg, msg_size, "%s: cannot open: %s (not a fogpipe transform folder?)", path,
+             strerror(errno));
+    return 1;
+  }
+  int have = 0, lineno = 0, in_transform = 0, status = 0;
+  *desc = (transform_desc){0};
+  while (fgets(line, sizeof line, f)) {
+    lineno++;
+    char *s = line;
+    while (*s == ' ' || *s == '\t') s++;
+    if (*s == '#' || *s == '\n' || !*s) continue;
+    if (*s == '[') {
+      in_transform = !strncmp(s, "[transform]", 11);
+      continue;
+    }
+    if (!in_transform) continue;
+    char key[64];
+    if (sscanf(s, "%63[a-z_] = %63s", key, word) != 2) {
+      snprintf(msg, msg_size, "%s:%d: expected key = value", path, lineno);
+      status = 1;
+      break;
+    }
+    int bad = 0;
+    if (!strcmp(key, "basis")) bad = parse_basis(word, &desc->basis), have |= 1;
+    else if (!strcmp(key, "levels")) bad = parse_int(word, &desc->levels), have |= 2;
+    else if (!strcmp(key, "width")) bad = parse_int(word, &desc->width), have |= 4;
+    else if (!strcmp(key, "height")) bad = parse_int(word, &desc->height), have |= 8;
+    else if (!strcmp(key, "mode")) {
+      bad = strcmp(word, "symmetric") && strcmp(word, "periodic");
+      desc->boundary = strcmp(word, "periodic") ? TRANSFORM_SYMMETRIC : TRANSFORM_PERIODIC;
+    } else if (!strcmp(key, "decomposition")) {
+      bad = strcmp(word, "standard") && strcmp(word, "nonstandard");
+      desc->decomposition = strcmp(word, "standard") ? TRANSFORM_NONSTANDARD : TRANSFORM_STANDARD;
+    }
+    if (bad) {
+      snprintf(msg, msg_size, "%s:%d: bad value \"%s\" for %s", path, lineno, word, key);
+      status = 1;
+      break;
+    }
+  }
+  fclose(f);
+  if (!status && have != 15) {
+    snprintf(msg, msg_size, "%s: [transform] needs basis, levels, width and height", path);
+    status = 1;
+  }
+  return status;
+}
+
+static int read_into(const char *dir, const char *name, int w, int h, float *dst,
+                     size_t stride) {
+  char path[4096], msg[8448];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  int rw, rh;
+  float *v;
+  if (read_signed_exr(path, &rw, &rh, &v, msg, sizeof msg)) return failf("%s", msg);
+  if (rw != w || rh != h) {
+    free(v);
+    return failf("%s: size %dx%d, transform.ini says %dx%d", path, rw, rh, w, h);
+  }
+  for (int j = 0; j < h; j++) memcpy(dst + (size_t)j * stride, v + (size_t)j * w, sizeof(float) * w);
+  free(v);
+  return 0;
+}
+
+static int run_inverse(const char *dir, const char *out, int threads) {
+  transform_desc desc;
+  char msg[8448];
+  if (read_manifest(dir, &desc, msg, sizeof msg)) return failf("%s", msg);
+  desc.threads = threads;
+  transform_plan *plan;
+  transform_error terr;
+  if (transform_plan_create(&plan, &desc, &terr))
+    return failf("%s/transform.ini: %s", dir, terr.message);
+  size_t W = (size_t)desc.width;
+  fogmap map = {0};
+  sim_error serr;
+  int status = 1;
+  if (fogmap_create(&map, desc.width, desc.height, &serr)) {
+    failf("%s", serr.message);
+    goto done;
+  }
+  int w0, h0;
+  transform_level_size(plan, 0, &w0, &h0);
+  if (read_into(dir, "approx_0.exr", w0, h0, map.density, W)) goto done;
+  for (int l = 1; l <= desc.levels; l++)
+    for (int o = 0; o < 3; o++) {
+      int x, y, bw, bh;
+      char name[64];
+      transform_band_rect(plan, l, (transform_orientation)o, &x, &y, &bw, &bh);
+      snprintf(name, sizeof name, "detail_%d_%s.exr", l, orientation_names[o]);
+      if (read_into(dir, name, bw, bh, map.density + (size_t)y * W + x, W)) goto done;
+    }
+  transform_inverse(plan, map.density, map.density);
+  /* densities are never negative: float rounding just below 0 is clamped */
+  for (size_t i = 0; i < W * (size_t)desc.height; i++)
+    if (!(map.density[i] > 0.0f)) map.density[i] = 0.0f;
+  if (fogmap_save_exr(out, &map, &serr)) {
+    failf("%s", serr.message);
+    goto done;
+  }
+  status = 0;
+done:
+  fogmap_destroy(&map);
+  transform_plan_destroy(plan);
+  return status;
+}
+
+int cmd_transform(int argc, char **argv) {
+  const char *in = NULL, *out = NULL, *inverse = NULL;
+  transform_desc desc = {.levels = -1};
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    int has_value = i + 1 < argc;
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      usage(stdout);
+      return 0;
+    } else if (!strcmp(a, "--standard")) {
+      desc.decomposition = TRANSFORM_STANDARD;
+    } else if (!strcmp(a, "--basis") && has_value) {
+      if (parse_basis(argv[++i], &desc.basis))
+        return failf("--basis %s: expected haar, linear or quadratic", argv[i]);
+    } else if (!strcmp(a, "--levels") && has_value) {
+      if (parse_int(argv[++i], &desc.levels))
+        return failf("--levels %s: expected a whole number >= 0", argv[i]);
+    } else if (!strcmp(a, "--mode") && has_value) {
+      i++;
+      if (!strcmp(argv[i], "symmetric")) desc.boundary = TRANSFORM_SYMMETRIC;
+      else if (!strcmp(argv[i], "periodic")) desc.boundary = TRANSFORM_PERIODIC;
+      else return failf("--mode %s: expected symmetric or periodic", argv[i]);
+    } else if (!strcmp(a, "--threads") && has_value) {
+      if (parse_int(argv[++i], &desc.threads) || desc.threads < 1 || desc.threads > 2)
+        return failf("--threads %s: expected 1 or 2", argv[i]);
+    } else if (!strcmp(a, "--out") && has_value) {
+      out = argv[++i];
+    } else if (!strcmp(a, "--inverse") && has_value) {
+      inverse = argv[++i];
+    } else if (a[0] == '-' && a[1]) {
+      usage(stderr);
+      return failf("unknown option or missing value: %s", a);
+    } else if (!in) {
+      in = a;
+    } else {
+      return failf("more than one input: %s and %s", in, a);
+    }
+  }
+  if (!out) {
+    usage(stderr);
+    return failf("--out is required");
+  }
+  if (inverse) {
+    if (in) return failf("--inverse takes no input fogmap (%s)", in);
+    return run_inverse(inverse, out, desc.threads);
+  }
+  if (!in) {
+    usage(stderr);
+    return failf("no input fogmap given");
+  }
+  if (desc.levels < 0) return failf("--levels is required");
+  return run_forward(in, out, desc);
+}

@@ -1,0 +1,113 @@
+/* `fogpipe transform` end to end (FOGPIPE_BIN): forward to a folder and --inverse back
+ * reproduce the fogmap (<= 1e-6 relative) for every basis, both modes and both
+ * decompositions; bad input (a missing file, too many levels, a folder missing a band)
+ * fails with "fogpipe transform: <file>: <what>", a non-zero exit, and writes nothing. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "sim/sim.h"
+#include "test_util.h"
+
+static char tmp[256];
+static const char *bin;
+
+static int run(const char *args, char *err_text, size_t err_size) {
+  char cmd[2048], errfile[300];
+  snprintf(errfile, sizeof errfile, "%s/stderr.txt", tmp);
+  snprintf(cmd, sizeof cmd, "%s transform %s 2> %s", bin, args, errfile);
+  int rc = system(cmd);
+  FILE *f = fopen(errfile, "r");
+  size_t n = f ? fread(err_text, 1, err_size - 1, f) : 0;
+  err_text[n] = 0;
+  if (f) fclose(f);
+  return rc;
+}
+
+static int exists(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0;
+}
+
+static void roundtrip(const char *options, const char *name) {
+  char args[1024], err[4096], dir[300], out[300];
+  snprintf(dir, sizeof dir, "%s/%s", tmp, name);
+  snprintf(out, sizeof out, "%s/%s.exr", tmp, name);
+  snprintf(args, sizeof args, "data/fogmap_sample.exr %s --out %s", options, dir);
+  int rc = run(args, err, sizeof err);
+  CHECK(rc == 0, "forward %s failed: %s", options, err);
+  snprintf(args, sizeof args, "--inverse %s --out %s", dir, out);
+  rc = run(args, err, sizeof err);
+  CHECK(rc == 0, "inverse %s failed: %s", options, err);
+  fogmap a, b;
+  sim_error e;
+  if (fogmap_load("data/fogmap_sample.exr", NULL, &a, &e)) {
+    CHECK(0, "%s", e.message);
+    return;
+  }
+  if (fogmap_load(out, NULL, &b, &e)) {
+    CHECK(0, "%s", e.message);
+    fogmap_destroy(&a);
+    return;
+  }
+  CHECK(a.width == b.width && a.height == b.height, "%s: size changed", options);
+  double worst = 0.0, scale = 0.0;
+  for (size_t i = 0; a.width == b.width && i < (size_t)a.width * a.height; i++) {
+    worst = fmax(worst, fabs((double)a.density[i] - b.density[i]));
+    scale = fmax(scale, fabs((double)a.density[i]));
+  }
+  CHECK(worst <= 1e-6 * scale, "%s: round trip error %.3g (max density %.3g)", options, worst,
+        scale);
+  fogmap_destroy(&a);
+  fogmap_destroy(&b);
+}
+
+int main(void) {
+  bin = getenv("FOGPIPE_BIN");
+  if (!bin) {
+    fprintf(stderr, "FOGPIPE_BIN not set\n");
+    return 1;
+  }
+  snprintf(tmp, sizeof tmp, "/tmp/fogpipe_transform_cli_XXXXXX");
+  CHECK(mkdtemp(tmp) != NULL, "mkdtemp");
+  roundtrip("--basis haar --levels 3", "haar");
+  roundtrip("--basis linear --levels 8", "linear_full");
+  roundtrip("--basis quadratic --levels 4 --standard", "quadratic_standard");
+  roundtrip("--basis linear --levels 5 --mode periodic --threads 2", "linear_periodic");
+
+  char err[4096], args[1024], dir[300];
+  /* a missing input file */
+  snprintf(dir, sizeof dir, "%s/missing", tmp);
+  snprintf(args, sizeof args, "data/no_such_fogmap.exr --levels 2 --out %s", dir);
+  int rc = run(args, err, sizeof err);
+  CHECK(rc != 0, "missing input accepted");
+  CHECK(strstr(err, "fogpipe transform: data/no_such_fogmap.exr:") == err, "message: %s", err);
+  CHECK(!exists(dir), "output folder created for a failed run");
+  /* too many levels: the message names the largest J (256x256: 8) */
+  snprintf(dir, sizeof dir, "%s/toodeep", tmp);
+  snprintf(args, sizeof args, "data/fogmap_sample.exr --levels 12 --out %s", dir);
+  rc = run(args, err, sizeof err);
+  CHECK(rc != 0, "12 levels accepted for 256x256");
+  CHECK(strstr(err, "fogpipe transform: data/fogmap_sample.exr:") == err &&
+            strstr(err, "largest J that fits is 8"), "message: %s", err);
+  CHECK(!exists(dir), "output folder created for a failed run");
+  /* a folder missing one band */
+  char band[400], out[300];
+  snprintf(band, sizeof band, "%s/haar/detail_2_xy.exr", tmp);
+  CHECK(unlink(band) == 0, "cannot remove %s", band);
+  snprintf(out, sizeof out, "%s/broken.exr", tmp);
+  snprintf(args, sizeof args, "--inverse %s/haar --out %s", tmp, out);
+  rc = run(args, err, sizeof err);
+  CHECK(rc != 0, "inverse of an incomplete folder accepted");
+  CHECK(strstr(err, "detail_2_xy.exr") != NULL, "message does not name the file: %s", err);
+  CHECK(!exists(out), "output written by a failed inverse");
+
+  char cmd[400];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
+  if (system(cmd)) fprintf(stderr, "could not clean %s\n", tmp);
+  return test_finish("transform_cli_roundtrip");
+}

@@ -1,0 +1,42 @@
+/* A size too small for J levels is refused with a message naming the largest J that
+ * fits (symmetric: every split needs >= 2 samples; periodic: also an even length). */
+#include <stdio.h>
+#include <string.h>
+
+#include "test_util.h"
+#include "transform/transform.h"
+
+static void refused(int w, int h, int J, transform_boundary mode, int largest) {
+  transform_plan *plan = (transform_plan *)1;
+  transform_error err = {{0}};
+  int rc = transform_plan_create(&plan, &(transform_desc){.width = w, .height = h,
+      .levels = J, .boundary = mode}, &err);
+  char want[64];
+  snprintf(want, sizeof want, "largest J that fits is %d", largest);
+  CHECK(rc != 0 && plan == NULL, "%dx%d J=%d accepted", w, h, J);
+  CHECK(strstr(err.message, want) != NULL, "%dx%d J=%d: message \"%s\" lacks \"%s\"", w, h, J,
+        err.message, want);
+  CHECK(transform_max_levels(w, h, mode) == largest, "max levels of %dx%d: %d, want %d", w, h,
+        transform_max_levels(w, h, mode), largest);
+  /* and the largest J itself is accepted */
+  rc = transform_plan_create(&plan, &(transform_desc){.width = w, .height = h,
+      .levels = largest, .boundary = mode}, &err);
+  CHECK(rc == 0, "%dx%d J=%d refused: %s", w, h, largest, err.message);
+  if (!rc) transform_plan_destroy(plan);
+}
+
+int main(void) {
+  refused(16, 16, 5, TRANSFORM_SYMMETRIC, 4);
+  refused(17, 16, 9, TRANSFORM_SYMMETRIC, 4);  /* 17 allows 5, 16 allows 4 */
+  refused(1024, 3, 3, TRANSFORM_SYMMETRIC, 2);
+  refused(1, 64, 1, TRANSFORM_SYMMETRIC, 0);
+  refused(48, 40, 4, TRANSFORM_PERIODIC, 3);   /* 40 = 8 * 5 */
+  refused(17, 16, 1, TRANSFORM_PERIODIC, 0);   /* odd width */
+  transform_plan *plan;
+  transform_error err;
+  CHECK(transform_plan_create(&plan, &(transform_desc){.width = 0, .height = 4}, &err) != 0,
+        "0x4 accepted");
+  CHECK(transform_plan_create(&plan, &(transform_desc){.width = 4, .height = 4, .levels = -1},
+        &err) != 0, "negative levels accepted");
+  return test_finish("test_bad_size");
+}

@@ -1,0 +1,68 @@
+/* Shared helpers of the transform tests: configurations to sweep, deterministic random
+ * fogmaps, and an independent double-precision evaluator of B-spline sums (written from
+ * the B-spline definitions, not from the library). */
+#ifndef FOGPIPE_TEST_TRANSFORM_UTIL_H
+#define FOGPIPE_TEST_TRANSFORM_UTIL_H
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "transform/transform.h"
+
+static uint64_t test_rng_state = 0x9E3779B97F4A7C15ull;
+static inline double test_uniform(void) { /* xorshift64*, in [0,1) */
+  test_rng_state ^= test_rng_state >> 12;
+  test_rng_state ^= test_rng_state << 25;
+  test_rng_state ^= test_rng_state >> 27;
+  return (double)((test_rng_state * 2685821657736338717ull) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* A smooth-ish positive fogmap plus noise, like real fog. */
+static inline void test_fill_fogmap(float *f, int w, int h) {
+  for (int y = 0; y < h; y++)
+    for (int x = 0; x < w; x++)
+      f[(size_t)y * w + x] = (float)(1.0 + 0.5 * sin(0.3 * x + 0.2 * y) + 0.5 * test_uniform());
+}
+
+/* Centred cardinal B-spline of degree d: box [-1/2,1/2), hat, quadratic. */
+static inline double test_bspline(int degree, double t) {
+  double a = fabs(t);
+  switch (degree) {
+    case 0: return (t >= -0.5 && t < 0.5) ? 1.0 : 0.0;
+    case 1: return a < 1.0 ? 1.0 - a : 0.0;
+    default:
+      if (a < 0.5) return 0.75 - a * a;
+      if (a < 1.5) return 0.5 * (1.5 - a) * (1.5 - a);
+      return 0.0;
+  }
+}
+
+/* f(u,v) of a transform_grid, by brute force over all coefficients near (u,v). */
+static inline double test_grid_eval(const transform_grid *g, double u, double v) {
+  double s = 0.0;
+  double gu = (u - g->origin_u) / g->spacing, gv = (v - g->origin_v) / g->spacing;
+  int i0 = (int)floor(gu) - 2, j0 = (int)floor(gv) - 2;
+  for (int j = j0; j <= j0 + 4; j++) {
+    if (j < 0 || j >= g->height) continue;
+    double bv = test_bspline(g->degree, gv - j);
+    if (bv == 0.0) continue;
+    for (int i = i0; i <= i0 + 4; i++) {
+      if (i < 0 || i >= g->width) continue;
+      s += (double)g->coefficients[(size_t)j * g->width + i] * bv * test_bspline(g->degree, gu - i);
+    }
+  }
+  return s;
+}
+
+static const transform_basis test_bases[3] = {TRANSFORM_HAAR, TRANSFORM_LINEAR,
+                                              TRANSFORM_QUADRATIC};
+static const char *const test_basis_names[3] = {"haar", "linear", "quadratic"};
+
+static inline double test_max_abs(const float *a, size_t n) {
+  double m = 0.0;
+  for (size_t i = 0; i < n; i++) m = fmax(m, fabs((double)a[i]));
+  return m;
+}
+
+#endif

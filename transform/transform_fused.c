@@ -1,0 +1,313 @@
+/* One forward level of the non-standard transform in a single streaming pass: each
+ * input row is lifted along x into a small ring of rows (L1/L2 resident), the column
+ * lifting steps run on those ring rows as soon as their neighbours exist (every inner
+ * loop is a whole row: contiguous, vectorised), and every output row is written once,
+ * already at its final place and scale. Memory traffic is one read of the level and
+ * one write, as for a memcpy; the two-pass version (rows, then strips of columns)
+ * moves the data twice. Same arithmetic, same boundary rules, same result bits as the
+ * two-pass columns (tests/transform/test_fused_matches_two_pass.c). */
+#include <string.h>
+
+#include "transform/transform_plan.h"
+
+#define RING 16 /* fine rows in flight; the widest window (bior3.3) spans 8 */
+
+typedef struct stream {
+  const transform_plan *p;
+  int l, w, n, loaded;
+  const float *src;
+  size_t src_stride;
+  float *ring;
+} stream;
+
+static float *slot(const stream *s, int fine_row) {
+  return s->ring + (size_t)(fine_row % RING) * (size_t)s->w;
+}
+
+/* Lift input rows along x until fine row `upto` is in the ring. */
+static void load_until(stream *s, int upto) {
+  if (upto > s->n - 1) upto = s->n - 1;
+  while (s->loaded <= upto) {
+    int r = s->loaded++;
+    transform_rows(s->p, 0, 1, s->l, s->l - 1, s->src + (size_t)r * s->src_stride, slot(s, r),
+                   0, 0, 1);
+  }
+}
+
+/* rule over rows of the ring: fine rows = 2 * coarse index (even channel) */
+static void rule_rows(const stream *s, const ghost_rule *r, int fine_step, int fine_offset,
+                      float *restrict out) {
+  int w = s->w;
+  for (int i = 0; i < w; i++) out[i] = 0.0f;
+  for (int t = 0; t < r->count; t++) {
+    const float *restrict row = slot(s, fine_step * r->index[t] + fine_offset);
+    float k = (float)r->weight[t];
+    for (int i = 0; i < w; i++) out[i] += k * row[i];
+  }
+}
+
+int transform_fused_supported(const transform_plan *p, int l) {
+  if (p->desc.boundary != TRANSFORM_SYMMETRIC || p->desc.decomposition != TRANSFORM_NONSTANDARD)
+    return 0;
+  int n = p->len_h[l], m = (n + 1) / 2;
+  if (n < 8) return 0;
+  /* the ring holds only a window: the rules must reference rows near their own end */
+  const ghost_rule *right = &p->rules_h[l - 1].right, *left = &p->rules_h[l].left;
+  for (int t = 0; t < right->count; t++)
+    if (right->index[t] < m - 2) return 0;
+  for (int t = 0; t < left->count; t++)
+    if (left->index[t] > 1) return 0;
+  return 1;
+}
+
+static void linear_row_step(int w, const float *restrict e0, const float *restrict e1,
+                            const float *restrict om, float *restrict o, float *restrict low,
+                            float *restrict high, float lo, float hi) {
+  for (int i = 0; i < w; i++) {
+    float v = o[i] - 0.5f * (e0[i] + e1[i]);
+    o[i] = v;
+    high[i] = hi * v;
+    low[i] = lo * (e0[i] + 0.25f * (om[i] + v));
+  }
+}
+
+static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost) {
+  int n = s->n, m = (n + 1) / 2, d = n / 2, w = s->w;
+  float lo = lifting_scale_low(TRANSFORM_LINEAR), hi = lifting_scale_high(TRANSFORM_LINEAR);
+  const ghost_rule *rho = &s->p->rules_h[s->l - 1].right;
+  /* iteration k: predict o_k = x_2k+1 - (x_2k + x_2k+2)/2 and, in the same loop, update
+   * e_k = x_2k + (o_k-1 + o_k)/4; both written out at once, o_k kept for e_k+1 */
+  for (int k = 0; k < m; k++) {
+    load_until(s, 2 * k + 2);
+    const float *restrict e0 = slot(s, 2 * k);
+    float *restrict low = dst + (size_t)k * dst_stride;
+    if (k < d) {
+      float *restrict o = slot(s, 2 * k + 1);
+      const float *restrict e1;
+      if (2 * k + 2 < n) {
+        e1 = slot(s, 2 * k + 2);
+      } else {
+        rule_rows(s, rho, 2, 0, ghost);
+        e1 = ghost;
+      }
+      float *restrict high = dst + (size_t)(m + k) * dst_stride;
+      if (k > 0) {
+        linear_row_step(w, e0, e1, slot(s, 2 * k - 1), o, low, high, lo, hi);
+      } else { /* o_-1 is o_0 itself */
+        for (int i = 0; i < w; i++) {
+          float v = o[i] - 0.5f * (e0[i] + e1[i]);
+          o[i] = v;
+          high[i] = hi * v;
+          low[i] = lo * (e0[i] + 0.25f * (v + v));
+        }
+      }
+    } else { /* odd n, last even row: o_m-1 mirrors to o_m-2 */
+      const float *restrict om = slot(s, 2 * k - 1);
+      for (int i = 0; i < w; i++) low[i] = lo * (e0[i] + 0.25f * (om[i] + om[i]));
+    }
+  }
+}
+
+static void haar_level(stream *s, float *dst, size_t dst_stride) {
+  int n = s->n, m = (n + 1) / 2, d = n / 2, w = s->w;
+  float hi = lifting_scale_high(TRANSFORM_HAAR);
+  for (int k = 0; k < m; k++) {
+    load_until(s, 2 * k + 1);
+    const float *restrict e = slot(s, 2 * k);
+    float *restrict lo_out = dst + (size_t)k * dst_stride;
+    if (k < d) {
+      const float *restrict o = slot(s, 2 * k + 1);
+      float *restrict hi_out = dst + (size_t)(m + k) * dst_stride;
+      for (int i = 0; i < w; i++) {
+        float v = o[i] - e[i];
+        hi_out[i] = hi * v;
+        lo_out[i] = e[i] + 0.5f * v;
+      }
+    } else {
+      memcpy(lo_out, e, sizeof(float) * (size_t)w);
+    }
+  }
+}
+
+static void quadratic_level(stream *s, float *dst, size_t dst_stride, float *ghost) {
+  int n = s->n, m = (n + 1) / 2, d = n / 2, w = s->w;
+  float lo = lifting_scale_low(TRANSFORM_QUADRATIC), hi = lifting_scale_high(TRANSFORM_QUADRATIC);
+  const float third = (float)(1.0 / 3.0), a = (float)(3.0 / 36.0), b = (float)(16.0 / 36.0);
+  const ghost_rule *rho = &s->p->rules_h[s->l - 1].right;
+  const ghost_rule *left = &s->p->rules_h[s->l].left;
+  for (int k = 0; k <= m + 1; k++) {
+    load_until(s, k == 0 ? 1 : 2 * k);
+    if (k < m) { /* step 1: e_k -= o_k-1 / 3 (k = 0: the fine level's left ghost) */
+      float *restrict e = slot(s, 2 * k);
+      if (k == 0) {
+        rule_rows(s, left, 1, 0, ghost);
+        for (int i = 0; i < w; i++) e[i] -= third * ghost[i];
+      } else {
+        const float *restrict o = slot(s, 2 * k - 1);
+        for (int i = 0; i < w; i++) e[i] -= third * o[i];
+      }
+    }
+    int j = k - 1; /* step 2: o_j -= (9 e_j + 3 e_j+1)/8, written out */
+    if (j >= 0 && j < d) {
+      float *restrict o = slot(s, 2 * j + 1);
+      const float *restrict e0 = slot(s, 2 * j);
+      const float *restrict e1;
+      if (j + 1 < m) {
+        e1 = slot(s, 2 * j + 2);
+      } else {
+        rule_rows(s, rho, 2, 0, ghost);
+        e1 = ghost;
+      }
+      float *restrict out = dst + (size_t)(m + j) * dst_stride;
+      for (int i = 0; i < w; i++) {
+        float v = o[i] - (1.125f * e0[i] + 0.375f * e1[i]);
+        o[i] = v;
+        out[i] = hi * v;
+      }
+    }
+    int q = k - 2; /* step 3: e_q += (3 o_q-1 + 16 o_q - 3 o_q+1)/36, written out */
+    if (q >= 0 && q < m) {
+      const float *restrict e = slot(s, 2 * q);
+      float *restrict out = dst + (size_t)q * dst_stride;
+      const float *om = q >= 1 ? slot(s, 2 * q - 1) : NULL;
+      const float *o0 = q < d ? slot(s, 2 * q + 1) : NULL;
+      const float *op = q + 1 < d ? slot(s, 2 * q + 3) : NULL;
+      if (om && o0 && op) {
+        for (int i = 0; i < w; i++) out[i] = lo * (e[i] + a * (om[i] - op[i]) + b * o0[i]);
+      } else { /* ends: missing odd rows are zero */
+        for (int i = 0; i < w; i++) {
+          float v = e[i];
+          if (om) v += a * om[i];
+          if (o0) v += b * o0[i];
+          if (op) v -= a * op[i];
+          out[i] = lo * v;
+        }
+      }
+    }
+  }
+}
+
+void transform_fused_forward_level(const transform_plan *p, int l, const float *src,
+                                   size_t src_stride, float *dst, size_t dst_stride) {
+  transform_scratch *sc = (transform_scratch *)&p->scratch[0];
+  stream s = {.p = p, .l = l, .w = p->len_w[l], .n = p->len_h[l], .loaded = 0, .src = src,
+              .src_stride = src_stride, .ring = sc->ring};
+  switch (p->desc.basis) {
+    case TRANSFORM_HAAR: haar_level(&s, dst, dst_stride); break;
+    case TRANSFORM_LINEAR: linear_level(&s, dst, dst_stride, sc->ring_ghost); break;
+    case TRANSFORM_QUADRATIC: quadratic_level(&s, dst, dst_stride, sc->ring_ghost); break;
+  }
+}
+
+/* ---- one inverse level in a single streaming pass (Haar and CDF 5/3) ----
+ * Reads the level's composite rows — row r < h_{l-1}: [A_{l-1} row r | band X row r],
+ * row r >= h_{l-1}: [band Y | band XY] — scales them into the ring, undoes the column
+ * steps as soon as the neighbours exist, merges each finished fine row along x and
+ * writes it once. `low` NULL means a zero A_{l-1} (deconstructed details). */
+
+typedef struct inverse_stream {
+  const transform_plan *p;
+  int l, w, n, m, loaded;
+  const float *low, *coef;
+  size_t low_stride, coef_stride;
+  float *ring;
+  float scale_low, scale_high; /* 1/lo, 1/hi */
+} inverse_stream;
+
+static float *islot(const inverse_stream *s, int k) { /* composite row k */
+  return s->ring + (size_t)(k % RING) * (size_t)s->w;
+}
+
+/* composite rows 0..k of the low half and m..m+k of the high half, scaled */
+static void iload_until(inverse_stream *s, int k) {
+  int w0 = s->p->len_w[s->l - 1], d = s->n - s->m;
+  if (k > s->m - 1) k = s->m - 1;
+  while (s->loaded <= k) {
+    int r = s->loaded++;
+    float *restrict e = islot(s, 2 * r);
+    const float *restrict band = s->coef + (size_t)r * s->coef_stride;
+    if (s->low) {
+      const float *restrict lowrow = s->low + (size_t)r * s->low_stride;
+      for (int i = 0; i < w0; i++) e[i] = s->scale_low * lowrow[i];
+    } else {
+      for (int i = 0; i < w0; i++) e[i] = 0.0f;
+    }
+    for (int i = w0; i < s->w; i++) e[i] = s->scale_low * band[i];
+    if (r < d) {
+      float *restrict o = islot(s, 2 * r + 1);
+      const float *restrict high = s->coef + (size_t)(s->m + r) * s->coef_stride;
+      for (int i = 0; i < s->w; i++) o[i] = s->scale_high * high[i];
+    }
+  }
+}
+
+int transform_fused_inverse_supported(const transform_plan *p, int l) {
+  return p->desc.basis != TRANSFORM_QUADRATIC && transform_fused_supported(p, l);
+}
+
+static void emit_row(const inverse_stream *s, const float *fine, float *dst) {
+  transform_rows(s->p, 0, 0, s->l, s->l - 1, fine, dst, 0, 0, 1);
+}
+
+void transform_fused_inverse_level(const transform_plan *p, int l, const float *low,
+                                   size_t low_stride, const float *coef, size_t coef_stride,
+                                   float *dst, size_t dst_stride) {
+  transform_scratch *sc = (transform_scratch *)&p->scratch[0];
+  int n = p->len_h[l], m = (n + 1) / 2, d = n / 2, w = p->len_w[l];
+  transform_basis basis = p->desc.basis;
+  inverse_stream s = {.p = p, .l = l, .w = w, .n = n, .m = m, .loaded = 0, .low = low,
+                      .coef = coef, .low_stride = low_stride, .coef_stride = coef_stride,
+                      .ring = sc->ring, .scale_low = 1.0f / lifting_scale_low(basis),
+                      .scale_high = 1.0f / lifting_scale_high(basis)};
+  /* even rows live in ring slots 2k (scaled c, then final e), odd in 2k+1 (scaled d) */
+  float *fine = sc->ring_ghost; /* one fine row before the merge along x */
+  float *ghost = sc->ring + (size_t)(RING - 0) * (size_t)w; /* extra row after the ring */
+  if (basis == TRANSFORM_HAAR) {
+    for (int k = 0; k < m; k++) {
+      iload_until(&s, k);
+      float *restrict e = islot(&s, 2 * k);
+      if (k < d) {
+        const float *restrict o = islot(&s, 2 * k + 1);
+        for (int i = 0; i < w; i++) e[i] -= 0.5f * o[i];
+        emit_row(&s, e, dst + (size_t)(2 * k) * dst_stride);
+        for (int i = 0; i < w; i++) fine[i] = o[i] + e[i];
+        emit_row(&s, fine, dst + (size_t)(2 * k + 1) * dst_stride);
+      } else {
+        emit_row(&s, e, dst + (size_t)(2 * k) * dst_stride);
+      }
+    }
+    return;
+  }
+  /* CDF 5/3: e_k -= (o_k-1 + o_k)/4 (o_-1 = o_0; odd n: o_m-1 = o_m-2), then
+   * x_2k+1 = o_k + (e_k + e_k+1)/2 with e_m from the coarse right rule (even n) */
+  const ghost_rule *rho = &p->rules_h[l - 1].right;
+  for (int k = 0; k <= m; k++) {
+    if (k < m) { /* finish e_k */
+      iload_until(&s, k + 1);
+      float *restrict e = islot(&s, 2 * k);
+      const float *restrict om = islot(&s, k > 0 ? 2 * k - 1 : 1);
+      const float *restrict op = islot(&s, k < d ? 2 * k + 1 : 2 * k - 1);
+      for (int i = 0; i < w; i++) e[i] += -0.25f * (om[i] + op[i]);
+      emit_row(&s, e, dst + (size_t)(2 * k) * dst_stride);
+    }
+    int j = k - 1; /* odd row 2j+1 once e_j and e_j+1 are final */
+    if (j >= 0 && j < d) {
+      const float *restrict o = islot(&s, 2 * j + 1);
+      const float *restrict e0 = islot(&s, 2 * j);
+      const float *restrict e1;
+      if (j + 1 < m) {
+        e1 = islot(&s, 2 * j + 2);
+      } else {
+        for (int i = 0; i < w; i++) ghost[i] = 0.0f;
+        for (int t = 0; t < rho->count; t++) {
+          const float *restrict row = islot(&s, 2 * rho->index[t]);
+          float c = (float)rho->weight[t];
+          for (int i = 0; i < w; i++) ghost[i] += c * row[i];
+        }
+        e1 = ghost;
+      }
+      for (int i = 0; i < w; i++) fine[i] = o[i] - -0.5f * (e0[i] + e1[i]);
+      emit_row(&s, fine, dst + (size_t)(2 * j + 1) * dst_stride);
+    }
+  }
+}
