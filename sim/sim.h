@@ -6,5 +6,6 @@
 
 #include "sim/fogmap.h"
 #include "sim/designed_fog.h"
+#include "sim/vdb_import.h"
 
 #endif

@@ -1,0 +1,621 @@
+/* fogpipe import: OpenVDB smoke (one file or a sequence) -> a fogmap sequence
+ * NAME.####.exr + a profile sidecar NAME.ini (placement and g(y)); --report compares the
+ * 2.5D model with a ray march of the original 3D grid. Everything is written into a
+ * temporary folder inside --out and renamed into place only when every frame worked. */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "app/commands.h"
+#include "bench/chart.h"
+#include "sim/sim.h"
+
+enum { max_inputs = 256, report_rows = 9 };
+static const double report_elevations[report_rows] = {5, 10, 15, 20, 30, 45, 60, 75, 90};
+
+static void print_help(FILE *out) {
+  fprintf(out,
+          "usage: fogpipe import INPUT... --out DIR [options]\n"
+          "\n"
+          "Projects OpenVDB fog (Blender/Mantaflow, Houdini, EmberGen caches) to a 2D fogmap\n"
+          "f(x,z) per frame and a vertical profile g(y): K(x,y,z) = f(x,z)*g(y), where g has\n"
+          "max 1, T = integral of g dy, and f = (column integral of the density) / T, so the\n"
+          "column optical depth is kept exactly. fogpipe's world is Y-up; the fogmap spans X\n"
+          "(columns) and Z (rows). Writes DIR/NAME.####.exr (one float channel Y, #### = the\n"
+          "source frame number) and DIR/NAME.ini (placement: origin, cell size; the profile).\n"
+          "Nothing is left in DIR when any frame fails.\n"
+          "\n"
+          "INPUT: a .vdb file, a folder (every *.vdb), a #### or printf pattern\n"
+          "       (data/fluid_data_####.vdb, data/fluid_data_%%04d.vdb) or a glob ('data/*.vdb').\n"
+          "\n"
+          "input:\n"
+          "  --grid NAME            float grid to read (default density)\n"
+          "  --frames A-B | A       frame range (default: all found); frames missing inside\n"
+          "                         the range are an error\n"
+          "  --skip-missing         warn about missing frames instead of failing\n"
+          "  --list                 list every grid of every input file and exit\n"
+          "  --max-voxels N         refuse grids whose dense box is larger (default 268435456)\n"
+          "placement:\n"
+          "  --up z|y               the file's up axis: z = Blender/Mantaflow (default),\n"
+          "                         y = Houdini/EmberGen. Z-up maps (x,y,z) to (x, z, -y)\n"
+          "  --scale S              world scale of the source (default 1)\n"
+          "  --offset X,Y,Z         fogpipe-world offset added last (default 0,0,0)\n"
+          "  --config FILE|none     Mantaflow config_####.uni (default: ../config/config_####.uni\n"
+          "                         beside each data/ file when present; it places the domain\n"
+          "                         and replaces adaptive domains' wrong VDB voxel size)\n"
+          "fogmap and profile:\n"
+          "  --resolution N         fogmap cells along the longer side (default: one per voxel)\n"
+          "  --cell SIZE            or a world cell size\n"
+          "  --name NAME            output base name (default fog)\n"
+          "  --profile bspline|exponential   g(y): centred B-spline of the mean vertical density\n"
+          "                         (default) or a moment-fitted exponential\n"
+          "  --profile-knots N      B-spline coefficients (default one per voxel layer, max 64)\n"
+          "  --profile-degree 0|1   B-spline degree (default 1: hats; 0: the layer histogram)\n"
+          "  --profile-per sequence|frame   one g for the whole sequence (default) or one per\n"
+          "                         frame ([profile.####] sections in NAME.ini)\n"
+          "report:\n"
+          "  --report               also compare the 2.5D model with a CPU ray march of the 3D\n"
+          "                         grid: transmittance error per view elevation 5..90 deg, as\n"
+          "                         a table, DIR/NAME.report.csv and DIR/NAME.report.png\n"
+          "  --report-frame N       the frame to report on (default: the last)\n"
+          "  --report-rays N        rays per side of each view (default 48)\n"
+          "other:\n"
+          "  --verbose              one line per frame (mass, voxels)\n"
+          "  --help                 this text\n");
+}
+
+static int usage_error(const char *format, ...) __attribute__((format(printf, 1, 2)));
+static int usage_error(const char *format, ...) {
+  va_list args;
+  va_start(args, format);
+  fprintf(stderr, "fogpipe import: ");
+  vfprintf(stderr, format, args);
+  fprintf(stderr, "\n(fogpipe import --help lists the options)\n");
+  va_end(args);
+  return 2;
+}
+
+static int fail(const char *format, ...) __attribute__((format(printf, 1, 2)));
+static int fail(const char *format, ...) {
+  va_list args;
+  va_start(args, format);
+  fprintf(stderr, "fogpipe import: ");
+  vfprintf(stderr, format, args);
+  fputc('\n', stderr);
+  va_end(args);
+  return 1;
+}
+
+typedef struct import_options {
+  const char *inputs[max_inputs];
+  int input_count;
+  const char *out, *name, *grid, *config;
+  int first, last, skip_missing, list, verbose;
+  long long max_voxels;
+  vdb_up_axis up;
+  double scale, offset[3];
+  int resolution;
+  double cell;
+  vdb_profile_desc profile;
+  int profile_per_frame;
+  int report, report_frame, report_rays;
+} import_options;
+
+static int parse_int(const char *s, int *out) {
+  char *end;
+  errno = 0;
+  long v = strtol(s, &end, 10);
+  if (errno || end == s || *end || v < -2147483647L || v > 2147483647L) return 1;
+  *out = (int)v;
+  return 0;
+}
+
+static int parse_double(const char *s, double *out) {
+  char *end;
+  errno = 0;
+  double v = strtod(s, &end);
+  if (errno || end == s || *end || !isfinite(v)) return 1;
+  *out = v;
+  return 0;
+}
+
+static int parse_options(int argc, char **argv, import_options *o) {
+  *o = (import_options){.name = "fog", .first = -1, .last = -1, .report_frame = -1};
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (a[0] != '-' || !a[1]) {
+      if (o->input_count == max_inputs) return usage_error("more than %d inputs", max_inputs);
+      o->inputs[o->input_count++] = a;
+      continue;
+    }
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      print_help(stdout);
+      return -1;
+    }
+    if (!strcmp(a, "--skip-missing")) {
+      o->skip_missing = 1;
+      continue;
+    }
+    if (!strcmp(a, "--list")) {
+      o->list = 1;
+      continue;
+    }
+    if (!strcmp(a, "--report")) {
+      o->report = 1;
+      continue;
+    }
+    if (!strcmp(a, "--verbose")) {
+      o->verbose = 1;
+      continue;
+    }
+    static const char *const valued[] = {
+        "--out", "--name", "--grid", "--frames", "--max-voxels", "--up", "--scale",
+        "--offset", "--config", "--resolution", "--cell", "--profile", "--profile-knots",
+        "--profile-degree", "--profile-per", "--report-frame", "--report-rays"};
+    int known = 0;
+    for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++) known |= !strcmp(a, valued[k]);
+    if (!known) return usage_error("unknown option '%s'", a);
+    if (i + 1 >= argc) return usage_error("%s needs a value", a);
+    const char *v = argv[++i];
+    if (!strcmp(a, "--out"))
+      o->out = v;
+    else if (!strcmp(a, "--name")) {
+      if (!*v || strchr(v, '/')) return usage_error("--name '%s': a plain file name", v);
+      o->name = v;
+    } else if (!strcmp(a, "--grid"))
+      o->grid = v;
+    else if (!strcmp(a, "--config"))
+      o->config = v;
+    else if (!strcmp(a, "--frames")) {
+      char first[64], last[64];
+      const char *dash = strchr(v, '-');
+      if (dash && dash != v) {
+        snprintf(first, sizeof first, "%.*s", (int)(dash - v), v);
+        snprintf(last, sizeof last, "%s", dash + 1);
+      } else {
+        snprintf(first, sizeof first, "%s", v);
+        snprintf(last, sizeof last, "%s", v);
+      }
+      if (parse_int(first, &o->first) || parse_int(last, &o->last) || o->first < 0 ||
+          o->last < o->first)
+        return usage_error("--frames '%s': expected A-B with 0 <= A <= B, or A", v);
+    } else if (!strcmp(a, "--max-voxels")) {
+      double m;
+      if (parse_double(v, &m) || m < 1) return usage_error("--max-voxels '%s'", v);
+      o->max_voxels = (long long)m;
+    } else if (!strcmp(a, "--up")) {
+      if (!strcmp(v, "z") || !strcmp(v, "Z"))
+        o->up = VDB_UP_Z;
+      else if (!strcmp(v, "y") || !strcmp(v, "Y"))
+        o->up = VDB_UP_Y;
+      else
+        return usage_error("--up '%s': expected z or y", v);
+    } else if (!strcmp(a, "--scale")) {
+      if (parse_double(v, &o->scale) || !(o->scale > 0))
+        return usage_error("--scale '%s': expected a positive number", v);
+    } else if (!strcmp(a, "--offset")) {
+      if (sscanf(v, "%lf,%lf,%lf", &o->offset[0], &o->offset[1], &o->offset[2]) != 3)
+        return usage_error("--offset '%s': expected X,Y,Z", v);
+    } else if (!strcmp(a, "--resolution")) {
+      if (parse_int(v, &o->resolution) || o->resolution < 1 || o->resolution > 16384)
+        return usage_error("--resolution '%s': expected 1..16384", v);
+    } else if (!strcmp(a, "--cell")) {
+      if (parse_double(v, &o->cell) || !(o->cell > 0))
+        return usage_error("--cell '%s': expected a positive size", v);
+    } else if (!strcmp(a, "--profile")) {
+      if (!strcmp(v, "bspline"))
+        o->profile.kind = VDB_PROFILE_BSPLINE;
+      else if (!strcmp(v, "exponential"))
+        o->profile.kind = VDB_PROFILE_EXPONENTIAL;
+      else
+        return usage_error("--profile '%s': expected bspline or exponential", v);
+    } else if (!strcmp(a, "--profile-knots")) {
+      if (parse_int(v, &o->profile.knots) || o->profile.knots < 1 ||
+          o->profile.knots > VDB_PROFILE_MAX_KNOTS)
+        return usage_error("--profile-knots '%s': expected 1..%d", v, VDB_PROFILE_MAX_KNOTS);
+    } else if (!strcmp(a, "--profile-degree")) {
+      if (strcmp(v, "0") && strcmp(v, "1"))
+        return usage_error("--profile-degree '%s': expected 0 or 1", v);
+      o->profile.degree_box = !strcmp(v, "0");
+    } else if (!strcmp(a, "--profile-per")) {
+      if (!strcmp(v, "sequence"))
+        o->profile_per_frame = 0;
+      else if (!strcmp(v, "frame"))
+        o->profile_per_frame = 1;
+      else
+        return usage_error("--profile-per '%s': expected sequence or frame", v);
+    } else if (!strcmp(a, "--report-frame")) {
+      if (parse_int(v, &o->report_frame) || o->report_frame < 0)
+        return usage_error("--report-frame '%s'", v);
+    } else if (!strcmp(a, "--report-rays")) {
+      if (parse_int(v, &o->report_rays) || o->report_rays < 1 || o->report_rays > 1024)
+        return usage_error("--report-rays '%s': expected 1..1024", v);
+    }
+  }
+  if (!o->input_count) return usage_error("no INPUT given");
+  if (!o->out && !o->list) return usage_error("--out DIR is required");
+  return 0;
+}
+
+static int list_grids(const import_options *o) {
+  vdb_sequence seq;
+  sim_error err = {{0}};
+  if (vdb_sequence_find(o->inputs, o->input_count, o->first, o->last, &seq, &err))
+    return fail("%s", err.message);
+  int status = 0;
+  for (int i = 0; i < seq.count; i++) {
+    vdb_grid_info info[64];
+    int count = 0;
+    if (vdb_list_grids(seq.paths[i], info, 64, &count, &err)) {
+      status = fail("%s", err.message);
+      break;
+    }
+    printf("%s (frame %d): %d grid%s\n", seq.paths[i], seq.frames[i], count,
+           count == 1 ? "" : "s");
+    printf("  %-16s %-8s %-12s %-10s %-30s %s\n", "name", "type", "class", "voxel",
+           "active bbox", "active voxels");
+    for (int g = 0; g < count && g < 64; g++) {
+      char box[64];
+      if (info[g].bbox_min[0] > info[g].bbox_max[0])
+        snprintf(box, sizeof box, "(empty)");
+      else
+        snprintf(box, sizeof box, "[%d,%d,%d]..[%d,%d,%d]", info[g].bbox_min[0],
+                 info[g].bbox_min[1], info[g].bbox_min[2], info[g].bbox_max[0],
+                 info[g].bbox_max[1], info[g].bbox_max[2]);
+      printf("  %-16s %-8s %-12s %-10.6g %-30s %lld\n", info[g].name, info[g].value_type,
+             info[g].grid_class, info[g].voxel_size[0], box, info[g].active_voxels);
+    }
+  }
+  vdb_sequence_destroy(&seq);
+  return status;
+}
+
+static int make_dirs(const char *path) {
+  char buf[4096];
+  snprintf(buf, sizeof buf, "%s", path);
+  for (char *p = buf + 1; *p; p++) {
+    if (*p != '/') continue;
+    *p = 0;
+    if (mkdir(buf, 0777) && errno != EEXIST) return 1;
+    *p = '/';
+  }
+  if (mkdir(buf, 0777) && errno != EEXIST) return 1;
+  struct stat st;
+  return stat(buf, &st) || !S_ISDIR(st.st_mode);
+}
+
+static void remove_dir(const char *dir) {
+  DIR *d = opendir(dir);
+  if (d) {
+    struct dirent *e;
+    char path[4096];
+    while ((e = readdir(d))) {
+      if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+      snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+      unlink(path);
+    }
+    closedir(d);
+  }
+  rmdir(dir);
+}
+
+/* The profile in docs/config.md's [fog] keys (render/fog_field.h's fog_profile). */
+static void write_profile(FILE *f, const char *section, const vdb_profile *p) {
+  fprintf(f, "[%s]\n", section);
+  if (p->kind == VDB_PROFILE_EXPONENTIAL) {
+    if (p->scale_height > 0)
+      fprintf(f, "profile = exponential\nfog_height = %.9g\nscale_height = %.9g\n", p->y_bottom,
+              p->scale_height);
+    else
+      fprintf(f, "profile = slab\n");
+  } else {
+    fprintf(f, "profile = bspline\nprofile_degree = %d\nprofile_origin = %.9g\n"
+               "profile_spacing = %.9g\nprofile_coefficients =",
+            p->degree, p->origin, p->spacing);
+    for (int k = 0; k < p->count; k++) fprintf(f, " %.9g", p->values[k]);
+    fprintf(f, "\n");
+  }
+  fprintf(f, "; the profile's support and its integral (f * thickness = column optical depth)\n");
+  fprintf(f, "profile_bottom = %.9g\nprofile_top = %.9g\nthickness = %.9g\n\n", p->y_bottom,
+          p->y_top, p->thickness);
+}
+
+static int write_sidecar(const char *path, const import_options *o, const vdb_sequence *seq,
+                         const vdb_frame *frames, const vdb_fogmap_place *place,
+                         const vdb_profile *profile, sim_error *err) {
+  char temp[4400];
+  snprintf(temp, sizeof temp, "%s.tmp", path);
+  FILE *f = fopen(temp, "w");
+  if (!f) {
+    snprintf(err->message, sizeof err->message, "%.400s: cannot write", path);
+    return 1;
+  }
+  /* The box spans every frame's profile support (one box for the whole sequence). */
+  double floor_y = INFINITY, top_y = -INFINITY;
+  for (int i = 0; i < seq->count; i++) {
+    const vdb_profile *g = profile ? profile : &frames[i].profile;
+    floor_y = fmin(floor_y, g->y_bottom);
+    top_y = fmax(top_y, g->y_top);
+  }
+  fprintf(f, "; fogpipe import: K(x,y,z) = density_scale * f(x,z) * g(y) with max g = 1.\n"
+             "; f: %s.####.exr (channel Y), the extinction per world unit where g = 1.\n"
+             "; [box] and [fog] use the keys and meanings of docs/config.md: add\n"
+             "; 'fogmap = %s.0048.exr' to [fog] and they place and shape frame 48.\n\n",
+          o->name, o->name);
+  fprintf(f, "[sequence]\nfiles = %s.%%04d.exr\nchannel = Y\n", o->name);
+  fprintf(f, "first_frame = %d\nlast_frame = %d\nframe_count = %d\n", seq->frames[0],
+          seq->frames[seq->count - 1], seq->count);
+  fprintf(f, "frames =");
+  for (int i = 0; i < seq->count; i++) fprintf(f, " %d", seq->frames[i]);
+  fprintf(f, "\nmissing_frames =");
+  for (int i = 0; i < seq->missing_count; i++) fprintf(f, " %d", seq->missing[i]);
+  fprintf(f, "\nwidth = %d\nheight = %d\n", place->width, place->height);
+  fprintf(f, "source = %s\ngrid = %s\nup = %s\nscale = %.9g\noffset = %.9g %.9g %.9g\n",
+          o->inputs[0], o->grid ? o->grid : "density", o->up == VDB_UP_Y ? "y" : "z",
+          o->scale > 0 ? o->scale : 1.0, o->offset[0], o->offset[1], o->offset[2]);
+  fprintf(f, "mantaflow_config = %s\n", frames[0].config_path[0] ? frames[0].config_path : "none");
+  fprintf(f, "profile_per = %s\n", profile ? "sequence" : "frame");
+  fprintf(f, "; density x volume of each frame (the column integral's total), in frame order\nmass =");
+  for (int i = 0; i < seq->count; i++) fprintf(f, " %.9g", frames[i].columns.mass);
+  fprintf(f, "\n\n");
+  fprintf(f, "[box]\n; origin: world X Z of the outer corner of fogmap cell (0, 0); row = Z\n");
+  fprintf(f, "origin = %.9g %.9g\ncell_size = %.9g\nfloor = %.9g\ntop = %.9g\n\n",
+          place->origin_x, place->origin_z, place->cell_size, floor_y, top_y);
+  if (profile) {
+    write_profile(f, "fog", profile);
+  } else {
+    fprintf(f, "; one profile per frame: [fog.####]\n\n");
+    for (int i = 0; i < seq->count; i++) {
+      char section[64];
+      snprintf(section, sizeof section, "fog.%04d", seq->frames[i]);
+      write_profile(f, section, &frames[i].profile);
+    }
+  }
+  if (fclose(f) != 0 || rename(temp, path) != 0) {
+    remove(temp);
+    snprintf(err->message, sizeof err->message, "%.400s: write failed", path);
+    return 1;
+  }
+  return 0;
+}
+
+static int run_report(const import_options *o, const vdb_sequence *seq, const vdb_frame *frames,
+                      const vdb_fogmap_place *place, const vdb_profile *seq_profile,
+                      const char *temp_dir) {
+  int index = seq->count - 1;
+  if (o->report_frame >= 0) {
+    index = -1;
+    for (int i = 0; i < seq->count; i++)
+      if (seq->frames[i] == o->report_frame) index = i;
+    if (index < 0) return fail("--report-frame %d: no such frame imported", o->report_frame);
+  }
+  const vdb_profile *profile = seq_profile ? seq_profile : &frames[index].profile;
+  sim_error err = {{0}};
+  vdb_frame full;
+  vdb_frame_desc desc = {.grid = o->grid, .up = o->up, .scale = o->scale,
+                         .offset = {o->offset[0], o->offset[1], o->offset[2]},
+                         .config = o->config, .place = place, .fixed_profile = profile,
+                         .keep_grid = 1, .max_voxels = o->max_voxels};
+  if (vdb_frame_load(seq->paths[index], &desc, &full, &err))
+    return fail("frame %d: %s", seq->frames[index], err.message);
+  vdb_report_row rows[report_rows];
+  for (int r = 0; r < report_rows; r++) rows[r] = (vdb_report_row){.elevation_deg = report_elevations[r]};
+  const double t0 = (double)clock() / CLOCKS_PER_SEC;
+  int status = vdb_report_run(&full.grid, &full.world, &full.map, place, profile,
+                              &(vdb_report_desc){.rays_per_side = o->report_rays}, rows,
+                              report_rows, &err);
+  const double seconds = (double)clock() / CLOCKS_PER_SEC - t0;
+  if (status) {
+    vdb_frame_destroy(&full);
+    return fail("frame %d: %s", seq->frames[index], err.message);
+  }
+  printf("\n2.5D accuracy, frame %d (%s): transmittance of f*g against a trilinear ray march\n"
+         "of the 3D grid, orthographic views, %d x %d rays x 4 azimuths per elevation,\n"
+         "step 1/4 cell, rays with optical depth > 1e-4 (%.1f s CPU)\n",
+         seq->frames[index], seq->paths[index], o->report_rays ? o->report_rays : 48,
+         o->report_rays ? o->report_rays : 48, seconds);
+  printf("%10s %8s %12s %12s %12s %16s\n", "elevation", "rays", "mean |dT|", "max |dT|",
+         "mean T_3D", "mean|dT|/(1-T)");
+  chart_point points[2 * report_rows];
+  for (int r = 0; r < report_rows; r++) {
+    const double contrast = 1 - rows[r].mean_transmittance;
+    printf("%9.0f° %8d %12.5f %12.5f %12.4f %16.3f\n", rows[r].elevation_deg, rows[r].rays,
+           rows[r].mean_abs_error, rows[r].max_abs_error, rows[r].mean_transmittance,
+           contrast > 0 ? rows[r].mean_abs_error / contrast : 0.0);
+    points[r] = (chart_point){"mean |T 2.5D - T 3D|", rows[r].elevation_deg, rows[r].mean_abs_error};
+    points[report_rows + r] =
+        (chart_point){"max |T 2.5D - T 3D|", rows[r].elevation_deg, rows[r].max_abs_error};
+  }
+  printf("(the last column compares the error with the fog's own contrast 1 - mean T_3D: near\n"
+         " 0, f*g is enough for that view; a sizeable fraction means the vertical structure\n"
+         " that f*g flattens shows, and the 3D grid should be rendered instead. Straight down\n"
+         " (90 deg) the model is exact by construction.)\n");
+  vdb_frame_destroy(&full);
+  char csv[4200], png[4200], error[600], title[256];
+  snprintf(csv, sizeof csv, "%s/%s.report.csv", temp_dir, o->name);
+  snprintf(png, sizeof png, "%s/%s.report.png", temp_dir, o->name);
+  snprintf(title, sizeof title, "2.5D vs 3D transmittance error, frame %d", seq->frames[index]);
+  chart_desc chart = {.title = title, .x_label = "view elevation (degrees)",
+                      .y_label = "|transmittance error|", .width = 800, .height = 500};
+  if (chart_write(&chart, points, 2 * report_rows, csv, png, error, (int)sizeof error))
+    return fail("%s", error);
+  return 0;
+}
+
+int cmd_import(int argc, char **argv) {
+  import_options o;
+  int parsed = parse_options(argc, argv, &o);
+  if (parsed) return parsed < 0 ? 0 : parsed;
+  if (o.list) return list_grids(&o);
+
+  sim_error err = {{0}};
+  vdb_sequence seq;
+  if (vdb_sequence_find(o.inputs, o.input_count, o.first, o.last, &seq, &err))
+    return fail("%s", err.message);
+  if (seq.missing_count) {
+    char list[400] = "";
+    for (int i = 0; i < seq.missing_count && strlen(list) < 300; i++)
+      snprintf(list + strlen(list), sizeof list - strlen(list), "%s%d", i ? ", " : "",
+               seq.missing[i]);
+    if (!o.skip_missing) {
+      int status = fail("%s: %d frame%s missing: %s%s (--skip-missing goes on without them)",
+                        o.inputs[0], seq.missing_count, seq.missing_count == 1 ? "" : "s", list,
+                        strlen(list) >= 300 ? ", ..." : "");
+      vdb_sequence_destroy(&seq);
+      return status;
+    }
+    fprintf(stderr, "fogpipe import: warning: %d frame%s missing: %s\n", seq.missing_count,
+            seq.missing_count == 1 ? "" : "s", list);
+  }
+
+  int status = 0, created_out = 0;
+  char temp_dir[4200] = "";
+  vdb_frame *frames = calloc((size_t)seq.count, sizeof *frames);
+  fogmap map = {0};
+  if (!frames) {
+    vdb_sequence_destroy(&seq);
+    return fail("out of memory for %d frames", seq.count);
+  }
+  /* Pass 1: read, place and project every frame (a frame's own profile is fitted too). */
+  vdb_frame_desc desc = {.grid = o.grid, .up = o.up, .scale = o.scale,
+                         .offset = {o.offset[0], o.offset[1], o.offset[2]},
+                         .config = o.config, .profile = o.profile, .max_voxels = o.max_voxels};
+  int loaded = 0;
+  for (; loaded < seq.count; loaded++) {
+    if (vdb_frame_load(seq.paths[loaded], &desc, &frames[loaded], &err)) {
+      status = fail("frame %d: %s", seq.frames[loaded], err.message);
+      goto done;
+    }
+    const vdb_frame *f = &frames[loaded];
+    if (f->world.warning[0] && (loaded == 0 || strcmp(f->world.warning, frames[0].world.warning)))
+      fprintf(stderr, "fogpipe import: warning: %s: %s\n", seq.paths[loaded], f->world.warning);
+    if (f->negative_voxels)
+      fprintf(stderr, "fogpipe import: warning: %s: %lld negative voxels clamped to 0\n",
+              seq.paths[loaded], f->negative_voxels);
+    if (loaded == 0 && !f->config_path[0] && o.up == VDB_UP_Z &&
+        !(o.config && !strcmp(o.config, "none")))
+      fprintf(stderr, "fogpipe import: note: no Mantaflow config beside %s: placement from the "
+              "VDB transform alone (an adaptive-domain cache would be misplaced)\n",
+              seq.paths[0]);
+    if (o.verbose)
+      printf("frame %4d: %s: %lld active voxels, mass %.6g, %dx%d columns, %d layers\n",
+             seq.frames[loaded], seq.paths[loaded], f->active_voxels, f->columns.mass,
+             f->columns.width, f->columns.height, f->columns.layers);
+  }
+  /* One fogmap grid for the whole sequence: the union of the frames' footprints. */
+  double x0 = INFINITY, x1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY;
+  for (int i = 0; i < seq.count; i++) {
+    const vdb_columns *c = &frames[i].columns;
+    x0 = fmin(x0, c->origin_x);
+    x1 = fmax(x1, c->origin_x + c->width * c->cell_x);
+    z0 = fmin(z0, c->origin_z);
+    z1 = fmax(z1, c->origin_z + c->height * c->cell_z);
+  }
+  vdb_fogmap_place place;
+  const vdb_columns *c0 = &frames[0].columns;
+  if (vdb_fogmap_place_fit(x0, x1, z0, z1, o.resolution, o.cell, fmax(c0->cell_x, c0->cell_z),
+                           &place, &err)) {
+    status = fail("%s", err.message);
+    goto done;
+  }
+  vdb_profile seq_profile;
+  const vdb_profile *profile = NULL;
+  if (!o.profile_per_frame) {
+    const vdb_columns **cols = malloc((size_t)seq.count * sizeof *cols);
+    if (!cols) {
+      status = fail("out of memory");
+      goto done;
+    }
+    for (int i = 0; i < seq.count; i++) cols[i] = &frames[i].columns;
+    int s = vdb_profile_fit_columns(cols, seq.count, &o.profile, &seq_profile, &err);
+    free(cols);
+    if (s) {
+      status = fail("%s: %s", o.inputs[0], err.message);
+      goto done;
+    }
+    profile = &seq_profile;
+  }
+  /* Pass 2: resample and write into a temporary folder beside the results. */
+  struct stat out_stat;
+  created_out = stat(o.out, &out_stat) != 0;
+  if (make_dirs(o.out)) {
+    status = fail("%s: cannot create the output folder: %s", o.out, strerror(errno));
+    goto done;
+  }
+  snprintf(temp_dir, sizeof temp_dir, "%s/.%s.import.XXXXXX", o.out, o.name);
+  if (!mkdtemp(temp_dir)) {
+    status = fail("%s: cannot create a temporary folder: %s", o.out, strerror(errno));
+    temp_dir[0] = 0;
+    goto done;
+  }
+  if (fogmap_create(&map, place.width, place.height, &err)) {
+    status = fail("%s", err.message);
+    goto done;
+  }
+  double mass_min = INFINITY, mass_max = 0;
+  for (int i = 0; i < seq.count; i++) {
+    const vdb_profile *g = profile ? profile : &frames[i].profile;
+    if (vdb_columns_resample(&frames[i].columns, &place, g->thickness, &map, &err)) {
+      status = fail("frame %d: %s: %s", seq.frames[i], seq.paths[i], err.message);
+      goto done;
+    }
+    char path[4300];
+    snprintf(path, sizeof path, "%s/%s.%04d.exr", temp_dir, o.name, seq.frames[i]);
+    if (fogmap_save_exr(path, &map, &err)) {
+      status = fail("frame %d: %s", seq.frames[i], err.message);
+      goto done;
+    }
+    mass_min = fmin(mass_min, frames[i].columns.mass);
+    mass_max = fmax(mass_max, frames[i].columns.mass);
+  }
+  char sidecar[4300];
+  snprintf(sidecar, sizeof sidecar, "%s/%s.ini", temp_dir, o.name);
+  if (write_sidecar(sidecar, &o, &seq, frames, &place, profile, &err)) {
+    status = fail("%s", err.message);
+    goto done;
+  }
+  if (o.report && (status = run_report(&o, &seq, frames, &place, profile, temp_dir))) goto done;
+  /* Every file is complete: move them into --out. */
+  {
+    DIR *d = opendir(temp_dir);
+    struct dirent *e;
+    char from[4400], to[4400];
+    while (d && (e = readdir(d))) {
+      if (e->d_name[0] == '.') continue;
+      snprintf(from, sizeof from, "%s/%s", temp_dir, e->d_name);
+      snprintf(to, sizeof to, "%s/%s", o.out, e->d_name);
+      if (rename(from, to)) {
+        status = fail("%s: cannot move into place: %s", to, strerror(errno));
+        break;
+      }
+    }
+    if (d) closedir(d);
+  }
+  if (!status) {
+    printf("imported %d frame%s (%d..%d) of '%s' from %s\n", seq.count, seq.count == 1 ? "" : "s",
+           seq.frames[0], seq.frames[seq.count - 1], o.grid ? o.grid : "density", o.inputs[0]);
+    printf("fogmap %dx%d cells of %.6g at origin (%.6g, %.6g); mass %.6g..%.6g\n", place.width,
+           place.height, place.cell_size, place.origin_x, place.origin_z, mass_min, mass_max);
+    const vdb_profile *g = profile ? profile : &frames[seq.count - 1].profile;
+    printf("profile (%s%s): y in [%.6g, %.6g], thickness %.6g\n",
+           g->kind == VDB_PROFILE_EXPONENTIAL ? "exponential" : "B-spline",
+           profile ? "" : ", per frame; last frame shown", g->y_bottom, g->y_top, g->thickness);
+    printf("wrote %s/%s.####.exr and %s/%s.ini\n", o.out, o.name, o.out, o.name);
+  }
+done:
+  if (temp_dir[0]) remove_dir(temp_dir);
+  if (status && created_out) rmdir(o.out); /* a folder made for a failed import goes too */
+  fogmap_destroy(&map);
+  for (int i = 0; i < seq.count; i++) vdb_frame_destroy(&frames[i]);
+  free(frames);
+  vdb_sequence_destroy(&seq);
+  return status;
+}

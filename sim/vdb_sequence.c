@@ -1,0 +1,248 @@
+/* VDB sequences: files, directories, printf (%04d) and #### patterns, globs; frame
+ * numbers from file names; missing frames inside the range. */
+#define _POSIX_C_SOURCE 200809L
+#include <ctype.h>
+#include <glob.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "sim/vdb_import.h"
+
+/* The last run of digits in the file name (not the folders); -1 if none. */
+static long frame_of(const char *path, int *digits_start, int *digits_len) {
+  const char *base = strrchr(path, '/');
+  base = base ? base + 1 : path;
+  const char *end = NULL;
+  for (const char *p = base; *p; p++)
+    if (isdigit((unsigned char)*p)) end = p;
+  if (!end) return -1;
+  const char *start = end;
+  while (start > base && isdigit((unsigned char)start[-1])) start--;
+  if (digits_start) *digits_start = (int)(start - path);
+  if (digits_len) *digits_len = (int)(end - start + 1);
+  return strtol(start, NULL, 10);
+}
+
+typedef struct entry {
+  int frame;
+  char *path;
+} entry;
+
+typedef struct entry_list {
+  entry *items;
+  int count, capacity;
+} entry_list;
+
+static int push(entry_list *list, int frame, const char *path) {
+  if (list->count == list->capacity) {
+    int cap = list->capacity ? 2 * list->capacity : 64;
+    entry *items = realloc(list->items, (size_t)cap * sizeof *items);
+    if (!items) return 1;
+    list->items = items;
+    list->capacity = cap;
+  }
+  char *copy = strdup(path);
+  if (!copy) return 1;
+  list->items[list->count++] = (entry){.frame = frame, .path = copy};
+  return 0;
+}
+
+static int by_frame(const void *a, const void *b) {
+  const entry *x = a, *y = b;
+  if (x->frame != y->frame) return (x->frame > y->frame) - (x->frame < y->frame);
+  return strcmp(x->path, y->path);
+}
+
+/* A printf pattern's one integer conversion (%d, %4d, %04d): its span in pattern. */
+static int find_conversion(const char *pattern, int *start, int *end) {
+  for (const char *p = pattern; *p; p++) {
+    if (*p != '%') continue;
+    if (p[1] == '%') {
+      p++;
+      continue;
+    }
+    const char *q = p + 1;
+    while (isdigit((unsigned char)*q)) q++;
+    if (*q == 'd' || *q == 'i' || *q == 'u') {
+      *start = (int)(p - pattern);
+      *end = (int)(q - pattern) + 1;
+      return 1;
+    }
+  }
+  return 0;
+}
+
+/* fluid_data_####.vdb -> fluid_data_%04d.vdb */
+static int hashes_to_printf(const char *in, char *out, size_t out_size) {
+  const char *h = strchr(in, '#');
+  if (!h) return 0;
+  size_t n = 0;
+  while (h[n] == '#') n++;
+  int w = snprintf(out, out_size, "%.*s%%0%zud%s", (int)(h - in), in, n, h + n);
+  return w > 0 && (size_t)w < out_size;
+}
+
+static int add_glob(entry_list *list, const char *pattern, int *matched) {
+  glob_t g;
+  int status = glob(pattern, 0, NULL, &g);
+  if (status == GLOB_NOMATCH) return 0;
+  if (status != 0) return 1;
+  for (size_t i = 0; i < g.gl_pathc; i++) {
+    long f = frame_of(g.gl_pathv[i], NULL, NULL);
+    if (push(list, f < 0 ? list->count : (int)f, g.gl_pathv[i])) {
+      globfree(&g);
+      return 1;
+    }
+    (*matched)++;
+  }
+  globfree(&g);
+  return 0;
+}
+
+static int add_pattern(entry_list *list, const char *pattern, int first, int last,
+                       int *matched) {
+  int s, e;
+  if (!find_conversion(pattern, &s, &e)) return 1;
+  char path[4096];
+  if (last >= 0 && first >= 0) {
+    /* A closed range: try every frame (missing ones are found later). */
+    for (int f = first; f <= last; f++) {
+      snprintf(path, sizeof path, pattern, f);
+      if (access(path, F_OK) == 0) {
+        if (push(list, f, path)) return 1;
+        (*matched)++;
+      }
+    }
+    return 0;
+  }
+  /* Open range: glob the digits, then keep the names the pattern reproduces. */
+  char globbed[4096];
+  snprintf(globbed, sizeof globbed, "%.*s[0-9]*%s", s, pattern, pattern + e);
+  glob_t g;
+  int status = glob(globbed, 0, NULL, &g);
+  if (status == GLOB_NOMATCH) return 0;
+  if (status != 0) return 1;
+  for (size_t i = 0; i < g.gl_pathc; i++) {
+    const char *name = g.gl_pathv[i];
+    long f = strtol(name + s, NULL, 10);
+    snprintf(path, sizeof path, pattern, (int)f);
+    if (strcmp(path, name) != 0) continue;
+    if (push(list, (int)f, name)) {
+      globfree(&g);
+      return 1;
+    }
+    (*matched)++;
+  }
+  globfree(&g);
+  return 0;
+}
+
+int vdb_sequence_find(const char *const *inputs, int input_count, int first, int last,
+                      vdb_sequence *out, sim_error *err) {
+  *out = (vdb_sequence){0};
+  entry_list list = {0};
+  for (int n = 0; n < input_count; n++) {
+    const char *in = inputs[n];
+    char pattern[4096];
+    int matched = 0, status = 0, s, e;
+    struct stat st;
+    if (hashes_to_printf(in, pattern, sizeof pattern)) {
+      status = add_pattern(&list, pattern, first, last, &matched);
+    } else if (find_conversion(in, &s, &e)) {
+      status = add_pattern(&list, in, first, last, &matched);
+    } else if (strpbrk(in, "*?[")) {
+      status = add_glob(&list, in, &matched);
+    } else if (stat(in, &st) == 0 && S_ISDIR(st.st_mode)) {
+      snprintf(pattern, sizeof pattern, "%s/*.vdb", in);
+      status = add_glob(&list, pattern, &matched);
+    } else if (stat(in, &st) == 0) {
+      long f = frame_of(in, NULL, NULL);
+      status = push(&list, f < 0 ? list.count : (int)f, in);
+      matched = 1;
+    } else {
+      snprintf(err->message, sizeof err->message, "%s: no such file or directory", in);
+      goto fail;
+    }
+    if (status) {
+      snprintf(err->message, sizeof err->message, "%s: cannot list (out of memory?)", in);
+      goto fail;
+    }
+    if (!matched) {
+      if (last >= 0)
+        snprintf(err->message, sizeof err->message, "%s: no files for frames %d..%d", in,
+                 first, last);
+      else
+        snprintf(err->message, sizeof err->message, "%s: no files match", in);
+      goto fail;
+    }
+  }
+  qsort(list.items, (size_t)list.count, sizeof *list.items, by_frame);
+  /* Keep the range; drop a later duplicate of the same path. */
+  int kept = 0;
+  for (int i = 0; i < list.count; i++) {
+    entry it = list.items[i];
+    int in_range = (first < 0 || it.frame >= first) && (last < 0 || it.frame <= last);
+    int duplicate = kept > 0 && !strcmp(list.items[kept - 1].path, it.path);
+    if (in_range && !duplicate)
+      list.items[kept++] = it;
+    else
+      free(it.path);
+  }
+  list.count = kept;
+  if (kept == 0) {
+    snprintf(err->message, sizeof err->message, "%s: no frames in the range %d..%d",
+             input_count ? inputs[0] : "(no input)", first, last);
+    goto fail;
+  }
+  out->count = kept;
+  out->frames = malloc((size_t)kept * sizeof(int));
+  out->paths = malloc((size_t)kept * sizeof(char *));
+  const int lo = first >= 0 ? first : list.items[0].frame;
+  const int hi = last >= 0 ? last : list.items[kept - 1].frame;
+  out->missing = malloc((size_t)(hi - lo + 1 > 0 ? hi - lo + 1 : 1) * sizeof(int));
+  if (!out->frames || !out->paths || !out->missing) {
+    snprintf(err->message, sizeof err->message, "out of memory listing %d frames", kept);
+    goto fail;
+  }
+  for (int i = 0; i < kept; i++) {
+    out->frames[i] = list.items[i].frame;
+    out->paths[i] = list.items[i].path;
+  }
+  int i = 0;
+  for (int f = lo; f <= hi; f++) {
+    while (i < kept && out->frames[i] < f) i++;
+    if (i >= kept || out->frames[i] != f) out->missing[out->missing_count++] = f;
+  }
+  free(list.items);
+  return 0;
+fail:
+  for (int i = 0; i < list.count; i++) free(list.items[i].path);
+  free(list.items);
+  free(out->frames);
+  free(out->paths);
+  free(out->missing);
+  *out = (vdb_sequence){0};
+  return 1;
+}
+
+void vdb_sequence_destroy(vdb_sequence *sequence) {
+  for (int i = 0; i < sequence->count; i++) free(sequence->paths[i]);
+  free(sequence->paths);
+  free(sequence->frames);
+  free(sequence->missing);
+  *sequence = (vdb_sequence){0};
+}
+
+int vdb_config_path_beside(const char *vdb_path, char *out, size_t out_size) {
+  int ds = 0, dl = 0;
+  if (frame_of(vdb_path, &ds, &dl) < 0) return 1;
+  const char *slash = strrchr(vdb_path, '/');
+  int dir_len = slash ? (int)(slash - vdb_path) : 0;
+  int w = snprintf(out, out_size, "%.*s%s../config/config_%.*s.uni", dir_len, vdb_path,
+                   dir_len ? "/" : "", dl, vdb_path + ds);
+  if (w <= 0 || (size_t)w >= out_size) return 1;
+  return access(out, R_OK) == 0 ? 0 : 1;
+}

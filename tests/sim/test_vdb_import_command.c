@@ -1,0 +1,152 @@
+/* `fogpipe import` end to end: the EXR sequence and the sidecar it writes read back to the
+ * same mass as the voxels (f·cell²·thickness summed = the sidecar's mass per frame, which
+ * test_vdb_real_files checks against the voxel sum); bad input (a non-VDB file in the
+ * sequence, missing frames, no such grid) exits non-zero, names the file and frame, and
+ * leaves nothing in --out. */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "sim/sim.h"
+#include "test_util.h"
+
+static char dir[256];
+
+/* Runs a shell command; returns its exit status and its stderr (first 4 KiB). */
+static int run(const char *command, char *errors, size_t size) {
+  char cmd[4096], errfile[300];
+  snprintf(errfile, sizeof errfile, "%s/stderr.txt", dir);
+  snprintf(cmd, sizeof cmd, "%s > /dev/null 2> '%s'", command, errfile);
+  int status = system(cmd);
+  errors[0] = 0;
+  FILE *f = fopen(errfile, "r");
+  if (f) {
+    size_t n = fread(errors, 1, size - 1, f);
+    errors[n] = 0;
+    fclose(f);
+  }
+  unlink(errfile);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+static int count_entries(const char *path) {
+  DIR *d = opendir(path);
+  if (!d) return -1;
+  int n = 0;
+  struct dirent *e;
+  while ((e = readdir(d)))
+    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) n++;
+  closedir(d);
+  return n;
+}
+
+/* The value of "key = ..." in the sidecar (first occurrence). */
+static int ini_value(const char *path, const char *key, char *out, size_t size) {
+  FILE *f = fopen(path, "r");
+  if (!f) return 1;
+  char line[8192];
+  int found = 0;
+  while (!found && fgets(line, sizeof line, f)) {
+    size_t k = strlen(key);
+    if (!strncmp(line, key, k) && line[k] == ' ' && line[k + 1] == '=') {
+      snprintf(out, size, "%s", line + k + 3);
+      found = 1;
+    }
+  }
+  fclose(f);
+  return !found;
+}
+
+int main(void) {
+  const char *bin = getenv("FOGPIPE_BIN");
+  if (!bin) bin = "build/fogpipe";
+  snprintf(dir, sizeof dir, "/tmp/test_vdb_import_XXXXXX");
+  if (!mkdtemp(dir)) return 1;
+  char cmd[4096], errors[4096], out[512];
+
+  /* 1. frames 40..48 of the ground fog, resampled to 50 cells */
+  snprintf(out, sizeof out, "%s/good", dir);
+  snprintf(cmd, sizeof cmd,
+           "'%s' import ../shared/data/vdb/groundfog/data/fluid_data_%%04d.vdb --frames 40-48 "
+           "--resolution 50 --out '%s' --name gf", bin, out);
+  int status = run(cmd, errors, sizeof errors);
+  CHECK(status == 0, "import failed (%d): %s", status, errors);
+  CHECK(count_entries(out) == 10, "%d files in %s, expected 9 EXR + 1 ini", count_entries(out), out);
+  char ini[600], value[8192];
+  snprintf(ini, sizeof ini, "%s/gf.ini", out);
+  double cell = 0, thickness = 0;
+  int width = 0;
+  if (!ini_value(ini, "cell_size", value, sizeof value)) cell = atof(value);
+  if (!ini_value(ini, "thickness", value, sizeof value)) thickness = atof(value);
+  if (!ini_value(ini, "width", value, sizeof value)) width = atoi(value);
+  CHECK(width == 50 && fabs(cell - 6.0 / 50) < 1e-9, "sidecar: width %d, cell %g", width, cell);
+  CHECK(!ini_value(ini, "mass", value, sizeof value), "sidecar has no mass line");
+  char *p = value;
+  for (int frame = 40; frame <= 48; frame++) {
+    const double mass = strtod(p, &p);
+    char exr[700];
+    snprintf(exr, sizeof exr, "%s/gf.%04d.exr", out, frame);
+    fogmap map;
+    sim_error err = {{0}};
+    if (fogmap_load(exr, &(fogmap_load_desc){0}, &map, &err)) {
+      CHECK(0, "%s", err.message);
+      continue;
+    }
+    double sum = 0;
+    for (int n = 0; n < map.width * map.height; n++) sum += map.density[n];
+    const double fm = sum * cell * cell * thickness;
+    CHECK(fabs(fm - mass) < 1e-5 * mass, "frame %d: EXR mass %.8g vs sidecar mass %.8g", frame,
+          fm, mass);
+    fogmap_destroy(&map);
+  }
+
+  /* 2. a non-VDB file inside the sequence: non-zero, names the file and frame, nothing left */
+  char bad[512];
+  snprintf(bad, sizeof bad, "%s/badseq", dir);
+  snprintf(cmd, sizeof cmd,
+           "mkdir -p '%s' && cp ../shared/data/vdb/plume/data/fluid_data_000[1-3].vdb '%s/' && "
+           "echo 'not a vdb' > '%s/fluid_data_0004.vdb' && "
+           "cp ../shared/data/vdb/plume/data/fluid_data_0005.vdb '%s/'", bad, bad, bad, bad);
+  CHECK(system(cmd) == 0, "setup failed: %s", cmd);
+  snprintf(out, sizeof out, "%s/out_bad", dir);
+  snprintf(cmd, sizeof cmd, "'%s' import '%s' --out '%s' --config none", bin, bad, out);
+  status = run(cmd, errors, sizeof errors);
+  CHECK(status != 0, "import of a bad sequence succeeded");
+  CHECK(strstr(errors, "fluid_data_0004.vdb") && strstr(errors, "frame 4"),
+        "message lacks the file or frame: %s", errors);
+  CHECK(count_entries(out) <= 0, "%d entries left in %s", count_entries(out), out);
+
+  /* 3. missing frames inside the range */
+  snprintf(cmd, sizeof cmd, "rm '%s/fluid_data_0004.vdb'", bad);
+  CHECK(system(cmd) == 0, "rm failed");
+  snprintf(cmd, sizeof cmd, "'%s' import '%s/fluid_data_####.vdb' --out '%s' --config none", bin,
+           bad, out);
+  status = run(cmd, errors, sizeof errors);
+  CHECK(status != 0 && strstr(errors, "missing: 4"), "missing frame 4 not reported (%d): %s",
+        status, errors);
+  CHECK(count_entries(out) <= 0, "%d entries left in %s", count_entries(out), out);
+  snprintf(cmd, sizeof cmd,
+           "'%s' import '%s/fluid_data_####.vdb' --out '%s' --config none --skip-missing", bin,
+           bad, out);
+  status = run(cmd, errors, sizeof errors);
+  CHECK(status == 0 && strstr(errors, "missing"), "--skip-missing (%d): %s", status, errors);
+  CHECK(count_entries(out) == 5, "%d files after --skip-missing, expected 4 EXR + ini",
+        count_entries(out));
+
+  /* 4. no such grid: the message lists the grids */
+  snprintf(out, sizeof out, "%s/out_grid", dir);
+  snprintf(cmd, sizeof cmd, "'%s' import '%s/fluid_data_0001.vdb' --grid smoke --out '%s'", bin,
+           bad, out);
+  status = run(cmd, errors, sizeof errors);
+  CHECK(status != 0 && strstr(errors, "fluid_data_0001.vdb") && strstr(errors, "density, flame"),
+        "no such grid (%d): %s", status, errors);
+  CHECK(count_entries(out) <= 0, "%d entries left in %s", count_entries(out), out);
+
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+  return test_finish("test_vdb_import_command");
+}
