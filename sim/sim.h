@@ -5,6 +5,7 @@
 #define FOGPIPE_SIM_H
 
 #include "sim/fogmap.h"
+#include "sim/fluid.h"
 #include "sim/designed_fog.h"
 #include "sim/vdb_import.h"
 

@@ -1,0 +1,143 @@
+/* Density sources and sinks of the fluid simulation: Gaussian emitters, painted strokes,
+ * velocity impulses, relaxation toward the base fogmap and dissipation. Everything wraps
+ * around the periodic domain. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "sim/fluid_internal.h"
+
+static int wrap(int i, int n) {
+  i %= n;
+  return i < 0 ? i + n : i;
+}
+
+/* The cells [lo, lo + count) along one axis covering [centre - reach, centre + reach],
+ * at most one period (so no cell is visited twice). */
+static void cover(float centre_lo, float centre_hi, float reach, int n, int *lo, int *count) {
+  *lo = (int)floorf(centre_lo - reach);
+  int hi = (int)ceilf(centre_hi + reach);
+  *count = hi - *lo + 1;
+  if (*count > n) *count = n;
+}
+
+int fluid_emission_build(fluid_sim *sim, sim_error *err) {
+  if (!sim->desc.emitter_count) return 0;
+  const int w = sim->width, h = sim->height;
+  const size_t n = (size_t)w * h;
+  sim->emission = fftwf_malloc(n * sizeof(float));
+  if (!sim->emission) {
+    snprintf(err->message, sizeof err->message, "fluid sim: out of memory for emitters");
+    return 1;
+  }
+  memset(sim->emission, 0, n * sizeof(float));
+  /* Precomputed once: the emitters are fixed, so each step adds one table instead of
+   * evaluating exp() per cell (density added per step = rate * dt * Gaussian). */
+  for (int e = 0; e < sim->desc.emitter_count; e++) {
+    const fluid_emitter *em = &sim->emitters[e];
+    const float reach = 4.0f * em->radius; /* exp(-8) ≈ 3e-4 of the peak at the edge */
+    int x0, nx, z0, nz;
+    cover(em->x, em->x, reach, w, &x0, &nx);
+    cover(em->z, em->z, reach, h, &z0, &nz);
+    const double inv_two_s2 = 1.0 / (2.0 * (double)em->radius * em->radius);
+    for (int dz = 0; dz < nz; dz++) {
+      const double ez = (z0 + dz) - (double)em->z;
+      float *row = sim->emission + (size_t)wrap(z0 + dz, h) * w;
+      for (int dx = 0; dx < nx; dx++) {
+        const double ex = (x0 + dx) - (double)em->x;
+        row[wrap(x0 + dx, w)] +=
+            (float)((double)em->rate * sim->desc.dt * exp(-(ex * ex + ez * ez) * inv_two_s2));
+      }
+    }
+  }
+  return 0;
+}
+
+/* After advection, per cell: + emission, relaxation toward the base (exact decay of
+ * d rho/dt = r (base - rho) over dt), dissipation (exact decay of d rho/dt = -d rho), and
+ * the clamp that keeps the density in [0, FLT_MAX], turns NaN into 0 and flushes
+ * would-be subnormals to 0. */
+void fluid_density_sources(fluid_sim *sim, float *density) {
+  const size_t n = (size_t)sim->width * sim->height;
+  const float *restrict emission = sim->emission, *restrict base = sim->base;
+  const float relax = sim->relax_gain, keep = sim->keep;
+  float *restrict rho = density;
+  if (!emission && relax == 0 && keep == 1) {
+    for (size_t c = 0; c < n; c++) rho[c] = fluid_clean_density(rho[c]);
+    return;
+  }
+  for (size_t c = 0; c < n; c++) {
+    float v = rho[c];
+    if (emission) v += emission[c];
+    v += relax * ((base ? base[c] : 0.0f) - v);
+    v *= keep;
+    rho[c] = fluid_clean_density(v);
+  }
+}
+
+/* Squared distance from (px, pz) to the segment a-b. */
+static float segment_distance2(float px, float pz, float ax, float az, float bx, float bz) {
+  const float dx = bx - ax, dz = bz - az;
+  const float len2 = dx * dx + dz * dz;
+  float t = len2 > 0 ? ((px - ax) * dx + (pz - az) * dz) / len2 : 0.0f;
+  t = fminf(fmaxf(t, 0.0f), 1.0f);
+  const float ex = px - (ax + t * dx), ez = pz - (az + t * dz);
+  return ex * ex + ez * ez;
+}
+
+int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *s, sim_error *err) {
+  if (!isfinite(s->x0) || !isfinite(s->z0) || !isfinite(s->x1) || !isfinite(s->z1) ||
+      !isfinite(s->amount) || !(s->radius > 0) || !isfinite(s->radius)) {
+    snprintf(err->message, sizeof err->message,
+             "fluid sim: stroke needs finite end points and amount and a radius > 0");
+    return 1;
+  }
+  const int w = sim->width, h = sim->height;
+  int x0, nx, z0, nz;
+  cover(fminf(s->x0, s->x1), fmaxf(s->x0, s->x1), s->radius, w, &x0, &nx);
+  cover(fminf(s->z0, s->z1), fmaxf(s->z0, s->z1), s->radius, h, &z0, &nz);
+  const float inv_r2 = 1.0f / (s->radius * s->radius);
+  float *rho = sim->density[sim->current];
+  for (int dz = 0; dz < nz; dz++) {
+    const float pz = (float)(z0 + dz);
+    float *row = rho + (size_t)wrap(z0 + dz, h) * w;
+    for (int dx = 0; dx < nx; dx++) {
+      const float q = segment_distance2((float)(x0 + dx), pz, s->x0, s->z0, s->x1, s->z1) *
+                      inv_r2;
+      if (q >= 1.0f) continue;
+      /* A smooth compact brush: (1 - q)^2 is C1 at the rim, peak 1 on the centre line. */
+      const float weight = (1.0f - q) * (1.0f - q);
+      float *cell = &row[wrap(x0 + dx, w)];
+      *cell = fluid_clean_density(*cell + s->amount * weight);
+    }
+  }
+  return 0;
+}
+
+int fluid_sim_add_impulse(fluid_sim *sim, float x, float z, float radius, float du, float dv,
+                          sim_error *err) {
+  if (!isfinite(x) || !isfinite(z) || !isfinite(du) || !isfinite(dv) || !(radius > 0) ||
+      !isfinite(radius)) {
+    snprintf(err->message, sizeof err->message,
+             "fluid sim: impulse needs a finite position and velocity and a radius > 0");
+    return 1;
+  }
+  const int w = sim->width, h = sim->height;
+  int x0, nx, z0, nz;
+  cover(x, x, 4.0f * radius, w, &x0, &nx);
+  cover(z, z, 4.0f * radius, h, &z0, &nz);
+  const float inv_two_s2 = 1.0f / (2.0f * radius * radius);
+  for (int dz = 0; dz < nz; dz++) {
+    const float ez = (float)(z0 + dz) - z;
+    const size_t row = (size_t)wrap(z0 + dz, h) * w;
+    for (int dx = 0; dx < nx; dx++) {
+      const float ex = (float)(x0 + dx) - x;
+      const float g = expf(-(ex * ex + ez * ez) * inv_two_s2);
+      const size_t c = row + wrap(x0 + dx, w);
+      sim->velocity[c] += du * g;
+      sim->velocity[sim->stride + c] += dv * g;
+    }
+  }
+  return 0;
+}

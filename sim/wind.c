@@ -1,0 +1,201 @@
+/* Spectral wind synthesis (see wind.h). */
+#include "sim/wind.h"
+
+#include <fftw3.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "sim/fluid_rng.h"
+
+static const double two_pi = 6.283185307179586476925286766559;
+
+float wind_symbol(int m, int n) { return (float)sin(two_pi * (double)m / (double)n); }
+
+/* Signed integer frequency of FFT index j on an n-point axis. */
+static int signed_frequency(int j, int n) { return j <= n / 2 ? j : j - n; }
+
+void wind_field_destroy(wind_field *wind) {
+  if (!wind) return;
+  if (wind->plan_inverse) fftwf_destroy_plan((fftwf_plan)wind->plan_inverse);
+  fftwf_free(wind->amplitude_x);
+  fftwf_free(wind->amplitude_z);
+  fftwf_free(wind->phasor);
+  fftwf_free(wind->initial_phasor);
+  fftwf_free(wind->omega);
+  fftwf_free(wind->rotation);
+  fftwf_free(wind->spectrum);
+  fftwf_free(wind->real);
+  fftwf_free(wind);
+}
+
+wind_field *wind_field_create(const wind_desc *desc, sim_error *err) {
+  const int w = desc->width, h = desc->height;
+  if (w < 8 || h < 8 || (w & 1) || (h & 1)) {
+    snprintf(err->message, sizeof err->message,
+             "wind grid %dx%d: both sides must be even and at least 8", w, h);
+    return NULL;
+  }
+  const double scale = desc->scale > 0 ? desc->scale : 0.25 * (w < h ? w : h);
+  const double slope = desc->slope != 0 ? desc->slope : -5.0 / 3.0;
+  if (!(scale > 4.0) || !isfinite(slope) || !isfinite(desc->turbulence) ||
+      desc->turbulence < 0 || !isfinite(desc->drift_x) || !isfinite(desc->drift_z)) {
+    snprintf(err->message, sizeof err->message,
+             "wind: turbulence scale %g must exceed 4 cells; turbulence %g must be >= 0; "
+             "drift and slope must be finite",
+             scale, desc->turbulence);
+    return NULL;
+  }
+  wind_field *wind = fftwf_malloc(sizeof *wind);
+  if (!wind) goto oom;
+  const int mx = w / 2 + 1;
+  const size_t modes = (size_t)mx * h;
+  *wind = (wind_field){.width = w, .height = h, .modes_x = mx, .drift_x = desc->drift_x,
+                       .drift_z = desc->drift_z, .turbulence = desc->turbulence};
+  wind->amplitude_x = fftwf_malloc(modes * sizeof(float));
+  wind->amplitude_z = fftwf_malloc(modes * sizeof(float));
+  wind->phasor = fftwf_malloc(modes * 2 * sizeof(float));
+  wind->initial_phasor = fftwf_malloc(modes * 2 * sizeof(float));
+  wind->omega = fftwf_malloc(modes * sizeof(float));
+  wind->rotation = fftwf_malloc(modes * 2 * sizeof(float));
+  wind->spectrum = fftwf_malloc(modes * 2 * 2 * sizeof(float));
+  wind->real = fftwf_malloc((size_t)w * h * 2 * sizeof(float));
+  if (!wind->amplitude_x || !wind->amplitude_z || !wind->phasor || !wind->initial_phasor ||
+      !wind->omega || !wind->rotation || !wind->spectrum || !wind->real)
+    goto oom;
+
+  /* Wavenumbers in cycles per cell; the band runs from the largest eddy to a 4-cell
+   * wavelength, well inside Nyquist (2 cells) where sin(k) still tracks k. */
+  const double k0 = 1.0 / scale, k_max = 0.25;
+  const double omega0 = two_pi * desc->turbulence * k0; /* one turnover per scale/speed */
+  fluid_rng rng = {desc->seed ? desc->seed : 1};
+  double energy = 0; /* mean |u|^2 in real space before normalisation */
+  for (int j = 0; j < h; j++) {
+    for (int i = 0; i < mx; i++) {
+      const size_t m = (size_t)j * mx + i;
+      const int fz = signed_frequency(j, h);
+      const double kx = (double)i / w, kz = (double)fz / h;
+      const double k = sqrt(kx * kx + kz * kz);
+      /* One draw per mode in a fixed order, used or not, so the phases of a mode do not
+       * depend on which other modes are in the band. */
+      const double phase = two_pi * fluid_rng_uniform(&rng);
+      const int nyquist = (i == w / 2) || (j == h / 2);
+      const int mirrored = (i == 0 && j > h / 2); /* set from its partner below */
+      double ax = 0, az = 0;
+      const double sx = wind_symbol(i, w), sz = wind_symbol(fz, h);
+      const double s = sqrt(sx * sx + sz * sz);
+      if (!nyquist && k >= k0 && k <= k_max && s > 0) {
+        /* 2D: modes per shell ∝ k dk, so |u_k|^2 ∝ E(k)/k. The velocity is i k~_perp psi:
+         * direction (k~z, -k~x)/|k~| (divergence-free for the k~ symbol), the factor i
+         * folded into the random phase. */
+        const double magnitude = pow(k, 0.5 * (slope - 1.0));
+        ax = magnitude * sz / s;
+        az = -magnitude * sx / s;
+      }
+      wind->amplitude_x[m] = (float)ax;
+      wind->amplitude_z[m] = (float)az;
+      const double om = omega0 * (k > 0 ? pow(k / k0, 2.0 / 3.0) : 0.0);
+      wind->omega[m] = (float)(mirrored ? -om : om);
+      wind->initial_phasor[2 * m] = (float)cos(phase);
+      wind->initial_phasor[2 * m + 1] = (float)sin(phase);
+      if (!mirrored) energy += (i == 0 || i == w / 2 ? 1.0 : 2.0) * (ax * ax + az * az);
+    }
+  }
+  /* The i = 0 column holds both k and -k: Hermitian symmetry needs
+   * amplitude(-k) phasor(-k) = conj(amplitude(k) phasor(k)); amplitude is odd in k~,
+   * so phasor(-k) = -conj(phasor(k)). Its energy was counted once above: count the
+   * partner too. */
+  for (int j = h / 2 + 1; j < h; j++) {
+    const size_t m = (size_t)j * mx, partner = (size_t)(h - j) * mx;
+    wind->amplitude_x[m] = -wind->amplitude_x[partner];
+    wind->amplitude_z[m] = -wind->amplitude_z[partner];
+    wind->initial_phasor[2 * m] = -wind->initial_phasor[2 * partner];
+    wind->initial_phasor[2 * m + 1] = wind->initial_phasor[2 * partner + 1];
+    energy += (double)wind->amplitude_x[m] * wind->amplitude_x[m] +
+              (double)wind->amplitude_z[m] * wind->amplitude_z[m];
+  }
+  /* Parseval with FFTW's unnormalised transform: mean |u|^2 = sum |U_k|^2 / (W H)^2.
+   * Scale so the rms speed is desc->turbulence. */
+  const double n_cells = (double)w * h;
+  const double gain = energy > 0 ? desc->turbulence * n_cells / sqrt(energy) : 0.0;
+  for (size_t m = 0; m < modes; m++) {
+    wind->amplitude_x[m] = (float)(gain * wind->amplitude_x[m]);
+    wind->amplitude_z[m] = (float)(gain * wind->amplitude_z[m]);
+  }
+
+  /* Sampling plan: two c2r transforms in one plan (out of place; c2r destroys its input,
+   * so wind_field_velocity fills `spectrum` afresh each call). */
+  const int dims[2] = {h, w};
+  wind->plan_inverse = fftwf_plan_many_dft_c2r(
+      2, dims, 2, (fftwf_complex *)wind->spectrum, NULL, 1, (int)modes, wind->real, NULL, 1,
+      w * h, FFTW_ESTIMATE);
+  if (!wind->plan_inverse) {
+    snprintf(err->message, sizeof err->message, "wind: FFTW could not plan %dx%d", w, h);
+    wind_field_destroy(wind);
+    return NULL;
+  }
+  wind->rotation_dt = -1.0f;
+  wind_field_reset(wind);
+  return wind;
+oom:
+  snprintf(err->message, sizeof err->message, "wind: out of memory for a %dx%d grid", w, h);
+  wind_field_destroy(wind);
+  return NULL;
+}
+
+void wind_field_reset(wind_field *wind) {
+  const size_t modes = (size_t)wind->modes_x * wind->height;
+  memcpy(wind->phasor, wind->initial_phasor, modes * 2 * sizeof(float));
+  wind->time = 0;
+  wind->steps = 0;
+}
+
+void wind_field_advance(wind_field *wind, float dt) {
+  const size_t modes = (size_t)wind->modes_x * wind->height;
+  if (dt != wind->rotation_dt) {
+    for (size_t m = 0; m < modes; m++) {
+      const double a = (double)wind->omega[m] * dt;
+      wind->rotation[2 * m] = (float)cos(a);
+      wind->rotation[2 * m + 1] = (float)sin(a);
+    }
+    wind->rotation_dt = dt;
+  }
+  float *restrict p = wind->phasor;
+  const float *restrict r = wind->rotation;
+  for (size_t m = 0; m < modes; m++) {
+    const float re = p[2 * m] * r[2 * m] - p[2 * m + 1] * r[2 * m + 1];
+    const float im = p[2 * m] * r[2 * m + 1] + p[2 * m + 1] * r[2 * m];
+    p[2 * m] = re;
+    p[2 * m + 1] = im;
+  }
+  /* Float rounding lets |phasor| random-walk away from 1 (~1e-7 per step); renormalise
+   * every 256 steps (deterministically, so runs stay bit-identical). Conjugate partners
+   * are renormalised identically, so the i = 0 column stays exactly Hermitian. */
+  if (++wind->steps % 256 == 0) {
+    for (size_t m = 0; m < modes; m++) {
+      const float inv = 1.0f / sqrtf(p[2 * m] * p[2 * m] + p[2 * m + 1] * p[2 * m + 1]);
+      p[2 * m] *= inv;
+      p[2 * m + 1] *= inv;
+    }
+  }
+  wind->time += dt;
+}
+
+void wind_field_velocity(wind_field *wind, float *velocity_x, float *velocity_z) {
+  const int w = wind->width, h = wind->height;
+  const size_t modes = (size_t)wind->modes_x * h;
+  float *sx = wind->spectrum, *sz = wind->spectrum + 2 * modes;
+  const float inv_n = 1.0f / ((float)w * (float)h);
+  for (size_t m = 0; m < modes; m++) {
+    sx[2 * m] = wind->amplitude_x[m] * wind->phasor[2 * m] * inv_n;
+    sx[2 * m + 1] = wind->amplitude_x[m] * wind->phasor[2 * m + 1] * inv_n;
+    sz[2 * m] = wind->amplitude_z[m] * wind->phasor[2 * m] * inv_n;
+    sz[2 * m + 1] = wind->amplitude_z[m] * wind->phasor[2 * m + 1] * inv_n;
+  }
+  fftwf_execute((fftwf_plan)wind->plan_inverse);
+  const size_t n = (size_t)w * h;
+  for (size_t c = 0; c < n; c++) {
+    velocity_x[c] = wind->real[c] + wind->drift_x;
+    velocity_z[c] = wind->real[n + c] + wind->drift_z;
+  }
+}

@@ -1,0 +1,108 @@
+/* Density sources and sinks against their closed forms, with the fluid at rest (no
+ * drift, no turbulence: advection is then the identity): a Gaussian emitter adds
+ * rate·dt·exp(-r²/2σ²) per step; relaxation toward the base decays the difference as
+ * exp(-rate·t); dissipation as exp(-rate·t); a stroke paints amount·(1-(d/r)²)² along
+ * its segment (wrapping around the domain) and a negative one erases, clamped at 0;
+ * NaN, negative and infinite base values are sanitised; bad input is refused with a
+ * message. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "sim/sim.h"
+#include "test_util.h"
+
+enum { N = 64 };
+
+int main(void) {
+  sim_error err;
+  const float dt = 0.05f;
+  /* Emitter near a corner: its Gaussian wraps onto the opposite sides. */
+  const fluid_emitter em = {2.0f, 61.0f, 3.0f, 4.0f};
+  fluid_sim *sim = fluid_sim_create(
+      &(fluid_sim_desc){.width = N, .height = N, .dt = dt, .emitters = &em,
+                        .emitter_count = 1, .advection = FLUID_ADVECT_BILINEAR},
+      &err);
+  CHECK(sim != NULL, "create: %s", err.message);
+  for (int s = 0; s < 10; s++) fluid_sim_step(sim, &err);
+  double worst = 0;
+  for (int z = 0; z < N; z++)
+    for (int x = 0; x < N; x++) {
+      double dx = fabs(x - 2.0), dz = fabs(z - 61.0);
+      dx = fmin(dx, N - dx), dz = fmin(dz, N - dz);
+      double exact = 10 * 4.0 * dt * exp(-(dx * dx + dz * dz) / 18.0);
+      if (exact < 4.0 * dt * 10 * exp(-8.0)) exact = 0; /* beyond the 4-sigma cut */
+      worst = fmax(worst, fabs(fluid_sim_density(sim)->density[z * N + x] - exact));
+    }
+  printf("emitter after 10 steps: max error %.3g (peak %.3g)\n", worst, 10 * 4.0 * dt);
+  CHECK(worst <= 2e-3 * 10 * 4.0 * dt, "emitter max error %g", worst);
+
+  /* Strokes: paint across the x seam, then erase more than is there. */
+  CHECK(!fluid_sim_paint(sim, &(fluid_stroke){58, 20, 70, 20, 4, 1.5f}, &err), "%s",
+        err.message);
+  const float *rho = fluid_sim_density(sim)->density;
+  CHECK(fabsf(rho[20 * N + 62] - 1.5f) < 1e-6f, "stroke centre line %g", rho[20 * N + 62]);
+  CHECK(fabsf(rho[20 * N + 4] - 1.5f) < 1e-6f, "stroke wrapped past the seam %g",
+        rho[20 * N + 4]);
+  CHECK(fabsf(rho[22 * N + 62] - 1.5f * 0.75f * 0.75f) < 1e-6f, "stroke falloff %g",
+        rho[22 * N + 62]);
+  CHECK(rho[25 * N + 62] == 0.0f, "outside the radius %g", rho[25 * N + 62]);
+  CHECK(!fluid_sim_paint(sim, &(fluid_stroke){50, 20, 75, 20, 6, -10.0f}, &err), "%s",
+        err.message);
+  float lowest = INFINITY;
+  for (int i = 0; i < N * N; i++) lowest = fminf(lowest, rho[i]);
+  CHECK(lowest == 0.0f && rho[20 * N + 62] == 0.0f, "erase clamps at 0: %g", lowest);
+  CHECK(fluid_sim_paint(sim, &(fluid_stroke){NAN, 0, 1, 1, 2, 1}, &err) != 0,
+        "NaN stroke refused");
+  CHECK(fluid_sim_paint(sim, &(fluid_stroke){0, 0, 1, 1, 0, 1}, &err) != 0,
+        "zero radius refused");
+  fluid_sim_destroy(sim);
+
+  /* Relaxation and dissipation: closed-form exponentials. The base carries NaN,
+   * negative and infinite values, which must be read as 0, 0 and FLT_MAX. */
+  fogmap base;
+  fogmap_create(&base, N, N, &err);
+  for (int i = 0; i < N * N; i++) base.density[i] = 2.0f;
+  base.density[5] = NAN;
+  base.density[6] = -3.0f;
+  base.density[7] = INFINITY;
+  sim = fluid_sim_create(&(fluid_sim_desc){.width = N, .height = N, .dt = dt, .base = &base,
+                                           .relaxation = 1.5f},
+                         &err);
+  CHECK(sim != NULL, "create: %s", err.message);
+  rho = fluid_sim_density(sim)->density;
+  CHECK(rho[5] == 0.0f && rho[6] == 0.0f && rho[7] == FLT_MAX, "sanitised base %g %g %g",
+        rho[5], rho[6], rho[7]);
+  CHECK(!fluid_sim_paint(sim, &(fluid_stroke){30, 30, 30, 30, 3, 4.0f}, &err), "paint");
+  for (int s = 0; s < 20; s++) fluid_sim_step(sim, &err);
+  rho = fluid_sim_density(sim)->density;
+  /* rho(t) = base + (rho0 - base) exp(-r t) at the stroke's centre (rho0 = 6). */
+  double exact = 2.0 + 4.0 * exp(-1.5 * 20 * dt);
+  CHECK(fabs(rho[30 * N + 30] - exact) < 1e-5 * exact, "relaxation %g vs %g",
+        rho[30 * N + 30], exact);
+  fluid_sim_destroy(sim);
+
+  sim = fluid_sim_create(&(fluid_sim_desc){.width = N, .height = N, .dt = dt, .base = &base,
+                                           .dissipation = 0.7f},
+                         &err);
+  for (int s = 0; s < 30; s++) fluid_sim_step(sim, &err);
+  exact = 2.0 * exp(-0.7 * 30 * dt);
+  rho = fluid_sim_density(sim)->density;
+  CHECK(fabs(rho[100] - exact) < 1e-5 * exact, "dissipation %g vs %g", rho[100], exact);
+  fluid_sim_destroy(sim);
+
+  /* Bad descs are refused with a message naming the problem. */
+  CHECK(!fluid_sim_create(&(fluid_sim_desc){.width = 63}, &err) && strstr(err.message, "even"),
+        "odd width: %s", err.message);
+  fogmap small;
+  fogmap_create(&small, 32, 32, &err);
+  CHECK(!fluid_sim_create(&(fluid_sim_desc){.width = N, .height = N, .base = &small}, &err) &&
+            strstr(err.message, "base"),
+        "mismatched base: %s", err.message);
+  CHECK(!fluid_sim_create(&(fluid_sim_desc){.dt = -1}, &err) && strstr(err.message, "dt"),
+        "negative dt: %s", err.message);
+  fogmap_destroy(&small);
+  fogmap_destroy(&base);
+  return test_finish("test_fluid_sources");
+}
