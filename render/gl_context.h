@@ -42,4 +42,15 @@ void gl_context_poll_events(gl_context *ctx);
 void gl_context_swap_buffers(gl_context *ctx);
 void gl_context_framebuffer_size(gl_context *ctx, int *width, int *height);
 
+/* Added by the implementation (render/gl_context.c): */
+/* The GL version obtained as numbers (e.g. 4 and 5). */
+void gl_context_gl_version(const gl_context *ctx, int *major, int *minor);
+/* How the context was made: "egl-device" (EGL_EXT_device_enumeration, what NVIDIA uses),
+ * "egl-surfaceless" (Mesa), "egl-default" or "glfw". */
+const char *gl_context_platform(const gl_context *ctx);
+/* KHR_debug messages (errors and warnings) collected since creation or the last clear;
+ * debug builds only (NDEBUG builds do not enable the debug output: "" always). */
+const char *gl_context_debug_log(const gl_context *ctx);
+void gl_context_clear_debug_log(gl_context *ctx);
+
 #endif

@@ -7,5 +7,12 @@
 
 #include "render/render_error.h"
 #include "render/gl_context.h"
+#include "render/gl_util.h"
+#include "render/terrain.h"
+#include "render/scene.h"
+#include "render/camera.h"
+#include "render/fog_field.h"
+#include "render/fog_models.h"
+#include "render/fog_pass.h"
 
 #endif

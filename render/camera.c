@@ -1,0 +1,101 @@
+/* The pinhole camera (see camera.h for the conventions and the GLSL twin). */
+#include "render/camera.h"
+
+#include <math.h>
+
+static double camera_fov(const camera *cam) {
+  return cam->fov_y > 0 ? cam->fov_y : 1.0471975511965976 /* 60 degrees */;
+}
+
+static double camera_aspect(const camera *cam, int width, int height) {
+  if (cam->aspect > 0) return cam->aspect;
+  return height > 0 ? (double)width / (double)height : 1.0;
+}
+
+/* forward, right, up as unit vectors (right-handed: right x up = -forward). */
+static void camera_axes(const camera *cam, double right[3], double up[3], double forward[3]) {
+  double cy = cos(cam->yaw), sy = sin(cam->yaw), cp = cos(cam->pitch), sp = sin(cam->pitch);
+  forward[0] = cp * sy;
+  forward[1] = sp;
+  forward[2] = -cp * cy;
+  right[0] = cy;
+  right[1] = 0.0;
+  right[2] = sy;
+  /* up = right x forward */
+  up[0] = right[1] * forward[2] - right[2] * forward[1];
+  up[1] = right[2] * forward[0] - right[0] * forward[2];
+  up[2] = right[0] * forward[1] - right[1] * forward[0];
+}
+
+void camera_look_at(camera *cam, const double target[3]) {
+  double d[3] = {target[0] - cam->position[0], target[1] - cam->position[1],
+                 target[2] - cam->position[2]};
+  double horizontal = sqrt(d[0] * d[0] + d[2] * d[2]);
+  cam->yaw = atan2(d[0], -d[2]);
+  cam->pitch = atan2(d[1], horizontal);
+}
+
+void camera_basis(const camera *cam, int width, int height, double right[3], double up[3],
+                  double forward[3]) {
+  double half_h = tan(0.5 * camera_fov(cam));
+  double half_w = half_h * camera_aspect(cam, width, height);
+  camera_axes(cam, right, up, forward);
+  for (int i = 0; i < 3; i++) {
+    right[i] *= half_w;
+    up[i] *= half_h;
+  }
+}
+
+void camera_ray(const camera *cam, double px, double py, int width, int height,
+                double origin[3], double dir[3]) {
+  double right[3], up[3], forward[3];
+  camera_basis(cam, width, height, right, up, forward);
+  /* Same arithmetic as the shader: ndc from the GL fragment centre, y up. */
+  double ndc_x = 2.0 * (px + 0.5) / width - 1.0;
+  double ndc_y = 1.0 - 2.0 * (py + 0.5) / height;
+  double len2 = 0.0;
+  for (int i = 0; i < 3; i++) {
+    origin[i] = cam->position[i];
+    dir[i] = forward[i] + ndc_x * right[i] + ndc_y * up[i];
+    len2 += dir[i] * dir[i];
+  }
+  double inv = 1.0 / sqrt(len2);
+  for (int i = 0; i < 3; i++) dir[i] *= inv;
+}
+
+void camera_view_matrix(const camera *cam, float m[16]) {
+  double r[3], u[3], f[3];
+  camera_axes(cam, r, u, f);
+  /* Rows of the rotation are right, up, -forward (OpenGL eye space looks down -Z). */
+  for (int c = 0; c < 3; c++) {
+    m[c * 4 + 0] = (float)r[c];
+    m[c * 4 + 1] = (float)u[c];
+    m[c * 4 + 2] = (float)-f[c];
+    m[c * 4 + 3] = 0.0f;
+  }
+  m[12] = m[13] = m[14] = 0.0f;
+  m[15] = 1.0f;
+}
+
+void camera_view_matrix_world(const camera *cam, float m[16]) {
+  double r[3], u[3], f[3];
+  camera_axes(cam, r, u, f);
+  camera_view_matrix(cam, m);
+  const double *p = cam->position;
+  m[12] = (float)-(r[0] * p[0] + r[1] * p[1] + r[2] * p[2]);
+  m[13] = (float)-(u[0] * p[0] + u[1] * p[1] + u[2] * p[2]);
+  m[14] = (float)(f[0] * p[0] + f[1] * p[1] + f[2] * p[2]);
+}
+
+void camera_projection_matrix(const camera *cam, int width, int height, float m[16]) {
+  double n = cam->near_plane > 0 ? cam->near_plane : 0.1;
+  double fa = cam->far_plane > 0 ? cam->far_plane : 100000.0;
+  double t = 1.0 / tan(0.5 * camera_fov(cam));
+  double a = camera_aspect(cam, width, height);
+  for (int i = 0; i < 16; i++) m[i] = 0.0f;
+  m[0] = (float)(t / a);
+  m[5] = (float)t;
+  m[10] = (float)(-(fa + n) / (fa - n));
+  m[11] = -1.0f;
+  m[14] = (float)(-2.0 * fa * n / (fa - n));
+}

@@ -1,0 +1,50 @@
+/* The fog-model ladder of DESIGN.md §3 behind one small interface: each model is its
+ * parameters, a CPU optical depth in double (here / fog_models_cpu.c) and a GLSL twin with
+ * the same function name (render/shaders/fog_models.glsl); the fog pass and the tests treat
+ * them alike through fog_model_optical_depth / the pass's `model` parameter.
+ *
+ *   FOG_MODEL_FOGMAP       the 2.5D wavelet fogmap (fog_field.h), exact per knot cell
+ *   FOG_MODEL_HOMOGENEOUS  K = extinction everywhere: OpenGL's GL_EXP fog, tau = e^{-K d}
+ *   FOG_MODEL_HEIGHT       K = extinction exp(-(y - y0)/H): standard exponential height
+ *                          fog, closed-form integral along the ray
+ * Adding a model: a kind here, its parameters in fog_model, a CPU function and a GLSL
+ * function of the same name, one case in each dispatcher. */
+#ifndef FOGPIPE_RENDER_FOG_MODELS_H
+#define FOGPIPE_RENDER_FOG_MODELS_H
+
+#include "render/fog_field.h"
+
+typedef enum fog_model_kind {
+  FOG_MODEL_FOGMAP = 0,
+  FOG_MODEL_HOMOGENEOUS,
+  FOG_MODEL_HEIGHT,
+} fog_model_kind;
+
+/* Below |a| L < FOG_EXPREL_SWITCH the height fog's (1 - e^{-aL})/(aL) is a series
+ * (it cancels in float otherwise; tests/render/test_integral_models.c). */
+#define FOG_EXPREL_SWITCH 0.1
+
+typedef struct fog_model {
+  fog_model_kind kind;
+  /* FOG_MODEL_FOGMAP: the placement, the pyramid (levels = 0 for one grid) and the method. */
+  const fog_volume *volume;
+  const fog_lod *lod;
+  fog_lod_method lod_method;
+  /* FOG_MODEL_HOMOGENEOUS and FOG_MODEL_HEIGHT: extinction per world unit (at y0 for the
+   * height fog), y0 and the scale height H > 0. */
+  double extinction, y0, scale_height;
+} fog_model;
+
+/* Optical depth from the camera along the unit direction dir up to the first surface
+ * t_surface (HUGE_VAL: none; homogeneous and downward height fog then give +inf). */
+double fog_model_optical_depth(const fog_model *model, const double camera[3],
+                               const double dir[3], double t_surface);
+
+double fog_homogeneous_optical_depth(double extinction, double length);
+/* int_0^L k exp(-(y_c + t dir_y - y0)/H) dt = k e^{-(y_c - y0)/H} L exprel(dir_y L / H). */
+double fog_height_optical_depth(double extinction, double y0, double scale_height,
+                                double camera_y, double dir_y, double length);
+/* (1 - e^{-x})/x, with the series below FOG_EXPREL_SWITCH (the GLSL twin's form). */
+double fog_exprel(double x);
+
+#endif

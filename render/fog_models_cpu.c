@@ -1,0 +1,41 @@
+/* The analytic fog models (fog_models.h); twins in render/shaders/fog_models.glsl. */
+#include <math.h>
+
+#include "render/fog_models.h"
+
+double fog_exprel(double x) {
+  if (fabs(x) < FOG_EXPREL_SWITCH)  /* sum_{n<=10} (-x)^n/(n+1)!: error < x^11/12! ~ 2e-20 */
+    return 1.0 + x * (-1.0 / 2.0 + x * (1.0 / 6.0 + x * (-1.0 / 24.0 + x * (1.0 / 120.0 +
+           x * (-1.0 / 720.0 + x * (1.0 / 5040.0 + x * (-1.0 / 40320.0 +
+           x * (1.0 / 362880.0 + x * (-1.0 / 3628800.0 + x * (1.0 / 39916800.0))))))))));
+  return (1.0 - exp(-x)) / x;
+}
+
+double fog_homogeneous_optical_depth(double extinction, double length) {
+  if (extinction == 0.0) return 0.0; /* no fog, even to infinity */
+  return extinction * length; /* OpenGL GL_EXP fog: tau = exp(-density * distance) */
+}
+
+double fog_height_optical_depth(double extinction, double y0, double scale_height,
+                                double camera_y, double dir_y, double length) {
+  if (extinction == 0.0) return 0.0;
+  double k = extinction * exp(-(camera_y - y0) / scale_height);
+  double a = dir_y / scale_height;
+  if (isinf(length)) return a > 0.0 ? k / a : HUGE_VAL;
+  return k * length * fog_exprel(a * length);
+}
+
+double fog_model_optical_depth(const fog_model *m, const double camera[3], const double dir[3],
+                               double t_surface) {
+  switch (m->kind) {
+    case FOG_MODEL_HOMOGENEOUS:
+      return fog_homogeneous_optical_depth(m->extinction, t_surface);
+    case FOG_MODEL_HEIGHT:
+      return fog_height_optical_depth(m->extinction, m->y0, m->scale_height, camera[1], dir[1],
+                                      t_surface);
+    default: {
+      if (!m->lod) return 0.0;
+      return fog_optical_depth_lod(m->volume, m->lod, m->lod_method, camera, dir, t_surface);
+    }
+  }
+}

@@ -1,0 +1,309 @@
+/* The GL fog pass (see fog_pass.h). The CPU side computes, in double and camera-relative,
+ * everything the shader needs in float (render/shaders/fog_integral.glsl). */
+#include "render/fog_pass.h"
+
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render/gl_util.h"
+
+#define FOG_PASS_VARIANTS 4 /* fetch (2) x integrator (2) */
+
+typedef struct fog_pass_slot {
+  GLuint texture;
+  int width, height, degree;
+  double origin_u, origin_v, spacing;
+} fog_pass_slot;
+
+struct fog_pass {
+  GLuint programs[FOG_PASS_VARIANTS];
+  fog_pass_slot slots[FOG_PASS_MAX_GRIDS];
+};
+
+/* Builds one variant: the fragment text with its #defines inserted after the #version line. */
+static GLuint fog_pass_program(int variant, render_error *err) {
+  char *vs = gl_util_shader_text("fog_pass_vs.glsl", err);
+  if (!vs) return 0;
+  char *fs = gl_util_shader_text("fog_pass_fs.glsl", err);
+  if (!fs) {
+    free(vs);
+    return 0;
+  }
+  char defines[128];
+  snprintf(defines, sizeof defines, "#define FOG_FETCH_HARDWARE %d\n#define FOG_INTEGRATOR %d\n",
+           variant & 1, variant >> 1);
+  const char *eol = strchr(fs, '\n');
+  size_t head = eol ? (size_t)(eol - fs) + 1 : 0;
+  size_t total = strlen(fs) + strlen(defines) + 1;
+  char *text = malloc(total);
+  GLuint program = 0;
+  if (text) {
+    memcpy(text, fs, head);
+    strcpy(text + head, defines);
+    strcat(text, fs + head);
+    char label[64];
+    snprintf(label, sizeof label, "fog_pass_fs.glsl (fetch %d, integrator %d)", variant & 1,
+             variant >> 1);
+    program = gl_util_program_from_source(label, vs, text, err);
+  } else {
+    snprintf(err->message, sizeof err->message, "fog pass: out of memory for shader text");
+  }
+  free(text);
+  free(vs);
+  free(fs);
+  return program;
+}
+
+int fog_pass_create(fog_pass **out, render_error *err) {
+  *out = NULL;
+  fog_pass *pass = calloc(1, sizeof *pass);
+  if (!pass) {
+    snprintf(err->message, sizeof err->message, "fog pass: out of memory");
+    return 1;
+  }
+  pass->programs[0] = fog_pass_program(0, err);
+  if (!pass->programs[0]) {
+    free(pass);
+    return 1;
+  }
+  *out = pass;
+  return 0;
+}
+
+void fog_pass_destroy(fog_pass *pass) {
+  if (!pass) return;
+  for (int i = 0; i < FOG_PASS_VARIANTS; i++)
+    if (pass->programs[i]) glDeleteProgram(pass->programs[i]);
+  for (int i = 0; i < FOG_PASS_MAX_GRIDS; i++)
+    if (pass->slots[i].texture) glDeleteTextures(1, &pass->slots[i].texture);
+  free(pass);
+}
+
+int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
+                         render_error *err) {
+  if (slot < 0 || slot >= FOG_PASS_MAX_GRIDS) {
+    snprintf(err->message, sizeof err->message, "fog pass: grid slot %d outside 0..%d", slot,
+             FOG_PASS_MAX_GRIDS - 1);
+    return 1;
+  }
+  if (grid->width <= 0 || grid->height <= 0 || !grid->coefficients || grid->degree < 0 ||
+      grid->degree > 2 || !(grid->spacing > 0)) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: grid for slot %d is %dx%d, degree %d, spacing %g: expected a non-empty "
+             "grid of degree 0..2 with positive spacing",
+             slot, grid->width, grid->height, grid->degree, grid->spacing);
+    return 1;
+  }
+  fog_pass_slot *s = &pass->slots[slot];
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glActiveTexture(GL_TEXTURE0);
+  if (s->texture && s->width == grid->width && s->height == grid->height) {
+    glBindTexture(GL_TEXTURE_2D, s->texture);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, grid->width, grid->height, GL_RED, GL_FLOAT,
+                    grid->coefficients);
+  } else {
+    if (!s->texture) glGenTextures(1, &s->texture);
+    glBindTexture(GL_TEXTURE_2D, s->texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, grid->width, grid->height, 0, GL_RED, GL_FLOAT,
+                 grid->coefficients);
+    /* GL_LINEAR for the hardware-filtered variant; the border (0) stands for the zero
+     * coefficients outside the grid. texelFetch ignores both. */
+    static const float border[4] = {0, 0, 0, 0};
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+    glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, border);
+    s->width = grid->width;
+    s->height = grid->height;
+  }
+  glBindTexture(GL_TEXTURE_2D, 0);
+  s->degree = grid->degree;
+  s->origin_u = grid->origin_u;
+  s->origin_v = grid->origin_v;
+  s->spacing = grid->spacing;
+  return gl_util_check("fog pass: grid upload", err);
+}
+
+int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err) {
+  int J = lod->levels;
+  if (J < 0 || 2 * J + 1 > FOG_PASS_MAX_GRIDS) {
+    snprintf(err->message, sizeof err->message, "fog pass: %d LOD levels: expected 0..%d", J,
+             (FOG_PASS_MAX_GRIDS - 1) / 2);
+    return 1;
+  }
+  for (int l = 0; l <= J; l++)
+    if (fog_pass_upload_grid(pass, l, &lod->approx[l], err)) return 1;
+  for (int l = 1; l <= J; l++)
+    if (fog_pass_upload_grid(pass, J + l, &lod->detail[l - 1], err)) return 1;
+  return 0;
+}
+
+static GLint fog_loc(GLuint program, const char *name) { return glGetUniformLocation(program, name); }
+
+/* Uniforms every model uses (camera, blend, model selection), the surface textures, and
+ * the full-screen triangle. */
+static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pass_params *params,
+                                    GLuint surface_colour, GLuint surface_distance, int width,
+                                    int height, render_error *err) {
+  const double *c = cam->position;
+  glUniform1i(fog_loc(prog, "fog_model"), (int)params->model);
+  glUniform1f(fog_loc(prog, "fog_model_extinction"), (float)params->model_extinction);
+  glUniform1f(fog_loc(prog, "fog_model_y0"), (float)(params->model_y0 - c[1]));
+  glUniform1f(fog_loc(prog, "fog_model_scale_height"),
+              (float)(params->model_scale_height > 0 ? params->model_scale_height : 1.0));
+  double right[3], up[3], forward[3];
+  camera_basis(cam, width, height, right, up, forward);
+  glUniform3f(fog_loc(prog, "fog_camera_right"), (float)right[0], (float)right[1], (float)right[2]);
+  glUniform3f(fog_loc(prog, "fog_camera_up"), (float)up[0], (float)up[1], (float)up[2]);
+  glUniform3f(fog_loc(prog, "fog_camera_forward"), (float)forward[0], (float)forward[1],
+              (float)forward[2]);
+  glUniform2f(fog_loc(prog, "fog_viewport"), (float)width, (float)height);
+  glUniform3f(fog_loc(prog, "fog_colour"), params->fog_colour[0], params->fog_colour[1],
+              params->fog_colour[2]);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, surface_colour);
+  glUniform1i(fog_loc(prog, "fog_surface_colour"), 0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, surface_distance);
+  glUniform1i(fog_loc(prog, "fog_surface_distance"), 1);
+
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glBindVertexArray(gl_util_empty_vao());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glActiveTexture(GL_TEXTURE0);
+  return gl_util_check("fog pass: draw", err);
+}
+
+/* The analytic models need no grids: only the camera and their parameters. */
+static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_pass_params *params,
+                                  GLuint surface_colour, GLuint surface_distance, int width,
+                                  int height, render_error *err) {
+  if (!pass->programs[0]) {
+    pass->programs[0] = fog_pass_program(0, err);
+    if (!pass->programs[0]) return 1;
+  }
+  GLuint prog = pass->programs[0];
+  glUseProgram(prog);
+  /* The sampler array must still name distinct units of the right type. */
+  GLint units[FOG_PASS_MAX_GRIDS];
+  for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) units[k] = 2 + k;
+  glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
+  return fog_pass_common_and_draw(prog, cam, params, surface_colour, surface_distance, width,
+                                  height, err);
+}
+
+int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *params,
+                  GLuint surface_colour, GLuint surface_distance, int width, int height,
+                  render_error *err) {
+  const fog_volume *v = params->volume;
+  int J = params->levels, slots = 2 * J + 1;
+  if (params->model == FOG_MODEL_HEIGHT && !(params->model_scale_height > 0)) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: height fog scale height %g: expected > 0", params->model_scale_height);
+    return 1;
+  }
+  if (params->model != FOG_MODEL_FOGMAP) return fog_pass_draw_analytic(pass, cam, params,
+      surface_colour, surface_distance, width, height, err);
+  if (!v || J < 0 || slots > FOG_PASS_MAX_GRIDS) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: draw needs a fog volume and 0..%d LOD levels (got %d)",
+             (FOG_PASS_MAX_GRIDS - 1) / 2, J);
+    return 1;
+  }
+  /* The slots this draw reads: switching reads A_0..A_J (slots 0..J); the sum of details
+   * reads A_0 and D_1..D_J (slots 0 and J+1..2J). */
+  bool reads[FOG_PASS_MAX_GRIDS] = {false};
+  for (int k = 0; k < slots; k++)
+    reads[k] = (k == 0) || (params->lod_method == FOG_LOD_SWITCH ? k <= J : k > J);
+  for (int k = 0; k < slots; k++)
+    if (reads[k] && !pass->slots[k].texture) {
+      snprintf(err->message, sizeof err->message,
+               "fog pass: grid slot %d (%s) was never uploaded", k,
+               k <= J ? "an approximation A_l in slot l" : "a detail D_l in slot J + l");
+      return 1;
+    }
+  const fog_profile *p = &v->profile;
+  if (p->kind == FOG_PROFILE_BSPLINE &&
+      (p->count < 1 || p->count > FOG_PROFILE_MAX_COEFFICIENTS || p->degree < 0 ||
+       p->degree > 3 || !(p->spacing > 0))) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: B-spline profile with %d coefficients of degree %d: expected 1..%d "
+             "coefficients of degree 0..3 and a positive spacing",
+             p->count, p->degree, FOG_PROFILE_MAX_COEFFICIENTS);
+    return 1;
+  }
+  int variant = (params->fetch == FOG_FETCH_HARDWARE) | ((params->integrator == FOG_INTEGRATOR_MARCH) << 1);
+  if (!pass->programs[variant]) {
+    pass->programs[variant] = fog_pass_program(variant, err);
+    if (!pass->programs[variant]) return 1;
+  }
+  GLuint prog = pass->programs[variant];
+  glUseProgram(prog);
+
+  /* Camera-relative placement, in double, then float (fog_integral.glsl). */
+  const double *c = cam->position;
+  double h = v->cell_size > 0 ? v->cell_size : 1.0;
+  float x0[FOG_PASS_MAX_GRIDS][2], scale[FOG_PASS_MAX_GRIDS];
+  GLint size[FOG_PASS_MAX_GRIDS][2], units[FOG_PASS_MAX_GRIDS];
+  for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) {
+    const fog_pass_slot *s = &pass->slots[k];
+    units[k] = 2 + k;
+    double sp = s->spacing > 0 ? s->spacing : 1.0;
+    x0[k][0] = (float)((-(v->origin_x - c[0]) / h - 0.5 - s->origin_u) / sp);
+    x0[k][1] = (float)((-(v->origin_z - c[2]) / h - 0.5 - s->origin_v) / sp);
+    scale[k] = (float)(1.0 / (h * sp));
+    size[k][0] = s->width;
+    size[k][1] = s->height;
+    glActiveTexture(GL_TEXTURE2 + k);
+    glBindTexture(GL_TEXTURE_2D, reads[k] ? s->texture : 0);
+  }
+  glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
+  glUniform2fv(fog_loc(prog, "fog_grid_x0"), FOG_PASS_MAX_GRIDS, &x0[0][0]);
+  glUniform1fv(fog_loc(prog, "fog_grid_scale"), FOG_PASS_MAX_GRIDS, scale);
+  glUniform2iv(fog_loc(prog, "fog_grid_size"), FOG_PASS_MAX_GRIDS, &size[0][0]);
+  glUniform1i(fog_loc(prog, "fog_degree"), pass->slots[0].degree);
+  double lo[3], hi[3];
+  fog_volume_box(v, lo, hi);
+  glUniform3f(fog_loc(prog, "fog_box_min"), (float)(lo[0] - c[0]), (float)(lo[1] - c[1]),
+              (float)(lo[2] - c[2]));
+  glUniform3f(fog_loc(prog, "fog_box_max"), (float)(hi[0] - c[0]), (float)(hi[1] - c[1]),
+              (float)(hi[2] - c[2]));
+  glUniform1f(fog_loc(prog, "fog_extinction_scale"),
+              (float)(v->extinction > 0 ? v->extinction : 1.0));
+  glUniform1i(fog_loc(prog, "fog_profile_kind"), (int)p->kind);
+  glUniform1f(fog_loc(prog, "fog_profile_y0"), (float)(p->y0 - c[1]));
+  glUniform1f(fog_loc(prog, "fog_profile_scale_height"),
+              (float)(p->scale_height > 0 ? p->scale_height : 1.0));
+  glUniform1f(fog_loc(prog, "fog_profile_inv_scale_height"),
+              (float)(p->scale_height > 0 ? 1.0 / p->scale_height : 1.0));
+  if (p->kind == FOG_PROFILE_BSPLINE) {
+    float coefficients[FOG_PROFILE_MAX_COEFFICIENTS];
+    for (int k = 0; k < p->count; k++) coefficients[k] = (float)p->coefficients[k];
+    glUniform1i(fog_loc(prog, "fog_profile_count"), p->count);
+    glUniform1i(fog_loc(prog, "fog_profile_degree"), p->degree);
+    glUniform1f(fog_loc(prog, "fog_profile_y_start"), (float)((c[1] - p->origin) / p->spacing));
+    glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), (float)(1.0 / p->spacing));
+    glUniform1fv(fog_loc(prog, "fog_profile_coefficients"), p->count, coefficients);
+  } else {
+    glUniform1i(fog_loc(prog, "fog_profile_count"), 0);
+    glUniform1i(fog_loc(prog, "fog_profile_degree"), 0);
+    glUniform1f(fog_loc(prog, "fog_profile_y_start"), 0.0f);
+    glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), 0.0f);
+  }
+
+  glUniform1i(fog_loc(prog, "fog_levels"), J);
+  glUniform1i(fog_loc(prog, "fog_lod_method"), (int)params->lod_method);
+  glUniform1f(fog_loc(prog, "fog_mu"), (float)(J > 0 ? params->mu : 1.0));
+  glUniform1i(fog_loc(prog, "fog_march_steps"), params->march_steps > 0 ? params->march_steps : 64);
+  glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
+  glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
+  return fog_pass_common_and_draw(prog, cam, params, surface_colour, surface_distance, width,
+                                  height, err);
+}
+
+void fog_pass_finish(void) { glFinish(); }

@@ -1,0 +1,90 @@
+/* The GL fog pass: per pixel, the exact optical depth of the 2.5D fogmap model
+ * (render/fog_field.h; shaders fog_integral.glsl + fog_pass_fs.glsl) with LOD by distance,
+ * and the blend L = tau L(P) + L_fog (1 - tau) (Giroud & Biri eq. 4).
+ *
+ * Lifecycle (needs a current GL 4.3+ context, render/gl_context.h):
+ *   fog_pass_create()                       compiles the shaders (all variants lazily)
+ *   fog_pass_upload_grid() / _upload_lod()  coefficient grids -> R32F textures; call again
+ *                                           when they change (same size: glTexSubImage2D
+ *                                           into the existing texture, no reallocation)
+ *   fog_pass_draw()                         per frame; never allocates (after the first
+ *                                           draw of a variant)
+ *   fog_pass_destroy()
+ *
+ * Drawing: bind a framebuffer whose draw buffer 0 takes the composited colour (RGBA16F or
+ * RGBA32F) and draw buffer 1 the transmittance tau (R32F), e.g. a gl_target with
+ * color_formats {GL_RGBA32F, GL_R32F}; fog_pass_draw sets the viewport to width x height
+ * and draws one full-screen triangle. Inputs: the surface colour texture (linear RGBA) and
+ * the surface DISTANCE texture (R32F: Euclidean distance from the camera along the pixel's
+ * ray to the first surface; anything >= 1e29, e.g. SCENE_SKY_DISTANCE, means none). Both
+ * are read with texelFetch at the same pixel, so they must be width x height.
+ *
+ * Texture units: 0 and 1 for the surface textures, 2.. for the grid slots. Grid slots:
+ * A_l in slot l (l = 0..J), D_l in slot J + l (l = 1..J); a single grid is slot 0 with
+ * levels = 0. At most FOG_PASS_MAX_GRIDS slots (J <= 7). All slots of one draw share the
+ * degree of slot 0. A draw needs only the slots its LOD method reads: switching reads
+ * slots 0..J, the sum of details slots 0 and J+1..2J. */
+#ifndef FOGPIPE_RENDER_FOG_PASS_H
+#define FOGPIPE_RENDER_FOG_PASS_H
+
+#include <GL/glcorearb.h>
+
+#include "render/camera.h"
+#include "render/fog_field.h"
+#include "render/fog_models.h"
+#include "render/render_error.h"
+#include "transform/transform.h"
+
+#define FOG_PASS_MAX_GRIDS 16
+
+typedef enum fog_fetch {
+  FOG_FETCH_MANUAL = 0, /* texelFetch + the B-spline cell weights in float: exact */
+  FOG_FETCH_HARDWARE,   /* GL_LINEAR filtering (degree 1; degree 2 by two fetches per
+                           axis); weights quantised by the hardware */
+} fog_fetch;
+
+typedef enum fog_integrator {
+  FOG_INTEGRATOR_EXACT = 0, /* the knot-cell walk with Gauss-Legendre per piece */
+  FOG_INTEGRATOR_MARCH,     /* uniform ray marching, march_steps midpoint samples */
+} fog_integrator;
+
+typedef struct fog_pass_params {
+  fog_model_kind model;      /* FOG_MODEL_FOGMAP (default) or an analytic model */
+  double model_extinction;   /* FOG_MODEL_HOMOGENEOUS / _HEIGHT: K (at y0), per world unit */
+  double model_y0, model_scale_height; /* FOG_MODEL_HEIGHT: K e^{-(y - y0)/H}; H > 0 */
+  const fog_volume *volume;  /* FOG_MODEL_FOGMAP: placement and profile (required) */
+  int levels;                /* J: slots 0..J approximations, J+1..2J details; 0: one grid */
+  fog_lod_method lod_method;
+  double mu;                 /* LOD parameter in [0, 1]; levels = 0 ignores it */
+  float fog_colour[3];       /* L_fog, linear */
+  fog_fetch fetch;
+  fog_integrator integrator;
+  int march_steps;           /* FOG_INTEGRATOR_MARCH: 0 means 64 */
+  int march_jitter;          /* non-zero: per-pixel jittered sample positions */
+  unsigned frame;            /* jitter seed */
+} fog_pass_params;
+
+typedef struct fog_pass fog_pass;
+
+/* Compiles the default variant (manual fetch, exact). */
+int fog_pass_create(fog_pass **pass, render_error *err);
+void fog_pass_destroy(fog_pass *pass);
+
+/* Uploads grid into slot (0 .. FOG_PASS_MAX_GRIDS-1) as an R32F texture. Re-uploading a
+ * grid of the same size reuses the texture (glTexSubImage2D). */
+int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
+                         render_error *err);
+/* Uploads lod->approx[0..J] and lod->detail[0..J-1] into their slots. */
+int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err);
+
+/* Draws the fog over the bound framebuffer (see above). width x height is the viewport and
+ * the size of both surface textures. */
+int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *params,
+                  GLuint surface_colour, GLuint surface_distance, int width, int height,
+                  render_error *err);
+
+/* Blocks until the GL has finished every command (glFinish): time a draw as
+ * fog_pass_finish(); t0 = now; fog_pass_draw(...); fog_pass_finish(); t = now - t0. */
+void fog_pass_finish(void);
+
+#endif

@@ -1,0 +1,345 @@
+/* The scene: CPU geometry (terrain + boxes, exact ray hits) and its GL pass. */
+#include "render/scene.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <stdio.h>
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+static void set_default3(float v[3], float a, float b, float c) {
+  if (v[0] == 0 && v[1] == 0 && v[2] == 0) v[0] = a, v[1] = b, v[2] = c;
+}
+
+int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_error *err) {
+  *geo = (scene_geometry){0};
+  if (desc->box_count < 0 || desc->box_count > SCENE_MAX_BOXES) {
+    snprintf(err->message, sizeof err->message, "%d boxes: at most %d", desc->box_count,
+             SCENE_MAX_BOXES);
+    return 1;
+  }
+  if (terrain_create(&geo->terrain, &desc->terrain, err)) return 1;
+  const terrain *t = &geo->terrain;
+  for (int b = 0; b < desc->box_count; b++) {
+    const scene_box_desc *d = &desc->boxes[b];
+    if (!(d->size[0] > 0 && d->size[1] > 0 && d->size[2] > 0)) {
+      snprintf(err->message, sizeof err->message, "box %d has size %g x %g x %g: expected > 0",
+               b + 1, d->size[0], d->size[1], d->size[2]);
+      terrain_destroy(&geo->terrain);
+      return 1;
+    }
+    scene_box *box = &geo->boxes[geo->box_count++];
+    double hx = 0.5 * d->size[0], hz = 0.5 * d->size[2];
+    /* The lowest ground under the footprint (5 x 5 samples), so the box never floats. */
+    double ground = INFINITY;
+    for (int a = 0; a <= 4; a++)
+      for (int c = 0; c <= 4; c++) {
+        double y = terrain_height_at(t, d->center[0] - hx + a * hx / 2, d->center[1] - hz + c * hz / 2);
+        if (y < ground) ground = y;
+      }
+    box->min[0] = d->center[0] - hx, box->max[0] = d->center[0] + hx;
+    box->min[2] = d->center[1] - hz, box->max[2] = d->center[1] + hz;
+    box->min[1] = ground, box->max[1] = ground + d->size[1];
+    memcpy(box->colour, d->colour, sizeof box->colour);
+    set_default3(box->colour, 0.55f, 0.53f, 0.50f);
+  }
+  scene_light *l = &geo->light;
+  *l = desc->light;
+  if (l->sun_elevation == 0) l->sun_elevation = 35;
+  set_default3(l->sun_colour, 1.9f, 1.8f, 1.6f);
+  set_default3(l->ambient, 0.30f, 0.36f, 0.45f);
+  set_default3(l->sky_horizon, 0.72f, 0.78f, 0.85f);
+  set_default3(l->sky_zenith, 0.28f, 0.45f, 0.75f);
+  double az = l->sun_azimuth * DEG, el = l->sun_elevation * DEG;
+  geo->sun_direction[0] = cos(el) * sin(az);
+  geo->sun_direction[1] = sin(el);
+  geo->sun_direction[2] = -cos(el) * cos(az);
+  return 0;
+}
+
+void scene_geometry_destroy(scene_geometry *geo) {
+  terrain_destroy(&geo->terrain);
+  *geo = (scene_geometry){0};
+}
+
+/* Ray-box (slabs, Kay & Kajiya 1986): nearest s > 0 on the box's surface. */
+static bool box_hit(const scene_box *box, const double o[3], const double d[3], double *s,
+                    int *axis, int *sign) {
+  double s0 = -INFINITY, s1 = INFINITY;
+  int a0 = 0, a1 = 0;
+  for (int k = 0; k < 3; k++) {
+    if (d[k] == 0.0) {
+      if (o[k] < box->min[k] || o[k] > box->max[k]) return false;
+      continue;
+    }
+    double a = (box->min[k] - o[k]) / d[k], b = (box->max[k] - o[k]) / d[k];
+    if (a > b) { double tmp = a; a = b; b = tmp; }
+    if (a > s0) s0 = a, a0 = k;
+    if (b < s1) s1 = b, a1 = k;
+  }
+  if (s0 > s1 || s1 <= 0) return false;
+  /* From outside: the entry face; from inside (camera in a box): the exit face, as the
+   * rasteriser draws both sides. */
+  if (s0 > 0) {
+    *s = s0, *axis = a0, *sign = d[a0] > 0 ? -1 : 1;
+  } else {
+    *s = s1, *axis = a1, *sign = d[a1] > 0 ? 1 : -1;
+  }
+  return true;
+}
+
+bool scene_geometry_intersect(const scene_geometry *geo, const double origin[3],
+                              const double dir[3], double s_max, double *s, double normal[3]) {
+  double best = s_max, hit_s;
+  bool found = false;
+  if (terrain_intersect(&geo->terrain, origin, dir, best, &hit_s, normal)) {
+    best = hit_s;
+    found = true;
+  }
+  for (int b = 0; b < geo->box_count; b++) {
+    int axis, sign;
+    if (box_hit(&geo->boxes[b], origin, dir, &hit_s, &axis, &sign) && hit_s < best) {
+      best = hit_s;
+      found = true;
+      if (normal) {
+        normal[0] = normal[1] = normal[2] = 0.0;
+        normal[axis] = sign;
+      }
+    }
+  }
+  if (found) *s = best;
+  return found;
+}
+
+double scene_geometry_pixel_distance(const scene_geometry *geo, const camera *cam, int px,
+                                     int py, int width, int height) {
+  double o[3], d[3], s;
+  camera_ray(cam, px, py, width, height, o, d);
+  return scene_geometry_intersect(geo, o, d, INFINITY, &s, NULL) ? s : SCENE_SKY_DISTANCE;
+}
+
+/* ---------------- GL ---------------- */
+
+struct scene_pass {
+  const scene_geometry *geo;
+  GLuint surface_program, sky_program;
+  GLuint vao, vertex_buffer, index_buffer;
+  GLsizei index_count;
+  /* uniform locations */
+  GLint u_offset, u_view, u_projection, u_sun_direction, u_sun_colour, u_ambient;
+  GLint u_sky_right, u_sky_up, u_sky_forward, u_sky_viewport, u_sky_horizon, u_sky_zenith,
+      u_sky_sun_direction, u_sky_sun_colour;
+};
+
+typedef struct vertex {
+  float position[3]; /* relative to the terrain origin */
+  float normal[3];
+  float albedo[3];
+} vertex;
+
+/* Terrain albedo from slope and height: grass in the valleys, rock on steep slopes, snow
+ * on the highest flat parts. Linear reflectances. */
+static void terrain_albedo(double h, double normal_y, float out[3]) {
+  const float grass[3] = {0.09f, 0.17f, 0.05f}, dry[3] = {0.22f, 0.22f, 0.10f},
+              rock[3] = {0.26f, 0.24f, 0.22f}, snow[3] = {0.85f, 0.87f, 0.90f};
+  double rockiness = fmin(fmax((0.88 - normal_y) / 0.12, 0.0), 1.0);
+  double dryness = fmin(fmax((h - 0.35) / 0.3, 0.0), 1.0);
+  double snowiness = fmin(fmax((h - 0.78) / 0.08, 0.0), 1.0) * (normal_y > 0.75 ? 1.0 : 0.0);
+  for (int c = 0; c < 3; c++) {
+    double v = grass[c] + (dry[c] - grass[c]) * dryness;
+    v += (rock[c] - v) * rockiness;
+    v += (snow[c] - v) * snowiness;
+    out[c] = (float)v;
+  }
+}
+
+static int upload_geometry(scene_pass *pass, render_error *err) {
+  const scene_geometry *geo = pass->geo;
+  const terrain *t = &geo->terrain;
+  int rx = t->resolution_x, rz = t->resolution_z;
+  size_t terrain_vertices = (size_t)rx * rz;
+  size_t vertex_count = terrain_vertices + 24 * (size_t)geo->box_count;
+  size_t index_count = (size_t)(rx - 1) * (rz - 1) * 6 + 36 * (size_t)geo->box_count;
+  vertex *vertices = malloc(vertex_count * sizeof *vertices);
+  GLuint *indices = malloc(index_count * sizeof *indices);
+  if (!vertices || !indices) {
+    free(vertices);
+    free(indices);
+    snprintf(err->message, sizeof err->message, "out of memory for the scene meshes");
+    return 1;
+  }
+  double dx = t->size[0] / (rx - 1), dz = t->size[1] / (rz - 1);
+  for (int j = 0; j < rz; j++)
+    for (int i = 0; i < rx; i++) {
+      double p[3];
+      terrain_vertex(t, i, j, p);
+      /* Smooth normal from central differences of the heights. */
+      int i0 = i > 0 ? i - 1 : i, i1 = i < rx - 1 ? i + 1 : i;
+      int j0 = j > 0 ? j - 1 : j, j1 = j < rz - 1 ? j + 1 : j;
+      const float *h = t->h;
+      double gx = t->height * (h[(size_t)j * rx + i1] - h[(size_t)j * rx + i0]) / ((i1 - i0) * dx);
+      double gz = t->height * (h[(size_t)j1 * rx + i] - h[(size_t)j0 * rx + i]) / ((j1 - j0) * dz);
+      double n[3] = {-gx, 1.0, -gz}, len = sqrt(n[0] * n[0] + 1.0 + n[2] * n[2]);
+      vertex *v = &vertices[(size_t)j * rx + i];
+      for (int c = 0; c < 3; c++) {
+        v->position[c] = (float)(p[c] - t->origin[c]);
+        v->normal[c] = (float)(n[c] / len);
+      }
+      terrain_albedo(h[(size_t)j * rx + i], n[1] / len, v->albedo);
+    }
+  size_t k = 0;
+  for (int j = 0; j + 1 < rz; j++)
+    for (int i = 0; i + 1 < rx; i++) {
+      /* The triangulation terrain.h documents (diagonal (i+1,j)-(i,j+1)). */
+      GLuint a = (GLuint)(j * rx + i), b = a + 1, c = a + (GLuint)rx, d = c + 1;
+      indices[k++] = a, indices[k++] = c, indices[k++] = b;
+      indices[k++] = b, indices[k++] = c, indices[k++] = d;
+    }
+  /* Boxes: 6 faces x 4 vertices with flat normals. */
+  size_t base = terrain_vertices;
+  for (int b = 0; b < geo->box_count; b++) {
+    const scene_box *box = &geo->boxes[b];
+    for (int axis = 0; axis < 3; axis++)
+      for (int side = 0; side < 2; side++) {
+        int u = (axis + 1) % 3, w = (axis + 2) % 3;
+        for (int corner = 0; corner < 4; corner++) {
+          double p[3];
+          p[axis] = side ? box->max[axis] : box->min[axis];
+          p[u] = (corner & 1) ? box->max[u] : box->min[u];
+          p[w] = (corner & 2) ? box->max[w] : box->min[w];
+          vertex *v = &vertices[base + corner];
+          for (int c = 0; c < 3; c++) {
+            v->position[c] = (float)(p[c] - t->origin[c]);
+            v->normal[c] = c == axis ? (side ? 1.0f : -1.0f) : 0.0f;
+            v->albedo[c] = box->colour[c];
+          }
+        }
+        GLuint q = (GLuint)base;
+        indices[k++] = q, indices[k++] = q + 1, indices[k++] = q + 2;
+        indices[k++] = q + 2, indices[k++] = q + 1, indices[k++] = q + 3;
+        base += 4;
+      }
+  }
+  glGenVertexArrays(1, &pass->vao);
+  glBindVertexArray(pass->vao);
+  glGenBuffers(1, &pass->vertex_buffer);
+  glBindBuffer(GL_ARRAY_BUFFER, pass->vertex_buffer);
+  glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(vertex_count * sizeof *vertices), vertices,
+               GL_STATIC_DRAW);
+  glGenBuffers(1, &pass->index_buffer);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, pass->index_buffer);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(index_count * sizeof *indices), indices,
+               GL_STATIC_DRAW);
+  for (GLuint a = 0; a < 3; a++) {
+    glEnableVertexAttribArray(a);
+    glVertexAttribPointer(a, 3, GL_FLOAT, GL_FALSE, sizeof(vertex),
+                          (const void *)(a * 3 * sizeof(float)));
+  }
+  glBindVertexArray(0);
+  pass->index_count = (GLsizei)index_count;
+  free(vertices);
+  free(indices);
+  return gl_util_check("uploading the scene meshes", err);
+}
+
+scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err) {
+  scene_pass *pass = calloc(1, sizeof *pass);
+  if (!pass) {
+    snprintf(err->message, sizeof err->message, "out of memory for the scene pass");
+    return NULL;
+  }
+  pass->geo = geo;
+  pass->surface_program = gl_util_program("scene_surface_vs.glsl", "scene_surface_fs.glsl", err);
+  if (pass->surface_program)
+    pass->sky_program = gl_util_program("scene_sky_vs.glsl", "scene_sky_fs.glsl", err);
+  if (!pass->sky_program || upload_geometry(pass, err)) {
+    scene_pass_destroy(pass);
+    return NULL;
+  }
+  GLuint s = pass->surface_program, k = pass->sky_program;
+  pass->u_offset = glGetUniformLocation(s, "offset");
+  pass->u_view = glGetUniformLocation(s, "view_rotation");
+  pass->u_projection = glGetUniformLocation(s, "projection");
+  pass->u_sun_direction = glGetUniformLocation(s, "sun_direction");
+  pass->u_sun_colour = glGetUniformLocation(s, "sun_colour");
+  pass->u_ambient = glGetUniformLocation(s, "ambient");
+  pass->u_sky_right = glGetUniformLocation(k, "camera_right");
+  pass->u_sky_up = glGetUniformLocation(k, "camera_up");
+  pass->u_sky_forward = glGetUniformLocation(k, "camera_forward");
+  pass->u_sky_viewport = glGetUniformLocation(k, "viewport_size");
+  pass->u_sky_horizon = glGetUniformLocation(k, "sky_horizon");
+  pass->u_sky_zenith = glGetUniformLocation(k, "sky_zenith");
+  pass->u_sky_sun_direction = glGetUniformLocation(k, "sun_direction");
+  pass->u_sky_sun_colour = glGetUniformLocation(k, "sun_colour");
+  return pass;
+}
+
+void scene_pass_destroy(scene_pass *pass) {
+  if (!pass) return;
+  if (pass->surface_program) glDeleteProgram(pass->surface_program);
+  if (pass->sky_program) glDeleteProgram(pass->sky_program);
+  if (pass->vertex_buffer) glDeleteBuffers(1, &pass->vertex_buffer);
+  if (pass->index_buffer) glDeleteBuffers(1, &pass->index_buffer);
+  if (pass->vao) glDeleteVertexArrays(1, &pass->vao);
+  free(pass);
+}
+
+void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target) {
+  const scene_geometry *geo = pass->geo;
+  int w = target->width, h = target->height;
+  gl_target_bind(target);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+
+  float sun_dir[3] = {(float)geo->sun_direction[0], (float)geo->sun_direction[1],
+                      (float)geo->sun_direction[2]};
+  /* Sky: a full-screen triangle, rays from the same basis as camera_ray(). */
+  double right[3], up[3], forward[3];
+  camera_basis(cam, w, h, right, up, forward);
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(pass->sky_program);
+  glUniform3f(pass->u_sky_right, (float)right[0], (float)right[1], (float)right[2]);
+  glUniform3f(pass->u_sky_up, (float)up[0], (float)up[1], (float)up[2]);
+  glUniform3f(pass->u_sky_forward, (float)forward[0], (float)forward[1], (float)forward[2]);
+  glUniform2f(pass->u_sky_viewport, (float)w, (float)h);
+  glUniform3fv(pass->u_sky_horizon, 1, geo->light.sky_horizon);
+  glUniform3fv(pass->u_sky_zenith, 1, geo->light.sky_zenith);
+  glUniform3fv(pass->u_sky_sun_direction, 1, sun_dir);
+  glUniform3fv(pass->u_sky_sun_colour, 1, geo->light.sun_colour);
+  glBindVertexArray(gl_util_empty_vao());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+
+  /* Terrain and boxes, camera-relative: offset = terrain origin - camera (double). */
+  float view[16], projection[16];
+  camera_view_matrix(cam, view);
+  camera_projection_matrix(cam, w, h, projection);
+  const double *o = geo->terrain.origin;
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glUseProgram(pass->surface_program);
+  glUniform3f(pass->u_offset, (float)(o[0] - cam->position[0]), (float)(o[1] - cam->position[1]),
+              (float)(o[2] - cam->position[2]));
+  glUniformMatrix4fv(pass->u_view, 1, GL_FALSE, view);
+  glUniformMatrix4fv(pass->u_projection, 1, GL_FALSE, projection);
+  glUniform3fv(pass->u_sun_direction, 1, sun_dir);
+  glUniform3fv(pass->u_sun_colour, 1, geo->light.sun_colour);
+  glUniform3fv(pass->u_ambient, 1, geo->light.ambient);
+  glBindVertexArray(pass->vao);
+  glDrawElements(GL_TRIANGLES, pass->index_count, GL_UNSIGNED_INT, 0);
+  glBindVertexArray(0);
+  glUseProgram(0);
+  glDisable(GL_DEPTH_TEST);
+}
+
+int scene_target_create(gl_target *target, int width, int height, render_error *err) {
+  return gl_target_create(target,
+                          &(gl_target_desc){.width = width,
+                                            .height = height,
+                                            .color_formats = {GL_RGBA16F, GL_R32F},
+                                            .depth = true},
+                          err);
+}

@@ -1,0 +1,94 @@
+/* The scene the fog sits in: a terrain heightfield, a few boxes standing on it, a sun and
+ * a sky. Two halves (part of the render library; include "render/render.h"):
+ *   - scene_geometry (CPU, double): the terrain and the boxes, and the exact first-hit
+ *     distance along any ray: the reference the GL distance texture is tested against and
+ *     what CPU fog references clip their rays with;
+ *   - scene_pass (GL): rasterises that geometry into a render target holding
+ *       attachment 0: surface colour, RGBA16F (linear, lit; sky where nothing is hit),
+ *       attachment 1: surface DISTANCE, R32F: Euclidean distance from the camera to the
+ *                     first surface along the pixel's ray (SCENE_SKY_DISTANCE for sky),
+ *       a depth buffer (DEPTH32F).
+ *     The fog pass (render/fog_pass.h) reads the colour and distance textures.
+ * Coordinates are camera-relative on the GPU (camera.h): vertices are stored relative to
+ * the terrain origin and shifted by (origin - camera position), computed in double. */
+#ifndef FOGPIPE_RENDER_SCENE_H
+#define FOGPIPE_RENDER_SCENE_H
+
+#include <stdbool.h>
+
+#include "render/camera.h"
+#include "render/gl_util.h"
+#include "render/render_error.h"
+#include "render/terrain.h"
+
+/* What the distance texture holds where a ray hits nothing (sky). */
+#define SCENE_SKY_DISTANCE 1e30f
+#define SCENE_MAX_BOXES 16
+
+/* A box standing on the terrain: centred at (x, z) in world, size width (X) x height (Y)
+ * x depth (Z); its bottom is placed at the lowest terrain height under its footprint, so
+ * it never floats. colour is linear albedo (0,0,0 means a light grey). */
+typedef struct scene_box_desc {
+  double center[2]; /* x, z */
+  double size[3];
+  float colour[3];
+} scene_box_desc;
+
+/* Sun and sky. Zero means default for every field. */
+typedef struct scene_light {
+  double sun_azimuth;    /* degrees, like camera yaw: 0 toward -Z, 90 toward +X; 0 is 0 */
+  double sun_elevation;  /* degrees above the horizon; 0: 35 */
+  float sun_colour[3];   /* linear radiance multiplier; 0: (1.9, 1.8, 1.6) */
+  float ambient[3];      /* sky-light on upward surfaces; 0: (0.30, 0.36, 0.45) */
+  float sky_horizon[3];  /* 0: (0.72, 0.78, 0.85) */
+  float sky_zenith[3];   /* 0: (0.28, 0.45, 0.75) */
+} scene_light;
+
+typedef struct scene_desc {
+  terrain_desc terrain;
+  scene_box_desc boxes[SCENE_MAX_BOXES];
+  int box_count;
+  scene_light light;
+} scene_desc;
+
+typedef struct scene_box {
+  double min[3], max[3];
+  float colour[3];
+} scene_box;
+
+typedef struct scene_geometry {
+  terrain terrain;
+  scene_box boxes[SCENE_MAX_BOXES];
+  int box_count;
+  scene_light light;        /* defaults filled in */
+  double sun_direction[3];  /* unit vector toward the sun, from azimuth and elevation */
+} scene_geometry;
+
+int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_error *err);
+void scene_geometry_destroy(scene_geometry *geo);
+
+/* First hit along origin + s * dir (dir unit length: s is the Euclidean distance) for
+ * s in (0, s_max], on the terrain mesh or a box. Returns true and sets *s (and the unit
+ * normal if non-NULL). */
+bool scene_geometry_intersect(const scene_geometry *geo, const double origin[3],
+                              const double dir[3], double s_max, double *s, double normal[3]);
+/* The value the distance texture should hold at pixel (px, py) (row 0 at the top): the
+ * first-hit distance along camera_ray, or SCENE_SKY_DISTANCE. */
+double scene_geometry_pixel_distance(const scene_geometry *geo, const camera *cam, int px,
+                                     int py, int width, int height);
+
+/* The GL half. */
+typedef struct scene_pass scene_pass;
+
+/* Uploads geo's meshes and builds the shaders; geo must outlive the pass. */
+scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err);
+void scene_pass_destroy(scene_pass *pass);
+/* Draws sky, terrain and boxes into target (made by scene_target_create, or any target
+ * with colour 0 and R32F colour 1 and a depth buffer), at the target's size. Does not
+ * allocate. */
+void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target);
+
+/* A render target with the scene pass's layout (RGBA16F colour, R32F distance, depth). */
+int scene_target_create(gl_target *target, int width, int height, render_error *err);
+
+#endif

@@ -1,0 +1,266 @@
+/* Terrain heightfield: procedural fBm or image heights, and exact CPU ray intersection. */
+#include "render/terrain.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+/* ---- value noise ---- */
+
+/* Integer hash (the "lowbias32" mixer by C. Wellons): lattice values in [0, 1). */
+static uint32_t hash32(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352dU;
+  x ^= x >> 15;
+  x *= 0x846ca68bU;
+  x ^= x >> 16;
+  return x;
+}
+
+static double lattice(int32_t x, int32_t z, uint32_t seed) {
+  uint32_t h = hash32((uint32_t)x * 0x9E3779B1U ^ hash32((uint32_t)z + seed * 0x85EBCA77U));
+  return (h >> 8) * (1.0 / 16777216.0);
+}
+
+/* Quintic fade (Perlin 2002, "Improving noise"): C2-continuous value noise. */
+static double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
+
+static double value_noise(double x, double z, uint32_t seed) {
+  double fx = floor(x), fz = floor(z);
+  int32_t ix = (int32_t)fx, iz = (int32_t)fz;
+  double u = fade(x - fx), v = fade(z - fz);
+  double a = lattice(ix, iz, seed), b = lattice(ix + 1, iz, seed);
+  double c = lattice(ix, iz + 1, seed), d = lattice(ix + 1, iz + 1, seed);
+  return (a + (b - a) * u) * (1.0 - v) + (c + (d - c) * u) * v;
+}
+
+/* ---- creation ---- */
+
+int terrain_create(terrain *t, const terrain_desc *desc, render_error *err) {
+  *t = (terrain){0};
+  for (int k = 0; k < 3; k++) t->origin[k] = desc->origin[k];
+  t->size[0] = desc->size[0] > 0 ? desc->size[0] : 1000.0;
+  t->size[1] = desc->size[1] > 0 ? desc->size[1] : 1000.0;
+  t->height = desc->height > 0 ? desc->height : 150.0;
+  if (desc->heights) {
+    if (desc->heights_width < 2 || desc->heights_height < 2) {
+      snprintf(err->message, sizeof err->message,
+               "terrain heights are %dx%d: expected at least 2x2", desc->heights_width,
+               desc->heights_height);
+      return 1;
+    }
+    t->resolution_x = desc->heights_width;
+    t->resolution_z = desc->heights_height;
+  } else {
+    int n = desc->resolution > 0 ? desc->resolution : 257;
+    if (n < 2 || n > 8193) {
+      snprintf(err->message, sizeof err->message,
+               "terrain resolution %d: expected 2 to 8193 vertices per side", n);
+      return 1;
+    }
+    t->resolution_x = t->resolution_z = n;
+  }
+  size_t count = (size_t)t->resolution_x * t->resolution_z;
+  t->h = malloc(count * sizeof *t->h);
+  if (!t->h) {
+    snprintf(err->message, sizeof err->message, "out of memory for a %dx%d terrain",
+             t->resolution_x, t->resolution_z);
+    return 1;
+  }
+  if (desc->heights) {
+    for (size_t k = 0; k < count; k++) {
+      float v = desc->heights[k];
+      t->h[k] = v != v ? 0.0f : v < 0 ? 0.0f : v > 1 ? 1.0f : v;
+    }
+  } else {
+    int octaves = desc->octaves > 0 ? desc->octaves : 6;
+    double frequency = desc->frequency > 0 ? desc->frequency : 3.0;
+    double persistence = desc->persistence > 0 ? desc->persistence : 0.5;
+    double total = 0.0, amplitude = 1.0;
+    for (int o = 0; o < octaves; o++, amplitude *= persistence) total += amplitude;
+    for (int j = 0; j < t->resolution_z; j++)
+      for (int i = 0; i < t->resolution_x; i++) {
+        double x = (double)i / (t->resolution_x - 1), z = (double)j / (t->resolution_z - 1);
+        double sum = 0.0, a = 1.0, f = frequency;
+        for (int o = 0; o < octaves; o++, a *= persistence, f *= 2.0)
+          sum += a * value_noise(x * f, z * f, desc->seed + 7919u * (unsigned)o);
+        double h = sum / total;
+        /* Flatten the valleys (where fog pools) and sharpen the peaks. */
+        h = h * h * (3.0 - 2.0 * h);
+        t->h[(size_t)j * t->resolution_x + i] = (float)h;
+      }
+  }
+  float lo = 1.0f, hi = 0.0f;
+  for (size_t k = 0; k < count; k++) {
+    if (t->h[k] < lo) lo = t->h[k];
+    if (t->h[k] > hi) hi = t->h[k];
+  }
+  t->min_y = t->origin[1] + t->height * lo;
+  t->max_y = t->origin[1] + t->height * hi;
+  return 0;
+}
+
+void terrain_destroy(terrain *t) {
+  free(t->h);
+  *t = (terrain){0};
+}
+
+static double spacing_x(const terrain *t) { return t->size[0] / (t->resolution_x - 1); }
+static double spacing_z(const terrain *t) { return t->size[1] / (t->resolution_z - 1); }
+
+void terrain_vertex(const terrain *t, int i, int j, double p[3]) {
+  p[0] = t->origin[0] + i * spacing_x(t);
+  p[1] = t->origin[1] + t->height * t->h[(size_t)j * t->resolution_x + i];
+  p[2] = t->origin[2] + j * spacing_z(t);
+}
+
+double terrain_height_at(const terrain *t, double x, double z) {
+  double u = (x - t->origin[0]) / spacing_x(t), v = (z - t->origin[2]) / spacing_z(t);
+  u = u < 0 ? 0 : u > t->resolution_x - 1 ? t->resolution_x - 1 : u;
+  v = v < 0 ? 0 : v > t->resolution_z - 1 ? t->resolution_z - 1 : v;
+  int i = (int)u, j = (int)v;
+  if (i > t->resolution_x - 2) i = t->resolution_x - 2;
+  if (j > t->resolution_z - 2) j = t->resolution_z - 2;
+  double fu = u - i, fv = v - j;
+  const float *row0 = t->h + (size_t)j * t->resolution_x, *row1 = row0 + t->resolution_x;
+  double h00 = row0[i], h10 = row0[i + 1], h01 = row1[i], h11 = row1[i + 1];
+  /* Linear on the triangle containing (fu, fv): diagonal from (1,0) to (0,1). */
+  double h = fu + fv <= 1.0 ? h00 + fu * (h10 - h00) + fv * (h01 - h00)
+                            : h11 + (1.0 - fu) * (h01 - h11) + (1.0 - fv) * (h10 - h11);
+  return t->origin[1] + t->height * h;
+}
+
+/* ---- intersection ---- */
+
+static void sub(const double a[3], const double b[3], double r[3]) {
+  r[0] = a[0] - b[0], r[1] = a[1] - b[1], r[2] = a[2] - b[2];
+}
+static void cross(const double a[3], const double b[3], double r[3]) {
+  r[0] = a[1] * b[2] - a[2] * b[1];
+  r[1] = a[2] * b[0] - a[0] * b[2];
+  r[2] = a[0] * b[1] - a[1] * b[0];
+}
+static double dot(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+bool ray_triangle(const double origin[3], const double dir[3], const double a[3],
+                  const double b[3], const double c[3], double *s) {
+  double e1[3], e2[3], p[3], q[3], tv[3];
+  sub(b, a, e1);
+  sub(c, a, e2);
+  cross(dir, e2, p);
+  double det = dot(e1, p);
+  if (fabs(det) < 1e-300) return false;
+  double inv = 1.0 / det;
+  sub(origin, a, tv);
+  /* Small tolerance so a ray through a shared edge hits one of its two triangles. */
+  const double eps = 1e-12;
+  double u = dot(tv, p) * inv;
+  if (u < -eps || u > 1.0 + eps) return false;
+  cross(tv, e1, q);
+  double v = dot(dir, q) * inv;
+  if (v < -eps || u + v > 1.0 + eps) return false;
+  double hit = dot(e2, q) * inv;
+  if (hit <= 0.0) return false;
+  *s = hit;
+  return true;
+}
+
+/* Nearest hit in cell (i, j) below s_best; returns true if it improved *s_best. */
+static bool cell_hit(const terrain *t, int i, int j, const double o[3], const double d[3],
+                     double *s_best, double normal[3]) {
+  double v00[3], v10[3], v01[3], v11[3], s;
+  terrain_vertex(t, i, j, v00);
+  terrain_vertex(t, i + 1, j, v10);
+  terrain_vertex(t, i, j + 1, v01);
+  terrain_vertex(t, i + 1, j + 1, v11);
+  bool hit = false;
+  const double *tri[2][3] = {{v00, v01, v10}, {v10, v01, v11}};
+  for (int k = 0; k < 2; k++)
+    if (ray_triangle(o, d, tri[k][0], tri[k][1], tri[k][2], &s) && s < *s_best) {
+      *s_best = s;
+      hit = true;
+      if (normal) {
+        double e1[3], e2[3];
+        sub(tri[k][1], tri[k][0], e1);
+        sub(tri[k][2], tri[k][0], e2);
+        cross(e1, e2, normal);
+        double len = sqrt(dot(normal, normal));
+        if (normal[1] < 0) len = -len; /* point up */
+        for (int c = 0; c < 3; c++) normal[c] /= len;
+      }
+    }
+  return hit;
+}
+
+bool terrain_intersect(const terrain *t, const double origin[3], const double dir[3],
+                       double s_max, double *s, double normal[3]) {
+  /* Clip the ray to the terrain's bounding box (slabs). */
+  double lo[3] = {t->origin[0], t->min_y, t->origin[2]};
+  double hi[3] = {t->origin[0] + t->size[0], t->max_y, t->origin[2] + t->size[1]};
+  double s0 = 0.0, s1 = s_max;
+  for (int k = 0; k < 3; k++) {
+    if (fabs(dir[k]) < 1e-300) {
+      if (origin[k] < lo[k] || origin[k] > hi[k]) return false;
+      continue;
+    }
+    double a = (lo[k] - origin[k]) / dir[k], b = (hi[k] - origin[k]) / dir[k];
+    if (a > b) { double tmp = a; a = b; b = tmp; }
+    if (a > s0) s0 = a;
+    if (b < s1) s1 = b;
+  }
+  if (s0 > s1) return false;
+  /* 2D DDA over cells (Amanatides & Woo 1987) from s0 to s1 in grid units. */
+  double dx = spacing_x(t), dz = spacing_z(t);
+  double gx = (origin[0] + s0 * dir[0] - t->origin[0]) / dx;
+  double gz = (origin[2] + s0 * dir[2] - t->origin[2]) / dz;
+  int nx = t->resolution_x - 1, nz = t->resolution_z - 1;
+  int i = (int)floor(gx), j = (int)floor(gz);
+  if (i < 0) i = 0;
+  if (i > nx - 1) i = nx - 1;
+  if (j < 0) j = 0;
+  if (j > nz - 1) j = nz - 1;
+  double ux = dir[0] / dx, uz = dir[2] / dz; /* grid units per unit s */
+  int step_i = ux > 0 ? 1 : -1, step_j = uz > 0 ? 1 : -1;
+  double next_i = fabs(ux) < 1e-300 ? INFINITY
+                  : s0 + ((ux > 0 ? i + 1 : i) - gx) / ux;
+  double next_j = fabs(uz) < 1e-300 ? INFINITY
+                  : s0 + ((uz > 0 ? j + 1 : j) - gz) / uz;
+  double delta_i = fabs(ux) < 1e-300 ? INFINITY : 1.0 / fabs(ux);
+  double delta_j = fabs(uz) < 1e-300 ? INFINITY : 1.0 / fabs(uz);
+  double best = s_max;
+  bool found = false;
+  for (;;) {
+    /* Test the current cell and, for robustness at cell borders, its next neighbours
+     * would be redundant: the triangle test has an edge tolerance. */
+    if (cell_hit(t, i, j, origin, dir, &best, normal)) found = true;
+    double cell_exit = next_i < next_j ? next_i : next_j;
+    /* A hit inside this cell's column precedes every later cell's hits. */
+    if (found && best <= cell_exit + 1e-9 * (1.0 + fabs(cell_exit))) break;
+    if (cell_exit > s1) break;
+    if (next_i < next_j) {
+      i += step_i;
+      next_i += delta_i;
+      if (i < 0 || i >= nx) break;
+    } else {
+      j += step_j;
+      next_j += delta_j;
+      if (j < 0 || j >= nz) break;
+    }
+  }
+  if (found) *s = best;
+  return found;
+}
+
+bool terrain_intersect_brute(const terrain *t, const double origin[3], const double dir[3],
+                             double s_max, double *s) {
+  double best = s_max;
+  bool found = false;
+  for (int j = 0; j + 1 < t->resolution_z; j++)
+    for (int i = 0; i + 1 < t->resolution_x; i++)
+      if (cell_hit(t, i, j, origin, dir, &best, NULL)) found = true;
+  if (found) *s = best;
+  return found;
+}

@@ -1,0 +1,67 @@
+/* Terrain: a heightfield over the XZ plane (Y up), procedural (fBm value noise with a
+ * seed) or from a height image, and its exact CPU ray intersection. The GL scene pass
+ * draws exactly the triangles this file intersects, so the CPU distance is a reference
+ * for the GL distance texture. (Part of the render library; include "render/render.h".)
+ *
+ * Grid: vertex (i, j), i < resolution_x, j < resolution_z, sits at world
+ *   x = origin[0] + i * size[0] / (resolution_x - 1),  z = origin[2] + j * size[1] / (resolution_z - 1),
+ *   y = origin[1] + height * h[j * resolution_x + i],   h in [0, 1].
+ * Cell (i, j) is split into two triangles along the diagonal from (i+1, j) to (i, j+1):
+ *   {(i,j), (i,j+1), (i+1,j)} and {(i+1,j), (i,j+1), (i+1,j+1)}. */
+#ifndef FOGPIPE_RENDER_TERRAIN_H
+#define FOGPIPE_RENDER_TERRAIN_H
+
+#include <stdbool.h>
+
+#include "render/render_error.h"
+
+typedef struct terrain_desc {
+  double origin[3];  /* world position of vertex (0, 0) at h = 0 (the min corner) */
+  double size[2];    /* extent in X and Z; 0: 1000 x 1000 */
+  double height;     /* world height of h = 1; 0: 150 */
+  /* Heights from an image (e.g. a 16-bit grey PNG loaded by the app), values in [0, 1],
+   * row-major, top image row = z index 0. NULL: procedural. */
+  const float *heights;
+  int heights_width, heights_height;
+  /* Procedural terrain (heights == NULL): grid vertices per side (0: 257), fBm of value
+   * noise: octaves (0: 6), features across the terrain at the first octave (0: 3),
+   * amplitude falloff per octave (0: 0.5), seed. */
+  int resolution;
+  int octaves;
+  double frequency;
+  double persistence;
+  unsigned seed;
+} terrain_desc;
+
+typedef struct terrain {
+  double origin[3];
+  double size[2];
+  double height;
+  int resolution_x, resolution_z;
+  float *h;             /* resolution_x * resolution_z, in [0, 1] */
+  double min_y, max_y;  /* world height range of the vertices */
+} terrain;
+
+int terrain_create(terrain *t, const terrain_desc *desc, render_error *err);
+void terrain_destroy(terrain *t);
+
+/* World position of vertex (i, j) (double). */
+void terrain_vertex(const terrain *t, int i, int j, double p[3]);
+/* World height of the triangulated surface at (x, z) (clamped to the terrain's edge). */
+double terrain_height_at(const terrain *t, double x, double z);
+
+/* First hit of the ray origin + s * dir (dir need not be unit length), s in (0, s_max],
+ * on the triangle mesh: walks the cells the ray crosses (2D DDA), so it costs O(cells
+ * crossed). Returns true and sets *s (and normal, unit, if non-NULL) on a hit. */
+bool terrain_intersect(const terrain *t, const double origin[3], const double dir[3],
+                       double s_max, double *s, double normal[3]);
+/* The same by testing every triangle: an independent oracle for tests (slow). */
+bool terrain_intersect_brute(const terrain *t, const double origin[3], const double dir[3],
+                             double s_max, double *s);
+
+/* Ray-triangle intersection (Moller & Trumbore 1997) in double: the hit parameter s > 0 if
+ * the ray hits triangle (a, b, c), else returns false. */
+bool ray_triangle(const double origin[3], const double dir[3], const double a[3],
+                  const double b[3], const double c[3], double *s);
+
+#endif

@@ -1,0 +1,125 @@
+/* Shared set-up for the integrator tests: a seeded RNG, random coefficient grids with
+ * ghost margins, the three vertical profiles, a fog volume and random rays. */
+#ifndef FOGPIPE_TESTS_RENDER_FOG_TEST_SCENE_H
+#define FOGPIPE_TESTS_RENDER_FOG_TEST_SCENE_H
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "render/fog_field.h"
+#include "transform/transform.h"
+
+static uint64_t fog_test_rng = 0x9E3779B97F4A7C15ull;
+static inline double fog_test_uniform(void) { /* xorshift64*, [0, 1) */
+  fog_test_rng ^= fog_test_rng >> 12;
+  fog_test_rng ^= fog_test_rng << 25;
+  fog_test_rng ^= fog_test_rng >> 27;
+  return (double)((fog_test_rng * 2685821657736338717ull) >> 11) * (1.0 / 9007199254740992.0);
+}
+static inline double fog_test_range(double a, double b) { return a + (b - a) * fog_test_uniform(); }
+
+/* A W x H fogmap box: 24 x 16 fine samples of 2.5 world units at (100, -50). */
+enum { FOG_TEST_W = 24, FOG_TEST_H = 16 };
+
+/* A random degree-d grid at the given spacing covering the box with a ghost margin of
+ * d+1 coarse cells (and an arbitrary sub-cell origin offset). */
+static inline transform_grid fog_test_grid(int degree, double spacing, double offset) {
+  transform_grid g;
+  transform_error err;
+  int margin = degree + 1;
+  int w = (int)ceil(FOG_TEST_W / spacing) + 2 * margin + 1;
+  int h = (int)ceil(FOG_TEST_H / spacing) + 2 * margin + 1;
+  transform_grid_create(&g, w, h, &err);
+  g.degree = degree;
+  g.spacing = spacing;
+  g.origin_u = -0.5 - margin * spacing + offset;
+  g.origin_v = -0.5 - margin * spacing - 0.37 * offset;
+  for (int i = 0; i < w * h; i++) g.coefficients[i] = (float)fog_test_uniform();
+  return g;
+}
+
+/* The exact refinement of a coarse grid onto the grid of half its spacing (two-scale
+ * relation of the centred B-spline: phi_d(x) = sum_k 2^-d C(d+1,k) phi_d(2x - k + (d+1)/2)),
+ * so fine coefficient 2i+k sits at origin - spacing_fine (d+1)/2 + spacing_fine (2i+k). */
+static inline transform_grid fog_test_refine(const transform_grid *c) {
+  static const double mask[3][4] = {{1, 1}, {0.5, 1, 0.5}, {0.25, 0.75, 0.75, 0.25}};
+  int d = c->degree;
+  transform_grid f;
+  transform_error err;
+  transform_grid_create(&f, 2 * c->width + d, 2 * c->height + d, &err);
+  f.degree = d;
+  f.spacing = 0.5 * c->spacing;
+  f.origin_u = c->origin_u - f.spacing * 0.5 * (d + 1);
+  f.origin_v = c->origin_v - f.spacing * 0.5 * (d + 1);
+  for (int j = 0; j < c->height; j++)
+    for (int i = 0; i < c->width; i++)
+      for (int l = 0; l <= d + 1; l++)
+        for (int k = 0; k <= d + 1; k++)
+          f.coefficients[(size_t)(2 * j + l) * f.width + 2 * i + k] +=
+              (float)(mask[d][k] * mask[d][l] * c->coefficients[(size_t)j * c->width + i]);
+  return f;
+}
+
+/* A consistent LOD pyramid of `levels` levels: A_0 random at spacing 2^J, D_l random
+ * (signed, smaller) on the refined grid of A_{l-1}, A_l = refine(A_{l-1}) + D_l exactly as
+ * functions (float sums of small dyadic-weighted values; tests allow float rounding). */
+static inline void fog_test_pyramid(int degree, int levels, transform_grid *approx,
+                                    transform_grid *detail) {
+  approx[0] = fog_test_grid(degree, (double)(1 << levels), 0.0);
+  for (int l = 1; l <= levels; l++) {
+    transform_grid up = fog_test_refine(&approx[l - 1]);
+    transform_grid dl = fog_test_refine(&approx[l - 1]);
+    for (int i = 0; i < dl.width * dl.height; i++) {
+      dl.coefficients[i] = (float)fog_test_range(-0.25, 0.25);
+      up.coefficients[i] += dl.coefficients[i];
+    }
+    approx[l] = up;
+    detail[l - 1] = dl;
+  }
+}
+
+static double fog_test_profile_coefficients[8];
+
+static inline fog_profile fog_test_profile(fog_profile_kind kind) {
+  switch (kind) {
+    case FOG_PROFILE_SLAB:
+      return (fog_profile){.kind = kind, .y_floor = 2.0, .y_top = 12.0};
+    case FOG_PROFILE_EXPONENTIAL:
+      return (fog_profile){.kind = kind, .y_floor = 0.0, .y0 = 3.0, .scale_height = 4.0,
+                           .y_top = 40.0};
+    default:
+      for (int k = 0; k < 8; k++) fog_test_profile_coefficients[k] = fog_test_range(0.2, 1.5);
+      return (fog_profile){.kind = FOG_PROFILE_BSPLINE, .count = 8, .degree = 2,
+                           .coefficients = fog_test_profile_coefficients, .origin = 1.0,
+                           .spacing = 2.0};
+  }
+}
+
+static inline fog_volume fog_test_volume(fog_profile_kind kind) {
+  return (fog_volume){.map_width = FOG_TEST_W, .map_height = FOG_TEST_H, .origin_x = 100.0,
+                      .origin_z = -50.0, .cell_size = 2.5, .extinction = 0.05,
+                      .profile = fog_test_profile(kind)};
+}
+
+static inline void fog_test_unit(double d[3]) {
+  double n = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  for (int i = 0; i < 3; i++) d[i] /= n;
+}
+
+/* A random ray: camera inside the (slightly enlarged) box with probability 1/2, else
+ * around it, aimed at a random point of the box. */
+static inline void fog_test_ray(const fog_volume *v, double camera[3], double dir[3]) {
+  double lo[3], hi[3], target[3];
+  fog_volume_box(v, lo, hi);
+  int inside = fog_test_uniform() < 0.5;
+  for (int a = 0; a < 3; a++) {
+    double ext = hi[a] - lo[a];
+    camera[a] = inside ? fog_test_range(lo[a], hi[a]) : fog_test_range(lo[a] - ext, hi[a] + ext);
+    target[a] = fog_test_range(lo[a], hi[a]);
+    dir[a] = target[a] - camera[a];
+  }
+  fog_test_unit(dir);
+}
+
+#endif
