@@ -1,0 +1,144 @@
+/* fogpipe render CONFIG --out FILE.exr|png [--size WxH]: one frame of a scene config,
+ * headless (EGL), written as OpenEXR (R, G, B, A half; transmittance, depth float) or as
+ * an 8-bit sRGB PNG. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "app/commands.h"
+#include "app/config.h"
+#include "app/render_frame.h"
+#include "sim/sim.h"
+
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: fogpipe render CONFIG --out FILE.exr|FILE.png [--size WxH]\n\n"
+          "Renders one frame of the scene config headless (EGL; no display needed).\n\n"
+          "options:\n"
+          "  --out FILE    output image: .exr (channels R G B A as half, transmittance and\n"
+          "                depth as float; depth = distance along the view ray to the first\n"
+          "                surface, the far plane for the sky) or .png (8-bit sRGB RGB)\n"
+          "  --size WxH    image size (default: [render] width and height of the config)\n"
+          "  --help        this text\n\n"
+          "The config format is described in docs/config.md.\n");
+}
+
+static bool ends_with(const char *s, const char *suffix) {
+  size_t n = strlen(s), m = strlen(suffix);
+  return n >= m && strcasecmp(s + n - m, suffix) == 0;
+}
+
+/* The sRGB transfer function (IEC 61966-2-1) for PNG output. */
+static float srgb_encode(float linear) {
+  if (!(linear > 0.0f)) return 0.0f;
+  if (linear >= 1.0f) return 1.0f;
+  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * powf(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+int cmd_render(int argc, char **argv) {
+  const char *config_path = NULL, *out = NULL;
+  int width = 0, height = 0;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      usage(stdout);
+      return 0;
+    } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
+      out = argv[++i];
+    } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
+      char tail;
+      if (sscanf(argv[++i], "%dx%d%c", &width, &height, &tail) != 2 || width < 1 ||
+          height < 1 || width > 16384 || height > 16384) {
+        fprintf(stderr, "fogpipe render: --size '%s': expected WxH, e.g. 1280x720\n", argv[i]);
+        return 2;
+      }
+    } else if (argv[i][0] == '-') {
+      fprintf(stderr, "fogpipe render: unknown option '%s' (or it lacks its value)\n\n", argv[i]);
+      usage(stderr);
+      return 2;
+    } else if (!config_path) {
+      config_path = argv[i];
+    } else {
+      fprintf(stderr, "fogpipe render: one config only, got '%s' and '%s'\n", config_path, argv[i]);
+      return 2;
+    }
+  }
+  if (!config_path || !out) {
+    fprintf(stderr, "fogpipe render: %s\n\n", !config_path ? "no CONFIG given" : "no --out FILE given");
+    usage(stderr);
+    return 2;
+  }
+  bool exr = ends_with(out, ".exr");
+  if (!exr && !ends_with(out, ".png")) {
+    fprintf(stderr, "fogpipe render: --out '%s': expected a .exr or .png file name\n", out);
+    return 2;
+  }
+
+  scene_config cfg;
+  scene_config_error cfg_err;
+  if (scene_config_load(config_path, &cfg, &cfg_err)) {
+    fprintf(stderr, "fogpipe render: %s\n", cfg_err.message);
+    return 1;
+  }
+  if (width == 0) width = cfg.width, height = cfg.height;
+
+  size_t pixels = (size_t)width * height;
+  float *rgba = malloc(pixels * 4 * sizeof(float));
+  float *transmittance = malloc(pixels * sizeof(float));
+  float *depth = malloc(pixels * sizeof(float));
+  int status = 1;
+  if (!rgba || !transmittance || !depth) {
+    fprintf(stderr, "fogpipe render: out of memory for a %dx%d image\n", width, height);
+    goto done;
+  }
+  render_frame_error err;
+  render_frame_info info;
+  if (render_frame(&cfg, width, height, rgba, transmittance, depth, &info, &err)) {
+    fprintf(stderr, "fogpipe render: %s\n", err.message);
+    goto done;
+  }
+  sim_error werr;
+  if (exr) {
+    float *planes = malloc(pixels * 4 * sizeof(float));
+    if (!planes) {
+      fprintf(stderr, "fogpipe render: out of memory\n");
+      goto done;
+    }
+    for (size_t k = 0; k < pixels; k++)
+      for (int c = 0; c < 4; c++) planes[c * pixels + k] = rgba[4 * k + c];
+    image_channel channels[6] = {
+        {"R", planes, 1}, {"G", planes + pixels, 1}, {"B", planes + 2 * pixels, 1},
+        {"A", planes + 3 * pixels, 1}, {"depth", depth, 0}, {"transmittance", transmittance, 0}};
+    /* Without fog the transmittance is 1 everywhere: written anyway, so every render has
+     * the same channels for a compositor. */
+    int werr_status = image_write_exr(out, width, height, channels, 6, &werr);
+    free(planes);
+    if (werr_status) {
+      fprintf(stderr, "fogpipe render: %s\n", werr.message);
+      goto done;
+    }
+  } else {
+    float *rgb = malloc(pixels * 3 * sizeof(float));
+    if (!rgb) {
+      fprintf(stderr, "fogpipe render: out of memory\n");
+      goto done;
+    }
+    for (size_t k = 0; k < pixels; k++)
+      for (int c = 0; c < 3; c++) rgb[3 * k + c] = srgb_encode(rgba[4 * k + c]);
+    int werr_status = image_write_png(out, width, height, 3, rgb, &werr);
+    free(rgb);
+    if (werr_status) {
+      fprintf(stderr, "fogpipe render: %s\n", werr.message);
+      goto done;
+    }
+  }
+  printf("fogpipe render: wrote %s (%dx%d, %s; %s)\n", out, width, height,
+         info.has_fog ? "scene + fog" : "scene only, no fog", info.gl_description);
+  status = 0;
+done:
+  free(rgba);
+  free(transmittance);
+  free(depth);
+  return status;
+}

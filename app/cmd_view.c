@@ -1,0 +1,257 @@
+/* fogpipe view CONFIG: the scene config in a window (GLFW) with a free camera:
+ * W/A/S/D move, Q/E down/up, Shift faster, right mouse button + drag to look, Esc quits.
+ * The fog is the config's fogmap as it is (no simulation: that is `fogpipe demo`).
+ * --screenshot FILE --frames N renders N frames, saves the last one as seen in the window
+ * (read from GL_BACK before the swap) and exits: for tests and for looking at a scene
+ * without sitting at the display (xvfb-run). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <GLFW/glfw3.h>
+
+#include "app/commands.h"
+#include "app/config.h"
+#include "app/render_fog.h"
+#include "app/render_frame.h"
+#include "render/render.h"
+#include "sim/sim.h"
+
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: fogpipe view CONFIG [--size WxH] [--render-scale F] [--screenshot FILE.png --frames N]\n\n"
+          "Opens the scene config in a window with a free camera (needs a display; for\n"
+          "headless images use `fogpipe render`).\n"
+          "  W A S D  move     Q E  down / up     Shift  4x faster\n"
+          "  right mouse button + drag  look around     Esc  quit\n\n"
+          "options:\n"
+          "  --render-scale F   render at F times the window size, shown scaled up\n"
+          "                     (default 0.5: software GL is slow; 1 on a GPU)\n"
+          "  --size WxH         window size (default: [render] width and height)\n"
+          "  --screenshot FILE  save the window's last frame as an 8-bit PNG and exit\n"
+          "  --frames N         frames to draw before the screenshot (default 1)\n"
+          "  --help             this text\n");
+}
+
+typedef struct view_state {
+  gl_context *ctx;
+  scene_geometry geo;
+  bool geo_made;
+  scene_pass *scene;
+  render_fog fog;
+  bool has_fog;
+  gl_target scene_target, fog_target;
+  GLuint present_program;
+  GLint u_image, u_image_per_pixel;
+} view_state;
+
+static int make_targets(view_state *v, int width, int height, render_error *err) {
+  gl_target_destroy(&v->scene_target);
+  gl_target_destroy(&v->fog_target);
+  if (scene_target_create(&v->scene_target, width, height, err)) return 1;
+  if (v->has_fog &&
+      gl_target_create(&v->fog_target,
+                       &(gl_target_desc){.width = width, .height = height,
+                                         .color_formats = {GL_RGBA16F, GL_R32F}},
+                       err))
+    return 1;
+  return 0;
+}
+
+/* Free-camera controls for one frame of dt seconds. */
+static void fly(GLFWwindow *window, camera *cam, double dt, double speed, double *last_x,
+                double *last_y, bool *dragging) {
+  double x, y;
+  glfwGetCursorPos(window, &x, &y);
+  bool look = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  if (look && *dragging) {
+    cam->yaw += 0.004 * (x - *last_x);
+    cam->pitch -= 0.004 * (y - *last_y);
+    if (cam->pitch > 1.55) cam->pitch = 1.55;
+    if (cam->pitch < -1.55) cam->pitch = -1.55;
+  }
+  *dragging = look;
+  *last_x = x, *last_y = y;
+  double right[3], up[3], forward[3];
+  camera_basis(cam, 1, 1, right, up, forward);
+  double rl = sqrt(right[0] * right[0] + right[2] * right[2]);
+  double step = speed * dt;
+  if (glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS) step *= 4.0;
+  double move[3] = {0, 0, 0};
+  int w = glfwGetKey(window, GLFW_KEY_W) == GLFW_PRESS, s = glfwGetKey(window, GLFW_KEY_S) == GLFW_PRESS;
+  int a = glfwGetKey(window, GLFW_KEY_A) == GLFW_PRESS, d = glfwGetKey(window, GLFW_KEY_D) == GLFW_PRESS;
+  int q = glfwGetKey(window, GLFW_KEY_Q) == GLFW_PRESS, e = glfwGetKey(window, GLFW_KEY_E) == GLFW_PRESS;
+  for (int k = 0; k < 3; k++) move[k] += (w - s) * forward[k] + (d - a) * right[k] / rl;
+  move[1] += e - q;
+  for (int k = 0; k < 3; k++) cam->position[k] += step * move[k];
+  if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, 1);
+}
+
+static void view_destroy(view_state *v) {
+  if (v->present_program) glDeleteProgram(v->present_program);
+  gl_target_destroy(&v->scene_target);
+  gl_target_destroy(&v->fog_target);
+  render_fog_destroy(&v->fog);
+  scene_pass_destroy(v->scene);
+  if (v->geo_made) scene_geometry_destroy(&v->geo);
+  if (v->ctx) gl_context_destroy(v->ctx);
+}
+
+int cmd_view(int argc, char **argv) {
+  const char *config_path = NULL, *screenshot = NULL;
+  int frames = 1, width = 0, height = 0;
+  double render_scale = 0.5;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      usage(stdout);
+      return 0;
+    } else if (!strcmp(argv[i], "--screenshot") && i + 1 < argc) {
+      screenshot = argv[++i];
+    } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
+      char *end;
+      frames = (int)strtol(argv[++i], &end, 10);
+      if (*end || frames < 1) {
+        fprintf(stderr, "fogpipe view: --frames '%s': expected a positive integer\n", argv[i]);
+        return 2;
+      }
+    } else if (!strcmp(argv[i], "--render-scale") && i + 1 < argc) {
+      char *end;
+      render_scale = strtod(argv[++i], &end);
+      if (*end || !(render_scale > 0.05 && render_scale <= 4)) {
+        fprintf(stderr, "fogpipe view: --render-scale '%s': expected a number in (0.05, 4]\n",
+                argv[i]);
+        return 2;
+      }
+    } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
+      char tail;
+      if (sscanf(argv[++i], "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1) {
+        fprintf(stderr, "fogpipe view: --size '%s': expected WxH\n", argv[i]);
+        return 2;
+      }
+    } else if (argv[i][0] == '-') {
+      fprintf(stderr, "fogpipe view: unknown option '%s' (or it lacks its value)\n\n", argv[i]);
+      usage(stderr);
+      return 2;
+    } else if (!config_path) {
+      config_path = argv[i];
+    } else {
+      fprintf(stderr, "fogpipe view: one config only\n");
+      return 2;
+    }
+  }
+  if (!config_path) {
+    fprintf(stderr, "fogpipe view: no CONFIG given\n\n");
+    usage(stderr);
+    return 2;
+  }
+  scene_config cfg;
+  scene_config_error cfg_err;
+  if (scene_config_load(config_path, &cfg, &cfg_err)) {
+    fprintf(stderr, "fogpipe view: %s\n", cfg_err.message);
+    return 1;
+  }
+  if (!width) width = cfg.width, height = cfg.height;
+
+  view_state v = {0};
+  render_error err = {0};
+  int status = 1;
+  v.ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW, .width = width,
+                                               .height = height, .title = config_path,
+                                               .vsync = true},
+                            &err);
+  if (!v.ctx) {
+    fprintf(stderr, "fogpipe view: %s\n", err.message);
+    return 1;
+  }
+  GLFWwindow *window = gl_context_glfw_window(v.ctx);
+  float *heights = NULL;
+  int hw = 0, hh = 0;
+  render_frame_error ferr;
+  if (render_frame_load_heightmap(&cfg, &heights, &hw, &hh, &ferr)) {
+    fprintf(stderr, "fogpipe view: %s\n", ferr.message);
+    goto done;
+  }
+  scene_desc desc;
+  scene_config_scene_desc(&cfg, heights, hw, hh, &desc);
+  int geo_status = scene_geometry_create(&v.geo, &desc, &err);
+  free(heights);
+  if (geo_status) goto gl_fail;
+  v.geo_made = true;
+  if (!(v.scene = scene_pass_create(&v.geo, &err))) goto gl_fail;
+  if (cfg.fog.fogmap[0]) {
+    if (render_fog_create(&v.fog, &cfg, &err)) goto gl_fail;
+    v.has_fog = true;
+  }
+  v.present_program = gl_util_program("scene_sky_vs.glsl", "scene_present_fs.glsl", &err);
+  if (!v.present_program) goto gl_fail;
+  v.u_image = glGetUniformLocation(v.present_program, "image");
+  v.u_image_per_pixel = glGetUniformLocation(v.present_program, "image_per_pixel");
+
+  camera cam;
+  scene_config_camera(&cfg, &cam);
+  double speed = 0.05 * (cfg.terrain.size[0] > cfg.terrain.size[1] ? cfg.terrain.size[0] : cfg.terrain.size[1]);
+  double last_x = 0, last_y = 0, last_time = glfwGetTime();
+  bool dragging = false;
+  int target_w = 0, target_h = 0;
+  for (int frame = 1; !gl_context_should_close(v.ctx); frame++) {
+    gl_context_poll_events(v.ctx);
+    double now = glfwGetTime();
+    fly(window, &cam, now - last_time, speed, &last_x, &last_y, &dragging);
+    last_time = now;
+    int fb_w, fb_h;
+    gl_context_framebuffer_size(v.ctx, &fb_w, &fb_h);
+    if (fb_w < 1 || fb_h < 1) continue; /* minimised */
+    int w = (int)fmax(1.0, floor(fb_w * render_scale)), h = (int)fmax(1.0, floor(fb_h * render_scale));
+    if (w != target_w || h != target_h) {
+      if (make_targets(&v, w, h, &err)) goto gl_fail;
+      target_w = w, target_h = h;
+    }
+    scene_pass_run(v.scene, &cam, &v.scene_target);
+    const gl_target *shown = &v.scene_target;
+    if (v.has_fog) {
+      if (render_fog_draw(&v.fog, &cam, &v.scene_target, &v.fog_target, &err)) goto gl_fail;
+      shown = &v.fog_target;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fb_w, fb_h);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(v.present_program);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, shown->color[0]);
+    glUniform1i(v.u_image, 0);
+    glUniform2f(v.u_image_per_pixel, (float)w / fb_w, (float)h / fb_h);
+    glBindVertexArray(gl_util_empty_vao());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (screenshot && frame >= frames) {
+      float *rgb = malloc((size_t)fb_w * fb_h * 3 * sizeof(float));
+      if (!rgb) {
+        fprintf(stderr, "fogpipe view: out of memory for the screenshot\n");
+        goto done;
+      }
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+      int read_status = gl_util_read_pixels(GL_BACK, fb_w, fb_h, 3, rgb, &err);
+      sim_error serr;
+      int write_status = read_status ? 1 : image_write_png(screenshot, fb_w, fb_h, 3, rgb, &serr);
+      free(rgb);
+      if (read_status) goto gl_fail;
+      if (write_status) {
+        fprintf(stderr, "fogpipe view: %s\n", serr.message);
+        goto done;
+      }
+      printf("fogpipe view: wrote %s (%dx%d window, frame %d; %s, %s)\n", screenshot, fb_w, fb_h,
+             frame, gl_context_version(v.ctx), gl_context_renderer(v.ctx));
+      status = 0;
+      goto done;
+    }
+    gl_context_swap_buffers(v.ctx);
+    if (gl_util_check("view frame", &err)) goto gl_fail;
+  }
+  status = 0;
+  goto done;
+gl_fail:
+  fprintf(stderr, "fogpipe view: %s\n", err.message);
+done:
+  view_destroy(&v);
+  return status;
+}

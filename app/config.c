@@ -1,0 +1,408 @@
+/* Scene config parsing (config.h, format in docs/config.md) with libinih.
+ *
+ * Line numbers: Debian's libinih is built without INI_HANDLER_LINENO, so we parse through
+ * ini_parse_stream with our own fgets-style reader that counts lines; inih calls the
+ * handler right after reading a key's line, so the count is that key's line. */
+#define _POSIX_C_SOURCE 200809L
+#include "app/config.h"
+
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+typedef enum value_kind {
+  V_DOUBLE,   /* one number */
+  V_DOUBLE2,  /* two numbers */
+  V_DOUBLE3,  /* three numbers */
+  V_FLOAT3,   /* colour: three numbers */
+  V_INT,
+  V_UINT,
+  V_ENUM,     /* int, one of names */
+  V_PATH,     /* resolved against the config's folder; line stored at line_offset */
+  V_STRING,
+  V_LIST,     /* up to SCENE_CONFIG_MAX_PROFILE numbers, count at count_offset */
+  V_OBJECT,   /* box = X Z WIDTH HEIGHT DEPTH [R G B], appended */
+  V_LOOK_AT,
+} value_kind;
+
+typedef struct key_spec {
+  const char *section, *key;
+  value_kind kind;
+  size_t offset;
+  double min, max;          /* allowed range for numbers (inclusive) */
+  const char *names;        /* V_ENUM: "a|b|c" (value = index) */
+  size_t aux_offset;        /* V_PATH: line; V_LIST: count */
+  size_t size;              /* V_STRING / V_PATH buffer size */
+} key_spec;
+
+#define F(member) offsetof(scene_config, member)
+#define BIG 1e300
+static const key_spec keys[] = {
+    {"fog", "fogmap", V_PATH, F(fog.fogmap), 0, 0, NULL, F(fog.fogmap_line), sizeof(((scene_config *)0)->fog.fogmap)},
+    {"fog", "channel", V_STRING, F(fog.channel), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.channel)},
+    {"fog", "density_scale", V_DOUBLE, F(fog.density_scale), 0, BIG, NULL, 0, 0},
+    {"fog", "basis", V_ENUM, F(fog.degree), 0, 0, "haar|linear|quadratic", 0, 0},
+    {"fog", "levels", V_INT, F(fog.levels), 0, 16, NULL, 0, 0},
+    {"fog", "mu", V_DOUBLE, F(fog.mu), 0, 1, NULL, 0, 0},
+    {"fog", "lod", V_ENUM, F(fog.lod), 0, 0, "sum|switch", 0, 0},
+    {"fog", "filtering", V_ENUM, F(fog.filtering), 0, 0, "manual|hardware", 0, 0},
+    {"fog", "boundary", V_ENUM, F(fog.boundary), 0, 0, "symmetric|periodic", 0, 0},
+    {"fog", "profile", V_ENUM, F(fog.profile), 0, 0, "slab|exponential|bspline", 0, 0},
+    {"fog", "fog_height", V_DOUBLE, F(fog.fog_height), -BIG, BIG, NULL, 0, 0},
+    {"fog", "scale_height", V_DOUBLE, F(fog.scale_height), 1e-9, BIG, NULL, 0, 0},
+    {"fog", "profile_degree", V_INT, F(fog.profile_degree), 0, 3, NULL, 0, 0},
+    {"fog", "profile_origin", V_DOUBLE, F(fog.profile_origin), -BIG, BIG, NULL, 0, 0},
+    {"fog", "profile_spacing", V_DOUBLE, F(fog.profile_spacing), 1e-9, BIG, NULL, 0, 0},
+    {"fog", "profile_coefficients", V_LIST, F(fog.profile_coefficients), 0, BIG, NULL, F(fog.profile_count), 0},
+    {"fog", "colour", V_FLOAT3, F(fog.colour), 0, BIG, NULL, 0, 0},
+    {"box", "origin", V_DOUBLE2, F(box.origin), -BIG, BIG, NULL, 0, 0},
+    {"box", "cell_size", V_DOUBLE, F(box.cell_size), 1e-9, BIG, NULL, 0, 0},
+    {"box", "floor", V_DOUBLE, F(box.floor), -BIG, BIG, NULL, 0, 0},
+    {"box", "top", V_DOUBLE, F(box.top), -BIG, BIG, NULL, 0, 0},
+    {"camera", "position", V_DOUBLE3, F(camera.position), -BIG, BIG, NULL, 0, 0},
+    {"camera", "yaw", V_DOUBLE, F(camera.yaw), -360, 360, NULL, 0, 0},
+    {"camera", "pitch", V_DOUBLE, F(camera.pitch), -90, 90, NULL, 0, 0},
+    {"camera", "fov", V_DOUBLE, F(camera.fov), 1, 170, NULL, 0, 0},
+    {"camera", "look_at", V_LOOK_AT, F(camera.look_at), -BIG, BIG, NULL, 0, 0},
+    {"camera", "near", V_DOUBLE, F(camera.near_plane), 1e-6, BIG, NULL, 0, 0},
+    {"camera", "far", V_DOUBLE, F(camera.far_plane), 1e-6, BIG, NULL, 0, 0},
+    {"terrain", "heightmap", V_PATH, F(terrain.heightmap), 0, 0, NULL, F(terrain.heightmap_line), sizeof(((scene_config *)0)->terrain.heightmap)},
+    {"terrain", "origin", V_DOUBLE3, F(terrain.origin), -BIG, BIG, NULL, 0, 0},
+    {"terrain", "size", V_DOUBLE2, F(terrain.size), 1e-6, BIG, NULL, 0, 0},
+    {"terrain", "height", V_DOUBLE, F(terrain.height), 1e-6, BIG, NULL, 0, 0},
+    {"terrain", "resolution", V_INT, F(terrain.resolution), 2, 8193, NULL, 0, 0},
+    {"terrain", "octaves", V_INT, F(terrain.octaves), 1, 16, NULL, 0, 0},
+    {"terrain", "frequency", V_DOUBLE, F(terrain.frequency), 1e-6, 1e6, NULL, 0, 0},
+    {"terrain", "persistence", V_DOUBLE, F(terrain.persistence), 1e-6, 1, NULL, 0, 0},
+    {"terrain", "seed", V_UINT, F(terrain.seed), 0, 4294967295.0, NULL, 0, 0},
+    {"objects", "box", V_OBJECT, 0, -BIG, BIG, NULL, 0, 0},
+    {"light", "sun_azimuth", V_DOUBLE, F(light.sun_azimuth), -360, 360, NULL, 0, 0},
+    {"light", "sun_elevation", V_DOUBLE, F(light.sun_elevation), -90, 90, NULL, 0, 0},
+    {"light", "sun_colour", V_FLOAT3, F(light.sun_colour), 0, BIG, NULL, 0, 0},
+    {"light", "ambient", V_FLOAT3, F(light.ambient), 0, BIG, NULL, 0, 0},
+    {"light", "sky_horizon", V_FLOAT3, F(light.sky_horizon), 0, BIG, NULL, 0, 0},
+    {"light", "sky_zenith", V_FLOAT3, F(light.sky_zenith), 0, BIG, NULL, 0, 0},
+    {"render", "width", V_INT, F(width), 1, 16384, NULL, 0, 0},
+    {"render", "height", V_INT, F(height), 1, 16384, NULL, 0, 0},
+    {"sim", "wind", V_DOUBLE2, F(sim.wind), -BIG, BIG, NULL, 0, 0},
+    {"sim", "turbulence", V_DOUBLE, F(sim.turbulence), 0, BIG, NULL, 0, 0},
+    {"sim", "viscosity", V_DOUBLE, F(sim.viscosity), 0, BIG, NULL, 0, 0},
+    {"sim", "emitter_rate", V_DOUBLE, F(sim.emitter_rate), 0, BIG, NULL, 0, 0},
+    {"sim", "seed", V_UINT, F(sim.seed), 0, 4294967295.0, NULL, 0, 0},
+};
+static const char *const sections = "fog, box, camera, terrain, objects, light, render, sim";
+
+void scene_config_init(scene_config *cfg) {
+  *cfg = (scene_config){
+      .fog = {.density_scale = 1.0, .degree = 1, .levels = 3, .mu = 1.0,
+              .lod = SCENE_LOD_SWITCH, .filtering = SCENE_FILTERING_MANUAL,
+              .boundary = SCENE_BOUNDARY_SYMMETRIC, .profile = SCENE_PROFILE_SLAB,
+              .fog_height = 0.0, .scale_height = 10.0, .profile_degree = 1,
+              .profile_spacing = 1.0, .colour = {0.75f, 0.78f, 0.82f}},
+      .box = {.origin = {-500, -500}, .cell_size = 1.0, .floor = 0.0, .top = 50.0},
+      .camera = {.position = {0, 50, 100}, .fov = 60.0, .near_plane = 0.1, .far_plane = 100000.0},
+      .terrain = {.origin = {-500, 0, -500}, .size = {1000, 1000}, .height = 150,
+                  .resolution = 257, .octaves = 6, .frequency = 3.0, .persistence = 0.5,
+                  .seed = 1},
+      .width = 1280,
+      .height = 720,
+  };
+}
+
+/* ---- parsing state ---- */
+
+typedef struct parse_state {
+  scene_config *cfg;
+  const char *path;
+  char folder[SCENE_CONFIG_PATH_MAX];
+  FILE *file;
+  int line;
+  bool line_complete; /* the last chunk read ended a line */
+  int error_line;     /* first error (0: none) */
+  scene_config_error *err;
+} parse_state;
+
+/* fgets-style reader for ini_parse_stream that counts lines. */
+static char *read_line(char *buffer, int size, void *stream) {
+  parse_state *s = stream;
+  char *got = fgets(buffer, size, s->file);
+  if (!got) return NULL;
+  if (s->line_complete) s->line++;
+  size_t n = strlen(got);
+  s->line_complete = n > 0 && got[n - 1] == '\n';
+  return got;
+}
+
+static int fail(parse_state *s, const char *section, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static int fail(parse_state *s, const char *section, const char *key, const char *fmt, ...) {
+  if (s->error_line) return 0; /* keep the first error */
+  s->error_line = s->line;
+  int n = snprintf(s->err->message, sizeof s->err->message, "%s:%d: [%s] %s: ", s->path,
+                   s->line, section, key);
+  if (n < 0 || (size_t)n >= sizeof s->err->message) return 0;
+  va_list args;
+  va_start(args, fmt);
+  vsnprintf(s->err->message + n, sizeof s->err->message - n, fmt, args);
+  va_end(args);
+  return 0;
+}
+
+/* Reads up to max numbers separated by spaces and/or commas; returns the count, or -1 if
+ * something is not a number. */
+static int parse_numbers(const char *text, double *out, int max) {
+  int count = 0;
+  const char *p = text;
+  for (;;) {
+    while (*p == ' ' || *p == '\t' || *p == ',') p++;
+    if (!*p) return count;
+    if (count == max) return -1;
+    char *end;
+    errno = 0;
+    double v = strtod(p, &end);
+    if (end == p || errno == ERANGE || !isfinite(v)) return -1;
+    if (*end && *end != ' ' && *end != '\t' && *end != ',') return -1;
+    out[count++] = v;
+    p = end;
+  }
+}
+
+static int numbers(parse_state *s, const key_spec *k, const char *section, const char *key,
+                   const char *value, double *out, int want_min, int want_max,
+                   const char *expected) {
+  int n = parse_numbers(value, out, want_max);
+  if (n < want_min || n > want_max)
+    return fail(s, section, key, "expected %s, got '%s'", expected, value);
+  for (int i = 0; i < n; i++)
+    if (out[i] < k->min || out[i] > k->max) {
+      if (k->max >= BIG)
+        return fail(s, section, key, "expected a number >= %g, got '%s'", k->min, value);
+      if (k->min <= -BIG)
+        return fail(s, section, key, "expected a number <= %g, got '%s'", k->max, value);
+      return fail(s, section, key, "expected a number from %g to %g, got '%s'", k->min, k->max,
+                  value);
+    }
+  return n;
+}
+
+static void resolve_path(const parse_state *s, const char *value, char *out, size_t size) {
+  if (value[0] == '/' || !s->folder[0])
+    snprintf(out, size, "%s", value);
+  else
+    snprintf(out, size, "%s/%s", s->folder, value);
+}
+
+static int handle(void *user, const char *section, const char *key, const char *value) {
+  parse_state *s = user;
+  scene_config *cfg = s->cfg;
+  const key_spec *k = NULL;
+  bool section_known = false;
+  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+    if (!strcmp(keys[i].section, section)) {
+      section_known = true;
+      if (!strcmp(keys[i].key, key)) {
+        k = &keys[i];
+        break;
+      }
+    }
+  if (!section_known) {
+    if (!section[0]) return fail(s, "", key, "key outside any section; sections are %s", sections);
+    return fail(s, section, key, "unknown section [%s]; sections are %s", section, sections);
+  }
+  if (!k) {
+    char known[400] = "";
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+      if (!strcmp(keys[i].section, section)) {
+        size_t used = strlen(known);
+        snprintf(known + used, sizeof known - used, "%s%s", used ? ", " : "", keys[i].key);
+      }
+    return fail(s, section, key, "unknown key; [%s] has %s", section, known);
+  }
+  char *field = (char *)cfg + k->offset;
+  double v[16];
+  switch (k->kind) {
+    case V_DOUBLE:
+      if (numbers(s, k, section, key, value, v, 1, 1, "a number") != 1) return 0;
+      *(double *)field = v[0];
+      return 1;
+    case V_DOUBLE2:
+      if (numbers(s, k, section, key, value, v, 2, 2, "two numbers") != 2) return 0;
+      memcpy(field, v, 2 * sizeof(double));
+      return 1;
+    case V_DOUBLE3:
+    case V_LOOK_AT:
+      if (numbers(s, k, section, key, value, v, 3, 3, "three numbers (x y z)") != 3) return 0;
+      memcpy(field, v, 3 * sizeof(double));
+      if (k->kind == V_LOOK_AT) cfg->camera.look_at_set = true;
+      return 1;
+    case V_FLOAT3:
+      if (numbers(s, k, section, key, value, v, 3, 3, "three numbers (r g b)") != 3) return 0;
+      for (int i = 0; i < 3; i++) ((float *)field)[i] = (float)v[i];
+      return 1;
+    case V_INT:
+    case V_UINT:
+      if (numbers(s, k, section, key, value, v, 1, 1, "an integer") != 1) return 0;
+      if (v[0] != floor(v[0])) return fail(s, section, key, "expected an integer, got '%s'", value);
+      if (k->kind == V_INT)
+        *(int *)field = (int)v[0];
+      else
+        *(unsigned *)field = (unsigned)v[0];
+      return 1;
+    case V_ENUM: {
+      int index = 0;
+      for (const char *p = k->names;; index++) {
+        const char *bar = strchr(p, '|');
+        size_t n = bar ? (size_t)(bar - p) : strlen(p);
+        if (strlen(value) == n && !strncmp(p, value, n)) {
+          *(int *)field = index;
+          return 1;
+        }
+        if (!bar) break;
+        p = bar + 1;
+      }
+      return fail(s, section, key, "expected one of %s, got '%s'", k->names, value);
+    }
+    case V_PATH:
+      if (!value[0]) {
+        field[0] = '\0';
+        return 1;
+      }
+      resolve_path(s, value, field, k->size);
+      *(int *)((char *)cfg + k->aux_offset) = s->line;
+      return 1;
+    case V_STRING:
+      if (strlen(value) >= k->size)
+        return fail(s, section, key, "expected at most %zu characters, got '%s'", k->size - 1, value);
+      snprintf(field, k->size, "%s", value);
+      return 1;
+    case V_LIST: {
+      int n = parse_numbers(value, (double *)field, SCENE_CONFIG_MAX_PROFILE);
+      if (n < 1)
+        return fail(s, section, key, "expected 1 to %d numbers, got '%s'",
+                    SCENE_CONFIG_MAX_PROFILE, value);
+      for (int i = 0; i < n; i++)
+        if (((double *)field)[i] < 0)
+          return fail(s, section, key, "expected numbers >= 0 (fog density), got '%s'", value);
+      *(int *)((char *)cfg + k->aux_offset) = n;
+      return 1;
+    }
+    case V_OBJECT: {
+      int n = parse_numbers(value, v, 8);
+      if (n != 5 && n != 8)
+        return fail(s, section, key, "expected X Z WIDTH HEIGHT DEPTH [R G B], got '%s'", value);
+      if (!(v[2] > 0 && v[3] > 0 && v[4] > 0))
+        return fail(s, section, key, "expected positive WIDTH HEIGHT DEPTH, got '%s'", value);
+      if (cfg->object_count == SCENE_MAX_BOXES)
+        return fail(s, section, key, "at most %d boxes", SCENE_MAX_BOXES);
+      scene_box_desc *b = &cfg->objects[cfg->object_count++];
+      *b = (scene_box_desc){.center = {v[0], v[1]}, .size = {v[2], v[3], v[4]}};
+      if (n == 8)
+        for (int i = 0; i < 3; i++) b->colour[i] = (float)v[5 + i];
+      return 1;
+    }
+  }
+  return 1;
+}
+
+static int check_file(parse_state *s, const char *section, const char *key, int line,
+                      const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (f) {
+    fclose(f);
+    return 0;
+  }
+  s->line = line;
+  fail(s, section, key, "cannot open '%s' (%s)", path, strerror(errno));
+  return 1;
+}
+
+int scene_config_load(const char *path, scene_config *cfg, scene_config_error *err) {
+  scene_config_init(cfg);
+  snprintf(cfg->path, sizeof cfg->path, "%s", path);
+  parse_state s = {.cfg = cfg, .path = path, .line_complete = true, .err = err};
+  const char *slash = strrchr(path, '/');
+  if (slash) snprintf(s.folder, sizeof s.folder, "%.*s", (int)(slash - path), path);
+  if (slash == path) snprintf(s.folder, sizeof s.folder, "/");
+  s.file = fopen(path, "r");
+  if (!s.file) {
+    snprintf(err->message, sizeof err->message, "%s: cannot open the config (%s)", path,
+             strerror(errno));
+    return 1;
+  }
+  int status = ini_parse_stream(read_line, &s, handle, &s);
+  fclose(s.file);
+  if (s.error_line) return 1;
+  if (status > 0) {
+    snprintf(err->message, sizeof err->message,
+             "%s:%d: expected '[section]', 'key = value' or a comment", path, status);
+    return 1;
+  }
+  if (status < 0) {
+    snprintf(err->message, sizeof err->message, "%s: cannot read the config", path);
+    return 1;
+  }
+  /* Checks across keys, named by the key that was set last. */
+  if (cfg->fog.fogmap[0] &&
+      check_file(&s, "fog", "fogmap", cfg->fog.fogmap_line, cfg->fog.fogmap))
+    return 1;
+  if (cfg->terrain.heightmap[0] &&
+      check_file(&s, "terrain", "heightmap", cfg->terrain.heightmap_line, cfg->terrain.heightmap))
+    return 1;
+  if (cfg->box.top <= cfg->box.floor) {
+    snprintf(err->message, sizeof err->message,
+             "%s: [box] top (%g) must be above floor (%g)", path, cfg->box.top, cfg->box.floor);
+    return 1;
+  }
+  if (cfg->fog.profile == SCENE_PROFILE_BSPLINE && cfg->fog.profile_count == 0) {
+    snprintf(err->message, sizeof err->message,
+             "%s: [fog] profile = bspline needs profile_coefficients", path);
+    return 1;
+  }
+  if (cfg->camera.near_plane >= cfg->camera.far_plane) {
+    snprintf(err->message, sizeof err->message, "%s: [camera] near (%g) must be below far (%g)",
+             path, cfg->camera.near_plane, cfg->camera.far_plane);
+    return 1;
+  }
+  return 0;
+}
+
+void scene_config_camera(const scene_config *cfg, camera *cam) {
+  const scene_camera_config *c = &cfg->camera;
+  *cam = (camera){
+      .position = {c->position[0], c->position[1], c->position[2]},
+      .yaw = c->yaw * DEG,
+      .pitch = c->pitch * DEG,
+      .fov_y = c->fov * DEG,
+      .near_plane = c->near_plane,
+      .far_plane = c->far_plane,
+  };
+  if (c->look_at_set) camera_look_at(cam, c->look_at);
+}
+
+void scene_config_scene_desc(const scene_config *cfg, const float *heights, int width,
+                             int height, scene_desc *desc) {
+  const scene_terrain_config *t = &cfg->terrain;
+  *desc = (scene_desc){
+      .terrain = {.origin = {t->origin[0], t->origin[1], t->origin[2]},
+                  .size = {t->size[0], t->size[1]},
+                  .height = t->height,
+                  .heights = heights,
+                  .heights_width = width,
+                  .heights_height = height,
+                  .resolution = t->resolution,
+                  .octaves = t->octaves,
+                  .frequency = t->frequency,
+                  .persistence = t->persistence,
+                  .seed = t->seed},
+      .box_count = cfg->object_count,
+      .light = cfg->light,
+  };
+  memcpy(desc->boxes, cfg->objects, sizeof cfg->objects);
+}

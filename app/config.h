@@ -1,0 +1,133 @@
+/* Scene configs: the .ini files in configs/ (format: docs/config.md), parsed with libinih.
+ *
+ *   scene_config cfg;
+ *   scene_config_error err;
+ *   if (scene_config_load("configs/default.ini", &cfg, &err)) { print err.message; exit }
+ *
+ * scene_config_init() fills every documented default, so a config file only names what it
+ * changes; after loading every field holds a concrete value. Enumerations number their
+ * default 0. Paths in a file are relative to the file's folder and are stored resolved
+ * (usable from the current directory). Errors name "FILE:LINE: [section] key: ..." and what
+ * was expected (unknown section or key, bad number, bad enum with the allowed values,
+ * a fogmap or heightmap file that cannot be opened). */
+#ifndef FOGPIPE_APP_CONFIG_H
+#define FOGPIPE_APP_CONFIG_H
+
+#include <stdbool.h>
+
+#include "render/camera.h"
+#include "render/scene.h"
+
+#define SCENE_CONFIG_PATH_MAX 1024
+#define SCENE_CONFIG_MAX_PROFILE 64
+
+typedef struct scene_config_error {
+  char message[512];
+} scene_config_error;
+
+/* Values equal to render/fog_field.h's enums where one exists. */
+typedef enum scene_lod {
+  SCENE_LOD_SUM = 0, /* "sum": the paper's sum of details up to d_l = |OP| mu^l */
+  SCENE_LOD_SWITCH,  /* "switch": one approximation A_l per ray segment (ours) */
+} scene_lod;
+
+typedef enum scene_filtering {
+  SCENE_FILTERING_MANUAL = 0, /* "manual": exact coefficient fetches */
+  SCENE_FILTERING_HARDWARE,   /* "hardware": GL_LINEAR (weights quantised, often 1/256) */
+} scene_filtering;
+
+typedef enum scene_profile {
+  SCENE_PROFILE_SLAB = 0,    /* "slab": g = 1 on [box floor, box top] */
+  SCENE_PROFILE_EXPONENTIAL, /* "exponential": 1 up to fog_height, exp(-(y-fog_height)/H) above */
+  SCENE_PROFILE_BSPLINE,     /* "bspline": g = sum b_k phi_p((y - origin)/spacing - k) */
+} scene_profile;
+
+typedef enum scene_boundary {
+  SCENE_BOUNDARY_SYMMETRIC = 0, /* "symmetric" (fog is not periodic) */
+  SCENE_BOUNDARY_PERIODIC,      /* "periodic" (the FFT simulation's domain) */
+} scene_boundary;
+
+typedef struct scene_fog_config {
+  char fogmap[SCENE_CONFIG_PATH_MAX]; /* resolved path; "" means no fog */
+  char channel[16];                   /* image channel ("" : the only one) */
+  double density_scale;               /* extinction per world unit where f = g = 1 */
+  int degree;                         /* basis: haar 0, linear 1, quadratic 2 */
+  int levels;                         /* pyramid levels J */
+  double mu;                          /* LOD factor in [0, 1] (1 keeps every detail) */
+  scene_lod lod;
+  scene_filtering filtering;
+  scene_boundary boundary;
+  scene_profile profile;
+  double fog_height;                  /* exponential: y0, where the decay starts */
+  double scale_height;                /* exponential: H */
+  int profile_degree;                 /* bspline: degree p of the profile (0..3) */
+  double profile_origin, profile_spacing;
+  double profile_coefficients[SCENE_CONFIG_MAX_PROFILE];
+  int profile_count;
+  float colour[3];                    /* L_fog, linear */
+  int fogmap_line;                    /* where fogmap was set (0: default), for errors */
+} scene_fog_config;
+
+/* World placement of the fogmap: the corner of cell (0, 0) at (origin_x, origin_z), one
+ * fogmap cell is cell_size world units; the box spans [floor, top] vertically. */
+typedef struct scene_box_config {
+  double origin[2];
+  double cell_size;
+  double floor, top;
+} scene_box_config;
+
+typedef struct scene_camera_config {
+  double position[3];
+  double yaw, pitch; /* degrees (camera.h conventions) */
+  double fov;        /* vertical, degrees */
+  bool look_at_set;  /* look_at overrides yaw and pitch */
+  double look_at[3];
+  double near_plane, far_plane;
+} scene_camera_config;
+
+typedef struct scene_terrain_config {
+  char heightmap[SCENE_CONFIG_PATH_MAX]; /* resolved path; "" means procedural */
+  int heightmap_line;
+  double origin[3];
+  double size[2];
+  double height;
+  int resolution, octaves;
+  double frequency, persistence;
+  unsigned seed;
+} scene_terrain_config;
+
+/* [sim]: read now, used by the simulation (upcoming: see docs/config.md). */
+typedef struct scene_sim_config {
+  double wind[2];     /* constant drift, world units per second (x, z) */
+  double turbulence;  /* wind turbulence amplitude */
+  double viscosity;
+  double emitter_rate;
+  unsigned seed;
+} scene_sim_config;
+
+typedef struct scene_config {
+  char path[SCENE_CONFIG_PATH_MAX]; /* the file it was read from */
+  scene_fog_config fog;
+  scene_box_config box;
+  scene_camera_config camera;
+  scene_terrain_config terrain;
+  scene_box_desc objects[SCENE_MAX_BOXES];
+  int object_count;
+  scene_light light;
+  int width, height; /* [render] image size */
+  scene_sim_config sim;
+} scene_config;
+
+/* Every documented default (docs/config.md). */
+void scene_config_init(scene_config *cfg);
+/* init + parse path. Non-zero and err on the first error. */
+int scene_config_load(const char *path, scene_config *cfg, scene_config_error *err);
+
+/* The camera the config describes (radians, look_at applied). */
+void scene_config_camera(const scene_config *cfg, camera *cam);
+/* The scene pass's description. heights (may be NULL) are the loaded heightmap (values in
+ * [0, 1], width x height) when cfg->terrain.heightmap is set. */
+void scene_config_scene_desc(const scene_config *cfg, const float *heights, int width,
+                             int height, scene_desc *desc);
+
+#endif

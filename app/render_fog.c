@@ -1,0 +1,135 @@
+/* The static fog of a scene config (render_fog.h). */
+#include "app/render_fog.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sim/sim.h"
+
+void render_fog_destroy(render_fog *fog) {
+  for (int l = 0; l <= RENDER_FOG_MAX_LEVELS; l++) transform_grid_destroy(&fog->approx[l]);
+  for (int l = 0; l < RENDER_FOG_MAX_LEVELS; l++) transform_grid_destroy(&fog->detail[l]);
+  if (fog->pass) fog_pass_destroy(fog->pass);
+  *fog = (render_fog){0};
+}
+
+static transform_basis basis_of_degree(int degree) {
+  return degree == 0 ? TRANSFORM_HAAR : degree == 2 ? TRANSFORM_QUADRATIC : TRANSFORM_LINEAR;
+}
+
+int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err) {
+  *fog = (render_fog){0};
+  const scene_fog_config *f = &cfg->fog;
+  fogmap map = {0};
+  sim_error serr;
+  fogmap_load_desc load = {.channel = f->channel[0] ? f->channel : NULL};
+  if (fogmap_load(f->fogmap, &load, &map, &serr)) {
+    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] fogmap: %.280s", cfg->path,
+             f->fogmap_line, serr.message);
+    return 1;
+  }
+  transform_boundary boundary =
+      f->boundary == SCENE_BOUNDARY_PERIODIC ? TRANSFORM_PERIODIC : TRANSFORM_SYMMETRIC;
+  int levels = f->levels;
+  int max_levels = transform_max_levels(map.width, map.height, boundary);
+  if (levels > max_levels) levels = max_levels;
+  if (levels > RENDER_FOG_MAX_LEVELS) levels = RENDER_FOG_MAX_LEVELS;
+  transform_plan *plan = NULL;
+  transform_error terr = {{0}};
+  transform_desc desc = {.width = map.width, .height = map.height, .levels = levels,
+                         .basis = basis_of_degree(f->degree), .boundary = boundary};
+  size_t n = (size_t)map.width * map.height;
+  float *coefficients = malloc(n * sizeof(float));
+  float *approx[RENDER_FOG_MAX_LEVELS + 1] = {0}, *detail[RENDER_FOG_MAX_LEVELS + 1] = {0};
+  int status = 1;
+  if (!coefficients) {
+    snprintf(err->message, sizeof err->message, "out of memory for the fog transform");
+    goto done;
+  }
+  if (transform_plan_create(&plan, &desc, &terr)) {
+    snprintf(err->message, sizeof err->message, "%.200s: [fog] transform: %.280s", cfg->path,
+             terr.message);
+    goto done;
+  }
+  for (int l = 0; l <= levels; l++) {
+    int w, h;
+    transform_level_size(plan, l, &w, &h);
+    approx[l] = malloc((size_t)w * h * sizeof(float));
+    detail[l] = malloc((size_t)w * h * sizeof(float));
+    if (!approx[l] || !detail[l]) {
+      snprintf(err->message, sizeof err->message, "out of memory for the fog pyramid");
+      goto done;
+    }
+  }
+  bool sum = f->lod == SCENE_LOD_SUM;
+  transform_forward(plan, map.density, coefficients);
+  transform_pyramid(plan, coefficients, approx);
+  /* fog_pass binds every slot of the pyramid (details too) whatever the LOD method. */
+  if (levels > 0) transform_details(plan, coefficients, detail);
+  for (int l = 0; l <= levels; l++) {
+    if (transform_grid_create_level(plan, l, approx[l], &fog->approx[l], &terr) ||
+        (l > 0 &&
+         transform_grid_create_level(plan, l, detail[l], &fog->detail[l - 1], &terr))) {
+      snprintf(err->message, sizeof err->message, "fog pyramid: %.400s", terr.message);
+      goto done;
+    }
+  }
+  fog->map_width = map.width;
+  fog->map_height = map.height;
+  fog->levels = levels;
+  fog->degree = transform_basis_degree(desc.basis);
+  fog->volume = (fog_volume){
+      .map_width = map.width,
+      .map_height = map.height,
+      .origin_x = cfg->box.origin[0],
+      .origin_z = cfg->box.origin[1],
+      .cell_size = cfg->box.cell_size,
+      .extinction = f->density_scale,
+      .profile = {.kind = (fog_profile_kind)f->profile, .y_floor = cfg->box.floor,
+                  .y_top = cfg->box.top, .y0 = f->fog_height, .scale_height = f->scale_height},
+  };
+  if (f->profile == SCENE_PROFILE_BSPLINE) {
+    fog->volume.profile.count = f->profile_count;
+    fog->volume.profile.degree = f->profile_degree;
+    fog->volume.profile.coefficients = f->profile_coefficients;
+    fog->volume.profile.origin = f->profile_origin;
+    fog->volume.profile.spacing = f->profile_spacing;
+  }
+  /* The LOD variants need the whole pyramid; with mu = 1 the switch method shows A_J only,
+   * which is the fogmap itself. */
+  fog->params = (fog_pass_params){
+      .volume = &fog->volume,
+      .levels = levels,
+      .lod_method = sum ? FOG_LOD_SUM_OF_DETAILS : FOG_LOD_SWITCH,
+      .mu = f->mu,
+      .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
+      .fetch = f->filtering == SCENE_FILTERING_HARDWARE ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
+  };
+  if (fog_pass_create(&fog->pass, err)) goto done;
+  if (levels > 0) {
+    fog_lod lod = {.levels = levels, .approx = fog->approx, .detail = fog->detail, .mu = f->mu};
+    if (fog_pass_upload_lod(fog->pass, &lod, err)) goto done;
+  } else if (fog_pass_upload_grid(fog->pass, 0, &fog->approx[0], err)) {
+    goto done;
+  }
+  status = 0;
+done:
+  for (int l = 0; l <= RENDER_FOG_MAX_LEVELS; l++) free(approx[l]), free(detail[l]);
+  free(coefficients);
+  transform_plan_destroy(plan);
+  fogmap_destroy(&map);
+  if (status) {
+    /* keep the message: render_fog_destroy clears the struct only */
+    render_fog_destroy(fog);
+  }
+  return status;
+}
+
+int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
+                    const gl_target *out, render_error *err) {
+  gl_target_bind(out);
+  fog->params.volume = &fog->volume; /* the struct may have been copied */
+  return fog_pass_draw(fog->pass, cam, &fog->params, scene->color[0], scene->color[1],
+                       scene->width, scene->height, err);
+}

@@ -1,0 +1,35 @@
+/* The static fog of a scene config for one headless frame (`fogpipe render`): the config's
+ * fogmap, its wavelet pyramid (transform/), uploaded to the GL fog pass
+ * (render/fog_pass.h). The live and recorded animation goes through app/pipeline.h
+ * instead; this path renders the fogmap exactly as the file holds it, without a
+ * simulation step. */
+#ifndef FOGPIPE_APP_RENDER_FOG_H
+#define FOGPIPE_APP_RENDER_FOG_H
+
+#include "app/config.h"
+#include "render/fog_field.h"
+#include "render/fog_pass.h"
+#include "render/gl_util.h"
+#include "transform/transform.h"
+
+#define RENDER_FOG_MAX_LEVELS 7 /* fog_pass: FOG_PASS_MAX_GRIDS = 16 slots = 2J + 1 */
+
+typedef struct render_fog {
+  int map_width, map_height, levels, degree;
+  transform_grid approx[RENDER_FOG_MAX_LEVELS + 1];
+  transform_grid detail[RENDER_FOG_MAX_LEVELS]; /* detail[l-1] = D_l */
+  fog_volume volume;
+  fog_pass_params params;
+  fog_pass *pass;
+} render_fog;
+
+/* Loads the fogmap (cfg->fog.fogmap must be set), transforms it, creates the fog pass and
+ * uploads the grids. Needs a current GL context. Errors name the config's file:line. */
+int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err);
+void render_fog_destroy(render_fog *fog);
+/* Draws the fog over the scene target (colour 0, distance 1) into out (RGBA32F colour 0,
+ * R32F transmittance 1), both width x height. */
+int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
+                    const gl_target *out, render_error *err);
+
+#endif

@@ -1,0 +1,31 @@
+/* One headless frame of a scene config, for `fogpipe render` (and tests): makes an EGL
+ * context, builds the scene, renders, reads back. */
+#ifndef FOGPIPE_APP_RENDER_FRAME_H
+#define FOGPIPE_APP_RENDER_FRAME_H
+
+#include <stdbool.h>
+
+#include "app/config.h"
+
+typedef struct render_frame_error {
+  char message[512];
+} render_frame_error;
+
+typedef struct render_frame_info {
+  bool has_fog;              /* false: the fog pass is not part of this build yet */
+  char gl_description[256];  /* "egl-surfaceless, 4.5 (Core Profile) Mesa ..., llvmpipe" */
+} render_frame_info;
+
+/* Renders cfg at width x height. Outputs (rows top first, any may be NULL): rgba (4 floats
+ * per pixel, linear), transmittance (1 where no fog), depth (distance along the view ray to
+ * the first surface; the camera's far plane for the sky). */
+int render_frame(const scene_config *cfg, int width, int height, float *rgba,
+                 float *transmittance, float *depth, render_frame_info *info,
+                 render_frame_error *err);
+
+/* The heightmap of cfg (if any) as heights in [0, 1]: *heights is malloc'd (NULL and
+ * sizes 0 for a procedural terrain). */
+int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *width,
+                                int *height, render_frame_error *err);
+
+#endif

@@ -1,0 +1,82 @@
+/* configs/default.ini parses into the values it states, paths resolve against the
+ * config's folder, an empty file gives exactly the documented defaults
+ * (scene_config_init), and the camera and scene conversions carry the values over. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app/config.h"
+#include "test_util.h"
+
+static void write_file(const char *path, const char *text) {
+  FILE *f = fopen(path, "w");
+  fputs(text, f);
+  fclose(f);
+}
+
+int main(void) {
+  scene_config cfg;
+  scene_config_error err = {{0}};
+  int status = scene_config_load("configs/default.ini", &cfg, &err);
+  CHECK(status == 0, "default.ini: %s", err.message);
+  CHECK(!strcmp(cfg.fog.fogmap, "configs/../data/fogmap_sample.png"), "fogmap '%s'",
+        cfg.fog.fogmap);
+  CHECK(access(cfg.fog.fogmap, R_OK) == 0, "the sample fogmap %s is readable", cfg.fog.fogmap);
+  CHECK(cfg.width == 1280 && cfg.height == 720, "size %dx%d", cfg.width, cfg.height);
+  CHECK(cfg.fog.degree == 1 && cfg.fog.profile == SCENE_PROFILE_EXPONENTIAL &&
+            cfg.fog.lod == SCENE_LOD_SWITCH && cfg.fog.filtering == SCENE_FILTERING_MANUAL,
+        "fog enums %d %d %d %d", cfg.fog.degree, cfg.fog.profile, cfg.fog.lod, cfg.fog.filtering);
+  CHECK(cfg.object_count == 3 && cfg.objects[0].colour[0] == 0.55f && cfg.objects[1].colour[0] == 0.0f,
+        "objects: %d", cfg.object_count);
+  CHECK(cfg.camera.look_at_set, "look_at");
+  CHECK(cfg.terrain.heightmap[0] == '\0' && cfg.terrain.resolution == 257, "terrain");
+  CHECK(cfg.box.top > cfg.box.floor && cfg.box.cell_size > 0, "box");
+
+  /* The camera looks at look_at. */
+  camera cam;
+  scene_config_camera(&cfg, &cam);
+  double right[3], up[3], forward[3];
+  camera_basis(&cam, 16, 9, right, up, forward);
+  double d[3], len = 0;
+  for (int k = 0; k < 3; k++) d[k] = cfg.camera.look_at[k] - cfg.camera.position[k], len += d[k] * d[k];
+  len = sqrt(len);
+  double cosine = (d[0] * forward[0] + d[1] * forward[1] + d[2] * forward[2]) / len;
+  CHECK(cosine > 1 - 1e-12, "camera forward . (look_at - position) = %.15f", cosine);
+  CHECK(fabs(cam.fov_y - cfg.camera.fov * 3.14159265358979323846 / 180) < 1e-15, "fov");
+
+  scene_desc desc;
+  scene_config_scene_desc(&cfg, NULL, 0, 0, &desc);
+  CHECK(desc.box_count == 3 && desc.boxes[2].size[0] == 40 && desc.terrain.seed == cfg.terrain.seed,
+        "scene desc");
+
+  /* An empty config is the defaults; paths resolve against the config's folder. */
+  char dir[] = "/tmp/fogpipe_config_XXXXXX";
+  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  char path[256], map[256];
+  snprintf(path, sizeof path, "%s/empty.ini", dir);
+  write_file(path, "; nothing\n");
+  scene_config empty, defaults;
+  scene_config_init(&defaults);
+  CHECK(scene_config_load(path, &empty, &err) == 0, "empty: %s", err.message);
+  snprintf(defaults.path, sizeof defaults.path, "%s", path);
+  CHECK(memcmp(&empty, &defaults, sizeof empty) == 0, "an empty config differs from the defaults");
+  CHECK(defaults.fog.fogmap[0] == '\0', "no fog by default");
+
+  snprintf(map, sizeof map, "%s/map.png", dir);
+  write_file(map, "not really a png; the config only checks that it opens");
+  snprintf(path, sizeof path, "%s/rel.ini", dir);
+  write_file(path, "[fog]\nfogmap = map.png\nbasis = quadratic\n[camera]\nposition = 1, 2, 3\n");
+  CHECK(scene_config_load(path, &cfg, &err) == 0, "rel: %s", err.message);
+  CHECK(!strcmp(cfg.fog.fogmap, map), "relative fogmap resolved to '%s', expected '%s'",
+        cfg.fog.fogmap, map);
+  CHECK(cfg.fog.fogmap_line == 2 && cfg.fog.degree == 2, "line %d", cfg.fog.fogmap_line);
+  CHECK(cfg.camera.position[0] == 1 && cfg.camera.position[2] == 3, "commas between numbers");
+  unlink(map);
+  unlink(path);
+  snprintf(path, sizeof path, "%s/empty.ini", dir);
+  unlink(path);
+  rmdir(dir);
+  return test_finish("test_config_default");
+}

@@ -1,0 +1,73 @@
+/* Every kind of config error names FILE:LINE: [section] key and what was expected: the
+ * exact prefix is checked for each, on files where the offending line is not the first
+ * (comments and blank lines before it count). */
+#define _POSIX_C_SOURCE 200809L
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app/config.h"
+#include "test_util.h"
+
+static char dir[] = "/tmp/fogpipe_config_errors_XXXXXX";
+
+/* Writes text to DIR/bad.ini, loads it, and checks the message starts with
+ * "DIR/bad.ini:<prefix>" and contains `detail`. */
+static void expect_error(const char *text, const char *prefix, const char *detail) {
+  char path[256], want[512];
+  snprintf(path, sizeof path, "%s/bad.ini", dir);
+  FILE *f = fopen(path, "w");
+  fputs(text, f);
+  fclose(f);
+  scene_config cfg;
+  scene_config_error err = {{0}};
+  int status = scene_config_load(path, &cfg, &err);
+  snprintf(want, sizeof want, "%s:%s", path, prefix);
+  CHECK(status != 0, "accepted: %s", text);
+  CHECK(strncmp(err.message, want, strlen(want)) == 0, "message '%s' does not start with '%s'",
+        err.message, want);
+  CHECK(strstr(err.message, detail) != NULL, "message '%s' lacks '%s'", err.message, detail);
+  unlink(path);
+}
+
+int main(void) {
+  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  expect_error("; scene\n\n[fgo]\ndensity_scale = 1\n", "4: [fgo] density_scale: ",
+               "unknown section [fgo]; sections are fog, box");
+  expect_error("[fog]\nbasis = linear\ndensty_scale = 2\n", "3: [fog] densty_scale: ",
+               "unknown key; [fog] has fogmap, channel, density_scale");
+  expect_error("[camera]\n# a comment\nfov = 50\n\nyaw = 1O\n", "5: [camera] yaw: ",
+               "expected a number, got '1O'");
+  expect_error("[fog]\nmu = 1.5\n", "2: [fog] mu: ", "expected a number from 0 to 1, got '1.5'");
+  expect_error("[fog]\nlevels = 2.5\n", "2: [fog] levels: ", "expected an integer, got '2.5'");
+  expect_error("[render]\nwidth = 64\n[fog]\nbasis = cubic\n", "4: [fog] basis: ",
+               "expected one of haar|linear|quadratic, got 'cubic'");
+  expect_error("[fog]\nlod = sometimes\n", "2: [fog] lod: ", "expected one of sum|switch");
+  expect_error("[fog]\nprofile = gaussian\n", "2: [fog] profile: ",
+               "expected one of slab|exponential|bspline");
+  expect_error("[camera]\n\nposition = 1 2\n", "3: [camera] position: ",
+               "expected three numbers (x y z), got '1 2'");
+  expect_error("[fog]\ncolour = 0.5 0.5 0.5 0.5\n", "2: [fog] colour: ", "expected three numbers");
+  expect_error("[objects]\nbox = 1 2 3\n", "2: [objects] box: ", "expected X Z WIDTH HEIGHT DEPTH");
+  expect_error("density_scale = 1\n", "1: [] density_scale: ", "key outside any section");
+  expect_error("[fog]\nbasis = linear\nthis line has no equals sign\n", "3: ",
+               "expected '[section]', 'key = value' or a comment");
+  /* Missing files are reported at the line that named them. */
+  char missing[300];
+  snprintf(missing, sizeof missing, "cannot open '%s/nothere.png'", dir);
+  expect_error("[fog]\nbasis = haar\n\nfogmap = nothere.png\nmu = 0.5\n", "4: [fog] fogmap: ",
+               missing);
+  snprintf(missing, sizeof missing, "cannot open '%s/hills.png'", dir);
+  expect_error("[render]\n[terrain]\nheightmap = hills.png\n", "3: [terrain] heightmap: ", missing);
+  /* The first error wins when there are several. */
+  expect_error("[fog]\nmu = x\nbasis = y\n", "2: [fog] mu: ", "expected a number");
+
+  /* A config that cannot be opened at all. */
+  scene_config cfg;
+  scene_config_error err = {{0}};
+  CHECK(scene_config_load("/nonexistent/scene.ini", &cfg, &err) != 0 &&
+            strstr(err.message, "/nonexistent/scene.ini: cannot open the config") == err.message,
+        "%s", err.message);
+  rmdir(dir);
+  return test_finish("test_config_errors");
+}

@@ -1,0 +1,92 @@
+/* `fogpipe render` with a bad config: non-zero exit, the message names FILE:LINE: [section]
+ * key, and no output file (nor a temporary) is left in the output folder. The same for a
+ * fogmap that exists but is not an image (found only when rendering), and for a missing
+ * config; and --help lists every option. */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "test_util.h"
+
+static char dir[] = "/tmp/fogpipe_render_errors_XXXXXX";
+
+static int files_in(const char *folder) {
+  DIR *d = opendir(folder);
+  int n = 0;
+  for (struct dirent *e; d && (e = readdir(d));)
+    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) n++;
+  if (d) closedir(d);
+  return n;
+}
+
+static void read_text(const char *path, char *text, size_t size) {
+  FILE *f = fopen(path, "r");
+  size_t n = f ? fread(text, 1, size - 1, f) : 0;
+  text[n] = '\0';
+  if (f) fclose(f);
+}
+
+/* Runs fogpipe render on DIR/bad.ini holding `config`; checks exit != 0, stderr contains
+ * `want` (with %s replaced by DIR), no file appeared in DIR/out. */
+static void expect_failure(const char *bin, const char *config, const char *want_fmt) {
+  char ini[256], outdir[256], err_path[256], command[1024], want[512], text[2048];
+  snprintf(ini, sizeof ini, "%s/bad.ini", dir);
+  snprintf(outdir, sizeof outdir, "%s/out", dir);
+  snprintf(err_path, sizeof err_path, "%s/stderr.txt", dir);
+  FILE *f = fopen(ini, "w");
+  fputs(config, f);
+  fclose(f);
+  snprintf(command, sizeof command, "'%s' render '%s' --out '%s/x.exr' --size 32x18 2> '%s'",
+           bin, ini, outdir, err_path);
+  int status = system(command);
+  read_text(err_path, text, sizeof text);
+  snprintf(want, sizeof want, want_fmt, dir, dir); /* formats use %s once or twice */
+  CHECK(status != 0, "exit status 0 for a bad config: %s", config);
+  CHECK(strstr(text, want) != NULL, "stderr '%s' lacks '%s'", text, want);
+  CHECK(files_in(outdir) == 0, "%d files left in the output folder", files_in(outdir));
+}
+
+int main(void) {
+  const char *bin = getenv("FOGPIPE_BIN");
+  CHECK(bin != NULL, "FOGPIPE_BIN is not set (run through ctest)");
+  if (!bin) return test_finish("test_render_errors");
+  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  char outdir[256], path[256];
+  snprintf(outdir, sizeof outdir, "%s/out", dir);
+  {
+    char command[512];
+    snprintf(command, sizeof command, "mkdir -p '%s'", outdir);
+    CHECK(system(command) == 0, "mkdir");
+  }
+  expect_failure(bin, "[render]\nwidth = 32\n\n[fog]\nbasis = wavelet\n",
+                 "fogpipe render: %s/bad.ini:5: [fog] basis: expected one of haar|linear|quadratic");
+  expect_failure(bin, "[camera]\nfov = wide\n", "fogpipe render: %s/bad.ini:2: [camera] fov: expected a number");
+  expect_failure(bin, "[fog]\n; the map\nfogmap = missing.png\n",
+                 "fogpipe render: %s/bad.ini:3: [fog] fogmap: cannot open '%s/missing.png'");
+  /* A fogmap that opens but does not decode: found by the renderer, still file:line. */
+  snprintf(path, sizeof path, "%s/notanimage.png", dir);
+  FILE *f = fopen(path, "w");
+  fputs("this is not a PNG\n", f);
+  fclose(f);
+  expect_failure(bin, "[fog]\n\nfogmap = notanimage.png\n", "fogpipe render: %s/bad.ini:3: [fog] fogmap: ");
+  unlink(path);
+  expect_failure(bin, "[terrain]\nsize = 100\n", "[terrain] size: expected two numbers");
+
+  /* --help names every option. */
+  char command[512], text[4096], out_path[256];
+  snprintf(out_path, sizeof out_path, "%s/help.txt", dir);
+  snprintf(command, sizeof command, "'%s' render --help > '%s'", bin, out_path);
+  CHECK(system(command) == 0, "--help exit status");
+  read_text(out_path, text, sizeof text);
+  CHECK(strstr(text, "--out") && strstr(text, "--size") && strstr(text, "--help"), "help: %s", text);
+  unlink(out_path);
+  snprintf(path, sizeof path, "%s/stderr.txt", dir);
+  unlink(path);
+  snprintf(path, sizeof path, "%s/bad.ini", dir);
+  unlink(path);
+  rmdir(outdir);
+  rmdir(dir);
+  return test_finish("test_render_errors");
+}
