@@ -108,6 +108,82 @@ static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost)
   }
 }
 
+/* The CDF 5/3 level in explicit SIMD (transform_fused_linear.h) at three widths: the
+ * portable SSE2 one (x86-64 baseline, and any other gcc target) and, chosen at run time
+ * on x86-64 CPUs that have them, AVX2 and AVX-512 ones. All give the same bits. Build
+ * with -DFOGPIPE_FUSED_MAX_V=4 (or 8) to measure the baseline (or AVX2) path alone.
+ * Compilers without __builtin_shuffle (clang) use the scalar-loop linear_level above. */
+#ifndef FOGPIPE_FUSED_MAX_V
+#define FOGPIPE_FUSED_MAX_V 16
+#endif
+#if defined(__GNUC__) && !defined(__clang__)
+#define FUSED_SIMD 1
+#define FL_V 4
+#define FL_NAME(x) fl4_##x
+#define FL_TARGET
+#define FL_EVEN {0, 2, 4, 6}
+#define FL_ODD {1, 3, 5, 7}
+/* two shufps; gcc's lowering of the one-shuffle form takes six instructions */
+#define FL_SHIFT(a, b) \
+  __builtin_shuffle(__builtin_shuffle(a, b, (vi){3, 3, 4, 4}), b, (vi){0, 2, 5, 6})
+#include "transform/transform_fused_linear.h"
+#undef FL_V
+#undef FL_NAME
+#undef FL_TARGET
+#undef FL_EVEN
+#undef FL_ODD
+#undef FL_SHIFT
+
+#if defined(__x86_64__) && FOGPIPE_FUSED_MAX_V > 4
+#define FUSED_DISPATCH 1
+#define FL_V 8
+#define FL_NAME(x) fl8_##x
+#define FL_TARGET __attribute__((target("avx2")))
+#define FL_EVEN {0, 2, 4, 6, 8, 10, 12, 14}
+#define FL_ODD {1, 3, 5, 7, 9, 11, 13, 15}
+#define FL_SHIFT(a, b) __builtin_shuffle(a, b, (vi){7, 8, 9, 10, 11, 12, 13, 14})
+#include "transform/transform_fused_linear.h"
+#undef FL_V
+#undef FL_NAME
+#undef FL_TARGET
+#undef FL_EVEN
+#undef FL_ODD
+#undef FL_SHIFT
+#define FL_V 16
+#define FL_NAME(x) fl16_##x
+#define FL_TARGET __attribute__((target("avx512f")))
+#define FL_EVEN {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30}
+#define FL_ODD {1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31}
+#define FL_SHIFT(a, b) \
+  __builtin_shuffle(a, b, (vi){15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30})
+#include "transform/transform_fused_linear.h"
+#undef FL_V
+#undef FL_NAME
+#undef FL_TARGET
+#undef FL_EVEN
+#undef FL_ODD
+#undef FL_SHIFT
+#endif
+#endif /* FUSED_SIMD */
+
+#ifdef FUSED_SIMD
+static void linear_level_simd(const transform_plan *p, int l, const float *src,
+                              size_t src_stride, float *ring, float *dst, size_t dst_stride,
+                              float *ghost) {
+#ifdef FUSED_DISPATCH
+  if (FOGPIPE_FUSED_MAX_V >= 16 && __builtin_cpu_supports("avx512f")) {
+    fl16_level(p, l, src, src_stride, ring, dst, dst_stride, ghost);
+    return;
+  }
+  if (__builtin_cpu_supports("avx2")) {
+    fl8_level(p, l, src, src_stride, ring, dst, dst_stride, ghost);
+    return;
+  }
+#endif
+  fl4_level(p, l, src, src_stride, ring, dst, dst_stride, ghost);
+}
+#endif
+
 static void haar_level(stream *s, float *dst, size_t dst_stride) {
   int n = s->n, m = (n + 1) / 2, d = n / 2, w = s->w;
   float hi = lifting_scale_high(TRANSFORM_HAAR);
@@ -194,7 +270,15 @@ void transform_fused_forward_level(const transform_plan *p, int l, const float *
               .src_stride = src_stride, .ring = sc->ring};
   switch (p->desc.basis) {
     case TRANSFORM_HAAR: haar_level(&s, dst, dst_stride); break;
-    case TRANSFORM_LINEAR: linear_level(&s, dst, dst_stride, sc->ring_ghost); break;
+    case TRANSFORM_LINEAR:
+#ifdef FUSED_SIMD
+      if (s.w >= 4) {
+        linear_level_simd(p, l, src, src_stride, sc->ring, dst, dst_stride, sc->ring_ghost);
+        break;
+      }
+#endif
+      linear_level(&s, dst, dst_stride, sc->ring_ghost);
+      break;
     case TRANSFORM_QUADRATIC: quadratic_level(&s, dst, dst_stride, sc->ring_ghost); break;
   }
 }
