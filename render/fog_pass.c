@@ -9,7 +9,9 @@
 
 #include "render/gl_util.h"
 
-#define FOG_PASS_VARIANTS 4 /* fetch (2) x integrator (2) */
+/* A variant is one compiled program; its key packs every draw setting that the shader
+ * takes as a compile-time constant (fog_pass_variant_key). */
+#define FOG_PASS_VARIANTS 16384
 
 typedef struct fog_pass_slot {
   GLuint texture;
@@ -20,10 +22,33 @@ typedef struct fog_pass_slot {
 struct fog_pass {
   GLuint programs[FOG_PASS_VARIANTS];
   fog_pass_slot slots[FOG_PASS_MAX_GRIDS];
+  /* LOD draws read the slots as layers of one 2D array texture (fog_integral.glsl,
+   * FOG_SINGLE_GRID): layer k = slot k, zero beyond the slot's size. Rebuilt by copies on
+   * the first LOD draw after an upload (layers_stale). */
+  GLuint layers;
+  int layers_width, layers_height, layers_count;
+  bool layers_stale;
+  /* resolution_divisor > 1: the reduced pass's target (RGBA32F: optical depth, distance,
+   * extinction at the surface). */
+  gl_target reduced;
 };
 
+/* Key bits: 0 fetch, 1 integrator, 2-3 grid degree, 4-5 profile kind, 6-7 profile degree,
+ * 8 single grid (no LOD), 9-10 model, 11 LOD method, 12-13 resolution (0: full, 1: the
+ * reduced pass at divisor 2, 2: at divisor 4, 3: the upsampling pass). llvmpipe executes
+ * both sides of a branch under a mask (and the GLSL switches on these settings inside the
+ * per-piece code), so each setting as a constant removes the other cases' work from every
+ * piece (docs/integral.md, Performance). */
+static int fog_pass_variant_key(int fetch, int integrator, int degree, int profile_kind,
+                                int profile_degree, int single_grid, int model, int lod_method,
+                                int reduced) {
+  return (fetch & 1) | (integrator & 1) << 1 | (degree & 3) << 2 | (profile_kind & 3) << 4 |
+         (profile_degree & 3) << 6 | (single_grid & 1) << 8 | (model & 3) << 9 |
+         (lod_method & 1) << 11 | (reduced & 3) << 12;
+}
+
 /* Builds one variant: the fragment text with its #defines inserted after the #version line. */
-static GLuint fog_pass_program(int variant, render_error *err) {
+static GLuint fog_pass_program(int key, render_error *err) {
   char *vs = gl_util_shader_text("fog_pass_vs.glsl", err);
   if (!vs) return 0;
   char *fs = gl_util_shader_text("fog_pass_fs.glsl", err);
@@ -31,9 +56,16 @@ static GLuint fog_pass_program(int variant, render_error *err) {
     free(vs);
     return 0;
   }
-  char defines[128];
-  snprintf(defines, sizeof defines, "#define FOG_FETCH_HARDWARE %d\n#define FOG_INTEGRATOR %d\n",
-           variant & 1, variant >> 1);
+  char defines[384];
+  snprintf(defines, sizeof defines,
+           "#define FOG_FETCH_HARDWARE %d\n#define FOG_INTEGRATOR %d\n#define FOG_DEGREE %d\n"
+           "#define FOG_PROFILE_KIND %d\n#define FOG_PROFILE_DEGREE %d\n"
+           "#define FOG_SINGLE_GRID %d\n#define FOG_MODEL_KIND %d\n#define FOG_LOD_METHOD %d\n"
+           "#define FOG_REDUCED %d\n#define FOG_UPSAMPLE %d\n",
+           key & 1, (key >> 1) & 1, (key >> 2) & 3, (key >> 4) & 3, (key >> 6) & 3,
+           (key >> 8) & 1, (key >> 9) & 3, (key >> 11) & 1,
+           (key >> 12) == 1 ? 2 : (key >> 12) == 2 ? 4 : 1,
+           (key >> 12) == 3);
   const char *eol = strchr(fs, '\n');
   size_t head = eol ? (size_t)(eol - fs) + 1 : 0;
   size_t total = strlen(fs) + strlen(defines) + 1;
@@ -44,8 +76,7 @@ static GLuint fog_pass_program(int variant, render_error *err) {
     strcpy(text + head, defines);
     strcat(text, fs + head);
     char label[64];
-    snprintf(label, sizeof label, "fog_pass_fs.glsl (fetch %d, integrator %d)", variant & 1,
-             variant >> 1);
+    snprintf(label, sizeof label, "fog_pass_fs.glsl (variant %#x)", key);
     program = gl_util_program_from_source(label, vs, text, err);
   } else {
     snprintf(err->message, sizeof err->message, "fog pass: out of memory for shader text");
@@ -56,6 +87,12 @@ static GLuint fog_pass_program(int variant, render_error *err) {
   return program;
 }
 
+/* The program of a key, compiled on its first use and kept. */
+static GLuint fog_pass_variant(fog_pass *pass, int key, render_error *err) {
+  if (!pass->programs[key]) pass->programs[key] = fog_pass_program(key, err);
+  return pass->programs[key];
+}
+
 int fog_pass_create(fog_pass **out, render_error *err) {
   *out = NULL;
   fog_pass *pass = calloc(1, sizeof *pass);
@@ -63,8 +100,8 @@ int fog_pass_create(fog_pass **out, render_error *err) {
     snprintf(err->message, sizeof err->message, "fog pass: out of memory");
     return 1;
   }
-  pass->programs[0] = fog_pass_program(0, err);
-  if (!pass->programs[0]) {
+  /* The default variant: manual fetch, exact, linear grid, slab profile, one grid. */
+  if (!fog_pass_variant(pass, fog_pass_variant_key(0, 0, 1, 0, 0, 1, 0, 0, 0), err)) {
     free(pass);
     return 1;
   }
@@ -78,6 +115,8 @@ void fog_pass_destroy(fog_pass *pass) {
     if (pass->programs[i]) glDeleteProgram(pass->programs[i]);
   for (int i = 0; i < FOG_PASS_MAX_GRIDS; i++)
     if (pass->slots[i].texture) glDeleteTextures(1, &pass->slots[i].texture);
+  if (pass->layers) glDeleteTextures(1, &pass->layers);
+  if (pass->reduced.framebuffer) gl_target_destroy(&pass->reduced);
   free(pass);
 }
 
@@ -120,6 +159,7 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
     s->height = grid->height;
   }
   glBindTexture(GL_TEXTURE_2D, 0);
+  pass->layers_stale = true;
   s->degree = grid->degree;
   s->origin_u = grid->origin_u;
   s->origin_v = grid->origin_v;
@@ -143,11 +183,51 @@ int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err) {
 
 static GLint fog_loc(GLuint program, const char *name) { return glGetUniformLocation(program, name); }
 
+/* Slots 0..count-1 into the layers of pass->layers (reallocated only when the largest slot
+ * size or the count changes; zero-filled, so texelFetch and GL_LINEAR read 0 beyond a
+ * smaller grid exactly as the border colour of its own texture would give). */
+static int fog_pass_update_layers(fog_pass *pass, int count, render_error *err) {
+  if (!pass->layers_stale && pass->layers && pass->layers_count == count) return 0;
+  int w = 1, h = 1;
+  for (int k = 0; k < count; k++) {
+    if (pass->slots[k].width > w) w = pass->slots[k].width;
+    if (pass->slots[k].height > h) h = pass->slots[k].height;
+  }
+  glActiveTexture(GL_TEXTURE0);
+  if (!pass->layers || pass->layers_width != w || pass->layers_height != h ||
+      pass->layers_count != count) {
+    if (!pass->layers) glGenTextures(1, &pass->layers);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, pass->layers);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, w, h, count, 0, GL_RED, GL_FLOAT, NULL);
+    static const float border[4] = {0, 0, 0, 0};
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+    glTexParameterfv(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BORDER_COLOR, border);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    pass->layers_width = w;
+    pass->layers_height = h;
+    pass->layers_count = count;
+  }
+  static const float zero[4] = {0, 0, 0, 0};
+  glClearTexImage(pass->layers, 0, GL_RED, GL_FLOAT, zero);
+  for (int k = 0; k < count; k++) {
+    const fog_pass_slot *s = &pass->slots[k];
+    if (s->texture)
+      glCopyImageSubData(s->texture, GL_TEXTURE_2D, 0, 0, 0, 0, pass->layers, GL_TEXTURE_2D_ARRAY,
+                         0, 0, 0, k, s->width, s->height, 1);
+  }
+  pass->layers_stale = false;
+  return gl_util_check("fog pass: LOD layers", err);
+}
+
 /* Uniforms every model uses (camera, blend, model selection), the surface textures, and
  * the full-screen triangle. */
 static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pass_params *params,
                                     GLuint surface_colour, GLuint surface_distance, int width,
-                                    int height, render_error *err) {
+                                    int height, int viewport_width, int viewport_height,
+                                    render_error *err) {
   const double *c = cam->position;
   glUniform1i(fog_loc(prog, "fog_model"), (int)params->model);
   glUniform1f(fog_loc(prog, "fog_model_extinction"), (float)params->model_extinction);
@@ -170,7 +250,7 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
   glBindTexture(GL_TEXTURE_2D, surface_distance);
   glUniform1i(fog_loc(prog, "fog_surface_distance"), 1);
 
-  glViewport(0, 0, width, height);
+  glViewport(0, 0, viewport_width, viewport_height);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glBindVertexArray(gl_util_empty_vao());
@@ -183,18 +263,58 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
 static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_pass_params *params,
                                   GLuint surface_colour, GLuint surface_distance, int width,
                                   int height, render_error *err) {
-  if (!pass->programs[0]) {
-    pass->programs[0] = fog_pass_program(0, err);
-    if (!pass->programs[0]) return 1;
-  }
-  GLuint prog = pass->programs[0];
+  int key = fog_pass_variant_key(0, 0, 1, 0, 0, 1, (int)params->model, 0, 0);
+  GLuint prog = fog_pass_variant(pass, key, err);
+  if (!prog) return 1;
   glUseProgram(prog);
   /* The sampler array must still name distinct units of the right type. */
   GLint units[FOG_PASS_MAX_GRIDS];
   for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) units[k] = 2 + k;
   glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
   return fog_pass_common_and_draw(prog, cam, params, surface_colour, surface_distance, width,
-                                  height, err);
+                                  height, width, height, err);
+}
+
+/* resolution_divisor > 1, before the reduced draw: the reduced target (reallocated only when
+ * the size changes) bound, the caller's framebuffer remembered. */
+static int fog_pass_begin_reduced(fog_pass *pass, int divisor, int width, int height,
+                                  GLint *caller_framebuffer, render_error *err) {
+  int w = (width + divisor - 1) / divisor, h = (height + divisor - 1) / divisor;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, caller_framebuffer);
+  if (pass->reduced.framebuffer && (pass->reduced.width != w || pass->reduced.height != h)) {
+    gl_target_destroy(&pass->reduced);
+    memset(&pass->reduced, 0, sizeof pass->reduced);
+  }
+  if (!pass->reduced.framebuffer) {
+    /* gl_target_create leaves framebuffer 0 bound for reading too: keep the caller's. */
+    GLint caller_read = 0;
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &caller_read);
+    int failed = gl_target_create(&pass->reduced, &(gl_target_desc){.width = w, .height = h,
+                                                                    .color_formats = {GL_RGBA32F}},
+                                  err);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)caller_read);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)*caller_framebuffer);
+    if (failed) return 1;
+  }
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, pass->reduced.framebuffer);
+  return 0;
+}
+
+/* After the reduced draw: back to the caller's framebuffer; the upsampling variant (its
+ * fogmap uniforms already set) blends at full resolution. */
+static int fog_pass_finish_reduced(fog_pass *pass, GLuint prog, const camera *cam,
+                                   const fog_pass_params *params, int divisor,
+                                   GLint caller_framebuffer, GLuint surface_colour,
+                                   GLuint surface_distance, int width, int height,
+                                   render_error *err) {
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)caller_framebuffer);
+  glUseProgram(prog);
+  glActiveTexture(GL_TEXTURE3 + FOG_PASS_MAX_GRIDS);
+  glBindTexture(GL_TEXTURE_2D, pass->reduced.color[0]);
+  glUniform1i(fog_loc(prog, "fog_reduced"), 3 + FOG_PASS_MAX_GRIDS);
+  glUniform1i(fog_loc(prog, "fog_divisor"), divisor);
+  return fog_pass_common_and_draw(prog, cam, params, surface_colour, surface_distance, width,
+                                  height, width, height, err);
 }
 
 int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *params,
@@ -205,6 +325,13 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
   if (params->model == FOG_MODEL_HEIGHT && !(params->model_scale_height > 0)) {
     snprintf(err->message, sizeof err->message,
              "fog pass: height fog scale height %g: expected > 0", params->model_scale_height);
+    return 1;
+  }
+  int divisor = params->resolution_divisor > 1 ? params->resolution_divisor : 1;
+  if (divisor != 1 && divisor != 2 && divisor != 4) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: resolution divisor %d: expected 0 or 1 (full), 2 or 4",
+             params->resolution_divisor);
     return 1;
   }
   if (params->model != FOG_MODEL_FOGMAP) return fog_pass_draw_analytic(pass, cam, params,
@@ -237,73 +364,121 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
              p->count, p->degree, FOG_PROFILE_MAX_COEFFICIENTS);
     return 1;
   }
-  int variant = (params->fetch == FOG_FETCH_HARDWARE) | ((params->integrator == FOG_INTEGRATOR_MARCH) << 1);
-  if (!pass->programs[variant]) {
-    pass->programs[variant] = fog_pass_program(variant, err);
-    if (!pass->programs[variant]) return 1;
+  /* Switching at mu >= 1 reads A_J alone over the whole ray, at mu <= 0 A_0 alone (so does
+   * the sum of details at mu <= 0): draw those as the one-grid variant of that slot, which
+   * skips the LOD loop and the array layers (the same integral, bit for bit the draw of that
+   * grid alone). */
+  int first = 0;
+  if (J > 0 && (params->mu <= 0.0 || (params->lod_method == FOG_LOD_SWITCH && params->mu >= 1.0))) {
+    first = params->mu <= 0.0 ? 0 : J;
+    J = 0;
+    slots = 1;
+    for (int k = 1; k < FOG_PASS_MAX_GRIDS; k++) reads[k] = false;
   }
-  GLuint prog = pass->programs[variant];
-  glUseProgram(prog);
+  int key = fog_pass_variant_key(params->fetch == FOG_FETCH_HARDWARE,
+                                 params->integrator == FOG_INTEGRATOR_MARCH,
+                                 pass->slots[first].degree, (int)p->kind,
+                                 p->kind == FOG_PROFILE_BSPLINE ? p->degree : 0, J == 0,
+                                 FOG_MODEL_FOGMAP, J == 0 || params->lod_method == FOG_LOD_SWITCH,
+                                 divisor == 4 ? 2 : divisor == 2 ? 1 : 0);
+  GLuint walk_prog = fog_pass_variant(pass, key, err);
+  if (!walk_prog) return 1;
+  /* resolution_divisor > 1: the same settings' upsampling variant (fog_pass_fs.glsl,
+   * FOG_UPSAMPLE) needs the same uniforms: it walks the pixels no reduced sample matches. */
+  GLuint programs[2] = {walk_prog, 0};
+  if (divisor > 1) {
+    programs[1] = fog_pass_variant(pass, (key & ~(3 << 12)) | 3 << 12, err);
+    if (!programs[1]) return 1;
+  }
+  for (int pi = 0; pi < 2 && programs[pi]; pi++) {
+    GLuint prog = programs[pi];
+    glUseProgram(prog);
 
-  /* Camera-relative placement, in double, then float (fog_integral.glsl). */
-  const double *c = cam->position;
-  double h = v->cell_size > 0 ? v->cell_size : 1.0;
-  float x0[FOG_PASS_MAX_GRIDS][2], scale[FOG_PASS_MAX_GRIDS];
-  GLint size[FOG_PASS_MAX_GRIDS][2], units[FOG_PASS_MAX_GRIDS];
-  for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) {
-    const fog_pass_slot *s = &pass->slots[k];
-    units[k] = 2 + k;
-    double sp = s->spacing > 0 ? s->spacing : 1.0;
-    x0[k][0] = (float)((-(v->origin_x - c[0]) / h - 0.5 - s->origin_u) / sp);
-    x0[k][1] = (float)((-(v->origin_z - c[2]) / h - 0.5 - s->origin_v) / sp);
-    scale[k] = (float)(1.0 / (h * sp));
-    size[k][0] = s->width;
-    size[k][1] = s->height;
-    glActiveTexture(GL_TEXTURE2 + k);
-    glBindTexture(GL_TEXTURE_2D, reads[k] ? s->texture : 0);
-  }
-  glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
-  glUniform2fv(fog_loc(prog, "fog_grid_x0"), FOG_PASS_MAX_GRIDS, &x0[0][0]);
-  glUniform1fv(fog_loc(prog, "fog_grid_scale"), FOG_PASS_MAX_GRIDS, scale);
-  glUniform2iv(fog_loc(prog, "fog_grid_size"), FOG_PASS_MAX_GRIDS, &size[0][0]);
-  glUniform1i(fog_loc(prog, "fog_degree"), pass->slots[0].degree);
-  double lo[3], hi[3];
-  fog_volume_box(v, lo, hi);
-  glUniform3f(fog_loc(prog, "fog_box_min"), (float)(lo[0] - c[0]), (float)(lo[1] - c[1]),
-              (float)(lo[2] - c[2]));
-  glUniform3f(fog_loc(prog, "fog_box_max"), (float)(hi[0] - c[0]), (float)(hi[1] - c[1]),
-              (float)(hi[2] - c[2]));
-  glUniform1f(fog_loc(prog, "fog_extinction_scale"),
-              (float)(v->extinction > 0 ? v->extinction : 1.0));
-  glUniform1i(fog_loc(prog, "fog_profile_kind"), (int)p->kind);
-  glUniform1f(fog_loc(prog, "fog_profile_y0"), (float)(p->y0 - c[1]));
-  glUniform1f(fog_loc(prog, "fog_profile_scale_height"),
-              (float)(p->scale_height > 0 ? p->scale_height : 1.0));
-  glUniform1f(fog_loc(prog, "fog_profile_inv_scale_height"),
-              (float)(p->scale_height > 0 ? 1.0 / p->scale_height : 1.0));
-  if (p->kind == FOG_PROFILE_BSPLINE) {
-    float coefficients[FOG_PROFILE_MAX_COEFFICIENTS];
-    for (int k = 0; k < p->count; k++) coefficients[k] = (float)p->coefficients[k];
-    glUniform1i(fog_loc(prog, "fog_profile_count"), p->count);
-    glUniform1i(fog_loc(prog, "fog_profile_degree"), p->degree);
-    glUniform1f(fog_loc(prog, "fog_profile_y_start"), (float)((c[1] - p->origin) / p->spacing));
-    glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), (float)(1.0 / p->spacing));
-    glUniform1fv(fog_loc(prog, "fog_profile_coefficients"), p->count, coefficients);
-  } else {
-    glUniform1i(fog_loc(prog, "fog_profile_count"), 0);
-    glUniform1i(fog_loc(prog, "fog_profile_degree"), 0);
-    glUniform1f(fog_loc(prog, "fog_profile_y_start"), 0.0f);
-    glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), 0.0f);
-  }
+    /* Camera-relative placement, in double, then float (fog_integral.glsl). */
+    const double *c = cam->position;
+    double h = v->cell_size > 0 ? v->cell_size : 1.0;
+    float x0[FOG_PASS_MAX_GRIDS][2], scale[FOG_PASS_MAX_GRIDS];
+    GLint size[FOG_PASS_MAX_GRIDS][2], units[FOG_PASS_MAX_GRIDS];
+    for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) {
+      const fog_pass_slot *s = &pass->slots[k == 0 ? first : k];
+      units[k] = 2 + k;
+      double sp = s->spacing > 0 ? s->spacing : 1.0;
+      x0[k][0] = (float)((-(v->origin_x - c[0]) / h - 0.5 - s->origin_u) / sp);
+      x0[k][1] = (float)((-(v->origin_z - c[2]) / h - 0.5 - s->origin_v) / sp);
+      scale[k] = (float)(1.0 / (h * sp));
+      size[k][0] = s->width;
+      size[k][1] = s->height;
+      glActiveTexture(GL_TEXTURE2 + k);
+      glBindTexture(GL_TEXTURE_2D, reads[k] ? s->texture : 0);
+    }
+    glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
+    if (J > 0) {
+      if (fog_pass_update_layers(pass, slots, err)) return 1;
+      glActiveTexture(GL_TEXTURE2 + FOG_PASS_MAX_GRIDS);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, pass->layers);
+      glUniform1i(fog_loc(prog, "fog_grid_layers"), 2 + FOG_PASS_MAX_GRIDS);
+      glUniform2f(fog_loc(prog, "fog_grid_layer_size"), (float)pass->layers_width,
+                  (float)pass->layers_height);
+    }
+    glUniform2fv(fog_loc(prog, "fog_grid_x0"), FOG_PASS_MAX_GRIDS, &x0[0][0]);
+    glUniform1fv(fog_loc(prog, "fog_grid_scale"), FOG_PASS_MAX_GRIDS, scale);
+    glUniform2iv(fog_loc(prog, "fog_grid_size"), FOG_PASS_MAX_GRIDS, &size[0][0]);
+    glUniform1i(fog_loc(prog, "fog_degree"), pass->slots[first].degree);
+    double lo[3], hi[3];
+    fog_volume_box(v, lo, hi);
+    glUniform3f(fog_loc(prog, "fog_box_min"), (float)(lo[0] - c[0]), (float)(lo[1] - c[1]),
+                (float)(lo[2] - c[2]));
+    glUniform3f(fog_loc(prog, "fog_box_max"), (float)(hi[0] - c[0]), (float)(hi[1] - c[1]),
+                (float)(hi[2] - c[2]));
+    glUniform1f(fog_loc(prog, "fog_extinction_scale"),
+                (float)(v->extinction > 0 ? v->extinction : 1.0));
+    glUniform1i(fog_loc(prog, "fog_profile_kind"), (int)p->kind);
+    glUniform1f(fog_loc(prog, "fog_profile_y0"), (float)(p->y0 - c[1]));
+    glUniform1f(fog_loc(prog, "fog_profile_scale_height"),
+                (float)(p->scale_height > 0 ? p->scale_height : 1.0));
+    glUniform1f(fog_loc(prog, "fog_profile_inv_scale_height"),
+                (float)(p->scale_height > 0 ? 1.0 / p->scale_height : 1.0));
+    if (p->kind == FOG_PROFILE_BSPLINE) {
+      float coefficients[FOG_PROFILE_MAX_COEFFICIENTS];
+      for (int k = 0; k < p->count; k++) coefficients[k] = (float)p->coefficients[k];
+      glUniform1i(fog_loc(prog, "fog_profile_count"), p->count);
+      glUniform1i(fog_loc(prog, "fog_profile_degree"), p->degree);
+      glUniform1f(fog_loc(prog, "fog_profile_y_start"), (float)((c[1] - p->origin) / p->spacing));
+      glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), (float)(1.0 / p->spacing));
+      glUniform1fv(fog_loc(prog, "fog_profile_coefficients"), p->count, coefficients);
+    } else {
+      glUniform1i(fog_loc(prog, "fog_profile_count"), 0);
+      glUniform1i(fog_loc(prog, "fog_profile_degree"), 0);
+      glUniform1f(fog_loc(prog, "fog_profile_y_start"), 0.0f);
+      glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), 0.0f);
+    }
 
-  glUniform1i(fog_loc(prog, "fog_levels"), J);
-  glUniform1i(fog_loc(prog, "fog_lod_method"), (int)params->lod_method);
-  glUniform1f(fog_loc(prog, "fog_mu"), (float)(J > 0 ? params->mu : 1.0));
-  glUniform1i(fog_loc(prog, "fog_march_steps"), params->march_steps > 0 ? params->march_steps : 64);
-  glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
-  glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
-  return fog_pass_common_and_draw(prog, cam, params, surface_colour, surface_distance, width,
-                                  height, err);
+    glUniform1i(fog_loc(prog, "fog_levels"), J);
+    glUniform1i(fog_loc(prog, "fog_lod_method"), (int)params->lod_method);
+    glUniform1f(fog_loc(prog, "fog_mu"), (float)(J > 0 ? params->mu : 1.0));
+    glUniform1i(fog_loc(prog, "fog_march_steps"),
+                params->march_steps > 0 ? params->march_steps : 64);
+    glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
+    /* The optical depth cut-off (fog_pass_params.depth_cutoff): tau < e^-16 ~ 1.1e-7 is
+     * black even in a float image, so the walk may stop there. */
+    glUniform1f(fog_loc(prog, "fog_depth_limit"),
+                params->depth_cutoff < 0 ? 1e30f
+                : (float)(params->depth_cutoff > 0 ? params->depth_cutoff : FOG_PASS_DEPTH_CUTOFF));
+    glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
+  }
+  glUseProgram(walk_prog);
+  if (divisor == 1)
+    return fog_pass_common_and_draw(walk_prog, cam, params, surface_colour, surface_distance,
+                                    width, height, width, height, err);
+  GLint caller = 0;
+  if (fog_pass_begin_reduced(pass, divisor, width, height, &caller, err)) return 1;
+  if (fog_pass_common_and_draw(walk_prog, cam, params, surface_colour, surface_distance,
+                               width, height, pass->reduced.width, pass->reduced.height, err)) {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)caller);
+    return 1;
+  }
+  return fog_pass_finish_reduced(pass, programs[1], cam, params, divisor, caller,
+                                 surface_colour, surface_distance, width, height, err);
 }
 
 void fog_pass_finish(void) { glFinish(); }

@@ -3,7 +3,11 @@
  * and the blend L = tau L(P) + L_fog (1 - tau) (Giroud & Biri eq. 4).
  *
  * Lifecycle (needs a current GL 4.3+ context, render/gl_context.h):
- *   fog_pass_create()                       compiles the shaders (all variants lazily)
+ *   fog_pass_create()                       compiles the default variant; every other
+ *                                           variant (one per draw configuration: fetch,
+ *                                           integrator, degree, profile, LOD, resolution)
+ *                                           on its first draw, then kept (JIT ~0.1-0.6 s
+ *                                           on llvmpipe: warm up before timing)
  *   fog_pass_upload_grid() / _upload_lod()  coefficient grids -> R32F textures; call again
  *                                           when they change (same size: glTexSubImage2D
  *                                           into the existing texture, no reallocation)
@@ -23,7 +27,9 @@
  * A_l in slot l (l = 0..J), D_l in slot J + l (l = 1..J); a single grid is slot 0 with
  * levels = 0. At most FOG_PASS_MAX_GRIDS slots (J <= 7). All slots of one draw share the
  * degree of slot 0. A draw needs only the slots its LOD method reads: switching reads
- * slots 0..J, the sum of details slots 0 and J+1..2J. */
+ * slots 0..J, the sum of details slots 0 and J+1..2J. LOD draws also use unit 18 (the
+ * slots copied into one 2D array texture, refreshed on the first LOD draw after an
+ * upload); resolution_divisor > 1 uses unit 19. */
 #ifndef FOGPIPE_RENDER_FOG_PASS_H
 #define FOGPIPE_RENDER_FOG_PASS_H
 
@@ -62,7 +68,25 @@ typedef struct fog_pass_params {
   int march_steps;           /* FOG_INTEGRATOR_MARCH: 0 means 64 */
   int march_jitter;          /* non-zero: per-pixel jittered sample positions */
   unsigned frame;            /* jitter seed */
+  /* Exact walk (single grid, or LOD switching): a pixel stops integrating once its optical
+   * depth exceeds this (tau < e^-cutoff; it then reports a partial depth >= cutoff).
+   * 0: FOG_PASS_DEPTH_CUTOFF (16: tau < 1.2e-7, far below what any output format or the
+   * eye resolves; the GPU-vs-CPU tests pass with it); negative: never stop early. The sum
+   * of details (signed bands) and the marcher always integrate the whole ray. */
+  double depth_cutoff;
+  /* 0 or 1: the fog at full resolution (render, record: the reference). 2 or 4: the walk
+   * runs at (width/D) x (height/D) (rounded up; each sample traces the ray of full-
+   * resolution pixel k D + D/2 to that pixel's surface distance), then a joint bilateral
+   * upsampling guided by the full-resolution surface distance (fog_upsample_fs.glsl) blends
+   * at full resolution: ~D^2 less walk work, edges of surfaces stay sharp, the smooth fog is
+   * interpolated (docs/integral.md, Performance: measured error). FOG_MODEL_FOGMAP only;
+   * the analytic models are cheap and ignore it. The pass keeps a (width/D) x (height/D)
+   * RGBA32F target of its own (created on first use, again when the size changes) and
+   * restores the caller's draw framebuffer. */
+  int resolution_divisor;
 } fog_pass_params;
+
+#define FOG_PASS_DEPTH_CUTOFF 16.0
 
 typedef struct fog_pass fog_pass;
 

@@ -20,6 +20,20 @@
 // loops the compiler unrolls); the walk's own loop is the only long one. (Measured: the
 // quadratic basis with exponential fog over 256 x 256 cells lost up to 0.17 in tau when
 // the inner loops were loops.) The C twin keeps the loops.
+//
+// Speed on llvmpipe (docs/integral.md, Performance): llvmpipe runs 8 pixels per SIMD lane
+// group and executes BOTH sides of every branch under a mask (only loops exit when no lane
+// is left), so the per-piece code is written to be the same for every piece: the draw's
+// settings are compile-time constants (FOG_DEGREE, FOG_PROFILE_KIND, ..., set per variant by
+// render/fog_pass.c), one coefficient line is fetched per DDA step whichever axis stepped,
+// and the exponential profile integrates every piece with one formula. What this makes the
+// GLSL walk do differently from the C twin (same pieces' integrals, exact either way):
+//   - at most one axis steps per iteration (coinciding breaks give a zero-length piece);
+//   - the exponential profile's breaks are y0 + k H/2 (not y0 alone), so |b| <= 1/4 and the
+//     moments come from an 8-term series only (fog_exp_moments_walk), no closed form, and
+//     the pieces below y0 use the same formula with c0 = b = 0 (no Gauss path);
+//   - a pixel stops once its optical depth passes fog_depth_limit (default 16);
+//   - LOD draws read the grids as layers of one array texture (no sampler-array index).
 
 #define FOG_PROFILE_SLAB 0
 #define FOG_PROFILE_EXPONENTIAL 1
@@ -36,17 +50,50 @@ uniform sampler2D fog_grids[FOG_MAX_GRIDS];
 uniform vec2 fog_grid_x0[FOG_MAX_GRIDS];
 uniform float fog_grid_scale[FOG_MAX_GRIDS];
 uniform ivec2 fog_grid_size[FOG_MAX_GRIDS];
+// Specialisation (render/fog_pass.c compiles one variant per draw configuration): llvmpipe
+// runs both sides of every branch under a mask, so a uniform degree or profile kind costs
+// the code of every case; as compile-time constants the dead cases vanish. FOG_SINGLE_GRID:
+// the draw reads slot 0 only (no LOD), so no dynamic index into the sampler array.
+#ifdef FOG_DEGREE
+const int fog_degree = FOG_DEGREE;
+#else
 uniform int fog_degree;
+#endif
+#ifndef FOG_SINGLE_GRID
+#define FOG_SINGLE_GRID 0
+#endif
+#if FOG_SINGLE_GRID
+#define FOG_GRID(g) 0
+#define FOG_TEXEL(g, ij) texelFetch(fog_grids[0], ij, 0).r
+#define FOG_FILTERED(g, uv) texture(fog_grids[0], (uv) / vec2(fog_grid_size[0])).r
+#else
+// LOD draws: the slots' grids as layers of one 2D array texture (render/fog_pass.c copies
+// them in, zero beyond each grid's size), so the layer is an ordinary per-pixel coordinate.
+// Indexing the sampler array with a non-constant slot made llvmpipe 2.5x slower.
+uniform sampler2DArray fog_grid_layers;
+uniform vec2 fog_grid_layer_size;
+#define FOG_GRID(g) (g)
+#define FOG_TEXEL(g, ij) texelFetch(fog_grid_layers, ivec3(ij, g), 0).r
+#define FOG_FILTERED(g, uv) texture(fog_grid_layers, vec3((uv) / fog_grid_layer_size, float(g))).r
+#endif
 uniform vec3 fog_box_min;  // camera-relative box
 uniform vec3 fog_box_max;
 uniform float fog_extinction_scale;
 // Profile, camera-relative heights.
+#ifdef FOG_PROFILE_KIND
+const int fog_profile_kind = FOG_PROFILE_KIND;
+#else
 uniform int fog_profile_kind;
+#endif
 uniform float fog_profile_y0;           // exponential: y0 - camera y
 uniform float fog_profile_scale_height; // exponential: H
 uniform float fog_profile_inv_scale_height; // 1 / H
 uniform int fog_profile_count;
+#ifdef FOG_PROFILE_DEGREE
+const int fog_profile_degree = FOG_PROFILE_DEGREE;
+#else
 uniform int fog_profile_degree;
+#endif
 uniform float fog_profile_y_start;      // B-spline: (camera y - origin) / spacing
 uniform float fog_profile_inv_spacing;  // B-spline: 1 / spacing
 uniform float fog_profile_coefficients[FOG_PROFILE_MAX_COEFFICIENTS];
@@ -92,10 +139,15 @@ vec4 fog_cell_weights(int degree, float s) {
 // Cell c is [c + offset, c + 1 + offset]: half-integer knots for even degree.
 float fog_knot_offset(int degree) { return (degree % 2 == 0) ? -0.5 : 0.0; }
 
-float fog_grid_coefficient(int grid, int i, int j) {
-  ivec2 size = fog_grid_size[grid];
+// size: fog_grid_size[grid], which the walk reads once (an indexed uniform per fetch is a
+// gather on llvmpipe).
+float fog_sized_coefficient(int grid, ivec2 size, int i, int j) {
   if (i < 0 || j < 0 || i >= size.x || j >= size.y) return 0.0;  // ghosts materialised
-  return texelFetch(fog_grids[grid], ivec2(i, j), 0).r;
+  return FOG_TEXEL(grid, ivec2(i, j));
+}
+
+float fog_grid_coefficient(int grid, int i, int j) {
+  return fog_sized_coefficient(grid, fog_grid_size[FOG_GRID(grid)], i, j);
 }
 
 float fog_grid_row2(int grid, int i0, int j, vec4 wx) {
@@ -118,9 +170,8 @@ float fog_grid_value(int grid, int cx, int cz, float x, float z) {
 #if FOG_FETCH_HARDWARE
   // Hardware bilinear filtering (border colour 0 = coefficients outside the grid).
   // Coefficient i is texel i, at texture coordinate (i + 0.5) / width.
-  vec2 inv_size = 1.0 / vec2(fog_grid_size[grid]);
   if (d == 1)
-    return texture(fog_grids[grid], (vec2(float(i0) + wx.y, float(j0) + wz.y) + 0.5) * inv_size).r;
+    return FOG_FILTERED(grid, vec2(float(i0) + wx.y, float(j0) + wz.y) + 0.5);
   if (d == 2) {
     // Two linear fetches per axis: w0 c0 + w1 c1 + w2 c2 =
     // (w0 + w1/2) lerp(c0, c1, (w1/2)/(w0 + w1/2)) + (w1/2 + w2) lerp(c1, c2, w2/(w1/2 + w2)).
@@ -128,10 +179,10 @@ float fog_grid_value(int grid, int cx, int cz, float x, float z) {
     vec2 gz = vec2(wz.x + 0.5 * wz.y, 0.5 * wz.y + wz.z);
     vec2 px = vec2(float(i0) + 0.5 * wx.y / gx.x, float(i0 + 1) + wx.z / gx.y) + 0.5;
     vec2 pz = vec2(float(j0) + 0.5 * wz.y / gz.x, float(j0 + 1) + wz.z / gz.y) + 0.5;
-    return gz.x * (gx.x * texture(fog_grids[grid], vec2(px.x, pz.x) * inv_size).r +
-                   gx.y * texture(fog_grids[grid], vec2(px.y, pz.x) * inv_size).r) +
-           gz.y * (gx.x * texture(fog_grids[grid], vec2(px.x, pz.y) * inv_size).r +
-                   gx.y * texture(fog_grids[grid], vec2(px.y, pz.y) * inv_size).r);
+    return gz.x * (gx.x * FOG_FILTERED(grid, vec2(px.x, pz.x)) +
+                   gx.y * FOG_FILTERED(grid, vec2(px.y, pz.x))) +
+           gz.y * (gx.x * FOG_FILTERED(grid, vec2(px.x, pz.y)) +
+                   gx.y * FOG_FILTERED(grid, vec2(px.y, pz.y)));
   }
 #endif
   // sum_b wz[b] sum_a wx[a] c(i0 + a, j0 + b), written out per degree (no loops: see the
@@ -177,6 +228,22 @@ void fog_exp_moments_series(float c0, float b, int n, out float m[5]) {
   vec3 even_sum = vec3(0.0);  // J_0, J_2, J_4
   vec2 odd_sum = vec2(0.0);   // J_1, J_3
   for (int j = 0; j < 12; j += 2) {
+    float fj = float(j);
+    even_sum += term * 2.0 / vec3(fj + 1.0, fj + 3.0, fj + 5.0);
+    float next = term * b / (fj + 1.0);
+    odd_sum += next * 2.0 / vec2(fj + 3.0, fj + 5.0);
+    term = next * b / (fj + 2.0);
+  }
+  m = float[5](even_sum.x, odd_sum.x, even_sum.y, odd_sum.y, even_sum.z);
+}
+
+// The walk's moments (fog_piece_integral, |b| <= 1/4): the series to j = 7; the next term is
+// below 0.25^8/8! ~ 4e-10 of e^{c0}. GLSL only: the C twin keeps fog_exp_moments.
+void fog_exp_moments_walk(float c0, float b, out float m[5]) {
+  float term = exp(c0);
+  vec3 even_sum = vec3(0.0);
+  vec2 odd_sum = vec2(0.0);
+  for (int j = 0; j < 8; j += 2) {
     float fj = float(j);
     even_sum += term * 2.0 / vec3(fj + 1.0, fj + 3.0, fj + 5.0);
     float next = term * b / (fj + 1.0);
@@ -235,58 +302,56 @@ void fog_axis_step(inout fog_axis a) { a.cell += (a.dx > 0.0) ? 1 : -1; }
 // current knot cells (i0 = x.cell - d/2, j0 = z.cell - d/2). A step of the DDA shifts it and
 // fetches one new column or row (d + 1 texels) instead of (d+1)^2 per Gauss node: the walk
 // reads each coefficient it needs once. Entries beyond d are never weighted (weights 0).
-vec3 fog_block_column(int grid, int i, int j0) {
+vec3 fog_block_column(int grid, ivec2 size, int i, int j0) {
   int d = fog_degree;
-  return vec3(fog_grid_coefficient(grid, i, j0),
-              d >= 1 ? fog_grid_coefficient(grid, i, j0 + 1) : 0.0,
-              d >= 2 ? fog_grid_coefficient(grid, i, j0 + 2) : 0.0);
+  return vec3(fog_sized_coefficient(grid, size, i, j0),
+              d >= 1 ? fog_sized_coefficient(grid, size, i, j0 + 1) : 0.0,
+              d >= 2 ? fog_sized_coefficient(grid, size, i, j0 + 2) : 0.0);
 }
 
 struct fog_ray_walk {
   int grid;
+  ivec2 size;  // fog_grid_size[grid]
   mat3 block;  // manual fetch: the coefficients of the current cell (see fog_block_column)
-  fog_axis x, z, y;  // y: B-spline profile knots only
+  fog_axis x, z, y;  // y: B-spline profile knots, or the exponential profile's breaks
   float y_entry;     // camera-relative height where the walk starts (t' = 0: the box entry)
   float dir_y;
-  float t_y0;        // exponential profile: where y = y0
 };
 
 void fog_block_load(inout fog_ray_walk w) {
   int i0 = w.x.cell - fog_degree / 2, j0 = w.z.cell - fog_degree / 2;
-  w.block = mat3(fog_block_column(w.grid, i0, j0), fog_block_column(w.grid, i0 + 1, j0),
-                 fog_block_column(w.grid, i0 + 2, j0));
+  w.block = mat3(fog_block_column(w.grid, w.size, i0, j0),
+                 fog_block_column(w.grid, w.size, i0 + 1, j0),
+                 fog_block_column(w.grid, w.size, i0 + 2, j0));
 }
 
-// After w.x stepped: shift the columns, fetch the one that entered.
-void fog_block_step_x(inout fog_ray_walk w) {
+// One DDA step (at most one axis per iteration, fog_walk_integral): the line of d + 1
+// coefficients that entered the block, fetched once whichever axis stepped. llvmpipe runs
+// both sides of a branch under a mask, so separate x and z steps (each with its own fetches,
+// and x with one per direction) cost all their fetches every piece; one line costs d + 1.
+// step: 0 none, 1 x, 2 z (after the axis' cell changed).
+void fog_block_step(inout fog_ray_walk w, int step) {
   int d = fog_degree, i0 = w.x.cell - d / 2, j0 = w.z.cell - d / 2;
-  if (w.x.dx > 0.0) {
-    vec3 entering = fog_block_column(w.grid, i0 + d, j0);
-    w.block[0] = (d == 0) ? entering : w.block[1];
-    w.block[1] = (d == 1) ? entering : w.block[2];
-    w.block[2] = entering;
-  } else {
-    w.block[2] = w.block[1];
-    w.block[1] = w.block[0];
-    w.block[0] = fog_block_column(w.grid, i0, j0);
-  }
-}
-
-// After w.z stepped: shift every column's entries, fetch the row that entered.
-void fog_block_step_z(inout fog_ray_walk w) {
-  int d = fog_degree, i0 = w.x.cell - d / 2, j0 = w.z.cell - d / 2;
-  int j = (w.z.dx > 0.0) ? j0 + d : j0;
-  vec3 row = vec3(fog_grid_coefficient(w.grid, i0, j),
-                  d >= 1 ? fog_grid_coefficient(w.grid, i0 + 1, j) : 0.0,
-                  d >= 2 ? fog_grid_coefficient(w.grid, i0 + 2, j) : 0.0);
-  for (int a = 0; a < 3; a++) {  // constant bound: unrolled
-    vec3 c = w.block[a];
-    if (w.z.dx > 0.0)
-      w.block[a] = (d == 0) ? vec3(row[a], 0.0, 0.0)
-                 : (d == 1) ? vec3(c.y, row[a], 0.0) : vec3(c.y, c.z, row[a]);
-    else
-      w.block[a] = vec3(row[a], c.x, c.y);
-  }
+  bool forward = (step == 1) ? (w.x.dx > 0.0) : (w.z.dx > 0.0);
+  // The entering column (x step: i fixed, j0..j0+d) or row (z step: j fixed, i0..i0+d).
+  ivec2 base = (step == 1) ? ivec2(forward ? i0 + d : i0, j0) : ivec2(i0, forward ? j0 + d : j0);
+  ivec2 stride = (step == 1) ? ivec2(0, 1) : ivec2(1, 0);
+  vec3 line = vec3(
+      fog_sized_coefficient(w.grid, w.size, base.x, base.y),
+      d >= 1 ? fog_sized_coefficient(w.grid, w.size, base.x + stride.x, base.y + stride.y) : 0.0,
+      d >= 2 ? fog_sized_coefficient(w.grid, w.size, base.x + 2 * stride.x, base.y + 2 * stride.y)
+             : 0.0);
+  mat3 m = w.block;
+  // x step: columns shift, the line is column 0 (backward) or column d (forward).
+  mat3 bx = forward ? mat3((d == 0) ? line : m[1], (d == 1) ? line : m[2], line)
+                    : mat3(line, m[0], m[1]);
+  // z step: each column's entries shift, line[a] enters column a.
+  mat3 bz;
+  for (int c = 0; c < 3; c++)  // constant bound: unrolled
+    bz[c] = forward ? ((d == 0) ? vec3(line[c], 0.0, 0.0)
+                     : (d == 1) ? vec3(m[c].y, line[c], 0.0) : vec3(m[c].y, m[c].z, line[c]))
+                    : vec3(line[c], m[c].x, m[c].y);
+  w.block = (step == 1) ? bx : (step == 2) ? bz : m;
 }
 
 // f at a point of the current piece: the cell weights applied to the block (manual fetch),
@@ -307,20 +372,24 @@ float fog_walk_value(fog_ray_walk w, float t) {
 float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
   float half_len = 0.5 * (tb - ta), mid = 0.5 * (ta + tb);
   int d = fog_degree;
-  if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL && w.y_entry + mid * w.dir_y > fog_profile_y0) {
-    // f(t) e^{-(y(t) - y0)/H}: f is a polynomial of degree n = 2d in s = (t - mid)/half,
-    // int = half * sum_k c_k J_k(c0, b), c0 = -(y(mid) - y0)/H, b = -dir_y half/H.
+  if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL) {
+    // f(t) e^{-(y(t) - y0)/H} above y0, f(t) below: f is a polynomial of degree n = 2d in
+    // s = (t - mid)/half, int = half * sum_k c_k J_k(c0, b), c0 = -(y(mid) - y0)/H,
+    // b = -dir_y half/H; below y0 c0 = b = 0 (J_k = int s^k ds), so both kinds of piece take
+    // the same code (no masked second path). |b| <= 1/4 by the walk's breaks every H/2, so
+    // the short series alone is exact (fog_exp_moments_walk).
     int n = 2 * d;
-    float c0 = -(w.y_entry + mid * w.dir_y - fog_profile_y0) * fog_profile_inv_scale_height;
-    float b = -w.dir_y * half_len * fog_profile_inv_scale_height;
+    bool above = w.y_entry + mid * w.dir_y > fog_profile_y0;
+    float c0 = above ? -(w.y_entry + mid * w.dir_y - fog_profile_y0) * fog_profile_inv_scale_height
+                     : 0.0;
+    float b = above ? -w.dir_y * half_len * fog_profile_inv_scale_height : 0.0;
     float samples[5], c[5], moments[5];
-    for (int i = 0; i < 5; i++) {
+    for (int i = 0; i < 5; i++) {  // constant bound and n: unrolled, i > n folded away
       float s = (n > 0) ? -1.0 + 2.0 * float(i) / float(n) : 0.0, t = mid + half_len * s;
       samples[i] = (i <= n) ? fog_walk_value(w, t) : 0.0;
     }
     fog_monomials_from_samples(n, samples, c);
-    // Closed form, or below the switch (where it cancels) the moments' series.
-    fog_exp_moments(c0, b, n, moments);
+    fog_exp_moments_walk(c0, b, moments);
     // c[k] = 0 beyond n, so all five terms can be summed.
     float sum = c[0] * moments[0] + c[1] * moments[1] + c[2] * moments[2] +
                 c[3] * moments[3] + c[4] * moments[4];
@@ -344,29 +413,24 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
 }
 
 // int_{t0}^{t1} f g dt for [t0, t1] inside the box: walk the knot cells of x, z (2D DDA) and
-// the profile's breaks, one exact piece at a time.
-float fog_walk_integral(inout fog_ray_walk w, float t0, float t1) {
+// the profile's breaks, one exact piece at a time. At most one axis steps per iteration
+// (where two breaks coincide the next piece has length 0 and adds nothing): one line fetch
+// per iteration (fog_block_step). Leaves early once the sum exceeds `limit` (the optical
+// depth cut-off, fog_optical_depth).
+float fog_walk_integral(inout fog_ray_walk w, float t0, float t1, float limit) {
   float sum = 0.0, t = t0;
-  for (int guard = 0; t < t1 && guard < 65536; guard++) {
+  for (int guard = 0; t < t1 && sum < limit && guard < 65536; guard++) {
     float tx = fog_axis_next(w.x), tz = fog_axis_next(w.z);
-    float ty = (fog_profile_kind == FOG_PROFILE_BSPLINE) ? fog_axis_next(w.y) : FOG_INFINITY;
+    float ty = (fog_profile_kind != FOG_PROFILE_SLAB) ? fog_axis_next(w.y) : FOG_INFINITY;
     float t_next = min(min(t1, tx), min(tz, ty));
-    if (w.t_y0 > t && w.t_y0 < t_next) t_next = w.t_y0;
     if (t_next > t) sum += fog_piece_integral(w, t, t_next);
-#if FOG_FETCH_HARDWARE
-    if (tx <= t_next) fog_axis_step(w.x);
-    if (tz <= t_next) fog_axis_step(w.z);
-#else
-    if (tx <= t_next) {
-      fog_axis_step(w.x);
-      fog_block_step_x(w);
-    }
-    if (tz <= t_next) {
-      fog_axis_step(w.z);
-      fog_block_step_z(w);
-    }
+    int step = (tx <= t_next) ? 1 : (tz <= t_next) ? 2 : 0;
+    if (step == 1) fog_axis_step(w.x);
+    if (step == 2) fog_axis_step(w.z);
+    if (step == 0 && ty <= t_next) fog_axis_step(w.y);
+#if !FOG_FETCH_HARDWARE
+    fog_block_step(w, step);
 #endif
-    if (ty <= t_next) fog_axis_step(w.y);
     if (t_next > t) t = t_next;
   }
   return sum;
@@ -374,7 +438,8 @@ float fog_walk_integral(inout fog_ray_walk w, float t0, float t1) {
 
 // The exact optical depth int_{t_start}^{t_stop} K dt along the unit direction dir from the
 // camera, through grid slot `grid`, clipped to the fog's box.
-float fog_optical_depth(int grid, vec3 dir, float t_start, float t_stop) {
+// Pixels whose optical depth exceeds `limit` (tau < e^-limit) stop early with a partial sum.
+float fog_optical_depth(int grid, vec3 dir, float t_start, float t_stop, float limit) {
   float t0, t1;
   if (!fog_box_entry_exit(dir, t0, t1)) return 0.0;
   t0 = max(t0, t_start);
@@ -386,19 +451,25 @@ float fog_optical_depth(int grid, vec3 dir, float t_start, float t_stop) {
   float off = fog_knot_offset(fog_degree);
   fog_ray_walk w;
   w.grid = grid;
-  float dx = dir.x * fog_grid_scale[grid], dz = dir.z * fog_grid_scale[grid];
-  w.x = fog_axis_start(fog_grid_x0[grid].x + t0 * dx, dx, off, 0.0);
-  w.z = fog_axis_start(fog_grid_x0[grid].y + t0 * dz, dz, off, 0.0);
-  w.y = fog_axis_start(fog_profile_y_start + t0 * dir.y * fog_profile_inv_spacing,
-                       dir.y * fog_profile_inv_spacing, fog_knot_offset(fog_profile_degree), 0.0);
+  w.size = fog_grid_size[FOG_GRID(grid)];
+  float dx = dir.x * fog_grid_scale[FOG_GRID(grid)], dz = dir.z * fog_grid_scale[FOG_GRID(grid)];
+  w.x = fog_axis_start(fog_grid_x0[FOG_GRID(grid)].x + t0 * dx, dx, off, 0.0);
+  w.z = fog_axis_start(fog_grid_x0[FOG_GRID(grid)].y + t0 * dz, dz, off, 0.0);
   w.y_entry = t0 * dir.y;
+  if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL)
+    // Breaks at y0 + k H/2: y0 (where g changes form) and, above it, pieces whose
+    // exponent spans at most 1/2, |b| <= 1/4, where the moments' series (8 terms) is exact
+    // in float (fog_piece_integral); the closed form is not needed.
+    w.y = fog_axis_start((w.y_entry - fog_profile_y0) * 2.0 * fog_profile_inv_scale_height,
+                         dir.y * 2.0 * fog_profile_inv_scale_height, 0.0, 0.0);
+  else
+    w.y = fog_axis_start(fog_profile_y_start + t0 * dir.y * fog_profile_inv_spacing,
+                         dir.y * fog_profile_inv_spacing, fog_knot_offset(fog_profile_degree), 0.0);
 #if !FOG_FETCH_HARDWARE
   fog_block_load(w);
 #endif
   w.dir_y = dir.y;
-  w.t_y0 = (fog_profile_kind == FOG_PROFILE_EXPONENTIAL && dir.y != 0.0)
-               ? (fog_profile_y0 - w.y_entry) / dir.y : FOG_INFINITY;
-  return fog_extinction_scale * fog_walk_integral(w, 0.0, t1 - t0);
+  return fog_extinction_scale * fog_walk_integral(w, 0.0, t1 - t0, limit / fog_extinction_scale);
 }
 
 // ---- uniform ray marching (the benchmark's alternative integrator) ------------------------
@@ -407,8 +478,8 @@ float fog_optical_depth(int grid, vec3 dir, float t_start, float t_stop) {
 // pointwise formulas.
 float fog_extinction_at(int grid, vec3 dir, float t) {
   float off = fog_knot_offset(fog_degree);
-  float x = fog_grid_x0[grid].x + t * dir.x * fog_grid_scale[grid];
-  float z = fog_grid_x0[grid].y + t * dir.z * fog_grid_scale[grid];
+  float x = fog_grid_x0[FOG_GRID(grid)].x + t * dir.x * fog_grid_scale[FOG_GRID(grid)];
+  float z = fog_grid_x0[FOG_GRID(grid)].y + t * dir.z * fog_grid_scale[FOG_GRID(grid)];
   float f = fog_grid_value(grid, int(floor(x - off)), int(floor(z - off)), x, z);
   float y = t * dir.y;  // camera-relative height
   if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL)

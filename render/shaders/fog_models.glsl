@@ -5,7 +5,11 @@
 #define FOG_MODEL_HEIGHT 2
 #define FOG_EXPREL_SWITCH 0.1
 
+#ifdef FOG_MODEL_KIND
+const int fog_model = FOG_MODEL_KIND;  // specialised per variant (render/fog_pass.c)
+#else
 uniform int fog_model;
+#endif
 uniform float fog_model_extinction;
 uniform float fog_model_y0;            // y0 - camera y
 uniform float fog_model_scale_height;

@@ -5,6 +5,12 @@
 // #version line:
 //   #define FOG_FETCH_HARDWARE 0|1   (see fog_integral.glsl)
 //   #define FOG_INTEGRATOR 0|1       (0: exact walk, 1: uniform ray marching)
+//   #define FOG_REDUCED 1|2|4        (> 1: the reduced-resolution pass of fog_pass_params.
+//                                    resolution_divisor; fragment k traces full-resolution
+//                                    pixel k FOG_REDUCED + FOG_REDUCED/2 and writes its
+//                                    optical depth and surface distance for
+//                                    fog_upsample_fs.glsl)
+//   and the specialisation constants of fog_integral.glsl
 #include "fog_integral.glsl"
 #include "fog_models.glsl"
 
@@ -19,18 +25,25 @@ uniform vec3 fog_camera_up;
 uniform vec3 fog_camera_forward;
 uniform vec3 fog_colour;
 uniform int fog_levels;                  // J; 0: one grid (slot 0)
+#ifdef FOG_LOD_METHOD
+const int fog_lod_method = FOG_LOD_METHOD;  // specialised per variant (render/fog_pass.c)
+#else
 uniform int fog_lod_method;              // 0: sum of details (paper), 1: approximation switching
+#endif
 uniform float fog_mu;
 uniform int fog_march_steps;
 uniform int fog_march_jitter;            // 0: midpoints; 1: per-pixel jitter
 uniform uint fog_frame;
+uniform float fog_depth_limit;           // exact walk: stop once the optical depth exceeds it
 
 // Detail band l (1..J) lives in slot J + l; approximation A_l in slot l.
-float fog_grid_integral(int grid, vec3 dir, float t_start, float t_stop, float jitter) {
+// limit: the exact walk may stop once its own sum exceeds it (the caller's remaining budget).
+float fog_grid_integral(int grid, vec3 dir, float t_start, float t_stop, float jitter,
+                        float limit) {
 #if FOG_INTEGRATOR == 1
   return fog_optical_depth_march(grid, dir, t_start, t_stop, fog_march_steps, jitter);
 #else
-  return fog_optical_depth(grid, dir, t_start, t_stop);
+  return fog_optical_depth(grid, dir, t_start, t_stop, limit);
 #endif
 }
 
@@ -48,24 +61,29 @@ float fog_optical_depth_lod(vec3 dir, float t_surface, float jitter) {
   int J = fog_levels;
   if (fog_lod_method == 0) {
     // Giroud & Biri §4.4: A_0 over the whole ray, detail band l up to d_l = ||OP|| mu^l.
-    float sum = fog_grid_integral(0, dir, 0.0, op, jitter);
+    // The details are signed, so no partial sum bounds the total: no early exit here.
+    float sum = fog_grid_integral(0, dir, 0.0, op, jitter, FOG_INFINITY);
     float d_l = op;
     for (int l = 1; l <= J; l++) {
       d_l *= fog_mu;
       if (d_l <= 0.0) break;
-      sum += fog_grid_integral(J + l, dir, 0.0, d_l, jitter);
+      sum += fog_grid_integral(J + l, dir, 0.0, d_l, jitter, FOG_INFINITY);
     }
     return sum;
   }
-  // Approximation switching: segment (d_{l+1}, d_l] sees A_l; A_J on [0, d_J].
-  float sum = 0.0, far_t = op, d_l = op;
-  for (int l = 0; l < J; l++) {
-    float near_t = d_l * fog_mu;
-    if (far_t > near_t) sum += fog_grid_integral(l, dir, near_t, far_t, jitter);
-    far_t = near_t;
-    d_l = near_t;
+  // Approximation switching: segment (d_{l+1}, d_l] sees A_l; A_J on [0, d_J]. Walked near
+  // to far (A_J first), each segment with the budget the nearer ones left: the
+  // approximations are non-negative fog, so once the sum passes fog_depth_limit the pixel
+  // is opaque (tau < e^-limit) whatever the farther segments add.
+  float d[FOG_MAX_GRIDS / 2];  // d_l = ||OP|| mu^l, as fog_optical_depth_lod computes them
+  d[0] = op;
+  for (int l = 1; l < FOG_MAX_GRIDS / 2; l++) d[l] = d[l - 1] * fog_mu;
+  float sum = 0.0;
+  for (int l = J; l >= 0; l--) {
+    float near_t = (l == J) ? 0.0 : d[l + 1], far_t = d[l];
+    if (far_t > near_t && sum < fog_depth_limit)
+      sum += fog_grid_integral(l, dir, near_t, far_t, jitter, fog_depth_limit - sum);
   }
-  if (far_t > 0.0) sum += fog_grid_integral(J, dir, 0.0, far_t, jitter);
   return sum;
 }
 
@@ -78,15 +96,69 @@ float fog_hash(uvec2 p, uint frame) {
   return float(h >> 8) * (1.0 / 16777216.0);
 }
 
+#ifndef FOG_REDUCED
+#define FOG_REDUCED 1
+#endif
+#ifndef FOG_UPSAMPLE
+#define FOG_UPSAMPLE 0
+#endif
+
+#if FOG_UPSAMPLE
+// The reduced-resolution fog, second half (fog_pass_params.resolution_divisor): a joint
+// bilateral upsampling (Kopf et al. 2007) of the reduced pass's optical depth, guided by the
+// full-resolution surface distance. Reduced sample k holds the optical depth of full-
+// resolution pixel k D + D/2 and that pixel's surface distance t_k. The pixel takes its
+// 2 x 2 nearest samples with bilinear weights times a range weight exp(-(rel/sigma)^2),
+// rel = |t_k - t| / min(t_k, t): samples on another surface (an object's edge, the sky
+// behind a hill) get no weight, so fog does not bleed across depth edges. Each sample's
+// depth is carried to the pixel's distance to first order, depth_k + K_k (t - t_k), K_k the
+// extinction where sample k's ray meets its surface (a ground seen at a grazing angle
+// changes distance quickly from pixel to pixel; the fog along neighbouring rays does not).
+// Where no sample is on the pixel's surface (weight sum below FOG_UPSAMPLE_MIN_WEIGHT) the
+// pixel walks its own ray (main): exact there, at the cost of the edge pixels only.
+uniform sampler2D fog_reduced;  // RGBA32F: optical depth, surface distance, K there
+uniform int fog_divisor;
+const float FOG_UPSAMPLE_SIGMA = 0.02;  // a relative distance difference of one "sigma"
+const float FOG_UPSAMPLE_MIN_WEIGHT = 0.25;
+
+bool fog_upsampled_depth(ivec2 pixel, float t, out float optical_depth) {
+  ivec2 size = textureSize(fog_reduced, 0);
+  vec2 q = (vec2(pixel) - float(fog_divisor / 2)) / float(fog_divisor);
+  ivec2 q0 = ivec2(floor(q));
+  vec2 f = q - vec2(q0);
+  float weight_sum = 0.0, depth_sum = 0.0;
+  for (int k = 0; k < 4; k++) {  // constant bound: unrolled
+    ivec2 o = ivec2(k & 1, k >> 1);
+    vec3 s = texelFetch(fog_reduced, clamp(q0 + o, ivec2(0), size - 1), 0).rgb;
+    float wb = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+    float rel = abs(s.y - t) / max(min(s.y, t), 1e-3);  // both sky (1e30): 0
+    float w = wb * exp(-(rel * rel) / (FOG_UPSAMPLE_SIGMA * FOG_UPSAMPLE_SIGMA));
+    weight_sum += w;
+    depth_sum += w * max(s.x + s.z * (t - s.y), 0.0);  // w = 0 wherever t - s.y is huge
+  }
+  optical_depth = depth_sum / max(weight_sum, 1e-30);
+  return weight_sum >= FOG_UPSAMPLE_MIN_WEIGHT;
+}
+#endif
+
 void main() {
   // camera_ray(): ndc from the fragment centre, y up; dir = normalize(f + x r + y u).
+#if FOG_REDUCED > 1
+  ivec2 pixel = min(ivec2(gl_FragCoord.xy) * FOG_REDUCED + FOG_REDUCED / 2,
+                    ivec2(fog_viewport) - 1);
+  vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / fog_viewport - 1.0;
+#else
   vec2 ndc = 2.0 * gl_FragCoord.xy / fog_viewport - 1.0;
-  vec3 dir = normalize(fog_camera_forward + ndc.x * fog_camera_right + ndc.y * fog_camera_up);
   ivec2 pixel = ivec2(gl_FragCoord.xy);
+#endif
+  vec3 dir = normalize(fog_camera_forward + ndc.x * fog_camera_right + ndc.y * fog_camera_up);
   vec4 surface = texelFetch(fog_surface_colour, pixel, 0);
   float t_surface = texelFetch(fog_surface_distance, pixel, 0).r;
   float jitter = (fog_march_jitter != 0) ? fog_hash(uvec2(pixel), fog_frame) : 0.5;
-  float optical_depth;
+  float optical_depth = 0.0;
+#if FOG_UPSAMPLE
+  if (!fog_upsampled_depth(pixel, t_surface, optical_depth))
+#endif
   if (fog_model == FOG_MODEL_HOMOGENEOUS)
     optical_depth = fog_homogeneous_optical_depth(fog_model_extinction, t_surface);
   else if (fog_model == FOG_MODEL_HEIGHT)
@@ -94,6 +166,16 @@ void main() {
                                              fog_model_scale_height, dir.y, t_surface);
   else
     optical_depth = fog_optical_depth_lod(dir, t_surface, jitter);
+#if FOG_REDUCED > 1
+  // And the extinction where the ray meets the surface (A_0; 0 outside the box or for the
+  // sky): d(optical depth)/dt there, for the upsampling's first-order distance correction.
+  float t_in, t_out, k_end = 0.0;
+  if (t_surface < 1e29 && fog_box_entry_exit(dir, t_in, t_out) && t_surface >= t_in &&
+      t_surface <= t_out)
+    k_end = fog_extinction_scale * fog_extinction_at(0, dir, t_surface);
+  fog_out_colour = vec4(optical_depth, t_surface, k_end, 1.0);
+  return;
+#endif
   float tau = exp(-optical_depth);
   // Giroud & Biri eq. 4.
   fog_out_colour = vec4(tau * surface.rgb + fog_colour * (1.0 - tau), surface.a);

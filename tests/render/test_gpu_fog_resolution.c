@@ -1,0 +1,190 @@
+/* The fog pass's performance options keep its results:
+ * - resolution_divisor 0 and 1 draw the same image, bit for bit (full resolution);
+ * - resolution_divisor 2 (the reduced walk + joint bilateral upsampling) on a smooth fog
+ *   (a linear grid of sines, exponential profile) over a ground plane with a near occluder
+ *   (sharp depth edges) stays within a stated distance of the full-resolution transmittance:
+ *   max |dtau| <= 0.02 (edges: no fog bleeds across them, unmatched pixels walk their own
+ *   ray), mean |dtau| <= 1e-3; divisor 4 within 0.05 / 3e-3;
+ * - the optical depth cut-off (depth_cutoff, default 16) in thick fog agrees with the CPU
+ *   (double, no cut-off) within 2e-4, as does the walk without it (depth_cutoff < 0);
+ * - LOD draws that reduce to one grid (switching at mu = 1: A_J alone; mu = 0: A_0 alone;
+ *   the sum of details at mu = 0), which the pass draws as that grid's one-grid variant,
+ *   agree with the CPU's LOD integral within 2e-4, as does mu = 0.6 for both methods. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render/render.h"
+#include "fog_test_scene.h"
+#include "test_util.h"
+
+enum { W = 128, H = 72 };
+
+static double cmp_max(const float *a, const float *b, double *mean) {
+  double worst = 0.0, sum = 0.0;
+  for (int k = 0; k < W * H; k++) {
+    double e = fabs((double)a[k] - (double)b[k]);
+    if (!(e == e)) e = INFINITY;
+    worst = fmax(worst, e);
+    sum += e;
+  }
+  if (mean) *mean = sum / (W * H);
+  return worst;
+}
+
+int main(void) {
+  render_error err = {0};
+  gl_context *ctx = gl_context_create(&(gl_context_desc){0}, &err);
+  CHECK(ctx != NULL, "headless context: %s", err.message);
+  if (!ctx) return test_finish("test_gpu_fog_resolution");
+  fog_pass *pass = NULL;
+  CHECK(fog_pass_create(&pass, &err) == 0, "fog_pass_create: %s", err.message);
+  gl_target target;
+  CHECK(gl_target_create(&target, &(gl_target_desc){.width = W, .height = H,
+                                                    .color_formats = {GL_RGBA32F, GL_R32F}},
+                         &err) == 0, "target: %s", err.message);
+  if (!pass) return test_finish("test_gpu_fog_resolution");
+
+  /* A smooth linear grid over the test box. */
+  transform_grid grid = fog_test_grid(1, 1.0, 0.0);
+  for (int j = 0; j < grid.height; j++)
+    for (int i = 0; i < grid.width; i++)
+      grid.coefficients[(size_t)j * grid.width + i] =
+          (float)(0.6 + 0.4 * sin(0.3 * i) * cos(0.25 * j));
+  CHECK(fog_pass_upload_grid(pass, 0, &grid, &err) == 0, "upload: %s", err.message);
+  fog_volume v = fog_test_volume(FOG_PROFILE_EXPONENTIAL);
+  double lo[3], hi[3];
+  fog_volume_box(&v, lo, hi);
+  camera cam = {.position = {0.5 * (lo[0] + hi[0]), 14.0, hi[2] + 25.0}, .fov_y = 0.9};
+  camera_look_at(&cam, (double[3]){0.5 * (lo[0] + hi[0]), 0.0, lo[2]});
+
+  /* Surface distances (rows top first): the ground y = 0.5, the sky above the horizon, and
+   * a near occluder (distance 20) over a screen rectangle: depth edges in both directions. */
+  float *colour = calloc((size_t)W * H * 4, sizeof(float));
+  float *distance = malloc(sizeof(float) * W * H);
+  float *upload = malloc(sizeof(float) * W * H);
+  double *dirs = malloc(sizeof(double) * 3 * W * H);
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      double o[3], d[3];
+      camera_ray(&cam, px, py, W, H, o, d);
+      memcpy(&dirs[3 * (py * W + px)], d, sizeof d);
+      float t = d[1] < 0.0 ? (float)((0.5 - o[1]) / d[1]) : 1e30f;
+      if (px >= 37 && px < 71 && py >= 21 && py < 45) t = 20.0f;
+      distance[py * W + px] = t;
+      upload[(H - 1 - py) * W + px] = t;
+    }
+  for (int k = 0; k < W * H; k++) colour[4 * k + 0] = colour[4 * k + 1] = colour[4 * k + 2] = 0.5f;
+  GLuint tex[2];
+  glGenTextures(2, tex);
+  glBindTexture(GL_TEXTURE_2D, tex[0]);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, W, H, 0, GL_RGBA, GL_FLOAT, colour);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, tex[1]);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, W, H, 0, GL_RED, GL_FLOAT, upload);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+
+  float *tau[4], *rgba[2];
+  for (int k = 0; k < 4; k++) tau[k] = malloc(sizeof(float) * W * H);
+  for (int k = 0; k < 2; k++) rgba[k] = malloc(sizeof(float) * 4 * W * H);
+  static const int divisors[4] = {0, 1, 2, 4};
+  for (int k = 0; k < 4; k++) {
+    fog_pass_params params = {.volume = &v, .fog_colour = {0.8f, 0.8f, 0.9f},
+                              .resolution_divisor = divisors[k]};
+    gl_target_bind(&target);
+    CHECK(fog_pass_draw(pass, &cam, &params, tex[0], tex[1], W, H, &err) == 0,
+          "draw divisor %d: %s", divisors[k], err.message);
+    CHECK(gl_target_read(&target, 1, 1, tau[k], &err) == 0, "read: %s", err.message);
+    if (k < 2) CHECK(gl_target_read(&target, 0, 4, rgba[k], &err) == 0, "read: %s", err.message);
+  }
+  /* Full resolution against the CPU (double), as test_gpu_fog_vs_cpu. */
+  double worst_cpu = 0.0, min_tau = 1.0;
+  for (int k = 0; k < W * H; k++) {
+    double o[3] = {cam.position[0], cam.position[1], cam.position[2]};
+    double t = distance[k] >= 1e29f ? HUGE_VAL : distance[k];
+    double want = fog_transmittance(fog_optical_depth(&v, &grid, o, &dirs[3 * k], 0.0, t));
+    worst_cpu = fmax(worst_cpu, fabs(want - tau[1][k]));
+    min_tau = fmin(min_tau, want);
+  }
+  CHECK(worst_cpu <= 2e-4, "full resolution vs CPU: %.3e", worst_cpu);
+  CHECK(min_tau < 0.7, "the scene has too little fog to test anything (min tau %.3f)", min_tau);
+  CHECK(memcmp(tau[0], tau[1], sizeof(float) * W * H) == 0 &&
+            memcmp(rgba[0], rgba[1], sizeof(float) * 4 * W * H) == 0,
+        "divisor 0 and 1 differ");
+  double mean2, mean4;
+  double max2 = cmp_max(tau[2], tau[1], &mean2), max4 = cmp_max(tau[3], tau[1], &mean4);
+  printf("full vs CPU %.2e (min tau %.3f); divisor 2: max |dtau| %.3e mean %.2e; divisor 4: "
+         "max %.3e mean %.2e\n", worst_cpu, min_tau, max2, mean2, max4, mean4);
+  CHECK(max2 <= 0.02 && mean2 <= 1e-3, "divisor 2 vs full: max %.3e mean %.3e", max2, mean2);
+  CHECK(max4 <= 0.05 && mean4 <= 3e-3, "divisor 4 vs full: max %.3e mean %.3e", max4, mean4);
+  /* The upsampling must not be a no-op copy of the full pass: it interpolates. */
+  CHECK(mean2 > 0.0, "divisor 2 is bit-identical to full resolution: not reduced?");
+
+  /* Thick fog: most rays pass the cut-off. */
+  v.extinction = 10.0;
+  double worst_cut[2] = {0, 0};
+  int opaque = 0;
+  for (int c = 0; c < 2; c++) {
+    fog_pass_params params = {.volume = &v, .depth_cutoff = c ? -1.0 : 0.0};
+    gl_target_bind(&target);
+    CHECK(fog_pass_draw(pass, &cam, &params, tex[0], tex[1], W, H, &err) == 0, "draw: %s",
+          err.message);
+    CHECK(gl_target_read(&target, 1, 1, tau[0], &err) == 0, "read: %s", err.message);
+    for (int k = 0; k < W * H; k++) {
+      double o[3] = {cam.position[0], cam.position[1], cam.position[2]};
+      double t = distance[k] >= 1e29f ? HUGE_VAL : distance[k];
+      double depth = fog_optical_depth(&v, &grid, o, &dirs[3 * k], 0.0, t);
+      worst_cut[c] = fmax(worst_cut[c], fabs(fog_transmittance(depth) - tau[0][k]));
+      if (c == 0) opaque += depth > FOG_PASS_DEPTH_CUTOFF;
+    }
+  }
+  printf("thick fog: %d of %d pixels past the cut-off; vs CPU with cut-off %.2e, without %.2e\n",
+         opaque, W * H, worst_cut[0], worst_cut[1]);
+  CHECK(opaque > W * H / 4, "thick fog: only %d pixels past the cut-off", opaque);
+  CHECK(worst_cut[0] <= 2e-4 && worst_cut[1] <= 2e-4, "cut-off %.3e, none %.3e", worst_cut[0],
+        worst_cut[1]);
+
+  /* LOD: a random 2-level linear pyramid, thin fog again. */
+  enum { J = 2 };
+  transform_grid approx[J + 1], detail[J];
+  fog_test_pyramid(1, J, approx, detail);
+  v.extinction = 0.05;
+  fog_lod lod = {.levels = J, .approx = approx, .detail = detail};
+  CHECK(fog_pass_upload_lod(pass, &lod, &err) == 0, "upload: %s", err.message);
+  static const double mus[3] = {1.0, 0.0, 0.6};
+  for (int m = 0; m < 3; m++)
+    for (int method = 0; method <= 1; method++) {
+      fog_lod_method lm = method ? FOG_LOD_SWITCH : FOG_LOD_SUM_OF_DETAILS;
+      lod.mu = mus[m];
+      fog_pass_params params = {.volume = &v, .levels = J, .lod_method = lm, .mu = mus[m]};
+      gl_target_bind(&target);
+      CHECK(fog_pass_draw(pass, &cam, &params, tex[0], tex[1], W, H, &err) == 0, "draw: %s",
+            err.message);
+      CHECK(gl_target_read(&target, 1, 1, tau[0], &err) == 0, "read: %s", err.message);
+      double worst = 0.0;
+      for (int k = 0; k < W * H; k++) {
+        double o[3] = {cam.position[0], cam.position[1], cam.position[2]};
+        double t = distance[k] >= 1e29f ? HUGE_VAL : distance[k];
+        double want = fog_transmittance(fog_optical_depth_lod(&v, &lod, lm, o, &dirs[3 * k], t));
+        worst = fmax(worst, fabs(want - tau[0][k]));
+      }
+      printf("LOD %s mu %.1f: GPU vs CPU %.2e\n", method ? "switch" : "sum", mus[m], worst);
+      CHECK(worst <= 2e-4, "LOD method %d mu %.1f: GPU vs CPU %.3e", method, mus[m], worst);
+    }
+  for (int l = 0; l <= J; l++) transform_grid_destroy(&approx[l]);
+  for (int l = 0; l < J; l++) transform_grid_destroy(&detail[l]);
+
+  glDeleteTextures(2, tex);
+  transform_grid_destroy(&grid);
+  gl_target_destroy(&target);
+  fog_pass_destroy(pass);
+  gl_context_destroy(ctx);
+  for (int k = 0; k < 4; k++) free(tau[k]);
+  for (int k = 0; k < 2; k++) free(rgba[k]);
+  free(colour);
+  free(distance);
+  free(upload);
+  free(dirs);
+  return test_finish("test_gpu_fog_resolution");
+}
