@@ -1,0 +1,659 @@
+/* fogpipe bench render: the fog pass's integrators side by side on one fixed scene.
+ *
+ * Scene (fixed, headless EGL): the default config's procedural valley (terrain seed 4) with
+ * data/fogmap_sample.png (256 x 256, cell 4 world units, extinction 0.02, exponential ground
+ * fog: g = 1 below y0 = 50, scale height 25, box 0..220), seen from a camera 35 units above
+ * the terrain inside the fog, looking across the whole map at a low angle, so rays are long
+ * and cross many cells. The surface distance comes from SCENE's scene pass (its R32F
+ * distance texture); the same read-back distances clip the CPU reference rays, so the errors
+ * below are the integrators' alone, not the rasteriser's.
+ *
+ * Rows (each timed on the GL: glFinish, draw, glFinish; median over --frames rounds after a
+ * warm-up round; all rows run interleaved in every round so machine noise hits them alike):
+ *   - uniform ray marching, N = 8 .. 512 steps, midpoints and per-pixel jitter (linear basis);
+ *   - the exact knot-cell walk (Gauss-Legendre per piece) per basis: haar, linear, quadratic,
+ *     with manual fetch, and linear/quadratic with hardware filtering (haar's hardware variant
+ *     is the same texelFetch: not repeated);
+ *   - LOD by distance over a 3-level linear pyramid, mu = 1 .. 0, both methods: the paper's
+ *     sum of deconstructed details and approximation switching.
+ * Every row runs with the fog pass's defaults otherwise: the exact walks (single grid, LOD
+ * switching) stop at FOG_PASS_DEPTH_CUTOFF (tau below ~1e-7), the marcher and the sum of
+ * (signed) details integrate whole rays.
+ * Error: tau = exp(-optical depth) read back from the fog pass's transmittance target,
+ * against the double-precision exact CPU integral of the SAME model on the same rays
+ * (render/fog_field.h: fog_optical_depth / fog_optical_depth_lod), RMSE and max over all
+ * pixels. LOD rows also give the error against the full model (the fogmap itself). The CPU
+ * reference is computed once per model (per basis; per mu for LOD, with the switching method
+ * - both methods integrate the same function A_0 + D_1 + .. + D_l = A_l) on two threads.
+ *
+ * Last line: `render: exact_speedup_at_matched_error=X lod_switch_speedup_vs_sum=Y
+ * lod_overhead_at_mu1=Z` (see print_help). */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "bench/bench.h"
+#include "bench/chart.h"
+#include "render/render.h"
+#include "sim/sim.h"
+
+#define LOD_LEVELS 3
+#define ERROR_FLOOR 1e-9 /* log axis of the chart: errors below are drawn at the floor */
+#define MAX_ROWS 48
+
+static const int march_steps[] = {8, 16, 32, 64, 128, 256, 512};
+static const double lod_mu[] = {1.0, 0.8, 0.6, 0.4, 0.2, 0.0};
+enum { MARCH_COUNT = 7, MU_COUNT = 6 };
+
+static void print_help(void) {
+  printf(
+      "usage: fogpipe bench render [--size WxH] [--frames N] [--out DIR]\n"
+      "                           [--profile exponential|slab] [--fogmap FILE]\n"
+      "  --size WxH   image size (default 640x360)\n"
+      "  --frames N   timed rounds; each row's time is the median of N frames after one\n"
+      "               warm-up frame (default 3)\n"
+      "  --out DIR    where render.csv, render_chart.csv, render_chart.png and\n"
+      "               render_tau.png go (default build/bench/render, relative to the\n"
+      "               working directory; created if missing)\n"
+      "  --profile P  vertical profile: exponential (default: g = 1 below y = 50, then\n"
+      "               exp(-(y - 50)/25)) or slab (g = 1 on 0..220)\n"
+      "  --fogmap F   the fogmap (default data/fogmap_sample.png, else\n"
+      "               <source>/data/fogmap_sample.png)\n"
+      "  --help       this text\n"
+      "Last line: render: exact_speedup_at_matched_error=X lod_switch_speedup_vs_sum=Y\n"
+      "lod_overhead_at_mu1=Z, where X = time of the cheapest ray marching with max tau\n"
+      "error <= 1e-3 / exact linear time (targets X >= 5), Y = sum-of-details time /\n"
+      "approximation-switching time at mu = 0.6, 3 levels (Y >= 1.5), Z = switching time\n"
+      "at mu = 1 / the fogmap alone without decomposition (Z <= 1.05).\n");
+}
+
+/* ---- the CPU reference (double), two threads ------------------------------------------ */
+
+typedef struct reference_job {
+  const fog_volume *volume;
+  const camera *cam;
+  const transform_grid *grid; /* single grid, or NULL: lod */
+  const fog_lod *lod;
+  const float *distance;      /* scene distance read back from the GL, rows top first */
+  int width, height, first_row, row_step;
+  double *tau;                /* width * height, rows top first */
+} reference_job;
+
+static double surface_distance(float d) { return d >= 1e29f ? HUGE_VAL : (double)d; }
+
+static void *reference_rows(void *arg) {
+  const reference_job *job = arg;
+  for (int py = job->first_row; py < job->height; py += job->row_step)
+    for (int px = 0; px < job->width; px++) {
+      double o[3], d[3];
+      size_t k = (size_t)py * job->width + px;
+      camera_ray(job->cam, px, py, job->width, job->height, o, d);
+      double ts = surface_distance(job->distance[k]);
+      double depth = job->grid ? fog_optical_depth(job->volume, job->grid, o, d, 0.0, ts)
+                               : fog_optical_depth_lod(job->volume, job->lod, FOG_LOD_SWITCH, o,
+                                                       d, ts);
+      job->tau[k] = fog_transmittance(depth);
+    }
+  return NULL;
+}
+
+static void reference_tau(reference_job job) {
+  reference_job jobs[2] = {job, job};
+  jobs[0].first_row = 0, jobs[1].first_row = 1;
+  jobs[0].row_step = jobs[1].row_step = 2;
+  pthread_t worker;
+  int threaded = pthread_create(&worker, NULL, reference_rows, &jobs[1]) == 0;
+  reference_rows(&jobs[0]);
+  if (threaded)
+    pthread_join(worker, NULL);
+  else
+    reference_rows(&jobs[1]);
+}
+
+/* ---- cells crossed (the LOD prediction) ----------------------------------------------- */
+
+/* Knot cells of grid g the ray crosses on [a, b] clipped to [lo, hi]: the pieces the exact
+ * walk integrates (1 + knot lines crossed in x and in z; the profile's break at y0 adds at
+ * most one more piece per segment and is not counted). */
+static int cells_crossed(const fog_volume *v, const transform_grid *g, const double o[3],
+                         const double d[3], double a, double b, double lo, double hi) {
+  if (a < lo) a = lo;
+  if (b > hi) b = hi;
+  if (!(a < b)) return 0;
+  double h = v->cell_size > 0 ? v->cell_size : 1.0, off = (g->degree % 2 == 0) ? -0.5 : 0.0;
+  long cell[2][2];
+  for (int e = 0; e < 2; e++) {
+    double t = e ? b : a;
+    double u = (o[0] + t * d[0] - v->origin_x) / h - 0.5;
+    double w = (o[2] + t * d[2] - v->origin_z) / h - 0.5;
+    cell[e][0] = (long)floor((u - g->origin_u) / g->spacing - off);
+    cell[e][1] = (long)floor((w - g->origin_v) / g->spacing - off);
+  }
+  return 1 + (int)(labs(cell[1][0] - cell[0][0]) + labs(cell[1][1] - cell[0][1]));
+}
+
+/* Mean cells crossed per pixel for both LOD methods at mu (mirrors fog_pass_fs.glsl). */
+static void lod_cells(const fog_volume *v, const fog_lod *lod, const camera *cam,
+                      const float *distance, int width, int height, double mu,
+                      double *sum_cells, double *switch_cells) {
+  double total_sum = 0.0, total_switch = 0.0;
+  int J = lod->levels;
+  for (int py = 0; py < height; py++)
+    for (int px = 0; px < width; px++) {
+      double o[3], d[3], te, tx;
+      camera_ray(cam, px, py, width, height, o, d);
+      double ts = surface_distance(distance[(size_t)py * width + px]);
+      double op = fog_lod_ray_length(v, o, d, ts);
+      if (!(op > 0.0) || !fog_box_entry_exit(v, o, d, &te, &tx)) continue;
+      double lo = te > 0.0 ? te : 0.0, hi = op;
+      /* Sum of details: A_0 on [0, op], D_l on [0, op mu^l]. */
+      total_sum += cells_crossed(v, &lod->approx[0], o, d, 0.0, op, lo, hi);
+      double dl = op;
+      for (int l = 1; l <= J; l++) {
+        dl *= mu;
+        if (dl <= 0.0) break;
+        total_sum += cells_crossed(v, &lod->detail[l - 1], o, d, 0.0, dl, lo, hi);
+      }
+      /* Switching: A_l on (op mu^{l+1}, op mu^l], A_J on [0, op mu^J]. */
+      double far_t = op;
+      for (int l = 0; l < J; l++) {
+        double near_t = far_t * mu;
+        if (far_t > near_t) total_switch += cells_crossed(v, &lod->approx[l], o, d, near_t, far_t, lo, hi);
+        far_t = near_t;
+      }
+      if (far_t > 0.0) total_switch += cells_crossed(v, &lod->approx[J], o, d, 0.0, far_t, lo, hi);
+    }
+  *sum_cells = total_sum / ((double)width * height);
+  *switch_cells = total_switch / ((double)width * height);
+}
+
+/* ---- rows ------------------------------------------------------------------------------ */
+
+typedef struct bench_row {
+  const char *method;  /* table */
+  char setting[32];
+  const char *series;  /* chart (no commas or quotes: CSV and gnuplot) */
+  int pass;            /* which fog_pass holds its grids: 0..2 full grid per degree, 3 LOD */
+  fog_pass_params params;
+  int reference;       /* index of the same-model CPU reference */
+  int full_reference;  /* LOD rows: the full model's reference; -1 otherwise */
+  double chart_x_key;  /* order within the series */
+  double *times;
+  double ms, rmse, max_error, rmse_full, max_full;
+  size_t worst_pixel;         /* where max_error is (rows top first) */
+  double worst_gpu, worst_cpu; /* tau there */
+} bench_row;
+
+static void tau_errors(const float *gpu, const double *ref, size_t n, double *rmse,
+                       double *max_error, size_t *where) {
+  double sq = 0.0, worst = 0.0;
+  *where = 0;
+  for (size_t k = 0; k < n; k++) {
+    double e = fabs((double)gpu[k] - ref[k]);
+    if (!(e == e)) e = INFINITY; /* NaN from the GL counts as the worst error */
+    sq += e * e;
+    if (e > worst) worst = e, *where = k;
+  }
+  *rmse = sqrt(sq / (double)n);
+  *max_error = worst;
+}
+
+static int make_folder(const char *path, char *error, int size) {
+  char buffer[4096];
+  snprintf(buffer, sizeof buffer, "%s", path);
+  for (char *p = buffer + 1;; p++) {
+    char c = *p;
+    if (c == '/' || c == 0) {
+      *p = 0;
+      if (mkdir(buffer, 0777) != 0 && errno != EEXIST) {
+        snprintf(error, (size_t)size, "%.900s: cannot create the folder (%s)", buffer, strerror(errno));
+        return 1;
+      }
+      *p = c;
+      if (!c) return 0;
+    }
+  }
+}
+
+static int write_table_csv(const char *path, const bench_row *rows, int count, char *error,
+                           int size) {
+  char temp[4200];
+  snprintf(temp, sizeof temp, "%.4000s.tmp", path);
+  FILE *f = fopen(temp, "w");
+  if (!f) {
+    snprintf(error, (size_t)size, "%.900s: cannot write", path);
+    return 1;
+  }
+  fprintf(f, "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full\n");
+  for (int i = 0; i < count; i++) {
+    const bench_row *r = &rows[i];
+    fprintf(f, "%s,%s,%.6g,%.6g,%.6g,", r->method, r->setting, r->ms, r->rmse, r->max_error);
+    if (r->full_reference >= 0)
+      fprintf(f, "%.6g,%.6g\n", r->rmse_full, r->max_full);
+    else
+      fprintf(f, ",\n");
+  }
+  if (fclose(f) != 0 || rename(temp, path) != 0) {
+    remove(temp);
+    snprintf(error, (size_t)size, "%.900s: write failed", path);
+    return 1;
+  }
+  return 0;
+}
+
+static transform_basis basis_of_degree(int degree) {
+  return degree == 0 ? TRANSFORM_HAAR : degree == 2 ? TRANSFORM_QUADRATIC : TRANSFORM_LINEAR;
+}
+
+static const char *default_fogmap(void) {
+  static char path[4096];
+  struct stat st;
+  if (stat("data/fogmap_sample.png", &st) == 0) return "data/fogmap_sample.png";
+  snprintf(path, sizeof path, "%s/data/fogmap_sample.png", FOGPIPE_SOURCE_DIR);
+  return path;
+}
+
+int bench_render(int argc, char **argv) {
+  int W = 640, H = 360, frames = 3;
+  const char *out_dir = "build/bench/render", *fogmap_path = NULL;
+  fog_profile_kind profile = FOG_PROFILE_EXPONENTIAL;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      print_help();
+      return 0;
+    } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
+      char tail = 0;
+      if (sscanf(argv[++i], "%dx%d%c", &W, &H, &tail) != 2 || W < 8 || H < 8 || W > 8192 ||
+          H > 8192) {
+        fprintf(stderr, "fogpipe bench render: --size '%s': expected WxH, 8..8192 each, e.g. 640x360\n",
+                argv[i]);
+        return 2;
+      }
+    } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
+      frames = atoi(argv[++i]);
+      if (frames < 1) {
+        fprintf(stderr, "fogpipe bench render: --frames needs a positive number\n");
+        return 2;
+      }
+    } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
+      out_dir = argv[++i];
+    } else if (!strcmp(argv[i], "--profile") && i + 1 < argc) {
+      i++;
+      if (!strcmp(argv[i], "slab")) {
+        profile = FOG_PROFILE_SLAB;
+      } else if (!strcmp(argv[i], "exponential")) {
+        profile = FOG_PROFILE_EXPONENTIAL;
+      } else {
+        fprintf(stderr, "fogpipe bench render: --profile '%s': expected slab or exponential\n",
+                argv[i]);
+        return 2;
+      }
+    } else if (!strcmp(argv[i], "--fogmap") && i + 1 < argc) {
+      fogmap_path = argv[++i];
+    } else {
+      fprintf(stderr, "fogpipe bench render: unknown option '%s' (or it lacks its value)\n",
+              argv[i]);
+      print_help();
+      return 2;
+    }
+  }
+  if (!fogmap_path) fogmap_path = default_fogmap();
+  char message[1024] = "";
+  if (make_folder(out_dir, message, sizeof message)) {
+    fprintf(stderr, "fogpipe bench render: %s\n", message);
+    return 1;
+  }
+
+  /* ---- the fogmap, its full grid per basis and the linear LOD pyramid ---- */
+  fogmap map = {0};
+  sim_error serr;
+  if (fogmap_load(fogmap_path, &(fogmap_load_desc){0}, &map, &serr)) {
+    fprintf(stderr, "fogpipe bench render: %s\n", serr.message);
+    return 1;
+  }
+  int status = 1;
+  transform_error terr = {{0}};
+  transform_grid full[3] = {{0}}, approx[LOD_LEVELS + 1] = {{0}}, detail[LOD_LEVELS] = {{0}};
+  size_t cells = (size_t)map.width * map.height;
+  float *coefficients = malloc(cells * sizeof(float));
+  float *level_approx[LOD_LEVELS + 1] = {0}, *level_detail[LOD_LEVELS + 1] = {0};
+  transform_plan *plans[3] = {0}, *lod_plan = NULL;
+  gl_context *ctx = NULL;
+  scene_geometry geo = {0};
+  int have_geo = 0;
+  scene_pass *spass = NULL;
+  fog_pass *passes[4] = {0};
+  gl_target scene_target = {0}, fog_target = {0};
+  float *distance = NULL, *gpu_tau = NULL;
+  double *references[3 + MU_COUNT] = {0};
+  bench_row rows[MAX_ROWS];
+  int row_count = 0;
+  chart_point points[MAX_ROWS];
+  render_error rerr = {{0}};
+  size_t pixels = (size_t)W * H;
+  if (!coefficients) goto out_of_memory;
+  for (int d = 0; d < 3; d++) {
+    /* levels = 0: the grid of the fogmap itself in that basis (ghosts from the symmetric
+     * extension). */
+    transform_desc desc = {.width = map.width, .height = map.height, .levels = 0,
+                           .basis = basis_of_degree(d)};
+    if (transform_plan_create(&plans[d], &desc, &terr) ||
+        transform_grid_create_level(plans[d], 0, map.density, &full[d], &terr))
+      goto transform_failed;
+  }
+  {
+    transform_desc desc = {.width = map.width, .height = map.height, .levels = LOD_LEVELS,
+                           .basis = TRANSFORM_LINEAR};
+    if (transform_plan_create(&lod_plan, &desc, &terr)) goto transform_failed;
+    for (int l = 0; l <= LOD_LEVELS; l++) {
+      int w, h;
+      transform_level_size(lod_plan, l, &w, &h);
+      level_approx[l] = malloc((size_t)w * h * sizeof(float));
+      level_detail[l] = malloc((size_t)w * h * sizeof(float));
+      if (!level_approx[l] || !level_detail[l]) goto out_of_memory;
+    }
+    transform_forward(lod_plan, map.density, coefficients);
+    transform_pyramid(lod_plan, coefficients, level_approx);
+    transform_details(lod_plan, coefficients, level_detail);
+    for (int l = 0; l <= LOD_LEVELS; l++)
+      if (transform_grid_create_level(lod_plan, l, level_approx[l], &approx[l], &terr) ||
+          (l > 0 &&
+           transform_grid_create_level(lod_plan, l, level_detail[l], &detail[l - 1], &terr)))
+        goto transform_failed;
+  }
+  fog_lod lod = {.levels = LOD_LEVELS, .approx = approx, .detail = detail, .mu = 1.0};
+
+  /* ---- GL: context, scene, fog passes ---- */
+  ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
+  if (!ctx) goto gl_failed;
+  scene_desc sdesc = {
+      .terrain = {.origin = {-600, 0, -600}, .size = {1200, 1200}, .height = 160,
+                  .resolution = 257, .seed = 4, .octaves = 6, .frequency = 2.2},
+      .boxes = {{.center = {-40, 60}, .size = {24, 30, 24}, .colour = {0.55f, 0.25f, 0.18f}},
+                {.center = {70, -30}, .size = {16, 70, 16}}},
+      .box_count = 2,
+      .light = {.sun_azimuth = 150, .sun_elevation = 30},
+  };
+  if (scene_geometry_create(&geo, &sdesc, &rerr)) goto gl_failed;
+  have_geo = 1;
+  const fog_volume volume = {
+      .map_width = map.width, .map_height = map.height, .origin_x = -512.0, .origin_z = -512.0,
+      .cell_size = 4.0 * 256.0 / (map.width > map.height ? map.width : map.height),
+      .extinction = 0.02,
+      .profile = {.kind = profile, .y_floor = 0.0, .y_top = 220.0, .y0 = 50.0,
+                  .scale_height = 25.0},
+  };
+  /* Inside the fog near the map's +Z edge, 35 units above the ground, looking across the
+   * map toward -Z and slightly down: rays run up to ~1000 units through the fog. */
+  camera cam = {.fov_y = 55.0 * 3.14159265358979323846 / 180.0};
+  cam.position[0] = 30.0;
+  cam.position[2] = 470.0;
+  cam.position[1] = terrain_height_at(&geo.terrain, cam.position[0], cam.position[2]) + 35.0;
+  camera_look_at(&cam, (double[3]){-40.0, cam.position[1] - 45.0, -500.0});
+
+  spass = scene_pass_create(&geo, &rerr);
+  if (!spass || scene_target_create(&scene_target, W, H, &rerr)) goto gl_failed;
+  if (gl_target_create(&fog_target, &(gl_target_desc){.width = W, .height = H,
+                                                       .color_formats = {GL_RGBA32F, GL_R32F}},
+                       &rerr))
+    goto gl_failed;
+  scene_pass_run(spass, &cam, &scene_target);
+  distance = malloc(pixels * sizeof(float));
+  gpu_tau = malloc(pixels * sizeof(float));
+  if (!distance || !gpu_tau) goto out_of_memory;
+  if (gl_target_read(&scene_target, 1, 1, distance, &rerr)) goto gl_failed;
+  for (int p = 0; p < 4; p++) {
+    if (fog_pass_create(&passes[p], &rerr)) goto gl_failed;
+    if (p < 3 ? fog_pass_upload_grid(passes[p], 0, &full[p], &rerr)
+              : fog_pass_upload_lod(passes[p], &lod, &rerr))
+      goto gl_failed;
+  }
+
+  /* ---- the CPU references, one per model ---- */
+  double t_ref = bench_now();
+  for (int r = 0; r < 3 + MU_COUNT; r++) {
+    references[r] = malloc(pixels * sizeof(double));
+    if (!references[r]) goto out_of_memory;
+    fog_lod model = lod;
+    if (r >= 3) model.mu = lod_mu[r - 3];
+    reference_tau((reference_job){.volume = &volume, .cam = &cam,
+                                  .grid = r < 3 ? &full[r] : NULL, .lod = &model,
+                                  .distance = distance, .width = W, .height = H,
+                                  .tau = references[r]});
+  }
+  t_ref = bench_now() - t_ref;
+  fprintf(stderr, "bench render: CPU references done (%.1f s); GL rows...\n", t_ref);
+
+  /* ---- the rows ---- */
+  const fog_pass_params base = {.volume = &volume, .fog_colour = {0.75f, 0.78f, 0.82f}};
+  for (int jitter = 0; jitter <= 1; jitter++)
+    for (int s = 0; s < MARCH_COUNT; s++) {
+      bench_row *r = &rows[row_count++];
+      *r = (bench_row){.method = jitter ? "march jittered" : "march", .pass = 1,
+                       .series = jitter ? "ray marching (jittered)" : "ray marching",
+                       .params = base, .reference = 1, .full_reference = -1,
+                       .chart_x_key = march_steps[s]};
+      snprintf(r->setting, sizeof r->setting, "N=%d", march_steps[s]);
+      r->params.integrator = FOG_INTEGRATOR_MARCH;
+      r->params.march_steps = march_steps[s];
+      r->params.march_jitter = jitter;
+    }
+  static const char *basis_names[3] = {"haar", "linear", "quadratic"};
+  int exact_linear = -1;
+  for (int fetch = 0; fetch <= 1; fetch++)
+    for (int d = fetch; d < 3; d++) {
+      if (fetch == 0 && d == 1) exact_linear = row_count;
+      bench_row *r = &rows[row_count++];
+      *r = (bench_row){.method = fetch ? "exact hardware" : "exact", .pass = d,
+                       .series = fetch ? "exact hardware (lin quad)" : "exact manual (haar lin quad)",
+                       .params = base, .reference = d, .full_reference = -1, .chart_x_key = d};
+      snprintf(r->setting, sizeof r->setting, "%s", basis_names[d]);
+      r->params.fetch = fetch ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL;
+    }
+  int sum_at_06 = -1, switch_at_06 = -1, switch_at_1 = -1;
+  for (int m = 0; m <= 1; m++)
+    for (int k = 0; k < MU_COUNT; k++) {
+      if (fabs(lod_mu[k] - 0.6) < 1e-9) *(m ? &switch_at_06 : &sum_at_06) = row_count;
+      if (m == 1 && lod_mu[k] == 1.0) switch_at_1 = row_count;
+      bench_row *r = &rows[row_count++];
+      *r = (bench_row){.method = m ? "LOD switch" : "LOD sum", .pass = 3,
+                       .series = m ? "LOD switching (vs full model)" : "LOD sum of details (vs full model)",
+                       .params = base, .reference = 3 + k, .full_reference = 1,
+                       .chart_x_key = -lod_mu[k]};
+      snprintf(r->setting, sizeof r->setting, "J=%d mu=%.1f", LOD_LEVELS, lod_mu[k]);
+      r->params.levels = LOD_LEVELS;
+      r->params.mu = lod_mu[k];
+      r->params.lod_method = m ? FOG_LOD_SWITCH : FOG_LOD_SUM_OF_DETAILS;
+    }
+  for (int i = 0; i < row_count; i++) {
+    rows[i].times = malloc((size_t)frames * sizeof(double));
+    if (!rows[i].times) goto out_of_memory;
+  }
+
+  /* Warm-up round (shader JIT on first draw of each variant) and the error read-back. */
+  for (int i = 0; i < row_count; i++) {
+    bench_row *r = &rows[i];
+    gl_target_bind(&fog_target);
+    if (fog_pass_draw(passes[r->pass], &cam, &r->params, scene_target.color[0],
+                      scene_target.color[1], W, H, &rerr) ||
+        gl_target_read(&fog_target, 1, 1, gpu_tau, &rerr))
+      goto gl_failed;
+    size_t where;
+    tau_errors(gpu_tau, references[r->reference], pixels, &r->rmse, &r->max_error,
+               &r->worst_pixel);
+    r->worst_gpu = gpu_tau[r->worst_pixel];
+    r->worst_cpu = references[r->reference][r->worst_pixel];
+    if (r->full_reference >= 0)
+      tau_errors(gpu_tau, references[r->full_reference], pixels, &r->rmse_full, &r->max_full,
+                 &where);
+    if (i == exact_linear) {
+      /* A picture of the fog's transmittance, to see what is measured. */
+      float *grey = malloc(pixels * sizeof(float));
+      if (grey) {
+        for (size_t k = 0; k < pixels; k++) grey[k] = gpu_tau[k];
+        char png[4200];
+        snprintf(png, sizeof png, "%s/render_tau.png", out_dir);
+        if (image_write_png(png, W, H, 1, grey, &serr))
+          fprintf(stderr, "fogpipe bench render: %s\n", serr.message);
+        free(grey);
+      }
+    }
+  }
+  /* Timed rounds, all rows interleaved. */
+  for (int f = 0; f < frames; f++)
+    for (int i = 0; i < row_count; i++) {
+      bench_row *r = &rows[i];
+      r->params.frame = (unsigned)f;
+      gl_target_bind(&fog_target);
+      fog_pass_finish();
+      double t0 = bench_now();
+      if (fog_pass_draw(passes[r->pass], &cam, &r->params, scene_target.color[0],
+                        scene_target.color[1], W, H, &rerr))
+        goto gl_failed;
+      fog_pass_finish();
+      r->times[f] = bench_now() - t0;
+    }
+  for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
+
+  /* ---- report ---- */
+  double sum_cells = 0.0, switch_cells = 0.0, full_cells = 0.0, tau_mean = 0.0;
+  lod_cells(&volume, &lod, &cam, distance, W, H, 0.6, &sum_cells, &switch_cells);
+  {
+    double unused;
+    lod_cells(&volume, &lod, &cam, distance, W, H, 1.0, &unused, &full_cells);
+  }
+  for (size_t k = 0; k < pixels; k++) tau_mean += references[1][k] / (double)pixels;
+  bench_print_build();
+  printf("GL: %s, %s, %s; %dx%d, median of %d frames after 1 warm-up (glFinish before and after)\n",
+         gl_context_platform(ctx), gl_context_version(ctx), gl_context_renderer(ctx), W, H,
+         frames);
+  printf("scene: %s %dx%d, cell %g, extinction %g, %s fog (y0 %g, H %g); terrain\n"
+         "distance from the scene pass; mean tau %.3f; mean cells crossed per ray (full map,\n"
+         "linear) %.1f; CPU reference (double, 2 threads, once per model) %.1f s\n",
+         fogmap_path, map.width, map.height, volume.cell_size, volume.extinction,
+         profile == FOG_PROFILE_SLAB ? "slab" : "exponential", volume.profile.y0, volume.profile.scale_height, tau_mean, full_cells, t_ref);
+  printf("errors: tau vs the exact CPU integral of the same model; LOD rows also vs the full\n"
+         "model (the fogmap, linear). RMSE and max over all pixels. Exact walks stop at the\n"
+         "pass's default optical-depth cutoff (%g: tau < %.1e); marching and the sum of\n"
+         "details integrate whole rays.\n\n",
+         FOG_PASS_DEPTH_CUTOFF, exp(-FOG_PASS_DEPTH_CUTOFF));
+  printf("%-15s %-12s %10s %10s %10s %12s %12s\n", "method", "setting", "ms/frame", "RMSE",
+         "max err", "RMSE(full)", "max(full)");
+  for (int i = 0; i < row_count; i++) {
+    const bench_row *r = &rows[i];
+    printf("%-15s %-12s %10.2f %10.2e %10.2e", r->method, r->setting, r->ms, r->rmse,
+           r->max_error);
+    if (r->full_reference >= 0)
+      printf(" %12.2e %12.2e\n", r->rmse_full, r->max_full);
+    else
+      printf("\n");
+  }
+
+  /* The exact integrators should agree with their reference to float rounding: say where
+   * one does not, so the discrepancy can be looked at. */
+  for (int i = 0; i < row_count; i++) {
+    const bench_row *r = &rows[i];
+    if (r->params.integrator == FOG_INTEGRATOR_EXACT && r->max_error > 1e-4)
+      printf("note: %s %s: max error at pixel (%d, %d) (row 0 at the top): GPU tau %.6f, CPU "
+             "%.6f, surface distance %g\n",
+             r->method, r->setting, (int)(r->worst_pixel % (size_t)W),
+             (int)(r->worst_pixel / (size_t)W), r->worst_gpu, r->worst_cpu,
+             (double)distance[r->worst_pixel]);
+  }
+
+  /* Chart: max error (floored) vs ms, one series per method, LOD against the full model. */
+  int point_count = 0;
+  for (int i = 0; i < row_count; i++) {
+    const bench_row *r = &rows[i];
+    double y = r->full_reference >= 0 ? r->max_full : r->max_error;
+    points[point_count++] = (chart_point){.series = r->series, .x = r->ms,
+                                          .y = y > ERROR_FLOOR ? y : ERROR_FLOOR};
+  }
+  char csv_path[4200], chart_csv[4200], chart_png[4200], error[1024];
+  snprintf(csv_path, sizeof csv_path, "%s/render.csv", out_dir);
+  snprintf(chart_csv, sizeof chart_csv, "%s/render_chart.csv", out_dir);
+  snprintf(chart_png, sizeof chart_png, "%s/render_chart.png", out_dir);
+  /* (gnuplot's enhanced text: no underscores in labels) */
+  char title[256];
+  snprintf(title, sizeof title,
+           "fog pass %dx%d: max tau error vs GL time (LOD: vs full model; floor 1e-9)", W, H);
+  chart_desc chart = {.title = title,
+                      .x_label = "GL time per frame (ms)",
+                      .y_label = "max |tau - CPU reference|",
+                      .log_x = true, .log_y = true};
+  if (write_table_csv(csv_path, rows, row_count, error, sizeof error) ||
+      chart_write(&chart, points, point_count, chart_csv, chart_png, error, sizeof error)) {
+    fprintf(stderr, "fogpipe bench render: %s\n", error);
+    goto done;
+  }
+
+  /* X: the cheapest marching with max error <= 1e-3 over the exact linear walk. */
+  int cheapest = -1, best = -1;
+  for (int i = 0; i < row_count; i++) {
+    if (rows[i].params.integrator != FOG_INTEGRATOR_MARCH) continue;
+    if (rows[i].max_error <= 1e-3 && (cheapest < 0 || rows[i].ms < rows[cheapest].ms)) cheapest = i;
+    if (best < 0 || rows[i].max_error < rows[best].max_error) best = i;
+  }
+  int matched = cheapest >= 0 ? cheapest : best;
+  double X = rows[matched].ms / rows[exact_linear].ms;
+  double Y = rows[sum_at_06].ms / rows[switch_at_06].ms;
+  double Z = rows[switch_at_1].ms / rows[exact_linear].ms;
+  printf("\nCSV: %s (table), %s (chart data)\nPNG: %s; tau image: %s/render_tau.png\n", csv_path,
+         chart_csv, chart_png, out_dir);
+  if (cheapest < 0)
+    printf("note: no ray marching reached max error <= 1e-3; X uses the most accurate one\n");
+  printf("X: %s %s (%.2f ms, max err %.2e) / exact linear (%.2f ms)\n", rows[matched].method,
+         rows[matched].setting, rows[matched].ms, rows[matched].max_error, rows[exact_linear].ms);
+  printf("Y: LOD sum %.2f ms / LOD switch %.2f ms at mu = 0.6; predicted by cells crossed per "
+         "ray: sum %.1f / switch %.1f = %.2f\n",
+         rows[sum_at_06].ms, rows[switch_at_06].ms, sum_cells, switch_cells,
+         switch_cells > 0 ? sum_cells / switch_cells : 0.0);
+  printf("Z: LOD switch at mu = 1 %.2f ms / fogmap alone, levels = 0 (exact linear) %.2f ms\n",
+         rows[switch_at_1].ms, rows[exact_linear].ms);
+  printf("render: exact_speedup_at_matched_error=%.3f lod_switch_speedup_vs_sum=%.3f "
+         "lod_overhead_at_mu1=%.3f\n",
+         X, Y, Z);
+  status = 0;
+  goto done;
+
+out_of_memory:
+  fprintf(stderr, "fogpipe bench render: out of memory\n");
+  goto done;
+transform_failed:
+  fprintf(stderr, "fogpipe bench render: transform: %s\n", terr.message);
+  goto done;
+gl_failed:
+  fprintf(stderr, "fogpipe bench render: %s\n", rerr.message);
+done:
+  for (int i = 0; i < row_count; i++) free(rows[i].times);
+  for (int r = 0; r < 3 + MU_COUNT; r++) free(references[r]);
+  free(distance);
+  free(gpu_tau);
+  for (int p = 0; p < 4; p++) fog_pass_destroy(passes[p]);
+  if (ctx) {
+    gl_target_destroy(&fog_target);
+    gl_target_destroy(&scene_target);
+  }
+  scene_pass_destroy(spass);
+  if (have_geo) scene_geometry_destroy(&geo);
+  gl_context_destroy(ctx);
+  for (int l = 0; l <= LOD_LEVELS; l++) {
+    transform_grid_destroy(&approx[l]);
+    free(level_approx[l]);
+    free(level_detail[l]);
+  }
+  for (int l = 0; l < LOD_LEVELS; l++) transform_grid_destroy(&detail[l]);
+  for (int d = 0; d < 3; d++) {
+    transform_grid_destroy(&full[d]);
+    transform_plan_destroy(plans[d]);
+  }
+  transform_plan_destroy(lod_plan);
+  free(coefficients);
+  fogmap_destroy(&map);
+  return status;
+}

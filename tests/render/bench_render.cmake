@@ -1,0 +1,74 @@
+# `fogpipe bench render` smoke test: the benchmark runs at a tiny size, exits 0, writes a
+# table CSV whose rows hold finite numbers (all 31 rows: 14 marching, 5 exact, 12 LOD), the
+# chart CSV and PNG, and ends with the summary line. It asserts no speed (speed targets
+# live in the benchmark itself).
+#
+# This one file is both: included by tests/CMakeLists.txt (adds the test), and run by that
+# test as a script (`cmake -DFOGPIPE=... -DOUT=... -P bench_render.cmake`, the checks).
+if(NOT CMAKE_SCRIPT_MODE_FILE)
+  add_test(NAME render/bench_render_smoke
+           COMMAND ${CMAKE_COMMAND} -DFOGPIPE=$<TARGET_FILE:fogpipe>
+                   -DOUT=${CMAKE_CURRENT_BINARY_DIR}/bench_render_smoke
+                   -P ${CMAKE_CURRENT_LIST_FILE})
+  set_tests_properties(render/bench_render_smoke PROPERTIES
+    WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}
+    ENVIRONMENT "LP_NUM_THREADS=1;FOGPIPE_BIN=$<TARGET_FILE:fogpipe>" TIMEOUT 120)
+  return()
+endif()
+
+file(REMOVE_RECURSE ${OUT})
+execute_process(COMMAND ${FOGPIPE} bench render --size 32x18 --frames 1 --out ${OUT}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "fogpipe bench render exited with ${rc}: ${err}")
+endif()
+
+# The last line is exactly the summary line, with three finite positive numbers.
+string(STRIP "${out}" out)
+string(REGEX MATCH "[^\n]*$" last "${out}")
+set(num "[0-9]+(\\.[0-9]+)?")
+if(NOT last MATCHES "^render: exact_speedup_at_matched_error=${num} lod_switch_speedup_vs_sum=${num} lod_overhead_at_mu1=${num}$")
+  message(FATAL_ERROR "last line is not the summary line: '${last}'")
+endif()
+
+# The table: header + 31 rows; every number finite (no nan/inf), errors and times >= 0.
+foreach(f render.csv render_chart.csv render_chart.png render_tau.png)
+  if(NOT EXISTS ${OUT}/${f})
+    message(FATAL_ERROR "missing output ${OUT}/${f}")
+  endif()
+endforeach()
+file(STRINGS ${OUT}/render.csv lines)
+list(LENGTH lines count)
+if(NOT count EQUAL 32)
+  message(FATAL_ERROR "render.csv has ${count} lines, expected a header and 31 rows")
+endif()
+list(GET lines 0 header)
+if(NOT header STREQUAL "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full")
+  message(FATAL_ERROR "render.csv header: '${header}'")
+endif()
+list(REMOVE_AT lines 0)
+set(finite "[0-9.]+(e[-+][0-9]+)?") # one group each: CMake allows 9
+foreach(line IN LISTS lines)
+  # method,setting,ms,rmse,max[,rmse_full,max_full] (the last two only for LOD rows)
+  if(NOT line MATCHES "^[^,]+,[^,]+,${finite},${finite},${finite},(${finite},${finite}|,)$")
+    message(FATAL_ERROR "render.csv row without finite numbers: '${line}'")
+  endif()
+  if(line MATCHES "^LOD" AND line MATCHES ",$")
+    message(FATAL_ERROR "LOD row without its error against the full model: '${line}'")
+  endif()
+endforeach()
+# The exact rows really are exact (manual fetch, linear basis: float rounding of tau) - the
+# smoke test should notice a bench that compares against the wrong reference.
+foreach(line IN LISTS lines)
+  if(line MATCHES "^exact,linear,${finite},${finite},(${finite}),")
+    set(max_error ${CMAKE_MATCH_3})
+  endif()
+endforeach()
+if(NOT DEFINED max_error)
+  message(FATAL_ERROR "no exact,linear row in render.csv")
+endif()
+# CMake has no float comparison: 1e-4 or smaller means an exponent of -5 or below, or 0.
+if(NOT (max_error MATCHES "e-0*([5-9]|[1-9][0-9])$" OR max_error STREQUAL "0"))
+  message(FATAL_ERROR "exact linear max tau error ${max_error}: expected <= 1e-4")
+endif()
