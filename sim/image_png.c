@@ -157,6 +157,12 @@ int png_write_samples(const char *path, int width, int height, int channels, int
   size_t size = (size_t)width * height * channels * (bit_depth / 8);
   /* Encode to memory, then write through atomic_file: the file appears only complete. */
   int e = spng_set_option(ctx, SPNG_ENCODE_TO_BUFFER, 1);
+  /* 8-bit images are previews and frames to look at: fast zlib and two cheap filters
+   * encode 640x480 several times faster than libspng's default (every filter, default
+   * effort) for files ~10-20% larger. 16-bit PNGs are fogmap data: default effort. */
+  if (!e && bit_depth == 8) e = spng_set_option(ctx, SPNG_IMG_COMPRESSION_LEVEL, 1);
+  if (!e && bit_depth == 8)
+    e = spng_set_option(ctx, SPNG_FILTER_CHOICE, SPNG_FILTER_CHOICE_SUB | SPNG_FILTER_CHOICE_UP);
   if (!e) e = spng_set_ihdr(ctx, &ihdr);
   if (!e) e = spng_encode_image(ctx, samples, size, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
   size_t png_size = 0;
