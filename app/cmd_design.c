@@ -1,12 +1,12 @@
 /* fogpipe design: writes a designed fogmap (Perlin turbulence, Gaussian blobs, or
  * turbulence modulated by blobs) to EXR or PNG. */
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "app/cli.h"
 #include "app/commands.h"
 #include "sim/designed_fog.h"
 #include "sim/fogmap.h"
@@ -51,21 +51,6 @@ static void print_help(FILE *out) {
           "                         is the turbulence left between the banks)\n"
           "  --help                 this text\n",
           max_blobs);
-}
-
-static int usage_error(const char *format, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 1, 2)))
-#endif
-    ;
-static int usage_error(const char *format, ...) {
-  va_list args;
-  va_start(args, format);
-  fprintf(stderr, "fogpipe design: ");
-  vfprintf(stderr, format, args);
-  fprintf(stderr, "\n(fogpipe design --help lists the options)\n");
-  va_end(args);
-  return 2;
 }
 
 static int takes_value(const char *opt) {
@@ -143,8 +128,8 @@ int cmd_design(int argc, char **argv) {
       half = 1;
       continue;
     }
-    if (!takes_value(opt)) return usage_error("unknown option '%s'", opt);
-    if (i + 1 >= argc) return usage_error("%s needs a value", opt);
+    if (!takes_value(opt)) return cli_usage_error("design", "unknown option '%s'", opt);
+    if (i + 1 >= argc) return cli_usage_error("design", "%s needs a value", opt);
     const char *value = argv[++i];
     double v[4];
     long n;
@@ -152,79 +137,79 @@ int cmd_design(int argc, char **argv) {
       char *x = strchr(value, 'x');
       char w_text[32];
       if (!x || x - value >= (long)sizeof w_text)
-        return usage_error("--size expects WxH (e.g. 256x256), got '%s'", value);
+        return cli_usage_error("design", "--size expects WxH (e.g. 256x256), got '%s'", value);
       memcpy(w_text, value, (size_t)(x - value));
       w_text[x - value] = '\0';
       if (parse_int(w_text, 1, 16384, &width) || parse_int(x + 1, 1, 16384, &height))
-        return usage_error("--size expects WxH with both 1 to 16384, got '%s'", value);
+        return cli_usage_error("design", "--size expects WxH with both 1 to 16384, got '%s'", value);
     } else if (!strcmp(opt, "--out")) {
       out = value;
     } else if (!strcmp(opt, "--seed")) {
       if (parse_int(value, 0, 0x7fffffffL, &seed))
-        return usage_error("--seed expects an integer 0 to 2147483647, got '%s'", value);
+        return cli_usage_error("design", "--seed expects an integer 0 to 2147483647, got '%s'", value);
     } else if (!strcmp(opt, "--blobs")) {
       if (parse_int(value, 1, max_blobs, &n))
-        return usage_error("--blobs expects a count 1 to 256, got '%s'", value);
+        return cli_usage_error("design", "--blobs expects a count 1 to 256, got '%s'", value);
       random_blobs = (int)n;
     } else if (!strcmp(opt, "--blob")) {
       if (parse_numbers(value, v, 4) || !(v[2] > 0) || !(v[3] >= 0))
-        return usage_error("--blob expects X,Z,SIGMA,PEAK with SIGMA > 0 and PEAK >= 0, got "
+        return cli_usage_error("design", "--blob expects X,Z,SIGMA,PEAK with SIGMA > 0 and PEAK >= 0, got "
                            "'%s'", value);
-      if (blob_count >= max_blobs) return usage_error("more than 256 blobs");
+      if (blob_count >= max_blobs) return cli_usage_error("design", "more than 256 blobs");
       blobs[blob_count++] = (fog_blob){(float)v[0], (float)v[1], (float)v[2], (float)v[3]};
     } else if (!strcmp(opt, "--time")) {
-      if (parse_numbers(value, v, 1)) return usage_error("--time expects a number, got '%s'", value);
+      if (parse_numbers(value, v, 1)) return cli_usage_error("design", "--time expects a number, got '%s'", value);
       noise.time = (float)v[0];
     } else if (!strcmp(opt, "--velocity")) {
       if (parse_numbers(value, v, 2))
-        return usage_error("--velocity expects VX,VZ (two numbers), got '%s'", value);
+        return cli_usage_error("design", "--velocity expects VX,VZ (two numbers), got '%s'", value);
       noise.velocity[0] = (float)v[0];
       noise.velocity[1] = (float)v[1];
     } else if (!strcmp(opt, "--feature-size")) {
       if (parse_numbers(value, v, 1) || !(v[0] > 0))
-        return usage_error("--feature-size expects a positive number of cells, got '%s'",
+        return cli_usage_error("design", "--feature-size expects a positive number of cells, got '%s'",
                            value);
       noise.feature_size = (float)v[0];
     } else if (!strcmp(opt, "--octaves")) {
       if (parse_int(value, 1, 30, &n))
-        return usage_error("--octaves expects 1 to 30, got '%s'", value);
+        return cli_usage_error("design", "--octaves expects 1 to 30, got '%s'", value);
       noise.octaves = (int)n;
     } else if (!strcmp(opt, "--gain")) {
       if (parse_numbers(value, v, 1) || !(v[0] > 0))
-        return usage_error("--gain expects a positive number, got '%s'", value);
+        return cli_usage_error("design", "--gain expects a positive number, got '%s'", value);
       noise.gain = (float)v[0];
     } else if (!strcmp(opt, "--base")) {
       if (parse_numbers(value, v, 1) || !(v[0] >= 0))
-        return usage_error("--base expects a number >= 0, got '%s'", value);
+        return cli_usage_error("design", "--base expects a number >= 0, got '%s'", value);
       noise.base = (float)v[0];
     } else if (!strcmp(opt, "--slice")) {
-      if (parse_numbers(value, v, 1)) return usage_error("--slice expects a number, got '%s'", value);
+      if (parse_numbers(value, v, 1)) return cli_usage_error("design", "--slice expects a number, got '%s'", value);
       noise.slice = (float)v[0];
     } else if (!strcmp(opt, "--slice-rate")) {
       if (parse_numbers(value, v, 1))
-        return usage_error("--slice-rate expects a number, got '%s'", value);
+        return cli_usage_error("design", "--slice-rate expects a number, got '%s'", value);
       noise.slice_rate = (float)v[0];
     } else if (!strcmp(opt, "--blob-base")) {
       if (parse_numbers(value, v, 1) || !(v[0] >= 0))
-        return usage_error("--blob-base expects a number >= 0, got '%s'", value);
+        return cli_usage_error("design", "--blob-base expects a number >= 0, got '%s'", value);
       blob_base = v[0];
     } else if (!strcmp(opt, "--png-max")) {
       if (parse_numbers(value, v, 1) || !(v[0] > 0))
-        return usage_error("--png-max expects a positive density, got '%s'", value);
+        return cli_usage_error("design", "--png-max expects a positive density, got '%s'", value);
       png_max = v[0];
     } else {
-      return usage_error("unknown option '%s'", opt);
+      return cli_usage_error("design", "unknown option '%s'", opt);
     }
   }
   if (!perlin && !random_blobs && !blob_count)
-    return usage_error("say what to design: --perlin, --blobs N and/or --blob X,Z,SIGMA,PEAK");
-  if (!width) return usage_error("--size WxH is required");
-  if (!out) return usage_error("--out FILE.exr or FILE.png is required");
+    return cli_usage_error("design", "say what to design: --perlin, --blobs N and/or --blob X,Z,SIGMA,PEAK");
+  if (!width) return cli_usage_error("design", "--size WxH is required");
+  if (!out) return cli_usage_error("design", "--out FILE.exr or FILE.png is required");
   int png = ends_with(out, ".png");
   if (!png && !ends_with(out, ".exr"))
-    return usage_error("--out '%s': the name must end in .exr or .png", out);
+    return cli_usage_error("design", "--out '%s': the name must end in .exr or .png", out);
   if (random_blobs + blob_count > max_blobs)
-    return usage_error("more than 256 blobs");
+    return cli_usage_error("design", "more than 256 blobs");
 
   /* Random banks: centres inside the middle 80%, widths 1/16 to 1/5 of the smaller side. */
   uint64_t state = (uint64_t)seed * 0x2545f4914f6cdd1dull + 1;

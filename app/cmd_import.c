@@ -6,7 +6,6 @@
 #include <dirent.h>
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +13,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "app/cli.h"
 #include "app/commands.h"
 #include "bench/chart.h"
 #include "sim/sim.h"
@@ -72,28 +72,6 @@ static void print_help(FILE *out) {
           "  --help                 this text\n");
 }
 
-static int usage_error(const char *format, ...) __attribute__((format(printf, 1, 2)));
-static int usage_error(const char *format, ...) {
-  va_list args;
-  va_start(args, format);
-  fprintf(stderr, "fogpipe import: ");
-  vfprintf(stderr, format, args);
-  fprintf(stderr, "\n(fogpipe import --help lists the options)\n");
-  va_end(args);
-  return 2;
-}
-
-static int fail(const char *format, ...) __attribute__((format(printf, 1, 2)));
-static int fail(const char *format, ...) {
-  va_list args;
-  va_start(args, format);
-  fprintf(stderr, "fogpipe import: ");
-  vfprintf(stderr, format, args);
-  fputc('\n', stderr);
-  va_end(args);
-  return 1;
-}
-
 typedef struct import_options {
   const char *inputs[max_inputs];
   int input_count;
@@ -132,7 +110,7 @@ static int parse_options(int argc, char **argv, import_options *o) {
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     if (a[0] != '-' || !a[1]) {
-      if (o->input_count == max_inputs) return usage_error("more than %d inputs", max_inputs);
+      if (o->input_count == max_inputs) return cli_usage_error("import", "more than %d inputs", max_inputs);
       o->inputs[o->input_count++] = a;
       continue;
     }
@@ -162,13 +140,13 @@ static int parse_options(int argc, char **argv, import_options *o) {
         "--profile-degree", "--profile-per", "--report-frame", "--report-rays"};
     int known = 0;
     for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++) known |= !strcmp(a, valued[k]);
-    if (!known) return usage_error("unknown option '%s'", a);
-    if (i + 1 >= argc) return usage_error("%s needs a value", a);
+    if (!known) return cli_usage_error("import", "unknown option '%s'", a);
+    if (i + 1 >= argc) return cli_usage_error("import", "%s needs a value", a);
     const char *v = argv[++i];
     if (!strcmp(a, "--out"))
       o->out = v;
     else if (!strcmp(a, "--name")) {
-      if (!*v || strchr(v, '/')) return usage_error("--name '%s': a plain file name", v);
+      if (!*v || strchr(v, '/')) return cli_usage_error("import", "--name '%s': a plain file name", v);
       o->name = v;
     } else if (!strcmp(a, "--grid"))
       o->grid = v;
@@ -186,10 +164,10 @@ static int parse_options(int argc, char **argv, import_options *o) {
       }
       if (parse_int(first, &o->first) || parse_int(last, &o->last) || o->first < 0 ||
           o->last < o->first)
-        return usage_error("--frames '%s': expected A-B with 0 <= A <= B, or A", v);
+        return cli_usage_error("import", "--frames '%s': expected A-B with 0 <= A <= B, or A", v);
     } else if (!strcmp(a, "--max-voxels")) {
       double m;
-      if (parse_double(v, &m) || m < 1) return usage_error("--max-voxels '%s'", v);
+      if (parse_double(v, &m) || m < 1) return cli_usage_error("import", "--max-voxels '%s'", v);
       o->max_voxels = (long long)m;
     } else if (!strcmp(a, "--up")) {
       if (!strcmp(v, "z") || !strcmp(v, "Z"))
@@ -197,33 +175,33 @@ static int parse_options(int argc, char **argv, import_options *o) {
       else if (!strcmp(v, "y") || !strcmp(v, "Y"))
         o->up = VDB_UP_Y;
       else
-        return usage_error("--up '%s': expected z or y", v);
+        return cli_usage_error("import", "--up '%s': expected z or y", v);
     } else if (!strcmp(a, "--scale")) {
       if (parse_double(v, &o->scale) || !(o->scale > 0))
-        return usage_error("--scale '%s': expected a positive number", v);
+        return cli_usage_error("import", "--scale '%s': expected a positive number", v);
     } else if (!strcmp(a, "--offset")) {
       if (sscanf(v, "%lf,%lf,%lf", &o->offset[0], &o->offset[1], &o->offset[2]) != 3)
-        return usage_error("--offset '%s': expected X,Y,Z", v);
+        return cli_usage_error("import", "--offset '%s': expected X,Y,Z", v);
     } else if (!strcmp(a, "--resolution")) {
       if (parse_int(v, &o->resolution) || o->resolution < 1 || o->resolution > 16384)
-        return usage_error("--resolution '%s': expected 1..16384", v);
+        return cli_usage_error("import", "--resolution '%s': expected 1..16384", v);
     } else if (!strcmp(a, "--cell")) {
       if (parse_double(v, &o->cell) || !(o->cell > 0))
-        return usage_error("--cell '%s': expected a positive size", v);
+        return cli_usage_error("import", "--cell '%s': expected a positive size", v);
     } else if (!strcmp(a, "--profile")) {
       if (!strcmp(v, "bspline"))
         o->profile.kind = VDB_PROFILE_BSPLINE;
       else if (!strcmp(v, "exponential"))
         o->profile.kind = VDB_PROFILE_EXPONENTIAL;
       else
-        return usage_error("--profile '%s': expected bspline or exponential", v);
+        return cli_usage_error("import", "--profile '%s': expected bspline or exponential", v);
     } else if (!strcmp(a, "--profile-knots")) {
       if (parse_int(v, &o->profile.knots) || o->profile.knots < 1 ||
           o->profile.knots > VDB_PROFILE_MAX_KNOTS)
-        return usage_error("--profile-knots '%s': expected 1..%d", v, VDB_PROFILE_MAX_KNOTS);
+        return cli_usage_error("import", "--profile-knots '%s': expected 1..%d", v, VDB_PROFILE_MAX_KNOTS);
     } else if (!strcmp(a, "--profile-degree")) {
       if (strcmp(v, "0") && strcmp(v, "1"))
-        return usage_error("--profile-degree '%s': expected 0 or 1", v);
+        return cli_usage_error("import", "--profile-degree '%s': expected 0 or 1", v);
       o->profile.degree_box = !strcmp(v, "0");
     } else if (!strcmp(a, "--profile-per")) {
       if (!strcmp(v, "sequence"))
@@ -231,17 +209,17 @@ static int parse_options(int argc, char **argv, import_options *o) {
       else if (!strcmp(v, "frame"))
         o->profile_per_frame = 1;
       else
-        return usage_error("--profile-per '%s': expected sequence or frame", v);
+        return cli_usage_error("import", "--profile-per '%s': expected sequence or frame", v);
     } else if (!strcmp(a, "--report-frame")) {
       if (parse_int(v, &o->report_frame) || o->report_frame < 0)
-        return usage_error("--report-frame '%s'", v);
+        return cli_usage_error("import", "--report-frame '%s'", v);
     } else if (!strcmp(a, "--report-rays")) {
       if (parse_int(v, &o->report_rays) || o->report_rays < 1 || o->report_rays > 1024)
-        return usage_error("--report-rays '%s': expected 1..1024", v);
+        return cli_usage_error("import", "--report-rays '%s': expected 1..1024", v);
     }
   }
-  if (!o->input_count) return usage_error("no INPUT given");
-  if (!o->out && !o->list) return usage_error("--out DIR is required");
+  if (!o->input_count) return cli_usage_error("import", "no INPUT given");
+  if (!o->out && !o->list) return cli_usage_error("import", "--out DIR is required");
   return 0;
 }
 
@@ -249,13 +227,13 @@ static int list_grids(const import_options *o) {
   vdb_sequence seq;
   sim_error err = {{0}};
   if (vdb_sequence_find(o->inputs, o->input_count, o->first, o->last, &seq, &err))
-    return fail("%s", err.message);
+    return cli_fail("import", "%s", err.message);
   int status = 0;
   for (int i = 0; i < seq.count; i++) {
     vdb_grid_info info[64];
     int count = 0;
     if (vdb_list_grids(seq.paths[i], info, 64, &count, &err)) {
-      status = fail("%s", err.message);
+      status = cli_fail("import", "%s", err.message);
       break;
     }
     printf("%s (frame %d): %d grid%s\n", seq.paths[i], seq.frames[i], count,
@@ -395,7 +373,7 @@ static int run_report(const import_options *o, const vdb_sequence *seq, const vd
     index = -1;
     for (int i = 0; i < seq->count; i++)
       if (seq->frames[i] == o->report_frame) index = i;
-    if (index < 0) return fail("--report-frame %d: no such frame imported", o->report_frame);
+    if (index < 0) return cli_fail("import", "--report-frame %d: no such frame imported", o->report_frame);
   }
   const vdb_profile *profile = seq_profile ? seq_profile : &frames[index].profile;
   sim_error err = {{0}};
@@ -405,7 +383,7 @@ static int run_report(const import_options *o, const vdb_sequence *seq, const vd
                          .config = o->config, .place = place, .fixed_profile = profile,
                          .keep_grid = 1, .max_voxels = o->max_voxels};
   if (vdb_frame_load(seq->paths[index], &desc, &full, &err))
-    return fail("frame %d: %s", seq->frames[index], err.message);
+    return cli_fail("import", "frame %d: %s", seq->frames[index], err.message);
   vdb_report_row rows[report_rows];
   for (int r = 0; r < report_rows; r++) rows[r] = (vdb_report_row){.elevation_deg = report_elevations[r]};
   const double t0 = (double)clock() / CLOCKS_PER_SEC;
@@ -415,7 +393,7 @@ static int run_report(const import_options *o, const vdb_sequence *seq, const vd
   const double seconds = (double)clock() / CLOCKS_PER_SEC - t0;
   if (status) {
     vdb_frame_destroy(&full);
-    return fail("frame %d: %s", seq->frames[index], err.message);
+    return cli_fail("import", "frame %d: %s", seq->frames[index], err.message);
   }
   printf("\n2.5D accuracy, frame %d (%s): transmittance of f*g against a trilinear ray march\n"
          "of the 3D grid, orthographic views, %d x %d rays x 4 azimuths per elevation,\n"
@@ -446,7 +424,7 @@ static int run_report(const import_options *o, const vdb_sequence *seq, const vd
   chart_desc chart = {.title = title, .x_label = "view elevation (degrees)",
                       .y_label = "|transmittance error|", .width = 800, .height = 500};
   if (chart_write(&chart, points, 2 * report_rows, csv, png, error, (int)sizeof error))
-    return fail("%s", error);
+    return cli_fail("import", "%s", error);
   return 0;
 }
 
@@ -459,14 +437,14 @@ int cmd_import(int argc, char **argv) {
   sim_error err = {{0}};
   vdb_sequence seq;
   if (vdb_sequence_find(o.inputs, o.input_count, o.first, o.last, &seq, &err))
-    return fail("%s", err.message);
+    return cli_fail("import", "%s", err.message);
   if (seq.missing_count) {
     char list[400] = "";
     for (int i = 0; i < seq.missing_count && strlen(list) < 300; i++)
       snprintf(list + strlen(list), sizeof list - strlen(list), "%s%d", i ? ", " : "",
                seq.missing[i]);
     if (!o.skip_missing) {
-      int status = fail("%s: %d frame%s missing: %s%s (--skip-missing goes on without them)",
+      int status = cli_fail("import", "%s: %d frame%s missing: %s%s (--skip-missing goes on without them)",
                         o.inputs[0], seq.missing_count, seq.missing_count == 1 ? "" : "s", list,
                         strlen(list) >= 300 ? ", ..." : "");
       vdb_sequence_destroy(&seq);
@@ -482,7 +460,7 @@ int cmd_import(int argc, char **argv) {
   fogmap map = {0};
   if (!frames) {
     vdb_sequence_destroy(&seq);
-    return fail("out of memory for %d frames", seq.count);
+    return cli_fail("import", "out of memory for %d frames", seq.count);
   }
   /* Pass 1: read, place and project every frame (a frame's own profile is fitted too). */
   vdb_frame_desc desc = {.grid = o.grid, .up = o.up, .scale = o.scale,
@@ -491,7 +469,7 @@ int cmd_import(int argc, char **argv) {
   int loaded = 0;
   for (; loaded < seq.count; loaded++) {
     if (vdb_frame_load(seq.paths[loaded], &desc, &frames[loaded], &err)) {
-      status = fail("frame %d: %s", seq.frames[loaded], err.message);
+      status = cli_fail("import", "frame %d: %s", seq.frames[loaded], err.message);
       goto done;
     }
     const vdb_frame *f = &frames[loaded];
@@ -523,7 +501,7 @@ int cmd_import(int argc, char **argv) {
   const vdb_columns *c0 = &frames[0].columns;
   if (vdb_fogmap_place_fit(x0, x1, z0, z1, o.resolution, o.cell, fmax(c0->cell_x, c0->cell_z),
                            &place, &err)) {
-    status = fail("%s", err.message);
+    status = cli_fail("import", "%s", err.message);
     goto done;
   }
   vdb_profile seq_profile;
@@ -531,14 +509,14 @@ int cmd_import(int argc, char **argv) {
   if (!o.profile_per_frame) {
     const vdb_columns **cols = malloc((size_t)seq.count * sizeof *cols);
     if (!cols) {
-      status = fail("out of memory");
+      status = cli_fail("import", "out of memory");
       goto done;
     }
     for (int i = 0; i < seq.count; i++) cols[i] = &frames[i].columns;
     int s = vdb_profile_fit_columns(cols, seq.count, &o.profile, &seq_profile, &err);
     free(cols);
     if (s) {
-      status = fail("%s: %s", o.inputs[0], err.message);
+      status = cli_fail("import", "%s: %s", o.inputs[0], err.message);
       goto done;
     }
     profile = &seq_profile;
@@ -547,30 +525,30 @@ int cmd_import(int argc, char **argv) {
   struct stat out_stat;
   created_out = stat(o.out, &out_stat) != 0;
   if (make_dirs(o.out)) {
-    status = fail("%s: cannot create the output folder: %s", o.out, strerror(errno));
+    status = cli_fail("import", "%s: cannot create the output folder: %s", o.out, strerror(errno));
     goto done;
   }
   snprintf(temp_dir, sizeof temp_dir, "%s/.%s.import.XXXXXX", o.out, o.name);
   if (!mkdtemp(temp_dir)) {
-    status = fail("%s: cannot create a temporary folder: %s", o.out, strerror(errno));
+    status = cli_fail("import", "%s: cannot create a temporary folder: %s", o.out, strerror(errno));
     temp_dir[0] = 0;
     goto done;
   }
   if (fogmap_create(&map, place.width, place.height, &err)) {
-    status = fail("%s", err.message);
+    status = cli_fail("import", "%s", err.message);
     goto done;
   }
   double mass_min = INFINITY, mass_max = 0;
   for (int i = 0; i < seq.count; i++) {
     const vdb_profile *g = profile ? profile : &frames[i].profile;
     if (vdb_columns_resample(&frames[i].columns, &place, g->thickness, &map, &err)) {
-      status = fail("frame %d: %s: %s", seq.frames[i], seq.paths[i], err.message);
+      status = cli_fail("import", "frame %d: %s: %s", seq.frames[i], seq.paths[i], err.message);
       goto done;
     }
     char path[4300];
     snprintf(path, sizeof path, "%s/%s.%04d.exr", temp_dir, o.name, seq.frames[i]);
     if (fogmap_save_exr(path, &map, &err)) {
-      status = fail("frame %d: %s", seq.frames[i], err.message);
+      status = cli_fail("import", "frame %d: %s", seq.frames[i], err.message);
       goto done;
     }
     mass_min = fmin(mass_min, frames[i].columns.mass);
@@ -579,7 +557,7 @@ int cmd_import(int argc, char **argv) {
   char sidecar[4300];
   snprintf(sidecar, sizeof sidecar, "%s/%s.ini", temp_dir, o.name);
   if (write_sidecar(sidecar, &o, &seq, frames, &place, profile, &err)) {
-    status = fail("%s", err.message);
+    status = cli_fail("import", "%s", err.message);
     goto done;
   }
   if (o.report && (status = run_report(&o, &seq, frames, &place, profile, temp_dir))) goto done;
@@ -593,7 +571,7 @@ int cmd_import(int argc, char **argv) {
       snprintf(from, sizeof from, "%s/%s", temp_dir, e->d_name);
       snprintf(to, sizeof to, "%s/%s", o.out, e->d_name);
       if (rename(from, to)) {
-        status = fail("%s: cannot move into place: %s", to, strerror(errno));
+        status = cli_fail("import", "%s: cannot move into place: %s", to, strerror(errno));
         break;
       }
     }

@@ -4,7 +4,6 @@
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +12,7 @@
 
 #include <OpenEXR/openexr.h>
 
+#include "app/cli.h"
 #include "app/commands.h"
 #include "sim/sim.h"
 #include "transform/transform.h"
@@ -43,16 +43,6 @@ static void usage(FILE *out) {
           "  --out DIR|FILE                  output folder (forward) or EXR file (--inverse)\n"
           "  --inverse DIR                   reconstruct from DIR\n"
           "  --help                          this text\n");
-}
-
-static int failf(const char *format, ...) {
-  va_list ap;
-  va_start(ap, format);
-  fprintf(stderr, "fogpipe transform: ");
-  vfprintf(stderr, format, ap);
-  fputc('\n', stderr);
-  va_end(ap);
-  return 1;
 }
 
 static const char *basis_word(transform_basis b) {
@@ -149,7 +139,7 @@ static int write_exr(const char *dir, const char *name, int w, int h, const floa
   snprintf(path, sizeof path, "%s/%s", dir, name);
   image_channel y = {.name = "Y", .pixels = v, .as_half = 0};
   sim_error err;
-  if (image_write_exr(path, w, h, &y, 1, &err)) return failf("%s", err.message);
+  if (image_write_exr(path, w, h, &y, 1, &err)) return cli_fail("transform", "%s", err.message);
   return 0;
 }
 
@@ -160,7 +150,7 @@ static int write_manifest(const char *dir, transform_plan *plan, const char *inp
   snprintf(path, sizeof path, "%s/transform.ini", dir);
   snprintf(temp, sizeof temp, "%s/.transform.ini.tmp.%ld", dir, (long)getpid());
   FILE *f = fopen(temp, "w");
-  if (!f) return failf("%s: cannot write: %s", temp, strerror(errno));
+  if (!f) return cli_fail("transform", "%s: cannot write: %s", temp, strerror(errno));
   fprintf(f, "# fogpipe transform of %s (docs/transform.md)\n[transform]\n", input);
   fprintf(f, "basis = %s\ndegree = %d\nlevels = %d\nmode = %s\ndecomposition = %s\n",
           basis_word(d->basis), transform_basis_degree(d->basis), d->levels,
@@ -184,7 +174,7 @@ static int write_manifest(const char *dir, transform_plan *plan, const char *inp
   bad |= fclose(f) != 0;
   if (bad || rename(temp, path)) {
     unlink(temp);
-    return failf("%s: cannot write: %s", path, strerror(errno));
+    return cli_fail("transform", "%s: cannot write: %s", path, strerror(errno));
   }
   return 0;
 }
@@ -192,7 +182,7 @@ static int write_manifest(const char *dir, transform_plan *plan, const char *inp
 static int run_forward(const char *in, const char *dir, transform_desc desc) {
   fogmap map;
   sim_error serr;
-  if (fogmap_load(in, NULL, &map, &serr)) return failf("%s", serr.message);
+  if (fogmap_load(in, NULL, &map, &serr)) return cli_fail("transform", "%s", serr.message);
   desc.width = map.width, desc.height = map.height;
   transform_plan *plan = NULL;
   transform_error terr;
@@ -201,11 +191,11 @@ static int run_forward(const char *in, const char *dir, transform_desc desc) {
   float *coef = NULL, *approx[64] = {0}, *detail[64] = {0}, *band = NULL;
   double *energy = NULL;
   if (desc.levels > 60) {
-    failf("%s: %d levels is too many", in, desc.levels);
+    cli_fail("transform", "%s: %d levels is too many", in, desc.levels);
     goto done;
   }
   if (transform_plan_create(&plan, &desc, &terr)) {
-    failf("%s: %s", in, terr.message);
+    cli_fail("transform", "%s: %s", in, terr.message);
     goto done;
   }
   int J = desc.levels;
@@ -221,7 +211,7 @@ static int run_forward(const char *in, const char *dir, transform_desc desc) {
     ok = approx[l] && detail[l];
   }
   if (!ok) {
-    failf("%s: out of memory", in);
+    cli_fail("transform", "%s: out of memory", in);
     goto done;
   }
   transform_forward(plan, map.density, coef);
@@ -230,7 +220,7 @@ static int run_forward(const char *in, const char *dir, transform_desc desc) {
   transform_detail_energy(plan, coef, energy);
   /* only now touch DIR */
   if (mkdir(dir, 0755) && errno != EEXIST) {
-    failf("%s: cannot create folder: %s", dir, strerror(errno));
+    cli_fail("transform", "%s: cannot create folder: %s", dir, strerror(errno));
     goto done;
   }
   char name[64];
@@ -323,10 +313,10 @@ static int read_into(const char *dir, const char *name, int w, int h, float *dst
   snprintf(path, sizeof path, "%s/%s", dir, name);
   int rw, rh;
   float *v;
-  if (read_signed_exr(path, &rw, &rh, &v, msg, sizeof msg)) return failf("%s", msg);
+  if (read_signed_exr(path, &rw, &rh, &v, msg, sizeof msg)) return cli_fail("transform", "%s", msg);
   if (rw != w || rh != h) {
     free(v);
-    return failf("%s: size %dx%d, transform.ini says %dx%d", path, rw, rh, w, h);
+    return cli_fail("transform", "%s: size %dx%d, transform.ini says %dx%d", path, rw, rh, w, h);
   }
   for (int j = 0; j < h; j++) memcpy(dst + (size_t)j * stride, v + (size_t)j * w, sizeof(float) * w);
   free(v);
@@ -336,18 +326,18 @@ static int read_into(const char *dir, const char *name, int w, int h, float *dst
 static int run_inverse(const char *dir, const char *out, int threads) {
   transform_desc desc;
   char msg[8448];
-  if (read_manifest(dir, &desc, msg, sizeof msg)) return failf("%s", msg);
+  if (read_manifest(dir, &desc, msg, sizeof msg)) return cli_fail("transform", "%s", msg);
   desc.threads = threads;
   transform_plan *plan;
   transform_error terr;
   if (transform_plan_create(&plan, &desc, &terr))
-    return failf("%s/transform.ini: %s", dir, terr.message);
+    return cli_fail("transform", "%s/transform.ini: %s", dir, terr.message);
   size_t W = (size_t)desc.width;
   fogmap map = {0};
   sim_error serr;
   int status = 1;
   if (fogmap_create(&map, desc.width, desc.height, &serr)) {
-    failf("%s", serr.message);
+    cli_fail("transform", "%s", serr.message);
     goto done;
   }
   int w0, h0;
@@ -366,7 +356,7 @@ static int run_inverse(const char *dir, const char *out, int threads) {
   for (size_t i = 0; i < W * (size_t)desc.height; i++)
     if (!(map.density[i] > 0.0f)) map.density[i] = 0.0f;
   if (fogmap_save_exr(out, &map, &serr)) {
-    failf("%s", serr.message);
+    cli_fail("transform", "%s", serr.message);
     goto done;
   }
   status = 0;
@@ -389,43 +379,43 @@ int cmd_transform(int argc, char **argv) {
       desc.decomposition = TRANSFORM_STANDARD;
     } else if (!strcmp(a, "--basis") && has_value) {
       if (parse_basis(argv[++i], &desc.basis))
-        return failf("--basis %s: expected haar, linear or quadratic", argv[i]);
+        return cli_fail("transform", "--basis %s: expected haar, linear or quadratic", argv[i]);
     } else if (!strcmp(a, "--levels") && has_value) {
       if (parse_int(argv[++i], &desc.levels))
-        return failf("--levels %s: expected a whole number >= 0", argv[i]);
+        return cli_fail("transform", "--levels %s: expected a whole number >= 0", argv[i]);
     } else if (!strcmp(a, "--mode") && has_value) {
       i++;
       if (!strcmp(argv[i], "symmetric")) desc.boundary = TRANSFORM_SYMMETRIC;
       else if (!strcmp(argv[i], "periodic")) desc.boundary = TRANSFORM_PERIODIC;
-      else return failf("--mode %s: expected symmetric or periodic", argv[i]);
+      else return cli_fail("transform", "--mode %s: expected symmetric or periodic", argv[i]);
     } else if (!strcmp(a, "--threads") && has_value) {
       if (parse_int(argv[++i], &desc.threads) || desc.threads < 1 || desc.threads > 2)
-        return failf("--threads %s: expected 1 or 2", argv[i]);
+        return cli_fail("transform", "--threads %s: expected 1 or 2", argv[i]);
     } else if (!strcmp(a, "--out") && has_value) {
       out = argv[++i];
     } else if (!strcmp(a, "--inverse") && has_value) {
       inverse = argv[++i];
     } else if (a[0] == '-' && a[1]) {
       usage(stderr);
-      return failf("unknown option or missing value: %s", a);
+      return cli_fail("transform", "unknown option or missing value: %s", a);
     } else if (!in) {
       in = a;
     } else {
-      return failf("more than one input: %s and %s", in, a);
+      return cli_fail("transform", "more than one input: %s and %s", in, a);
     }
   }
   if (!out) {
     usage(stderr);
-    return failf("--out is required");
+    return cli_fail("transform", "--out is required");
   }
   if (inverse) {
-    if (in) return failf("--inverse takes no input fogmap (%s)", in);
+    if (in) return cli_fail("transform", "--inverse takes no input fogmap (%s)", in);
     return run_inverse(inverse, out, desc.threads);
   }
   if (!in) {
     usage(stderr);
-    return failf("no input fogmap given");
+    return cli_fail("transform", "no input fogmap given");
   }
-  if (desc.levels < 0) return failf("--levels is required");
+  if (desc.levels < 0) return cli_fail("transform", "--levels is required");
   return run_forward(in, out, desc);
 }
