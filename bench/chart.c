@@ -55,7 +55,7 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
   int width = desc->width ? desc->width : 960, height = desc->height ? desc->height : 600;
   fprintf(script,
           "set terminal pngcairo size %d,%d font 'sans,10'\nset output '%s'\n"
-          "set datafile separator ','\nset key outside right top\nset grid\n"
+          "set datafile separator ','\nset key below\nset colorsequence podo\nset grid\n"
           "set title '%s'\nset xlabel '%s'\nset ylabel '%s'\n%s%s",
           width, height, temp_png, desc->title ? desc->title : "",
           desc->x_label ? desc->x_label : "", desc->y_label ? desc->y_label : "",
