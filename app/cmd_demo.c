@@ -1,0 +1,414 @@
+/* fogpipe demo [CONFIG]: the live animated fog demo. A GLFW window with the fog simulated,
+ * transformed and rendered every frame (app/pipeline.h), a Dear ImGui panel (app/panel.h),
+ * a free camera and fog painting. Without a display it says so in one line and records
+ * the scene headless instead (app/recorder.h). */
+#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <GLFW/glfw3.h>
+
+#include "app/commands.h"
+#include "app/config.h"
+#include "app/panel.h"
+#include "app/pipeline.h"
+#include "app/recorder.h"
+#include "render/fog_field.h"
+#include "render/gl_context.h"
+#include "render/gl_util.h"
+#include "sim/sim.h"
+
+#define DEFAULT_CONFIG FOGPIPE_SOURCE_DIR "/configs/default.ini"
+#define HEADLESS_FRAMES 48
+#define HEADLESS_WIDTH 640
+#define HEADLESS_HEIGHT 360
+
+static void print_help(FILE *out) {
+  fprintf(out,
+          "usage: fogpipe demo [CONFIG] [options]\n\n"
+          "The live fog demo: the fog is simulated (FFT stable fluids), wavelet-transformed and\n"
+          "rendered with the exact extinction integral every frame. CONFIG defaults to\n"
+          "%s.\n\n"
+          "In the window:\n"
+          "  W A S D         move (Q/E down/up, Shift faster)\n"
+          "  middle drag     look around (or the arrow keys)\n"
+          "  left drag       paint fog on the terrain\n"
+          "  right drag or Shift+left drag   erase fog\n"
+          "  Space           pause / resume the simulation;  N: one step;  R: reset\n"
+          "  Esc             quit\n"
+          "The panel sets the basis, levels, mu, LOD method, density, colour, vertical\n"
+          "profile, wind, viscosity and emitter rate, and shows the per-stage timings.\n\n"
+          "Without a display (no DISPLAY/WAYLAND_DISPLAY, or the window cannot open) the\n"
+          "scene is recorded headless instead: %d frames at %dx%d into ./out/demo (or a\n"
+          "temporary folder if that is not writable).\n\n"
+          "options:\n"
+          "  --size WxH           window size (default 1280x720)\n"
+          "  --scale S            render at S times the window size, 0.25..1 (default 1 on\n"
+          "                       a GPU, 0.25 on a software renderer such as llvmpipe: the\n"
+          "                       fog pass costs per pixel)\n"
+          "  --screenshot FILE    after --frames frames, save the window as a PNG and quit\n"
+          "  --frames N           frames before the screenshot (default 30); without a\n"
+          "                       display, frames recorded (default %d)\n"
+          "  -h, --help           this help\n",
+          DEFAULT_CONFIG, HEADLESS_FRAMES, HEADLESS_WIDTH, HEADLESS_HEIGHT, HEADLESS_FRAMES);
+}
+
+/* ---- free camera ---- */
+
+typedef struct free_camera {
+  camera cam;
+  double speed; /* world units per second */
+  double last_x, last_y;
+  bool looking;
+} free_camera;
+
+static void free_camera_update(free_camera *fc, GLFWwindow *window, double dt, bool keyboard,
+                               bool mouse) {
+  camera *cam = &fc->cam;
+  double x = 0, y = 0;
+  glfwGetCursorPos(window, &x, &y);
+  bool middle = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+  if (middle && mouse) {
+    if (fc->looking) {
+      cam->yaw += 0.004 * (x - fc->last_x);
+      cam->pitch -= 0.004 * (y - fc->last_y);
+    }
+    fc->looking = true;
+  } else {
+    fc->looking = false;
+  }
+  fc->last_x = x;
+  fc->last_y = y;
+  if (!keyboard) return;
+  const double turn = 1.2 * dt;
+  if (glfwGetKey(window, GLFW_KEY_LEFT) == GLFW_PRESS) cam->yaw -= turn;
+  if (glfwGetKey(window, GLFW_KEY_RIGHT) == GLFW_PRESS) cam->yaw += turn;
+  if (glfwGetKey(window, GLFW_KEY_UP) == GLFW_PRESS) cam->pitch += turn;
+  if (glfwGetKey(window, GLFW_KEY_DOWN) == GLFW_PRESS) cam->pitch -= turn;
+  const double limit = 1.5;
+  cam->pitch = cam->pitch > limit ? limit : cam->pitch < -limit ? -limit : cam->pitch;
+  /* camera.h: yaw = pitch = 0 looks along -Z, +X to the right, positive yaw toward +X. */
+  double forward[3] = {sin(cam->yaw) * cos(cam->pitch), sin(cam->pitch),
+                       -cos(cam->yaw) * cos(cam->pitch)};
+  double right[3] = {cos(cam->yaw), 0.0, sin(cam->yaw)};
+  double step = fc->speed * dt;
+  if (glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS) step *= 4.0;
+  double move[3] = {0, 0, 0};
+  int f = (glfwGetKey(window, GLFW_KEY_W) == GLFW_PRESS) - (glfwGetKey(window, GLFW_KEY_S) == GLFW_PRESS);
+  int r = (glfwGetKey(window, GLFW_KEY_D) == GLFW_PRESS) - (glfwGetKey(window, GLFW_KEY_A) == GLFW_PRESS);
+  int u = (glfwGetKey(window, GLFW_KEY_E) == GLFW_PRESS) - (glfwGetKey(window, GLFW_KEY_Q) == GLFW_PRESS);
+  for (int i = 0; i < 3; i++) move[i] = f * forward[i] + r * right[i];
+  move[1] += u;
+  for (int i = 0; i < 3; i++) cam->position[i] += step * move[i];
+}
+
+/* ---- the panel ---- */
+
+typedef struct demo_ui {
+  float brush_radius;   /* world units */
+  float brush_strength; /* density per second at the stroke's centre line */
+  float render_scale;
+  bool has_bspline_profile;
+  float frame_history[120];
+  int history_next;
+} demo_ui;
+
+static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
+  pipeline_params params = pipeline_get_params(pipe);
+  bool changed = false;
+  if (panel_window_begin(ui, "fogpipe", 10, 10, 330)) {
+    pipeline_timings last;
+    pipeline_timings med = pipeline_get_timings(pipe, &last);
+    d->frame_history[d->history_next] = (float)last.frame;
+    d->history_next = (d->history_next + 1) % 120;
+    if (panel_header(ui, "timings (median ms)", true)) {
+      panel_text(ui, "%.1f fps   step %ld", med.frame > 0 ? 1000.0 / med.frame : 0.0,
+                 pipeline_step_index(pipe));
+      panel_text(ui, "sim %6.2f   transform %6.2f", med.sim, med.transform);
+      panel_text(ui, "upload %6.2f   render %6.2f", med.upload, med.render);
+      panel_text(ui, "frame %6.2f", med.frame);
+      float ordered[120], top = 34.0f; /* at least the 30 fps line's scale */
+      for (int i = 0; i < 120; i++) {
+        ordered[i] = d->frame_history[(d->history_next + i) % 120];
+        if (ordered[i] > top) top = ordered[i];
+      }
+      panel_plot(ui, "frame ms", ordered, 120, 1.1f * top);
+    }
+    if (panel_header(ui, "simulation", true)) {
+      changed |= panel_checkbox(ui, "pause", &params.paused);
+      panel_same_line(ui);
+      if (panel_button(ui, "step")) pipeline_step_once(pipe);
+      panel_same_line(ui);
+      if (panel_button(ui, "reset")) pipeline_reset(pipe);
+      changed |= panel_slider_float(ui, "wind x", &params.wind[0], -40.0f, 40.0f, "%.1f", false);
+      changed |= panel_slider_float(ui, "wind z", &params.wind[1], -40.0f, 40.0f, "%.1f", false);
+      changed |= panel_slider_float(ui, "turbulence", &params.turbulence, 0.0f, 40.0f, "%.2f", false);
+      changed |= panel_slider_float(ui, "viscosity", &params.viscosity, 0.0f, 10.0f, "%.5f", true);
+      changed |= panel_slider_float(ui, "emitter rate", &params.emitter_rate, 0.0f, 5.0f, "%.2f", false);
+    }
+    if (panel_header(ui, "fog", true)) {
+      changed |= panel_slider_float(ui, "density", &params.density, 0.0001f, 1.0f, "%.4f", true);
+      changed |= panel_color3(ui, "colour", params.fog_colour);
+      /* fog_profile_kind order; the B-spline profile only when the config has one. */
+      static const char *const profiles[] = {"slab", "exponential", "B-spline (config)"};
+      changed |= panel_combo(ui, "profile", &params.profile_kind, profiles,
+                             d->has_bspline_profile ? 3 : 2);
+      if (params.profile_kind == FOG_PROFILE_EXPONENTIAL) {
+        changed |= panel_slider_float(ui, "fog height", &params.fog_height, -50.0f, 200.0f, "%.1f", false);
+        changed |= panel_slider_float(ui, "scale height", &params.scale_height, 1.0f, 200.0f, "%.1f", true);
+      }
+    }
+    if (panel_header(ui, "wavelets", true)) {
+      static const char *const bases[] = {"Haar (degree 0)", "linear (CDF 5/3)", "quadratic (bior3.3)"};
+      changed |= panel_combo(ui, "basis", &params.degree, bases, 3);
+      changed |= panel_slider_int(ui, "levels J", &params.levels, 0, 7);
+      changed |= panel_slider_float(ui, "mu", &params.mu, 0.0f, 1.0f, "%.3f", false);
+      static const char *const methods[] = {"sum of details (paper)", "switch A_l (ours)"};
+      changed |= panel_combo(ui, "LOD", &params.lod_method, methods, 2);
+    }
+    if (panel_header(ui, "brush", false)) {
+      panel_slider_float(ui, "radius", &d->brush_radius, 1.0f, 200.0f, "%.0f", true);
+      panel_slider_float(ui, "strength", &d->brush_strength, 0.1f, 20.0f, "%.1f", true);
+      panel_text(ui, "left drag: paint   right / shift: erase");
+      panel_slider_float(ui, "render scale", &d->render_scale, 0.25f, 1.0f, "%.2f", false);
+    }
+  }
+  panel_window_end(ui);
+  if (changed) pipeline_set_params(pipe, &params);
+}
+
+/* ---- headless fallback ---- */
+
+static int record_instead(const char *config_path, int frames, const char *reason) {
+  char folder[PATH_MAX + 1] = "out/demo";
+  recorder probe;
+  recorder_error rerr = {{0}};
+  if (recorder_open(&probe, &(recorder_desc){.folder = folder, .width = HEADLESS_WIDTH,
+                                             .height = HEADLESS_HEIGHT},
+                    &rerr)) {
+    char temp[] = "/tmp/fogpipe-demo-XXXXXX";
+    if (!mkdtemp(temp)) {
+      fprintf(stderr, "fogpipe demo: %s, and no folder to record into (%s)\n", reason,
+              rerr.message);
+      return 1;
+    }
+    snprintf(folder, sizeof folder, "%s", temp);
+  }
+  /* Print where the frames are as an absolute path: the user may not know the cwd. */
+  char absolute[PATH_MAX];
+  if (realpath(folder, absolute)) snprintf(folder, sizeof folder, "%s", absolute);
+  printf("fogpipe demo: %s: recording %d frame%s of %s headless into %s instead\n", reason,
+         frames, frames == 1 ? "" : "s", config_path, folder);
+  fflush(stdout);
+  record_job job = {.command = "demo", .config_path = config_path, .frames = frames,
+                    .out = folder, .width = HEADLESS_WIDTH, .height = HEADLESS_HEIGHT,
+                    .quiet = !isatty(fileno(stdout))};
+  return record_run(&job);
+}
+
+/* ---- the window ---- */
+
+static int save_screenshot(const char *path, int width, int height) {
+  float *pixels = malloc((size_t)width * height * 3 * sizeof(float));
+  if (!pixels) return 1;
+  render_error rerr = {{0}};
+  sim_error serr = {{0}};
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  int status = gl_util_read_pixels(GL_BACK, width, height, 3, pixels, &rerr);
+  if (status) fprintf(stderr, "fogpipe demo: screenshot: %s\n", rerr.message);
+  if (!status && image_write_png(path, width, height, 3, pixels, &serr)) {
+    fprintf(stderr, "fogpipe demo: screenshot: %s\n", serr.message);
+    status = 1;
+  }
+  if (!status) printf("screenshot: %s\n", path);
+  free(pixels);
+  return status;
+}
+
+int cmd_demo(int argc, char **argv) {
+  const char *config_path = NULL, *screenshot = NULL;
+  int width = 1280, height = 720, frames = 0;
+  double scale = 0.0; /* 0: chosen from the renderer below */
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
+    char x = 0, tail = 0;
+    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+      print_help(stdout);
+      return 0;
+    } else if (!strcmp(a, "--size") && value) {
+      if (sscanf(value, "%d%c%d%c", &width, &x, &height, &tail) != 3 || x != 'x' || width < 64 ||
+          height < 64) {
+        fprintf(stderr, "fogpipe demo: --size %s: expected WIDTHxHEIGHT (at least 64x64)\n", value);
+        return 2;
+      }
+      i++;
+    } else if (!strcmp(a, "--scale") && value) {
+      scale = atof(value);
+      if (!(scale >= 0.25 && scale <= 1.0)) {
+        fprintf(stderr, "fogpipe demo: --scale %s: expected a number in [0.25, 1]\n", value);
+        return 2;
+      }
+      i++;
+    } else if (!strcmp(a, "--screenshot") && value) {
+      screenshot = argv[++i];
+    } else if (!strcmp(a, "--frames") && value) {
+      frames = atoi(argv[++i]);
+      if (frames < 1) {
+        fprintf(stderr, "fogpipe demo: --frames %s: expected a whole number >= 1\n", value);
+        return 2;
+      }
+    } else if (a[0] == '-' && a[1]) {
+      fprintf(stderr, "fogpipe demo: unknown option or missing value: %s (see --help)\n", a);
+      return 2;
+    } else if (!config_path) {
+      config_path = a;
+    } else {
+      fprintf(stderr, "fogpipe demo: unexpected argument %s (one CONFIG only)\n", a);
+      return 2;
+    }
+  }
+  if (!config_path) config_path = DEFAULT_CONFIG;
+
+  scene_config config;
+  scene_config_error cerr = {{0}};
+  if (scene_config_load(config_path, &config, &cerr)) {
+    fprintf(stderr, "fogpipe demo: %s\n", cerr.message);
+    return 1;
+  }
+  const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
+  if (!(display && *display) && !(wayland && *wayland))
+    return record_instead(config_path, frames ? frames : HEADLESS_FRAMES,
+                          "no display (DISPLAY and WAYLAND_DISPLAY are unset)");
+  render_error gerr = {{0}};
+  gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW,
+                                                        .width = width, .height = height,
+                                                        .title = "fogpipe demo", .vsync = true},
+                                     &gerr);
+  if (!gl) {
+    char reason[600];
+    snprintf(reason, sizeof reason, "no window (%s)", gerr.message);
+    return record_instead(config_path, frames ? frames : HEADLESS_FRAMES, reason);
+  }
+  GLFWwindow *window = gl_context_glfw_window(gl);
+  if (scale == 0.0) {
+    /* The fog pass costs per pixel: a software renderer (Mesa llvmpipe/softpipe) gets a
+     * quarter of the window's resolution per axis, a GPU all of it. */
+    const char *renderer = gl_context_renderer(gl);
+    bool software = strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") ||
+                    strstr(renderer, "Software");
+    scale = software ? 0.25 : 1.0;
+  }
+  int fb_w = 0, fb_h = 0;
+  gl_context_framebuffer_size(gl, &fb_w, &fb_h);
+  demo_ui d = {.brush_radius = 30.0f, .brush_strength = 3.0f, .render_scale = (float)scale,
+               .has_bspline_profile = config.fog.profile_count > 0};
+  int render_w = (int)(fb_w * d.render_scale), render_h = (int)(fb_h * d.render_scale);
+  pipeline_error perr = {{0}};
+  pipeline *pipe = pipeline_create(&(pipeline_desc){.config = &config, .width = render_w,
+                                                    .height = render_h,
+                                                    .frame_seconds = 1.0 / 30.0},
+                                   &perr);
+  if (!pipe) {
+    fprintf(stderr, "fogpipe demo: %s\n", perr.message);
+    gl_context_destroy(gl);
+    return 1;
+  }
+  panel *ui = panel_create(window);
+  if (!ui) {
+    fprintf(stderr, "fogpipe demo: cannot start Dear ImGui on this window\n");
+    pipeline_destroy(pipe);
+    gl_context_destroy(gl);
+    return 1;
+  }
+  free_camera fc = {.speed = 80.0};
+  scene_config_camera(&config, &fc.cam);
+  bool painting = false;
+  double last_paint[3] = {0, 0, 0};
+  bool space_down = false, n_down = false, r_down = false;
+  double last_time = glfwGetTime();
+  int status = 0;
+  for (int frame = 0; !gl_context_should_close(gl); frame++) {
+    gl_context_poll_events(gl);
+    double t = glfwGetTime(), dt = t - last_time;
+    last_time = t;
+    if (dt > 0.25) dt = 0.25;
+    gl_context_framebuffer_size(gl, &fb_w, &fb_h);
+    if (fb_w < 1 || fb_h < 1) continue; /* minimised */
+    int want_w = (int)(fb_w * d.render_scale), want_h = (int)(fb_h * d.render_scale);
+    if (want_w < 16) want_w = 16;
+    if (want_h < 16) want_h = 16;
+    pipeline_size(pipe, &render_w, &render_h);
+    if ((want_w != render_w || want_h != render_h) && !pipeline_resize(pipe, want_w, want_h, &perr)) {
+      render_w = want_w;
+      render_h = want_h;
+    }
+
+    panel_begin_frame(ui);
+    panel_contents(ui, pipe, &d);
+    bool keyboard = !panel_wants_keyboard(ui), mouse = !panel_wants_mouse(ui);
+    if (keyboard) {
+      if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, 1);
+      bool space = glfwGetKey(window, GLFW_KEY_SPACE) == GLFW_PRESS;
+      bool n = glfwGetKey(window, GLFW_KEY_N) == GLFW_PRESS;
+      bool r = glfwGetKey(window, GLFW_KEY_R) == GLFW_PRESS;
+      if (space && !space_down) {
+        pipeline_params params = pipeline_get_params(pipe);
+        params.paused = !params.paused;
+        pipeline_set_params(pipe, &params);
+      }
+      if (n && !n_down) pipeline_step_once(pipe);
+      if (r && !r_down) pipeline_reset(pipe);
+      space_down = space, n_down = n, r_down = r;
+    }
+    free_camera_update(&fc, window, dt, keyboard, mouse);
+
+    /* Painting: the surface point under the cursor from the last frame's distance
+     * texture, in render pixels. */
+    bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    bool right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+                 glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    double hit[3];
+    if (mouse && (left || right) && frame > 0) {
+      int win_w = 0, win_h = 0;
+      glfwGetWindowSize(window, &win_w, &win_h);
+      int px = (int)(fc.last_x * render_w / (win_w > 0 ? win_w : 1));
+      int py = (int)(fc.last_y * render_h / (win_h > 0 ? win_h : 1));
+      if (pipeline_pick_surface(pipe, &fc.cam, px, py, hit)) {
+        const double *from = painting ? last_paint : hit;
+        double sign = (right || shift) ? -1.0 : 1.0;
+        pipeline_paint(pipe, from[0], from[2], hit[0], hit[2], d.brush_radius,
+                       sign * d.brush_strength * dt);
+        memcpy(last_paint, hit, sizeof hit);
+        painting = true;
+      } else {
+        painting = false;
+      }
+    } else {
+      painting = false;
+    }
+
+    if (pipeline_frame(pipe, &fc.cam, false, &perr)) {
+      fprintf(stderr, "fogpipe demo: %s\n", perr.message);
+      status = 1;
+      break;
+    }
+    pipeline_present(pipe, fb_w, fb_h);
+    panel_end_frame(ui);
+    if (screenshot && frame + 1 >= (frames ? frames : 30)) {
+      status = save_screenshot(screenshot, fb_w, fb_h);
+      break;
+    }
+    gl_context_swap_buffers(gl);
+  }
+  panel_destroy(ui);
+  pipeline_destroy(pipe);
+  gl_context_destroy(gl);
+  return status;
+}

@@ -1,0 +1,291 @@
+/* fogpipe record CONFIG --frames N --out DIR [--fps F] [--size WxH] [--resume]
+ *                [--preview out.mp4]
+ * Headless (EGL), deterministic EXR sequence recording. Ctrl-C finishes the current frame
+ * and exits with 130; --resume re-runs the simulation (without rendering) up to the last
+ * complete frame and continues, giving the frames an uninterrupted run gives. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/commands.h"
+#include "app/config.h"
+#include "app/pipeline.h"
+#include "app/recorder.h"
+#include "render/gl_context.h"
+#include "sim/sim.h"
+
+static volatile sig_atomic_t interrupted;
+
+static void on_interrupt(int signal_number) { interrupted = signal_number; }
+
+static void print_help(FILE *out) {
+  fprintf(out,
+          "usage: fogpipe record CONFIG --frames N --out DIR [options]\n\n"
+          "Renders the scene CONFIG headless (EGL, no window) for N frames and writes an\n"
+          "OpenEXR sequence DIR/frame.0001.exr ... (channels R,G,B,A half; transmittance,\n"
+          "depth float). The same config gives bit-identical pixels every run. Each frame is\n"
+          "written to a temporary file and renamed, so no partial frame ever exists.\n"
+          "Ctrl-C finishes the current frame and stops (exit status 130); --resume goes on.\n\n"
+          "options:\n"
+          "  --frames N        number of frames (required)\n"
+          "  --out DIR         output folder, created if missing (required)\n"
+          "  --fps F           frames per second of simulated time (default 24)\n"
+          "  --size WxH        image size (default: the config's [render] size)\n"
+          "  --resume          continue after the last complete frame in DIR (the\n"
+          "                    simulation is re-run to that frame; same frames as an\n"
+          "                    uninterrupted run)\n"
+          "  --preview FILE    also encode the finished sequence to a video with ffmpeg\n"
+          "                    (e.g. out.mp4; skipped with a note if ffmpeg is missing)\n"
+          "  --synchronous     run the simulation and transform on the rendering thread\n"
+          "                    instead of the worker thread (same frames; for comparison)\n"
+          "  -h, --help        this help\n");
+}
+
+static int parse_size(const char *text, int *width, int *height) {
+  char x = 0, tail = 0;
+  return sscanf(text, "%d%c%d%c", width, &x, height, &tail) == 3 && (x == 'x' || x == 'X') &&
+         *width > 0 && *height > 0 && *width <= 16384 && *height <= 16384;
+}
+
+int cmd_record(int argc, char **argv) {
+  record_job job = {.command = "record"};
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    const char *value = i + 1 < argc ? argv[i + 1] : NULL;
+    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+      print_help(stdout);
+      return 0;
+    } else if (!strcmp(a, "--resume")) {
+      job.resume = true;
+    } else if (!strcmp(a, "--synchronous")) {
+      job.synchronous = true;
+    } else if (!strcmp(a, "--frames") || !strcmp(a, "--out") || !strcmp(a, "--fps") ||
+               !strcmp(a, "--size") || !strcmp(a, "--preview")) {
+      if (!value) {
+        fprintf(stderr, "fogpipe record: %s needs a value (see fogpipe record --help)\n", a);
+        return 2;
+      }
+      i++;
+      char *end = NULL;
+      if (!strcmp(a, "--frames")) {
+        long n = strtol(value, &end, 10);
+        if (*end || n < 1 || n > 9999999) {
+          fprintf(stderr, "fogpipe record: --frames %s: expected a whole number >= 1\n", value);
+          return 2;
+        }
+        job.frames = (int)n;
+      } else if (!strcmp(a, "--fps")) {
+        job.fps = strtod(value, &end);
+        if (*end || !(job.fps > 0 && job.fps <= 1000)) {
+          fprintf(stderr, "fogpipe record: --fps %s: expected a number in (0, 1000]\n", value);
+          return 2;
+        }
+      } else if (!strcmp(a, "--size")) {
+        if (!parse_size(value, &job.width, &job.height)) {
+          fprintf(stderr, "fogpipe record: --size %s: expected WIDTHxHEIGHT, e.g. 640x360\n",
+                  value);
+          return 2;
+        }
+      } else if (!strcmp(a, "--out")) {
+        job.out = value;
+      } else {
+        job.preview = value;
+      }
+    } else if (a[0] == '-' && a[1]) {
+      fprintf(stderr, "fogpipe record: unknown option %s (see fogpipe record --help)\n", a);
+      return 2;
+    } else if (!job.config_path) {
+      job.config_path = a;
+    } else {
+      fprintf(stderr, "fogpipe record: unexpected argument %s (one CONFIG only)\n", a);
+      return 2;
+    }
+  }
+  if (!job.config_path || !job.frames || !job.out) {
+    fprintf(stderr, "fogpipe record: %s missing\n\n",
+            !job.config_path ? "CONFIG" : !job.frames ? "--frames N" : "--out DIR");
+    print_help(stderr);
+    return 2;
+  }
+  return record_run(&job);
+}
+
+/* The command line that continues this recording. */
+static void resume_hint(const record_job *job, char *text, size_t size) {
+  int n = snprintf(text, size, "fogpipe record %s --frames %d --out %s", job->config_path,
+                   job->frames, job->out);
+  if (job->fps > 0) n += snprintf(text + n, size - (size_t)n, " --fps %g", job->fps);
+  if (job->width > 0)
+    n += snprintf(text + n, size - (size_t)n, " --size %dx%d", job->width, job->height);
+  if (job->preview) n += snprintf(text + n, size - (size_t)n, " --preview %s", job->preview);
+  snprintf(text + n, size - (size_t)n, " --resume");
+}
+
+int record_run(const record_job *job) {
+  const char *cmd = job->command;
+  scene_config config;
+  scene_config_error cerr = {{0}};
+  /* The output folder first: an unwritable folder or a full disk is reported before any
+   * work, whatever else is wrong. */
+  recorder rec;
+  recorder_error rerr = {{0}};
+  int width = job->width, height = job->height;
+  if (recorder_open(&rec,
+                    &(recorder_desc){.folder = job->out,
+                                     .width = width > 0 ? width : 1,
+                                     .height = height > 0 ? height : 1},
+                    &rerr)) {
+    fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
+    return 1;
+  }
+  if (scene_config_load(job->config_path, &config, &cerr)) {
+    fprintf(stderr, "fogpipe %s: %s\n", cmd, cerr.message);
+    return 1;
+  }
+  if (width <= 0 || height <= 0) {
+    /* The size comes from the config: check the free space again for that size. */
+    width = config.width;
+    height = config.height;
+    if (recorder_open(&rec,
+                      &(recorder_desc){.folder = job->out, .width = width, .height = height},
+                      &rerr)) {
+      fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
+      return 1;
+    }
+  }
+  int done = job->resume ? recorder_complete_frames(&rec, job->frames) : 0;
+  if (job->resume) recorder_remove_stale_temporaries(&rec);
+  if (done > 0) {
+    /* Resuming another recording's frames (a different size) would mix two sequences. */
+    char last[1200];
+    recorder_frame_path(&rec, done, last, sizeof last);
+    fogmap probe = {0};
+    sim_error serr = {{0}};
+    if (fogmap_load(last, &(fogmap_load_desc){.channel = "A"}, &probe, &serr)) {
+      fprintf(stderr, "fogpipe %s: cannot resume: %s\n", cmd, serr.message);
+      return 1;
+    }
+    const int had_w = probe.width, had_h = probe.height;
+    fogmap_destroy(&probe);
+    const int same = had_w == width && had_h == height;
+    if (!same) {
+      fprintf(stderr,
+              "fogpipe %s: cannot resume: %s is %dx%d but this recording is %dx%d "
+              "(use the same --size, or another --out folder)\n",
+              cmd, last, had_w, had_h, width, height);
+      return 1;
+    }
+  }
+  if (job->resume && done == job->frames) {
+    printf("all %d frames are already complete in %s\n", job->frames, rec.folder);
+  }
+
+  render_error gerr = {{0}};
+  gl_context *gl = NULL;
+  pipeline *pipe = NULL;
+  float *buffer = NULL;
+  int status = 0;
+  if (done < job->frames) {
+    gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
+    if (!gl) {
+      fprintf(stderr, "fogpipe %s: %s\n", cmd, gerr.message);
+      return 1;
+    }
+    pipeline_error perr = {{0}};
+    double fps = job->fps > 0 ? job->fps : 24.0;
+    pipe = pipeline_create(&(pipeline_desc){.config = &config, .width = width, .height = height,
+                                            .frame_seconds = 1.0 / fps,
+                                            .synchronous = job->synchronous},
+                           &perr);
+    const size_t n = (size_t)width * height;
+    /* rgba 4 + transmittance 1 + depth 1, then the recorder's 6 planes. */
+    buffer = pipe ? malloc(n * 12 * sizeof(float)) : NULL;
+    if (!pipe || !buffer) {
+      fprintf(stderr, "fogpipe %s: %s\n", cmd, pipe ? "out of memory" : perr.message);
+      status = 1;
+      goto finish;
+    }
+    if (done > 0) {
+      printf("resuming after frame %d of %d: re-running the simulation to it\n", done,
+             job->frames);
+      fflush(stdout);
+      if (pipeline_skip(pipe, done, &perr)) {
+        fprintf(stderr, "fogpipe %s: %s\n", cmd, perr.message);
+        status = 1;
+        goto finish;
+      }
+    }
+    camera cam;
+    scene_config_camera(&config, &cam);
+    float *rgba = buffer, *transmittance = buffer + 4 * n, *depth = buffer + 5 * n;
+    float *scratch = buffer + 6 * n;
+
+    struct sigaction action = {.sa_handler = on_interrupt}, old_int, old_term;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART;
+    interrupted = 0;
+    sigaction(SIGINT, &action, &old_int);
+    sigaction(SIGTERM, &action, &old_term);
+
+    recorder_progress progress;
+    if (!job->quiet) recorder_progress_begin(&progress, stdout, done, job->frames);
+    for (int frame = done + 1; frame <= job->frames; frame++) {
+      if (pipeline_frame(pipe, &cam, true, &perr) ||
+          pipeline_read_frame(pipe, rgba, transmittance, depth, &perr)) {
+        if (!job->quiet) recorder_progress_end(&progress);
+        fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, perr.message);
+        status = 1;
+        break;
+      }
+      recorder_frame pixels = {.rgba = rgba, .transmittance = transmittance, .depth = depth};
+      if (recorder_write_frame(&rec, frame, &pixels, scratch, &rerr)) {
+        if (!job->quiet) recorder_progress_end(&progress);
+        fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
+        status = 1;
+        break;
+      }
+      done = frame;
+      if (!job->quiet) recorder_progress_update(&progress, done);
+      if (interrupted && done < job->frames) {
+        if (!job->quiet) recorder_progress_end(&progress);
+        char hint[2048];
+        resume_hint(job, hint, sizeof hint);
+        fprintf(stderr,
+                "fogpipe %s: interrupted: %d of %d frames complete in %s; to finish: %s\n",
+                cmd, done, job->frames, rec.folder, hint);
+        status = 130;
+        break;
+      }
+    }
+    if (!status && !job->quiet) recorder_progress_end(&progress);
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+  }
+  if (!status) {
+    char first[1200], last[1200];
+    recorder_frame_path(&rec, 1, first, sizeof first);
+    recorder_frame_path(&rec, job->frames, last, sizeof last);
+    printf("%d frame%s (%dx%d) in %s: %s .. %s\n", job->frames, job->frames == 1 ? "" : "s",
+           width, height, rec.folder, strrchr(first, '/') + 1, strrchr(last, '/') + 1);
+    if (job->preview) {
+      if (!recorder_have_ffmpeg()) {
+        printf("note: ffmpeg is not installed, so no preview video was written "
+               "(apt-get install ffmpeg)\n");
+      } else if (recorder_write_preview(&rec, job->frames, job->fps > 0 ? job->fps : 24.0,
+                                        job->preview, &rerr)) {
+        fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
+        status = 1;
+      } else {
+        printf("preview: %s\n", job->preview);
+      }
+    }
+  }
+finish:
+  free(buffer);
+  pipeline_destroy(pipe);
+  gl_context_destroy(gl);
+  return status;
+}

@@ -1,0 +1,786 @@
+/* pipeline: sim step → transform (worker thread) → upload → render (GL thread), double
+ * buffered. See app/pipeline.h for the contract. */
+#define _POSIX_C_SOURCE 200809L
+#include "app/pipeline.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "app/pipeline_fog.h"
+#include "render/fog_pass.h"
+#include "render/gl_util.h"
+#include "render/scene.h"
+#include "sim/sim.h"
+#include "transform/transform.h"
+
+/* The fog pass holds A_0..A_J and D_1..D_J in FOG_PASS_MAX_GRIDS texture slots. */
+#define MAX_LEVELS ((FOG_PASS_MAX_GRIDS - 1) / 2)
+#define MAX_STROKES 256
+#define DEFAULT_GRID 256
+
+/* ---- timings: a ring of the last PIPELINE_TIMING_WINDOW frames, medians on demand ---- */
+
+typedef struct timing_ring {
+  double values[6][PIPELINE_TIMING_WINDOW];
+  int count, next;
+} timing_ring;
+
+static void timing_push(timing_ring *ring, const pipeline_timings *t) {
+  const double v[6] = {t->sim, t->transform, t->upload, t->render, t->frame, t->scene};
+  for (int s = 0; s < 6; s++) ring->values[s][ring->next] = v[s];
+  ring->next = (ring->next + 1) % PIPELINE_TIMING_WINDOW;
+  if (ring->count < PIPELINE_TIMING_WINDOW) ring->count++;
+}
+
+static int compare_doubles(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+static double median_of(const double *values, int n) {
+  if (n == 0) return 0.0;
+  double sorted[PIPELINE_TIMING_WINDOW];
+  memcpy(sorted, values, (size_t)n * sizeof *values);
+  qsort(sorted, (size_t)n, sizeof *sorted, compare_doubles);
+  return n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+}
+
+static double now_ms(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return 1e3 * (double)ts.tv_sec + 1e-6 * (double)ts.tv_nsec;
+}
+
+/* ---- slots: the CPU stages' output for one simulation step ---- */
+
+typedef enum slot_state { SLOT_FREE = 0, SLOT_FILLING, SLOT_READY } slot_state;
+
+typedef struct pipeline_slot {
+  slot_state state;
+  fog_pyramid pyramid; /* grids of this step (shapes follow the plan that filled it) */
+  long step;           /* simulation step shown */
+  double sim_ms, transform_ms;
+} pipeline_slot;
+
+/* What the worker owns: the simulation, the transform plan and its scratch arrays. */
+typedef struct cpu_stages {
+  fluid_sim *sim;
+  fogmap base;  /* initial density and relaxation target */
+  fluid_emitter emitters[4];
+  int emitter_count;
+  transform_plan *plan;
+  int degree, levels; /* of the plan */
+  float *coefficients;
+  float *approx[MAX_LEVELS + 1];
+  float *detail[MAX_LEVELS + 1];
+  long steps; /* simulation steps taken */
+} cpu_stages;
+
+/* What the GL thread asked for since the last step, copied under the lock by the
+ * thread that runs the CPU stages. */
+typedef struct worker_requests {
+  pipeline_params params;
+  bool params_changed, reset;
+  fluid_stroke strokes[MAX_STROKES];
+  int stroke_count;
+} worker_requests;
+
+struct pipeline {
+  scene_config config;
+  int width, height;
+  double frame_seconds;
+  int steps_per_frame;
+  bool synchronous;
+  bool time_passes;
+
+  /* Shared between the threads, under lock. */
+  pthread_mutex_t lock;
+  pthread_cond_t changed;
+  pthread_t worker;
+  bool worker_running, quit;
+  pipeline_slot slots[2];
+  int fill_index, take_index;
+  pipeline_params params;   /* the newest, as set by the GL thread */
+  unsigned params_version;  /* bumped on every set */
+  fluid_stroke strokes[MAX_STROKES];
+  int stroke_count;
+  bool reset_requested;
+  int step_requests;
+  char worker_error[512];
+
+  bool stepped_once;        /* the CPU stages produced a step (the first frame needs one) */
+
+  /* Owned by the thread running the CPU stages. */
+  cpu_stages cpu;
+  worker_requests requests;
+  unsigned applied_version;
+  pipeline_params applied;
+
+  /* GL thread. */
+  scene_geometry geometry;
+  bool geometry_made;
+  scene_pass *scene;
+  gl_target scene_target;
+  pipeline_fog *fog;
+  long shown_step;
+  timing_ring timings;
+  pipeline_timings last;
+  double last_frame_start;
+  bool have_frame;
+  camera last_camera;
+};
+
+static int fail(pipeline_error *err, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(err->message, sizeof err->message, fmt, ap);
+  va_end(ap);
+  return 1;
+}
+
+/* ---- the CPU stages (run by the worker, or inline when synchronous) ---- */
+
+/* The base density the simulation starts from and relaxes toward: the config's fogmap
+ * when it has one (its own size when the FFT solver accepts it: even, >= 8; otherwise
+ * resampled to DEFAULT_GRID² by nearest cell), else Perlin turbulence (Zdrojewska 2004)
+ * so the first frame already has structure. */
+static int make_base(const scene_config *cfg, fogmap *base, pipeline_error *err) {
+  sim_error serr = {{0}};
+  if (cfg->fog.fogmap[0]) {
+    fogmap loaded = {0};
+    fogmap_load_desc desc = {.channel = cfg->fog.channel[0] ? cfg->fog.channel : NULL};
+    if (fogmap_load(cfg->fog.fogmap, &desc, &loaded, &serr))
+      return fail(err, "%s", serr.message);
+    bool usable = loaded.width % 2 == 0 && loaded.height % 2 == 0 && loaded.width >= 8 &&
+                  loaded.height >= 8 && loaded.width <= 2048 && loaded.height <= 2048;
+    if (usable) {
+      *base = loaded;
+      return 0;
+    }
+    const int n = DEFAULT_GRID;
+    if (fogmap_create(base, n, n, &serr)) {
+      fogmap_destroy(&loaded);
+      return fail(err, "%s", serr.message);
+    }
+    for (int z = 0; z < n; z++)
+      for (int x = 0; x < n; x++) {
+        int sx = (int)((x + 0.5) * loaded.width / n), sz = (int)((z + 0.5) * loaded.height / n);
+        base->density[z * n + x] = loaded.density[sz * loaded.width + sx];
+      }
+    fogmap_destroy(&loaded);
+    return 0;
+  }
+  const int n = DEFAULT_GRID;
+  if (fogmap_create(base, n, n, &serr)) return fail(err, "%s", serr.message);
+  perlin_fog_desc perlin = {.seed = cfg->sim.seed ? cfg->sim.seed : 7, .octaves = 4,
+                            .feature_size = n / 4.0f, .gain = 1.2f, .base = 0.05f};
+  if (designed_fog_perlin(base, &perlin, &serr)) return fail(err, "%s", serr.message);
+  return 0;
+}
+
+static int sim_create(pipeline *p, const pipeline_params *params, const fogmap *start,
+                      pipeline_error *err) {
+  cpu_stages *c = &p->cpu;
+  const double cell = p->config.box.cell_size > 0 ? p->config.box.cell_size : 1.0;
+  for (int e = 0; e < c->emitter_count; e++) c->emitters[e].rate = params->emitter_rate;
+  fluid_sim_desc desc = {
+      .width = c->base.width,
+      .height = c->base.height,
+      .dt = (float)(p->frame_seconds / p->steps_per_frame),
+      .viscosity = params->viscosity,
+      /* The config's wind is in world units per second; the sim's in cells per second. */
+      .wind_drift_x = (float)(params->wind[0] / cell),
+      .wind_drift_z = (float)(params->wind[1] / cell),
+      .turbulence = (float)(params->turbulence / cell),
+      .seed = p->config.sim.seed,
+      .emitters = c->emitters,
+      .emitter_count = c->emitter_count,
+      .relaxation = 0.05f,
+      .dissipation = 0.02f,
+      .base = start,
+  };
+  sim_error serr = {{0}};
+  fluid_sim *sim = fluid_sim_create(&desc, &serr);
+  if (!sim) return fail(err, "simulation: %s", serr.message);
+  if (c->sim) fluid_sim_destroy(c->sim);
+  c->sim = sim;
+  return 0;
+}
+
+static void plan_destroy(cpu_stages *c) {
+  transform_plan_destroy(c->plan);
+  c->plan = NULL;
+  free(c->coefficients);
+  c->coefficients = NULL;
+  for (int l = 0; l <= MAX_LEVELS; l++) {
+    free(c->approx[l]);
+    free(c->detail[l]);
+    c->approx[l] = c->detail[l] = NULL;
+  }
+}
+
+static transform_basis basis_of_degree(int degree) {
+  return degree == 0 ? TRANSFORM_HAAR : degree == 2 ? TRANSFORM_QUADRATIC : TRANSFORM_LINEAR;
+}
+
+static int plan_create(pipeline *p, int degree, int levels, pipeline_error *err) {
+  cpu_stages *c = &p->cpu;
+  plan_destroy(c);
+  const int w = c->base.width, h = c->base.height;
+  transform_boundary boundary = p->config.fog.boundary == SCENE_BOUNDARY_PERIODIC
+                                    ? TRANSFORM_PERIODIC
+                                    : TRANSFORM_SYMMETRIC;
+  int max_levels = transform_max_levels(w, h, boundary);
+  if (levels > max_levels) levels = max_levels;
+  if (levels > MAX_LEVELS) levels = MAX_LEVELS;
+  if (levels < 0) levels = 0;
+  transform_error terr = {{0}};
+  transform_desc desc = {.width = w, .height = h, .levels = levels,
+                         .basis = basis_of_degree(degree), .boundary = boundary};
+  if (transform_plan_create(&c->plan, &desc, &terr)) return fail(err, "transform: %s", terr.message);
+  c->coefficients = malloc((size_t)w * h * sizeof(float));
+  bool ok = c->coefficients != NULL;
+  for (int l = 0; l <= levels && ok; l++) {
+    int w = 0, h = 0;
+    transform_level_size(c->plan, l, &w, &h);
+    c->approx[l] = malloc((size_t)w * h * sizeof(float));
+    c->detail[l] = malloc((size_t)w * h * sizeof(float));
+    ok = c->approx[l] && c->detail[l];
+  }
+  if (!ok) return fail(err, "out of memory for the transform");
+  c->degree = degree;
+  c->levels = levels;
+  return 0;
+}
+
+/* Makes the slot's grids match the plan (allocates only when the plan changed). */
+static int slot_shape(pipeline *p, pipeline_slot *slot, pipeline_error *err) {
+  cpu_stages *c = &p->cpu;
+  fog_pyramid *py = &slot->pyramid;
+  bool same = py->levels == c->levels && py->degree == c->degree && py->approx[0].coefficients;
+  if (same) return 0;
+  fog_pyramid_destroy(py);
+  py->levels = c->levels;
+  py->degree = c->degree;
+  transform_error terr = {{0}};
+  for (int l = 0; l <= c->levels; l++) {
+    int w = 0, h = 0;
+    transform_grid_size(c->plan, l, &w, &h);
+    if (transform_grid_create(&py->approx[l], w, h, &terr) ||
+        transform_grid_create(&py->detail[l], w, h, &terr))
+      return fail(err, "transform: %s", terr.message);
+  }
+  return 0;
+}
+
+static void take_requests(pipeline *p, worker_requests *r) {
+  r->params = p->params;
+  r->params_changed = p->params_version != p->applied_version;
+  p->applied_version = p->params_version;
+  r->reset = p->reset_requested;
+  p->reset_requested = false;
+  r->stroke_count = p->stroke_count;
+  memcpy(r->strokes, p->strokes, (size_t)p->stroke_count * sizeof *r->strokes);
+  p->stroke_count = 0;
+}
+
+static bool sim_params_differ(const pipeline_params *a, const pipeline_params *b) {
+  return a->wind[0] != b->wind[0] || a->wind[1] != b->wind[1] ||
+         a->turbulence != b->turbulence || a->viscosity != b->viscosity ||
+         a->emitter_rate != b->emitter_rate;
+}
+
+/* One simulation step (several sim sub-steps when the frame is longer than the sim's
+ * dt) and the transform of its density into the slot's grids. */
+static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *slot,
+                          pipeline_error *err) {
+  cpu_stages *c = &p->cpu;
+  if (r->params_changed) {
+    if (r->params.degree != c->degree || r->params.levels != c->levels) {
+      if (plan_create(p, r->params.degree, r->params.levels, err)) return 1;
+    }
+    /* fluid.h has no setters: a changed wind, viscosity or emitter rate re-creates the
+     * solver, continuing from the current density (the velocity restarts at the drift). */
+    if (sim_params_differ(&r->params, &p->applied)) {
+      const fogmap *now = fluid_sim_density(c->sim);
+      fogmap current = {0};
+      sim_error serr = {{0}};
+      if (fogmap_create(&current, now->width, now->height, &serr))
+        return fail(err, "%s", serr.message);
+      memcpy(current.density, now->density, (size_t)now->width * now->height * sizeof(float));
+      int status = sim_create(p, &r->params, &current, err);
+      fogmap_destroy(&current);
+      if (status) return 1;
+    }
+    p->applied = r->params;
+  }
+  if (r->reset) {
+    if (sim_create(p, &p->applied, &c->base, err)) return 1;
+    c->steps = 0;
+  }
+  sim_error serr = {{0}};
+  for (int s = 0; s < r->stroke_count; s++)
+    fluid_sim_paint(c->sim, &r->strokes[s], &serr); /* bad strokes are dropped */
+
+  double t0 = now_ms();
+  for (int s = 0; s < p->steps_per_frame; s++)
+    if (fluid_sim_step(c->sim, &serr)) return fail(err, "simulation: %s", serr.message);
+  c->steps++;
+  double t1 = now_ms();
+  if (slot_shape(p, slot, err)) return 1;
+  const fogmap *density = fluid_sim_density(c->sim);
+  transform_forward(c->plan, density->density, c->coefficients);
+  transform_pyramid(c->plan, c->coefficients, c->approx);
+  if (p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS)
+    transform_details(c->plan, c->coefficients, c->detail);
+  transform_error terr = {{0}};
+  for (int l = 0; l <= c->levels; l++) {
+    if (transform_grid_export(c->plan, l, c->approx[l], &slot->pyramid.approx[l], &terr))
+      return fail(err, "transform: %s", terr.message);
+    if (l > 0 && p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS &&
+        transform_grid_export(c->plan, l, c->detail[l], &slot->pyramid.detail[l], &terr))
+      return fail(err, "transform: %s", terr.message);
+  }
+  slot->pyramid.has_details = p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS;
+  double t2 = now_ms();
+  slot->step = c->steps;
+  slot->sim_ms = t1 - t0;
+  slot->transform_ms = t2 - t1;
+  return 0;
+}
+
+static void *worker_main(void *arg) {
+  pipeline *p = arg;
+  worker_requests *r = &p->requests;
+  pthread_mutex_lock(&p->lock);
+  while (!p->quit) {
+    pipeline_slot *slot = &p->slots[p->fill_index];
+    bool may_step = !p->params.paused || p->step_requests > 0 || p->reset_requested ||
+                    !p->stepped_once;
+    if (slot->state != SLOT_FREE || !may_step || p->worker_error[0]) {
+      pthread_cond_wait(&p->changed, &p->lock);
+      continue;
+    }
+    if (p->params.paused && p->step_requests > 0) p->step_requests--;
+    take_requests(p, r);
+    slot->state = SLOT_FILLING;
+    pthread_mutex_unlock(&p->lock);
+
+    pipeline_error err = {{0}};
+    int status = cpu_stages_run(p, r, slot, &err);
+
+    pthread_mutex_lock(&p->lock);
+    if (status) {
+      snprintf(p->worker_error, sizeof p->worker_error, "%s", err.message);
+      slot->state = SLOT_FREE;
+    } else {
+      slot->state = SLOT_READY;
+      p->fill_index ^= 1;
+      p->stepped_once = true;
+    }
+    pthread_cond_broadcast(&p->changed);
+  }
+  pthread_mutex_unlock(&p->lock);
+  return NULL;
+}
+
+/* ---- create / destroy ---- */
+
+static pipeline_params params_from_config(const scene_config *cfg) {
+  return (pipeline_params){
+      .degree = cfg->fog.degree,
+      .levels = cfg->fog.levels,
+      .mu = (float)cfg->fog.mu,
+      .lod_method = cfg->fog.lod == SCENE_LOD_SUM ? FOG_LOD_SUM_OF_DETAILS : FOG_LOD_SWITCH,
+      .density = (float)cfg->fog.density_scale,
+      .fog_colour = {cfg->fog.colour[0], cfg->fog.colour[1], cfg->fog.colour[2]},
+      .profile_kind = (int)cfg->fog.profile, /* scene_profile numbers fog_profile_kind */
+      .fog_height = (float)cfg->fog.fog_height,
+      .scale_height = (float)cfg->fog.scale_height,
+      .wind = {(float)cfg->sim.wind[0], (float)cfg->sim.wind[1]},
+      .turbulence = (float)cfg->sim.turbulence,
+      .viscosity = (float)cfg->sim.viscosity,
+      .emitter_rate = (float)cfg->sim.emitter_rate,
+  };
+}
+
+static int load_scene(pipeline *p, pipeline_error *err) {
+  const scene_config *cfg = &p->config;
+  fogmap heights = {0};
+  sim_error serr = {{0}};
+  if (cfg->terrain.heightmap[0] && fogmap_load(cfg->terrain.heightmap, NULL, &heights, &serr))
+    return fail(err, "%s", serr.message);
+  scene_desc desc;
+  scene_config_scene_desc(cfg, heights.density, heights.width, heights.height, &desc);
+  render_error rerr = {{0}};
+  int status = scene_geometry_create(&p->geometry, &desc, &rerr);
+  fogmap_destroy(&heights);
+  if (status) return fail(err, "scene: %s", rerr.message);
+  p->geometry_made = true;
+  p->scene = scene_pass_create(&p->geometry, &rerr);
+  if (!p->scene) return fail(err, "scene pass: %s", rerr.message);
+  return 0;
+}
+
+pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
+  pipeline *p = calloc(1, sizeof *p);
+  if (!p) {
+    fail(err, "out of memory");
+    return NULL;
+  }
+  p->config = *desc->config;
+  p->width = desc->width > 0 ? desc->width : p->config.width;
+  p->height = desc->height > 0 ? desc->height : p->config.height;
+  p->frame_seconds = desc->frame_seconds > 0 ? desc->frame_seconds : 1.0 / 24.0;
+  /* Keep the sim's step at most 1/24 s so fast frame rates and slow ones see the same
+   * physics per second (semi-Lagrangian advection is stable at any step, but accuracy
+   * is not). */
+  p->steps_per_frame = (int)ceil(p->frame_seconds * 24.0 - 1e-9);
+  if (p->steps_per_frame < 1) p->steps_per_frame = 1;
+  p->synchronous = desc->synchronous;
+  p->time_passes = desc->time_passes;
+  p->params = params_from_config(&p->config);
+  p->applied = p->params;
+  pthread_mutex_init(&p->lock, NULL);
+  pthread_cond_init(&p->changed, NULL);
+
+  cpu_stages *c = &p->cpu;
+  if (make_base(&p->config, &c->base, err)) {
+    pipeline_destroy(p);
+    return NULL;
+  }
+  const float n = (float)(c->base.width < c->base.height ? c->base.width : c->base.height);
+  /* Three emitters spread over the map, upwind of its centre: the fog has sources to
+   * blow away from. Positions in cells; rates from the config. */
+  c->emitter_count = 3;
+  c->emitters[0] = (fluid_emitter){.x = 0.30f * n, .z = 0.35f * n, .radius = 0.03f * n};
+  c->emitters[1] = (fluid_emitter){.x = 0.55f * n, .z = 0.70f * n, .radius = 0.04f * n};
+  c->emitters[2] = (fluid_emitter){.x = 0.75f * n, .z = 0.30f * n, .radius = 0.025f * n};
+  if (sim_create(p, &p->params, &c->base, err) ||
+      plan_create(p, p->params.degree, p->params.levels, err)) {
+    pipeline_destroy(p);
+    return NULL;
+  }
+  p->params.levels = c->levels; /* clamped to what the grid allows */
+  p->applied = p->params;
+  render_error rerr = {{0}};
+  p->fog = pipeline_fog_create(&rerr);
+  if (!p->fog) {
+    fail(err, "fog pass: %s", rerr.message);
+    pipeline_destroy(p);
+    return NULL;
+  }
+  if (load_scene(p, err) || pipeline_resize(p, p->width, p->height, err)) {
+    pipeline_destroy(p);
+    return NULL;
+  }
+  return p;
+}
+
+void pipeline_destroy(pipeline *p) {
+  if (!p) return;
+  if (p->worker_running) {
+    pthread_mutex_lock(&p->lock);
+    p->quit = true;
+    pthread_cond_broadcast(&p->changed);
+    pthread_mutex_unlock(&p->lock);
+    pthread_join(p->worker, NULL);
+  }
+  for (int s = 0; s < 2; s++) fog_pyramid_destroy(&p->slots[s].pyramid);
+  plan_destroy(&p->cpu);
+  if (p->cpu.sim) fluid_sim_destroy(p->cpu.sim);
+  fogmap_destroy(&p->cpu.base);
+  pipeline_fog_destroy(p->fog);
+  if (p->scene) scene_pass_destroy(p->scene);
+  gl_target_destroy(&p->scene_target);
+  if (p->geometry_made) scene_geometry_destroy(&p->geometry);
+  pthread_cond_destroy(&p->changed);
+  pthread_mutex_destroy(&p->lock);
+  free(p);
+}
+
+int pipeline_resize(pipeline *p, int width, int height, pipeline_error *err) {
+  if (width < 1 || height < 1) return fail(err, "render size %dx%d is not positive", width, height);
+  render_error rerr = {{0}};
+  gl_target_destroy(&p->scene_target);
+  if (scene_target_create(&p->scene_target, width, height, &rerr))
+    return fail(err, "scene target: %s", rerr.message);
+  if (p->fog && pipeline_fog_resize(p->fog, width, height, &rerr))
+    return fail(err, "fog target: %s", rerr.message);
+  p->width = width;
+  p->height = height;
+  return 0;
+}
+
+void pipeline_size(const pipeline *p, int *width, int *height) {
+  *width = p->width;
+  *height = p->height;
+}
+
+long pipeline_step_index(const pipeline *p) { return p->shown_step; }
+
+int pipeline_skip(pipeline *p, long steps, pipeline_error *err) {
+  if (p->worker_running) return fail(err, "pipeline_skip after the first frame");
+  sim_error serr = {{0}};
+  for (long s = 0; s < steps; s++) {
+    for (int k = 0; k < p->steps_per_frame; k++)
+      if (fluid_sim_step(p->cpu.sim, &serr)) return fail(err, "simulation: %s", serr.message);
+    p->cpu.steps++;
+  }
+  p->shown_step = p->cpu.steps;
+  return 0;
+}
+
+/* ---- the frame (GL thread) ---- */
+
+static fog_volume volume_of(const pipeline *p, const pipeline_params *params) {
+  const scene_box_config *b = &p->config.box;
+  fog_volume v = {
+      .map_width = p->cpu.base.width,
+      .map_height = p->cpu.base.height,
+      .origin_x = b->origin[0],
+      .origin_z = b->origin[1],
+      .cell_size = b->cell_size,
+      .extinction = params->density,
+      .profile = {.kind = (fog_profile_kind)params->profile_kind, .y_floor = b->floor,
+                  .y_top = b->top, .y0 = params->fog_height,
+                  .scale_height = params->scale_height > 0 ? params->scale_height : 1.0},
+  };
+  if (params->profile_kind == FOG_PROFILE_BSPLINE && p->config.fog.profile_count == 0) {
+    v.profile.kind = FOG_PROFILE_SLAB; /* no B-spline profile in the config to show */
+  } else if (params->profile_kind == FOG_PROFILE_BSPLINE) {
+    v.profile.count = p->config.fog.profile_count;
+    v.profile.degree = p->config.fog.profile_degree;
+    v.profile.coefficients = p->config.fog.profile_coefficients;
+    v.profile.origin = p->config.fog.profile_origin;
+    v.profile.spacing = p->config.fog.profile_spacing;
+  }
+  return v;
+}
+
+/* Takes a ready slot (waiting for one if asked) and uploads it; returns 1 if uploaded. */
+static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *err) {
+  *upload_ms = 0.0;
+  if (p->synchronous) {
+    pipeline_slot *slot = &p->slots[0];
+    worker_requests *r = &p->requests;
+    pthread_mutex_lock(&p->lock);
+    bool may_step = !p->params.paused || p->step_requests > 0 || p->reset_requested ||
+                    !p->have_frame;
+    if (may_step) {
+      if (p->params.paused && p->step_requests > 0) p->step_requests--;
+      take_requests(p, r);
+    }
+    pthread_mutex_unlock(&p->lock);
+    int status = may_step ? cpu_stages_run(p, r, slot, err) : 0;
+    if (status) return -1;
+    if (!may_step) return 0;
+    p->last.sim = slot->sim_ms;
+    p->last.transform = slot->transform_ms;
+    double t0 = now_ms();
+    render_error rerr = {{0}};
+    if (pipeline_fog_upload(p->fog, &slot->pyramid, &rerr))
+      return fail(err, "upload: %s", rerr.message), -1;
+    *upload_ms = now_ms() - t0;
+    p->shown_step = slot->step;
+    return 1;
+  }
+  if (!p->worker_running) {
+    if (pthread_create(&p->worker, NULL, worker_main, p) != 0)
+      return fail(err, "cannot start the pipeline's worker thread"), -1;
+    p->worker_running = true;
+  }
+  pthread_mutex_lock(&p->lock);
+  pipeline_slot *slot = &p->slots[p->take_index];
+  /* The first frame always waits: there is nothing to show before it. While paused the
+   * worker steps only on request, so waiting then would block for ever. */
+  bool must_wait = (wait && (!p->params.paused || p->step_requests > 0)) || !p->have_frame;
+  while (must_wait && slot->state != SLOT_READY && !p->worker_error[0])
+    pthread_cond_wait(&p->changed, &p->lock);
+  if (p->worker_error[0]) {
+    fail(err, "%s", p->worker_error);
+    pthread_mutex_unlock(&p->lock);
+    return -1;
+  }
+  bool ready = slot->state == SLOT_READY;
+  pthread_mutex_unlock(&p->lock);
+  if (!ready) return 0;
+
+  double t0 = now_ms();
+  render_error rerr = {{0}};
+  int status = pipeline_fog_upload(p->fog, &slot->pyramid, &rerr);
+  *upload_ms = now_ms() - t0;
+  p->last.sim = slot->sim_ms;
+  p->last.transform = slot->transform_ms;
+  p->shown_step = slot->step;
+  pthread_mutex_lock(&p->lock);
+  slot->state = SLOT_FREE; /* the textures hold the copy now */
+  p->take_index ^= 1;
+  pthread_cond_broadcast(&p->changed);
+  pthread_mutex_unlock(&p->lock);
+  if (status) return fail(err, "upload: %s", rerr.message), -1;
+  return 1;
+}
+
+int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *err) {
+  double frame_start = now_ms();
+  double upload_ms = 0.0;
+  int taken = take_slot(p, wait, &upload_ms, err);
+  if (taken < 0) return 1;
+  /* Without a new step (live, worker still busy) sim and transform keep the values of the
+   * step on screen, so the medians describe steps, not idle frames. */
+
+  double t0 = now_ms();
+  scene_pass_run(p->scene, cam, &p->scene_target);
+  if (p->time_passes) {
+    glFinish();
+    p->last.scene = now_ms() - t0;
+  }
+  pthread_mutex_lock(&p->lock);
+  pipeline_params params = p->params;
+  pthread_mutex_unlock(&p->lock);
+  fog_volume volume = volume_of(p, &params);
+  render_error rerr = {{0}};
+  pipeline_fog_settings settings = {
+      .volume = &volume,
+      .mu = params.mu,
+      .lod_method = params.lod_method,
+      .fog_colour = {params.fog_colour[0], params.fog_colour[1], params.fog_colour[2]},
+      .hardware_filtering = p->config.fog.filtering == SCENE_FILTERING_HARDWARE,
+  };
+  if (pipeline_fog_render(p->fog, cam, &p->scene_target, &settings, &rerr))
+    return fail(err, "render: %s", rerr.message);
+  /* llvmpipe (and GPUs) run the commands asynchronously: finish so the render time is
+   * the time of this frame's drawing, not of the next read-back. */
+  glFinish();
+  double t1 = now_ms();
+  if (gl_util_check("pipeline frame", &rerr)) return fail(err, "%s", rerr.message);
+
+  p->last.upload = upload_ms;
+  p->last.render = t1 - t0;
+  p->last.frame = t1 - frame_start;
+  /* Frame time of a live loop includes everything between frames (events, panel, swap):
+   * measure start to start when frames follow each other. */
+  if (p->have_frame && !wait) {
+    double between = frame_start - p->last_frame_start;
+    if (between > p->last.frame && between < 1000.0) p->last.frame = between;
+  }
+  p->last_frame_start = frame_start;
+  p->have_frame = true;
+  p->last_camera = *cam;
+  timing_push(&p->timings, &p->last);
+  return 0;
+}
+
+int pipeline_read_frame(pipeline *p, float *rgba, float *transmittance, float *depth,
+                        pipeline_error *err) {
+  render_error rerr = {{0}};
+  if (pipeline_fog_read(p->fog, rgba, transmittance, &rerr))
+    return fail(err, "read-back: %s", rerr.message);
+  if (depth) {
+    if (gl_target_read(&p->scene_target, 1, 1, depth, &rerr))
+      return fail(err, "read-back: %s", rerr.message);
+    /* The sky's distance is SCENE_SKY_DISTANCE (1e30); EXR readers and compositors want
+     * a finite far value: the camera's far plane. */
+    double far = p->last_camera.far_plane > 0 ? p->last_camera.far_plane : 100000.0;
+    for (size_t i = 0, n = (size_t)p->width * p->height; i < n; i++)
+      if (!(depth[i] < far)) depth[i] = (float)far;
+  }
+  return 0;
+}
+
+void pipeline_present(pipeline *p, int width, int height) {
+  pipeline_fog_present(p->fog, width, height);
+}
+
+pipeline_params pipeline_get_params(const pipeline *p) {
+  pthread_mutex_lock((pthread_mutex_t *)&p->lock);
+  pipeline_params params = p->params;
+  pthread_mutex_unlock((pthread_mutex_t *)&p->lock);
+  return params;
+}
+
+void pipeline_set_params(pipeline *p, const pipeline_params *params) {
+  pthread_mutex_lock(&p->lock);
+  p->params = *params;
+  p->params_version++;
+  pthread_cond_broadcast(&p->changed);
+  pthread_mutex_unlock(&p->lock);
+}
+
+void pipeline_step_once(pipeline *p) {
+  pthread_mutex_lock(&p->lock);
+  p->step_requests++;
+  pthread_cond_broadcast(&p->changed);
+  pthread_mutex_unlock(&p->lock);
+}
+
+void pipeline_reset(pipeline *p) {
+  pthread_mutex_lock(&p->lock);
+  p->reset_requested = true;
+  pthread_cond_broadcast(&p->changed);
+  pthread_mutex_unlock(&p->lock);
+}
+
+void pipeline_paint(pipeline *p, double x0, double z0, double x1, double z1, double radius,
+                    double amount) {
+  /* World to sim cells: cell (x, z) sits at world origin + (x + 1/2) cell_size. */
+  const scene_box_config *b = &p->config.box;
+  double cell = b->cell_size > 0 ? b->cell_size : 1.0;
+  fluid_stroke stroke = {
+      .x0 = (float)((x0 - b->origin[0]) / cell - 0.5),
+      .z0 = (float)((z0 - b->origin[1]) / cell - 0.5),
+      .x1 = (float)((x1 - b->origin[0]) / cell - 0.5),
+      .z1 = (float)((z1 - b->origin[1]) / cell - 0.5),
+      .radius = (float)(radius / cell),
+      .amount = (float)amount,
+  };
+  pthread_mutex_lock(&p->lock);
+  if (p->stroke_count < MAX_STROKES) p->strokes[p->stroke_count++] = stroke;
+  pthread_cond_broadcast(&p->changed);
+  pthread_mutex_unlock(&p->lock);
+  if (p->synchronous) return;
+}
+
+bool pipeline_pick_surface(pipeline *p, const camera *cam, int px, int py, double world[3]) {
+  if (px < 0 || py < 0 || px >= p->width || py >= p->height) return false;
+  /* One texel of the distance texture (GL rows are bottom-up). */
+  float distance = 0.0f;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, p->scene_target.framebuffer);
+  glReadBuffer(GL_COLOR_ATTACHMENT1);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(px, p->height - 1 - py, 1, 1, GL_RED, GL_FLOAT, &distance);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  if (!(distance < 0.5f * SCENE_SKY_DISTANCE)) return false;
+  double origin[3], dir[3];
+  camera_ray(cam, px, py, p->width, p->height, origin, dir);
+  for (int i = 0; i < 3; i++) world[i] = origin[i] + distance * dir[i];
+  return true;
+}
+
+pipeline_timings pipeline_get_timings(const pipeline *p, pipeline_timings *last) {
+  if (last) *last = p->last;
+  const timing_ring *r = &p->timings;
+  return (pipeline_timings){
+      .sim = median_of(r->values[0], r->count),
+      .transform = median_of(r->values[1], r->count),
+      .upload = median_of(r->values[2], r->count),
+      .render = median_of(r->values[3], r->count),
+      .frame = median_of(r->values[4], r->count),
+      .scene = median_of(r->values[5], r->count),
+  };
+}
+
+void pipeline_fog_extent(const pipeline *p, int *cells_x, int *cells_z, double *origin_x,
+                         double *origin_z, double *cell_size) {
+  *cells_x = p->cpu.base.width;
+  *cells_z = p->cpu.base.height;
+  *origin_x = p->config.box.origin[0];
+  *origin_z = p->config.box.origin[1];
+  *cell_size = p->config.box.cell_size;
+}

@@ -1,0 +1,122 @@
+/* pipeline: one frame of fogpipe, stage by stage (DESIGN.md §2):
+ *
+ *     sim step ──► transform ──►│ upload ──► render (scene + fog pass)
+ *     └──── CPU: worker thread ─┘└────────── GL thread (the caller) ──┘
+ *
+ * The CPU stages run in a worker thread (pthreads), double-buffered against rendering:
+ * there are two slots; while the GL thread uploads and renders the pyramid in slot k, the
+ * worker steps the simulation and transforms the density into slot k+1. A slot is handed
+ * back to the worker as soon as its grids are uploaded (the GL textures hold the copy).
+ *
+ * Determinism: the simulation advances by a fixed time step per frame in the worker, in
+ * order, whatever the thread timing; frame n always shows simulation step n. Recording
+ * takes every frame (pipeline_frame with wait = true); the live demo takes the newest one
+ * that is ready and re-renders the last one otherwise, so the camera stays smooth.
+ *
+ * Timings are kept per stage (sim, transform, upload, render, frame) as moving medians
+ * over the last PIPELINE_TIMING_WINDOW frames.
+ *
+ * Lifecycle: pipeline_create (a GL context must be current on the calling thread, which
+ * is then the GL thread) → pipeline_frame / pipeline_read_frame per frame → destroy. */
+#ifndef FOGPIPE_APP_PIPELINE_H
+#define FOGPIPE_APP_PIPELINE_H
+
+#include <stdbool.h>
+
+#include "app/config.h"
+#include "render/camera.h"
+
+#define PIPELINE_TIMING_WINDOW 31
+
+typedef struct pipeline_error {
+  char message[512];
+} pipeline_error;
+
+typedef struct pipeline pipeline;
+
+typedef struct pipeline_desc {
+  const scene_config *config; /* the scene (copied; the pipeline keeps its own) */
+  int width, height;          /* render size; 0: the config's image size */
+  bool synchronous;           /* run sim + transform on the GL thread (default: worker) */
+  double frame_seconds;       /* simulated seconds per frame; 0: 1/24 */
+  bool time_passes;           /* also time the scene pass alone (one extra glFinish) */
+} pipeline_desc;
+
+/* Per-stage times in milliseconds (moving medians, or one frame's values). */
+typedef struct pipeline_timings {
+  double sim, transform, upload, render, frame;
+  double scene; /* the scene pass's part of render (only with desc.time_passes) */
+} pipeline_timings;
+
+/* What the panel edits live. Changes are applied by the worker before its next step
+ * (basis and levels re-plan the transform). */
+typedef struct pipeline_params {
+  int degree;        /* B-spline basis 0 (Haar), 1 (linear), 2 (quadratic) */
+  int levels;        /* pyramid levels J */
+  float mu;          /* LOD factor in [0, 1] */
+  int lod_method;    /* fog_lod_method */
+  float density;     /* extinction scale */
+  float fog_colour[3];
+  int profile_kind;  /* fog_profile_kind (slab / exponential) */
+  float fog_height;  /* top of the slab or of the flat part (y0) */
+  float scale_height;/* exponential falloff H */
+  float wind[2];     /* constant drift, world units per second (x, z) */
+  float turbulence;  /* wind turbulence amplitude */
+  float viscosity;
+  float emitter_rate;
+  bool paused;
+} pipeline_params;
+
+pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err);
+void pipeline_destroy(pipeline *p);
+
+/* Renders the next frame into the pipeline's target with the given camera. wait: block
+ * until the worker has the next simulation step (recording; while paused only for a
+ * requested step); otherwise take the next ready step or re-render the current one
+ * (live). Returns non-zero on a GL error or a failed CPU stage. */
+int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *err);
+
+/* Reads the last frame back, rows TOP first: rgba (4 floats per pixel, linear), the
+ * transmittance and the depth (distance along the ray to the first surface, or the far
+ * plane for the sky). Any pointer may be NULL. */
+int pipeline_read_frame(pipeline *p, float *rgba, float *transmittance, float *depth,
+                        pipeline_error *err);
+
+/* Draws the last frame's colour into the default framebuffer (window), scaled to w x h. */
+void pipeline_present(pipeline *p, int width, int height);
+
+/* Render size; resizing re-creates the render targets. */
+void pipeline_size(const pipeline *p, int *width, int *height);
+int pipeline_resize(pipeline *p, int width, int height, pipeline_error *err);
+
+/* Number of simulation steps shown so far (the frame index of the last pipeline_frame). */
+long pipeline_step_index(const pipeline *p);
+
+/* Runs the simulation alone (no transform, no render) for `steps` frames: how --resume
+ * reaches frame n deterministically. Only before the first pipeline_frame. */
+int pipeline_skip(pipeline *p, long steps, pipeline_error *err);
+
+pipeline_params pipeline_get_params(const pipeline *p);
+void pipeline_set_params(pipeline *p, const pipeline_params *params);
+/* While paused: advance one step. */
+void pipeline_step_once(pipeline *p);
+/* Restart the simulation from its initial state. */
+void pipeline_reset(pipeline *p);
+
+/* Paint (amount > 0) or erase (amount < 0) fog with a round brush at world (x, z) of the
+ * given world radius; queued and applied by the worker through the sim's stroke function. */
+void pipeline_paint(pipeline *p, double x0, double z0, double x1, double z1, double radius,
+                    double amount);
+
+/* Distance along the ray through image pixel (px, py) (row 0 at the top) to the first
+ * surface of the last frame, from its depth texture; returns false for the sky. */
+bool pipeline_pick_surface(pipeline *p, const camera *cam, int px, int py, double world[3]);
+
+/* Moving medians of the last frames; `last` (may be NULL) gets the last frame's values. */
+pipeline_timings pipeline_get_timings(const pipeline *p, pipeline_timings *last);
+
+/* The fogmap size (cells) and its world placement, for the panel and painting. */
+void pipeline_fog_extent(const pipeline *p, int *cells_x, int *cells_z, double *origin_x,
+                         double *origin_z, double *cell_size);
+
+#endif

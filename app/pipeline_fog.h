@@ -1,0 +1,53 @@
+/* pipeline_fog: the pipeline's view of the GL fog pass (render/fog_pass.h): upload one
+ * step's pyramid of transform_grids, draw the fog over the scene pass's colour and
+ * surface-distance textures into colour + transmittance, read back, present to a window.
+ * Kept apart from pipeline.c so the pipeline's threading does not depend on the pass's
+ * details. */
+#ifndef FOGPIPE_APP_PIPELINE_FOG_H
+#define FOGPIPE_APP_PIPELINE_FOG_H
+
+#include <stdbool.h>
+
+#include "render/camera.h"
+#include "render/fog_field.h"
+#include "render/gl_util.h"
+#include "render/render_error.h"
+#include "transform/transform.h"
+
+#define FOG_PYRAMID_MAX_LEVELS 12
+
+/* One simulation step's grids: approx[0..levels] = A_0..A_J; detail[1..levels] = D_1..D_J
+ * (only when has_details: the sum-of-details LOD method needs them). */
+typedef struct fog_pyramid {
+  int levels, degree;
+  bool has_details;
+  transform_grid approx[FOG_PYRAMID_MAX_LEVELS + 1];
+  transform_grid detail[FOG_PYRAMID_MAX_LEVELS + 1];
+} fog_pyramid;
+
+void fog_pyramid_destroy(fog_pyramid *pyramid);
+
+typedef struct pipeline_fog_settings {
+  const fog_volume *volume;
+  float mu;
+  int lod_method; /* fog_lod_method */
+  float fog_colour[3];
+  bool hardware_filtering;
+} pipeline_fog_settings;
+
+typedef struct pipeline_fog pipeline_fog;
+
+pipeline_fog *pipeline_fog_create(render_error *err);
+void pipeline_fog_destroy(pipeline_fog *fog);
+int pipeline_fog_resize(pipeline_fog *fog, int width, int height, render_error *err);
+/* Copies the grids into textures (re-created when their sizes change). */
+int pipeline_fog_upload(pipeline_fog *fog, const fog_pyramid *pyramid, render_error *err);
+/* Draws the fog over the scene target (colour 0, distance 1) into the fog target. */
+int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *scene,
+                        const pipeline_fog_settings *settings, render_error *err);
+/* Rows top first; either pointer may be NULL. */
+int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, render_error *err);
+/* Blits the fog target's colour to the default framebuffer at width x height. */
+void pipeline_fog_present(pipeline_fog *fog, int width, int height);
+
+#endif

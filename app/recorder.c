@@ -1,0 +1,324 @@
+/* recorder: frame files (naming, writability, resume scan), EXR writing, the ffmpeg
+ * preview and the progress display. See app/recorder.h for the lifecycle. */
+#define _POSIX_C_SOURCE 200809L
+#include "app/recorder.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "sim/sim.h"
+
+static int fail(recorder_error *err, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(err->message, sizeof err->message, fmt, ap);
+  va_end(ap);
+  return 1;
+}
+
+double recorder_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* mkdir -p: creates each missing component of path. */
+static int make_folders(const char *path, recorder_error *err) {
+  char partial[1024];
+  size_t n = strlen(path);
+  if (n == 0 || n >= sizeof partial) return fail(err, "output folder name is empty or too long");
+  memcpy(partial, path, n + 1);
+  for (size_t i = 1; i <= n; i++) {
+    if (partial[i] != '/' && partial[i] != '\0') continue;
+    char saved = partial[i];
+    partial[i] = '\0';
+    if (mkdir(partial, 0777) != 0 && errno != EEXIST)
+      return fail(err, "cannot create the output folder %s: %s", partial, strerror(errno));
+    partial[i] = saved;
+  }
+  struct stat st;
+  if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode))
+    return fail(err, "the output path %s exists and is not a folder", path);
+  return 0;
+}
+
+/* Bytes of one uncompressed frame: 4 half channels + 2 float channels per pixel. */
+static double frame_bytes(int width, int height) {
+  return (double)width * (double)height * (4 * 2 + 2 * 4);
+}
+
+int recorder_open(recorder *rec, const recorder_desc *desc, recorder_error *err) {
+  *rec = (recorder){.width = desc->width, .height = desc->height};
+  if (!desc->folder || !*desc->folder) return fail(err, "no output folder given (--out DIR)");
+  if (desc->width <= 0 || desc->height <= 0)
+    return fail(err, "frame size %dx%d is not positive", desc->width, desc->height);
+  snprintf(rec->folder, sizeof rec->folder, "%s", desc->folder);
+  /* Strip trailing slashes so paths read FOLDER/NAME.0001.exr. */
+  for (size_t n = strlen(rec->folder); n > 1 && rec->folder[n - 1] == '/'; n--)
+    rec->folder[n - 1] = '\0';
+  snprintf(rec->name, sizeof rec->name, "%s", desc->name && *desc->name ? desc->name : "frame");
+  if (make_folders(rec->folder, err)) return 1;
+
+  /* Prove the folder is writable: access() alone is fooled by read-only mounts and full
+   * disks, so create a probe file, write a block, flush it to disk and remove it. */
+  char probe[1200];
+  snprintf(probe, sizeof probe, "%s/.fogpipe-write-probe-%ld.tmp", rec->folder, (long)getpid());
+  int fd = open(probe, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+  if (fd < 0)
+    return fail(err, "the output folder %s is not writable: %s", rec->folder, strerror(errno));
+  static const char block[4096];
+  ssize_t wrote = write(fd, block, sizeof block);
+  int write_errno = wrote < 0 ? errno : 0;
+  int sync_failed = wrote == (ssize_t)sizeof block && fsync(fd) != 0;
+  int sync_errno = sync_failed ? errno : 0;
+  close(fd);
+  unlink(probe);
+  if (wrote != (ssize_t)sizeof block || sync_failed) {
+    int e = write_errno ? write_errno : sync_errno ? sync_errno : ENOSPC;
+    return fail(err, "cannot write into the output folder %s: %s%s", rec->folder, strerror(e),
+                e == ENOSPC ? " (the disk is full)" : "");
+  }
+  struct statvfs vfs;
+  if (statvfs(rec->folder, &vfs) == 0) {
+    double free_bytes = (double)vfs.f_bavail * (double)vfs.f_frsize;
+    if (free_bytes < frame_bytes(rec->width, rec->height))
+      return fail(err,
+                  "the disk holding %s is full: %.1f MB free, one %dx%d frame needs up to "
+                  "%.1f MB",
+                  rec->folder, free_bytes / 1e6, rec->width, rec->height,
+                  frame_bytes(rec->width, rec->height) / 1e6);
+  }
+  return 0;
+}
+
+void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size) {
+  snprintf(path, size, "%s/%s.%04d.exr", rec->folder, rec->name, frame);
+}
+
+int recorder_complete_frames(const recorder *rec, int max_frames) {
+  int done = 0;
+  char path[1200];
+  for (int frame = 1; frame <= max_frames; frame++) {
+    recorder_frame_path(rec, frame, path, sizeof path);
+    struct stat st;
+    if (stat(path, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0) break;
+    done = frame;
+  }
+  return done;
+}
+
+int recorder_remove_stale_temporaries(const recorder *rec) {
+  DIR *dir = opendir(rec->folder);
+  if (!dir) return 0;
+  char prefix[160];
+  snprintf(prefix, sizeof prefix, ".%s.", rec->name);
+  int removed = 0;
+  struct dirent *entry;
+  while ((entry = readdir(dir))) {
+    const char *name = entry->d_name;
+    if (strncmp(name, prefix, strlen(prefix)) != 0 || !strstr(name, ".exr.tmp.")) continue;
+    char path[1400];
+    snprintf(path, sizeof path, "%s/%s", rec->folder, name);
+    removed += unlink(path) == 0;
+  }
+  closedir(dir);
+  return removed;
+}
+
+int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *pixels,
+                         float *scratch, recorder_error *err) {
+  const int w = rec->width, h = rec->height;
+  const size_t n = (size_t)w * (size_t)h;
+  float *plane[6];
+  for (int c = 0; c < 6; c++) plane[c] = scratch + (size_t)c * n;
+  /* De-interleave and flip to top-row-first (EXR order). */
+  for (int y = 0; y < h; y++) {
+    int src_row = pixels->bottom_up ? h - 1 - y : y;
+    const float *rgba = pixels->rgba + (size_t)src_row * w * 4;
+    const float *tr = pixels->transmittance + (size_t)src_row * w;
+    const float *dp = pixels->depth + (size_t)src_row * w;
+    size_t dst = (size_t)y * w;
+    for (int x = 0; x < w; x++) {
+      for (int c = 0; c < 4; c++) plane[c][dst + x] = rgba[4 * x + c];
+      plane[4][dst + x] = tr[x];
+      plane[5][dst + x] = dp[x];
+    }
+  }
+  const image_channel channels[] = {
+      {.name = "R", .pixels = plane[0], .as_half = 1},
+      {.name = "G", .pixels = plane[1], .as_half = 1},
+      {.name = "B", .pixels = plane[2], .as_half = 1},
+      {.name = "A", .pixels = plane[3], .as_half = 1},
+      {.name = "transmittance", .pixels = plane[4], .as_half = 0},
+      {.name = "depth", .pixels = plane[5], .as_half = 0},
+  };
+  char path[1200];
+  recorder_frame_path(rec, frame, path, sizeof path);
+  sim_error serr = {{0}};
+  if (image_write_exr(path, w, h, channels, 6, &serr)) {
+    struct statvfs vfs;
+    int full = statvfs(rec->folder, &vfs) == 0 &&
+               (double)vfs.f_bavail * (double)vfs.f_frsize < frame_bytes(w, h);
+    return fail(err, "cannot write frame %d: %s%s", frame, serr.message,
+                full ? " (the disk is full)" : "");
+  }
+  return 0;
+}
+
+bool recorder_have_ffmpeg(void) {
+  const char *path = getenv("PATH");
+  if (!path) return false;
+  char dir[1024];
+  while (*path) {
+    size_t len = strcspn(path, ":");
+    if (len > 0 && len < sizeof dir - 8) {
+      memcpy(dir, path, len);
+      snprintf(dir + len, sizeof dir - len, "/ffmpeg");
+      if (access(dir, X_OK) == 0) return true;
+    }
+    path += len;
+    if (*path == ':') path++;
+  }
+  return false;
+}
+
+/* Appends s to the shell command in single quotes (a ' becomes '\''). */
+static void append_quoted(char *cmd, size_t size, const char *s) {
+  size_t used = strlen(cmd);
+  if (used + 1 < size) cmd[used++] = '\'';
+  for (; *s && used + 5 < size; s++) {
+    if (*s == '\'') {
+      memcpy(cmd + used, "'\\''", 4);
+      used += 4;
+    } else {
+      cmd[used++] = *s;
+    }
+  }
+  if (used + 1 < size) cmd[used++] = '\'';
+  cmd[used] = '\0';
+}
+
+/* The sRGB transfer function (IEC 61966-2-1) for 8-bit display. */
+static uint8_t to_srgb8(float linear) {
+  if (!(linear > 0.0f)) return 0;
+  if (linear >= 1.0f) return 255;
+  double s = linear <= 0.0031308 ? 12.92 * linear : 1.055 * pow(linear, 1.0 / 2.4) - 0.055;
+  return (uint8_t)lround(s * 255.0);
+}
+
+int recorder_write_preview(const recorder *rec, int frame_count, double fps,
+                           const char *video_path, recorder_error *err) {
+  if (!recorder_have_ffmpeg())
+    return fail(err, "ffmpeg is not installed: no preview written (apt-get install ffmpeg)");
+  /* ffmpeg picks the container from the extension, so the temporary name keeps it. */
+  char temp[1200];
+  const char *dot = strrchr(video_path, '.');
+  const char *slash = strrchr(video_path, '/');
+  if (dot && (!slash || dot > slash))
+    snprintf(temp, sizeof temp, "%.*s.partial%s", (int)(dot - video_path), video_path, dot);
+  else
+    snprintf(temp, sizeof temp, "%s.partial", video_path);
+  const int w = rec->width, h = rec->height;
+  char cmd[4096];
+  /* yuv420p needs even sizes: pad odd ones by one pixel. */
+  snprintf(cmd, sizeof cmd,
+           "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgb24 -s %dx%d -r %g -i - "
+           "-vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -pix_fmt yuv420p ",
+           w, h, fps > 0 ? fps : 24.0);
+  append_quoted(cmd, sizeof cmd, temp);
+  size_t n = (size_t)w * (size_t)h;
+  uint8_t *rgb = malloc(n * 3);
+  if (!rgb) return fail(err, "out of memory for the preview");
+  struct sigaction ignore = {.sa_handler = SIG_IGN}, previous;
+  sigaction(SIGPIPE, &ignore, &previous); /* a dying ffmpeg must not kill us */
+  FILE *pipe = popen(cmd, "w");
+  int status = 0;
+  if (!pipe) status = fail(err, "cannot start ffmpeg: %s", strerror(errno));
+  static const char *const names[3] = {"R", "G", "B"};
+  char path[1200];
+  for (int frame = 1; frame <= frame_count && !status; frame++) {
+    recorder_frame_path(rec, frame, path, sizeof path);
+    for (int c = 0; c < 3 && !status; c++) {
+      fogmap plane = {0};
+      sim_error serr = {{0}};
+      if (fogmap_load(path, &(fogmap_load_desc){.channel = names[c]}, &plane, &serr)) {
+        status = fail(err, "preview: cannot read back frame %d: %s", frame, serr.message);
+        break;
+      }
+      if (plane.width != w || plane.height != h)
+        status = fail(err, "preview: frame %s is %dx%d, expected %dx%d", path, plane.width,
+                      plane.height, w, h);
+      for (size_t i = 0; i < n && !status; i++) rgb[3 * i + c] = to_srgb8(plane.density[i]);
+      fogmap_destroy(&plane);
+    }
+    if (!status && fwrite(rgb, 3, n, pipe) != n)
+      status = fail(err, "preview: ffmpeg stopped reading frames (see its message above)");
+  }
+  if (pipe) {
+    int rc = pclose(pipe);
+    if (!status && rc != 0) status = fail(err, "preview: ffmpeg failed (exit status %d)", rc);
+  }
+  sigaction(SIGPIPE, &previous, NULL);
+  free(rgb);
+  if (!status && rename(temp, video_path) != 0)
+    status = fail(err, "preview: cannot rename %s to %s: %s", temp, video_path, strerror(errno));
+  if (status) unlink(temp);
+  return status;
+}
+
+void recorder_progress_begin(recorder_progress *p, FILE *out, int first, int total) {
+  *p = (recorder_progress){.out = out,
+                           .terminal = isatty(fileno(out)) != 0,
+                           .total = total,
+                           .first = first,
+                           .start = recorder_now()};
+}
+
+static void format_duration(double seconds, char *buf, size_t size) {
+  long s = (long)(seconds + 0.5);
+  if (s >= 3600)
+    snprintf(buf, size, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  else
+    snprintf(buf, size, "%ld:%02ld", s / 60, s % 60);
+}
+
+void recorder_progress_update(recorder_progress *p, int done) {
+  double elapsed = recorder_now() - p->start;
+  int rendered = done - p->first;
+  double per_frame = rendered > 0 ? elapsed / rendered : 0.0;
+  double eta = per_frame * (p->total - done);
+  char eta_text[32];
+  format_duration(eta, eta_text, sizeof eta_text);
+  int percent = p->total > 0 ? (int)(100.0 * done / p->total) : 100;
+  if (p->terminal) {
+    enum { bar_width = 30 };
+    char bar[bar_width + 1];
+    int filled = p->total > 0 ? bar_width * done / p->total : bar_width;
+    for (int i = 0; i < bar_width; i++) bar[i] = i < filled ? '#' : '.';
+    bar[bar_width] = '\0';
+    fprintf(p->out, "\r  [%s] %d/%d %3d%%  %.2f s/frame  ETA %s   ", bar, done, p->total,
+            percent, per_frame, eta_text);
+  } else {
+    fprintf(p->out, "frame %d/%d (%d%%), %.2f s/frame, ETA %s\n", done, p->total, percent,
+            per_frame, eta_text);
+  }
+  fflush(p->out);
+}
+
+void recorder_progress_end(recorder_progress *p) {
+  if (p->terminal) {
+    fputc('\n', p->out);
+    fflush(p->out);
+  }
+}

@@ -1,0 +1,114 @@
+/* recorder: writes a rendered frame sequence to disk, one OpenEXR file per frame.
+ *
+ * Lifecycle (what `fogpipe record` and the headless `fogpipe demo` do):
+ *   recorder_open()            checks the folder can be written (creates it if missing)
+ *                              before any frame is rendered;
+ *   recorder_complete_frames() the number of whole frames already there (for --resume);
+ *   recorder_write_frame()     one EXR per frame, `DIR/NAME.0001.exr` (1-based, 4 digits or
+ *                              more), written to a temporary name and renamed by
+ *                              image_write_exr, so no partial frame ever exists;
+ *   recorder_write_preview()   optionally pipes the finished sequence through ffmpeg.
+ * The progress display (a bar with ETA on a terminal, plain lines otherwise) is here too.
+ * Errors are returned (status + message), never printed. */
+#ifndef FOGPIPE_APP_RECORDER_H
+#define FOGPIPE_APP_RECORDER_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+typedef struct recorder_error {
+  char message[512];
+} recorder_error;
+
+typedef struct recorder_desc {
+  const char *folder;  /* output folder; created (with parents) if missing */
+  const char *name;    /* file name stem (NULL: "frame") */
+  int width, height;
+} recorder_desc;
+
+typedef struct recorder {
+  char folder[1024];
+  char name[128];
+  int width, height;
+} recorder;
+
+/* One rendered frame as the GL pass reads it back: linear colour and alpha, transmittance
+ * (fraction of the surface light that reaches the camera) and depth (distance along the
+ * view ray to the first surface; +inf or a large value for the sky). Rows are bottom-up
+ * when bottom_up is set (glReadPixels order) and are flipped to EXR's top-down order. */
+typedef struct recorder_frame {
+  const float *rgba;           /* width*height*4 interleaved */
+  const float *transmittance;  /* width*height */
+  const float *depth;          /* width*height */
+  bool bottom_up;
+} recorder_frame;
+
+/* Creates the folder if needed and proves it is writable by creating and removing a probe
+ * file, so a read-only folder or a full disk is reported before any rendering. */
+int recorder_open(recorder *rec, const recorder_desc *desc, recorder_error *err);
+
+/* Path of 1-based frame number `frame`: FOLDER/NAME.%04d.exr. */
+void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size);
+
+/* The number of consecutive whole frames 1..n already in the folder. Frames are renamed
+ * into place only when complete, so an existing frame file is a whole frame. */
+int recorder_complete_frames(const recorder *rec, int max_frames);
+
+/* Removes temporary files a killed run (SIGKILL, power loss) may have left beside the
+ * frames: image_write_exr's ".NAME.NNNN.exr.tmp.XXXXXX". Returns how many were removed. */
+int recorder_remove_stale_temporaries(const recorder *rec);
+
+/* Writes frame number `frame` (1-based). Channels: R, G, B, A as half; transmittance and
+ * depth as 32-bit float. `scratch` must hold 6*width*height floats (no allocation per
+ * frame). On failure (disk full, folder removed) nothing is left at the frame's path. */
+int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *pixels,
+                         float *scratch, recorder_error *err);
+
+/* True when an `ffmpeg` executable is on PATH. */
+bool recorder_have_ffmpeg(void);
+
+/* Encodes frames 1..frame_count of the folder into an H.264 video at `fps` by reading each
+ * EXR's R, G, B back and piping 8-bit sRGB to ffmpeg (so a resumed recording gets the same
+ * preview as an uninterrupted one). Written to a temporary name and renamed. */
+int recorder_write_preview(const recorder *rec, int frame_count, double fps,
+                           const char *video_path, recorder_error *err);
+
+/* Progress of a sequence: on a terminal one line redrawn in place with a bar and the ETA;
+ * otherwise one plain line per frame (logs stay readable). */
+typedef struct recorder_progress {
+  FILE *out;
+  bool terminal;
+  int total;     /* frames in the sequence */
+  int first;     /* frames already complete when this run started */
+  double start;  /* seconds (monotonic) when this run started rendering */
+} recorder_progress;
+
+void recorder_progress_begin(recorder_progress *p, FILE *out, int first, int total);
+/* Called after frame `done` (1-based count of complete frames) is on disk. */
+void recorder_progress_update(recorder_progress *p, int done);
+/* Ends the in-place line on a terminal. */
+void recorder_progress_end(recorder_progress *p);
+
+/* Monotonic seconds. */
+double recorder_now(void);
+
+/* A whole recording: what `fogpipe record` runs, and `fogpipe demo` without a display.
+ * Implemented in app/cmd_record.c. Returns the process exit status (0; 130 when
+ * interrupted by SIGINT/SIGTERM after finishing the current frame; 1 on errors, printed as
+ * `fogpipe <command>: ...`). */
+typedef struct record_job {
+  const char *command;     /* "record" or "demo", for messages */
+  const char *config_path;
+  int frames;
+  const char *out;
+  double fps;              /* 0: 24 */
+  int width, height;       /* 0: the config's size */
+  bool resume;
+  const char *preview;     /* video path or NULL */
+  bool quiet;              /* no per-frame progress */
+  bool synchronous;        /* sim + transform on the GL thread (same frames, slower) */
+} record_job;
+
+int record_run(const record_job *job);
+
+#endif

@@ -1,0 +1,186 @@
+/* fogpipe bench pipeline: per-stage milliseconds and frames per second of the default
+ * scene rendered headless (EGL) through the whole per-frame pipeline (app/pipeline.h):
+ * sim step, transform, upload, render. Measured side by side in one run: the CPU stages
+ * in the worker thread (double-buffered, what the demo and `record` run) and on the GL
+ * thread (synchronous), alternating in blocks of frames so machine noise hits both alike;
+ * the table shows what the overlap buys.
+ *
+ * Summary line: `pipeline: fps=C cpu_stage_share=D`, C from the threaded pipeline's median
+ * frame time, D = (sim + transform + upload) / frame (medians) at the scene's fogmap
+ * (256² in configs/default.ini). Targets: C >= 30 on llvmpipe with 2 cores, D <= 0.15. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/config.h"
+#include "app/pipeline.h"
+#include "bench/bench.h"
+#include "render/gl_context.h"
+
+typedef struct run_result {
+  pipeline_timings median;
+  int frames;
+  int grid_w, grid_h;
+} run_result;
+
+/* Per-frame samples of one mode. */
+typedef struct samples {
+  double *stage[6]; /* sim, transform, upload, render, frame, scene */
+  int n;
+} samples;
+
+static int record_frame(pipeline *p, const camera *cam, samples *s, pipeline_error *err) {
+  if (pipeline_frame(p, cam, true, err)) return 1;
+  pipeline_timings last;
+  pipeline_get_timings(p, &last);
+  const double v[6] = {last.sim, last.transform, last.upload, last.render, last.frame,
+                       last.scene};
+  for (int k = 0; k < 6; k++) s->stage[k][s->n] = v[k];
+  s->n++;
+  return 0;
+}
+
+static pipeline_timings medians(samples *s) {
+  return (pipeline_timings){
+      .sim = bench_median(s->stage[0], s->n),
+      .transform = bench_median(s->stage[1], s->n),
+      .upload = bench_median(s->stage[2], s->n),
+      .render = bench_median(s->stage[3], s->n),
+      .frame = bench_median(s->stage[4], s->n),
+      .scene = bench_median(s->stage[5], s->n),
+  };
+}
+
+/* Both modes side by side: one pipeline with the worker thread, one synchronous, in the
+ * same GL context, measured in alternating blocks of frames so that a busy machine slows
+ * both alike. While the synchronous block runs, the threaded pipeline's worker is idle
+ * (both its slots are full after at most two steps). */
+static int measure(const scene_config *cfg, int width, int height, int warmup, int frames,
+                   double max_seconds, run_result *threaded, run_result *synchronous) {
+  enum { block = 4 };
+  pipeline_error err = {{0}};
+  pipeline *p[2] = {NULL, NULL};
+  double *storage = malloc(sizeof(double) * 12 * (size_t)frames);
+  samples s[2] = {{.n = 0}, {.n = 0}};
+  int status = 1;
+  if (!storage) {
+    snprintf(err.message, sizeof err.message, "out of memory");
+    goto done;
+  }
+  for (int m = 0; m < 2; m++) {
+    for (int k = 0; k < 6; k++) s[m].stage[k] = storage + (size_t)(6 * m + k) * frames;
+    p[m] = pipeline_create(&(pipeline_desc){.config = cfg, .width = width, .height = height,
+                                            .synchronous = m == 1, .time_passes = true},
+                           &err);
+    if (!p[m]) goto done;
+  }
+  camera cam;
+  scene_config_camera(cfg, &cam);
+  double cx, cz, cell;
+  pipeline_fog_extent(p[0], &threaded->grid_w, &threaded->grid_h, &cx, &cz, &cell);
+  synchronous->grid_w = threaded->grid_w, synchronous->grid_h = threaded->grid_h;
+  /* Warm-up: shader compilation (JIT on llvmpipe) and first allocations. */
+  for (int m = 0; m < 2; m++)
+    for (int i = 0; i < warmup; i++)
+      if (pipeline_frame(p[m], &cam, true, &err)) goto done;
+  double start = bench_now();
+  while (s[1].n < frames && (s[1].n < 5 || bench_now() - start < 2.0 * max_seconds)) {
+    for (int m = 0; m < 2; m++)
+      for (int i = 0; i < block && s[m].n < frames; i++)
+        if (record_frame(p[m], &cam, &s[m], &err)) goto done;
+  }
+  threaded->frames = s[0].n, threaded->median = medians(&s[0]);
+  synchronous->frames = s[1].n, synchronous->median = medians(&s[1]);
+  status = 0;
+done:
+  if (status) fprintf(stderr, "fogpipe bench pipeline: %s\n", err.message);
+  pipeline_destroy(p[0]);
+  pipeline_destroy(p[1]);
+  free(storage);
+  return status;
+}
+
+static void print_help(FILE *out) {
+  fprintf(out,
+          "usage: fogpipe bench pipeline [options]\n\n"
+          "Per-stage ms (sim, transform, upload, render, frame; medians) and fps of a scene\n"
+          "rendered headless through the whole pipeline, with the CPU stages in the worker\n"
+          "thread and on the GL thread. Last line: pipeline: fps=C cpu_stage_share=D.\n\n"
+          "options:\n"
+          "  --config PATH   scene (default: configs/default.ini of the source tree)\n"
+          "  --size WxH      render size (default 640x360)\n"
+          "  --frames N      measured frames per mode (default 60; at most ~20 s each)\n"
+          "  -h, --help      this help\n");
+}
+
+int bench_pipeline(int argc, char **argv) {
+  const char *config_path = FOGPIPE_SOURCE_DIR "/configs/default.ini";
+  int width = 640, height = 360, frames = 60;
+  for (int i = 1; i < argc; i++) {
+    char x = 0, tail = 0;
+    if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
+      print_help(stdout);
+      return 0;
+    } else if (!strcmp(argv[i], "--config") && i + 1 < argc) {
+      config_path = argv[++i];
+    } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
+      if (sscanf(argv[++i], "%d%c%d%c", &width, &x, &height, &tail) != 3 || x != 'x' ||
+          width < 1 || height < 1) {
+        fprintf(stderr, "fogpipe bench pipeline: --size %s: expected WIDTHxHEIGHT\n", argv[i]);
+        return 2;
+      }
+    } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
+      frames = atoi(argv[++i]);
+      if (frames < 5) frames = 5;
+    } else {
+      fprintf(stderr, "fogpipe bench pipeline: unknown option %s (see --help)\n", argv[i]);
+      return 2;
+    }
+  }
+  scene_config cfg;
+  scene_config_error cerr = {{0}};
+  if (scene_config_load(config_path, &cfg, &cerr)) {
+    fprintf(stderr, "fogpipe bench pipeline: %s\n", cerr.message);
+    return 1;
+  }
+  render_error gerr = {{0}};
+  gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
+  if (!gl) {
+    fprintf(stderr, "fogpipe bench pipeline: %s\n", gerr.message);
+    return 1;
+  }
+  bench_print_build();
+  const char *lp = getenv("LP_NUM_THREADS");
+  printf("gl: %s, %s (LP_NUM_THREADS=%s)\n", gl_context_version(gl), gl_context_renderer(gl),
+         lp ? lp : "unset");
+  printf("scene: %s at %dx%d\n", config_path, width, height);
+  fflush(stdout);
+
+  run_result threaded = {0}, synchronous = {0};
+  /* Two warm-up frames (the first compiles the shaders), then up to `frames` frames or
+   * 20 s per mode, at least 5, the two modes alternating in blocks of 4 frames. */
+  int status = measure(&cfg, width, height, 2, frames, 20.0, &threaded, &synchronous);
+  if (!status) {
+    printf("fogmap: %dx%d, %d frames measured per mode (medians, ms)\n\n", threaded.grid_w,
+           threaded.grid_h, threaded.frames);
+    printf("%-12s %14s %14s\n", "stage", "worker thread", "synchronous");
+    const char *names[6] = {"sim", "transform", "upload", "render", "frame", "scene pass"};
+    const double *a = &threaded.median.sim, *b = &synchronous.median.sim;
+    for (int s = 0; s < 4; s++) printf("%-12s %14.3f %14.3f\n", names[s], a[s], b[s]);
+    printf("%-12s %14.3f %14.3f\n", " scene pass", threaded.median.scene, synchronous.median.scene);
+    printf("%-12s %14.3f %14.3f\n", " fog pass", threaded.median.render - threaded.median.scene,
+           synchronous.median.render - synchronous.median.scene);
+    printf("%-12s %14.3f %14.3f\n", names[4], a[4], b[4]);
+    double fps_t = threaded.median.frame > 0 ? 1000.0 / threaded.median.frame : 0.0;
+    double fps_s = synchronous.median.frame > 0 ? 1000.0 / synchronous.median.frame : 0.0;
+    printf("%-12s %14.2f %14.2f\n\n", "fps", fps_t, fps_s);
+    double share = threaded.median.frame > 0
+                       ? (threaded.median.sim + threaded.median.transform +
+                          threaded.median.upload) / threaded.median.frame
+                       : 0.0;
+    printf("pipeline: fps=%.2f cpu_stage_share=%.3f\n", fps_t, share);
+  }
+  gl_context_destroy(gl);
+  return status;
+}

@@ -1,0 +1,99 @@
+/* The pipeline's picking and painting (what the demo's mouse does), headless:
+ *  - pipeline_pick_surface at a pixel returns the point on that pixel's camera ray at the
+ *    distance the CPU scene geometry gives (scene_geometry_pixel_distance), so the brush
+ *    lands where the cursor is;
+ *  - a painted stroke there lowers the transmittance at that pixel in the next frame
+ *    compared with an identical pipeline that was not painted, and leaves a pixel far from
+ *    the stroke unchanged; erasing raises it.
+ * Built by tests/app/pipeline.cmake with the app's pipeline sources (it is not a plain
+ * tests/app/test_*.c because those link the libraries only). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "app/config.h"
+#include "app/pipeline.h"
+#include "render/gl_context.h"
+#include "render/scene.h"
+#include "test_util.h"
+
+enum { W = 96, H = 54 };
+
+static pipeline *make(const scene_config *cfg) {
+  pipeline_error err = {{0}};
+  pipeline *p = pipeline_create(
+      &(pipeline_desc){.config = cfg, .width = W, .height = H, .synchronous = true}, &err);
+  if (!p) fprintf(stderr, "pipeline_create: %s\n", err.message);
+  return p;
+}
+
+static int frame(pipeline *p, const camera *cam, float *transmittance) {
+  pipeline_error err = {{0}};
+  if (pipeline_frame(p, cam, true, &err) ||
+      pipeline_read_frame(p, NULL, transmittance, NULL, &err)) {
+    fprintf(stderr, "frame: %s\n", err.message);
+    return 1;
+  }
+  return 0;
+}
+
+int main(void) {
+  scene_config cfg;
+  scene_config_error cerr = {{0}};
+  if (scene_config_load("configs/default.ini", &cfg, &cerr)) {
+    fprintf(stderr, "%s\n", cerr.message);
+    return 1;
+  }
+  render_error rerr = {{0}};
+  gl_context *gl = gl_context_create(&(gl_context_desc){0}, &rerr);
+  if (!gl) {
+    fprintf(stderr, "%s\n", rerr.message);
+    return 1;
+  }
+  camera cam;
+  scene_config_camera(&cfg, &cam);
+  pipeline *painted = make(&cfg), *plain = make(&cfg);
+  CHECK(painted && plain, "pipelines not created");
+  if (!painted || !plain) return test_finish("pipeline_paint_check");
+  static float t_painted[W * H], t_plain[W * H], t_erased[W * H];
+  CHECK(!frame(painted, &cam, t_painted) && !frame(plain, &cam, t_plain), "first frame failed");
+
+  /* Picking: the hit lies on the pixel's ray at the CPU geometry's distance. */
+  const int px = W / 2, py = H / 2;
+  double hit[3];
+  bool picked = pipeline_pick_surface(painted, &cam, px, py, hit);
+  CHECK(picked, "no surface under the centre pixel");
+  scene_desc desc;
+  scene_config_scene_desc(&cfg, NULL, 0, 0, &desc);
+  scene_geometry geo;
+  CHECK(!scene_geometry_create(&geo, &desc, &rerr), "%s", rerr.message);
+  double expected = scene_geometry_pixel_distance(&geo, &cam, px, py, W, H);
+  double got = sqrt((hit[0] - cam.position[0]) * (hit[0] - cam.position[0]) +
+                    (hit[1] - cam.position[1]) * (hit[1] - cam.position[1]) +
+                    (hit[2] - cam.position[2]) * (hit[2] - cam.position[2]));
+  CHECK(fabs(got - expected) <= 1e-3 * expected, "picked distance %.6f, CPU geometry %.6f", got,
+        expected);
+  scene_geometry_destroy(&geo);
+
+  /* Paint a dense stroke at the picked point; the plain pipeline steps the same. */
+  pipeline_paint(painted, hit[0] - 10, hit[2], hit[0] + 10, hit[2], 40.0, 20.0);
+  CHECK(!frame(painted, &cam, t_painted) && !frame(plain, &cam, t_plain), "second frame failed");
+  const int centre = py * W + px, corner = 2 * W + 2; /* top-left: sky, far from the stroke */
+  CHECK(t_painted[centre] < t_plain[centre] - 0.05f,
+        "painting did not thicken the fog under the brush: tau %g painted, %g plain",
+        t_painted[centre], t_plain[centre]);
+  CHECK(t_painted[corner] == t_plain[corner], "painting changed a far pixel: %g vs %g",
+        t_painted[corner], t_plain[corner]);
+
+  /* Erase a wide area around the point: less fog than without painting. */
+  pipeline_paint(painted, hit[0], hit[2], hit[0], hit[2], 150.0, -1000.0);
+  CHECK(!frame(painted, &cam, t_erased) && !frame(plain, &cam, t_plain), "third frame failed");
+  CHECK(t_erased[centre] > t_plain[centre] || t_plain[centre] == 1.0f,
+        "erasing did not clear the fog under the brush: tau %g erased, %g plain",
+        t_erased[centre], t_plain[centre]);
+
+  pipeline_destroy(painted);
+  pipeline_destroy(plain);
+  gl_context_destroy(gl);
+  return test_finish("pipeline_paint_check");
+}

@@ -1,0 +1,56 @@
+/* `fogpipe demo` opens its window (under Xvfb: xvfb-run must be installed, otherwise the
+ * test is skipped with ctest's code 77), renders a few frames with the Dear ImGui panel
+ * and saves a screenshot: the PNG has the window's size, the panel's corner (dark ImGui
+ * window) differs from the scene on the right, and the image is not a flat colour. */
+#include "tests/app/record_util.h"
+#include "tests/test_util.h"
+
+int main(void) {
+  if (system("command -v xvfb-run >/dev/null 2>&1") != 0) {
+    printf("test_demo_window: xvfb-run is not installed; skipped\n");
+    return 77;
+  }
+  char root[] = "/tmp/fogpipe-demo-window-XXXXXX";
+  if (!mkdtemp(root)) {
+    perror("mkdtemp");
+    return 1;
+  }
+  char png[600], log[600], cmd[2400];
+  snprintf(png, sizeof png, "%s/window.png", root);
+  snprintf(log, sizeof log, "%s/demo.log", root);
+  snprintf(cmd, sizeof cmd,
+           "xvfb-run -a -s '-screen 0 800x600x24' '%s' demo configs/default.ini --size 480x270 "
+           "--scale 0.25 --frames 3 --screenshot '%s' >'%s' 2>&1",
+           record_bin(), png, log);
+  int status = system(cmd);
+  CHECK(status == 0, "the demo under xvfb-run failed (status %d)", status);
+  if (status != 0) record_print_log(log);
+
+  fogmap r = {0}, g = {0}, b = {0};
+  sim_error err = {{0}};
+  int loaded = !fogmap_load(png, &(fogmap_load_desc){.channel = "R"}, &r, &err) &&
+               !fogmap_load(png, &(fogmap_load_desc){.channel = "G"}, &g, &err) &&
+               !fogmap_load(png, &(fogmap_load_desc){.channel = "B"}, &b, &err);
+  CHECK(loaded, "screenshot unreadable: %s", err.message);
+  if (loaded) {
+    CHECK(r.width == 480 && r.height == 270, "screenshot is %dx%d, expected 480x270", r.width,
+          r.height);
+    double lo = 1e9, hi = -1e9;
+    for (int i = 0; i < r.width * r.height; i++) {
+      double v = r.density[i] + g.density[i] + b.density[i];
+      lo = v < lo ? v : lo;
+      hi = v > hi ? v : hi;
+    }
+    CHECK(hi - lo > 0.3, "the window is a flat colour (range %g)", hi - lo);
+    /* The panel sits at (10, 10); sample inside its title bar and far right (the scene). */
+    int panel = 25 * r.width + 60, scene = 135 * r.width + 440;
+    double dp = fabs(r.density[panel] - r.density[scene]) + fabs(g.density[panel] - g.density[scene]) +
+                fabs(b.density[panel] - b.density[scene]);
+    CHECK(dp > 0.05, "no panel visible: pixel (60,25) equals the scene at (440,135)");
+  }
+  fogmap_destroy(&r);
+  fogmap_destroy(&g);
+  fogmap_destroy(&b);
+  record_remove_tree(root);
+  return test_finish("test_demo_window");
+}

@@ -1,0 +1,101 @@
+/* `fogpipe record` interrupted by SIGINT finishes the frame it is on and exits with 130,
+ * leaving only whole frames (every one readable in every channel, no temporary files);
+ * `--resume` then completes the sequence, and the result has the same pixels, frame by
+ * frame, as an uninterrupted recording. A resume with another --size is refused. */
+#include "tests/app/record_util.h"
+#include "tests/test_util.h"
+
+enum { frames = 24 };
+
+int main(void) {
+  char root[] = "/tmp/fogpipe-record-resume-XXXXXX";
+  if (!mkdtemp(root)) {
+    perror("mkdtemp");
+    return 1;
+  }
+  char whole[512], cut[512], log_whole[512], log_cut[512], log_resume[512];
+  snprintf(whole, sizeof whole, "%s/whole", root);
+  snprintf(cut, sizeof cut, "%s/cut", root);
+  snprintf(log_whole, sizeof log_whole, "%s/whole.log", root);
+  snprintf(log_cut, sizeof log_cut, "%s/cut.log", root);
+  snprintf(log_resume, sizeof log_resume, "%s/resume.log", root);
+
+  /* Interrupt as soon as the first frame is on disk. */
+  pid_t pid = record_start(cut, frames, NULL, log_cut);
+  char first[600];
+  record_frame_path(cut, 1, first, sizeof first);
+  struct stat st;
+  for (int waited = 0; waited < 60000 && stat(first, &st) != 0; waited += 2) {
+    if (waitpid(pid, NULL, WNOHANG) == pid) break;
+    record_sleep_ms(2);
+  }
+  kill(pid, SIGINT);
+  int status = record_wait(pid);
+  CHECK(status == 130, "interrupted record exited with %d, expected 130", status);
+  CHECK(record_log_contains(log_cut, "--resume"), "the interrupt message does not say how to "
+                                                  "resume");
+  if (status != 130) record_print_log(log_cut);
+  int done = 0;
+  int others = record_count_files(cut, &done);
+  CHECK(others == 0, "%d temporary or partial files left after the interrupt", others);
+  CHECK(done >= 1 && done < frames, "%d frames complete after the interrupt (expected 1..%d)",
+        done, frames - 1);
+  for (int f = 1; f <= done; f++) {
+    char path[600];
+    int w = 0, h = 0;
+    record_frame_path(cut, f, path, sizeof path);
+    CHECK(record_hash_frame(path, &w, &h) != 0, "frame %d left by the interrupt is unreadable",
+          f);
+  }
+
+  /* Resuming with another size would mix two sequences: refused, nothing written. */
+  char log_mismatch[512];
+  snprintf(log_mismatch, sizeof log_mismatch, "%s/mismatch.log", root);
+  pid_t mismatch = fork();
+  if (mismatch == 0) {
+    int fd = open(log_mismatch, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    char frames_text[16];
+    snprintf(frames_text, sizeof frames_text, "%d", frames);
+    execl(record_bin(), record_bin(), "record", RECORD_TEST_CONFIG, "--frames", frames_text,
+          "--out", cut, "--size", "32x18", "--resume", (char *)NULL);
+    _exit(127);
+  }
+  status = record_wait(mismatch);
+  int after_mismatch = 0;
+  record_count_files(cut, &after_mismatch);
+  CHECK(status != 0 && status < 128 && record_log_contains(log_mismatch, "cannot resume"),
+        "--resume with another --size: status %d, expected a `cannot resume` error", status);
+  CHECK(after_mismatch == done, "the refused resume changed the folder: %d frames, had %d",
+        after_mismatch, done);
+
+  status = record_run(cut, frames, "--resume", log_resume);
+  CHECK(status == 0, "record --resume exited with %d", status);
+  if (status != 0) record_print_log(log_resume);
+  status = record_run(whole, frames, NULL, log_whole);
+  CHECK(status == 0, "uninterrupted record exited with %d", status);
+  if (status != 0) record_print_log(log_whole);
+
+  int resumed_frames = 0, whole_frames = 0;
+  CHECK(record_count_files(cut, &resumed_frames) == 0, "temporary files after --resume");
+  record_count_files(whole, &whole_frames);
+  CHECK(resumed_frames == frames && whole_frames == frames,
+        "resumed run has %d frames, uninterrupted %d, expected %d", resumed_frames,
+        whole_frames, frames);
+  int differing = 0;
+  for (int f = 1; f <= frames; f++) {
+    char a[600], b[600];
+    int w = 0, h = 0;
+    record_frame_path(cut, f, a, sizeof a);
+    record_frame_path(whole, f, b, sizeof b);
+    uint64_t ha = record_hash_frame(a, &w, &h), hb = record_hash_frame(b, &w, &h);
+    if (ha == 0 || ha != hb) {
+      if (differing++ < 3) fprintf(stderr, "frame %d: resumed and uninterrupted differ\n", f);
+    }
+  }
+  CHECK(differing == 0, "%d of %d frames differ between the resumed and the uninterrupted run",
+        differing, frames);
+  record_remove_tree(root);
+  return test_finish("test_record_resume");
+}
