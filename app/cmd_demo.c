@@ -50,8 +50,9 @@ static void print_help(FILE *out) {
           "options:\n"
           "  --size WxH           window size (default 1280x720)\n"
           "  --scale S            render at S times the window size, 0.25..1 (default 1 on\n"
-          "                       a GPU, 0.25 on a software renderer such as llvmpipe: the\n"
-          "                       fog pass costs per pixel)\n"
+          "                       a GPU; 0.5 on a software renderer such as llvmpipe, with\n"
+          "                       the fog at half of that, upsampled by depth: the fog pass\n"
+          "                       costs per pixel; the panel changes both)\n"
           "  --screenshot FILE    after --frames frames, save the window as a PNG and quit\n"
           "  --frames N           frames before the screenshot (default 30); without a\n"
           "                       display, frames recorded (default %d)\n"
@@ -171,6 +172,12 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
       changed |= panel_slider_float(ui, "mu", &params.mu, 0.0f, 1.0f, "%.3f", false);
       static const char *const methods[] = {"sum of details (paper)", "switch A_l (ours)"};
       changed |= panel_combo(ui, "LOD", &params.lod_method, methods, 2);
+      static const char *const divisors[] = {"full", "1/2", "1/4"};
+      int divisor_index = params.fog_resolution_divisor >= 4 ? 2 : params.fog_resolution_divisor >= 2;
+      if (panel_combo(ui, "fog resolution", &divisor_index, divisors, 3)) {
+        params.fog_resolution_divisor = 1 << divisor_index;
+        changed = true;
+      }
     }
     if (panel_header(ui, "brush", false)) {
       panel_slider_float(ui, "radius", &d->brush_radius, 1.0f, 200.0f, "%.0f", true);
@@ -235,6 +242,7 @@ int cmd_demo(int argc, char **argv) {
   const char *config_path = NULL, *screenshot = NULL;
   int width = 1280, height = 720, frames = 0;
   double scale = 0.0; /* 0: chosen from the renderer below */
+  int fog_divisor = 1; /* fog resolution divisor; 2 with the automatic scale on software GL */
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
     char x = 0, tail = 0;
@@ -297,12 +305,14 @@ int cmd_demo(int argc, char **argv) {
   }
   GLFWwindow *window = gl_context_glfw_window(gl);
   if (scale == 0.0) {
-    /* The fog pass costs per pixel: a software renderer (Mesa llvmpipe/softpipe) gets a
-     * quarter of the window's resolution per axis, a GPU all of it. */
+    /* The fog pass costs per pixel: a software renderer (Mesa llvmpipe/softpipe) renders
+     * at half the window's resolution per axis with the fog at half of that (upsampled
+     * guided by the surface distance), a GPU at full resolution. */
     const char *renderer = gl_context_renderer(gl);
     bool software = strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") ||
                     strstr(renderer, "Software");
-    scale = software ? 0.25 : 1.0;
+    scale = software ? 0.5 : 1.0;
+    fog_divisor = software ? 2 : 1;
   }
   int fb_w = 0, fb_h = 0;
   gl_context_framebuffer_size(gl, &fb_w, &fb_h);
@@ -319,6 +329,9 @@ int cmd_demo(int argc, char **argv) {
     gl_context_destroy(gl);
     return 1;
   }
+  pipeline_params initial = pipeline_get_params(pipe);
+  initial.fog_resolution_divisor = fog_divisor;
+  pipeline_set_params(pipe, &initial);
   panel *ui = panel_create(window);
   if (!ui) {
     fprintf(stderr, "fogpipe demo: cannot start Dear ImGui on this window\n");

@@ -652,6 +652,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       .lod_method = params.lod_method,
       .fog_colour = {params.fog_colour[0], params.fog_colour[1], params.fog_colour[2]},
       .hardware_filtering = p->config.fog.filtering == SCENE_FILTERING_HARDWARE,
+      .resolution_divisor = params.fog_resolution_divisor,
   };
   if (pipeline_fog_render(p->fog, cam, &p->scene_target, &settings, &rerr))
     return fail(err, "render: %s", rerr.message);

@@ -64,6 +64,10 @@ typedef struct pipeline_params {
   float turbulence;  /* wind turbulence amplitude */
   float viscosity;
   float emitter_rate;
+  /* Fog pass at 1/divisor resolution, upsampled guided by the surface distance
+   * (fog_pass_params.resolution_divisor): 0 or 1 full resolution (render, record), 2 or 4
+   * for a live view on a slow (software) renderer. */
+  int fog_resolution_divisor;
   bool paused;
 } pipeline_params;
 

@@ -125,6 +125,7 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .fog_colour = {settings->fog_colour[0], settings->fog_colour[1], settings->fog_colour[2]},
       .fetch = settings->hardware_filtering && fog->degree > 0 ? FOG_FETCH_HARDWARE
                                                                : FOG_FETCH_MANUAL,
+      .resolution_divisor = settings->resolution_divisor,
   };
   gl_target_bind(&fog->target);
   return fog_pass_draw(fog->pass, cam, &params, scene->color[0], scene->color[1], fog->width,

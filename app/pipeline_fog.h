@@ -33,6 +33,7 @@ typedef struct pipeline_fog_settings {
   int lod_method; /* fog_lod_method */
   float fog_colour[3];
   bool hardware_filtering;
+  int resolution_divisor; /* fog_pass_params.resolution_divisor */
 } pipeline_fog_settings;
 
 typedef struct pipeline_fog pipeline_fog;

@@ -9,6 +9,7 @@
  * frame time, D = (sim + transform + upload) / frame (medians) at the scene's fogmap
  * (256² in configs/default.ini). Targets: C >= 30 on llvmpipe with 2 cores, D <= 0.15. */
 #define _POSIX_C_SOURCE 200809L
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,8 +57,9 @@ static pipeline_timings medians(samples *s) {
  * same GL context, measured in alternating blocks of frames so that a busy machine slows
  * both alike. While the synchronous block runs, the threaded pipeline's worker is idle
  * (both its slots are full after at most two steps). */
-static int measure(const scene_config *cfg, int width, int height, int warmup, int frames,
-                   double max_seconds, run_result *threaded, run_result *synchronous) {
+static int measure(const scene_config *cfg, int width, int height, int fog_divisor,
+                   int warmup, int frames, double max_seconds, run_result *threaded,
+                   run_result *synchronous) {
   enum { block = 4 };
   pipeline_error err = {{0}};
   pipeline *p[2] = {NULL, NULL};
@@ -74,6 +76,9 @@ static int measure(const scene_config *cfg, int width, int height, int warmup, i
                                             .synchronous = m == 1, .time_passes = true},
                            &err);
     if (!p[m]) goto done;
+    pipeline_params params = pipeline_get_params(p[m]);
+    params.fog_resolution_divisor = fog_divisor;
+    pipeline_set_params(p[m], &params);
   }
   camera cam;
   scene_config_camera(cfg, &cam);
@@ -111,12 +116,15 @@ static void print_help(FILE *out) {
           "  --config PATH   scene (default: configs/default.ini of the source tree)\n"
           "  --size WxH      render size (default 640x360)\n"
           "  --frames N      measured frames per mode (default 60; at most ~20 s each)\n"
+          "  --fog-resolution D  fog pass at 1/D resolution for the live row (1, 2 or 4;\n"
+          "                  default: as the demo, 2 on a software renderer, 1 on a GPU)\n"
           "  -h, --help      this help\n");
 }
 
 int bench_pipeline(int argc, char **argv) {
   const char *config_path = FOGPIPE_SOURCE_DIR "/configs/default.ini";
   int width = 640, height = 360, frames = 60;
+  int live_divisor = 0; /* 0: as the demo chooses (2 on software GL, else 1) */
   for (int i = 1; i < argc; i++) {
     char x = 0, tail = 0;
     if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
@@ -128,6 +136,13 @@ int bench_pipeline(int argc, char **argv) {
       if (sscanf(argv[++i], "%d%c%d%c", &width, &x, &height, &tail) != 3 || x != 'x' ||
           width < 1 || height < 1) {
         fprintf(stderr, "fogpipe bench pipeline: --size %s: expected WIDTHxHEIGHT\n", argv[i]);
+        return 2;
+      }
+    } else if (!strcmp(argv[i], "--fog-resolution") && i + 1 < argc) {
+      live_divisor = atoi(argv[++i]);
+      if (live_divisor != 1 && live_divisor != 2 && live_divisor != 4) {
+        fprintf(stderr, "fogpipe bench pipeline: --fog-resolution %s: expected 1, 2 or 4\n",
+                argv[i]);
         return 2;
       }
     } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
@@ -157,29 +172,47 @@ int bench_pipeline(int argc, char **argv) {
   printf("scene: %s at %dx%d\n", config_path, width, height);
   fflush(stdout);
 
-  run_result threaded = {0}, synchronous = {0};
-  /* Two warm-up frames (the first compiles the shaders), then up to `frames` frames or
-   * 20 s per mode, at least 5, the two modes alternating in blocks of 4 frames. */
-  int status = measure(&cfg, width, height, 2, frames, 20.0, &threaded, &synchronous);
-  if (!status) {
-    printf("fogmap: %dx%d, %d frames measured per mode (medians, ms)\n\n", threaded.grid_w,
-           threaded.grid_h, threaded.frames);
+  if (!live_divisor) {
+    const char *renderer = gl_context_renderer(gl);
+    bool software = strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") ||
+                    strstr(renderer, "Software");
+    live_divisor = software ? 2 : 1;
+  }
+  /* Full-resolution fog (what `record` renders) and the live demo's setting, each with
+   * the CPU stages in the worker thread and on the GL thread. Two warm-up frames (the
+   * first compiles the shaders), then up to `frames` frames or 20 s per mode, at least 5,
+   * the two modes alternating in blocks of 4 frames. */
+  int divisors[2] = {1, live_divisor};
+  run_result threaded[2] = {{.frames = 0}}, synchronous[2] = {{.frames = 0}};
+  int runs = live_divisor == 1 ? 1 : 2, status = 0;
+  for (int r = 0; r < runs && !status; r++)
+    status = measure(&cfg, width, height, divisors[r], 2, frames, 20.0, &threaded[r],
+                     &synchronous[r]);
+  for (int r = 0; r < runs && !status; r++) {
+    const run_result *t = &threaded[r], *y = &synchronous[r];
+    printf("\nfog at %s resolution%s; fogmap %dx%d, %d frames per mode (medians, ms)\n",
+           divisors[r] == 1 ? "full" : divisors[r] == 2 ? "1/2" : "1/4",
+           divisors[r] == live_divisor ? " (the live demo's setting here)" : "", t->grid_w,
+           t->grid_h, t->frames);
     printf("%-12s %14s %14s\n", "stage", "worker thread", "synchronous");
-    const char *names[6] = {"sim", "transform", "upload", "render", "frame", "scene pass"};
-    const double *a = &threaded.median.sim, *b = &synchronous.median.sim;
+    const char *names[5] = {"sim", "transform", "upload", "render", "frame"};
+    const double *a = &t->median.sim, *b = &y->median.sim;
     for (int s = 0; s < 4; s++) printf("%-12s %14.3f %14.3f\n", names[s], a[s], b[s]);
-    printf("%-12s %14.3f %14.3f\n", " scene pass", threaded.median.scene, synchronous.median.scene);
-    printf("%-12s %14.3f %14.3f\n", " fog pass", threaded.median.render - threaded.median.scene,
-           synchronous.median.render - synchronous.median.scene);
+    printf("%-12s %14.3f %14.3f\n", " scene pass", t->median.scene, y->median.scene);
+    printf("%-12s %14.3f %14.3f\n", " fog pass", t->median.render - t->median.scene,
+           y->median.render - y->median.scene);
     printf("%-12s %14.3f %14.3f\n", names[4], a[4], b[4]);
-    double fps_t = threaded.median.frame > 0 ? 1000.0 / threaded.median.frame : 0.0;
-    double fps_s = synchronous.median.frame > 0 ? 1000.0 / synchronous.median.frame : 0.0;
-    printf("%-12s %14.2f %14.2f\n\n", "fps", fps_t, fps_s);
-    double share = threaded.median.frame > 0
-                       ? (threaded.median.sim + threaded.median.transform +
-                          threaded.median.upload) / threaded.median.frame
-                       : 0.0;
-    printf("pipeline: fps=%.2f cpu_stage_share=%.3f\n", fps_t, share);
+    printf("%-12s %14.2f %14.2f\n", "fps", t->median.frame > 0 ? 1000.0 / t->median.frame : 0.0,
+           y->median.frame > 0 ? 1000.0 / y->median.frame : 0.0);
+  }
+  if (!status) {
+    const run_result *live = &threaded[runs - 1];
+    double fps = live->median.frame > 0 ? 1000.0 / live->median.frame : 0.0;
+    double share = live->median.frame > 0 ? (live->median.sim + live->median.transform +
+                                             live->median.upload) / live->median.frame
+                                          : 0.0;
+    printf("\nsummary: the live setting (fog at 1/%d), worker thread\n", live_divisor);
+    printf("pipeline: fps=%.2f cpu_stage_share=%.3f\n", fps, share);
   }
   gl_context_destroy(gl);
   return status;
