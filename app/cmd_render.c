@@ -14,13 +14,15 @@
 
 static void usage(FILE *out) {
   fprintf(out,
-          "usage: fogpipe render CONFIG --out FILE.exr|FILE.png [--size WxH]\n\n"
+          "usage: fogpipe render CONFIG --out FILE.exr|FILE.png [--size WxH] [--vdb-frame N]\n\n"
           "Renders one frame of the scene config headless (EGL; no display needed).\n\n"
           "options:\n"
           "  --out FILE    output image: .exr (channels R G B A as half, transmittance and\n"
           "                depth as float; depth = distance along the view ray to the first\n"
           "                surface, the far plane for the sky) or .png (8-bit sRGB RGB)\n"
           "  --size WxH    image size (default: [render] width and height of the config)\n"
+          "  --vdb-frame N with a [fog] vdb sequence: render its frame number N (as in the\n"
+          "                file names; default: [fog] vdb_frame, else the last frame)\n"
           "  --help        this text\n\n"
           "The config format is described in docs/config.md.\n");
 }
@@ -39,7 +41,7 @@ static float srgb_encode(float linear) {
 
 int cmd_render(int argc, char **argv) {
   const char *config_path = NULL, *out = NULL;
-  int width = 0, height = 0;
+  int width = 0, height = 0, vdb_frame = -2;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       usage(stdout);
@@ -51,6 +53,13 @@ int cmd_render(int argc, char **argv) {
       if (sscanf(argv[++i], "%dx%d%c", &width, &height, &tail) != 2 || width < 1 ||
           height < 1 || width > 16384 || height > 16384) {
         fprintf(stderr, "fogpipe render: --size '%s': expected WxH, e.g. 1280x720\n", argv[i]);
+        return 2;
+      }
+    } else if (!strcmp(argv[i], "--vdb-frame") && i + 1 < argc) {
+      char tail;
+      if (sscanf(argv[++i], "%d%c", &vdb_frame, &tail) != 1 || vdb_frame < 0) {
+        fprintf(stderr, "fogpipe render: --vdb-frame '%s': expected a frame number >= 0\n",
+                argv[i]);
         return 2;
       }
     } else if (argv[i][0] == '-') {
@@ -82,6 +91,13 @@ int cmd_render(int argc, char **argv) {
     return 1;
   }
   if (width == 0) width = cfg.width, height = cfg.height;
+  if (vdb_frame != -2) {
+    if (!cfg.fog.vdb[0]) {
+      fprintf(stderr, "fogpipe render: --vdb-frame: %s has no [fog] vdb\n", config_path);
+      return 2;
+    }
+    cfg.fog.vdb_frame = vdb_frame;
+  }
 
   size_t pixels = (size_t)width * height;
   float *rgba = malloc(pixels * 4 * sizeof(float));

@@ -6,6 +6,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "app/config.h"
 
+#include "sim/sim.h"
+
 #include <errno.h>
 #include <ini.h>
 #include <math.h>
@@ -62,6 +64,13 @@ static const key_spec keys[] = {
     {"fog", "profile_spacing", V_DOUBLE, F(fog.profile_spacing), 1e-9, BIG, NULL, 0, 0},
     {"fog", "profile_coefficients", V_LIST, F(fog.profile_coefficients), 0, BIG, NULL, F(fog.profile_count), 0},
     {"fog", "colour", V_FLOAT3, F(fog.colour), 0, BIG, NULL, 0, 0},
+    {"fog", "vdb", V_PATH, F(fog.vdb), 0, 0, NULL, F(fog.vdb_line), sizeof(((scene_config *)0)->fog.vdb)},
+    {"fog", "vdb_grid", V_STRING, F(fog.vdb_grid), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.vdb_grid)},
+    {"fog", "vdb_up", V_ENUM, F(fog.vdb_up), 0, 0, "z|y", 0, 0},
+    {"fog", "vdb_fps", V_DOUBLE, F(fog.vdb_fps), 1e-6, 1e6, NULL, 0, 0},
+    {"fog", "vdb_frame", V_INT, F(fog.vdb_frame), -1, 1e9, NULL, 0, 0},
+    {"fog", "vdb_resolution", V_INT, F(fog.vdb_resolution), 0, 16384, NULL, 0, 0},
+    {"fog", "vdb_loop", V_INT, F(fog.vdb_loop), 0, 1, NULL, 0, 0},
     {"box", "origin", V_DOUBLE2, F(box.origin), -BIG, BIG, NULL, 0, 0},
     {"box", "cell_size", V_DOUBLE, F(box.cell_size), 1e-9, BIG, NULL, 0, 0},
     {"box", "floor", V_DOUBLE, F(box.floor), -BIG, BIG, NULL, 0, 0},
@@ -105,7 +114,8 @@ void scene_config_init(scene_config *cfg) {
               .lod = SCENE_LOD_SWITCH, .filtering = SCENE_FILTERING_MANUAL,
               .boundary = SCENE_BOUNDARY_SYMMETRIC, .profile = SCENE_PROFILE_SLAB,
               .fog_height = 0.0, .scale_height = 10.0, .profile_degree = 1,
-              .profile_spacing = 1.0, .colour = {0.75f, 0.78f, 0.82f}},
+              .profile_spacing = 1.0, .colour = {0.75f, 0.78f, 0.82f},
+              .vdb_grid = "density", .vdb_fps = 24.0, .vdb_frame = -1},
       .box = {.origin = {-500, -500}, .cell_size = 1.0, .floor = 0.0, .top = 50.0},
       .camera = {.position = {0, 50, 100}, .fov = 60.0, .near_plane = 0.1, .far_plane = 100000.0},
       .terrain = {.origin = {-500, 0, -500}, .size = {1000, 1000}, .height = 150,
@@ -199,8 +209,26 @@ static void resolve_path(const parse_state *s, const char *value, char *out, siz
     snprintf(out, size, "%s/%s", s->folder, value);
 }
 
+static int handle_key(parse_state *s, const char *section, const char *key, const char *value);
+
+/* Keys whose presence matters beyond their value: a VDB fills the profile and the box
+ * unless the file sets them (docs/config.md, [fog] vdb). */
 static int handle(void *user, const char *section, const char *key, const char *value) {
   parse_state *s = user;
+  int ok = handle_key(s, section, key, value);
+  if (!ok || s->error_line) return ok;
+  scene_config *cfg = s->cfg;
+  if (!strcmp(section, "fog") && !strcmp(key, "profile")) cfg->fog.profile_set = true;
+  if (!strcmp(section, "box")) {
+    if (!strcmp(key, "origin")) cfg->box.origin_set = true;
+    if (!strcmp(key, "cell_size")) cfg->box.cell_size_set = true;
+    if (!strcmp(key, "floor")) cfg->box.floor_set = true;
+    if (!strcmp(key, "top")) cfg->box.top_set = true;
+  }
+  return ok;
+}
+
+static int handle_key(parse_state *s, const char *section, const char *key, const char *value) {
   scene_config *cfg = s->cfg;
   const key_spec *k = NULL;
   bool section_known = false;
@@ -349,9 +377,29 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
     return 1;
   }
   /* Checks across keys, named by the key that was set last. */
+  if (cfg->fog.fogmap[0] && cfg->fog.vdb[0]) {
+    bool vdb_last = cfg->fog.vdb_line > cfg->fog.fogmap_line;
+    s.line = vdb_last ? cfg->fog.vdb_line : cfg->fog.fogmap_line;
+    fail(&s, "fog", vdb_last ? "vdb" : "fogmap",
+         "fogmap (line %d) and vdb (line %d) are mutually exclusive: set one of them",
+         cfg->fog.fogmap_line, cfg->fog.vdb_line);
+    return 1;
+  }
   if (cfg->fog.fogmap[0] &&
       check_file(&s, "fog", "fogmap", cfg->fog.fogmap_line, cfg->fog.fogmap))
     return 1;
+  if (cfg->fog.vdb[0]) {
+    /* The files must exist now; their contents are read by the command (vdb_source). */
+    vdb_sequence seq;
+    sim_error serr = {{0}};
+    const char *input = cfg->fog.vdb;
+    if (vdb_sequence_find(&input, 1, -1, -1, &seq, &serr)) {
+      s.line = cfg->fog.vdb_line;
+      fail(&s, "fog", "vdb", "%s", serr.message);
+      return 1;
+    }
+    vdb_sequence_destroy(&seq);
+  }
   if (cfg->terrain.heightmap[0] &&
       check_file(&s, "terrain", "heightmap", cfg->terrain.heightmap_line, cfg->terrain.heightmap))
     return 1;

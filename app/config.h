@@ -66,6 +66,16 @@ typedef struct scene_fog_config {
   int profile_count;
   float colour[3];                    /* L_fog, linear */
   int fogmap_line;                    /* where fogmap was set (0: default), for errors */
+  bool profile_set;                   /* `profile` was set in the file (a VDB keeps it) */
+  /* OpenVDB fog (app/vdb_source.h): exclusive with fogmap. */
+  char vdb[SCENE_CONFIG_PATH_MAX];    /* resolved file / pattern / folder / glob; "" none */
+  int vdb_line;
+  char vdb_grid[128];                 /* grid name ("density") */
+  int vdb_up;                         /* vdb_up_axis: 0 z (Blender), 1 y (Houdini) */
+  double vdb_fps;                     /* playback rate of the sequence (frames per second) */
+  int vdb_frame;                      /* frame number for a still render; -1: the last */
+  int vdb_resolution;                 /* fogmap cells along the longer side; 0: native */
+  int vdb_loop;                       /* 1: the sequence repeats; 0: holds its last frame */
 } scene_fog_config;
 
 /* World placement of the fogmap: the corner of cell (0, 0) at (origin_x, origin_z), one
@@ -74,6 +84,8 @@ typedef struct scene_box_config {
   double origin[2];
   double cell_size;
   double floor, top;
+  /* Set in the file (a VDB places the box itself unless these are set). */
+  bool origin_set, cell_size_set, floor_set, top_set;
 } scene_box_config;
 
 typedef struct scene_camera_config {

@@ -12,6 +12,7 @@
 #include <time.h>
 
 #include "app/pipeline_fog.h"
+#include "app/vdb_source.h"
 #include "render/fog_pass.h"
 #include "render/gl_util.h"
 #include "render/scene.h"
@@ -79,6 +80,11 @@ typedef struct cpu_stages {
   float *approx[MAX_LEVELS + 1];
   float *detail[MAX_LEVELS + 1];
   long steps; /* simulation steps taken */
+  /* [fog] vdb: the sequence is played instead of simulated (sim stays NULL); frame n
+   * shows the fogmap at time (n - 1)·frame_seconds (app/vdb_source.h). */
+  bool has_vdb;
+  vdb_source vdb;
+  fogmap vdb_map;
 } cpu_stages;
 
 /* What the GL thread asked for since the last step, copied under the lock by the
@@ -186,6 +192,7 @@ static int make_base(const scene_config *cfg, fogmap *base, pipeline_error *err)
 static int sim_create(pipeline *p, const pipeline_params *params, const fogmap *start,
                       pipeline_error *err) {
   cpu_stages *c = &p->cpu;
+  if (c->has_vdb) return 0; /* a VDB sequence is played, not simulated */
   const double cell = p->config.box.cell_size > 0 ? p->config.box.cell_size : 1.0;
   for (int e = 0; e < c->emitter_count; e++) c->emitters[e].rate = params->emitter_rate;
   fluid_sim_desc desc = {
@@ -306,7 +313,7 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
     }
     /* fluid.h has no setters: a changed wind, viscosity or emitter rate re-creates the
      * solver, continuing from the current density (the velocity restarts at the drift). */
-    if (sim_params_differ(&r->params, &p->applied)) {
+    if (c->sim && sim_params_differ(&r->params, &p->applied)) {
       const fogmap *now = fluid_sim_density(c->sim);
       fogmap current = {0};
       sim_error serr = {{0}};
@@ -324,16 +331,20 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
     c->steps = 0;
   }
   sim_error serr = {{0}};
-  for (int s = 0; s < r->stroke_count; s++)
+  for (int s = 0; s < r->stroke_count && c->sim; s++)
     fluid_sim_paint(c->sim, &r->strokes[s], &serr); /* bad strokes are dropped */
 
   double t0 = now_ms();
-  for (int s = 0; s < p->steps_per_frame; s++)
+  for (int s = 0; s < p->steps_per_frame && c->sim; s++)
     if (fluid_sim_step(c->sim, &serr)) return fail(err, "simulation: %s", serr.message);
   c->steps++;
+  if (c->has_vdb &&
+      vdb_source_fogmap_at(&c->vdb, (double)(c->steps - 1) * p->frame_seconds, &c->vdb_map,
+                           &serr))
+    return fail(err, "vdb: %s", serr.message);
   double t1 = now_ms();
   if (slot_shape(p, slot, err)) return 1;
-  const fogmap *density = fluid_sim_density(c->sim);
+  const fogmap *density = c->has_vdb ? &c->vdb_map : fluid_sim_density(c->sim);
   transform_forward(c->plan, density->density, c->coefficients);
   transform_pyramid(c->plan, c->coefficients, c->approx);
   if (p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS)
@@ -450,7 +461,26 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
   pthread_cond_init(&p->changed, NULL);
 
   cpu_stages *c = &p->cpu;
-  if (make_base(&p->config, &c->base, err)) {
+  if (p->config.fog.vdb[0]) {
+    /* The sequence places the fog and gives its profile (vdb_source_apply_config) before
+     * the params are taken from the config. */
+    scene_config_error cerr;
+    if (vdb_source_open_config(&c->vdb, &p->config, &cerr)) {
+      fail(err, "%s", cerr.message);
+      pipeline_destroy(p);
+      return NULL;
+    }
+    c->has_vdb = true;
+    vdb_source_apply_config(&c->vdb, &p->config);
+    p->params = params_from_config(&p->config);
+    p->applied = p->params;
+    sim_error serr = {{0}};
+    if (vdb_source_fogmap_at(&c->vdb, 0.0, &c->base, &serr)) {
+      fail(err, "vdb: %s", serr.message);
+      pipeline_destroy(p);
+      return NULL;
+    }
+  } else if (make_base(&p->config, &c->base, err)) {
     pipeline_destroy(p);
     return NULL;
   }
@@ -495,6 +525,8 @@ void pipeline_destroy(pipeline *p) {
   plan_destroy(&p->cpu);
   if (p->cpu.sim) fluid_sim_destroy(p->cpu.sim);
   fogmap_destroy(&p->cpu.base);
+  if (p->cpu.has_vdb) vdb_source_destroy(&p->cpu.vdb);
+  fogmap_destroy(&p->cpu.vdb_map);
   pipeline_fog_destroy(p->fog);
   if (p->scene) scene_pass_destroy(p->scene);
   gl_target_destroy(&p->scene_target);
@@ -528,7 +560,7 @@ int pipeline_skip(pipeline *p, long steps, pipeline_error *err) {
   if (p->worker_running) return fail(err, "pipeline_skip after the first frame");
   sim_error serr = {{0}};
   for (long s = 0; s < steps; s++) {
-    for (int k = 0; k < p->steps_per_frame; k++)
+    for (int k = 0; k < p->steps_per_frame && p->cpu.sim; k++)
       if (fluid_sim_step(p->cpu.sim, &serr)) return fail(err, "simulation: %s", serr.message);
     p->cpu.steps++;
   }

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app/vdb_source.h"
 #include "sim/sim.h"
 
 void render_fog_destroy(render_fog *fog) {
@@ -18,9 +19,50 @@ static transform_basis basis_of_degree(int degree) {
   return degree == 0 ? TRANSFORM_HAAR : degree == 2 ? TRANSFORM_QUADRATIC : TRANSFORM_LINEAR;
 }
 
+/* The fog of a `[fog] vdb` config: frame cfg->fog.vdb_frame of the sequence (the last by
+ * default), placed and profiled by the sequence (vdb_source_apply_config). */
+static int render_vdb_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
+  vdb_source source;
+  scene_config_error cerr;
+  if (vdb_source_open_config(&source, cfg, &cerr)) {
+    snprintf(err->message, sizeof err->message, "%s", cerr.message);
+    return 1;
+  }
+  int status = 1;
+  fogmap map = {0};
+  scene_config *placed = malloc(sizeof *placed);
+  int index = vdb_source_index_of(&source, cfg->fog.vdb_frame);
+  if (!placed) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    goto done;
+  }
+  if (index < 0) {
+    snprintf(err->message, sizeof err->message,
+             "%.200s:%d: [fog] vdb: no frame %d in the sequence (frames %d..%d)", cfg->path,
+             cfg->fog.vdb_line, cfg->fog.vdb_frame, source.frame_numbers[0],
+             source.frame_numbers[source.count - 1]);
+    goto done;
+  }
+  *placed = *cfg;
+  vdb_source_apply_config(&source, placed);
+  sim_error serr;
+  if (vdb_source_fogmap_at(&source, index / source.fps, &map, &serr)) {
+    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] vdb: %.280s", cfg->path,
+             cfg->fog.vdb_line, serr.message);
+    goto done;
+  }
+  status = render_fog_create_map(fog, placed, &map, err);
+done:
+  fogmap_destroy(&map);
+  free(placed);
+  vdb_source_destroy(&source);
+  return status;
+}
+
 int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err) {
   *fog = (render_fog){0};
   const scene_fog_config *f = &cfg->fog;
+  if (f->vdb[0]) return render_vdb_fog(fog, cfg, err);
   fogmap map = {0};
   sim_error serr;
   fogmap_load_desc load = {.channel = f->channel[0] ? f->channel : NULL};
@@ -29,6 +71,16 @@ int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *er
              f->fogmap_line, serr.message);
     return 1;
   }
+  int status = render_fog_create_map(fog, cfg, &map, err);
+  fogmap_destroy(&map);
+  return status;
+}
+
+int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap *given,
+                          render_error *err) {
+  *fog = (render_fog){0};
+  const scene_fog_config *f = &cfg->fog;
+  const fogmap map = *given;
   transform_boundary boundary =
       f->boundary == SCENE_BOUNDARY_PERIODIC ? TRANSFORM_PERIODIC : TRANSFORM_SYMMETRIC;
   int levels = f->levels;
@@ -92,7 +144,10 @@ int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *er
   if (f->profile == SCENE_PROFILE_BSPLINE) {
     fog->volume.profile.count = f->profile_count;
     fog->volume.profile.degree = f->profile_degree;
-    fog->volume.profile.coefficients = f->profile_coefficients;
+    /* a copy: cfg may be a temporary (the VDB path) */
+    memcpy(fog->profile_coefficients, f->profile_coefficients,
+           (size_t)f->profile_count * sizeof(double));
+    fog->volume.profile.coefficients = fog->profile_coefficients;
     fog->volume.profile.origin = f->profile_origin;
     fog->volume.profile.spacing = f->profile_spacing;
   }
@@ -118,7 +173,6 @@ done:
   for (int l = 0; l <= RENDER_FOG_MAX_LEVELS; l++) free(approx[l]), free(detail[l]);
   free(coefficients);
   transform_plan_destroy(plan);
-  fogmap_destroy(&map);
   if (status) {
     /* keep the message: render_fog_destroy clears the struct only */
     render_fog_destroy(fog);
@@ -130,6 +184,7 @@ int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
                     const gl_target *out, render_error *err) {
   gl_target_bind(out);
   fog->params.volume = &fog->volume; /* the struct may have been copied */
+  fog->volume.profile.coefficients = fog->profile_coefficients;
   return fog_pass_draw(fog->pass, cam, &fog->params, scene->color[0], scene->color[1],
                        scene->width, scene->height, err);
 }

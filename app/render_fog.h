@@ -8,6 +8,7 @@
 
 #include "app/config.h"
 #include "render/fog_field.h"
+#include "sim/sim.h"
 #include "render/fog_pass.h"
 #include "render/gl_util.h"
 #include "transform/transform.h"
@@ -19,13 +20,19 @@ typedef struct render_fog {
   transform_grid approx[RENDER_FOG_MAX_LEVELS + 1];
   transform_grid detail[RENDER_FOG_MAX_LEVELS]; /* detail[l-1] = D_l */
   fog_volume volume;
+  double profile_coefficients[SCENE_CONFIG_MAX_PROFILE]; /* volume.profile's own copy */
   fog_pass_params params;
   fog_pass *pass;
 } render_fog;
 
-/* Loads the fogmap (cfg->fog.fogmap must be set), transforms it, creates the fog pass and
+/* Loads the fogmap (cfg->fog.fogmap or, for a VDB sequence, frame cfg->fog.vdb_frame of
+ * cfg->fog.vdb placed and profiled by the sequence: app/vdb_source.h), transforms it, creates the fog pass and
  * uploads the grids. Needs a current GL context. Errors name the config's file:line. */
 int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err);
+/* The same for a fogmap in memory (a VDB frame: app/vdb_source.h); cfg gives the box,
+ * profile and rendering settings, cfg->fog.fogmap is not read. map is not kept. */
+int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap *map,
+                          render_error *err);
 void render_fog_destroy(render_fog *fog);
 /* Draws the fog over the scene target (colour 0, distance 1) into out (RGBA32F colour 0,
  * R32F transmittance 1), both width x height. */
