@@ -10,22 +10,12 @@
 #include <unistd.h>
 
 #include "sim/sim.h"
+#include "exr_channel_util.h"
 #include "test_util.h"
 
 #define W 48
 #define H 27
 #define CONFIG "configs/vdb_groundfog.ini"
-
-static float *load_channel(const char *path, const char *channel) {
-  fogmap map = {0};
-  sim_error err;
-  if (fogmap_load(path, &(fogmap_load_desc){.channel = channel}, &map, &err)) {
-    CHECK(0, "%s channel %s: %s", path, channel, err.message);
-    return NULL;
-  }
-  CHECK(map.width == W && map.height == H, "%s is %dx%d", path, map.width, map.height);
-  return map.density;
-}
 
 int main(void) {
   const char *bin = getenv("FOGPIPE_BIN");
@@ -48,8 +38,8 @@ int main(void) {
              "'%s' render " CONFIG " --vdb-frame %d --size %dx%d --out '%s' > /dev/null", bin,
              2 * n - 1, W, H, still);
     CHECK(system(command) == 0, "render --vdb-frame %d failed", 2 * n - 1);
-    rec[n - 1] = load_channel(path, "transmittance");
-    float *want = load_channel(still, "transmittance");
+    rec[n - 1] = load_exr_channel(path, "transmittance", W, H);
+    float *want = load_exr_channel(still, "transmittance", W, H);
     if (rec[n - 1] && want) {
       double worst = 0;
       int foggy = 0;

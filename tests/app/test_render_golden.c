@@ -20,22 +20,12 @@
 #include "app/config.h"
 #include "render/render.h"
 #include "sim/sim.h"
+#include "exr_channel_util.h"
 #include "test_util.h"
 
 #define W 128
 #define H 72
 #define REFERENCE "tests/render/data/default_128x72.exr"
-
-static float *load_channel(const char *path, const char *channel) {
-  fogmap map = {0};
-  sim_error err;
-  if (fogmap_load(path, &(fogmap_load_desc){.channel = channel}, &map, &err)) {
-    CHECK(0, "%s channel %s: %s", path, channel, err.message);
-    return NULL;
-  }
-  CHECK(map.width == W && map.height == H, "%s is %dx%d", path, map.width, map.height);
-  return map.density;
-}
 
 static void compare(const char *name, const float *got, const float *want) {
   if (!got || !want) return;
@@ -69,8 +59,8 @@ int main(void) {
 
   static const char *const names[] = {"R", "G", "B", "transmittance"};
   float *got[4] = {0}, *want[4] = {0};
-  for (int c = 0; c < 4; c++) got[c] = load_channel(out, names[c]);
-  float *alpha = load_channel(out, "A"), *depth = load_channel(out, "depth");
+  for (int c = 0; c < 4; c++) got[c] = load_exr_channel(out, names[c], W, H);
+  float *alpha = load_exr_channel(out, "A", W, H), *depth = load_exr_channel(out, "depth", W, H);
 
   if (getenv("FOGPIPE_UPDATE_GOLDEN") && got[0] && got[1] && got[2] && got[3]) {
     image_channel channels[4] = {{"R", got[0], 1}, {"G", got[1], 1}, {"B", got[2], 1},
@@ -80,7 +70,7 @@ int main(void) {
     printf("rewrote %s\n", REFERENCE);
   }
   for (int c = 0; c < 4; c++) {
-    want[c] = load_channel(REFERENCE, names[c]);
+    want[c] = load_exr_channel(REFERENCE, names[c], W, H);
     compare(names[c], got[c], want[c]);
   }
 

@@ -12,22 +12,12 @@
 
 #include "app/vdb_source.h"
 #include "render/camera.h"
+#include "exr_channel_util.h"
 #include "test_util.h"
 
 #define W 96
 #define H 54
 #define CONFIG "configs/vdb_groundfog.ini"
-
-static float *load_channel(const char *path, const char *channel) {
-  fogmap map = {0};
-  sim_error err;
-  if (fogmap_load(path, &(fogmap_load_desc){.channel = channel}, &map, &err)) {
-    CHECK(0, "%s channel %s: %s", path, channel, err.message);
-    return NULL;
-  }
-  CHECK(map.width == W && map.height == H, "%s is %dx%d", path, map.width, map.height);
-  return map.density;
-}
 
 static int run(const char *bin, const char *extra, const char *out) {
   char command[1024];
@@ -83,8 +73,8 @@ int main(void) {
   camera cam;
   scene_config_camera(&cfg, &cam);
 
-  float *tau = load_channel(last, "transmittance"), *depth = load_channel(last, "depth");
-  float *tau_first = load_channel(first, "transmittance");
+  float *tau = load_exr_channel(last, "transmittance", W, H), *depth = load_exr_channel(last, "depth", W, H);
+  float *tau_first = load_exr_channel(first, "transmittance", W, H);
   if (tau && depth && tau_first) {
     int foggy = 0, foggy_first = 0, outside = 0, outside_bad = 0;
     double min_tau = 1;
