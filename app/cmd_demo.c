@@ -308,9 +308,7 @@ int cmd_demo(int argc, char **argv) {
     /* The fog pass costs per pixel: a software renderer (Mesa llvmpipe/softpipe) renders
      * at half the window's resolution per axis with the fog at half of that (upsampled
      * guided by the surface distance), a GPU at full resolution. */
-    const char *renderer = gl_context_renderer(gl);
-    bool software = strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") ||
-                    strstr(renderer, "Software");
+    bool software = gl_context_is_software(gl);
     scale = software ? 0.5 : 1.0;
     fog_divisor = software ? 2 : 1;
   }

@@ -172,12 +172,7 @@ int bench_pipeline(int argc, char **argv) {
   printf("scene: %s at %dx%d\n", config_path, width, height);
   fflush(stdout);
 
-  if (!live_divisor) {
-    const char *renderer = gl_context_renderer(gl);
-    bool software = strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") ||
-                    strstr(renderer, "Software");
-    live_divisor = software ? 2 : 1;
-  }
+  if (!live_divisor) live_divisor = gl_context_is_software(gl) ? 2 : 1;
   /* Full-resolution fog (what `record` renders) and the live demo's setting, each with
    * the CPU stages in the worker thread and on the GL thread. Two warm-up frames (the
    * first compiles the shaders), then up to `frames` frames or 20 s per mode, at least 5,

@@ -19,6 +19,11 @@ void gl_context_destroy(gl_context *ctx) {
 
 const char *gl_context_version(const gl_context *ctx) { return ctx->version; }
 const char *gl_context_renderer(const gl_context *ctx) { return ctx->renderer; }
+
+bool gl_context_is_software(const gl_context *ctx) {
+  const char *r = ctx->renderer;
+  return strstr(r, "llvmpipe") || strstr(r, "softpipe") || strstr(r, "Software");
+}
 const char *gl_context_platform(const gl_context *ctx) { return ctx->platform; }
 const char *gl_context_debug_log(const gl_context *ctx) { return ctx->debug_log; }
 void gl_context_clear_debug_log(gl_context *ctx) { ctx->debug_log[0] = '\0'; }

@@ -34,6 +34,9 @@ void gl_context_destroy(gl_context *ctx);
 /* "4.5 (Core Profile) Mesa 22.3.6" and the renderer string, for logs and benchmarks. */
 const char *gl_context_version(const gl_context *ctx);
 const char *gl_context_renderer(const gl_context *ctx);
+/* True for a CPU rasteriser (Mesa llvmpipe, softpipe, or any renderer calling itself
+ * "Software"): per-pixel passes cost CPU time there, so live views lower resolution. */
+bool gl_context_is_software(const gl_context *ctx);
 
 /* Window backend only (no-ops headless): the GLFW window, events, buffer swap, close. */
 void *gl_context_glfw_window(gl_context *ctx); /* GLFWwindow*, NULL headless */
