@@ -264,21 +264,9 @@ typedef struct cpu_render {
 
 static double cpu_transmittance(const cpu_render *c, const double d[3]) {
   const double *o = c->cam->position;
-  double t0 = 0, t1 = INFINITY;
-  for (int a = 0; a < 3; a++) {
-    if (fabs(d[a]) < 1e-12) {
-      if (o[a] < c->box_lo[a] || o[a] > c->box_hi[a]) return 1;
-      continue;
-    }
-    double s0 = (c->box_lo[a] - o[a]) / d[a], s1 = (c->box_hi[a] - o[a]) / d[a];
-    if (s0 > s1) {
-      const double t = s0;
-      s0 = s1;
-      s1 = t;
-    }
-    t0 = fmax(t0, s0);
-    t1 = fmin(t1, s1);
-  }
+  double t0, t1;
+  if (!ray_box_clip(o, d, c->box_lo, c->box_hi, &t0, &t1)) return 1;
+  t0 = fmax(t0, 0.0); /* the ray starts at the camera */
   if (d[1] < 0) t1 = fmin(t1, -o[1] / d[1]); /* the ground */
   if (!(t1 > t0)) return 1;
   const vdb_fogmap_place *pl = &c->frame->fogmap_place;

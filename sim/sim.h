@@ -8,5 +8,6 @@
 #include "sim/fluid.h"
 #include "sim/designed_fog.h"
 #include "sim/vdb_import.h"
+#include "sim/ray_box.h"
 
 #endif

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sim/ray_box.h"
 #include "sim/vdb_import.h"
 
 typedef struct volume3d {
@@ -69,29 +70,6 @@ static double fogmap_bilinear(const fogmap *map, const vdb_fogmap_place *place, 
   return sum;
 }
 
-/* Ray [origin + t·dir] against the box: the parameter interval, 0 if missed. */
-static int clip_box(const double o[3], const double d[3], const double lo[3], const double hi[3],
-                    double *t0, double *t1) {
-  double a = -INFINITY, b = INFINITY;
-  for (int c = 0; c < 3; c++) {
-    if (fabs(d[c]) < 1e-15) {
-      if (o[c] < lo[c] || o[c] > hi[c]) return 0;
-      continue;
-    }
-    double s0 = (lo[c] - o[c]) / d[c], s1 = (hi[c] - o[c]) / d[c];
-    if (s0 > s1) {
-      const double t = s0;
-      s0 = s1;
-      s1 = t;
-    }
-    a = fmax(a, s0);
-    b = fmin(b, s1);
-  }
-  *t0 = a;
-  *t1 = b;
-  return b > a;
-}
-
 int vdb_report_run(const vdb_dense_grid *grid, const vdb_world_map *world, const fogmap *map,
                    const vdb_fogmap_place *place, const vdb_profile *profile,
                    const vdb_report_desc *desc, vdb_report_row *rows, int row_count,
@@ -137,7 +115,7 @@ int vdb_report_run(const vdb_dense_grid *grid, const vdb_world_map *world, const
           const double o[3] = {lo[0] + (ix + 0.5) * (hi[0] - lo[0]) / side, y_mid,
                                lo[2] + (iz + 0.5) * (hi[2] - lo[2]) / side};
           double t0, t1;
-          if (!clip_box(o, d, lo, hi, &t0, &t1)) continue;
+          if (!ray_box_clip(o, d, lo, hi, &t0, &t1)) continue;
           const int n = (int)ceil((t1 - t0) / step);
           const double dt = (t1 - t0) / n;
           double tau3 = 0, tau25 = 0;
