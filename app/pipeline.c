@@ -189,13 +189,13 @@ static int make_base(const scene_config *cfg, fogmap *base, pipeline_error *err)
   return 0;
 }
 
-static int sim_create(pipeline *p, const pipeline_params *params, const fogmap *start,
-                      pipeline_error *err) {
+/* The solver's desc for the live parameters (base: the density it starts from and relaxes
+ * toward, NULL when only changing parameters). */
+static fluid_sim_desc sim_desc(pipeline *p, const pipeline_params *params, const fogmap *start) {
   cpu_stages *c = &p->cpu;
-  if (c->has_vdb) return 0; /* a VDB sequence is played, not simulated */
   const double cell = p->config.box.cell_size > 0 ? p->config.box.cell_size : 1.0;
   for (int e = 0; e < c->emitter_count; e++) c->emitters[e].rate = params->emitter_rate;
-  fluid_sim_desc desc = {
+  return (fluid_sim_desc){
       .width = c->base.width,
       .height = c->base.height,
       .dt = (float)(p->frame_seconds / p->steps_per_frame),
@@ -211,6 +211,13 @@ static int sim_create(pipeline *p, const pipeline_params *params, const fogmap *
       .dissipation = 0.02f,
       .base = start,
   };
+}
+
+static int sim_create(pipeline *p, const pipeline_params *params, const fogmap *start,
+                      pipeline_error *err) {
+  cpu_stages *c = &p->cpu;
+  if (c->has_vdb) return 0; /* a VDB sequence is played, not simulated */
+  fluid_sim_desc desc = sim_desc(p, params, start);
   sim_error serr = {{0}};
   fluid_sim *sim = fluid_sim_create(&desc, &serr);
   if (!sim) return fail(err, "simulation: %s", serr.message);
@@ -311,18 +318,13 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
     if (r->params.degree != c->degree || r->params.levels != c->levels) {
       if (plan_create(p, r->params.degree, r->params.levels, err)) return 1;
     }
-    /* fluid.h has no setters: a changed wind, viscosity or emitter rate re-creates the
-     * solver, continuing from the current density (the velocity restarts at the drift). */
+    /* A changed wind, turbulence, viscosity or emitter rate is set in place: the density
+     * and the flow carry on (no reallocation, no FFTW replanning). */
     if (c->sim && sim_params_differ(&r->params, &p->applied)) {
-      const fogmap *now = fluid_sim_density(c->sim);
-      fogmap current = {0};
+      fluid_sim_desc desc = sim_desc(p, &r->params, NULL);
       sim_error serr = {{0}};
-      if (fogmap_create(&current, now->width, now->height, &serr))
-        return fail(err, "%s", serr.message);
-      memcpy(current.density, now->density, (size_t)now->width * now->height * sizeof(float));
-      int status = sim_create(p, &r->params, &current, err);
-      fogmap_destroy(&current);
-      if (status) return 1;
+      if (fluid_sim_set_params(c->sim, &desc, &serr))
+        return fail(err, "simulation: %s", serr.message);
     }
     p->applied = r->params;
   }

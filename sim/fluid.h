@@ -19,8 +19,8 @@
  * bit-identical frames run after run on the same build and machine. See fft_planning.
  *
  * Lifecycle: fluid_sim_create (allocates, plans) -> fluid_sim_step per dt (never
- * allocates), fluid_sim_paint / fluid_sim_add_impulse between steps -> fluid_sim_reset ->
- * fluid_sim_destroy. */
+ * allocates), fluid_sim_paint / fluid_sim_add_impulse / fluid_sim_set_params between
+ * steps -> fluid_sim_reset -> fluid_sim_destroy. */
 #ifndef FOGPIPE_SIM_FLUID_H
 #define FOGPIPE_SIM_FLUID_H
 
@@ -54,7 +54,7 @@ typedef enum fluid_fft_planning {
 } fluid_fft_planning;
 
 /* A Gaussian emitter: adds rate * dt * exp(-r^2 / (2 radius^2)) density per step (cut
- * at 4 radii; tabulated at create, so changing a rate means a new sim). */
+ * at 4 radii; tabulated at create and again by fluid_sim_set_params). */
 typedef struct fluid_emitter {
   float x, z;   /* centre, cells */
   float radius; /* Gaussian sigma, cells (> 0) */
@@ -100,6 +100,18 @@ typedef struct fluid_sim fluid_sim;
  * (err says which field is wrong). */
 fluid_sim *fluid_sim_create(const fluid_sim_desc *desc, sim_error *err);
 void fluid_sim_destroy(fluid_sim *sim);
+/* Changes the per-step parameters between steps, keeping the state (density, velocity,
+ * time, turbulence phases): dt, viscosity, the wind (drift, turbulence, its scale and
+ * slope, coupling), advection scheme, the emitters (same count: positions, radii, rates),
+ * relaxation and dissipation. Never allocates, never replans FFTW. The velocity keeps
+ * its fluctuations; its mean becomes the new drift (the solver holds the mean flow at
+ * the drift), so the new drift is what advects from the next step on. The base fogmap
+ * stays (desc->base must be NULL). width, height, seed, emitter_count and fft_planning
+ * are fixed at create: a desc that changes one (after defaults: 0 width is 256) is
+ * refused with err naming the field, as is an invalid desc (as fluid_sim_create); a
+ * refused call leaves the sim untouched. Returns 0 on success. fluid_sim_reset then goes
+ * back to the base with the new parameters. */
+int fluid_sim_set_params(fluid_sim *sim, const fluid_sim_desc *desc, sim_error *err);
 /* Back to the state after create: density = base (or 0), velocity = the drift, time 0,
  * initial turbulence phases. */
 void fluid_sim_reset(fluid_sim *sim);

@@ -61,6 +61,31 @@ static int resolve_desc(const fluid_sim_desc *in, fluid_sim_desc *d, sim_error *
   return 0;
 }
 
+/* The per-step tables of sim->desc (create, set_params). Fourier space: viscosity,
+ * Stam 2001 §3 multiplies each mode by exp(-k^2 nu dt) (exact for the diffusion
+ * equation), k = 2 pi m / N per cell; it is separable, so two 1D tables replace an exp
+ * per mode. The projection uses the central-difference symbol sin(2 pi m / N) (see
+ * fluid_fourier_step). Then the exact per-step gains of the wind coupling, relaxation
+ * and dissipation. */
+static void step_tables(fluid_sim *sim) {
+  const fluid_sim_desc *d = &sim->desc;
+  const int w = sim->width, h = sim->height;
+  for (int i = 0; i < sim->modes_x; i++) {
+    double k = two_pi * i / w;
+    sim->viscous_x[i] = (float)exp(-k * k * d->viscosity * d->dt);
+    sim->symbol_x[i] = wind_symbol(i, w);
+  }
+  for (int j = 0; j < h; j++) {
+    int m = j <= h / 2 ? j : j - h;
+    double k = two_pi * m / h;
+    sim->viscous_z[j] = (float)exp(-k * k * d->viscosity * d->dt);
+    sim->symbol_z[j] = wind_symbol(m, h);
+  }
+  sim->coupling_gain = d->wind_coupling > 0 ? (float)(1.0 - exp(-d->wind_coupling * d->dt)) : 0;
+  sim->relax_gain = (float)(1.0 - exp(-(double)d->relaxation * d->dt));
+  sim->keep = (float)exp(-(double)d->dissipation * d->dt);
+}
+
 void fluid_sim_destroy(fluid_sim *sim) {
   if (!sim) return;
   if (sim->forward) fftwf_destroy_plan(sim->forward);
@@ -122,24 +147,7 @@ fluid_sim *fluid_sim_create(const fluid_sim_desc *in, sim_error *err) {
   d.base = NULL;
   sim->desc = d;
 
-  /* Fourier-space tables. Viscosity: Stam 2001 §3 multiplies each mode by
-   * exp(-k^2 nu dt) (exact for the diffusion equation), k = 2 pi m / N per cell; it is
-   * separable, so two 1D tables replace an exp per mode. The projection uses the
-   * central-difference symbol sin(2 pi m / N) (see fluid_fourier_step). */
-  for (int i = 0; i < mx; i++) {
-    double k = two_pi * i / w;
-    sim->viscous_x[i] = (float)exp(-k * k * d.viscosity * d.dt);
-    sim->symbol_x[i] = wind_symbol(i, w);
-  }
-  for (int j = 0; j < h; j++) {
-    int m = j <= h / 2 ? j : j - h;
-    double k = two_pi * m / h;
-    sim->viscous_z[j] = (float)exp(-k * k * d.viscosity * d.dt);
-    sim->symbol_z[j] = wind_symbol(m, h);
-  }
-  sim->coupling_gain = d.wind_coupling > 0 ? (float)(1.0 - exp(-d.wind_coupling * d.dt)) : 0;
-  sim->relax_gain = (float)(1.0 - exp(-(double)d.relaxation * d.dt));
-  sim->keep = (float)exp(-(double)d.dissipation * d.dt);
+  step_tables(sim);
 
   sim->wind = wind_field_create(
       &(wind_desc){.width = w, .height = h, .drift_x = d.wind_drift_x,
@@ -177,6 +185,58 @@ fluid_sim *fluid_sim_create(const fluid_sim_desc *in, sim_error *err) {
   if (d.fft_planning == FLUID_FFT_MEASURED_WISDOM) fluid_wisdom_save();
   fluid_sim_reset(sim); /* after planning: FFTW_MEASURE overwrites the arrays */
   return sim;
+}
+
+int fluid_sim_set_params(fluid_sim *sim, const fluid_sim_desc *in, sim_error *err) {
+  fluid_sim_desc d;
+  if (resolve_desc(in, &d, err)) return 1;
+  const fluid_sim_desc *now = &sim->desc;
+  /* What the buffers, plans or turbulence phases were made for stays. */
+  const char *fixed = NULL;
+  if (d.width != now->width || d.height != now->height)
+    fixed = "width and height";
+  else if ((d.seed ? d.seed : 1) != (now->seed ? now->seed : 1))
+    fixed = "seed";
+  else if (d.emitter_count != now->emitter_count)
+    fixed = "emitter_count";
+  else if (d.fft_planning != now->fft_planning)
+    fixed = "fft_planning";
+  else if (d.base)
+    fixed = "base (must be NULL: the base fogmap stays)";
+  if (fixed) {
+    snprintf(err->message, sizeof err->message,
+             "fluid sim: %s cannot change in place; create a new sim", fixed);
+    return 1;
+  }
+  /* The wind checks its part before changing anything, so a refusal leaves the sim as
+   * it was. */
+  if (wind_field_set(sim->wind,
+                     &(wind_desc){.width = d.width, .height = d.height,
+                                  .drift_x = d.wind_drift_x, .drift_z = d.wind_drift_z,
+                                  .turbulence = d.turbulence, .scale = d.turbulence_scale,
+                                  .slope = d.turbulence_slope, .seed = d.seed},
+                     err))
+    return 1;
+  /* The state stays: density as it is, velocity as it is except its mean, which the
+   * solver keeps equal to the drift (fluid_fourier_step), so the new drift advects from
+   * the next step on. Unchanged drift: the velocity is untouched, bit for bit. */
+  const float shift_x = d.wind_drift_x - now->wind_drift_x;
+  const float shift_z = d.wind_drift_z - now->wind_drift_z;
+  if (shift_x != 0 || shift_z != 0) {
+    const size_t n = (size_t)sim->width * sim->height;
+    for (size_t c = 0; c < n; c++) {
+      sim->velocity[c] += shift_x;
+      sim->velocity[sim->stride + c] += shift_z;
+    }
+  }
+  if (d.emitter_count && d.emitters != sim->emitters)
+    memcpy(sim->emitters, d.emitters, d.emitter_count * sizeof *d.emitters);
+  d.emitters = sim->emitters;
+  d.seed = now->seed;
+  sim->desc = d;
+  step_tables(sim);
+  fluid_emission_fill(sim);
+  return 0;
 }
 
 void fluid_sim_reset(fluid_sim *sim) {

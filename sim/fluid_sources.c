@@ -31,9 +31,17 @@ int fluid_emission_build(fluid_sim *sim, sim_error *err) {
     snprintf(err->message, sizeof err->message, "fluid sim: out of memory for emitters");
     return 1;
   }
-  memset(sim->emission, 0, n * sizeof(float));
-  /* Precomputed once: the emitters are fixed, so each step adds one table instead of
-   * evaluating exp() per cell (density added per step = rate * dt * Gaussian). */
+  fluid_emission_fill(sim);
+  return 0;
+}
+
+void fluid_emission_fill(fluid_sim *sim) {
+  if (!sim->emission) return;
+  const int w = sim->width, h = sim->height;
+  memset(sim->emission, 0, (size_t)w * h * sizeof(float));
+  /* Precomputed: the emitters change only through fluid_sim_set_params, so each step adds
+   * one table instead of evaluating exp() per cell (density added per step =
+   * rate * dt * Gaussian). */
   for (int e = 0; e < sim->desc.emitter_count; e++) {
     const fluid_emitter *em = &sim->emitters[e];
     const float reach = 4.0f * em->radius; /* exp(-8) ≈ 3e-4 of the peak at the edge */
@@ -51,7 +59,6 @@ int fluid_emission_build(fluid_sim *sim, sim_error *err) {
       }
     }
   }
-  return 0;
 }
 
 /* After advection, per cell: + emission, relaxation toward the base (exact decay of

@@ -29,12 +29,12 @@ void wind_field_destroy(wind_field *wind) {
   fftwf_free(wind);
 }
 
-wind_field *wind_field_create(const wind_desc *desc, sim_error *err) {
+static int check_desc(const wind_desc *desc, sim_error *err) {
   const int w = desc->width, h = desc->height;
   if (w < 8 || h < 8 || (w & 1) || (h & 1)) {
     snprintf(err->message, sizeof err->message,
              "wind grid %dx%d: both sides must be even and at least 8", w, h);
-    return NULL;
+    return 1;
   }
   const double scale = desc->scale > 0 ? desc->scale : 0.25 * (w < h ? w : h);
   const double slope = desc->slope != 0 ? desc->slope : -5.0 / 3.0;
@@ -44,25 +44,22 @@ wind_field *wind_field_create(const wind_desc *desc, sim_error *err) {
              "wind: turbulence scale %g must exceed 4 cells; turbulence %g must be >= 0; "
              "drift and slope must be finite",
              scale, desc->turbulence);
-    return NULL;
+    return 1;
   }
-  wind_field *wind = fftwf_malloc(sizeof *wind);
-  if (!wind) goto oom;
-  const int mx = w / 2 + 1;
+  return 0;
+}
+
+/* The mode tables of a checked desc: amplitudes (the spectrum's shape and rms speed),
+ * angular frequencies and the drift; with write_phases also the phases at time 0 (the
+ * seed's draws). Without it the current phasors stay: wind_field_set. */
+static void spectrum_tables(wind_field *wind, const wind_desc *desc, int write_phases) {
+  const int w = wind->width, h = wind->height, mx = wind->modes_x;
   const size_t modes = (size_t)mx * h;
-  *wind = (wind_field){.width = w, .height = h, .modes_x = mx, .drift_x = desc->drift_x,
-                       .drift_z = desc->drift_z, .turbulence = desc->turbulence};
-  wind->amplitude_x = fftwf_malloc(modes * sizeof(float));
-  wind->amplitude_z = fftwf_malloc(modes * sizeof(float));
-  wind->phasor = fftwf_malloc(modes * 2 * sizeof(float));
-  wind->initial_phasor = fftwf_malloc(modes * 2 * sizeof(float));
-  wind->omega = fftwf_malloc(modes * sizeof(float));
-  wind->rotation = fftwf_malloc(modes * 2 * sizeof(float));
-  wind->spectrum = fftwf_malloc(modes * 2 * 2 * sizeof(float));
-  wind->real = fftwf_malloc((size_t)w * h * 2 * sizeof(float));
-  if (!wind->amplitude_x || !wind->amplitude_z || !wind->phasor || !wind->initial_phasor ||
-      !wind->omega || !wind->rotation || !wind->spectrum || !wind->real)
-    goto oom;
+  const double scale = desc->scale > 0 ? desc->scale : 0.25 * (w < h ? w : h);
+  const double slope = desc->slope != 0 ? desc->slope : -5.0 / 3.0;
+  wind->drift_x = desc->drift_x;
+  wind->drift_z = desc->drift_z;
+  wind->turbulence = desc->turbulence;
 
   /* Wavenumbers in cycles per cell; the band runs from the largest eddy to a 4-cell
    * wavelength, well inside Nyquist (2 cells) where sin(k) still tracks k. */
@@ -96,8 +93,10 @@ wind_field *wind_field_create(const wind_desc *desc, sim_error *err) {
       wind->amplitude_z[m] = (float)az;
       const double om = omega0 * (k > 0 ? pow(k / k0, 2.0 / 3.0) : 0.0);
       wind->omega[m] = (float)(mirrored ? -om : om);
-      wind->initial_phasor[2 * m] = (float)cos(phase);
-      wind->initial_phasor[2 * m + 1] = (float)sin(phase);
+      if (write_phases) {
+        wind->initial_phasor[2 * m] = (float)cos(phase);
+        wind->initial_phasor[2 * m + 1] = (float)sin(phase);
+      }
       if (!mirrored) energy += (i == 0 || i == w / 2 ? 1.0 : 2.0) * (ax * ax + az * az);
     }
   }
@@ -109,8 +108,10 @@ wind_field *wind_field_create(const wind_desc *desc, sim_error *err) {
     const size_t m = (size_t)j * mx, partner = (size_t)(h - j) * mx;
     wind->amplitude_x[m] = -wind->amplitude_x[partner];
     wind->amplitude_z[m] = -wind->amplitude_z[partner];
-    wind->initial_phasor[2 * m] = -wind->initial_phasor[2 * partner];
-    wind->initial_phasor[2 * m + 1] = wind->initial_phasor[2 * partner + 1];
+    if (write_phases) {
+      wind->initial_phasor[2 * m] = -wind->initial_phasor[2 * partner];
+      wind->initial_phasor[2 * m + 1] = wind->initial_phasor[2 * partner + 1];
+    }
     energy += (double)wind->amplitude_x[m] * wind->amplitude_x[m] +
               (double)wind->amplitude_z[m] * wind->amplitude_z[m];
   }
@@ -122,6 +123,29 @@ wind_field *wind_field_create(const wind_desc *desc, sim_error *err) {
     wind->amplitude_x[m] = (float)(gain * wind->amplitude_x[m]);
     wind->amplitude_z[m] = (float)(gain * wind->amplitude_z[m]);
   }
+  wind->rotation_dt = -1.0f; /* omega may have changed: wind_field_advance recomputes */
+}
+
+wind_field *wind_field_create(const wind_desc *desc, sim_error *err) {
+  if (check_desc(desc, err)) return NULL;
+  const int w = desc->width, h = desc->height;
+  wind_field *wind = fftwf_malloc(sizeof *wind);
+  if (!wind) goto oom;
+  const int mx = w / 2 + 1;
+  const size_t modes = (size_t)mx * h;
+  *wind = (wind_field){.width = w, .height = h, .modes_x = mx};
+  wind->amplitude_x = fftwf_malloc(modes * sizeof(float));
+  wind->amplitude_z = fftwf_malloc(modes * sizeof(float));
+  wind->phasor = fftwf_malloc(modes * 2 * sizeof(float));
+  wind->initial_phasor = fftwf_malloc(modes * 2 * sizeof(float));
+  wind->omega = fftwf_malloc(modes * sizeof(float));
+  wind->rotation = fftwf_malloc(modes * 2 * sizeof(float));
+  wind->spectrum = fftwf_malloc(modes * 2 * 2 * sizeof(float));
+  wind->real = fftwf_malloc((size_t)w * h * 2 * sizeof(float));
+  if (!wind->amplitude_x || !wind->amplitude_z || !wind->phasor || !wind->initial_phasor ||
+      !wind->omega || !wind->rotation || !wind->spectrum || !wind->real)
+    goto oom;
+  spectrum_tables(wind, desc, 1);
 
   /* Sampling plan: two c2r transforms in one plan (out of place; c2r destroys its input,
    * so wind_field_velocity fills `spectrum` afresh each call). */
@@ -134,13 +158,24 @@ wind_field *wind_field_create(const wind_desc *desc, sim_error *err) {
     wind_field_destroy(wind);
     return NULL;
   }
-  wind->rotation_dt = -1.0f;
   wind_field_reset(wind);
   return wind;
 oom:
   snprintf(err->message, sizeof err->message, "wind: out of memory for a %dx%d grid", w, h);
   wind_field_destroy(wind);
   return NULL;
+}
+
+int wind_field_set(wind_field *wind, const wind_desc *desc, sim_error *err) {
+  if (check_desc(desc, err)) return 1;
+  if (desc->width != wind->width || desc->height != wind->height) {
+    snprintf(err->message, sizeof err->message,
+             "wind: grid %dx%d cannot change in place (the field is %dx%d)", desc->width,
+             desc->height, wind->width, wind->height);
+    return 1;
+  }
+  spectrum_tables(wind, desc, 0);
+  return 0;
 }
 
 void wind_field_reset(wind_field *wind) {
