@@ -24,6 +24,14 @@
 #define RECORD_TEST_CONFIG "configs/default.ini"
 #define RECORD_TEST_SIZE "64x36"
 
+/* The test's scratch folder: mkdtemp on a "/tmp/...-XXXXXX" template (filled in place).
+ * Returns 0, having said why, when it cannot be made. */
+static inline int record_temp_folder(char *template_path) {
+  if (mkdtemp(template_path)) return 1;
+  perror("mkdtemp");
+  return 0;
+}
+
 static inline const char *record_bin(void) {
   const char *bin = getenv("FOGPIPE_BIN");
   return bin && *bin ? bin : "build/fogpipe";

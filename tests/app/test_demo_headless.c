@@ -9,10 +9,7 @@ enum { frames = 2 };
 
 int main(void) {
   char root[] = "/tmp/fogpipe-demo-headless-XXXXXX";
-  if (!mkdtemp(root)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  if (!record_temp_folder(root)) return 1;
   char source[1024], config[1200], log[600];
   if (!getcwd(source, sizeof source)) return 1;
   snprintf(config, sizeof config, "%s/configs/default.ini", source);

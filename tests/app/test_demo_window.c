@@ -11,10 +11,7 @@ int main(void) {
     return 77;
   }
   char root[] = "/tmp/fogpipe-demo-window-XXXXXX";
-  if (!mkdtemp(root)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  if (!record_temp_folder(root)) return 1;
   char png[600], log[600], cmd[2400];
   snprintf(png, sizeof png, "%s/window.png", root);
   snprintf(log, sizeof log, "%s/demo.log", root);

@@ -11,10 +11,7 @@ enum { frames = 5 };
 
 int main(void) {
   char root[] = "/tmp/fogpipe-record-det-XXXXXX";
-  if (!mkdtemp(root)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  if (!record_temp_folder(root)) return 1;
   enum { runs = 3 };
   char out[runs][512], log[runs][512];
   uint64_t hashes[runs][frames] = {{0}};

@@ -9,10 +9,7 @@ enum { frames = 24 };
 
 int main(void) {
   char root[] = "/tmp/fogpipe-record-resume-XXXXXX";
-  if (!mkdtemp(root)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  if (!record_temp_folder(root)) return 1;
   char whole[512], cut[512], log_whole[512], log_cut[512], log_resume[512];
   snprintf(whole, sizeof whole, "%s/whole", root);
   snprintf(cut, sizeof cut, "%s/cut", root);

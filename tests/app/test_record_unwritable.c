@@ -21,10 +21,7 @@ static void expect_refused(const char *out, const char *log, const char *what) {
 
 int main(void) {
   char root[] = "/tmp/fogpipe-record-unwritable-XXXXXX";
-  if (!mkdtemp(root)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  if (!record_temp_folder(root)) return 1;
   char log[600], file[600], under_file[700];
   snprintf(log, sizeof log, "%s/record.log", root);
   snprintf(file, sizeof file, "%s/a-file", root);

@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "render/render.h"
+#include "fog_test_gl.h"
 #include "fog_test_scene.h"
 #include "test_util.h"
 
@@ -35,16 +36,8 @@ static double cmp_max(const float *a, const float *b, double *mean) {
 
 int main(void) {
   render_error err = {0};
-  gl_context *ctx = gl_context_create(&(gl_context_desc){0}, &err);
-  CHECK(ctx != NULL, "headless context: %s", err.message);
-  if (!ctx) return test_finish("test_gpu_fog_resolution");
-  fog_pass *pass = NULL;
-  CHECK(fog_pass_create(&pass, &err) == 0, "fog_pass_create: %s", err.message);
-  gl_target target;
-  CHECK(gl_target_create(&target, &(gl_target_desc){.width = W, .height = H,
-                                                    .color_formats = {GL_RGBA32F, GL_R32F}},
-                         &err) == 0, "target: %s", err.message);
-  if (!pass) return test_finish("test_gpu_fog_resolution");
+  fog_test_gl gl;
+  if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_fog_resolution");
 
   /* A smooth linear grid over the test box. */
   transform_grid grid = fog_test_grid(1, 1.0, 0.0);
@@ -52,7 +45,7 @@ int main(void) {
     for (int i = 0; i < grid.width; i++)
       grid.coefficients[(size_t)j * grid.width + i] =
           (float)(0.6 + 0.4 * sin(0.3 * i) * cos(0.25 * j));
-  CHECK(fog_pass_upload_grid(pass, 0, &grid, &err) == 0, "upload: %s", err.message);
+  CHECK(fog_pass_upload_grid(gl.pass, 0, &grid, &err) == 0, "upload: %s", err.message);
   fog_volume v = fog_test_volume(FOG_PROFILE_EXPONENTIAL);
   double lo[3], hi[3];
   fog_volume_box(&v, lo, hi);
@@ -63,7 +56,6 @@ int main(void) {
    * a near occluder (distance 20) over a screen rectangle: depth edges in both directions. */
   float *colour = calloc((size_t)W * H * 4, sizeof(float));
   float *distance = malloc(sizeof(float) * W * H);
-  float *upload = malloc(sizeof(float) * W * H);
   double *dirs = malloc(sizeof(double) * 3 * W * H);
   for (int py = 0; py < H; py++)
     for (int px = 0; px < W; px++) {
@@ -73,17 +65,11 @@ int main(void) {
       float t = d[1] < 0.0 ? (float)((0.5 - o[1]) / d[1]) : 1e30f;
       if (px >= 37 && px < 71 && py >= 21 && py < 45) t = 20.0f;
       distance[py * W + px] = t;
-      upload[(H - 1 - py) * W + px] = t;
     }
   for (int k = 0; k < W * H; k++) colour[4 * k + 0] = colour[4 * k + 1] = colour[4 * k + 2] = 0.5f;
-  GLuint tex[2];
-  glGenTextures(2, tex);
-  glBindTexture(GL_TEXTURE_2D, tex[0]);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, W, H, 0, GL_RGBA, GL_FLOAT, colour);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glBindTexture(GL_TEXTURE_2D, tex[1]);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, W, H, 0, GL_RED, GL_FLOAT, upload);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  GLuint tex[2] = {fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, colour),
+                   fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL)};
+  fog_test_gl_upload_flipped(&gl, tex[1], GL_RED, 1, distance);
 
   float *tau[4], *rgba[2];
   for (int k = 0; k < 4; k++) tau[k] = malloc(sizeof(float) * W * H);
@@ -92,11 +78,9 @@ int main(void) {
   for (int k = 0; k < 4; k++) {
     fog_pass_params params = {.volume = &v, .fog_colour = {0.8f, 0.8f, 0.9f},
                               .resolution_divisor = divisors[k]};
-    gl_target_bind(&target);
-    CHECK(fog_pass_draw(pass, &cam, &params, tex[0], tex[1], W, H, &err) == 0,
+    CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tex[0], tex[1], tau[k], &err) == 0,
           "draw divisor %d: %s", divisors[k], err.message);
-    CHECK(gl_target_read(&target, 1, 1, tau[k], &err) == 0, "read: %s", err.message);
-    if (k < 2) CHECK(gl_target_read(&target, 0, 4, rgba[k], &err) == 0, "read: %s", err.message);
+    if (k < 2) CHECK(gl_target_read(&gl.target, 0, 4, rgba[k], &err) == 0, "read: %s", err.message);
   }
   /* Full resolution against the CPU (double), as test_gpu_fog_vs_cpu. */
   double worst_cpu = 0.0, min_tau = 1.0;
@@ -127,10 +111,8 @@ int main(void) {
   int opaque = 0;
   for (int c = 0; c < 2; c++) {
     fog_pass_params params = {.volume = &v, .depth_cutoff = c ? -1.0 : 0.0};
-    gl_target_bind(&target);
-    CHECK(fog_pass_draw(pass, &cam, &params, tex[0], tex[1], W, H, &err) == 0, "draw: %s",
-          err.message);
-    CHECK(gl_target_read(&target, 1, 1, tau[0], &err) == 0, "read: %s", err.message);
+    CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tex[0], tex[1], tau[0], &err) == 0,
+          "draw: %s", err.message);
     for (int k = 0; k < W * H; k++) {
       double o[3] = {cam.position[0], cam.position[1], cam.position[2]};
       double t = distance[k] >= 1e29f ? HUGE_VAL : distance[k];
@@ -151,17 +133,15 @@ int main(void) {
   fog_test_pyramid(1, J, approx, detail);
   v.extinction = 0.05;
   fog_lod lod = {.levels = J, .approx = approx, .detail = detail};
-  CHECK(fog_pass_upload_lod(pass, &lod, &err) == 0, "upload: %s", err.message);
+  CHECK(fog_pass_upload_lod(gl.pass, &lod, &err) == 0, "upload: %s", err.message);
   static const double mus[3] = {1.0, 0.0, 0.6};
   for (int m = 0; m < 3; m++)
     for (int method = 0; method <= 1; method++) {
       fog_lod_method lm = method ? FOG_LOD_SWITCH : FOG_LOD_SUM_OF_DETAILS;
       lod.mu = mus[m];
       fog_pass_params params = {.volume = &v, .levels = J, .lod_method = lm, .mu = mus[m]};
-      gl_target_bind(&target);
-      CHECK(fog_pass_draw(pass, &cam, &params, tex[0], tex[1], W, H, &err) == 0, "draw: %s",
-            err.message);
-      CHECK(gl_target_read(&target, 1, 1, tau[0], &err) == 0, "read: %s", err.message);
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tex[0], tex[1], tau[0], &err) == 0,
+            "draw: %s", err.message);
       double worst = 0.0;
       for (int k = 0; k < W * H; k++) {
         double o[3] = {cam.position[0], cam.position[1], cam.position[2]};
@@ -177,14 +157,11 @@ int main(void) {
 
   glDeleteTextures(2, tex);
   transform_grid_destroy(&grid);
-  gl_target_destroy(&target);
-  fog_pass_destroy(pass);
-  gl_context_destroy(ctx);
+  fog_test_gl_teardown(&gl);
   for (int k = 0; k < 4; k++) free(tau[k]);
   for (int k = 0; k < 2; k++) free(rgba[k]);
   free(colour);
   free(distance);
-  free(upload);
   free(dirs);
   return test_finish("test_gpu_fog_resolution");
 }

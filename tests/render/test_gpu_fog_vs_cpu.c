@@ -10,6 +10,7 @@
 #include <stdlib.h>
 
 #include "render/render.h"
+#include "fog_test_gl.h"
 #include "fog_test_scene.h"
 #include "test_util.h"
 
@@ -27,52 +28,56 @@ static void ground_distance(const camera *cam, float *dist) {
     }
 }
 
-static GLuint texture_2d(GLenum internal, GLenum format, const float *data) {
-  GLuint t;
-  glGenTextures(1, &t);
-  glBindTexture(GL_TEXTURE_2D, t);
-  glTexImage2D(GL_TEXTURE_2D, 0, internal, W, H, 0, format, GL_FLOAT, data);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  return t;
+/* Pixel (px, py)'s ray (rows top first) and its surface distance: HUGE_VAL for sky. */
+static double pixel_ray(const camera *cam, const float *dist, int px, int py, double o[3],
+                        double d[3]) {
+  camera_ray(cam, px, py, W, H, o, d);
+  return dist[py * W + px] >= 1e29f ? HUGE_VAL : dist[py * W + px];
 }
 
-/* Rows top first in both (the distance array is built top first; GL rows are bottom-up,
- * so it is uploaded flipped). */
-static void upload_flipped(GLuint tex, GLenum format, int channels, const float *top_first) {
-  float *flipped = malloc(sizeof(float) * W * H * channels);
-  for (int y = 0; y < H; y++)
-    for (int i = 0; i < W * channels; i++)
-      flipped[(H - 1 - y) * W * channels + i] = top_first[y * W * channels + i];
-  glBindTexture(GL_TEXTURE_2D, tex);
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, W, H, format, GL_FLOAT, flipped);
-  free(flipped);
+/* The CPU reference of a LOD draw, per pixel: the double-precision transmittance from the
+ * camera to the surface. */
+static void reference_lod_tau(const camera *cam, const float *dist, const fog_volume *v,
+                              const fog_lod *lod, fog_lod_method method, double *want) {
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      double o[3], d[3];
+      double t_surface = pixel_ray(cam, dist, px, py, o, d);
+      want[py * W + px] = fog_transmittance(fog_optical_depth_lod(v, lod, method, o, d, t_surface));
+    }
+}
+
+/* max |want - tau| over the image, and where (wx, wy may be NULL). */
+static double max_tau_error(const double *want, const float *tau, int *wx, int *wy) {
+  double worst = 0.0;
+  for (int k = 0; k < W * H; k++) {
+    double e = fabs(want[k] - tau[k]);
+    if (e > worst) {
+      worst = e;
+      if (wx) *wx = k % W;
+      if (wy) *wy = k / W;
+    }
+  }
+  return worst;
 }
 
 int main(void) {
   render_error err = {0};
-  gl_context *ctx = gl_context_create(&(gl_context_desc){0}, &err);
-  CHECK(ctx != NULL, "headless context: %s", err.message);
-  if (!ctx) return test_finish("test_gpu_fog_vs_cpu");
-  fog_pass *pass = NULL;
-  CHECK(fog_pass_create(&pass, &err) == 0, "fog_pass_create: %s", err.message);
-  if (!pass) return test_finish("test_gpu_fog_vs_cpu");
-  gl_target target;
-  CHECK(gl_target_create(&target, &(gl_target_desc){.width = W, .height = H,
-                                                    .color_formats = {GL_RGBA32F, GL_R32F}},
-                         &err) == 0, "target: %s", err.message);
+  fog_test_gl gl;
+  if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_fog_vs_cpu");
   float *dist = malloc(sizeof(float) * W * H), *tau = malloc(sizeof(float) * W * H);
   float *colour = malloc(sizeof(float) * W * H * 4), *surface = malloc(sizeof(float) * W * H * 4);
   float *tau_other = malloc(sizeof(float) * W * H);
+  double *want = malloc(sizeof(double) * W * H);
   for (int i = 0; i < W * H; i++) {
     surface[4 * i + 0] = 0.2f + 0.6f * (float)((i % W) / (double)W);
     surface[4 * i + 1] = 0.3f;
     surface[4 * i + 2] = 0.9f - 0.5f * (float)((i / W) / (double)H);
     surface[4 * i + 3] = 1.0f;
   }
-  GLuint surface_tex = texture_2d(GL_RGBA32F, GL_RGBA, NULL);
-  GLuint dist_tex = texture_2d(GL_R32F, GL_RED, NULL);
-  upload_flipped(surface_tex, GL_RGBA, 4, surface);
+  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, NULL);
+  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
+  fog_test_gl_upload_flipped(&gl, surface_tex, GL_RGBA, 4, surface);
 
   const fog_profile_kind kinds[3] = {FOG_PROFILE_SLAB, FOG_PROFILE_EXPONENTIAL,
                                      FOG_PROFILE_BSPLINE};
@@ -81,7 +86,7 @@ int main(void) {
     transform_grid approx[J + 1], detail[J];
     fog_test_pyramid(degree, J, approx, detail);
     fog_lod lod = {.levels = J, .approx = approx, .detail = detail, .mu = 0.6};
-    CHECK(fog_pass_upload_lod(pass, &lod, &err) == 0, "upload: %s", err.message);
+    CHECK(fog_pass_upload_lod(gl.pass, &lod, &err) == 0, "upload: %s", err.message);
     for (int inside = 0; inside <= 1; inside++)
     for (int kind = 0; kind < 3; kind++) {
       fog_volume v = fog_test_volume(kinds[kind]);
@@ -101,34 +106,24 @@ int main(void) {
       }
       camera_look_at(&cam, target_pos);
       ground_distance(&cam, dist);
-      upload_flipped(dist_tex, GL_RED, 1, dist);
+      fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
       for (int method = 0; method <= 1; method++) {
         fog_pass_params params = {.volume = &v, .levels = J, .lod_method = method, .mu = lod.mu,
                                   .fog_colour = {0.7f, 0.75f, 0.8f}};
-        gl_target_bind(&target);
-        CHECK(fog_pass_draw(pass, &cam, &params, surface_tex, dist_tex, W, H, &err) == 0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
               "draw: %s", err.message);
-        CHECK(gl_target_read(&target, 1, 1, tau, &err) == 0, "read: %s", err.message);
-        CHECK(gl_target_read(&target, 0, 4, colour, &err) == 0, "read: %s", err.message);
-        double worst = 0.0, min_tau = 1.0;
+        CHECK(gl_target_read(&gl.target, 0, 4, colour, &err) == 0, "read: %s", err.message);
+        double min_tau = 1.0;
         int wx = 0, wy = 0;
         for (int i = 0; i < W * H; i++) min_tau = fmin(min_tau, tau[i]);
         /* The view must actually see fog (and some clear pixels) for the comparison to mean
          * anything. */
         CHECK(min_tau < 0.7, "degree %d inside %d: min tau %.3f: no fog in view", degree, inside,
               min_tau);
+        reference_lod_tau(&cam, dist, &v, &lod, method, want);
+        double worst = max_tau_error(want, tau, &wx, &wy);
         for (int py = 0; py < H; py++)
           for (int px = 0; px < W; px++) {
-            double o[3], d[3];
-            camera_ray(&cam, px, py, W, H, o, d);
-            double t_surface = dist[py * W + px] >= 1e29f ? HUGE_VAL : dist[py * W + px];
-            double want = fog_transmittance(fog_optical_depth_lod(&v, &lod, method, o, d, t_surface));
-            double e = fabs(want - tau[py * W + px]);
-            if (e > worst) {
-              worst = e;
-              wx = px;
-              wy = py;
-            }
             double s[3] = {surface[4 * (py * W + px)], surface[4 * (py * W + px) + 1],
                            surface[4 * (py * W + px) + 2]};
             double fogc[3] = {0.7f, 0.75f, 0.8f}, blended[3];
@@ -154,20 +149,12 @@ int main(void) {
         }
         /* Hardware-filtered fetch (degree 0 uses texelFetch in both variants). */
         params.fetch = FOG_FETCH_HARDWARE;
-        gl_target_bind(&target);
-        CHECK(fog_pass_draw(pass, &cam, &params, surface_tex, dist_tex, W, H, &err) == 0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau_other, &err) ==
+                  0,
               "draw (hardware): %s", err.message);
-        CHECK(gl_target_read(&target, 1, 1, tau_other + 0, &err) == 0, "read: %s", err.message);
         if (method == 1) {
-          double e = 0.0;
-          for (int py = 0; py < H; py++)
-            for (int px = 0; px < W; px++) {
-              double o[3], d[3];
-              camera_ray(&cam, px, py, W, H, o, d);
-              double t_surface = dist[py * W + px] >= 1e29f ? HUGE_VAL : dist[py * W + px];
-              double want = fog_transmittance(fog_optical_depth_lod(&v, &lod, method, o, d, t_surface));
-              e = fmax(e, fabs(want - tau_other[py * W + px]));
-            }
+          /* want still holds this view's method-1 reference */
+          double e = max_tau_error(want, tau_other, NULL, NULL);
           if (e > worst_hw[degree]) worst_hw[degree] = e;
           CHECK(e <= 2e-2, "hardware fetch degree %d: max |dtau| %.3e", degree, e);
         }
@@ -179,29 +166,19 @@ int main(void) {
       for (int i = 0; i < approx[l].width * approx[l].height; i++) approx[l].coefficients[i] *= 1.5f;
     for (int l = 0; l < J; l++)
       for (int i = 0; i < detail[l].width * detail[l].height; i++) detail[l].coefficients[i] *= 1.5f;
-    CHECK(fog_pass_upload_lod(pass, &lod, &err) == 0, "re-upload: %s", err.message);
+    CHECK(fog_pass_upload_lod(gl.pass, &lod, &err) == 0, "re-upload: %s", err.message);
     {
       fog_volume v = fog_test_volume(FOG_PROFILE_SLAB);
       camera cam = {.position = {60.0, 20.0, 30.0}, .fov_y = 1.0};
       camera_look_at(&cam, (double[3]){130.0, ground_y, -30.0});
       ground_distance(&cam, dist);
-      upload_flipped(dist_tex, GL_RED, 1, dist);
+      fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
       fog_pass_params params = {.volume = &v, .levels = J, .lod_method = FOG_LOD_SWITCH,
                                 .mu = lod.mu};
-      gl_target_bind(&target);
-      CHECK(fog_pass_draw(pass, &cam, &params, surface_tex, dist_tex, W, H, &err) == 0,
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
             "draw after re-upload: %s", err.message);
-      CHECK(gl_target_read(&target, 1, 1, tau, &err) == 0, "read: %s", err.message);
-      double worst = 0.0;
-      for (int py = 0; py < H; py++)
-        for (int px = 0; px < W; px++) {
-          double o[3], d[3];
-          camera_ray(&cam, px, py, W, H, o, d);
-          double t_surface = dist[py * W + px] >= 1e29f ? HUGE_VAL : dist[py * W + px];
-          double want =
-              fog_transmittance(fog_optical_depth_lod(&v, &lod, FOG_LOD_SWITCH, o, d, t_surface));
-          worst = fmax(worst, fabs(want - tau[py * W + px]));
-        }
+      reference_lod_tau(&cam, dist, &v, &lod, FOG_LOD_SWITCH, want);
+      double worst = max_tau_error(want, tau, NULL, NULL);
       printf("degree %d after re-upload (same size): max |dtau| %.2e\n", degree, worst);
       CHECK(worst <= 2e-4, "degree %d after re-upload: max |dtau| %.3e", degree, worst);
     }
@@ -219,34 +196,33 @@ int main(void) {
     g.degree = degree;
     g.origin_u = g.origin_v = -3.0;
     for (int i = 0; i < g.width * g.height; i++) g.coefficients[i] = (float)fog_test_uniform();
-    CHECK(fog_pass_upload_grid(pass, 0, &g, &err) == 0, "upload long grid: %s", err.message);
+    CHECK(fog_pass_upload_grid(gl.pass, 0, &g, &err) == 0, "upload long grid: %s", err.message);
     fog_volume v = {.map_width = 1024, .map_height = 64, .cell_size = 1.0, .extinction = 0.004,
                     .profile = {.kind = FOG_PROFILE_EXPONENTIAL, .y_floor = 0.0, .y0 = 0.5,
                                 .scale_height = 3.0, .y_top = 30.0}};
     camera cam = {.position = {2.0, 1.5, 20.0}, .fov_y = 0.6};
     camera_look_at(&cam, (double[3]){1024.0, 0.5, 44.0});
     ground_distance(&cam, dist);
-    upload_flipped(dist_tex, GL_RED, 1, dist);
+    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
     fog_pass_params params = {.volume = &v};
-    gl_target_bind(&target);
+    gl_target_bind(&gl.target);
     /* Only the middle 32 x 12 pixels (around the horizon, the longest rays): llvmpipe needs
      * ~2 s per full frame of such rays. */
     enum { X0 = W / 2 - 16, Y0 = H / 2 - 6 };
     glEnable(GL_SCISSOR_TEST);
     glScissor(X0, H - Y0 - 12, 32, 12);
-    CHECK(fog_pass_draw(pass, &cam, &params, surface_tex, dist_tex, W, H, &err) == 0,
+    CHECK(fog_pass_draw(gl.pass, &cam, &params, surface_tex, dist_tex, W, H, &err) == 0,
           "draw long rays: %s", err.message);
     glDisable(GL_SCISSOR_TEST);
-    CHECK(gl_target_read(&target, 1, 1, tau, &err) == 0, "read: %s", err.message);
+    CHECK(gl_target_read(&gl.target, 1, 1, tau, &err) == 0, "read: %s", err.message);
     double worst = 0.0, min_tau = 1.0;
     for (int py = Y0; py < Y0 + 12; py++)
       for (int px = X0; px < X0 + 32; px++) {
         double o[3], d[3];
-        camera_ray(&cam, px, py, W, H, o, d);
-        double t_surface = dist[py * W + px] >= 1e29f ? HUGE_VAL : dist[py * W + px];
-        double want = fog_transmittance(fog_optical_depth(&v, &g, o, d, 0.0, t_surface));
-        worst = fmax(worst, fabs(want - tau[py * W + px]));
-        min_tau = fmin(min_tau, want);
+        double t_surface = pixel_ray(&cam, dist, px, py, o, d);
+        double want_k = fog_transmittance(fog_optical_depth(&v, &g, o, d, 0.0, t_surface));
+        worst = fmax(worst, fabs(want_k - tau[py * W + px]));
+        min_tau = fmin(min_tau, want_k);
       }
     printf("long rays (1024 cells), degree %d: max |dtau| %.2e, min tau %.3f\n", degree, worst,
            min_tau);
@@ -260,22 +236,19 @@ int main(void) {
       camera cam = {.position = {10.0, view ? 40.0 : 3.0, 20.0}, .fov_y = 1.1};
       camera_look_at(&cam, (double[3]){80.0, view ? 0.0 : 6.0, -60.0});
       ground_distance(&cam, dist);
-      upload_flipped(dist_tex, GL_RED, 1, dist);
+      fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
       fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
       fog_pass_params params = {.model = model, .model_extinction = m.extinction,
                                 .model_y0 = m.y0, .model_scale_height = m.scale_height};
-      gl_target_bind(&target);
-      CHECK(fog_pass_draw(pass, &cam, &params, surface_tex, dist_tex, W, H, &err) == 0,
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
             "draw model %d: %s", model, err.message);
-      CHECK(gl_target_read(&target, 1, 1, tau, &err) == 0, "read: %s", err.message);
       double worst = 0.0, min_tau = 1.0;
       for (int py = 0; py < H; py++)
         for (int px = 0; px < W; px++) {
           double o[3], d[3];
-          camera_ray(&cam, px, py, W, H, o, d);
-          double t_surface = dist[py * W + px] >= 1e29f ? HUGE_VAL : dist[py * W + px];
-          double want = fog_transmittance(fog_model_optical_depth(&m, o, d, t_surface));
-          worst = fmax(worst, fabs(want - tau[py * W + px]));
+          double t_surface = pixel_ray(&cam, dist, px, py, o, d);
+          double want_k = fog_transmittance(fog_model_optical_depth(&m, o, d, t_surface));
+          worst = fmax(worst, fabs(want_k - tau[py * W + px]));
           min_tau = fmin(min_tau, tau[py * W + px]);
         }
       printf("model %d view %d: max |dtau| %.2e, min tau %.3f\n", model, view, worst, min_tau);
@@ -289,12 +262,11 @@ int main(void) {
   CHECK(worst_colour <= 1e-5, "composited colour differs from eq. 4 by %.3e", worst_colour);
   glDeleteTextures(1, &surface_tex);
   glDeleteTextures(1, &dist_tex);
-  gl_target_destroy(&target);
-  fog_pass_destroy(pass);
-  gl_context_destroy(ctx);
+  fog_test_gl_teardown(&gl);
   free(dist);
   free(tau);
   free(tau_other);
+  free(want);
   free(colour);
   free(surface);
   return test_finish("test_gpu_fog_vs_cpu");

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "render/render.h"
+#include "fog_test_gl.h"
 #include "fog_test_scene.h"
 #include "test_util.h"
 
@@ -15,37 +16,19 @@ enum { W = 96, H = 54, J = 1 };
 
 int main(void) {
   render_error err = {0};
-  gl_context *ctx = gl_context_create(&(gl_context_desc){0}, &err);
-  CHECK(ctx != NULL, "headless context: %s", err.message);
-  if (!ctx) return test_finish("test_gpu_march_vs_cpu");
-  fog_pass *pass = NULL;
-  CHECK(fog_pass_create(&pass, &err) == 0, "fog_pass_create: %s", err.message);
-  gl_target target;
-  CHECK(gl_target_create(&target, &(gl_target_desc){.width = W, .height = H,
-                                                    .color_formats = {GL_RGBA32F, GL_R32F}},
-                         &err) == 0, "target: %s", err.message);
-  if (!pass) return test_finish("test_gpu_march_vs_cpu");
+  fog_test_gl gl;
+  if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_march_vs_cpu");
   float *zeros = calloc((size_t)W * H * 4, sizeof(float)), *sky = malloc(sizeof(float) * W * H);
   float *tau = malloc(sizeof(float) * W * H);
   for (int i = 0; i < W * H; i++) sky[i] = 1e30f;
-  GLuint tex[2];
-  glGenTextures(2, tex);
-  for (int k = 0; k < 2; k++) {
-    glBindTexture(GL_TEXTURE_2D, tex[k]);
-    if (k == 0)
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, W, H, 0, GL_RGBA, GL_FLOAT, zeros);
-    else
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, W, H, 0, GL_RED, GL_FLOAT, sky);
-    /* No mipmaps: without NEAREST the texture is incomplete and texelFetch reads 0. */
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  }
+  GLuint tex[2] = {fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, zeros),
+                   fog_test_gl_texture(&gl, GL_R32F, GL_RED, sky)};
 
   for (int degree = 0; degree <= 2; degree += 1) {
     transform_grid approx[J + 1], detail[J];
     fog_test_pyramid(degree, J, approx, detail);
     fog_lod lod = {.levels = J, .approx = approx, .detail = detail, .mu = 0.5};
-    CHECK(fog_pass_upload_lod(pass, &lod, &err) == 0, "upload: %s", err.message);
+    CHECK(fog_pass_upload_lod(gl.pass, &lod, &err) == 0, "upload: %s", err.message);
     fog_volume v = fog_test_volume(degree == 1 ? FOG_PROFILE_EXPONENTIAL : FOG_PROFILE_BSPLINE);
     double lo[3], hi[3];
     fog_volume_box(&v, lo, hi);
@@ -58,10 +41,8 @@ int main(void) {
         fog_pass_params params = {.volume = &v, .levels = J, .lod_method = FOG_LOD_SWITCH,
                                   .mu = lod.mu, .integrator = FOG_INTEGRATOR_MARCH,
                                   .march_steps = steps, .march_jitter = jitter, .frame = 7};
-        gl_target_bind(&target);
-        CHECK(fog_pass_draw(pass, &cam, &params, tex[0], tex[1], W, H, &err) == 0, "draw: %s",
-              err.message);
-        CHECK(gl_target_read(&target, 1, 1, tau, &err) == 0, "read: %s", err.message);
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tex[0], tex[1], tau, &err) == 0,
+              "draw: %s", err.message);
         double worst = 0.0, vs_exact = 0.0;
         int over = 0;
         for (int py = 0; py < H; py++)
@@ -98,9 +79,7 @@ int main(void) {
     for (int l = 0; l < J; l++) transform_grid_destroy(&detail[l]);
   }
   glDeleteTextures(2, tex);
-  gl_target_destroy(&target);
-  fog_pass_destroy(pass);
-  gl_context_destroy(ctx);
+  fog_test_gl_teardown(&gl);
   free(zeros);
   free(sky);
   free(tau);

@@ -1,0 +1,96 @@
+/* Shared GL set-up for the fog pass tests: a headless context, the fog pass, a W x H
+ * target (colour RGBA32F + transmittance R32F, what fog_pass_draw writes) and the input
+ * textures the pass reads (surface colour and surface distance, rows uploaded top first).
+ *
+ *   fog_test_gl gl;
+ *   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_x");
+ *   ... fog_pass_draw(gl.pass, ...), gl_target_read(&gl.target, ...) ...
+ *   fog_test_gl_teardown(&gl);
+ *
+ * Header-only (static inline) like fog_test_scene.h: tests/CMakeLists.txt builds each
+ * test_*.c on its own. */
+#ifndef FOGPIPE_TESTS_RENDER_FOG_TEST_GL_H
+#define FOGPIPE_TESTS_RENDER_FOG_TEST_GL_H
+
+#include <stdbool.h>
+#include <stdlib.h>
+
+#include "render/render.h"
+#include "test_util.h"
+
+typedef struct fog_test_gl {
+  gl_context *ctx;
+  fog_pass *pass;
+  gl_target target;
+  bool has_target;
+  int width, height;
+} fog_test_gl;
+
+static inline void fog_test_gl_teardown(fog_test_gl *gl) {
+  if (gl->has_target) gl_target_destroy(&gl->target);
+  if (gl->pass) fog_pass_destroy(gl->pass);
+  if (gl->ctx) gl_context_destroy(gl->ctx);
+  *gl = (fog_test_gl){0};
+}
+
+/* CHECKs each step (context, pass, target) and returns true when all three exist. On
+ * false it has released what it made and the test should return test_finish(...) at
+ * once (the failures are recorded). */
+static inline bool fog_test_gl_setup(fog_test_gl *gl, int width, int height, render_error *err) {
+  *gl = (fog_test_gl){.width = width, .height = height};
+  gl->ctx = gl_context_create(&(gl_context_desc){0}, err);
+  CHECK(gl->ctx != NULL, "headless context: %s", err->message);
+  if (gl->ctx) CHECK(fog_pass_create(&gl->pass, err) == 0, "fog_pass_create: %s", err->message);
+  if (gl->pass) {
+    gl->has_target =
+        gl_target_create(&gl->target,
+                         &(gl_target_desc){.width = width, .height = height,
+                                           .color_formats = {GL_RGBA32F, GL_R32F}},
+                         err) == 0;
+    CHECK(gl->has_target, "target: %s", err->message);
+  }
+  if (!gl->has_target) fog_test_gl_teardown(gl);
+  return gl->has_target;
+}
+
+/* A width x height texture with NEAREST filtering: no mipmaps, so without it the texture
+ * would be incomplete and texelFetch would read 0. data may be NULL (contents undefined). */
+static inline GLuint fog_test_gl_texture(const fog_test_gl *gl, GLenum internal, GLenum format,
+                                         const float *data) {
+  GLuint t;
+  glGenTextures(1, &t);
+  glBindTexture(GL_TEXTURE_2D, t);
+  glTexImage2D(GL_TEXTURE_2D, 0, internal, gl->width, gl->height, 0, format, GL_FLOAT, data);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  return t;
+}
+
+/* Uploads an image stored rows top first (as camera_ray's pixel rows and the CPU
+ * references) into a texture of the target's size: GL rows are bottom-up, so flipped. */
+static inline void fog_test_gl_upload_flipped(const fog_test_gl *gl, GLuint tex, GLenum format,
+                                              int channels, const float *top_first) {
+  const int w = gl->width, h = gl->height;
+  float *flipped = malloc(sizeof(float) * w * h * channels);
+  for (int y = 0; y < h; y++)
+    for (int i = 0; i < w * channels; i++)
+      flipped[(size_t)(h - 1 - y) * w * channels + i] = top_first[(size_t)y * w * channels + i];
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, format, GL_FLOAT, flipped);
+  free(flipped);
+}
+
+/* Draws the fog pass into the target and reads its transmittance (attachment 1, rows
+ * top first) into tau. Returns 0 on success (err says what failed): the caller CHECKs
+ * it, so a failure names the test's own line and case. */
+static inline int fog_test_gl_draw_tau(fog_test_gl *gl, const camera *cam,
+                                       const fog_pass_params *params, GLuint colour_tex,
+                                       GLuint distance_tex, float *tau, render_error *err) {
+  gl_target_bind(&gl->target);
+  if (fog_pass_draw(gl->pass, cam, params, colour_tex, distance_tex, gl->width, gl->height,
+                    err))
+    return 1;
+  return gl_target_read(&gl->target, 1, 1, tau, err);
+}
+
+#endif
