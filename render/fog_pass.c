@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "render/fog_cell_poly.h"
 #include "render/gl_util.h"
 
 /* A variant is one compiled program; its key packs every draw setting that the shader
@@ -14,8 +15,10 @@
 #define FOG_PASS_VARIANTS 16384
 
 typedef struct fog_pass_slot {
-  GLuint texture;
+  GLuint texture; /* R32F coefficients: the hardware-filtered variant */
+  GLuint cells;   /* RGBA32F cell polynomials (render/fog_cell_poly.h): the manual variant */
   int width, height, degree;
+  int cells_width, cells_height; /* texels */
   double origin_u, origin_v, spacing;
 } fog_pass_slot;
 
@@ -27,7 +30,11 @@ struct fog_pass {
    * the first LOD draw after an upload (layers_stale). */
   GLuint layers;
   int layers_width, layers_height, layers_count;
+  GLuint cell_layers; /* the same for the cell polynomials */
+  int cell_layers_width, cell_layers_height, cell_layers_count;
   bool layers_stale;
+  float *cell_scratch; /* fog_cell_poly_build's output before upload; grows, never shrinks */
+  size_t cell_scratch_texels;
   /* resolution_divisor > 1: the reduced pass's target (RGBA32F: optical depth, distance,
    * extinction at the surface). */
   gl_target reduced;
@@ -115,7 +122,11 @@ void fog_pass_destroy(fog_pass *pass) {
     if (pass->programs[i]) glDeleteProgram(pass->programs[i]);
   for (int i = 0; i < FOG_PASS_MAX_GRIDS; i++)
     if (pass->slots[i].texture) glDeleteTextures(1, &pass->slots[i].texture);
+  for (int i = 0; i < FOG_PASS_MAX_GRIDS; i++)
+    if (pass->slots[i].cells) glDeleteTextures(1, &pass->slots[i].cells);
   if (pass->layers) glDeleteTextures(1, &pass->layers);
+  if (pass->cell_layers) glDeleteTextures(1, &pass->cell_layers);
+  free(pass->cell_scratch);
   if (pass->reduced.framebuffer) gl_target_destroy(&pass->reduced);
   free(pass);
 }
@@ -158,6 +169,35 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
     s->width = grid->width;
     s->height = grid->height;
   }
+  /* The cell polynomials of the manual variant (texelFetch only: no filtering, no border). */
+  int cw, ch;
+  fog_cell_poly_size(grid->width, grid->height, grid->degree, &cw, &ch);
+  size_t texels = (size_t)cw * (size_t)ch;
+  if (texels > pass->cell_scratch_texels) {
+    float *grown = realloc(pass->cell_scratch, texels * 4 * sizeof(float));
+    if (!grown) {
+      glBindTexture(GL_TEXTURE_2D, 0);
+      snprintf(err->message, sizeof err->message,
+               "fog pass: out of memory for the cell polynomials of a %dx%d grid", grid->width,
+               grid->height);
+      return 1;
+    }
+    pass->cell_scratch = grown;
+    pass->cell_scratch_texels = texels;
+  }
+  fog_cell_poly_build(grid, pass->cell_scratch);
+  if (s->cells && s->cells_width == cw && s->cells_height == ch) {
+    glBindTexture(GL_TEXTURE_2D, s->cells);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, cw, ch, GL_RGBA, GL_FLOAT, pass->cell_scratch);
+  } else {
+    if (!s->cells) glGenTextures(1, &s->cells);
+    glBindTexture(GL_TEXTURE_2D, s->cells);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, cw, ch, 0, GL_RGBA, GL_FLOAT, pass->cell_scratch);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    s->cells_width = cw;
+    s->cells_height = ch;
+  }
   glBindTexture(GL_TEXTURE_2D, 0);
   pass->layers_stale = true;
   s->degree = grid->degree;
@@ -188,10 +228,12 @@ static GLint fog_loc(GLuint program, const char *name) { return glGetUniformLoca
  * smaller grid exactly as the border colour of its own texture would give). */
 static int fog_pass_update_layers(fog_pass *pass, int count, render_error *err) {
   if (!pass->layers_stale && pass->layers && pass->layers_count == count) return 0;
-  int w = 1, h = 1;
+  int w = 1, h = 1, cw = 1, ch = 1;
   for (int k = 0; k < count; k++) {
     if (pass->slots[k].width > w) w = pass->slots[k].width;
     if (pass->slots[k].height > h) h = pass->slots[k].height;
+    if (pass->slots[k].cells_width > cw) cw = pass->slots[k].cells_width;
+    if (pass->slots[k].cells_height > ch) ch = pass->slots[k].cells_height;
   }
   glActiveTexture(GL_TEXTURE0);
   if (!pass->layers || pass->layers_width != w || pass->layers_height != h ||
@@ -210,13 +252,29 @@ static int fog_pass_update_layers(fog_pass *pass, int count, render_error *err) 
     pass->layers_height = h;
     pass->layers_count = count;
   }
+  if (!pass->cell_layers || pass->cell_layers_width != cw || pass->cell_layers_height != ch ||
+      pass->cell_layers_count != count) {
+    if (!pass->cell_layers) glGenTextures(1, &pass->cell_layers);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, pass->cell_layers);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, cw, ch, count, 0, GL_RGBA, GL_FLOAT, NULL);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    pass->cell_layers_width = cw;
+    pass->cell_layers_height = ch;
+    pass->cell_layers_count = count;
+  }
   static const float zero[4] = {0, 0, 0, 0};
   glClearTexImage(pass->layers, 0, GL_RED, GL_FLOAT, zero);
+  glClearTexImage(pass->cell_layers, 0, GL_RGBA, GL_FLOAT, zero);
   for (int k = 0; k < count; k++) {
     const fog_pass_slot *s = &pass->slots[k];
     if (s->texture)
       glCopyImageSubData(s->texture, GL_TEXTURE_2D, 0, 0, 0, 0, pass->layers, GL_TEXTURE_2D_ARRAY,
                          0, 0, 0, k, s->width, s->height, 1);
+    if (s->cells)
+      glCopyImageSubData(s->cells, GL_TEXTURE_2D, 0, 0, 0, 0, pass->cell_layers,
+                         GL_TEXTURE_2D_ARRAY, 0, 0, 0, k, s->cells_width, s->cells_height, 1);
   }
   pass->layers_stale = false;
   return gl_util_check("fog pass: LOD layers", err);
@@ -412,6 +470,10 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       glBindTexture(GL_TEXTURE_2D, reads[k] ? s->texture : 0);
     }
     glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
+    /* The cell polynomials: slot `first` alone, or every slot as layers (J > 0). */
+    glActiveTexture(GL_TEXTURE4 + FOG_PASS_MAX_GRIDS);
+    glBindTexture(GL_TEXTURE_2D, pass->slots[first].cells);
+    glUniform1i(fog_loc(prog, "fog_cells"), 4 + FOG_PASS_MAX_GRIDS);
     if (J > 0) {
       if (fog_pass_update_layers(pass, slots, err)) return 1;
       glActiveTexture(GL_TEXTURE2 + FOG_PASS_MAX_GRIDS);
@@ -419,6 +481,9 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       glUniform1i(fog_loc(prog, "fog_grid_layers"), 2 + FOG_PASS_MAX_GRIDS);
       glUniform2f(fog_loc(prog, "fog_grid_layer_size"), (float)pass->layers_width,
                   (float)pass->layers_height);
+      glActiveTexture(GL_TEXTURE5 + FOG_PASS_MAX_GRIDS);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, pass->cell_layers);
+      glUniform1i(fog_loc(prog, "fog_cell_layers"), 5 + FOG_PASS_MAX_GRIDS);
     }
     glUniform2fv(fog_loc(prog, "fog_grid_x0"), FOG_PASS_MAX_GRIDS, &x0[0][0]);
     glUniform1fv(fog_loc(prog, "fog_grid_scale"), FOG_PASS_MAX_GRIDS, scale);
@@ -466,6 +531,9 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
                 : (float)(params->depth_cutoff > 0 ? params->depth_cutoff : FOG_PASS_DEPTH_CUTOFF));
     glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
   }
+  /* Unit 0 active again: the reduced target's creation below binds its texture to the active
+   * unit, which must not be one of the grids' (fog_pass_common_and_draw rebinds unit 0). */
+  glActiveTexture(GL_TEXTURE0);
   glUseProgram(walk_prog);
   if (divisor == 1)
     return fog_pass_common_and_draw(walk_prog, cam, params, surface_colour, surface_distance,

@@ -25,10 +25,12 @@
 // group and executes BOTH sides of every branch under a mask (only loops exit when no lane
 // is left), so the per-piece code is written to be the same for every piece: the draw's
 // settings are compile-time constants (FOG_DEGREE, FOG_PROFILE_KIND, ..., set per variant by
-// render/fog_pass.c), one coefficient line is fetched per DDA step whichever axis stepped,
-// and the exponential profile integrates every piece with one formula. What this makes the
-// GLSL walk do differently from the C twin (same pieces' integrals, exact either way):
-//   - at most one axis steps per iteration (coinciding breaks give a zero-length piece);
+// render/fog_pass.c), the manual fetch reads one cell polynomial per piece (render/
+// fog_cell_poly.h: one RGBA32F texel for degrees 0 and 1), and the exponential profile
+// integrates every piece with one formula. What this makes the GLSL walk do differently
+// from the C twin (same pieces' integrals, exact either way):
+//   - f inside a cell is evaluated from the cell's monomial coefficients A_kl (computed in
+//     double on the CPU, rounded once to float), not from the B-spline weights;
 //   - the exponential profile's breaks are y0 + k H/2 (not y0 alone), so |b| <= 1/4 and the
 //     moments come from an 8-term series only (fog_exp_moments_walk), no closed form, and
 //     the pieces below y0 use the same formula with c0 = b = 0 (no Gauss path);
@@ -64,7 +66,6 @@ uniform int fog_degree;
 #endif
 #if FOG_SINGLE_GRID
 #define FOG_GRID(g) 0
-#define FOG_TEXEL(g, ij) texelFetch(fog_grids[0], ij, 0).r
 #define FOG_FILTERED(g, uv) texture(fog_grids[0], (uv) / vec2(fog_grid_size[0])).r
 #else
 // LOD draws: the slots' grids as layers of one 2D array texture (render/fog_pass.c copies
@@ -73,8 +74,17 @@ uniform int fog_degree;
 uniform sampler2DArray fog_grid_layers;
 uniform vec2 fog_grid_layer_size;
 #define FOG_GRID(g) (g)
-#define FOG_TEXEL(g, ij) texelFetch(fog_grid_layers, ivec3(ij, g), 0).r
 #define FOG_FILTERED(g, uv) texture(fog_grid_layers, vec3((uv) / fog_grid_layer_size, float(g))).r
+#endif
+// Manual fetch reads the grids as cell polynomials (render/fog_cell_poly.h: one RGBA32F
+// texel per knot cell for degrees 0 and 1, three for degree 2): one fetch per cell crossed
+// instead of (d+1)^2 coefficients, and no cell weights.
+#if FOG_SINGLE_GRID
+uniform sampler2D fog_cells;
+#define FOG_CELL_TEXEL(g, ij) texelFetch(fog_cells, ij, 0)
+#else
+uniform sampler2DArray fog_cell_layers;
+#define FOG_CELL_TEXEL(g, ij) texelFetch(fog_cell_layers, ivec3(ij, g), 0)
 #endif
 uniform vec3 fog_box_min;  // camera-relative box
 uniform vec3 fog_box_max;
@@ -139,24 +149,34 @@ vec4 fog_cell_weights(int degree, float s) {
 // Cell c is [c + offset, c + 1 + offset]: half-integer knots for even degree.
 float fog_knot_offset(int degree) { return (degree % 2 == 0) ? -0.5 : 0.0; }
 
-// size: fog_grid_size[grid], which the walk reads once (an indexed uniform per fetch is a
-// gather on llvmpipe).
-float fog_sized_coefficient(int grid, ivec2 size, int i, int j) {
-  if (i < 0 || j < 0 || i >= size.x || j >= size.y) return 0.0;  // ghosts materialised
-  return FOG_TEXEL(grid, ivec2(i, j));
+// The polynomial of knot cell (cx, cz) of grid `grid`, whose coefficient grid is `size`
+// (render/fog_cell_poly.h): column l = (A_0l, A_1l, A_2l), f = sum A_kl sx^k sz^l at local
+// coordinates (sx, sz) in [0, 1]^2; zero outside the grid's cells. Entries beyond the degree
+// are constant zeros (folded away).
+mat3 fog_cell_load(int grid, ivec2 size, int cx, int cz) {
+  int d = fog_degree;
+  ivec2 cells = size + d, t = ivec2(cx, cz) + (d - d / 2);
+  bool inside = all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, cells));
+  ivec2 tc = clamp(t, ivec2(0), cells - 1);  // texelFetch outside a texture is undefined
+  if (d == 0) return mat3(vec3(inside ? FOG_CELL_TEXEL(grid, tc).x : 0.0, 0.0, 0.0), vec3(0.0),
+                          vec3(0.0));
+  if (d == 1) {
+    vec4 a = inside ? FOG_CELL_TEXEL(grid, tc) : vec4(0.0);
+    return mat3(vec3(a.xy, 0.0), vec3(a.zw, 0.0), vec3(0.0));
+  }
+  ivec2 t0 = ivec2(3 * tc.x, tc.y);
+  mat3 a = mat3(FOG_CELL_TEXEL(grid, t0).xyz, FOG_CELL_TEXEL(grid, t0 + ivec2(1, 0)).xyz,
+                FOG_CELL_TEXEL(grid, t0 + ivec2(2, 0)).xyz);
+  return inside ? a : mat3(0.0);
 }
 
-float fog_grid_coefficient(int grid, int i, int j) {
-  return fog_sized_coefficient(grid, fog_grid_size[FOG_GRID(grid)], i, j);
-}
-
-float fog_grid_row2(int grid, int i0, int j, vec4 wx) {
-  return wx.x * fog_grid_coefficient(grid, i0, j) + wx.y * fog_grid_coefficient(grid, i0 + 1, j);
-}
-
-float fog_grid_row3(int grid, int i0, int j, vec4 wx) {
-  return wx.x * fog_grid_coefficient(grid, i0, j) + wx.y * fog_grid_coefficient(grid, i0 + 1, j) +
-         wx.z * fog_grid_coefficient(grid, i0 + 2, j);
+// f = sum_{k,l} A_kl sx^k sz^l, Horner in both coordinates, written per degree.
+float fog_cell_eval(mat3 a, float sx, float sz) {
+  int d = fog_degree;
+  if (d == 0) return a[0].x;
+  if (d == 1) return a[0].x + a[0].y * sx + sz * (a[1].x + a[1].y * sx);
+  return a[0].x + sx * (a[0].y + sx * a[0].z) +
+         sz * (a[1].x + sx * (a[1].y + sx * a[1].z) + sz * (a[2].x + sx * (a[2].y + sx * a[2].z)));
 }
 
 // f at grid coordinates (x, z) in knot cell (cx, cz): DESIGN §4 basis,
@@ -185,13 +205,8 @@ float fog_grid_value(int grid, int cx, int cz, float x, float z) {
                    gx.y * FOG_FILTERED(grid, vec2(px.y, pz.y)));
   }
 #endif
-  // sum_b wz[b] sum_a wx[a] c(i0 + a, j0 + b), written out per degree (no loops: see the
-  // note on llvmpipe's loop budget at the top of this file).
-  if (d == 0) return fog_grid_coefficient(grid, i0, j0);
-  if (d == 1)
-    return wz.x * fog_grid_row2(grid, i0, j0, wx) + wz.y * fog_grid_row2(grid, i0, j0 + 1, wx);
-  return wz.x * fog_grid_row3(grid, i0, j0, wx) + wz.y * fog_grid_row3(grid, i0, j0 + 1, wx) +
-         wz.z * fog_grid_row3(grid, i0, j0 + 2, wx);
+  return fog_cell_eval(fog_cell_load(grid, fog_grid_size[FOG_GRID(grid)], cx, cz),
+                       x - (float(cx) + off), z - (float(cz) + off));
 }
 
 float fog_profile_coefficient(int i) {
@@ -280,91 +295,41 @@ void fog_monomials_from_samples(int n, float y[5], out float c[5]) {
 // ---- the walk ---------------------------------------------------------------------------
 
 // One axis of the 2D DDA (Amanatides & Woo 1987) over knot lines: x(t) = x0 + t dx, knot
-// cell `cell`; the next crossing is computed from the knot position, not accumulated.
+// cell `cell`. The next crossing is computed from the knot position, not accumulated:
+// t = (cell + next_edge) inv_dx, next_edge = (dx > 0 ? 1 + offset : offset) - x0, set once
+// per ray so a step costs a convert, an add and a multiply. An axis the ray runs parallel
+// to gets inv_dx = 1 and next_edge = FOG_INFINITY: it never crosses.
 struct fog_axis {
-  float x0, dx, inv_dx, offset;  // inv_dx: a multiply per step instead of a divide
-  int cell;
+  float x0, dx, offset;  // x(t) = x0 + t dx; knot cell c is [c + offset, c + 1 + offset]
+  float next_edge, inv_dx;
+  int cell, step;
 };
 
-fog_axis fog_axis_start(float x0, float dx, float offset, float t) {
-  return fog_axis(x0, dx, (dx != 0.0) ? 1.0 / dx : 0.0, offset, int(floor(x0 + t * dx - offset)));
+fog_axis fog_axis_start(float x0, float dx, float offset) {
+  bool moving = dx != 0.0;
+  float edge = (dx > 0.0 ? 1.0 + offset : offset) - x0;
+  return fog_axis(x0, dx, offset, moving ? edge : FOG_INFINITY, moving ? 1.0 / dx : 1.0,
+                  int(floor(x0 - offset)), dx > 0.0 ? 1 : -1);
 }
 
-float fog_axis_next(fog_axis a) {
-  if (a.dx > 0.0) return (float(a.cell + 1) + a.offset - a.x0) * a.inv_dx;
-  if (a.dx < 0.0) return (float(a.cell) + a.offset - a.x0) * a.inv_dx;
-  return FOG_INFINITY;
-}
-
-void fog_axis_step(inout fog_axis a) { a.cell += (a.dx > 0.0) ? 1 : -1; }
-
-// The walk's coefficient block: block[a][b] = c(i0 + a, j0 + b), a, b = 0..d, for the
-// current knot cells (i0 = x.cell - d/2, j0 = z.cell - d/2). A step of the DDA shifts it and
-// fetches one new column or row (d + 1 texels) instead of (d+1)^2 per Gauss node: the walk
-// reads each coefficient it needs once. Entries beyond d are never weighted (weights 0).
-vec3 fog_block_column(int grid, ivec2 size, int i, int j0) {
-  int d = fog_degree;
-  return vec3(fog_sized_coefficient(grid, size, i, j0),
-              d >= 1 ? fog_sized_coefficient(grid, size, i, j0 + 1) : 0.0,
-              d >= 2 ? fog_sized_coefficient(grid, size, i, j0 + 2) : 0.0);
-}
+float fog_axis_next(fog_axis a) { return (float(a.cell) + a.next_edge) * a.inv_dx; }
 
 struct fog_ray_walk {
   int grid;
-  ivec2 size;  // fog_grid_size[grid]
-  mat3 block;  // manual fetch: the coefficients of the current cell (see fog_block_column)
+  ivec2 size;        // fog_grid_size[grid]
   fog_axis x, z, y;  // y: B-spline profile knots, or the exponential profile's breaks
   float y_entry;     // camera-relative height where the walk starts (t' = 0: the box entry)
   float dir_y;
 };
 
-void fog_block_load(inout fog_ray_walk w) {
-  int i0 = w.x.cell - fog_degree / 2, j0 = w.z.cell - fog_degree / 2;
-  w.block = mat3(fog_block_column(w.grid, w.size, i0, j0),
-                 fog_block_column(w.grid, w.size, i0 + 1, j0),
-                 fog_block_column(w.grid, w.size, i0 + 2, j0));
-}
-
-// One DDA step (at most one axis per iteration, fog_walk_integral): the line of d + 1
-// coefficients that entered the block, fetched once whichever axis stepped. llvmpipe runs
-// both sides of a branch under a mask, so separate x and z steps (each with its own fetches,
-// and x with one per direction) cost all their fetches every piece; one line costs d + 1.
-// step: 0 none, 1 x, 2 z (after the axis' cell changed).
-void fog_block_step(inout fog_ray_walk w, int step) {
-  int d = fog_degree, i0 = w.x.cell - d / 2, j0 = w.z.cell - d / 2;
-  bool forward = (step == 1) ? (w.x.dx > 0.0) : (w.z.dx > 0.0);
-  // The entering column (x step: i fixed, j0..j0+d) or row (z step: j fixed, i0..i0+d).
-  ivec2 base = (step == 1) ? ivec2(forward ? i0 + d : i0, j0) : ivec2(i0, forward ? j0 + d : j0);
-  ivec2 stride = (step == 1) ? ivec2(0, 1) : ivec2(1, 0);
-  vec3 line = vec3(
-      fog_sized_coefficient(w.grid, w.size, base.x, base.y),
-      d >= 1 ? fog_sized_coefficient(w.grid, w.size, base.x + stride.x, base.y + stride.y) : 0.0,
-      d >= 2 ? fog_sized_coefficient(w.grid, w.size, base.x + 2 * stride.x, base.y + 2 * stride.y)
-             : 0.0);
-  mat3 m = w.block;
-  // x step: columns shift, the line is column 0 (backward) or column d (forward).
-  mat3 bx = forward ? mat3((d == 0) ? line : m[1], (d == 1) ? line : m[2], line)
-                    : mat3(line, m[0], m[1]);
-  // z step: each column's entries shift, line[a] enters column a.
-  mat3 bz;
-  for (int c = 0; c < 3; c++)  // constant bound: unrolled
-    bz[c] = forward ? ((d == 0) ? vec3(line[c], 0.0, 0.0)
-                     : (d == 1) ? vec3(m[c].y, line[c], 0.0) : vec3(m[c].y, m[c].z, line[c]))
-                    : vec3(line[c], m[c].x, m[c].y);
-  w.block = (step == 1) ? bx : (step == 2) ? bz : m;
-}
-
-// f at a point of the current piece: the cell weights applied to the block (manual fetch),
-// or fog_grid_value (hardware filtering fetches per point).
-float fog_walk_value(fog_ray_walk w, float t) {
+// f at parameter t of the current piece: the cell's polynomial (manual fetch: `cell`, loaded
+// once per piece) or fog_grid_value (hardware filtering fetches per point).
+float fog_walk_value(fog_ray_walk w, mat3 cell, float t) {
   float x = w.x.x0 + t * w.x.dx, z = w.z.x0 + t * w.z.dx;
 #if FOG_FETCH_HARDWARE
   return fog_grid_value(w.grid, w.x.cell, w.z.cell, x, z);
 #else
-  float off = fog_knot_offset(fog_degree);
-  vec4 wx = fog_cell_weights(fog_degree, x - (float(w.x.cell) + off));
-  vec4 wz = fog_cell_weights(fog_degree, z - (float(w.z.cell) + off));
-  return dot(wz.xyz, w.block * wx.xyz);  // sum_b wz[b] sum_a wx[a] block[a][b]
+  return fog_cell_eval(cell, x - (float(w.x.cell) + w.x.offset), z - (float(w.z.cell) + w.z.offset));
 #endif
 }
 
@@ -372,6 +337,11 @@ float fog_walk_value(fog_ray_walk w, float t) {
 float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
   float half_len = 0.5 * (tb - ta), mid = 0.5 * (ta + tb);
   int d = fog_degree;
+#if FOG_FETCH_HARDWARE
+  mat3 cell = mat3(0.0);
+#else
+  mat3 cell = fog_cell_load(w.grid, w.size, w.x.cell, w.z.cell);
+#endif
   if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL) {
     // f(t) e^{-(y(t) - y0)/H} above y0, f(t) below: f is a polynomial of degree n = 2d in
     // s = (t - mid)/half, int = half * sum_k c_k J_k(c0, b), c0 = -(y(mid) - y0)/H,
@@ -386,7 +356,7 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
     float samples[5], c[5], moments[5];
     for (int i = 0; i < 5; i++) {  // constant bound and n: unrolled, i > n folded away
       float s = (n > 0) ? -1.0 + 2.0 * float(i) / float(n) : 0.0, t = mid + half_len * s;
-      samples[i] = (i <= n) ? fog_walk_value(w, t) : 0.0;
+      samples[i] = (i <= n) ? fog_walk_value(w, cell, t) : 0.0;
     }
     fog_monomials_from_samples(n, samples, c);
     fog_exp_moments_walk(c0, b, moments);
@@ -403,7 +373,7 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
   for (int i = 0; i < 4; i++) {  // constant bound: unrolled (loop budget, see the top)
     if (i >= m) break;
     float t = mid + half_len * fog_gauss_nodes[first + i];
-    float f = fog_walk_value(w, t);
+    float f = fog_walk_value(w, cell, t);
     float gy = (fog_profile_kind == FOG_PROFILE_BSPLINE)
                    ? fog_profile_bspline_value(w.y.cell, w.y.x0 + t * w.y.dx)
                    : 1.0;
@@ -413,10 +383,9 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
 }
 
 // int_{t0}^{t1} f g dt for [t0, t1] inside the box: walk the knot cells of x, z (2D DDA) and
-// the profile's breaks, one exact piece at a time. At most one axis steps per iteration
-// (where two breaks coincide the next piece has length 0 and adds nothing): one line fetch
-// per iteration (fog_block_step). Leaves early once the sum exceeds `limit` (the optical
-// depth cut-off, fog_optical_depth).
+// the profile's breaks, one exact piece at a time; every axis whose break ends the piece
+// steps (as in the C twin). Leaves early once the sum exceeds `limit` (the optical depth
+// cut-off, fog_optical_depth).
 float fog_walk_integral(inout fog_ray_walk w, float t0, float t1, float limit) {
   float sum = 0.0, t = t0;
   for (int guard = 0; t < t1 && sum < limit && guard < 65536; guard++) {
@@ -424,14 +393,10 @@ float fog_walk_integral(inout fog_ray_walk w, float t0, float t1, float limit) {
     float ty = (fog_profile_kind != FOG_PROFILE_SLAB) ? fog_axis_next(w.y) : FOG_INFINITY;
     float t_next = min(min(t1, tx), min(tz, ty));
     if (t_next > t) sum += fog_piece_integral(w, t, t_next);
-    int step = (tx <= t_next) ? 1 : (tz <= t_next) ? 2 : 0;
-    if (step == 1) fog_axis_step(w.x);
-    if (step == 2) fog_axis_step(w.z);
-    if (step == 0 && ty <= t_next) fog_axis_step(w.y);
-#if !FOG_FETCH_HARDWARE
-    fog_block_step(w, step);
-#endif
-    if (t_next > t) t = t_next;
+    if (tx <= t_next) w.x.cell += w.x.step;
+    if (tz <= t_next) w.z.cell += w.z.step;
+    if (ty <= t_next) w.y.cell += w.y.step;
+    t = max(t, t_next);
   }
   return sum;
 }
@@ -453,21 +418,18 @@ float fog_optical_depth(int grid, vec3 dir, float t_start, float t_stop, float l
   w.grid = grid;
   w.size = fog_grid_size[FOG_GRID(grid)];
   float dx = dir.x * fog_grid_scale[FOG_GRID(grid)], dz = dir.z * fog_grid_scale[FOG_GRID(grid)];
-  w.x = fog_axis_start(fog_grid_x0[FOG_GRID(grid)].x + t0 * dx, dx, off, 0.0);
-  w.z = fog_axis_start(fog_grid_x0[FOG_GRID(grid)].y + t0 * dz, dz, off, 0.0);
+  w.x = fog_axis_start(fog_grid_x0[FOG_GRID(grid)].x + t0 * dx, dx, off);
+  w.z = fog_axis_start(fog_grid_x0[FOG_GRID(grid)].y + t0 * dz, dz, off);
   w.y_entry = t0 * dir.y;
   if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL)
     // Breaks at y0 + k H/2: y0 (where g changes form) and, above it, pieces whose
     // exponent spans at most 1/2, |b| <= 1/4, where the moments' series (8 terms) is exact
     // in float (fog_piece_integral); the closed form is not needed.
     w.y = fog_axis_start((w.y_entry - fog_profile_y0) * 2.0 * fog_profile_inv_scale_height,
-                         dir.y * 2.0 * fog_profile_inv_scale_height, 0.0, 0.0);
+                         dir.y * 2.0 * fog_profile_inv_scale_height, 0.0);
   else
     w.y = fog_axis_start(fog_profile_y_start + t0 * dir.y * fog_profile_inv_spacing,
-                         dir.y * fog_profile_inv_spacing, fog_knot_offset(fog_profile_degree), 0.0);
-#if !FOG_FETCH_HARDWARE
-  fog_block_load(w);
-#endif
+                         dir.y * fog_profile_inv_spacing, fog_knot_offset(fog_profile_degree));
   w.dir_y = dir.y;
   return fog_extinction_scale * fog_walk_integral(w, 0.0, t1 - t0, limit / fog_extinction_scale);
 }
