@@ -132,6 +132,11 @@ struct pipeline {
   bool geometry_made;
   scene_pass *scene;
   gl_target scene_target;
+  /* The scene target holds the scene (colour, distance) seen from scene_camera: the
+   * terrain and objects do not move, so the scene pass re-runs only when the camera or
+   * the size changes; the fog, which changes every frame, is drawn over it each frame. */
+  camera scene_camera;
+  bool scene_current;
   pipeline_fog *fog;
   long shown_step;
   timing_ring timings;
@@ -542,6 +547,7 @@ int pipeline_resize(pipeline *p, int width, int height, pipeline_error *err) {
   if (width < 1 || height < 1) return fail(err, "render size %dx%d is not positive", width, height);
   render_error rerr = {{0}};
   gl_target_destroy(&p->scene_target);
+  p->scene_current = false;
   if (scene_target_create(&p->scene_target, width, height, &rerr))
     return fail(err, "scene target: %s", rerr.message);
   if (p->fog && pipeline_fog_resize(p->fog, width, height, &rerr))
@@ -670,7 +676,11 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
    * step on screen, so the medians describe steps, not idle frames. */
 
   double t0 = now_ms();
-  scene_pass_run(p->scene, cam, &p->scene_target);
+  if (!p->scene_current || !camera_equal(&p->scene_camera, cam)) {
+    scene_pass_run(p->scene, cam, &p->scene_target);
+    p->scene_camera = *cam;
+    p->scene_current = true;
+  }
   if (p->time_passes) {
     glFinish();
     p->last.scene = now_ms() - t0;

@@ -5,9 +5,12 @@
  * thread (synchronous), alternating in blocks of frames so machine noise hits both alike;
  * the table shows what the overlap buys.
  *
- * Summary line: `pipeline: fps=C cpu_stage_share=D`, C from the threaded pipeline's median
- * frame time, D = (sim + transform + upload) / frame (medians) at the scene's fogmap
- * (256² in configs/default.ini). Targets: C >= 30 on llvmpipe with 2 cores, D <= 0.15. */
+ * Summary line: `pipeline: fps=C cpu_stage_share=D fps_moving_camera=E`, C from the
+ * threaded pipeline's median frame time at the live setting with the camera still (the
+ * pipeline then reuses the scene pass: only the fog changes), D = (sim + transform +
+ * upload) / frame (medians) at the scene's fogmap (256² in configs/default.ini), E the
+ * same as C with the camera turning every frame (scene pass every frame).
+ * Targets: C >= 30 on llvmpipe with 2 cores, D <= 0.15. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdbool.h>
 #include <stdio.h>
@@ -31,8 +34,16 @@ typedef struct samples {
   int n;
 } samples;
 
-static int record_frame(pipeline *p, const camera *cam, samples *s, pipeline_error *err) {
-  if (pipeline_frame(p, cam, true, err)) return 1;
+/* moving: the camera turns by MOVING_YAW_STEP every frame (the scene pass re-runs each
+ * frame, as while the user looks around); otherwise it stands still and the pipeline
+ * reuses the scene pass (app/pipeline.c), as while the user watches the fog. */
+#define MOVING_YAW_STEP 0.003 /* radians per frame: ~10 degrees in 60 frames */
+
+static int record_frame(pipeline *p, const camera *still, bool moving, samples *s,
+                        pipeline_error *err) {
+  camera cam = *still;
+  if (moving) cam.yaw += MOVING_YAW_STEP * (double)(s->n + 1);
+  if (pipeline_frame(p, &cam, true, err)) return 1;
   pipeline_timings last;
   pipeline_get_timings(p, &last);
   const double v[6] = {last.sim, last.transform, last.upload, last.render, last.frame,
@@ -58,7 +69,7 @@ static pipeline_timings medians(samples *s) {
  * both alike. While the synchronous block runs, the threaded pipeline's worker is idle
  * (both its slots are full after at most two steps). */
 static int measure(const scene_config *cfg, int width, int height, int fog_divisor,
-                   int warmup, int frames, double max_seconds, run_result *threaded,
+                   bool moving, int warmup, int frames, double max_seconds, run_result *threaded,
                    run_result *synchronous) {
   enum { block = 4 };
   pipeline_error err = {{0}};
@@ -93,7 +104,7 @@ static int measure(const scene_config *cfg, int width, int height, int fog_divis
   while (s[1].n < frames && (s[1].n < 5 || bench_now() - start < 2.0 * max_seconds)) {
     for (int m = 0; m < 2; m++)
       for (int i = 0; i < block && s[m].n < frames; i++)
-        if (record_frame(p[m], &cam, &s[m], &err)) goto done;
+        if (record_frame(p[m], &cam, moving, &s[m], &err)) goto done;
   }
   threaded->frames = s[0].n, threaded->median = medians(&s[0]);
   synchronous->frames = s[1].n, synchronous->median = medians(&s[1]);
@@ -111,7 +122,8 @@ static void print_help(FILE *out) {
           "usage: fogpipe bench pipeline [options]\n\n"
           "Per-stage ms (sim, transform, upload, render, frame; medians) and fps of a scene\n"
           "rendered headless through the whole pipeline, with the CPU stages in the worker\n"
-          "thread and on the GL thread. Last line: pipeline: fps=C cpu_stage_share=D.\n\n"
+          "thread and on the GL thread, with the camera still and turning. Last line:\n"
+          "pipeline: fps=C cpu_stage_share=D fps_moving_camera=E.\n\n"
           "options:\n"
           "  --config PATH   scene (default: configs/default.ini of the source tree)\n"
           "  --size WxH      render size (default 640x360)\n"
@@ -173,22 +185,35 @@ int bench_pipeline(int argc, char **argv) {
   fflush(stdout);
 
   if (!live_divisor) live_divisor = gl_context_is_software(gl) ? 2 : 1;
-  /* Full-resolution fog (what `record` renders) and the live demo's setting, each with
-   * the CPU stages in the worker thread and on the GL thread. Two warm-up frames (the
-   * first compiles the shaders), then up to `frames` frames or 20 s per mode, at least 5,
-   * the two modes alternating in blocks of 4 frames. */
-  int divisors[2] = {1, live_divisor};
-  run_result threaded[2] = {{.frames = 0}}, synchronous[2] = {{.frames = 0}};
-  int runs = live_divisor == 1 ? 1 : 2, status = 0;
-  for (int r = 0; r < runs && !status; r++)
-    status = measure(&cfg, width, height, divisors[r], 2, frames, 20.0, &threaded[r],
-                     &synchronous[r]);
-  for (int r = 0; r < runs && !status; r++) {
+  /* Three runs: full-resolution fog (what `record` renders) and the live demo's setting,
+   * with the camera still (the scene pass reused), then the live setting with the camera
+   * turning every frame (the scene pass every frame). Each with the CPU stages in the
+   * worker thread and on the GL thread: two warm-up frames (the first compiles the
+   * shaders), then up to `frames` frames or 20 s per mode, at least 5, the two modes
+   * alternating in blocks of 4 frames. */
+  enum { RUNS = 3 };
+  const int divisors[RUNS] = {1, live_divisor, live_divisor};
+  const bool moving[RUNS] = {false, false, true};
+  run_result threaded[RUNS] = {{.frames = 0}}, synchronous[RUNS] = {{.frames = 0}};
+  int status = 0;
+  for (int r = 0; r < RUNS && !status; r++) {
+    if (r == 1 && live_divisor == 1) { /* the live setting is the full-resolution run */
+      threaded[r] = threaded[0], synchronous[r] = synchronous[0];
+      continue;
+    }
+    status = measure(&cfg, width, height, divisors[r], moving[r], 2, frames, 20.0,
+                     &threaded[r], &synchronous[r]);
+  }
+  for (int r = 0; r < RUNS && !status; r++) {
+    if (r == 1 && live_divisor == 1) continue;
     const run_result *t = &threaded[r], *y = &synchronous[r];
-    printf("\nfog at %s resolution%s; fogmap %dx%d, %d frames per mode (medians, ms)\n",
+    printf("\nfog at %s resolution%s, camera %s; fogmap %dx%d, %d frames per mode "
+           "(medians, ms)\n",
            divisors[r] == 1 ? "full" : divisors[r] == 2 ? "1/2" : "1/4",
-           divisors[r] == live_divisor ? " (the live demo's setting here)" : "", t->grid_w,
-           t->grid_h, t->frames);
+           divisors[r] == live_divisor ? " (the live demo's setting here)" : "",
+           moving[r] ? "turning every frame (scene pass every frame)"
+                     : "still (scene pass reused)",
+           t->grid_w, t->grid_h, t->frames);
     printf("%-12s %14s %14s\n", "stage", "worker thread", "synchronous");
     const char *names[5] = {"sim", "transform", "upload", "render", "frame"};
     const double *a = &t->median.sim, *b = &y->median.sim;
@@ -201,13 +226,16 @@ int bench_pipeline(int argc, char **argv) {
            y->median.frame > 0 ? 1000.0 / y->median.frame : 0.0);
   }
   if (!status) {
-    const run_result *live = &threaded[runs - 1];
+    const run_result *live = &threaded[1], *turning = &threaded[2];
     double fps = live->median.frame > 0 ? 1000.0 / live->median.frame : 0.0;
+    double fps_moving = turning->median.frame > 0 ? 1000.0 / turning->median.frame : 0.0;
     double share = live->median.frame > 0 ? (live->median.sim + live->median.transform +
                                              live->median.upload) / live->median.frame
                                           : 0.0;
-    printf("\nsummary: the live setting (fog at 1/%d), worker thread\n", live_divisor);
-    printf("pipeline: fps=%.2f cpu_stage_share=%.3f\n", fps, share);
+    printf("\nsummary: the live setting (fog at 1/%d), worker thread; fps with the camera "
+           "still,\nfps_moving_camera with it turning every frame\n", live_divisor);
+    printf("pipeline: fps=%.2f cpu_stage_share=%.3f fps_moving_camera=%.2f\n", fps, share,
+           fps_moving);
   }
   gl_context_destroy(gl);
   return status;

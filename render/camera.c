@@ -27,6 +27,13 @@ static void camera_axes(const camera *cam, double right[3], double up[3], double
   up[2] = right[0] * forward[1] - right[1] * forward[0];
 }
 
+bool camera_equal(const camera *a, const camera *b) {
+  return a->position[0] == b->position[0] && a->position[1] == b->position[1] &&
+         a->position[2] == b->position[2] && a->yaw == b->yaw && a->pitch == b->pitch &&
+         a->fov_y == b->fov_y && a->aspect == b->aspect && a->near_plane == b->near_plane &&
+         a->far_plane == b->far_plane;
+}
+
 void camera_look_at(camera *cam, const double target[3]) {
   double d[3] = {target[0] - cam->position[0], target[1] - cam->position[1],
                  target[2] - cam->position[2]};

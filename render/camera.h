@@ -20,6 +20,8 @@
 #ifndef FOGPIPE_RENDER_CAMERA_H
 #define FOGPIPE_RENDER_CAMERA_H
 
+#include <stdbool.h>
+
 typedef struct camera {
   double position[3];            /* world */
   double yaw, pitch;             /* radians (see above) */
@@ -27,6 +29,10 @@ typedef struct camera {
   double aspect;                 /* width / height; 0: taken from the image size */
   double near_plane, far_plane;  /* projection only; 0: 0.1 and 100000 */
 } camera;
+
+/* Whether two cameras see the same image (every field equal): a rendered view may be
+ * reused while the camera has not moved. */
+bool camera_equal(const camera *a, const camera *b);
 
 /* Points the camera at a world position (sets yaw and pitch). */
 void camera_look_at(camera *cam, const double target[3]);
