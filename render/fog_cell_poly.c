@@ -22,10 +22,34 @@ static double coefficient(const transform_grid *g, int i, int j) {
   return g->coefficients[(size_t)j * (size_t)g->width + (size_t)i];
 }
 
+/* Degree 1 (the default basis) runs every frame for every LOD grid: a direct loop,
+ * A00 = c00, A10 = c10 - c00, A01 = c01 - c00, A11 = c11 - c10 - c01 + c00 (the general
+ * formula with M = [[1, 0], [-1, 1]]), in double. */
+static void build_linear(const transform_grid *grid, float *rgba, int texels_w) {
+  int cells_w = grid->width + 1, cells_h = grid->height + 1;
+  for (int tz = 0; tz < cells_h; tz++) {
+    int j0 = tz - 1;
+    float *out = rgba + 4 * (size_t)tz * (size_t)texels_w;
+    for (int tx = 0; tx < cells_w; tx++, out += 4) {
+      int i0 = tx - 1;
+      double c00 = coefficient(grid, i0, j0), c10 = coefficient(grid, i0 + 1, j0);
+      double c01 = coefficient(grid, i0, j0 + 1), c11 = coefficient(grid, i0 + 1, j0 + 1);
+      out[0] = (float)c00;
+      out[1] = (float)(c10 - c00);
+      out[2] = (float)(c01 - c00);
+      out[3] = (float)((c11 - c10) - (c01 - c00));
+    }
+  }
+}
+
 void fog_cell_poly_build(const transform_grid *grid, float *rgba) {
   int d = grid->degree, cells_w = grid->width + d, cells_h = grid->height + d;
   int texels_w, texels_h;
   fog_cell_poly_size(grid->width, grid->height, d, &texels_w, &texels_h);
+  if (d == 1) {
+    build_linear(grid, rgba, texels_w);
+    return;
+  }
   const double(*M)[3] = cell_monomials[d];
   for (int tz = 0; tz < cells_h; tz++)
     for (int tx = 0; tx < cells_w; tx++) {
