@@ -1,0 +1,157 @@
+/* `fogpipe record --preview VIDEO` hands ffmpeg exactly the recorded frames: a stand-in
+ * ffmpeg first on PATH keeps its arguments and the raw rgb24 stream, which must be the
+ * frames' R, G, B channels through the sRGB transfer function (IEC 61966-2-1, written here
+ * independently), frame after frame, at the size and rate asked for; the video appears
+ * under its own name only when ffmpeg succeeded. A failing ffmpeg makes record fail with
+ * a message, leaves no video (nor its temporary), and keeps the frames. Where a real ffmpeg
+ * is installed (/usr/bin/ffmpeg), it also encodes a playable file. */
+#include "tests/app/record_util.h" /* first: it sets _POSIX_C_SOURCE */
+
+#include <math.h>
+
+#include "tests/app/exr_channel_util.h"
+#include "tests/test_util.h"
+
+enum { frames = 3, width = 64, height = 36 };
+
+static int write_script(const char *path, const char *text) {
+  FILE *f = fopen(path, "w");
+  if (!f) return 0;
+  fputs(text, f);
+  fclose(f);
+  return chmod(path, 0755) == 0;
+}
+
+static unsigned char srgb8(float linear) {
+  if (!(linear > 0.0f)) return 0;
+  if (linear >= 1.0f) return 255;
+  double s = linear <= 0.0031308 ? 12.92 * linear : 1.055 * pow(linear, 1.0 / 2.4) - 0.055;
+  return (unsigned char)lround(s * 255.0);
+}
+
+static long file_size(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0 ? (long)st.st_size : -1;
+}
+
+/* Runs record with ffmpeg looked up first in bin_dir. */
+static int record_with_path(const char *bin_dir, const char *out, const char *video,
+                            const char *log) {
+  const char *old = getenv("PATH");
+  char path[4096];
+  snprintf(path, sizeof path, "%s:%s", bin_dir, old ? old : "/usr/bin:/bin");
+  char *saved = old ? strdup(old) : NULL;
+  setenv("PATH", path, 1);
+  pid_t pid = fork();
+  if (pid == 0) {
+    int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) dup2(fd, 1), dup2(fd, 2), close(fd);
+    const char *argv[] = {record_bin(), "record", RECORD_TEST_CONFIG, "--frames", "3",
+                          "--out", out, "--size", RECORD_TEST_SIZE, "--fps", "12",
+                          "--preview", video, NULL};
+    execv(argv[0], (char *const *)argv);
+    _exit(127);
+  }
+  int status = record_wait(pid);
+  if (saved) setenv("PATH", saved, 1);
+  free(saved);
+  return status;
+}
+
+int main(void) {
+  char root[] = "/tmp/fogpipe-record-preview-XXXXXX";
+  if (!record_temp_folder(root)) return 1;
+  char bin[600], out[600], video[600], log[600], script[700];
+  snprintf(bin, sizeof bin, "%s/bin", root);
+  mkdir(bin, 0755);
+  snprintf(script, sizeof script, "%s/ffmpeg", bin);
+
+  /* 1. The stand-in: arguments one per line beside it, stdin into the output (last arg). */
+  CHECK(write_script(script, "#!/bin/sh\n"
+                             "for a in \"$@\"; do out=\"$a\"; done\n"
+                             "printf '%s\\n' \"$@\" > \"$(dirname \"$0\")/args\"\n"
+                             "cat > \"$out\"\n"),
+        "cannot write %s", script);
+  snprintf(out, sizeof out, "%s/frames", root);
+  snprintf(video, sizeof video, "%s/preview.mp4", root);
+  snprintf(log, sizeof log, "%s/record.log", root);
+  int status = record_with_path(bin, out, video, log);
+  CHECK(status == 0, "record --preview with the stand-in ffmpeg exited %d", status);
+  if (status) record_print_log(log);
+  long expected = (long)frames * width * height * 3;
+  CHECK(file_size(video) == expected, "%s: %ld bytes, expected %ld (3 frames of 64x36 rgb24)",
+        video, file_size(video), expected);
+  char partial[700];
+  snprintf(partial, sizeof partial, "%s/preview.partial.mp4", root);
+  CHECK(file_size(partial) < 0, "the temporary %s was left behind", partial);
+
+  char args_path[700], args[4096] = "";
+  snprintf(args_path, sizeof args_path, "%s/args", bin);
+  FILE *f = fopen(args_path, "r");
+  if (f) {
+    size_t n = fread(args, 1, sizeof args - 1, f);
+    args[n] = '\0';
+    fclose(f);
+  }
+  CHECK(strstr(args, "\n-s\n64x36\n") && strstr(args, "\n-pix_fmt\nrgb24\n") &&
+            strstr(args, "\n-r\n12\n") && strstr(args, "\n-i\n-\n"),
+        "ffmpeg arguments lack the raw input description:\n%s", args);
+
+  unsigned char *stream = malloc((size_t)expected);
+  f = fopen(video, "rb");
+  size_t got = f ? fread(stream, 1, (size_t)expected, f) : 0;
+  if (f) fclose(f);
+  CHECK(got == (size_t)expected, "read %zu of %ld bytes of %s", got, expected, video);
+  long mismatches = 0;
+  for (int k = 0; k < frames && got == (size_t)expected; k++) {
+    char frame[700];
+    record_frame_path(out, k + 1, frame, sizeof frame);
+    static const char *const names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; c++) {
+      float *plane = load_exr_channel(frame, names[c], width, height);
+      if (!plane) continue;
+      for (int i = 0; i < width * height; i++)
+        mismatches += stream[((size_t)k * width * height + i) * 3 + c] != srgb8(plane[i]);
+      free(plane);
+    }
+  }
+  CHECK(mismatches == 0, "%ld stream bytes differ from sRGB(frame R, G, B)", mismatches);
+  free(stream);
+
+  /* 2. A failing ffmpeg: record fails, says so, leaves no video; the frames stay. */
+  CHECK(write_script(script, "#!/bin/sh\ncat > /dev/null\necho 'no encoder' >&2\nexit 3\n"),
+        "cannot write %s", script);
+  char out2[600], video2[600];
+  snprintf(out2, sizeof out2, "%s/frames2", root);
+  snprintf(video2, sizeof video2, "%s/broken.mp4", root);
+  status = record_with_path(bin, out2, video2, log);
+  CHECK(status != 0, "record succeeded although ffmpeg failed");
+  char text[4096] = "";
+  f = fopen(log, "r");
+  if (f) {
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    text[n] = '\0';
+    fclose(f);
+  }
+  CHECK(strstr(text, "ffmpeg failed"), "no 'ffmpeg failed' message:\n%s", text);
+  snprintf(partial, sizeof partial, "%s/broken.partial.mp4", root);
+  CHECK(file_size(video2) < 0 && file_size(partial) < 0, "a video was left after a failure");
+  int frame_files = 0;
+  record_count_files(out2, &frame_files);
+  CHECK(frame_files == frames, "%d frames kept after the failed preview, expected %d",
+        frame_files, frames);
+
+  /* 3. The real ffmpeg, where installed. */
+  if (access("/usr/bin/ffmpeg", X_OK) == 0) {
+    char out3[600], video3[600];
+    snprintf(out3, sizeof out3, "%s/frames3", root);
+    snprintf(video3, sizeof video3, "%s/real.mp4", root);
+    status = record_with_path("/usr/bin", out3, video3, log);
+    CHECK(status == 0 && file_size(video3) > 0, "real ffmpeg: exit %d, %s %ld bytes", status,
+          video3, file_size(video3));
+  } else {
+    printf("(no /usr/bin/ffmpeg: the real encoder is not exercised)\n");
+  }
+  record_remove_tree(root);
+  return test_finish("test_record_preview");
+}
