@@ -333,6 +333,30 @@ float fog_walk_value(fog_ray_walk w, mat3 cell, float t) {
 #endif
 }
 
+// The monomial coefficients c_0..c_2d of f(mid + half s), s in [-1, 1], on the current piece.
+// Degrees 0 and 1 with the cell polynomial (manual fetch): directly, from the cell's A_kl and
+// the local coordinates at the piece's middle (sx = sxm + hx s, sz = szm + hz s in
+// A00 + A10 sx + A01 sz + A11 sx sz); otherwise from f at 2d + 1 equispaced points.
+void fog_piece_monomials(fog_ray_walk w, mat3 cell, float mid, float half_len, out float c[5]) {
+  int d = fog_degree, n = 2 * d;
+#if !FOG_FETCH_HARDWARE
+  if (d <= 1) {
+    float sxm = w.x.x0 + mid * w.x.dx - (float(w.x.cell) + w.x.offset), hx = half_len * w.x.dx;
+    float szm = w.z.x0 + mid * w.z.dx - (float(w.z.cell) + w.z.offset), hz = half_len * w.z.dx;
+    c = float[5](cell[0].x + cell[0].y * sxm + szm * (cell[1].x + cell[1].y * sxm),
+                 cell[0].y * hx + cell[1].x * hz + cell[1].y * (sxm * hz + hx * szm),
+                 cell[1].y * hx * hz, 0.0, 0.0);
+    return;
+  }
+#endif
+  float samples[5];
+  for (int i = 0; i < 5; i++) {  // constant bound and n: unrolled, i > n folded away
+    float s = (n > 0) ? -1.0 + 2.0 * float(i) / float(n) : 0.0, t = mid + half_len * s;
+    samples[i] = (i <= n) ? fog_walk_value(w, cell, t) : 0.0;
+  }
+  fog_monomials_from_samples(n, samples, c);
+}
+
 // Integral of f g over one piece [ta, tb] inside one knot cell of every axis.
 float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
   float half_len = 0.5 * (tb - ta), mid = 0.5 * (ta + tb);
@@ -348,23 +372,26 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
     // b = -dir_y half/H; below y0 c0 = b = 0 (J_k = int s^k ds), so both kinds of piece take
     // the same code (no masked second path). |b| <= 1/4 by the walk's breaks every H/2, so
     // the short series alone is exact (fog_exp_moments_walk).
-    int n = 2 * d;
     bool above = w.y_entry + mid * w.dir_y > fog_profile_y0;
     float c0 = above ? -(w.y_entry + mid * w.dir_y - fog_profile_y0) * fog_profile_inv_scale_height
                      : 0.0;
     float b = above ? -w.dir_y * half_len * fog_profile_inv_scale_height : 0.0;
-    float samples[5], c[5], moments[5];
-    for (int i = 0; i < 5; i++) {  // constant bound and n: unrolled, i > n folded away
-      float s = (n > 0) ? -1.0 + 2.0 * float(i) / float(n) : 0.0, t = mid + half_len * s;
-      samples[i] = (i <= n) ? fog_walk_value(w, cell, t) : 0.0;
-    }
-    fog_monomials_from_samples(n, samples, c);
+    float c[5], moments[5];
+    fog_piece_monomials(w, cell, mid, half_len, c);
     fog_exp_moments_walk(c0, b, moments);
     // c[k] = 0 beyond n, so all five terms can be summed.
     float sum = c[0] * moments[0] + c[1] * moments[1] + c[2] * moments[2] +
                 c[3] * moments[3] + c[4] * moments[4];
     return half_len * sum;
   }
+#if !FOG_FETCH_HARDWARE
+  if (fog_profile_kind == FOG_PROFILE_SLAB && d <= 1) {
+    // int_{-1}^{1} c0 + c1 s + c2 s^2 ds = 2 c0 + 2 c2 / 3.
+    float c[5];
+    fog_piece_monomials(w, cell, mid, half_len, c);
+    return half_len * (2.0 * c[0] + (2.0 / 3.0) * c[2]);
+  }
+#endif
   // Polynomial piece: degree 2d + p in t, exact with m = d + p/2 + 1 Gauss nodes.
   int pd = (fog_profile_kind == FOG_PROFILE_BSPLINE) ? fog_profile_degree : 0;
   int m = (2 * d + pd) / 2 + 1;
