@@ -223,6 +223,32 @@ int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err) {
 
 static GLint fog_loc(GLuint program, const char *name) { return glGetUniformLocation(program, name); }
 
+/* A 2D array texture of w x h x count texels, (re)allocated only when that changes.
+ * filtered: GL_LINEAR with a zero border (the hardware-filtered variant's coefficients);
+ * otherwise GL_NEAREST (texelFetch only). */
+static void array_texture_fit(GLuint *texture, int *width, int *height, int *count_now,
+                              GLenum internal_format, GLenum format, int w, int h, int count,
+                              bool filtered) {
+  if (*texture && *width == w && *height == h && *count_now == count) return;
+  if (!*texture) glGenTextures(1, texture);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, *texture);
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, (GLint)internal_format, w, h, count, 0, format, GL_FLOAT,
+               NULL);
+  GLint filter = filtered ? GL_LINEAR : GL_NEAREST;
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, filter);
+  if (filtered) {
+    static const float border[4] = {0, 0, 0, 0};
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+    glTexParameterfv(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BORDER_COLOR, border);
+  }
+  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  *width = w;
+  *height = h;
+  *count_now = count;
+}
+
 /* Slots 0..count-1 into the layers of pass->layers (reallocated only when the largest slot
  * size or the count changes; zero-filled, so texelFetch and GL_LINEAR read 0 beyond a
  * smaller grid exactly as the border colour of its own texture would give). */
@@ -236,34 +262,10 @@ static int fog_pass_update_layers(fog_pass *pass, int count, render_error *err) 
     if (pass->slots[k].cells_height > ch) ch = pass->slots[k].cells_height;
   }
   glActiveTexture(GL_TEXTURE0);
-  if (!pass->layers || pass->layers_width != w || pass->layers_height != h ||
-      pass->layers_count != count) {
-    if (!pass->layers) glGenTextures(1, &pass->layers);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, pass->layers);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, w, h, count, 0, GL_RED, GL_FLOAT, NULL);
-    static const float border[4] = {0, 0, 0, 0};
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    glTexParameterfv(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BORDER_COLOR, border);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    pass->layers_width = w;
-    pass->layers_height = h;
-    pass->layers_count = count;
-  }
-  if (!pass->cell_layers || pass->cell_layers_width != cw || pass->cell_layers_height != ch ||
-      pass->cell_layers_count != count) {
-    if (!pass->cell_layers) glGenTextures(1, &pass->cell_layers);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, pass->cell_layers);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, cw, ch, count, 0, GL_RGBA, GL_FLOAT, NULL);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    pass->cell_layers_width = cw;
-    pass->cell_layers_height = ch;
-    pass->cell_layers_count = count;
-  }
+  array_texture_fit(&pass->layers, &pass->layers_width, &pass->layers_height,
+                    &pass->layers_count, GL_R32F, GL_RED, w, h, count, true);
+  array_texture_fit(&pass->cell_layers, &pass->cell_layers_width, &pass->cell_layers_height,
+                    &pass->cell_layers_count, GL_RGBA32F, GL_RGBA, cw, ch, count, false);
   static const float zero[4] = {0, 0, 0, 0};
   glClearTexImage(pass->layers, 0, GL_RED, GL_FLOAT, zero);
   glClearTexImage(pass->cell_layers, 0, GL_RGBA, GL_FLOAT, zero);
