@@ -14,5 +14,6 @@
 #include "render/fog_field.h"
 #include "render/fog_models.h"
 #include "render/fog_pass.h"
+#include "render/volume_march.h"
 
 #endif

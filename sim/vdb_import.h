@@ -306,7 +306,24 @@ typedef struct vdb_report_desc {
   int rays_per_side;         /* parallel rays per view side; 0: 48 */
   int azimuths;              /* views per elevation; 0: 4 */
   double step;               /* march step as a fraction of the smallest cell; 0: 0.25 */
+  /* Optional: receives the 3D grid's optical depth per ray (the reference march), at
+   * ((row * azimuths + azimuth) * side + iz) * side + ix, -1 where a ray misses the box;
+   * row_count * azimuths * side^2 doubles. For comparing another march of the same rays. */
+  double *reference_depth;
 } vdb_report_desc;
+
+/* The views' geometry, shared by vdb_report_run and any other march of the same rays:
+ * the box [lo, hi] holding both models, the height y_mid of the ray origins, the march
+ * step (world units), and the unit direction of view `azimuth` at an elevation:
+ * (cos el cos phi, -sin el, cos el sin phi), phi = (azimuth + 1/2) 2 pi / azimuths.
+ * Ray (ix, iz) starts at (lo.x + (ix + 1/2)(hi.x - lo.x)/side, y_mid,
+ * lo.z + (iz + 1/2)(hi.z - lo.z)/side), is clipped to the box and sampled at
+ * n = ceil((t1 - t0)/step) midpoints. */
+int vdb_report_geometry(const vdb_dense_grid *grid, const vdb_world_map *world,
+                        const vdb_fogmap_place *place, const vdb_profile *profile,
+                        const vdb_report_desc *desc, double lo[3], double hi[3], double *y_mid,
+                        double *step, sim_error *err);
+void vdb_report_direction(double elevation_deg, int azimuth, int azimuths, double dir[3]);
 
 /* Orthographic views at each elevation: transmittance of the original 3D grid
  * (trilinear, fine march) against the 2.5D model f·g (f bilinear on cell centres,

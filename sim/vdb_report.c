@@ -70,17 +70,11 @@ static double fogmap_bilinear(const fogmap *map, const vdb_fogmap_place *place, 
   return sum;
 }
 
-int vdb_report_run(const vdb_dense_grid *grid, const vdb_world_map *world, const fogmap *map,
-                   const vdb_fogmap_place *place, const vdb_profile *profile,
-                   const vdb_report_desc *desc, vdb_report_row *rows, int row_count,
-                   sim_error *err) {
-  const int side = desc && desc->rays_per_side > 0 ? desc->rays_per_side : 48;
-  const int azimuths = desc && desc->azimuths > 0 ? desc->azimuths : 4;
+int vdb_report_geometry(const vdb_dense_grid *grid, const vdb_world_map *world,
+                        const vdb_fogmap_place *place, const vdb_profile *profile,
+                        const vdb_report_desc *desc, double lo[3], double hi[3], double *y_mid,
+                        double *step, sim_error *err) {
   const double step_fraction = desc && desc->step > 0 ? desc->step : 0.25;
-  volume3d v = {.grid = grid, .world = world};
-  for (int a = 0; a < 3; a++) v.world_axis_of[world->index_axis[a]] = a;
-  /* the box holding both models */
-  double lo[3], hi[3];
   for (int a = 0; a < 3; a++) {
     const int c = world->index_axis[a];
     const double e1 = world->base[a] + world->step[a] * (grid->index_min[c] - 1.0);
@@ -96,27 +90,53 @@ int vdb_report_run(const vdb_dense_grid *grid, const vdb_world_map *world, const
   hi[1] = fmax(hi[1], profile->y_top);
   double cell = fmin(fabs(world->step[0]), fmin(fabs(world->step[1]), fabs(world->step[2])));
   cell = fmin(cell, place->cell_size);
-  const double step = step_fraction * cell;
-  if (!(step > 0) || !isfinite(step)) {
-    snprintf(err->message, sizeof err->message, "report: degenerate step %g", step);
+  *step = step_fraction * cell;
+  *y_mid = 0.5 * (lo[1] + hi[1]);
+  if (!(*step > 0) || !isfinite(*step)) {
+    snprintf(err->message, sizeof err->message, "report: degenerate step %g", *step);
     return 1;
   }
-  const double y_mid = 0.5 * (lo[1] + hi[1]);
+  return 0;
+}
+
+void vdb_report_direction(double elevation_deg, int azimuth, int azimuths, double dir[3]) {
+  const double pi = 3.14159265358979323846;
+  const double el = elevation_deg * pi / 180, phi = (azimuth + 0.5) * 2 * pi / azimuths;
+  dir[0] = cos(el) * cos(phi);
+  dir[1] = -sin(el);
+  dir[2] = cos(el) * sin(phi);
+}
+
+int vdb_report_run(const vdb_dense_grid *grid, const vdb_world_map *world, const fogmap *map,
+                   const vdb_fogmap_place *place, const vdb_profile *profile,
+                   const vdb_report_desc *desc, vdb_report_row *rows, int row_count,
+                   sim_error *err) {
+  const int side = desc && desc->rays_per_side > 0 ? desc->rays_per_side : 48;
+  const int azimuths = desc && desc->azimuths > 0 ? desc->azimuths : 4;
+  double *reference = desc ? desc->reference_depth : NULL;
+  volume3d v = {.grid = grid, .world = world};
+  for (int a = 0; a < 3; a++) v.world_axis_of[world->index_axis[a]] = a;
+  double lo[3], hi[3], y_mid, step;
+  if (vdb_report_geometry(grid, world, place, profile, desc, lo, hi, &y_mid, &step, err))
+    return 1;
   for (int r = 0; r < row_count; r++) {
-    const double el = rows[r].elevation_deg * 3.14159265358979323846 / 180;
     double sum_err = 0, max_err = 0, sum_t = 0;
     int rays = 0;
     for (int az = 0; az < azimuths; az++) {
-      const double phi = (az + 0.5) * 2 * 3.14159265358979323846 / azimuths;
-      const double d[3] = {cos(el) * cos(phi), -sin(el), cos(el) * sin(phi)};
+      double d[3];
+      vdb_report_direction(rows[r].elevation_deg, az, azimuths, d);
       for (int iz = 0; iz < side; iz++)
         for (int ix = 0; ix < side; ix++) {
+          double *ref = reference ? reference + (((size_t)r * azimuths + az) * side + iz) * side + ix
+                                  : NULL;
+          if (ref) *ref = -1;
           /* the ray through a point of the mid-height plane over the footprint */
           const double o[3] = {lo[0] + (ix + 0.5) * (hi[0] - lo[0]) / side, y_mid,
                                lo[2] + (iz + 0.5) * (hi[2] - lo[2]) / side};
           double t0, t1;
           if (!ray_box_clip(o, d, lo, hi, &t0, &t1)) continue;
-          const int n = (int)ceil((t1 - t0) / step);
+          int n = (int)ceil((t1 - t0) / step);
+          if (n < 1) n = 1;
           const double dt = (t1 - t0) / n;
           double tau3 = 0, tau25 = 0;
           for (int s = 0; s < n; s++) {
@@ -127,6 +147,7 @@ int vdb_report_run(const vdb_dense_grid *grid, const vdb_world_map *world, const
           }
           tau3 *= dt;
           tau25 *= dt;
+          if (ref) *ref = tau3;
           if (tau3 < 1e-4) continue;
           const double e = fabs(exp(-tau25) - exp(-tau3));
           sum_err += e;
