@@ -1,13 +1,4 @@
-# app/config.c lives in the fogpipe executable, not in a library: the tests of the config
-# format (and the golden render test, which reads the config for its CPU depth check)
-# compile it in. The render tests run the fogpipe binary: build it with them.
-file(GLOB config_tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/app/test_config_*.c)
-foreach(source ${config_tests} ${CMAKE_CURRENT_SOURCE_DIR}/app/test_render_golden.c)
-  get_filename_component(name ${source} NAME_WE)
-  if(TARGET ${name})
-    target_sources(${name} PRIVATE ${CMAKE_SOURCE_DIR}/app/config.c)
-  endif()
-endforeach()
+# The render tests run the fogpipe binary: build it with them.
 foreach(name test_render_golden test_render_errors test_view_window)
   if(TARGET ${name})
     add_dependencies(${name} fogpipe)
