@@ -32,12 +32,6 @@ static bool ends_with(const char *s, const char *suffix) {
   return n >= m && strcasecmp(s + n - m, suffix) == 0;
 }
 
-/* The sRGB transfer function (IEC 61966-2-1) for PNG output. */
-static float srgb_encode(float linear) {
-  if (!(linear > 0.0f)) return 0.0f;
-  if (linear >= 1.0f) return 1.0f;
-  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * powf(linear, 1.0f / 2.4f) - 0.055f;
-}
 
 int cmd_render(int argc, char **argv) {
   const char *config_path = NULL, *out = NULL;
@@ -141,8 +135,8 @@ int cmd_render(int argc, char **argv) {
       goto done;
     }
     for (size_t k = 0; k < pixels; k++)
-      for (int c = 0; c < 3; c++) rgb[3 * k + c] = srgb_encode(rgba[4 * k + c]);
-    int werr_status = image_write_png(out, width, height, 3, rgb, &werr);
+      for (int c = 0; c < 3; c++) rgb[3 * k + c] = rgba[4 * k + c];
+    int werr_status = image_write_png_srgb(out, width, height, 3, rgb, &werr);
     free(rgb);
     if (werr_status) {
       fprintf(stderr, "fogpipe render: %s\n", werr.message);

@@ -209,13 +209,6 @@ static void append_quoted(char *cmd, size_t size, const char *s) {
   cmd[used] = '\0';
 }
 
-/* The sRGB transfer function (IEC 61966-2-1) for 8-bit display. */
-static uint8_t to_srgb8(float linear) {
-  if (!(linear > 0.0f)) return 0;
-  if (linear >= 1.0f) return 255;
-  double s = linear <= 0.0031308 ? 12.92 * linear : 1.055 * pow(linear, 1.0 / 2.4) - 0.055;
-  return (uint8_t)lround(s * 255.0);
-}
 
 int recorder_write_preview(const recorder *rec, int frame_count, double fps,
                            const char *video_path, recorder_error *err) {
@@ -240,6 +233,8 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps,
   size_t n = (size_t)w * (size_t)h;
   uint8_t *rgb = malloc(n * 3);
   if (!rgb) return fail(err, "out of memory for the preview");
+  srgb8_encoder encoder; /* linear frames -> 8-bit sRGB video */
+  srgb8_encoder_init(&encoder);
   struct sigaction ignore = {.sa_handler = SIG_IGN}, previous;
   sigaction(SIGPIPE, &ignore, &previous); /* a dying ffmpeg must not kill us */
   FILE *pipe = popen(cmd, "w");
@@ -259,7 +254,8 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps,
       if (plane.width != w || plane.height != h)
         status = fail(err, "preview: frame %s is %dx%d, expected %dx%d", path, plane.width,
                       plane.height, w, h);
-      for (size_t i = 0; i < n && !status; i++) rgb[3 * i + c] = to_srgb8(plane.density[i]);
+      for (size_t i = 0; i < n && !status; i++)
+        rgb[3 * i + c] = srgb8_encode(&encoder, plane.density[i]);
       fogmap_destroy(&plane);
     }
     if (!status && fwrite(rgb, 3, n, pipe) != n)

@@ -229,8 +229,8 @@ static int preview_frame(preview *p, const char *vdb, const char *png, double ti
     return 1;
   }
   for (int i = 0; i < W * H; i++)
-    for (int c = 0; c < 3; c++) p->rgb[3 * i + c] = powf(fminf(fmaxf(p->rgba[4 * i + c], 0), 1), 1 / 2.2f);
-  if (image_write_png(png, W, H, 3, p->rgb, &serr)) {
+    for (int c = 0; c < 3; c++) p->rgb[3 * i + c] = p->rgba[4 * i + c];
+  if (image_write_png_srgb(png, W, H, 3, p->rgb, &serr)) {
     snprintf(error, size, "%s", serr.message);
     return 1;
   }
@@ -359,8 +359,7 @@ static int cpu_preview(const char *vdb, const camera *cam, float *rgb, const cha
     cpu_render_rows(&c[1]);
   const double t2 = bench_now();
   vdb_frame_destroy(&frame);
-  for (size_t i = 0; i < (size_t)W * H * 3; i++) rgb[i] = powf(fminf(fmaxf(rgb[i], 0), 1), 1 / 2.2f);
-  if (image_write_png(png, W, H, 3, rgb, &serr)) {
+  if (image_write_png_srgb(png, W, H, 3, rgb, &serr)) {
     snprintf(error, size, "%s", serr.message);
     return 1;
   }

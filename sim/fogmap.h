@@ -56,6 +56,23 @@ int image_write_exr(const char *path, int width, int height, const image_channel
 int image_write_png(const char *path, int width, int height, int channels,
                     const float *interleaved, sim_error *err);
 
+/* The sRGB transfer function (IEC 61966-2-1) to 8 bits, by table, for every float exactly
+ * lround(255 srgb(x)) of the formula in double: threshold[k] is the smallest float whose
+ * encoding is k; start[] holds the encoding at the bottom of each float interval with the
+ * same top 16 bits (exponent and 7 mantissa bits, 0.8 % wide), so encoding is one lookup
+ * and at most a step or two up the thresholds instead of a pow per sample. */
+typedef struct srgb8_encoder {
+  float threshold[256];          /* threshold[0] unused */
+  unsigned char start[0x3F81];   /* indexed by the float's bits >> 16, for 0 <= x <= 1 */
+} srgb8_encoder;
+void srgb8_encoder_init(srgb8_encoder *encoder);
+unsigned char srgb8_encode(const srgb8_encoder *encoder, float linear);
+
+/* Writes an 8-bit sRGB PNG (3 RGB or 4 RGBA: alpha stays linear) from linear interleaved
+ * floats (clamped to [0, 1]), top row first; temporary file + rename. */
+int image_write_png_srgb(const char *path, int width, int height, int channels,
+                         const float *linear, sim_error *err);
+
 /* Saves a fogmap as a single float channel "Y" EXR (what fogmap_load reads back exactly). */
 int fogmap_save_exr(const char *path, const fogmap *map, sim_error *err);
 

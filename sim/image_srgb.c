@@ -1,0 +1,82 @@
+/* Linear float -> 8-bit sRGB by table (see sim/fogmap.h). */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sim/image_io.h"
+#include "sim/sim.h"
+
+/* IEC 61966-2-1: the encoding and its inverse. */
+static double srgb_from_linear(double x) {
+  return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;
+}
+static double linear_from_srgb(double s) {
+  return s <= 0.04045 ? s / 12.92 : pow((s + 0.055) / 1.055, 2.4);
+}
+
+static unsigned char search(const srgb8_encoder *e, float linear) {
+  int k = 0;
+  for (int step = 128; step > 0; step >>= 1) /* the largest k with threshold[k] <= linear */
+    if (k + step < 256 && e->threshold[k + step] <= linear) k += step;
+  return (unsigned char)k;
+}
+
+static uint32_t float_bits(float x) {
+  uint32_t bits;
+  memcpy(&bits, &x, sizeof bits);
+  return bits;
+}
+
+void srgb8_encoder_init(srgb8_encoder *e) {
+  e->threshold[0] = 0.0f;
+  for (int k = 1; k < 256; k++) {
+    /* The smallest float x with lround(255 srgb(x)) >= k: start from the exact inverse of
+     * (k - 1/2)/255 and step to the float where the rounded encoding changes. */
+    float x = (float)linear_from_srgb((k - 0.5) / 255.0);
+    while (x > 0 && lround(255.0 * srgb_from_linear(nextafterf(x, 0.0f))) >= k)
+      x = nextafterf(x, 0.0f);
+    while (lround(255.0 * srgb_from_linear(x)) < k) x = nextafterf(x, 2.0f);
+    e->threshold[k] = x;
+  }
+  for (uint32_t i = 0; i < sizeof e->start; i++) {
+    uint32_t bits = i << 16;
+    float x;
+    memcpy(&x, &bits, sizeof x);
+    e->start[i] = search(e, x);
+  }
+}
+
+unsigned char srgb8_encode(const srgb8_encoder *e, float linear) {
+  if (!(linear > 0.0f)) return 0; /* and NaN */
+  if (linear >= 1.0f) return 255;
+  unsigned k = e->start[float_bits(linear) >> 16];
+  while (k < 255 && e->threshold[k + 1] <= linear) k++;
+  return (unsigned char)k;
+}
+
+int image_write_png_srgb(const char *path, int width, int height, int channels,
+                         const float *linear, sim_error *err) {
+  if (channels != 3 && channels != 4)
+    return sim_fail(err, "%s: sRGB PNG writing takes 3 (RGB) or 4 (RGBA) channels, not %d",
+                    path, channels);
+  if (width <= 0 || height <= 0)
+    return sim_fail(err, "%s: image size %dx%d: both must be positive", path, width, height);
+  srgb8_encoder encoder;
+  srgb8_encoder_init(&encoder);
+  size_t count = (size_t)width * height * channels;
+  uint8_t *samples = malloc(count);
+  if (!samples) return sim_fail(err, "%s: out of memory for a %dx%d PNG", path, width, height);
+  for (size_t i = 0; i < count; i++) {
+    float v = linear[i];
+    if (channels == 4 && i % 4 == 3) { /* alpha: linear */
+      v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+      samples[i] = (uint8_t)(v * 255.0f + 0.5f);
+    } else {
+      samples[i] = srgb8_encode(&encoder, v);
+    }
+  }
+  int status = png_write_samples(path, width, height, channels, 8, samples, err);
+  free(samples);
+  return status;
+}

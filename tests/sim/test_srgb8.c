@@ -1,0 +1,74 @@
+/* The table sRGB encoder (sim/fogmap.h: srgb8_encode) equals lround(255 srgb(x)) with the
+ * IEC 61966-2-1 formula evaluated in double, for every float tried: a sweep of [0, 1.1],
+ * random values, and the floats on either side of every table threshold; and the sRGB
+ * PNG writer stores exactly those bytes (read back through libspng). */
+#include <math.h>
+#include <stdlib.h>
+
+#include "sim/image_io.h"
+#include "sim/sim.h"
+#include "tests/test_util.h"
+
+static int reference(float x) {
+  if (!(x > 0.0f)) return 0;
+  double v = x >= 1.0f ? 1.0 : x;
+  double s = v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+  return (int)lround(255.0 * s);
+}
+
+int main(void) {
+  srgb8_encoder e;
+  srgb8_encoder_init(&e);
+  long mismatches = 0, tried = 0;
+  float first_bad = 0;
+  for (int i = 0; i <= 1100000; i++) {
+    float x = (float)i / 1000000.0f;
+    tried++;
+    if (srgb8_encode(&e, x) != reference(x) && !mismatches++) first_bad = x;
+  }
+  srand(3);
+  for (int i = 0; i < 200000; i++) {
+    float x = (float)rand() / (float)RAND_MAX;
+    x = x * x * x; /* many small values, where the curve is steep */
+    tried++;
+    if (srgb8_encode(&e, x) != reference(x) && !mismatches++) first_bad = x;
+  }
+  for (int k = 1; k < 256; k++) {
+    float t = e.threshold[k];
+    float around[3] = {nextafterf(t, 0.0f), t, nextafterf(t, 2.0f)};
+    for (int j = 0; j < 3; j++, tried++)
+      if (srgb8_encode(&e, around[j]) != reference(around[j]) && !mismatches++) first_bad = around[j];
+  }
+  CHECK(mismatches == 0, "%ld of %ld values differ from the double formula (first %.9g)",
+        mismatches, tried, first_bad);
+  CHECK(srgb8_encode(&e, NAN) == 0 && srgb8_encode(&e, -1.0f) == 0 &&
+            srgb8_encode(&e, 7.0f) == 255,
+        "NaN, negative and above-one inputs");
+
+  /* The writer: a 64 x 4 RGBA ramp, read back channel by channel. */
+  enum { W = 64, H = 4 };
+  float rgba[W * H * 4];
+  for (int i = 0; i < W * H; i++)
+    for (int c = 0; c < 4; c++) rgba[4 * i + c] = (float)((i * 7 + c * 13) % 97) / 90.0f;
+  const char *path = "/tmp/fogpipe-test-srgb8.png";
+  sim_error err = {{0}};
+  CHECK(image_write_png_srgb(path, W, H, 4, rgba, &err) == 0, "write: %s", err.message);
+  static const char *const names[4] = {"R", "G", "B", "A"};
+  for (int c = 0; c < 4; c++) {
+    fogmap back = {0};
+    if (fogmap_load(path, &(fogmap_load_desc){.channel = names[c]}, &back, &err)) {
+      CHECK(0, "read %s: %s", names[c], err.message);
+      continue;
+    }
+    int bad = 0;
+    for (int i = 0; i < W * H; i++) {
+      float v = rgba[4 * i + c];
+      int expect = c == 3 ? (int)(fminf(fmaxf(v, 0), 1) * 255.0f + 0.5f) : reference(v); /* alpha: half up */
+      bad += (int)lrintf(back.density[i] * 255.0f) != expect;
+    }
+    CHECK(bad == 0, "channel %s: %d bytes differ", names[c], bad);
+    fogmap_destroy(&back);
+  }
+  remove(path);
+  return test_finish("test_srgb8");
+}
