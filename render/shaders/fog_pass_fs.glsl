@@ -56,14 +56,14 @@ float fog_lod_ray_length(vec3 dir, float t_surface) {
 
 // LOD by distance, both methods (fog_optical_depth_lod in render/fog_integral_cpu.c).
 float fog_optical_depth_lod(vec3 dir, float t_surface, float jitter) {
+#if FOG_SINGLE_GRID
+  // One grid (no LOD, or an LOD draw that reduces to one level): the walk alone over
+  // [0, t_surface] (it clips to the box itself, so ||OP|| is not needed), without the level
+  // loop and its array (a local array indexed by a loop counter is memory on llvmpipe).
+  return fog_grid_integral(0, dir, 0.0, t_surface, jitter, fog_depth_limit);
+#endif
   float op = fog_lod_ray_length(dir, t_surface);
   if (op <= 0.0) return 0.0;
-#if FOG_SINGLE_GRID
-  // One grid (no LOD, or an LOD draw that reduces to one level): the walk alone, without
-  // the level loop and its array (a local array indexed by a loop counter is memory on
-  // llvmpipe).
-  return fog_grid_integral(0, dir, 0.0, op, jitter, fog_depth_limit);
-#endif
   int J = fog_levels;
   if (fog_lod_method == 0) {
     // Giroud & Biri §4.4: A_0 over the whole ray, detail band l up to d_l = ||OP|| mu^l.
