@@ -27,13 +27,14 @@
 /* ---- timings: a ring of the last PIPELINE_TIMING_WINDOW frames, medians on demand ---- */
 
 typedef struct timing_ring {
-  double values[6][PIPELINE_TIMING_WINDOW];
+  double values[8][PIPELINE_TIMING_WINDOW];
   int count, next;
 } timing_ring;
 
 static void timing_push(timing_ring *ring, const pipeline_timings *t) {
-  const double v[6] = {t->sim, t->transform, t->upload, t->render, t->frame, t->scene};
-  for (int s = 0; s < 6; s++) ring->values[s][ring->next] = v[s];
+  const double v[8] = {t->sim,   t->transform, t->upload,  t->render,
+                       t->frame, t->scene,     t->sim_cpu, t->transform_cpu};
+  for (int s = 0; s < 8; s++) ring->values[s][ring->next] = v[s];
   ring->next = (ring->next + 1) % PIPELINE_TIMING_WINDOW;
   if (ring->count < PIPELINE_TIMING_WINDOW) ring->count++;
 }
@@ -57,6 +58,14 @@ static double now_ms(void) {
   return 1e3 * (double)ts.tv_sec + 1e-6 * (double)ts.tv_nsec;
 }
 
+/* CPU time of the calling thread: what a stage costs, whether or not the thread was
+ * waiting for a core (in the worker it shares 2 cores with llvmpipe's render threads). */
+static double thread_cpu_ms(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * (double)ts.tv_sec + 1e-6 * (double)ts.tv_nsec;
+}
+
 /* ---- slots: the CPU stages' output for one simulation step ---- */
 
 typedef enum slot_state { SLOT_FREE = 0, SLOT_FILLING, SLOT_READY } slot_state;
@@ -65,7 +74,8 @@ typedef struct pipeline_slot {
   slot_state state;
   fog_pyramid pyramid; /* grids of this step (shapes follow the plan that filled it) */
   long step;           /* simulation step shown */
-  double sim_ms, transform_ms;
+  double sim_ms, transform_ms;          /* wall clock */
+  double sim_cpu_ms, transform_cpu_ms;  /* thread CPU time */
 } pipeline_slot;
 
 /* What the worker owns: the simulation, the transform plan and its scratch arrays. */
@@ -341,7 +351,7 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
   for (int s = 0; s < r->stroke_count && c->sim; s++)
     fluid_sim_paint(c->sim, &r->strokes[s], &serr); /* bad strokes are dropped */
 
-  double t0 = now_ms();
+  double t0 = now_ms(), c0 = thread_cpu_ms();
   for (int s = 0; s < p->steps_per_frame && c->sim; s++)
     if (fluid_sim_step(c->sim, &serr)) return fail(err, "simulation: %s", serr.message);
   c->steps++;
@@ -349,7 +359,7 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
       vdb_source_fogmap_at(&c->vdb, (double)(c->steps - 1) * p->frame_seconds, &c->vdb_map,
                            &serr))
     return fail(err, "vdb: %s", serr.message);
-  double t1 = now_ms();
+  double t1 = now_ms(), c1 = thread_cpu_ms();
   if (slot_shape(p, slot, err)) return 1;
   const fogmap *density = c->has_vdb ? &c->vdb_map : fluid_sim_density(c->sim);
   transform_forward(c->plan, density->density, c->coefficients);
@@ -365,10 +375,12 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
       return fail(err, "transform: %s", terr.message);
   }
   slot->pyramid.has_details = p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS;
-  double t2 = now_ms();
+  double t2 = now_ms(), c2 = thread_cpu_ms();
   slot->step = c->steps;
   slot->sim_ms = t1 - t0;
   slot->transform_ms = t2 - t1;
+  slot->sim_cpu_ms = c1 - c0;
+  slot->transform_cpu_ms = c2 - c1;
   return 0;
 }
 
@@ -622,6 +634,8 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *
     if (!may_step) return 0;
     p->last.sim = slot->sim_ms;
     p->last.transform = slot->transform_ms;
+    p->last.sim_cpu = slot->sim_cpu_ms;
+    p->last.transform_cpu = slot->transform_cpu_ms;
     double t0 = now_ms();
     render_error rerr = {{0}};
     if (pipeline_fog_upload(p->fog, &slot->pyramid, &rerr))
@@ -657,6 +671,8 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *
   *upload_ms = now_ms() - t0;
   p->last.sim = slot->sim_ms;
   p->last.transform = slot->transform_ms;
+  p->last.sim_cpu = slot->sim_cpu_ms;
+  p->last.transform_cpu = slot->transform_cpu_ms;
   p->shown_step = slot->step;
   pthread_mutex_lock(&p->lock);
   slot->state = SLOT_FREE; /* the textures hold the copy now */
@@ -818,6 +834,8 @@ pipeline_timings pipeline_get_timings(const pipeline *p, pipeline_timings *last)
       .render = median_of(r->values[3], r->count),
       .frame = median_of(r->values[4], r->count),
       .scene = median_of(r->values[5], r->count),
+      .sim_cpu = median_of(r->values[6], r->count),
+      .transform_cpu = median_of(r->values[7], r->count),
   };
 }
 

@@ -44,8 +44,11 @@ typedef struct pipeline_desc {
 
 /* Per-stage times in milliseconds (moving medians, or one frame's values). */
 typedef struct pipeline_timings {
-  double sim, transform, upload, render, frame;
+  double sim, transform, upload, render, frame; /* wall clock */
   double scene; /* the scene pass's part of render (only with desc.time_passes) */
+  /* The CPU stages' own CPU time (thread CPU clock): in the worker thread their wall
+   * time also counts the time they waited for a core while the renderer ran. */
+  double sim_cpu, transform_cpu;
 } pipeline_timings;
 
 /* What the panel edits live. Changes are applied by the worker before its next step
