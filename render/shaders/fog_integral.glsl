@@ -213,13 +213,23 @@ float fog_profile_coefficient(int i) {
   return (i >= 0 && i < fog_profile_count) ? fog_profile_coefficients[i] : 0.0;
 }
 
+// The d + 1 profile coefficients of knot cell cy (zero beyond the profile): fetched once
+// per piece by the walk (a uniform array read with a per-pixel index is a gather here).
+vec4 fog_profile_cell(int cy) {
+  int i = cy - fog_profile_degree / 2;
+  return vec4(fog_profile_coefficient(i), fog_profile_coefficient(i + 1),
+              fog_profile_coefficient(i + 2), fog_profile_coefficient(i + 3));
+}
+
+// g at profile coordinate y in knot cell cy, from that cell's coefficients.
+float fog_profile_cell_value(vec4 coefficients, int cy, float y) {
+  int d = fog_profile_degree;
+  return dot(fog_cell_weights(d, y - (float(cy) + fog_knot_offset(d))), coefficients);  // zero beyond d
+}
+
 // g of a B-spline profile at profile coordinate y in knot cell cy.
 float fog_profile_bspline_value(int cy, float y) {
-  int d = fog_profile_degree;
-  vec4 w = fog_cell_weights(d, y - (float(cy) + fog_knot_offset(d)));  // zero beyond d
-  int i = cy - d / 2;
-  return w.x * fog_profile_coefficient(i) + w.y * fog_profile_coefficient(i + 1) +
-         w.z * fog_profile_coefficient(i + 2) + w.w * fog_profile_coefficient(i + 3);
+  return fog_profile_cell_value(fog_profile_cell(cy), cy, y);
 }
 
 // ---- exponential moments J_k = int_{-1}^{1} s^k e^{c0 + b s} ds, k = 0..4 ----------------
@@ -397,12 +407,14 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
   int m = (2 * d + pd) / 2 + 1;
   int first = (m * (m - 1)) / 2;  // offset of the m-point rule in the packed tables
   float sum = 0.0;
+  vec4 profile = (fog_profile_kind == FOG_PROFILE_BSPLINE) ? fog_profile_cell(w.y.cell)
+                                                          : vec4(0.0);
   for (int i = 0; i < 4; i++) {  // constant bound: unrolled (loop budget, see the top)
     if (i >= m) break;
     float t = mid + half_len * fog_gauss_nodes[first + i];
     float f = fog_walk_value(w, cell, t);
     float gy = (fog_profile_kind == FOG_PROFILE_BSPLINE)
-                   ? fog_profile_bspline_value(w.y.cell, w.y.x0 + t * w.y.dx)
+                   ? fog_profile_cell_value(profile, w.y.cell, w.y.x0 + t * w.y.dx)
                    : 1.0;
     sum += fog_gauss_weights[first + i] * f * gy;
   }
