@@ -6,6 +6,7 @@
  * one write, as for a memcpy; the two-pass version (rows, then strips of columns)
  * moves the data twice. Same arithmetic, same boundary rules, same result bits as the
  * two-pass columns (tests/transform/test_fused_matches_two_pass.c). */
+#include <stdint.h>
 #include <string.h>
 
 #include "transform/transform_plan.h"

@@ -107,29 +107,54 @@ FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(row)(
 
 /* Column step of fused iteration k over whole ring rows: o = x_2k+1 - (e0 + e1)/2
  * (kept in the ring for the next update), written out as high = hi*o and
- * low = lo*(e0 + (om + o)/4). */
-FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(col)(
-    int w, const float *restrict e0, const float *restrict e1, const float *restrict om,
+ * low = lo*(e0 + (om + o)/4). It also prefetches the two input rows the next
+ * iteration lifts (next0, next1: one 64-byte line of each per 16 outputs, so the whole
+ * row over the sweep): this loop only writes the output and the row lifting only reads
+ * the input, and each input row starts a fresh 4 KiB page at 1024 floats, where the
+ * hardware prefetcher starts over; fetched here, the reads overlap these writes
+ * (measured on the AVX-512 machine: the 1024^2 fused level 7-10% faster). */
+FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(col_vector)(
+    int i, const float *restrict e0, const float *restrict e1, const float *restrict om,
     float *restrict o, float *restrict low, float *restrict high, float lo, float hi,
     int first) {
   typedef FL_NAME(vf) vf;
-  int i = 0;
-#pragma GCC unroll 2
-  for (; i + FL_V <= w; i += FL_V) {
-    vf a, b, c, v;
-    __builtin_memcpy(&a, e0 + i, sizeof a);
-    __builtin_memcpy(&b, e1 + i, sizeof b);
-    __builtin_memcpy(&v, o + i, sizeof v);
-    v = v - 0.5f * (a + b);
-    if (first)
-      c = v;
-    else
-      __builtin_memcpy(&c, om + i, sizeof c);
-    __builtin_memcpy(o + i, &v, sizeof v);
-    vf hg = hi * v, lw = lo * (a + 0.25f * (c + v));
-    __builtin_memcpy(high + i, &hg, sizeof hg);
-    __builtin_memcpy(low + i, &lw, sizeof lw);
+  vf a, b, c, v;
+  __builtin_memcpy(&a, e0 + i, sizeof a);
+  __builtin_memcpy(&b, e1 + i, sizeof b);
+  __builtin_memcpy(&v, o + i, sizeof v);
+  v = v - 0.5f * (a + b);
+  if (first)
+    c = v;
+  else
+    __builtin_memcpy(&c, om + i, sizeof c);
+  __builtin_memcpy(o + i, &v, sizeof v);
+  vf hg = hi * v, lw = lo * (a + 0.25f * (c + v));
+  __builtin_memcpy(high + i, &hg, sizeof hg);
+  __builtin_memcpy(low + i, &lw, sizeof lw);
+}
+
+FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(col)(
+    int w, const float *restrict e0, const float *restrict e1, const float *restrict om,
+    float *restrict o, float *restrict low, float *restrict high, float lo, float hi,
+    int first, const float *next0, const float *next1) {
+  /* scalar up to the first 64-byte boundary of the output row: the vectors' stores
+   * (and, with the ring placed to match, their loads) then never split a cache line */
+  int i = 0, head = (int)((16 - ((uintptr_t)low / sizeof(float)) % 16) % 16);
+  for (; i < head && i < w; i++) {
+    float v = o[i] - 0.5f * (e0[i] + e1[i]);
+    o[i] = v;
+    high[i] = hi * v;
+    low[i] = lo * (e0[i] + 0.25f * ((first ? v : om[i]) + v));
   }
+#pragma GCC unroll 2
+  for (; i + 16 <= w; i += 16) { /* 16 floats: one cache line per row */
+    __builtin_prefetch(next0 + i, 0, 3);
+    __builtin_prefetch(next1 + i, 0, 3);
+    for (int j = 0; j < 16; j += FL_V)
+      FL_NAME(col_vector)(i + j, e0, e1, om, o, low, high, lo, hi, first);
+  }
+  for (; i + FL_V <= w; i += FL_V)
+    FL_NAME(col_vector)(i, e0, e1, om, o, low, high, lo, hi, first);
   for (; i < w; i++) {
     float v = o[i] - 0.5f * (e0[i] + e1[i]);
     o[i] = v;
@@ -148,8 +173,20 @@ FL_TARGET static void FL_NAME(level)(const transform_plan *p, int l, const float
   const ghost_rule *rho = &p->rules_h[l - 1].right, *rw = &p->rules_w[l - 1].right;
   float gw[4] = {0};
   for (int t = 0; t < rw->count; t++) gw[t] = (float)rw->weight[t];
-  /* 8 ring rows: the window spans 4, the right rule reaches 2 rows further back */
+  /* 8 ring rows: the window spans 4, the right rule reaches 2 rows further back.
+   * Where the ring (17 rows of w) has room, its rows are a multiple of 16 floats apart
+   * and start at the same offset within a 64-byte line as the output rows, so that the
+   * column steps (FL_NAME(col), from its first aligned output) load and store whole
+   * cache lines: at 1024^2 on the AVX-512 machine the level is ~10% faster than with
+   * rows that split lines (malloc'd outputs sit 16 bytes past a line). */
   size_t ws = (size_t)w;
+  {
+    size_t wr = ((size_t)w + 15) & ~(size_t)15;
+    size_t want = ((uintptr_t)dst / sizeof(float)) % 16;
+    size_t have = ((uintptr_t)ring / sizeof(float)) % 16, shift = (want + 16 - have) % 16;
+    if (8 * wr + shift <= 17 * (size_t)w && (uintptr_t)dst % sizeof(float) == 0)
+      ws = wr, ring += shift;
+  }
 #define SLOT(r) (ring + (size_t)((r) % 8) * ws)
   /* lo is 1 for CDF 5/3: the literal lets gcc drop the multiplications (x * 1 == x) */
 #define LOAD(r)                                                                             \
@@ -182,12 +219,15 @@ FL_TARGET static void FL_NAME(level)(const transform_plan *p, int l, const float
         }
         e1 = ghost;
       }
+      /* the input rows the next iteration lifts (the last row past the end) */
+      const float *next0 = src + (size_t)(2 * k + 3 < n ? 2 * k + 3 : n - 1) * src_stride;
+      const float *next1 = src + (size_t)(2 * k + 4 < n ? 2 * k + 4 : n - 1) * src_stride;
       if (k > 0 && lo == 1.0f)
-        FL_NAME(col)(w, e0, e1, SLOT(2 * k - 1), o, low, high, 1.0f, hi, 0);
+        FL_NAME(col)(w, e0, e1, SLOT(2 * k - 1), o, low, high, 1.0f, hi, 0, next0, next1);
       else if (k > 0)
-        FL_NAME(col)(w, e0, e1, SLOT(2 * k - 1), o, low, high, lo, hi, 0);
+        FL_NAME(col)(w, e0, e1, SLOT(2 * k - 1), o, low, high, lo, hi, 0, next0, next1);
       else /* o_-1 is o_0 itself */
-        FL_NAME(col)(w, e0, e1, NULL, o, low, high, lo, hi, 1);
+        FL_NAME(col)(w, e0, e1, NULL, o, low, high, lo, hi, 1, next0, next1);
     } else { /* odd n, last even row: o_m-1 mirrors to o_m-2 */
       const float *restrict om = SLOT(2 * k - 1);
       for (int i = 0; i < w; i++) low[i] = lo * (e0[i] + 0.25f * (om[i] + om[i]));
