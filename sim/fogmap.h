@@ -59,10 +59,10 @@ int image_write_png(const char *path, int width, int height, int channels,
 /* The sRGB transfer function (IEC 61966-2-1) to 8 bits, by table, for every float exactly
  * lround(255 srgb(x)) of the formula in double: threshold[k] is the smallest float whose
  * encoding is k; start[] holds the encoding at the bottom of each float interval with the
- * same top 16 bits (exponent and 7 mantissa bits, 0.8 % wide), so encoding is one lookup
- * and at most a step or two up the thresholds instead of a pow per sample. */
+ * same top 16 bits (exponent and 7 mantissa bits, 0.8 % wide, where the encoding rises by
+ * at most one level), so encoding is a lookup and one comparison instead of a pow. */
 typedef struct srgb8_encoder {
-  float threshold[256];          /* threshold[0] unused */
+  float threshold[257];          /* threshold[0] unused; threshold[256] = +infinity */
   unsigned char start[0x3F81];   /* indexed by the float's bits >> 16, for 0 <= x <= 1 */
 } srgb8_encoder;
 void srgb8_encoder_init(srgb8_encoder *encoder);

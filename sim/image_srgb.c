@@ -39,6 +39,7 @@ void srgb8_encoder_init(srgb8_encoder *e) {
     while (lround(255.0 * srgb_from_linear(x)) < k) x = nextafterf(x, 2.0f);
     e->threshold[k] = x;
   }
+  e->threshold[256] = INFINITY;
   for (uint32_t i = 0; i < sizeof e->start; i++) {
     uint32_t bits = i << 16;
     float x;
@@ -51,8 +52,7 @@ unsigned char srgb8_encode(const srgb8_encoder *e, float linear) {
   if (!(linear > 0.0f)) return 0; /* and NaN */
   if (linear >= 1.0f) return 255;
   unsigned k = e->start[float_bits(linear) >> 16];
-  while (k < 255 && e->threshold[k + 1] <= linear) k++;
-  return (unsigned char)k;
+  return (unsigned char)(k + (e->threshold[k + 1] <= linear)); /* at most one level up */
 }
 
 int image_write_png_srgb(const char *path, int width, int height, int channels,
