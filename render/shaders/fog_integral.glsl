@@ -401,6 +401,18 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
     fog_piece_monomials(w, cell, mid, half_len, c);
     return half_len * (2.0 * c[0] + (2.0 / 3.0) * c[2]);
   }
+  if (fog_profile_kind == FOG_PROFILE_BSPLINE && d <= 1 && fog_profile_degree <= 1) {
+    // g is linear in s on the piece (a box or hat profile, as `fogpipe import` fits):
+    // g = g0 + g1 s from the profile cell's coefficients, and
+    // int_{-1}^{1} (c0 + c1 s + c2 s^2)(g0 + g1 s) ds = 2 c0 g0 + 2 (c2 g0 + c1 g1) / 3.
+    float c[5];
+    fog_piece_monomials(w, cell, mid, half_len, c);
+    vec4 profile = fog_profile_cell(w.y.cell);
+    float um = w.y.x0 + mid * w.y.dx - (float(w.y.cell) + fog_knot_offset(fog_profile_degree));
+    float slope = (fog_profile_degree == 1) ? profile.y - profile.x : 0.0;
+    float g0 = profile.x + slope * um, g1 = slope * half_len * w.y.dx;
+    return half_len * (2.0 * c[0] * g0 + (2.0 / 3.0) * (c[2] * g0 + c[1] * g1));
+  }
 #endif
   // Polynomial piece: degree 2d + p in t, exact with m = d + p/2 + 1 Gauss nodes.
   int pd = (fog_profile_kind == FOG_PROFILE_BSPLINE) ? fog_profile_degree : 0;

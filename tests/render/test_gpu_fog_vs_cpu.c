@@ -79,8 +79,12 @@ int main(void) {
   GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
   fog_test_gl_upload_flipped(&gl, surface_tex, GL_RGBA, 4, surface);
 
-  const fog_profile_kind kinds[3] = {FOG_PROFILE_SLAB, FOG_PROFILE_EXPONENTIAL,
+  /* Profiles: slab, exponential, and B-splines of degree 2, 1 and 0 (degrees 0 and 1, what
+   * `fogpipe import` fits, take their own closed form in the walk). */
+  const fog_profile_kind kinds[5] = {FOG_PROFILE_SLAB, FOG_PROFILE_EXPONENTIAL,
+                                     FOG_PROFILE_BSPLINE, FOG_PROFILE_BSPLINE,
                                      FOG_PROFILE_BSPLINE};
+  const int profile_degrees[5] = {0, 0, 2, 1, 0};
   double worst_exact = 0.0, worst_methods = 0.0, worst_colour = 0.0, worst_hw[3] = {0, 0, 0};
   for (int degree = 0; degree <= 2; degree++) {
     transform_grid approx[J + 1], detail[J];
@@ -88,8 +92,9 @@ int main(void) {
     fog_lod lod = {.levels = J, .approx = approx, .detail = detail, .mu = 0.6};
     CHECK(fog_pass_upload_lod(gl.pass, &lod, &err) == 0, "upload: %s", err.message);
     for (int inside = 0; inside <= 1; inside++)
-    for (int kind = 0; kind < 3; kind++) {
+    for (int kind = 0; kind < 5; kind++) {
       fog_volume v = fog_test_volume(kinds[kind]);
+      if (kinds[kind] == FOG_PROFILE_BSPLINE) v.profile.degree = profile_degrees[kind];
       double lo[3], hi[3];
       fog_volume_box(&v, lo, hi);
       camera cam = {.fov_y = 1.0};
