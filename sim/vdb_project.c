@@ -44,10 +44,13 @@ int vdb_world_map_make(const vdb_dense_grid *grid, const vdb_placement *desc,
       out->domain_min[c] = 0;
       out->domain_max[c] = cfg->res[c] - 1;
       if (cfg->res[c] != cfg->base_res[c] || cfg->res_min[c] != 0) adaptive = 1;
-      if (!adaptive && fabs(grid->voxel_size[c] - dx) > 1e-3 * dx)
+      /* The VDB's voxel size is in world units: the object's scale times dx (the shared
+       * bakes have scale 1, where both readings agree). */
+      const double world_dx = fabs(s * dx);
+      if (!adaptive && fabs(grid->voxel_size[c] - world_dx) > 1e-3 * world_dx)
         snprintf(out->warning, sizeof out->warning,
                  "VDB voxel size %g differs from the config's %g on axis %d: using the "
-                 "config", grid->voxel_size[c], dx, c);
+                 "config", grid->voxel_size[c], world_dx, c);
     }
     if (adaptive)
       snprintf(out->warning, sizeof out->warning,
