@@ -160,12 +160,7 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
                  grid->coefficients);
     /* GL_LINEAR for the hardware-filtered variant; the border (0) stands for the zero
      * coefficients outside the grid. texelFetch ignores both. */
-    static const float border[4] = {0, 0, 0, 0};
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, border);
+    gl_util_texture_sampling(GL_TEXTURE_2D, true);
     s->width = grid->width;
     s->height = grid->height;
   }
@@ -193,8 +188,7 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
     if (!s->cells) glGenTextures(1, &s->cells);
     glBindTexture(GL_TEXTURE_2D, s->cells);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, cw, ch, 0, GL_RGBA, GL_FLOAT, pass->cell_scratch);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl_util_texture_sampling(GL_TEXTURE_2D, false);
     s->cells_width = cw;
     s->cells_height = ch;
   }
@@ -234,15 +228,7 @@ static void array_texture_fit(GLuint *texture, int *width, int *height, int *cou
   glBindTexture(GL_TEXTURE_2D_ARRAY, *texture);
   glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, (GLint)internal_format, w, h, count, 0, format, GL_FLOAT,
                NULL);
-  GLint filter = filtered ? GL_LINEAR : GL_NEAREST;
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, filter);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, filter);
-  if (filtered) {
-    static const float border[4] = {0, 0, 0, 0};
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    glTexParameterfv(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BORDER_COLOR, border);
-  }
+  gl_util_texture_sampling(GL_TEXTURE_2D_ARRAY, filtered);
   glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
   *width = w;
   *height = h;

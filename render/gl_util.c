@@ -299,3 +299,15 @@ GLuint gl_util_empty_vao(void) {
   if (!vao || !glIsVertexArray(vao)) glGenVertexArrays(1, &vao);
   return vao;
 }
+
+void gl_util_texture_sampling(GLenum target, bool linear_zero_border) {
+  GLint filter = linear_zero_border ? GL_LINEAR : GL_NEAREST;
+  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
+  if (!linear_zero_border) return;
+  static const float border[4] = {0, 0, 0, 0};
+  glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  if (target == GL_TEXTURE_3D) glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_BORDER);
+  glTexParameterfv(target, GL_TEXTURE_BORDER_COLOR, border);
+}

@@ -69,4 +69,9 @@ int gl_util_read_pixels(GLenum read_buffer, int width, int height, int channels,
  * Created on first use (and again when a new context no longer knows it). */
 GLuint gl_util_empty_vao(void);
 
+/* Sampling of the texture bound to `target` (2D, 2D array or 3D): GL_LINEAR filtering with
+ * a zero border (values outside the texture read as 0, as coefficients and densities
+ * beyond a grid are), or GL_NEAREST for texelFetch-only textures. */
+void gl_util_texture_sampling(GLenum target, bool linear_zero_border);
+
 #endif

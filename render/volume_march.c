@@ -43,13 +43,7 @@ volume_march *volume_march_create(const volume_grid_desc *grid, render_error *er
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, grid->dim[0], grid->dim[1], grid->dim[2], 0, GL_RED,
                GL_FLOAT, grid->values);
-  static const float border[4] = {0, 0, 0, 0};
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_BORDER);
-  glTexParameterfv(GL_TEXTURE_3D, GL_TEXTURE_BORDER_COLOR, border);
+  gl_util_texture_sampling(GL_TEXTURE_3D, true); /* hardware trilinear, zero border */
   glBindTexture(GL_TEXTURE_3D, 0);
   if (gl_util_check("volume march: upload", err)) {
     volume_march_destroy(m);
