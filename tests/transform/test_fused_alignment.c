@@ -20,11 +20,8 @@ int main(void) {
         int w = sizes[s][0], h = sizes[s][1];
         int J = all_levels ? transform_max_levels(w, h, TRANSFORM_SYMMETRIC) : 1;
         transform_plan *one, *two;
-        transform_error err;
-        transform_desc d = {.width = w, .height = h, .levels = J, .basis = test_bases[b]};
-        CHECK(!transform_plan_create(&one, &d, &err), "%s", err.message);
-        d.threads = 2;
-        CHECK(!transform_plan_create(&two, &d, &err), "%s", err.message);
+        test_plan_pair((transform_desc){.width = w, .height = h, .levels = J, .basis = test_bases[b]},
+                       &one, &two);
         size_t n = (size_t)w * h, bytes = (n + 16) * sizeof(float);
         bytes = (bytes + 63) / 64 * 64;
         float *in = aligned_alloc(64, bytes), *out = aligned_alloc(64, bytes);

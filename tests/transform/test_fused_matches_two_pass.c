@@ -14,11 +14,8 @@ int main(void) {
       int w = sizes[s][0], h = sizes[s][1];
       int J = transform_max_levels(w, h, TRANSFORM_SYMMETRIC);
       transform_plan *one, *two;
-      transform_error err;
-      transform_desc d = {.width = w, .height = h, .levels = J, .basis = test_bases[b]};
-      CHECK(!transform_plan_create(&one, &d, &err), "%s", err.message);
-      d.threads = 2;
-      CHECK(!transform_plan_create(&two, &d, &err), "%s", err.message);
+      test_plan_pair((transform_desc){.width = w, .height = h, .levels = J, .basis = test_bases[b]},
+                     &one, &two);
       size_t n = (size_t)w * h;
       float *f = malloc(n * sizeof *f), *c1 = malloc(n * sizeof *f), *c2 = malloc(n * sizeof *f);
       test_fill_fogmap(f, w, h);

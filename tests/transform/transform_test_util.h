@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+#include "tests/test_util.h"
 #include "transform/transform.h"
 
 static uint64_t test_rng_state = 0x9E3779B97F4A7C15ull;
@@ -58,6 +59,16 @@ static inline double test_grid_eval(const transform_grid *g, double u, double v)
 static const transform_basis test_bases[3] = {TRANSFORM_HAAR, TRANSFORM_LINEAR,
                                               TRANSFORM_QUADRATIC};
 static const char *const test_basis_names[3] = {"haar", "linear", "quadratic"};
+
+/* The same transform planned for one thread and for two (the pair the fused-level tests
+ * compare); fails the test with the plan's message. */
+static inline void test_plan_pair(transform_desc d, transform_plan **one, transform_plan **two) {
+  transform_error err;
+  d.threads = 1;
+  CHECK(!transform_plan_create(one, &d, &err), "%s", err.message);
+  d.threads = 2;
+  CHECK(!transform_plan_create(two, &d, &err), "%s", err.message);
+}
 
 static inline double test_max_abs(const float *a, size_t n) {
   double m = 0.0;
