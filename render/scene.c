@@ -294,25 +294,11 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glClearDepth(1.0);
   glDepthMask(GL_TRUE);
   glClear(GL_DEPTH_BUFFER_BIT);
+  double right[3], up[3], forward[3];
+  camera_basis(cam, w, h, right, up, forward);
 
   float sun_dir[3] = {(float)geo->sun_direction[0], (float)geo->sun_direction[1],
                       (float)geo->sun_direction[2]};
-  /* Sky: a full-screen triangle, rays from the same basis as camera_ray(). */
-  double right[3], up[3], forward[3];
-  camera_basis(cam, w, h, right, up, forward);
-  glDisable(GL_DEPTH_TEST);
-  glUseProgram(pass->sky_program);
-  glUniform3f(pass->u_sky_right, (float)right[0], (float)right[1], (float)right[2]);
-  glUniform3f(pass->u_sky_up, (float)up[0], (float)up[1], (float)up[2]);
-  glUniform3f(pass->u_sky_forward, (float)forward[0], (float)forward[1], (float)forward[2]);
-  glUniform2f(pass->u_sky_viewport, (float)w, (float)h);
-  glUniform3fv(pass->u_sky_horizon, 1, geo->light.sky_horizon);
-  glUniform3fv(pass->u_sky_zenith, 1, geo->light.sky_zenith);
-  glUniform3fv(pass->u_sky_sun_direction, 1, sun_dir);
-  glUniform3fv(pass->u_sky_sun_colour, 1, geo->light.sun_colour);
-  glBindVertexArray(gl_util_empty_vao());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-
   /* Terrain and boxes, camera-relative: offset = terrain origin - camera (double). */
   float view[16], projection[16];
   camera_view_matrix(cam, view);
@@ -330,6 +316,27 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glUniform3fv(pass->u_ambient, 1, geo->light.ambient);
   glBindVertexArray(pass->vao);
   glDrawElements(GL_TRIANGLES, pass->index_count, GL_UNSIGNED_INT, 0);
+  glBindVertexArray(0);
+
+  /* Sky last: a full-screen triangle at depth 1 (the far plane), rays from the same basis
+   * as camera_ray(), depth-tested so that only the pixels no surface covers are shaded
+   * (early depth test: the sky's sun disc and gradient cost nothing under the terrain). */
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glUseProgram(pass->sky_program);
+  glUniform3f(pass->u_sky_right, (float)right[0], (float)right[1], (float)right[2]);
+  glUniform3f(pass->u_sky_up, (float)up[0], (float)up[1], (float)up[2]);
+  glUniform3f(pass->u_sky_forward, (float)forward[0], (float)forward[1], (float)forward[2]);
+  glUniform2f(pass->u_sky_viewport, (float)w, (float)h);
+  glUniform3fv(pass->u_sky_horizon, 1, geo->light.sky_horizon);
+  glUniform3fv(pass->u_sky_zenith, 1, geo->light.sky_zenith);
+  glUniform3fv(pass->u_sky_sun_direction, 1, sun_dir);
+  glUniform3fv(pass->u_sky_sun_colour, 1, geo->light.sun_colour);
+  glBindVertexArray(gl_util_empty_vao());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
   glBindVertexArray(0);
   glUseProgram(0);
   glDisable(GL_DEPTH_TEST);
