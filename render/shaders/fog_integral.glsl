@@ -262,20 +262,18 @@ void fog_exp_moments_series(float c0, float b, int n, out float m[5]) {
   m = float[5](even_sum.x, odd_sum.x, even_sum.y, odd_sum.y, even_sum.z);
 }
 
-// The walk's moments (fog_piece_integral, |b| <= 1/4): the series to j = 7; the next term is
-// below 0.25^8/8! ~ 4e-10 of e^{c0}. GLSL only: the C twin keeps fog_exp_moments.
+// The walk's moments (fog_piece_integral, |b| <= 1/4): the series to j = 7, as Horner
+// polynomials in u = b^2 (J_k = e^{c0} sum_j b^j/j! int s^{k+j} ds; even k: 2 u^m /
+// ((2m)! (2m+k+1)), odd k: 2 b u^m / ((2m+1)! (2m+k+2))); the next term is below
+// 0.25^8/8! ~ 4e-10 of e^{c0}. Unused moments (k > 2d) fold away. GLSL only: the C twin
+// keeps fog_exp_moments.
 void fog_exp_moments_walk(float c0, float b, out float m[5]) {
-  float term = exp(c0);
-  vec3 even_sum = vec3(0.0);
-  vec2 odd_sum = vec2(0.0);
-  for (int j = 0; j < 8; j += 2) {
-    float fj = float(j);
-    even_sum += term * 2.0 / vec3(fj + 1.0, fj + 3.0, fj + 5.0);
-    float next = term * b / (fj + 1.0);
-    odd_sum += next * 2.0 / vec2(fj + 3.0, fj + 5.0);
-    term = next * b / (fj + 2.0);
-  }
-  m = float[5](even_sum.x, odd_sum.x, even_sum.y, odd_sum.y, even_sum.z);
+  float e2 = 2.0 * exp(c0), u = b * b;
+  m[0] = e2 * (1.0 + u * (1.0 / 6.0 + u * (1.0 / 120.0 + u * (1.0 / 5040.0))));
+  m[1] = e2 * b * (1.0 / 3.0 + u * (1.0 / 30.0 + u * (1.0 / 840.0 + u * (1.0 / 45360.0))));
+  m[2] = e2 * (1.0 / 3.0 + u * (1.0 / 10.0 + u * (1.0 / 168.0 + u * (1.0 / 6480.0))));
+  m[3] = e2 * b * (1.0 / 5.0 + u * (1.0 / 42.0 + u * (1.0 / 1080.0 + u * (1.0 / 55440.0))));
+  m[4] = e2 * (1.0 / 5.0 + u * (1.0 / 14.0 + u * (1.0 / 216.0 + u * (1.0 / 7920.0))));
 }
 
 void fog_exp_moments(float c0, float b, int n, out float m[5]) {
