@@ -25,20 +25,31 @@ static double coefficient(const transform_grid *g, int i, int j) {
 /* Degree 1 (the default basis) runs every frame for every LOD grid: a direct loop,
  * A00 = c00, A10 = c10 - c00, A01 = c01 - c00, A11 = c11 - c10 - c01 + c00 (the general
  * formula with M = [[1, 0], [-1, 1]]), in double. */
+static void linear_cell(double c00, double c10, double c01, double c11, float *out) {
+  out[0] = (float)c00;
+  out[1] = (float)(c10 - c00);
+  out[2] = (float)(c01 - c00);
+  out[3] = (float)((c11 - c10) - (c01 - c00));
+}
+
 static void build_linear(const transform_grid *grid, float *rgba, int texels_w) {
-  int cells_w = grid->width + 1, cells_h = grid->height + 1;
+  const int w = grid->width, h = grid->height, cells_w = w + 1, cells_h = h + 1;
   for (int tz = 0; tz < cells_h; tz++) {
-    int j0 = tz - 1;
+    const int j0 = tz - 1;
     float *out = rgba + 4 * (size_t)tz * (size_t)texels_w;
-    for (int tx = 0; tx < cells_w; tx++, out += 4) {
-      int i0 = tx - 1;
-      double c00 = coefficient(grid, i0, j0), c10 = coefficient(grid, i0 + 1, j0);
-      double c01 = coefficient(grid, i0, j0 + 1), c11 = coefficient(grid, i0 + 1, j0 + 1);
-      out[0] = (float)c00;
-      out[1] = (float)(c10 - c00);
-      out[2] = (float)(c01 - c00);
-      out[3] = (float)((c11 - c10) - (c01 - c00));
+    if (j0 < 0 || j0 + 1 >= h) { /* the first and last rows of cells: half outside */
+      for (int tx = 0; tx < cells_w; tx++)
+        linear_cell(coefficient(grid, tx - 1, j0), coefficient(grid, tx, j0),
+                    coefficient(grid, tx - 1, j0 + 1), coefficient(grid, tx, j0 + 1),
+                    out + 4 * tx);
+      continue;
     }
+    /* interior rows: both coefficient rows exist; only the end cells reach outside */
+    const float *r0 = grid->coefficients + (size_t)j0 * (size_t)w, *r1 = r0 + w;
+    linear_cell(0.0, r0[0], 0.0, r1[0], out);
+    for (int tx = 1; tx < w; tx++)
+      linear_cell(r0[tx - 1], r0[tx], r1[tx - 1], r1[tx], out + 4 * tx);
+    linear_cell(r0[w - 1], 0.0, r1[w - 1], 0.0, out + 4 * w);
   }
 }
 
