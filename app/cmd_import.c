@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "app/cli.h"
+#include "app/clock.h"
 #include "app/commands.h"
 #include "bench/chart.h"
 #include "render/render.h"
@@ -366,12 +367,6 @@ static int write_sidecar(const char *path, const import_options *o, const vdb_se
   return 0;
 }
 
-static double seconds_now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 /* The report's 3D reference marched again on the GL (render/volume_march.h: the grid as a
  * 3D texture, hardware trilinear), the same rays and samples: per row, the largest
  * |T_GL - T_CPU| (the two references' agreement) and the GL time. Returns 1 (with why)
@@ -401,7 +396,7 @@ static int report_gl_march(const vdb_frame *full, const vdb_fogmap_place *place,
   volume_march *march = gl ? volume_march_create(&grid, &rerr) : NULL;
   float *depth = malloc(sizeof(float) * (size_t)side * side);
   int status = !gl || !march || !depth;
-  const double start = seconds_now();
+  const double start = app_clock_seconds();
   for (int r = 0; r < row_count && !status; r++) {
     max_dt[r] = 0;
     for (int az = 0; az < azimuths && !status; az++) {
@@ -415,7 +410,7 @@ static int report_gl_march(const vdb_frame *full, const vdb_fogmap_place *place,
           max_dt[r] = fmax(max_dt[r], fabs(exp(-(double)depth[k]) - exp(-ref[k])));
     }
   }
-  *seconds = seconds_now() - start;
+  *seconds = app_clock_seconds() - start;
   if (status) snprintf(why, why_size, "%s", depth ? rerr.message : "out of memory");
   free(depth);
   volume_march_destroy(march);
@@ -452,10 +447,10 @@ static int run_report(const import_options *o, const vdb_sequence *seq, const vd
     vdb_frame_destroy(&full);
     return cli_fail("import", "out of memory for the report's rays");
   }
-  const double t0 = seconds_now();
+  const double t0 = app_clock_seconds();
   int status = vdb_report_run(&full.grid, &full.world, &full.map, place, profile, &report, rows,
                               report_rows, &err);
-  const double seconds = seconds_now() - t0;
+  const double seconds = app_clock_seconds() - t0;
   if (status) {
     free(report.reference_depth);
     vdb_frame_destroy(&full);

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "app/clock.h"
 #include "app/pipeline_fog.h"
 #include "app/vdb_source.h"
 #include "render/fog_pass.h"
@@ -52,20 +53,11 @@ static double median_of(const double *values, int n) {
   return n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
 }
 
-static double now_ms(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return 1e3 * (double)ts.tv_sec + 1e-6 * (double)ts.tv_nsec;
-}
+static double now_ms(void) { return 1e3 * app_clock_seconds(); }
 
 /* CPU time of the calling thread: what a stage costs, whether or not the thread was
  * waiting for a core (in the worker it shares 2 cores with llvmpipe's render threads). */
-static double thread_cpu_ms(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * (double)ts.tv_sec + 1e-6 * (double)ts.tv_nsec;
-}
-
+static double thread_cpu_ms(void) { return 1e3 * app_thread_cpu_seconds(); }
 /* ---- slots: the CPU stages' output for one simulation step ---- */
 
 typedef enum slot_state { SLOT_FREE = 0, SLOT_FILLING, SLOT_READY } slot_state;

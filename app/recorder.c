@@ -17,6 +17,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "app/clock.h"
 #include "sim/sim.h"
 
 static int fail(recorder_error *err, const char *fmt, ...) {
@@ -25,12 +26,6 @@ static int fail(recorder_error *err, const char *fmt, ...) {
   vsnprintf(err->message, sizeof err->message, fmt, ap);
   va_end(ap);
   return 1;
-}
-
-double recorder_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* mkdir -p: creates each missing component of path. */
@@ -278,7 +273,7 @@ void recorder_progress_begin(recorder_progress *p, FILE *out, int first, int tot
                            .terminal = isatty(fileno(out)) != 0,
                            .total = total,
                            .first = first,
-                           .start = recorder_now()};
+                           .start = app_clock_seconds()};
 }
 
 static void format_duration(double seconds, char *buf, size_t size) {
@@ -290,7 +285,7 @@ static void format_duration(double seconds, char *buf, size_t size) {
 }
 
 void recorder_progress_update(recorder_progress *p, int done) {
-  double elapsed = recorder_now() - p->start;
+  double elapsed = app_clock_seconds() - p->start;
   int rendered = done - p->first;
   double per_frame = rendered > 0 ? elapsed / rendered : 0.0;
   double eta = per_frame * (p->total - done);

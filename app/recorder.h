@@ -89,8 +89,6 @@ void recorder_progress_update(recorder_progress *p, int done);
 /* Ends the in-place line on a terminal. */
 void recorder_progress_end(recorder_progress *p);
 
-/* Monotonic seconds. */
-double recorder_now(void);
 
 /* A whole recording: what `fogpipe record` runs, and `fogpipe demo` without a display.
  * Implemented in app/cmd_record.c. Returns the process exit status (0; 130 when

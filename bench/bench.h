@@ -4,6 +4,9 @@
 #ifndef FOGPIPE_BENCH_H
 #define FOGPIPE_BENCH_H
 
+/* Stages time with app_clock_seconds(), the clock the pipeline times with too. */
+#include "app/clock.h"
+
 #define FOG_BENCH(name, summary) int bench_##name(int argc, char **argv);
 #include "bench/stages.def"
 #undef FOG_BENCH
@@ -11,8 +14,6 @@
 /* Runs the stage named argv[0]; prints the list of stages for --help. */
 int bench_main(int argc, char **argv);
 
-/* Monotonic wall-clock time in seconds. */
-double bench_now(void);
 /* Median of n values (sorts the array in place). */
 double bench_median(double *values, int n);
 /* Prints one line naming the build measured (type, -march=native or portable, compiler). */

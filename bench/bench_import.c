@@ -49,7 +49,7 @@ static double time_vdb_render(const char *exe, const char *vdb, const char *png)
   char res[32];
   snprintf(res, sizeof res, "%dx%d", W, H);
   /* The VDB's own world: the domain min corner at 0, Z up (README). Same view as ours. */
-  const double t0 = bench_now();
+  const double t0 = app_clock_seconds();
   fflush(stdout); /* or the child would flush our buffered table a second time */
   fflush(stderr);
   pid_t pid = fork();
@@ -66,7 +66,7 @@ static double time_vdb_render(const char *exe, const char *vdb, const char *png)
   }
   int status = 0;
   if (pid < 0 || waitpid(pid, &status, 0) < 0) return -1;
-  const double t = bench_now() - t0;
+  const double t = app_clock_seconds() - t0;
   return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? t : -1;
 }
 
@@ -173,13 +173,13 @@ static int preview_frame(preview *p, const char *vdb, const char *png, double ti
                          char *error, size_t size) {
   sim_error serr = {{0}};
   render_error rerr = {{0}};
-  double t0 = bench_now();
+  double t0 = app_clock_seconds();
   vdb_frame frame;
   if (vdb_frame_load(vdb, &p->frame_desc, &frame, &serr)) {
     snprintf(error, size, "%s", serr.message);
     return 1;
   }
-  double t1 = bench_now();
+  double t1 = app_clock_seconds();
   transform_forward(p->plan, frame.map.density, p->coefficients);
   transform_pyramid(p->plan, p->coefficients, p->approx);
   if (p->levels > 0) transform_details(p->plan, p->coefficients, p->detail);
@@ -189,7 +189,7 @@ static int preview_frame(preview *p, const char *vdb, const char *png, double ti
     if (l > 0) transform_grid_export(p->plan, l, p->detail[l], &p->detail_grid[l - 1], &terr);
   }
   transform_grid_export(p->plan, p->levels, frame.map.density, &p->finest, &terr);
-  double t2 = bench_now();
+  double t2 = app_clock_seconds();
   const vdb_profile *g = &frame.profile;
   for (int k = 0; k < g->count; k++) p->profile_coefficients[k] = g->values[k];
   fog_volume volume = {
@@ -214,15 +214,15 @@ static int preview_frame(preview *p, const char *vdb, const char *png, double ti
   if (!status) {
     scene_pass_run(p->scene, &cam, &p->scene_target);
     fog_pass_finish(); /* glFinish: each GL stage timed on its own */
-    t2b = bench_now();
+    t2b = app_clock_seconds();
     gl_target_bind(&p->out_target);
     status = fog_pass_draw(p->fog, &cam, &params, p->scene_target.color[0],
                            p->scene_target.color[1], W, H, &rerr);
     fog_pass_finish();
-    t2c = bench_now();
+    t2c = app_clock_seconds();
   }
   if (!status) status = gl_target_read(&p->out_target, 0, 4, p->rgba, &rerr);
-  double t3 = bench_now();
+  double t3 = app_clock_seconds();
   vdb_frame_destroy(&frame);
   if (status) {
     snprintf(error, size, "render: %s", rerr.message);
@@ -234,7 +234,7 @@ static int preview_frame(preview *p, const char *vdb, const char *png, double ti
     snprintf(error, size, "%s", serr.message);
     return 1;
   }
-  double t4 = bench_now();
+  double t4 = app_clock_seconds();
   times[0] = t1 - t0;
   times[1] = t2 - t1;
   times[2] = t2b - t2;
@@ -324,13 +324,13 @@ static void *cpu_render_rows(void *arg) {
 static int cpu_preview(const char *vdb, const camera *cam, float *rgb, const char *png,
                        double times[3], char *error, size_t size) {
   sim_error serr = {{0}};
-  const double t0 = bench_now();
+  const double t0 = app_clock_seconds();
   vdb_frame frame;
   if (vdb_frame_load(vdb, &(vdb_frame_desc){0}, &frame, &serr)) {
     snprintf(error, size, "%s", serr.message);
     return 1;
   }
-  const double t1 = bench_now();
+  const double t1 = app_clock_seconds();
   cpu_render c[2];
   c[0] = (cpu_render){.frame = &frame, .cam = cam, .rgb = rgb};
   camera_basis(cam, W, H, c[0].right, c[0].up, c[0].forward);
@@ -357,7 +357,7 @@ static int cpu_preview(const char *vdb, const camera *cam, float *rgb, const cha
     pthread_join(worker, NULL);
   else
     cpu_render_rows(&c[1]);
-  const double t2 = bench_now();
+  const double t2 = app_clock_seconds();
   vdb_frame_destroy(&frame);
   if (image_write_png_srgb(png, W, H, 3, rgb, &serr)) {
     snprintf(error, size, "%s", serr.message);
@@ -365,7 +365,7 @@ static int cpu_preview(const char *vdb, const camera *cam, float *rgb, const cha
   }
   times[0] = t1 - t0;
   times[1] = t2 - t1;
-  times[2] = bench_now() - t2;
+  times[2] = app_clock_seconds() - t2;
   return 0;
 }
 
@@ -424,20 +424,20 @@ int bench_import(int argc, char **argv) {
   for (int r = -1; r < runs && !status; r++) { /* r = -1: warm-up (file cache, OpenVDB init) */
     for (int i = 0; i < n && !status; i++) {
       vdb_dense_grid g;
-      double t0 = bench_now();
+      double t0 = app_clock_seconds();
       if (vdb_read_dense(seq.paths[i], NULL, &g, &err)) {
         status = 1;
         break;
       }
-      double t1 = bench_now();
+      double t1 = app_clock_seconds();
       vdb_dense_grid_destroy(&g);
       vdb_frame f;
-      double t2 = bench_now();
+      double t2 = app_clock_seconds();
       if (vdb_frame_load(seq.paths[i], &(vdb_frame_desc){0}, &f, &err)) {
         status = 1;
         break;
       }
-      double t3 = bench_now();
+      double t3 = app_clock_seconds();
       if (r == 0) mass_sum += f.columns.mass;
       vdb_frame_destroy(&f);
       if (r >= 0) {
@@ -483,7 +483,7 @@ int bench_import(int argc, char **argv) {
   preview p;
   char error[600] = "";
   double cold = 0, warm[max_runs], parts[parts_count][max_runs];
-  const double t_cold = bench_now();
+  const double t_cold = app_clock_seconds();
   int gl_ok = !preview_create(&p, 64, 64, error, sizeof error);
   p.integrator = march ? FOG_INTEGRATOR_MARCH : FOG_INTEGRATOR_EXACT;
   p.frame_desc.profile.kind = exponential ? VDB_PROFILE_EXPONENTIAL : VDB_PROFILE_BSPLINE;
@@ -491,7 +491,7 @@ int bench_import(int argc, char **argv) {
   p.frame_desc.resolution = resolution;
   double times[parts_count];
   if (gl_ok && !preview_frame(&p, vdb, ours_png, times, error, sizeof error)) {
-    cold = bench_now() - t_cold;
+    cold = app_clock_seconds() - t_cold;
     for (int r = 0; r < preview_runs && gl_ok; r++) {
       if (preview_frame(&p, vdb, ours_png, times, error, sizeof error)) {
         gl_ok = 0;

@@ -104,8 +104,8 @@ static int measure(const scene_config *cfg, int width, int height, int fog_divis
   for (int m = 0; m < 2; m++)
     for (int i = 0; i < warmup; i++)
       if (pipeline_frame(p[m], &cam, true, &err)) goto done;
-  double start = bench_now();
-  while (s[1].n < frames && (s[1].n < 5 || bench_now() - start < 2.0 * max_seconds)) {
+  double start = app_clock_seconds();
+  while (s[1].n < frames && (s[1].n < 5 || app_clock_seconds() - start < 2.0 * max_seconds)) {
     for (int m = 0; m < 2; m++)
       for (int i = 0; i < block && s[m].n < frames; i++)
         if (record_frame(p[m], &cam, moving, &s[m], &err)) goto done;

@@ -415,7 +415,7 @@ int bench_render(int argc, char **argv) {
   }
 
   /* ---- the CPU references, one per model ---- */
-  double t_ref = bench_now();
+  double t_ref = app_clock_seconds();
   for (int r = 0; r < 3 + MU_COUNT; r++) {
     references[r] = malloc(pixels * sizeof(double));
     if (!references[r]) goto out_of_memory;
@@ -426,7 +426,7 @@ int bench_render(int argc, char **argv) {
                                   .distance = distance, .width = W, .height = H,
                                   .tau = references[r]});
   }
-  t_ref = bench_now() - t_ref;
+  t_ref = app_clock_seconds() - t_ref;
   fprintf(stderr, "bench render: CPU references done (%.1f s); GL rows...\n", t_ref);
 
   /* ---- the rows ---- */
@@ -511,12 +511,12 @@ int bench_render(int argc, char **argv) {
       r->params.frame = (unsigned)f;
       gl_target_bind(&fog_target);
       fog_pass_finish();
-      double t0 = bench_now();
+      double t0 = app_clock_seconds();
       if (fog_pass_draw(passes[r->pass], &cam, &r->params, scene_target.color[0],
                         scene_target.color[1], W, H, &rerr))
         goto gl_failed;
       fog_pass_finish();
-      r->times[f] = bench_now() - t0;
+      r->times[f] = app_clock_seconds() - t0;
     }
   for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
 
