@@ -127,13 +127,7 @@ static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost)
 /* two shufps; gcc's lowering of the one-shuffle form takes six instructions */
 #define FL_SHIFT(a, b) \
   __builtin_shuffle(__builtin_shuffle(a, b, (vi){3, 3, 4, 4}), b, (vi){0, 2, 5, 6})
-#include "transform/transform_fused_linear.h"
-#undef FL_V
-#undef FL_NAME
-#undef FL_TARGET
-#undef FL_EVEN
-#undef FL_ODD
-#undef FL_SHIFT
+#include "transform/transform_fused_linear.h" /* undefines its FL_ parameters */
 
 #if defined(__x86_64__) && FOGPIPE_FUSED_MAX_V > 4
 #define FUSED_DISPATCH 1
@@ -143,13 +137,7 @@ static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost)
 #define FL_EVEN {0, 2, 4, 6, 8, 10, 12, 14}
 #define FL_ODD {1, 3, 5, 7, 9, 11, 13, 15}
 #define FL_SHIFT(a, b) __builtin_shuffle(a, b, (vi){7, 8, 9, 10, 11, 12, 13, 14})
-#include "transform/transform_fused_linear.h"
-#undef FL_V
-#undef FL_NAME
-#undef FL_TARGET
-#undef FL_EVEN
-#undef FL_ODD
-#undef FL_SHIFT
+#include "transform/transform_fused_linear.h" /* undefines its FL_ parameters */
 #define FL_V 16
 #define FL_NAME(x) fl16_##x
 #define FL_TARGET __attribute__((target("avx512f")))
@@ -157,13 +145,7 @@ static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost)
 #define FL_ODD {1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31}
 #define FL_SHIFT(a, b) \
   __builtin_shuffle(a, b, (vi){15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30})
-#include "transform/transform_fused_linear.h"
-#undef FL_V
-#undef FL_NAME
-#undef FL_TARGET
-#undef FL_EVEN
-#undef FL_ODD
-#undef FL_SHIFT
+#include "transform/transform_fused_linear.h" /* undefines its FL_ parameters */
 #endif
 #endif /* FUSED_SIMD */
 

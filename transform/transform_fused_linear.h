@@ -2,7 +2,8 @@
  * transform_fused.c once per width (FL_V floats per vector, FL_NAME(x) names the
  * functions, FL_TARGET their target attribute; the masks FL_EVEN/FL_ODD, and
  * FL_SHIFT(prev, o): the vector (prev[FL_V-1], o[0], ..., o[FL_V-2])).
- * Not a header to include elsewhere: it has no include guard on purpose.
+ * Not a header to include elsewhere: it has no include guard on purpose, and it
+ * undefines its FL_ parameters at its end, ready for the next width.
  *
  * GCC vector extensions, not intrinsics: the same source compiles for any target and
  * gcc picks the shuffles (SSE2 shufps, AVX2 vpermps, AVX-512 vpermt2ps). Every float
@@ -237,3 +238,9 @@ FL_TARGET static void FL_NAME(level)(const transform_plan *p, int l, const float
 #undef SLOT
 }
 #undef FL_ODD_AT
+#undef FL_V
+#undef FL_NAME
+#undef FL_TARGET
+#undef FL_EVEN
+#undef FL_ODD
+#undef FL_SHIFT

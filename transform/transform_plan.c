@@ -156,20 +156,22 @@ void transform_band_rect(const transform_plan *p, int l, transform_orientation o
 
 /* ---- the 2D passes ---- */
 
-static lifting_step step_w(const transform_plan *p, int l) {
+/* The lifting step of level l along one axis (its lengths and boundary rules). */
+static lifting_step step_along(const transform_plan *p, const int *len,
+                               const level_rules *rules, int l) {
   return (lifting_step){.basis = p->desc.basis,
                         .periodic = p->desc.boundary == TRANSFORM_PERIODIC,
-                        .n = p->len_w[l],
-                        .fine = &p->rules_w[l],
-                        .coarse = &p->rules_w[l - 1]};
+                        .n = len[l],
+                        .fine = &rules[l],
+                        .coarse = &rules[l - 1]};
+}
+
+static lifting_step step_w(const transform_plan *p, int l) {
+  return step_along(p, p->len_w, p->rules_w, l);
 }
 
 static lifting_step step_h(const transform_plan *p, int l) {
-  return (lifting_step){.basis = p->desc.basis,
-                        .periodic = p->desc.boundary == TRANSFORM_PERIODIC,
-                        .n = p->len_h[l],
-                        .fine = &p->rules_h[l],
-                        .coarse = &p->rules_h[l - 1]};
+  return step_along(p, p->len_h, p->rules_h, l);
 }
 
 /* Direct forward row steps for the two short filters: the lifting steps fused into
