@@ -519,9 +519,6 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
                 : (float)(params->depth_cutoff > 0 ? params->depth_cutoff : FOG_PASS_DEPTH_CUTOFF));
     glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
   }
-  /* Unit 0 active again: the reduced target's creation below binds its texture to the active
-   * unit, which must not be one of the grids' (fog_pass_common_and_draw rebinds unit 0). */
-  glActiveTexture(GL_TEXTURE0);
   glUseProgram(walk_prog);
   if (divisor == 1)
     return fog_pass_common_and_draw(walk_prog, cam, params, surface_colour, surface_distance,

@@ -197,6 +197,10 @@ int gl_target_create(gl_target *target, const gl_target_desc *desc, render_error
     return 1;
   }
   glGetError();
+  /* The textures are made on the active unit: its binding is put back afterwards, so
+   * making a target never unbinds a texture a pass has bound there. */
+  GLint caller_texture = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &caller_texture);
   glGenFramebuffers(1, &target->framebuffer);
   glBindFramebuffer(GL_FRAMEBUFFER, target->framebuffer);
   GLenum buffers[GL_TARGET_MAX_COLOR];
@@ -222,7 +226,7 @@ int gl_target_create(gl_target *target, const gl_target_desc *desc, render_error
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, target->depth,
                            0);
   }
-  glBindTexture(GL_TEXTURE_2D, 0);
+  glBindTexture(GL_TEXTURE_2D, (GLuint)caller_texture);
   if (target->color_count) glDrawBuffers(target->color_count, buffers);
   GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
