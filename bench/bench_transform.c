@@ -194,8 +194,9 @@ int bench_transform(int argc, char **argv) {
   double pywt_ms[3];
   time_pywt(data, pywt_ms);
   printf("ms (GB/s = one read + one write of the fogmap); medians of 21..61 runs; symmetric,\n"
-         "non-standard. 1 thread: single-pass levels (forward: all bases; inverse: haar,\n"
-         "linear); 2 threads: rows and column strips split between the threads.\n");
+         "non-standard; single-pass levels (forward: all bases; inverse: haar, linear), their\n"
+         "rows split between the threads with 2 threads (quadratic inverse: rows, then column\n"
+         "strips, split likewise).\n");
   printf("%-6s %-9s %-3s %15s %15s %15s %15s %15s\n", "size", "basis", "thr", "fwd 3 levels",
          "inv 3 levels", "fwd full", "inv full", "fused level");
   double ours_full = NAN, ours_3 = NAN, fused = NAN, copy_1024 = NAN, gsl_1024 = NAN;

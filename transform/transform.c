@@ -8,15 +8,50 @@
 
 static void rows_pass(transform_plan *p, int forward, int top, int bottom, const float *src,
                       float *dst, size_t stride, int rows) {
-  transform_job j = {.columns = 0, .forward = forward, .top = top, .bottom = bottom,
-                     .src = src, .dst = dst, .stride = stride, .begin = 0, .end = rows};
+  transform_job j = {.kind = TRANSFORM_JOB_ROWS, .forward = forward, .top = top,
+                     .bottom = bottom, .src = src, .dst = dst, .stride = stride, .begin = 0,
+                     .end = rows, .samples = (size_t)rows * (size_t)p->len_w[top]};
   transform_run_job(p, &j);
 }
 
 static void columns_pass(transform_plan *p, int forward, int top, int bottom, float *base,
                          size_t stride, int columns) {
-  transform_job j = {.columns = 1, .forward = forward, .top = top, .bottom = bottom,
-                     .src = base, .dst = base, .stride = stride, .begin = 0, .end = columns};
+  transform_job j = {.kind = TRANSFORM_JOB_COLUMNS, .forward = forward, .top = top,
+                     .bottom = bottom, .src = base, .dst = base, .stride = stride, .begin = 0,
+                     .end = columns, .samples = (size_t)columns * (size_t)p->len_h[top]};
+  transform_run_job(p, &j);
+}
+
+/* One single-pass level; the coarse rows k are split between the threads. */
+static void fused_forward(transform_plan *p, int l, const float *src, size_t src_stride,
+                          float *dst, size_t dst_stride) {
+  transform_job j = {.kind = TRANSFORM_JOB_FUSED_FORWARD, .level = l, .src = src,
+                     .src_stride = src_stride, .dst = dst, .stride = dst_stride, .begin = 0,
+                     .end = (p->len_h[l] + 1) / 2,
+                     .samples = (size_t)p->len_w[l] * (size_t)p->len_h[l]};
+  transform_run_job(p, &j);
+}
+
+/* A level computed out of place back into the coefficients: each thread copies the rows
+ * it computed, still in its own cache (on the 2-vCPU machines a copy of the other
+ * core's rows ran 4x slower). */
+static void copy_back(transform_plan *p, int l, const float *level, float *coefficients) {
+  transform_job j = {.kind = TRANSFORM_JOB_COPY_BACK, .level = l, .src = level,
+                     .src_stride = (size_t)p->len_w[l], .dst = coefficients,
+                     .stride = (size_t)p->desc.width, .begin = 0,
+                     .end = (p->len_h[l] + 1) / 2,
+                     .samples = (size_t)p->len_w[l] * (size_t)p->len_h[l]};
+  transform_run_job(p, &j);
+}
+
+static void fused_inverse(transform_plan *p, int l, const float *low, size_t low_stride,
+                          const float *coef, size_t coef_stride, float *dst,
+                          size_t dst_stride) {
+  transform_job j = {.kind = TRANSFORM_JOB_FUSED_INVERSE, .level = l, .low = low,
+                     .low_stride = low_stride, .src = coef, .src_stride = coef_stride,
+                     .dst = dst, .stride = dst_stride, .begin = 0,
+                     .end = (p->len_h[l] + 1) / 2,
+                     .samples = (size_t)p->len_w[l] * (size_t)p->len_h[l]};
   transform_run_job(p, &j);
 }
 
@@ -38,14 +73,14 @@ int transform_forward(transform_plan *p, const float *fogmap, float *coefficient
     return 0;
   }
   for (int l = J; l >= 1; l--) {
-    /* one streaming pass per level where possible (one thread; out of place) */
-    if (p->threads == 1 && transform_fused_supported(p, l) && (l < J || fogmap != coefficients)) {
+    /* one streaming pass per level where possible (out of place) */
+    if (transform_fused_supported(p, l) && (l < J || fogmap != coefficients)) {
       if (l == J) {
-        transform_fused_forward_level(p, l, fogmap, (size_t)W, coefficients, (size_t)W);
+        fused_forward(p, l, fogmap, (size_t)W, coefficients, (size_t)W);
       } else {
         float *level = p->scratch[0].level;
-        transform_fused_forward_level(p, l, coefficients, (size_t)W, level, (size_t)p->len_w[l]);
-        copy_block(coefficients, (size_t)W, level, (size_t)p->len_w[l], p->len_w[l], p->len_h[l]);
+        fused_forward(p, l, coefficients, (size_t)W, level, (size_t)p->len_w[l]);
+        copy_back(p, l, level, coefficients);
       }
       continue;
     }
@@ -75,8 +110,8 @@ static void inverse_region(transform_plan *p, float *buf, size_t stride, int l) 
 static void inverse_level(transform_plan *p, int l, const float *low, size_t low_stride,
                           const float *coef, float *dst, size_t dst_stride) {
   size_t W = (size_t)p->desc.width;
-  if (p->threads == 1 && transform_fused_inverse_supported(p, l)) {
-    transform_fused_inverse_level(p, l, low, low_stride, coef, W, dst, dst_stride);
+  if (transform_fused_inverse_supported(p, l)) {
+    fused_inverse(p, l, low, low_stride, coef, W, dst, dst_stride);
     return;
   }
   int w = p->len_w[l], h = p->len_h[l], w0 = p->len_w[l - 1], h0 = p->len_h[l - 1];

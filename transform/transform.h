@@ -74,6 +74,10 @@ typedef struct transform_desc {
   transform_boundary boundary;
   transform_decomposition decomposition;
   int threads;        /* 0 or 1: one thread; 2: two threads (a worker made at create) */
+  /* 0: each level in one streaming pass where the configuration allows (symmetric,
+   * non-standard, >= 8 rows); 1: always rows, then strips of columns (the reference
+   * the streaming levels are tested against). Same coefficients to float rounding. */
+  int two_pass;
 } transform_desc;
 
 typedef struct transform_plan transform_plan;

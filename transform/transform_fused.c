@@ -15,7 +15,7 @@
 
 typedef struct stream {
   const transform_plan *p;
-  int l, w, n, loaded;
+  int thread, l, w, n, loaded; /* fine rows < loaded are in the ring */
   const float *src;
   size_t src_stride;
   float *ring;
@@ -30,8 +30,8 @@ static void load_until(stream *s, int upto) {
   if (upto > s->n - 1) upto = s->n - 1;
   while (s->loaded <= upto) {
     int r = s->loaded++;
-    transform_rows(s->p, 0, 1, s->l, s->l - 1, s->src + (size_t)r * s->src_stride, slot(s, r),
-                   0, 0, 1);
+    transform_rows(s->p, s->thread, 1, s->l, s->l - 1, s->src + (size_t)r * s->src_stride,
+                   slot(s, r), 0, 0, 1);
   }
 }
 
@@ -48,6 +48,7 @@ static void rule_rows(const stream *s, const ghost_rule *r, int fine_step, int f
 }
 
 int transform_fused_supported(const transform_plan *p, int l) {
+  if (p->desc.two_pass) return 0;
   if (p->desc.boundary != TRANSFORM_SYMMETRIC || p->desc.decomposition != TRANSFORM_NONSTANDARD)
     return 0;
   int n = p->len_h[l], m = (n + 1) / 2;
@@ -72,13 +73,25 @@ static void linear_row_step(int w, const float *restrict e0, const float *restri
   }
 }
 
-static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost) {
+/* o_k0-1 (predicted, in the ring) for a range starting at k0 > 0: fine rows 2k0-2 ..
+ * 2k0 lifted along x, then the column predict of linear_level (same operations) */
+static void linear_warm_up(stream *s, int k0) {
+  s->loaded = 2 * k0 - 2;
+  load_until(s, 2 * k0);
+  float *restrict o = slot(s, 2 * k0 - 1);
+  const float *restrict e0 = slot(s, 2 * k0 - 2), *restrict e1 = slot(s, 2 * k0);
+  for (int i = 0; i < s->w; i++) o[i] = o[i] - 0.5f * (e0[i] + e1[i]);
+}
+
+static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost, int k0,
+                         int k1) {
   int n = s->n, m = (n + 1) / 2, d = n / 2, w = s->w;
   float lo = lifting_scale_low(TRANSFORM_LINEAR), hi = lifting_scale_high(TRANSFORM_LINEAR);
   const ghost_rule *rho = &s->p->rules_h[s->l - 1].right;
+  if (k0 > 0) linear_warm_up(s, k0);
   /* iteration k: predict o_k = x_2k+1 - (x_2k + x_2k+2)/2 and, in the same loop, update
    * e_k = x_2k + (o_k-1 + o_k)/4; both written out at once, o_k kept for e_k+1 */
-  for (int k = 0; k < m; k++) {
+  for (int k = k0; k < k1; k++) {
     load_until(s, 2 * k + 2);
     const float *restrict e0 = slot(s, 2 * k);
     float *restrict low = dst + (size_t)k * dst_stride;
@@ -152,25 +165,26 @@ static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost)
 #ifdef FUSED_SIMD
 static void linear_level_simd(const transform_plan *p, int l, const float *src,
                               size_t src_stride, float *ring, float *dst, size_t dst_stride,
-                              float *ghost) {
+                              float *ghost, int k0, int k1) {
 #ifdef FUSED_DISPATCH
   if (FOGPIPE_FUSED_MAX_V >= 16 && __builtin_cpu_supports("avx512f")) {
-    fl16_level(p, l, src, src_stride, ring, dst, dst_stride, ghost);
+    fl16_level(p, l, src, src_stride, ring, dst, dst_stride, ghost, k0, k1);
     return;
   }
   if (__builtin_cpu_supports("avx2")) {
-    fl8_level(p, l, src, src_stride, ring, dst, dst_stride, ghost);
+    fl8_level(p, l, src, src_stride, ring, dst, dst_stride, ghost, k0, k1);
     return;
   }
 #endif
-  fl4_level(p, l, src, src_stride, ring, dst, dst_stride, ghost);
+  fl4_level(p, l, src, src_stride, ring, dst, dst_stride, ghost, k0, k1);
 }
 #endif
 
-static void haar_level(stream *s, float *dst, size_t dst_stride) {
+static void haar_level(stream *s, float *dst, size_t dst_stride, int k0, int k1) {
   int n = s->n, m = (n + 1) / 2, d = n / 2, w = s->w;
   float hi = lifting_scale_high(TRANSFORM_HAAR);
-  for (int k = 0; k < m; k++) {
+  s->loaded = 2 * k0; /* rows are independent pairs */
+  for (int k = k0; k < k1; k++) {
     load_until(s, 2 * k + 1);
     const float *restrict e = slot(s, 2 * k);
     float *restrict lo_out = dst + (size_t)k * dst_stride;
@@ -188,13 +202,20 @@ static void haar_level(stream *s, float *dst, size_t dst_stride) {
   }
 }
 
-static void quadratic_level(stream *s, float *dst, size_t dst_stride, float *ghost) {
+/* Iteration k runs step 1 on e_k, step 2 on o_k-1, step 3 on e_k-2. For output rows
+ * [k0, k1), step 3 needs o_k0-1 .. o_k1 final, so a range past 0 starts one iteration
+ * early (from raw row 2k0-3) and steps 2 without writing o_k0-1; each range ends with
+ * step 2 on o_k1, kept in the ring only. */
+static void quadratic_level(stream *s, float *dst, size_t dst_stride, float *ghost, int k0,
+                            int k1) {
   int n = s->n, m = (n + 1) / 2, d = n / 2, w = s->w;
   float lo = lifting_scale_low(TRANSFORM_QUADRATIC), hi = lifting_scale_high(TRANSFORM_QUADRATIC);
   const float third = (float)(1.0 / 3.0), a = (float)(3.0 / 36.0), b = (float)(16.0 / 36.0);
   const ghost_rule *rho = &s->p->rules_h[s->l - 1].right;
   const ghost_rule *left = &s->p->rules_h[s->l].left;
-  for (int k = 0; k <= m + 1; k++) {
+  int k_first = k0 > 0 ? k0 - 1 : 0, k_last = k1 + 1 < m + 1 ? k1 + 1 : m + 1;
+  s->loaded = k_first > 0 ? 2 * k_first - 1 : 0;
+  for (int k = k_first; k <= k_last; k++) {
     load_until(s, k == 0 ? 1 : 2 * k);
     if (k < m) { /* step 1: e_k -= o_k-1 / 3 (k = 0: the fine level's left ghost) */
       float *restrict e = slot(s, 2 * k);
@@ -207,7 +228,7 @@ static void quadratic_level(stream *s, float *dst, size_t dst_stride, float *gho
       }
     }
     int j = k - 1; /* step 2: o_j -= (9 e_j + 3 e_j+1)/8, written out */
-    if (j >= 0 && j < d) {
+    if (j >= k_first && j < d) {
       float *restrict o = slot(s, 2 * j + 1);
       const float *restrict e0 = slot(s, 2 * j);
       const float *restrict e1;
@@ -217,15 +238,19 @@ static void quadratic_level(stream *s, float *dst, size_t dst_stride, float *gho
         rule_rows(s, rho, 2, 0, ghost);
         e1 = ghost;
       }
-      float *restrict out = dst + (size_t)(m + j) * dst_stride;
-      for (int i = 0; i < w; i++) {
-        float v = o[i] - (1.125f * e0[i] + 0.375f * e1[i]);
-        o[i] = v;
-        out[i] = hi * v;
+      if (j >= k0 && j < k1) {
+        float *restrict out = dst + (size_t)(m + j) * dst_stride;
+        for (int i = 0; i < w; i++) {
+          float v = o[i] - (1.125f * e0[i] + 0.375f * e1[i]);
+          o[i] = v;
+          out[i] = hi * v;
+        }
+      } else { /* a neighbour's row: needed final, written by the neighbour */
+        for (int i = 0; i < w; i++) o[i] = o[i] - (1.125f * e0[i] + 0.375f * e1[i]);
       }
     }
     int q = k - 2; /* step 3: e_q += (3 o_q-1 + 16 o_q - 3 o_q+1)/36, written out */
-    if (q >= 0 && q < m) {
+    if (q >= k0 && q < k1) {
       const float *restrict e = slot(s, 2 * q);
       float *restrict out = dst + (size_t)q * dst_stride;
       const float *om = q >= 1 ? slot(s, 2 * q - 1) : NULL;
@@ -246,23 +271,25 @@ static void quadratic_level(stream *s, float *dst, size_t dst_stride, float *gho
   }
 }
 
-void transform_fused_forward_level(const transform_plan *p, int l, const float *src,
-                                   size_t src_stride, float *dst, size_t dst_stride) {
-  transform_scratch *sc = (transform_scratch *)&p->scratch[0];
-  stream s = {.p = p, .l = l, .w = p->len_w[l], .n = p->len_h[l], .loaded = 0, .src = src,
-              .src_stride = src_stride, .ring = sc->ring};
+void transform_fused_forward_level(const transform_plan *p, int thread, int l,
+                                   const float *src, size_t src_stride, float *dst,
+                                   size_t dst_stride, int k0, int k1) {
+  transform_scratch *sc = (transform_scratch *)&p->scratch[thread];
+  stream s = {.p = p, .thread = thread, .l = l, .w = p->len_w[l], .n = p->len_h[l],
+              .loaded = 0, .src = src, .src_stride = src_stride, .ring = sc->ring};
   switch (p->desc.basis) {
-    case TRANSFORM_HAAR: haar_level(&s, dst, dst_stride); break;
+    case TRANSFORM_HAAR: haar_level(&s, dst, dst_stride, k0, k1); break;
     case TRANSFORM_LINEAR:
 #ifdef FUSED_SIMD
       if (s.w >= 4) {
-        linear_level_simd(p, l, src, src_stride, sc->ring, dst, dst_stride, sc->ring_ghost);
+        linear_level_simd(p, l, src, src_stride, sc->ring, dst, dst_stride, sc->ring_ghost, k0,
+                          k1);
         break;
       }
 #endif
-      linear_level(&s, dst, dst_stride, sc->ring_ghost);
+      linear_level(&s, dst, dst_stride, sc->ring_ghost, k0, k1);
       break;
-    case TRANSFORM_QUADRATIC: quadratic_level(&s, dst, dst_stride, sc->ring_ghost); break;
+    case TRANSFORM_QUADRATIC: quadratic_level(&s, dst, dst_stride, sc->ring_ghost, k0, k1); break;
   }
 }
 
@@ -274,7 +301,7 @@ void transform_fused_forward_level(const transform_plan *p, int l, const float *
 
 typedef struct inverse_stream {
   const transform_plan *p;
-  int l, w, n, m, loaded;
+  int thread, l, w, n, m, loaded; /* composite rows < loaded are in the ring */
   const float *low, *coef;
   size_t low_stride, coef_stride;
   float *ring;
@@ -313,16 +340,20 @@ int transform_fused_inverse_supported(const transform_plan *p, int l) {
 }
 
 static void emit_row(const inverse_stream *s, const float *fine, float *dst) {
-  transform_rows(s->p, 0, 0, s->l, s->l - 1, fine, dst, 0, 0, 1);
+  transform_rows(s->p, s->thread, 0, s->l, s->l - 1, fine, dst, 0, 0, 1);
 }
 
-void transform_fused_inverse_level(const transform_plan *p, int l, const float *low,
-                                   size_t low_stride, const float *coef, size_t coef_stride,
-                                   float *dst, size_t dst_stride) {
-  transform_scratch *sc = (transform_scratch *)&p->scratch[0];
+/* Fine rows 2k, 2k+1 for k in [k0, k1): e_k needs o_k-1 and o_k, the odd row 2k+1 needs
+ * e_k+1 too, so a range reads composite rows k0-1 .. k1 and finishes e_k1 unwritten. */
+void transform_fused_inverse_level(const transform_plan *p, int thread, int l,
+                                   const float *low, size_t low_stride, const float *coef,
+                                   size_t coef_stride, float *dst, size_t dst_stride, int k0,
+                                   int k1) {
+  transform_scratch *sc = (transform_scratch *)&p->scratch[thread];
   int n = p->len_h[l], m = (n + 1) / 2, d = n / 2, w = p->len_w[l];
   transform_basis basis = p->desc.basis;
-  inverse_stream s = {.p = p, .l = l, .w = w, .n = n, .m = m, .loaded = 0, .low = low,
+  inverse_stream s = {.p = p, .thread = thread, .l = l, .w = w, .n = n, .m = m,
+                      .loaded = k0 > 0 ? k0 - 1 : 0, .low = low,
                       .coef = coef, .low_stride = low_stride, .coef_stride = coef_stride,
                       .ring = sc->ring, .scale_low = 1.0f / lifting_scale_low(basis),
                       .scale_high = 1.0f / lifting_scale_high(basis)};
@@ -330,7 +361,8 @@ void transform_fused_inverse_level(const transform_plan *p, int l, const float *
   float *fine = sc->ring_ghost; /* one fine row before the merge along x */
   float *ghost = sc->ring + (size_t)(RING - 0) * (size_t)w; /* extra row after the ring */
   if (basis == TRANSFORM_HAAR) {
-    for (int k = 0; k < m; k++) {
+    s.loaded = k0;
+    for (int k = k0; k < k1; k++) {
       iload_until(&s, k);
       float *restrict e = islot(&s, 2 * k);
       if (k < d) {
@@ -348,17 +380,17 @@ void transform_fused_inverse_level(const transform_plan *p, int l, const float *
   /* CDF 5/3: e_k -= (o_k-1 + o_k)/4 (o_-1 = o_0; odd n: o_m-1 = o_m-2), then
    * x_2k+1 = o_k + (e_k + e_k+1)/2 with e_m from the coarse right rule (even n) */
   const ghost_rule *rho = &p->rules_h[l - 1].right;
-  for (int k = 0; k <= m; k++) {
+  for (int k = k0; k <= k1; k++) {
     if (k < m) { /* finish e_k */
       iload_until(&s, k + 1);
       float *restrict e = islot(&s, 2 * k);
       const float *restrict om = islot(&s, k > 0 ? 2 * k - 1 : 1);
       const float *restrict op = islot(&s, k < d ? 2 * k + 1 : 2 * k - 1);
       for (int i = 0; i < w; i++) e[i] += -0.25f * (om[i] + op[i]);
-      emit_row(&s, e, dst + (size_t)(2 * k) * dst_stride);
+      if (k < k1) emit_row(&s, e, dst + (size_t)(2 * k) * dst_stride);
     }
     int j = k - 1; /* odd row 2j+1 once e_j and e_j+1 are final */
-    if (j >= 0 && j < d) {
+    if (j >= k0 && j < d) {
       const float *restrict o = islot(&s, 2 * j + 1);
       const float *restrict e0 = islot(&s, 2 * j);
       const float *restrict e1;

@@ -164,11 +164,12 @@ FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(col)(
   }
 }
 
-/* The whole level: rows lifted into the ring as they are needed, then the column
- * predict and update of fine rows 2k, 2k+1, 2k+2 (see linear_level). */
+/* Output rows k in [k0, k1) of the level: rows lifted into the ring as they are needed,
+ * then the column predict and update of fine rows 2k, 2k+1, 2k+2 (see linear_level;
+ * a range past 0 starts from o_k0-1, as linear_warm_up). */
 FL_TARGET static void FL_NAME(level)(const transform_plan *p, int l, const float *src,
                                      size_t src_stride, float *ring, float *dst,
-                                     size_t dst_stride, float *ghost) {
+                                     size_t dst_stride, float *ghost, int k0, int k1) {
   int n = p->len_h[l], m = (n + 1) / 2, d = n / 2, w = p->len_w[l];
   float lo = lifting_scale_low(TRANSFORM_LINEAR), hi = lifting_scale_high(TRANSFORM_LINEAR);
   const ghost_rule *rho = &p->rules_h[l - 1].right, *rw = &p->rules_w[l - 1].right;
@@ -199,8 +200,17 @@ FL_TARGET static void FL_NAME(level)(const transform_plan *p, int l, const float
       FL_NAME(row)(w, src + (size_t)(r) * src_stride, SLOT(r), lo, hi, gw, rw->index,        \
                    rw->count);                                                              \
   } while (0)
-  LOAD(0);
-  for (int k = 0; k < m; k++) {
+  if (k0 == 0) {
+    LOAD(0);
+  } else {
+    LOAD(2 * k0 - 2);
+    LOAD(2 * k0 - 1);
+    LOAD(2 * k0);
+    float *restrict o = SLOT(2 * k0 - 1);
+    const float *restrict e0 = SLOT(2 * k0 - 2), *restrict e1 = SLOT(2 * k0);
+    for (int i = 0; i < w; i++) o[i] = o[i] - 0.5f * (e0[i] + e1[i]);
+  }
+  for (int k = k0; k < k1; k++) {
     const float *restrict e0 = SLOT(2 * k);
     float *restrict low = dst + (size_t)k * dst_stride;
     if (k < d) {

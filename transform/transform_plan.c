@@ -98,15 +98,19 @@ int transform_plan_create(transform_plan **out, const transform_desc *desc,
     s->ghost = malloc(sizeof(float) * 2 * TRANSFORM_STRIP);
     ok = s->row && s->strip && s->ghost;
   }
-  if (ok) {
-    transform_scratch *s = &p->scratch[0];
+  for (int t = 0; ok && t < p->threads; t++) { /* each thread streams its own rows */
+    transform_scratch *s = &p->scratch[t];
     s->ring = malloc(sizeof(float) * 17 * (size_t)d.width); /* + a ghost row */
     s->ring_ghost = malloc(sizeof(float) * (size_t)d.width);
+    ok = s->ring && s->ring_ghost;
+  }
+  if (ok) {
+    transform_scratch *s = &p->scratch[0];
     size_t half = (size_t)p->len_w[d.levels > 0 ? d.levels - 1 : 0] *
                   (size_t)p->len_h[d.levels > 0 ? d.levels - 1 : 0];
     s->level = malloc(sizeof(float) * (half ? half : 1));
     s->level2 = malloc(sizeof(float) * (half ? half : 1));
-    ok = s->ring && s->ring_ghost && s->level && s->level2;
+    ok = s->level && s->level2;
   }
   if (ok && p->threads == 2) ok = !transform_workers_start(p);
   if (!ok) {

@@ -2,8 +2,8 @@
  * within a 64-byte line and starts its column vectors at the first aligned output
  * (transform_fused_linear.h): where the caller's buffers sit must not change a bit of
  * the result. Every input and output offset within a line (0..15 floats) gives the
- * coefficients of offset 0 exactly, and those match the two-pass transform (two
- * threads: rows, then strips of columns) to float rounding. */
+ * coefficients of offset 0 exactly, and those match the two-pass transform (rows, then
+ * strips of columns) to float rounding. */
 #define _ISOC11_SOURCE
 #include <stdio.h>
 #include <stdlib.h>

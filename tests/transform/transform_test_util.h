@@ -60,14 +60,16 @@ static const transform_basis test_bases[3] = {TRANSFORM_HAAR, TRANSFORM_LINEAR,
                                               TRANSFORM_QUADRATIC};
 static const char *const test_basis_names[3] = {"haar", "linear", "quadratic"};
 
-/* The same transform planned for one thread and for two (the pair the fused-level tests
- * compare); fails the test with the plan's message. */
-static inline void test_plan_pair(transform_desc d, transform_plan **one, transform_plan **two) {
+/* The same transform planned with single-pass levels on one thread, and as the two-pass
+ * reference (rows, then strips of columns, on two threads): the pair the fused-level
+ * tests compare. Fails the test with the plan's message. */
+static inline void test_plan_pair(transform_desc d, transform_plan **fused,
+                                  transform_plan **two_pass) {
   transform_error err;
   d.threads = 1;
-  CHECK(!transform_plan_create(one, &d, &err), "%s", err.message);
-  d.threads = 2;
-  CHECK(!transform_plan_create(two, &d, &err), "%s", err.message);
+  CHECK(!transform_plan_create(fused, &d, &err), "%s", err.message);
+  d.threads = 2, d.two_pass = 1;
+  CHECK(!transform_plan_create(two_pass, &d, &err), "%s", err.message);
 }
 
 static inline double test_max_abs(const float *a, size_t n) {
