@@ -38,6 +38,7 @@
 #include <sys/stat.h>
 
 #include "bench/bench.h"
+#include "bench/bench_upload.h"
 #include "bench/chart.h"
 #include "render/render.h"
 #include "sim/sim.h"
@@ -519,6 +520,8 @@ int bench_render(int argc, char **argv) {
       r->times[f] = app_clock_seconds() - t0;
     }
   for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
+  bench_upload_timing upload = {0};
+  if (bench_time_uploads(&lod, 21, &upload, &rerr)) goto gl_failed;
 
   /* ---- report ---- */
   double sum_cells = 0.0, switch_cells = 0.0, full_cells = 0.0, tau_mean = 0.0;
@@ -603,6 +606,11 @@ int bench_render(int argc, char **argv) {
   double X = rows[matched].ms / rows[exact_linear].ms;
   double Y = rows[sum_at_06].ms / rows[switch_at_06].ms;
   double Z = rows[switch_at_1].ms / rows[exact_linear].ms;
+  printf("\nupload of the J=%d pyramid (%d textures, R32F grids + RGBA32F cell polynomials, "
+         "%.2f MB), median of 21:\n  glTexSubImage2D from client memory %.3f ms; through a "
+         "pixel-unpack buffer %.3f ms (%.2fx)\n",
+         LOD_LEVELS, upload.textures, upload.bytes / 1e6, upload.direct_ms, upload.staged_ms,
+         upload.direct_ms / upload.staged_ms);
   printf("\nCSV: %s (table), %s (chart data)\nPNG: %s; tau image: %s/render_tau.png\n", csv_path,
          chart_csv, chart_png, out_dir);
   if (cheapest < 0)

@@ -32,6 +32,11 @@ if(NOT last MATCHES "^render: exact_speedup_at_matched_error=${num} lod_switch_s
   message(FATAL_ERROR "last line is not the summary line: '${last}'")
 endif()
 
+# The upload comparison that decides against a pixel-unpack buffer path (bench_upload.c).
+if(NOT out MATCHES "glTexSubImage2D from client memory ${num} ms; through a pixel-unpack buffer ${num} ms")
+  message(FATAL_ERROR "no upload comparison (direct vs pixel-unpack buffer) in the output")
+endif()
+
 # The table: header + 31 rows; every number finite (no nan/inf), errors and times >= 0.
 foreach(f render.csv render_chart.csv render_chart.png render_tau.png)
   if(NOT EXISTS ${OUT}/${f})
