@@ -243,20 +243,43 @@ static void row_forward_haar(const lifting_step *st, const float *restrict x,
 
 /* Direct inverse row steps (Haar, CDF 5/3): read [c | d], write the interleaved row,
  * the same float operations as the planar kernels' inverse. `in` must not alias `x`. */
+/* x_2k and x_2k+1 of the interior in one loop (an interleaved store pair, which gcc
+ * vectorises; e_k+1 recomputed, not carried, so iterations are independent); the same
+ * expressions as the scalar ends in row_inverse_linear, so the same bits. Cloned for
+ * AVX-512 and AVX2, picked at load time (ifunc), the default build staying portable. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx512f", "avx2", "default")))
+#endif
+static void row_inverse_linear_interior(int begin, int end, const float *restrict c,
+                                        const float *restrict dd, float *restrict x,
+                                        float ilo, float ihi) {
+  for (int k = begin; k < end; k++) {
+    float e = ilo * c[k] + -0.25f * (ihi * dd[k - 1] + ihi * dd[k]);
+    float e_next = ilo * c[k + 1] + -0.25f * (ihi * dd[k] + ihi * dd[k + 1]);
+    x[2 * k] = e;
+    x[2 * k + 1] = ihi * dd[k] - -0.5f * (e + e_next);
+  }
+}
+
 static void row_inverse_linear(const lifting_step *st, const float *restrict in,
                                float *restrict x, float ilo, float ihi) {
   int n = st->n, m = (n + 1) / 2, d = n / 2;
   const float *restrict c = in, *restrict dd = in + m;
   int both = m < d ? m : d;
+  int inner = d < m - 1 ? d : m - 1; /* x_2k+1 with x_2k+2 inside the row */
+  /* interior k: e_k and e_k+1 both of the plain form, x_2k+1 inside */
+  int kv = both - 1 < inner ? both - 1 : inner;
+  if (kv > 1) row_inverse_linear_interior(1, kv, c, dd, x, ilo, ihi);
+  int rest = kv > 1 ? kv : 1;
   /* e_k = c_k/lo - (o_k-1 + o_k)/4, o = d/hi recomputed (independent iterations) */
-  for (int k = 1; k < both; k++)
+  for (int k = rest; k < both; k++)
     x[2 * k] = ilo * c[k] + -0.25f * (ihi * dd[k - 1] + ihi * dd[k]);
   float o0 = ihi * dd[0], olast = ihi * dd[d - 1];
   x[0] = ilo * c[0] + -0.25f * ((st->periodic ? olast : o0) + o0);
   if (m > d) x[n - 1] = ilo * c[m - 1] + -0.25f * 2.0f * olast;
   /* x_2k+1 = o_k + (e_k + e_k+1)/2 */
-  int inner = d < m - 1 ? d : m - 1;
-  for (int k = 0; k < inner; k++) x[2 * k + 1] = ihi * dd[k] - -0.5f * (x[2 * k] + x[2 * k + 2]);
+  if (inner > 0) x[1] = ihi * dd[0] - -0.5f * (x[0] + x[2]);
+  for (int k = rest; k < inner; k++) x[2 * k + 1] = ihi * dd[k] - -0.5f * (x[2 * k] + x[2 * k + 2]);
   if (d == m) {
     float g = 0.0f;
     if (st->periodic) {
