@@ -22,13 +22,18 @@ static void columns_pass(transform_plan *p, int forward, int top, int bottom, fl
   transform_run_job(p, &j);
 }
 
+/* A job over the coarse rows k of level l (the single-pass levels and their copy back);
+ * the caller sets what the job reads and writes. */
+static transform_job level_job(const transform_plan *p, transform_job_kind kind, int l) {
+  return (transform_job){.kind = kind, .level = l, .begin = 0, .end = (p->len_h[l] + 1) / 2,
+                         .samples = (size_t)p->len_w[l] * (size_t)p->len_h[l]};
+}
+
 /* One single-pass level; the coarse rows k are split between the threads. */
 static void fused_forward(transform_plan *p, int l, const float *src, size_t src_stride,
                           float *dst, size_t dst_stride) {
-  transform_job j = {.kind = TRANSFORM_JOB_FUSED_FORWARD, .level = l, .src = src,
-                     .src_stride = src_stride, .dst = dst, .stride = dst_stride, .begin = 0,
-                     .end = (p->len_h[l] + 1) / 2,
-                     .samples = (size_t)p->len_w[l] * (size_t)p->len_h[l]};
+  transform_job j = level_job(p, TRANSFORM_JOB_FUSED_FORWARD, l);
+  j.src = src, j.src_stride = src_stride, j.dst = dst, j.stride = dst_stride;
   transform_run_job(p, &j);
 }
 
@@ -36,27 +41,23 @@ static void fused_forward(transform_plan *p, int l, const float *src, size_t src
  * it computed, still in its own cache (on the 2-vCPU machines a copy of the other
  * core's rows ran 4x slower). */
 static void copy_back(transform_plan *p, int l, const float *level, float *coefficients) {
-  transform_job j = {.kind = TRANSFORM_JOB_COPY_BACK, .level = l, .src = level,
-                     .src_stride = (size_t)p->len_w[l], .dst = coefficients,
-                     .stride = (size_t)p->desc.width, .begin = 0,
-                     .end = (p->len_h[l] + 1) / 2,
-                     .samples = (size_t)p->len_w[l] * (size_t)p->len_h[l]};
+  transform_job j = level_job(p, TRANSFORM_JOB_COPY_BACK, l);
+  j.src = level, j.src_stride = (size_t)p->len_w[l];
+  j.dst = coefficients, j.stride = (size_t)p->desc.width;
   transform_run_job(p, &j);
 }
 
 static void fused_inverse(transform_plan *p, int l, const float *low, size_t low_stride,
                           const float *coef, size_t coef_stride, float *dst,
                           size_t dst_stride) {
-  transform_job j = {.kind = TRANSFORM_JOB_FUSED_INVERSE, .level = l, .low = low,
-                     .low_stride = low_stride, .src = coef, .src_stride = coef_stride,
-                     .dst = dst, .stride = dst_stride, .begin = 0,
-                     .end = (p->len_h[l] + 1) / 2,
-                     .samples = (size_t)p->len_w[l] * (size_t)p->len_h[l]};
+  transform_job j = level_job(p, TRANSFORM_JOB_FUSED_INVERSE, l);
+  j.low = low, j.low_stride = low_stride, j.src = coef, j.src_stride = coef_stride;
+  j.dst = dst, j.stride = dst_stride;
   transform_run_job(p, &j);
 }
 
-static void copy_block(float *dst, size_t dst_stride, const float *src, size_t src_stride,
-                       int w, int h) {
+void transform_copy_block(float *dst, size_t dst_stride, const float *src, size_t src_stride, int w,
+                int h) {
   for (int y = 0; y < h; y++)
     memcpy(dst + (size_t)y * dst_stride, src + (size_t)y * src_stride, sizeof(float) * (size_t)w);
 }
@@ -115,9 +116,9 @@ static void inverse_level(transform_plan *p, int l, const float *low, size_t low
     return;
   }
   int w = p->len_w[l], h = p->len_h[l], w0 = p->len_w[l - 1], h0 = p->len_h[l - 1];
-  copy_block(dst, dst_stride, coef, W, w, h);
+  transform_copy_block(dst, dst_stride, coef, W, w, h);
   if (low)
-    copy_block(dst, dst_stride, low, low_stride, w0, h0);
+    transform_copy_block(dst, dst_stride, low, low_stride, w0, h0);
   else
     zero_block(dst, dst_stride, w0, h0);
   columns_pass(p, 0, l, l - 1, dst, dst_stride, w);
@@ -146,10 +147,10 @@ int transform_inverse(transform_plan *p, const float *coefficients, float *fogma
 
 int transform_pyramid(transform_plan *p, const float *coefficients, float *const *approx) {
   size_t W = (size_t)p->desc.width;
-  copy_block(approx[0], (size_t)p->len_w[0], coefficients, W, p->len_w[0], p->len_h[0]);
+  transform_copy_block(approx[0], (size_t)p->len_w[0], coefficients, W, p->len_w[0], p->len_h[0]);
   for (int l = 1; l <= p->levels; l++) {
     int w = p->len_w[l], h = p->len_h[l];
-    copy_block(approx[l], (size_t)w, coefficients, W, w, h);
+    transform_copy_block(approx[l], (size_t)w, coefficients, W, w, h);
     if (p->desc.decomposition == TRANSFORM_STANDARD) {
       inverse_region(p, approx[l], (size_t)w, l);
     } else { /* incremental: one synthesis step from A_{l-1} */
@@ -166,7 +167,7 @@ int transform_details(transform_plan *p, const float *coefficients, float *const
     int w = p->len_w[l], h = p->len_h[l];
     if (p->desc.decomposition == TRANSFORM_STANDARD) {
       /* the bands whose coarser index is below l sit inside the block: all levels */
-      copy_block(detail[l], (size_t)w, coefficients, W, w, h);
+      transform_copy_block(detail[l], (size_t)w, coefficients, W, w, h);
       zero_block(detail[l], (size_t)w, p->len_w[l - 1], p->len_h[l - 1]);
       inverse_region(p, detail[l], (size_t)w, l);
     } else {
@@ -304,7 +305,7 @@ void transform_atlas_pack(const transform_plan *p, const transform_grid *grids, 
     if (!g->coefficients) continue;
     int x, y;
     transform_atlas_offset(p, l, &x, &y);
-    copy_block(atlas + (size_t)y * aw + x, (size_t)aw, g->coefficients, (size_t)g->width,
+    transform_copy_block(atlas + (size_t)y * aw + x, (size_t)aw, g->coefficients, (size_t)g->width,
                g->width, g->height);
   }
 }

@@ -3,7 +3,6 @@
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, sched_yield */
 
 #include <sched.h>
-#include <string.h>
 #include <time.h>
 
 #include "transform/transform_plan.h"
@@ -26,15 +25,14 @@ static void run_part(const transform_plan *p, int thread, const transform_job *j
       transform_fused_inverse_level(p, thread, j->level, j->low, j->low_stride, j->src,
                                     j->src_stride, j->dst, j->stride, b, e);
       break;
-    case TRANSFORM_JOB_COPY_BACK: {
-      int n = p->len_h[j->level], m = (n + 1) / 2;
-      size_t bytes = sizeof(float) * (size_t)p->len_w[j->level];
-      for (int k = b; k < e; k++) {
-        memcpy(j->dst + (size_t)k * j->stride, j->src + (size_t)k * j->src_stride, bytes);
-        if (m + k < n)
-          memcpy(j->dst + (size_t)(m + k) * j->stride, j->src + (size_t)(m + k) * j->src_stride,
-                 bytes);
-      }
+    case TRANSFORM_JOB_COPY_BACK: { /* low rows [b, e), high rows m + [b, e) below n */
+      int n = p->len_h[j->level], m = (n + 1) / 2, w = p->len_w[j->level];
+      int high_end = m + e < n ? m + e : n;
+      transform_copy_block(j->dst + (size_t)b * j->stride, j->stride, j->src + (size_t)b * j->src_stride,
+                 j->src_stride, w, e - b);
+      if (m + b < high_end)
+        transform_copy_block(j->dst + (size_t)(m + b) * j->stride, j->stride,
+                   j->src + (size_t)(m + b) * j->src_stride, j->src_stride, w, high_end - m - b);
       break;
     }
   }
