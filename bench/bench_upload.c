@@ -65,7 +65,8 @@ int bench_time_uploads(const fog_lod *lod, int rounds, bench_upload_timing *out,
     goto done;
   }
   for (int g = 0; g < 2 * lod->levels + 1; g++) {
-    const transform_grid *grid = g <= lod->levels ? &lod->approx[g] : &lod->detail[g - lod->levels - 1];
+    const transform_grid *grid =
+        g <= lod->levels ? &lod->approx[g] : &lod->detail[g - lod->levels - 1];
     int cw, ch;
     fog_cell_poly_size(grid->width, grid->height, grid->degree, &cw, &ch);
     cells[g] = malloc(sizeof(float) * 4 * (size_t)cw * (size_t)ch);

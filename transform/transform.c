@@ -56,8 +56,8 @@ static void fused_inverse(transform_plan *p, int l, const float *low, size_t low
   transform_run_job(p, &j);
 }
 
-void transform_copy_block(float *dst, size_t dst_stride, const float *src, size_t src_stride, int w,
-                int h) {
+void transform_copy_block(float *dst, size_t dst_stride, const float *src,
+                          size_t src_stride, int w, int h) {
   for (int y = 0; y < h; y++)
     memcpy(dst + (size_t)y * dst_stride, src + (size_t)y * src_stride, sizeof(float) * (size_t)w);
 }

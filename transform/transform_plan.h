@@ -75,8 +75,8 @@ void transform_rows(const transform_plan *p, int thread, int forward, int top, i
 void transform_columns(const transform_plan *p, int thread, int forward, int top,
                        int bottom, float *base, size_t stride, int c0, int c1);
 /* h rows of w floats from src to dst (transform.c). */
-void transform_copy_block(float *dst, size_t dst_stride, const float *src, size_t src_stride, int w,
-                int h);
+void transform_copy_block(float *dst, size_t dst_stride, const float *src,
+                          size_t src_stride, int w, int h);
 /* Runs a job on [begin, end), halved between two threads when the plan has two. */
 void transform_run_job(transform_plan *p, const transform_job *job);
 int transform_workers_start(transform_plan *p);

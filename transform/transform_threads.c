@@ -28,11 +28,12 @@ static void run_part(const transform_plan *p, int thread, const transform_job *j
     case TRANSFORM_JOB_COPY_BACK: { /* low rows [b, e), high rows m + [b, e) below n */
       int n = p->len_h[j->level], m = (n + 1) / 2, w = p->len_w[j->level];
       int high_end = m + e < n ? m + e : n;
-      transform_copy_block(j->dst + (size_t)b * j->stride, j->stride, j->src + (size_t)b * j->src_stride,
-                 j->src_stride, w, e - b);
+      transform_copy_block(j->dst + (size_t)b * j->stride, j->stride,
+                           j->src + (size_t)b * j->src_stride, j->src_stride, w, e - b);
       if (m + b < high_end)
         transform_copy_block(j->dst + (size_t)(m + b) * j->stride, j->stride,
-                   j->src + (size_t)(m + b) * j->src_stride, j->src_stride, w, high_end - m - b);
+                             j->src + (size_t)(m + b) * j->src_stride, j->src_stride, w,
+                             high_end - m - b);
       break;
     }
   }
