@@ -27,15 +27,28 @@
 
 /* ---- timings: a ring of the last PIPELINE_TIMING_WINDOW frames, medians on demand ---- */
 
+void pipeline_timings_to_array(const pipeline_timings *t, double v[PIPELINE_TIMING_FIELDS]) {
+  const double fields[PIPELINE_TIMING_FIELDS] = {t->sim,   t->transform, t->upload,
+                                                 t->render, t->frame,   t->scene,
+                                                 t->sim_cpu, t->transform_cpu};
+  memcpy(v, fields, sizeof fields);
+}
+
+pipeline_timings pipeline_timings_from_array(const double v[PIPELINE_TIMING_FIELDS]) {
+  return (pipeline_timings){.sim = v[0], .transform = v[1], .upload = v[2], .render = v[3],
+                            .frame = v[4], .scene = v[5], .sim_cpu = v[6],
+                            .transform_cpu = v[7]};
+}
+
 typedef struct timing_ring {
-  double values[8][PIPELINE_TIMING_WINDOW];
+  double values[PIPELINE_TIMING_FIELDS][PIPELINE_TIMING_WINDOW];
   int count, next;
 } timing_ring;
 
 static void timing_push(timing_ring *ring, const pipeline_timings *t) {
-  const double v[8] = {t->sim,   t->transform, t->upload,  t->render,
-                       t->frame, t->scene,     t->sim_cpu, t->transform_cpu};
-  for (int s = 0; s < 8; s++) ring->values[s][ring->next] = v[s];
+  double v[PIPELINE_TIMING_FIELDS];
+  pipeline_timings_to_array(t, v);
+  for (int s = 0; s < PIPELINE_TIMING_FIELDS; s++) ring->values[s][ring->next] = v[s];
   ring->next = (ring->next + 1) % PIPELINE_TIMING_WINDOW;
   if (ring->count < PIPELINE_TIMING_WINDOW) ring->count++;
 }
@@ -819,16 +832,9 @@ bool pipeline_pick_surface(pipeline *p, const camera *cam, int px, int py, doubl
 pipeline_timings pipeline_get_timings(const pipeline *p, pipeline_timings *last) {
   if (last) *last = p->last;
   const timing_ring *r = &p->timings;
-  return (pipeline_timings){
-      .sim = median_of(r->values[0], r->count),
-      .transform = median_of(r->values[1], r->count),
-      .upload = median_of(r->values[2], r->count),
-      .render = median_of(r->values[3], r->count),
-      .frame = median_of(r->values[4], r->count),
-      .scene = median_of(r->values[5], r->count),
-      .sim_cpu = median_of(r->values[6], r->count),
-      .transform_cpu = median_of(r->values[7], r->count),
-  };
+  double medians[PIPELINE_TIMING_FIELDS];
+  for (int s = 0; s < PIPELINE_TIMING_FIELDS; s++) medians[s] = median_of(r->values[s], r->count);
+  return pipeline_timings_from_array(medians);
 }
 
 void pipeline_fog_extent(const pipeline *p, int *cells_x, int *cells_z, double *origin_x,

@@ -51,6 +51,11 @@ typedef struct pipeline_timings {
   double sim_cpu, transform_cpu;
 } pipeline_timings;
 
+/* The timings as an array in field order, and back: for statistics taken per field. */
+#define PIPELINE_TIMING_FIELDS 8
+void pipeline_timings_to_array(const pipeline_timings *t, double v[PIPELINE_TIMING_FIELDS]);
+pipeline_timings pipeline_timings_from_array(const double v[PIPELINE_TIMING_FIELDS]);
+
 /* What the panel edits live. Changes are applied by the worker before its next step
  * (basis and levels re-plan the transform). */
 typedef struct pipeline_params {

@@ -32,7 +32,7 @@ typedef struct run_result {
 
 /* Per-frame samples of one mode. */
 typedef struct samples {
-  double *stage[8]; /* sim, transform, upload, render, frame, scene, sim CPU, transform CPU */
+  double *stage[PIPELINE_TIMING_FIELDS]; /* pipeline_timings_to_array's order */
   int n;
 } samples;
 
@@ -48,24 +48,17 @@ static int record_frame(pipeline *p, const camera *still, bool moving, samples *
   if (pipeline_frame(p, &cam, true, err)) return 1;
   pipeline_timings last;
   pipeline_get_timings(p, &last);
-  const double v[8] = {last.sim,   last.transform, last.upload,  last.render,
-                       last.frame, last.scene,     last.sim_cpu, last.transform_cpu};
-  for (int k = 0; k < 8; k++) s->stage[k][s->n] = v[k];
+  double v[PIPELINE_TIMING_FIELDS];
+  pipeline_timings_to_array(&last, v);
+  for (int k = 0; k < PIPELINE_TIMING_FIELDS; k++) s->stage[k][s->n] = v[k];
   s->n++;
   return 0;
 }
 
 static pipeline_timings medians(samples *s) {
-  return (pipeline_timings){
-      .sim = bench_median(s->stage[0], s->n),
-      .transform = bench_median(s->stage[1], s->n),
-      .upload = bench_median(s->stage[2], s->n),
-      .render = bench_median(s->stage[3], s->n),
-      .frame = bench_median(s->stage[4], s->n),
-      .scene = bench_median(s->stage[5], s->n),
-      .sim_cpu = bench_median(s->stage[6], s->n),
-      .transform_cpu = bench_median(s->stage[7], s->n),
-  };
+  double medians[PIPELINE_TIMING_FIELDS];
+  for (int k = 0; k < PIPELINE_TIMING_FIELDS; k++) medians[k] = bench_median(s->stage[k], s->n);
+  return pipeline_timings_from_array(medians);
 }
 
 /* Both modes side by side: one pipeline with the worker thread, one synchronous, in the
@@ -78,7 +71,7 @@ static int measure(const scene_config *cfg, int width, int height, int fog_divis
   enum { block = 4 };
   pipeline_error err = {{0}};
   pipeline *p[2] = {NULL, NULL};
-  double *storage = malloc(sizeof(double) * 16 * (size_t)frames);
+  double *storage = malloc(sizeof(double) * 2 * PIPELINE_TIMING_FIELDS * (size_t)frames);
   samples s[2] = {{.n = 0}, {.n = 0}};
   int status = 1;
   if (!storage) {
@@ -86,7 +79,8 @@ static int measure(const scene_config *cfg, int width, int height, int fog_divis
     goto done;
   }
   for (int m = 0; m < 2; m++) {
-    for (int k = 0; k < 8; k++) s[m].stage[k] = storage + (size_t)(8 * m + k) * frames;
+    for (int k = 0; k < PIPELINE_TIMING_FIELDS; k++)
+      s[m].stage[k] = storage + (size_t)(PIPELINE_TIMING_FIELDS * m + k) * frames;
     p[m] = pipeline_create(&(pipeline_desc){.config = cfg, .width = width, .height = height,
                                             .synchronous = m == 1, .time_passes = true},
                            &err);
