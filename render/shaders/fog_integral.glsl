@@ -35,7 +35,8 @@
 //     moments come from an 8-term series only (fog_exp_moments_walk), no closed form, and
 //     the pieces below y0 use the same formula with c0 = b = 0 (no Gauss path);
 //   - a pixel stops once its optical depth passes fog_depth_limit (default 16);
-//   - LOD draws read the grids as layers of one array texture (no sampler-array index).
+//   - LOD draws read the grids as layers of one array texture (no sampler-array index),
+//     and clip the ray to the box once per pixel (fog_optical_depth_inside per grid).
 
 #define FOG_PROFILE_SLAB 0
 #define FOG_PROFILE_EXPONENTIAL 1
@@ -453,12 +454,19 @@ float fog_walk_integral(inout fog_ray_walk w, float t0, float t1, float limit) {
 // The exact optical depth int_{t_start}^{t_stop} K dt along the unit direction dir from the
 // camera, through grid slot `grid`, clipped to the fog's box.
 // Pixels whose optical depth exceeds `limit` (tau < e^-limit) stop early with a partial sum.
+float fog_optical_depth_inside(int grid, vec3 dir, float t0, float t1, float limit);
+
 float fog_optical_depth(int grid, vec3 dir, float t_start, float t_stop, float limit) {
   float t0, t1;
   if (!fog_box_entry_exit(dir, t0, t1)) return 0.0;
   t0 = max(t0, t_start);
   t1 = min(t1, t_stop);
   if (!(t0 < t1)) return 0.0;
+  return fog_optical_depth_inside(grid, dir, t0, t1, limit);
+}
+
+// fog_optical_depth on [t0, t1], already inside the box and not empty.
+float fog_optical_depth_inside(int grid, vec3 dir, float t0, float t1, float limit) {
   // The walk runs in t' = t - t0 from the box entry, so piece lengths are differences of
   // small numbers even on a 50 km ray (what remains there, ~3e-4 in tau, is the float ray
   // direction: 6e-8 x 50 km = 3 mm sideways).

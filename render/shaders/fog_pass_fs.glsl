@@ -47,11 +47,15 @@ float fog_grid_integral(int grid, vec3 dir, float t_start, float t_stop, float j
 #endif
 }
 
-// ||OP||: the first surface or the box exit, whichever comes first (fog_lod_ray_length).
-float fog_lod_ray_length(vec3 dir, float t_surface) {
-  float t0, t1;
-  if (!fog_box_entry_exit(dir, t0, t1) || t1 <= 0.0) return 0.0;
-  return min(t1, t_surface);
+// The same on [t0, t1] already clipped to the box (t0 < t1): the LOD draws clip once per
+// pixel, not once per grid (the box test and its divisions were a tenth of a LOD walk).
+float fog_grid_integral_inside(int grid, vec3 dir, float t0, float t1, float jitter,
+                               float limit) {
+#if FOG_INTEGRATOR == 1
+  return fog_optical_depth_march(grid, dir, t0, t1, fog_march_steps, jitter);
+#else
+  return fog_optical_depth_inside(grid, dir, t0, t1, limit);
+#endif
 }
 
 // LOD by distance, both methods (fog_optical_depth_lod in render/fog_integral_cpu.c).
@@ -62,18 +66,22 @@ float fog_optical_depth_lod(vec3 dir, float t_surface, float jitter) {
   // loop and its array (a local array indexed by a loop counter is memory on llvmpipe).
   return fog_grid_integral(0, dir, 0.0, t_surface, jitter, fog_depth_limit);
 #endif
-  float op = fog_lod_ray_length(dir, t_surface);
-  if (op <= 0.0) return 0.0;
+  // ||OP|| (fog_lod_ray_length): the first surface or the box exit, whichever comes first;
+  // the walks below start where the ray is inside the box, at `start`.
+  float t_in, t_out;
+  if (!fog_box_entry_exit(dir, t_in, t_out) || t_out <= 0.0) return 0.0;
+  float op = min(t_out, t_surface), start = max(t_in, 0.0);
+  if (op <= start) return 0.0;
   int J = fog_levels;
   if (fog_lod_method == 0) {
     // Giroud & Biri §4.4: A_0 over the whole ray, detail band l up to d_l = ||OP|| mu^l.
     // The details are signed, so no partial sum bounds the total: no early exit here.
-    float sum = fog_grid_integral(0, dir, 0.0, op, jitter, FOG_INFINITY);
+    float sum = fog_grid_integral_inside(0, dir, start, op, jitter, FOG_INFINITY);
     float d_l = op;
     for (int l = 1; l <= J; l++) {
       d_l *= fog_mu;
-      if (d_l <= 0.0) break;
-      sum += fog_grid_integral(J + l, dir, 0.0, d_l, jitter, FOG_INFINITY);
+      if (d_l <= start) break;
+      sum += fog_grid_integral_inside(J + l, dir, start, d_l, jitter, FOG_INFINITY);
     }
     return sum;
   }
@@ -86,9 +94,9 @@ float fog_optical_depth_lod(vec3 dir, float t_surface, float jitter) {
   for (int l = 1; l < FOG_MAX_GRIDS / 2; l++) d[l] = d[l - 1] * fog_mu;
   float sum = 0.0;
   for (int l = J; l >= 0; l--) {
-    float near_t = (l == J) ? 0.0 : d[l + 1], far_t = d[l];
+    float near_t = max((l == J) ? 0.0 : d[l + 1], start), far_t = d[l];
     if (far_t > near_t && sum < fog_depth_limit)
-      sum += fog_grid_integral(l, dir, near_t, far_t, jitter, fog_depth_limit - sum);
+      sum += fog_grid_integral_inside(l, dir, near_t, far_t, jitter, fog_depth_limit - sum);
   }
   return sum;
 }
