@@ -138,39 +138,95 @@ static int cells_crossed(const fog_volume *v, const transform_grid *g, const dou
   return 1 + (int)(labs(cell[1][0] - cell[0][0]) + labs(cell[1][1] - cell[0][1]));
 }
 
-/* Mean cells crossed per pixel for both LOD methods at mu (mirrors fog_pass_fs.glsl). */
+/* Profile breaks the GLSL walk adds on [a, b] clipped to [lo, hi]: the exponential
+ * profile's lines y0 + k H/2 (fog_integral.glsl, fog_optical_depth_inside) or the
+ * B-spline profile's knots; a slab has none. They cut pieces whatever the grid's level. */
+static int profile_breaks(const fog_volume *v, const double o[3], const double d[3], double a,
+                          double b, double lo, double hi) {
+  if (a < lo) a = lo;
+  if (b > hi) b = hi;
+  if (!(a < b)) return 0;
+  const fog_profile *p = &v->profile;
+  double scale, start, off = 0.0;
+  if (p->kind == FOG_PROFILE_EXPONENTIAL)
+    scale = 2.0 / p->scale_height, start = p->y0;
+  else if (p->kind == FOG_PROFILE_BSPLINE)
+    scale = 1.0 / p->spacing, start = p->origin, off = (p->degree % 2 == 0) ? -0.5 : 0.0;
+  else
+    return 0;
+  double ua = (o[1] + a * d[1] - start) * scale - off, ub = (o[1] + b * d[1] - start) * scale - off;
+  return (int)fabs(floor(ub) - floor(ua));
+}
+
+/* What the LOD methods walk per pixel at one mu, averaged over the pixels: knot cells
+ * crossed, pieces (cells and profile breaks), and pieces as a SIMD lane group pays for
+ * them (llvmpipe shades 4 x 2 pixels per 8-lane group, and a loop runs until its last lane
+ * is done: each walk costs the group its longest lane). */
+typedef struct lod_walk_counts {
+  double cells, pieces, group_pieces;
+} lod_walk_counts;
+
+enum { LOD_GROUP_W = 4, LOD_GROUP_H = 2 };
+
+/* The pieces of each walk of one pixel (mirrors fog_pass_fs.glsl): walk 0 of the sum is
+ * A_0 on [0, op], walk l its band l on [0, op mu^l]; walk l of switching is A_l on
+ * (op mu^{l+1}, op mu^l], walk J A_J on [0, op mu^J]. Returns 0 where the ray misses. */
+static int lod_pixel_walks(const fog_volume *v, const fog_lod *lod, const double o[3],
+                           const double d[3], double op, double mu, int cells[2][LOD_LEVELS + 1],
+                           int pieces[2][LOD_LEVELS + 1]) {
+  double te, tx;
+  int J = lod->levels;
+  for (int m = 0; m < 2; m++)
+    for (int l = 0; l <= J; l++) cells[m][l] = pieces[m][l] = 0;
+  if (!(op > 0.0) || !fog_box_entry_exit(v, o, d, &te, &tx)) return 0;
+  double lo = te > 0.0 ? te : 0.0, hi = op;
+  double dl = op;
+  for (int l = 0; l <= J; l++, dl *= mu) {
+    if (dl <= 0.0) break;
+    const transform_grid *g = l == 0 ? &lod->approx[0] : &lod->detail[l - 1];
+    cells[0][l] = cells_crossed(v, g, o, d, 0.0, dl, lo, hi);
+    pieces[0][l] = cells[0][l] + profile_breaks(v, o, d, 0.0, dl, lo, hi);
+  }
+  double far_t = op;
+  for (int l = 0; l <= J; l++) {
+    double near_t = l == J ? 0.0 : far_t * mu;
+    if (far_t > near_t) {
+      cells[1][l] = cells_crossed(v, &lod->approx[l], o, d, near_t, far_t, lo, hi);
+      pieces[1][l] = cells[1][l] + profile_breaks(v, o, d, near_t, far_t, lo, hi);
+    }
+    far_t = near_t;
+  }
+  return 1;
+}
+
+/* counts[0]: sum of details, counts[1]: approximation switching. */
 static void lod_cells(const fog_volume *v, const fog_lod *lod, const camera *cam,
                       const float *distance, int width, int height, double mu,
-                      double *sum_cells, double *switch_cells) {
-  double total_sum = 0.0, total_switch = 0.0;
+                      lod_walk_counts counts[2]) {
   int J = lod->levels;
-  for (int py = 0; py < height; py++)
-    for (int px = 0; px < width; px++) {
-      double o[3], d[3], te, tx;
-      camera_ray(cam, px, py, width, height, o, d);
-      double ts = surface_distance(distance[(size_t)py * width + px]);
-      double op = fog_lod_ray_length(v, o, d, ts);
-      if (!(op > 0.0) || !fog_box_entry_exit(v, o, d, &te, &tx)) continue;
-      double lo = te > 0.0 ? te : 0.0, hi = op;
-      /* Sum of details: A_0 on [0, op], D_l on [0, op mu^l]. */
-      total_sum += cells_crossed(v, &lod->approx[0], o, d, 0.0, op, lo, hi);
-      double dl = op;
-      for (int l = 1; l <= J; l++) {
-        dl *= mu;
-        if (dl <= 0.0) break;
-        total_sum += cells_crossed(v, &lod->detail[l - 1], o, d, 0.0, dl, lo, hi);
-      }
-      /* Switching: A_l on (op mu^{l+1}, op mu^l], A_J on [0, op mu^J]. */
-      double far_t = op;
-      for (int l = 0; l < J; l++) {
-        double near_t = far_t * mu;
-        if (far_t > near_t) total_switch += cells_crossed(v, &lod->approx[l], o, d, near_t, far_t, lo, hi);
-        far_t = near_t;
-      }
-      if (far_t > 0.0) total_switch += cells_crossed(v, &lod->approx[J], o, d, 0.0, far_t, lo, hi);
+  double pixels = (double)width * height;
+  counts[0] = counts[1] = (lod_walk_counts){0};
+  for (int gy = 0; gy < height; gy += LOD_GROUP_H)
+    for (int gx = 0; gx < width; gx += LOD_GROUP_W) {
+      int longest[2][LOD_LEVELS + 1] = {{0}}, lanes = 0;
+      for (int py = gy; py < gy + LOD_GROUP_H && py < height; py++)
+        for (int px = gx; px < gx + LOD_GROUP_W && px < width; px++) {
+          double o[3], d[3];
+          int cells[2][LOD_LEVELS + 1], pieces[2][LOD_LEVELS + 1];
+          camera_ray(cam, px, py, width, height, o, d);
+          double op = fog_lod_ray_length(v, o, d, surface_distance(distance[(size_t)py * width + px]));
+          lanes++;
+          if (!lod_pixel_walks(v, lod, o, d, op, mu, cells, pieces)) continue;
+          for (int m = 0; m < 2; m++)
+            for (int l = 0; l <= J; l++) {
+              counts[m].cells += cells[m][l] / pixels;
+              counts[m].pieces += pieces[m][l] / pixels;
+              if (pieces[m][l] > longest[m][l]) longest[m][l] = pieces[m][l];
+            }
+        }
+      for (int m = 0; m < 2; m++)
+        for (int l = 0; l <= J; l++) counts[m].group_pieces += lanes * longest[m][l] / pixels;
     }
-  *sum_cells = total_sum / ((double)width * height);
-  *switch_cells = total_switch / ((double)width * height);
 }
 
 /* ---- rows ------------------------------------------------------------------------------ */
@@ -524,12 +580,11 @@ int bench_render(int argc, char **argv) {
   if (bench_time_uploads(&lod, 21, &upload, &rerr)) goto gl_failed;
 
   /* ---- report ---- */
-  double sum_cells = 0.0, switch_cells = 0.0, full_cells = 0.0, tau_mean = 0.0;
-  lod_cells(&volume, &lod, &cam, distance, W, H, 0.6, &sum_cells, &switch_cells);
-  {
-    double unused;
-    lod_cells(&volume, &lod, &cam, distance, W, H, 1.0, &unused, &full_cells);
-  }
+  double full_cells = 0.0, tau_mean = 0.0;
+  lod_walk_counts at_06[2], at_1[2];
+  lod_cells(&volume, &lod, &cam, distance, W, H, 0.6, at_06);
+  lod_cells(&volume, &lod, &cam, distance, W, H, 1.0, at_1);
+  full_cells = at_1[1].cells;
   for (size_t k = 0; k < pixels; k++) tau_mean += references[1][k] / (double)pixels;
   bench_print_build();
   printf("GL: %s, %s, %s; %dx%d, median of %d frames after 1 warm-up (glFinish before and after)\n",
@@ -617,10 +672,13 @@ int bench_render(int argc, char **argv) {
     printf("note: no ray marching reached max error <= 1e-3; X uses the most accurate one\n");
   printf("X: %s %s (%.2f ms, max err %.2e) / exact linear (%.2f ms)\n", rows[matched].method,
          rows[matched].setting, rows[matched].ms, rows[matched].max_error, rows[exact_linear].ms);
-  printf("Y: LOD sum %.2f ms / LOD switch %.2f ms at mu = 0.6; predicted by cells crossed per "
-         "ray: sum %.1f / switch %.1f = %.2f\n",
-         rows[sum_at_06].ms, rows[switch_at_06].ms, sum_cells, switch_cells,
-         switch_cells > 0 ? sum_cells / switch_cells : 0.0);
+  printf("Y: LOD sum %.2f ms / LOD switch %.2f ms at mu = 0.6 = %.2f; predicted per ray by\n"
+         "   cells crossed: sum %.1f / switch %.1f = %.2f; pieces walked (cells and profile\n"
+         "   breaks): %.1f / %.1f = %.2f; pieces as 4x2-pixel lane groups pay: %.1f / %.1f = %.2f\n",
+         rows[sum_at_06].ms, rows[switch_at_06].ms, rows[sum_at_06].ms / rows[switch_at_06].ms,
+         at_06[0].cells, at_06[1].cells, at_06[0].cells / at_06[1].cells, at_06[0].pieces,
+         at_06[1].pieces, at_06[0].pieces / at_06[1].pieces, at_06[0].group_pieces,
+         at_06[1].group_pieces, at_06[0].group_pieces / at_06[1].group_pieces);
   printf("Z: LOD switch at mu = 1 %.2f ms / fogmap alone, levels = 0 (exact linear) %.2f ms\n",
          rows[switch_at_1].ms, rows[exact_linear].ms);
   printf("render: exact_speedup_at_matched_error=%.3f lod_switch_speedup_vs_sum=%.3f "
