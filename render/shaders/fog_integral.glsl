@@ -30,7 +30,10 @@
 // integrates every piece with one formula. What this makes the GLSL walk do differently
 // from the C twin (same pieces' integrals, exact either way):
 //   - f inside a cell is evaluated from the cell's monomial coefficients A_kl (computed in
-//     double on the CPU, rounded once to float), not from the B-spline weights;
+//     double on the CPU, rounded once to float), not from the B-spline weights, and on a
+//     piece it is expanded into monomials of the piece's parameter (fog_piece_monomials)
+//     that every profile integrates in closed form (the B-spline profile above degree 1
+//     keeps Gauss-Legendre);
 //   - the exponential profile's breaks are y0 + k H/2 (not y0 alone), so |b| <= 1/4 and the
 //     moments come from an 8-term series only (fog_exp_moments_walk), no closed form, and
 //     the pieces below y0 use the same formula with c0 = b = 0 (no Gauss path);
@@ -343,20 +346,31 @@ float fog_walk_value(fog_ray_walk w, mat3 cell, float t) {
 }
 
 // The monomial coefficients c_0..c_2d of f(mid + half s), s in [-1, 1], on the current piece.
-// Degrees 0 and 1 with the cell polynomial (manual fetch): directly, from the cell's A_kl and
-// the local coordinates at the piece's middle (sx = sxm + hx s, sz = szm + hz s in
-// A00 + A10 sx + A01 sz + A11 sx sz); otherwise from f at 2d + 1 equispaced points.
+// With the cell polynomial (manual fetch): directly, from the cell's A_kl and the local
+// coordinates at the piece's middle, sx = sxm + hx s and sz = szm + hz s in
+// f = sum A_kl sx^k sz^l; with hardware filtering, from f at 2d + 1 equispaced points.
 void fog_piece_monomials(fog_ray_walk w, mat3 cell, float mid, float half_len, out float c[5]) {
   int d = fog_degree, n = 2 * d;
 #if !FOG_FETCH_HARDWARE
+  float sxm = w.x.x0 + mid * w.x.dx - (float(w.x.cell) + w.x.offset), hx = half_len * w.x.dx;
+  float szm = w.z.x0 + mid * w.z.dx - (float(w.z.cell) + w.z.offset), hz = half_len * w.z.dx;
   if (d <= 1) {
-    float sxm = w.x.x0 + mid * w.x.dx - (float(w.x.cell) + w.x.offset), hx = half_len * w.x.dx;
-    float szm = w.z.x0 + mid * w.z.dx - (float(w.z.cell) + w.z.offset), hz = half_len * w.z.dx;
     c = float[5](cell[0].x + cell[0].y * sxm + szm * (cell[1].x + cell[1].y * sxm),
                  cell[0].y * hx + cell[1].x * hz + cell[1].y * (sxm * hz + hx * szm),
                  cell[1].y * hx * hz, 0.0, 0.0);
     return;
   }
+  // Degree 2: p_l(s) = A_0l + A_1l sx + A_2l sx^2 (column l of the cell), a quadratic in s;
+  // r = p_1 + sz p_2 (cubic), f = p_0 + sz r (quartic). ~45 operations against five
+  // evaluations of f and the inverse Vandermonde (~120).
+  vec3 p[3];
+  for (int l = 0; l < 3; l++)  // constant bound: unrolled
+    p[l] = vec3(cell[l].x + sxm * (cell[l].y + sxm * cell[l].z),
+                hx * (cell[l].y + 2.0 * sxm * cell[l].z), hx * hx * cell[l].z);
+  vec4 r = vec4(p[1] + szm * p[2], 0.0) + hz * vec4(0.0, p[2]);
+  c = float[5](p[0].x + szm * r.x, p[0].y + szm * r.y + hz * r.x, p[0].z + szm * r.z + hz * r.y,
+               szm * r.w + hz * r.z, hz * r.w);
+  return;
 #endif
   float samples[5];
   for (int i = 0; i < 5; i++) {  // constant bound and n: unrolled, i > n folded away
@@ -394,23 +408,25 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
     return half_len * sum;
   }
 #if !FOG_FETCH_HARDWARE
-  if (fog_profile_kind == FOG_PROFILE_SLAB && d <= 1) {
-    // int_{-1}^{1} c0 + c1 s + c2 s^2 ds = 2 c0 + 2 c2 / 3.
+  if (fog_profile_kind == FOG_PROFILE_SLAB) {
+    // int_{-1}^{1} sum c_k s^k ds = 2 c0 + 2 c2 / 3 + 2 c4 / 5 (c4 = 0 below degree 2).
     float c[5];
     fog_piece_monomials(w, cell, mid, half_len, c);
-    return half_len * (2.0 * c[0] + (2.0 / 3.0) * c[2]);
+    return half_len * (2.0 * c[0] + (2.0 / 3.0) * c[2] + (2.0 / 5.0) * c[4]);
   }
-  if (fog_profile_kind == FOG_PROFILE_BSPLINE && d <= 1 && fog_profile_degree <= 1) {
+  if (fog_profile_kind == FOG_PROFILE_BSPLINE && fog_profile_degree <= 1) {
     // g is linear in s on the piece (a box or hat profile, as `fogpipe import` fits):
     // g = g0 + g1 s from the profile cell's coefficients, and
-    // int_{-1}^{1} (c0 + c1 s + c2 s^2)(g0 + g1 s) ds = 2 c0 g0 + 2 (c2 g0 + c1 g1) / 3.
+    // int_{-1}^{1} (sum c_k s^k)(g0 + g1 s) ds
+    //   = 2 c0 g0 + 2 (c2 g0 + c1 g1) / 3 + 2 (c4 g0 + c3 g1) / 5.
     float c[5];
     fog_piece_monomials(w, cell, mid, half_len, c);
     vec4 profile = fog_profile_cell(w.y.cell);
     float um = w.y.x0 + mid * w.y.dx - (float(w.y.cell) + fog_knot_offset(fog_profile_degree));
     float slope = (fog_profile_degree == 1) ? profile.y - profile.x : 0.0;
     float g0 = profile.x + slope * um, g1 = slope * half_len * w.y.dx;
-    return half_len * (2.0 * c[0] * g0 + (2.0 / 3.0) * (c[2] * g0 + c[1] * g1));
+    return half_len * (2.0 * c[0] * g0 + (2.0 / 3.0) * (c[2] * g0 + c[1] * g1) +
+                       (2.0 / 5.0) * (c[4] * g0 + c[3] * g1));
   }
 #endif
   // Polynomial piece: degree 2d + p in t, exact with m = d + p/2 + 1 Gauss nodes.
