@@ -471,7 +471,6 @@ float fog_walk_integral(inout fog_ray_walk w, float t0, float t1, float limit) {
 // camera, through grid slot `grid`, clipped to the fog's box.
 // Pixels whose optical depth exceeds `limit` (tau < e^-limit) stop early with a partial sum.
 float fog_optical_depth_inside(int grid, vec3 dir, float t0, float t1, float limit);
-
 float fog_optical_depth(int grid, vec3 dir, float t_start, float t_stop, float limit) {
   float t0, t1;
   if (!fog_box_entry_exit(dir, t0, t1)) return 0.0;
