@@ -118,9 +118,8 @@ static void reference_tau(reference_job job) {
 
 /* ---- cells crossed (the LOD prediction) ----------------------------------------------- */
 
-/* Knot cells of grid g the ray crosses on [a, b] clipped to [lo, hi]: the pieces the exact
- * walk integrates (1 + knot lines crossed in x and in z; the profile's break at y0 adds at
- * most one more piece per segment and is not counted). */
+/* Knot cells of grid g the ray crosses on [a, b] clipped to [lo, hi]: 1 + knot lines
+ * crossed in x and in z (the profile's breaks cut more pieces: profile_breaks). */
 static int cells_crossed(const fog_volume *v, const transform_grid *g, const double o[3],
                          const double d[3], double a, double b, double lo, double hi) {
   if (a < lo) a = lo;
@@ -154,7 +153,8 @@ static int profile_breaks(const fog_volume *v, const double o[3], const double d
     scale = 1.0 / p->spacing, start = p->origin, off = (p->degree % 2 == 0) ? -0.5 : 0.0;
   else
     return 0;
-  double ua = (o[1] + a * d[1] - start) * scale - off, ub = (o[1] + b * d[1] - start) * scale - off;
+  double ua = (o[1] + a * d[1] - start) * scale - off;
+  double ub = (o[1] + b * d[1] - start) * scale - off;
   return (int)fabs(floor(ub) - floor(ua));
 }
 
@@ -214,7 +214,8 @@ static void lod_cells(const fog_volume *v, const fog_lod *lod, const camera *cam
           double o[3], d[3];
           int cells[2][LOD_LEVELS + 1], pieces[2][LOD_LEVELS + 1];
           camera_ray(cam, px, py, width, height, o, d);
-          double op = fog_lod_ray_length(v, o, d, surface_distance(distance[(size_t)py * width + px]));
+          double ts = surface_distance(distance[(size_t)py * width + px]);
+          double op = fog_lod_ray_length(v, o, d, ts);
           lanes++;
           if (!lod_pixel_walks(v, lod, o, d, op, mu, cells, pieces)) continue;
           for (int m = 0; m < 2; m++)
