@@ -675,7 +675,8 @@ int bench_render(int argc, char **argv) {
          rows[matched].setting, rows[matched].ms, rows[matched].max_error, rows[exact_linear].ms);
   printf("Y: LOD sum %.2f ms / LOD switch %.2f ms at mu = 0.6 = %.2f; predicted per ray by\n"
          "   cells crossed: sum %.1f / switch %.1f = %.2f; pieces walked (cells and profile\n"
-         "   breaks): %.1f / %.1f = %.2f; pieces as 4x2-pixel lane groups pay: %.1f / %.1f = %.2f\n",
+         "   breaks): %.1f / %.1f = %.2f; pieces as 4x2-pixel lane groups pay: %.1f / %.1f"
+         " = %.2f\n",
          rows[sum_at_06].ms, rows[switch_at_06].ms, rows[sum_at_06].ms / rows[switch_at_06].ms,
          at_06[0].cells, at_06[1].cells, at_06[0].cells / at_06[1].cells, at_06[0].pieces,
          at_06[1].pieces, at_06[0].pieces / at_06[1].pieces, at_06[0].group_pieces,
