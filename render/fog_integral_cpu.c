@@ -385,8 +385,8 @@ double fog_optical_depth(const fog_volume *v, const transform_grid *g, const dou
   /* Camera-relative grid coordinates: u(t) = (t dir_x - (origin_x - camera_x))/h - 1/2,
    * x(t) = (u(t) - origin_u)/spacing = x0 + t dx. The walk then runs in t' = t - t0 from
    * the box entry, so piece lengths are differences of small numbers even on a 50 km ray
-   * (in the float twin; what remains there at 50 km, ~3e-4 in tau, is the float ray
-   * direction: 6e-8 x 50 km = 3 mm sideways). */
+   * (in the float twin, whose ray set-up is double for the same reason: see
+   * fog_optical_depth_inside in fog_integral.glsl). */
   double h = fog_cell_size(v);
   double rel_x = v->origin_x - camera[0], rel_z = v->origin_z - camera[2];
   double off = fog_knot_offset(g->degree);

@@ -282,10 +282,9 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
               (float)(params->model_scale_height > 0 ? params->model_scale_height : 1.0));
   double right[3], up[3], forward[3];
   camera_basis(cam, width, height, right, up, forward);
-  glUniform3f(fog_loc(prog, "fog_camera_right"), (float)right[0], (float)right[1], (float)right[2]);
-  glUniform3f(fog_loc(prog, "fog_camera_up"), (float)up[0], (float)up[1], (float)up[2]);
-  glUniform3f(fog_loc(prog, "fog_camera_forward"), (float)forward[0], (float)forward[1],
-              (float)forward[2]);
+  glUniform3d(fog_loc(prog, "fog_camera_right"), right[0], right[1], right[2]);
+  glUniform3d(fog_loc(prog, "fog_camera_up"), up[0], up[1], up[2]);
+  glUniform3d(fog_loc(prog, "fog_camera_forward"), forward[0], forward[1], forward[2]);
   glUniform2f(fog_loc(prog, "fog_viewport"), (float)width, (float)height);
   glUniform3f(fog_loc(prog, "fog_colour"), params->fog_colour[0], params->fog_colour[1],
               params->fog_colour[2]);
@@ -440,18 +439,18 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
     GLuint prog = programs[pi];
     glUseProgram(prog);
 
-    /* Camera-relative placement, in double, then float (fog_integral.glsl). */
+    /* Camera-relative placement, in double (fog_integral.glsl, fog_optical_depth_inside). */
     const double *c = cam->position;
     double h = v->cell_size > 0 ? v->cell_size : 1.0;
-    float x0[FOG_PASS_MAX_GRIDS][2], scale[FOG_PASS_MAX_GRIDS];
+    double x0[FOG_PASS_MAX_GRIDS][2], scale[FOG_PASS_MAX_GRIDS];
     GLint size[FOG_PASS_MAX_GRIDS][2], units[FOG_PASS_MAX_GRIDS];
     for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) {
       const fog_pass_slot *s = &pass->slots[k == 0 ? first : k];
       units[k] = 2 + k;
       double sp = s->spacing > 0 ? s->spacing : 1.0;
-      x0[k][0] = (float)((-(v->origin_x - c[0]) / h - 0.5 - s->origin_u) / sp);
-      x0[k][1] = (float)((-(v->origin_z - c[2]) / h - 0.5 - s->origin_v) / sp);
-      scale[k] = (float)(1.0 / (h * sp));
+      x0[k][0] = (-(v->origin_x - c[0]) / h - 0.5 - s->origin_u) / sp;
+      x0[k][1] = (-(v->origin_z - c[2]) / h - 0.5 - s->origin_v) / sp;
+      scale[k] = 1.0 / (h * sp);
       size[k][0] = s->width;
       size[k][1] = s->height;
       glActiveTexture(GL_TEXTURE2 + k);
@@ -473,16 +472,14 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       glBindTexture(GL_TEXTURE_2D_ARRAY, pass->cell_layers);
       glUniform1i(fog_loc(prog, "fog_cell_layers"), 5 + FOG_PASS_MAX_GRIDS);
     }
-    glUniform2fv(fog_loc(prog, "fog_grid_x0"), FOG_PASS_MAX_GRIDS, &x0[0][0]);
-    glUniform1fv(fog_loc(prog, "fog_grid_scale"), FOG_PASS_MAX_GRIDS, scale);
+    glUniform2dv(fog_loc(prog, "fog_grid_x0"), FOG_PASS_MAX_GRIDS, &x0[0][0]);
+    glUniform1dv(fog_loc(prog, "fog_grid_scale"), FOG_PASS_MAX_GRIDS, scale);
     glUniform2iv(fog_loc(prog, "fog_grid_size"), FOG_PASS_MAX_GRIDS, &size[0][0]);
     glUniform1i(fog_loc(prog, "fog_degree"), pass->slots[first].degree);
     double lo[3], hi[3];
     fog_volume_box(v, lo, hi);
-    glUniform3f(fog_loc(prog, "fog_box_min"), (float)(lo[0] - c[0]), (float)(lo[1] - c[1]),
-                (float)(lo[2] - c[2]));
-    glUniform3f(fog_loc(prog, "fog_box_max"), (float)(hi[0] - c[0]), (float)(hi[1] - c[1]),
-                (float)(hi[2] - c[2]));
+    glUniform3d(fog_loc(prog, "fog_box_min"), lo[0] - c[0], lo[1] - c[1], lo[2] - c[2]);
+    glUniform3d(fog_loc(prog, "fog_box_max"), hi[0] - c[0], hi[1] - c[1], hi[2] - c[2]);
     glUniform1f(fog_loc(prog, "fog_extinction_scale"),
                 (float)(v->extinction > 0 ? v->extinction : 1.0));
     glUniform1i(fog_loc(prog, "fog_profile_kind"), (int)p->kind);
@@ -508,7 +505,7 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
 
     glUniform1i(fog_loc(prog, "fog_levels"), J);
     glUniform1i(fog_loc(prog, "fog_lod_method"), (int)params->lod_method);
-    glUniform1f(fog_loc(prog, "fog_mu"), (float)(J > 0 ? params->mu : 1.0));
+    glUniform1d(fog_loc(prog, "fog_mu"), J > 0 ? params->mu : 1.0);
     glUniform1i(fog_loc(prog, "fog_march_steps"),
                 params->march_steps > 0 ? params->march_steps : 64);
     glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);

@@ -53,8 +53,8 @@
 // z(t) = fog_grid_x0[k].y + t dir.z fog_grid_scale[k] in that grid's coefficient units
 // (fog_grid_x0 computed camera-relative in double on the CPU).
 uniform sampler2D fog_grids[FOG_MAX_GRIDS];
-uniform vec2 fog_grid_x0[FOG_MAX_GRIDS];
-uniform float fog_grid_scale[FOG_MAX_GRIDS];
+uniform dvec2 fog_grid_x0[FOG_MAX_GRIDS];  // double: see fog_optical_depth_inside
+uniform double fog_grid_scale[FOG_MAX_GRIDS];
 uniform ivec2 fog_grid_size[FOG_MAX_GRIDS];
 // Specialisation (render/fog_pass.c compiles one variant per draw configuration): llvmpipe
 // runs both sides of every branch under a mask, so a uniform degree or profile kind costs
@@ -90,8 +90,8 @@ uniform sampler2D fog_cells;
 uniform sampler2DArray fog_cell_layers;
 #define FOG_CELL_TEXEL(g, ij) texelFetch(fog_cell_layers, ivec3(ij, g), 0)
 #endif
-uniform vec3 fog_box_min;  // camera-relative box
-uniform vec3 fog_box_max;
+uniform dvec3 fog_box_min;  // camera-relative box (double: see fog_optical_depth_inside)
+uniform dvec3 fog_box_max;
 uniform float fog_extinction_scale;
 // Profile, camera-relative heights.
 #ifdef FOG_PROFILE_KIND
@@ -123,14 +123,16 @@ const float fog_gauss_weights[10] = float[10](
     0.55555555555555556, 0.88888888888888889, 0.55555555555555556,
     0.34785484513745386, 0.65214515486254614, 0.65214515486254614, 0.34785484513745386);
 // Slab test against the camera-relative box (Kay & Kajiya); dir components may be 0.
-bool fog_box_entry_exit(vec3 dir, out float t_enter, out float t_exit) {
-  float t0 = -FOG_INFINITY, t1 = FOG_INFINITY;
+// Double (fog_optical_depth_inside), with one division per axis: GPUs without full-rate
+// double run a division as a dozen operations.
+bool fog_box_entry_exit(dvec3 dir, out double t_enter, out double t_exit) {
+  double t0 = -FOG_INFINITY, t1 = FOG_INFINITY;
   for (int a = 0; a < 3; a++) {
     if (dir[a] == 0.0) {
       if (fog_box_min[a] > 0.0 || fog_box_max[a] < 0.0) return false;
       continue;
     }
-    float ta = fog_box_min[a] / dir[a], tb = fog_box_max[a] / dir[a];
+    double inv = 1.0 / dir[a], ta = fog_box_min[a] * inv, tb = fog_box_max[a] * inv;
     t0 = max(t0, min(ta, tb));
     t1 = min(t1, max(ta, tb));
   }
@@ -470,9 +472,9 @@ float fog_walk_integral(inout fog_ray_walk w, float t0, float t1, float limit) {
 // The exact optical depth int_{t_start}^{t_stop} K dt along the unit direction dir from the
 // camera, through grid slot `grid`, clipped to the fog's box.
 // Pixels whose optical depth exceeds `limit` (tau < e^-limit) stop early with a partial sum.
-float fog_optical_depth_inside(int grid, vec3 dir, float t0, float t1, float limit);
-float fog_optical_depth(int grid, vec3 dir, float t_start, float t_stop, float limit) {
-  float t0, t1;
+float fog_optical_depth_inside(int grid, dvec3 dir, double t0, double t1, float limit);
+float fog_optical_depth(int grid, dvec3 dir, double t_start, double t_stop, float limit) {
+  double t0, t1;
   if (!fog_box_entry_exit(dir, t0, t1)) return 0.0;
   t0 = max(t0, t_start);
   t1 = min(t1, t_stop);
@@ -481,29 +483,36 @@ float fog_optical_depth(int grid, vec3 dir, float t_start, float t_stop, float l
 }
 
 // fog_optical_depth on [t0, t1], already inside the box and not empty.
-float fog_optical_depth_inside(int grid, vec3 dir, float t0, float t1, float limit) {
-  // The walk runs in t' = t - t0 from the box entry, so piece lengths are differences of
-  // small numbers even on a 50 km ray (what remains there, ~3e-4 in tau, is the float ray
-  // direction: 6e-8 x 50 km = 3 mm sideways).
+// The set-up is double, the walk float: the walk runs in t' = t - t0 from the box entry,
+// in grid coordinates that stay within the grid, so its numbers are small; what is large
+// is the way there. A camera 50 km away sees the fog along a float direction rounded by
+// 6e-8 (3 mm sideways there), from grid coordinates of 2e4 cells (float keeps 2e-3 of a
+// cell): the pixel's direction, the box entry and the entry's grid coordinates are
+// therefore computed in double (a few operations per walk) and rounded once, small.
+// test_gpu_far_camera at 50 km: max |dtau| 2.3e-4 with a float set-up, 2.8e-6 with this.
+float fog_optical_depth_inside(int grid, dvec3 dir, double t0, double t1, float limit) {
   float off = fog_knot_offset(fog_degree);
   fog_ray_walk w;
   w.grid = grid;
   w.size = fog_grid_size[FOG_GRID(grid)];
-  float dx = dir.x * fog_grid_scale[FOG_GRID(grid)], dz = dir.z * fog_grid_scale[FOG_GRID(grid)];
-  w.x = fog_axis_start(fog_grid_x0[FOG_GRID(grid)].x + t0 * dx, dx, off);
-  w.z = fog_axis_start(fog_grid_x0[FOG_GRID(grid)].y + t0 * dz, dz, off);
-  w.y_entry = t0 * dir.y;
+  double dxd = dir.x * fog_grid_scale[FOG_GRID(grid)], dzd = dir.z * fog_grid_scale[FOG_GRID(grid)];
+  float dx = float(dxd), dz = float(dzd);
+  w.x = fog_axis_start(float(fog_grid_x0[FOG_GRID(grid)].x + t0 * dxd), dx, off);
+  w.z = fog_axis_start(float(fog_grid_x0[FOG_GRID(grid)].y + t0 * dzd), dz, off);
+  w.y_entry = float(t0 * dir.y);
+  float dir_y = float(dir.y);
   if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL)
     // Breaks at y0 + k H/2: y0 (where g changes form) and, above it, pieces whose
     // exponent spans at most 1/2, |b| <= 1/4, where the moments' series (8 terms) is exact
     // in float (fog_piece_integral); the closed form is not needed.
     w.y = fog_axis_start((w.y_entry - fog_profile_y0) * 2.0 * fog_profile_inv_scale_height,
-                         dir.y * 2.0 * fog_profile_inv_scale_height, 0.0);
+                         dir_y * 2.0 * fog_profile_inv_scale_height, 0.0);
   else
-    w.y = fog_axis_start(fog_profile_y_start + t0 * dir.y * fog_profile_inv_spacing,
-                         dir.y * fog_profile_inv_spacing, fog_knot_offset(fog_profile_degree));
-  w.dir_y = dir.y;
-  return fog_extinction_scale * fog_walk_integral(w, 0.0, t1 - t0, limit / fog_extinction_scale);
+    w.y = fog_axis_start(fog_profile_y_start + w.y_entry * fog_profile_inv_spacing,
+                         dir_y * fog_profile_inv_spacing, fog_knot_offset(fog_profile_degree));
+  w.dir_y = dir_y;
+  return fog_extinction_scale *
+         fog_walk_integral(w, 0.0, float(t1 - t0), limit / fog_extinction_scale);
 }
 
 // ---- uniform ray marching (the benchmark's alternative integrator) ------------------------
@@ -512,8 +521,10 @@ float fog_optical_depth_inside(int grid, vec3 dir, float t0, float t1, float lim
 // pointwise formulas.
 float fog_extinction_at(int grid, vec3 dir, float t) {
   float off = fog_knot_offset(fog_degree);
-  float x = fog_grid_x0[FOG_GRID(grid)].x + t * dir.x * fog_grid_scale[FOG_GRID(grid)];
-  float z = fog_grid_x0[FOG_GRID(grid)].y + t * dir.z * fog_grid_scale[FOG_GRID(grid)];
+  // float, as the marcher has always been: the approximation this bench compares against
+  vec2 x0 = vec2(fog_grid_x0[FOG_GRID(grid)]);
+  float scale = float(fog_grid_scale[FOG_GRID(grid)]);
+  float x = x0.x + t * dir.x * scale, z = x0.y + t * dir.z * scale;
   float f = fog_grid_value(grid, int(floor(x - off)), int(floor(z - off)), x, z);
   float y = t * dir.y;  // camera-relative height
   if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL)
@@ -529,10 +540,9 @@ float fog_extinction_at(int grid, vec3 dir, float t) {
 // [0, 1) shifts the samples (0.5 = midpoint) to trade banding for noise.
 float fog_optical_depth_march(int grid, vec3 dir, float t_start, float t_stop, int steps,
                               float jitter) {
-  float t0, t1;
-  if (!fog_box_entry_exit(dir, t0, t1)) return 0.0;
-  t0 = max(t0, t_start);
-  t1 = min(t1, t_stop);
+  double t_in, t_out;
+  if (!fog_box_entry_exit(dvec3(dir), t_in, t_out)) return 0.0;
+  float t0 = max(float(t_in), t_start), t1 = min(float(t_out), t_stop);
   if (!(t0 < t1)) return 0.0;
   float dt = (t1 - t0) / float(steps), sum = 0.0;
   for (int i = 0; i < steps; i++) sum += fog_extinction_at(grid, dir, t0 + (float(i) + jitter) * dt);

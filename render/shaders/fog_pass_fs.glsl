@@ -20,9 +20,9 @@ layout(location = 1) out float fog_out_transmittance;
 uniform sampler2D fog_surface_colour;    // linear RGBA, the scene without fog
 uniform sampler2D fog_surface_distance;  // R32F: distance along the ray to the first surface
 uniform vec2 fog_viewport;               // width, height
-uniform vec3 fog_camera_right;           // camera_basis(): scaled right, up; unit forward
-uniform vec3 fog_camera_up;
-uniform vec3 fog_camera_forward;
+uniform dvec3 fog_camera_right;          // camera_basis(): scaled right, up; unit forward
+uniform dvec3 fog_camera_up;             // (double: fog_optical_depth_inside)
+uniform dvec3 fog_camera_forward;
 uniform vec3 fog_colour;
 uniform int fog_levels;                  // J; 0: one grid (slot 0)
 #ifdef FOG_LOD_METHOD
@@ -30,7 +30,7 @@ const int fog_lod_method = FOG_LOD_METHOD;  // specialised per variant (render/f
 #else
 uniform int fog_lod_method;              // 0: sum of details (paper), 1: approximation switching
 #endif
-uniform float fog_mu;
+uniform double fog_mu;
 uniform int fog_march_steps;
 uniform int fog_march_jitter;            // 0: midpoints; 1: per-pixel jitter
 uniform uint fog_frame;
@@ -40,21 +40,23 @@ uniform float fog_depth_limit;           // exact walk: stop once the optical de
 // already clipped to the box (t0 < t1): a pixel clips once, not once per grid (that took
 // ~3 ms off a 38 ms LOD draw on llvmpipe).
 // limit: the exact walk may stop once its own sum exceeds it (the caller's remaining budget).
-float fog_grid_integral(int grid, vec3 dir, float t0, float t1, float jitter, float limit) {
+float fog_grid_integral(int grid, dvec3 dir, double t0, double t1, float jitter, float limit) {
 #if FOG_INTEGRATOR == 1
-  return fog_optical_depth_march(grid, dir, t0, t1, fog_march_steps, jitter);
+  return fog_optical_depth_march(grid, vec3(dir), float(t0), float(t1), fog_march_steps, jitter);
 #else
   return fog_optical_depth_inside(grid, dir, t0, t1, limit);
 #endif
 }
 
 // LOD by distance, both methods (fog_optical_depth_lod in render/fog_integral_cpu.c).
-float fog_optical_depth_lod(vec3 dir, float t_surface, float jitter) {
+float fog_optical_depth_lod(dvec3 dir, float t_surface, float jitter) {
   // ||OP|| (fog_lod_ray_length): the first surface or the box exit, whichever comes first;
-  // the walks start where the ray is inside the box, at `start`.
-  float t_in, t_out;
+  // the walks start where the ray is inside the box, at `start`. Double, as the walks'
+  // set-up (fog_optical_depth_inside): in float, the segment ends d_l of a camera 50 km
+  // away move by millimetres, 3e-5 in tau (test_gpu_far_camera).
+  double t_in, t_out;
   if (!fog_box_entry_exit(dir, t_in, t_out) || t_out <= 0.0) return 0.0;
-  float op = min(t_out, t_surface), start = max(t_in, 0.0);
+  double op = min(t_out, double(t_surface)), start = max(t_in, 0.0);
   if (op <= start) return 0.0;
 #if FOG_SINGLE_GRID
   // One grid (no LOD, or an LOD draw that reduces to one level): the walk alone, without
@@ -67,7 +69,7 @@ float fog_optical_depth_lod(vec3 dir, float t_surface, float jitter) {
     // Giroud & Biri §4.4: A_0 over the whole ray, detail band l up to d_l = ||OP|| mu^l.
     // The details are signed, so no partial sum bounds the total: no early exit here.
     float sum = fog_grid_integral(0, dir, start, op, jitter, FOG_INFINITY);
-    float d_l = op;
+    double d_l = op;
     for (int l = 1; l <= J; l++) {
       d_l *= fog_mu;
       if (d_l <= start) break;
@@ -79,12 +81,12 @@ float fog_optical_depth_lod(vec3 dir, float t_surface, float jitter) {
   // to far (A_J first), each segment with the budget the nearer ones left: the
   // approximations are non-negative fog, so once the sum passes fog_depth_limit the pixel
   // is opaque (tau < e^-limit) whatever the farther segments add.
-  float d[FOG_MAX_GRIDS / 2];  // d_l = ||OP|| mu^l, as fog_optical_depth_lod computes them
+  double d[FOG_MAX_GRIDS / 2];  // d_l = ||OP|| mu^l, as fog_optical_depth_lod computes them
   d[0] = op;
   for (int l = 1; l < FOG_MAX_GRIDS / 2; l++) d[l] = d[l - 1] * fog_mu;
   float sum = 0.0;
   for (int l = J; l >= 0; l--) {
-    float near_t = max((l == J) ? 0.0 : d[l + 1], start), far_t = d[l];
+    double near_t = max((l == J) ? 0.0 : d[l + 1], start), far_t = d[l];
     if (far_t > near_t && sum < fog_depth_limit)
       sum += fog_grid_integral(l, dir, near_t, far_t, jitter, fog_depth_limit - sum);
   }
@@ -150,12 +152,14 @@ void main() {
 #if FOG_REDUCED > 1
   ivec2 pixel = min(ivec2(gl_FragCoord.xy) * FOG_REDUCED + FOG_REDUCED / 2,
                     ivec2(fog_viewport) - 1);
-  vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / fog_viewport - 1.0;
+  dvec2 ndc = 2.0 * (dvec2(pixel) + 0.5) / dvec2(fog_viewport) - 1.0;
 #else
-  vec2 ndc = 2.0 * gl_FragCoord.xy / fog_viewport - 1.0;
+  dvec2 ndc = 2.0 * dvec2(gl_FragCoord.xy) / dvec2(fog_viewport) - 1.0;
   ivec2 pixel = ivec2(gl_FragCoord.xy);
 #endif
-  vec3 dir = normalize(fog_camera_forward + ndc.x * fog_camera_right + ndc.y * fog_camera_up);
+  // in double (fog_optical_depth_inside); the rest of the pass takes it rounded to float
+  dvec3 dir_d = normalize(fog_camera_forward + ndc.x * fog_camera_right + ndc.y * fog_camera_up);
+  vec3 dir = vec3(dir_d);
   vec4 surface = texelFetch(fog_surface_colour, pixel, 0);
   float t_surface = texelFetch(fog_surface_distance, pixel, 0).r;
   float jitter = (fog_march_jitter != 0) ? fog_hash(uvec2(pixel), fog_frame) : 0.5;
@@ -169,12 +173,13 @@ void main() {
     optical_depth = fog_height_optical_depth(fog_model_extinction, fog_model_y0,
                                              fog_model_scale_height, dir.y, t_surface);
   else
-    optical_depth = fog_optical_depth_lod(dir, t_surface, jitter);
+    optical_depth = fog_optical_depth_lod(dir_d, t_surface, jitter);
 #if FOG_REDUCED > 1
   // And the extinction where the ray meets the surface (A_0; 0 outside the box or for the
   // sky): d(optical depth)/dt there, for the upsampling's first-order distance correction.
-  float t_in, t_out, k_end = 0.0;
-  if (t_surface < 1e29 && fog_box_entry_exit(dir, t_in, t_out) && t_surface >= t_in &&
+  double t_in, t_out;
+  float k_end = 0.0;
+  if (t_surface < 1e29 && fog_box_entry_exit(dir_d, t_in, t_out) && t_surface >= t_in &&
       t_surface <= t_out)
     k_end = fog_extinction_scale * fog_extinction_at(0, dir, t_surface);
   fog_out_colour = vec4(optical_depth, t_surface, k_end, 1.0);

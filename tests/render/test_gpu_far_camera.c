@@ -1,0 +1,96 @@
+/* The GL fog pass against the double-precision CPU reference with the camera far from the
+ * fog: 100 m to 50 km from a 60 x 40 m fog box, a narrow field of view aimed at it, the
+ * ground plane under it and sky behind. What float arithmetic of the ray's set-up would
+ * lose there (the ray direction rounded to 6e-8 moves the ray 3 mm sideways at 50 km;
+ * camera-relative grid coordinates of 2e4 cells keep only 2e-3 of a cell) the pass must
+ * not: max |delta tau| <= 1e-5 at every distance, for one grid and for both LOD methods. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "render/render.h"
+#include "fog_test_gl.h"
+#include "fog_test_scene.h"
+#include "test_util.h"
+
+enum { W = 64, H = 36, J = 2 };
+static const double ground_y = 0.5;
+
+/* Distance along pixel rays to the plane y = ground_y, 1e30 for sky (as the scene pass). */
+static void ground_distance(const camera *cam, float *dist) {
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      double o[3], d[3];
+      camera_ray(cam, px, py, W, H, o, d);
+      double t = (d[1] < 0.0) ? (ground_y - o[1]) / d[1] : -1.0;
+      dist[py * W + px] = (t > 0.0) ? (float)t : 1e30f;
+    }
+}
+
+int main(void) {
+  render_error err = {0};
+  fog_test_gl gl;
+  if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_far_camera");
+  float *dist = malloc(sizeof(float) * W * H), *tau = malloc(sizeof(float) * W * H);
+  float *surface = calloc((size_t)W * H * 4, sizeof(float));
+  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, NULL);
+  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
+  fog_test_gl_upload_flipped(&gl, surface_tex, GL_RGBA, 4, surface);
+
+  transform_grid approx[J + 1], detail[J];
+  fog_test_pyramid(1, J, approx, detail);
+  fog_lod lod = {.levels = J, .approx = approx, .detail = detail, .mu = 0.6};
+  fog_volume v = fog_test_volume(FOG_PROFILE_EXPONENTIAL);
+  double lo[3], hi[3];
+  fog_volume_box(&v, lo, hi);
+  const double distances[4] = {100.0, 1e3, 1e4, 5e4};
+  for (int k = 0; k < 4; k++) {
+    double D = distances[k];
+    /* From the south-west and a little above, the box filling about half the view. */
+    camera cam = {.fov_y = 2.0 * atan(45.0 / D)};
+    double centre[3] = {0.5 * (lo[0] + hi[0]), 4.0, 0.5 * (lo[2] + hi[2])};
+    cam.position[0] = centre[0] - 0.6 * D;
+    cam.position[1] = centre[1] + 0.02 * D;
+    cam.position[2] = centre[2] + 0.8 * D;
+    camera_look_at(&cam, centre);
+    ground_distance(&cam, dist);
+    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+    for (int method = -1; method <= 1; method++) { /* -1: the finest grid alone */
+      if (method < 0)
+        CHECK(fog_pass_upload_grid(gl.pass, 0, &approx[J], &err) == 0, "upload: %s",
+              err.message);
+      else
+        CHECK(fog_pass_upload_lod(gl.pass, &lod, &err) == 0, "upload: %s", err.message);
+      fog_pass_params params = {.volume = &v, .levels = method < 0 ? 0 : J,
+                                .lod_method = method < 0 ? 0 : method, .mu = lod.mu};
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
+            "draw: %s", err.message);
+      double worst = 0.0, min_tau = 1.0;
+      for (int py = 0; py < H; py++)
+        for (int px = 0; px < W; px++) {
+          double o[3], d[3];
+          camera_ray(&cam, px, py, W, H, o, d);
+          float ts = dist[py * W + px];
+          double t_surface = ts >= 1e29f ? HUGE_VAL : ts;
+          double depth = method < 0
+                             ? fog_optical_depth(&v, &approx[J], o, d, 0.0, t_surface)
+                             : fog_optical_depth_lod(&v, &lod, method, o, d, t_surface);
+          double want = fog_transmittance(depth);
+          worst = fmax(worst, fabs(want - tau[py * W + px]));
+          min_tau = fmin(min_tau, want);
+        }
+      const char *name = method < 0 ? "one grid" : method == 0 ? "LOD sum" : "LOD switch";
+      printf("camera %6.0f m away, %-10s: max |dtau| %.2e (min tau %.3f)\n", D, name, worst,
+             min_tau);
+      CHECK(min_tau < 0.8, "%.0f m, %s: min tau %.3f: no fog in view", D, name, min_tau);
+      CHECK(worst <= 1e-5, "%.0f m, %s: max |dtau| %.3e", D, name, worst);
+    }
+  }
+  for (int l = 0; l <= J; l++) transform_grid_destroy(&approx[l]);
+  for (int l = 0; l < J; l++) transform_grid_destroy(&detail[l]);
+  free(dist);
+  free(tau);
+  free(surface);
+  fog_test_gl_teardown(&gl);
+  return test_finish("test_gpu_far_camera");
+}
