@@ -80,6 +80,19 @@ static inline void fog_test_gl_upload_flipped(const fog_test_gl *gl, GLuint tex,
   free(flipped);
 }
 
+/* The distance along the target's pixel rays (rows top first) to the plane y = ground_y,
+ * 1e30 for sky: the surface distance texture the scene pass would write. */
+static inline void fog_test_gl_ground_distance(const fog_test_gl *gl, const camera *cam,
+                                               double ground_y, float *dist) {
+  for (int py = 0; py < gl->height; py++)
+    for (int px = 0; px < gl->width; px++) {
+      double o[3], d[3];
+      camera_ray(cam, px, py, gl->width, gl->height, o, d);
+      double t = (d[1] < 0.0) ? (ground_y - o[1]) / d[1] : -1.0;
+      dist[py * gl->width + px] = (t > 0.0) ? (float)t : 1e30f;
+    }
+}
+
 /* Draws the fog pass into the target and reads its transmittance (attachment 1, rows
  * top first) into tau. Returns 0 on success (err says what failed): the caller CHECKs
  * it, so a failure names the test's own line and case. */

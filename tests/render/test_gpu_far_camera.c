@@ -16,17 +16,6 @@
 enum { W = 64, H = 36, J = 2 };
 static const double ground_y = 0.5;
 
-/* Distance along pixel rays to the plane y = ground_y, 1e30 for sky (as the scene pass). */
-static void ground_distance(const camera *cam, float *dist) {
-  for (int py = 0; py < H; py++)
-    for (int px = 0; px < W; px++) {
-      double o[3], d[3];
-      camera_ray(cam, px, py, W, H, o, d);
-      double t = (d[1] < 0.0) ? (ground_y - o[1]) / d[1] : -1.0;
-      dist[py * W + px] = (t > 0.0) ? (float)t : 1e30f;
-    }
-}
-
 int main(void) {
   render_error err = {0};
   fog_test_gl gl;
@@ -53,7 +42,7 @@ int main(void) {
     cam.position[1] = centre[1] + 0.02 * D;
     cam.position[2] = centre[2] + 0.8 * D;
     camera_look_at(&cam, centre);
-    ground_distance(&cam, dist);
+    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
     fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
     for (int method = -1; method <= 1; method++) { /* -1: the finest grid alone */
       if (method < 0)

@@ -17,17 +17,6 @@
 enum { W = 128, H = 72, J = 2 };
 static const double ground_y = 0.5;
 
-/* Distance along pixel rays to the plane y = ground_y, 1e30 for sky (as the scene pass). */
-static void ground_distance(const camera *cam, float *dist) {
-  for (int py = 0; py < H; py++)
-    for (int px = 0; px < W; px++) {
-      double o[3], d[3];
-      camera_ray(cam, px, py, W, H, o, d);
-      double t = (d[1] < 0.0) ? (ground_y - o[1]) / d[1] : -1.0;
-      dist[py * W + px] = (t > 0.0) ? (float)t : 1e30f;
-    }
-}
-
 /* Pixel (px, py)'s ray (rows top first) and its surface distance: HUGE_VAL for sky. */
 static double pixel_ray(const camera *cam, const float *dist, int px, int py, double o[3],
                         double d[3]) {
@@ -110,7 +99,7 @@ int main(void) {
         cam.position[2] = hi[2] + 30.0;
       }
       camera_look_at(&cam, target_pos);
-      ground_distance(&cam, dist);
+      fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
       fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
       for (int method = 0; method <= 1; method++) {
         fog_pass_params params = {.volume = &v, .levels = J, .lod_method = method, .mu = lod.mu,
@@ -176,7 +165,7 @@ int main(void) {
       fog_volume v = fog_test_volume(FOG_PROFILE_SLAB);
       camera cam = {.position = {60.0, 20.0, 30.0}, .fov_y = 1.0};
       camera_look_at(&cam, (double[3]){130.0, ground_y, -30.0});
-      ground_distance(&cam, dist);
+      fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
       fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
       fog_pass_params params = {.volume = &v, .levels = J, .lod_method = FOG_LOD_SWITCH,
                                 .mu = lod.mu};
@@ -207,7 +196,7 @@ int main(void) {
                                 .scale_height = 3.0, .y_top = 30.0}};
     camera cam = {.position = {2.0, 1.5, 20.0}, .fov_y = 0.6};
     camera_look_at(&cam, (double[3]){1024.0, 0.5, 44.0});
-    ground_distance(&cam, dist);
+    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
     fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
     fog_pass_params params = {.volume = &v};
     gl_target_bind(&gl.target);
@@ -240,7 +229,7 @@ int main(void) {
     for (int view = 0; view < 2; view++) {
       camera cam = {.position = {10.0, view ? 40.0 : 3.0, 20.0}, .fov_y = 1.1};
       camera_look_at(&cam, (double[3]){80.0, view ? 0.0 : 6.0, -60.0});
-      ground_distance(&cam, dist);
+      fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
       fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
       fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
       fog_pass_params params = {.model = model, .model_extinction = m.extinction,
