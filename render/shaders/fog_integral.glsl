@@ -453,7 +453,7 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
 // int_{t0}^{t1} f g dt for [t0, t1] inside the box: walk the knot cells of x, z (2D DDA) and
 // the profile's breaks, one exact piece at a time; every axis whose break ends the piece
 // steps (as in the C twin). Leaves early once the sum exceeds `limit` (the optical depth
-// cut-off, fog_optical_depth).
+// cut-off, fog_optical_depth_inside).
 float fog_walk_integral(inout fog_ray_walk w, float t0, float t1, float limit) {
   float sum = 0.0, t = t0;
   for (int guard = 0; t < t1 && sum < limit && guard < 65536; guard++) {
@@ -469,20 +469,11 @@ float fog_walk_integral(inout fog_ray_walk w, float t0, float t1, float limit) {
   return sum;
 }
 
-// The exact optical depth int_{t_start}^{t_stop} K dt along the unit direction dir from the
-// camera, through grid slot `grid`, clipped to the fog's box.
-// Pixels whose optical depth exceeds `limit` (tau < e^-limit) stop early with a partial sum.
-float fog_optical_depth_inside(int grid, dvec3 dir, double t0, double t1, float limit);
-float fog_optical_depth(int grid, dvec3 dir, double t_start, double t_stop, float limit) {
-  double t0, t1;
-  if (!fog_box_entry_exit(dir, t0, t1)) return 0.0;
-  t0 = max(t0, t_start);
-  t1 = min(t1, t_stop);
-  if (!(t0 < t1)) return 0.0;
-  return fog_optical_depth_inside(grid, dir, t0, t1, limit);
-}
-
-// fog_optical_depth on [t0, t1], already inside the box and not empty.
+// The exact optical depth int_{t0}^{t1} K dt along the unit direction dir from the camera,
+// through grid slot `grid`, for [t0, t1] already clipped to the fog's box and not empty
+// (the C twin's fog_optical_depth after its box clip; the pass clips once per pixel, in
+// fog_optical_depth_lod). Pixels whose optical depth exceeds `limit` (tau < e^-limit) stop
+// early with a partial sum.
 // The set-up is double, the walk float: the walk runs in t' = t - t0 from the box entry,
 // in grid coordinates that stay within the grid, so its numbers are small; what is large
 // is the way there. A camera 50 km away sees the fog along a float direction rounded by
