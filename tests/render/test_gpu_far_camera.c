@@ -45,10 +45,12 @@ int main(void) {
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
     fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
     for (int method = -1; method <= 1; method++) { /* -1: the finest grid alone */
+      /* the one-grid draw reads slot 0, which the pyramid's A_0 occupies: upload each
+       * before the draws that read it */
       if (method < 0)
         CHECK(fog_pass_upload_grid(gl.pass, 0, &approx[J], &err) == 0, "upload: %s",
               err.message);
-      else
+      else if (method == 0)
         CHECK(fog_pass_upload_lod(gl.pass, &lod, &err) == 0, "upload: %s", err.message);
       fog_pass_params params = {.volume = &v, .levels = method < 0 ? 0 : J,
                                 .lod_method = method < 0 ? 0 : method, .mu = lod.mu};
