@@ -71,6 +71,22 @@ static double time_transform(int n, int levels, transform_basis basis, int threa
   return 1e3 * bench_median(t, reps);
 }
 
+/* Keeps both cores busy with two-thread transforms for `seconds` before anything is
+ * timed. Without it, the first two-thread rows of a run (256^2) measured 3-4x slower than
+ * one thread, and the same sizes 1.6x faster once the process had run two threads for a
+ * few tens of milliseconds: the virtual machine's second core wakes slowly, not the
+ * worker (it spins between passes). */
+static void warm_up_two_threads(const float *in, float *coef, double seconds) {
+  transform_plan *plan;
+  transform_error err;
+  if (transform_plan_create(&plan, &(transform_desc){.width = 512, .height = 512, .levels = 3,
+          .threads = 2}, &err))
+    return;
+  double t0 = app_clock_seconds();
+  while (app_clock_seconds() - t0 < seconds) transform_forward(plan, in, coef);
+  transform_plan_destroy(plan);
+}
+
 static double time_memcpy(int n, const float *in, float *out) {
   int reps = reps_for(n);
   double t[MAX_REPS];
@@ -200,6 +216,7 @@ int bench_transform(int argc, char **argv) {
   printf("%-6s %-9s %-3s %15s %15s %15s %15s %15s\n", "size", "basis", "thr", "fwd 3 levels",
          "inv 3 levels", "fwd full", "inv full", "fused level");
   double ours_full = NAN, ours_3 = NAN, fused = NAN, copy_1024 = NAN, gsl_1024 = NAN;
+  warm_up_two_threads(data[1], coef, 0.2);
   for (int s = 0; s < 3; s++) {
     int n = sizes[s], full = transform_max_levels(n, n, TRANSFORM_SYMMETRIC);
     for (int b = 0; b < 3; b++)
