@@ -1,0 +1,37 @@
+#!/bin/sh
+# The device machine's one prepared run (see bench/gpu_kit.sh): on a real GPU, the GPU tests
+# (GPU against the double-precision CPU reference, pixel by pixel) and the render and
+# pipeline benches, their outputs copied to $OUT. Run from the repository root with
+# build/gpu-kit carried; about 3 minutes on llvmpipe, far less on a GPU.
+set -u
+out=${OUT:-build/gpu-check}
+mkdir -p "$out"
+kit=${TMPDIR:-/tmp}/fogpipe-gpu-kit # not under build/gpu-kit: that is carried
+rm -rf "$kit" && mkdir -p "$kit" && tar -C "$kit" -xJf build/gpu-kit/kit.tar.xz || exit 1
+lib=$kit/lib
+for f in libstdc++.so.6 libgcc_s.so.1; do
+  ldconfig -p | grep -q "$f" || lib=$lib:$kit/fallback
+done
+export LD_LIBRARY_PATH=$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+# the NVIDIA driver's GLVND vendor file (device README); the kit brings the loader
+v=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+[ -f "$v" ] && export __EGL_VENDOR_LIBRARY_FILENAMES=$v
+# the benches read data/ and configs/ under the source path compiled into the kit
+src=$(grep -a -o -m1 '/[[:alnum:]_./-]*/configs/default.ini' "$kit/bin/fogpipe" | head -n 1 |
+  sed 's,/configs/default.ini$,,')
+[ -n "$src" ] && [ ! -e "$src" ] && mkdir -p "$(dirname "$src")" && ln -s "$PWD" "$src"
+{
+  date
+  nvidia-smi -L 2>&1
+  ldd "$kit/bin/fogpipe" | grep -c "not found" | sed 's/^/libraries not found: /'
+} >"$out/machine.txt" 2>&1
+cat "$out/machine.txt"
+for t in test_gpu_fog_vs_cpu test_gpu_far_camera test_gpu_march_vs_cpu test_gpu_fog_resolution; do
+  "$kit/bin/$t" >"$out/$t.txt" 2>&1
+  echo "$t: exit $? ($(tail -n 1 "$out/$t.txt"))"
+done
+"$kit/bin/fogpipe" bench render --frames 20 >"$out/bench_render.txt" 2>&1
+echo "bench render: exit $?"; grep -E '^GL:|^render:' "$out/bench_render.txt"
+cp build/bench/render/render.csv build/bench/render/render_chart.png "$out/" 2>/dev/null
+"$kit/bin/fogpipe" bench pipeline >"$out/bench_pipeline.txt" 2>&1
+echo "bench pipeline: exit $?"; grep -E '^GL|^pipeline:' "$out/bench_pipeline.txt"
