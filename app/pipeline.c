@@ -753,7 +753,8 @@ int pipeline_read_frame(pipeline *p, float *rgba, float *transmittance, float *d
       return fail(err, "read-back: %s", rerr.message);
     /* The sky's distance is SCENE_SKY_DISTANCE (1e30); EXR readers and compositors want
      * a finite far value: the camera's far plane. */
-    double far = p->last_camera.far_plane > 0 ? p->last_camera.far_plane : 100000.0;
+    double near, far;
+    camera_depth_range(&p->last_camera, &near, &far);
     for (size_t i = 0, n = (size_t)p->width * p->height; i < n; i++)
       if (!(depth[i] < far)) depth[i] = (float)far;
   }

@@ -94,9 +94,14 @@ void camera_view_matrix_world(const camera *cam, float m[16]) {
   m[14] = (float)(f[0] * p[0] + f[1] * p[1] + f[2] * p[2]);
 }
 
+void camera_depth_range(const camera *cam, double *near_plane, double *far_plane) {
+  *near_plane = cam->near_plane > 0 ? cam->near_plane : 0.1;
+  *far_plane = cam->far_plane > 0 ? cam->far_plane : 100000.0;
+}
+
 void camera_projection_matrix(const camera *cam, int width, int height, float m[16]) {
-  double n = cam->near_plane > 0 ? cam->near_plane : 0.1;
-  double fa = cam->far_plane > 0 ? cam->far_plane : 100000.0;
+  double n, fa;
+  camera_depth_range(cam, &n, &fa);
   double t = 1.0 / tan(0.5 * camera_fov(cam));
   double a = camera_aspect(cam, width, height);
   for (int i = 0; i < 16; i++) m[i] = 0.0f;

@@ -55,5 +55,7 @@ void camera_ray(const camera *cam, double px, double py, int width, int height,
 void camera_view_matrix(const camera *cam, float m[16]);
 void camera_view_matrix_world(const camera *cam, float m[16]);
 void camera_projection_matrix(const camera *cam, int width, int height, float m[16]);
+/* The near and far plane distances the projection uses (the defaults where 0). */
+void camera_depth_range(const camera *cam, double *near_plane, double *far_plane);
 
 #endif

@@ -2,9 +2,12 @@
 #include "render/scene.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <stdio.h>
+
+#include "render/frustum.h"
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -121,11 +124,29 @@ double scene_geometry_pixel_distance(const scene_geometry *geo, const camera *ca
 
 /* ---------------- GL ---------------- */
 
+/* The terrain is drawn in tiles of TILE x TILE quads, each a contiguous range of the index
+ * buffer with its bounding box, and a frame draws only the tiles its frustum does not cull:
+ * on llvmpipe the scene pass costs about its triangle count (half the terrain's
+ * triangles: 15 -> 9 ms per frame), and a camera over the terrain sees a half to two
+ * thirds of it. A tile's 17 x 17 vertices also stay within the vertex cache. */
+#define TILE 16
+
+typedef struct scene_tile {
+  double lo[3], hi[3]; /* world; the float vertices as the GPU gets them */
+  GLsizei first, count; /* index range */
+} scene_tile;
+
 struct scene_pass {
   const scene_geometry *geo;
   GLuint surface_program, sky_program;
   GLuint vao, vertex_buffer, index_buffer;
   GLsizei index_count;
+  scene_tile *tiles;
+  int tile_count;
+  GLsizei box_first; /* the boxes' indices: [box_first, index_count), always drawn */
+  GLsizei *draw_counts; /* per frame: the merged index ranges of the drawn tiles */
+  const void **draw_offsets;
+  long triangles_drawn;
   /* uniform locations */
   GLint u_offset, u_view, u_projection, u_sun_direction, u_sun_colour, u_ambient;
   GLint u_sky_right, u_sky_up, u_sky_forward, u_sky_viewport, u_sky_horizon, u_sky_zenith,
@@ -188,14 +209,41 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
       }
       terrain_albedo(h[(size_t)j * rx + i], n[1] / len, v->albedo);
     }
+  int tiles_x = (rx - 1 + TILE - 1) / TILE, tiles_z = (rz - 1 + TILE - 1) / TILE;
+  pass->tiles = malloc(sizeof *pass->tiles * (size_t)tiles_x * tiles_z);
+  pass->draw_counts = malloc(sizeof *pass->draw_counts * ((size_t)tiles_x * tiles_z + 1));
+  pass->draw_offsets = malloc(sizeof *pass->draw_offsets * ((size_t)tiles_x * tiles_z + 1));
+  if (!pass->tiles || !pass->draw_counts || !pass->draw_offsets) {
+    free(vertices);
+    free(indices);
+    snprintf(err->message, sizeof err->message, "out of memory for the scene meshes");
+    return 1;
+  }
   size_t k = 0;
-  for (int j = 0; j + 1 < rz; j++)
-    for (int i = 0; i + 1 < rx; i++) {
-      /* The triangulation terrain.h documents (diagonal (i+1,j)-(i,j+1)). */
-      GLuint a = (GLuint)(j * rx + i), b = a + 1, c = a + (GLuint)rx, d = c + 1;
-      indices[k++] = a, indices[k++] = c, indices[k++] = b;
-      indices[k++] = b, indices[k++] = c, indices[k++] = d;
+  for (int tz = 0; tz < tiles_z; tz++)
+    for (int tx = 0; tx < tiles_x; tx++) {
+      scene_tile *tile = &pass->tiles[pass->tile_count++];
+      int i0 = tx * TILE, j0 = tz * TILE;
+      int i1 = i0 + TILE < rx - 1 ? i0 + TILE : rx - 1, j1 = j0 + TILE < rz - 1 ? j0 + TILE : rz - 1;
+      tile->first = (GLsizei)k;
+      for (int j = j0; j < j1; j++)
+        for (int i = i0; i < i1; i++) {
+          /* The triangulation terrain.h documents (diagonal (i+1,j)-(i,j+1)). */
+          GLuint a = (GLuint)(j * rx + i), b = a + 1, c = a + (GLuint)rx, d = c + 1;
+          indices[k++] = a, indices[k++] = c, indices[k++] = b;
+          indices[k++] = b, indices[k++] = c, indices[k++] = d;
+        }
+      tile->count = (GLsizei)k - tile->first;
+      for (int c = 0; c < 3; c++) tile->lo[c] = INFINITY, tile->hi[c] = -INFINITY;
+      for (int j = j0; j <= j1; j++)
+        for (int i = i0; i <= i1; i++)
+          for (int c = 0; c < 3; c++) {
+            double p = t->origin[c] + vertices[(size_t)j * rx + i].position[c];
+            tile->lo[c] = fmin(tile->lo[c], p);
+            tile->hi[c] = fmax(tile->hi[c], p);
+          }
     }
+  pass->box_first = (GLsizei)k;
   /* Boxes: 6 faces x 4 vertices with flat normals. */
   size_t base = terrain_vertices;
   for (int b = 0; b < geo->box_count; b++) {
@@ -282,8 +330,44 @@ void scene_pass_destroy(scene_pass *pass) {
   if (pass->vertex_buffer) glDeleteBuffers(1, &pass->vertex_buffer);
   if (pass->index_buffer) glDeleteBuffers(1, &pass->index_buffer);
   if (pass->vao) glDeleteVertexArrays(1, &pass->vao);
+  free(pass->tiles);
+  free(pass->draw_counts);
+  free(pass->draw_offsets);
   free(pass);
 }
+
+/* The index ranges to draw: the tiles the camera's frustum keeps, adjacent ones merged,
+ * then the boxes. Their count. */
+static GLsizei cull_tiles(scene_pass *pass, const camera *cam, int width, int height) {
+  frustum f;
+  frustum_from_camera(&f, cam, width, height);
+  GLsizei n = 0, end = -1;
+  long indices = 0;
+  for (int k = 0; k < pass->tile_count; k++) {
+    const scene_tile *tile = &pass->tiles[k];
+    double lo[3], hi[3];
+    for (int c = 0; c < 3; c++)
+      lo[c] = tile->lo[c] - cam->position[c], hi[c] = tile->hi[c] - cam->position[c];
+    if (tile->count == 0 || frustum_culls_box(&f, lo, hi)) continue;
+    if (tile->first == end) {
+      pass->draw_counts[n - 1] += tile->count;
+    } else {
+      pass->draw_counts[n] = tile->count;
+      pass->draw_offsets[n++] = (const void *)(uintptr_t)(tile->first * sizeof(GLuint));
+    }
+    end = tile->first + tile->count;
+    indices += tile->count;
+  }
+  if (pass->index_count > pass->box_first) {
+    pass->draw_counts[n] = pass->index_count - pass->box_first;
+    pass->draw_offsets[n++] = (const void *)(uintptr_t)(pass->box_first * sizeof(GLuint));
+    indices += pass->index_count - pass->box_first;
+  }
+  pass->triangles_drawn = indices / 3;
+  return n;
+}
+
+long scene_pass_triangles_drawn(const scene_pass *pass) { return pass->triangles_drawn; }
 
 void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target) {
   const scene_geometry *geo = pass->geo;
@@ -315,7 +399,9 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glUniform3fv(pass->u_sun_colour, 1, geo->light.sun_colour);
   glUniform3fv(pass->u_ambient, 1, geo->light.ambient);
   glBindVertexArray(pass->vao);
-  glDrawElements(GL_TRIANGLES, pass->index_count, GL_UNSIGNED_INT, 0);
+  GLsizei ranges = cull_tiles(pass, cam, w, h);
+  glMultiDrawElements(GL_TRIANGLES, pass->draw_counts, GL_UNSIGNED_INT, pass->draw_offsets,
+                      ranges);
   glBindVertexArray(0);
 
   /* Sky last: a full-screen triangle at depth 1 (the far plane), rays from the same basis

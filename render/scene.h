@@ -87,6 +87,8 @@ void scene_pass_destroy(scene_pass *pass);
  * with colour 0 and R32F colour 1 and a depth buffer), at the target's size. Does not
  * allocate. */
 void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target);
+/* Triangles the last run drew: the terrain tiles in the camera's view, and the boxes. */
+long scene_pass_triangles_drawn(const scene_pass *pass);
 
 /* A render target with the scene pass's layout (RGBA16F colour, R32F distance, depth). */
 int scene_target_create(gl_target *target, int width, int height, render_error *err);

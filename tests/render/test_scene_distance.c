@@ -4,7 +4,10 @@
  * hold SCENE_SKY_DISTANCE exactly. A pixel whose centre lies on a silhouette edge may
  * pick the other surface in the rasteriser: it must then match the CPU ray jittered by
  * at most 0.02 pixel, and such pixels must be rare (< 2%).
- * Also: the DDA terrain walk gives the same hits as testing every triangle. */
+ * Also: the DDA terrain walk gives the same hits as testing every triangle; and the
+ * same holds from views where the pass culls terrain tiles outside the frustum (looking
+ * down, sideways along the terrain's edge, from outside it, from far above), with fewer
+ * triangles drawn than the terrain has in some and all of them in another. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -56,6 +59,93 @@ static void test_dda_matches_brute_force(void) {
   terrain_destroy(&t);
 }
 
+typedef struct view_stats {
+  int sampled, sky, boxes, edge, failed;
+} view_stats;
+
+/* Renders cam's view and compares every `step`-th pixel's distance with the CPU ray cast. */
+static view_stats compare_view(const scene_geometry *geo, scene_pass *pass,
+                               const gl_target *target, const camera *cam, int step,
+                               float *distance) {
+  view_stats v = {0};
+  render_error err = {0};
+  int W = target->width, H = target->height;
+  scene_pass_run(pass, cam, target);
+  CHECK(gl_target_read(target, 1, 1, distance, &err) == 0, "read: %s", err.message);
+  for (int py = 0; py < H; py += step)
+    for (int px = 0; px < W; px += step) {
+      double gl = distance[py * W + px];
+      double o[3], d[3], s = 0;
+      camera_ray(cam, px, py, W, H, o, d);
+      bool hit = scene_geometry_intersect(geo, o, d, INFINITY, &s, NULL);
+      double cpu = hit ? s : SCENE_SKY_DISTANCE;
+      CHECK(fabs(cpu - scene_geometry_pixel_distance(geo, cam, px, py, W, H)) == 0,
+            "pixel_distance differs at %d,%d", px, py);
+      v.sampled++;
+      v.sky += !hit;
+      if (hit) {
+        double p[3] = {o[0] + s * d[0], o[1] + s * d[1], o[2] + s * d[2]};
+        for (int b = 0; b < geo->box_count; b++)
+          if (p[0] >= geo->boxes[b].min[0] - 1e-6 && p[0] <= geo->boxes[b].max[0] + 1e-6 &&
+              p[1] >= geo->boxes[b].min[1] - 1e-6 && p[1] <= geo->boxes[b].max[1] + 1e-6 &&
+              p[2] >= geo->boxes[b].min[2] - 1e-6 && p[2] <= geo->boxes[b].max[2] + 1e-6)
+            v.boxes++;
+      }
+      if (close_enough(gl, cpu)) continue;
+      bool near_edge = false;
+      for (int k = 0; k < 8 && !near_edge; k++) {
+        double jx = px + 0.02 * cos(k * 0.785398), jy = py + 0.02 * sin(k * 0.785398);
+        near_edge = close_enough(gl, jittered(geo, cam, jx, jy, W, H));
+      }
+      if (near_edge) {
+        v.edge++;
+      } else if (v.failed++ < 5) {
+        fprintf(stderr, "pixel (%d,%d): GL %.7g, CPU %.7g\n", px, py, gl, cpu);
+      }
+    }
+  return v;
+}
+
+/* Views that make the pass cull terrain tiles (and one that must draw them all). */
+static void test_culled_views(const scene_geometry *geo, scene_pass *pass,
+                              const gl_target *target, float *distance) {
+  const terrain *t = &geo->terrain;
+  long terrain_triangles = 2L * (t->resolution_x - 1) * (t->resolution_z - 1);
+  struct {
+    const char *name;
+    double position[3], yaw, pitch, fov_y;
+  } views[] = {
+      {"steeply down", {100, 0, -100}, 0.3, -1.3, 0.8},
+      {"inward from the -x edge", {-480, 0, 0}, 1.5708, -0.05, 1.0},
+      {"along the -x edge", {-490, 0, 300}, 0.0, -0.1, 1.2},
+      {"from outside, toward the corner", {-800, 240, 700}, 0.98, -0.2, 0.6},
+      {"low, into a valley, narrow", {0, 0, 300}, -0.7, -0.02, 0.3},
+      {"from far above, all of it", {0, 4000, 0}, 0.0, -1.5707, 0.6},
+  };
+  int n = (int)(sizeof views / sizeof views[0]), fewer = 0, all = 0;
+  for (int k = 0; k < n; k++) {
+    camera cam = {.position = {views[k].position[0], 0, views[k].position[2]},
+                  .yaw = views[k].yaw, .pitch = views[k].pitch, .fov_y = views[k].fov_y};
+    cam.position[1] = views[k].position[1] > 0
+                          ? views[k].position[1]
+                          : terrain_height_at(t, cam.position[0], cam.position[2]) + 25;
+    view_stats v = compare_view(geo, pass, target, &cam, 2, distance);
+    long drawn = scene_pass_triangles_drawn(pass) - 12L * geo->box_count;
+    printf("view %-32s %5.1f%% of the terrain's triangles drawn; %d pixels sampled, %d sky, "
+           "%d edge, %d wrong\n", views[k].name, 100.0 * drawn / terrain_triangles, v.sampled,
+           v.sky, v.edge, v.failed);
+    CHECK(v.failed == 0, "view %s: %d of %d pixels: GL distance != CPU distance",
+          views[k].name, v.failed, v.sampled);
+    CHECK(v.edge * 50 < v.sampled, "view %s: %d edge pixels of %d", views[k].name, v.edge,
+          v.sampled);
+    CHECK(v.sky < v.sampled, "view %s sees no terrain", views[k].name);
+    fewer += drawn < terrain_triangles / 4;
+    all += drawn == terrain_triangles;
+  }
+  CHECK(all == 1, "%d views drew the whole terrain, expected only the one from far above", all);
+  CHECK(fewer >= 2, "only %d views drew under a quarter of the terrain", fewer);
+}
+
 int main(void) {
   test_dda_matches_brute_force();
 
@@ -86,49 +176,18 @@ int main(void) {
   cam.yaw = 0.15;
   cam.pitch = -0.12;
   if (pass) {
-    scene_pass_run(pass, &cam, &target);
     float *distance = malloc(sizeof(float) * W * H);
     float *colour = malloc(sizeof(float) * W * H * 4);
-    CHECK(gl_target_read(&target, 1, 1, distance, &err) == 0, "read: %s", err.message);
+    view_stats v = compare_view(&geo, pass, &target, &cam, 3, distance);
     CHECK(gl_target_read(&target, 0, 4, colour, &err) == 0, "read: %s", err.message);
-    int sampled = 0, sky = 0, boxes = 0, edge = 0, failed = 0;
-    for (int py = 0; py < H; py += 3)
-      for (int px = 0; px < W; px += 3) {
-        double gl = distance[py * W + px];
-        double o[3], d[3], s = 0;
-        camera_ray(&cam, px, py, W, H, o, d);
-        bool hit = scene_geometry_intersect(&geo, o, d, INFINITY, &s, NULL);
-        double cpu = hit ? s : SCENE_SKY_DISTANCE;
-        CHECK(fabs(cpu - scene_geometry_pixel_distance(&geo, &cam, px, py, W, H)) == 0,
-              "pixel_distance differs at %d,%d", px, py);
-        sampled++;
-        sky += !hit;
-        if (hit) {
-          double p[3] = {o[0] + s * d[0], o[1] + s * d[1], o[2] + s * d[2]};
-          for (int b = 0; b < geo.box_count; b++)
-            if (p[0] >= geo.boxes[b].min[0] - 1e-6 && p[0] <= geo.boxes[b].max[0] + 1e-6 &&
-                p[1] >= geo.boxes[b].min[1] - 1e-6 && p[1] <= geo.boxes[b].max[1] + 1e-6 &&
-                p[2] >= geo.boxes[b].min[2] - 1e-6 && p[2] <= geo.boxes[b].max[2] + 1e-6)
-              boxes++;
-        }
-        if (close_enough(gl, cpu)) continue;
-        bool near_edge = false;
-        for (int k = 0; k < 8 && !near_edge; k++) {
-          double jx = px + 0.02 * cos(k * 0.785398), jy = py + 0.02 * sin(k * 0.785398);
-          near_edge = close_enough(gl, jittered(&geo, &cam, jx, jy, W, H));
-        }
-        if (near_edge) {
-          edge++;
-        } else if (failed++ < 5) {
-          fprintf(stderr, "pixel (%d,%d): GL %.7g, CPU %.7g\n", px, py, gl, cpu);
-        }
-      }
     printf("%d pixels sampled: %d sky, %d on boxes, %d on silhouette edges, %d wrong\n",
-           sampled, sky, boxes, edge, failed);
-    CHECK(failed == 0, "%d of %d sampled pixels: GL distance != CPU distance", failed, sampled);
-    CHECK(edge * 50 < sampled, "%d edge pixels of %d: too many", edge, sampled);
-    CHECK(sky > sampled / 20 && sky < sampled / 2, "the view should show some sky: %d", sky);
-    CHECK(boxes > 10, "the view should show the boxes: %d samples on them", boxes);
+           v.sampled, v.sky, v.boxes, v.edge, v.failed);
+    CHECK(v.failed == 0, "%d of %d sampled pixels: GL distance != CPU distance", v.failed,
+          v.sampled);
+    CHECK(v.edge * 50 < v.sampled, "%d edge pixels of %d: too many", v.edge, v.sampled);
+    CHECK(v.sky > v.sampled / 20 && v.sky < v.sampled / 2, "the view should show some sky: %d",
+          v.sky);
+    CHECK(v.boxes > 10, "the view should show the boxes: %d samples on them", v.boxes);
     /* Colours are finite, lit (not black) and opaque. */
     int bad_colour = 0;
     for (int k = 0; k < W * H; k++) {
@@ -138,6 +197,7 @@ int main(void) {
         bad_colour++;
     }
     CHECK(bad_colour == 0, "%d pixels with a black, negative or non-opaque colour", bad_colour);
+    test_culled_views(&geo, pass, &target, distance);
     free(distance);
     free(colour);
   }
