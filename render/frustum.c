@@ -1,20 +1,12 @@
 /* View-frustum planes from camera_basis (render/camera.h) and a box test. */
 #include "render/frustum.h"
 
+#include "render/vec3.h"
+
 /* Relative slack: the side planes pass through the image corners scaled by 1 + SLACK, the
- * near and far planes move out by SLACK of their distance. It covers float rounding of
- * the GL vertices and matrices (~1e-7 relative), many times over. */
+ * far plane moves out by SLACK of its distance. It covers float rounding of the GL
+ * vertices and matrices (~1e-7 relative), many times over. */
 #define SLACK 1e-3
-
-static void cross(const double a[3], const double b[3], double out[3]) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 void frustum_from_camera(frustum *f, const camera *cam, int width, int height) {
   double right[3], up[3], forward[3];
@@ -30,8 +22,8 @@ void frustum_from_camera(frustum *f, const camera *cam, int width, int height) {
   const double *edges[4][2] = {{corner[0][0], corner[0][1]}, {corner[1][0], corner[1][1]},
                                {corner[0][0], corner[1][0]}, {corner[0][1], corner[1][1]}};
   for (int k = 0; k < 4; k++) {
-    cross(edges[k][0], edges[k][1], f->normal[k]);
-    if (dot(f->normal[k], forward) < 0)
+    vec3_cross(edges[k][0], edges[k][1], f->normal[k]);
+    if (vec3_dot(f->normal[k], forward) < 0)
       for (int i = 0; i < 3; i++) f->normal[k][i] = -f->normal[k][i];
     f->offset[k] = 0.0;
   }
@@ -49,7 +41,7 @@ bool frustum_culls_box(const frustum *f, const double lo[3], const double hi[3])
     /* the box's corner farthest along the plane's normal */
     double p[3];
     for (int i = 0; i < 3; i++) p[i] = f->normal[k][i] >= 0 ? hi[i] : lo[i];
-    if (dot(f->normal[k], p) + f->offset[k] < 0) return true;
+    if (vec3_dot(f->normal[k], p) + f->offset[k] < 0) return true;
   }
   return false;
 }

@@ -6,6 +6,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "render/vec3.h"
+
 /* ---- value noise ---- */
 
 /* Integer hash (the "lowbias32" mixer by C. Wellons): lattice values in [0, 1). */
@@ -133,36 +135,24 @@ double terrain_height_at(const terrain *t, double x, double z) {
 
 /* ---- intersection ---- */
 
-static void sub(const double a[3], const double b[3], double r[3]) {
-  r[0] = a[0] - b[0], r[1] = a[1] - b[1], r[2] = a[2] - b[2];
-}
-static void cross(const double a[3], const double b[3], double r[3]) {
-  r[0] = a[1] * b[2] - a[2] * b[1];
-  r[1] = a[2] * b[0] - a[0] * b[2];
-  r[2] = a[0] * b[1] - a[1] * b[0];
-}
-static double dot(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 bool ray_triangle(const double origin[3], const double dir[3], const double a[3],
                   const double b[3], const double c[3], double *s) {
   double e1[3], e2[3], p[3], q[3], tv[3];
-  sub(b, a, e1);
-  sub(c, a, e2);
-  cross(dir, e2, p);
-  double det = dot(e1, p);
+  vec3_sub(b, a, e1);
+  vec3_sub(c, a, e2);
+  vec3_cross(dir, e2, p);
+  double det = vec3_dot(e1, p);
   if (fabs(det) < 1e-300) return false;
   double inv = 1.0 / det;
-  sub(origin, a, tv);
+  vec3_sub(origin, a, tv);
   /* Small tolerance so a ray through a shared edge hits one of its two triangles. */
   const double eps = 1e-12;
-  double u = dot(tv, p) * inv;
+  double u = vec3_dot(tv, p) * inv;
   if (u < -eps || u > 1.0 + eps) return false;
-  cross(tv, e1, q);
-  double v = dot(dir, q) * inv;
+  vec3_cross(tv, e1, q);
+  double v = vec3_dot(dir, q) * inv;
   if (v < -eps || u + v > 1.0 + eps) return false;
-  double hit = dot(e2, q) * inv;
+  double hit = vec3_dot(e2, q) * inv;
   if (hit <= 0.0) return false;
   *s = hit;
   return true;
@@ -184,10 +174,10 @@ static bool cell_hit(const terrain *t, int i, int j, const double o[3], const do
       hit = true;
       if (normal) {
         double e1[3], e2[3];
-        sub(tri[k][1], tri[k][0], e1);
-        sub(tri[k][2], tri[k][0], e2);
-        cross(e1, e2, normal);
-        double len = sqrt(dot(normal, normal));
+        vec3_sub(tri[k][1], tri[k][0], e1);
+        vec3_sub(tri[k][2], tri[k][0], e2);
+        vec3_cross(e1, e2, normal);
+        double len = sqrt(vec3_dot(normal, normal));
         if (normal[1] < 0) len = -len; /* point up */
         for (int c = 0; c < 3; c++) normal[c] /= len;
       }

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 
 #include "render/frustum.h"
+#include "render/vec3.h"
 #include "test_util.h"
 
 static double uniform(unsigned *state, double lo, double hi) {
@@ -14,20 +15,16 @@ static double uniform(unsigned *state, double lo, double hi) {
   return lo + (hi - lo) * ((*state >> 8) / 16777216.0);
 }
 
-static double dot(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Whether camera-relative point p is inside the view volume (no slack). */
 static bool visible(const camera *cam, int w, int h, const double p[3]) {
   double right[3], up[3], forward[3], near, far;
   camera_basis(cam, w, h, right, up, forward);
   camera_depth_range(cam, &near, &far);
-  double depth = dot(p, forward);
+  double depth = vec3_dot(p, forward);
   if (depth < near || depth > far) return false;
   /* p = depth (forward + x right + y up) with right, up orthogonal to forward */
-  double x = dot(p, right) / (depth * dot(right, right));
-  double y = dot(p, up) / (depth * dot(up, up));
+  double x = vec3_dot(p, right) / (depth * vec3_dot(right, right));
+  double y = vec3_dot(p, up) / (depth * vec3_dot(up, up));
   return fabs(x) <= 1.0 && fabs(y) <= 1.0;
 }
 
@@ -60,7 +57,7 @@ int main(void) {
     double right[3], up[3], forward[3], far_corner[3];
     camera_basis(&cam, w, h, right, up, forward);
     for (int c = 0; c < 3; c++) far_corner[c] = forward[c] >= 0 ? hi[c] : lo[c];
-    bool wholly_behind = dot(far_corner, forward) < 0;
+    bool wholly_behind = vec3_dot(far_corner, forward) < 0;
     culled += cull;
     if (cull && seen) {
       if (wrongly_culled++ < 3)
