@@ -1,6 +1,6 @@
 #!/bin/sh
-# The device machine's one prepared run (see bench/gpu_kit.sh): on a real GPU, the GPU tests
-# (GPU against the double-precision CPU reference, pixel by pixel) and the render and
+# The device machine's one prepared run (see bench/gpu_kit.sh): on a real GPU, the kit's GL
+# tests (GPU against the double-precision CPU references, pixel by pixel) and the render and
 # pipeline benches, their outputs copied to $OUT. Run from the repository root with
 # build/gpu-kit carried; about 3 minutes on llvmpipe, far less on a GPU.
 set -u
@@ -23,11 +23,14 @@ src=$(grep -a -o -m1 '/[[:alnum:]_./-]*/configs/default.ini' "$kit/bin/fogpipe" 
 {
   date
   nvidia-smi -L 2>&1
-  ldd "$kit/bin/fogpipe" | grep -c "not found" | sed 's/^/libraries not found: /'
+  ldd "$kit/bin/fogpipe" | grep "not found" || echo "libraries: all found"
+  echo "EGL vendor file: ${__EGL_VENDOR_LIBRARY_FILENAMES:-none (GLVND's default folders)}"
+  ldconfig -p | grep -E 'libEGL_nvidia|libGLX_nvidia|libEGL_mesa' || echo "no EGL vendor library"
 } >"$out/machine.txt" 2>&1
 cat "$out/machine.txt"
-for t in test_gpu_fog_vs_cpu test_gpu_far_camera test_gpu_march_vs_cpu test_gpu_fog_resolution; do
-  "$kit/bin/$t" >"$out/$t.txt" 2>&1
+for test in "$kit"/bin/test_*; do
+  t=$(basename "$test")
+  "$test" >"$out/$t.txt" 2>&1
   echo "$t: exit $? ($(tail -n 1 "$out/$t.txt"))"
 done
 "$kit/bin/fogpipe" bench render --frames 20 >"$out/bench_render.txt" 2>&1

@@ -3,13 +3,16 @@
 # packages, no registry reachable) into build/gpu-kit, to be carried there:
 #   bench/gpu_kit.sh            (here, after a build: make test or make demo)
 #   device run, carry ["build/gpu-kit"]:  sh bench/gpu_check.sh
-# The kit: fogpipe, the GPU test binaries, and every shared library they load except
+# The kit: fogpipe, the GL test binaries, and every shared library they load except
 # glibc's, xz-packed (libopenvdb alone is 57 MB; the carry limit is 64 MiB). libstdc++ and
 # libgcc_s go to a fallback folder that gpu_check.sh uses only where the machine lacks them.
 set -eu
 cd "$(dirname "$0")/.."
 kit=build/gpu-kit
-tests="test_gpu_fog_vs_cpu test_gpu_far_camera test_gpu_march_vs_cpu test_gpu_fog_resolution"
+# GPU against the CPU references: the fog pass (every basis, LOD method, camera), far
+# cameras, the marcher, reduced resolution, and the scene pass's distances
+tests="test_gpu_fog_vs_cpu test_gpu_far_camera test_gpu_march_vs_cpu test_gpu_fog_resolution
+  test_scene_distance test_gpu_volume_march"
 for f in build/fogpipe $(for t in $tests; do echo build/tests/$t; done); do
   [ -x "$f" ] || { echo "gpu_kit: $f is missing: build first (make test)" >&2; exit 1; }
 done
