@@ -175,22 +175,11 @@ static void terrain_albedo(double h, double normal_y, float out[3]) {
   }
 }
 
-static int upload_geometry(scene_pass *pass, render_error *err) {
-  const scene_geometry *geo = pass->geo;
-  const terrain *t = &geo->terrain;
+/* The terrain's vertices, relative to its origin, with smooth normals and albedo. */
+static void terrain_mesh_vertices(const terrain *t, vertex *vertices) {
   int rx = t->resolution_x, rz = t->resolution_z;
-  size_t terrain_vertices = (size_t)rx * rz;
-  size_t vertex_count = terrain_vertices + 24 * (size_t)geo->box_count;
-  size_t index_count = (size_t)(rx - 1) * (rz - 1) * 6 + 36 * (size_t)geo->box_count;
-  vertex *vertices = malloc(vertex_count * sizeof *vertices);
-  GLuint *indices = malloc(index_count * sizeof *indices);
-  if (!vertices || !indices) {
-    free(vertices);
-    free(indices);
-    snprintf(err->message, sizeof err->message, "out of memory for the scene meshes");
-    return 1;
-  }
   double dx = t->size[0] / (rx - 1), dz = t->size[1] / (rz - 1);
+  const float *h = t->h;
   for (int j = 0; j < rz; j++)
     for (int i = 0; i < rx; i++) {
       double p[3];
@@ -198,7 +187,6 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
       /* Smooth normal from central differences of the heights. */
       int i0 = i > 0 ? i - 1 : i, i1 = i < rx - 1 ? i + 1 : i;
       int j0 = j > 0 ? j - 1 : j, j1 = j < rz - 1 ? j + 1 : j;
-      const float *h = t->h;
       double gx = t->height * (h[(size_t)j * rx + i1] - h[(size_t)j * rx + i0]) / ((i1 - i0) * dx);
       double gz = t->height * (h[(size_t)j1 * rx + i] - h[(size_t)j0 * rx + i]) / ((j1 - j0) * dz);
       double n[3] = {-gx, 1.0, -gz}, len = sqrt(n[0] * n[0] + 1.0 + n[2] * n[2]);
@@ -209,16 +197,14 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
       }
       terrain_albedo(h[(size_t)j * rx + i], n[1] / len, v->albedo);
     }
+}
+
+/* The terrain's triangles, tile by tile (pass->tiles: index ranges and bounding boxes, from
+ * the float vertices the GPU draws). Returns the number of indices written. */
+static size_t terrain_mesh_tiles(scene_pass *pass, const terrain *t, const vertex *vertices,
+                                 GLuint *indices) {
+  int rx = t->resolution_x, rz = t->resolution_z;
   int tiles_x = (rx - 1 + TILE - 1) / TILE, tiles_z = (rz - 1 + TILE - 1) / TILE;
-  pass->tiles = malloc(sizeof *pass->tiles * (size_t)tiles_x * tiles_z);
-  pass->draw_counts = malloc(sizeof *pass->draw_counts * ((size_t)tiles_x * tiles_z + 1));
-  pass->draw_offsets = malloc(sizeof *pass->draw_offsets * ((size_t)tiles_x * tiles_z + 1));
-  if (!pass->tiles || !pass->draw_counts || !pass->draw_offsets) {
-    free(vertices);
-    free(indices);
-    snprintf(err->message, sizeof err->message, "out of memory for the scene meshes");
-    return 1;
-  }
   size_t k = 0;
   for (int tz = 0; tz < tiles_z; tz++)
     for (int tx = 0; tx < tiles_x; tx++) {
@@ -243,9 +229,15 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
             tile->hi[c] = fmax(tile->hi[c], p);
           }
     }
-  pass->box_first = (GLsizei)k;
-  /* Boxes: 6 faces x 4 vertices with flat normals. */
-  size_t base = terrain_vertices;
+  return k;
+}
+
+/* The boxes: 6 faces x 4 vertices with flat normals, from vertex `base` on. Returns the
+ * number of indices written. */
+static size_t box_mesh(const scene_geometry *geo, size_t base, vertex *vertices,
+                       GLuint *indices) {
+  const double *origin = geo->terrain.origin;
+  size_t k = 0;
   for (int b = 0; b < geo->box_count; b++) {
     const scene_box *box = &geo->boxes[b];
     for (int axis = 0; axis < 3; axis++)
@@ -258,7 +250,7 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
           p[w] = (corner & 2) ? box->max[w] : box->min[w];
           vertex *v = &vertices[base + corner];
           for (int c = 0; c < 3; c++) {
-            v->position[c] = (float)(p[c] - t->origin[c]);
+            v->position[c] = (float)(p[c] - origin[c]);
             v->normal[c] = c == axis ? (side ? 1.0f : -1.0f) : 0.0f;
             v->albedo[c] = box->colour[c];
           }
@@ -269,6 +261,32 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
         base += 4;
       }
   }
+  return k;
+}
+
+static int upload_geometry(scene_pass *pass, render_error *err) {
+  const scene_geometry *geo = pass->geo;
+  const terrain *t = &geo->terrain;
+  int rx = t->resolution_x, rz = t->resolution_z;
+  size_t terrain_vertices = (size_t)rx * rz;
+  size_t vertex_count = terrain_vertices + 24 * (size_t)geo->box_count;
+  size_t index_count = (size_t)(rx - 1) * (rz - 1) * 6 + 36 * (size_t)geo->box_count;
+  size_t tiles = (size_t)((rx - 1 + TILE - 1) / TILE) * ((rz - 1 + TILE - 1) / TILE);
+  vertex *vertices = malloc(vertex_count * sizeof *vertices);
+  GLuint *indices = malloc(index_count * sizeof *indices);
+  pass->tiles = malloc(tiles * sizeof *pass->tiles);
+  pass->draw_counts = malloc((tiles + 1) * sizeof *pass->draw_counts);
+  pass->draw_offsets = malloc((tiles + 1) * sizeof *pass->draw_offsets);
+  if (!vertices || !indices || !pass->tiles || !pass->draw_counts || !pass->draw_offsets) {
+    free(vertices);
+    free(indices);
+    snprintf(err->message, sizeof err->message, "out of memory for the scene meshes");
+    return 1; /* the tiles and draw arrays go with the pass */
+  }
+  terrain_mesh_vertices(t, vertices);
+  size_t k = terrain_mesh_tiles(pass, t, vertices, indices);
+  pass->box_first = (GLsizei)k;
+  k += box_mesh(geo, terrain_vertices, vertices, indices + k);
   glGenVertexArrays(1, &pass->vao);
   glBindVertexArray(pass->vao);
   glGenBuffers(1, &pass->vertex_buffer);
@@ -277,7 +295,7 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
                GL_STATIC_DRAW);
   glGenBuffers(1, &pass->index_buffer);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, pass->index_buffer);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(index_count * sizeof *indices), indices,
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(k * sizeof *indices), indices,
                GL_STATIC_DRAW);
   for (GLuint a = 0; a < 3; a++) {
     glEnableVertexAttribArray(a);
@@ -285,7 +303,7 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
                           (const void *)(a * 3 * sizeof(float)));
   }
   glBindVertexArray(0);
-  pass->index_count = (GLsizei)index_count;
+  pass->index_count = (GLsizei)k;
   free(vertices);
   free(indices);
   return gl_util_check("uploading the scene meshes", err);
