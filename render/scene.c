@@ -127,8 +127,8 @@ double scene_geometry_pixel_distance(const scene_geometry *geo, const camera *ca
 /* The terrain is drawn in tiles of TILE x TILE quads, each a contiguous range of the index
  * buffer with its bounding box, and a frame draws only the tiles its frustum does not cull:
  * on llvmpipe the scene pass costs about its triangle count (half the terrain's
- * triangles: 15 -> 9 ms per frame), and a camera over the terrain sees a half to two
- * thirds of it. A tile's 17 x 17 vertices also stay within the vertex cache. */
+ * triangles: 15 -> 9 ms per frame). The default view keeps 76 % of the tiles, a view down
+ * or along an edge far fewer (test_scene_distance); 8 x 8 tiles measured the same. */
 #define TILE 16
 
 typedef struct scene_tile {
