@@ -30,8 +30,8 @@ void frustum_from_camera(frustum *f, const camera *cam, int width, int height) {
   double near, far;
   camera_depth_range(cam, &near, &far);
   for (int i = 0; i < 3; i++) f->normal[4][i] = forward[i], f->normal[5][i] = -forward[i];
-  /* Half the near distance: whatever lies behind the camera is outside a side plane
-   * already; this plane only trims boxes just in front of it, which may be left in. */
+  /* At half the near distance: far from rounding, and still culling every box wholly
+   * behind the camera, which the side planes alone may not (test_frustum). */
   f->offset[4] = -0.5 * near;
   f->offset[5] = (1.0 + SLACK) * far;
 }
