@@ -94,12 +94,17 @@ static inline void fog_test_gl_ground_distance(const fog_test_gl *gl, const came
 }
 
 /* Draws the fog pass into the target and reads its transmittance (attachment 1, rows
- * top first) into tau. Returns 0 on success (err says what failed): the caller CHECKs
- * it, so a failure names the test's own line and case. */
+ * top first) into tau. The target is first cleared to -1, which no transmittance or
+ * colour can be, so a pixel the pass leaves unwritten fails any comparison instead of
+ * showing the previous draw. Returns 0 on success (err says what failed): the caller
+ * CHECKs it, so a failure names the test's own line and case. */
 static inline int fog_test_gl_draw_tau(fog_test_gl *gl, const camera *cam,
                                        const fog_pass_params *params, GLuint colour_tex,
                                        GLuint distance_tex, float *tau, render_error *err) {
   gl_target_bind(&gl->target);
+  static const float unwritten[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
+  glClearBufferfv(GL_COLOR, 0, unwritten);
+  glClearBufferfv(GL_COLOR, 1, unwritten);
   if (fog_pass_draw(gl->pass, cam, params, colour_tex, distance_tex, gl->width, gl->height,
                     err))
     return 1;
