@@ -31,5 +31,6 @@ ldd build/gpu-kit.tmp/bin/* | awk '$2 == "=>" && $3 ~ /^\// {print $3}' | sort -
 mkdir -p "$kit"
 tar -C build/gpu-kit.tmp -cJf "$kit/kit.tar.xz" bin lib fallback
 rm -rf build/gpu-kit.tmp
-echo "gpu_kit: $kit/kit.tar.xz ($(du -h "$kit/kit.tar.xz" | cut -f1)); carry build/gpu-kit and run" \
+echo "gpu_kit: $kit/kit.tar.xz ($(du -h "$kit/kit.tar.xz" | cut -f1));" \
+  "carry build/gpu-kit and run" \
   "sh bench/gpu_check.sh on the device machine"

@@ -128,12 +128,16 @@ double scene_geometry_pixel_distance(const scene_geometry *geo, const camera *ca
  * buffer with its bounding box, and a frame draws only the tiles its frustum does not cull:
  * on llvmpipe the scene pass costs about its triangle count (half the terrain's
  * triangles: 15 -> 9 ms per frame). The default view keeps 76 % of the tiles, a view down
- * or along an edge far fewer (test_scene_distance); 8 x 8 tiles measured the same. */
+ * or along an edge far fewer (test_scene_distance); 8 x 8 tiles measured the same. Each
+ * tile is a triangle strip per row of quads, separated by restart indices: the same
+ * triangles as a list, 0.5-1.7 ms faster on llvmpipe (six A/B pairs), 2.6x fewer indices. */
 #define TILE 16
+#define RESTART 0xFFFFFFFFu /* GL_PRIMITIVE_RESTART_FIXED_INDEX for unsigned int */
 
 typedef struct scene_tile {
   double lo[3], hi[3]; /* world; the float vertices as the GPU gets them */
-  GLsizei first, count; /* index range */
+  GLsizei first, count; /* index range: one triangle strip per row of quads */
+  int triangles;
 } scene_tile;
 
 struct scene_pass {
@@ -210,16 +214,21 @@ static size_t terrain_mesh_tiles(scene_pass *pass, const terrain *t, const verte
     for (int tx = 0; tx < tiles_x; tx++) {
       scene_tile *tile = &pass->tiles[pass->tile_count++];
       int i0 = tx * TILE, j0 = tz * TILE;
-      int i1 = i0 + TILE < rx - 1 ? i0 + TILE : rx - 1, j1 = j0 + TILE < rz - 1 ? j0 + TILE : rz - 1;
+      int i1 = i0 + TILE < rx - 1 ? i0 + TILE : rx - 1;
+      int j1 = j0 + TILE < rz - 1 ? j0 + TILE : rz - 1;
       tile->first = (GLsizei)k;
-      for (int j = j0; j < j1; j++)
-        for (int i = i0; i < i1; i++) {
-          /* The triangulation terrain.h documents (diagonal (i+1,j)-(i,j+1)). */
-          GLuint a = (GLuint)(j * rx + i), b = a + 1, c = a + (GLuint)rx, d = c + 1;
-          indices[k++] = a, indices[k++] = c, indices[k++] = b;
-          indices[k++] = b, indices[k++] = c, indices[k++] = d;
+      /* One strip per row of quads: (i, j), (i, j+1), (i+1, j), ... gives the triangles
+       * (a, c, b) and (b, c, d) of quad a = (i, j), b = a + 1, c = a + rx, d = c + 1: the
+       * triangulation terrain.h documents (diagonal (i+1,j)-(i,j+1)), same winding. */
+      for (int j = j0; j < j1; j++) {
+        for (int i = i0; i <= i1; i++) {
+          indices[k++] = (GLuint)(j * rx + i);
+          indices[k++] = (GLuint)((j + 1) * rx + i);
         }
+        indices[k++] = RESTART;
+      }
       tile->count = (GLsizei)k - tile->first;
+      tile->triangles = 2 * (i1 - i0) * (j1 - j0);
       for (int c = 0; c < 3; c++) tile->lo[c] = INFINITY, tile->hi[c] = -INFINITY;
       for (int j = j0; j <= j1; j++)
         for (int i = i0; i <= i1; i++)
@@ -255,9 +264,9 @@ static size_t box_mesh(const scene_geometry *geo, size_t base, vertex *vertices,
             v->albedo[c] = box->colour[c];
           }
         }
-        GLuint q = (GLuint)base;
-        indices[k++] = q, indices[k++] = q + 1, indices[k++] = q + 2;
-        indices[k++] = q + 2, indices[k++] = q + 1, indices[k++] = q + 3;
+        GLuint q = (GLuint)base; /* the strip's triangles: (q, q+1, q+2), (q+2, q+1, q+3) */
+        indices[k++] = q, indices[k++] = q + 1, indices[k++] = q + 2, indices[k++] = q + 3;
+        indices[k++] = RESTART;
         base += 4;
       }
   }
@@ -270,8 +279,12 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
   int rx = t->resolution_x, rz = t->resolution_z;
   size_t terrain_vertices = (size_t)rx * rz;
   size_t vertex_count = terrain_vertices + 24 * (size_t)geo->box_count;
-  size_t index_count = (size_t)(rx - 1) * (rz - 1) * 6 + 36 * (size_t)geo->box_count;
-  size_t tiles = (size_t)((rx - 1 + TILE - 1) / TILE) * ((rz - 1 + TILE - 1) / TILE);
+  size_t tiles_x = (size_t)(rx - 1 + TILE - 1) / TILE;
+  size_t tiles = tiles_x * ((size_t)(rz - 1 + TILE - 1) / TILE);
+  /* per row of quads, one strip per tile: 2 indices per vertex column and a restart; per
+   * box face a 4-index strip and a restart */
+  size_t index_count = (size_t)(rz - 1) * (2 * (size_t)(rx - 1) + 3 * tiles_x) +
+                       30 * (size_t)geo->box_count;
   vertex *vertices = malloc(vertex_count * sizeof *vertices);
   GLuint *indices = malloc(index_count * sizeof *indices);
   pass->tiles = malloc(tiles * sizeof *pass->tiles);
@@ -287,6 +300,13 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
   size_t k = terrain_mesh_tiles(pass, t, vertices, indices);
   pass->box_first = (GLsizei)k;
   k += box_mesh(geo, terrain_vertices, vertices, indices + k);
+  if (k != index_count) { /* the count above and the meshes disagree: a bug, not input */
+    free(vertices);
+    free(indices);
+    snprintf(err->message, sizeof err->message, "scene meshes: %zu indices, %zu expected", k,
+             index_count);
+    return 1;
+  }
   glGenVertexArrays(1, &pass->vao);
   glBindVertexArray(pass->vao);
   glGenBuffers(1, &pass->vertex_buffer);
@@ -360,7 +380,7 @@ static GLsizei cull_tiles(scene_pass *pass, const camera *cam, int width, int he
   frustum f;
   frustum_from_camera(&f, cam, width, height);
   GLsizei n = 0, end = -1;
-  long indices = 0;
+  long triangles = 12L * pass->geo->box_count;
   for (int k = 0; k < pass->tile_count; k++) {
     const scene_tile *tile = &pass->tiles[k];
     double lo[3], hi[3];
@@ -374,14 +394,13 @@ static GLsizei cull_tiles(scene_pass *pass, const camera *cam, int width, int he
       pass->draw_offsets[n++] = (const void *)(uintptr_t)(tile->first * sizeof(GLuint));
     }
     end = tile->first + tile->count;
-    indices += tile->count;
+    triangles += tile->triangles;
   }
   if (pass->index_count > pass->box_first) {
     pass->draw_counts[n] = pass->index_count - pass->box_first;
     pass->draw_offsets[n++] = (const void *)(uintptr_t)(pass->box_first * sizeof(GLuint));
-    indices += pass->index_count - pass->box_first;
   }
-  pass->triangles_drawn = indices / 3;
+  pass->triangles_drawn = triangles;
   return n;
 }
 
@@ -418,8 +437,10 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glUniform3fv(pass->u_ambient, 1, geo->light.ambient);
   glBindVertexArray(pass->vao);
   GLsizei ranges = cull_tiles(pass, cam, w, h);
-  glMultiDrawElements(GL_TRIANGLES, pass->draw_counts, GL_UNSIGNED_INT, pass->draw_offsets,
-                      ranges);
+  glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+  glMultiDrawElements(GL_TRIANGLE_STRIP, pass->draw_counts, GL_UNSIGNED_INT,
+                      pass->draw_offsets, ranges);
+  glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
   glBindVertexArray(0);
 
   /* Sky last: a full-screen triangle at depth 1 (the far plane), rays from the same basis
