@@ -527,13 +527,11 @@ float fog_extinction_at(int grid, vec3 dir, float t) {
   return f;
 }
 
-// Midpoint rule with `steps` equal steps over the box part of [t_start, t_stop]; jitter in
-// [0, 1) shifts the samples (0.5 = midpoint) to trade banding for noise.
-float fog_optical_depth_march(int grid, vec3 dir, float t_start, float t_stop, int steps,
+// Midpoint rule with `steps` equal steps over [t0, t1], already clipped to the box (as the
+// exact walk's, by the caller: fog_pass_fs.glsl); jitter in [0, 1) shifts the samples
+// (0.5 = midpoint) to trade banding for noise.
+float fog_optical_depth_march(int grid, vec3 dir, float t0, float t1, int steps,
                               float jitter) {
-  double t_in, t_out;
-  if (!fog_box_entry_exit(dvec3(dir), t_in, t_out)) return 0.0;
-  float t0 = max(float(t_in), t_start), t1 = min(float(t_out), t_stop);
   if (!(t0 < t1)) return 0.0;
   float dt = (t1 - t0) / float(steps), sum = 0.0;
   for (int i = 0; i < steps; i++) sum += fog_extinction_at(grid, dir, t0 + (float(i) + jitter) * dt);

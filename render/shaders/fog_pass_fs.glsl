@@ -49,13 +49,14 @@ float fog_grid_integral(int grid, dvec3 dir, double t0, double t1, float jitter,
 }
 
 // LOD by distance, both methods (fog_optical_depth_lod in render/fog_integral_cpu.c).
-float fog_optical_depth_lod(dvec3 dir, float t_surface, float jitter) {
+// [t_in, t_out]: the ray's span in the fog's box (fog_box_entry_exit, done once in main).
+float fog_optical_depth_lod(dvec3 dir, double t_in, double t_out, float t_surface,
+                            float jitter) {
   // ||OP|| (fog_lod_ray_length): the first surface or the box exit, whichever comes first;
   // the walks start where the ray is inside the box, at `start`. Double, as the walks'
   // set-up (fog_optical_depth_inside): in float, the segment ends d_l of a camera 50 km
   // away move by millimetres, 3e-5 in tau (test_gpu_far_camera).
-  double t_in, t_out;
-  if (!fog_box_entry_exit(dir, t_in, t_out) || t_out <= 0.0) return 0.0;
+  if (t_out <= 0.0) return 0.0;
   double op = min(t_out, double(t_surface)), start = max(t_in, 0.0);
   if (op <= start) return 0.0;
 #if FOG_SINGLE_GRID
@@ -164,6 +165,10 @@ void main() {
   float t_surface = texelFetch(fog_surface_distance, pixel, 0).r;
   float jitter = (fog_march_jitter != 0) ? fog_hash(uvec2(pixel), fog_frame) : 0.5;
   float optical_depth = 0.0;
+  // The ray's span in the fog's box, for the walk and the reduced pass's k_end; a miss
+  // leaves it empty.
+  double t_in = 1.0, t_out = 0.0;
+  if (!fog_box_entry_exit(dir_d, t_in, t_out)) t_in = 1.0, t_out = 0.0;
 #if FOG_UPSAMPLE
   if (!fog_upsampled_depth(pixel, t_surface, optical_depth))
 #endif
@@ -173,14 +178,12 @@ void main() {
     optical_depth = fog_height_optical_depth(fog_model_extinction, fog_model_y0,
                                              fog_model_scale_height, dir.y, t_surface);
   else
-    optical_depth = fog_optical_depth_lod(dir_d, t_surface, jitter);
+    optical_depth = fog_optical_depth_lod(dir_d, t_in, t_out, t_surface, jitter);
 #if FOG_REDUCED > 1
   // And the extinction where the ray meets the surface (A_0; 0 outside the box or for the
   // sky): d(optical depth)/dt there, for the upsampling's first-order distance correction.
-  double t_in, t_out;
   float k_end = 0.0;
-  if (t_surface < 1e29 && fog_box_entry_exit(dir_d, t_in, t_out) && t_surface >= t_in &&
-      t_surface <= t_out)
+  if (t_surface < 1e29 && t_surface >= t_in && t_surface <= t_out)
     k_end = fog_extinction_scale * fog_extinction_at(0, dir, t_surface);
   fog_out_colour = vec4(optical_depth, t_surface, k_end, 1.0);
   return;
