@@ -677,7 +677,7 @@ int bench_render(int argc, char **argv) {
          "   cells crossed: sum %.1f / switch %.1f = %.2f; pieces walked (cells and profile\n"
          "   breaks): %.1f / %.1f = %.2f; pieces as 4x2-pixel lane groups pay: %.1f / %.1f"
          " = %.2f\n",
-         rows[sum_at_06].ms, rows[switch_at_06].ms, rows[sum_at_06].ms / rows[switch_at_06].ms,
+         rows[sum_at_06].ms, rows[switch_at_06].ms, Y,
          at_06[0].cells, at_06[1].cells, at_06[0].cells / at_06[1].cells, at_06[0].pieces,
          at_06[1].pieces, at_06[0].pieces / at_06[1].pieces, at_06[0].group_pieces,
          at_06[1].group_pieces, at_06[0].group_pieces / at_06[1].group_pieces);
