@@ -46,7 +46,6 @@
 #define FOG_PROFILE_BSPLINE 2
 #define FOG_MAX_GRIDS 16
 #define FOG_PROFILE_MAX_COEFFICIENTS 64
-#define FOG_EXP_SWITCH 1.0
 #define FOG_INFINITY 1e30
 
 // Grid slot k: texture fog_grids[k]; x(t) = fog_grid_x0[k].x + t dir.x fog_grid_scale[k],
@@ -240,39 +239,12 @@ float fog_profile_bspline_value(int cy, float y) {
 
 // ---- exponential moments J_k = int_{-1}^{1} s^k e^{c0 + b s} ds, k = 0..4 ----------------
 
-// Integration by parts: J_k = [s^k e^{c0+bs}/b]_{-1}^{1} - (k/b) J_{k-1}.
-void fog_exp_moments_closed(float c0, float b, int n, out float m[5]) {
-  float e_plus = exp(c0 + b), e_minus = exp(c0 - b);
-  float even = e_plus - e_minus, odd = e_plus + e_minus;  // [s^k e^{c0+bs}]_{-1}^{1}
-  float inv_b = 1.0 / b;
-  m[0] = even * inv_b;
-  m[1] = (odd - m[0]) * inv_b;
-  m[2] = (even - 2.0 * m[1]) * inv_b;
-  m[3] = (odd - 3.0 * m[2]) * inv_b;
-  m[4] = (even - 4.0 * m[3]) * inv_b;
-}
-
-// e^{c0} sum_j b^j/j! int s^{k+j} ds (int = 2/(k+j+1) for even k+j); no cancellation.
-// 12 terms: for |b| < 1 the next is below 1/12! ~ 2e-9 (float); the C twin sums 20.
-void fog_exp_moments_series(float c0, float b, int n, out float m[5]) {
-  float term = exp(c0);  // e^{c0} b^j / j!, j even; the odd term follows
-  vec3 even_sum = vec3(0.0);  // J_0, J_2, J_4
-  vec2 odd_sum = vec2(0.0);   // J_1, J_3
-  for (int j = 0; j < 12; j += 2) {
-    float fj = float(j);
-    even_sum += term * 2.0 / vec3(fj + 1.0, fj + 3.0, fj + 5.0);
-    float next = term * b / (fj + 1.0);
-    odd_sum += next * 2.0 / vec2(fj + 3.0, fj + 5.0);
-    term = next * b / (fj + 2.0);
-  }
-  m = float[5](even_sum.x, odd_sum.x, even_sum.y, odd_sum.y, even_sum.z);
-}
-
 // The walk's moments (fog_piece_integral, |b| <= 1/4): the series to j = 7, as Horner
 // polynomials in u = b^2 (J_k = e^{c0} sum_j b^j/j! int s^{k+j} ds; even k: 2 u^m /
 // ((2m)! (2m+k+1)), odd k: 2 b u^m / ((2m+1)! (2m+k+2))); the next term is below
 // 0.25^8/8! ~ 4e-10 of e^{c0}. Unused moments (k > 2d) fold away. GLSL only: the C twin
-// keeps fog_exp_moments.
+// keeps fog_exp_moments (closed form by parts, or the series below |b| = 1), which the
+// walk's breaks every H/2 make unnecessary here.
 void fog_exp_moments_walk(float c0, float b, out float m[5]) {
   float e2 = 2.0 * exp(c0), u = b * b;
   m[0] = e2 * (1.0 + u * (1.0 / 6.0 + u * (1.0 / 120.0 + u * (1.0 / 5040.0))));
@@ -280,13 +252,6 @@ void fog_exp_moments_walk(float c0, float b, out float m[5]) {
   m[2] = e2 * (1.0 / 3.0 + u * (1.0 / 10.0 + u * (1.0 / 168.0 + u * (1.0 / 6480.0))));
   m[3] = e2 * b * (1.0 / 5.0 + u * (1.0 / 42.0 + u * (1.0 / 1080.0 + u * (1.0 / 55440.0))));
   m[4] = e2 * (1.0 / 5.0 + u * (1.0 / 14.0 + u * (1.0 / 216.0 + u * (1.0 / 7920.0))));
-}
-
-void fog_exp_moments(float c0, float b, int n, out float m[5]) {
-  if (abs(b) >= FOG_EXP_SWITCH)
-    fog_exp_moments_closed(c0, b, n, m);
-  else
-    fog_exp_moments_series(c0, b, n, m);
 }
 
 // Monomial coefficients of a polynomial of degree n (0, 2, 4) on [-1, 1] from its values at
