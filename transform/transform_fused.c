@@ -5,7 +5,9 @@
  * already at its final place and scale. Memory traffic is one read of the level and
  * one write, as for a memcpy; the two-pass version (rows, then strips of columns)
  * moves the data twice. Same arithmetic, same boundary rules, same result bits as the
- * two-pass columns (tests/transform/test_fused_matches_two_pass.c). */
+ * two-pass columns (tests/transform/test_fused_matches_two_pass.c). The CDF 5/3 level in
+ * SIMD (transform_fused_linear.h) runs the other way round, column step first, without
+ * a ring: the same coefficients to float rounding. */
 #include <stdint.h>
 #include <string.h>
 
@@ -126,7 +128,8 @@ static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost,
  * portable SSE2 one (x86-64 baseline, and any other gcc target) and, chosen at run time
  * on x86-64 CPUs that have them, AVX2 and AVX-512 ones. All give the same bits. Build
  * with -DFOGPIPE_FUSED_MAX_V=4 (or 8) to measure the baseline (or AVX2) path alone.
- * Compilers without __builtin_shuffle (clang) use the scalar-loop linear_level above. */
+ * Compilers without __builtin_shuffle (clang) use the scalar-loop linear_level above
+ * (rows first: the same coefficients to float rounding, not the same bits). */
 #ifndef FOGPIPE_FUSED_MAX_V
 #define FOGPIPE_FUSED_MAX_V 16
 #endif
@@ -140,6 +143,7 @@ static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost,
 /* two shufps; gcc's lowering of the one-shuffle form takes six instructions */
 #define FL_SHIFT(a, b) \
   __builtin_shuffle(__builtin_shuffle(a, b, (vi){3, 3, 4, 4}), b, (vi){0, 2, 5, 6})
+#define FL_NEXT(a, b) __builtin_shuffle(a, b, (vi){1, 2, 3, 4})
 #include "transform/transform_fused_linear.h" /* undefines its FL_ parameters */
 
 #if defined(__x86_64__) && FOGPIPE_FUSED_MAX_V > 4
@@ -150,6 +154,7 @@ static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost,
 #define FL_EVEN {0, 2, 4, 6, 8, 10, 12, 14}
 #define FL_ODD {1, 3, 5, 7, 9, 11, 13, 15}
 #define FL_SHIFT(a, b) __builtin_shuffle(a, b, (vi){7, 8, 9, 10, 11, 12, 13, 14})
+#define FL_NEXT(a, b) __builtin_shuffle(a, b, (vi){1, 2, 3, 4, 5, 6, 7, 8})
 #include "transform/transform_fused_linear.h" /* undefines its FL_ parameters */
 #define FL_V 16
 #define FL_NAME(x) fl16_##x
@@ -158,6 +163,8 @@ static void linear_level(stream *s, float *dst, size_t dst_stride, float *ghost,
 #define FL_ODD {1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31}
 #define FL_SHIFT(a, b) \
   __builtin_shuffle(a, b, (vi){15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30})
+#define FL_NEXT(a, b) \
+  __builtin_shuffle(a, b, (vi){1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16})
 #include "transform/transform_fused_linear.h" /* undefines its FL_ parameters */
 #endif
 #endif /* FUSED_SIMD */

@@ -1,15 +1,16 @@
 /* The fused CDF 5/3 forward level, written once for one SIMD width and included by
  * transform_fused.c once per width (FL_V floats per vector, FL_NAME(x) names the
- * functions, FL_TARGET their target attribute; the masks FL_EVEN/FL_ODD, and
- * FL_SHIFT(prev, o): the vector (prev[FL_V-1], o[0], ..., o[FL_V-2])).
+ * functions, FL_TARGET their target attribute; the masks FL_EVEN/FL_ODD,
+ * FL_SHIFT(prev, o): the vector (prev[FL_V-1], o[0], ..., o[FL_V-2]), and
+ * FL_NEXT(a, b): (a[1], ..., a[FL_V-1], b[0])).
  * Not a header to include elsewhere: it has no include guard on purpose, and it
  * undefines its FL_ parameters at its end, ready for the next width.
  *
  * GCC vector extensions, not intrinsics: the same source compiles for any target and
  * gcc picks the shuffles (SSE2 shufps, AVX2 vpermps, AVX-512 vpermt2ps). Every float
  * operation is the one of the scalar code in the same order (and -std=c11 keeps
- * contraction off), so all widths give the same bits as transform_rows plus the
- * two-pass columns' interior. */
+ * contraction off), so all widths give the same bits. FL_NAME(row) is transform_rows'
+ * row lifting; the level (FL_NAME(level), below) does the column step first. */
 
 typedef float FL_NAME(vf) __attribute__((vector_size(4 * FL_V)));
 typedef int FL_NAME(vi) __attribute__((vector_size(4 * FL_V)));
@@ -49,6 +50,17 @@ static inline int FL_NAME(row_vector_end)(int n) {
   return kv >= FL_V ? kv : 0;
 }
 
+/* Interior outputs [k_begin, k_end) of a row, scalar (the vectors' operations). */
+static inline void FL_NAME(row_inner)(const float *restrict x, float *restrict low,
+                                      float *restrict high, float lo, float hi, int k_begin,
+                                      int k_end) {
+  for (int k = k_begin; k < k_end; k++) {
+    float om = FL_ODD_AT(x, k - 1), o = FL_ODD_AT(x, k);
+    low[k] = lo * (x[2 * k] + 0.25f * (om + o));
+    high[k] = hi * o;
+  }
+}
+
 /* The scalar rest of a row: outputs kv on (the right end), and the left end (outputs 0
  * of both halves, which the vectors, when there are any, gave the same values). */
 FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(row_tail)(
@@ -57,11 +69,7 @@ FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(row_tail)(
   int m = (n + 1) / 2, d = n / 2;
   int inner = d < m - 1 ? d : m - 1; /* o_k with x_2k+2 inside the row */
   float *restrict low = y, *restrict high = y + m;
-  for (int k = kv > 1 ? kv : 1; k < inner; k++) {
-    float om = FL_ODD_AT(x, k - 1), o = FL_ODD_AT(x, k);
-    low[k] = lo * (x[2 * k] + 0.25f * (om + o));
-    high[k] = hi * o;
-  }
+  FL_NAME(row_inner)(x, low, high, lo, hi, kv > 1 ? kv : 1, inner);
   float o_last; /* o_d-1 */
   if (d == m) { /* even n: x_n is a ghost of the coarse level's right rule */
     float g = 0.0f;
@@ -106,146 +114,230 @@ FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(row)(
   FL_NAME(row_tail)(n, x, y, lo, hi, ghost_w, ghost_i, ghost_n, kv);
 }
 
-/* Column step of fused iteration k over whole ring rows: o = x_2k+1 - (e0 + e1)/2
- * (kept in the ring for the next update), written out as high = hi*o and
- * low = lo*(e0 + (om + o)/4). It also prefetches the two input rows the next
- * iteration lifts (next0, next1: one 64-byte line of each per 16 outputs, so the whole
- * row over the sweep): this loop only writes the output and the row lifting only reads
- * the input, and each input row starts a fresh 4 KiB page at 1024 floats, where the
- * hardware prefetcher starts over; fetched here, the reads overlap these writes
- * (measured on the AVX-512 machine: the 1024^2 fused level 7-10% faster). */
-FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(col_vector)(
-    int i, const float *restrict e0, const float *restrict e1, const float *restrict om,
-    float *restrict o, float *restrict low, float *restrict high, float lo, float hi,
-    int first) {
+/* ---- the level, columns first ----
+ * The level is a column lifting and a row lifting of the same samples. The two commute
+ * (linear steps along different axes, boundary rules included), so the level runs the
+ * column step first, straight from the input rows, and lifts the two rows it gives along
+ * x while they are still in registers: per pair k of fine rows, the column predict
+ * o_k = x_2k+1 - (x_2k + x_2k+2)/2 and update e_k = x_2k + (o_k-1 + o_k)/4, then the
+ * row lifting of e_k (output row k: LL | HL) and of o_k (output row m + k: LH | HH).
+ * Only o_k is stored (a row buffer, for e_k+1) besides the output: 1.5 stores per input
+ * vector, against 2.5 when rows were lifted into a ring first and the columns read them
+ * back (docs/transform.md: the store port was the limit). The scales of both steps are
+ * applied once, as their products (lo, hi of the column step times those of the row).
+ * The scalar code at the rows' ends and the vectors do the same operations in the same
+ * order, so the bits do not depend on the SIMD width or on where the buffers sit. */
+
+/* The column step at column i of pair k: o_k (also written to oc) and e_k; op is o_k-1,
+ * unread when `first` (k = 0: o_-1 is o_0 itself). */
+FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(column)(
+    const float *restrict x0, const float *restrict x1, const float *restrict x2,
+    const float *restrict op, float *restrict oc, int i, int first, FL_NAME(vf) *e,
+    FL_NAME(vf) *o) {
   typedef FL_NAME(vf) vf;
-  vf a, b, c, v;
-  __builtin_memcpy(&a, e0 + i, sizeof a);
-  __builtin_memcpy(&b, e1 + i, sizeof b);
-  __builtin_memcpy(&v, o + i, sizeof v);
-  v = v - 0.5f * (a + b);
+  vf a, b, c, p;
+  __builtin_memcpy(&a, x0 + i, sizeof a);
+  __builtin_memcpy(&b, x1 + i, sizeof b);
+  __builtin_memcpy(&c, x2 + i, sizeof c);
+  vf v = b - 0.5f * (a + c);
   if (first)
-    c = v;
+    p = v;
   else
-    __builtin_memcpy(&c, om + i, sizeof c);
-  __builtin_memcpy(o + i, &v, sizeof v);
-  vf hg = hi * v, lw = lo * (a + 0.25f * (c + v));
-  __builtin_memcpy(high + i, &hg, sizeof hg);
-  __builtin_memcpy(low + i, &lw, sizeof lw);
+    __builtin_memcpy(&p, op + i, sizeof p);
+  __builtin_memcpy(oc + i, &v, sizeof v);
+  *e = a + 0.25f * (p + v);
+  *o = v;
 }
 
-FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(col)(
-    int w, const float *restrict e0, const float *restrict e1, const float *restrict om,
-    float *restrict o, float *restrict low, float *restrict high, float lo, float hi,
-    int first, const float *next0, const float *next1) {
-  /* scalar up to the first 64-byte boundary of the output row: the vectors' stores
-   * (and, with the ring placed to match, their loads) then never split a cache line */
-  int i = 0, head = (int)((16 - ((uintptr_t)low / sizeof(float)) % 16) % 16);
-  for (; i < head && i < w; i++) {
-    float v = o[i] - 0.5f * (e0[i] + e1[i]);
-    o[i] = v;
-    high[i] = hi * v;
-    low[i] = lo * (e0[i] + 0.25f * ((first ? v : om[i]) + v));
+/* The scalar twin at column i (e_k into e[i]). */
+static inline float FL_NAME(column_e)(const float *x0, const float *x1, const float *x2,
+                                      const float *op, float *oc, int i, int first) {
+  float v = x1[i] - 0.5f * (x0[i] + x2[i]);
+  oc[i] = v;
+  return x0[i] + 0.25f * ((first ? v : op[i]) + v);
+}
+
+/* Row lifting of outputs kc .. kc+FL_V-1 of one row held in registers: va, vb the row's
+ * columns 2kc .. 2kc+2FL_V-1, vn from column 2kc+2FL_V on (its lane 0 is x_2k+2 of the
+ * last output); the steps of FL_NAME(lift). */
+FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(lift_registers)(
+    FL_NAME(vf) va, FL_NAME(vf) vb, FL_NAME(vf) vn, FL_NAME(vf) *prev, float *restrict low,
+    float *restrict high, float lo, float hi) {
+  typedef FL_NAME(vf) vf;
+  typedef FL_NAME(vi) vi;
+  vf ev = __builtin_shuffle(va, vb, (vi)FL_EVEN);
+  vf od = __builtin_shuffle(va, vb, (vi)FL_ODD);
+  vf e1 = FL_NEXT(ev, vn);
+  vf o = od - 0.5f * (ev + e1);
+  vf om = FL_SHIFT(*prev, o);
+  *prev = o;
+  vf lw = lo * (ev + 0.25f * (om + o)), hg = hi * o;
+  __builtin_memcpy(low, &lw, sizeof lw);
+  __builtin_memcpy(high, &hg, sizeof hg);
+}
+
+/* The first column after output k's group, x_2k+2 of its last output: column c of the
+ * e and o rows, or past the row's end (even width, last output) the width rule's ghost. */
+static inline float FL_NAME(next_column)(const float *x0, const float *x1, const float *x2,
+                                         const float *op, float *oc, int c, int w, int first,
+                                         const float ghost_eo[2], float *o) {
+  if (c >= w) {
+    *o = ghost_eo[1];
+    return ghost_eo[0];
   }
-#pragma GCC unroll 2
-  for (; i + 16 <= w; i += 16) { /* 16 floats: one cache line per row */
-    __builtin_prefetch(next0 + i, 0, 3);
-    __builtin_prefetch(next1 + i, 0, 3);
-    for (int j = 0; j < 16; j += FL_V)
-      FL_NAME(col_vector)(i + j, e0, e1, om, o, low, high, lo, hi, first);
+  float e = FL_NAME(column_e)(x0, x1, x2, op, oc, c, first);
+  *o = oc[c];
+  return e;
+}
+
+/* Outputs [0, kv) of pair k by vectors, FL_V at a time, for both rows: e_k into row `le`
+ * (LL | HL, scales fe_l, fe_h), o_k into row `lo_row` (LH | HH, scales fo_l, fo_h); `mw`
+ * is the low half's length; FL_V <= kv. A group needs the next group's first column for
+ * its x_2k+2: loaded with the next group's vector while that fits in the row
+ * (kc + FL_V <= kv_load), then computed alone (FL_NAME(next_column)); where kv is not a
+ * whole number of groups, a last group overlaps the one before. */
+FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(pair_vectors)(
+    const float *restrict x0, const float *restrict x1, const float *restrict x2,
+    const float *restrict op, float *restrict oc, int first, int w, const float ghost_eo[2],
+    int kv, int kv_load, float *restrict le, float *restrict lo_row, int mw, float fe_l,
+    float fe_h, float fo_l, float fo_h) {
+  typedef FL_NAME(vf) vf;
+  vf ea, oa, eb, ob, en, on;
+  float ne, no;
+  int kc = 0;
+  FL_NAME(column)(x0, x1, x2, op, oc, 0, first, &ea, &oa);
+  /* o_-1 = o_0 (symmetric): the first group's prev holds o_0 */
+  vf prev_e = (vf){0} + (ea[1] - 0.5f * (ea[0] + ea[2]));
+  vf prev_o = (vf){0} + (oa[1] - 0.5f * (oa[0] + oa[2]));
+  for (; kc + FL_V <= kv_load; kc += FL_V) {
+    FL_NAME(column)(x0, x1, x2, op, oc, 2 * kc + FL_V, first, &eb, &ob);
+    FL_NAME(column)(x0, x1, x2, op, oc, 2 * kc + 2 * FL_V, first, &en, &on);
+    FL_NAME(lift_registers)(ea, eb, en, &prev_e, le + kc, le + mw + kc, fe_l, fe_h);
+    FL_NAME(lift_registers)(oa, ob, on, &prev_o, lo_row + kc, lo_row + mw + kc, fo_l, fo_h);
+    ea = en;
+    oa = on;
   }
-  for (; i + FL_V <= w; i += FL_V)
-    FL_NAME(col_vector)(i, e0, e1, om, o, low, high, lo, hi, first);
-  for (; i < w; i++) {
-    float v = o[i] - 0.5f * (e0[i] + e1[i]);
-    o[i] = v;
-    high[i] = hi * v;
-    low[i] = lo * (e0[i] + 0.25f * ((first ? v : om[i]) + v));
+  /* at most one more whole group: kc + FL_V > kv_load = (w - FL_V)/2 gives kc + 2FL_V > kv */
+  if (kc + FL_V <= kv) {
+    FL_NAME(column)(x0, x1, x2, op, oc, 2 * kc + FL_V, first, &eb, &ob);
+    ne = FL_NAME(next_column)(x0, x1, x2, op, oc, 2 * kc + 2 * FL_V, w, first, ghost_eo, &no);
+    FL_NAME(lift_registers)(ea, eb, (vf){0} + ne, &prev_e, le + kc, le + mw + kc, fe_l, fe_h);
+    FL_NAME(lift_registers)(oa, ob, (vf){0} + no, &prev_o, lo_row + kc, lo_row + mw + kc, fo_l,
+                            fo_h);
+    kc += FL_V;
+  }
+  if (kc < kv) { /* overlapping the group before, so oc holds its columns */
+    kc = kv - FL_V;
+    float c[3];
+    for (int t = 0; t < 3; t++) c[t] = FL_NAME(column_e)(x0, x1, x2, op, oc, 2 * kc - 2 + t, first);
+    prev_e = (vf){0} + (c[1] - 0.5f * (c[0] + c[2]));
+    prev_o = (vf){0} + FL_ODD_AT(oc, kc - 1);
+    ne = FL_NAME(next_column)(x0, x1, x2, op, oc, 2 * kv, w, first, ghost_eo, &no);
+    FL_NAME(column)(x0, x1, x2, op, oc, 2 * kc, first, &ea, &oa);
+    FL_NAME(column)(x0, x1, x2, op, oc, 2 * kc + FL_V, first, &eb, &ob);
+    FL_NAME(lift_registers)(ea, eb, (vf){0} + ne, &prev_e, le + kc, le + mw + kc, fe_l, fe_h);
+    FL_NAME(lift_registers)(oa, ob, (vf){0} + no, &prev_o, lo_row + kc, lo_row + mw + kc, fo_l,
+                            fo_h);
   }
 }
 
-/* Output rows k in [k0, k1) of the level: rows lifted into the ring as they are needed,
- * then the column predict and update of fine rows 2k, 2k+1, 2k+2 (see linear_level;
- * a range past 0 starts from o_k0-1, as linear_warm_up). */
+/* Output rows k in [k0, k1) of the level (fine rows 2k, 2k+1, 2k+2; a range past 0
+ * starts from o_k0-1, computed first). Scratch: two o rows (o_k-1, o_k), the e row's
+ * scalar columns, and `ghost` (x_n of even n, from the coarse right rule). */
 FL_TARGET static void FL_NAME(level)(const transform_plan *p, int l, const float *src,
                                      size_t src_stride, float *ring, float *dst,
                                      size_t dst_stride, float *ghost, int k0, int k1) {
-  int n = p->len_h[l], m = (n + 1) / 2, d = n / 2, w = p->len_w[l];
+  int n = p->len_h[l], m = (n + 1) / 2, d = n / 2, w = p->len_w[l], mw = (w + 1) / 2;
   float lo = lifting_scale_low(TRANSFORM_LINEAR), hi = lifting_scale_high(TRANSFORM_LINEAR);
+  float fe_l = lo * lo, fe_h = hi * lo, fo_l = lo * hi, fo_h = hi * hi;
   const ghost_rule *rho = &p->rules_h[l - 1].right, *rw = &p->rules_w[l - 1].right;
   float gw[4] = {0};
-  for (int t = 0; t < rw->count; t++) gw[t] = (float)rw->weight[t];
-  /* 8 ring rows: the window spans 4, the right rule reaches 2 rows further back.
-   * Where the ring (17 rows of w) has room, its rows are a multiple of 16 floats apart
-   * and start at the same offset within a 64-byte line as the output rows, so that the
-   * column steps (FL_NAME(col), from its first aligned output) load and store whole
-   * cache lines: at 1024^2 on the AVX-512 machine the level is ~10% faster than with
-   * rows that split lines (malloc'd outputs sit 16 bytes past a line). */
+  int gmin = w;
+  for (int t = 0; t < rw->count; t++) {
+    gw[t] = (float)rw->weight[t];
+    if (2 * rw->index[t] < gmin) gmin = 2 * rw->index[t];
+  }
+  /* outputs [0, kv) are vectors: every interior one, and for even w the last too (its
+   * x_2k+2 is the width rule's ghost; odd w ends with a mirrored low output); the groups
+   * that load the next group's columns end at kv_load */
+  int kv = w / 2, kv_load = (w - FL_V) / 2;
+  if (kv < FL_V || gmin < w - FL_V) kv = 0; /* the rule's columns: in the last vector */
+  /* scratch rows a multiple of 16 floats apart, at the input's offset within a 64-byte
+   * line where the ring has room: the vectors' o loads and stores (two of the ten loads
+   * and six stores per group) then split lines only where the input's loads do */
   size_t ws = (size_t)w;
   {
     size_t wr = ((size_t)w + 15) & ~(size_t)15;
-    size_t want = ((uintptr_t)dst / sizeof(float)) % 16;
+    size_t want = ((uintptr_t)src / sizeof(float)) % 16;
     size_t have = ((uintptr_t)ring / sizeof(float)) % 16, shift = (want + 16 - have) % 16;
-    if (8 * wr + shift <= 17 * (size_t)w && (uintptr_t)dst % sizeof(float) == 0)
+    if (3 * wr + shift <= 17 * (size_t)w && (uintptr_t)src % sizeof(float) == 0)
       ws = wr, ring += shift;
   }
-#define SLOT(r) (ring + (size_t)((r) % 8) * ws)
-  /* lo is 1 for CDF 5/3: the literal lets gcc drop the multiplications (x * 1 == x) */
-#define LOAD(r)                                                                             \
-  do {                                                                                      \
-    if (lo == 1.0f)                                                                         \
-      FL_NAME(row)(w, src + (size_t)(r) * src_stride, SLOT(r), 1.0f, hi, gw, rw->index,      \
-                   rw->count);                                                              \
-    else                                                                                    \
-      FL_NAME(row)(w, src + (size_t)(r) * src_stride, SLOT(r), lo, hi, gw, rw->index,        \
-                   rw->count);                                                              \
-  } while (0)
-  if (k0 == 0) {
-    LOAD(0);
-  } else {
-    LOAD(2 * k0 - 2);
-    LOAD(2 * k0 - 1);
-    LOAD(2 * k0);
-    float *restrict o = SLOT(2 * k0 - 1);
-    const float *restrict e0 = SLOT(2 * k0 - 2), *restrict e1 = SLOT(2 * k0);
-    for (int i = 0; i < w; i++) o[i] = o[i] - 0.5f * (e0[i] + e1[i]);
+  float *obuf[2] = {ring, ring + ws}, *e = ring + 2 * ws;
+  if (k0 > 0) { /* o_k0-1 */
+    const float *restrict x0 = src + (size_t)(2 * k0 - 2) * src_stride;
+    const float *restrict x1 = x0 + src_stride, *restrict x2 = x1 + src_stride;
+    float *restrict o = obuf[(k0 - 1) & 1];
+    for (int i = 0; i < w; i++) o[i] = x1[i] - 0.5f * (x0[i] + x2[i]);
   }
   for (int k = k0; k < k1; k++) {
-    const float *restrict e0 = SLOT(2 * k);
-    float *restrict low = dst + (size_t)k * dst_stride;
-    if (k < d) {
-      float *restrict high = dst + (size_t)(m + k) * dst_stride;
-      LOAD(2 * k + 1);
-      float *restrict o = SLOT(2 * k + 1);
-      const float *restrict e1;
-      if (2 * k + 2 < n) {
-        LOAD(2 * k + 2);
-        e1 = SLOT(2 * k + 2);
-      } else {
-        for (int i = 0; i < w; i++) ghost[i] = 0.0f;
-        for (int t = 0; t < rho->count; t++) {
-          const float *restrict row = SLOT(2 * rho->index[t]);
-          float c = (float)rho->weight[t];
-          for (int i = 0; i < w; i++) ghost[i] += c * row[i];
-        }
-        e1 = ghost;
+    const float *x0 = src + (size_t)(2 * k) * src_stride;
+    float *oc = obuf[k & 1];
+    const float *op = k > 0 ? obuf[(k - 1) & 1] : NULL;
+    float *le = dst + (size_t)k * dst_stride;
+    if (k >= d) { /* odd n, last even row: o_m-1 mirrors to o_m-2 */
+      for (int i = 0; i < w; i++) e[i] = x0[i] + 0.25f * (op[i] + op[i]);
+      FL_NAME(row)(w, e, le, fe_l, fe_h, gw, rw->index, rw->count);
+      continue;
+    }
+    const float *x1 = x0 + src_stride, *x2 = x1 + src_stride;
+    if (2 * k + 2 >= n) { /* even n: x_n from the coarse level's right rule */
+      for (int i = 0; i < w; i++) ghost[i] = 0.0f;
+      for (int t = 0; t < rho->count; t++) {
+        const float *restrict row = src + (size_t)(2 * rho->index[t]) * src_stride;
+        float c = (float)rho->weight[t];
+        for (int i = 0; i < w; i++) ghost[i] += c * row[i];
       }
-      /* the input rows the next iteration lifts (the last row past the end) */
-      const float *next0 = src + (size_t)(2 * k + 3 < n ? 2 * k + 3 : n - 1) * src_stride;
-      const float *next1 = src + (size_t)(2 * k + 4 < n ? 2 * k + 4 : n - 1) * src_stride;
-      if (k > 0 && lo == 1.0f)
-        FL_NAME(col)(w, e0, e1, SLOT(2 * k - 1), o, low, high, 1.0f, hi, 0, next0, next1);
-      else if (k > 0)
-        FL_NAME(col)(w, e0, e1, SLOT(2 * k - 1), o, low, high, lo, hi, 0, next0, next1);
-      else /* o_-1 is o_0 itself */
-        FL_NAME(col)(w, e0, e1, NULL, o, low, high, lo, hi, 1, next0, next1);
-    } else { /* odd n, last even row: o_m-1 mirrors to o_m-2 */
-      const float *restrict om = SLOT(2 * k - 1);
-      for (int i = 0; i < w; i++) low[i] = lo * (e0[i] + 0.25f * (om[i] + om[i]));
+      x2 = ghost;
+    }
+    float *lo_row = dst + (size_t)(m + k) * dst_stride;
+    int first = k == 0;
+    if (!kv) { /* too narrow for a group: all scalar */
+      for (int i = 0; i < w; i++) e[i] = FL_NAME(column_e)(x0, x1, x2, op, oc, i, first);
+      FL_NAME(row_tail)(w, e, le, fe_l, fe_h, gw, rw->index, rw->count, 0);
+      FL_NAME(row_tail)(w, oc, lo_row, fo_l, fo_h, gw, rw->index, rw->count, 0);
+      continue;
+    }
+    /* the row's last FL_V columns first: e there for the width rule's ghost (even w) or
+     * the mirrored last low output (odd w) */
+    {
+      FL_NAME(vf) et, ot;
+      FL_NAME(column)(x0, x1, x2, op, oc, w - FL_V, first, &et, &ot);
+      __builtin_memcpy(e + w - FL_V, &et, sizeof et);
+    }
+    float ghost_eo[2] = {0.0f, 0.0f}; /* row_tail's g on the e and o rows */
+    if (w % 2 == 0)
+      for (int t = 0; t < rw->count && t < 4; t++) {
+        ghost_eo[0] += gw[t] * e[2 * rw->index[t]];
+        ghost_eo[1] += gw[t] * oc[2 * rw->index[t]];
+      }
+    if (first && fe_l == 1.0f) /* literal scales: gcc drops x * 1 */
+      FL_NAME(pair_vectors)(x0, x1, x2, op, oc, 1, w, ghost_eo, kv, kv_load, le, lo_row, mw,
+                            1.0f, fe_h, fo_l, fo_h);
+    else if (first)
+      FL_NAME(pair_vectors)(x0, x1, x2, op, oc, 1, w, ghost_eo, kv, kv_load, le, lo_row, mw,
+                            fe_l, fe_h, fo_l, fo_h);
+    else if (fe_l == 1.0f)
+      FL_NAME(pair_vectors)(x0, x1, x2, op, oc, 0, w, ghost_eo, kv, kv_load, le, lo_row, mw,
+                            1.0f, fe_h, fo_l, fo_h);
+    else
+      FL_NAME(pair_vectors)(x0, x1, x2, op, oc, 0, w, ghost_eo, kv, kv_load, le, lo_row, mw,
+                            fe_l, fe_h, fo_l, fo_h);
+    if (w % 2) { /* odd w: the last low output mirrors o_d-1 (row_tail) */
+      le[mw - 1] = fe_l * (e[w - 1] + 0.25f * 2.0f * FL_ODD_AT(e, w / 2 - 1));
+      lo_row[mw - 1] = fo_l * (oc[w - 1] + 0.25f * 2.0f * FL_ODD_AT(oc, w / 2 - 1));
     }
   }
-#undef LOAD
-#undef SLOT
 }
 #undef FL_ODD_AT
 #undef FL_V
@@ -254,3 +346,4 @@ FL_TARGET static void FL_NAME(level)(const transform_plan *p, int l, const float
 #undef FL_EVEN
 #undef FL_ODD
 #undef FL_SHIFT
+#undef FL_NEXT
