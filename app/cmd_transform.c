@@ -199,15 +199,15 @@ static int run_forward(const char *in, const char *dir, transform_desc desc) {
     goto done;
   }
   int J = desc.levels;
-  coef = malloc(n * sizeof *coef);
+  coef = transform_alloc_floats(n);
   band = malloc(n * sizeof *band);
   energy = calloc(3 * (size_t)(J + 1), sizeof *energy);
   int ok = coef && band && energy;
   for (int l = 0; ok && l <= J; l++) {
     int w, h;
     transform_level_size(plan, l, &w, &h);
-    approx[l] = malloc((size_t)w * h * sizeof(float));
-    detail[l] = malloc((size_t)w * h * sizeof(float));
+    approx[l] = transform_alloc_floats((size_t)w * h);
+    detail[l] = transform_alloc_floats((size_t)w * h);
     ok = approx[l] && detail[l];
   }
   if (!ok) {

@@ -277,13 +277,13 @@ static int plan_create(pipeline *p, int degree, int levels, pipeline_error *err)
   transform_desc desc = {.width = w, .height = h, .levels = levels,
                          .basis = basis_of_degree(degree), .boundary = boundary};
   if (transform_plan_create(&c->plan, &desc, &terr)) return fail(err, "transform: %s", terr.message);
-  c->coefficients = malloc((size_t)w * h * sizeof(float));
+  c->coefficients = transform_alloc_floats((size_t)w * h);
   bool ok = c->coefficients != NULL;
   for (int l = 0; l <= levels && ok; l++) {
     int w = 0, h = 0;
     transform_level_size(c->plan, l, &w, &h);
-    c->approx[l] = malloc((size_t)w * h * sizeof(float));
-    c->detail[l] = malloc((size_t)w * h * sizeof(float));
+    c->approx[l] = transform_alloc_floats((size_t)w * h);
+    c->detail[l] = transform_alloc_floats((size_t)w * h);
     ok = c->approx[l] && c->detail[l];
   }
   if (!ok) return fail(err, "out of memory for the transform");

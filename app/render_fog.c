@@ -92,7 +92,7 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   transform_desc desc = {.width = map.width, .height = map.height, .levels = levels,
                          .basis = basis_of_degree(f->degree), .boundary = boundary};
   size_t n = (size_t)map.width * map.height;
-  float *coefficients = malloc(n * sizeof(float));
+  float *coefficients = transform_alloc_floats(n);
   float *approx[RENDER_FOG_MAX_LEVELS + 1] = {0}, *detail[RENDER_FOG_MAX_LEVELS + 1] = {0};
   int status = 1;
   if (!coefficients) {
@@ -107,8 +107,8 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   for (int l = 0; l <= levels; l++) {
     int w, h;
     transform_level_size(plan, l, &w, &h);
-    approx[l] = malloc((size_t)w * h * sizeof(float));
-    detail[l] = malloc((size_t)w * h * sizeof(float));
+    approx[l] = transform_alloc_floats((size_t)w * h);
+    detail[l] = transform_alloc_floats((size_t)w * h);
     if (!approx[l] || !detail[l]) {
       snprintf(err->message, sizeof err->message, "out of memory for the fog pyramid");
       goto done;

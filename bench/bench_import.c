@@ -123,12 +123,12 @@ static int preview_create(preview *p, int map_w, int map_h, char *error, size_t 
     snprintf(error, size, "transform: %s", terr.message);
     return 1;
   }
-  p->coefficients = malloc((size_t)map_w * map_h * sizeof(float));
+  p->coefficients = transform_alloc_floats((size_t)map_w * map_h);
   for (int l = 0; l <= p->levels; l++) {
     int w, h;
     transform_level_size(p->plan, l, &w, &h);
-    p->approx[l] = malloc((size_t)w * h * sizeof(float));
-    p->detail[l] = malloc((size_t)w * h * sizeof(float));
+    p->approx[l] = transform_alloc_floats((size_t)w * h);
+    p->detail[l] = transform_alloc_floats((size_t)w * h);
     if (transform_grid_create_level(p->plan, l, p->approx[l], &p->approx_grid[l], &terr) ||
         (l > 0 && transform_grid_create_level(p->plan, l, p->detail[l], &p->detail_grid[l - 1],
                                               &terr))) {

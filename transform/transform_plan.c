@@ -5,6 +5,11 @@
 
 #include "transform/transform_plan.h"
 
+float *transform_alloc_floats(size_t count) {
+  size_t bytes = (count * sizeof(float) + 63) / 64 * 64; /* aligned_alloc: a multiple */
+  return aligned_alloc(64, bytes ? bytes : 64);
+}
+
 int transform_basis_degree(transform_basis basis) {
   return basis == TRANSFORM_HAAR ? 0 : basis == TRANSFORM_LINEAR ? 1 : 2;
 }
