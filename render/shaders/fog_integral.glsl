@@ -55,6 +55,9 @@ uniform sampler2D fog_grids[FOG_MAX_GRIDS];
 uniform dvec2 fog_grid_x0[FOG_MAX_GRIDS];  // double: see fog_optical_depth_inside
 uniform double fog_grid_scale[FOG_MAX_GRIDS];
 uniform ivec2 fog_grid_size[FOG_MAX_GRIDS];
+// Approximation slots l = 0..J are dyadic: u_l = u_{l+1} / 2 + fog_grid_dyadic[l] in grid
+// units (fog_walk_coarser), from the slots' origins and spacings (render/fog_pass.c).
+uniform vec2 fog_grid_dyadic[FOG_MAX_GRIDS];
 // Specialisation (render/fog_pass.c compiles one variant per draw configuration): llvmpipe
 // runs both sides of every branch under a mask, so a uniform degree or profile kind costs
 // the code of every case; as compile-time constants the dead cases vanish. FOG_SINGLE_GRID:
@@ -284,11 +287,16 @@ struct fog_axis {
   int cell, step;
 };
 
-fog_axis fog_axis_start(float x0, float dx, float offset) {
+// The same with 1/dx given (the walk's later segments, fog_walk_coarser: no division).
+fog_axis fog_axis_start_inv(float x0, float dx, float inv_dx, float offset) {
   bool moving = dx != 0.0;
   float edge = (dx > 0.0 ? 1.0 + offset : offset) - x0;
-  return fog_axis(x0, dx, offset, moving ? edge : FOG_INFINITY, moving ? 1.0 / dx : 1.0,
+  return fog_axis(x0, dx, offset, moving ? edge : FOG_INFINITY, moving ? inv_dx : 1.0,
                   int(floor(x0 - offset)), dx > 0.0 ? 1 : -1);
+}
+
+fog_axis fog_axis_start(float x0, float dx, float offset) {
+  return fog_axis_start_inv(x0, dx, dx != 0.0 ? 1.0 / dx : 1.0, offset);
 }
 
 float fog_axis_next(fog_axis a) { return (float(a.cell) + a.next_edge) * a.inv_dx; }
@@ -446,7 +454,7 @@ float fog_walk_integral(inout fog_ray_walk w, float t0, float t1, float limit) {
 // cell): the pixel's direction, the box entry and the entry's grid coordinates are
 // therefore computed in double (a few operations per walk) and rounded once, small.
 // test_gpu_far_camera at 50 km: max |dtau| 2.3e-4 with a float set-up, 2.8e-6 with this.
-float fog_optical_depth_inside(int grid, dvec3 dir, double t0, double t1, float limit) {
+fog_ray_walk fog_walk_start(int grid, dvec3 dir, double t0) {
   float off = fog_knot_offset(fog_degree);
   fog_ray_walk w;
   w.grid = grid;
@@ -467,8 +475,35 @@ float fog_optical_depth_inside(int grid, dvec3 dir, double t0, double t1, float 
     w.y = fog_axis_start(fog_profile_y_start + w.y_entry * fog_profile_inv_spacing,
                          dir_y * fog_profile_inv_spacing, fog_knot_offset(fog_profile_degree));
   w.dir_y = dir_y;
+  return w;
+}
+
+float fog_optical_depth_inside(int grid, dvec3 dir, double t0, double t1, float limit) {
+  fog_ray_walk w = fog_walk_start(grid, dir, t0);
   return fog_extinction_scale *
          fog_walk_integral(w, 0.0, float(t1 - t0), limit / fog_extinction_scale);
+}
+
+// Approximation switching's next segment (fog_pass_fs.glsl): the walk of approximation
+// slot `grid` starting where `w` (slot grid + 1, the next finer level) ends, t' = len.
+// The set-up is float and cheap: the point is inside the box, in small grid coordinates,
+// and the levels are dyadic (u_l = u_{l+1}/2 + c_l, dx halves exactly), so the double
+// set-up of fog_walk_start is needed once per pixel, not once per segment; the profile's
+// axis carries on (the same breaks on every level).
+fog_ray_walk fog_walk_coarser(fog_ray_walk w, int grid, float len) {
+  float off = fog_knot_offset(fog_degree);
+  vec2 c = fog_grid_dyadic[FOG_GRID(grid)];
+  fog_ray_walk n;
+  n.grid = grid;
+  n.size = fog_grid_size[FOG_GRID(grid)];
+  n.x = fog_axis_start_inv((w.x.x0 + len * w.x.dx) * 0.5 + c.x, 0.5 * w.x.dx, 2.0 * w.x.inv_dx,
+                           off);
+  n.z = fog_axis_start_inv((w.z.x0 + len * w.z.dx) * 0.5 + c.y, 0.5 * w.z.dx, 2.0 * w.z.inv_dx,
+                           off);
+  n.y = fog_axis_start_inv(w.y.x0 + len * w.y.dx, w.y.dx, w.y.inv_dx, w.y.offset);
+  n.y_entry = w.y_entry + len * w.dir_y;
+  n.dir_y = w.dir_y;
+  return n;
 }
 
 // ---- uniform ray marching (the benchmark's alternative integrator) ------------------------

@@ -81,17 +81,37 @@ float fog_optical_depth_lod(dvec3 dir, double t_in, double t_out, float t_surfac
   // Approximation switching: segment (d_{l+1}, d_l] sees A_l; A_J on [0, d_J]. Walked near
   // to far (A_J first), each segment with the budget the nearer ones left: the
   // approximations are non-negative fog, so once the sum passes fog_depth_limit the pixel
-  // is opaque (tau < e^-limit) whatever the farther segments add.
+  // is opaque (tau < e^-limit) whatever the farther segments add. The segments follow
+  // each other along the ray, clipped to [start, op] (empty ones have length 0), so each
+  // walk starts where the last ended (fog_walk_coarser): one double set-up per pixel. No
+  // branch on empty segments either: llvmpipe would run both sides.
   double d[FOG_MAX_GRIDS / 2];  // d_l = ||OP|| mu^l, as fog_optical_depth_lod computes them
   d[0] = op;
   for (int l = 1; l < FOG_MAX_GRIDS / 2; l++) d[l] = d[l - 1] * fog_mu;
-  float sum = 0.0;
+#if FOG_INTEGRATOR == 1
+  float sum = 0.0;  // the marcher: each segment on its own
   for (int l = J; l >= 0; l--) {
     double near_t = max((l == J) ? 0.0 : d[l + 1], start), far_t = d[l];
     if (far_t > near_t && sum < fog_depth_limit)
       sum += fog_grid_integral(l, dir, near_t, far_t, jitter, fog_depth_limit - sum);
   }
   return sum;
+#else
+  double a = start, b = max(a, d[J]);
+  fog_ray_walk w = fog_walk_start(J, dir, a);
+  float len = float(b - a);
+  float sum = fog_extinction_scale *
+              fog_walk_integral(w, 0.0, len, fog_depth_limit / fog_extinction_scale);
+  for (int l = J - 1; l >= 0; l--) {
+    a = b;
+    b = max(a, d[l]);
+    w = fog_walk_coarser(w, l, len);
+    len = float(b - a);
+    sum += fog_extinction_scale *
+           fog_walk_integral(w, 0.0, len, (fog_depth_limit - sum) / fog_extinction_scale);
+  }
+  return sum;
+#endif
 }
 
 // A per-pixel hash in [0, 1) for the marcher's jitter (PCG-style integer hash).
