@@ -50,15 +50,17 @@ static inline int FL_NAME(row_vector_end)(int n) {
   return kv >= FL_V ? kv : 0;
 }
 
-/* Interior outputs [k_begin, k_end) of a row, scalar (the vectors' operations). */
-static inline void FL_NAME(row_inner)(const float *restrict x, float *restrict low,
-                                      float *restrict high, float lo, float hi, int k_begin,
-                                      int k_end) {
-  for (int k = k_begin; k < k_end; k++) {
-    float om = FL_ODD_AT(x, k - 1), o = FL_ODD_AT(x, k);
-    low[k] = lo * (x[2 * k] + 0.25f * (om + o));
-    high[k] = hi * o;
-  }
+/* x_n of an even-length row: the coarse level's right rule on the even samples. */
+static inline float FL_NAME(width_ghost)(const float *x, const float *ghost_w,
+                                         const int *ghost_i, int ghost_n) {
+  float g = 0.0f;
+  for (int t = 0; t < ghost_n && t < 4; t++) g += ghost_w[t] * x[2 * ghost_i[t]];
+  return g;
+}
+
+/* The last low output of an odd-length row n: o_d mirrors to o_d-1. */
+static inline float FL_NAME(odd_last_low)(const float *x, int n, float lo) {
+  return lo * (x[n - 1] + 0.25f * 2.0f * FL_ODD_AT(x, n / 2 - 1));
 }
 
 /* The scalar rest of a row: outputs kv on (the right end), and the left end (outputs 0
@@ -69,17 +71,20 @@ FL_TARGET static inline __attribute__((always_inline)) void FL_NAME(row_tail)(
   int m = (n + 1) / 2, d = n / 2;
   int inner = d < m - 1 ? d : m - 1; /* o_k with x_2k+2 inside the row */
   float *restrict low = y, *restrict high = y + m;
-  FL_NAME(row_inner)(x, low, high, lo, hi, kv > 1 ? kv : 1, inner);
+  for (int k = kv > 1 ? kv : 1; k < inner; k++) {
+    float om = FL_ODD_AT(x, k - 1), o = FL_ODD_AT(x, k);
+    low[k] = lo * (x[2 * k] + 0.25f * (om + o));
+    high[k] = hi * o;
+  }
   float o_last; /* o_d-1 */
   if (d == m) { /* even n: x_n is a ghost of the coarse level's right rule */
-    float g = 0.0f;
-    for (int t = 0; t < ghost_n && t < 4; t++) g += ghost_w[t] * x[2 * ghost_i[t]];
+    float g = FL_NAME(width_ghost)(x, ghost_w, ghost_i, ghost_n);
     o_last = x[2 * d - 1] - 0.5f * (x[2 * d - 2] + g);
     high[d - 1] = hi * o_last;
     low[d - 1] = lo * (x[2 * d - 2] + 0.25f * (FL_ODD_AT(x, d - 2) + o_last));
   } else {
     o_last = FL_ODD_AT(x, d - 1);
-    low[m - 1] = lo * (x[n - 1] + 0.25f * 2.0f * o_last);
+    low[m - 1] = FL_NAME(odd_last_low)(x, n, lo);
   }
   float o0 = d > 1 ? FL_ODD_AT(x, 0) : o_last; /* o_-1 = o_0 (symmetric) */
   high[0] = hi * o0;
@@ -315,12 +320,11 @@ FL_TARGET static void FL_NAME(level)(const transform_plan *p, int l, const float
       FL_NAME(column)(x0, x1, x2, op, oc, w - FL_V, first, &et, &ot);
       __builtin_memcpy(e + w - FL_V, &et, sizeof et);
     }
-    float ghost_eo[2] = {0.0f, 0.0f}; /* row_tail's g on the e and o rows */
-    if (w % 2 == 0)
-      for (int t = 0; t < rw->count && t < 4; t++) {
-        ghost_eo[0] += gw[t] * e[2 * rw->index[t]];
-        ghost_eo[1] += gw[t] * oc[2 * rw->index[t]];
-      }
+    float ghost_eo[2] = {0.0f, 0.0f}; /* x_w of the e and o rows (even w) */
+    if (w % 2 == 0) {
+      ghost_eo[0] = FL_NAME(width_ghost)(e, gw, rw->index, rw->count);
+      ghost_eo[1] = FL_NAME(width_ghost)(oc, gw, rw->index, rw->count);
+    }
     if (first && fe_l == 1.0f) /* literal scales: gcc drops x * 1 */
       FL_NAME(pair_vectors)(x0, x1, x2, op, oc, 1, w, ghost_eo, kv, kv_load, le, lo_row, mw,
                             1.0f, fe_h, fo_l, fo_h);
@@ -333,9 +337,9 @@ FL_TARGET static void FL_NAME(level)(const transform_plan *p, int l, const float
     else
       FL_NAME(pair_vectors)(x0, x1, x2, op, oc, 0, w, ghost_eo, kv, kv_load, le, lo_row, mw,
                             fe_l, fe_h, fo_l, fo_h);
-    if (w % 2) { /* odd w: the last low output mirrors o_d-1 (row_tail) */
-      le[mw - 1] = fe_l * (e[w - 1] + 0.25f * 2.0f * FL_ODD_AT(e, w / 2 - 1));
-      lo_row[mw - 1] = fo_l * (oc[w - 1] + 0.25f * 2.0f * FL_ODD_AT(oc, w / 2 - 1));
+    if (w % 2) { /* odd w: the last low output, the vectors' only missing one */
+      le[mw - 1] = FL_NAME(odd_last_low)(e, w, fe_l);
+      lo_row[mw - 1] = FL_NAME(odd_last_low)(oc, w, fo_l);
     }
   }
 }
