@@ -17,6 +17,8 @@ for f in build/fogpipe $(for t in $tests; do echo build/tests/$t; done); do
   [ -x "$f" ] || { echo "gpu_kit: $f is missing: build first (make test)" >&2; exit 1; }
 done
 rm -rf "$kit" build/gpu-kit.tmp
+# a failed copy or xz leaves neither the staging folder nor a partial kit behind
+trap 'status=$?; rm -rf build/gpu-kit.tmp; [ $status -eq 0 ] || rm -rf "$kit"' EXIT
 mkdir -p build/gpu-kit.tmp/bin build/gpu-kit.tmp/lib build/gpu-kit.tmp/fallback
 cp build/fogpipe build/gpu-kit.tmp/bin/
 for t in $tests; do cp build/tests/$t build/gpu-kit.tmp/bin/; done
