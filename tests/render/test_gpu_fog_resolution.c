@@ -57,14 +57,12 @@ int main(void) {
   float *colour = calloc((size_t)W * H * 4, sizeof(float));
   float *distance = malloc(sizeof(float) * W * H);
   double *dirs = malloc(sizeof(double) * 3 * W * H);
+  fog_test_gl_ground_distance(&gl, &cam, 0.5, distance);
   for (int py = 0; py < H; py++)
     for (int px = 0; px < W; px++) {
-      double o[3], d[3];
-      camera_ray(&cam, px, py, W, H, o, d);
-      memcpy(&dirs[3 * (py * W + px)], d, sizeof d);
-      float t = d[1] < 0.0 ? (float)((0.5 - o[1]) / d[1]) : 1e30f;
-      if (px >= 37 && px < 71 && py >= 21 && py < 45) t = 20.0f;
-      distance[py * W + px] = t;
+      double o[3];
+      camera_ray(&cam, px, py, W, H, o, &dirs[3 * (py * W + px)]);
+      if (px >= 37 && px < 71 && py >= 21 && py < 45) distance[py * W + px] = 20.0f;
     }
   for (int k = 0; k < W * H; k++) colour[4 * k + 0] = colour[4 * k + 1] = colour[4 * k + 2] = 0.5f;
   GLuint tex[2] = {fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, colour),
