@@ -406,6 +406,22 @@ static GLsizei cull_tiles(scene_pass *pass, const camera *cam, int width, int he
 
 long scene_pass_triangles_drawn(const scene_pass *pass) { return pass->triangles_drawn; }
 
+/* Whether the terrain's back faces (facing down) can be skipped: the surface is a height
+ * field, so a ray from a point above it meets it first going down, on a front face. That
+ * holds for a camera above the surface inside the footprint (a ray leaves the footprint
+ * only once). From below, or from outside the footprint, even high above it, a ray can
+ * enter the footprint under the surface's edge and meet a back face first
+ * (test_scene_distance's view from outside failed that way). The margin (the near
+ * plane) keeps float rounding of the drawn vertices out of the decision. */
+bool scene_terrain_back_faces_hidden(const terrain *t, const camera *cam) {
+  const double *p = cam->position;
+  double near_plane, far_plane;
+  camera_depth_range(cam, &near_plane, &far_plane);
+  bool inside = p[0] >= t->origin[0] && p[0] <= t->origin[0] + t->size[0] &&
+                p[2] >= t->origin[2] && p[2] <= t->origin[2] + t->size[1];
+  return inside && p[1] > terrain_height_at(t, p[0], p[2]) + near_plane;
+}
+
 void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target) {
   const scene_geometry *geo = pass->geo;
   int w = target->width, h = target->height;
@@ -437,9 +453,22 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glUniform3fv(pass->u_ambient, 1, geo->light.ambient);
   glBindVertexArray(pass->vao);
   GLsizei ranges = cull_tiles(pass, cam, w, h);
+  /* The terrain's strips wind counter-clockwise seen from above (terrain_mesh_tiles), so
+   * GL_BACK culls the faces that look down: on llvmpipe the pass costs about its
+   * triangles, and half of those in view face away. The boxes (the last range) are drawn
+   * two-sided: a camera inside one sees its inner faces (scene_geometry_intersect). */
+  GLsizei terrain_ranges = pass->index_count > pass->box_first ? ranges - 1 : ranges;
+  bool cull = scene_terrain_back_faces_hidden(&geo->terrain, cam);
   glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+  if (cull) glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
   glMultiDrawElements(GL_TRIANGLE_STRIP, pass->draw_counts, GL_UNSIGNED_INT,
-                      pass->draw_offsets, ranges);
+                      pass->draw_offsets, terrain_ranges);
+  glDisable(GL_CULL_FACE);
+  if (ranges > terrain_ranges)
+    glMultiDrawElements(GL_TRIANGLE_STRIP, pass->draw_counts + terrain_ranges, GL_UNSIGNED_INT,
+                        pass->draw_offsets + terrain_ranges, ranges - terrain_ranges);
   glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
   glBindVertexArray(0);
 

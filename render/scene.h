@@ -89,6 +89,9 @@ void scene_pass_destroy(scene_pass *pass);
 void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target);
 /* Triangles the last run drew: the terrain tiles in the camera's view, and the boxes. */
 long scene_pass_triangles_drawn(const scene_pass *pass);
+/* Whether the scene pass may cull the terrain's back faces for this camera (above the
+ * height field: no ray from there meets a back face first). */
+bool scene_terrain_back_faces_hidden(const terrain *t, const camera *cam);
 
 /* A render target with the scene pass's layout (RGBA16F colour, R32F distance, depth). */
 int scene_target_create(gl_target *target, int width, int height, render_error *err);

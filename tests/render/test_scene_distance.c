@@ -7,7 +7,9 @@
  * Also: the DDA terrain walk gives the same hits as testing every triangle; and the
  * same holds from views where the pass culls terrain tiles outside the frustum (looking
  * down, sideways along the terrain's edge, from outside it, from far above), with fewer
- * triangles drawn than the terrain has in some and all of them in another. */
+ * triangles drawn than the terrain has in some and all of them in another; and from the
+ * views where it culls the terrain's back faces (above the surface) as from those where
+ * it must not (under the surface, outside the footprint). */
 #include <math.h>
 #include <stdlib.h>
 
@@ -111,24 +113,36 @@ static void test_culled_views(const scene_geometry *geo, scene_pass *pass,
                               const gl_target *target, float *distance) {
   const terrain *t = &geo->terrain;
   long terrain_triangles = 2L * (t->resolution_x - 1) * (t->resolution_z - 1);
+  /* position[1] 0: `above` the surface there (negative: under it); cull: whether the pass
+   * may cull the terrain's back faces (above the surface inside the footprint only) */
   struct {
     const char *name;
     double position[3], yaw, pitch, fov_y;
+    double above;
+    bool cull;
   } views[] = {
-      {"steeply down", {100, 0, -100}, 0.3, -1.3, 0.8},
-      {"inward from the -x edge", {-480, 0, 0}, 1.5708, -0.05, 1.0},
-      {"along the -x edge", {-490, 0, 300}, 0.0, -0.1, 1.2},
-      {"from outside, toward the corner", {-800, 240, 700}, 0.98, -0.2, 0.6},
-      {"low, into a valley, narrow", {0, 0, 300}, -0.7, -0.02, 0.3},
-      {"from far above, all of it", {0, 4000, 0}, 0.0, -1.5707, 0.6},
+      {"steeply down", {100, 0, -100}, 0.3, -1.3, 0.8, 25, true},
+      {"inward from the -x edge", {-480, 0, 0}, 1.5708, -0.05, 1.0, 25, true},
+      {"along the -x edge", {-490, 0, 300}, 0.0, -0.1, 1.2, 25, true},
+      {"from outside, toward the corner", {-800, 240, 700}, 0.98, -0.2, 0.6, 0, false},
+      {"low, into a valley, narrow", {0, 0, 300}, -0.7, -0.02, 0.3, 25, true},
+      {"from far above, all of it", {0, 4000, 0}, 0.0, -1.5707, 0.6, 0, true},
+      {"from under the terrain, up", {100, 0, -100}, 0.4, 0.8, 0.8, -15, false},
   };
-  int n = (int)(sizeof views / sizeof views[0]), fewer = 0, all = 0;
+  int n = (int)(sizeof views / sizeof views[0]), fewer = 0, all = 0, culled = 0;
   for (int k = 0; k < n; k++) {
     camera cam = {.position = {views[k].position[0], 0, views[k].position[2]},
                   .yaw = views[k].yaw, .pitch = views[k].pitch, .fov_y = views[k].fov_y};
     cam.position[1] = views[k].position[1] > 0
                           ? views[k].position[1]
-                          : terrain_height_at(t, cam.position[0], cam.position[2]) + 25;
+                          : terrain_height_at(t, cam.position[0], cam.position[2]) +
+                                views[k].above;
+    /* back faces are culled exactly for the cameras above the surface inside the
+     * footprint: not from under it, nor from outside (even far above) */
+    bool cull = scene_terrain_back_faces_hidden(t, &cam);
+    CHECK(cull == views[k].cull, "view %s: back-face culling %s", views[k].name,
+          cull ? "on" : "off");
+    culled += cull;
     view_stats v = compare_view(geo, pass, target, &cam, 2, distance);
     long drawn = scene_pass_triangles_drawn(pass) - 12L * geo->box_count;
     printf("view %-32s %5.1f%% of the terrain's triangles drawn; %d pixels sampled, %d sky, "
@@ -143,6 +157,7 @@ static void test_culled_views(const scene_geometry *geo, scene_pass *pass,
     all += drawn == terrain_triangles;
   }
   CHECK(all == 1, "%d views drew the whole terrain, expected only the one from far above", all);
+  CHECK(culled == 5, "%d views culled back faces, expected the 5 above the surface", culled);
   CHECK(fewer >= 2, "only %d views drew under a quarter of the terrain", fewer);
 }
 
