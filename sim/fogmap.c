@@ -1,4 +1,5 @@
 /* Fogmap allocation. Image I/O lives in fogmap_io.c. */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,8 +15,9 @@ int fogmap_create(fogmap *map, int width, int height, sim_error *err) {
   }
   /* 64-byte aligned (aligned_alloc wants a multiple): the transform's streaming levels
    * read it with vector loads that then split no cache line (transform_alloc_floats) */
-  size_t bytes = ((size_t)width * (size_t)height * sizeof(float) + 63) / 64 * 64;
-  map->density = aligned_alloc(64, bytes);
+  size_t count = (size_t)width * (size_t)height;
+  size_t bytes = (count * sizeof(float) + 63) / 64 * 64;
+  map->density = count <= (SIZE_MAX - 64) / sizeof(float) ? aligned_alloc(64, bytes) : NULL;
   if (map->density) memset(map->density, 0, bytes);
   if (!map->density) {
     snprintf(err->message, sizeof err->message, "out of memory for a %dx%d fogmap", width,

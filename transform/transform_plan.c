@@ -1,11 +1,13 @@
 /* transform_plan: sizes, boundary rules and scratch of one transform configuration,
  * and the 2D passes (rows, strips of columns) built from the 1D lifting kernels. */
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "transform/transform_plan.h"
 
 float *transform_alloc_floats(size_t count) {
+  if (count > (SIZE_MAX - 64) / sizeof(float)) return NULL; /* the byte count would wrap */
   size_t bytes = (count * sizeof(float) + 63) / 64 * 64; /* aligned_alloc: a multiple */
   return aligned_alloc(64, bytes ? bytes : 64);
 }
