@@ -39,7 +39,9 @@
 //     the pieces below y0 use the same formula with c0 = b = 0 (no Gauss path);
 //   - a pixel stops once its optical depth passes fog_depth_limit (default 16);
 //   - LOD draws read the grids as layers of one array texture (no sampler-array index),
-//     and clip the ray to the box once per pixel (fog_optical_depth_inside per grid).
+//     and clip the ray to the box once per pixel (fog_optical_depth_inside per grid);
+//     approximation switching sets its first walk up in double and starts each next one
+//     where the last ended, in float (fog_walk_coarser), not one double set-up per segment.
 
 #define FOG_PROFILE_SLAB 0
 #define FOG_PROFILE_EXPONENTIAL 1
