@@ -178,33 +178,43 @@ void main() {
   dvec2 ndc = 2.0 * dvec2(gl_FragCoord.xy) / dvec2(fog_viewport) - 1.0;
   ivec2 pixel = ivec2(gl_FragCoord.xy);
 #endif
-  // in double (fog_optical_depth_inside); the rest of the pass takes it rounded to float
-  dvec3 dir_d = normalize(fog_camera_forward + ndc.x * fog_camera_right + ndc.y * fog_camera_up);
-  vec3 dir = vec3(dir_d);
   vec4 surface = texelFetch(fog_surface_colour, pixel, 0);
   float t_surface = texelFetch(fog_surface_distance, pixel, 0).r;
-  float jitter = (fog_march_jitter != 0) ? fog_hash(uvec2(pixel), fog_frame) : 0.5;
-  float optical_depth = 0.0;
-  // The ray's span in the fog's box, for the walk and the reduced pass's k_end; a miss
-  // leaves it empty.
-  double t_in = 1.0, t_out = 0.0;
-  if (!fog_box_entry_exit(dir_d, t_in, t_out)) t_in = 1.0, t_out = 0.0;
+  float optical_depth = 0.0, k_end = 0.0;
+  bool walk = true;
 #if FOG_UPSAMPLE
-  if (!fog_upsampled_depth(pixel, t_surface, optical_depth))
+  walk = !fog_upsampled_depth(pixel, t_surface, optical_depth);
 #endif
-  if (fog_model == FOG_MODEL_HOMOGENEOUS)
-    optical_depth = fog_homogeneous_optical_depth(fog_model_extinction, t_surface);
-  else if (fog_model == FOG_MODEL_HEIGHT)
-    optical_depth = fog_height_optical_depth(fog_model_extinction, fog_model_y0,
-                                             fog_model_scale_height, dir.y, t_surface);
-  else
-    optical_depth = fog_optical_depth_lod(dir_d, t_in, t_out, t_surface, jitter);
+  // The ray's own integral. llvmpipe runs the body of an `if` under a mask for every lane
+  // but leaves a loop as soon as no lane is in it: as a loop of at most one turn, the
+  // ray's set-up and walk cost nothing in the upsampling pass's lane groups whose samples
+  // all matched (the other passes take it once for every pixel).
+  for (int turn = walk ? 0 : 1; turn < 1; turn++) {
+    // in double (fog_optical_depth_inside); the rest of the pass takes it rounded to float
+    dvec3 dir_d =
+        normalize(fog_camera_forward + ndc.x * fog_camera_right + ndc.y * fog_camera_up);
+    vec3 dir = vec3(dir_d);
+    float jitter = (fog_march_jitter != 0) ? fog_hash(uvec2(pixel), fog_frame) : 0.5;
+    // The ray's span in the fog's box, for the walk and the reduced pass's k_end; a miss
+    // leaves it empty.
+    double t_in = 1.0, t_out = 0.0;
+    if (!fog_box_entry_exit(dir_d, t_in, t_out)) t_in = 1.0, t_out = 0.0;
+    if (fog_model == FOG_MODEL_HOMOGENEOUS)
+      optical_depth = fog_homogeneous_optical_depth(fog_model_extinction, t_surface);
+    else if (fog_model == FOG_MODEL_HEIGHT)
+      optical_depth = fog_height_optical_depth(fog_model_extinction, fog_model_y0,
+                                               fog_model_scale_height, dir.y, t_surface);
+    else
+      optical_depth = fog_optical_depth_lod(dir_d, t_in, t_out, t_surface, jitter);
 #if FOG_REDUCED > 1
-  // And the extinction where the ray meets the surface (A_0; 0 outside the box or for the
-  // sky): d(optical depth)/dt there, for the upsampling's first-order distance correction.
-  float k_end = 0.0;
-  if (t_surface < 1e29 && t_surface >= t_in && t_surface <= t_out)
-    k_end = fog_extinction_scale * fog_extinction_at(0, dir, t_surface);
+    // And the extinction where the ray meets the surface (A_0; 0 outside the box or for
+    // the sky): d(optical depth)/dt there, for the upsampling's first-order distance
+    // correction.
+    if (t_surface < 1e29 && t_surface >= t_in && t_surface <= t_out)
+      k_end = fog_extinction_scale * fog_extinction_at(0, dir, t_surface);
+#endif
+  }
+#if FOG_REDUCED > 1
   fog_out_colour = vec4(optical_depth, t_surface, k_end, 1.0);
   return;
 #endif
