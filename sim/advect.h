@@ -44,6 +44,9 @@ typedef struct advect_pass {
   /* The MacCormack schemes only: advect_scratch_floats(width, height, count) floats
    * (the forward results and the departure points). Unused (may be NULL) otherwise. */
   float *scratch;
+  /* 1: the portable scalar loop even where the CPU has AVX2 (the clamped cubic's 8-cell
+   * gather loop gives the same bits; tests compare the two). */
+  int portable;
 } advect_pass;
 
 /* Padding between arrays that live in one block, in floats (17 cache lines). With
