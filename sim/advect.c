@@ -189,8 +189,8 @@ ADVECT_INLINE void semi_lagrangian(const advect_pass *p, const trace_ctx *tc, in
 }
 
 #if defined(__GNUC__) && defined(__x86_64__)
-/* The clamped cubic pass 8 cells at a time with AVX2 gathers (chosen at run time; the
- * default build stays portable). Every lane does the scalar code's operations in the same
+/* The clamped cubic and bilinear passes 8 cells at a time with AVX2 gathers (chosen at run
+ * time; the default build stays portable). Every lane does the scalar code's operations in the same
  * order (C11: no contraction), so the bits are those of semi_lagrangian_cell, which also
  * takes any group of 8 whose stencils wrap around the periodic edge (or whose positions
  * are far outside, which locate() wraps). */
@@ -241,8 +241,9 @@ AVX2 void catmull_rom8(__m256 t, __m256 w[4]) {
   w[3] = _mm256_mul_ps(half, _mm256_sub_ps(t3, t2));
 }
 
-__attribute__((target("avx2"))) static void semi_lagrangian_cubic_avx2(
-    const advect_pass *p, const trace_ctx *tc, int count, const float *const *src,
+/* One pass, 8 cells at a time: the clamped cubic (`cubic`) or the clamped bilinear. */
+__attribute__((target("avx2"), always_inline)) static inline void semi_lagrangian_avx2(
+    const advect_pass *p, const trace_ctx *tc, int count, int cubic, const float *const *src,
     float *const *dst) {
   const int w = p->width, h = p->height;
   const float sdt = p->dt, half_sdt = 0.5f * p->dt;
@@ -265,6 +266,22 @@ __attribute__((target("avx2"))) static void semi_lagrangian_cubic_avx2(
       __m256 ux = bilinear8(tc->vx, at, w, tx, tz), uz = bilinear8(tc->vz, at, w, tx, tz);
       __m256 dx = _mm256_sub_ps(xf, _mm256_mul_ps(_mm256_set1_ps(sdt), ux));
       __m256 dz = _mm256_sub_ps(zf, _mm256_mul_ps(_mm256_set1_ps(sdt), uz));
+      if (!cubic) { /* the 2x2 cell without wrap: cells 0 .. n-2 */
+        if (!locate8(dx, 0, w - 2, &jx, &sx) || !locate8(dz, 0, h - 2, &jz, &sz)) goto scalar;
+        __m256i cell = _mm256_add_epi32(_mm256_mullo_epi32(jz, wv), jx);
+        __m256i one = _mm256_set1_epi32(1), below = _mm256_add_epi32(cell, wv);
+        for (int f = 0; f < count; f++) {
+          __m256 a = _mm256_i32gather_ps(src[f], cell, 4);
+          __m256 b = _mm256_i32gather_ps(src[f], _mm256_add_epi32(cell, one), 4);
+          __m256 c = _mm256_i32gather_ps(src[f], below, 4);
+          __m256 d = _mm256_i32gather_ps(src[f], _mm256_add_epi32(below, one), 4);
+          __m256 v = lerp8(lerp8(a, b, sx), lerp8(c, d, sx), sz);
+          __m256 lo = _mm256_min_ps(_mm256_min_ps(a, b), _mm256_min_ps(c, d));
+          __m256 hi = _mm256_max_ps(_mm256_max_ps(a, b), _mm256_max_ps(c, d));
+          _mm256_storeu_ps(dst[f] + idx, _mm256_min_ps(_mm256_max_ps(v, lo), hi));
+        }
+        continue;
+      }
       /* the 4x4 stencil without wrap: cells 1 .. n-3 */
       if (!locate8(dx, 1, w - 3, &jx, &sx) || !locate8(dz, 1, h - 3, &jz, &sz)) goto scalar;
       __m256 wx[4], wz[4];
@@ -295,10 +312,23 @@ __attribute__((target("avx2"))) static void semi_lagrangian_cubic_avx2(
       }
       continue;
     scalar:
-      for (int c = 0; c < 8; c++) semi_lagrangian_cell(p, tc, count, 1, src, dst, 0, x + c, z);
+      for (int c = 0; c < 8; c++)
+        semi_lagrangian_cell(p, tc, count, cubic, src, dst, 0, x + c, z);
     }
-    for (; x < w; x++) semi_lagrangian_cell(p, tc, count, 1, src, dst, 0, x, z);
+    for (; x < w; x++) semi_lagrangian_cell(p, tc, count, cubic, src, dst, 0, x, z);
   }
+}
+
+__attribute__((target("avx2"))) static void semi_lagrangian_cubic_avx2(
+    const advect_pass *p, const trace_ctx *tc, int count, const float *const *src,
+    float *const *dst) {
+  semi_lagrangian_avx2(p, tc, count, 1, src, dst);
+}
+
+__attribute__((target("avx2"))) static void semi_lagrangian_bilinear_avx2(
+    const advect_pass *p, const trace_ctx *tc, int count, const float *const *src,
+    float *const *dst) {
+  semi_lagrangian_avx2(p, tc, count, 0, src, dst);
 }
 #undef AVX2
 #endif
@@ -366,6 +396,12 @@ static void run_count(const advect_pass *p, const trace_ctx *tc, int count,
     }
     case ADVECT_BILINEAR:
     default:
+#ifdef ADVECT_AVX2
+      if (!p->portable && __builtin_cpu_supports("avx2")) {
+        semi_lagrangian_bilinear_avx2(p, tc, count, src, dst);
+        return;
+      }
+#endif
       semi_lagrangian(p, tc, count, 0, src, dst, 0);
       return;
   }

@@ -1,5 +1,6 @@
-/* The clamped cubic pass runs 8 cells at a time with AVX2 gathers where the CPU has them
- * (sim/advect.c), and must give the bits of the portable scalar loop: random fields and
+/* The clamped cubic and bilinear passes run 8 cells at a time with AVX2 gathers where the
+ * CPU has them (sim/advect.c), and must give the bits of the portable scalar loop, for
+ * both schemes: random fields and
  * velocities, 1 to 4 fields, widths with and without a remainder past the last group of
  * 8, slow velocities (nearly every group vectorised) and fast ones (many groups whose
  * stencils wrap around the periodic edge, which the scalar cells take), and fields of
@@ -18,7 +19,7 @@ static float uniform(float lo, float hi) { /* xorshift32 */
   return lo + (hi - lo) * (float)(state >> 8) / 16777216.0f;
 }
 
-static void check(int w, int h, int count, float speed, float dt) {
+static void check(advect_scheme scheme, int w, int h, int count, float speed, float dt) {
   size_t n = (size_t)w * h;
   float *vx = malloc(n * sizeof *vx), *vz = malloc(n * sizeof *vz);
   float *src[4], *simd[4], *scalar[4];
@@ -30,15 +31,16 @@ static void check(int w, int h, int count, float speed, float dt) {
   }
   for (size_t i = 0; i < n; i++) vx[i] = uniform(-speed, speed), vz[i] = uniform(-speed, speed);
   advect_pass pass = {.width = w, .height = h, .velocity_x = vx, .velocity_z = vz, .dt = dt,
-                      .scheme = ADVECT_MONOTONE_CUBIC};
+                      .scheme = scheme};
   advect_fields(&pass, count, (const float *const *)src, simd);
   pass.portable = 1;
   advect_fields(&pass, count, (const float *const *)src, scalar);
   int differing = 0;
   for (int f = 0; f < count; f++)
     for (size_t i = 0; i < n; i++) differing += memcmp(&simd[f][i], &scalar[f][i], sizeof(float)) != 0;
-  CHECK(differing == 0, "%dx%d, %d fields, speed %g: %d values differ from the scalar loop", w,
-        h, count, (double)speed, differing);
+  CHECK(differing == 0, "%s %dx%d, %d fields, speed %g: %d values differ from the scalar loop",
+        scheme == ADVECT_BILINEAR ? "bilinear" : "cubic", w, h, count, (double)speed,
+        differing);
   for (int f = 0; f < count; f++) free(src[f]), free(simd[f]), free(scalar[f]);
   free(vx), free(vz);
 }
@@ -50,10 +52,12 @@ int main(void) {
                                         : "the scalar loop against itself");
 #endif
   const int sizes[][2] = {{256, 256}, {64, 40}, {37, 29}, {8, 8}, {23, 64}};
-  for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++)
-    for (int count = 1; count <= 4; count++) {
-      check(sizes[s][0], sizes[s][1], count, 2.0f, 0.5f);   /* about a cell per step */
-      check(sizes[s][0], sizes[s][1], count, 40.0f, 0.5f);  /* up to 20 cells: wraps */
-    }
+  const advect_scheme schemes[] = {ADVECT_MONOTONE_CUBIC, ADVECT_BILINEAR};
+  for (int k = 0; k < 2; k++)
+    for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++)
+      for (int count = 1; count <= 4; count++) {
+        check(schemes[k], sizes[s][0], sizes[s][1], count, 2.0f, 0.5f);  /* ~a cell a step */
+        check(schemes[k], sizes[s][0], sizes[s][1], count, 40.0f, 0.5f); /* up to 20: wraps */
+      }
   return test_finish("test_advect_simd_matches_scalar");
 }
