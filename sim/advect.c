@@ -188,12 +188,47 @@ ADVECT_INLINE void semi_lagrangian(const advect_pass *p, const trace_ctx *tc, in
       semi_lagrangian_cell(p, tc, count, cubic, src, dst, departures, x, z);
 }
 
+/* MacCormack (Selle et al. 2008 eq. 5-7): phi_hat = A(phi) (the forward pass, done by
+ * semi_lagrangian with departures recorded), phi_bar = A^R(phi_hat) (the same trace with
+ * time reversed), phi_new = phi_hat + (phi - phi_bar)/2, clamped to the extrema of phi
+ * around the departure point (their §4). One cell: */
+ADVECT_INLINE void maccormack_cell(const advect_pass *p, const trace_ctx *tc, int count,
+                                   int cubic, const float *const *src,
+                                   const float *const *forward, float *const *dst,
+                                   const float *departures, int x, int z) {
+  const int w = p->width, h = p->height;
+  long idx = (long)z * w + x;
+  float ax, az;
+  trace(tc, x, z, idx, -p->dt, &ax, &az);
+  axis_pos rx = locate(ax, w);
+  axis_pos rz = locate(az, h);
+  axis_pos px = locate(departures[2 * idx], w);
+  axis_pos pz = locate(departures[2 * idx + 1], h);
+  cubic_stencil st;
+  if (cubic) st = make_stencil(w, h, rx, rz);
+  for (int f = 0; f < count; f++) {
+    float back = cubic ? cubic_sample(forward[f], &st)
+                       : bilinear(fetch4(forward[f], w, rx, rz), rx.t, rz.t);
+    float v = forward[f][idx] + 0.5f * (src[f][idx] - back);
+    dst[f][idx] = clamp_to_cell(v, fetch4(src[f], w, px, pz));
+  }
+}
+
+ADVECT_INLINE void maccormack_correct(const advect_pass *p, const trace_ctx *tc, int count,
+                                      int cubic, const float *const *src,
+                                      const float *const *forward, float *const *dst,
+                                      const float *departures) {
+  for (int z = 0; z < p->height; z++)
+    for (int x = 0; x < p->width; x++)
+      maccormack_cell(p, tc, count, cubic, src, forward, dst, departures, x, z);
+}
+
 #if defined(__GNUC__) && defined(__x86_64__)
-/* The clamped cubic and bilinear passes 8 cells at a time with AVX2 gathers (chosen at run
- * time; the default build stays portable). Every lane does the scalar code's operations in the same
- * order (C11: no contraction), so the bits are those of semi_lagrangian_cell, which also
- * takes any group of 8 whose stencils wrap around the periodic edge (or whose positions
- * are far outside, which locate() wraps). */
+/* Every pass 8 cells at a time with AVX2 gathers (chosen at run time; the default build
+ * stays portable). Every lane does the scalar code's operations in the same order (C11:
+ * no contraction), so the bits are those of semi_lagrangian_cell and maccormack_cell,
+ * which also take any group of 8 whose stencils wrap around the periodic edge (or whose
+ * positions are far outside, which locate() wraps). */
 #include <immintrin.h>
 #define ADVECT_AVX2 1
 #define AVX2 __attribute__((target("avx2"))) static inline
@@ -217,15 +252,6 @@ AVX2 __m256 lerp8(__m256 a, __m256 b, __m256 t) {
   return _mm256_add_ps(a, _mm256_mul_ps(t, _mm256_sub_ps(b, a)));
 }
 
-/* The bilinear sample of f at cells (i, k) (row offset r = k w) with fractions tx, tz. */
-AVX2 __m256 bilinear8(const float *f, __m256i at, int w, __m256 tx, __m256 tz) {
-  __m256i one = _mm256_set1_epi32(1), down = _mm256_set1_epi32(w);
-  __m256i at_c = _mm256_add_epi32(at, down);
-  __m256 a = _mm256_i32gather_ps(f, at, 4), b = _mm256_i32gather_ps(f, _mm256_add_epi32(at, one), 4);
-  __m256 c = _mm256_i32gather_ps(f, at_c, 4), d = _mm256_i32gather_ps(f, _mm256_add_epi32(at_c, one), 4);
-  return lerp8(lerp8(a, b, tx), lerp8(c, d, tx), tz);
-}
-
 /* catmull_rom_weights for 8 fractions. */
 AVX2 void catmull_rom8(__m256 t, __m256 w[4]) {
   const __m256 half = _mm256_set1_ps(0.5f);
@@ -241,135 +267,199 @@ AVX2 void catmull_rom8(__m256 t, __m256 w[4]) {
   w[3] = _mm256_mul_ps(half, _mm256_sub_ps(t3, t2));
 }
 
-/* One pass, 8 cells at a time: the clamped cubic (`cubic`) or the clamped bilinear. */
+/* Where 8 samples sit: the cell (row-major index of its low corner), the fractions, and
+ * for the cubic the Catmull-Rom weights of both axes. */
+typedef struct spot8 {
+  __m256i cell;
+  __m256 sx, sz, wx[4], wz[4];
+} spot8;
+
+/* locate() both axes of 8 positions for an interpolator that reads no wrapped cell:
+ * cells 0 .. n-2 for the bilinear 2x2, 1 .. n-3 for the cubic's 4x4. 0 if one would. */
+AVX2 int spot8_at(__m256 x, __m256 z, int w, int h, int cubic, spot8 *s) {
+  __m256i ix, iz;
+  if (!locate8(x, cubic, w - 2 - cubic, &ix, &s->sx) ||
+      !locate8(z, cubic, h - 2 - cubic, &iz, &s->sz))
+    return 0;
+  s->cell = _mm256_add_epi32(_mm256_mullo_epi32(iz, _mm256_set1_epi32(w)), ix);
+  if (cubic) {
+    catmull_rom8(s->sx, s->wx);
+    catmull_rom8(s->sz, s->wz);
+  }
+  return 1;
+}
+
+/* The cell's four corners of f (fetch4's a, b, c, d). */
+AVX2 void corners8(const float *f, __m256i cell, int w, __m256 c[4]) {
+  __m256i one = _mm256_set1_epi32(1), below = _mm256_add_epi32(cell, _mm256_set1_epi32(w));
+  c[0] = _mm256_i32gather_ps(f, cell, 4);
+  c[1] = _mm256_i32gather_ps(f, _mm256_add_epi32(cell, one), 4);
+  c[2] = _mm256_i32gather_ps(f, below, 4);
+  c[3] = _mm256_i32gather_ps(f, _mm256_add_epi32(below, one), 4);
+}
+
+/* f at 8 spots, unclamped: bilinear (the corners, which it returns in c) or the cubic's
+ * 16 taps in cubic_sample's order (its 2x2 centre is the cell: returned in c too). */
+AVX2 __m256 sample8(const float *f, const spot8 *s, int w, int cubic, __m256 c[4]) {
+  if (!cubic) {
+    corners8(f, s->cell, w, c);
+    return lerp8(lerp8(c[0], c[1], s->sx), lerp8(c[2], c[3], s->sx), s->sz);
+  }
+  /* tap (row k, column j) at corner + k w + j, corner = cell - w - 1 */
+  __m256i corner = _mm256_sub_epi32(s->cell, _mm256_set1_epi32(w + 1));
+  __m256 v = _mm256_setzero_ps();
+  for (int k = 0; k < 4; k++) {
+    __m256i row = _mm256_add_epi32(corner, _mm256_set1_epi32(k * w));
+    __m256 g[4];
+    for (int j = 0; j < 4; j++)
+      g[j] = _mm256_i32gather_ps(f, _mm256_add_epi32(row, _mm256_set1_epi32(j)), 4);
+    __m256 r = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(s->wx[0], g[0]),
+                                                         _mm256_mul_ps(s->wx[1], g[1])),
+                                           _mm256_mul_ps(s->wx[2], g[2])),
+                             _mm256_mul_ps(s->wx[3], g[3]));
+    v = _mm256_add_ps(v, _mm256_mul_ps(s->wz[k], r));
+    if (k == 1) c[0] = g[1], c[1] = g[2];
+    if (k == 2) c[2] = g[1], c[3] = g[2];
+  }
+  return v;
+}
+
+/* clamp_to_cell: min_f/max_f are minps/maxps with the same operand order. */
+AVX2 __m256 clamp8(__m256 v, const __m256 c[4]) {
+  __m256 lo = _mm256_min_ps(_mm256_min_ps(c[0], c[1]), _mm256_min_ps(c[2], c[3]));
+  __m256 hi = _mm256_max_ps(_mm256_max_ps(c[0], c[1]), _mm256_max_ps(c[2], c[3]));
+  return _mm256_min_ps(_mm256_max_ps(v, lo), hi);
+}
+
+/* trace() for cells x .. x+7 of row z: their departure points, 0 if a lane's midpoint
+ * cell would wrap. */
+AVX2 int trace8(const trace_ctx *tc, int x, int z, long idx, float sdt, __m256 *dx,
+                __m256 *dz) {
+  const int w = tc->w;
+  __m256 xf = _mm256_add_ps(_mm256_set1_ps((float)x), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
+  __m256 zf = _mm256_set1_ps((float)z);
+  __m256 half_sdt = _mm256_set1_ps(0.5f * sdt);
+  __m256 mx = _mm256_sub_ps(xf, _mm256_mul_ps(half_sdt, _mm256_loadu_ps(tc->vx + idx)));
+  __m256 mz = _mm256_sub_ps(zf, _mm256_mul_ps(half_sdt, _mm256_loadu_ps(tc->vz + idx)));
+  spot8 mid;
+  if (!spot8_at(mx, mz, w, tc->h, 0, &mid)) return 0;
+  __m256 c[4];
+  __m256 ux = sample8(tc->vx, &mid, w, 0, c), uz = sample8(tc->vz, &mid, w, 0, c);
+  *dx = _mm256_sub_ps(xf, _mm256_mul_ps(_mm256_set1_ps(sdt), ux));
+  *dz = _mm256_sub_ps(zf, _mm256_mul_ps(_mm256_set1_ps(sdt), uz));
+  return 1;
+}
+
+/* semi_lagrangian, 8 cells at a time. */
 __attribute__((target("avx2"), always_inline)) static inline void semi_lagrangian_avx2(
     const advect_pass *p, const trace_ctx *tc, int count, int cubic, const float *const *src,
-    float *const *dst) {
+    float *const *dst, float *departures) {
   const int w = p->width, h = p->height;
-  const float sdt = p->dt, half_sdt = 0.5f * p->dt;
-  const __m256 lane = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
-  const __m256i wv = _mm256_set1_epi32(w);
   for (int z = 0; z < h; z++) {
-    const __m256 zf = _mm256_set1_ps((float)z);
     int x = 0;
     for (; x + 8 <= w; x += 8) {
       long idx = (long)z * w + x;
-      __m256 xf = _mm256_add_ps(_mm256_set1_ps((float)x), lane);
-      /* trace: the midpoint, the velocity there, the departure point */
-      __m256 vx = _mm256_loadu_ps(tc->vx + idx), vz = _mm256_loadu_ps(tc->vz + idx);
-      __m256 mx = _mm256_sub_ps(xf, _mm256_mul_ps(_mm256_set1_ps(half_sdt), vx));
-      __m256 mz = _mm256_sub_ps(zf, _mm256_mul_ps(_mm256_set1_ps(half_sdt), vz));
-      __m256i ix, iz, jx, jz;
-      __m256 tx, tz, sx, sz;
-      if (!locate8(mx, 0, w - 2, &ix, &tx) || !locate8(mz, 0, h - 2, &iz, &tz)) goto scalar;
-      __m256i at = _mm256_add_epi32(_mm256_mullo_epi32(iz, wv), ix);
-      __m256 ux = bilinear8(tc->vx, at, w, tx, tz), uz = bilinear8(tc->vz, at, w, tx, tz);
-      __m256 dx = _mm256_sub_ps(xf, _mm256_mul_ps(_mm256_set1_ps(sdt), ux));
-      __m256 dz = _mm256_sub_ps(zf, _mm256_mul_ps(_mm256_set1_ps(sdt), uz));
-      if (!cubic) { /* the 2x2 cell without wrap: cells 0 .. n-2 */
-        if (!locate8(dx, 0, w - 2, &jx, &sx) || !locate8(dz, 0, h - 2, &jz, &sz)) goto scalar;
-        __m256i cell = _mm256_add_epi32(_mm256_mullo_epi32(jz, wv), jx);
-        __m256i one = _mm256_set1_epi32(1), below = _mm256_add_epi32(cell, wv);
-        for (int f = 0; f < count; f++) {
-          __m256 a = _mm256_i32gather_ps(src[f], cell, 4);
-          __m256 b = _mm256_i32gather_ps(src[f], _mm256_add_epi32(cell, one), 4);
-          __m256 c = _mm256_i32gather_ps(src[f], below, 4);
-          __m256 d = _mm256_i32gather_ps(src[f], _mm256_add_epi32(below, one), 4);
-          __m256 v = lerp8(lerp8(a, b, sx), lerp8(c, d, sx), sz);
-          __m256 lo = _mm256_min_ps(_mm256_min_ps(a, b), _mm256_min_ps(c, d));
-          __m256 hi = _mm256_max_ps(_mm256_max_ps(a, b), _mm256_max_ps(c, d));
-          _mm256_storeu_ps(dst[f] + idx, _mm256_min_ps(_mm256_max_ps(v, lo), hi));
-        }
+      __m256 dx, dz, c[4];
+      spot8 at;
+      if (!trace8(tc, x, z, idx, p->dt, &dx, &dz) || !spot8_at(dx, dz, w, h, cubic, &at)) {
+        for (int k = 0; k < 8; k++)
+          semi_lagrangian_cell(p, tc, count, cubic, src, dst, departures, x + k, z);
         continue;
       }
-      /* the 4x4 stencil without wrap: cells 1 .. n-3 */
-      if (!locate8(dx, 1, w - 3, &jx, &sx) || !locate8(dz, 1, h - 3, &jz, &sz)) goto scalar;
-      __m256 wx[4], wz[4];
-      catmull_rom8(sx, wx);
-      catmull_rom8(sz, wz);
-      /* stencil tap (row k, column j) at corner + k w + j, corner = (jz - 1) w + jx - 1 */
-      __m256i corner = _mm256_sub_epi32(_mm256_add_epi32(_mm256_mullo_epi32(jz, wv), jx),
-                                        _mm256_add_epi32(wv, _mm256_set1_epi32(1)));
-      for (int f = 0; f < count; f++) {
-        __m256 v = _mm256_setzero_ps(), inner[4];
-        for (int k = 0; k < 4; k++) {
-          __m256i row = _mm256_add_epi32(corner, _mm256_set1_epi32(k * w));
-          __m256 g[4];
-          for (int j = 0; j < 4; j++)
-            g[j] = _mm256_i32gather_ps(src[f], _mm256_add_epi32(row, _mm256_set1_epi32(j)), 4);
-          __m256 r = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(wx[0], g[0]),
-                                                               _mm256_mul_ps(wx[1], g[1])),
-                                                 _mm256_mul_ps(wx[2], g[2])),
-                                   _mm256_mul_ps(wx[3], g[3]));
-          v = _mm256_add_ps(v, _mm256_mul_ps(wz[k], r));
-          if (k == 1) inner[0] = g[1], inner[1] = g[2];
-          if (k == 2) inner[2] = g[1], inner[3] = g[2];
-        }
-        /* clamp_to_cell: min_f/max_f are minps/maxps with the same operand order */
-        __m256 lo = _mm256_min_ps(_mm256_min_ps(inner[0], inner[1]), _mm256_min_ps(inner[2], inner[3]));
-        __m256 hi = _mm256_max_ps(_mm256_max_ps(inner[0], inner[1]), _mm256_max_ps(inner[2], inner[3]));
-        _mm256_storeu_ps(dst[f] + idx, _mm256_min_ps(_mm256_max_ps(v, lo), hi));
+      if (departures) { /* (dx, dz) interleaved */
+        __m256 lo = _mm256_unpacklo_ps(dx, dz), hi = _mm256_unpackhi_ps(dx, dz);
+        _mm256_storeu_ps(departures + 2 * idx, _mm256_permute2f128_ps(lo, hi, 0x20));
+        _mm256_storeu_ps(departures + 2 * idx + 8, _mm256_permute2f128_ps(lo, hi, 0x31));
       }
-      continue;
-    scalar:
-      for (int c = 0; c < 8; c++)
-        semi_lagrangian_cell(p, tc, count, cubic, src, dst, 0, x + c, z);
+      for (int f = 0; f < count; f++) {
+        __m256 v = sample8(src[f], &at, w, cubic, c);
+        _mm256_storeu_ps(dst[f] + idx, clamp8(v, c));
+      }
     }
-    for (; x < w; x++) semi_lagrangian_cell(p, tc, count, cubic, src, dst, 0, x, z);
+    for (; x < w; x++) semi_lagrangian_cell(p, tc, count, cubic, src, dst, departures, x, z);
   }
 }
 
-__attribute__((target("avx2"))) static void semi_lagrangian_cubic_avx2(
-    const advect_pass *p, const trace_ctx *tc, int count, const float *const *src,
-    float *const *dst) {
-  semi_lagrangian_avx2(p, tc, count, 1, src, dst);
+/* maccormack_correct, 8 cells at a time. */
+__attribute__((target("avx2"), always_inline)) static inline void maccormack_correct_avx2(
+    const advect_pass *p, const trace_ctx *tc, int count, int cubic, const float *const *src,
+    const float *const *forward, float *const *dst, const float *departures) {
+  const int w = p->width, h = p->height;
+  for (int z = 0; z < h; z++) {
+    int x = 0;
+    for (; x + 8 <= w; x += 8) {
+      long idx = (long)z * w + x;
+      /* the departure points of the forward pass, de-interleaved */
+      __m256 d0 = _mm256_loadu_ps(departures + 2 * idx);
+      __m256 d1 = _mm256_loadu_ps(departures + 2 * idx + 8);
+      __m256 ev = _mm256_shuffle_ps(d0, d1, _MM_SHUFFLE(2, 0, 2, 0));
+      __m256 od = _mm256_shuffle_ps(d0, d1, _MM_SHUFFLE(3, 1, 3, 1));
+      __m256 px = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(ev), _MM_SHUFFLE(3, 1, 2, 0)));
+      __m256 pz = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(od), _MM_SHUFFLE(3, 1, 2, 0)));
+      __m256 ax, az, c[4];
+      spot8 back_at, dep;
+      if (!trace8(tc, x, z, idx, -p->dt, &ax, &az) ||
+          !spot8_at(ax, az, w, h, cubic, &back_at) || !spot8_at(px, pz, w, h, 0, &dep)) {
+        for (int k = 0; k < 8; k++)
+          maccormack_cell(p, tc, count, cubic, src, forward, dst, departures, x + k, z);
+        continue;
+      }
+      for (int f = 0; f < count; f++) {
+        __m256 back = sample8(forward[f], &back_at, w, cubic, c);
+        __m256 v = _mm256_add_ps(_mm256_loadu_ps(forward[f] + idx),
+                                 _mm256_mul_ps(_mm256_set1_ps(0.5f),
+                                               _mm256_sub_ps(_mm256_loadu_ps(src[f] + idx), back)));
+        corners8(src[f], dep.cell, w, c);
+        _mm256_storeu_ps(dst[f] + idx, clamp8(v, c));
+      }
+    }
+    for (; x < w; x++)
+      maccormack_cell(p, tc, count, cubic, src, forward, dst, departures, x, z);
+  }
 }
 
-__attribute__((target("avx2"))) static void semi_lagrangian_bilinear_avx2(
-    const advect_pass *p, const trace_ctx *tc, int count, const float *const *src,
-    float *const *dst) {
-  semi_lagrangian_avx2(p, tc, count, 0, src, dst);
-}
+/* The passes as functions of their own (the scheme's interpolator a constant in each). */
+#define ADVECT_AVX2_PASS(name, cubic)                                                       \
+  __attribute__((target("avx2"))) static void name(                                        \
+      const advect_pass *p, const trace_ctx *tc, int count, const float *const *src,       \
+      float *const *dst, float *departures) {                                               \
+    semi_lagrangian_avx2(p, tc, count, cubic, src, dst, departures);                        \
+  }
+ADVECT_AVX2_PASS(semi_lagrangian_cubic_avx2, 1)
+ADVECT_AVX2_PASS(semi_lagrangian_bilinear_avx2, 0)
+#undef ADVECT_AVX2_PASS
+#define ADVECT_AVX2_CORRECT(name, cubic)                                                    \
+  __attribute__((target("avx2"))) static void name(                                        \
+      const advect_pass *p, const trace_ctx *tc, int count, const float *const *src,       \
+      const float *const *forward, float *const *dst, const float *departures) {           \
+    maccormack_correct_avx2(p, tc, count, cubic, src, forward, dst, departures);            \
+  }
+ADVECT_AVX2_CORRECT(maccormack_correct_cubic_avx2, 1)
+ADVECT_AVX2_CORRECT(maccormack_correct_bilinear_avx2, 0)
+#undef ADVECT_AVX2_CORRECT
 #undef AVX2
 #endif
 
-/* MacCormack (Selle et al. 2008 eq. 5-7): phi_hat = A(phi) (the forward pass, done by
- * semi_lagrangian with departures recorded), phi_bar = A^R(phi_hat) (the same trace with
- * time reversed), phi_new = phi_hat + (phi - phi_bar)/2, clamped to the extrema of phi
- * around the departure point (their §4). */
-ADVECT_INLINE void maccormack_correct(const advect_pass *p, const trace_ctx *tc, int count,
-                                      int cubic, const float *const *src,
-                                      const float *const *forward, float *const *dst,
-                                      const float *departures) {
-  const int w = p->width, h = p->height;
-  for (int z = 0; z < h; z++) {
-    for (int x = 0; x < w; x++) {
-      long idx = (long)z * w + x;
-      float ax, az;
-      trace(tc, x, z, idx, -p->dt, &ax, &az);
-      axis_pos rx = locate(ax, w);
-      axis_pos rz = locate(az, h);
-      axis_pos px = locate(departures[2 * idx], w);
-      axis_pos pz = locate(departures[2 * idx + 1], h);
-      cubic_stencil st;
-      if (cubic) st = make_stencil(w, h, rx, rz);
-      for (int f = 0; f < count; f++) {
-        float back = cubic ? cubic_sample(forward[f], &st)
-                           : bilinear(fetch4(forward[f], w, rx, rz), rx.t, rz.t);
-        float v = forward[f][idx] + 0.5f * (src[f][idx] - back);
-        dst[f][idx] = clamp_to_cell(v, fetch4(src[f], w, px, pz));
-      }
-    }
-  }
+/* Whether the AVX2 passes run (the CPU has AVX2 and the caller did not ask for the
+ * portable loop). */
+static int use_avx2(const advect_pass *p) {
+#ifdef ADVECT_AVX2
+  return !p->portable && __builtin_cpu_supports("avx2");
+#else
+  (void)p;
+  return 0;
+#endif
 }
 
 static void run_count(const advect_pass *p, const trace_ctx *tc, int count,
                       const float *const *src, float *const *dst) {
+  const int avx2 = use_avx2(p);
+  (void)avx2; /* unused where there is no AVX2 path */
   switch (p->scheme) {
     case ADVECT_MONOTONE_CUBIC:
 #ifdef ADVECT_AVX2
-      if (!p->portable && __builtin_cpu_supports("avx2")) {
-        semi_lagrangian_cubic_avx2(p, tc, count, src, dst);
+      if (avx2) {
+        semi_lagrangian_cubic_avx2(p, tc, count, src, dst, 0);
         return;
       }
 #endif
@@ -385,7 +475,20 @@ static void run_count(const advect_pass *p, const trace_ctx *tc, int count,
       const float *const *fwd = (const float *const *)forward;
       /* Separate calls with a constant `cubic` so each pass is compiled for its
        * interpolator. */
-      if (p->scheme == ADVECT_MACCORMACK) {
+      const int cubic = p->scheme == ADVECT_MACCORMACK;
+#ifdef ADVECT_AVX2
+      if (avx2) {
+        if (cubic) {
+          semi_lagrangian_cubic_avx2(p, tc, count, src, forward, departures);
+          maccormack_correct_cubic_avx2(p, tc, count, src, fwd, dst, departures);
+        } else {
+          semi_lagrangian_bilinear_avx2(p, tc, count, src, forward, departures);
+          maccormack_correct_bilinear_avx2(p, tc, count, src, fwd, dst, departures);
+        }
+        return;
+      }
+#endif
+      if (cubic) {
         semi_lagrangian(p, tc, count, 1, src, forward, departures);
         maccormack_correct(p, tc, count, 1, src, fwd, dst, departures);
       } else {
@@ -397,8 +500,8 @@ static void run_count(const advect_pass *p, const trace_ctx *tc, int count,
     case ADVECT_BILINEAR:
     default:
 #ifdef ADVECT_AVX2
-      if (!p->portable && __builtin_cpu_supports("avx2")) {
-        semi_lagrangian_bilinear_avx2(p, tc, count, src, dst);
+      if (avx2) {
+        semi_lagrangian_bilinear_avx2(p, tc, count, src, dst, 0);
         return;
       }
 #endif

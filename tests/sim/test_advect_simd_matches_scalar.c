@@ -1,6 +1,5 @@
-/* The clamped cubic and bilinear passes run 8 cells at a time with AVX2 gathers where the
- * CPU has them (sim/advect.c), and must give the bits of the portable scalar loop, for
- * both schemes: random fields and
+/* Every advection scheme runs 8 cells at a time with AVX2 gathers where the CPU has them
+ * (sim/advect.c), and must give the bits of the portable scalar loop: random fields and
  * velocities, 1 to 4 fields, widths with and without a remainder past the last group of
  * 8, slow velocities (nearly every group vectorised) and fast ones (many groups whose
  * stencils wrap around the periodic edge, which the scalar cells take), and fields of
@@ -30,19 +29,20 @@ static void check(advect_scheme scheme, int w, int h, int count, float speed, fl
     for (size_t i = 0; i < n; i++) src[f][i] = uniform(f == 0 ? 0.0f : -1.0f, 1.0f);
   }
   for (size_t i = 0; i < n; i++) vx[i] = uniform(-speed, speed), vz[i] = uniform(-speed, speed);
+  float *scratch = malloc(sizeof(float) * (size_t)advect_scratch_floats(w, h, count));
   advect_pass pass = {.width = w, .height = h, .velocity_x = vx, .velocity_z = vz, .dt = dt,
-                      .scheme = scheme};
+                      .scheme = scheme, .scratch = scratch};
   advect_fields(&pass, count, (const float *const *)src, simd);
   pass.portable = 1;
   advect_fields(&pass, count, (const float *const *)src, scalar);
   int differing = 0;
   for (int f = 0; f < count; f++)
     for (size_t i = 0; i < n; i++) differing += memcmp(&simd[f][i], &scalar[f][i], sizeof(float)) != 0;
+  static const char *names[] = {"", "bilinear", "cubic", "maccormack", "maccormack-bilinear"};
   CHECK(differing == 0, "%s %dx%d, %d fields, speed %g: %d values differ from the scalar loop",
-        scheme == ADVECT_BILINEAR ? "bilinear" : "cubic", w, h, count, (double)speed,
-        differing);
+        names[scheme], w, h, count, (double)speed, differing);
   for (int f = 0; f < count; f++) free(src[f]), free(simd[f]), free(scalar[f]);
-  free(vx), free(vz);
+  free(vx), free(vz), free(scratch);
 }
 
 int main(void) {
@@ -52,8 +52,9 @@ int main(void) {
                                         : "the scalar loop against itself");
 #endif
   const int sizes[][2] = {{256, 256}, {64, 40}, {37, 29}, {8, 8}, {23, 64}};
-  const advect_scheme schemes[] = {ADVECT_MONOTONE_CUBIC, ADVECT_BILINEAR};
-  for (int k = 0; k < 2; k++)
+  const advect_scheme schemes[] = {ADVECT_MONOTONE_CUBIC, ADVECT_BILINEAR, ADVECT_MACCORMACK,
+                                   ADVECT_MACCORMACK_BILINEAR};
+  for (int k = 0; k < 4; k++)
     for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++)
       for (int count = 1; count <= 4; count++) {
         check(schemes[k], sizes[s][0], sizes[s][1], count, 2.0f, 0.5f);  /* ~a cell a step */
