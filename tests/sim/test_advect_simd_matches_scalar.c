@@ -37,7 +37,8 @@ static void check(advect_scheme scheme, int w, int h, int count, float speed, fl
   advect_fields(&pass, count, (const float *const *)src, scalar);
   int differing = 0;
   for (int f = 0; f < count; f++)
-    for (size_t i = 0; i < n; i++) differing += memcmp(&simd[f][i], &scalar[f][i], sizeof(float)) != 0;
+    for (size_t i = 0; i < n; i++)
+      differing += memcmp(&simd[f][i], &scalar[f][i], sizeof(float)) != 0;
   static const char *names[] = {"", "bilinear", "cubic", "maccormack", "maccormack-bilinear"};
   CHECK(differing == 0, "%s %dx%d, %d fields, speed %g: %d values differ from the scalar loop",
         names[scheme], w, h, count, (double)speed, differing);
