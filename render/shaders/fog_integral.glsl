@@ -481,10 +481,15 @@ fog_ray_walk fog_walk_start(int grid, dvec3 dir, double t0) {
   return w;
 }
 
+// The optical depth of a walk from its start over `len` (fog_walk_integral times the
+// extinction scale; it stops once past `limit`, an optical depth).
+float fog_walk_depth(inout fog_ray_walk w, float len, float limit) {
+  return fog_extinction_scale * fog_walk_integral(w, 0.0, len, limit / fog_extinction_scale);
+}
+
 float fog_optical_depth_inside(int grid, dvec3 dir, double t0, double t1, float limit) {
   fog_ray_walk w = fog_walk_start(grid, dir, t0);
-  return fog_extinction_scale *
-         fog_walk_integral(w, 0.0, float(t1 - t0), limit / fog_extinction_scale);
+  return fog_walk_depth(w, float(t1 - t0), limit);
 }
 
 // Approximation switching's next segment (fog_pass_fs.glsl): the walk of approximation

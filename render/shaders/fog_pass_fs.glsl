@@ -100,15 +100,13 @@ float fog_optical_depth_lod(dvec3 dir, double t_in, double t_out, float t_surfac
   double a = start, b = max(a, d[J]);
   fog_ray_walk w = fog_walk_start(J, dir, a);
   float len = float(b - a);
-  float sum = fog_extinction_scale *
-              fog_walk_integral(w, 0.0, len, fog_depth_limit / fog_extinction_scale);
+  float sum = fog_walk_depth(w, len, fog_depth_limit);
   for (int l = J - 1; l >= 0; l--) {
     a = b;
     b = max(a, d[l]);
     w = fog_walk_coarser(w, l, len);
     len = float(b - a);
-    sum += fog_extinction_scale *
-           fog_walk_integral(w, 0.0, len, (fog_depth_limit - sum) / fog_extinction_scale);
+    sum += fog_walk_depth(w, len, fog_depth_limit - sum);
   }
   return sum;
 #endif
