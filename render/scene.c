@@ -288,8 +288,8 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
   vertex *vertices = malloc(vertex_count * sizeof *vertices);
   GLuint *indices = malloc(index_count * sizeof *indices);
   pass->tiles = malloc(tiles * sizeof *pass->tiles);
-  pass->draw_counts = malloc((tiles + 1) * sizeof *pass->draw_counts);
-  pass->draw_offsets = malloc((tiles + 1) * sizeof *pass->draw_offsets);
+  pass->draw_counts = malloc(tiles * sizeof *pass->draw_counts);
+  pass->draw_offsets = malloc(tiles * sizeof *pass->draw_offsets);
   if (!vertices || !indices || !pass->tiles || !pass->draw_counts || !pass->draw_offsets) {
     free(vertices);
     free(indices);
@@ -374,8 +374,8 @@ void scene_pass_destroy(scene_pass *pass) {
   free(pass);
 }
 
-/* The index ranges to draw: the tiles the camera's frustum keeps, adjacent ones merged,
- * then the boxes. Their count. */
+/* The terrain's index ranges to draw: the tiles the camera's frustum keeps, adjacent ones
+ * merged. Their count; triangles_drawn counts the boxes too. */
 static GLsizei cull_tiles(scene_pass *pass, const camera *cam, int width, int height) {
   frustum f;
   frustum_from_camera(&f, cam, width, height);
@@ -395,10 +395,6 @@ static GLsizei cull_tiles(scene_pass *pass, const camera *cam, int width, int he
     }
     end = tile->first + tile->count;
     triangles += tile->triangles;
-  }
-  if (pass->index_count > pass->box_first) {
-    pass->draw_counts[n] = pass->index_count - pass->box_first;
-    pass->draw_offsets[n++] = (const void *)(uintptr_t)(pass->box_first * sizeof(GLuint));
   }
   pass->triangles_drawn = triangles;
   return n;
@@ -455,20 +451,17 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   GLsizei ranges = cull_tiles(pass, cam, w, h);
   /* The terrain's strips wind counter-clockwise seen from above (terrain_mesh_tiles), so
    * GL_BACK culls the faces that look down: on llvmpipe the pass costs about its
-   * triangles, and half of those in view face away. The boxes (the last range) are drawn
-   * two-sided: a camera inside one sees its inner faces (scene_geometry_intersect). */
-  GLsizei terrain_ranges = pass->index_count > pass->box_first ? ranges - 1 : ranges;
-  bool cull = scene_terrain_back_faces_hidden(&geo->terrain, cam);
+   * triangles, and half of those in view face away. The boxes are drawn two-sided: a
+   * camera inside one sees its inner faces (scene_geometry_intersect). */
   glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
-  if (cull) glEnable(GL_CULL_FACE);
+  if (scene_terrain_back_faces_hidden(&geo->terrain, cam)) glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
   glMultiDrawElements(GL_TRIANGLE_STRIP, pass->draw_counts, GL_UNSIGNED_INT,
-                      pass->draw_offsets, terrain_ranges);
+                      pass->draw_offsets, ranges);
   glDisable(GL_CULL_FACE);
-  if (ranges > terrain_ranges)
-    glMultiDrawElements(GL_TRIANGLE_STRIP, pass->draw_counts + terrain_ranges, GL_UNSIGNED_INT,
-                        pass->draw_offsets + terrain_ranges, ranges - terrain_ranges);
+  glDrawElements(GL_TRIANGLE_STRIP, pass->index_count - pass->box_first, GL_UNSIGNED_INT,
+                 (const void *)(uintptr_t)(pass->box_first * sizeof(GLuint)));
   glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
   glBindVertexArray(0);
 
