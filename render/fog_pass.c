@@ -472,10 +472,10 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       glBindTexture(GL_TEXTURE_2D_ARRAY, pass->cell_layers);
       glUniform1i(fog_loc(prog, "fog_cell_layers"), 5 + FOG_PASS_MAX_GRIDS);
     }
-    /* Approximation slots are dyadic, u_k = u_{k+1}/2 + c_k (fog_walk_coarser): from
+    /* Approximation slots 0..J are dyadic, u_k = u_{k+1}/2 + c_k (fog_walk_coarser): from
      * u = (A - origin)/spacing, c_k = (origin_{k+1} - origin_k) / spacing_k. */
     float dyadic[FOG_PASS_MAX_GRIDS][2] = {{0}};
-    for (int k = 0; k + 1 < FOG_PASS_MAX_GRIDS && J > 0; k++) {
+    for (int k = 0; k < J; k++) {
       const fog_pass_slot *s = &pass->slots[k], *finer = &pass->slots[k + 1];
       double sp = s->spacing > 0 ? s->spacing : 1.0;
       dyadic[k][0] = (float)((finer->origin_u - s->origin_u) / sp);
