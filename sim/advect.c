@@ -37,30 +37,43 @@ ADVECT_INLINE void maccormack_correct(const advect_pass *p, const trace_ctx *tc,
       maccormack_cell(p, tc, count, cubic, src, forward, dst, departures, x, z);
 }
 
-/* Whether the AVX2 passes run (the CPU has AVX2 and the caller did not ask for the
- * portable loop). */
-static int use_avx2(const advect_pass *p) {
+/* One forward pass (departures recorded when not NULL) and one MacCormack correction:
+ * 8 cells at a time where the CPU has AVX2 and the caller did not ask for the portable
+ * loop, else the scalar loop, compiled once per interpolator (a constant `cubic`). */
+static void forward_pass(const advect_pass *p, const trace_ctx *tc, int count, int cubic,
+                         const float *const *src, float *const *dst, float *departures) {
 #ifdef ADVECT_AVX2
-  return !p->portable && __builtin_cpu_supports("avx2");
-#else
-  (void)p;
-  return 0;
+  if (!p->portable && __builtin_cpu_supports("avx2")) {
+    advect_avx2_semi_lagrangian(p, tc, count, cubic, src, dst, departures);
+    return;
+  }
 #endif
+  if (cubic)
+    semi_lagrangian(p, tc, count, 1, src, dst, departures);
+  else
+    semi_lagrangian(p, tc, count, 0, src, dst, departures);
+}
+
+static void correction_pass(const advect_pass *p, const trace_ctx *tc, int count, int cubic,
+                            const float *const *src, const float *const *forward,
+                            float *const *dst, const float *departures) {
+#ifdef ADVECT_AVX2
+  if (!p->portable && __builtin_cpu_supports("avx2")) {
+    advect_avx2_maccormack_correct(p, tc, count, cubic, src, forward, dst, departures);
+    return;
+  }
+#endif
+  if (cubic)
+    maccormack_correct(p, tc, count, 1, src, forward, dst, departures);
+  else
+    maccormack_correct(p, tc, count, 0, src, forward, dst, departures);
 }
 
 static void run_count(const advect_pass *p, const trace_ctx *tc, int count,
                       const float *const *src, float *const *dst) {
-  const int avx2 = use_avx2(p);
-  (void)avx2; /* unused where there is no AVX2 path */
   switch (p->scheme) {
     case ADVECT_MONOTONE_CUBIC:
-#ifdef ADVECT_AVX2
-      if (avx2) {
-        advect_avx2_semi_lagrangian(p, tc, count, 1, src, dst, 0);
-        return;
-      }
-#endif
-      semi_lagrangian(p, tc, count, 1, src, dst, 0);
+      forward_pass(p, tc, count, 1, src, dst, 0);
       return;
     case ADVECT_MACCORMACK:
     case ADVECT_MACCORMACK_BILINEAR: {
@@ -69,35 +82,14 @@ static void run_count(const advect_pass *p, const trace_ctx *tc, int count,
       const long stride = n + ADVECT_ARRAY_PAD;
       for (int f = 0; f < count; f++) forward[f] = p->scratch + f * stride;
       float *departures = p->scratch + count * stride;
-      const float *const *fwd = (const float *const *)forward;
-      /* Separate calls with a constant `cubic` so each pass is compiled for its
-       * interpolator. */
       const int cubic = p->scheme == ADVECT_MACCORMACK;
-#ifdef ADVECT_AVX2
-      if (avx2) {
-        advect_avx2_semi_lagrangian(p, tc, count, cubic, src, forward, departures);
-        advect_avx2_maccormack_correct(p, tc, count, cubic, src, fwd, dst, departures);
-        return;
-      }
-#endif
-      if (cubic) {
-        semi_lagrangian(p, tc, count, 1, src, forward, departures);
-        maccormack_correct(p, tc, count, 1, src, fwd, dst, departures);
-      } else {
-        semi_lagrangian(p, tc, count, 0, src, forward, departures);
-        maccormack_correct(p, tc, count, 0, src, fwd, dst, departures);
-      }
+      forward_pass(p, tc, count, cubic, src, forward, departures);
+      correction_pass(p, tc, count, cubic, src, (const float *const *)forward, dst, departures);
       return;
     }
     case ADVECT_BILINEAR:
     default:
-#ifdef ADVECT_AVX2
-      if (avx2) {
-        advect_avx2_semi_lagrangian(p, tc, count, 0, src, dst, 0);
-        return;
-      }
-#endif
-      semi_lagrangian(p, tc, count, 0, src, dst, 0);
+      forward_pass(p, tc, count, 0, src, dst, 0);
       return;
   }
 }
