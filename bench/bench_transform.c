@@ -207,12 +207,17 @@ int bench_transform(int argc, char **argv) {
   }
   bench_print_build();
   float *data[3];
-  for (int s = 0; s < 3; s++) {
-    data[s] = transform_alloc_floats((size_t)sizes[s] * sizes[s]); /* as the pipeline's */
-    fill(data[s], sizes[s]);
-  }
+  for (int s = 0; s < 3; s++) /* aligned, as the pipeline's */
+    data[s] = transform_alloc_floats((size_t)sizes[s] * sizes[s]);
   size_t big = (size_t)1024 * 1024;
   float *coef = transform_alloc_floats(big), *out = transform_alloc_floats(big);
+  if (!data[0] || !data[1] || !data[2] || !coef || !out) {
+    fprintf(stderr, "fogpipe bench transform: out of memory for the test fogmaps\n");
+    for (int s = 0; s < 3; s++) free(data[s]);
+    free(coef), free(out);
+    return 1;
+  }
+  for (int s = 0; s < 3; s++) fill(data[s], sizes[s]);
   double pywt_ms[3];
   time_pywt(data, pywt_ms);
   printf("ms (GB/s = one read + one write of the fogmap); medians of 21..61 runs; symmetric,\n"
