@@ -124,11 +124,13 @@ static int preview_create(preview *p, int map_w, int map_h, char *error, size_t 
     return 1;
   }
   p->coefficients = transform_alloc_floats((size_t)map_w * map_h);
+  if (!p->coefficients) goto out_of_memory;
   for (int l = 0; l <= p->levels; l++) {
     int w, h;
     transform_level_size(p->plan, l, &w, &h);
     p->approx[l] = transform_alloc_floats((size_t)w * h);
     p->detail[l] = transform_alloc_floats((size_t)w * h);
+    if (!p->approx[l] || !p->detail[l]) goto out_of_memory;
     if (transform_grid_create_level(p->plan, l, p->approx[l], &p->approx_grid[l], &terr) ||
         (l > 0 && transform_grid_create_level(p->plan, l, p->detail[l], &p->detail_grid[l - 1],
                                               &terr))) {
@@ -142,7 +144,11 @@ static int preview_create(preview *p, int map_w, int map_h, char *error, size_t 
   }
   p->rgba = malloc((size_t)W * H * 4 * sizeof(float));
   p->rgb = malloc((size_t)W * H * 3 * sizeof(float));
+  if (!p->rgba || !p->rgb) goto out_of_memory;
   return 0;
+out_of_memory:
+  snprintf(error, size, "out of memory for the preview's buffers");
+  return 1;
 fail:
   snprintf(error, size, "%s", err.message);
   return 1;
@@ -419,6 +425,13 @@ int bench_import(int argc, char **argv) {
   const int n = seq.count;
   double *read_ms = malloc((size_t)n * runs * sizeof(double));
   double *frame_ms = malloc((size_t)n * runs * sizeof(double));
+  if (!read_ms || !frame_ms) {
+    fprintf(stderr, "fogpipe bench import: out of memory for %d x %d timings\n", n, runs);
+    free(read_ms);
+    free(frame_ms);
+    vdb_sequence_destroy(&seq);
+    return 1;
+  }
   double mass_sum = 0;
   int status = 0;
   for (int r = -1; r < runs && !status; r++) { /* r = -1: warm-up (file cache, OpenVDB init) */
