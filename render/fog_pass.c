@@ -11,8 +11,14 @@
 #include "render/gl_util.h"
 
 /* A variant is one compiled program; its key packs every draw setting that the shader
- * takes as a compile-time constant (fog_pass_variant_key). */
-#define FOG_PASS_VARIANTS 16384
+ * takes as a compile-time constant (fog_pass_variant_key). A draw uses one or two, the
+ * render bench a few dozen; they are kept, looked up by key. */
+#define FOG_PASS_MAX_VARIANTS 256
+
+typedef struct fog_pass_variant_entry {
+  int key;
+  GLuint program;
+} fog_pass_variant_entry;
 
 typedef struct fog_pass_slot {
   GLuint texture; /* R32F coefficients: the hardware-filtered variant */
@@ -23,7 +29,8 @@ typedef struct fog_pass_slot {
 } fog_pass_slot;
 
 struct fog_pass {
-  GLuint programs[FOG_PASS_VARIANTS];
+  fog_pass_variant_entry variants[FOG_PASS_MAX_VARIANTS];
+  int variant_count;
   fog_pass_slot slots[FOG_PASS_MAX_GRIDS];
   /* LOD draws read the slots as layers of one 2D array texture (fog_integral.glsl,
    * FOG_SINGLE_GRID): layer k = slot k, zero beyond the slot's size. Rebuilt by copies on
@@ -42,16 +49,19 @@ struct fog_pass {
 
 /* Key bits: 0 fetch, 1 integrator, 2-3 grid degree, 4-5 profile kind, 6-7 profile degree,
  * 8 single grid (no LOD), 9-10 model, 11 LOD method, 12-13 resolution (0: full, 1: the
- * reduced pass at divisor 2, 2: at divisor 4, 3: the upsampling pass). llvmpipe executes
- * both sides of a branch under a mask (and the GLSL switches on these settings inside the
- * per-piece code), so each setting as a constant removes the other cases' work from every
- * piece (docs/integral.md, Performance). */
+ * reduced pass at divisor 2, 2: at divisor 4, 3: the upsampling pass), 14-16 the level
+ * count J. llvmpipe executes both sides of a branch under a mask (and the GLSL switches on
+ * these settings inside the per-piece code), so each setting as a constant removes the
+ * other cases' work from every piece; J as a constant makes the LOD levels straight-line
+ * code (docs/integral.md, Performance). */
+#define FOG_PASS_KEY_REDUCED_SHIFT 12
 static int fog_pass_variant_key(int fetch, int integrator, int degree, int profile_kind,
                                 int profile_degree, int single_grid, int model, int lod_method,
-                                int reduced) {
+                                int reduced, int levels) {
   return (fetch & 1) | (integrator & 1) << 1 | (degree & 3) << 2 | (profile_kind & 3) << 4 |
          (profile_degree & 3) << 6 | (single_grid & 1) << 8 | (model & 3) << 9 |
-         (lod_method & 1) << 11 | (reduced & 3) << 12;
+         (lod_method & 1) << 11 | (reduced & 3) << FOG_PASS_KEY_REDUCED_SHIFT |
+         (levels & 7) << 14;
 }
 
 /* Builds one variant: the fragment text with its #defines inserted after the #version line. */
@@ -64,15 +74,15 @@ static GLuint fog_pass_program(int key, render_error *err) {
     return 0;
   }
   char defines[384];
+  const int reduced = (key >> FOG_PASS_KEY_REDUCED_SHIFT) & 3;
   snprintf(defines, sizeof defines,
            "#define FOG_FETCH_HARDWARE %d\n#define FOG_INTEGRATOR %d\n#define FOG_DEGREE %d\n"
            "#define FOG_PROFILE_KIND %d\n#define FOG_PROFILE_DEGREE %d\n"
            "#define FOG_SINGLE_GRID %d\n#define FOG_MODEL_KIND %d\n#define FOG_LOD_METHOD %d\n"
-           "#define FOG_REDUCED %d\n#define FOG_UPSAMPLE %d\n",
+           "#define FOG_REDUCED %d\n#define FOG_UPSAMPLE %d\n#define FOG_LEVELS %d\n",
            key & 1, (key >> 1) & 1, (key >> 2) & 3, (key >> 4) & 3, (key >> 6) & 3,
            (key >> 8) & 1, (key >> 9) & 3, (key >> 11) & 1,
-           (key >> 12) == 1 ? 2 : (key >> 12) == 2 ? 4 : 1,
-           (key >> 12) == 3);
+           reduced == 1 ? 2 : reduced == 2 ? 4 : 1, reduced == 3, (key >> 14) & 7);
   const char *eol = strchr(fs, '\n');
   size_t head = eol ? (size_t)(eol - fs) + 1 : 0;
   size_t total = strlen(fs) + strlen(defines) + 1;
@@ -96,8 +106,18 @@ static GLuint fog_pass_program(int key, render_error *err) {
 
 /* The program of a key, compiled on its first use and kept. */
 static GLuint fog_pass_variant(fog_pass *pass, int key, render_error *err) {
-  if (!pass->programs[key]) pass->programs[key] = fog_pass_program(key, err);
-  return pass->programs[key];
+  for (int i = 0; i < pass->variant_count; i++)
+    if (pass->variants[i].key == key) return pass->variants[i].program;
+  if (pass->variant_count == FOG_PASS_MAX_VARIANTS) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: more than %d shader variants (draw settings) in one pass",
+             FOG_PASS_MAX_VARIANTS);
+    return 0;
+  }
+  GLuint program = fog_pass_program(key, err);
+  if (program)
+    pass->variants[pass->variant_count++] = (fog_pass_variant_entry){key, program};
+  return program;
 }
 
 int fog_pass_create(fog_pass **out, render_error *err) {
@@ -108,7 +128,7 @@ int fog_pass_create(fog_pass **out, render_error *err) {
     return 1;
   }
   /* The default variant: manual fetch, exact, linear grid, slab profile, one grid. */
-  if (!fog_pass_variant(pass, fog_pass_variant_key(0, 0, 1, 0, 0, 1, 0, 0, 0), err)) {
+  if (!fog_pass_variant(pass, fog_pass_variant_key(0, 0, 1, 0, 0, 1, 0, 0, 0, 0), err)) {
     free(pass);
     return 1;
   }
@@ -118,8 +138,7 @@ int fog_pass_create(fog_pass **out, render_error *err) {
 
 void fog_pass_destroy(fog_pass *pass) {
   if (!pass) return;
-  for (int i = 0; i < FOG_PASS_VARIANTS; i++)
-    if (pass->programs[i]) glDeleteProgram(pass->programs[i]);
+  for (int i = 0; i < pass->variant_count; i++) glDeleteProgram(pass->variants[i].program);
   for (int i = 0; i < FOG_PASS_MAX_GRIDS; i++)
     if (pass->slots[i].texture) glDeleteTextures(1, &pass->slots[i].texture);
   for (int i = 0; i < FOG_PASS_MAX_GRIDS; i++)
@@ -308,7 +327,7 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
 static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_pass_params *params,
                                   GLuint surface_colour, GLuint surface_distance, int width,
                                   int height, render_error *err) {
-  int key = fog_pass_variant_key(0, 0, 1, 0, 0, 1, (int)params->model, 0, 0);
+  int key = fog_pass_variant_key(0, 0, 1, 0, 0, 1, (int)params->model, 0, 0, 0);
   GLuint prog = fog_pass_variant(pass, key, err);
   if (!prog) return 1;
   glUseProgram(prog);
@@ -425,14 +444,15 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
                                  pass->slots[first].degree, (int)p->kind,
                                  p->kind == FOG_PROFILE_BSPLINE ? p->degree : 0, J == 0,
                                  FOG_MODEL_FOGMAP, J == 0 || params->lod_method == FOG_LOD_SWITCH,
-                                 divisor == 4 ? 2 : divisor == 2 ? 1 : 0);
+                                 divisor == 4 ? 2 : divisor == 2 ? 1 : 0, J);
   GLuint walk_prog = fog_pass_variant(pass, key, err);
   if (!walk_prog) return 1;
   /* resolution_divisor > 1: the same settings' upsampling variant (fog_pass_fs.glsl,
    * FOG_UPSAMPLE) needs the same uniforms: it walks the pixels no reduced sample matches. */
   GLuint programs[2] = {walk_prog, 0};
   if (divisor > 1) {
-    programs[1] = fog_pass_variant(pass, (key & ~(3 << 12)) | 3 << 12, err);
+    programs[1] = fog_pass_variant(
+        pass, (key & ~(3 << FOG_PASS_KEY_REDUCED_SHIFT)) | 3 << FOG_PASS_KEY_REDUCED_SHIFT, err);
     if (!programs[1]) return 1;
   }
   for (int pi = 0; pi < 2 && programs[pi]; pi++) {
@@ -513,7 +533,6 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), 0.0f);
     }
 
-    glUniform1i(fog_loc(prog, "fog_levels"), J);
     glUniform1i(fog_loc(prog, "fog_lod_method"), (int)params->lod_method);
     glUniform1d(fog_loc(prog, "fog_mu"), J > 0 ? params->mu : 1.0);
     glUniform1i(fog_loc(prog, "fog_march_steps"),

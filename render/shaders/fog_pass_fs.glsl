@@ -5,6 +5,7 @@
 // #version line:
 //   #define FOG_FETCH_HARDWARE 0|1   (see fog_integral.glsl)
 //   #define FOG_INTEGRATOR 0|1       (0: exact walk, 1: uniform ray marching)
+//   #define FOG_LEVELS J              (0..7: the pyramid's level count, 0 for one grid)
 //   #define FOG_REDUCED 1|2|4        (> 1: the reduced-resolution pass of fog_pass_params.
 //                                    resolution_divisor; fragment k traces full-resolution
 //                                    pixel k FOG_REDUCED + FOG_REDUCED/2 and writes its
@@ -24,7 +25,7 @@ uniform dvec3 fog_camera_right;          // camera_basis(): scaled right, up; un
 uniform dvec3 fog_camera_up;             // (double: fog_optical_depth_inside)
 uniform dvec3 fog_camera_forward;
 uniform vec3 fog_colour;
-uniform int fog_levels;                  // J; 0: one grid (slot 0)
+const int fog_levels = FOG_LEVELS;       // J; 0: one grid (slot 0). Specialised per variant
 #ifdef FOG_LOD_METHOD
 const int fog_lod_method = FOG_LOD_METHOD;  // specialised per variant (render/fog_pass.c)
 #else
@@ -48,6 +49,34 @@ float fog_grid_integral(int grid, dvec3 dir, double t0, double t1, float jitter,
 #endif
 }
 
+#define FOG_MAX_LEVELS ((FOG_MAX_GRIDS - 1) / 2)  // slots 0..J and J+1..2J
+
+// The levels below are straight-line code, one call per level l = 1..FOG_MAX_LEVELS guarded
+// by l <= J, not a loop: with J a compile-time constant (FOG_LEVELS) the levels beyond it
+// fold away and d_l and the slots' uniforms get constant indices. A loop over the levels
+// stays a loop whatever J is, because it holds the walks' loops (Mesa unrolls only loops
+// without loops inside), and llvmpipe then keeps d_l in memory and gathers the uniforms
+// lane by lane: ~1.5 ms of a 30 ms switching frame (docs/integral.md, Performance).
+
+// Sum of details, band l (1..J): D_l (slot J + l) over [start, d_l]; nothing once
+// d_l <= start (the bands get shorter with l).
+float fog_sum_band(int l, dvec3 dir, double start, double d_l, float jitter) {
+  if (l > fog_levels || !(d_l > start)) return 0.0;
+  return fog_grid_integral(fog_levels + l, dir, start, d_l, jitter, FOG_INFINITY);
+}
+
+// Approximation switching, level l < J: A_l on (d_{l+1}, d_l], walked on from where the
+// walk `w` of level l + 1 ended (at `end`, after `len`); updates all three and the sum.
+void fog_switch_segment(int l, double d_l, inout double end, inout fog_ray_walk w,
+                        inout float len, inout float sum) {
+  if (l >= fog_levels) return;
+  double a = end;
+  end = max(a, d_l);
+  w = fog_walk_coarser(w, l, len);
+  len = float(end - a);
+  sum += fog_walk_depth(w, len, fog_depth_limit - sum);
+}
+
 // LOD by distance, both methods (fog_optical_depth_lod in render/fog_integral_cpu.c).
 // [t_in, t_out]: the ray's span in the fog's box (fog_box_entry_exit, done once in main).
 float fog_optical_depth_lod(dvec3 dir, double t_in, double t_out, float t_surface,
@@ -60,22 +89,21 @@ float fog_optical_depth_lod(dvec3 dir, double t_in, double t_out, float t_surfac
   double op = min(t_out, double(t_surface)), start = max(t_in, 0.0);
   if (op <= start) return 0.0;
 #if FOG_SINGLE_GRID
-  // One grid (no LOD, or an LOD draw that reduces to one level): the walk alone, without
-  // the level loop and its array (a local array indexed by a loop counter is memory on
-  // llvmpipe).
+  // One grid (no LOD, or an LOD draw that reduces to one level): the walk alone.
   return fog_grid_integral(0, dir, start, op, jitter, fog_depth_limit);
-#endif
-  int J = fog_levels;
+#else
+  const int J = fog_levels;
+  double d[FOG_MAX_LEVELS + 1];  // d_l = ||OP|| mu^l, as fog_optical_depth_lod computes them
+  d[0] = op;
+  for (int l = 1; l <= FOG_MAX_LEVELS; l++) d[l] = d[l - 1] * fog_mu;  // unrolled
   if (fog_lod_method == 0) {
     // Giroud & Biri §4.4: A_0 over the whole ray, detail band l up to d_l = ||OP|| mu^l.
     // The details are signed, so no partial sum bounds the total: no early exit here.
     float sum = fog_grid_integral(0, dir, start, op, jitter, FOG_INFINITY);
-    double d_l = op;
-    for (int l = 1; l <= J; l++) {
-      d_l *= fog_mu;
-      if (d_l <= start) break;
-      sum += fog_grid_integral(J + l, dir, start, d_l, jitter, FOG_INFINITY);
-    }
+    sum += fog_sum_band(1, dir, start, d[1], jitter) + fog_sum_band(2, dir, start, d[2], jitter);
+    sum += fog_sum_band(3, dir, start, d[3], jitter) + fog_sum_band(4, dir, start, d[4], jitter);
+    sum += fog_sum_band(5, dir, start, d[5], jitter) + fog_sum_band(6, dir, start, d[6], jitter);
+    sum += fog_sum_band(7, dir, start, d[7], jitter);
     return sum;
   }
   // Approximation switching: segment (d_{l+1}, d_l] sees A_l; A_J on [0, d_J]. Walked near
@@ -85,9 +113,6 @@ float fog_optical_depth_lod(dvec3 dir, double t_in, double t_out, float t_surfac
   // each other along the ray, clipped to [start, op] (empty ones have length 0), so each
   // walk starts where the last ended (fog_walk_coarser): one double set-up per pixel. No
   // branch on empty segments either: llvmpipe would run both sides.
-  double d[FOG_MAX_GRIDS / 2];  // d_l = ||OP|| mu^l, as fog_optical_depth_lod computes them
-  d[0] = op;
-  for (int l = 1; l < FOG_MAX_GRIDS / 2; l++) d[l] = d[l - 1] * fog_mu;
 #if FOG_INTEGRATOR == 1
   float sum = 0.0;  // the marcher: each segment on its own
   for (int l = J; l >= 0; l--) {
@@ -97,18 +122,19 @@ float fog_optical_depth_lod(dvec3 dir, double t_in, double t_out, float t_surfac
   }
   return sum;
 #else
-  double a = start, b = max(a, d[J]);
-  fog_ray_walk w = fog_walk_start(J, dir, a);
-  float len = float(b - a);
+  double end = max(start, d[J]);
+  fog_ray_walk w = fog_walk_start(J, dir, start);
+  float len = float(end - start);
   float sum = fog_walk_depth(w, len, fog_depth_limit);
-  for (int l = J - 1; l >= 0; l--) {
-    a = b;
-    b = max(a, d[l]);
-    w = fog_walk_coarser(w, l, len);
-    len = float(b - a);
-    sum += fog_walk_depth(w, len, fog_depth_limit - sum);
-  }
+  fog_switch_segment(6, d[6], end, w, len, sum);
+  fog_switch_segment(5, d[5], end, w, len, sum);
+  fog_switch_segment(4, d[4], end, w, len, sum);
+  fog_switch_segment(3, d[3], end, w, len, sum);
+  fog_switch_segment(2, d[2], end, w, len, sum);
+  fog_switch_segment(1, d[1], end, w, len, sum);
+  fog_switch_segment(0, d[0], end, w, len, sum);
   return sum;
+#endif
 #endif
 }
 
