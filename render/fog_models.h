@@ -7,6 +7,9 @@
  *   FOG_MODEL_HOMOGENEOUS  K = extinction everywhere: OpenGL's GL_EXP fog, tau = e^{-K d}
  *   FOG_MODEL_HEIGHT       K = extinction exp(-(y - y0)/H): standard exponential height
  *                          fog, closed-form integral along the ray
+ *   FOG_MODEL_RBF          K = extinction + sum_i c_i exp(-|x - b_i|^2 / r_i^2): Gaussian
+ *                          radial basis functions over a homogeneous base (Zhou et al.,
+ *                          Fogshop 2007, eq. 2 with a_i = 1/r_i), closed form with erf
  * Adding a model: a kind here, its parameters in fog_model, a CPU function and a GLSL
  * function of the same name, one case in each dispatcher. */
 #ifndef FOGPIPE_RENDER_FOG_MODELS_H
@@ -18,7 +21,19 @@ typedef enum fog_model_kind {
   FOG_MODEL_FOGMAP = 0,
   FOG_MODEL_HOMOGENEOUS,
   FOG_MODEL_HEIGHT,
+  FOG_MODEL_RBF,
 } fog_model_kind;
+
+/* The most RBFs one model holds (the GL pass keeps them in uniform arrays). */
+#define FOG_MAX_RBFS 64
+
+/* One Gaussian of FOG_MODEL_RBF: extinction density exp(-|x - centre|^2 / radius^2), per
+ * world unit (radius > 0: where it has fallen to 1/e). */
+typedef struct fog_rbf {
+  double centre[3];
+  double radius;
+  double density;
+} fog_rbf;
 
 /* Below |a| L < FOG_EXPREL_SWITCH the height fog's (1 - e^{-aL})/(aL) is a series
  * (it cancels in float otherwise; tests/render/test_integral_models.c). */
@@ -31,8 +46,11 @@ typedef struct fog_model {
   const fog_lod *lod;
   fog_lod_method lod_method;
   /* FOG_MODEL_HOMOGENEOUS and FOG_MODEL_HEIGHT: extinction per world unit (at y0 for the
-   * height fog), y0 and the scale height H > 0. */
+   * height fog), y0 and the scale height H > 0. FOG_MODEL_RBF: extinction is the base. */
   double extinction, y0, scale_height;
+  /* FOG_MODEL_RBF: rbf_count (<= FOG_MAX_RBFS) Gaussians, world coordinates. */
+  const fog_rbf *rbfs;
+  int rbf_count;
 } fog_model;
 
 /* Optical depth from the camera along the unit direction dir up to the first surface
@@ -46,5 +64,14 @@ double fog_height_optical_depth(double extinction, double y0, double scale_heigh
                                 double camera_y, double dir_y, double length);
 /* (1 - e^{-x})/x, with the series below FOG_EXPREL_SWITCH (the GLSL twin's form). */
 double fog_exprel(double x);
+/* base L + sum_i int_0^L c_i exp(-|o + t d - b_i|^2 / r_i^2) dt for the unit direction d
+ * from o: each Gaussian is e^{-h^2/r^2} r sqrt(pi)/2 (erf(u1) - erf(u0)), h its distance
+ * from the ray's line, u0 = -t_c/r, u1 = (L - t_c)/r, t_c the ray parameter nearest it.
+ * length HUGE_VAL: to infinity (+inf if base > 0). */
+double fog_rbf_optical_depth(double base, const fog_rbf *rbfs, int count, const double camera[3],
+                             const double dir[3], double length);
+/* erf(u1) - erf(u0) for u0 <= u1 without cancellation: through erfc where both have the
+ * same sign (erf(7) - erf(6) is 2.2e-17, not 0). */
+double fog_erf_difference(double u0, double u1);
 
 #endif

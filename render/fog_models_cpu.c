@@ -25,6 +25,32 @@ double fog_height_optical_depth(double extinction, double y0, double scale_heigh
   return k * length * fog_exprel(a * length);
 }
 
+static const double half_sqrt_pi = 0.88622692545275801365; /* int_0^inf e^{-u^2} du */
+
+double fog_erf_difference(double u0, double u1) {
+  if (u0 >= 0.0) return erfc(u0) - erfc(u1);
+  if (u1 <= 0.0) return erfc(-u1) - erfc(-u0);
+  return erf(u1) - erf(u0); /* opposite signs: the two add up, no cancellation */
+}
+
+double fog_rbf_optical_depth(double base, const fog_rbf *rbfs, int count, const double camera[3],
+                             const double dir[3], double length) {
+  double sum = fog_homogeneous_optical_depth(base, length);
+  for (int i = 0; i < count; i++) {
+    const fog_rbf *g = &rbfs[i];
+    double v[3], w[3];
+    for (int a = 0; a < 3; a++) v[a] = g->centre[a] - camera[a];
+    double tc = v[0] * dir[0] + v[1] * dir[1] + v[2] * dir[2];
+    for (int a = 0; a < 3; a++) w[a] = v[a] - tc * dir[a]; /* from the line to the centre */
+    double h2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    double inv_r = 1.0 / g->radius;
+    double u0 = -tc * inv_r, u1 = isinf(length) ? HUGE_VAL : (length - tc) * inv_r;
+    sum += g->density * exp(-h2 * inv_r * inv_r) * g->radius * half_sqrt_pi *
+           fog_erf_difference(u0, u1);
+  }
+  return sum;
+}
+
 double fog_model_optical_depth(const fog_model *m, const double camera[3], const double dir[3],
                                double t_surface) {
   switch (m->kind) {
@@ -33,6 +59,8 @@ double fog_model_optical_depth(const fog_model *m, const double camera[3], const
     case FOG_MODEL_HEIGHT:
       return fog_height_optical_depth(m->extinction, m->y0, m->scale_height, camera[1], dir[1],
                                       t_surface);
+    case FOG_MODEL_RBF:
+      return fog_rbf_optical_depth(m->extinction, m->rbfs, m->rbf_count, camera, dir, t_surface);
     default: {
       if (!m->lod) return 0.0;
       return fog_optical_depth_lod(m->volume, m->lod, m->lod_method, camera, dir, t_surface);

@@ -335,6 +335,22 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
   GLint units[FOG_PASS_MAX_GRIDS];
   for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) units[k] = 2 + k;
   glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
+  if (params->model == FOG_MODEL_RBF) {
+    /* Camera-relative centres, subtracted in double, and 1/radius (fog_models.glsl). */
+    float centres[FOG_MAX_RBFS][4], densities[FOG_MAX_RBFS];
+    int n = params->model_rbf_count;
+    for (int i = 0; i < n; i++) {
+      const fog_rbf *g = &params->model_rbfs[i];
+      for (int a = 0; a < 3; a++) centres[i][a] = (float)(g->centre[a] - cam->position[a]);
+      centres[i][3] = (float)(1.0 / g->radius);
+      densities[i] = (float)g->density;
+    }
+    glUniform1i(fog_loc(prog, "fog_rbf_count"), n);
+    if (n > 0) {
+      glUniform4fv(fog_loc(prog, "fog_rbf_centre"), n, &centres[0][0]);
+      glUniform1fv(fog_loc(prog, "fog_rbf_density"), n, densities);
+    }
+  }
   return fog_pass_common_and_draw(prog, cam, params, surface_colour, surface_distance, width,
                                   height, width, height, err);
 }
@@ -390,6 +406,21 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
     snprintf(err->message, sizeof err->message,
              "fog pass: height fog scale height %g: expected > 0", params->model_scale_height);
     return 1;
+  }
+  if (params->model == FOG_MODEL_RBF) {
+    int n = params->model_rbf_count;
+    if (n < 0 || n > FOG_MAX_RBFS || (n > 0 && !params->model_rbfs)) {
+      snprintf(err->message, sizeof err->message,
+               "fog pass: %d RBFs: expected 0..%d (and the array)", n, FOG_MAX_RBFS);
+      return 1;
+    }
+    for (int i = 0; i < n; i++)
+      if (!(params->model_rbfs[i].radius > 0) || !(params->model_rbfs[i].density >= 0)) {
+        snprintf(err->message, sizeof err->message,
+                 "fog pass: RBF %d: radius %g and density %g: expected radius > 0, density >= 0",
+                 i, params->model_rbfs[i].radius, params->model_rbfs[i].density);
+        return 1;
+      }
   }
   int divisor = params->resolution_divisor > 1 ? params->resolution_divisor : 1;
   if (divisor != 1 && divisor != 2 && divisor != 4) {

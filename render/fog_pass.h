@@ -58,6 +58,10 @@ typedef struct fog_pass_params {
   fog_model_kind model;      /* FOG_MODEL_FOGMAP (default) or an analytic model */
   double model_extinction;   /* FOG_MODEL_HOMOGENEOUS / _HEIGHT: K (at y0), per world unit */
   double model_y0, model_scale_height; /* FOG_MODEL_HEIGHT: K e^{-(y - y0)/H}; H > 0 */
+  /* FOG_MODEL_RBF: model_extinction is the base; these Gaussians (at most FOG_MAX_RBFS,
+   * radius > 0, density >= 0) are read at each draw. */
+  const fog_rbf *model_rbfs;
+  int model_rbf_count;
   const fog_volume *volume;  /* FOG_MODEL_FOGMAP: placement and profile (required) */
   int levels;                /* J: slots 0..J approximations, J+1..2J details; 0: one grid */
   fog_lod_method lod_method;

@@ -3,6 +3,8 @@
 #define FOG_MODEL_FOGMAP 0
 #define FOG_MODEL_HOMOGENEOUS 1
 #define FOG_MODEL_HEIGHT 2
+#define FOG_MODEL_RBF 3
+#define FOG_MAX_RBFS 64
 #define FOG_EXPREL_SWITCH 0.1
 
 #ifdef FOG_MODEL_KIND
@@ -13,6 +15,9 @@ uniform int fog_model;
 uniform float fog_model_extinction;
 uniform float fog_model_y0;            // y0 - camera y
 uniform float fog_model_scale_height;
+uniform int fog_rbf_count;
+uniform vec4 fog_rbf_centre[FOG_MAX_RBFS];  // xyz: centre - camera (subtracted in double); w: 1/r
+uniform float fog_rbf_density[FOG_MAX_RBFS];
 
 // (1 - e^{-x})/x, with the series sum_{n<=10} (-x)^n/(n+1)! below FOG_EXPREL_SWITCH.
 float fog_exprel(float x) {
@@ -35,4 +40,39 @@ float fog_height_optical_depth(float extinction, float y0, float scale_height, f
   float a = dir_y / scale_height;
   if (length >= 1e29) return a > 0.0 ? k / a : 1e30;
   return k * length * fog_exprel(a * length);
+}
+
+// erfc(z) for z >= 0: Numerical Recipes' erfcc (a Chebyshev fit; relative error < 1.2e-7
+// everywhere, float's own precision). GLSL has no erf; the C twin uses libm's.
+float fog_erfc_nonnegative(float z) {
+  z = min(z, 10.0);  // erfc(10) = 2e-45 is 0 in float; keeps z * z finite for the sky
+  float t = 1.0 / (1.0 + 0.5 * z);
+  return t * exp(-z * z - 1.26551223 + t * (1.00002368 + t * (0.37409196 + t * (0.09678418 +
+         t * (-0.18628806 + t * (0.27886807 + t * (-1.13520398 + t * (1.48851587 +
+         t * (-0.82215223 + t * 0.17087277)))))))));
+}
+
+// erf(u1) - erf(u0) for u0 <= u1 (the C twin's cases): through erfc where both have the
+// same sign, 2 - erfc(|u0|) - erfc(u1) across 0.
+float fog_erf_difference(float u0, float u1) {
+  float e0 = fog_erfc_nonnegative(abs(u0)), e1 = fog_erfc_nonnegative(abs(u1));
+  if (u0 >= 0.0) return e0 - e1;
+  if (u1 <= 0.0) return e1 - e0;
+  return 2.0 - e0 - e1;
+}
+
+// base L + sum_i c_i int_0^L exp(-|t dir - b_i|^2 / r_i^2) dt, camera-relative b_i: each
+// Gaussian is e^{-h^2/r^2} r sqrt(pi)/2 (erf(u1) - erf(u0)) (fog_rbf_optical_depth in C).
+float fog_rbf_optical_depth(float base, vec3 dir, float length) {
+  float sum = fog_homogeneous_optical_depth(base, length);
+  for (int i = 0; i < fog_rbf_count; i++) {
+    vec3 v = fog_rbf_centre[i].xyz;
+    float inv_r = fog_rbf_centre[i].w;
+    float tc = dot(v, dir);
+    vec3 w = v - tc * dir;  // from the ray's line to the centre
+    float u0 = -tc * inv_r, u1 = (length - tc) * inv_r;
+    sum += fog_rbf_density[i] * exp(-dot(w, w) * inv_r * inv_r) * (0.88622692545 / inv_r) *
+           fog_erf_difference(u0, u1);
+  }
+  return sum;
 }

@@ -228,6 +228,8 @@ void main() {
     else if (fog_model == FOG_MODEL_HEIGHT)
       optical_depth = fog_height_optical_depth(fog_model_extinction, fog_model_y0,
                                                fog_model_scale_height, dir.y, t_surface);
+    else if (fog_model == FOG_MODEL_RBF)
+      optical_depth = fog_rbf_optical_depth(fog_model_extinction, dir, t_surface);
     else
       optical_depth = fog_optical_depth_lod(dir_d, t_in, t_out, t_surface, jitter);
 #if FOG_REDUCED > 1

@@ -1,7 +1,8 @@
 /* The GL fog pass against the double-precision CPU reference, per pixel, on a 128x72
  * render: transmittance max |delta tau| <= 2e-4 for every basis (degree 0, 1, 2) x LOD
  * method (sum of details, approximation switching) x camera inside / outside the fog x
- * vertical profile (slab, exponential, B-spline), over
+ * vertical profile (slab, exponential, B-spline), and the analytic models (homogeneous,
+ * height, Gaussian RBFs), over
  * an analytic ground plane (distance texture computed on the CPU) and sky; both LOD methods
  * agree on the GPU at the same mu; the composited colour is eq. 4 of Giroud & Biri. The
  * hardware-filtered fetch is measured too (its weights are quantised: looser bound). */
@@ -222,16 +223,30 @@ int main(void) {
           degree, worst, min_tau);
     transform_grid_destroy(&g);
   }
-  /* The analytic models of the ladder (fog_models.h) through the same pass. */
-  for (int model = FOG_MODEL_HOMOGENEOUS; model <= FOG_MODEL_HEIGHT; model++)
+  /* The analytic models of the ladder (fog_models.h) through the same pass; the RBFs are
+   * a dozen Gaussians between the camera and the view's far side, over no base (view 0:
+   * the sky stays finite) and over a thin one (view 1). */
+  fog_rbf rbfs[12];
+  for (int i = 0; i < 12; i++) {
+    double s_i = fog_test_range(0.15, 1.0);
+    rbfs[i] = (fog_rbf){.centre = {10.0 + 70.0 * s_i + fog_test_range(-15, 15),
+                                   fog_test_range(0.0, 14.0),
+                                   20.0 - 80.0 * s_i + fog_test_range(-15, 15)},
+                        .radius = fog_test_range(3.0, 15.0), .density = fog_test_range(0.04, 0.15)};
+  }
+  for (int model = FOG_MODEL_HOMOGENEOUS; model <= FOG_MODEL_RBF; model++)
     for (int view = 0; view < 2; view++) {
       camera cam = {.position = {10.0, view ? 40.0 : 3.0, 20.0}, .fov_y = 1.1};
       camera_look_at(&cam, (double[3]){80.0, view ? 0.0 : 6.0, -60.0});
       fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
       fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
       fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
+      if (model == FOG_MODEL_RBF)
+        m = (fog_model){.kind = model, .extinction = view ? 0.002 : 0.0, .rbfs = rbfs,
+                        .rbf_count = 12};
       fog_pass_params params = {.model = model, .model_extinction = m.extinction,
-                                .model_y0 = m.y0, .model_scale_height = m.scale_height};
+                                .model_y0 = m.y0, .model_scale_height = m.scale_height,
+                                .model_rbfs = m.rbfs, .model_rbf_count = m.rbf_count};
       CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
             "draw model %d: %s", model, err.message);
       double worst = 0.0, min_tau = 1.0;
