@@ -179,7 +179,7 @@ int cmd_view(int argc, char **argv) {
   if (geo_status) goto gl_fail;
   v.geo_made = true;
   if (!(v.scene = scene_pass_create(&v.geo, &err))) goto gl_fail;
-  if (cfg.fog.fogmap[0] || cfg.fog.vdb[0]) {
+  if (scene_config_has_fog(&cfg)) {
     if (render_fog_create(&v.fog, &cfg, &err)) goto gl_fail;
     v.has_fog = true;
   }

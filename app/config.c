@@ -31,6 +31,7 @@ typedef enum value_kind {
   V_STRING,
   V_LIST,     /* up to SCENE_CONFIG_MAX_PROFILE numbers, count at count_offset */
   V_OBJECT,   /* box = X Z WIDTH HEIGHT DEPTH [R G B], appended */
+  V_RBF,      /* rbf = X Y Z RADIUS DENSITY, appended */
   V_LOOK_AT,
 } value_kind;
 
@@ -47,6 +48,7 @@ typedef struct key_spec {
 #define F(member) offsetof(scene_config, member)
 #define BIG 1e300
 static const key_spec keys[] = {
+    {"fog", "model", V_ENUM, F(fog.model), 0, 0, "fogmap|homogeneous|height|rbf", 0, 0},
     {"fog", "fogmap", V_PATH, F(fog.fogmap), 0, 0, NULL, F(fog.fogmap_line), sizeof(((scene_config *)0)->fog.fogmap)},
     {"fog", "channel", V_STRING, F(fog.channel), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.channel)},
     {"fog", "density_scale", V_DOUBLE, F(fog.density_scale), 0, BIG, NULL, 0, 0},
@@ -64,6 +66,8 @@ static const key_spec keys[] = {
     {"fog", "profile_spacing", V_DOUBLE, F(fog.profile_spacing), 1e-9, BIG, NULL, 0, 0},
     {"fog", "profile_coefficients", V_LIST, F(fog.profile_coefficients), 0, BIG, NULL, F(fog.profile_count), 0},
     {"fog", "colour", V_FLOAT3, F(fog.colour), 0, BIG, NULL, 0, 0},
+    {"fog", "rbf", V_RBF, 0, 0, BIG, NULL, 0, 0},
+    {"fog", "rbf_base", V_DOUBLE, F(fog.rbf_base), 0, BIG, NULL, 0, 0},
     {"fog", "vdb", V_PATH, F(fog.vdb), 0, 0, NULL, F(fog.vdb_line), sizeof(((scene_config *)0)->fog.vdb)},
     {"fog", "vdb_grid", V_STRING, F(fog.vdb_grid), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.vdb_grid)},
     {"fog", "vdb_up", V_ENUM, F(fog.vdb_up), 0, 0, "z|y", 0, 0},
@@ -219,6 +223,7 @@ static int handle(void *user, const char *section, const char *key, const char *
   if (!ok || s->error_line) return ok;
   scene_config *cfg = s->cfg;
   if (!strcmp(section, "fog") && !strcmp(key, "profile")) cfg->fog.profile_set = true;
+  if (!strcmp(section, "fog") && !strcmp(key, "model")) cfg->fog.model_line = s->line;
   if (!strcmp(section, "box")) {
     if (!strcmp(key, "origin")) cfg->box.origin_set = true;
     if (!strcmp(key, "cell_size")) cfg->box.cell_size_set = true;
@@ -335,6 +340,18 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
         for (int i = 0; i < 3; i++) b->colour[i] = (float)v[5 + i];
       return 1;
     }
+    case V_RBF: {
+      int n = parse_numbers(value, v, 5);
+      if (n != 5)
+        return fail(s, section, key, "expected X Y Z RADIUS DENSITY (5 numbers), got '%s'", value);
+      if (!(v[3] > 0 && v[4] >= 0))
+        return fail(s, section, key, "expected RADIUS > 0 and DENSITY >= 0, got '%s'", value);
+      if (cfg->fog.rbf_count == FOG_MAX_RBFS)
+        return fail(s, section, key, "at most %d Gaussians", FOG_MAX_RBFS);
+      cfg->fog.rbfs[cfg->fog.rbf_count++] =
+          (fog_rbf){.centre = {v[0], v[1], v[2]}, .radius = v[3], .density = v[4]};
+      return 1;
+    }
   }
   return 1;
 }
@@ -408,6 +425,11 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
              "%s: [box] top (%g) must be above floor (%g)", path, cfg->box.top, cfg->box.floor);
     return 1;
   }
+  if (cfg->fog.model == SCENE_MODEL_RBF && cfg->fog.rbf_count == 0) {
+    s.line = cfg->fog.model_line;
+    fail(&s, "fog", "model", "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' line");
+    return 1;
+  }
   if (cfg->fog.profile == SCENE_PROFILE_BSPLINE && cfg->fog.profile_count == 0) {
     snprintf(err->message, sizeof err->message,
              "%s: [fog] profile = bspline needs profile_coefficients", path);
@@ -419,6 +441,10 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
     return 1;
   }
   return 0;
+}
+
+bool scene_config_has_fog(const scene_config *cfg) {
+  return cfg->fog.model != SCENE_MODEL_FOGMAP || cfg->fog.fogmap[0] || cfg->fog.vdb[0];
 }
 
 void scene_config_camera(const scene_config *cfg, camera *cam) {

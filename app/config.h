@@ -16,6 +16,7 @@
 #include <stdbool.h>
 
 #include "render/camera.h"
+#include "render/fog_models.h"
 #include "render/scene.h"
 
 #define SCENE_CONFIG_PATH_MAX 1024
@@ -42,12 +43,22 @@ typedef enum scene_profile {
   SCENE_PROFILE_BSPLINE,     /* "bspline": g = sum b_k phi_p((y - origin)/spacing - k) */
 } scene_profile;
 
+/* The fog model of DESIGN §3's ladder (values equal to render/fog_models.h's kinds). */
+typedef enum scene_fog_model {
+  SCENE_MODEL_FOGMAP = 0,  /* "fogmap": the wavelet fogmap (fogmap or vdb) times the profile */
+  SCENE_MODEL_HOMOGENEOUS, /* "homogeneous": K = density_scale everywhere */
+  SCENE_MODEL_HEIGHT,      /* "height": K = density_scale exp(-(y - fog_height)/scale_height) */
+  SCENE_MODEL_RBF,         /* "rbf": K = rbf_base + density_scale sum of the `rbf` Gaussians */
+} scene_fog_model;
+
 typedef enum scene_boundary {
   SCENE_BOUNDARY_SYMMETRIC = 0, /* "symmetric" (fog is not periodic) */
   SCENE_BOUNDARY_PERIODIC,      /* "periodic" (the FFT simulation's domain) */
 } scene_boundary;
 
 typedef struct scene_fog_config {
+  scene_fog_model model;
+  int model_line;                     /* where model was set (0: default), for errors */
   char fogmap[SCENE_CONFIG_PATH_MAX]; /* resolved path; "" means no fog */
   char channel[16];                   /* image channel ("" : the only one) */
   double density_scale;               /* extinction per world unit where f = g = 1 */
@@ -67,6 +78,10 @@ typedef struct scene_fog_config {
   float colour[3];                    /* L_fog, linear */
   int fogmap_line;                    /* where fogmap was set (0: default), for errors */
   bool profile_set;                   /* `profile` was set in the file (a VDB keeps it) */
+  /* model = rbf: the Gaussians (densities before density_scale) and the base under them. */
+  fog_rbf rbfs[FOG_MAX_RBFS];
+  int rbf_count;
+  double rbf_base;
   /* OpenVDB fog (app/vdb_source.h): exclusive with fogmap. */
   char vdb[SCENE_CONFIG_PATH_MAX];    /* resolved file / pattern / folder / glob; "" none */
   int vdb_line;
@@ -129,6 +144,9 @@ typedef struct scene_config {
   int width, height; /* [render] image size */
   scene_sim_config sim;
 } scene_config;
+
+/* Whether the config has fog at all: a fogmap, a VDB sequence or an analytic model. */
+bool scene_config_has_fog(const scene_config *cfg);
 
 /* Every documented default (docs/config.md). */
 void scene_config_init(scene_config *cfg);

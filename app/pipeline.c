@@ -469,6 +469,15 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
     return NULL;
   }
   p->config = *desc->config;
+  if (p->config.fog.model != SCENE_MODEL_FOGMAP) {
+    /* The analytic models have nothing to simulate: `render` and `view` draw them. */
+    static const char *const names[] = {"fogmap", "homogeneous", "height", "rbf"};
+    fail(err, "%s:%d: [fog] model = %s: the animation simulates a fogmap; expected model = "
+              "fogmap here (fogpipe render and view draw the analytic models)",
+         p->config.path, p->config.fog.model_line, names[p->config.fog.model]);
+    free(p);
+    return NULL;
+  }
   p->width = desc->width > 0 ? desc->width : p->config.width;
   p->height = desc->height > 0 ? desc->height : p->config.height;
   p->frame_seconds = desc->frame_seconds > 0 ? desc->frame_seconds : 1.0 / 24.0;

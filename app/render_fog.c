@@ -59,9 +59,31 @@ done:
   return status;
 }
 
+/* An analytic model of the ladder (DESIGN §3): no fogmap and no transform, the pass's
+ * parameters alone (config.h, scene_fog_model, says what each key means there). */
+static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
+  const scene_fog_config *f = &cfg->fog;
+  bool rbf = f->model == SCENE_MODEL_RBF;
+  for (int i = 0; rbf && i < f->rbf_count; i++) {
+    fog->rbfs[i] = f->rbfs[i];
+    fog->rbfs[i].density *= f->density_scale;
+  }
+  fog->params = (fog_pass_params){
+      .model = (fog_model_kind)f->model,
+      .model_extinction = rbf ? f->rbf_base : f->density_scale,
+      .model_y0 = f->fog_height,
+      .model_scale_height = f->scale_height,
+      .model_rbfs = fog->rbfs,
+      .model_rbf_count = rbf ? f->rbf_count : 0,
+      .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
+  };
+  return fog_pass_create(&fog->pass, err);
+}
+
 int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err) {
   *fog = (render_fog){0};
   const scene_fog_config *f = &cfg->fog;
+  if (f->model != SCENE_MODEL_FOGMAP) return render_analytic_fog(fog, cfg, err);
   if (f->vdb[0]) return render_vdb_fog(fog, cfg, err);
   fogmap map = {0};
   sim_error serr;
@@ -184,6 +206,7 @@ int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
                     const gl_target *out, render_error *err) {
   gl_target_bind(out);
   fog->params.volume = &fog->volume; /* the struct may have been copied */
+  fog->params.model_rbfs = fog->rbfs;
   fog->volume.profile.coefficients = fog->profile_coefficients;
   return fog_pass_draw(fog->pass, cam, &fog->params, scene->color[0], scene->color[1],
                        scene->width, scene->height, err);

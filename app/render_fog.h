@@ -21,13 +21,15 @@ typedef struct render_fog {
   transform_grid detail[RENDER_FOG_MAX_LEVELS]; /* detail[l-1] = D_l */
   fog_volume volume;
   double profile_coefficients[SCENE_CONFIG_MAX_PROFILE]; /* volume.profile's own copy */
+  fog_rbf rbfs[FOG_MAX_RBFS]; /* model = rbf: params.model_rbfs, density_scale applied */
   fog_pass_params params;
   fog_pass *pass;
 } render_fog;
 
 /* Loads the fogmap (cfg->fog.fogmap or, for a VDB sequence, frame cfg->fog.vdb_frame of
  * cfg->fog.vdb placed and profiled by the sequence: app/vdb_source.h), transforms it, creates the fog pass and
- * uploads the grids. Needs a current GL context. Errors name the config's file:line. */
+ * uploads the grids; for an analytic model (cfg->fog.model) only the pass and its
+ * parameters. Needs a current GL context. Errors name the config's file:line. */
 int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err);
 /* The same for a fogmap in memory (a VDB frame: app/vdb_source.h); cfg gives the box,
  * profile and rendering settings, cfg->fog.fogmap is not read. map is not kept. */

@@ -66,7 +66,7 @@ int render_frame(const scene_config *cfg, int width, int height, float *rgba,
     goto fail;
   }
   if (gl_target_read(&target, 1, 1, distance, &rerr)) goto fail;
-  if (cfg->fog.fogmap[0] || cfg->fog.vdb[0]) {
+  if (scene_config_has_fog(cfg)) {
     /* fogmap -> wavelet pyramid -> fog pass over the scene's colour and distance. */
     if (render_fog_create(&fog, cfg, &rerr)) goto fail;
     if (gl_target_create(&fog_target,

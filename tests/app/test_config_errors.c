@@ -35,7 +35,7 @@ int main(void) {
   expect_error("; scene\n\n[fgo]\ndensity_scale = 1\n", "4: [fgo] density_scale: ",
                "unknown section [fgo]; sections are fog, box");
   expect_error("[fog]\nbasis = linear\ndensty_scale = 2\n", "3: [fog] densty_scale: ",
-               "unknown key; [fog] has fogmap, channel, density_scale");
+               "unknown key; [fog] has model, fogmap, channel, density_scale");
   expect_error("[camera]\n# a comment\nfov = 50\n\nyaw = 1O\n", "5: [camera] yaw: ",
                "expected a number, got '1O'");
   expect_error("[fog]\nmu = 1.5\n", "2: [fog] mu: ", "expected a number from 0 to 1, got '1.5'");
@@ -59,6 +59,23 @@ int main(void) {
                missing);
   snprintf(missing, sizeof missing, "cannot open '%s/hills.png'", dir);
   expect_error("[render]\n[terrain]\nheightmap = hills.png\n", "3: [terrain] heightmap: ", missing);
+  /* The fog models of the ladder and their Gaussians. */
+  expect_error("[fog]\nmodel = perlin\n", "2: [fog] model: ",
+               "expected one of fogmap|homogeneous|height|rbf, got 'perlin'");
+  expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 50\n", "3: [fog] rbf: ",
+               "expected X Y Z RADIUS DENSITY (5 numbers), got '0 10 0 50'");
+  expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 50 0.1\nrbf = 0 10 0 0 0.1\n", "4: [fog] rbf: ",
+               "expected RADIUS > 0 and DENSITY >= 0");
+  expect_error("[fog]\nrbf = 0 10 0 5 -0.1\n", "2: [fog] rbf: ", "DENSITY >= 0");
+  expect_error("; banks\n[fog]\nmodel = rbf\nrbf_base = 0.01\n", "3: [fog] model: ",
+               "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' line");
+  {
+    char text[8192] = "[fog]\nmodel = rbf\n";
+    for (int i = 0; i <= FOG_MAX_RBFS; i++) strcat(text, "rbf = 1 2 3 4 0.5\n");
+    char prefix[64];
+    snprintf(prefix, sizeof prefix, "%d: [fog] rbf: ", 3 + FOG_MAX_RBFS);
+    expect_error(text, prefix, "at most 64 Gaussians");
+  }
   /* The first error wins when there are several. */
   expect_error("[fog]\nmu = x\nbasis = y\n", "2: [fog] mu: ", "expected a number");
 
