@@ -327,10 +327,15 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
 static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_pass_params *params,
                                   GLuint surface_colour, GLuint surface_distance, int width,
                                   int height, render_error *err) {
-  int key = fog_pass_variant_key(0, 0, 1, 0, 0, 1, (int)params->model, 0, 0, 0);
+  bool march = params->integrator == FOG_INTEGRATOR_MARCH;
+  int key = fog_pass_variant_key(0, march, 1, 0, 0, 1, (int)params->model, 0, 0, 0);
   GLuint prog = fog_pass_variant(pass, key, err);
   if (!prog) return 1;
   glUseProgram(prog);
+  glUniform1i(fog_loc(prog, "fog_march_steps"),
+              params->march_steps > 0 ? params->march_steps : 64);
+  glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
+  glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
   /* The sampler array must still name distinct units of the right type. */
   GLint units[FOG_PASS_MAX_GRIDS];
   for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) units[k] = 2 + k;

@@ -50,8 +50,11 @@ typedef enum fog_fetch {
 } fog_fetch;
 
 typedef enum fog_integrator {
-  FOG_INTEGRATOR_EXACT = 0, /* the knot-cell walk with Gauss-Legendre per piece */
-  FOG_INTEGRATOR_MARCH,     /* uniform ray marching, march_steps midpoint samples */
+  FOG_INTEGRATOR_EXACT = 0, /* the knot-cell walk with Gauss-Legendre per piece; the
+                               analytic models' closed forms */
+  FOG_INTEGRATOR_MARCH,     /* uniform ray marching, march_steps midpoint samples (analytic
+                               models: to the surface, or for the sky to where the fog ends,
+                               fog_models.glsl) */
 } fog_integrator;
 
 typedef struct fog_pass_params {

@@ -76,3 +76,47 @@ float fog_rbf_optical_depth(float base, vec3 dir, float length) {
   }
   return sum;
 }
+
+// ---- uniform ray marching of the analytic models (the benchmark's alternative) ----------
+
+// K at camera-relative point p, pointwise (the marcher's integrand).
+float fog_model_extinction_at(vec3 p) {
+  if (fog_model == FOG_MODEL_HOMOGENEOUS) return fog_model_extinction;
+  if (fog_model == FOG_MODEL_HEIGHT)
+    return fog_model_extinction * exp(-(p.y - fog_model_y0) / fog_model_scale_height);
+  float k = fog_model_extinction;
+  for (int i = 0; i < fog_rbf_count; i++) {
+    vec3 d = p - fog_rbf_centre[i].xyz;
+    float inv_r = fog_rbf_centre[i].w;
+    k += fog_rbf_density[i] * exp(-dot(d, d) * inv_r * inv_r);
+  }
+  return k;
+}
+
+// How far along dir a marcher must go for the sky (no surface): where the model's fog has
+// fallen below e^-36 of its peak (RBFs: 6 radii past the farthest centre; height fog going
+// up: 36 scale heights above y0). Infinite where the fog does not end (a homogeneous base,
+// height fog level or going down): the marcher then reports it opaque, as the exact
+// integral is.
+float fog_model_reach(vec3 dir) {
+  if (fog_model == FOG_MODEL_HEIGHT)
+    return dir.y > 0.0 ? max(fog_model_y0 + 36.0 * fog_model_scale_height, 0.0) / dir.y : 1e30;
+  if (fog_model == FOG_MODEL_RBF && fog_model_extinction == 0.0) {
+    float reach = 0.0;
+    for (int i = 0; i < fog_rbf_count; i++)
+      reach = max(reach, dot(fog_rbf_centre[i].xyz, dir) + 6.0 / fog_rbf_centre[i].w);
+    return reach;
+  }
+  return 1e30;
+}
+
+// Midpoint rule with `steps` equal steps over [0, min(surface, reach)]; jitter in [0, 1)
+// shifts the samples (0.5 = midpoint), as fog_optical_depth_march does for the fogmap.
+float fog_model_optical_depth_march(vec3 dir, float t_surface, int steps, float jitter) {
+  float length = min(t_surface, fog_model_reach(dir));
+  if (length >= 1e29) return 1e30;
+  float dt = length / float(steps), sum = 0.0;
+  for (int i = 0; i < steps; i++)
+    sum += fog_model_extinction_at((float(i) + jitter) * dt * dir);
+  return sum * dt;
+}
