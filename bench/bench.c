@@ -2,9 +2,12 @@
 #define _POSIX_C_SOURCE 200809L
 #include "bench/bench.h"
 
+#include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 typedef struct bench_stage {
@@ -52,4 +55,35 @@ void bench_print_build(void) {
   printf("build: %s, %s, gcc %d.%d\n", FOGPIPE_BUILD_TYPE,
          FOGPIPE_NATIVE_BUILD ? "-march=native" : "portable (no -march=native)",
          __GNUC__, __GNUC_MINOR__);
+}
+
+int bench_make_folder(const char *path, char *error, int size) {
+  char buffer[4096];
+  snprintf(buffer, sizeof buffer, "%s", path);
+  for (char *p = buffer + 1;; p++) {
+    char c = *p;
+    if (c == '/' || c == 0) {
+      *p = 0;
+      if (mkdir(buffer, 0777) != 0 && errno != EEXIST) {
+        snprintf(error, (size_t)size, "%.900s: cannot create the folder (%s)", buffer, strerror(errno));
+        return 1;
+      }
+      *p = c;
+      if (!c) return 0;
+    }
+  }
+}
+
+void bench_tau_errors(const float *gpu, const double *ref, size_t n, double *rmse,
+                      double *max_error, size_t *where) {
+  double sq = 0.0, worst = 0.0;
+  *where = 0;
+  for (size_t k = 0; k < n; k++) {
+    double e = fabs((double)gpu[k] - ref[k]);
+    if (!(e == e)) e = INFINITY; /* NaN from the GL counts as the worst error */
+    sq += e * e;
+    if (e > worst) worst = e, *where = k;
+  }
+  *rmse = sqrt(sq / (double)n);
+  *max_error = worst;
 }

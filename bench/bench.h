@@ -5,6 +5,8 @@
 #define FOGPIPE_BENCH_H
 
 /* Stages time with app_clock_seconds(), the clock the pipeline times with too. */
+#include <stddef.h>
+
 #include "app/clock.h"
 
 #define FOG_BENCH(name, summary) int bench_##name(int argc, char **argv);
@@ -18,5 +20,11 @@ int bench_main(int argc, char **argv);
 double bench_median(double *values, int n);
 /* Prints one line naming the build measured (type, -march=native or portable, compiler). */
 void bench_print_build(void);
+/* mkdir -p; non-zero and a message naming the folder on failure. */
+int bench_make_folder(const char *path, char *error, int size);
+/* RMSE and max of |gpu - ref| over n values (a NaN from the GL counts as the worst), and
+ * where the max is. */
+void bench_tau_errors(const float *gpu, const double *ref, size_t n, double *rmse,
+                      double *max_error, size_t *where);
 
 #endif

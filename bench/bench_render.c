@@ -247,37 +247,6 @@ typedef struct bench_row {
   double worst_gpu, worst_cpu; /* tau there */
 } bench_row;
 
-static void tau_errors(const float *gpu, const double *ref, size_t n, double *rmse,
-                       double *max_error, size_t *where) {
-  double sq = 0.0, worst = 0.0;
-  *where = 0;
-  for (size_t k = 0; k < n; k++) {
-    double e = fabs((double)gpu[k] - ref[k]);
-    if (!(e == e)) e = INFINITY; /* NaN from the GL counts as the worst error */
-    sq += e * e;
-    if (e > worst) worst = e, *where = k;
-  }
-  *rmse = sqrt(sq / (double)n);
-  *max_error = worst;
-}
-
-static int make_folder(const char *path, char *error, int size) {
-  char buffer[4096];
-  snprintf(buffer, sizeof buffer, "%s", path);
-  for (char *p = buffer + 1;; p++) {
-    char c = *p;
-    if (c == '/' || c == 0) {
-      *p = 0;
-      if (mkdir(buffer, 0777) != 0 && errno != EEXIST) {
-        snprintf(error, (size_t)size, "%.900s: cannot create the folder (%s)", buffer, strerror(errno));
-        return 1;
-      }
-      *p = c;
-      if (!c) return 0;
-    }
-  }
-}
-
 static int write_table_csv(const char *path, const bench_row *rows, int count, char *error,
                            int size) {
   char temp[4200];
@@ -362,7 +331,7 @@ int bench_render(int argc, char **argv) {
   }
   if (!fogmap_path) fogmap_path = default_fogmap();
   char message[1024] = "";
-  if (make_folder(out_dir, message, sizeof message)) {
+  if (bench_make_folder(out_dir, message, sizeof message)) {
     fprintf(stderr, "fogpipe bench render: %s\n", message);
     return 1;
   }
@@ -542,12 +511,12 @@ int bench_render(int argc, char **argv) {
         gl_target_read(&fog_target, 1, 1, gpu_tau, &rerr))
       goto gl_failed;
     size_t where;
-    tau_errors(gpu_tau, references[r->reference], pixels, &r->rmse, &r->max_error,
+    bench_tau_errors(gpu_tau, references[r->reference], pixels, &r->rmse, &r->max_error,
                &r->worst_pixel);
     r->worst_gpu = gpu_tau[r->worst_pixel];
     r->worst_cpu = references[r->reference][r->worst_pixel];
     if (r->full_reference >= 0)
-      tau_errors(gpu_tau, references[r->full_reference], pixels, &r->rmse_full, &r->max_full,
+      bench_tau_errors(gpu_tau, references[r->full_reference], pixels, &r->rmse_full, &r->max_full,
                  &where);
     if (i == exact_linear) {
       /* A picture of the fog's transmittance, to see what is measured. */

@@ -1,0 +1,58 @@
+# `fogpipe bench models` smoke test: the benchmark runs at a tiny size, exits 0, writes a
+# table CSV of 15 rows of finite numbers (homogeneous exact; height and rbf exact + 6
+# marching each), the chart CSV and PNG, ends with its summary line, and its exact rows
+# agree with the CPU model (max tau error <= 1e-4: a bench comparing against the wrong
+# reference fails here). It asserts no speed.
+#
+# Both the test's definition (included by tests/CMakeLists.txt) and its script (run with
+# `cmake -DFOGPIPE=... -DOUT=... -P bench_models.cmake`).
+if(NOT CMAKE_SCRIPT_MODE_FILE)
+  add_test(NAME render/bench_models_smoke
+           COMMAND ${CMAKE_COMMAND} -DFOGPIPE=$<TARGET_FILE:fogpipe>
+                   -DOUT=${CMAKE_CURRENT_BINARY_DIR}/bench_models_smoke
+                   -P ${CMAKE_CURRENT_LIST_FILE})
+  set_tests_properties(render/bench_models_smoke PROPERTIES
+    WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}
+    ENVIRONMENT "LP_NUM_THREADS=1" TIMEOUT 120)
+  return()
+endif()
+
+file(REMOVE_RECURSE ${OUT})
+execute_process(COMMAND ${FOGPIPE} bench models --size 32x18 --frames 1 --out ${OUT}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "fogpipe bench models exited with ${rc}: ${err}")
+endif()
+string(STRIP "${out}" out)
+string(REGEX MATCH "[^\n]*$" last "${out}")
+set(num "[0-9]+(\\.[0-9]+)?")
+if(NOT last MATCHES "^models: rbf_exact_ms=${num} rbf_march_speedup_at_matched_error=${num} height_exact_ms=${num} height_march_speedup_at_matched_error=${num}$")
+  message(FATAL_ERROR "last line is not the summary line: '${last}'")
+endif()
+foreach(f models.csv models_chart.csv models_chart.png)
+  if(NOT EXISTS ${OUT}/${f})
+    message(FATAL_ERROR "missing output ${OUT}/${f}")
+  endif()
+endforeach()
+file(STRINGS ${OUT}/models.csv lines)
+list(LENGTH lines count)
+if(NOT count EQUAL 16)
+  message(FATAL_ERROR "models.csv has ${count} lines, expected a header and 15 rows")
+endif()
+list(GET lines 0 header)
+if(NOT header STREQUAL "model,method,steps,ms_per_frame,rmse,max_error")
+  message(FATAL_ERROR "models.csv header: '${header}'")
+endif()
+list(REMOVE_AT lines 0)
+set(finite "[0-9.]+(e[-+][0-9]+)?")
+foreach(line IN LISTS lines)
+  if(NOT line MATCHES "^(homogeneous|height|rbf),(exact|march),[0-9]+,${finite},${finite},(${finite})$")
+    message(FATAL_ERROR "models.csv row without finite numbers: '${line}'")
+  endif()
+  set(max_error ${CMAKE_MATCH_5}) # groups: model, method, ms exponent, rmse exponent, max
+  # CMake has no float comparison: <= 1e-4 means an exponent of -5 or below, or 0.
+  if(line MATCHES ",exact," AND NOT (max_error MATCHES "e-0*([5-9]|[1-9][0-9])$" OR max_error STREQUAL "0"))
+    message(FATAL_ERROR "exact row with max tau error ${max_error}: '${line}'")
+  endif()
+endforeach()
