@@ -57,6 +57,36 @@ void bench_print_build(void) {
          __GNUC__, __GNUC_MINOR__);
 }
 
+int bench_image_option(const char *stage, int argc, char **argv, int *i,
+                       bench_image_options *o) {
+  const char *arg = argv[*i];
+  if (*i + 1 >= argc) return 0;
+  if (!strcmp(arg, "--size")) {
+    char tail = 0;
+    const char *value = argv[++*i];
+    if (sscanf(value, "%dx%d%c", &o->width, &o->height, &tail) != 2 || o->width < 8 ||
+        o->height < 8 || o->width > 8192 || o->height > 8192) {
+      fprintf(stderr, "fogpipe bench %s: --size '%s': expected WxH, 8..8192 each, e.g. 640x360\n",
+              stage, value);
+      return -1;
+    }
+    return 1;
+  }
+  if (!strcmp(arg, "--frames")) {
+    o->frames = atoi(argv[++*i]);
+    if (o->frames < 1) {
+      fprintf(stderr, "fogpipe bench %s: --frames needs a positive number\n", stage);
+      return -1;
+    }
+    return 1;
+  }
+  if (!strcmp(arg, "--out")) {
+    o->out_dir = argv[++*i];
+    return 1;
+  }
+  return 0;
+}
+
 int bench_make_folder(const char *path, char *error, int size) {
   char buffer[4096];
   snprintf(buffer, sizeof buffer, "%s", path);

@@ -20,6 +20,16 @@ int bench_main(int argc, char **argv);
 double bench_median(double *values, int n);
 /* Prints one line naming the build measured (type, -march=native or portable, compiler). */
 void bench_print_build(void);
+/* The options of the image benches (render, models): --size WxH, --frames N, --out DIR. */
+typedef struct bench_image_options {
+  int width, height, frames;
+  const char *out_dir;
+} bench_image_options;
+/* If argv[*i] is one of those options, reads it and its value (advancing *i) and returns
+ * 1; returns 0 for any other argument, and -1 after a message on stderr naming `stage`
+ * for a bad value. */
+int bench_image_option(const char *stage, int argc, char **argv, int *i,
+                       bench_image_options *options);
 /* mkdir -p; non-zero and a message naming the folder on failure. */
 int bench_make_folder(const char *path, char *error, int size);
 /* RMSE and max of |gpu - ref| over n values (a NaN from the GL counts as the worst), and

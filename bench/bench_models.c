@@ -97,35 +97,23 @@ static int write_table(const char *path, const model_row *rows, int count, char 
 }
 
 int bench_models(int argc, char **argv) {
-  int W = 640, H = 360, frames = 5;
-  const char *out_dir = "build/bench/models";
+  bench_image_options options = {.width = 640, .height = 360, .frames = 5,
+                                 .out_dir = "build/bench/models"};
   for (int i = 1; i < argc; i++) {
-    char tail = 0;
+    int common = bench_image_option("models", argc, argv, &i, &options);
+    if (common < 0) return 2;
+    if (common) continue;
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       print_help();
       return 0;
-    } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
-      if (sscanf(argv[++i], "%dx%d%c", &W, &H, &tail) != 2 || W < 8 || H < 8 || W > 8192 ||
-          H > 8192) {
-        fprintf(stderr, "fogpipe bench models: --size '%s': expected WxH, 8..8192 each\n",
-                argv[i]);
-        return 2;
-      }
-    } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
-      frames = atoi(argv[++i]);
-      if (frames < 1) {
-        fprintf(stderr, "fogpipe bench models: --frames needs a positive number\n");
-        return 2;
-      }
-    } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
-      out_dir = argv[++i];
-    } else {
-      fprintf(stderr, "fogpipe bench models: unknown option '%s' (or it lacks its value)\n",
-              argv[i]);
-      print_help();
-      return 2;
     }
+    fprintf(stderr, "fogpipe bench models: unknown option '%s' (or it lacks its value)\n",
+            argv[i]);
+    print_help();
+    return 2;
   }
+  const int W = options.width, H = options.height, frames = options.frames;
+  const char *out_dir = options.out_dir;
   char error[1024] = "";
   if (bench_make_folder(out_dir, error, sizeof error)) {
     fprintf(stderr, "fogpipe bench models: %s\n", error);

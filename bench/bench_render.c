@@ -286,29 +286,17 @@ static const char *default_fogmap(void) {
 }
 
 int bench_render(int argc, char **argv) {
-  int W = 640, H = 360, frames = 3;
-  const char *out_dir = "build/bench/render", *fogmap_path = NULL;
+  bench_image_options options = {.width = 640, .height = 360, .frames = 3,
+                                 .out_dir = "build/bench/render"};
+  const char *fogmap_path = NULL;
   fog_profile_kind profile = FOG_PROFILE_EXPONENTIAL;
   for (int i = 1; i < argc; i++) {
+    int common = bench_image_option("render", argc, argv, &i, &options);
+    if (common < 0) return 2;
+    if (common) continue;
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       print_help();
       return 0;
-    } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
-      char tail = 0;
-      if (sscanf(argv[++i], "%dx%d%c", &W, &H, &tail) != 2 || W < 8 || H < 8 || W > 8192 ||
-          H > 8192) {
-        fprintf(stderr, "fogpipe bench render: --size '%s': expected WxH, 8..8192 each, e.g. 640x360\n",
-                argv[i]);
-        return 2;
-      }
-    } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
-      frames = atoi(argv[++i]);
-      if (frames < 1) {
-        fprintf(stderr, "fogpipe bench render: --frames needs a positive number\n");
-        return 2;
-      }
-    } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
-      out_dir = argv[++i];
     } else if (!strcmp(argv[i], "--profile") && i + 1 < argc) {
       i++;
       if (!strcmp(argv[i], "slab")) {
@@ -329,6 +317,8 @@ int bench_render(int argc, char **argv) {
       return 2;
     }
   }
+  const int W = options.width, H = options.height, frames = options.frames;
+  const char *out_dir = options.out_dir;
   if (!fogmap_path) fogmap_path = default_fogmap();
   char message[1024] = "";
   if (bench_make_folder(out_dir, message, sizeof message)) {
