@@ -87,6 +87,25 @@ int bench_image_option(const char *stage, int argc, char **argv, int *i,
   return 0;
 }
 
+FILE *bench_csv_open(const char *path, char *error, int size) {
+  char temp[4200];
+  snprintf(temp, sizeof temp, "%.4000s.tmp", path);
+  FILE *f = fopen(temp, "w");
+  if (!f) snprintf(error, (size_t)size, "%.900s: cannot write (folder missing or not writable)", path);
+  return f;
+}
+
+int bench_csv_close(FILE *f, const char *path, char *error, int size) {
+  char temp[4200];
+  snprintf(temp, sizeof temp, "%.4000s.tmp", path);
+  if (fclose(f) != 0 || rename(temp, path) != 0) {
+    remove(temp);
+    snprintf(error, (size_t)size, "%.900s: write failed (disk full?)", path);
+    return 1;
+  }
+  return 0;
+}
+
 int bench_make_folder(const char *path, char *error, int size) {
   char buffer[4096];
   snprintf(buffer, sizeof buffer, "%s", path);

@@ -30,6 +30,12 @@ typedef struct bench_image_options {
  * for a bad value. */
 int bench_image_option(const char *stage, int argc, char **argv, int *i,
                        bench_image_options *options);
+/* A table written whole or not at all: bench_csv_open writes to PATH.tmp (NULL and a
+ * message if it cannot), bench_csv_close closes it and renames it to PATH (non-zero and a
+ * message, the temporary removed, if that fails). */
+#include <stdio.h>
+FILE *bench_csv_open(const char *path, char *error, int size);
+int bench_csv_close(FILE *f, const char *path, char *error, int size);
 /* mkdir -p; non-zero and a message naming the folder on failure. */
 int bench_make_folder(const char *path, char *error, int size);
 /* RMSE and max of |gpu - ref| over n values (a NaN from the GL counts as the worst), and

@@ -76,24 +76,14 @@ static double march_speedup(const model_row *rows, int count, int model, bool *m
 
 static int write_table(const char *path, const model_row *rows, int count, char *error,
                        int size) {
-  char temp[4200];
-  snprintf(temp, sizeof temp, "%.4000s.tmp", path);
-  FILE *f = fopen(temp, "w");
-  if (!f) {
-    snprintf(error, (size_t)size, "%.900s: cannot write", path);
-    return 1;
-  }
+  FILE *f = bench_csv_open(path, error, size);
+  if (!f) return 1;
   fprintf(f, "model,method,steps,ms_per_frame,rmse,max_error\n");
   for (int i = 0; i < count; i++)
     fprintf(f, "%s,%s,%d,%.6g,%.6g,%.6g\n", model_names[rows[i].model],
             rows[i].steps ? "march" : "exact", rows[i].steps, rows[i].ms, rows[i].rmse,
             rows[i].max_error);
-  if (fclose(f) != 0 || rename(temp, path) != 0) {
-    remove(temp);
-    snprintf(error, (size_t)size, "%.900s: write failed", path);
-    return 1;
-  }
-  return 0;
+  return bench_csv_close(f, path, error, size);
 }
 
 int bench_models(int argc, char **argv) {

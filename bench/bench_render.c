@@ -249,13 +249,8 @@ typedef struct bench_row {
 
 static int write_table_csv(const char *path, const bench_row *rows, int count, char *error,
                            int size) {
-  char temp[4200];
-  snprintf(temp, sizeof temp, "%.4000s.tmp", path);
-  FILE *f = fopen(temp, "w");
-  if (!f) {
-    snprintf(error, (size_t)size, "%.900s: cannot write", path);
-    return 1;
-  }
+  FILE *f = bench_csv_open(path, error, size);
+  if (!f) return 1;
   fprintf(f, "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full\n");
   for (int i = 0; i < count; i++) {
     const bench_row *r = &rows[i];
@@ -265,12 +260,7 @@ static int write_table_csv(const char *path, const bench_row *rows, int count, c
     else
       fprintf(f, ",\n");
   }
-  if (fclose(f) != 0 || rename(temp, path) != 0) {
-    remove(temp);
-    snprintf(error, (size_t)size, "%.900s: write failed", path);
-    return 1;
-  }
-  return 0;
+  return bench_csv_close(f, path, error, size);
 }
 
 static transform_basis basis_of_degree(int degree) {

@@ -2,6 +2,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "bench/chart.h"
 
+#include "bench/bench.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,23 +11,12 @@
 
 static int write_csv(const chart_point *points, int count, const char *path, char *error,
                      int error_size) {
-  char temp[4096];
-  snprintf(temp, sizeof temp, "%s.tmp", path);
-  FILE *file = fopen(temp, "w");
-  if (!file) {
-    snprintf(error, (size_t)error_size, "%s: cannot write (folder missing or not writable)",
-             path);
-    return 1;
-  }
+  FILE *file = bench_csv_open(path, error, error_size);
+  if (!file) return 1;
   fprintf(file, "series,x,y\n");
   for (int i = 0; i < count; i++)
     fprintf(file, "%s,%.9g,%.9g\n", points[i].series, points[i].x, points[i].y);
-  if (fclose(file) != 0 || rename(temp, path) != 0) {
-    remove(temp);
-    snprintf(error, (size_t)error_size, "%s: write failed (disk full?)", path);
-    return 1;
-  }
-  return 0;
+  return bench_csv_close(file, path, error, error_size);
 }
 
 /* Series names in first-appearance order. */
