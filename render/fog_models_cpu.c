@@ -51,6 +51,62 @@ double fog_rbf_optical_depth(double base, const fog_rbf *rbfs, int count, const 
   return sum;
 }
 
+/* Trilinear at index position u, zero outside the grid (GL_CLAMP_TO_BORDER with 0). */
+static double grid3d_sample(const volume_grid_desc *g, const double u[3]) {
+  int base[3];
+  double f[3];
+  for (int c = 0; c < 3; c++) {
+    double fl = floor(u[c]);
+    base[c] = (int)fl;
+    f[c] = u[c] - fl;
+  }
+  double sum = 0.0;
+  for (int corner = 0; corner < 8; corner++) {
+    int idx[3];
+    double w = 1.0;
+    for (int c = 0; c < 3; c++) {
+      int o = (corner >> c) & 1;
+      idx[c] = base[c] + o;
+      w *= o ? f[c] : 1.0 - f[c];
+    }
+    if (idx[0] < 0 || idx[1] < 0 || idx[2] < 0 || idx[0] >= g->dim[0] || idx[1] >= g->dim[1] ||
+        idx[2] >= g->dim[2])
+      continue;
+    sum += w * g->values[((size_t)idx[2] * g->dim[1] + idx[1]) * g->dim[0] + idx[0]];
+  }
+  return sum;
+}
+
+double fog_grid3d_optical_depth(const volume_grid_desc *g, double step, const double camera[3],
+                                const double dir[3], double length) {
+  double u0[3], du[3], t0 = 0.0, t1 = length;
+  for (int c = 0; c < 3; c++) {
+    u0[c] = g->index_offset[c];
+    du[c] = 0.0;
+    for (int a = 0; a < 3; a++) {
+      u0[c] += g->index_from_world[c][a] * camera[a];
+      du[c] += g->index_from_world[c][a] * dir[a];
+    }
+    double lo = -1.0, hi = g->dim[c]; /* the support, in index units */
+    if (du[c] == 0.0) {
+      if (u0[c] < lo || u0[c] > hi) return 0.0;
+      continue;
+    }
+    double ta = (lo - u0[c]) / du[c], tb = (hi - u0[c]) / du[c];
+    t0 = fmax(t0, fmin(ta, tb));
+    t1 = fmin(t1, fmax(ta, tb));
+  }
+  if (!(t0 < t1)) return 0.0;
+  int n = (int)ceil((t1 - t0) / step);
+  double dt = (t1 - t0) / n, sum = 0.0;
+  for (int s = 0; s < n; s++) {
+    double t = t0 + (s + 0.5) * dt, u[3];
+    for (int c = 0; c < 3; c++) u[c] = u0[c] + t * du[c];
+    sum += grid3d_sample(g, u);
+  }
+  return sum * dt;
+}
+
 double fog_model_optical_depth(const fog_model *m, const double camera[3], const double dir[3],
                                double t_surface) {
   switch (m->kind) {
@@ -61,6 +117,8 @@ double fog_model_optical_depth(const fog_model *m, const double camera[3], const
                                       t_surface);
     case FOG_MODEL_RBF:
       return fog_rbf_optical_depth(m->extinction, m->rbfs, m->rbf_count, camera, dir, t_surface);
+    case FOG_MODEL_VOLUME:
+      return fog_grid3d_optical_depth(m->grid3d, m->grid3d_step, camera, dir, t_surface);
     default: {
       if (!m->lod) return 0.0;
       return fog_optical_depth_lod(m->volume, m->lod, m->lod_method, camera, dir, t_surface);

@@ -41,6 +41,10 @@ struct fog_pass {
   int cell_layers_width, cell_layers_height, cell_layers_count;
   bool layers_stale;
   float *cell_scratch; /* fog_cell_poly_build's output before upload; grows, never shrinks */
+  /* FOG_MODEL_VOLUME: the density as a 3D texture and its placement (fog_pass_upload_grid3d). */
+  GLuint grid3d;
+  int grid3d_dim[3];
+  double grid3d_index_from_world[3][3], grid3d_index_offset[3];
   size_t cell_scratch_texels;
   /* resolution_divisor > 1: the reduced pass's target (RGBA32F: optical depth, distance,
    * extinction at the surface). */
@@ -48,20 +52,20 @@ struct fog_pass {
 };
 
 /* Key bits: 0 fetch, 1 integrator, 2-3 grid degree, 4-5 profile kind, 6-7 profile degree,
- * 8 single grid (no LOD), 9-10 model, 11 LOD method, 12-13 resolution (0: full, 1: the
- * reduced pass at divisor 2, 2: at divisor 4, 3: the upsampling pass), 14-16 the level
+ * 8 single grid (no LOD), 9-11 model, 12 LOD method, 13-14 resolution (0: full, 1: the
+ * reduced pass at divisor 2, 2: at divisor 4, 3: the upsampling pass), 15-17 the level
  * count J. llvmpipe executes both sides of a branch under a mask (and the GLSL switches on
  * these settings inside the per-piece code), so each setting as a constant removes the
  * other cases' work from every piece; J as a constant makes the LOD levels straight-line
  * code (docs/integral.md, Performance). */
-#define FOG_PASS_KEY_REDUCED_SHIFT 12
+#define FOG_PASS_KEY_REDUCED_SHIFT 13
 static int fog_pass_variant_key(int fetch, int integrator, int degree, int profile_kind,
                                 int profile_degree, int single_grid, int model, int lod_method,
                                 int reduced, int levels) {
   return (fetch & 1) | (integrator & 1) << 1 | (degree & 3) << 2 | (profile_kind & 3) << 4 |
-         (profile_degree & 3) << 6 | (single_grid & 1) << 8 | (model & 3) << 9 |
-         (lod_method & 1) << 11 | (reduced & 3) << FOG_PASS_KEY_REDUCED_SHIFT |
-         (levels & 7) << 14;
+         (profile_degree & 3) << 6 | (single_grid & 1) << 8 | (model & 7) << 9 |
+         (lod_method & 1) << 12 | (reduced & 3) << FOG_PASS_KEY_REDUCED_SHIFT |
+         (levels & 7) << 15;
 }
 
 /* Builds one variant: the fragment text with its #defines inserted after the #version line. */
@@ -81,8 +85,8 @@ static GLuint fog_pass_program(int key, render_error *err) {
            "#define FOG_SINGLE_GRID %d\n#define FOG_MODEL_KIND %d\n#define FOG_LOD_METHOD %d\n"
            "#define FOG_REDUCED %d\n#define FOG_UPSAMPLE %d\n#define FOG_LEVELS %d\n",
            key & 1, (key >> 1) & 1, (key >> 2) & 3, (key >> 4) & 3, (key >> 6) & 3,
-           (key >> 8) & 1, (key >> 9) & 3, (key >> 11) & 1,
-           reduced == 1 ? 2 : reduced == 2 ? 4 : 1, reduced == 3, (key >> 14) & 7);
+           (key >> 8) & 1, (key >> 9) & 7, (key >> 12) & 1,
+           reduced == 1 ? 2 : reduced == 2 ? 4 : 1, reduced == 3, (key >> 15) & 7);
   const char *eol = strchr(fs, '\n');
   size_t head = eol ? (size_t)(eol - fs) + 1 : 0;
   size_t total = strlen(fs) + strlen(defines) + 1;
@@ -144,6 +148,7 @@ void fog_pass_destroy(fog_pass *pass) {
   for (int i = 0; i < FOG_PASS_MAX_GRIDS; i++)
     if (pass->slots[i].cells) glDeleteTextures(1, &pass->slots[i].cells);
   if (pass->layers) glDeleteTextures(1, &pass->layers);
+  if (pass->grid3d) glDeleteTextures(1, &pass->grid3d);
   if (pass->cell_layers) glDeleteTextures(1, &pass->cell_layers);
   free(pass->cell_scratch);
   if (pass->reduced.framebuffer) gl_target_destroy(&pass->reduced);
@@ -218,6 +223,32 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
   s->origin_v = grid->origin_v;
   s->spacing = grid->spacing;
   return gl_util_check("fog pass: grid upload", err);
+}
+
+int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_error *err) {
+  const int *d = grid->dim;
+  if (d[0] < 1 || d[1] < 1 || d[2] < 1 || !grid->values) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: volume grid %dx%dx%d: expected positive sizes and values", d[0], d[1],
+             d[2]);
+    return 1;
+  }
+  bool same = pass->grid3d && !memcmp(pass->grid3d_dim, d, sizeof pass->grid3d_dim);
+  if (!pass->grid3d) glGenTextures(1, &pass->grid3d);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_3D, pass->grid3d);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  if (same)
+    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, d[0], d[1], d[2], GL_RED, GL_FLOAT, grid->values);
+  else
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, d[0], d[1], d[2], 0, GL_RED, GL_FLOAT, grid->values);
+  gl_util_texture_sampling(GL_TEXTURE_3D, true); /* hardware trilinear, zero border */
+  glBindTexture(GL_TEXTURE_3D, 0);
+  memcpy(pass->grid3d_dim, d, sizeof pass->grid3d_dim);
+  memcpy(pass->grid3d_index_from_world, grid->index_from_world,
+         sizeof pass->grid3d_index_from_world);
+  memcpy(pass->grid3d_index_offset, grid->index_offset, sizeof pass->grid3d_index_offset);
+  return gl_util_check("fog pass: volume upload", err);
 }
 
 int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err) {
@@ -340,6 +371,26 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
   GLint units[FOG_PASS_MAX_GRIDS];
   for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) units[k] = 2 + k;
   glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
+  if (params->model == FOG_MODEL_VOLUME) {
+    /* The camera's index position in double, rounded once; the matrix maps directions. */
+    float m[9], camera_index[3];
+    for (int c = 0; c < 3; c++) {
+      double u = pass->grid3d_index_offset[c];
+      for (int a = 0; a < 3; a++) {
+        u += pass->grid3d_index_from_world[c][a] * cam->position[a];
+        m[3 * a + c] = (float)pass->grid3d_index_from_world[c][a]; /* column-major */
+      }
+      camera_index[c] = (float)u;
+    }
+    glActiveTexture(GL_TEXTURE6 + FOG_PASS_MAX_GRIDS); /* a unit of its own (see the others) */
+    glBindTexture(GL_TEXTURE_3D, pass->grid3d);
+    glUniform1i(fog_loc(prog, "fog_grid3d"), 6 + FOG_PASS_MAX_GRIDS);
+    glUniformMatrix3fv(fog_loc(prog, "fog_grid3d_index_from_world"), 1, GL_FALSE, m);
+    glUniform3fv(fog_loc(prog, "fog_grid3d_camera_index"), 1, camera_index);
+    glUniform3f(fog_loc(prog, "fog_grid3d_dims"), (float)pass->grid3d_dim[0],
+                (float)pass->grid3d_dim[1], (float)pass->grid3d_dim[2]);
+    glUniform1f(fog_loc(prog, "fog_grid3d_step"), (float)params->model_grid3d_step);
+  }
   if (params->model == FOG_MODEL_RBF) {
     /* Camera-relative centres, subtracted in double, and 1/radius (fog_models.glsl). */
     float centres[FOG_MAX_RBFS][4], densities[FOG_MAX_RBFS];
@@ -410,6 +461,12 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
   if (params->model == FOG_MODEL_HEIGHT && !(params->model_scale_height > 0)) {
     snprintf(err->message, sizeof err->message,
              "fog pass: height fog scale height %g: expected > 0", params->model_scale_height);
+    return 1;
+  }
+  if (params->model == FOG_MODEL_VOLUME && (!pass->grid3d || !(params->model_grid3d_step > 0))) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: volume model: %s", !pass->grid3d ? "no grid uploaded (fog_pass_upload_grid3d)"
+                                                       : "expected a march step > 0");
     return 1;
   }
   if (params->model == FOG_MODEL_RBF) {

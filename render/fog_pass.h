@@ -65,6 +65,9 @@ typedef struct fog_pass_params {
    * radius > 0, density >= 0) are read at each draw. */
   const fog_rbf *model_rbfs;
   int model_rbf_count;
+  /* FOG_MODEL_VOLUME: the march step in world units (> 0) through the grid of
+   * fog_pass_upload_grid3d (its only integrator: `integrator` does not apply). */
+  double model_grid3d_step;
   const fog_volume *volume;  /* FOG_MODEL_FOGMAP: placement and profile (required) */
   int levels;                /* J: slots 0..J approximations, J+1..2J details; 0: one grid */
   fog_lod_method lod_method;
@@ -107,6 +110,10 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
                          render_error *err);
 /* Uploads lod->approx[0..J] and lod->detail[0..J-1] into their slots. */
 int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err);
+
+/* Uploads the density grid of FOG_MODEL_VOLUME as an R32F 3D texture (hardware trilinear,
+ * zero border) with its placement; a grid of the same size reuses the texture. */
+int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_error *err);
 
 /* Draws the fog over the bound framebuffer (see above). width x height is the viewport and
  * the size of both surface textures. */

@@ -4,6 +4,7 @@
 #define FOG_MODEL_HOMOGENEOUS 1
 #define FOG_MODEL_HEIGHT 2
 #define FOG_MODEL_RBF 3
+#define FOG_MODEL_VOLUME 4
 #define FOG_MAX_RBFS 64
 #define FOG_EXPREL_SWITCH 0.1
 
@@ -18,6 +19,11 @@ uniform float fog_model_scale_height;
 uniform int fog_rbf_count;
 uniform vec4 fog_rbf_centre[FOG_MAX_RBFS];  // xyz: centre - camera (subtracted in double); w: 1/r
 uniform float fog_rbf_density[FOG_MAX_RBFS];
+uniform sampler3D fog_grid3d;                  // FOG_MODEL_VOLUME: R32F, trilinear, zero border
+uniform mat3 fog_grid3d_index_from_world;      // index position u = M p + offset
+uniform vec3 fog_grid3d_camera_index;          // u at the camera (double on the CPU)
+uniform vec3 fog_grid3d_dims;
+uniform float fog_grid3d_step;                 // world units
 
 // (1 - e^{-x})/x, with the series sum_{n<=10} (-x)^n/(n+1)! below FOG_EXPREL_SWITCH.
 float fog_exprel(float x) {
@@ -75,6 +81,30 @@ float fog_rbf_optical_depth(float base, vec3 dir, float length) {
            fog_erf_difference(u0, u1);
   }
   return sum;
+}
+
+// The volume's optical depth (fog_grid3d_optical_depth in C): the ray's stretch inside the
+// grid's support (index coordinates in [-1, dim]), from the camera on, cut into
+// n = ceil(stretch / step) equal steps, trilinear samples at their midpoints. Parallel
+// axes are selected, not branched on, as in fog_box_entry_exit.
+float fog_grid3d_optical_depth(vec3 dir, float length) {
+  vec3 du = fog_grid3d_index_from_world * dir, u0 = fog_grid3d_camera_index;
+  vec3 ta = (-1.0 - u0) / du, tb = (fog_grid3d_dims - u0) / du;
+  bvec3 parallel = equal(du, vec3(0.0));
+  bvec3 inside = bvec3(uvec3(greaterThanEqual(u0, vec3(-1.0))) &
+                       uvec3(lessThanEqual(u0, fog_grid3d_dims)));
+  vec3 reach = mix(vec3(-1e30), vec3(1e30), inside);
+  vec3 lo = mix(min(ta, tb), -reach, parallel), hi = mix(max(ta, tb), reach, parallel);
+  float t0 = max(max(max(lo.x, lo.y), lo.z), 0.0);
+  float t1 = min(min(min(hi.x, hi.y), hi.z), length);
+  if (!(t0 < t1)) return 0.0;
+  int n = int(ceil((t1 - t0) / fog_grid3d_step));
+  float dt = (t1 - t0) / float(n), sum = 0.0;
+  for (int s = 0; s < n; s++) {
+    float t = t0 + (float(s) + 0.5) * dt;
+    sum += texture(fog_grid3d, (u0 + t * du + 0.5) / fog_grid3d_dims).r;
+  }
+  return sum * dt;
 }
 
 // ---- uniform ray marching of the analytic models (the benchmark's alternative) ----------

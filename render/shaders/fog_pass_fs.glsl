@@ -224,7 +224,7 @@ void main() {
     double t_in = 1.0, t_out = 0.0;
     if (!fog_box_entry_exit(dir_d, t_in, t_out)) t_in = 1.0, t_out = 0.0;
 #if FOG_INTEGRATOR == 1
-    if (fog_model != FOG_MODEL_FOGMAP)
+    if (fog_model != FOG_MODEL_FOGMAP && fog_model != FOG_MODEL_VOLUME)
       optical_depth = fog_model_optical_depth_march(dir, t_surface, fog_march_steps, jitter);
     else
 #endif
@@ -235,6 +235,8 @@ void main() {
                                                fog_model_scale_height, dir.y, t_surface);
     else if (fog_model == FOG_MODEL_RBF)
       optical_depth = fog_rbf_optical_depth(fog_model_extinction, dir, t_surface);
+    else if (fog_model == FOG_MODEL_VOLUME)
+      optical_depth = fog_grid3d_optical_depth(dir, t_surface);
     else
       optical_depth = fog_optical_depth_lod(dir_d, t_in, t_out, t_surface, jitter);
 #if FOG_REDUCED > 1
