@@ -48,7 +48,7 @@ typedef struct key_spec {
 #define F(member) offsetof(scene_config, member)
 #define BIG 1e300
 static const key_spec keys[] = {
-    {"fog", "model", V_ENUM, F(fog.model), 0, 0, "fogmap|homogeneous|height|rbf", 0, 0},
+    {"fog", "model", V_ENUM, F(fog.model), 0, 0, "fogmap|homogeneous|height|rbf|volume", 0, 0},
     {"fog", "fogmap", V_PATH, F(fog.fogmap), 0, 0, NULL, F(fog.fogmap_line), sizeof(((scene_config *)0)->fog.fogmap)},
     {"fog", "channel", V_STRING, F(fog.channel), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.channel)},
     {"fog", "density_scale", V_DOUBLE, F(fog.density_scale), 0, BIG, NULL, 0, 0},
@@ -68,6 +68,7 @@ static const key_spec keys[] = {
     {"fog", "colour", V_FLOAT3, F(fog.colour), 0, BIG, NULL, 0, 0},
     {"fog", "rbf", V_RBF, 0, 0, BIG, NULL, 0, 0},
     {"fog", "rbf_base", V_DOUBLE, F(fog.rbf_base), 0, BIG, NULL, 0, 0},
+    {"fog", "volume_step", V_DOUBLE, F(fog.volume_step), 0, BIG, NULL, 0, 0},
     {"fog", "vdb", V_PATH, F(fog.vdb), 0, 0, NULL, F(fog.vdb_line), sizeof(((scene_config *)0)->fog.vdb)},
     {"fog", "vdb_grid", V_STRING, F(fog.vdb_grid), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.vdb_grid)},
     {"fog", "vdb_up", V_ENUM, F(fog.vdb_up), 0, 0, "z|y", 0, 0},
@@ -428,6 +429,11 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
   if (cfg->fog.model == SCENE_MODEL_RBF && cfg->fog.rbf_count == 0) {
     s.line = cfg->fog.model_line;
     fail(&s, "fog", "model", "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' line");
+    return 1;
+  }
+  if (cfg->fog.model == SCENE_MODEL_VOLUME && !cfg->fog.vdb[0]) {
+    s.line = cfg->fog.model_line;
+    fail(&s, "fog", "model", "volume needs a 'vdb = FILE or PATTERN' line (the 3D grid)");
     return 1;
   }
   if (cfg->fog.profile == SCENE_PROFILE_BSPLINE && cfg->fog.profile_count == 0) {

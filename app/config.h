@@ -49,6 +49,7 @@ typedef enum scene_fog_model {
   SCENE_MODEL_HOMOGENEOUS, /* "homogeneous": K = density_scale everywhere */
   SCENE_MODEL_HEIGHT,      /* "height": K = density_scale exp(-(y - fog_height)/scale_height) */
   SCENE_MODEL_RBF,         /* "rbf": K = rbf_base + density_scale sum of the `rbf` Gaussians */
+  SCENE_MODEL_VOLUME,      /* "volume": K = density_scale x frame vdb_frame of `vdb`, in 3D */
 } scene_fog_model;
 
 typedef enum scene_boundary {
@@ -82,6 +83,8 @@ typedef struct scene_fog_config {
   fog_rbf rbfs[FOG_MAX_RBFS];
   int rbf_count;
   double rbf_base;
+  /* model = volume: the march step in world units; 0: half the smallest voxel side. */
+  double volume_step;
   /* OpenVDB fog (app/vdb_source.h): exclusive with fogmap. */
   char vdb[SCENE_CONFIG_PATH_MAX];    /* resolved file / pattern / folder / glob; "" none */
   int vdb_line;

@@ -470,10 +470,11 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
   }
   p->config = *desc->config;
   if (p->config.fog.model != SCENE_MODEL_FOGMAP) {
-    /* The analytic models have nothing to simulate: `render` and `view` draw them. */
-    static const char *const names[] = {"fogmap", "homogeneous", "height", "rbf"};
+    /* The analytic and volume models have nothing to simulate: `render` and `view` draw
+     * them. */
+    static const char *const names[] = {"fogmap", "homogeneous", "height", "rbf", "volume"};
     fail(err, "%s:%d: [fog] model = %s: the animation simulates a fogmap; expected model = "
-              "fogmap here (fogpipe render and view draw the analytic models)",
+              "fogmap here (fogpipe render and view draw the other models)",
          p->config.path, p->config.fog.model_line, names[p->config.fog.model]);
     free(p);
     return NULL;

@@ -1,6 +1,7 @@
 /* The static fog of a scene config (render_fog.h). */
 #include "app/render_fog.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -59,6 +60,64 @@ done:
   return status;
 }
 
+/* model = volume: frame cfg->fog.vdb_frame of the sequence as a 3D grid (density_scale
+ * applied), where the bake put it (the VDB's transform, up axis turned into Y; [box] does
+ * not move it), marched at volume_step (default half the smallest voxel side). */
+static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
+  const scene_fog_config *f = &cfg->fog;
+  vdb_sequence seq;
+  sim_error serr = {{0}};
+  const char *input = f->vdb;
+  if (vdb_sequence_find(&input, 1, -1, -1, &seq, &serr)) {
+    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] vdb: %.280s", cfg->path,
+             f->vdb_line, serr.message);
+    return 1;
+  }
+  int index = -1;
+  for (int i = 0; i < seq.count; i++)
+    if (seq.frames[i] == f->vdb_frame || (f->vdb_frame < 0 && i == seq.count - 1)) index = i;
+  if (index < 0) {
+    snprintf(err->message, sizeof err->message,
+             "%.200s:%d: [fog] vdb: no frame %d in the sequence (frames %d..%d)", cfg->path,
+             f->vdb_line, f->vdb_frame, seq.frames[0], seq.frames[seq.count - 1]);
+    vdb_sequence_destroy(&seq);
+    return 1;
+  }
+  vdb_frame frame;
+  int failed = vdb_frame_load(seq.paths[index],
+                              &(vdb_frame_desc){.grid = f->vdb_grid,
+                                                .up = f->vdb_up == 1 ? VDB_UP_Y : VDB_UP_Z,
+                                                .keep_grid = 1},
+                              &frame, &serr);
+  vdb_sequence_destroy(&seq);
+  if (failed) {
+    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] vdb: %.280s", cfg->path,
+             f->vdb_line, serr.message);
+    return 1;
+  }
+  vdb_dense_grid *g = &frame.grid;
+  const vdb_world_map *w = &frame.world;
+  size_t n = (size_t)g->dim[0] * g->dim[1] * g->dim[2];
+  for (size_t i = 0; i < n; i++) g->values[i] = (float)(f->density_scale * g->values[i]);
+  /* u_c = (p_a - base_a) / step_a - index_min_c for the world axis a fed by index axis c. */
+  volume_grid_desc grid = {.dim = {g->dim[0], g->dim[1], g->dim[2]}, .values = g->values};
+  double smallest = HUGE_VAL;
+  for (int a = 0; a < 3; a++) {
+    const int c = w->index_axis[a];
+    grid.index_from_world[c][a] = 1.0 / w->step[a];
+    grid.index_offset[c] = -w->base[a] / w->step[a] - g->index_min[c];
+    smallest = fmin(smallest, fabs(w->step[a]));
+  }
+  fog->params = (fog_pass_params){
+      .model = FOG_MODEL_VOLUME,
+      .model_grid3d_step = f->volume_step > 0 ? f->volume_step : 0.5 * smallest,
+      .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
+  };
+  int status = fog_pass_create(&fog->pass, err) || fog_pass_upload_grid3d(fog->pass, &grid, err);
+  vdb_frame_destroy(&frame); /* the GL holds the grid now */
+  return status;
+}
+
 /* An analytic model of the ladder (DESIGN §3): no fogmap and no transform, the pass's
  * parameters alone (config.h, scene_fog_model, says what each key means there). */
 static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
@@ -83,6 +142,11 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
 int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err) {
   *fog = (render_fog){0};
   const scene_fog_config *f = &cfg->fog;
+  if (f->model == SCENE_MODEL_VOLUME) {
+    int status = render_volume_fog(fog, cfg, err);
+    if (status) render_fog_destroy(fog); /* keeps err */
+    return status;
+  }
   if (f->model != SCENE_MODEL_FOGMAP) return render_analytic_fog(fog, cfg, err);
   if (f->vdb[0]) return render_vdb_fog(fog, cfg, err);
   fogmap map = {0};

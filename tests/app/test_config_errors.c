@@ -61,7 +61,7 @@ int main(void) {
   expect_error("[render]\n[terrain]\nheightmap = hills.png\n", "3: [terrain] heightmap: ", missing);
   /* The fog models of the ladder and their Gaussians. */
   expect_error("[fog]\nmodel = perlin\n", "2: [fog] model: ",
-               "expected one of fogmap|homogeneous|height|rbf, got 'perlin'");
+               "expected one of fogmap|homogeneous|height|rbf|volume, got 'perlin'");
   expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 50\n", "3: [fog] rbf: ",
                "expected X Y Z RADIUS DENSITY (5 numbers), got '0 10 0 50'");
   expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 50 0.1\nrbf = 0 10 0 0 0.1\n", "4: [fog] rbf: ",
@@ -69,6 +69,8 @@ int main(void) {
   expect_error("[fog]\nrbf = 0 10 0 5 -0.1\n", "2: [fog] rbf: ", "DENSITY >= 0");
   expect_error("; banks\n[fog]\nmodel = rbf\nrbf_base = 0.01\n", "3: [fog] model: ",
                "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' line");
+  expect_error("[fog]\n\nmodel = volume\n", "3: [fog] model: ",
+               "volume needs a 'vdb = FILE or PATTERN' line");
   {
     char text[8192] = "[fog]\nmodel = rbf\n";
     for (int i = 0; i <= FOG_MAX_RBFS; i++) strcat(text, "rbf = 1 2 3 4 0.5\n");
