@@ -83,7 +83,7 @@ typedef struct scene_fog_config {
   fog_rbf rbfs[FOG_MAX_RBFS];
   int rbf_count;
   double rbf_base;
-  /* model = volume: the march step in world units; 0: half the smallest voxel side. */
+  /* model = volume: 0 integrates the grid exactly; > 0 marches it at this step (world). */
   double volume_step;
   /* OpenVDB fog (app/vdb_source.h): exclusive with fogmap. */
   char vdb[SCENE_CONFIG_PATH_MAX];    /* resolved file / pattern / folder / glob; "" none */

@@ -1,7 +1,6 @@
 /* The static fog of a scene config (render_fog.h). */
 #include "app/render_fog.h"
 
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -62,7 +61,7 @@ done:
 
 /* model = volume: frame cfg->fog.vdb_frame of the sequence as a 3D grid (density_scale
  * applied), where the bake put it (the VDB's transform, up axis turned into Y; [box] does
- * not move it), marched at volume_step (default half the smallest voxel side). */
+ * not move it), integrated exactly, or marched at volume_step when that is set. */
 static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
   const scene_fog_config *f = &cfg->fog;
   vdb_sequence seq;
@@ -101,16 +100,15 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_er
   for (size_t i = 0; i < n; i++) g->values[i] = (float)(f->density_scale * g->values[i]);
   /* u_c = (p_a - base_a) / step_a - index_min_c for the world axis a fed by index axis c. */
   volume_grid_desc grid = {.dim = {g->dim[0], g->dim[1], g->dim[2]}, .values = g->values};
-  double smallest = HUGE_VAL;
   for (int a = 0; a < 3; a++) {
     const int c = w->index_axis[a];
     grid.index_from_world[c][a] = 1.0 / w->step[a];
     grid.index_offset[c] = -w->base[a] / w->step[a] - g->index_min[c];
-    smallest = fmin(smallest, fabs(w->step[a]));
   }
   fog->params = (fog_pass_params){
       .model = FOG_MODEL_VOLUME,
-      .model_grid3d_step = f->volume_step > 0 ? f->volume_step : 0.5 * smallest,
+      .integrator = f->volume_step > 0 ? FOG_INTEGRATOR_MARCH : FOG_INTEGRATOR_EXACT,
+      .model_grid3d_step = f->volume_step,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
   };
   int status = fog_pass_create(&fog->pass, err) || fog_pass_upload_grid3d(fog->pass, &grid, err);

@@ -11,7 +11,8 @@
  *                          radial basis functions over a homogeneous base (Zhou et al.,
  *                          Fogshop 2007, eq. 2 with a_i = 1/r_i), closed form with erf
  *   FOG_MODEL_VOLUME       K = a dense 3D grid, trilinear (a VDB frame as it is, where the
- *                          2.5D fogmap cannot hold it: tall plumes), ray-marched
+ *                          2.5D fogmap cannot hold it: tall plumes), exact per lattice cell
+ *                          (3D DDA, two Gauss nodes) or ray-marched
  * Adding a model: a kind here, its parameters in fog_model, a CPU function and a GLSL
  * function of the same name, one case in each dispatcher. */
 #ifndef FOGPIPE_RENDER_FOG_MODELS_H
@@ -56,9 +57,8 @@ typedef struct fog_model {
   const fog_rbf *rbfs;
   int rbf_count;
   /* FOG_MODEL_VOLUME: the grid (extinction per world unit; render/volume_march.h's
-   * placement) and the march step in world units (> 0). */
+   * placement). fog_model_optical_depth integrates it exactly. */
   const volume_grid_desc *grid3d;
-  double grid3d_step;
 } fog_model;
 
 /* Optical depth from the camera along the unit direction dir up to the first surface
@@ -78,12 +78,17 @@ double fog_exprel(double x);
  * length HUGE_VAL: to infinity (+inf if base > 0). */
 double fog_rbf_optical_depth(double base, const fog_rbf *rbfs, int count, const double camera[3],
                              const double dir[3], double length);
-/* The volume's optical depth up to length: the ray's stretch inside the grid's support
- * (index coordinates in [-1, dim]: trilinear with zero beyond the outer voxels), from
- * t >= 0, cut into n = ceil(stretch / step) equal steps, midpoints, trilinear samples in
- * double. The GLSL twin takes the same samples with the hardware's trilinear filter. */
-double fog_grid3d_optical_depth(const volume_grid_desc *grid, double step,
-                                const double camera[3], const double dir[3], double length);
+/* The volume's optical depth up to length, over the ray's stretch inside the grid's
+ * support (index coordinates in [-1, dim]: trilinear with zero beyond the outer voxels)
+ * from t >= 0. Exact: trilinear is a cubic in t inside each cell of the integer lattice of
+ * index space, so a 3D DDA over those cells with two Gauss-Legendre nodes per piece. The
+ * march: n = ceil(stretch / step) equal steps, midpoint samples. Both in double; the GLSL
+ * twins take the same samples with the hardware's trilinear filter. */
+double fog_grid3d_optical_depth(const volume_grid_desc *grid, const double camera[3],
+                                const double dir[3], double length);
+double fog_grid3d_optical_depth_march(const volume_grid_desc *grid, double step,
+                                      const double camera[3], const double dir[3],
+                                      double length);
 /* erf(u1) - erf(u0) for u0 <= u1 without cancellation: through erfc where both have the
  * same sign (erf(7) - erf(6) is 2.2e-17, not 0). */
 double fog_erf_difference(double u0, double u1);

@@ -463,7 +463,9 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
              "fog pass: height fog scale height %g: expected > 0", params->model_scale_height);
     return 1;
   }
-  if (params->model == FOG_MODEL_VOLUME && (!pass->grid3d || !(params->model_grid3d_step > 0))) {
+  if (params->model == FOG_MODEL_VOLUME &&
+      (!pass->grid3d ||
+       (params->integrator == FOG_INTEGRATOR_MARCH && !(params->model_grid3d_step > 0)))) {
     snprintf(err->message, sizeof err->message,
              "fog pass: volume model: %s", !pass->grid3d ? "no grid uploaded (fog_pass_upload_grid3d)"
                                                        : "expected a march step > 0");

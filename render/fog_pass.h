@@ -65,8 +65,8 @@ typedef struct fog_pass_params {
    * radius > 0, density >= 0) are read at each draw. */
   const fog_rbf *model_rbfs;
   int model_rbf_count;
-  /* FOG_MODEL_VOLUME: the march step in world units (> 0) through the grid of
-   * fog_pass_upload_grid3d (its only integrator: `integrator` does not apply). */
+  /* FOG_MODEL_VOLUME (the grid of fog_pass_upload_grid3d) with FOG_INTEGRATOR_MARCH: the
+   * step in world units (> 0); the exact integrator needs none. */
   double model_grid3d_step;
   const fog_volume *volume;  /* FOG_MODEL_FOGMAP: placement and profile (required) */
   int levels;                /* J: slots 0..J approximations, J+1..2J details; 0: one grid */

@@ -23,7 +23,7 @@ uniform sampler3D fog_grid3d;                  // FOG_MODEL_VOLUME: R32F, trilin
 uniform mat3 fog_grid3d_index_from_world;      // index position u = M p + offset
 uniform vec3 fog_grid3d_camera_index;          // u at the camera (double on the CPU)
 uniform vec3 fog_grid3d_dims;
-uniform float fog_grid3d_step;                 // world units
+uniform float fog_grid3d_step;                 // world units (the march)
 
 // (1 - e^{-x})/x, with the series sum_{n<=10} (-x)^n/(n+1)! below FOG_EXPREL_SWITCH.
 float fog_exprel(float x) {
@@ -83,27 +83,64 @@ float fog_rbf_optical_depth(float base, vec3 dir, float length) {
   return sum;
 }
 
-// The volume's optical depth (fog_grid3d_optical_depth in C): the ray's stretch inside the
-// grid's support (index coordinates in [-1, dim]), from the camera on, cut into
-// n = ceil(stretch / step) equal steps, trilinear samples at their midpoints. Parallel
+// The ray's stretch [t0, t1] inside the volume's support (index coordinates in [-1, dim])
+// and [0, length], with index position u0 + t du (the C twin's grid3d_stretch). Parallel
 // axes are selected, not branched on, as in fog_box_entry_exit.
-float fog_grid3d_optical_depth(vec3 dir, float length) {
-  vec3 du = fog_grid3d_index_from_world * dir, u0 = fog_grid3d_camera_index;
+bool fog_grid3d_stretch(vec3 dir, float length, out vec3 u0, out vec3 du, out float t0,
+                        out float t1) {
+  du = fog_grid3d_index_from_world * dir;
+  u0 = fog_grid3d_camera_index;
   vec3 ta = (-1.0 - u0) / du, tb = (fog_grid3d_dims - u0) / du;
   bvec3 parallel = equal(du, vec3(0.0));
   bvec3 inside = bvec3(uvec3(greaterThanEqual(u0, vec3(-1.0))) &
                        uvec3(lessThanEqual(u0, fog_grid3d_dims)));
   vec3 reach = mix(vec3(-1e30), vec3(1e30), inside);
   vec3 lo = mix(min(ta, tb), -reach, parallel), hi = mix(max(ta, tb), reach, parallel);
-  float t0 = max(max(max(lo.x, lo.y), lo.z), 0.0);
-  float t1 = min(min(min(hi.x, hi.y), hi.z), length);
-  if (!(t0 < t1)) return 0.0;
+  t0 = max(max(max(lo.x, lo.y), lo.z), 0.0);
+  t1 = min(min(min(hi.x, hi.y), hi.z), length);
+  return t0 < t1;
+}
+
+float fog_grid3d_density(vec3 u) {
+  return texture(fog_grid3d, (u + 0.5) / fog_grid3d_dims).r;
+}
+
+// The volume's exact optical depth (fog_grid3d_optical_depth in C): trilinear between voxel
+// centres is a cubic in t inside each cell of index space's integer lattice, so a 3D DDA
+// over those cells (the walk's fog_axis, from the entry) with two Gauss-Legendre nodes per
+// piece integrates it exactly.
+float fog_grid3d_optical_depth(vec3 dir, float length) {
+  vec3 u0, du;
+  float t0, t1;
+  if (!fog_grid3d_stretch(dir, length, u0, du, t0, t1)) return 0.0;
+  vec3 ue = u0 + t0 * du;  // the entry: small index coordinates from here on
+  fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
+           az = fog_axis_start(ue.z, du.z, 0.0);
+  float len = t1 - t0, t = 0.0, sum = 0.0;
+  for (int guard = 0; t < len && guard < 65536; guard++) {
+    float tx = fog_axis_next(ax), ty = fog_axis_next(ay), tz = fog_axis_next(az);
+    float tn = min(min(len, tx), min(ty, tz));
+    float half_len = 0.5 * (tn - t), mid = 0.5 * (tn + t), off = 0.57735026918962576 * half_len;
+    if (tn > t)
+      sum += half_len * (fog_grid3d_density(ue + (mid - off) * du) +
+                         fog_grid3d_density(ue + (mid + off) * du));
+    if (tx <= tn) ax.cell += ax.step;
+    if (ty <= tn) ay.cell += ay.step;
+    if (tz <= tn) az.cell += az.step;
+    t = max(t, tn);
+  }
+  return sum;
+}
+
+// The volume marched (fog_grid3d_optical_depth_march in C): the stretch cut into
+// n = ceil(stretch / step) equal steps, trilinear samples at their midpoints.
+float fog_grid3d_optical_depth_march(vec3 dir, float length) {
+  vec3 u0, du;
+  float t0, t1;
+  if (!fog_grid3d_stretch(dir, length, u0, du, t0, t1)) return 0.0;
   int n = int(ceil((t1 - t0) / fog_grid3d_step));
   float dt = (t1 - t0) / float(n), sum = 0.0;
-  for (int s = 0; s < n; s++) {
-    float t = t0 + (float(s) + 0.5) * dt;
-    sum += texture(fog_grid3d, (u0 + t * du + 0.5) / fog_grid3d_dims).r;
-  }
+  for (int s = 0; s < n; s++) sum += fog_grid3d_density(u0 + (t0 + (float(s) + 0.5) * dt) * du);
   return sum * dt;
 }
 

@@ -224,7 +224,9 @@ void main() {
     double t_in = 1.0, t_out = 0.0;
     if (!fog_box_entry_exit(dir_d, t_in, t_out)) t_in = 1.0, t_out = 0.0;
 #if FOG_INTEGRATOR == 1
-    if (fog_model != FOG_MODEL_FOGMAP && fog_model != FOG_MODEL_VOLUME)
+    if (fog_model == FOG_MODEL_VOLUME)
+      optical_depth = fog_grid3d_optical_depth_march(dir, t_surface);
+    else if (fog_model != FOG_MODEL_FOGMAP)
       optical_depth = fog_model_optical_depth_march(dir, t_surface, fog_march_steps, jitter);
     else
 #endif
