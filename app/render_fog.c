@@ -59,11 +59,10 @@ done:
   return status;
 }
 
-/* model = volume: frame cfg->fog.vdb_frame of the sequence as a 3D grid (density_scale
- * applied), where the bake put it (the VDB's transform, up axis turned into Y; [box] does
- * not move it), integrated exactly, or marched at volume_step when that is set. */
-static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
+int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_grid_desc *grid,
+                           render_error *err) {
   const scene_fog_config *f = &cfg->fog;
+  *frame = (vdb_frame){0};
   vdb_sequence seq;
   sim_error serr = {{0}};
   const char *input = f->vdb;
@@ -82,29 +81,38 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_er
     vdb_sequence_destroy(&seq);
     return 1;
   }
-  vdb_frame frame;
   int failed = vdb_frame_load(seq.paths[index],
                               &(vdb_frame_desc){.grid = f->vdb_grid,
                                                 .up = f->vdb_up == 1 ? VDB_UP_Y : VDB_UP_Z,
                                                 .keep_grid = 1},
-                              &frame, &serr);
+                              frame, &serr);
   vdb_sequence_destroy(&seq);
   if (failed) {
     snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] vdb: %.280s", cfg->path,
              f->vdb_line, serr.message);
     return 1;
   }
-  vdb_dense_grid *g = &frame.grid;
-  const vdb_world_map *w = &frame.world;
+  vdb_dense_grid *g = &frame->grid;
+  const vdb_world_map *w = &frame->world;
   size_t n = (size_t)g->dim[0] * g->dim[1] * g->dim[2];
   for (size_t i = 0; i < n; i++) g->values[i] = (float)(f->density_scale * g->values[i]);
   /* u_c = (p_a - base_a) / step_a - index_min_c for the world axis a fed by index axis c. */
-  volume_grid_desc grid = {.dim = {g->dim[0], g->dim[1], g->dim[2]}, .values = g->values};
+  *grid = (volume_grid_desc){.dim = {g->dim[0], g->dim[1], g->dim[2]}, .values = g->values};
   for (int a = 0; a < 3; a++) {
     const int c = w->index_axis[a];
-    grid.index_from_world[c][a] = 1.0 / w->step[a];
-    grid.index_offset[c] = -w->base[a] / w->step[a] - g->index_min[c];
+    grid->index_from_world[c][a] = 1.0 / w->step[a];
+    grid->index_offset[c] = -w->base[a] / w->step[a] - g->index_min[c];
   }
+  return 0;
+}
+
+/* model = volume: the grid of render_fog_load_volume, integrated exactly, or marched at
+ * volume_step when that is set. */
+static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
+  const scene_fog_config *f = &cfg->fog;
+  vdb_frame frame;
+  volume_grid_desc grid;
+  if (render_fog_load_volume(cfg, &frame, &grid, err)) return 1;
   fog->params = (fog_pass_params){
       .model = FOG_MODEL_VOLUME,
       .integrator = f->volume_step > 0 ? FOG_INTEGRATOR_MARCH : FOG_INTEGRATOR_EXACT,

@@ -36,6 +36,12 @@ int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *er
 int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap *map,
                           render_error *err);
 void render_fog_destroy(render_fog *fog);
+/* model = volume's grid: frame cfg->fog.vdb_frame of cfg->fog.vdb (the last for -1) with
+ * density_scale applied, placed where the bake put it (the VDB's transform, its up axis
+ * turned into Y; [box] does not move it). grid->values live in *frame: vdb_frame_destroy
+ * when done (also safe after a failure). Errors name the config's file:line. */
+int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_grid_desc *grid,
+                           render_error *err);
 /* Draws the fog over the scene target (colour 0, distance 1) into out (RGBA32F colour 0,
  * R32F transmittance 1), both width x height. */
 int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,

@@ -1,19 +1,21 @@
-/* fogpipe bench models: the analytic rungs of the fog-model ladder (DESIGN §3,
+/* fogpipe bench models: the other rungs of the fog-model ladder (DESIGN §3,
  * render/fog_models.h), each integrated exactly and by uniform ray marching, side by side
- * on one fixed scene: configs/rbf_fog_banks.ini's valley and camera (terrain, boxes, view),
- * with
- *   - homogeneous fog, K = 0.002 (exact only: marching a constant is exact at any step);
- *   - height fog, K = 0.01 exp(-(y - 40)/25);
- *   - the config's six Gaussian fog banks (RBFs, no base).
- * Rows: exact (closed form per pixel) and marching N = 8 .. 256 midpoint steps (to the
- * surface, or for the sky to where the fog ends: fog_models.glsl). Time: GL, glFinish
- * before and after, median of --frames rounds after a warm-up, rows interleaved. Error: tau
- * against the double-precision CPU model on the same rays to the scene pass's read-back
- * distances; RMSE and max over all pixels.
+ * in one run:
+ *   - on configs/rbf_fog_banks.ini's valley and view (terrain, boxes, camera):
+ *     homogeneous fog, K = 0.002 (exact only: marching a constant is exact at any step);
+ *     height fog, K = 0.01 exp(-(y - 40)/25); the config's six Gaussian fog banks (RBFs);
+ *     marching N = 8 .. 256 midpoint steps (to the surface, or for the sky to where the fog
+ *     ends: fog_models.glsl);
+ *   - on configs/vdb_plume_volume.ini's view: the plume's VDB frame as a 3D volume, exact
+ *     (3D DDA, two Gauss nodes per lattice cell) and marched at 2 .. 1/8 voxel steps.
+ * Time: GL, glFinish before and after, median of --frames rounds after a warm-up, rows
+ * interleaved. Error: tau against the double-precision CPU model on the same rays to the
+ * scene pass's read-back distances; RMSE and max over all pixels.
  * Writes models.csv and models_chart.{csv,png} (max error vs ms, log-log, a series per
  * model and method). Last line: `models: rbf_exact_ms=... rbf_march_speedup_at_matched_error=
- * ... height_exact_ms=... height_march_speedup_at_matched_error=...`, a speedup being the time
- * of the cheapest marching with max error <= 1e-3 over the exact time. */
+ * ... height_exact_ms=... height_march_speedup_at_matched_error=... volume_exact_ms=...
+ * volume_march_speedup_at_matched_error=...`, a speedup being the time of the cheapest
+ * marching with max error <= 1e-3 over the exact time. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -21,7 +23,7 @@
 #include <string.h>
 
 #include "app/config.h"
-#include "app/render_frame.h"
+#include "app/render_fog.h"
 #include "bench/bench.h"
 #include "bench/chart.h"
 #include "render/render.h"
@@ -30,17 +32,71 @@
 #define MATCHED_ERROR 1e-3
 
 static const int march_steps[] = {8, 16, 32, 64, 128, 256};
-enum { MARCH_COUNT = 6, MODEL_COUNT = 3, MAX_ROWS = MODEL_COUNT * (1 + MARCH_COUNT) };
-static const char *const model_names[MODEL_COUNT] = {"homogeneous", "height", "rbf"};
+static const double volume_steps[] = {2.0, 1.0, 0.5, 0.25, 0.125}; /* voxels */
+enum {
+  MARCH_COUNT = 6,
+  VOLUME_STEP_COUNT = 5,
+  MODEL_COUNT = 4,
+  SCENE_COUNT = 2,
+  MAX_ROWS = 1 + 2 * (1 + MARCH_COUNT) + 1 + VOLUME_STEP_COUNT
+};
+static const char *const model_names[MODEL_COUNT] = {"homogeneous", "height", "rbf", "volume"};
+static const char *const scene_configs[SCENE_COUNT] = {"rbf_fog_banks.ini",
+                                                       "vdb_plume_volume.ini"};
+static const int scene_of_model[MODEL_COUNT] = {0, 0, 0, 1};
 
 typedef struct model_row {
-  int model;     /* index into model_names */
-  int steps;     /* 0: exact */
+  int model;        /* index into model_names */
+  double setting;   /* 0: exact; marching: steps (analytic) or the step in voxels (volume) */
   char series[48];
   fog_pass_params params;
   double *times;
   double ms, rmse, max_error;
 } model_row;
+
+/* One scene: a config's terrain, boxes and camera, its scene pass and the distances. */
+typedef struct bench_scene {
+  scene_config *cfg;
+  camera cam;
+  scene_geometry geo;
+  bool have_geo;
+  scene_pass *pass;
+  gl_target target;
+  float *distance;
+} bench_scene;
+
+static int scene_create(bench_scene *s, const char *name, int W, int H, render_error *err) {
+  char path[1024];
+  snprintf(path, sizeof path, "%s/configs/%s", FOGPIPE_SOURCE_DIR, name);
+  scene_config_error cerr;
+  s->cfg = malloc(sizeof *s->cfg);
+  s->distance = malloc((size_t)W * H * sizeof(float));
+  if (!s->cfg || !s->distance) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return 1;
+  }
+  if (scene_config_load(path, s->cfg, &cerr)) {
+    snprintf(err->message, sizeof err->message, "%s", cerr.message);
+    return 1;
+  }
+  scene_config_camera(s->cfg, &s->cam);
+  scene_desc desc;
+  scene_config_scene_desc(s->cfg, NULL, 0, 0, &desc); /* both configs' terrains are procedural */
+  if (scene_geometry_create(&s->geo, &desc, err)) return 1;
+  s->have_geo = true;
+  if (!(s->pass = scene_pass_create(&s->geo, err)) || scene_target_create(&s->target, W, H, err))
+    return 1;
+  scene_pass_run(s->pass, &s->cam, &s->target);
+  return gl_target_read(&s->target, 1, 1, s->distance, err);
+}
+
+static void scene_destroy(bench_scene *s) {
+  if (s->target.framebuffer) gl_target_destroy(&s->target);
+  if (s->pass) scene_pass_destroy(s->pass);
+  if (s->have_geo) scene_geometry_destroy(&s->geo);
+  free(s->distance);
+  free(s->cfg);
+}
 
 static void print_help(void) {
   printf(
@@ -51,8 +107,9 @@ static void print_help(void) {
       "  --out DIR    where models.csv, models_chart.csv and models_chart.png go (default\n"
       "               build/bench/models; created if missing)\n"
       "Last line: models: rbf_exact_ms=A rbf_march_speedup_at_matched_error=B\n"
-      "height_exact_ms=C height_march_speedup_at_matched_error=D: B and D = time of the\n"
-      "cheapest ray marching with max tau error <= 1e-3 / the closed form's time.\n");
+      "height_exact_ms=C height_march_speedup_at_matched_error=D volume_exact_ms=E\n"
+      "volume_march_speedup_at_matched_error=F: B, D, F = time of the cheapest ray marching\n"
+      "with max tau error <= 1e-3 / the exact integral's time.\n");
 }
 
 /* The cheapest marching row of a model within MATCHED_ERROR (else its most accurate one,
@@ -61,7 +118,7 @@ static double march_speedup(const model_row *rows, int count, int model, bool *m
   int exact = -1, cheapest = -1, best = -1;
   for (int i = 0; i < count; i++) {
     if (rows[i].model != model) continue;
-    if (!rows[i].steps) {
+    if (!rows[i].setting) {
       exact = i;
       continue;
     }
@@ -78,10 +135,10 @@ static int write_table(const char *path, const model_row *rows, int count, char 
                        int size) {
   FILE *f = bench_csv_open(path, error, size);
   if (!f) return 1;
-  fprintf(f, "model,method,steps,ms_per_frame,rmse,max_error\n");
+  fprintf(f, "model,method,setting,ms_per_frame,rmse,max_error\n");
   for (int i = 0; i < count; i++)
-    fprintf(f, "%s,%s,%d,%.6g,%.6g,%.6g\n", model_names[rows[i].model],
-            rows[i].steps ? "march" : "exact", rows[i].steps, rows[i].ms, rows[i].rmse,
+    fprintf(f, "%s,%s,%g,%.6g,%.6g,%.6g\n", model_names[rows[i].model],
+            rows[i].setting ? "march" : "exact", rows[i].setting, rows[i].ms, rows[i].rmse,
             rows[i].max_error);
   return bench_csv_close(f, path, error, size);
 }
@@ -109,78 +166,71 @@ int bench_models(int argc, char **argv) {
     fprintf(stderr, "fogpipe bench models: %s\n", error);
     return 1;
   }
-  const char *config_path = FOGPIPE_SOURCE_DIR "/configs/rbf_fog_banks.ini";
-  scene_config *cfg = malloc(sizeof *cfg);
-  scene_config_error cerr;
-  if (!cfg || scene_config_load(config_path, cfg, &cerr)) {
-    fprintf(stderr, "fogpipe bench models: %s\n", cfg ? cerr.message : "out of memory");
-    free(cfg);
-    return 1;
-  }
-  /* The three models; the RBFs are the config's (density_scale applied, as render does). */
-  fog_rbf rbfs[FOG_MAX_RBFS];
-  for (int i = 0; i < cfg->fog.rbf_count; i++) {
-    rbfs[i] = cfg->fog.rbfs[i];
-    rbfs[i].density *= cfg->fog.density_scale;
-  }
-  const fog_model models[MODEL_COUNT] = {
-      {.kind = FOG_MODEL_HOMOGENEOUS, .extinction = 0.002},
-      {.kind = FOG_MODEL_HEIGHT, .extinction = 0.01, .y0 = 40.0, .scale_height = 25.0},
-      {.kind = FOG_MODEL_RBF, .extinction = cfg->fog.rbf_base, .rbfs = rbfs,
-       .rbf_count = cfg->fog.rbf_count}};
-
   int status = 1;
   size_t pixels = (size_t)W * H;
   render_error rerr = {{0}};
   gl_context *ctx = NULL;
-  scene_geometry geo = {0};
-  bool have_geo = false;
-  scene_pass *spass = NULL;
+  bench_scene scenes[SCENE_COUNT] = {{0}};
   fog_pass *pass = NULL;
-  gl_target scene_target = {0}, fog_target = {0};
-  float *distance = malloc(pixels * sizeof(float)), *gpu_tau = malloc(pixels * sizeof(float));
+  gl_target fog_target = {0};
+  vdb_frame frame = {0};
+  float *gpu_tau = malloc(pixels * sizeof(float));
   double *references[MODEL_COUNT] = {0};
   model_row rows[MAX_ROWS] = {{0}};
   int row_count = 0;
-  camera cam;
-  scene_config_camera(cfg, &cam);
-  if (!distance || !gpu_tau) goto out_of_memory;
-
+  if (!gpu_tau) goto out_of_memory;
   ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
   if (!ctx) goto gl_failed;
-  scene_desc sdesc;
-  scene_config_scene_desc(cfg, NULL, 0, 0, &sdesc); /* the config's terrain is procedural */
-  if (scene_geometry_create(&geo, &sdesc, &rerr)) goto gl_failed;
-  have_geo = true;
-  spass = scene_pass_create(&geo, &rerr);
-  if (!spass || scene_target_create(&scene_target, W, H, &rerr) ||
-      gl_target_create(&fog_target, &(gl_target_desc){.width = W, .height = H,
+  for (int k = 0; k < SCENE_COUNT; k++)
+    if (scene_create(&scenes[k], scene_configs[k], W, H, &rerr)) goto gl_failed;
+  if (gl_target_create(&fog_target, &(gl_target_desc){.width = W, .height = H,
                                                       .color_formats = {GL_RGBA32F, GL_R32F}},
                        &rerr) ||
       fog_pass_create(&pass, &rerr))
     goto gl_failed;
-  scene_pass_run(spass, &cam, &scene_target);
-  if (gl_target_read(&scene_target, 1, 1, distance, &rerr)) goto gl_failed;
+
+  /* The models: the RBFs are the banks config's (density_scale applied, as render does),
+   * the volume the plume config's VDB frame. */
+  const scene_config *banks = scenes[0].cfg;
+  fog_rbf rbfs[FOG_MAX_RBFS];
+  for (int i = 0; i < banks->fog.rbf_count; i++) {
+    rbfs[i] = banks->fog.rbfs[i];
+    rbfs[i].density *= banks->fog.density_scale;
+  }
+  volume_grid_desc grid;
+  if (render_fog_load_volume(scenes[1].cfg, &frame, &grid, &rerr) ||
+      fog_pass_upload_grid3d(pass, &grid, &rerr))
+    goto gl_failed;
+  double voxel = HUGE_VAL;
+  for (int a = 0; a < 3; a++) voxel = fmin(voxel, fabs(frame.world.step[a]));
+  const fog_model models[MODEL_COUNT] = {
+      {.kind = FOG_MODEL_HOMOGENEOUS, .extinction = 0.002},
+      {.kind = FOG_MODEL_HEIGHT, .extinction = 0.01, .y0 = 40.0, .scale_height = 25.0},
+      {.kind = FOG_MODEL_RBF, .extinction = banks->fog.rbf_base, .rbfs = rbfs,
+       .rbf_count = banks->fog.rbf_count},
+      {.kind = FOG_MODEL_VOLUME, .grid3d = &grid}};
 
   /* The CPU references: tau of each model along every pixel's ray to its surface. */
   for (int m = 0; m < MODEL_COUNT; m++) {
+    const bench_scene *sc = &scenes[scene_of_model[m]];
     references[m] = malloc(pixels * sizeof(double));
     if (!references[m]) goto out_of_memory;
     for (int py = 0; py < H; py++)
       for (int px = 0; px < W; px++) {
         double o[3], d[3];
         size_t k = (size_t)py * W + px;
-        camera_ray(&cam, px, py, W, H, o, d);
-        double ts = distance[k] >= 1e29f ? HUGE_VAL : (double)distance[k];
+        camera_ray(&sc->cam, px, py, W, H, o, d);
+        double ts = sc->distance[k] >= 1e29f ? HUGE_VAL : (double)sc->distance[k];
         references[m][k] = fog_transmittance(fog_model_optical_depth(&models[m], o, d, ts));
       }
   }
 
-  for (int m = 0; m < MODEL_COUNT; m++)
-    for (int s = -1; s < (m == 0 ? 0 : MARCH_COUNT); s++) {
+  for (int m = 0; m < MODEL_COUNT; m++) {
+    int marches = m == 0 ? 0 : m == 3 ? VOLUME_STEP_COUNT : MARCH_COUNT;
+    for (int s = -1; s < marches; s++) {
       model_row *r = &rows[row_count++];
       r->model = m;
-      r->steps = s < 0 ? 0 : march_steps[s];
+      r->setting = s < 0 ? 0.0 : m == 3 ? volume_steps[s] : march_steps[s];
       snprintf(r->series, sizeof r->series, "%s %s", model_names[m], s < 0 ? "exact" : "march");
       r->params = (fog_pass_params){
           .model = models[m].kind, .model_extinction = models[m].extinction,
@@ -188,16 +238,19 @@ int bench_models(int argc, char **argv) {
           .model_rbfs = models[m].rbfs, .model_rbf_count = models[m].rbf_count,
           .fog_colour = {0.75f, 0.78f, 0.82f},
           .integrator = s < 0 ? FOG_INTEGRATOR_EXACT : FOG_INTEGRATOR_MARCH,
-          .march_steps = r->steps};
+          .march_steps = m == 3 || s < 0 ? 0 : march_steps[s],
+          .model_grid3d_step = m == 3 && s >= 0 ? volume_steps[s] * voxel : 0.0};
       r->times = malloc((size_t)frames * sizeof(double));
       if (!r->times) goto out_of_memory;
     }
+  }
   /* Warm-up (shader JIT) with the error read-back, then the timed rounds interleaved. */
   for (int i = 0; i < row_count; i++) {
     model_row *r = &rows[i];
+    const bench_scene *sc = &scenes[scene_of_model[r->model]];
     size_t where;
     gl_target_bind(&fog_target);
-    if (fog_pass_draw(pass, &cam, &r->params, scene_target.color[0], scene_target.color[1], W,
+    if (fog_pass_draw(pass, &sc->cam, &r->params, sc->target.color[0], sc->target.color[1], W,
                       H, &rerr) ||
         gl_target_read(&fog_target, 1, 1, gpu_tau, &rerr))
       goto gl_failed;
@@ -205,11 +258,12 @@ int bench_models(int argc, char **argv) {
   }
   for (int f = 0; f < frames; f++)
     for (int i = 0; i < row_count; i++) {
+      const bench_scene *sc = &scenes[scene_of_model[rows[i].model]];
       gl_target_bind(&fog_target);
       fog_pass_finish();
       double t0 = app_clock_seconds();
-      if (fog_pass_draw(pass, &cam, &rows[i].params, scene_target.color[0],
-                        scene_target.color[1], W, H, &rerr))
+      if (fog_pass_draw(pass, &sc->cam, &rows[i].params, sc->target.color[0],
+                        sc->target.color[1], W, H, &rerr))
         goto gl_failed;
       fog_pass_finish();
       rows[i].times[f] = app_clock_seconds() - t0;
@@ -220,18 +274,23 @@ int bench_models(int argc, char **argv) {
   printf("GL: %s, %s, %s; %dx%d, median of %d frames after 1 warm-up (glFinish before and after)\n",
          gl_context_platform(ctx), gl_context_version(ctx), gl_context_renderer(ctx), W, H,
          frames);
-  printf("scene: %s (terrain, boxes, camera); homogeneous K = %g; height K = %g exp(-(y - %g)/%g);"
-         "\nrbf: the config's %d Gaussians; errors: tau vs the double-precision CPU model on the"
-         "\nsame rays, over all pixels\n\n",
-         config_path, models[0].extinction, models[1].extinction, models[1].y0,
-         models[1].scale_height, models[2].rbf_count);
-  printf("%-12s %-7s %6s %10s %10s %10s\n", "model", "method", "steps", "ms/frame", "RMSE",
+  printf("scenes: configs/%s (terrain, boxes, camera): homogeneous K = %g; height\n"
+         "K = %g exp(-(y - %g)/%g); rbf: the config's %d Gaussians; configs/%s: the volume,\n"
+         "%dx%dx%d voxels of %g, marched at %g..%g voxels. Errors: tau vs the double-precision\n"
+         "CPU model on the same rays, over all pixels\n\n",
+         scene_configs[0], models[0].extinction, models[1].extinction, models[1].y0,
+         models[1].scale_height, models[2].rbf_count, scene_configs[1], grid.dim[0],
+         grid.dim[1], grid.dim[2], voxel, volume_steps[VOLUME_STEP_COUNT - 1], volume_steps[0]);
+  printf("%-12s %-7s %8s %10s %10s %10s\n", "model", "method", "setting", "ms/frame", "RMSE",
          "max err");
   chart_point points[MAX_ROWS];
   for (int i = 0; i < row_count; i++) {
     const model_row *r = &rows[i];
-    printf("%-12s %-7s %6d %10.2f %10.2e %10.2e\n", model_names[r->model],
-           r->steps ? "march" : "exact", r->steps, r->ms, r->rmse, r->max_error);
+    char setting[24] = "";
+    if (r->setting)
+      snprintf(setting, sizeof setting, r->model == 3 ? "%g vox" : "%g", r->setting);
+    printf("%-12s %-7s %8s %10.2f %10.2e %10.2e\n", model_names[r->model],
+           r->setting ? "march" : "exact", setting, r->ms, r->rmse, r->max_error);
     points[i] = (chart_point){.series = r->series, .x = r->ms,
                               .y = r->max_error > ERROR_FLOOR ? r->max_error : ERROR_FLOOR};
   }
@@ -253,14 +312,15 @@ int bench_models(int argc, char **argv) {
     bool matched;
     speedup[m] = march_speedup(rows, row_count, m, &matched);
     for (int i = 0; i < row_count; i++)
-      if (rows[i].model == m && !rows[i].steps) exact_ms[m] = rows[i].ms;
+      if (rows[i].model == m && !rows[i].setting) exact_ms[m] = rows[i].ms;
     if (!matched)
       printf("note: no marching of %s reached max error <= %g; its speedup uses the most "
              "accurate one\n", model_names[m], MATCHED_ERROR);
   }
   printf("models: rbf_exact_ms=%.3f rbf_march_speedup_at_matched_error=%.2f "
-         "height_exact_ms=%.3f height_march_speedup_at_matched_error=%.2f\n",
-         exact_ms[2], speedup[2], exact_ms[1], speedup[1]);
+         "height_exact_ms=%.3f height_march_speedup_at_matched_error=%.2f "
+         "volume_exact_ms=%.3f volume_march_speedup_at_matched_error=%.2f\n",
+         exact_ms[2], speedup[2], exact_ms[1], speedup[1], exact_ms[3], speedup[3]);
   status = 0;
   goto done;
 
@@ -272,14 +332,11 @@ gl_failed:
 done:
   for (int i = 0; i < row_count; i++) free(rows[i].times);
   for (int m = 0; m < MODEL_COUNT; m++) free(references[m]);
+  vdb_frame_destroy(&frame);
   if (pass) fog_pass_destroy(pass);
   if (fog_target.framebuffer) gl_target_destroy(&fog_target);
-  if (scene_target.framebuffer) gl_target_destroy(&scene_target);
-  if (spass) scene_pass_destroy(spass);
-  if (have_geo) scene_geometry_destroy(&geo);
+  for (int k = 0; k < SCENE_COUNT; k++) scene_destroy(&scenes[k]);
   if (ctx) gl_context_destroy(ctx);
-  free(distance);
   free(gpu_tau);
-  free(cfg);
   return status;
 }
