@@ -298,7 +298,7 @@ int bench_models(int argc, char **argv) {
   snprintf(table, sizeof table, "%s/models.csv", out_dir);
   snprintf(chart_csv, sizeof chart_csv, "%s/models_chart.csv", out_dir);
   snprintf(chart_png, sizeof chart_png, "%s/models_chart.png", out_dir);
-  snprintf(title, sizeof title, "analytic fog models %dx%d: max tau error vs GL time", W, H);
+  snprintf(title, sizeof title, "fog models %dx%d: max tau error vs GL time (exact and marched)", W, H);
   chart_desc chart = {.title = title, .x_label = "GL time per frame (ms)",
                       .y_label = "max |tau - CPU reference|", .log_x = true, .log_y = true};
   if (write_table(table, rows, row_count, error, sizeof error) ||
