@@ -41,11 +41,11 @@ struct fog_pass {
   int cell_layers_width, cell_layers_height, cell_layers_count;
   bool layers_stale;
   float *cell_scratch; /* fog_cell_poly_build's output before upload; grows, never shrinks */
+  size_t cell_scratch_texels;
   /* FOG_MODEL_VOLUME: the density as a 3D texture and its placement (fog_pass_upload_grid3d). */
   GLuint grid3d;
   int grid3d_dim[3];
   double grid3d_index_from_world[3][3], grid3d_index_offset[3];
-  size_t cell_scratch_texels;
   /* resolution_divisor > 1: the reduced pass's target (RGBA32F: optical depth, distance,
    * extinction at the surface). */
   gl_target reduced;
@@ -354,6 +354,48 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
   return gl_util_check("fog pass: draw", err);
 }
 
+/* FOG_MODEL_VOLUME's grid: the 3D texture on a unit of its own (the others: surfaces 0
+ * and 1, grids from 2), the camera's index position in double rounded once, the matrix
+ * that maps directions. */
+static void fog_pass_volume_uniforms(const fog_pass *pass, GLuint prog, const camera *cam,
+                                     const fog_pass_params *params) {
+  float m[9], camera_index[3];
+  for (int c = 0; c < 3; c++) {
+    double u = pass->grid3d_index_offset[c];
+    for (int a = 0; a < 3; a++) {
+      u += pass->grid3d_index_from_world[c][a] * cam->position[a];
+      m[3 * a + c] = (float)pass->grid3d_index_from_world[c][a]; /* column-major */
+    }
+    camera_index[c] = (float)u;
+  }
+  glActiveTexture(GL_TEXTURE6 + FOG_PASS_MAX_GRIDS);
+  glBindTexture(GL_TEXTURE_3D, pass->grid3d);
+  glUniform1i(fog_loc(prog, "fog_grid3d"), 6 + FOG_PASS_MAX_GRIDS);
+  glUniformMatrix3fv(fog_loc(prog, "fog_grid3d_index_from_world"), 1, GL_FALSE, m);
+  glUniform3fv(fog_loc(prog, "fog_grid3d_camera_index"), 1, camera_index);
+  glUniform3f(fog_loc(prog, "fog_grid3d_dims"), (float)pass->grid3d_dim[0],
+              (float)pass->grid3d_dim[1], (float)pass->grid3d_dim[2]);
+  glUniform1f(fog_loc(prog, "fog_grid3d_step"), (float)params->model_grid3d_step);
+}
+
+/* FOG_MODEL_RBF's Gaussians: camera-relative centres, subtracted in double, and 1/radius
+ * (fog_models.glsl). */
+static void fog_pass_rbf_uniforms(GLuint prog, const camera *cam, const fog_pass_params *params) {
+  float centres[FOG_MAX_RBFS][4], densities[FOG_MAX_RBFS];
+  int n = params->model_rbf_count;
+  for (int i = 0; i < n; i++) {
+    const fog_rbf *g = &params->model_rbfs[i];
+    for (int a = 0; a < 3; a++) centres[i][a] = (float)(g->centre[a] - cam->position[a]);
+    centres[i][3] = (float)(1.0 / g->radius);
+    densities[i] = (float)g->density;
+  }
+  glUniform1i(fog_loc(prog, "fog_rbf_count"), n);
+  if (n > 0) {
+    glUniform4fv(fog_loc(prog, "fog_rbf_centre"), n, &centres[0][0]);
+    glUniform1fv(fog_loc(prog, "fog_rbf_density"), n, densities);
+  }
+}
+
 /* The analytic models need no grids: only the camera and their parameters. */
 static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_pass_params *params,
                                   GLuint surface_colour, GLuint surface_distance, int width,
@@ -371,42 +413,8 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
   GLint units[FOG_PASS_MAX_GRIDS];
   for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) units[k] = 2 + k;
   glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
-  if (params->model == FOG_MODEL_VOLUME) {
-    /* The camera's index position in double, rounded once; the matrix maps directions. */
-    float m[9], camera_index[3];
-    for (int c = 0; c < 3; c++) {
-      double u = pass->grid3d_index_offset[c];
-      for (int a = 0; a < 3; a++) {
-        u += pass->grid3d_index_from_world[c][a] * cam->position[a];
-        m[3 * a + c] = (float)pass->grid3d_index_from_world[c][a]; /* column-major */
-      }
-      camera_index[c] = (float)u;
-    }
-    glActiveTexture(GL_TEXTURE6 + FOG_PASS_MAX_GRIDS); /* a unit of its own (see the others) */
-    glBindTexture(GL_TEXTURE_3D, pass->grid3d);
-    glUniform1i(fog_loc(prog, "fog_grid3d"), 6 + FOG_PASS_MAX_GRIDS);
-    glUniformMatrix3fv(fog_loc(prog, "fog_grid3d_index_from_world"), 1, GL_FALSE, m);
-    glUniform3fv(fog_loc(prog, "fog_grid3d_camera_index"), 1, camera_index);
-    glUniform3f(fog_loc(prog, "fog_grid3d_dims"), (float)pass->grid3d_dim[0],
-                (float)pass->grid3d_dim[1], (float)pass->grid3d_dim[2]);
-    glUniform1f(fog_loc(prog, "fog_grid3d_step"), (float)params->model_grid3d_step);
-  }
-  if (params->model == FOG_MODEL_RBF) {
-    /* Camera-relative centres, subtracted in double, and 1/radius (fog_models.glsl). */
-    float centres[FOG_MAX_RBFS][4], densities[FOG_MAX_RBFS];
-    int n = params->model_rbf_count;
-    for (int i = 0; i < n; i++) {
-      const fog_rbf *g = &params->model_rbfs[i];
-      for (int a = 0; a < 3; a++) centres[i][a] = (float)(g->centre[a] - cam->position[a]);
-      centres[i][3] = (float)(1.0 / g->radius);
-      densities[i] = (float)g->density;
-    }
-    glUniform1i(fog_loc(prog, "fog_rbf_count"), n);
-    if (n > 0) {
-      glUniform4fv(fog_loc(prog, "fog_rbf_centre"), n, &centres[0][0]);
-      glUniform1fv(fog_loc(prog, "fog_rbf_density"), n, densities);
-    }
-  }
+  if (params->model == FOG_MODEL_VOLUME) fog_pass_volume_uniforms(pass, prog, cam, params);
+  if (params->model == FOG_MODEL_RBF) fog_pass_rbf_uniforms(prog, cam, params);
   return fog_pass_common_and_draw(prog, cam, params, surface_colour, surface_distance, width,
                                   height, width, height, err);
 }
@@ -453,11 +461,9 @@ static int fog_pass_finish_reduced(fog_pass *pass, GLuint prog, const camera *ca
                                   height, width, height, err);
 }
 
-int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *params,
-                  GLuint surface_colour, GLuint surface_distance, int width, int height,
-                  render_error *err) {
-  const fog_volume *v = params->volume;
-  int J = params->levels, slots = 2 * J + 1;
+/* The analytic and volume models' parameters, before anything is drawn. */
+static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *params,
+                                render_error *err) {
   if (params->model == FOG_MODEL_HEIGHT && !(params->model_scale_height > 0)) {
     snprintf(err->message, sizeof err->message,
              "fog pass: height fog scale height %g: expected > 0", params->model_scale_height);
@@ -486,6 +492,15 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
         return 1;
       }
   }
+  return 0;
+}
+
+int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *params,
+                  GLuint surface_colour, GLuint surface_distance, int width, int height,
+                  render_error *err) {
+  const fog_volume *v = params->volume;
+  int J = params->levels, slots = 2 * J + 1;
+  if (fog_pass_check_model(pass, params, err)) return 1;
   int divisor = params->resolution_divisor > 1 ? params->resolution_divisor : 1;
   if (divisor != 1 && divisor != 2 && divisor != 4) {
     snprintf(err->message, sizeof err->message,

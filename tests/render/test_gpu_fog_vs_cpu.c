@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "render/render.h"
 #include "fog_test_gl.h"
@@ -311,6 +312,23 @@ int main(void) {
             "model %d view %d: marching does not converge (%.3e, %.3e)", model, view,
             march_error[0], march_error[1]);
     }
+  /* Bad model parameters are refused before anything is drawn, saying what was expected. */
+  {
+    camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1};
+    fog_rbf flat = {.centre = {0, 0, 0}, .radius = 0.0, .density = 1.0};
+    const fog_pass_params bad[3] = {
+        {.model = FOG_MODEL_RBF, .model_rbfs = &flat, .model_rbf_count = 1},
+        {.model = FOG_MODEL_RBF, .model_rbfs = rbfs, .model_rbf_count = FOG_MAX_RBFS + 1},
+        {.model = FOG_MODEL_VOLUME, .integrator = FOG_INTEGRATOR_MARCH}};
+    const char *const said[3] = {"expected radius > 0", "expected 0..64",
+                                 "expected a march step > 0"};
+    for (int k = 0; k < 3; k++) {
+      render_error e = {{0}};
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &bad[k], surface_tex, dist_tex, tau, &e) != 0 &&
+                strstr(e.message, said[k]),
+            "bad model parameters %d: '%s' lacks '%s'", k, e.message, said[k]);
+    }
+  }
   printf("manual fetch: max |dtau| %.2e; GPU sum vs switching %.2e; colour vs eq. 4 %.2e\n",
          worst_exact, worst_methods, worst_colour);
   printf("hardware fetch: max |dtau| degree 0 %.2e, 1 %.2e, 2 %.2e\n", worst_hw[0], worst_hw[1],
