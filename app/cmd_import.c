@@ -488,8 +488,9 @@ static int run_report(const import_options *o, const vdb_sequence *seq, const vd
   }
   printf("(the last column compares the error with the fog's own contrast 1 - mean T_3D: near\n"
          " 0, f*g is enough for that view; a sizeable fraction means the vertical structure\n"
-         " that f*g flattens shows, and the 3D grid should be rendered instead. Straight down\n"
-         " (90 deg) the model is exact by construction.)\n");
+         " that f*g flattens shows, and the 3D grid should be rendered instead: a scene config\n"
+         " with [fog] model = volume and vdb = this file draws it in 3D (docs/config.md).\n"
+         " Straight down (90 deg) the model is exact by construction.)\n");
   vdb_frame_destroy(&full);
   char csv[4200], png[4200], error[600], title[256];
   snprintf(csv, sizeof csv, "%s/%s.report.csv", temp_dir, o->name);
