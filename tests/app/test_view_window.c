@@ -1,7 +1,8 @@
 /* `fogpipe view`: without a display it prints one clear line and exits non-zero; under
  * Xvfb (when xvfb-run is installed) its --screenshot of the window (read from GL_BACK)
- * shows the same image as the headless `fogpipe render` PNG of the same config and size:
- * the window path and the headless path agree. Tolerance: 99% of 8-bit values within
+ * shows the same image as the headless `fogpipe render` PNG of the same config and size,
+ * for the fogmap scene, the RBF fog banks and the plume volume: the window path and the
+ * headless path agree. Tolerance: 99% of 8-bit values within
  * 2/255 and the mean within 0.5/255 (the window renders fog into RGBA16F, render into
  * RGBA32F: half-float rounding can move a value by one 8-bit step). */
 #define _POSIX_C_SOURCE 200809L
@@ -22,6 +23,45 @@ static float *load(const char *path, const char *channel, int *w, int *h) {
   }
   *w = map.width, *h = map.height;
   return map.density;
+}
+
+/* --screenshot of `view CONFIG` under Xvfb against `render CONFIG`, 160x90. */
+static void compare_window_with_render(const char *bin, const char *dir, const char *config) {
+  char command[1024], shot[256], headless[256];
+  snprintf(shot, sizeof shot, "%s/window.png", dir);
+  snprintf(headless, sizeof headless, "%s/render.png", dir);
+  snprintf(command, sizeof command,
+           "xvfb-run -a -s '-screen 0 640x480x24' '%s' view %s --size 160x90 "
+           "--render-scale 1 --screenshot '%s' --frames 2",
+           bin, config, shot);
+  CHECK(system(command) == 0, "%s", command);
+  snprintf(command, sizeof command, "'%s' render %s --out '%s' --size 160x90", bin, config,
+           headless);
+  CHECK(system(command) == 0, "%s", command);
+  const char *channels[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; c++) {
+    int w1 = 0, h1 = 0, w2 = 0, h2 = 0;
+    float *a = load(shot, channels[c], &w1, &h1), *b = load(headless, channels[c], &w2, &h2);
+    CHECK(w1 == 160 && h1 == 90 && w2 == 160 && h2 == 90, "sizes %dx%d %dx%d", w1, h1, w2, h2);
+    if (a && b && w1 == w2 && h1 == h2) {
+      int within = 0;
+      double sum = 0, worst = 0;
+      for (int k = 0; k < w1 * h1; k++) {
+        double d = fabs(a[k] - b[k]) * 255.0;
+        within += d <= 2.0 + 1e-6;
+        sum += d;
+        if (d > worst) worst = d;
+      }
+      printf("%s %s: max %.0f/255, mean %.3f/255, %d of %d within 2/255\n", config,
+             channels[c], worst, sum / (w1 * h1), within, w1 * h1);
+      CHECK(within >= 0.99 * w1 * h1 && sum / (w1 * h1) < 0.5,
+            "%s channel %s: window and headless images differ", config, channels[c]);
+    }
+    free(a);
+    free(b);
+  }
+  unlink(shot);
+  unlink(headless);
 }
 
 int main(void) {
@@ -49,41 +89,11 @@ int main(void) {
   if (system("command -v xvfb-run > /dev/null 2>&1") != 0) {
     printf("xvfb-run is not installed: the window comparison is not run\n");
   } else {
-    char shot[256], headless[256];
-    snprintf(shot, sizeof shot, "%s/window.png", dir);
-    snprintf(headless, sizeof headless, "%s/render.png", dir);
-    snprintf(command, sizeof command,
-             "xvfb-run -a -s '-screen 0 640x480x24' '%s' view configs/default.ini --size 160x90 "
-             "--render-scale 1 --screenshot '%s' --frames 2",
-             bin, shot);
-    CHECK(system(command) == 0, "%s", command);
-    snprintf(command, sizeof command, "'%s' render configs/default.ini --out '%s' --size 160x90",
-             bin, headless);
-    CHECK(system(command) == 0, "%s", command);
-    const char *channels[3] = {"R", "G", "B"};
-    for (int c = 0; c < 3; c++) {
-      int w1 = 0, h1 = 0, w2 = 0, h2 = 0;
-      float *a = load(shot, channels[c], &w1, &h1), *b = load(headless, channels[c], &w2, &h2);
-      CHECK(w1 == 160 && h1 == 90 && w2 == 160 && h2 == 90, "sizes %dx%d %dx%d", w1, h1, w2, h2);
-      if (a && b && w1 == w2 && h1 == h2) {
-        int within = 0;
-        double sum = 0, worst = 0;
-        for (int k = 0; k < w1 * h1; k++) {
-          double d = fabs(a[k] - b[k]) * 255.0;
-          within += d <= 2.0 + 1e-6;
-          sum += d;
-          if (d > worst) worst = d;
-        }
-        printf("%s: max %.0f/255, mean %.3f/255, %d of %d within 2/255\n", channels[c], worst,
-               sum / (w1 * h1), within, w1 * h1);
-        CHECK(within >= 0.99 * w1 * h1 && sum / (w1 * h1) < 0.5,
-              "channel %s: window and headless images differ", channels[c]);
-      }
-      free(a);
-      free(b);
-    }
-    unlink(shot);
-    unlink(headless);
+    /* The fogmap scene, and two other rungs of the model ladder. */
+    static const char *const configs[] = {"configs/default.ini", "configs/rbf_fog_banks.ini",
+                                          "configs/vdb_plume_volume.ini"};
+    for (size_t k = 0; k < sizeof configs / sizeof configs[0]; k++)
+      compare_window_with_render(bin, dir, configs[k]);
   }
   rmdir(dir);
   return test_finish("test_view_window");
