@@ -5,6 +5,7 @@
  * complete frame and continues, giving the frames an uninterrupted run gives. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,6 +15,8 @@
 #include "app/config.h"
 #include "app/pipeline.h"
 #include "app/recorder.h"
+#include "app/render_fog.h"
+#include "app/render_frame.h"
 #include "render/gl_context.h"
 #include "sim/sim.h"
 
@@ -113,6 +116,58 @@ int cmd_record(int argc, char **argv) {
   return record_run(&job);
 }
 
+/* Where the frames come from: the per-frame pipeline (a simulated or VDB fogmap), or for
+ * the other models a render session (a volume stepping through its VDB sequence). */
+typedef struct frame_source {
+  pipeline *pipe;
+  camera cam;
+  /* model = volume */
+  render_session *session;
+  const scene_config *config;
+  vdb_sequence sequence;
+  double fps;
+} frame_source;
+
+/* model = volume: output frame n (1-based, time (n - 1) / fps) shows the VDB frame nearest
+ * to that time at the sequence's vdb_fps (looping with vdb_loop, else held at the ends):
+ * grids of different frames do not blend, as the 2.5D fogmaps do. */
+static int volume_frame_number(const frame_source *src, int frame) {
+  const scene_fog_config *f = &src->config->fog;
+  const int count = src->sequence.count;
+  long index = lround((frame - 1) / src->fps * f->vdb_fps);
+  if (f->vdb_loop)
+    index = ((index % count) + count) % count;
+  else
+    index = index < 0 ? 0 : index >= count ? count - 1 : index;
+  return src->sequence.frames[index];
+}
+
+static int source_render(frame_source *src, int frame, float *rgba, float *transmittance,
+                         float *depth, char *error, size_t size) {
+  if (src->session) {
+    render_error rerr = {{0}};
+    render_frame_error ferr = {{0}};
+    if (src->config->fog.model == SCENE_MODEL_VOLUME &&
+        render_fog_set_volume_frame(render_session_fog(src->session), src->config,
+                                    volume_frame_number(src, frame), &rerr)) {
+      snprintf(error, size, "%s", rerr.message);
+      return 1;
+    }
+    if (render_session_frame(src->session, rgba, transmittance, depth, &ferr)) {
+      snprintf(error, size, "%s", ferr.message);
+      return 1;
+    }
+    return 0;
+  }
+  pipeline_error perr = {{0}};
+  if (pipeline_frame(src->pipe, &src->cam, true, &perr) ||
+      pipeline_read_frame(src->pipe, rgba, transmittance, depth, &perr)) {
+    snprintf(error, size, "%s", perr.message);
+    return 1;
+  }
+  return 0;
+}
+
 /* The command line that continues this recording. */
 static void resume_hint(const record_job *job, char *text, size_t size) {
   int n = snprintf(text, size, "fogpipe record %s --frames %d --out %s", job->config_path,
@@ -185,26 +240,43 @@ int record_run(const record_job *job) {
 
   render_error gerr = {{0}};
   gl_context *gl = NULL;
-  pipeline *pipe = NULL;
+  frame_source src = {.config = &config, .fps = job->fps > 0 ? job->fps : 24.0};
   float *buffer = NULL;
   int status = 0;
-  if (done < job->frames) {
+  char error[600] = "";
+  const size_t n = (size_t)width * height;
+  if (done < job->frames && config.fog.model != SCENE_MODEL_FOGMAP) {
+    /* The other models through a render session: a volume steps through its VDB frames,
+     * the analytic models stand still. Frames are independent: nothing to re-run on
+     * --resume. */
+    sim_error serr = {{0}};
+    const char *input = config.fog.vdb;
+    render_frame_error ferr = {{0}};
+    if (config.fog.model == SCENE_MODEL_VOLUME &&
+        vdb_sequence_find(&input, 1, -1, -1, &src.sequence, &serr)) {
+      fprintf(stderr, "fogpipe %s: %s:%d: [fog] vdb: %s\n", cmd, config.path,
+              config.fog.vdb_line, serr.message);
+      return 1;
+    }
+    src.session = render_session_create(&config, width, height, &ferr);
+    if (!src.session) {
+      fprintf(stderr, "fogpipe %s: %s\n", cmd, ferr.message);
+      status = 1;
+      goto finish;
+    }
+  } else if (done < job->frames) {
     gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
     if (!gl) {
       fprintf(stderr, "fogpipe %s: %s\n", cmd, gerr.message);
       return 1;
     }
     pipeline_error perr = {{0}};
-    double fps = job->fps > 0 ? job->fps : 24.0;
-    pipe = pipeline_create(&(pipeline_desc){.config = &config, .width = width, .height = height,
-                                            .frame_seconds = 1.0 / fps,
-                                            .synchronous = job->synchronous},
-                           &perr);
-    const size_t n = (size_t)width * height;
-    /* rgba 4 + transmittance 1 + depth 1, then the recorder's 6 planes. */
-    buffer = pipe ? malloc(n * 12 * sizeof(float)) : NULL;
-    if (!pipe || !buffer) {
-      fprintf(stderr, "fogpipe %s: %s\n", cmd, pipe ? "out of memory" : perr.message);
+    src.pipe = pipeline_create(&(pipeline_desc){.config = &config, .width = width,
+                                                .height = height, .frame_seconds = 1.0 / src.fps,
+                                                .synchronous = job->synchronous},
+                               &perr);
+    if (!src.pipe) {
+      fprintf(stderr, "fogpipe %s: %s\n", cmd, perr.message);
       status = 1;
       goto finish;
     }
@@ -212,14 +284,22 @@ int record_run(const record_job *job) {
       printf("resuming after frame %d of %d: re-running the simulation to it\n", done,
              job->frames);
       fflush(stdout);
-      if (pipeline_skip(pipe, done, &perr)) {
+      if (pipeline_skip(src.pipe, done, &perr)) {
         fprintf(stderr, "fogpipe %s: %s\n", cmd, perr.message);
         status = 1;
         goto finish;
       }
     }
-    camera cam;
-    scene_config_camera(&config, &cam);
+    scene_config_camera(&config, &src.cam);
+  }
+  if (done < job->frames) {
+    /* rgba 4 + transmittance 1 + depth 1, then the recorder's 6 planes. */
+    buffer = malloc(n * 12 * sizeof(float));
+    if (!buffer) {
+      fprintf(stderr, "fogpipe %s: out of memory\n", cmd);
+      status = 1;
+      goto finish;
+    }
     float *rgba = buffer, *transmittance = buffer + 4 * n, *depth = buffer + 5 * n;
     float *scratch = buffer + 6 * n;
 
@@ -233,10 +313,9 @@ int record_run(const record_job *job) {
     recorder_progress progress;
     if (!job->quiet) recorder_progress_begin(&progress, stdout, done, job->frames);
     for (int frame = done + 1; frame <= job->frames; frame++) {
-      if (pipeline_frame(pipe, &cam, true, &perr) ||
-          pipeline_read_frame(pipe, rgba, transmittance, depth, &perr)) {
+      if (source_render(&src, frame, rgba, transmittance, depth, error, sizeof error)) {
         if (!job->quiet) recorder_progress_end(&progress);
-        fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, perr.message);
+        fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, error);
         status = 1;
         break;
       }
@@ -285,7 +364,9 @@ int record_run(const record_job *job) {
   }
 finish:
   free(buffer);
-  pipeline_destroy(pipe);
+  pipeline_destroy(src.pipe);
+  render_session_destroy(src.session);
+  if (src.sequence.count) vdb_sequence_destroy(&src.sequence);
   gl_context_destroy(gl);
   return status;
 }

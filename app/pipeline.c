@@ -470,11 +470,12 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
   }
   p->config = *desc->config;
   if (p->config.fog.model != SCENE_MODEL_FOGMAP) {
-    /* The analytic and volume models have nothing to simulate: `render` and `view` draw
-     * them. */
+    /* The other models have nothing to simulate: render and view draw them, and record
+     * through a render session (cmd_record.c), a volume stepping through its frames. */
     static const char *const names[] = {"fogmap", "homogeneous", "height", "rbf", "volume"};
-    fail(err, "%s:%d: [fog] model = %s: the animation simulates a fogmap; expected model = "
-              "fogmap here (fogpipe render and view draw the other models)",
+    fail(err, "%s:%d: [fog] model = %s: the live pipeline simulates or plays a fogmap; "
+              "expected model = fogmap here (fogpipe record, render and view draw the other "
+              "models)",
          p->config.path, p->config.fog.model_line, names[p->config.fog.model]);
     free(p);
     return NULL;

@@ -106,6 +106,24 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
   return 0;
 }
 
+int render_fog_set_volume_frame(render_fog *fog, const scene_config *cfg, int frame_number,
+                                render_error *err) {
+  scene_config *at = malloc(sizeof *at);
+  if (!at) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return 1;
+  }
+  *at = *cfg;
+  at->fog.vdb_frame = frame_number;
+  vdb_frame frame;
+  volume_grid_desc grid;
+  int status = render_fog_load_volume(at, &frame, &grid, err) ||
+               fog_pass_upload_grid3d(fog->pass, &grid, err);
+  vdb_frame_destroy(&frame);
+  free(at);
+  return status;
+}
+
 /* model = volume: the grid of render_fog_load_volume, integrated exactly, or marched at
  * volume_step when that is set. */
 static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_error *err) {

@@ -42,6 +42,10 @@ void render_fog_destroy(render_fog *fog);
  * when done (also safe after a failure). Errors name the config's file:line. */
 int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_grid_desc *grid,
                            render_error *err);
+/* model = volume: shows frame `frame_number` of cfg's sequence from now on (the fog made by
+ * render_fog_create from cfg; a grid of another size makes a new texture). */
+int render_fog_set_volume_frame(render_fog *fog, const scene_config *cfg, int frame_number,
+                                render_error *err);
 /* Draws the fog over the scene target (colour 0, distance 1) into out (RGBA32F colour 0,
  * R32F transmittance 1), both width x height. */
 int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,

@@ -28,80 +28,120 @@ int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *w
   return 0;
 }
 
-int render_frame(const scene_config *cfg, int width, int height, float *rgba,
-                 float *transmittance, float *depth, render_frame_info *info,
-                 render_frame_error *err) {
-  render_error rerr = {0};
-  *info = (render_frame_info){0};
+struct render_session {
+  scene_config cfg;
+  int width, height;
+  gl_context *ctx;
+  scene_geometry geo;
+  bool have_geo;
+  scene_pass *pass;
+  gl_target target, fog_target;
+  render_fog fog;
+  bool has_fog;
+  float *distance;
+  camera cam;
+  char gl_description[256];
+};
+
+void render_session_destroy(render_session *s) {
+  if (!s) return;
+  free(s->distance);
+  render_fog_destroy(&s->fog);
+  gl_target_destroy(&s->fog_target);
+  gl_target_destroy(&s->target);
+  scene_pass_destroy(s->pass);
+  if (s->have_geo) scene_geometry_destroy(&s->geo);
+  gl_context_destroy(s->ctx);
+  free(s);
+}
+
+render_session *render_session_create(const scene_config *cfg, int width, int height,
+                                      render_frame_error *err) {
+  render_session *s = calloc(1, sizeof *s);
+  if (!s) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return NULL;
+  }
+  s->cfg = *cfg;
+  s->width = width, s->height = height;
   float *heights = NULL;
   int hw = 0, hh = 0;
-  if (render_frame_load_heightmap(cfg, &heights, &hw, &hh, err)) return 1;
-
-  int status = 1;
-  gl_context *ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
-  if (!ctx) {
-    snprintf(err->message, sizeof err->message, "%s", rerr.message);
-    free(heights);
-    return 1;
+  if (render_frame_load_heightmap(cfg, &heights, &hw, &hh, err)) {
+    free(s);
+    return NULL;
   }
-  snprintf(info->gl_description, sizeof info->gl_description, "%s, %s, %s",
-           gl_context_platform(ctx), gl_context_version(ctx), gl_context_renderer(ctx));
+  render_error rerr = {0};
+  s->ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
+  if (!s->ctx) goto fail;
+  snprintf(s->gl_description, sizeof s->gl_description, "%s, %s, %s",
+           gl_context_platform(s->ctx), gl_context_version(s->ctx), gl_context_renderer(s->ctx));
   scene_desc desc;
   scene_config_scene_desc(cfg, heights, hw, hh, &desc);
-  scene_geometry geo;
-  scene_pass *pass = NULL;
-  gl_target target = {0}, fog_target = {0};
-  render_fog fog = {0};
-  float *distance = NULL;
-  if (scene_geometry_create(&geo, &desc, &rerr)) goto fail_early;
-  pass = scene_pass_create(&geo, &rerr);
-  if (!pass || scene_target_create(&target, width, height, &rerr)) goto fail;
-  camera cam;
-  scene_config_camera(cfg, &cam);
-  scene_pass_run(pass, &cam, &target);
-  size_t pixels = (size_t)width * height;
-  distance = malloc(pixels * sizeof *distance);
-  if (!distance) {
+  if (scene_geometry_create(&s->geo, &desc, &rerr)) goto fail;
+  s->have_geo = true;
+  s->pass = scene_pass_create(&s->geo, &rerr);
+  if (!s->pass || scene_target_create(&s->target, width, height, &rerr)) goto fail;
+  s->distance = malloc((size_t)width * height * sizeof *s->distance);
+  if (!s->distance) {
     snprintf(rerr.message, sizeof rerr.message, "out of memory");
     goto fail;
   }
-  if (gl_target_read(&target, 1, 1, distance, &rerr)) goto fail;
-  if (scene_config_has_fog(cfg)) {
-    /* fogmap -> wavelet pyramid -> fog pass over the scene's colour and distance. */
-    if (render_fog_create(&fog, cfg, &rerr)) goto fail;
-    if (gl_target_create(&fog_target,
-                         &(gl_target_desc){.width = width, .height = height,
-                                           .color_formats = {GL_RGBA32F, GL_R32F}},
-                         &rerr) ||
-        render_fog_draw(&fog, &cam, &target, &fog_target, &rerr))
-      goto fail;
-    if (rgba && gl_target_read(&fog_target, 0, 4, rgba, &rerr)) goto fail;
-    if (transmittance && gl_target_read(&fog_target, 1, 1, transmittance, &rerr)) goto fail;
-    info->has_fog = true;
+  scene_config_camera(cfg, &s->cam);
+  s->has_fog = scene_config_has_fog(cfg);
+  /* The fog (fogmap -> wavelet pyramid, or another model of the ladder) over the scene's
+   * colour and distance. */
+  if (s->has_fog &&
+      (render_fog_create(&s->fog, cfg, &rerr) ||
+       gl_target_create(&s->fog_target,
+                        &(gl_target_desc){.width = width, .height = height,
+                                          .color_formats = {GL_RGBA32F, GL_R32F}},
+                        &rerr)))
+    goto fail;
+  free(heights);
+  return s;
+fail:
+  snprintf(err->message, sizeof err->message, "%s", rerr.message);
+  free(heights);
+  render_session_destroy(s);
+  return NULL;
+}
+
+render_fog *render_session_fog(render_session *s) { return s->has_fog ? &s->fog : NULL; }
+
+int render_session_frame(render_session *s, float *rgba, float *transmittance, float *depth,
+                         render_frame_error *err) {
+  render_error rerr = {0};
+  size_t pixels = (size_t)s->width * s->height;
+  scene_pass_run(s->pass, &s->cam, &s->target);
+  if (gl_target_read(&s->target, 1, 1, s->distance, &rerr)) goto fail;
+  if (s->has_fog) {
+    if (render_fog_draw(&s->fog, &s->cam, &s->target, &s->fog_target, &rerr)) goto fail;
+    if (rgba && gl_target_read(&s->fog_target, 0, 4, rgba, &rerr)) goto fail;
+    if (transmittance && gl_target_read(&s->fog_target, 1, 1, transmittance, &rerr)) goto fail;
   } else {
-    if (rgba && gl_target_read(&target, 0, 4, rgba, &rerr)) goto fail;
+    if (rgba && gl_target_read(&s->target, 0, 4, rgba, &rerr)) goto fail;
     if (transmittance)
       for (size_t k = 0; k < pixels; k++) transmittance[k] = 1.0f;
   }
   if (gl_util_check("render", &rerr)) goto fail;
   if (depth)
     for (size_t k = 0; k < pixels; k++)
-      depth[k] = distance[k] >= SCENE_SKY_DISTANCE ? (float)cam.far_plane : distance[k];
-  status = 0;
+      depth[k] = s->distance[k] >= SCENE_SKY_DISTANCE ? (float)s->cam.far_plane : s->distance[k];
+  return 0;
 fail:
-  if (status) snprintf(err->message, sizeof err->message, "%s", rerr.message);
-  free(distance);
-  render_fog_destroy(&fog);
-  gl_target_destroy(&fog_target);
-  gl_target_destroy(&target);
-  scene_pass_destroy(pass);
-  scene_geometry_destroy(&geo);
-  gl_context_destroy(ctx);
-  free(heights);
-  return status;
-fail_early:
   snprintf(err->message, sizeof err->message, "%s", rerr.message);
-  gl_context_destroy(ctx);
-  free(heights);
   return 1;
+}
+
+int render_frame(const scene_config *cfg, int width, int height, float *rgba,
+                 float *transmittance, float *depth, render_frame_info *info,
+                 render_frame_error *err) {
+  *info = (render_frame_info){0};
+  render_session *s = render_session_create(cfg, width, height, err);
+  if (!s) return 1;
+  snprintf(info->gl_description, sizeof info->gl_description, "%s", s->gl_description);
+  info->has_fog = s->has_fog;
+  int status = render_session_frame(s, rgba, transmittance, depth, err);
+  render_session_destroy(s);
+  return status;
 }

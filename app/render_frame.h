@@ -1,5 +1,7 @@
-/* One headless frame of a scene config, for `fogpipe render` (and tests): makes an EGL
- * context, builds the scene, renders, reads back. */
+/* Headless frames of a scene config: an EGL context, the scene and its fog made once
+ * (render_session), rendered and read back per frame. `fogpipe render` takes one frame
+ * (render_frame); `fogpipe record` of a VDB volume sequence changes the volume's frame
+ * between them (render_fog_set_volume_frame). */
 #ifndef FOGPIPE_APP_RENDER_FRAME_H
 #define FOGPIPE_APP_RENDER_FRAME_H
 
@@ -16,7 +18,19 @@ typedef struct render_frame_info {
   char gl_description[256];  /* "egl-surfaceless, 4.5 (Core Profile) Mesa ..., llvmpipe" */
 } render_frame_info;
 
-/* Renders cfg at width x height. Outputs (rows top first, any may be NULL): rgba (4 floats
+typedef struct render_session render_session;
+
+/* Makes the context, the scene and the fog of cfg (copied) for width x height frames. */
+render_session *render_session_create(const scene_config *cfg, int width, int height,
+                                      render_frame_error *err);
+void render_session_destroy(render_session *session);
+/* The session's fog (NULL when the config has none), to change between frames. */
+struct render_fog *render_session_fog(render_session *session);
+/* One frame, outputs as render_frame's. */
+int render_session_frame(render_session *session, float *rgba, float *transmittance,
+                         float *depth, render_frame_error *err);
+
+/* Renders cfg at width x height (a session of one frame). Outputs (rows top first, any may be NULL): rgba (4 floats
  * per pixel, linear), transmittance (1 where no fog), depth (distance along the view ray to
  * the first surface; the camera's far plane for the sky). */
 int render_frame(const scene_config *cfg, int width, int height, float *rgba,
