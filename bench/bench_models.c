@@ -38,7 +38,7 @@ enum {
   VOLUME_STEP_COUNT = 5,
   MODEL_COUNT = 4,
   SCENE_COUNT = 2,
-  MAX_ROWS = 1 + 2 * (1 + MARCH_COUNT) + 1 + VOLUME_STEP_COUNT
+  MAX_ROWS = 1 + 2 * (1 + MARCH_COUNT) + 2 + VOLUME_STEP_COUNT
 };
 static const char *const model_names[MODEL_COUNT] = {"homogeneous", "height", "rbf", "volume"};
 static const char *const scene_configs[SCENE_COUNT] = {"rbf_fog_banks.ini",
@@ -48,6 +48,7 @@ static const int scene_of_model[MODEL_COUNT] = {0, 0, 0, 1};
 typedef struct model_row {
   int model;        /* index into model_names */
   double setting;   /* 0: exact; marching: steps (analytic) or the step in voxels (volume) */
+  bool hardware;    /* the volume's exact walk sampling with the hardware's filter */
   char series[48];
   fog_pass_params params;
   double *times;
@@ -112,6 +113,10 @@ static void print_help(void) {
       "with max tau error <= 1e-3 / the exact integral's time.\n");
 }
 
+static const char *row_method(const model_row *r) {
+  return r->setting ? "march" : r->hardware ? "exact-hardware" : "exact";
+}
+
 /* The cheapest marching row of a model within MATCHED_ERROR (else its most accurate one,
  * *matched false) over its exact row. */
 static double march_speedup(const model_row *rows, int count, int model, bool *matched) {
@@ -119,7 +124,7 @@ static double march_speedup(const model_row *rows, int count, int model, bool *m
   for (int i = 0; i < count; i++) {
     if (rows[i].model != model) continue;
     if (!rows[i].setting) {
-      exact = i;
+      if (!rows[i].hardware) exact = i;
       continue;
     }
     if (rows[i].max_error <= MATCHED_ERROR && (cheapest < 0 || rows[i].ms < rows[cheapest].ms))
@@ -137,9 +142,8 @@ static int write_table(const char *path, const model_row *rows, int count, char 
   if (!f) return 1;
   fprintf(f, "model,method,setting,ms_per_frame,rmse,max_error\n");
   for (int i = 0; i < count; i++)
-    fprintf(f, "%s,%s,%g,%.6g,%.6g,%.6g\n", model_names[rows[i].model],
-            rows[i].setting ? "march" : "exact", rows[i].setting, rows[i].ms, rows[i].rmse,
-            rows[i].max_error);
+    fprintf(f, "%s,%s,%g,%.6g,%.6g,%.6g\n", model_names[rows[i].model], row_method(&rows[i]),
+            rows[i].setting, rows[i].ms, rows[i].rmse, rows[i].max_error);
   return bench_csv_close(f, path, error, size);
 }
 
@@ -226,18 +230,22 @@ int bench_models(int argc, char **argv) {
   }
 
   for (int m = 0; m < MODEL_COUNT; m++) {
+    /* s = -2: the volume's exact walk with hardware filtering; -1: exact; >= 0: marches */
     int marches = m == 0 ? 0 : m == 3 ? VOLUME_STEP_COUNT : MARCH_COUNT;
-    for (int s = -1; s < marches; s++) {
+    for (int s = m == 3 ? -2 : -1; s < marches; s++) {
       model_row *r = &rows[row_count++];
       r->model = m;
+      r->hardware = s == -2;
       r->setting = s < 0 ? 0.0 : m == 3 ? volume_steps[s] : march_steps[s];
-      snprintf(r->series, sizeof r->series, "%s %s", model_names[m], s < 0 ? "exact" : "march");
+      snprintf(r->series, sizeof r->series, "%s %s", model_names[m],
+               s == -2 ? "exact hardware" : s < 0 ? "exact" : "march");
       r->params = (fog_pass_params){
           .model = models[m].kind, .model_extinction = models[m].extinction,
           .model_y0 = models[m].y0, .model_scale_height = models[m].scale_height,
           .model_rbfs = models[m].rbfs, .model_rbf_count = models[m].rbf_count,
           .fog_colour = {0.75f, 0.78f, 0.82f},
           .integrator = s < 0 ? FOG_INTEGRATOR_EXACT : FOG_INTEGRATOR_MARCH,
+          .fetch = s == -2 ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
           .march_steps = m == 3 || s < 0 ? 0 : march_steps[s],
           .model_grid3d_step = m == 3 && s >= 0 ? volume_steps[s] * voxel : 0.0};
       r->times = malloc((size_t)frames * sizeof(double));
@@ -281,7 +289,7 @@ int bench_models(int argc, char **argv) {
          scene_configs[0], models[0].extinction, models[1].extinction, models[1].y0,
          models[1].scale_height, models[2].rbf_count, scene_configs[1], grid.dim[0],
          grid.dim[1], grid.dim[2], voxel, volume_steps[VOLUME_STEP_COUNT - 1], volume_steps[0]);
-  printf("%-12s %-7s %8s %10s %10s %10s\n", "model", "method", "setting", "ms/frame", "RMSE",
+  printf("%-12s %-14s %8s %10s %10s %10s\n", "model", "method", "setting", "ms/frame", "RMSE",
          "max err");
   chart_point points[MAX_ROWS];
   for (int i = 0; i < row_count; i++) {
@@ -289,8 +297,8 @@ int bench_models(int argc, char **argv) {
     char setting[24] = "";
     if (r->setting)
       snprintf(setting, sizeof setting, r->model == 3 ? "%g vox" : "%g", r->setting);
-    printf("%-12s %-7s %8s %10.2f %10.2e %10.2e\n", model_names[r->model],
-           r->setting ? "march" : "exact", setting, r->ms, r->rmse, r->max_error);
+    printf("%-12s %-14s %8s %10.2f %10.2e %10.2e\n", model_names[r->model], row_method(r),
+           setting, r->ms, r->rmse, r->max_error);
     points[i] = (chart_point){.series = r->series, .x = r->ms,
                               .y = r->max_error > ERROR_FLOOR ? r->max_error : ERROR_FLOOR};
   }
@@ -312,7 +320,7 @@ int bench_models(int argc, char **argv) {
     bool matched;
     speedup[m] = march_speedup(rows, row_count, m, &matched);
     for (int i = 0; i < row_count; i++)
-      if (rows[i].model == m && !rows[i].setting) exact_ms[m] = rows[i].ms;
+      if (rows[i].model == m && !rows[i].setting && !rows[i].hardware) exact_ms[m] = rows[i].ms;
     if (!matched)
       printf("note: no marching of %s reached max error <= %g; its speedup uses the most "
              "accurate one\n", model_names[m], MATCHED_ERROR);

@@ -233,16 +233,31 @@ int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_
              d[2]);
     return 1;
   }
+  /* With a ring of zero voxels around it (voxel i at texel i + 1): the exact walk reads a
+   * cell's 8 corners with texelFetch, always inside the texture, and the march's
+   * hardware trilinear filter sees the same zeros beyond the outer voxels. */
+  const int pw = d[0] + 2, ph = d[1] + 2, pd = d[2] + 2;
+  size_t padded_count = (size_t)pw * ph * pd;
+  float *padded = calloc(padded_count, sizeof *padded);
+  if (!padded) {
+    snprintf(err->message, sizeof err->message, "fog pass: out of memory for the volume");
+    return 1;
+  }
+  for (int k = 0; k < d[2]; k++)
+    for (int j = 0; j < d[1]; j++)
+      memcpy(&padded[((size_t)(k + 1) * ph + j + 1) * pw + 1],
+             &grid->values[((size_t)k * d[1] + j) * d[0]], (size_t)d[0] * sizeof(float));
   bool same = pass->grid3d && !memcmp(pass->grid3d_dim, d, sizeof pass->grid3d_dim);
   if (!pass->grid3d) glGenTextures(1, &pass->grid3d);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_3D, pass->grid3d);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   if (same)
-    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, d[0], d[1], d[2], GL_RED, GL_FLOAT, grid->values);
+    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, pw, ph, pd, GL_RED, GL_FLOAT, padded);
   else
-    glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, d[0], d[1], d[2], 0, GL_RED, GL_FLOAT, grid->values);
-  gl_util_texture_sampling(GL_TEXTURE_3D, true); /* hardware trilinear, zero border */
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, pw, ph, pd, 0, GL_RED, GL_FLOAT, padded);
+  free(padded);
+  gl_util_texture_sampling(GL_TEXTURE_3D, true); /* hardware trilinear (the march) */
   glBindTexture(GL_TEXTURE_3D, 0);
   memcpy(pass->grid3d_dim, d, sizeof pass->grid3d_dim);
   memcpy(pass->grid3d_index_from_world, grid->index_from_world,
@@ -401,7 +416,8 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
                                   GLuint surface_colour, GLuint surface_distance, int width,
                                   int height, render_error *err) {
   bool march = params->integrator == FOG_INTEGRATOR_MARCH;
-  int key = fog_pass_variant_key(0, march, 1, 0, 0, 1, (int)params->model, 0, 0, 0);
+  bool hardware = params->model == FOG_MODEL_VOLUME && params->fetch == FOG_FETCH_HARDWARE;
+  int key = fog_pass_variant_key(hardware, march, 1, 0, 0, 1, (int)params->model, 0, 0, 0);
   GLuint prog = fog_pass_variant(pass, key, err);
   if (!prog) return 1;
   glUseProgram(prog);

@@ -66,7 +66,10 @@ typedef struct fog_pass_params {
   const fog_rbf *model_rbfs;
   int model_rbf_count;
   /* FOG_MODEL_VOLUME (the grid of fog_pass_upload_grid3d) with FOG_INTEGRATOR_MARCH: the
-   * step in world units (> 0); the exact integrator needs none. */
+   * step in world units (> 0); the exact integrator needs none. Its exact walk reads the
+   * cells' corners (FOG_FETCH_MANUAL: exact on any GL) or samples with the hardware's
+   * trilinear filter (FOG_FETCH_HARDWARE: float weights on llvmpipe, 8-bit on GPUs); the
+   * march always samples with the filter. */
   double model_grid3d_step;
   const fog_volume *volume;  /* FOG_MODEL_FOGMAP: placement and profile (required) */
   int levels;                /* J: slots 0..J approximations, J+1..2J details; 0: one grid */

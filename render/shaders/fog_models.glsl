@@ -19,7 +19,8 @@ uniform float fog_model_scale_height;
 uniform int fog_rbf_count;
 uniform vec4 fog_rbf_centre[FOG_MAX_RBFS];  // xyz: centre - camera (subtracted in double); w: 1/r
 uniform float fog_rbf_density[FOG_MAX_RBFS];
-uniform sampler3D fog_grid3d;                  // FOG_MODEL_VOLUME: R32F, trilinear, zero border
+uniform sampler3D fog_grid3d;                  // FOG_MODEL_VOLUME: R32F, a ring of zero voxels
+                                               // around the grid (voxel i at texel i + 1)
 uniform mat3 fog_grid3d_index_from_world;      // index position u = M p + offset
 uniform vec3 fog_grid3d_camera_index;          // u at the camera (double on the CPU)
 uniform vec3 fog_grid3d_dims;
@@ -101,14 +102,43 @@ bool fog_grid3d_stretch(vec3 dir, float length, out vec3 u0, out vec3 du, out fl
   return t0 < t1;
 }
 
+// The hardware's trilinear filter at index position u (the march).
 float fog_grid3d_density(vec3 u) {
-  return texture(fog_grid3d, (u + 0.5) / fog_grid3d_dims).r;
+  return texture(fog_grid3d, (u + 1.5) / (fog_grid3d_dims + 2.0)).r;
+}
+
+// The 8 corner voxels of lattice cell c (u in [c, c + 1]^3), read exactly (texelFetch: no
+// weights quantised to a GPU's 8 bits); beyond the grid they are the zero ring's.
+struct fog_grid3d_cell {
+  vec4 z0, z1;  // (c000, c100, c010, c110) and the same one layer up
+};
+
+fog_grid3d_cell fog_grid3d_cell_load(ivec3 c) {
+  ivec3 t = clamp(c + 1, ivec3(0), ivec3(fog_grid3d_dims));  // the walk stays in the ring
+  fog_grid3d_cell cell;
+  for (int k = 0; k < 2; k++) {  // constant bound: unrolled
+    vec4 layer = vec4(texelFetch(fog_grid3d, t + ivec3(0, 0, k), 0).r,
+                      texelFetch(fog_grid3d, t + ivec3(1, 0, k), 0).r,
+                      texelFetch(fog_grid3d, t + ivec3(0, 1, k), 0).r,
+                      texelFetch(fog_grid3d, t + ivec3(1, 1, k), 0).r);
+    if (k == 0) cell.z0 = layer; else cell.z1 = layer;
+  }
+  return cell;
+}
+
+// Trilinear in the cell at local coordinates f in [0, 1]^3.
+float fog_grid3d_cell_value(fog_grid3d_cell cell, vec3 f) {
+  vec4 z = mix(cell.z0, cell.z1, f.z);         // (x0y0, x1y0, x0y1, x1y1)
+  vec2 y = mix(z.xy, z.zw, f.y);               // (x0, x1)
+  return mix(y.x, y.y, f.x);
 }
 
 // The volume's exact optical depth (fog_grid3d_optical_depth in C): trilinear between voxel
 // centres is a cubic in t inside each cell of index space's integer lattice, so a 3D DDA
 // over those cells (the walk's fog_axis, from the entry) with two Gauss-Legendre nodes per
-// piece integrates it exactly.
+// piece integrates it exactly. Manual fetch (the default) reads each piece's cell corners
+// once for both nodes; hardware filtering samples the two nodes with texture(): ~20 %
+// faster on llvmpipe, whose 3D weights are float, but a GPU's are 8-bit (~1e-3 in tau).
 float fog_grid3d_optical_depth(vec3 dir, float length) {
   vec3 u0, du;
   float t0, t1;
@@ -121,9 +151,18 @@ float fog_grid3d_optical_depth(vec3 dir, float length) {
     float tx = fog_axis_next(ax), ty = fog_axis_next(ay), tz = fog_axis_next(az);
     float tn = min(min(len, tx), min(ty, tz));
     float half_len = 0.5 * (tn - t), mid = 0.5 * (tn + t), off = 0.57735026918962576 * half_len;
-    if (tn > t)
+    if (tn > t) {
+#if FOG_FETCH_HARDWARE
       sum += half_len * (fog_grid3d_density(ue + (mid - off) * du) +
                          fog_grid3d_density(ue + (mid + off) * du));
+#else
+      ivec3 c = ivec3(ax.cell, ay.cell, az.cell);
+      fog_grid3d_cell cell = fog_grid3d_cell_load(c);
+      vec3 f = ue - vec3(c);
+      sum += half_len * (fog_grid3d_cell_value(cell, f + (mid - off) * du) +
+                         fog_grid3d_cell_value(cell, f + (mid + off) * du));
+#endif
+    }
     if (tx <= tn) ax.cell += ax.step;
     if (ty <= tn) ay.cell += ay.step;
     if (tz <= tn) az.cell += az.step;

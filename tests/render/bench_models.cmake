@@ -1,6 +1,6 @@
 # `fogpipe bench models` smoke test: the benchmark runs at a tiny size, exits 0, writes a
-# table CSV of 21 rows of finite numbers (homogeneous exact; height and rbf exact + 6
-# marching each; the volume exact + 5 marching), the chart CSV and PNG, ends with its
+# table CSV of 22 rows of finite numbers (homogeneous exact; height and rbf exact + 6
+# marching each; the volume exact, exact with hardware filtering and 5 marching), the chart CSV and PNG, ends with its
 # summary line, and its exact rows agree with the CPU model (max tau error <= 1e-4: a bench
 # comparing against the wrong reference fails here). It asserts no speed.
 #
@@ -37,8 +37,8 @@ foreach(f models.csv models_chart.csv models_chart.png)
 endforeach()
 file(STRINGS ${OUT}/models.csv lines)
 list(LENGTH lines count)
-if(NOT count EQUAL 22)
-  message(FATAL_ERROR "models.csv has ${count} lines, expected a header and 21 rows")
+if(NOT count EQUAL 23)
+  message(FATAL_ERROR "models.csv has ${count} lines, expected a header and 22 rows")
 endif()
 list(GET lines 0 header)
 if(NOT header STREQUAL "model,method,setting,ms_per_frame,rmse,max_error")
@@ -47,12 +47,12 @@ endif()
 list(REMOVE_AT lines 0)
 set(finite "[0-9.]+(e[-+][0-9]+)?")
 foreach(line IN LISTS lines)
-  if(NOT line MATCHES "^(homogeneous|height|rbf|volume),(exact|march),[0-9.]+,${finite},${finite},(${finite})$")
+  if(NOT line MATCHES "^(homogeneous|height|rbf|volume),(exact|exact-hardware|march),[0-9.]+,${finite},${finite},(${finite})$")
     message(FATAL_ERROR "models.csv row without finite numbers: '${line}'")
   endif()
   set(max_error ${CMAKE_MATCH_5}) # groups: model, method, ms exponent, rmse exponent, max
   # CMake has no float comparison: <= 1e-4 means an exponent of -5 or below, or 0.
-  if(line MATCHES ",exact," AND NOT (max_error MATCHES "e-0*([5-9]|[1-9][0-9])$" OR max_error STREQUAL "0"))
+  if(line MATCHES ",exact(-hardware)?," AND NOT (max_error MATCHES "e-0*([5-9]|[1-9][0-9])$" OR max_error STREQUAL "0"))
     message(FATAL_ERROR "exact row with max tau error ${max_error}: '${line}'")
   endif()
 endforeach()
