@@ -134,6 +134,7 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_er
   fog->params = (fog_pass_params){
       .model = FOG_MODEL_VOLUME,
       .integrator = f->volume_step > 0 ? FOG_INTEGRATOR_MARCH : FOG_INTEGRATOR_EXACT,
+      .fetch = f->filtering == SCENE_FILTERING_HARDWARE ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
       .model_grid3d_step = f->volume_step,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
   };
