@@ -1,7 +1,7 @@
 #!/bin/sh
 # The device machine's one prepared run (see bench/gpu_kit.sh): on a real GPU, the kit's GL
-# tests (GPU against the double-precision CPU references, pixel by pixel) and the render and
-# pipeline benches, their outputs copied to $OUT. Run from the repository root with
+# tests (GPU against the double-precision CPU references, pixel by pixel) and the render,
+# pipeline and models benches, their outputs copied to $OUT. Run from the repository root with
 # build/gpu-kit carried; about 3 minutes on llvmpipe, far less on a GPU.
 set -u
 out=${OUT:-build/gpu-check}
@@ -38,3 +38,7 @@ echo "bench render: exit $?"; grep -E '^GL:|^render:' "$out/bench_render.txt"
 cp build/bench/render/render.csv build/bench/render/render_chart.png "$out/" 2>/dev/null
 "$kit/bin/fogpipe" bench pipeline >"$out/bench_pipeline.txt" 2>&1
 echo "bench pipeline: exit $?"; grep -E '^GL|^pipeline:' "$out/bench_pipeline.txt"
+# the analytic models and the plume volume (its VDB is read from ../shared where present)
+"$kit/bin/fogpipe" bench models >"$out/bench_models.txt" 2>&1
+echo "bench models: exit $?"; grep -E '^GL|^models:' "$out/bench_models.txt"
+cp build/bench/models/models.csv build/bench/models/models_chart.png "$out/" 2>/dev/null

@@ -12,7 +12,7 @@ kit=build/gpu-kit
 # GPU against the CPU references: the fog pass (every basis, LOD method, camera), far
 # cameras, the marcher, reduced resolution, and the scene pass's distances
 tests="test_gpu_fog_vs_cpu test_gpu_far_camera test_gpu_march_vs_cpu test_gpu_fog_resolution
-  test_scene_distance test_gpu_volume_march"
+  test_scene_distance test_gpu_volume_march test_gpu_lod_every_level_count"
 for f in build/fogpipe $(for t in $tests; do echo build/tests/$t; done); do
   [ -x "$f" ] || { echo "gpu_kit: $f is missing: build first (make test)" >&2; exit 1; }
 done
