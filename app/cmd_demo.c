@@ -298,8 +298,8 @@ int cmd_demo(int argc, char **argv) {
     printf("fogpipe demo: %s's [fog] model has no simulation to animate: opening it in "
            "fogpipe view\n", config_path);
     fflush(stdout);
-    char *view_argv[] = {"view", (char *)config_path, NULL};
-    return cmd_view(2, view_argv);
+    char *view_argv[] = {"view", (char *)config_path, "--play", NULL};
+    return cmd_view(config.fog.model == SCENE_MODEL_VOLUME ? 3 : 2, view_argv);
   }
   render_error gerr = {{0}};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW,

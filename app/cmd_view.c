@@ -1,9 +1,11 @@
 /* fogpipe view CONFIG: the scene config in a window (GLFW) with a free camera:
  * W/A/S/D move, Q/E down/up, Shift faster, right mouse button + drag to look, Esc quits.
- * The fog is the config's fogmap as it is (no simulation: that is `fogpipe demo`).
+ * The fog is the config's fogmap as it is (no simulation: that is `fogpipe demo`), or its
+ * other fog model; a volume's VDB sequence plays with P (or from the start with --play).
  * --screenshot FILE --frames N renders N frames, saves the last one as seen in the window
  * (read from GL_BACK before the swap) and exits: for tests and for looking at a scene
- * without sitting at the display (xvfb-run). */
+ * without sitting at the display (xvfb-run); a playing sequence then advances one VDB frame
+ * per drawn frame. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,19 +22,34 @@
 
 static void usage(FILE *out) {
   fprintf(out,
-          "usage: fogpipe view CONFIG [--size WxH] [--render-scale F] [--screenshot FILE.png --frames N]\n\n"
+          "usage: fogpipe view CONFIG [--size WxH] [--render-scale F] [--play]\n"
+          "                           [--screenshot FILE.png --frames N]\n\n"
           "Opens the scene config in a window with a free camera (needs a display; for\n"
           "headless images use `fogpipe render`).\n"
           "  W A S D  move     Q E  down / up     Shift  4x faster\n"
-          "  right mouse button + drag  look around     Esc  quit\n\n"
+          "  right mouse button + drag  look around     Esc  quit\n"
+          "  P  play / pause the VDB sequence of [fog] model = volume (from vdb_frame, looping\n"
+          "     at vdb_fps)\n\n"
           "options:\n"
           "  --render-scale F   render at F times the window size, shown scaled up\n"
           "                     (default 0.5: software GL is slow; 1 on a GPU)\n"
           "  --size WxH         window size (default: [render] width and height)\n"
+          "  --play             start playing the volume's sequence (with --screenshot: one\n"
+          "                     VDB frame per drawn frame)\n"
           "  --screenshot FILE  save the window's last frame as an 8-bit PNG and exit\n"
           "  --frames N         frames to draw before the screenshot (default 1)\n"
           "  --help             this text\n");
 }
+
+/* model = volume: its VDB sequence, played from the config's frame. */
+typedef struct volume_playback {
+  vdb_sequence sequence;
+  int shown;          /* index into sequence.frames of the frame on screen */
+  bool playing;
+  double start_time;  /* when index `start_index` was on screen */
+  int start_index;
+  bool p_was_down;
+} volume_playback;
 
 typedef struct view_state {
   gl_context *ctx;
@@ -88,6 +105,25 @@ static void fly(GLFWwindow *window, camera *cam, double dt, double speed, double
   if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, 1);
 }
 
+/* P toggles playing; while playing, the frame index follows the clock at vdb_fps,
+ * wrapping around. Loads and uploads a frame only when the index changes. */
+static int volume_playback_update(volume_playback *pb, GLFWwindow *window, double now,
+                                  render_fog *fog, const scene_config *cfg, render_error *err) {
+  bool p_down = glfwGetKey(window, GLFW_KEY_P) == GLFW_PRESS;
+  if (p_down && !pb->p_was_down) {
+    pb->playing = !pb->playing;
+    pb->start_time = now;
+    pb->start_index = pb->shown;
+  }
+  pb->p_was_down = p_down;
+  if (!pb->playing) return 0;
+  const int count = pb->sequence.count;
+  int index = (pb->start_index + (int)floor((now - pb->start_time) * cfg->fog.vdb_fps)) % count;
+  if (index == pb->shown) return 0;
+  pb->shown = index;
+  return render_fog_set_volume_frame(fog, cfg, pb->sequence.frames[index], err);
+}
+
 static void view_destroy(view_state *v) {
   if (v->present_program) glDeleteProgram(v->present_program);
   gl_target_destroy(&v->scene_target);
@@ -102,10 +138,13 @@ int cmd_view(int argc, char **argv) {
   const char *config_path = NULL, *screenshot = NULL;
   int frames = 1, width = 0, height = 0;
   double render_scale = 0.5;
+  bool play = false;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       usage(stdout);
       return 0;
+    } else if (!strcmp(argv[i], "--play")) {
+      play = true;
     } else if (!strcmp(argv[i], "--screenshot") && i + 1 < argc) {
       screenshot = argv[++i];
     } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
@@ -154,6 +193,7 @@ int cmd_view(int argc, char **argv) {
   if (!width) width = cfg.width, height = cfg.height;
 
   view_state v = {0};
+  volume_playback playback = {0}; /* before any goto done: destroyed there */
   render_error err = {0};
   int status = 1;
   v.ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW, .width = width,
@@ -183,6 +223,21 @@ int cmd_view(int argc, char **argv) {
     if (render_fog_create(&v.fog, &cfg, &err)) goto gl_fail;
     v.has_fog = true;
   }
+  playback.playing = play;
+  playback.start_time = glfwGetTime();
+  if (cfg.fog.model == SCENE_MODEL_VOLUME) {
+    sim_error serr = {{0}};
+    const char *input = cfg.fog.vdb;
+    if (vdb_sequence_find(&input, 1, -1, -1, &playback.sequence, &serr)) {
+      snprintf(err.message, sizeof err.message, "%.200s:%d: [fog] vdb: %.280s", cfg.path,
+               cfg.fog.vdb_line, serr.message);
+      goto gl_fail;
+    }
+    for (int i = 0; i < playback.sequence.count; i++) /* render_fog showed vdb_frame */
+      if (playback.sequence.frames[i] == cfg.fog.vdb_frame ||
+          (cfg.fog.vdb_frame < 0 && i == playback.sequence.count - 1))
+        playback.shown = playback.start_index = i;
+  }
   v.present_program = gl_util_program("scene_sky_vs.glsl", "scene_present_fs.glsl", &err);
   if (!v.present_program) goto gl_fail;
   v.u_image = glGetUniformLocation(v.present_program, "image");
@@ -199,6 +254,12 @@ int cmd_view(int argc, char **argv) {
     double now = glfwGetTime();
     fly(window, &cam, now - last_time, speed, &last_x, &last_y, &dragging);
     last_time = now;
+    /* With --screenshot the sequence advances one VDB frame per drawn frame (the same
+     * image every run), else with the clock. */
+    double clock = screenshot ? playback.start_time + (frame - 1) / cfg.fog.vdb_fps : now;
+    if (playback.sequence.count &&
+        volume_playback_update(&playback, window, clock, &v.fog, &cfg, &err))
+      goto gl_fail;
     int fb_w, fb_h;
     gl_context_framebuffer_size(v.ctx, &fb_w, &fb_h);
     if (fb_w < 1 || fb_h < 1) continue; /* minimised */
@@ -252,6 +313,7 @@ int cmd_view(int argc, char **argv) {
 gl_fail:
   fprintf(stderr, "fogpipe view: %s\n", err.message);
 done:
+  if (playback.sequence.count) vdb_sequence_destroy(&playback.sequence);
   view_destroy(&v);
   return status;
 }
