@@ -1,5 +1,6 @@
-// The analytic fog models: GLSL twins of render/fog_models_cpu.c (same names, same
-// formulas; render/fog_models.h). Heights arrive camera-relative from the CPU.
+// The fog models besides the fogmap (homogeneous, height, Gaussian RBFs, a 3D volume): GLSL
+// twins of render/fog_models_cpu.c (same names, same formulas; render/fog_models.h).
+// Positions arrive camera-relative from the CPU, subtracted there in double.
 #define FOG_MODEL_FOGMAP 0
 #define FOG_MODEL_HOMOGENEOUS 1
 #define FOG_MODEL_HEIGHT 2

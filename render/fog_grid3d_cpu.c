@@ -1,0 +1,106 @@
+/* FOG_MODEL_VOLUME's CPU integrals (fog_models.h): a dense grid, trilinear between voxel
+ * centres and zero beyond the outer ones, integrated exactly by a 3D DDA over index
+ * space's lattice cells or marched; the GLSL twins are in render/shaders/fog_models.glsl. */
+#include <math.h>
+
+#include "render/fog_models.h"
+
+/* Trilinear at index position u, zero outside the grid (GL_CLAMP_TO_BORDER with 0). */
+static double grid3d_sample(const volume_grid_desc *g, const double u[3]) {
+  int base[3];
+  double f[3];
+  for (int c = 0; c < 3; c++) {
+    double fl = floor(u[c]);
+    base[c] = (int)fl;
+    f[c] = u[c] - fl;
+  }
+  double sum = 0.0;
+  for (int corner = 0; corner < 8; corner++) {
+    int idx[3];
+    double w = 1.0;
+    for (int c = 0; c < 3; c++) {
+      int o = (corner >> c) & 1;
+      idx[c] = base[c] + o;
+      w *= o ? f[c] : 1.0 - f[c];
+    }
+    if (idx[0] < 0 || idx[1] < 0 || idx[2] < 0 || idx[0] >= g->dim[0] || idx[1] >= g->dim[1] ||
+        idx[2] >= g->dim[2])
+      continue;
+    sum += w * g->values[((size_t)idx[2] * g->dim[1] + idx[1]) * g->dim[0] + idx[0]];
+  }
+  return sum;
+}
+
+/* The ray's stretch [t0, t1] inside the grid's support and [0, length], with the index
+ * position u0 + t du; 0 when empty. */
+static int grid3d_stretch(const volume_grid_desc *g, const double camera[3], const double dir[3],
+                          double length, double u0[3], double du[3], double *t0, double *t1) {
+  *t0 = 0.0;
+  *t1 = length;
+  for (int c = 0; c < 3; c++) {
+    u0[c] = g->index_offset[c];
+    du[c] = 0.0;
+    for (int a = 0; a < 3; a++) {
+      u0[c] += g->index_from_world[c][a] * camera[a];
+      du[c] += g->index_from_world[c][a] * dir[a];
+    }
+    double lo = -1.0, hi = g->dim[c]; /* the support, in index units */
+    if (du[c] == 0.0) {
+      if (u0[c] < lo || u0[c] > hi) return 0;
+      continue;
+    }
+    double ta = (lo - u0[c]) / du[c], tb = (hi - u0[c]) / du[c];
+    *t0 = fmax(*t0, fmin(ta, tb));
+    *t1 = fmin(*t1, fmax(ta, tb));
+  }
+  return *t0 < *t1;
+}
+
+double fog_grid3d_optical_depth(const volume_grid_desc *g, const double camera[3],
+                                const double dir[3], double length) {
+  double u0[3], du[3], t0, t1;
+  if (!grid3d_stretch(g, camera, dir, length, u0, du, &t0, &t1)) return 0.0;
+  /* DDA from the entry: cell[c] = floor(u), the next lattice plane at t_next[c]. */
+  double ue[3], t_next[3];
+  int cell[3];
+  for (int c = 0; c < 3; c++) {
+    ue[c] = u0[c] + t0 * du[c];
+    cell[c] = (int)floor(ue[c]);
+    t_next[c] = du[c] == 0.0 ? HUGE_VAL : (cell[c] + (du[c] > 0.0) - ue[c]) / du[c];
+  }
+  const double node = 0.57735026918962576; /* 1/sqrt(3): two-point Gauss-Legendre */
+  double len = t1 - t0, t = 0.0, sum = 0.0;
+  while (t < len) {
+    double tn = fmin(len, fmin(t_next[0], fmin(t_next[1], t_next[2])));
+    if (tn > t) {
+      double half = 0.5 * (tn - t), mid = 0.5 * (tn + t);
+      for (int s = -1; s <= 1; s += 2) {
+        double u[3];
+        for (int c = 0; c < 3; c++) u[c] = ue[c] + (mid + s * node * half) * du[c];
+        sum += half * grid3d_sample(g, u);
+      }
+    }
+    for (int c = 0; c < 3; c++)
+      if (t_next[c] <= tn) {
+        cell[c] += du[c] > 0.0 ? 1 : -1;
+        t_next[c] = (cell[c] + (du[c] > 0.0) - ue[c]) / du[c];
+      }
+    t = fmax(t, tn);
+  }
+  return sum;
+}
+
+double fog_grid3d_optical_depth_march(const volume_grid_desc *g, double step,
+                                      const double camera[3], const double dir[3],
+                                      double length) {
+  double u0[3], du[3], t0, t1;
+  if (!grid3d_stretch(g, camera, dir, length, u0, du, &t0, &t1)) return 0.0;
+  int n = (int)ceil((t1 - t0) / step);
+  double dt = (t1 - t0) / n, sum = 0.0;
+  for (int s = 0; s < n; s++) {
+    double t = t0 + (s + 0.5) * dt, u[3];
+    for (int c = 0; c < 3; c++) u[c] = u0[c] + t * du[c];
+    sum += grid3d_sample(g, u);
+  }
+  return sum * dt;
+}
