@@ -1,7 +1,7 @@
 /* The fog-model ladder of DESIGN.md §3 behind one small interface: each model is its
- * parameters, a CPU optical depth in double (here / fog_models_cpu.c) and a GLSL twin with
- * the same function name (render/shaders/fog_models.glsl); the fog pass and the tests treat
- * them alike through fog_model_optical_depth / the pass's `model` parameter.
+ * parameters, a CPU optical depth in double (fog_models_cpu.c, fog_grid3d_cpu.c) and a
+ * GLSL twin with the same function name (render/shaders/fog_models.glsl); the fog pass
+ * and the tests treat them alike through fog_model_optical_depth / the pass's `model`.
  *
  *   FOG_MODEL_FOGMAP       the 2.5D wavelet fogmap (fog_field.h), exact per knot cell
  *   FOG_MODEL_HOMOGENEOUS  K = extinction everywhere: OpenGL's GL_EXP fog, tau = e^{-K d}
