@@ -5,7 +5,6 @@
  * complete frame and continues, giving the frames an uninterrupted run gives. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
-#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,6 +16,7 @@
 #include "app/recorder.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"
+#include "app/vdb_source.h"
 #include "render/gl_context.h"
 #include "sim/sim.h"
 
@@ -33,7 +33,7 @@ static void print_help(FILE *out) {
           "written to a temporary file and renamed, so no partial frame ever exists.\n"
           "Ctrl-C finishes the current frame and stops (exit status 130); --resume goes on.\n"
           "A fogmap scene is simulated (or its [fog] vdb sequence played as 2.5D fogmaps);\n"
-          "[fog] model = volume plays the VDB frames in 3D (the nearest frame each time);\n"
+          "[fog] model = volume plays the VDB frames in 3D (blended between frames);\n"
           "the analytic models stand still.\n\n"
           "options:\n"
           "  --frames N        number of frames (required)\n"
@@ -131,28 +131,22 @@ typedef struct frame_source {
   double fps;
 } frame_source;
 
-/* model = volume: output frame n (1-based, time (n - 1) / fps) shows the VDB frame nearest
- * to that time at the sequence's vdb_fps (looping with vdb_loop, else held at the ends):
- * grids of different frames do not blend, as the 2.5D fogmaps do. */
-static int volume_frame_number(const frame_source *src, int frame) {
-  const scene_fog_config *f = &src->config->fog;
-  const int count = src->sequence.count;
-  long index = lround((frame - 1) / src->fps * f->vdb_fps);
-  if (f->vdb_loop)
-    index = ((index % count) + count) % count;
-  else
-    index = index < 0 ? 0 : index >= count ? count - 1 : index;
-  return src->sequence.frames[index];
-}
-
 static int source_render(frame_source *src, int frame, float *rgba, float *transmittance,
                          float *depth, char *error, size_t size) {
   if (src->session) {
     render_error rerr = {{0}};
     render_frame_error ferr = {{0}};
-    if (src->config->fog.model == SCENE_MODEL_VOLUME &&
-        render_fog_set_volume_frame(render_session_fog(src->session), src->config,
-                                    volume_frame_number(src, frame), &rerr)) {
+    /* A volume: output frame n shows time (n - 1) / fps, between two VDB frames at
+     * vdb_fps as a VDB fogmap sequence plays (vdb_sequence_position). */
+    int a = 0, b = 0;
+    double w = 0.0;
+    const scene_fog_config *f = &src->config->fog;
+    if (f->model == SCENE_MODEL_VOLUME)
+      vdb_sequence_position((frame - 1) / src->fps * f->vdb_fps, src->sequence.count,
+                            f->vdb_loop, &a, &b, &w);
+    if (f->model == SCENE_MODEL_VOLUME &&
+        render_fog_set_volume_time(render_session_fog(src->session), src->config,
+                                   src->sequence.frames[a], src->sequence.frames[b], w, &rerr)) {
       snprintf(error, size, "%s", rerr.message);
       return 1;
     }

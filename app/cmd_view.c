@@ -17,6 +17,7 @@
 #include "app/config.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"
+#include "app/vdb_source.h"
 #include "render/render.h"
 #include "sim/sim.h"
 
@@ -29,7 +30,7 @@ static void usage(FILE *out) {
           "  W A S D  move     Q E  down / up     Shift  4x faster\n"
           "  right mouse button + drag  look around     Esc  quit\n"
           "  P  play / pause the VDB sequence of [fog] model = volume (from vdb_frame, looping\n"
-          "     at vdb_fps)\n\n"
+          "     at vdb_fps, blended between frames)\n\n"
           "options:\n"
           "  --render-scale F   render at F times the window size, shown scaled up\n"
           "                     (default 0.5: software GL is slow; 1 on a GPU)\n"
@@ -44,10 +45,10 @@ static void usage(FILE *out) {
 /* model = volume: its VDB sequence, played from the config's frame. */
 typedef struct volume_playback {
   vdb_sequence sequence;
-  int shown;          /* index into sequence.frames of the frame on screen */
+  double shown;          /* frame index position on screen (vdb_sequence_position) */
   bool playing;
-  double start_time;  /* when index `start_index` was on screen */
-  int start_index;
+  double start_time;     /* when position `start` was on screen */
+  double start;
   bool p_was_down;
 } volume_playback;
 
@@ -105,23 +106,28 @@ static void fly(GLFWwindow *window, camera *cam, double dt, double speed, double
   if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, 1);
 }
 
-/* P toggles playing; while playing, the frame index follows the clock at vdb_fps,
- * wrapping around. Loads and uploads a frame only when the index changes. */
+/* P toggles playing; while playing, the frame index position follows the clock at
+ * vdb_fps, wrapping around, between frames blended as record blends them. Loads and
+ * uploads only when the position changes. */
 static int volume_playback_update(volume_playback *pb, GLFWwindow *window, double now,
                                   render_fog *fog, const scene_config *cfg, render_error *err) {
   bool p_down = glfwGetKey(window, GLFW_KEY_P) == GLFW_PRESS;
   if (p_down && !pb->p_was_down) {
     pb->playing = !pb->playing;
     pb->start_time = now;
-    pb->start_index = pb->shown;
+    pb->start = pb->shown;
   }
   pb->p_was_down = p_down;
   if (!pb->playing) return 0;
   const int count = pb->sequence.count;
-  int index = (pb->start_index + (int)floor((now - pb->start_time) * cfg->fog.vdb_fps)) % count;
-  if (index == pb->shown) return 0;
-  pb->shown = index;
-  return render_fog_set_volume_frame(fog, cfg, pb->sequence.frames[index], err);
+  double position = fmod(pb->start + (now - pb->start_time) * cfg->fog.vdb_fps, (double)count);
+  if (position == pb->shown) return 0;
+  pb->shown = position;
+  int a, b;
+  double w;
+  vdb_sequence_position(position, count, 1, &a, &b, &w);
+  return render_fog_set_volume_time(fog, cfg, pb->sequence.frames[a], pb->sequence.frames[b], w,
+                                    err);
 }
 
 static void view_destroy(view_state *v) {
@@ -236,7 +242,7 @@ int cmd_view(int argc, char **argv) {
     for (int i = 0; i < playback.sequence.count; i++) /* render_fog showed vdb_frame */
       if (playback.sequence.frames[i] == cfg.fog.vdb_frame ||
           (cfg.fog.vdb_frame < 0 && i == playback.sequence.count - 1))
-        playback.shown = playback.start_index = i;
+        playback.shown = playback.start = i;
   }
   v.present_program = gl_util_program("scene_sky_vs.glsl", "scene_present_fs.glsl", &err);
   if (!v.present_program) goto gl_fail;

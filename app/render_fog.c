@@ -106,20 +106,82 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
   return 0;
 }
 
-int render_fog_set_volume_frame(render_fog *fog, const scene_config *cfg, int frame_number,
-                                render_error *err) {
+/* Frames a and b share their voxels' placement (the same VDB transform and up axis), so
+ * their grids can be laid over each other index by index. */
+static bool same_placement(const vdb_frame *a, const vdb_frame *b) {
+  for (int k = 0; k < 3; k++)
+    if (a->world.index_axis[k] != b->world.index_axis[k] ||
+        a->world.base[k] != b->world.base[k] || a->world.step[k] != b->world.step[k])
+      return false;
+  return true;
+}
+
+/* (1 - w) a + w b on the union of the two grids' index boxes (zero beyond each), into
+ * out (malloc'd values); the placement is a's with the union's corner. */
+static int blend_grids(const vdb_frame *fa, const volume_grid_desc *a, const vdb_frame *fb,
+                       const volume_grid_desc *b, double w, volume_grid_desc *out,
+                       render_error *err) {
+  const vdb_dense_grid *ga = &fa->grid, *gb = &fb->grid;
+  int lo[3], dim[3];
+  for (int c = 0; c < 3; c++) {
+    lo[c] = ga->index_min[c] < gb->index_min[c] ? ga->index_min[c] : gb->index_min[c];
+    int hi_a = ga->index_min[c] + ga->dim[c], hi_b = gb->index_min[c] + gb->dim[c];
+    dim[c] = (hi_a > hi_b ? hi_a : hi_b) - lo[c];
+  }
+  size_t n = (size_t)dim[0] * dim[1] * dim[2];
+  float *values = calloc(n, sizeof *values);
+  if (!values) {
+    snprintf(err->message, sizeof err->message, "out of memory blending two volume frames");
+    return 1;
+  }
+  const vdb_dense_grid *grids[2] = {ga, gb};
+  const float *sources[2] = {a->values, b->values};
+  const double weights[2] = {1.0 - w, w};
+  for (int s = 0; s < 2; s++) {
+    const vdb_dense_grid *g = grids[s];
+    for (int k = 0; k < g->dim[2]; k++)
+      for (int j = 0; j < g->dim[1]; j++)
+        for (int i = 0; i < g->dim[0]; i++) {
+          size_t to = ((size_t)(k + g->index_min[2] - lo[2]) * dim[1] + j + g->index_min[1] -
+                       lo[1]) * dim[0] + i + g->index_min[0] - lo[0];
+          values[to] += (float)(weights[s] *
+                                sources[s][((size_t)k * g->dim[1] + j) * g->dim[0] + i]);
+        }
+  }
+  *out = *a;
+  for (int c = 0; c < 3; c++) {
+    out->dim[c] = dim[c];
+    out->index_offset[c] += ga->index_min[c] - lo[c]; /* index u counts from the union's corner */
+  }
+  out->values = values;
+  return 0;
+}
+
+int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg, int frame_a,
+                               int frame_b, double w, render_error *err) {
   scene_config *at = malloc(sizeof *at);
   if (!at) {
     snprintf(err->message, sizeof err->message, "out of memory");
     return 1;
   }
   *at = *cfg;
-  at->fog.vdb_frame = frame_number;
-  vdb_frame frame;
-  volume_grid_desc grid;
-  int status = render_fog_load_volume(at, &frame, &grid, err) ||
-               fog_pass_upload_grid3d(fog->pass, &grid, err);
-  vdb_frame_destroy(&frame);
+  vdb_frame fa = {0}, fb = {0};
+  volume_grid_desc a, b, blended = {.values = NULL};
+  at->fog.vdb_frame = frame_a;
+  int status = render_fog_load_volume(at, &fa, &a, err);
+  if (!status && w > 0.0 && frame_b != frame_a) {
+    at->fog.vdb_frame = frame_b;
+    status = render_fog_load_volume(at, &fb, &b, err);
+    if (!status && same_placement(&fa, &fb))
+      status = blend_grids(&fa, &a, &fb, &b, w, &blended, err);
+    else if (!status && w >= 0.5)
+      a = b; /* placed differently: the nearer frame, unblended */
+  }
+  if (!status)
+    status = fog_pass_upload_grid3d(fog->pass, blended.values ? &blended : &a, err);
+  free((float *)blended.values);
+  vdb_frame_destroy(&fa);
+  vdb_frame_destroy(&fb);
   free(at);
   return status;
 }

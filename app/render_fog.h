@@ -42,10 +42,14 @@ void render_fog_destroy(render_fog *fog);
  * when done (also safe after a failure). Errors name the config's file:line. */
 int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_grid_desc *grid,
                            render_error *err);
-/* model = volume: shows frame `frame_number` of cfg's sequence from now on (the fog made by
- * render_fog_create from cfg; a grid of another size makes a new texture). */
-int render_fog_set_volume_frame(render_fog *fog, const scene_config *cfg, int frame_number,
-                                render_error *err);
+/* model = volume: shows (1 - w) frame_a + w frame_b of cfg's sequence (VDB frame numbers,
+ * w in [0, 1]) from now on, the two grids laid over each other voxel by voxel on the union
+ * of their boxes: the fog at a time between two frames, as the 2.5D fogmaps blend (the
+ * exact integral is linear in the density, so its optical depth is the blend of the
+ * frames'). Frames placed differently (another transform) are not blended: the nearer one
+ * shows. For the fog made by render_fog_create from cfg. */
+int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg, int frame_a,
+                               int frame_b, double w, render_error *err);
 /* Draws the fog over the scene target (colour 0, distance 1) into out (RGBA32F colour 0,
  * R32F transmittance 1), both width x height. */
 int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,

@@ -96,6 +96,27 @@ static const fogmap *frame_map(vdb_source *s, int index, int keep, sim_error *er
   return &s->cache[slot];
 }
 
+void vdb_sequence_position(double p, int count, int loop, int *a, int *b, double *weight) {
+  const int n = count;
+  /* index / fps · fps may miss the integer by an ulp: snap, so a frame's own time gives
+   * that frame exactly. */
+  if (fabs(p - nearbyint(p)) < 1e-9 * fmax(1.0, fabs(p))) p = nearbyint(p);
+  if (loop) {
+    p = fmod(p, (double)n);
+    if (p < 0) p += n;
+    *a = (int)floor(p);
+    if (*a >= n) *a = n - 1; /* p just below n rounded up by the addition */
+    *weight = p - *a;
+    *b = (*a + 1) % n;
+  } else {
+    if (p <= 0) p = 0;
+    if (p >= n - 1) p = n - 1;
+    *a = (int)floor(p);
+    *weight = p - *a;
+    *b = *a + 1 < n ? *a + 1 : *a;
+  }
+}
+
 int vdb_source_fogmap_at(vdb_source *source, double t, fogmap *out, sim_error *err) {
   const int w = source->place.width, h = source->place.height, n = source->count;
   if (!out->density && fogmap_create(out, w, h, err)) return 1;
@@ -109,26 +130,9 @@ int vdb_source_fogmap_at(vdb_source *source, double t, fogmap *out, sim_error *e
     snprintf(err->message, sizeof err->message, "vdb source: time %g is not finite", t);
     return 1;
   }
-  double p = t * source->fps;
-  /* index / fps · fps may miss the integer by an ulp: snap, so a frame's own time gives
-   * that frame exactly. */
-  if (fabs(p - nearbyint(p)) < 1e-9 * fmax(1.0, fabs(p))) p = nearbyint(p);
   int a, b;
   double weight;
-  if (source->loop) {
-    p = fmod(p, (double)n);
-    if (p < 0) p += n;
-    a = (int)floor(p);
-    if (a >= n) a = n - 1; /* p just below n rounded up by the addition */
-    weight = p - a;
-    b = (a + 1) % n;
-  } else {
-    if (p <= 0) p = 0;
-    if (p >= n - 1) p = n - 1;
-    a = (int)floor(p);
-    weight = p - a;
-    b = a + 1 < n ? a + 1 : a;
-  }
+  vdb_sequence_position(t * source->fps, n, source->loop, &a, &b, &weight);
   const fogmap *fa = frame_map(source, a, weight > 0 ? b : -1, err);
   if (!fa) return 1;
   size_t cells = (size_t)w * h;

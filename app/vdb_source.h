@@ -60,6 +60,12 @@ void vdb_source_destroy(vdb_source *source);
  * at place's size; otherwise it must have that size. */
 int vdb_source_fogmap_at(vdb_source *source, double t, fogmap *out, sim_error *err);
 
+/* Frame index position p (time · fps; index 0 the first file) as the two frames around it
+ * and the weight of the second, (1 - w) F[a] + w F[b]: out of range wrapped modulo count
+ * with loop (b = 0 after the last frame), else held at the first / last frame. A p within
+ * 1e-9 of an integer is that frame exactly. */
+void vdb_sequence_position(double p, int count, int loop, int *a, int *b, double *weight);
+
 /* The index of the file with frame number `number` (-1: the last), or -1 if none. */
 int vdb_source_index_of(const vdb_source *source, int number);
 /* Duration of one pass: count frames at fps (the loop period). */
