@@ -84,7 +84,7 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
   int failed = vdb_frame_load(seq.paths[index],
                               &(vdb_frame_desc){.grid = f->vdb_grid,
                                                 .up = f->vdb_up == 1 ? VDB_UP_Y : VDB_UP_Z,
-                                                .keep_grid = 1},
+                                                .keep_grid = 1, .grid_only = 1},
                               frame, &serr);
   vdb_sequence_destroy(&seq);
   if (failed) {

@@ -39,6 +39,12 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
   for (int a = 0; a < 3; a++) place.offset[a] = d.offset[a];
   place.config = cfg;
   int status = vdb_world_map_make(&grid, &place, &out->world, &inner);
+  if (!status && d.grid_only) {
+    out->grid = grid;
+    out->active_voxels = grid.active_voxels;
+    out->negative_voxels = grid.negative_voxels;
+    return 0;
+  }
   if (!status) {
     int box[6];
     for (int c = 0; c < 3; c++) {

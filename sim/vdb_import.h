@@ -271,6 +271,8 @@ typedef struct vdb_frame_desc {
   vdb_profile_desc profile;
   const vdb_profile *fixed_profile;  /* use this g instead of fitting one */
   int keep_grid;              /* keep the dense grid in frame->grid (for --report) */
+  int grid_only;              /* read and place the grid only (frame->grid and ->world; no
+                                 columns, profile or fogmap): the 3D volume model */
   long long max_voxels;       /* 0: 2^28 */
 } vdb_frame_desc;
 
