@@ -12,6 +12,7 @@ void render_fog_destroy(render_fog *fog) {
   for (int l = 0; l <= RENDER_FOG_MAX_LEVELS; l++) transform_grid_destroy(&fog->approx[l]);
   for (int l = 0; l < RENDER_FOG_MAX_LEVELS; l++) transform_grid_destroy(&fog->detail[l]);
   if (fog->pass) fog_pass_destroy(fog->pass);
+  for (int k = 0; k < 2; k++) vdb_frame_destroy(&fog->played[k]);
   *fog = (render_fog){0};
 }
 
@@ -157,32 +158,54 @@ static int blend_grids(const vdb_frame *fa, const volume_grid_desc *a, const vdb
   return 0;
 }
 
-int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg, int frame_a,
-                               int frame_b, double w, render_error *err) {
+/* Frame `number` of cfg's sequence from the two-frame cache, read into the slot that does
+ * not hold `keep` (the other frame of the pair being shown) when it is not there. */
+static int played_frame(render_fog *fog, const scene_config *cfg, int number, int keep,
+                        int *slot, render_error *err) {
+  for (int k = 0; k < 2; k++)
+    if (fog->played_loaded[k] && fog->played_number[k] == number) {
+      *slot = k;
+      return 0;
+    }
+  int k = !fog->played_loaded[0] ? 0 : !fog->played_loaded[1] ? 1
+          : fog->played_number[0] == keep ? 1 : 0;
+  vdb_frame_destroy(&fog->played[k]);
+  fog->played_loaded[k] = false;
   scene_config *at = malloc(sizeof *at);
   if (!at) {
     snprintf(err->message, sizeof err->message, "out of memory");
     return 1;
   }
   *at = *cfg;
-  vdb_frame fa = {0}, fb = {0};
-  volume_grid_desc a, b, blended = {.values = NULL};
-  at->fog.vdb_frame = frame_a;
-  int status = render_fog_load_volume(at, &fa, &a, err);
-  if (!status && w > 0.0 && frame_b != frame_a) {
-    at->fog.vdb_frame = frame_b;
-    status = render_fog_load_volume(at, &fb, &b, err);
-    if (!status && same_placement(&fa, &fb))
-      status = blend_grids(&fa, &a, &fb, &b, w, &blended, err);
-    else if (!status && w >= 0.5)
-      a = b; /* placed differently: the nearer frame, unblended */
-  }
-  if (!status)
-    status = fog_pass_upload_grid3d(fog->pass, blended.values ? &blended : &a, err);
-  free((float *)blended.values);
-  vdb_frame_destroy(&fa);
-  vdb_frame_destroy(&fb);
+  at->fog.vdb_frame = number;
+  int status = render_fog_load_volume(at, &fog->played[k], &fog->played_grid[k], err);
   free(at);
+  if (status) return 1;
+  fog->played_loaded[k] = true;
+  fog->played_number[k] = number;
+  *slot = k;
+  return 0;
+}
+
+int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg, int frame_a,
+                               int frame_b, double w, render_error *err) {
+  int sa, sb;
+  if (played_frame(fog, cfg, frame_a, frame_b, &sa, err)) return 1;
+  const volume_grid_desc *shown = &fog->played_grid[sa];
+  volume_grid_desc blended = {.values = NULL};
+  if (w > 0.0 && frame_b != frame_a) {
+    if (played_frame(fog, cfg, frame_b, frame_a, &sb, err)) return 1;
+    if (same_placement(&fog->played[sa], &fog->played[sb])) {
+      if (blend_grids(&fog->played[sa], &fog->played_grid[sa], &fog->played[sb],
+                      &fog->played_grid[sb], w, &blended, err))
+        return 1;
+      shown = &blended;
+    } else if (w >= 0.5) {
+      shown = &fog->played_grid[sb]; /* placed differently: the nearer frame, unblended */
+    }
+  }
+  int status = fog_pass_upload_grid3d(fog->pass, shown, err);
+  free((float *)blended.values);
   return status;
 }
 

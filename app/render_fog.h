@@ -24,6 +24,12 @@ typedef struct render_fog {
   fog_rbf rbfs[FOG_MAX_RBFS]; /* model = rbf: params.model_rbfs, density_scale applied */
   fog_pass_params params;
   fog_pass *pass;
+  /* model = volume played (render_fog_set_volume_time): the last two VDB frames read, by
+   * frame number, so a time between the same two frames reads no file. */
+  vdb_frame played[2];
+  volume_grid_desc played_grid[2];
+  int played_number[2];
+  bool played_loaded[2];
 } render_fog;
 
 /* Loads the fogmap (cfg->fog.fogmap or, for a VDB sequence, frame cfg->fog.vdb_frame of
