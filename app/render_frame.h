@@ -1,7 +1,7 @@
 /* Headless frames of a scene config: an EGL context, the scene and its fog made once
  * (render_session), rendered and read back per frame. `fogpipe render` takes one frame
- * (render_frame); `fogpipe record` of a VDB volume sequence changes the volume's frame
- * between them (render_fog_set_volume_frame). */
+ * (render_frame); `fogpipe record` of a VDB volume sequence moves the volume's time
+ * between them (render_fog_set_volume_time). */
 #ifndef FOGPIPE_APP_RENDER_FRAME_H
 #define FOGPIPE_APP_RENDER_FRAME_H
 
