@@ -20,8 +20,8 @@ uniform float fog_model_scale_height;
 uniform int fog_rbf_count;
 uniform vec4 fog_rbf_centre[FOG_MAX_RBFS];  // xyz: centre - camera (subtracted in double); w: 1/r
 uniform float fog_rbf_density[FOG_MAX_RBFS];
-uniform sampler3D fog_grid3d;                  // FOG_MODEL_VOLUME: R32F, a ring of zero voxels
-                                               // around the grid (voxel i at texel i + 1)
+uniform sampler3D fog_grid3d;                  // FOG_MODEL_VOLUME: RG32F, voxel i and i + 1
+                                               // along x at texel i + 1 (a ring of zeros)
 uniform mat3 fog_grid3d_index_from_world;      // index position u = M p + offset
 uniform vec3 fog_grid3d_camera_index;          // u at the camera (double on the CPU)
 uniform vec3 fog_grid3d_dims;
@@ -109,22 +109,18 @@ float fog_grid3d_density(vec3 u) {
 }
 
 // The 8 corner voxels of lattice cell c (u in [c, c + 1]^3), read exactly (texelFetch: no
-// weights quantised to a GPU's 8 bits); beyond the grid they are the zero ring's.
+// weights quantised to a GPU's 8 bits), two per texel (a voxel and its +x neighbour);
+// beyond the grid they are the zero ring's.
 struct fog_grid3d_cell {
   vec4 z0, z1;  // (c000, c100, c010, c110) and the same one layer up
 };
 
 fog_grid3d_cell fog_grid3d_cell_load(ivec3 c) {
   ivec3 t = clamp(c + 1, ivec3(0), ivec3(fog_grid3d_dims));  // the walk stays in the ring
-  fog_grid3d_cell cell;
-  for (int k = 0; k < 2; k++) {  // constant bound: unrolled
-    vec4 layer = vec4(texelFetch(fog_grid3d, t + ivec3(0, 0, k), 0).r,
-                      texelFetch(fog_grid3d, t + ivec3(1, 0, k), 0).r,
-                      texelFetch(fog_grid3d, t + ivec3(0, 1, k), 0).r,
-                      texelFetch(fog_grid3d, t + ivec3(1, 1, k), 0).r);
-    if (k == 0) cell.z0 = layer; else cell.z1 = layer;
-  }
-  return cell;
+  vec2 a = texelFetch(fog_grid3d, t, 0).rg, b = texelFetch(fog_grid3d, t + ivec3(0, 1, 0), 0).rg;
+  vec2 e = texelFetch(fog_grid3d, t + ivec3(0, 0, 1), 0).rg;
+  vec2 g = texelFetch(fog_grid3d, t + ivec3(0, 1, 1), 0).rg;
+  return fog_grid3d_cell(vec4(a, b), vec4(e, g));
 }
 
 // Trilinear in the cell at local coordinates f in [0, 1]^3.
