@@ -214,9 +214,9 @@ int bench_pipeline(int argc, char **argv) {
            t->grid_w, t->grid_h, t->frames);
     printf("%-12s %14s %14s\n", "stage", "worker thread", "synchronous");
     const char *names[5] = {"sim", "transform", "upload", "render", "frame"};
-    const pipeline_timings *tm = &t->median, *ym = &y->median;
-    const double a[5] = {tm->sim, tm->transform, tm->upload, tm->render, tm->frame};
-    const double b[5] = {ym->sim, ym->transform, ym->upload, ym->render, ym->frame};
+    double a[PIPELINE_TIMING_FIELDS], b[PIPELINE_TIMING_FIELDS]; /* sim .. frame first */
+    pipeline_timings_to_array(&t->median, a);
+    pipeline_timings_to_array(&y->median, b);
     for (int s = 0; s < 4; s++) {
       printf("%-12s %14.3f %14.3f\n", names[s], a[s], b[s]);
       if (s == 0) printf("%-12s %14.3f %14.3f\n", " CPU time", t->median.sim_cpu, y->median.sim_cpu);
