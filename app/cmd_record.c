@@ -146,7 +146,7 @@ static int source_render(frame_source *src, int frame, float *rgba, float *trans
                             f->vdb_loop, &a, &b, &w);
     if (f->model == SCENE_MODEL_VOLUME &&
         render_fog_set_volume_time(render_session_fog(src->session), src->config,
-                                   src->sequence.frames[a], src->sequence.frames[b], w, &rerr)) {
+                                   &src->sequence, a, b, w, &rerr)) {
       snprintf(error, size, "%s", rerr.message);
       return 1;
     }
@@ -246,13 +246,10 @@ int record_run(const record_job *job) {
     /* The other models through a render session: a volume steps through its VDB frames,
      * the analytic models stand still. Frames are independent: nothing to re-run on
      * --resume. */
-    sim_error serr = {{0}};
-    const char *input = config.fog.vdb;
     render_frame_error ferr = {{0}};
     if (config.fog.model == SCENE_MODEL_VOLUME &&
-        vdb_sequence_find(&input, 1, -1, -1, &src.sequence, &serr)) {
-      fprintf(stderr, "fogpipe %s: %s:%d: [fog] vdb: %s\n", cmd, config.path,
-              config.fog.vdb_line, serr.message);
+        render_fog_volume_sequence(&config, &src.sequence, &gerr)) {
+      fprintf(stderr, "fogpipe %s: %s\n", cmd, gerr.message);
       return 1;
     }
     src.session = render_session_create(&config, width, height, &ferr);

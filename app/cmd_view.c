@@ -126,8 +126,7 @@ static int volume_playback_update(volume_playback *pb, GLFWwindow *window, doubl
   int a, b;
   double w;
   vdb_sequence_position(position, count, 1, &a, &b, &w);
-  return render_fog_set_volume_time(fog, cfg, pb->sequence.frames[a], pb->sequence.frames[b], w,
-                                    err);
+  return render_fog_set_volume_time(fog, cfg, &pb->sequence, a, b, w, err);
 }
 
 static void view_destroy(view_state *v) {
@@ -232,17 +231,10 @@ int cmd_view(int argc, char **argv) {
   playback.playing = play;
   playback.start_time = glfwGetTime();
   if (cfg.fog.model == SCENE_MODEL_VOLUME) {
-    sim_error serr = {{0}};
-    const char *input = cfg.fog.vdb;
-    if (vdb_sequence_find(&input, 1, -1, -1, &playback.sequence, &serr)) {
-      snprintf(err.message, sizeof err.message, "%.200s:%d: [fog] vdb: %.280s", cfg.path,
-               cfg.fog.vdb_line, serr.message);
-      goto gl_fail;
-    }
-    for (int i = 0; i < playback.sequence.count; i++) /* render_fog showed vdb_frame */
-      if (playback.sequence.frames[i] == cfg.fog.vdb_frame ||
-          (cfg.fog.vdb_frame < 0 && i == playback.sequence.count - 1))
-        playback.shown = playback.start = i;
+    if (render_fog_volume_sequence(&cfg, &playback.sequence, &err)) goto gl_fail;
+    /* render_fog_create showed vdb_frame (so it is in the sequence) */
+    playback.shown = playback.start = vdb_frame_index(
+        playback.sequence.frames, playback.sequence.count, cfg.fog.vdb_frame);
   }
   v.present_program = gl_util_program("scene_sky_vs.glsl", "scene_present_fs.glsl", &err);
   if (!v.present_program) goto gl_fail;

@@ -60,35 +60,27 @@ done:
   return status;
 }
 
-int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_grid_desc *grid,
-                           render_error *err) {
-  const scene_fog_config *f = &cfg->fog;
-  *frame = (vdb_frame){0};
-  vdb_sequence seq;
+int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, render_error *err) {
   sim_error serr = {{0}};
-  const char *input = f->vdb;
-  if (vdb_sequence_find(&input, 1, -1, -1, &seq, &serr)) {
+  const char *input = cfg->fog.vdb;
+  if (vdb_sequence_find(&input, 1, -1, -1, seq, &serr)) {
     snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] vdb: %.280s", cfg->path,
-             f->vdb_line, serr.message);
+             cfg->fog.vdb_line, serr.message);
     return 1;
   }
-  int index = -1;
-  for (int i = 0; i < seq.count; i++)
-    if (seq.frames[i] == f->vdb_frame || (f->vdb_frame < 0 && i == seq.count - 1)) index = i;
-  if (index < 0) {
-    snprintf(err->message, sizeof err->message,
-             "%.200s:%d: [fog] vdb: no frame %d in the sequence (frames %d..%d)", cfg->path,
-             f->vdb_line, f->vdb_frame, seq.frames[0], seq.frames[seq.count - 1]);
-    vdb_sequence_destroy(&seq);
-    return 1;
-  }
-  int failed = vdb_frame_load(seq.paths[index],
-                              &(vdb_frame_desc){.grid = f->vdb_grid,
-                                                .up = f->vdb_up == 1 ? VDB_UP_Y : VDB_UP_Z,
-                                                .keep_grid = 1, .grid_only = 1},
-                              frame, &serr);
-  vdb_sequence_destroy(&seq);
-  if (failed) {
+  return 0;
+}
+
+/* One file of the sequence as the volume's grid (render_fog_load_volume). */
+static int load_volume_file(const scene_config *cfg, const char *path, vdb_frame *frame,
+                            volume_grid_desc *grid, render_error *err) {
+  const scene_fog_config *f = &cfg->fog;
+  sim_error serr = {{0}};
+  if (vdb_frame_load(path,
+                     &(vdb_frame_desc){.grid = f->vdb_grid,
+                                       .up = f->vdb_up == 1 ? VDB_UP_Y : VDB_UP_Z,
+                                       .keep_grid = 1, .grid_only = 1},
+                     frame, &serr)) {
     snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] vdb: %.280s", cfg->path,
              f->vdb_line, serr.message);
     return 1;
@@ -105,6 +97,24 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
     grid->index_offset[c] = -w->base[a] / w->step[a] - g->index_min[c];
   }
   return 0;
+}
+
+int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_grid_desc *grid,
+                           render_error *err) {
+  const scene_fog_config *f = &cfg->fog;
+  *frame = (vdb_frame){0};
+  vdb_sequence seq;
+  if (render_fog_volume_sequence(cfg, &seq, err)) return 1;
+  int index = vdb_frame_index(seq.frames, seq.count, f->vdb_frame);
+  int status = 1;
+  if (index < 0)
+    snprintf(err->message, sizeof err->message,
+             "%.200s:%d: [fog] vdb: no frame %d in the sequence (frames %d..%d)", cfg->path,
+             f->vdb_line, f->vdb_frame, seq.frames[0], seq.frames[seq.count - 1]);
+  else
+    status = load_volume_file(cfg, seq.paths[index], frame, grid, err);
+  vdb_sequence_destroy(&seq);
+  return status;
 }
 
 /* Frames a and b share their voxels' placement (the same VDB transform and up axis), so
@@ -158,43 +168,34 @@ static int blend_grids(const vdb_frame *fa, const volume_grid_desc *a, const vdb
   return 0;
 }
 
-/* Frame `number` of cfg's sequence from the two-frame cache, read into the slot that does
- * not hold `keep` (the other frame of the pair being shown) when it is not there. */
-static int played_frame(render_fog *fog, const scene_config *cfg, int number, int keep,
-                        int *slot, render_error *err) {
+/* Sequence index `index` from the two-frame cache (a slot is loaded when it holds a grid),
+ * read into the slot that does not hold `keep` (the other frame of the pair being shown)
+ * when it is not there. */
+static int played_frame(render_fog *fog, const scene_config *cfg, const vdb_sequence *seq,
+                        int index, int keep, int *slot, render_error *err) {
   for (int k = 0; k < 2; k++)
-    if (fog->played_loaded[k] && fog->played_number[k] == number) {
+    if (fog->played[k].grid.values && fog->played_index[k] == index) {
       *slot = k;
       return 0;
     }
-  int k = !fog->played_loaded[0] ? 0 : !fog->played_loaded[1] ? 1
-          : fog->played_number[0] == keep ? 1 : 0;
+  int k = fog->played[0].grid.values && fog->played_index[0] == keep ? 1 : 0;
   vdb_frame_destroy(&fog->played[k]);
-  fog->played_loaded[k] = false;
-  scene_config *at = malloc(sizeof *at);
-  if (!at) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+  if (load_volume_file(cfg, seq->paths[index], &fog->played[k], &fog->played_grid[k], err))
     return 1;
-  }
-  *at = *cfg;
-  at->fog.vdb_frame = number;
-  int status = render_fog_load_volume(at, &fog->played[k], &fog->played_grid[k], err);
-  free(at);
-  if (status) return 1;
-  fog->played_loaded[k] = true;
-  fog->played_number[k] = number;
+  fog->played_index[k] = index;
   *slot = k;
   return 0;
 }
 
-int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg, int frame_a,
-                               int frame_b, double w, render_error *err) {
+int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg,
+                               const vdb_sequence *seq, int a, int b, double w,
+                               render_error *err) {
   int sa, sb;
-  if (played_frame(fog, cfg, frame_a, frame_b, &sa, err)) return 1;
+  if (played_frame(fog, cfg, seq, a, b, &sa, err)) return 1;
   const volume_grid_desc *shown = &fog->played_grid[sa];
   volume_grid_desc blended = {.values = NULL};
-  if (w > 0.0 && frame_b != frame_a) {
-    if (played_frame(fog, cfg, frame_b, frame_a, &sb, err)) return 1;
+  if (w > 0.0 && b != a) {
+    if (played_frame(fog, cfg, seq, b, a, &sb, err)) return 1;
     if (same_placement(&fog->played[sa], &fog->played[sb])) {
       if (blend_grids(&fog->played[sa], &fog->played_grid[sa], &fog->played[sb],
                       &fog->played_grid[sb], w, &blended, err))

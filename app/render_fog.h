@@ -24,12 +24,12 @@ typedef struct render_fog {
   fog_rbf rbfs[FOG_MAX_RBFS]; /* model = rbf: params.model_rbfs, density_scale applied */
   fog_pass_params params;
   fog_pass *pass;
-  /* model = volume played (render_fog_set_volume_time): the last two VDB frames read, by
-   * frame number, so a time between the same two frames reads no file. */
+  /* model = volume played (render_fog_set_volume_time): the last two VDB frames read (a
+   * slot holds one when its grid has values), by sequence index, so a time between the
+   * same two frames reads no file. */
   vdb_frame played[2];
   volume_grid_desc played_grid[2];
-  int played_number[2];
-  bool played_loaded[2];
+  int played_index[2];
 } render_fog;
 
 /* Loads the fogmap (cfg->fog.fogmap or, for a VDB sequence, frame cfg->fog.vdb_frame of
@@ -42,20 +42,24 @@ int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *er
 int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap *map,
                           render_error *err);
 void render_fog_destroy(render_fog *fog);
+/* model = volume: cfg->fog.vdb as a sequence (vdb_sequence_destroy when done). Errors
+ * name [fog] vdb's file:line. */
+int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, render_error *err);
 /* model = volume's grid: frame cfg->fog.vdb_frame of cfg->fog.vdb (the last for -1) with
  * density_scale applied, placed where the bake put it (the VDB's transform, its up axis
  * turned into Y; [box] does not move it). grid->values live in *frame: vdb_frame_destroy
  * when done (also safe after a failure). Errors name the config's file:line. */
 int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_grid_desc *grid,
                            render_error *err);
-/* model = volume: shows (1 - w) frame_a + w frame_b of cfg's sequence (VDB frame numbers,
- * w in [0, 1]) from now on, the two grids laid over each other voxel by voxel on the union
- * of their boxes: the fog at a time between two frames, as the 2.5D fogmaps blend (the
- * exact integral is linear in the density, so its optical depth is the blend of the
- * frames'). Frames placed differently (another transform) are not blended: the nearer one
- * shows. For the fog made by render_fog_create from cfg. */
-int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg, int frame_a,
-                               int frame_b, double w, render_error *err);
+/* model = volume: shows (1 - w) F[a] + w F[b] of seq (cfg's sequence; a, b its indices, as
+ * vdb_sequence_position gives them) from now on, the two grids laid over each other voxel
+ * by voxel on the union of their boxes: the fog at a time between two frames, as the 2.5D
+ * fogmaps blend (the exact integral is linear in the density, so its optical depth is the
+ * blend of the frames'). Frames placed differently (another transform) are not blended:
+ * the nearer one shows. For the fog made by render_fog_create from cfg. */
+int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg,
+                               const vdb_sequence *seq, int a, int b, double w,
+                               render_error *err);
 /* Draws the fog over the scene target (colour 0, distance 1) into out (RGBA32F colour 0,
  * R32F transmittance 1), both width x height. */
 int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,

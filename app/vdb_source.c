@@ -149,11 +149,15 @@ int vdb_source_fogmap_at(vdb_source *source, double t, fogmap *out, sim_error *e
   return 0;
 }
 
-int vdb_source_index_of(const vdb_source *source, int number) {
-  if (number < 0) return source->count - 1;
-  for (int i = 0; i < source->count; i++)
-    if (source->frame_numbers[i] == number) return i;
+int vdb_frame_index(const int *numbers, int count, int number) {
+  if (number < 0) return count - 1;
+  for (int i = 0; i < count; i++)
+    if (numbers[i] == number) return i;
   return -1;
+}
+
+int vdb_source_index_of(const vdb_source *source, int number) {
+  return vdb_frame_index(source->frame_numbers, source->count, number);
 }
 
 double vdb_source_duration(const vdb_source *source) { return source->count / source->fps; }

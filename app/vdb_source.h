@@ -66,6 +66,8 @@ int vdb_source_fogmap_at(vdb_source *source, double t, fogmap *out, sim_error *e
  * 1e-9 of an integer is that frame exactly. */
 void vdb_sequence_position(double p, int count, int loop, int *a, int *b, double *weight);
 
+/* The index of frame number `number` among numbers[0 .. count) (-1: the last), or -1. */
+int vdb_frame_index(const int *numbers, int count, int number);
 /* The index of the file with frame number `number` (-1: the last), or -1 if none. */
 int vdb_source_index_of(const vdb_source *source, int number);
 /* Duration of one pass: count frames at fps (the loop period). */
