@@ -28,29 +28,59 @@ int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *w
   return 0;
 }
 
+void render_scene_destroy(render_scene *s) {
+  free(s->distance);
+  gl_target_destroy(&s->target);
+  scene_pass_destroy(s->pass);
+  if (s->have_geo) scene_geometry_destroy(&s->geo);
+  *s = (render_scene){0};
+}
+
+int render_scene_create(render_scene *s, const scene_config *cfg, int width, int height,
+                        render_error *err) {
+  *s = (render_scene){.width = width, .height = height};
+  float *heights = NULL;
+  int hw = 0, hh = 0;
+  render_frame_error ferr;
+  if (render_frame_load_heightmap(cfg, &heights, &hw, &hh, &ferr)) {
+    snprintf(err->message, sizeof err->message, "%s", ferr.message);
+    return 1;
+  }
+  scene_desc desc;
+  scene_config_scene_desc(cfg, heights, hw, hh, &desc);
+  scene_config_camera(cfg, &s->cam);
+  int status = 1;
+  if (scene_geometry_create(&s->geo, &desc, err)) goto done;
+  s->have_geo = true;
+  s->pass = scene_pass_create(&s->geo, err);
+  if (!s->pass || scene_target_create(&s->target, width, height, err)) goto done;
+  s->distance = malloc((size_t)width * height * sizeof *s->distance);
+  if (!s->distance) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    goto done;
+  }
+  scene_pass_run(s->pass, &s->cam, &s->target);
+  status = gl_target_read(&s->target, 1, 1, s->distance, err);
+done:
+  free(heights); /* the geometry has its copy */
+  if (status) render_scene_destroy(s);
+  return status;
+}
+
 struct render_session {
-  scene_config cfg;
-  int width, height;
   gl_context *ctx;
-  scene_geometry geo;
-  bool have_geo;
-  scene_pass *pass;
-  gl_target target, fog_target;
+  render_scene scene;
+  gl_target fog_target;
   render_fog fog;
   bool has_fog;
-  float *distance;
-  camera cam;
   char gl_description[256];
 };
 
 void render_session_destroy(render_session *s) {
   if (!s) return;
-  free(s->distance);
   render_fog_destroy(&s->fog);
   gl_target_destroy(&s->fog_target);
-  gl_target_destroy(&s->target);
-  scene_pass_destroy(s->pass);
-  if (s->have_geo) scene_geometry_destroy(&s->geo);
+  render_scene_destroy(&s->scene);
   gl_context_destroy(s->ctx);
   free(s);
 }
@@ -62,31 +92,12 @@ render_session *render_session_create(const scene_config *cfg, int width, int he
     snprintf(err->message, sizeof err->message, "out of memory");
     return NULL;
   }
-  s->cfg = *cfg;
-  s->width = width, s->height = height;
-  float *heights = NULL;
-  int hw = 0, hh = 0;
-  if (render_frame_load_heightmap(cfg, &heights, &hw, &hh, err)) {
-    free(s);
-    return NULL;
-  }
   render_error rerr = {0};
   s->ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
   if (!s->ctx) goto fail;
   snprintf(s->gl_description, sizeof s->gl_description, "%s, %s, %s",
            gl_context_platform(s->ctx), gl_context_version(s->ctx), gl_context_renderer(s->ctx));
-  scene_desc desc;
-  scene_config_scene_desc(cfg, heights, hw, hh, &desc);
-  if (scene_geometry_create(&s->geo, &desc, &rerr)) goto fail;
-  s->have_geo = true;
-  s->pass = scene_pass_create(&s->geo, &rerr);
-  if (!s->pass || scene_target_create(&s->target, width, height, &rerr)) goto fail;
-  s->distance = malloc((size_t)width * height * sizeof *s->distance);
-  if (!s->distance) {
-    snprintf(rerr.message, sizeof rerr.message, "out of memory");
-    goto fail;
-  }
-  scene_config_camera(cfg, &s->cam);
+  if (render_scene_create(&s->scene, cfg, width, height, &rerr)) goto fail;
   s->has_fog = scene_config_has_fog(cfg);
   /* The fog (fogmap -> wavelet pyramid, or another model of the ladder) over the scene's
    * colour and distance. */
@@ -97,36 +108,35 @@ render_session *render_session_create(const scene_config *cfg, int width, int he
                                           .color_formats = {GL_RGBA32F, GL_R32F}},
                         &rerr)))
     goto fail;
-  free(heights);
   return s;
 fail:
   snprintf(err->message, sizeof err->message, "%s", rerr.message);
-  free(heights);
   render_session_destroy(s);
   return NULL;
 }
 
 render_fog *render_session_fog(render_session *s) { return s->has_fog ? &s->fog : NULL; }
 
+/* The scene was drawn once (render_scene_create: the camera does not move in a session);
+ * a frame is the fog over it. */
 int render_session_frame(render_session *s, float *rgba, float *transmittance, float *depth,
                          render_frame_error *err) {
   render_error rerr = {0};
-  size_t pixels = (size_t)s->width * s->height;
-  scene_pass_run(s->pass, &s->cam, &s->target);
-  if (gl_target_read(&s->target, 1, 1, s->distance, &rerr)) goto fail;
+  const render_scene *sc = &s->scene;
+  size_t pixels = (size_t)sc->width * sc->height;
   if (s->has_fog) {
-    if (render_fog_draw(&s->fog, &s->cam, &s->target, &s->fog_target, &rerr)) goto fail;
+    if (render_fog_draw(&s->fog, &sc->cam, &sc->target, &s->fog_target, &rerr)) goto fail;
     if (rgba && gl_target_read(&s->fog_target, 0, 4, rgba, &rerr)) goto fail;
     if (transmittance && gl_target_read(&s->fog_target, 1, 1, transmittance, &rerr)) goto fail;
   } else {
-    if (rgba && gl_target_read(&s->target, 0, 4, rgba, &rerr)) goto fail;
+    if (rgba && gl_target_read(&sc->target, 0, 4, rgba, &rerr)) goto fail;
     if (transmittance)
       for (size_t k = 0; k < pixels; k++) transmittance[k] = 1.0f;
   }
   if (gl_util_check("render", &rerr)) goto fail;
   if (depth)
     for (size_t k = 0; k < pixels; k++)
-      depth[k] = s->distance[k] >= SCENE_SKY_DISTANCE ? (float)s->cam.far_plane : s->distance[k];
+      depth[k] = sc->distance[k] >= SCENE_SKY_DISTANCE ? (float)sc->cam.far_plane : sc->distance[k];
   return 0;
 fail:
   snprintf(err->message, sizeof err->message, "%s", rerr.message);

@@ -8,6 +8,7 @@
 #include <stdbool.h>
 
 #include "app/config.h"
+#include "render/render.h"
 
 typedef struct render_frame_error {
   char message[512];
@@ -17,6 +18,25 @@ typedef struct render_frame_info {
   bool has_fog;              /* false: the fog pass is not part of this build yet */
   char gl_description[256];  /* "egl-surfaceless, 4.5 (Core Profile) Mesa ..., llvmpipe" */
 } render_frame_info;
+
+/* A config's terrain and boxes drawn once from its camera, with the GL context current:
+ * the scene target (colour 0, distance 1) and the distances read back (rows as
+ * gl_target_read gives them; SCENE_SKY_DISTANCE for the sky). */
+typedef struct render_scene {
+  int width, height;
+  camera cam;
+  scene_geometry geo;
+  bool have_geo;
+  scene_pass *pass;
+  gl_target target;
+  float *distance;
+} render_scene;
+
+/* Loads the config's heightmap, builds the geometry and draws it. Errors name the
+ * heightmap's file:line. */
+int render_scene_create(render_scene *scene, const scene_config *cfg, int width, int height,
+                        render_error *err);
+void render_scene_destroy(render_scene *scene);
 
 typedef struct render_session render_session;
 

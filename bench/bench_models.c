@@ -24,6 +24,7 @@
 
 #include "app/config.h"
 #include "app/render_fog.h"
+#include "app/render_frame.h"
 #include "bench/bench.h"
 #include "bench/chart.h"
 #include "render/render.h"
@@ -55,15 +56,10 @@ typedef struct model_row {
   double ms, rmse, max_error;
 } model_row;
 
-/* One scene: a config's terrain, boxes and camera, its scene pass and the distances. */
+/* One scene: a config and its terrain, boxes and camera drawn (app/render_frame.h). */
 typedef struct bench_scene {
   scene_config *cfg;
-  camera cam;
-  scene_geometry geo;
-  bool have_geo;
-  scene_pass *pass;
-  gl_target target;
-  float *distance;
+  render_scene drawn;
 } bench_scene;
 
 static int scene_create(bench_scene *s, const char *name, int W, int H, render_error *err) {
@@ -71,8 +67,7 @@ static int scene_create(bench_scene *s, const char *name, int W, int H, render_e
   snprintf(path, sizeof path, "%s/configs/%s", FOGPIPE_SOURCE_DIR, name);
   scene_config_error cerr;
   s->cfg = malloc(sizeof *s->cfg);
-  s->distance = malloc((size_t)W * H * sizeof(float));
-  if (!s->cfg || !s->distance) {
+  if (!s->cfg) {
     snprintf(err->message, sizeof err->message, "out of memory");
     return 1;
   }
@@ -80,22 +75,11 @@ static int scene_create(bench_scene *s, const char *name, int W, int H, render_e
     snprintf(err->message, sizeof err->message, "%s", cerr.message);
     return 1;
   }
-  scene_config_camera(s->cfg, &s->cam);
-  scene_desc desc;
-  scene_config_scene_desc(s->cfg, NULL, 0, 0, &desc); /* both configs' terrains are procedural */
-  if (scene_geometry_create(&s->geo, &desc, err)) return 1;
-  s->have_geo = true;
-  if (!(s->pass = scene_pass_create(&s->geo, err)) || scene_target_create(&s->target, W, H, err))
-    return 1;
-  scene_pass_run(s->pass, &s->cam, &s->target);
-  return gl_target_read(&s->target, 1, 1, s->distance, err);
+  return render_scene_create(&s->drawn, s->cfg, W, H, err);
 }
 
 static void scene_destroy(bench_scene *s) {
-  if (s->target.framebuffer) gl_target_destroy(&s->target);
-  if (s->pass) scene_pass_destroy(s->pass);
-  if (s->have_geo) scene_geometry_destroy(&s->geo);
-  free(s->distance);
+  render_scene_destroy(&s->drawn);
   free(s->cfg);
 }
 
@@ -216,7 +200,7 @@ int bench_models(int argc, char **argv) {
 
   /* The CPU references: tau of each model along every pixel's ray to its surface. */
   for (int m = 0; m < MODEL_COUNT; m++) {
-    const bench_scene *sc = &scenes[scene_of_model[m]];
+    const render_scene *sc = &scenes[scene_of_model[m]].drawn;
     references[m] = malloc(pixels * sizeof(double));
     if (!references[m]) goto out_of_memory;
     for (int py = 0; py < H; py++)
@@ -255,7 +239,7 @@ int bench_models(int argc, char **argv) {
   /* Warm-up (shader JIT) with the error read-back, then the timed rounds interleaved. */
   for (int i = 0; i < row_count; i++) {
     model_row *r = &rows[i];
-    const bench_scene *sc = &scenes[scene_of_model[r->model]];
+    const render_scene *sc = &scenes[scene_of_model[r->model]].drawn;
     size_t where;
     gl_target_bind(&fog_target);
     if (fog_pass_draw(pass, &sc->cam, &r->params, sc->target.color[0], sc->target.color[1], W,
@@ -266,7 +250,7 @@ int bench_models(int argc, char **argv) {
   }
   for (int f = 0; f < frames; f++)
     for (int i = 0; i < row_count; i++) {
-      const bench_scene *sc = &scenes[scene_of_model[rows[i].model]];
+      const render_scene *sc = &scenes[scene_of_model[rows[i].model]].drawn;
       gl_target_bind(&fog_target);
       fog_pass_finish();
       double t0 = app_clock_seconds();
