@@ -99,6 +99,11 @@ void fog_volume_box(const fog_volume *volume, double box_min[3], double box_max[
 /* Ray against the fog's box (camera-relative; dir need not be axis-free, zeros allowed):
  * returns 1 and the parameter interval [*t_enter, *t_exit] (t_enter may be negative when
  * the camera is inside), or 0 when the line misses the box. */
+/* Slab test (Kay & Kajiya) of the line t dir against the box [lo, hi], both relative to the
+ * line's origin; dir components may be 0. Non-zero when the line meets the box, with the
+ * parameters of entry and exit (either may be negative). */
+int fog_slab_entry_exit(const double lo[3], const double hi[3], const double dir[3],
+                        double *t_enter, double *t_exit);
 int fog_box_entry_exit(const fog_volume *volume, const double camera[3], const double dir[3],
                        double *t_enter, double *t_exit);
 

@@ -3,6 +3,7 @@
  * space's lattice cells or marched; the GLSL twins are in render/shaders/fog_models.glsl. */
 #include <math.h>
 
+#include "render/fog_field.h"
 #include "render/fog_models.h"
 
 /* Trilinear at index position u, zero outside the grid (GL_CLAMP_TO_BORDER with 0). */
@@ -35,8 +36,7 @@ static double grid3d_sample(const volume_grid_desc *g, const double u[3]) {
  * position u0 + t du; 0 when empty. */
 static int grid3d_stretch(const volume_grid_desc *g, const double camera[3], const double dir[3],
                           double length, double u0[3], double du[3], double *t0, double *t1) {
-  *t0 = 0.0;
-  *t1 = length;
+  double lo[3], hi[3]; /* the support, index coordinates in [-1, dim], relative to u0 */
   for (int c = 0; c < 3; c++) {
     u0[c] = g->index_offset[c];
     du[c] = 0.0;
@@ -44,15 +44,11 @@ static int grid3d_stretch(const volume_grid_desc *g, const double camera[3], con
       u0[c] += g->index_from_world[c][a] * camera[a];
       du[c] += g->index_from_world[c][a] * dir[a];
     }
-    double lo = -1.0, hi = g->dim[c]; /* the support, in index units */
-    if (du[c] == 0.0) {
-      if (u0[c] < lo || u0[c] > hi) return 0;
-      continue;
-    }
-    double ta = (lo - u0[c]) / du[c], tb = (hi - u0[c]) / du[c];
-    *t0 = fmax(*t0, fmin(ta, tb));
-    *t1 = fmin(*t1, fmax(ta, tb));
+    lo[c] = -1.0 - u0[c], hi[c] = g->dim[c] - u0[c];
   }
+  if (!fog_slab_entry_exit(lo, hi, du, t0, t1)) return 0;
+  *t0 = fmax(*t0, 0.0);
+  *t1 = fmin(*t1, length);
   return *t0 < *t1;
 }
 

@@ -54,9 +54,8 @@ void fog_volume_box(const fog_volume *v, double box_min[3], double box_max[3]) {
   fog_profile_extent(&v->profile, &box_min[1], &box_max[1]);
 }
 
-/* Slab test against the camera-relative box [lo, hi] (Kay & Kajiya). */
-static int fog_box_entry_exit_relative(const double lo[3], const double hi[3], const double dir[3],
-                                       double *t_enter, double *t_exit) {
+int fog_slab_entry_exit(const double lo[3], const double hi[3], const double dir[3],
+                        double *t_enter, double *t_exit) {
   double t0 = -HUGE_VAL, t1 = HUGE_VAL;
   for (int a = 0; a < 3; a++) {
     if (dir[a] == 0.0) {
@@ -85,7 +84,7 @@ int fog_box_entry_exit(const fog_volume *v, const double camera[3], const double
     lo[a] -= camera[a];
     hi[a] -= camera[a];
   }
-  return fog_box_entry_exit_relative(lo, hi, dir, t_enter, t_exit);
+  return fog_slab_entry_exit(lo, hi, dir, t_enter, t_exit);
 }
 
 /* The d+1 non-zero centred B-spline values at local coordinate s in [0, 1] of a knot cell
