@@ -37,13 +37,10 @@ static double grid3d_sample(const volume_grid_desc *g, const double u[3]) {
 static int grid3d_stretch(const volume_grid_desc *g, const double camera[3], const double dir[3],
                           double length, double u0[3], double du[3], double *t0, double *t1) {
   double lo[3], hi[3]; /* the support, index coordinates in [-1, dim], relative to u0 */
+  volume_grid_index_of(g, camera, u0);
   for (int c = 0; c < 3; c++) {
-    u0[c] = g->index_offset[c];
-    du[c] = 0.0;
-    for (int a = 0; a < 3; a++) {
-      u0[c] += g->index_from_world[c][a] * camera[a];
-      du[c] += g->index_from_world[c][a] * dir[a];
-    }
+    du[c] = 0.0; /* a direction: the matrix alone */
+    for (int a = 0; a < 3; a++) du[c] += g->index_from_world[c][a] * dir[a];
     lo[c] = -1.0 - u0[c], hi[c] = g->dim[c] - u0[c];
   }
   if (!fog_slab_entry_exit(lo, hi, du, t0, t1)) return 0;

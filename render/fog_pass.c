@@ -44,8 +44,7 @@ struct fog_pass {
   size_t cell_scratch_texels;
   /* FOG_MODEL_VOLUME: the density as a 3D texture and its placement (fog_pass_upload_grid3d). */
   GLuint grid3d;
-  int grid3d_dim[3];
-  double grid3d_index_from_world[3][3], grid3d_index_offset[3];
+  volume_grid_desc grid3d_place; /* its size and placement; values not kept */
   /* resolution_divisor > 1: the reduced pass's target (RGBA32F: optical depth, distance,
    * extinction at the surface). */
   gl_target reduced;
@@ -253,7 +252,7 @@ int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_
         padded[2 * t] = v;
         padded[2 * (t - 1) + 1] = v; /* the texel at i - 1's +x neighbour */
       }
-  bool same = pass->grid3d && !memcmp(pass->grid3d_dim, d, sizeof pass->grid3d_dim);
+  bool same = pass->grid3d && !memcmp(pass->grid3d_place.dim, d, sizeof pass->grid3d_place.dim);
   if (!pass->grid3d) glGenTextures(1, &pass->grid3d);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_3D, pass->grid3d);
@@ -265,10 +264,8 @@ int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_
   free(padded);
   gl_util_texture_sampling(GL_TEXTURE_3D, true); /* hardware trilinear (the march) */
   glBindTexture(GL_TEXTURE_3D, 0);
-  memcpy(pass->grid3d_dim, d, sizeof pass->grid3d_dim);
-  memcpy(pass->grid3d_index_from_world, grid->index_from_world,
-         sizeof pass->grid3d_index_from_world);
-  memcpy(pass->grid3d_index_offset, grid->index_offset, sizeof pass->grid3d_index_offset);
+  pass->grid3d_place = *grid;
+  pass->grid3d_place.values = NULL;
   return gl_util_check("fog pass: volume upload", err);
 }
 
@@ -380,22 +377,18 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
  * that maps directions. */
 static void fog_pass_volume_uniforms(const fog_pass *pass, GLuint prog, const camera *cam,
                                      const fog_pass_params *params) {
-  float m[9], camera_index[3];
-  for (int c = 0; c < 3; c++) {
-    double u = pass->grid3d_index_offset[c];
-    for (int a = 0; a < 3; a++) {
-      u += pass->grid3d_index_from_world[c][a] * cam->position[a];
-      m[3 * a + c] = (float)pass->grid3d_index_from_world[c][a]; /* column-major */
-    }
-    camera_index[c] = (float)u;
-  }
+  const volume_grid_desc *g = &pass->grid3d_place;
+  double u[3];
+  float m[9];
+  volume_grid_index_of(g, cam->position, u);
+  volume_grid_gl_matrix(g, m);
   glActiveTexture(GL_TEXTURE6 + FOG_PASS_MAX_GRIDS);
   glBindTexture(GL_TEXTURE_3D, pass->grid3d);
   glUniform1i(fog_loc(prog, "fog_grid3d"), 6 + FOG_PASS_MAX_GRIDS);
   glUniformMatrix3fv(fog_loc(prog, "fog_grid3d_index_from_world"), 1, GL_FALSE, m);
-  glUniform3fv(fog_loc(prog, "fog_grid3d_camera_index"), 1, camera_index);
-  glUniform3f(fog_loc(prog, "fog_grid3d_dims"), (float)pass->grid3d_dim[0],
-              (float)pass->grid3d_dim[1], (float)pass->grid3d_dim[2]);
+  glUniform3f(fog_loc(prog, "fog_grid3d_camera_index"), (float)u[0], (float)u[1], (float)u[2]);
+  glUniform3f(fog_loc(prog, "fog_grid3d_dims"), (float)g->dim[0], (float)g->dim[1],
+              (float)g->dim[2]);
   glUniform1f(fog_loc(prog, "fog_grid3d_step"), (float)params->model_grid3d_step);
 }
 

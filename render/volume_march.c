@@ -14,6 +14,18 @@ struct volume_march {
   gl_target target;
 };
 
+void volume_grid_index_of(const volume_grid_desc *grid, const double p[3], double u[3]) {
+  for (int c = 0; c < 3; c++) {
+    u[c] = grid->index_offset[c];
+    for (int a = 0; a < 3; a++) u[c] += grid->index_from_world[c][a] * p[a];
+  }
+}
+
+void volume_grid_gl_matrix(const volume_grid_desc *grid, float m[9]) {
+  for (int c = 0; c < 3; c++)
+    for (int a = 0; a < 3; a++) m[3 * a + c] = (float)grid->index_from_world[c][a];
+}
+
 volume_march *volume_march_create(const volume_grid_desc *grid, render_error *err) {
   for (int c = 0; c < 3; c++)
     if (grid->dim[c] < 1) {
@@ -30,8 +42,8 @@ volume_march *volume_march_create(const volume_grid_desc *grid, render_error *er
   for (int c = 0; c < 3; c++) {
     m->dim[c] = grid->dim[c];
     m->index_offset[c] = (float)grid->index_offset[c];
-    for (int a = 0; a < 3; a++) m->index_from_world[3 * a + c] = (float)grid->index_from_world[c][a];
   }
+  volume_grid_gl_matrix(grid, m->index_from_world);
   m->program = gl_util_program("fog_pass_vs.glsl", "volume_march_fs.glsl", err);
   if (!m->program) {
     free(m);

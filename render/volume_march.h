@@ -24,6 +24,11 @@ typedef struct volume_grid_desc {
   double index_offset[3];
 } volume_grid_desc;
 
+/* The index position u = index_from_world p + index_offset of world point p. */
+void volume_grid_index_of(const volume_grid_desc *grid, const double p[3], double u[3]);
+/* index_from_world as GLSL's mat3 wants it: float, column-major. */
+void volume_grid_gl_matrix(const volume_grid_desc *grid, float m[9]);
+
 typedef struct volume_view_desc {
   double lo[3], hi[3]; /* the box rays are clipped to, world */
   double dir[3];       /* unit direction */
