@@ -28,12 +28,15 @@ typedef struct exr_stream {
   char message[256]; /* the library's last error message */
 } exr_stream;
 
+/* The stream of the read or write under way on this thread, for remember_error. The error
+ * handler must not ask the context for its user data: OpenEXR Core calls the handler with
+ * the context's lock held (e.g. from exr_write_header when a write fails), and
+ * exr_get_user_data takes that lock again, so a full disk used to hang the process. */
+static _Thread_local exr_stream *current_stream;
+
 static void remember_error(exr_const_context_t ctxt, exr_result_t code, const char *msg) {
-  void *user = NULL;
-  if (exr_get_user_data(ctxt, &user) == EXR_ERR_SUCCESS && user) {
-    exr_stream *stream = user;
-    snprintf(stream->message, sizeof stream->message, "%s", msg ? msg : "");
-  }
+  exr_stream *stream = current_stream;
+  if (stream) snprintf(stream->message, sizeof stream->message, "%s", msg ? msg : "");
 }
 
 static int64_t stream_read(exr_const_context_t ctxt, void *user, void *buffer, uint64_t size,
@@ -126,6 +129,7 @@ int exr_read_channel(const char *path, const char *channel, int *width_out,
                      int *height_out, float **pixels, sim_error *err) {
   exr_stream stream = {.fd = open(path, O_RDONLY | O_CLOEXEC)};
   if (stream.fd < 0) return sim_fail(err, "%s: cannot open: %s", path, strerror(errno));
+  current_stream = &stream;
   struct stat st;
   stream.size = fstat(stream.fd, &st) == 0 ? (int64_t)st.st_size : -1;
 
@@ -271,6 +275,7 @@ int exr_read_channel(const char *path, const char *channel, int *width_out,
 done:
   if (initialised) exr_decoding_destroy(ctxt, &decode);
   if (ctxt) exr_finish(&ctxt);
+  current_stream = NULL;
   close(stream.fd);
   free(out);
   free(scratch);
@@ -304,6 +309,7 @@ int image_write_exr(const char *path, int width, int height, const image_channel
   atomic_file file;
   if (atomic_file_open(&file, path, err)) return 1;
   exr_stream stream = {.fd = file.fd, .out = &file};
+  current_stream = &stream;
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
   init.error_handler_fn = remember_error;
   init.user_data = &stream;
@@ -360,6 +366,7 @@ int image_write_exr(const char *path, int width, int height, const image_channel
   if (rv == EXR_ERR_SUCCESS) stage = "finishing (writing the chunk table)";
   /* exr_finish writes the chunk offset table; its failure (a full disk) matters too. */
   exr_result_t finish = ctxt ? exr_finish(&ctxt) : EXR_ERR_SUCCESS;
+  current_stream = NULL;
   if (rv == EXR_ERR_SUCCESS) rv = finish;
   if (rv != EXR_ERR_SUCCESS || file.write_errno) {
     if (file.write_errno)
