@@ -70,8 +70,8 @@ typedef struct fog_profile {
 typedef struct fog_volume {
   int map_width, map_height; /* fine fogmap size W x H: the box [-1/2, W-1/2] x [-1/2, H-1/2] */
   double origin_x, origin_z; /* world position of the box corner (u, v) = (-1/2, -1/2) */
-  double cell_size;          /* world size of one fine sample; 0 means 1 */
-  double extinction;         /* extinction per world unit for f = g = 1; 0 means 1 */
+  double cell_size;          /* world size of one fine sample: > 0 */
+  double extinction;         /* extinction per world unit for f = g = 1: >= 0 (0: no fog) */
   fog_profile profile;
 } fog_volume;
 

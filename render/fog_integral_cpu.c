@@ -42,8 +42,9 @@ void fog_profile_extent(const fog_profile *p, double *y_bottom, double *y_top) {
   }
 }
 
-static double fog_cell_size(const fog_volume *v) { return v->cell_size > 0 ? v->cell_size : 1.0; }
-static double fog_extinction(const fog_volume *v) { return v->extinction > 0 ? v->extinction : 1.0; }
+/* Physical quantities, taken as given: extinction 0 is no fog (never "0 means 1"). */
+static double fog_cell_size(const fog_volume *v) { return v->cell_size; }
+static double fog_extinction(const fog_volume *v) { return v->extinction; }
 
 void fog_volume_box(const fog_volume *v, double box_min[3], double box_max[3]) {
   double h = fog_cell_size(v);

@@ -78,7 +78,7 @@ static double oracle_extinction(const oracle_ray *r, double t) {
   }
   double u = (p[0] - r->volume->origin_x) / r->h - 0.5;
   double v = (p[2] - r->volume->origin_z) / r->h - 0.5;
-  double e = r->volume->extinction > 0 ? r->volume->extinction : 1.0;
+  double e = r->volume->extinction;
   return e * oracle_grid_value(r->grid, u, v) * oracle_profile_value(&r->volume->profile, p[1]);
 }
 
@@ -159,7 +159,7 @@ double fog_optical_depth_oracle(const fog_volume *volume, const transform_grid *
                                 const double camera[3], const double dir[3], double t_start,
                                 double t_stop, double tolerance, double *error_estimate) {
   oracle_ray r = {.volume = volume, .grid = grid, .camera = camera, .dir = dir,
-                  .h = volume->cell_size > 0 ? volume->cell_size : 1.0};
+                  .h = volume->cell_size};
   const fog_profile *p = &volume->profile;
   r.box_lo[0] = volume->origin_x;
   r.box_hi[0] = volume->origin_x + volume->map_width * r.h;

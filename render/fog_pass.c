@@ -2,6 +2,7 @@
  * everything the shader needs in float (render/shaders/fog_integral.glsl). */
 #include "render/fog_pass.h"
 
+#include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -543,6 +544,13 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
                k <= J ? "an approximation A_l in slot l" : "a detail D_l in slot J + l");
       return 1;
     }
+  if (!(v->cell_size > 0) || !(v->extinction >= 0) || !isfinite(v->cell_size) ||
+      !isfinite(v->extinction)) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: fog volume cell size %g and extinction %g: expected a cell size > 0 "
+             "and an extinction >= 0 (0: no fog), both finite", v->cell_size, v->extinction);
+    return 1;
+  }
   const fog_profile *p = &v->profile;
   if (p->kind == FOG_PROFILE_BSPLINE &&
       (p->count < 1 || p->count > FOG_PROFILE_MAX_COEFFICIENTS || p->degree < 0 ||
@@ -586,7 +594,7 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
 
     /* Camera-relative placement, in double (fog_integral.glsl, fog_optical_depth_inside). */
     const double *c = cam->position;
-    double h = v->cell_size > 0 ? v->cell_size : 1.0;
+    double h = v->cell_size; /* checked > 0 above */
     double x0[FOG_PASS_MAX_GRIDS][2], scale[FOG_PASS_MAX_GRIDS];
     GLint size[FOG_PASS_MAX_GRIDS][2], units[FOG_PASS_MAX_GRIDS];
     for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) {
@@ -635,8 +643,7 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
     fog_volume_box(v, lo, hi);
     glUniform3d(fog_loc(prog, "fog_box_min"), lo[0] - c[0], lo[1] - c[1], lo[2] - c[2]);
     glUniform3d(fog_loc(prog, "fog_box_max"), hi[0] - c[0], hi[1] - c[1], hi[2] - c[2]);
-    glUniform1f(fog_loc(prog, "fog_extinction_scale"),
-                (float)(v->extinction > 0 ? v->extinction : 1.0));
+    glUniform1f(fog_loc(prog, "fog_extinction_scale"), (float)v->extinction);
     glUniform1i(fog_loc(prog, "fog_profile_kind"), (int)p->kind);
     glUniform1f(fog_loc(prog, "fog_profile_y0"), (float)(p->y0 - c[1]));
     glUniform1f(fog_loc(prog, "fog_profile_scale_height"),

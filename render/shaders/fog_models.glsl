@@ -37,6 +37,7 @@ float fog_exprel(float x) {
 }
 
 float fog_homogeneous_optical_depth(float extinction, float length) {
+  if (extinction == 0.0) return 0.0;  // no fog, even to infinity (as the C twin)
   return extinction * length;  // OpenGL GL_EXP fog
 }
 
@@ -44,6 +45,7 @@ float fog_homogeneous_optical_depth(float extinction, float length) {
 // camera-relative: y_c = 0, y0 = fog_model_y0. length >= 1e29 means no surface.
 float fog_height_optical_depth(float extinction, float y0, float scale_height, float dir_y,
                                float length) {
+  if (extinction == 0.0) return 0.0;  // no fog, even to infinity (as the C twin)
   float k = extinction * exp(y0 / scale_height);
   float a = dir_y / scale_height;
   if (length >= 1e29) return a > 0.0 ? k / a : 1e30;

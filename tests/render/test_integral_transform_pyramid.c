@@ -54,7 +54,7 @@ int main(void) {
     CHECK(transform_grid_create_level(plan, LEVELS, fogmap, &fine, &terr) == 0, "fine: %s",
           terr.message);
     fog_volume v = {.map_width = MAP_W, .map_height = MAP_H, .origin_x = -40.0, .origin_z = 10.0,
-                    .cell_size = 2.0, .profile = {.kind = FOG_PROFILE_SLAB, .y_floor = 0.0, .y_top = 1.0}};
+                    .cell_size = 2.0, .extinction = 1.0, .profile = {.kind = FOG_PROFILE_SLAB, .y_floor = 0.0, .y_top = 1.0}};
     /* Vertical rays through sample centres: X = origin_x + (x + 1/2) h. */
     if (degree <= 1)
       for (int y = 0; y < MAP_H; y++)
