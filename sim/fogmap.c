@@ -1,10 +1,12 @@
 /* Fogmap allocation. Image I/O lives in fogmap_io.c. */
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "sim/fogmap.h"
+#include "sim/image_io.h"
 
 int fogmap_create(fogmap *map, int width, int height, sim_error *err) {
   *map = (fogmap){.width = width, .height = height};
@@ -30,4 +32,12 @@ int fogmap_create(fogmap *map, int width, int height, sim_error *err) {
 void fogmap_destroy(fogmap *map) {
   free(map->density);
   *map = (fogmap){0};
+}
+
+int fogmap_scale(fogmap *map, double factor, sim_error *err) {
+  if (!(factor >= 0.0) || !isfinite(factor))
+    return sim_fail(err, "fogmap scale %g: expected a finite factor >= 0", factor);
+  size_t count = (size_t)map->width * (size_t)map->height;
+  for (size_t i = 0; i < count; i++) map->density[i] = (float)(map->density[i] * factor);
+  return 0;
 }

@@ -21,8 +21,9 @@ typedef struct fogmap {
 int fogmap_create(fogmap *map, int width, int height, sim_error *err);
 void fogmap_destroy(fogmap *map);
 
+/* Loading reads the stored values as they are; a scale is the caller's (fogmap_scale), so
+ * that no descriptor field is a physical quantity whose zero means something else. */
 typedef struct fogmap_load_desc {
-  float density_scale;  /* multiplies the loaded values; 0 means 1 */
   /* Which channel of a multi-channel image to use: an EXR channel name ("R", "Y", ...),
    * or for PNG one of "R", "G", "B", "A". NULL: the image must have one channel (a grey
    * PNG, grey+alpha uses grey only if named "grey"), or loading fails naming the
@@ -30,10 +31,18 @@ typedef struct fogmap_load_desc {
   const char *channel;
 } fogmap_load_desc;
 
+/* Densities above this are refused when loading (the first such pixel is named): the
+ * transforms and the renderer multiply and sum them in float, and a value near FLT_MAX
+ * (3.4e38) overflows to infinity there and then to NaN pixels. */
+#define FOGMAP_MAX_DENSITY 1e12f
+
+/* Multiplies every density by factor (>= 0 and finite). */
+int fogmap_scale(fogmap *map, double factor, sim_error *err);
+
 /* Loads a greyscale PNG (8 or 16 bit: value / 255 or / 65535) or an EXR channel (half or
  * float) into a new fogmap. Fails (nothing allocated) on unreadable or non-image files,
- * ambiguous channels, NaN or negative values (the first such pixel is named). Also:
- * infinite values are rejected; PNG samples are taken as stored (no gamma: a fogmap is
+ * ambiguous channels, NaN, negative or values above FOGMAP_MAX_DENSITY (the first such
+ * pixel is named); PNG samples are taken as stored (no gamma: a fogmap is
  * data), indexed PNGs are expanded to "R", "G", "B", "A", grey bit depths below 8 are
  * refused; EXR reads part 0, scanline or tiled (the full-resolution level). */
 int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, sim_error *err);

@@ -73,10 +73,6 @@ int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, sim
   fogmap_load_desc d = desc ? *desc : (fogmap_load_desc){0};
   *out = (fogmap){0};
   if (!path || !*path) return sim_fail(err, "no fogmap file name given");
-  float scale = d.density_scale == 0.0f ? 1.0f : d.density_scale;
-  if (!(scale > 0.0f) || isinf(scale))
-    return sim_fail(err, "%s: density scale %g must be positive and finite", path,
-                    (double)scale);
 
   unsigned char *bytes = NULL;
   size_t size = 0;
@@ -106,18 +102,18 @@ int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, sim
    * and the wavelet transforms produce garbage. Name the first offender. */
   size_t count = (size_t)width * (size_t)height;
   for (size_t i = 0; i < count; i++) {
-    float v = pixels[i] * scale;
-    if (!(v >= 0.0f) || isinf(v)) {
+    float v = pixels[i];
+    if (!(v >= 0.0f) || !(v <= FOGMAP_MAX_DENSITY)) {
       int x = (int)(i % (size_t)width), z = (int)(i / (size_t)width);
-      const char *what = isnan(pixels[i]) ? "is NaN"
-                         : isinf(v)      ? "is infinite"
-                                         : "is negative";
-      sim_fail(err, "%s: pixel (%d, %d) %s (%g); densities must be finite and >= 0", path, x,
-               z, what, (double)pixels[i]);
+      const char *what = isnan(v) ? "is NaN"
+                         : isinf(v) ? "is infinite"
+                         : v < 0.0f ? "is negative"
+                                    : "is too large";
+      sim_fail(err, "%s: pixel (%d, %d) %s (%g); densities must be finite, >= 0 and at most %g",
+               path, x, z, what, (double)v, (double)FOGMAP_MAX_DENSITY);
       free(pixels);
       return 1;
     }
-    pixels[i] = v;
   }
   *out = (fogmap){.width = width, .height = height, .density = pixels};
   return 0;
