@@ -45,6 +45,13 @@ typedef struct vdb_grid_info {
   long long active_voxels;       /* voxels in leaves and in active tiles */
 } vdb_grid_info;
 
+/* Checks (in C, without OpenVDB, in well under a millisecond) that a .vdb file's header,
+ * metadata, grid descriptors and grid headers fit its size as OpenVDB 10 reads them:
+ * every length, count and offset against the bytes there. OpenVDB allocates such lengths
+ * before any check (a bit flip made it take gigabytes); vdb_list_grids and vdb_read_dense
+ * call this first. 0: looks sound; 1: err->message names the file and what is damaged. */
+int vdb_precheck_file(const char *path, sim_error *err);
+
 /* Lists the grids of a .vdb file (at most capacity; *count is the number in the file).
  * Fails naming the file for missing, unreadable, non-VDB or truncated files. */
 int vdb_list_grids(const char *path, vdb_grid_info *grids, int capacity, int *count,

@@ -52,7 +52,9 @@ bool check_readable(const char *path, sim_error *err) {
     set_error(err, "%s: not an OpenVDB file (no 'VDB' magic number in the first bytes)", path);
     return false;
   }
-  return true;
+  // OpenVDB allocates lengths read from the file before checking them: refuse damaged
+  // headers first (every io::File opened for reading here goes through this function).
+  return vdb_precheck_file(path, err) == 0;
 }
 
 std::string grid_names(openvdb::io::File &file) {

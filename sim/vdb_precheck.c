@@ -1,0 +1,461 @@
+/* vdb_precheck_file: a cheap structural check of an OpenVDB file, in plain C, before
+ * OpenVDB opens it.
+ *
+ * Why: OpenVDB 10 trusts every length and count in a file. io::File::open reads strings
+ * (util/Name.h readString: std::string(size, ' ') of a uint32 size from the file),
+ * metadata values and counts, and allocates and fills them before it could notice that
+ * the file is far shorter: one flipped bit in a 50 KB bake made it take 6-19 GB and up to
+ * a minute. A count read past the end of the stream is worse still: the read fails, the
+ * variable keeps whatever it held, and the loop goes on.
+ *
+ * This walks the same bytes in the same order as OpenVDB 10 reads them (each step names
+ * the OpenVDB function it mirrors), checks every length, count and offset against the
+ * bytes actually there, and fails with a message saying what is wrong. It reads a few
+ * hundred bytes per grid (pread; big blocks are skipped, never loaded). It does not decode
+ * the trees' nodes and buffers: OpenVDB reads those in pieces whose size the tree type
+ * fixes (a damaged compressed-chunk size is allocated, not filled, or throws bad_alloc),
+ * and with zip or blosc, as every real bake has, throws on a short stream. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <fcntl.h>
+#include <inttypes.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "sim/image_io.h"
+#include "sim/vdb_import.h"
+
+/* openvdb/version.h */
+#define VDB_MAGIC 0x56444220u
+#define VERSION_GRID_INSTANCING 216
+#define VERSION_BOOST_UUID 218
+#define VERSION_NEW_TRANSFORM 219
+#define VERSION_SELECTIVE_COMPRESSION 220
+#define VERSION_FLOAT_FRUSTUM_BBOX 221
+#define VERSION_NODE_MASK_COMPRESSION 222
+
+typedef struct vdb_in {
+  int fd;
+  const char *path;
+  sim_error *err;
+  uint64_t size;        /* of the file */
+  uint64_t pos;         /* the stream position OpenVDB would be at */
+  uint64_t end;         /* reads must end by here: the file's end or the current block's */
+  const char *within;   /* what ends at `end`, for messages: "the file", ... */
+  char section[160];    /* "header" or "grid 'density'", for messages */
+} vdb_in;
+
+static int damaged(vdb_in *in, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static int damaged(vdb_in *in, const char *format, ...) {
+  char detail[400];
+  va_list args;
+  va_start(args, format);
+  vsnprintf(detail, sizeof detail, format, args);
+  va_end(args);
+  return sim_fail(in->err, "%s: cannot read: damaged OpenVDB %s: %s", in->path, in->section,
+                  detail);
+}
+
+/* n more bytes must lie before in->end; what describes them ("the grid count (4 bytes)"). */
+static int need(vdb_in *in, uint64_t n, const char *what) {
+  const uint64_t left = in->end > in->pos ? in->end - in->pos : 0;
+  if (n <= left) return 0;
+  return damaged(in, "%s exceeds the %" PRIu64 " bytes left in %s (at byte %" PRIu64
+                 " of the file's %" PRIu64 ")", what, left, in->within, in->pos, in->size);
+}
+
+static int skip(vdb_in *in, uint64_t n, const char *what) {
+  if (need(in, n, what)) return 1;
+  in->pos += n;
+  return 0;
+}
+
+static int get(vdb_in *in, void *dst, size_t n, const char *what) {
+  if (need(in, n, what)) return 1;
+  const ssize_t got = pread(in->fd, dst, n, (off_t)in->pos);
+  if (got != (ssize_t)n)
+    return sim_fail(in->err, "%s: cannot read: %s", in->path,
+                    got < 0 ? strerror(errno) : "the file shrank while being read");
+  in->pos += n;
+  return 0;
+}
+
+/* OpenVDB writes host-endian; every platform it ships on is little-endian. */
+static uint64_t le(const unsigned char *b, int n) {
+  uint64_t v = 0;
+  for (int i = n - 1; i >= 0; i--) v = v << 8 | b[i];
+  return v;
+}
+
+static int get_u32(vdb_in *in, uint32_t *v, const char *what) {
+  unsigned char b[4];
+  if (get(in, b, 4, what)) return 1;
+  *v = (uint32_t)le(b, 4);
+  return 0;
+}
+
+static int get_i64(vdb_in *in, int64_t *v, const char *what) {
+  unsigned char b[8];
+  if (get(in, b, 8, what)) return 1;
+  *v = (int64_t)le(b, 8);
+  return 0;
+}
+
+/* Non-printable bytes (damage, or the grid name's "\x1e" suffix separator) as '?'. */
+static void printable(char *s) {
+  for (; *s; s++)
+    if ((unsigned char)*s < 0x20 || (unsigned char)*s > 0x7e) *s = '?';
+}
+
+/* util/Name.h readString: a uint32 length, then the bytes. Keeps the first cap-1 bytes in
+ * out (NUL-terminated) and the true length in *len, so "float\0" is not "float". */
+static int get_string(vdb_in *in, char *out, size_t cap, uint32_t *len, const char *what) {
+  char phrase[224];
+  snprintf(phrase, sizeof phrase, "%s length (4 bytes)", what);
+  if (get_u32(in, len, phrase)) return 1;
+  snprintf(phrase, sizeof phrase, "%s length %" PRIu32, what, *len);
+  if (need(in, *len, phrase)) return 1;
+  const size_t keep = *len < cap ? *len : cap - 1;
+  if (get(in, out, keep, what)) return 1;
+  out[keep] = '\0';
+  in->pos += *len - keep;
+  return 0;
+}
+
+static int same_name(const char *s, uint32_t len, const char *name) {
+  return len == strlen(name) && !strcmp(s, name);
+}
+
+/* The UUID as boost::uuids' operator>> reads it (Archive::readHeader's `is >> mUuid`):
+ * 32 hex digits with '-' after the 4th, 6th, 8th and 10th byte, whitespace skipped before
+ * each character. On anything else the stream fails and OpenVDB silently sees no grids. */
+static int read_uuid(vdb_in *in) {
+  const uint64_t start = in->pos;
+  for (int i = 0; i < 16; i++)
+    for (int k = 0; k < (i == 3 || i == 5 || i == 7 || i == 9 ? 3 : 2); k++) {
+      unsigned char c;
+      do {
+        if (get(in, &c, 1, "the UUID (36 characters)")) return 1;
+      } while (c == ' ' || (c >= '\t' && c <= '\r'));
+      const int hex = (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+      if (k < 2 ? !hex : c != '-')
+        return damaged(in, "the UUID at byte %" PRIu64 " is not 32 hex digits and 4 hyphens "
+                       "(byte %" PRIu64 " is 0x%02x)", start, in->pos - 1, c);
+    }
+  return 0;
+}
+
+/* io::Archive::readHeader. */
+static int read_header(vdb_in *in, uint32_t *version, int *has_offsets) {
+  unsigned char magic[8];
+  if (get(in, magic, 8, "the magic number (8 bytes)")) return 1;
+  if (le(magic, 8) != VDB_MAGIC)
+    return damaged(in, "the magic number is 0x%016" PRIx64 ", not 0x%016" PRIx64,
+                   le(magic, 8), (uint64_t)VDB_MAGIC);
+  uint32_t v, n;
+  if (get_u32(in, &v, "the file format version (4 bytes)")) return 1;
+  /* newer than OpenVDB 10 (224): OpenVDB only warns and reads it as its own */
+  if (v < 211) {  /* separate major, minor, patch numbers (uint32 arithmetic, as OpenVDB) */
+    if (get_u32(in, &n, "the file format minor version (4 bytes)")) return 1;
+    v = 100 * v + 10 * n;
+    if (get_u32(in, &n, "the file format patch version (4 bytes)")) return 1;
+    v += n;
+  }
+  if (v >= 211 && skip(in, 8, "the library version (8 bytes)")) return 1;
+  *has_offsets = 1;
+  if (v >= 212) {
+    unsigned char flag;
+    if (get(in, &flag, 1, "the grid offsets flag (1 byte)")) return 1;
+    *has_offsets = flag != 0;
+  }
+  if (v >= VERSION_SELECTIVE_COMPRESSION && v < VERSION_NODE_MASK_COMPRESSION &&
+      skip(in, 1, "the compression flag (1 byte)"))
+    return 1;
+  *version = v;
+  if (v >= VERSION_BOOST_UUID) return read_uuid(in);
+  return skip(in, 16, "the UUID (16 bytes)");
+}
+
+/* A blosc chunk (io::DelayedLoadMetadata::readValue): OpenVDB reserves the uncompressed
+ * size that the chunk's 16-byte header claims (bytes 4-7), so that must be no more than
+ * the table it holds, or 128 bytes (compression::bloscCompress pads smaller tables). */
+static int check_blosc(vdb_in *in, uint32_t bytes, uint64_t table_bytes, const char *what) {
+  char phrase[224];
+  if (table_bytes < 128) table_bytes = 128;
+  if (bytes < 16)
+    return damaged(in, "%s is a %" PRIu32 "-byte blosc chunk, shorter than its header", what,
+                   bytes);
+  snprintf(phrase, sizeof phrase, "%s's blosc chunk of %" PRIu32 " bytes", what, bytes);
+  if (need(in, bytes, phrase)) return 1;
+  unsigned char header[16];
+  const uint64_t chunk = in->pos;
+  if (get(in, header, 16, phrase)) return 1;
+  if (le(header + 4, 4) > table_bytes)
+    return damaged(in, "%s's blosc chunk claims %" PRIu64 " bytes uncompressed, more than "
+                   "%" PRIu64, what, le(header + 4, 4), table_bytes);
+  in->pos = chunk + bytes;
+  return 0;
+}
+
+/* io::DelayedLoadMetadata::readValue ("__delayedload", Mantaflow writes one per grid):
+ * a leaf count, a per-leaf int8 mask table and an optional int64 compressed-size table,
+ * each either raw or a blosc chunk; OpenVDB allocates count entries of each. */
+static int read_delayed_load(vdb_in *in, uint32_t size, const char *what) {
+  if (size == 0) return 0;
+  char phrase[224];
+  snprintf(phrase, sizeof phrase, "the size %" PRIu32 " of %s", size, what);
+  if (need(in, size, phrase)) return 1;
+  const uint64_t saved_end = in->end, value_end = in->pos + size;
+  const char *saved_within = in->within;
+  in->end = value_end;
+  in->within = "its metadata value";
+  uint32_t count, bytes;
+  int bad = get_u32(in, &count, "the delayed-load leaf count (4 bytes)");
+  /* every leaf stores at least its 64-byte value mask (LeafNode::readTopology, 8^3 leaves
+   * in every registered tree type), so a file holds at most size/64 leaves */
+  if (!bad && count > in->size / 64)
+    bad = damaged(in, "the leaf count %" PRIu32 " of %s exceeds the %" PRIu64 " leaves the "
+                  "file's %" PRIu64 " bytes can hold", count, what, in->size / 64, in->size);
+  if (!bad) bad = get_u32(in, &bytes, "the delayed-load mask size (4 bytes)");
+  if (!bad) bad = bytes ? check_blosc(in, bytes, count, "the delayed-load mask")
+                        : skip(in, count, "the delayed-load mask table");
+  if (!bad) bad = get_u32(in, &bytes, "the delayed-load size table's size (4 bytes)");
+  if (!bad && bytes != UINT32_MAX)  /* UINT32_MAX: no compressed sizes stored */
+    bad = bytes ? check_blosc(in, bytes, 8ull * count, "the delayed-load size table")
+                : skip(in, 8ull * count, "the delayed-load size table");
+  in->end = saved_end;
+  in->within = saved_within;
+  in->pos = value_end;  /* OpenVDB skips any bytes it does not know */
+  return bad;
+}
+
+/* Metadata::read after MetaMap::readMeta found the type: a uint32 size, then the value.
+ * The types openvdb::initialize registers read exactly sizeof(T) (TypedMetadata::readValue
+ * ignores the size; another size would leave the stream out of step). Strings and
+ * unknown types allocate the size and read it. */
+static int read_meta_value(vdb_in *in, const char *type, uint32_t type_len, const char *what) {
+  static const struct { const char *name; uint32_t bytes; } fixed[] = {
+      {"bool", 1},    {"int32", 4},    {"int64", 8},   {"float", 4},   {"double", 8},
+      {"vec2i", 8},   {"vec2s", 8},    {"vec2d", 16},  {"vec3i", 12},  {"vec3s", 12},
+      {"vec3d", 24},  {"vec4i", 16},   {"vec4s", 16},  {"vec4d", 32},  {"mat4s", 64},
+      {"mat4d", 128}, {"ptidx32", 4},  {"ptidx64", 8},
+  };
+  char phrase[224];
+  uint32_t size;
+  snprintf(phrase, sizeof phrase, "the size of %s (4 bytes)", what);
+  if (get_u32(in, &size, phrase)) return 1;
+  for (size_t t = 0; t < sizeof fixed / sizeof fixed[0]; t++)
+    if (same_name(type, type_len, fixed[t].name)) {
+      if (size != fixed[t].bytes)
+        return damaged(in, "%s (%s) has size %" PRIu32 ", not %" PRIu32, what, type, size,
+                       fixed[t].bytes);
+      snprintf(phrase, sizeof phrase, "the value of %s (%" PRIu32 " bytes)", what, size);
+      return skip(in, size, phrase);
+    }
+  if (same_name(type, type_len, "__delayedload")) return read_delayed_load(in, size, what);
+  snprintf(phrase, sizeof phrase, "the size %" PRIu32 " of %s", size, what);
+  return skip(in, size, phrase);
+}
+
+/* MetaMap::readMeta: a uint32 count, then per item readString (name), readString (type
+ * name) and Metadata::read. */
+static int read_metamap(vdb_in *in, const char *owner) {
+  char phrase[224];
+  uint32_t count;
+  snprintf(phrase, sizeof phrase, "the %s count (4 bytes)", owner);
+  if (get_u32(in, &count, phrase)) return 1;
+  /* every item holds at least three uint32s: name length, type name length, size */
+  snprintf(phrase, sizeof phrase, "the %s count %" PRIu32 " (12 bytes or more each)", owner,
+           count);
+  if (need(in, 12ull * count, phrase)) return 1;
+  for (uint32_t i = 0; i < count; i++) {
+    char name[64], type[32], what[128];
+    uint32_t name_len, type_len;
+    snprintf(what, sizeof what, "%s item %" PRIu32 "'s name", owner, i + 1);
+    if (get_string(in, name, sizeof name, &name_len, what)) return 1;
+    printable(name);
+    snprintf(what, sizeof what, "%s '%s' type name", owner, name);
+    if (get_string(in, type, sizeof type, &type_len, what)) return 1;
+    printable(type);
+    snprintf(what, sizeof what, "%s '%s'", owner, name);
+    if (read_meta_value(in, type, type_len, what)) return 1;
+  }
+  return 0;
+}
+
+/* math::Transform::read: readString (the map's type name), then MapBase::read of that
+ * map (math/Maps.h), each a fixed number of Vec3d/Mat4d except the frustum, which holds
+ * a second map. (Files before version 219 stored old transforms; not checked here.) */
+static int read_map(vdb_in *in, uint32_t version, int depth) {
+  static const struct { const char *name; uint32_t bytes; } maps[] = {
+      {"AffineMap", 128},          {"UnitaryMap", 128},        /* a Mat4d */
+      {"ScaleMap", 120},           {"UniformScaleMap", 120},   /* 5 Vec3d */
+      {"ScaleTranslateMap", 144},  {"UniformScaleTranslateMap", 144},  /* 6 Vec3d */
+      {"TranslationMap", 24},
+  };
+  char type[40], phrase[96];
+  uint32_t len;
+  if (get_string(in, type, sizeof type, &len,
+                 depth ? "the frustum's second map type name" : "the transform type name"))
+    return 1;
+  printable(type);
+  for (size_t m = 0; m < sizeof maps / sizeof maps[0]; m++)
+    if (same_name(type, len, maps[m].name)) {
+      snprintf(phrase, sizeof phrase, "the %s (%" PRIu32 " bytes)", type, maps[m].bytes);
+      return skip(in, maps[m].bytes, phrase);
+    }
+  if (same_name(type, len, "NonlinearFrustumMap") && depth < 4) {
+    /* NonlinearFrustumMap::read: a BBoxd (a CoordBBox before 221), taper, depth */
+    if (skip(in, (version >= VERSION_FLOAT_FRUSTUM_BBOX ? 48 : 24) + 16,
+             "the frustum map (64 bytes)"))
+      return 1;
+    return read_map(in, version, depth + 1);
+  }
+  return damaged(in, "unknown transform type '%s' (%" PRIu32 " bytes)", type, len);
+}
+
+/* The root node's tile value size and the least bytes a root child takes in the file,
+ * from the tree type name, e.g. "Tree_float_5_4_3": a child is its Coord (12 bytes) and
+ * an InternalNode whose readTopology starts with two masks of 2^(3*5) bits. Unknown types
+ * get the smallest sizes (OpenVDB refuses to read unregistered grid types anyway). */
+static void tree_layout(const char *type, uint64_t *value_bytes, uint64_t *child_bytes) {
+  static const struct { const char *name; uint32_t bytes; } values[] = {
+      {"bool", 1},    {"mask", 1},     {"float", 4},       {"double", 8},      {"int32", 4},
+      {"int64", 8},   {"vec3i", 12},   {"vec3s", 12},      {"vec3d", 24},      {"ptidx32", 4},
+      {"ptidx64", 8}, {"ptdataidx32", 4}, {"ptdataidx64", 8},
+  };
+  *value_bytes = 1;
+  *child_bytes = 12;
+  if (strncmp(type, "Tree_", 5) != 0) return;
+  const char *v = type + 5, *u = strchr(v, '_');
+  if (!u) return;
+  for (size_t t = 0; t < sizeof values / sizeof values[0]; t++)
+    if (strlen(values[t].name) == (size_t)(u - v) && !strncmp(v, values[t].name, u - v))
+      *value_bytes = values[t].bytes;
+  const int log2 = atoi(u + 1);
+  if (log2 >= 1 && log2 <= 10) *child_bytes = 12 + 2 * ((1ull << (3 * log2)) / 8);
+}
+
+/* io::Archive::readGrid (and File::readGridPartial): readGridCompression, the grid's
+ * MetaMap, the transform, then (not for instances) Tree::readTopology: TreeBase's buffer
+ * count, then RootNode::readTopology: background, tile count, child count, which it loops
+ * over without checking the stream (a damaged count loops billions of times past the
+ * end, allocating a node per child). */
+static int read_grid(vdb_in *in, uint32_t version, const char *type, int instance) {
+  if (version >= VERSION_NODE_MASK_COMPRESSION &&
+      skip(in, 4, "the grid's compression flags (4 bytes)"))
+    return 1;
+  if (read_metamap(in, "grid metadata")) return 1;
+  if (read_map(in, version, 0)) return 1;
+  if (instance) return 0;
+  uint64_t value_bytes, child_bytes;
+  tree_layout(type, &value_bytes, &child_bytes);
+  char phrase[224];
+  snprintf(phrase, sizeof phrase, "the tree's buffer count and background (%" PRIu64 " bytes)",
+           4 + value_bytes);
+  if (skip(in, 4 + value_bytes, phrase)) return 1;
+  uint32_t tiles, children;
+  if (get_u32(in, &tiles, "the root's tile count (4 bytes)") ||
+      get_u32(in, &children, "the root's child count (4 bytes)"))
+    return 1;
+  /* a tile: Coord, value, active flag; a child: Coord and at least its node's masks */
+  snprintf(phrase, sizeof phrase, "the topology of the root's %" PRIu32 " tiles and %" PRIu32
+           " child nodes (%" PRIu64 " bytes or more)", tiles, children,
+           tiles * (13 + value_bytes) + children * child_bytes);
+  return need(in, tiles * (13 + value_bytes) + children * child_bytes, phrase);
+}
+
+/* io::File::readGridDescriptors: readGridCount, then per grid GridDescriptor::read
+ * (readString unique name, readString grid type, readString instance parent name from
+ * version 216, int64 grid, block and end offsets) and a seek to the end offset, where the
+ * next descriptor starts. Each grid's own block is checked as OpenVDB will read it. */
+static int read_descriptors(vdb_in *in, uint32_t version, int has_offsets) {
+  unsigned char b[4];
+  if (get(in, b, 4, "the grid count (4 bytes)")) return 1;
+  const int32_t count = (int32_t)le(b, 4);
+  if (count < 0) return damaged(in, "the grid count %" PRId32 " is negative", count);
+  char phrase[224];
+  snprintf(phrase, sizeof phrase, "the grid count %" PRId32 " (36 bytes or more per grid "
+           "descriptor)", count);
+  if (need(in, 36ull * (uint32_t)count, phrase)) return 1;
+  for (int32_t i = 0; i < count; i++) {
+    char name[96], type[64], parent[8], what[64];
+    uint32_t name_len, type_len, parent_len = 0;
+    snprintf(what, sizeof what, "grid descriptor %" PRId32 "'s name", i + 1);
+    if (get_string(in, name, sizeof name, &name_len, what)) return 1;
+    printable(name);
+    snprintf(what, sizeof what, "grid descriptor %" PRId32 "'s type name", i + 1);
+    if (get_string(in, type, sizeof type, &type_len, what)) return 1;
+    printable(type);
+    /* "_HalfFloat" marks 16-bit storage of buffers; the tree type is what precedes it */
+    if (type_len >= 10 && type_len < sizeof type && !strcmp(type + type_len - 10, "_HalfFloat"))
+      type[type_len - 10] = '\0';
+    snprintf(what, sizeof what, "grid descriptor %" PRId32 "'s instance parent name", i + 1);
+    if (version >= VERSION_GRID_INSTANCING &&
+        get_string(in, parent, sizeof parent, &parent_len, what))
+      return 1;
+    int64_t grid_pos, block_pos, end_pos;
+    snprintf(what, sizeof what, "grid descriptor %" PRId32 "'s offsets (24 bytes)", i + 1);
+    if (need(in, 24, what) || get_i64(in, &grid_pos, what) || get_i64(in, &block_pos, what) ||
+        get_i64(in, &end_pos, what))
+      return 1;
+    const int instance = parent_len > 0;
+    const int64_t size = (int64_t)in->size, here = (int64_t)in->pos;
+    if (!has_offsets) {
+      /* io::Stream output: the grids follow their descriptors inline; without decoding the
+       * whole tree the next descriptor cannot be found, so only the first grid is checked */
+      snprintf(in->section, sizeof in->section, "grid '%s'", name);
+      return version >= VERSION_NEW_TRANSFORM ? read_grid(in, version, type, instance) : 0;
+    }
+    /* io::Archive::writeGrid puts the grid right after its descriptor and the blocks
+     * (buffers) after the topology; writeGridInstance leaves the block offset 0 */
+    if (end_pos > size)
+      return damaged(in, "grid '%s' ends at byte %" PRId64 ", beyond the end of the file "
+                     "(%" PRIu64 " bytes; truncated?)", name, end_pos, in->size);
+    if (grid_pos != here || end_pos < grid_pos ||
+        (!instance && (block_pos < grid_pos || block_pos > end_pos)))
+      return damaged(in, "grid '%s' has offsets %" PRId64 ", %" PRId64 ", %" PRId64 " (grid, "
+                     "blocks, end); expected %" PRId64 " <= blocks <= end <= %" PRIu64,
+                     name, grid_pos, block_pos, end_pos, here, in->size);
+    if (version >= VERSION_NEW_TRANSFORM) {
+      snprintf(in->section, sizeof in->section, "grid '%s'", name);
+      in->end = (uint64_t)(instance ? end_pos : block_pos);
+      in->within = instance ? "the grid" : "the grid's metadata and topology";
+      if (read_grid(in, version, type, instance)) return 1;
+      snprintf(in->section, sizeof in->section, "header");
+      in->end = in->size;
+      in->within = "the file";
+    }
+    in->pos = (uint64_t)end_pos;  /* GridDescriptor::seekToEnd */
+  }
+  return 0;
+}
+
+int vdb_precheck_file(const char *path, sim_error *err) {
+  vdb_in in = {.path = path, .err = err, .within = "the file", .section = "header"};
+  in.fd = open(path, O_RDONLY);
+  if (in.fd < 0) return sim_fail(err, "%s: cannot open: %s", path, strerror(errno));
+  struct stat st;
+  if (fstat(in.fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    close(in.fd);
+    return sim_fail(err, "%s: not a regular file", path);
+  }
+  in.size = in.end = (uint64_t)st.st_size;
+  uint32_t version = 0;
+  int has_offsets = 1;
+  /* io::File::open: the header, the file's MetaMap, the grid descriptors */
+  const int bad = read_header(&in, &version, &has_offsets) ||
+                  read_metamap(&in, "file metadata") ||
+                  read_descriptors(&in, version, has_offsets);
+  close(in.fd);
+  return bad;
+}
