@@ -56,7 +56,9 @@ typedef struct image_channel {
 
 /* Writes a scanline EXR with the given channels (any order; written sorted by name as EXR
  * requires), ZIP-compressed (lossless, 16 scanlines per chunk). The file is written to a
- * temporary name beside path and renamed, so a failure never leaves a partial file at path. */
+ * temporary name beside path and renamed, so a failure never leaves a partial file at path.
+ * Refuses (before creating anything) an image holding a NaN or infinite value, or a value a
+ * half channel would turn infinite (|v| > 65504), naming the channel and the pixel. */
 int image_write_exr(const char *path, int width, int height, const image_channel *channels,
                     int channel_count, sim_error *err);
 
@@ -78,7 +80,8 @@ void srgb8_encoder_init(srgb8_encoder *encoder);
 unsigned char srgb8_encode(const srgb8_encoder *encoder, float linear);
 
 /* Writes an 8-bit sRGB PNG (3 RGB or 4 RGBA: alpha stays linear) from linear interleaved
- * floats (clamped to [0, 1]), top row first; temporary file + rename. */
+ * floats (clamped to [0, 1]), top row first; temporary file + rename. NaN or infinite
+ * values are refused as image_write_exr refuses them (clamping would hide them). */
 int image_write_png_srgb(const char *path, int width, int height, int channels,
                          const float *linear, sim_error *err);
 
@@ -90,7 +93,7 @@ float fogmap_max_density(const fogmap *map);
 
 /* Saves a fogmap as a 16-bit greyscale PNG: pixel = round(density / max_density * 65535),
  * clamped to [0, 65535]; max_density 0 means fogmap_max_density(map) (1 if that is 0).
- * fogmap_load with density_scale = max_density reads it back within max_density / 131070.
+ * fogmap_load then fogmap_scale by max_density reads it back within max_density / 131070.
  * Temporary file + rename like image_write_exr. */
 int fogmap_save_png16(const char *path, const fogmap *map, float max_density, sim_error *err);
 

@@ -11,6 +11,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <fcntl.h>
+#include <float.h>
 #include <openexr.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -305,6 +306,11 @@ int image_write_exr(const char *path, int width, int height, const image_channel
   for (int c = 1; c < channel_count; c++)
     if (!strcmp(sorted[c - 1].name, sorted[c].name))
       return sim_fail(err, "%s: channel \"%s\" given twice", path, sorted[c].name);
+
+  for (int c = 0; c < channel_count; c++)
+    if (image_check_finite(path, sorted[c].name, sorted[c].pixels, width, height, 1,
+                           sorted[c].as_half ? 65504.0f : FLT_MAX, err))
+      return 1;
 
   atomic_file file;
   if (atomic_file_open(&file, path, err)) return 1;

@@ -42,6 +42,12 @@ int exr_read_channel(const char *path, const char *channel, int *width, int *hei
 int png_write_samples(const char *path, int width, int height, int channels, int bit_depth,
                       const void *samples, sim_error *err);
 
+/* Fails naming the first pixel (x, y) of an interleaved image (stride values per pixel, the
+ * channel's value first) that is NaN or whose magnitude exceeds limit (FLT_MAX: infinite;
+ * 65504: what a half channel cannot hold). channel names it in the message. */
+int image_check_finite(const char *path, const char *channel, const float *values, int width,
+                       int height, int stride, float limit, sim_error *err);
+
 /* snprintf into err->message; returns 1 (the failing status) for `return fail(...)`. */
 int sim_fail(sim_error *err, const char *format, ...)
 #if defined(__GNUC__)

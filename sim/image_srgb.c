@@ -1,4 +1,5 @@
 /* Linear float -> 8-bit sRGB by table (see sim/fogmap.h). */
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -62,6 +63,10 @@ int image_write_png_srgb(const char *path, int width, int height, int channels,
                     path, channels);
   if (width <= 0 || height <= 0)
     return sim_fail(err, "%s: image size %dx%d: both must be positive", path, width, height);
+  static const char *const names[] = {"R", "G", "B", "A"};
+  for (int c = 0; c < channels; c++)
+    if (image_check_finite(path, names[c], linear + c, width, height, channels, FLT_MAX, err))
+      return 1;
   srgb8_encoder encoder;
   srgb8_encoder_init(&encoder);
   size_t count = (size_t)width * height * channels;

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "sim/sim.h"
+#include "exr_unchecked_writer.h"
 #include "test_util.h"
 
 static char folder[64];
@@ -155,7 +156,10 @@ static void test_bad_files(void) {
   bad[5 * 16 + 3] = NAN;
   bad[6 * 16 + 9] = -2.0f;
   fogmap bad_map = {.width = 16, .height = 8, .density = bad};
-  CHECK(fogmap_save_exr(in_folder("nan.exr"), &bad_map, &err) == 0, "%s", err.message);
+  CHECK(fogmap_save_exr(in_folder("nan.exr"), &bad_map, &err) != 0 &&
+            strstr(err.message, "pixel (3, 5) of channel \"Y\" is NaN"),
+        "the writer wrote a NaN pixel: %s", err.message);
+  CHECK(exr_write_unchecked(in_folder("nan.exr"), "Y", 16, 8, bad) == 0, "cannot write nan.exr");
   expect_load_failure(in_folder("nan.exr"), NULL, "pixel (3, 5)", "NaN");
   bad[5 * 16 + 3] = 0.0f;
   bad[2 * 16 + 7] = -0.5f;
@@ -164,7 +168,10 @@ static void test_bad_files(void) {
         err.message);
   expect_load_failure(in_folder("negative.exr"), NULL, "pixel (7, 2)", "negative (-0.5)");
   bad[2 * 16 + 7] = INFINITY;
-  CHECK(fogmap_save_exr(in_folder("inf.exr"), &bad_map, &err) == 0, "%s", err.message);
+  CHECK(fogmap_save_exr(in_folder("inf.exr"), &bad_map, &err) != 0 &&
+            strstr(err.message, "pixel (7, 2) of channel \"Y\" is infinite"),
+        "the writer wrote an infinite pixel: %s", err.message);
+  CHECK(exr_write_unchecked(in_folder("inf.exr"), "Y", 16, 8, bad) == 0, "cannot write inf.exr");
   expect_load_failure(in_folder("inf.exr"), NULL, "pixel (7, 2)", "infinite");
   bad[2 * 16 + 7] = 3e38f; /* finite, but overflows the transforms and the renderer */
   CHECK(fogmap_save_exr(in_folder("huge.exr"), &bad_map, &err) == 0, "%s", err.message);
