@@ -1,8 +1,8 @@
 /* Scene config parsing (config.h, format in docs/config.md) with libinih.
  *
  * Line numbers: Debian's libinih is built without INI_HANDLER_LINENO, so we parse through
- * ini_parse_stream with our own fgets-style reader that counts lines; inih calls the
- * handler right after reading a key's line, so the count is that key's line. */
+ * ini_parse_stream with our own reader that reads whole lines and counts them; inih calls
+ * the handler right after reading a key's line, so the count is that key's line. */
 #define _POSIX_C_SOURCE 200809L
 #include "app/config.h"
 
@@ -16,6 +16,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -46,12 +48,22 @@ typedef struct key_spec {
 } key_spec;
 
 #define F(member) offsetof(scene_config, member)
+/* The bounds of the numbers a config may hold: past them float (in which the GPU works)
+ * overflows or loses the scene, and pixels turn NaN. WORLD: world coordinates and lengths
+ * (a float still resolves 1 unit at 1e7). MIN_LENGTH: the smallest scale of a feature
+ * (scale heights, Gaussian radii, cells): 1/MIN_LENGTH^2 stays finite in float.
+ * MAX_EXTINCTION: extinction per world unit (FOGMAP_MAX_DENSITY's bound, so that a fogmap
+ * value times density_scale stays finite). MAX_RADIANCE: colours, under half float's 65504. */
 #define BIG 1e300
+#define WORLD 1e7
+#define MIN_LENGTH 1e-4
+#define MAX_EXTINCTION 1e12
+#define MAX_RADIANCE 1e4
 static const key_spec keys[] = {
     {"fog", "model", V_ENUM, F(fog.model), 0, 0, "fogmap|homogeneous|height|rbf|volume", 0, 0},
     {"fog", "fogmap", V_PATH, F(fog.fogmap), 0, 0, NULL, F(fog.fogmap_line), sizeof(((scene_config *)0)->fog.fogmap)},
     {"fog", "channel", V_STRING, F(fog.channel), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.channel)},
-    {"fog", "density_scale", V_DOUBLE, F(fog.density_scale), 0, BIG, NULL, 0, 0},
+    {"fog", "density_scale", V_DOUBLE, F(fog.density_scale), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"fog", "basis", V_ENUM, F(fog.degree), 0, 0, "haar|linear|quadratic", 0, 0},
     {"fog", "levels", V_INT, F(fog.levels), 0, 16, NULL, 0, 0},
     {"fog", "mu", V_DOUBLE, F(fog.mu), 0, 1, NULL, 0, 0},
@@ -59,16 +71,16 @@ static const key_spec keys[] = {
     {"fog", "filtering", V_ENUM, F(fog.filtering), 0, 0, "manual|hardware", 0, 0},
     {"fog", "boundary", V_ENUM, F(fog.boundary), 0, 0, "symmetric|periodic", 0, 0},
     {"fog", "profile", V_ENUM, F(fog.profile), 0, 0, "slab|exponential|bspline", 0, 0},
-    {"fog", "fog_height", V_DOUBLE, F(fog.fog_height), -BIG, BIG, NULL, 0, 0},
-    {"fog", "scale_height", V_DOUBLE, F(fog.scale_height), 1e-9, BIG, NULL, 0, 0},
+    {"fog", "fog_height", V_DOUBLE, F(fog.fog_height), -WORLD, WORLD, NULL, 0, 0},
+    {"fog", "scale_height", V_DOUBLE, F(fog.scale_height), MIN_LENGTH, WORLD, NULL, 0, 0},
     {"fog", "profile_degree", V_INT, F(fog.profile_degree), 0, 3, NULL, 0, 0},
-    {"fog", "profile_origin", V_DOUBLE, F(fog.profile_origin), -BIG, BIG, NULL, 0, 0},
-    {"fog", "profile_spacing", V_DOUBLE, F(fog.profile_spacing), 1e-9, BIG, NULL, 0, 0},
-    {"fog", "profile_coefficients", V_LIST, F(fog.profile_coefficients), 0, BIG, NULL, F(fog.profile_count), 0},
-    {"fog", "colour", V_FLOAT3, F(fog.colour), 0, BIG, NULL, 0, 0},
-    {"fog", "rbf", V_RBF, 0, 0, BIG, NULL, 0, 0},
-    {"fog", "rbf_base", V_DOUBLE, F(fog.rbf_base), 0, BIG, NULL, 0, 0},
-    {"fog", "volume_step", V_DOUBLE, F(fog.volume_step), 0, BIG, NULL, 0, 0},
+    {"fog", "profile_origin", V_DOUBLE, F(fog.profile_origin), -WORLD, WORLD, NULL, 0, 0},
+    {"fog", "profile_spacing", V_DOUBLE, F(fog.profile_spacing), MIN_LENGTH, WORLD, NULL, 0, 0},
+    {"fog", "profile_coefficients", V_LIST, F(fog.profile_coefficients), 0, MAX_EXTINCTION, NULL, F(fog.profile_count), 0},
+    {"fog", "colour", V_FLOAT3, F(fog.colour), 0, MAX_RADIANCE, NULL, 0, 0},
+    {"fog", "rbf", V_RBF, 0, 0, WORLD, NULL, 0, 0},
+    {"fog", "rbf_base", V_DOUBLE, F(fog.rbf_base), 0, MAX_EXTINCTION, NULL, 0, 0},
+    {"fog", "volume_step", V_DOUBLE, F(fog.volume_step), 0, WORLD, NULL, 0, 0},
     {"fog", "vdb", V_PATH, F(fog.vdb), 0, 0, NULL, F(fog.vdb_line), sizeof(((scene_config *)0)->fog.vdb)},
     {"fog", "vdb_grid", V_STRING, F(fog.vdb_grid), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.vdb_grid)},
     {"fog", "vdb_up", V_ENUM, F(fog.vdb_up), 0, 0, "z|y", 0, 0},
@@ -76,39 +88,39 @@ static const key_spec keys[] = {
     {"fog", "vdb_frame", V_INT, F(fog.vdb_frame), -1, 1e9, NULL, 0, 0},
     {"fog", "vdb_resolution", V_INT, F(fog.vdb_resolution), 0, 16384, NULL, 0, 0},
     {"fog", "vdb_loop", V_INT, F(fog.vdb_loop), 0, 1, NULL, 0, 0},
-    {"box", "origin", V_DOUBLE2, F(box.origin), -BIG, BIG, NULL, 0, 0},
-    {"box", "cell_size", V_DOUBLE, F(box.cell_size), 1e-9, BIG, NULL, 0, 0},
-    {"box", "floor", V_DOUBLE, F(box.floor), -BIG, BIG, NULL, 0, 0},
-    {"box", "top", V_DOUBLE, F(box.top), -BIG, BIG, NULL, 0, 0},
-    {"camera", "position", V_DOUBLE3, F(camera.position), -BIG, BIG, NULL, 0, 0},
+    {"box", "origin", V_DOUBLE2, F(box.origin), -WORLD, WORLD, NULL, 0, 0},
+    {"box", "cell_size", V_DOUBLE, F(box.cell_size), MIN_LENGTH, WORLD, NULL, 0, 0},
+    {"box", "floor", V_DOUBLE, F(box.floor), -WORLD, WORLD, NULL, 0, 0},
+    {"box", "top", V_DOUBLE, F(box.top), -WORLD, WORLD, NULL, 0, 0},
+    {"camera", "position", V_DOUBLE3, F(camera.position), -WORLD, WORLD, NULL, 0, 0},
     {"camera", "yaw", V_DOUBLE, F(camera.yaw), -360, 360, NULL, 0, 0},
     {"camera", "pitch", V_DOUBLE, F(camera.pitch), -90, 90, NULL, 0, 0},
     {"camera", "fov", V_DOUBLE, F(camera.fov), 1, 170, NULL, 0, 0},
-    {"camera", "look_at", V_LOOK_AT, F(camera.look_at), -BIG, BIG, NULL, 0, 0},
-    {"camera", "near", V_DOUBLE, F(camera.near_plane), 1e-6, BIG, NULL, 0, 0},
-    {"camera", "far", V_DOUBLE, F(camera.far_plane), 1e-6, BIG, NULL, 0, 0},
+    {"camera", "look_at", V_LOOK_AT, F(camera.look_at), -WORLD, WORLD, NULL, 0, 0},
+    {"camera", "near", V_DOUBLE, F(camera.near_plane), 1e-6, WORLD, NULL, 0, 0},
+    {"camera", "far", V_DOUBLE, F(camera.far_plane), 1e-6, WORLD, NULL, 0, 0},
     {"terrain", "heightmap", V_PATH, F(terrain.heightmap), 0, 0, NULL, F(terrain.heightmap_line), sizeof(((scene_config *)0)->terrain.heightmap)},
-    {"terrain", "origin", V_DOUBLE3, F(terrain.origin), -BIG, BIG, NULL, 0, 0},
-    {"terrain", "size", V_DOUBLE2, F(terrain.size), 1e-6, BIG, NULL, 0, 0},
-    {"terrain", "height", V_DOUBLE, F(terrain.height), 1e-6, BIG, NULL, 0, 0},
+    {"terrain", "origin", V_DOUBLE3, F(terrain.origin), -WORLD, WORLD, NULL, 0, 0},
+    {"terrain", "size", V_DOUBLE2, F(terrain.size), 1e-6, WORLD, NULL, 0, 0},
+    {"terrain", "height", V_DOUBLE, F(terrain.height), 1e-6, WORLD, NULL, 0, 0},
     {"terrain", "resolution", V_INT, F(terrain.resolution), 2, 8193, NULL, 0, 0},
     {"terrain", "octaves", V_INT, F(terrain.octaves), 1, 16, NULL, 0, 0},
     {"terrain", "frequency", V_DOUBLE, F(terrain.frequency), 1e-6, 1e6, NULL, 0, 0},
     {"terrain", "persistence", V_DOUBLE, F(terrain.persistence), 1e-6, 1, NULL, 0, 0},
     {"terrain", "seed", V_UINT, F(terrain.seed), 0, 4294967295.0, NULL, 0, 0},
-    {"objects", "box", V_OBJECT, 0, -BIG, BIG, NULL, 0, 0},
+    {"objects", "box", V_OBJECT, 0, -WORLD, WORLD, NULL, 0, 0},
     {"light", "sun_azimuth", V_DOUBLE, F(light.sun_azimuth), -360, 360, NULL, 0, 0},
     {"light", "sun_elevation", V_DOUBLE, F(light.sun_elevation), -90, 90, NULL, 0, 0},
-    {"light", "sun_colour", V_FLOAT3, F(light.sun_colour), 0, BIG, NULL, 0, 0},
-    {"light", "ambient", V_FLOAT3, F(light.ambient), 0, BIG, NULL, 0, 0},
-    {"light", "sky_horizon", V_FLOAT3, F(light.sky_horizon), 0, BIG, NULL, 0, 0},
-    {"light", "sky_zenith", V_FLOAT3, F(light.sky_zenith), 0, BIG, NULL, 0, 0},
+    {"light", "sun_colour", V_FLOAT3, F(light.sun_colour), 0, MAX_RADIANCE, NULL, 0, 0},
+    {"light", "ambient", V_FLOAT3, F(light.ambient), 0, MAX_RADIANCE, NULL, 0, 0},
+    {"light", "sky_horizon", V_FLOAT3, F(light.sky_horizon), 0, MAX_RADIANCE, NULL, 0, 0},
+    {"light", "sky_zenith", V_FLOAT3, F(light.sky_zenith), 0, MAX_RADIANCE, NULL, 0, 0},
     {"render", "width", V_INT, F(width), 1, 16384, NULL, 0, 0},
     {"render", "height", V_INT, F(height), 1, 16384, NULL, 0, 0},
-    {"sim", "wind", V_DOUBLE2, F(sim.wind), -BIG, BIG, NULL, 0, 0},
-    {"sim", "turbulence", V_DOUBLE, F(sim.turbulence), 0, BIG, NULL, 0, 0},
-    {"sim", "viscosity", V_DOUBLE, F(sim.viscosity), 0, BIG, NULL, 0, 0},
-    {"sim", "emitter_rate", V_DOUBLE, F(sim.emitter_rate), 0, BIG, NULL, 0, 0},
+    {"sim", "wind", V_DOUBLE2, F(sim.wind), -WORLD, WORLD, NULL, 0, 0},
+    {"sim", "turbulence", V_DOUBLE, F(sim.turbulence), 0, WORLD, NULL, 0, 0},
+    {"sim", "viscosity", V_DOUBLE, F(sim.viscosity), 0, WORLD, NULL, 0, 0},
+    {"sim", "emitter_rate", V_DOUBLE, F(sim.emitter_rate), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"sim", "seed", V_UINT, F(sim.seed), 0, 4294967295.0, NULL, 0, 0},
 };
 static const char *const sections = "fog, box, camera, terrain, objects, light, render, sim";
@@ -139,7 +151,8 @@ typedef struct parse_state {
   char folder[SCENE_CONFIG_PATH_MAX];
   FILE *file;
   int line;
-  bool line_complete; /* the last chunk read ended a line */
+  char *whole_line; /* the line being read, whatever its length (getline) */
+  size_t whole_line_size;
   int error_line;     /* first error (0: none) */
   scene_config_error *err;
 } parse_state;
@@ -147,12 +160,28 @@ typedef struct parse_state {
 /* fgets-style reader for ini_parse_stream that counts lines. */
 static char *read_line(char *buffer, int size, void *stream) {
   parse_state *s = stream;
-  char *got = fgets(buffer, size, s->file);
-  if (!got) return NULL;
-  if (s->line_complete) s->line++;
-  size_t n = strlen(got);
-  s->line_complete = n > 0 && got[n - 1] == '\n';
-  return got;
+  ssize_t n = getline(&s->whole_line, &s->whole_line_size, s->file);
+  if (n < 0) return NULL;
+  s->line++;
+  /* libinih hands its reader a fixed buffer (INI_MAX_LINE, 200 bytes in Debian's build) and
+   * used to parse the rest of a longer line as a line of its own, so the tail of a long
+   * comment became a key. Here a whole line is read: a long comment or blank line is
+   * passed on cut short (it means nothing), a long line with content is an error. */
+  const char *p = s->whole_line + strspn(s->whole_line, " \t\r\n");
+  if (n < size) {
+    memcpy(buffer, s->whole_line, (size_t)n + 1);
+  } else if (*p == ';' || *p == '#' || !*p) {
+    snprintf(buffer, (size_t)size, ";\n");
+  } else if (!s->error_line) {
+    s->error_line = s->line;
+    snprintf(s->err->message, sizeof s->err->message,
+             "%s:%d: the line is %zd bytes long; a config line other than a comment can hold "
+             "at most %d", s->path, s->line, n, size - 1);
+    return NULL;
+  } else {
+    return NULL;
+  }
+  return buffer;
 }
 
 static int fail(parse_state *s, const char *section, const char *key, const char *fmt, ...)
@@ -207,11 +236,11 @@ static int numbers(parse_state *s, const key_spec *k, const char *section, const
   return n;
 }
 
-static void resolve_path(const parse_state *s, const char *value, char *out, size_t size) {
-  if (value[0] == '/' || !s->folder[0])
-    snprintf(out, size, "%s", value);
-  else
-    snprintf(out, size, "%s/%s", s->folder, value);
+/* Fails (0) when the resolved path would not fit. */
+static int resolve_path(const parse_state *s, const char *value, char *out, size_t size) {
+  int n = value[0] == '/' || !s->folder[0] ? snprintf(out, size, "%s", value)
+                                           : snprintf(out, size, "%s/%s", s->folder, value);
+  return n >= 0 && (size_t)n < size;
 }
 
 static int handle_key(parse_state *s, const char *section, const char *key, const char *value);
@@ -308,7 +337,9 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
         field[0] = '\0';
         return 1;
       }
-      resolve_path(s, value, field, k->size);
+      if (!resolve_path(s, value, field, k->size))
+        return fail(s, section, key, "the path resolved against the config's folder is longer "
+                    "than %zu characters: '%.60s...'", k->size - 1, value);
       *(int *)((char *)cfg + k->aux_offset) = s->line;
       return 1;
     case V_STRING:
@@ -345,8 +376,9 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
       int n = parse_numbers(value, v, 5);
       if (n != 5)
         return fail(s, section, key, "expected X Y Z RADIUS DENSITY (5 numbers), got '%s'", value);
-      if (!(v[3] > 0 && v[4] >= 0))
-        return fail(s, section, key, "expected RADIUS > 0 and DENSITY >= 0, got '%s'", value);
+      if (!(v[3] >= MIN_LENGTH && v[3] <= WORLD && v[4] >= 0 && v[4] <= MAX_EXTINCTION))
+        return fail(s, section, key, "expected RADIUS from %g to %g and DENSITY from 0 to %g, "
+                    "got '%s'", MIN_LENGTH, WORLD, MAX_EXTINCTION, value);
       if (cfg->fog.rbf_count == FOG_MAX_RBFS)
         return fail(s, section, key, "at most %d Gaussians", FOG_MAX_RBFS);
       cfg->fog.rbfs[cfg->fog.rbf_count++] =
@@ -372,7 +404,7 @@ static int check_file(parse_state *s, const char *section, const char *key, int 
 int scene_config_load(const char *path, scene_config *cfg, scene_config_error *err) {
   scene_config_init(cfg);
   snprintf(cfg->path, sizeof cfg->path, "%s", path);
-  parse_state s = {.cfg = cfg, .path = path, .line_complete = true, .err = err};
+  parse_state s = {.cfg = cfg, .path = path, .err = err};
   const char *slash = strrchr(path, '/');
   if (slash) snprintf(s.folder, sizeof s.folder, "%.*s", (int)(slash - path), path);
   if (slash == path) snprintf(s.folder, sizeof s.folder, "/");
@@ -382,8 +414,17 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
              strerror(errno));
     return 1;
   }
+  struct stat st;
+  if (fstat(fileno(s.file), &st) != 0 || !S_ISREG(st.st_mode)) {
+    bool folder = fstat(fileno(s.file), &st) == 0 && S_ISDIR(st.st_mode);
+    snprintf(err->message, sizeof err->message, "%s: not a config file (%s)", path,
+             folder ? "a folder" : "not a regular file");
+    fclose(s.file);
+    return 1;
+  }
   int status = ini_parse_stream(read_line, &s, handle, &s);
   fclose(s.file);
+  free(s.whole_line);
   if (s.error_line) return 1;
   if (status > 0) {
     snprintf(err->message, sizeof err->message,
@@ -435,6 +476,22 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
     s.line = cfg->fog.model_line;
     fail(&s, "fog", "model", "volume needs a 'vdb = FILE or PATTERN' line (the 3D grid)");
     return 1;
+  }
+  if (cfg->fog.model == SCENE_MODEL_HEIGHT) {
+    /* K0 e^{-(y - y0)/H} grows without bound below y0: where the view can reach (down to
+     * the camera, the terrain's base and the fog box's floor) it must stay a float. */
+    double low = fmin(cfg->camera.position[1], fmin(cfg->terrain.origin[1], cfg->box.floor));
+    double exponent = (cfg->fog.fog_height - low) / cfg->fog.scale_height;
+    if (cfg->fog.density_scale > 0 &&
+        log(cfg->fog.density_scale) + exponent > log(MAX_EXTINCTION)) {
+      s.line = cfg->fog.model_line;
+      fail(&s, "fog", "model", "height fog of density_scale %g, fog_height %g and "
+           "scale_height %g reaches exp(%.3g) times density_scale at y = %g (the scene's "
+           "lowest point): over %g per unit, past what float holds; raise scale_height",
+           cfg->fog.density_scale, cfg->fog.fog_height, cfg->fog.scale_height, exponent, low,
+           MAX_EXTINCTION);
+      return 1;
+    }
   }
   if (cfg->fog.profile == SCENE_PROFILE_BSPLINE && cfg->fog.profile_count == 0) {
     snprintf(err->message, sizeof err->message,

@@ -65,8 +65,22 @@ int main(void) {
   expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 50\n", "3: [fog] rbf: ",
                "expected X Y Z RADIUS DENSITY (5 numbers), got '0 10 0 50'");
   expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 50 0.1\nrbf = 0 10 0 0 0.1\n", "4: [fog] rbf: ",
-               "expected RADIUS > 0 and DENSITY >= 0");
-  expect_error("[fog]\nrbf = 0 10 0 5 -0.1\n", "2: [fog] rbf: ", "DENSITY >= 0");
+               "expected RADIUS from 0.0001 to 1e+07 and DENSITY from 0 to 1e+12");
+  expect_error("[fog]\nrbf = 0 10 0 5 -0.1\n", "2: [fog] rbf: ", "DENSITY from 0 to 1e+12");
+  /* Values the parser used to take and the renderer turned into NaN pixels (float
+   * overflow): each is refused naming its key. */
+  expect_error("[fog]\ndensity_scale = 1e39\n", "2: [fog] density_scale: ",
+               "expected a number from 0 to 1e+12, got '1e39'");
+  expect_error("[fog]\nscale_height = 1e-9\n", "2: [fog] scale_height: ",
+               "expected a number from 0.0001 to 1e+07, got '1e-9'");
+  expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 1e-300 1\n", "3: [fog] rbf: ",
+               "expected RADIUS from 0.0001");
+  expect_error("[light]\nsun_colour = 1e300 1 1\n", "2: [light] sun_colour: ",
+               "expected a number from 0 to 10000");
+  expect_error("[camera]\nposition = 0 1e30 0\n", "2: [camera] position: ",
+               "expected a number from -1e+07 to 1e+07");
+  expect_error("[fog]\nmodel = height\nfog_height = 30\nscale_height = 0.001\n",
+               "2: [fog] model: ", "raise scale_height");
   expect_error("; banks\n[fog]\nmodel = rbf\nrbf_base = 0.01\n", "3: [fog] model: ",
                "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' line");
   expect_error("[fog]\n\nmodel = volume\n", "3: [fog] model: ",
