@@ -85,8 +85,9 @@ int cmd_record(int argc, char **argv) {
         job.frames = (int)n;
       } else if (!strcmp(a, "--fps")) {
         job.fps = strtod(value, &end);
-        if (*end || !(job.fps > 0 && job.fps <= 1000)) {
-          fprintf(stderr, "fogpipe record: --fps %s: expected a number in (0, 1000]\n", value);
+        if (*end || !(job.fps >= 1.0 / PIPELINE_MAX_FRAME_SECONDS && job.fps <= 1000)) {
+          fprintf(stderr, "fogpipe record: --fps %s: expected a number from %g to 1000\n", value,
+                  1.0 / PIPELINE_MAX_FRAME_SECONDS);
           return 2;
         }
       } else if (!strcmp(a, "--size")) {

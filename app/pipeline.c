@@ -483,6 +483,12 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
   p->width = desc->width > 0 ? desc->width : p->config.width;
   p->height = desc->height > 0 ? desc->height : p->config.height;
   p->frame_seconds = desc->frame_seconds > 0 ? desc->frame_seconds : 1.0 / 24.0;
+  if (!(p->frame_seconds <= PIPELINE_MAX_FRAME_SECONDS)) {
+    fail(err, "a frame of %g s of simulated time: expected at most %g s (240 steps of 1/24 s)",
+         p->frame_seconds, PIPELINE_MAX_FRAME_SECONDS);
+    free(p);
+    return NULL;
+  }
   /* Keep the sim's step at most 1/24 s so fast frame rates and slow ones see the same
    * physics per second (semi-Lagrangian advection is stable at any step, but accuracy
    * is not). */

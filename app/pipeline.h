@@ -34,11 +34,16 @@ typedef struct pipeline_error {
 
 typedef struct pipeline pipeline;
 
+/* The longest frame the pipeline simulates: 240 sim steps of at most 1/24 s (a longer one
+ * would also overflow the step count; --fps 1e-9 used to). */
+#define PIPELINE_MAX_FRAME_SECONDS 10.0
+
 typedef struct pipeline_desc {
   const scene_config *config; /* the scene (copied; the pipeline keeps its own) */
   int width, height;          /* render size; 0: the config's image size */
   bool synchronous;           /* run sim + transform on the GL thread (default: worker) */
-  double frame_seconds;       /* simulated seconds per frame; 0: 1/24 */
+  double frame_seconds;       /* simulated seconds per frame, up to PIPELINE_MAX_FRAME_SECONDS;
+                               * 0: 1/24 (a frame rate, not a physical quantity) */
   bool time_passes;           /* also time the scene pass alone (one extra glFinish) */
 } pipeline_desc;
 
