@@ -2,6 +2,8 @@
  * headless (EGL), written as OpenEXR (R, G, B, A half; transmittance, depth float) or as
  * an 8-bit sRGB PNG. */
 #include <math.h>
+#include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,8 +52,13 @@ int cmd_render(int argc, char **argv) {
         return 2;
       }
     } else if (!strcmp(argv[i], "--vdb-frame") && i + 1 < argc) {
-      char tail;
-      if (sscanf(argv[++i], "%d%c", &vdb_frame, &tail) != 1 || vdb_frame < 0) {
+      /* strtol, not sscanf %d: out-of-range digits are undefined behaviour for sscanf (a
+       * frame of 4294967297 read as 1). */
+      char *end;
+      errno = 0;
+      long frame = strtol(argv[++i], &end, 10);
+      vdb_frame = errno || *end || end == argv[i] || frame < 0 || frame > INT_MAX ? -1 : (int)frame;
+      if (vdb_frame < 0) {
         fprintf(stderr, "fogpipe render: --vdb-frame '%s': expected a frame number >= 0\n",
                 argv[i]);
         return 2;
