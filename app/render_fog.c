@@ -270,6 +270,12 @@ int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *er
   }
   int status = render_fog_create_map(fog, cfg, &map, err);
   fogmap_destroy(&map);
+  if (status) { /* name the file: the GL's limits, the transform's sizes are about it */
+    char reason[sizeof err->message];
+    snprintf(reason, sizeof reason, "%s", err->message);
+    snprintf(err->message, sizeof err->message, "%.120s:%d: [fog] fogmap %.120s: %.250s",
+             cfg->path, f->fogmap_line, f->fogmap, reason);
+  }
   return status;
 }
 

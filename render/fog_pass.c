@@ -46,6 +46,9 @@ struct fog_pass {
   /* FOG_MODEL_VOLUME: the density as a 3D texture and its placement (fog_pass_upload_grid3d). */
   GLuint grid3d;
   volume_grid_desc grid3d_place; /* its size and placement; values not kept */
+  /* This GL's texture size limits, asked once: uploads past them fail naming the size, not
+   * with a bare GL_INVALID_VALUE. */
+  GLint max_texture_size, max_3d_texture_size;
   /* resolution_divisor > 1: the reduced pass's target (RGBA32F: optical depth, distance,
    * extinction at the surface). */
   gl_target reduced;
@@ -131,6 +134,8 @@ int fog_pass_create(fog_pass **out, render_error *err) {
     snprintf(err->message, sizeof err->message, "fog pass: out of memory");
     return 1;
   }
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &pass->max_texture_size);
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &pass->max_3d_texture_size);
   /* The default variant: manual fetch, exact, linear grid, slab profile, one grid. */
   if (!fog_pass_variant(pass, fog_pass_variant_key(0, 0, 1, 0, 0, 1, 0, 0, 0, 0), err)) {
     free(pass);
@@ -170,6 +175,17 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
              slot, grid->width, grid->height, grid->degree, grid->spacing);
     return 1;
   }
+  int cw, ch; /* the cell polynomials' texture (below) */
+  fog_cell_poly_size(grid->width, grid->height, grid->degree, &cw, &ch);
+  int largest = grid->width > grid->height ? grid->width : grid->height;
+  if (cw > largest) largest = cw;
+  if (ch > largest) largest = ch;
+  if (largest > pass->max_texture_size) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: a %dx%d grid needs a %d-texel texture side; this GL's largest is %d",
+             grid->width, grid->height, largest, pass->max_texture_size);
+    return 1;
+  }
   fog_pass_slot *s = &pass->slots[slot];
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glActiveTexture(GL_TEXTURE0);
@@ -189,8 +205,6 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
     s->height = grid->height;
   }
   /* The cell polynomials of the manual variant (texelFetch only: no filtering, no border). */
-  int cw, ch;
-  fog_cell_poly_size(grid->width, grid->height, grid->degree, &cw, &ch);
   size_t texels = (size_t)cw * (size_t)ch;
   if (texels > pass->cell_scratch_texels) {
     float *grown = realloc(pass->cell_scratch, texels * 4 * sizeof(float));
@@ -239,6 +253,13 @@ int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_
    * reads, for twice the memory), and the march's hardware trilinear filter of R sees the
    * same zeros beyond the outer voxels. */
   const int pw = d[0] + 2, ph = d[1] + 2, pd = d[2] + 2;
+  int largest = pw > ph ? (pw > pd ? pw : pd) : (ph > pd ? ph : pd);
+  if (largest > pass->max_3d_texture_size) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: a %dx%dx%d volume needs a %d-texel 3D texture side; this GL's largest "
+             "is %d", d[0], d[1], d[2], largest, pass->max_3d_texture_size);
+    return 1;
+  }
   size_t padded_count = (size_t)pw * ph * pd;
   float *padded = calloc(2 * padded_count, sizeof *padded); /* RG: voxel and its +x neighbour */
   if (!padded) {
