@@ -23,7 +23,7 @@ static void usage(FILE *out) {
   fprintf(out,
           "usage: fogpipe transform IN --levels J --out DIR [options]\n"
           "       fogpipe transform --inverse DIR --out FILE\n\n"
-          "Decomposes the fogmap IN (PNG or one-channel EXR) in a B-spline wavelet basis\n"
+          "Decomposes the fogmap IN (PNG or EXR) in a B-spline wavelet basis\n"
           "(Mallat's algorithm, unnormalised lifting; docs/transform.md) and writes to DIR:\n"
           "  approx_L.exr            approximation pyramid A_L, L = 0 (coarsest) .. J\n"
           "  detail_L_{x,y,xy}.exr   detail band L (1 = coarsest .. J), by orientation\n"
@@ -39,6 +39,9 @@ static void usage(FILE *out) {
           "  --mode symmetric|periodic       boundary extension; default symmetric\n"
           "                                  (periodic needs sizes divisible by 2^J)\n"
           "  --standard                      standard decomposition (default: non-standard)\n"
+          "  --channel NAME                  the channel of a multi-channel IN: an EXR\n"
+          "                                  channel (R, Y, density, ...) or R, G, B, A of a\n"
+          "                                  PNG; default: IN must have one channel\n"
           "  --threads 1|2                   default 1\n"
           "  --out DIR|FILE                  output folder (forward) or EXR file (--inverse)\n"
           "  --inverse DIR                   reconstruct from DIR\n"
@@ -179,10 +182,12 @@ static int write_manifest(const char *dir, transform_plan *plan, const char *inp
   return 0;
 }
 
-static int run_forward(const char *in, const char *dir, transform_desc desc) {
+static int run_forward(const char *in, const char *channel, const char *dir,
+                       transform_desc desc) {
   fogmap map;
   sim_error serr;
-  if (fogmap_load(in, NULL, &map, &serr)) return cli_fail("transform", "%s", serr.message);
+  if (fogmap_load(in, &(fogmap_load_desc){.channel = channel}, &map, &serr))
+    return cli_fail("transform", "%s", serr.message);
   desc.width = map.width, desc.height = map.height;
   transform_plan *plan = NULL;
   transform_error terr;
@@ -367,7 +372,7 @@ done:
 }
 
 int cmd_transform(int argc, char **argv) {
-  const char *in = NULL, *out = NULL, *inverse = NULL;
+  const char *in = NULL, *out = NULL, *inverse = NULL, *channel = NULL;
   transform_desc desc = {.levels = -1};
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
@@ -393,6 +398,8 @@ int cmd_transform(int argc, char **argv) {
         return cli_fail("transform", "--threads %s: expected 1 or 2", argv[i]);
     } else if (!strcmp(a, "--out") && has_value) {
       out = argv[++i];
+    } else if (!strcmp(a, "--channel") && has_value) {
+      channel = argv[++i];
     } else if (!strcmp(a, "--inverse") && has_value) {
       inverse = argv[++i];
     } else if (a[0] == '-' && a[1]) {
@@ -410,6 +417,8 @@ int cmd_transform(int argc, char **argv) {
   }
   if (inverse) {
     if (in) return cli_fail("transform", "--inverse takes no input fogmap (%s)", in);
+    if (channel) return cli_fail("transform", "--inverse reads its folder's own channels; "
+                                 "--channel is for a forward transform");
     return run_inverse(inverse, out, desc.threads);
   }
   if (!in) {
@@ -417,5 +426,5 @@ int cmd_transform(int argc, char **argv) {
     return cli_fail("transform", "no input fogmap given");
   }
   if (desc.levels < 0) return cli_fail("transform", "--levels is required");
-  return run_forward(in, out, desc);
+  return run_forward(in, channel, out, desc);
 }
