@@ -6,6 +6,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "app/config.h"
 
+#include "render/render.h"
 #include "sim/sim.h"
 
 #include <errno.h>
@@ -103,7 +104,7 @@ static const key_spec keys[] = {
     {"terrain", "origin", V_DOUBLE3, F(terrain.origin), -WORLD, WORLD, NULL, 0, 0},
     {"terrain", "size", V_DOUBLE2, F(terrain.size), 1e-6, WORLD, NULL, 0, 0},
     {"terrain", "height", V_DOUBLE, F(terrain.height), 1e-6, WORLD, NULL, 0, 0},
-    {"terrain", "resolution", V_INT, F(terrain.resolution), 2, 8193, NULL, 0, 0},
+    {"terrain", "resolution", V_INT, F(terrain.resolution), 2, TERRAIN_MAX_RESOLUTION, NULL, 0, 0},
     {"terrain", "octaves", V_INT, F(terrain.octaves), 1, 16, NULL, 0, 0},
     {"terrain", "frequency", V_DOUBLE, F(terrain.frequency), 1e-6, 1e6, NULL, 0, 0},
     {"terrain", "persistence", V_DOUBLE, F(terrain.persistence), 1e-6, 1, NULL, 0, 0},

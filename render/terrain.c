@@ -56,12 +56,20 @@ int terrain_create(terrain *t, const terrain_desc *desc, render_error *err) {
     t->resolution_z = desc->heights_height;
   } else {
     int n = desc->resolution > 0 ? desc->resolution : 257;
-    if (n < 2 || n > 8193) {
+    if (n < 2 || n > TERRAIN_MAX_RESOLUTION) {
       snprintf(err->message, sizeof err->message,
-               "terrain resolution %d: expected 2 to 8193 vertices per side", n);
+               "terrain resolution %d: expected 2 to %d vertices per side", n,
+               TERRAIN_MAX_RESOLUTION);
       return 1;
     }
     t->resolution_x = t->resolution_z = n;
+  }
+  if ((double)t->resolution_x * t->resolution_z >
+      (double)TERRAIN_MAX_RESOLUTION * TERRAIN_MAX_RESOLUTION) {
+    snprintf(err->message, sizeof err->message,
+             "terrain of %dx%d vertices: at most %d x %d (its mesh must stay under 2 GiB)",
+             t->resolution_x, t->resolution_z, TERRAIN_MAX_RESOLUTION, TERRAIN_MAX_RESOLUTION);
+    return 1;
   }
   size_t count = (size_t)t->resolution_x * t->resolution_z;
   t->h = malloc(count * sizeof *t->h);

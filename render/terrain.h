@@ -15,6 +15,11 @@
 
 #include "render/render_error.h"
 
+/* The largest procedural terrain, vertices per side (and a heightmap's largest pixel count,
+ * squared): its mesh, 36 bytes a vertex, must stay under 2 GiB, past which Mesa's GL
+ * buffers fail (a terrain of 7750 crashed in the driver). */
+#define TERRAIN_MAX_RESOLUTION 7681
+
 typedef struct terrain_desc {
   double origin[3];  /* world position of vertex (0, 0) at h = 0 (the min corner) */
   double size[2];    /* extent in X and Z; 0: 1000 x 1000 */
