@@ -177,16 +177,15 @@ static void resume_hint(const record_job *job, char *text, size_t size) {
   snprintf(text + n, size - (size_t)n, " --resume");
 }
 
-int record_run(const record_job *job) {
+static int record_into(const record_job *job, recorder *rec) {
   const char *cmd = job->command;
   scene_config config;
   scene_config_error cerr = {{0}};
   /* The output folder first: an unwritable folder or a full disk is reported before any
    * work, whatever else is wrong. */
-  recorder rec;
   recorder_error rerr = {{0}};
   int width = job->width, height = job->height;
-  if (recorder_open(&rec,
+  if (recorder_open(rec,
                     &(recorder_desc){.folder = job->out,
                                      .width = width > 0 ? width : 1,
                                      .height = height > 0 ? height : 1},
@@ -202,19 +201,23 @@ int record_run(const record_job *job) {
     /* The size comes from the config: check the free space again for that size. */
     width = config.width;
     height = config.height;
-    if (recorder_open(&rec,
+    char created[sizeof rec->created]; /* the first open made the folders */
+    snprintf(created, sizeof created, "%s", rec->created);
+    int failed = recorder_open(rec,
                       &(recorder_desc){.folder = job->out, .width = width, .height = height},
-                      &rerr)) {
+                      &rerr);
+    snprintf(rec->created, sizeof rec->created, "%s", created);
+    if (failed) {
       fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
       return 1;
     }
   }
-  int done = job->resume ? recorder_complete_frames(&rec, job->frames) : 0;
-  if (job->resume) recorder_remove_stale_temporaries(&rec);
+  int done = job->resume ? recorder_complete_frames(rec, job->frames) : 0;
+  if (job->resume) recorder_remove_stale_temporaries(rec);
   if (done > 0) {
     /* Resuming another recording's frames (a different size) would mix two sequences. */
     char last[1200];
-    recorder_frame_path(&rec, done, last, sizeof last);
+    recorder_frame_path(rec, done, last, sizeof last);
     fogmap probe = {0};
     sim_error serr = {{0}};
     if (fogmap_load(last, &(fogmap_load_desc){.channel = "A"}, &probe, &serr)) {
@@ -233,7 +236,7 @@ int record_run(const record_job *job) {
     }
   }
   if (job->resume && done == job->frames) {
-    printf("all %d frames are already complete in %s\n", job->frames, rec.folder);
+    printf("all %d frames are already complete in %s\n", job->frames, rec->folder);
   }
 
   render_error gerr = {{0}};
@@ -315,7 +318,7 @@ int record_run(const record_job *job) {
         break;
       }
       recorder_frame pixels = {.rgba = rgba, .transmittance = transmittance, .depth = depth};
-      if (recorder_write_frame(&rec, frame, &pixels, scratch, &rerr)) {
+      if (recorder_write_frame(rec, frame, &pixels, scratch, &rerr)) {
         if (!job->quiet) recorder_progress_end(&progress);
         fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
         status = 1;
@@ -329,7 +332,7 @@ int record_run(const record_job *job) {
         resume_hint(job, hint, sizeof hint);
         fprintf(stderr,
                 "fogpipe %s: interrupted: %d of %d frames complete in %s; to finish: %s\n",
-                cmd, done, job->frames, rec.folder, hint);
+                cmd, done, job->frames, rec->folder, hint);
         status = 130;
         break;
       }
@@ -340,15 +343,15 @@ int record_run(const record_job *job) {
   }
   if (!status) {
     char first[1200], last[1200];
-    recorder_frame_path(&rec, 1, first, sizeof first);
-    recorder_frame_path(&rec, job->frames, last, sizeof last);
+    recorder_frame_path(rec, 1, first, sizeof first);
+    recorder_frame_path(rec, job->frames, last, sizeof last);
     printf("%d frame%s (%dx%d) in %s: %s .. %s\n", job->frames, job->frames == 1 ? "" : "s",
-           width, height, rec.folder, strrchr(first, '/') + 1, strrchr(last, '/') + 1);
+           width, height, rec->folder, strrchr(first, '/') + 1, strrchr(last, '/') + 1);
     if (job->preview) {
       if (!recorder_have_ffmpeg()) {
         printf("note: ffmpeg is not installed, so no preview video was written "
                "(apt-get install ffmpeg)\n");
-      } else if (recorder_write_preview(&rec, job->frames, job->fps > 0 ? job->fps : 24.0,
+      } else if (recorder_write_preview(rec, job->frames, job->fps > 0 ? job->fps : 24.0,
                                         job->preview, &rerr)) {
         fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
         status = 1;
@@ -363,5 +366,13 @@ finish:
   render_session_destroy(src.session);
   if (src.sequence.count) vdb_sequence_destroy(&src.sequence);
   gl_context_destroy(gl);
+  return status;
+}
+
+int record_run(const record_job *job) {
+  recorder rec = {.folder = ""};
+  int status = record_into(job, &rec);
+  /* A run that failed before writing a frame leaves no folder of its own making behind. */
+  if (status == 1) recorder_remove_created_folders(&rec);
   return status;
 }

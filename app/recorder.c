@@ -28,8 +28,9 @@ static int fail(recorder_error *err, const char *fmt, ...) {
   return 1;
 }
 
-/* mkdir -p: creates each missing component of path. */
-static int make_folders(const char *path, recorder_error *err) {
+/* mkdir -p: creates each missing component of path; created gets the first one it made. */
+static int make_folders(const char *path, char *created, size_t created_size,
+                        recorder_error *err) {
   char partial[1024];
   size_t n = strlen(path);
   if (n == 0 || n >= sizeof partial) return fail(err, "output folder name is empty or too long");
@@ -38,8 +39,11 @@ static int make_folders(const char *path, recorder_error *err) {
     if (partial[i] != '/' && partial[i] != '\0') continue;
     char saved = partial[i];
     partial[i] = '\0';
-    if (mkdir(partial, 0777) != 0 && errno != EEXIST)
+    if (mkdir(partial, 0777) == 0) {
+      if (!created[0]) snprintf(created, created_size, "%s", partial);
+    } else if (errno != EEXIST) {
       return fail(err, "cannot create the output folder %s: %s", partial, strerror(errno));
+    }
     partial[i] = saved;
   }
   struct stat st;
@@ -63,7 +67,7 @@ int recorder_open(recorder *rec, const recorder_desc *desc, recorder_error *err)
   for (size_t n = strlen(rec->folder); n > 1 && rec->folder[n - 1] == '/'; n--)
     rec->folder[n - 1] = '\0';
   snprintf(rec->name, sizeof rec->name, "%s", desc->name && *desc->name ? desc->name : "frame");
-  if (make_folders(rec->folder, err)) return 1;
+  if (make_folders(rec->folder, rec->created, sizeof rec->created, err)) return 1;
 
   /* Prove the folder is writable: access() alone is fooled by read-only mounts and full
    * disks, so create a probe file, write a block, flush it to disk and remove it. */
@@ -95,6 +99,19 @@ int recorder_open(recorder *rec, const recorder_desc *desc, recorder_error *err)
                   frame_bytes(rec->width, rec->height) / 1e6);
   }
   return 0;
+}
+
+void recorder_remove_created_folders(const recorder *rec) {
+  if (!rec->created[0]) return;
+  char path[sizeof rec->folder];
+  snprintf(path, sizeof path, "%s", rec->folder);
+  size_t root = strlen(rec->created);
+  /* rmdir refuses a folder that is not empty: frames and other files always stay. */
+  while (strlen(path) >= root && rmdir(path) == 0) {
+    char *slash = strrchr(path, '/');
+    if (!slash || slash == path) break;
+    *slash = '\0';
+  }
 }
 
 void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size) {

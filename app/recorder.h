@@ -28,6 +28,7 @@ typedef struct recorder_desc {
 
 typedef struct recorder {
   char folder[1024];
+  char created[1024]; /* the outermost folder recorder_open made ("" if all existed) */
   char name[128];
   int width, height;
 } recorder;
@@ -108,5 +109,9 @@ typedef struct record_job {
 } record_job;
 
 int record_run(const record_job *job);
+
+/* Removes the folders recorder_open made, innermost first, as long as they are empty (a
+ * failed run's frames are never removed). */
+void recorder_remove_created_folders(const recorder *rec);
 
 #endif

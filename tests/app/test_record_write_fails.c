@@ -1,7 +1,8 @@
 /* `fogpipe record` when writing a frame fails (the disk fills up): a file-size limit
  * (RLIMIT_FSIZE, with SIGXFSZ ignored so write() returns EFBIG as on a full disk) lets
  * the folder probe's 4 KiB through but not a frame. record must stop with a message
- * naming the frame, a non-zero status, and leave no frame and no temporary file. */
+ * naming the frame, a non-zero status, and leave no frame and no temporary file (and not
+ * the empty folder it made). */
 #include "tests/app/record_util.h"
 
 #include <sys/resource.h>
@@ -32,8 +33,8 @@ int main(void) {
         "no `fogpipe record: ... frame 1` message");
   if (status == 0 || !record_log_contains(log, "frame 1")) record_print_log(log);
   int frame_files = 0;
-  int others = record_count_files(out, &frame_files);
-  CHECK(frame_files == 0 && others == 0,
+  int others = record_count_files(out, &frame_files); /* -1: the folder record made is gone */
+  CHECK(frame_files == 0 && others <= 0,
         "%d frame files and %d other files left in %s, expected none", frame_files, others,
         out);
   record_remove_tree(root);
