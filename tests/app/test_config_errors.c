@@ -81,6 +81,29 @@ int main(void) {
                "expected a number from -1e+07 to 1e+07");
   expect_error("[fog]\nmodel = height\nfog_height = 30\nscale_height = 0.001\n",
                "2: [fog] model: ", "raise scale_height");
+  /* Lines past libinih's 200-byte buffer: a long comment is a comment (its tail used to be
+   * parsed as a key, and every later line number was off by one); a long key line is an
+   * error naming its line. */
+  {
+    char text[1024];
+    snprintf(text, sizeof text, "[fog]\n; %0300d density_scale = 5\nbogus = 1\n", 0);
+    expect_error(text, "3: [fog] bogus: ", "unknown key");
+    snprintf(text, sizeof text, "[fog]\n; %0300d\n[camera]\nfov = 40\n", 0);
+    char path[256];
+    snprintf(path, sizeof path, "%s/long.ini", dir);
+    FILE *f = fopen(path, "w");
+    fputs(text, f);
+    fclose(f);
+    scene_config cfg;
+    scene_config_error err = {{0}};
+    CHECK(scene_config_load(path, &cfg, &err) == 0, "a long comment: %s", err.message);
+    CHECK(cfg.fog.density_scale == 1.0 && cfg.camera.fov == 40.0,
+          "a long comment changed the scene: density_scale %g, fov %g", cfg.fog.density_scale,
+          cfg.camera.fov);
+    unlink(path);
+    snprintf(text, sizeof text, "[fog]\nfog_height = %0250d\n", 1);
+    expect_error(text, "2: the line is 264 bytes long", "at most 199");
+  }
   expect_error("; banks\n[fog]\nmodel = rbf\nrbf_base = 0.01\n", "3: [fog] model: ",
                "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' line");
   expect_error("[fog]\n\nmodel = volume\n", "3: [fog] model: ",
