@@ -14,6 +14,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -543,4 +544,75 @@ void scene_config_scene_desc(const scene_config *cfg, const float *heights, int 
       .light = cfg->light,
   };
   memcpy(desc->boxes, cfg->objects, sizeof cfg->objects);
+}
+
+/* ---- the fingerprint: every key's resolved value (defaults included), table by table ---- */
+
+static uint64_t fnv(uint64_t hash, const void *bytes, size_t n) {
+  const unsigned char *b = bytes;
+  for (size_t i = 0; i < n; i++) hash = (hash ^ b[i]) * 1099511628211ull;
+  return hash;
+}
+
+/* A file's bytes (what a fogmap or heightmap path names); its absence hashes as such. */
+static uint64_t fnv_file(uint64_t hash, const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return fnv(hash, "missing", 7);
+  unsigned char block[65536];
+  size_t n;
+  while ((n = fread(block, 1, sizeof block, f)) > 0) hash = fnv(hash, block, n);
+  fclose(f);
+  return hash;
+}
+
+uint64_t scene_config_fingerprint(const scene_config *cfg) {
+  uint64_t h = 1469598103934665603ull;
+  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+    const key_spec *k = &keys[i];
+    const char *field = (const char *)cfg + k->offset;
+    h = fnv(h, k->section, strlen(k->section) + 1);
+    h = fnv(h, k->key, strlen(k->key) + 1);
+    switch (k->kind) {
+      case V_DOUBLE: h = fnv(h, field, sizeof(double)); break;
+      case V_DOUBLE2: h = fnv(h, field, 2 * sizeof(double)); break;
+      case V_DOUBLE3:
+      case V_LOOK_AT: h = fnv(h, field, 3 * sizeof(double)); break;
+      case V_FLOAT3: h = fnv(h, field, 3 * sizeof(float)); break;
+      case V_INT:
+      case V_ENUM: h = fnv(h, field, sizeof(int)); break;
+      case V_UINT: h = fnv(h, field, sizeof(unsigned)); break;
+      case V_STRING: h = fnv(h, field, strlen(field) + 1); break;
+      case V_PATH:
+        h = fnv(h, field, strlen(field) + 1);
+        if (field[0] && k->offset != F(fog.vdb)) h = fnv_file(h, field); /* not a pattern */
+        break;
+      case V_LIST: {
+        int count = *(const int *)((const char *)cfg + k->aux_offset);
+        h = fnv(h, &count, sizeof count);
+        h = fnv(h, field, (size_t)count * sizeof(double));
+        break;
+      }
+      case V_OBJECT: /* member by member: no padding bytes in the hash */
+        h = fnv(h, &cfg->object_count, sizeof cfg->object_count);
+        for (int b = 0; b < cfg->object_count; b++) {
+          h = fnv(h, cfg->objects[b].center, sizeof cfg->objects[b].center);
+          h = fnv(h, cfg->objects[b].size, sizeof cfg->objects[b].size);
+          h = fnv(h, cfg->objects[b].colour, sizeof cfg->objects[b].colour);
+        }
+        break;
+      case V_RBF:
+        h = fnv(h, &cfg->fog.rbf_count, sizeof cfg->fog.rbf_count);
+        for (int r = 0; r < cfg->fog.rbf_count; r++) {
+          h = fnv(h, cfg->fog.rbfs[r].centre, sizeof cfg->fog.rbfs[r].centre);
+          h = fnv(h, &cfg->fog.rbfs[r].radius, sizeof(double));
+          h = fnv(h, &cfg->fog.rbfs[r].density, sizeof(double));
+        }
+        break;
+    }
+  }
+  /* What the file says besides values: which of the optional settings were given. */
+  const bool flags[] = {cfg->camera.look_at_set, cfg->fog.profile_set, cfg->box.origin_set,
+                        cfg->box.cell_size_set,  cfg->box.floor_set,   cfg->box.top_set};
+  for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++) h = fnv(h, &flags[i], 1);
+  return h;
 }

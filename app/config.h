@@ -14,6 +14,7 @@
 #define FOGPIPE_APP_CONFIG_H
 
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "render/camera.h"
 #include "render/fog_models.h"
@@ -155,6 +156,12 @@ bool scene_config_has_fog(const scene_config *cfg);
 void scene_config_init(scene_config *cfg);
 /* init + parse path. Non-zero and err on the first error. */
 int scene_config_load(const char *path, scene_config *cfg, scene_config_error *err);
+
+/* A 64-bit FNV-1a hash of the resolved scene: every key's value (defaults included) and
+ * the bytes of the fogmap and heightmap files it names (a VDB sequence by its pattern
+ * only). Equal scenes hash equal whatever their comments, order or spelling of numbers;
+ * record uses it to refuse resuming a folder made from another scene. */
+uint64_t scene_config_fingerprint(const scene_config *cfg);
 
 /* The camera the config describes (radians, look_at applied). */
 void scene_config_camera(const scene_config *cfg, camera *cam);

@@ -3,6 +3,8 @@
 #ifndef FOGPIPE_SIM_FOGMAP_H
 #define FOGPIPE_SIM_FOGMAP_H
 
+#include <stddef.h>
+
 /* Errors are returned, never printed: a failing call fills message (naming the file and,
  * for bad pixels, the first offending pixel) and returns non-zero. */
 typedef struct sim_error {
@@ -61,6 +63,22 @@ typedef struct image_channel {
  * half channel would turn infinite (|v| > 65504), naming the channel and the pixel. */
 int image_write_exr(const char *path, int width, int height, const image_channel *channels,
                     int channel_count, sim_error *err);
+
+/* A string attribute of an EXR header: what an image was made from, for the tools that
+ * read it back (record --resume). The name must not be one of EXR's standard attributes. */
+typedef struct image_exr_string {
+  const char *name, *value;
+} image_exr_string;
+
+/* image_write_exr with string attributes in the header. */
+int image_write_exr_with(const char *path, int width, int height, const image_channel *channels,
+                         int channel_count, const image_exr_string *strings, int string_count,
+                         sim_error *err);
+
+/* Reads the string attribute name of part 0 into value (at most size - 1 bytes). Fails
+ * naming the file when it is not a readable EXR or has no such string attribute. */
+int image_read_exr_string(const char *path, const char *name, char *value, size_t size,
+                          sim_error *err);
 
 /* Writes an 8-bit PNG (1 channel grey, 3 RGB or 4 RGBA) from interleaved float values in
  * [0,1] (clamped), top row first; temporary file + rename like image_write_exr. */

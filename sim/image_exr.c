@@ -289,6 +289,12 @@ static int by_name(const void *a, const void *b) {
 
 int image_write_exr(const char *path, int width, int height, const image_channel *channels,
                     int channel_count, sim_error *err) {
+  return image_write_exr_with(path, width, height, channels, channel_count, NULL, 0, err);
+}
+
+int image_write_exr_with(const char *path, int width, int height, const image_channel *channels,
+                         int channel_count, const image_exr_string *strings, int string_count,
+                         sim_error *err) {
   if (width <= 0 || height <= 0)
     return sim_fail(err, "%s: image size %dx%d: both must be positive", path, width, height);
   if (channel_count <= 0 || channel_count > 64)
@@ -333,6 +339,8 @@ int image_write_exr(const char *path, int width, int height, const image_channel
     rv = exr_add_channel(ctxt, part, sorted[c].name,
                          sorted[c].as_half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT,
                          EXR_PERCEPTUALLY_LINEAR, 1, 1);
+  for (int k = 0; rv == EXR_ERR_SUCCESS && k < string_count; k++)
+    rv = exr_attr_set_string(ctxt, part, strings[k].name, strings[k].value);
   if (rv == EXR_ERR_SUCCESS) {
     stage = "writing the header";
     rv = exr_write_header(ctxt);
@@ -384,4 +392,38 @@ int image_write_exr(const char *path, int width, int height, const image_channel
     return 1;
   }
   return atomic_file_commit(&file, err);
+}
+
+int image_read_exr_string(const char *path, const char *name, char *value, size_t size,
+                          sim_error *err) {
+  exr_stream stream = {.fd = open(path, O_RDONLY | O_CLOEXEC)};
+  if (stream.fd < 0) return sim_fail(err, "%s: cannot open: %s", path, strerror(errno));
+  struct stat st;
+  stream.size = fstat(stream.fd, &st) == 0 ? (int64_t)st.st_size : -1;
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = remember_error;
+  init.user_data = &stream;
+  init.read_fn = stream_read;
+  init.size_fn = stream_size;
+  current_stream = &stream;
+  exr_context_t ctxt = NULL;
+  int status = 1;
+  exr_result_t rv = exr_start_read(&ctxt, path, &init);
+  if (rv != EXR_ERR_SUCCESS) {
+    sim_fail(err, "%s: not a readable EXR: %s", path, exr_reason(&stream, rv));
+  } else {
+    int32_t length = 0;
+    const char *text = NULL;
+    rv = exr_attr_get_string(ctxt, 0, name, &length, &text);
+    if (rv != EXR_ERR_SUCCESS || !text)
+      sim_fail(err, "%s: no string attribute \"%s\" in the EXR header", path, name);
+    else {
+      snprintf(value, size, "%.*s", (int)length, text);
+      status = 0;
+    }
+  }
+  if (ctxt) exr_finish(&ctxt);
+  current_stream = NULL;
+  close(stream.fd);
+  return status;
 }
