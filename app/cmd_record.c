@@ -36,7 +36,9 @@ static void print_help(FILE *out) {
           "[fog] model = volume plays the VDB frames in 3D (blended between frames);\n"
           "the analytic models stand still.\n\n"
           "options:\n"
-          "  --frames N        number of frames (required)\n"
+          "  --frames N|A-B    frames 1..N, or only A..B (required): a range renders\n"
+          "                    exactly those frames of the full run, bit for bit, so\n"
+          "                    ranges can go to different machines (docs/farm.md)\n"
           "  --out DIR         output folder, created if missing (required)\n"
           "  --fps F           frames per second of simulated time (default 24)\n"
           "  --size WxH        image size (default: the config's [render] size)\n"
@@ -77,12 +79,22 @@ int cmd_record(int argc, char **argv) {
       i++;
       char *end = NULL;
       if (!strcmp(a, "--frames")) {
-        long n = strtol(value, &end, 10);
-        if (*end || n < 1 || n > 9999999) {
-          fprintf(stderr, "fogpipe record: --frames %s: expected a whole number >= 1\n", value);
+        /* N (frames 1..N) or A-B (frames A..B, for a farm's job array) */
+        errno = 0;
+        long from = 1, to = strtol(value, &end, 10);
+        if (*end == '-' && end != value) {
+          from = to;
+          const char *second = end + 1;
+          to = strtol(second, &end, 10);
+          if (end == second) end = (char *)"?";
+        }
+        if (*end || errno || from < 1 || to < from || to > 9999999) {
+          fprintf(stderr, "fogpipe record: --frames %s: expected N (frames 1..N) or A-B "
+                  "(frames A..B), whole numbers with 1 <= A <= B <= 9999999\n", value);
           return 2;
         }
-        job.frames = (int)n;
+        job.first_frame = (int)from;
+        job.frames = (int)to;
       } else if (!strcmp(a, "--fps")) {
         job.fps = strtod(value, &end);
         if (*end || !(job.fps >= 1.0 / PIPELINE_MAX_FRAME_SECONDS && job.fps <= 1000)) {
@@ -115,6 +127,11 @@ int cmd_record(int argc, char **argv) {
     fprintf(stderr, "fogpipe record: %s missing\n\n",
             !job.config_path ? "CONFIG" : !job.frames ? "--frames N" : "--out DIR");
     print_help(stderr);
+    return 2;
+  }
+  if (job.preview && job.first_frame > 1) {
+    fprintf(stderr, "fogpipe record: --preview encodes a whole sequence; it takes --frames N, "
+            "not a range (encode the joined ranges afterwards)\n");
     return 2;
   }
   return record_run(&job);
@@ -168,8 +185,11 @@ static int source_render(frame_source *src, int frame, float *rgba, float *trans
 
 /* The command line that continues this recording. */
 static void resume_hint(const record_job *job, char *text, size_t size) {
-  int n = snprintf(text, size, "fogpipe record %s --frames %d --out %s", job->config_path,
-                   job->frames, job->out);
+  int n = job->first_frame > 1
+              ? snprintf(text, size, "fogpipe record %s --frames %d-%d --out %s",
+                         job->config_path, job->first_frame, job->frames, job->out)
+              : snprintf(text, size, "fogpipe record %s --frames %d --out %s", job->config_path,
+                         job->frames, job->out);
   if (job->fps > 0) n += snprintf(text + n, size - (size_t)n, " --fps %g", job->fps);
   if (job->width > 0)
     n += snprintf(text + n, size - (size_t)n, " --size %dx%d", job->width, job->height);
@@ -212,41 +232,33 @@ static int record_into(const record_job *job, recorder *rec) {
       return 1;
     }
   }
-  int done = job->resume ? recorder_complete_frames(rec, job->frames) : 0;
-  if (job->resume) recorder_remove_stale_temporaries(rec);
-  if (done > 0) {
-    /* Resuming another recording's frames (a different size) would mix two sequences. */
-    char last[1200];
-    recorder_frame_path(rec, done, last, sizeof last);
-    fogmap probe = {0};
-    sim_error serr = {{0}};
-    if (fogmap_load(last, &(fogmap_load_desc){.channel = "A"}, &probe, &serr)) {
-      fprintf(stderr, "fogpipe %s: cannot resume: %s\n", cmd, serr.message);
+  /* What every frame carries in its header, and --resume checks frame by frame. */
+  const double fps = job->fps > 0 ? job->fps : 24.0;
+  snprintf(rec->identity, sizeof rec->identity, "scene %016llx size %dx%d fps %.17g",
+           (unsigned long long)scene_config_fingerprint(&config), width, height, fps);
+  const int first = job->first_frame > 0 ? job->first_frame : 1, last = job->frames;
+  int done = first - 1; /* the last frame on disk of the range */
+  if (job->resume) {
+    done = recorder_complete_frames(rec, first, last, &rerr);
+    if (done < 0) {
+      fprintf(stderr, "fogpipe %s: cannot resume: %s (use the same config and settings, or "
+              "another --out folder)\n", cmd, rerr.message);
       return 1;
     }
-    const int had_w = probe.width, had_h = probe.height;
-    fogmap_destroy(&probe);
-    const int same = had_w == width && had_h == height;
-    if (!same) {
-      fprintf(stderr,
-              "fogpipe %s: cannot resume: %s is %dx%d but this recording is %dx%d "
-              "(use the same --size, or another --out folder)\n",
-              cmd, last, had_w, had_h, width, height);
-      return 1;
-    }
+    recorder_remove_stale_temporaries(rec);
   }
-  if (job->resume && done == job->frames) {
-    printf("all %d frames are already complete in %s\n", job->frames, rec->folder);
+  if (job->resume && done == last) {
+    printf("all %d frames are already complete in %s\n", last - first + 1, rec->folder);
   }
 
   render_error gerr = {{0}};
   gl_context *gl = NULL;
-  frame_source src = {.config = &config, .fps = job->fps > 0 ? job->fps : 24.0};
+  frame_source src = {.config = &config, .fps = fps};
   float *buffer = NULL;
   int status = 0;
   char error[600] = "";
   const size_t n = (size_t)width * height;
-  if (done < job->frames && config.fog.model != SCENE_MODEL_FOGMAP) {
+  if (done < last && config.fog.model != SCENE_MODEL_FOGMAP) {
     /* The other models through a render session: a volume steps through its VDB frames,
      * the analytic models stand still. Frames are independent: nothing to re-run on
      * --resume. */
@@ -262,7 +274,7 @@ static int record_into(const record_job *job, recorder *rec) {
       status = 1;
       goto finish;
     }
-  } else if (done < job->frames) {
+  } else if (done < last) {
     gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
     if (!gl) {
       fprintf(stderr, "fogpipe %s: %s\n", cmd, gerr.message);
@@ -278,9 +290,9 @@ static int record_into(const record_job *job, recorder *rec) {
       status = 1;
       goto finish;
     }
-    if (done > 0) {
-      printf("resuming after frame %d of %d: re-running the simulation to it\n", done,
-             job->frames);
+    if (done > 0) { /* the simulation is sequential: run it (without rendering) to frame done */
+      printf("%s frame %d: re-running the simulation to it\n",
+             done >= first ? "resuming after" : "starting after", done);
       fflush(stdout);
       if (pipeline_skip(src.pipe, done, &perr)) {
         fprintf(stderr, "fogpipe %s: %s\n", cmd, perr.message);
@@ -290,7 +302,7 @@ static int record_into(const record_job *job, recorder *rec) {
     }
     scene_config_camera(&config, &src.cam);
   }
-  if (done < job->frames) {
+  if (done < last) {
     /* rgba 4 + transmittance 1 + depth 1, then the recorder's 6 planes. */
     buffer = malloc(n * 12 * sizeof(float));
     if (!buffer) {
@@ -309,8 +321,9 @@ static int record_into(const record_job *job, recorder *rec) {
     sigaction(SIGTERM, &action, &old_term);
 
     recorder_progress progress;
-    if (!job->quiet) recorder_progress_begin(&progress, stdout, done, job->frames);
-    for (int frame = done + 1; frame <= job->frames; frame++) {
+    if (!job->quiet)
+      recorder_progress_begin(&progress, stdout, done - first + 1, last - first + 1);
+    for (int frame = done + 1; frame <= last; frame++) {
       if (source_render(&src, frame, rgba, transmittance, depth, error, sizeof error)) {
         if (!job->quiet) recorder_progress_end(&progress);
         fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, error);
@@ -325,14 +338,14 @@ static int record_into(const record_job *job, recorder *rec) {
         break;
       }
       done = frame;
-      if (!job->quiet) recorder_progress_update(&progress, done);
-      if (interrupted && done < job->frames) {
+      if (!job->quiet) recorder_progress_update(&progress, done - first + 1);
+      if (interrupted && done < last) {
         if (!job->quiet) recorder_progress_end(&progress);
         char hint[2048];
         resume_hint(job, hint, sizeof hint);
         fprintf(stderr,
                 "fogpipe %s: interrupted: %d of %d frames complete in %s; to finish: %s\n",
-                cmd, done, job->frames, rec->folder, hint);
+                cmd, done - first + 1, last - first + 1, rec->folder, hint);
         status = 130;
         break;
       }
@@ -342,17 +355,17 @@ static int record_into(const record_job *job, recorder *rec) {
     sigaction(SIGTERM, &old_term, NULL);
   }
   if (!status) {
-    char first[1200], last[1200];
-    recorder_frame_path(rec, 1, first, sizeof first);
-    recorder_frame_path(rec, job->frames, last, sizeof last);
-    printf("%d frame%s (%dx%d) in %s: %s .. %s\n", job->frames, job->frames == 1 ? "" : "s",
-           width, height, rec->folder, strrchr(first, '/') + 1, strrchr(last, '/') + 1);
+    char first_path[1200], last_path[1200];
+    recorder_frame_path(rec, first, first_path, sizeof first_path);
+    recorder_frame_path(rec, last, last_path, sizeof last_path);
+    printf("%d frame%s (%dx%d) in %s: %s .. %s\n", last - first + 1, last == first ? "" : "s",
+           width, height, rec->folder, strrchr(first_path, '/') + 1,
+           strrchr(last_path, '/') + 1);
     if (job->preview) {
       if (!recorder_have_ffmpeg()) {
         printf("note: ffmpeg is not installed, so no preview video was written "
                "(apt-get install ffmpeg)\n");
-      } else if (recorder_write_preview(rec, job->frames, job->fps > 0 ? job->fps : 24.0,
-                                        job->preview, &rerr)) {
+      } else if (recorder_write_preview(rec, job->frames, fps, job->preview, &rerr)) {
         fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
         status = 1;
       } else {

@@ -118,13 +118,35 @@ void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size
   snprintf(path, size, "%s/%s.%04d.exr", rec->folder, rec->name, frame);
 }
 
-int recorder_complete_frames(const recorder *rec, int max_frames) {
-  int done = 0;
+int recorder_complete_frames(const recorder *rec, int first, int last, recorder_error *err) {
+  int done = first - 1;
   char path[1200];
-  for (int frame = 1; frame <= max_frames; frame++) {
+  for (int frame = first; frame <= last; frame++) {
     recorder_frame_path(rec, frame, path, sizeof path);
     struct stat st;
     if (stat(path, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0) break;
+    char identity[sizeof rec->identity] = "";
+    sim_error serr = {{0}};
+    if (image_read_exr_string(path, RECORDER_IDENTITY_ATTRIBUTE, identity, sizeof identity,
+                              &serr) == 0 &&
+        strcmp(identity, rec->identity) != 0)
+    {
+      fail(err, "%s was recorded from another scene or settings (%s; this run: %s)", path,
+           identity, rec->identity);
+      return -1;
+    }
+    if (!identity[0] && strstr(serr.message, "no string attribute")) {
+      fail(err, "%s carries no recording identity (made by an older fogpipe or another "
+           "program): cannot tell it belongs to this scene", path);
+      return -1;
+    }
+    /* Every chunk decodes: loading one channel decodes them all. */
+    fogmap probe = {0};
+    if (identity[0] == '\0' || fogmap_load(path, &(fogmap_load_desc){.channel = "A"}, &probe, &serr))
+      break; /* damaged: rendered again */
+    int size_ok = probe.width == rec->width && probe.height == rec->height;
+    fogmap_destroy(&probe);
+    if (!size_ok) break;
     done = frame;
   }
   return done;
@@ -178,7 +200,9 @@ int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *p
   char path[1200];
   recorder_frame_path(rec, frame, path, sizeof path);
   sim_error serr = {{0}};
-  if (image_write_exr(path, w, h, channels, 6, &serr)) {
+  const image_exr_string identity = {RECORDER_IDENTITY_ATTRIBUTE, rec->identity};
+  if (image_write_exr_with(path, w, h, channels, 6, &identity, rec->identity[0] ? 1 : 0,
+                           &serr)) {
     struct statvfs vfs;
     int full = statvfs(rec->folder, &vfs) == 0 &&
                (double)vfs.f_bavail * (double)vfs.f_frsize < frame_bytes(w, h);

@@ -3,7 +3,8 @@
  * Lifecycle (what `fogpipe record` and the headless `fogpipe demo` do):
  *   recorder_open()            checks the folder can be written (creates it if missing)
  *                              before any frame is rendered;
- *   recorder_complete_frames() the number of whole frames already there (for --resume);
+ *   recorder_complete_frames() the whole frames of this recording already there (for
+ *                              --resume): each one decodes and carries the identity;
  *   recorder_write_frame()     one EXR per frame, `DIR/NAME.0001.exr` (1-based, 4 digits or
  *                              more), written to a temporary name and renamed by
  *                              image_write_exr, so no partial frame ever exists;
@@ -31,7 +32,13 @@ typedef struct recorder {
   char created[1024]; /* the outermost folder recorder_open made ("" if all existed) */
   char name[128];
   int width, height;
+  /* What the frames are made from (the caller sets it after opening): written into every
+   * frame's header as the string attribute RECORDER_IDENTITY_ATTRIBUTE, so that --resume
+   * can refuse a folder of another scene, size or frame rate. */
+  char identity[256];
 } recorder;
+
+#define RECORDER_IDENTITY_ATTRIBUTE "fogpipeRecording"
 
 /* One rendered frame as the GL pass reads it back: linear colour and alpha, transmittance
  * (fraction of the surface light that reaches the camera) and depth (distance along the
@@ -51,9 +58,12 @@ int recorder_open(recorder *rec, const recorder_desc *desc, recorder_error *err)
 /* Path of 1-based frame number `frame`: FOLDER/NAME.%04d.exr. */
 void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size);
 
-/* The number of consecutive whole frames 1..n already in the folder. Frames are renamed
- * into place only when complete, so an existing frame file is a whole frame. */
-int recorder_complete_frames(const recorder *rec, int max_frames);
+/* The last frame of the consecutive run first, first + 1, ... last already in the folder
+ * (first - 1 when there is none). A frame counts when it decodes in every channel (a file
+ * truncated by hand or by a broken disk is rendered again) and carries rec->identity.
+ * -1 with err set when a frame there was made from another recording (its identity
+ * differs, or it has none): resuming would mix two sequences. */
+int recorder_complete_frames(const recorder *rec, int first, int last, recorder_error *err);
 
 /* Removes temporary files a killed run (SIGKILL, power loss) may have left beside the
  * frames: image_write_exr's ".NAME.NNNN.exr.tmp.XXXXXX". Returns how many were removed. */
@@ -98,7 +108,8 @@ void recorder_progress_end(recorder_progress *p);
 typedef struct record_job {
   const char *command;     /* "record" or "demo", for messages */
   const char *config_path;
-  int frames;
+  int first_frame;         /* the range first_frame..frames (farm jobs); 0: 1 */
+  int frames;              /* the last frame (with first_frame 1: the frame count) */
   const char *out;
   double fps;              /* 0: 24 */
   int width, height;       /* 0: the config's size */
