@@ -126,19 +126,28 @@ static exr_result_t decode_chunk(exr_context_t ctxt, const exr_chunk_info_t *chu
   return exr_decoding_run(ctxt, 0, decode);
 }
 
+/* Opens path for reading through our stream (the current one of this thread) and fills the
+ * context initialiser; 1 with err set when the file cannot be opened. */
+static int open_read_stream(const char *path, exr_stream *stream,
+                            exr_context_initializer_t *init, sim_error *err) {
+  *stream = (exr_stream){.fd = open(path, O_RDONLY | O_CLOEXEC)};
+  if (stream->fd < 0) return sim_fail(err, "%s: cannot open: %s", path, strerror(errno));
+  current_stream = stream;
+  struct stat st;
+  stream->size = fstat(stream->fd, &st) == 0 ? (int64_t)st.st_size : -1;
+  *init = (exr_context_initializer_t)EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init->error_handler_fn = remember_error;
+  init->user_data = stream;
+  init->read_fn = stream_read;
+  init->size_fn = stream_size;
+  return 0;
+}
+
 int exr_read_channel(const char *path, const char *channel, int *width_out,
                      int *height_out, float **pixels, sim_error *err) {
-  exr_stream stream = {.fd = open(path, O_RDONLY | O_CLOEXEC)};
-  if (stream.fd < 0) return sim_fail(err, "%s: cannot open: %s", path, strerror(errno));
-  current_stream = &stream;
-  struct stat st;
-  stream.size = fstat(stream.fd, &st) == 0 ? (int64_t)st.st_size : -1;
-
-  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-  init.error_handler_fn = remember_error;
-  init.user_data = &stream;
-  init.read_fn = stream_read;
-  init.size_fn = stream_size;
+  exr_stream stream;
+  exr_context_initializer_t init;
+  if (open_read_stream(path, &stream, &init, err)) return 1;
   exr_context_t ctxt = NULL;
   float *out = NULL, *scratch = NULL;
   int status = 1;
@@ -218,12 +227,29 @@ int exr_read_channel(const char *path, const char *channel, int *width_out,
     goto done;
   }
 
-  /* The scratch chunk for the channels not loaded: one chunk of floats. */
-  uint64_t chunk_bytes = 0;
-  rv = exr_get_chunk_unpacked_size(ctxt, 0, &chunk_bytes);
+  /* The chunk layout: scanline blocks of lines_per_chunk rows, or tiles of level (0, 0);
+   * tile (tx, ty) starts at pixel (tx * tile_w, ty * tile_h) of the data window. */
+  int32_t lines_per_chunk = 1;
+  uint32_t tile_w = 0, tile_h = 0;
+  if (storage == EXR_STORAGE_SCANLINE) {
+    rv = exr_get_scanlines_per_chunk(ctxt, 0, &lines_per_chunk);
+    if (rv == EXR_ERR_SUCCESS && lines_per_chunk < 1) rv = EXR_ERR_INVALID_ATTR;
+  } else {
+    exr_tile_level_mode_t level_mode;
+    exr_tile_round_mode_t round_mode;
+    rv = exr_get_tile_descriptor(ctxt, 0, &tile_w, &tile_h, &level_mode, &round_mode);
+    if (rv == EXR_ERR_SUCCESS && (tile_w == 0 || tile_h == 0)) rv = EXR_ERR_INVALID_ATTR;
+  }
+  /* The scratch chunk for the channels not loaded: one channel of one chunk, in floats
+   * (each of them decodes into it, over the others), the chunk clipped to the image. Not sized by
+   * exr_get_chunk_unpacked_size: that counts every channel of a whole tile at the header's
+   * tile size, which one damaged byte made 3.6 GB for a 1x1 image. */
   if (rv == EXR_ERR_SUCCESS) {
-    /* unpacked size counts half channels at 2 bytes; floats need at most twice that */
-    scratch = malloc(2 * (size_t)chunk_bytes + sizeof(float));
+    int64_t chunk_w = storage == EXR_STORAGE_SCANLINE || tile_w > width ? width : tile_w;
+    int64_t chunk_h = storage == EXR_STORAGE_SCANLINE
+                          ? (lines_per_chunk < height ? lines_per_chunk : height)
+                          : (tile_h < height ? tile_h : height);
+    scratch = malloc((size_t)chunk_w * (size_t)chunk_h * sizeof(float));
     if (!scratch) {
       sim_fail(err, "%s: out of memory for an EXR chunk", path);
       goto done;
@@ -232,8 +258,6 @@ int exr_read_channel(const char *path, const char *channel, int *width_out,
 
   if (rv != EXR_ERR_SUCCESS) {
   } else if (storage == EXR_STORAGE_SCANLINE) {
-    int32_t lines_per_chunk = 1;
-    rv = exr_get_scanlines_per_chunk(ctxt, 0, &lines_per_chunk);
     for (int32_t y = window.min.y; rv == EXR_ERR_SUCCESS && y <= window.max.y;
          y += lines_per_chunk) {
       exr_chunk_info_t chunk;
@@ -244,15 +268,8 @@ int exr_read_channel(const char *path, const char *channel, int *width_out,
                           scratch);
     }
   } else {
-    /* Tiled: the full-resolution level (0, 0) only; tile (tx, ty) starts at pixel
-     * (tx * tile_w, ty * tile_h) of the data window. */
-    uint32_t tile_w = 0, tile_h = 0;
-    exr_tile_level_mode_t level_mode;
-    exr_tile_round_mode_t round_mode;
-    rv = exr_get_tile_descriptor(ctxt, 0, &tile_w, &tile_h, &level_mode, &round_mode);
-    if (rv == EXR_ERR_SUCCESS && (tile_w == 0 || tile_h == 0)) rv = EXR_ERR_INVALID_ATTR;
-    int64_t tiles_x = rv == EXR_ERR_SUCCESS ? (width + tile_w - 1) / tile_w : 0;
-    int64_t tiles_y = rv == EXR_ERR_SUCCESS ? (height + tile_h - 1) / tile_h : 0;
+    int64_t tiles_x = (width + tile_w - 1) / tile_w;
+    int64_t tiles_y = (height + tile_h - 1) / tile_h;
     for (int64_t ty = 0; rv == EXR_ERR_SUCCESS && ty < tiles_y; ty++)
       for (int64_t tx = 0; rv == EXR_ERR_SUCCESS && tx < tiles_x; tx++) {
         exr_chunk_info_t chunk;
@@ -396,16 +413,9 @@ int image_write_exr_with(const char *path, int width, int height, const image_ch
 
 int image_read_exr_string(const char *path, const char *name, char *value, size_t size,
                           sim_error *err) {
-  exr_stream stream = {.fd = open(path, O_RDONLY | O_CLOEXEC)};
-  if (stream.fd < 0) return sim_fail(err, "%s: cannot open: %s", path, strerror(errno));
-  struct stat st;
-  stream.size = fstat(stream.fd, &st) == 0 ? (int64_t)st.st_size : -1;
-  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-  init.error_handler_fn = remember_error;
-  init.user_data = &stream;
-  init.read_fn = stream_read;
-  init.size_fn = stream_size;
-  current_stream = &stream;
+  exr_stream stream;
+  exr_context_initializer_t init;
+  if (open_read_stream(path, &stream, &init, err)) return 1;
   exr_context_t ctxt = NULL;
   int status = 1;
   exr_result_t rv = exr_start_read(&ctxt, path, &init);

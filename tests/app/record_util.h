@@ -139,6 +139,18 @@ static inline int record_count_files(const char *out, int *frames) {
   return others;
 }
 
+/* Entries in a folder besides . and ..; -1 when it does not exist. */
+static inline int record_folder_entries(const char *folder) {
+  DIR *dir = opendir(folder);
+  if (!dir) return -1;
+  int n = 0;
+  struct dirent *e;
+  while ((e = readdir(dir)))
+    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) n++;
+  closedir(dir);
+  return n;
+}
+
 static inline void record_remove_tree(const char *path) {
   char cmd[1200];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", path);

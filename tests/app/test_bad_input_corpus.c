@@ -34,17 +34,6 @@ static void substitute(const char *text, const char *out_dir, char *out, size_t 
   out[n < size ? n : size - 1] = '\0';
 }
 
-static int entries_in(const char *folder) {
-  DIR *dir = opendir(folder);
-  if (!dir) return -1;
-  int n = 0;
-  struct dirent *e;
-  while ((e = readdir(dir)))
-    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) n++;
-  closedir(dir);
-  return n;
-}
-
 int main(void) {
   FILE *cases = fopen(CORPUS "/cases.txt", "r");
   CHECK(cases != NULL, "cannot open %s/cases.txt (run from the source folder)", CORPUS);
@@ -72,7 +61,7 @@ int main(void) {
              record_bin(), args, log);
     int status = system(command);
     int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    int left = entries_in(out_dir);
+    int left = record_folder_entries(out_dir);
     int found = record_log_contains(log, fragment);
     CHECK(code == want, "cases.txt:%d: `fogpipe %s` exited %d, expected %d", number, args,
           code, want);

@@ -39,17 +39,6 @@ static int run_limited(const char *const *args, long fsize_limit, const char *lo
   return -2;
 }
 
-static int entries_in(const char *folder) {
-  DIR *dir = opendir(folder);
-  if (!dir) return 0; /* never made: nothing left */
-  int n = 0;
-  struct dirent *e;
-  while ((e = readdir(dir)))
-    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) n++;
-  closedir(dir);
-  return n;
-}
-
 static void check_command(const char *root, const char *name, const char *const *args,
                           const char *folder, long limit) {
   char log[700];
@@ -59,7 +48,8 @@ static void check_command(const char *root, const char *name, const char *const 
   CHECK(status > 0 && status < 128, "%s with a %ld-byte file limit exited with %d", name,
         limit, status);
   CHECK(record_log_contains(log, folder), "%s: the message does not name %s", name, folder);
-  int left = entries_in(folder);
+  int left = record_folder_entries(folder);
+  if (left < 0) left = 0; /* never made: nothing left */
   CHECK(left == 0, "%s with a %ld-byte limit left %d entries in %s", name, limit, left,
         folder);
   if (status <= 0 || status >= 128 || left) record_print_log(log);
