@@ -565,6 +565,22 @@ static uint64_t fnv_file(uint64_t hash, const char *path) {
   return hash;
 }
 
+/* A VDB sequence by its frame numbers and file sizes: bakes run to gigabytes, too much to
+ * read at every start. */
+static uint64_t fnv_vdb_sequence(uint64_t hash, const char *pattern) {
+  vdb_sequence seq;
+  sim_error serr = {{0}};
+  if (vdb_sequence_find(&pattern, 1, -1, -1, &seq, &serr)) return fnv(hash, "missing", 7);
+  for (int i = 0; i < seq.count; i++) {
+    struct stat st;
+    long long size = stat(seq.paths[i], &st) == 0 ? (long long)st.st_size : -1;
+    hash = fnv(hash, &seq.frames[i], sizeof seq.frames[i]);
+    hash = fnv(hash, &size, sizeof size);
+  }
+  vdb_sequence_destroy(&seq);
+  return hash;
+}
+
 uint64_t scene_config_fingerprint(const scene_config *cfg) {
   uint64_t h = 1469598103934665603ull;
   for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
@@ -582,9 +598,10 @@ uint64_t scene_config_fingerprint(const scene_config *cfg) {
       case V_ENUM: h = fnv(h, field, sizeof(int)); break;
       case V_UINT: h = fnv(h, field, sizeof(unsigned)); break;
       case V_STRING: h = fnv(h, field, strlen(field) + 1); break;
-      case V_PATH:
-        h = fnv(h, field, strlen(field) + 1);
-        if (field[0] && k->offset != F(fog.vdb)) h = fnv_file(h, field); /* not a pattern */
+      case V_PATH: /* what the file holds, not how the path is spelt */
+        if (!field[0]) h = fnv(h, "none", 4);
+        else if (k->offset == F(fog.vdb)) h = fnv_vdb_sequence(h, field);
+        else h = fnv_file(h, field);
         break;
       case V_LIST: {
         int count = *(const int *)((const char *)cfg + k->aux_offset);

@@ -158,8 +158,9 @@ void scene_config_init(scene_config *cfg);
 int scene_config_load(const char *path, scene_config *cfg, scene_config_error *err);
 
 /* A 64-bit FNV-1a hash of the resolved scene: every key's value (defaults included) and
- * the bytes of the fogmap and heightmap files it names (a VDB sequence by its pattern
- * only). Equal scenes hash equal whatever their comments, order or spelling of numbers;
+ * the bytes of the fogmap and heightmap files it names (a VDB sequence by its frame
+ * numbers and file sizes). Equal scenes hash equal whatever their comments, order,
+ * spelling of numbers, or the path by which the config and its files are reached;
  * record uses it to refuse resuming a folder made from another scene. */
 uint64_t scene_config_fingerprint(const scene_config *cfg);
 

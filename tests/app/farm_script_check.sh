@@ -10,7 +10,9 @@ trap 'rm -rf "$root"' EXIT
 "$bin" record configs/default.ini --frames 24 --size 64x36 --out "$root/whole" > "$root/whole.log"
 pids=()
 for task in 0 1 2 3; do
-  FOGPIPE=$bin CONFIG=configs/default.ini FRAMES=24 CHUNK=10 SIZE=64x36 OUT=$root/farm \
+  # the config by its absolute path, as a farm node reaches it: the frames must not depend
+  # on how the config's path is spelt (their header holds the scene's fingerprint)
+  FOGPIPE=$bin CONFIG=$PWD/configs/default.ini FRAMES=24 CHUNK=10 SIZE=64x36 OUT=$root/farm \
     SLURM_ARRAY_TASK_ID=$task bash scripts/farm/slurm_record.sh > "$root/task$task.log" 2>&1 &
   pids+=($!)
 done
