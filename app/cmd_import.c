@@ -170,7 +170,7 @@ static int parse_options(int argc, char **argv, import_options *o) {
     } else if (!strcmp(a, "--max-voxels")) {
       double m;
       if (parse_double(v, &m) || m < 1) return cli_usage_error("import", "--max-voxels '%s'", v);
-      o->max_voxels = (long long)m;
+      o->max_voxels = m < 0x1p62 ? (long long)m : 1LL << 62; /* past long long: no limit */
     } else if (!strcmp(a, "--up")) {
       if (!strcmp(v, "z") || !strcmp(v, "Z"))
         o->up = VDB_UP_Z;

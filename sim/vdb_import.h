@@ -45,9 +45,10 @@ typedef struct vdb_grid_info {
   long long active_voxels;       /* voxels in leaves and in active tiles */
 } vdb_grid_info;
 
-/* Checks (in C, without OpenVDB, in well under a millisecond) that a .vdb file's header,
- * metadata, grid descriptors and grid headers fit its size as OpenVDB 10 reads them:
- * every length, count and offset against the bytes there. OpenVDB allocates such lengths
+/* Checks (in C, without OpenVDB, in about a millisecond) that a .vdb file's header,
+ * metadata, grid descriptors, grid headers and trees (every node's masks and compressed
+ * chunk sizes, for the plain value types) fit its size as OpenVDB 10 reads them: every
+ * length, count and offset against the bytes there. OpenVDB allocates such lengths
  * before any check (a bit flip made it take gigabytes); vdb_list_grids and vdb_read_dense
  * call this first. 0: looks sound; 1: err->message names the file and what is damaged. */
 int vdb_precheck_file(const char *path, sim_error *err);
@@ -255,7 +256,9 @@ typedef struct vdb_sequence {
 /* inputs: files, directories (every *.vdb inside), printf patterns (fluid_data_%04d.vdb),
  * #### patterns (fluid_data_####.vdb) or globs (fluid_data_*.vdb). first/last: a frame
  * range (last < 0: open). Missing frames inside the range are listed, not an error
- * here. Fails when nothing matches (naming the input). */
+ * here. Fails when nothing matches (naming the input), and for more than 2^20 frames
+ * from the first to the last (the range, or the frame numbers found). A printf pattern has
+ * one integer conversion and otherwise only "%%" (else it is a file name or glob). */
 int vdb_sequence_find(const char *const *inputs, int input_count, int first, int last,
                       vdb_sequence *out, sim_error *err);
 void vdb_sequence_destroy(vdb_sequence *sequence);

@@ -10,11 +10,15 @@
  *
  * This walks the same bytes in the same order as OpenVDB 10 reads them (each step names
  * the OpenVDB function it mirrors), checks every length, count and offset against the
- * bytes actually there, and fails with a message saying what is wrong. It reads a few
- * hundred bytes per grid (pread; big blocks are skipped, never loaded). It does not decode
- * the trees' nodes and buffers: OpenVDB reads those in pieces whose size the tree type
- * fixes (a damaged compressed-chunk size is allocated, not filled, or throws bad_alloc),
- * and with zip or blosc, as every real bake has, throws on a short stream. */
+ * bytes actually there, and fails with a message saying what is wrong. For the trees of
+ * plain value types (float, double, int32/64, vec3i/s/d) it also walks every node: masks,
+ * the mask-compression flags and the size of each zip or blosc chunk, which OpenVDB
+ * allocates as read (fuzzing found 16 TB requests, a raw chunk longer than its buffer
+ * overflowing it, a blosc header trusted past its chunk; tests/fuzz/regressions/vdb/). It
+ * reads masks and chunk headers only (pread through a 16 KB window; the compressed bytes
+ * are skipped, never decoded): about 0.5 ms for a Blender bake frame of 50-90 KB. Bool,
+ * mask and point grids, files before version 222 and, in io::Stream files without grid
+ * offsets, the grids after such a grid keep the header checks only. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <fcntl.h>
@@ -48,6 +52,11 @@ typedef struct vdb_in {
   uint64_t end;         /* reads must end by here: the file's end or the current block's */
   const char *within;   /* what ends at `end`, for messages: "the file", ... */
   char section[160];    /* "header" or "grid 'density'", for messages */
+  /* The bytes at [cache_pos, cache_pos + cache_len): a tree is read in thousands of small
+   * pieces (masks, chunk sizes). */
+  unsigned char cache[16384];
+  uint64_t cache_pos;
+  size_t cache_len;
 } vdb_in;
 
 static int damaged(vdb_in *in, const char *format, ...)
@@ -81,10 +90,24 @@ static int skip(vdb_in *in, uint64_t n, const char *what) {
 
 static int get(vdb_in *in, void *dst, size_t n, const char *what) {
   if (need(in, n, what)) return 1;
-  const ssize_t got = pread(in->fd, dst, n, (off_t)in->pos);
-  if (got != (ssize_t)n)
-    return sim_fail(in->err, "%s: cannot read: %s", in->path,
-                    got < 0 ? strerror(errno) : "the file shrank while being read");
+  if (in->pos < in->cache_pos || in->pos + n > in->cache_pos + in->cache_len) {
+    ssize_t got;
+    if (n > sizeof in->cache) {
+      got = pread(in->fd, dst, n, (off_t)in->pos);
+    } else {
+      got = pread(in->fd, in->cache, sizeof in->cache, (off_t)in->pos);
+      in->cache_pos = in->pos;
+      in->cache_len = got > 0 ? (size_t)got : 0;
+    }
+    if (got < (ssize_t)n)
+      return sim_fail(in->err, "%s: cannot read: %s", in->path,
+                      got < 0 ? strerror(errno) : "the file shrank while being read");
+    if (n > sizeof in->cache) {
+      in->pos += n;
+      return 0;
+    }
+  }
+  memcpy(dst, in->cache + (in->pos - in->cache_pos), n);
   in->pos += n;
   return 0;
 }
@@ -142,7 +165,7 @@ static int read_uuid(vdb_in *in) {
   const uint64_t start = in->pos;
   for (int i = 0; i < 16; i++)
     for (int k = 0; k < (i == 3 || i == 5 || i == 7 || i == 9 ? 3 : 2); k++) {
-      unsigned char c;
+      unsigned char c = 0;
       do {
         if (get(in, &c, 1, "the UUID (36 characters)")) return 1;
       } while (c == ' ' || (c >= '\t' && c <= '\r'));
@@ -173,7 +196,7 @@ static int read_header(vdb_in *in, uint32_t *version, int *has_offsets) {
   if (v >= 211 && skip(in, 8, "the library version (8 bytes)")) return 1;
   *has_offsets = 1;
   if (v >= 212) {
-    unsigned char flag;
+    unsigned char flag = 0;
     if (get(in, &flag, 1, "the grid offsets flag (1 byte)")) return 1;
     *has_offsets = flag != 0;
   }
@@ -202,6 +225,10 @@ static int check_blosc(vdb_in *in, uint32_t bytes, uint64_t table_bytes, const c
   if (le(header + 4, 4) > table_bytes)
     return damaged(in, "%s's blosc chunk claims %" PRIu64 " bytes uncompressed, more than "
                    "%" PRIu64, what, le(header + 4, 4), table_bytes);
+  /* blosc_decompress is not told the chunk's size: it reads as far as the header says */
+  if (le(header + 12, 4) > bytes)
+    return damaged(in, "%s's blosc chunk of %" PRIu32 " bytes claims %" PRIu64 " compressed",
+                   what, bytes, le(header + 12, 4));
   in->pos = chunk + bytes;
   return 0;
 }
@@ -268,7 +295,7 @@ static int read_meta_value(vdb_in *in, const char *type, uint32_t type_len, cons
 
 /* MetaMap::readMeta: a uint32 count, then per item readString (name), readString (type
  * name) and Metadata::read. */
-static int read_metamap(vdb_in *in, const char *owner) {
+static int read_metamap(vdb_in *in, const char *owner, int *half) {
   char phrase[224];
   uint32_t count;
   snprintf(phrase, sizeof phrase, "the %s count (4 bytes)", owner);
@@ -287,7 +314,18 @@ static int read_metamap(vdb_in *in, const char *owner) {
     if (get_string(in, type, sizeof type, &type_len, what)) return 1;
     printable(type);
     snprintf(what, sizeof what, "%s '%s'", owner, name);
+    /* GridBase::saveFloatAsHalf: whether the tree's values are stored as 16-bit floats */
+    const uint64_t value_at = in->pos + 4;
     if (read_meta_value(in, type, type_len, what)) return 1;
+    if (half && same_name(name, name_len, "is_saved_as_half_float") &&
+        same_name(type, type_len, "bool")) {
+      const uint64_t after = in->pos;
+      unsigned char b;
+      in->pos = value_at;
+      if (get(in, &b, 1, what)) return 1;
+      in->pos = after;
+      *half = b != 0;
+    }
   }
   return 0;
 }
@@ -323,42 +361,310 @@ static int read_map(vdb_in *in, uint32_t version, int depth) {
   return damaged(in, "unknown transform type '%s' (%" PRIu32 " bytes)", type, len);
 }
 
-/* The root node's tile value size and the least bytes a root child takes in the file,
- * from the tree type name, e.g. "Tree_float_5_4_3": a child is its Coord (12 bytes) and
- * an InternalNode whose readTopology starts with two masks of 2^(3*5) bits. Unknown types
+/* A tree type as its name says ("Tree_float_5_4_3"): the value type's size in the file,
+ * in full and as a 16-bit float (0: not a floating-point type, never stored as half), and
+ * the log2 sizes of its nodes below the root (levels = 3: two internal nodes, the leaf).
+ * walk: 1 for the value types whose nodes are plain LeafNode/InternalNode (bool, mask and
+ * point grids store their leaves differently: their trees are not walked). Unknown types
  * get the smallest sizes (OpenVDB refuses to read unregistered grid types anyway). */
-static void tree_layout(const char *type, uint64_t *value_bytes, uint64_t *child_bytes) {
-  static const struct { const char *name; uint32_t bytes; } values[] = {
-      {"bool", 1},    {"mask", 1},     {"float", 4},       {"double", 8},      {"int32", 4},
-      {"int64", 8},   {"vec3i", 12},   {"vec3s", 12},      {"vec3d", 24},      {"ptidx32", 4},
-      {"ptidx64", 8}, {"ptdataidx32", 4}, {"ptdataidx64", 8},
+typedef struct tree_type {
+  uint64_t value_bytes, half_bytes;
+  int levels, log2[3];
+  int walk;
+} tree_type;
+
+static tree_type tree_layout(const char *type) {
+  static const struct { const char *name; uint32_t bytes, half_bytes; int walk; } values[] = {
+      {"bool", 1, 0, 0},        {"mask", 1, 0, 0},       {"float", 4, 2, 1},
+      {"double", 8, 2, 1},      {"int32", 4, 0, 1},      {"int64", 8, 0, 1},
+      {"vec3i", 12, 0, 1},      {"vec3s", 12, 6, 1},     {"vec3d", 24, 6, 1},
+      {"ptidx32", 4, 0, 0},     {"ptidx64", 8, 0, 0},    {"ptdataidx32", 4, 0, 0},
+      {"ptdataidx64", 8, 0, 0},
   };
-  *value_bytes = 1;
-  *child_bytes = 12;
-  if (strncmp(type, "Tree_", 5) != 0) return;
+  tree_type t = {.value_bytes = 1};
+  if (strncmp(type, "Tree_", 5) != 0) return t;
   const char *v = type + 5, *u = strchr(v, '_');
-  if (!u) return;
-  for (size_t t = 0; t < sizeof values / sizeof values[0]; t++)
-    if (strlen(values[t].name) == (size_t)(u - v) && !strncmp(v, values[t].name, u - v))
-      *value_bytes = values[t].bytes;
-  const int log2 = atoi(u + 1);
-  if (log2 >= 1 && log2 <= 10) *child_bytes = 12 + 2 * ((1ull << (3 * log2)) / 8);
+  if (!u) return t;
+  for (size_t k = 0; k < sizeof values / sizeof values[0]; k++)
+    if (strlen(values[k].name) == (size_t)(u - v) && !strncmp(v, values[k].name, u - v)) {
+      t.value_bytes = values[k].bytes;
+      t.half_bytes = values[k].half_bytes;
+      t.walk = values[k].walk;
+    }
+  for (const char *p = u; *p == '_' && t.levels < 3;) {
+    char *next;
+    const long log2 = strtol(p + 1, &next, 10);
+    if (next == p + 1 || log2 < 1 || log2 > 10) break;
+    t.log2[t.levels++] = (int)log2;
+    p = next;
+  }
+  if (t.levels < 1) t.log2[0] = 0;
+  /* Walked: exactly root, internal, internal, leaf ("_5_4_3"), nodes of 2^6 to 2^18
+   * values, nothing after the numbers. */
+  int walk = t.walk && t.levels == 3;
+  for (int l = 0; l < 3 && walk; l++) walk = t.log2[l] >= 2 && t.log2[l] <= 6;
+  if (walk) {
+    const char *p = u;
+    for (int l = 0; l < 3; l++) {
+      char *next;
+      (void)strtol(p + 1, &next, 10);
+      p = next;
+    }
+    walk = *p == '\0';
+  }
+  t.walk = walk;
+  return t;
+}
+
+/* The least bytes a root child takes in the file: its Coord (12 bytes) and an InternalNode
+ * whose readTopology starts with two masks of 2^(3*log2) bits. */
+static uint64_t root_child_bytes(const tree_type *t) {
+  return t->levels >= 1 && t->log2[0] >= 1 ? 12 + 2 * ((1ull << (3 * t->log2[0])) / 8) : 12;
+}
+
+/* A walk of one tree's nodes, as Tree::readTopology and Tree::readBuffers read them. */
+typedef struct root_child {
+  int32_t origin[3];
+  size_t first_leaf, leaf_count; /* its leaves, in walk.leaf_on */
+  size_t order;                  /* in the file */
+} root_child;
+
+typedef struct tree_walk {
+  tree_type type;
+  int half;                      /* GridBase::saveFloatAsHalf */
+  uint32_t compression;          /* io::readGridCompression: ZIP 1, ACTIVE_MASK 2, BLOSC 4 */
+  unsigned char *child_mask[2];  /* the internal nodes being read, per level */
+  unsigned char *value_mask;
+  unsigned char *leaf_masks;     /* each leaf's value mask, in the order read */
+  size_t leaves, leaf_capacity;
+  root_child *children;
+  size_t child_count;
+} tree_walk;
+
+enum { COMPRESS_ZIP = 1, COMPRESS_ACTIVE_MASK = 2, COMPRESS_BLOSC = 4 };
+
+static uint64_t mask_bytes(int log2) { return (1ull << (3 * log2)) / 8; }
+
+static uint32_t count_on(const unsigned char *mask, uint64_t bytes) {
+  uint32_t n = 0;
+  for (uint64_t i = 0; i < bytes; i++) n += (uint32_t)__builtin_popcount(mask[i]);
+  return n;
+}
+
+/* io::readData's chunk (io/Compression.h) of `bytes` bytes as `compression` stores it:
+ * blosc or zip (bloscFromStream, unzipFromStream: an int64 size, then that many bytes,
+ * which OpenVDB allocates first; <= 0: -size raw bytes, which must be exactly `bytes`),
+ * or raw. A blosc chunk's 16-byte header must claim `bytes` uncompressed and at most the
+ * chunk's own size compressed: blosc_decompress_ctx is not told the chunk's size and
+ * trusts the header. */
+static int read_chunk(vdb_in *in, uint32_t compression, uint64_t bytes, const char *what) {
+  char phrase[256];
+  if (!(compression & (COMPRESS_BLOSC | COMPRESS_ZIP))) {
+    snprintf(phrase, sizeof phrase, "%s (%" PRIu64 " bytes)", what, bytes);
+    return skip(in, bytes, phrase);
+  }
+  const char *kind = compression & COMPRESS_BLOSC ? "blosc" : "zip";
+  int64_t size;
+  snprintf(phrase, sizeof phrase, "the size of the %s chunk of %s (8 bytes)", kind, what);
+  if (get_i64(in, &size, phrase)) return 1;
+  if (size <= 0) {
+    const uint64_t raw = (uint64_t)0 - (uint64_t)size;
+    if (raw != bytes)
+      return damaged(in, "%s are a raw chunk of %" PRIu64 " bytes where %" PRIu64 " are "
+                     "expected (at byte %" PRIu64 ")", what, raw, bytes, in->pos - 8);
+    snprintf(phrase, sizeof phrase, "%s (a raw chunk of %" PRIu64 " bytes)", what, raw);
+    return skip(in, raw, phrase);
+  }
+  snprintf(phrase, sizeof phrase, "the %s chunk of %" PRId64 " bytes of %s", kind, size, what);
+  if (need(in, (uint64_t)size, phrase)) return 1;
+  if (compression & COMPRESS_BLOSC) {
+    const uint64_t chunk = in->pos;
+    unsigned char header[16];
+    if (size < 16)
+      return damaged(in, "%s are a %" PRId64 "-byte blosc chunk, shorter than its header", what,
+                     size);
+    if (get(in, header, 16, phrase)) return 1;
+    if (le(header + 4, 4) != bytes || le(header + 12, 4) > (uint64_t)size)
+      return damaged(in, "the blosc chunk of %" PRId64 " bytes of %s (at byte %" PRIu64 ") "
+                     "claims %" PRIu64 " bytes compressed and %" PRIu64 " uncompressed; "
+                     "expected at most %" PRId64 " and exactly %" PRIu64, size, what, chunk - 8,
+                     le(header + 12, 4), le(header + 4, 4), size, bytes);
+    in->pos = chunk;
+  }
+  in->pos += (uint64_t)size;
+  return 0;
+}
+
+/* io::readCompressedValues: a node's values (count of them, active of which are on):
+ * the mask-compression flag byte, up to two inactive values, a selection mask, then the
+ * values (only the active ones when the grid is mask-compressed and the flag says so), as
+ * 16-bit floats when the grid saves floats as half (HalfReader: nothing at all for no
+ * values). */
+static int read_values(vdb_in *in, const tree_walk *w, uint64_t count, uint32_t active,
+                       uint64_t selection_bytes, const char *what) {
+  char phrase[224];
+  unsigned char flag;
+  snprintf(phrase, sizeof phrase, "%s's compression flag (1 byte)", what);
+  if (get(in, &flag, 1, phrase)) return 1;
+  const int8_t metadata = (int8_t)flag;
+  /* NO_MASK_AND_ONE_INACTIVE_VAL, MASK_AND_ONE_INACTIVE_VAL, MASK_AND_TWO_INACTIVE_VALS */
+  const int inactive = metadata == 2 || metadata == 4 ? 1 : metadata == 5 ? 2 : 0;
+  snprintf(phrase, sizeof phrase, "%s's inactive values (%d x %" PRIu64 " bytes)", what, inactive,
+           w->type.value_bytes);
+  if (skip(in, inactive * w->type.value_bytes, phrase)) return 1;
+  if (metadata == 3 || metadata == 4 || metadata == 5) {
+    snprintf(phrase, sizeof phrase, "%s's selection mask (%" PRIu64 " bytes)", what,
+             selection_bytes);
+    if (skip(in, selection_bytes, phrase)) return 1;
+  }
+  if ((w->compression & COMPRESS_ACTIVE_MASK) && metadata != 6 /* NO_MASK_AND_ALL_VALS */)
+    count = active;
+  const int as_half = w->half && w->type.half_bytes;
+  if (as_half && count < 1) return 0;
+  snprintf(phrase, sizeof phrase, "the %" PRIu64 " values of %s", count, what);
+  return read_chunk(in, w->compression,
+                    count * (as_half ? w->type.half_bytes : w->type.value_bytes), phrase);
+}
+
+/* InternalNode::readTopology (level 0: the root's children, 1: theirs): child mask, value
+ * mask, every value (readCompressedValues), then each child's topology in mask order; a
+ * LeafNode::readTopology is its value mask. */
+static int read_internal(vdb_in *in, tree_walk *w, int level) {
+  const uint64_t bytes = mask_bytes(w->type.log2[level]);
+  char what[96];
+  snprintf(what, sizeof what, "a level-%d internal node", 2 - level);
+  char phrase[160];
+  snprintf(phrase, sizeof phrase, "%s's child mask (%" PRIu64 " bytes)", what, bytes);
+  if (get(in, w->child_mask[level], bytes, phrase)) return 1;
+  snprintf(phrase, sizeof phrase, "%s's value mask (%" PRIu64 " bytes)", what, bytes);
+  if (get(in, w->value_mask, bytes, phrase)) return 1;
+  const uint32_t active = count_on(w->value_mask, bytes);
+  if (read_values(in, w, 8 * bytes, active, bytes, what)) return 1;
+  const unsigned char *children = w->child_mask[level];
+  const uint64_t leaf_bytes = mask_bytes(w->type.log2[2]);
+  for (uint64_t i = 0; i < 8 * bytes; i++) {
+    if (!(children[i / 8] >> (i % 8) & 1)) continue;
+    if (level == 0) {
+      if (read_internal(in, w, 1)) return 1;
+      continue;
+    }
+    if (w->leaves == w->leaf_capacity) {
+      const size_t capacity = w->leaf_capacity ? 2 * w->leaf_capacity : 1024;
+      unsigned char *grown = realloc(w->leaf_masks, capacity * leaf_bytes);
+      if (!grown) return sim_fail(in->err, "%s: out of memory checking the file", in->path);
+      w->leaf_masks = grown;
+      w->leaf_capacity = capacity;
+    }
+    if (get(in, w->leaf_masks + w->leaves * leaf_bytes, leaf_bytes, "a leaf's value mask"))
+      return 1;
+    w->leaves++;
+  }
+  return 0;
+}
+
+/* std::map<Coord, NodeStruct>'s order (Coord::operator<: x, then y, then z), and the file
+ * order among equal origins. */
+static int by_origin(const void *a, const void *b) {
+  const root_child *x = a, *y = b;
+  for (int i = 0; i < 3; i++)
+    if (x->origin[i] != y->origin[i]) return x->origin[i] < y->origin[i] ? -1 : 1;
+  return (x->order > y->order) - (x->order < y->order);
+}
+
+/* The rest of RootNode::readTopology (tiles: Coord, value, active flag; children: Coord
+ * and the node), which must end at the grid's block offset, then Tree::readBuffers:
+ * RootNode visits its children in its std::map's order (a later child at the same origin
+ * replaces an earlier one), each InternalNode its children in mask order, and each
+ * LeafNode::readBuffers passes its value mask and reads its 8^3 values. */
+static int walk_tree(vdb_in *in, tree_walk *w, uint32_t tiles, uint32_t children,
+                     uint64_t block_pos, uint64_t end_pos) {
+  char phrase[160];
+  snprintf(phrase, sizeof phrase, "the root's %" PRIu32 " tiles", tiles);
+  if (skip(in, (uint64_t)tiles * (13 + w->type.value_bytes), phrase)) return 1;
+  int bad = 0;
+  uint64_t largest = 0;
+  for (int l = 0; l < 3; l++)
+    if (mask_bytes(w->type.log2[l]) > largest) largest = mask_bytes(w->type.log2[l]);
+  w->child_mask[0] = malloc(mask_bytes(w->type.log2[0]));
+  w->child_mask[1] = malloc(mask_bytes(w->type.log2[1]));
+  w->value_mask = malloc(largest);
+  w->children = malloc(((size_t)children + 1) * sizeof *w->children);
+  if (!w->child_mask[0] || !w->child_mask[1] || !w->value_mask || !w->children)
+    bad = sim_fail(in->err, "%s: out of memory checking the file", in->path);
+  for (uint32_t c = 0; !bad && c < children; c++) {
+    unsigned char b[12];
+    bad = get(in, b, 12, "a root child's origin (12 bytes)");
+    if (bad) break;
+    root_child *child = &w->children[w->child_count++];
+    for (int a = 0; a < 3; a++) child->origin[a] = (int32_t)le(b + 4 * a, 4);
+    child->first_leaf = w->leaves;
+    child->order = c;
+    bad = read_internal(in, w, 0);
+    child->leaf_count = w->leaves - child->first_leaf;
+  }
+  /* File::readGrid reads the buffers right after the topology (Archive::readGrid), other
+   * paths seek to the block offset first; OpenVDB writes the one right after the other. */
+  if (!bad && block_pos != UINT64_MAX && in->pos != block_pos)
+    bad = damaged(in, "the tree's topology ends at byte %" PRIu64 ", not at its buffers' "
+                  "offset %" PRIu64, in->pos, block_pos);
+  if (!bad) {
+    qsort(w->children, w->child_count, sizeof *w->children, by_origin);
+    in->end = end_pos;
+    in->within = block_pos != UINT64_MAX ? "the grid's buffers" : "the file";
+    const uint64_t leaf_bytes = mask_bytes(w->type.log2[2]);
+    for (size_t c = 0; !bad && c < w->child_count; c++) {
+      const root_child *child = &w->children[c];
+      if (c + 1 < w->child_count && !memcmp(child->origin, w->children[c + 1].origin,
+                                            sizeof child->origin))
+        continue; /* replaced in the map by the next one */
+      /* The leaf's value mask is stored again before its values; io::File's stream is
+       * seekable, so OpenVDB seeks over that copy and keeps the topology's mask, which
+       * says how many values a mask-compressed leaf stores. */
+      for (size_t l = 0; !bad && l < child->leaf_count; l++) {
+        const unsigned char *mask = w->leaf_masks + (child->first_leaf + l) * leaf_bytes;
+        bad = skip(in, leaf_bytes, "a leaf's value mask");
+        if (!bad)
+          bad = read_values(in, w, 8 * leaf_bytes, count_on(mask, leaf_bytes), leaf_bytes,
+                            "a leaf");
+      }
+    }
+  }
+  free(w->child_mask[0]);
+  free(w->child_mask[1]);
+  free(w->value_mask);
+  free(w->leaf_masks);
+  free(w->children);
+  return bad;
 }
 
 /* io::Archive::readGrid (and File::readGridPartial): readGridCompression, the grid's
  * MetaMap, the transform, then (not for instances) Tree::readTopology: TreeBase's buffer
  * count, then RootNode::readTopology: background, tile count, child count, which it loops
  * over without checking the stream (a damaged count loops billions of times past the
- * end, allocating a node per child). */
-static int read_grid(vdb_in *in, uint32_t version, const char *type, int instance) {
+ * end, allocating a node per child). For the plain value types and with block offsets
+ * (every io::File), the whole tree is walked, topology and buffers (walk_tree): OpenVDB
+ * allocates each compressed chunk's size as read, and a damaged chunk also leaks the
+ * node being read (RootNode::readTopology is not exception-safe). */
+static int read_grid(vdb_in *in, uint32_t version, const char *type, int instance,
+                     uint64_t block_pos, uint64_t end_pos, int *walked) {
+  uint32_t compression = 0;
   if (version >= VERSION_NODE_MASK_COMPRESSION &&
-      skip(in, 4, "the grid's compression flags (4 bytes)"))
+      get_u32(in, &compression, "the grid's compression flags (4 bytes)"))
     return 1;
-  if (read_metamap(in, "grid metadata")) return 1;
+  /* GridBase::saveFloatAsHalf reads the grid's own metadata item (MetaMap::readMeta
+   * replaces what the descriptor's "_HalfFloat" set): without one, full floats */
+  int half = 0;
+  if (read_metamap(in, "grid metadata", &half)) return 1;
+  /* Before 219 the transform had another layout (and before 216 followed the topology):
+   * the metadata, read the same way by every version, is all that is checked. */
+  if (version < VERSION_NEW_TRANSFORM) return 0;
   if (read_map(in, version, 0)) return 1;
-  if (instance) return 0;
-  uint64_t value_bytes, child_bytes;
-  tree_layout(type, &value_bytes, &child_bytes);
+  if (instance) {
+    if (walked) *walked = 1;
+    return 0;
+  }
+  const tree_type t = tree_layout(type);
+  const uint64_t value_bytes = t.value_bytes, child_bytes = root_child_bytes(&t);
   char phrase[224];
   snprintf(phrase, sizeof phrase, "the tree's buffer count and background (%" PRIu64 " bytes)",
            4 + value_bytes);
@@ -371,7 +677,12 @@ static int read_grid(vdb_in *in, uint32_t version, const char *type, int instanc
   snprintf(phrase, sizeof phrase, "the topology of the root's %" PRIu32 " tiles and %" PRIu32
            " child nodes (%" PRIu64 " bytes or more)", tiles, children,
            tiles * (13 + value_bytes) + children * child_bytes);
-  return need(in, tiles * (13 + value_bytes) + children * child_bytes, phrase);
+  if (need(in, tiles * (13 + value_bytes) + children * child_bytes, phrase)) return 1;
+  if (!t.walk || version < VERSION_NODE_MASK_COMPRESSION) return 0;
+  tree_walk w = {.type = t, .half = half, .compression = compression};
+  if (walk_tree(in, &w, tiles, children, block_pos, end_pos)) return 1;
+  if (walked) *walked = 1;
+  return 0;
 }
 
 /* io::File::readGridDescriptors: readGridCount, then per grid GridDescriptor::read
@@ -411,10 +722,18 @@ static int read_descriptors(vdb_in *in, uint32_t version, int has_offsets) {
     const int instance = parent_len > 0;
     const int64_t size = (int64_t)in->size, here = (int64_t)in->pos;
     if (!has_offsets) {
-      /* io::Stream output: the grids follow their descriptors inline; without decoding the
-       * whole tree the next descriptor cannot be found, so only the first grid is checked */
+      /* io::Stream output: each grid follows its descriptor inline, buffers right after
+       * the topology; the next descriptor follows the grid, found only by walking the
+       * whole tree (where a grid is not walked, the grids after it are not checked). */
       snprintf(in->section, sizeof in->section, "grid '%s'", name);
-      return version >= VERSION_NEW_TRANSFORM ? read_grid(in, version, type, instance) : 0;
+      int walked = 0;
+      if (read_grid(in, version, type, instance, UINT64_MAX, in->size, &walked))
+        return 1;
+      if (!walked) return 0;
+      snprintf(in->section, sizeof in->section, "header");
+      in->end = in->size;
+      in->within = "the file";
+      continue;
     }
     /* io::Archive::writeGrid puts the grid right after its descriptor and the blocks
      * (buffers) after the topology; writeGridInstance leaves the block offset 0 */
@@ -426,15 +745,14 @@ static int read_descriptors(vdb_in *in, uint32_t version, int has_offsets) {
       return damaged(in, "grid '%s' has offsets %" PRId64 ", %" PRId64 ", %" PRId64 " (grid, "
                      "blocks, end); expected %" PRId64 " <= blocks <= end <= %" PRIu64,
                      name, grid_pos, block_pos, end_pos, here, in->size);
-    if (version >= VERSION_NEW_TRANSFORM) {
-      snprintf(in->section, sizeof in->section, "grid '%s'", name);
-      in->end = (uint64_t)(instance ? end_pos : block_pos);
-      in->within = instance ? "the grid" : "the grid's metadata and topology";
-      if (read_grid(in, version, type, instance)) return 1;
-      snprintf(in->section, sizeof in->section, "header");
-      in->end = in->size;
-      in->within = "the file";
-    }
+    snprintf(in->section, sizeof in->section, "grid '%s'", name);
+    in->end = (uint64_t)(instance ? end_pos : block_pos);
+    in->within = instance ? "the grid" : "the grid's metadata and topology";
+    if (read_grid(in, version, type, instance, (uint64_t)block_pos, (uint64_t)end_pos, NULL))
+      return 1;
+    snprintf(in->section, sizeof in->section, "header");
+    in->end = in->size;
+    in->within = "the file";
     in->pos = (uint64_t)end_pos;  /* GridDescriptor::seekToEnd */
   }
   return 0;
@@ -454,7 +772,7 @@ int vdb_precheck_file(const char *path, sim_error *err) {
   int has_offsets = 1;
   /* io::File::open: the header, the file's MetaMap, the grid descriptors */
   const int bad = read_header(&in, &version, &has_offsets) ||
-                  read_metamap(&in, "file metadata") ||
+                  read_metamap(&in, "file metadata", NULL) ||
                   read_descriptors(&in, version, has_offsets);
   close(in.fd);
   return bad;

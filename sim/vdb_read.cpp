@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cfloat>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -142,10 +143,12 @@ int copy_to_dense(const GridT &grid, const char *path, long long max_voxels,
       if (b.empty()) continue;
       tiles += (long long)b.volume();
     }
-    if (!std::isfinite(v)) {
+    // A double grid's finite values past FLT_MAX would turn infinite in the float copy.
+    if (!std::isfinite(v) || std::fabs(v) > (double)FLT_MAX) {
       const openvdb::Coord c = b.min();
-      set_error(err, "%s: grid '%s' has a non-finite value (%g) at voxel (%d, %d, %d)", path,
-                grid.getName().c_str(), v, c.x(), c.y(), c.z());
+      set_error(err, "%s: grid '%s' has a %s value (%g) at voxel (%d, %d, %d)", path,
+                grid.getName().c_str(), std::isfinite(v) ? "too large (past float's range)"
+                : "non-finite", v, c.x(), c.y(), c.z());
       free(values);
       return 1;
     }
@@ -231,9 +234,12 @@ extern "C" int vdb_read_dense(const char *path, const vdb_read_desc *desc, vdb_d
       file.close();
       return 1;
     }
-    openvdb::GridBase::Ptr base = file.readGrid(name);
-    // The metadata of all grids, to name the types when the requested one is wrong.
+    // The metadata of all grids, to name the types when the requested one is wrong. Read
+    // before the grid: a damaged tree can leave the stream failed without an exception,
+    // and a later read then takes its lengths from whatever the variables held (a 1.1 GB
+    // string in Transform::read; tests/fuzz/regressions/vdb/).
     openvdb::GridPtrVecPtr meta = file.readAllGridMetadata();
+    openvdb::GridBase::Ptr base = file.readGrid(name);
     file.close();
     double voxel_size[3], translation[3];
     int status;

@@ -3,6 +3,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
 #include <glob.h>
+#include <inttypes.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,6 +12,11 @@
 #include <unistd.h>
 
 #include "sim/vdb_import.h"
+
+/* At most this many frames from the first to the last (2^20: 12 hours at 24 fps): the
+ * missing frames are listed one by one, and a glob matching unrelated files numbered 1
+ * and 2000000000 asked for an 8 GB list (and overflowed int computing its size). */
+enum { max_span = 1 << 20 };
 
 /* The last run of digits in the file name (not the folders); -1 if none. */
 static long frame_of(const char *path, int *digits_start, int *digits_len) {
@@ -56,8 +63,12 @@ static int by_frame(const void *a, const void *b) {
   return strcmp(x->path, y->path);
 }
 
-/* A printf pattern's one integer conversion (%d, %4d, %04d): its span in pattern. */
+/* A printf pattern's one integer conversion (%d, %4d, %04d; width at most 3 digits): its
+ * span in pattern. The pattern becomes snprintf's format with one int argument, so it is
+ * one only if every other '%' is "%%": a name like "x%s%d.vdb" (or a second %d) is not a
+ * pattern (it used to reach snprintf, which read a pointer that was never passed). */
 static int find_conversion(const char *pattern, int *start, int *end) {
+  int found = 0;
   for (const char *p = pattern; *p; p++) {
     if (*p != '%') continue;
     if (p[1] == '%') {
@@ -65,24 +76,37 @@ static int find_conversion(const char *pattern, int *start, int *end) {
       continue;
     }
     const char *q = p + 1;
-    while (isdigit((unsigned char)*q)) q++;
-    if (*q == 'd' || *q == 'i' || *q == 'u') {
-      *start = (int)(p - pattern);
-      *end = (int)(q - pattern) + 1;
-      return 1;
-    }
+    while (isdigit((unsigned char)*q) && q - p <= 3) q++;
+    if (found || (*q != 'd' && *q != 'i' && *q != 'u')) return 0;
+    *start = (int)(p - pattern);
+    *end = (int)(q - pattern) + 1;
+    found = 1;
+    p = q;
   }
-  return 0;
+  return found;
 }
 
-/* fluid_data_####.vdb -> fluid_data_%04d.vdb */
+/* fluid_data_####.vdb -> fluid_data_%04d.vdb (a '%' of the name becomes "%%"). */
 static int hashes_to_printf(const char *in, char *out, size_t out_size) {
   const char *h = strchr(in, '#');
   if (!h) return 0;
   size_t n = 0;
   while (h[n] == '#') n++;
-  int w = snprintf(out, out_size, "%.*s%%0%zud%s", (int)(h - in), in, n, h + n);
-  return w > 0 && (size_t)w < out_size;
+  size_t used = 0;
+  for (const char *p = in; *p && used + 2 < out_size; p++) {
+    if (p == h) {
+      int w = snprintf(out + used, out_size - used, "%%0%zud", n);
+      if (w < 0 || (size_t)w >= out_size - used) return 0;
+      used += (size_t)w;
+      p += n - 1;
+      continue;
+    }
+    if (*p == '%') out[used++] = '%';
+    out[used++] = *p;
+  }
+  if (used + 2 >= out_size) return 0;
+  out[used] = '\0';
+  return 1;
 }
 
 static int add_glob(entry_list *list, const char *pattern, int *matched) {
@@ -109,10 +133,10 @@ static int add_pattern(entry_list *list, const char *pattern, int first, int las
   char path[4096];
   if (last >= 0 && first >= 0) {
     /* A closed range: try every frame (missing ones are found later). */
-    for (int f = first; f <= last; f++) {
-      snprintf(path, sizeof path, pattern, f);
+    for (int64_t f = first; f <= last; f++) {
+      snprintf(path, sizeof path, pattern, (int)f);
       if (access(path, F_OK) == 0) {
-        if (push(list, f, path)) return 1;
+        if (push(list, (int)f, path)) return 1;
         (*matched)++;
       }
     }
@@ -120,14 +144,29 @@ static int add_pattern(entry_list *list, const char *pattern, int first, int las
   }
   /* Open range: glob the digits, then keep the names the pattern reproduces. */
   char globbed[4096];
-  snprintf(globbed, sizeof globbed, "%.*s[0-9]*%s", s, pattern, pattern + e);
+  size_t used = 0, digits_at = 0; /* where a matching name's digits start */
+  for (int i = 0; pattern[i] && used + 8 < sizeof globbed; i++) {
+    if (i == s) {
+      digits_at = used;
+      memcpy(globbed + used, "[0-9]*", 6);
+      used += 6;
+      i = e - 1;
+      continue;
+    }
+    globbed[used++] = pattern[i];
+    if (pattern[i] == '%') i++; /* "%%" names one '%' */
+  }
+  globbed[used] = '\0';
   glob_t g;
   int status = glob(globbed, 0, NULL, &g);
   if (status == GLOB_NOMATCH) return 0;
   if (status != 0) return 1;
   for (size_t i = 0; i < g.gl_pathc; i++) {
     const char *name = g.gl_pathv[i];
-    long f = strtol(name + s, NULL, 10);
+    /* a glob character before the digits ("*_%04d.vdb") moves them: such a pattern never
+     * reproduces a name (below), and the offset may even lie past the name's end */
+    if (digits_at > strlen(name)) continue;
+    long f = strtol(name + digits_at, NULL, 10);
     snprintf(path, sizeof path, pattern, (int)f);
     if (strcmp(path, name) != 0) continue;
     if (push(list, (int)f, name)) {
@@ -144,6 +183,11 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
                       vdb_sequence *out, sim_error *err) {
   *out = (vdb_sequence){0};
   entry_list list = {0};
+  if (first >= 0 && last >= 0 && (int64_t)last - first + 1 > max_span) {
+    snprintf(err->message, sizeof err->message, "frames %d..%d: more than %d frames", first,
+             last, max_span);
+    return 1;
+  }
   for (int n = 0; n < input_count; n++) {
     const char *in = inputs[n];
     char pattern[4096];
@@ -200,8 +244,15 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
   out->count = kept;
   out->frames = malloc((size_t)kept * sizeof(int));
   out->paths = malloc((size_t)kept * sizeof(char *));
-  const int lo = first >= 0 ? first : list.items[0].frame;
-  const int hi = last >= 0 ? last : list.items[kept - 1].frame;
+  const int64_t lo = first >= 0 ? first : list.items[0].frame;
+  const int64_t hi = last >= 0 ? last : list.items[kept - 1].frame;
+  if (hi - lo + 1 > max_span) {
+    snprintf(err->message, sizeof err->message,
+             "%s: frame numbers %" PRId64 " to %" PRId64 " span more than %d frames (a pattern "
+             "or folder matching unrelated files?)", input_count ? inputs[0] : "(no input)", lo,
+             hi, max_span);
+    goto fail;
+  }
   out->missing = malloc((size_t)(hi - lo + 1 > 0 ? hi - lo + 1 : 1) * sizeof(int));
   if (!out->frames || !out->paths || !out->missing) {
     snprintf(err->message, sizeof err->message, "out of memory listing %d frames", kept);
@@ -212,9 +263,9 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
     out->paths[i] = list.items[i].path;
   }
   int i = 0;
-  for (int f = lo; f <= hi; f++) {
+  for (int64_t f = lo; f <= hi; f++) {
     while (i < kept && out->frames[i] < f) i++;
-    if (i >= kept || out->frames[i] != f) out->missing[out->missing_count++] = f;
+    if (i >= kept || out->frames[i] != f) out->missing[out->missing_count++] = (int)f;
   }
   free(list.items);
   return 0;
