@@ -36,3 +36,8 @@ test-sanitize: deps
 clean:
 	rm -rf $(BUILD_DIR) $(SANITIZE_DIR)
 
+# libFuzzer harnesses (tests/fuzz/, docs/reliability.md): each target for FUZZ_SECONDS.
+FUZZ_SECONDS ?= 60
+.PHONY: fuzz
+fuzz: deps
+	@bash tests/fuzz/run.sh all $(FUZZ_SECONDS)

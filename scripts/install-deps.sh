@@ -23,6 +23,8 @@ packages=(
   gnuplot-nox
   # screenshots of the real window without a display
   xvfb xauth
+  # fuzzing (make fuzz): clang and its libFuzzer/sanitizer runtimes (only recommended by clang)
+  clang libclang-rt-14-dev
 )
 
 missing=()
