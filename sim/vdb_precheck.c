@@ -17,8 +17,9 @@
  * overflowing it, a blosc header trusted past its chunk; tests/fuzz/regressions/vdb/). It
  * reads masks and chunk headers only (pread through a 16 KB window; the compressed bytes
  * are skipped, never decoded): about 0.5 ms for a Blender bake frame of 50-90 KB. Bool,
- * mask and point grids, files before version 222 and, in io::Stream files without grid
- * offsets, the grids after such a grid keep the header checks only. */
+ * mask and point grids and, in io::Stream files without grid offsets, the grids after
+ * such a grid keep the header checks only; files of a format before 222 (OpenVDB 3.0)
+ * are refused. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <fcntl.h>
@@ -38,7 +39,6 @@
 #define VDB_MAGIC 0x56444220u
 #define VERSION_GRID_INSTANCING 216
 #define VERSION_BOOST_UUID 218
-#define VERSION_NEW_TRANSFORM 219
 #define VERSION_SELECTIVE_COMPRESSION 220
 #define VERSION_FLOAT_FRUSTUM_BBOX 221
 #define VERSION_NODE_MASK_COMPRESSION 222
@@ -193,6 +193,14 @@ static int read_header(vdb_in *in, uint32_t *version, int *has_offsets) {
     if (get_u32(in, &n, "the file format patch version (4 bytes)")) return 1;
     v += n;
   }
+  /* Older formats (OpenVDB before 3.0, 2014) store transforms, topology and values in
+   * other layouts, each with lengths OpenVDB trusts (fuzzing flipped the version of a
+   * current file to 218 and OpenVDB read a 1.8 GB transform name): refused, not checked. */
+  if (v < VERSION_NODE_MASK_COMPRESSION)
+    return sim_fail(in->err, "%s: cannot read: OpenVDB file format %" PRIu32 " is older than "
+                    "222 (OpenVDB 3.0, 2014), the oldest fogpipe checks before OpenVDB reads "
+                    "it; re-save the file with a current OpenVDB (or it is damaged)", in->path,
+                    v);
   if (v >= 211 && skip(in, 8, "the library version (8 bytes)")) return 1;
   *has_offsets = 1;
   if (v >= 212) {
@@ -285,6 +293,12 @@ static int read_meta_value(vdb_in *in, const char *type, uint32_t type_len, cons
       if (size != fixed[t].bytes)
         return damaged(in, "%s (%s) has size %" PRIu32 ", not %" PRIu32, what, type, size,
                        fixed[t].bytes);
+      if (!strcmp(fixed[t].name, "bool")) { /* read into a bool: 0 or 1 */
+        unsigned char b;
+        if (get(in, &b, 1, what)) return 1;
+        if (b > 1) return damaged(in, "%s (bool) is %u, not 0 or 1", what, b);
+        in->pos--;
+      }
       snprintf(phrase, sizeof phrase, "the value of %s (%" PRIu32 " bytes)", what, size);
       return skip(in, size, phrase);
     }
@@ -332,7 +346,7 @@ static int read_metamap(vdb_in *in, const char *owner, int *half) {
 
 /* math::Transform::read: readString (the map's type name), then MapBase::read of that
  * map (math/Maps.h), each a fixed number of Vec3d/Mat4d except the frustum, which holds
- * a second map. (Files before version 219 stored old transforms; not checked here.) */
+ * a second map. (Files before format 219 stored old transforms; read_header refuses them.) */
 static int read_map(vdb_in *in, uint32_t version, int depth) {
   static const struct { const char *name; uint32_t bytes; } maps[] = {
       {"AffineMap", 128},          {"UnitaryMap", 128},        /* a Mat4d */
@@ -579,8 +593,16 @@ static int by_origin(const void *a, const void *b) {
 static int walk_tree(vdb_in *in, tree_walk *w, uint32_t tiles, uint32_t children,
                      uint64_t block_pos, uint64_t end_pos) {
   char phrase[160];
-  snprintf(phrase, sizeof phrase, "the root's %" PRIu32 " tiles", tiles);
-  if (skip(in, (uint64_t)tiles * (13 + w->type.value_bytes), phrase)) return 1;
+  /* a tile's active flag is read into a bool: a byte other than 0 or 1 is undefined */
+  for (uint32_t t = 0; t < tiles; t++) {
+    unsigned char active;
+    snprintf(phrase, sizeof phrase, "root tile %" PRIu32 " (%" PRIu64 " bytes)", t + 1,
+             13 + w->type.value_bytes);
+    if (skip(in, 12 + w->type.value_bytes, phrase) || get(in, &active, 1, phrase)) return 1;
+    if (active > 1)
+      return damaged(in, "root tile %" PRIu32 "'s active flag is %u, not 0 or 1 (at byte %"
+                     PRIu64 ")", t + 1, active, in->pos - 1);
+  }
   int bad = 0;
   uint64_t largest = 0;
   for (int l = 0; l < 3; l++)
@@ -655,9 +677,6 @@ static int read_grid(vdb_in *in, uint32_t version, const char *type, int instanc
    * replaces what the descriptor's "_HalfFloat" set): without one, full floats */
   int half = 0;
   if (read_metamap(in, "grid metadata", &half)) return 1;
-  /* Before 219 the transform had another layout (and before 216 followed the topology):
-   * the metadata, read the same way by every version, is all that is checked. */
-  if (version < VERSION_NEW_TRANSFORM) return 0;
   if (read_map(in, version, 0)) return 1;
   if (instance) {
     if (walked) *walked = 1;

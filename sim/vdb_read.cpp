@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cfloat>
+#include <climits>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -116,21 +117,27 @@ int copy_to_dense(const GridT &grid, const char *path, long long max_voxels,
     set_error(err, "%s: grid '%s' is empty (no active voxels)", path, grid.getName().c_str());
     return 1;
   }
-  const openvdb::Coord dim = box.dim();
-  const long long count = (long long)dim.x() * dim.y() * dim.z();
-  if (dim.x() <= 0 || dim.y() <= 0 || dim.z() <= 0 || count > max_voxels) {
-    set_error(err, "%s: grid '%s' spans %d x %d x %d voxels (%lld), more than the limit of "
-              "%lld", path, grid.getName().c_str(), dim.x(), dim.y(), dim.z(), count,
-              max_voxels);
+  // In 64 bits: CoordBBox::dim() is int and a damaged file's box spans up to 2^32 a side,
+  // whose product overflowed long long too.
+  const openvdb::Coord lo = box.min(), hi = box.max();
+  long long dim[3];
+  for (int a = 0; a < 3; a++) dim[a] = (long long)hi[a] - lo[a] + 1;
+  const bool fits = dim[0] > 0 && dim[1] > 0 && dim[2] > 0 && dim[0] <= INT_MAX &&
+                    dim[1] <= INT_MAX && dim[2] <= INT_MAX && dim[0] <= max_voxels &&
+                    dim[1] <= max_voxels / dim[0] && dim[2] <= max_voxels / (dim[0] * dim[1]);
+  if (!fits) {
+    set_error(err, "%s: grid '%s' spans %lld x %lld x %lld voxels (%.6g), more than the limit "
+              "of %lld", path, grid.getName().c_str(), dim[0], dim[1], dim[2],
+              (double)dim[0] * (double)dim[1] * (double)dim[2], max_voxels);
     return 1;
   }
+  const long long count = dim[0] * dim[1] * dim[2];
   float *values = (float *)calloc((size_t)count, sizeof(float));
   if (!values) {
     set_error(err, "%s: out of memory for %lld voxels", path, count);
     return 1;
   }
-  const openvdb::Coord lo = box.min();
-  const long long sx = 1, sy = dim.x(), sz = (long long)dim.x() * dim.y();
+  const long long sy = dim[0], sz = dim[0] * dim[1];
   long long tiles = 0, negative = 0;
   for (auto it = grid.cbeginValueOn(); it; ++it) {
     const double v = (double)*it;
@@ -157,15 +164,15 @@ int copy_to_dense(const GridT &grid, const char *path, long long max_voxels,
       negative += (long long)b.volume();
       f = 0;
     }
-    for (int k = b.min().z(); k <= b.max().z(); k++)
-      for (int j = b.min().y(); j <= b.max().y(); j++) {
-        float *row = values + (k - lo.z()) * sz + (j - lo.y()) * sy - lo.x() * sx;
-        for (int i = b.min().x(); i <= b.max().x(); i++) row[i] = f;
+    for (long long k = b.min().z(); k <= b.max().z(); k++)
+      for (long long j = b.min().y(); j <= b.max().y(); j++) {
+        float *row = values + (k - lo.z()) * sz + (j - lo.y()) * sy;
+        for (long long i = b.min().x(); i <= b.max().x(); i++) row[i - lo.x()] = f;
       }
   }
-  out->dim[0] = dim.x();
-  out->dim[1] = dim.y();
-  out->dim[2] = dim.z();
+  out->dim[0] = (int)dim[0];
+  out->dim[1] = (int)dim[1];
+  out->dim[2] = (int)dim[2];
   out->index_min[0] = lo.x();
   out->index_min[1] = lo.y();
   out->index_min[2] = lo.z();
