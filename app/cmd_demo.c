@@ -293,13 +293,13 @@ int cmd_demo(int argc, char **argv) {
   if (!(display && *display) && !(wayland && *wayland))
     return record_instead(config_path, frames ? frames : HEADLESS_FRAMES,
                           "no display (DISPLAY and WAYLAND_DISPLAY are unset)");
-  if (config.fog.model != SCENE_MODEL_FOGMAP) {
+  if (config.fog.model != FOG_MODEL_FOGMAP) {
     /* Nothing to simulate live in the other models: show the scene with the free camera. */
     printf("fogpipe demo: %s's [fog] model has no simulation to animate: opening it in "
            "fogpipe view\n", config_path);
     fflush(stdout);
     char *view_argv[] = {"view", (char *)config_path, "--play", NULL};
-    return cmd_view(config.fog.model == SCENE_MODEL_VOLUME ? 3 : 2, view_argv);
+    return cmd_view(config.fog.model == FOG_MODEL_VOLUME ? 3 : 2, view_argv);
   }
   render_error gerr = {{0}};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW,

@@ -159,10 +159,10 @@ static int source_render(frame_source *src, int frame, float *rgba, float *trans
     int a = 0, b = 0;
     double w = 0.0;
     const scene_fog_config *f = &src->config->fog;
-    if (f->model == SCENE_MODEL_VOLUME)
+    if (f->model == FOG_MODEL_VOLUME)
       vdb_sequence_position((frame - 1) / src->fps * f->vdb_fps, src->sequence.count,
                             f->vdb_loop, &a, &b, &w);
-    if (f->model == SCENE_MODEL_VOLUME &&
+    if (f->model == FOG_MODEL_VOLUME &&
         render_fog_set_volume_time(render_session_fog(src->session), src->config,
                                    &src->sequence, a, b, w, &rerr)) {
       snprintf(error, size, "%s", rerr.message);
@@ -258,12 +258,12 @@ static int record_into(const record_job *job, recorder *rec) {
   int status = 0;
   char error[600] = "";
   const size_t n = (size_t)width * height;
-  if (done < last && config.fog.model != SCENE_MODEL_FOGMAP) {
+  if (done < last && config.fog.model != FOG_MODEL_FOGMAP) {
     /* The other models through a render session: a volume steps through its VDB frames,
      * the analytic models stand still. Frames are independent: nothing to re-run on
      * --resume. */
     render_frame_error ferr = {{0}};
-    if (config.fog.model == SCENE_MODEL_VOLUME &&
+    if (config.fog.model == FOG_MODEL_VOLUME &&
         render_fog_volume_sequence(&config, &src.sequence, &gerr)) {
       fprintf(stderr, "fogpipe %s: %s\n", cmd, gerr.message);
       return 1;

@@ -230,7 +230,7 @@ int cmd_view(int argc, char **argv) {
   }
   playback.playing = play;
   playback.start_time = glfwGetTime();
-  if (cfg.fog.model == SCENE_MODEL_VOLUME) {
+  if (cfg.fog.model == FOG_MODEL_VOLUME) {
     if (render_fog_volume_sequence(&cfg, &playback.sequence, &err)) goto gl_fail;
     /* render_fog_create showed vdb_frame (so it is in the sequence) */
     playback.shown = playback.start = vdb_frame_index(

@@ -61,13 +61,20 @@ typedef struct key_spec {
 #define MIN_LENGTH 1e-4
 #define MAX_EXTINCTION 1e12
 #define MAX_RADIANCE 1e4
+/* "|fogmap|homogeneous|...": the model table's names in kind order (V_ENUM's value is the
+ * index, so the kind); keys[] reads it from its second character. */
+static const char model_names[] =
+#define FOG_MODEL_ROW(KIND, id, label, keys, pyramid) "|" #id
+#include "render/fog_models.def"
+#undef FOG_MODEL_ROW
+    ;
 static const key_spec keys[] = {
-    {"fog", "model", V_ENUM, F(fog.model), 0, 0, "fogmap|homogeneous|height|rbf|volume", 0, 0},
+    {"fog", "model", V_ENUM, F(fog.model), 0, 0, model_names + 1, 0, 0},
     {"fog", "fogmap", V_PATH, F(fog.fogmap), 0, 0, NULL, F(fog.fogmap_line), sizeof(((scene_config *)0)->fog.fogmap)},
     {"fog", "channel", V_STRING, F(fog.channel), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.channel)},
     {"fog", "density_scale", V_DOUBLE, F(fog.density_scale), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"fog", "basis", V_ENUM, F(fog.degree), 0, 0, "haar|linear|quadratic", 0, 0},
-    {"fog", "levels", V_INT, F(fog.levels), 0, 16, NULL, 0, 0},
+    {"fog", "levels", V_INT, F(fog.levels), 0, FOG_MAX_LEVELS, NULL, 0, 0},
     {"fog", "mu", V_DOUBLE, F(fog.mu), 0, 1, NULL, 0, 0},
     {"fog", "lod", V_ENUM, F(fog.lod), 0, 0, "sum|switch", 0, 0},
     {"fog", "filtering", V_ENUM, F(fog.filtering), 0, 0, "manual|hardware", 0, 0},
@@ -469,17 +476,17 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
              "%s: [box] top (%g) must be above floor (%g)", path, cfg->box.top, cfg->box.floor);
     return 1;
   }
-  if (cfg->fog.model == SCENE_MODEL_RBF && cfg->fog.rbf_count == 0) {
+  if (cfg->fog.model == FOG_MODEL_RBF && cfg->fog.rbf_count == 0) {
     s.line = cfg->fog.model_line;
     fail(&s, "fog", "model", "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' line");
     return 1;
   }
-  if (cfg->fog.model == SCENE_MODEL_VOLUME && !cfg->fog.vdb[0]) {
+  if (cfg->fog.model == FOG_MODEL_VOLUME && !cfg->fog.vdb[0]) {
     s.line = cfg->fog.model_line;
     fail(&s, "fog", "model", "volume needs a 'vdb = FILE or PATTERN' line (the 3D grid)");
     return 1;
   }
-  if (cfg->fog.model == SCENE_MODEL_HEIGHT) {
+  if (cfg->fog.model == FOG_MODEL_HEIGHT) {
     /* K0 e^{-(y - y0)/H} grows without bound below y0: where the view can reach (down to
      * the camera, the terrain's base and the fog box's floor) it must stay a float. */
     double low = fmin(cfg->camera.position[1], fmin(cfg->terrain.origin[1], cfg->box.floor));
@@ -508,8 +515,14 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
   return 0;
 }
 
+bool scene_config_knows_key(const char *section, const char *key) {
+  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+    if (!strcmp(keys[i].section, section) && !strcmp(keys[i].key, key)) return true;
+  return false;
+}
+
 bool scene_config_has_fog(const scene_config *cfg) {
-  return cfg->fog.model != SCENE_MODEL_FOGMAP || cfg->fog.fogmap[0] || cfg->fog.vdb[0];
+  return cfg->fog.model != FOG_MODEL_FOGMAP || cfg->fog.fogmap[0] || cfg->fog.vdb[0];
 }
 
 void scene_config_camera(const scene_config *cfg, camera *cam) {

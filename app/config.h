@@ -44,22 +44,13 @@ typedef enum scene_profile {
   SCENE_PROFILE_BSPLINE,     /* "bspline": g = sum b_k phi_p((y - origin)/spacing - k) */
 } scene_profile;
 
-/* The fog model of DESIGN §3's ladder (values equal to render/fog_models.h's kinds). */
-typedef enum scene_fog_model {
-  SCENE_MODEL_FOGMAP = 0,  /* "fogmap": the wavelet fogmap (fogmap or vdb) times the profile */
-  SCENE_MODEL_HOMOGENEOUS, /* "homogeneous": K = density_scale everywhere */
-  SCENE_MODEL_HEIGHT,      /* "height": K = density_scale exp(-(y - fog_height)/scale_height) */
-  SCENE_MODEL_RBF,         /* "rbf": K = rbf_base + density_scale sum of the `rbf` Gaussians */
-  SCENE_MODEL_VOLUME,      /* "volume": K = density_scale x frame vdb_frame of `vdb`, in 3D */
-} scene_fog_model;
-
 typedef enum scene_boundary {
   SCENE_BOUNDARY_SYMMETRIC = 0, /* "symmetric" (fog is not periodic) */
   SCENE_BOUNDARY_PERIODIC,      /* "periodic" (the FFT simulation's domain) */
 } scene_boundary;
 
 typedef struct scene_fog_config {
-  scene_fog_model model;
+  fog_model_kind model;               /* a row of render/fog_models.def (its name in [fog] model) */
   int model_line;                     /* where model was set (0: default), for errors */
   char fogmap[SCENE_CONFIG_PATH_MAX]; /* resolved path; "" means no fog */
   char channel[16];                   /* image channel ("" : the only one) */
@@ -151,6 +142,9 @@ typedef struct scene_config {
 
 /* Whether the config has fog at all: a fogmap, a VDB sequence or an analytic model. */
 bool scene_config_has_fog(const scene_config *cfg);
+
+/* Whether [section] key is a key configs may set. */
+bool scene_config_knows_key(const char *section, const char *key);
 
 /* Every documented default (docs/config.md). */
 void scene_config_init(scene_config *cfg);

@@ -21,7 +21,6 @@
 #include "transform/transform.h"
 
 /* The fog pass holds A_0..A_J and D_1..D_J in FOG_PASS_MAX_GRIDS texture slots. */
-#define MAX_LEVELS ((FOG_PASS_MAX_GRIDS - 1) / 2)
 #define MAX_STROKES 256
 #define DEFAULT_GRID 256
 
@@ -92,8 +91,8 @@ typedef struct cpu_stages {
   transform_plan *plan;
   int degree, levels; /* of the plan */
   float *coefficients;
-  float *approx[MAX_LEVELS + 1];
-  float *detail[MAX_LEVELS + 1];
+  float *approx[FOG_MAX_LEVELS + 1];
+  float *detail[FOG_MAX_LEVELS + 1];
   long steps; /* simulation steps taken */
   /* [fog] vdb: the sequence is played instead of simulated (sim stays NULL); frame n
    * shows the fogmap at time (n - 1)·frame_seconds (app/vdb_source.h). */
@@ -251,7 +250,7 @@ static void plan_destroy(cpu_stages *c) {
   c->plan = NULL;
   free(c->coefficients);
   c->coefficients = NULL;
-  for (int l = 0; l <= MAX_LEVELS; l++) {
+  for (int l = 0; l <= FOG_MAX_LEVELS; l++) {
     free(c->approx[l]);
     free(c->detail[l]);
     c->approx[l] = c->detail[l] = NULL;
@@ -271,7 +270,7 @@ static int plan_create(pipeline *p, int degree, int levels, pipeline_error *err)
                                     : TRANSFORM_SYMMETRIC;
   int max_levels = transform_max_levels(w, h, boundary);
   if (levels > max_levels) levels = max_levels;
-  if (levels > MAX_LEVELS) levels = MAX_LEVELS;
+  if (levels > FOG_MAX_LEVELS) levels = FOG_MAX_LEVELS;
   if (levels < 0) levels = 0;
   transform_error terr = {{0}};
   transform_desc desc = {.width = w, .height = h, .levels = levels,
@@ -469,7 +468,7 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
     return NULL;
   }
   p->config = *desc->config;
-  if (p->config.fog.model != SCENE_MODEL_FOGMAP) {
+  if (p->config.fog.model != FOG_MODEL_FOGMAP) {
     /* The other models have nothing to simulate: render and view draw them, and record
      * through a render session (cmd_record.c), a volume stepping through its frames. */
     static const char *const names[] = {"fogmap", "homogeneous", "height", "rbf", "volume"};

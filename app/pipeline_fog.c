@@ -8,7 +8,7 @@
 #include <string.h>
 
 void fog_pyramid_destroy(fog_pyramid *pyramid) {
-  for (int l = 0; l <= FOG_PYRAMID_MAX_LEVELS; l++) {
+  for (int l = 0; l <= FOG_MAX_LEVELS; l++) {
     transform_grid_destroy(&pyramid->approx[l]);
     transform_grid_destroy(&pyramid->detail[l]);
   }

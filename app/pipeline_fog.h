@@ -14,15 +14,14 @@
 #include "render/render_error.h"
 #include "transform/transform.h"
 
-#define FOG_PYRAMID_MAX_LEVELS 12
 
 /* One simulation step's grids: approx[0..levels] = A_0..A_J; detail[1..levels] = D_1..D_J
  * (only when has_details: the sum-of-details LOD method needs them). */
 typedef struct fog_pyramid {
   int levels, degree;
   bool has_details;
-  transform_grid approx[FOG_PYRAMID_MAX_LEVELS + 1];
-  transform_grid detail[FOG_PYRAMID_MAX_LEVELS + 1];
+  transform_grid approx[FOG_MAX_LEVELS + 1];
+  transform_grid detail[FOG_MAX_LEVELS + 1];
 } fog_pyramid;
 
 void fog_pyramid_destroy(fog_pyramid *pyramid);

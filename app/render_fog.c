@@ -9,8 +9,8 @@
 #include "sim/sim.h"
 
 void render_fog_destroy(render_fog *fog) {
-  for (int l = 0; l <= RENDER_FOG_MAX_LEVELS; l++) transform_grid_destroy(&fog->approx[l]);
-  for (int l = 0; l < RENDER_FOG_MAX_LEVELS; l++) transform_grid_destroy(&fog->detail[l]);
+  for (int l = 0; l <= FOG_MAX_LEVELS; l++) transform_grid_destroy(&fog->approx[l]);
+  for (int l = 0; l < FOG_MAX_LEVELS; l++) transform_grid_destroy(&fog->detail[l]);
   if (fog->pass) fog_pass_destroy(fog->pass);
   for (int k = 0; k < 2; k++) vdb_frame_destroy(&fog->played[k]);
   *fog = (render_fog){0};
@@ -230,16 +230,16 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_er
 }
 
 /* An analytic model of the ladder (DESIGN §3): no fogmap and no transform, the pass's
- * parameters alone (config.h, scene_fog_model, says what each key means there). */
+ * parameters alone (render/fog_models.def lists the keys each reads; docs/config.md what they mean). */
 static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
   const scene_fog_config *f = &cfg->fog;
-  bool rbf = f->model == SCENE_MODEL_RBF;
+  bool rbf = f->model == FOG_MODEL_RBF;
   for (int i = 0; rbf && i < f->rbf_count; i++) {
     fog->rbfs[i] = f->rbfs[i];
     fog->rbfs[i].density *= f->density_scale;
   }
   fog->params = (fog_pass_params){
-      .model = (fog_model_kind)f->model,
+      .model = f->model,
       .model_extinction = rbf ? f->rbf_base : f->density_scale,
       .model_y0 = f->fog_height,
       .model_scale_height = f->scale_height,
@@ -253,12 +253,12 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
 int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err) {
   *fog = (render_fog){0};
   const scene_fog_config *f = &cfg->fog;
-  if (f->model == SCENE_MODEL_VOLUME) {
+  if (f->model == FOG_MODEL_VOLUME) {
     int status = render_volume_fog(fog, cfg, err);
     if (status) render_fog_destroy(fog); /* keeps err */
     return status;
   }
-  if (f->model != SCENE_MODEL_FOGMAP) return render_analytic_fog(fog, cfg, err);
+  if (f->model != FOG_MODEL_FOGMAP) return render_analytic_fog(fog, cfg, err);
   if (f->vdb[0]) return render_vdb_fog(fog, cfg, err);
   fogmap map = {0};
   sim_error serr;
@@ -289,14 +289,14 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   int levels = f->levels;
   int max_levels = transform_max_levels(map.width, map.height, boundary);
   if (levels > max_levels) levels = max_levels;
-  if (levels > RENDER_FOG_MAX_LEVELS) levels = RENDER_FOG_MAX_LEVELS;
+  if (levels > FOG_MAX_LEVELS) levels = FOG_MAX_LEVELS;
   transform_plan *plan = NULL;
   transform_error terr = {{0}};
   transform_desc desc = {.width = map.width, .height = map.height, .levels = levels,
                          .basis = basis_of_degree(f->degree), .boundary = boundary};
   size_t n = (size_t)map.width * map.height;
   float *coefficients = transform_alloc_floats(n);
-  float *approx[RENDER_FOG_MAX_LEVELS + 1] = {0}, *detail[RENDER_FOG_MAX_LEVELS + 1] = {0};
+  float *approx[FOG_MAX_LEVELS + 1] = {0}, *detail[FOG_MAX_LEVELS + 1] = {0};
   int status = 1;
   if (!coefficients) {
     snprintf(err->message, sizeof err->message, "out of memory for the fog transform");
@@ -373,7 +373,7 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   }
   status = 0;
 done:
-  for (int l = 0; l <= RENDER_FOG_MAX_LEVELS; l++) free(approx[l]), free(detail[l]);
+  for (int l = 0; l <= FOG_MAX_LEVELS; l++) free(approx[l]), free(detail[l]);
   free(coefficients);
   transform_plan_destroy(plan);
   if (status) {

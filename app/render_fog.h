@@ -13,12 +13,11 @@
 #include "render/gl_util.h"
 #include "transform/transform.h"
 
-#define RENDER_FOG_MAX_LEVELS 7 /* fog_pass: FOG_PASS_MAX_GRIDS = 16 slots = 2J + 1 */
 
 typedef struct render_fog {
   int map_width, map_height, levels, degree;
-  transform_grid approx[RENDER_FOG_MAX_LEVELS + 1];
-  transform_grid detail[RENDER_FOG_MAX_LEVELS]; /* detail[l-1] = D_l */
+  transform_grid approx[FOG_MAX_LEVELS + 1];
+  transform_grid detail[FOG_MAX_LEVELS]; /* detail[l-1] = D_l */
   fog_volume volume;
   double profile_coefficients[SCENE_CONFIG_MAX_PROFILE]; /* volume.profile's own copy */
   fog_rbf rbfs[FOG_MAX_RBFS]; /* model = rbf: params.model_rbfs, density_scale applied */

@@ -41,13 +41,15 @@ enum {
   SCENE_COUNT = 2,
   MAX_ROWS = 1 + 2 * (1 + MARCH_COUNT) + 2 + VOLUME_STEP_COUNT
 };
-static const char *const model_names[MODEL_COUNT] = {"homogeneous", "height", "rbf", "volume"};
+/* The table's rows this bench times (render/fog_models.def: names and labels come from it). */
+static const fog_model_kind model_kinds[MODEL_COUNT] = {FOG_MODEL_HOMOGENEOUS, FOG_MODEL_HEIGHT,
+                                                        FOG_MODEL_RBF, FOG_MODEL_VOLUME};
 static const char *const scene_configs[SCENE_COUNT] = {"rbf_fog_banks.ini",
                                                        "vdb_plume_volume.ini"};
 static const int scene_of_model[MODEL_COUNT] = {0, 0, 0, 1};
 
 typedef struct model_row {
-  int model;        /* index into model_names */
+  int model;        /* index into model_kinds */
   double setting;   /* 0: exact; marching: steps (analytic) or the step in voxels (volume) */
   bool hardware;    /* the volume's exact walk sampling with the hardware's filter */
   char series[48];
@@ -126,7 +128,7 @@ static int write_table(const char *path, const model_row *rows, int count, char 
   if (!f) return 1;
   fprintf(f, "model,method,setting,ms_per_frame,rmse,max_error\n");
   for (int i = 0; i < count; i++)
-    fprintf(f, "%s,%s,%g,%.6g,%.6g,%.6g\n", model_names[rows[i].model], row_method(&rows[i]),
+    fprintf(f, "%s,%s,%g,%.6g,%.6g,%.6g\n", fog_model_table[model_kinds[rows[i].model]].name, row_method(&rows[i]),
             rows[i].setting, rows[i].ms, rows[i].rmse, rows[i].max_error);
   return bench_csv_close(f, path, error, size);
 }
@@ -221,7 +223,7 @@ int bench_models(int argc, char **argv) {
       r->model = m;
       r->hardware = s == -2;
       r->setting = s < 0 ? 0.0 : m == 3 ? volume_steps[s] : march_steps[s];
-      snprintf(r->series, sizeof r->series, "%s %s", model_names[m],
+      snprintf(r->series, sizeof r->series, "%s %s", fog_model_table[model_kinds[m]].name,
                s == -2 ? "exact hardware" : s < 0 ? "exact" : "march");
       r->params = (fog_pass_params){
           .model = models[m].kind, .model_extinction = models[m].extinction,
@@ -281,7 +283,7 @@ int bench_models(int argc, char **argv) {
     char setting[24] = "";
     if (r->setting)
       snprintf(setting, sizeof setting, r->model == 3 ? "%g vox" : "%g", r->setting);
-    printf("%-12s %-14s %8s %10.2f %10.2e %10.2e\n", model_names[r->model], row_method(r),
+    printf("%-12s %-14s %8s %10.2f %10.2e %10.2e\n", fog_model_table[model_kinds[r->model]].name, row_method(r),
            setting, r->ms, r->rmse, r->max_error);
     points[i] = (chart_point){.series = r->series, .x = r->ms,
                               .y = r->max_error > ERROR_FLOOR ? r->max_error : ERROR_FLOOR};
@@ -307,7 +309,7 @@ int bench_models(int argc, char **argv) {
       if (rows[i].model == m && !rows[i].setting && !rows[i].hardware) exact_ms[m] = rows[i].ms;
     if (!matched)
       printf("note: no marching of %s reached max error <= %g; its speedup uses the most "
-             "accurate one\n", model_names[m], MATCHED_ERROR);
+             "accurate one\n", fog_model_table[model_kinds[m]].name, MATCHED_ERROR);
   }
   printf("models: rbf_exact_ms=%.3f rbf_march_speedup_at_matched_error=%.2f "
          "height_exact_ms=%.3f height_march_speedup_at_matched_error=%.2f "

@@ -84,6 +84,11 @@ typedef enum fog_lod_method {
   FOG_LOD_SWITCH,             /* ours: A_l on (d_{l+1}, d_l], A_J on [0, d_J], A_0 beyond d_1 */
 } fog_lod_method;
 
+/* The one level cap: pyramids of at most J = FOG_MAX_LEVELS levels, everywhere (the GL fog
+ * pass holds the 2J + 1 grids in FOG_PASS_MAX_GRIDS slots; configs, the pipeline and the
+ * renderer clamp to it; the GLSL gets it from fog_constants.glsl). */
+#define FOG_MAX_LEVELS 7
+
 typedef struct fog_lod {
   int levels; /* J >= 0 */
   const transform_grid *approx;

@@ -97,3 +97,9 @@ double fog_grid3d_optical_depth_march(const volume_grid_desc *g, double step,
   }
   return sum * dt;
 }
+
+/* The table's CPU twin of FOG_MODEL_VOLUME (fog_models.def). */
+double fog_model_depth_volume(const fog_model *m, const double camera[3], const double dir[3],
+                              double t_surface) {
+  return fog_grid3d_optical_depth(m->grid3d, camera, dir, t_surface);
+}

@@ -1,7 +1,7 @@
-/* The fog-model ladder of DESIGN.md §3 behind one small interface: each model is its
- * parameters, a CPU optical depth in double (fog_models_cpu.c, fog_grid3d_cpu.c) and a
- * GLSL twin with the same function name (render/shaders/fog_models.glsl); the fog pass
- * and the tests treat them alike through fog_model_optical_depth / the pass's `model`.
+/* The fog-model ladder (docs/architecture.md) behind one table (render/fog_models.def): each
+ * model is its parameters (fog_model), a CPU optical depth in double and a GLSL twin of
+ * the same name (render/shaders/fog_models.glsl); the fog pass, the tests, the benchmarks
+ * and the config reader iterate the table.
  *
  *   FOG_MODEL_FOGMAP       the 2.5D wavelet fogmap (fog_field.h), exact per knot cell
  *   FOG_MODEL_HOMOGENEOUS  K = extinction everywhere: OpenGL's GL_EXP fog, tau = e^{-K d}
@@ -13,20 +13,20 @@
  *   FOG_MODEL_VOLUME       K = a dense 3D grid, trilinear (a VDB frame as it is, where the
  *                          2.5D fogmap cannot hold it: tall plumes), exact per lattice cell
  *                          (3D DDA, two Gauss nodes) or ray-marched
- * Adding a model: a kind here, its parameters in fog_model, a CPU function and a GLSL
- * function of the same name, one case in each dispatcher. */
+ * Adding a model: see render/fog_models.def. */
 #ifndef FOGPIPE_RENDER_FOG_MODELS_H
 #define FOGPIPE_RENDER_FOG_MODELS_H
 
 #include "render/fog_field.h"
 #include "render/volume_march.h"
 
+#include <stdbool.h>
+
 typedef enum fog_model_kind {
-  FOG_MODEL_FOGMAP = 0,
-  FOG_MODEL_HOMOGENEOUS,
-  FOG_MODEL_HEIGHT,
-  FOG_MODEL_RBF,
-  FOG_MODEL_VOLUME,
+#define FOG_MODEL_ROW(KIND, id, label, keys, pyramid) FOG_MODEL_##KIND,
+#include "render/fog_models.def"
+#undef FOG_MODEL_ROW
+  FOG_MODEL_COUNT
 } fog_model_kind;
 
 /* The most RBFs one model holds (the GL pass keeps them in uniform arrays). */
@@ -62,9 +62,37 @@ typedef struct fog_model {
 } fog_model;
 
 /* Optical depth from the camera along the unit direction dir up to the first surface
- * t_surface (HUGE_VAL: none; homogeneous and downward height fog then give +inf). */
+ * t_surface (HUGE_VAL: none; homogeneous and downward height fog then give +inf): the
+ * model's CPU twin from the table. */
 double fog_model_optical_depth(const fog_model *model, const double camera[3],
                                const double dir[3], double t_surface);
+
+/* A CPU twin: fog_model_depth_<id> of the table's row. */
+typedef double (*fog_model_depth_fn)(const fog_model *model, const double camera[3],
+                                     const double dir[3], double t_surface);
+
+/* One row of render/fog_models.def. */
+typedef struct fog_model_info {
+  fog_model_kind kind;
+  const char *name;  /* `[fog] model = name`; the GLSL twins are fog_model_depth_<name> and
+                        fog_model_march_<name> */
+  const char *label; /* in charts and benchmark tables */
+  const char *keys;  /* the [fog] keys it reads besides colour, space-separated */
+  bool pyramid;      /* has a wavelet pyramid (transformed per frame) */
+  fog_model_depth_fn optical_depth;
+} fog_model_info;
+
+/* The table, indexed by kind (FOG_MODEL_COUNT rows). */
+extern const fog_model_info fog_model_table[FOG_MODEL_COUNT];
+/* The row of a config name, or NULL. */
+const fog_model_info *fog_model_find(const char *name);
+
+/* The twins the table names, one per row. */
+#define FOG_MODEL_ROW(KIND, id, label, keys, pyramid)                                    \
+  double fog_model_depth_##id(const fog_model *model, const double camera[3],            \
+                              const double dir[3], double t_surface);
+#include "render/fog_models.def"
+#undef FOG_MODEL_ROW
 
 double fog_homogeneous_optical_depth(double extinction, double length);
 /* int_0^L k exp(-(y_c + t dir_y - y0)/H) dt = k e^{-(y_c - y0)/H} L exprel(dir_y L / H). */

@@ -1,6 +1,8 @@
-/* The fog models besides the fogmap (fog_models.h), in double; twins in
- * render/shaders/fog_models.glsl. The volume's integrals are in fog_grid3d_cpu.c. */
+/* The fog models besides the fogmap (fog_models.h), in double, and the model table;
+ * twins in render/shaders/fog_models.glsl. The volume's integrals are in fog_grid3d_cpu.c,
+ * the fogmap's in fog_integral_cpu.c. */
 #include <math.h>
+#include <string.h>
 
 #include "render/fog_models.h"
 
@@ -52,21 +54,46 @@ double fog_rbf_optical_depth(double base, const fog_rbf *rbfs, int count, const 
   return sum;
 }
 
+/* The CPU twins of the table's rows (the volume's lives in fog_grid3d_cpu.c). */
+double fog_model_depth_fogmap(const fog_model *m, const double camera[3], const double dir[3],
+                              double t_surface) {
+  if (!m->lod) return 0.0;
+  return fog_optical_depth_lod(m->volume, m->lod, m->lod_method, camera, dir, t_surface);
+}
+
+double fog_model_depth_homogeneous(const fog_model *m, const double camera[3],
+                                   const double dir[3], double t_surface) {
+  (void)camera, (void)dir;
+  return fog_homogeneous_optical_depth(m->extinction, t_surface);
+}
+
+double fog_model_depth_height(const fog_model *m, const double camera[3], const double dir[3],
+                              double t_surface) {
+  return fog_height_optical_depth(m->extinction, m->y0, m->scale_height, camera[1], dir[1],
+                                  t_surface);
+}
+
+double fog_model_depth_rbf(const fog_model *m, const double camera[3], const double dir[3],
+                           double t_surface) {
+  return fog_rbf_optical_depth(m->extinction, m->rbfs, m->rbf_count, camera, dir, t_surface);
+}
+
+const fog_model_info fog_model_table[FOG_MODEL_COUNT] = {
+#define FOG_MODEL_ROW(KIND, id, label_, keys_, pyramid_)                                      \
+  [FOG_MODEL_##KIND] = {.kind = FOG_MODEL_##KIND, .name = #id, .label = label_, .keys = keys_, \
+                        .pyramid = pyramid_, .optical_depth = fog_model_depth_##id},
+#include "render/fog_models.def"
+#undef FOG_MODEL_ROW
+};
+
+const fog_model_info *fog_model_find(const char *name) {
+  for (int k = 0; k < FOG_MODEL_COUNT; k++)
+    if (!strcmp(fog_model_table[k].name, name)) return &fog_model_table[k];
+  return NULL;
+}
+
 double fog_model_optical_depth(const fog_model *m, const double camera[3], const double dir[3],
                                double t_surface) {
-  switch (m->kind) {
-    case FOG_MODEL_HOMOGENEOUS:
-      return fog_homogeneous_optical_depth(m->extinction, t_surface);
-    case FOG_MODEL_HEIGHT:
-      return fog_height_optical_depth(m->extinction, m->y0, m->scale_height, camera[1], dir[1],
-                                      t_surface);
-    case FOG_MODEL_RBF:
-      return fog_rbf_optical_depth(m->extinction, m->rbfs, m->rbf_count, camera, dir, t_surface);
-    case FOG_MODEL_VOLUME:
-      return fog_grid3d_optical_depth(m->grid3d, camera, dir, t_surface);
-    default: {
-      if (!m->lod) return 0.0;
-      return fog_optical_depth_lod(m->volume, m->lod, m->lod_method, camera, dir, t_surface);
-    }
-  }
+  if ((unsigned)m->kind >= FOG_MODEL_COUNT) return NAN;
+  return fog_model_table[m->kind].optical_depth(m, camera, dir, t_surface);
 }

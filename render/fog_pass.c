@@ -3,6 +3,7 @@
 #include "render/fog_pass.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,8 +12,7 @@
 #include "render/fog_cell_poly.h"
 #include "render/gl_util.h"
 
-/* A variant is one compiled program; its key packs every draw setting that the shader
- * takes as a compile-time constant (fog_pass_variant_key). A draw uses one or two, the
+/* A variant is one compiled program (fog_pass_variant below). A draw uses one or two, the
  * render bench a few dozen; they are kept, looked up by key. */
 #define FOG_PASS_MAX_VARIANTS 256
 
@@ -54,25 +54,63 @@ struct fog_pass {
   gl_target reduced;
 };
 
-/* Key bits: 0 fetch, 1 integrator, 2-3 grid degree, 4-5 profile kind, 6-7 profile degree,
- * 8 single grid (no LOD), 9-11 model, 12 LOD method, 13-14 resolution (0: full, 1: the
- * reduced pass at divisor 2, 2: at divisor 4, 3: the upsampling pass), 15-17 the level
- * count J. llvmpipe executes both sides of a branch under a mask (and the GLSL switches on
- * these settings inside the per-piece code), so each setting as a constant removes the
- * other cases' work from every piece; J as a constant makes the LOD levels straight-line
- * code (docs/integral.md, Performance). */
-#define FOG_PASS_KEY_REDUCED_SHIFT 13
-static int fog_pass_variant_key(int fetch, int integrator, int degree, int profile_kind,
-                                int profile_degree, int single_grid, int model, int lod_method,
-                                int reduced, int levels) {
-  return (fetch & 1) | (integrator & 1) << 1 | (degree & 3) << 2 | (profile_kind & 3) << 4 |
-         (profile_degree & 3) << 6 | (single_grid & 1) << 8 | (model & 7) << 9 |
-         (lod_method & 1) << 12 | (reduced & 3) << FOG_PASS_KEY_REDUCED_SHIFT |
-         (levels & 7) << 15;
+/* One compiled program: every draw setting the shader takes as a compile-time constant.
+ * llvmpipe executes both sides of a branch under a mask (and the GLSL switches on these
+ * settings inside the per-piece code), so each setting as a constant removes the other
+ * cases' work from every piece; J as a constant makes the LOD levels straight-line code
+ * (docs/integral.md, Performance). Describe one with designated initialisers; its key
+ * (fog_pass_variant_key) and its #define block both come from variant_fields. */
+typedef struct fog_pass_variant {
+  int fetch_hardware;     /* FOG_FETCH_HARDWARE: 1 GL_LINEAR, 0 texelFetch */
+  int integrator;         /* FOG_INTEGRATOR: fog_integrator */
+  int degree;             /* FOG_DEGREE: the grids' B-spline degree */
+  int profile_kind;       /* FOG_PROFILE_KIND: fog_profile_kind */
+  int profile_degree;     /* FOG_PROFILE_DEGREE: the B-spline profile's, else 0 */
+  int single_grid;        /* FOG_SINGLE_GRID: 1 no LOD (slot 0 alone) */
+  int model;              /* FOG_MODEL_KIND: fog_model_kind */
+  int lod_method;         /* FOG_LOD_METHOD: fog_lod_method */
+  int reduced;            /* FOG_REDUCED: 1 full resolution, 2 or 4 the reduced pass */
+  int upsample;           /* FOG_UPSAMPLE: 1 the upsampling pass */
+  int levels;             /* FOG_LEVELS: J, 0..FOG_MAX_LEVELS */
+} fog_pass_variant;
+
+static const struct {
+  const char *define;
+  size_t offset;
+  int bits; /* of the key */
+} variant_fields[] = {
+    {"FOG_FETCH_HARDWARE", offsetof(fog_pass_variant, fetch_hardware), 1},
+    {"FOG_INTEGRATOR", offsetof(fog_pass_variant, integrator), 1},
+    {"FOG_DEGREE", offsetof(fog_pass_variant, degree), 2},
+    {"FOG_PROFILE_KIND", offsetof(fog_pass_variant, profile_kind), 2},
+    {"FOG_PROFILE_DEGREE", offsetof(fog_pass_variant, profile_degree), 2},
+    {"FOG_SINGLE_GRID", offsetof(fog_pass_variant, single_grid), 1},
+    {"FOG_MODEL_KIND", offsetof(fog_pass_variant, model), 4},
+    {"FOG_LOD_METHOD", offsetof(fog_pass_variant, lod_method), 1},
+    {"FOG_REDUCED", offsetof(fog_pass_variant, reduced), 3},
+    {"FOG_UPSAMPLE", offsetof(fog_pass_variant, upsample), 1},
+    {"FOG_LEVELS", offsetof(fog_pass_variant, levels), 3},
+};
+#define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
+_Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4,
+               "a fog_pass_variant field outgrew its bits of the key");
+
+static int variant_field(const fog_pass_variant *v, int f) {
+  return *(const int *)((const char *)v + variant_fields[f].offset);
+}
+
+/* The fields packed into bits, in variant_fields' order (21 bits). */
+static int fog_pass_variant_key(const fog_pass_variant *v) {
+  int key = 0, shift = 0;
+  for (int f = 0; f < VARIANT_FIELD_COUNT; f++) {
+    key |= (variant_field(v, f) & ((1 << variant_fields[f].bits) - 1)) << shift;
+    shift += variant_fields[f].bits;
+  }
+  return key;
 }
 
 /* Builds one variant: the fragment text with its #defines inserted after the #version line. */
-static GLuint fog_pass_program(int key, render_error *err) {
+static GLuint fog_pass_program(const fog_pass_variant *v, int key, render_error *err) {
   char *vs = gl_util_shader_text("fog_pass_vs.glsl", err);
   if (!vs) return 0;
   char *fs = gl_util_shader_text("fog_pass_fs.glsl", err);
@@ -80,16 +118,11 @@ static GLuint fog_pass_program(int key, render_error *err) {
     free(vs);
     return 0;
   }
-  char defines[384];
-  const int reduced = (key >> FOG_PASS_KEY_REDUCED_SHIFT) & 3;
-  snprintf(defines, sizeof defines,
-           "#define FOG_FETCH_HARDWARE %d\n#define FOG_INTEGRATOR %d\n#define FOG_DEGREE %d\n"
-           "#define FOG_PROFILE_KIND %d\n#define FOG_PROFILE_DEGREE %d\n"
-           "#define FOG_SINGLE_GRID %d\n#define FOG_MODEL_KIND %d\n#define FOG_LOD_METHOD %d\n"
-           "#define FOG_REDUCED %d\n#define FOG_UPSAMPLE %d\n#define FOG_LEVELS %d\n",
-           key & 1, (key >> 1) & 1, (key >> 2) & 3, (key >> 4) & 3, (key >> 6) & 3,
-           (key >> 8) & 1, (key >> 9) & 7, (key >> 12) & 1,
-           reduced == 1 ? 2 : reduced == 2 ? 4 : 1, reduced == 3, (key >> 15) & 7);
+  char defines[512];
+  size_t used = 0;
+  for (int f = 0; f < VARIANT_FIELD_COUNT; f++)
+    used += (size_t)snprintf(defines + used, sizeof defines - used, "#define %s %d\n",
+                             variant_fields[f].define, variant_field(v, f));
   const char *eol = strchr(fs, '\n');
   size_t head = eol ? (size_t)(eol - fs) + 1 : 0;
   size_t total = strlen(fs) + strlen(defines) + 1;
@@ -111,8 +144,10 @@ static GLuint fog_pass_program(int key, render_error *err) {
   return program;
 }
 
-/* The program of a key, compiled on its first use and kept. */
-static GLuint fog_pass_variant(fog_pass *pass, int key, render_error *err) {
+/* The program of a variant, compiled on its first use and kept (looked up by key). */
+static GLuint fog_pass_variant_program(fog_pass *pass, const fog_pass_variant *v,
+                                       render_error *err) {
+  const int key = fog_pass_variant_key(v);
   for (int i = 0; i < pass->variant_count; i++)
     if (pass->variants[i].key == key) return pass->variants[i].program;
   if (pass->variant_count == FOG_PASS_MAX_VARIANTS) {
@@ -121,7 +156,7 @@ static GLuint fog_pass_variant(fog_pass *pass, int key, render_error *err) {
              FOG_PASS_MAX_VARIANTS);
     return 0;
   }
-  GLuint program = fog_pass_program(key, err);
+  GLuint program = fog_pass_program(v, key, err);
   if (program)
     pass->variants[pass->variant_count++] = (fog_pass_variant_entry){key, program};
   return program;
@@ -137,7 +172,9 @@ int fog_pass_create(fog_pass **out, render_error *err) {
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &pass->max_texture_size);
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &pass->max_3d_texture_size);
   /* The default variant: manual fetch, exact, linear grid, slab profile, one grid. */
-  if (!fog_pass_variant(pass, fog_pass_variant_key(0, 0, 1, 0, 0, 1, 0, 0, 0, 0), err)) {
+  const fog_pass_variant default_variant = {.degree = 1, .single_grid = 1,
+                                            .model = FOG_MODEL_FOGMAP, .reduced = 1};
+  if (!fog_pass_variant_program(pass, &default_variant, err)) {
     free(pass);
     return 1;
   }
@@ -365,7 +402,6 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
                                     int height, int viewport_width, int viewport_height,
                                     render_error *err) {
   const double *c = cam->position;
-  glUniform1i(fog_loc(prog, "fog_model"), (int)params->model);
   glUniform1f(fog_loc(prog, "fog_model_extinction"), (float)params->model_extinction);
   glUniform1f(fog_loc(prog, "fog_model_y0"), (float)(params->model_y0 - c[1]));
   glUniform1f(fog_loc(prog, "fog_model_scale_height"),
@@ -438,8 +474,10 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
                                   int height, render_error *err) {
   bool march = params->integrator == FOG_INTEGRATOR_MARCH;
   bool hardware = params->model == FOG_MODEL_VOLUME && params->fetch == FOG_FETCH_HARDWARE;
-  int key = fog_pass_variant_key(hardware, march, 1, 0, 0, 1, (int)params->model, 0, 0, 0);
-  GLuint prog = fog_pass_variant(pass, key, err);
+  const fog_pass_variant variant = {.fetch_hardware = hardware, .integrator = march,
+                                    .degree = 1, .single_grid = 1, .model = params->model,
+                                    .reduced = 1};
+  GLuint prog = fog_pass_variant_program(pass, &variant, err);
   if (!prog) return 1;
   glUseProgram(prog);
   glUniform1i(fog_loc(prog, "fog_march_steps"),
@@ -593,20 +631,28 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
     slots = 1;
     for (int k = 1; k < FOG_PASS_MAX_GRIDS; k++) reads[k] = false;
   }
-  int key = fog_pass_variant_key(params->fetch == FOG_FETCH_HARDWARE,
-                                 params->integrator == FOG_INTEGRATOR_MARCH,
-                                 pass->slots[first].degree, (int)p->kind,
-                                 p->kind == FOG_PROFILE_BSPLINE ? p->degree : 0, J == 0,
-                                 FOG_MODEL_FOGMAP, J == 0 || params->lod_method == FOG_LOD_SWITCH,
-                                 divisor == 4 ? 2 : divisor == 2 ? 1 : 0, J);
-  GLuint walk_prog = fog_pass_variant(pass, key, err);
+  fog_pass_variant variant = {
+      .fetch_hardware = params->fetch == FOG_FETCH_HARDWARE,
+      .integrator = params->integrator,
+      .degree = pass->slots[first].degree,
+      .profile_kind = (int)p->kind,
+      .profile_degree = p->kind == FOG_PROFILE_BSPLINE ? p->degree : 0,
+      .single_grid = J == 0,
+      .model = FOG_MODEL_FOGMAP,
+      .lod_method = J == 0 ? FOG_LOD_SWITCH : params->lod_method,
+      .reduced = divisor > 1 ? divisor : 1,
+      .levels = J,
+  };
+  GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;
   /* resolution_divisor > 1: the same settings' upsampling variant (fog_pass_fs.glsl,
    * FOG_UPSAMPLE) needs the same uniforms: it walks the pixels no reduced sample matches. */
   GLuint programs[2] = {walk_prog, 0};
   if (divisor > 1) {
-    programs[1] = fog_pass_variant(
-        pass, (key & ~(3 << FOG_PASS_KEY_REDUCED_SHIFT)) | 3 << FOG_PASS_KEY_REDUCED_SHIFT, err);
+    fog_pass_variant upsample = variant;
+    upsample.reduced = 1;
+    upsample.upsample = 1;
+    programs[1] = fog_pass_variant_program(pass, &upsample, err);
     if (!programs[1]) return 1;
   }
   for (int pi = 0; pi < 2 && programs[pi]; pi++) {
@@ -659,13 +705,11 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
     glUniform2dv(fog_loc(prog, "fog_grid_x0"), FOG_PASS_MAX_GRIDS, &x0[0][0]);
     glUniform1dv(fog_loc(prog, "fog_grid_scale"), FOG_PASS_MAX_GRIDS, scale);
     glUniform2iv(fog_loc(prog, "fog_grid_size"), FOG_PASS_MAX_GRIDS, &size[0][0]);
-    glUniform1i(fog_loc(prog, "fog_degree"), pass->slots[first].degree);
     double lo[3], hi[3];
     fog_volume_box(v, lo, hi);
     glUniform3d(fog_loc(prog, "fog_box_min"), lo[0] - c[0], lo[1] - c[1], lo[2] - c[2]);
     glUniform3d(fog_loc(prog, "fog_box_max"), hi[0] - c[0], hi[1] - c[1], hi[2] - c[2]);
     glUniform1f(fog_loc(prog, "fog_extinction_scale"), (float)v->extinction);
-    glUniform1i(fog_loc(prog, "fog_profile_kind"), (int)p->kind);
     glUniform1f(fog_loc(prog, "fog_profile_y0"), (float)(p->y0 - c[1]));
     glUniform1f(fog_loc(prog, "fog_profile_scale_height"),
                 (float)(p->scale_height > 0 ? p->scale_height : 1.0));
@@ -675,18 +719,15 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       float coefficients[FOG_PROFILE_MAX_COEFFICIENTS];
       for (int k = 0; k < p->count; k++) coefficients[k] = (float)p->coefficients[k];
       glUniform1i(fog_loc(prog, "fog_profile_count"), p->count);
-      glUniform1i(fog_loc(prog, "fog_profile_degree"), p->degree);
       glUniform1f(fog_loc(prog, "fog_profile_y_start"), (float)((c[1] - p->origin) / p->spacing));
       glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), (float)(1.0 / p->spacing));
       glUniform1fv(fog_loc(prog, "fog_profile_coefficients"), p->count, coefficients);
     } else {
       glUniform1i(fog_loc(prog, "fog_profile_count"), 0);
-      glUniform1i(fog_loc(prog, "fog_profile_degree"), 0);
       glUniform1f(fog_loc(prog, "fog_profile_y_start"), 0.0f);
       glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), 0.0f);
     }
 
-    glUniform1i(fog_loc(prog, "fog_lod_method"), (int)params->lod_method);
     glUniform1d(fog_loc(prog, "fog_mu"), J > 0 ? params->mu : 1.0);
     glUniform1i(fog_loc(prog, "fog_march_steps"),
                 params->march_steps > 0 ? params->march_steps : 64);

@@ -25,7 +25,7 @@
  *
  * Texture units: 0 and 1 for the surface textures, 2.. for the grid slots. Grid slots:
  * A_l in slot l (l = 0..J), D_l in slot J + l (l = 1..J); a single grid is slot 0 with
- * levels = 0. At most FOG_PASS_MAX_GRIDS slots (J <= 7). All slots of one draw share the
+ * levels = 0. At most FOG_PASS_MAX_GRIDS slots (J <= FOG_MAX_LEVELS). All slots of one draw share the
  * degree of slot 0. A draw needs only the slots its LOD method reads: switching reads
  * slots 0..J, the sum of details slots 0 and J+1..2J. LOD draws also use unit 18 (the
  * slots copied into one 2D array texture, refreshed on the first LOD draw after an
@@ -42,6 +42,8 @@
 #include "transform/transform.h"
 
 #define FOG_PASS_MAX_GRIDS 16
+_Static_assert(2 * FOG_MAX_LEVELS + 1 <= FOG_PASS_MAX_GRIDS,
+               "a pyramid of FOG_MAX_LEVELS levels needs 2J + 1 grid slots");
 
 typedef enum fog_fetch {
   FOG_FETCH_MANUAL = 0, /* texelFetch + the B-spline cell weights in float: exact */

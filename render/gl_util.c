@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "render/fog_shader_text.h"
+
 /* ---- shader text with #include ---- */
 
 typedef struct text_buffer {
@@ -28,7 +30,14 @@ static int append(text_buffer *b, const char *s, size_t n) {
 }
 
 static int expand(text_buffer *out, const char *name, int depth, render_error *err) {
-  const char *text = render_shader_source(name);
+  char generated[FOG_SHADER_GENERATED_MAX];
+  int generated_length = fog_shader_generated(name, generated, sizeof generated);
+  if (generated_length == -2) {
+    snprintf(err->message, sizeof err->message,
+             "generated shader header %s is longer than FOG_SHADER_GENERATED_MAX", name);
+    return 1;
+  }
+  const char *text = generated_length >= 0 ? generated : render_shader_source(name);
   if (!text) {
     snprintf(err->message, sizeof err->message,
              "shader file render/shaders/%s is not embedded (missing, or the build ran "

@@ -43,11 +43,9 @@
 //     approximation switching sets its first walk up in double and starts each next one
 //     where the last ended, in float (fog_walk_coarser), not one double set-up per segment.
 
-#define FOG_PROFILE_SLAB 0
-#define FOG_PROFILE_EXPONENTIAL 1
-#define FOG_PROFILE_BSPLINE 2
-#define FOG_MAX_GRIDS 16
-#define FOG_PROFILE_MAX_COEFFICIENTS 64
+// FOG_PROFILE_*, FOG_MAX_GRIDS, FOG_PROFILE_MAX_COEFFICIENTS: the C headers' values
+// (render/fog_shader_text.c generates fog_constants.glsl from them).
+#include "fog_constants.glsl"
 #define FOG_INFINITY 1e30
 
 // Grid slot k: texture fog_grids[k]; x(t) = fog_grid_x0[k].x + t dir.x fog_grid_scale[k],
@@ -64,11 +62,7 @@ uniform vec2 fog_grid_dyadic[FOG_MAX_GRIDS];
 // runs both sides of every branch under a mask, so a uniform degree or profile kind costs
 // the code of every case; as compile-time constants the dead cases vanish. FOG_SINGLE_GRID:
 // the draw reads slot 0 only (no LOD), so no dynamic index into the sampler array.
-#ifdef FOG_DEGREE
 const int fog_degree = FOG_DEGREE;
-#else
-uniform int fog_degree;
-#endif
 #ifndef FOG_SINGLE_GRID
 #define FOG_SINGLE_GRID 0
 #endif
@@ -98,20 +92,12 @@ uniform dvec3 fog_box_min;  // camera-relative box (double: see fog_optical_dept
 uniform dvec3 fog_box_max;
 uniform float fog_extinction_scale;
 // Profile, camera-relative heights.
-#ifdef FOG_PROFILE_KIND
 const int fog_profile_kind = FOG_PROFILE_KIND;
-#else
-uniform int fog_profile_kind;
-#endif
 uniform float fog_profile_y0;           // exponential: y0 - camera y
 uniform float fog_profile_scale_height; // exponential: H
 uniform float fog_profile_inv_scale_height; // 1 / H
 uniform int fog_profile_count;
-#ifdef FOG_PROFILE_DEGREE
 const int fog_profile_degree = FOG_PROFILE_DEGREE;
-#else
-uniform int fog_profile_degree;
-#endif
 uniform float fog_profile_y_start;      // B-spline: (camera y - origin) / spacing
 uniform float fog_profile_inv_spacing;  // B-spline: 1 / spacing
 uniform float fog_profile_coefficients[FOG_PROFILE_MAX_COEFFICIENTS];

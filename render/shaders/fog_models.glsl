@@ -1,19 +1,10 @@
 // The fog models besides the fogmap (homogeneous, height, Gaussian RBFs, a 3D volume): GLSL
 // twins of render/fog_models_cpu.c (same names, same formulas; render/fog_models.h).
 // Positions arrive camera-relative from the CPU, subtracted there in double.
-#define FOG_MODEL_FOGMAP 0
-#define FOG_MODEL_HOMOGENEOUS 1
-#define FOG_MODEL_HEIGHT 2
-#define FOG_MODEL_RBF 3
-#define FOG_MODEL_VOLUME 4
-#define FOG_MAX_RBFS 64
-#define FOG_EXPREL_SWITCH 0.1
+// FOG_MODEL_*, FOG_MAX_RBFS and FOG_EXPREL_SWITCH come from the C headers
+// (fog_constants.glsl, included by fog_integral.glsl).
 
-#ifdef FOG_MODEL_KIND
 const int fog_model = FOG_MODEL_KIND;  // specialised per variant (render/fog_pass.c)
-#else
-uniform int fog_model;
-#endif
 uniform float fog_model_extinction;
 uniform float fog_model_y0;            // y0 - camera y
 uniform float fog_model_scale_height;
@@ -224,4 +215,36 @@ float fog_model_optical_depth_march(vec3 dir, float t_surface, int steps, float 
   for (int i = 0; i < steps; i++)
     sum += fog_model_extinction_at((float(i) + jitter) * dt * dir);
   return sum * dt;
+}
+
+// ---- the table's twins (render/fog_models.def): one ray, every model's signature -------
+
+// The ray of one pixel: the direction in double (fog_optical_depth_inside) and rounded, its
+// span in the fog's box (fogmap), the surface distance and the marcher's jitter.
+struct fog_ray {
+  dvec3 dir_d;
+  vec3 dir;
+  double t_in, t_out;
+  float t_surface, jitter;
+};
+
+float fog_model_depth_homogeneous(fog_ray r) {
+  return fog_homogeneous_optical_depth(fog_model_extinction, r.t_surface);
+}
+float fog_model_depth_height(fog_ray r) {
+  return fog_height_optical_depth(fog_model_extinction, fog_model_y0, fog_model_scale_height,
+                                  r.dir.y, r.t_surface);
+}
+float fog_model_depth_rbf(fog_ray r) {
+  return fog_rbf_optical_depth(fog_model_extinction, r.dir, r.t_surface);
+}
+float fog_model_depth_volume(fog_ray r) { return fog_grid3d_optical_depth(r.dir, r.t_surface); }
+
+float fog_model_march_homogeneous(fog_ray r) {
+  return fog_model_optical_depth_march(r.dir, r.t_surface, fog_march_steps, r.jitter);
+}
+float fog_model_march_height(fog_ray r) { return fog_model_march_homogeneous(r); }
+float fog_model_march_rbf(fog_ray r) { return fog_model_march_homogeneous(r); }
+float fog_model_march_volume(fog_ray r) {
+  return fog_grid3d_optical_depth_march(r.dir, r.t_surface);
 }

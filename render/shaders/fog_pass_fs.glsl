@@ -12,6 +12,7 @@
 //                                    optical depth and surface distance for
 //                                    fog_upsample_fs.glsl)
 //   and the specialisation constants of fog_integral.glsl
+uniform int fog_march_steps;  // FOG_INTEGRATOR 1: samples per ray (every model's marcher)
 #include "fog_integral.glsl"
 #include "fog_models.glsl"
 
@@ -26,13 +27,9 @@ uniform dvec3 fog_camera_up;             // (double: fog_optical_depth_inside)
 uniform dvec3 fog_camera_forward;
 uniform vec3 fog_colour;
 const int fog_levels = FOG_LEVELS;       // J; 0: one grid (slot 0). Specialised per variant
-#ifdef FOG_LOD_METHOD
-const int fog_lod_method = FOG_LOD_METHOD;  // specialised per variant (render/fog_pass.c)
-#else
-uniform int fog_lod_method;              // 0: sum of details (paper), 1: approximation switching
-#endif
+// 0: sum of details (paper), 1: approximation switching; specialised per variant
+const int fog_lod_method = FOG_LOD_METHOD;
 uniform double fog_mu;
-uniform int fog_march_steps;
 uniform int fog_march_jitter;            // 0: midpoints; 1: per-pixel jitter
 uniform uint fog_frame;
 uniform float fog_depth_limit;           // exact walk: stop once the optical depth exceeds it
@@ -49,7 +46,7 @@ float fog_grid_integral(int grid, dvec3 dir, double t0, double t1, float jitter,
 #endif
 }
 
-#define FOG_MAX_LEVELS ((FOG_MAX_GRIDS - 1) / 2)  // slots 0..J and J+1..2J
+// FOG_MAX_LEVELS (fog_constants.glsl): slots 0..J and J+1..2J
 
 // The levels below are straight-line code, one call per level l = 1..FOG_MAX_LEVELS guarded
 // by l <= J, not a loop: with J a compile-time constant (FOG_LEVELS) the levels beyond it
@@ -147,12 +144,14 @@ float fog_hash(uvec2 p, uint frame) {
   return float(h >> 8) * (1.0 / 16777216.0);
 }
 
-#ifndef FOG_REDUCED
-#define FOG_REDUCED 1
-#endif
-#ifndef FOG_UPSAMPLE
-#define FOG_UPSAMPLE 0
-#endif
+// The fogmap's twins of the model table (its marcher is the same walk with FOG_INTEGRATOR 1).
+float fog_model_depth_fogmap(fog_ray r) {
+  return fog_optical_depth_lod(r.dir_d, r.t_in, r.t_out, r.t_surface, r.jitter);
+}
+float fog_model_march_fogmap(fog_ray r) { return fog_model_depth_fogmap(r); }
+
+#include "fog_model_table.glsl"
+
 
 #if FOG_UPSAMPLE
 // The reduced-resolution fog, second half (fog_pass_params.resolution_divisor): a joint
@@ -223,24 +222,8 @@ void main() {
     // leaves it empty.
     double t_in = 1.0, t_out = 0.0;
     if (!fog_box_entry_exit(dir_d, t_in, t_out)) t_in = 1.0, t_out = 0.0;
-#if FOG_INTEGRATOR == 1
-    if (fog_model == FOG_MODEL_VOLUME)
-      optical_depth = fog_grid3d_optical_depth_march(dir, t_surface);
-    else if (fog_model != FOG_MODEL_FOGMAP)
-      optical_depth = fog_model_optical_depth_march(dir, t_surface, fog_march_steps, jitter);
-    else
-#endif
-    if (fog_model == FOG_MODEL_HOMOGENEOUS)
-      optical_depth = fog_homogeneous_optical_depth(fog_model_extinction, t_surface);
-    else if (fog_model == FOG_MODEL_HEIGHT)
-      optical_depth = fog_height_optical_depth(fog_model_extinction, fog_model_y0,
-                                               fog_model_scale_height, dir.y, t_surface);
-    else if (fog_model == FOG_MODEL_RBF)
-      optical_depth = fog_rbf_optical_depth(fog_model_extinction, dir, t_surface);
-    else if (fog_model == FOG_MODEL_VOLUME)
-      optical_depth = fog_grid3d_optical_depth(dir, t_surface);
-    else
-      optical_depth = fog_optical_depth_lod(dir_d, t_in, t_out, t_surface, jitter);
+    // The variant's model (fog_model_table.glsl, generated from render/fog_models.def).
+    optical_depth = fog_model_optical_depth(fog_ray(dir_d, dir, t_in, t_out, t_surface, jitter));
 #if FOG_REDUCED > 1
     // And the extinction where the ray meets the surface (A_0; 0 outside the box or for
     // the sky): d(optical depth)/dt there, for the upsampling's first-order distance

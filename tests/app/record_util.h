@@ -5,6 +5,7 @@
 #define FOGPIPE_TESTS_APP_RECORD_UTIL_H
 
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <dirent.h>
 #include <math.h>
 #include <fcntl.h>
@@ -62,8 +63,8 @@ static inline pid_t record_start(const char *out, int frames, const char *extra,
 /* Exit status of the child (128 + signal if it was killed). */
 static inline int record_wait(pid_t pid) {
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-  }
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1; /* reaped already (a WNOHANG poll), or no such child */
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
   return -1;

@@ -61,8 +61,8 @@ static fog_model documented_model(const scene_config *cfg, fog_rbf *rbfs) {
     rbfs[i] = f->rbfs[i];
     rbfs[i].density *= f->density_scale;
   }
-  return (fog_model){.kind = (fog_model_kind)f->model,
-                     .extinction = f->model == SCENE_MODEL_RBF ? f->rbf_base : f->density_scale,
+  return (fog_model){.kind = f->model,
+                     .extinction = f->model == FOG_MODEL_RBF ? f->rbf_base : f->density_scale,
                      .y0 = f->fog_height, .scale_height = f->scale_height, .rbfs = rbfs,
                      .rbf_count = f->rbf_count};
 }
@@ -86,7 +86,7 @@ static void check_config(const char *path, const char *label) {
   fog_model m = documented_model(&cfg, rbfs);
   vdb_frame frame = {0};
   volume_grid_desc grid;
-  if (cfg.fog.model == SCENE_MODEL_VOLUME) {
+  if (cfg.fog.model == FOG_MODEL_VOLUME) {
     grid = documented_volume(&cfg, &frame);
     m.grid3d = &grid;
   }
