@@ -257,10 +257,6 @@ static void plan_destroy(cpu_stages *c) {
   }
 }
 
-static transform_basis basis_of_degree(int degree) {
-  return degree == 0 ? TRANSFORM_HAAR : degree == 2 ? TRANSFORM_QUADRATIC : TRANSFORM_LINEAR;
-}
-
 static int plan_create(pipeline *p, int degree, int levels, pipeline_error *err) {
   cpu_stages *c = &p->cpu;
   plan_destroy(c);
@@ -274,7 +270,7 @@ static int plan_create(pipeline *p, int degree, int levels, pipeline_error *err)
   if (levels < 0) levels = 0;
   transform_error terr = {{0}};
   transform_desc desc = {.width = w, .height = h, .levels = levels,
-                         .basis = basis_of_degree(degree), .boundary = boundary};
+                         .basis = transform_basis_of_degree(degree), .boundary = boundary};
   if (transform_plan_create(&c->plan, &desc, &terr)) return fail(err, "transform: %s", terr.message);
   c->coefficients = transform_alloc_floats((size_t)w * h);
   bool ok = c->coefficients != NULL;
@@ -471,11 +467,11 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
   if (p->config.fog.model != FOG_MODEL_FOGMAP) {
     /* The other models have nothing to simulate: render and view draw them, and record
      * through a render session (cmd_record.c), a volume stepping through its frames. */
-    static const char *const names[] = {"fogmap", "homogeneous", "height", "rbf", "volume"};
     fail(err, "%s:%d: [fog] model = %s: the live pipeline simulates or plays a fogmap; "
               "expected model = fogmap here (fogpipe record, render and view draw the other "
               "models)",
-         p->config.path, p->config.fog.model_line, names[p->config.fog.model]);
+         p->config.path, p->config.fog.model_line,
+         fog_model_table[p->config.fog.model].name);
     free(p);
     return NULL;
   }

@@ -7,14 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void fog_pyramid_destroy(fog_pyramid *pyramid) {
-  for (int l = 0; l <= FOG_MAX_LEVELS; l++) {
-    transform_grid_destroy(&pyramid->approx[l]);
-    transform_grid_destroy(&pyramid->detail[l]);
-  }
-  *pyramid = (fog_pyramid){0};
-}
-
 struct pipeline_fog {
   int width, height;
   fog_pass *pass;
@@ -86,21 +78,8 @@ int pipeline_fog_resize(pipeline_fog *fog, int width, int height, render_error *
 }
 
 int pipeline_fog_upload(pipeline_fog *fog, const fog_pyramid *pyramid, render_error *err) {
-  const int levels = pyramid->levels;
-  if (2 * levels + 1 > FOG_PASS_MAX_GRIDS) {
-    snprintf(err->message, sizeof err->message,
-             "%d pyramid levels need %d grid slots; the fog pass has %d", levels,
-             2 * levels + 1, FOG_PASS_MAX_GRIDS);
-    return 1;
-  }
-  /* Slots: A_l in l (0..J), D_l in J + l (1..J) (render/fog_pass.h). */
-  for (int l = 0; l <= levels; l++)
-    if (fog_pass_upload_grid(fog->pass, l, &pyramid->approx[l], err)) return 1;
-  /* Switching reads slots 0..J, the sum of details 0 and J+1..2J (render/fog_pass.h). */
-  if (pyramid->has_details)
-    for (int l = 1; l <= levels; l++)
-      if (fog_pass_upload_grid(fog->pass, levels + l, &pyramid->detail[l], err)) return 1;
-  fog->levels = levels;
+  if (fog_pass_upload_pyramid(fog->pass, pyramid, err)) return 1;
+  fog->levels = pyramid->levels;
   fog->degree = pyramid->degree;
   fog->has_details = pyramid->has_details;
   fog->uploaded = true;

@@ -15,17 +15,6 @@
 #include "transform/transform.h"
 
 
-/* One simulation step's grids: approx[0..levels] = A_0..A_J; detail[1..levels] = D_1..D_J
- * (only when has_details: the sum-of-details LOD method needs them). */
-typedef struct fog_pyramid {
-  int levels, degree;
-  bool has_details;
-  transform_grid approx[FOG_MAX_LEVELS + 1];
-  transform_grid detail[FOG_MAX_LEVELS + 1];
-} fog_pyramid;
-
-void fog_pyramid_destroy(fog_pyramid *pyramid);
-
 typedef struct pipeline_fog_settings {
   const fog_volume *volume;
   float mu;
@@ -40,7 +29,7 @@ typedef struct pipeline_fog pipeline_fog;
 pipeline_fog *pipeline_fog_create(render_error *err);
 void pipeline_fog_destroy(pipeline_fog *fog);
 int pipeline_fog_resize(pipeline_fog *fog, int width, int height, render_error *err);
-/* Copies the grids into textures (re-created when their sizes change). */
+/* Copies the grids (render/fog_field.h) into textures (re-created when their sizes change). */
 int pipeline_fog_upload(pipeline_fog *fog, const fog_pyramid *pyramid, render_error *err);
 /* Draws the fog over the scene target (colour 0, distance 1) into the fog target. */
 int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *scene,

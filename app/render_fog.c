@@ -9,15 +9,10 @@
 #include "sim/sim.h"
 
 void render_fog_destroy(render_fog *fog) {
-  for (int l = 0; l <= FOG_MAX_LEVELS; l++) transform_grid_destroy(&fog->approx[l]);
-  for (int l = 0; l < FOG_MAX_LEVELS; l++) transform_grid_destroy(&fog->detail[l]);
+  fog_pyramid_destroy(&fog->pyramid);
   if (fog->pass) fog_pass_destroy(fog->pass);
   for (int k = 0; k < 2; k++) vdb_frame_destroy(&fog->played[k]);
   *fog = (render_fog){0};
-}
-
-static transform_basis basis_of_degree(int degree) {
-  return degree == 0 ? TRANSFORM_HAAR : degree == 2 ? TRANSFORM_QUADRATIC : TRANSFORM_LINEAR;
 }
 
 /* The fog of a `[fog] vdb` config: frame cfg->fog.vdb_frame of the sequence (the last by
@@ -293,7 +288,7 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   transform_plan *plan = NULL;
   transform_error terr = {{0}};
   transform_desc desc = {.width = map.width, .height = map.height, .levels = levels,
-                         .basis = basis_of_degree(f->degree), .boundary = boundary};
+                         .basis = transform_basis_of_degree(f->degree), .boundary = boundary};
   size_t n = (size_t)map.width * map.height;
   float *coefficients = transform_alloc_floats(n);
   float *approx[FOG_MAX_LEVELS + 1] = {0}, *detail[FOG_MAX_LEVELS + 1] = {0};
@@ -323,17 +318,18 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   /* fog_pass binds every slot of the pyramid (details too) whatever the LOD method. */
   if (levels > 0) transform_details(plan, coefficients, detail);
   for (int l = 0; l <= levels; l++) {
-    if (transform_grid_create_level(plan, l, approx[l], &fog->approx[l], &terr) ||
+    if (transform_grid_create_level(plan, l, approx[l], &fog->pyramid.approx[l], &terr) ||
         (l > 0 &&
-         transform_grid_create_level(plan, l, detail[l], &fog->detail[l - 1], &terr))) {
+         transform_grid_create_level(plan, l, detail[l], &fog->pyramid.detail[l], &terr))) {
       snprintf(err->message, sizeof err->message, "fog pyramid: %.400s", terr.message);
       goto done;
     }
   }
   fog->map_width = map.width;
   fog->map_height = map.height;
-  fog->levels = levels;
-  fog->degree = transform_basis_degree(desc.basis);
+  fog->pyramid.levels = levels;
+  fog->pyramid.degree = transform_basis_degree(desc.basis);
+  fog->pyramid.has_details = levels > 0;
   fog->volume = (fog_volume){
       .map_width = map.width,
       .map_height = map.height,
@@ -365,12 +361,7 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
       .fetch = f->filtering == SCENE_FILTERING_HARDWARE ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
   };
   if (fog_pass_create(&fog->pass, err)) goto done;
-  if (levels > 0) {
-    fog_lod lod = {.levels = levels, .approx = fog->approx, .detail = fog->detail, .mu = f->mu};
-    if (fog_pass_upload_lod(fog->pass, &lod, err)) goto done;
-  } else if (fog_pass_upload_grid(fog->pass, 0, &fog->approx[0], err)) {
-    goto done;
-  }
+  if (fog_pass_upload_pyramid(fog->pass, &fog->pyramid, err)) goto done;
   status = 0;
 done:
   for (int l = 0; l <= FOG_MAX_LEVELS; l++) free(approx[l]), free(detail[l]);

@@ -15,9 +15,8 @@
 
 
 typedef struct render_fog {
-  int map_width, map_height, levels, degree;
-  transform_grid approx[FOG_MAX_LEVELS + 1];
-  transform_grid detail[FOG_MAX_LEVELS]; /* detail[l-1] = D_l */
+  int map_width, map_height;
+  fog_pyramid pyramid; /* model = fogmap: the map's (details too, whatever the LOD method) */
   fog_volume volume;
   double profile_coefficients[SCENE_CONFIG_MAX_PROFILE]; /* volume.profile's own copy */
   fog_rbf rbfs[FOG_MAX_RBFS]; /* model = rbf: params.model_rbfs, density_scale applied */

@@ -263,10 +263,6 @@ static int write_table_csv(const char *path, const bench_row *rows, int count, c
   return bench_csv_close(f, path, error, size);
 }
 
-static transform_basis basis_of_degree(int degree) {
-  return degree == 0 ? TRANSFORM_HAAR : degree == 2 ? TRANSFORM_QUADRATIC : TRANSFORM_LINEAR;
-}
-
 static const char *default_fogmap(void) {
   static char path[4096];
   struct stat st;
@@ -348,7 +344,7 @@ int bench_render(int argc, char **argv) {
     /* levels = 0: the grid of the fogmap itself in that basis (ghosts from the symmetric
      * extension). */
     transform_desc desc = {.width = map.width, .height = map.height, .levels = 0,
-                           .basis = basis_of_degree(d)};
+                           .basis = transform_basis_of_degree(d)};
     if (transform_plan_create(&plans[d], &desc, &terr) ||
         transform_grid_create_level(plans[d], 0, map.density, &full[d], &terr))
       goto transform_failed;

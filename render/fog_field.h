@@ -42,6 +42,8 @@
 #ifndef FOGPIPE_RENDER_FOG_FIELD_H
 #define FOGPIPE_RENDER_FOG_FIELD_H
 
+#include <stdbool.h>
+
 #include "transform/transform.h"
 
 #define FOG_PROFILE_MAX_COEFFICIENTS 64
@@ -89,12 +91,28 @@ typedef enum fog_lod_method {
  * renderer clamp to it; the GLSL gets it from fog_constants.glsl). */
 #define FOG_MAX_LEVELS 7
 
+/* A view of a pyramid for integration: approx[0..J], detail[0..J-1] = D_1..D_J. */
 typedef struct fog_lod {
   int levels; /* J >= 0 */
   const transform_grid *approx;
   const transform_grid *detail;
   double mu; /* in [0, 1] */
 } fog_lod;
+
+/* One pyramid's grids, owned, indexed as the transform makes them (transform_pyramid,
+ * transform_details): approx[l] = A_l for l = 0..levels, detail[l] = D_l for l = 1..levels
+ * (detail[0] unused; none at all unless has_details: approximation switching does not
+ * read them). The simulation's steps, a fogmap's or a VDB frame's pyramid alike. */
+typedef struct fog_pyramid {
+  int levels, degree;
+  bool has_details;
+  transform_grid approx[FOG_MAX_LEVELS + 1];
+  transform_grid detail[FOG_MAX_LEVELS + 1];
+} fog_pyramid;
+
+void fog_pyramid_destroy(fog_pyramid *pyramid);
+/* The pyramid as a fog_lod (detail from D_1) at LOD parameter mu. */
+fog_lod fog_pyramid_lod(const fog_pyramid *pyramid, double mu);
 
 /* The vertical extent [y_bottom, y_top] of the profile's support. */
 void fog_profile_extent(const fog_profile *profile, double *y_bottom, double *y_top);

@@ -332,13 +332,29 @@ int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err) {
   int J = lod->levels;
   if (J < 0 || 2 * J + 1 > FOG_PASS_MAX_GRIDS) {
     snprintf(err->message, sizeof err->message, "fog pass: %d LOD levels: expected 0..%d", J,
-             (FOG_PASS_MAX_GRIDS - 1) / 2);
+             FOG_MAX_LEVELS);
     return 1;
   }
   for (int l = 0; l <= J; l++)
     if (fog_pass_upload_grid(pass, l, &lod->approx[l], err)) return 1;
   for (int l = 1; l <= J; l++)
     if (fog_pass_upload_grid(pass, J + l, &lod->detail[l - 1], err)) return 1;
+  return 0;
+}
+
+int fog_pass_upload_pyramid(fog_pass *pass, const fog_pyramid *pyramid, render_error *err) {
+  if (pyramid->has_details) {
+    fog_lod lod = fog_pyramid_lod(pyramid, 1.0);
+    return fog_pass_upload_lod(pass, &lod, err);
+  }
+  /* approximations only: slots 0..J (switching reads no more) */
+  if (pyramid->levels < 0 || 2 * pyramid->levels + 1 > FOG_PASS_MAX_GRIDS) {
+    snprintf(err->message, sizeof err->message, "fog pass: %d LOD levels: expected 0..%d",
+             pyramid->levels, FOG_MAX_LEVELS);
+    return 1;
+  }
+  for (int l = 0; l <= pyramid->levels; l++)
+    if (fog_pass_upload_grid(pass, l, &pyramid->approx[l], err)) return 1;
   return 0;
 }
 

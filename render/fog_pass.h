@@ -115,6 +115,8 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
                          render_error *err);
 /* Uploads lod->approx[0..J] and lod->detail[0..J-1] into their slots. */
 int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err);
+/* Uploads a pyramid: its approximations, and its details when it has them. */
+int fog_pass_upload_pyramid(fog_pass *pass, const fog_pyramid *pyramid, render_error *err);
 
 /* Uploads the density grid of FOG_MODEL_VOLUME as an R32F 3D texture (hardware trilinear,
  * zero border) with its placement; a grid of the same size reuses the texture. */

@@ -84,6 +84,9 @@ typedef struct transform_plan transform_plan;
 
 /* Degree of the synthesis B-spline of a basis (0, 1, 2). */
 int transform_basis_degree(transform_basis basis);
+/* The basis of B-spline degree 0, 1 or 2 (the inverse of transform_basis_degree); any other
+ * degree gives the default, linear. */
+transform_basis transform_basis_of_degree(int degree);
 /* The largest J a width x height fogmap allows in that boundary mode (symmetric: every
  * level split needs >= 2 samples; periodic: also an even length). */
 int transform_max_levels(int width, int height, transform_boundary boundary);

@@ -16,6 +16,10 @@ int transform_basis_degree(transform_basis basis) {
   return basis == TRANSFORM_HAAR ? 0 : basis == TRANSFORM_LINEAR ? 1 : 2;
 }
 
+transform_basis transform_basis_of_degree(int degree) {
+  return degree == 0 ? TRANSFORM_HAAR : degree == 2 ? TRANSFORM_QUADRATIC : TRANSFORM_LINEAR;
+}
+
 static int max_levels_1d(int n, transform_boundary boundary) {
   int j = 0;
   while (n >= 2 && (boundary != TRANSFORM_PERIODIC || n % 2 == 0)) {
