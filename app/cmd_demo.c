@@ -21,6 +21,7 @@
 #include "app/recorder.h"
 #include "render/fog_field.h"
 #include "render/gl_context.h"
+#include "render/gl_present.h"
 #include "render/gl_util.h"
 #include "sim/sim.h"
 
@@ -226,8 +227,7 @@ static int save_screenshot(const char *path, int width, int height) {
   if (!pixels) return 1;
   render_error rerr = {{0}};
   sim_error serr = {{0}};
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-  int status = gl_util_read_pixels(GL_BACK, width, height, 3, pixels, &rerr);
+  int status = gl_read_window(width, height, pixels, &rerr);
   if (status) fprintf(stderr, "fogpipe demo: screenshot: %s\n", rerr.message);
   if (!status && image_write_png(path, width, height, 3, pixels, &serr)) {
     fprintf(stderr, "fogpipe demo: screenshot: %s\n", serr.message);

@@ -18,6 +18,7 @@
 #include "app/render_fog.h"
 #include "app/render_frame.h"
 #include "app/vdb_source.h"
+#include "render/gl_present.h"
 #include "render/render.h"
 #include "sim/sim.h"
 
@@ -60,8 +61,7 @@ typedef struct view_state {
   render_fog fog;
   bool has_fog;
   gl_target scene_target, fog_target;
-  GLuint present_program;
-  GLint u_image, u_image_per_pixel;
+  gl_presenter *presenter;
 } view_state;
 
 static int make_targets(view_state *v, int width, int height, render_error *err) {
@@ -130,7 +130,7 @@ static int volume_playback_update(volume_playback *pb, GLFWwindow *window, doubl
 }
 
 static void view_destroy(view_state *v) {
-  if (v->present_program) glDeleteProgram(v->present_program);
+  gl_presenter_destroy(v->presenter);
   gl_target_destroy(&v->scene_target);
   gl_target_destroy(&v->fog_target);
   render_fog_destroy(&v->fog);
@@ -236,10 +236,8 @@ int cmd_view(int argc, char **argv) {
     playback.shown = playback.start = vdb_frame_index(
         playback.sequence.frames, playback.sequence.count, cfg.fog.vdb_frame);
   }
-  v.present_program = gl_util_program("scene_sky_vs.glsl", "scene_present_fs.glsl", &err);
-  if (!v.present_program) goto gl_fail;
-  v.u_image = glGetUniformLocation(v.present_program, "image");
-  v.u_image_per_pixel = glGetUniformLocation(v.present_program, "image_per_pixel");
+  v.presenter = gl_presenter_create(&err);
+  if (!v.presenter) goto gl_fail;
 
   camera cam;
   scene_config_camera(&cfg, &cam);
@@ -272,24 +270,14 @@ int cmd_view(int argc, char **argv) {
       if (render_fog_draw(&v.fog, &cam, &v.scene_target, &v.fog_target, &err)) goto gl_fail;
       shown = &v.fog_target;
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, fb_w, fb_h);
-    glDisable(GL_DEPTH_TEST);
-    glUseProgram(v.present_program);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, shown->color[0]);
-    glUniform1i(v.u_image, 0);
-    glUniform2f(v.u_image_per_pixel, (float)w / fb_w, (float)h / fb_h);
-    glBindVertexArray(gl_util_empty_vao());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl_presenter_draw(v.presenter, shown, fb_w, fb_h, GL_PRESENT_NEAREST);
     if (screenshot && frame >= frames) {
       float *rgb = malloc((size_t)fb_w * fb_h * 3 * sizeof(float));
       if (!rgb) {
         fprintf(stderr, "fogpipe view: out of memory for the screenshot\n");
         goto done;
       }
-      glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-      int read_status = gl_util_read_pixels(GL_BACK, fb_w, fb_h, 3, rgb, &err);
+      int read_status = gl_read_window(fb_w, fb_h, rgb, &err);
       sim_error serr;
       int write_status = read_status ? 1 : image_write_png(screenshot, fb_w, fb_h, 3, rgb, &serr);
       free(rgb);

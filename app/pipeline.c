@@ -15,6 +15,7 @@
 #include "app/pipeline_fog.h"
 #include "app/vdb_source.h"
 #include "render/fog_pass.h"
+#include "render/gl_present.h"
 #include "render/gl_util.h"
 #include "render/scene.h"
 #include "sim/sim.h"
@@ -715,7 +716,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
     p->scene_current = true;
   }
   if (p->time_passes) {
-    glFinish();
+    gl_finish();
     p->last.scene = now_ms() - t0;
   }
   pthread_mutex_lock(&p->lock);
@@ -735,7 +736,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
     return fail(err, "render: %s", rerr.message);
   /* llvmpipe (and GPUs) run the commands asynchronously: finish so the render time is
    * the time of this frame's drawing, not of the next read-back. */
-  glFinish();
+  gl_finish();
   double t1 = now_ms();
   if (gl_util_check("pipeline frame", &rerr)) return fail(err, "%s", rerr.message);
 
@@ -828,13 +829,8 @@ void pipeline_paint(pipeline *p, double x0, double z0, double x1, double z1, dou
 
 bool pipeline_pick_surface(pipeline *p, const camera *cam, int px, int py, double world[3]) {
   if (px < 0 || py < 0 || px >= p->width || py >= p->height) return false;
-  /* One texel of the distance texture (GL rows are bottom-up). */
-  float distance = 0.0f;
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, p->scene_target.framebuffer);
-  glReadBuffer(GL_COLOR_ATTACHMENT1);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(px, p->height - 1 - py, 1, 1, GL_RED, GL_FLOAT, &distance);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  /* One texel of the distance texture. */
+  const float distance = gl_target_read_texel(&p->scene_target, 1, px, py);
   if (!(distance < 0.5f * SCENE_SKY_DISTANCE)) return false;
   double origin[3], dir[3];
   camera_ray(cam, px, py, p->width, p->height, origin, dir);

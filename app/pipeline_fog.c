@@ -2,6 +2,7 @@
 #include "app/pipeline_fog.h"
 
 #include "render/fog_pass.h"
+#include "render/gl_present.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,29 +16,8 @@ struct pipeline_fog {
   int degree;
   bool has_details;
   bool uploaded;
-  GLuint present_program;
+  gl_presenter *presenter;
 };
-
-/* Window presentation: linear colour → sRGB (IEC 61966-2-1), clamped; a full-screen
- * triangle from gl_VertexID. */
-static const char present_vs[] =
-    "#version 430 core\n"
-    "out vec2 uv;\n"
-    "void main() {\n"
-    "  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
-    "  uv = p;\n"
-    "  gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);\n"
-    "}\n";
-static const char present_fs[] =
-    "#version 430 core\n"
-    "in vec2 uv;\n"
-    "out vec4 colour;\n"
-    "uniform sampler2D image;\n"
-    "vec3 srgb(vec3 c) {\n"
-    "  c = clamp(c, 0.0, 1.0);\n"
-    "  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));\n"
-    "}\n"
-    "void main() { colour = vec4(srgb(texture(image, uv).rgb), 1.0); }\n";
 
 pipeline_fog *pipeline_fog_create(render_error *err) {
   pipeline_fog *fog = calloc(1, sizeof *fog);
@@ -45,7 +25,8 @@ pipeline_fog *pipeline_fog_create(render_error *err) {
     snprintf(err->message, sizeof err->message, "out of memory");
     return NULL;
   }
-  if (fog_pass_create(&fog->pass, err)) {
+  if (fog_pass_create(&fog->pass, err) || !(fog->presenter = gl_presenter_create(err))) {
+    fog_pass_destroy(fog->pass);
     free(fog);
     return NULL;
   }
@@ -54,7 +35,7 @@ pipeline_fog *pipeline_fog_create(render_error *err) {
 
 void pipeline_fog_destroy(pipeline_fog *fog) {
   if (!fog) return;
-  if (fog->present_program) glDeleteProgram(fog->present_program);
+  gl_presenter_destroy(fog->presenter);
   gl_target_destroy(&fog->target);
   fog_pass_destroy(fog->pass);
   free(fog);
@@ -63,17 +44,13 @@ void pipeline_fog_destroy(pipeline_fog *fog) {
 int pipeline_fog_resize(pipeline_fog *fog, int width, int height, render_error *err) {
   gl_target_destroy(&fog->target);
   fog->width = fog->height = 0;
+  /* Presenting scales the colour to the window: filtered (read-back uses glReadPixels, and
+   * the fog pass never samples this texture, so this changes no recorded pixel). */
   gl_target_desc desc = {.width = width, .height = height,
-                         .color_formats = {GL_RGBA32F, GL_R32F}};
+                         .color_formats = {GL_RGBA32F, GL_R32F}, .linear_color0 = true};
   if (gl_target_create(&fog->target, &desc, err)) return 1;
   fog->width = width;
   fog->height = height;
-  /* Presenting scales the colour to the window: filter it (read-back uses glReadPixels,
-   * and the fog pass never samples this texture, so this changes no recorded pixel). */
-  glBindTexture(GL_TEXTURE_2D, fog->target.color[0]);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glBindTexture(GL_TEXTURE_2D, 0);
   return 0;
 }
 
@@ -118,25 +95,6 @@ int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, rend
 }
 
 void pipeline_fog_present(pipeline_fog *fog, int width, int height) {
-  if (!fog->target.framebuffer) return;
-  if (!fog->present_program) {
-    render_error err = {{0}};
-    fog->present_program = gl_util_program_from_source("present", present_vs, present_fs, &err);
-    if (!fog->present_program) {
-      fprintf(stderr, "fogpipe: %s\n", err.message);
-      return;
-    }
-  }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glViewport(0, 0, width, height);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  glUseProgram(fog->present_program);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, fog->target.color[0]);
-  glUniform1i(glGetUniformLocation(fog->present_program, "image"), 0);
-  glBindVertexArray(gl_util_empty_vao());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
-  glUseProgram(0);
+  if (fog->target.framebuffer)
+    gl_presenter_draw(fog->presenter, &fog->target, width, height, GL_PRESENT_BILINEAR);
 }

@@ -35,12 +35,14 @@ int gl_util_check(const char *what, render_error *err);
 
 /* A framebuffer with up to 4 colour textures (any sized internal format: GL_RGBA16F,
  * GL_RGBA32F, GL_R32F, GL_RGBA8, ...) and an optional depth texture (GL_DEPTH_COMPONENT32F).
- * Colour textures are GL_NEAREST, clamp to edge; draw buffers 0..n-1 are enabled. */
+ * Colour textures are GL_NEAREST (colour 0 GL_LINEAR with linear_color0: a target the window
+ * shows scaled), clamp to edge; draw buffers 0..n-1 are enabled. */
 #define GL_TARGET_MAX_COLOR 4
 typedef struct gl_target_desc {
   int width, height;
   GLenum color_formats[GL_TARGET_MAX_COLOR]; /* 0 ends the list */
   bool depth;
+  bool linear_color0;
 } gl_target_desc;
 
 typedef struct gl_target {

@@ -8,6 +8,7 @@
 #include "render/render_error.h"
 #include "render/gl_context.h"
 #include "render/gl_util.h"
+#include "render/gl_present.h"
 #include "render/terrain.h"
 #include "render/scene.h"
 #include "render/camera.h"

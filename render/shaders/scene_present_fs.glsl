@@ -1,8 +1,10 @@
 #version 430 core
-// Shows a linear colour texture in a window: nearest-pixel scaling to the viewport and the
-// sRGB transfer function (IEC 61966-2-1), as `fogpipe render` applies for PNG output.
+// Shows a linear colour texture in a window (render/gl_present.h): scaled to the viewport,
+// nearest texel or the texture's bilinear filter, and the sRGB transfer function
+// (IEC 61966-2-1), as `fogpipe render` applies for PNG output.
 uniform sampler2D image;
 uniform vec2 image_per_pixel;  // image size / viewport size
+uniform int bilinear;          // 1: texture() at the pixel's centre; 0: its texel
 
 layout(location = 0) out vec4 colour;
 
@@ -14,6 +16,12 @@ vec3 srgb_encode(vec3 linear) {
 
 void main() {
   ivec2 size = textureSize(image, 0);
-  ivec2 p = min(ivec2(gl_FragCoord.xy * image_per_pixel), size - 1);
-  colour = vec4(srgb_encode(texelFetch(image, p, 0).rgb), 1.0);
+  vec3 c;
+  if (bilinear != 0) {
+    c = texture(image, gl_FragCoord.xy * image_per_pixel / vec2(size)).rgb;
+  } else {
+    ivec2 p = min(ivec2(gl_FragCoord.xy * image_per_pixel), size - 1);
+    c = texelFetch(image, p, 0).rgb;
+  }
+  colour = vec4(srgb_encode(c), 1.0);
 }

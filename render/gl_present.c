@@ -1,0 +1,69 @@
+/* Window output (gl_present.h). */
+#include "render/gl_present.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+struct gl_presenter {
+  GLuint program;
+  GLint u_image, u_image_per_pixel, u_bilinear;
+};
+
+gl_presenter *gl_presenter_create(render_error *err) {
+  gl_presenter *p = calloc(1, sizeof *p);
+  if (!p) {
+    snprintf(err->message, sizeof err->message, "out of memory for the window presenter");
+    return NULL;
+  }
+  p->program = gl_util_program("scene_sky_vs.glsl", "scene_present_fs.glsl", err);
+  if (!p->program) {
+    free(p);
+    return NULL;
+  }
+  p->u_image = glGetUniformLocation(p->program, "image");
+  p->u_image_per_pixel = glGetUniformLocation(p->program, "image_per_pixel");
+  p->u_bilinear = glGetUniformLocation(p->program, "bilinear");
+  return p;
+}
+
+void gl_presenter_destroy(gl_presenter *p) {
+  if (!p) return;
+  if (p->program) glDeleteProgram(p->program);
+  free(p);
+}
+
+void gl_presenter_draw(gl_presenter *p, const gl_target *source, int width, int height,
+                       gl_present_scaling scaling) {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glUseProgram(p->program);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, source->color[0]);
+  glUniform1i(p->u_image, 0);
+  glUniform2f(p->u_image_per_pixel, (float)source->width / width, (float)source->height / height);
+  glUniform1i(p->u_bilinear, scaling == GL_PRESENT_BILINEAR);
+  glBindVertexArray(gl_util_empty_vao());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
+int gl_read_window(int width, int height, float *rgb, render_error *err) {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  return gl_util_read_pixels(GL_BACK, width, height, 3, rgb, err);
+}
+
+float gl_target_read_texel(const gl_target *target, int attachment, int x, int y) {
+  float value = NAN;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, target->framebuffer);
+  glReadBuffer(GL_COLOR_ATTACHMENT0 + (GLenum)attachment);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(x, target->height - 1 - y, 1, 1, GL_RED, GL_FLOAT, &value); /* GL: bottom-up */
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  return glGetError() == GL_NO_ERROR ? value : NAN;
+}
+
+void gl_finish(void) { glFinish(); }
