@@ -1,6 +1,7 @@
 /* The 2.5D wavelet-fogmap fog model K(x, y, z) = extinction * f(x, z) * g(y)
  * (Giroud & Biri 2010, DESIGN.md §3-4), its exact optical depth along a ray (CPU, double;
- * fog_integral_cpu.c), an independent adaptive-quadrature oracle (fog_oracle.c) and the
+ * fog_integral_cpu.c), an independent adaptive-quadrature oracle (tests/reference/fog_oracle.h, outside the
+ * shipped library) and the
  * LOD-by-distance variants. The GLSL twin is render/shaders/fog_integral.glsl: same
  * function names, same equation references, line by line.
  *
@@ -159,16 +160,6 @@ double fog_optical_depth_lod_march(const fog_volume *volume, const fog_lod *lod,
 /* The shader's per-pixel jitter in [0, 1) for GL pixel (px, py_gl) (row 0 at the BOTTOM)
  * and frame: the same integer hash on both sides. */
 double fog_march_jitter(unsigned px, unsigned py_gl, unsigned frame);
-
-/* Independent reference: adaptive Gauss-Kronrod G7K15 on f and g evaluated pointwise by
- * brute-force B-spline sums (truncated powers, no knot cells, no DDA), split at the box, at
- * y0, and at the ends of the B-spline supports enumerated in world coordinates (GK15 alone
- * misses jumps and kinks that fall between its nodes). Returns NAN when out of memory.
- * tolerance is absolute on the optical depth (1e-12 typical);
- * *error_estimate (may be NULL) receives the summed |K15 - G7| of accepted intervals. */
-double fog_optical_depth_oracle(const fog_volume *volume, const transform_grid *grid,
-                                const double camera[3], const double dir[3], double t_start,
-                                double t_stop, double tolerance, double *error_estimate);
 
 /* tau = exp(-optical depth) and the blend L = tau L(P) + L_fog (1 - tau) (Giroud & Biri
  * eq. 4), per colour channel. */

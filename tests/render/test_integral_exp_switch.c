@@ -11,6 +11,7 @@
 #include <stdio.h>
 
 #include "render/fog_field.h"
+#include "reference/fog_oracle.h"
 #include "fog_test_scene.h"
 #include "test_util.h"
 

@@ -8,7 +8,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "render/fog_field.h"
+#include "reference/fog_oracle.h"
 
 /* Centred B-spline of degree d: phi_d(x) = 1/d! sum_{k=0}^{d+1} (-1)^k C(d+1,k)
  * (x + (d+1)/2 - k)_+^d (de Boor, A Practical Guide to Splines, ch. IX). */
