@@ -18,6 +18,7 @@
 #include "app/config.h"
 #include "app/panel.h"
 #include "app/pipeline.h"
+#include "app/cmd_record.h"
 #include "app/recorder.h"
 #include "render/fog_field.h"
 #include "render/gl_context.h"

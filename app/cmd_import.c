@@ -16,7 +16,7 @@
 #include "app/cli.h"
 #include "app/clock.h"
 #include "app/commands.h"
-#include "bench/chart.h"
+#include "app/chart.h"
 #include "render/render.h"
 #include "sim/sim.h"
 

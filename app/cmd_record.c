@@ -13,6 +13,7 @@
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/pipeline.h"
+#include "app/cmd_record.h"
 #include "app/recorder.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"

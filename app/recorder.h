@@ -101,26 +101,6 @@ void recorder_progress_update(recorder_progress *p, int done);
 void recorder_progress_end(recorder_progress *p);
 
 
-/* A whole recording: what `fogpipe record` runs, and `fogpipe demo` without a display.
- * Implemented in app/cmd_record.c. Returns the process exit status (0; 130 when
- * interrupted by SIGINT/SIGTERM after finishing the current frame; 1 on errors, printed as
- * `fogpipe <command>: ...`). */
-typedef struct record_job {
-  const char *command;     /* "record" or "demo", for messages */
-  const char *config_path;
-  int first_frame;         /* the range first_frame..frames (farm jobs); 0: 1 */
-  int frames;              /* the last frame (with first_frame 1: the frame count) */
-  const char *out;
-  double fps;              /* 0: 24 */
-  int width, height;       /* 0: the config's size */
-  bool resume;
-  const char *preview;     /* video path or NULL */
-  bool quiet;              /* no per-frame progress */
-  bool synchronous;        /* sim + transform on the GL thread (same frames, slower) */
-} record_job;
-
-int record_run(const record_job *job);
-
 /* Removes the folders recorder_open made, innermost first, as long as they are empty (a
  * failed run's frames are never removed). */
 void recorder_remove_created_folders(const recorder *rec);

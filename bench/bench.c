@@ -1,6 +1,7 @@
 /* The bench dispatcher and the small timing helpers every stage shares. */
 #define _POSIX_C_SOURCE 200809L
 #include "bench/bench.h"
+#include "app/commands.h"
 
 #include <errno.h>
 #include <math.h>
@@ -28,7 +29,9 @@ static void print_stages(FILE *out) {
     fprintf(out, "  %-10s %s\n", stages[i].name, stages[i].summary);
 }
 
-int bench_main(int argc, char **argv) {
+/* `fogpipe bench`: the entry point app/commands.def names; the bench library defines it,
+ * so that app/ includes nothing of bench/. */
+int cmd_bench(int argc, char **argv) {
   if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
     print_stages(argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;
@@ -82,25 +85,6 @@ int bench_image_option(const char *stage, int argc, char **argv, int *i,
   }
   if (!strcmp(arg, "--out")) {
     o->out_dir = argv[++*i];
-    return 1;
-  }
-  return 0;
-}
-
-FILE *bench_csv_open(const char *path, char *error, int size) {
-  char temp[4200];
-  snprintf(temp, sizeof temp, "%.4000s.tmp", path);
-  FILE *f = fopen(temp, "w");
-  if (!f) snprintf(error, (size_t)size, "%.900s: cannot write (folder missing or not writable)", path);
-  return f;
-}
-
-int bench_csv_close(FILE *f, const char *path, char *error, int size) {
-  char temp[4200];
-  snprintf(temp, sizeof temp, "%.4000s.tmp", path);
-  if (fclose(f) != 0 || rename(temp, path) != 0) {
-    remove(temp);
-    snprintf(error, (size_t)size, "%.900s: write failed (disk full?)", path);
     return 1;
   }
   return 0;

@@ -13,8 +13,8 @@
 #include "bench/stages.def"
 #undef FOG_BENCH
 
-/* Runs the stage named argv[0]; prints the list of stages for --help. */
-int bench_main(int argc, char **argv);
+/* The stage named argv[1] runs as `fogpipe bench STAGE` through cmd_bench (app/commands.h),
+ * which this library defines. */
 
 /* Median of n values (sorts the array in place). */
 double bench_median(double *values, int n);
@@ -30,12 +30,8 @@ typedef struct bench_image_options {
  * for a bad value. */
 int bench_image_option(const char *stage, int argc, char **argv, int *i,
                        bench_image_options *options);
-/* A table written whole or not at all: bench_csv_open writes to PATH.tmp (NULL and a
- * message if it cannot), bench_csv_close closes it and renames it to PATH (non-zero and a
- * message, the temporary removed, if that fails). */
-#include <stdio.h>
-FILE *bench_csv_open(const char *path, char *error, int size);
-int bench_csv_close(FILE *f, const char *path, char *error, int size);
+/* Tables: chart_csv_open / chart_csv_close (app/chart.h). */
+#include "app/chart.h"
 /* mkdir -p; non-zero and a message naming the folder on failure. */
 int bench_make_folder(const char *path, char *error, int size);
 /* RMSE and max of |gpu - ref| over n values (a NaN from the GL counts as the worst), and

@@ -26,7 +26,7 @@
 #include "app/render_fog.h"
 #include "app/render_frame.h"
 #include "bench/bench.h"
-#include "bench/chart.h"
+#include "app/chart.h"
 #include "render/render.h"
 
 #define ERROR_FLOOR 1e-9
@@ -124,13 +124,13 @@ static double march_speedup(const model_row *rows, int count, int model, bool *m
 
 static int write_table(const char *path, const model_row *rows, int count, char *error,
                        int size) {
-  FILE *f = bench_csv_open(path, error, size);
+  FILE *f = chart_csv_open(path, error, size);
   if (!f) return 1;
   fprintf(f, "model,method,setting,ms_per_frame,rmse,max_error\n");
   for (int i = 0; i < count; i++)
     fprintf(f, "%s,%s,%g,%.6g,%.6g,%.6g\n", fog_model_table[model_kinds[rows[i].model]].name, row_method(&rows[i]),
             rows[i].setting, rows[i].ms, rows[i].rmse, rows[i].max_error);
-  return bench_csv_close(f, path, error, size);
+  return chart_csv_close(f, path, error, size);
 }
 
 int bench_models(int argc, char **argv) {

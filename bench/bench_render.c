@@ -39,7 +39,7 @@
 
 #include "bench/bench.h"
 #include "bench/bench_upload.h"
-#include "bench/chart.h"
+#include "app/chart.h"
 #include "render/render.h"
 #include "sim/sim.h"
 
@@ -249,7 +249,7 @@ typedef struct bench_row {
 
 static int write_table_csv(const char *path, const bench_row *rows, int count, char *error,
                            int size) {
-  FILE *f = bench_csv_open(path, error, size);
+  FILE *f = chart_csv_open(path, error, size);
   if (!f) return 1;
   fprintf(f, "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full\n");
   for (int i = 0; i < count; i++) {
@@ -260,7 +260,7 @@ static int write_table_csv(const char *path, const bench_row *rows, int count, c
     else
       fprintf(f, ",\n");
   }
-  return bench_csv_close(f, path, error, size);
+  return chart_csv_close(f, path, error, size);
 }
 
 static const char *default_fogmap(void) {

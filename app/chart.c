@@ -1,22 +1,39 @@
 /* Charts via gnuplot: the CSV is the data of record; the PNG is drawn from it. */
 #define _POSIX_C_SOURCE 200809L
-#include "bench/chart.h"
-
-#include "bench/bench.h"
+#include "app/chart.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+FILE *chart_csv_open(const char *path, char *error, int size) {
+  char temp[4200];
+  snprintf(temp, sizeof temp, "%.4000s.tmp", path);
+  FILE *f = fopen(temp, "w");
+  if (!f) snprintf(error, (size_t)size, "%.900s: cannot write (folder missing or not writable)", path);
+  return f;
+}
+
+int chart_csv_close(FILE *f, const char *path, char *error, int size) {
+  char temp[4200];
+  snprintf(temp, sizeof temp, "%.4000s.tmp", path);
+  if (fclose(f) != 0 || rename(temp, path) != 0) {
+    remove(temp);
+    snprintf(error, (size_t)size, "%.900s: write failed (disk full?)", path);
+    return 1;
+  }
+  return 0;
+}
+
 static int write_csv(const chart_point *points, int count, const char *path, char *error,
                      int error_size) {
-  FILE *file = bench_csv_open(path, error, error_size);
+  FILE *file = chart_csv_open(path, error, error_size);
   if (!file) return 1;
   fprintf(file, "series,x,y\n");
   for (int i = 0; i < count; i++)
     fprintf(file, "%s,%.9g,%.9g\n", points[i].series, points[i].x, points[i].y);
-  return bench_csv_close(file, path, error, error_size);
+  return chart_csv_close(file, path, error, error_size);
 }
 
 /* Series names in first-appearance order. */

@@ -1,10 +1,17 @@
 /* Speed/accuracy charts: a CSV of (series, x, y) points and a PNG plot drawn by gnuplot
  * (Debian's gnuplot-nox, pngcairo), one line per series. Used by the benchmarks and by
  * `fogpipe import --report`. */
-#ifndef FOGPIPE_BENCH_CHART_H
-#define FOGPIPE_BENCH_CHART_H
+#ifndef FOGPIPE_APP_CHART_H
+#define FOGPIPE_APP_CHART_H
 
 #include <stdbool.h>
+#include <stdio.h>
+
+/* A table written whole or not at all: chart_csv_open writes to PATH.tmp (NULL and a
+ * message if it cannot), chart_csv_close closes it and renames it to PATH (non-zero and a
+ * message, the temporary removed, if that fails). */
+FILE *chart_csv_open(const char *path, char *error, int size);
+int chart_csv_close(FILE *f, const char *path, char *error, int size);
 
 typedef struct chart_point {
   const char *series; /* points of one series are joined in the order given */
