@@ -13,12 +13,9 @@
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/pipeline.h"
+#include "app/player.h"
 #include "app/cmd_record.h"
 #include "app/recorder.h"
-#include "app/render_fog.h"
-#include "app/render_frame.h"
-#include "app/vdb_source.h"
-#include "render/gl_context.h"
 #include "sim/sim.h"
 
 static volatile sig_atomic_t interrupted;
@@ -138,52 +135,6 @@ int cmd_record(int argc, char **argv) {
   return record_run(&job);
 }
 
-/* Where the frames come from: the per-frame pipeline (a simulated or VDB fogmap), or for
- * the other models a render session (a volume stepping through its VDB sequence). */
-typedef struct frame_source {
-  pipeline *pipe;
-  camera cam;
-  /* model = volume */
-  render_session *session;
-  const scene_config *config;
-  vdb_sequence sequence;
-  double fps;
-} frame_source;
-
-static int source_render(frame_source *src, int frame, float *rgba, float *transmittance,
-                         float *depth, char *error, size_t size) {
-  if (src->session) {
-    render_error rerr = {{0}};
-    render_frame_error ferr = {{0}};
-    /* A volume: output frame n shows time (n - 1) / fps, between two VDB frames at
-     * vdb_fps as a VDB fogmap sequence plays (vdb_sequence_position). */
-    int a = 0, b = 0;
-    double w = 0.0;
-    const scene_fog_config *f = &src->config->fog;
-    if (f->model == FOG_MODEL_VOLUME)
-      vdb_sequence_position((frame - 1) / src->fps * f->vdb_fps, src->sequence.count,
-                            f->vdb_loop, &a, &b, &w);
-    if (f->model == FOG_MODEL_VOLUME &&
-        render_fog_set_volume_time(render_session_fog(src->session), src->config,
-                                   &src->sequence, a, b, w, &rerr)) {
-      snprintf(error, size, "%s", rerr.message);
-      return 1;
-    }
-    if (render_session_frame(src->session, rgba, transmittance, depth, &ferr)) {
-      snprintf(error, size, "%s", ferr.message);
-      return 1;
-    }
-    return 0;
-  }
-  pipeline_error perr = {{0}};
-  if (pipeline_frame(src->pipe, &src->cam, true, &perr) ||
-      pipeline_read_frame(src->pipe, rgba, transmittance, depth, &perr)) {
-    snprintf(error, size, "%s", perr.message);
-    return 1;
-  }
-  return 0;
-}
-
 /* The command line that continues this recording. */
 static void resume_hint(const record_job *job, char *text, size_t size) {
   int n = job->first_frame > 1
@@ -252,56 +203,33 @@ static int record_into(const record_job *job, recorder *rec) {
     printf("all %d frames are already complete in %s\n", last - first + 1, rec->folder);
   }
 
-  render_error gerr = {{0}};
-  gl_context *gl = NULL;
-  frame_source src = {.config = &config, .fps = fps};
+  player *src = NULL;
   float *buffer = NULL;
   int status = 0;
-  char error[600] = "";
   const size_t n = (size_t)width * height;
-  if (done < last && config.fog.model != FOG_MODEL_FOGMAP) {
-    /* The other models through a render session: a volume steps through its VDB frames,
-     * the analytic models stand still. Frames are independent: nothing to re-run on
-     * --resume. */
-    render_frame_error ferr = {{0}};
-    if (config.fog.model == FOG_MODEL_VOLUME &&
-        render_fog_volume_sequence(&config, &src.sequence, &gerr)) {
-      fprintf(stderr, "fogpipe %s: %s\n", cmd, gerr.message);
-      return 1;
-    }
-    src.session = render_session_create(&config, width, height, &ferr);
-    if (!src.session) {
-      fprintf(stderr, "fogpipe %s: %s\n", cmd, ferr.message);
-      status = 1;
-      goto finish;
-    }
-  } else if (done < last) {
-    gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
-    if (!gl) {
-      fprintf(stderr, "fogpipe %s: %s\n", cmd, gerr.message);
-      return 1;
-    }
-    pipeline_error perr = {{0}};
-    src.pipe = pipeline_create(&(pipeline_desc){.config = &config, .width = width,
-                                                .height = height, .frame_seconds = 1.0 / src.fps,
-                                                .synchronous = job->synchronous},
-                               &perr);
-    if (!src.pipe) {
+  render_error perr = {{0}};
+  if (done < last) {
+    src = player_create(&(player_desc){.config = &config, .width = width, .height = height,
+                                       .fps = fps, .play = true,
+                                       .synchronous = job->synchronous},
+                        &perr);
+    if (!src) {
       fprintf(stderr, "fogpipe %s: %s\n", cmd, perr.message);
       status = 1;
       goto finish;
     }
-    if (done > 0) { /* the simulation is sequential: run it (without rendering) to frame done */
+    /* A simulation is sequential: run it (without rendering) to frame done. The other
+     * sources' frames are independent: nothing to re-run. */
+    if (done > 0 && player_is_sequential(src)) {
       printf("%s frame %d: re-running the simulation to it\n",
              done >= first ? "resuming after" : "starting after", done);
       fflush(stdout);
-      if (pipeline_skip(src.pipe, done, &perr)) {
+      if (player_skip(src, done, &perr)) {
         fprintf(stderr, "fogpipe %s: %s\n", cmd, perr.message);
         status = 1;
         goto finish;
       }
     }
-    scene_config_camera(&config, &src.cam);
   }
   if (done < last) {
     /* rgba 4 + transmittance 1 + depth 1, then the recorder's 6 planes. */
@@ -325,9 +253,9 @@ static int record_into(const record_job *job, recorder *rec) {
     if (!job->quiet)
       recorder_progress_begin(&progress, stdout, done - first + 1, last - first + 1);
     for (int frame = done + 1; frame <= last; frame++) {
-      if (source_render(&src, frame, rgba, transmittance, depth, error, sizeof error)) {
+      if (player_frame(src, frame, rgba, transmittance, depth, &perr)) {
         if (!job->quiet) recorder_progress_end(&progress);
-        fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, error);
+        fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, perr.message);
         status = 1;
         break;
       }
@@ -376,10 +304,7 @@ static int record_into(const record_job *job, recorder *rec) {
   }
 finish:
   free(buffer);
-  pipeline_destroy(src.pipe);
-  render_session_destroy(src.session);
-  if (src.sequence.count) vdb_sequence_destroy(&src.sequence);
-  gl_context_destroy(gl);
+  player_destroy(src);
   return status;
 }
 

@@ -11,7 +11,7 @@
 
 #include "app/commands.h"
 #include "app/config.h"
-#include "app/render_frame.h"
+#include "app/player.h"
 #include "sim/sim.h"
 
 static void usage(FILE *out) {
@@ -34,6 +34,35 @@ static bool ends_with(const char *s, const char *suffix) {
   return n >= m && strcasecmp(s + n - m, suffix) == 0;
 }
 
+/* R, G, B, A as half; depth and transmittance as float. Without fog the transmittance is
+ * 1 everywhere: written anyway, so every render has the same channels for a compositor. */
+static int write_exr(const char *out, int width, int height, const float *rgba,
+                     float *transmittance, float *depth, sim_error *err) {
+  size_t pixels = (size_t)width * height;
+  float *planes = malloc(pixels * 4 * sizeof(float));
+  if (!planes) return snprintf(err->message, sizeof err->message, "out of memory"), 1;
+  for (size_t k = 0; k < pixels; k++)
+    for (int c = 0; c < 4; c++) planes[c * pixels + k] = rgba[4 * k + c];
+  image_channel channels[6] = {
+      {"R", planes, 1}, {"G", planes + pixels, 1}, {"B", planes + 2 * pixels, 1},
+      {"A", planes + 3 * pixels, 1}, {"depth", depth, 0}, {"transmittance", transmittance, 0}};
+  int status = image_write_exr(out, width, height, channels, 6, err);
+  free(planes);
+  return status;
+}
+
+/* 8-bit sRGB RGB. */
+static int write_png(const char *out, int width, int height, const float *rgba,
+                     sim_error *err) {
+  size_t pixels = (size_t)width * height;
+  float *rgb = malloc(pixels * 3 * sizeof(float));
+  if (!rgb) return snprintf(err->message, sizeof err->message, "out of memory"), 1;
+  for (size_t k = 0; k < pixels; k++)
+    for (int c = 0; c < 3; c++) rgb[3 * k + c] = rgba[4 * k + c];
+  int status = image_write_png_srgb(out, width, height, 3, rgb, err);
+  free(rgb);
+  return status;
+}
 
 int cmd_render(int argc, char **argv) {
   const char *config_path = NULL, *out = NULL;
@@ -109,49 +138,27 @@ int cmd_render(int argc, char **argv) {
     fprintf(stderr, "fogpipe render: out of memory for a %dx%d image\n", width, height);
     goto done;
   }
-  render_frame_error err;
-  render_frame_info info;
-  if (render_frame(&cfg, width, height, rgba, transmittance, depth, &info, &err)) {
+  /* Frame 1 of the scene as its files hold it: no simulation step. */
+  render_error err = {{0}};
+  player *frames = player_create(&(player_desc){.config = &cfg, .width = width,
+                                                .height = height, .fps = 24.0},
+                                 &err);
+  if (!frames || player_frame(frames, 1, rgba, transmittance, depth, &err)) {
     fprintf(stderr, "fogpipe render: %s\n", err.message);
+    player_destroy(frames);
     goto done;
   }
-  sim_error werr;
-  if (exr) {
-    float *planes = malloc(pixels * 4 * sizeof(float));
-    if (!planes) {
-      fprintf(stderr, "fogpipe render: out of memory\n");
-      goto done;
-    }
-    for (size_t k = 0; k < pixels; k++)
-      for (int c = 0; c < 4; c++) planes[c * pixels + k] = rgba[4 * k + c];
-    image_channel channels[6] = {
-        {"R", planes, 1}, {"G", planes + pixels, 1}, {"B", planes + 2 * pixels, 1},
-        {"A", planes + 3 * pixels, 1}, {"depth", depth, 0}, {"transmittance", transmittance, 0}};
-    /* Without fog the transmittance is 1 everywhere: written anyway, so every render has
-     * the same channels for a compositor. */
-    int werr_status = image_write_exr(out, width, height, channels, 6, &werr);
-    free(planes);
-    if (werr_status) {
-      fprintf(stderr, "fogpipe render: %s\n", werr.message);
-      goto done;
-    }
-  } else {
-    float *rgb = malloc(pixels * 3 * sizeof(float));
-    if (!rgb) {
-      fprintf(stderr, "fogpipe render: out of memory\n");
-      goto done;
-    }
-    for (size_t k = 0; k < pixels; k++)
-      for (int c = 0; c < 3; c++) rgb[3 * k + c] = rgba[4 * k + c];
-    int werr_status = image_write_png_srgb(out, width, height, 3, rgb, &werr);
-    free(rgb);
-    if (werr_status) {
-      fprintf(stderr, "fogpipe render: %s\n", werr.message);
-      goto done;
-    }
+  char gl_description[256];
+  snprintf(gl_description, sizeof gl_description, "%s", player_gl_description(frames));
+  player_destroy(frames);
+  sim_error werr = {{0}};
+  if (exr ? write_exr(out, width, height, rgba, transmittance, depth, &werr)
+          : write_png(out, width, height, rgba, &werr)) {
+    fprintf(stderr, "fogpipe render: %s\n", werr.message);
+    goto done;
   }
   printf("fogpipe render: wrote %s (%dx%d, %s; %s)\n", out, width, height,
-         info.has_fog ? "scene + fog" : "scene only, no fog", info.gl_description);
+         scene_config_has_fog(&cfg) ? "scene + fog" : "scene only, no fog", gl_description);
   status = 0;
 done:
   free(rgba);

@@ -115,6 +115,8 @@ fail:
   return NULL;
 }
 
+const char *render_session_gl_description(const render_session *s) { return s->gl_description; }
+
 render_fog *render_session_fog(render_session *s) { return s->has_fog ? &s->fog : NULL; }
 
 /* The scene was drawn once (render_scene_create: the camera does not move in a session);

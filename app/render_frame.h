@@ -44,6 +44,8 @@ typedef struct render_session render_session;
 render_session *render_session_create(const scene_config *cfg, int width, int height,
                                       render_frame_error *err);
 void render_session_destroy(render_session *session);
+/* "egl-surfaceless, 4.5 (Core Profile) Mesa ..., llvmpipe" */
+const char *render_session_gl_description(const render_session *session);
 /* The session's fog (NULL when the config has none), to change between frames. */
 struct render_fog *render_session_fog(render_session *session);
 /* One frame, outputs as render_frame's. */

@@ -1,0 +1,136 @@
+/* The one frame path of the headless commands (player.h). */
+#include "app/player.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "app/pipeline.h"
+#include "app/render_fog.h"
+#include "app/render_frame.h"
+#include "app/vdb_source.h"
+#include "render/gl_context.h"
+#include "sim/sim.h"
+
+struct player {
+  scene_config config;
+  double fps;
+  /* simulated: the pipeline and its context, and the fixed camera */
+  gl_context *gl;
+  pipeline *pipe;
+  camera cam;
+  /* static and played: a session (its own context); played: the sequence */
+  render_session *session;
+  vdb_sequence sequence;
+  char gl_description[256];
+};
+
+void player_destroy(player *p) {
+  if (!p) return;
+  pipeline_destroy(p->pipe);
+  gl_context_destroy(p->gl);
+  render_session_destroy(p->session);
+  if (p->sequence.count) vdb_sequence_destroy(&p->sequence);
+  free(p);
+}
+
+static int create_simulated(player *p, const player_desc *desc, render_error *err) {
+  p->gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, err);
+  if (!p->gl) return 1;
+  snprintf(p->gl_description, sizeof p->gl_description, "%s, %s, %s",
+           gl_context_platform(p->gl), gl_context_version(p->gl), gl_context_renderer(p->gl));
+  pipeline_error perr = {{0}};
+  p->pipe = pipeline_create(&(pipeline_desc){.config = &p->config, .width = desc->width,
+                                             .height = desc->height,
+                                             .frame_seconds = 1.0 / desc->fps,
+                                             .synchronous = desc->synchronous},
+                            &perr);
+  if (!p->pipe) {
+    snprintf(err->message, sizeof err->message, "%s", perr.message);
+    return 1;
+  }
+  scene_config_camera(&p->config, &p->cam);
+  return 0;
+}
+
+static int create_session(player *p, const player_desc *desc, render_error *err) {
+  if (desc->play && p->config.fog.model == FOG_MODEL_VOLUME &&
+      render_fog_volume_sequence(&p->config, &p->sequence, err))
+    return 1;
+  render_frame_error ferr = {{0}};
+  p->session = render_session_create(&p->config, desc->width, desc->height, &ferr);
+  if (!p->session) {
+    snprintf(err->message, sizeof err->message, "%s", ferr.message);
+    return 1;
+  }
+  snprintf(p->gl_description, sizeof p->gl_description, "%s",
+           render_session_gl_description(p->session));
+  return 0;
+}
+
+player *player_create(const player_desc *desc, render_error *err) {
+  if (!(desc->width > 0 && desc->height > 0 && desc->fps > 0)) {
+    snprintf(err->message, sizeof err->message,
+             "player: %d x %d pixels at %g frames per second: expected sizes and a rate > 0",
+             desc->width, desc->height, desc->fps);
+    return NULL;
+  }
+  player *p = calloc(1, sizeof *p);
+  if (!p) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return NULL;
+  }
+  p->config = *desc->config;
+  p->fps = desc->fps;
+  /* (a fogmap config without a fogmap simulates from the emitters alone) */
+  const bool simulated = desc->play && fog_model_table[p->config.fog.model].pyramid;
+  if (simulated ? create_simulated(p, desc, err) : create_session(p, desc, err)) {
+    player_destroy(p);
+    return NULL;
+  }
+  return p;
+}
+
+const char *player_gl_description(const player *p) { return p->gl_description; }
+
+bool player_is_sequential(const player *p) { return p->pipe != NULL; }
+
+int player_skip(player *p, long frames, render_error *err) {
+  if (!p->pipe || frames <= 0) return 0;
+  pipeline_error perr = {{0}};
+  if (pipeline_skip(p->pipe, frames, &perr)) {
+    snprintf(err->message, sizeof err->message, "%s", perr.message);
+    return 1;
+  }
+  return 0;
+}
+
+int player_frame(player *p, int n, float *rgba, float *transmittance, float *depth,
+                 render_error *err) {
+  if (p->pipe) {
+    pipeline_error perr = {{0}};
+    if (pipeline_frame(p->pipe, &p->cam, true, &perr) ||
+        pipeline_read_frame(p->pipe, rgba, transmittance, depth, &perr)) {
+      snprintf(err->message, sizeof err->message, "%s", perr.message);
+      return 1;
+    }
+    return 0;
+  }
+  const scene_fog_config *f = &p->config.fog;
+  if (p->sequence.count) {
+    /* Output frame n shows time (n - 1) / fps, between two VDB frames at vdb_fps, as a
+     * VDB fogmap sequence plays (vdb_sequence_position). */
+    int a = 0, b = 0;
+    double w = 0.0;
+    vdb_sequence_position((n - 1) / p->fps * f->vdb_fps, p->sequence.count, f->vdb_loop, &a,
+                          &b, &w);
+    if (render_fog_set_volume_time(render_session_fog(p->session), &p->config, &p->sequence,
+                                   a, b, w, err))
+      return 1;
+  }
+  render_frame_error ferr = {{0}};
+  if (render_session_frame(p->session, rgba, transmittance, depth, &ferr)) {
+    snprintf(err->message, sizeof err->message, "%s", ferr.message);
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,54 @@
+/* player: the one frame path of the headless commands (docs/architecture.md). A scene
+ * config, resolved once, becomes a fog source, and frame n of it is rendered and read
+ * back. The source is chosen by the config (the model table's row) and desc.play:
+ *
+ *   simulated  model = fogmap, play: the per-frame pipeline (app/pipeline.h), one
+ *              simulation step per frame (a `[fog] vdb` sequence plays as fogmaps),
+ *              then the transform, the upload and the scene + fog passes
+ *   static     without play, the fogmap or volume as the file holds it (a VDB sequence:
+ *              frame vdb_frame), or an analytic model (which has no time): a render
+ *              session (app/render_frame.h) whose fog is made once
+ *   played     model = volume, play: a render session whose 3D grid moves through the VDB
+ *              sequence, frame n at time (n - 1) / fps, blended between VDB frames
+ *
+ * `fogpipe record` and `fogpipe render` draw every frame through this; the window
+ * programs (demo, view) use the same pipeline and session underneath.
+ *
+ * Lifecycle: player_create (makes its own headless GL context) → player_skip (once, for
+ * --resume) → player_frame per frame → player_destroy. */
+#ifndef FOGPIPE_APP_PLAYER_H
+#define FOGPIPE_APP_PLAYER_H
+
+#include <stdbool.h>
+
+#include "app/config.h"
+#include "render/render_error.h"
+
+typedef struct player player;
+
+typedef struct player_desc {
+  const scene_config *config; /* copied */
+  int width, height;          /* > 0 */
+  double fps;                 /* output frames per second of scene time, > 0 */
+  bool play;                  /* the scene's time passes: a fogmap simulates, a volume plays */
+  bool synchronous;           /* the pipeline's CPU stages on the GL thread */
+} player_desc;
+
+player *player_create(const player_desc *desc, render_error *err);
+void player_destroy(player *player);
+/* The GL the frames are drawn with: "egl-surfaceless, 4.5 (Core Profile) Mesa ..., llvmpipe". */
+const char *player_gl_description(const player *player);
+/* Whether the fog of a frame depends on the frames before it (a simulation): then frame n
+ * needs player_skip(n - 1) before it, when the frames before are not drawn. */
+bool player_is_sequential(const player *player);
+/* Advances a sequential source by `frames` frames without drawing them (only before the
+ * first player_frame); a no-op for the others. */
+int player_skip(player *player, long frames, render_error *err);
+/* Draws frame n (1-based; a sequential source: the one after the last drawn or skipped) and
+ * reads it back, rows top first, any output may be NULL: rgba (4 linear floats a pixel),
+ * the transmittance (1 where no fog) and the depth (distance along the view ray to the first
+ * surface; the camera's far plane for the sky). */
+int player_frame(player *player, int n, float *rgba, float *transmittance, float *depth,
+                 render_error *err);
+
+#endif
