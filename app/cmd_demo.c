@@ -19,6 +19,7 @@
 #include "app/panel.h"
 #include "app/pipeline.h"
 #include "app/cmd_record.h"
+#include "app/cmd_view.h"
 #include "app/recorder.h"
 #include "render/fog_field.h"
 #include "render/gl_context.h"
@@ -294,13 +295,16 @@ int cmd_demo(int argc, char **argv) {
   if (!(display && *display) && !(wayland && *wayland))
     return record_instead(config_path, frames ? frames : HEADLESS_FRAMES,
                           "no display (DISPLAY and WAYLAND_DISPLAY are unset)");
-  if (config.fog.model != FOG_MODEL_FOGMAP) {
+  if (!fog_model_table[config.fog.model].pyramid) {
     /* Nothing to simulate live in the other models: show the scene with the free camera. */
     printf("fogpipe demo: %s's [fog] model has no simulation to animate: opening it in "
            "fogpipe view\n", config_path);
     fflush(stdout);
-    char *view_argv[] = {"view", (char *)config_path, "--play", NULL};
-    return cmd_view(config.fog.model == FOG_MODEL_VOLUME ? 3 : 2, view_argv);
+    return view_window_run(&config, config_path,
+                           &(view_options){.width = width, .height = height,
+                                           .render_scale = scale > 0 ? scale : 0.5,
+                                           .play = true, .screenshot = screenshot,
+                                           .frames = frames > 0 ? frames : 1});
   }
   render_error gerr = {{0}};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW,

@@ -13,6 +13,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include "app/cmd_view.h"
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/render_fog.h"
@@ -139,37 +140,153 @@ static void view_destroy(view_state *v) {
   if (v->ctx) gl_context_destroy(v->ctx);
 }
 
+/* Scene, fog, playback and presenter for a window whose GL context v->ctx is current.
+ * Errors in err. */
+static int view_open(view_state *v, volume_playback *playback, const scene_config *cfg,
+                     const view_options *opts, render_error *err) {
+  float *heights = NULL;
+  int hw = 0, hh = 0;
+  render_frame_error ferr;
+  if (render_frame_load_heightmap(cfg, &heights, &hw, &hh, &ferr)) {
+    snprintf(err->message, sizeof err->message, "%s", ferr.message);
+    return 1;
+  }
+  scene_desc desc;
+  scene_config_scene_desc(cfg, heights, hw, hh, &desc);
+  int geo_status = scene_geometry_create(&v->geo, &desc, err);
+  free(heights);
+  if (geo_status) return 1;
+  v->geo_made = true;
+  if (!(v->scene = scene_pass_create(&v->geo, err))) return 1;
+  if (scene_config_has_fog(cfg)) {
+    if (render_fog_create(&v->fog, cfg, err)) return 1;
+    v->has_fog = true;
+  }
+  playback->playing = opts->play;
+  playback->start_time = glfwGetTime();
+  if (cfg->fog.model == FOG_MODEL_VOLUME) {
+    if (render_fog_volume_sequence(cfg, &playback->sequence, err)) return 1;
+    /* render_fog_create showed vdb_frame (so it is in the sequence) */
+    playback->shown = playback->start = vdb_frame_index(
+        playback->sequence.frames, playback->sequence.count, cfg->fog.vdb_frame);
+  }
+  v->presenter = gl_presenter_create(err);
+  return v->presenter ? 0 : 1;
+}
+
+/* The window's last frame as an 8-bit PNG. */
+static int view_screenshot(const view_state *v, const char *path, int width, int height,
+                           int frame, render_error *err) {
+  float *rgb = malloc((size_t)width * height * 3 * sizeof(float));
+  if (!rgb) return snprintf(err->message, sizeof err->message, "out of memory for the "
+                            "screenshot"), 1;
+  int status = gl_read_window(width, height, rgb, err);
+  sim_error serr;
+  if (!status && image_write_png(path, width, height, 3, rgb, &serr)) {
+    snprintf(err->message, sizeof err->message, "%s", serr.message);
+    status = 1;
+  }
+  free(rgb);
+  if (!status)
+    printf("fogpipe view: wrote %s (%dx%d window, frame %d; %s, %s)\n", path, width, height,
+           frame, gl_context_version(v->ctx), gl_context_renderer(v->ctx));
+  return status;
+}
+
+/* Draws frames until the window closes, or the screenshot is taken. */
+static int view_loop(view_state *v, volume_playback *playback, const scene_config *cfg,
+                     const view_options *opts, render_error *err) {
+  GLFWwindow *window = gl_context_glfw_window(v->ctx);
+  camera cam;
+  scene_config_camera(cfg, &cam);
+  double speed = 0.05 * fmax(cfg->terrain.size[0], cfg->terrain.size[1]);
+  double last_x = 0, last_y = 0, last_time = glfwGetTime();
+  bool dragging = false;
+  int target_w = 0, target_h = 0;
+  for (int frame = 1; !gl_context_should_close(v->ctx); frame++) {
+    gl_context_poll_events(v->ctx);
+    double now = glfwGetTime();
+    fly(window, &cam, now - last_time, speed, &last_x, &last_y, &dragging);
+    last_time = now;
+    /* With --screenshot the sequence advances one VDB frame per drawn frame (the same
+     * image every run), else with the clock. */
+    double clock =
+        opts->screenshot ? playback->start_time + (frame - 1) / cfg->fog.vdb_fps : now;
+    if (playback->sequence.count &&
+        volume_playback_update(playback, window, clock, &v->fog, cfg, err))
+      return 1;
+    int fb_w, fb_h;
+    gl_context_framebuffer_size(v->ctx, &fb_w, &fb_h);
+    if (fb_w < 1 || fb_h < 1) continue; /* minimised */
+    int w = (int)fmax(1.0, floor(fb_w * opts->render_scale));
+    int h = (int)fmax(1.0, floor(fb_h * opts->render_scale));
+    if (w != target_w || h != target_h) {
+      if (make_targets(v, w, h, err)) return 1;
+      target_w = w, target_h = h;
+    }
+    scene_pass_run(v->scene, &cam, &v->scene_target);
+    const gl_target *shown = &v->scene_target;
+    if (v->has_fog) {
+      if (render_fog_draw(&v->fog, &cam, &v->scene_target, &v->fog_target, err)) return 1;
+      shown = &v->fog_target;
+    }
+    gl_presenter_draw(v->presenter, shown, fb_w, fb_h, GL_PRESENT_NEAREST);
+    if (opts->screenshot && frame >= opts->frames)
+      return view_screenshot(v, opts->screenshot, fb_w, fb_h, frame, err);
+    gl_context_swap_buffers(v->ctx);
+    if (gl_util_check("view frame", err)) return 1;
+  }
+  return 0;
+}
+
+int view_window_run(const scene_config *cfg, const char *title, const view_options *opts) {
+  view_state v = {0};
+  volume_playback playback = {0};
+  render_error err = {0};
+  int width = opts->width > 0 ? opts->width : cfg->width;
+  int height = opts->height > 0 ? opts->height : cfg->height;
+  v.ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW, .width = width,
+                                               .height = height, .title = title,
+                                               .vsync = true},
+                            &err);
+  int status = !v.ctx || view_open(&v, &playback, cfg, opts, &err) ||
+               view_loop(&v, &playback, cfg, opts, &err);
+  if (status) fprintf(stderr, "fogpipe view: %s\n", err.message);
+  if (playback.sequence.count) vdb_sequence_destroy(&playback.sequence);
+  view_destroy(&v);
+  return status;
+}
+
 int cmd_view(int argc, char **argv) {
-  const char *config_path = NULL, *screenshot = NULL;
-  int frames = 1, width = 0, height = 0;
-  double render_scale = 0.5;
-  bool play = false;
+  const char *config_path = NULL;
+  view_options opts = {.render_scale = 0.5, .frames = 1};
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       usage(stdout);
       return 0;
     } else if (!strcmp(argv[i], "--play")) {
-      play = true;
+      opts.play = true;
     } else if (!strcmp(argv[i], "--screenshot") && i + 1 < argc) {
-      screenshot = argv[++i];
+      opts.screenshot = argv[++i];
     } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
       char *end;
-      frames = (int)strtol(argv[++i], &end, 10);
-      if (*end || frames < 1) {
+      opts.frames = (int)strtol(argv[++i], &end, 10);
+      if (*end || opts.frames < 1) {
         fprintf(stderr, "fogpipe view: --frames '%s': expected a positive integer\n", argv[i]);
         return 2;
       }
     } else if (!strcmp(argv[i], "--render-scale") && i + 1 < argc) {
       char *end;
-      render_scale = strtod(argv[++i], &end);
-      if (*end || !(render_scale > 0.05 && render_scale <= 4)) {
+      opts.render_scale = strtod(argv[++i], &end);
+      if (*end || !(opts.render_scale > 0.05 && opts.render_scale <= 4)) {
         fprintf(stderr, "fogpipe view: --render-scale '%s': expected a number in (0.05, 4]\n",
                 argv[i]);
         return 2;
       }
     } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
       char tail;
-      if (sscanf(argv[++i], "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1) {
+      if (sscanf(argv[++i], "%dx%d%c", &opts.width, &opts.height, &tail) != 2 ||
+          opts.width < 1 || opts.height < 1) {
         fprintf(stderr, "fogpipe view: --size '%s': expected WxH\n", argv[i]);
         return 2;
       }
@@ -195,111 +312,5 @@ int cmd_view(int argc, char **argv) {
     fprintf(stderr, "fogpipe view: %s\n", cfg_err.message);
     return 1;
   }
-  if (!width) width = cfg.width, height = cfg.height;
-
-  view_state v = {0};
-  volume_playback playback = {0}; /* before any goto done: destroyed there */
-  render_error err = {0};
-  int status = 1;
-  v.ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW, .width = width,
-                                               .height = height, .title = config_path,
-                                               .vsync = true},
-                            &err);
-  if (!v.ctx) {
-    fprintf(stderr, "fogpipe view: %s\n", err.message);
-    return 1;
-  }
-  GLFWwindow *window = gl_context_glfw_window(v.ctx);
-  float *heights = NULL;
-  int hw = 0, hh = 0;
-  render_frame_error ferr;
-  if (render_frame_load_heightmap(&cfg, &heights, &hw, &hh, &ferr)) {
-    fprintf(stderr, "fogpipe view: %s\n", ferr.message);
-    goto done;
-  }
-  scene_desc desc;
-  scene_config_scene_desc(&cfg, heights, hw, hh, &desc);
-  int geo_status = scene_geometry_create(&v.geo, &desc, &err);
-  free(heights);
-  if (geo_status) goto gl_fail;
-  v.geo_made = true;
-  if (!(v.scene = scene_pass_create(&v.geo, &err))) goto gl_fail;
-  if (scene_config_has_fog(&cfg)) {
-    if (render_fog_create(&v.fog, &cfg, &err)) goto gl_fail;
-    v.has_fog = true;
-  }
-  playback.playing = play;
-  playback.start_time = glfwGetTime();
-  if (cfg.fog.model == FOG_MODEL_VOLUME) {
-    if (render_fog_volume_sequence(&cfg, &playback.sequence, &err)) goto gl_fail;
-    /* render_fog_create showed vdb_frame (so it is in the sequence) */
-    playback.shown = playback.start = vdb_frame_index(
-        playback.sequence.frames, playback.sequence.count, cfg.fog.vdb_frame);
-  }
-  v.presenter = gl_presenter_create(&err);
-  if (!v.presenter) goto gl_fail;
-
-  camera cam;
-  scene_config_camera(&cfg, &cam);
-  double speed = 0.05 * (cfg.terrain.size[0] > cfg.terrain.size[1] ? cfg.terrain.size[0] : cfg.terrain.size[1]);
-  double last_x = 0, last_y = 0, last_time = glfwGetTime();
-  bool dragging = false;
-  int target_w = 0, target_h = 0;
-  for (int frame = 1; !gl_context_should_close(v.ctx); frame++) {
-    gl_context_poll_events(v.ctx);
-    double now = glfwGetTime();
-    fly(window, &cam, now - last_time, speed, &last_x, &last_y, &dragging);
-    last_time = now;
-    /* With --screenshot the sequence advances one VDB frame per drawn frame (the same
-     * image every run), else with the clock. */
-    double clock = screenshot ? playback.start_time + (frame - 1) / cfg.fog.vdb_fps : now;
-    if (playback.sequence.count &&
-        volume_playback_update(&playback, window, clock, &v.fog, &cfg, &err))
-      goto gl_fail;
-    int fb_w, fb_h;
-    gl_context_framebuffer_size(v.ctx, &fb_w, &fb_h);
-    if (fb_w < 1 || fb_h < 1) continue; /* minimised */
-    int w = (int)fmax(1.0, floor(fb_w * render_scale)), h = (int)fmax(1.0, floor(fb_h * render_scale));
-    if (w != target_w || h != target_h) {
-      if (make_targets(&v, w, h, &err)) goto gl_fail;
-      target_w = w, target_h = h;
-    }
-    scene_pass_run(v.scene, &cam, &v.scene_target);
-    const gl_target *shown = &v.scene_target;
-    if (v.has_fog) {
-      if (render_fog_draw(&v.fog, &cam, &v.scene_target, &v.fog_target, &err)) goto gl_fail;
-      shown = &v.fog_target;
-    }
-    gl_presenter_draw(v.presenter, shown, fb_w, fb_h, GL_PRESENT_NEAREST);
-    if (screenshot && frame >= frames) {
-      float *rgb = malloc((size_t)fb_w * fb_h * 3 * sizeof(float));
-      if (!rgb) {
-        fprintf(stderr, "fogpipe view: out of memory for the screenshot\n");
-        goto done;
-      }
-      int read_status = gl_read_window(fb_w, fb_h, rgb, &err);
-      sim_error serr;
-      int write_status = read_status ? 1 : image_write_png(screenshot, fb_w, fb_h, 3, rgb, &serr);
-      free(rgb);
-      if (read_status) goto gl_fail;
-      if (write_status) {
-        fprintf(stderr, "fogpipe view: %s\n", serr.message);
-        goto done;
-      }
-      printf("fogpipe view: wrote %s (%dx%d window, frame %d; %s, %s)\n", screenshot, fb_w, fb_h,
-             frame, gl_context_version(v.ctx), gl_context_renderer(v.ctx));
-      status = 0;
-      goto done;
-    }
-    gl_context_swap_buffers(v.ctx);
-    if (gl_util_check("view frame", &err)) goto gl_fail;
-  }
-  status = 0;
-  goto done;
-gl_fail:
-  fprintf(stderr, "fogpipe view: %s\n", err.message);
-done:
-  if (playback.sequence.count) vdb_sequence_destroy(&playback.sequence);
-  view_destroy(&v);
-  return status;
+  return view_window_run(&cfg, config_path, &opts);
 }

@@ -48,6 +48,25 @@ int main(void) {
   fogmap_destroy(&r);
   fogmap_destroy(&g);
   fogmap_destroy(&b);
+
+  /* A model without a simulation opens the view window with the demo's own options: the
+   * screenshot is taken at the demo's --size and the demo exits (it used to hand the view a
+   * made-up command line without them, and ran until killed). */
+  char view_png[600];
+  snprintf(view_png, sizeof view_png, "%s/banks.png", root);
+  snprintf(cmd, sizeof cmd,
+           "timeout 120 xvfb-run -a -s '-screen 0 800x600x24' '%s' demo configs/rbf_fog_banks.ini "
+           "--size 320x180 --frames 2 --screenshot '%s' >'%s' 2>&1",
+           record_bin(), view_png, log);
+  status = system(cmd);
+  CHECK(status == 0, "demo of an rbf config with --screenshot: status %d", status);
+  if (status != 0) record_print_log(log);
+  fogmap shot = {0};
+  CHECK(!fogmap_load(view_png, &(fogmap_load_desc){.channel = "R"}, &shot, &err) &&
+            shot.width == 320 && shot.height == 180,
+        "the view's screenshot: %s (%dx%d, expected 320x180)", err.message, shot.width,
+        shot.height);
+  fogmap_destroy(&shot);
   record_remove_tree(root);
   return test_finish("test_demo_window");
 }
