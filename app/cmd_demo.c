@@ -240,11 +240,14 @@ static int save_screenshot(const char *path, int width, int height) {
   return status;
 }
 
-int cmd_demo(int argc, char **argv) {
-  const char *config_path = NULL, *screenshot = NULL;
-  int width = 1280, height = 720, frames = 0;
-  double scale = 0.0; /* 0: chosen from the renderer below */
-  int fog_divisor = 1; /* fog resolution divisor; 2 with the automatic scale on software GL */
+typedef struct demo_options {
+  const char *config_path, *screenshot;
+  int width, height, frames; /* frames 0: HEADLESS_FRAMES headless, 30 before a screenshot */
+  double scale;              /* 0: chosen from the renderer */
+} demo_options;
+
+/* -1 to go on, else the exit status. */
+static int parse_demo_options(int argc, char **argv, demo_options *o) {
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
     char x = 0, tail = 0;
@@ -252,184 +255,196 @@ int cmd_demo(int argc, char **argv) {
       print_help(stdout);
       return 0;
     } else if (!strcmp(a, "--size") && value) {
-      if (sscanf(value, "%d%c%d%c", &width, &x, &height, &tail) != 3 || x != 'x' || width < 64 ||
-          height < 64) {
+      if (sscanf(value, "%d%c%d%c", &o->width, &x, &o->height, &tail) != 3 || x != 'x' ||
+          o->width < 64 || o->height < 64) {
         fprintf(stderr, "fogpipe demo: --size %s: expected WIDTHxHEIGHT (at least 64x64)\n", value);
         return 2;
       }
       i++;
     } else if (!strcmp(a, "--scale") && value) {
-      scale = atof(value);
-      if (!(scale >= 0.25 && scale <= 1.0)) {
+      o->scale = atof(value);
+      if (!(o->scale >= 0.25 && o->scale <= 1.0)) {
         fprintf(stderr, "fogpipe demo: --scale %s: expected a number in [0.25, 1]\n", value);
         return 2;
       }
       i++;
     } else if (!strcmp(a, "--screenshot") && value) {
-      screenshot = argv[++i];
+      o->screenshot = argv[++i];
     } else if (!strcmp(a, "--frames") && value) {
-      frames = atoi(argv[++i]);
-      if (frames < 1) {
+      o->frames = atoi(argv[++i]);
+      if (o->frames < 1) {
         fprintf(stderr, "fogpipe demo: --frames %s: expected a whole number >= 1\n", value);
         return 2;
       }
     } else if (a[0] == '-' && a[1]) {
       fprintf(stderr, "fogpipe demo: unknown option or missing value: %s (see --help)\n", a);
       return 2;
-    } else if (!config_path) {
-      config_path = a;
+    } else if (!o->config_path) {
+      o->config_path = a;
     } else {
       fprintf(stderr, "fogpipe demo: unexpected argument %s (one CONFIG only)\n", a);
       return 2;
     }
   }
-  if (!config_path) config_path = DEFAULT_CONFIG;
+  if (!o->config_path) o->config_path = DEFAULT_CONFIG;
+  return -1;
+}
 
+/* What the window's input remembers between frames. */
+typedef struct demo_input {
+  bool painting;
+  double last_paint[3];
+  bool space_down, n_down, r_down;
+} demo_input;
+
+/* Esc quits, Space pauses, N steps, R restarts (on the key's press). */
+static void demo_keys(GLFWwindow *window, pipeline *pipe, demo_input *in) {
+  if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, 1);
+  bool space = glfwGetKey(window, GLFW_KEY_SPACE) == GLFW_PRESS;
+  bool n = glfwGetKey(window, GLFW_KEY_N) == GLFW_PRESS;
+  bool r = glfwGetKey(window, GLFW_KEY_R) == GLFW_PRESS;
+  if (space && !in->space_down) {
+    pipeline_params params = pipeline_get_params(pipe);
+    params.paused = !params.paused;
+    pipeline_set_params(pipe, &params);
+  }
+  if (n && !in->n_down) pipeline_step_once(pipe);
+  if (r && !in->r_down) pipeline_reset(pipe);
+  in->space_down = space, in->n_down = n, in->r_down = r;
+}
+
+/* Painting: the surface point under the cursor from the last frame's distance texture, in
+ * render pixels; left paints, right (or Shift) erases, along the stroke since last frame. */
+static void demo_paint(GLFWwindow *window, pipeline *pipe, const free_camera *fc,
+                       const demo_ui *d, bool mouse, double dt, demo_input *in) {
+  bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  bool right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+               glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+  double hit[3];
+  int render_w, render_h, win_w = 0, win_h = 0;
+  pipeline_size(pipe, &render_w, &render_h);
+  glfwGetWindowSize(window, &win_w, &win_h);
+  int px = (int)(fc->last_x * render_w / (win_w > 0 ? win_w : 1));
+  int py = (int)(fc->last_y * render_h / (win_h > 0 ? win_h : 1));
+  if (!mouse || !(left || right) || !pipeline_pick_surface(pipe, &fc->cam, px, py, hit)) {
+    in->painting = false;
+    return;
+  }
+  const double *from = in->painting ? in->last_paint : hit;
+  double sign = (right || shift) ? -1.0 : 1.0;
+  pipeline_paint(pipe, from[0], from[2], hit[0], hit[2], d->brush_radius,
+                 sign * d->brush_strength * dt);
+  memcpy(in->last_paint, hit, sizeof hit);
+  in->painting = true;
+}
+
+/* Frames until the window closes (or the screenshot is taken); the exit status. */
+static int demo_loop(gl_context *gl, pipeline *pipe, panel *ui, demo_ui *d,
+                     const scene_config *config, const demo_options *o) {
+  GLFWwindow *window = gl_context_glfw_window(gl);
+  free_camera fc = {.speed = 80.0};
+  scene_config_camera(config, &fc.cam);
+  demo_input in = {0};
+  pipeline_error perr = {{0}};
+  double last_time = glfwGetTime();
+  for (int frame = 0; !gl_context_should_close(gl); frame++) {
+    gl_context_poll_events(gl);
+    double t = glfwGetTime(), dt = fmin(t - last_time, 0.25);
+    last_time = t;
+    int fb_w = 0, fb_h = 0, render_w, render_h;
+    gl_context_framebuffer_size(gl, &fb_w, &fb_h);
+    if (fb_w < 1 || fb_h < 1) continue; /* minimised */
+    int want_w = (int)fmax(16, fb_w * d->render_scale), want_h = (int)fmax(16, fb_h * d->render_scale);
+    pipeline_size(pipe, &render_w, &render_h);
+    if (want_w != render_w || want_h != render_h) pipeline_resize(pipe, want_w, want_h, &perr);
+
+    panel_begin_frame(ui);
+    panel_contents(ui, pipe, d);
+    bool keyboard = !panel_wants_keyboard(ui), mouse = !panel_wants_mouse(ui);
+    if (keyboard) demo_keys(window, pipe, &in);
+    free_camera_update(&fc, window, dt, keyboard, mouse);
+    if (frame > 0) demo_paint(window, pipe, &fc, d, mouse, dt, &in);
+
+    if (pipeline_frame(pipe, &fc.cam, false, &perr)) {
+      fprintf(stderr, "fogpipe demo: %s\n", perr.message);
+      return 1;
+    }
+    pipeline_present(pipe, fb_w, fb_h);
+    panel_end_frame(ui);
+    if (o->screenshot && frame + 1 >= (o->frames ? o->frames : 30))
+      return save_screenshot(o->screenshot, fb_w, fb_h);
+    gl_context_swap_buffers(gl);
+  }
+  return 0;
+}
+
+int cmd_demo(int argc, char **argv) {
+  demo_options o = {.width = 1280, .height = 720};
+  int parsed = parse_demo_options(argc, argv, &o);
+  if (parsed >= 0) return parsed;
+  int fog_divisor = 1; /* fog resolution divisor; 2 with the automatic scale on software GL */
   scene_config config;
   scene_config_error cerr = {{0}};
-  if (scene_config_load(config_path, &config, &cerr)) {
+  if (scene_config_load(o.config_path, &config, &cerr)) {
     fprintf(stderr, "fogpipe demo: %s\n", cerr.message);
     return 1;
   }
+  const int headless_frames = o.frames ? o.frames : HEADLESS_FRAMES;
   const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
   if (!(display && *display) && !(wayland && *wayland))
-    return record_instead(config_path, frames ? frames : HEADLESS_FRAMES,
+    return record_instead(o.config_path, headless_frames,
                           "no display (DISPLAY and WAYLAND_DISPLAY are unset)");
   if (!fog_model_table[config.fog.model].pyramid) {
     /* Nothing to simulate live in the other models: show the scene with the free camera. */
     printf("fogpipe demo: %s's [fog] model has no simulation to animate: opening it in "
-           "fogpipe view\n", config_path);
+           "fogpipe view\n", o.config_path);
     fflush(stdout);
-    return view_window_run(&config, config_path,
-                           &(view_options){.width = width, .height = height,
-                                           .render_scale = scale > 0 ? scale : 0.5,
-                                           .play = true, .screenshot = screenshot,
-                                           .frames = frames > 0 ? frames : 1});
+    return view_window_run(&config, o.config_path,
+                           &(view_options){.width = o.width, .height = o.height,
+                                           .render_scale = o.scale > 0 ? o.scale : 0.5,
+                                           .play = true, .screenshot = o.screenshot,
+                                           .frames = o.frames > 0 ? o.frames : 1});
   }
   render_error gerr = {{0}};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW,
-                                                        .width = width, .height = height,
+                                                        .width = o.width, .height = o.height,
                                                         .title = "fogpipe demo", .vsync = true},
                                      &gerr);
   if (!gl) {
     char reason[600];
     snprintf(reason, sizeof reason, "no window (%s)", gerr.message);
-    return record_instead(config_path, frames ? frames : HEADLESS_FRAMES, reason);
+    return record_instead(o.config_path, headless_frames, reason);
   }
-  GLFWwindow *window = gl_context_glfw_window(gl);
-  if (scale == 0.0) {
+  if (o.scale == 0.0) {
     /* The fog pass costs per pixel: a software renderer (Mesa llvmpipe/softpipe) renders
      * at half the window's resolution per axis with the fog at half of that (upsampled
      * guided by the surface distance), a GPU at full resolution. */
     bool software = gl_context_is_software(gl);
-    scale = software ? 0.5 : 1.0;
+    o.scale = software ? 0.5 : 1.0;
     fog_divisor = software ? 2 : 1;
   }
   int fb_w = 0, fb_h = 0;
   gl_context_framebuffer_size(gl, &fb_w, &fb_h);
-  demo_ui d = {.brush_radius = 30.0f, .brush_strength = 3.0f, .render_scale = (float)scale,
+  demo_ui d = {.brush_radius = 30.0f, .brush_strength = 3.0f, .render_scale = (float)o.scale,
                .has_bspline_profile = config.fog.profile_count > 0};
-  int render_w = (int)(fb_w * d.render_scale), render_h = (int)(fb_h * d.render_scale);
   pipeline_error perr = {{0}};
-  pipeline *pipe = pipeline_create(&(pipeline_desc){.config = &config, .width = render_w,
-                                                    .height = render_h,
+  pipeline *pipe = pipeline_create(&(pipeline_desc){.config = &config,
+                                                    .width = (int)(fb_w * d.render_scale),
+                                                    .height = (int)(fb_h * d.render_scale),
                                                     .frame_seconds = 1.0 / 30.0},
                                    &perr);
+  panel *ui = pipe ? panel_create(gl_context_glfw_window(gl)) : NULL;
+  int status = 1;
   if (!pipe) {
     fprintf(stderr, "fogpipe demo: %s\n", perr.message);
-    gl_context_destroy(gl);
-    return 1;
-  }
-  pipeline_params initial = pipeline_get_params(pipe);
-  initial.fog_resolution_divisor = fog_divisor;
-  pipeline_set_params(pipe, &initial);
-  panel *ui = panel_create(window);
-  if (!ui) {
+  } else if (!ui) {
     fprintf(stderr, "fogpipe demo: cannot start Dear ImGui on this window\n");
-    pipeline_destroy(pipe);
-    gl_context_destroy(gl);
-    return 1;
-  }
-  free_camera fc = {.speed = 80.0};
-  scene_config_camera(&config, &fc.cam);
-  bool painting = false;
-  double last_paint[3] = {0, 0, 0};
-  bool space_down = false, n_down = false, r_down = false;
-  double last_time = glfwGetTime();
-  int status = 0;
-  for (int frame = 0; !gl_context_should_close(gl); frame++) {
-    gl_context_poll_events(gl);
-    double t = glfwGetTime(), dt = t - last_time;
-    last_time = t;
-    if (dt > 0.25) dt = 0.25;
-    gl_context_framebuffer_size(gl, &fb_w, &fb_h);
-    if (fb_w < 1 || fb_h < 1) continue; /* minimised */
-    int want_w = (int)(fb_w * d.render_scale), want_h = (int)(fb_h * d.render_scale);
-    if (want_w < 16) want_w = 16;
-    if (want_h < 16) want_h = 16;
-    pipeline_size(pipe, &render_w, &render_h);
-    if ((want_w != render_w || want_h != render_h) && !pipeline_resize(pipe, want_w, want_h, &perr)) {
-      render_w = want_w;
-      render_h = want_h;
-    }
-
-    panel_begin_frame(ui);
-    panel_contents(ui, pipe, &d);
-    bool keyboard = !panel_wants_keyboard(ui), mouse = !panel_wants_mouse(ui);
-    if (keyboard) {
-      if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, 1);
-      bool space = glfwGetKey(window, GLFW_KEY_SPACE) == GLFW_PRESS;
-      bool n = glfwGetKey(window, GLFW_KEY_N) == GLFW_PRESS;
-      bool r = glfwGetKey(window, GLFW_KEY_R) == GLFW_PRESS;
-      if (space && !space_down) {
-        pipeline_params params = pipeline_get_params(pipe);
-        params.paused = !params.paused;
-        pipeline_set_params(pipe, &params);
-      }
-      if (n && !n_down) pipeline_step_once(pipe);
-      if (r && !r_down) pipeline_reset(pipe);
-      space_down = space, n_down = n, r_down = r;
-    }
-    free_camera_update(&fc, window, dt, keyboard, mouse);
-
-    /* Painting: the surface point under the cursor from the last frame's distance
-     * texture, in render pixels. */
-    bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    bool right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-    bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
-                 glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
-    double hit[3];
-    if (mouse && (left || right) && frame > 0) {
-      int win_w = 0, win_h = 0;
-      glfwGetWindowSize(window, &win_w, &win_h);
-      int px = (int)(fc.last_x * render_w / (win_w > 0 ? win_w : 1));
-      int py = (int)(fc.last_y * render_h / (win_h > 0 ? win_h : 1));
-      if (pipeline_pick_surface(pipe, &fc.cam, px, py, hit)) {
-        const double *from = painting ? last_paint : hit;
-        double sign = (right || shift) ? -1.0 : 1.0;
-        pipeline_paint(pipe, from[0], from[2], hit[0], hit[2], d.brush_radius,
-                       sign * d.brush_strength * dt);
-        memcpy(last_paint, hit, sizeof hit);
-        painting = true;
-      } else {
-        painting = false;
-      }
-    } else {
-      painting = false;
-    }
-
-    if (pipeline_frame(pipe, &fc.cam, false, &perr)) {
-      fprintf(stderr, "fogpipe demo: %s\n", perr.message);
-      status = 1;
-      break;
-    }
-    pipeline_present(pipe, fb_w, fb_h);
-    panel_end_frame(ui);
-    if (screenshot && frame + 1 >= (frames ? frames : 30)) {
-      status = save_screenshot(screenshot, fb_w, fb_h);
-      break;
-    }
-    gl_context_swap_buffers(gl);
+  } else {
+    pipeline_params initial = pipeline_get_params(pipe);
+    initial.fog_resolution_divisor = fog_divisor;
+    pipeline_set_params(pipe, &initial);
+    status = demo_loop(gl, pipe, ui, &d, &config, &o);
   }
   panel_destroy(ui);
   pipeline_destroy(pipe);
