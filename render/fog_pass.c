@@ -360,6 +360,28 @@ int fog_pass_upload_pyramid(fog_pass *pass, const fog_pyramid *pyramid, render_e
 
 static GLint fog_loc(GLuint program, const char *name) { return glGetUniformLocation(program, name); }
 
+/* The texture unit of each sampler of fog_pass_fs.glsl. */
+enum fog_pass_unit {
+  UNIT_SURFACE_COLOUR = 0,
+  UNIT_SURFACE_DISTANCE,
+  UNIT_GRIDS, /* fog_grids[k] on UNIT_GRIDS + k */
+  UNIT_GRID_LAYERS = UNIT_GRIDS + FOG_PASS_MAX_GRIDS,
+  UNIT_REDUCED,
+  UNIT_CELLS,
+  UNIT_CELL_LAYERS,
+  UNIT_GRID3D,
+  UNIT_COUNT
+};
+_Static_assert(UNIT_COUNT <= 32, "the fog pass needs more texture units than GL 4.3 offers");
+
+/* Binds texture to unit and points sampler `name` of prog at it. */
+static void bind_sampler(GLuint prog, const char *name, int unit, GLenum target,
+                         GLuint texture) {
+  glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
+  glBindTexture(target, texture);
+  glUniform1i(fog_loc(prog, name), unit);
+}
+
 /* A 2D array texture of w x h x count texels, (re)allocated only when that changes.
  * filtered: GL_LINEAR with a zero border (the hardware-filtered variant's coefficients);
  * otherwise GL_NEAREST (texelFetch only). */
@@ -430,12 +452,9 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
   glUniform2f(fog_loc(prog, "fog_viewport"), (float)width, (float)height);
   glUniform3f(fog_loc(prog, "fog_colour"), params->fog_colour[0], params->fog_colour[1],
               params->fog_colour[2]);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, surface_colour);
-  glUniform1i(fog_loc(prog, "fog_surface_colour"), 0);
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, surface_distance);
-  glUniform1i(fog_loc(prog, "fog_surface_distance"), 1);
+  bind_sampler(prog, "fog_surface_colour", UNIT_SURFACE_COLOUR, GL_TEXTURE_2D, surface_colour);
+  bind_sampler(prog, "fog_surface_distance", UNIT_SURFACE_DISTANCE, GL_TEXTURE_2D,
+               surface_distance);
 
   glViewport(0, 0, viewport_width, viewport_height);
   glDisable(GL_DEPTH_TEST);
@@ -446,8 +465,7 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
   return gl_util_check("fog pass: draw", err);
 }
 
-/* FOG_MODEL_VOLUME's grid: the 3D texture on a unit of its own (the others: surfaces 0
- * and 1, grids from 2), the camera's index position in double rounded once, the matrix
+/* FOG_MODEL_VOLUME's grid: the 3D texture on a unit of its own, the camera's index position in double rounded once, the matrix
  * that maps directions. */
 static void fog_pass_volume_uniforms(const fog_pass *pass, GLuint prog, const camera *cam,
                                      const fog_pass_params *params) {
@@ -456,9 +474,7 @@ static void fog_pass_volume_uniforms(const fog_pass *pass, GLuint prog, const ca
   float m[9];
   volume_grid_index_of(g, cam->position, u);
   volume_grid_gl_matrix(g, m);
-  glActiveTexture(GL_TEXTURE6 + FOG_PASS_MAX_GRIDS);
-  glBindTexture(GL_TEXTURE_3D, pass->grid3d);
-  glUniform1i(fog_loc(prog, "fog_grid3d"), 6 + FOG_PASS_MAX_GRIDS);
+  bind_sampler(prog, "fog_grid3d", UNIT_GRID3D, GL_TEXTURE_3D, pass->grid3d);
   glUniformMatrix3fv(fog_loc(prog, "fog_grid3d_index_from_world"), 1, GL_FALSE, m);
   glUniform3f(fog_loc(prog, "fog_grid3d_camera_index"), (float)u[0], (float)u[1], (float)u[2]);
   glUniform3f(fog_loc(prog, "fog_grid3d_dims"), (float)g->dim[0], (float)g->dim[1],
@@ -502,7 +518,7 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
   glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
   /* The sampler array must still name distinct units of the right type. */
   GLint units[FOG_PASS_MAX_GRIDS];
-  for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) units[k] = 2 + k;
+  for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) units[k] = UNIT_GRIDS + k;
   glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
   if (params->model == FOG_MODEL_VOLUME) fog_pass_volume_uniforms(pass, prog, cam, params);
   if (params->model == FOG_MODEL_RBF) fog_pass_rbf_uniforms(prog, cam, params);
@@ -544,9 +560,7 @@ static int fog_pass_finish_reduced(fog_pass *pass, GLuint prog, const camera *ca
                                    render_error *err) {
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)caller_framebuffer);
   glUseProgram(prog);
-  glActiveTexture(GL_TEXTURE3 + FOG_PASS_MAX_GRIDS);
-  glBindTexture(GL_TEXTURE_2D, pass->reduced.color[0]);
-  glUniform1i(fog_loc(prog, "fog_reduced"), 3 + FOG_PASS_MAX_GRIDS);
+  bind_sampler(prog, "fog_reduced", UNIT_REDUCED, GL_TEXTURE_2D, pass->reduced.color[0]);
   glUniform1i(fog_loc(prog, "fog_divisor"), divisor);
   return fog_pass_common_and_draw(prog, cam, params, surface_colour, surface_distance, width,
                                   height, width, height, err);
@@ -586,32 +600,21 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
   return 0;
 }
 
-int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *params,
-                  GLuint surface_colour, GLuint surface_distance, int width, int height,
-                  render_error *err) {
+/* The fogmap draw's grids and profile, before anything is drawn: reads[k] tells which slots
+ * the LOD method reads (switching A_0..A_J, slots 0..J; the sum of details A_0 and D_1..D_J,
+ * slots 0 and J+1..2J), each must have been uploaded. */
+static int fog_pass_check_fogmap(const fog_pass *pass, const fog_pass_params *params,
+                                 bool reads[FOG_PASS_MAX_GRIDS], render_error *err) {
   const fog_volume *v = params->volume;
-  int J = params->levels, slots = 2 * J + 1;
-  if (fog_pass_check_model(pass, params, err)) return 1;
-  int divisor = params->resolution_divisor > 1 ? params->resolution_divisor : 1;
-  if (divisor != 1 && divisor != 2 && divisor != 4) {
-    snprintf(err->message, sizeof err->message,
-             "fog pass: resolution divisor %d: expected 0 or 1 (full), 2 or 4",
-             params->resolution_divisor);
-    return 1;
-  }
-  if (params->model != FOG_MODEL_FOGMAP) return fog_pass_draw_analytic(pass, cam, params,
-      surface_colour, surface_distance, width, height, err);
+  const int J = params->levels, slots = 2 * J + 1;
   if (!v || J < 0 || slots > FOG_PASS_MAX_GRIDS) {
     snprintf(err->message, sizeof err->message,
-             "fog pass: draw needs a fog volume and 0..%d LOD levels (got %d)",
-             (FOG_PASS_MAX_GRIDS - 1) / 2, J);
+             "fog pass: draw needs a fog volume and 0..%d LOD levels (got %d)", FOG_MAX_LEVELS,
+             J);
     return 1;
   }
-  /* The slots this draw reads: switching reads A_0..A_J (slots 0..J); the sum of details
-   * reads A_0 and D_1..D_J (slots 0 and J+1..2J). */
-  bool reads[FOG_PASS_MAX_GRIDS] = {false};
-  for (int k = 0; k < slots; k++)
-    reads[k] = (k == 0) || (params->lod_method == FOG_LOD_SWITCH ? k <= J : k > J);
+  for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++)
+    reads[k] = k < slots && ((k == 0) || (params->lod_method == FOG_LOD_SWITCH ? k <= J : k > J));
   for (int k = 0; k < slots; k++)
     if (reads[k] && !pass->slots[k].texture) {
       snprintf(err->message, sizeof err->message,
@@ -636,6 +639,107 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
              p->count, p->degree, FOG_PROFILE_MAX_COEFFICIENTS);
     return 1;
   }
+  return 0;
+}
+
+/* The fogmap's grids (slot `first` shown as slot 0), their camera-relative placement in
+ * double (fog_integral.glsl, fog_optical_depth_inside) and the profile, for program prog
+ * of a draw with J levels over `slots` slots. */
+static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
+                                    const fog_pass_params *params, int first, int J,
+                                    int slots, const bool reads[FOG_PASS_MAX_GRIDS],
+                                    render_error *err) {
+  const fog_volume *v = params->volume;
+  const fog_profile *p = &v->profile;
+  const double *c = cam->position;
+  double h = v->cell_size; /* checked > 0 */
+  double x0[FOG_PASS_MAX_GRIDS][2], scale[FOG_PASS_MAX_GRIDS];
+  GLint size[FOG_PASS_MAX_GRIDS][2], units[FOG_PASS_MAX_GRIDS];
+  for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) {
+    const fog_pass_slot *s = &pass->slots[k == 0 ? first : k];
+    units[k] = UNIT_GRIDS + k;
+    double sp = s->spacing > 0 ? s->spacing : 1.0;
+    x0[k][0] = (-(v->origin_x - c[0]) / h - 0.5 - s->origin_u) / sp;
+    x0[k][1] = (-(v->origin_z - c[2]) / h - 0.5 - s->origin_v) / sp;
+    scale[k] = 1.0 / (h * sp);
+    size[k][0] = s->width;
+    size[k][1] = s->height;
+    glActiveTexture(GL_TEXTURE0 + UNIT_GRIDS + (GLenum)k);
+    glBindTexture(GL_TEXTURE_2D, reads[k] ? s->texture : 0);
+  }
+  glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
+  /* The cell polynomials: slot `first` alone, or every slot as layers (J > 0). */
+  bind_sampler(prog, "fog_cells", UNIT_CELLS, GL_TEXTURE_2D, pass->slots[first].cells);
+  if (J > 0) {
+    if (fog_pass_update_layers(pass, slots, err)) return 1;
+    bind_sampler(prog, "fog_grid_layers", UNIT_GRID_LAYERS, GL_TEXTURE_2D_ARRAY, pass->layers);
+    glUniform2f(fog_loc(prog, "fog_grid_layer_size"), (float)pass->layers_width,
+                (float)pass->layers_height);
+    bind_sampler(prog, "fog_cell_layers", UNIT_CELL_LAYERS, GL_TEXTURE_2D_ARRAY,
+                 pass->cell_layers);
+  }
+  /* Approximation slots 0..J are dyadic, u_k = u_{k+1}/2 + c_k (fog_walk_coarser): from
+   * u = (A - origin)/spacing, c_k = (origin_{k+1} - origin_k) / spacing_k. */
+  float dyadic[FOG_PASS_MAX_GRIDS][2] = {{0}};
+  for (int k = 0; k < J; k++) {
+    const fog_pass_slot *s = &pass->slots[k], *finer = &pass->slots[k + 1];
+    double sp = s->spacing > 0 ? s->spacing : 1.0;
+    dyadic[k][0] = (float)((finer->origin_u - s->origin_u) / sp);
+    dyadic[k][1] = (float)((finer->origin_v - s->origin_v) / sp);
+  }
+  glUniform2fv(fog_loc(prog, "fog_grid_dyadic"), FOG_PASS_MAX_GRIDS, &dyadic[0][0]);
+  glUniform2dv(fog_loc(prog, "fog_grid_x0"), FOG_PASS_MAX_GRIDS, &x0[0][0]);
+  glUniform1dv(fog_loc(prog, "fog_grid_scale"), FOG_PASS_MAX_GRIDS, scale);
+  glUniform2iv(fog_loc(prog, "fog_grid_size"), FOG_PASS_MAX_GRIDS, &size[0][0]);
+  double lo[3], hi[3];
+  fog_volume_box(v, lo, hi);
+  glUniform3d(fog_loc(prog, "fog_box_min"), lo[0] - c[0], lo[1] - c[1], lo[2] - c[2]);
+  glUniform3d(fog_loc(prog, "fog_box_max"), hi[0] - c[0], hi[1] - c[1], hi[2] - c[2]);
+  glUniform1f(fog_loc(prog, "fog_extinction_scale"), (float)v->extinction);
+  glUniform1f(fog_loc(prog, "fog_profile_y0"), (float)(p->y0 - c[1]));
+  glUniform1f(fog_loc(prog, "fog_profile_scale_height"),
+              (float)(p->scale_height > 0 ? p->scale_height : 1.0));
+  glUniform1f(fog_loc(prog, "fog_profile_inv_scale_height"),
+              (float)(p->scale_height > 0 ? 1.0 / p->scale_height : 1.0));
+  const bool bspline = p->kind == FOG_PROFILE_BSPLINE;
+  float coefficients[FOG_PROFILE_MAX_COEFFICIENTS];
+  for (int k = 0; bspline && k < p->count; k++) coefficients[k] = (float)p->coefficients[k];
+  glUniform1i(fog_loc(prog, "fog_profile_count"), bspline ? p->count : 0);
+  glUniform1f(fog_loc(prog, "fog_profile_y_start"),
+              bspline ? (float)((c[1] - p->origin) / p->spacing) : 0.0f);
+  glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), bspline ? (float)(1.0 / p->spacing) : 0.0f);
+  if (bspline) glUniform1fv(fog_loc(prog, "fog_profile_coefficients"), p->count, coefficients);
+
+  glUniform1d(fog_loc(prog, "fog_mu"), J > 0 ? params->mu : 1.0);
+  glUniform1i(fog_loc(prog, "fog_march_steps"),
+              params->march_steps > 0 ? params->march_steps : 64);
+  glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
+  /* The optical depth cut-off (fog_pass_params.depth_cutoff): tau < e^-16 ~ 1.1e-7 is
+   * black even in a float image, so the walk may stop there. */
+  glUniform1f(fog_loc(prog, "fog_depth_limit"),
+              params->depth_cutoff < 0 ? 1e30f
+              : (float)(params->depth_cutoff > 0 ? params->depth_cutoff : FOG_PASS_DEPTH_CUTOFF));
+  glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
+  return 0;
+}
+
+int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *params,
+                  GLuint surface_colour, GLuint surface_distance, int width, int height,
+                  render_error *err) {
+  if (fog_pass_check_model(pass, params, err)) return 1;
+  int divisor = params->resolution_divisor > 1 ? params->resolution_divisor : 1;
+  if (divisor != 1 && divisor != 2 && divisor != 4) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: resolution divisor %d: expected 0 or 1 (full), 2 or 4",
+             params->resolution_divisor);
+    return 1;
+  }
+  if (params->model != FOG_MODEL_FOGMAP) return fog_pass_draw_analytic(pass, cam, params,
+      surface_colour, surface_distance, width, height, err);
+  bool reads[FOG_PASS_MAX_GRIDS];
+  if (fog_pass_check_fogmap(pass, params, reads, err)) return 1;
+  int J = params->levels, slots = 2 * J + 1;
+  const fog_profile *p = &params->volume->profile;
   /* Switching at mu >= 1 reads A_J alone over the whole ray, at mu <= 0 A_0 alone (so does
    * the sum of details at mu <= 0): draw those as the one-grid variant of that slot, which
    * skips the LOD loop and the array layers (the same integral, bit for bit the draw of that
@@ -672,88 +776,9 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
     if (!programs[1]) return 1;
   }
   for (int pi = 0; pi < 2 && programs[pi]; pi++) {
-    GLuint prog = programs[pi];
-    glUseProgram(prog);
-
-    /* Camera-relative placement, in double (fog_integral.glsl, fog_optical_depth_inside). */
-    const double *c = cam->position;
-    double h = v->cell_size; /* checked > 0 above */
-    double x0[FOG_PASS_MAX_GRIDS][2], scale[FOG_PASS_MAX_GRIDS];
-    GLint size[FOG_PASS_MAX_GRIDS][2], units[FOG_PASS_MAX_GRIDS];
-    for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) {
-      const fog_pass_slot *s = &pass->slots[k == 0 ? first : k];
-      units[k] = 2 + k;
-      double sp = s->spacing > 0 ? s->spacing : 1.0;
-      x0[k][0] = (-(v->origin_x - c[0]) / h - 0.5 - s->origin_u) / sp;
-      x0[k][1] = (-(v->origin_z - c[2]) / h - 0.5 - s->origin_v) / sp;
-      scale[k] = 1.0 / (h * sp);
-      size[k][0] = s->width;
-      size[k][1] = s->height;
-      glActiveTexture(GL_TEXTURE2 + k);
-      glBindTexture(GL_TEXTURE_2D, reads[k] ? s->texture : 0);
-    }
-    glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
-    /* The cell polynomials: slot `first` alone, or every slot as layers (J > 0). */
-    glActiveTexture(GL_TEXTURE4 + FOG_PASS_MAX_GRIDS);
-    glBindTexture(GL_TEXTURE_2D, pass->slots[first].cells);
-    glUniform1i(fog_loc(prog, "fog_cells"), 4 + FOG_PASS_MAX_GRIDS);
-    if (J > 0) {
-      if (fog_pass_update_layers(pass, slots, err)) return 1;
-      glActiveTexture(GL_TEXTURE2 + FOG_PASS_MAX_GRIDS);
-      glBindTexture(GL_TEXTURE_2D_ARRAY, pass->layers);
-      glUniform1i(fog_loc(prog, "fog_grid_layers"), 2 + FOG_PASS_MAX_GRIDS);
-      glUniform2f(fog_loc(prog, "fog_grid_layer_size"), (float)pass->layers_width,
-                  (float)pass->layers_height);
-      glActiveTexture(GL_TEXTURE5 + FOG_PASS_MAX_GRIDS);
-      glBindTexture(GL_TEXTURE_2D_ARRAY, pass->cell_layers);
-      glUniform1i(fog_loc(prog, "fog_cell_layers"), 5 + FOG_PASS_MAX_GRIDS);
-    }
-    /* Approximation slots 0..J are dyadic, u_k = u_{k+1}/2 + c_k (fog_walk_coarser): from
-     * u = (A - origin)/spacing, c_k = (origin_{k+1} - origin_k) / spacing_k. */
-    float dyadic[FOG_PASS_MAX_GRIDS][2] = {{0}};
-    for (int k = 0; k < J; k++) {
-      const fog_pass_slot *s = &pass->slots[k], *finer = &pass->slots[k + 1];
-      double sp = s->spacing > 0 ? s->spacing : 1.0;
-      dyadic[k][0] = (float)((finer->origin_u - s->origin_u) / sp);
-      dyadic[k][1] = (float)((finer->origin_v - s->origin_v) / sp);
-    }
-    glUniform2fv(fog_loc(prog, "fog_grid_dyadic"), FOG_PASS_MAX_GRIDS, &dyadic[0][0]);
-    glUniform2dv(fog_loc(prog, "fog_grid_x0"), FOG_PASS_MAX_GRIDS, &x0[0][0]);
-    glUniform1dv(fog_loc(prog, "fog_grid_scale"), FOG_PASS_MAX_GRIDS, scale);
-    glUniform2iv(fog_loc(prog, "fog_grid_size"), FOG_PASS_MAX_GRIDS, &size[0][0]);
-    double lo[3], hi[3];
-    fog_volume_box(v, lo, hi);
-    glUniform3d(fog_loc(prog, "fog_box_min"), lo[0] - c[0], lo[1] - c[1], lo[2] - c[2]);
-    glUniform3d(fog_loc(prog, "fog_box_max"), hi[0] - c[0], hi[1] - c[1], hi[2] - c[2]);
-    glUniform1f(fog_loc(prog, "fog_extinction_scale"), (float)v->extinction);
-    glUniform1f(fog_loc(prog, "fog_profile_y0"), (float)(p->y0 - c[1]));
-    glUniform1f(fog_loc(prog, "fog_profile_scale_height"),
-                (float)(p->scale_height > 0 ? p->scale_height : 1.0));
-    glUniform1f(fog_loc(prog, "fog_profile_inv_scale_height"),
-                (float)(p->scale_height > 0 ? 1.0 / p->scale_height : 1.0));
-    if (p->kind == FOG_PROFILE_BSPLINE) {
-      float coefficients[FOG_PROFILE_MAX_COEFFICIENTS];
-      for (int k = 0; k < p->count; k++) coefficients[k] = (float)p->coefficients[k];
-      glUniform1i(fog_loc(prog, "fog_profile_count"), p->count);
-      glUniform1f(fog_loc(prog, "fog_profile_y_start"), (float)((c[1] - p->origin) / p->spacing));
-      glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), (float)(1.0 / p->spacing));
-      glUniform1fv(fog_loc(prog, "fog_profile_coefficients"), p->count, coefficients);
-    } else {
-      glUniform1i(fog_loc(prog, "fog_profile_count"), 0);
-      glUniform1f(fog_loc(prog, "fog_profile_y_start"), 0.0f);
-      glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), 0.0f);
-    }
-
-    glUniform1d(fog_loc(prog, "fog_mu"), J > 0 ? params->mu : 1.0);
-    glUniform1i(fog_loc(prog, "fog_march_steps"),
-                params->march_steps > 0 ? params->march_steps : 64);
-    glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
-    /* The optical depth cut-off (fog_pass_params.depth_cutoff): tau < e^-16 ~ 1.1e-7 is
-     * black even in a float image, so the walk may stop there. */
-    glUniform1f(fog_loc(prog, "fog_depth_limit"),
-                params->depth_cutoff < 0 ? 1e30f
-                : (float)(params->depth_cutoff > 0 ? params->depth_cutoff : FOG_PASS_DEPTH_CUTOFF));
-    glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
+    glUseProgram(programs[pi]);
+    if (fog_pass_fogmap_uniforms(pass, programs[pi], cam, params, first, J, slots, reads, err))
+      return 1;
   }
   glUseProgram(walk_prog);
   if (divisor == 1)

@@ -23,13 +23,12 @@
  * ray to the first surface; anything >= 1e29, e.g. SCENE_SKY_DISTANCE, means none). Both
  * are read with texelFetch at the same pixel, so they must be width x height.
  *
- * Texture units: 0 and 1 for the surface textures, 2.. for the grid slots. Grid slots:
- * A_l in slot l (l = 0..J), D_l in slot J + l (l = 1..J); a single grid is slot 0 with
- * levels = 0. At most FOG_PASS_MAX_GRIDS slots (J <= FOG_MAX_LEVELS). All slots of one draw share the
- * degree of slot 0. A draw needs only the slots its LOD method reads: switching reads
- * slots 0..J, the sum of details slots 0 and J+1..2J. LOD draws also use unit 18 (the
- * slots copied into one 2D array texture, refreshed on the first LOD draw after an
- * upload); resolution_divisor > 1 uses unit 19. */
+ * Grid slots: A_l in slot l (l = 0..J), D_l in slot J + l (l = 1..J); a single grid is
+ * slot 0 with levels = 0. At most FOG_PASS_MAX_GRIDS slots (J <= FOG_MAX_LEVELS). All slots
+ * of one draw share the degree of slot 0. A draw needs only the slots its LOD method reads:
+ * switching reads slots 0..J, the sum of details slots 0 and J+1..2J. LOD draws read the
+ * slots copied into one 2D array texture (refreshed on the first LOD draw after an upload).
+ * Each sampler has a texture unit of its own (fog_pass.c, enum fog_pass_unit). */
 #ifndef FOGPIPE_RENDER_FOG_PASS_H
 #define FOGPIPE_RENDER_FOG_PASS_H
 
@@ -92,7 +91,7 @@ typedef struct fog_pass_params {
   /* 0 or 1: the fog at full resolution (render, record: the reference). 2 or 4: the walk
    * runs at (width/D) x (height/D) (rounded up; each sample traces the ray of full-
    * resolution pixel k D + D/2 to that pixel's surface distance), then a joint bilateral
-   * upsampling guided by the full-resolution surface distance (fog_upsample_fs.glsl) blends
+   * upsampling guided by the full-resolution surface distance (fog_pass_fs.glsl with FOG_UPSAMPLE) blends
    * at full resolution: ~D^2 less walk work, edges of surfaces stay sharp, the smooth fog is
    * interpolated (docs/integral.md, Performance: measured error). FOG_MODEL_FOGMAP only;
    * the analytic models are cheap and ignore it. The pass keeps a (width/D) x (height/D)

@@ -10,7 +10,7 @@
 //                                    resolution_divisor; fragment k traces full-resolution
 //                                    pixel k FOG_REDUCED + FOG_REDUCED/2 and writes its
 //                                    optical depth and surface distance for
-//                                    fog_upsample_fs.glsl)
+//                                    the upsampling pass, FOG_UPSAMPLE 1)
 //   and the specialisation constants of fog_integral.glsl
 uniform int fog_march_steps;  // FOG_INTEGRATOR 1: samples per ray (every model's marcher)
 #include "fog_integral.glsl"
