@@ -503,6 +503,103 @@ static int run_report(const import_options *o, const vdb_sequence *seq, const vd
   return 0;
 }
 
+/* Missing frame numbers inside the range: an error, or with --skip-missing a warning.
+ * -1 to go on, else the exit status. */
+static int check_missing(const import_options *o, const vdb_sequence *seq) {
+  if (!seq->missing_count) return -1;
+  char list[400] = "";
+  for (int i = 0; i < seq->missing_count && strlen(list) < 300; i++)
+    snprintf(list + strlen(list), sizeof list - strlen(list), "%s%d", i ? ", " : "",
+             seq->missing[i]);
+  if (!o->skip_missing)
+    return cli_fail("import", "%s: %d frame%s missing: %s%s (--skip-missing goes on without them)",
+                    o->inputs[0], seq->missing_count, seq->missing_count == 1 ? "" : "s", list,
+                    strlen(list) >= 300 ? ", ..." : "");
+  fprintf(stderr, "fogpipe import: warning: %d frame%s missing: %s\n", seq->missing_count,
+          seq->missing_count == 1 ? "" : "s", list);
+  return -1;
+}
+
+/* Pass 1: reads, places and projects every frame (a frame's own profile is fitted too),
+ * with the warnings a frame earns. 0 or the exit status; *loaded frames need destroying. */
+static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_frame *frames,
+                       int *loaded) {
+  sim_error err = {{0}};
+  vdb_frame_desc desc = {.grid = o->grid, .up = o->up, .scale = o->scale,
+                         .offset = {o->offset[0], o->offset[1], o->offset[2]},
+                         .config = o->config, .profile = o->profile, .max_voxels = o->max_voxels};
+  for (*loaded = 0; *loaded < seq->count; (*loaded)++) {
+    const int k = *loaded;
+    if (vdb_frame_load(seq->paths[k], &desc, &frames[k], &err))
+      return cli_fail("import", "frame %d: %s", seq->frames[k], err.message);
+    const vdb_frame *f = &frames[k];
+    if (f->world.warning[0] && (k == 0 || strcmp(f->world.warning, frames[0].world.warning)))
+      fprintf(stderr, "fogpipe import: warning: %s: %s\n", seq->paths[k], f->world.warning);
+    if (f->negative_voxels)
+      fprintf(stderr, "fogpipe import: warning: %s: %lld negative voxels clamped to 0\n",
+              seq->paths[k], f->negative_voxels);
+    if (k == 0 && !f->config_path[0] && o->up == VDB_UP_Z &&
+        !(o->config && !strcmp(o->config, "none")))
+      fprintf(stderr, "fogpipe import: note: no Mantaflow config beside %s: placement from the "
+              "VDB transform alone (an adaptive-domain cache would be misplaced)\n",
+              seq->paths[0]);
+    if (o->verbose)
+      printf("frame %4d: %s: %lld active voxels, mass %.6g, %dx%d columns, %d layers\n",
+             seq->frames[k], seq->paths[k], f->active_voxels, f->columns.mass,
+             f->columns.width, f->columns.height, f->columns.layers);
+  }
+  return 0;
+}
+
+/* One fogmap grid for the whole sequence: the union of the frames' footprints. */
+static int place_sequence(const import_options *o, const vdb_frame *frames, int count,
+                          vdb_fogmap_place *place, sim_error *err) {
+  double x0 = INFINITY, x1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY;
+  for (int i = 0; i < count; i++) {
+    const vdb_columns *c = &frames[i].columns;
+    x0 = fmin(x0, c->origin_x);
+    x1 = fmax(x1, c->origin_x + c->width * c->cell_x);
+    z0 = fmin(z0, c->origin_z);
+    z1 = fmax(z1, c->origin_z + c->height * c->cell_z);
+  }
+  const vdb_columns *c0 = &frames[0].columns;
+  return vdb_fogmap_place_fit(x0, x1, z0, z1, o->resolution, o->cell,
+                              fmax(c0->cell_x, c0->cell_z), place, err);
+}
+
+/* Every file in temp_dir is complete: moves them into out. 0 or the exit status. */
+static int move_into_place(const char *temp_dir, const char *out) {
+  DIR *d = opendir(temp_dir);
+  struct dirent *e;
+  char from[4400], to[4400];
+  int status = 0;
+  while (d && (e = readdir(d))) {
+    if (e->d_name[0] == '.') continue;
+    snprintf(from, sizeof from, "%s/%s", temp_dir, e->d_name);
+    snprintf(to, sizeof to, "%s/%s", out, e->d_name);
+    if (rename(from, to)) {
+      status = cli_fail("import", "%s: cannot move into place: %s", to, strerror(errno));
+      break;
+    }
+  }
+  if (d) closedir(d);
+  return status;
+}
+
+static void print_summary(const import_options *o, const vdb_sequence *seq,
+                          const vdb_frame *frames, const vdb_fogmap_place *place,
+                          const vdb_profile *profile, double mass_min, double mass_max) {
+  printf("imported %d frame%s (%d..%d) of '%s' from %s\n", seq->count, seq->count == 1 ? "" : "s",
+         seq->frames[0], seq->frames[seq->count - 1], o->grid ? o->grid : "density", o->inputs[0]);
+  printf("fogmap %dx%d cells of %.6g at origin (%.6g, %.6g); mass %.6g..%.6g\n", place->width,
+         place->height, place->cell_size, place->origin_x, place->origin_z, mass_min, mass_max);
+  const vdb_profile *g = profile ? profile : &frames[seq->count - 1].profile;
+  printf("profile (%s%s): y in [%.6g, %.6g], thickness %.6g\n",
+         g->kind == VDB_PROFILE_EXPONENTIAL ? "exponential" : "B-spline",
+         profile ? "" : ", per frame; last frame shown", g->y_bottom, g->y_top, g->thickness);
+  printf("wrote %s/%s.####.exr and %s/%s.ini\n", o->out, o->name, o->out, o->name);
+}
+
 int cmd_import(int argc, char **argv) {
   import_options o;
   int parsed = parse_options(argc, argv, &o);
@@ -513,23 +610,13 @@ int cmd_import(int argc, char **argv) {
   vdb_sequence seq;
   if (vdb_sequence_find(o.inputs, o.input_count, o.first, o.last, &seq, &err))
     return cli_fail("import", "%s", err.message);
-  if (seq.missing_count) {
-    char list[400] = "";
-    for (int i = 0; i < seq.missing_count && strlen(list) < 300; i++)
-      snprintf(list + strlen(list), sizeof list - strlen(list), "%s%d", i ? ", " : "",
-               seq.missing[i]);
-    if (!o.skip_missing) {
-      int status = cli_fail("import", "%s: %d frame%s missing: %s%s (--skip-missing goes on without them)",
-                        o.inputs[0], seq.missing_count, seq.missing_count == 1 ? "" : "s", list,
-                        strlen(list) >= 300 ? ", ..." : "");
-      vdb_sequence_destroy(&seq);
-      return status;
-    }
-    fprintf(stderr, "fogpipe import: warning: %d frame%s missing: %s\n", seq.missing_count,
-            seq.missing_count == 1 ? "" : "s", list);
+  int missing = check_missing(&o, &seq);
+  if (missing >= 0) {
+    vdb_sequence_destroy(&seq);
+    return missing;
   }
 
-  int status = 0, created_out = 0;
+  int status = 0, created_out = 0, loaded = 0;
   char temp_dir[4200] = "";
   vdb_frame *frames = calloc((size_t)seq.count, sizeof *frames);
   fogmap map = {0};
@@ -537,45 +624,9 @@ int cmd_import(int argc, char **argv) {
     vdb_sequence_destroy(&seq);
     return cli_fail("import", "out of memory for %d frames", seq.count);
   }
-  /* Pass 1: read, place and project every frame (a frame's own profile is fitted too). */
-  vdb_frame_desc desc = {.grid = o.grid, .up = o.up, .scale = o.scale,
-                         .offset = {o.offset[0], o.offset[1], o.offset[2]},
-                         .config = o.config, .profile = o.profile, .max_voxels = o.max_voxels};
-  int loaded = 0;
-  for (; loaded < seq.count; loaded++) {
-    if (vdb_frame_load(seq.paths[loaded], &desc, &frames[loaded], &err)) {
-      status = cli_fail("import", "frame %d: %s", seq.frames[loaded], err.message);
-      goto done;
-    }
-    const vdb_frame *f = &frames[loaded];
-    if (f->world.warning[0] && (loaded == 0 || strcmp(f->world.warning, frames[0].world.warning)))
-      fprintf(stderr, "fogpipe import: warning: %s: %s\n", seq.paths[loaded], f->world.warning);
-    if (f->negative_voxels)
-      fprintf(stderr, "fogpipe import: warning: %s: %lld negative voxels clamped to 0\n",
-              seq.paths[loaded], f->negative_voxels);
-    if (loaded == 0 && !f->config_path[0] && o.up == VDB_UP_Z &&
-        !(o.config && !strcmp(o.config, "none")))
-      fprintf(stderr, "fogpipe import: note: no Mantaflow config beside %s: placement from the "
-              "VDB transform alone (an adaptive-domain cache would be misplaced)\n",
-              seq.paths[0]);
-    if (o.verbose)
-      printf("frame %4d: %s: %lld active voxels, mass %.6g, %dx%d columns, %d layers\n",
-             seq.frames[loaded], seq.paths[loaded], f->active_voxels, f->columns.mass,
-             f->columns.width, f->columns.height, f->columns.layers);
-  }
-  /* One fogmap grid for the whole sequence: the union of the frames' footprints. */
-  double x0 = INFINITY, x1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY;
-  for (int i = 0; i < seq.count; i++) {
-    const vdb_columns *c = &frames[i].columns;
-    x0 = fmin(x0, c->origin_x);
-    x1 = fmax(x1, c->origin_x + c->width * c->cell_x);
-    z0 = fmin(z0, c->origin_z);
-    z1 = fmax(z1, c->origin_z + c->height * c->cell_z);
-  }
+  if ((status = load_frames(&o, &seq, frames, &loaded))) goto done;
   vdb_fogmap_place place;
-  const vdb_columns *c0 = &frames[0].columns;
-  if (vdb_fogmap_place_fit(x0, x1, z0, z1, o.resolution, o.cell, fmax(c0->cell_x, c0->cell_z),
-                           &place, &err)) {
+  if (place_sequence(&o, frames, seq.count, &place, &err)) {
     status = cli_fail("import", "%s", err.message);
     goto done;
   }
@@ -636,33 +687,8 @@ int cmd_import(int argc, char **argv) {
     goto done;
   }
   if (o.report && (status = run_report(&o, &seq, frames, &place, profile, temp_dir))) goto done;
-  /* Every file is complete: move them into --out. */
-  {
-    DIR *d = opendir(temp_dir);
-    struct dirent *e;
-    char from[4400], to[4400];
-    while (d && (e = readdir(d))) {
-      if (e->d_name[0] == '.') continue;
-      snprintf(from, sizeof from, "%s/%s", temp_dir, e->d_name);
-      snprintf(to, sizeof to, "%s/%s", o.out, e->d_name);
-      if (rename(from, to)) {
-        status = cli_fail("import", "%s: cannot move into place: %s", to, strerror(errno));
-        break;
-      }
-    }
-    if (d) closedir(d);
-  }
-  if (!status) {
-    printf("imported %d frame%s (%d..%d) of '%s' from %s\n", seq.count, seq.count == 1 ? "" : "s",
-           seq.frames[0], seq.frames[seq.count - 1], o.grid ? o.grid : "density", o.inputs[0]);
-    printf("fogmap %dx%d cells of %.6g at origin (%.6g, %.6g); mass %.6g..%.6g\n", place.width,
-           place.height, place.cell_size, place.origin_x, place.origin_z, mass_min, mass_max);
-    const vdb_profile *g = profile ? profile : &frames[seq.count - 1].profile;
-    printf("profile (%s%s): y in [%.6g, %.6g], thickness %.6g\n",
-           g->kind == VDB_PROFILE_EXPONENTIAL ? "exponential" : "B-spline",
-           profile ? "" : ", per frame; last frame shown", g->y_bottom, g->y_top, g->thickness);
-    printf("wrote %s/%s.####.exr and %s/%s.ini\n", o.out, o.name, o.out, o.name);
-  }
+  if ((status = move_into_place(temp_dir, o.out))) goto done;
+  print_summary(&o, &seq, frames, &place, profile, mass_min, mass_max);
 done:
   if (temp_dir[0]) remove_dir(temp_dir);
   if (status && created_out) rmdir(o.out); /* a folder made for a failed import goes too */
