@@ -105,15 +105,91 @@ static double next_uniform(uint64_t *state) {
   return (double)(z >> 11) / 9007199254740992.0;
 }
 
-int cmd_design(int argc, char **argv) {
-  int perlin = 0, half = 0, random_blobs = 0, blob_count = 0;
-  long width = 0, height = 0;
-  const char *out = NULL;
-  double png_max = 0.0, blob_base = 0.0;
+typedef struct design_options {
+  int perlin, half, random_blobs, blob_count;
+  long width, height, seed;
+  const char *out;
+  double png_max, blob_base;
   fog_blob blobs[max_blobs];
-  long seed = 1;
-  perlin_fog_desc noise = {0};
+  perlin_fog_desc noise;
+} design_options;
 
+/* One option with its value; 0, or the usage error's exit status. */
+static int design_value(design_options *o, const char *opt, const char *value) {
+  double v[4];
+  long n;
+  if (!strcmp(opt, "--size")) {
+    char *x = strchr(value, 'x');
+    char w_text[32];
+    if (!x || x - value >= (long)sizeof w_text)
+      return cli_usage_error("design", "--size expects WxH (e.g. 256x256), got '%s'", value);
+    memcpy(w_text, value, (size_t)(x - value));
+    w_text[x - value] = '\0';
+    if (parse_int(w_text, 1, 16384, &o->width) || parse_int(x + 1, 1, 16384, &o->height))
+      return cli_usage_error("design", "--size expects WxH with both 1 to 16384, got '%s'", value);
+  } else if (!strcmp(opt, "--out")) {
+    o->out = value;
+  } else if (!strcmp(opt, "--seed")) {
+    if (parse_int(value, 0, 0x7fffffffL, &o->seed))
+      return cli_usage_error("design", "--seed expects an integer 0 to 2147483647, got '%s'", value);
+  } else if (!strcmp(opt, "--blobs")) {
+    if (parse_int(value, 1, max_blobs, &n))
+      return cli_usage_error("design", "--blobs expects a count 1 to 256, got '%s'", value);
+    o->random_blobs = (int)n;
+  } else if (!strcmp(opt, "--blob")) {
+    if (parse_numbers(value, v, 4) || !(v[2] > 0) || !(v[3] >= 0))
+      return cli_usage_error("design", "--blob expects X,Z,SIGMA,PEAK with SIGMA > 0 and PEAK >= 0, got "
+                         "'%s'", value);
+    if (o->blob_count >= max_blobs) return cli_usage_error("design", "more than 256 blobs");
+    o->blobs[o->blob_count++] = (fog_blob){(float)v[0], (float)v[1], (float)v[2], (float)v[3]};
+  } else if (!strcmp(opt, "--time")) {
+    if (parse_numbers(value, v, 1)) return cli_usage_error("design", "--time expects a number, got '%s'", value);
+    o->noise.time = (float)v[0];
+  } else if (!strcmp(opt, "--velocity")) {
+    if (parse_numbers(value, v, 2))
+      return cli_usage_error("design", "--velocity expects VX,VZ (two numbers), got '%s'", value);
+    o->noise.velocity[0] = (float)v[0];
+    o->noise.velocity[1] = (float)v[1];
+  } else if (!strcmp(opt, "--feature-size")) {
+    if (parse_numbers(value, v, 1) || !(v[0] > 0))
+      return cli_usage_error("design", "--feature-size expects a positive number of cells, got '%s'",
+                         value);
+    o->noise.feature_size = (float)v[0];
+  } else if (!strcmp(opt, "--octaves")) {
+    if (parse_int(value, 1, 30, &n))
+      return cli_usage_error("design", "--octaves expects 1 to 30, got '%s'", value);
+    o->noise.octaves = (int)n;
+  } else if (!strcmp(opt, "--gain")) {
+    if (parse_numbers(value, v, 1) || !(v[0] > 0))
+      return cli_usage_error("design", "--gain expects a positive number, got '%s'", value);
+    o->noise.gain = (float)v[0];
+  } else if (!strcmp(opt, "--base")) {
+    if (parse_numbers(value, v, 1) || !(v[0] >= 0))
+      return cli_usage_error("design", "--base expects a number >= 0, got '%s'", value);
+    o->noise.base = (float)v[0];
+  } else if (!strcmp(opt, "--slice")) {
+    if (parse_numbers(value, v, 1)) return cli_usage_error("design", "--slice expects a number, got '%s'", value);
+    o->noise.slice = (float)v[0];
+  } else if (!strcmp(opt, "--slice-rate")) {
+    if (parse_numbers(value, v, 1))
+      return cli_usage_error("design", "--slice-rate expects a number, got '%s'", value);
+    o->noise.slice_rate = (float)v[0];
+  } else if (!strcmp(opt, "--blob-base")) {
+    if (parse_numbers(value, v, 1) || !(v[0] >= 0))
+      return cli_usage_error("design", "--blob-base expects a number >= 0, got '%s'", value);
+    o->blob_base = v[0];
+  } else if (!strcmp(opt, "--png-max")) {
+    if (parse_numbers(value, v, 1) || !(v[0] > 0))
+      return cli_usage_error("design", "--png-max expects a positive density, got '%s'", value);
+    o->png_max = v[0];
+  } else {
+    return cli_usage_error("design", "unknown option '%s'", opt);
+  }
+  return 0;
+}
+
+/* -1 to go on, else the exit status. */
+static int parse_design_options(int argc, char **argv, design_options *o) {
   for (int i = 1; i < argc; i++) {
     const char *opt = argv[i];
     if (!strcmp(opt, "--help") || !strcmp(opt, "-h")) {
@@ -121,144 +197,90 @@ int cmd_design(int argc, char **argv) {
       return 0;
     }
     if (!strcmp(opt, "--perlin")) {
-      perlin = 1;
+      o->perlin = 1;
       continue;
     }
     if (!strcmp(opt, "--half")) {
-      half = 1;
+      o->half = 1;
       continue;
     }
     if (!takes_value(opt)) return cli_usage_error("design", "unknown option '%s'", opt);
     if (i + 1 >= argc) return cli_usage_error("design", "%s needs a value", opt);
-    const char *value = argv[++i];
-    double v[4];
-    long n;
-    if (!strcmp(opt, "--size")) {
-      char *x = strchr(value, 'x');
-      char w_text[32];
-      if (!x || x - value >= (long)sizeof w_text)
-        return cli_usage_error("design", "--size expects WxH (e.g. 256x256), got '%s'", value);
-      memcpy(w_text, value, (size_t)(x - value));
-      w_text[x - value] = '\0';
-      if (parse_int(w_text, 1, 16384, &width) || parse_int(x + 1, 1, 16384, &height))
-        return cli_usage_error("design", "--size expects WxH with both 1 to 16384, got '%s'", value);
-    } else if (!strcmp(opt, "--out")) {
-      out = value;
-    } else if (!strcmp(opt, "--seed")) {
-      if (parse_int(value, 0, 0x7fffffffL, &seed))
-        return cli_usage_error("design", "--seed expects an integer 0 to 2147483647, got '%s'", value);
-    } else if (!strcmp(opt, "--blobs")) {
-      if (parse_int(value, 1, max_blobs, &n))
-        return cli_usage_error("design", "--blobs expects a count 1 to 256, got '%s'", value);
-      random_blobs = (int)n;
-    } else if (!strcmp(opt, "--blob")) {
-      if (parse_numbers(value, v, 4) || !(v[2] > 0) || !(v[3] >= 0))
-        return cli_usage_error("design", "--blob expects X,Z,SIGMA,PEAK with SIGMA > 0 and PEAK >= 0, got "
-                           "'%s'", value);
-      if (blob_count >= max_blobs) return cli_usage_error("design", "more than 256 blobs");
-      blobs[blob_count++] = (fog_blob){(float)v[0], (float)v[1], (float)v[2], (float)v[3]};
-    } else if (!strcmp(opt, "--time")) {
-      if (parse_numbers(value, v, 1)) return cli_usage_error("design", "--time expects a number, got '%s'", value);
-      noise.time = (float)v[0];
-    } else if (!strcmp(opt, "--velocity")) {
-      if (parse_numbers(value, v, 2))
-        return cli_usage_error("design", "--velocity expects VX,VZ (two numbers), got '%s'", value);
-      noise.velocity[0] = (float)v[0];
-      noise.velocity[1] = (float)v[1];
-    } else if (!strcmp(opt, "--feature-size")) {
-      if (parse_numbers(value, v, 1) || !(v[0] > 0))
-        return cli_usage_error("design", "--feature-size expects a positive number of cells, got '%s'",
-                           value);
-      noise.feature_size = (float)v[0];
-    } else if (!strcmp(opt, "--octaves")) {
-      if (parse_int(value, 1, 30, &n))
-        return cli_usage_error("design", "--octaves expects 1 to 30, got '%s'", value);
-      noise.octaves = (int)n;
-    } else if (!strcmp(opt, "--gain")) {
-      if (parse_numbers(value, v, 1) || !(v[0] > 0))
-        return cli_usage_error("design", "--gain expects a positive number, got '%s'", value);
-      noise.gain = (float)v[0];
-    } else if (!strcmp(opt, "--base")) {
-      if (parse_numbers(value, v, 1) || !(v[0] >= 0))
-        return cli_usage_error("design", "--base expects a number >= 0, got '%s'", value);
-      noise.base = (float)v[0];
-    } else if (!strcmp(opt, "--slice")) {
-      if (parse_numbers(value, v, 1)) return cli_usage_error("design", "--slice expects a number, got '%s'", value);
-      noise.slice = (float)v[0];
-    } else if (!strcmp(opt, "--slice-rate")) {
-      if (parse_numbers(value, v, 1))
-        return cli_usage_error("design", "--slice-rate expects a number, got '%s'", value);
-      noise.slice_rate = (float)v[0];
-    } else if (!strcmp(opt, "--blob-base")) {
-      if (parse_numbers(value, v, 1) || !(v[0] >= 0))
-        return cli_usage_error("design", "--blob-base expects a number >= 0, got '%s'", value);
-      blob_base = v[0];
-    } else if (!strcmp(opt, "--png-max")) {
-      if (parse_numbers(value, v, 1) || !(v[0] > 0))
-        return cli_usage_error("design", "--png-max expects a positive density, got '%s'", value);
-      png_max = v[0];
-    } else {
-      return cli_usage_error("design", "unknown option '%s'", opt);
-    }
+    int status = design_value(o, opt, argv[++i]);
+    if (status) return status;
   }
-  if (!perlin && !random_blobs && !blob_count)
+  if (!o->perlin && !o->random_blobs && !o->blob_count)
     return cli_usage_error("design", "say what to design: --perlin, --blobs N and/or --blob X,Z,SIGMA,PEAK");
-  if (!width) return cli_usage_error("design", "--size WxH is required");
-  if (!out) return cli_usage_error("design", "--out FILE.exr or FILE.png is required");
-  int png = ends_with(out, ".png");
-  if (!png && !ends_with(out, ".exr"))
-    return cli_usage_error("design", "--out '%s': the name must end in .exr or .png", out);
-  if (random_blobs + blob_count > max_blobs)
+  if (!o->width) return cli_usage_error("design", "--size WxH is required");
+  if (!o->out) return cli_usage_error("design", "--out FILE.exr or FILE.png is required");
+  if (!ends_with(o->out, ".png") && !ends_with(o->out, ".exr"))
+    return cli_usage_error("design", "--out '%s': the name must end in .exr or .png", o->out);
+  if (o->random_blobs + o->blob_count > max_blobs)
     return cli_usage_error("design", "more than 256 blobs");
+  return -1;
+}
 
+/* The fogmap: Perlin turbulence and/or the blobs (random banks added to the given ones),
+ * the turbulence multiplied by the banks when both are asked for. */
+static int design_fogmap(design_options *o, fogmap *map, sim_error *err) {
   /* Random banks: centres inside the middle 80%, widths 1/16 to 1/5 of the smaller side. */
-  uint64_t state = (uint64_t)seed * 0x2545f4914f6cdd1dull + 1;
+  uint64_t state = (uint64_t)o->seed * 0x2545f4914f6cdd1dull + 1;
+  const long width = o->width, height = o->height;
   double side = width < height ? (double)width : (double)height;
-  for (int i = 0; i < random_blobs; i++) {
+  for (int i = 0; i < o->random_blobs; i++) {
     double x = width * (0.1 + 0.8 * next_uniform(&state));
     double z = height * (0.1 + 0.8 * next_uniform(&state));
     double sigma = side * (1.0 / 16 + (1.0 / 5 - 1.0 / 16) * next_uniform(&state));
     double peak = 0.4 + 0.6 * next_uniform(&state);
-    blobs[blob_count++] = (fog_blob){(float)x, (float)z, (float)sigma, (float)peak};
+    o->blobs[o->blob_count++] = (fog_blob){(float)x, (float)z, (float)sigma, (float)peak};
   }
-
-  sim_error err;
-  fogmap map = {0}, banks = {0};
-  int status = fogmap_create(&map, (int)width, (int)height, &err);
-  noise.seed = (uint64_t)seed;
-  if (!status && perlin) status = designed_fog_perlin(&map, &noise, &err);
-  if (!status && blob_count) {
-    fogmap *target = perlin ? &banks : &map;
-    if (perlin) status = fogmap_create(&banks, (int)width, (int)height, &err);
+  fogmap banks = {0};
+  int status = fogmap_create(map, (int)width, (int)height, err);
+  o->noise.seed = (uint64_t)o->seed;
+  if (!status && o->perlin) status = designed_fog_perlin(map, &o->noise, err);
+  if (!status && o->blob_count) {
+    fogmap *target = o->perlin ? &banks : map;
+    if (o->perlin) status = fogmap_create(&banks, (int)width, (int)height, err);
     if (!status)
-      status = designed_fog_blobs(target, &(blob_fog_desc){.blobs = blobs, .blob_count = blob_count},
-                                  &err);
+      status = designed_fog_blobs(
+          target, &(blob_fog_desc){.blobs = o->blobs, .blob_count = o->blob_count}, err);
     for (size_t i = 0; !status && i < (size_t)width * (size_t)height; i++)
-      target->density[i] += (float)blob_base;
-    if (!status && perlin) status = designed_fog_multiply(&map, &banks, &err);
+      target->density[i] += (float)o->blob_base;
+    if (!status && o->perlin) status = designed_fog_multiply(map, &banks, err);
   }
+  fogmap_destroy(&banks);
+  return status;
+}
+
+int cmd_design(int argc, char **argv) {
+  design_options o = {.seed = 1};
+  int parsed = parse_design_options(argc, argv, &o);
+  if (parsed >= 0) return parsed;
+  const int png = ends_with(o.out, ".png");
+  sim_error err;
+  fogmap map = {0};
+  int status = design_fogmap(&o, &map, &err);
   float max = status ? 0.0f : fogmap_max_density(&map);
   if (!status) {
     if (png) {
-      status = fogmap_save_png16(out, &map, (float)png_max, &err);
+      status = fogmap_save_png16(o.out, &map, (float)o.png_max, &err);
     } else {
-      image_channel y = {.name = "Y", .pixels = map.density, .as_half = half};
-      status = image_write_exr(out, map.width, map.height, &y, 1, &err);
+      image_channel y = {.name = "Y", .pixels = map.density, .as_half = o.half};
+      status = image_write_exr(o.out, map.width, map.height, &y, 1, &err);
     }
   }
   if (status) {
     fprintf(stderr, "fogpipe design: %s\n", err.message);
   } else {
     float min = map.density[0];
-    for (size_t i = 0; i < (size_t)width * (size_t)height; i++)
+    for (size_t i = 0; i < (size_t)o.width * (size_t)o.height; i++)
       if (map.density[i] < min) min = map.density[i];
-    printf("fogpipe design: wrote %s (%ldx%ld, densities %g to %g", out, width, height,
+    printf("fogpipe design: wrote %s (%ldx%ld, densities %g to %g", o.out, o.width, o.height,
            (double)min, (double)max);
-    double full_scale = png_max ? png_max : (max > 0.0f ? (double)max : 1.0);
+    double full_scale = o.png_max ? o.png_max : (max > 0.0f ? (double)max : 1.0);
     if (png) printf("; PNG full scale %g: load with density_scale %g", full_scale, full_scale);
     printf(")\n");
   }
-  fogmap_destroy(&banks);
   fogmap_destroy(&map);
   return status ? 1 : 0;
 }
