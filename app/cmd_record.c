@@ -149,123 +149,97 @@ static void resume_hint(const record_job *job, char *text, size_t size) {
   snprintf(text + n, size - (size_t)n, " --resume");
 }
 
-static int record_into(const record_job *job, recorder *rec) {
+/* The output folder first (an unwritable folder or a full disk is reported before any
+ * work, whatever else is wrong), then the config, then the folder again for the config's
+ * size when the job gives none. 0 or 1 (printed). */
+static int open_output(const record_job *job, recorder *rec, scene_config *config, int *width,
+                       int *height) {
   const char *cmd = job->command;
-  scene_config config;
-  scene_config_error cerr = {{0}};
-  /* The output folder first: an unwritable folder or a full disk is reported before any
-   * work, whatever else is wrong. */
   recorder_error rerr = {{0}};
-  int width = job->width, height = job->height;
+  scene_config_error cerr = {{0}};
+  *width = job->width, *height = job->height;
   if (recorder_open(rec,
-                    &(recorder_desc){.folder = job->out,
-                                     .width = width > 0 ? width : 1,
-                                     .height = height > 0 ? height : 1},
+                    &(recorder_desc){.folder = job->out, .width = *width > 0 ? *width : 1,
+                                     .height = *height > 0 ? *height : 1},
                     &rerr)) {
     fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
     return 1;
   }
-  if (scene_config_load(job->config_path, &config, &cerr)) {
+  if (scene_config_load(job->config_path, config, &cerr)) {
     fprintf(stderr, "fogpipe %s: %s\n", cmd, cerr.message);
     return 1;
   }
-  if (width <= 0 || height <= 0) {
-    /* The size comes from the config: check the free space again for that size. */
-    width = config.width;
-    height = config.height;
-    char created[sizeof rec->created]; /* the first open made the folders */
-    snprintf(created, sizeof created, "%s", rec->created);
-    int failed = recorder_open(rec,
-                      &(recorder_desc){.folder = job->out, .width = width, .height = height},
-                      &rerr);
-    snprintf(rec->created, sizeof rec->created, "%s", created);
-    if (failed) {
-      fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
-      return 1;
-    }
-  }
-  /* What every frame carries in its header, and --resume checks frame by frame. */
-  const double fps = job->fps > 0 ? job->fps : 24.0;
-  snprintf(rec->identity, sizeof rec->identity, "scene %016llx size %dx%d fps %.17g",
-           (unsigned long long)scene_config_fingerprint(&config), width, height, fps);
-  const int first = job->first_frame > 0 ? job->first_frame : 1, last = job->frames;
-  int done = first - 1; /* the last frame on disk of the range */
-  if (job->resume) {
-    done = recorder_complete_frames(rec, first, last, &rerr);
-    if (done < 0) {
-      fprintf(stderr, "fogpipe %s: cannot resume: %s (use the same config and settings, or "
-              "another --out folder)\n", cmd, rerr.message);
-      return 1;
-    }
-    recorder_remove_stale_temporaries(rec);
-  }
-  if (job->resume && done == last) {
-    printf("all %d frames are already complete in %s\n", last - first + 1, rec->folder);
-  }
+  if (*width > 0 && *height > 0) return 0;
+  /* The size comes from the config: check the free space again for that size. */
+  *width = config->width;
+  *height = config->height;
+  char created[sizeof rec->created]; /* the first open made the folders */
+  snprintf(created, sizeof created, "%s", rec->created);
+  int failed = recorder_open(
+      rec, &(recorder_desc){.folder = job->out, .width = *width, .height = *height}, &rerr);
+  snprintf(rec->created, sizeof rec->created, "%s", created);
+  if (failed) fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
+  return failed;
+}
 
-  player *src = NULL;
-  float *buffer = NULL;
-  int status = 0;
+/* The frames' source, advanced past frame done when it is a simulation (sequential); the
+ * other sources' frames are independent: nothing to re-run. NULL (printed) on failure. */
+static player *start_player(const record_job *job, const scene_config *config, int width,
+                            int height, double fps, int first, int done) {
+  render_error err = {{0}};
+  player *src = player_create(&(player_desc){.config = config, .width = width,
+                                             .height = height, .fps = fps, .play = true,
+                                             .synchronous = job->synchronous},
+                              &err);
+  if (src && done > 0 && player_is_sequential(src)) {
+    printf("%s frame %d: re-running the simulation to it\n",
+           done >= first ? "resuming after" : "starting after", done);
+    fflush(stdout);
+    if (player_skip(src, done, &err)) {
+      player_destroy(src);
+      src = NULL;
+    }
+  }
+  if (!src) fprintf(stderr, "fogpipe %s: %s\n", job->command, err.message);
+  return src;
+}
+
+/* Frames done+1 .. last into rec; SIGINT/SIGTERM end the frame being drawn, then stop with
+ * the command that resumes. 0, 1 (printed) or 130 (interrupted). */
+static int record_frames(const record_job *job, recorder *rec, player *src, int width,
+                         int height, int first, int done, int last) {
+  const char *cmd = job->command;
   const size_t n = (size_t)width * height;
-  render_error perr = {{0}};
-  if (done < last) {
-    src = player_create(&(player_desc){.config = &config, .width = width, .height = height,
-                                       .fps = fps, .play = true,
-                                       .synchronous = job->synchronous},
-                        &perr);
-    if (!src) {
-      fprintf(stderr, "fogpipe %s: %s\n", cmd, perr.message);
-      status = 1;
-      goto finish;
-    }
-    /* A simulation is sequential: run it (without rendering) to frame done. The other
-     * sources' frames are independent: nothing to re-run. */
-    if (done > 0 && player_is_sequential(src)) {
-      printf("%s frame %d: re-running the simulation to it\n",
-             done >= first ? "resuming after" : "starting after", done);
-      fflush(stdout);
-      if (player_skip(src, done, &perr)) {
-        fprintf(stderr, "fogpipe %s: %s\n", cmd, perr.message);
-        status = 1;
-        goto finish;
-      }
-    }
+  /* rgba 4 + transmittance 1 + depth 1, then the recorder's 6 planes. */
+  float *buffer = malloc(n * 12 * sizeof(float));
+  if (!buffer) {
+    fprintf(stderr, "fogpipe %s: out of memory\n", cmd);
+    return 1;
   }
-  if (done < last) {
-    /* rgba 4 + transmittance 1 + depth 1, then the recorder's 6 planes. */
-    buffer = malloc(n * 12 * sizeof(float));
-    if (!buffer) {
-      fprintf(stderr, "fogpipe %s: out of memory\n", cmd);
+  float *rgba = buffer, *transmittance = buffer + 4 * n, *depth = buffer + 5 * n;
+  float *scratch = buffer + 6 * n;
+  struct sigaction action = {.sa_handler = on_interrupt}, old_int, old_term;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  interrupted = 0;
+  sigaction(SIGINT, &action, &old_int);
+  sigaction(SIGTERM, &action, &old_term);
+  render_error perr = {{0}};
+  recorder_error rerr = {{0}};
+  recorder_progress progress;
+  int status = 0;
+  if (!job->quiet) recorder_progress_begin(&progress, stdout, done - first + 1, last - first + 1);
+  for (int frame = done + 1; frame <= last && !status; frame++) {
+    recorder_frame pixels = {.rgba = rgba, .transmittance = transmittance, .depth = depth};
+    if (player_frame(src, frame, rgba, transmittance, depth, &perr)) {
+      if (!job->quiet) recorder_progress_end(&progress);
+      fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, perr.message);
       status = 1;
-      goto finish;
-    }
-    float *rgba = buffer, *transmittance = buffer + 4 * n, *depth = buffer + 5 * n;
-    float *scratch = buffer + 6 * n;
-
-    struct sigaction action = {.sa_handler = on_interrupt}, old_int, old_term;
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESTART;
-    interrupted = 0;
-    sigaction(SIGINT, &action, &old_int);
-    sigaction(SIGTERM, &action, &old_term);
-
-    recorder_progress progress;
-    if (!job->quiet)
-      recorder_progress_begin(&progress, stdout, done - first + 1, last - first + 1);
-    for (int frame = done + 1; frame <= last; frame++) {
-      if (player_frame(src, frame, rgba, transmittance, depth, &perr)) {
-        if (!job->quiet) recorder_progress_end(&progress);
-        fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, perr.message);
-        status = 1;
-        break;
-      }
-      recorder_frame pixels = {.rgba = rgba, .transmittance = transmittance, .depth = depth};
-      if (recorder_write_frame(rec, frame, &pixels, scratch, &rerr)) {
-        if (!job->quiet) recorder_progress_end(&progress);
-        fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
-        status = 1;
-        break;
-      }
+    } else if (recorder_write_frame(rec, frame, &pixels, scratch, &rerr)) {
+      if (!job->quiet) recorder_progress_end(&progress);
+      fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
+      status = 1;
+    } else {
       done = frame;
       if (!job->quiet) recorder_progress_update(&progress, done - first + 1);
       if (interrupted && done < last) {
@@ -276,36 +250,68 @@ static int record_into(const record_job *job, recorder *rec) {
                 "fogpipe %s: interrupted: %d of %d frames complete in %s; to finish: %s\n",
                 cmd, done - first + 1, last - first + 1, rec->folder, hint);
         status = 130;
-        break;
-      }
-    }
-    if (!status && !job->quiet) recorder_progress_end(&progress);
-    sigaction(SIGINT, &old_int, NULL);
-    sigaction(SIGTERM, &old_term, NULL);
-  }
-  if (!status) {
-    char first_path[1200], last_path[1200];
-    recorder_frame_path(rec, first, first_path, sizeof first_path);
-    recorder_frame_path(rec, last, last_path, sizeof last_path);
-    printf("%d frame%s (%dx%d) in %s: %s .. %s\n", last - first + 1, last == first ? "" : "s",
-           width, height, rec->folder, strrchr(first_path, '/') + 1,
-           strrchr(last_path, '/') + 1);
-    if (job->preview) {
-      if (!recorder_have_ffmpeg()) {
-        printf("note: ffmpeg is not installed, so no preview video was written "
-               "(apt-get install ffmpeg)\n");
-      } else if (recorder_write_preview(rec, job->frames, fps, job->preview, &rerr)) {
-        fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
-        status = 1;
-      } else {
-        printf("preview: %s\n", job->preview);
       }
     }
   }
-finish:
+  if (!status && !job->quiet) recorder_progress_end(&progress);
+  sigaction(SIGINT, &old_int, NULL);
+  sigaction(SIGTERM, &old_term, NULL);
   free(buffer);
-  player_destroy(src);
   return status;
+}
+
+/* The summary line, and the preview video when asked for. 0 or 1 (printed). */
+static int finish_output(const record_job *job, const recorder *rec, int width, int height,
+                         double fps, int first, int last) {
+  char first_path[1200], last_path[1200];
+  recorder_frame_path(rec, first, first_path, sizeof first_path);
+  recorder_frame_path(rec, last, last_path, sizeof last_path);
+  printf("%d frame%s (%dx%d) in %s: %s .. %s\n", last - first + 1, last == first ? "" : "s",
+         width, height, rec->folder, strrchr(first_path, '/') + 1, strrchr(last_path, '/') + 1);
+  if (!job->preview) return 0;
+  recorder_error rerr = {{0}};
+  if (!recorder_have_ffmpeg()) {
+    printf("note: ffmpeg is not installed, so no preview video was written "
+           "(apt-get install ffmpeg)\n");
+  } else if (recorder_write_preview(rec, job->frames, fps, job->preview, &rerr)) {
+    fprintf(stderr, "fogpipe %s: %s\n", job->command, rerr.message);
+    return 1;
+  } else {
+    printf("preview: %s\n", job->preview);
+  }
+  return 0;
+}
+
+static int record_into(const record_job *job, recorder *rec) {
+  scene_config config;
+  int width, height;
+  if (open_output(job, rec, &config, &width, &height)) return 1;
+  /* What every frame carries in its header, and --resume checks frame by frame. */
+  const double fps = job->fps > 0 ? job->fps : 24.0;
+  snprintf(rec->identity, sizeof rec->identity, "scene %016llx size %dx%d fps %.17g",
+           (unsigned long long)scene_config_fingerprint(&config), width, height, fps);
+  const int first = job->first_frame > 0 ? job->first_frame : 1, last = job->frames;
+  int done = first - 1; /* the last frame on disk of the range */
+  if (job->resume) {
+    recorder_error rerr = {{0}};
+    done = recorder_complete_frames(rec, first, last, &rerr);
+    if (done < 0) {
+      fprintf(stderr, "fogpipe %s: cannot resume: %s (use the same config and settings, or "
+              "another --out folder)\n", job->command, rerr.message);
+      return 1;
+    }
+    recorder_remove_stale_temporaries(rec);
+    if (done == last)
+      printf("all %d frames are already complete in %s\n", last - first + 1, rec->folder);
+  }
+  if (done < last) {
+    player *src = start_player(job, &config, width, height, fps, first, done);
+    if (!src) return 1;
+    int status = record_frames(job, rec, src, width, height, first, done, last);
+    player_destroy(src);
+    if (status) return status;
+  }
+  return finish_output(job, rec, width, height, fps, first, last);
 }
 
 int record_run(const record_job *job) {
