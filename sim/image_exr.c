@@ -143,94 +143,72 @@ static int open_read_stream(const char *path, exr_stream *stream,
   return 0;
 }
 
-int exr_read_channel(const char *path, const char *channel, int *width_out,
-                     int *height_out, float **pixels, sim_error *err) {
-  exr_stream stream;
-  exr_context_initializer_t init;
-  if (open_read_stream(path, &stream, &init, err)) return 1;
-  exr_context_t ctxt = NULL;
-  float *out = NULL, *scratch = NULL;
-  int status = 1;
-  exr_decode_pipeline_t decode = EXR_DECODE_PIPELINE_INITIALIZER;
-  int initialised = 0;
+/* Part 0's layout: scanline or tiled, its data window and channels, a size a fogmap can
+ * take. 0, or 1 with err. */
+static int exr_read_layout(exr_context_t ctxt, const char *path, exr_stream *stream,
+                           exr_storage_t *storage, exr_attr_box2i_t *window,
+                           const exr_attr_chlist_t **list, int64_t *width, int64_t *height,
+                           sim_error *err) {
+  exr_result_t rv = exr_get_storage(ctxt, 0, storage);
+  if (rv == EXR_ERR_SUCCESS) rv = exr_get_data_window(ctxt, 0, window);
+  if (rv == EXR_ERR_SUCCESS) rv = exr_get_channels(ctxt, 0, list);
+  if (rv != EXR_ERR_SUCCESS || !*list)
+    return sim_fail(err, "%s: EXR header incomplete: %s", path, exr_reason(stream, rv));
+  if (*storage != EXR_STORAGE_SCANLINE && *storage != EXR_STORAGE_TILED)
+    return sim_fail(err, "%s: deep EXR data; expected a scanline or tiled image", path);
+  *width = (int64_t)window->max.x - window->min.x + 1;
+  *height = (int64_t)window->max.y - window->min.y + 1;
+  if (*width <= 0 || *height <= 0)
+    return sim_fail(err, "%s: EXR data window has zero size (%lldx%lld)", path,
+                    (long long)*width, (long long)*height);
+  if (*width > 1 << 20 || *height > 1 << 20 || *width * *height > (int64_t)1 << 28)
+    return sim_fail(err, "%s: EXR size %lldx%lld is too large for a fogmap", path,
+                    (long long)*width, (long long)*height);
+  return 0;
+}
 
-  exr_result_t rv = exr_start_read(&ctxt, path, &init);
-  if (rv != EXR_ERR_SUCCESS) {
-    sim_fail(err, "%s: not a readable EXR: %s", path, exr_reason(&stream, rv));
-    goto done;
-  }
-  exr_storage_t storage;
-  exr_attr_box2i_t window;
-  const exr_attr_chlist_t *list = NULL;
-  rv = exr_get_storage(ctxt, 0, &storage);
-  if (rv == EXR_ERR_SUCCESS) rv = exr_get_data_window(ctxt, 0, &window);
-  if (rv == EXR_ERR_SUCCESS) rv = exr_get_channels(ctxt, 0, &list);
-  if (rv != EXR_ERR_SUCCESS || !list) {
-    sim_fail(err, "%s: EXR header incomplete: %s", path, exr_reason(&stream, rv));
-    goto done;
-  }
-  if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) {
-    sim_fail(err, "%s: deep EXR data; expected a scanline or tiled image", path);
-    goto done;
-  }
-  int64_t width = (int64_t)window.max.x - window.min.x + 1;
-  int64_t height = (int64_t)window.max.y - window.min.y + 1;
-  if (width <= 0 || height <= 0) {
-    sim_fail(err, "%s: EXR data window has zero size (%lldx%lld)", path, (long long)width,
-             (long long)height);
-    goto done;
-  }
-  if (width > 1 << 20 || height > 1 << 20 || width * height > (int64_t)1 << 28) {
-    sim_fail(err, "%s: EXR size %lldx%lld is too large for a fogmap", path, (long long)width,
-             (long long)height);
-    goto done;
-  }
-
+/* The channel to load: the one named, or the only one; half or float, full resolution. */
+static const exr_attr_chlist_entry_t *exr_pick_channel(const exr_attr_chlist_t *list,
+                                                       const char *path, const char *channel,
+                                                       sim_error *err) {
   char names[256];
   list_channels(list, names, sizeof names);
   const exr_attr_chlist_entry_t *entry = NULL;
-  if (list->num_channels == 0) {
-    sim_fail(err, "%s: EXR has no channels", path);
-    goto done;
-  }
+  if (list->num_channels == 0) return sim_fail(err, "%s: EXR has no channels", path), NULL;
   if (!channel) {
-    if (list->num_channels != 1) {
-      sim_fail(err, "%s: EXR has %d channels (%s); name the one to load (fogmap channel)",
-               path, list->num_channels, names);
-      goto done;
-    }
+    if (list->num_channels != 1)
+      return sim_fail(err, "%s: EXR has %d channels (%s); name the one to load (fogmap "
+                      "channel)", path, list->num_channels, names), NULL;
     entry = &list->entries[0];
   } else {
     for (int c = 0; c < list->num_channels; c++)
       if (!strcmp(list->entries[c].name.str, channel)) entry = &list->entries[c];
-    if (!entry) {
-      sim_fail(err, "%s: EXR has no channel \"%s\"; it has %s", path, channel, names);
-      goto done;
-    }
+    if (!entry)
+      return sim_fail(err, "%s: EXR has no channel \"%s\"; it has %s", path, channel, names),
+             NULL;
   }
-  if (entry->pixel_type != EXR_PIXEL_HALF && entry->pixel_type != EXR_PIXEL_FLOAT) {
-    sim_fail(err, "%s: EXR channel \"%s\" holds 32-bit unsigned integers; expected half or "
-             "float", path, entry->name.str);
-    goto done;
-  }
-  if (entry->x_sampling != 1 || entry->y_sampling != 1) {
-    sim_fail(err, "%s: EXR channel \"%s\" is subsampled (%d x %d); expected one value per "
-             "pixel", path, entry->name.str, entry->x_sampling, entry->y_sampling);
-    goto done;
-  }
-  const char *name = entry->name.str;
+  if (entry->pixel_type != EXR_PIXEL_HALF && entry->pixel_type != EXR_PIXEL_FLOAT)
+    return sim_fail(err, "%s: EXR channel \"%s\" holds 32-bit unsigned integers; expected "
+                    "half or float", path, entry->name.str), NULL;
+  if (entry->x_sampling != 1 || entry->y_sampling != 1)
+    return sim_fail(err, "%s: EXR channel \"%s\" is subsampled (%d x %d); expected one value "
+                    "per pixel", path, entry->name.str, entry->x_sampling, entry->y_sampling),
+           NULL;
+  return entry;
+}
 
-  out = calloc((size_t)width * (size_t)height, sizeof *out);
-  if (!out) {
-    sim_fail(err, "%s: out of memory for a %lldx%lld fogmap", path, (long long)width,
-             (long long)height);
-    goto done;
-  }
-
-  /* The chunk layout: scanline blocks of lines_per_chunk rows, or tiles of level (0, 0);
-   * tile (tx, ty) starts at pixel (tx * tile_w, ty * tile_h) of the data window. */
+/* Decodes channel `name` of every chunk into out (width x height floats). The chunk layout:
+ * scanline blocks of lines_per_chunk rows, or tiles of level (0, 0); tile (tx, ty) starts at
+ * pixel (tx * tile_w, ty * tile_h) of the data window. *out_of_memory on a failed scratch. */
+static exr_result_t exr_read_chunks(exr_context_t ctxt, exr_storage_t storage,
+                                    const exr_attr_box2i_t *window, int64_t width,
+                                    int64_t height, const char *name, float *out,
+                                    int *out_of_memory) {
+  exr_decode_pipeline_t decode = EXR_DECODE_PIPELINE_INITIALIZER;
+  int initialised = 0;
   int32_t lines_per_chunk = 1;
   uint32_t tile_w = 0, tile_h = 0;
+  exr_result_t rv;
   if (storage == EXR_STORAGE_SCANLINE) {
     rv = exr_get_scanlines_per_chunk(ctxt, 0, &lines_per_chunk);
     if (rv == EXR_ERR_SUCCESS && lines_per_chunk < 1) rv = EXR_ERR_INVALID_ATTR;
@@ -240,32 +218,28 @@ int exr_read_channel(const char *path, const char *channel, int *width_out,
     rv = exr_get_tile_descriptor(ctxt, 0, &tile_w, &tile_h, &level_mode, &round_mode);
     if (rv == EXR_ERR_SUCCESS && (tile_w == 0 || tile_h == 0)) rv = EXR_ERR_INVALID_ATTR;
   }
+  if (rv != EXR_ERR_SUCCESS) return rv;
   /* The scratch chunk for the channels not loaded: one channel of one chunk, in floats
-   * (each of them decodes into it, over the others), the chunk clipped to the image. Not sized by
-   * exr_get_chunk_unpacked_size: that counts every channel of a whole tile at the header's
-   * tile size, which one damaged byte made 3.6 GB for a 1x1 image. */
-  if (rv == EXR_ERR_SUCCESS) {
-    int64_t chunk_w = storage == EXR_STORAGE_SCANLINE || tile_w > width ? width : tile_w;
-    int64_t chunk_h = storage == EXR_STORAGE_SCANLINE
-                          ? (lines_per_chunk < height ? lines_per_chunk : height)
-                          : (tile_h < height ? tile_h : height);
-    scratch = malloc((size_t)chunk_w * (size_t)chunk_h * sizeof(float));
-    if (!scratch) {
-      sim_fail(err, "%s: out of memory for an EXR chunk", path);
-      goto done;
-    }
+   * (each of them decodes into it, over the others), the chunk clipped to the image. Not
+   * sized by exr_get_chunk_unpacked_size: that counts every channel of a whole tile at the
+   * header's tile size, which one damaged byte made 3.6 GB for a 1x1 image. */
+  int64_t chunk_w = storage == EXR_STORAGE_SCANLINE || tile_w > width ? width : tile_w;
+  int64_t chunk_h = storage == EXR_STORAGE_SCANLINE
+                        ? (lines_per_chunk < height ? lines_per_chunk : height)
+                        : (tile_h < height ? tile_h : height);
+  float *scratch = malloc((size_t)chunk_w * (size_t)chunk_h * sizeof(float));
+  if (!scratch) {
+    *out_of_memory = 1;
+    return EXR_ERR_OUT_OF_MEMORY;
   }
-
-  if (rv != EXR_ERR_SUCCESS) {
-  } else if (storage == EXR_STORAGE_SCANLINE) {
-    for (int32_t y = window.min.y; rv == EXR_ERR_SUCCESS && y <= window.max.y;
+  if (storage == EXR_STORAGE_SCANLINE) {
+    for (int32_t y = window->min.y; rv == EXR_ERR_SUCCESS && y <= window->max.y;
          y += lines_per_chunk) {
       exr_chunk_info_t chunk;
       rv = exr_read_scanline_chunk_info(ctxt, 0, y, &chunk);
       if (rv != EXR_ERR_SUCCESS) break;
-      float *origin = out + (size_t)(chunk.start_y - window.min.y) * (size_t)width;
-      rv = decode_chunk(ctxt, &chunk, &decode, &initialised, name, origin, (int)width,
-                          scratch);
+      float *origin = out + (size_t)(chunk.start_y - window->min.y) * (size_t)width;
+      rv = decode_chunk(ctxt, &chunk, &decode, &initialised, name, origin, (int)width, scratch);
     }
   } else {
     int64_t tiles_x = (width + tile_w - 1) / tile_w;
@@ -280,6 +254,45 @@ int exr_read_channel(const char *path, const char *channel, int *width_out,
                           scratch);
       }
   }
+  if (initialised) exr_decoding_destroy(ctxt, &decode);
+  free(scratch);
+  return rv;
+}
+
+int exr_read_channel(const char *path, const char *channel, int *width_out,
+                     int *height_out, float **pixels, sim_error *err) {
+  exr_stream stream;
+  exr_context_initializer_t init;
+  if (open_read_stream(path, &stream, &init, err)) return 1;
+  exr_context_t ctxt = NULL;
+  float *out = NULL;
+  int status = 1;
+  exr_result_t rv = exr_start_read(&ctxt, path, &init);
+  if (rv != EXR_ERR_SUCCESS) {
+    sim_fail(err, "%s: not a readable EXR: %s", path, exr_reason(&stream, rv));
+    goto done;
+  }
+  exr_storage_t storage;
+  exr_attr_box2i_t window;
+  const exr_attr_chlist_t *list = NULL;
+  int64_t width = 0, height = 0;
+  if (exr_read_layout(ctxt, path, &stream, &storage, &window, &list, &width, &height, err))
+    goto done;
+  const exr_attr_chlist_entry_t *entry = exr_pick_channel(list, path, channel, err);
+  if (!entry) goto done;
+  out = calloc((size_t)width * (size_t)height, sizeof *out);
+  if (!out) {
+    sim_fail(err, "%s: out of memory for a %lldx%lld fogmap", path, (long long)width,
+             (long long)height);
+    goto done;
+  }
+  int out_of_memory = 0;
+  rv = exr_read_chunks(ctxt, storage, &window, width, height, entry->name.str, out,
+                       &out_of_memory);
+  if (out_of_memory) {
+    sim_fail(err, "%s: out of memory for an EXR chunk", path);
+    goto done;
+  }
   if (rv != EXR_ERR_SUCCESS) {
     sim_fail(err, "%s: EXR pixel data unreadable (damaged or truncated?): %s", path,
              exr_reason(&stream, rv));
@@ -291,12 +304,10 @@ int exr_read_channel(const char *path, const char *channel, int *width_out,
   out = NULL;
   status = 0;
 done:
-  if (initialised) exr_decoding_destroy(ctxt, &decode);
   if (ctxt) exr_finish(&ctxt);
   current_stream = NULL;
   close(stream.fd);
   free(out);
-  free(scratch);
   return status;
 }
 
