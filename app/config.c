@@ -272,31 +272,101 @@ static int handle(void *user, const char *section, const char *key, const char *
   return ok;
 }
 
-static int handle_key(parse_state *s, const char *section, const char *key, const char *value) {
-  scene_config *cfg = s->cfg;
-  const key_spec *k = NULL;
+/* The spec of [section] key, or NULL after the error that says which sections or keys
+ * there are. */
+static const key_spec *lookup_key(parse_state *s, const char *section, const char *key) {
   bool section_known = false;
   for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
     if (!strcmp(keys[i].section, section)) {
       section_known = true;
-      if (!strcmp(keys[i].key, key)) {
-        k = &keys[i];
-        break;
-      }
+      if (!strcmp(keys[i].key, key)) return &keys[i];
     }
   if (!section_known) {
-    if (!section[0]) return fail(s, "", key, "key outside any section; sections are %s", sections);
-    return fail(s, section, key, "unknown section [%s]; sections are %s", section, sections);
+    if (!section[0]) fail(s, "", key, "key outside any section; sections are %s", sections);
+    else fail(s, section, key, "unknown section [%s]; sections are %s", section, sections);
+    return NULL;
   }
-  if (!k) {
-    char known[400] = "";
-    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
-      if (!strcmp(keys[i].section, section)) {
-        size_t used = strlen(known);
-        snprintf(known + used, sizeof known - used, "%s%s", used ? ", " : "", keys[i].key);
-      }
-    return fail(s, section, key, "unknown key; [%s] has %s", section, known);
+  char known[400] = "";
+  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+    if (!strcmp(keys[i].section, section)) {
+      size_t used = strlen(known);
+      snprintf(known + used, sizeof known - used, "%s%s", used ? ", " : "", keys[i].key);
+    }
+  fail(s, section, key, "unknown key; [%s] has %s", section, known);
+  return NULL;
+}
+
+/* V_ENUM: the index of value among k->names. */
+static int store_enum(parse_state *s, const key_spec *k, const char *section, const char *key,
+                      const char *value, int *field) {
+  int index = 0;
+  for (const char *p = k->names;; index++) {
+    const char *bar = strchr(p, '|');
+    size_t n = bar ? (size_t)(bar - p) : strlen(p);
+    if (strlen(value) == n && !strncmp(p, value, n)) {
+      *field = index;
+      return 1;
+    }
+    if (!bar) break;
+    p = bar + 1;
   }
+  return fail(s, section, key, "expected one of %s, got '%s'", k->names, value);
+}
+
+/* V_OBJECT: box = X Z WIDTH HEIGHT DEPTH [R G B], appended. */
+static int store_box(parse_state *s, const char *section, const char *key, const char *value) {
+  scene_config *cfg = s->cfg;
+  double v[8];
+  int n = parse_numbers(value, v, 8);
+  if (n != 5 && n != 8)
+    return fail(s, section, key, "expected X Z WIDTH HEIGHT DEPTH [R G B], got '%s'", value);
+  if (!(v[2] > 0 && v[3] > 0 && v[4] > 0))
+    return fail(s, section, key, "expected positive WIDTH HEIGHT DEPTH, got '%s'", value);
+  if (cfg->object_count == SCENE_MAX_BOXES)
+    return fail(s, section, key, "at most %d boxes", SCENE_MAX_BOXES);
+  scene_box_desc *b = &cfg->objects[cfg->object_count++];
+  *b = (scene_box_desc){.center = {v[0], v[1]}, .size = {v[2], v[3], v[4]}};
+  if (n == 8)
+    for (int i = 0; i < 3; i++) b->colour[i] = (float)v[5 + i];
+  return 1;
+}
+
+/* V_RBF: rbf = X Y Z RADIUS DENSITY, appended. */
+static int store_rbf(parse_state *s, const char *section, const char *key, const char *value) {
+  scene_config *cfg = s->cfg;
+  double v[5];
+  int n = parse_numbers(value, v, 5);
+  if (n != 5)
+    return fail(s, section, key, "expected X Y Z RADIUS DENSITY (5 numbers), got '%s'", value);
+  if (!(v[3] >= MIN_LENGTH && v[3] <= WORLD && v[4] >= 0 && v[4] <= MAX_EXTINCTION))
+    return fail(s, section, key, "expected RADIUS from %g to %g and DENSITY from 0 to %g, "
+                "got '%s'", MIN_LENGTH, WORLD, MAX_EXTINCTION, value);
+  if (cfg->fog.rbf_count == FOG_MAX_RBFS)
+    return fail(s, section, key, "at most %d Gaussians", FOG_MAX_RBFS);
+  cfg->fog.rbfs[cfg->fog.rbf_count++] =
+      (fog_rbf){.centre = {v[0], v[1], v[2]}, .radius = v[3], .density = v[4]};
+  return 1;
+}
+
+/* V_LIST: 1 to SCENE_CONFIG_MAX_PROFILE densities >= 0, the count at k->aux_offset. */
+static int store_list(parse_state *s, const key_spec *k, const char *section, const char *key,
+                      const char *value) {
+  double *field = (double *)((char *)s->cfg + k->offset);
+  int n = parse_numbers(value, field, SCENE_CONFIG_MAX_PROFILE);
+  if (n < 1)
+    return fail(s, section, key, "expected 1 to %d numbers, got '%s'", SCENE_CONFIG_MAX_PROFILE,
+                value);
+  for (int i = 0; i < n; i++)
+    if (field[i] < 0)
+      return fail(s, section, key, "expected numbers >= 0 (fog density), got '%s'", value);
+  *(int *)((char *)s->cfg + k->aux_offset) = n;
+  return 1;
+}
+
+static int handle_key(parse_state *s, const char *section, const char *key, const char *value) {
+  scene_config *cfg = s->cfg;
+  const key_spec *k = lookup_key(s, section, key);
+  if (!k) return 0;
   char *field = (char *)cfg + k->offset;
   double v[16];
   switch (k->kind) {
@@ -327,20 +397,8 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
       else
         *(unsigned *)field = (unsigned)v[0];
       return 1;
-    case V_ENUM: {
-      int index = 0;
-      for (const char *p = k->names;; index++) {
-        const char *bar = strchr(p, '|');
-        size_t n = bar ? (size_t)(bar - p) : strlen(p);
-        if (strlen(value) == n && !strncmp(p, value, n)) {
-          *(int *)field = index;
-          return 1;
-        }
-        if (!bar) break;
-        p = bar + 1;
-      }
-      return fail(s, section, key, "expected one of %s, got '%s'", k->names, value);
-    }
+    case V_ENUM:
+      return store_enum(s, k, section, key, value, (int *)field);
     case V_PATH:
       if (!value[0]) {
         field[0] = '\0';
@@ -356,44 +414,12 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
         return fail(s, section, key, "expected at most %zu characters, got '%s'", k->size - 1, value);
       snprintf(field, k->size, "%s", value);
       return 1;
-    case V_LIST: {
-      int n = parse_numbers(value, (double *)field, SCENE_CONFIG_MAX_PROFILE);
-      if (n < 1)
-        return fail(s, section, key, "expected 1 to %d numbers, got '%s'",
-                    SCENE_CONFIG_MAX_PROFILE, value);
-      for (int i = 0; i < n; i++)
-        if (((double *)field)[i] < 0)
-          return fail(s, section, key, "expected numbers >= 0 (fog density), got '%s'", value);
-      *(int *)((char *)cfg + k->aux_offset) = n;
-      return 1;
-    }
-    case V_OBJECT: {
-      int n = parse_numbers(value, v, 8);
-      if (n != 5 && n != 8)
-        return fail(s, section, key, "expected X Z WIDTH HEIGHT DEPTH [R G B], got '%s'", value);
-      if (!(v[2] > 0 && v[3] > 0 && v[4] > 0))
-        return fail(s, section, key, "expected positive WIDTH HEIGHT DEPTH, got '%s'", value);
-      if (cfg->object_count == SCENE_MAX_BOXES)
-        return fail(s, section, key, "at most %d boxes", SCENE_MAX_BOXES);
-      scene_box_desc *b = &cfg->objects[cfg->object_count++];
-      *b = (scene_box_desc){.center = {v[0], v[1]}, .size = {v[2], v[3], v[4]}};
-      if (n == 8)
-        for (int i = 0; i < 3; i++) b->colour[i] = (float)v[5 + i];
-      return 1;
-    }
-    case V_RBF: {
-      int n = parse_numbers(value, v, 5);
-      if (n != 5)
-        return fail(s, section, key, "expected X Y Z RADIUS DENSITY (5 numbers), got '%s'", value);
-      if (!(v[3] >= MIN_LENGTH && v[3] <= WORLD && v[4] >= 0 && v[4] <= MAX_EXTINCTION))
-        return fail(s, section, key, "expected RADIUS from %g to %g and DENSITY from 0 to %g, "
-                    "got '%s'", MIN_LENGTH, WORLD, MAX_EXTINCTION, value);
-      if (cfg->fog.rbf_count == FOG_MAX_RBFS)
-        return fail(s, section, key, "at most %d Gaussians", FOG_MAX_RBFS);
-      cfg->fog.rbfs[cfg->fog.rbf_count++] =
-          (fog_rbf){.centre = {v[0], v[1], v[2]}, .radius = v[3], .density = v[4]};
-      return 1;
-    }
+    case V_LIST:
+      return store_list(s, k, section, key, value);
+    case V_OBJECT:
+      return store_box(s, section, key, value);
+    case V_RBF:
+      return store_rbf(s, section, key, value);
   }
   return 1;
 }
