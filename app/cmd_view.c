@@ -144,18 +144,7 @@ static void view_destroy(view_state *v) {
  * Errors in err. */
 static int view_open(view_state *v, volume_playback *playback, const scene_config *cfg,
                      const view_options *opts, render_error *err) {
-  float *heights = NULL;
-  int hw = 0, hh = 0;
-  render_frame_error ferr;
-  if (render_frame_load_heightmap(cfg, &heights, &hw, &hh, &ferr)) {
-    snprintf(err->message, sizeof err->message, "%s", ferr.message);
-    return 1;
-  }
-  scene_desc desc;
-  scene_config_scene_desc(cfg, heights, hw, hh, &desc);
-  int geo_status = scene_geometry_create(&v->geo, &desc, err);
-  free(heights);
-  if (geo_status) return 1;
+  if (render_scene_geometry_create(cfg, &v->geo, err)) return 1;
   v->geo_made = true;
   if (!(v->scene = scene_pass_create(&v->geo, err))) return 1;
   if (scene_config_has_fog(cfg)) {

@@ -36,9 +36,8 @@ void render_scene_destroy(render_scene *s) {
   *s = (render_scene){0};
 }
 
-int render_scene_create(render_scene *s, const scene_config *cfg, int width, int height,
-                        render_error *err) {
-  *s = (render_scene){.width = width, .height = height};
+int render_scene_geometry_create(const scene_config *cfg, scene_geometry *geo,
+                                 render_error *err) {
   float *heights = NULL;
   int hw = 0, hh = 0;
   render_frame_error ferr;
@@ -48,9 +47,17 @@ int render_scene_create(render_scene *s, const scene_config *cfg, int width, int
   }
   scene_desc desc;
   scene_config_scene_desc(cfg, heights, hw, hh, &desc);
+  int status = scene_geometry_create(geo, &desc, err);
+  free(heights); /* the geometry has its copy */
+  return status;
+}
+
+int render_scene_create(render_scene *s, const scene_config *cfg, int width, int height,
+                        render_error *err) {
+  *s = (render_scene){.width = width, .height = height};
   scene_config_camera(cfg, &s->cam);
   int status = 1;
-  if (scene_geometry_create(&s->geo, &desc, err)) goto done;
+  if (render_scene_geometry_create(cfg, &s->geo, err)) goto done;
   s->have_geo = true;
   s->pass = scene_pass_create(&s->geo, err);
   if (!s->pass || scene_target_create(&s->target, width, height, err)) goto done;
@@ -62,7 +69,6 @@ int render_scene_create(render_scene *s, const scene_config *cfg, int width, int
   scene_pass_run(s->pass, &s->cam, &s->target);
   status = gl_target_read(&s->target, 1, 1, s->distance, err);
 done:
-  free(heights); /* the geometry has its copy */
   if (status) render_scene_destroy(s);
   return status;
 }

@@ -18,7 +18,7 @@
 
 #include "sim/sim.h"
 #include "exr_channel_util.h"
-#include "test_util.h"
+#include "test_bin.h"
 
 #define W 48
 #define H 27
@@ -107,11 +107,9 @@ static void check_volume_blend(const char *bin, const char *dir) {
 }
 
 int main(void) {
-  const char *bin = getenv("FOGPIPE_BIN");
-  CHECK(bin != NULL, "FOGPIPE_BIN is not set (run through ctest)");
-  if (!bin) return test_finish("test_record_vdb");
   char dir[] = "/tmp/fogpipe_record_vdb_XXXXXX";
-  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  const char *bin = test_bin_and_folder(dir);
+  if (!bin) return test_finish("test_record_vdb");
   check_recording(bin, dir, "configs/vdb_groundfog.ini", 12, (const int[3]){1, 3, 5}, 0.02);
   check_recording(bin, dir, "configs/vdb_plume_volume.ini", 1, (const int[3]){1, 25, 48}, 1e-6);
   check_volume_blend(bin, dir);

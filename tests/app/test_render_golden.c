@@ -21,7 +21,7 @@
 #include "render/render.h"
 #include "sim/sim.h"
 #include "exr_channel_util.h"
-#include "test_util.h"
+#include "test_bin.h"
 
 #define W 128
 #define H 72
@@ -45,11 +45,9 @@ static void compare(const char *name, const float *got, const float *want) {
 }
 
 int main(void) {
-  const char *bin = getenv("FOGPIPE_BIN");
-  CHECK(bin != NULL, "FOGPIPE_BIN is not set (run through ctest)");
-  if (!bin) return test_finish("test_render_golden");
   char dir[] = "/tmp/fogpipe_golden_XXXXXX";
-  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  const char *bin = test_bin_and_folder(dir);
+  if (!bin) return test_finish("test_render_golden");
   char out[256], command[1024];
   snprintf(out, sizeof out, "%s/default.exr", dir);
   snprintf(command, sizeof command, "'%s' render configs/default.ini --out '%s' --size %dx%d",

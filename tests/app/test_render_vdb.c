@@ -14,7 +14,7 @@
 #include "render/camera.h"
 #include "sim/ray_box.h"
 #include "exr_channel_util.h"
-#include "test_util.h"
+#include "test_bin.h"
 
 #define W 96
 #define H 54
@@ -28,11 +28,9 @@ static int run(const char *bin, const char *extra, const char *out) {
 }
 
 int main(void) {
-  const char *bin = getenv("FOGPIPE_BIN");
-  CHECK(bin != NULL, "FOGPIPE_BIN is not set (run through ctest)");
-  if (!bin) return test_finish("test_render_vdb");
   char dir[] = "/tmp/fogpipe_render_vdb_XXXXXX";
-  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  const char *bin = test_bin_and_folder(dir);
+  if (!bin) return test_finish("test_render_vdb");
   char last[300], first[300], bad[300];
   snprintf(last, sizeof last, "%s/last.exr", dir);
   snprintf(first, sizeof first, "%s/first.exr", dir);

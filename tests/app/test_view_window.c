@@ -12,7 +12,7 @@
 #include <unistd.h>
 
 #include "sim/sim.h"
-#include "test_util.h"
+#include "test_bin.h"
 
 static float *load(const char *path, const char *channel, int *w, int *h) {
   fogmap map = {0};
@@ -67,11 +67,9 @@ static void compare_window_with_render(const char *bin, const char *dir, const c
 }
 
 int main(void) {
-  const char *bin = getenv("FOGPIPE_BIN");
-  CHECK(bin != NULL, "FOGPIPE_BIN is not set (run through ctest)");
-  if (!bin) return test_finish("test_view_window");
   char dir[] = "/tmp/fogpipe_view_XXXXXX";
-  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  const char *bin = test_bin_and_folder(dir);
+  if (!bin) return test_finish("test_view_window");
   char command[1024], path[256], text[1024] = "";
 
   /* No display: one line, non-zero exit. */
