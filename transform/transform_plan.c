@@ -204,6 +204,16 @@ static void row_forward_linear_interior(int begin, int end, const float *restric
   }
 }
 
+/* x_n beyond an even row's end: a ghost of the coarse level's right rule, or x_0 when
+ * periodic. */
+static inline float right_ghost(const lifting_step *st, const float *x) {
+  if (st->periodic) return x[0];
+  float g = 0.0f;
+  const ghost_rule *r = &st->coarse->right;
+  for (int t = 0; t < r->count; t++) g += (float)r->weight[t] * x[2 * r->index[t]];
+  return g;
+}
+
 static void row_forward_linear(const lifting_step *st, const float *restrict x,
                                float *restrict out, float lo, float hi) {
   int n = st->n, m = (n + 1) / 2, d = n / 2;
@@ -213,13 +223,7 @@ static void row_forward_linear(const lifting_step *st, const float *restrict x,
   row_forward_linear_interior(1, inner, x, out, high, lo, hi);
   float o_last; /* o_d-1 */
   if (d == m) { /* even n: x_n is a ghost of the coarse level's right rule */
-    float g = 0.0f;
-    if (st->periodic) {
-      g = x[0];
-    } else {
-      const ghost_rule *r = &st->coarse->right;
-      for (int t = 0; t < r->count; t++) g += (float)r->weight[t] * x[2 * r->index[t]];
-    }
+    const float g = right_ghost(st, x);
     o_last = x[2 * d - 1] - 0.5f * (x[2 * d - 2] + g);
     high[d - 1] = hi * o_last;
     out[d - 1] = lo * (x[2 * d - 2] + 0.25f * (ODD(d - 2) + o_last));
@@ -292,13 +296,7 @@ static void row_inverse_linear(const lifting_step *st, const float *restrict in,
   if (inner > 0) x[1] = ihi * dd[0] - -0.5f * (x[0] + x[2]);
   for (int k = rest; k < inner; k++) x[2 * k + 1] = ihi * dd[k] - -0.5f * (x[2 * k] + x[2 * k + 2]);
   if (d == m) {
-    float g = 0.0f;
-    if (st->periodic) {
-      g = x[0];
-    } else {
-      const ghost_rule *r = &st->coarse->right;
-      for (int t = 0; t < r->count; t++) g += (float)r->weight[t] * x[2 * r->index[t]];
-    }
+    const float g = right_ghost(st, x);
     x[2 * d - 1] = olast - -0.5f * (x[2 * d - 2] + g);
   }
 }
