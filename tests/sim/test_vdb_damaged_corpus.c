@@ -151,6 +151,21 @@ static void read_in_child(const char *path, tally *t) {
   }
 }
 
+/* src (n bytes) with byte `at` XORed by mask, written to dir/name, read in a child. */
+static void read_flipped(const unsigned char *src, size_t n, size_t at, unsigned mask,
+                         const char *dir, const char *name, tally *t) {
+  unsigned char *bytes = malloc(n);
+  if (!bytes) return;
+  memcpy(bytes, src, n);
+  bytes[at] ^= (unsigned char)mask;
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  CHECK(write_file(path, bytes, n) == 0, "cannot write %s", path);
+  free(bytes);
+  read_in_child(path, t);
+  unlink(path);
+}
+
 /* One damaged copy: flips bits at offsets drawn from [lo, hi), or truncates to cut. */
 static void damage(const unsigned char *src, size_t n, int index, int flips, size_t lo, size_t hi,
                    size_t cut, tally *t) {
@@ -209,29 +224,13 @@ int main(void) {
     damage(src, n, index++, 0, 0, 0, 1 + rng() % (i % 2 ? n - 1 : 4096), &t);
   /* a type name length + 2^31 for each grid, the first name length + 2^30 */
   for (int h = 0; h < hot_count; h++) {
-    unsigned char *bytes = malloc(n);
-    memcpy(bytes, src, n);
-    bytes[hot[h] - 1] ^= 0x80;
-    char path[128];
-    snprintf(path, sizeof path, "%s/type_length_%d.vdb", dir, h);
-    CHECK(write_file(path, bytes, n) == 0, "cannot write %s", path);
-    free(bytes);
-    read_in_child(path, &t);
-    unlink(path);
+    char name[64];
+    snprintf(name, sizeof name, "type_length_%d.vdb", h);
+    read_flipped(src, n, hot[h] - 1, 0x80, dir, name, &t);
     index++;
   }
-  {
-    unsigned char *bytes = malloc(n);
-    memcpy(bytes, src, n);
-    bytes[name_length_at + 3] ^= 0x40;
-    char path[128];
-    snprintf(path, sizeof path, "%s/name_length.vdb", dir);
-    CHECK(write_file(path, bytes, n) == 0, "cannot write %s", path);
-    free(bytes);
-    read_in_child(path, &t);
-    unlink(path);
-    index++;
-  }
+  read_flipped(src, n, name_length_at + 3, 0x40, dir, "name_length.vdb", &t);
+  index++;
 
   /* Unit case: the first descriptor's name length 0xFFFFFFF0 is refused, naming the file. */
   {
