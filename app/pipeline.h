@@ -1,4 +1,4 @@
-/* pipeline: one frame of fogpipe, stage by stage (DESIGN.md §2):
+/* pipeline: one frame of fogpipe, stage by stage (docs/architecture.md):
  *
  *     sim step ──► transform ──►│ upload ──► render (scene + fog pass)
  *     └──── CPU: worker thread ─┘└────────── GL thread (the caller) ──┘

@@ -224,7 +224,7 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_er
   return status;
 }
 
-/* An analytic model of the ladder (DESIGN §3): no fogmap and no transform, the pass's
+/* An analytic model of the ladder (docs/architecture.md, the model table): no fogmap and no transform, the pass's
  * parameters alone (render/fog_models.def lists the keys each reads; docs/config.md what they mean). */
 static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
   const scene_fog_config *f = &cfg->fog;

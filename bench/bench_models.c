@@ -1,4 +1,4 @@
-/* fogpipe bench models: the other rungs of the fog-model ladder (DESIGN §3,
+/* fogpipe bench models: the other rows of the fog-model table (docs/architecture.md,
  * render/fog_models.h), each integrated exactly and by uniform ray marching, side by side
  * in one run:
  *   - on configs/rbf_fog_banks.ini's valley and view (terrain, boxes, camera):

@@ -4,7 +4,7 @@
  * tensor polynomial in the cell-local coordinates (sx, sz) in [0, 1]^2:
  *   f = sum_{k,l <= d} A_kl sx^k sz^l,  A_kl = sum_{a,b} M_ka M_lb c(i0 + a, j0 + b),
  * i0 = cx - d/2, where M_ka is the s^k coefficient of the cell weight of coefficient
- * i0 + a (fog_cell_weights in the GLSL, DESIGN §4). Storing A per cell lets the walk
+ * i0 + a (fog_cell_weights in the GLSL, docs/integral.md). Storing A per cell lets the walk
  * fetch one texel per cell (degree 1) instead of (d+1)^2 coefficients, and evaluate f with
  * d^2 + 2d fused multiply-adds, no weights.
  *

@@ -1,5 +1,5 @@
 /* The 2.5D wavelet-fogmap fog model K(x, y, z) = extinction * f(x, z) * g(y)
- * (Giroud & Biri 2010, DESIGN.md §3-4), its exact optical depth along a ray (CPU, double;
+ * (Giroud & Biri 2010, docs/integral.md), its exact optical depth along a ray (CPU, double;
  * fog_integral_cpu.c), an independent adaptive-quadrature oracle (tests/reference/fog_oracle.h, outside the
  * shipped library) and the
  * LOD-by-distance variants. The GLSL twin is render/shaders/fog_integral.glsl: same
@@ -28,7 +28,7 @@
  *                           B-spline of degree p = 0..3 (e.g. fitted from a VDB), support
  *                           [origin - (p+1)/2 spacing, origin + (count-1+(p+1)/2) spacing].
  *
- * Exactness (DESIGN §4): the ray is cut at every knot line of f (2D DDA, Amanatides & Woo
+ * Exactness (docs/integral.md): the ray is cut at every knot line of f (2D DDA, Amanatides & Woo
  * 1987), at every knot of a B-spline profile, at y0 of the exponential profile, and at
  * the box. On each piece the integrand is a polynomial of degree 2d + p in t, integrated
  * exactly by Gauss-Legendre with d + p/2 + 1 nodes; or p(t) e^{a t} with p of degree 2d,
@@ -78,7 +78,7 @@ typedef struct fog_volume {
   fog_profile profile;
 } fog_volume;
 
-/* LOD by distance (DESIGN §4). approx[0..levels] are A_0 .. A_J, detail[0..levels-1] are
+/* LOD by distance (docs/integral.md). approx[0..levels] are A_0 .. A_J, detail[0..levels-1] are
  * the deconstructed detail grids D_1 .. D_J (detail[l-1] is D_l), all over the same box.
  * d_l = ||OP|| mu^l, where ||OP|| is the distance to the first surface or, when the ray
  * leaves the fog's box first, to the box exit. */

@@ -122,7 +122,7 @@ static double fog_grid_coefficient(const transform_grid *g, int i, int j) {
   return g->coefficients[(size_t)j * (size_t)g->width + (size_t)i];
 }
 
-/* f at grid coordinates (x, z) known to lie in knot cell (cx, cz): DESIGN §4 basis,
+/* f at grid coordinates (x, z) known to lie in knot cell (cx, cz): docs/integral.md, Knots: the basis,
  * f = sum c_ij phi_d(x - i) phi_d(z - j) with the cell's (d+1)^2 coefficients. */
 static double fog_grid_value(const transform_grid *g, int cx, int cz, double x, double z) {
   int d = g->degree;
@@ -449,7 +449,7 @@ double fog_march_jitter(unsigned px, unsigned py_gl, unsigned frame) {
   return (double)(h >> 8) * (1.0 / 16777216.0);
 }
 
-/* ---- LOD by distance (DESIGN §4) -------------------------------------------------------- */
+/* ---- LOD by distance (docs/integral.md) -------------------------------------------------------- */
 
 double fog_lod_ray_length(const fog_volume *v, const double camera[3], const double dir[3],
                           double t_surface) {

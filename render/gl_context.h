@@ -3,7 +3,7 @@
  *   - headless: EGL surfaceless (Mesa llvmpipe here; EGL_EXT_device_enumeration on NVIDIA),
  *     rendering into FBOs only;
  *   - window: a GLFW window (needs a display).
- * Both ask for OpenGL 4.5 core and fall back to 4.3 (PLATFORM-NOTES.md: 4.6 is refused).
+ * Both ask for OpenGL 4.5 core and fall back to 4.3 (docs/platform.md: 4.6 is refused).
  * GL entry points come from <GL/glcorearb.h> with GL_GLEXT_PROTOTYPES via libOpenGL. */
 #ifndef FOGPIPE_RENDER_GL_CONTEXT_H
 #define FOGPIPE_RENDER_GL_CONTEXT_H

@@ -1,5 +1,5 @@
 /* Headless backend: an EGL context with no surface, rendering into FBOs only.
- * (PLATFORM-NOTES.md "Headless OpenGL".) Display paths, in order:
+ * (docs/platform.md "Headless OpenGL".) Display paths, in order:
  *   1. EGL_EXT_device_enumeration, hardware devices (what NVIDIA machines offer);
  *   2. EGL_MESA_platform_surfaceless (Mesa: llvmpipe on machines without a GPU);
  *   3. device enumeration, software devices (EGL_MESA_device_software);

@@ -1,5 +1,5 @@
 /* Window backend: a GLFW 3.3 window with an OpenGL 4.5 core context, falling back to 4.3
- * (4.6 hints fail with GLXBadFBConfig on Mesa 22: PLATFORM-NOTES.md). GLFW has no
+ * (4.6 hints fail with GLXBadFBConfig on Mesa 22: docs/platform.md). GLFW has no
  * headless mode: without a display glfwInit fails, and we say so in one line. */
 #include <stdio.h>
 #include <stdlib.h>

@@ -174,7 +174,7 @@ float fog_cell_eval(mat3 a, float sx, float sz) {
          sz * (a[1].x + sx * (a[1].y + sx * a[1].z) + sz * (a[2].x + sx * (a[2].y + sx * a[2].z)));
 }
 
-// f at grid coordinates (x, z) in knot cell (cx, cz): DESIGN §4 basis,
+// f at grid coordinates (x, z) in knot cell (cx, cz): docs/integral.md, Knots: the basis,
 // f = sum c_ij phi_d(x - i) phi_d(z - j) with the cell's (d+1)^2 coefficients.
 float fog_grid_value(int grid, int cx, int cz, float x, float z) {
   int d = fog_degree;

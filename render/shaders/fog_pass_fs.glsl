@@ -1,6 +1,6 @@
 #version 430 core
 // The fog pass (render/fog_pass.h): per pixel, the ray of render/camera.h, the optical depth
-// through the fogmap pyramid with LOD by distance (DESIGN §4), and the blend
+// through the fogmap pyramid with LOD by distance (docs/integral.md), and the blend
 // L = tau L(P) + L_fog (1 - tau) (Giroud & Biri eq. 4). render/fog_pass.c inserts after the
 // #version line:
 //   #define FOG_FETCH_HARDWARE 0|1   (see fog_integral.glsl)

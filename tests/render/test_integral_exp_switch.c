@@ -1,4 +1,4 @@
-/* The exponential profile's moments J_k = int_{-1}^{1} s^k e^{c0 + b s} ds (DESIGN §4):
+/* The exponential profile's moments J_k = int_{-1}^{1} s^k e^{c0 + b s} ds (docs/integral.md):
  * the closed form cancels as b -> 0, so fog_exp_moments switches to the moments' power
  * series below |b| = FOG_EXP_SWITCH (8-node Gauss-Legendre is the checked alternative).
  * Checks, against a long-double power series summed independently (400 terms):

@@ -1,4 +1,4 @@
-/* LOD by distance (DESIGN §4): the paper's sum of deconstructed details (A_0 over the
+/* LOD by distance (docs/integral.md): the paper's sum of deconstructed details (A_0 over the
  * whole ray, D_l up to d_l = ||OP|| mu^l) and approximation switching (A_l on
  * (d_{l+1}, d_l]) give the same optical depth for the same mu, on a pyramid where
  * A_l = A_{l-1} + D_l holds as functions; mu = 1 gives the finest grid A_J, mu = 0 the
