@@ -1,8 +1,13 @@
 /* The commands' error messages. */
 #include "app/cli.h"
 
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 static void print_message(const char *command, const char *format, va_list args) {
   fprintf(stderr, "fogpipe %s: ", command);
@@ -25,4 +30,83 @@ int cli_usage_error(const char *command, const char *format, ...) {
   va_end(args);
   fprintf(stderr, "(fogpipe %s --help lists the options)\n", command);
   return 2;
+}
+
+/* strtol and strtod skip leading white space; an option's value has none. */
+static bool starts_with_space(const char *text) { return isspace((unsigned char)text[0]); }
+
+bool cli_parse_long(const char *text, long min, long max, long *value) {
+  if (starts_with_space(text)) return false;
+  char *end;
+  errno = 0;
+  long v = strtol(text, &end, 10);
+  if (errno || end == text || *end || v < min || v > max) return false;
+  *value = v;
+  return true;
+}
+
+bool cli_parse_double(const char *text, double min, double max, double *value) {
+  if (starts_with_space(text)) return false;
+  char *end;
+  errno = 0;
+  double v = strtod(text, &end);
+  if (errno || end == text || *end || !isfinite(v) || !(v >= min && v <= max)) return false;
+  *value = v;
+  return true;
+}
+
+int cli_int(const char *command, const char *option, const char *text, long min, long max,
+            int *value) {
+  long v;
+  if (!cli_parse_long(text, min, max, &v))
+    return cli_usage_error(command, "%s '%s': expected a whole number from %ld to %ld", option,
+                           text, min, max);
+  *value = (int)v;
+  return 0;
+}
+
+int cli_number(const char *command, const char *option, const char *text, double min,
+               double max, double *value) {
+  if (!cli_parse_double(text, min, max, value))
+    return cli_usage_error(command, "%s '%s': expected a number from %g to %g", option, text,
+                           min, max);
+  return 0;
+}
+
+int cli_size(const char *command, const char *option, const char *text, int *width,
+             int *height) {
+  const char *x = strpbrk(text, "xX");
+  char w[32];
+  long a, b;
+  if (x && x > text && (size_t)(x - text) < sizeof w) {
+    memcpy(w, text, (size_t)(x - text));
+    w[x - text] = '\0';
+    if (cli_parse_long(w, 1, CLI_MAX_SIZE, &a) && cli_parse_long(x + 1, 1, CLI_MAX_SIZE, &b)) {
+      *width = (int)a, *height = (int)b;
+      return 0;
+    }
+  }
+  return cli_usage_error(command, "%s '%s': expected WIDTHxHEIGHT, each 1 to %d (e.g. 640x360)",
+                         option, text, CLI_MAX_SIZE);
+}
+
+int cli_range(const char *command, const char *option, const char *text, long min, long max,
+              int *first, int *last, bool *single) {
+  const char *dash = text[0] ? strchr(text + 1, '-') : NULL;
+  char a_text[32];
+  long a = 0, b = 0;
+  bool ok;
+  if (dash && (size_t)(dash - text) < sizeof a_text) {
+    memcpy(a_text, text, (size_t)(dash - text));
+    a_text[dash - text] = '\0';
+    ok = cli_parse_long(a_text, min, max, &a) && cli_parse_long(dash + 1, min, max, &b) && a <= b;
+  } else {
+    ok = !dash && cli_parse_long(text, min, max, &a);
+    b = a;
+  }
+  if (!ok)
+    return cli_usage_error(command, "%s '%s': expected A or A-B, whole numbers with %ld <= A <= "
+                           "B <= %ld", option, text, min, max);
+  *first = (int)a, *last = (int)b, *single = !dash;
+  return 0;
 }

@@ -11,4 +11,30 @@ int cli_fail(const char *command, const char *format, ...)
 int cli_usage_error(const char *command, const char *format, ...)
     __attribute__((format(printf, 2, 3)));
 
+/* ---- option values: one parser and one message style for every command ----
+ * Each takes the whole text (no trailing characters, no overflow) and the range allowed;
+ * on a bad value it prints `fogpipe COMMAND: OPTION 'TEXT': expected ...` with the --help
+ * pointer and returns 2 (the exit status of a bad command line), else stores and returns 0. */
+
+#include <stdbool.h>
+
+/* Images and windows: 1 to CLI_MAX_SIZE pixels a side. */
+#define CLI_MAX_SIZE 16384
+
+/* The quiet cores (true on success), for values read from files too. */
+bool cli_parse_long(const char *text, long min, long max, long *value);
+bool cli_parse_double(const char *text, double min, double max, double *value);
+
+int cli_int(const char *command, const char *option, const char *text, long min, long max,
+            int *value);
+/* A finite number in [min, max]. */
+int cli_number(const char *command, const char *option, const char *text, double min,
+               double max, double *value);
+/* WIDTHxHEIGHT, each 1..CLI_MAX_SIZE. */
+int cli_size(const char *command, const char *option, const char *text, int *width,
+             int *height);
+/* A or A-B with min <= A <= B <= max; *single tells which (A: first = last = A). */
+int cli_range(const char *command, const char *option, const char *text, long min, long max,
+              int *first, int *last, bool *single);
+
 #endif

@@ -18,6 +18,7 @@
 #include "app/config.h"
 #include "app/panel.h"
 #include "app/pipeline.h"
+#include "app/cli.h"
 #include "app/cmd_record.h"
 #include "app/cmd_view.h"
 #include "app/recorder.h"
@@ -250,40 +251,23 @@ typedef struct demo_options {
 static int parse_demo_options(int argc, char **argv, demo_options *o) {
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
-    char x = 0, tail = 0;
     if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
       print_help(stdout);
       return 0;
     } else if (!strcmp(a, "--size") && value) {
-      if (sscanf(value, "%d%c%d%c", &o->width, &x, &o->height, &tail) != 3 || x != 'x' ||
-          o->width < 64 || o->height < 64) {
-        fprintf(stderr, "fogpipe demo: --size %s: expected WIDTHxHEIGHT (at least 64x64)\n", value);
-        return 2;
-      }
-      i++;
+      if (cli_size("demo", "--size", argv[++i], &o->width, &o->height)) return 2;
     } else if (!strcmp(a, "--scale") && value) {
-      o->scale = atof(value);
-      if (!(o->scale >= 0.25 && o->scale <= 1.0)) {
-        fprintf(stderr, "fogpipe demo: --scale %s: expected a number in [0.25, 1]\n", value);
-        return 2;
-      }
-      i++;
+      if (cli_number("demo", "--scale", argv[++i], 0.25, 1.0, &o->scale)) return 2;
     } else if (!strcmp(a, "--screenshot") && value) {
       o->screenshot = argv[++i];
     } else if (!strcmp(a, "--frames") && value) {
-      o->frames = atoi(argv[++i]);
-      if (o->frames < 1) {
-        fprintf(stderr, "fogpipe demo: --frames %s: expected a whole number >= 1\n", value);
-        return 2;
-      }
+      if (cli_int("demo", "--frames", argv[++i], 1, 1000000, &o->frames)) return 2;
     } else if (a[0] == '-' && a[1]) {
-      fprintf(stderr, "fogpipe demo: unknown option or missing value: %s (see --help)\n", a);
-      return 2;
+      return cli_usage_error("demo", "unknown option or missing value: '%s'", a);
     } else if (!o->config_path) {
       o->config_path = a;
     } else {
-      fprintf(stderr, "fogpipe demo: unexpected argument %s (one CONFIG only)\n", a);
-      return 2;
+      return cli_usage_error("demo", "unexpected argument '%s' (one CONFIG only)", a);
     }
   }
   if (!o->config_path) o->config_path = DEFAULT_CONFIG;

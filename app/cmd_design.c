@@ -79,12 +79,6 @@ static int parse_numbers(const char *text, double *values, int count) {
   return *p != '\0';
 }
 
-static int parse_int(const char *text, long lo, long hi, long *value) {
-  char *end;
-  *value = strtol(text, &end, 10);
-  return end == text || *end != '\0' || *value < lo || *value > hi;
-}
-
 static int ends_with(const char *s, const char *suffix) {
   size_t n = strlen(s), m = strlen(suffix);
   if (n < m) return 0;
@@ -119,21 +113,16 @@ static int design_value(design_options *o, const char *opt, const char *value) {
   double v[4];
   long n;
   if (!strcmp(opt, "--size")) {
-    char *x = strchr(value, 'x');
-    char w_text[32];
-    if (!x || x - value >= (long)sizeof w_text)
-      return cli_usage_error("design", "--size expects WxH (e.g. 256x256), got '%s'", value);
-    memcpy(w_text, value, (size_t)(x - value));
-    w_text[x - value] = '\0';
-    if (parse_int(w_text, 1, 16384, &o->width) || parse_int(x + 1, 1, 16384, &o->height))
-      return cli_usage_error("design", "--size expects WxH with both 1 to 16384, got '%s'", value);
+    int w, h;
+    if (cli_size("design", "--size", value, &w, &h)) return 2;
+    o->width = w, o->height = h;
   } else if (!strcmp(opt, "--out")) {
     o->out = value;
   } else if (!strcmp(opt, "--seed")) {
-    if (parse_int(value, 0, 0x7fffffffL, &o->seed))
+    if (!cli_parse_long(value, 0, 0x7fffffffL, &o->seed))
       return cli_usage_error("design", "--seed expects an integer 0 to 2147483647, got '%s'", value);
   } else if (!strcmp(opt, "--blobs")) {
-    if (parse_int(value, 1, max_blobs, &n))
+    if (!cli_parse_long(value, 1, max_blobs, &n))
       return cli_usage_error("design", "--blobs expects a count 1 to 256, got '%s'", value);
     o->random_blobs = (int)n;
   } else if (!strcmp(opt, "--blob")) {
@@ -156,7 +145,7 @@ static int design_value(design_options *o, const char *opt, const char *value) {
                          value);
     o->noise.feature_size = (float)v[0];
   } else if (!strcmp(opt, "--octaves")) {
-    if (parse_int(value, 1, 30, &n))
+    if (!cli_parse_long(value, 1, 30, &n))
       return cli_usage_error("design", "--octaves expects 1 to 30, got '%s'", value);
     o->noise.octaves = (int)n;
   } else if (!strcmp(opt, "--gain")) {

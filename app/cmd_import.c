@@ -5,6 +5,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -89,24 +90,6 @@ typedef struct import_options {
   int report, report_frame, report_rays;
 } import_options;
 
-static int parse_int(const char *s, int *out) {
-  char *end;
-  errno = 0;
-  long v = strtol(s, &end, 10);
-  if (errno || end == s || *end || v < -2147483647L || v > 2147483647L) return 1;
-  *out = (int)v;
-  return 0;
-}
-
-static int parse_double(const char *s, double *out) {
-  char *end;
-  errno = 0;
-  double v = strtod(s, &end);
-  if (errno || end == s || *end || !isfinite(v)) return 1;
-  *out = v;
-  return 0;
-}
-
 static int parse_options(int argc, char **argv, import_options *o) {
   *o = (import_options){.name = "fog", .first = -1, .last = -1, .report_frame = -1};
   for (int i = 1; i < argc; i++) {
@@ -155,21 +138,11 @@ static int parse_options(int argc, char **argv, import_options *o) {
     else if (!strcmp(a, "--config"))
       o->config = v;
     else if (!strcmp(a, "--frames")) {
-      char first[64], last[64];
-      const char *dash = strchr(v, '-');
-      if (dash && dash != v) {
-        snprintf(first, sizeof first, "%.*s", (int)(dash - v), v);
-        snprintf(last, sizeof last, "%s", dash + 1);
-      } else {
-        snprintf(first, sizeof first, "%s", v);
-        snprintf(last, sizeof last, "%s", v);
-      }
-      if (parse_int(first, &o->first) || parse_int(last, &o->last) || o->first < 0 ||
-          o->last < o->first)
-        return cli_usage_error("import", "--frames '%s': expected A-B with 0 <= A <= B, or A", v);
+      bool single;
+      if (cli_range("import", "--frames", v, 0, INT_MAX, &o->first, &o->last, &single)) return 2;
     } else if (!strcmp(a, "--max-voxels")) {
       double m;
-      if (parse_double(v, &m) || m < 1) return cli_usage_error("import", "--max-voxels '%s'", v);
+      if (cli_number("import", "--max-voxels", v, 1, 1e300, &m)) return 2;
       o->max_voxels = m < 0x1p62 ? (long long)m : 1LL << 62; /* past long long: no limit */
     } else if (!strcmp(a, "--up")) {
       if (!strcmp(v, "z") || !strcmp(v, "Z"))
@@ -179,17 +152,14 @@ static int parse_options(int argc, char **argv, import_options *o) {
       else
         return cli_usage_error("import", "--up '%s': expected z or y", v);
     } else if (!strcmp(a, "--scale")) {
-      if (parse_double(v, &o->scale) || !(o->scale > 0))
-        return cli_usage_error("import", "--scale '%s': expected a positive number", v);
+      if (cli_number("import", "--scale", v, 1e-12, 1e12, &o->scale)) return 2;
     } else if (!strcmp(a, "--offset")) {
       if (sscanf(v, "%lf,%lf,%lf", &o->offset[0], &o->offset[1], &o->offset[2]) != 3)
         return cli_usage_error("import", "--offset '%s': expected X,Y,Z", v);
     } else if (!strcmp(a, "--resolution")) {
-      if (parse_int(v, &o->resolution) || o->resolution < 1 || o->resolution > 16384)
-        return cli_usage_error("import", "--resolution '%s': expected 1..16384", v);
+      if (cli_int("import", "--resolution", v, 1, CLI_MAX_SIZE, &o->resolution)) return 2;
     } else if (!strcmp(a, "--cell")) {
-      if (parse_double(v, &o->cell) || !(o->cell > 0))
-        return cli_usage_error("import", "--cell '%s': expected a positive size", v);
+      if (cli_number("import", "--cell", v, 1e-12, 1e12, &o->cell)) return 2;
     } else if (!strcmp(a, "--profile")) {
       if (!strcmp(v, "bspline"))
         o->profile.kind = VDB_PROFILE_BSPLINE;
@@ -198,9 +168,8 @@ static int parse_options(int argc, char **argv, import_options *o) {
       else
         return cli_usage_error("import", "--profile '%s': expected bspline or exponential", v);
     } else if (!strcmp(a, "--profile-knots")) {
-      if (parse_int(v, &o->profile.knots) || o->profile.knots < 1 ||
-          o->profile.knots > VDB_PROFILE_MAX_KNOTS)
-        return cli_usage_error("import", "--profile-knots '%s': expected 1..%d", v, VDB_PROFILE_MAX_KNOTS);
+      if (cli_int("import", "--profile-knots", v, 1, VDB_PROFILE_MAX_KNOTS, &o->profile.knots))
+        return 2;
     } else if (!strcmp(a, "--profile-degree")) {
       if (strcmp(v, "0") && strcmp(v, "1"))
         return cli_usage_error("import", "--profile-degree '%s': expected 0 or 1", v);
@@ -213,11 +182,9 @@ static int parse_options(int argc, char **argv, import_options *o) {
       else
         return cli_usage_error("import", "--profile-per '%s': expected sequence or frame", v);
     } else if (!strcmp(a, "--report-frame")) {
-      if (parse_int(v, &o->report_frame) || o->report_frame < 0)
-        return cli_usage_error("import", "--report-frame '%s'", v);
+      if (cli_int("import", "--report-frame", v, 0, INT_MAX, &o->report_frame)) return 2;
     } else if (!strcmp(a, "--report-rays")) {
-      if (parse_int(v, &o->report_rays) || o->report_rays < 1 || o->report_rays > 1024)
-        return cli_usage_error("import", "--report-rays '%s': expected 1..1024", v);
+      if (cli_int("import", "--report-rays", v, 1, 1024, &o->report_rays)) return 2;
     }
   }
   if (!o->input_count) return cli_usage_error("import", "no INPUT given");

@@ -14,6 +14,7 @@
 #include "app/config.h"
 #include "app/pipeline.h"
 #include "app/player.h"
+#include "app/cli.h"
 #include "app/cmd_record.h"
 #include "app/recorder.h"
 #include "sim/sim.h"
@@ -50,12 +51,6 @@ static void print_help(FILE *out) {
           "  -h, --help        this help\n");
 }
 
-static int parse_size(const char *text, int *width, int *height) {
-  char x = 0, tail = 0;
-  return sscanf(text, "%d%c%d%c", width, &x, height, &tail) == 3 && (x == 'x' || x == 'X') &&
-         *width > 0 && *height > 0 && *width <= 16384 && *height <= 16384;
-}
-
 int cmd_record(int argc, char **argv) {
   record_job job = {.command = "record"};
   for (int i = 1; i < argc; i++) {
@@ -70,55 +65,31 @@ int cmd_record(int argc, char **argv) {
       job.synchronous = true;
     } else if (!strcmp(a, "--frames") || !strcmp(a, "--out") || !strcmp(a, "--fps") ||
                !strcmp(a, "--size") || !strcmp(a, "--preview")) {
-      if (!value) {
-        fprintf(stderr, "fogpipe record: %s needs a value (see fogpipe record --help)\n", a);
-        return 2;
-      }
+      if (!value) return cli_usage_error("record", "%s needs a value", a);
       i++;
-      char *end = NULL;
       if (!strcmp(a, "--frames")) {
         /* N (frames 1..N) or A-B (frames A..B, for a farm's job array) */
-        errno = 0;
-        long from = 1, to = strtol(value, &end, 10);
-        if (*end == '-' && end != value) {
-          from = to;
-          const char *second = end + 1;
-          to = strtol(second, &end, 10);
-          if (end == second) end = (char *)"?";
-        }
-        if (*end || errno || from < 1 || to < from || to > 9999999) {
-          fprintf(stderr, "fogpipe record: --frames %s: expected N (frames 1..N) or A-B "
-                  "(frames A..B), whole numbers with 1 <= A <= B <= 9999999\n", value);
+        bool single;
+        if (cli_range("record", "--frames", value, 1, 9999999, &job.first_frame, &job.frames,
+                      &single))
           return 2;
-        }
-        job.first_frame = (int)from;
-        job.frames = (int)to;
+        if (single) job.first_frame = 1;
       } else if (!strcmp(a, "--fps")) {
-        job.fps = strtod(value, &end);
-        if (*end || !(job.fps >= 1.0 / PIPELINE_MAX_FRAME_SECONDS && job.fps <= 1000)) {
-          fprintf(stderr, "fogpipe record: --fps %s: expected a number from %g to 1000\n", value,
-                  1.0 / PIPELINE_MAX_FRAME_SECONDS);
+        if (cli_number("record", "--fps", value, 1.0 / PIPELINE_MAX_FRAME_SECONDS, 1000, &job.fps))
           return 2;
-        }
       } else if (!strcmp(a, "--size")) {
-        if (!parse_size(value, &job.width, &job.height)) {
-          fprintf(stderr, "fogpipe record: --size %s: expected WIDTHxHEIGHT, e.g. 640x360\n",
-                  value);
-          return 2;
-        }
+        if (cli_size("record", "--size", value, &job.width, &job.height)) return 2;
       } else if (!strcmp(a, "--out")) {
         job.out = value;
       } else {
         job.preview = value;
       }
     } else if (a[0] == '-' && a[1]) {
-      fprintf(stderr, "fogpipe record: unknown option %s (see fogpipe record --help)\n", a);
-      return 2;
+      return cli_usage_error("record", "unknown option '%s'", a);
     } else if (!job.config_path) {
       job.config_path = a;
     } else {
-      fprintf(stderr, "fogpipe record: unexpected argument %s (one CONFIG only)\n", a);
-      return 2;
+      return cli_usage_error("record", "unexpected argument '%s' (one CONFIG only)", a);
     }
   }
   if (!job.config_path || !job.frames || !job.out) {

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "app/cli.h"
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/player.h"
@@ -74,33 +75,16 @@ int cmd_render(int argc, char **argv) {
     } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
       out = argv[++i];
     } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
-      char tail;
-      if (sscanf(argv[++i], "%dx%d%c", &width, &height, &tail) != 2 || width < 1 ||
-          height < 1 || width > 16384 || height > 16384) {
-        fprintf(stderr, "fogpipe render: --size '%s': expected WxH, e.g. 1280x720\n", argv[i]);
-        return 2;
-      }
+      if (cli_size("render", "--size", argv[++i], &width, &height)) return 2;
     } else if (!strcmp(argv[i], "--vdb-frame") && i + 1 < argc) {
-      /* strtol, not sscanf %d: out-of-range digits are undefined behaviour for sscanf (a
-       * frame of 4294967297 read as 1). */
-      char *end;
-      errno = 0;
-      long frame = strtol(argv[++i], &end, 10);
-      vdb_frame = errno || *end || end == argv[i] || frame < 0 || frame > INT_MAX ? -1 : (int)frame;
-      if (vdb_frame < 0) {
-        fprintf(stderr, "fogpipe render: --vdb-frame '%s': expected a frame number >= 0\n",
-                argv[i]);
-        return 2;
-      }
+      if (cli_int("render", "--vdb-frame", argv[++i], 0, INT_MAX, &vdb_frame)) return 2;
     } else if (argv[i][0] == '-') {
-      fprintf(stderr, "fogpipe render: unknown option '%s' (or it lacks its value)\n\n", argv[i]);
-      usage(stderr);
-      return 2;
+      return cli_usage_error("render", "unknown option '%s' (or it lacks its value)", argv[i]);
     } else if (!config_path) {
       config_path = argv[i];
     } else {
-      fprintf(stderr, "fogpipe render: one config only, got '%s' and '%s'\n", config_path, argv[i]);
-      return 2;
+      return cli_usage_error("render", "one config only, got '%s' and '%s'", config_path,
+                             argv[i]);
     }
   }
   if (!config_path || !out) {

@@ -60,11 +60,10 @@ static int parse_basis(const char *s, transform_basis *b) {
   return 0;
 }
 
+/* A whole number 0..1000000 of a pyramid's sidecar file: non-zero when it is not one. */
 static int parse_int(const char *s, int *out) {
-  char *end;
-  errno = 0;
-  long v = strtol(s, &end, 10);
-  if (errno || end == s || *end || v < 0 || v > 1000000) return 1;
+  long v;
+  if (!cli_parse_long(s, 0, 1000000, &v)) return 1;
   *out = (int)v;
   return 0;
 }
@@ -384,18 +383,18 @@ int cmd_transform(int argc, char **argv) {
       desc.decomposition = TRANSFORM_STANDARD;
     } else if (!strcmp(a, "--basis") && has_value) {
       if (parse_basis(argv[++i], &desc.basis))
-        return cli_fail("transform", "--basis %s: expected haar, linear or quadratic", argv[i]);
+        return cli_usage_error("transform", "--basis '%s': expected haar, linear or quadratic",
+                               argv[i]);
     } else if (!strcmp(a, "--levels") && has_value) {
-      if (parse_int(argv[++i], &desc.levels))
-        return cli_fail("transform", "--levels %s: expected a whole number >= 0", argv[i]);
+      if (cli_int("transform", "--levels", argv[++i], 0, 60, &desc.levels)) return 2;
     } else if (!strcmp(a, "--mode") && has_value) {
       i++;
       if (!strcmp(argv[i], "symmetric")) desc.boundary = TRANSFORM_SYMMETRIC;
       else if (!strcmp(argv[i], "periodic")) desc.boundary = TRANSFORM_PERIODIC;
-      else return cli_fail("transform", "--mode %s: expected symmetric or periodic", argv[i]);
+      else return cli_usage_error("transform", "--mode '%s': expected symmetric or periodic",
+                                  argv[i]);
     } else if (!strcmp(a, "--threads") && has_value) {
-      if (parse_int(argv[++i], &desc.threads) || desc.threads < 1 || desc.threads > 2)
-        return cli_fail("transform", "--threads %s: expected 1 or 2", argv[i]);
+      if (cli_int("transform", "--threads", argv[++i], 1, 2, &desc.threads)) return 2;
     } else if (!strcmp(a, "--out") && has_value) {
       out = argv[++i];
     } else if (!strcmp(a, "--channel") && has_value) {
@@ -403,12 +402,11 @@ int cmd_transform(int argc, char **argv) {
     } else if (!strcmp(a, "--inverse") && has_value) {
       inverse = argv[++i];
     } else if (a[0] == '-' && a[1]) {
-      usage(stderr);
-      return cli_fail("transform", "unknown option or missing value: %s", a);
+      return cli_usage_error("transform", "unknown option or missing value: '%s'", a);
     } else if (!in) {
       in = a;
     } else {
-      return cli_fail("transform", "more than one input: %s and %s", in, a);
+      return cli_usage_error("transform", "more than one input: %s and %s", in, a);
     }
   }
   if (!out) {

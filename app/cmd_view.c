@@ -13,6 +13,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include "app/cli.h"
 #include "app/cmd_view.h"
 #include "app/commands.h"
 #include "app/config.h"
@@ -258,36 +259,17 @@ int cmd_view(int argc, char **argv) {
     } else if (!strcmp(argv[i], "--screenshot") && i + 1 < argc) {
       opts.screenshot = argv[++i];
     } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
-      char *end;
-      opts.frames = (int)strtol(argv[++i], &end, 10);
-      if (*end || opts.frames < 1) {
-        fprintf(stderr, "fogpipe view: --frames '%s': expected a positive integer\n", argv[i]);
-        return 2;
-      }
+      if (cli_int("view", "--frames", argv[++i], 1, 1000000, &opts.frames)) return 2;
     } else if (!strcmp(argv[i], "--render-scale") && i + 1 < argc) {
-      char *end;
-      opts.render_scale = strtod(argv[++i], &end);
-      if (*end || !(opts.render_scale > 0.05 && opts.render_scale <= 4)) {
-        fprintf(stderr, "fogpipe view: --render-scale '%s': expected a number in (0.05, 4]\n",
-                argv[i]);
-        return 2;
-      }
+      if (cli_number("view", "--render-scale", argv[++i], 0.05, 4, &opts.render_scale)) return 2;
     } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
-      char tail;
-      if (sscanf(argv[++i], "%dx%d%c", &opts.width, &opts.height, &tail) != 2 ||
-          opts.width < 1 || opts.height < 1) {
-        fprintf(stderr, "fogpipe view: --size '%s': expected WxH\n", argv[i]);
-        return 2;
-      }
+      if (cli_size("view", "--size", argv[++i], &opts.width, &opts.height)) return 2;
     } else if (argv[i][0] == '-') {
-      fprintf(stderr, "fogpipe view: unknown option '%s' (or it lacks its value)\n\n", argv[i]);
-      usage(stderr);
-      return 2;
+      return cli_usage_error("view", "unknown option '%s' (or it lacks its value)", argv[i]);
     } else if (!config_path) {
       config_path = argv[i];
     } else {
-      fprintf(stderr, "fogpipe view: one config only\n");
-      return 2;
+      return cli_usage_error("view", "one config only, got '%s' and '%s'", config_path, argv[i]);
     }
   }
   if (!config_path) {
