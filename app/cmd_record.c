@@ -153,8 +153,8 @@ static int open_output(const record_job *job, recorder *rec, scene_config *confi
   return failed;
 }
 
-/* The frames' source, advanced past frame done when it is a simulation (sequential); the
- * other sources' frames are independent: nothing to re-run. NULL (printed) on failure. */
+/* The frames' source, moved on past frame done (a simulation re-runs those frames; the
+ * other sources' frames are independent). NULL (printed) on failure. */
 static player *start_player(const record_job *job, const scene_config *config, int width,
                             int height, double fps, int first, int done) {
   render_error err = {{0}};
@@ -162,10 +162,12 @@ static player *start_player(const record_job *job, const scene_config *config, i
                                              .height = height, .fps = fps, .play = true,
                                              .synchronous = job->synchronous},
                               &err);
-  if (src && done > 0 && player_is_sequential(src)) {
-    printf("%s frame %d: re-running the simulation to it\n",
-           done >= first ? "resuming after" : "starting after", done);
-    fflush(stdout);
+  if (src && done > 0) {
+    if (player_is_sequential(src)) {
+      printf("%s frame %d: re-running the simulation to it\n",
+             done >= first ? "resuming after" : "starting after", done);
+      fflush(stdout);
+    }
     if (player_skip(src, done, &err)) {
       player_destroy(src);
       src = NULL;

@@ -3,7 +3,7 @@
  * Line numbers: Debian's libinih is built without INI_HANDLER_LINENO, so we parse through
  * ini_parse_stream with our own reader that reads whole lines and counts them; inih calls
  * the handler right after reading a key's line, so the count is that key's line. */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 /* realpath */
 #include "app/config.h"
 
 #include "render/render.h"
@@ -90,6 +90,7 @@ static const key_spec keys[] = {
     {"fog", "rbf", V_RBF, 0, 0, WORLD, NULL, 0, 0},
     {"fog", "rbf_base", V_DOUBLE, F(fog.rbf_base), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"fog", "volume_step", V_DOUBLE, F(fog.volume_step), 0, WORLD, NULL, 0, 0},
+    {"fog", "sequence", V_PATH, F(fog.sequence), 0, 0, NULL, F(fog.sequence_line), sizeof(((scene_config *)0)->fog.sequence)},
     {"fog", "vdb", V_PATH, F(fog.vdb), 0, 0, NULL, F(fog.vdb_line), sizeof(((scene_config *)0)->fog.vdb)},
     {"fog", "vdb_grid", V_STRING, F(fog.vdb_grid), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.vdb_grid)},
     {"fog", "vdb_up", V_ENUM, F(fog.vdb_up), 0, 0, "z|y", 0, 0},
@@ -132,6 +133,7 @@ static const key_spec keys[] = {
     {"sim", "emitter_rate", V_DOUBLE, F(sim.emitter_rate), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"sim", "seed", V_UINT, F(sim.seed), 0, 4294967295.0, NULL, 0, 0},
 };
+static int sequence_first_frame(const char *pattern);
 static const char *const sections = "fog, box, camera, terrain, objects, light, render, sim";
 
 void scene_config_init(scene_config *cfg) {
@@ -479,6 +481,23 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
          cfg->fog.fogmap_line, cfg->fog.vdb_line);
     return 1;
   }
+  if (cfg->fog.sequence[0] && (cfg->fog.fogmap[0] || cfg->fog.vdb[0] ||
+                               cfg->fog.model != FOG_MODEL_FOGMAP)) {
+    s.line = cfg->fog.sequence_line;
+    fail(&s, "fog", "sequence", "a fogmap sequence plays the fogmap model alone: no fogmap, "
+         "vdb or other model beside it");
+    return 1;
+  }
+  if (cfg->fog.sequence[0]) {
+    int first = 0;
+    if (!scene_config_sequence_path(cfg->fog.sequence, 1, NULL, 0) ||
+        (first = sequence_first_frame(cfg->fog.sequence)) < 0) {
+      s.line = cfg->fog.sequence_line;
+      fail(&s, "fog", "sequence", "%s: expected a pattern with #s for the frame number "
+           "whose frame 1 exists (fog.####.exr)", cfg->fog.sequence);
+      return 1;
+    }
+  }
   if (cfg->fog.fogmap[0] &&
       check_file(&s, "fog", "fogmap", cfg->fog.fogmap_line, cfg->fog.fogmap))
     return 1;
@@ -541,6 +560,138 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
   return 0;
 }
 
+bool scene_config_sequence_path(const char *pattern, long n, char *out, size_t size) {
+  const char *hash = strchr(pattern, '#');
+  if (!hash) return false;
+  int digits = 0;
+  while (hash[digits] == '#') digits++;
+  char buffer[SCENE_CONFIG_PATH_MAX + 32];
+  int length = snprintf(buffer, sizeof buffer, "%.*s%0*ld%s", (int)(hash - pattern), pattern,
+                        digits, n, hash + digits);
+  if (length < 0 || (size_t)length >= sizeof buffer) return false;
+  if (!out) return true;
+  if ((size_t)length >= size) return false;
+  memcpy(out, buffer, (size_t)length + 1);
+  return true;
+}
+
+/* 1 when the sequence's frame 1 exists, else -1. */
+static int sequence_first_frame(const char *pattern) {
+  char path[SCENE_CONFIG_PATH_MAX + 32];
+  struct stat st;
+  if (!scene_config_sequence_path(pattern, 1, path, sizeof path)) return -1;
+  return stat(path, &st) == 0 && S_ISREG(st.st_mode) ? 1 : -1;
+}
+
+/* ---- writing a config back (scene_config_write) ---- */
+
+static void write_path(FILE *f, const char *key, const char *path) {
+  char *absolute = realpath(path, NULL);
+  /* a pattern does not resolve: make its folder absolute */
+  if (!absolute) {
+    const char *slash = strrchr(path, '/');
+    char folder[SCENE_CONFIG_PATH_MAX];
+    snprintf(folder, sizeof folder, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
+    char *base = realpath(folder[0] ? folder : "/", NULL);
+    if (base) fprintf(f, "%s = %s/%s\n", key, base, slash ? slash + 1 : path);
+    else fprintf(f, "%s = %s\n", key, path);
+    free(base);
+    return;
+  }
+  fprintf(f, "%s = %s\n", key, absolute);
+  free(absolute);
+}
+
+/* Keys whose being set changes what the scene does (a VDB sequence places the fog and
+ * gives its profile unless the config sets them): written only when the config set them. */
+static bool key_unset(const scene_config *cfg, const key_spec *k) {
+  const size_t o = k->offset;
+  if (!strcmp(k->section, "fog") && !strcmp(k->key, "profile")) return !cfg->fog.profile_set;
+  if (strcmp(k->section, "box")) return false;
+  return (o == F(box.origin) && !cfg->box.origin_set) ||
+         (o == F(box.cell_size) && !cfg->box.cell_size_set) ||
+         (o == F(box.floor) && !cfg->box.floor_set) || (o == F(box.top) && !cfg->box.top_set);
+}
+
+static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
+  if (key_unset(cfg, k)) return;
+  const char *field = (const char *)cfg + k->offset;
+  const double *d = (const double *)field;
+  const float *c = (const float *)field;
+  switch (k->kind) {
+    case V_DOUBLE: fprintf(f, "%s = %.17g\n", k->key, d[0]); break;
+    case V_DOUBLE2: fprintf(f, "%s = %.17g %.17g\n", k->key, d[0], d[1]); break;
+    case V_LOOK_AT:
+      if (!cfg->camera.look_at_set) break;
+      /* fall through */
+    case V_DOUBLE3: fprintf(f, "%s = %.17g %.17g %.17g\n", k->key, d[0], d[1], d[2]); break;
+    case V_FLOAT3: fprintf(f, "%s = %.9g %.9g %.9g\n", k->key, c[0], c[1], c[2]); break;
+    case V_INT: fprintf(f, "%s = %d\n", k->key, *(const int *)field); break;
+    case V_UINT: fprintf(f, "%s = %u\n", k->key, *(const unsigned *)field); break;
+    case V_ENUM: {
+      const char *p = k->names;
+      for (int i = *(const int *)field; i > 0 && p; i--) p = strchr(p, '|') ? strchr(p, '|') + 1 : NULL;
+      if (p) fprintf(f, "%s = %.*s\n", k->key, (int)strcspn(p, "|"), p);
+      break;
+    }
+    case V_PATH:
+      if (field[0]) write_path(f, k->key, field);
+      break;
+    case V_STRING:
+      if (field[0]) fprintf(f, "%s = %s\n", k->key, field);
+      break;
+    case V_LIST: {
+      int count = *(const int *)((const char *)cfg + k->aux_offset);
+      if (!count) break;
+      fprintf(f, "%s =", k->key);
+      for (int i = 0; i < count; i++) fprintf(f, " %.17g", d[i]);
+      fputc('\n', f);
+      break;
+    }
+    case V_OBJECT:
+      for (int i = 0; i < cfg->object_count; i++) {
+        const scene_box_desc *b = &cfg->objects[i];
+        fprintf(f, "%s = %.17g %.17g %.17g %.17g %.17g %.9g %.9g %.9g\n", k->key, b->center[0],
+                b->center[1], b->size[0], b->size[1], b->size[2], b->colour[0], b->colour[1],
+                b->colour[2]);
+      }
+      break;
+    case V_RBF:
+      for (int i = 0; i < cfg->fog.rbf_count; i++) {
+        const fog_rbf *g = &cfg->fog.rbfs[i];
+        fprintf(f, "%s = %.17g %.17g %.17g %.17g %.17g\n", k->key, g->centre[0], g->centre[1],
+                g->centre[2], g->radius, g->density);
+      }
+      break;
+  }
+}
+
+int scene_config_write(const scene_config *cfg, const char *path, scene_config_error *err) {
+  char temp[SCENE_CONFIG_PATH_MAX + 16];
+  snprintf(temp, sizeof temp, "%s.tmp", path);
+  FILE *f = fopen(temp, "w");
+  if (!f) {
+    snprintf(err->message, sizeof err->message, "%.400s: cannot write: %s", path,
+             strerror(errno));
+    return 1;
+  }
+  fprintf(f, "; written by fogpipe (scene_config_write): every key of the scene\n");
+  const char *section = "";
+  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+    if (strcmp(keys[i].section, section)) {
+      section = keys[i].section;
+      fprintf(f, "%s[%s]\n", i ? "\n" : "", section);
+    }
+    write_key(f, cfg, &keys[i]);
+  }
+  if (ferror(f) | fclose(f) || rename(temp, path)) {
+    remove(temp);
+    snprintf(err->message, sizeof err->message, "%.400s: write failed (disk full?)", path);
+    return 1;
+  }
+  return 0;
+}
+
 bool scene_config_knows_key(const char *section, const char *key) {
   for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
     if (!strcmp(keys[i].section, section) && !strcmp(keys[i].key, key)) return true;
@@ -548,7 +699,8 @@ bool scene_config_knows_key(const char *section, const char *key) {
 }
 
 bool scene_config_has_fog(const scene_config *cfg) {
-  return cfg->fog.model != FOG_MODEL_FOGMAP || cfg->fog.fogmap[0] || cfg->fog.vdb[0];
+  return cfg->fog.model != FOG_MODEL_FOGMAP || cfg->fog.fogmap[0] || cfg->fog.vdb[0] ||
+         cfg->fog.sequence[0];
 }
 
 void scene_config_camera(const scene_config *cfg, camera *cam) {
@@ -604,8 +756,8 @@ static uint64_t fnv_file(uint64_t hash, const char *path) {
   return hash;
 }
 
-/* A VDB sequence by its frame numbers and file sizes: bakes run to gigabytes, too much to
- * read at every start. */
+/* A VDB or fogmap sequence by its frame numbers and file sizes: bakes run to gigabytes, too
+ * much to read at every start. */
 static uint64_t fnv_vdb_sequence(uint64_t hash, const char *pattern) {
   vdb_sequence seq;
   sim_error serr = {{0}};
@@ -639,7 +791,8 @@ uint64_t scene_config_fingerprint(const scene_config *cfg) {
       case V_STRING: h = fnv(h, field, strlen(field) + 1); break;
       case V_PATH: /* what the file holds, not how the path is spelt */
         if (!field[0]) h = fnv(h, "none", 4);
-        else if (k->offset == F(fog.vdb)) h = fnv_vdb_sequence(h, field);
+        else if (k->offset == F(fog.vdb) || k->offset == F(fog.sequence))
+          h = fnv_vdb_sequence(h, field);
         else h = fnv_file(h, field);
         break;
       case V_LIST: {

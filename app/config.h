@@ -77,6 +77,11 @@ typedef struct scene_fog_config {
   double rbf_base;
   /* model = volume: 0 integrates the grid exactly; > 0 marches it at this step (world). */
   double volume_step;
+  /* A fogmap per frame (`fogpipe bake`'s output): frame n of a recording shows the file of
+   * frame number n, `#`s in the pattern standing for its digits; the simulation is off.
+   * Exclusive with fogmap and vdb. */
+  char sequence[SCENE_CONFIG_PATH_MAX];
+  int sequence_line;
   /* OpenVDB fog (app/vdb_source.h): exclusive with fogmap. */
   char vdb[SCENE_CONFIG_PATH_MAX];    /* resolved file / pattern / folder / glob; "" none */
   int vdb_line;
@@ -145,6 +150,16 @@ bool scene_config_has_fog(const scene_config *cfg);
 
 /* Whether [section] key is a key configs may set. */
 bool scene_config_knows_key(const char *section, const char *key);
+
+/* The path of frame n of a `[fog] sequence` pattern: its run of #s replaced by n, zero-
+ * padded to the run's length. False when the pattern has no # or out (size bytes; NULL to
+ * check the pattern only) is too small. */
+bool scene_config_sequence_path(const char *pattern, long n, char *out, size_t size);
+
+/* Writes cfg as a config file that loads back into the same scene (the same fingerprint):
+ * every key with its value, in full precision, paths made absolute. Non-zero and err
+ * naming the file when it cannot be written (nothing is left behind then). */
+int scene_config_write(const scene_config *cfg, const char *path, scene_config_error *err);
 
 /* Every documented default (docs/config.md). */
 void scene_config_init(scene_config *cfg);

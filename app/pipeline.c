@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <string.h>
 #include <time.h>
 
@@ -100,6 +101,12 @@ typedef struct cpu_stages {
   bool has_vdb;
   vdb_source vdb;
   fogmap vdb_map;
+  /* [fog] sequence (a bake): frame n shows the sequence's file n, nothing is simulated;
+   * past the last file (sequence_count, counted at creation) the last one stays, as a VDB
+   * sequence holds its last frame (and the worker may run a frame ahead). */
+  bool has_sequence;
+  long sequence_count;
+  fogmap sequence_map;
 } cpu_stages;
 
 /* What the GL thread asked for since the last step, copied under the lock by the
@@ -236,7 +243,7 @@ static fluid_sim_desc sim_desc(pipeline *p, const pipeline_params *params, const
 static int sim_create(pipeline *p, const pipeline_params *params, const fogmap *start,
                       pipeline_error *err) {
   cpu_stages *c = &p->cpu;
-  if (c->has_vdb) return 0; /* a VDB sequence is played, not simulated */
+  if (c->has_vdb || c->has_sequence) return 0; /* a sequence is played, not simulated */
   fluid_sim_desc desc = sim_desc(p, params, start);
   sim_error serr = {{0}};
   fluid_sim *sim = fluid_sim_create(&desc, &serr);
@@ -327,6 +334,31 @@ static bool sim_params_differ(const pipeline_params *a, const pipeline_params *b
 
 /* One simulation step (several sim sub-steps when the frame is longer than the sim's
  * dt) and the transform of its density into the slot's grids. */
+/* Frame n of the config's [fog] sequence into *map (replacing what it held); it must have
+ * the size of frame 1. */
+static int load_sequence_frame(pipeline *p, long n, fogmap *map, pipeline_error *err) {
+  const scene_config *cfg = &p->config;
+  char path[SCENE_CONFIG_PATH_MAX + 32];
+  if (!scene_config_sequence_path(cfg->fog.sequence, n, path, sizeof path))
+    return fail(err, "%s:%d: [fog] sequence: no path for frame %ld", cfg->path,
+                cfg->fog.sequence_line, n);
+  fogmap loaded = {0};
+  sim_error serr = {{0}};
+  if (fogmap_load(path, NULL, &loaded, &serr))
+    return fail(err, "%s:%d: [fog] sequence: frame %ld: %s", cfg->path, cfg->fog.sequence_line,
+                n, serr.message);
+  const fogmap *first = &p->cpu.base;
+  if (first->density && (loaded.width != first->width || loaded.height != first->height)) {
+    fogmap_destroy(&loaded);
+    return fail(err, "%s:%d: [fog] sequence: frame %ld (%s) is %dx%d, frame 1 %dx%d",
+                cfg->path, cfg->fog.sequence_line, n, path, loaded.width, loaded.height,
+                first->width, first->height);
+  }
+  fogmap_destroy(map);
+  *map = loaded;
+  return 0;
+}
+
 static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *slot,
                           pipeline_error *err) {
   cpu_stages *c = &p->cpu;
@@ -362,7 +394,13 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
     return fail(err, "vdb: %s", serr.message);
   double t1 = now_ms(), c1 = thread_cpu_ms();
   if (slot_shape(p, slot, err)) return 1;
-  const fogmap *density = c->has_vdb ? &c->vdb_map : fluid_sim_density(c->sim);
+  if (c->has_sequence && (c->steps <= c->sequence_count || !c->sequence_map.density) &&
+      load_sequence_frame(p, c->steps < c->sequence_count ? c->steps : c->sequence_count,
+                          &c->sequence_map, err))
+    return 1;
+  const fogmap *density = c->has_vdb        ? &c->vdb_map
+                          : c->has_sequence ? &c->sequence_map
+                                            : fluid_sim_density(c->sim);
   transform_forward(c->plan, density->density, c->coefficients);
   transform_pyramid(c->plan, c->coefficients, c->approx);
   if (p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS)
@@ -498,7 +536,20 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
   pthread_cond_init(&p->changed, NULL);
 
   cpu_stages *c = &p->cpu;
-  if (p->config.fog.vdb[0]) {
+  if (p->config.fog.sequence[0]) {
+    /* A bake: frame 1 gives the grid's size, the files are read as the frames come. */
+    c->has_sequence = true;
+    if (load_sequence_frame(p, 1, &c->base, err)) {
+      pipeline_destroy(p);
+      return NULL;
+    }
+    char path[SCENE_CONFIG_PATH_MAX + 32];
+    struct stat st;
+    while (scene_config_sequence_path(p->config.fog.sequence, c->sequence_count + 1, path,
+                                      sizeof path) &&
+           stat(path, &st) == 0)
+      c->sequence_count++;
+  } else if (p->config.fog.vdb[0]) {
     /* The sequence places the fog and gives its profile (vdb_source_apply_config) before
      * the params are taken from the config. */
     scene_config_error cerr;
@@ -564,6 +615,7 @@ void pipeline_destroy(pipeline *p) {
   fogmap_destroy(&p->cpu.base);
   if (p->cpu.has_vdb) vdb_source_destroy(&p->cpu.vdb);
   fogmap_destroy(&p->cpu.vdb_map);
+  fogmap_destroy(&p->cpu.sequence_map);
   pipeline_fog_destroy(p->fog);
   if (p->scene) scene_pass_destroy(p->scene);
   gl_target_destroy(&p->scene_target);
@@ -604,6 +656,12 @@ int pipeline_skip(pipeline *p, long steps, pipeline_error *err) {
   }
   p->shown_step = p->cpu.steps;
   return 0;
+}
+
+bool pipeline_simulates(const pipeline *p) { return p->cpu.sim != NULL; }
+
+const fogmap *pipeline_sim_density(const pipeline *p) {
+  return p->cpu.sim ? fluid_sim_density(p->cpu.sim) : NULL;
 }
 
 /* ---- the frame (GL thread) ---- */

@@ -110,8 +110,14 @@ int pipeline_resize(pipeline *p, int width, int height, pipeline_error *err);
 long pipeline_step_index(const pipeline *p);
 
 /* Runs the simulation alone (no transform, no render) for `steps` frames: how --resume
- * reaches frame n deterministically. Only before the first pipeline_frame. */
+ * reaches frame n deterministically. Only before the first pipeline_frame. A played
+ * sequence (VDB or bake) only moves its frame counter. */
 int pipeline_skip(pipeline *p, long steps, pipeline_error *err);
+/* Whether frames come from the simulation (else from a VDB or fogmap sequence). */
+bool pipeline_simulates(const pipeline *p);
+/* The simulation's density after the last step or skip (what the transform of that frame
+ * reads); NULL when nothing is simulated. */
+const struct fogmap *pipeline_sim_density(const pipeline *p);
 
 pipeline_params pipeline_get_params(const pipeline *p);
 void pipeline_set_params(pipeline *p, const pipeline_params *params);

@@ -92,10 +92,10 @@ player *player_create(const player_desc *desc, render_error *err) {
 
 const char *player_gl_description(const player *p) { return p->gl_description; }
 
-bool player_is_sequential(const player *p) { return p->pipe != NULL; }
+bool player_is_sequential(const player *p) { return p->pipe && pipeline_simulates(p->pipe); }
 
 int player_skip(player *p, long frames, render_error *err) {
-  if (!p->pipe || frames <= 0) return 0;
+  if (!p->pipe || frames <= 0) return 0; /* a session draws any frame n directly */
   pipeline_error perr = {{0}};
   if (pipeline_skip(p->pipe, frames, &perr)) {
     snprintf(err->message, sizeof err->message, "%s", perr.message);

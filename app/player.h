@@ -38,11 +38,13 @@ player *player_create(const player_desc *desc, render_error *err);
 void player_destroy(player *player);
 /* The GL the frames are drawn with: "egl-surfaceless, 4.5 (Core Profile) Mesa ..., llvmpipe". */
 const char *player_gl_description(const player *player);
-/* Whether the fog of a frame depends on the frames before it (a simulation): then frame n
- * needs player_skip(n - 1) before it, when the frames before are not drawn. */
+/* Whether the fog of a frame depends on the frames before it (a simulation, whose skip
+ * costs the simulation of the frames skipped). Frame n after no frames drawn needs
+ * player_skip(n - 1) first, whatever the source. */
 bool player_is_sequential(const player *player);
-/* Advances a sequential source by `frames` frames without drawing them (only before the
- * first player_frame); a no-op for the others. */
+/* Moves the source on by `frames` frames without drawing them (only before the first
+ * player_frame): a simulation runs them, a played bake only counts them; a render session
+ * draws any frame directly and ignores it. */
 int player_skip(player *player, long frames, render_error *err);
 /* Draws frame n (1-based; a sequential source: the one after the last drawn or skipped) and
  * reads it back, rows top first, any output may be NULL: rgba (4 linear floats a pixel),

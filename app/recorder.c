@@ -29,8 +29,8 @@ static int fail(recorder_error *err, const char *fmt, ...) {
 }
 
 /* mkdir -p: creates each missing component of path; created gets the first one it made. */
-static int make_folders(const char *path, char *created, size_t created_size,
-                        recorder_error *err) {
+int recorder_make_folders(const char *path, char *created, size_t created_size,
+                          recorder_error *err) {
   char partial[1024];
   size_t n = strlen(path);
   if (n == 0 || n >= sizeof partial) return fail(err, "output folder name is empty or too long");
@@ -67,7 +67,7 @@ int recorder_open(recorder *rec, const recorder_desc *desc, recorder_error *err)
   for (size_t n = strlen(rec->folder); n > 1 && rec->folder[n - 1] == '/'; n--)
     rec->folder[n - 1] = '\0';
   snprintf(rec->name, sizeof rec->name, "%s", desc->name && *desc->name ? desc->name : "frame");
-  if (make_folders(rec->folder, rec->created, sizeof rec->created, err)) return 1;
+  if (recorder_make_folders(rec->folder, rec->created, sizeof rec->created, err)) return 1;
 
   /* Prove the folder is writable: access() alone is fooled by read-only mounts and full
    * disks, so create a probe file, write a block, flush it to disk and remove it. */

@@ -104,5 +104,9 @@ void recorder_progress_end(recorder_progress *p);
 /* Removes the folders recorder_open made, innermost first, as long as they are empty (a
  * failed run's frames are never removed). */
 void recorder_remove_created_folders(const recorder *rec);
+/* mkdir -p path; created (created_size bytes, "" to start) gets the first folder it made,
+ * for recorder_remove_created_folders. */
+int recorder_make_folders(const char *path, char *created, size_t created_size,
+                          recorder_error *err);
 
 #endif

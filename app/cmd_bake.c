@@ -1,0 +1,156 @@
+/* fogpipe bake CONFIG --frames N --out DIR [--fps F]: the simulation of a fogmap scene,
+ * run once, written as the fogmap of every frame (DIR/fog.####.exr, float) and a config
+ * that plays them (DIR/bake.ini, `[fog] sequence`). The simulation is sequential; the
+ * bake is not: a farm job renders any range of it with `fogpipe record DIR/bake.ini
+ * --frames A-B` without simulating the frames before A (docs/farm.md). Frame n of that
+ * recording equals frame n of `fogpipe record CONFIG --fps F`, bit for bit. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app/cli.h"
+#include "app/commands.h"
+#include "app/config.h"
+#include "app/pipeline.h"
+#include "app/recorder.h"
+#include "render/gl_context.h"
+#include "sim/sim.h"
+
+static void print_help(FILE *out) {
+  fprintf(out,
+          "usage: fogpipe bake CONFIG --frames N --out DIR [--fps F]\n\n"
+          "Runs the scene's fog simulation for N frames and writes each frame's fogmap\n"
+          "(DIR/fog.0001.exr ...) and DIR/bake.ini, the scene playing them. Render ranges\n"
+          "of it on a farm: fogpipe record DIR/bake.ini --frames A-B --out FRAMES/\n\n"
+          "options:\n"
+          "  --frames N   frames to bake, 1 to 9999999\n"
+          "  --out DIR    the bake's folder (created if missing)\n"
+          "  --fps F      frames per second of simulated time, as record's --fps (default 24)\n"
+          "  -h, --help   this help\n");
+}
+
+typedef struct bake_job {
+  const char *config_path, *out;
+  int frames;
+  double fps;
+} bake_job;
+
+/* -1 to go on, else the exit status. */
+static int parse_bake_options(int argc, char **argv, bake_job *job) {
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
+    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+      print_help(stdout);
+      return 0;
+    } else if (!strcmp(a, "--frames") && value) {
+      if (cli_int("bake", "--frames", argv[++i], 1, 9999999, &job->frames)) return 2;
+    } else if (!strcmp(a, "--fps") && value) {
+      if (cli_number("bake", "--fps", argv[++i], 1.0 / PIPELINE_MAX_FRAME_SECONDS, 1000,
+                     &job->fps))
+        return 2;
+    } else if (!strcmp(a, "--out") && value) {
+      job->out = argv[++i];
+    } else if (a[0] == '-' && a[1]) {
+      return cli_usage_error("bake", "unknown option or missing value: '%s'", a);
+    } else if (!job->config_path) {
+      job->config_path = a;
+    } else {
+      return cli_usage_error("bake", "unexpected argument '%s' (one CONFIG only)", a);
+    }
+  }
+  if (!job->config_path || !job->frames || !job->out)
+    return cli_usage_error("bake", "%s missing",
+                           !job->config_path ? "CONFIG" : !job->frames ? "--frames N" : "--out DIR");
+  return -1;
+}
+
+/* The frame files' pattern: at least 4 digits, more for longer bakes. */
+static void frame_pattern(const bake_job *job, char *pattern, size_t size) {
+  int digits = 4;
+  for (long n = 10000; n <= job->frames; n *= 10) digits++;
+  snprintf(pattern, size, "%s/fog.%.*s.exr", job->out, digits, "##########");
+}
+
+/* Removes frames 1..written of pattern (a failed bake leaves nothing of its own). */
+static void remove_frames(const char *pattern, int written) {
+  char path[SCENE_CONFIG_PATH_MAX + 32];
+  for (int n = 1; n <= written; n++)
+    if (scene_config_sequence_path(pattern, n, path, sizeof path)) unlink(path);
+}
+
+/* Simulates frame after frame and writes each density; *written counts the files. */
+static int bake_frames(const bake_job *job, const scene_config *cfg, const char *pattern,
+                       int *written) {
+  render_error gerr = {{0}};
+  gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
+  if (!gl) return cli_fail("bake", "%s", gerr.message);
+  pipeline_error perr = {{0}};
+  /* The pipeline the recording runs (its sim set-up, steps per frame), drawing nothing. */
+  pipeline *p = pipeline_create(&(pipeline_desc){.config = cfg, .width = 16, .height = 16,
+                                                 .frame_seconds = 1.0 / job->fps,
+                                                 .synchronous = true},
+                                &perr);
+  int status = p ? 0 : cli_fail("bake", "%s", perr.message);
+  for (int n = 1; !status && n <= job->frames; n++) {
+    if (pipeline_skip(p, 1, &perr)) {
+      status = cli_fail("bake", "frame %d: %s", n, perr.message);
+      break;
+    }
+    const fogmap *density = pipeline_sim_density(p);
+    char path[SCENE_CONFIG_PATH_MAX + 32];
+    scene_config_sequence_path(pattern, n, path, sizeof path);
+    image_channel y = {.name = "Y", .pixels = density->density, .as_half = 0};
+    sim_error serr = {{0}};
+    if (image_write_exr(path, density->width, density->height, &y, 1, &serr)) {
+      status = cli_fail("bake", "%s", serr.message);
+      break;
+    }
+    *written = n;
+  }
+  pipeline_destroy(p);
+  gl_context_destroy(gl);
+  return status;
+}
+
+int cmd_bake(int argc, char **argv) {
+  bake_job job = {.fps = 24.0};
+  int parsed = parse_bake_options(argc, argv, &job);
+  if (parsed >= 0) return parsed;
+  scene_config cfg;
+  scene_config_error cerr = {{0}};
+  if (scene_config_load(job.config_path, &cfg, &cerr)) return cli_fail("bake", "%s", cerr.message);
+  if (cfg.fog.model != FOG_MODEL_FOGMAP || cfg.fog.vdb[0] || cfg.fog.sequence[0])
+    return cli_fail("bake", "%s: nothing to bake: %s", job.config_path,
+                    cfg.fog.sequence[0] ? "it plays a bake already"
+                    : cfg.fog.vdb[0]    ? "a [fog] vdb sequence is per frame already (record "
+                                          "its ranges directly)"
+                                        : "its model has no simulation (record its ranges "
+                                          "directly)");
+  recorder folders = {.folder = ""};
+  snprintf(folders.folder, sizeof folders.folder, "%s", job.out);
+  recorder_error rerr = {{0}};
+  if (recorder_make_folders(job.out, folders.created, sizeof folders.created, &rerr))
+    return cli_fail("bake", "%s", rerr.message);
+  char pattern[SCENE_CONFIG_PATH_MAX], ini[SCENE_CONFIG_PATH_MAX + 16];
+  frame_pattern(&job, pattern, sizeof pattern);
+  snprintf(ini, sizeof ini, "%s/bake.ini", job.out);
+  int written = 0;
+  int status = bake_frames(&job, &cfg, pattern, &written);
+  if (!status) {
+    /* The same scene with the frames as its fog (density_scale, box, profile as they are). */
+    scene_config baked = cfg;
+    baked.fog.fogmap[0] = '\0';
+    snprintf(baked.fog.sequence, sizeof baked.fog.sequence, "%s", pattern);
+    if (scene_config_write(&baked, ini, &cerr)) status = cli_fail("bake", "%s", cerr.message);
+  }
+  if (status) {
+    remove_frames(pattern, written);
+    recorder_remove_created_folders(&folders);
+    return status;
+  }
+  printf("baked %d frame%s of %s: %s and %s; render a range: fogpipe record %s --frames A-B "
+         "--out FRAMES/\n", job.frames, job.frames == 1 ? "" : "s", job.config_path, pattern, ini,
+         ini);
+  return 0;
+}
