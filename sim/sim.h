@@ -4,6 +4,7 @@
 #ifndef FOGPIPE_SIM_H
 #define FOGPIPE_SIM_H
 
+#include "sim/image.h"
 #include "sim/fogmap.h"
 #include "sim/fluid.h"
 #include "sim/designed_fog.h"
