@@ -198,6 +198,15 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
     } else if (find_conversion(in, &s, &e)) {
       status = add_pattern(&list, in, first, last, &matched);
     } else if (strpbrk(in, "*?[")) {
+      /* Wildcards in the file name only: one folder listed. In folder components they made
+       * glob walk whole trees ("/ * / * / *" took minutes; found by the config fuzzer). */
+      const char *slash = strrchr(in, '/');
+      if (slash && strcspn(in, "*?[") < (size_t)(slash - in)) {
+        snprintf(err->message, sizeof err->message,
+                 "%s: wildcards go in the file name only (e.g. bake/fluid_*.vdb), not in "
+                 "folder names", in);
+        goto fail;
+      }
       status = add_glob(&list, in, &matched);
     } else if (stat(in, &st) == 0 && S_ISDIR(st.st_mode)) {
       snprintf(pattern, sizeof pattern, "%s/*.vdb", in);

@@ -5,6 +5,7 @@
  * the ground fog stays near the ground in its profile. */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 #include <stdlib.h>
 
 #include "sim/sim.h"
@@ -27,7 +28,26 @@ static double fogmap_mass(const vdb_frame *f) {
   return s * f->fogmap_place.cell_size * f->fogmap_place.cell_size * f->profile.thickness;
 }
 
+/* A glob lists one folder: wildcards in its file name find the bake's frames, in a folder
+ * name they are refused at once (they made glob walk whole trees), naming the input. */
+static void check_globs(void) {
+  const char *name_glob = "../shared/data/vdb/plume/data/fluid_data_00*.vdb";
+  vdb_sequence seq;
+  sim_error err = {{0}};
+  CHECK(vdb_sequence_find(&name_glob, 1, -1, -1, &seq, &err) == 0 && seq.count == 48,
+        "%s: %s", name_glob, err.message);
+  if (!err.message[0]) vdb_sequence_destroy(&seq);
+  const char *folder_globs[] = {"/*/*/*/*.vdb", "../shared/data/vdb/*/data/fluid_data_0001.vdb"};
+  for (int i = 0; i < 2; i++) {
+    err.message[0] = '\0';
+    CHECK(vdb_sequence_find(&folder_globs[i], 1, -1, -1, &seq, &err) != 0 &&
+              strstr(err.message, folder_globs[i]) && strstr(err.message, "file name only"),
+          "%s: accepted (%s)", folder_globs[i], err.message);
+  }
+}
+
 int main(void) {
+  check_globs();
   for (int s = 0; s < 2; s++) {
     const scene *sc = &scenes[s];
     char pattern[256];
