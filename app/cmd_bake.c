@@ -149,6 +149,11 @@ int cmd_bake(int argc, char **argv) {
     recorder_remove_created_folders(&folders);
     return status;
   }
+  /* A longer bake made here before must not play on past this one's end. */
+  char path[SCENE_CONFIG_PATH_MAX + 32];
+  for (long n = (long)job.frames + 1;
+       scene_config_sequence_path(pattern, n, path, sizeof path) && unlink(path) == 0; n++) {
+  }
   printf("baked %d frame%s of %s: %s and %s; render a range: fogpipe record %s --frames A-B "
          "--out FRAMES/\n", job.frames, job.frames == 1 ? "" : "s", job.config_path, pattern, ini,
          ini);

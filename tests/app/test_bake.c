@@ -75,6 +75,14 @@ int main(void) {
             baked.box.cell_size == original.box.cell_size && baked.fog.levels == original.fog.levels,
         "bake.ini is not the scene playing its frames");
 
+  /* Baking fewer frames into the same folder leaves no frame of the longer bake to play. */
+  snprintf(command, sizeof command, "'%s' bake %s --frames 3 --out '%s'", record_bin(),
+           RECORD_TEST_CONFIG, bake);
+  CHECK(run(command, log) == 0, "the second, shorter bake failed");
+  char stale[700];
+  snprintf(stale, sizeof stale, "%s/fog.0004.exr", bake);
+  CHECK(access(stale, F_OK) != 0, "the shorter bake left %s of the longer one", stale);
+
   /* Nothing to bake: refused, no folder made. */
   char none[600];
   snprintf(none, sizeof none, "%s/none/deeper", root);
