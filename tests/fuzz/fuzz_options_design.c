@@ -16,10 +16,22 @@ void fuzz_design_parse(int argc, char **argv) {
       if (!parse_numbers(a, v, count))
         for (int k = 0; k < count; k++)
           if (!isfinite(v[k])) abort();
+    /* The shared value parsers (app/cli.h) the commands call: what they accept is in
+     * range. */
     long n;
     static const long bounds[][2] = {{1, 16384}, {0, 0x7fffffffL}, {1, max_blobs}, {1, 30}};
     for (size_t b = 0; b < sizeof bounds / sizeof bounds[0]; b++)
-      if (!parse_int(a, bounds[b][0], bounds[b][1], &n) && (n < bounds[b][0] || n > bounds[b][1]))
+      if (cli_parse_long(a, bounds[b][0], bounds[b][1], &n) && (n < bounds[b][0] || n > bounds[b][1]))
         abort();
+    double d;
+    if (cli_parse_double(a, -1e9, 1e9, &d) && !(d >= -1e9 && d <= 1e9)) abort();
+    int w = 0, h = 0, first = 0, last = 0;
+    bool single;
+    if (cli_size("design", "--size", a, &w, &h) == 0 &&
+        (w < 1 || w > CLI_MAX_SIZE || h < 1 || h > CLI_MAX_SIZE))
+      abort();
+    if (cli_range("record", "--frames", a, 1, 9999999, &first, &last, &single) == 0 &&
+        (first < 1 || last > 9999999 || first > last || (single && first != last)))
+      abort();
   }
 }
