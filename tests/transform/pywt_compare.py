@@ -6,7 +6,7 @@ every PyWavelets coefficient is fogpipe's times sqrt(2) per level per dimension:
 non-standard (wavedec2): band at depth k (1 = finest) and the approximation (depth J)
 are 2^k times ours; standard (wavedec along x, then along y): a coefficient whose x
 band has depth kx and y band depth ky is sqrt(2)^(kx+ky) times ours. Coefficient
-positions agree with no shift in periodization mode (PLATFORM-NOTES.md: bior2.2 at
+positions agree with no shift in periodization mode (docs/platform.md: bior2.2 at
 2^J n, haar and bior3.3 at 2^J n + (2^J-1)/2 -- the same as ours).
 
 usage: pywt_compare.py DUMP_BINARY TMPDIR   (exit 77 = skipped: no pywt)"""
