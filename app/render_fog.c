@@ -255,12 +255,19 @@ int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *er
   }
   if (f->model != FOG_MODEL_FOGMAP) return render_analytic_fog(fog, cfg, err);
   if (f->vdb[0]) return render_vdb_fog(fog, cfg, err);
+  /* A bake ([fog] sequence) shows its frame 1 as a still (record plays it). */
+  char first[SCENE_CONFIG_PATH_MAX + 32];
+  const bool baked = f->sequence[0] && scene_config_sequence_path(f->sequence, 1, first,
+                                                                  sizeof first);
+  const char *path = baked ? first : f->fogmap;
+  const char *key = baked ? "sequence" : "fogmap";
+  const int line = baked ? f->sequence_line : f->fogmap_line;
   fogmap map = {0};
   sim_error serr;
   fogmap_load_desc load = {.channel = f->channel[0] ? f->channel : NULL};
-  if (fogmap_load(f->fogmap, &load, &map, &serr)) {
-    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] fogmap: %.280s", cfg->path,
-             f->fogmap_line, serr.message);
+  if (fogmap_load(path, &load, &map, &serr)) {
+    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] %s: %.280s", cfg->path, line,
+             key, serr.message);
     return 1;
   }
   int status = render_fog_create_map(fog, cfg, &map, err);
@@ -268,8 +275,8 @@ int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *er
   if (status) { /* name the file: the GL's limits, the transform's sizes are about it */
     char reason[sizeof err->message];
     snprintf(reason, sizeof reason, "%s", err->message);
-    snprintf(err->message, sizeof err->message, "%.120s:%d: [fog] fogmap %.120s: %.250s",
-             cfg->path, f->fogmap_line, f->fogmap, reason);
+    snprintf(err->message, sizeof err->message, "%.120s:%d: [fog] %s %.120s: %.250s",
+             cfg->path, line, key, path, reason);
   }
   return status;
 }

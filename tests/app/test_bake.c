@@ -65,6 +65,14 @@ int main(void) {
   fogmap_destroy(&m1);
   fogmap_destroy(&m2);
 
+  /* A still of the bake (render, view) shows its frame 1: fog, not an empty scene. */
+  char still[700];
+  snprintf(still, sizeof still, "%s/still.exr", root);
+  snprintf(command, sizeof command, "'%s' render '%s' --size %s --out '%s'", record_bin(), ini,
+           RECORD_TEST_SIZE, still);
+  CHECK(run(command, log) == 0 && record_log_contains(log, "scene + fog"),
+        "render of the bake's config failed");
+
   /* The bake's config is the scene with the frames as its fog. */
   scene_config original, baked;
   scene_config_error err = {{0}};
