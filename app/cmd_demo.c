@@ -354,7 +354,10 @@ static int demo_loop(gl_context *gl, pipeline *pipe, panel *ui, demo_ui *d,
       fprintf(stderr, "fogpipe demo: %s\n", perr.message);
       return 1;
     }
-    pipeline_present(pipe, fb_w, fb_h);
+    if (pipeline_present(pipe, fb_w, fb_h, &perr)) {
+      fprintf(stderr, "fogpipe demo: %s\n", perr.message);
+      return 1;
+    }
     panel_end_frame(ui);
     if (o->screenshot && frame + 1 >= (o->frames ? o->frames : 30))
       return save_screenshot(o->screenshot, fb_w, fb_h);

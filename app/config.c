@@ -489,9 +489,7 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
     return 1;
   }
   if (cfg->fog.sequence[0]) {
-    int first = 0;
-    if (!scene_config_sequence_path(cfg->fog.sequence, 1, NULL, 0) ||
-        (first = sequence_first_frame(cfg->fog.sequence)) < 0) {
+    if (sequence_first_frame(cfg->fog.sequence) < 0) {
       s.line = cfg->fog.sequence_line;
       fail(&s, "fog", "sequence", "%s: expected a pattern with #s for the frame number "
            "whose frame 1 exists (fog.####.exr)", cfg->fog.sequence);
@@ -568,9 +566,7 @@ bool scene_config_sequence_path(const char *pattern, long n, char *out, size_t s
   char buffer[SCENE_CONFIG_PATH_MAX + 32];
   int length = snprintf(buffer, sizeof buffer, "%.*s%0*ld%s", (int)(hash - pattern), pattern,
                         digits, n, hash + digits);
-  if (length < 0 || (size_t)length >= sizeof buffer) return false;
-  if (!out) return true;
-  if ((size_t)length >= size) return false;
+  if (length < 0 || (size_t)length >= sizeof buffer || (size_t)length >= size) return false;
   memcpy(out, buffer, (size_t)length + 1);
   return true;
 }

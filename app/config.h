@@ -152,8 +152,8 @@ bool scene_config_has_fog(const scene_config *cfg);
 bool scene_config_knows_key(const char *section, const char *key);
 
 /* The path of frame n of a `[fog] sequence` pattern: its run of #s replaced by n, zero-
- * padded to the run's length. False when the pattern has no # or out (size bytes; NULL to
- * check the pattern only) is too small. */
+ * padded to the run's length. False when the pattern has no # or out (size bytes) is too
+ * small. */
 bool scene_config_sequence_path(const char *pattern, long n, char *out, size_t size);
 
 /* Writes cfg as a config file that loads back into the same scene (the same fingerprint):

@@ -832,8 +832,11 @@ int pipeline_read_frame(pipeline *p, float *rgba, float *transmittance, float *d
   return 0;
 }
 
-void pipeline_present(pipeline *p, int width, int height) {
-  pipeline_fog_present(p->fog, width, height);
+int pipeline_present(pipeline *p, int width, int height, pipeline_error *err) {
+  render_error rerr = {{0}};
+  if (pipeline_fog_present(p->fog, width, height, &rerr))
+    return fail(err, "present: %s", rerr.message);
+  return 0;
 }
 
 pipeline_params pipeline_get_params(const pipeline *p) {

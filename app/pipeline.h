@@ -100,7 +100,7 @@ int pipeline_read_frame(pipeline *p, float *rgba, float *transmittance, float *d
                         pipeline_error *err);
 
 /* Draws the last frame's colour into the default framebuffer (window), scaled to w x h. */
-void pipeline_present(pipeline *p, int width, int height);
+int pipeline_present(pipeline *p, int width, int height, pipeline_error *err);
 
 /* Render size; resizing re-creates the render targets. */
 void pipeline_size(const pipeline *p, int *width, int *height);

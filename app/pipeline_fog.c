@@ -25,8 +25,7 @@ pipeline_fog *pipeline_fog_create(render_error *err) {
     snprintf(err->message, sizeof err->message, "out of memory");
     return NULL;
   }
-  if (fog_pass_create(&fog->pass, err) || !(fog->presenter = gl_presenter_create(err))) {
-    fog_pass_destroy(fog->pass);
+  if (fog_pass_create(&fog->pass, err)) {
     free(fog);
     return NULL;
   }
@@ -94,7 +93,10 @@ int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, rend
   return 0;
 }
 
-void pipeline_fog_present(pipeline_fog *fog, int width, int height) {
+int pipeline_fog_present(pipeline_fog *fog, int width, int height, render_error *err) {
+  /* made on the first present: headless recordings never show a window */
+  if (!fog->presenter && !(fog->presenter = gl_presenter_create(err))) return 1;
   if (fog->target.framebuffer)
     gl_presenter_draw(fog->presenter, &fog->target, width, height, GL_PRESENT_BILINEAR);
+  return 0;
 }

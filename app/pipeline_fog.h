@@ -37,6 +37,6 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
 /* Rows top first; either pointer may be NULL. */
 int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, render_error *err);
 /* Blits the fog target's colour to the default framebuffer at width x height. */
-void pipeline_fog_present(pipeline_fog *fog, int width, int height);
+int pipeline_fog_present(pipeline_fog *fog, int width, int height, render_error *err);
 
 #endif
