@@ -7,8 +7,8 @@ packages=(
   build-essential cmake pkg-config
   # fogmaps and recordings: OpenEXR 3 C API, PNG
   libopenexr-dev libspng-dev
-  # Mantaflow configs are gzip
-  zlib1g-dev
+  # Mantaflow configs are gzip; the VDB pre-check decodes tree topology chunks (zip, blosc)
+  zlib1g-dev libblosc-dev
   # simulation
   libfftw3-dev
   # VDB import (Debian's libopenvdb-dev misses boost headers), vdb_render for the bench

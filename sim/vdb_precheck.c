@@ -32,6 +32,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <blosc.h>
+#include <zlib.h>
+
 #include "sim/image_io.h"
 #include "sim/vdb_import.h"
 
@@ -465,13 +468,57 @@ static uint32_t count_on(const unsigned char *mask, uint64_t bytes) {
   return n;
 }
 
+/* A topology chunk of `size` compressed bytes, at in->pos, decoded as OpenVDB decodes it:
+ * unzipFromStream (zlib's uncompress) and bloscDecompress (blosc_decompress_ctx) throw
+ * unless the chunk gives exactly `bytes` bytes, and RootNode::readTopology then loses the
+ * internal node it was reading (~0.5 MB per damaged file; tests/fuzz/lsan.supp), so such a
+ * chunk is refused here. OpenVDB never writes a chunk longer than the compressor's bound
+ * (it stores the bytes raw instead), which bounds the memory this takes. */
+static int decode_chunk(vdb_in *in, int blosc, uint64_t size, uint64_t bytes, const char *what) {
+  const uint64_t bound = blosc ? bytes + BLOSC_MAX_OVERHEAD : compressBound((uLong)bytes);
+  const char *kind = blosc ? "blosc" : "zip";
+  if (size > bound)
+    return damaged(in, "the %s chunk of %s is %" PRIu64 " bytes, more than %s's bound of %"
+                   PRIu64 " for %" PRIu64 " bytes (at byte %" PRIu64 ")", kind, what, size,
+                   kind, bound, bytes, in->pos - 8);
+  unsigned char *packed = malloc(size ? size : 1), *unpacked = malloc(bytes ? bytes : 1);
+  if (!packed || !unpacked) {
+    free(packed);
+    free(unpacked);
+    return sim_fail(in->err, "%s: out of memory checking the file", in->path);
+  }
+  const uint64_t chunk = in->pos;
+  char phrase[256];
+  snprintf(phrase, sizeof phrase, "the %s chunk of %" PRIu64 " bytes of %s", kind, size, what);
+  int bad = get(in, packed, size, phrase);
+  long long got = -1;
+  if (!bad && blosc) {
+    got = blosc_decompress_ctx(packed, unpacked, bytes, 1);
+  } else if (!bad) {
+    uLongf length = (uLongf)bytes;
+    got = uncompress(unpacked, &length, packed, (uLong)size) == Z_OK ? (long long)length : -1;
+  }
+  if (!bad && got < 0)
+    bad = damaged(in, "the %s chunk of %" PRIu64 " bytes of %s (at byte %" PRIu64 ") does "
+                  "not decode to the %" PRIu64 " bytes expected", kind, size, what, chunk - 8,
+                  bytes);
+  else if (!bad && got != (long long)bytes)
+    bad = damaged(in, "the %s chunk of %" PRIu64 " bytes of %s (at byte %" PRIu64 ") decodes "
+                  "to %lld bytes where %" PRIu64 " are expected", kind, size, what, chunk - 8,
+                  got, bytes);
+  free(packed);
+  free(unpacked);
+  return bad;
+}
+
 /* io::readData's chunk (io/Compression.h) of `bytes` bytes as `compression` stores it:
  * blosc or zip (bloscFromStream, unzipFromStream: an int64 size, then that many bytes,
  * which OpenVDB allocates first; <= 0: -size raw bytes, which must be exactly `bytes`),
  * or raw. A blosc chunk's 16-byte header must claim `bytes` uncompressed and at most the
  * chunk's own size compressed: blosc_decompress_ctx is not told the chunk's size and
- * trusts the header. */
-static int read_chunk(vdb_in *in, uint32_t compression, uint64_t bytes, const char *what) {
+ * trusts the header. With `decode` (the topology's chunks) the chunk is decoded too. */
+static int read_chunk(vdb_in *in, uint32_t compression, uint64_t bytes, int decode,
+                      const char *what) {
   char phrase[256];
   if (!(compression & (COMPRESS_BLOSC | COMPRESS_ZIP))) {
     snprintf(phrase, sizeof phrase, "%s (%" PRIu64 " bytes)", what, bytes);
@@ -505,6 +552,7 @@ static int read_chunk(vdb_in *in, uint32_t compression, uint64_t bytes, const ch
                      le(header + 12, 4), le(header + 4, 4), size, bytes);
     in->pos = chunk;
   }
+  if (decode) return decode_chunk(in, compression & COMPRESS_BLOSC, (uint64_t)size, bytes, what);
   in->pos += (uint64_t)size;
   return 0;
 }
@@ -515,7 +563,7 @@ static int read_chunk(vdb_in *in, uint32_t compression, uint64_t bytes, const ch
  * 16-bit floats when the grid saves floats as half (HalfReader: nothing at all for no
  * values). */
 static int read_values(vdb_in *in, const tree_walk *w, uint64_t count, uint32_t active,
-                       uint64_t selection_bytes, const char *what) {
+                       uint64_t selection_bytes, int decode, const char *what) {
   char phrase[224];
   unsigned char flag;
   snprintf(phrase, sizeof phrase, "%s's compression flag (1 byte)", what);
@@ -537,7 +585,7 @@ static int read_values(vdb_in *in, const tree_walk *w, uint64_t count, uint32_t 
   if (as_half && count < 1) return 0;
   snprintf(phrase, sizeof phrase, "the %" PRIu64 " values of %s", count, what);
   return read_chunk(in, w->compression,
-                    count * (as_half ? w->type.half_bytes : w->type.value_bytes), phrase);
+                    count * (as_half ? w->type.half_bytes : w->type.value_bytes), decode, phrase);
 }
 
 /* InternalNode::readTopology (level 0: the root's children, 1: theirs): child mask, value
@@ -553,7 +601,7 @@ static int read_internal(vdb_in *in, tree_walk *w, int level) {
   snprintf(phrase, sizeof phrase, "%s's value mask (%" PRIu64 " bytes)", what, bytes);
   if (get(in, w->value_mask, bytes, phrase)) return 1;
   const uint32_t active = count_on(w->value_mask, bytes);
-  if (read_values(in, w, 8 * bytes, active, bytes, what)) return 1;
+  if (read_values(in, w, 8 * bytes, active, bytes, 1, what)) return 1;
   const unsigned char *children = w->child_mask[level];
   const uint64_t leaf_bytes = mask_bytes(w->type.log2[2]);
   for (uint64_t i = 0; i < 8 * bytes; i++) {
@@ -646,7 +694,7 @@ static int walk_tree(vdb_in *in, tree_walk *w, uint32_t tiles, uint32_t children
         const unsigned char *mask = w->leaf_masks + (child->first_leaf + l) * leaf_bytes;
         bad = skip(in, leaf_bytes, "a leaf's value mask");
         if (!bad)
-          bad = read_values(in, w, 8 * leaf_bytes, count_on(mask, leaf_bytes), leaf_bytes,
+          bad = read_values(in, w, 8 * leaf_bytes, count_on(mask, leaf_bytes), leaf_bytes, 0,
                             "a leaf");
       }
     }
