@@ -169,6 +169,19 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
         changed |= panel_slider_float(ui, "scale height", &params.scale_height, 1.0f, 200.0f, "%.1f", true);
       }
     }
+    if (panel_header(ui, "sunlight in the fog", true)) {
+      /* sigma_s = albedo K, Henyey-Greenstein g (docs/light.md); the sun's direction and
+       * colour are the config's [light], which also lights the terrain */
+      float albedo = (float)params.sun.albedo, g = (float)params.sun.phase_g;
+      if (panel_slider_float(ui, "albedo", &albedo, 0.0f, 1.0f, "%.2f", false)) {
+        params.sun.albedo = albedo;
+        changed = true;
+      }
+      if (panel_slider_float(ui, "phase g", &g, -0.95f, 0.95f, "%.2f", false)) {
+        params.sun.phase_g = g;
+        changed = true;
+      }
+    }
     if (panel_header(ui, "wavelets", true)) {
       static const char *const bases[] = {"Haar (degree 0)", "linear (CDF 5/3)", "quadratic (bior3.3)"};
       changed |= panel_combo(ui, "basis", &params.degree, bases, 3);

@@ -28,7 +28,7 @@ static void print_help(FILE *out) {
           "usage: fogpipe record CONFIG --frames N --out DIR [options]\n\n"
           "Renders the scene CONFIG headless (EGL, no window) for N frames and writes an\n"
           "OpenEXR sequence DIR/frame.0001.exr ... (channels R,G,B,A half; transmittance,\n"
-          "depth float). The same config gives bit-identical pixels every run. Each frame is\n"
+          "depth, Z, inscatter.R/G/B float). The same config gives bit-identical pixels every run. Each frame is\n"
           "written to a temporary file and renamed, so no partial frame ever exists.\n"
           "Ctrl-C finishes the current frame and stops (exit status 130); --resume goes on.\n"
           "A fogmap scene is simulated (or its [fog] vdb sequence played as 2.5D fogmaps);\n"
@@ -183,14 +183,16 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
                          int height, int first, int done, int last) {
   const char *cmd = job->command;
   const size_t n = (size_t)width * height;
-  /* rgba 4 + transmittance 1 + depth 1, then the recorder's 6 planes. */
-  float *buffer = malloc(n * 12 * sizeof(float));
+  /* rgba 4 + transmittance 1 + depth 1 + inscatter 3, then the recorder's planes. */
+  float *buffer = malloc(n * (9 + RECORDER_PLANES) * sizeof(float));
   if (!buffer) {
     fprintf(stderr, "fogpipe %s: out of memory\n", cmd);
     return 1;
   }
   float *rgba = buffer, *transmittance = buffer + 4 * n, *depth = buffer + 5 * n;
-  float *scratch = buffer + 6 * n;
+  float *inscatter = buffer + 6 * n, *scratch = buffer + 9 * n;
+  const frame_pixels out = {.rgba = rgba, .transmittance = transmittance, .depth = depth,
+                            .inscatter = inscatter};
   struct sigaction action = {.sa_handler = on_interrupt}, old_int, old_term;
   sigemptyset(&action.sa_mask);
   action.sa_flags = SA_RESTART;
@@ -203,8 +205,9 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
   int status = 0;
   if (!job->quiet) recorder_progress_begin(&progress, stdout, done - first + 1, last - first + 1);
   for (int frame = done + 1; frame <= last && !status; frame++) {
-    recorder_frame pixels = {.rgba = rgba, .transmittance = transmittance, .depth = depth};
-    if (player_frame(src, frame, rgba, transmittance, depth, &perr)) {
+    recorder_frame pixels = {.rgba = rgba, .transmittance = transmittance, .depth = depth,
+                             .inscatter = inscatter};
+    if (player_frame(src, frame, &out, &perr)) {
       if (!job->quiet) recorder_progress_end(&progress);
       fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, perr.message);
       status = 1;

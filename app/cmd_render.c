@@ -1,6 +1,6 @@
 /* fogpipe render CONFIG --out FILE.exr|png [--size WxH]: one frame of a scene config,
- * headless (EGL), written as OpenEXR (R, G, B, A half; transmittance, depth float) or as
- * an 8-bit sRGB PNG. */
+ * headless (EGL), written as OpenEXR (R, G, B, A half; transmittance, depth, Z, inscatter
+ * float) or as an 8-bit sRGB PNG. */
 #include <math.h>
 #include <errno.h>
 #include <limits.h>
@@ -20,9 +20,11 @@ static void usage(FILE *out) {
           "usage: fogpipe render CONFIG --out FILE.exr|FILE.png [--size WxH] [--vdb-frame N]\n\n"
           "Renders one frame of the scene config headless (EGL; no display needed).\n\n"
           "options:\n"
-          "  --out FILE    output image: .exr (channels R G B A as half, transmittance and\n"
-          "                depth as float; depth = distance along the view ray to the first\n"
-          "                surface, the far plane for the sky) or .png (8-bit sRGB RGB)\n"
+          "  --out FILE    output image: .exr (channels R G B A as half; transmittance,\n"
+          "                depth (and Z, the same), inscatter.R/G/B as float; depth =\n"
+          "                distance along the view ray to the first surface, the far plane\n"
+          "                for the sky; RGB = transmittance x surface + inscatter) or .png\n"
+          "                (8-bit sRGB RGB)\n"
           "  --size WxH    image size (default: [render] width and height of the config)\n"
           "  --vdb-frame N with a [fog] vdb sequence: render its frame number N (as in the\n"
           "                file names; default: [fog] vdb_frame, else the last frame)\n"
@@ -35,19 +37,25 @@ static bool ends_with(const char *s, const char *suffix) {
   return n >= m && strcasecmp(s + n - m, suffix) == 0;
 }
 
-/* R, G, B, A as half; depth and transmittance as float. Without fog the transmittance is
- * 1 everywhere: written anyway, so every render has the same channels for a compositor. */
-static int write_exr(const char *out, int width, int height, const float *rgba,
-                     float *transmittance, float *depth, sim_error *err) {
+/* R, G, B, A as half; depth (also as Z, the channel compositors read), transmittance and
+ * inscatter.R/G/B (rgb = transmittance surface + inscatter) as float. Without fog the
+ * transmittance is 1 and the in-scatter 0: written anyway, so every render has the same
+ * channels for a compositor. */
+static int write_exr(const char *out, int width, int height, const frame_pixels *frame,
+                     sim_error *err) {
   size_t pixels = (size_t)width * height;
-  float *planes = malloc(pixels * 4 * sizeof(float));
+  float *planes = malloc(pixels * 7 * sizeof(float));
   if (!planes) return snprintf(err->message, sizeof err->message, "out of memory"), 1;
-  for (size_t k = 0; k < pixels; k++)
-    for (int c = 0; c < 4; c++) planes[c * pixels + k] = rgba[4 * k + c];
-  image_channel channels[6] = {
+  for (size_t k = 0; k < pixels; k++) {
+    for (int c = 0; c < 4; c++) planes[c * pixels + k] = frame->rgba[4 * k + c];
+    for (int c = 0; c < 3; c++) planes[(4 + c) * pixels + k] = frame->inscatter[3 * k + c];
+  }
+  image_channel channels[10] = {
       {"R", planes, 1}, {"G", planes + pixels, 1}, {"B", planes + 2 * pixels, 1},
-      {"A", planes + 3 * pixels, 1}, {"depth", depth, 0}, {"transmittance", transmittance, 0}};
-  int status = image_write_exr(out, width, height, channels, 6, err);
+      {"A", planes + 3 * pixels, 1}, {"depth", frame->depth, 0}, {"Z", frame->depth, 0},
+      {"transmittance", frame->transmittance, 0}, {"inscatter.R", planes + 4 * pixels, 0},
+      {"inscatter.G", planes + 5 * pixels, 0}, {"inscatter.B", planes + 6 * pixels, 0}};
+  int status = image_write_exr(out, width, height, channels, 10, err);
   free(planes);
   return status;
 }
@@ -117,8 +125,11 @@ int cmd_render(int argc, char **argv) {
   float *rgba = malloc(pixels * 4 * sizeof(float));
   float *transmittance = malloc(pixels * sizeof(float));
   float *depth = malloc(pixels * sizeof(float));
+  float *inscatter = malloc(pixels * 3 * sizeof(float));
+  const frame_pixels frame = {.rgba = rgba, .transmittance = transmittance, .depth = depth,
+                              .inscatter = inscatter};
   int status = 1;
-  if (!rgba || !transmittance || !depth) {
+  if (!rgba || !transmittance || !depth || !inscatter) {
     fprintf(stderr, "fogpipe render: out of memory for a %dx%d image\n", width, height);
     goto done;
   }
@@ -127,7 +138,7 @@ int cmd_render(int argc, char **argv) {
   player *frames = player_create(&(player_desc){.config = &cfg, .width = width,
                                                 .height = height, .fps = 24.0},
                                  &err);
-  if (!frames || player_frame(frames, 1, rgba, transmittance, depth, &err)) {
+  if (!frames || player_frame(frames, 1, &frame, &err)) {
     fprintf(stderr, "fogpipe render: %s\n", err.message);
     player_destroy(frames);
     goto done;
@@ -136,7 +147,7 @@ int cmd_render(int argc, char **argv) {
   snprintf(gl_description, sizeof gl_description, "%s", player_gl_description(frames));
   player_destroy(frames);
   sim_error werr = {{0}};
-  if (exr ? write_exr(out, width, height, rgba, transmittance, depth, &werr)
+  if (exr ? write_exr(out, width, height, &frame, &werr)
           : write_png(out, width, height, rgba, &werr)) {
     fprintf(stderr, "fogpipe render: %s\n", werr.message);
     goto done;
@@ -148,5 +159,6 @@ done:
   free(rgba);
   free(transmittance);
   free(depth);
+  free(inscatter);
   return status;
 }

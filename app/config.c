@@ -87,6 +87,8 @@ static const key_spec keys[] = {
     {"fog", "profile_spacing", V_DOUBLE, F(fog.profile_spacing), MIN_LENGTH, WORLD, NULL, 0, 0},
     {"fog", "profile_coefficients", V_LIST, F(fog.profile_coefficients), 0, MAX_EXTINCTION, NULL, F(fog.profile_count), 0},
     {"fog", "colour", V_FLOAT3, F(fog.colour), 0, MAX_RADIANCE, NULL, 0, 0},
+    {"fog", "albedo", V_DOUBLE, F(fog.albedo), 0, 1, NULL, 0, 0},
+    {"fog", "phase_g", V_DOUBLE, F(fog.phase_g), -FOG_PHASE_G_MAX, FOG_PHASE_G_MAX, NULL, 0, 0},
     {"fog", "rbf", V_RBF, 0, 0, WORLD, NULL, 0, 0},
     {"fog", "rbf_base", V_DOUBLE, F(fog.rbf_base), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"fog", "volume_step", V_DOUBLE, F(fog.volume_step), 0, WORLD, NULL, 0, 0},
@@ -143,6 +145,7 @@ void scene_config_init(scene_config *cfg) {
               .boundary = SCENE_BOUNDARY_SYMMETRIC, .profile = SCENE_PROFILE_SLAB,
               .fog_height = 0.0, .scale_height = 10.0, .profile_degree = 1,
               .profile_spacing = 1.0, .colour = {0.75f, 0.78f, 0.82f},
+              .albedo = 0.0, .phase_g = 0.7,
               .vdb_grid = "density", .vdb_fps = 24.0, .vdb_frame = -1},
       .box = {.origin = {-500, -500}, .cell_size = 1.0, .floor = 0.0, .top = 50.0},
       .camera = {.position = {0, 50, 100}, .fov = 60.0, .near_plane = 0.1, .far_plane = 100000.0},
@@ -697,6 +700,13 @@ bool scene_config_knows_key(const char *section, const char *key) {
 bool scene_config_has_fog(const scene_config *cfg) {
   return cfg->fog.model != FOG_MODEL_FOGMAP || cfg->fog.fogmap[0] || cfg->fog.vdb[0] ||
          cfg->fog.sequence[0];
+}
+
+void scene_config_fog_sun(const scene_config *cfg, fog_sun *sun) {
+  scene_light light;
+  *sun = (fog_sun){.albedo = cfg->fog.albedo, .phase_g = cfg->fog.phase_g};
+  scene_light_resolve(&cfg->light, &light, sun->direction);
+  for (int c = 0; c < 3; c++) sun->radiance[c] = light.sun_colour[c];
 }
 
 void scene_config_camera(const scene_config *cfg, camera *cam) {

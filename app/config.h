@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "render/camera.h"
+#include "render/fog_light.h"
 #include "render/fog_models.h"
 #include "render/scene.h"
 
@@ -68,7 +69,9 @@ typedef struct scene_fog_config {
   double profile_origin, profile_spacing;
   double profile_coefficients[SCENE_CONFIG_MAX_PROFILE];
   int profile_count;
-  float colour[3];                    /* L_fog, linear */
+  float colour[3];                    /* L_fog, linear: the ambient in-scatter L_amb */
+  double albedo;                      /* sunlight scattered: sigma_s = albedo K (docs/light.md) */
+  double phase_g;                     /* Henyey-Greenstein asymmetry of that scattering */
   int fogmap_line;                    /* where fogmap was set (0: default), for errors */
   bool profile_set;                   /* `profile` was set in the file (a VDB keeps it) */
   /* model = rbf: the Gaussians (densities before density_scale) and the base under them. */
@@ -175,6 +178,8 @@ uint64_t scene_config_fingerprint(const scene_config *cfg);
 
 /* The camera the config describes (radians, look_at applied). */
 void scene_config_camera(const scene_config *cfg, camera *cam);
+/* The sun as the fog sees it: [fog] albedo and phase_g, [light]'s resolved sun. */
+void scene_config_fog_sun(const scene_config *cfg, fog_sun *sun);
 /* The scene pass's description. heights (may be NULL) are the loaded heightmap (values in
  * [0, 1], width x height) when cfg->terrain.heightmap is set. */
 void scene_config_scene_desc(const scene_config *cfg, const float *heights, int width,

@@ -461,6 +461,8 @@ static void *worker_main(void *arg) {
 /* ---- create / destroy ---- */
 
 static pipeline_params params_from_config(const scene_config *cfg) {
+  fog_sun sun;
+  scene_config_fog_sun(cfg, &sun);
   return (pipeline_params){
       .degree = cfg->fog.degree,
       .levels = cfg->fog.levels,
@@ -468,6 +470,7 @@ static pipeline_params params_from_config(const scene_config *cfg) {
       .lod_method = cfg->fog.lod == SCENE_LOD_SUM ? FOG_LOD_SUM_OF_DETAILS : FOG_LOD_SWITCH,
       .density = (float)cfg->fog.density_scale,
       .fog_colour = {cfg->fog.colour[0], cfg->fog.colour[1], cfg->fog.colour[2]},
+      .sun = sun,
       .profile_kind = (int)cfg->fog.profile, /* scene_profile numbers fog_profile_kind */
       .fog_height = (float)cfg->fog.fog_height,
       .scale_height = (float)cfg->fog.scale_height,
@@ -787,6 +790,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       .mu = params.mu,
       .lod_method = params.lod_method,
       .fog_colour = {params.fog_colour[0], params.fog_colour[1], params.fog_colour[2]},
+      .sun = params.sun,
       .hardware_filtering = p->config.fog.filtering == SCENE_FILTERING_HARDWARE,
       .resolution_divisor = params.fog_resolution_divisor,
   };
@@ -814,11 +818,11 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
   return 0;
 }
 
-int pipeline_read_frame(pipeline *p, float *rgba, float *transmittance, float *depth,
-                        pipeline_error *err) {
+int pipeline_read_frame(pipeline *p, const frame_pixels *out, pipeline_error *err) {
   render_error rerr = {{0}};
-  if (pipeline_fog_read(p->fog, rgba, transmittance, &rerr))
+  if (pipeline_fog_read(p->fog, out->rgba, out->transmittance, out->inscatter, &rerr))
     return fail(err, "read-back: %s", rerr.message);
+  float *depth = out->depth;
   if (depth) {
     if (gl_target_read(&p->scene_target, 1, 1, depth, &rerr))
       return fail(err, "read-back: %s", rerr.message);

@@ -21,6 +21,7 @@
 #ifndef FOGPIPE_APP_PIPELINE_H
 #define FOGPIPE_APP_PIPELINE_H
 
+#include "app/frame_pixels.h"
 #include <stdbool.h>
 
 #include "app/config.h"
@@ -70,6 +71,7 @@ typedef struct pipeline_params {
   int lod_method;    /* fog_lod_method */
   float density;     /* extinction scale */
   float fog_colour[3];
+  fog_sun sun;       /* albedo, phase_g and the sun (the panel edits them) */
   int profile_kind;  /* fog_profile_kind (slab / exponential) */
   float fog_height;  /* top of the slab or of the flat part (y0) */
   float scale_height;/* exponential falloff H */
@@ -93,11 +95,8 @@ void pipeline_destroy(pipeline *p);
  * (live). Returns non-zero on a GL error or a failed CPU stage. */
 int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *err);
 
-/* Reads the last frame back, rows TOP first: rgba (4 floats per pixel, linear), the
- * transmittance and the depth (distance along the ray to the first surface, or the far
- * plane for the sky). Any pointer may be NULL. */
-int pipeline_read_frame(pipeline *p, float *rgba, float *transmittance, float *depth,
-                        pipeline_error *err);
+/* Reads the last frame back into out (app/frame_pixels.h). */
+int pipeline_read_frame(pipeline *p, const frame_pixels *out, pipeline_error *err);
 
 /* Draws the last frame's colour into the default framebuffer (window), scaled to w x h. */
 int pipeline_present(pipeline *p, int width, int height, pipeline_error *err);

@@ -11,7 +11,7 @@
 struct pipeline_fog {
   int width, height;
   fog_pass *pass;
-  gl_target target;     /* colour 0: composited RGBA32F; colour 1: transmittance R32F */
+  gl_target target;     /* colour 0: composited RGBA32F; 1: transmittance R32F; 2: in-scatter */
   int levels;           /* J of the uploaded pyramid */
   int degree;
   bool has_details;
@@ -46,7 +46,8 @@ int pipeline_fog_resize(pipeline_fog *fog, int width, int height, render_error *
   /* Presenting scales the colour to the window: filtered (read-back uses glReadPixels, and
    * the fog pass never samples this texture, so this changes no recorded pixel). */
   gl_target_desc desc = {.width = width, .height = height,
-                         .color_formats = {GL_RGBA32F, GL_R32F}, .linear_color0 = true};
+                         .color_formats = {GL_RGBA32F, GL_R32F, GL_RGBA32F},
+                         .linear_color0 = true};
   if (gl_target_create(&fog->target, &desc, err)) return 1;
   fog->width = width;
   fog->height = height;
@@ -78,6 +79,7 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .lod_method = method,
       .mu = settings->mu,
       .fog_colour = {settings->fog_colour[0], settings->fog_colour[1], settings->fog_colour[2]},
+      .sun = settings->sun,
       .fetch = settings->hardware_filtering && fog->degree > 0 ? FOG_FETCH_HARDWARE
                                                                : FOG_FETCH_MANUAL,
       .resolution_divisor = settings->resolution_divisor,
@@ -87,9 +89,11 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
                        fog->height, err);
 }
 
-int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, render_error *err) {
+int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, float *inscatter,
+                      render_error *err) {
   if (rgba && gl_target_read(&fog->target, 0, 4, rgba, err)) return 1;
   if (transmittance && gl_target_read(&fog->target, 1, 1, transmittance, err)) return 1;
+  if (inscatter && gl_target_read(&fog->target, 2, 3, inscatter, err)) return 1;
   return 0;
 }
 

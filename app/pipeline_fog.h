@@ -10,6 +10,7 @@
 
 #include "render/camera.h"
 #include "render/fog_field.h"
+#include "render/fog_light.h"
 #include "render/gl_util.h"
 #include "render/render_error.h"
 #include "transform/transform.h"
@@ -20,6 +21,7 @@ typedef struct pipeline_fog_settings {
   float mu;
   int lod_method; /* fog_lod_method */
   float fog_colour[3];
+  fog_sun sun;
   bool hardware_filtering;
   int resolution_divisor; /* fog_pass_params.resolution_divisor */
 } pipeline_fog_settings;
@@ -34,8 +36,9 @@ int pipeline_fog_upload(pipeline_fog *fog, const fog_pyramid *pyramid, render_er
 /* Draws the fog over the scene target (colour 0, distance 1) into the fog target. */
 int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *scene,
                         const pipeline_fog_settings *settings, render_error *err);
-/* Rows top first; either pointer may be NULL. */
-int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, render_error *err);
+/* Rows top first; any pointer may be NULL (inscatter: 3 floats a pixel). */
+int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, float *inscatter,
+                      render_error *err);
 /* Blits the fog target's colour to the default framebuffer at width x height. */
 int pipeline_fog_present(pipeline_fog *fog, int width, int height, render_error *err);
 

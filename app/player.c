@@ -104,12 +104,11 @@ int player_skip(player *p, long frames, render_error *err) {
   return 0;
 }
 
-int player_frame(player *p, int n, float *rgba, float *transmittance, float *depth,
-                 render_error *err) {
+int player_frame(player *p, int n, const frame_pixels *out, render_error *err) {
   if (p->pipe) {
     pipeline_error perr = {{0}};
     if (pipeline_frame(p->pipe, &p->cam, true, &perr) ||
-        pipeline_read_frame(p->pipe, rgba, transmittance, depth, &perr)) {
+        pipeline_read_frame(p->pipe, out, &perr)) {
       snprintf(err->message, sizeof err->message, "%s", perr.message);
       return 1;
     }
@@ -128,7 +127,7 @@ int player_frame(player *p, int n, float *rgba, float *transmittance, float *dep
       return 1;
   }
   render_frame_error ferr = {{0}};
-  if (render_session_frame(p->session, rgba, transmittance, depth, &ferr)) {
+  if (render_session_frame(p->session, out, &ferr)) {
     snprintf(err->message, sizeof err->message, "%s", ferr.message);
     return 1;
   }

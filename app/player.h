@@ -19,6 +19,7 @@
 #ifndef FOGPIPE_APP_PLAYER_H
 #define FOGPIPE_APP_PLAYER_H
 
+#include "app/frame_pixels.h"
 #include <stdbool.h>
 
 #include "app/config.h"
@@ -50,7 +51,6 @@ int player_skip(player *player, long frames, render_error *err);
  * reads it back, rows top first, any output may be NULL: rgba (4 linear floats a pixel),
  * the transmittance (1 where no fog) and the depth (distance along the view ray to the first
  * surface; the camera's far plane for the sky). */
-int player_frame(player *player, int n, float *rgba, float *transmittance, float *depth,
-                 render_error *err);
+int player_frame(player *player, int n, const frame_pixels *out, render_error *err);
 
 #endif

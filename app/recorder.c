@@ -52,9 +52,9 @@ int recorder_make_folders(const char *path, char *created, size_t created_size,
   return 0;
 }
 
-/* Bytes of one uncompressed frame: 4 half channels + 2 float channels per pixel. */
+/* Bytes of one uncompressed frame: 4 half channels + 6 float channels per pixel. */
 static double frame_bytes(int width, int height) {
-  return (double)width * (double)height * (4 * 2 + 2 * 4);
+  return (double)width * (double)height * (4 * 2 + 6 * 4);
 }
 
 int recorder_open(recorder *rec, const recorder_desc *desc, recorder_error *err) {
@@ -174,19 +174,21 @@ int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *p
                          float *scratch, recorder_error *err) {
   const int w = rec->width, h = rec->height;
   const size_t n = (size_t)w * (size_t)h;
-  float *plane[6];
-  for (int c = 0; c < 6; c++) plane[c] = scratch + (size_t)c * n;
+  float *plane[RECORDER_PLANES];
+  for (int c = 0; c < RECORDER_PLANES; c++) plane[c] = scratch + (size_t)c * n;
   /* De-interleave and flip to top-row-first (EXR order). */
   for (int y = 0; y < h; y++) {
     int src_row = pixels->bottom_up ? h - 1 - y : y;
     const float *rgba = pixels->rgba + (size_t)src_row * w * 4;
     const float *tr = pixels->transmittance + (size_t)src_row * w;
     const float *dp = pixels->depth + (size_t)src_row * w;
+    const float *in = pixels->inscatter + (size_t)src_row * w * 3;
     size_t dst = (size_t)y * w;
     for (int x = 0; x < w; x++) {
       for (int c = 0; c < 4; c++) plane[c][dst + x] = rgba[4 * x + c];
       plane[4][dst + x] = tr[x];
       plane[5][dst + x] = dp[x];
+      for (int c = 0; c < 3; c++) plane[6 + c][dst + x] = in[3 * x + c];
     }
   }
   const image_channel channels[] = {
@@ -196,12 +198,16 @@ int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *p
       {.name = "A", .pixels = plane[3], .as_half = 1},
       {.name = "transmittance", .pixels = plane[4], .as_half = 0},
       {.name = "depth", .pixels = plane[5], .as_half = 0},
+      {.name = "Z", .pixels = plane[5], .as_half = 0},
+      {.name = "inscatter.R", .pixels = plane[6], .as_half = 0},
+      {.name = "inscatter.G", .pixels = plane[7], .as_half = 0},
+      {.name = "inscatter.B", .pixels = plane[8], .as_half = 0},
   };
   char path[1200];
   recorder_frame_path(rec, frame, path, sizeof path);
   sim_error serr = {{0}};
   const image_exr_string identity = {RECORDER_IDENTITY_ATTRIBUTE, rec->identity};
-  if (image_write_exr_with(path, w, h, channels, 6, &identity, rec->identity[0] ? 1 : 0,
+  if (image_write_exr_with(path, w, h, channels, sizeof channels / sizeof channels[0], &identity, rec->identity[0] ? 1 : 0,
                            &serr)) {
     struct statvfs vfs;
     int full = statvfs(rec->folder, &vfs) == 0 &&

@@ -39,6 +39,7 @@ typedef struct recorder {
 } recorder;
 
 #define RECORDER_IDENTITY_ATTRIBUTE "fogpipeRecording"
+#define RECORDER_PLANES 9 /* R G B A, transmittance, depth, inscatter R G B */
 
 /* One rendered frame as the GL pass reads it back: linear colour and alpha, transmittance
  * (fraction of the surface light that reaches the camera) and depth (distance along the
@@ -48,6 +49,7 @@ typedef struct recorder_frame {
   const float *rgba;           /* width*height*4 interleaved */
   const float *transmittance;  /* width*height */
   const float *depth;          /* width*height */
+  const float *inscatter;      /* width*height*3: rgb = transmittance surface + inscatter */
   bool bottom_up;
 } recorder_frame;
 
@@ -69,9 +71,9 @@ int recorder_complete_frames(const recorder *rec, int first, int last, recorder_
  * frames: image_write_exr's ".NAME.NNNN.exr.tmp.XXXXXX". Returns how many were removed. */
 int recorder_remove_stale_temporaries(const recorder *rec);
 
-/* Writes frame number `frame` (1-based). Channels: R, G, B, A as half; transmittance and
- * depth as 32-bit float. `scratch` must hold 6*width*height floats (no allocation per
- * frame). On failure (disk full, folder removed) nothing is left at the frame's path. */
+/* Writes frame number `frame` (1-based). Channels: R, G, B, A as half; transmittance,
+ * depth (also as Z, what compositors read) and inscatter.R/G/B as 32-bit float. `scratch`
+ * must hold RECORDER_PLANES*width*height floats (no allocation per frame). On failure (disk full, folder removed) nothing is left at the frame's path. */
 int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *pixels,
                          float *scratch, recorder_error *err);
 

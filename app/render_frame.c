@@ -111,7 +111,7 @@ render_session *render_session_create(const scene_config *cfg, int width, int he
       (render_fog_create(&s->fog, cfg, &rerr) ||
        gl_target_create(&s->fog_target,
                         &(gl_target_desc){.width = width, .height = height,
-                                          .color_formats = {GL_RGBA32F, GL_R32F}},
+                                          .color_formats = {GL_RGBA32F, GL_R32F, GL_RGBA32F}},
                         &rerr)))
     goto fail;
   return s;
@@ -127,39 +127,42 @@ render_fog *render_session_fog(render_session *s) { return s->has_fog ? &s->fog 
 
 /* The scene was drawn once (render_scene_create: the camera does not move in a session);
  * a frame is the fog over it. */
-int render_session_frame(render_session *s, float *rgba, float *transmittance, float *depth,
-                         render_frame_error *err) {
+int render_session_frame(render_session *s, const frame_pixels *out, render_frame_error *err) {
   render_error rerr = {0};
   const render_scene *sc = &s->scene;
   size_t pixels = (size_t)sc->width * sc->height;
   if (s->has_fog) {
     if (render_fog_draw(&s->fog, &sc->cam, &sc->target, &s->fog_target, &rerr)) goto fail;
-    if (rgba && gl_target_read(&s->fog_target, 0, 4, rgba, &rerr)) goto fail;
-    if (transmittance && gl_target_read(&s->fog_target, 1, 1, transmittance, &rerr)) goto fail;
+    if (out->rgba && gl_target_read(&s->fog_target, 0, 4, out->rgba, &rerr)) goto fail;
+    if (out->transmittance && gl_target_read(&s->fog_target, 1, 1, out->transmittance, &rerr))
+      goto fail;
+    if (out->inscatter && gl_target_read(&s->fog_target, 2, 3, out->inscatter, &rerr))
+      goto fail;
   } else {
-    if (rgba && gl_target_read(&sc->target, 0, 4, rgba, &rerr)) goto fail;
-    if (transmittance)
-      for (size_t k = 0; k < pixels; k++) transmittance[k] = 1.0f;
+    if (out->rgba && gl_target_read(&sc->target, 0, 4, out->rgba, &rerr)) goto fail;
+    if (out->transmittance)
+      for (size_t k = 0; k < pixels; k++) out->transmittance[k] = 1.0f;
+    if (out->inscatter) memset(out->inscatter, 0, 3 * pixels * sizeof *out->inscatter);
   }
   if (gl_util_check("render", &rerr)) goto fail;
-  if (depth)
+  if (out->depth)
     for (size_t k = 0; k < pixels; k++)
-      depth[k] = sc->distance[k] >= SCENE_SKY_DISTANCE ? (float)sc->cam.far_plane : sc->distance[k];
+      out->depth[k] =
+          sc->distance[k] >= SCENE_SKY_DISTANCE ? (float)sc->cam.far_plane : sc->distance[k];
   return 0;
 fail:
   snprintf(err->message, sizeof err->message, "%s", rerr.message);
   return 1;
 }
 
-int render_frame(const scene_config *cfg, int width, int height, float *rgba,
-                 float *transmittance, float *depth, render_frame_info *info,
-                 render_frame_error *err) {
+int render_frame(const scene_config *cfg, int width, int height, const frame_pixels *out,
+                 render_frame_info *info, render_frame_error *err) {
   *info = (render_frame_info){0};
   render_session *s = render_session_create(cfg, width, height, err);
   if (!s) return 1;
   snprintf(info->gl_description, sizeof info->gl_description, "%s", s->gl_description);
   info->has_fog = s->has_fog;
-  int status = render_session_frame(s, rgba, transmittance, depth, err);
+  int status = render_session_frame(s, out, err);
   render_session_destroy(s);
   return status;
 }

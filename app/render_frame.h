@@ -5,6 +5,7 @@
 #ifndef FOGPIPE_APP_RENDER_FRAME_H
 #define FOGPIPE_APP_RENDER_FRAME_H
 
+#include "app/frame_pixels.h"
 #include <stdbool.h>
 
 #include "app/config.h"
@@ -53,15 +54,12 @@ const char *render_session_gl_description(const render_session *session);
 /* The session's fog (NULL when the config has none), to change between frames. */
 struct render_fog *render_session_fog(render_session *session);
 /* One frame, outputs as render_frame's. */
-int render_session_frame(render_session *session, float *rgba, float *transmittance,
-                         float *depth, render_frame_error *err);
+int render_session_frame(render_session *session, const frame_pixels *out,
+                         render_frame_error *err);
 
-/* Renders cfg at width x height (a session of one frame). Outputs (rows top first, any may be NULL): rgba (4 floats
- * per pixel, linear), transmittance (1 where no fog), depth (distance along the view ray to
- * the first surface; the camera's far plane for the sky). */
-int render_frame(const scene_config *cfg, int width, int height, float *rgba,
-                 float *transmittance, float *depth, render_frame_info *info,
-                 render_frame_error *err);
+/* Renders cfg at width x height (a session of one frame) into out (app/frame_pixels.h). */
+int render_frame(const scene_config *cfg, int width, int height, const frame_pixels *out,
+                 render_frame_info *info, render_frame_error *err);
 
 /* The heightmap of cfg (if any) as heights in [0, 1]: *heights is malloc'd (NULL and
  * sizes 0 for a procedural terrain). */

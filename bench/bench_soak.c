@@ -204,7 +204,9 @@ int bench_soak(int argc, char **argv) {
   long interval_first = 1;
   for (long frame = 1; frame <= frames; frame++) {
     if (pipeline_frame(pipe, &cam, true, &perr) ||
-        pipeline_read_frame(pipe, rgba, transmittance, depth, &perr)) {
+        pipeline_read_frame(
+            pipe, &(frame_pixels){.rgba = rgba, .transmittance = transmittance, .depth = depth},
+            &perr)) {
       fprintf(stderr, "fogpipe bench soak: frame %ld: %s\n", frame, perr.message);
       status = 1;
       break;

@@ -452,6 +452,12 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
   glUniform2f(fog_loc(prog, "fog_viewport"), (float)width, (float)height);
   glUniform3f(fog_loc(prog, "fog_colour"), params->fog_colour[0], params->fog_colour[1],
               params->fog_colour[2]);
+  const fog_sun *sun = &params->sun;
+  glUniform3f(fog_loc(prog, "fog_sun_direction"), (float)sun->direction[0],
+              (float)sun->direction[1], (float)sun->direction[2]);
+  glUniform3f(fog_loc(prog, "fog_sun_scatter"), (float)(sun->albedo * sun->radiance[0]),
+              (float)(sun->albedo * sun->radiance[1]), (float)(sun->albedo * sun->radiance[2]));
+  glUniform1f(fog_loc(prog, "fog_phase_g"), (float)sun->phase_g);
   bind_sampler(prog, "fog_surface_colour", UNIT_SURFACE_COLOUR, GL_TEXTURE_2D, surface_colour);
   bind_sampler(prog, "fog_surface_distance", UNIT_SURFACE_DISTANCE, GL_TEXTURE_2D,
                surface_distance);

@@ -16,8 +16,9 @@
  *   fog_pass_destroy()
  *
  * Drawing: bind a framebuffer whose draw buffer 0 takes the composited colour (RGBA16F or
- * RGBA32F) and draw buffer 1 the transmittance tau (R32F), e.g. a gl_target with
- * color_formats {GL_RGBA32F, GL_R32F}; fog_pass_draw sets the viewport to width x height
+ * RGBA32F), draw buffer 1 the transmittance tau (R32F) and, if it has one, draw buffer 2 the
+ * in-scattered radiance (RGBA32F: colour = tau surface + in-scatter), e.g. a gl_target with
+ * color_formats {GL_RGBA32F, GL_R32F, GL_RGBA32F}; fog_pass_draw sets the viewport to width x height
  * and draws one full-screen triangle. Inputs: the surface colour texture (linear RGBA) and
  * the surface DISTANCE texture (R32F: Euclidean distance from the camera along the pixel's
  * ray to the first surface; anything >= 1e29, e.g. SCENE_SKY_DISTANCE, means none). Both
@@ -36,6 +37,7 @@
 
 #include "render/camera.h"
 #include "render/fog_field.h"
+#include "render/fog_light.h"
 #include "render/fog_models.h"
 #include "render/render_error.h"
 #include "transform/transform.h"
@@ -76,7 +78,10 @@ typedef struct fog_pass_params {
   int levels;                /* J: slots 0..J approximations, J+1..2J details; 0: one grid */
   fog_lod_method lod_method;
   double mu;                 /* LOD parameter in [0, 1]; levels = 0 ignores it */
-  float fog_colour[3];       /* L_fog, linear */
+  float fog_colour[3];       /* L_fog, linear: the ambient in-scatter L_amb */
+  /* Sunlight scattered in the fog (render/fog_light.h): albedo 0 is eq. 4 exactly. A
+   * zero-initialised sun has albedo 0. */
+  fog_sun sun;
   fog_fetch fetch;
   fog_integrator integrator;
   int march_steps;           /* FOG_INTEGRATOR_MARCH: 0 means 64 */

@@ -47,18 +47,22 @@ int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_er
     memcpy(box->colour, d->colour, sizeof box->colour);
     set_default3(box->colour, 0.55f, 0.53f, 0.50f);
   }
-  scene_light *l = &geo->light;
-  *l = desc->light;
+  scene_light_resolve(&desc->light, &geo->light, geo->sun_direction);
+  return 0;
+}
+
+void scene_light_resolve(const scene_light *desc, scene_light *light, double sun_direction[3]) {
+  scene_light *l = light;
+  *l = *desc;
   if (l->sun_elevation == 0) l->sun_elevation = 35;
   set_default3(l->sun_colour, 1.9f, 1.8f, 1.6f);
   set_default3(l->ambient, 0.30f, 0.36f, 0.45f);
   set_default3(l->sky_horizon, 0.72f, 0.78f, 0.85f);
   set_default3(l->sky_zenith, 0.28f, 0.45f, 0.75f);
   double az = l->sun_azimuth * DEG, el = l->sun_elevation * DEG;
-  geo->sun_direction[0] = cos(el) * sin(az);
-  geo->sun_direction[1] = sin(el);
-  geo->sun_direction[2] = -cos(el) * cos(az);
-  return 0;
+  sun_direction[0] = cos(el) * sin(az);
+  sun_direction[1] = sin(el);
+  sun_direction[2] = -cos(el) * cos(az);
 }
 
 void scene_geometry_destroy(scene_geometry *geo) {

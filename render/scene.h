@@ -66,6 +66,9 @@ typedef struct scene_geometry {
 
 int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_error *err);
 void scene_geometry_destroy(scene_geometry *geo);
+/* The light with its defaults resolved, and the unit direction towards the sun (what the
+ * surfaces and the fog are lit by). */
+void scene_light_resolve(const scene_light *desc, scene_light *light, double sun_direction[3]);
 
 /* First hit along origin + s * dir (dir unit length: s is the Euclidean distance) for
  * s in (0, s_max], on the terrain mesh or a box. Returns true and sets *s (and the unit

@@ -1,7 +1,8 @@
 #version 430 core
 // The fog pass (render/fog_pass.h): per pixel, the ray of render/camera.h, the optical depth
 // through the fogmap pyramid with LOD by distance (docs/integral.md), and the blend
-// L = tau L(P) + L_fog (1 - tau) (Giroud & Biri eq. 4). render/fog_pass.c inserts after the
+// L = tau L(P) + (L_amb + a L_sun p(theta)) (1 - tau): Giroud & Biri eq. 4 with the sun's
+// single scattering, unshadowed (render/fog_light.h, docs/light.md). render/fog_pass.c inserts after the
 // #version line:
 //   #define FOG_FETCH_HARDWARE 0|1   (see fog_integral.glsl)
 //   #define FOG_INTEGRATOR 0|1       (0: exact walk, 1: uniform ray marching)
@@ -18,6 +19,7 @@ uniform int fog_march_steps;  // FOG_INTEGRATOR 1: samples per ray (every model'
 
 layout(location = 0) out vec4 fog_out_colour;
 layout(location = 1) out float fog_out_transmittance;
+layout(location = 2) out vec4 fog_out_inscatter;  // discarded where the target has no buffer 2
 
 uniform sampler2D fog_surface_colour;    // linear RGBA, the scene without fog
 uniform sampler2D fog_surface_distance;  // R32F: distance along the ray to the first surface
@@ -25,7 +27,10 @@ uniform vec2 fog_viewport;               // width, height
 uniform dvec3 fog_camera_right;          // camera_basis(): scaled right, up; unit forward
 uniform dvec3 fog_camera_up;             // (double: fog_optical_depth_inside)
 uniform dvec3 fog_camera_forward;
-uniform vec3 fog_colour;
+uniform vec3 fog_colour;                 // L_amb
+uniform vec3 fog_sun_direction;          // unit, towards the sun
+uniform vec3 fog_sun_scatter;            // a L_sun
+uniform float fog_phase_g;               // Henyey-Greenstein g
 const int fog_levels = FOG_LEVELS;       // J; 0: one grid (slot 0). Specialised per variant
 // 0: sum of details (paper), 1: approximation switching; specialised per variant
 const int fog_lod_method = FOG_LOD_METHOD;
@@ -191,6 +196,12 @@ bool fog_upsampled_depth(ivec2 pixel, float t, out float optical_depth) {
 }
 #endif
 
+// Henyey-Greenstein, per steradian (fog_phase_hg in render/fog_light.c).
+float fog_phase_hg(float g, float cos_theta) {
+  float denom = 1.0 + g * g - 2.0 * g * cos_theta;
+  return (1.0 - g * g) / (4.0 * 3.14159265358979 * denom * sqrt(denom));
+}
+
 void main() {
   // camera_ray(): ndc from the fragment centre, y up; dir = normalize(f + x r + y u).
 #if FOG_REDUCED > 1
@@ -204,6 +215,9 @@ void main() {
   vec4 surface = texelFetch(fog_surface_colour, pixel, 0);
   float t_surface = texelFetch(fog_surface_distance, pixel, 0).r;
   float optical_depth = 0.0, k_end = 0.0;
+  // cos theta between the sun and this pixel's view direction: constant along the ray
+  float cos_sun = dot(normalize(vec3(fog_camera_forward + ndc.x * fog_camera_right +
+                                     ndc.y * fog_camera_up)), fog_sun_direction);
   bool walk = true;
 #if FOG_UPSAMPLE
   walk = !fog_upsampled_depth(pixel, t_surface, optical_depth);
@@ -237,7 +251,10 @@ void main() {
   return;
 #endif
   float tau = exp(-optical_depth);
-  // Giroud & Biri eq. 4.
-  fog_out_colour = vec4(tau * surface.rgb + fog_colour * (1.0 - tau), surface.a);
+  // Giroud & Biri eq. 4 with L_fog = L_amb + a L_sun p(theta): with a = 0 the same image.
+  vec3 inscatter = (fog_colour + fog_sun_scatter * fog_phase_hg(fog_phase_g, cos_sun)) *
+                   (1.0 - tau);
+  fog_out_colour = vec4(tau * surface.rgb + inscatter, surface.a);
   fog_out_transmittance = tau;
+  fog_out_inscatter = vec4(inscatter, 1.0);
 }

@@ -30,7 +30,7 @@ static pipeline *make(const scene_config *cfg) {
 static int frame(pipeline *p, const camera *cam, float *transmittance) {
   pipeline_error err = {{0}};
   if (pipeline_frame(p, cam, true, &err) ||
-      pipeline_read_frame(p, NULL, transmittance, NULL, &err)) {
+      pipeline_read_frame(p, &(frame_pixels){.transmittance = transmittance}, &err)) {
     fprintf(stderr, "frame: %s\n", err.message);
     return 1;
   }

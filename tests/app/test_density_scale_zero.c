@@ -20,7 +20,7 @@ static int render_tau(const scene_config *cfg, double *min_tau, double *mean_tau
   float *tau = malloc(sizeof(float) * W * H);
   render_frame_info info;
   render_frame_error err = {{0}};
-  int failed = render_frame(cfg, W, H, NULL, tau, NULL, &info, &err);
+  int failed = render_frame(cfg, W, H, &(frame_pixels){.transmittance = tau}, &info, &err);
   CHECK(!failed, "render: %s", err.message);
   *min_tau = 1.0, *mean_tau = 0.0;
   for (int i = 0; !failed && i < W * H; i++) {

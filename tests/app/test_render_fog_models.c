@@ -74,7 +74,8 @@ static void check_config(const char *path, const char *label) {
   float *tau = malloc(sizeof(float) * W * H), *depth = malloc(sizeof(float) * W * H);
   render_frame_info info;
   render_frame_error err;
-  if (render_frame(&cfg, W, H, NULL, tau, depth, &info, &err)) {
+  if (render_frame(&cfg, W, H, &(frame_pixels){.transmittance = tau, .depth = depth}, &info,
+                   &err)) {
     CHECK(0, "%s: render_frame: %s", label, err.message);
     free(tau), free(depth);
     return;

@@ -1,0 +1,220 @@
+/* Sunlight in the fog, unshadowed (render/fog_light.h, docs/light.md), for every model:
+ * - [fog] albedo = 0 draws Giroud & Biri's eq. 4: rgb = tau S + L_amb (1 - tau), S the
+ *   scene drawn without fog, whatever the sun and phase_g (bit for bit between them);
+ * - with albedo a > 0 the in-scatter channel is (L_amb + a L_sun p(theta)) (1 - tau) per
+ *   pixel (the identity int tau K du = 1 - tau), p Henyey-Greenstein written here from
+ *   its definition, theta between the sun and the pixel's ray, within 1e-5 relative; and
+ *   rgb = tau S + in-scatter;
+ * - energy: with a = 1 and no ambient no pixel gets more than L_sun max p (1 - tau);
+ * - p integrates to 1 over the sphere (adaptive Simpson in double);
+ * - `fogpipe render` writes the in-scatter as inscatter.R/G/B and the depth as Z too. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app/config.h"
+#include "app/render_frame.h"
+#include "exr_channel_util.h"
+#include "render/render.h"
+#include "test_bin.h"
+#include "test_util.h"
+
+enum { W = 80, H = 45 };
+static const double pi = 3.14159265358979323846;
+
+/* Henyey & Greenstein 1941, per steradian. */
+static double hg(double g, double mu) {
+  return (1 - g * g) / (4 * pi * pow(1 + g * g - 2 * g * mu, 1.5));
+}
+
+static double simpson(double g, double a, double b, double fa, double fm, double fb,
+                      double whole, int depth) {
+  const double m = 0.5 * (a + b), lm = 0.5 * (a + m), rm = 0.5 * (m + b);
+  const double flm = hg(g, lm), frm = hg(g, rm);
+  const double left = (m - a) / 6 * (fa + 4 * flm + fm), right = (b - m) / 6 * (fm + 4 * frm + fb);
+  if (depth <= 0 || fabs(left + right - whole) < 1e-13) return left + right;
+  return simpson(g, a, m, fa, flm, fm, left, depth - 1) +
+         simpson(g, m, b, fm, frm, fb, right, depth - 1);
+}
+
+static void check_phase_normalised(void) {
+  const double gs[] = {-0.9, 0.0, 0.5, 0.7, 0.95};
+  for (size_t i = 0; i < sizeof gs / sizeof gs[0]; i++) {
+    const double g = gs[i];
+    const double fa = hg(g, -1), fm = hg(g, 0), fb = hg(g, 1);
+    const double total = 2 * pi * simpson(g, -1, 1, fa, fm, fb, 2.0 / 6 * (fa + 4 * fm + fb), 40);
+    CHECK(fabs(total - 1) < 1e-9, "HG g=%g integrates to %.12f over the sphere", g, total);
+    for (double mu = -1; mu <= 1; mu += 0.125)
+      CHECK(fabs(fog_phase_hg(g, mu) - hg(g, mu)) <= 1e-14 * hg(g, mu),
+            "fog_phase_hg(%g, %g) = %.17g, expected %.17g", g, mu, fog_phase_hg(g, mu), hg(g, mu));
+  }
+}
+
+typedef struct frame {
+  float rgba[4 * W * H], tau[W * H], depth[W * H], inscatter[3 * W * H];
+} frame;
+
+static int render(const scene_config *cfg, frame *f, const char *label) {
+  render_frame_info info;
+  render_frame_error err = {{0}};
+  const frame_pixels out = {.rgba = f->rgba, .transmittance = f->tau, .depth = f->depth,
+                            .inscatter = f->inscatter};
+  const int failed = render_frame(cfg, W, H, &out, &info, &err);
+  CHECK(!failed, "%s: %s", label, err.message);
+  return failed;
+}
+
+/* S: the same scene and light without fog. */
+static int render_surface(const scene_config *cfg, frame *f, const char *label) {
+  scene_config bare = *cfg;
+  bare.fog.model = FOG_MODEL_FOGMAP;
+  bare.fog.fogmap[0] = bare.fog.vdb[0] = bare.fog.sequence[0] = '\0';
+  return render(&bare, f, label);
+}
+
+static void check_model(const char *path, const char *label) {
+  static frame lit, unlit, moved, surface;
+  scene_config cfg;
+  scene_config_error cerr;
+  if (scene_config_load(path, &cfg, &cerr)) {
+    CHECK(0, "%s: %s", label, cerr.message);
+    return;
+  }
+  cfg.fog.albedo = 0.0;
+  if (render_surface(&cfg, &surface, label) || render(&cfg, &unlit, label)) return;
+  /* albedo 0: g changes nothing; the sun changes the surfaces but not the fog's light */
+  scene_config other = cfg;
+  other.fog.phase_g = -0.5;
+  if (render(&other, &moved, label)) return;
+  CHECK(!memcmp(unlit.rgba, moved.rgba, sizeof unlit.rgba),
+        "%s: albedo 0 depends on phase_g", label);
+  other.light.sun_azimuth += 120, other.light.sun_elevation = 10;
+  if (render(&other, &moved, label)) return;
+  CHECK(!memcmp(unlit.inscatter, moved.inscatter, sizeof unlit.inscatter),
+        "%s: albedo 0's in-scatter depends on the sun", label);
+
+  double eq4 = 0, min_tau = 1;
+  const float *amb = cfg.fog.colour;
+  for (int k = 0; k < W * H; k++) {
+    const double t = unlit.tau[k];
+    min_tau = fmin(min_tau, t);
+    for (int c = 0; c < 3; c++) {
+      const double want = t * surface.rgba[4 * k + c] + amb[c] * (1 - t);
+      eq4 = fmax(eq4, fabs(unlit.rgba[4 * k + c] - want));
+      eq4 = fmax(eq4, fabs(unlit.inscatter[3 * k + c] - amb[c] * (1 - t)));
+    }
+  }
+  printf("%s: albedo 0: max |rgb - eq. 4| %.2e (min tau %.3f)\n", label, eq4, min_tau);
+  CHECK(eq4 <= 2e-6, "%s: albedo 0 differs from eq. 4 by %.3e", label, eq4);
+  CHECK(min_tau < 0.8, "%s: min tau %.3f: too little fog in view to test", label, min_tau);
+
+  /* lit: a = 0.8, g = 0.6, a low sun ahead of the camera (the forward peak in view) */
+  camera cam;
+  scene_config_camera(&cfg, &cam);
+  double o[3], ahead[3];
+  camera_ray(&cam, W / 2, H / 2, W, H, o, ahead);
+  cfg.fog.albedo = 0.8, cfg.fog.phase_g = 0.6;
+  cfg.light.sun_azimuth = atan2(ahead[0], -ahead[2]) * 180 / pi;
+  cfg.light.sun_elevation = 12;
+  if (render_surface(&cfg, &surface, label) || render(&cfg, &lit, label)) return;
+  fog_sun sun;
+  scene_config_fog_sun(&cfg, &sun);
+  double identity = 0, blend = 0, sun_share = 0;
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      const int k = py * W + px;
+      double d[3];
+      camera_ray(&cam, px, py, W, H, o, d);
+      const double p = hg(0.6, d[0] * sun.direction[0] + d[1] * sun.direction[1] +
+                                   d[2] * sun.direction[2]);
+      const double t = lit.tau[k];
+      for (int c = 0; c < 3; c++) {
+        const double want = (amb[c] + 0.8 * sun.radiance[c] * p) * (1 - t);
+        const double got = lit.inscatter[3 * k + c];
+        identity = fmax(identity, fabs(got - want) / fmax(want, 1e-3));
+        blend = fmax(blend, fabs(lit.rgba[4 * k + c] - (t * surface.rgba[4 * k + c] + got)));
+        sun_share = fmax(sun_share, got - amb[c] * (1 - t));
+      }
+    }
+  printf("%s: lit: max relative |in-scatter - (L_amb + a L_sun p)(1 - tau)| %.2e, "
+         "|rgb - (tau S + in-scatter)| %.2e, the sun's largest share %.3f\n",
+         label, identity, blend, sun_share);
+  CHECK(identity <= 1e-5, "%s: the lit identity fails by %.3e relative", label, identity);
+  CHECK(blend <= 1e-5, "%s: rgb != tau S + in-scatter by %.3e", label, blend);
+  CHECK(sun_share > 0.05, "%s: the sun adds at most %.3f", label, sun_share);
+
+  /* energy: a = 1, no ambient */
+  cfg.fog.albedo = 1.0;
+  cfg.fog.colour[0] = cfg.fog.colour[1] = cfg.fog.colour[2] = 0.0f;
+  if (render(&cfg, &lit, label)) return;
+  const double max_p = (1 + 0.6) / (4 * pi * (1 - 0.6) * (1 - 0.6));
+  double excess = 0;
+  for (int k = 0; k < W * H; k++)
+    for (int c = 0; c < 3; c++)
+      excess = fmax(excess, lit.inscatter[3 * k + c] -
+                                sun.radiance[c] * max_p * (1 - lit.tau[k]) * (1 + 1e-6));
+  CHECK(excess <= 0, "%s: a pixel gets %.3e more than the sun can give", label, excess);
+}
+
+static void check_exr_channels(void) {
+  char dir[] = "/tmp/fogpipe_light_XXXXXX";
+  const char *bin = test_bin_and_folder(dir);
+  if (!bin) return;
+  char ini[256], exr[256], cmd[1024];
+  snprintf(ini, sizeof ini, "%s/lit.ini", dir);
+  snprintf(exr, sizeof exr, "%s/lit.exr", dir);
+  FILE *f = fopen(ini, "w");
+  fputs("[camera]\nposition = 0 60 300\nlook_at = 0 20 -100\n"
+        "[terrain]\nresolution = 65\n[light]\nsun_elevation = 15\n"
+        "[fog]\nmodel = homogeneous\ndensity_scale = 0.004\nalbedo = 0.9\nphase_g = 0.5\n", f);
+  fclose(f);
+  snprintf(cmd, sizeof cmd, "%s render %s --size %dx%d --out %s > /dev/null", bin, ini, W,
+           H, exr);
+  CHECK(system(cmd) == 0, "%s failed", cmd);
+  scene_config cfg;
+  scene_config_error cerr;
+  static frame want;
+  if (scene_config_load(ini, &cfg, &cerr) == 0 && render(&cfg, &want, "exr") == 0) {
+    const char *names[3] = {"inscatter.R", "inscatter.G", "inscatter.B"};
+    for (int c = 0; c < 3; c++) {
+      float *v = load_exr_channel(exr, names[c], W, H);
+      double worst = 0;
+      for (int k = 0; v && k < W * H; k++)
+        worst = fmax(worst, fabs(v[k] - want.inscatter[3 * k + c]));
+      CHECK(v && worst == 0, "%s: %s differs from render_frame by %.3e", exr, names[c], worst);
+      free(v);
+    }
+    float *z = load_exr_channel(exr, "Z", W, H), *depth = load_exr_channel(exr, "depth", W, H);
+    CHECK(z && depth && !memcmp(z, depth, sizeof(float) * W * H), "%s: Z != depth", exr);
+    free(z), free(depth);
+  }
+  unlink(exr), unlink(ini), rmdir(dir);
+}
+
+int main(void) {
+  check_phase_normalised();
+  check_model("configs/default.ini", "fogmap (configs/default.ini)");
+  check_model("configs/rbf_fog_banks.ini", "rbf (configs/rbf_fog_banks.ini)");
+  check_model("configs/vdb_plume_volume.ini", "volume (configs/vdb_plume_volume.ini)");
+  char dir[] = "/tmp/fogpipe_light_models_XXXXXX";
+  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  static const char *const fogs[2][2] = {
+      {"homogeneous", "[fog]\nmodel = homogeneous\ndensity_scale = 0.003\n"},
+      {"height", "[fog]\nmodel = height\ndensity_scale = 0.02\nfog_height = 30\nscale_height = 25\n"}};
+  for (int m = 0; m < 2; m++) {
+    char path[256];
+    snprintf(path, sizeof path, "%s/%s.ini", dir, fogs[m][0]);
+    FILE *f = fopen(path, "w");
+    fprintf(f, "[camera]\nposition = 0 120 400\nlook_at = 0 20 -100\n[terrain]\nresolution = 65\n%s",
+            fogs[m][1]);
+    fclose(f);
+    check_model(path, fogs[m][0]);
+    unlink(path);
+  }
+  rmdir(dir);
+  check_exr_channels();
+  return test_finish("test_fog_light");
+}
