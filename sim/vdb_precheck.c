@@ -334,8 +334,13 @@ static int read_metamap(vdb_in *in, const char *owner, int *half) {
     /* GridBase::saveFloatAsHalf: whether the tree's values are stored as 16-bit floats */
     const uint64_t value_at = in->pos + 4;
     if (read_meta_value(in, type, type_len, what)) return 1;
-    if (half && same_name(name, name_len, "is_saved_as_half_float") &&
-        same_name(type, type_len, "bool")) {
+    /* OpenVDB writes it as a bool; read as another type, Metadata::asBool of an unknown
+     * type is "has bytes", of a number "non-zero": refused rather than mirrored (fuzzing
+     * found a "vec3" here: OpenVDB read halves where this walk expected floats, and
+     * leaked a node). */
+    if (same_name(name, name_len, "is_saved_as_half_float") && !same_name(type, type_len, "bool"))
+      return damaged(in, "%s has type '%s', not bool", what, type);
+    if (half && same_name(name, name_len, "is_saved_as_half_float")) {
       const uint64_t after = in->pos;
       unsigned char b;
       in->pos = value_at;
