@@ -207,6 +207,8 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
   for (int frame = done + 1; frame <= last && !status; frame++) {
     recorder_frame pixels = {.rgba = rgba, .transmittance = transmittance, .depth = depth,
                              .inscatter = inscatter};
+    camera_exr_matrices(player_camera(src), width, height, pixels.world_to_camera,
+                        pixels.world_to_ndc);
     if (player_frame(src, frame, &out, &perr)) {
       if (!job->quiet) recorder_progress_end(&progress);
       fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, perr.message);

@@ -42,7 +42,7 @@ static bool ends_with(const char *s, const char *suffix) {
  * transmittance is 1 and the in-scatter 0: written anyway, so every render has the same
  * channels for a compositor. */
 static int write_exr(const char *out, int width, int height, const frame_pixels *frame,
-                     sim_error *err) {
+                     const camera *cam, sim_error *err) {
   size_t pixels = (size_t)width * height;
   float *planes = malloc(pixels * 7 * sizeof(float));
   if (!planes) return snprintf(err->message, sizeof err->message, "out of memory"), 1;
@@ -55,7 +55,10 @@ static int write_exr(const char *out, int width, int height, const frame_pixels 
       {"A", planes + 3 * pixels, 1}, {"depth", frame->depth, 0}, {"Z", frame->depth, 0},
       {"transmittance", frame->transmittance, 0}, {"inscatter.R", planes + 4 * pixels, 0},
       {"inscatter.G", planes + 5 * pixels, 0}, {"inscatter.B", planes + 6 * pixels, 0}};
-  int status = image_write_exr(out, width, height, channels, 10, err);
+  image_exr_matrix matrices[2] = {{.name = "worldToCamera"}, {.name = "worldToNDC"}};
+  camera_exr_matrices(cam, width, height, matrices[0].m, matrices[1].m);
+  const image_exr_header header = {.matrices = matrices, .matrix_count = 2};
+  int status = image_write_exr_with(out, width, height, channels, 10, &header, err);
   free(planes);
   return status;
 }
@@ -145,9 +148,10 @@ int cmd_render(int argc, char **argv) {
   }
   char gl_description[256];
   snprintf(gl_description, sizeof gl_description, "%s", player_gl_description(frames));
+  const camera cam = *player_camera(frames);
   player_destroy(frames);
   sim_error werr = {{0}};
-  if (exr ? write_exr(out, width, height, &frame, &werr)
+  if (exr ? write_exr(out, width, height, &frame, &cam, &werr)
           : write_png(out, width, height, rgba, &werr)) {
     fprintf(stderr, "fogpipe render: %s\n", werr.message);
     goto done;

@@ -48,7 +48,6 @@ static int create_simulated(player *p, const player_desc *desc, render_error *er
     snprintf(err->message, sizeof err->message, "%s", perr.message);
     return 1;
   }
-  scene_config_camera(&p->config, &p->cam);
   return 0;
 }
 
@@ -81,6 +80,7 @@ player *player_create(const player_desc *desc, render_error *err) {
   }
   p->config = *desc->config;
   p->fps = desc->fps;
+  scene_config_camera(&p->config, &p->cam); /* the session's scene takes the same one */
   /* (a fogmap config without a fogmap simulates from the emitters alone) */
   const bool simulated = desc->play && fog_model_table[p->config.fog.model].pyramid;
   if (simulated ? create_simulated(p, desc, err) : create_session(p, desc, err)) {
@@ -133,3 +133,5 @@ int player_frame(player *p, int n, const frame_pixels *out, render_error *err) {
   }
   return 0;
 }
+
+const camera *player_camera(const player *p) { return &p->cam; }

@@ -52,5 +52,7 @@ int player_skip(player *player, long frames, render_error *err);
  * the transmittance (1 where no fog) and the depth (distance along the view ray to the first
  * surface; the camera's far plane for the sky). */
 int player_frame(player *player, int n, const frame_pixels *out, render_error *err);
+/* The camera the frames are drawn with. */
+const camera *player_camera(const player *player);
 
 #endif

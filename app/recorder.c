@@ -207,7 +207,14 @@ int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *p
   recorder_frame_path(rec, frame, path, sizeof path);
   sim_error serr = {{0}};
   const image_exr_string identity = {RECORDER_IDENTITY_ATTRIBUTE, rec->identity};
-  if (image_write_exr_with(path, w, h, channels, sizeof channels / sizeof channels[0], &identity, rec->identity[0] ? 1 : 0,
+  image_exr_matrix camera[2] = {{.name = "worldToCamera"}, {.name = "worldToNDC"}};
+  memcpy(camera[0].m, pixels->world_to_camera, sizeof camera[0].m);
+  memcpy(camera[1].m, pixels->world_to_ndc, sizeof camera[1].m);
+  const image_exr_header header = {.strings = &identity,
+                                   .string_count = rec->identity[0] ? 1 : 0,
+                                   .matrices = camera,
+                                   .matrix_count = 2};
+  if (image_write_exr_with(path, w, h, channels, sizeof channels / sizeof channels[0], &header,
                            &serr)) {
     struct statvfs vfs;
     int full = statvfs(rec->folder, &vfs) == 0 &&

@@ -94,6 +94,20 @@ void camera_view_matrix_world(const camera *cam, float m[16]) {
   m[14] = (float)(f[0] * p[0] + f[1] * p[1] + f[2] * p[2]);
 }
 
+void camera_exr_matrices(const camera *cam, int width, int height, float world_to_camera[16],
+                         float world_to_ndc[16]) {
+  float projection[16];
+  camera_view_matrix_world(cam, world_to_camera);
+  camera_projection_matrix(cam, width, height, projection);
+  /* column-major: (P V)[col c][row r] = sum_k P[k][r] V[c][k] */
+  for (int c = 0; c < 4; c++)
+    for (int r = 0; r < 4; r++) {
+      double sum = 0.0;
+      for (int k = 0; k < 4; k++) sum += (double)projection[4 * k + r] * world_to_camera[4 * c + k];
+      world_to_ndc[4 * c + r] = (float)sum;
+    }
+}
+
 void camera_depth_range(const camera *cam, double *near_plane, double *far_plane) {
   *near_plane = cam->near_plane > 0 ? cam->near_plane : 0.1;
   *far_plane = cam->far_plane > 0 ? cam->far_plane : 100000.0;

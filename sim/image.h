@@ -33,15 +33,31 @@ typedef struct image_exr_string {
   const char *name, *value;
 } image_exr_string;
 
-/* image_write_exr with string attributes in the header. */
+/* A 4x4 float attribute (EXR's M44f), row-major as EXR stores it, for row vectors:
+ * p' = p M. The standard worldToCamera and worldToNDC are such matrices. */
+typedef struct image_exr_matrix {
+  const char *name;
+  float m[16];
+} image_exr_matrix;
+
+/* Extra attributes of an EXR header. */
+typedef struct image_exr_header {
+  const image_exr_string *strings;
+  int string_count;
+  const image_exr_matrix *matrices;
+  int matrix_count;
+} image_exr_header;
+
+/* image_write_exr with attributes in the header (header may be NULL). */
 int image_write_exr_with(const char *path, int width, int height, const image_channel *channels,
-                         int channel_count, const image_exr_string *strings, int string_count,
-                         sim_error *err);
+                         int channel_count, const image_exr_header *header, sim_error *err);
 
 /* Reads the string attribute name of part 0 into value (at most size - 1 bytes). Fails
  * naming the file when it is not a readable EXR or has no such string attribute. */
 int image_read_exr_string(const char *path, const char *name, char *value, size_t size,
                           sim_error *err);
+/* Reads the M44f attribute name of part 0 (image_exr_matrix's layout). */
+int image_read_exr_matrix(const char *path, const char *name, float m[16], sim_error *err);
 
 /* Writes an 8-bit PNG (1 channel grey, 3 RGB or 4 RGBA) from interleaved float values in
  * [0,1] (clamped), top row first; temporary file + rename like image_write_exr. */

@@ -317,12 +317,13 @@ static int by_name(const void *a, const void *b) {
 
 int image_write_exr(const char *path, int width, int height, const image_channel *channels,
                     int channel_count, sim_error *err) {
-  return image_write_exr_with(path, width, height, channels, channel_count, NULL, 0, err);
+  return image_write_exr_with(path, width, height, channels, channel_count, NULL, err);
 }
 
 int image_write_exr_with(const char *path, int width, int height, const image_channel *channels,
-                         int channel_count, const image_exr_string *strings, int string_count,
-                         sim_error *err) {
+                         int channel_count, const image_exr_header *header, sim_error *err) {
+  const image_exr_header none = {0};
+  if (!header) header = &none;
   if (width <= 0 || height <= 0)
     return sim_fail(err, "%s: image size %dx%d: both must be positive", path, width, height);
   if (channel_count <= 0 || channel_count > 64)
@@ -367,8 +368,13 @@ int image_write_exr_with(const char *path, int width, int height, const image_ch
     rv = exr_add_channel(ctxt, part, sorted[c].name,
                          sorted[c].as_half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT,
                          EXR_PERCEPTUALLY_LINEAR, 1, 1);
-  for (int k = 0; rv == EXR_ERR_SUCCESS && k < string_count; k++)
-    rv = exr_attr_set_string(ctxt, part, strings[k].name, strings[k].value);
+  for (int k = 0; rv == EXR_ERR_SUCCESS && k < header->string_count; k++)
+    rv = exr_attr_set_string(ctxt, part, header->strings[k].name, header->strings[k].value);
+  for (int k = 0; rv == EXR_ERR_SUCCESS && k < header->matrix_count; k++) {
+    exr_attr_m44f_t m;
+    memcpy(m.m, header->matrices[k].m, sizeof m.m);
+    rv = exr_attr_set_m44f(ctxt, part, header->matrices[k].name, &m);
+  }
   if (rv == EXR_ERR_SUCCESS) {
     stage = "writing the header";
     rv = exr_write_header(ctxt);
@@ -440,6 +446,31 @@ int image_read_exr_string(const char *path, const char *name, char *value, size_
       sim_fail(err, "%s: no string attribute \"%s\" in the EXR header", path, name);
     else {
       snprintf(value, size, "%.*s", (int)length, text);
+      status = 0;
+    }
+  }
+  if (ctxt) exr_finish(&ctxt);
+  current_stream = NULL;
+  close(stream.fd);
+  return status;
+}
+
+int image_read_exr_matrix(const char *path, const char *name, float m[16], sim_error *err) {
+  exr_stream stream;
+  exr_context_initializer_t init;
+  if (open_read_stream(path, &stream, &init, err)) return 1;
+  exr_context_t ctxt = NULL;
+  int status = 1;
+  exr_result_t rv = exr_start_read(&ctxt, path, &init);
+  if (rv != EXR_ERR_SUCCESS) {
+    sim_fail(err, "%s: not a readable EXR: %s", path, exr_reason(&stream, rv));
+  } else {
+    exr_attr_m44f_t value;
+    rv = exr_attr_get_m44f(ctxt, 0, name, &value);
+    if (rv != EXR_ERR_SUCCESS)
+      sim_fail(err, "%s: no 4x4 matrix attribute \"%s\" in the EXR header", path, name);
+    else {
+      memcpy(m, value.m, sizeof value.m);
       status = 0;
     }
   }

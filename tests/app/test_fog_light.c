@@ -7,7 +7,10 @@
  *   rgb = tau S + in-scatter;
  * - energy: with a = 1 and no ambient no pixel gets more than L_sun max p (1 - tau);
  * - p integrates to 1 over the sphere (adaptive Simpson in double);
- * - `fogpipe render` writes the in-scatter as inscatter.R/G/B and the depth as Z too. */
+ * - `fogpipe render` writes the in-scatter as inscatter.R/G/B and the depth as Z too, and
+ *   the camera as the standard worldToCamera and worldToNDC attributes: each pixel's
+ *   surface point (the CPU camera ray at the depth) maps to that pixel's centre in NDC and
+ *   lies at that depth from the camera; `record` writes the same matrices. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -159,6 +162,47 @@ static void check_model(const char *path, const char *label) {
   CHECK(excess <= 0, "%s: a pixel gets %.3e more than the sun can give", label, excess);
 }
 
+/* p' = p M for the row vector p = (x, y, z, 1), M row-major (EXR's convention). */
+static void row_times(const double p[3], const float m[16], double out[4]) {
+  for (int j = 0; j < 4; j++)
+    out[j] = p[0] * m[j] + p[1] * m[4 + j] + p[2] * m[8 + j] + m[12 + j];
+}
+
+static void check_camera_matrices(const char *exr, const scene_config *cfg, const float *depth) {
+  float to_camera[16], to_ndc[16];
+  sim_error err;
+  if (image_read_exr_matrix(exr, "worldToCamera", to_camera, &err) ||
+      image_read_exr_matrix(exr, "worldToNDC", to_ndc, &err)) {
+    CHECK(0, "%s", err.message);
+    return;
+  }
+  camera cam;
+  scene_config_camera(cfg, &cam);
+  double worst_ndc = 0, worst_distance = 0;
+  int checked = 0;
+  for (int py = 0; py < H; py += 3)
+    for (int px = 0; px < W; px += 3) {
+      const double d = depth[py * W + px];
+      if (d >= cam.far_plane) continue;  /* the sky */
+      double o[3], dir[3], p[3], c[4], n[4];
+      camera_ray(&cam, px, py, W, H, o, dir);
+      for (int a = 0; a < 3; a++) p[a] = o[a] + d * dir[a];
+      row_times(p, to_camera, c);
+      row_times(p, to_ndc, n);
+      const double nx = 2 * (px + 0.5) / W - 1, ny = 1 - 2 * (py + 0.5) / H;
+      worst_ndc = fmax(worst_ndc, fmax(fabs(n[0] / n[3] - nx), fabs(n[1] / n[3] - ny)));
+      worst_distance = fmax(worst_distance,
+                            fabs(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) - d) / d);
+      CHECK(c[2] < 0, "pixel (%d, %d): camera-space z %.3f, not in front (-Z)", px, py, c[2]);
+      checked++;
+    }
+  printf("camera matrices: %d surface points: max |NDC - pixel centre| %.2e, max relative "
+         "|distance - depth| %.2e\n", checked, worst_ndc, worst_distance);
+  CHECK(checked > 100, "only %d surface pixels", checked);
+  CHECK(worst_ndc < 1e-4 && worst_distance < 1e-5, "camera matrices off: %.3e NDC, %.3e depth",
+        worst_ndc, worst_distance);
+}
+
 static void check_exr_channels(void) {
   char dir[] = "/tmp/fogpipe_light_XXXXXX";
   const char *bin = test_bin_and_folder(dir);
@@ -189,8 +233,25 @@ static void check_exr_channels(void) {
     }
     float *z = load_exr_channel(exr, "Z", W, H), *depth = load_exr_channel(exr, "depth", W, H);
     CHECK(z && depth && !memcmp(z, depth, sizeof(float) * W * H), "%s: Z != depth", exr);
+    check_camera_matrices(exr, &cfg, want.depth);
     free(z), free(depth);
   }
+  /* record writes the same camera */
+  char seq[300], frame1[400];
+  snprintf(seq, sizeof seq, "%s/seq", dir);
+  snprintf(frame1, sizeof frame1, "%s/frame.0001.exr", seq);
+  snprintf(cmd, sizeof cmd, "%s record %s --frames 1 --size %dx%d --out %s > /dev/null", bin, ini,
+           W, H, seq);
+  CHECK(system(cmd) == 0, "%s failed", cmd);
+  float a[16], b[16];
+  sim_error err;
+  for (int k = 0; k < 2; k++) {
+    const char *name = k ? "worldToNDC" : "worldToCamera";
+    CHECK(image_read_exr_matrix(exr, name, a, &err) == 0 &&
+              image_read_exr_matrix(frame1, name, b, &err) == 0 && !memcmp(a, b, sizeof a),
+          "record's %s differs from render's", name);
+  }
+  unlink(frame1), rmdir(seq);
   unlink(exr), unlink(ini), rmdir(dir);
 }
 
