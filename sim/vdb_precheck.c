@@ -640,8 +640,8 @@ static int by_origin(const void *a, const void *b) {
 
 /* The rest of RootNode::readTopology (tiles: Coord, value, active flag; children: Coord
  * and the node), which must end at the grid's block offset, then Tree::readBuffers:
- * RootNode visits its children in its std::map's order (a later child at the same origin
- * replaces an earlier one), each InternalNode its children in mask order, and each
+ * RootNode visits its children in its std::map's order (two at one origin are refused
+ * below), each InternalNode its children in mask order, and each
  * LeafNode::readBuffers passes its value mask and reads its 8^3 values. */
 static int walk_tree(vdb_in *in, tree_walk *w, uint32_t tiles, uint32_t children,
                      uint64_t block_pos, uint64_t end_pos) {
@@ -689,9 +689,14 @@ static int walk_tree(vdb_in *in, tree_walk *w, uint32_t tiles, uint32_t children
     const uint64_t leaf_bytes = mask_bytes(w->type.log2[2]);
     for (size_t c = 0; !bad && c < w->child_count; c++) {
       const root_child *child = &w->children[c];
+      /* OpenVDB writes a std::map: one child per origin. Reading a second one, it assigns
+       * over the first's NodeStruct without deleting that node (a leak fuzzing found). */
       if (c + 1 < w->child_count && !memcmp(child->origin, w->children[c + 1].origin,
-                                            sizeof child->origin))
-        continue; /* replaced in the map by the next one */
+                                            sizeof child->origin)) {
+        bad = damaged(in, "two root children at (%" PRId32 ", %" PRId32 ", %" PRId32 ")",
+                      child->origin[0], child->origin[1], child->origin[2]);
+        break;
+      }
       /* The leaf's value mask is stored again before its values; io::File's stream is
        * seekable, so OpenVDB seeks over that copy and keeps the topology's mask, which
        * says how many values a mask-compressed leaf stores. */

@@ -2,8 +2,9 @@
 // is either refused by the pre-check (sim/vdb_precheck.c) or read by OpenVDB without
 // leaking. OpenVDB 10's RootNode::readTopology loses the node it is reading when a chunk
 // of the topology fails to decompress (~0.5 MB for a float tree), so the pre-check must
-// refuse those chunks itself. A leak shows as heap still in use after the failed read
-// (mallinfo2; the sanitizer pass's LeakSanitizer reports it too). The files are written
+// refuse those chunks itself, and two root children at one origin (the first is lost). A
+// leak shows as heap still in use after the failed read (mallinfo2; the sanitizer pass's
+// LeakSanitizer reports it too). The files are written
 // here by OpenVDB itself, so the test does not depend on the pre-check's view of the format.
 #include <openvdb/openvdb.h>
 
@@ -99,6 +100,34 @@ static flip_counts flip_every_byte(const std::string &path, const std::string &s
   return c;
 }
 
+// Two root children at one origin: OpenVDB assigns the second over the first's map entry
+// without deleting the first node. Made from a file with children at (0, 0, 0) and (4096, 4096, 4096) by
+// overwriting the second origin; the pre-check must refuse it.
+static void check_duplicate_root_child(const std::string &dir) {
+  const std::string path = dir + "/two_children.vdb", bad = dir + "/one_origin.vdb";
+  openvdb::FloatGrid::Ptr g = openvdb::FloatGrid::create(0.0f);
+  g->setName("density");
+  g->tree().setValue(openvdb::Coord(1, 1, 1), 0.5f);
+  g->tree().setValue(openvdb::Coord(4097, 4097, 4097), 0.5f);
+  openvdb::GridPtrVec grids{g};
+  openvdb::io::File(path).write(grids);
+  std::vector<unsigned char> bytes = read_all(path);
+  const int32_t second[3] = {4096, 4096, 4096}, first[3] = {0, 0, 0};
+  int found = 0;
+  for (size_t i = 0; i + 12 <= bytes.size(); i++)
+    if (!memcmp(&bytes[i], second, 12)) {
+      memcpy(&bytes[i], first, 12);
+      found++;
+    }
+  CHECK(found == 1, "the second root child's origin occurs %d times in %s", found, path.c_str());
+  write_all(bad, bytes);
+  sim_error err{};
+  CHECK(vdb_precheck_file(path.c_str(), &err) == 0, "%s: %s", path.c_str(), err.message);
+  CHECK(vdb_precheck_file(bad.c_str(), &err) != 0 && strstr(err.message, "two root children"),
+        "%s: two root children at one origin not refused (%s)", bad.c_str(), err.message);
+  printf("duplicate root child: %s\n", err.message);
+}
+
 int main() {
   // thousands of small files: in memory where the machine has /dev/shm
   char tmpl[] = "/dev/shm/test_vdb_chunks_XXXXXX", fallback[] = "/tmp/test_vdb_chunks_XXXXXX";
@@ -141,6 +170,7 @@ int main() {
     CHECK(c.leaked == 0, "%s: %d flips leaked in OpenVDB; the first at byte %ld (%s)", k.name,
           c.leaked, c.first_leak, c.leak_message);
   }
+  check_duplicate_root_child(dir);
   std::string cmd = "rm -rf '" + dir + "'";
   if (system(cmd.c_str()) != 0) fprintf(stderr, "could not remove %s\n", dir.c_str());
   return test_finish("test_vdb_damaged_chunks");
