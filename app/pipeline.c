@@ -463,6 +463,9 @@ static void *worker_main(void *arg) {
 static pipeline_params params_from_config(const scene_config *cfg) {
   fog_sun sun;
   scene_config_fog_sun(cfg, &sun);
+  scene_light light;
+  double direction[3];
+  scene_light_resolve(&cfg->light, &light, direction);
   return (pipeline_params){
       .degree = cfg->fog.degree,
       .levels = cfg->fog.levels,
@@ -471,6 +474,8 @@ static pipeline_params params_from_config(const scene_config *cfg) {
       .density = (float)cfg->fog.density_scale,
       .fog_colour = {cfg->fog.colour[0], cfg->fog.colour[1], cfg->fog.colour[2]},
       .sun = sun,
+      .sun_azimuth = (float)light.sun_azimuth,
+      .sun_elevation = (float)light.sun_elevation,
       .profile_kind = (int)cfg->fog.profile, /* scene_profile numbers fog_profile_kind */
       .fog_height = (float)cfg->fog.fog_height,
       .scale_height = (float)cfg->fog.scale_height,
@@ -770,6 +775,17 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
   /* Without a new step (live, worker still busy) sim and transform keep the values of the
    * step on screen, so the medians describe steps, not idle frames. */
 
+  pthread_mutex_lock(&p->lock);
+  const double sun_azimuth = p->params.sun_azimuth, sun_elevation = p->params.sun_elevation;
+  pthread_mutex_unlock(&p->lock);
+  scene_light *light = &p->geometry.light;
+  if (sun_azimuth != light->sun_azimuth || sun_elevation != light->sun_elevation) {
+    /* the panel moved the sun: the terrain is lit anew (the fog takes it below) */
+    scene_light moved = *light;
+    moved.sun_azimuth = sun_azimuth, moved.sun_elevation = sun_elevation;
+    scene_light_resolve(&moved, light, p->geometry.sun_direction);
+    p->scene_current = false;
+  }
   double t0 = now_ms();
   if (!p->scene_current || !camera_equal(&p->scene_camera, cam)) {
     scene_pass_run(p->scene, cam, &p->scene_target);
@@ -785,12 +801,14 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
   pthread_mutex_unlock(&p->lock);
   fog_volume volume = volume_of(p, &params);
   render_error rerr = {{0}};
+  fog_sun sun = params.sun;
+  memcpy(sun.direction, p->geometry.sun_direction, sizeof sun.direction);
   pipeline_fog_settings settings = {
       .volume = &volume,
       .mu = params.mu,
       .lod_method = params.lod_method,
       .fog_colour = {params.fog_colour[0], params.fog_colour[1], params.fog_colour[2]},
-      .sun = params.sun,
+      .sun = sun,
       .hardware_filtering = p->config.fog.filtering == SCENE_FILTERING_HARDWARE,
       .resolution_divisor = params.fog_resolution_divisor,
   };

@@ -71,7 +71,9 @@ typedef struct pipeline_params {
   int lod_method;    /* fog_lod_method */
   float density;     /* extinction scale */
   float fog_colour[3];
-  fog_sun sun;       /* albedo, phase_g and the sun (the panel edits them) */
+  fog_sun sun;       /* albedo, phase_g and the sun as the fog sees it */
+  float sun_azimuth, sun_elevation; /* degrees ([light]): the sun of the terrain and the fog;
+                                       pipeline_frame derives sun.direction from them */
   int profile_kind;  /* fog_profile_kind (slab / exponential) */
   float fog_height;  /* top of the slab or of the flat part (y0) */
   float scale_height;/* exponential falloff H */
