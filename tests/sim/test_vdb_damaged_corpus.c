@@ -26,9 +26,11 @@
 #include "test_util.h"
 
 #define SOURCE FOGPIPE_SOURCE_DIR "/../shared/data/vdb/plume/data/fluid_data_0010.vdb"
-/* The budget is < 2 s per file; the alarm allows for a loaded machine, the maximum seen
- * is printed. */
-#define CHILD_SECONDS 5
+/* The budget is < 2 s per file (the maximum seen is printed: 0.02-0.04 s); the alarm only
+ * catches a read that runs away (damaged files used to take 16-75 s). It allows for a
+ * loaded machine: the sanitizer build's first read, beside other tests on 2 cores, once
+ * took over 5 s. */
+#define CHILD_SECONDS 20
 #define CHILD_MEMORY (1ull << 30)
 /* Reading the undamaged bake peaks at about 16 MiB; much more means OpenVDB allocated
  * (and filled) a length read from damaged bytes. */
