@@ -428,8 +428,15 @@ int image_write_exr_with(const char *path, int width, int height, const image_ch
   return atomic_file_commit(&file, err);
 }
 
-int image_read_exr_string(const char *path, const char *name, char *value, size_t size,
-                          sim_error *err) {
+/* One attribute of part 0's header: string (text, size) or M44f (matrix). */
+typedef struct header_query {
+  const char *name;
+  char *text;
+  size_t size;
+  float *matrix;
+} header_query;
+
+static int read_header_attribute(const char *path, const header_query *q, sim_error *err) {
   exr_stream stream;
   exr_context_initializer_t init;
   if (open_read_stream(path, &stream, &init, err)) return 1;
@@ -438,14 +445,22 @@ int image_read_exr_string(const char *path, const char *name, char *value, size_
   exr_result_t rv = exr_start_read(&ctxt, path, &init);
   if (rv != EXR_ERR_SUCCESS) {
     sim_fail(err, "%s: not a readable EXR: %s", path, exr_reason(&stream, rv));
+  } else if (q->matrix) {
+    exr_attr_m44f_t value;
+    if (exr_attr_get_m44f(ctxt, 0, q->name, &value) != EXR_ERR_SUCCESS) {
+      sim_fail(err, "%s: no 4x4 matrix attribute \"%s\" in the EXR header", path, q->name);
+    } else {
+      memcpy(q->matrix, value.m, sizeof value.m);
+      status = 0;
+    }
   } else {
     int32_t length = 0;
     const char *text = NULL;
-    rv = exr_attr_get_string(ctxt, 0, name, &length, &text);
-    if (rv != EXR_ERR_SUCCESS || !text)
-      sim_fail(err, "%s: no string attribute \"%s\" in the EXR header", path, name);
-    else {
-      snprintf(value, size, "%.*s", (int)length, text);
+    rv = exr_attr_get_string(ctxt, 0, q->name, &length, &text);
+    if (rv != EXR_ERR_SUCCESS || !text) {
+      sim_fail(err, "%s: no string attribute \"%s\" in the EXR header", path, q->name);
+    } else {
+      snprintf(q->text, q->size, "%.*s", (int)length, text);
       status = 0;
     }
   }
@@ -455,27 +470,12 @@ int image_read_exr_string(const char *path, const char *name, char *value, size_
   return status;
 }
 
+int image_read_exr_string(const char *path, const char *name, char *value, size_t size,
+                          sim_error *err) {
+  return read_header_attribute(path, &(header_query){.name = name, .text = value, .size = size},
+                               err);
+}
+
 int image_read_exr_matrix(const char *path, const char *name, float m[16], sim_error *err) {
-  exr_stream stream;
-  exr_context_initializer_t init;
-  if (open_read_stream(path, &stream, &init, err)) return 1;
-  exr_context_t ctxt = NULL;
-  int status = 1;
-  exr_result_t rv = exr_start_read(&ctxt, path, &init);
-  if (rv != EXR_ERR_SUCCESS) {
-    sim_fail(err, "%s: not a readable EXR: %s", path, exr_reason(&stream, rv));
-  } else {
-    exr_attr_m44f_t value;
-    rv = exr_attr_get_m44f(ctxt, 0, name, &value);
-    if (rv != EXR_ERR_SUCCESS)
-      sim_fail(err, "%s: no 4x4 matrix attribute \"%s\" in the EXR header", path, name);
-    else {
-      memcpy(m, value.m, sizeof value.m);
-      status = 0;
-    }
-  }
-  if (ctxt) exr_finish(&ctxt);
-  current_stream = NULL;
-  close(stream.fd);
-  return status;
+  return read_header_attribute(path, &(header_query){.name = name, .matrix = m}, err);
 }

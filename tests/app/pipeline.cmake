@@ -1,16 +1,12 @@
-# The pipeline's picking and painting check (not named test_*: it runs without the
-# fogpipe binary's environment).
-add_executable(pipeline_paint_check ${CMAKE_CURRENT_SOURCE_DIR}/app/pipeline_paint_check.c)
-target_link_libraries(pipeline_paint_check PRIVATE fogpipe_app test_util m)
-add_test(NAME app/pipeline_paint_check COMMAND pipeline_paint_check)
-set_tests_properties(app/pipeline_paint_check PROPERTIES
-  WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}
-  ENVIRONMENT "LP_NUM_THREADS=1")
-
-# The demo's time of day (the panel's sun sliders) relights terrain and fog.
-add_executable(pipeline_sun_check ${CMAKE_CURRENT_SOURCE_DIR}/app/pipeline_sun_check.c)
-target_link_libraries(pipeline_sun_check PRIVATE fogpipe_app test_util m)
-add_test(NAME app/pipeline_sun_check COMMAND pipeline_sun_check)
-set_tests_properties(app/pipeline_sun_check PROPERTIES
-  WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}
-  ENVIRONMENT "LP_NUM_THREADS=1")
+# The pipeline checks (not named test_*: they link the app's library, which the plain
+# tests/app/test_*.c do not, and run without the fogpipe binary's environment):
+#   pipeline_paint_check  picking and painting (what the demo's mouse does)
+#   pipeline_sun_check    the demo's time of day relights terrain and fog
+foreach(check pipeline_paint_check pipeline_sun_check)
+  add_executable(${check} ${CMAKE_CURRENT_SOURCE_DIR}/app/${check}.c)
+  target_link_libraries(${check} PRIVATE fogpipe_app test_util m)
+  add_test(NAME app/${check} COMMAND ${check})
+  set_tests_properties(app/${check} PROPERTIES
+    WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}
+    ENVIRONMENT "LP_NUM_THREADS=1")
+endforeach()

@@ -15,6 +15,7 @@
 #include "app/pipeline.h"
 #include "render/gl_context.h"
 #include "render/scene.h"
+#include "pipeline_check_util.h"
 #include "test_util.h"
 
 enum { W = 96, H = 54 };
@@ -28,30 +29,15 @@ static pipeline *make(const scene_config *cfg) {
 }
 
 static int frame(pipeline *p, const camera *cam, float *transmittance) {
-  pipeline_error err = {{0}};
-  if (pipeline_frame(p, cam, true, &err) ||
-      pipeline_read_frame(p, &(frame_pixels){.transmittance = transmittance}, &err)) {
-    fprintf(stderr, "frame: %s\n", err.message);
-    return 1;
-  }
-  return 0;
+  return pipeline_check_frame(p, cam, &(frame_pixels){.transmittance = transmittance});
 }
 
 int main(void) {
   scene_config cfg;
-  scene_config_error cerr = {{0}};
-  if (scene_config_load("configs/default.ini", &cfg, &cerr)) {
-    fprintf(stderr, "%s\n", cerr.message);
-    return 1;
-  }
-  render_error rerr = {{0}};
-  gl_context *gl = gl_context_create(&(gl_context_desc){0}, &rerr);
-  if (!gl) {
-    fprintf(stderr, "%s\n", rerr.message);
-    return 1;
-  }
   camera cam;
-  scene_config_camera(&cfg, &cam);
+  gl_context *gl = pipeline_check_begin("configs/default.ini", &cfg, &cam);
+  if (!gl) return 1;
+  render_error rerr = {{0}};
   pipeline *painted = make(&cfg), *plain = make(&cfg);
   CHECK(painted && plain, "pipelines not created");
   if (!painted || !plain) return test_finish("pipeline_paint_check");

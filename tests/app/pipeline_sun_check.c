@@ -12,36 +12,22 @@
 #include "app/config.h"
 #include "app/pipeline.h"
 #include "render/gl_context.h"
+#include "pipeline_check_util.h"
 #include "test_util.h"
 
 enum { W = 80, H = 45 };
 static const double pi = 3.14159265358979323846;
 
 static int frame(pipeline *p, const camera *cam, float *rgba, float *tau, float *inscatter) {
-  pipeline_error err = {{0}};
-  const frame_pixels out = {.rgba = rgba, .transmittance = tau, .inscatter = inscatter};
-  if (pipeline_frame(p, cam, true, &err) || pipeline_read_frame(p, &out, &err)) {
-    fprintf(stderr, "frame: %s\n", err.message);
-    return 1;
-  }
-  return 0;
+  return pipeline_check_frame(
+      p, cam, &(frame_pixels){.rgba = rgba, .transmittance = tau, .inscatter = inscatter});
 }
 
 int main(void) {
   scene_config cfg;
-  scene_config_error cerr = {{0}};
-  if (scene_config_load("configs/default.ini", &cfg, &cerr)) {
-    fprintf(stderr, "%s\n", cerr.message);
-    return 1;
-  }
-  render_error rerr = {{0}};
-  gl_context *gl = gl_context_create(&(gl_context_desc){0}, &rerr);
-  if (!gl) {
-    fprintf(stderr, "%s\n", rerr.message);
-    return 1;
-  }
   camera cam;
-  scene_config_camera(&cfg, &cam);
+  gl_context *gl = pipeline_check_begin("configs/default.ini", &cfg, &cam);
+  if (!gl) return 1;
   pipeline_error perr = {{0}};
   const pipeline_desc desc = {.config = &cfg, .width = W, .height = H, .synchronous = true};
   pipeline *moved = pipeline_create(&desc, &perr), *still = pipeline_create(&desc, &perr);
