@@ -702,11 +702,12 @@ bool scene_config_has_fog(const scene_config *cfg) {
          cfg->fog.sequence[0];
 }
 
-void scene_config_fog_sun(const scene_config *cfg, fog_sun *sun) {
+fog_sun scene_config_fog_sun(const scene_config *cfg) {
   scene_light light;
-  *sun = (fog_sun){.albedo = cfg->fog.albedo, .phase_g = cfg->fog.phase_g};
-  scene_light_resolve(&cfg->light, &light, sun->direction);
-  for (int c = 0; c < 3; c++) sun->radiance[c] = light.sun_colour[c];
+  fog_sun sun = {.albedo = cfg->fog.albedo, .phase_g = cfg->fog.phase_g};
+  scene_light_resolve(&cfg->light, &light, sun.direction);
+  for (int c = 0; c < 3; c++) sun.radiance[c] = light.sun_colour[c];
+  return sun;
 }
 
 void scene_config_camera(const scene_config *cfg, camera *cam) {

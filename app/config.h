@@ -179,7 +179,7 @@ uint64_t scene_config_fingerprint(const scene_config *cfg);
 /* The camera the config describes (radians, look_at applied). */
 void scene_config_camera(const scene_config *cfg, camera *cam);
 /* The sun as the fog sees it: [fog] albedo and phase_g, [light]'s resolved sun. */
-void scene_config_fog_sun(const scene_config *cfg, fog_sun *sun);
+fog_sun scene_config_fog_sun(const scene_config *cfg);
 /* The scene pass's description. heights (may be NULL) are the loaded heightmap (values in
  * [0, 1], width x height) when cfg->terrain.heightmap is set. */
 void scene_config_scene_desc(const scene_config *cfg, const float *heights, int width,

@@ -461,8 +461,6 @@ static void *worker_main(void *arg) {
 /* ---- create / destroy ---- */
 
 static pipeline_params params_from_config(const scene_config *cfg) {
-  fog_sun sun;
-  scene_config_fog_sun(cfg, &sun);
   scene_light light;
   double direction[3];
   scene_light_resolve(&cfg->light, &light, direction);
@@ -473,7 +471,7 @@ static pipeline_params params_from_config(const scene_config *cfg) {
       .lod_method = cfg->fog.lod == SCENE_LOD_SUM ? FOG_LOD_SUM_OF_DETAILS : FOG_LOD_SWITCH,
       .density = (float)cfg->fog.density_scale,
       .fog_colour = {cfg->fog.colour[0], cfg->fog.colour[1], cfg->fog.colour[2]},
-      .sun = sun,
+      .sun = scene_config_fog_sun(cfg),
       .sun_azimuth = (float)light.sun_azimuth,
       .sun_elevation = (float)light.sun_elevation,
       .profile_kind = (int)cfg->fog.profile, /* scene_profile numbers fog_profile_kind */

@@ -71,7 +71,8 @@ typedef struct pipeline_params {
   int lod_method;    /* fog_lod_method */
   float density;     /* extinction scale */
   float fog_colour[3];
-  fog_sun sun;       /* albedo, phase_g and the sun as the fog sees it */
+  fog_sun sun;       /* albedo, phase_g and the sun's colour; its direction is derived
+                        from the two angles below each frame */
   float sun_azimuth, sun_elevation; /* degrees ([light]): the sun of the terrain and the fog;
                                        pipeline_frame derives sun.direction from them */
   int profile_kind;  /* fog_profile_kind (slab / exponential) */

@@ -212,15 +212,13 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_er
   vdb_frame frame;
   volume_grid_desc grid;
   if (render_fog_load_volume(cfg, &frame, &grid, err)) return 1;
-  fog_sun sun;
-  scene_config_fog_sun(cfg, &sun);
   fog->params = (fog_pass_params){
       .model = FOG_MODEL_VOLUME,
       .integrator = f->volume_step > 0 ? FOG_INTEGRATOR_MARCH : FOG_INTEGRATOR_EXACT,
       .fetch = f->filtering == SCENE_FILTERING_HARDWARE ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
       .model_grid3d_step = f->volume_step,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
-      .sun = sun,
+      .sun = scene_config_fog_sun(cfg),
   };
   int status = fog_pass_create(&fog->pass, err) || fog_pass_upload_grid3d(fog->pass, &grid, err);
   vdb_frame_destroy(&frame); /* the GL holds the grid now */
@@ -236,8 +234,6 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
     fog->rbfs[i] = f->rbfs[i];
     fog->rbfs[i].density *= f->density_scale;
   }
-  fog_sun sun;
-  scene_config_fog_sun(cfg, &sun);
   fog->params = (fog_pass_params){
       .model = f->model,
       .model_extinction = rbf ? f->rbf_base : f->density_scale,
@@ -246,7 +242,7 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
       .model_rbfs = fog->rbfs,
       .model_rbf_count = rbf ? f->rbf_count : 0,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
-      .sun = sun,
+      .sun = scene_config_fog_sun(cfg),
   };
   return fog_pass_create(&fog->pass, err);
 }
@@ -365,15 +361,13 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   }
   /* The LOD variants need the whole pyramid; with mu = 1 the switch method shows A_J only,
    * which is the fogmap itself. */
-  fog_sun sun;
-  scene_config_fog_sun(cfg, &sun);
   fog->params = (fog_pass_params){
       .volume = &fog->volume,
       .levels = levels,
       .lod_method = sum ? FOG_LOD_SUM_OF_DETAILS : FOG_LOD_SWITCH,
       .mu = f->mu,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
-      .sun = sun,
+      .sun = scene_config_fog_sun(cfg),
       .fetch = f->filtering == SCENE_FILTERING_HARDWARE ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
   };
   if (fog_pass_create(&fog->pass, err)) goto done;

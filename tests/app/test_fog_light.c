@@ -123,8 +123,7 @@ static void check_model(const char *path, const char *label) {
   cfg.light.sun_azimuth = atan2(ahead[0], -ahead[2]) * 180 / pi;
   cfg.light.sun_elevation = 12;
   if (render_surface(&cfg, &surface, label) || render(&cfg, &lit, label)) return;
-  fog_sun sun;
-  scene_config_fog_sun(&cfg, &sun);
+  const fog_sun sun = scene_config_fog_sun(&cfg);
   double identity = 0, blend = 0, sun_share = 0;
   for (int py = 0; py < H; py++)
     for (int px = 0; px < W; px++) {
