@@ -127,6 +127,9 @@ static const key_spec keys[] = {
     {"light", "ambient", V_FLOAT3, F(light.ambient), 0, MAX_RADIANCE, NULL, 0, 0},
     {"light", "sky_horizon", V_FLOAT3, F(light.sky_horizon), 0, MAX_RADIANCE, NULL, 0, 0},
     {"light", "sky_zenith", V_FLOAT3, F(light.sky_zenith), 0, MAX_RADIANCE, NULL, 0, 0},
+    {"light", "fog_self_shadow", V_ENUM, F(shadow.fog_self_shadow), 0, 0, "off|on", 0, 0},
+    {"light", "shadow_resolution", V_INT, F(shadow.resolution), 2, FOG_SUN_SHADOW_MAX_SIZE, NULL, 0, 0},
+    {"light", "shadow_steps", V_INT, F(shadow.steps), 1, 1024, NULL, 0, 0},
     {"render", "width", V_INT, F(width), 1, 16384, NULL, 0, 0},
     {"render", "height", V_INT, F(height), 1, 16384, NULL, 0, 0},
     {"sim", "wind", V_DOUBLE2, F(sim.wind), -WORLD, WORLD, NULL, 0, 0},
@@ -152,6 +155,7 @@ void scene_config_init(scene_config *cfg) {
       .terrain = {.origin = {-500, 0, -500}, .size = {1000, 1000}, .height = 150,
                   .resolution = 257, .octaves = 6, .frequency = 3.0, .persistence = 0.5,
                   .seed = 1},
+      .shadow = {.fog_self_shadow = 1, .resolution = 48, .steps = 8},
       .width = 1280,
       .height = 720,
   };
@@ -706,7 +710,10 @@ fog_sun scene_config_fog_sun(const scene_config *cfg) {
   scene_light light;
   fog_sun sun = {.albedo = cfg->fog.albedo, .phase_g = cfg->fog.phase_g};
   scene_light_resolve(&cfg->light, &light, sun.direction);
-  for (int c = 0; c < 3; c++) sun.radiance[c] = light.sun_colour[c];
+  /* The surfaces show albedo x sun_colour x cos: sun_colour is the sun's irradiance over pi
+   * (a white Lambertian surface facing the sun shows sun_colour), so the irradiance the fog
+   * scatters, per steradian through p(theta), is pi sun_colour. */
+  for (int c = 0; c < 3; c++) sun.radiance[c] = 3.14159265358979323846 * light.sun_colour[c];
   return sun;
 }
 

@@ -135,6 +135,14 @@ typedef struct scene_sim_config {
   unsigned seed;
 } scene_sim_config;
 
+/* [light]'s fog shadows (docs/light.md): only with [fog] albedo > 0 (albedo 0 is Giroud &
+ * Biri's eq. 4, the fog a flat colour with no sun in it). */
+typedef struct scene_shadow_config {
+  int fog_self_shadow; /* 1 (on): T_s, the fog's shadow on itself and on the surfaces */
+  int resolution;      /* the sun's optical-depth volume: samples along each axis */
+  int steps;           /* segments of the view ray's T_s mean (fog_light.glsl) */
+} scene_shadow_config;
+
 typedef struct scene_config {
   char path[SCENE_CONFIG_PATH_MAX]; /* the file it was read from */
   scene_fog_config fog;
@@ -144,6 +152,7 @@ typedef struct scene_config {
   scene_box_desc objects[SCENE_MAX_BOXES];
   int object_count;
   scene_light light;
+  scene_shadow_config shadow; /* in [light] */
   int width, height; /* [render] image size */
   scene_sim_config sim;
 } scene_config;

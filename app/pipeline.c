@@ -31,14 +31,14 @@
 void pipeline_timings_to_array(const pipeline_timings *t, double v[PIPELINE_TIMING_FIELDS]) {
   const double fields[PIPELINE_TIMING_FIELDS] = {t->sim,   t->transform, t->upload,
                                                  t->render, t->frame,   t->scene,
-                                                 t->sim_cpu, t->transform_cpu};
+                                                 t->sim_cpu, t->transform_cpu, t->sun_shadow};
   memcpy(v, fields, sizeof fields);
 }
 
 pipeline_timings pipeline_timings_from_array(const double v[PIPELINE_TIMING_FIELDS]) {
   return (pipeline_timings){.sim = v[0], .transform = v[1], .upload = v[2], .render = v[3],
                             .frame = v[4], .scene = v[5], .sim_cpu = v[6],
-                            .transform_cpu = v[7]};
+                            .transform_cpu = v[7], .sun_shadow = v[8]};
 }
 
 typedef struct timing_ring {
@@ -82,6 +82,11 @@ typedef struct pipeline_slot {
   long step;           /* simulation step shown */
   double sim_ms, transform_ms;          /* wall clock */
   double sim_cpu_ms, transform_cpu_ms;  /* thread CPU time */
+  /* The fog's shadow at this step (docs/light.md): how T_s is found, and the sun's
+   * optical-depth volume where that is _VOLUME, computed for the sun of `applied`. */
+  fog_sun_shadow_kind self_shadow;
+  fog_sun_shadow sun_shadow;
+  double sun_shadow_ms;
 } pipeline_slot;
 
 /* What the worker owns: the simulation, the transform plan and its scratch arrays. */
@@ -166,6 +171,13 @@ struct pipeline {
   double last_frame_start;
   bool have_frame;
   camera last_camera;
+  /* The fog's shadow on screen: its kind, and a copy of the finest grid it was computed
+   * from, so that a sun moved while the worker has no new step (paused) re-lights the fog
+   * here (shadow_volume, shadow_grid). */
+  fog_sun_shadow_kind shown_self_shadow;
+  double shown_shadow_sun[3];
+  transform_grid shadow_grid;
+  fog_sun_shadow shadow_volume;
 };
 
 static int fail(pipeline_error *err, const char *fmt, ...) {
@@ -359,6 +371,40 @@ static int load_sequence_frame(pipeline *p, long n, fogmap *map, pipeline_error 
   return 0;
 }
 
+static fog_volume volume_of(const pipeline *p, const pipeline_params *params);
+
+/* The unit direction towards the sun of params' angles (the panel may have moved them). */
+static void sun_direction_of(const pipeline *p, const pipeline_params *params, double dir[3]) {
+  scene_light light = p->config.light, resolved;
+  light.sun_azimuth = params->sun_azimuth;
+  light.sun_elevation = params->sun_elevation;
+  scene_light_resolve(&light, &resolved, dir);
+}
+
+/* The fog's shadow of a step (docs/light.md): only with albedo > 0 and [light]
+ * fog_self_shadow on; the volume is computed from the finest grid (threads: the worker's
+ * one, or both cores when the GL thread waits for it). */
+static int compute_shadow(const pipeline *p, const pipeline_params *params,
+                          const transform_grid *finest, int threads, fog_sun_shadow_kind *kind,
+                          fog_sun_shadow *volume, double sun[3], pipeline_error *err) {
+  *kind = FOG_SUN_SHADOW_NONE;
+  if (!(params->sun.albedo > 0) || !p->config.shadow.fog_self_shadow) return 0;
+  sun_direction_of(p, params, sun);
+  fog_volume v = volume_of(p, params);
+  fog_lod lod = {.levels = 0, .approx = finest, .mu = 1.0};
+  fog_model m = {.kind = FOG_MODEL_FOGMAP, .volume = &v, .lod = &lod};
+  *kind = fog_sun_shadow_kind_of(&m, sun);
+  if (*kind != FOG_SUN_SHADOW_VOLUME) return 0;
+  render_error rerr = {{0}};
+  const int n = p->config.shadow.resolution;
+  if (!volume->optical_depth &&
+      fog_sun_shadow_create(volume, &(fog_sun_shadow_desc){.across = n, .along = n}, &rerr))
+    return fail(err, "sun shadow: %s", rerr.message);
+  if (fog_sun_shadow_compute(volume, &m, sun, threads, &rerr))
+    return fail(err, "sun shadow: %s", rerr.message);
+  return 0;
+}
+
 static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *slot,
                           pipeline_error *err) {
   cpu_stages *c = &p->cpu;
@@ -415,6 +461,11 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
   }
   slot->pyramid.has_details = p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS;
   double t2 = now_ms(), c2 = thread_cpu_ms();
+  double sun[3];
+  if (compute_shadow(p, &p->applied, &slot->pyramid.approx[slot->pyramid.levels],
+                     p->synchronous ? 2 : 1, &slot->self_shadow, &slot->sun_shadow, sun, err))
+    return 1;
+  slot->sun_shadow_ms = now_ms() - t2;
   slot->step = c->steps;
   slot->sim_ms = t1 - t0;
   slot->transform_ms = t2 - t1;
@@ -616,6 +667,9 @@ void pipeline_destroy(pipeline *p) {
     pthread_join(p->worker, NULL);
   }
   for (int s = 0; s < 2; s++) fog_pyramid_destroy(&p->slots[s].pyramid);
+  for (int s = 0; s < 2; s++) fog_sun_shadow_destroy(&p->slots[s].sun_shadow);
+  fog_sun_shadow_destroy(&p->shadow_volume);
+  transform_grid_destroy(&p->shadow_grid);
   plan_destroy(&p->cpu);
   if (p->cpu.sim) fluid_sim_destroy(p->cpu.sim);
   fogmap_destroy(&p->cpu.base);
@@ -697,6 +751,57 @@ static fog_volume volume_of(const pipeline *p, const pipeline_params *params) {
   return v;
 }
 
+/* After a slot's grids went up: its shadow volume too, and a copy of its finest grid for
+ * re-lighting (GL thread; the slot is still held). */
+static int show_slot_shadow(pipeline *p, const pipeline_slot *slot, pipeline_error *err) {
+  render_error rerr = {{0}};
+  p->shown_self_shadow = slot->self_shadow;
+  p->last.sun_shadow = slot->sun_shadow_ms;
+  const transform_grid *finest = &slot->pyramid.approx[slot->pyramid.levels];
+  transform_grid *copy = &p->shadow_grid;
+  if (copy->width != finest->width || copy->height != finest->height) {
+    transform_grid_destroy(copy);
+    transform_error terr = {{0}};
+    if (transform_grid_create(copy, finest->width, finest->height, &terr))
+      return fail(err, "sun shadow: %s", terr.message);
+  }
+  float *coefficients = copy->coefficients;
+  *copy = *finest;
+  copy->coefficients = coefficients;
+  memcpy(coefficients, finest->coefficients,
+         (size_t)finest->width * finest->height * sizeof *coefficients);
+  if (slot->self_shadow != FOG_SUN_SHADOW_VOLUME) return 0;
+  memcpy(p->shown_shadow_sun, slot->sun_shadow.sun, sizeof p->shown_shadow_sun);
+  if (pipeline_fog_upload_sun_shadow(p->fog, &slot->sun_shadow, &rerr))
+    return fail(err, "upload: %s", rerr.message);
+  return 0;
+}
+
+/* The sun moved (or the albedo became > 0) since the volume on screen was computed, and
+ * no step brought one for this sun: compute it here from the last step's finest grid. */
+static int relight(pipeline *p, const pipeline_params *params, pipeline_error *err) {
+  if (!(params->sun.albedo > 0) || !p->config.shadow.fog_self_shadow ||
+      !p->shadow_grid.coefficients)
+    return 0;
+  double sun[3];
+  sun_direction_of(p, params, sun);
+  if (p->shown_self_shadow != FOG_SUN_SHADOW_NONE &&
+      !memcmp(sun, p->shown_shadow_sun, sizeof sun))
+    return 0;
+  double t0 = now_ms();
+  fog_sun_shadow_kind kind;
+  if (compute_shadow(p, params, &p->shadow_grid, 2, &kind, &p->shadow_volume, sun, err))
+    return 1;
+  p->shown_self_shadow = kind;
+  memcpy(p->shown_shadow_sun, sun, sizeof sun);
+  render_error rerr = {{0}};
+  if (kind == FOG_SUN_SHADOW_VOLUME &&
+      pipeline_fog_upload_sun_shadow(p->fog, &p->shadow_volume, &rerr))
+    return fail(err, "upload: %s", rerr.message);
+  p->last.sun_shadow = now_ms() - t0;
+  return 0;
+}
+
 /* Takes a ready slot (waiting for one if asked) and uploads it; returns 1 if uploaded. */
 static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *err) {
   *upload_ms = 0.0;
@@ -722,6 +827,7 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *
     render_error rerr = {{0}};
     if (pipeline_fog_upload(p->fog, &slot->pyramid, &rerr))
       return fail(err, "upload: %s", rerr.message), -1;
+    if (show_slot_shadow(p, slot, err)) return -1;
     *upload_ms = now_ms() - t0;
     p->shown_step = slot->step;
     return 1;
@@ -750,6 +856,8 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *
   double t0 = now_ms();
   render_error rerr = {{0}};
   int status = pipeline_fog_upload(p->fog, &slot->pyramid, &rerr);
+  pipeline_error shadow_err = {{0}};
+  bool shadow_failed = !status && show_slot_shadow(p, slot, &shadow_err);
   *upload_ms = now_ms() - t0;
   p->last.sim = slot->sim_ms;
   p->last.transform = slot->transform_ms;
@@ -762,6 +870,7 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *
   pthread_cond_broadcast(&p->changed);
   pthread_mutex_unlock(&p->lock);
   if (status) return fail(err, "upload: %s", rerr.message), -1;
+  if (shadow_failed) return fail(err, "%s", shadow_err.message), -1;
   return 1;
 }
 
@@ -798,6 +907,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
   pipeline_params params = p->params;
   pthread_mutex_unlock(&p->lock);
   fog_volume volume = volume_of(p, &params);
+  if (relight(p, &params, err)) return 1;
   render_error rerr = {{0}};
   fog_sun sun = params.sun;
   memcpy(sun.direction, p->geometry.sun_direction, sizeof sun.direction);
@@ -809,6 +919,8 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       .sun = sun,
       .hardware_filtering = p->config.fog.filtering == SCENE_FILTERING_HARDWARE,
       .resolution_divisor = params.fog_resolution_divisor,
+      .self_shadow = p->shown_self_shadow,
+      .shadow_steps = p->config.shadow.steps,
   };
   if (pipeline_fog_render(p->fog, cam, &p->scene_target, &settings, &rerr))
     return fail(err, "render: %s", rerr.message);

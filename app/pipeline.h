@@ -55,10 +55,11 @@ typedef struct pipeline_timings {
   /* The CPU stages' own CPU time (thread CPU clock): in the worker thread their wall
    * time also counts the time they waited for a core while the renderer ran. */
   double sim_cpu, transform_cpu;
+  double sun_shadow; /* the sun's optical-depth volume of the step (docs/light.md) */
 } pipeline_timings;
 
 /* The timings as an array in field order, and back: for statistics taken per field. */
-#define PIPELINE_TIMING_FIELDS 8
+#define PIPELINE_TIMING_FIELDS 9
 void pipeline_timings_to_array(const pipeline_timings *t, double v[PIPELINE_TIMING_FIELDS]);
 pipeline_timings pipeline_timings_from_array(const double v[PIPELINE_TIMING_FIELDS]);
 

@@ -63,6 +63,11 @@ int pipeline_fog_upload(pipeline_fog *fog, const fog_pyramid *pyramid, render_er
   return 0;
 }
 
+int pipeline_fog_upload_sun_shadow(pipeline_fog *fog, const fog_sun_shadow *shadow,
+                                   render_error *err) {
+  return fog_pass_upload_sun_shadow(fog->pass, shadow, err);
+}
+
 int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *scene,
                         const pipeline_fog_settings *settings, render_error *err) {
   if (!fog->uploaded) {
@@ -83,6 +88,9 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .fetch = settings->hardware_filtering && fog->degree > 0 ? FOG_FETCH_HARDWARE
                                                                : FOG_FETCH_MANUAL,
       .resolution_divisor = settings->resolution_divisor,
+      .self_shadow = settings->self_shadow,
+      .shadow_steps = settings->shadow_steps,
+      .surface_sun = settings->self_shadow != FOG_SUN_SHADOW_NONE ? scene->color[2] : 0,
   };
   gl_target_bind(&fog->target);
   return fog_pass_draw(fog->pass, cam, &params, scene->color[0], scene->color[1], fog->width,

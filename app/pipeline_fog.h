@@ -11,6 +11,7 @@
 #include "render/camera.h"
 #include "render/fog_field.h"
 #include "render/fog_light.h"
+#include "render/fog_sun_shadow.h"
 #include "render/gl_util.h"
 #include "render/render_error.h"
 #include "transform/transform.h"
@@ -24,6 +25,10 @@ typedef struct pipeline_fog_settings {
   fog_sun sun;
   bool hardware_filtering;
   int resolution_divisor; /* fog_pass_params.resolution_divisor */
+  /* fog_pass_params.self_shadow and shadow_steps; with a shadow the fog also dims the
+   * surfaces' sun-lit share (the scene target's attachment 2). */
+  fog_sun_shadow_kind self_shadow;
+  int shadow_steps;
 } pipeline_fog_settings;
 
 typedef struct pipeline_fog pipeline_fog;
@@ -33,6 +38,9 @@ void pipeline_fog_destroy(pipeline_fog *fog);
 int pipeline_fog_resize(pipeline_fog *fog, int width, int height, render_error *err);
 /* Copies the grids (render/fog_field.h) into textures (re-created when their sizes change). */
 int pipeline_fog_upload(pipeline_fog *fog, const fog_pyramid *pyramid, render_error *err);
+/* Uploads the sun's optical-depth volume (settings.self_shadow = FOG_SUN_SHADOW_VOLUME). */
+int pipeline_fog_upload_sun_shadow(pipeline_fog *fog, const fog_sun_shadow *shadow,
+                                   render_error *err);
 /* Draws the fog over the scene target (colour 0, distance 1) into the fog target. */
 int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *scene,
                         const pipeline_fog_settings *settings, render_error *err);

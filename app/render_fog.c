@@ -12,6 +12,7 @@ void render_fog_destroy(render_fog *fog) {
   fog_pyramid_destroy(&fog->pyramid);
   if (fog->pass) fog_pass_destroy(fog->pass);
   for (int k = 0; k < 2; k++) vdb_frame_destroy(&fog->played[k]);
+  fog_sun_shadow_destroy(&fog->sun_shadow);
   *fog = (render_fog){0};
 }
 
@@ -182,6 +183,37 @@ static int played_frame(render_fog *fog, const scene_config *cfg, const vdb_sequ
   return 0;
 }
 
+fog_model render_fog_model(render_fog *fog) {
+  const fog_pass_params *p = &fog->params;
+  fog->lod = (fog_lod){.levels = fog->pyramid.levels, .approx = fog->pyramid.approx,
+                       .detail = fog->pyramid.detail, .mu = p->mu};
+  return (fog_model){.kind = p->model, .volume = &fog->volume, .lod = &fog->lod,
+                     .lod_method = p->lod_method, .extinction = p->model_extinction,
+                     .y0 = p->model_y0, .scale_height = p->model_scale_height,
+                     .rbfs = fog->rbfs, .rbf_count = p->model_rbf_count,
+                     .grid3d = fog->grid3d};
+}
+
+/* The fog's shadows for the model (docs/light.md): how T_s is found, and the sun's
+ * optical-depth volume computed and uploaded where the model needs one. Only with
+ * [fog] albedo > 0: albedo 0 is eq. 4, the image as it was. */
+static int render_fog_shadow(render_fog *fog, const scene_config *cfg, const fog_model *model,
+                             render_error *err) {
+  fog_pass_params *p = &fog->params;
+  bool on = cfg->fog.albedo > 0 && cfg->shadow.fog_self_shadow;
+  p->self_shadow = on ? fog_sun_shadow_kind_of(model, p->sun.direction) : FOG_SUN_SHADOW_NONE;
+  p->shadow_steps = cfg->shadow.steps;
+  fog->ground_shadow = p->self_shadow != FOG_SUN_SHADOW_NONE;
+  if (p->self_shadow != FOG_SUN_SHADOW_VOLUME) return 0;
+  const int n = cfg->shadow.resolution;
+  if (!fog->sun_shadow.optical_depth &&
+      fog_sun_shadow_create(&fog->sun_shadow, &(fog_sun_shadow_desc){.across = n, .along = n},
+                            err))
+    return 1;
+  if (fog_sun_shadow_compute(&fog->sun_shadow, model, p->sun.direction, 2, err)) return 1;
+  return fog_pass_upload_sun_shadow(fog->pass, &fog->sun_shadow, err);
+}
+
 int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg,
                                const vdb_sequence *seq, int a, int b, double w,
                                render_error *err) {
@@ -200,7 +232,11 @@ int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg,
       shown = &fog->played_grid[sb]; /* placed differently: the nearer frame, unblended */
     }
   }
-  int status = fog_pass_upload_grid3d(fog->pass, shown, err);
+  fog->grid3d = shown;
+  fog_model model = render_fog_model(fog);
+  int status = fog_pass_upload_grid3d(fog->pass, shown, err) ||
+               render_fog_shadow(fog, cfg, &model, err);
+  fog->grid3d = NULL;
   free((float *)blended.values);
   return status;
 }
@@ -220,7 +256,11 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_er
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
       .sun = scene_config_fog_sun(cfg),
   };
-  int status = fog_pass_create(&fog->pass, err) || fog_pass_upload_grid3d(fog->pass, &grid, err);
+  fog->grid3d = &grid;
+  fog_model model = render_fog_model(fog);
+  int status = fog_pass_create(&fog->pass, err) || fog_pass_upload_grid3d(fog->pass, &grid, err) ||
+               render_fog_shadow(fog, cfg, &model, err);
+  fog->grid3d = NULL;
   vdb_frame_destroy(&frame); /* the GL holds the grid now */
   return status;
 }
@@ -244,7 +284,8 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
       .sun = scene_config_fog_sun(cfg),
   };
-  return fog_pass_create(&fog->pass, err);
+  fog_model model = render_fog_model(fog);
+  return fog_pass_create(&fog->pass, err) || render_fog_shadow(fog, cfg, &model, err);
 }
 
 int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err) {
@@ -372,6 +413,8 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   };
   if (fog_pass_create(&fog->pass, err)) goto done;
   if (fog_pass_upload_pyramid(fog->pass, &fog->pyramid, err)) goto done;
+  fog_model model = render_fog_model(fog);
+  if (render_fog_shadow(fog, cfg, &model, err)) goto done;
   status = 0;
 done:
   for (int l = 0; l <= FOG_MAX_LEVELS; l++) free(approx[l]), free(detail[l]);
@@ -390,6 +433,7 @@ int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
   fog->params.volume = &fog->volume; /* the struct may have been copied */
   fog->params.model_rbfs = fog->rbfs;
   fog->volume.profile.coefficients = fog->profile_coefficients;
+  fog->params.surface_sun = fog->ground_shadow ? scene->color[2] : 0; /* 0: no attachment 2 */
   return fog_pass_draw(fog->pass, cam, &fog->params, scene->color[0], scene->color[1],
                        scene->width, scene->height, err);
 }

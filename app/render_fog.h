@@ -22,6 +22,12 @@ typedef struct render_fog {
   fog_rbf rbfs[FOG_MAX_RBFS]; /* model = rbf: params.model_rbfs, density_scale applied */
   fog_pass_params params;
   fog_pass *pass;
+  /* The fog's shadow (docs/light.md): the sun's optical-depth volume where the model needs
+   * one (params.self_shadow), and whether the fog shadows the surfaces. */
+  fog_sun_shadow sun_shadow;
+  bool ground_shadow;
+  fog_lod lod;                     /* model = fogmap: the pyramid as render_fog_model's */
+  const volume_grid_desc *grid3d;  /* model = volume: the grid shown, while it is at hand */
   /* model = volume played (render_fog_set_volume_time): the last two VDB frames read (a
    * slot holds one when its grid has values), by sequence index, so a time between the
    * same two frames reads no file. */
@@ -58,6 +64,9 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
 int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg,
                                const vdb_sequence *seq, int a, int b, double w,
                                render_error *err);
+/* The fog as the model table sees it (fog_models.h), pointing into fog (the volume's grid
+ * only while render_fog has it: during creation and set_volume_time). */
+fog_model render_fog_model(render_fog *fog);
 /* Draws the fog over the scene target (colour 0, distance 1) into out (RGBA32F colour 0,
  * R32F transmittance 1), both width x height. */
 int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,

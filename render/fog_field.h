@@ -138,6 +138,17 @@ double fog_optical_depth(const fog_volume *volume, const transform_grid *grid,
                          const double camera[3], const double dir[3], double t_start,
                          double t_stop);
 
+/* The running optical depth from origin at t_k = k step, k = 0..n-1 (out[0] = 0): one walk
+ * along the ray, its sum read at each t_k (what n calls of fog_optical_depth would give, at
+ * the cost of one). */
+void fog_optical_depth_samples(const fog_volume *volume, const transform_grid *grid,
+                               const double origin[3], const double dir[3], double step, int n,
+                               double out[]);
+
+/* K at world point p: extinction f g inside the box, 0 outside (the marcher's integrand). */
+double fog_extinction_point(const fog_volume *volume, const transform_grid *grid,
+                            const double p[3]);
+
 /* ||OP|| of the LOD rule: min(t_surface, box exit), 0 when the ray misses the box. */
 double fog_lod_ray_length(const fog_volume *volume, const double camera[3], const double dir[3],
                           double t_surface);

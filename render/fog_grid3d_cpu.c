@@ -103,3 +103,9 @@ double fog_model_depth_volume(const fog_model *m, const double camera[3], const 
                               double t_surface) {
   return fog_grid3d_optical_depth(m->grid3d, camera, dir, t_surface);
 }
+
+double fog_grid3d_extinction_at(const volume_grid_desc *g, const double p[3]) {
+  double u[3];
+  volume_grid_index_of(g, p, u);
+  return grid3d_sample(g, u);
+}

@@ -374,13 +374,16 @@ static double fog_walk_integral(fog_ray_walk *w, double t0, double t1) {
   return sum;
 }
 
-double fog_optical_depth(const fog_volume *v, const transform_grid *g, const double camera[3],
-                         const double dir[3], double t_start, double t_stop) {
+/* The walk set up at the box entry t0 >= t_start (false: the ray misses [t_start, t_stop]
+ * inside the box); walk parameters are t - t0. */
+static bool fog_walk_setup(const fog_volume *v, const transform_grid *g, const double camera[3],
+                           const double dir[3], double t_start, double t_stop,
+                           fog_ray_walk *w, double *t0_out, double *t1_out) {
   double t0, t1;
-  if (!fog_box_entry_exit(v, camera, dir, &t0, &t1)) return 0.0;
+  if (!fog_box_entry_exit(v, camera, dir, &t0, &t1)) return false;
   if (t0 < t_start) t0 = t_start;
   if (t1 > t_stop) t1 = t_stop;
-  if (!(t0 < t1)) return 0.0;
+  if (!(t0 < t1)) return false;
 
   /* Camera-relative grid coordinates: u(t) = (t dir_x - (origin_x - camera_x))/h - 1/2,
    * x(t) = (u(t) - origin_u)/spacing = x0 + t dx. The walk then runs in t' = t - t0 from
@@ -392,18 +395,43 @@ double fog_optical_depth(const fog_volume *v, const transform_grid *g, const dou
   double off = fog_knot_offset(g->degree);
   double x0 = (-rel_x / h - 0.5 - g->origin_u) / g->spacing, dx = dir[0] / (h * g->spacing);
   double z0 = (-rel_z / h - 0.5 - g->origin_v) / g->spacing, dz = dir[2] / (h * g->spacing);
-  fog_ray_walk w = {.grid = g, .profile = &v->profile, .y_camera = camera[1] + t0 * dir[1],
-                    .dir_y = dir[1], .t_y0 = HUGE_VAL};
-  fog_axis_start(&w.x, x0 + t0 * dx, dx, off, 0.0);
-  fog_axis_start(&w.z, z0 + t0 * dz, dz, off, 0.0);
+  *w = (fog_ray_walk){.grid = g, .profile = &v->profile, .y_camera = camera[1] + t0 * dir[1],
+                      .dir_y = dir[1], .t_y0 = HUGE_VAL};
+  fog_axis_start(&w->x, x0 + t0 * dx, dx, off, 0.0);
+  fog_axis_start(&w->z, z0 + t0 * dz, dz, off, 0.0);
   const fog_profile *p = &v->profile;
   if (p->kind == FOG_PROFILE_BSPLINE)
-    fog_axis_start(&w.y, (w.y_camera - p->origin) / p->spacing, dir[1] / p->spacing,
+    fog_axis_start(&w->y, (w->y_camera - p->origin) / p->spacing, dir[1] / p->spacing,
                    fog_knot_offset(p->degree), 0.0);
   if (p->kind == FOG_PROFILE_EXPONENTIAL && dir[1] != 0.0)
-    w.t_y0 = (p->y0 - w.y_camera) / dir[1];
-  fog_block_load(&w);
+    w->t_y0 = (p->y0 - w->y_camera) / dir[1];
+  fog_block_load(w);
+  *t0_out = t0, *t1_out = t1;
+  return true;
+}
+
+double fog_optical_depth(const fog_volume *v, const transform_grid *g, const double camera[3],
+                         const double dir[3], double t_start, double t_stop) {
+  fog_ray_walk w;
+  double t0, t1;
+  if (!fog_walk_setup(v, g, camera, dir, t_start, t_stop, &w, &t0, &t1)) return 0.0;
   return fog_extinction(v) * fog_walk_integral(&w, 0.0, t1 - t0);
+}
+
+void fog_optical_depth_samples(const fog_volume *v, const transform_grid *g,
+                               const double origin[3], const double dir[3], double step, int n,
+                               double out[]) {
+  fog_ray_walk w;
+  double t0, t1, sum = 0.0;
+  bool hit = n > 0 && fog_walk_setup(v, g, origin, dir, 0.0, step * (n - 1), &w, &t0, &t1);
+  for (int k = 0; k < n; k++) {
+    if (hit && k > 0) {
+      /* [t_{k-1}, t_k] clipped to the box, in walk parameters: the walk carries on */
+      double a = fmax(step * (k - 1), t0) - t0, b = fmin(step * k, t1) - t0;
+      if (b > a) sum += fog_walk_integral(&w, a, b);
+    }
+    out[k] = fog_extinction(v) * sum;
+  }
 }
 
 /* ---- uniform ray marching (the benchmark's alternative integrator) ---------------------- */
@@ -425,6 +453,15 @@ static double fog_extinction_at(const fog_volume *v, const transform_grid *g,
     return f * fog_profile_bspline_value(p, (int)floor(yp - fog_knot_offset(p->degree)), yp);
   }
   return f;
+}
+
+double fog_extinction_point(const fog_volume *v, const transform_grid *g, const double p[3]) {
+  double lo[3], hi[3];
+  fog_volume_box(v, lo, hi);
+  for (int a = 0; a < 3; a++)
+    if (!(p[a] >= lo[a] && p[a] <= hi[a])) return 0.0;
+  static const double none[3] = {0, 0, 0};
+  return fog_extinction(v) * fog_extinction_at(v, g, p, none, 0.0);
 }
 
 double fog_optical_depth_march(const fog_volume *v, const transform_grid *g,

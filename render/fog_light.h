@@ -16,7 +16,8 @@ typedef struct fog_sun {
   double albedo;       /* a in [0, 1]; 0: no sunlight in the fog */
   double phase_g;      /* Henyey-Greenstein g in (-1, 1): > 0 forward, 0 isotropic */
   double direction[3]; /* unit vector towards the sun */
-  double radiance[3];  /* L_sun, linear (the [light] sun_colour that lights the surfaces) */
+  double radiance[3];  /* L_sun, linear: the sun's irradiance (pi x the [light] sun_colour
+                          that lights the surfaces, whose Lambert term has no 1/pi) */
 } fog_sun;
 
 /* |g| stays below this: p(0) = (1 + g) / (4 pi (1 - g)^2) is 1.6e5 at g = 0.999. */

@@ -117,6 +117,8 @@ double fog_grid3d_optical_depth(const volume_grid_desc *grid, const double camer
 double fog_grid3d_optical_depth_march(const volume_grid_desc *grid, double step,
                                       const double camera[3], const double dir[3],
                                       double length);
+/* The volume's trilinear K at world point p (zero beyond the outer voxels). */
+double fog_grid3d_extinction_at(const volume_grid_desc *grid, const double p[3]);
 /* erf(u1) - erf(u0) for u0 <= u1 without cancellation: through erfc where both have the
  * same sign (erf(7) - erf(6) is 2.2e-17, not 0). */
 double fog_erf_difference(double u0, double u1);

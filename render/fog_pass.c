@@ -49,6 +49,10 @@ struct fog_pass {
   /* This GL's texture size limits, asked once: uploads past them fail naming the size, not
    * with a bare GL_INVALID_VALUE. */
   GLint max_texture_size, max_3d_texture_size;
+  /* The sun's optical-depth volume (fog_pass_upload_sun_shadow): R32F 3D texture and its
+   * placement (optical_depth not kept). */
+  GLuint sun_shadow;
+  fog_sun_shadow sun_shadow_place;
   /* resolution_divisor > 1: the reduced pass's target (RGBA32F: optical depth, distance,
    * extinction at the surface). */
   gl_target reduced;
@@ -72,6 +76,8 @@ typedef struct fog_pass_variant {
   int reduced;            /* FOG_REDUCED: 1 full resolution, 2 or 4 the reduced pass */
   int upsample;           /* FOG_UPSAMPLE: 1 the upsampling pass */
   int levels;             /* FOG_LEVELS: J, 0..FOG_MAX_LEVELS */
+  int sun_shadow;         /* FOG_SUN_SHADOW: fog_sun_shadow_kind */
+  int surface_sun;        /* FOG_SURFACE_SUN: 1 the fog shadows the surfaces */
 } fog_pass_variant;
 
 static const struct {
@@ -90,16 +96,19 @@ static const struct {
     {"FOG_REDUCED", offsetof(fog_pass_variant, reduced), 3},
     {"FOG_UPSAMPLE", offsetof(fog_pass_variant, upsample), 1},
     {"FOG_LEVELS", offsetof(fog_pass_variant, levels), 3},
+    {"FOG_SUN_SHADOW", offsetof(fog_pass_variant, sun_shadow), 2},
+    {"FOG_SURFACE_SUN", offsetof(fog_pass_variant, surface_sun), 1},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
-_Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4,
+_Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
+                   FOG_SUN_SHADOW_OPAQUE < 4,
                "a fog_pass_variant field outgrew its bits of the key");
 
 static int variant_field(const fog_pass_variant *v, int f) {
   return *(const int *)((const char *)v + variant_fields[f].offset);
 }
 
-/* The fields packed into bits, in variant_fields' order (21 bits). */
+/* The fields packed into bits, in variant_fields' order (24 bits). */
 static int fog_pass_variant_key(const fog_pass_variant *v) {
   int key = 0, shift = 0;
   for (int f = 0; f < VARIANT_FIELD_COUNT; f++) {
@@ -191,6 +200,7 @@ void fog_pass_destroy(fog_pass *pass) {
     if (pass->slots[i].cells) glDeleteTextures(1, &pass->slots[i].cells);
   if (pass->layers) glDeleteTextures(1, &pass->layers);
   if (pass->grid3d) glDeleteTextures(1, &pass->grid3d);
+  if (pass->sun_shadow) glDeleteTextures(1, &pass->sun_shadow);
   if (pass->cell_layers) glDeleteTextures(1, &pass->cell_layers);
   free(pass->cell_scratch);
   if (pass->reduced.framebuffer) gl_target_destroy(&pass->reduced);
@@ -328,6 +338,48 @@ int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_
   return gl_util_check("fog pass: volume upload", err);
 }
 
+int fog_pass_upload_sun_shadow(fog_pass *pass, const fog_sun_shadow *shadow, render_error *err) {
+  const int *n = shadow->size;
+  if (!shadow->optical_depth || n[0] < 2 || n[1] < 2 || n[2] < 2) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: sun shadow volume %dx%dx%d: expected >= 2 samples per axis and values",
+             n[0], n[1], n[2]);
+    return 1;
+  }
+  int largest = n[0] > n[1] ? (n[0] > n[2] ? n[0] : n[2]) : (n[1] > n[2] ? n[1] : n[2]);
+  if (largest > pass->max_3d_texture_size) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: a %dx%dx%d sun shadow volume exceeds this GL's 3D texture side %d",
+             n[0], n[1], n[2], pass->max_3d_texture_size);
+    return 1;
+  }
+  bool same = pass->sun_shadow && !memcmp(pass->sun_shadow_place.size, n, sizeof shadow->size);
+  if (!pass->sun_shadow) glGenTextures(1, &pass->sun_shadow);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_3D, pass->sun_shadow);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  if (same)
+    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, n[0], n[1], n[2], GL_RED, GL_FLOAT,
+                    shadow->optical_depth);
+  else
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n[0], n[1], n[2], 0, GL_RED, GL_FLOAT,
+                 shadow->optical_depth);
+  /* Across the sunlight a zero border (no fog beside the box), along it the edge samples
+   * (nothing before the sun-side face, the whole column past the far one): what
+   * fog_sun_shadow_depth_at assumes. */
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  const float zero[4] = {0, 0, 0, 0};
+  glTexParameterfv(GL_TEXTURE_3D, GL_TEXTURE_BORDER_COLOR, zero);
+  glBindTexture(GL_TEXTURE_3D, 0);
+  pass->sun_shadow_place = *shadow;
+  pass->sun_shadow_place.optical_depth = NULL;
+  return gl_util_check("fog pass: sun shadow upload", err);
+}
+
 int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err) {
   int J = lod->levels;
   if (J < 0 || 2 * J + 1 > FOG_PASS_MAX_GRIDS) {
@@ -370,6 +422,8 @@ enum fog_pass_unit {
   UNIT_CELLS,
   UNIT_CELL_LAYERS,
   UNIT_GRID3D,
+  UNIT_SUN_SHADOW,
+  UNIT_SURFACE_SUN,
   UNIT_COUNT
 };
 _Static_assert(UNIT_COUNT <= 32, "the fog pass needs more texture units than GL 4.3 offers");
@@ -433,9 +487,39 @@ static int fog_pass_update_layers(fog_pass *pass, int count, render_error *err) 
   return gl_util_check("fog pass: LOD layers", err);
 }
 
+/* The fog's shadow on itself and on the surfaces (fog_light.glsl). */
+static void fog_pass_sun_shadow_uniforms(const fog_pass *pass, GLuint prog, const camera *cam,
+                                         const fog_pass_params *params) {
+  /* The optical depth cut-off (fog_pass_params.depth_cutoff): tau < e^-16 ~ 1.1e-7 is
+   * black even in a float image, so the walk (and the shadow's mean) may stop there. */
+  glUniform1f(fog_loc(prog, "fog_depth_limit"),
+              params->depth_cutoff < 0 ? 1e30f
+              : (float)(params->depth_cutoff > 0 ? params->depth_cutoff : FOG_PASS_DEPTH_CUTOFF));
+  glUniform1i(fog_loc(prog, "fog_shadow_steps"), params->shadow_steps);
+  if (params->surface_sun)
+    bind_sampler(prog, "fog_surface_sun", UNIT_SURFACE_SUN, GL_TEXTURE_2D, params->surface_sun);
+  if (params->self_shadow != FOG_SUN_SHADOW_VOLUME) return;
+  const fog_sun_shadow *s = &pass->sun_shadow_place;
+  double m[3][3], offset[3];
+  fog_sun_shadow_tex_map(s, m, offset);
+  float rows[9], at_camera[3];
+  for (int a = 0; a < 3; a++) {
+    double t = offset[a]; /* in double: the camera may be far from the volume */
+    for (int c = 0; c < 3; c++) {
+      rows[3 * a + c] = (float)m[a][c];
+      t += m[a][c] * (cam->position[c] - s->origin[c]);
+    }
+    at_camera[a] = (float)t;
+  }
+  bind_sampler(prog, "fog_sun_shadow_map", UNIT_SUN_SHADOW, GL_TEXTURE_3D, pass->sun_shadow);
+  glUniformMatrix3fv(fog_loc(prog, "fog_sun_shadow_to_tex"), 1, GL_TRUE, rows);
+  glUniform3f(fog_loc(prog, "fog_sun_shadow_tex_camera"), at_camera[0], at_camera[1],
+              at_camera[2]);
+}
+
 /* Uniforms every model uses (camera, blend, model selection), the surface textures, and
  * the full-screen triangle. */
-static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pass_params *params,
+static int fog_pass_common_and_draw(const fog_pass *pass, GLuint prog, const camera *cam, const fog_pass_params *params,
                                     GLuint surface_colour, GLuint surface_distance, int width,
                                     int height, int viewport_width, int viewport_height,
                                     render_error *err) {
@@ -458,6 +542,7 @@ static int fog_pass_common_and_draw(GLuint prog, const camera *cam, const fog_pa
   glUniform3f(fog_loc(prog, "fog_sun_scatter"), (float)(sun->albedo * sun->radiance[0]),
               (float)(sun->albedo * sun->radiance[1]), (float)(sun->albedo * sun->radiance[2]));
   glUniform1f(fog_loc(prog, "fog_phase_g"), (float)sun->phase_g);
+  fog_pass_sun_shadow_uniforms(pass, prog, cam, params);
   bind_sampler(prog, "fog_surface_colour", UNIT_SURFACE_COLOUR, GL_TEXTURE_2D, surface_colour);
   bind_sampler(prog, "fog_surface_distance", UNIT_SURFACE_DISTANCE, GL_TEXTURE_2D,
                surface_distance);
@@ -514,7 +599,8 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
   bool hardware = params->model == FOG_MODEL_VOLUME && params->fetch == FOG_FETCH_HARDWARE;
   const fog_pass_variant variant = {.fetch_hardware = hardware, .integrator = march,
                                     .degree = 1, .single_grid = 1, .model = params->model,
-                                    .reduced = 1};
+                                    .reduced = 1, .sun_shadow = (int)params->self_shadow,
+                                    .surface_sun = params->surface_sun != 0};
   GLuint prog = fog_pass_variant_program(pass, &variant, err);
   if (!prog) return 1;
   glUseProgram(prog);
@@ -528,7 +614,7 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
   glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
   if (params->model == FOG_MODEL_VOLUME) fog_pass_volume_uniforms(pass, prog, cam, params);
   if (params->model == FOG_MODEL_RBF) fog_pass_rbf_uniforms(prog, cam, params);
-  return fog_pass_common_and_draw(prog, cam, params, surface_colour, surface_distance, width,
+  return fog_pass_common_and_draw(pass, prog, cam, params, surface_colour, surface_distance, width,
                                   height, width, height, err);
 }
 
@@ -568,13 +654,22 @@ static int fog_pass_finish_reduced(fog_pass *pass, GLuint prog, const camera *ca
   glUseProgram(prog);
   bind_sampler(prog, "fog_reduced", UNIT_REDUCED, GL_TEXTURE_2D, pass->reduced.color[0]);
   glUniform1i(fog_loc(prog, "fog_divisor"), divisor);
-  return fog_pass_common_and_draw(prog, cam, params, surface_colour, surface_distance, width,
+  return fog_pass_common_and_draw(pass, prog, cam, params, surface_colour, surface_distance, width,
                                   height, width, height, err);
 }
 
 /* The analytic and volume models' parameters, before anything is drawn. */
 static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *params,
                                 render_error *err) {
+  if ((unsigned)params->self_shadow > FOG_SUN_SHADOW_OPAQUE ||
+      (params->self_shadow != FOG_SUN_SHADOW_NONE && params->shadow_steps < 1) ||
+      (params->self_shadow == FOG_SUN_SHADOW_VOLUME && !pass->sun_shadow)) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: self-shadow %d with %d steps: expected a fog_sun_shadow_kind, >= 1 "
+             "steps and, for the volume, fog_pass_upload_sun_shadow first",
+             (int)params->self_shadow, params->shadow_steps);
+    return 1;
+  }
   if (params->model == FOG_MODEL_HEIGHT && !(params->model_scale_height > 0)) {
     snprintf(err->message, sizeof err->message,
              "fog pass: height fog scale height %g: expected > 0", params->model_scale_height);
@@ -720,11 +815,6 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
   glUniform1i(fog_loc(prog, "fog_march_steps"),
               params->march_steps > 0 ? params->march_steps : 64);
   glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
-  /* The optical depth cut-off (fog_pass_params.depth_cutoff): tau < e^-16 ~ 1.1e-7 is
-   * black even in a float image, so the walk may stop there. */
-  glUniform1f(fog_loc(prog, "fog_depth_limit"),
-              params->depth_cutoff < 0 ? 1e30f
-              : (float)(params->depth_cutoff > 0 ? params->depth_cutoff : FOG_PASS_DEPTH_CUTOFF));
   glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
   return 0;
 }
@@ -768,6 +858,8 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       .lod_method = J == 0 ? FOG_LOD_SWITCH : params->lod_method,
       .reduced = divisor > 1 ? divisor : 1,
       .levels = J,
+      .sun_shadow = (int)params->self_shadow,
+      .surface_sun = params->surface_sun != 0,
   };
   GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;
@@ -788,11 +880,11 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
   }
   glUseProgram(walk_prog);
   if (divisor == 1)
-    return fog_pass_common_and_draw(walk_prog, cam, params, surface_colour, surface_distance,
+    return fog_pass_common_and_draw(pass, walk_prog, cam, params, surface_colour, surface_distance,
                                     width, height, width, height, err);
   GLint caller = 0;
   if (fog_pass_begin_reduced(pass, divisor, width, height, &caller, err)) return 1;
-  if (fog_pass_common_and_draw(walk_prog, cam, params, surface_colour, surface_distance,
+  if (fog_pass_common_and_draw(pass, walk_prog, cam, params, surface_colour, surface_distance,
                                width, height, pass->reduced.width, pass->reduced.height, err)) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)caller);
     return 1;

@@ -39,6 +39,7 @@
 #include "render/fog_field.h"
 #include "render/fog_light.h"
 #include "render/fog_models.h"
+#include "render/fog_sun_shadow.h"
 #include "render/render_error.h"
 #include "transform/transform.h"
 
@@ -82,6 +83,16 @@ typedef struct fog_pass_params {
   /* Sunlight scattered in the fog (render/fog_light.h): albedo 0 is eq. 4 exactly. A
    * zero-initialised sun has albedo 0. */
   fog_sun sun;
+  /* The fog's shadow on itself, T_s (render/fog_sun_shadow.h, fog_light.glsl): how it is
+   * found for this model and sun (fog_sun_shadow_kind_of; FOG_SUN_SHADOW_NONE: T_s = 1, the
+   * unshadowed identity); _VOLUME reads the volume of fog_pass_upload_sun_shadow. The view
+   * ray's tau K-weighted mean of T_s is taken over shadow_steps segments (>= 1 unless
+   * NONE). */
+  fog_sun_shadow_kind self_shadow;
+  int shadow_steps;
+  /* Optional (0: none): an RGBA texture of the surfaces' sun-lit share of their colour
+   * (scene pass attachment 2, width x height); the fog's shadow takes (1 - T_s(P)) of it. */
+  GLuint surface_sun;
   fog_fetch fetch;
   fog_integrator integrator;
   int march_steps;           /* FOG_INTEGRATOR_MARCH: 0 means 64 */
@@ -125,6 +136,10 @@ int fog_pass_upload_pyramid(fog_pass *pass, const fog_pyramid *pyramid, render_e
 /* Uploads the density grid of FOG_MODEL_VOLUME as an R32F 3D texture (hardware trilinear,
  * zero border) with its placement; a grid of the same size reuses the texture. */
 int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_error *err);
+
+/* Uploads the sun's optical-depth volume (render/fog_sun_shadow.h) as an R32F 3D texture
+ * with its placement; the same size reuses the texture. */
+int fog_pass_upload_sun_shadow(fog_pass *pass, const fog_sun_shadow *shadow, render_error *err);
 
 /* Draws the fog over the bound framebuffer (see above). width x height is the viewport and
  * the size of both surface textures. */

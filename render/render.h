@@ -14,6 +14,7 @@
 #include "render/camera.h"
 #include "render/fog_field.h"
 #include "render/fog_light.h"
+#include "render/fog_sun_shadow.h"
 #include "render/fog_models.h"
 #include "render/fog_pass.h"
 #include "render/volume_march.h"

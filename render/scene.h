@@ -7,6 +7,8 @@
  *       attachment 0: surface colour, RGBA16F (linear, lit; sky where nothing is hit),
  *       attachment 1: surface DISTANCE, R32F: Euclidean distance from the camera to the
  *                     first surface along the pixel's ray (SCENE_SKY_DISTANCE for sky),
+ *       attachment 2: the sun-lit share of the colour, RGBA16F (0 for the sky): what the
+ *                     fog's shadow on the surfaces dims (fog_pass_params.surface_sun),
  *       a depth buffer (DEPTH32F).
  *     The fog pass (render/fog_pass.h) reads the colour and distance textures.
  * Coordinates are camera-relative on the GPU (camera.h): vertices are stored relative to
@@ -87,7 +89,7 @@ typedef struct scene_pass scene_pass;
 scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err);
 void scene_pass_destroy(scene_pass *pass);
 /* Draws sky, terrain and boxes into target (made by scene_target_create, or any target
- * with colour 0 and R32F colour 1 and a depth buffer), at the target's size. Does not
+ * with colour 0 and R32F colour 1 and a depth buffer; colour 2 optional), at the target's size. Does not
  * allocate. */
 void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target);
 /* Triangles the last run drew: the terrain tiles in the camera's view, and the boxes. */
@@ -96,7 +98,8 @@ long scene_pass_triangles_drawn(const scene_pass *pass);
  * height field: no ray from there meets a back face first). */
 bool scene_terrain_back_faces_hidden(const terrain *t, const camera *cam);
 
-/* A render target with the scene pass's layout (RGBA16F colour, R32F distance, depth). */
+/* A render target with the scene pass's layout (RGBA16F colour, R32F distance, RGBA16F
+ * sun-lit share, depth). */
 int scene_target_create(gl_target *target, int width, int height, render_error *err);
 
 #endif

@@ -31,6 +31,11 @@ uniform vec3 fog_colour;                 // L_amb
 uniform vec3 fog_sun_direction;          // unit, towards the sun
 uniform vec3 fog_sun_scatter;            // a L_sun
 uniform float fog_phase_g;               // Henyey-Greenstein g
+#if FOG_SURFACE_SUN
+// The scene pass's sun-lit share of each surface's colour (its attachment 2): the fog's
+// shadow on the surfaces takes (1 - T_s(P)) of it away.
+uniform sampler2D fog_surface_sun;
+#endif
 const int fog_levels = FOG_LEVELS;       // J; 0: one grid (slot 0). Specialised per variant
 // 0: sum of details (paper), 1: approximation switching; specialised per variant
 const int fog_lod_method = FOG_LOD_METHOD;
@@ -156,6 +161,7 @@ float fog_model_depth_fogmap(fog_ray r) {
 float fog_model_march_fogmap(fog_ray r) { return fog_model_depth_fogmap(r); }
 
 #include "fog_model_table.glsl"
+#include "fog_light.glsl"
 
 
 #if FOG_UPSAMPLE
@@ -176,22 +182,24 @@ uniform int fog_divisor;
 const float FOG_UPSAMPLE_SIGMA = 0.02;  // a relative distance difference of one "sigma"
 const float FOG_UPSAMPLE_MIN_WEIGHT = 0.25;
 
-bool fog_upsampled_depth(ivec2 pixel, float t, out float optical_depth) {
+bool fog_upsampled_depth(ivec2 pixel, float t, out float optical_depth, out float sun_light) {
   ivec2 size = textureSize(fog_reduced, 0);
   vec2 q = (vec2(pixel) - float(fog_divisor / 2)) / float(fog_divisor);
   ivec2 q0 = ivec2(floor(q));
   vec2 f = q - vec2(q0);
-  float weight_sum = 0.0, depth_sum = 0.0;
+  float weight_sum = 0.0, depth_sum = 0.0, sun_sum = 0.0;
   for (int k = 0; k < 4; k++) {  // constant bound: unrolled
     ivec2 o = ivec2(k & 1, k >> 1);
-    vec3 s = texelFetch(fog_reduced, clamp(q0 + o, ivec2(0), size - 1), 0).rgb;
+    vec4 s = texelFetch(fog_reduced, clamp(q0 + o, ivec2(0), size - 1), 0);
     float wb = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
     float rel = abs(s.y - t) / max(min(s.y, t), 1e-3);  // both sky (1e30): 0
     float w = wb * exp(-(rel * rel) / (FOG_UPSAMPLE_SIGMA * FOG_UPSAMPLE_SIGMA));
     weight_sum += w;
     depth_sum += w * max(s.x + s.z * (t - s.y), 0.0);  // w = 0 wherever t - s.y is huge
+    sun_sum += w * s.w;  // the sample's T_s mean (fog_light.glsl): smooth, interpolated
   }
   optical_depth = depth_sum / max(weight_sum, 1e-30);
+  sun_light = sun_sum / max(weight_sum, 1e-30);
   return weight_sum >= FOG_UPSAMPLE_MIN_WEIGHT;
 }
 #endif
@@ -216,11 +224,12 @@ void main() {
   float t_surface = texelFetch(fog_surface_distance, pixel, 0).r;
   float optical_depth = 0.0, k_end = 0.0;
   // cos theta between the sun and this pixel's view direction: constant along the ray
-  float cos_sun = dot(normalize(vec3(fog_camera_forward + ndc.x * fog_camera_right +
-                                     ndc.y * fog_camera_up)), fog_sun_direction);
+  dvec3 view_dir = normalize(fog_camera_forward + ndc.x * fog_camera_right + ndc.y * fog_camera_up);
+  float cos_sun = dot(vec3(view_dir), fog_sun_direction);
   bool walk = true;
+  float sun_light = 1.0;  // the T_s mean of the ray (fog_light.glsl)
 #if FOG_UPSAMPLE
-  walk = !fog_upsampled_depth(pixel, t_surface, optical_depth);
+  walk = !fog_upsampled_depth(pixel, t_surface, optical_depth, sun_light);
 #endif
   // The ray's own integral. llvmpipe runs the body of an `if` under a mask for every lane
   // but leaves a loop as soon as no lane is in it: as a loop of at most one turn, the
@@ -247,13 +256,23 @@ void main() {
 #endif
   }
 #if FOG_REDUCED > 1
-  fog_out_colour = vec4(optical_depth, t_surface, k_end, 1.0);
+  fog_out_colour = vec4(optical_depth, t_surface, k_end, fog_sun_light(view_dir, t_surface));
   return;
 #endif
+  // The pixel's own T_s mean where it walked its own ray (a loop of at most one turn, as
+  // above: the upsampled pixels' lane groups skip it).
+  for (int turn = walk ? 0 : 1; turn < 1; turn++) sun_light = fog_sun_light(view_dir, t_surface);
   float tau = exp(-optical_depth);
-  // Giroud & Biri eq. 4 with L_fog = L_amb + a L_sun p(theta): with a = 0 the same image.
-  vec3 inscatter = (fog_colour + fog_sun_scatter * fog_phase_hg(fog_phase_g, cos_sun)) *
-                   (1.0 - tau);
+#if FOG_SURFACE_SUN
+  // Fog shadows on the ground: the sun reaching P is attenuated by T_s(P).
+  if (t_surface < 1e29)
+    surface.rgb -= (1.0 - exp(-fog_sun_optical_depth(t_surface * vec3(view_dir)))) *
+                   texelFetch(fog_surface_sun, pixel, 0).rgb;
+#endif
+  // Giroud & Biri eq. 4 with L_fog = L_amb + a L_sun p(theta) T_s-mean (fog_light.glsl):
+  // with a = 0 the same image, with T_s = 1 the identity of docs/light.md.
+  vec3 inscatter =
+      (fog_colour + fog_sun_scatter * fog_phase_hg(fog_phase_g, cos_sun) * sun_light) * (1.0 - tau);
   fog_out_colour = vec4(tau * surface.rgb + inscatter, surface.a);
   fog_out_transmittance = tau;
   fog_out_inscatter = vec4(inscatter, 1.0);

@@ -11,6 +11,7 @@ uniform vec3 sun_colour;
 
 layout(location = 0) out vec4 colour;
 layout(location = 1) out float surface_distance;
+layout(location = 2) out vec4 sun_share;  // the sky is not shadowed by the fog
 
 void main() {
   // The ray of camera_ray() (render/camera.h).
@@ -23,4 +24,5 @@ void main() {
   sky += sun_colour * (0.25 * pow(max(c, 0.0), 64.0) + 4.0 * smoothstep(0.99985, 0.99992, c));
   colour = vec4(sky, 1.0);
   surface_distance = 1e30;  // SCENE_SKY_DISTANCE
+  sun_share = vec4(0.0);
 }

@@ -3,8 +3,10 @@
  * then equals (L_amb + a L_sun p(theta)) (1 - tau) per pixel with theta from the NEW sun,
  * its direction written here from [light]'s documented convention (azimuth like the
  * camera's yaw: 0 towards -Z, 90 towards +X; elevation above the horizon), and the
- * surfaces differ from an identical pipeline whose sun stayed. Built by
- * tests/app/pipeline.cmake. */
+ * surfaces differ from an identical pipeline whose sun stayed ([light] fog_self_shadow off:
+ * T_s = 1). With the fog's self-shadow on, a sun moved while paused (no new step) re-lights
+ * the fog from the step on screen: the frame equals, bit for bit, that of a pipeline
+ * created with the new sun. Built by tests/app/pipeline.cmake. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -23,11 +25,47 @@ static int frame(pipeline *p, const camera *cam, float *rgba, float *tau, float 
       p, cam, &(frame_pixels){.rgba = rgba, .transmittance = tau, .inscatter = inscatter});
 }
 
+/* Self-shadowed: pause after the first step, move the sun, draw again (the relight path),
+ * against a pipeline whose config has the new sun from the start. */
+static void check_relight(const scene_config *cfg, const camera *cam) {
+  CHECK(cfg->shadow.fog_self_shadow == 1 && cfg->fog.albedo > 0,
+        "configs/default.ini: expected the fog's self-shadow on by default");
+  scene_config moved_cfg = *cfg;
+  moved_cfg.light.sun_azimuth = -70, moved_cfg.light.sun_elevation = 25;
+  pipeline_error perr = {{0}};
+  pipeline *moved = pipeline_create(&(pipeline_desc){.config = cfg, .width = W, .height = H,
+                                                     .synchronous = true}, &perr);
+  pipeline *born = pipeline_create(&(pipeline_desc){.config = &moved_cfg, .width = W,
+                                                    .height = H, .synchronous = true}, &perr);
+  CHECK(moved && born, "pipeline_create: %s", perr.message);
+  if (!moved || !born) return;
+  static float a[4 * W * H], b[4 * W * H], before[4 * W * H];
+  CHECK(!frame(moved, cam, before, NULL, NULL), "first frame failed");
+  pipeline_params params = pipeline_get_params(moved);
+  params.paused = true;
+  params.sun_azimuth = -70, params.sun_elevation = 25;
+  pipeline_set_params(moved, &params);
+  CHECK(!frame(moved, cam, a, NULL, NULL) && !frame(born, cam, b, NULL, NULL), "frames failed");
+  double changed = 0, differs = 0;
+  for (int k = 0; k < 4 * W * H; k++) {
+    changed = fmax(changed, fabs(a[k] - before[k]));
+    differs = fmax(differs, fabs(a[k] - b[k]));
+  }
+  printf("self-shadowed: the sun moved while paused changed the frame by up to %.3f; it "
+         "differs from a pipeline born with that sun by %.3g\n", changed, differs);
+  CHECK(changed > 0.05, "the paused frame was not relit (%.3e)", changed);
+  CHECK(differs == 0, "relit frame != a pipeline created with the new sun (%.3e)", differs);
+  pipeline_destroy(moved);
+  pipeline_destroy(born);
+}
+
 int main(void) {
   scene_config cfg;
   camera cam;
   gl_context *gl = pipeline_check_begin("configs/default.ini", &cfg, &cam);
   if (!gl) return 1;
+  const scene_config shadowed = cfg;
+  cfg.shadow.fog_self_shadow = 0;
   pipeline_error perr = {{0}};
   const pipeline_desc desc = {.config = &cfg, .width = W, .height = H, .synchronous = true};
   pipeline *moved = pipeline_create(&desc, &perr), *still = pipeline_create(&desc, &perr);
@@ -71,6 +109,7 @@ int main(void) {
   CHECK(relit > 0.05, "the terrain was not relit (%.3e)", relit);
   pipeline_destroy(moved);
   pipeline_destroy(still);
+  check_relight(&shadowed, &cam);
   gl_context_destroy(gl);
   return test_finish("pipeline_sun_check");
 }

@@ -21,7 +21,8 @@ static double oracle_bspline(int d, double x) {
   for (int k = 0; k <= d + 1; k++) {
     double y = x + 0.5 * (d + 1) - k;
     if (y <= 0.0) continue;
-    double power = (d == 0) ? 1.0 : pow(y, d);
+    double power = 1.0; /* y^d by products: pow() was most of the oracle's time */
+    for (int e = 0; e < d; e++) power *= y;
     sum += ((k % 2) ? -1.0 : 1.0) * binom[d + 1][k] * power;
   }
   return sum / factorial[d];
@@ -34,13 +35,14 @@ static double oracle_grid_value(const transform_grid *g, double u, double v) {
   double r = 0.5 * (g->degree + 1);
   int i_lo = (int)ceil(x - r), i_hi = (int)floor(x + r);
   int j_lo = (int)ceil(z - r), j_hi = (int)floor(z + r);
-  double sum = 0.0;
+  double wx[5], sum = 0.0; /* at most d + 2 <= 5 columns: their weights once, not per row */
+  for (int i = i_lo; i <= i_hi; i++) wx[i - i_lo] = oracle_bspline(g->degree, x - i);
   for (int j = j_lo; j <= j_hi; j++) {
     if (j < 0 || j >= g->height) continue;
     double wz = oracle_bspline(g->degree, z - j);
     for (int i = i_lo; i <= i_hi; i++) {
       if (i < 0 || i >= g->width) continue;
-      sum += wz * oracle_bspline(g->degree, x - i) * g->coefficients[(size_t)j * g->width + i];
+      sum += wz * wx[i - i_lo] * g->coefficients[(size_t)j * g->width + i];
     }
   }
   return sum;
@@ -155,23 +157,43 @@ static int oracle_add_breaks(double **splits, int *count, int *capacity, double 
   return 0;
 }
 
+/* The box from the placement (fog_field.h): x, z from the corner and W x H cells of
+ * cell_size; y the profile's support. */
+void fog_box_oracle(const fog_volume *volume, double box_lo[3], double box_hi[3]) {
+  const fog_profile *p = &volume->profile;
+  double h = volume->cell_size;
+  box_lo[0] = volume->origin_x;
+  box_hi[0] = volume->origin_x + volume->map_width * h;
+  box_lo[2] = volume->origin_z;
+  box_hi[2] = volume->origin_z + volume->map_height * h;
+  if (p->kind == FOG_PROFILE_BSPLINE) {
+    box_lo[1] = p->origin - 0.5 * (p->degree + 1) * p->spacing;
+    box_hi[1] = p->origin + (p->count - 1 + 0.5 * (p->degree + 1)) * p->spacing;
+  } else {
+    box_lo[1] = p->y_floor;
+    box_hi[1] = p->y_top;
+  }
+}
+
+double fog_extinction_oracle(const fog_volume *volume, const transform_grid *grid,
+                             const double p[3]) {
+  double lo[3], hi[3];
+  fog_box_oracle(volume, lo, hi);
+  for (int a = 0; a < 3; a++)
+    if (p[a] < lo[a] || p[a] > hi[a]) return 0.0;
+  double u = (p[0] - volume->origin_x) / volume->cell_size - 0.5;
+  double v = (p[2] - volume->origin_z) / volume->cell_size - 0.5;
+  return volume->extinction * oracle_grid_value(grid, u, v) *
+         oracle_profile_value(&volume->profile, p[1]);
+}
+
 double fog_optical_depth_oracle(const fog_volume *volume, const transform_grid *grid,
                                 const double camera[3], const double dir[3], double t_start,
                                 double t_stop, double tolerance, double *error_estimate) {
   oracle_ray r = {.volume = volume, .grid = grid, .camera = camera, .dir = dir,
                   .h = volume->cell_size};
   const fog_profile *p = &volume->profile;
-  r.box_lo[0] = volume->origin_x;
-  r.box_hi[0] = volume->origin_x + volume->map_width * r.h;
-  r.box_lo[2] = volume->origin_z;
-  r.box_hi[2] = volume->origin_z + volume->map_height * r.h;
-  if (p->kind == FOG_PROFILE_BSPLINE) {
-    r.box_lo[1] = p->origin - 0.5 * (p->degree + 1) * p->spacing;
-    r.box_hi[1] = p->origin + (p->count - 1 + 0.5 * (p->degree + 1)) * p->spacing;
-  } else {
-    r.box_lo[1] = p->y_floor;
-    r.box_hi[1] = p->y_top;
-  }
+  fog_box_oracle(volume, r.box_lo, r.box_hi);
   /* Split points: the box planes and the profile's discontinuities, within [start, stop]. */
   double lo = t_start, hi = t_stop;
   for (int a = 0; a < 3; a++) {

@@ -16,4 +16,12 @@ double fog_optical_depth_oracle(const fog_volume *volume, const transform_grid *
                                 const double camera[3], const double dir[3], double t_start,
                                 double t_stop, double tolerance, double *error_estimate);
 
+/* The fog's world box: x, z from the placement (corner origin_x, origin_z; W x H cells of
+ * cell_size), y the profile's support; the oracle clips to it. */
+void fog_box_oracle(const fog_volume *volume, double box_min[3], double box_max[3]);
+/* K = extinction f(x, z) g(y) at world point p by the same brute-force B-spline sums;
+ * 0 outside the box (on its faces: the value inside). */
+double fog_extinction_oracle(const fog_volume *volume, const transform_grid *grid,
+                             const double p[3]);
+
 #endif

@@ -1,0 +1,119 @@
+/* The CPU twin of fog_light.glsl, in double (render/fog_sun_shadow.h): T_s at a point and
+ * the tau K-weighted mean of T_s along a view ray, sample for sample as the shader takes
+ * them, so the GL pass can be checked against it pixel by pixel. */
+#include <math.h>
+
+#include "render/fog_sun_shadow.h"
+
+double fog_sun_optical_depth(const fog_model *m, fog_sun_shadow_kind kind,
+                             const fog_sun_shadow *volume, const double p[3]) {
+  switch (kind) {
+    case FOG_SUN_SHADOW_VOLUME:
+      return fog_sun_shadow_depth_at(volume, p);
+    case FOG_SUN_SHADOW_HEIGHT: /* K H e^{-(y - y0)/H} / w_y */
+      return m->extinction * m->scale_height * exp(-(p[1] - m->y0) / m->scale_height) /
+             volume->sun[1];
+    case FOG_SUN_SHADOW_OPAQUE:
+      return HUGE_VAL;
+    default:
+      return 0.0;
+  }
+}
+
+/* K at p, as the shadow mean samples it: the fogmap's finest approximation the draw reads
+ * (switching: A_J; the sum of details: A_0), the volume trilinear, the analytic models
+ * pointwise. */
+static double extinction_at(const fog_model *m, const double p[3]) {
+  switch (m->kind) {
+    case FOG_MODEL_FOGMAP: {
+      int slot = m->lod_method == FOG_LOD_SWITCH ? m->lod->levels : 0;
+      return fog_extinction_point(m->volume, &m->lod->approx[slot], p);
+    }
+    case FOG_MODEL_VOLUME:
+      return fog_grid3d_extinction_at(m->grid3d, p);
+    case FOG_MODEL_HEIGHT:
+      return m->extinction * exp(-(p[1] - m->y0) / m->scale_height);
+    default: {
+      double k = m->extinction;
+      for (int i = 0; i < m->rbf_count; i++) {
+        double r2 = 0.0;
+        for (int a = 0; a < 3; a++)
+          r2 += (p[a] - m->rbfs[i].centre[a]) * (p[a] - m->rbfs[i].centre[a]);
+        k += m->rbfs[i].density * exp(-r2 / (m->rbfs[i].radius * m->rbfs[i].radius));
+      }
+      return k;
+    }
+  }
+}
+
+/* The stretch of the ray that holds fog (fog_light_span): the box, the volume's support,
+ * the height fog up to an optical depth of 20, the RBFs' reach (6 radii). */
+static bool light_span(const fog_model *m, const double o[3], const double d[3],
+                       double t_surface, double *t0, double *t1) {
+  *t0 = 0.0;
+  *t1 = t_surface;
+  switch (m->kind) {
+    case FOG_MODEL_FOGMAP: {
+      double a, b;
+      if (!fog_box_entry_exit(m->volume, o, d, &a, &b)) return false;
+      *t0 = fmax(a, 0.0), *t1 = fmin(b, t_surface);
+      break;
+    }
+    case FOG_MODEL_VOLUME: {
+      double lo[3], hi[3], u0[3], du[3], ulo[3], uhi[3], a, b;
+      volume_grid_index_of(m->grid3d, o, u0);
+      for (int c = 0; c < 3; c++) {
+        du[c] = 0.0;
+        for (int k = 0; k < 3; k++) du[c] += m->grid3d->index_from_world[c][k] * d[k];
+        ulo[c] = -1.0 - u0[c], uhi[c] = m->grid3d->dim[c] - u0[c];
+      }
+      (void)lo, (void)hi;
+      if (!fog_slab_entry_exit(ulo, uhi, du, &a, &b)) return false;
+      *t0 = fmax(a, 0.0), *t1 = fmin(b, t_surface);
+      break;
+    }
+    case FOG_MODEL_HEIGHT: {
+      const double depth = 20.0, H = m->scale_height;
+      double k0 = m->extinction * exp((m->y0 - o[1]) / H), dy = d[1], reach;
+      if (fabs(dy) < 1e-6) {
+        reach = depth / k0;
+      } else {
+        double q = depth * dy / (k0 * H);
+        reach = q >= 1.0 ? (dy > 0 ? fmax(m->y0 - o[1] + 36.0 * H, 0.0) / dy : HUGE_VAL)
+                         : -H / dy * log(1.0 - q);
+      }
+      *t1 = fmin(t_surface, reach);
+      break;
+    }
+    default: {
+      double reach = m->extinction > 0 ? HUGE_VAL : 0.0;
+      for (int i = 0; m->extinction == 0 && i < m->rbf_count; i++) {
+        double along = 0.0;
+        for (int a = 0; a < 3; a++) along += (m->rbfs[i].centre[a] - o[a]) * d[a];
+        reach = fmax(reach, along + 6.0 * m->rbfs[i].radius);
+      }
+      *t1 = fmin(t_surface, reach);
+    }
+  }
+  return *t0 < *t1 && *t1 < 1e29;
+}
+
+double fog_sun_mean_transmittance(const fog_model *m, fog_sun_shadow_kind kind,
+                                  const fog_sun_shadow *volume, int steps, double depth_limit,
+                                  const double o[3], const double d[3], double t_surface) {
+  if (kind == FOG_SUN_SHADOW_NONE) return 1.0;
+  if (kind == FOG_SUN_SHADOW_OPAQUE) return 0.0;
+  double t0, t1;
+  if (!light_span(m, o, d, t_surface, &t0, &t1)) return 1.0;
+  double dt = (t1 - t0) / steps, before = 0.0, weights = 0.0, lit = 0.0;
+  for (int i = 0; i < steps && before < depth_limit; i++) {
+    double t = t0 + (i + 0.5) * dt, p[3];
+    for (int a = 0; a < 3; a++) p[a] = o[a] + t * d[a];
+    double step_depth = extinction_at(m, p) * dt;
+    double w = exp(-before) * -expm1(-step_depth);
+    weights += w;
+    lit += w * exp(-fog_sun_optical_depth(m, kind, volume, p));
+    before += step_depth;
+  }
+  return weights > 0.0 ? lit / weights : 1.0;
+}

@@ -1,0 +1,248 @@
+/* The sun's optical-depth volume (render/fog_sun_shadow.h). */
+#include "render/fog_sun_shadow.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+fog_sun_shadow_kind fog_sun_shadow_kind_of(const fog_model *m, const double sun_dir[3]) {
+  double lo[3], hi[3];
+  switch (m->kind) {
+    case FOG_MODEL_HOMOGENEOUS:
+      return m->extinction > 0 ? FOG_SUN_SHADOW_OPAQUE : FOG_SUN_SHADOW_NONE;
+    case FOG_MODEL_HEIGHT:
+      if (!(m->extinction > 0)) return FOG_SUN_SHADOW_NONE;
+      return sun_dir[1] > 0 ? FOG_SUN_SHADOW_HEIGHT : FOG_SUN_SHADOW_OPAQUE;
+    default:
+      if (m->kind == FOG_MODEL_RBF && m->extinction > 0) return FOG_SUN_SHADOW_OPAQUE;
+      return fog_model_bounds(m, lo, hi) ? FOG_SUN_SHADOW_VOLUME : FOG_SUN_SHADOW_NONE;
+  }
+}
+
+/* The world box of index coordinates [-1, dim] (the trilinear support): its 8 corners
+ * through the inverse of index_from_world. */
+static bool grid3d_bounds(const volume_grid_desc *g, double lo[3], double hi[3]) {
+  const double(*a)[3] = g->index_from_world;
+  double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+               a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+               a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  if (!(fabs(det) > 0) || !isfinite(det)) return false;
+  double inv[3][3]; /* adjugate / det */
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++) {
+      int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+      inv[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
+    }
+  for (int c = 0; c < 3; c++) lo[c] = HUGE_VAL, hi[c] = -HUGE_VAL;
+  for (int corner = 0; corner < 8; corner++) {
+    double u[3];
+    for (int c = 0; c < 3; c++)
+      u[c] = (((corner >> c) & 1) ? g->dim[c] : -1.0) - g->index_offset[c];
+    for (int r = 0; r < 3; r++) {
+      double p = inv[r][0] * u[0] + inv[r][1] * u[1] + inv[r][2] * u[2];
+      lo[r] = fmin(lo[r], p), hi[r] = fmax(hi[r], p);
+    }
+  }
+  return true;
+}
+
+bool fog_model_bounds(const fog_model *m, double lo[3], double hi[3]) {
+  switch (m->kind) {
+    case FOG_MODEL_FOGMAP:
+      if (!m->volume || !m->lod) return false;
+      fog_volume_box(m->volume, lo, hi);
+      return lo[0] < hi[0] && lo[1] < hi[1] && lo[2] < hi[2];
+    case FOG_MODEL_VOLUME:
+      return m->grid3d && grid3d_bounds(m->grid3d, lo, hi);
+    case FOG_MODEL_RBF:
+      if (m->extinction > 0 || m->rbf_count < 1) return false;
+      for (int c = 0; c < 3; c++) lo[c] = HUGE_VAL, hi[c] = -HUGE_VAL;
+      for (int i = 0; i < m->rbf_count; i++)
+        for (int c = 0; c < 3; c++) {
+          lo[c] = fmin(lo[c], m->rbfs[i].centre[c] - 6.0 * m->rbfs[i].radius);
+          hi[c] = fmax(hi[c], m->rbfs[i].centre[c] + 6.0 * m->rbfs[i].radius);
+        }
+      return true;
+    default:
+      return false;
+  }
+}
+
+int fog_sun_shadow_create(fog_sun_shadow *s, const fog_sun_shadow_desc *desc,
+                          render_error *err) {
+  memset(s, 0, sizeof *s);
+  if (desc->across < 2 || desc->along < 2 || desc->across > FOG_SUN_SHADOW_MAX_SIZE ||
+      desc->along > FOG_SUN_SHADOW_MAX_SIZE) {
+    snprintf(err->message, sizeof err->message,
+             "sun shadow volume %d x %d x %d: expected 2..%d samples along each axis",
+             desc->across, desc->across, desc->along, FOG_SUN_SHADOW_MAX_SIZE);
+    return 1;
+  }
+  s->size[0] = s->size[1] = desc->across;
+  s->size[2] = desc->along;
+  s->optical_depth = calloc((size_t)desc->across * desc->across * desc->along, sizeof(float));
+  if (!s->optical_depth) {
+    snprintf(err->message, sizeof err->message, "sun shadow volume: out of memory");
+    return 1;
+  }
+  return 0;
+}
+
+void fog_sun_shadow_destroy(fog_sun_shadow *s) {
+  if (!s) return;
+  free(s->optical_depth);
+  s->optical_depth = NULL;
+}
+
+/* e2 = -sun; e0, e1 any orthonormal pair across it (e0 horizontal unless the sun is at the
+ * zenith). */
+static void sun_frame(const double sun[3], double axis[3][3]) {
+  double *e0 = axis[0], *e1 = axis[1], *e2 = axis[2];
+  for (int c = 0; c < 3; c++) e2[c] = -sun[c];
+  double ref[3] = {0, 1, 0};
+  if (fabs(e2[1]) > 0.99) ref[0] = 1, ref[1] = 0;
+  e0[0] = ref[1] * e2[2] - ref[2] * e2[1]; /* ref x e2 */
+  e0[1] = ref[2] * e2[0] - ref[0] * e2[2];
+  e0[2] = ref[0] * e2[1] - ref[1] * e2[0];
+  double n = sqrt(e0[0] * e0[0] + e0[1] * e0[1] + e0[2] * e0[2]);
+  for (int c = 0; c < 3; c++) e0[c] /= n;
+  e1[0] = e2[1] * e0[2] - e2[2] * e0[1]; /* e2 x e0 */
+  e1[1] = e2[2] * e0[0] - e2[0] * e0[2];
+  e1[2] = e2[0] * e0[1] - e2[1] * e0[0];
+}
+
+typedef struct shadow_job {
+  fog_sun_shadow *s;
+  const fog_model *model;
+  int first_row, row_step; /* rows j of columns this thread fills */
+} shadow_job;
+
+/* Column (i, j): its entry point on the sun-side face, then sample k's optical depth as
+ * the sum of the exact depths of the segments before it (one walk's work per column). */
+static void *shadow_rows(void *arg) {
+  shadow_job *job = arg;
+  fog_sun_shadow *s = job->s;
+  const int n0 = s->size[0], n1 = s->size[1], n2 = s->size[2];
+  const double step = s->extent[2] / (n2 - 1);
+  const double *e2 = s->axis[2];
+  for (int j = job->first_row; j < n1; j += job->row_step)
+    for (int i = 0; i < n0; i++) {
+      double a = s->extent[0] * i / (n0 - 1), b = s->extent[1] * j / (n1 - 1);
+      float *column = s->optical_depth + (size_t)j * n0 + i;
+      double start[3], running[FOG_SUN_SHADOW_MAX_SIZE];
+      for (int c = 0; c < 3; c++) start[c] = s->origin[c] + a * s->axis[0][c] + b * s->axis[1][c];
+      if (job->model->kind == FOG_MODEL_FOGMAP) {
+        /* one walk down the column, its running sum read at each sample */
+        fog_optical_depth_samples(job->model->volume, job->model->lod->approx, start, e2, step,
+                                  n2, running);
+      } else {
+        running[0] = 0.0;
+        for (int k = 1; k < n2; k++) {
+          double p[3];
+          for (int c = 0; c < 3; c++) p[c] = start[c] + (k - 1) * step * e2[c];
+          running[k] = running[k - 1] + fog_model_optical_depth(job->model, p, e2, step);
+        }
+      }
+      for (int k = 0; k < n2; k++) column[(size_t)k * n0 * n1] = (float)running[k];
+    }
+  return NULL;
+}
+
+int fog_sun_shadow_compute(fog_sun_shadow *s, const fog_model *model, const double sun_dir[3],
+                           int threads, render_error *err) {
+  double lo[3], hi[3];
+  if (!s->optical_depth || !fog_model_bounds(model, lo, hi)) {
+    snprintf(err->message, sizeof err->message,
+             "sun shadow volume: %s", !s->optical_depth ? "not created"
+                                                         : "the fog model has no bounds");
+    return 1;
+  }
+  double len = sqrt(sun_dir[0] * sun_dir[0] + sun_dir[1] * sun_dir[1] + sun_dir[2] * sun_dir[2]);
+  if (!(fabs(len - 1.0) < 1e-6)) {
+    snprintf(err->message, sizeof err->message,
+             "sun shadow volume: sun direction of length %g: expected a unit vector", len);
+    return 1;
+  }
+  for (int c = 0; c < 3; c++) s->sun[c] = sun_dir[c];
+  sun_frame(sun_dir, s->axis);
+  /* The box's extent in the sun's frame, from its 8 corners. */
+  double mn[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, mx[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (int corner = 0; corner < 8; corner++) {
+    double p[3];
+    for (int c = 0; c < 3; c++) p[c] = ((corner >> c) & 1) ? hi[c] : lo[c];
+    for (int a = 0; a < 3; a++) {
+      double d = p[0] * s->axis[a][0] + p[1] * s->axis[a][1] + p[2] * s->axis[a][2];
+      mn[a] = fmin(mn[a], d), mx[a] = fmax(mx[a], d);
+    }
+  }
+  for (int c = 0; c < 3; c++) {
+    s->origin[c] = mn[0] * s->axis[0][c] + mn[1] * s->axis[1][c] + mn[2] * s->axis[2][c];
+  }
+  for (int a = 0; a < 3; a++) s->extent[a] = fmax(mx[a] - mn[a], 1e-9);
+  /* The fogmap's sunlight walks the finest grid A_J (the truth the LOD approximates). */
+  fog_lod finest;
+  fog_model walked = *model;
+  if (model->kind == FOG_MODEL_FOGMAP) {
+    finest = (fog_lod){.levels = 0, .approx = model->lod->approx + model->lod->levels, .mu = 1.0};
+    walked.lod = &finest;
+  }
+  if (threads < 1) threads = 1;
+  if (threads > 16) threads = 16;
+  shadow_job jobs[16];
+  pthread_t ids[16];
+  int started = 0;
+  for (int t = 0; t < threads; t++)
+    jobs[t] = (shadow_job){.s = s, .model = &walked, .first_row = t, .row_step = threads};
+  for (int t = 1; t < threads; t++)
+    if (pthread_create(&ids[t], NULL, shadow_rows, &jobs[t]) == 0) started = t;
+    else break;
+  shadow_rows(&jobs[0]);
+  for (int t = 1; t <= started; t++) pthread_join(ids[t], NULL);
+  for (int t = started + 1; t < threads; t++) shadow_rows(&jobs[t]); /* threads that failed */
+  return 0;
+}
+
+void fog_sun_shadow_tex_map(const fog_sun_shadow *s, double m[3][3], double offset[3]) {
+  for (int a = 0; a < 3; a++) {
+    double scale = (s->size[a] - 1) / (s->size[a] * s->extent[a]);
+    for (int c = 0; c < 3; c++) m[a][c] = s->axis[a][c] * scale;
+    offset[a] = 0.5 / s->size[a];
+  }
+}
+
+/* One sample, with GL's wrap modes: across (axes 0, 1) a zero border, along (axis 2) the
+ * edge. */
+static double shadow_sample(const fog_sun_shadow *s, int i, int j, int k) {
+  if (i < 0 || j < 0 || i >= s->size[0] || j >= s->size[1]) return 0.0;
+  k = k < 0 ? 0 : (k >= s->size[2] ? s->size[2] - 1 : k);
+  return s->optical_depth[((size_t)k * s->size[1] + j) * s->size[0] + i];
+}
+
+double fog_sun_shadow_depth_at(const fog_sun_shadow *s, const double p[3]) {
+  double m[3][3], offset[3], x[3];
+  int base[3];
+  double f[3];
+  fog_sun_shadow_tex_map(s, m, offset);
+  for (int a = 0; a < 3; a++) {
+    double tex = offset[a];
+    for (int c = 0; c < 3; c++) tex += m[a][c] * (p[c] - s->origin[c]);
+    x[a] = tex * s->size[a] - 0.5; /* GL_LINEAR: texel space, centres at integers */
+    x[a] = fmin(fmax(x[a], -2.0), s->size[a] + 1.0); /* beyond: the border or the edge */
+    base[a] = (int)floor(x[a]);
+    f[a] = x[a] - base[a];
+  }
+  double sum = 0.0;
+  for (int corner = 0; corner < 8; corner++) {
+    double w = 1.0;
+    int idx[3];
+    for (int a = 0; a < 3; a++) {
+      int o = (corner >> a) & 1;
+      idx[a] = base[a] + o;
+      w *= o ? f[a] : 1.0 - f[a];
+    }
+    if (w != 0.0) sum += w * shadow_sample(s, idx[0], idx[1], idx[2]);
+  }
+  return sum;
+}

@@ -1,0 +1,110 @@
+// The fog's shadow on itself, T_s (render/fog_sun_shadow.h, docs/light.md), for the fog
+// pass (fog_pass_fs.glsl includes it after the models). Specialisation constant:
+//   #define FOG_SUN_SHADOW 0|1|2|3   (fog_sun_shadow_kind: none, the optical-depth volume,
+//                                    the height fog's closed form, opaque)
+// The sun's in-scatter of a view ray is a L_sun p(theta) int tau K T_s du. Written as
+// (1 - tau) times the mean of T_s weighted by tau K (the weights integrate to 1 - tau), the
+// transmittance tau stays the model's exact integral and with T_s = 1 the in-scatter is
+// exactly (L_amb + a L_sun p) (1 - tau) (the identity of docs/light.md). The mean is taken
+// over fog_shadow_steps equal segments of the ray's fog span: segment i weighs
+// e^{-D_i} (1 - e^{-K_i dt}) (K_i at its midpoint, D_i the depth before it) and sees T_s
+// at its midpoint.
+uniform sampler3D fog_sun_shadow_map;   // R32F optical depth towards the sun
+uniform mat3 fog_sun_shadow_to_tex;     // fog_sun_shadow_tex_map's M
+uniform vec3 fog_sun_shadow_tex_camera; // M (camera - origin) + offset, in double on the CPU
+uniform int fog_shadow_steps;
+
+// Optical depth from camera-relative point p towards the sun.
+float fog_sun_optical_depth(vec3 p) {
+#if FOG_SUN_SHADOW == 1
+  return texture(fog_sun_shadow_map, fog_sun_shadow_tex_camera + fog_sun_shadow_to_tex * p).r;
+#elif FOG_SUN_SHADOW == 2
+  // int_0^inf K e^{-(y + s w_y - y0)/H} ds = K H e^{-(y - y0)/H} / w_y (w_y > 0)
+  return fog_model_extinction * fog_model_scale_height *
+         exp(-(p.y - fog_model_y0) / fog_model_scale_height) / fog_sun_direction.y;
+#elif FOG_SUN_SHADOW == 3
+  return FOG_INFINITY;
+#else
+  return 0.0;
+#endif
+}
+
+#if FOG_SUN_SHADOW == 1 || FOG_SUN_SHADOW == 2
+// The stretch [t0, t1] of the ray that holds the model's fog (finite), and K along it.
+bool fog_light_span(fog_ray r, out float t0, out float t1) {
+#if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
+  t0 = float(max(r.t_in, 0.0));
+  t1 = min(float(r.t_out), r.t_surface);
+#elif FOG_MODEL_KIND == FOG_MODEL_VOLUME
+  vec3 u0, du;
+  if (!fog_grid3d_stretch(r.dir, r.t_surface, u0, du, t0, t1)) return false;
+#elif FOG_MODEL_KIND == FOG_MODEL_HEIGHT
+  // Up to the surface, or where the ray's optical depth reaches FOG_LIGHT_DEPTH (the rest
+  // weighs < e^-20): D(L) = K e^{y0/H} H (1 - e^{-w_y L / H}) / w_y, inverted.
+  const float FOG_LIGHT_DEPTH = 20.0;
+  float H = fog_model_scale_height, k0 = fog_model_extinction * exp(fog_model_y0 / H);
+  float dy = r.dir.y, reach;
+  if (abs(dy) < 1e-6) {
+    reach = FOG_LIGHT_DEPTH / k0;
+  } else {
+    float q = FOG_LIGHT_DEPTH * dy / (k0 * H);
+    reach = q >= 1.0 ? fog_model_reach(r.dir) : -H / dy * log(1.0 - q);
+  }
+  t0 = 0.0;
+  t1 = min(r.t_surface, reach);
+#else
+  t0 = 0.0;
+  t1 = min(r.t_surface, fog_model_reach(r.dir));
+#endif
+  return t0 < t1 && t1 < 1e29;
+}
+
+float fog_light_extinction(vec3 dir, float t) {
+#if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
+  // the finest approximation the draw reads (switching: A_J in slot J; else slot 0)
+  return fog_extinction_scale *
+         fog_extinction_at(fog_lod_method == FOG_LOD_SWITCH ? fog_levels : 0, dir, t);
+#elif FOG_MODEL_KIND == FOG_MODEL_VOLUME
+  return fog_grid3d_density(fog_grid3d_camera_index + t * (fog_grid3d_index_from_world * dir));
+#else
+  return fog_model_extinction_at(t * dir);
+#endif
+}
+#endif
+
+// The tau K-weighted mean of T_s along the ray (1 where the ray holds no fog).
+float fog_sun_mean_transmittance(fog_ray r) {
+#if FOG_SUN_SHADOW == 0
+  return 1.0;
+#elif FOG_SUN_SHADOW == 3
+  return 0.0;
+#else
+  float t0, t1;
+  if (!fog_light_span(r, t0, t1)) return 1.0;
+  float dt = (t1 - t0) / float(fog_shadow_steps), before = 0.0, weights = 0.0, lit = 0.0;
+  // Past an optical depth of fog_depth_limit (16) the rest weighs < e^-16: stop there.
+  for (int i = 0; i < fog_shadow_steps && before < fog_depth_limit; i++) {
+    float t = t0 + (float(i) + 0.5) * dt;
+    float step_depth = fog_light_extinction(r.dir, t) * dt;
+    float w = exp(-before) * step_depth * fog_exprel(step_depth);  // 1 - e^-x, no cancellation
+    weights += w;
+    lit += w * exp(-fog_sun_optical_depth(t * r.dir));
+    before += step_depth;
+  }
+  return weights > 0.0 ? lit / weights : 1.0;
+#endif
+}
+
+// The sun's share of the in-scatter of the pixel's view ray (unit dir_d, surface at
+// t_surface): the mean above, its own ray set-up (the upsampling pass skips the walk's).
+float fog_sun_light(dvec3 dir_d, float t_surface) {
+#if FOG_SUN_SHADOW == 1 || FOG_SUN_SHADOW == 2
+  double t_in = 1.0, t_out = 0.0;
+#if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
+  if (!fog_box_entry_exit(dir_d, t_in, t_out)) t_in = 1.0, t_out = 0.0;
+#endif
+  return fog_sun_mean_transmittance(fog_ray(dir_d, vec3(dir_d), t_in, t_out, t_surface, 0.5));
+#else
+  return fog_sun_mean_transmittance(fog_ray(dir_d, vec3(dir_d), 1.0, 0.0, t_surface, 0.5));
+#endif
+}

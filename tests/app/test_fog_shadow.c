@@ -1,0 +1,216 @@
+/* The fog's shadow on itself and on the ground (render/fog_sun_shadow.h, fog_light.glsl,
+ * docs/light.md), rendered through `fogpipe render`'s frame path for every model:
+ * - GL against its CPU twin in double (fog_sun_mean_transmittance over the same sun
+ *   volume): in-scatter = (L_amb + a L_sun p(theta) mean) (1 - tau) per pixel, within
+ *   FOG_SHADOW_GL_TOLERANCE relative (float shader vs double twin);
+ * - the twin's method against the independent reference (tests/reference/
+ *   fog_light_reference.h: adaptive quadrature along the view ray, T_s by nested adaptive
+ *   quadrature towards the sun): |mean (1 - tau) - S_ref| printed, relative to 1 - tau,
+ *   and bounded (height fog: the closed form T_s, so the error is the view-ray sampling's;
+ *   the fogmap: the volume's interpolation too);
+ * - the shadow darkens: self-shadowed in-scatter <= unshadowed, and somewhere clearly so;
+ * - fog shadows on the ground: with the shadow on, surface pixels under fog lose
+ *   tau (1 - T_s(P)) of their sun-lit share, S_sun = S - S(sun dimmed to nothing),
+ *   T_s(P) from the twin. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/config.h"
+#include "app/render_fog.h"
+#include "app/render_frame.h"
+#include "reference/fog_light_reference.h"
+#include "render/render.h"
+#include "test_util.h"
+
+enum { W = 64, H = 36 };
+static const double pi = 3.14159265358979323846;
+#define FOG_SHADOW_GL_TOLERANCE 1e-5
+
+typedef struct frame {
+  float rgba[4 * W * H], tau[W * H], depth[W * H], inscatter[3 * W * H];
+} frame;
+
+static int render(const scene_config *cfg, frame *f, const char *label) {
+  render_frame_info info;
+  render_frame_error err = {{0}};
+  const frame_pixels out = {.rgba = f->rgba, .transmittance = f->tau, .depth = f->depth,
+                            .inscatter = f->inscatter};
+  const int failed = render_frame(cfg, W, H, &out, &info, &err);
+  CHECK(!failed, "%s: %s", label, err.message);
+  return failed;
+}
+
+/* The same scene without fog; sunless: the sun dimmed to nothing (0 would mean default). */
+static int render_surface(const scene_config *cfg, frame *f, bool sunless, const char *label) {
+  scene_config bare = *cfg;
+  bare.fog.model = FOG_MODEL_FOGMAP;
+  bare.fog.fogmap[0] = bare.fog.vdb[0] = bare.fog.sequence[0] = '\0';
+  if (sunless) bare.light.sun_colour[0] = bare.light.sun_colour[1] = bare.light.sun_colour[2] = 1e-30f;
+  return render(&bare, f, label);
+}
+
+static double phase_hg(double g, double mu) {
+  return (1 - g * g) / (4 * pi * pow(1 + g * g - 2 * g * mu, 1.5));
+}
+
+/* The scene's light: a low sun from the side of the view, so that lit and shadowed fog
+ * are both in sight. */
+static void light_up(scene_config *cfg) {
+  cfg->fog.albedo = 0.9, cfg->fog.phase_g = 0.3;
+  cfg->shadow.fog_self_shadow = 1;
+}
+
+typedef struct model_case {
+  const char *label;
+  scene_config cfg;
+  bool reference;          /* compare with the reference (fogmap and height fog) */
+  double reference_bound;  /* max |twin - reference| / (1 - tau) allowed */
+} model_case;
+
+static void check_case(model_case *mc) {
+  static frame lit, flat, surface, sunless;
+  scene_config *cfg = &mc->cfg;
+  const char *label = mc->label;
+  light_up(cfg);
+  scene_config unshadowed = *cfg;
+  unshadowed.shadow.fog_self_shadow = 0;
+  if (render(cfg, &lit, label) || render(&unshadowed, &flat, label) ||
+      render_surface(cfg, &surface, false, label) || render_surface(cfg, &sunless, true, label))
+    return;
+
+  render_frame_error ferr = {{0}};
+  render_session *session = render_session_create(cfg, W, H, &ferr);
+  CHECK(session, "%s: %s", label, ferr.message);
+  if (!session) return;
+  render_fog *fog = render_session_fog(session);
+  vdb_frame vframe = {0};
+  volume_grid_desc grid = {0};
+  render_error rerr = {{0}};
+  if (cfg->fog.model == FOG_MODEL_VOLUME)
+    CHECK(!render_fog_load_volume(cfg, &vframe, &grid, &rerr), "%s: %s", label, rerr.message);
+  fog->grid3d = &grid;
+  fog_model model = render_fog_model(fog);
+  const fog_pass_params *params = &fog->params;
+  fog_sun_shadow sun_only = {.sun = {params->sun.direction[0], params->sun.direction[1],
+                                     params->sun.direction[2]}};
+  const fog_sun_shadow *volume =
+      params->self_shadow == FOG_SUN_SHADOW_VOLUME ? &fog->sun_shadow : &sun_only;
+  CHECK(params->self_shadow != FOG_SUN_SHADOW_NONE, "%s: no self-shadow", label);
+
+  /* The reference's medium: the fogmap the GL draws (mu = 1, switching: A_J, the map
+   * itself) or the height fog. */
+  light_ref_height height = {.extinction = model.extinction, .y0 = model.y0,
+                             .scale_height = model.scale_height};
+  light_ref_medium medium =
+      model.kind == FOG_MODEL_FOGMAP
+          ? light_ref_fogmap(model.volume, &model.lod->approx[model.lod->levels])
+          : light_ref_height_medium(&height);
+  camera cam;
+  scene_config_camera(cfg, &cam);
+  const fog_sun *sun = &params->sun;
+  double gl_worst = 0, ref_worst = 0, ref_mean = 0, darker = 0, brighter = 0;
+  double ground_worst = 0, ground_dimmed = 0;
+  int ref_count = 0;
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      const int k = py * W + px;
+      double o[3], d[3];
+      camera_ray(&cam, px, py, W, H, o, d);
+      double t_surface = lit.depth[k] >= 0.999 * cam.far_plane ? HUGE_VAL : lit.depth[k];
+      double mean = fog_sun_mean_transmittance(&model, params->self_shadow, volume,
+                                               params->shadow_steps, FOG_PASS_DEPTH_CUTOFF, o,
+                                               d, t_surface);
+      const double mu = d[0] * sun->direction[0] + d[1] * sun->direction[1] +
+                        d[2] * sun->direction[2];
+      const double p = phase_hg(sun->phase_g, mu), tau = lit.tau[k];
+      for (int c = 0; c < 3; c++) {
+        const double want =
+            (params->fog_colour[c] + sun->albedo * sun->radiance[c] * p * mean) * (1 - tau);
+        gl_worst = fmax(gl_worst, fabs(lit.inscatter[3 * k + c] - want) / fmax(want, 1e-3));
+        darker = fmax(darker, flat.inscatter[3 * k + c] - lit.inscatter[3 * k + c]);
+        brighter = fmax(brighter, lit.inscatter[3 * k + c] - flat.inscatter[3 * k + c]);
+      }
+      /* the ground: rgb - in-scatter lost tau (1 - T_s(P)) S_sun with the shadow on */
+      if (isfinite(t_surface)) {
+        double P[3];
+        for (int a = 0; a < 3; a++) P[a] = o[a] + t_surface * d[a];
+        double ts = exp(-fog_sun_optical_depth(&model, params->self_shadow, volume, P));
+        for (int c = 0; c < 3; c++) {
+          double lost = (flat.rgba[4 * k + c] - flat.inscatter[3 * k + c]) -
+                        (lit.rgba[4 * k + c] - lit.inscatter[3 * k + c]);
+          double s_sun = surface.rgba[4 * k + c] - sunless.rgba[4 * k + c];
+          double want = tau * (1 - ts) * s_sun;
+          ground_worst = fmax(ground_worst, fabs(lost - want));
+          ground_dimmed = fmax(ground_dimmed, want);
+        }
+      }
+      /* the reference on every 23rd pixel with fog (nested quadrature is slow) */
+      if (mc->reference && k % 23 == 0 && tau < 0.98) {
+        double ref_tau;
+        double s_ref = light_ref_sun_inscatter(&medium, o, d, t_surface, sun->direction, 1, 1e-9,
+                                               &ref_tau);
+        double e = fabs(mean * (1 - tau) - s_ref) / (1 - tau);
+        ref_worst = fmax(ref_worst, e);
+        ref_mean += e;
+        ref_count++;
+      }
+    }
+  printf("%s: GL vs its CPU twin: max relative in-scatter error %.2e; the shadow darkens the "
+         "in-scatter by up to %.3f (brightens by %.2e)\n", label, gl_worst, darker, brighter);
+  CHECK(gl_worst <= FOG_SHADOW_GL_TOLERANCE, "%s: GL vs twin %.3e", label, gl_worst);
+  printf("%s: fog shadows on the ground dim the surfaces by up to %.3f; |GL - tau (1 - T_s) "
+         "S_sun| <= %.2e\n", label, ground_dimmed, ground_worst);
+  CHECK(ground_dimmed > 0.02, "%s: the fog casts no shadow on the ground (%.3e)", label,
+        ground_dimmed);
+  CHECK(ground_worst <= 5e-4, "%s: ground shadow %.3e off (half-float surfaces)", label,
+        ground_worst);
+  CHECK(darker > 0.02, "%s: the self-shadow does not darken the fog (%.3e)", label, darker);
+  CHECK(brighter <= 1e-5, "%s: the self-shadow brightens the fog (%.3e)", label, brighter);
+  if (mc->reference && ref_count > 0) {
+    printf("%s: the twin's sun in-scatter vs the reference (%d rays): max |error| %.3e, mean "
+           "%.3e of (1 - tau)\n", label, ref_count, ref_worst, ref_mean / ref_count);
+    CHECK(ref_worst <= mc->reference_bound, "%s: vs the reference %.3e > %.3e", label,
+          ref_worst, mc->reference_bound);
+  }
+  fog->grid3d = NULL;
+  vdb_frame_destroy(&vframe);
+  render_session_destroy(session);
+}
+
+static int load(const char *path, scene_config *cfg) {
+  scene_config_error cerr;
+  if (scene_config_load(path, cfg, &cerr)) {
+    CHECK(0, "%s: %s", path, cerr.message);
+    return 1;
+  }
+  return 0;
+}
+
+int main(void) {
+  static model_case cases[4];
+  int n = 0;
+  model_case *c = &cases[n];
+  if (!load("configs/default.ini", &c->cfg)) {
+    c->label = "fogmap (configs/default.ini)";
+    c->reference = true, c->reference_bound = 0.03;
+    n++;
+  }
+  c = &cases[n];
+  if (!load("configs/vdb_plume_volume.ini", &c->cfg)) {
+    c->label = "volume (configs/vdb_plume_volume.ini)";
+    c->cfg.light.sun_azimuth = 75, c->cfg.light.sun_elevation = 20;
+    n++;
+  }
+  c = &cases[n];
+  if (!load("configs/default.ini", &c->cfg)) {
+    c->label = "height";
+    c->reference = true, c->reference_bound = 0.03;
+    c->cfg.fog.model = FOG_MODEL_HEIGHT;
+    c->cfg.fog.density_scale = 0.01, c->cfg.fog.fog_height = 40, c->cfg.fog.scale_height = 30;
+    n++;
+  }
+  for (int i = 0; i < n; i++) check_case(&cases[i]);
+  return test_finish("test_fog_shadow");
+}
