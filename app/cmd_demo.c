@@ -137,7 +137,7 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
                  pipeline_step_index(pipe));
       panel_text(ui, "sim %6.2f   transform %6.2f", med.sim, med.transform);
       panel_text(ui, "upload %6.2f   render %6.2f", med.upload, med.render);
-      panel_text(ui, "frame %6.2f", med.frame);
+      panel_text(ui, "frame %6.2f   sun shadow %6.2f", med.frame, med.sun_shadow);
       float ordered[120], top = 34.0f; /* at least the 30 fps line's scale */
       for (int i = 0; i < 120; i++) {
         ordered[i] = d->frame_history[(d->history_next + i) % 120];
@@ -186,6 +186,8 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
         params.sun.phase_g = g;
         changed = true;
       }
+      /* T_s: the fog's shadow on itself and on the ground (albedo > 0) */
+      changed |= panel_checkbox(ui, "fog self-shadow", &params.fog_self_shadow);
     }
     if (panel_header(ui, "wavelets", true)) {
       static const char *const bases[] = {"Haar (degree 0)", "linear (CDF 5/3)", "quadratic (bior3.3)"};

@@ -155,7 +155,7 @@ void scene_config_init(scene_config *cfg) {
       .terrain = {.origin = {-500, 0, -500}, .size = {1000, 1000}, .height = 150,
                   .resolution = 257, .octaves = 6, .frequency = 3.0, .persistence = 0.5,
                   .seed = 1},
-      .shadow = {.fog_self_shadow = 1, .resolution = 48, .steps = 8},
+      .shadow = {.fog_self_shadow = 1, .resolution = 48, .steps = 16},
       .width = 1280,
       .height = 720,
   };

@@ -388,7 +388,7 @@ static int compute_shadow(const pipeline *p, const pipeline_params *params,
                           const transform_grid *finest, int threads, fog_sun_shadow_kind *kind,
                           fog_sun_shadow *volume, double sun[3], pipeline_error *err) {
   *kind = FOG_SUN_SHADOW_NONE;
-  if (!(params->sun.albedo > 0) || !p->config.shadow.fog_self_shadow) return 0;
+  if (!(params->sun.albedo > 0) || !params->fog_self_shadow) return 0;
   sun_direction_of(p, params, sun);
   fog_volume v = volume_of(p, params);
   fog_lod lod = {.levels = 0, .approx = finest, .mu = 1.0};
@@ -525,6 +525,7 @@ static pipeline_params params_from_config(const scene_config *cfg) {
       .sun = scene_config_fog_sun(cfg),
       .sun_azimuth = (float)light.sun_azimuth,
       .sun_elevation = (float)light.sun_elevation,
+      .fog_self_shadow = cfg->shadow.fog_self_shadow != 0,
       .profile_kind = (int)cfg->fog.profile, /* scene_profile numbers fog_profile_kind */
       .fog_height = (float)cfg->fog.fog_height,
       .scale_height = (float)cfg->fog.scale_height,
@@ -780,9 +781,11 @@ static int show_slot_shadow(pipeline *p, const pipeline_slot *slot, pipeline_err
 /* The sun moved (or the albedo became > 0) since the volume on screen was computed, and
  * no step brought one for this sun: compute it here from the last step's finest grid. */
 static int relight(pipeline *p, const pipeline_params *params, pipeline_error *err) {
-  if (!(params->sun.albedo > 0) || !p->config.shadow.fog_self_shadow ||
-      !p->shadow_grid.coefficients)
+  if (!(params->sun.albedo > 0) || !params->fog_self_shadow) {
+    p->shown_self_shadow = FOG_SUN_SHADOW_NONE; /* switched off: at once */
     return 0;
+  }
+  if (!p->shadow_grid.coefficients) return 0;
   double sun[3];
   sun_direction_of(p, params, sun);
   if (p->shown_self_shadow != FOG_SUN_SHADOW_NONE &&

@@ -76,6 +76,7 @@ typedef struct pipeline_params {
                         from the two angles below each frame */
   float sun_azimuth, sun_elevation; /* degrees ([light]): the sun of the terrain and the fog;
                                        pipeline_frame derives sun.direction from them */
+  bool fog_self_shadow; /* [light] fog_self_shadow: T_s on the fog and the ground */
   int profile_kind;  /* fog_profile_kind (slab / exponential) */
   float fog_height;  /* top of the slab or of the flat part (y0) */
   float scale_height;/* exponential falloff H */

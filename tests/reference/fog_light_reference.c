@@ -282,8 +282,9 @@ double light_ref_sun_inscatter(const light_ref_medium *m, const double o[3], con
   int n = lr_ray_points(m, o, d, 0.0, t_surf, &pts);
   if (n < 0) return NAN;
   long work = 0;
-  lr_scatter c = {.view = {.m = m, .o = o, .d = d, .work = &work}, .sun = shadowed ? sun_dir : NULL,
-                  .tol = tol, .length = n >= 2 ? pts[n - 1] - pts[0] : 1.0};
+  lr_scatter c = {.view = {.m = m, .o = o, .d = d, .work = &work},
+                  .sun = shadowed ? sun_dir : NULL, .tol = tol,
+                  .length = n >= 2 ? pts[n - 1] - pts[0] : 1.0};
   double s = 0.0, d_run = 0.0;
   for (int i = 0; i + 1 < n && !c.failed; i++) {
     double d_ab = lr_adapt_depth(&c.view, pts[i], pts[i + 1],

@@ -54,9 +54,12 @@ double light_ref_optical_depth(const light_ref_medium *m, const double o[3], con
 /* T_s(p) = exp(-D(p, sun_dir; 0, inf)); tol absolute on that optical depth. */
 double light_ref_sun_transmittance(const light_ref_medium *m, const double p[3],
                                    const double sun_dir[3], double tol);
-/* S of the view ray from o along unit d up to the surface at t_surf (HUGE_VAL: sky). With
- * shadowed = 0, T_s = 1 and sun_dir is not read (may be NULL). *tau (if non-NULL) receives
- * tau(o, t_surf) from a separate optical-depth integral. */
+/* S of the view ray from o along unit d up to the surface at t_surf >= 0 (HUGE_VAL: sky),
+ * S <= 1. With shadowed = 0, T_s = 1 and sun_dir is not read (may be NULL); shadowed needs
+ * sun_dir (unit, towards the sun). *tau (if non-NULL) receives tau(o, t_surf) from a
+ * separate optical-depth integral (NAN when S is). Cost: ~225 density evaluations per
+ * outer interval, each break-free piece of the view ray at least one, times the sun ray's
+ * ~15 per break-free piece when shadowed (~1e6 evaluations, ~0.1 s, on a 64 x 64 fogmap). */
 double light_ref_sun_inscatter(const light_ref_medium *m, const double o[3], const double d[3],
                                double t_surf, const double sun_dir[3], int shadowed, double tol,
                                double *tau);

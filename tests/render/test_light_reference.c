@@ -1,8 +1,9 @@
 /* The sunlight reference (tests/reference/fog_light_reference.h) against what is known
  * without it: the identity S1 = 1 - tau of the unshadowed in-scatter, closed forms in a
  * homogeneous slab (sun overhead and oblique) and in height fog (T_s, and S for vertical rays
- * under an overhead sun), and the optical depths against fog_oracle.c and the height fog's
- * closed form. Prints the worst error of each group and the time of one shadowed S on a
+ * under an overhead sun), the shadowed fogmap S against a brute-force midpoint sum on
+ * fog_oracle.c, and the optical depths against fog_oracle.c and the height fog's closed
+ * form. Prints the worst error of each group and the time of one shadowed S on a
  * 64 x 64 fogmap. */
 #include <math.h>
 #include <stdio.h>
@@ -257,18 +258,37 @@ static void height_sun(void) {
   }
 }
 
-/* ---- the fogmap's T_s against fog_oracle.c, and the cost of S on 64 x 64 ---- */
+/* ---- 4. the shadowed fogmap S against a brute-force sum built on fog_oracle.c ---- */
 
-static void fogmap_sun(void) {
+/* Midpoint sum of tau K T_s over [a, b] in n steps, tau and T_s from fog_oracle.c's optical
+ * depth (a different quadrature and nesting: running increments between the midpoints). */
+static double brute_force_s(const fog_volume *v, const transform_grid *g, const double o[3],
+                            const double d[3], double a, double b, const double sun[3], int n) {
+  double h = (b - a) / n, s = 0.0, depth = 0.0, prev = a;
+  for (int i = 0; i < n; i++) {
+    double t = a + (i + 0.5) * h, p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
+    depth += fog_optical_depth_oracle(v, g, o, d, prev, t, 1e-14, NULL);
+    prev = t;
+    double k = fog_extinction_oracle(v, g, p);
+    if (k > 0.0)
+      s += exp(-depth) * k * h *
+           exp(-fog_optical_depth_oracle(v, g, p, sun, 0.0, HUGE_VAL, 1e-14, NULL));
+  }
+  return s;
+}
+
+static double worst_brute;
+
+static void fogmap_sun(int degree) {
   fog_volume v = small_volume(exp_profile);
-  transform_grid g = make_grid(8, 2, 1.0, 0.0);
+  transform_grid g = make_grid(8, degree, 1.0, 0.0);
   light_ref_medium m = light_ref_fogmap(&v, &g);
   double sun[3] = {0.5, 0.6, -0.3}, p[3] = {14.0, 1.5, 2.0};
   unit(sun);
   double got = light_ref_sun_transmittance(&m, p, sun, 1e-13);
   double exact = exp(-fog_optical_depth_oracle(&v, &g, p, sun, 0.0, HUGE_VAL, 1e-13, NULL));
   CHECK(fabs(got - exact) <= 1e-12, "fogmap T_s %.15g, fog_oracle %.15g", got, exact);
-  /* Shadowing only removes light: S <= S1; and S converges as tol shrinks. */
+  /* Shadowing only removes light: S < S1; S converges as tol shrinks. */
   double o[3] = {0, 5, 0}, q[3] = {18, 3, 2}, d[3], tau;
   aim(o, q, d);
   double s1 = light_ref_sun_inscatter(&m, o, d, HUGE_VAL, sun, 0, 1e-10, &tau);
@@ -276,8 +296,17 @@ static void fogmap_sun(void) {
   double s_fine = light_ref_sun_inscatter(&m, o, d, HUGE_VAL, sun, 1, 1e-12, NULL);
   CHECK(s < s1 && s > 0.0, "fogmap S %.15g vs S1 %.15g", s, s1);
   CHECK(fabs(s - s_fine) <= 1e-10, "fogmap S at tol 1e-10 %.15g, 1e-12 %.15g", s, s_fine);
-  printf("fogmap 6x6 shadowed: S %.12f (S1 %.12f), tol 1e-10 vs 1e-12: %.2e\n", s, s1,
-         fabs(s - s_fine));
+  /* The midpoint sum's error is c h^2 + O(h^3) (kinks at the knots): Richardson of n and
+   * 2n steps over the ray's stretch in the box (x from 10 to 22) leaves ~1e-11. */
+  double a = 10.0 / d[0], b = 22.0 / d[0];
+  double m1 = brute_force_s(&v, &g, o, d, a, b, sun, 2000);
+  double m2 = brute_force_s(&v, &g, o, d, a, b, sun, 4000);
+  double e = fabs((4.0 * m2 - m1) / 3.0 - s_fine);
+  if (e > worst_brute) worst_brute = e;
+  CHECK(e <= 1e-9, "fogmap degree %d S %.15g, brute force %.15g: %.2e", degree, s_fine,
+        (4.0 * m2 - m1) / 3.0, e);
+  printf("fogmap 6x6 degree %d shadowed: S %.12f (S1 %.12f); tol 1e-10 vs 1e-12 %.2e; "
+         "vs brute force %.2e\n", degree, s_fine, s1, fabs(s - s_fine), e);
   transform_grid_destroy(&g);
 }
 
@@ -294,7 +323,8 @@ static void timing(int degree) {
   enum { CALLS = 4 };
   double s = 0.0, s1 = 0.0, tau;
   clock_t start = clock();
-  for (int i = 0; i < CALLS; i++) s = light_ref_sun_inscatter(&m, o, d, HUGE_VAL, sun, 1, 1e-9, NULL);
+  for (int i = 0; i < CALLS; i++)
+    s = light_ref_sun_inscatter(&m, o, d, HUGE_VAL, sun, 1, 1e-9, NULL);
   double ms = 1e3 * (double)(clock() - start) / CLOCKS_PER_SEC / CALLS;
   s1 = light_ref_sun_inscatter(&m, o, d, HUGE_VAL, sun, 0, 1e-9, &tau);
   CHECK(s > 0.0 && s < s1, "64x64 degree %d: S %.15g S1 %.15g", degree, s, s1);
@@ -306,8 +336,7 @@ static void timing(int degree) {
 }
 
 int main(void) {
-  fogmap_identity(1);
-  fogmap_identity(2);
+  for (int degree = 0; degree <= 2; degree++) fogmap_identity(degree);
   height_identity();
   printf("identity |S1 - (1 - tau)|: worst %.2e\n", worst_identity);
   printf("optical depth vs fog_oracle (abs) / height closed form (rel): worst %.2e\n",
@@ -325,7 +354,8 @@ int main(void) {
   printf("height fog T_s closed form: worst relative %.2e; S (sun overhead): worst %.2e\n",
          worst_height_ts, worst_height_s);
 
-  fogmap_sun();
+  fogmap_sun(1);
+  fogmap_sun(2);
   timing(1);
   timing(2);
   return test_finish("test_light_reference");

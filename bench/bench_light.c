@@ -1,0 +1,350 @@
+/* fogpipe bench light: the fog's shadow on itself (docs/light.md), speed against accuracy,
+ * side by side in one run, on the lit default scene (its fogmap, static, through `render`'s
+ * fog) and on the plume volume (configs/vdb_plume_volume.ini, the sun from the side):
+ *   - unlit: the sun's in-scatter without T_s (fog_self_shadow off): the baseline;
+ *   - ours: the tau K-weighted T_s mean over N = 2..32 segments of each ray with the sun's
+ *     optical-depth volume at 24^3, 48^3 (the default) and 96^3; and the live setting (the
+ *     fog pass at half resolution, upsampled, as the demo runs on a software renderer).
+ * Time: the fog pass, GL, glFinish before and after, median of --frames rounds after a
+ * warm-up; the volume's CPU time (both cores) beside it. Error: the in-scattered radiance
+ * against the CPU twin in double converged (FOG_BENCH_LIGHT_STEPS segments, a
+ * FOG_BENCH_LIGHT_VOLUME^3 volume) on a grid of pixels; that converged twin agrees with the
+ * independent nested-quadrature reference (test_fog_shadow) to its volume's interpolation
+ * error. Relative to the largest in-scatter in view; max and mean.
+ * Writes light.csv and light_chart.{csv,png} (max error vs ms). Last line:
+ * `light: lit_over_unlit=A lit_over_unlit_full=A2 shadow_volume_ms=V live_max_error=E`:
+ * A = the live setting's fog pass / the unlit one at the same (half) resolution, A2 the
+ * same at full resolution with the default settings, V the default volume's CPU ms, E the
+ * live setting's max relative error. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/config.h"
+#include "app/render_fog.h"
+#include "app/render_frame.h"
+#include "bench/bench.h"
+#include "render/render.h"
+
+#define FOG_BENCH_LIGHT_STEPS 1024
+#define FOG_BENCH_LIGHT_VOLUME 160
+#define ERROR_STRIDE 8 /* the error on every 8th pixel of every 8th row */
+
+static const int step_counts[] = {2, 4, 8, 16, 32};
+static const int resolutions[] = {24, 48, 96};
+enum { STEP_COUNT = 5, RESOLUTION_COUNT = 3, SCENE_COUNT = 2, MAX_ROWS = 32 };
+static const char *const scene_configs[SCENE_COUNT] = {"default.ini", "vdb_plume_volume.ini"};
+
+typedef struct light_row {
+  int scene;
+  int resolution; /* of the volume; 0: unlit */
+  int steps;
+  int divisor;    /* fog pass resolution divisor */
+  char series[64];
+  double *times;
+  double ms, max_error, mean_error;
+} light_row;
+
+typedef struct light_scene {
+  scene_config *cfg;
+  render_scene drawn;
+  render_fog fog;
+  fog_model model;
+  fog_sun_shadow_kind kind; /* how the model's T_s is found (the shadowed rows') */
+  vdb_frame frame; /* the volume's grid, kept for the model */
+  volume_grid_desc grid;
+  fog_sun_shadow volumes[RESOLUTION_COUNT], converged;
+  double volume_ms[RESOLUTION_COUNT];
+  double *reference; /* converged in-scatter, 3 per error pixel */
+  double peak;       /* the largest reference in-scatter */
+} light_scene;
+
+static void print_help(void) {
+  printf("usage: fogpipe bench light [--size WxH] [--frames N] [--out DIR]\n"
+         "  --size WxH   image size (default 640x360)\n"
+         "  --frames N   timed rounds per row, median after one warm-up (default 5)\n"
+         "  --out DIR    light.csv, light_chart.csv, light_chart.png (default build/bench/light)\n"
+         "Last line: light: lit_over_unlit=A lit_over_unlit_full=A2 shadow_volume_ms=V\n"
+         "live_max_error=E (see the header of bench/bench_light.c).\n");
+}
+
+static int scene_create(light_scene *s, const char *name, int W, int H, render_error *err) {
+  char path[1024];
+  snprintf(path, sizeof path, "%s/configs/%s", FOGPIPE_SOURCE_DIR, name);
+  scene_config_error cerr;
+  if (!(s->cfg = malloc(sizeof *s->cfg))) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return 1;
+  }
+  if (scene_config_load(path, s->cfg, &cerr)) {
+    snprintf(err->message, sizeof err->message, "%s", cerr.message);
+    return 1;
+  }
+  scene_config *cfg = s->cfg;
+  cfg->fog.albedo = cfg->fog.albedo > 0 ? cfg->fog.albedo : 0.9;
+  cfg->shadow.fog_self_shadow = 1;
+  if (cfg->fog.model == FOG_MODEL_VOLUME) { /* the plume lit from the side */
+    cfg->light.sun_azimuth = 75, cfg->light.sun_elevation = 20;
+    if (render_fog_load_volume(cfg, &s->frame, &s->grid, err)) return 1;
+  }
+  if (render_scene_create(&s->drawn, cfg, W, H, err) || render_fog_create(&s->fog, cfg, err))
+    return 1;
+  s->fog.grid3d = &s->grid;
+  s->model = render_fog_model(&s->fog);
+  s->kind = s->fog.params.self_shadow;
+  if (s->kind != FOG_SUN_SHADOW_VOLUME) {
+    snprintf(err->message, sizeof err->message, "%s: expected a fog with a sun volume", name);
+    return 1;
+  }
+  const double *sun = s->fog.params.sun.direction;
+  for (int r = 0; r < RESOLUTION_COUNT; r++) {
+    int n = resolutions[r];
+    if (fog_sun_shadow_create(&s->volumes[r], &(fog_sun_shadow_desc){.across = n, .along = n},
+                              err))
+      return 1;
+    double t0 = app_clock_seconds();
+    if (fog_sun_shadow_compute(&s->volumes[r], &s->model, sun, 2, err)) return 1;
+    s->volume_ms[r] = 1e3 * (app_clock_seconds() - t0);
+  }
+  const int n = FOG_BENCH_LIGHT_VOLUME;
+  return fog_sun_shadow_create(&s->converged, &(fog_sun_shadow_desc){.across = n, .along = n},
+                               err) ||
+         fog_sun_shadow_compute(&s->converged, &s->model, sun, 2, err);
+}
+
+static void scene_destroy(light_scene *s) {
+  for (int r = 0; r < RESOLUTION_COUNT; r++) fog_sun_shadow_destroy(&s->volumes[r]);
+  fog_sun_shadow_destroy(&s->converged);
+  render_fog_destroy(&s->fog);
+  render_scene_destroy(&s->drawn);
+  vdb_frame_destroy(&s->frame);
+  free(s->reference);
+  free(s->cfg);
+}
+
+static double phase_hg(double g, double mu) {
+  return (1 - g * g) / (4 * 3.14159265358979323846 * pow(1 + g * g - 2 * g * mu, 1.5));
+}
+
+/* The converged in-scatter at the error pixels, with tau from the GL's unlit draw (tau is
+ * the same exact integral in every row). */
+static int scene_reference(light_scene *s, const float *tau, int W, int H) {
+  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  if (!(s->reference = malloc((size_t)cols * rows * 3 * sizeof(double)))) return 1;
+  const fog_pass_params *p = &s->fog.params;
+  const fog_sun *sun = &p->sun;
+  s->peak = 0;
+  for (int j = 0; j < rows; j++)
+    for (int i = 0; i < cols; i++) {
+      int px = i * ERROR_STRIDE, py = j * ERROR_STRIDE;
+      size_t k = (size_t)py * W + px;
+      double o[3], d[3];
+      camera_ray(&s->drawn.cam, px, py, W, H, o, d);
+      double ts = s->drawn.distance[k] >= 1e29f ? HUGE_VAL : (double)s->drawn.distance[k];
+      double mean = fog_sun_mean_transmittance(&s->model, s->kind, &s->converged,
+                                               FOG_BENCH_LIGHT_STEPS, FOG_PASS_DEPTH_CUTOFF, o,
+                                               d, ts);
+      double ph = phase_hg(sun->phase_g, d[0] * sun->direction[0] + d[1] * sun->direction[1] +
+                                             d[2] * sun->direction[2]);
+      for (int c = 0; c < 3; c++) {
+        double v = (p->fog_colour[c] + sun->albedo * sun->radiance[c] * ph * mean) * (1 - tau[k]);
+        s->reference[((size_t)j * cols + i) * 3 + c] = v;
+        s->peak = fmax(s->peak, v);
+      }
+    }
+  return 0;
+}
+
+static void row_errors(light_row *r, const light_scene *s, const float *inscatter, int W, int H) {
+  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  double worst = 0, sum = 0;
+  for (int j = 0; j < rows; j++)
+    for (int i = 0; i < cols; i++) {
+      size_t k = (size_t)(j * ERROR_STRIDE) * W + i * ERROR_STRIDE;
+      for (int c = 0; c < 3; c++) {
+        double e = fabs(inscatter[3 * k + c] - s->reference[((size_t)j * cols + i) * 3 + c]);
+        if (!(e == e)) e = HUGE_VAL;
+        worst = fmax(worst, e);
+        sum += e;
+      }
+    }
+  r->max_error = worst / s->peak;
+  r->mean_error = sum / (3.0 * cols * rows) / s->peak;
+}
+
+/* One draw of row r into out (the volume of its resolution already uploaded). */
+static int draw_row(light_scene *s, const light_row *r, const gl_target *out, render_error *err) {
+  fog_pass_params *p = &s->fog.params;
+  p->self_shadow = r->resolution ? s->kind : FOG_SUN_SHADOW_NONE;
+  s->fog.ground_shadow = r->resolution != 0;
+  p->shadow_steps = r->steps;
+  p->resolution_divisor = r->divisor;
+  return render_fog_draw(&s->fog, &s->drawn.cam, &s->drawn.target, out, err);
+}
+
+static int upload_for(light_scene *s, const light_row *r, render_error *err) {
+  for (int q = 0; q < RESOLUTION_COUNT; q++)
+    if (resolutions[q] == r->resolution)
+      return fog_pass_upload_sun_shadow(s->fog.pass, &s->volumes[q], err);
+  return 0;
+}
+
+static int write_table(const char *path, const light_row *rows, int count, char *error,
+                       int size) {
+  FILE *f = chart_csv_open(path, error, size);
+  if (!f) return 1;
+  fprintf(f, "scene,method,volume,steps,divisor,ms_per_frame,max_error,mean_error\n");
+  for (int i = 0; i < count; i++)
+    fprintf(f, "%s,%s,%d,%d,%d,%.6g,%.6g,%.6g\n", scene_configs[rows[i].scene],
+            rows[i].resolution ? "ours" : "unlit", rows[i].resolution, rows[i].steps,
+            rows[i].divisor, rows[i].ms, rows[i].max_error, rows[i].mean_error);
+  return chart_csv_close(f, path, error, size);
+}
+
+static light_row *add_row(light_row *rows, int *count, int scene, int resolution, int steps,
+                          int divisor, int frames) {
+  light_row *r = &rows[(*count)++];
+  *r = (light_row){.scene = scene, .resolution = resolution, .steps = steps, .divisor = divisor};
+  snprintf(r->series, sizeof r->series, "%s %s", scene ? "plume" : "default",
+           !resolution       ? "unlit"
+           : divisor > 1     ? "live (1/2)"
+           : resolution != 48 ? "ours, 24^3 / 96^3 volume"
+                              : "ours, 48^3, 2..32 steps");
+  r->times = malloc((size_t)frames * sizeof(double));
+  return r->times ? r : NULL;
+}
+
+int bench_light(int argc, char **argv) {
+  bench_image_options options = {.width = 640, .height = 360, .frames = 5,
+                                 .out_dir = "build/bench/light"};
+  for (int i = 1; i < argc; i++) {
+    int common = bench_image_option("light", argc, argv, &i, &options);
+    if (common < 0) return 2;
+    if (common) continue;
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      print_help();
+      return 0;
+    }
+    fprintf(stderr, "fogpipe bench light: unknown option '%s' (or it lacks its value)\n", argv[i]);
+    print_help();
+    return 2;
+  }
+  const int W = options.width, H = options.height, frames = options.frames;
+  char error[1024] = "";
+  if (bench_make_folder(options.out_dir, error, sizeof error)) {
+    fprintf(stderr, "fogpipe bench light: %s\n", error);
+    return 1;
+  }
+  int status = 1, row_count = 0;
+  size_t pixels = (size_t)W * H;
+  render_error rerr = {{0}};
+  light_scene scenes[SCENE_COUNT] = {{0}};
+  light_row rows[MAX_ROWS] = {{0}};
+  gl_target out = {0};
+  float *tau = malloc(pixels * sizeof(float)), *inscatter = malloc(3 * pixels * sizeof(float));
+  gl_context *ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
+  if (!tau || !inscatter) goto out_of_memory;
+  if (!ctx || gl_target_create(&out, &(gl_target_desc){.width = W, .height = H,
+                                                       .color_formats = {GL_RGBA32F, GL_R32F,
+                                                                         GL_RGBA32F}},
+                               &rerr))
+    goto gl_failed;
+  for (int s = 0; s < SCENE_COUNT; s++) {
+    if (scene_create(&scenes[s], scene_configs[s], W, H, &rerr)) goto gl_failed;
+    if (!add_row(rows, &row_count, s, 0, 1, 1, frames) ||
+        !add_row(rows, &row_count, s, 0, 1, 2, frames))
+      goto out_of_memory;
+    for (int q = 0; q < STEP_COUNT; q++)
+      if (!add_row(rows, &row_count, s, 48, step_counts[q], 1, frames)) goto out_of_memory;
+    if (!add_row(rows, &row_count, s, 24, 8, 1, frames) ||
+        !add_row(rows, &row_count, s, 96, 8, 1, frames) ||
+        !add_row(rows, &row_count, s, 48, 8, 2, frames))
+      goto out_of_memory;
+  }
+  /* Warm-up and errors (the unlit full-resolution draw gives the reference its tau), then
+   * the timed rounds, rows of one scene and volume interleaved. */
+  for (int i = 0; i < row_count; i++) {
+    light_row *r = &rows[i];
+    light_scene *s = &scenes[r->scene];
+    if (upload_for(s, r, &rerr) || draw_row(s, r, &out, &rerr) ||
+        gl_target_read(&out, 1, 1, tau, &rerr) || gl_target_read(&out, 2, 3, inscatter, &rerr))
+      goto gl_failed;
+    if (!s->reference && scene_reference(s, tau, W, H)) goto out_of_memory;
+    row_errors(r, s, inscatter, W, H);
+  }
+  for (int f = 0; f < frames; f++)
+    for (int i = 0; i < row_count; i++) {
+      light_scene *s = &scenes[rows[i].scene];
+      if (upload_for(s, &rows[i], &rerr)) goto gl_failed;
+      fog_pass_finish();
+      double t0 = app_clock_seconds();
+      if (draw_row(s, &rows[i], &out, &rerr)) goto gl_failed;
+      fog_pass_finish();
+      rows[i].times[f] = app_clock_seconds() - t0;
+    }
+  for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
+
+  bench_print_build();
+  printf("GL: %s, %s, %s; %dx%d, fog pass median of %d frames after 1 warm-up\n",
+         gl_context_platform(ctx), gl_context_version(ctx), gl_context_renderer(ctx), W, H,
+         frames);
+  printf("error: in-scatter vs the CPU twin converged (%d segments, a %d^3 volume) on every\n"
+         "%dth pixel of every %dth row, relative to the largest in-scatter in view\n\n",
+         FOG_BENCH_LIGHT_STEPS, FOG_BENCH_LIGHT_VOLUME, ERROR_STRIDE, ERROR_STRIDE);
+  for (int s = 0; s < SCENE_COUNT; s++)
+    printf("%s: sun volume CPU ms (2 threads) %.1f (24^3) %.1f (48^3) %.1f (96^3)\n",
+           scene_configs[s], scenes[s].volume_ms[0], scenes[s].volume_ms[1],
+           scenes[s].volume_ms[2]);
+  printf("\n%-22s %-8s %7s %6s %8s %10s %10s %10s\n", "scene", "method", "volume", "steps",
+         "res", "ms/frame", "max err", "mean err");
+  chart_point points[MAX_ROWS];
+  for (int i = 0; i < row_count; i++) {
+    const light_row *r = &rows[i];
+    char volume[16] = "-";
+    if (r->resolution) snprintf(volume, sizeof volume, "%d^3", r->resolution);
+    printf("%-22s %-8s %7s %6d %8s %10.2f %10.2e %10.2e\n", scene_configs[r->scene],
+           r->resolution ? "ours" : "unlit", volume, r->resolution ? r->steps : 0,
+           r->divisor > 1 ? "1/2" : "full", r->ms, r->max_error, r->mean_error);
+    points[i] = (chart_point){.series = r->series, .x = r->ms,
+                              .y = r->max_error > 1e-6 ? r->max_error : 1e-6};
+  }
+  char table[4200], chart_csv[4200], chart_png[4200], title[128];
+  snprintf(table, sizeof table, "%s/light.csv", options.out_dir);
+  snprintf(chart_csv, sizeof chart_csv, "%s/light_chart.csv", options.out_dir);
+  snprintf(chart_png, sizeof chart_png, "%s/light_chart.png", options.out_dir);
+  snprintf(title, sizeof title, "self-shadowed sunlight %dx%d: max in-scatter error vs fog pass ms",
+           W, H);
+  chart_desc chart = {.title = title, .x_label = "fog pass per frame (ms)",
+                      .y_label = "max |in-scatter - reference| / max in-scatter", .log_x = true,
+                      .log_y = true};
+  if (write_table(table, rows, row_count, error, sizeof error) ||
+      chart_write(&chart, points, row_count, chart_csv, chart_png, error, sizeof error)) {
+    fprintf(stderr, "fogpipe bench light: %s\n", error);
+    goto done;
+  }
+  printf("\nCSV: %s, %s; PNG: %s\n", table, chart_csv, chart_png);
+  /* The default scene's rows: 0 unlit full, 1 unlit 1/2, 4 ours 48^3 x 8 full, 9 live. */
+  const light_row *unlit_full = &rows[0], *unlit_half = &rows[1], *ours_full = &rows[4],
+                  *live = &rows[9];
+  printf("light: lit_over_unlit=%.2f lit_over_unlit_full=%.2f shadow_volume_ms=%.1f "
+         "live_max_error=%.3g\n", live->ms / unlit_half->ms, ours_full->ms / unlit_full->ms,
+         scenes[0].volume_ms[1], live->max_error);
+  status = 0;
+  goto done;
+
+out_of_memory:
+  fprintf(stderr, "fogpipe bench light: out of memory\n");
+  goto done;
+gl_failed:
+  fprintf(stderr, "fogpipe bench light: %s\n", rerr.message);
+done:
+  for (int i = 0; i < row_count; i++) free(rows[i].times);
+  for (int s = 0; s < SCENE_COUNT; s++) scene_destroy(&scenes[s]);
+  if (out.framebuffer) gl_target_destroy(&out);
+  if (ctx) gl_context_destroy(ctx);
+  free(tau);
+  free(inscatter);
+  return status;
+}
