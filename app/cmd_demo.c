@@ -439,7 +439,8 @@ int cmd_demo(int argc, char **argv) {
   pipeline *pipe = pipeline_create(&(pipeline_desc){.config = &config,
                                                     .width = (int)(fb_w * d.render_scale),
                                                     .height = (int)(fb_h * d.render_scale),
-                                                    .frame_seconds = 1.0 / 30.0},
+                                                    .frame_seconds = 1.0 / 30.0,
+                                                    .live = true},
                                    &perr);
   panel *ui = pipe ? panel_create(gl_context_glfw_window(gl)) : NULL;
   int status = 1;

@@ -46,6 +46,10 @@ typedef struct pipeline_desc {
   double frame_seconds;       /* simulated seconds per frame, up to PIPELINE_MAX_FRAME_SECONDS;
                                * 0: 1/24 (a frame rate, not a physical quantity) */
   bool time_passes;           /* also time the scene pass alone (one extra glFinish) */
+  /* A live view (the demo): the sun's optical-depth volume is refreshed every few steps
+   * (and at once when the sun or the shadow setting changes), not every step. false (a
+   * recording): every step, so that any frame range is bit for bit the full run's. */
+  bool live;
 } pipeline_desc;
 
 /* Per-stage times in milliseconds (moving medians, or one frame's values). */

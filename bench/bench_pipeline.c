@@ -82,7 +82,8 @@ static int measure(const scene_config *cfg, int width, int height, int fog_divis
     for (int k = 0; k < PIPELINE_TIMING_FIELDS; k++)
       s[m].stage[k] = storage + (size_t)(PIPELINE_TIMING_FIELDS * m + k) * frames;
     p[m] = pipeline_create(&(pipeline_desc){.config = cfg, .width = width, .height = height,
-                                            .synchronous = m == 1, .time_passes = true},
+                                            .synchronous = m == 1, .time_passes = true,
+                                            .live = true},
                            &err);
     if (!p[m]) goto done;
     pipeline_params params = pipeline_get_params(p[m]);

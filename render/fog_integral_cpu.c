@@ -179,12 +179,16 @@ void fog_exp_moments_quadrature(double c0, double b, int n, double m[]) {
 void fog_exp_moments_series(double c0, double b, int n, double m[]) {
   /* e^{bs} = sum_j (bs)^j/j!, int_{-1}^{1} s^{k+j} ds = 2/(k+j+1) for even k+j: every term
    * of J_k has the sign of b^{k mod 2}, so nothing cancels; for |b| < 1 the 20th term is
-   * below 1/20! ~ 4e-19 of the first. */
-  double term = exp(c0); /* e^{c0} b^j / j! */
+   * below 1/20! ~ 4e-19 of the first. The terms fall as |b|^j / j!, so the sum stops once
+   * one is below 1e-17 of the first (J_0 >= 2 e^{c0} / e: nothing it drops is resolved): a
+   * sun column's short pieces (|b| ~ 0.1) need 10 terms, not 20. */
+  const double first = exp(c0);
+  double term = first; /* e^{c0} b^j / j! */
   for (int k = 0; k <= n; k++) m[k] = 0.0;
   for (int j = 0; j < 20; j++) {
     for (int k = (j % 2); k <= n; k += 2) m[k] += term * 2.0 / (k + j + 1);
     term *= b / (j + 1);
+    if (!(fabs(term) > 1e-17 * first)) break;
   }
 }
 

@@ -181,12 +181,22 @@ int fog_sun_shadow_compute(fog_sun_shadow *s, const fog_model *model, const doub
     s->origin[c] = mn[0] * s->axis[0][c] + mn[1] * s->axis[1][c] + mn[2] * s->axis[2][c];
   }
   for (int a = 0; a < 3; a++) s->extent[a] = fmax(mx[a] - mn[a], 1e-9);
-  /* The fogmap's sunlight walks the finest grid A_J (the truth the LOD approximates). */
-  fog_lod finest;
+  /* The fogmap's sunlight walks one level of its pyramid: the coarsest whose knot spacing
+   * is at most half the volume's sample spacing across the sunlight (detail finer than
+   * that falls between the columns anyway), A_J when none is (or FOG_SUN_SHADOW_FINEST). A
+   * level coarser by one halves the knot cells a column crosses, and the walk's time. */
+  fog_lod walked_lod;
   fog_model walked = *model;
   if (model->kind == FOG_MODEL_FOGMAP) {
-    finest = (fog_lod){.levels = 0, .approx = model->lod->approx + model->lod->levels, .mu = 1.0};
-    walked.lod = &finest;
+    const int J = model->lod->levels;
+    const double across = fmin(s->extent[0] / (s->size[0] - 1), s->extent[1] / (s->size[1] - 1));
+    int level = J;
+    while (!getenv("FOG_SUN_SHADOW_FINEST") && level > 0 &&
+           model->volume->cell_size * model->lod->approx[level - 1].spacing <= 0.5 * across)
+      level--;
+    s->level = level;
+    walked_lod = (fog_lod){.levels = 0, .approx = model->lod->approx + level, .mu = 1.0};
+    walked.lod = &walked_lod;
   }
   if (threads < 1) threads = 1;
   if (threads > 16) threads = 16;

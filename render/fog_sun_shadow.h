@@ -44,6 +44,7 @@ typedef struct fog_sun_shadow {
   double axis[3][3];    /* unit e0, e1, e2 (= -w_sun) */
   double extent[3];     /* world length of the box along each axis (> 0) */
   double sun[3];        /* w_sun it was computed for */
+  int level;            /* the fogmap: the pyramid level its columns walked */
   float *optical_depth; /* size[0] size[1] size[2], i fastest, then j, then k */
 } fog_sun_shadow;
 
