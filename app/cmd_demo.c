@@ -188,6 +188,8 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
       }
       /* T_s: the fog's shadow on itself and on the ground (albedo > 0) */
       changed |= panel_checkbox(ui, "fog self-shadow", &params.fog_self_shadow);
+      panel_same_line(ui);
+      changed |= panel_checkbox(ui, "light shafts", &params.shafts);
     }
     if (panel_header(ui, "wavelets", true)) {
       static const char *const bases[] = {"Haar (degree 0)", "linear (CDF 5/3)", "quadratic (bior3.3)"};

@@ -150,6 +150,7 @@ static int view_open(view_state *v, volume_playback *playback, const scene_confi
   if (!(v->scene = scene_pass_create(&v->geo, err))) return 1;
   if (scene_config_has_fog(cfg)) {
     if (render_fog_create(&v->fog, cfg, err)) return 1;
+    render_fog_set_shafts(&v->fog, cfg, scene_pass_sun_shadow(v->scene));
     v->has_fog = true;
   }
   playback->playing = opts->play;

@@ -128,6 +128,7 @@ static const key_spec keys[] = {
     {"light", "sky_horizon", V_FLOAT3, F(light.sky_horizon), 0, MAX_RADIANCE, NULL, 0, 0},
     {"light", "sky_zenith", V_FLOAT3, F(light.sky_zenith), 0, MAX_RADIANCE, NULL, 0, 0},
     {"light", "fog_self_shadow", V_ENUM, F(shadow.fog_self_shadow), 0, 0, "off|on", 0, 0},
+    {"light", "shafts", V_ENUM, F(shadow.shafts), 0, 0, "off|on", 0, 0},
     {"light", "shadow_resolution", V_INT, F(shadow.resolution), 2, FOG_SUN_SHADOW_MAX_SIZE, NULL, 0, 0},
     {"light", "shadow_steps", V_INT, F(shadow.steps), 1, 1024, NULL, 0, 0},
     {"render", "width", V_INT, F(width), 1, 16384, NULL, 0, 0},
@@ -155,7 +156,7 @@ void scene_config_init(scene_config *cfg) {
       .terrain = {.origin = {-500, 0, -500}, .size = {1000, 1000}, .height = 150,
                   .resolution = 257, .octaves = 6, .frequency = 3.0, .persistence = 0.5,
                   .seed = 1},
-      .shadow = {.fog_self_shadow = 1, .resolution = 48, .steps = 16},
+      .shadow = {.fog_self_shadow = 1, .shafts = 1, .resolution = 48, .steps = 16},
       .width = 1280,
       .height = 720,
   };

@@ -139,6 +139,7 @@ typedef struct scene_sim_config {
  * Biri's eq. 4, the fog a flat colour with no sun in it). */
 typedef struct scene_shadow_config {
   int fog_self_shadow; /* 1 (on): T_s, the fog's shadow on itself and on the surfaces */
+  int shafts;          /* 1 (on): V in the fog, the terrain's and boxes' shadows: shafts */
   int resolution;      /* the sun's optical-depth volume: samples along each axis */
   int steps;           /* segments of the view ray's T_s mean (fog_light.glsl) */
 } scene_shadow_config;

@@ -551,6 +551,7 @@ static pipeline_params params_from_config(const scene_config *cfg) {
       .sun_azimuth = (float)light.sun_azimuth,
       .sun_elevation = (float)light.sun_elevation,
       .fog_self_shadow = cfg->shadow.fog_self_shadow != 0,
+      .shafts = cfg->shadow.shafts != 0,
       .profile_kind = (int)cfg->fog.profile, /* scene_profile numbers fog_profile_kind */
       .fog_height = (float)cfg->fog.fog_height,
       .scale_height = (float)cfg->fog.scale_height,
@@ -950,6 +951,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       .resolution_divisor = params.fog_resolution_divisor,
       .self_shadow = p->shown_self_shadow,
       .shadow_steps = p->config.shadow.steps,
+      .shafts = params.sun.albedo > 0 && params.shafts ? scene_pass_sun_shadow(p->scene) : NULL,
   };
   if (pipeline_fog_render(p->fog, cam, &p->scene_target, &settings, &rerr))
     return fail(err, "render: %s", rerr.message);

@@ -81,6 +81,7 @@ typedef struct pipeline_params {
   float sun_azimuth, sun_elevation; /* degrees ([light]): the sun of the terrain and the fog;
                                        pipeline_frame derives sun.direction from them */
   bool fog_self_shadow; /* [light] fog_self_shadow: T_s on the fog and the ground */
+  bool shafts;          /* [light] shafts: the terrain's shadows in the fog */
   int profile_kind;  /* fog_profile_kind (slab / exponential) */
   float fog_height;  /* top of the slab or of the flat part (y0) */
   float scale_height;/* exponential falloff H */

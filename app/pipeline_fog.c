@@ -90,6 +90,7 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .resolution_divisor = settings->resolution_divisor,
       .self_shadow = settings->self_shadow,
       .shadow_steps = settings->shadow_steps,
+      .shafts = settings->shafts,
       .surface_sun = settings->self_shadow != FOG_SUN_SHADOW_NONE ? scene->color[2] : 0,
   };
   gl_target_bind(&fog->target);

@@ -12,6 +12,7 @@
 #include "render/fog_field.h"
 #include "render/fog_light.h"
 #include "render/fog_sun_shadow.h"
+#include "render/sun_shadow_map.h"
 #include "render/gl_util.h"
 #include "render/render_error.h"
 #include "transform/transform.h"
@@ -29,6 +30,7 @@ typedef struct pipeline_fog_settings {
    * surfaces' sun-lit share (the scene target's attachment 2). */
   fog_sun_shadow_kind self_shadow;
   int shadow_steps;
+  const sun_shadow_map *shafts; /* fog_pass_params.shafts: NULL none */
 } pipeline_fog_settings;
 
 typedef struct pipeline_fog pipeline_fog;

@@ -183,6 +183,11 @@ static int played_frame(render_fog *fog, const scene_config *cfg, const vdb_sequ
   return 0;
 }
 
+void render_fog_set_shafts(render_fog *fog, const scene_config *cfg, const sun_shadow_map *map) {
+  fog->shafts = cfg->fog.albedo > 0 && cfg->shadow.shafts ? map : NULL;
+  fog->params.shadow_steps = cfg->shadow.steps;
+}
+
 fog_model render_fog_model(render_fog *fog) {
   const fog_pass_params *p = &fog->params;
   fog->lod = (fog_lod){.levels = fog->pyramid.levels, .approx = fog->pyramid.approx,
@@ -434,6 +439,7 @@ int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
   fog->params.model_rbfs = fog->rbfs;
   fog->volume.profile.coefficients = fog->profile_coefficients;
   fog->params.surface_sun = fog->ground_shadow ? scene->color[2] : 0; /* 0: no attachment 2 */
+  fog->params.shafts = fog->shafts;
   return fog_pass_draw(fog->pass, cam, &fog->params, scene->color[0], scene->color[1],
                        scene->width, scene->height, err);
 }

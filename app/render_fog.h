@@ -26,6 +26,8 @@ typedef struct render_fog {
    * one (params.self_shadow), and whether the fog shadows the surfaces. */
   fog_sun_shadow sun_shadow;
   bool ground_shadow;
+  /* Light shafts: the scene pass's sun shadow map (render_fog_set_shafts); NULL: none. */
+  const sun_shadow_map *shafts;
   fog_lod lod;                     /* model = fogmap: the pyramid as render_fog_model's */
   const volume_grid_desc *grid3d;  /* model = volume: the grid shown, while it is at hand */
   /* model = volume played (render_fog_set_volume_time): the last two VDB frames read (a
@@ -64,6 +66,9 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
 int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg,
                                const vdb_sequence *seq, int a, int b, double w,
                                render_error *err);
+/* The scene pass's sun shadow map for light shafts ([light] shafts, with albedo > 0); the
+ * map must outlive the fog's draws. */
+void render_fog_set_shafts(render_fog *fog, const scene_config *cfg, const sun_shadow_map *map);
 /* The fog as the model table sees it (fog_models.h), pointing into fog (the volume's grid
  * only while render_fog has it: during creation and set_volume_time). */
 fog_model render_fog_model(render_fog *fog);

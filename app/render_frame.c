@@ -114,6 +114,7 @@ render_session *render_session_create(const scene_config *cfg, int width, int he
                                           .color_formats = {GL_RGBA32F, GL_R32F, GL_RGBA32F}},
                         &rerr)))
     goto fail;
+  if (s->has_fog) render_fog_set_shafts(&s->fog, cfg, scene_pass_sun_shadow(s->scene.pass));
   return s;
 fail:
   snprintf(err->message, sizeof err->message, "%s", rerr.message);

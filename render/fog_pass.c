@@ -78,6 +78,7 @@ typedef struct fog_pass_variant {
   int levels;             /* FOG_LEVELS: J, 0..FOG_MAX_LEVELS */
   int sun_shadow;         /* FOG_SUN_SHADOW: fog_sun_shadow_kind */
   int surface_sun;        /* FOG_SURFACE_SUN: 1 the fog shadows the surfaces */
+  int shafts;             /* FOG_SHAFTS: 1 the sun's shadow map in the fog */
 } fog_pass_variant;
 
 static const struct {
@@ -98,6 +99,7 @@ static const struct {
     {"FOG_LEVELS", offsetof(fog_pass_variant, levels), 3},
     {"FOG_SUN_SHADOW", offsetof(fog_pass_variant, sun_shadow), 2},
     {"FOG_SURFACE_SUN", offsetof(fog_pass_variant, surface_sun), 1},
+    {"FOG_SHAFTS", offsetof(fog_pass_variant, shafts), 1},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
@@ -108,7 +110,7 @@ static int variant_field(const fog_pass_variant *v, int f) {
   return *(const int *)((const char *)v + variant_fields[f].offset);
 }
 
-/* The fields packed into bits, in variant_fields' order (24 bits). */
+/* The fields packed into bits, in variant_fields' order (25 bits). */
 static int fog_pass_variant_key(const fog_pass_variant *v) {
   int key = 0, shift = 0;
   for (int f = 0; f < VARIANT_FIELD_COUNT; f++) {
@@ -424,6 +426,7 @@ enum fog_pass_unit {
   UNIT_GRID3D,
   UNIT_SUN_SHADOW,
   UNIT_SURFACE_SUN,
+  UNIT_SUN_VISIBILITY,
   UNIT_COUNT
 };
 _Static_assert(UNIT_COUNT <= 32, "the fog pass needs more texture units than GL 4.3 offers");
@@ -496,6 +499,18 @@ static void fog_pass_sun_shadow_uniforms(const fog_pass *pass, GLuint prog, cons
               params->depth_cutoff < 0 ? 1e30f
               : (float)(params->depth_cutoff > 0 ? params->depth_cutoff : FOG_PASS_DEPTH_CUTOFF));
   glUniform1i(fog_loc(prog, "fog_shadow_steps"), params->shadow_steps);
+  if (params->shafts) {
+    const sun_shadow_map *map = params->shafts;
+    double m[4][4];
+    float rows[16];
+    sun_shadow_map_matrix(map, cam->position, m);
+    for (int r = 0; r < 4; r++)
+      for (int c = 0; c < 4; c++) rows[4 * r + c] = (float)m[r][c];
+    bind_sampler(prog, "fog_sun_visibility", UNIT_SUN_VISIBILITY, GL_TEXTURE_2D, map->texture);
+    glUniformMatrix4fv(fog_loc(prog, "fog_sun_visibility_from_relative"), 1, GL_TRUE, rows);
+    glUniform1f(fog_loc(prog, "fog_sun_visibility_bias"),
+                (float)(sun_shadow_map_texel(map) / (map->hi[2] - map->lo[2])));
+  }
   if (params->surface_sun)
     bind_sampler(prog, "fog_surface_sun", UNIT_SURFACE_SUN, GL_TEXTURE_2D, params->surface_sun);
   if (params->self_shadow != FOG_SUN_SHADOW_VOLUME) return;
@@ -600,7 +615,8 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
   const fog_pass_variant variant = {.fetch_hardware = hardware, .integrator = march,
                                     .degree = 1, .single_grid = 1, .model = params->model,
                                     .reduced = 1, .sun_shadow = (int)params->self_shadow,
-                                    .surface_sun = params->surface_sun != 0};
+                                    .surface_sun = params->surface_sun != 0,
+                                    .shafts = params->shafts != NULL};
   GLuint prog = fog_pass_variant_program(pass, &variant, err);
   if (!prog) return 1;
   glUseProgram(prog);
@@ -662,7 +678,7 @@ static int fog_pass_finish_reduced(fog_pass *pass, GLuint prog, const camera *ca
 static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *params,
                                 render_error *err) {
   if ((unsigned)params->self_shadow > FOG_SUN_SHADOW_OPAQUE ||
-      (params->self_shadow != FOG_SUN_SHADOW_NONE && params->shadow_steps < 1) ||
+      ((params->self_shadow != FOG_SUN_SHADOW_NONE || params->shafts) && params->shadow_steps < 1) ||
       (params->self_shadow == FOG_SUN_SHADOW_VOLUME && !pass->sun_shadow)) {
     snprintf(err->message, sizeof err->message,
              "fog pass: self-shadow %d with %d steps: expected a fog_sun_shadow_kind, >= 1 "
@@ -860,6 +876,7 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       .levels = J,
       .sun_shadow = (int)params->self_shadow,
       .surface_sun = params->surface_sun != 0,
+      .shafts = params->shafts != NULL,
   };
   GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;

@@ -40,6 +40,7 @@
 #include "render/fog_light.h"
 #include "render/fog_models.h"
 #include "render/fog_sun_shadow.h"
+#include "render/sun_shadow_map.h"
 #include "render/render_error.h"
 #include "transform/transform.h"
 
@@ -93,6 +94,9 @@ typedef struct fog_pass_params {
   /* Optional (0: none): an RGBA texture of the surfaces' sun-lit share of their colour
    * (scene pass attachment 2, width x height); the fog's shadow takes (1 - T_s(P)) of it. */
   GLuint surface_sun;
+  /* Optional (NULL: none): the scene pass's sun shadow map (scene_pass_sun_shadow): V in
+   * the view ray's mean, light shafts (shadow_steps >= 1 then too). */
+  const sun_shadow_map *shafts;
   fog_fetch fetch;
   fog_integrator integrator;
   int march_steps;           /* FOG_INTEGRATOR_MARCH: 0 means 64 */

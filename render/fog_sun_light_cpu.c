@@ -101,7 +101,14 @@ static bool light_span(const fog_model *m, const double o[3], const double d[3],
 double fog_sun_mean_transmittance(const fog_model *m, fog_sun_shadow_kind kind,
                                   const fog_sun_shadow *volume, int steps, double depth_limit,
                                   const double o[3], const double d[3], double t_surface) {
-  if (kind == FOG_SUN_SHADOW_NONE) return 1.0;
+  return fog_sun_mean_light(m, kind, volume, steps, depth_limit, o, d, t_surface, NULL, NULL);
+}
+
+double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
+                          const fog_sun_shadow *volume, int steps, double depth_limit,
+                          const double o[3], const double d[3], double t_surface,
+                          fog_sun_visibility_fn visible, const void *user) {
+  if (kind == FOG_SUN_SHADOW_NONE && !visible) return 1.0;
   if (kind == FOG_SUN_SHADOW_OPAQUE) return 0.0;
   double t0, t1;
   if (!light_span(m, o, d, t_surface, &t0, &t1)) return 1.0;
@@ -112,7 +119,7 @@ double fog_sun_mean_transmittance(const fog_model *m, fog_sun_shadow_kind kind,
     double step_depth = extinction_at(m, p) * dt;
     double w = exp(-before) * -expm1(-step_depth);
     weights += w;
-    lit += w * exp(-fog_sun_optical_depth(m, kind, volume, p));
+    lit += w * exp(-fog_sun_optical_depth(m, kind, volume, p)) * (visible ? visible(user, p) : 1.0);
     before += step_depth;
   }
   return weights > 0.0 ? lit / weights : 1.0;

@@ -87,5 +87,12 @@ double fog_sun_optical_depth(const fog_model *model, fog_sun_shadow_kind kind,
 double fog_sun_mean_transmittance(const fog_model *model, fog_sun_shadow_kind kind,
                                   const fog_sun_shadow *volume, int steps, double depth_limit,
                                   const double o[3], const double d[3], double t_surface);
+/* The same mean of T_s V, V(p) in [0, 1] the sun's visibility past the scene at world point
+ * p (the shadow map's twin or exact ray casts): light shafts. visible NULL: V = 1. */
+typedef double (*fog_sun_visibility_fn)(const void *user, const double p[3]);
+double fog_sun_mean_light(const fog_model *model, fog_sun_shadow_kind kind,
+                          const fog_sun_shadow *volume, int steps, double depth_limit,
+                          const double o[3], const double d[3], double t_surface,
+                          fog_sun_visibility_fn visible, const void *user);
 
 #endif

@@ -141,8 +141,13 @@ struct scene_pass {
   GLsizei *draw_counts; /* per frame: the merged index ranges of the drawn tiles */
   const void **draw_offsets;
   long triangles_drawn;
+  /* The sun's shadow map (render/sun_shadow_map.h), rendered for `shadow.sun`. */
+  sun_shadow_map shadow;
+  GLuint shadow_framebuffer;
+  bool shadow_rendered;
   /* uniform locations */
   GLint u_offset, u_view, u_projection, u_sun_direction, u_sun_colour, u_ambient;
+  GLint u_sun_from_relative, u_sun_visibility, u_sun_normal_offset;
   GLint u_sky_right, u_sky_up, u_sky_forward, u_sky_viewport, u_sky_horizon, u_sky_zenith,
       u_sky_sun_direction, u_sky_sun_colour;
 };
@@ -319,6 +324,94 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
   return gl_util_check("uploading the scene meshes", err);
 }
 
+/* The depth texture (compare mode: sampler2DShadow, 2 x 2 filtered) and its framebuffer. */
+static int shadow_map_create(scene_pass *pass, render_error *err) {
+  GLuint tex = 0;
+  pass->shadow.size = SCENE_SUN_SHADOW_SIZE;
+  glGenTextures(1, &tex);
+  pass->shadow.texture = tex;
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT32F, pass->shadow.size, pass->shadow.size);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  /* beyond the map: depth 1, nothing in front of the sun */
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  const float far_border[4] = {1, 1, 1, 1};
+  glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, far_border);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glGenFramebuffers(1, &pass->shadow_framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, pass->shadow_framebuffer);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, tex, 0);
+  glDrawBuffer(GL_NONE);
+  glReadBuffer(GL_NONE);
+  GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    snprintf(err->message, sizeof err->message, "sun shadow map: framebuffer incomplete (%#x)",
+             status);
+    return 1;
+  }
+  return gl_util_check("sun shadow map", err);
+}
+
+/* Renders the terrain and boxes' depth seen from the sun, fitted around their bounds: all
+ * of them (no frustum culling), both faces (a terrain seen from below the horizon's sun
+ * shadows with its back faces too). */
+static void shadow_map_render(scene_pass *pass) {
+  const scene_geometry *geo = pass->geo;
+  const terrain *t = &geo->terrain;
+  double lo[3] = {t->origin[0], t->min_y, t->origin[2]};
+  double hi[3] = {t->origin[0] + t->size[0], t->max_y, t->origin[2] + t->size[1]};
+  for (int b = 0; b < geo->box_count; b++)
+    for (int c = 0; c < 3; c++)
+      lo[c] = fmin(lo[c], geo->boxes[b].min[c]), hi[c] = fmax(hi[c], geo->boxes[b].max[c]);
+  sun_shadow_map *map = &pass->shadow;
+  sun_shadow_map_fit(map, geo->sun_direction, lo, hi);
+  /* view: rows e0, e1, sun (column-major below); projection: light space to NDC, depth
+   * (hi - z)/(hi - lo) as sun_shadow_map_matrix has it */
+  float view[16] = {0}, projection[16] = {0};
+  for (int a = 0; a < 3; a++)
+    for (int c = 0; c < 3; c++) view[c * 4 + a] = (float)map->axis[a][c];
+  view[15] = 1.0f;
+  for (int a = 0; a < 3; a++) {
+    double span = map->hi[a] - map->lo[a];
+    double k = a < 2 ? 2.0 / span : -2.0 / span;
+    double base = a < 2 ? -2.0 * map->lo[a] / span - 1.0 : 2.0 * map->hi[a] / span - 1.0;
+    projection[a * 4 + a] = (float)k;
+    projection[12 + a] = (float)base;
+  }
+  projection[15] = 1.0f;
+  glBindFramebuffer(GL_FRAMEBUFFER, pass->shadow_framebuffer);
+  glViewport(0, 0, map->size, map->size);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glClearDepth(1.0);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_CULL_FACE);
+  glUseProgram(pass->surface_program);
+  const double *o = t->origin;
+  glUniform3f(pass->u_offset, (float)(o[0] - map->centre[0]), (float)(o[1] - map->centre[1]),
+              (float)(o[2] - map->centre[2]));
+  glUniformMatrix4fv(pass->u_view, 1, GL_FALSE, view);
+  glUniformMatrix4fv(pass->u_projection, 1, GL_FALSE, projection);
+  glActiveTexture(GL_TEXTURE0); /* not the map itself while it is the target */
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glUniform1i(pass->u_sun_visibility, 0);
+  glBindVertexArray(pass->vao);
+  glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+  glDrawElements(GL_TRIANGLE_STRIP, pass->index_count, GL_UNSIGNED_INT, NULL);
+  glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  pass->shadow_rendered = true;
+}
+
+const sun_shadow_map *scene_pass_sun_shadow(const scene_pass *pass) { return &pass->shadow; }
+
 scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err) {
   scene_pass *pass = calloc(1, sizeof *pass);
   if (!pass) {
@@ -340,6 +433,13 @@ scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err) {
   pass->u_sun_direction = glGetUniformLocation(s, "sun_direction");
   pass->u_sun_colour = glGetUniformLocation(s, "sun_colour");
   pass->u_ambient = glGetUniformLocation(s, "ambient");
+  pass->u_sun_from_relative = glGetUniformLocation(s, "sun_from_relative");
+  pass->u_sun_visibility = glGetUniformLocation(s, "sun_visibility");
+  pass->u_sun_normal_offset = glGetUniformLocation(s, "sun_normal_offset");
+  if (shadow_map_create(pass, err)) {
+    scene_pass_destroy(pass);
+    return NULL;
+  }
   pass->u_sky_right = glGetUniformLocation(k, "camera_right");
   pass->u_sky_up = glGetUniformLocation(k, "camera_up");
   pass->u_sky_forward = glGetUniformLocation(k, "camera_forward");
@@ -353,6 +453,8 @@ scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err) {
 
 void scene_pass_destroy(scene_pass *pass) {
   if (!pass) return;
+  if (pass->shadow.texture) glDeleteTextures(1, &(GLuint){pass->shadow.texture});
+  if (pass->shadow_framebuffer) glDeleteFramebuffers(1, &pass->shadow_framebuffer);
   if (pass->surface_program) glDeleteProgram(pass->surface_program);
   if (pass->sky_program) glDeleteProgram(pass->sky_program);
   if (pass->vertex_buffer) glDeleteBuffers(1, &pass->vertex_buffer);
@@ -411,6 +513,8 @@ bool scene_terrain_back_faces_hidden(const terrain *t, const camera *cam) {
 void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target) {
   const scene_geometry *geo = pass->geo;
   int w = target->width, h = target->height;
+  if (!pass->shadow_rendered || memcmp(pass->shadow.sun, geo->sun_direction, sizeof pass->shadow.sun))
+    shadow_map_render(pass);
   gl_target_bind(target);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
@@ -437,6 +541,17 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glUniform3fv(pass->u_sun_direction, 1, sun_dir);
   glUniform3fv(pass->u_sun_colour, 1, geo->light.sun_colour);
   glUniform3fv(pass->u_ambient, 1, geo->light.ambient);
+  double shadow_m[4][4];
+  float shadow_rows[16];
+  sun_shadow_map_matrix(&pass->shadow, cam->position, shadow_m);
+  for (int r = 0; r < 4; r++)
+    for (int c = 0; c < 4; c++) shadow_rows[r * 4 + c] = (float)shadow_m[r][c];
+  glUniformMatrix4fv(pass->u_sun_from_relative, 1, GL_TRUE, shadow_rows);
+  /* the lookup moves 1.5 texels off the surface along its normal: no shadow acne */
+  glUniform1f(pass->u_sun_normal_offset, (float)(1.5 * sun_shadow_map_texel(&pass->shadow)));
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, pass->shadow.texture);
+  glUniform1i(pass->u_sun_visibility, 0);
   glBindVertexArray(pass->vao);
   GLsizei ranges = cull_tiles(pass, cam, w, h);
   /* The terrain's strips wind counter-clockwise seen from above (terrain_mesh_tiles), so

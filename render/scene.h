@@ -21,6 +21,7 @@
 #include "render/camera.h"
 #include "render/gl_util.h"
 #include "render/render_error.h"
+#include "render/sun_shadow_map.h"
 #include "render/terrain.h"
 
 /* What the distance texture holds where a ray hits nothing (sky). */
@@ -92,6 +93,13 @@ void scene_pass_destroy(scene_pass *pass);
  * with colour 0 and R32F colour 1 and a depth buffer; colour 2 optional), at the target's size. Does not
  * allocate. */
 void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target);
+/* The sun's shadow map the surfaces are shadowed with (rendered by each run whose sun
+ * differs from the map's, the first included): for the fog's light shafts, drawn after a
+ * run. */
+const sun_shadow_map *scene_pass_sun_shadow(const scene_pass *pass);
+/* Texels per side of the sun's shadow map: 2048 cover the default 1200-unit terrain at
+ * ~0.8 units a texel. */
+#define SCENE_SUN_SHADOW_SIZE 2048
 /* Triangles the last run drew: the terrain tiles in the camera's view, and the boxes. */
 long scene_pass_triangles_drawn(const scene_pass *pass);
 /* Whether the scene pass may cull the terrain's back faces for this camera (above the

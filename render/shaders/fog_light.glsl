@@ -13,6 +13,22 @@ uniform sampler3D fog_sun_shadow_map;   // R32F optical depth towards the sun
 uniform mat3 fog_sun_shadow_to_tex;     // fog_sun_shadow_tex_map's M
 uniform vec3 fog_sun_shadow_tex_camera; // M (camera - origin) + offset, in double on the CPU
 uniform int fog_shadow_steps;
+// FOG_SHAFTS 1: V, the sun past the terrain and boxes, from the scene pass's shadow map
+// (render/sun_shadow_map.h): light shafts and the shadows of hills in the fog.
+#if FOG_SHAFTS
+uniform sampler2DShadow fog_sun_visibility;
+uniform mat4 fog_sun_visibility_from_relative;  // sun_shadow_map_matrix at the camera
+uniform float fog_sun_visibility_bias;          // depth units: one texel's world size
+float fog_sun_visible(vec3 p) {
+  vec3 q = (fog_sun_visibility_from_relative * vec4(p, 1.0)).xyz;
+  return texture(fog_sun_visibility, vec3(q.xy, q.z - fog_sun_visibility_bias));
+}
+#else
+float fog_sun_visible(vec3 p) { return 1.0; }
+#endif
+// The view-ray march runs for T_s (the volume, the height fog's closed form) or for V.
+#define FOG_LIGHT_MARCH \
+  (FOG_SUN_SHADOW == 1 || FOG_SUN_SHADOW == 2 || (FOG_SUN_SHADOW == 0 && FOG_SHAFTS == 1))
 
 // Optical depth from camera-relative point p towards the sun.
 float fog_sun_optical_depth(vec3 p) {
@@ -29,7 +45,7 @@ float fog_sun_optical_depth(vec3 p) {
 #endif
 }
 
-#if FOG_SUN_SHADOW == 1 || FOG_SUN_SHADOW == 2
+#if FOG_LIGHT_MARCH
 // The stretch [t0, t1] of the ray that holds the model's fog (finite), and K along it.
 bool fog_light_span(fog_ray r, out float t0, out float t1) {
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
@@ -72,12 +88,12 @@ float fog_light_extinction(vec3 dir, float t) {
 }
 #endif
 
-// The tau K-weighted mean of T_s along the ray (1 where the ray holds no fog).
+// The tau K-weighted mean of T_s V along the ray (1 where the ray holds no fog).
 float fog_sun_mean_transmittance(fog_ray r) {
-#if FOG_SUN_SHADOW == 0
-  return 1.0;
-#elif FOG_SUN_SHADOW == 3
+#if FOG_SUN_SHADOW == 3
   return 0.0;
+#elif !FOG_LIGHT_MARCH
+  return 1.0;
 #else
   float t0, t1;
   if (!fog_light_span(r, t0, t1)) return 1.0;
@@ -88,7 +104,7 @@ float fog_sun_mean_transmittance(fog_ray r) {
     float step_depth = fog_light_extinction(r.dir, t) * dt;
     float w = exp(-before) * step_depth * fog_exprel(step_depth);  // 1 - e^-x, no cancellation
     weights += w;
-    lit += w * exp(-fog_sun_optical_depth(t * r.dir));
+    lit += w * exp(-fog_sun_optical_depth(t * r.dir)) * fog_sun_visible(t * r.dir);
     before += step_depth;
   }
   return weights > 0.0 ? lit / weights : 1.0;
@@ -98,7 +114,7 @@ float fog_sun_mean_transmittance(fog_ray r) {
 // The sun's share of the in-scatter of the pixel's view ray (unit dir_d, surface at
 // t_surface): the mean above, its own ray set-up (the upsampling pass skips the walk's).
 float fog_sun_light(dvec3 dir_d, float t_surface) {
-#if FOG_SUN_SHADOW == 1 || FOG_SUN_SHADOW == 2
+#if FOG_LIGHT_MARCH
   double t_in = 1.0, t_out = 0.0;
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
   if (!fog_box_entry_exit(dir_d, t_in, t_out)) t_in = 1.0, t_out = 0.0;

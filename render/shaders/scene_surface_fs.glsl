@@ -9,6 +9,10 @@ in vec3 v_albedo;
 uniform vec3 sun_direction;  // unit, toward the sun
 uniform vec3 sun_colour;
 uniform vec3 ambient;        // sky light on an upward surface
+// The sun's shadow map (render/sun_shadow_map.h): V, the sun past the terrain and boxes.
+uniform sampler2DShadow sun_visibility;
+uniform mat4 sun_from_relative;  // camera-relative point -> (u, v, depth), in double on the CPU
+uniform float sun_normal_offset; // world: the lookup's step off the surface (no acne)
 
 layout(location = 0) out vec4 colour;
 layout(location = 1) out float surface_distance;
@@ -19,7 +23,9 @@ void main() {
   float lambert = max(dot(n, sun_direction), 0.0);
   // Hemispherical ambient: full sky light facing up, a third of it facing down.
   vec3 sky_light = ambient * mix(0.33, 1.0, 0.5 + 0.5 * n.y);
-  vec3 sunlit = v_albedo * sun_colour * lambert;
+  vec3 q = (sun_from_relative * vec4(v_relative + n * sun_normal_offset, 1.0)).xyz;
+  float visible = lambert > 0.0 ? texture(sun_visibility, q) : 0.0;
+  vec3 sunlit = v_albedo * sun_colour * lambert * visible;
   colour = vec4(sunlit + v_albedo * sky_light, 1.0);
   sun_share = vec4(sunlit, 0.0);
   // The interpolated camera-relative position is the point on the triangle under the

@@ -3,8 +3,8 @@
  * then equals (L_amb + a L_sun p(theta)) (1 - tau) per pixel with theta from the NEW sun,
  * its direction written here from [light]'s documented convention (azimuth like the
  * camera's yaw: 0 towards -Z, 90 towards +X; elevation above the horizon), and the
- * surfaces differ from an identical pipeline whose sun stayed ([light] fog_self_shadow off:
- * T_s = 1). With the fog's self-shadow on, a sun moved while paused (no new step) re-lights
+ * surfaces differ from an identical pipeline whose sun stayed ([light] fog_self_shadow and
+ * shafts off: T_s = V = 1). With the fog's self-shadow on, a sun moved while paused (no new step) re-lights
  * the fog from the step on screen: the frame equals, bit for bit, that of a pipeline
  * created with the new sun. Built by tests/app/pipeline.cmake. */
 #include <math.h>
@@ -65,7 +65,7 @@ int main(void) {
   gl_context *gl = pipeline_check_begin("configs/default.ini", &cfg, &cam);
   if (!gl) return 1;
   const scene_config shadowed = cfg;
-  cfg.shadow.fog_self_shadow = 0;
+  cfg.shadow.fog_self_shadow = 0, cfg.shadow.shafts = 0;
   pipeline_error perr = {{0}};
   const pipeline_desc desc = {.config = &cfg, .width = W, .height = H, .synchronous = true};
   pipeline *moved = pipeline_create(&desc, &perr), *still = pipeline_create(&desc, &perr);

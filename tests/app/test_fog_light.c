@@ -120,10 +120,10 @@ static void check_model(const char *path, const char *label) {
   double o[3], ahead[3];
   camera_ray(&cam, W / 2, H / 2, W, H, o, ahead);
   cfg.fog.albedo = 0.8, cfg.fog.phase_g = 0.6;
-  /* The unshadowed identity: T_s = 1 ([light] fog_self_shadow = off; the shadowed
-   * in-scatter is test_fog_shadow's). The albedo 0 checks above ran with it on: albedo 0
-   * is eq. 4 whatever the shadow setting. */
-  cfg.shadow.fog_self_shadow = 0;
+  /* The unshadowed identity: T_s = V = 1 ([light] fog_self_shadow = shafts = off; the
+   * shadowed in-scatter is test_fog_shadow's). The albedo 0 checks above ran with both on:
+   * albedo 0 is eq. 4 whatever the shadow settings. */
+  cfg.shadow.fog_self_shadow = 0, cfg.shadow.shafts = 0;
   cfg.light.sun_azimuth = atan2(ahead[0], -ahead[2]) * 180 / pi;
   cfg.light.sun_elevation = 12;
   if (render_surface(&cfg, &surface, label) || render(&cfg, &lit, label)) return;

@@ -60,6 +60,87 @@ static double phase_hg(double g, double mu) {
 static void light_up(scene_config *cfg) {
   cfg->fog.albedo = 0.9, cfg->fog.phase_g = 0.3;
   cfg->shadow.fog_self_shadow = 1;
+  cfg->shadow.shafts = 0; /* V = 1 here: the shafts are check_shafts' */
+}
+
+/* V by an exact ray cast from p towards the sun against the terrain and boxes. */
+typedef struct exact_sun {
+  const scene_geometry *geo;
+} exact_sun;
+static double exact_visible(const void *user, const double p[3]) {
+  const scene_geometry *geo = ((const exact_sun *)user)->geo;
+  double s;
+  return scene_geometry_intersect(geo, p, geo->sun_direction, INFINITY, &s, NULL) ? 0.0 : 1.0;
+}
+
+/* Light shafts: the default scene (a low sun ahead, the tower's and the hills' shadows in
+ * the glow), GL with the shadow map against the twin with exact ray casts for V. The map's
+ * texels (~0.7 units) and PCF blur each shadow's edge, so single pixels whose samples sit
+ * on an edge differ by up to a sample's weight: bounded are the share of pixels off by more
+ * than 1e-2 of the largest in-scatter and the mean error. */
+static void check_shafts(void) {
+  static frame lit, unshafted;
+  scene_config cfg;
+  scene_config_error cerr;
+  if (scene_config_load("configs/default.ini", &cfg, &cerr)) {
+    CHECK(0, "%s", cerr.message);
+    return;
+  }
+  CHECK(cfg.shadow.shafts == 1, "[light] shafts: expected on by default");
+  scene_config off = cfg;
+  off.shadow.shafts = 0;
+  if (render(&cfg, &lit, "shafts") || render(&off, &unshafted, "shafts")) return;
+  render_frame_error ferr = {{0}};
+  render_session *session = render_session_create(&cfg, W, H, &ferr);
+  CHECK(session, "%s", ferr.message);
+  if (!session) return;
+  render_fog *fog = render_session_fog(session);
+  fog_model model = render_fog_model(fog);
+  const fog_pass_params *params = &fog->params;
+  scene_geometry geo;
+  render_error rerr = {{0}};
+  CHECK(!render_scene_geometry_create(&cfg, &geo, &rerr), "%s", rerr.message);
+  exact_sun exact = {&geo};
+  camera cam;
+  scene_config_camera(&cfg, &cam);
+  const fog_sun *sun = &params->sun;
+  double peak = 0, worst = 0, sum = 0, shafted = 0;
+  int off_pixels = 0;
+  static double want[3 * W * H];
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      const int k = py * W + px;
+      double o[3], d[3];
+      camera_ray(&cam, px, py, W, H, o, d);
+      double t_surface = lit.depth[k] >= 0.999 * cam.far_plane ? HUGE_VAL : lit.depth[k];
+      double mean = fog_sun_mean_light(&model, params->self_shadow, &fog->sun_shadow,
+                                       params->shadow_steps, FOG_PASS_DEPTH_CUTOFF, o, d,
+                                       t_surface, exact_visible, &exact);
+      const double mu = d[0] * sun->direction[0] + d[1] * sun->direction[1] +
+                        d[2] * sun->direction[2];
+      const double p = phase_hg(sun->phase_g, mu), tau = lit.tau[k];
+      for (int c = 0; c < 3; c++) {
+        want[3 * k + c] =
+            (params->fog_colour[c] + sun->albedo * sun->radiance[c] * p * mean) * (1 - tau);
+        peak = fmax(peak, want[3 * k + c]);
+        shafted = fmax(shafted, unshafted.inscatter[3 * k + c] - lit.inscatter[3 * k + c]);
+      }
+    }
+  for (int k = 0; k < W * H; k++) {
+    double e = 0;
+    for (int c = 0; c < 3; c++) e = fmax(e, fabs(lit.inscatter[3 * k + c] - want[3 * k + c]));
+    worst = fmax(worst, e / peak);
+    sum += e / peak;
+    off_pixels += e > 1e-2 * peak;
+  }
+  printf("shafts: the terrain's shadows take up to %.3f of the in-scatter; GL (shadow map) vs "
+         "the twin with exact ray casts: max %.3e, mean %.3e of the largest in-scatter, %d of "
+         "%d pixels off by > 1e-2\n", shafted, worst, sum / (W * H), off_pixels, W * H);
+  CHECK(shafted > 0.02, "no shafts in view (%.3e)", shafted);
+  CHECK(sum / (W * H) < 2e-3, "shafts: mean error %.3e", sum / (W * H));
+  CHECK(off_pixels * 50 < W * H, "shafts: %d pixels off by > 1e-2", off_pixels);
+  scene_geometry_destroy(&geo);
+  render_session_destroy(session);
 }
 
 typedef struct model_case {
@@ -212,5 +293,6 @@ int main(void) {
     n++;
   }
   for (int i = 0; i < n; i++) check_case(&cases[i]);
+  check_shafts();
   return test_finish("test_fog_shadow");
 }
