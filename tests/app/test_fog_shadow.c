@@ -9,6 +9,8 @@
  *   and bounded (height fog: the closed form T_s, so the error is the view-ray sampling's;
  *   the fogmap: the volume's interpolation too);
  * - the shadow darkens: self-shadowed in-scatter <= unshadowed, and somewhere clearly so;
+ * - cases: the default fogmap from its camera, and from inside the ground fog (a valley
+ *   floor) under a high sun; the plume volume lit from the side; height fog;
  * - fog shadows on the ground: with the shadow on, surface pixels under fog lose
  *   tau (1 - T_s(P)) of their sun-lit share, S_sun = S - S(sun dimmed to nothing),
  *   T_s(P) from the twin. */
@@ -270,13 +272,43 @@ static int load(const char *path, scene_config *cfg) {
 }
 
 int main(void) {
-  static model_case cases[4];
+  static model_case cases[5];
   int n = 0;
   model_case *c = &cases[n];
   if (!load("configs/default.ini", &c->cfg)) {
     c->label = "fogmap (configs/default.ini)";
     c->reference = true, c->reference_bound = 0.02; /* 16 steps, 48^3: measured 9.9e-3 */
     n++;
+  }
+  c = &cases[n];
+  if (!load("configs/default.ini", &c->cfg)) {
+    /* the camera 10 units above the lowest valley floor (inside the ground fog, below its
+     * y0), looking across the valley; a high sun */
+    c->label = "fogmap, camera inside the fog, sun 60 deg up";
+    scene_geometry geo;
+    render_error gerr = {{0}};
+    if (render_scene_geometry_create(&c->cfg, &geo, &gerr)) {
+      CHECK(0, "%s", gerr.message);
+    } else {
+      double best[3] = {0, HUGE_VAL, 0};
+      for (int i = 0; i <= 12; i++)
+        for (int j = 0; j <= 12; j++) {
+          double x = -300 + 50 * i, z = -300 + 50 * j, y = terrain_height_at(&geo.terrain, x, z);
+          if (y < best[1]) best[0] = x, best[1] = y, best[2] = z;
+        }
+      double *pos = c->cfg.camera.position, *at = c->cfg.camera.look_at;
+      pos[0] = best[0], pos[1] = best[1] + 10, pos[2] = best[2];
+      at[0] = 0, at[1] = best[1] + 10, at[2] = 0;
+      if (best[0] == 0 && best[2] == 0) at[2] = -100;
+      c->cfg.camera.look_at_set = true;
+      printf("camera inside the fog at (%.0f, %.1f, %.0f), fog y0 %.0f\n", pos[0], pos[1], pos[2],
+             c->cfg.fog.fog_height);
+      CHECK(pos[1] < c->cfg.fog.fog_height, "the valley floor is above the fog");
+      scene_geometry_destroy(&geo);
+      c->cfg.light.sun_elevation = 60;
+      c->reference = true, c->reference_bound = 0.02;
+      n++;
+    }
   }
   c = &cases[n];
   if (!load("configs/vdb_plume_volume.ini", &c->cfg)) {
