@@ -394,15 +394,15 @@ static void sun_direction_of(const pipeline *p, const pipeline_params *params, d
   scene_light_resolve(&light, &resolved, dir);
 }
 
-/* The fog's shadow of a step (docs/light.md): only with albedo > 0 and [light]
- * fog_self_shadow on; the volume is computed from the finest grid (threads: the worker's
- * one, or both cores when the GL thread waits for it). */
+/* The fog's shadow of a step (docs/light.md) for the unit direction sun (of params'
+ * angles): only with albedo > 0 and [light] fog_self_shadow on; the volume is computed from
+ * the finest grid (threads: the worker's one, or both cores when the GL thread waits). */
 static int compute_shadow(const pipeline *p, const pipeline_params *params,
-                          const transform_grid *finest, int threads, fog_sun_shadow_kind *kind,
-                          fog_sun_shadow *volume, double sun[3], pipeline_error *err) {
+                          const transform_grid *finest, const double sun[3], int threads,
+                          fog_sun_shadow_kind *kind, fog_sun_shadow *volume,
+                          pipeline_error *err) {
   *kind = FOG_SUN_SHADOW_NONE;
   if (!(params->sun.albedo > 0) || !params->fog_self_shadow) return 0;
-  sun_direction_of(p, params, sun);
   fog_volume v = volume_of(p, params);
   fog_lod lod = {.levels = 0, .approx = finest, .mu = 1.0};
   fog_model m = {.kind = FOG_MODEL_FOGMAP, .volume = &v, .lod = &lod};
@@ -482,8 +482,8 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
                        memcmp(sun, c->shadow_sun, sizeof sun) ||
                        c->steps - c->shadow_step >= LIVE_SHADOW_INTERVAL;
   if (slot->shadow_fresh) {
-    if (compute_shadow(p, &p->applied, &slot->pyramid.approx[slot->pyramid.levels],
-                       p->synchronous ? 2 : 1, &slot->self_shadow, &slot->sun_shadow, sun, err))
+    if (compute_shadow(p, &p->applied, &slot->pyramid.approx[slot->pyramid.levels], sun,
+                       p->synchronous ? 2 : 1, &slot->self_shadow, &slot->sun_shadow, err))
       return 1;
     c->shadow_step = c->steps, c->shadow_on = on, c->shadow_kind = slot->self_shadow;
     memcpy(c->shadow_sun, sun, sizeof sun);
@@ -820,7 +820,7 @@ static int relight(pipeline *p, const pipeline_params *params, pipeline_error *e
     return 0;
   double t0 = now_ms();
   fog_sun_shadow_kind kind;
-  if (compute_shadow(p, params, &p->shadow_grid, 2, &kind, &p->shadow_volume, sun, err))
+  if (compute_shadow(p, params, &p->shadow_grid, sun, 2, &kind, &p->shadow_volume, err))
     return 1;
   p->shown_self_shadow = kind;
   memcpy(p->shown_shadow_sun, sun, sizeof sun);

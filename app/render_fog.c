@@ -185,7 +185,6 @@ static int played_frame(render_fog *fog, const scene_config *cfg, const vdb_sequ
 
 void render_fog_set_shafts(render_fog *fog, const scene_config *cfg, const sun_shadow_map *map) {
   fog->shafts = cfg->fog.albedo > 0 && cfg->shadow.shafts ? map : NULL;
-  fog->params.shadow_steps = cfg->shadow.steps;
 }
 
 fog_model render_fog_model(render_fog *fog) {

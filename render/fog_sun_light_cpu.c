@@ -60,14 +60,13 @@ static bool light_span(const fog_model *m, const double o[3], const double d[3],
       break;
     }
     case FOG_MODEL_VOLUME: {
-      double lo[3], hi[3], u0[3], du[3], ulo[3], uhi[3], a, b;
+      double u0[3], du[3], ulo[3], uhi[3], a, b;
       volume_grid_index_of(m->grid3d, o, u0);
       for (int c = 0; c < 3; c++) {
         du[c] = 0.0;
         for (int k = 0; k < 3; k++) du[c] += m->grid3d->index_from_world[c][k] * d[k];
         ulo[c] = -1.0 - u0[c], uhi[c] = m->grid3d->dim[c] - u0[c];
       }
-      (void)lo, (void)hi;
       if (!fog_slab_entry_exit(ulo, uhi, du, &a, &b)) return false;
       *t0 = fmax(a, 0.0), *t1 = fmin(b, t_surface);
       break;

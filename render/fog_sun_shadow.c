@@ -183,7 +183,7 @@ int fog_sun_shadow_compute(fog_sun_shadow *s, const fog_model *model, const doub
   for (int a = 0; a < 3; a++) s->extent[a] = fmax(mx[a] - mn[a], 1e-9);
   /* The fogmap's sunlight walks one level of its pyramid: the coarsest whose knot spacing
    * is at most half the volume's sample spacing across the sunlight (detail finer than
-   * that falls between the columns anyway), A_J when none is (or FOG_SUN_SHADOW_FINEST). A
+   * that falls between the columns anyway), A_J when none is. A
    * level coarser by one halves the knot cells a column crosses, and the walk's time. */
   fog_lod walked_lod;
   fog_model walked = *model;
@@ -191,7 +191,7 @@ int fog_sun_shadow_compute(fog_sun_shadow *s, const fog_model *model, const doub
     const int J = model->lod->levels;
     const double across = fmin(s->extent[0] / (s->size[0] - 1), s->extent[1] / (s->size[1] - 1));
     int level = J;
-    while (!getenv("FOG_SUN_SHADOW_FINEST") && level > 0 &&
+    while (level > 0 &&
            model->volume->cell_size * model->lod->approx[level - 1].spacing <= 0.5 * across)
       level--;
     s->level = level;
