@@ -32,6 +32,7 @@
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -245,7 +246,15 @@ typedef struct bench_row {
   double ms, rmse, max_error, rmse_full, max_full;
   size_t worst_pixel;         /* where max_error is (rows top first) */
   double worst_gpu, worst_cpu; /* tau there */
+  uint64_t tau_hash;           /* FNV-1a of the read-back tau's bytes: bit-for-bit checks */
 } bench_row;
+
+static uint64_t fnv1a(const void *data, size_t bytes) {
+  const unsigned char *p = data;
+  uint64_t h = 1469598103934665603ull;
+  for (size_t i = 0; i < bytes; i++) h = (h ^ p[i]) * 1099511628211ull;
+  return h;
+}
 
 static int write_table_csv(const char *path, const bench_row *rows, int count, char *error,
                            int size) {
@@ -263,12 +272,15 @@ static int write_table_csv(const char *path, const bench_row *rows, int count, c
   return chart_csv_close(f, path, error, size);
 }
 
-static const char *default_fogmap(void) {
-  static char path[4096];
+static const char *data_file(const char *name) {
+  static char path[2][4096];
+  static int next;
+  char *out = path[next++ % 2];
   struct stat st;
-  if (stat("data/fogmap_sample.png", &st) == 0) return "data/fogmap_sample.png";
-  snprintf(path, sizeof path, "%s/data/fogmap_sample.png", FOGPIPE_SOURCE_DIR);
-  return path;
+  snprintf(out, sizeof path[0], "data/%s", name);
+  if (stat(out, &st) == 0) return out;
+  snprintf(out, sizeof path[0], "%s/data/%s", FOGPIPE_SOURCE_DIR, name);
+  return out;
 }
 
 int bench_render(int argc, char **argv) {
@@ -305,7 +317,10 @@ int bench_render(int argc, char **argv) {
   }
   const int W = options.width, H = options.height, frames = options.frames;
   const char *out_dir = options.out_dir;
-  if (!fogmap_path) fogmap_path = default_fogmap();
+  if (!fogmap_path) fogmap_path = data_file("fogmap_sample.png");
+  /* The empty-space skipping rows' ground fog (data/README.md): the Mantaflow bake's frame
+   * 24 as a 128 x 128 fogmap, 60 % of its blocks empty, over the same box. */
+  const char *ground_path = data_file("fogmap_groundfog.exr");
   char message[1024] = "";
   if (bench_make_folder(out_dir, message, sizeof message)) {
     fprintf(stderr, "fogpipe bench render: %s\n", message);
@@ -321,6 +336,9 @@ int bench_render(int argc, char **argv) {
   }
   int status = 1;
   transform_error terr = {{0}};
+  fogmap ground = {0};
+  transform_plan *ground_plan = NULL;
+  transform_grid ground_grid = {0};
   transform_grid full[3] = {{0}}, approx[LOD_LEVELS + 1] = {{0}}, detail[LOD_LEVELS] = {{0}};
   size_t cells = (size_t)map.width * map.height;
   float *coefficients = malloc(cells * sizeof(float));
@@ -330,10 +348,10 @@ int bench_render(int argc, char **argv) {
   scene_geometry geo = {0};
   int have_geo = 0;
   scene_pass *spass = NULL;
-  fog_pass *passes[4] = {0};
+  fog_pass *passes[5] = {0}; /* 0..2 full grid per degree, 3 LOD, 4 the ground fog */
   gl_target scene_target = {0}, fog_target = {0};
   float *distance = NULL, *gpu_tau = NULL;
-  double *references[3 + MU_COUNT] = {0};
+  double *references[4 + MU_COUNT] = {0}; /* per degree, per mu, the ground fog */
   bench_row rows[MAX_ROWS];
   int row_count = 0;
   chart_point points[MAX_ROWS];
@@ -370,6 +388,17 @@ int bench_render(int argc, char **argv) {
         goto transform_failed;
   }
   fog_lod lod = {.levels = LOD_LEVELS, .approx = approx, .detail = detail, .mu = 1.0};
+  if (fogmap_load(ground_path, &(fogmap_load_desc){0}, &ground, &serr)) {
+    fprintf(stderr, "fogpipe bench render: %s\n", serr.message);
+    goto done;
+  }
+  {
+    transform_desc desc = {.width = ground.width, .height = ground.height, .levels = 0,
+                           .basis = TRANSFORM_LINEAR};
+    if (transform_plan_create(&ground_plan, &desc, &terr) ||
+        transform_grid_create_level(ground_plan, 0, ground.density, &ground_grid, &terr))
+      goto transform_failed;
+  }
 
   /* ---- GL: context, scene, fog passes ---- */
   ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
@@ -410,22 +439,33 @@ int bench_render(int argc, char **argv) {
   gpu_tau = malloc(pixels * sizeof(float));
   if (!distance || !gpu_tau) goto out_of_memory;
   if (gl_target_read(&scene_target, 1, 1, distance, &rerr)) goto gl_failed;
-  for (int p = 0; p < 4; p++) {
+  for (int p = 0; p < 5; p++) {
     if (fog_pass_create(&passes[p], &rerr)) goto gl_failed;
     if (p < 3 ? fog_pass_upload_grid(passes[p], 0, &full[p], &rerr)
-              : fog_pass_upload_lod(passes[p], &lod, &rerr))
+        : p == 3 ? fog_pass_upload_lod(passes[p], &lod, &rerr)
+                 : fog_pass_upload_grid(passes[p], 0, &ground_grid, &rerr))
       goto gl_failed;
   }
 
   /* ---- the CPU references, one per model ---- */
   double t_ref = app_clock_seconds();
-  for (int r = 0; r < 3 + MU_COUNT; r++) {
+  const fog_volume ground_volume = {
+      .map_width = ground.width, .map_height = ground.height, .origin_x = volume.origin_x,
+      .origin_z = volume.origin_z,
+      .cell_size = volume.map_width * volume.cell_size / (ground.width > ground.height
+                                                              ? ground.width : ground.height),
+      .extinction = volume.extinction * 4.0, .profile = volume.profile};
+  const int ground_reference = 3 + MU_COUNT;
+  for (int r = 0; r < 4 + MU_COUNT; r++) {
     references[r] = malloc(pixels * sizeof(double));
     if (!references[r]) goto out_of_memory;
     fog_lod model = lod;
-    if (r >= 3) model.mu = lod_mu[r - 3];
-    reference_tau((reference_job){.volume = &volume, .cam = &cam,
-                                  .grid = r < 3 ? &full[r] : NULL, .lod = &model,
+    if (r >= 3 && r < ground_reference) model.mu = lod_mu[r - 3];
+    reference_tau((reference_job){.volume = r == ground_reference ? &ground_volume : &volume,
+                                  .cam = &cam,
+                                  .grid = r < 3 ? &full[r]
+                                          : r == ground_reference ? &ground_grid : NULL,
+                                  .lod = &model,
                                   .distance = distance, .width = W, .height = H,
                                   .tau = references[r]});
   }
@@ -458,6 +498,21 @@ int bench_render(int argc, char **argv) {
       snprintf(r->setting, sizeof r->setting, "%s", basis_names[d]);
       r->params.fetch = fetch ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL;
     }
+  /* Empty-space skipping (render/fog_occupancy.h) on the ground fog: the linear walk with
+   * the pass's default (FOG_SKIP_EMPTY: the same integral bit for bit), forced on
+   * (FOG_SKIP_BELOW 0: the same blocks), and without it. */
+  int ground_rows = row_count;
+  for (int k = 0; k < 3; k++) {
+    static const fog_skip modes[3] = {FOG_SKIP_EMPTY, FOG_SKIP_BELOW, FOG_SKIP_NONE};
+    static const char *names[3] = {"default", "skip", "no skip"};
+    bench_row *r = &rows[row_count++];
+    *r = (bench_row){.method = "ground fog", .pass = 4, .series = "exact ground fog (linear)",
+                     .params = base, .reference = ground_reference, .full_reference = -1,
+                     .chart_x_key = k};
+    snprintf(r->setting, sizeof r->setting, "%s", names[k]);
+    r->params.volume = &ground_volume;
+    r->params.skip = modes[k];
+  }
   int sum_at_06 = -1, switch_at_06 = -1, switch_at_1 = -1;
   for (int m = 0; m <= 1; m++)
     for (int k = 0; k < MU_COUNT; k++) {
@@ -490,6 +545,7 @@ int bench_render(int argc, char **argv) {
     bench_tau_errors(gpu_tau, references[r->reference], pixels, &r->rmse, &r->max_error,
                &r->worst_pixel);
     r->worst_gpu = gpu_tau[r->worst_pixel];
+    r->tau_hash = fnv1a(gpu_tau, pixels * sizeof(float));
     r->worst_cpu = references[r->reference][r->worst_pixel];
     if (r->full_reference >= 0)
       bench_tau_errors(gpu_tau, references[r->full_reference], pixels, &r->rmse_full, &r->max_full,
@@ -628,9 +684,17 @@ int bench_render(int argc, char **argv) {
          at_06[1].group_pieces, at_06[0].group_pieces / at_06[1].group_pieces);
   printf("Z: LOD switch at mu = 1 %.2f ms / fogmap alone, levels = 0 (exact linear) %.2f ms\n",
          rows[switch_at_1].ms, rows[exact_linear].ms);
+  const double S = rows[ground_rows + 2].ms / rows[ground_rows].ms;
+  const bool identical = rows[ground_rows].tau_hash == rows[ground_rows + 2].tau_hash &&
+                         rows[ground_rows + 1].tau_hash == rows[ground_rows + 2].tau_hash;
+  printf("S: ground fog (%s, %dx%d, linear) without skipping %.2f ms / with the default %.2f ms"
+         " (forced on %.2f ms); tau images %s\n",
+         ground_path, ground.width, ground.height, rows[ground_rows + 2].ms,
+         rows[ground_rows].ms, rows[ground_rows + 1].ms,
+         identical ? "identical bit for bit" : "DIFFER (skipping is meant to be exact)");
   printf("render: exact_speedup_at_matched_error=%.3f lod_switch_speedup_vs_sum=%.3f "
-         "lod_overhead_at_mu1=%.3f\n",
-         X, Y, Z);
+         "lod_overhead_at_mu1=%.3f empty_skip_speedup=%.3f\n",
+         X, Y, Z, S);
   status = 0;
   goto done;
 
@@ -644,10 +708,13 @@ gl_failed:
   fprintf(stderr, "fogpipe bench render: %s\n", rerr.message);
 done:
   for (int i = 0; i < row_count; i++) free(rows[i].times);
-  for (int r = 0; r < 3 + MU_COUNT; r++) free(references[r]);
+  for (int r = 0; r < 4 + MU_COUNT; r++) free(references[r]);
   free(distance);
   free(gpu_tau);
-  for (int p = 0; p < 4; p++) fog_pass_destroy(passes[p]);
+  for (int p = 0; p < 5; p++) fog_pass_destroy(passes[p]);
+  transform_grid_destroy(&ground_grid);
+  transform_plan_destroy(ground_plan);
+  fogmap_destroy(&ground);
   if (ctx) {
     gl_target_destroy(&fog_target);
     gl_target_destroy(&scene_target);

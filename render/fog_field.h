@@ -138,6 +138,16 @@ double fog_optical_depth(const fog_volume *volume, const transform_grid *grid,
                          const double camera[3], const double dir[3], double t_start,
                          double t_stop);
 
+/* The same with empty-space skipping (render/fog_occupancy.h): blocks of `occupancy`
+ * (built from `grid`) whose bound is <= skip_below are jumped over. skip_below = 0: the
+ * same value bit for bit (only blocks of exact zeros are skipped); above 0 the result
+ * moves by at most skip_below * extinction * g_max * (length in the box). */
+struct fog_occupancy;
+double fog_optical_depth_skipping(const fog_volume *volume, const transform_grid *grid,
+                                  const struct fog_occupancy *occupancy, float skip_below,
+                                  const double camera[3], const double dir[3], double t_start,
+                                  double t_stop);
+
 /* The running optical depth from origin at t_k = k step, k = 0..n-1 (out[0] = 0): one walk
  * along the ray, its sum read at each t_k (what n calls of fog_optical_depth would give, at
  * the cost of one). */

@@ -5,6 +5,7 @@
 #include <stdint.h>
 
 #include "render/fog_field.h"
+#include "render/fog_occupancy.h"
 
 /* Gauss-Legendre nodes and weights on [-1, 1] for 1..4 points (exact to degree 2m-1) and
  * for 8 points (the small-|a| exponential moments). */
@@ -247,6 +248,36 @@ static double fog_axis_next(const fog_axis *a) {
 
 static void fog_axis_step(fog_axis *a) { a->cell += (a->dx > 0.0) ? 1 : -1; }
 
+/* The cell the DDA would be in after walking to t: every crossing at or before t stepped,
+ * the next one after t. From the position's floor (which float rounding may put one cell
+ * off at a knot line), then corrected with the crossings themselves, the same formula the
+ * walk steps by: so a jump lands exactly where stepping would have (empty-space skipping
+ * stays bit for bit). */
+static void fog_axis_sync(fog_axis *a, double t) {
+  if (a->dx == 0.0) return;
+  const int step = (a->dx > 0.0) ? 1 : -1;
+  a->cell = (int)floor(a->x0 + t * a->dx - a->offset);
+  while (fog_axis_next(a) <= t) a->cell += step;
+  for (;;) {
+    fog_axis previous = *a;
+    previous.cell -= step;
+    if (!(fog_axis_next(&previous) > t)) break;
+    a->cell = previous.cell;
+  }
+}
+
+/* Where the axis leaves the current occupancy block: the crossing of the block's last knot
+ * cell in the walk's direction (fog_occupancy.h: block bx holds texel columns
+ * [bx B, bx B + B - 1], texel column = cell + shift). */
+static double fog_axis_block_exit(const fog_axis *a, int shift) {
+  if (a->dx == 0.0) return HUGE_VAL;
+  const int b = FOG_OCCUPANCY_BLOCK, tx = a->cell + shift;
+  const int bx = (tx >= 0) ? tx / b : -((-tx + b - 1) / b);
+  fog_axis last = *a;
+  last.cell = ((a->dx > 0.0) ? bx * b + b - 1 : bx * b) - shift;
+  return fog_axis_next(&last);
+}
+
 /* The walk's state for one grid along one ray, camera-relative. block[a][b] holds the
  * coefficients c(i0 + a, j0 + b), a, b = 0..d, of the current knot cells (i0 = x.cell - d/2,
  * j0 = z.cell - d/2): a DDA step shifts it and reads the one column or row that entered, so
@@ -260,6 +291,9 @@ typedef struct fog_ray_walk {
   double dir_y;
   double t_y0;        /* exponential profile: the parameter where y = y0 (or +-inf) */
   int above_y0_first; /* exponential: the ray starts above y0 */
+  /* Empty-space skipping (NULL: none): blocks with bound <= skip_below are jumped. */
+  const fog_occupancy *skip;
+  float skip_below;
 } fog_ray_walk;
 
 static void fog_block_load(fog_ray_walk *w) {
@@ -356,6 +390,21 @@ static double fog_walk_integral(fog_ray_walk *w, double t0, double t1) {
   double sum = 0.0, t = t0;
   /* Each iteration crosses one knot line or ends; the bound only guards against NaN. */
   for (long guard = 0; t < t1 && guard < 100000000L; guard++) {
+    if (w->skip && fog_occupancy_at(w->skip, w->x.cell, w->z.cell) <= w->skip_below) {
+      /* An empty block: jump to where the ray leaves it (fog_occupancy.h), every axis
+       * synced to that parameter as its steps would have left it. */
+      const int shift = w->grid->degree - w->grid->degree / 2;
+      double tb = fmin(t1, fmin(fog_axis_block_exit(&w->x, shift),
+                                fog_axis_block_exit(&w->z, shift)));
+      if (tb > t) {
+        t = tb;
+        fog_axis_sync(&w->x, t);
+        fog_axis_sync(&w->z, t);
+        if (w->profile->kind == FOG_PROFILE_BSPLINE) fog_axis_sync(&w->y, t);
+        fog_block_load(w);
+        continue;
+      }
+    }
     double tx = fog_axis_next(&w->x), tz = fog_axis_next(&w->z);
     double ty = (w->profile->kind == FOG_PROFILE_BSPLINE) ? fog_axis_next(&w->y) : HUGE_VAL;
     double t_next = t1;
@@ -422,11 +471,23 @@ double fog_optical_depth(const fog_volume *v, const transform_grid *g, const dou
   return fog_extinction(v) * fog_walk_integral(&w, 0.0, t1 - t0);
 }
 
+double fog_optical_depth_skipping(const fog_volume *v, const transform_grid *g,
+                                  const fog_occupancy *occupancy, float skip_below,
+                                  const double camera[3], const double dir[3], double t_start,
+                                  double t_stop) {
+  fog_ray_walk w;
+  double t0, t1;
+  if (!fog_walk_setup(v, g, camera, dir, t_start, t_stop, &w, &t0, &t1)) return 0.0;
+  w.skip = occupancy;
+  w.skip_below = skip_below;
+  return fog_extinction(v) * fog_walk_integral(&w, 0.0, t1 - t0);
+}
+
 void fog_optical_depth_samples(const fog_volume *v, const transform_grid *g,
                                const double origin[3], const double dir[3], double step, int n,
                                double out[]) {
   fog_ray_walk w;
-  double t0, t1, sum = 0.0;
+  double t0 = 0.0, t1 = 0.0, sum = 0.0;
   bool hit = n > 0 && fog_walk_setup(v, g, origin, dir, 0.0, step * (n - 1), &w, &t0, &t1);
   for (int k = 0; k < n; k++) {
     if (hit && k > 0) {

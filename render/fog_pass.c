@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "render/fog_cell_poly.h"
+#include "render/fog_occupancy.h"
 #include "render/gl_util.h"
 
 /* A variant is one compiled program (fog_pass_variant below). A draw uses one or two, the
@@ -26,6 +27,9 @@ typedef struct fog_pass_slot {
   GLuint cells;   /* RGBA32F cell polynomials (render/fog_cell_poly.h): the manual variant */
   int width, height, degree;
   int cells_width, cells_height; /* texels */
+  GLuint occupancy; /* R32F block bounds (render/fog_occupancy.h): empty-space skipping */
+  int occupancy_width, occupancy_height; /* blocks */
+  double empty_share; /* of the blocks: bound 0 */
   double origin_u, origin_v, spacing;
 } fog_pass_slot;
 
@@ -40,6 +44,8 @@ struct fog_pass {
   int layers_width, layers_height, layers_count;
   GLuint cell_layers; /* the same for the cell polynomials */
   int cell_layers_width, cell_layers_height, cell_layers_count;
+  GLuint occupancy_layers; /* and for the block bounds */
+  int occupancy_layers_width, occupancy_layers_height, occupancy_layers_count;
   bool layers_stale;
   float *cell_scratch; /* fog_cell_poly_build's output before upload; grows, never shrinks */
   size_t cell_scratch_texels;
@@ -79,6 +85,7 @@ typedef struct fog_pass_variant {
   int sun_shadow;         /* FOG_SUN_SHADOW: fog_sun_shadow_kind */
   int surface_sun;        /* FOG_SURFACE_SUN: 1 the fog shadows the surfaces */
   int shafts;             /* FOG_SHAFTS: 1 the sun's shadow map in the fog */
+  int skip;               /* FOG_SKIP: 1 empty-space skipping in the fogmap walk */
 } fog_pass_variant;
 
 static const struct {
@@ -100,6 +107,7 @@ static const struct {
     {"FOG_SUN_SHADOW", offsetof(fog_pass_variant, sun_shadow), 2},
     {"FOG_SURFACE_SUN", offsetof(fog_pass_variant, surface_sun), 1},
     {"FOG_SHAFTS", offsetof(fog_pass_variant, shafts), 1},
+    {"FOG_SKIP", offsetof(fog_pass_variant, skip), 1},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
@@ -110,7 +118,7 @@ static int variant_field(const fog_pass_variant *v, int f) {
   return *(const int *)((const char *)v + variant_fields[f].offset);
 }
 
-/* The fields packed into bits, in variant_fields' order (25 bits). */
+/* The fields packed into bits, in variant_fields' order (26 bits). */
 static int fog_pass_variant_key(const fog_pass_variant *v) {
   int key = 0, shift = 0;
   for (int f = 0; f < VARIANT_FIELD_COUNT; f++) {
@@ -200,6 +208,9 @@ void fog_pass_destroy(fog_pass *pass) {
     if (pass->slots[i].texture) glDeleteTextures(1, &pass->slots[i].texture);
   for (int i = 0; i < FOG_PASS_MAX_GRIDS; i++)
     if (pass->slots[i].cells) glDeleteTextures(1, &pass->slots[i].cells);
+  for (int i = 0; i < FOG_PASS_MAX_GRIDS; i++)
+    if (pass->slots[i].occupancy) glDeleteTextures(1, &pass->slots[i].occupancy);
+  if (pass->occupancy_layers) glDeleteTextures(1, &pass->occupancy_layers);
   if (pass->layers) glDeleteTextures(1, &pass->layers);
   if (pass->grid3d) glDeleteTextures(1, &pass->grid3d);
   if (pass->sun_shadow) glDeleteTextures(1, &pass->sun_shadow);
@@ -278,6 +289,21 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
     gl_util_texture_sampling(GL_TEXTURE_2D, false);
     s->cells_width = cw;
     s->cells_height = ch;
+  }
+  /* The block bounds (fewer texels than the cell polynomials: the same scratch). */
+  int ow, oh;
+  fog_occupancy_size(grid->width, grid->height, grid->degree, &ow, &oh);
+  s->empty_share = (double)fog_occupancy_build(grid, pass->cell_scratch) / ((double)ow * oh);
+  if (s->occupancy && s->occupancy_width == ow && s->occupancy_height == oh) {
+    glBindTexture(GL_TEXTURE_2D, s->occupancy);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, ow, oh, GL_RED, GL_FLOAT, pass->cell_scratch);
+  } else {
+    if (!s->occupancy) glGenTextures(1, &s->occupancy);
+    glBindTexture(GL_TEXTURE_2D, s->occupancy);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, ow, oh, 0, GL_RED, GL_FLOAT, pass->cell_scratch);
+    gl_util_texture_sampling(GL_TEXTURE_2D, false);
+    s->occupancy_width = ow;
+    s->occupancy_height = oh;
   }
   glBindTexture(GL_TEXTURE_2D, 0);
   pass->layers_stale = true;
@@ -423,6 +449,8 @@ enum fog_pass_unit {
   UNIT_REDUCED,
   UNIT_CELLS,
   UNIT_CELL_LAYERS,
+  UNIT_OCCUPANCY,
+  UNIT_OCCUPANCY_LAYERS,
   UNIT_GRID3D,
   UNIT_SUN_SHADOW,
   UNIT_SURFACE_SUN,
@@ -462,8 +490,10 @@ static void array_texture_fit(GLuint *texture, int *width, int *height, int *cou
  * smaller grid exactly as the border colour of its own texture would give). */
 static int fog_pass_update_layers(fog_pass *pass, int count, render_error *err) {
   if (!pass->layers_stale && pass->layers && pass->layers_count == count) return 0;
-  int w = 1, h = 1, cw = 1, ch = 1;
+  int w = 1, h = 1, cw = 1, ch = 1, ow = 1, oh = 1;
   for (int k = 0; k < count; k++) {
+    if (pass->slots[k].occupancy_width > ow) ow = pass->slots[k].occupancy_width;
+    if (pass->slots[k].occupancy_height > oh) oh = pass->slots[k].occupancy_height;
     if (pass->slots[k].width > w) w = pass->slots[k].width;
     if (pass->slots[k].height > h) h = pass->slots[k].height;
     if (pass->slots[k].cells_width > cw) cw = pass->slots[k].cells_width;
@@ -474,7 +504,11 @@ static int fog_pass_update_layers(fog_pass *pass, int count, render_error *err) 
                     &pass->layers_count, GL_R32F, GL_RED, w, h, count, true);
   array_texture_fit(&pass->cell_layers, &pass->cell_layers_width, &pass->cell_layers_height,
                     &pass->cell_layers_count, GL_RGBA32F, GL_RGBA, cw, ch, count, false);
+  array_texture_fit(&pass->occupancy_layers, &pass->occupancy_layers_width,
+                    &pass->occupancy_layers_height, &pass->occupancy_layers_count, GL_R32F,
+                    GL_RED, ow, oh, count, false);
   static const float zero[4] = {0, 0, 0, 0};
+  glClearTexImage(pass->occupancy_layers, 0, GL_RED, GL_FLOAT, zero);
   glClearTexImage(pass->layers, 0, GL_RED, GL_FLOAT, zero);
   glClearTexImage(pass->cell_layers, 0, GL_RGBA, GL_FLOAT, zero);
   for (int k = 0; k < count; k++) {
@@ -485,6 +519,10 @@ static int fog_pass_update_layers(fog_pass *pass, int count, render_error *err) 
     if (s->cells)
       glCopyImageSubData(s->cells, GL_TEXTURE_2D, 0, 0, 0, 0, pass->cell_layers,
                          GL_TEXTURE_2D_ARRAY, 0, 0, 0, k, s->cells_width, s->cells_height, 1);
+    if (s->occupancy)
+      glCopyImageSubData(s->occupancy, GL_TEXTURE_2D, 0, 0, 0, 0, pass->occupancy_layers,
+                         GL_TEXTURE_2D_ARRAY, 0, 0, 0, k, s->occupancy_width,
+                         s->occupancy_height, 1);
   }
   pass->layers_stale = false;
   return gl_util_check("fog pass: LOD layers", err);
@@ -746,6 +784,12 @@ static int fog_pass_check_fogmap(const fog_pass *pass, const fog_pass_params *pa
              "and an extinction >= 0 (0: no fog), both finite", v->cell_size, v->extinction);
     return 1;
   }
+  if (params->skip == FOG_SKIP_BELOW && !(params->skip_below >= 0 && isfinite(params->skip_below))) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: skip_below %g: expected a finite bound >= 0 of the fog skipped",
+             params->skip_below);
+    return 1;
+  }
   const fog_profile *p = &v->profile;
   if (p->kind == FOG_PROFILE_BSPLINE &&
       (p->count < 1 || p->count > FOG_PROFILE_MAX_COEFFICIENTS || p->degree < 0 ||
@@ -771,7 +815,7 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
   const double *c = cam->position;
   double h = v->cell_size; /* checked > 0 */
   double x0[FOG_PASS_MAX_GRIDS][2], scale[FOG_PASS_MAX_GRIDS];
-  GLint size[FOG_PASS_MAX_GRIDS][2], units[FOG_PASS_MAX_GRIDS];
+  GLint size[FOG_PASS_MAX_GRIDS][2], units[FOG_PASS_MAX_GRIDS], blocks[FOG_PASS_MAX_GRIDS][2];
   for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) {
     const fog_pass_slot *s = &pass->slots[k == 0 ? first : k];
     units[k] = UNIT_GRIDS + k;
@@ -781,12 +825,19 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
     scale[k] = 1.0 / (h * sp);
     size[k][0] = s->width;
     size[k][1] = s->height;
+    blocks[k][0] = s->occupancy_width;
+    blocks[k][1] = s->occupancy_height;
     glActiveTexture(GL_TEXTURE0 + UNIT_GRIDS + (GLenum)k);
     glBindTexture(GL_TEXTURE_2D, reads[k] ? s->texture : 0);
   }
   glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
   /* The cell polynomials: slot `first` alone, or every slot as layers (J > 0). */
   bind_sampler(prog, "fog_cells", UNIT_CELLS, GL_TEXTURE_2D, pass->slots[first].cells);
+  bind_sampler(prog, "fog_occupancy", UNIT_OCCUPANCY, GL_TEXTURE_2D,
+               pass->slots[first].occupancy);
+  glUniform2iv(fog_loc(prog, "fog_occupancy_size"), FOG_PASS_MAX_GRIDS, &blocks[0][0]);
+  glUniform1f(fog_loc(prog, "fog_skip_below"),
+              params->skip == FOG_SKIP_BELOW ? params->skip_below : 0.0f);
   if (J > 0) {
     if (fog_pass_update_layers(pass, slots, err)) return 1;
     bind_sampler(prog, "fog_grid_layers", UNIT_GRID_LAYERS, GL_TEXTURE_2D_ARRAY, pass->layers);
@@ -794,6 +845,8 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
                 (float)pass->layers_height);
     bind_sampler(prog, "fog_cell_layers", UNIT_CELL_LAYERS, GL_TEXTURE_2D_ARRAY,
                  pass->cell_layers);
+    bind_sampler(prog, "fog_occupancy_layers", UNIT_OCCUPANCY_LAYERS, GL_TEXTURE_2D_ARRAY,
+                 pass->occupancy_layers);
   }
   /* Approximation slots 0..J are dyadic, u_k = u_{k+1}/2 + c_k (fog_walk_coarser): from
    * u = (A - origin)/spacing, c_k = (origin_{k+1} - origin_k) / spacing_k. */
@@ -833,6 +886,21 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
   glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
   glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
   return 0;
+}
+
+/* Whether the fogmap walk skips empty blocks: FOG_SKIP_BELOW always; FOG_SKIP_EMPTY where
+ * the grids it reads have FOG_SKIP_MIN_EMPTY_SHARE of their blocks empty or more (the
+ * skipping walk's per-block cost is not repaid by fog without holes); the marcher samples
+ * pointwise and has nothing to skip. */
+static int fog_pass_skips(const fog_pass *pass, const fog_pass_params *params, int first,
+                          const bool reads[FOG_PASS_MAX_GRIDS]) {
+  if (params->integrator != FOG_INTEGRATOR_EXACT || params->skip == FOG_SKIP_NONE) return 0;
+  if (params->skip == FOG_SKIP_BELOW) return 1;
+  double share = 0.0;
+  int count = 0;
+  for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) /* slot 0 shows slot `first` */
+    if (reads[k]) share += pass->slots[k == 0 ? first : k].empty_share, count++;
+  return count > 0 && share / count >= FOG_SKIP_MIN_EMPTY_SHARE;
 }
 
 int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *params,
@@ -877,6 +945,7 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       .sun_shadow = (int)params->self_shadow,
       .surface_sun = params->surface_sun != 0,
       .shafts = params->shafts != NULL,
+      .skip = fog_pass_skips(pass, params, first, reads),
   };
   GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;

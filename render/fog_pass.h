@@ -62,6 +62,16 @@ typedef enum fog_integrator {
                                fog_models.glsl) */
 } fog_integrator;
 
+/* Empty-space skipping of the fogmap's exact walk (render/fog_occupancy.h). */
+typedef enum fog_skip {
+  FOG_SKIP_EMPTY = 0, /* jump blocks of exact zeros: the same integral bit for bit; only
+                         where at least FOG_SKIP_MIN_EMPTY_SHARE of the grids' blocks are
+                         empty (below that, the walk without skipping is faster) */
+  FOG_SKIP_BELOW,     /* jump blocks whose bound of |f| is <= skip_below: |delta optical
+                         depth| <= skip_below * extinction * g_max * (ray length in the box) */
+  FOG_SKIP_NONE,      /* walk every knot cell (the bench's comparison) */
+} fog_skip;
+
 typedef struct fog_pass_params {
   fog_model_kind model;      /* FOG_MODEL_FOGMAP (default) or an analytic model */
   double model_extinction;   /* FOG_MODEL_HOMOGENEOUS / _HEIGHT: K (at y0), per world unit */
@@ -99,6 +109,9 @@ typedef struct fog_pass_params {
   const sun_shadow_map *shafts;
   fog_fetch fetch;
   fog_integrator integrator;
+  fog_skip skip;             /* FOG_MODEL_FOGMAP's exact walk */
+  float skip_below;          /* FOG_SKIP_BELOW: the bound of |f| (grid units) below which a
+                                block counts as empty; >= 0 */
   int march_steps;           /* FOG_INTEGRATOR_MARCH: 0 means 64 */
   int march_jitter;          /* non-zero: per-pixel jittered sample positions */
   unsigned frame;            /* jitter seed */
@@ -121,6 +134,10 @@ typedef struct fog_pass_params {
 } fog_pass_params;
 
 #define FOG_PASS_DEPTH_CUTOFF 16.0
+/* FOG_SKIP_EMPTY's switch (docs/integral.md, Empty space): on llvmpipe the skipping walk
+ * cost 1.44x the plain one on a fogmap with no empty block and gained 1.29x on the
+ * Mantaflow ground fog with 52 % of its blocks empty. */
+#define FOG_SKIP_MIN_EMPTY_SHARE 0.25
 
 typedef struct fog_pass fog_pass;
 

@@ -7,6 +7,7 @@
 
 #include "render/fog_field.h"
 #include "render/fog_models.h"
+#include "render/fog_occupancy.h"
 #include "render/fog_pass.h"
 
 typedef struct text_out {
@@ -39,6 +40,7 @@ static void constants(text_out *o) {
       (int)FOG_LOD_SUM_OF_DETAILS, (int)FOG_LOD_SWITCH);
   put(o, "#define FOG_MAX_GRIDS %d\n#define FOG_MAX_LEVELS %d\n", FOG_PASS_MAX_GRIDS,
       FOG_MAX_LEVELS);
+  put(o, "#define FOG_OCCUPANCY_BLOCK %d\n", FOG_OCCUPANCY_BLOCK);
   put(o, "#define FOG_PROFILE_MAX_COEFFICIENTS %d\n#define FOG_MAX_RBFS %d\n",
       FOG_PROFILE_MAX_COEFFICIENTS, FOG_MAX_RBFS);
   /* %.9g: the float nearest the C double, as the C twins' switch in float */

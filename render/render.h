@@ -13,6 +13,7 @@
 #include "render/scene.h"
 #include "render/camera.h"
 #include "render/fog_field.h"
+#include "render/fog_occupancy.h"
 #include "render/fog_light.h"
 #include "render/fog_sun_shadow.h"
 #include "render/fog_models.h"

@@ -1,5 +1,5 @@
 # `fogpipe bench render` smoke test: the benchmark runs at a tiny size, exits 0, writes a
-# table CSV whose rows hold finite numbers (all 31 rows: 14 marching, 5 exact, 12 LOD), the
+# table CSV whose rows hold finite numbers (all 34 rows: 14 marching, 5 exact, 3 ground fog, 12 LOD), the
 # chart CSV and PNG, and ends with the summary line. It asserts no speed (speed targets
 # live in the benchmark itself).
 #
@@ -28,7 +28,7 @@ endif()
 string(STRIP "${out}" out)
 string(REGEX MATCH "[^\n]*$" last "${out}")
 set(num "[0-9]+(\\.[0-9]+)?")
-if(NOT last MATCHES "^render: exact_speedup_at_matched_error=${num} lod_switch_speedup_vs_sum=${num} lod_overhead_at_mu1=${num}$")
+if(NOT last MATCHES "^render: exact_speedup_at_matched_error=${num} lod_switch_speedup_vs_sum=${num} lod_overhead_at_mu1=${num} empty_skip_speedup=${num}$")
   message(FATAL_ERROR "last line is not the summary line: '${last}'")
 endif()
 
@@ -37,7 +37,12 @@ if(NOT out MATCHES "glTexSubImage2D from client memory ${num} ms; through a pixe
   message(FATAL_ERROR "no upload comparison (direct vs pixel-unpack buffer) in the output")
 endif()
 
-# The table: header + 31 rows; every number finite (no nan/inf), errors and times >= 0.
+# Empty-space skipping is exact: the ground fog's tau images agree bit for bit.
+if(NOT out MATCHES "tau images identical bit for bit")
+  message(FATAL_ERROR "the ground fog rows with and without skipping differ")
+endif()
+
+# The table: header + 34 rows; every number finite (no nan/inf), errors and times >= 0.
 foreach(f render.csv render_chart.csv render_chart.png render_tau.png)
   if(NOT EXISTS ${OUT}/${f})
     message(FATAL_ERROR "missing output ${OUT}/${f}")
@@ -45,8 +50,8 @@ foreach(f render.csv render_chart.csv render_chart.png render_tau.png)
 endforeach()
 file(STRINGS ${OUT}/render.csv lines)
 list(LENGTH lines count)
-if(NOT count EQUAL 32)
-  message(FATAL_ERROR "render.csv has ${count} lines, expected a header and 31 rows")
+if(NOT count EQUAL 35)
+  message(FATAL_ERROR "render.csv has ${count} lines, expected a header and 34 rows")
 endif()
 list(GET lines 0 header)
 if(NOT header STREQUAL "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full")

@@ -102,6 +102,42 @@ static inline fog_volume fog_test_volume(fog_profile_kind kind) {
                       .profile = fog_test_profile(kind)};
 }
 
+/* Fog in patches (the empty-space skipping tests): a FOG_TEST_PATCH_W x _H box of the
+ * volume above, a grid of `background` (0, or values in [background/2, background]) with 7
+ * rectangular patches of random fog in [0.2, 1.2]. */
+enum { FOG_TEST_PATCH_W = 180, FOG_TEST_PATCH_H = 120 };
+
+static inline transform_grid fog_test_patch_grid(int degree, double spacing, float background) {
+  transform_grid g;
+  transform_error err;
+  int margin = degree + 1;
+  int w = (int)ceil(FOG_TEST_PATCH_W / spacing) + 2 * margin + 1;
+  int h = (int)ceil(FOG_TEST_PATCH_H / spacing) + 2 * margin + 1;
+  transform_grid_create(&g, w, h, &err);
+  g.degree = degree;
+  g.spacing = spacing;
+  g.origin_u = -0.5 - margin * spacing + 0.3;
+  g.origin_v = -0.5 - margin * spacing - 0.11;
+  for (int i = 0; i < w * h; i++)
+    g.coefficients[i] =
+        background > 0 ? (float)(background * (0.5 + 0.5 * fog_test_uniform())) : 0.0f;
+  for (int p = 0; p < 7; p++) {
+    int pw = 2 + (int)(fog_test_uniform() * 14), ph = 2 + (int)(fog_test_uniform() * 14);
+    int x0 = (int)(fog_test_uniform() * (w - pw)), z0 = (int)(fog_test_uniform() * (h - ph));
+    for (int j = z0; j < z0 + ph; j++)
+      for (int i = x0; i < x0 + pw; i++)
+        g.coefficients[(size_t)j * w + i] = (float)fog_test_range(0.2, 1.2);
+  }
+  return g;
+}
+
+static inline fog_volume fog_test_patch_volume(fog_profile_kind kind) {
+  fog_volume v = fog_test_volume(kind);
+  v.map_width = FOG_TEST_PATCH_W;
+  v.map_height = FOG_TEST_PATCH_H;
+  return v;
+}
+
 static inline void fog_test_unit(double d[3]) {
   double n = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   for (int i = 0; i < 3; i++) d[i] /= n;
