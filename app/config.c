@@ -133,6 +133,9 @@ static const key_spec keys[] = {
     {"light", "shadow_steps", V_INT, F(shadow.steps), 1, 1024, NULL, 0, 0},
     {"render", "width", V_INT, F(width), 1, 16384, NULL, 0, 0},
     {"render", "height", V_INT, F(height), 1, 16384, NULL, 0, 0},
+    {"render", "transmittance_cutoff", V_DOUBLE, F(transmittance_cutoff), 0, 0.5, NULL, 0, 0},
+    {"render", "empty_skip", V_ENUM, F(empty_skip), 0, 0, "off|on", 0, 0},
+    {"render", "skip_below", V_DOUBLE, F(skip_below), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"sim", "wind", V_DOUBLE2, F(sim.wind), -WORLD, WORLD, NULL, 0, 0},
     {"sim", "turbulence", V_DOUBLE, F(sim.turbulence), 0, WORLD, NULL, 0, 0},
     {"sim", "viscosity", V_DOUBLE, F(sim.viscosity), 0, WORLD, NULL, 0, 0},
@@ -159,6 +162,9 @@ void scene_config_init(scene_config *cfg) {
       .shadow = {.fog_self_shadow = 1, .shafts = 1, .resolution = 48, .steps = 16},
       .width = 1280,
       .height = 720,
+      .transmittance_cutoff = FOG_PASS_TRANSMITTANCE_CUTOFF,
+      .empty_skip = 1,
+      .skip_below = 0.0,
   };
 }
 
@@ -705,6 +711,15 @@ bool scene_config_knows_key(const char *section, const char *key) {
 bool scene_config_has_fog(const scene_config *cfg) {
   return cfg->fog.model != FOG_MODEL_FOGMAP || cfg->fog.fogmap[0] || cfg->fog.vdb[0] ||
          cfg->fog.sequence[0];
+}
+
+fog_walk_settings scene_config_walk(const scene_config *cfg) {
+  return (fog_walk_settings){
+      .transmittance_cutoff = cfg->transmittance_cutoff,
+      .skip = !cfg->empty_skip ? FOG_SKIP_NONE
+              : cfg->skip_below > 0 ? FOG_SKIP_BELOW : FOG_SKIP_EMPTY,
+      .skip_below = (float)cfg->skip_below,
+  };
 }
 
 fog_sun scene_config_fog_sun(const scene_config *cfg) {

@@ -19,6 +19,7 @@
 #include "render/camera.h"
 #include "render/fog_light.h"
 #include "render/fog_models.h"
+#include "render/fog_pass.h"
 #include "render/scene.h"
 
 #define SCENE_CONFIG_PATH_MAX 1024
@@ -155,6 +156,12 @@ typedef struct scene_config {
   scene_light light;
   scene_shadow_config shadow; /* in [light] */
   int width, height; /* [render] image size */
+  /* [render] the fog walk's speed settings (docs/config.md): transmittance_cutoff
+   * (fog_pass_params.transmittance_cutoff, 0: whole rays), empty_skip (1 on: skip blocks
+   * of zero fog, exactly) and skip_below (> 0: also blocks whose fog is <= it). */
+  double transmittance_cutoff;
+  int empty_skip;
+  double skip_below;
   scene_sim_config sim;
 } scene_config;
 
@@ -188,6 +195,8 @@ uint64_t scene_config_fingerprint(const scene_config *cfg);
 
 /* The camera the config describes (radians, look_at applied). */
 void scene_config_camera(const scene_config *cfg, camera *cam);
+/* How the fog pass walks: [render] transmittance_cutoff, empty_skip, skip_below. */
+fog_walk_settings scene_config_walk(const scene_config *cfg);
 /* The sun as the fog sees it: [fog] albedo and phase_g, [light]'s resolved sun. */
 fog_sun scene_config_fog_sun(const scene_config *cfg);
 /* The scene pass's description. heights (may be NULL) are the loaded heightmap (values in

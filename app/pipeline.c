@@ -952,6 +952,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       .self_shadow = p->shown_self_shadow,
       .shadow_steps = p->config.shadow.steps,
       .shafts = params.sun.albedo > 0 && params.shafts ? scene_pass_sun_shadow(p->scene) : NULL,
+      .walk = scene_config_walk(&p->config),
   };
   if (pipeline_fog_render(p->fog, cam, &p->scene_target, &settings, &rerr))
     return fail(err, "render: %s", rerr.message);

@@ -11,6 +11,7 @@
 #include "render/camera.h"
 #include "render/fog_field.h"
 #include "render/fog_light.h"
+#include "render/fog_pass.h"
 #include "render/fog_sun_shadow.h"
 #include "render/sun_shadow_map.h"
 #include "render/gl_util.h"
@@ -31,6 +32,7 @@ typedef struct pipeline_fog_settings {
   fog_sun_shadow_kind self_shadow;
   int shadow_steps;
   const sun_shadow_map *shafts; /* fog_pass_params.shafts: NULL none */
+  fog_walk_settings walk;       /* fog_pass_params.walk */
 } pipeline_fog_settings;
 
 typedef struct pipeline_fog pipeline_fog;

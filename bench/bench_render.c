@@ -17,7 +17,7 @@
  *   - LOD by distance over a 3-level linear pyramid, mu = 1 .. 0, both methods: the paper's
  *     sum of deconstructed details and approximation switching.
  * Every row runs with the fog pass's defaults otherwise: the exact walks (single grid, LOD
- * switching) stop at FOG_PASS_DEPTH_CUTOFF (tau below ~1e-7), the marcher and the sum of
+ * switching) stop at FOG_PASS_TRANSMITTANCE_CUTOFF (tau below 1e-4), the marcher and the sum of
  * (signed) details integrate whole rays.
  * Error: tau = exp(-optical depth) read back from the fog pass's transmittance target,
  * against the double-precision exact CPU integral of the SAME model on the same rays
@@ -68,10 +68,12 @@ static void print_help(void) {
       "               <source>/data/fogmap_sample.png)\n"
       "  --help       this text\n"
       "Last line: render: exact_speedup_at_matched_error=X lod_switch_speedup_vs_sum=Y\n"
-      "lod_overhead_at_mu1=Z, where X = time of the cheapest ray marching with max tau\n"
-      "error <= 1e-3 / exact linear time (targets X >= 5), Y = sum-of-details time /\n"
-      "approximation-switching time at mu = 0.6, 3 levels (Y >= 1.5), Z = switching time\n"
-      "at mu = 1 / the fogmap alone without decomposition (Z <= 1.05).\n");
+      "lod_overhead_at_mu1=Z empty_skip_speedup=S, where X = time of the cheapest ray\n"
+      "marching with max tau error <= 1e-3 / exact linear time (targets X >= 5), Y =\n"
+      "sum-of-details time / approximation-switching time at mu = 0.6, 3 levels (Y >= 1.5),\n"
+      "Z = switching time at mu = 1 / the fogmap alone without decomposition (Z <= 1.05),\n"
+      "S = the exact linear walk on the ground fog (data/fogmap_groundfog.exr) without\n"
+      "empty-space skipping / with it (the pass's default).\n");
 }
 
 /* ---- the CPU reference (double), two threads ------------------------------------------ */
@@ -473,7 +475,9 @@ int bench_render(int argc, char **argv) {
   fprintf(stderr, "bench render: CPU references done (%.1f s); GL rows...\n", t_ref);
 
   /* ---- the rows ---- */
-  const fog_pass_params base = {.volume = &volume, .fog_colour = {0.75f, 0.78f, 0.82f}};
+  /* The product's walk settings ([render] defaults): early termination at tau < 1e-4. */
+  const fog_pass_params base = {.volume = &volume, .fog_colour = {0.75f, 0.78f, 0.82f},
+                                .walk = {.transmittance_cutoff = FOG_PASS_TRANSMITTANCE_CUTOFF}};
   for (int jitter = 0; jitter <= 1; jitter++)
     for (int s = 0; s < MARCH_COUNT; s++) {
       bench_row *r = &rows[row_count++];
@@ -511,7 +515,7 @@ int bench_render(int argc, char **argv) {
                      .chart_x_key = k};
     snprintf(r->setting, sizeof r->setting, "%s", names[k]);
     r->params.volume = &ground_volume;
-    r->params.skip = modes[k];
+    r->params.walk.skip = modes[k];
   }
   int sum_at_06 = -1, switch_at_06 = -1, switch_at_1 = -1;
   for (int m = 0; m <= 1; m++)
@@ -599,9 +603,9 @@ int bench_render(int argc, char **argv) {
          profile == FOG_PROFILE_SLAB ? "slab" : "exponential", volume.profile.y0, volume.profile.scale_height, tau_mean, full_cells, t_ref);
   printf("errors: tau vs the exact CPU integral of the same model; LOD rows also vs the full\n"
          "model (the fogmap, linear). RMSE and max over all pixels. Exact walks stop at the\n"
-         "pass's default optical-depth cutoff (%g: tau < %.1e); marching and the sum of\n"
-         "details integrate whole rays.\n\n",
-         FOG_PASS_DEPTH_CUTOFF, exp(-FOG_PASS_DEPTH_CUTOFF));
+         "product's transmittance cut-off (tau < %.0e: optical depth %.2f); marching and the\n"
+         "sum of details integrate whole rays.\n\n",
+         FOG_PASS_TRANSMITTANCE_CUTOFF, fog_pass_depth_limit(FOG_PASS_TRANSMITTANCE_CUTOFF));
   printf("%-15s %-12s %10s %10s %10s %12s %12s\n", "method", "setting", "ms/frame", "RMSE",
          "max err", "RMSE(full)", "max(full)");
   for (int i = 0; i < row_count; i++) {

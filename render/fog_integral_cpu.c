@@ -384,27 +384,13 @@ static double fog_piece_integral(const fog_ray_walk *w, double ta, double tb) {
   return half * sum;
 }
 
-/* int_{t0}^{t1} f g dt for [t0, t1] inside the box: walk the knot cells of x, z (2D DDA)
- * and the profile's breaks, one exact piece at a time. */
-static double fog_walk_integral(fog_ray_walk *w, double t0, double t1) {
-  double sum = 0.0, t = t0;
+/* The walk over [*t, t_end] (t_end a knot crossing or t1, so no piece is cut short): the
+ * knot cells of x, z (2D DDA) and the profile's breaks, one exact piece at a time. */
+static void fog_walk_cells(fog_ray_walk *w, double *t_io, double t_end, double t1,
+                           double *sum) {
+  double t = *t_io;
   /* Each iteration crosses one knot line or ends; the bound only guards against NaN. */
-  for (long guard = 0; t < t1 && guard < 100000000L; guard++) {
-    if (w->skip && fog_occupancy_at(w->skip, w->x.cell, w->z.cell) <= w->skip_below) {
-      /* An empty block: jump to where the ray leaves it (fog_occupancy.h), every axis
-       * synced to that parameter as its steps would have left it. */
-      const int shift = w->grid->degree - w->grid->degree / 2;
-      double tb = fmin(t1, fmin(fog_axis_block_exit(&w->x, shift),
-                                fog_axis_block_exit(&w->z, shift)));
-      if (tb > t) {
-        t = tb;
-        fog_axis_sync(&w->x, t);
-        fog_axis_sync(&w->z, t);
-        if (w->profile->kind == FOG_PROFILE_BSPLINE) fog_axis_sync(&w->y, t);
-        fog_block_load(w);
-        continue;
-      }
-    }
+  for (long guard = 0; t < t_end && guard < 100000000L; guard++) {
     double tx = fog_axis_next(&w->x), tz = fog_axis_next(&w->z);
     double ty = (w->profile->kind == FOG_PROFILE_BSPLINE) ? fog_axis_next(&w->y) : HUGE_VAL;
     double t_next = t1;
@@ -412,7 +398,7 @@ static double fog_walk_integral(fog_ray_walk *w, double t0, double t1) {
     if (tz < t_next) t_next = tz;
     if (ty < t_next) t_next = ty;
     if (w->t_y0 > t && w->t_y0 < t_next) t_next = w->t_y0;
-    if (t_next > t) sum += fog_piece_integral(w, t, t_next);
+    if (t_next > t) *sum += fog_piece_integral(w, t, t_next);
     if (tx <= t_next) {
       fog_axis_step(&w->x);
       fog_block_step_x(w);
@@ -423,6 +409,33 @@ static double fog_walk_integral(fog_ray_walk *w, double t0, double t1) {
     }
     if (ty <= t_next) fog_axis_step(&w->y);
     if (t_next > t) t = t_next;
+  }
+  *t_io = t;
+}
+
+/* int_{t0}^{t1} f g dt for [t0, t1] inside the box. With skipping (w->skip) the ray goes
+ * block by block of the occupancy map (fog_occupancy.h), as the GLSL twin does: an empty
+ * block is jumped, every axis synced to where the ray leaves it; any other block is walked
+ * cell by cell up to that exit, a knot crossing, so the pieces are the plain walk's. */
+static double fog_walk_integral(fog_ray_walk *w, double t0, double t1) {
+  double sum = 0.0, t = t0;
+  if (!w->skip) {
+    fog_walk_cells(w, &t, t1, t1, &sum);
+    return sum;
+  }
+  const int shift = w->grid->degree - w->grid->degree / 2;
+  for (long guard = 0; t < t1 && guard < 100000000L; guard++) {
+    double tb = fmin(t1, fmin(fog_axis_block_exit(&w->x, shift),
+                              fog_axis_block_exit(&w->z, shift)));
+    if (fog_occupancy_at(w->skip, w->x.cell, w->z.cell) <= w->skip_below && tb > t) {
+      t = tb;
+      fog_axis_sync(&w->x, t);
+      fog_axis_sync(&w->z, t);
+      if (w->profile->kind == FOG_PROFILE_BSPLINE) fog_axis_sync(&w->y, t);
+      fog_block_load(w);
+    } else {
+      fog_walk_cells(w, &t, tb > t ? tb : t1, t1, &sum);
+    }
   }
   return sum;
 }

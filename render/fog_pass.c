@@ -531,11 +531,10 @@ static int fog_pass_update_layers(fog_pass *pass, int count, render_error *err) 
 /* The fog's shadow on itself and on the surfaces (fog_light.glsl). */
 static void fog_pass_sun_shadow_uniforms(const fog_pass *pass, GLuint prog, const camera *cam,
                                          const fog_pass_params *params) {
-  /* The optical depth cut-off (fog_pass_params.depth_cutoff): tau < e^-16 ~ 1.1e-7 is
-   * black even in a float image, so the walk (and the shadow's mean) may stop there. */
-  glUniform1f(fog_loc(prog, "fog_depth_limit"),
-              params->depth_cutoff < 0 ? 1e30f
-              : (float)(params->depth_cutoff > 0 ? params->depth_cutoff : FOG_PASS_DEPTH_CUTOFF));
+  /* Early termination (fog_pass_params.transmittance_cutoff): the walks and the shadow's
+   * mean stop past this optical depth. */
+  const double limit = fog_pass_depth_limit(params->walk.transmittance_cutoff);
+  glUniform1f(fog_loc(prog, "fog_depth_limit"), limit < 1e30 ? (float)limit : 1e30f);
   glUniform1i(fog_loc(prog, "fog_shadow_steps"), params->shadow_steps);
   if (params->shafts) {
     const sun_shadow_map *map = params->shafts;
@@ -724,6 +723,12 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
              (int)params->self_shadow, params->shadow_steps);
     return 1;
   }
+  if (!(params->walk.transmittance_cutoff >= 0 && params->walk.transmittance_cutoff < 1)) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: transmittance cut-off %g: expected 0 (never stop) or in (0, 1)",
+             params->walk.transmittance_cutoff);
+    return 1;
+  }
   if (params->model == FOG_MODEL_HEIGHT && !(params->model_scale_height > 0)) {
     snprintf(err->message, sizeof err->message,
              "fog pass: height fog scale height %g: expected > 0", params->model_scale_height);
@@ -784,10 +789,10 @@ static int fog_pass_check_fogmap(const fog_pass *pass, const fog_pass_params *pa
              "and an extinction >= 0 (0: no fog), both finite", v->cell_size, v->extinction);
     return 1;
   }
-  if (params->skip == FOG_SKIP_BELOW && !(params->skip_below >= 0 && isfinite(params->skip_below))) {
+  if (params->walk.skip == FOG_SKIP_BELOW && !(params->walk.skip_below >= 0 && isfinite(params->walk.skip_below))) {
     snprintf(err->message, sizeof err->message,
              "fog pass: skip_below %g: expected a finite bound >= 0 of the fog skipped",
-             params->skip_below);
+             params->walk.skip_below);
     return 1;
   }
   const fog_profile *p = &v->profile;
@@ -837,7 +842,7 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
                pass->slots[first].occupancy);
   glUniform2iv(fog_loc(prog, "fog_occupancy_size"), FOG_PASS_MAX_GRIDS, &blocks[0][0]);
   glUniform1f(fog_loc(prog, "fog_skip_below"),
-              params->skip == FOG_SKIP_BELOW ? params->skip_below : 0.0f);
+              params->walk.skip == FOG_SKIP_BELOW ? params->walk.skip_below : 0.0f);
   if (J > 0) {
     if (fog_pass_update_layers(pass, slots, err)) return 1;
     bind_sampler(prog, "fog_grid_layers", UNIT_GRID_LAYERS, GL_TEXTURE_2D_ARRAY, pass->layers);
@@ -894,13 +899,17 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
  * pointwise and has nothing to skip. */
 static int fog_pass_skips(const fog_pass *pass, const fog_pass_params *params, int first,
                           const bool reads[FOG_PASS_MAX_GRIDS]) {
-  if (params->integrator != FOG_INTEGRATOR_EXACT || params->skip == FOG_SKIP_NONE) return 0;
-  if (params->skip == FOG_SKIP_BELOW) return 1;
+  if (params->integrator != FOG_INTEGRATOR_EXACT || params->walk.skip == FOG_SKIP_NONE) return 0;
+  if (params->walk.skip == FOG_SKIP_BELOW) return 1;
   double share = 0.0;
   int count = 0;
   for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) /* slot 0 shows slot `first` */
     if (reads[k]) share += pass->slots[k == 0 ? first : k].empty_share, count++;
   return count > 0 && share / count >= FOG_SKIP_MIN_EMPTY_SHARE;
+}
+
+double fog_pass_depth_limit(double transmittance_cutoff) {
+  return transmittance_cutoff > 0 ? -log(transmittance_cutoff) : HUGE_VAL;
 }
 
 int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *params,

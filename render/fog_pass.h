@@ -72,6 +72,23 @@ typedef enum fog_skip {
   FOG_SKIP_NONE,      /* walk every knot cell (the bench's comparison) */
 } fog_skip;
 
+/* How the exact walks run: settings that trade nothing or a stated bound for speed. */
+typedef struct fog_walk_settings {
+  /* Early termination at opacity: the exact walks (the fogmap's single grid and LOD
+   * switching, the volume's DDA) and the shadowed light's mean stop once the transmittance
+   * falls below this, i.e. once the optical depth passes t_max = -ln(cutoff). The pixel then
+   * reports tau_partial <= cutoff where the whole ray gives tau <= tau_partial, so
+   * |delta tau| <= cutoff, and the blend L = tau L(P) + (1 - tau) L_fog moves by at most
+   * cutoff * max |L(P) - L_fog| (docs/integral.md, Early termination). 0: never stop (whole
+   * rays). The product's default is FOG_PASS_TRANSMITTANCE_CUTOFF ([render]
+   * transmittance_cutoff). The sum of details (signed bands) and the marchers always
+   * integrate whole rays. */
+  double transmittance_cutoff;
+  fog_skip skip;             /* FOG_MODEL_FOGMAP's exact walk */
+  float skip_below;          /* FOG_SKIP_BELOW: the bound of |f| (grid units) below which a
+                                block counts as empty; >= 0 */
+} fog_walk_settings;
+
 typedef struct fog_pass_params {
   fog_model_kind model;      /* FOG_MODEL_FOGMAP (default) or an analytic model */
   double model_extinction;   /* FOG_MODEL_HOMOGENEOUS / _HEIGHT: K (at y0), per world unit */
@@ -109,18 +126,10 @@ typedef struct fog_pass_params {
   const sun_shadow_map *shafts;
   fog_fetch fetch;
   fog_integrator integrator;
-  fog_skip skip;             /* FOG_MODEL_FOGMAP's exact walk */
-  float skip_below;          /* FOG_SKIP_BELOW: the bound of |f| (grid units) below which a
-                                block counts as empty; >= 0 */
+  fog_walk_settings walk;    /* early termination, empty-space skipping */
   int march_steps;           /* FOG_INTEGRATOR_MARCH: 0 means 64 */
   int march_jitter;          /* non-zero: per-pixel jittered sample positions */
   unsigned frame;            /* jitter seed */
-  /* Exact walk (single grid, or LOD switching): a pixel stops integrating once its optical
-   * depth exceeds this (tau < e^-cutoff; it then reports a partial depth >= cutoff).
-   * 0: FOG_PASS_DEPTH_CUTOFF (16: tau < 1.2e-7, far below what any output format or the
-   * eye resolves; the GPU-vs-CPU tests pass with it); negative: never stop early. The sum
-   * of details (signed bands) and the marcher always integrate the whole ray. */
-  double depth_cutoff;
   /* 0 or 1: the fog at full resolution (render, record: the reference). 2 or 4: the walk
    * runs at (width/D) x (height/D) (rounded up; each sample traces the ray of full-
    * resolution pixel k D + D/2 to that pixel's surface distance), then a joint bilateral
@@ -133,7 +142,9 @@ typedef struct fog_pass_params {
   int resolution_divisor;
 } fog_pass_params;
 
-#define FOG_PASS_DEPTH_CUTOFF 16.0
+#define FOG_PASS_TRANSMITTANCE_CUTOFF 1e-4
+/* The optical depth where a walk with that cut-off stops: -ln(cutoff), or HUGE_VAL for 0. */
+double fog_pass_depth_limit(double transmittance_cutoff);
 /* FOG_SKIP_EMPTY's switch (docs/integral.md, Empty space): on llvmpipe the skipping walk
  * cost 1.44x the plain one on a fogmap with no empty block and gained 1.29x on the
  * Mantaflow ground fog with 52 % of its blocks empty. */

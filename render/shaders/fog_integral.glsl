@@ -37,7 +37,8 @@
 //   - the exponential profile's breaks are y0 + k H/2 (not y0 alone), so |b| <= 1/4 and the
 //     moments come from an 8-term series only (fog_exp_moments_walk), no closed form, and
 //     the pieces below y0 use the same formula with c0 = b = 0 (no Gauss path);
-//   - a pixel stops once its optical depth passes fog_depth_limit (default 16);
+//   - a pixel stops once its optical depth passes fog_depth_limit (early termination:
+//     -ln of the transmittance cut-off, 9.2 for the product's 1e-4; the C twin has none);
 //   - LOD draws read the grids as layers of one array texture (no sampler-array index),
 //     and clip the ray to the box once per pixel (fog_optical_depth_inside per grid);
 //     approximation switching sets its first walk up in double and starts each next one
@@ -103,6 +104,9 @@ uniform sampler2DArray fog_occupancy_layers;
 #define FOG_OCCUPANCY_TEXEL(g, b) texelFetch(fog_occupancy_layers, ivec3(b, g), 0).r
 #endif
 uniform ivec2 fog_occupancy_size[FOG_MAX_GRIDS];  // blocks per slot
+// Early termination (fog_pass_params.transmittance_cutoff): the exact walks stop once the
+// optical depth exceeds this, -ln(cutoff) (1e30: whole rays).
+uniform float fog_depth_limit;
 uniform dvec3 fog_box_min;  // camera-relative box (double: see fog_optical_depth_inside)
 uniform dvec3 fog_box_max;
 uniform float fog_extinction_scale;

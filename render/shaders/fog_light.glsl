@@ -98,7 +98,8 @@ float fog_sun_mean_transmittance(fog_ray r) {
   float t0, t1;
   if (!fog_light_span(r, t0, t1)) return 1.0;
   float dt = (t1 - t0) / float(fog_shadow_steps), before = 0.0, weights = 0.0, lit = 0.0;
-  // Past an optical depth of fog_depth_limit (16) the rest weighs < e^-16: stop there.
+  // Past an optical depth of fog_depth_limit (early termination) the rest weighs less than
+  // the transmittance cut-off: stop there.
   for (int i = 0; i < fog_shadow_steps && before < fog_depth_limit; i++) {
     float t = t0 + (float(i) + 0.5) * dt;
     float step_depth = fog_light_extinction(r.dir, t) * dt;

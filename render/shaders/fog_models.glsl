@@ -137,7 +137,8 @@ float fog_grid3d_optical_depth(vec3 dir, float length) {
   fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
            az = fog_axis_start(ue.z, du.z, 0.0);
   float len = t1 - t0, t = 0.0, sum = 0.0;
-  for (int guard = 0; t < len && guard < 65536; guard++) {
+  // Early termination: stop once the depth passes fog_depth_limit (fog_integral.glsl).
+  for (int guard = 0; t < len && sum < fog_depth_limit && guard < 65536; guard++) {
     float tx = fog_axis_next(ax), ty = fog_axis_next(ay), tz = fog_axis_next(az);
     float tn = min(min(len, tx), min(ty, tz));
     float half_len = 0.5 * (tn - t), mid = 0.5 * (tn + t), off = 0.57735026918962576 * half_len;

@@ -42,7 +42,6 @@ const int fog_lod_method = FOG_LOD_METHOD;
 uniform double fog_mu;
 uniform int fog_march_jitter;            // 0: midpoints; 1: per-pixel jitter
 uniform uint fog_frame;
-uniform float fog_depth_limit;           // exact walk: stop once the optical depth exceeds it
 
 // Detail band l (1..J) lives in slot J + l; approximation A_l in slot l. [t0, t1] is
 // already clipped to the box (t0 < t1): a pixel clips once, not once per grid (that took

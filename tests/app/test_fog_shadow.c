@@ -116,7 +116,7 @@ static void check_shafts(void) {
       camera_ray(&cam, px, py, W, H, o, d);
       double t_surface = lit.depth[k] >= 0.999 * cam.far_plane ? HUGE_VAL : lit.depth[k];
       double mean = fog_sun_mean_light(&model, params->self_shadow, &fog->sun_shadow,
-                                       params->shadow_steps, FOG_PASS_DEPTH_CUTOFF, o, d,
+                                       params->shadow_steps, fog_pass_depth_limit(params->walk.transmittance_cutoff), o, d,
                                        t_surface, exact_visible, &exact);
       const double mu = d[0] * sun->direction[0] + d[1] * sun->direction[1] +
                         d[2] * sun->direction[2];
@@ -203,7 +203,7 @@ static void check_case(model_case *mc) {
       camera_ray(&cam, px, py, W, H, o, d);
       double t_surface = lit.depth[k] >= 0.999 * cam.far_plane ? HUGE_VAL : lit.depth[k];
       double mean = fog_sun_mean_transmittance(&model, params->self_shadow, volume,
-                                               params->shadow_steps, FOG_PASS_DEPTH_CUTOFF, o,
+                                               params->shadow_steps, fog_pass_depth_limit(params->walk.transmittance_cutoff), o,
                                                d, t_surface);
       const double mu = d[0] * sun->direction[0] + d[1] * sun->direction[1] +
                         d[2] * sun->direction[2];

@@ -5,8 +5,8 @@
  *   (sharp depth edges) stays within a stated distance of the full-resolution transmittance:
  *   max |dtau| <= 0.02 (edges: no fog bleeds across them, unmatched pixels walk their own
  *   ray), mean |dtau| <= 1e-3; divisor 4 within 0.05 / 3e-3;
- * - the optical depth cut-off (depth_cutoff, default 16) in thick fog agrees with the CPU
- *   (double, no cut-off) within 2e-4, as does the walk without it (depth_cutoff < 0);
+ * - early termination (walk.transmittance_cutoff = the product's 1e-4) in thick fog agrees
+ *   with the CPU (double, whole rays) within the cut-off, the walk without it within 2e-6;
  * - LOD draws that reduce to one grid (switching at mu = 1: A_J alone; mu = 0: A_0 alone;
  *   the sum of details at mu = 0), which the pass draws as that grid's one-grid variant,
  *   agree with the CPU's LOD integral within 2e-4, as does mu = 0.6 for both methods. */
@@ -108,7 +108,8 @@ int main(void) {
   double worst_cut[2] = {0, 0};
   int opaque = 0;
   for (int c = 0; c < 2; c++) {
-    fog_pass_params params = {.volume = &v, .depth_cutoff = c ? -1.0 : 0.0};
+    fog_pass_params params = {
+        .volume = &v, .walk = {.transmittance_cutoff = c ? 0.0 : FOG_PASS_TRANSMITTANCE_CUTOFF}};
     CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tex[0], tex[1], tau[0], &err) == 0,
           "draw: %s", err.message);
     for (int k = 0; k < W * H; k++) {
@@ -116,14 +117,14 @@ int main(void) {
       double t = distance[k] >= 1e29f ? HUGE_VAL : distance[k];
       double depth = fog_optical_depth(&v, &grid, o, &dirs[3 * k], 0.0, t);
       worst_cut[c] = fmax(worst_cut[c], fabs(fog_transmittance(depth) - tau[0][k]));
-      if (c == 0) opaque += depth > FOG_PASS_DEPTH_CUTOFF;
+      if (c == 0) opaque += depth > fog_pass_depth_limit(FOG_PASS_TRANSMITTANCE_CUTOFF);
     }
   }
   printf("thick fog: %d of %d pixels past the cut-off; vs CPU with cut-off %.2e, without %.2e\n",
          opaque, W * H, worst_cut[0], worst_cut[1]);
   CHECK(opaque > W * H / 4, "thick fog: only %d pixels past the cut-off", opaque);
-  CHECK(worst_cut[0] <= 2e-4 && worst_cut[1] <= 2e-4, "cut-off %.3e, none %.3e", worst_cut[0],
-        worst_cut[1]);
+  CHECK(worst_cut[0] <= FOG_PASS_TRANSMITTANCE_CUTOFF + 2e-6 && worst_cut[1] <= 2e-6,
+        "cut-off %.3e, none %.3e", worst_cut[0], worst_cut[1]);
 
   /* LOD: a random 2-level linear pyramid, thin fog again. */
   enum { J = 2 };

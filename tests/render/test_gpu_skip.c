@@ -107,13 +107,13 @@ int main(void) {
               fog_pass_params params = {.volume = &v, .levels = mode ? LEVELS : 0,
                                         .lod_method = mode == 1 ? FOG_LOD_SWITCH
                                                                 : FOG_LOD_SUM_OF_DETAILS,
-                                        .mu = lod.mu, .depth_cutoff = -1.0,
+                                        .mu = lod.mu,
                                         .fetch = fetch ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
-                                        .skip = FOG_SKIP_NONE};
+                                        .walk = {.skip = FOG_SKIP_NONE}};
               CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, plain,
                                          &err) == 0, "draw: %s", err.message);
-              params.skip = eps > 0 ? FOG_SKIP_BELOW : FOG_SKIP_EMPTY;
-              params.skip_below = eps;
+              params.walk.skip = eps > 0 ? FOG_SKIP_BELOW : FOG_SKIP_EMPTY;
+              params.walk.skip_below = eps;
               CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, skipped,
                                          &err) == 0, "draw: %s", err.message);
               draws++;
