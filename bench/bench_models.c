@@ -39,7 +39,7 @@ enum {
   VOLUME_STEP_COUNT = 5,
   MODEL_COUNT = 4,
   SCENE_COUNT = 2,
-  MAX_ROWS = 1 + 2 * (1 + MARCH_COUNT) + 2 + VOLUME_STEP_COUNT
+  MAX_ROWS = 1 + 2 * (1 + MARCH_COUNT) + 3 + VOLUME_STEP_COUNT
 };
 /* The table's rows this bench times (render/fog_models.def: names and labels come from it). */
 static const fog_model_kind model_kinds[MODEL_COUNT] = {FOG_MODEL_HOMOGENEOUS, FOG_MODEL_HEIGHT,
@@ -52,6 +52,7 @@ typedef struct model_row {
   int model;        /* index into model_kinds */
   double setting;   /* 0: exact; marching: steps (analytic) or the step in voxels (volume) */
   bool hardware;    /* the volume's exact walk sampling with the hardware's filter */
+  bool unskipped;   /* the volume's exact walk without empty-space skipping */
   char series[48];
   fog_pass_params params;
   double *times;
@@ -100,7 +101,8 @@ static void print_help(void) {
 }
 
 static const char *row_method(const model_row *r) {
-  return r->setting ? "march" : r->hardware ? "exact-hardware" : "exact";
+  return r->setting ? "march" : r->hardware ? "exact-hardware"
+         : r->unskipped ? "exact-no-skip" : "exact";
 }
 
 /* The cheapest marching row of a model within MATCHED_ERROR (else its most accurate one,
@@ -110,7 +112,7 @@ static double march_speedup(const model_row *rows, int count, int model, bool *m
   for (int i = 0; i < count; i++) {
     if (rows[i].model != model) continue;
     if (!rows[i].setting) {
-      if (!rows[i].hardware) exact = i;
+      if (!rows[i].hardware && !rows[i].unskipped) exact = i;
       continue;
     }
     if (rows[i].max_error <= MATCHED_ERROR && (cheapest < 0 || rows[i].ms < rows[cheapest].ms))
@@ -216,15 +218,17 @@ int bench_models(int argc, char **argv) {
   }
 
   for (int m = 0; m < MODEL_COUNT; m++) {
-    /* s = -2: the volume's exact walk with hardware filtering; -1: exact; >= 0: marches */
+    /* s = -3: the volume's exact walk without empty-space skipping; -2: with hardware
+     * filtering; -1: exact (the pass's defaults); >= 0: marches */
     int marches = m == 0 ? 0 : m == 3 ? VOLUME_STEP_COUNT : MARCH_COUNT;
-    for (int s = m == 3 ? -2 : -1; s < marches; s++) {
+    for (int s = m == 3 ? -3 : -1; s < marches; s++) {
       model_row *r = &rows[row_count++];
       r->model = m;
       r->hardware = s == -2;
+      r->unskipped = s == -3;
       r->setting = s < 0 ? 0.0 : m == 3 ? volume_steps[s] : march_steps[s];
       snprintf(r->series, sizeof r->series, "%s %s", fog_model_table[model_kinds[m]].name,
-               s == -2 ? "exact hardware" : s < 0 ? "exact" : "march");
+               s == -3 ? "exact no skip" : s == -2 ? "exact hardware" : s < 0 ? "exact" : "march");
       r->params = (fog_pass_params){
           .model = models[m].kind, .model_extinction = models[m].extinction,
           .model_y0 = models[m].y0, .model_scale_height = models[m].scale_height,
@@ -233,7 +237,9 @@ int bench_models(int argc, char **argv) {
           .integrator = s < 0 ? FOG_INTEGRATOR_EXACT : FOG_INTEGRATOR_MARCH,
           .fetch = s == -2 ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
           .march_steps = m == 3 || s < 0 ? 0 : march_steps[s],
-          .model_grid3d_step = m == 3 && s >= 0 ? volume_steps[s] * voxel : 0.0};
+          .model_grid3d_step = m == 3 && s >= 0 ? volume_steps[s] * voxel : 0.0,
+          .walk = {.transmittance_cutoff = FOG_PASS_TRANSMITTANCE_CUTOFF,
+                   .skip = s == -3 ? FOG_SKIP_NONE : FOG_SKIP_EMPTY}};
       r->times = malloc((size_t)frames * sizeof(double));
       if (!r->times) goto out_of_memory;
     }
@@ -301,20 +307,29 @@ int bench_models(int argc, char **argv) {
     goto done;
   }
   printf("\nCSV: %s, %s; PNG: %s\n", table, chart_csv, chart_png);
-  double exact_ms[MODEL_COUNT] = {0}, speedup[MODEL_COUNT] = {0};
+  double exact_ms[MODEL_COUNT] = {0}, speedup[MODEL_COUNT] = {0}, unskipped_ms = 0.0;
   for (int m = 1; m < MODEL_COUNT; m++) {
     bool matched;
     speedup[m] = march_speedup(rows, row_count, m, &matched);
     for (int i = 0; i < row_count; i++)
-      if (rows[i].model == m && !rows[i].setting && !rows[i].hardware) exact_ms[m] = rows[i].ms;
+      if (rows[i].model == m && !rows[i].setting && !rows[i].hardware) {
+        if (rows[i].unskipped)
+          unskipped_ms = rows[i].ms;
+        else
+          exact_ms[m] = rows[i].ms;
+      }
     if (!matched)
       printf("note: no marching of %s reached max error <= %g; its speedup uses the most "
              "accurate one\n", fog_model_table[model_kinds[m]].name, MATCHED_ERROR);
   }
+  printf("volume: exact walk without empty-space skipping %.2f ms / with it (brick by brick, "
+         "the default) %.2f ms = %.2f\n", unskipped_ms, exact_ms[3], unskipped_ms / exact_ms[3]);
   printf("models: rbf_exact_ms=%.3f rbf_march_speedup_at_matched_error=%.2f "
          "height_exact_ms=%.3f height_march_speedup_at_matched_error=%.2f "
-         "volume_exact_ms=%.3f volume_march_speedup_at_matched_error=%.2f\n",
-         exact_ms[2], speedup[2], exact_ms[1], speedup[1], exact_ms[3], speedup[3]);
+         "volume_exact_ms=%.3f volume_march_speedup_at_matched_error=%.2f "
+         "volume_empty_skip_speedup=%.2f\n",
+         exact_ms[2], speedup[2], exact_ms[1], speedup[1], exact_ms[3], speedup[3],
+         unskipped_ms / exact_ms[3]);
   status = 0;
   goto done;
 

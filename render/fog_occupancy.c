@@ -62,3 +62,38 @@ float fog_occupancy_at(const fog_occupancy *o, int cx, int cz) {
   if (bx >= o->width || bz >= o->height) return 0.0f;
   return o->bound[(size_t)bz * (size_t)o->width + (size_t)bx];
 }
+
+void fog_bricks_size(const int dim[3], int bricks[3]) {
+  for (int a = 0; a < 3; a++) bricks[a] = (dim[a] + 1 + FOG_OCCUPANCY_BLOCK - 1) / FOG_OCCUPANCY_BLOCK;
+}
+
+int fog_bricks_build(const volume_grid_desc *grid, float *bound) {
+  const int b = FOG_OCCUPANCY_BLOCK, m = FOG_OCCUPANCY_MARGIN, *d = grid->dim;
+  int n[3];
+  fog_bricks_size(d, n);
+  const size_t count = (size_t)n[0] * n[1] * n[2];
+  for (size_t i = 0; i < count; i++) bound[i] = 0.0f;
+  /* Voxel v is read by lattice cells c = v - 1 and v, i.e. c + 1 in [v, v + 1]; widened by
+   * the margin, [v - m, v + 1 + m]: one or two bricks per axis. */
+  for (int k = 0; k < d[2]; k++) {
+    const int z0 = (k - m > 0 ? k - m : 0) / b, z1 = (k + 1 + m) / b;
+    for (int j = 0; j < d[1]; j++) {
+      const int y0 = (j - m > 0 ? j - m : 0) / b, y1 = (j + 1 + m) / b;
+      const float *row = grid->values + ((size_t)k * d[1] + j) * d[0];
+      for (int i = 0; i < d[0]; i++) {
+        float a = fabsf(row[i]);
+        if (!(a > 0.0f)) continue;
+        const int x0 = (i - m > 0 ? i - m : 0) / b, x1 = (i + 1 + m) / b;
+        for (int bz = z0; bz <= z1 && bz < n[2]; bz++)
+          for (int by = y0; by <= y1 && by < n[1]; by++)
+            for (int bx = x0; bx <= x1 && bx < n[0]; bx++) {
+              float *slot = &bound[((size_t)bz * n[1] + by) * n[0] + bx];
+              if (a > *slot) *slot = a;
+            }
+      }
+    }
+  }
+  int empty = 0;
+  for (size_t i = 0; i < count; i++) empty += bound[i] == 0.0f;
+  return empty;
+}

@@ -19,6 +19,7 @@
 #ifndef FOGPIPE_RENDER_FOG_OCCUPANCY_H
 #define FOGPIPE_RENDER_FOG_OCCUPANCY_H
 
+#include "render/volume_march.h"
 #include "transform/transform.h"
 
 /* Knot cells per block side. Measured with `fogpipe bench render` (docs/integral.md). */
@@ -45,5 +46,17 @@ void fog_occupancy_destroy(fog_occupancy *occupancy);
 
 /* The bound of the block holding knot cell (cx, cz); 0 outside the grid's blocks. */
 float fog_occupancy_at(const fog_occupancy *occupancy, int cx, int cz);
+
+/* The same for the 3D volume (FOG_MODEL_VOLUME), as NanoVDB's HDDA skips its empty nodes:
+ * bricks of FOG_OCCUPANCY_BLOCK^3 lattice cells of index space. Lattice cell c (index
+ * positions [c, c + 1] per axis, c = -1 .. dim - 1: the zero ring included) is
+ * trilinear between voxels c and c + 1, so its |density| is at most the max |voxel| over
+ * those 8; brick b holds cells c + 1 in [b B, b B + B - 1] and its bound is the max over
+ * every voxel they read, widened by FOG_OCCUPANCY_MARGIN for the hardware filter. The
+ * bricks of a grid: ceil((dim + 1) / B) per axis. */
+void fog_bricks_size(const int dim[3], int bricks[3]);
+/* Fills bound (bricks[0] x bricks[1] x bricks[2], x fastest) from the voxels; returns how
+ * many bricks are empty (bound 0). */
+int fog_bricks_build(const volume_grid_desc *grid, float *bound);
 
 #endif

@@ -52,6 +52,9 @@ struct fog_pass {
   /* FOG_MODEL_VOLUME: the density as a 3D texture and its placement (fog_pass_upload_grid3d). */
   GLuint grid3d;
   volume_grid_desc grid3d_place; /* its size and placement; values not kept */
+  GLuint grid3d_occupancy;       /* R32F brick bounds (render/fog_occupancy.h) */
+  int grid3d_bricks[3];
+  double grid3d_empty_share;     /* of the bricks: bound 0 */
   /* This GL's texture size limits, asked once: uploads past them fail naming the size, not
    * with a bare GL_INVALID_VALUE. */
   GLint max_texture_size, max_3d_texture_size;
@@ -213,6 +216,7 @@ void fog_pass_destroy(fog_pass *pass) {
   if (pass->occupancy_layers) glDeleteTextures(1, &pass->occupancy_layers);
   if (pass->layers) glDeleteTextures(1, &pass->layers);
   if (pass->grid3d) glDeleteTextures(1, &pass->grid3d);
+  if (pass->grid3d_occupancy) glDeleteTextures(1, &pass->grid3d_occupancy);
   if (pass->sun_shadow) glDeleteTextures(1, &pass->sun_shadow);
   if (pass->cell_layers) glDeleteTextures(1, &pass->cell_layers);
   free(pass->cell_scratch);
@@ -360,6 +364,24 @@ int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_
     glTexImage3D(GL_TEXTURE_3D, 0, GL_RG32F, pw, ph, pd, 0, GL_RG, GL_FLOAT, padded);
   free(padded);
   gl_util_texture_sampling(GL_TEXTURE_3D, true); /* hardware trilinear (the march) */
+  /* The bricks' bounds for empty-space skipping (fog_models.glsl). */
+  int bricks[3];
+  fog_bricks_size(d, bricks);
+  float *bound = malloc((size_t)bricks[0] * bricks[1] * bricks[2] * sizeof *bound);
+  if (!bound) {
+    glBindTexture(GL_TEXTURE_3D, 0);
+    snprintf(err->message, sizeof err->message, "fog pass: out of memory for the bricks");
+    return 1;
+  }
+  pass->grid3d_empty_share =
+      (double)fog_bricks_build(grid, bound) / ((double)bricks[0] * bricks[1] * bricks[2]);
+  if (!pass->grid3d_occupancy) glGenTextures(1, &pass->grid3d_occupancy);
+  glBindTexture(GL_TEXTURE_3D, pass->grid3d_occupancy);
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, bricks[0], bricks[1], bricks[2], 0, GL_RED, GL_FLOAT,
+               bound);
+  free(bound);
+  gl_util_texture_sampling(GL_TEXTURE_3D, false);
+  memcpy(pass->grid3d_bricks, bricks, sizeof bricks);
   glBindTexture(GL_TEXTURE_3D, 0);
   pass->grid3d_place = *grid;
   pass->grid3d_place.values = NULL;
@@ -452,6 +474,7 @@ enum fog_pass_unit {
   UNIT_OCCUPANCY,
   UNIT_OCCUPANCY_LAYERS,
   UNIT_GRID3D,
+  UNIT_GRID3D_OCCUPANCY,
   UNIT_SUN_SHADOW,
   UNIT_SURFACE_SUN,
   UNIT_SUN_VISIBILITY,
@@ -623,6 +646,12 @@ static void fog_pass_volume_uniforms(const fog_pass *pass, GLuint prog, const ca
   glUniform3f(fog_loc(prog, "fog_grid3d_dims"), (float)g->dim[0], (float)g->dim[1],
               (float)g->dim[2]);
   glUniform1f(fog_loc(prog, "fog_grid3d_step"), (float)params->model_grid3d_step);
+  bind_sampler(prog, "fog_grid3d_occupancy", UNIT_GRID3D_OCCUPANCY, GL_TEXTURE_3D,
+               pass->grid3d_occupancy);
+  glUniform3i(fog_loc(prog, "fog_grid3d_bricks"), pass->grid3d_bricks[0], pass->grid3d_bricks[1],
+              pass->grid3d_bricks[2]);
+  glUniform1f(fog_loc(prog, "fog_skip_below"),
+              params->walk.skip == FOG_SKIP_BELOW ? params->walk.skip_below : 0.0f);
 }
 
 /* FOG_MODEL_RBF's Gaussians: camera-relative centres, subtracted in double, and 1/radius
@@ -644,6 +673,12 @@ static void fog_pass_rbf_uniforms(GLuint prog, const camera *cam, const fog_pass
 }
 
 /* The analytic models need no grids: only the camera and their parameters. */
+/* The walk settings' choice for grids with this share of empty blocks or bricks. */
+static int fog_pass_skips_share(const fog_pass_params *params, double empty_share) {
+  if (params->walk.skip == FOG_SKIP_NONE) return 0;
+  return params->walk.skip == FOG_SKIP_BELOW || empty_share >= FOG_SKIP_MIN_EMPTY_SHARE;
+}
+
 static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_pass_params *params,
                                   GLuint surface_colour, GLuint surface_distance, int width,
                                   int height, render_error *err) {
@@ -653,7 +688,9 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
                                     .degree = 1, .single_grid = 1, .model = params->model,
                                     .reduced = 1, .sun_shadow = (int)params->self_shadow,
                                     .surface_sun = params->surface_sun != 0,
-                                    .shafts = params->shafts != NULL};
+                                    .shafts = params->shafts != NULL,
+                                    .skip = params->model == FOG_MODEL_VOLUME && !march &&
+                                            fog_pass_skips_share(params, pass->grid3d_empty_share)};
   GLuint prog = fog_pass_variant_program(pass, &variant, err);
   if (!prog) return 1;
   glUseProgram(prog);
@@ -899,13 +936,12 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
  * pointwise and has nothing to skip. */
 static int fog_pass_skips(const fog_pass *pass, const fog_pass_params *params, int first,
                           const bool reads[FOG_PASS_MAX_GRIDS]) {
-  if (params->integrator != FOG_INTEGRATOR_EXACT || params->walk.skip == FOG_SKIP_NONE) return 0;
-  if (params->walk.skip == FOG_SKIP_BELOW) return 1;
+  if (params->integrator != FOG_INTEGRATOR_EXACT) return 0;
   double share = 0.0;
   int count = 0;
   for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) /* slot 0 shows slot `first` */
     if (reads[k]) share += pass->slots[k == 0 ? first : k].empty_share, count++;
-  return count > 0 && share / count >= FOG_SKIP_MIN_EMPTY_SHARE;
+  return count > 0 && fog_pass_skips_share(params, share / count);
 }
 
 double fog_pass_depth_limit(double transmittance_cutoff) {

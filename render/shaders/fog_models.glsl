@@ -17,6 +17,8 @@ uniform mat3 fog_grid3d_index_from_world;      // index position u = M p + offse
 uniform vec3 fog_grid3d_camera_index;          // u at the camera (double on the CPU)
 uniform vec3 fog_grid3d_dims;
 uniform float fog_grid3d_step;                 // world units (the march)
+uniform sampler3D fog_grid3d_occupancy;        // R32F brick bounds (FOG_SKIP)
+uniform ivec3 fog_grid3d_bricks;
 
 // (1 - e^{-x})/x, with the series sum_{n<=10} (-x)^n/(n+1)! below FOG_EXPREL_SWITCH.
 float fog_exprel(float x) {
@@ -129,16 +131,10 @@ float fog_grid3d_cell_value(fog_grid3d_cell cell, vec3 f) {
 // piece integrates it exactly. Manual fetch (the default) reads each piece's cell corners
 // once for both nodes; hardware filtering samples the two nodes with texture(): ~20 %
 // faster on llvmpipe, whose 3D weights are float, but a GPU's are 8-bit (~1e-3 in tau).
-float fog_grid3d_optical_depth(vec3 dir, float length) {
-  vec3 u0, du;
-  float t0, t1;
-  if (!fog_grid3d_stretch(dir, length, u0, du, t0, t1)) return 0.0;
-  vec3 ue = u0 + t0 * du;  // the entry: small index coordinates from here on
-  fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
-           az = fog_axis_start(ue.z, du.z, 0.0);
-  float len = t1 - t0, t = 0.0, sum = 0.0;
-  // Early termination: stop once the depth passes fog_depth_limit (fog_integral.glsl).
-  for (int guard = 0; t < len && sum < fog_depth_limit && guard < 65536; guard++) {
+// The lattice cells over [t, t_end] (t_end a lattice crossing or len: no piece cut short).
+void fog_grid3d_cells(inout fog_axis ax, inout fog_axis ay, inout fog_axis az, vec3 ue,
+                      vec3 du, inout float t, float t_end, float len, inout float sum) {
+  for (int guard = 0; t < t_end && sum < fog_depth_limit && guard < 65536; guard++) {
     float tx = fog_axis_next(ax), ty = fog_axis_next(ay), tz = fog_axis_next(az);
     float tn = min(min(len, tx), min(ty, tz));
     float half_len = 0.5 * (tn - t), mid = 0.5 * (tn + t), off = 0.57735026918962576 * half_len;
@@ -159,6 +155,38 @@ float fog_grid3d_optical_depth(vec3 dir, float length) {
     if (tz <= tn) az.cell += az.step;
     t = max(t, tn);
   }
+}
+
+float fog_grid3d_optical_depth(vec3 dir, float length) {
+  vec3 u0, du;
+  float t0, t1;
+  if (!fog_grid3d_stretch(dir, length, u0, du, t0, t1)) return 0.0;
+  vec3 ue = u0 + t0 * du;  // the entry: small index coordinates from here on
+  fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
+           az = fog_axis_start(ue.z, du.z, 0.0);
+  float len = t1 - t0, t = 0.0, sum = 0.0;
+  // Early termination: the walks stop once the depth passes fog_depth_limit.
+#if FOG_SKIP
+  // Brick by brick (render/fog_occupancy.h, fog_bricks_build), as the fogmap's walk goes
+  // block by block (fog_walk_integral): an empty brick is jumped to where the ray leaves
+  // it, every axis synced there; any other is walked cell by cell up to that exit.
+  for (int guard = 0; t < len && sum < fog_depth_limit && guard < 65536; guard++) {
+    ivec3 brick = clamp((ivec3(ax.cell, ay.cell, az.cell) + 1) / FOG_OCCUPANCY_BLOCK,
+                        ivec3(0), fog_grid3d_bricks - 1);
+    float tb = min(min(len, fog_axis_block_exit(ax, 1)),
+                   min(fog_axis_block_exit(ay, 1), fog_axis_block_exit(az, 1)));
+    if (texelFetch(fog_grid3d_occupancy, brick, 0).r <= fog_skip_below && tb > t) {
+      t = tb;
+      fog_axis_sync(ax, t);
+      fog_axis_sync(ay, t);
+      fog_axis_sync(az, t);
+    } else {
+      fog_grid3d_cells(ax, ay, az, ue, du, t, tb > t ? tb : len, len, sum);
+    }
+  }
+#else
+  fog_grid3d_cells(ax, ay, az, ue, du, t, len, len, sum);
+#endif
   return sum;
 }
 

@@ -7,7 +7,10 @@
  *   eps * extinction * g_max * L of the unskipped walk (plus float noise), and not equal
  *   everywhere (blocks were skipped);
  * - the skipped walk against the CPU twin in double (fog_optical_depth): max |delta tau|
- *   <= 2e-4, as the unskipped walk's tests. */
+ *   <= 2e-4, as the unskipped walk's tests;
+ * - the volume's DDA brick by brick (fog_bricks_build): bit for bit the unskipped walk on
+ *   a grid of 12 random boxes of fog in zero (both fetches), within eps * L over a background <= eps,
+ *   and against its CPU twin (fog_grid3d_optical_depth). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -161,6 +164,84 @@ int main(void) {
         for (int l = 0; l <= LEVELS; l++) transform_grid_destroy(&grids[l]);
       }
   }
+  /* The volume: 48 x 24 x 40 voxels of 1.5 units over the patch box, three lumps. */
+  enum { VX = 48, VY = 24, VZ = 40 };
+  static float voxels[VX * VY * VZ];
+  int volume_pairs = 0;
+  for (int pass = 0; pass < 2; pass++) {
+    const float eps = pass ? 0.01f : 0.0f;
+    for (int i = 0; i < VX * VY * VZ; i++)
+      voxels[i] = eps > 0 ? (float)(eps * (0.5 + 0.5 * fog_test_uniform())) : 0.0f;
+    for (int lump = 0; lump < 12; lump++) { /* random boxes: some start on brick edges */
+      int sx = 1 + (int)(fog_test_uniform() * 7), sy = 1 + (int)(fog_test_uniform() * 7),
+          sz = 1 + (int)(fog_test_uniform() * 7);
+      int x0 = (int)(fog_test_uniform() * (VX - sx)), y0 = (int)(fog_test_uniform() * (VY - sy)),
+          z0 = (int)(fog_test_uniform() * (VZ - sz));
+      for (int k = z0; k < z0 + sz; k++)
+        for (int j = y0; j < y0 + sy; j++)
+          for (int i = x0; i < x0 + sx; i++)
+            voxels[((size_t)k * VY + j) * VX + i] = (float)fog_test_range(0.05, 0.3);
+    }
+    fog_volume box = fog_test_patch_volume(FOG_PROFILE_SLAB);
+    volume_grid_desc grid3d = {.dim = {VX, VY, VZ}, .values = voxels,
+                               .index_from_world = {{1 / 1.5, 0, 0}, {0, 1 / 1.5, 0}, {0, 0, 1 / 1.5}},
+                               .index_offset = {-box.origin_x / 1.5, 0.0, -box.origin_z / 1.5}};
+    CHECK(fog_pass_upload_grid3d(gl.pass, &grid3d, &err) == 0, "volume: %s", err.message);
+    for (int view = 0; view < 2; view++) {
+      camera cam = {.fov_y = 1.0};
+      double target[3] = {box.origin_x + 40.0, 12.0, box.origin_z + 30.0};
+      cam.position[0] = box.origin_x + (view ? -15.0 : 3.0);
+      cam.position[1] = view ? 60.0 : 8.0;
+      cam.position[2] = box.origin_z + (view ? -10.0 : 3.0);
+      camera_look_at(&cam, target);
+      fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
+      fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+      for (int fetch = 0; fetch <= 1; fetch++) {
+        fog_pass_params params = {.model = FOG_MODEL_VOLUME,
+                                  .fetch = fetch ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
+                                  .walk = {.skip = FOG_SKIP_NONE}};
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, plain, &err) == 0,
+              "volume draw: %s", err.message);
+        params.walk = (fog_walk_settings){.skip = eps > 0 ? FOG_SKIP_BELOW : FOG_SKIP_EMPTY,
+                                          .skip_below = eps};
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, skipped, &err) == 0,
+              "volume draw: %s", err.message);
+        volume_pairs++;
+        int mismatched = 0, changed = 0;
+        double worst = 0.0;
+        for (int py = 0; py < H; py++)
+          for (int px = 0; px < W; px++) {
+            const int i = py * W + px;
+            double o[3], d[3];
+            camera_ray(&cam, px, py, W, H, o, d);
+            double t_surface = dist[i] >= 1e29f ? HUGE_VAL : dist[i];
+            if (eps == 0.0f) {
+              mismatched += memcmp(&plain[i], &skipped[i], sizeof(float)) != 0;
+              if (fetch == 0)
+                worst = fmax(worst, fabs(fog_transmittance(fog_grid3d_optical_depth(
+                                             &grid3d, o, d, t_surface)) - skipped[i]));
+              continue;
+            }
+            /* the ray's length inside the grid's support (index box [-1, dim] / 1.5) */
+            double lo[3] = {box.origin_x - 1.5, -1.5, box.origin_z - 1.5};
+            double hi[3] = {box.origin_x + 1.5 * VX, 1.5 * VY, box.origin_z + 1.5 * VZ};
+            for (int a = 0; a < 3; a++) lo[a] -= o[a], hi[a] -= o[a];
+            double t0, t1, len = 0.0;
+            if (fog_slab_entry_exit(lo, hi, d, &t0, &t1))
+              len = fmax(0.0, fmin(t1, t_surface) - fmax(t0, 0.0));
+            double diff = fabs((double)plain[i] - skipped[i]);
+            changed += diff > 0;
+            if (diff > eps * len + 2e-6) mismatched++;
+          }
+        CHECK(mismatched == 0, "volume view %d fetch %d eps %g: %d pixels %s", view, fetch, eps,
+              mismatched, eps > 0 ? "outside the bound" : "not bit for bit the unskipped walk");
+        if (eps > 0) CHECK(changed > 100, "volume eps %g: only %d pixels changed", eps, changed);
+        if (eps == 0.0f && fetch == 0)
+          CHECK(worst <= 2e-4, "volume view %d: skipped walk vs CPU %.2e", view, worst);
+      }
+    }
+  }
+  printf("volume: %d draw pairs\n", volume_pairs);
   printf("%d draw pairs; skipped vs CPU max |dtau| %.2e; eps > 0: %d pixels differ, worst "
          "|delta| / bound %.3f\n", draws, worst_cpu, differing_below, worst_ratio);
   CHECK(differing_below > 1000, "eps > 0 changed only %d pixels: were blocks skipped?",
