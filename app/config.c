@@ -120,6 +120,7 @@ static const key_spec keys[] = {
     {"terrain", "frequency", V_DOUBLE, F(terrain.frequency), 1e-6, 1e6, NULL, 0, 0},
     {"terrain", "persistence", V_DOUBLE, F(terrain.persistence), 1e-6, 1, NULL, 0, 0},
     {"terrain", "seed", V_UINT, F(terrain.seed), 0, 4294967295.0, NULL, 0, 0},
+    {"terrain", "lod_error", V_DOUBLE, F(terrain.lod_error), 0, 100, NULL, 0, 0},
     {"objects", "box", V_OBJECT, 0, -WORLD, WORLD, NULL, 0, 0},
     {"light", "sun_azimuth", V_DOUBLE, F(light.sun_azimuth), -360, 360, NULL, 0, 0},
     {"light", "sun_elevation", V_DOUBLE, F(light.sun_elevation), -90, 90, NULL, 0, 0},
@@ -158,7 +159,7 @@ void scene_config_init(scene_config *cfg) {
       .camera = {.position = {0, 50, 100}, .fov = 60.0, .near_plane = 0.1, .far_plane = 100000.0},
       .terrain = {.origin = {-500, 0, -500}, .size = {1000, 1000}, .height = 150,
                   .resolution = 257, .octaves = 6, .frequency = 3.0, .persistence = 0.5,
-                  .seed = 1},
+                  .seed = 1, .lod_error = 1.0},
       .shadow = {.fog_self_shadow = 1, .shafts = 1, .resolution = 48, .steps = 16},
       .width = 1280,
       .height = 720,
@@ -711,6 +712,10 @@ bool scene_config_knows_key(const char *section, const char *key) {
 bool scene_config_has_fog(const scene_config *cfg) {
   return cfg->fog.model != FOG_MODEL_FOGMAP || cfg->fog.fogmap[0] || cfg->fog.vdb[0] ||
          cfg->fog.sequence[0];
+}
+
+double scene_live_terrain_lod(double lod_error) {
+  return lod_error > 0 ? fmax(2.0, 2.0 * lod_error) : 0.0;
 }
 
 fog_walk_settings scene_config_walk(const scene_config *cfg) {

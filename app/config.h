@@ -125,6 +125,7 @@ typedef struct scene_terrain_config {
   int resolution, octaves;
   double frequency, persistence;
   unsigned seed;
+  double lod_error; /* pixels of height error the scene pass's terrain LOD may show; 0: full mesh */
 } scene_terrain_config;
 
 /* [sim]: read now, used by the simulation (upcoming: see docs/config.md). */
@@ -195,6 +196,9 @@ uint64_t scene_config_fingerprint(const scene_config *cfg);
 
 /* The camera the config describes (radians, look_at applied). */
 void scene_config_camera(const scene_config *cfg, camera *cam);
+/* The terrain LOD's pixel error the live demo uses on a software renderer: twice the
+ * config's, at least 2 (0, the full mesh, stays 0). */
+double scene_live_terrain_lod(double lod_error);
 /* How the fog pass walks: [render] transmittance_cutoff, empty_skip, skip_below. */
 fog_walk_settings scene_config_walk(const scene_config *cfg);
 /* The sun as the fog sees it: [fog] albedo and phase_g, [light]'s resolved sun. */

@@ -576,7 +576,11 @@ static int load_scene(pipeline *p, pipeline_error *err) {
   if (status) return fail(err, "scene: %s", rerr.message);
   p->geometry_made = true;
   p->scene = scene_pass_create(&p->geometry, &rerr);
-  if (!p->scene) return fail(err, "scene pass: %s", rerr.message);
+  /* Terrain LOD in the live demo only: recordings draw the full mesh (their depth is the
+   * exact first hit, as render's). */
+  if (!p->scene ||
+      scene_pass_set_terrain_lod(p->scene, p->live ? p->config.terrain.lod_error : 0.0, &rerr))
+    return fail(err, "scene pass: %s", rerr.message);
   return 0;
 }
 

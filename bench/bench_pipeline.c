@@ -5,14 +5,16 @@
  * thread (synchronous), alternating in blocks of frames so machine noise hits both alike;
  * the table shows what the overlap buys.
  *
- * Summary line: `pipeline: fps=C cpu_stage_share=D fps_moving_camera=E`, C from the
+ * Summary line: `pipeline: fps=C cpu_stage_share=D fps_moving_camera=E moving_over_still=R`,
+ * C from the
  * threaded pipeline's median frame time at the live setting with the camera still (the
  * pipeline then reuses the scene pass: only the fog changes), D = (sim + transform CPU
  * time + upload) / frame (medians; the worker's wall-clock times also count its waits for
  * a core while llvmpipe's two render threads run, printed beside) at the scene's fogmap
  * (256² in configs/default.ini), E the same as C with the camera turning every frame
- * (scene pass every frame).
- * Targets: C >= 30 on llvmpipe with 2 cores, D <= 0.15. */
+ * (scene pass every frame, the terrain at the demo's LOD), R = E / C. A fourth run turns
+ * with the full terrain mesh (LOD off) for the side-by-side before/after.
+ * Targets: C >= 30 on llvmpipe with 2 cores, D <= 0.15, R >= 0.85. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdbool.h>
 #include <stdio.h>
@@ -122,7 +124,8 @@ static void print_help(FILE *out) {
           "Per-stage ms (sim, transform, upload, render, frame; medians) and fps of a scene\n"
           "rendered headless through the whole pipeline, with the CPU stages in the worker\n"
           "thread and on the GL thread, with the camera still and turning. Last line:\n"
-          "pipeline: fps=C cpu_stage_share=D fps_moving_camera=E.\n\n"
+          "pipeline: fps=C cpu_stage_share=D fps_moving_camera=E moving_over_still=R\n"
+          "(R = E / C, target >= 0.85).\n\n"
           "options:\n"
           "  --config PATH   scene (default: configs/default.ini of the source tree)\n"
           "  --size WxH      render size (default 640x360)\n"
@@ -184,15 +187,22 @@ int bench_pipeline(int argc, char **argv) {
   fflush(stdout);
 
   if (!live_divisor) live_divisor = gl_context_is_software(gl) ? 2 : 1;
+  /* The live runs take the demo's terrain LOD too (2x the pixel error on software GL). */
+  scene_config live_cfg = cfg, full_mesh_cfg = cfg;
+  if (gl_context_is_software(gl))
+    live_cfg.terrain.lod_error = scene_live_terrain_lod(cfg.terrain.lod_error);
+  full_mesh_cfg.terrain.lod_error = 0.0;
   /* Three runs: full-resolution fog (what `record` renders) and the live demo's setting,
    * with the camera still (the scene pass reused), then the live setting with the camera
    * turning every frame (the scene pass every frame). Each with the CPU stages in the
    * worker thread and on the GL thread: two warm-up frames (the first compiles the
    * shaders), then up to `frames` frames or 20 s per mode, at least 5, the two modes
    * alternating in blocks of 4 frames. */
-  enum { RUNS = 3 };
-  const int divisors[RUNS] = {1, live_divisor, live_divisor};
-  const bool moving[RUNS] = {false, false, true};
+  enum { RUNS = 4 };
+  const int divisors[RUNS] = {1, live_divisor, live_divisor, live_divisor};
+  const bool moving[RUNS] = {false, false, true, true};
+  /* the fourth: turning with the full terrain mesh (no LOD), what it cost before */
+  const scene_config *configs[RUNS] = {&cfg, &live_cfg, &live_cfg, &full_mesh_cfg};
   run_result threaded[RUNS] = {{.frames = 0}}, synchronous[RUNS] = {{.frames = 0}};
   int status = 0;
   for (int r = 0; r < RUNS && !status; r++) {
@@ -200,16 +210,17 @@ int bench_pipeline(int argc, char **argv) {
       threaded[r] = threaded[0], synchronous[r] = synchronous[0];
       continue;
     }
-    status = measure(&cfg, width, height, divisors[r], moving[r], 2, frames, 20.0,
+    status = measure(configs[r], width, height, divisors[r], moving[r], 2, frames, 20.0,
                      &threaded[r], &synchronous[r]);
   }
   for (int r = 0; r < RUNS && !status; r++) {
     if (r == 1 && live_divisor == 1) continue;
     const run_result *t = &threaded[r], *y = &synchronous[r];
-    printf("\nfog at %s resolution%s, camera %s; fogmap %dx%d, %d frames per mode "
-           "(medians, ms)\n",
+    printf("\nfog at %s resolution%s, terrain LOD %g px%s, camera %s; fogmap %dx%d, %d frames "
+           "per mode (medians, ms)\n",
            divisors[r] == 1 ? "full" : divisors[r] == 2 ? "1/2" : "1/4",
            divisors[r] == live_divisor ? " (the live demo's setting here)" : "",
+           configs[r]->terrain.lod_error, configs[r]->terrain.lod_error > 0 ? "" : " (full mesh)",
            moving[r] ? "turning every frame (scene pass every frame)"
                      : "still (scene pass reused)",
            t->grid_w, t->grid_h, t->frames);
@@ -248,8 +259,15 @@ int bench_pipeline(int argc, char **argv) {
            "still,\nfps_moving_camera with it turning every frame; cpu_stage_share = (sim + "
            "transform CPU time\n+ upload) / frame (%.3f with the worker's wall-clock times)\n",
            live_divisor, share_wall);
-    printf("pipeline: fps=%.2f cpu_stage_share=%.3f fps_moving_camera=%.2f\n", fps, share,
-           fps_moving);
+    const run_result *full_mesh = &threaded[3];
+    double fps_full_mesh = full_mesh->median.frame > 0 ? 1000.0 / full_mesh->median.frame : 0.0;
+    printf("moving_over_still = fps turning %.2f / fps still %.2f; with the full terrain mesh "
+           "turning: %.2f fps (%.3f of still), scene pass %.2f -> %.2f ms\n",
+           fps_moving, fps, fps_full_mesh, fps > 0 ? fps_full_mesh / fps : 0.0,
+           full_mesh->median.scene, turning->median.scene);
+    printf("pipeline: fps=%.2f cpu_stage_share=%.3f fps_moving_camera=%.2f "
+           "moving_over_still=%.3f\n",
+           fps, share, fps_moving, fps > 0 ? fps_moving / fps : 0.0);
   }
   gl_context_destroy(gl);
   return status;

@@ -10,6 +10,7 @@
 #include "render/gl_util.h"
 #include "render/gl_present.h"
 #include "render/terrain.h"
+#include "render/terrain_lod.h"
 #include "render/scene.h"
 #include "render/camera.h"
 #include "render/fog_field.h"

@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "render/frustum.h"
+#include "render/terrain_lod.h"
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -124,6 +125,11 @@ double scene_geometry_pixel_distance(const scene_geometry *geo, const camera *ca
 #define TILE 16
 #define RESTART 0xFFFFFFFFu /* GL_PRIMITIVE_RESTART_FIXED_INDEX for unsigned int */
 
+typedef struct scene_tile_order {
+  double distance; /* squared, camera to the tile's box */
+  int tile;
+} scene_tile_order;
+
 typedef struct scene_tile {
   double lo[3], hi[3]; /* world; the float vertices as the GPU gets them */
   GLsizei first, count; /* index range: one triangle strip per row of quads */
@@ -141,13 +147,20 @@ struct scene_pass {
   GLsizei *draw_counts; /* per frame: the merged index ranges of the drawn tiles */
   const void **draw_offsets;
   long triangles_drawn;
+  /* Terrain LOD (render/terrain_lod.h): off while lod_pixels is 0 (the full mesh, drawn
+   * from the static strips above); on, each run streams the visible tiles' triangles. */
+  double lod_pixels;
+  terrain_lod lod;
+  GLuint lod_index_buffer;
+  uint32_t *lod_indices;
+  scene_tile_order *lod_order; /* the visible tiles, sorted near to far */
   /* The sun's shadow map (render/sun_shadow_map.h), rendered for `shadow.sun`. */
   sun_shadow_map shadow;
   GLuint shadow_framebuffer;
   bool shadow_rendered;
   /* uniform locations */
   GLint u_offset, u_view, u_projection, u_sun_direction, u_sun_colour, u_ambient;
-  GLint u_sun_from_relative, u_sun_visibility, u_sun_normal_offset;
+  GLint u_sun_from_relative, u_sun_visibility, u_sun_normal_offset, u_lod_lift;
   GLint u_sky_right, u_sky_up, u_sky_forward, u_sky_viewport, u_sky_horizon, u_sky_zenith,
       u_sky_sun_direction, u_sky_sun_colour;
 };
@@ -436,6 +449,7 @@ scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err) {
   pass->u_sun_from_relative = glGetUniformLocation(s, "sun_from_relative");
   pass->u_sun_visibility = glGetUniformLocation(s, "sun_visibility");
   pass->u_sun_normal_offset = glGetUniformLocation(s, "sun_normal_offset");
+  pass->u_lod_lift = glGetUniformLocation(s, "lod_lift_per_distance");
   if (shadow_map_create(pass, err)) {
     scene_pass_destroy(pass);
     return NULL;
@@ -463,7 +477,72 @@ void scene_pass_destroy(scene_pass *pass) {
   free(pass->tiles);
   free(pass->draw_counts);
   free(pass->draw_offsets);
+  if (pass->lod_index_buffer) glDeleteBuffers(1, &pass->lod_index_buffer);
+  free(pass->lod_indices);
+  free(pass->lod_order);
+  terrain_lod_destroy(&pass->lod);
   free(pass);
+}
+
+int scene_pass_set_terrain_lod(scene_pass *pass, double max_pixels, render_error *err) {
+  if (!(max_pixels >= 0 && isfinite(max_pixels))) {
+    snprintf(err->message, sizeof err->message,
+             "terrain LOD error %g pixels: expected a finite number >= 0 (0: the full mesh)",
+             max_pixels);
+    return 1;
+  }
+  if (max_pixels > 0 && !pass->lod.level) {
+    if (terrain_lod_create(&pass->lod, &pass->geo->terrain, err)) return 1;
+    const size_t tiles = (size_t)pass->lod.tiles_x * pass->lod.tiles_z;
+    pass->lod_indices = malloc(tiles * terrain_lod_max_indices() * sizeof *pass->lod_indices);
+    pass->lod_order = malloc(tiles * sizeof *pass->lod_order);
+    if (!pass->lod_indices || !pass->lod_order) {
+      snprintf(err->message, sizeof err->message, "out of memory for the terrain's LOD mesh");
+      return 1;
+    }
+    glGenBuffers(1, &pass->lod_index_buffer);
+  }
+  pass->lod_pixels = max_pixels;
+  return 0;
+}
+
+static int tile_order_compare(const void *a, const void *b) {
+  const scene_tile_order *p = a, *q = b;
+  return (p->distance > q->distance) - (p->distance < q->distance);
+}
+
+/* The visible tiles' LOD triangles into lod_index_buffer (streamed); their index count. */
+static GLsizei lod_tiles(scene_pass *pass, const camera *cam, int width, int height) {
+  terrain_lod *lod = &pass->lod;
+  double near_plane, far_plane;
+  camera_depth_range(cam, &near_plane, &far_plane);
+  const double pixels_per_unit = height / (2.0 * tan(0.5 * cam->fov_y));
+  terrain_lod_choose(lod, cam->position, pixels_per_unit, pass->lod_pixels);
+  frustum f;
+  frustum_from_camera(&f, cam, width, height);
+  /* The visible tiles near to far: the depth test then rejects what nearer hills hide
+   * before it is shaded (llvmpipe tests depth early for this shader). */
+  int visible = 0;
+  const int tiles = lod->tiles_x * lod->tiles_z;
+  for (int k = 0; k < tiles; k++) {
+    double lo[3], hi[3], d2 = 0.0;
+    for (int c = 0; c < 3; c++) {
+      lo[c] = lod->lo[3 * k + c] - cam->position[c], hi[c] = lod->hi[3 * k + c] - cam->position[c];
+      double g = fmax(0.0, fmax(lo[c], -hi[c]));
+      d2 += g * g;
+    }
+    if (frustum_culls_box(&f, lo, hi)) continue;
+    pass->lod_order[visible++] = (scene_tile_order){.distance = d2, .tile = k};
+  }
+  qsort(pass->lod_order, (size_t)visible, sizeof *pass->lod_order, tile_order_compare);
+  size_t n = 0;
+  for (int v = 0; v < visible; v++)
+    n += terrain_lod_emit(lod, pass->lod_order[v].tile, pass->lod_indices + n);
+  pass->triangles_drawn = 12L * pass->geo->box_count + (long)(n / 3);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, pass->lod_index_buffer);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(n * sizeof(uint32_t)), pass->lod_indices,
+               GL_STREAM_DRAW);
+  return (GLsizei)n;
 }
 
 /* The terrain's index ranges to draw: the tiles the camera's frustum keeps, adjacent ones
@@ -549,11 +628,15 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glUniformMatrix4fv(pass->u_sun_from_relative, 1, GL_TRUE, shadow_rows);
   /* the lookup moves 1.5 texels off the surface along its normal: no shadow acne */
   glUniform1f(pass->u_sun_normal_offset, (float)(1.5 * sun_shadow_map_texel(&pass->shadow)));
+  glUniform1f(pass->u_lod_lift,
+              (float)(pass->lod_pixels > 0 ? pass->lod_pixels * 2.0 * tan(0.5 * cam->fov_y) / h : 0.0));
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, pass->shadow.texture);
   glUniform1i(pass->u_sun_visibility, 0);
   glBindVertexArray(pass->vao);
-  GLsizei ranges = cull_tiles(pass, cam, w, h);
+  const bool lod = pass->lod_pixels > 0;
+  GLsizei ranges = lod ? 0 : cull_tiles(pass, cam, w, h);
+  GLsizei lod_count = lod ? lod_tiles(pass, cam, w, h) : 0; /* binds its index buffer */
   /* The terrain's strips wind counter-clockwise seen from above (terrain_mesh_tiles), so
    * GL_BACK culls the faces that look down: on llvmpipe the pass costs about its
    * triangles, and half of those in view face away. The boxes are drawn two-sided: a
@@ -562,8 +645,13 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   if (scene_terrain_back_faces_hidden(&geo->terrain, cam)) glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
-  glMultiDrawElements(GL_TRIANGLE_STRIP, pass->draw_counts, GL_UNSIGNED_INT,
-                      pass->draw_offsets, ranges);
+  if (lod) {
+    glDrawElements(GL_TRIANGLES, lod_count, GL_UNSIGNED_INT, NULL);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, pass->index_buffer); /* the VAO's, for the boxes */
+  } else {
+    glMultiDrawElements(GL_TRIANGLE_STRIP, pass->draw_counts, GL_UNSIGNED_INT,
+                        pass->draw_offsets, ranges);
+  }
   glDisable(GL_CULL_FACE);
   glDrawElements(GL_TRIANGLE_STRIP, pass->index_count - pass->box_first, GL_UNSIGNED_INT,
                  (const void *)(uintptr_t)(pass->box_first * sizeof(GLuint)));

@@ -100,6 +100,11 @@ const sun_shadow_map *scene_pass_sun_shadow(const scene_pass *pass);
 /* Texels per side of the sun's shadow map: 2048 cover the default 1200-unit terrain at
  * ~0.8 units a texel. */
 #define SCENE_SUN_SHADOW_SIZE 2048
+/* Terrain level of detail (render/terrain_lod.h): each run draws every visible tile at the
+ * coarsest level whose height error spans at most max_pixels on screen, seams stitched
+ * watertight. 0 (the state at creation): the full mesh, exactly the triangles
+ * terrain_intersect hits. The shadow map always draws the full mesh. */
+int scene_pass_set_terrain_lod(scene_pass *pass, double max_pixels, render_error *err);
 /* Triangles the last run drew: the terrain tiles in the camera's view, and the boxes. */
 long scene_pass_triangles_drawn(const scene_pass *pass);
 /* Whether the scene pass may cull the terrain's back faces for this camera (above the

@@ -1,0 +1,177 @@
+/* The terrain's LOD mesh (render/terrain_lod.h), on the CPU and exactly:
+ * - for random level fields over terrains whose tiles divide the grid (129) and whose last
+ *   tiles are clipped (101 x 77), and for all-equal levels: every triangle winds as the full
+ *   mesh's do, their areas (integer grid coordinates: exact) sum to the footprint, and every
+ *   edge inside the footprint is shared by exactly two triangles, every edge on its border
+ *   by one: the mesh tiles the footprint with no crack (T-junction) and no overlap;
+ * - level 0 everywhere is the full mesh's triangle set;
+ * - each level's error is the max height difference to the full mesh at the grid vertices
+ *   (checked against terrain_height_at of the level mesh's own plane... through a sampled
+ *   independent evaluation: the level mesh's triangles, barycentric at each vertex);
+ * - terrain_lod_choose: a level's error seen from the tile's nearest point is within the
+ *   pixel budget, and the next coarser level's is not (or it is the coarsest). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render/render.h"
+#include "test_util.h"
+
+static uint64_t rng = 0x243F6A8885A308D3ull;
+static double uniform(void) {
+  rng ^= rng >> 12, rng ^= rng << 25, rng ^= rng >> 27;
+  return (double)((rng * 2685821657736338717ull) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+typedef struct edge {
+  uint32_t a, b;
+} edge;
+static int edge_cmp(const void *x, const void *y) {
+  const edge *p = x, *q = y;
+  if (p->a != q->a) return p->a < q->a ? -1 : 1;
+  return (p->b > q->b) - (p->b < q->b);
+}
+
+/* Emits every tile, checks the tiling; returns the triangle count. */
+static long check_mesh(const terrain_lod *lod, const char *what) {
+  const terrain *t = lod->terrain;
+  const int rx = t->resolution_x, rz = t->resolution_z, tiles = lod->tiles_x * lod->tiles_z;
+  uint32_t *idx = malloc((size_t)tiles * terrain_lod_max_indices() * sizeof *idx);
+  size_t n = 0;
+  for (int k = 0; k < tiles; k++) n += terrain_lod_emit(lod, k, idx + n);
+  const long triangles = (long)(n / 3);
+  edge *edges = malloc(n * sizeof *edges);
+  double area = 0.0;
+  int wrong_winding = 0;
+  for (long f = 0; f < triangles; f++) {
+    double x[3], z[3];
+    for (int c = 0; c < 3; c++) x[c] = idx[3 * f + c] % rx, z[c] = idx[3 * f + c] / rx;
+    /* the full mesh's (a, c, b) = (i,j), (i,j+1), (i+1,j): (x1-x0)(z2-z0)-(z1-z0)(x2-x0) < 0 */
+    double cross = (x[1] - x[0]) * (z[2] - z[0]) - (z[1] - z[0]) * (x[2] - x[0]);
+    wrong_winding += !(cross < 0);
+    area += 0.5 * fabs(cross);
+    for (int c = 0; c < 3; c++) {
+      uint32_t a = idx[3 * f + c], b = idx[3 * f + (c + 1) % 3];
+      edges[3 * f + c] = (edge){a < b ? a : b, a < b ? b : a};
+    }
+  }
+  qsort(edges, n, sizeof *edges, edge_cmp);
+  int bad_edges = 0;
+  for (size_t e = 0; e < n;) {
+    size_t run = 1;
+    while (e + run < n && !edge_cmp(&edges[e], &edges[e + run])) run++;
+    int xa = edges[e].a % rx, za = edges[e].a / rx, xb = edges[e].b % rx, zb = edges[e].b / rx;
+    bool border = (xa == xb && (xa == 0 || xa == rx - 1)) || (za == zb && (za == 0 || za == rz - 1));
+    if ((int)run != (border ? 1 : 2)) {
+      if (bad_edges < 5)
+        fprintf(stderr, "%s: edge (%d,%d)-(%d,%d) used %zu times\n", what, xa, za, xb, zb, run);
+      bad_edges++;
+    }
+    e += run;
+  }
+  CHECK(wrong_winding == 0, "%s: %d triangles wind the other way (or are degenerate)", what,
+        wrong_winding);
+  CHECK(area == (double)(rx - 1) * (rz - 1), "%s: triangles cover %.1f, the footprint %d", what,
+        area, (rx - 1) * (rz - 1));
+  CHECK(bad_edges == 0, "%s: %d edges not shared by exactly two triangles (one on the border)",
+        what, bad_edges);
+  free(edges);
+  free(idx);
+  return triangles;
+}
+
+int main(void) {
+  render_error err = {0};
+  const int sizes[2][2] = {{129, 129}, {101, 77}};
+  for (int sz = 0; sz < 2; sz++) {
+    terrain t;
+    terrain_desc desc = {.size = {800, 600}, .height = 120, .resolution = sizes[sz][0],
+                         .octaves = 6, .frequency = 3, .persistence = 0.5, .seed = 9};
+    CHECK(terrain_create(&t, &desc, &err) == 0, "terrain: %s", err.message);
+    if (sz == 1) { /* a non-square grid: resample the procedural one */
+      t.resolution_x = sizes[sz][0];
+      t.resolution_z = sizes[sz][1];
+    }
+    terrain_lod lod;
+    CHECK(terrain_lod_create(&lod, &t, &err) == 0, "lod: %s", err.message);
+    const int tiles = lod.tiles_x * lod.tiles_z;
+    /* level 0: the full mesh */
+    long full = check_mesh(&lod, "level 0");
+    CHECK(full == 2L * (t.resolution_x - 1) * (t.resolution_z - 1), "level 0: %ld triangles", full);
+    for (int l = 1; l < TERRAIN_LOD_LEVELS; l++) {
+      memset(lod.level, l, (size_t)tiles);
+      check_mesh(&lod, "one level");
+    }
+    for (int trial = 0; trial < 40; trial++) {
+      for (int k = 0; k < tiles; k++)
+        lod.level[k] = (uint8_t)(trial % 2 ? uniform() * TERRAIN_LOD_LEVELS
+                                           : (k * 7 + trial) % TERRAIN_LOD_LEVELS);
+      check_mesh(&lod, trial % 2 ? "random levels" : "striped levels");
+    }
+    /* Errors: 0 at level 0, non-decreasing, and level 1's the max over the vertices the
+     * level drops of |h - the mean of the two kept neighbours along the quad's diagonal or
+     * edge| for the first tile, recomputed here from the triangles. */
+    for (int k = 0; k < tiles; k++) {
+      CHECK(lod.error[k * TERRAIN_LOD_LEVELS] == 0.0f, "tile %d: level 0 error %g", k,
+            lod.error[k * TERRAIN_LOD_LEVELS]);
+      for (int l = 1; l < TERRAIN_LOD_LEVELS; l++)
+        CHECK(lod.error[k * TERRAIN_LOD_LEVELS + l] >= lod.error[k * TERRAIN_LOD_LEVELS + l - 1],
+              "tile %d: errors decrease at level %d", k, l);
+    }
+    {
+      /* tile 0 at level 1 from its emitted triangles: each full-grid vertex inside a
+       * triangle (barycentric, exact rationals here) against its own height */
+      memset(lod.level, 1, (size_t)tiles);
+      static uint32_t idx[6 * (2 * TERRAIN_LOD_TILE - 1) * (2 * TERRAIN_LOD_TILE - 1)];
+      size_t n = terrain_lod_emit(&lod, 0, idx);
+      double worst = 0.0;
+      for (int j = 0; j <= TERRAIN_LOD_TILE; j++)
+        for (int i = 0; i <= TERRAIN_LOD_TILE; i++)
+          for (size_t f = 0; f < n; f += 3) {
+            double px[3], pz[3], ph[3];
+            for (int c = 0; c < 3; c++) {
+              px[c] = idx[f + c] % t.resolution_x, pz[c] = idx[f + c] / t.resolution_x;
+              ph[c] = t.h[idx[f + c]];
+            }
+            double det = (px[1] - px[0]) * (pz[2] - pz[0]) - (pz[1] - pz[0]) * (px[2] - px[0]);
+            double b1 = ((i - px[0]) * (pz[2] - pz[0]) - (j - pz[0]) * (px[2] - px[0])) / det;
+            double b2 = ((px[1] - px[0]) * (j - pz[0]) - (pz[1] - pz[0]) * (i - px[0])) / det;
+            if (b1 < -1e-12 || b2 < -1e-12 || b1 + b2 > 1 + 1e-12) continue;
+            double h = ph[0] + b1 * (ph[1] - ph[0]) + b2 * (ph[2] - ph[0]);
+            worst = fmax(worst, fabs(h - t.h[(size_t)j * t.resolution_x + i]) * t.height);
+            break;
+          }
+      CHECK(fabs(worst - lod.error[1]) <= 1e-4 * (1 + worst),
+            "tile 0 level 1: error %.6g, from the triangles %.6g", lod.error[1], worst);
+    }
+    /* The choice: within budget, and the next level would not be. */
+    const double cam[3] = {t.origin[0] + 0.3 * t.size[0], t.max_y + 200.0,
+                           t.origin[2] + 0.6 * t.size[1]};
+    const double ppu = 360.0 / (2.0 * tan(0.5)), budget = 4.0;
+    terrain_lod_choose(&lod, cam, ppu, budget);
+    int coarse = 0;
+    for (int k = 0; k < tiles; k++) {
+      double d2 = 0;
+      for (int c = 0; c < 3; c++) {
+        double g = fmax(0.0, fmax(lod.lo[3 * k + c] - cam[c], cam[c] - lod.hi[3 * k + c]));
+        d2 += g * g;
+      }
+      int l = lod.level[k];
+      coarse += l > 0;
+      CHECK(lod.error[k * TERRAIN_LOD_LEVELS + l] * ppu <= budget * sqrt(d2) * (1 + 1e-9),
+            "tile %d: level %d over budget", k, l);
+      if (l + 1 < TERRAIN_LOD_LEVELS)
+        CHECK(lod.error[k * TERRAIN_LOD_LEVELS + l + 1] * ppu > budget * sqrt(d2),
+              "tile %d: level %d could be %d", k, l, l + 1);
+    }
+    CHECK(coarse > tiles / 4, "only %d of %d tiles coarser than level 0", coarse, tiles);
+    printf("%dx%d: %d tiles, %d coarser than level 0 from the test camera; tile 0's errors "
+           "%.3g %.3g %.3g %.3g\n", t.resolution_x, t.resolution_z, tiles, coarse, lod.error[1],
+           lod.error[2], lod.error[3], lod.error[4]);
+    terrain_lod_destroy(&lod);
+    t.resolution_x = t.resolution_z = sizes[sz][0];
+    terrain_destroy(&t);
+  }
+  return test_finish("test_terrain_lod");
+}
