@@ -224,6 +224,23 @@ void fog_pass_destroy(fog_pass *pass) {
   free(pass);
 }
 
+/* A texelFetch-only float texture of w x h texels filled from data: updated in place when
+ * its size is unchanged, (re)allocated otherwise. Leaves it bound to GL_TEXTURE_2D. */
+static void texel_texture_fill(GLuint *texture, int *width, int *height, GLenum internal_format,
+                               GLenum format, int w, int h, const float *data) {
+  if (*texture && *width == w && *height == h) {
+    glBindTexture(GL_TEXTURE_2D, *texture);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, format, GL_FLOAT, data);
+    return;
+  }
+  if (!*texture) glGenTextures(1, texture);
+  glBindTexture(GL_TEXTURE_2D, *texture);
+  glTexImage2D(GL_TEXTURE_2D, 0, (GLint)internal_format, w, h, 0, format, GL_FLOAT, data);
+  gl_util_texture_sampling(GL_TEXTURE_2D, false);
+  *width = w;
+  *height = h;
+}
+
 int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
                          render_error *err) {
   if (slot < 0 || slot >= FOG_PASS_MAX_GRIDS) {
@@ -283,32 +300,14 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
     pass->cell_scratch_texels = texels;
   }
   fog_cell_poly_build(grid, pass->cell_scratch);
-  if (s->cells && s->cells_width == cw && s->cells_height == ch) {
-    glBindTexture(GL_TEXTURE_2D, s->cells);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, cw, ch, GL_RGBA, GL_FLOAT, pass->cell_scratch);
-  } else {
-    if (!s->cells) glGenTextures(1, &s->cells);
-    glBindTexture(GL_TEXTURE_2D, s->cells);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, cw, ch, 0, GL_RGBA, GL_FLOAT, pass->cell_scratch);
-    gl_util_texture_sampling(GL_TEXTURE_2D, false);
-    s->cells_width = cw;
-    s->cells_height = ch;
-  }
+  texel_texture_fill(&s->cells, &s->cells_width, &s->cells_height, GL_RGBA32F, GL_RGBA, cw, ch,
+                     pass->cell_scratch);
   /* The block bounds (fewer texels than the cell polynomials: the same scratch). */
   int ow, oh;
   fog_occupancy_size(grid->width, grid->height, grid->degree, &ow, &oh);
   s->empty_share = (double)fog_occupancy_build(grid, pass->cell_scratch) / ((double)ow * oh);
-  if (s->occupancy && s->occupancy_width == ow && s->occupancy_height == oh) {
-    glBindTexture(GL_TEXTURE_2D, s->occupancy);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, ow, oh, GL_RED, GL_FLOAT, pass->cell_scratch);
-  } else {
-    if (!s->occupancy) glGenTextures(1, &s->occupancy);
-    glBindTexture(GL_TEXTURE_2D, s->occupancy);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, ow, oh, 0, GL_RED, GL_FLOAT, pass->cell_scratch);
-    gl_util_texture_sampling(GL_TEXTURE_2D, false);
-    s->occupancy_width = ow;
-    s->occupancy_height = oh;
-  }
+  texel_texture_fill(&s->occupancy, &s->occupancy_width, &s->occupancy_height, GL_R32F, GL_RED,
+                     ow, oh, pass->cell_scratch);
   glBindTexture(GL_TEXTURE_2D, 0);
   pass->layers_stale = true;
   s->degree = grid->degree;
