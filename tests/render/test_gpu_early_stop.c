@@ -48,8 +48,8 @@ int main(void) {
 
   fog_volume v = fog_test_volume(FOG_PROFILE_EXPONENTIAL);
   v.extinction = 1.5; /* thick: tau 1e-4 within ~ten world units */
-  transform_grid grids[LEVELS + 1];
-  fog_test_pyramid(1, LEVELS, grids, (transform_grid[LEVELS]){{0}});
+  transform_grid grids[LEVELS + 1], grid_details[LEVELS];
+  fog_test_pyramid(1, LEVELS, grids, grid_details);
   double lo[3], hi[3];
   fog_volume_box(&v, lo, hi);
   /* A volume over the same box: 2-unit voxels, random density around 1.5 per unit. */
@@ -141,6 +141,7 @@ int main(void) {
     }
   }
   for (int l = 0; l <= LEVELS; l++) transform_grid_destroy(&grids[l]);
+  for (int l = 0; l < LEVELS; l++) transform_grid_destroy(&grid_details[l]);
   glDeleteTextures(1, &surface_tex);
   glDeleteTextures(1, &dist_tex);
   fog_test_gl_teardown(&gl);
