@@ -1,5 +1,5 @@
 # `fogpipe bench render` smoke test: the benchmark runs at a tiny size, exits 0, writes a
-# table CSV whose rows hold finite numbers (all 34 rows: 14 marching, 5 exact, 3 ground fog, 12 LOD), the
+# table CSV whose rows hold finite numbers (all 36 rows: 14 marching, 5 exact, 3 ground fog, 2 thresholds, 12 LOD), the
 # chart CSV and PNG, and ends with the summary line. It asserts no speed (speed targets
 # live in the benchmark itself).
 #
@@ -42,7 +42,7 @@ if(NOT out MATCHES "tau images identical bit for bit")
   message(FATAL_ERROR "the ground fog rows with and without skipping differ")
 endif()
 
-# The table: header + 34 rows; every number finite (no nan/inf), errors and times >= 0.
+# The table: header + 36 rows; every number finite (no nan/inf), errors and times >= 0.
 foreach(f render.csv render_chart.csv render_chart.png render_tau.png)
   if(NOT EXISTS ${OUT}/${f})
     message(FATAL_ERROR "missing output ${OUT}/${f}")
@@ -50,8 +50,8 @@ foreach(f render.csv render_chart.csv render_chart.png render_tau.png)
 endforeach()
 file(STRINGS ${OUT}/render.csv lines)
 list(LENGTH lines count)
-if(NOT count EQUAL 35)
-  message(FATAL_ERROR "render.csv has ${count} lines, expected a header and 34 rows")
+if(NOT count EQUAL 37)
+  message(FATAL_ERROR "render.csv has ${count} lines, expected a header and 36 rows")
 endif()
 list(GET lines 0 header)
 if(NOT header STREQUAL "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full")
