@@ -148,6 +148,8 @@ static int view_open(view_state *v, volume_playback *playback, const scene_confi
   if (render_scene_geometry_create(cfg, &v->geo, err)) return 1;
   v->geo_made = true;
   if (!(v->scene = scene_pass_create(&v->geo, err))) return 1;
+  const fog_lamps lamps = scene_config_fog_lamps(cfg);
+  scene_pass_set_lamps(v->scene, &lamps);
   if (scene_config_has_fog(cfg)) {
     if (render_fog_create(&v->fog, cfg, err)) return 1;
     render_fog_set_shafts(&v->fog, cfg, scene_pass_sun_shadow(v->scene));

@@ -36,6 +36,7 @@ typedef enum value_kind {
   V_LIST,     /* up to SCENE_CONFIG_MAX_PROFILE numbers, count at count_offset */
   V_OBJECT,   /* box = X Z WIDTH HEIGHT DEPTH [R G B], appended */
   V_RBF,      /* rbf = X Y Z RADIUS DENSITY, appended */
+  V_LAMP,     /* lamp = X Y Z R G B [RADIUS], spot = ... DX DY DZ INNER OUTER [RADIUS] */
   V_LOOK_AT,
 } value_kind;
 
@@ -132,6 +133,11 @@ static const key_spec keys[] = {
     {"light", "shafts", V_ENUM, F(shadow.shafts), 0, 0, "off|on", 0, 0},
     {"light", "shadow_resolution", V_INT, F(shadow.resolution), 2, FOG_SUN_SHADOW_MAX_SIZE, NULL, 0, 0},
     {"light", "shadow_steps", V_INT, F(shadow.steps), 1, 1024, NULL, 0, 0},
+    {"light", "lamp", V_LAMP, 0, -WORLD, WORLD, NULL, 0, 0},
+    {"light", "spot", V_LAMP, 0, -WORLD, WORLD, NULL, 0, 0},
+    {"light", "lamp_pieces", V_INT, F(lamp_method.pieces), 1, 256, NULL, 0, 0},
+    {"light", "lamp_depth_steps", V_INT, F(lamp_method.depth_steps), 1, FOG_LAMP_MAX_DEPTH_STEPS, NULL, 0, 0},
+    {"light", "lamp_shadow_steps", V_INT, F(lamp_method.shadow_steps), 1, 1024, NULL, 0, 0},
     {"render", "width", V_INT, F(width), 1, 16384, NULL, 0, 0},
     {"render", "height", V_INT, F(height), 1, 16384, NULL, 0, 0},
     {"render", "transmittance_cutoff", V_DOUBLE, F(transmittance_cutoff), 0, 0.5, NULL, 0, 0},
@@ -161,6 +167,8 @@ void scene_config_init(scene_config *cfg) {
                   .resolution = 257, .octaves = 6, .frequency = 3.0, .persistence = 0.5,
                   .seed = 1, .lod_error = 1.0},
       .shadow = {.fog_self_shadow = 1, .shafts = 1, .resolution = 48, .steps = 16},
+      .lamp_method = {.pieces = FOG_LAMP_PIECES, .depth_steps = FOG_LAMP_DEPTH_STEPS,
+                      .shadow_steps = FOG_LAMP_SHADOW_STEPS},
       .width = 1280,
       .height = 720,
       .transmittance_cutoff = FOG_PASS_TRANSMITTANCE_CUTOFF,
@@ -365,6 +373,51 @@ static int store_rbf(parse_state *s, const char *section, const char *key, const
   return 1;
 }
 
+/* V_LAMP: lamp = X Y Z R G B [RADIUS]; spot = X Y Z R G B DX DY DZ INNER OUTER [RADIUS]
+ * (half-angles in degrees); appended. */
+#define LAMP_RADIUS 0.5
+static int store_lamp(parse_state *s, const char *section, const char *key, const char *value) {
+  scene_config *cfg = s->cfg;
+  const bool spot = !strcmp(key, "spot");
+  const int want = spot ? 11 : 6;
+  double v[13];
+  int n = parse_numbers(value, v, 13);
+  if (n != want && n != want + 1)
+    return fail(s, section, key, spot ? "expected X Y Z R G B DX DY DZ INNER OUTER [RADIUS] "
+                                        "(11 or 12 numbers), got '%s'"
+                                      : "expected X Y Z R G B [RADIUS] (6 or 7 numbers), got '%s'",
+                value);
+  for (int i = 0; i < 3; i++)
+    if (!(fabs(v[i]) <= WORLD))
+      return fail(s, section, key, "expected a position within %g of the origin, got '%s'",
+                  WORLD, value);
+  for (int i = 3; i < 6; i++)
+    if (!(v[i] >= 0 && v[i] <= 1e9))
+      return fail(s, section, key, "expected R G B (colour x intensity) from 0 to 1e9, got '%s'",
+                  value);
+  double radius = n == want + 1 ? v[want] : LAMP_RADIUS;
+  if (!(radius >= MIN_LENGTH && radius <= WORLD))
+    return fail(s, section, key, "expected RADIUS from %g to %g, got %g", MIN_LENGTH, WORLD,
+                radius);
+  scene_lamp_config lamp = {.spot = spot, .position = {v[0], v[1], v[2]},
+                            .colour = {v[3], v[4], v[5]}, .radius = radius};
+  if (spot) {
+    double len = sqrt(v[6] * v[6] + v[7] * v[7] + v[8] * v[8]);
+    if (!(len > 1e-9 && len <= WORLD))
+      return fail(s, section, key, "expected a direction DX DY DZ of non-zero length, got '%s'",
+                  value);
+    if (!(v[9] >= 0 && v[9] < v[10] && v[10] <= 180))
+      return fail(s, section, key, "expected half-angles 0 <= INNER < OUTER <= 180 (degrees), "
+                  "got %g and %g", v[9], v[10]);
+    for (int i = 0; i < 3; i++) lamp.axis[i] = v[6 + i];
+    lamp.inner = v[9], lamp.outer = v[10];
+  }
+  if (cfg->lamp_count == FOG_MAX_LAMPS)
+    return fail(s, section, key, "at most %d lamps (lamp and spot lines together)", FOG_MAX_LAMPS);
+  cfg->lamps[cfg->lamp_count++] = lamp;
+  return 1;
+}
+
 /* V_LIST: 1 to SCENE_CONFIG_MAX_PROFILE densities >= 0, the count at k->aux_offset. */
 static int store_list(parse_state *s, const key_spec *k, const char *section, const char *key,
                       const char *value) {
@@ -437,6 +490,8 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
       return store_box(s, section, key, value);
     case V_RBF:
       return store_rbf(s, section, key, value);
+    case V_LAMP:
+      return store_lamp(s, section, key, value);
   }
   return 1;
 }
@@ -674,6 +729,18 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
                 g->centre[2], g->radius, g->density);
       }
       break;
+    case V_LAMP: /* the key's kind only: lamp lines, then spot lines */
+      for (int i = 0; i < cfg->lamp_count; i++) {
+        const scene_lamp_config *l = &cfg->lamps[i];
+        if (l->spot != !strcmp(k->key, "spot")) continue;
+        fprintf(f, "%s = %.17g %.17g %.17g %.17g %.17g %.17g", k->key, l->position[0],
+                l->position[1], l->position[2], l->colour[0], l->colour[1], l->colour[2]);
+        if (l->spot)
+          fprintf(f, " %.17g %.17g %.17g %.17g %.17g", l->axis[0], l->axis[1], l->axis[2],
+                  l->inner, l->outer);
+        fprintf(f, " %.17g\n", l->radius);
+      }
+      break;
   }
 }
 
@@ -736,6 +803,22 @@ fog_sun scene_config_fog_sun(const scene_config *cfg) {
    * scatters, per steradian through p(theta), is pi sun_colour. */
   for (int c = 0; c < 3; c++) sun.radiance[c] = 3.14159265358979323846 * light.sun_colour[c];
   return sun;
+}
+
+fog_lamps scene_config_fog_lamps(const scene_config *cfg) {
+  fog_lamps lamps = {.count = cfg->lamp_count, .method = cfg->lamp_method};
+  for (int i = 0; i < cfg->lamp_count; i++) {
+    const scene_lamp_config *l = &cfg->lamps[i];
+    fog_lamp *out = &lamps.lamp[i];
+    *out = (fog_lamp){.kind = l->spot ? FOG_LAMP_SPOT : FOG_LAMP_POINT, .radius = l->radius};
+    for (int a = 0; a < 3; a++) out->position[a] = l->position[a], out->intensity[a] = l->colour[a];
+    if (l->spot) {
+      double len = sqrt(l->axis[0] * l->axis[0] + l->axis[1] * l->axis[1] + l->axis[2] * l->axis[2]);
+      for (int a = 0; a < 3; a++) out->axis[a] = l->axis[a] / len;
+      out->cos_inner = cos(l->inner * DEG), out->cos_outer = cos(l->outer * DEG);
+    }
+  }
+  return lamps;
 }
 
 void scene_config_camera(const scene_config *cfg, camera *cam) {
@@ -842,6 +925,20 @@ uint64_t scene_config_fingerprint(const scene_config *cfg) {
           h = fnv(h, cfg->objects[b].center, sizeof cfg->objects[b].center);
           h = fnv(h, cfg->objects[b].size, sizeof cfg->objects[b].size);
           h = fnv(h, cfg->objects[b].colour, sizeof cfg->objects[b].colour);
+        }
+        break;
+      case V_LAMP: /* the key's kind only, in file order (as written back) */
+        for (int i = 0; i < cfg->lamp_count; i++) {
+          const scene_lamp_config *l = &cfg->lamps[i];
+          if (l->spot != !strcmp(k->key, "spot")) continue;
+          h = fnv(h, l->position, sizeof l->position);
+          h = fnv(h, l->colour, sizeof l->colour);
+          h = fnv(h, &l->radius, sizeof l->radius);
+          if (l->spot) {
+            h = fnv(h, l->axis, sizeof l->axis);
+            h = fnv(h, &l->inner, sizeof l->inner);
+            h = fnv(h, &l->outer, sizeof l->outer);
+          }
         }
         break;
       case V_RBF:

@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "render/camera.h"
+#include "render/fog_lamp.h"
 #include "render/fog_light.h"
 #include "render/fog_models.h"
 #include "render/fog_pass.h"
@@ -146,6 +147,16 @@ typedef struct scene_shadow_config {
   int steps;           /* segments of the view ray's T_s mean (fog_light.glsl) */
 } scene_shadow_config;
 
+/* [light] lamp and spot lines as written (docs/config.md): a spot's axis as given (made
+ * unit by scene_config_fog_lamps), its cone's half-angles in degrees. */
+typedef struct scene_lamp_config {
+  bool spot;
+  double position[3], colour[3]; /* colour x intensity: radiant intensity, linear */
+  double radius;                 /* > 0 */
+  double axis[3];                /* spot: the direction it shines, any length > 0 */
+  double inner, outer;           /* spot: half-angles, degrees, 0 <= inner < outer <= 180 */
+} scene_lamp_config;
+
 typedef struct scene_config {
   char path[SCENE_CONFIG_PATH_MAX]; /* the file it was read from */
   scene_fog_config fog;
@@ -156,6 +167,9 @@ typedef struct scene_config {
   int object_count;
   scene_light light;
   scene_shadow_config shadow; /* in [light] */
+  scene_lamp_config lamps[FOG_MAX_LAMPS]; /* [light] lamp and spot lines, in file order */
+  int lamp_count;
+  fog_lamp_method lamp_method; /* [light] lamp_pieces, lamp_depth_steps, lamp_shadow_steps */
   int width, height; /* [render] image size */
   /* [render] the fog walk's speed settings (docs/config.md): transmittance_cutoff
    * (fog_pass_params.transmittance_cutoff, 0: whole rays), empty_skip (1 on: skip blocks
@@ -203,6 +217,8 @@ double scene_live_terrain_lod(double lod_error);
 fog_walk_settings scene_config_walk(const scene_config *cfg);
 /* The sun as the fog sees it: [fog] albedo and phase_g, [light]'s resolved sun. */
 fog_sun scene_config_fog_sun(const scene_config *cfg);
+/* The lamps as the fog pass takes them (world positions, unit spot axes, cone cosines). */
+fog_lamps scene_config_fog_lamps(const scene_config *cfg);
 /* The scene pass's description. heights (may be NULL) are the loaded heightmap (values in
  * [0, 1], width x height) when cfg->terrain.heightmap is set. */
 void scene_config_scene_desc(const scene_config *cfg, const float *heights, int width,

@@ -552,6 +552,7 @@ static pipeline_params params_from_config(const scene_config *cfg) {
       .sun_elevation = (float)light.sun_elevation,
       .fog_self_shadow = cfg->shadow.fog_self_shadow != 0,
       .shafts = cfg->shadow.shafts != 0,
+      .lamps = scene_config_fog_lamps(cfg),
       .profile_kind = (int)cfg->fog.profile, /* scene_profile numbers fog_profile_kind */
       .fog_height = (float)cfg->fog.fog_height,
       .scale_height = (float)cfg->fog.scale_height,
@@ -581,6 +582,8 @@ static int load_scene(pipeline *p, pipeline_error *err) {
   if (!p->scene ||
       scene_pass_set_terrain_lod(p->scene, p->live ? p->config.terrain.lod_error : 0.0, &rerr))
     return fail(err, "scene pass: %s", rerr.message);
+  const fog_lamps lamps = scene_config_fog_lamps(&p->config);
+  scene_pass_set_lamps(p->scene, &lamps);
   return 0;
 }
 
@@ -951,6 +954,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       .lod_method = params.lod_method,
       .fog_colour = {params.fog_colour[0], params.fog_colour[1], params.fog_colour[2]},
       .sun = sun,
+      .lamps = params.lamps,
       .hardware_filtering = p->config.fog.filtering == SCENE_FILTERING_HARDWARE,
       .resolution_divisor = params.fog_resolution_divisor,
       .self_shadow = p->shown_self_shadow,

@@ -82,6 +82,7 @@ typedef struct pipeline_params {
                                        pipeline_frame derives sun.direction from them */
   bool fog_self_shadow; /* [light] fog_self_shadow: T_s on the fog and the ground */
   bool shafts;          /* [light] shafts: the terrain's shadows in the fog */
+  fog_lamps lamps;      /* [light] lamp and spot lines (world positions) */
   int profile_kind;  /* fog_profile_kind (slab / exponential) */
   float fog_height;  /* top of the slab or of the flat part (y0) */
   float scale_height;/* exponential falloff H */

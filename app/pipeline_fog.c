@@ -85,6 +85,7 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .mu = settings->mu,
       .fog_colour = {settings->fog_colour[0], settings->fog_colour[1], settings->fog_colour[2]},
       .sun = settings->sun,
+      .lamps = settings->lamps,
       .fetch = settings->hardware_filtering && fog->degree > 0 ? FOG_FETCH_HARDWARE
                                                                : FOG_FETCH_MANUAL,
       .resolution_divisor = settings->resolution_divisor,

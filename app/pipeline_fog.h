@@ -25,6 +25,7 @@ typedef struct pipeline_fog_settings {
   int lod_method; /* fog_lod_method */
   float fog_colour[3];
   fog_sun sun;
+  fog_lamps lamps;
   bool hardware_filtering;
   int resolution_divisor; /* fog_pass_params.resolution_divisor */
   /* fog_pass_params.self_shadow and shadow_steps; with a shadow the fog also dims the

@@ -259,6 +259,7 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_er
       .model_grid3d_step = f->volume_step,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
       .sun = scene_config_fog_sun(cfg),
+      .lamps = scene_config_fog_lamps(cfg),
       .walk = scene_config_walk(cfg),
   };
   fog->grid3d = &grid;
@@ -288,6 +289,7 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
       .model_rbf_count = rbf ? f->rbf_count : 0,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
       .sun = scene_config_fog_sun(cfg),
+      .lamps = scene_config_fog_lamps(cfg),
       .walk = scene_config_walk(cfg),
   };
   fog_model model = render_fog_model(fog);
@@ -415,6 +417,7 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
       .mu = f->mu,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
       .sun = scene_config_fog_sun(cfg),
+      .lamps = scene_config_fog_lamps(cfg),
       .walk = scene_config_walk(cfg),
       .fetch = f->filtering == SCENE_FILTERING_HARDWARE ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
   };

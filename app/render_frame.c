@@ -61,6 +61,8 @@ int render_scene_create(render_scene *s, const scene_config *cfg, int width, int
   s->have_geo = true;
   s->pass = scene_pass_create(&s->geo, err);
   if (!s->pass || scene_target_create(&s->target, width, height, err)) goto done;
+  const fog_lamps lamps = scene_config_fog_lamps(cfg);
+  scene_pass_set_lamps(s->pass, &lamps);
   s->distance = malloc((size_t)width * height * sizeof *s->distance);
   if (!s->distance) {
     snprintf(err->message, sizeof err->message, "out of memory");

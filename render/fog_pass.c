@@ -89,6 +89,7 @@ typedef struct fog_pass_variant {
   int surface_sun;        /* FOG_SURFACE_SUN: 1 the fog shadows the surfaces */
   int shafts;             /* FOG_SHAFTS: 1 the sun's shadow map in the fog */
   int skip;               /* FOG_SKIP: 1 empty-space skipping in the fogmap walk */
+  int lamps;              /* FOG_LAMPS: 1 point and spot lights (fog_lamps.glsl) */
 } fog_pass_variant;
 
 static const struct {
@@ -111,6 +112,7 @@ static const struct {
     {"FOG_SURFACE_SUN", offsetof(fog_pass_variant, surface_sun), 1},
     {"FOG_SHAFTS", offsetof(fog_pass_variant, shafts), 1},
     {"FOG_SKIP", offsetof(fog_pass_variant, skip), 1},
+    {"FOG_LAMPS", offsetof(fog_pass_variant, lamps), 1},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
@@ -591,6 +593,39 @@ static void fog_pass_sun_shadow_uniforms(const fog_pass *pass, GLuint prog, cons
               at_camera[2]);
 }
 
+/* The lamps' in-scatter runs where there are lamps and the fog scatters. */
+static bool fog_pass_has_lamps(const fog_pass_params *params) {
+  return params->lamps.count > 0 && params->sun.albedo > 0;
+}
+
+/* The lamps (fog_lamps.glsl): camera-relative positions subtracted in double, a I. */
+static void fog_pass_lamp_uniforms(GLuint prog, const camera *cam, const fog_pass_params *params) {
+  const fog_lamps *lamps = &params->lamps;
+  float position[FOG_MAX_LAMPS][3], scatter[FOG_MAX_LAMPS][3], axis[FOG_MAX_LAMPS][4],
+      cone[FOG_MAX_LAMPS][3];
+  for (int i = 0; i < lamps->count; i++) {
+    const fog_lamp *l = &lamps->lamp[i];
+    bool spot = l->kind == FOG_LAMP_SPOT;
+    for (int a = 0; a < 3; a++) {
+      position[i][a] = (float)(l->position[a] - cam->position[a]);
+      scatter[i][a] = (float)(params->sun.albedo * l->intensity[a]);
+      axis[i][a] = spot ? (float)l->axis[a] : 0.0f;
+    }
+    axis[i][3] = spot ? 1.0f : 0.0f;
+    cone[i][0] = spot ? (float)l->cos_outer : 0.0f;
+    cone[i][1] = spot ? (float)(1.0 / (l->cos_inner - l->cos_outer)) : 0.0f;
+    cone[i][2] = (float)(l->radius * l->radius);
+  }
+  glUniform1i(fog_loc(prog, "fog_lamp_count"), lamps->count);
+  glUniform3fv(fog_loc(prog, "fog_lamp_position"), lamps->count, &position[0][0]);
+  glUniform3fv(fog_loc(prog, "fog_lamp_scatter"), lamps->count, &scatter[0][0]);
+  glUniform4fv(fog_loc(prog, "fog_lamp_axis"), lamps->count, &axis[0][0]);
+  glUniform3fv(fog_loc(prog, "fog_lamp_cone"), lamps->count, &cone[0][0]);
+  glUniform1i(fog_loc(prog, "fog_lamp_pieces"), lamps->method.pieces);
+  glUniform1i(fog_loc(prog, "fog_lamp_depth_steps"), lamps->method.depth_steps);
+  glUniform1i(fog_loc(prog, "fog_lamp_shadow_steps"), lamps->method.shadow_steps);
+}
+
 /* Uniforms every model uses (camera, blend, model selection), the surface textures, and
  * the full-screen triangle. */
 static int fog_pass_common_and_draw(const fog_pass *pass, GLuint prog, const camera *cam, const fog_pass_params *params,
@@ -617,6 +652,7 @@ static int fog_pass_common_and_draw(const fog_pass *pass, GLuint prog, const cam
               (float)(sun->albedo * sun->radiance[1]), (float)(sun->albedo * sun->radiance[2]));
   glUniform1f(fog_loc(prog, "fog_phase_g"), (float)sun->phase_g);
   fog_pass_sun_shadow_uniforms(pass, prog, cam, params);
+  if (fog_pass_has_lamps(params)) fog_pass_lamp_uniforms(prog, cam, params);
   bind_sampler(prog, "fog_surface_colour", UNIT_SURFACE_COLOUR, GL_TEXTURE_2D, surface_colour);
   bind_sampler(prog, "fog_surface_distance", UNIT_SURFACE_DISTANCE, GL_TEXTURE_2D,
                surface_distance);
@@ -689,7 +725,8 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
                                     .surface_sun = params->surface_sun != 0,
                                     .shafts = params->shafts != NULL,
                                     .skip = params->model == FOG_MODEL_VOLUME && !march &&
-                                            fog_pass_skips_share(params, pass->grid3d_empty_share)};
+                                            fog_pass_skips_share(params, pass->grid3d_empty_share),
+                                    .lamps = fog_pass_has_lamps(params)};
   GLuint prog = fog_pass_variant_program(pass, &variant, err);
   if (!prog) return 1;
   glUseProgram(prog);
@@ -758,6 +795,27 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
              "steps and, for the volume, fog_pass_upload_sun_shadow first",
              (int)params->self_shadow, params->shadow_steps);
     return 1;
+  }
+  const fog_lamps *lamps = &params->lamps;
+  if (lamps->count < 0 || lamps->count > FOG_MAX_LAMPS ||
+      (lamps->count > 0 &&
+       (lamps->method.pieces < 1 || lamps->method.shadow_steps < 1 ||
+        lamps->method.depth_steps < 1 || lamps->method.depth_steps > FOG_LAMP_MAX_DEPTH_STEPS))) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: %d lamps with %d pieces, %d depth steps, %d shadow steps: expected 0 to "
+             "%d lamps, >= 1 pieces and shadow steps, 1 to %d depth steps",
+             lamps->count, lamps->method.pieces, lamps->method.depth_steps,
+             lamps->method.shadow_steps, FOG_MAX_LAMPS, FOG_LAMP_MAX_DEPTH_STEPS);
+    return 1;
+  }
+  for (int i = 0; i < lamps->count; i++) {
+    const fog_lamp *l = &lamps->lamp[i];
+    if (!(l->radius > 0) || (l->kind == FOG_LAMP_SPOT && !(l->cos_inner > l->cos_outer))) {
+      snprintf(err->message, sizeof err->message,
+               "fog pass: lamp %d: radius %g, cone cosines %g > %g: expected radius > 0 and, "
+               "for a spot, cos_inner > cos_outer", i, l->radius, l->cos_inner, l->cos_outer);
+      return 1;
+    }
   }
   if (!(params->walk.transmittance_cutoff >= 0 && params->walk.transmittance_cutoff < 1)) {
     snprintf(err->message, sizeof err->message,
@@ -990,6 +1048,7 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       .surface_sun = params->surface_sun != 0,
       .shafts = params->shafts != NULL,
       .skip = fog_pass_skips(pass, params, first, reads),
+      .lamps = fog_pass_has_lamps(params),
   };
   GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;

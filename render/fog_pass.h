@@ -37,6 +37,7 @@
 
 #include "render/camera.h"
 #include "render/fog_field.h"
+#include "render/fog_lamp.h"
 #include "render/fog_light.h"
 #include "render/fog_models.h"
 #include "render/fog_sun_shadow.h"
@@ -111,6 +112,9 @@ typedef struct fog_pass_params {
   /* Sunlight scattered in the fog (render/fog_light.h): albedo 0 is eq. 4 exactly. A
    * zero-initialised sun has albedo 0. */
   fog_sun sun;
+  /* Point and spot lights (render/fog_lamp.h), in-scattered with the sun's albedo and
+   * phase function; count 0: none. */
+  fog_lamps lamps;
   /* The fog's shadow on itself, T_s (render/fog_sun_shadow.h, fog_light.glsl): how it is
    * found for this model and sun (fog_sun_shadow_kind_of; FOG_SUN_SHADOW_NONE: T_s = 1, the
    * unshadowed identity); _VOLUME reads the volume of fog_pass_upload_sun_shadow. The view

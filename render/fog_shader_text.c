@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "render/fog_field.h"
+#include "render/fog_lamp.h"
 #include "render/fog_models.h"
 #include "render/fog_occupancy.h"
 #include "render/fog_pass.h"
@@ -43,6 +44,8 @@ static void constants(text_out *o) {
   put(o, "#define FOG_OCCUPANCY_BLOCK %d\n", FOG_OCCUPANCY_BLOCK);
   put(o, "#define FOG_PROFILE_MAX_COEFFICIENTS %d\n#define FOG_MAX_RBFS %d\n",
       FOG_PROFILE_MAX_COEFFICIENTS, FOG_MAX_RBFS);
+  put(o, "#define FOG_MAX_LAMPS %d\n#define FOG_LAMP_MAX_DEPTH_STEPS %d\n", FOG_MAX_LAMPS,
+      FOG_LAMP_MAX_DEPTH_STEPS);
   /* %.9g: the float nearest the C double, as the C twins' switch in float */
   put(o, "#define FOG_EXPREL_SWITCH %.9g\n", FOG_EXPREL_SWITCH);
 }

@@ -23,7 +23,7 @@ double fog_sun_optical_depth(const fog_model *m, fog_sun_shadow_kind kind,
 /* K at p, as the shadow mean samples it: the fogmap's finest approximation the draw reads
  * (switching: A_J; the sum of details: A_0), the volume trilinear, the analytic models
  * pointwise. */
-static double extinction_at(const fog_model *m, const double p[3]) {
+double fog_light_extinction_at(const fog_model *m, const double p[3]) {
   switch (m->kind) {
     case FOG_MODEL_FOGMAP: {
       int slot = m->lod_method == FOG_LOD_SWITCH ? m->lod->levels : 0;
@@ -48,8 +48,8 @@ static double extinction_at(const fog_model *m, const double p[3]) {
 
 /* The stretch of the ray that holds fog (fog_light_span): the box, the volume's support,
  * the height fog up to an optical depth of 20, the RBFs' reach (6 radii). */
-static bool light_span(const fog_model *m, const double o[3], const double d[3],
-                       double t_surface, double *t0, double *t1) {
+bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
+                    double t_surface, double *t0, double *t1) {
   *t0 = 0.0;
   *t1 = t_surface;
   switch (m->kind) {
@@ -110,12 +110,12 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
   if (kind == FOG_SUN_SHADOW_NONE && !visible) return 1.0;
   if (kind == FOG_SUN_SHADOW_OPAQUE) return 0.0;
   double t0, t1;
-  if (!light_span(m, o, d, t_surface, &t0, &t1)) return 1.0;
+  if (!fog_light_span(m, o, d, t_surface, &t0, &t1)) return 1.0;
   double dt = (t1 - t0) / steps, before = 0.0, weights = 0.0, lit = 0.0;
   for (int i = 0; i < steps && before < depth_limit; i++) {
     double t = t0 + (i + 0.5) * dt, p[3];
     for (int a = 0; a < 3; a++) p[a] = o[a] + t * d[a];
-    double step_depth = extinction_at(m, p) * dt;
+    double step_depth = fog_light_extinction_at(m, p) * dt;
     double w = exp(-before) * -expm1(-step_depth);
     weights += w;
     lit += w * exp(-fog_sun_optical_depth(m, kind, volume, p)) * (visible ? visible(user, p) : 1.0);

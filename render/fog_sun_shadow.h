@@ -76,6 +76,15 @@ double fog_sun_shadow_depth_at(const fog_sun_shadow *shadow, const double p[3]);
 void fog_sun_shadow_tex_map(const fog_sun_shadow *shadow, double m[3][3], double offset[3]);
 
 /* The CPU twins of fog_light.glsl (render/fog_sun_light_cpu.c), in double. */
+/* K at world point p as the light's samples read it: the fogmap's finest approximation
+ * the draw reads (switching: A_J; the sum of details: A_0), zero outside its box; the volume
+ * trilinear; the analytic models pointwise. */
+double fog_light_extinction_at(const fog_model *model, const double p[3]);
+/* The stretch [t0, t1] of the ray o + t d up to t_surface that holds fog (fog_light_span
+ * in GLSL): the box, the volume's support, the height fog to an optical depth of 20, the
+ * RBFs' reach (6 radii); false where it is empty or unbounded. */
+bool fog_light_span(const fog_model *model, const double o[3], const double d[3],
+                    double t_surface, double *t0, double *t1);
 /* Optical depth towards the sun at world point p for a model's kind (volume: for _VOLUME
  * the volume, for _HEIGHT only its sun). */
 double fog_sun_optical_depth(const fog_model *model, fog_sun_shadow_kind kind,

@@ -161,6 +161,8 @@ struct scene_pass {
   /* uniform locations */
   GLint u_offset, u_view, u_projection, u_sun_direction, u_sun_colour, u_ambient;
   GLint u_sun_from_relative, u_sun_visibility, u_sun_normal_offset, u_lod_lift;
+  GLint u_lamp_count, u_lamp_position, u_lamp_intensity, u_lamp_axis, u_lamp_cone;
+  fog_lamps lamps; /* scene_pass_set_lamps: they light the surfaces too */
   GLint u_sky_right, u_sky_up, u_sky_forward, u_sky_viewport, u_sky_horizon, u_sky_zenith,
       u_sky_sun_direction, u_sky_sun_colour;
 };
@@ -450,6 +452,11 @@ scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err) {
   pass->u_sun_visibility = glGetUniformLocation(s, "sun_visibility");
   pass->u_sun_normal_offset = glGetUniformLocation(s, "sun_normal_offset");
   pass->u_lod_lift = glGetUniformLocation(s, "lod_lift_per_distance");
+  pass->u_lamp_count = glGetUniformLocation(s, "lamp_count");
+  pass->u_lamp_position = glGetUniformLocation(s, "lamp_position");
+  pass->u_lamp_intensity = glGetUniformLocation(s, "lamp_intensity");
+  pass->u_lamp_axis = glGetUniformLocation(s, "lamp_axis");
+  pass->u_lamp_cone = glGetUniformLocation(s, "lamp_cone");
   if (shadow_map_create(pass, err)) {
     scene_pass_destroy(pass);
     return NULL;
@@ -589,6 +596,40 @@ bool scene_terrain_back_faces_hidden(const terrain *t, const camera *cam) {
   return inside && p[1] > terrain_height_at(t, p[0], p[2]) + near_plane;
 }
 
+_Static_assert(FOG_MAX_LAMPS == 16, "scene_surface_fs.glsl's SCENE_MAX_LAMPS is 16");
+
+void scene_pass_set_lamps(scene_pass *pass, const fog_lamps *lamps) {
+  pass->lamps = *lamps;
+  if (pass->lamps.count < 0) pass->lamps.count = 0;
+  if (pass->lamps.count > FOG_MAX_LAMPS) pass->lamps.count = FOG_MAX_LAMPS;
+}
+
+/* The lamps on the surfaces (scene_surface_fs.glsl): camera-relative, in double first. */
+static void scene_pass_lamp_uniforms(const scene_pass *pass, const camera *cam) {
+  const fog_lamps *lamps = &pass->lamps;
+  float position[FOG_MAX_LAMPS][3], intensity[FOG_MAX_LAMPS][3], axis[FOG_MAX_LAMPS][4],
+      cone[FOG_MAX_LAMPS][3];
+  for (int i = 0; i < lamps->count; i++) {
+    const fog_lamp *l = &lamps->lamp[i];
+    bool spot = l->kind == FOG_LAMP_SPOT;
+    for (int a = 0; a < 3; a++) {
+      position[i][a] = (float)(l->position[a] - cam->position[a]);
+      intensity[i][a] = (float)l->intensity[a];
+      axis[i][a] = spot ? (float)l->axis[a] : 0.0f;
+    }
+    axis[i][3] = spot ? 1.0f : 0.0f;
+    cone[i][0] = spot ? (float)l->cos_outer : 0.0f;
+    cone[i][1] = spot ? (float)(1.0 / (l->cos_inner - l->cos_outer)) : 0.0f;
+    cone[i][2] = (float)(l->radius * l->radius);
+  }
+  glUniform1i(pass->u_lamp_count, lamps->count);
+  if (lamps->count == 0) return;
+  glUniform3fv(pass->u_lamp_position, lamps->count, &position[0][0]);
+  glUniform3fv(pass->u_lamp_intensity, lamps->count, &intensity[0][0]);
+  glUniform4fv(pass->u_lamp_axis, lamps->count, &axis[0][0]);
+  glUniform3fv(pass->u_lamp_cone, lamps->count, &cone[0][0]);
+}
+
 void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target) {
   const scene_geometry *geo = pass->geo;
   int w = target->width, h = target->height;
@@ -630,6 +671,7 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glUniform1f(pass->u_sun_normal_offset, (float)(1.5 * sun_shadow_map_texel(&pass->shadow)));
   glUniform1f(pass->u_lod_lift,
               (float)(pass->lod_pixels > 0 ? pass->lod_pixels * 2.0 * tan(0.5 * cam->fov_y) / h : 0.0));
+  scene_pass_lamp_uniforms(pass, cam);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, pass->shadow.texture);
   glUniform1i(pass->u_sun_visibility, 0);

@@ -19,6 +19,7 @@
 #include <stdbool.h>
 
 #include "render/camera.h"
+#include "render/fog_lamp.h"
 #include "render/gl_util.h"
 #include "render/render_error.h"
 #include "render/sun_shadow_map.h"
@@ -93,6 +94,9 @@ void scene_pass_destroy(scene_pass *pass);
  * with colour 0 and R32F colour 1 and a depth buffer; colour 2 optional), at the target's size. Does not
  * allocate. */
 void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target);
+/* The lamps that light the surfaces (render/fog_lamp.h; copied; none until set): Lambertian,
+ * irradiance I cos / (d^2 + r^2) times the spot's cone, not dimmed by the fog. */
+void scene_pass_set_lamps(scene_pass *pass, const fog_lamps *lamps);
 /* The sun's shadow map the surfaces are shadowed with (rendered by each run whose sun
  * differs from the map's, the first included): for the fog's light shafts, drawn after a
  * run. */

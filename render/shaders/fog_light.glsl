@@ -45,8 +45,8 @@ float fog_sun_optical_depth(vec3 p) {
 #endif
 }
 
-#if FOG_LIGHT_MARCH
-// The stretch [t0, t1] of the ray that holds the model's fog (finite), and K along it.
+// The stretch [t0, t1] of the ray that holds the model's fog (finite), and K along it
+// (the sun's march and the lamps, fog_lamps.glsl).
 bool fog_light_span(fog_ray r, out float t0, out float t1) {
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
   t0 = float(max(r.t_in, 0.0));
@@ -86,7 +86,6 @@ float fog_light_extinction(vec3 dir, float t) {
   return fog_model_extinction_at(t * dir);
 #endif
 }
-#endif
 
 // The tau K-weighted mean of T_s V along the ray (1 where the ray holds no fog).
 float fog_sun_mean_transmittance(fog_ray r) {

@@ -12,6 +12,7 @@
 //                                    pixel k FOG_REDUCED + FOG_REDUCED/2 and writes its
 //                                    optical depth and surface distance for
 //                                    the upsampling pass, FOG_UPSAMPLE 1)
+//   #define FOG_LAMPS 0|1            (1: point and spot lights, fog_lamps.glsl)
 //   and the specialisation constants of fog_integral.glsl
 uniform int fog_march_steps;  // FOG_INTEGRATOR 1: samples per ray (every model's marcher)
 #include "fog_integral.glsl"
@@ -209,6 +210,8 @@ float fog_phase_hg(float g, float cos_theta) {
   return (1.0 - g * g) / (4.0 * 3.14159265358979 * denom * sqrt(denom));
 }
 
+#include "fog_lamps.glsl"
+
 void main() {
   // camera_ray(): ndc from the fragment centre, y up; dir = normalize(f + x r + y u).
 #if FOG_REDUCED > 1
@@ -272,6 +275,15 @@ void main() {
   // with a = 0 the same image, with T_s = 1 the identity of docs/light.md.
   vec3 inscatter =
       (fog_colour + fog_sun_scatter * fog_phase_hg(fog_phase_g, cos_sun) * sun_light) * (1.0 - tau);
+#if FOG_LAMPS
+  {  // the lamps (fog_lamps.glsl): their own set-up, as the sun's mean
+    double t_in = 1.0, t_out = 0.0;
+#if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
+    if (!fog_box_entry_exit(view_dir, t_in, t_out)) t_in = 1.0, t_out = 0.0;
+#endif
+    inscatter += fog_lamps_light(fog_ray(view_dir, vec3(view_dir), t_in, t_out, t_surface, 0.5));
+  }
+#endif
   fog_out_colour = vec4(tau * surface.rgb + inscatter, surface.a);
   fog_out_transmittance = tau;
   fog_out_inscatter = vec4(inscatter, 1.0);

@@ -17,6 +17,31 @@ uniform float sun_normal_offset; // world: the lookup's step off the surface (no
 // shadow map holds by up to its pixel budget, budget * distance / pixels_per_unit in world
 // height; the lookup rises by that much, or the full mesh would shadow its own coarser copy.
 uniform float lod_lift_per_distance;
+// Lamps (render/fog_lamp.h): each lights the surface with irradiance I cos / (d^2 + r^2)
+// times its cone, Lambertian (albedo / pi, as the sun's sun_colour is its irradiance / pi).
+// Not dimmed by the fog between lamp and surface (docs/light.md, Lamps: what is left).
+const int SCENE_MAX_LAMPS = 16;
+uniform int lamp_count;
+uniform vec3 lamp_position[SCENE_MAX_LAMPS];   // camera-relative
+uniform vec3 lamp_intensity[SCENE_MAX_LAMPS];  // I per channel
+uniform vec4 lamp_axis[SCENE_MAX_LAMPS];       // xyz spot axis; w 1 spot, 0 point
+uniform vec3 lamp_cone[SCENE_MAX_LAMPS];       // cos_outer, 1/(cos_inner - cos_outer), r^2
+
+vec3 lamp_light(vec3 p, vec3 n) {
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < lamp_count; i++) {
+    vec3 l = lamp_position[i] - p;
+    float d2 = dot(l, l), d = sqrt(d2);
+    float cos_n = max(dot(n, l) / max(d, 1e-6), 0.0), cone = 1.0;
+    if (lamp_axis[i].w != 0.0) {
+      float u = clamp((dot(-l, lamp_axis[i].xyz) / max(d, 1e-6) - lamp_cone[i].x) * lamp_cone[i].y,
+                      0.0, 1.0);
+      cone = u * u * (3.0 - 2.0 * u);
+    }
+    sum += lamp_intensity[i] * (cos_n * cone / (3.14159265358979 * (d2 + lamp_cone[i].z)));
+  }
+  return sum;
+}
 
 layout(location = 0) out vec4 colour;
 layout(location = 1) out float surface_distance;
@@ -31,7 +56,7 @@ void main() {
   vec3 q = (sun_from_relative * vec4(v_relative + n * sun_normal_offset + lift, 1.0)).xyz;
   float visible = lambert > 0.0 ? texture(sun_visibility, q) : 0.0;
   vec3 sunlit = v_albedo * sun_colour * lambert * visible;
-  colour = vec4(sunlit + v_albedo * sky_light, 1.0);
+  colour = vec4(sunlit + v_albedo * (sky_light + lamp_light(v_relative, n)), 1.0);
   sun_share = vec4(sunlit, 0.0);
   // The interpolated camera-relative position is the point on the triangle under the
   // pixel centre (perspective-correct), so this is the ray's hit distance.

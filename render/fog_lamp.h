@@ -1,0 +1,86 @@
+/* Lamps in the fog: point and spot lights, single scattering (docs/light.md, Lamps).
+ *
+ * The in-scatter of one lamp (position s, intensity I, radius r) along a view ray
+ * x(t) = o + t d over the fog's span [t0, t1] is
+ *
+ *   L = a I int tau(t) K(x) p(theta) T(x) S(x) / (|x - s|^2 + r^2) dt
+ *
+ * with tau the transmittance from the camera, T the transmittance from x to the lamp, p
+ * Henyey-Greenstein with cos theta = d . (s - x)/|s - x| (the sun's convention) and S the
+ * spot's cone (1 for a point lamp). The radius softens the inverse square so a lamp inside
+ * the fog stays finite. With t_s the ray's closest point to the lamp, h its distance and
+ * h' = sqrt(h^2 + r^2), the substitution t = t_s + h' tan phi turns dt / (|x - s|^2 + r^2)
+ * into dphi / h' exactly (the angle variable of Sun et al. 2005, Fogshop eq. 14-17):
+ * the 1/d^2 peak of the halo becomes a bounded integrand on [phi0, phi1], integrated with
+ * Gauss-Legendre nodes on equal pieces of the angle. That is what Fogshop's one sample per
+ * Gaussian (its eq. 11) cannot do when a bright lamp sits close to the fog.
+ *
+ * tau(t) at a node: the optical depth from the camera tabulated once per ray at the ends of
+ * depth_steps equal segments of the span (midpoint rule), interpolated linearly between;
+ * T: shadow_steps midpoint steps from the node to the lamp. The CPU twin below takes every
+ * sample the shader takes, in double. */
+#ifndef FOGPIPE_RENDER_FOG_LAMP_H
+#define FOGPIPE_RENDER_FOG_LAMP_H
+
+#include "render/fog_models.h"
+
+#define FOG_MAX_LAMPS 16
+/* The optical-depth table's most segments (a GLSL array per pixel). */
+#define FOG_LAMP_MAX_DEPTH_STEPS 64
+
+typedef enum fog_lamp_kind {
+  FOG_LAMP_POINT = 0, /* all round */
+  FOG_LAMP_SPOT,      /* a cone round axis, with a smooth edge */
+} fog_lamp_kind;
+
+typedef struct fog_lamp {
+  fog_lamp_kind kind;
+  double position[3];  /* world */
+  double intensity[3]; /* radiant intensity per channel (colour x intensity), linear */
+  double radius;       /* > 0: the falloff is 1 / (d^2 + radius^2) */
+  double axis[3];      /* FOG_LAMP_SPOT: unit, the direction it shines */
+  /* FOG_LAMP_SPOT: cosines of the cone's half-angles, cos_inner > cos_outer: full light
+   * inside the inner cone, none outside the outer, smoothstep between. */
+  double cos_inner, cos_outer;
+} fog_lamp;
+
+/* How the in-scatter integral is taken (see above); every count >= 1. */
+typedef struct fog_lamp_method {
+  int pieces;       /* equal pieces of the angle range, 4 Gauss-Legendre nodes each */
+  int depth_steps;  /* tau's table (<= FOG_LAMP_MAX_DEPTH_STEPS) */
+  int shadow_steps; /* T's march towards the lamp */
+} fog_lamp_method;
+
+/* The product's defaults ([light] lamp_pieces, lamp_depth_steps, lamp_shadow_steps). */
+#define FOG_LAMP_PIECES 8
+#define FOG_LAMP_DEPTH_STEPS 32
+#define FOG_LAMP_SHADOW_STEPS 8
+
+typedef struct fog_lamps {
+  fog_lamp lamp[FOG_MAX_LAMPS];
+  int count; /* 0: no lamps */
+  fog_lamp_method method;
+} fog_lamps;
+
+/* S: the spot's cone at world point x (1 for a point lamp). */
+double fog_lamp_spot(const fog_lamp *lamp, const double x[3]);
+
+/* The ray's stretch [t0, t1] that holds the model's fog, finite: the sun's (the box, the
+ * volume's support, the height fog and RBFs to where they fade) and, where the fog never
+ * ends (a homogeneous fog or base), up to an optical depth of 20 from the camera (the rest
+ * weighs < 2e-9). False where the ray holds no fog. */
+bool fog_lamp_span(const fog_model *model, const double o[3], const double d[3],
+                   double t_surface, double *t0, double *t1);
+
+/* The CPU twin of fog_lamps.glsl: the lamps' in-scattered radiance of the ray o + t d
+ * (d unit) up to t_surface, per channel, for albedo a and Henyey-Greenstein g. */
+void fog_lamps_inscatter(const fog_model *model, const fog_lamps *lamps, double albedo,
+                         double phase_g, const double o[3], const double d[3],
+                         double t_surface, double out[3]);
+
+/* One lamp's share, without the factor a I (per unit intensity): for tests and the bench. */
+double fog_lamp_inscatter_unit(const fog_model *model, const fog_lamp *lamp,
+                               const fog_lamp_method *method, double phase_g,
+                               const double o[3], const double d[3], double t_surface);
+
+#endif

@@ -1,0 +1,121 @@
+/* Lamps in the fog, the CPU twin of fog_lamps.glsl (render/fog_lamp.h): sample for sample
+ * what the shader takes, in double. */
+#include "render/fog_lamp.h"
+
+#include <math.h>
+
+#include "render/fog_light.h"
+#include "render/fog_sun_shadow.h"
+
+/* Gauss-Legendre, 4 nodes on [-1, 1]. */
+static const double gl4_x[4] = {-0.86113631159405258, -0.33998104358485626,
+                                0.33998104358485626, 0.86113631159405258};
+static const double gl4_w[4] = {0.34785484513745386, 0.65214515486254614,
+                                0.65214515486254614, 0.34785484513745386};
+/* Where the fog never ends, the span stops at this optical depth from the camera. */
+static const double span_depth = 20.0;
+
+static double dot3(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+double fog_lamp_spot(const fog_lamp *lamp, const double x[3]) {
+  if (lamp->kind != FOG_LAMP_SPOT) return 1.0;
+  double v[3] = {x[0] - lamp->position[0], x[1] - lamp->position[1], x[2] - lamp->position[2]};
+  double len = sqrt(dot3(v, v));
+  if (!(len > 0.0)) return 1.0;
+  double c = dot3(v, lamp->axis) / len;
+  double u = (c - lamp->cos_outer) / (lamp->cos_inner - lamp->cos_outer);
+  u = fmin(fmax(u, 0.0), 1.0);
+  return u * u * (3.0 - 2.0 * u); /* smoothstep */
+}
+
+bool fog_lamp_span(const fog_model *m, const double o[3], const double d[3], double t_surface,
+                   double *t0, double *t1) {
+  if (fog_light_span(m, o, d, t_surface, t0, t1)) return true;
+  bool endless = m->kind == FOG_MODEL_HOMOGENEOUS || m->kind == FOG_MODEL_RBF;
+  if (!endless || !(m->extinction > 0.0)) return false;
+  *t0 = 0.0;
+  *t1 = fmin(t_surface, span_depth / m->extinction);
+  return *t0 < *t1;
+}
+
+/* Optical depth from the camera along the ray at the ends of `steps` equal segments of
+ * [t0, t0 + steps dt]: table[k] at t0 + k dt, by the midpoint rule. */
+static void depth_table(const fog_model *m, const double o[3], const double d[3], double t0,
+                        double dt, int steps, double *table) {
+  table[0] = 0.0;
+  for (int k = 0; k < steps; k++) {
+    double t = t0 + (k + 0.5) * dt, p[3];
+    for (int a = 0; a < 3; a++) p[a] = o[a] + t * d[a];
+    table[k + 1] = table[k] + fog_light_extinction_at(m, p) * dt;
+  }
+}
+
+static double depth_at(const double *table, int steps, double t0, double dt, double t) {
+  double u = (t - t0) / dt;
+  int k = (int)floor(u);
+  k = k < 0 ? 0 : (k > steps - 1 ? steps - 1 : k);
+  double f = fmin(fmax(u - k, 0.0), 1.0);
+  return table[k] + f * (table[k + 1] - table[k]);
+}
+
+/* One lamp, per unit a I, over [t0, t0 + steps dt] with the camera's depth table. */
+static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp_method *method,
+                        double g, const double o[3], const double d[3], double t0, double t1,
+                        const double *table) {
+  const int steps = method->depth_steps;
+  const double dt = (t1 - t0) / steps;
+  double s[3] = {lamp->position[0] - o[0], lamp->position[1] - o[1], lamp->position[2] - o[2]};
+  double ts = dot3(s, d), hv[3];
+  for (int a = 0; a < 3; a++) hv[a] = s[a] - ts * d[a];
+  double hp = sqrt(dot3(hv, hv) + lamp->radius * lamp->radius);
+  double phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp);
+  double dphi = (phi1 - phi0) / method->pieces, sum = 0.0;
+  for (int piece = 0; piece < method->pieces; piece++) {
+    for (int n = 0; n < 4; n++) {
+      double phi = phi0 + (piece + 0.5 * (1.0 + gl4_x[n])) * dphi;
+      double t = ts + hp * tan(phi), x[3], to_lamp[3];
+      for (int a = 0; a < 3; a++) x[a] = o[a] + t * d[a];
+      double k = fog_light_extinction_at(m, x);
+      if (!(k > 0.0)) continue;
+      double tau = exp(-depth_at(table, steps, t0, dt, t));
+      for (int a = 0; a < 3; a++) to_lamp[a] = lamp->position[a] - x[a];
+      double dist = sqrt(dot3(to_lamp, to_lamp));
+      double cos_theta = dist > 0.0 ? dot3(to_lamp, d) / dist : 1.0;
+      /* T: midpoint steps from x to the lamp */
+      double shadow = 0.0, ds = dist / method->shadow_steps;
+      for (int j = 0; j < method->shadow_steps; j++) {
+        double f = (j + 0.5) / method->shadow_steps, q[3];
+        for (int a = 0; a < 3; a++) q[a] = x[a] + f * to_lamp[a];
+        shadow += fog_light_extinction_at(m, q) * ds;
+      }
+      sum += gl4_w[n] * tau * k * fog_phase_hg(g, cos_theta) * fog_lamp_spot(lamp, x) *
+             exp(-shadow);
+    }
+  }
+  return 0.5 * dphi * sum / hp;
+}
+
+double fog_lamp_inscatter_unit(const fog_model *m, const fog_lamp *lamp,
+                               const fog_lamp_method *method, double g, const double o[3],
+                               const double d[3], double t_surface) {
+  double t0, t1, table[FOG_LAMP_MAX_DEPTH_STEPS + 1];
+  if (!fog_lamp_span(m, o, d, t_surface, &t0, &t1)) return 0.0;
+  depth_table(m, o, d, t0, (t1 - t0) / method->depth_steps, method->depth_steps, table);
+  return lamp_unit(m, lamp, method, g, o, d, t0, t1, table);
+}
+
+void fog_lamps_inscatter(const fog_model *m, const fog_lamps *lamps, double albedo, double g,
+                         const double o[3], const double d[3], double t_surface, double out[3]) {
+  out[0] = out[1] = out[2] = 0.0;
+  double t0, t1, table[FOG_LAMP_MAX_DEPTH_STEPS + 1];
+  if (lamps->count == 0 || !(albedo > 0.0) || !fog_lamp_span(m, o, d, t_surface, &t0, &t1))
+    return;
+  const fog_lamp_method *method = &lamps->method;
+  depth_table(m, o, d, t0, (t1 - t0) / method->depth_steps, method->depth_steps, table);
+  for (int i = 0; i < lamps->count; i++) {
+    double unit = lamp_unit(m, &lamps->lamp[i], method, g, o, d, t0, t1, table);
+    for (int c = 0; c < 3; c++) out[c] += albedo * lamps->lamp[i].intensity[c] * unit;
+  }
+}

@@ -1,0 +1,106 @@
+// Lamps in the fog (render/fog_lamp.h, docs/light.md): point and spot lights, single
+// scattering, for every model; fog_pass_fs.glsl includes it after fog_light.glsl and adds
+// fog_lamps_light to the in-scatter. Specialisation constant FOG_LAMPS 0|1. The CPU twin
+// is render/fog_lamp_cpu.c, sample for sample.
+#if FOG_LAMPS
+uniform int fog_lamp_count;
+uniform vec3 fog_lamp_position[FOG_MAX_LAMPS];  // camera-relative (subtracted in double)
+uniform vec3 fog_lamp_scatter[FOG_MAX_LAMPS];   // a I per channel
+uniform vec4 fog_lamp_axis[FOG_MAX_LAMPS];      // xyz the spot's unit axis; w 1 spot, 0 point
+uniform vec3 fog_lamp_cone[FOG_MAX_LAMPS];      // cos_outer, 1/(cos_inner - cos_outer), r^2
+uniform int fog_lamp_pieces;
+uniform int fog_lamp_depth_steps;
+uniform int fog_lamp_shadow_steps;
+
+// K at camera-relative point p (zero outside the fogmap's box: the march to a lamp leaves it).
+float fog_lamp_extinction(vec3 p) {
+#if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
+  if (any(lessThan(p, vec3(fog_box_min))) || any(greaterThan(p, vec3(fog_box_max)))) return 0.0;
+  return fog_extinction_scale *
+         fog_extinction_at(fog_lod_method == FOG_LOD_SWITCH ? fog_levels : 0, p, 1.0);
+#elif FOG_MODEL_KIND == FOG_MODEL_VOLUME
+  return fog_grid3d_density(fog_grid3d_camera_index + fog_grid3d_index_from_world * p);
+#else
+  return fog_model_extinction_at(p);
+#endif
+}
+
+// fog_light_span, and where the fog never ends (a homogeneous fog or base) up to an
+// optical depth of 20 (fog_lamp_span in C).
+bool fog_lamp_span(fog_ray r, out float t0, out float t1) {
+  bool found = fog_light_span(r, t0, t1);
+#if FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS || FOG_MODEL_KIND == FOG_MODEL_RBF
+  if (fog_model_extinction > 0.0) {
+    if (!found) t0 = 0.0, t1 = r.t_surface;
+    t1 = min(t1, 20.0 / fog_model_extinction);
+    found = t0 < t1;
+  }
+#endif
+  return found;
+}
+
+// The spot's cone at camera-relative point p (1 for a point lamp): smoothstep.
+float fog_lamp_spot(int i, vec3 p) {
+  if (fog_lamp_axis[i].w == 0.0) return 1.0;
+  vec3 v = p - fog_lamp_position[i];
+  float len = length(v);
+  if (!(len > 0.0)) return 1.0;
+  float u = clamp((dot(v, fog_lamp_axis[i].xyz) / len - fog_lamp_cone[i].x) * fog_lamp_cone[i].y,
+                  0.0, 1.0);
+  return u * u * (3.0 - 2.0 * u);
+}
+
+// The lamps' in-scattered radiance of the pixel's ray: per lamp, (a I / h') times the
+// integral over the angle phi (t = t_s + h' tan phi) of tau K p S T, Gauss-Legendre with 4
+// nodes on each of fog_lamp_pieces equal pieces; tau from a table of the optical depth at
+// the ends of fog_lamp_depth_steps equal segments of the span, T by fog_lamp_shadow_steps
+// midpoint steps towards the lamp.
+vec3 fog_lamps_light(fog_ray r) {
+  float t0, t1;
+  if (fog_lamp_count == 0 || !fog_lamp_span(r, t0, t1)) return vec3(0.0);
+  const float gx[4] = float[4](-0.86113631159405258, -0.33998104358485626,
+                               0.33998104358485626, 0.86113631159405258);
+  const float gw[4] = float[4](0.34785484513745386, 0.65214515486254614,
+                               0.65214515486254614, 0.34785484513745386);
+  int steps = fog_lamp_depth_steps;
+  float dt = (t1 - t0) / float(steps);
+  float table[FOG_LAMP_MAX_DEPTH_STEPS + 1];
+  table[0] = 0.0;
+  for (int k = 0; k < steps; k++)
+    table[k + 1] = table[k] + fog_lamp_extinction((t0 + (float(k) + 0.5) * dt) * r.dir) * dt;
+  vec3 total = vec3(0.0);
+  for (int i = 0; i < fog_lamp_count; i++) {
+    vec3 s = fog_lamp_position[i];
+    float ts = dot(s, r.dir);
+    vec3 hv = s - ts * r.dir;
+    float hp = sqrt(dot(hv, hv) + fog_lamp_cone[i].z);
+    float phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp);
+    float dphi = (phi1 - phi0) / float(fog_lamp_pieces), sum = 0.0;
+    for (int piece = 0; piece < fog_lamp_pieces; piece++) {
+      for (int n = 0; n < 4; n++) {
+        float phi = phi0 + (float(piece) + 0.5 * (1.0 + gx[n])) * dphi;
+        float t = ts + hp * tan(phi);
+        vec3 x = t * r.dir;
+        float k = fog_lamp_extinction(x);
+        if (!(k > 0.0)) continue;
+        float u = clamp((t - t0) / dt, 0.0, float(steps));
+        int c = min(int(floor(u)), steps - 1);
+        float depth = table[c] + clamp(u - float(c), 0.0, 1.0) * (table[c + 1] - table[c]);
+        vec3 to_lamp = s - x;
+        float dist = length(to_lamp);
+        float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
+        float shadow = 0.0, ds = dist / float(fog_lamp_shadow_steps);
+        for (int j = 0; j < fog_lamp_shadow_steps; j++)
+          shadow += fog_lamp_extinction(x + ((float(j) + 0.5) / float(fog_lamp_shadow_steps)) *
+                                                to_lamp) * ds;
+        sum += gw[n] * exp(-depth) * k * fog_phase_hg(fog_phase_g, cos_theta) *
+               fog_lamp_spot(i, x) * exp(-shadow);
+      }
+    }
+    total += fog_lamp_scatter[i] * (0.5 * dphi * sum / hp);
+  }
+  return total;
+}
+#else
+vec3 fog_lamps_light(fog_ray r) { return vec3(0.0); }
+#endif

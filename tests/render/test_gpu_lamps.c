@@ -1,0 +1,160 @@
+/* The lamps' in-scatter (render/fog_lamp.h, fog_lamps.glsl) on the GL pass against its CPU
+ * twin (fog_lamps_inscatter, double), pixel by pixel, for every fog model: a point lamp
+ * and a spot lamp inside the fog, the sun's radiance and the fog colour 0 and a black
+ * surface, so the pass's colour is the lamps' in-scatter alone. Also: albedo 0 draws
+ * nothing (the lamps scatter with the fog's albedo), and the spot's cone really cuts. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "render/render.h"
+#include "fog_test_gl.h"
+#include "fog_test_scene.h"
+#include "test_util.h"
+
+enum { W = 64, H = 36 };
+static const double ground_y = 0.5;
+
+static double pixel_ray(const camera *cam, const float *dist, int px, int py, double o[3],
+                        double d[3]) {
+  camera_ray(cam, px, py, W, H, o, d);
+  return dist[py * W + px] >= 1e29f ? HUGE_VAL : dist[py * W + px];
+}
+
+static fog_lamps two_lamps(const double point[3], const double spot[3]) {
+  fog_lamps lamps = {.count = 2,
+                     .method = {.pieces = FOG_LAMP_PIECES, .depth_steps = FOG_LAMP_DEPTH_STEPS,
+                                .shadow_steps = FOG_LAMP_SHADOW_STEPS}};
+  lamps.lamp[0] = (fog_lamp){.kind = FOG_LAMP_POINT, .position = {point[0], point[1], point[2]},
+                             .intensity = {300, 250, 180}, .radius = 0.5};
+  double axis[3] = {0.1, -1.0, 0.25};
+  fog_test_unit(axis);
+  lamps.lamp[1] = (fog_lamp){.kind = FOG_LAMP_SPOT, .position = {spot[0], spot[1], spot[2]},
+                             .intensity = {900, 800, 700}, .radius = 0.5,
+                             .axis = {axis[0], axis[1], axis[2]},
+                             .cos_inner = cos(20 * 3.14159265358979 / 180), .cos_outer = cos(35 * 3.14159265358979 / 180)};
+  return lamps;
+}
+
+/* Draws params and compares every pixel's colour with the twin; returns the image's
+ * largest in-scatter (for the albedo-0 and cone checks). */
+static double compare(fog_test_gl *gl, const camera *cam, const fog_pass_params *params,
+                      const fog_model *m, GLuint surface_tex, GLuint dist_tex, const float *dist,
+                      const char *name) {
+  static float rgba[4 * W * H], tau[W * H];
+  render_error err = {0};
+  CHECK(fog_test_gl_draw_tau(gl, cam, params, surface_tex, dist_tex, tau, &err) == 0 &&
+            gl_target_read(&gl->target, 0, 4, rgba, &err) == 0,
+        "%s: %s", name, err.message);
+  double worst = 0.0, peak = 0.0, worst_rel = 0.0;
+  static double want[3 * W * H];
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      double o[3], d[3];
+      double t_surface = pixel_ray(cam, dist, px, py, o, d);
+      fog_lamps_inscatter(m, &params->lamps, params->sun.albedo, params->sun.phase_g, o, d,
+                          t_surface, &want[3 * (py * W + px)]);
+      for (int c = 0; c < 3; c++) peak = fmax(peak, want[3 * (py * W + px) + c]);
+    }
+  int outside = 0;
+  for (int k = 0; k < W * H; k++)
+    for (int c = 0; c < 3; c++) {
+      double e = fabs((double)rgba[4 * k + c] - want[3 * k + c]);
+      worst = fmax(worst, e);
+      if (want[3 * k + c] > 1e-3 * peak) worst_rel = fmax(worst_rel, e / want[3 * k + c]);
+      /* float against double: relative 2e-4 of the pixel, and 2e-5 of the image's peak (measured: 4e-5 and 2e-6) */
+      if (e > 2e-4 * want[3 * k + c] + 2e-5 * peak) outside++;
+    }
+  printf("%s: peak in-scatter %.4g, max |GL - twin| %.3e (%.2e of the peak), max relative "
+         "%.2e\n", name, peak, worst, worst / fmax(peak, 1e-30), worst_rel);
+  CHECK(outside == 0, "%s: %d pixel values differ from the twin by more than 2e-4 relative + "
+        "2e-5 of the peak (max %.3e)", name, outside, worst);
+  return peak;
+}
+
+int main(void) {
+  render_error err = {0};
+  fog_test_gl gl;
+  if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_lamps");
+  static float dist[W * H], surface[4 * W * H];
+  for (int i = 0; i < W * H; i++) surface[4 * i + 3] = 1.0f; /* black, opaque */
+  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, NULL);
+  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
+  fog_test_gl_upload_flipped(&gl, surface_tex, GL_RGBA, 4, surface);
+  const fog_sun sun = {.albedo = 0.8, .phase_g = 0.4, .direction = {0, 1, 0}};
+
+  /* The fogmap: the test box (x 100..160, z -50..-10), exponential profile. */
+  {
+    fog_volume v = fog_test_volume(FOG_PROFILE_EXPONENTIAL);
+    transform_grid grid = fog_test_grid(1, 1.0, 0.0);
+    CHECK(fog_pass_upload_grid(gl.pass, 0, &grid, &err) == 0, "%s", err.message);
+    fog_lod lod = {.levels = 0, .approx = &grid};
+    fog_model m = {.kind = FOG_MODEL_FOGMAP, .volume = &v, .lod = &lod,
+                   .lod_method = FOG_LOD_SWITCH};
+    camera cam = {.position = {96.0, 4.0, -30.0}, .fov_y = 1.1};
+    camera_look_at(&cam, (double[3]){160.0, 3.0, -24.0});
+    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
+    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+    fog_pass_params params = {.model = FOG_MODEL_FOGMAP, .volume = &v, .sun = sun,
+                              .lamps = two_lamps((double[3]){122, 3, -28},
+                                                 (double[3]){140, 10, -33})};
+    double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "fogmap");
+    CHECK(peak > 0.05, "fogmap: peak in-scatter %g: the lamps do not reach the view", peak);
+    /* albedo 0: the lamps scatter nothing */
+    params.sun.albedo = 0.0;
+    double none = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "fogmap, albedo 0");
+    CHECK(none == 0.0, "albedo 0: in-scatter %g", none);
+    /* the spot turned away from the view, the point lamp gone: nothing but what the cone's
+     * outside leaks (smoothstep: exactly 0) */
+    params.sun.albedo = sun.albedo;
+    params.lamps.count = 1;
+    params.lamps.lamp[0] = params.lamps.lamp[1];
+    params.lamps.lamp[0].axis[0] = 0, params.lamps.lamp[0].axis[1] = 1,
+    params.lamps.lamp[0].axis[2] = 0;
+    params.lamps.lamp[0].position[1] = 60.0; /* above the box, shining up */
+    double away = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "fogmap, spot away");
+    CHECK(away == 0.0, "a spot shining away from all fog: in-scatter %g", away);
+    transform_grid_destroy(&grid);
+  }
+
+  /* The analytic models and the volume (the scene of test_gpu_fog_vs_cpu). */
+  fog_rbf rbfs[12];
+  for (int i = 0; i < 12; i++) {
+    double s_i = fog_test_range(0.15, 1.0);
+    rbfs[i] = (fog_rbf){.centre = {10.0 + 70.0 * s_i + fog_test_range(-15, 15),
+                                   fog_test_range(0.0, 14.0),
+                                   20.0 - 80.0 * s_i + fog_test_range(-15, 15)},
+                        .radius = fog_test_range(3.0, 15.0), .density = fog_test_range(0.04, 0.15)};
+  }
+  enum { GX = 24, GZ = 20, GY = 10 };
+  float *grid_values = malloc(sizeof(float) * GX * GZ * GY);
+  for (int i = 0; i < GX * GZ * GY; i++) grid_values[i] = (float)fog_test_range(0.0, 0.12);
+  volume_grid_desc grid3d = {.dim = {GZ, GX, GY}, .values = grid_values,
+                             .index_from_world = {{0, 0, 0.5}, {0.5, 0, 0}, {0, 0.5, 0}},
+                             .index_offset = {25.0, -15.0, 0.0}};
+  CHECK(fog_pass_upload_grid3d(gl.pass, &grid3d, &err) == 0, "volume upload: %s", err.message);
+  static const char *names[] = {"", "homogeneous", "height", "rbf", "volume"};
+  for (int model = FOG_MODEL_HOMOGENEOUS; model <= FOG_MODEL_VOLUME; model++) {
+    camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1};
+    camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
+    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
+    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+    fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
+    if (model == FOG_MODEL_RBF)
+      m = (fog_model){.kind = model, .extinction = 0.002, .rbfs = rbfs, .rbf_count = 12};
+    if (model == FOG_MODEL_VOLUME) m = (fog_model){.kind = model, .grid3d = &grid3d};
+    fog_pass_params params = {.model = model, .model_extinction = m.extinction,
+                              .model_y0 = m.y0, .model_scale_height = m.scale_height,
+                              .model_rbfs = m.rbfs, .model_rbf_count = m.rbf_count, .sun = sun,
+                              .lamps = two_lamps((double[3]){40, 4, -15},
+                                                 (double[3]){55, 12, -30})};
+    double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, names[model]);
+    CHECK(peak > 0.05, "%s: peak in-scatter %g: the lamps do not reach the view", names[model],
+          peak);
+  }
+  free(grid_values);
+  glDeleteTextures(1, &surface_tex);
+  glDeleteTextures(1, &dist_tex);
+  fog_test_gl_teardown(&gl);
+  return test_finish("test_gpu_lamps");
+}
