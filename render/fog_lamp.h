@@ -12,13 +12,14 @@
  * h' = sqrt(h^2 + r^2), the substitution t = t_s + h' tan phi turns dt / (|x - s|^2 + r^2)
  * into dphi / h' exactly (the angle variable of Sun et al. 2005, Fogshop eq. 14-17):
  * the 1/d^2 peak of the halo becomes a bounded integrand on [phi0, phi1], integrated with
- * Gauss-Legendre nodes on equal pieces of the angle. That is what Fogshop's one sample per
- * Gaussian (its eq. 11) cannot do when a bright lamp sits close to the fog.
+ * Gauss-Legendre nodes on pieces of the angle (fog_lamp_method). That is what Fogshop's one
+ * sample per Gaussian (its eq. 11) cannot do when a bright lamp sits close to the fog.
  *
- * tau(t) at a node: the optical depth from the camera tabulated once per ray at the ends of
- * depth_steps equal segments of the span (midpoint rule), interpolated linearly between;
- * T: shadow_steps midpoint steps from the node to the lamp. The CPU twin below takes every
- * sample the shader takes, in double. */
+ * tau(t) and T at a node: for the analytic models (homogeneous, height, RBFs) their closed
+ * forms, exact; for the fogmap and the volume, tau from the optical depth tabulated once per
+ * ray at the ends of depth_steps equal segments of the span (midpoint rule), interpolated
+ * linearly between, and T by shadow_steps midpoint steps from the node to the lamp. The CPU
+ * twin below takes every sample the shader takes, in double. */
 #ifndef FOGPIPE_RENDER_FOG_LAMP_H
 #define FOGPIPE_RENDER_FOG_LAMP_H
 
@@ -46,13 +47,19 @@ typedef struct fog_lamp {
 
 /* How the in-scatter integral is taken (see above); every count >= 1. */
 typedef struct fog_lamp_method {
-  int pieces;       /* equal pieces of the angle range, 4 Gauss-Legendre nodes each */
+  /* The integral's pieces, 4 Gauss-Legendre nodes each in phi: the union of angle_pieces
+   * equal steps of the angle (resolving the halo near the lamp) and span_pieces equal steps
+   * of the ray's fog span (resolving the fog far from it, where phi compresses t). */
+  int angle_pieces;
+  int span_pieces;
   int depth_steps;  /* tau's table (<= FOG_LAMP_MAX_DEPTH_STEPS) */
   int shadow_steps; /* T's march towards the lamp */
 } fog_lamp_method;
 
-/* The product's defaults ([light] lamp_pieces, lamp_depth_steps, lamp_shadow_steps). */
-#define FOG_LAMP_PIECES 8
+/* The product's defaults ([light] lamp_angle_pieces, lamp_span_pieces, lamp_depth_steps,
+ * lamp_shadow_steps). */
+#define FOG_LAMP_ANGLE_PIECES 8
+#define FOG_LAMP_SPAN_PIECES 8
 #define FOG_LAMP_DEPTH_STEPS 32
 #define FOG_LAMP_SHADOW_STEPS 8
 

@@ -60,6 +60,12 @@ static double depth_at(const double *table, int steps, double t0, double dt, dou
   return table[k] + f * (table[k + 1] - table[k]);
 }
 
+/* The analytic models' optical depths are closed forms (fog_models.h): tau and T exact. */
+static bool exact_depths(const fog_model *m) {
+  return m->kind == FOG_MODEL_HOMOGENEOUS || m->kind == FOG_MODEL_HEIGHT ||
+         m->kind == FOG_MODEL_RBF;
+}
+
 /* One lamp, per unit a I, over [t0, t0 + steps dt] with the camera's depth table. */
 static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp_method *method,
                         double g, const double o[3], const double d[3], double t0, double t1,
@@ -70,50 +76,73 @@ static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp
   double ts = dot3(s, d), hv[3];
   for (int a = 0; a < 3; a++) hv[a] = s[a] - ts * d[a];
   double hp = sqrt(dot3(hv, hv) + lamp->radius * lamp->radius);
-  double phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp);
-  double dphi = (phi1 - phi0) / method->pieces, sum = 0.0;
-  for (int piece = 0; piece < method->pieces; piece++) {
-    for (int n = 0; n < 4; n++) {
-      double phi = phi0 + (piece + 0.5 * (1.0 + gl4_x[n])) * dphi;
+  double phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp), total = 0.0;
+  /* The pieces: the union of angle_pieces equal steps of phi (the halo) and span_pieces
+   * equal steps of t (the fog far from the lamp, which phi compresses), merged in order. */
+  const int na = method->angle_pieces, nt = method->span_pieces;
+  double phi_a = phi0;
+  for (int ia = 1, it = 1; ia <= na || it <= nt;) {
+    double next_a = ia <= na ? phi0 + ia * (phi1 - phi0) / na : HUGE_VAL;
+    double next_t = it <= nt ? atan((t0 + it * (t1 - t0) / nt - ts) / hp) : HUGE_VAL;
+    double phi_b = next_a <= next_t ? next_a : next_t;
+    if (next_a <= next_t) ia++;
+    else it++;
+    double dphi = phi_b - phi_a, sum = 0.0;
+    for (int n = 0; n < 4 && dphi > 0.0; n++) {
+      double phi = phi_a + 0.5 * (1.0 + gl4_x[n]) * dphi;
       double t = ts + hp * tan(phi), x[3], to_lamp[3];
       for (int a = 0; a < 3; a++) x[a] = o[a] + t * d[a];
       double k = fog_light_extinction_at(m, x);
       if (!(k > 0.0)) continue;
-      double tau = exp(-depth_at(table, steps, t0, dt, t));
       for (int a = 0; a < 3; a++) to_lamp[a] = lamp->position[a] - x[a];
       double dist = sqrt(dot3(to_lamp, to_lamp));
       double cos_theta = dist > 0.0 ? dot3(to_lamp, d) / dist : 1.0;
-      /* T: midpoint steps from x to the lamp */
-      double shadow = 0.0, ds = dist / method->shadow_steps;
-      for (int j = 0; j < method->shadow_steps; j++) {
-        double f = (j + 0.5) / method->shadow_steps, q[3];
-        for (int a = 0; a < 3; a++) q[a] = x[a] + f * to_lamp[a];
-        shadow += fog_light_extinction_at(m, q) * ds;
+      double depth, shadow = 0.0;
+      if (exact_depths(m)) {
+        depth = fog_model_optical_depth(m, o, d, t);
+        if (dist > 0.0) {
+          double w[3] = {to_lamp[0] / dist, to_lamp[1] / dist, to_lamp[2] / dist};
+          shadow = fog_model_optical_depth(m, x, w, dist);
+        }
+      } else {
+        depth = depth_at(table, steps, t0, dt, t);
+        /* T: midpoint steps from x to the lamp */
+        double ds = dist / method->shadow_steps;
+        for (int j = 0; j < method->shadow_steps; j++) {
+          double f = (j + 0.5) / method->shadow_steps, q[3];
+          for (int a = 0; a < 3; a++) q[a] = x[a] + f * to_lamp[a];
+          shadow += fog_light_extinction_at(m, q) * ds;
+        }
       }
+      double tau = exp(-depth);
       sum += gl4_w[n] * tau * k * fog_phase_hg(g, cos_theta) * fog_lamp_spot(lamp, x) *
              exp(-shadow);
     }
+    total += 0.5 * dphi * sum;
+    phi_a = phi_b;
   }
-  return 0.5 * dphi * sum / hp;
+  return total / hp;
 }
 
 double fog_lamp_inscatter_unit(const fog_model *m, const fog_lamp *lamp,
                                const fog_lamp_method *method, double g, const double o[3],
                                const double d[3], double t_surface) {
-  double t0, t1, table[FOG_LAMP_MAX_DEPTH_STEPS + 1];
+  double t0, t1, table[FOG_LAMP_MAX_DEPTH_STEPS + 1] = {0};
   if (!fog_lamp_span(m, o, d, t_surface, &t0, &t1)) return 0.0;
-  depth_table(m, o, d, t0, (t1 - t0) / method->depth_steps, method->depth_steps, table);
+  if (!exact_depths(m))
+    depth_table(m, o, d, t0, (t1 - t0) / method->depth_steps, method->depth_steps, table);
   return lamp_unit(m, lamp, method, g, o, d, t0, t1, table);
 }
 
 void fog_lamps_inscatter(const fog_model *m, const fog_lamps *lamps, double albedo, double g,
                          const double o[3], const double d[3], double t_surface, double out[3]) {
   out[0] = out[1] = out[2] = 0.0;
-  double t0, t1, table[FOG_LAMP_MAX_DEPTH_STEPS + 1];
+  double t0, t1, table[FOG_LAMP_MAX_DEPTH_STEPS + 1] = {0};
   if (lamps->count == 0 || !(albedo > 0.0) || !fog_lamp_span(m, o, d, t_surface, &t0, &t1))
     return;
   const fog_lamp_method *method = &lamps->method;
-  depth_table(m, o, d, t0, (t1 - t0) / method->depth_steps, method->depth_steps, table);
+  if (!exact_depths(m))
+    depth_table(m, o, d, t0, (t1 - t0) / method->depth_steps, method->depth_steps, table);
   for (int i = 0; i < lamps->count; i++) {
     double unit = lamp_unit(m, &lamps->lamp[i], method, g, o, d, t0, t1, table);
     for (int c = 0; c < 3; c++) out[c] += albedo * lamps->lamp[i].intensity[c] * unit;

@@ -621,7 +621,8 @@ static void fog_pass_lamp_uniforms(GLuint prog, const camera *cam, const fog_pas
   glUniform3fv(fog_loc(prog, "fog_lamp_scatter"), lamps->count, &scatter[0][0]);
   glUniform4fv(fog_loc(prog, "fog_lamp_axis"), lamps->count, &axis[0][0]);
   glUniform3fv(fog_loc(prog, "fog_lamp_cone"), lamps->count, &cone[0][0]);
-  glUniform1i(fog_loc(prog, "fog_lamp_pieces"), lamps->method.pieces);
+  glUniform1i(fog_loc(prog, "fog_lamp_angle_pieces"), lamps->method.angle_pieces);
+  glUniform1i(fog_loc(prog, "fog_lamp_span_pieces"), lamps->method.span_pieces);
   glUniform1i(fog_loc(prog, "fog_lamp_depth_steps"), lamps->method.depth_steps);
   glUniform1i(fog_loc(prog, "fog_lamp_shadow_steps"), lamps->method.shadow_steps);
 }
@@ -799,12 +800,15 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
   const fog_lamps *lamps = &params->lamps;
   if (lamps->count < 0 || lamps->count > FOG_MAX_LAMPS ||
       (lamps->count > 0 &&
-       (lamps->method.pieces < 1 || lamps->method.shadow_steps < 1 ||
+       (lamps->method.angle_pieces < 1 || lamps->method.span_pieces < 0 ||
+        lamps->method.shadow_steps < 1 ||
         lamps->method.depth_steps < 1 || lamps->method.depth_steps > FOG_LAMP_MAX_DEPTH_STEPS))) {
     snprintf(err->message, sizeof err->message,
-             "fog pass: %d lamps with %d pieces, %d depth steps, %d shadow steps: expected 0 to "
-             "%d lamps, >= 1 pieces and shadow steps, 1 to %d depth steps",
-             lamps->count, lamps->method.pieces, lamps->method.depth_steps,
+             "fog pass: %d lamps with %d + %d pieces, %d depth steps, %d shadow steps: expected "
+             "0 to %d lamps, >= 1 angle pieces, >= 0 span pieces, >= 1 shadow steps, 1 to %d "
+             "depth steps",
+             lamps->count, lamps->method.angle_pieces, lamps->method.span_pieces,
+             lamps->method.depth_steps,
              lamps->method.shadow_steps, FOG_MAX_LAMPS, FOG_LAMP_MAX_DEPTH_STEPS);
     return 1;
   }

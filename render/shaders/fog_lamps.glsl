@@ -8,7 +8,8 @@ uniform vec3 fog_lamp_position[FOG_MAX_LAMPS];  // camera-relative (subtracted i
 uniform vec3 fog_lamp_scatter[FOG_MAX_LAMPS];   // a I per channel
 uniform vec4 fog_lamp_axis[FOG_MAX_LAMPS];      // xyz the spot's unit axis; w 1 spot, 0 point
 uniform vec3 fog_lamp_cone[FOG_MAX_LAMPS];      // cos_outer, 1/(cos_inner - cos_outer), r^2
-uniform int fog_lamp_pieces;
+uniform int fog_lamp_angle_pieces;
+uniform int fog_lamp_span_pieces;
 uniform int fog_lamp_depth_steps;
 uniform int fog_lamp_shadow_steps;
 
@@ -39,6 +40,23 @@ bool fog_lamp_span(fog_ray r, out float t0, out float t1) {
   return found;
 }
 
+// The analytic models' optical depths in closed form (fog_models.glsl): from the camera
+// to distance t along the ray, and from point x along unit w for length len.
+#define FOG_LAMP_EXACT_DEPTH (FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS || \
+                              FOG_MODEL_KIND == FOG_MODEL_HEIGHT || FOG_MODEL_KIND == FOG_MODEL_RBF)
+float fog_lamp_segment_depth(vec3 x, vec3 w, float len) {
+#if FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS
+  return fog_homogeneous_optical_depth(fog_model_extinction, len);
+#elif FOG_MODEL_KIND == FOG_MODEL_HEIGHT
+  return fog_height_optical_depth(fog_model_extinction, fog_model_y0 - x.y,
+                                  fog_model_scale_height, w.y, len);
+#elif FOG_MODEL_KIND == FOG_MODEL_RBF
+  return fog_rbf_optical_depth_from(fog_model_extinction, x, w, len);
+#else
+  return 0.0;
+#endif
+}
+
 // The spot's cone at camera-relative point p (1 for a point lamp): smoothstep.
 float fog_lamp_spot(int i, vec3 p) {
   if (fog_lamp_axis[i].w == 0.0) return 1.0;
@@ -52,9 +70,9 @@ float fog_lamp_spot(int i, vec3 p) {
 
 // The lamps' in-scattered radiance of the pixel's ray: per lamp, (a I / h') times the
 // integral over the angle phi (t = t_s + h' tan phi) of tau K p S T, Gauss-Legendre with 4
-// nodes on each of fog_lamp_pieces equal pieces; tau from a table of the optical depth at
+// nodes on each piece of fog_lamp_method's union of equal steps in phi and in t; tau from a table of the optical depth at
 // the ends of fog_lamp_depth_steps equal segments of the span, T by fog_lamp_shadow_steps
-// midpoint steps towards the lamp.
+// midpoint steps towards the lamp; for the analytic models both in closed form.
 vec3 fog_lamps_light(fog_ray r) {
   float t0, t1;
   if (fog_lamp_count == 0 || !fog_lamp_span(r, t0, t1)) return vec3(0.0);
@@ -64,40 +82,57 @@ vec3 fog_lamps_light(fog_ray r) {
                                0.65214515486254614, 0.34785484513745386);
   int steps = fog_lamp_depth_steps;
   float dt = (t1 - t0) / float(steps);
+#if !FOG_LAMP_EXACT_DEPTH
   float table[FOG_LAMP_MAX_DEPTH_STEPS + 1];
   table[0] = 0.0;
   for (int k = 0; k < steps; k++)
     table[k + 1] = table[k] + fog_lamp_extinction((t0 + (float(k) + 0.5) * dt) * r.dir) * dt;
+#endif
   vec3 total = vec3(0.0);
   for (int i = 0; i < fog_lamp_count; i++) {
     vec3 s = fog_lamp_position[i];
     float ts = dot(s, r.dir);
     vec3 hv = s - ts * r.dir;
     float hp = sqrt(dot(hv, hv) + fog_lamp_cone[i].z);
-    float phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp);
-    float dphi = (phi1 - phi0) / float(fog_lamp_pieces), sum = 0.0;
-    for (int piece = 0; piece < fog_lamp_pieces; piece++) {
-      for (int n = 0; n < 4; n++) {
-        float phi = phi0 + (float(piece) + 0.5 * (1.0 + gx[n])) * dphi;
+    float phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp), lamp_sum = 0.0;
+    // the union of equal steps in phi and in t, merged in order (fog_lamp_method)
+    const int na = fog_lamp_angle_pieces, nt = fog_lamp_span_pieces;
+    float phi_a = phi0;
+    for (int ia = 1, it = 1; ia <= na || it <= nt;) {
+      float next_a = ia <= na ? phi0 + float(ia) * (phi1 - phi0) / float(na) : 1e30;
+      float next_t = it <= nt ? atan((t0 + float(it) * (t1 - t0) / float(nt) - ts) / hp) : 1e30;
+      float phi_b = min(next_a, next_t);
+      if (next_a <= next_t) ia++;
+      else it++;
+      float dphi = phi_b - phi_a, sum = 0.0;
+      for (int n = 0; n < 4 && dphi > 0.0; n++) {
+        float phi = phi_a + 0.5 * (1.0 + gx[n]) * dphi;
         float t = ts + hp * tan(phi);
         vec3 x = t * r.dir;
         float k = fog_lamp_extinction(x);
         if (!(k > 0.0)) continue;
-        float u = clamp((t - t0) / dt, 0.0, float(steps));
-        int c = min(int(floor(u)), steps - 1);
-        float depth = table[c] + clamp(u - float(c), 0.0, 1.0) * (table[c + 1] - table[c]);
         vec3 to_lamp = s - x;
         float dist = length(to_lamp);
         float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
+#if FOG_LAMP_EXACT_DEPTH
+        float depth = fog_lamp_segment_depth(vec3(0.0), r.dir, t);
+        float shadow = dist > 0.0 ? fog_lamp_segment_depth(x, to_lamp / dist, dist) : 0.0;
+#else
+        float u = clamp((t - t0) / dt, 0.0, float(steps));
+        int c = min(int(floor(u)), steps - 1);
+        float depth = table[c] + clamp(u - float(c), 0.0, 1.0) * (table[c + 1] - table[c]);
         float shadow = 0.0, ds = dist / float(fog_lamp_shadow_steps);
         for (int j = 0; j < fog_lamp_shadow_steps; j++)
           shadow += fog_lamp_extinction(x + ((float(j) + 0.5) / float(fog_lamp_shadow_steps)) *
                                                 to_lamp) * ds;
+#endif
         sum += gw[n] * exp(-depth) * k * fog_phase_hg(fog_phase_g, cos_theta) *
                fog_lamp_spot(i, x) * exp(-shadow);
       }
+      lamp_sum += 0.5 * dphi * sum;
+      phi_a = phi_b;
     }
-    total += fog_lamp_scatter[i] * (0.5 * dphi * sum / hp);
+    total += fog_lamp_scatter[i] * (lamp_sum / hp);
   }
   return total;
 }

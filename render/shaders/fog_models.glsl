@@ -66,10 +66,11 @@ float fog_erf_difference(float u0, float u1) {
 
 // base L + sum_i c_i int_0^L exp(-|t dir - b_i|^2 / r_i^2) dt, camera-relative b_i: each
 // Gaussian is e^{-h^2/r^2} r sqrt(pi)/2 (erf(u1) - erf(u0)) (fog_rbf_optical_depth in C).
-float fog_rbf_optical_depth(float base, vec3 dir, float length) {
+// From camera-relative point `origin` (the lamps' transmittance, fog_lamps.glsl).
+float fog_rbf_optical_depth_from(float base, vec3 origin, vec3 dir, float length) {
   float sum = fog_homogeneous_optical_depth(base, length);
   for (int i = 0; i < fog_rbf_count; i++) {
-    vec3 v = fog_rbf_centre[i].xyz;
+    vec3 v = fog_rbf_centre[i].xyz - origin;
     float inv_r = fog_rbf_centre[i].w;
     float tc = dot(v, dir);
     vec3 w = v - tc * dir;  // from the ray's line to the centre
@@ -78,6 +79,9 @@ float fog_rbf_optical_depth(float base, vec3 dir, float length) {
            fog_erf_difference(u0, u1);
   }
   return sum;
+}
+float fog_rbf_optical_depth(float base, vec3 dir, float length) {
+  return fog_rbf_optical_depth_from(base, vec3(0.0), dir, length);
 }
 
 // The ray's stretch [t0, t1] inside the volume's support (index coordinates in [-1, dim])

@@ -21,10 +21,11 @@ int main(void) {
         first->position[2], first->colour[0], first->radius);
   CHECK(spot->spot && spot->axis[1] == -127 && spot->inner == 8 && spot->outer == 16,
         "the spot: axis y %g, cone %g..%g", spot->axis[1], spot->inner, spot->outer);
-  CHECK(cfg.lamp_method.pieces == FOG_LAMP_PIECES &&
+  CHECK(cfg.lamp_method.angle_pieces == FOG_LAMP_ANGLE_PIECES &&
+            cfg.lamp_method.span_pieces == FOG_LAMP_SPAN_PIECES &&
             cfg.lamp_method.depth_steps == FOG_LAMP_DEPTH_STEPS &&
             cfg.lamp_method.shadow_steps == FOG_LAMP_SHADOW_STEPS,
-        "method defaults %d %d %d", cfg.lamp_method.pieces, cfg.lamp_method.depth_steps,
+        "method defaults %d %d %d", cfg.lamp_method.angle_pieces, cfg.lamp_method.depth_steps,
         cfg.lamp_method.shadow_steps);
   fog_lamps lamps = scene_config_fog_lamps(&cfg);
   const fog_lamp *s = &lamps.lamp[7];

@@ -23,7 +23,8 @@ static double pixel_ray(const camera *cam, const float *dist, int px, int py, do
 
 static fog_lamps two_lamps(const double point[3], const double spot[3]) {
   fog_lamps lamps = {.count = 2,
-                     .method = {.pieces = FOG_LAMP_PIECES, .depth_steps = FOG_LAMP_DEPTH_STEPS,
+                     .method = {.angle_pieces = FOG_LAMP_ANGLE_PIECES,
+                                .span_pieces = FOG_LAMP_SPAN_PIECES, .depth_steps = FOG_LAMP_DEPTH_STEPS,
                                 .shadow_steps = FOG_LAMP_SHADOW_STEPS}};
   lamps.lamp[0] = (fog_lamp){.kind = FOG_LAMP_POINT, .position = {point[0], point[1], point[2]},
                              .intensity = {300, 250, 180}, .radius = 0.5};
