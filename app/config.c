@@ -37,6 +37,8 @@ typedef enum value_kind {
   V_OBJECT,   /* box = X Z WIDTH HEIGHT DEPTH [R G B], appended */
   V_RBF,      /* rbf = X Y Z RADIUS DENSITY, appended */
   V_LAMP,     /* lamp = X Y Z R G B [RADIUS], spot = ... DX DY DZ INNER OUTER [RADIUS] */
+  V_LAMP_PATH,    /* lamp_path = INDEX T X Y Z, appended to lamp INDEX's keys */
+  V_LAMP_FLICKER, /* lamp_flicker = INDEX AMOUNT RATE [SEED] */
   V_LOOK_AT,
 } value_kind;
 
@@ -135,6 +137,8 @@ static const key_spec keys[] = {
     {"light", "shadow_steps", V_INT, F(shadow.steps), 1, 1024, NULL, 0, 0},
     {"light", "lamp", V_LAMP, 0, -WORLD, WORLD, NULL, 0, 0},
     {"light", "spot", V_LAMP, 0, -WORLD, WORLD, NULL, 0, 0},
+    {"light", "lamp_path", V_LAMP_PATH, 0, -WORLD, WORLD, NULL, 0, 0},
+    {"light", "lamp_flicker", V_LAMP_FLICKER, 0, 0, 0, NULL, 0, 0},
     {"light", "lamp_angle_pieces", V_INT, F(lamp_method.angle_pieces), 1, 256, NULL, 0, 0},
     {"light", "lamp_span_pieces", V_INT, F(lamp_method.span_pieces), 0, 256, NULL, 0, 0},
     {"light", "lamp_depth_steps", V_INT, F(lamp_method.depth_steps), 1, FOG_LAMP_MAX_DEPTH_STEPS, NULL, 0, 0},
@@ -420,6 +424,60 @@ static int store_lamp(parse_state *s, const char *section, const char *key, cons
   return 1;
 }
 
+/* The lamp a lamp_path or lamp_flicker line names: INDEX, 1-based among the lamp and spot
+ * lines above it. NULL after the error. */
+static scene_lamp_config *lamp_of_index(parse_state *s, const char *section, const char *key,
+                                        double index) {
+  scene_config *cfg = s->cfg;
+  if (!(index >= 1 && index <= cfg->lamp_count && index == floor(index))) {
+    fail(s, section, key, "lamp %g: expected the number (1 to %d) of a lamp or spot line above",
+         index, cfg->lamp_count);
+    return NULL;
+  }
+  return &cfg->lamps[(int)index - 1];
+}
+
+/* V_LAMP_PATH: lamp_path = INDEX T X Y Z, times increasing per lamp. */
+static int store_lamp_path(parse_state *s, const char *section, const char *key,
+                           const char *value) {
+  double v[6];
+  if (parse_numbers(value, v, 6) != 5)
+    return fail(s, section, key, "expected INDEX T X Y Z (5 numbers), got '%s'", value);
+  scene_lamp_config *lamp = lamp_of_index(s, section, key, v[0]);
+  if (!lamp) return 0;
+  for (int i = 1; i < 5; i++)
+    if (!(fabs(v[i]) <= WORLD))
+      return fail(s, section, key, "expected T X Y Z within %g, got '%s'", WORLD, value);
+  if (lamp->key_count == SCENE_LAMP_MAX_KEYS)
+    return fail(s, section, key, "at most %d keys per lamp", SCENE_LAMP_MAX_KEYS);
+  if (lamp->key_count > 0 && !(v[1] > lamp->keys[lamp->key_count - 1][0]))
+    return fail(s, section, key, "time %g: expected times after the lamp's last key (%g)", v[1],
+                lamp->keys[lamp->key_count - 1][0]);
+  for (int i = 0; i < 4; i++) lamp->keys[lamp->key_count][i] = v[1 + i];
+  lamp->key_count++;
+  return 1;
+}
+
+/* V_LAMP_FLICKER: lamp_flicker = INDEX AMOUNT RATE [SEED]. */
+static int store_lamp_flicker(parse_state *s, const char *section, const char *key,
+                              const char *value) {
+  double v[5];
+  int n = parse_numbers(value, v, 5);
+  if (n != 3 && n != 4)
+    return fail(s, section, key, "expected INDEX AMOUNT RATE [SEED] (3 or 4 numbers), got '%s'",
+                value);
+  scene_lamp_config *lamp = lamp_of_index(s, section, key, v[0]);
+  if (!lamp) return 0;
+  if (!(v[1] >= 0 && v[1] <= 1 && v[2] > 0 && v[2] <= 1e3))
+    return fail(s, section, key, "expected AMOUNT from 0 to 1 and RATE in (0, 1000] per second, "
+                "got '%s'", value);
+  if (n == 4 && !(v[3] >= 0 && v[3] <= 4294967295.0 && v[3] == floor(v[3])))
+    return fail(s, section, key, "expected SEED an integer from 0 to 4294967295, got '%s'", value);
+  lamp->flicker_amount = v[1], lamp->flicker_rate = v[2];
+  lamp->flicker_seed = n == 4 ? (unsigned)v[3] : 1u;
+  return 1;
+}
+
 /* V_LIST: 1 to SCENE_CONFIG_MAX_PROFILE densities >= 0, the count at k->aux_offset. */
 static int store_list(parse_state *s, const key_spec *k, const char *section, const char *key,
                       const char *value) {
@@ -494,6 +552,10 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
       return store_rbf(s, section, key, value);
     case V_LAMP:
       return store_lamp(s, section, key, value);
+    case V_LAMP_PATH:
+      return store_lamp_path(s, section, key, value);
+    case V_LAMP_FLICKER:
+      return store_lamp_flicker(s, section, key, value);
   }
   return 1;
 }
@@ -743,6 +805,26 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
         fprintf(f, " %.17g\n", l->radius);
       }
       break;
+    case V_LAMP_PATH: /* lamp numbers in file order: the lamp lines, then the spot lines */
+      for (int i = 0, index = 0; i < 2 * cfg->lamp_count; i++) {
+        const scene_lamp_config *l = &cfg->lamps[i % cfg->lamp_count];
+        if (l->spot != (i >= cfg->lamp_count)) continue;
+        index++;
+        for (int j = 0; j < l->key_count; j++)
+          fprintf(f, "%s = %d %.17g %.17g %.17g %.17g\n", k->key, index, l->keys[j][0],
+                  l->keys[j][1], l->keys[j][2], l->keys[j][3]);
+      }
+      break;
+    case V_LAMP_FLICKER:
+      for (int i = 0, index = 0; i < 2 * cfg->lamp_count; i++) {
+        const scene_lamp_config *l = &cfg->lamps[i % cfg->lamp_count];
+        if (l->spot != (i >= cfg->lamp_count)) continue;
+        index++;
+        if (l->flicker_amount > 0)
+          fprintf(f, "%s = %d %.17g %.17g %u\n", k->key, index, l->flicker_amount,
+                  l->flicker_rate, l->flicker_seed);
+      }
+      break;
   }
 }
 
@@ -807,13 +889,61 @@ fog_sun scene_config_fog_sun(const scene_config *cfg) {
   return sun;
 }
 
+bool scene_config_lamps_animated(const scene_config *cfg) {
+  for (int i = 0; i < cfg->lamp_count; i++)
+    if (cfg->lamps[i].key_count > 0 || cfg->lamps[i].flicker_amount > 0) return true;
+  return false;
+}
+
+/* A lamp's position at `time`: straight between its keys, held before and after. */
+static void lamp_position_at(const scene_lamp_config *l, double time, double out[3]) {
+  int n = l->key_count;
+  if (n == 0) {
+    for (int a = 0; a < 3; a++) out[a] = l->position[a];
+    return;
+  }
+  int k = 0;
+  while (k + 1 < n && l->keys[k + 1][0] <= time) k++;
+  if (time <= l->keys[0][0] || k + 1 == n) {
+    const double *key = l->keys[time <= l->keys[0][0] ? 0 : n - 1];
+    for (int a = 0; a < 3; a++) out[a] = key[1 + a];
+    return;
+  }
+  const double *p = l->keys[k], *q = l->keys[k + 1];
+  double w = (time - p[0]) / (q[0] - p[0]);
+  for (int a = 0; a < 3; a++) out[a] = p[1 + a] + w * (q[1 + a] - p[1 + a]);
+}
+
+/* Smooth value noise in [0, 1]: a hashed value per integer x, smoothstep between. */
+static double lamp_hash(unsigned seed, long long i) {
+  uint64_t h = (uint64_t)i * 0x9E3779B97F4A7C15ull ^ ((uint64_t)seed << 32 | seed);
+  h ^= h >> 33, h *= 0xff51afd7ed558ccdull, h ^= h >> 33, h *= 0xc4ceb9fe1a85ec53ull, h ^= h >> 33;
+  return (double)(h >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static double lamp_flicker(const scene_lamp_config *l, double time) {
+  if (!(l->flicker_amount > 0)) return 1.0;
+  double x = time * l->flicker_rate, f = x - floor(x);
+  long long i = (long long)floor(x);
+  double s = f * f * (3.0 - 2.0 * f);
+  double n = lamp_hash(l->flicker_seed, i) + s * (lamp_hash(l->flicker_seed, i + 1) -
+                                                  lamp_hash(l->flicker_seed, i));
+  return 1.0 - l->flicker_amount * n;
+}
+
 fog_lamps scene_config_fog_lamps(const scene_config *cfg) {
+  return scene_config_fog_lamps_at(cfg, 0.0);
+}
+
+fog_lamps scene_config_fog_lamps_at(const scene_config *cfg, double time) {
   fog_lamps lamps = {.count = cfg->lamp_count, .method = cfg->lamp_method};
   for (int i = 0; i < cfg->lamp_count; i++) {
     const scene_lamp_config *l = &cfg->lamps[i];
     fog_lamp *out = &lamps.lamp[i];
     *out = (fog_lamp){.kind = l->spot ? FOG_LAMP_SPOT : FOG_LAMP_POINT, .radius = l->radius};
-    for (int a = 0; a < 3; a++) out->position[a] = l->position[a], out->intensity[a] = l->colour[a];
+    lamp_position_at(l, time, out->position);
+    const double flicker = lamp_flicker(l, time);
+    for (int a = 0; a < 3; a++) out->intensity[a] = l->colour[a] * flicker;
     if (l->spot) {
       double len = sqrt(l->axis[0] * l->axis[0] + l->axis[1] * l->axis[1] + l->axis[2] * l->axis[2]);
       for (int a = 0; a < 3; a++) out->axis[a] = l->axis[a] / len;
@@ -941,7 +1071,17 @@ uint64_t scene_config_fingerprint(const scene_config *cfg) {
             h = fnv(h, &l->inner, sizeof l->inner);
             h = fnv(h, &l->outer, sizeof l->outer);
           }
+          h = fnv(h, &l->key_count, sizeof l->key_count);
+          h = fnv(h, l->keys, (size_t)l->key_count * sizeof l->keys[0]);
+          h = fnv(h, &l->flicker_amount, sizeof l->flicker_amount);
+          if (l->flicker_amount > 0) {
+            h = fnv(h, &l->flicker_rate, sizeof l->flicker_rate);
+            h = fnv(h, &l->flicker_seed, sizeof l->flicker_seed);
+          }
         }
+        break;
+      case V_LAMP_PATH: /* with their lamps (V_LAMP) */
+      case V_LAMP_FLICKER:
         break;
       case V_RBF:
         h = fnv(h, &cfg->fog.rbf_count, sizeof cfg->fog.rbf_count);

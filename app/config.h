@@ -149,12 +149,22 @@ typedef struct scene_shadow_config {
 
 /* [light] lamp and spot lines as written (docs/config.md): a spot's axis as given (made
  * unit by scene_config_fog_lamps), its cone's half-angles in degrees. */
+#define SCENE_LAMP_MAX_KEYS 32
 typedef struct scene_lamp_config {
   bool spot;
   double position[3], colour[3]; /* colour x intensity: radiant intensity, linear */
   double radius;                 /* > 0 */
   double axis[3];                /* spot: the direction it shines, any length > 0 */
   double inner, outer;           /* spot: half-angles, degrees, 0 <= inner < outer <= 180 */
+  /* [light] lamp_path lines: key positions (time in seconds, x, y, z), times increasing;
+   * between keys the lamp moves in a straight line, before the first and after the last it
+   * stays there. None: it stays at position. */
+  double keys[SCENE_LAMP_MAX_KEYS][4];
+  int key_count;
+  /* [light] lamp_flicker: intensity x (1 - amount n(rate t)), n smooth value noise in
+   * [0, 1] drawn from seed; amount 0: steady. */
+  double flicker_amount, flicker_rate;
+  unsigned flicker_seed;
 } scene_lamp_config;
 
 typedef struct scene_config {
@@ -217,8 +227,12 @@ double scene_live_terrain_lod(double lod_error);
 fog_walk_settings scene_config_walk(const scene_config *cfg);
 /* The sun as the fog sees it: [fog] albedo and phase_g, [light]'s resolved sun. */
 fog_sun scene_config_fog_sun(const scene_config *cfg);
-/* The lamps as the fog pass takes them (world positions, unit spot axes, cone cosines). */
+/* The lamps as the fog pass takes them (world positions, unit spot axes, cone cosines) at
+ * scene time 0, and at `time` seconds (lamp_path and lamp_flicker applied). */
 fog_lamps scene_config_fog_lamps(const scene_config *cfg);
+fog_lamps scene_config_fog_lamps_at(const scene_config *cfg, double time);
+/* Whether any lamp moves or flickers (frames must then set the lamps of their time). */
+bool scene_config_lamps_animated(const scene_config *cfg);
 /* The scene pass's description. heights (may be NULL) are the loaded heightmap (values in
  * [0, 1], width x height) when cfg->terrain.heightmap is set. */
 void scene_config_scene_desc(const scene_config *cfg, const float *heights, int width,

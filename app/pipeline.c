@@ -179,6 +179,11 @@ struct pipeline {
   bool scene_current;
   pipeline_fog *fog;
   long shown_step;
+  /* Lamps that move or flicker (scene_config_lamps_animated): set for the shown step's time
+   * (shown_lamps_time; NAN before the first frame), on the surfaces and in the fog. */
+  bool lamps_animated;
+  fog_lamps shown_lamps;
+  double shown_lamps_time;
   timing_ring timings;
   pipeline_timings last;
   double last_frame_start;
@@ -584,6 +589,8 @@ static int load_scene(pipeline *p, pipeline_error *err) {
     return fail(err, "scene pass: %s", rerr.message);
   const fog_lamps lamps = scene_config_fog_lamps(&p->config);
   scene_pass_set_lamps(p->scene, &lamps);
+  p->lamps_animated = scene_config_lamps_animated(&p->config);
+  p->shown_lamps_time = NAN;
   return 0;
 }
 
@@ -930,6 +937,15 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
     scene_light_resolve(&moved, light, p->geometry.sun_direction);
     p->scene_current = false;
   }
+  if (p->lamps_animated) {
+    double time = (double)(p->shown_step > 0 ? p->shown_step - 1 : 0) * p->frame_seconds;
+    if (!(time == p->shown_lamps_time)) {
+      p->shown_lamps = scene_config_fog_lamps_at(&p->config, time);
+      p->shown_lamps_time = time;
+      scene_pass_set_lamps(p->scene, &p->shown_lamps);
+      p->scene_current = false;
+    }
+  }
   double t0 = now_ms();
   if (!p->scene_current || !camera_equal(&p->scene_camera, cam)) {
     scene_pass_run(p->scene, cam, &p->scene_target);
@@ -954,7 +970,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       .lod_method = params.lod_method,
       .fog_colour = {params.fog_colour[0], params.fog_colour[1], params.fog_colour[2]},
       .sun = sun,
-      .lamps = params.lamps,
+      .lamps = p->lamps_animated ? p->shown_lamps : params.lamps,
       .hardware_filtering = p->config.fog.filtering == SCENE_FILTERING_HARDWARE,
       .resolution_divisor = params.fog_resolution_divisor,
       .self_shadow = p->shown_self_shadow,

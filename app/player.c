@@ -115,6 +115,13 @@ int player_frame(player *p, int n, const frame_pixels *out, render_error *err) {
     return 0;
   }
   const scene_fog_config *f = &p->config.fog;
+  {
+    render_frame_error terr = {{0}};
+    if (render_session_set_time(p->session, (n - 1) / p->fps, &terr)) {
+      snprintf(err->message, sizeof err->message, "%s", terr.message);
+      return 1;
+    }
+  }
   if (p->sequence.count) {
     /* Output frame n shows time (n - 1) / fps, between two VDB frames at vdb_fps, as a
      * VDB fogmap sequence plays (vdb_sequence_position). */

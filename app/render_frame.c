@@ -81,6 +81,8 @@ struct render_session {
   gl_target fog_target;
   render_fog fog;
   bool has_fog;
+  bool lamps_animated; /* scene_config_lamps_animated */
+  scene_config config; /* for the lamps at a time */
   char gl_description[256];
 };
 
@@ -117,6 +119,8 @@ render_session *render_session_create(const scene_config *cfg, int width, int he
                         &rerr)))
     goto fail;
   if (s->has_fog) render_fog_set_shafts(&s->fog, cfg, scene_pass_sun_shadow(s->scene.pass));
+  s->config = *cfg;
+  s->lamps_animated = scene_config_lamps_animated(cfg);
   return s;
 fail:
   snprintf(err->message, sizeof err->message, "%s", rerr.message);
@@ -125,6 +129,20 @@ fail:
 }
 
 const char *render_session_gl_description(const render_session *s) { return s->gl_description; }
+
+int render_session_set_time(render_session *s, double time, render_frame_error *err) {
+  if (!s->lamps_animated) return 0;
+  const fog_lamps lamps = scene_config_fog_lamps_at(&s->config, time);
+  if (s->has_fog) s->fog.params.lamps = lamps;
+  scene_pass_set_lamps(s->scene.pass, &lamps);
+  scene_pass_run(s->scene.pass, &s->scene.cam, &s->scene.target);
+  render_error rerr = {0};
+  if (gl_util_check("render: lamps", &rerr)) {
+    snprintf(err->message, sizeof err->message, "%s", rerr.message);
+    return 1;
+  }
+  return 0;
+}
 
 render_fog *render_session_fog(render_session *s) { return s->has_fog ? &s->fog : NULL; }
 
