@@ -139,6 +139,7 @@ static const key_spec keys[] = {
     {"light", "spot", V_LAMP, 0, -WORLD, WORLD, NULL, 0, 0},
     {"light", "lamp_path", V_LAMP_PATH, 0, -WORLD, WORLD, NULL, 0, 0},
     {"light", "lamp_flicker", V_LAMP_FLICKER, 0, 0, 0, NULL, 0, 0},
+    {"light", "lamp_integral", V_ENUM, F(lamp_method.integral), 0, 0, "angle|fogshop", 0, 0},
     {"light", "lamp_angle_pieces", V_INT, F(lamp_method.angle_pieces), 1, 256, NULL, 0, 0},
     {"light", "lamp_span_pieces", V_INT, F(lamp_method.span_pieces), 0, 256, NULL, 0, 0},
     {"light", "lamp_depth_steps", V_INT, F(lamp_method.depth_steps), 1, FOG_LAMP_MAX_DEPTH_STEPS, NULL, 0, 0},
@@ -294,6 +295,7 @@ static int handle(void *user, const char *section, const char *key, const char *
   scene_config *cfg = s->cfg;
   if (!strcmp(section, "fog") && !strcmp(key, "profile")) cfg->fog.profile_set = true;
   if (!strcmp(section, "fog") && !strcmp(key, "model")) cfg->fog.model_line = s->line;
+  if (!strcmp(section, "light") && !strcmp(key, "lamp_integral")) cfg->lamp_integral_line = s->line;
   if (!strcmp(section, "box")) {
     if (!strcmp(key, "origin")) cfg->box.origin_set = true;
     if (!strcmp(key, "cell_size")) cfg->box.cell_size_set = true;
@@ -656,6 +658,12 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
   if (cfg->fog.model == FOG_MODEL_RBF && cfg->fog.rbf_count == 0) {
     s.line = cfg->fog.model_line;
     fail(&s, "fog", "model", "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' line");
+    return 1;
+  }
+  if (cfg->lamp_method.integral == FOG_LAMP_FOGSHOP && cfg->fog.model != FOG_MODEL_RBF) {
+    s.line = cfg->lamp_integral_line;
+    fail(&s, "light", "lamp_integral", "fogshop is Fogshop's approximation for Gaussian fog: "
+         "it needs [fog] model = rbf");
     return 1;
   }
   if (cfg->fog.model == FOG_MODEL_VOLUME && !cfg->fog.vdb[0]) {

@@ -179,7 +179,9 @@ typedef struct scene_config {
   scene_shadow_config shadow; /* in [light] */
   scene_lamp_config lamps[FOG_MAX_LAMPS]; /* [light] lamp and spot lines, in file order */
   int lamp_count;
-  fog_lamp_method lamp_method; /* [light] lamp_angle_pieces, _span_pieces, _depth_steps, _shadow_steps */
+  fog_lamp_method lamp_method; /* [light] lamp_integral, lamp_angle_pieces, _span_pieces,
+                                  _depth_steps, _shadow_steps */
+  int lamp_integral_line;       /* the line that set lamp_integral, for its error */
   int width, height; /* [render] image size */
   /* [render] the fog walk's speed settings (docs/config.md): transmittance_cutoff
    * (fog_pass_params.transmittance_cutoff, 0: whole rays), empty_skip (1 on: skip blocks

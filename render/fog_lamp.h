@@ -45,8 +45,21 @@ typedef struct fog_lamp {
   double cos_inner, cos_outer;
 } fog_lamp;
 
+/* Which integral: ours (above), or Fogshop's approximation for Gaussian fog (Zhou et al.
+ * 2007, eq. 11): each Gaussian's share is its own optical depth along the ray (erf) times
+ * the rest of the integrand (tau, the phase, T, the cone, the falloff) taken once, at the
+ * projection of its centre on the ray, with tau and T the exact closed forms; the
+ * homogeneous base's airlight as Sun et al.'s, in the base alone (the Gaussians do not
+ * shadow it: no shafts), here by the angle integral. FOG_MODEL_RBF only: the bench's and the
+ * tests' comparison. */
+typedef enum fog_lamp_integral {
+  FOG_LAMP_ANGLE = 0,
+  FOG_LAMP_FOGSHOP,
+} fog_lamp_integral;
+
 /* How the in-scatter integral is taken (see above); every count >= 1. */
 typedef struct fog_lamp_method {
+  fog_lamp_integral integral;
   /* The integral's pieces, 4 Gauss-Legendre nodes each in phi: the union of angle_pieces
    * equal steps of the angle (resolving the halo near the lamp) and span_pieces equal steps
    * of the ray's fog span (resolving the fog far from it, where phi compresses t). */

@@ -66,10 +66,28 @@ static bool exact_depths(const fog_model *m) {
          m->kind == FOG_MODEL_RBF;
 }
 
-/* One lamp, per unit a I, over [t0, t0 + steps dt] with the camera's depth table. */
+/* The integrand's factors besides K at world point x of the ray (at t): tau p S T over
+ * the falloff, with the closed-form depths (FOG_LAMP_FOGSHOP's sample). */
+static double lamp_factor_exact(const fog_model *m, const fog_lamp *lamp, double g,
+                                const double o[3], const double d[3], double t) {
+  double x[3], to_lamp[3];
+  for (int a = 0; a < 3; a++) x[a] = o[a] + t * d[a], to_lamp[a] = lamp->position[a] - x[a];
+  double dist = sqrt(dot3(to_lamp, to_lamp)), shadow = 0.0;
+  double cos_theta = dist > 0.0 ? dot3(to_lamp, d) / dist : 1.0;
+  if (dist > 0.0) {
+    double w[3] = {to_lamp[0] / dist, to_lamp[1] / dist, to_lamp[2] / dist};
+    shadow = fog_model_optical_depth(m, x, w, dist);
+  }
+  return exp(-fog_model_optical_depth(m, o, d, t) - shadow) * fog_phase_hg(g, cos_theta) *
+         fog_lamp_spot(lamp, x) / (dist * dist + lamp->radius * lamp->radius);
+}
+
+/* One lamp, per unit a I, over [t0, t0 + steps dt] with the camera's depth table.
+ * base_only: the RBF model's homogeneous base alone, K, tau and T (FOG_LAMP_FOGSHOP's base
+ * term: Sun et al.'s airlight of a homogeneous medium, which the Gaussians do not shadow). */
 static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp_method *method,
                         double g, const double o[3], const double d[3], double t0, double t1,
-                        const double *table) {
+                        const double *table, bool base_only) {
   const int steps = method->depth_steps;
   const double dt = (t1 - t0) / steps;
   double s[3] = {lamp->position[0] - o[0], lamp->position[1] - o[1], lamp->position[2] - o[2]};
@@ -78,27 +96,38 @@ static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp
   double hp = sqrt(dot3(hv, hv) + lamp->radius * lamp->radius);
   double phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp), total = 0.0;
   /* The pieces: the union of angle_pieces equal steps of phi (the halo) and span_pieces
-   * equal steps of t (the fog far from the lamp, which phi compresses), merged in order. */
+   * equal steps of t (the fog far from the lamp, which phi compresses), merged in order,
+   * and a cut at phi = 0, the closest point, where the direction to the lamp turns (for a
+   * lamp on the ray the phase function jumps there). */
   const int na = method->angle_pieces, nt = method->span_pieces;
   double phi_a = phi0;
+  bool cut = !(phi0 < 0.0 && phi1 > 0.0);
   for (int ia = 1, it = 1; ia <= na || it <= nt;) {
     double next_a = ia <= na ? phi0 + ia * (phi1 - phi0) / na : HUGE_VAL;
     double next_t = it <= nt ? atan((t0 + it * (t1 - t0) / nt - ts) / hp) : HUGE_VAL;
     double phi_b = next_a <= next_t ? next_a : next_t;
-    if (next_a <= next_t) ia++;
-    else it++;
+    if (!cut && phi_b > 0.0) {
+      phi_b = 0.0, cut = true;
+    } else if (next_a <= next_t) {
+      ia++;
+    } else {
+      it++;
+    }
     double dphi = phi_b - phi_a, sum = 0.0;
     for (int n = 0; n < 4 && dphi > 0.0; n++) {
       double phi = phi_a + 0.5 * (1.0 + gl4_x[n]) * dphi;
       double t = ts + hp * tan(phi), x[3], to_lamp[3];
       for (int a = 0; a < 3; a++) x[a] = o[a] + t * d[a];
-      double k = fog_light_extinction_at(m, x);
+      double k = base_only ? m->extinction : fog_light_extinction_at(m, x);
       if (!(k > 0.0)) continue;
       for (int a = 0; a < 3; a++) to_lamp[a] = lamp->position[a] - x[a];
       double dist = sqrt(dot3(to_lamp, to_lamp));
       double cos_theta = dist > 0.0 ? dot3(to_lamp, d) / dist : 1.0;
       double depth, shadow = 0.0;
-      if (exact_depths(m)) {
+      if (base_only) { /* Sun et al.'s homogeneous medium: the base alone */
+        depth = m->extinction * fmax(t, 0.0);
+        shadow = m->extinction * dist;
+      } else if (exact_depths(m)) {
         depth = fog_model_optical_depth(m, o, d, t);
         if (dist > 0.0) {
           double w[3] = {to_lamp[0] / dist, to_lamp[1] / dist, to_lamp[2] / dist};
@@ -124,14 +153,38 @@ static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp
   return total / hp;
 }
 
+/* FOG_LAMP_FOGSHOP (fog_lamp.h): the base by the angle integral, each Gaussian sampled at
+ * its centre's projection on the ray (clamped to the span) times its own optical depth. */
+static double lamp_unit_fogshop(const fog_model *m, const fog_lamp *lamp,
+                                const fog_lamp_method *method, double g, const double o[3],
+                                const double d[3], double t0, double t1) {
+  static const double half_sqrt_pi = 0.88622692545275801;
+  double sum = m->extinction > 0.0 ? lamp_unit(m, lamp, method, g, o, d, t0, t1, NULL, true) : 0.0;
+  for (int i = 0; i < m->rbf_count; i++) {
+    const fog_rbf *b = &m->rbfs[i];
+    double v[3], w[3];
+    for (int a = 0; a < 3; a++) v[a] = b->centre[a] - o[a];
+    double tc = dot3(v, d);
+    for (int a = 0; a < 3; a++) w[a] = v[a] - tc * d[a];
+    double inv_r = 1.0 / b->radius;
+    double depth = b->density * exp(-dot3(w, w) * inv_r * inv_r) * b->radius * half_sqrt_pi *
+                   fog_erf_difference((t0 - tc) * inv_r, (t1 - tc) * inv_r);
+    if (!(depth > 0.0)) continue;
+    sum += depth * lamp_factor_exact(m, lamp, g, o, d, fmin(fmax(tc, t0), t1));
+  }
+  return sum;
+}
+
 double fog_lamp_inscatter_unit(const fog_model *m, const fog_lamp *lamp,
                                const fog_lamp_method *method, double g, const double o[3],
                                const double d[3], double t_surface) {
   double t0, t1, table[FOG_LAMP_MAX_DEPTH_STEPS + 1] = {0};
   if (!fog_lamp_span(m, o, d, t_surface, &t0, &t1)) return 0.0;
+  if (method->integral == FOG_LAMP_FOGSHOP && m->kind == FOG_MODEL_RBF)
+    return lamp_unit_fogshop(m, lamp, method, g, o, d, t0, t1);
   if (!exact_depths(m))
     depth_table(m, o, d, t0, (t1 - t0) / method->depth_steps, method->depth_steps, table);
-  return lamp_unit(m, lamp, method, g, o, d, t0, t1, table);
+  return lamp_unit(m, lamp, method, g, o, d, t0, t1, table, false);
 }
 
 void fog_lamps_inscatter(const fog_model *m, const fog_lamps *lamps, double albedo, double g,
@@ -143,8 +196,10 @@ void fog_lamps_inscatter(const fog_model *m, const fog_lamps *lamps, double albe
   const fog_lamp_method *method = &lamps->method;
   if (!exact_depths(m))
     depth_table(m, o, d, t0, (t1 - t0) / method->depth_steps, method->depth_steps, table);
+  const bool fogshop = method->integral == FOG_LAMP_FOGSHOP && m->kind == FOG_MODEL_RBF;
   for (int i = 0; i < lamps->count; i++) {
-    double unit = lamp_unit(m, &lamps->lamp[i], method, g, o, d, t0, t1, table);
+    double unit = fogshop ? lamp_unit_fogshop(m, &lamps->lamp[i], method, g, o, d, t0, t1)
+                          : lamp_unit(m, &lamps->lamp[i], method, g, o, d, t0, t1, table, false);
     for (int c = 0; c < 3; c++) out[c] += albedo * lamps->lamp[i].intensity[c] * unit;
   }
 }

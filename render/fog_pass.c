@@ -90,6 +90,7 @@ typedef struct fog_pass_variant {
   int shafts;             /* FOG_SHAFTS: 1 the sun's shadow map in the fog */
   int skip;               /* FOG_SKIP: 1 empty-space skipping in the fogmap walk */
   int lamps;              /* FOG_LAMPS: 1 point and spot lights (fog_lamps.glsl) */
+  int lamp_fogshop;       /* FOG_LAMP_FOGSHOP: 1 Fogshop's approximation (RBF) */
 } fog_pass_variant;
 
 static const struct {
@@ -113,6 +114,7 @@ static const struct {
     {"FOG_SHAFTS", offsetof(fog_pass_variant, shafts), 1},
     {"FOG_SKIP", offsetof(fog_pass_variant, skip), 1},
     {"FOG_LAMPS", offsetof(fog_pass_variant, lamps), 1},
+    {"FOG_LAMP_FOGSHOP", offsetof(fog_pass_variant, lamp_fogshop), 1},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
@@ -727,7 +729,11 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
                                     .shafts = params->shafts != NULL,
                                     .skip = params->model == FOG_MODEL_VOLUME && !march &&
                                             fog_pass_skips_share(params, pass->grid3d_empty_share),
-                                    .lamps = fog_pass_has_lamps(params)};
+                                    .lamps = fog_pass_has_lamps(params),
+                                    .lamp_fogshop = fog_pass_has_lamps(params) &&
+                                                    params->model == FOG_MODEL_RBF &&
+                                                    params->lamps.method.integral ==
+                                                        FOG_LAMP_FOGSHOP};
   GLuint prog = fog_pass_variant_program(pass, &variant, err);
   if (!prog) return 1;
   glUseProgram(prog);
@@ -810,6 +816,14 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
              lamps->count, lamps->method.angle_pieces, lamps->method.span_pieces,
              lamps->method.depth_steps,
              lamps->method.shadow_steps, FOG_MAX_LAMPS, FOG_LAMP_MAX_DEPTH_STEPS);
+    return 1;
+  }
+  if (lamps->count > 0 && lamps->method.integral != FOG_LAMP_ANGLE &&
+      (lamps->method.integral != FOG_LAMP_FOGSHOP || params->model != FOG_MODEL_RBF)) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: lamp integral %d with model %d: expected FOG_LAMP_ANGLE, or "
+             "FOG_LAMP_FOGSHOP with FOG_MODEL_RBF", (int)lamps->method.integral,
+             (int)params->model);
     return 1;
   }
   for (int i = 0; i < lamps->count; i++) {

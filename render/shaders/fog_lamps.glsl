@@ -1,6 +1,7 @@
 // Lamps in the fog (render/fog_lamp.h, docs/light.md): point and spot lights, single
 // scattering, for every model; fog_pass_fs.glsl includes it after fog_light.glsl and adds
-// fog_lamps_light to the in-scatter. Specialisation constant FOG_LAMPS 0|1. The CPU twin
+// fog_lamps_light to the in-scatter. Specialisation constants FOG_LAMPS 0|1 and
+// FOG_LAMP_FOGSHOP 0|1 (fog_lamp_integral; FOG_MODEL_RBF only). The CPU twin
 // is render/fog_lamp_cpu.c, sample for sample.
 #if FOG_LAMPS
 uniform int fog_lamp_count;
@@ -68,25 +69,115 @@ float fog_lamp_spot(int i, vec3 p) {
   return u * u * (3.0 - 2.0 * u);
 }
 
-// The lamps' in-scattered radiance of the pixel's ray: per lamp, (a I / h') times the
-// integral over the angle phi (t = t_s + h' tan phi) of tau K p S T, Gauss-Legendre with 4
-// nodes on each piece of fog_lamp_method's union of equal steps in phi and in t; tau from a table of the optical depth at
-// the ends of fog_lamp_depth_steps equal segments of the span, T by fog_lamp_shadow_steps
-// midpoint steps towards the lamp; for the analytic models both in closed form.
-vec3 fog_lamps_light(fog_ray r) {
-  float t0, t1;
-  if (fog_lamp_count == 0 || !fog_lamp_span(r, t0, t1)) return vec3(0.0);
+// The optical depth from the camera at the ends of fog_lamp_depth_steps equal segments of
+// the span (fogmap and volume; a global: no array copied into calls).
+float fog_lamp_table[FOG_LAMP_MAX_DEPTH_STEPS + 1];
+
+// Lamp i's integral over the angle phi (t = t_s + h' tan phi) of tau K p S T, without the
+// factor a I / h': Gauss-Legendre with 4 nodes on each piece of fog_lamp_method's union of
+// equal steps in phi and in t. tau from fog_lamp_table and T by fog_lamp_shadow_steps
+// midpoint steps towards the lamp, or for the analytic models both in closed form.
+// base_only: the RBFs' homogeneous base alone, K, tau and T (Fogshop's base term: Sun et
+// al.'s airlight, which the Gaussians do not shadow).
+float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, float hp,
+                              bool base_only) {
   const float gx[4] = float[4](-0.86113631159405258, -0.33998104358485626,
                                0.33998104358485626, 0.86113631159405258);
   const float gw[4] = float[4](0.34785484513745386, 0.65214515486254614,
                                0.65214515486254614, 0.34785484513745386);
+  vec3 s = fog_lamp_position[i];
   int steps = fog_lamp_depth_steps;
   float dt = (t1 - t0) / float(steps);
+  float phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp), lamp_sum = 0.0;
+  const int na = fog_lamp_angle_pieces, nt = fog_lamp_span_pieces;
+  float phi_a = phi0;
+  bool cut = !(phi0 < 0.0 && phi1 > 0.0);  // and a cut at phi = 0, the closest point
+  for (int ia = 1, it = 1; ia <= na || it <= nt;) {
+    float next_a = ia <= na ? phi0 + float(ia) * (phi1 - phi0) / float(na) : 1e30;
+    float next_t = it <= nt ? atan((t0 + float(it) * (t1 - t0) / float(nt) - ts) / hp) : 1e30;
+    float phi_b = min(next_a, next_t);
+    if (!cut && phi_b > 0.0) {
+      phi_b = 0.0;
+      cut = true;
+    } else if (next_a <= next_t) {
+      ia++;
+    } else {
+      it++;
+    }
+    float dphi = phi_b - phi_a, sum = 0.0;
+    for (int n = 0; n < 4 && dphi > 0.0; n++) {
+      float phi = phi_a + 0.5 * (1.0 + gx[n]) * dphi;
+      float t = ts + hp * tan(phi);
+      vec3 x = t * r.dir;
+      float k = base_only ? fog_model_extinction : fog_lamp_extinction(x);
+      if (!(k > 0.0)) continue;
+      vec3 to_lamp = s - x;
+      float dist = length(to_lamp);
+      float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
+#if FOG_LAMP_EXACT_DEPTH
+      float depth = fog_lamp_segment_depth(vec3(0.0), r.dir, t);
+      float shadow = dist > 0.0 ? fog_lamp_segment_depth(x, to_lamp / dist, dist) : 0.0;
+      if (base_only) {  // Sun et al.'s homogeneous medium: the base alone
+        depth = fog_model_extinction * max(t, 0.0);
+        shadow = fog_model_extinction * dist;
+      }
+#else
+      float u = clamp((t - t0) / dt, 0.0, float(steps));
+      int c = min(int(floor(u)), steps - 1);
+      float depth = fog_lamp_table[c] +
+                    clamp(u - float(c), 0.0, 1.0) * (fog_lamp_table[c + 1] - fog_lamp_table[c]);
+      float shadow = 0.0, ds = dist / float(fog_lamp_shadow_steps);
+      for (int j = 0; j < fog_lamp_shadow_steps; j++)
+        shadow += fog_lamp_extinction(x + ((float(j) + 0.5) / float(fog_lamp_shadow_steps)) *
+                                              to_lamp) * ds;
+#endif
+      sum += gw[n] * exp(-depth) * k * fog_phase_hg(fog_phase_g, cos_theta) *
+             fog_lamp_spot(i, x) * exp(-shadow);
+    }
+    lamp_sum += 0.5 * dphi * sum;
+    phi_a = phi_b;
+  }
+  return lamp_sum;
+}
+
+#if FOG_LAMP_FOGSHOP
+// Fogshop's approximation (Zhou et al. 2007, eq. 11; render/fog_lamp.h): each Gaussian's
+// optical depth along the ray times tau p S T / falloff taken once, at the projection of its
+// centre on the ray (clamped to the span), with the closed-form depths.
+float fog_lamp_fogshop_gaussians(int i, fog_ray r, float t0, float t1) {
+  vec3 s = fog_lamp_position[i];
+  float sum = 0.0;
+  for (int g = 0; g < fog_rbf_count; g++) {
+    vec3 v = fog_rbf_centre[g].xyz;
+    float inv_r = fog_rbf_centre[g].w, tc = dot(v, r.dir);
+    vec3 w = v - tc * r.dir;
+    float depth = fog_rbf_density[g] * exp(-dot(w, w) * inv_r * inv_r) * (0.88622692545 / inv_r) *
+                  fog_erf_difference((t0 - tc) * inv_r, (t1 - tc) * inv_r);
+    if (!(depth > 0.0)) continue;
+    float t = clamp(tc, t0, t1);
+    vec3 x = t * r.dir, to_lamp = s - x;
+    float dist = length(to_lamp);
+    float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
+    float shadow = dist > 0.0 ? fog_lamp_segment_depth(x, to_lamp / dist, dist) : 0.0;
+    sum += depth * exp(-fog_lamp_segment_depth(vec3(0.0), r.dir, t) - shadow) *
+           fog_phase_hg(fog_phase_g, cos_theta) * fog_lamp_spot(i, x) /
+           (dist * dist + fog_lamp_cone[i].z);
+  }
+  return sum;
+}
+#endif
+
+// The lamps' in-scattered radiance of the pixel's ray: per lamp a I times its integral.
+vec3 fog_lamps_light(fog_ray r) {
+  float t0, t1;
+  if (fog_lamp_count == 0 || !fog_lamp_span(r, t0, t1)) return vec3(0.0);
 #if !FOG_LAMP_EXACT_DEPTH
-  float table[FOG_LAMP_MAX_DEPTH_STEPS + 1];
-  table[0] = 0.0;
+  int steps = fog_lamp_depth_steps;
+  float dt = (t1 - t0) / float(steps);
+  fog_lamp_table[0] = 0.0;
   for (int k = 0; k < steps; k++)
-    table[k + 1] = table[k] + fog_lamp_extinction((t0 + (float(k) + 0.5) * dt) * r.dir) * dt;
+    fog_lamp_table[k + 1] =
+        fog_lamp_table[k] + fog_lamp_extinction((t0 + (float(k) + 0.5) * dt) * r.dir) * dt;
 #endif
   vec3 total = vec3(0.0);
   for (int i = 0; i < fog_lamp_count; i++) {
@@ -94,45 +185,14 @@ vec3 fog_lamps_light(fog_ray r) {
     float ts = dot(s, r.dir);
     vec3 hv = s - ts * r.dir;
     float hp = sqrt(dot(hv, hv) + fog_lamp_cone[i].z);
-    float phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp), lamp_sum = 0.0;
-    // the union of equal steps in phi and in t, merged in order (fog_lamp_method)
-    const int na = fog_lamp_angle_pieces, nt = fog_lamp_span_pieces;
-    float phi_a = phi0;
-    for (int ia = 1, it = 1; ia <= na || it <= nt;) {
-      float next_a = ia <= na ? phi0 + float(ia) * (phi1 - phi0) / float(na) : 1e30;
-      float next_t = it <= nt ? atan((t0 + float(it) * (t1 - t0) / float(nt) - ts) / hp) : 1e30;
-      float phi_b = min(next_a, next_t);
-      if (next_a <= next_t) ia++;
-      else it++;
-      float dphi = phi_b - phi_a, sum = 0.0;
-      for (int n = 0; n < 4 && dphi > 0.0; n++) {
-        float phi = phi_a + 0.5 * (1.0 + gx[n]) * dphi;
-        float t = ts + hp * tan(phi);
-        vec3 x = t * r.dir;
-        float k = fog_lamp_extinction(x);
-        if (!(k > 0.0)) continue;
-        vec3 to_lamp = s - x;
-        float dist = length(to_lamp);
-        float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
-#if FOG_LAMP_EXACT_DEPTH
-        float depth = fog_lamp_segment_depth(vec3(0.0), r.dir, t);
-        float shadow = dist > 0.0 ? fog_lamp_segment_depth(x, to_lamp / dist, dist) : 0.0;
+#if FOG_LAMP_FOGSHOP
+    float unit = (fog_model_extinction > 0.0
+                      ? fog_lamp_angle_integral(i, r, t0, t1, ts, hp, true) / hp : 0.0) +
+                 fog_lamp_fogshop_gaussians(i, r, t0, t1);
 #else
-        float u = clamp((t - t0) / dt, 0.0, float(steps));
-        int c = min(int(floor(u)), steps - 1);
-        float depth = table[c] + clamp(u - float(c), 0.0, 1.0) * (table[c + 1] - table[c]);
-        float shadow = 0.0, ds = dist / float(fog_lamp_shadow_steps);
-        for (int j = 0; j < fog_lamp_shadow_steps; j++)
-          shadow += fog_lamp_extinction(x + ((float(j) + 0.5) / float(fog_lamp_shadow_steps)) *
-                                                to_lamp) * ds;
+    float unit = fog_lamp_angle_integral(i, r, t0, t1, ts, hp, false) / hp;
 #endif
-        sum += gw[n] * exp(-depth) * k * fog_phase_hg(fog_phase_g, cos_theta) *
-               fog_lamp_spot(i, x) * exp(-shadow);
-      }
-      lamp_sum += 0.5 * dphi * sum;
-      phi_a = phi_b;
-    }
-    total += fog_lamp_scatter[i] * (lamp_sum / hp);
+    total += fog_lamp_scatter[i] * unit;
   }
   return total;
 }

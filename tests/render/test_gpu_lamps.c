@@ -152,6 +152,10 @@ int main(void) {
     double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, names[model]);
     CHECK(peak > 0.05, "%s: peak in-scatter %g: the lamps do not reach the view", names[model],
           peak);
+    if (model == FOG_MODEL_RBF) { /* Fogshop's approximation, the bench's comparison */
+      params.lamps.method.integral = FOG_LAMP_FOGSHOP;
+      compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "rbf, Fogshop's approximation");
+    }
   }
   free(grid_values);
   glDeleteTextures(1, &surface_tex);
