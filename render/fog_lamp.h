@@ -55,6 +55,8 @@ typedef struct fog_lamp {
 typedef enum fog_lamp_integral {
   FOG_LAMP_ANGLE = 0,
   FOG_LAMP_FOGSHOP,
+  FOG_LAMP_MARCH, /* uniform ray marching: march_steps midpoint samples of the span, tau
+                     summed along them, T as the angle integral's (the bench's baseline) */
 } fog_lamp_integral;
 
 /* How the in-scatter integral is taken (see above); every count >= 1. */
@@ -67,6 +69,7 @@ typedef struct fog_lamp_method {
   int span_pieces;
   int depth_steps;  /* tau's table (<= FOG_LAMP_MAX_DEPTH_STEPS) */
   int shadow_steps; /* T's march towards the lamp */
+  int march_steps;  /* FOG_LAMP_MARCH: samples along the span (>= 1) */
 } fog_lamp_method;
 
 /* The product's defaults ([light] lamp_angle_pieces, lamp_span_pieces, lamp_depth_steps,

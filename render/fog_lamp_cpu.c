@@ -175,6 +175,42 @@ static double lamp_unit_fogshop(const fog_model *m, const fog_lamp *lamp,
   return sum;
 }
 
+/* FOG_LAMP_MARCH: midpoint samples of t, tau summed along them (to each sample's middle),
+ * T as lamp_unit's; the falloff sampled as it is (no angle variable). */
+static double lamp_unit_march(const fog_model *m, const fog_lamp *lamp,
+                              const fog_lamp_method *method, double g, const double o[3],
+                              const double d[3], double t0, double t1) {
+  const int n = method->march_steps;
+  const double dt = (t1 - t0) / n;
+  double before = 0.0, sum = 0.0;
+  for (int i = 0; i < n; i++) {
+    double t = t0 + (i + 0.5) * dt, x[3], to_lamp[3];
+    for (int a = 0; a < 3; a++) x[a] = o[a] + t * d[a], to_lamp[a] = lamp->position[a] - x[a];
+    double k = fog_light_extinction_at(m, x);
+    double tau = exp(-(before + 0.5 * k * dt));
+    before += k * dt;
+    if (!(k > 0.0)) continue;
+    double dist = sqrt(dot3(to_lamp, to_lamp)), shadow = 0.0;
+    double cos_theta = dist > 0.0 ? dot3(to_lamp, d) / dist : 1.0;
+    if (exact_depths(m)) {
+      if (dist > 0.0) {
+        double w[3] = {to_lamp[0] / dist, to_lamp[1] / dist, to_lamp[2] / dist};
+        shadow = fog_model_optical_depth(m, x, w, dist);
+      }
+    } else {
+      double ds = dist / method->shadow_steps;
+      for (int j = 0; j < method->shadow_steps; j++) {
+        double f = (j + 0.5) / method->shadow_steps, q[3];
+        for (int a = 0; a < 3; a++) q[a] = x[a] + f * to_lamp[a];
+        shadow += fog_light_extinction_at(m, q) * ds;
+      }
+    }
+    sum += tau * k * fog_phase_hg(g, cos_theta) * fog_lamp_spot(lamp, x) * exp(-shadow) /
+           (dist * dist + lamp->radius * lamp->radius);
+  }
+  return sum * dt;
+}
+
 double fog_lamp_inscatter_unit(const fog_model *m, const fog_lamp *lamp,
                                const fog_lamp_method *method, double g, const double o[3],
                                const double d[3], double t_surface) {
@@ -182,6 +218,7 @@ double fog_lamp_inscatter_unit(const fog_model *m, const fog_lamp *lamp,
   if (!fog_lamp_span(m, o, d, t_surface, &t0, &t1)) return 0.0;
   if (method->integral == FOG_LAMP_FOGSHOP && m->kind == FOG_MODEL_RBF)
     return lamp_unit_fogshop(m, lamp, method, g, o, d, t0, t1);
+  if (method->integral == FOG_LAMP_MARCH) return lamp_unit_march(m, lamp, method, g, o, d, t0, t1);
   if (!exact_depths(m))
     depth_table(m, o, d, t0, (t1 - t0) / method->depth_steps, method->depth_steps, table);
   return lamp_unit(m, lamp, method, g, o, d, t0, t1, table, false);
@@ -199,7 +236,9 @@ void fog_lamps_inscatter(const fog_model *m, const fog_lamps *lamps, double albe
   const bool fogshop = method->integral == FOG_LAMP_FOGSHOP && m->kind == FOG_MODEL_RBF;
   for (int i = 0; i < lamps->count; i++) {
     double unit = fogshop ? lamp_unit_fogshop(m, &lamps->lamp[i], method, g, o, d, t0, t1)
-                          : lamp_unit(m, &lamps->lamp[i], method, g, o, d, t0, t1, table, false);
+                  : method->integral == FOG_LAMP_MARCH
+                      ? lamp_unit_march(m, &lamps->lamp[i], method, g, o, d, t0, t1)
+                      : lamp_unit(m, &lamps->lamp[i], method, g, o, d, t0, t1, table, false);
     for (int c = 0; c < 3; c++) out[c] += albedo * lamps->lamp[i].intensity[c] * unit;
   }
 }

@@ -90,7 +90,7 @@ typedef struct fog_pass_variant {
   int shafts;             /* FOG_SHAFTS: 1 the sun's shadow map in the fog */
   int skip;               /* FOG_SKIP: 1 empty-space skipping in the fogmap walk */
   int lamps;              /* FOG_LAMPS: 1 point and spot lights (fog_lamps.glsl) */
-  int lamp_fogshop;       /* FOG_LAMP_FOGSHOP: 1 Fogshop's approximation (RBF) */
+  int lamp_integral;      /* FOG_LAMP_INTEGRAL: fog_lamp_integral */
 } fog_pass_variant;
 
 static const struct {
@@ -114,11 +114,11 @@ static const struct {
     {"FOG_SHAFTS", offsetof(fog_pass_variant, shafts), 1},
     {"FOG_SKIP", offsetof(fog_pass_variant, skip), 1},
     {"FOG_LAMPS", offsetof(fog_pass_variant, lamps), 1},
-    {"FOG_LAMP_FOGSHOP", offsetof(fog_pass_variant, lamp_fogshop), 1},
+    {"FOG_LAMP_INTEGRAL", offsetof(fog_pass_variant, lamp_integral), 2},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
-                   FOG_SUN_SHADOW_OPAQUE < 4,
+                   FOG_SUN_SHADOW_OPAQUE < 4 && FOG_LAMP_MARCH < 4,
                "a fog_pass_variant field outgrew its bits of the key");
 
 static int variant_field(const fog_pass_variant *v, int f) {
@@ -627,6 +627,7 @@ static void fog_pass_lamp_uniforms(GLuint prog, const camera *cam, const fog_pas
   glUniform1i(fog_loc(prog, "fog_lamp_span_pieces"), lamps->method.span_pieces);
   glUniform1i(fog_loc(prog, "fog_lamp_depth_steps"), lamps->method.depth_steps);
   glUniform1i(fog_loc(prog, "fog_lamp_shadow_steps"), lamps->method.shadow_steps);
+  glUniform1i(fog_loc(prog, "fog_lamp_march_steps"), lamps->method.march_steps);
 }
 
 /* Uniforms every model uses (camera, blend, model selection), the surface textures, and
@@ -730,10 +731,9 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
                                     .skip = params->model == FOG_MODEL_VOLUME && !march &&
                                             fog_pass_skips_share(params, pass->grid3d_empty_share),
                                     .lamps = fog_pass_has_lamps(params),
-                                    .lamp_fogshop = fog_pass_has_lamps(params) &&
-                                                    params->model == FOG_MODEL_RBF &&
-                                                    params->lamps.method.integral ==
-                                                        FOG_LAMP_FOGSHOP};
+                                    .lamp_integral = fog_pass_has_lamps(params)
+                                                         ? (int)params->lamps.method.integral
+                                                         : 0};
   GLuint prog = fog_pass_variant_program(pass, &variant, err);
   if (!prog) return 1;
   glUseProgram(prog);
@@ -818,12 +818,14 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
              lamps->method.shadow_steps, FOG_MAX_LAMPS, FOG_LAMP_MAX_DEPTH_STEPS);
     return 1;
   }
-  if (lamps->count > 0 && lamps->method.integral != FOG_LAMP_ANGLE &&
-      (lamps->method.integral != FOG_LAMP_FOGSHOP || params->model != FOG_MODEL_RBF)) {
+  if (lamps->count > 0 &&
+      ((lamps->method.integral == FOG_LAMP_FOGSHOP && params->model != FOG_MODEL_RBF) ||
+       (lamps->method.integral == FOG_LAMP_MARCH && lamps->method.march_steps < 1) ||
+       (unsigned)lamps->method.integral > FOG_LAMP_MARCH)) {
     snprintf(err->message, sizeof err->message,
-             "fog pass: lamp integral %d with model %d: expected FOG_LAMP_ANGLE, or "
-             "FOG_LAMP_FOGSHOP with FOG_MODEL_RBF", (int)lamps->method.integral,
-             (int)params->model);
+             "fog pass: lamp integral %d with model %d, %d march steps: expected FOG_LAMP_ANGLE, "
+             "FOG_LAMP_FOGSHOP with FOG_MODEL_RBF, or FOG_LAMP_MARCH with >= 1 steps",
+             (int)lamps->method.integral, (int)params->model, lamps->method.march_steps);
     return 1;
   }
   for (int i = 0; i < lamps->count; i++) {
@@ -1067,6 +1069,7 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       .shafts = params->shafts != NULL,
       .skip = fog_pass_skips(pass, params, first, reads),
       .lamps = fog_pass_has_lamps(params),
+      .lamp_integral = fog_pass_has_lamps(params) ? (int)params->lamps.method.integral : 0,
   };
   GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;

@@ -1,7 +1,7 @@
 // Lamps in the fog (render/fog_lamp.h, docs/light.md): point and spot lights, single
 // scattering, for every model; fog_pass_fs.glsl includes it after fog_light.glsl and adds
 // fog_lamps_light to the in-scatter. Specialisation constants FOG_LAMPS 0|1 and
-// FOG_LAMP_FOGSHOP 0|1 (fog_lamp_integral; FOG_MODEL_RBF only). The CPU twin
+// FOG_LAMP_INTEGRAL 0|1|2 (fog_lamp_integral: ours, Fogshop's for RBFs, marching). The CPU twin
 // is render/fog_lamp_cpu.c, sample for sample.
 #if FOG_LAMPS
 uniform int fog_lamp_count;
@@ -140,7 +140,7 @@ float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, fl
   return lamp_sum;
 }
 
-#if FOG_LAMP_FOGSHOP
+#if FOG_LAMP_INTEGRAL == 1
 // Fogshop's approximation (Zhou et al. 2007, eq. 11; render/fog_lamp.h): each Gaussian's
 // optical depth along the ray times tau p S T / falloff taken once, at the projection of its
 // centre on the ray (clamped to the span), with the closed-form depths.
@@ -167,11 +167,44 @@ float fog_lamp_fogshop_gaussians(int i, fog_ray r, float t0, float t1) {
 }
 #endif
 
+#if FOG_LAMP_INTEGRAL == 2
+uniform int fog_lamp_march_steps;
+// Uniform ray marching (FOG_LAMP_MARCH, the bench's baseline): midpoint samples of t, tau
+// summed along them, T as the angle integral's.
+float fog_lamp_march(int i, fog_ray r, float t0, float t1) {
+  vec3 s = fog_lamp_position[i];
+  int n = fog_lamp_march_steps;
+  float dt = (t1 - t0) / float(n), before = 0.0, sum = 0.0;
+  for (int j = 0; j < n; j++) {
+    float t = t0 + (float(j) + 0.5) * dt;
+    vec3 x = t * r.dir;
+    float k = fog_lamp_extinction(x);
+    float tau = exp(-(before + 0.5 * k * dt));
+    before += k * dt;
+    if (!(k > 0.0)) continue;
+    vec3 to_lamp = s - x;
+    float dist = length(to_lamp);
+    float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
+#if FOG_LAMP_EXACT_DEPTH
+    float shadow = dist > 0.0 ? fog_lamp_segment_depth(x, to_lamp / dist, dist) : 0.0;
+#else
+    float shadow = 0.0, ds = dist / float(fog_lamp_shadow_steps);
+    for (int q = 0; q < fog_lamp_shadow_steps; q++)
+      shadow += fog_lamp_extinction(x + ((float(q) + 0.5) / float(fog_lamp_shadow_steps)) *
+                                            to_lamp) * ds;
+#endif
+    sum += tau * k * fog_phase_hg(fog_phase_g, cos_theta) * fog_lamp_spot(i, x) *
+           exp(-shadow) / (dist * dist + fog_lamp_cone[i].z);
+  }
+  return sum * dt;
+}
+#endif
+
 // The lamps' in-scattered radiance of the pixel's ray: per lamp a I times its integral.
 vec3 fog_lamps_light(fog_ray r) {
   float t0, t1;
   if (fog_lamp_count == 0 || !fog_lamp_span(r, t0, t1)) return vec3(0.0);
-#if !FOG_LAMP_EXACT_DEPTH
+#if !FOG_LAMP_EXACT_DEPTH && FOG_LAMP_INTEGRAL == 0
   int steps = fog_lamp_depth_steps;
   float dt = (t1 - t0) / float(steps);
   fog_lamp_table[0] = 0.0;
@@ -185,7 +218,9 @@ vec3 fog_lamps_light(fog_ray r) {
     float ts = dot(s, r.dir);
     vec3 hv = s - ts * r.dir;
     float hp = sqrt(dot(hv, hv) + fog_lamp_cone[i].z);
-#if FOG_LAMP_FOGSHOP
+#if FOG_LAMP_INTEGRAL == 2
+    float unit = fog_lamp_march(i, r, t0, t1);
+#elif FOG_LAMP_INTEGRAL == 1
     float unit = (fog_model_extinction > 0.0
                       ? fog_lamp_angle_integral(i, r, t0, t1, ts, hp, true) / hp : 0.0) +
                  fog_lamp_fogshop_gaussians(i, r, t0, t1);

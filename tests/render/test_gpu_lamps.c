@@ -101,6 +101,11 @@ int main(void) {
                                                  (double[3]){140, 10, -33})};
     double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "fogmap");
     CHECK(peak > 0.05, "fogmap: peak in-scatter %g: the lamps do not reach the view", peak);
+    /* uniform marching (the bench's baseline) */
+    params.lamps.method.integral = FOG_LAMP_MARCH;
+    params.lamps.method.march_steps = 48;
+    compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "fogmap, marched");
+    params.lamps.method.integral = FOG_LAMP_ANGLE;
     /* albedo 0: the lamps scatter nothing */
     params.sun.albedo = 0.0;
     double none = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "fogmap, albedo 0");
@@ -155,6 +160,9 @@ int main(void) {
     if (model == FOG_MODEL_RBF) { /* Fogshop's approximation, the bench's comparison */
       params.lamps.method.integral = FOG_LAMP_FOGSHOP;
       compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "rbf, Fogshop's approximation");
+      params.lamps.method.integral = FOG_LAMP_MARCH;
+      params.lamps.method.march_steps = 48;
+      compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "rbf, marched");
     }
   }
   free(grid_values);
