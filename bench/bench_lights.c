@@ -1,0 +1,355 @@
+/* fogpipe bench lights: lamps in the fog (docs/light.md, Lamps), speed against accuracy,
+ * side by side in one run, on two scenes:
+ *   - valley: configs/night_lamps.ini, 8 lamps (a spot among them) in the default scene's
+ *     fogmap (static: the simulation's initial fog, through `render`'s fog);
+ *   - tube: configs/rbf_lamp_tube.ini, Fogshop's shaft scene (59 Gaussians, a lamp inside).
+ * Rows per scene: unlit (no lamps: the baseline); ours at 4+4, 8+8 (the default), 12+12,
+ * 16+16 and 32+32 pieces; uniform marching at 16..1024 samples (the tube to 4096); on the
+ * tube Fogshop's approximation. Time: the fog pass, GL, glFinish before and after, median of --frames
+ * rounds after a warm-up. Error: the lamps' in-scatter (the row's in-scatter minus the unlit
+ * row's) against the CPU twin converged (64+64 pieces, 64 depth and 64 shadow steps; for
+ * the tube's closed-form depths that is the independent reference to 1e-15,
+ * test_lamp_accuracy) on every 16th pixel of every 16th row, max and mean relative to the
+ * largest. The halo (test_lamp_accuracy's scene, g 0.7): the CPU twins of ours and
+ * Fogshop's against the converged twin.
+ * Writes lights.csv and lights_chart.{csv,png}. Last line:
+ * `lights: ms_per_light=A march_speedup_at_matched_error=B fogshop_halo_error_ratio=C`:
+ * A = (valley, ours default - unlit) / 8 lamps, scaled to 640x360 by pixels; B = on the tube, the cheapest marching
+ * within 1e-3 of the peak / our cheapest within it; C = Fogshop's max halo error / ours. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/config.h"
+#include "app/render_fog.h"
+#include "app/render_frame.h"
+#include "bench/bench.h"
+#include "render/render.h"
+
+#define ERROR_STRIDE 16
+#define MATCHED_ERROR 1e-3
+enum { SCENE_COUNT = 2, MAX_ROWS = 32 };
+static const char *const scene_configs[SCENE_COUNT] = {"night_lamps.ini", "rbf_lamp_tube.ini"};
+static const char *const scene_names[SCENE_COUNT] = {"valley", "tube"};
+static const int piece_counts[] = {4, 8, 12, 16, 32};
+static const int march_samples[] = {16, 64, 256, 1024, 4096};
+static const fog_lamp_method converged = {.integral = FOG_LAMP_ANGLE, .angle_pieces = 64,
+                                          .span_pieces = 64, .depth_steps = 64,
+                                          .shadow_steps = 64};
+
+typedef struct lights_row {
+  int scene;
+  fog_lamp_method method;
+  bool unlit;
+  char name[32], series[48];
+  double *times;
+  double ms, max_error, mean_error;
+} lights_row;
+
+typedef struct lights_scene {
+  scene_config *cfg;
+  render_scene drawn;
+  render_fog fog;
+  fog_model model;
+  fog_lamps lamps;
+  float *unlit;      /* the unlit row's in-scatter, 3 per pixel */
+  double *reference; /* the lamps' converged in-scatter, 3 per error pixel */
+  double peak;
+} lights_scene;
+
+static void print_help(void) {
+  printf("usage: fogpipe bench lights [--size WxH] [--frames N] [--out DIR]\n"
+         "  --size WxH   image size (default 320x180; A is scaled to 640x360 by pixels)\n"
+         "  --frames N   timed rounds per row, median after one warm-up (default 3)\n"
+         "  --out DIR    lights.csv, lights_chart.csv, lights_chart.png (default build/bench/lights)\n"
+         "Last line: lights: ms_per_light=A march_speedup_at_matched_error=B\n"
+         "fogshop_halo_error_ratio=C (see the header of bench/bench_lights.c).\n");
+}
+
+static int scene_create(lights_scene *s, int index, int W, int H, render_error *err) {
+  char path[1024];
+  snprintf(path, sizeof path, "%s/configs/%s", FOGPIPE_SOURCE_DIR, scene_configs[index]);
+  scene_config_error cerr;
+  if (!(s->cfg = malloc(sizeof *s->cfg))) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return 1;
+  }
+  if (scene_config_load(path, s->cfg, &cerr)) {
+    snprintf(err->message, sizeof err->message, "%s", cerr.message);
+    return 1;
+  }
+  if (render_scene_create(&s->drawn, s->cfg, W, H, err) || render_fog_create(&s->fog, s->cfg, err))
+    return 1;
+  s->model = render_fog_model(&s->fog);
+  s->lamps = s->fog.params.lamps;
+  return 0;
+}
+
+static void scene_destroy(lights_scene *s) {
+  if (s->cfg) {
+    render_fog_destroy(&s->fog);
+    render_scene_destroy(&s->drawn);
+  }
+  free(s->unlit);
+  free(s->reference);
+  free(s->cfg);
+}
+
+/* The lamps' converged in-scatter at the error pixels (the CPU twin). */
+static void scene_reference(lights_scene *s, int W, int H) {
+  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  fog_lamps lamps = s->lamps;
+  lamps.method = converged;
+  s->peak = 0;
+  for (int j = 0; j < rows; j++)
+    for (int i = 0; i < cols; i++) {
+      int px = i * ERROR_STRIDE, py = j * ERROR_STRIDE;
+      size_t k = (size_t)py * W + px;
+      double o[3], d[3], v[3];
+      camera_ray(&s->drawn.cam, px, py, W, H, o, d);
+      double ts = s->drawn.distance[k] >= 1e29f ? HUGE_VAL : (double)s->drawn.distance[k];
+      fog_lamps_inscatter(&s->model, &lamps, s->fog.params.sun.albedo, s->fog.params.sun.phase_g,
+                          o, d, ts, v);
+      for (int c = 0; c < 3; c++) {
+        s->reference[((size_t)j * cols + i) * 3 + c] = v[c];
+        s->peak = fmax(s->peak, v[c]);
+      }
+    }
+}
+
+static void row_errors(lights_row *r, const lights_scene *s, const float *inscatter, int W, int H) {
+  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  double worst = 0, sum = 0;
+  for (int j = 0; j < rows; j++)
+    for (int i = 0; i < cols; i++) {
+      size_t k = (size_t)(j * ERROR_STRIDE) * W + i * ERROR_STRIDE;
+      for (int c = 0; c < 3; c++) {
+        double lamps = (double)inscatter[3 * k + c] - s->unlit[3 * k + c];
+        double e = fabs(lamps - s->reference[((size_t)j * cols + i) * 3 + c]);
+        if (!(e == e)) e = HUGE_VAL;
+        worst = fmax(worst, e);
+        sum += e;
+      }
+    }
+  r->max_error = worst / s->peak;
+  r->mean_error = sum / (3.0 * cols * rows) / s->peak;
+}
+
+static int draw_row(lights_scene *s, const lights_row *r, const gl_target *out, render_error *err) {
+  s->fog.params.lamps = s->lamps;
+  s->fog.params.lamps.count = r->unlit ? 0 : s->lamps.count;
+  s->fog.params.lamps.method = r->method;
+  return render_fog_draw(&s->fog, &s->drawn.cam, &s->drawn.target, out, err);
+}
+
+static lights_row *add_row(lights_row *rows, int *count, int scene, const char *kind, int n,
+                           int frames) {
+  lights_row *r = &rows[(*count)++];
+  *r = (lights_row){.scene = scene,
+                    .method = {.integral = FOG_LAMP_ANGLE, .angle_pieces = n, .span_pieces = n,
+                               .depth_steps = FOG_LAMP_DEPTH_STEPS,
+                               .shadow_steps = FOG_LAMP_SHADOW_STEPS, .march_steps = n}};
+  r->unlit = !strcmp(kind, "unlit");
+  if (!strcmp(kind, "march")) r->method.integral = FOG_LAMP_MARCH;
+  if (!strcmp(kind, "fogshop")) {
+    r->method.integral = FOG_LAMP_FOGSHOP;
+    r->method.angle_pieces = FOG_LAMP_ANGLE_PIECES, r->method.span_pieces = FOG_LAMP_SPAN_PIECES;
+  }
+  if (!strcmp(kind, "ours")) snprintf(r->name, sizeof r->name, "ours %d+%d", n, n);
+  else if (!strcmp(kind, "march")) snprintf(r->name, sizeof r->name, "march %d", n);
+  else snprintf(r->name, sizeof r->name, "%s", kind);
+  snprintf(r->series, sizeof r->series, "%s %s", scene_names[scene],
+           !strcmp(kind, "ours") ? "ours 4+4..32+32" : !strcmp(kind, "march") ? "marching 16..1024" : kind);
+  r->times = malloc((size_t)frames * sizeof(double));
+  return r->times ? r : NULL;
+}
+
+/* C: the halo of test_lamp_accuracy (a Gaussian of radius 2, the lamp 0.5 radii off its
+ * centre, g 0.7), 25 rays sweeping past, the CPU twins against the converged twin. */
+static double halo_ratio(double *ours_error, double *fogshop_error) {
+  fog_rbf g = {.centre = {0, 0, 0}, .radius = 2.0, .density = 0.6};
+  fog_model m = {.kind = FOG_MODEL_RBF, .rbfs = &g, .rbf_count = 1};
+  fog_lamp lamp = {.kind = FOG_LAMP_POINT, .position = {1, 0, 0}, .intensity = {1, 1, 1},
+                   .radius = 0.05};
+  fog_lamp_method ours = {.integral = FOG_LAMP_ANGLE, .angle_pieces = FOG_LAMP_ANGLE_PIECES,
+                          .span_pieces = FOG_LAMP_SPAN_PIECES,
+                          .depth_steps = FOG_LAMP_DEPTH_STEPS,
+                          .shadow_steps = FOG_LAMP_SHADOW_STEPS},
+                  fogshop = ours;
+  fogshop.integral = FOG_LAMP_FOGSHOP;
+  const double o[3] = {0.3, 0.2, 20.0};
+  double peak = 0, eo = 0, ef = 0;
+  for (int k = 0; k < 25; k++) {
+    double d[3] = {-4.0 + 8.0 * k / 24 - o[0], 0.05 - o[1], -o[2]};
+    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int a = 0; a < 3; a++) d[a] /= len;
+    double want = fog_lamp_inscatter_unit(&m, &lamp, &converged, 0.7, o, d, 40.0);
+    peak = fmax(peak, want);
+    eo = fmax(eo, fabs(fog_lamp_inscatter_unit(&m, &lamp, &ours, 0.7, o, d, 40.0) - want));
+    ef = fmax(ef, fabs(fog_lamp_inscatter_unit(&m, &lamp, &fogshop, 0.7, o, d, 40.0) - want));
+  }
+  *ours_error = eo / peak, *fogshop_error = ef / peak;
+  return ef / eo;
+}
+
+static int write_table(const char *path, const lights_row *rows, int count, char *error, int size) {
+  FILE *f = chart_csv_open(path, error, size);
+  if (!f) return 1;
+  fprintf(f, "scene,method,ms_per_frame,max_error,mean_error\n");
+  for (int i = 0; i < count; i++)
+    fprintf(f, "%s,%s,%.6g,%.6g,%.6g\n", scene_names[rows[i].scene], rows[i].name, rows[i].ms,
+            rows[i].max_error, rows[i].mean_error);
+  return chart_csv_close(f, path, error, size);
+}
+
+int bench_lights(int argc, char **argv) {
+  bench_image_options options = {.width = 320, .height = 180, .frames = 3,
+                                 .out_dir = "build/bench/lights"};
+  for (int i = 1; i < argc; i++) {
+    int common = bench_image_option("lights", argc, argv, &i, &options);
+    if (common < 0) return 2;
+    if (common) continue;
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      print_help();
+      return 0;
+    }
+    fprintf(stderr, "fogpipe bench lights: unknown option '%s' (or it lacks its value)\n", argv[i]);
+    print_help();
+    return 2;
+  }
+  const int W = options.width, H = options.height, frames = options.frames;
+  char error[1024] = "";
+  if (bench_make_folder(options.out_dir, error, sizeof error)) {
+    fprintf(stderr, "fogpipe bench lights: %s\n", error);
+    return 1;
+  }
+  int status = 1, row_count = 0;
+  size_t pixels = (size_t)W * H;
+  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows_e = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  render_error rerr = {{0}};
+  lights_scene scenes[SCENE_COUNT] = {{0}};
+  lights_row rows[MAX_ROWS] = {{0}};
+  gl_target out = {0};
+  float *inscatter = malloc(3 * pixels * sizeof(float));
+  gl_context *ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
+  if (!inscatter) goto out_of_memory;
+  if (!ctx || gl_target_create(&out, &(gl_target_desc){.width = W, .height = H,
+                                                       .color_formats = {GL_RGBA32F, GL_R32F,
+                                                                         GL_RGBA32F}},
+                               &rerr))
+    goto gl_failed;
+  for (int s = 0; s < SCENE_COUNT; s++) {
+    if (scene_create(&scenes[s], s, W, H, &rerr)) goto gl_failed;
+    scenes[s].unlit = malloc(3 * pixels * sizeof(float));
+    scenes[s].reference = malloc((size_t)cols * rows_e * 3 * sizeof(double));
+    if (!scenes[s].unlit || !scenes[s].reference || !add_row(rows, &row_count, s, "unlit", 8, frames))
+      goto out_of_memory;
+    for (size_t q = 0; q < sizeof piece_counts / sizeof piece_counts[0]; q++)
+      if (!add_row(rows, &row_count, s, "ours", piece_counts[q], frames)) goto out_of_memory;
+    for (size_t q = 0; q < sizeof march_samples / sizeof march_samples[0] - (s == 0); q++)
+      if (!add_row(rows, &row_count, s, "march", march_samples[q], frames)) goto out_of_memory;
+    if (s == 1 && !add_row(rows, &row_count, s, "fogshop", 8, frames)) goto out_of_memory;
+    scene_reference(&scenes[s], W, H);
+  }
+  /* Warm-up and errors (the unlit row first: the others subtract its in-scatter), then the
+   * timed rounds, rows interleaved. */
+  for (int i = 0; i < row_count; i++) {
+    lights_row *r = &rows[i];
+    lights_scene *s = &scenes[r->scene];
+    if (draw_row(s, r, &out, &rerr) || gl_target_read(&out, 2, 3, r->unlit ? s->unlit : inscatter, &rerr))
+      goto gl_failed;
+    if (!r->unlit) row_errors(r, s, inscatter, W, H);
+  }
+  for (int f = 0; f < frames; f++)
+    for (int i = 0; i < row_count; i++) {
+      lights_scene *s = &scenes[rows[i].scene];
+      fog_pass_finish();
+      double t0 = app_clock_seconds();
+      if (draw_row(s, &rows[i], &out, &rerr)) goto gl_failed;
+      fog_pass_finish();
+      rows[i].times[f] = app_clock_seconds() - t0;
+    }
+  for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
+
+  bench_print_build();
+  printf("GL: %s, %s, %s; %dx%d, fog pass median of %d frames after 1 warm-up\n",
+         gl_context_platform(ctx), gl_context_version(ctx), gl_context_renderer(ctx), W, H,
+         frames);
+  printf("error: the lamps' in-scatter vs the CPU twin converged (64+64 pieces, 64 depth and\n"
+         "shadow steps) on every %dth pixel of every %dth row, relative to its largest value\n\n",
+         ERROR_STRIDE, ERROR_STRIDE);
+  printf("%-8s %-12s %10s %10s %10s\n", "scene", "method", "ms/frame", "max err", "mean err");
+  chart_point points[MAX_ROWS];
+  int point_count = 0;
+  for (int i = 0; i < row_count; i++) {
+    const lights_row *r = &rows[i];
+    if (r->unlit) {
+      printf("%-8s %-12s %10.2f %10s %10s\n", scene_names[r->scene], r->name, r->ms, "-", "-");
+      continue;
+    }
+    printf("%-8s %-12s %10.2f %10.2e %10.2e\n", scene_names[r->scene], r->name, r->ms,
+           r->max_error, r->mean_error);
+    points[point_count++] = (chart_point){.series = r->series, .x = r->ms,
+                                          .y = r->max_error > 1e-7 ? r->max_error : 1e-7};
+  }
+  char table[4200], chart_csv[4200], chart_png[4200], title[128];
+  snprintf(table, sizeof table, "%s/lights.csv", options.out_dir);
+  snprintf(chart_csv, sizeof chart_csv, "%s/lights_chart.csv", options.out_dir);
+  snprintf(chart_png, sizeof chart_png, "%s/lights_chart.png", options.out_dir);
+  snprintf(title, sizeof title, "lamps in the fog %dx%d: max in-scatter error vs fog pass ms", W, H);
+  chart_desc chart = {.title = title, .x_label = "fog pass per frame (ms)",
+                      .y_label = "max |lamp in-scatter - reference| / max", .log_x = true,
+                      .log_y = true};
+  if (write_table(table, rows, row_count, error, sizeof error) ||
+      chart_write(&chart, points, point_count, chart_csv, chart_png, error, sizeof error)) {
+    fprintf(stderr, "fogpipe bench lights: %s\n", error);
+    goto done;
+  }
+  printf("\nCSV: %s, %s; PNG: %s\n", table, chart_csv, chart_png);
+  /* A: the valley's default (row 2: ours 8+8) over its unlit row (0), per lamp, at 640x360:
+   * the lamps' work is per pixel, so scaled from W x H by the pixel count. */
+  const double per_light = (rows[2].ms - rows[0].ms) / scenes[0].lamps.count *
+                           (640.0 * 360.0) / ((double)W * H);
+  printf("A: (%.2f - %.2f) ms / %d lamps at %dx%d, x %.2f to 640x360\n", rows[2].ms, rows[0].ms,
+         scenes[0].lamps.count, W, H, 640.0 * 360.0 / ((double)W * H));
+  /* B: on each scene the cheapest marching within MATCHED_ERROR over our cheapest. */
+  double b[SCENE_COUNT];
+  for (int s = 0; s < SCENE_COUNT; s++) {
+    double march_ms = NAN, ours_ms = NAN;
+    for (int i = 0; i < row_count; i++) {
+      const lights_row *r = &rows[i];
+      if (r->scene != s || r->unlit || r->method.integral == FOG_LAMP_FOGSHOP ||
+          !(r->max_error <= MATCHED_ERROR))
+        continue;
+      double *best = r->method.integral == FOG_LAMP_MARCH ? &march_ms : &ours_ms;
+      if (!(*best <= r->ms)) *best = r->ms;
+    }
+    b[s] = march_ms / ours_ms;
+    printf("%s: cheapest within %g: marching %.2f ms, ours %.2f ms (%s)\n", scene_names[s],
+           MATCHED_ERROR, march_ms, ours_ms,
+           b[s] == b[s] ? "ratio below" : "nan: one of them never gets there");
+  }
+  double halo_ours, halo_fogshop;
+  double c = halo_ratio(&halo_ours, &halo_fogshop);
+  printf("halo (g 0.7, CPU twins): ours max error %.2e, Fogshop's %.2e of the peak\n", halo_ours,
+         halo_fogshop);
+  printf("lights: ms_per_light=%.2f march_speedup_at_matched_error=%.2f "
+         "fogshop_halo_error_ratio=%.0f\n", per_light, b[1], c);
+  status = 0;
+  goto done;
+
+out_of_memory:
+  fprintf(stderr, "fogpipe bench lights: out of memory\n");
+  goto done;
+gl_failed:
+  fprintf(stderr, "fogpipe bench lights: %s\n", rerr.message);
+done:
+  for (int i = 0; i < row_count; i++) free(rows[i].times);
+  for (int s = 0; s < SCENE_COUNT; s++) scene_destroy(&scenes[s]);
+  if (out.framebuffer) gl_target_destroy(&out);
+  if (ctx) gl_context_destroy(ctx);
+  free(inscatter);
+  return status;
+}
