@@ -85,6 +85,16 @@ typedef struct fog_lamps {
   fog_lamp_method method;
 } fog_lamps;
 
+/* The lamps as the shaders take them (fog_lamps.glsl, scene_surface_fs.glsl): positions
+ * relative to the camera (subtracted in double), intensity x scale, the spot's axis with
+ * w 1 (0: a point lamp), and (cos_outer, 1/(cos_inner - cos_outer), radius^2). */
+typedef struct fog_lamp_uniforms {
+  float position[FOG_MAX_LAMPS][3], intensity[FOG_MAX_LAMPS][3], axis[FOG_MAX_LAMPS][4],
+      cone[FOG_MAX_LAMPS][3];
+} fog_lamp_uniforms;
+void fog_lamps_pack(const fog_lamps *lamps, const double camera[3], double intensity_scale,
+                    fog_lamp_uniforms *out);
+
 /* S: the spot's cone at world point x (1 for a point lamp). */
 double fog_lamp_spot(const fog_lamp *lamp, const double x[3]);
 

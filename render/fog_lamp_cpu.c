@@ -19,6 +19,23 @@ static double dot3(const double a[3], const double b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+void fog_lamps_pack(const fog_lamps *lamps, const double camera[3], double intensity_scale,
+                    fog_lamp_uniforms *out) {
+  for (int i = 0; i < lamps->count && i < FOG_MAX_LAMPS; i++) {
+    const fog_lamp *l = &lamps->lamp[i];
+    const bool spot = l->kind == FOG_LAMP_SPOT;
+    for (int a = 0; a < 3; a++) {
+      out->position[i][a] = (float)(l->position[a] - camera[a]);
+      out->intensity[i][a] = (float)(intensity_scale * l->intensity[a]);
+      out->axis[i][a] = spot ? (float)l->axis[a] : 0.0f;
+    }
+    out->axis[i][3] = spot ? 1.0f : 0.0f;
+    out->cone[i][0] = spot ? (float)l->cos_outer : 0.0f;
+    out->cone[i][1] = spot ? (float)(1.0 / (l->cos_inner - l->cos_outer)) : 0.0f;
+    out->cone[i][2] = (float)(l->radius * l->radius);
+  }
+}
+
 double fog_lamp_spot(const fog_lamp *lamp, const double x[3]) {
   if (lamp->kind != FOG_LAMP_SPOT) return 1.0;
   double v[3] = {x[0] - lamp->position[0], x[1] - lamp->position[1], x[2] - lamp->position[2]};

@@ -603,26 +603,13 @@ static bool fog_pass_has_lamps(const fog_pass_params *params) {
 /* The lamps (fog_lamps.glsl): camera-relative positions subtracted in double, a I. */
 static void fog_pass_lamp_uniforms(GLuint prog, const camera *cam, const fog_pass_params *params) {
   const fog_lamps *lamps = &params->lamps;
-  float position[FOG_MAX_LAMPS][3], scatter[FOG_MAX_LAMPS][3], axis[FOG_MAX_LAMPS][4],
-      cone[FOG_MAX_LAMPS][3];
-  for (int i = 0; i < lamps->count; i++) {
-    const fog_lamp *l = &lamps->lamp[i];
-    bool spot = l->kind == FOG_LAMP_SPOT;
-    for (int a = 0; a < 3; a++) {
-      position[i][a] = (float)(l->position[a] - cam->position[a]);
-      scatter[i][a] = (float)(params->sun.albedo * l->intensity[a]);
-      axis[i][a] = spot ? (float)l->axis[a] : 0.0f;
-    }
-    axis[i][3] = spot ? 1.0f : 0.0f;
-    cone[i][0] = spot ? (float)l->cos_outer : 0.0f;
-    cone[i][1] = spot ? (float)(1.0 / (l->cos_inner - l->cos_outer)) : 0.0f;
-    cone[i][2] = (float)(l->radius * l->radius);
-  }
+  fog_lamp_uniforms u;
+  fog_lamps_pack(lamps, cam->position, params->sun.albedo, &u);
   glUniform1i(fog_loc(prog, "fog_lamp_count"), lamps->count);
-  glUniform3fv(fog_loc(prog, "fog_lamp_position"), lamps->count, &position[0][0]);
-  glUniform3fv(fog_loc(prog, "fog_lamp_scatter"), lamps->count, &scatter[0][0]);
-  glUniform4fv(fog_loc(prog, "fog_lamp_axis"), lamps->count, &axis[0][0]);
-  glUniform3fv(fog_loc(prog, "fog_lamp_cone"), lamps->count, &cone[0][0]);
+  glUniform3fv(fog_loc(prog, "fog_lamp_position"), lamps->count, &u.position[0][0]);
+  glUniform3fv(fog_loc(prog, "fog_lamp_scatter"), lamps->count, &u.intensity[0][0]);
+  glUniform4fv(fog_loc(prog, "fog_lamp_axis"), lamps->count, &u.axis[0][0]);
+  glUniform3fv(fog_loc(prog, "fog_lamp_cone"), lamps->count, &u.cone[0][0]);
   glUniform1i(fog_loc(prog, "fog_lamp_angle_pieces"), lamps->method.angle_pieces);
   glUniform1i(fog_loc(prog, "fog_lamp_span_pieces"), lamps->method.span_pieces);
   glUniform1i(fog_loc(prog, "fog_lamp_depth_steps"), lamps->method.depth_steps);

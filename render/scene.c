@@ -607,27 +607,14 @@ void scene_pass_set_lamps(scene_pass *pass, const fog_lamps *lamps) {
 /* The lamps on the surfaces (scene_surface_fs.glsl): camera-relative, in double first. */
 static void scene_pass_lamp_uniforms(const scene_pass *pass, const camera *cam) {
   const fog_lamps *lamps = &pass->lamps;
-  float position[FOG_MAX_LAMPS][3], intensity[FOG_MAX_LAMPS][3], axis[FOG_MAX_LAMPS][4],
-      cone[FOG_MAX_LAMPS][3];
-  for (int i = 0; i < lamps->count; i++) {
-    const fog_lamp *l = &lamps->lamp[i];
-    bool spot = l->kind == FOG_LAMP_SPOT;
-    for (int a = 0; a < 3; a++) {
-      position[i][a] = (float)(l->position[a] - cam->position[a]);
-      intensity[i][a] = (float)l->intensity[a];
-      axis[i][a] = spot ? (float)l->axis[a] : 0.0f;
-    }
-    axis[i][3] = spot ? 1.0f : 0.0f;
-    cone[i][0] = spot ? (float)l->cos_outer : 0.0f;
-    cone[i][1] = spot ? (float)(1.0 / (l->cos_inner - l->cos_outer)) : 0.0f;
-    cone[i][2] = (float)(l->radius * l->radius);
-  }
+  fog_lamp_uniforms u;
+  fog_lamps_pack(lamps, cam->position, 1.0, &u);
   glUniform1i(pass->u_lamp_count, lamps->count);
   if (lamps->count == 0) return;
-  glUniform3fv(pass->u_lamp_position, lamps->count, &position[0][0]);
-  glUniform3fv(pass->u_lamp_intensity, lamps->count, &intensity[0][0]);
-  glUniform4fv(pass->u_lamp_axis, lamps->count, &axis[0][0]);
-  glUniform3fv(pass->u_lamp_cone, lamps->count, &cone[0][0]);
+  glUniform3fv(pass->u_lamp_position, lamps->count, &u.position[0][0]);
+  glUniform3fv(pass->u_lamp_intensity, lamps->count, &u.intensity[0][0]);
+  glUniform4fv(pass->u_lamp_axis, lamps->count, &u.axis[0][0]);
+  glUniform3fv(pass->u_lamp_cone, lamps->count, &u.cone[0][0]);
 }
 
 void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target) {
