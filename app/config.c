@@ -36,6 +36,7 @@ typedef enum value_kind {
   V_LIST,     /* up to SCENE_CONFIG_MAX_PROFILE numbers, count at count_offset */
   V_OBJECT,   /* box = X Z WIDTH HEIGHT DEPTH [R G B], appended */
   V_RBF,      /* rbf = X Y Z RADIUS DENSITY, appended */
+  V_QUADRIC,  /* quadric = SHAPE NUMBERS..., appended */
   V_LAMP,     /* lamp = X Y Z R G B [RADIUS], spot = ... DX DY DZ INNER OUTER [RADIUS] */
   V_LAMP_PATH,    /* lamp_path = INDEX T X Y Z, appended to lamp INDEX's keys */
   V_LAMP_FLICKER, /* lamp_flicker = INDEX AMOUNT RATE [SEED] */
@@ -93,6 +94,7 @@ static const key_spec keys[] = {
     {"fog", "albedo", V_DOUBLE, F(fog.albedo), 0, 1, NULL, 0, 0},
     {"fog", "phase_g", V_DOUBLE, F(fog.phase_g), -FOG_PHASE_G_MAX, FOG_PHASE_G_MAX, NULL, 0, 0},
     {"fog", "rbf", V_RBF, 0, 0, WORLD, NULL, 0, 0},
+    {"fog", "quadric", V_QUADRIC, 0, 0, WORLD, NULL, 0, 0},
     {"fog", "rbf_base", V_DOUBLE, F(fog.rbf_base), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"fog", "volume_step", V_DOUBLE, F(fog.volume_step), 0, WORLD, NULL, 0, 0},
     {"fog", "sequence", V_PATH, F(fog.sequence), 0, 0, NULL, F(fog.sequence_line), sizeof(((scene_config *)0)->fog.sequence)},
@@ -382,6 +384,71 @@ static int store_rbf(parse_state *s, const char *section, const char *key, const
   return 1;
 }
 
+/* V_QUADRIC: quadric = SHAPE NUMBERS [EDGE], appended; the shapes' numbers (docs/config.md):
+ *   sphere X Y Z R DENSITY, ellipsoid X Y Z RX RY RZ DENSITY, cylinder and cone X Y Z R
+ *   HEIGHT DENSITY (upright, standing on (X, Y, Z); the cone's apex on top), general A B C D E
+ *   F G H I J XMIN YMIN ZMIN XMAX YMAX ZMAX DENSITY; then EDGE, the soft edge (default 0: a
+ *   hard edge; for the shapes a share of Q's range, 0..1). */
+#define QUADRIC_MAX_COEFFICIENT 1e12
+static const struct {
+  const char *name, *numbers;
+  int count; /* without EDGE */
+} shapes[] = {{"sphere", "X Y Z R DENSITY", 5},
+              {"ellipsoid", "X Y Z RX RY RZ DENSITY", 7},
+              {"cylinder", "X Y Z R HEIGHT DENSITY", 6},
+              {"cone", "X Y Z R HEIGHT DENSITY", 6},
+              {"general", "A B C D E F G H I J XMIN YMIN ZMIN XMAX YMAX ZMAX DENSITY", 17}};
+static int store_quadric(parse_state *s, const char *section, const char *key, const char *value) {
+  scene_config *cfg = s->cfg;
+  size_t word = strcspn(value, " \t");
+  int kind = -1;
+  for (int i = 0; i < (int)(sizeof shapes / sizeof shapes[0]); i++)
+    if (strlen(shapes[i].name) == word && !strncmp(value, shapes[i].name, word)) kind = i;
+  if (kind < 0)
+    return fail(s, section, key, "expected a shape (sphere, ellipsoid, cylinder, cone or "
+                "general) and its numbers, got '%s'", value);
+  double v[18];
+  const int want = shapes[kind].count, n = parse_numbers(value + word, v, want + 1);
+  if (n != want && n != want + 1)
+    return fail(s, section, key, "expected %s %s [EDGE] (%d or %d numbers), got '%s'",
+                shapes[kind].name, shapes[kind].numbers, want, want + 1, value);
+  const double density = v[want - 1], edge = n > want ? v[want] : 0.0;
+  const bool general = kind == 4;
+  if (!(density >= 0 && density <= MAX_EXTINCTION && edge >= 0 &&
+        edge <= (general ? QUADRIC_MAX_COEFFICIENT : 1.0)))
+    return fail(s, section, key, "expected DENSITY from 0 to %g and EDGE from 0 to %g, got '%s'",
+                MAX_EXTINCTION, general ? QUADRIC_MAX_COEFFICIENT : 1.0, value);
+  for (int i = 0; i < want - 1; i++) {
+    /* general: coefficients, then a box; the shapes: a position, then lengths */
+    bool coefficient = general && i < 10, position = general ? i >= 10 : i < 3;
+    double lo = coefficient ? -QUADRIC_MAX_COEFFICIENT : position ? -WORLD : MIN_LENGTH;
+    double hi = coefficient ? QUADRIC_MAX_COEFFICIENT : WORLD;
+    if (!(v[i] >= lo && v[i] <= hi))
+      return fail(s, section, key, "number %d (%g) of %s %s: expected %g to %g", i + 1, v[i],
+                  shapes[kind].name, shapes[kind].numbers, lo, hi);
+  }
+  if (general && !(v[10] < v[13] && v[11] < v[14] && v[12] < v[15]))
+    return fail(s, section, key, "expected XMIN < XMAX, YMIN < YMAX and ZMIN < ZMAX, got '%s'",
+                value);
+  if (cfg->fog.quadric_count == FOG_MAX_QUADRICS)
+    return fail(s, section, key, "at most %d quadric volumes", FOG_MAX_QUADRICS);
+  struct scene_quadric_line *line = &cfg->fog.quadric_lines[cfg->fog.quadric_count];
+  *line = (struct scene_quadric_line){.shape = kind, .count = n};
+  for (int i = 0; i < n; i++) line->numbers[i] = v[i];
+  fog_quadric *q = &cfg->fog.quadrics[cfg->fog.quadric_count++];
+  switch (kind) {
+    case 0: *q = fog_quadric_sphere(v, v[3], density, edge); break;
+    case 1: *q = fog_quadric_ellipsoid(v, v + 3, density, edge); break;
+    case 2: *q = fog_quadric_cylinder(v, v[3], v[4], density, edge); break;
+    case 3: *q = fog_quadric_cone(v, v[3], v[4], density, edge); break;
+    default:
+      *q = (fog_quadric){.density = density, .edge = edge};
+      for (int i = 0; i < 10; i++) q->q[i] = v[i];
+      for (int a = 0; a < 3; a++) q->lo[a] = v[10 + a], q->hi[a] = v[13 + a];
+  }
+  return 1;
+}
+
 /* V_LAMP: lamp = X Y Z R G B [RADIUS]; spot = X Y Z R G B DX DY DZ INNER OUTER [RADIUS]
  * (half-angles in degrees); appended. */
 #define LAMP_RADIUS 0.5
@@ -553,6 +620,8 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
       return store_box(s, section, key, value);
     case V_RBF:
       return store_rbf(s, section, key, value);
+    case V_QUADRIC:
+      return store_quadric(s, section, key, value);
     case V_LAMP:
       return store_lamp(s, section, key, value);
     case V_LAMP_PATH:
@@ -659,6 +728,11 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
   if (cfg->fog.model == FOG_MODEL_RBF && cfg->fog.rbf_count == 0) {
     s.line = cfg->fog.model_line;
     fail(&s, "fog", "model", "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' line");
+    return 1;
+  }
+  if (cfg->fog.model == FOG_MODEL_QUADRIC && cfg->fog.quadric_count == 0) {
+    s.line = cfg->fog.model_line;
+    fail(&s, "fog", "model", "quadric needs at least one 'quadric = SHAPE ...' line");
     return 1;
   }
   if (cfg->lamp_method.integral == FOG_LAMP_FOGSHOP && cfg->fog.model != FOG_MODEL_RBF) {
@@ -800,6 +874,21 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
         const fog_rbf *g = &cfg->fog.rbfs[i];
         fprintf(f, "%s = %.17g %.17g %.17g %.17g %.17g\n", k->key, g->centre[0], g->centre[1],
                 g->centre[2], g->radius, g->density);
+      }
+      break;
+    case V_QUADRIC: /* as written, each number in its shortest exact form (the line fits) */
+      for (int i = 0; i < cfg->fog.quadric_count; i++) {
+        const struct scene_quadric_line *line = &cfg->fog.quadric_lines[i];
+        fprintf(f, "%s = %s", k->key, shapes[line->shape].name);
+        for (int c = 0; c < line->count; c++) {
+          char number[32];
+          for (int digits = 1; digits <= 17; digits++) {
+            snprintf(number, sizeof number, "%.*g", digits, line->numbers[c]);
+            if (strtod(number, NULL) == line->numbers[c]) break;
+          }
+          fprintf(f, " %s", number);
+        }
+        fputc('\n', f);
       }
       break;
     case V_LAMP: /* the key's kind only: lamp lines, then spot lines */
@@ -1098,6 +1187,17 @@ uint64_t scene_config_fingerprint(const scene_config *cfg) {
           h = fnv(h, cfg->fog.rbfs[r].centre, sizeof cfg->fog.rbfs[r].centre);
           h = fnv(h, &cfg->fog.rbfs[r].radius, sizeof(double));
           h = fnv(h, &cfg->fog.rbfs[r].density, sizeof(double));
+        }
+        break;
+      case V_QUADRIC:
+        h = fnv(h, &cfg->fog.quadric_count, sizeof cfg->fog.quadric_count);
+        for (int r = 0; r < cfg->fog.quadric_count; r++) {
+          const fog_quadric *q = &cfg->fog.quadrics[r];
+          h = fnv(h, q->q, sizeof q->q);
+          h = fnv(h, q->lo, sizeof q->lo);
+          h = fnv(h, q->hi, sizeof q->hi);
+          h = fnv(h, &q->density, sizeof q->density);
+          h = fnv(h, &q->edge, sizeof q->edge);
         }
         break;
     }

@@ -80,6 +80,16 @@ typedef struct scene_fog_config {
   fog_rbf rbfs[FOG_MAX_RBFS];
   int rbf_count;
   double rbf_base;
+  /* model = quadric: the volumes (densities before density_scale), from `quadric = SHAPE
+   * ...` lines (docs/config.md), held as their ten coefficients and box. */
+  fog_quadric quadrics[FOG_MAX_QUADRICS];
+  int quadric_count;
+  /* Each volume's line as written (its shape and numbers): scene_config_write gives it back. */
+  struct scene_quadric_line {
+    int shape; /* index in the shape names: sphere, ellipsoid, cylinder, cone, general */
+    int count;
+    double numbers[18];
+  } quadric_lines[FOG_MAX_QUADRICS];
   /* model = volume: 0 integrates the grid exactly; > 0 marches it at this step (world). */
   double volume_step;
   /* A fogmap per frame (`fogpipe bake`'s output): frame n of a recording shows the file of

@@ -195,7 +195,8 @@ fog_model render_fog_model(render_fog *fog) {
                      .lod_method = p->lod_method, .extinction = p->model_extinction,
                      .y0 = p->model_y0, .scale_height = p->model_scale_height,
                      .rbfs = fog->rbfs, .rbf_count = p->model_rbf_count,
-                     .grid3d = fog->grid3d};
+                     .grid3d = fog->grid3d, .quadrics = fog->quadrics,
+                     .quadric_count = p->model_quadric_count};
 }
 
 /* The fog's shadows for the model (docs/light.md): how T_s is found, and the sun's
@@ -280,6 +281,11 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
     fog->rbfs[i] = f->rbfs[i];
     fog->rbfs[i].density *= f->density_scale;
   }
+  bool quadric = f->model == FOG_MODEL_QUADRIC;
+  for (int i = 0; quadric && i < f->quadric_count; i++) {
+    fog->quadrics[i] = f->quadrics[i];
+    fog->quadrics[i].density *= f->density_scale;
+  }
   fog->params = (fog_pass_params){
       .model = f->model,
       .model_extinction = rbf ? f->rbf_base : f->density_scale,
@@ -287,6 +293,8 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
       .model_scale_height = f->scale_height,
       .model_rbfs = fog->rbfs,
       .model_rbf_count = rbf ? f->rbf_count : 0,
+      .model_quadrics = fog->quadrics,
+      .model_quadric_count = quadric ? f->quadric_count : 0,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
       .sun = scene_config_fog_sun(cfg),
       .lamps = scene_config_fog_lamps(cfg),
@@ -442,6 +450,7 @@ int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
   gl_target_bind(out);
   fog->params.volume = &fog->volume; /* the struct may have been copied */
   fog->params.model_rbfs = fog->rbfs;
+  fog->params.model_quadrics = fog->quadrics;
   fog->volume.profile.coefficients = fog->profile_coefficients;
   fog->params.surface_sun = fog->ground_shadow ? scene->color[2] : 0; /* 0: no attachment 2 */
   fog->params.shafts = fog->shafts;

@@ -20,6 +20,7 @@ typedef struct render_fog {
   fog_volume volume;
   double profile_coefficients[SCENE_CONFIG_MAX_PROFILE]; /* volume.profile's own copy */
   fog_rbf rbfs[FOG_MAX_RBFS]; /* model = rbf: params.model_rbfs, density_scale applied */
+  fog_quadric quadrics[FOG_MAX_QUADRICS]; /* model = quadric: params.model_quadrics, likewise */
   fog_pass_params params;
   fog_pass *pass;
   /* The fog's shadow (docs/light.md): the sun's optical-depth volume where the model needs

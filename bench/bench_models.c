@@ -7,14 +7,18 @@
  *     marching N = 8 .. 256 midpoint steps (to the surface, or for the sky to where the fog
  *     ends: fog_models.glsl);
  *   - on configs/vdb_plume_volume.ini's view: the plume's VDB frame as a 3D volume, exact
- *     (3D DDA, two Gauss nodes per lattice cell) and marched at 2 .. 1/8 voxel steps.
+ *     (3D DDA, two Gauss nodes per lattice cell) and marched at 2 .. 1/8 voxel steps;
+ *   - on the valley again: 8 quadric volumes (two spheres, two ellipsoids, two cylinders, a
+ *     cone and a hyperboloid of one sheet, soft and hard edges) spread over the view, exact
+ *     (closed form per volume) and marched at N = 8 .. 256.
  * Time: GL, glFinish before and after, median of --frames rounds after a warm-up, rows
  * interleaved. Error: tau against the double-precision CPU model on the same rays to the
  * scene pass's read-back distances; RMSE and max over all pixels.
  * Writes models.csv and models_chart.{csv,png} (max error vs ms, log-log, a series per
  * model and method). Last line: `models: rbf_exact_ms=... rbf_march_speedup_at_matched_error=
  * ... height_exact_ms=... height_march_speedup_at_matched_error=... volume_exact_ms=...
- * volume_march_speedup_at_matched_error=...`, a speedup being the time of the cheapest
+ * volume_march_speedup_at_matched_error=... volume_empty_skip_speedup=... quadric_exact_ms=...
+ * quadric_march_speedup_at_matched_error=...`, a speedup being the time of the cheapest
  * marching with max error <= 1e-3 over the exact time. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -37,16 +41,33 @@ static const double volume_steps[] = {2.0, 1.0, 0.5, 0.25, 0.125}; /* voxels */
 enum {
   MARCH_COUNT = 6,
   VOLUME_STEP_COUNT = 5,
-  MODEL_COUNT = 4,
+  MODEL_COUNT = 5,
   SCENE_COUNT = 2,
-  MAX_ROWS = 1 + 2 * (1 + MARCH_COUNT) + 3 + VOLUME_STEP_COUNT
+  QUADRIC_COUNT = 8,
+  MAX_ROWS = 1 + 3 * (1 + MARCH_COUNT) + 3 + VOLUME_STEP_COUNT
 };
 /* The table's rows this bench times (render/fog_models.def: names and labels come from it). */
-static const fog_model_kind model_kinds[MODEL_COUNT] = {FOG_MODEL_HOMOGENEOUS, FOG_MODEL_HEIGHT,
-                                                        FOG_MODEL_RBF, FOG_MODEL_VOLUME};
+static const fog_model_kind model_kinds[MODEL_COUNT] = {
+    FOG_MODEL_HOMOGENEOUS, FOG_MODEL_HEIGHT, FOG_MODEL_RBF, FOG_MODEL_VOLUME, FOG_MODEL_QUADRIC};
 static const char *const scene_configs[SCENE_COUNT] = {"rbf_fog_banks.ini",
                                                        "vdb_plume_volume.ini"};
-static const int scene_of_model[MODEL_COUNT] = {0, 0, 0, 1};
+static const int scene_of_model[MODEL_COUNT] = {0, 0, 0, 1, 0};
+
+/* The quadric row's volumes on the valley of scene_configs[0]. */
+static void bench_quadrics(fog_quadric q[QUADRIC_COUNT]) {
+  q[0] = fog_quadric_sphere((double[3]){-170, 70, -60}, 90, 0.02, 0.6);
+  q[1] = fog_quadric_sphere((double[3]){150, 40, 120}, 50, 0.03, 0.0);
+  q[2] = fog_quadric_ellipsoid((double[3]){90, 0, -160}, (double[3]){220, 45, 120}, 0.012, 0.5);
+  q[3] = fog_quadric_ellipsoid((double[3]){-100, 20, 200}, (double[3]){80, 30, 50}, 0.02, 0.3);
+  q[4] = fog_quadric_cylinder((double[3]){70, 0, -30}, 22, 260, 0.03, 0.4);
+  q[5] = fog_quadric_cylinder((double[3]){-40, 0, 60}, 15, 120, 0.04, 0.0);
+  q[6] = fog_quadric_cone((double[3]){-300, 0, -330}, 130, 220, 0.015, 0.3);
+  /* ((x - 260)^2 + (z + 20)^2)/35^2 - ((y - 150)/90)^2 - 1 in its box */
+  const double a = 1.0 / (35.0 * 35.0), b = 1.0 / (90.0 * 90.0);
+  q[7] = (fog_quadric){.q = {a, -b, a, 0, 0, 0, -520 * a, 300 * b, 40 * a,
+                             (260.0 * 260 + 20 * 20) * a - 150.0 * 150 * b - 1},
+                       .lo = {160, 0, -200}, .hi = {360, 300, 160}, .density = 0.02, .edge = 0.5};
+}
 
 typedef struct model_row {
   int model;        /* index into model_kinds */
@@ -96,8 +117,10 @@ static void print_help(void) {
       "               build/bench/models; created if missing)\n"
       "Last line: models: rbf_exact_ms=A rbf_march_speedup_at_matched_error=B\n"
       "height_exact_ms=C height_march_speedup_at_matched_error=D volume_exact_ms=E\n"
-      "volume_march_speedup_at_matched_error=F: B, D, F = time of the cheapest ray marching\n"
-      "with max tau error <= 1e-3 / the exact integral's time.\n");
+      "volume_march_speedup_at_matched_error=F volume_empty_skip_speedup=S\n"
+      "quadric_exact_ms=M quadric_march_speedup_at_matched_error=Q: B, D, F, Q = time of the\n"
+      "cheapest ray marching with max tau error <= 1e-3 / the exact integral's time; S = the\n"
+      "volume's exact walk without empty-space skipping / with it; M: 8 quadric volumes.\n");
 }
 
 static const char *row_method(const model_row *r) {
@@ -193,6 +216,8 @@ int bench_models(int argc, char **argv) {
   if (render_fog_load_volume(scenes[1].cfg, &frame, &grid, &rerr) ||
       fog_pass_upload_grid3d(pass, &grid, &rerr))
     goto gl_failed;
+  fog_quadric quadrics[QUADRIC_COUNT];
+  bench_quadrics(quadrics);
   double voxel = HUGE_VAL;
   for (int a = 0; a < 3; a++) voxel = fmin(voxel, fabs(frame.world.step[a]));
   const fog_model models[MODEL_COUNT] = {
@@ -200,7 +225,8 @@ int bench_models(int argc, char **argv) {
       {.kind = FOG_MODEL_HEIGHT, .extinction = 0.01, .y0 = 40.0, .scale_height = 25.0},
       {.kind = FOG_MODEL_RBF, .extinction = banks->fog.rbf_base, .rbfs = rbfs,
        .rbf_count = banks->fog.rbf_count},
-      {.kind = FOG_MODEL_VOLUME, .grid3d = &grid}};
+      {.kind = FOG_MODEL_VOLUME, .grid3d = &grid},
+      {.kind = FOG_MODEL_QUADRIC, .quadrics = quadrics, .quadric_count = QUADRIC_COUNT}};
 
   /* The CPU references: tau of each model along every pixel's ray to its surface. */
   for (int m = 0; m < MODEL_COUNT; m++) {
@@ -233,6 +259,7 @@ int bench_models(int argc, char **argv) {
           .model = models[m].kind, .model_extinction = models[m].extinction,
           .model_y0 = models[m].y0, .model_scale_height = models[m].scale_height,
           .model_rbfs = models[m].rbfs, .model_rbf_count = models[m].rbf_count,
+          .model_quadrics = models[m].quadrics, .model_quadric_count = models[m].quadric_count,
           .fog_colour = {0.75f, 0.78f, 0.82f},
           .integrator = s < 0 ? FOG_INTEGRATOR_EXACT : FOG_INTEGRATOR_MARCH,
           .fetch = s == -2 ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
@@ -277,10 +304,11 @@ int bench_models(int argc, char **argv) {
   printf("scenes: configs/%s (terrain, boxes, camera): homogeneous K = %g; height\n"
          "K = %g exp(-(y - %g)/%g); rbf: the config's %d Gaussians; configs/%s: the volume,\n"
          "%dx%dx%d voxels of %g, marched at %g..%g voxels. Errors: tau vs the double-precision\n"
-         "CPU model on the same rays, over all pixels\n\n",
+         "CPU model on the same rays, over all pixels; quadric: %d volumes on the valley\n\n",
          scene_configs[0], models[0].extinction, models[1].extinction, models[1].y0,
          models[1].scale_height, models[2].rbf_count, scene_configs[1], grid.dim[0],
-         grid.dim[1], grid.dim[2], voxel, volume_steps[VOLUME_STEP_COUNT - 1], volume_steps[0]);
+         grid.dim[1], grid.dim[2], voxel, volume_steps[VOLUME_STEP_COUNT - 1], volume_steps[0],
+         QUADRIC_COUNT);
   printf("%-12s %-14s %8s %10s %10s %10s\n", "model", "method", "setting", "ms/frame", "RMSE",
          "max err");
   chart_point points[MAX_ROWS];
@@ -327,9 +355,10 @@ int bench_models(int argc, char **argv) {
   printf("models: rbf_exact_ms=%.3f rbf_march_speedup_at_matched_error=%.2f "
          "height_exact_ms=%.3f height_march_speedup_at_matched_error=%.2f "
          "volume_exact_ms=%.3f volume_march_speedup_at_matched_error=%.2f "
-         "volume_empty_skip_speedup=%.2f\n",
+         "volume_empty_skip_speedup=%.2f quadric_exact_ms=%.3f "
+         "quadric_march_speedup_at_matched_error=%.2f\n",
          exact_ms[2], speedup[2], exact_ms[1], speedup[1], exact_ms[3], speedup[3],
-         unskipped_ms / exact_ms[3]);
+         unskipped_ms / exact_ms[3], exact_ms[4], speedup[4]);
   status = 0;
   goto done;
 

@@ -80,7 +80,7 @@ static double depth_at(const double *table, int steps, double t0, double dt, dou
 /* The analytic models' optical depths are closed forms (fog_models.h): tau and T exact. */
 static bool exact_depths(const fog_model *m) {
   return m->kind == FOG_MODEL_HOMOGENEOUS || m->kind == FOG_MODEL_HEIGHT ||
-         m->kind == FOG_MODEL_RBF;
+         m->kind == FOG_MODEL_RBF || m->kind == FOG_MODEL_QUADRIC;
 }
 
 /* The integrand's factors besides K at world point x of the ray (at t): tau p S T over

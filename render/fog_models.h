@@ -13,6 +13,10 @@
  *   FOG_MODEL_VOLUME       K = a dense 3D grid, trilinear (a VDB frame as it is, where the
  *                          2.5D fogmap cannot hold it: tall plumes), exact per lattice cell
  *                          (3D DDA, two Gauss nodes) or ray-marched
+ *   FOG_MODEL_QUADRIC      K = sum_i c_i min(1, -Q_i(x)/e_i) inside quadric i and its clip
+ *                          box: fog in spheres, ellipsoids, cylinders, cones and general
+ *                          quadrics with a soft edge, exact (piecewise quadratic along a
+ *                          ray between the roots of Q_i = 0 and Q_i = -e_i)
  * Adding a model: see render/fog_models.def. */
 #ifndef FOGPIPE_RENDER_FOG_MODELS_H
 #define FOGPIPE_RENDER_FOG_MODELS_H
@@ -40,6 +44,47 @@ typedef struct fog_rbf {
   double density;
 } fog_rbf;
 
+/* The most quadric volumes one model holds (uniform arrays in the GL pass). */
+#define FOG_MAX_QUADRICS 16
+
+/* One fog volume of FOG_MODEL_QUADRIC. Q(x, y, z) = A x^2 + B y^2 + C z^2 + D xy + E yz +
+ * F xz + G x + H y + I z + J, coefficients q[0..9] = A..J (the ten-coefficient form of the
+ * ray-tracing literature), negative inside. Extinction per world unit inside the closed box
+ * [lo, hi]: density * min(1, -Q/edge) where Q < 0, 0 where Q >= 0 (edge 0: a hard edge,
+ * density wherever Q < 0). The shape constructors below scale Q to -1 at the core and 0 on
+ * the surface, so edge is the share of that range over which the fog fades in. */
+typedef struct fog_quadric {
+  double q[10];
+  double lo[3], hi[3];
+  double density; /* >= 0 */
+  double edge;    /* in [0, 1] for the shapes below; >= 0 for a general quadric */
+} fog_quadric;
+
+/* The shapes (Q normalised as above; the box is the shape's own bounds):
+ * a sphere of radius r, an ellipsoid of semi-axes r[3], an upright cylinder and an upright
+ * cone (apex at the top) of base radius r standing on base (its centre) with height h. */
+fog_quadric fog_quadric_sphere(const double centre[3], double r, double density, double edge);
+fog_quadric fog_quadric_ellipsoid(const double centre[3], const double r[3], double density,
+                                  double edge);
+fog_quadric fog_quadric_cylinder(const double base[3], double r, double h, double density,
+                                 double edge);
+fog_quadric fog_quadric_cone(const double base[3], double r, double h, double density,
+                             double edge);
+/* Q of one volume at p. */
+double fog_quadric_value(const fog_quadric *v, const double p[3]);
+/* The exact optical depth of `count` volumes from o along unit d up to length (HUGE_VAL:
+ * through every box). Per volume: the ray's stretch in the box; the roots of Q(t) = 0 and
+ * Q(t) = -edge on it (Q(o + t d) = a t^2 + 2 b t + c, roots without cancellation: q = -(b +
+ * sign(b) sqrt(b^2 - a c)), t = q/a and c/q; a tangent ray has a double root, a = 0 one);
+ * between consecutive breaks K is 0, density, or density (-Q/edge), a quadratic integrated
+ * exactly by Simpson's rule. */
+double fog_quadric_optical_depth(const fog_quadric *v, int count, const double o[3],
+                                 const double d[3], double length);
+/* K at p: the sum of the volumes' extinctions. */
+double fog_quadric_extinction_at(const fog_quadric *v, int count, const double p[3]);
+/* The union of the volumes' boxes (false for count < 1). */
+bool fog_quadric_bounds(const fog_quadric *v, int count, double lo[3], double hi[3]);
+
 /* Below |a| L < FOG_EXPREL_SWITCH the height fog's (1 - e^{-aL})/(aL) is a series
  * (it cancels in float otherwise; tests/render/test_integral_models.c). */
 #define FOG_EXPREL_SWITCH 0.1
@@ -59,6 +104,9 @@ typedef struct fog_model {
   /* FOG_MODEL_VOLUME: the grid (extinction per world unit; render/volume_march.h's
    * placement). fog_model_optical_depth integrates it exactly. */
   const volume_grid_desc *grid3d;
+  /* FOG_MODEL_QUADRIC: quadric_count (<= FOG_MAX_QUADRICS) volumes, world coordinates. */
+  const fog_quadric *quadrics;
+  int quadric_count;
 } fog_model;
 
 /* Optical depth from the camera along the unit direction dir up to the first surface

@@ -698,6 +698,52 @@ static void fog_pass_rbf_uniforms(GLuint prog, const camera *cam, const fog_pass
   }
 }
 
+/* FOG_MODEL_QUADRIC's volumes camera-relative (fog_models.glsl): Q(camera + p) =
+ * p.(M p) + 2 g.p + c0 with g = M camera + l and c0 = Q(camera), in double, then rounded. */
+static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
+                                      const fog_pass_params *params) {
+  float diag[FOG_MAX_QUADRICS][4], off[FOG_MAX_QUADRICS][4], grad[FOG_MAX_QUADRICS][4];
+  float lo[FOG_MAX_QUADRICS][3], hi[FOG_MAX_QUADRICS][3];
+  double grad_c0[FOG_MAX_QUADRICS][4];
+  const double *o = cam->position;
+  const int n = params->model_quadric_count;
+  double union_lo[3], union_hi[3];
+  if (!fog_quadric_bounds(params->model_quadrics, n, union_lo, union_hi))
+    for (int a = 0; a < 3; a++) union_lo[a] = union_hi[a] = o[a];
+  for (int i = 0; i < n; i++) {
+    const fog_quadric *v = &params->model_quadrics[i];
+    const double *q = v->q;
+    double m[3][3] = {{q[0], 0.5 * q[3], 0.5 * q[5]},
+                      {0.5 * q[3], q[1], 0.5 * q[4]},
+                      {0.5 * q[5], 0.5 * q[4], q[2]}};
+    for (int r = 0; r < 3; r++) {
+      grad_c0[i][r] = m[r][0] * o[0] + m[r][1] * o[1] + m[r][2] * o[2] + 0.5 * q[6 + r];
+      grad[i][r] = (float)grad_c0[i][r];
+      diag[i][r] = (float)m[r][r];
+      lo[i][r] = (float)(v->lo[r] - o[r]);
+      hi[i][r] = (float)(v->hi[r] - o[r]);
+    }
+    grad_c0[i][3] = fog_quadric_value(v, o);
+    diag[i][3] = (float)grad_c0[i][3];
+    off[i][0] = (float)m[0][1], off[i][1] = (float)m[1][2], off[i][2] = (float)m[0][2];
+    off[i][3] = (float)v->density;
+    grad[i][3] = (float)v->edge;
+  }
+  glUniform1i(fog_loc(prog, "fog_quadric_count"), n);
+  if (n > 0) {
+    glUniform4fv(fog_loc(prog, "fog_quadric_diag"), n, &diag[0][0]);
+    glUniform4fv(fog_loc(prog, "fog_quadric_off"), n, &off[0][0]);
+    glUniform4fv(fog_loc(prog, "fog_quadric_grad"), n, &grad[0][0]);
+    glUniform4dv(fog_loc(prog, "fog_quadric_grad_c0"), n, &grad_c0[0][0]);
+    glUniform3fv(fog_loc(prog, "fog_quadric_lo"), n, &lo[0][0]);
+    glUniform3fv(fog_loc(prog, "fog_quadric_hi"), n, &hi[0][0]);
+  }
+  glUniform3f(fog_loc(prog, "fog_quadric_union_lo"), (float)(union_lo[0] - o[0]),
+              (float)(union_lo[1] - o[1]), (float)(union_lo[2] - o[2]));
+  glUniform3f(fog_loc(prog, "fog_quadric_union_hi"), (float)(union_hi[0] - o[0]),
+              (float)(union_hi[1] - o[1]), (float)(union_hi[2] - o[2]));
+}
+
 /* The analytic models need no grids: only the camera and their parameters. */
 /* The walk settings' choice for grids with this share of empty blocks or bricks. */
 static int fog_pass_skips_share(const fog_pass_params *params, double empty_share) {
@@ -734,6 +780,7 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
   glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
   if (params->model == FOG_MODEL_VOLUME) fog_pass_volume_uniforms(pass, prog, cam, params);
   if (params->model == FOG_MODEL_RBF) fog_pass_rbf_uniforms(prog, cam, params);
+  if (params->model == FOG_MODEL_QUADRIC) fog_pass_quadric_uniforms(prog, cam, params);
   return fog_pass_common_and_draw(pass, prog, cam, params, surface_colour, surface_distance, width,
                                   height, width, height, err);
 }
@@ -857,6 +904,26 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
                  i, params->model_rbfs[i].radius, params->model_rbfs[i].density);
         return 1;
       }
+  }
+  if (params->model == FOG_MODEL_QUADRIC) {
+    int n = params->model_quadric_count;
+    if (n < 0 || n > FOG_MAX_QUADRICS || (n > 0 && !params->model_quadrics)) {
+      snprintf(err->message, sizeof err->message,
+               "fog pass: %d quadric volumes: expected 0..%d (and the array)", n, FOG_MAX_QUADRICS);
+      return 1;
+    }
+    for (int i = 0; i < n; i++) {
+      const fog_quadric *v = &params->model_quadrics[i];
+      bool ok = v->density >= 0 && v->edge >= 0;
+      for (int a = 0; a < 3; a++) ok = ok && v->lo[a] <= v->hi[a];
+      for (int k = 0; k < 10; k++) ok = ok && isfinite(v->q[k]);
+      if (!ok) {
+        snprintf(err->message, sizeof err->message,
+                 "fog pass: quadric volume %d: expected finite coefficients, density >= 0, "
+                 "edge >= 0 and a box lo <= hi", i);
+        return 1;
+      }
+    }
   }
   return 0;
 }

@@ -98,6 +98,10 @@ typedef struct fog_pass_params {
    * radius > 0, density >= 0) are read at each draw. */
   const fog_rbf *model_rbfs;
   int model_rbf_count;
+  /* FOG_MODEL_QUADRIC: these volumes (at most FOG_MAX_QUADRICS; density >= 0, edge >= 0, a
+   * box lo <= hi), read at each draw. */
+  const fog_quadric *model_quadrics;
+  int model_quadric_count;
   /* FOG_MODEL_VOLUME (the grid of fog_pass_upload_grid3d) with FOG_INTEGRATOR_MARCH: the
    * step in world units (> 0); the exact integrator needs none. Its exact walk reads the
    * cells' corners (FOG_FETCH_MANUAL: exact on any GL) or samples with the hardware's

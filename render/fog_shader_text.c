@@ -44,6 +44,7 @@ static void constants(text_out *o) {
   put(o, "#define FOG_OCCUPANCY_BLOCK %d\n", FOG_OCCUPANCY_BLOCK);
   put(o, "#define FOG_PROFILE_MAX_COEFFICIENTS %d\n#define FOG_MAX_RBFS %d\n",
       FOG_PROFILE_MAX_COEFFICIENTS, FOG_MAX_RBFS);
+  put(o, "#define FOG_MAX_QUADRICS %d\n", FOG_MAX_QUADRICS);
   put(o, "#define FOG_MAX_LAMPS %d\n#define FOG_LAMP_MAX_DEPTH_STEPS %d\n", FOG_MAX_LAMPS,
       FOG_LAMP_MAX_DEPTH_STEPS);
   /* %.9g: the float nearest the C double, as the C twins' switch in float */

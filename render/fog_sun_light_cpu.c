@@ -33,6 +33,8 @@ double fog_light_extinction_at(const fog_model *m, const double p[3]) {
       return fog_grid3d_extinction_at(m->grid3d, p);
     case FOG_MODEL_HEIGHT:
       return m->extinction * exp(-(p[1] - m->y0) / m->scale_height);
+    case FOG_MODEL_QUADRIC:
+      return fog_quadric_extinction_at(m->quadrics, m->quadric_count, p);
     default: {
       double k = m->extinction;
       for (int i = 0; i < m->rbf_count; i++) {
@@ -47,7 +49,8 @@ double fog_light_extinction_at(const fog_model *m, const double p[3]) {
 }
 
 /* The stretch of the ray that holds fog (fog_light_span): the box, the volume's support,
- * the height fog up to an optical depth of 20, the RBFs' reach (6 radii). */
+ * the height fog up to an optical depth of 20, the RBFs' reach (6 radii), the quadrics'
+ * boxes. */
 bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
                     double t_surface, double *t0, double *t1) {
   *t0 = 0.0;
@@ -82,6 +85,14 @@ bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
                          : -H / dy * log(1.0 - q);
       }
       *t1 = fmin(t_surface, reach);
+      break;
+    }
+    case FOG_MODEL_QUADRIC: {
+      double lo[3], hi[3], a, b;
+      if (!fog_quadric_bounds(m->quadrics, m->quadric_count, lo, hi)) return false;
+      for (int c = 0; c < 3; c++) lo[c] -= o[c], hi[c] -= o[c];
+      if (!fog_slab_entry_exit(lo, hi, d, &a, &b)) return false;
+      *t0 = fmax(a, 0.0), *t1 = fmin(b, t_surface);
       break;
     }
     default: {

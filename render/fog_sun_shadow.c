@@ -65,6 +65,8 @@ bool fog_model_bounds(const fog_model *m, double lo[3], double hi[3]) {
           hi[c] = fmax(hi[c], m->rbfs[i].centre[c] + 6.0 * m->rbfs[i].radius);
         }
       return true;
+    case FOG_MODEL_QUADRIC:
+      return fog_quadric_bounds(m->quadrics, m->quadric_count, lo, hi);
     default:
       return false;
   }

@@ -44,7 +44,8 @@ bool fog_lamp_span(fog_ray r, out float t0, out float t1) {
 // The analytic models' optical depths in closed form (fog_models.glsl): from the camera
 // to distance t along the ray, and from point x along unit w for length len.
 #define FOG_LAMP_EXACT_DEPTH (FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS || \
-                              FOG_MODEL_KIND == FOG_MODEL_HEIGHT || FOG_MODEL_KIND == FOG_MODEL_RBF)
+                              FOG_MODEL_KIND == FOG_MODEL_HEIGHT || FOG_MODEL_KIND == FOG_MODEL_RBF || \
+                              FOG_MODEL_KIND == FOG_MODEL_QUADRIC)
 float fog_lamp_segment_depth(vec3 x, vec3 w, float len) {
 #if FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS
   return fog_homogeneous_optical_depth(fog_model_extinction, len);
@@ -53,6 +54,8 @@ float fog_lamp_segment_depth(vec3 x, vec3 w, float len) {
                                   fog_model_scale_height, w.y, len);
 #elif FOG_MODEL_KIND == FOG_MODEL_RBF
   return fog_rbf_optical_depth_from(fog_model_extinction, x, w, len);
+#elif FOG_MODEL_KIND == FOG_MODEL_QUADRIC
+  return fog_quadric_optical_depth_from(x, w, len);
 #else
   return 0.0;
 #endif

@@ -68,6 +68,11 @@ bool fog_light_span(fog_ray r, out float t0, out float t1) {
   }
   t0 = 0.0;
   t1 = min(r.t_surface, reach);
+#elif FOG_MODEL_KIND == FOG_MODEL_QUADRIC
+  if (!fog_slab(fog_quadric_union_lo, fog_quadric_union_hi, vec3(0.0), r.dir, t0, t1))
+    return false;
+  t0 = max(t0, 0.0);
+  t1 = min(t1, r.t_surface);
 #else
   t0 = 0.0;
   t1 = min(r.t_surface, fog_model_reach(r.dir));

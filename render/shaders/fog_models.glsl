@@ -1,4 +1,5 @@
-// The fog models besides the fogmap (homogeneous, height, Gaussian RBFs, a 3D volume): GLSL
+// The fog models besides the fogmap (homogeneous, height, Gaussian RBFs, a 3D volume,
+// quadric volumes): GLSL
 // twins of render/fog_models_cpu.c (same names, same formulas; render/fog_models.h).
 // Positions arrive camera-relative from the CPU, subtracted there in double.
 // FOG_MODEL_*, FOG_MAX_RBFS and FOG_EXPREL_SWITCH come from the C headers
@@ -19,6 +20,17 @@ uniform vec3 fog_grid3d_dims;
 uniform float fog_grid3d_step;                 // world units (the march)
 uniform sampler3D fog_grid3d_occupancy;        // R32F brick bounds (FOG_SKIP)
 uniform ivec3 fog_grid3d_bricks;
+// FOG_MODEL_QUADRIC (fog_pass_quadric_uniforms): Q at camera-relative p is
+// p.(M p) + 2 g.p + c0, M symmetric, c0 = Q(camera) and g = M camera + l in double on the CPU
+// (rounded in fog_quadric_grad and diag.w, unrounded in fog_quadric_grad_c0).
+uniform int fog_quadric_count;
+uniform vec4 fog_quadric_diag[FOG_MAX_QUADRICS];   // M's diagonal; w: c0
+uniform vec4 fog_quadric_off[FOG_MAX_QUADRICS];    // M's xy, yz, xz; w: density
+uniform vec4 fog_quadric_grad[FOG_MAX_QUADRICS];   // g; w: edge
+uniform dvec4 fog_quadric_grad_c0[FOG_MAX_QUADRICS];  // g and c0 unrounded (the integral)
+uniform vec3 fog_quadric_lo[FOG_MAX_QUADRICS];     // the clip box, camera-relative
+uniform vec3 fog_quadric_hi[FOG_MAX_QUADRICS];
+uniform vec3 fog_quadric_union_lo, fog_quadric_union_hi;  // all the boxes
 
 // (1 - e^{-x})/x, with the series sum_{n<=10} (-x)^n/(n+1)! below FOG_EXPREL_SWITCH.
 float fog_exprel(float x) {
@@ -82,6 +94,117 @@ float fog_rbf_optical_depth_from(float base, vec3 origin, vec3 dir, float length
 }
 float fog_rbf_optical_depth(float base, vec3 dir, float length) {
   return fog_rbf_optical_depth_from(base, vec3(0.0), dir, length);
+}
+
+// The line origin + t dir against the box [lo, hi] (Kay & Kajiya; parallel axes selected,
+// not branched on): the entry and exit parameters, false when it misses.
+bool fog_slab(vec3 lo, vec3 hi, vec3 origin, vec3 dir, out float t0, out float t1) {
+  vec3 ta = (lo - origin) / dir, tb = (hi - origin) / dir;
+  bvec3 parallel = equal(dir, vec3(0.0));
+  bvec3 inside = bvec3(uvec3(greaterThanEqual(origin, lo)) & uvec3(lessThanEqual(origin, hi)));
+  vec3 reach = mix(vec3(-1e30), vec3(1e30), inside);
+  vec3 a = mix(min(ta, tb), -reach, parallel), b = mix(max(ta, tb), reach, parallel);
+  t0 = max(max(a.x, a.y), a.z);
+  t1 = min(min(b.x, b.y), b.z);
+  return t0 <= t1;
+}
+
+// Quadric volume i's symmetric matrix M.
+mat3 fog_quadric_matrix(int i) {
+  vec4 d = fog_quadric_diag[i], o = fog_quadric_off[i];
+  return mat3(d.x, o.x, o.z, o.x, d.y, o.y, o.z, o.y, d.z);
+}
+
+// The roots of a t^2 + 2 b t + c = 0 without cancellation (fog_quadric_cpu.c's
+// quadratic_roots): the count, a double root once.
+int fog_quadratic_roots(float a, float b, float c, out float r0, out float r1) {
+  r0 = r1 = 0.0;
+  if (a == 0.0) {
+    if (b == 0.0) return 0;
+    r0 = -c / (2.0 * b);
+    return 1;
+  }
+  float disc = b * b - a * c;
+  if (disc < 0.0) return 0;
+  float q = -(b + (b < 0.0 ? -sqrt(disc) : sqrt(disc)));
+  if (q == 0.0) return 1;
+  r0 = q / a;
+  r1 = c / q;
+  return 2;
+}
+
+// The roots of Q(t) = -level strictly inside (t0, t1), the others (and missing ones) at t1.
+vec2 fog_quadric_breaks(float a, float b, float c, float t0, float t1) {
+  float r0, r1;
+  int k = fog_quadratic_roots(a, b, c, r0, r1);
+  return vec2(k > 0 && r0 > t0 && r0 < t1 ? r0 : t1, k > 1 && r1 > t0 && r1 < t1 ? r1 : t1);
+}
+
+// int_{t0}^{t1} of one volume's K along Q(t) = a t^2 + 2 b t + c: the breaks at Q = 0 and
+// Q = -edge sorted by a network of min/max (no dynamic indexing), then per piece 0, the
+// density, or density (-Q/edge) by Simpson's rule (exact).
+float fog_quadric_span(float a, float b, float c, float density, float edge, float t0, float t1) {
+  vec4 s = vec4(fog_quadric_breaks(a, b, c, t0, t1),
+                edge > 0.0 ? fog_quadric_breaks(a, b, c + edge, t0, t1) : vec2(t1));
+  s = vec4(min(s.x, s.y), max(s.x, s.y), min(s.z, s.w), max(s.z, s.w));
+  s = vec4(min(s.x, s.z), min(s.y, s.w), max(s.x, s.z), max(s.y, s.w));
+  s = vec4(s.x, min(s.y, s.z), max(s.y, s.z), s.w);
+  float cut[6] = float[6](t0, s.x, s.y, s.z, s.w, t1);
+  float sum = 0.0;
+  for (int i = 0; i < 5; i++) {
+    float ta = cut[i], tb = cut[i + 1], tm = 0.5 * (ta + tb);
+    float qm = (a * tm + 2.0 * b) * tm + c;
+    if (!(tb > ta) || qm >= 0.0) continue;
+    if (edge == 0.0 || qm <= -edge) {
+      sum += density * (tb - ta);
+    } else {
+      float qa = (a * ta + 2.0 * b) * ta + c, qb = (a * tb + 2.0 * b) * tb + c;
+      sum -= density / edge * (tb - ta) * (qa + 4.0 * qm + qb) / 6.0;
+    }
+  }
+  return sum;
+}
+
+// The quadric volumes' exact optical depth from camera-relative `origin` along unit dir
+// for length (>= 1e29: through every box): fog_quadric_optical_depth in C. Q along the ray
+// is set up in double and re-centred on the stretch's start t0 (Q(t0 + s) = a s^2 + 2 b' s +
+// c'): far from the camera Q's terms are large and cancel (c0 ~ (distance/size)^2), and in
+// float a grazing ray's roots moved by ~1e-2 units; re-centred, the float pieces see Q's own
+// range.
+float fog_quadric_optical_depth_from(vec3 origin, vec3 dir, float length) {
+  float sum = 0.0;
+  for (int i = 0; i < fog_quadric_count; i++) {
+    float t0, t1, density = fog_quadric_off[i].w;
+    if (!(density > 0.0) ||
+        !fog_slab(fog_quadric_lo[i], fog_quadric_hi[i], origin, dir, t0, t1)) continue;
+    t0 = max(t0, 0.0);
+    t1 = min(t1, length);
+    if (!(t1 > t0)) continue;
+    dmat3 m = dmat3(fog_quadric_matrix(i));
+    dvec3 g = fog_quadric_grad_c0[i].xyz, x = dvec3(origin), w = dvec3(dir);
+    double a = dot(w, m * w), b = dot(w, m * x + g);
+    double c = dot(x, m * x) + 2.0 * dot(g, x) + fog_quadric_grad_c0[i].w;
+    double s = double(t0);
+    sum += fog_quadric_span(float(a), float(b + a * s), float((a * s + 2.0 * b) * s + c), density,
+                            fog_quadric_grad[i].w, 0.0, t1 - t0);
+  }
+  return sum;
+}
+
+// K at camera-relative p: the volumes' extinctions summed (fog_quadric_extinction_at).
+float fog_quadric_extinction_at(vec3 p) {
+  float k = 0.0;
+  for (int i = 0; i < fog_quadric_count; i++) {
+    if (any(lessThan(p, fog_quadric_lo[i])) || any(greaterThan(p, fog_quadric_hi[i]))) continue;
+    // in double: Q's terms far from the camera cancel (fog_quadric_optical_depth_from)
+    dvec3 x = dvec3(p), g = fog_quadric_grad_c0[i].xyz;
+    float q = float(dot(x, dmat3(fog_quadric_matrix(i)) * x) + 2.0 * dot(g, x) +
+                    fog_quadric_grad_c0[i].w);
+    if (!(q < 0.0)) continue;
+    float edge = fog_quadric_grad[i].w, density = fog_quadric_off[i].w;
+    k += edge > 0.0 ? density * min(1.0, -q / edge) : density;
+  }
+  return k;
 }
 
 // The ray's stretch [t0, t1] inside the volume's support (index coordinates in [-1, dim])
@@ -211,6 +334,7 @@ float fog_grid3d_optical_depth_march(vec3 dir, float length) {
 // K at camera-relative point p, pointwise (the marcher's integrand).
 float fog_model_extinction_at(vec3 p) {
   if (fog_model == FOG_MODEL_HOMOGENEOUS) return fog_model_extinction;
+  if (fog_model == FOG_MODEL_QUADRIC) return fog_quadric_extinction_at(p);
   if (fog_model == FOG_MODEL_HEIGHT)
     return fog_model_extinction * exp(-(p.y - fog_model_y0) / fog_model_scale_height);
   float k = fog_model_extinction;
@@ -224,7 +348,7 @@ float fog_model_extinction_at(vec3 p) {
 
 // How far along dir a marcher must go for the sky (no surface): where the model's fog has
 // fallen below e^-36 of its peak (RBFs: 6 radii past the farthest centre; height fog going
-// up: 36 scale heights above y0). Infinite where the fog does not end (a homogeneous base,
+// up: 36 scale heights above y0; quadrics: where the ray leaves their boxes). Infinite where the fog does not end (a homogeneous base,
 // height fog level or going down): the marcher then reports it opaque, as the exact
 // integral is.
 float fog_model_reach(vec3 dir) {
@@ -235,6 +359,11 @@ float fog_model_reach(vec3 dir) {
     for (int i = 0; i < fog_rbf_count; i++)
       reach = max(reach, dot(fog_rbf_centre[i].xyz, dir) + 6.0 / fog_rbf_centre[i].w);
     return reach;
+  }
+  if (fog_model == FOG_MODEL_QUADRIC) {
+    float t0, t1;
+    return fog_slab(fog_quadric_union_lo, fog_quadric_union_hi, vec3(0.0), dir, t0, t1)
+               ? max(t1, 0.0) : 0.0;
   }
   return 1e30;
 }
@@ -272,12 +401,16 @@ float fog_model_depth_rbf(fog_ray r) {
   return fog_rbf_optical_depth(fog_model_extinction, r.dir, r.t_surface);
 }
 float fog_model_depth_volume(fog_ray r) { return fog_grid3d_optical_depth(r.dir, r.t_surface); }
+float fog_model_depth_quadric(fog_ray r) {
+  return fog_quadric_optical_depth_from(vec3(0.0), r.dir, r.t_surface);
+}
 
 float fog_model_march_homogeneous(fog_ray r) {
   return fog_model_optical_depth_march(r.dir, r.t_surface, fog_march_steps, r.jitter);
 }
 float fog_model_march_height(fog_ray r) { return fog_model_march_homogeneous(r); }
 float fog_model_march_rbf(fog_ray r) { return fog_model_march_homogeneous(r); }
+float fog_model_march_quadric(fog_ray r) { return fog_model_march_homogeneous(r); }
 float fog_model_march_volume(fog_ray r) {
   return fog_grid3d_optical_depth_march(r.dir, r.t_surface);
 }

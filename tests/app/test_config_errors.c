@@ -61,12 +61,27 @@ int main(void) {
   expect_error("[render]\n[terrain]\nheightmap = hills.png\n", "3: [terrain] heightmap: ", missing);
   /* The fog models of the ladder and their Gaussians. */
   expect_error("[fog]\nmodel = perlin\n", "2: [fog] model: ",
-               "expected one of fogmap|homogeneous|height|rbf|volume, got 'perlin'");
+               "expected one of fogmap|homogeneous|height|rbf|volume|quadric, got 'perlin'");
   expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 50\n", "3: [fog] rbf: ",
                "expected X Y Z RADIUS DENSITY (5 numbers), got '0 10 0 50'");
   expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 50 0.1\nrbf = 0 10 0 0 0.1\n", "4: [fog] rbf: ",
                "expected RADIUS from 0.0001 to 1e+07 and DENSITY from 0 to 1e+12");
   expect_error("[fog]\nrbf = 0 10 0 5 -0.1\n", "2: [fog] rbf: ", "DENSITY from 0 to 1e+12");
+  /* Quadric volumes: the shape, its count of numbers, each number's range, the box. */
+  expect_error("[fog]\nmodel = quadric\nquadric = torus 0 0 0 5 1\n", "3: [fog] quadric: ",
+               "expected a shape (sphere, ellipsoid, cylinder, cone or general)");
+  expect_error("[fog]\nmodel = quadric\n\nquadric = sphere 0 10 0 50\n", "4: [fog] quadric: ",
+               "expected sphere X Y Z R DENSITY [EDGE] (5 or 6 numbers), got 'sphere 0 10 0 50'");
+  expect_error("[fog]\nquadric = cone 0 0 0 5 0 0.1\n", "2: [fog] quadric: ",
+               "number 5 (0) of cone X Y Z R HEIGHT DENSITY: expected 0.0001 to 1e+07");
+  expect_error("[fog]\nquadric = sphere 0 0 0 5 0.1 1.5\n", "2: [fog] quadric: ",
+               "expected DENSITY from 0 to 1e+12 and EDGE from 0 to 1");
+  expect_error("[fog]\nquadric = general 1 1 1 0 0 0 0 0 0 -1 -1 -1 -1 1 -1 1 0.1\n",
+               "2: [fog] quadric: ", "expected XMIN < XMAX, YMIN < YMAX and ZMIN < ZMAX");
+  expect_error("[fog]\nquadric = general 1e13 1 1 0 0 0 0 0 0 -1 -1 -1 -1 1 1 1 0.1\n",
+               "2: [fog] quadric: ", "number 1 (1e+13) of general");
+  expect_error("; volumes\n[fog]\nmodel = quadric\n", "3: [fog] model: ",
+               "quadric needs at least one 'quadric = SHAPE ...' line");
   /* Values the parser used to take and the renderer turned into NaN pixels (float
    * overflow): each is refused naming its key. */
   expect_error("[fog]\ndensity_scale = 1e39\n", "2: [fog] density_scale: ",

@@ -69,7 +69,8 @@ int main(void) {
   }
   static const char *const shipped[] = {"configs/default.ini", "configs/heightmap.ini",
                                         "configs/rbf_fog_banks.ini", "configs/vdb_groundfog.ini",
-                                        "configs/vdb_plume_volume.ini"};
+                                        "configs/vdb_plume_volume.ini",
+                                        "configs/quadric_volumes.ini"};
   for (size_t i = 0; i < sizeof shipped / sizeof shipped[0]; i++) check_config(shipped[i]);
   rmdir(dir);
   return test_finish("test_density_scale_zero");

@@ -263,6 +263,7 @@ int main(void) {
   check_model("configs/default.ini", "fogmap (configs/default.ini)");
   check_model("configs/rbf_fog_banks.ini", "rbf (configs/rbf_fog_banks.ini)");
   check_model("configs/vdb_plume_volume.ini", "volume (configs/vdb_plume_volume.ini)");
+  check_model("configs/quadric_volumes.ini", "quadric (configs/quadric_volumes.ini)");
   char dir[] = "/tmp/fogpipe_light_models_XXXXXX";
   CHECK(mkdtemp(dir) != NULL, "mkdtemp");
   static const char *const fogs[2][2] = {

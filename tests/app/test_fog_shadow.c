@@ -272,7 +272,7 @@ static int load(const char *path, scene_config *cfg) {
 }
 
 int main(void) {
-  static model_case cases[5];
+  static model_case cases[6];
   int n = 0;
   model_case *c = &cases[n];
   if (!load("configs/default.ini", &c->cfg)) {
@@ -322,6 +322,11 @@ int main(void) {
     c->reference = true, c->reference_bound = 0.02; /* measured 3.5e-3 */
     c->cfg.fog.model = FOG_MODEL_HEIGHT;
     c->cfg.fog.density_scale = 0.01, c->cfg.fog.fog_height = 40, c->cfg.fog.scale_height = 30;
+    n++;
+  }
+  c = &cases[n];
+  if (!load("configs/quadric_volumes.ini", &c->cfg)) {
+    c->label = "quadric (configs/quadric_volumes.ini)";
     n++;
   }
   for (int i = 0; i < n; i++) check_case(&cases[i]);

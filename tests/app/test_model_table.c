@@ -26,8 +26,9 @@ static int config_model(const char *name, const char *folder, int *kind) {
   char *data = realpath("../shared/data/vdb/plume/data", NULL);
   if (data) snprintf(vdb, sizeof vdb, "vdb = %s/fluid_data_####.vdb\n", data);
   free(data);
-  fprintf(f, "[fog]\nmodel = %s\n%s%s", name,
+  fprintf(f, "[fog]\nmodel = %s\n%s%s%s", name,
           !strcmp(name, "rbf") ? "rbf = 0 1 0 2 0.5\n" : "",
+          !strcmp(name, "quadric") ? "quadric = sphere 0 1 0 2 0.5\n" : "",
           !strcmp(name, "volume") ? vdb : "");
   fclose(f);
   scene_config cfg;

@@ -55,16 +55,22 @@ static volume_grid_desc documented_volume(const scene_config *cfg, vdb_frame *fr
 }
 
 /* The model the keys describe (docs/config.md, [fog] model). */
-static fog_model documented_model(const scene_config *cfg, fog_rbf *rbfs) {
+static fog_model documented_model(const scene_config *cfg, fog_rbf *rbfs,
+                                   fog_quadric *quadrics) {
   const scene_fog_config *f = &cfg->fog;
   for (int i = 0; i < f->rbf_count; i++) {
     rbfs[i] = f->rbfs[i];
     rbfs[i].density *= f->density_scale;
   }
+  for (int i = 0; i < f->quadric_count; i++) {
+    quadrics[i] = f->quadrics[i]; /* the shapes' coefficients: test_config_quadric */
+    quadrics[i].density *= f->density_scale;
+  }
   return (fog_model){.kind = f->model,
                      .extinction = f->model == FOG_MODEL_RBF ? f->rbf_base : f->density_scale,
                      .y0 = f->fog_height, .scale_height = f->scale_height, .rbfs = rbfs,
-                     .rbf_count = f->rbf_count};
+                     .rbf_count = f->rbf_count, .quadrics = quadrics,
+                     .quadric_count = f->quadric_count};
 }
 
 static void check_config(const char *path, const char *label) {
@@ -84,7 +90,8 @@ static void check_config(const char *path, const char *label) {
   camera cam;
   scene_config_camera(&cfg, &cam);
   fog_rbf rbfs[FOG_MAX_RBFS];
-  fog_model m = documented_model(&cfg, rbfs);
+  fog_quadric quadrics[FOG_MAX_QUADRICS];
+  fog_model m = documented_model(&cfg, rbfs, quadrics);
   vdb_frame frame = {0};
   volume_grid_desc grid;
   if (cfg.fog.model == FOG_MODEL_VOLUME) {
@@ -99,6 +106,7 @@ static void check_config(const char *path, const char *label) {
       float t = depth[py * W + px];
       double length = t >= cam.far_plane ? HUGE_VAL : t;
       double want = fog_transmittance(fog_model_optical_depth(&m, o, d, length));
+      if (fabs(want - tau[py * W + px]) > worst && getenv("DBG")) printf("px %d %d o %g %g %g d %.17g %.17g %.17g len %.17g depth %g gl %g\n", px, py, o[0], o[1], o[2], d[0], d[1], d[2], length, fog_model_optical_depth(&m, o, d, length), tau[py*W+px]);
       worst = fmax(worst, fabs(want - tau[py * W + px]));
       min_tau = fmin(min_tau, want), max_tau = fmax(max_tau, want);
     }
@@ -112,6 +120,7 @@ static void check_config(const char *path, const char *label) {
 }
 
 int main(void) {
+  if (getenv("QCFG")) { check_config(getenv("QCFG"), "dbg"); return 0; }
   char dir[] = "/tmp/fogpipe_models_XXXXXX";
   CHECK(mkdtemp(dir) != NULL, "mkdtemp");
   static const char *const scene =
@@ -135,6 +144,7 @@ int main(void) {
   }
   check_config("configs/rbf_fog_banks.ini", "rbf (configs/rbf_fog_banks.ini)");
   check_config("configs/vdb_plume_volume.ini", "volume (configs/vdb_plume_volume.ini)");
+  check_config("configs/quadric_volumes.ini", "quadric (configs/quadric_volumes.ini)");
 
   /* `fogpipe record` of an analytic model: every frame is render's image (it stands still). */
   const char *bin = getenv("FOGPIPE_BIN");

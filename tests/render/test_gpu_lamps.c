@@ -139,8 +139,14 @@ int main(void) {
                              .index_from_world = {{0, 0, 0.5}, {0.5, 0, 0}, {0, 0.5, 0}},
                              .index_offset = {25.0, -15.0, 0.0}};
   CHECK(fog_pass_upload_grid3d(gl.pass, &grid3d, &err) == 0, "volume upload: %s", err.message);
-  static const char *names[] = {"", "homogeneous", "height", "rbf", "volume"};
-  for (int model = FOG_MODEL_HOMOGENEOUS; model <= FOG_MODEL_VOLUME; model++) {
+  /* quadric volumes near the lamps: a soft sphere around the first, a hard cylinder, and a
+   * soft cone the second's light crosses */
+  const fog_quadric quadrics[3] = {
+      fog_quadric_sphere((double[3]){42, 5, -18}, 10, 0.08, 0.4),
+      fog_quadric_cylinder((double[3]){60, 0, -40}, 5, 18, 0.1, 0.0),
+      fog_quadric_cone((double[3]){30, 0, -35}, 12, 16, 0.06, 0.5)};
+  static const char *names[] = {"", "homogeneous", "height", "rbf", "volume", "quadric"};
+  for (int model = FOG_MODEL_HOMOGENEOUS; model <= FOG_MODEL_QUADRIC; model++) {
     camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1};
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
@@ -149,9 +155,13 @@ int main(void) {
     if (model == FOG_MODEL_RBF)
       m = (fog_model){.kind = model, .extinction = 0.002, .rbfs = rbfs, .rbf_count = 12};
     if (model == FOG_MODEL_VOLUME) m = (fog_model){.kind = model, .grid3d = &grid3d};
+    if (model == FOG_MODEL_QUADRIC)
+      m = (fog_model){.kind = model, .quadrics = quadrics, .quadric_count = 3};
     fog_pass_params params = {.model = model, .model_extinction = m.extinction,
                               .model_y0 = m.y0, .model_scale_height = m.scale_height,
-                              .model_rbfs = m.rbfs, .model_rbf_count = m.rbf_count, .sun = sun,
+                              .model_rbfs = m.rbfs, .model_rbf_count = m.rbf_count,
+                              .model_quadrics = m.quadrics,
+                              .model_quadric_count = m.quadric_count, .sun = sun,
                               .lamps = two_lamps((double[3]){40, 4, -15},
                                                  (double[3]){55, 12, -30})};
     double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, names[model]);

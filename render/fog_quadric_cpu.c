@@ -1,0 +1,173 @@
+/* Quadric fog volumes (FOG_MODEL_QUADRIC, render/fog_models.h), in double: the shapes, the
+ * exact optical depth and the pointwise extinction. The GLSL twin is in
+ * render/shaders/fog_models.glsl (fog_quadric_optical_depth_from), break for break. */
+#include <math.h>
+
+#include "render/fog_models.h"
+
+/* Q(x) = x^T M x + 2 l^T x + J with M symmetric: M's rows and l from the ten coefficients. */
+static void quadric_matrix(const fog_quadric *v, double m[3][3], double l[3]) {
+  const double *q = v->q;
+  m[0][0] = q[0], m[1][1] = q[1], m[2][2] = q[2];
+  m[0][1] = m[1][0] = 0.5 * q[3]; /* D xy */
+  m[1][2] = m[2][1] = 0.5 * q[4]; /* E yz */
+  m[0][2] = m[2][0] = 0.5 * q[5]; /* F xz */
+  l[0] = 0.5 * q[6], l[1] = 0.5 * q[7], l[2] = 0.5 * q[8];
+}
+
+double fog_quadric_value(const fog_quadric *v, const double p[3]) {
+  const double *q = v->q;
+  const double x = p[0], y = p[1], z = p[2];
+  return q[0] * x * x + q[1] * y * y + q[2] * z * z + q[3] * x * y + q[4] * y * z +
+         q[5] * x * z + q[6] * x + q[7] * y + q[8] * z + q[9];
+}
+
+static fog_quadric shape(const double q[10], const double lo[3], const double hi[3],
+                         double density, double edge) {
+  fog_quadric v = {.density = density, .edge = edge};
+  for (int k = 0; k < 10; k++) v.q[k] = q[k];
+  for (int a = 0; a < 3; a++) v.lo[a] = lo[a], v.hi[a] = hi[a];
+  return v;
+}
+
+fog_quadric fog_quadric_ellipsoid(const double c[3], const double r[3], double density,
+                                  double edge) {
+  /* sum ((x_a - c_a)/r_a)^2 - 1 */
+  double w[3] = {1.0 / (r[0] * r[0]), 1.0 / (r[1] * r[1]), 1.0 / (r[2] * r[2])};
+  double q[10] = {w[0], w[1], w[2], 0, 0, 0, -2 * c[0] * w[0], -2 * c[1] * w[1],
+                  -2 * c[2] * w[2], c[0] * c[0] * w[0] + c[1] * c[1] * w[1] + c[2] * c[2] * w[2] - 1};
+  double lo[3] = {c[0] - r[0], c[1] - r[1], c[2] - r[2]};
+  double hi[3] = {c[0] + r[0], c[1] + r[1], c[2] + r[2]};
+  return shape(q, lo, hi, density, edge);
+}
+
+fog_quadric fog_quadric_sphere(const double centre[3], double r, double density, double edge) {
+  return fog_quadric_ellipsoid(centre, (double[3]){r, r, r}, density, edge);
+}
+
+/* ((x - X)^2 + (z - Z)^2)/r^2 - s(y), s = 1 (cylinder) or ((Y + h - y)/h)^2 (cone), clipped
+ * to y in [Y, Y + h]. */
+static fog_quadric upright(const double b[3], double r, double h, double density, double edge,
+                           int cone) {
+  double w = 1.0 / (r * r), top = b[1] + h, k = cone ? 1.0 / (h * h) : 0.0;
+  double q[10] = {w, -k, w, 0, 0, 0, -2 * b[0] * w, 2 * top * k, -2 * b[2] * w,
+                  (b[0] * b[0] + b[2] * b[2]) * w - (cone ? top * top * k : 1.0)};
+  double lo[3] = {b[0] - r, b[1], b[2] - r}, hi[3] = {b[0] + r, top, b[2] + r};
+  return shape(q, lo, hi, density, edge);
+}
+
+fog_quadric fog_quadric_cylinder(const double base[3], double r, double h, double density,
+                                 double edge) {
+  return upright(base, r, h, density, edge, 0);
+}
+
+fog_quadric fog_quadric_cone(const double base[3], double r, double h, double density,
+                             double edge) {
+  return upright(base, r, h, density, edge, 1);
+}
+
+/* The roots of a t^2 + 2 b t + c = 0 without cancellation (one of the pair through c/q);
+ * a = 0 leaves the linear root, a double root (a tangent ray) is returned twice. */
+static int quadratic_roots(double a, double b, double c, double root[2]) {
+  if (a == 0.0) {
+    if (b == 0.0) return 0;
+    root[0] = -c / (2.0 * b);
+    return 1;
+  }
+  double disc = b * b - a * c;
+  if (disc < 0.0) return 0;
+  double q = -(b + copysign(sqrt(disc), b));
+  if (q == 0.0) { /* b = 0 and a c = 0: the double root t = 0 */
+    root[0] = 0.0;
+    return 1;
+  }
+  root[0] = q / a, root[1] = c / q;
+  return 2;
+}
+
+/* The roots of a t^2 + 2 b t + c = 0 strictly inside (t0, t1); the others, and missing
+ * ones, at t1 (a piece of length 0). */
+static void breaks(double a, double b, double c, double t0, double t1, double out[2]) {
+  double root[2];
+  int k = quadratic_roots(a, b, c, root);
+  for (int i = 0; i < 2; i++) out[i] = i < k && root[i] > t0 && root[i] < t1 ? root[i] : t1;
+}
+
+static void order(double *x, double *y) {
+  double lo = fmin(*x, *y), hi = fmax(*x, *y);
+  *x = lo, *y = hi;
+}
+
+/* int_{t0}^{t1} of one volume's K along Q(t) = a t^2 + 2 b t + c: the breaks at Q = 0 and
+ * Q = -edge sorted by the GLSL twin's network (a sort without dynamic indexing there). */
+static double span_integral(double a, double b, double c, double density, double edge,
+                            double t0, double t1) {
+  double cut[6] = {t0, t1, t1, t1, t1, t1};
+  breaks(a, b, c, t0, t1, cut + 1);
+  if (edge > 0.0) breaks(a, b, c + edge, t0, t1, cut + 3);
+  order(&cut[1], &cut[2]), order(&cut[3], &cut[4]);
+  order(&cut[1], &cut[3]), order(&cut[2], &cut[4]);
+  order(&cut[2], &cut[3]);
+  double sum = 0.0;
+  for (int i = 0; i < 5; i++) {
+    double ta = cut[i], tb = cut[i + 1], tm = 0.5 * (ta + tb);
+    double qm = (a * tm + 2.0 * b) * tm + c;
+    if (!(tb > ta) || qm >= 0.0) continue; /* outside */
+    if (edge == 0.0 || qm <= -edge) {
+      sum += density * (tb - ta); /* the core */
+    } else { /* the soft edge: density (-Q/edge), Simpson exact for the quadratic */
+      double qa = (a * ta + 2.0 * b) * ta + c, qb = (a * tb + 2.0 * b) * tb + c;
+      sum -= density / edge * (tb - ta) * (qa + 4.0 * qm + qb) / 6.0;
+    }
+  }
+  return sum;
+}
+
+double fog_quadric_optical_depth(const fog_quadric *v, int count, const double o[3],
+                                 const double d[3], double length) {
+  double sum = 0.0;
+  for (int i = 0; i < count; i++) {
+    double lo[3], hi[3], t0, t1;
+    for (int k = 0; k < 3; k++) lo[k] = v[i].lo[k] - o[k], hi[k] = v[i].hi[k] - o[k];
+    if (!(v[i].density > 0.0) || !fog_slab_entry_exit(lo, hi, d, &t0, &t1)) continue;
+    t0 = fmax(t0, 0.0), t1 = fmin(t1, length);
+    if (!(t1 > t0)) continue;
+    double m[3][3], l[3], mo[3];
+    quadric_matrix(&v[i], m, l);
+    for (int r = 0; r < 3; r++) mo[r] = m[r][0] * o[0] + m[r][1] * o[1] + m[r][2] * o[2] + l[r];
+    double a = 0.0, b = 0.0;
+    for (int r = 0; r < 3; r++) {
+      a += d[r] * (m[r][0] * d[0] + m[r][1] * d[1] + m[r][2] * d[2]);
+      b += d[r] * mo[r];
+    }
+    /* re-centred on t0, as the GLSL twin (where this keeps float from cancelling) */
+    double c = fog_quadric_value(&v[i], o);
+    sum += span_integral(a, b + a * t0, (a * t0 + 2.0 * b) * t0 + c, v[i].density, v[i].edge,
+                         0.0, t1 - t0);
+  }
+  return sum;
+}
+
+double fog_quadric_extinction_at(const fog_quadric *v, int count, const double p[3]) {
+  double k = 0.0;
+  for (int i = 0; i < count; i++) {
+    bool inside = true;
+    for (int a = 0; a < 3; a++) inside = inside && p[a] >= v[i].lo[a] && p[a] <= v[i].hi[a];
+    double q = inside ? fog_quadric_value(&v[i], p) : 0.0;
+    if (!(q < 0.0)) continue;
+    k += v[i].edge > 0.0 ? v[i].density * fmin(1.0, -q / v[i].edge) : v[i].density;
+  }
+  return k;
+}
+
+bool fog_quadric_bounds(const fog_quadric *v, int count, double lo[3], double hi[3]) {
+  for (int a = 0; a < 3; a++) lo[a] = HUGE_VAL, hi[a] = -HUGE_VAL;
+  for (int i = 0; i < count; i++)
+    for (int a = 0; a < 3; a++) lo[a] = fmin(lo[a], v[i].lo[a]), hi[a] = fmax(hi[a], v[i].hi[a]);
+  return count > 0 && lo[0] < hi[0] && lo[1] < hi[1] && lo[2] < hi[2];
+}
+
+double fog_model_depth_quadric(const fog_model *m, const double camera[3], const double dir[3],
+                               double t_surface) {
+  return fog_quadric_optical_depth(m->quadrics, m->quadric_count, camera, dir, t_surface);
+}
