@@ -18,6 +18,7 @@
 #include <stdlib.h>
 
 #include "reference/fog_light_reference.h"
+#include "reference/ref_slab.h"
 #include "reference/fog_oracle.h"
 
 enum { LR_MAX_DEPTH = 60 };
@@ -87,21 +88,7 @@ static double lr_adapt_depth(lr_ray *r, double a, double b, double tol, int dept
  * to the box's part; 0 when nothing is left. */
 static int lr_clip(const light_ref_medium *m, const double o[3], const double d[3], double *lo,
                    double *hi) {
-  for (int a = 0; a < 3; a++) {
-    if (d[a] == 0.0) {
-      if (o[a] < m->box_min[a] || o[a] > m->box_max[a]) return 0;
-      continue;
-    }
-    double ta = (m->box_min[a] - o[a]) / d[a], tb = (m->box_max[a] - o[a]) / d[a];
-    if (ta > tb) {
-      double s = ta;
-      ta = tb;
-      tb = s;
-    }
-    if (ta > *lo) *lo = ta;
-    if (tb < *hi) *hi = tb;
-  }
-  return *lo < *hi;
+  return ref_slab_clip(m->box_min, m->box_max, o, d, lo, hi);
 }
 
 static int lr_compare(const void *a, const void *b) {

@@ -24,6 +24,7 @@
 #include <stdlib.h>
 
 #include "reference/quadric_reference.h"
+#include "reference/ref_slab.h"
 
 enum {
   QR_MAX_DEPTH = 60,
@@ -230,21 +231,7 @@ static int qr_volume_breaks(const qr_ray *r, const quadric_reference_volume *v, 
  * components allowed); 0 when less than a point is left. */
 static int qr_clip(const quadric_reference_volume *v, const double o[3], const double d[3],
                    double *lo, double *hi) {
-  for (int k = 0; k < 3; k++) {
-    if (d[k] == 0.0) {
-      if (o[k] < v->lo[k] || o[k] > v->hi[k]) return 0;
-      continue;
-    }
-    double ta = (v->lo[k] - o[k]) / d[k], tb = (v->hi[k] - o[k]) / d[k];
-    if (ta > tb) {
-      double s = ta;
-      ta = tb;
-      tb = s;
-    }
-    if (ta > *lo) *lo = ta;
-    if (tb < *hi) *hi = tb;
-  }
-  return *lo < *hi;
+  return ref_slab_clip(v->lo, v->hi, o, d, lo, hi);
 }
 
 /* ----------------------------------------------------------------------------------------
