@@ -390,14 +390,16 @@ static int store_rbf(parse_state *s, const char *section, const char *key, const
  *   F G H I J XMIN YMIN ZMIN XMAX YMAX ZMAX DENSITY; then EDGE, the soft edge (default 0: a
  *   hard edge; for the shapes a share of Q's range, 0..1). */
 #define QUADRIC_MAX_COEFFICIENT 1e12
+enum quadric_shape { SHAPE_SPHERE, SHAPE_ELLIPSOID, SHAPE_CYLINDER, SHAPE_CONE, SHAPE_GENERAL };
 static const struct {
   const char *name, *numbers;
   int count; /* without EDGE */
-} shapes[] = {{"sphere", "X Y Z R DENSITY", 5},
-              {"ellipsoid", "X Y Z RX RY RZ DENSITY", 7},
-              {"cylinder", "X Y Z R HEIGHT DENSITY", 6},
-              {"cone", "X Y Z R HEIGHT DENSITY", 6},
-              {"general", "A B C D E F G H I J XMIN YMIN ZMIN XMAX YMAX ZMAX DENSITY", 17}};
+} shapes[] = {[SHAPE_SPHERE] = {"sphere", "X Y Z R DENSITY", 5},
+              [SHAPE_ELLIPSOID] = {"ellipsoid", "X Y Z RX RY RZ DENSITY", 7},
+              [SHAPE_CYLINDER] = {"cylinder", "X Y Z R HEIGHT DENSITY", 6},
+              [SHAPE_CONE] = {"cone", "X Y Z R HEIGHT DENSITY", 6},
+              [SHAPE_GENERAL] = {"general",
+                                 "A B C D E F G H I J XMIN YMIN ZMIN XMAX YMAX ZMAX DENSITY", 17}};
 static int store_quadric(parse_state *s, const char *section, const char *key, const char *value) {
   scene_config *cfg = s->cfg;
   size_t word = strcspn(value, " \t");
@@ -413,7 +415,7 @@ static int store_quadric(parse_state *s, const char *section, const char *key, c
     return fail(s, section, key, "expected %s %s [EDGE] (%d or %d numbers), got '%s'",
                 shapes[kind].name, shapes[kind].numbers, want, want + 1, value);
   const double density = v[want - 1], edge = n > want ? v[want] : 0.0;
-  const bool general = kind == 4;
+  const bool general = kind == SHAPE_GENERAL;
   if (!(density >= 0 && density <= MAX_EXTINCTION && edge >= 0 &&
         edge <= (general ? QUADRIC_MAX_COEFFICIENT : 1.0)))
     return fail(s, section, key, "expected DENSITY from 0 to %g and EDGE from 0 to %g, got '%s'",
@@ -437,10 +439,10 @@ static int store_quadric(parse_state *s, const char *section, const char *key, c
   for (int i = 0; i < n; i++) line->numbers[i] = v[i];
   fog_quadric *q = &cfg->fog.quadrics[cfg->fog.quadric_count++];
   switch (kind) {
-    case 0: *q = fog_quadric_sphere(v, v[3], density, edge); break;
-    case 1: *q = fog_quadric_ellipsoid(v, v + 3, density, edge); break;
-    case 2: *q = fog_quadric_cylinder(v, v[3], v[4], density, edge); break;
-    case 3: *q = fog_quadric_cone(v, v[3], v[4], density, edge); break;
+    case SHAPE_SPHERE: *q = fog_quadric_sphere(v, v[3], density, edge); break;
+    case SHAPE_ELLIPSOID: *q = fog_quadric_ellipsoid(v, v + 3, density, edge); break;
+    case SHAPE_CYLINDER: *q = fog_quadric_cylinder(v, v[3], v[4], density, edge); break;
+    case SHAPE_CONE: *q = fog_quadric_cone(v, v[3], v[4], density, edge); break;
     default:
       *q = (fog_quadric){.density = density, .edge = edge};
       for (int i = 0; i < 10; i++) q->q[i] = v[i];
@@ -1191,14 +1193,8 @@ uint64_t scene_config_fingerprint(const scene_config *cfg) {
         break;
       case V_QUADRIC:
         h = fnv(h, &cfg->fog.quadric_count, sizeof cfg->fog.quadric_count);
-        for (int r = 0; r < cfg->fog.quadric_count; r++) {
-          const fog_quadric *q = &cfg->fog.quadrics[r];
-          h = fnv(h, q->q, sizeof q->q);
-          h = fnv(h, q->lo, sizeof q->lo);
-          h = fnv(h, q->hi, sizeof q->hi);
-          h = fnv(h, &q->density, sizeof q->density);
-          h = fnv(h, &q->edge, sizeof q->edge);
-        }
+        /* doubles only: no padding bytes in the hash */
+        h = fnv(h, cfg->fog.quadrics, sizeof cfg->fog.quadrics[0] * cfg->fog.quadric_count);
         break;
     }
   }

@@ -59,6 +59,8 @@ typedef struct fog_quadric {
   double density; /* >= 0 */
   double edge;    /* in [0, 1] for the shapes below; >= 0 for a general quadric */
 } fog_quadric;
+/* Doubles only: configs hash and compare it as bytes. */
+_Static_assert(sizeof(fog_quadric) == 18 * sizeof(double), "fog_quadric has padding");
 
 /* The shapes (Q normalised as above; the box is the shape's own bounds):
  * a sphere of radius r, an ellipsoid of semi-axes r[3], an upright cylinder and an upright
@@ -70,6 +72,8 @@ fog_quadric fog_quadric_cylinder(const double base[3], double r, double h, doubl
                                  double edge);
 fog_quadric fog_quadric_cone(const double base[3], double r, double h, double density,
                              double edge);
+/* Q = x^T M x + 2 l^T x + J: the symmetric M and l from the ten coefficients. */
+void fog_quadric_matrix(const fog_quadric *v, double m[3][3], double l[3]);
 /* Q of one volume at p. */
 double fog_quadric_value(const fog_quadric *v, const double p[3]);
 /* The exact optical depth of `count` volumes from o along unit d up to length (HUGE_VAL:

@@ -712,12 +712,10 @@ static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
     for (int a = 0; a < 3; a++) union_lo[a] = union_hi[a] = o[a];
   for (int i = 0; i < n; i++) {
     const fog_quadric *v = &params->model_quadrics[i];
-    const double *q = v->q;
-    double m[3][3] = {{q[0], 0.5 * q[3], 0.5 * q[5]},
-                      {0.5 * q[3], q[1], 0.5 * q[4]},
-                      {0.5 * q[5], 0.5 * q[4], q[2]}};
+    double m[3][3], l[3];
+    fog_quadric_matrix(v, m, l);
     for (int r = 0; r < 3; r++) {
-      grad_c0[i][r] = m[r][0] * o[0] + m[r][1] * o[1] + m[r][2] * o[2] + 0.5 * q[6 + r];
+      grad_c0[i][r] = m[r][0] * o[0] + m[r][1] * o[1] + m[r][2] * o[2] + l[r];
       grad[i][r] = (float)grad_c0[i][r];
       diag[i][r] = (float)m[r][r];
       lo[i][r] = (float)(v->lo[r] - o[r]);

@@ -5,8 +5,7 @@
 
 #include "render/fog_models.h"
 
-/* Q(x) = x^T M x + 2 l^T x + J with M symmetric: M's rows and l from the ten coefficients. */
-static void quadric_matrix(const fog_quadric *v, double m[3][3], double l[3]) {
+void fog_quadric_matrix(const fog_quadric *v, double m[3][3], double l[3]) {
   const double *q = v->q;
   m[0][0] = q[0], m[1][1] = q[1], m[2][2] = q[2];
   m[0][1] = m[1][0] = 0.5 * q[3]; /* D xy */
@@ -133,7 +132,7 @@ double fog_quadric_optical_depth(const fog_quadric *v, int count, const double o
     t0 = fmax(t0, 0.0), t1 = fmin(t1, length);
     if (!(t1 > t0)) continue;
     double m[3][3], l[3], mo[3];
-    quadric_matrix(&v[i], m, l);
+    fog_quadric_matrix(&v[i], m, l);
     for (int r = 0; r < 3; r++) mo[r] = m[r][0] * o[0] + m[r][1] * o[1] + m[r][2] * o[2] + l[r];
     double a = 0.0, b = 0.0;
     for (int r = 0; r < 3; r++) {
