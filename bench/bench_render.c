@@ -15,7 +15,12 @@
  *     with manual fetch, and linear/quadratic with hardware filtering (haar's hardware variant
  *     is the same texelFetch: not repeated);
  *   - LOD by distance over a 3-level linear pyramid, mu = 1 .. 0, both methods: the paper's
- *     sum of deconstructed details and approximation switching.
+ *     sum of deconstructed details and approximation switching;
+ *   - detailed fog (Perlin turbulence, 256 x 256, feature size 16 cells, 4 octaves: what
+ *     `fogpipe design --perlin --feature-size 16` makes) in the same box: the exact linear
+ *     walk and marching at N = 64 .. 2048 (X2);
+ *   - the Mantaflow ground fog with and without empty-space skipping (S), and marched at
+ *     N = 64 .. 2048 (X on a shipped scene, printed).
  * Every row runs with the fog pass's defaults otherwise: the exact walks (single grid, LOD
  * switching) stop at FOG_PASS_TRANSMITTANCE_CUTOFF (tau below 1e-4), the marcher and the sum of
  * (signed) details integrate whole rays.
@@ -32,6 +37,7 @@
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -46,11 +52,13 @@
 
 #define LOD_LEVELS 3
 #define ERROR_FLOOR 1e-9 /* log axis of the chart: errors below are drawn at the floor */
-#define MAX_ROWS 48
+#define MAX_ROWS 56
 
 static const int march_steps[] = {8, 16, 32, 64, 128, 256, 512};
 static const double lod_mu[] = {1.0, 0.8, 0.6, 0.4, 0.2, 0.0};
-enum { MARCH_COUNT = 7, MU_COUNT = 6 };
+/* The detailed fog's marching: up to 2048 steps, so that a row within 1e-3 exists. */
+static const int detailed_steps[] = {64, 128, 256, 512, 1024, 2048};
+enum { MARCH_COUNT = 7, MU_COUNT = 6, DETAILED_COUNT = 6 };
 
 static void print_help(void) {
   printf(
@@ -68,8 +76,9 @@ static void print_help(void) {
       "               <source>/data/fogmap_sample.png)\n"
       "  --help       this text\n"
       "Last line: render: exact_speedup_at_matched_error=X lod_switch_speedup_vs_sum=Y\n"
-      "lod_overhead_at_mu1=Z empty_skip_speedup=S, where X = time of the cheapest ray\n"
-      "marching with max tau error <= 1e-3 / exact linear time (targets X >= 5), Y =\n"
+      "lod_overhead_at_mu1=Z empty_skip_speedup=S exact_speedup_at_matched_error_detailed=X2,\n"
+      "where X = time of the cheapest ray marching with max tau error <= 1e-3 / exact linear\n"
+      "time (targets X >= 5; X2 the same on detailed Perlin fog, marching to 2048 steps), Y =\n"
       "sum-of-details time / approximation-switching time at mu = 0.6, 3 levels (Y >= 1.5),\n"
       "Z = switching time at mu = 1 / the fogmap alone without decomposition (Z <= 1.05),\n"
       "S = the exact linear walk on the ground fog (data/fogmap_groundfog.exr) without\n"
@@ -274,6 +283,19 @@ static int write_table_csv(const char *path, const bench_row *rows, int count, c
   return chart_csv_close(f, path, error, size);
 }
 
+/* The cheapest marching row on `pass` with max error <= 1e-3 (*matched), else the most
+ * accurate one. */
+static int matched_march(const bench_row *rows, int count, int pass, bool *matched) {
+  int cheapest = -1, best = -1;
+  for (int i = 0; i < count; i++) {
+    if (rows[i].params.integrator != FOG_INTEGRATOR_MARCH || rows[i].pass != pass) continue;
+    if (rows[i].max_error <= 1e-3 && (cheapest < 0 || rows[i].ms < rows[cheapest].ms)) cheapest = i;
+    if (best < 0 || rows[i].max_error < rows[best].max_error) best = i;
+  }
+  *matched = cheapest >= 0;
+  return cheapest >= 0 ? cheapest : best;
+}
+
 static const char *data_file(const char *name) {
   static char path[2][4096];
   static int next;
@@ -350,10 +372,14 @@ int bench_render(int argc, char **argv) {
   scene_geometry geo = {0};
   int have_geo = 0;
   scene_pass *spass = NULL;
-  fog_pass *passes[5] = {0}; /* 0..2 full grid per degree, 3 LOD, 4 the ground fog */
+  fog_pass *passes[6] = {0}; /* 0..2 full grid per degree, 3 LOD, 4 the ground fog,
+                                5 the detailed fog */
+  fogmap detailed = {0};
+  transform_plan *detailed_plan = NULL;
+  transform_grid detailed_grid = {0};
   gl_target scene_target = {0}, fog_target = {0};
   float *distance = NULL, *gpu_tau = NULL;
-  double *references[4 + MU_COUNT] = {0}; /* per degree, per mu, the ground fog */
+  double *references[5 + MU_COUNT] = {0}; /* per degree, per mu, the ground and detailed fog */
   bench_row rows[MAX_ROWS];
   int row_count = 0;
   chart_point points[MAX_ROWS];
@@ -402,6 +428,21 @@ int bench_render(int argc, char **argv) {
       goto transform_failed;
   }
 
+  /* The detailed fog: Perlin turbulence at the sample map's size, so in the same box. */
+  if (fogmap_create(&detailed, map.width, map.height, &serr) ||
+      designed_fog_perlin(&detailed, &(perlin_fog_desc){.octaves = 4, .feature_size = 16.0f},
+                          &serr)) {
+    fprintf(stderr, "fogpipe bench render: detailed fog: %s\n", serr.message);
+    goto done;
+  }
+  {
+    transform_desc desc = {.width = detailed.width, .height = detailed.height, .levels = 0,
+                           .basis = TRANSFORM_LINEAR};
+    if (transform_plan_create(&detailed_plan, &desc, &terr) ||
+        transform_grid_create_level(detailed_plan, 0, detailed.density, &detailed_grid, &terr))
+      goto transform_failed;
+  }
+
   /* ---- GL: context, scene, fog passes ---- */
   ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
   if (!ctx) goto gl_failed;
@@ -441,11 +482,11 @@ int bench_render(int argc, char **argv) {
   gpu_tau = malloc(pixels * sizeof(float));
   if (!distance || !gpu_tau) goto out_of_memory;
   if (gl_target_read(&scene_target, 1, 1, distance, &rerr)) goto gl_failed;
-  for (int p = 0; p < 5; p++) {
+  for (int p = 0; p < 6; p++) {
     if (fog_pass_create(&passes[p], &rerr)) goto gl_failed;
     if (p < 3 ? fog_pass_upload_grid(passes[p], 0, &full[p], &rerr)
         : p == 3 ? fog_pass_upload_lod(passes[p], &lod, &rerr)
-                 : fog_pass_upload_grid(passes[p], 0, &ground_grid, &rerr))
+        : fog_pass_upload_grid(passes[p], 0, p == 4 ? &ground_grid : &detailed_grid, &rerr))
       goto gl_failed;
   }
 
@@ -457,8 +498,8 @@ int bench_render(int argc, char **argv) {
       .cell_size = volume.map_width * volume.cell_size / (ground.width > ground.height
                                                               ? ground.width : ground.height),
       .extinction = volume.extinction * 4.0, .profile = volume.profile};
-  const int ground_reference = 3 + MU_COUNT;
-  for (int r = 0; r < 4 + MU_COUNT; r++) {
+  const int ground_reference = 3 + MU_COUNT, detailed_reference = 4 + MU_COUNT;
+  for (int r = 0; r < 5 + MU_COUNT; r++) {
     references[r] = malloc(pixels * sizeof(double));
     if (!references[r]) goto out_of_memory;
     fog_lod model = lod;
@@ -466,7 +507,8 @@ int bench_render(int argc, char **argv) {
     reference_tau((reference_job){.volume = r == ground_reference ? &ground_volume : &volume,
                                   .cam = &cam,
                                   .grid = r < 3 ? &full[r]
-                                          : r == ground_reference ? &ground_grid : NULL,
+                                          : r == ground_reference ? &ground_grid
+                                          : r == detailed_reference ? &detailed_grid : NULL,
                                   .lod = &model,
                                   .distance = distance, .width = W, .height = H,
                                   .tau = references[r]});
@@ -544,6 +586,33 @@ int bench_render(int argc, char **argv) {
       r->params.mu = lod_mu[k];
       r->params.lod_method = m ? FOG_LOD_SWITCH : FOG_LOD_SUM_OF_DETAILS;
     }
+  /* The detailed fog: the exact linear walk, then marching to 2048 steps. */
+  int detailed_rows = row_count;
+  for (int s = -1; s < DETAILED_COUNT; s++) {
+    bench_row *r = &rows[row_count++];
+    *r = (bench_row){.method = s < 0 ? "detailed exact" : "detailed march", .pass = 5,
+                     .series = s < 0 ? "exact detailed fog (linear)" : "ray marching detailed fog",
+                     .params = base, .reference = detailed_reference, .full_reference = -1,
+                     .chart_x_key = s < 0 ? 0 : detailed_steps[s]};
+    if (s < 0) {
+      snprintf(r->setting, sizeof r->setting, "linear");
+    } else {
+      snprintf(r->setting, sizeof r->setting, "N=%d", detailed_steps[s]);
+      r->params.integrator = FOG_INTEGRATOR_MARCH;
+      r->params.march_steps = detailed_steps[s];
+    }
+  }
+  /* The ground fog marched (against its exact rows above): X on a shipped scene. */
+  for (int s = 0; s < DETAILED_COUNT; s++) {
+    bench_row *r = &rows[row_count++];
+    *r = (bench_row){.method = "ground march", .pass = 4, .series = "ray marching ground fog",
+                     .params = base, .reference = ground_reference, .full_reference = -1,
+                     .chart_x_key = detailed_steps[s]};
+    snprintf(r->setting, sizeof r->setting, "N=%d", detailed_steps[s]);
+    r->params.volume = &ground_volume;
+    r->params.integrator = FOG_INTEGRATOR_MARCH;
+    r->params.march_steps = detailed_steps[s];
+  }
   for (int i = 0; i < row_count; i++) {
     rows[i].times = malloc((size_t)frames * sizeof(double));
     if (!rows[i].times) goto out_of_memory;
@@ -668,15 +737,15 @@ int bench_render(int argc, char **argv) {
     goto done;
   }
 
-  /* X: the cheapest marching with max error <= 1e-3 over the exact linear walk. */
-  int cheapest = -1, best = -1;
-  for (int i = 0; i < row_count; i++) {
-    if (rows[i].params.integrator != FOG_INTEGRATOR_MARCH) continue;
-    if (rows[i].max_error <= 1e-3 && (cheapest < 0 || rows[i].ms < rows[cheapest].ms)) cheapest = i;
-    if (best < 0 || rows[i].max_error < rows[best].max_error) best = i;
-  }
-  int matched = cheapest >= 0 ? cheapest : best;
+  /* X: the cheapest marching of the sample map with max error <= 1e-3 over the exact linear
+   * walk; X2 the same on the detailed fog. */
+  bool matched_sample, matched_detailed;
+  int matched = matched_march(rows, row_count, 1, &matched_sample);
+  int matched2 = matched_march(rows, row_count, 5, &matched_detailed);
+  bool matched_ground;
+  int matched3 = matched_march(rows, row_count, 4, &matched_ground);
   double X = rows[matched].ms / rows[exact_linear].ms;
+  double X2 = rows[matched2].ms / rows[detailed_rows].ms;
   double Y = rows[sum_at_06].ms / rows[switch_at_06].ms;
   double Z = rows[switch_at_1].ms / rows[exact_linear].ms;
   printf("\nupload of the J=%d pyramid (%d textures, R32F grids + RGBA32F cell polynomials, "
@@ -686,10 +755,21 @@ int bench_render(int argc, char **argv) {
          upload.direct_ms / upload.staged_ms);
   printf("\nCSV: %s (table), %s (chart data)\nPNG: %s; tau image: %s/render_tau.png\n", csv_path,
          chart_csv, chart_png, out_dir);
-  if (cheapest < 0)
+  if (!matched_sample)
     printf("note: no ray marching reached max error <= 1e-3; X uses the most accurate one\n");
+  if (!matched_detailed)
+    printf("note: no marching of the detailed fog reached max error <= 1e-3; X2 uses the most "
+           "accurate one\n");
   printf("X: %s %s (%.2f ms, max err %.2e) / exact linear (%.2f ms)\n", rows[matched].method,
          rows[matched].setting, rows[matched].ms, rows[matched].max_error, rows[exact_linear].ms);
+  printf("X2: detailed fog (Perlin, feature size 16, 4 octaves) %s %s (%.2f ms, max err %.2e) / "
+         "exact linear (%.2f ms, max err %.2e)\n", rows[matched2].method, rows[matched2].setting,
+         rows[matched2].ms, rows[matched2].max_error, rows[detailed_rows].ms,
+         rows[detailed_rows].max_error);
+  printf("X on the ground fog: %s %s (%.2f ms, max err %.2e%s) / its exact walk with skipping "
+         "(%.2f ms) = %.2f\n", rows[matched3].method, rows[matched3].setting, rows[matched3].ms,
+         rows[matched3].max_error, matched_ground ? "" : ", the most accurate: none within 1e-3",
+         rows[ground_rows].ms, rows[matched3].ms / rows[ground_rows].ms);
   printf("Y: LOD sum %.2f ms / LOD switch %.2f ms at mu = 0.6 = %.2f; predicted per ray by\n"
          "   cells crossed: sum %.1f / switch %.1f = %.2f; pieces walked (cells and profile\n"
          "   breaks): %.1f / %.1f = %.2f; pieces as 4x2-pixel lane groups pay: %.1f / %.1f"
@@ -716,8 +796,9 @@ int bench_render(int argc, char **argv) {
            skip_eps[k] * volume.extinction * 1000.0);
   }
   printf("render: exact_speedup_at_matched_error=%.3f lod_switch_speedup_vs_sum=%.3f "
-         "lod_overhead_at_mu1=%.3f empty_skip_speedup=%.3f\n",
-         X, Y, Z, S);
+         "lod_overhead_at_mu1=%.3f empty_skip_speedup=%.3f "
+         "exact_speedup_at_matched_error_detailed=%.3f\n",
+         X, Y, Z, S, X2);
   status = 0;
   goto done;
 
@@ -731,10 +812,13 @@ gl_failed:
   fprintf(stderr, "fogpipe bench render: %s\n", rerr.message);
 done:
   for (int i = 0; i < row_count; i++) free(rows[i].times);
-  for (int r = 0; r < 4 + MU_COUNT; r++) free(references[r]);
+  for (int r = 0; r < 5 + MU_COUNT; r++) free(references[r]);
   free(distance);
   free(gpu_tau);
-  for (int p = 0; p < 5; p++) fog_pass_destroy(passes[p]);
+  for (int p = 0; p < 6; p++) fog_pass_destroy(passes[p]);
+  transform_grid_destroy(&detailed_grid);
+  transform_plan_destroy(detailed_plan);
+  fogmap_destroy(&detailed);
   transform_grid_destroy(&ground_grid);
   transform_plan_destroy(ground_plan);
   fogmap_destroy(&ground);
