@@ -39,4 +39,11 @@ int bench_make_folder(const char *path, char *error, int size);
 void bench_tau_errors(const float *gpu, const double *ref, size_t n, double *rmse,
                       double *max_error, size_t *where);
 
+/* The density the simulation of the scene at config_path holds at frame `frame` (1-based, at
+ * fps frames per second: what `fogpipe record` frame n shows), into *out (fogmap_create'd
+ * here; fogmap_destroy it). Non-zero and a message when the scene has no simulation. */
+struct fogmap;
+int bench_simulated_density(const char *config_path, int frame, double fps,
+                            struct fogmap *out, char *error, size_t cap);
+
 #endif

@@ -16,9 +16,10 @@
  *     is the same texelFetch: not repeated);
  *   - LOD by distance over a 3-level linear pyramid, mu = 1 .. 0, both methods: the paper's
  *     sum of deconstructed details and approximation switching;
- *   - detailed fog (Perlin turbulence, 256 x 256, feature size 16 cells, 4 octaves: what
- *     `fogpipe design --perlin --feature-size 16` makes) in the same box: the exact linear
- *     walk and marching at N = 64 .. 2048 (X2);
+ *   - two more fogmaps in the same box, each its exact linear walk and marching at N = 64 ..
+ *     2048: detailed fog (Perlin turbulence, 256 x 256, feature size 16 cells, 4 octaves:
+ *     what `fogpipe design --perlin --feature-size 16` makes; X2) and the default scene's
+ *     simulated fog at frame 48 (configs/default.ini's simulation at 24 fps; X printed);
  *   - the Mantaflow ground fog with and without empty-space skipping (S), and marched at
  *     N = 64 .. 2048 (X on a shipped scene, printed).
  * Every row runs with the fog pass's defaults otherwise: the exact walks (single grid, LOD
@@ -52,13 +53,17 @@
 
 #define LOD_LEVELS 3
 #define ERROR_FLOOR 1e-9 /* log axis of the chart: errors below are drawn at the floor */
-#define MAX_ROWS 56
+#define MAX_ROWS 64
 
 static const int march_steps[] = {8, 16, 32, 64, 128, 256, 512};
 static const double lod_mu[] = {1.0, 0.8, 0.6, 0.4, 0.2, 0.0};
-/* The detailed fog's marching: up to 2048 steps, so that a row within 1e-3 exists. */
+/* The extra fogmaps' marching: up to 2048 steps, so that a row within 1e-3 exists. */
 static const int detailed_steps[] = {64, 128, 256, 512, 1024, 2048};
 enum { MARCH_COUNT = 7, MU_COUNT = 6, DETAILED_COUNT = 6 };
+/* The extra fogmaps (their own pass and CPU reference each): 0 detailed, 1 simulated. */
+enum { EXTRA_DETAILED, EXTRA_SIMULATED, EXTRA_COUNT };
+static const char *const extra_names[EXTRA_COUNT] = {"detailed", "simulated"};
+#define SIMULATED_FRAME 48
 
 static void print_help(void) {
   printf(
@@ -296,14 +301,15 @@ static int matched_march(const bench_row *rows, int count, int pass, bool *match
   return cheapest >= 0 ? cheapest : best;
 }
 
-static const char *data_file(const char *name) {
-  static char path[2][4096];
+/* folder/name from the working directory, else from the source tree. */
+static const char *source_file(const char *folder, const char *name) {
+  static char path[3][4096];
   static int next;
-  char *out = path[next++ % 2];
+  char *out = path[next++ % 3];
   struct stat st;
-  snprintf(out, sizeof path[0], "data/%s", name);
+  snprintf(out, sizeof path[0], "%s/%s", folder, name);
   if (stat(out, &st) == 0) return out;
-  snprintf(out, sizeof path[0], "%s/data/%s", FOGPIPE_SOURCE_DIR, name);
+  snprintf(out, sizeof path[0], "%s/%s/%s", FOGPIPE_SOURCE_DIR, folder, name);
   return out;
 }
 
@@ -341,10 +347,10 @@ int bench_render(int argc, char **argv) {
   }
   const int W = options.width, H = options.height, frames = options.frames;
   const char *out_dir = options.out_dir;
-  if (!fogmap_path) fogmap_path = data_file("fogmap_sample.png");
+  if (!fogmap_path) fogmap_path = source_file("data", "fogmap_sample.png");
   /* The empty-space skipping rows' ground fog (data/README.md): the Mantaflow bake's frame
    * 24 as a 128 x 128 fogmap, 60 % of its blocks empty, over the same box. */
-  const char *ground_path = data_file("fogmap_groundfog.exr");
+  const char *ground_path = source_file("data", "fogmap_groundfog.exr");
   char message[1024] = "";
   if (bench_make_folder(out_dir, message, sizeof message)) {
     fprintf(stderr, "fogpipe bench render: %s\n", message);
@@ -372,14 +378,16 @@ int bench_render(int argc, char **argv) {
   scene_geometry geo = {0};
   int have_geo = 0;
   scene_pass *spass = NULL;
-  fog_pass *passes[6] = {0}; /* 0..2 full grid per degree, 3 LOD, 4 the ground fog,
-                                5 the detailed fog */
-  fogmap detailed = {0};
-  transform_plan *detailed_plan = NULL;
-  transform_grid detailed_grid = {0};
+  enum { PASS_COUNT = 5 + EXTRA_COUNT };
+  fog_pass *passes[PASS_COUNT] = {0}; /* 0..2 full grid per degree, 3 LOD, 4 the ground fog,
+                                         5 + k extra fogmap k */
+  fogmap extra[EXTRA_COUNT] = {{0}};
+  transform_plan *extra_plan[EXTRA_COUNT] = {0};
+  transform_grid extra_grid[EXTRA_COUNT] = {{0}};
   gl_target scene_target = {0}, fog_target = {0};
   float *distance = NULL, *gpu_tau = NULL;
-  double *references[5 + MU_COUNT] = {0}; /* per degree, per mu, the ground and detailed fog */
+  enum { REFERENCE_COUNT = 4 + MU_COUNT + EXTRA_COUNT };
+  double *references[REFERENCE_COUNT] = {0}; /* per degree, per mu, the ground fog, extras */
   bench_row rows[MAX_ROWS];
   int row_count = 0;
   chart_point points[MAX_ROWS];
@@ -428,18 +436,24 @@ int bench_render(int argc, char **argv) {
       goto transform_failed;
   }
 
-  /* The detailed fog: Perlin turbulence at the sample map's size, so in the same box. */
-  if (fogmap_create(&detailed, map.width, map.height, &serr) ||
-      designed_fog_perlin(&detailed, &(perlin_fog_desc){.octaves = 4, .feature_size = 16.0f},
-                          &serr)) {
+  /* The detailed fog: Perlin turbulence at the sample map's size, so in the same box. The
+   * simulated fog: the default scene's frame 48 (made before this bench's GL context). */
+  if (fogmap_create(&extra[EXTRA_DETAILED], map.width, map.height, &serr) ||
+      designed_fog_perlin(&extra[EXTRA_DETAILED],
+                          &(perlin_fog_desc){.octaves = 4, .feature_size = 16.0f}, &serr)) {
     fprintf(stderr, "fogpipe bench render: detailed fog: %s\n", serr.message);
     goto done;
   }
-  {
-    transform_desc desc = {.width = detailed.width, .height = detailed.height, .levels = 0,
+  if (bench_simulated_density(source_file("configs", "default.ini"), SIMULATED_FRAME, 24.0,
+                              &extra[EXTRA_SIMULATED], message, sizeof message)) {
+    fprintf(stderr, "fogpipe bench render: simulated fog: %s\n", message);
+    goto done;
+  }
+  for (int k = 0; k < EXTRA_COUNT; k++) {
+    transform_desc desc = {.width = extra[k].width, .height = extra[k].height, .levels = 0,
                            .basis = TRANSFORM_LINEAR};
-    if (transform_plan_create(&detailed_plan, &desc, &terr) ||
-        transform_grid_create_level(detailed_plan, 0, detailed.density, &detailed_grid, &terr))
+    if (transform_plan_create(&extra_plan[k], &desc, &terr) ||
+        transform_grid_create_level(extra_plan[k], 0, extra[k].density, &extra_grid[k], &terr))
       goto transform_failed;
   }
 
@@ -482,11 +496,11 @@ int bench_render(int argc, char **argv) {
   gpu_tau = malloc(pixels * sizeof(float));
   if (!distance || !gpu_tau) goto out_of_memory;
   if (gl_target_read(&scene_target, 1, 1, distance, &rerr)) goto gl_failed;
-  for (int p = 0; p < 6; p++) {
+  for (int p = 0; p < PASS_COUNT; p++) {
     if (fog_pass_create(&passes[p], &rerr)) goto gl_failed;
     if (p < 3 ? fog_pass_upload_grid(passes[p], 0, &full[p], &rerr)
         : p == 3 ? fog_pass_upload_lod(passes[p], &lod, &rerr)
-        : fog_pass_upload_grid(passes[p], 0, p == 4 ? &ground_grid : &detailed_grid, &rerr))
+        : fog_pass_upload_grid(passes[p], 0, p == 4 ? &ground_grid : &extra_grid[p - 5], &rerr))
       goto gl_failed;
   }
 
@@ -498,17 +512,27 @@ int bench_render(int argc, char **argv) {
       .cell_size = volume.map_width * volume.cell_size / (ground.width > ground.height
                                                               ? ground.width : ground.height),
       .extinction = volume.extinction * 4.0, .profile = volume.profile};
-  const int ground_reference = 3 + MU_COUNT, detailed_reference = 4 + MU_COUNT;
-  for (int r = 0; r < 5 + MU_COUNT; r++) {
+  /* The extra fogmaps in the sample map's box (cell size from their width, as the sample's). */
+  fog_volume extra_volume[EXTRA_COUNT];
+  for (int k = 0; k < EXTRA_COUNT; k++) {
+    extra_volume[k] = volume;
+    extra_volume[k].map_width = extra[k].width, extra_volume[k].map_height = extra[k].height;
+    extra_volume[k].cell_size =
+        4.0 * 256.0 / (extra[k].width > extra[k].height ? extra[k].width : extra[k].height);
+  }
+  const int ground_reference = 3 + MU_COUNT, extra_reference = 4 + MU_COUNT;
+  for (int r = 0; r < REFERENCE_COUNT; r++) {
     references[r] = malloc(pixels * sizeof(double));
     if (!references[r]) goto out_of_memory;
     fog_lod model = lod;
     if (r >= 3 && r < ground_reference) model.mu = lod_mu[r - 3];
-    reference_tau((reference_job){.volume = r == ground_reference ? &ground_volume : &volume,
+    const int k = r - extra_reference; /* >= 0: extra fogmap k */
+    reference_tau((reference_job){.volume = r == ground_reference ? &ground_volume
+                                            : k >= 0 ? &extra_volume[k] : &volume,
                                   .cam = &cam,
                                   .grid = r < 3 ? &full[r]
                                           : r == ground_reference ? &ground_grid
-                                          : r == detailed_reference ? &detailed_grid : NULL,
+                                          : k >= 0 ? &extra_grid[k] : NULL,
                                   .lod = &model,
                                   .distance = distance, .width = W, .height = H,
                                   .tau = references[r]});
@@ -586,20 +610,28 @@ int bench_render(int argc, char **argv) {
       r->params.mu = lod_mu[k];
       r->params.lod_method = m ? FOG_LOD_SWITCH : FOG_LOD_SUM_OF_DETAILS;
     }
-  /* The detailed fog: the exact linear walk, then marching to 2048 steps. */
-  int detailed_rows = row_count;
-  for (int s = -1; s < DETAILED_COUNT; s++) {
-    bench_row *r = &rows[row_count++];
-    *r = (bench_row){.method = s < 0 ? "detailed exact" : "detailed march", .pass = 5,
-                     .series = s < 0 ? "exact detailed fog (linear)" : "ray marching detailed fog",
-                     .params = base, .reference = detailed_reference, .full_reference = -1,
-                     .chart_x_key = s < 0 ? 0 : detailed_steps[s]};
-    if (s < 0) {
-      snprintf(r->setting, sizeof r->setting, "linear");
-    } else {
-      snprintf(r->setting, sizeof r->setting, "N=%d", detailed_steps[s]);
-      r->params.integrator = FOG_INTEGRATOR_MARCH;
-      r->params.march_steps = detailed_steps[s];
+  /* The extra fogmaps: the exact linear walk, then marching to 2048 steps. */
+  static const char *const extra_methods[EXTRA_COUNT][2] = {
+      {"detailed exact", "detailed march"}, {"simulated exact", "simulated march"}};
+  static const char *const extra_series[EXTRA_COUNT][2] = {
+      {"exact detailed fog (linear)", "ray marching detailed fog"},
+      {"exact simulated fog (linear)", "ray marching simulated fog"}};
+  int extra_rows[EXTRA_COUNT];
+  for (int k = 0; k < EXTRA_COUNT; k++) {
+    extra_rows[k] = row_count;
+    for (int s = -1; s < DETAILED_COUNT; s++) { /* s = -1: the exact walk */
+      bench_row *r = &rows[row_count++];
+      *r = (bench_row){.method = extra_methods[k][s >= 0], .pass = 5 + k,
+                       .series = extra_series[k][s >= 0], .params = base,
+                       .reference = extra_reference + k, .full_reference = -1,
+                       .chart_x_key = s < 0 ? 0 : detailed_steps[s]};
+      r->params.volume = &extra_volume[k];
+      snprintf(r->setting, sizeof r->setting, s < 0 ? "linear" : "N=%d",
+               s < 0 ? 0 : detailed_steps[s]);
+      if (s >= 0) {
+        r->params.integrator = FOG_INTEGRATOR_MARCH;
+        r->params.march_steps = detailed_steps[s];
+      }
     }
   }
   /* The ground fog marched (against its exact rows above): X on a shipped scene. */
@@ -739,13 +771,15 @@ int bench_render(int argc, char **argv) {
 
   /* X: the cheapest marching of the sample map with max error <= 1e-3 over the exact linear
    * walk; X2 the same on the detailed fog. */
-  bool matched_sample, matched_detailed;
-  int matched = matched_march(rows, row_count, 1, &matched_sample);
-  int matched2 = matched_march(rows, row_count, 5, &matched_detailed);
+  bool matched_sample, matched_extra[EXTRA_COUNT];
+  int matched = matched_march(rows, row_count, 1, &matched_sample), matched_at[EXTRA_COUNT];
+  for (int k = 0; k < EXTRA_COUNT; k++)
+    matched_at[k] = matched_march(rows, row_count, 5 + k, &matched_extra[k]);
   bool matched_ground;
   int matched3 = matched_march(rows, row_count, 4, &matched_ground);
   double X = rows[matched].ms / rows[exact_linear].ms;
-  double X2 = rows[matched2].ms / rows[detailed_rows].ms;
+  const int exact_detailed = extra_rows[EXTRA_DETAILED], matched2 = matched_at[EXTRA_DETAILED];
+  double X2 = rows[matched2].ms / rows[exact_detailed].ms;
   double Y = rows[sum_at_06].ms / rows[switch_at_06].ms;
   double Z = rows[switch_at_1].ms / rows[exact_linear].ms;
   printf("\nupload of the J=%d pyramid (%d textures, R32F grids + RGBA32F cell polynomials, "
@@ -757,15 +791,24 @@ int bench_render(int argc, char **argv) {
          chart_csv, chart_png, out_dir);
   if (!matched_sample)
     printf("note: no ray marching reached max error <= 1e-3; X uses the most accurate one\n");
-  if (!matched_detailed)
-    printf("note: no marching of the detailed fog reached max error <= 1e-3; X2 uses the most "
-           "accurate one\n");
+  for (int k = 0; k < EXTRA_COUNT; k++)
+    if (!matched_extra[k])
+      printf("note: no marching of the %s fog reached max error <= 1e-3; its X uses the most "
+             "accurate one\n", extra_names[k]);
   printf("X: %s %s (%.2f ms, max err %.2e) / exact linear (%.2f ms)\n", rows[matched].method,
          rows[matched].setting, rows[matched].ms, rows[matched].max_error, rows[exact_linear].ms);
   printf("X2: detailed fog (Perlin, feature size 16, 4 octaves) %s %s (%.2f ms, max err %.2e) / "
          "exact linear (%.2f ms, max err %.2e)\n", rows[matched2].method, rows[matched2].setting,
-         rows[matched2].ms, rows[matched2].max_error, rows[detailed_rows].ms,
-         rows[detailed_rows].max_error);
+         rows[matched2].ms, rows[matched2].max_error, rows[exact_detailed].ms,
+         rows[exact_detailed].max_error);
+  {
+    const int e = extra_rows[EXTRA_SIMULATED], m = matched_at[EXTRA_SIMULATED];
+    printf("X on the simulated fog (configs/default.ini, frame %d, %dx%d): %s %s (%.2f ms, max "
+           "err %.2e) / exact linear (%.2f ms, max err %.2e) = %.2f\n", SIMULATED_FRAME,
+           extra[EXTRA_SIMULATED].width, extra[EXTRA_SIMULATED].height, rows[m].method,
+           rows[m].setting, rows[m].ms, rows[m].max_error, rows[e].ms, rows[e].max_error,
+           rows[m].ms / rows[e].ms);
+  }
   printf("X on the ground fog: %s %s (%.2f ms, max err %.2e%s) / its exact walk with skipping "
          "(%.2f ms) = %.2f\n", rows[matched3].method, rows[matched3].setting, rows[matched3].ms,
          rows[matched3].max_error, matched_ground ? "" : ", the most accurate: none within 1e-3",
@@ -812,13 +855,15 @@ gl_failed:
   fprintf(stderr, "fogpipe bench render: %s\n", rerr.message);
 done:
   for (int i = 0; i < row_count; i++) free(rows[i].times);
-  for (int r = 0; r < 5 + MU_COUNT; r++) free(references[r]);
+  for (int r = 0; r < REFERENCE_COUNT; r++) free(references[r]);
   free(distance);
   free(gpu_tau);
-  for (int p = 0; p < 6; p++) fog_pass_destroy(passes[p]);
-  transform_grid_destroy(&detailed_grid);
-  transform_plan_destroy(detailed_plan);
-  fogmap_destroy(&detailed);
+  for (int p = 0; p < PASS_COUNT; p++) fog_pass_destroy(passes[p]);
+  for (int k = 0; k < EXTRA_COUNT; k++) {
+    transform_grid_destroy(&extra_grid[k]);
+    transform_plan_destroy(extra_plan[k]);
+    fogmap_destroy(&extra[k]);
+  }
   transform_grid_destroy(&ground_grid);
   transform_plan_destroy(ground_plan);
   fogmap_destroy(&ground);

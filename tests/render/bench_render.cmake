@@ -1,6 +1,7 @@
 # `fogpipe bench render` smoke test: the benchmark runs at a tiny size, exits 0, writes a
-# table CSV whose rows hold finite numbers (all 49 rows: 14 marching, 5 exact, 3 ground fog, 2 thresholds, 12 LOD,
-# the detailed fog's exact walk and 6 marchings, 6 marchings of the ground fog), the
+# table CSV whose rows hold finite numbers (all 56 rows: 14 marching, 5 exact, 3 ground fog, 2 thresholds, 12 LOD,
+# the detailed and the simulated fog's exact walk and 6 marchings each, 6 marchings of the
+# ground fog), the
 # chart CSV and PNG, and ends with the summary line. It asserts no speed (speed targets
 # live in the benchmark itself).
 #
@@ -43,7 +44,7 @@ if(NOT out MATCHES "tau images identical bit for bit")
   message(FATAL_ERROR "the ground fog rows with and without skipping differ")
 endif()
 
-# The table: header + 49 rows; every number finite (no nan/inf), errors and times >= 0.
+# The table: header + 56 rows; every number finite (no nan/inf), errors and times >= 0.
 foreach(f render.csv render_chart.csv render_chart.png render_tau.png)
   if(NOT EXISTS ${OUT}/${f})
     message(FATAL_ERROR "missing output ${OUT}/${f}")
@@ -51,8 +52,8 @@ foreach(f render.csv render_chart.csv render_chart.png render_tau.png)
 endforeach()
 file(STRINGS ${OUT}/render.csv lines)
 list(LENGTH lines count)
-if(NOT count EQUAL 50)
-  message(FATAL_ERROR "render.csv has ${count} lines, expected a header and 49 rows")
+if(NOT count EQUAL 57)
+  message(FATAL_ERROR "render.csv has ${count} lines, expected a header and 56 rows")
 endif()
 list(GET lines 0 header)
 if(NOT header STREQUAL "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full")
@@ -83,12 +84,16 @@ endif()
 if(NOT (max_error MATCHES "e-0*([5-9]|[1-9][0-9])$" OR max_error STREQUAL "0"))
   message(FATAL_ERROR "exact linear max tau error ${max_error}: expected <= 1e-4")
 endif()
-# And the detailed fog's exact walk (X2's denominator) against its own reference.
-foreach(line IN LISTS lines)
-  if(line MATCHES "^detailed exact,linear,${finite},${finite},(${finite}),")
-    set(detailed_error ${CMAKE_MATCH_3})
+# And the detailed and simulated fogs' exact walks (X2's and X's denominators) against
+# their own references.
+foreach(fog detailed simulated)
+  unset(extra_error)
+  foreach(line IN LISTS lines)
+    if(line MATCHES "^${fog} exact,linear,${finite},${finite},(${finite}),")
+      set(extra_error ${CMAKE_MATCH_3})
+    endif()
+  endforeach()
+  if(NOT DEFINED extra_error OR NOT (extra_error MATCHES "e-0*([5-9]|[1-9][0-9])$" OR extra_error STREQUAL "0"))
+    message(FATAL_ERROR "${fog} exact max tau error '${extra_error}': expected <= 1e-4")
   endif()
 endforeach()
-if(NOT DEFINED detailed_error OR NOT (detailed_error MATCHES "e-0*([5-9]|[1-9][0-9])$" OR detailed_error STREQUAL "0"))
-  message(FATAL_ERROR "detailed exact max tau error '${detailed_error}': expected <= 1e-4")
-endif()
