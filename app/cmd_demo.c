@@ -186,6 +186,21 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
         params.sun.phase_g = g;
         changed = true;
       }
+      /* [light] sun_colour (HDR) as a hue and a strength: the surfaces' sun and pi x it the
+       * fog's (the pipeline relights both) */
+      float hue[3], strength = 0.0f;
+      for (int c = 0; c < 3; c++) {
+        hue[c] = (float)(params.sun.radiance[c] / SCENE_SUN_IRRADIANCE_PER_COLOUR);
+        strength = fmaxf(strength, hue[c]);
+      }
+      for (int c = 0; c < 3; c++) hue[c] = strength > 0.0f ? hue[c] / strength : 1.0f;
+      bool hue_changed = panel_color3(ui, "sun colour", hue);
+      if (panel_slider_float(ui, "sun strength", &strength, 0.0f, 10.0f, "%.2f", false) ||
+          hue_changed) {
+        for (int c = 0; c < 3; c++)
+          params.sun.radiance[c] = SCENE_SUN_IRRADIANCE_PER_COLOUR * hue[c] * strength;
+        changed = true;
+      }
       /* T_s: the fog's shadow on itself and on the ground (albedo > 0) */
       changed |= panel_checkbox(ui, "fog self-shadow", &params.fog_self_shadow);
       panel_same_line(ui);

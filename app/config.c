@@ -982,10 +982,10 @@ fog_sun scene_config_fog_sun(const scene_config *cfg) {
   scene_light light;
   fog_sun sun = {.albedo = cfg->fog.albedo, .phase_g = cfg->fog.phase_g};
   scene_light_resolve(&cfg->light, &light, sun.direction);
-  /* The surfaces show albedo x sun_colour x cos: sun_colour is the sun's irradiance over pi
-   * (a white Lambertian surface facing the sun shows sun_colour), so the irradiance the fog
+  /* A white Lambertian surface facing the sun shows sun_colour, so the irradiance the fog
    * scatters, per steradian through p(theta), is pi sun_colour. */
-  for (int c = 0; c < 3; c++) sun.radiance[c] = 3.14159265358979323846 * light.sun_colour[c];
+  for (int c = 0; c < 3; c++)
+    sun.radiance[c] = SCENE_SUN_IRRADIANCE_PER_COLOUR * light.sun_colour[c];
   return sun;
 }
 

@@ -239,6 +239,9 @@ double scene_live_terrain_lod(double lod_error);
 fog_walk_settings scene_config_walk(const scene_config *cfg);
 /* The sun as the fog sees it: [fog] albedo and phase_g, [light]'s resolved sun. */
 fog_sun scene_config_fog_sun(const scene_config *cfg);
+/* The surfaces show albedo x sun_colour x cos: [light] sun_colour is the sun's irradiance
+ * over pi, so the fog's fog_sun.radiance is SCENE_SUN_IRRADIANCE_PER_COLOUR x sun_colour. */
+#define SCENE_SUN_IRRADIANCE_PER_COLOUR 3.14159265358979323846
 /* The lamps as the fog pass takes them (world positions, unit spot axes, cone cosines) at
  * scene time 0, and at `time` seconds (lamp_path and lamp_flicker applied). */
 fog_lamps scene_config_fog_lamps(const scene_config *cfg);

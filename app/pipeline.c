@@ -928,8 +928,15 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
 
   pthread_mutex_lock(&p->lock);
   const double sun_azimuth = p->params.sun_azimuth, sun_elevation = p->params.sun_elevation;
+  float sun_colour[3]; /* the surfaces' sun_colour is the fog's irradiance over pi */
+  for (int c = 0; c < 3; c++) sun_colour[c] = (float)(p->params.sun.radiance[c] / SCENE_SUN_IRRADIANCE_PER_COLOUR);
   pthread_mutex_unlock(&p->lock);
   scene_light *light = &p->geometry.light;
+  if (memcmp(sun_colour, light->sun_colour, sizeof sun_colour)) {
+    /* the panel changed the sun's colour: the terrain and sky are lit anew */
+    memcpy(light->sun_colour, sun_colour, sizeof sun_colour);
+    p->scene_current = false;
+  }
   if (sun_azimuth != light->sun_azimuth || sun_elevation != light->sun_elevation) {
     /* the panel moved the sun: the terrain is lit anew (the fog takes it below) */
     scene_light moved = *light;

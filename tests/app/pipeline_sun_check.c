@@ -6,7 +6,10 @@
  * surfaces differ from an identical pipeline whose sun stayed ([light] fog_self_shadow and
  * shafts off: T_s = V = 1). With the fog's self-shadow on, a sun moved while paused (no new step) re-lights
  * the fog from the step on screen: the frame equals, bit for bit, that of a pipeline
- * created with the new sun. Built by tests/app/pipeline.cmake. */
+ * created with the new sun. The panel's sun colour (params.sun.radiance = pi x [light]
+ * sun_colour) changed while paused gives, bit for bit, the frame of a pipeline created with
+ * that sun_colour: the terrain, the sky and the fog all take it. Built by
+ * tests/app/pipeline.cmake. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -23,6 +26,39 @@ static const double pi = 3.14159265358979323846;
 static int frame(pipeline *p, const camera *cam, float *rgba, float *tau, float *inscatter) {
   return pipeline_check_frame(
       p, cam, &(frame_pixels){.rgba = rgba, .transmittance = tau, .inscatter = inscatter});
+}
+
+/* The sun's colour set through the params, paused, against a config with that colour. */
+static void check_sun_colour(const scene_config *cfg, const camera *cam) {
+  static const float colour[3] = {0.5f, 1.25f, 2.5f};
+  scene_config born_cfg = *cfg;
+  for (int c = 0; c < 3; c++) born_cfg.light.sun_colour[c] = colour[c];
+  pipeline_error perr = {{0}};
+  pipeline *tinted = pipeline_create(&(pipeline_desc){.config = cfg, .width = W, .height = H,
+                                                      .synchronous = true}, &perr);
+  pipeline *born = pipeline_create(&(pipeline_desc){.config = &born_cfg, .width = W,
+                                                    .height = H, .synchronous = true}, &perr);
+  CHECK(tinted && born, "pipeline_create: %s", perr.message);
+  if (!tinted || !born) return;
+  static float a[4 * W * H], b[4 * W * H], before[4 * W * H];
+  CHECK(!frame(tinted, cam, before, NULL, NULL), "first frame failed");
+  pipeline_params params = pipeline_get_params(tinted);
+  params.paused = true;
+  for (int c = 0; c < 3; c++) params.sun.radiance[c] = pi * colour[c];
+  pipeline_set_params(tinted, &params);
+  CHECK(!frame(tinted, cam, a, NULL, NULL) && !frame(born, cam, b, NULL, NULL), "frames failed");
+  double changed = 0, differs = 0;
+  for (int k = 0; k < 4 * W * H; k++) {
+    changed = fmax(changed, fabs(a[k] - before[k]));
+    differs = fmax(differs, fabs(a[k] - b[k]));
+  }
+  printf("sun colour (%g, %g, %g) set while paused: the frame changed by up to %.3f; it differs "
+         "from a pipeline born with that colour by %.3g\n", colour[0], colour[1], colour[2],
+         changed, differs);
+  CHECK(changed > 0.05, "the sun colour changed nothing (%.3e)", changed);
+  CHECK(differs == 0, "recoloured frame != a pipeline created with that colour (%.3e)", differs);
+  pipeline_destroy(tinted);
+  pipeline_destroy(born);
 }
 
 /* Self-shadowed: pause after the first step, move the sun, draw again (the relight path),
@@ -110,6 +146,7 @@ int main(void) {
   pipeline_destroy(moved);
   pipeline_destroy(still);
   check_relight(&shadowed, &cam);
+  check_sun_colour(&shadowed, &cam);
   gl_context_destroy(gl);
   return test_finish("pipeline_sun_check");
 }
