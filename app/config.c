@@ -377,8 +377,8 @@ static int store_rbf(parse_state *s, const char *section, const char *key, const
   if (!(v[3] >= MIN_LENGTH && v[3] <= WORLD && v[4] >= 0 && v[4] <= MAX_EXTINCTION))
     return fail(s, section, key, "expected RADIUS from %g to %g and DENSITY from 0 to %g, "
                 "got '%s'", MIN_LENGTH, WORLD, MAX_EXTINCTION, value);
-  if (cfg->fog.rbf_count == FOG_MAX_RBFS)
-    return fail(s, section, key, "at most %d Gaussians", FOG_MAX_RBFS);
+  if (cfg->fog.rbf_count == SCENE_CONFIG_MAX_RBFS)
+    return fail(s, section, key, "at most %d Gaussians", SCENE_CONFIG_MAX_RBFS);
   cfg->fog.rbfs[cfg->fog.rbf_count++] =
       (fog_rbf){.centre = {v[0], v[1], v[2]}, .radius = v[3], .density = v[4]};
   return 1;

@@ -25,6 +25,9 @@
 
 #define SCENE_CONFIG_PATH_MAX 1024
 #define SCENE_CONFIG_MAX_PROFILE 64
+/* The most `rbf =` lines a config holds (a scene config is a value; the renderer takes
+ * up to FOG_MAX_RBFS Gaussians from code: bench models' 3000-Gaussian banks). */
+#define SCENE_CONFIG_MAX_RBFS 64
 
 typedef struct scene_config_error {
   char message[512];
@@ -77,7 +80,7 @@ typedef struct scene_fog_config {
   int fogmap_line;                    /* where fogmap was set (0: default), for errors */
   bool profile_set;                   /* `profile` was set in the file (a VDB keeps it) */
   /* model = rbf: the Gaussians (densities before density_scale) and the base under them. */
-  fog_rbf rbfs[FOG_MAX_RBFS];
+  fog_rbf rbfs[SCENE_CONFIG_MAX_RBFS];
   int rbf_count;
   double rbf_base;
   /* model = quadric: the volumes (densities before density_scale), from `quadric = SHAPE

@@ -19,7 +19,7 @@ typedef struct render_fog {
   fog_pyramid pyramid; /* model = fogmap: the map's (details too, whatever the LOD method) */
   fog_volume volume;
   double profile_coefficients[SCENE_CONFIG_MAX_PROFILE]; /* volume.profile's own copy */
-  fog_rbf rbfs[FOG_MAX_RBFS]; /* model = rbf: params.model_rbfs, density_scale applied */
+  fog_rbf rbfs[SCENE_CONFIG_MAX_RBFS]; /* model = rbf: params.model_rbfs, density_scale applied */
   fog_quadric quadrics[FOG_MAX_QUADRICS]; /* model = quadric: params.model_quadrics, likewise */
   fog_pass_params params;
   fog_pass *pass;

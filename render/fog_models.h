@@ -33,8 +33,9 @@ typedef enum fog_model_kind {
   FOG_MODEL_COUNT
 } fog_model_kind;
 
-/* The most RBFs one model holds (the GL pass keeps them in uniform arrays). */
-#define FOG_MAX_RBFS 64
+/* The most RBFs one model holds (the GL pass keeps them in a buffer texture and culls them
+ * per screen tile: render/fog_rbf_tiles.h). */
+#define FOG_MAX_RBFS 4096
 
 /* One Gaussian of FOG_MODEL_RBF: extinction density exp(-|x - centre|^2 / radius^2), per
  * world unit (radius > 0: where it has fallen to 1/e). */

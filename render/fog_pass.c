@@ -11,6 +11,7 @@
 
 #include "render/fog_cell_poly.h"
 #include "render/fog_occupancy.h"
+#include "render/fog_rbf_tiles.h"
 #include "render/gl_util.h"
 
 /* A variant is one compiled program (fog_pass_variant below). A draw uses one or two, the
@@ -65,6 +66,13 @@ struct fog_pass {
   /* resolution_divisor > 1: the reduced pass's target (RGBA32F: optical depth, distance,
    * extinction at the surface). */
   gl_target reduced;
+  /* FOG_MODEL_RBF: the Gaussians (RGBA32F buffer texture, two texels each) and the per-tile
+   * lists (render/fog_rbf_tiles.h: R32UI buffer texture of indices, RG32UI 2D ranges). */
+  GLuint rbf_buffer, rbf_texture, rbf_index_buffer, rbf_index_texture, rbf_ranges;
+  int rbf_ranges_width, rbf_ranges_height;
+  fog_rbf_tiles rbf_tiles;
+  float *rbf_scratch;
+  int rbf_scratch_count;
 };
 
 /* One compiled program: every draw setting the shader takes as a compile-time constant.
@@ -223,6 +231,12 @@ void fog_pass_destroy(fog_pass *pass) {
   if (pass->grid3d_occupancy) glDeleteTextures(1, &pass->grid3d_occupancy);
   if (pass->sun_shadow) glDeleteTextures(1, &pass->sun_shadow);
   if (pass->cell_layers) glDeleteTextures(1, &pass->cell_layers);
+  GLuint rbf_textures[3] = {pass->rbf_texture, pass->rbf_index_texture, pass->rbf_ranges};
+  GLuint rbf_buffers[2] = {pass->rbf_buffer, pass->rbf_index_buffer};
+  glDeleteTextures(3, rbf_textures); /* zeros are ignored */
+  glDeleteBuffers(2, rbf_buffers);
+  fog_rbf_tiles_destroy(&pass->rbf_tiles);
+  free(pass->rbf_scratch);
   free(pass->cell_scratch);
   if (pass->reduced.framebuffer) gl_target_destroy(&pass->reduced);
   free(pass);
@@ -481,6 +495,9 @@ enum fog_pass_unit {
   UNIT_SUN_SHADOW,
   UNIT_SURFACE_SUN,
   UNIT_SUN_VISIBILITY,
+  UNIT_RBF_DATA,
+  UNIT_RBF_INDICES,
+  UNIT_RBF_TILES,
   UNIT_COUNT
 };
 _Static_assert(UNIT_COUNT <= 32, "the fog pass needs more texture units than GL 4.3 offers");
@@ -680,22 +697,66 @@ static void fog_pass_volume_uniforms(const fog_pass *pass, GLuint prog, const ca
               params->walk.skip == FOG_SKIP_BELOW ? params->walk.skip_below : 0.0f);
 }
 
-/* FOG_MODEL_RBF's Gaussians: camera-relative centres, subtracted in double, and 1/radius
- * (fog_models.glsl). */
-static void fog_pass_rbf_uniforms(GLuint prog, const camera *cam, const fog_pass_params *params) {
-  float centres[FOG_MAX_RBFS][4], densities[FOG_MAX_RBFS];
-  int n = params->model_rbf_count;
+/* A buffer texture over `bytes` of data in format (created on first use, refilled). */
+static void buffer_texture_fill(GLuint *buffer, GLuint *texture, GLenum format, const void *data,
+                                size_t bytes) {
+  if (!*buffer) glGenBuffers(1, buffer);
+  if (!*texture) glGenTextures(1, texture);
+  glBindBuffer(GL_TEXTURE_BUFFER, *buffer);
+  glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)(bytes ? bytes : 16), data, GL_STREAM_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  glBindTexture(GL_TEXTURE_BUFFER, *texture);
+  glTexBuffer(GL_TEXTURE_BUFFER, format, *buffer);
+}
+
+/* FOG_MODEL_RBF's Gaussians (fog_models.glsl): per Gaussian two texels, the centre relative
+ * to the camera (subtracted in double) with 1/radius, and the density; and per screen tile
+ * of the width x height image the list of those its rays can see (render/fog_rbf_tiles.h). */
+static int fog_pass_rbf_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
+                                 const fog_pass_params *params, int width, int height,
+                                 render_error *err) {
+  const int n = params->model_rbf_count;
+  if (n > pass->rbf_scratch_count) {
+    float *more = realloc(pass->rbf_scratch, (size_t)n * 8 * sizeof(float));
+    if (!more) {
+      snprintf(err->message, sizeof err->message, "fog pass: out of memory (%d RBFs)", n);
+      return 1;
+    }
+    pass->rbf_scratch = more, pass->rbf_scratch_count = n;
+  }
   for (int i = 0; i < n; i++) {
     const fog_rbf *g = &params->model_rbfs[i];
-    for (int a = 0; a < 3; a++) centres[i][a] = (float)(g->centre[a] - cam->position[a]);
-    centres[i][3] = (float)(1.0 / g->radius);
-    densities[i] = (float)g->density;
+    float *texels = pass->rbf_scratch + 8 * (size_t)i;
+    for (int a = 0; a < 3; a++) texels[a] = (float)(g->centre[a] - cam->position[a]);
+    texels[3] = (float)(1.0 / g->radius);
+    texels[4] = (float)g->density, texels[5] = texels[6] = texels[7] = 0.0f;
+  }
+  if (fog_rbf_tiles_build(&pass->rbf_tiles, cam, width, height, params->model_rbfs, n, err))
+    return 1;
+  const fog_rbf_tiles *t = &pass->rbf_tiles;
+  buffer_texture_fill(&pass->rbf_buffer, &pass->rbf_texture, GL_RGBA32F, pass->rbf_scratch,
+                      (size_t)n * 8 * sizeof(float));
+  buffer_texture_fill(&pass->rbf_index_buffer, &pass->rbf_index_texture, GL_R32UI, t->indices,
+                      t->index_count * sizeof(uint32_t));
+  if (!pass->rbf_ranges) glGenTextures(1, &pass->rbf_ranges);
+  glBindTexture(GL_TEXTURE_2D, pass->rbf_ranges);
+  if (pass->rbf_ranges_width != t->tiles_x || pass->rbf_ranges_height != t->tiles_y) {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32UI, t->tiles_x, t->tiles_y, 0, GL_RG_INTEGER,
+                 GL_UNSIGNED_INT, t->ranges);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    pass->rbf_ranges_width = t->tiles_x, pass->rbf_ranges_height = t->tiles_y;
+  } else {
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, t->tiles_x, t->tiles_y, GL_RG_INTEGER,
+                    GL_UNSIGNED_INT, t->ranges);
   }
   glUniform1i(fog_loc(prog, "fog_rbf_count"), n);
-  if (n > 0) {
-    glUniform4fv(fog_loc(prog, "fog_rbf_centre"), n, &centres[0][0]);
-    glUniform1fv(fog_loc(prog, "fog_rbf_density"), n, densities);
-  }
+  glUniform1i(fog_loc(prog, "fog_rbf_tile_size"), FOG_RBF_TILE_SIZE);
+  bind_sampler(prog, "fog_rbf_data", UNIT_RBF_DATA, GL_TEXTURE_BUFFER, pass->rbf_texture);
+  bind_sampler(prog, "fog_rbf_indices", UNIT_RBF_INDICES, GL_TEXTURE_BUFFER,
+               pass->rbf_index_texture);
+  bind_sampler(prog, "fog_rbf_tiles", UNIT_RBF_TILES, GL_TEXTURE_2D, pass->rbf_ranges);
+  return gl_util_check("fog pass: RBF tiles", err);
 }
 
 /* FOG_MODEL_QUADRIC's volumes camera-relative (fog_models.glsl): Q(camera + p) =
@@ -777,7 +838,9 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
   for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) units[k] = UNIT_GRIDS + k;
   glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
   if (params->model == FOG_MODEL_VOLUME) fog_pass_volume_uniforms(pass, prog, cam, params);
-  if (params->model == FOG_MODEL_RBF) fog_pass_rbf_uniforms(prog, cam, params);
+  if (params->model == FOG_MODEL_RBF &&
+      fog_pass_rbf_uniforms(pass, prog, cam, params, width, height, err))
+    return 1;
   if (params->model == FOG_MODEL_QUADRIC) fog_pass_quadric_uniforms(prog, cam, params);
   return fog_pass_common_and_draw(pass, prog, cam, params, surface_colour, surface_distance, width,
                                   height, width, height, err);

@@ -151,10 +151,10 @@ float fog_lamp_fogshop_gaussians(int i, fog_ray r, float t0, float t1) {
   vec3 s = fog_lamp_position[i];
   float sum = 0.0;
   for (int g = 0; g < fog_rbf_count; g++) {
-    vec3 v = fog_rbf_centre[g].xyz;
-    float inv_r = fog_rbf_centre[g].w, tc = dot(v, r.dir);
+    vec3 v = fog_rbf_centre(g).xyz;
+    float inv_r = fog_rbf_centre(g).w, tc = dot(v, r.dir);
     vec3 w = v - tc * r.dir;
-    float depth = fog_rbf_density[g] * exp(-dot(w, w) * inv_r * inv_r) * (0.88622692545 / inv_r) *
+    float depth = fog_rbf_density(g) * exp(-dot(w, w) * inv_r * inv_r) * (0.88622692545 / inv_r) *
                   fog_erf_difference((t0 - tc) * inv_r, (t1 - tc) * inv_r);
     if (!(depth > 0.0)) continue;
     float t = clamp(tc, t0, t1);

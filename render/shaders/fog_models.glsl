@@ -9,9 +9,17 @@ const int fog_model = FOG_MODEL_KIND;  // specialised per variant (render/fog_pa
 uniform float fog_model_extinction;
 uniform float fog_model_y0;            // y0 - camera y
 uniform float fog_model_scale_height;
+// FOG_MODEL_RBF (fog_pass_rbf_uniforms): Gaussian i is texels 2i (xyz: centre - camera,
+// subtracted in double; w: 1/r) and 2i + 1 (x: density) of fog_rbf_data; the view ray of a
+// pixel sums only its screen tile's list (render/fog_rbf_tiles.h: what it leaves out changes
+// the ray's optical depth by < FOG_RBF_CULL_BOUND in all); rays from elsewhere (the lamps'
+// transmittance) sum them all.
 uniform int fog_rbf_count;
-uniform vec4 fog_rbf_centre[FOG_MAX_RBFS];  // xyz: centre - camera (subtracted in double); w: 1/r
-uniform float fog_rbf_density[FOG_MAX_RBFS];
+uniform samplerBuffer fog_rbf_data;
+uniform usamplerBuffer fog_rbf_indices;  // the tiles' lists
+uniform usampler2D fog_rbf_tiles;        // per tile: first index, count
+uniform int fog_rbf_tile_size;
+ivec2 fog_rbf_tile = ivec2(0);           // the pixel's tile (fog_pass_fs.glsl's main sets it)
 uniform sampler3D fog_grid3d;                  // FOG_MODEL_VOLUME: RG32F, voxel i and i + 1
                                                // along x at texel i + 1 (a ring of zeros)
 uniform mat3 fog_grid3d_index_from_world;      // index position u = M p + offset
@@ -76,24 +84,39 @@ float fog_erf_difference(float u0, float u1) {
   return 2.0 - e0 - e1;
 }
 
-// base L + sum_i c_i int_0^L exp(-|t dir - b_i|^2 / r_i^2) dt, camera-relative b_i: each
-// Gaussian is e^{-h^2/r^2} r sqrt(pi)/2 (erf(u1) - erf(u0)) (fog_rbf_optical_depth in C).
-// From camera-relative point `origin` (the lamps' transmittance, fog_lamps.glsl).
+// Gaussian i: xyz its centre - camera, w 1/r; and its density.
+vec4 fog_rbf_centre(int i) { return texelFetch(fog_rbf_data, 2 * i); }
+float fog_rbf_density(int i) { return texelFetch(fog_rbf_data, 2 * i + 1).x; }
+
+// Gaussian i's int_0^L c exp(-|origin + t dir - b|^2 / r^2) dt: e^{-h^2/r^2} r sqrt(pi)/2
+// (erf(u1) - erf(u0)) (fog_rbf_optical_depth in C).
+float fog_rbf_one(int i, vec3 origin, vec3 dir, float length) {
+  vec4 g = fog_rbf_centre(i);
+  vec3 v = g.xyz - origin;
+  float inv_r = g.w, tc = dot(v, dir);
+  vec3 w = v - tc * dir;  // from the ray's line to the centre
+  float u0 = -tc * inv_r, u1 = (length - tc) * inv_r;
+  return fog_rbf_density(i) * exp(-dot(w, w) * inv_r * inv_r) * (0.88622692545 / inv_r) *
+         fog_erf_difference(u0, u1);
+}
+
+// The pixel's tile's list: first index and count.
+uvec2 fog_rbf_tile_range() { return texelFetch(fog_rbf_tiles, fog_rbf_tile, 0).xy; }
+
+// base L + every Gaussian along the ray from camera-relative point `origin` (the lamps'
+// transmittance, fog_lamps.glsl).
 float fog_rbf_optical_depth_from(float base, vec3 origin, vec3 dir, float length) {
   float sum = fog_homogeneous_optical_depth(base, length);
-  for (int i = 0; i < fog_rbf_count; i++) {
-    vec3 v = fog_rbf_centre[i].xyz - origin;
-    float inv_r = fog_rbf_centre[i].w;
-    float tc = dot(v, dir);
-    vec3 w = v - tc * dir;  // from the ray's line to the centre
-    float u0 = -tc * inv_r, u1 = (length - tc) * inv_r;
-    sum += fog_rbf_density[i] * exp(-dot(w, w) * inv_r * inv_r) * (0.88622692545 / inv_r) *
-           fog_erf_difference(u0, u1);
-  }
+  for (int i = 0; i < fog_rbf_count; i++) sum += fog_rbf_one(i, origin, dir, length);
   return sum;
 }
+// base L + the Gaussians of the pixel's tile along its view ray (from the camera).
 float fog_rbf_optical_depth(float base, vec3 dir, float length) {
-  return fog_rbf_optical_depth_from(base, vec3(0.0), dir, length);
+  float sum = fog_homogeneous_optical_depth(base, length);
+  uvec2 range = fog_rbf_tile_range();
+  for (uint k = range.x; k < range.x + range.y; k++)
+    sum += fog_rbf_one(int(texelFetch(fog_rbf_indices, int(k)).x), vec3(0.0), dir, length);
+  return sum;
 }
 
 // The line origin + t dir against the box [lo, hi] (Kay & Kajiya; parallel axes selected,
@@ -337,11 +360,14 @@ float fog_model_extinction_at(vec3 p) {
   if (fog_model == FOG_MODEL_QUADRIC) return fog_quadric_extinction_at(p);
   if (fog_model == FOG_MODEL_HEIGHT)
     return fog_model_extinction * exp(-(p.y - fog_model_y0) / fog_model_scale_height);
+  // RBFs at points of the pixel's view ray (the march, the light's samples): its tile's list
   float k = fog_model_extinction;
-  for (int i = 0; i < fog_rbf_count; i++) {
-    vec3 d = p - fog_rbf_centre[i].xyz;
-    float inv_r = fog_rbf_centre[i].w;
-    k += fog_rbf_density[i] * exp(-dot(d, d) * inv_r * inv_r);
+  uvec2 range = fog_rbf_tile_range();
+  for (uint j = range.x; j < range.x + range.y; j++) {
+    int i = int(texelFetch(fog_rbf_indices, int(j)).x);
+    vec4 g = fog_rbf_centre(i);
+    vec3 d = p - g.xyz;
+    k += fog_rbf_density(i) * exp(-dot(d, d) * g.w * g.w);
   }
   return k;
 }
@@ -355,9 +381,12 @@ float fog_model_reach(vec3 dir) {
   if (fog_model == FOG_MODEL_HEIGHT)
     return dir.y > 0.0 ? max(fog_model_y0 + 36.0 * fog_model_scale_height, 0.0) / dir.y : 1e30;
   if (fog_model == FOG_MODEL_RBF && fog_model_extinction == 0.0) {
-    float reach = 0.0;
-    for (int i = 0; i < fog_rbf_count; i++)
-      reach = max(reach, dot(fog_rbf_centre[i].xyz, dir) + 6.0 / fog_rbf_centre[i].w);
+    float reach = 0.0;  // the pixel's tile's Gaussians: the others are not seen
+    uvec2 range = fog_rbf_tile_range();
+    for (uint j = range.x; j < range.x + range.y; j++) {
+      vec4 g = fog_rbf_centre(int(texelFetch(fog_rbf_indices, int(j)).x));
+      reach = max(reach, dot(g.xyz, dir) + 6.0 / g.w);
+    }
     return reach;
   }
   if (fog_model == FOG_MODEL_QUADRIC) {

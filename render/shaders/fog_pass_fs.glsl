@@ -222,6 +222,7 @@ void main() {
   dvec2 ndc = 2.0 * dvec2(gl_FragCoord.xy) / dvec2(fog_viewport) - 1.0;
   ivec2 pixel = ivec2(gl_FragCoord.xy);
 #endif
+  fog_rbf_tile = pixel / max(fog_rbf_tile_size, 1);
   vec4 surface = texelFetch(fog_surface_colour, pixel, 0);
   float t_surface = texelFetch(fog_surface_distance, pixel, 0).r;
   float optical_depth = 0.0, k_end = 0.0;

@@ -125,9 +125,9 @@ int main(void) {
                "volume needs a 'vdb = FILE or PATTERN' line");
   {
     char text[8192] = "[fog]\nmodel = rbf\n";
-    for (int i = 0; i <= FOG_MAX_RBFS; i++) strcat(text, "rbf = 1 2 3 4 0.5\n");
+    for (int i = 0; i <= SCENE_CONFIG_MAX_RBFS; i++) strcat(text, "rbf = 1 2 3 4 0.5\n");
     char prefix[64];
-    snprintf(prefix, sizeof prefix, "%d: [fog] rbf: ", 3 + FOG_MAX_RBFS);
+    snprintf(prefix, sizeof prefix, "%d: [fog] rbf: ", 3 + SCENE_CONFIG_MAX_RBFS);
     expect_error(text, prefix, "at most 64 Gaussians");
   }
   /* The first error wins when there are several. */

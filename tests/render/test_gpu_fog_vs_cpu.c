@@ -330,7 +330,7 @@ int main(void) {
         {.model = FOG_MODEL_RBF, .model_rbfs = &flat, .model_rbf_count = 1},
         {.model = FOG_MODEL_RBF, .model_rbfs = rbfs, .model_rbf_count = FOG_MAX_RBFS + 1},
         {.model = FOG_MODEL_VOLUME, .integrator = FOG_INTEGRATOR_MARCH}};
-    const char *const said[3] = {"expected radius > 0", "expected 0..64",
+    const char *const said[3] = {"expected radius > 0", "expected 0..4096",
                                  "expected a march step > 0"};
     for (int k = 0; k < 3; k++) {
       render_error e = {{0}};

@@ -1,0 +1,97 @@
+/* Per-tile lists of Gaussian RBFs (render/fog_rbf_tiles.h). */
+#include "render/fog_rbf_tiles.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+double fog_rbf_cull_radius(const fog_rbf *g, int count) {
+  /* c r sqrt(pi) exp(-R^2 / r^2) = bound / count */
+  double reach = g->density * g->radius * 1.7724538509055160273 * count / FOG_RBF_CULL_BOUND;
+  return reach > 1.0 ? g->radius * sqrt(log(reach)) : -1.0;
+}
+
+static int grow(fog_rbf_tiles *t, size_t need, render_error *err) {
+  if (need <= t->index_capacity) return 0;
+  size_t capacity = t->index_capacity ? t->index_capacity : 4096;
+  while (capacity < need) capacity *= 2;
+  uint32_t *more = realloc(t->indices, capacity * sizeof *more);
+  if (!more) {
+    snprintf(err->message, sizeof err->message, "RBF tiles: out of memory (%zu indices)", need);
+    return 1;
+  }
+  t->indices = more;
+  t->index_capacity = capacity;
+  return 0;
+}
+
+int fog_rbf_tiles_build(fog_rbf_tiles *t, const camera *cam, int width, int height,
+                        const fog_rbf *rbfs, int count, render_error *err) {
+  const int T = FOG_RBF_TILE_SIZE, tx = (width + T - 1) / T, ty = (height + T - 1) / T;
+  if (tx != t->tiles_x || ty != t->tiles_y || !t->ranges) {
+    free(t->ranges);
+    t->ranges = malloc((size_t)tx * ty * 2 * sizeof *t->ranges);
+    if (!t->ranges) {
+      snprintf(err->message, sizeof err->message, "RBF tiles: out of memory (%d x %d)", tx, ty);
+      t->tiles_x = t->tiles_y = 0;
+      return 1;
+    }
+    t->tiles_x = tx, t->tiles_y = ty;
+  }
+  double *radius = malloc((size_t)(count > 0 ? count : 1) * sizeof *radius);
+  if (!radius) {
+    snprintf(err->message, sizeof err->message, "RBF tiles: out of memory (%d RBFs)", count);
+    return 1;
+  }
+  for (int i = 0; i < count; i++) radius[i] = fog_rbf_cull_radius(&rbfs[i], count);
+  t->index_count = 0;
+  for (int j = 0; j < ty; j++)
+    for (int i = 0; i < tx; i++) {
+      /* The tile's corner pixels (GL rows: y_gl = height - 1 - image row), their rays, and
+       * the cone around them: axis their normalised sum, half-angle the widest corner. */
+      const int x[2] = {i * T, (i + 1) * T - 1 < width - 1 ? (i + 1) * T - 1 : width - 1};
+      const int y[2] = {j * T, (j + 1) * T - 1 < height - 1 ? (j + 1) * T - 1 : height - 1};
+      double corner[4][3], axis[3] = {0, 0, 0}, origin[3];
+      for (int k = 0; k < 4; k++) {
+        camera_ray(cam, x[k & 1], height - 1 - y[k >> 1], width, height, origin, corner[k]);
+        for (int a = 0; a < 3; a++) axis[a] += corner[k][a];
+      }
+      double n = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+      double cos_half = 1.0;
+      for (int a = 0; a < 3; a++) axis[a] /= n;
+      for (int k = 0; k < 4; k++)
+        cos_half = fmin(cos_half, axis[0] * corner[k][0] + axis[1] * corner[k][1] +
+                                      axis[2] * corner[k][2]);
+      const double half = acos(fmin(cos_half, 1.0));
+      const size_t first = t->index_count;
+      for (int g = 0; g < count; g++) {
+        if (!(radius[g] >= 0.0)) continue;
+        double v[3];
+        for (int a = 0; a < 3; a++) v[a] = rbfs[g].centre[a] - origin[a];
+        double d = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        bool seen = d <= radius[g];
+        if (!seen) {
+          double c = (v[0] * axis[0] + v[1] * axis[1] + v[2] * axis[2]) / d;
+          seen = acos(fmax(fmin(c, 1.0), -1.0)) <= half + asin(radius[g] / d);
+        }
+        if (!seen) continue;
+        if (grow(t, t->index_count + 1, err)) {
+          free(radius);
+          return 1;
+        }
+        t->indices[t->index_count++] = (uint32_t)g;
+      }
+      uint32_t *range = &t->ranges[2 * ((size_t)j * tx + i)];
+      range[0] = (uint32_t)first;
+      range[1] = (uint32_t)(t->index_count - first);
+    }
+  free(radius);
+  return 0;
+}
+
+void fog_rbf_tiles_destroy(fog_rbf_tiles *t) {
+  if (!t) return;
+  free(t->ranges);
+  free(t->indices);
+  *t = (fog_rbf_tiles){0};
+}
