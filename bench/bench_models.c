@@ -10,7 +10,9 @@
  *     (3D DDA, two Gauss nodes per lattice cell) and marched at 2 .. 1/8 voxel steps;
  *   - on the valley again: 8 quadric volumes (two spheres, two ellipsoids, two cylinders, a
  *     cone and a hyperboloid of one sheet, soft and hard edges) spread over the view, exact
- *     (closed form per volume) and marched at N = 8 .. 256.
+ *     (closed form per volume) and marched at N = 8 .. 256;
+ *   - on the valley again: 64 and 3000 Gaussians spread over it (rbf_scale_rows), exact
+ *     through the per-tile lists of render/fog_rbf_tiles.h.
  * Time: GL, glFinish before and after, median of --frames rounds after a warm-up, rows
  * interleaved. Error: tau against the double-precision CPU model on the same rays to the
  * scene pass's read-back distances; RMSE and max over all pixels.
@@ -31,6 +33,7 @@
 #include "app/render_frame.h"
 #include "bench/bench.h"
 #include "app/chart.h"
+#include "render/fog_rbf_tiles.h"
 #include "render/render.h"
 
 #define ERROR_FLOOR 1e-9
@@ -118,9 +121,11 @@ static void print_help(void) {
       "Last line: models: rbf_exact_ms=A rbf_march_speedup_at_matched_error=B\n"
       "height_exact_ms=C height_march_speedup_at_matched_error=D volume_exact_ms=E\n"
       "volume_march_speedup_at_matched_error=F volume_empty_skip_speedup=S\n"
-      "quadric_exact_ms=M quadric_march_speedup_at_matched_error=Q: B, D, F, Q = time of the\n"
-      "cheapest ray marching with max tau error <= 1e-3 / the exact integral's time; S = the\n"
-      "volume's exact walk without empty-space skipping / with it; M: 8 quadric volumes.\n");
+      "quadric_exact_ms=M quadric_march_speedup_at_matched_error=Q rbf_64_ms=R64\n"
+      "rbf_3000_ms=R: B, D, F, Q = time of the cheapest ray marching with max tau error <=\n"
+      "1e-3 / the exact integral's time; S = the volume's exact walk without empty-space\n"
+      "skipping / with it; M: 8 quadric volumes; R64, R: 64 and 3000 Gaussians spread over\n"
+      "the valley, culled per screen tile (target R <= 4 R64).\n");
 }
 
 static const char *row_method(const model_row *r) {
@@ -156,6 +161,93 @@ static int write_table(const char *path, const model_row *rows, int count, char 
     fprintf(f, "%s,%s,%g,%.6g,%.6g,%.6g\n", fog_model_table[model_kinds[rows[i].model]].name, row_method(&rows[i]),
             rows[i].setting, rows[i].ms, rows[i].rmse, rows[i].max_error);
   return chart_csv_close(f, path, error, size);
+}
+
+/* Gaussian banks at scale (render/fog_rbf_tiles.h): `count` Gaussians spread over the
+ * valley of scene_configs[0] (radii shrinking as the count grows, so the fog's amount stays
+ * alike), the exact integral per pixel through the per-tile lists. ms: median of `frames`
+ * after a warm-up; max_error: tau against the CPU's sum of every Gaussian's closed form
+ * (the 3000's through the same tiles' lists: within FOG_RBF_CULL_BOUND of the full sum,
+ * test_rbf_tiles; the full sum at 640 x 360 would take a minute). */
+typedef struct rbf_scale_row {
+  int count;
+  fog_rbf *rbfs;
+  double ms, max_error, listed_share;
+} rbf_scale_row;
+
+static int rbf_scale_rows(fog_pass *pass, const render_scene *sc, gl_target *target, int W, int H,
+                          int frames, rbf_scale_row *rows, int count, float *gpu_tau,
+                          render_error *err) {
+  uint64_t seed = 0x5DEECE66Dull;
+  for (int r = 0; r < count; r++) {
+    double radius_max = 90.0 / sqrt(rows[r].count / 64.0), density = 0.012;
+    for (int i = 0; i < rows[r].count; i++) {
+      double u[5];
+      for (int k = 0; k < 5; k++) {
+        seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+        u[k] = (double)(seed >> 11) / 9007199254740992.0;
+      }
+      rows[r].rbfs[i] = (fog_rbf){.centre = {-500 + 1000 * u[0], 80 * u[1], -500 + 1000 * u[2]},
+                                  .radius = radius_max * (0.4 + 0.6 * u[3]),
+                                  .density = density * (0.5 + u[4])};
+    }
+  }
+  double *times = malloc(sizeof(double) * (size_t)frames * count);
+  if (!times) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return 1;
+  }
+  for (int f = -1; f < frames; f++)
+    for (int r = 0; r < count; r++) {
+      fog_pass_params params = {.model = FOG_MODEL_RBF, .model_rbfs = rows[r].rbfs,
+                                .model_rbf_count = rows[r].count,
+                                .fog_colour = {0.75f, 0.78f, 0.82f},
+                                .walk = {.transmittance_cutoff = FOG_PASS_TRANSMITTANCE_CUTOFF}};
+      gl_target_bind(target);
+      fog_pass_finish();
+      double t0 = app_clock_seconds();
+      if (fog_pass_draw(pass, &sc->cam, &params, sc->target.color[0], sc->target.color[1], W, H,
+                        err)) {
+        free(times);
+        return 1;
+      }
+      fog_pass_finish();
+      if (f >= 0) {
+        times[r * frames + f] = app_clock_seconds() - t0;
+        continue;
+      }
+      /* the warm-up draw: its error against the CPU */
+      if (gl_target_read(target, 1, 1, gpu_tau, err)) {
+        free(times);
+        return 1;
+      }
+      fog_rbf_tiles tiles = {0};
+      if (fog_rbf_tiles_build(&tiles, &sc->cam, W, H, rows[r].rbfs, rows[r].count, err)) {
+        free(times);
+        return 1;
+      }
+      double worst = 0.0;
+      for (int py = 0; py < H; py++)
+        for (int px = 0; px < W; px++) {
+          double o[3], d[3], depth = 0.0;
+          camera_ray(&sc->cam, px, py, W, H, o, d);
+          size_t k = (size_t)py * W + px;
+          double ts = sc->distance[k] >= 1e29f ? HUGE_VAL : (double)sc->distance[k];
+          const uint32_t *range =
+              &tiles.ranges[2 * ((size_t)((H - 1 - py) / FOG_RBF_TILE_SIZE) * tiles.tiles_x +
+                                 px / FOG_RBF_TILE_SIZE)];
+          for (uint32_t j = 0; j < range[1]; j++)
+            depth += fog_rbf_optical_depth(0.0, &rows[r].rbfs[tiles.indices[range[0] + j]], 1,
+                                           o, d, ts);
+          worst = fmax(worst, fabs(exp(-depth) - gpu_tau[k]));
+          rows[r].listed_share += range[1] / ((double)rows[r].count * W * H);
+        }
+      rows[r].max_error = worst;
+      fog_rbf_tiles_destroy(&tiles);
+    }
+  for (int r = 0; r < count; r++) rows[r].ms = 1e3 * bench_median(times + r * frames, frames);
+  free(times);
+  return 0;
 }
 
 int bench_models(int argc, char **argv) {
@@ -296,6 +388,12 @@ int bench_models(int argc, char **argv) {
       rows[i].times[f] = app_clock_seconds() - t0;
     }
   for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
+  static fog_rbf scale_rbfs[64 + 3000];
+  rbf_scale_row scale[2] = {{.count = 64, .rbfs = scale_rbfs},
+                            {.count = 3000, .rbfs = scale_rbfs + 64}};
+  if (rbf_scale_rows(pass, &scenes[0].drawn, &fog_target, W, H, frames, scale, 2, gpu_tau,
+                     &rerr))
+    goto gl_failed;
 
   bench_print_build();
   printf("GL: %s, %s, %s; %dx%d, median of %d frames after 1 warm-up (glFinish before and after)\n",
@@ -352,13 +450,18 @@ int bench_models(int argc, char **argv) {
   }
   printf("volume: exact walk without empty-space skipping %.2f ms / with it (brick by brick, "
          "the default) %.2f ms = %.2f\n", unskipped_ms, exact_ms[3], unskipped_ms / exact_ms[3]);
+  for (int r = 0; r < 2; r++)
+    printf("rbf banks at scale: %4d Gaussians spread over the valley: %.2f ms, max |dtau| %.2e "
+           "against the CPU, a pixel's tile lists %.1f %% of them\n", scale[r].count,
+           scale[r].ms, scale[r].max_error, 100.0 * scale[r].listed_share);
+  printf("rbf: 3000 Gaussians / 64 = %.2f (target <= 4)\n", scale[1].ms / scale[0].ms);
   printf("models: rbf_exact_ms=%.3f rbf_march_speedup_at_matched_error=%.2f "
          "height_exact_ms=%.3f height_march_speedup_at_matched_error=%.2f "
          "volume_exact_ms=%.3f volume_march_speedup_at_matched_error=%.2f "
          "volume_empty_skip_speedup=%.2f quadric_exact_ms=%.3f "
-         "quadric_march_speedup_at_matched_error=%.2f\n",
+         "quadric_march_speedup_at_matched_error=%.2f rbf_64_ms=%.3f rbf_3000_ms=%.3f\n",
          exact_ms[2], speedup[2], exact_ms[1], speedup[1], exact_ms[3], speedup[3],
-         unskipped_ms / exact_ms[3], exact_ms[4], speedup[4]);
+         unskipped_ms / exact_ms[3], exact_ms[4], speedup[4], scale[0].ms, scale[1].ms);
   status = 0;
   goto done;
 

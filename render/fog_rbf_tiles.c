@@ -38,54 +38,80 @@ int fog_rbf_tiles_build(fog_rbf_tiles *t, const camera *cam, int width, int heig
     }
     t->tiles_x = tx, t->tiles_y = ty;
   }
-  double *radius = malloc((size_t)(count > 0 ? count : 1) * sizeof *radius);
-  if (!radius) {
+  /* Per Gaussian, once: the direction to its centre, and its sphere's angular radius beta
+   * as sin and cos (d <= R: the camera inside the sphere, every tile sees it). */
+  typedef struct seen_from {
+    double dir[3], sin_beta, cos_beta;
+    bool around; /* the camera inside its sphere */
+    bool culled; /* never reaches the bound */
+  } seen_from;
+  seen_from *from = malloc((size_t)(count > 0 ? count : 1) * sizeof *from);
+  if (!from) {
     snprintf(err->message, sizeof err->message, "RBF tiles: out of memory (%d RBFs)", count);
     return 1;
   }
-  for (int i = 0; i < count; i++) radius[i] = fog_rbf_cull_radius(&rbfs[i], count);
+  double origin[3];
+  {
+    double unused[3];
+    camera_ray(cam, 0, 0, width, height, origin, unused);
+  }
+  for (int g = 0; g < count; g++) {
+    seen_from *f = &from[g];
+    double radius = fog_rbf_cull_radius(&rbfs[g], count), v[3];
+    for (int a = 0; a < 3; a++) v[a] = rbfs[g].centre[a] - origin[a];
+    double d = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    f->culled = !(radius >= 0.0);
+    f->around = !f->culled && d <= radius;
+    if (f->culled || f->around) continue;
+    for (int a = 0; a < 3; a++) f->dir[a] = v[a] / d;
+    f->sin_beta = radius / d;
+    f->cos_beta = sqrt(1.0 - f->sin_beta * f->sin_beta);
+  }
   t->index_count = 0;
   for (int j = 0; j < ty; j++)
     for (int i = 0; i < tx; i++) {
       /* The tile's corner pixels (GL rows: y_gl = height - 1 - image row), their rays, and
-       * the cone around them: axis their normalised sum, half-angle the widest corner. */
+       * the cone around them: axis their normalised sum, half-angle theta the widest corner.
+       * A sphere at angle phi from the axis meets the cone when phi <= theta + beta, i.e.
+       * cos phi >= cos(theta + beta) (always when theta + beta >= pi). */
       const int x[2] = {i * T, (i + 1) * T - 1 < width - 1 ? (i + 1) * T - 1 : width - 1};
       const int y[2] = {j * T, (j + 1) * T - 1 < height - 1 ? (j + 1) * T - 1 : height - 1};
-      double corner[4][3], axis[3] = {0, 0, 0}, origin[3];
+      double corner[4][3], axis[3] = {0, 0, 0}, unused[3];
       for (int k = 0; k < 4; k++) {
-        camera_ray(cam, x[k & 1], height - 1 - y[k >> 1], width, height, origin, corner[k]);
+        camera_ray(cam, x[k & 1], height - 1 - y[k >> 1], width, height, unused, corner[k]);
         for (int a = 0; a < 3; a++) axis[a] += corner[k][a];
       }
       double n = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-      double cos_half = 1.0;
+      double cos_theta = 1.0;
       for (int a = 0; a < 3; a++) axis[a] /= n;
       for (int k = 0; k < 4; k++)
-        cos_half = fmin(cos_half, axis[0] * corner[k][0] + axis[1] * corner[k][1] +
-                                      axis[2] * corner[k][2]);
-      const double half = acos(fmin(cos_half, 1.0));
+        cos_theta = fmin(cos_theta, axis[0] * corner[k][0] + axis[1] * corner[k][1] +
+                                        axis[2] * corner[k][2]);
+      /* rounded down a little: the test stays conservative through the float of the dots */
+      cos_theta = fmax(fmin(cos_theta, 1.0) - 1e-12, -1.0);
+      const double sin_theta = sqrt(1.0 - cos_theta * cos_theta);
       const size_t first = t->index_count;
+      if (grow(t, t->index_count + (size_t)count, err)) {
+        free(from);
+        return 1;
+      }
       for (int g = 0; g < count; g++) {
-        if (!(radius[g] >= 0.0)) continue;
-        double v[3];
-        for (int a = 0; a < 3; a++) v[a] = rbfs[g].centre[a] - origin[a];
-        double d = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        bool seen = d <= radius[g];
+        const seen_from *f = &from[g];
+        if (f->culled) continue;
+        bool seen = f->around;
         if (!seen) {
-          double c = (v[0] * axis[0] + v[1] * axis[1] + v[2] * axis[2]) / d;
-          seen = acos(fmax(fmin(c, 1.0), -1.0)) <= half + asin(radius[g] / d);
+          double cos_sum = cos_theta * f->cos_beta - sin_theta * f->sin_beta; /* cos(theta+beta) */
+          bool past_pi = cos_theta * f->sin_beta + sin_theta * f->cos_beta < 0.0 && cos_sum < 0.0;
+          double cos_phi = f->dir[0] * axis[0] + f->dir[1] * axis[1] + f->dir[2] * axis[2];
+          seen = past_pi || cos_phi >= cos_sum - 1e-12;
         }
-        if (!seen) continue;
-        if (grow(t, t->index_count + 1, err)) {
-          free(radius);
-          return 1;
-        }
-        t->indices[t->index_count++] = (uint32_t)g;
+        if (seen) t->indices[t->index_count++] = (uint32_t)g;
       }
       uint32_t *range = &t->ranges[2 * ((size_t)j * tx + i)];
       range[0] = (uint32_t)first;
       range[1] = (uint32_t)(t->index_count - first);
     }
-  free(radius);
+  free(from);
   return 0;
 }
 
