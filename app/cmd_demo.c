@@ -173,10 +173,10 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
       /* sigma_s = albedo K, Henyey-Greenstein g (docs/light.md); the sun (a time of day)
        * lights the terrain and the fog */
       float albedo = (float)params.sun.albedo, g = (float)params.sun.phase_g;
-      /* elevation 0 is [light]'s "default" (35): the slider stops short of the horizon */
+      /* down to a sun just under the horizon (dusk: the fog's self-shadow turns opaque) */
       changed |= panel_slider_float(ui, "sun azimuth", &params.sun_azimuth, -180.0f, 180.0f,
                                     "%.0f deg", false);
-      changed |= panel_slider_float(ui, "sun elevation", &params.sun_elevation, 0.5f, 90.0f,
+      changed |= panel_slider_float(ui, "sun elevation", &params.sun_elevation, -5.0f, 90.0f,
                                     "%.1f deg", false);
       if (panel_slider_float(ui, "albedo", &albedo, 0.0f, 1.0f, "%.2f", false)) {
         params.sun.albedo = albedo;

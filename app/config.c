@@ -175,6 +175,7 @@ void scene_config_init(scene_config *cfg) {
       .terrain = {.origin = {-500, 0, -500}, .size = {1000, 1000}, .height = 150,
                   .resolution = 257, .octaves = 6, .frequency = 3.0, .persistence = 0.5,
                   .seed = 1, .lod_error = 1.0},
+      .light = scene_light_default(),
       .shadow = {.fog_self_shadow = 1, .shafts = 1, .resolution = 48, .steps = 16},
       .lamp_method = {.angle_pieces = FOG_LAMP_ANGLE_PIECES,
                       .span_pieces = FOG_LAMP_SPAN_PIECES, .march_steps = 64, .depth_steps = FOG_LAMP_DEPTH_STEPS,
@@ -979,9 +980,9 @@ fog_walk_settings scene_config_walk(const scene_config *cfg) {
 }
 
 fog_sun scene_config_fog_sun(const scene_config *cfg) {
-  scene_light light;
+  const scene_light light = cfg->light;
   fog_sun sun = {.albedo = cfg->fog.albedo, .phase_g = cfg->fog.phase_g};
-  scene_light_resolve(&cfg->light, &light, sun.direction);
+  scene_light_sun_direction(&light, sun.direction);
   /* A white Lambertian surface facing the sun shows sun_colour, so the irradiance the fog
    * scatters, per steradian through p(theta), is pi sun_colour. */
   for (int c = 0; c < 3; c++)

@@ -393,10 +393,10 @@ static fog_volume volume_of(const pipeline *p, const pipeline_params *params);
 
 /* The unit direction towards the sun of params' angles (the panel may have moved them). */
 static void sun_direction_of(const pipeline *p, const pipeline_params *params, double dir[3]) {
-  scene_light light = p->config.light, resolved;
+  scene_light light = p->config.light;
   light.sun_azimuth = params->sun_azimuth;
   light.sun_elevation = params->sun_elevation;
-  scene_light_resolve(&light, &resolved, dir);
+  scene_light_sun_direction(&light, dir);
 }
 
 /* The fog's shadow of a step (docs/light.md) for the unit direction sun (of params'
@@ -542,9 +542,7 @@ static void *worker_main(void *arg) {
 /* ---- create / destroy ---- */
 
 static pipeline_params params_from_config(const scene_config *cfg) {
-  scene_light light;
-  double direction[3];
-  scene_light_resolve(&cfg->light, &light, direction);
+  const scene_light light = cfg->light;
   return (pipeline_params){
       .degree = cfg->fog.degree,
       .levels = cfg->fog.levels,
@@ -939,9 +937,8 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
   }
   if (sun_azimuth != light->sun_azimuth || sun_elevation != light->sun_elevation) {
     /* the panel moved the sun: the terrain is lit anew (the fog takes it below) */
-    scene_light moved = *light;
-    moved.sun_azimuth = sun_azimuth, moved.sun_elevation = sun_elevation;
-    scene_light_resolve(&moved, light, p->geometry.sun_direction);
+    light->sun_azimuth = sun_azimuth, light->sun_elevation = sun_elevation;
+    scene_light_sun_direction(light, p->geometry.sun_direction);
     p->scene_current = false;
   }
   if (p->lamps_animated) {

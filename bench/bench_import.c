@@ -104,7 +104,8 @@ static int preview_create(preview *p, int map_w, int map_h, char *error, size_t 
   p->ctx = gl_context_create(&(gl_context_desc){0}, &err);
   if (!p->ctx) goto fail;
   scene_desc sd = {.terrain = {.origin = {-20, 0, -20}, .size = {40, 40}, .height = 1,
-                               .heights = flat_heights, .heights_width = 2, .heights_height = 2}};
+                               .heights = flat_heights, .heights_width = 2, .heights_height = 2},
+                   .light = scene_light_default()};
   if (scene_geometry_create(&p->geo, &sd, &err)) goto fail;
   if (!(p->scene = scene_pass_create(&p->geo, &err))) goto fail;
   if (scene_target_create(&p->scene_target, W, H, &err)) goto fail;

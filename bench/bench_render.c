@@ -466,8 +466,9 @@ int bench_render(int argc, char **argv) {
       .boxes = {{.center = {-40, 60}, .size = {24, 30, 24}, .colour = {0.55f, 0.25f, 0.18f}},
                 {.center = {70, -30}, .size = {16, 70, 16}}},
       .box_count = 2,
-      .light = {.sun_azimuth = 150, .sun_elevation = 30},
+      .light = scene_light_default(),
   };
+  sdesc.light.sun_azimuth = 150, sdesc.light.sun_elevation = 30;
   if (scene_geometry_create(&geo, &sdesc, &rerr)) goto gl_failed;
   have_geo = 1;
   const fog_volume volume = {

@@ -50,11 +50,7 @@ int fog_rbf_tiles_build(fog_rbf_tiles *t, const camera *cam, int width, int heig
     snprintf(err->message, sizeof err->message, "RBF tiles: out of memory (%d RBFs)", count);
     return 1;
   }
-  double origin[3];
-  {
-    double unused[3];
-    camera_ray(cam, 0, 0, width, height, origin, unused);
-  }
+  const double *origin = cam->position; /* every pixel ray starts there (camera_ray) */
   for (int g = 0; g < count; g++) {
     seen_from *f = &from[g];
     double radius = fog_rbf_cull_radius(&rbfs[g], count), v[3];

@@ -48,7 +48,8 @@ int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_er
     memcpy(box->colour, d->colour, sizeof box->colour);
     set_default3(box->colour, 0.55f, 0.53f, 0.50f);
   }
-  scene_light_resolve(&desc->light, &geo->light, geo->sun_direction);
+  geo->light = desc->light;
+  scene_light_sun_direction(&geo->light, geo->sun_direction);
   return 0;
 }
 

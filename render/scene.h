@@ -39,14 +39,20 @@ typedef struct scene_box_desc {
 } scene_box_desc;
 
 /* Sun and sky. Zero means default for every field. */
+/* The sun and the sky. Every field means what it says, zero included (an elevation of 0 is
+ * the horizon, a colour of 0 black): start from scene_light_default(). */
 typedef struct scene_light {
-  double sun_azimuth;    /* degrees, like camera yaw: 0 toward -Z, 90 toward +X; 0 is 0 */
-  double sun_elevation;  /* degrees above the horizon; 0: 35 */
-  float sun_colour[3];   /* linear radiance multiplier; 0: (1.9, 1.8, 1.6) */
-  float ambient[3];      /* sky-light on upward surfaces; 0: (0.30, 0.36, 0.45) */
-  float sky_horizon[3];  /* 0: (0.72, 0.78, 0.85) */
-  float sky_zenith[3];   /* 0: (0.28, 0.45, 0.75) */
+  double sun_azimuth;    /* degrees, like camera yaw: 0 toward -Z, 90 toward +X */
+  double sun_elevation;  /* degrees above the horizon */
+  float sun_colour[3];   /* linear radiance multiplier */
+  float ambient[3];      /* sky-light on upward surfaces */
+  float sky_horizon[3];
+  float sky_zenith[3];
 } scene_light;
+
+/* Azimuth 0, elevation 35, sun (1.9, 1.8, 1.6), ambient (0.30, 0.36, 0.45), sky from
+ * (0.72, 0.78, 0.85) at the horizon to (0.28, 0.45, 0.75) at the zenith. */
+scene_light scene_light_default(void);
 
 typedef struct scene_desc {
   terrain_desc terrain;
@@ -64,15 +70,14 @@ typedef struct scene_geometry {
   terrain terrain;
   scene_box boxes[SCENE_MAX_BOXES];
   int box_count;
-  scene_light light;        /* defaults filled in */
+  scene_light light;        /* the desc's (the demo's time of day moves it) */
   double sun_direction[3];  /* unit vector toward the sun, from azimuth and elevation */
 } scene_geometry;
 
 int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_error *err);
 void scene_geometry_destroy(scene_geometry *geo);
-/* The light with its defaults resolved, and the unit direction towards the sun (what the
- * surfaces and the fog are lit by). */
-void scene_light_resolve(const scene_light *desc, scene_light *light, double sun_direction[3]);
+/* The unit direction towards the light's sun (what the surfaces and the fog are lit by). */
+void scene_light_sun_direction(const scene_light *light, double sun_direction[3]);
 
 /* First hit along origin + s * dir (dir unit length: s is the Euclidean distance) for
  * s in (0, s_max], on the terrain mesh or a box. Returns true and sets *s (and the unit

@@ -73,7 +73,34 @@ int main(void) {
         cfg.fog.fogmap, map);
   CHECK(cfg.fog.fogmap_line == 2 && cfg.fog.degree == 2, "line %d", cfg.fog.fogmap_line);
   CHECK(cfg.camera.position[0] == 1 && cfg.camera.position[2] == 3, "commas between numbers");
+  /* The light's documented defaults (docs/config.md), and a zero meaning zero: a sun on the
+   * horizon, a black sun (they used to mean "elevation 35" and "the default colour"). */
+  {
+    const fog_sun sun = scene_config_fog_sun(&empty);
+    const double pi = 3.14159265358979323846, el = 35.0 * pi / 180.0;
+    CHECK(empty.light.sun_elevation == 35.0 && empty.light.sun_azimuth == 0.0 &&
+              empty.light.sun_colour[0] == 1.9f && empty.light.sun_colour[1] == 1.8f &&
+              empty.light.sun_colour[2] == 1.6f && empty.light.ambient[2] == 0.45f &&
+              empty.light.sky_horizon[0] == 0.72f && empty.light.sky_zenith[2] == 0.75f,
+          "the light's defaults");
+    CHECK(fabs(sun.direction[1] - sin(el)) < 1e-15 && fabs(sun.direction[2] + cos(el)) < 1e-15,
+          "default sun direction (%g %g %g)", sun.direction[0], sun.direction[1],
+          sun.direction[2]);
+    snprintf(path, sizeof path, "%s/zero.ini", dir);
+    write_file(path, "[light]\nsun_elevation = 0\nsun_colour = 0 0 0\nambient = 0 0 0\n");
+    CHECK(scene_config_load(path, &cfg, &err) == 0, "zero: %s", err.message);
+    const fog_sun zero = scene_config_fog_sun(&cfg);
+    CHECK(zero.direction[1] == 0.0 && zero.direction[2] == -1.0,
+          "sun_elevation = 0: direction (%g %g %g), expected the horizon", zero.direction[0],
+          zero.direction[1], zero.direction[2]);
+    CHECK(zero.radiance[0] == 0.0 && zero.radiance[1] == 0.0 && zero.radiance[2] == 0.0 &&
+              cfg.light.ambient[0] == 0.0f,
+          "sun_colour = 0 0 0: radiance (%g %g %g), expected none", zero.radiance[0],
+          zero.radiance[1], zero.radiance[2]);
+  }
   unlink(map);
+  unlink(path);
+  snprintf(path, sizeof path, "%s/rel.ini", dir);
   unlink(path);
   snprintf(path, sizeof path, "%s/empty.ini", dir);
   unlink(path);

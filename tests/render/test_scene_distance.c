@@ -175,6 +175,7 @@ int main(void) {
       .boxes = {{.center = {0, -120}, .size = {30, 40, 20}},
                 {.center = {60, -200}, .size = {15, 80, 15}, .colour = {0.6f, 0.2f, 0.1f}}},
       .box_count = 2,
+      .light = scene_light_default(),
   };
   scene_geometry geo;
   int status = scene_geometry_create(&geo, &desc, &err);

@@ -25,8 +25,9 @@ int main(void) {
   scene_desc desc = {
       .terrain = {.origin = {-600, 0, -600}, .size = {1200, 1200}, .height = 160,
                   .resolution = 257, .seed = 4, .octaves = 6, .frequency = 2.2},
-      .light = {.sun_azimuth = 150, .sun_elevation = 30},
+      .light = scene_light_default(),
   };
+  desc.light.sun_azimuth = 150, desc.light.sun_elevation = 30;
   scene_geometry geo;
   CHECK(scene_geometry_create(&geo, &desc, &err) == 0, "geometry: %s", err.message);
   scene_pass *pass = scene_pass_create(&geo, &err);

@@ -34,7 +34,8 @@ int main(void) {
   /* The stored heights are floats: use the plane they represent to float rounding. */
   scene_desc desc = {.terrain = {.origin = {origin_x, lo, origin_z}, .size = {size_x, size_z},
                                  .height = hi - lo, .heights = heights, .heights_width = N,
-                                 .heights_height = N}};
+                                 .heights_height = N},
+                     .light = scene_light_default()};
   render_error err = {0};
   scene_geometry geo;
   int status = scene_geometry_create(&geo, &desc, &err);

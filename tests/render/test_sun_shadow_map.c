@@ -64,9 +64,8 @@ static shadow_stats compare(const scene_geometry *geo, scene_pass *pass, const g
 }
 
 static void set_sun(scene_geometry *geo, double azimuth_deg, double elevation_deg) {
-  scene_light light = geo->light;
-  light.sun_azimuth = azimuth_deg, light.sun_elevation = elevation_deg;
-  scene_light_resolve(&light, &geo->light, geo->sun_direction);
+  geo->light.sun_azimuth = azimuth_deg, geo->light.sun_elevation = elevation_deg;
+  scene_light_sun_direction(&geo->light, geo->sun_direction);
 }
 
 /* The exact shadow of a post of the given width: the fraction of its exactly shadowed
@@ -79,8 +78,9 @@ static double post_shadow_found(double width, gl_context *ctx) {
                   .resolution = 9, .seed = 1},
       .boxes = {{.center = {0, 0}, .size = {width, 40, width}}},
       .box_count = 1,
-      .light = {.sun_azimuth = 90, .sun_elevation = 20},
+      .light = scene_light_default(),
   };
+  desc.light.sun_azimuth = 90, desc.light.sun_elevation = 20;
   scene_geometry geo;
   if (scene_geometry_create(&geo, &desc, &err)) {
     CHECK(0, "geometry: %s", err.message);
@@ -121,6 +121,7 @@ int main(void) {
       .boxes = {{.center = {0, -120}, .size = {30, 40, 20}},
                 {.center = {60, -200}, .size = {15, 80, 15}}},
       .box_count = 2,
+      .light = scene_light_default(),
   };
   scene_geometry geo;
   if (scene_geometry_create(&geo, &desc, &err)) {
