@@ -208,6 +208,13 @@ static int view_loop(view_state *v, volume_playback *playback, const scene_confi
     if (playback->sequence.count &&
         volume_playback_update(playback, window, clock, &v->fog, cfg, err))
       return 1;
+    /* RBF fog from emitters moves with the clock (with --screenshot at 24 frames a second:
+     * the same image every run) */
+    if (v->has_fog && render_fog_animated(cfg) &&
+        render_fog_set_time(&v->fog, cfg,
+                            opts->screenshot ? (frame - 1) / 24.0 : now - playback->start_time,
+                            err))
+      return 1;
     int fb_w, fb_h;
     gl_context_framebuffer_size(v->ctx, &fb_w, &fb_h);
     if (fb_w < 1 || fb_h < 1) continue; /* minimised */

@@ -37,6 +37,7 @@ typedef enum value_kind {
   V_OBJECT,   /* box = X Z WIDTH HEIGHT DEPTH [R G B], appended */
   V_RBF,      /* rbf = X Y Z RADIUS DENSITY, appended */
   V_QUADRIC,  /* quadric = SHAPE NUMBERS..., appended */
+  V_RBF_EMITTER, /* rbf_emitter = X Y Z RATE LIFETIME RADIUS DENSITY SPREAD DIFFUSION WX WY WZ [SEED] */
   V_LAMP,     /* lamp = X Y Z R G B [RADIUS], spot = ... DX DY DZ INNER OUTER [RADIUS] */
   V_LAMP_PATH,    /* lamp_path = INDEX T X Y Z, appended to lamp INDEX's keys */
   V_LAMP_FLICKER, /* lamp_flicker = INDEX AMOUNT RATE [SEED] */
@@ -95,6 +96,7 @@ static const key_spec keys[] = {
     {"fog", "phase_g", V_DOUBLE, F(fog.phase_g), -FOG_PHASE_G_MAX, FOG_PHASE_G_MAX, NULL, 0, 0},
     {"fog", "rbf", V_RBF, 0, 0, WORLD, NULL, 0, 0},
     {"fog", "quadric", V_QUADRIC, 0, 0, WORLD, NULL, 0, 0},
+    {"fog", "rbf_emitter", V_RBF_EMITTER, 0, 0, WORLD, NULL, 0, 0},
     {"fog", "rbf_base", V_DOUBLE, F(fog.rbf_base), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"fog", "volume_step", V_DOUBLE, F(fog.volume_step), 0, WORLD, NULL, 0, 0},
     {"fog", "sequence", V_PATH, F(fog.sequence), 0, 0, NULL, F(fog.sequence_line), sizeof(((scene_config *)0)->fog.sequence)},
@@ -385,6 +387,43 @@ static int store_rbf(parse_state *s, const char *section, const char *key, const
   return 1;
 }
 
+/* V_RBF_EMITTER: rbf_emitter = X Y Z RATE LIFETIME RADIUS DENSITY SPREAD DIFFUSION WX WY WZ
+ * [SEED], appended (render/fog_rbf_emitter.h). */
+static int store_rbf_emitter(parse_state *s, const char *section, const char *key,
+                             const char *value) {
+  scene_config *cfg = s->cfg;
+  double v[13];
+  int n = parse_numbers(value, v, 13);
+  if (n != 12 && n != 13)
+    return fail(s, section, key, "expected X Y Z RATE LIFETIME RADIUS DENSITY SPREAD DIFFUSION "
+                "WX WY WZ [SEED] (12 or 13 numbers), got '%s'", value);
+  static const char *const names[12] = {"X", "Y", "Z", "RATE", "LIFETIME", "RADIUS", "DENSITY",
+                                        "SPREAD", "DIFFUSION", "WX", "WY", "WZ"};
+  for (int i = 0; i < 12; i++) {
+    /* positions and wind: world; RATE, LIFETIME, RADIUS > 0; the rest >= 0 */
+    double lo = i < 3 || i >= 9 ? -WORLD : i == 6 || i == 7 || i == 8 ? 0.0 : MIN_LENGTH;
+    double hi = i == 6 ? MAX_EXTINCTION : WORLD;
+    if (!(v[i] >= lo && v[i] <= hi))
+      return fail(s, section, key, "%s (%g): expected %g to %g", names[i], v[i], lo, hi);
+  }
+  if (n == 13 && !(v[12] >= 0 && v[12] <= 4294967295.0 && v[12] == floor(v[12])))
+    return fail(s, section, key, "SEED (%g): expected a whole number from 0 to 4294967295",
+                v[12]);
+  if (cfg->fog.rbf_emitter_count == SCENE_CONFIG_MAX_EMITTERS)
+    return fail(s, section, key, "at most %d emitters", SCENE_CONFIG_MAX_EMITTERS);
+  fog_rbf_emitter e = {.position = {v[0], v[1], v[2]}, .rate = v[3], .lifetime = v[4],
+                       .radius = v[5], .density = v[6], .spread = v[7], .diffusion = v[8],
+                       .wind = {v[9], v[10], v[11]}, .seed = n == 13 ? (uint64_t)v[12] : 0};
+  int puffs = fog_rbf_emitter_count(&e);
+  for (int i = 0; i < cfg->fog.rbf_emitter_count; i++)
+    puffs += fog_rbf_emitter_count(&cfg->fog.rbf_emitters[i]);
+  if (puffs + SCENE_CONFIG_MAX_RBFS > FOG_MAX_RBFS)
+    return fail(s, section, key, "RATE x LIFETIME: %d puffs alive at once in all, expected at "
+                "most %d", puffs, FOG_MAX_RBFS - SCENE_CONFIG_MAX_RBFS);
+  cfg->fog.rbf_emitters[cfg->fog.rbf_emitter_count++] = e;
+  return 1;
+}
+
 /* V_QUADRIC: quadric = SHAPE NUMBERS [EDGE], appended; the shapes' numbers (docs/config.md):
  *   sphere X Y Z R DENSITY, ellipsoid X Y Z RX RY RZ DENSITY, cylinder and cone X Y Z R
  *   HEIGHT DENSITY (upright, standing on (X, Y, Z); the cone's apex on top), general A B C D E
@@ -625,6 +664,8 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
       return store_rbf(s, section, key, value);
     case V_QUADRIC:
       return store_quadric(s, section, key, value);
+    case V_RBF_EMITTER:
+      return store_rbf_emitter(s, section, key, value);
     case V_LAMP:
       return store_lamp(s, section, key, value);
     case V_LAMP_PATH:
@@ -728,9 +769,11 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
              "%s: [box] top (%g) must be above floor (%g)", path, cfg->box.top, cfg->box.floor);
     return 1;
   }
-  if (cfg->fog.model == FOG_MODEL_RBF && cfg->fog.rbf_count == 0) {
+  if (cfg->fog.model == FOG_MODEL_RBF && cfg->fog.rbf_count == 0 &&
+      cfg->fog.rbf_emitter_count == 0) {
     s.line = cfg->fog.model_line;
-    fail(&s, "fog", "model", "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' line");
+    fail(&s, "fog", "model", "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' or "
+         "'rbf_emitter = ...' line");
     return 1;
   }
   if (cfg->fog.model == FOG_MODEL_QUADRIC && cfg->fog.quadric_count == 0) {
@@ -829,6 +872,16 @@ static bool key_unset(const scene_config *cfg, const key_spec *k) {
          (o == F(box.floor) && !cfg->box.floor_set) || (o == F(box.top) && !cfg->box.top_set);
 }
 
+/* " x" in the shortest form that reads back as x (lines with many numbers stay short). */
+static void write_number(FILE *f, double x) {
+  char number[32];
+  for (int digits = 1; digits <= 17; digits++) {
+    snprintf(number, sizeof number, "%.*g", digits, x);
+    if (strtod(number, NULL) == x) break;
+  }
+  fprintf(f, " %s", number);
+}
+
 static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
   if (key_unset(cfg, k)) return;
   const char *field = (const char *)cfg + k->offset;
@@ -879,18 +932,22 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
                 g->centre[2], g->radius, g->density);
       }
       break;
+    case V_RBF_EMITTER:
+      for (int i = 0; i < cfg->fog.rbf_emitter_count; i++) {
+        const fog_rbf_emitter *e = &cfg->fog.rbf_emitters[i];
+        const double numbers[12] = {e->position[0], e->position[1], e->position[2], e->rate,
+                                    e->lifetime, e->radius, e->density, e->spread,
+                                    e->diffusion, e->wind[0], e->wind[1], e->wind[2]};
+        fprintf(f, "%s =", k->key);
+        for (int c = 0; c < 12; c++) write_number(f, numbers[c]);
+        fprintf(f, " %llu\n", (unsigned long long)e->seed);
+      }
+      break;
     case V_QUADRIC: /* as written, each number in its shortest exact form (the line fits) */
       for (int i = 0; i < cfg->fog.quadric_count; i++) {
         const struct scene_quadric_line *line = &cfg->fog.quadric_lines[i];
         fprintf(f, "%s = %s", k->key, shapes[line->shape].name);
-        for (int c = 0; c < line->count; c++) {
-          char number[32];
-          for (int digits = 1; digits <= 17; digits++) {
-            snprintf(number, sizeof number, "%.*g", digits, line->numbers[c]);
-            if (strtod(number, NULL) == line->numbers[c]) break;
-          }
-          fprintf(f, " %s", number);
-        }
+        for (int c = 0; c < line->count; c++) write_number(f, line->numbers[c]);
         fputc('\n', f);
       }
       break;
@@ -1190,6 +1247,18 @@ uint64_t scene_config_fingerprint(const scene_config *cfg) {
           h = fnv(h, cfg->fog.rbfs[r].centre, sizeof cfg->fog.rbfs[r].centre);
           h = fnv(h, &cfg->fog.rbfs[r].radius, sizeof(double));
           h = fnv(h, &cfg->fog.rbfs[r].density, sizeof(double));
+        }
+        break;
+      case V_RBF_EMITTER:
+        h = fnv(h, &cfg->fog.rbf_emitter_count, sizeof cfg->fog.rbf_emitter_count);
+        for (int r = 0; r < cfg->fog.rbf_emitter_count; r++) {
+          const fog_rbf_emitter *e = &cfg->fog.rbf_emitters[r];
+          h = fnv(h, e->position, sizeof e->position);
+          const double numbers[6] = {e->rate, e->lifetime, e->radius, e->density, e->spread,
+                                     e->diffusion};
+          h = fnv(h, numbers, sizeof numbers);
+          h = fnv(h, e->wind, sizeof e->wind);
+          h = fnv(h, &e->seed, sizeof e->seed);
         }
         break;
       case V_QUADRIC:

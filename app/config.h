@@ -20,6 +20,7 @@
 #include "render/fog_lamp.h"
 #include "render/fog_light.h"
 #include "render/fog_models.h"
+#include "render/fog_rbf_emitter.h"
 #include "render/fog_pass.h"
 #include "render/scene.h"
 
@@ -28,6 +29,8 @@
 /* The most `rbf =` lines a config holds (a scene config is a value; the renderer takes
  * up to FOG_MAX_RBFS Gaussians from code: bench models' 3000-Gaussian banks). */
 #define SCENE_CONFIG_MAX_RBFS 64
+/* The most `rbf_emitter` lines (their puffs together at most FOG_MAX_RBFS). */
+#define SCENE_CONFIG_MAX_EMITTERS 4
 
 typedef struct scene_config_error {
   char message[512];
@@ -82,6 +85,9 @@ typedef struct scene_fog_config {
   /* model = rbf: the Gaussians (densities before density_scale) and the base under them. */
   fog_rbf rbfs[SCENE_CONFIG_MAX_RBFS];
   int rbf_count;
+  /* and puffs from emitters carried by a wind (render/fog_rbf_emitter.h): the fog moves */
+  fog_rbf_emitter rbf_emitters[SCENE_CONFIG_MAX_EMITTERS];
+  int rbf_emitter_count;
   double rbf_base;
   /* model = quadric: the volumes (densities before density_scale), from `quadric = SHAPE
    * ...` lines (docs/config.md), held as their ten coefficients and box. */

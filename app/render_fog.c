@@ -10,6 +10,7 @@
 
 void render_fog_destroy(render_fog *fog) {
   fog_pyramid_destroy(&fog->pyramid);
+  free(fog->rbfs);
   if (fog->pass) fog_pass_destroy(fog->pass);
   for (int k = 0; k < 2; k++) vdb_frame_destroy(&fog->played[k]);
   fog_sun_shadow_destroy(&fog->sun_shadow);
@@ -274,13 +275,41 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_er
 
 /* An analytic model of the ladder (docs/architecture.md, the model table): no fogmap and no transform, the pass's
  * parameters alone (render/fog_models.def lists the keys each reads; docs/config.md what they mean). */
+/* model = rbf: the rbf lines and the emitters' puffs at `time`, density_scale applied. */
+static int rbfs_at(render_fog *fog, const scene_config *cfg, double time, render_error *err) {
+  const scene_fog_config *f = &cfg->fog;
+  int n = f->rbf_count;
+  for (int e = 0; e < f->rbf_emitter_count; e++) n += fog_rbf_emitter_count(&f->rbf_emitters[e]);
+  if (!fog->rbfs && !(fog->rbfs = malloc(sizeof(fog_rbf) * (size_t)(n > 0 ? n : 1)))) {
+    snprintf(err->message, sizeof err->message, "rbf fog: out of memory (%d Gaussians)", n);
+    return 1;
+  }
+  fog->rbf_count = 0;
+  for (int i = 0; i < f->rbf_count; i++) fog->rbfs[fog->rbf_count++] = f->rbfs[i];
+  for (int e = 0; e < f->rbf_emitter_count; e++)
+    fog->rbf_count += fog_rbf_emitter_puffs(&f->rbf_emitters[e], time, fog->rbfs + fog->rbf_count,
+                                            n - fog->rbf_count);
+  for (int i = 0; i < fog->rbf_count; i++) fog->rbfs[i].density *= f->density_scale;
+  fog->params.model_rbfs = fog->rbfs;
+  fog->params.model_rbf_count = fog->rbf_count;
+  return 0;
+}
+
+bool render_fog_animated(const scene_config *cfg) {
+  return cfg->fog.model == FOG_MODEL_RBF && cfg->fog.rbf_emitter_count > 0;
+}
+
+int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,
+                        render_error *err) {
+  if (!render_fog_animated(cfg)) return 0;
+  if (rbfs_at(fog, cfg, time, err)) return 1;
+  fog_model model = render_fog_model(fog);
+  return render_fog_shadow(fog, cfg, &model, err);
+}
+
 static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
   const scene_fog_config *f = &cfg->fog;
   bool rbf = f->model == FOG_MODEL_RBF;
-  for (int i = 0; rbf && i < f->rbf_count; i++) {
-    fog->rbfs[i] = f->rbfs[i];
-    fog->rbfs[i].density *= f->density_scale;
-  }
   bool quadric = f->model == FOG_MODEL_QUADRIC;
   for (int i = 0; quadric && i < f->quadric_count; i++) {
     fog->quadrics[i] = f->quadrics[i];
@@ -291,8 +320,6 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
       .model_extinction = rbf ? f->rbf_base : f->density_scale,
       .model_y0 = f->fog_height,
       .model_scale_height = f->scale_height,
-      .model_rbfs = fog->rbfs,
-      .model_rbf_count = rbf ? f->rbf_count : 0,
       .model_quadrics = fog->quadrics,
       .model_quadric_count = quadric ? f->quadric_count : 0,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
@@ -300,6 +327,7 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
       .lamps = scene_config_fog_lamps(cfg),
       .walk = scene_config_walk(cfg),
   };
+  if (rbf && rbfs_at(fog, cfg, 0.0, err)) return 1;
   fog_model model = render_fog_model(fog);
   return fog_pass_create(&fog->pass, err) || render_fog_shadow(fog, cfg, &model, err);
 }

@@ -19,7 +19,10 @@ typedef struct render_fog {
   fog_pyramid pyramid; /* model = fogmap: the map's (details too, whatever the LOD method) */
   fog_volume volume;
   double profile_coefficients[SCENE_CONFIG_MAX_PROFILE]; /* volume.profile's own copy */
-  fog_rbf rbfs[SCENE_CONFIG_MAX_RBFS]; /* model = rbf: params.model_rbfs, density_scale applied */
+  /* model = rbf: params.model_rbfs, density_scale applied: the config's rbf lines, then its
+   * emitters' puffs at the time shown (render_fog_set_time); rbf_count of them */
+  fog_rbf *rbfs;
+  int rbf_count;
   fog_quadric quadrics[FOG_MAX_QUADRICS]; /* model = quadric: params.model_quadrics, likewise */
   fog_pass_params params;
   fog_pass *pass;
@@ -67,6 +70,14 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
 int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg,
                                const vdb_sequence *seq, int a, int b, double w,
                                render_error *err);
+/* Whether the fog changes with time by itself: model = rbf with emitters (puffs carried by
+ * the wind). */
+bool render_fog_animated(const scene_config *cfg);
+/* model = rbf with emitters: the puffs at `time` seconds from now on (and the sun's volume
+ * of the fog's shadow, where the model has one). For the fog made by render_fog_create from
+ * cfg; nothing to do for other fog. */
+int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,
+                        render_error *err);
 /* The scene pass's sun shadow map for light shafts ([light] shafts, with albedo > 0); the
  * map must outlive the fog's draws. */
 void render_fog_set_shafts(render_fog *fog, const scene_config *cfg, const sun_shadow_map *map);

@@ -131,6 +131,13 @@ fail:
 const char *render_session_gl_description(const render_session *s) { return s->gl_description; }
 
 int render_session_set_time(render_session *s, double time, render_frame_error *err) {
+  if (s->has_fog && render_fog_animated(&s->config)) {
+    render_error ferr = {0};
+    if (render_fog_set_time(&s->fog, &s->config, time, &ferr)) {
+      snprintf(err->message, sizeof err->message, "%s", ferr.message);
+      return 1;
+    }
+  }
   if (!s->lamps_animated) return 0;
   const fog_lamps lamps = scene_config_fog_lamps_at(&s->config, time);
   if (s->has_fog) s->fog.params.lamps = lamps;

@@ -54,7 +54,8 @@ const char *render_session_gl_description(const render_session *session);
 /* The session's fog (NULL when the config has none), to change between frames. */
 struct render_fog *render_session_fog(render_session *session);
 /* The scene time of the next frames, seconds: lamps that move or flicker ([light] lamp_path,
- * lamp_flicker) are set for it (the surfaces they light drawn again); nothing else moves. */
+ * lamp_flicker) are set for it (the surfaces they light drawn again), and so are the puffs
+ * of [fog] rbf_emitter lines (render_fog_set_time); nothing else moves. */
 int render_session_set_time(render_session *session, double time, render_frame_error *err);
 /* One frame, outputs as render_frame's. */
 int render_session_frame(render_session *session, const frame_pixels *out,

@@ -1,6 +1,8 @@
 /* The sun's optical-depth volume (render/fog_sun_shadow.h). */
 #include "render/fog_sun_shadow.h"
 
+#include "render/fog_rbf_tiles.h"
+
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -119,7 +121,29 @@ typedef struct shadow_job {
   fog_sun_shadow *s;
   const fog_model *model;
   int first_row, row_step; /* rows j of columns this thread fills */
+  /* FOG_MODEL_RBF: each Gaussian's cull radius (render/fog_rbf_tiles.h) and room for a
+   * column's own list: a column is a line, so the Gaussians farther from it than their
+   * radius change its optical depth by < FOG_RBF_CULL_BOUND in all */
+  const double *cull_radius;
+  fog_rbf *column_rbfs;
 } shadow_job;
+
+/* The model for the column through start along e2: for RBFs only the Gaussians near it. */
+static fog_model column_model(const shadow_job *job, const double start[3], const double e2[3]) {
+  fog_model m = *job->model;
+  if (m.kind != FOG_MODEL_RBF || !job->column_rbfs) return m;
+  int n = 0;
+  for (int i = 0; i < job->model->rbf_count; i++) {
+    const fog_rbf *g = &job->model->rbfs[i];
+    if (!(job->cull_radius[i] >= 0.0)) continue;
+    double v[3], along = 0.0, h2 = 0.0;
+    for (int a = 0; a < 3; a++) v[a] = g->centre[a] - start[a], along += v[a] * e2[a];
+    for (int a = 0; a < 3; a++) h2 += (v[a] - along * e2[a]) * (v[a] - along * e2[a]);
+    if (h2 <= job->cull_radius[i] * job->cull_radius[i]) job->column_rbfs[n++] = *g;
+  }
+  m.rbfs = job->column_rbfs, m.rbf_count = n;
+  return m;
+}
 
 /* Column (i, j): its entry point on the sun-side face, then sample k's optical depth as
  * the sum of the exact depths of the segments before it (one walk's work per column). */
@@ -140,11 +164,12 @@ static void *shadow_rows(void *arg) {
         fog_optical_depth_samples(job->model->volume, job->model->lod->approx, start, e2, step,
                                   n2, running);
       } else {
+        const fog_model column = column_model(job, start, e2);
         running[0] = 0.0;
         for (int k = 1; k < n2; k++) {
           double p[3];
           for (int c = 0; c < 3; c++) p[c] = start[c] + (k - 1) * step * e2[c];
-          running[k] = running[k - 1] + fog_model_optical_depth(job->model, p, e2, step);
+          running[k] = running[k - 1] + fog_model_optical_depth(&column, p, e2, step);
         }
       }
       for (int k = 0; k < n2; k++) column[(size_t)k * n0 * n1] = (float)running[k];
@@ -205,14 +230,33 @@ int fog_sun_shadow_compute(fog_sun_shadow *s, const fog_model *model, const doub
   shadow_job jobs[16];
   pthread_t ids[16];
   int started = 0;
+  /* RBFs: per column only those near it (their lists take 1 + threads arrays of them) */
+  double *cull_radius = NULL;
+  fog_rbf *column_rbfs = NULL;
+  if (model->kind == FOG_MODEL_RBF && model->rbf_count > 0) {
+    cull_radius = malloc(sizeof *cull_radius * (size_t)model->rbf_count);
+    column_rbfs = malloc(sizeof *column_rbfs * (size_t)model->rbf_count * threads);
+    if (!cull_radius || !column_rbfs) {
+      free(cull_radius), free(column_rbfs);
+      cull_radius = NULL, column_rbfs = NULL; /* every Gaussian in every column, then */
+    } else {
+      for (int i = 0; i < model->rbf_count; i++)
+        cull_radius[i] = fog_rbf_cull_radius(&model->rbfs[i], model->rbf_count);
+    }
+  }
   for (int t = 0; t < threads; t++)
-    jobs[t] = (shadow_job){.s = s, .model = &walked, .first_row = t, .row_step = threads};
+    jobs[t] = (shadow_job){.s = s, .model = &walked, .first_row = t, .row_step = threads,
+                           .cull_radius = cull_radius,
+                           .column_rbfs = column_rbfs ? column_rbfs + (size_t)t * model->rbf_count
+                                                      : NULL};
   for (int t = 1; t < threads; t++)
     if (pthread_create(&ids[t], NULL, shadow_rows, &jobs[t]) == 0) started = t;
     else break;
   shadow_rows(&jobs[0]);
   for (int t = 1; t <= started; t++) pthread_join(ids[t], NULL);
   for (int t = started + 1; t < threads; t++) shadow_rows(&jobs[t]); /* threads that failed */
+  free(cull_radius);
+  free(column_rbfs);
   return 0;
 }
 

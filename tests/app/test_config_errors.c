@@ -120,7 +120,15 @@ int main(void) {
     expect_error(text, "2: the line is 264 bytes long", "at most 199");
   }
   expect_error("; banks\n[fog]\nmodel = rbf\nrbf_base = 0.01\n", "3: [fog] model: ",
-               "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' line");
+               "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' or 'rbf_emitter = ...' line");
+  expect_error("[fog]\nmodel = rbf\nrbf_emitter = 0 10 0 40 25 5 0.06 4 25 -7 1\n",
+               "3: [fog] rbf_emitter: ", "(12 or 13 numbers), got '0 10 0 40 25 5 0.06 4 25 -7 1'");
+  expect_error("[fog]\nrbf_emitter = 0 10 0 0 25 5 0.06 4 25 -7 1 0\n", "2: [fog] rbf_emitter: ",
+               "RATE (0): expected 0.0001 to 1e+07");
+  expect_error("[fog]\nrbf_emitter = 0 10 0 40 25 5 0.06 4 25 -7 1 0 1.5\n",
+               "2: [fog] rbf_emitter: ", "SEED (1.5): expected a whole number");
+  expect_error("[fog]\nrbf_emitter = 0 10 0 400 25 5 0.06 4 25 -7 1 0\n", "2: [fog] rbf_emitter: ",
+               "RATE x LIFETIME: 10000 puffs alive at once in all, expected at most 4032");
   expect_error("[fog]\n\nmodel = volume\n", "3: [fog] model: ",
                "volume needs a 'vdb = FILE or PATTERN' line");
   {
