@@ -120,6 +120,11 @@ typedef struct demo_ui {
   float brush_strength; /* density per second at the stroke's centre line */
   float render_scale;
   bool has_bspline_profile;
+  /* The lamp tool: the mouse places (left), drags (left on a lamp) and removes (right)
+   * point lamps of this colour x intensity, `lamp_height` above the surface clicked. */
+  bool placing_lamps;
+  float lamp_colour[3], lamp_intensity, lamp_height;
+  int dragged_lamp; /* -1: none */
   float frame_history[120];
   int history_next;
 } demo_ui;
@@ -219,6 +224,15 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
         params.fog_resolution_divisor = 1 << divisor_index;
         changed = true;
       }
+    }
+    if (panel_header(ui, "lamps", false)) {
+      panel_checkbox(ui, "place lamps with the mouse", &d->placing_lamps);
+      panel_color3(ui, "lamp colour", d->lamp_colour);
+      panel_slider_float(ui, "lamp intensity", &d->lamp_intensity, 10.0f, 20000.0f, "%.0f", true);
+      panel_slider_float(ui, "lamp height", &d->lamp_height, 0.5f, 100.0f, "%.1f", true);
+      panel_text(ui, "left: place / drag a lamp   right: remove");
+      panel_text(ui, "%d of %d lamps (scattered with albedo > 0)", params.lamps.count,
+                 FOG_MAX_LAMPS);
     }
     if (panel_header(ui, "brush", false)) {
       panel_slider_float(ui, "radius", &d->brush_radius, 1.0f, 200.0f, "%.0f", true);
@@ -360,6 +374,52 @@ static void demo_paint(GLFWwindow *window, pipeline *pipe, const free_camera *fc
   in->painting = true;
 }
 
+/* The lamp tool (the panel's "lamps"): left places a lamp above the surface under the
+ * cursor, or drags the lamp nearest it (within 3 lamp heights, horizontally); right removes
+ * that lamp. The pipeline lights the fog and the surfaces with the params' lamps. */
+static void demo_lamps(GLFWwindow *window, pipeline *pipe, const free_camera *fc, demo_ui *d,
+                       bool mouse) {
+  bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  bool right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  double hit[3];
+  int render_w, render_h, win_w = 0, win_h = 0;
+  pipeline_size(pipe, &render_w, &render_h);
+  glfwGetWindowSize(window, &win_w, &win_h);
+  int px = (int)(fc->last_x * render_w / (win_w > 0 ? win_w : 1));
+  int py = (int)(fc->last_y * render_h / (win_h > 0 ? win_h : 1));
+  if (!mouse || !(left || right) || !pipeline_pick_surface(pipe, &fc->cam, px, py, hit)) {
+    d->dragged_lamp = -1;
+    return;
+  }
+  pipeline_params params = pipeline_get_params(pipe);
+  fog_lamps *lamps = &params.lamps;
+  int nearest = -1;
+  double best = 3.0 * d->lamp_height;
+  for (int i = 0; i < lamps->count; i++) {
+    double dx = lamps->lamp[i].position[0] - hit[0], dz = lamps->lamp[i].position[2] - hit[2];
+    if (sqrt(dx * dx + dz * dz) < best) best = sqrt(dx * dx + dz * dz), nearest = i;
+  }
+  if (right) {
+    if (nearest < 0) return;
+    for (int i = nearest; i + 1 < lamps->count; i++) lamps->lamp[i] = lamps->lamp[i + 1];
+    lamps->count--;
+    d->dragged_lamp = -1;
+  } else {
+    int moved = d->dragged_lamp >= 0 && d->dragged_lamp < lamps->count ? d->dragged_lamp : nearest;
+    if (moved < 0) { /* a new lamp */
+      if (lamps->count == FOG_MAX_LAMPS) return;
+      moved = lamps->count++;
+      lamps->lamp[moved] = (fog_lamp){.kind = FOG_LAMP_POINT, .radius = 0.5};
+      for (int c = 0; c < 3; c++)
+        lamps->lamp[moved].intensity[c] = d->lamp_colour[c] * d->lamp_intensity;
+    }
+    for (int c = 0; c < 3; c++) lamps->lamp[moved].position[c] = hit[c];
+    lamps->lamp[moved].position[1] += d->lamp_height;
+    d->dragged_lamp = moved;
+  }
+  pipeline_set_params(pipe, &params);
+}
+
 /* Frames until the window closes (or the screenshot is taken); the exit status. */
 static int demo_loop(gl_context *gl, pipeline *pipe, panel *ui, demo_ui *d,
                      const scene_config *config, const demo_options *o) {
@@ -385,7 +445,8 @@ static int demo_loop(gl_context *gl, pipeline *pipe, panel *ui, demo_ui *d,
     bool keyboard = !panel_wants_keyboard(ui), mouse = !panel_wants_mouse(ui);
     if (keyboard) demo_keys(window, pipe, &in);
     free_camera_update(&fc, window, dt, keyboard, mouse);
-    if (frame > 0) demo_paint(window, pipe, &fc, d, mouse, dt, &in);
+    if (frame > 0 && d->placing_lamps) demo_lamps(window, pipe, &fc, d, mouse);
+    else if (frame > 0) demo_paint(window, pipe, &fc, d, mouse, dt, &in);
 
     if (pipeline_frame(pipe, &fc.cam, false, &perr)) {
       fprintf(stderr, "fogpipe demo: %s\n", perr.message);
@@ -454,6 +515,8 @@ int cmd_demo(int argc, char **argv) {
   int fb_w = 0, fb_h = 0;
   gl_context_framebuffer_size(gl, &fb_w, &fb_h);
   demo_ui d = {.brush_radius = 30.0f, .brush_strength = 3.0f, .render_scale = (float)o.scale,
+               .lamp_colour = {1.0f, 0.8f, 0.55f}, .lamp_intensity = 2000.0f, .lamp_height = 8.0f,
+               .dragged_lamp = -1,
                .has_bspline_profile = config.fog.profile_count > 0};
   pipeline_error perr = {{0}};
   pipeline *pipe = pipeline_create(&(pipeline_desc){.config = &config,

@@ -180,7 +180,8 @@ struct pipeline {
   pipeline_fog *fog;
   long shown_step;
   /* Lamps that move or flicker (scene_config_lamps_animated): set for the shown step's time
-   * (shown_lamps_time; NAN before the first frame), on the surfaces and in the fog. */
+   * (shown_lamps_time; NAN before the first frame), on the surfaces and in the fog. Else the
+   * params' lamps (the demo places them), shown_lamps what the surfaces have now. */
   bool lamps_animated;
   fog_lamps shown_lamps;
   double shown_lamps_time;
@@ -585,8 +586,8 @@ static int load_scene(pipeline *p, pipeline_error *err) {
   if (!p->scene ||
       scene_pass_set_terrain_lod(p->scene, p->live ? p->config.terrain.lod_error : 0.0, &rerr))
     return fail(err, "scene pass: %s", rerr.message);
-  const fog_lamps lamps = scene_config_fog_lamps(&p->config);
-  scene_pass_set_lamps(p->scene, &lamps);
+  p->shown_lamps = scene_config_fog_lamps(&p->config);
+  scene_pass_set_lamps(p->scene, &p->shown_lamps);
   p->lamps_animated = scene_config_lamps_animated(&p->config);
   p->shown_lamps_time = NAN;
   return 0;
@@ -941,7 +942,17 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
     scene_light_sun_direction(light, p->geometry.sun_direction);
     p->scene_current = false;
   }
-  if (p->lamps_animated) {
+  if (!p->lamps_animated) {
+    pthread_mutex_lock(&p->lock);
+    const fog_lamps placed = p->params.lamps;
+    pthread_mutex_unlock(&p->lock);
+    if (!fog_lamps_equal(&placed, &p->shown_lamps)) {
+      /* the panel placed, moved or removed a lamp: the surfaces are lit anew */
+      p->shown_lamps = placed;
+      scene_pass_set_lamps(p->scene, &p->shown_lamps);
+      p->scene_current = false;
+    }
+  } else {
     double time = (double)(p->shown_step > 0 ? p->shown_step - 1 : 0) * p->frame_seconds;
     if (!(time == p->shown_lamps_time)) {
       p->shown_lamps = scene_config_fog_lamps_at(&p->config, time);

@@ -85,6 +85,10 @@ typedef struct fog_lamps {
   fog_lamp_method method;
 } fog_lamps;
 
+/* The same lamps: the count, and each lamp's kind, position, intensity, radius and cone
+ * (field by field, not the bytes; the method is not compared). */
+bool fog_lamps_equal(const fog_lamps *a, const fog_lamps *b);
+
 /* The lamps as the shaders take them (fog_lamps.glsl, scene_surface_fs.glsl): positions
  * relative to the camera (subtracted in double), intensity x scale, the spot's axis with
  * w 1 (0: a point lamp), and (cos_outer, 1/(cos_inner - cos_outer), radius^2). */

@@ -36,6 +36,21 @@ void fog_lamps_pack(const fog_lamps *lamps, const double camera[3], double inten
   }
 }
 
+bool fog_lamps_equal(const fog_lamps *a, const fog_lamps *b) {
+  if (a->count != b->count) return false;
+  for (int i = 0; i < a->count && i < FOG_MAX_LAMPS; i++) {
+    const fog_lamp *p = &a->lamp[i], *q = &b->lamp[i];
+    if (p->kind != q->kind || p->radius != q->radius || p->cos_inner != q->cos_inner ||
+        p->cos_outer != q->cos_outer)
+      return false;
+    for (int c = 0; c < 3; c++)
+      if (p->position[c] != q->position[c] || p->intensity[c] != q->intensity[c] ||
+          p->axis[c] != q->axis[c])
+        return false;
+  }
+  return true;
+}
+
 double fog_lamp_spot(const fog_lamp *lamp, const double x[3]) {
   if (lamp->kind != FOG_LAMP_SPOT) return 1.0;
   double v[3] = {x[0] - lamp->position[0], x[1] - lamp->position[1], x[2] - lamp->position[2]};

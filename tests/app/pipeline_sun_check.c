@@ -8,7 +8,8 @@
  * the fog from the step on screen: the frame equals, bit for bit, that of a pipeline
  * created with the new sun. The panel's sun colour (params.sun.radiance = pi x [light]
  * sun_colour) changed while paused gives, bit for bit, the frame of a pipeline created with
- * that sun_colour: the terrain, the sky and the fog all take it. Built by
+ * that sun_colour: the terrain, the sky and the fog all take it; and so does a lamp placed
+ * through the params (the demo's lamp tool), on the surfaces and in the fog. Built by
  * tests/app/pipeline.cmake. */
 #include <math.h>
 #include <stdio.h>
@@ -68,18 +69,31 @@ static void set_colour(pipeline_params *p) {
   for (int c = 0; c < 3; c++) p->sun.radiance[c] = pi * new_colour[c];
 }
 static void move_sun(pipeline_params *p) { p->sun_azimuth = -70, p->sun_elevation = 25; }
+/* a lamp placed (what the demo's lamp tool does): in the fog and on the surfaces */
+static const double lamp_at[3] = {20.0, 60.0, -40.0}, lamp_colour[3] = {900, 700, 500};
+static void place_lamp(pipeline_params *p) {
+  p->lamps.count = 1;
+  p->lamps.lamp[0] = (fog_lamp){.kind = FOG_LAMP_POINT, .radius = 0.5,
+                                .position = {lamp_at[0], lamp_at[1], lamp_at[2]},
+                                .intensity = {lamp_colour[0], lamp_colour[1], lamp_colour[2]}};
+}
 
 /* The sun's colour (the panel's hue and strength) and, self-shadowed, the sun moved (the
  * relight path): each against a pipeline whose config has it from the start. */
 static void check_paused_changes(const scene_config *cfg, const camera *cam) {
   CHECK(cfg->shadow.fog_self_shadow == 1 && cfg->fog.albedo > 0,
         "configs/default.ini: expected the fog's self-shadow on by default");
-  scene_config moved_cfg = *cfg, tinted_cfg = *cfg;
+  scene_config moved_cfg = *cfg, tinted_cfg = *cfg, lamp_cfg = *cfg;
+  lamp_cfg.lamp_count = 1;
+  lamp_cfg.lamps[0] = (scene_lamp_config){.radius = 0.5};
+  for (int a = 0; a < 3; a++)
+    lamp_cfg.lamps[0].position[a] = lamp_at[a], lamp_cfg.lamps[0].colour[a] = lamp_colour[a];
   moved_cfg.light.sun_azimuth = -70, moved_cfg.light.sun_elevation = 25;
   for (int c = 0; c < 3; c++) tinted_cfg.light.sun_colour[c] = new_colour[c];
   check_paused_change(cfg, &moved_cfg, cam, move_sun, "self-shadowed: the sun moved");
   check_paused_change(cfg, &tinted_cfg, cam, set_colour,
                       "the sun colour set to (0.5, 1.25, 2.5)");
+  check_paused_change(cfg, &lamp_cfg, cam, place_lamp, "a lamp placed");
 }
 
 int main(void) {
