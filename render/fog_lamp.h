@@ -102,12 +102,6 @@ void fog_lamps_pack(const fog_lamps *lamps, const double camera[3], double inten
 /* S: the spot's cone at world point x (1 for a point lamp). */
 double fog_lamp_spot(const fog_lamp *lamp, const double x[3]);
 
-/* The ray's stretch [t0, t1] that holds the model's fog, finite: the sun's (the box, the
- * volume's support, the height fog and RBFs to where they fade) and, where the fog never
- * ends (a homogeneous fog or base), up to an optical depth of 20 from the camera (the rest
- * weighs < 2e-9). False where the ray holds no fog. */
-bool fog_lamp_span(const fog_model *model, const double o[3], const double d[3],
-                   double t_surface, double *t0, double *t1);
 
 /* The CPU twin of fog_lamps.glsl: the lamps' in-scattered radiance of the ray o + t d
  * (d unit) up to t_surface, per channel, for albedo a and Henyey-Greenstein g. */

@@ -12,8 +12,6 @@ static const double gl4_x[4] = {-0.86113631159405258, -0.33998104358485626,
                                 0.33998104358485626, 0.86113631159405258};
 static const double gl4_w[4] = {0.34785484513745386, 0.65214515486254614,
                                 0.65214515486254614, 0.34785484513745386};
-/* Where the fog never ends, the span stops at this optical depth from the camera. */
-static const double span_depth = 20.0;
 
 static double dot3(const double a[3], const double b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -60,16 +58,6 @@ double fog_lamp_spot(const fog_lamp *lamp, const double x[3]) {
   double u = (c - lamp->cos_outer) / (lamp->cos_inner - lamp->cos_outer);
   u = fmin(fmax(u, 0.0), 1.0);
   return u * u * (3.0 - 2.0 * u); /* smoothstep */
-}
-
-bool fog_lamp_span(const fog_model *m, const double o[3], const double d[3], double t_surface,
-                   double *t0, double *t1) {
-  if (fog_light_span(m, o, d, t_surface, t0, t1)) return true;
-  bool endless = m->kind == FOG_MODEL_HOMOGENEOUS || m->kind == FOG_MODEL_RBF;
-  if (!endless || !(m->extinction > 0.0)) return false;
-  *t0 = 0.0;
-  *t1 = fmin(t_surface, span_depth / m->extinction);
-  return *t0 < *t1;
 }
 
 /* Optical depth from the camera along the ray at the ends of `steps` equal segments of
@@ -247,7 +235,7 @@ double fog_lamp_inscatter_unit(const fog_model *m, const fog_lamp *lamp,
                                const fog_lamp_method *method, double g, const double o[3],
                                const double d[3], double t_surface) {
   double t0, t1, table[FOG_LAMP_MAX_DEPTH_STEPS + 1] = {0};
-  if (!fog_lamp_span(m, o, d, t_surface, &t0, &t1)) return 0.0;
+  if (!fog_light_span(m, o, d, t_surface, &t0, &t1)) return 0.0;
   if (method->integral == FOG_LAMP_FOGSHOP && m->kind == FOG_MODEL_RBF)
     return lamp_unit_fogshop(m, lamp, method, g, o, d, t0, t1);
   if (method->integral == FOG_LAMP_MARCH) return lamp_unit_march(m, lamp, method, g, o, d, t0, t1);
@@ -260,7 +248,7 @@ void fog_lamps_inscatter(const fog_model *m, const fog_lamps *lamps, double albe
                          const double o[3], const double d[3], double t_surface, double out[3]) {
   out[0] = out[1] = out[2] = 0.0;
   double t0, t1, table[FOG_LAMP_MAX_DEPTH_STEPS + 1] = {0};
-  if (lamps->count == 0 || !(albedo > 0.0) || !fog_lamp_span(m, o, d, t_surface, &t0, &t1))
+  if (lamps->count == 0 || !(albedo > 0.0) || !fog_light_span(m, o, d, t_surface, &t0, &t1))
     return;
   const fog_lamp_method *method = &lamps->method;
   if (!exact_depths(m))

@@ -49,7 +49,8 @@ double fog_light_extinction_at(const fog_model *m, const double p[3]) {
 }
 
 /* The stretch of the ray that holds fog (fog_light_span): the box, the volume's support,
- * the height fog up to an optical depth of 20, the RBFs' reach (6 radii), the quadrics'
+ * the height fog, homogeneous fog and an RBF base up to an optical depth of
+ * FOG_LIGHT_SPAN_DEPTH (the rest weighs < e^-20), the RBFs' reach (6 radii), the quadrics'
  * boxes. */
 bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
                     double t_surface, double *t0, double *t1) {
@@ -75,7 +76,7 @@ bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
       break;
     }
     case FOG_MODEL_HEIGHT: {
-      const double depth = 20.0, H = m->scale_height;
+      const double depth = FOG_LIGHT_SPAN_DEPTH, H = m->scale_height;
       double k0 = m->extinction * exp((m->y0 - o[1]) / H), dy = d[1], reach;
       if (fabs(dy) < 1e-6) {
         reach = depth / k0;
@@ -96,7 +97,9 @@ bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
       break;
     }
     default: {
-      double reach = m->extinction > 0 ? HUGE_VAL : 0.0;
+      /* homogeneous fog and an RBF base never end: up to an optical depth of
+       * FOG_LIGHT_SPAN_DEPTH from the camera (the base alone reaches it there) */
+      double reach = m->extinction > 0 ? FOG_LIGHT_SPAN_DEPTH / m->extinction : 0.0;
       for (int i = 0; m->extinction == 0 && i < m->rbf_count; i++) {
         double along = 0.0;
         for (int a = 0; a < 3; a++) along += (m->rbfs[i].centre[a] - o[a]) * d[a];

@@ -80,9 +80,13 @@ void fog_sun_shadow_tex_map(const fog_sun_shadow *shadow, double m[3][3], double
  * the draw reads (switching: A_J; the sum of details: A_0), zero outside its box; the volume
  * trilinear; the analytic models pointwise. */
 double fog_light_extinction_at(const fog_model *model, const double p[3]);
-/* The stretch [t0, t1] of the ray o + t d up to t_surface that holds fog (fog_light_span
- * in GLSL): the box, the volume's support, the height fog to an optical depth of 20, the
- * RBFs' reach (6 radii); false where it is empty or unbounded. */
+/* Where the fog never ends (height fog, homogeneous fog, an RBF base) the light's span stops
+ * at this optical depth from the camera: the rest weighs < e^-20 (2e-9). */
+#define FOG_LIGHT_SPAN_DEPTH 20.0
+/* The stretch [t0, t1] of the ray o + t d up to t_surface that holds fog, finite (fog_light_span
+ * in GLSL; the sun's mean and the lamps' span): the box, the volume's support, the
+ * quadrics' boxes, the RBFs' reach (6 radii), the endless models to FOG_LIGHT_SPAN_DEPTH;
+ * false where it is empty. */
 bool fog_light_span(const fog_model *model, const double o[3], const double d[3],
                     double t_surface, double *t0, double *t1);
 /* Optical depth towards the sun at world point p for a model's kind (volume: for _VOLUME

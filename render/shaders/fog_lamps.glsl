@@ -27,20 +27,6 @@ float fog_lamp_extinction(vec3 p) {
 #endif
 }
 
-// fog_light_span, and where the fog never ends (a homogeneous fog or base) up to an
-// optical depth of 20 (fog_lamp_span in C).
-bool fog_lamp_span(fog_ray r, out float t0, out float t1) {
-  bool found = fog_light_span(r, t0, t1);
-#if FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS || FOG_MODEL_KIND == FOG_MODEL_RBF
-  if (fog_model_extinction > 0.0) {
-    if (!found) t0 = 0.0, t1 = r.t_surface;
-    t1 = min(t1, 20.0 / fog_model_extinction);
-    found = t0 < t1;
-  }
-#endif
-  return found;
-}
-
 // The analytic models' optical depths in closed form (fog_models.glsl): from the camera
 // to distance t along the ray, and from point x along unit w for length len.
 #define FOG_LAMP_EXACT_DEPTH (FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS || \
@@ -206,7 +192,7 @@ float fog_lamp_march(int i, fog_ray r, float t0, float t1) {
 // The lamps' in-scattered radiance of the pixel's ray: per lamp a I times its integral.
 vec3 fog_lamps_light(fog_ray r) {
   float t0, t1;
-  if (fog_lamp_count == 0 || !fog_lamp_span(r, t0, t1)) return vec3(0.0);
+  if (fog_lamp_count == 0 || !fog_light_span(r, t0, t1)) return vec3(0.0);
 #if !FOG_LAMP_EXACT_DEPTH && FOG_LAMP_INTEGRAL == 0
   int steps = fog_lamp_depth_steps;
   float dt = (t1 - t0) / float(steps);

@@ -57,7 +57,7 @@ bool fog_light_span(fog_ray r, out float t0, out float t1) {
 #elif FOG_MODEL_KIND == FOG_MODEL_HEIGHT
   // Up to the surface, or where the ray's optical depth reaches FOG_LIGHT_DEPTH (the rest
   // weighs < e^-20): D(L) = K e^{y0/H} H (1 - e^{-w_y L / H}) / w_y, inverted.
-  const float FOG_LIGHT_DEPTH = 20.0;
+  const float FOG_LIGHT_DEPTH = FOG_LIGHT_SPAN_DEPTH;
   float H = fog_model_scale_height, k0 = fog_model_extinction * exp(fog_model_y0 / H);
   float dy = r.dir.y, reach;
   if (abs(dy) < 1e-6) {
@@ -76,6 +76,10 @@ bool fog_light_span(fog_ray r, out float t0, out float t1) {
 #else
   t0 = 0.0;
   t1 = min(r.t_surface, fog_model_reach(r.dir));
+#if FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS || FOG_MODEL_KIND == FOG_MODEL_RBF
+  // the fog never ends (a homogeneous fog or base): to FOG_LIGHT_SPAN_DEPTH from the camera
+  if (fog_model_extinction > 0.0) t1 = min(t1, FOG_LIGHT_SPAN_DEPTH / fog_model_extinction);
+#endif
 #endif
   return t0 < t1 && t1 < 1e29;
 }
