@@ -760,10 +760,11 @@ static int fog_pass_rbf_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
 }
 
 /* FOG_MODEL_QUADRIC's volumes camera-relative (fog_models.glsl): Q(camera + p) =
- * p.(M p) + 2 g.p + c0 with g = M camera + l and c0 = Q(camera), in double, then rounded. */
+ * p.(M p) + 2 g.p + c0 with g = M camera + l and c0 = Q(camera), in double (the shader keeps
+ * g and c0 in double). */
 static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
                                       const fog_pass_params *params) {
-  float diag[FOG_MAX_QUADRICS][4], off[FOG_MAX_QUADRICS][4], grad[FOG_MAX_QUADRICS][4];
+  float diag[FOG_MAX_QUADRICS][3], off[FOG_MAX_QUADRICS][4], edge[FOG_MAX_QUADRICS];
   float lo[FOG_MAX_QUADRICS][3], hi[FOG_MAX_QUADRICS][3];
   double grad_c0[FOG_MAX_QUADRICS][4];
   const double *o = cam->position;
@@ -777,22 +778,20 @@ static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
     fog_quadric_matrix(v, m, l);
     for (int r = 0; r < 3; r++) {
       grad_c0[i][r] = m[r][0] * o[0] + m[r][1] * o[1] + m[r][2] * o[2] + l[r];
-      grad[i][r] = (float)grad_c0[i][r];
       diag[i][r] = (float)m[r][r];
       lo[i][r] = (float)(v->lo[r] - o[r]);
       hi[i][r] = (float)(v->hi[r] - o[r]);
     }
     grad_c0[i][3] = fog_quadric_value(v, o);
-    diag[i][3] = (float)grad_c0[i][3];
     off[i][0] = (float)m[0][1], off[i][1] = (float)m[1][2], off[i][2] = (float)m[0][2];
     off[i][3] = (float)v->density;
-    grad[i][3] = (float)v->edge;
+    edge[i] = (float)v->edge;
   }
   glUniform1i(fog_loc(prog, "fog_quadric_count"), n);
   if (n > 0) {
-    glUniform4fv(fog_loc(prog, "fog_quadric_diag"), n, &diag[0][0]);
+    glUniform3fv(fog_loc(prog, "fog_quadric_diag"), n, &diag[0][0]);
     glUniform4fv(fog_loc(prog, "fog_quadric_off"), n, &off[0][0]);
-    glUniform4fv(fog_loc(prog, "fog_quadric_grad"), n, &grad[0][0]);
+    glUniform1fv(fog_loc(prog, "fog_quadric_edge"), n, edge);
     glUniform4dv(fog_loc(prog, "fog_quadric_grad_c0"), n, &grad_c0[0][0]);
     glUniform3fv(fog_loc(prog, "fog_quadric_lo"), n, &lo[0][0]);
     glUniform3fv(fog_loc(prog, "fog_quadric_hi"), n, &hi[0][0]);

@@ -29,13 +29,13 @@ uniform float fog_grid3d_step;                 // world units (the march)
 uniform sampler3D fog_grid3d_occupancy;        // R32F brick bounds (FOG_SKIP)
 uniform ivec3 fog_grid3d_bricks;
 // FOG_MODEL_QUADRIC (fog_pass_quadric_uniforms): Q at camera-relative p is
-// p.(M p) + 2 g.p + c0, M symmetric, c0 = Q(camera) and g = M camera + l in double on the CPU
-// (rounded in fog_quadric_grad and diag.w, unrounded in fog_quadric_grad_c0).
+// p.(M p) + 2 g.p + c0, M symmetric, c0 = Q(camera) and g = M camera + l, computed in double
+// on the CPU and kept in double here (far from the camera Q's terms cancel).
 uniform int fog_quadric_count;
-uniform vec4 fog_quadric_diag[FOG_MAX_QUADRICS];   // M's diagonal; w: c0
+uniform vec3 fog_quadric_diag[FOG_MAX_QUADRICS];   // M's diagonal
 uniform vec4 fog_quadric_off[FOG_MAX_QUADRICS];    // M's xy, yz, xz; w: density
-uniform vec4 fog_quadric_grad[FOG_MAX_QUADRICS];   // g; w: edge
-uniform dvec4 fog_quadric_grad_c0[FOG_MAX_QUADRICS];  // g and c0 unrounded (the integral)
+uniform float fog_quadric_edge[FOG_MAX_QUADRICS];
+uniform dvec4 fog_quadric_grad_c0[FOG_MAX_QUADRICS];  // g; w: c0
 uniform vec3 fog_quadric_lo[FOG_MAX_QUADRICS];     // the clip box, camera-relative
 uniform vec3 fog_quadric_hi[FOG_MAX_QUADRICS];
 uniform vec3 fog_quadric_union_lo, fog_quadric_union_hi;  // all the boxes
@@ -134,7 +134,8 @@ bool fog_slab(vec3 lo, vec3 hi, vec3 origin, vec3 dir, out float t0, out float t
 
 // Quadric volume i's symmetric matrix M.
 mat3 fog_quadric_matrix(int i) {
-  vec4 d = fog_quadric_diag[i], o = fog_quadric_off[i];
+  vec3 d = fog_quadric_diag[i];
+  vec4 o = fog_quadric_off[i];
   return mat3(d.x, o.x, o.z, o.x, d.y, o.y, o.z, o.y, d.z);
 }
 
@@ -209,7 +210,7 @@ float fog_quadric_optical_depth_from(vec3 origin, vec3 dir, float length) {
     double c = dot(x, m * x) + 2.0 * dot(g, x) + fog_quadric_grad_c0[i].w;
     double s = double(t0);
     sum += fog_quadric_span(float(a), float(b + a * s), float((a * s + 2.0 * b) * s + c), density,
-                            fog_quadric_grad[i].w, 0.0, t1 - t0);
+                            fog_quadric_edge[i], 0.0, t1 - t0);
   }
   return sum;
 }
@@ -224,7 +225,7 @@ float fog_quadric_extinction_at(vec3 p) {
     float q = float(dot(x, dmat3(fog_quadric_matrix(i)) * x) + 2.0 * dot(g, x) +
                     fog_quadric_grad_c0[i].w);
     if (!(q < 0.0)) continue;
-    float edge = fog_quadric_grad[i].w, density = fog_quadric_off[i].w;
+    float edge = fog_quadric_edge[i], density = fog_quadric_off[i].w;
     k += edge > 0.0 ? density * min(1.0, -q / edge) : density;
   }
   return k;
