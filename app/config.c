@@ -364,7 +364,8 @@ static int store_box(parse_state *s, const char *section, const char *key, const
   if (cfg->object_count == SCENE_MAX_BOXES)
     return fail(s, section, key, "at most %d boxes", SCENE_MAX_BOXES);
   scene_box_desc *b = &cfg->objects[cfg->object_count++];
-  *b = (scene_box_desc){.center = {v[0], v[1]}, .size = {v[2], v[3], v[4]}};
+  *b = (scene_box_desc){.center = {v[0], v[1]}, .size = {v[2], v[3], v[4]},
+                        .colour = SCENE_BOX_GREY};
   if (n == 8)
     for (int i = 0; i < 3; i++) b->colour[i] = (float)v[5 + i];
   return 1;

@@ -12,10 +12,6 @@
 
 #define DEG (3.14159265358979323846 / 180.0)
 
-static void set_default3(float v[3], float a, float b, float c) {
-  if (v[0] == 0 && v[1] == 0 && v[2] == 0) v[0] = a, v[1] = b, v[2] = c;
-}
-
 int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_error *err) {
   *geo = (scene_geometry){0};
   if (desc->box_count < 0 || desc->box_count > SCENE_MAX_BOXES) {
@@ -46,7 +42,6 @@ int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_er
     box->min[2] = d->center[1] - hz, box->max[2] = d->center[1] + hz;
     box->min[1] = ground, box->max[1] = ground + d->size[1];
     memcpy(box->colour, d->colour, sizeof box->colour);
-    set_default3(box->colour, 0.55f, 0.53f, 0.50f);
   }
   geo->light = desc->light;
   scene_light_sun_direction(&geo->light, geo->sun_direction);

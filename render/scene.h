@@ -29,16 +29,19 @@
 #define SCENE_SKY_DISTANCE 1e30f
 #define SCENE_MAX_BOXES 16
 
+/* A light grey albedo: a box's colour when a config gives none. */
+#define SCENE_BOX_GREY {0.55f, 0.53f, 0.50f}
+
 /* A box standing on the terrain: centred at (x, z) in world, size width (X) x height (Y)
  * x depth (Z); its bottom is placed at the lowest terrain height under its footprint, so
- * it never floats. colour is linear albedo (0,0,0 means a light grey). */
+ * it never floats. colour is linear albedo, as given (0 is black; configs default to
+ * SCENE_BOX_GREY). */
 typedef struct scene_box_desc {
   double center[2]; /* x, z */
   double size[3];
   float colour[3];
 } scene_box_desc;
 
-/* Sun and sky. Zero means default for every field. */
 /* The sun and the sky. Every field means what it says, zero included (an elevation of 0 is
  * the horizon, a colour of 0 black): start from scene_light_default(). */
 typedef struct scene_light {

@@ -28,7 +28,10 @@ int main(void) {
   CHECK(cfg.fog.degree == 1 && cfg.fog.profile == SCENE_PROFILE_EXPONENTIAL &&
             cfg.fog.lod == SCENE_LOD_SWITCH && cfg.fog.filtering == SCENE_FILTERING_MANUAL,
         "fog enums %d %d %d %d", cfg.fog.degree, cfg.fog.profile, cfg.fog.lod, cfg.fog.filtering);
-  CHECK(cfg.object_count == 3 && cfg.objects[0].colour[0] == 0.55f && cfg.objects[1].colour[0] == 0.0f,
+  /* a box without a colour is light grey (SCENE_BOX_GREY), set when the line is read */
+  CHECK(cfg.object_count == 3 && cfg.objects[0].colour[0] == 0.55f &&
+            cfg.objects[0].colour[1] == 0.25f && cfg.objects[1].colour[0] == 0.55f &&
+            cfg.objects[1].colour[1] == 0.53f && cfg.objects[1].colour[2] == 0.50f,
         "objects: %d", cfg.object_count);
   CHECK(cfg.camera.look_at_set, "look_at");
   CHECK(cfg.terrain.heightmap[0] == '\0' && cfg.terrain.resolution == 257, "terrain");
@@ -87,7 +90,8 @@ int main(void) {
           "default sun direction (%g %g %g)", sun.direction[0], sun.direction[1],
           sun.direction[2]);
     snprintf(path, sizeof path, "%s/zero.ini", dir);
-    write_file(path, "[light]\nsun_elevation = 0\nsun_colour = 0 0 0\nambient = 0 0 0\n");
+    write_file(path, "[light]\nsun_elevation = 0\nsun_colour = 0 0 0\nambient = 0 0 0\n"
+                     "[objects]\nbox = 0 0 1 1 1 0 0 0\n");
     CHECK(scene_config_load(path, &cfg, &err) == 0, "zero: %s", err.message);
     const fog_sun zero = scene_config_fog_sun(&cfg);
     CHECK(zero.direction[1] == 0.0 && zero.direction[2] == -1.0,
@@ -97,6 +101,9 @@ int main(void) {
               cfg.light.ambient[0] == 0.0f,
           "sun_colour = 0 0 0: radiance (%g %g %g), expected none", zero.radiance[0],
           zero.radiance[1], zero.radiance[2]);
+    CHECK(cfg.object_count == 1 && cfg.objects[0].colour[0] == 0.0f &&
+              cfg.objects[0].colour[1] == 0.0f && cfg.objects[0].colour[2] == 0.0f,
+          "box = ... 0 0 0: a black box (it used to be grey)");
   }
   unlink(map);
   unlink(path);

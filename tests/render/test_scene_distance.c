@@ -172,7 +172,7 @@ int main(void) {
   scene_desc desc = {
       .terrain = {.origin = {-500, -20, -500}, .size = {1000, 1000}, .height = 160,
                   .resolution = 129, .seed = 3},
-      .boxes = {{.center = {0, -120}, .size = {30, 40, 20}},
+      .boxes = {{.center = {0, -120}, .size = {30, 40, 20}, .colour = SCENE_BOX_GREY},
                 {.center = {60, -200}, .size = {15, 80, 15}, .colour = {0.6f, 0.2f, 0.1f}}},
       .box_count = 2,
       .light = scene_light_default(),
