@@ -348,6 +348,18 @@ static void demo_keys(GLFWwindow *window, pipeline *pipe, demo_input *in) {
   in->space_down = space, in->n_down = n, in->r_down = r;
 }
 
+/* The surface point under the cursor (the last frame's distance, in render pixels); false
+ * over the sky. */
+static bool surface_under_cursor(GLFWwindow *window, pipeline *pipe, const free_camera *fc,
+                                 double hit[3]) {
+  int render_w, render_h, win_w = 0, win_h = 0;
+  pipeline_size(pipe, &render_w, &render_h);
+  glfwGetWindowSize(window, &win_w, &win_h);
+  int px = (int)(fc->last_x * render_w / (win_w > 0 ? win_w : 1));
+  int py = (int)(fc->last_y * render_h / (win_h > 0 ? win_h : 1));
+  return pipeline_pick_surface(pipe, &fc->cam, px, py, hit);
+}
+
 /* Painting: the surface point under the cursor from the last frame's distance texture, in
  * render pixels; left paints, right (or Shift) erases, along the stroke since last frame. */
 static void demo_paint(GLFWwindow *window, pipeline *pipe, const free_camera *fc,
@@ -357,12 +369,7 @@ static void demo_paint(GLFWwindow *window, pipeline *pipe, const free_camera *fc
   bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
                glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
   double hit[3];
-  int render_w, render_h, win_w = 0, win_h = 0;
-  pipeline_size(pipe, &render_w, &render_h);
-  glfwGetWindowSize(window, &win_w, &win_h);
-  int px = (int)(fc->last_x * render_w / (win_w > 0 ? win_w : 1));
-  int py = (int)(fc->last_y * render_h / (win_h > 0 ? win_h : 1));
-  if (!mouse || !(left || right) || !pipeline_pick_surface(pipe, &fc->cam, px, py, hit)) {
+  if (!mouse || !(left || right) || !surface_under_cursor(window, pipe, fc, hit)) {
     in->painting = false;
     return;
   }
@@ -382,12 +389,7 @@ static void demo_lamps(GLFWwindow *window, pipeline *pipe, const free_camera *fc
   bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
   bool right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
   double hit[3];
-  int render_w, render_h, win_w = 0, win_h = 0;
-  pipeline_size(pipe, &render_w, &render_h);
-  glfwGetWindowSize(window, &win_w, &win_h);
-  int px = (int)(fc->last_x * render_w / (win_w > 0 ? win_w : 1));
-  int py = (int)(fc->last_y * render_h / (win_h > 0 ? win_h : 1));
-  if (!mouse || !(left || right) || !pipeline_pick_surface(pipe, &fc->cam, px, py, hit)) {
+  if (!mouse || !(left || right) || !surface_under_cursor(window, pipe, fc, hit)) {
     d->dragged_lamp = -1;
     return;
   }
