@@ -47,6 +47,13 @@ static int collect_series(const chart_point *points, int count, const char **nam
   return n;
 }
 
+/* A gnuplot single-quoted string: a quote inside is doubled ("a rung's time"). */
+static void put_quoted(FILE *f, const char *prefix, const char *text) {
+  fprintf(f, "%s'", prefix);
+  for (const char *c = text ? text : ""; *c; c++) fputs(*c == '\'' ? "''" : (char[2]){*c, 0}, f);
+  fputs("'\n", f);
+}
+
 int chart_write(const chart_desc *desc, const chart_point *points, int count,
                 const char *csv_path, const char *png_path, char *error, int error_size) {
   if (write_csv(points, count, csv_path, error, error_size)) return 1;
@@ -63,10 +70,12 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
   int width = desc->width ? desc->width : 960, height = desc->height ? desc->height : 600;
   fprintf(script,
           "set terminal pngcairo size %d,%d font 'sans,10'\nset output '%s'\n"
-          "set datafile separator ','\nset key below\nset colorsequence podo\nset grid\n"
-          "set title '%s'\nset xlabel '%s'\nset ylabel '%s'\n%s%s",
-          width, height, temp_png, desc->title ? desc->title : "",
-          desc->x_label ? desc->x_label : "", desc->y_label ? desc->y_label : "",
+          "set datafile separator ','\nset key below\nset colorsequence podo\nset grid\n",
+          width, height, temp_png);
+  put_quoted(script, "set title ", desc->title);
+  put_quoted(script, "set xlabel ", desc->x_label);
+  put_quoted(script, "set ylabel ", desc->y_label);
+  fprintf(script, "%s%s",
           desc->log_x ? "set logscale x\nset format x '10^{%L}'\n" : "",
           desc->log_y ? "set logscale y\nset format y '10^{%L}'\n" : "");
   const char *names[64];

@@ -1,0 +1,208 @@
+/* fogpipe fit INPUT --tolerance T [--out scene.ini] [--chart fit.png]: the cheapest model
+ * of the ladder that holds the input's fog within T (app/fit.h, docs/fit.md). */
+#define _XOPEN_SOURCE 700 /* realpath */
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "app/chart.h"
+#include "app/cli.h"
+#include "app/clock.h"
+#include "app/commands.h"
+#include "app/config.h"
+#include "app/fit.h"
+
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: fogpipe fit INPUT --tolerance T [options]\n\n"
+          "Fits every model of the ladder that can represent the input's fog (homogeneous,\n"
+          "height, an ellipsoid, banks of 1 to 64 Gaussians, the fogmap at three bases x\n"
+          "three LOD factors, the 3D volume), measures each on nine views around and inside\n"
+          "the fog (max and mean |delta tau| against the input's own fog, exact integrals in\n"
+          "double) and times it on the GL (headless), prints the table and picks the fastest\n"
+          "within the tolerance (docs/fit.md).\n\n"
+          "INPUT: a scene config (.ini), or a VDB file or sequence (a #### pattern, a folder)\n"
+          "whose frame is fitted as a 3D volume.\n\n"
+          "options:\n"
+          "  --tolerance T        max |delta tau| allowed on every ray (required, > 0)\n"
+          "  --out FILE.ini       write the scene with the chosen model (nothing is written\n"
+          "                       when none is within T)\n"
+          "  --chart FILE.png     error against ms, one series per family (and FILE.csv)\n"
+          "VDB input:\n"
+          "  --grid NAME          float grid (default density)\n"
+          "  --up z|y             the file's up axis (default z: Blender/Mantaflow)\n"
+          "  --frame N            frame number of a sequence (default: the last)\n"
+          "  --density-scale S    extinction per unit of the grid's value (default 1)\n"
+          "measurement:\n"
+          "  --rays N             rays per side of each view (default %d)\n"
+          "  --samples N          density samples along the longest side (default %d)\n"
+          "  --size WxH           timed frames (default %dx%d)\n"
+          "  --frames N           timed frames per rung (default %d)\n"
+          "  --help               this text\n",
+          FIT_RAYS_PER_SIDE, FIT_SAMPLE_SIDE, FIT_WIDTH, FIT_HEIGHT, FIT_TIMED_FRAMES);
+}
+
+static bool ends_with(const char *s, const char *suffix) {
+  size_t n = strlen(s), m = strlen(suffix);
+  return n >= m && strcasecmp(s + n - m, suffix) == 0;
+}
+
+typedef struct fit_options {
+  const char *input, *out, *chart, *grid;
+  double tolerance, density_scale;
+  int up, frame;
+  fit_desc desc;
+} fit_options;
+
+static int parse(int argc, char **argv, fit_options *o) {
+  *o = (fit_options){.density_scale = 1.0, .frame = -1,
+                     .desc = {.rays_per_side = FIT_RAYS_PER_SIDE, .sample_side = FIT_SAMPLE_SIDE,
+                              .width = FIT_WIDTH, .height = FIT_HEIGHT,
+                              .timed_frames = FIT_TIMED_FRAMES}};
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      usage(stdout);
+      return -1;
+    }
+    if (a[0] != '-' || !a[1]) {
+      if (o->input) return cli_usage_error("fit", "one INPUT only, got '%s' and '%s'", o->input, a);
+      o->input = a;
+      continue;
+    }
+    static const char *const valued[] = {"--tolerance", "--out", "--chart", "--grid", "--up",
+                                         "--frame", "--density-scale", "--rays", "--samples",
+                                         "--size", "--frames"};
+    bool known = false;
+    for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++) known |= !strcmp(a, valued[k]);
+    if (!known) return cli_usage_error("fit", "unknown option '%s'", a);
+    if (i + 1 >= argc) return cli_usage_error("fit", "%s needs a value", a);
+    const char *v = argv[++i];
+    if (!strcmp(a, "--tolerance")) {
+      if (cli_number("fit", a, v, 1e-12, 1.0, &o->tolerance)) return 2;
+    } else if (!strcmp(a, "--out")) {
+      if (!ends_with(v, ".ini")) return cli_usage_error("fit", "--out '%s': expected a .ini file", v);
+      o->out = v;
+    } else if (!strcmp(a, "--chart")) {
+      if (!ends_with(v, ".png")) return cli_usage_error("fit", "--chart '%s': expected a .png file", v);
+      o->chart = v;
+    } else if (!strcmp(a, "--grid")) {
+      o->grid = v;
+    } else if (!strcmp(a, "--up")) {
+      if (strcmp(v, "z") && strcmp(v, "y")) return cli_usage_error("fit", "--up '%s': expected z or y", v);
+      o->up = !strcmp(v, "y");
+    } else if (!strcmp(a, "--frame")) {
+      if (cli_int("fit", a, v, 0, INT_MAX, &o->frame)) return 2;
+    } else if (!strcmp(a, "--density-scale")) {
+      if (cli_number("fit", a, v, 1e-12, 1e12, &o->density_scale)) return 2;
+    } else if (!strcmp(a, "--rays")) {
+      if (cli_int("fit", a, v, 1, 1024, &o->desc.rays_per_side)) return 2;
+    } else if (!strcmp(a, "--samples")) {
+      if (cli_int("fit", a, v, 2, 512, &o->desc.sample_side)) return 2;
+    } else if (!strcmp(a, "--size")) {
+      if (cli_size("fit", a, v, &o->desc.width, &o->desc.height)) return 2;
+    } else if (!strcmp(a, "--frames")) {
+      if (cli_int("fit", a, v, 1, 64, &o->desc.timed_frames)) return 2;
+    }
+  }
+  if (!o->input) return cli_usage_error("fit", "no INPUT given");
+  if (!(o->tolerance > 0)) return cli_usage_error("fit", "no --tolerance T given");
+  o->desc.tolerance = o->tolerance;
+  return 0;
+}
+
+/* The scene of the input: its config, or a VDB frame as a volume in a scene around it. */
+static int load_input(const fit_options *o, scene_config *cfg) {
+  if (ends_with(o->input, ".ini")) {
+    scene_config_error err;
+    if (scene_config_load(o->input, cfg, &err)) return cli_fail("fit", "%s", err.message);
+    if (o->grid || o->up || o->frame >= 0 || o->density_scale != 1.0)
+      return cli_usage_error("fit", "--grid, --up, --frame and --density-scale are for a VDB "
+                             "INPUT; a config sets them in [fog]");
+    return 0;
+  }
+  scene_config_init(cfg);
+  char *absolute = realpath(o->input, NULL); /* a pattern stays as written */
+  snprintf(cfg->fog.vdb, sizeof cfg->fog.vdb, "%s", absolute ? absolute : o->input);
+  free(absolute);
+  snprintf(cfg->path, sizeof cfg->path, "%s", o->input);
+  if (o->grid) snprintf(cfg->fog.vdb_grid, sizeof cfg->fog.vdb_grid, "%s", o->grid);
+  cfg->fog.model = FOG_MODEL_VOLUME;
+  cfg->fog.vdb_up = o->up;
+  cfg->fog.vdb_frame = o->frame;
+  cfg->fog.density_scale = o->density_scale;
+  fit_error err;
+  if (fit_scene_for_volume(cfg, &err)) return cli_fail("fit", "%s", err.message);
+  return 0;
+}
+
+static int write_chart(const fit_result *r, const char *png) {
+  chart_point points[FIT_MAX_RUNGS];
+  for (int i = 0; i < r->count; i++)
+    points[i] = (chart_point){.series = r->rungs[i].family, .x = r->rungs[i].ms,
+                              .y = fmax(r->rungs[i].max_error, 1e-6)};
+  char csv[PATH_MAX], error[512];
+  snprintf(csv, sizeof csv, "%.*s.csv", (int)(strlen(png) - 4), png);
+  chart_desc desc = {.title = "fogpipe fit: each rung's error against its GL time",
+                     .x_label = "GL ms per frame", .y_label = "max |delta tau| (floor 1e-6)",
+                     .log_y = true};
+  if (chart_write(&desc, points, r->count, csv, png, error, sizeof error))
+    return cli_fail("fit", "%s", error);
+  return 0;
+}
+
+int cmd_fit(int argc, char **argv) {
+  fit_options o;
+  int status = parse(argc, argv, &o);
+  if (status) return status < 0 ? 0 : status;
+  scene_config *cfg = malloc(sizeof *cfg);
+  if (!cfg) return cli_fail("fit", "out of memory");
+  if ((status = load_input(&o, cfg))) {
+    free(cfg);
+    return status;
+  }
+  o.desc.input = cfg;
+  fit_result r;
+  fit_error err;
+  double t0 = app_clock_seconds();
+  if (fit_run(&o.desc, &r, &err)) {
+    free(cfg);
+    return cli_fail("fit", "%s: %s", o.input, err.message);
+  }
+  printf("fogpipe fit: %s, tolerance %g\n", o.input, o.tolerance);
+  printf("domain [%.4g, %.4g] x [%.4g, %.4g] x [%.4g, %.4g]; %d rays on %d views\n\n", r.lo[0],
+         r.hi[0], r.lo[1], r.hi[1], r.lo[2], r.hi[2], r.rays, 9);
+  printf("  %-24s %12s %12s %10s  %s\n", "rung", "max|dtau|", "mean|dtau|", "GL ms", "parameters");
+  for (int i = 0; i < r.count; i++) {
+    const fit_rung *g = &r.rungs[i];
+    printf("%c %-24s %12.3e %12.3e %10.2f  %s\n", i == r.chosen ? '*' : ' ', g->name,
+           g->max_error, g->mean_error, g->ms, g->params);
+  }
+  printf("\n");
+  status = 0;
+  if (r.chosen < 0) {
+    printf("no rung within %g: the input's own fog is needed (nothing written)\n", o.tolerance);
+  } else {
+    const fit_rung *g = &r.rungs[r.chosen];
+    printf("chosen: %s (max |dtau| %.3g <= %g, %.2f GL ms)\n", g->name, g->max_error,
+           o.tolerance, g->ms);
+    if (o.out) {
+      scene_config_error werr;
+      if (scene_config_write(g->config, o.out, &werr))
+        status = cli_fail("fit", "%s", werr.message);
+      else
+        printf("wrote %s\n", o.out);
+    }
+  }
+  if (!status && o.chart) {
+    status = write_chart(&r, o.chart);
+    if (!status) printf("chart %s\n", o.chart);
+  }
+  printf("fit: %.1f s\n", app_clock_seconds() - t0);
+  fit_result_destroy(&r);
+  free(cfg);
+  return status;
+}

@@ -1,0 +1,74 @@
+/* `fogpipe fit`: the cheapest rung of the model ladder that holds a scene's fog within a
+ * tolerance (docs/fit.md). "Model no more than a scene needs", measured:
+ *
+ *   fit_result result;
+ *   fit_error err;
+ *   if (fit_run(&(fit_desc){.input = &cfg, .tolerance = 0.02, ...}, &result, &err)) ...
+ *   result.rungs[result.chosen].config   the scene with that rung's fog, to write
+ *   fit_result_destroy(&result);
+ *
+ * The reference is the input's own fog: the 3D grid where the input is a volume (a VDB
+ * frame), else the input's model as the renderer builds it. Over the fit domain (the fog's
+ * bounds; for fog without an end, the terrain's footprint between [box] floor and top) the
+ * reference's extinction is sampled and every rung that can represent it is fitted
+ * (app/fit_density.h: homogeneous, height, one ellipsoid, banks of 1 to 64 Gaussians; the
+ * fogmap at three bases x three LOD factors where the input has a fogmap or a VDB; the
+ * volume where the input has one; an analytic input as given). Each rung is then rendered:
+ * its error on nine views (app/fit_views.h: max and mean |delta tau| against the
+ * reference, CPU twins in double) and its GL milliseconds per frame (a headless session
+ * drawn from view 0, the median of timed_frames frames). The choice: the fastest rung within
+ * the tolerance, where rungs within 25 % of its time count as ties that the simpler rung
+ * (earlier on the ladder) wins. Needs EGL (a headless GL context). */
+#ifndef FOGPIPE_APP_FIT_H
+#define FOGPIPE_APP_FIT_H
+
+#include "app/config.h"
+
+typedef struct fit_error {
+  char message[600];
+} fit_error;
+
+typedef struct fit_desc {
+  const scene_config *input;
+  double tolerance;   /* max |delta tau| allowed, > 0 */
+  int rays_per_side;  /* of each view, >= 1 */
+  int sample_side;    /* density samples along the domain's longest side, >= 2 */
+  int width, height;  /* the timed frames, pixels */
+  int timed_frames;   /* >= 1 (after one untimed) */
+} fit_desc;
+
+/* The command's defaults. */
+#define FIT_RAYS_PER_SIDE 32
+#define FIT_SAMPLE_SIDE 48
+#define FIT_WIDTH 320
+#define FIT_HEIGHT 180
+#define FIT_TIMED_FRAMES 3
+
+#define FIT_MAX_RUNGS 24
+
+typedef struct fit_rung {
+  char name[32];     /* "rbf 8", "fogmap linear mu 0.5" */
+  char family[16];   /* the chart's series: homogeneous, height, quadric, rbf, fogmap, volume */
+  char params[256];  /* the fitted parameters, for the table */
+  scene_config *config; /* the input scene with this rung's fog (owned) */
+  double max_error, mean_error; /* |delta tau| on the views */
+  double ms;         /* GL milliseconds per frame */
+} fit_rung;
+
+typedef struct fit_result {
+  fit_rung rungs[FIT_MAX_RUNGS]; /* in ladder order */
+  int count;
+  int chosen;        /* index of the pick, -1: none within the tolerance */
+  double lo[3], hi[3]; /* the fit domain */
+  int rays;          /* rays of the views that meet it */
+} fit_result;
+
+/* Errors name the input's file (and line where a key is at fault) or the rung that failed
+ * to render. On failure nothing stays allocated. */
+int fit_run(const fit_desc *desc, fit_result *result, fit_error *err);
+void fit_result_destroy(fit_result *result);
+/* A scene around a VDB frame (cfg: model = volume, [fog] vdb set): a flat ground just under
+ * the grid, no boxes, and the camera of view 0 (app/fit_views.h), so the fog is in sight. */
+int fit_scene_for_volume(scene_config *cfg, fit_error *err);
+
+#endif

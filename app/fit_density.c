@@ -1,0 +1,225 @@
+/* Least-squares fits on the sampled density (app/fit_density.h). */
+#include "app/fit_density.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "render/fog_sun_shadow.h"
+
+#define PI 3.14159265358979323846
+
+static size_t sample_count(const fit_samples *s) {
+  return (size_t)s->n[0] * s->n[1] * s->n[2];
+}
+
+void fit_sample_position(const fit_samples *s, int i, int j, int l, double p[3]) {
+  const int index[3] = {i, j, l};
+  for (int a = 0; a < 3; a++) p[a] = s->lo[a] + (index[a] + 0.5) * s->cell[a];
+}
+
+int fit_samples_create(fit_samples *s, const fog_model *model, const double lo[3],
+                       const double hi[3], int max_side) {
+  *s = (fit_samples){0};
+  double longest = 0.0;
+  for (int a = 0; a < 3; a++) longest = fmax(longest, hi[a] - lo[a]);
+  for (int a = 0; a < 3; a++) {
+    s->lo[a] = lo[a], s->hi[a] = hi[a];
+    int n = (int)ceil(max_side * (hi[a] - lo[a]) / longest);
+    s->n[a] = n < 2 ? 2 : n;
+    s->cell[a] = (hi[a] - lo[a]) / s->n[a];
+  }
+  s->k = malloc(sample_count(s) * sizeof *s->k);
+  if (!s->k) return 1;
+  size_t at = 0;
+  for (int l = 0; l < s->n[2]; l++)
+    for (int j = 0; j < s->n[1]; j++)
+      for (int i = 0; i < s->n[0]; i++) {
+        double p[3];
+        fit_sample_position(s, i, j, l, p);
+        s->k[at++] = fog_light_extinction_at(model, p);
+      }
+  return 0;
+}
+
+void fit_samples_destroy(fit_samples *s) {
+  free(s->k);
+  *s = (fit_samples){0};
+}
+
+double fit_homogeneous(const fit_samples *s) {
+  double sum = 0.0;
+  for (size_t i = 0; i < sample_count(s); i++) sum += s->k[i];
+  return sum / (double)sample_count(s);
+}
+
+bool fit_height(const fit_samples *s, double *k, double *y0, double *scale_height) {
+  /* Minimise sum_j w_j (ln m_j - a + b (y_j - y0))^2 with w_j = m_j^2: the weighted
+   * normal equations of a straight line in (y_j - y0, ln m_j). */
+  const int layer = s->n[0] * s->n[1];
+  double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  *y0 = s->lo[1];
+  for (int j = 0; j < s->n[1]; j++) {
+    double mean = 0.0;
+    for (int l = 0; l < s->n[2]; l++)
+      for (int i = 0; i < s->n[0]; i++) mean += s->k[(size_t)l * layer + (size_t)j * s->n[0] + i];
+    mean /= (double)s->n[0] * s->n[2];
+    if (!(mean > 0.0)) continue;
+    double x = s->lo[1] + (j + 0.5) * s->cell[1] - *y0, y = log(mean), w = mean * mean;
+    sw += w, sx += w * x, sy += w * y, sxx += w * x * x, sxy += w * x * y;
+  }
+  double det = sw * sxx - sx * sx;
+  if (!(det > 0.0)) return false;
+  double slope = (sw * sxy - sx * sy) / det, intercept = (sy - slope * sx) / sw;
+  /* A decay slower than e^-1 over 1000 domain heights is no height fog. */
+  if (!(-slope * 1000.0 * (s->hi[1] - s->lo[1]) > 1.0)) return false;
+  *scale_height = -1.0 / slope;
+  *k = exp(intercept);
+  return isfinite(*k) && isfinite(*scale_height);
+}
+
+/* The cells that hold fog (above 1e-6 of the densest), as points with weights. */
+typedef struct fog_points {
+  double (*p)[3];
+  double *w;
+  size_t count;
+} fog_points;
+
+static int fog_points_gather(const fit_samples *s, fog_points *pts) {
+  *pts = (fog_points){0};
+  double peak = 0.0;
+  for (size_t i = 0; i < sample_count(s); i++) peak = fmax(peak, s->k[i]);
+  if (!(peak > 0.0)) return 0;
+  pts->p = malloc(sample_count(s) * sizeof *pts->p);
+  pts->w = malloc(sample_count(s) * sizeof *pts->w);
+  if (!pts->p || !pts->w) {
+    free(pts->p), free(pts->w);
+    return 1;
+  }
+  size_t at = 0;
+  for (int l = 0; l < s->n[2]; l++)
+    for (int j = 0; j < s->n[1]; j++)
+      for (int i = 0; i < s->n[0]; i++, at++) {
+        if (!(s->k[at] > 1e-6 * peak)) continue;
+        fit_sample_position(s, i, j, l, pts->p[pts->count]);
+        pts->w[pts->count++] = s->k[at];
+      }
+  return 0;
+}
+
+static double distance2(const double a[3], const double b[3]) {
+  double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
+  return x * x + y * y + z * z;
+}
+
+/* One cluster's moments as a Gaussian c e^{-|x - m|^2 / r^2}: mass M = c pi^{3/2} r^3 and
+ * per-axis variance r^2 / 2 (the cells' own size added, each cell a uniform box). */
+static bool cluster_gaussian(const fog_points *pts, const int *label, int cluster,
+                             const double cell[3], fog_rbf *out) {
+  double w = 0, m[3] = {0, 0, 0};
+  for (size_t i = 0; i < pts->count; i++)
+    if (label[i] == cluster) {
+      w += pts->w[i];
+      for (int a = 0; a < 3; a++) m[a] += pts->w[i] * pts->p[i][a];
+    }
+  if (!(w > 0.0)) return false;
+  for (int a = 0; a < 3; a++) m[a] /= w;
+  double var = 0.0;
+  for (size_t i = 0; i < pts->count; i++)
+    if (label[i] == cluster) var += pts->w[i] * distance2(pts->p[i], m);
+  var = var / (3.0 * w);
+  double r = sqrt(2.0 * var);
+  double mass = w * cell[0] * cell[1] * cell[2];
+  double floor_r = 0.5 * fmin(cell[0], fmin(cell[1], cell[2]));
+  if (!(r > floor_r)) r = floor_r; /* a single cell: no narrower than the sampling */
+  *out = (fog_rbf){.centre = {m[0], m[1], m[2]}, .radius = r,
+                   .density = mass / (pow(PI, 1.5) * r * r * r)};
+  return true;
+}
+
+int fit_rbfs(const fit_samples *s, int count, fog_rbf *out) {
+  fog_points pts;
+  if (fog_points_gather(s, &pts)) return -1;
+  if (pts.count == 0 || count < 1) return 0;
+  if ((size_t)count > pts.count) count = (int)pts.count;
+  double(*centre)[3] = malloc((size_t)count * sizeof *centre);
+  int *label = malloc(pts.count * sizeof *label);
+  double *near2 = malloc(pts.count * sizeof *near2);
+  int made = -1;
+  if (!centre || !label || !near2) goto done;
+  /* Seeds: the densest cell, then each time the cell of most weight x squared distance
+   * to its nearest seed (k-means++ made deterministic). */
+  size_t first = 0;
+  for (size_t i = 1; i < pts.count; i++)
+    if (pts.w[i] > pts.w[first]) first = i;
+  for (int a = 0; a < 3; a++) centre[0][a] = pts.p[first][a];
+  for (size_t i = 0; i < pts.count; i++) near2[i] = distance2(pts.p[i], centre[0]);
+  for (int c = 1; c < count; c++) {
+    size_t best = 0;
+    for (size_t i = 1; i < pts.count; i++)
+      if (pts.w[i] * near2[i] > pts.w[best] * near2[best]) best = i;
+    for (int a = 0; a < 3; a++) centre[c][a] = pts.p[best][a];
+    for (size_t i = 0; i < pts.count; i++)
+      near2[i] = fmin(near2[i], distance2(pts.p[i], centre[c]));
+  }
+  /* Lloyd's iterations on the weighted points. */
+  for (int iteration = 0; iteration < 25; iteration++) {
+    bool moved = false;
+    for (size_t i = 0; i < pts.count; i++) {
+      int best = 0;
+      double best_d = distance2(pts.p[i], centre[0]);
+      for (int c = 1; c < count; c++) {
+        double d = distance2(pts.p[i], centre[c]);
+        if (d < best_d) best_d = d, best = c;
+      }
+      if (iteration == 0 || label[i] != best) moved = true;
+      label[i] = best;
+    }
+    if (!moved) break;
+    for (int c = 0; c < count; c++) {
+      double w = 0, m[3] = {0, 0, 0};
+      for (size_t i = 0; i < pts.count; i++)
+        if (label[i] == c) {
+          w += pts.w[i];
+          for (int a = 0; a < 3; a++) m[a] += pts.w[i] * pts.p[i][a];
+        }
+      if (w > 0.0)
+        for (int a = 0; a < 3; a++) centre[c][a] = m[a] / w;
+    }
+  }
+  made = 0;
+  for (int c = 0; c < count; c++)
+    if (cluster_gaussian(&pts, label, c, s->cell, &out[made])) made++;
+done:
+  free(centre), free(label), free(near2), free(pts.p), free(pts.w);
+  return made;
+}
+
+bool fit_ellipsoid(const fit_samples *s, double centre[3], double radii[3], double *density) {
+  double w = 0, m[3] = {0, 0, 0}, var[3] = {0, 0, 0};
+  size_t at = 0;
+  for (int l = 0; l < s->n[2]; l++)
+    for (int j = 0; j < s->n[1]; j++)
+      for (int i = 0; i < s->n[0]; i++, at++) {
+        double p[3];
+        fit_sample_position(s, i, j, l, p);
+        w += s->k[at];
+        for (int a = 0; a < 3; a++) m[a] += s->k[at] * p[a];
+      }
+  if (!(w > 0.0)) return false;
+  for (int a = 0; a < 3; a++) m[a] /= w;
+  at = 0;
+  for (int l = 0; l < s->n[2]; l++)
+    for (int j = 0; j < s->n[1]; j++)
+      for (int i = 0; i < s->n[0]; i++, at++) {
+        double p[3];
+        fit_sample_position(s, i, j, l, p);
+        for (int a = 0; a < 3; a++) var[a] += s->k[at] * (p[a] - m[a]) * (p[a] - m[a]);
+      }
+  for (int a = 0; a < 3; a++) {
+    centre[a] = m[a];
+    radii[a] = fmax(sqrt(5.0 * var[a] / w), 0.5 * s->cell[a]);
+  }
+  double mass = w * s->cell[0] * s->cell[1] * s->cell[2];
+  *density = mass / (4.0 / 3.0 * PI * radii[0] * radii[1] * radii[2]);
+  return true;
+}
