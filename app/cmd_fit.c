@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "app/chart.h"
 #include "app/cli.h"
@@ -27,7 +28,10 @@ static void usage(FILE *out) {
           "INPUT: a scene config (.ini), or a VDB file or sequence (a #### pattern, a folder)\n"
           "whose frame is fitted as a 3D volume.\n\n"
           "options:\n"
-          "  --tolerance T        max |delta tau| allowed on every ray (required, > 0)\n"
+          "  --tolerance T[,T..]  max |delta tau| allowed on every ray (required, > 0); more\n"
+          "                       values print the pick at each (the first one's is written)\n"
+          "  --by max|mean        the tolerance bounds each rung's max error (default) or\n"
+          "                       its mean error over the rays\n"
           "  --out FILE.ini       write the scene with the chosen model (nothing is written\n"
           "                       when none is within T)\n"
           "  --chart FILE.png     error against ms, one series per family (and FILE.csv)\n"
@@ -52,7 +56,9 @@ static bool ends_with(const char *s, const char *suffix) {
 
 typedef struct fit_options {
   const char *input, *out, *chart, *grid;
-  double tolerance, density_scale;
+  double tolerance[8]; /* --tolerance T[,T...]: the first picks --out */
+  int tolerance_count;
+  double density_scale;
   int up, frame;
   fit_desc desc;
 } fit_options;
@@ -73,7 +79,7 @@ static int parse(int argc, char **argv, fit_options *o) {
       o->input = a;
       continue;
     }
-    static const char *const valued[] = {"--tolerance", "--out", "--chart", "--grid", "--up",
+    static const char *const valued[] = {"--tolerance", "--by", "--out", "--chart", "--grid", "--up",
                                          "--frame", "--density-scale", "--rays", "--samples",
                                          "--size", "--frames"};
     bool known = false;
@@ -82,7 +88,17 @@ static int parse(int argc, char **argv, fit_options *o) {
     if (i + 1 >= argc) return cli_usage_error("fit", "%s needs a value", a);
     const char *v = argv[++i];
     if (!strcmp(a, "--tolerance")) {
-      if (cli_number("fit", a, v, 1e-12, 1.0, &o->tolerance)) return 2;
+      char list[256], *save = NULL;
+      snprintf(list, sizeof list, "%s", v);
+      o->tolerance_count = 0;
+      for (char *t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        if (o->tolerance_count == 8) return cli_usage_error("fit", "--tolerance: at most 8 values");
+        if (cli_number("fit", a, t, 1e-12, 1.0, &o->tolerance[o->tolerance_count++])) return 2;
+      }
+    } else if (!strcmp(a, "--by")) {
+      if (strcmp(v, "max") && strcmp(v, "mean"))
+        return cli_usage_error("fit", "--by '%s': expected max or mean", v);
+      o->desc.by_mean = !strcmp(v, "mean");
     } else if (!strcmp(a, "--out")) {
       if (!ends_with(v, ".ini")) return cli_usage_error("fit", "--out '%s': expected a .ini file", v);
       o->out = v;
@@ -109,8 +125,8 @@ static int parse(int argc, char **argv, fit_options *o) {
     }
   }
   if (!o->input) return cli_usage_error("fit", "no INPUT given");
-  if (!(o->tolerance > 0)) return cli_usage_error("fit", "no --tolerance T given");
-  o->desc.tolerance = o->tolerance;
+  if (o->tolerance_count < 1) return cli_usage_error("fit", "no --tolerance T given");
+  o->desc.tolerance = o->tolerance[0];
   return 0;
 }
 
@@ -154,10 +170,25 @@ static int write_chart(const fit_result *r, const char *png) {
   return 0;
 }
 
+/* The folder FILE goes into exists (checked before the fit, which takes seconds). */
+static bool folder_exists(const char *file) {
+  char folder[PATH_MAX];
+  snprintf(folder, sizeof folder, "%s", file);
+  char *slash = strrchr(folder, '/');
+  if (!slash) return true;
+  *(slash == folder ? slash + 1 : slash) = '\0';
+  struct stat st;
+  return stat(folder, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
 int cmd_fit(int argc, char **argv) {
   fit_options o;
   int status = parse(argc, argv, &o);
   if (status) return status < 0 ? 0 : status;
+  const char *outputs[2] = {o.out, o.chart};
+  for (int i = 0; i < 2; i++)
+    if (outputs[i] && !folder_exists(outputs[i]))
+      return cli_fail("fit", "%s: cannot write: its folder does not exist", outputs[i]);
   scene_config *cfg = malloc(sizeof *cfg);
   if (!cfg) return cli_fail("fit", "out of memory");
   if ((status = load_input(&o, cfg))) {
@@ -172,7 +203,8 @@ int cmd_fit(int argc, char **argv) {
     free(cfg);
     return cli_fail("fit", "%s: %s", o.input, err.message);
   }
-  printf("fogpipe fit: %s, tolerance %g\n", o.input, o.tolerance);
+  printf("fogpipe fit: %s, tolerance %g on the %s |dtau|\n", o.input, o.tolerance[0],
+         o.desc.by_mean ? "mean" : "max");
   printf("domain [%.4g, %.4g] x [%.4g, %.4g] x [%.4g, %.4g]; %d rays on %d views\n\n", r.lo[0],
          r.hi[0], r.lo[1], r.hi[1], r.lo[2], r.hi[2], r.rays, 9);
   printf("  %-24s %12s %12s %10s  %s\n", "rung", "max|dtau|", "mean|dtau|", "GL ms", "parameters");
@@ -182,13 +214,18 @@ int cmd_fit(int argc, char **argv) {
            g->max_error, g->mean_error, g->ms, g->params);
   }
   printf("\n");
+  for (int t = 1; t < o.tolerance_count; t++) {
+    int pick = fit_choose(&r, o.tolerance[t], o.desc.by_mean);
+    printf("at tolerance %g: %s\n", o.tolerance[t], pick < 0 ? "none" : r.rungs[pick].name);
+  }
   status = 0;
   if (r.chosen < 0) {
-    printf("no rung within %g: the input's own fog is needed (nothing written)\n", o.tolerance);
+    printf("no rung within %g: nothing written\n", o.tolerance[0]);
   } else {
     const fit_rung *g = &r.rungs[r.chosen];
-    printf("chosen: %s (max |dtau| %.3g <= %g, %.2f GL ms)\n", g->name, g->max_error,
-           o.tolerance, g->ms);
+    printf("chosen: %s (%s |dtau| %.3g <= %g, %.2f GL ms)\n", g->name,
+           o.desc.by_mean ? "mean" : "max", o.desc.by_mean ? g->mean_error : g->max_error,
+           o.tolerance[0], g->ms);
     if (o.out) {
       scene_config_error werr;
       if (scene_config_write(g->config, o.out, &werr))

@@ -38,10 +38,12 @@ static void reference_destroy(reference *r) {
   *r = (reference){0};
 }
 
+/* The richest fog the input has: the VDB frame as a volume wherever [fog] vdb is set
+ * (model = fogmap projects it to 2.5D; the grid is the truth), else the input's model. */
 static int reference_create(reference *r, const scene_config *cfg, fit_error *err) {
   *r = (reference){0};
   render_error rerr = {{0}};
-  if (cfg->fog.model == FOG_MODEL_VOLUME) {
+  if (cfg->fog.model == FOG_MODEL_VOLUME || cfg->fog.vdb[0]) {
     if (render_fog_load_volume(cfg, &r->frame, &r->grid, &rerr)) {
       vdb_frame_destroy(&r->frame);
       snprintf(err->message, sizeof err->message, "%s", rerr.message);
@@ -190,7 +192,7 @@ static int make_rungs(fit_result *r, const scene_config *input, const fog_model 
 
   if (reference->kind == FOG_MODEL_VOLUME) {
     scene_config *c = malloc(sizeof *c);
-    if (c) *c = *input, c->fog.volume_step = 0.0;
+    if (c) *c = *input, c->fog.model = FOG_MODEL_VOLUME, c->fog.volume_step = 0.0;
     if (!(rung = add_rung(r, c, "volume", err))) return 1;
     snprintf(rung->params, sizeof rung->params, "the 3D grid, exact");
   } else if (in->model != FOG_MODEL_FOGMAP) {
@@ -260,12 +262,14 @@ done:
   return status;
 }
 
-static int choose(const fit_result *r, double tolerance) {
+int fit_choose(const fit_result *r, double tolerance, bool by_mean) {
   double fastest = HUGE_VAL;
+#define WITHIN(g) ((by_mean ? (g).mean_error : (g).max_error) <= tolerance)
   for (int i = 0; i < r->count; i++)
-    if (r->rungs[i].max_error <= tolerance) fastest = fmin(fastest, r->rungs[i].ms);
+    if (WITHIN(r->rungs[i])) fastest = fmin(fastest, r->rungs[i].ms);
   for (int i = 0; i < r->count; i++) /* ladder order: the simplest of the ties */
-    if (r->rungs[i].max_error <= tolerance && r->rungs[i].ms <= FIT_TIE * fastest) return i;
+    if (WITHIN(r->rungs[i]) && r->rungs[i].ms <= FIT_TIE * fastest) return i;
+#undef WITHIN
   return -1;
 }
 
@@ -352,7 +356,7 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
   camera.far_plane = 1e3 * reach;
   for (int i = 0; i < r->count; i++)
     if (measure_rung(&r->rungs[i], d, &views, &camera, pixels, err)) goto done;
-  r->chosen = choose(r, d->tolerance);
+  r->chosen = fit_choose(r, d->tolerance, d->by_mean);
   status = 0;
 done:
   reference_destroy(&ref);

@@ -17,7 +17,7 @@
  * its error on nine views (app/fit_views.h: max and mean |delta tau| against the
  * reference, CPU twins in double) and its GL milliseconds per frame (a headless session
  * drawn from view 0, the median of timed_frames frames). The choice: the fastest rung within
- * the tolerance, where rungs within 25 % of its time count as ties that the simpler rung
+ * the tolerance (of its max error, or its mean error with by_mean), where rungs within 25 % of its time count as ties that the simpler rung
  * (earlier on the ladder) wins. Needs EGL (a headless GL context). */
 #ifndef FOGPIPE_APP_FIT_H
 #define FOGPIPE_APP_FIT_H
@@ -30,7 +30,8 @@ typedef struct fit_error {
 
 typedef struct fit_desc {
   const scene_config *input;
-  double tolerance;   /* max |delta tau| allowed, > 0 */
+  double tolerance;   /* |delta tau| allowed, > 0: on every ray (or on average, by_mean) */
+  bool by_mean;       /* the tolerance bounds the mean error instead of the max */
   int rays_per_side;  /* of each view, >= 1 */
   int sample_side;    /* density samples along the domain's longest side, >= 2 */
   int width, height;  /* the timed frames, pixels */
@@ -67,6 +68,8 @@ typedef struct fit_result {
  * to render. On failure nothing stays allocated. */
 int fit_run(const fit_desc *desc, fit_result *result, fit_error *err);
 void fit_result_destroy(fit_result *result);
+/* The pick at another tolerance from the same measurements (fit_run's rule); -1: none. */
+int fit_choose(const fit_result *result, double tolerance, bool by_mean);
 /* A scene around a VDB frame (cfg: model = volume, [fog] vdb set): a flat ground just under
  * the grid, no boxes, and the camera of view 0 (app/fit_views.h), so the fog is in sight. */
 int fit_scene_for_volume(scene_config *cfg, fit_error *err);

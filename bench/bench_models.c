@@ -12,7 +12,8 @@
  *     cone and a hyperboloid of one sheet, soft and hard edges) spread over the view, exact
  *     (closed form per volume) and marched at N = 8 .. 256;
  *   - on the valley again: 64 and 3000 Gaussians spread over it (rbf_scale_rows), exact
- *     through the per-tile lists of render/fog_rbf_tiles.h.
+ *     through the per-tile lists of render/fog_rbf_tiles.h;
+ *   - first of all, `fogpipe fit` on the plume config's VDB frame: its seconds (fit_s).
  * Time: GL, glFinish before and after, median of --frames rounds after a warm-up, rows
  * interleaved. Error: tau against the double-precision CPU model on the same rays to the
  * scene pass's read-back distances; RMSE and max over all pixels.
@@ -20,7 +21,7 @@
  * model and method). Last line: `models: rbf_exact_ms=... rbf_march_speedup_at_matched_error=
  * ... height_exact_ms=... height_march_speedup_at_matched_error=... volume_exact_ms=...
  * volume_march_speedup_at_matched_error=... volume_empty_skip_speedup=... quadric_exact_ms=...
- * quadric_march_speedup_at_matched_error=...`, a speedup being the time of the cheapest
+ * quadric_march_speedup_at_matched_error=... rbf_64_ms=... rbf_3000_ms=... fit_s=...`, a speedup being the time of the cheapest
  * marching with max error <= 1e-3 over the exact time. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -33,6 +34,8 @@
 #include "app/render_frame.h"
 #include "bench/bench.h"
 #include "app/chart.h"
+#include "app/clock.h"
+#include "app/fit.h"
 #include "render/fog_rbf_tiles.h"
 #include "render/render.h"
 
@@ -122,10 +125,11 @@ static void print_help(void) {
       "height_exact_ms=C height_march_speedup_at_matched_error=D volume_exact_ms=E\n"
       "volume_march_speedup_at_matched_error=F volume_empty_skip_speedup=S\n"
       "quadric_exact_ms=M quadric_march_speedup_at_matched_error=Q rbf_64_ms=R64\n"
-      "rbf_3000_ms=R: B, D, F, Q = time of the cheapest ray marching with max tau error <=\n"
+      "rbf_3000_ms=R fit_s=S: B, D, F, Q = time of the cheapest ray marching with max tau error <=\n"
       "1e-3 / the exact integral's time; S = the volume's exact walk without empty-space\n"
       "skipping / with it; M: 8 quadric volumes; R64, R: 64 and 3000 Gaussians spread over\n"
-      "the valley, culled per screen tile (target R <= 4 R64).\n");
+      "the valley, culled per screen tile (target R <= 4 R64); S: seconds for `fogpipe fit`\n"
+      "on configs/vdb_plume_volume.ini's VDB frame at its defaults (target <= 30).\n");
 }
 
 static const char *row_method(const model_row *r) {
@@ -250,6 +254,39 @@ static int rbf_scale_rows(fog_pass *pass, const render_scene *sc, gl_target *tar
   return 0;
 }
 
+/* `fogpipe fit` on one VDB frame (the plume config's, a 3D volume) at the command's
+ * defaults: its wall seconds (target <= 30), and what it picks at three tolerances. Run
+ * before the benchmark's own GL context exists: fit makes a context per rung. */
+static int time_fit(double *seconds, char *error, int size) {
+  scene_config cfg;
+  scene_config_error cerr;
+  if (scene_config_load("configs/vdb_plume_volume.ini", &cfg, &cerr)) {
+    snprintf(error, (size_t)size, "%s", cerr.message);
+    return 1;
+  }
+  fit_result r;
+  fit_error ferr;
+  double t0 = app_clock_seconds();
+  if (fit_run(&(fit_desc){.input = &cfg, .tolerance = 0.02, .rays_per_side = FIT_RAYS_PER_SIDE,
+                          .sample_side = FIT_SAMPLE_SIDE, .width = FIT_WIDTH,
+                          .height = FIT_HEIGHT, .timed_frames = FIT_TIMED_FRAMES},
+              &r, &ferr)) {
+    snprintf(error, (size_t)size, "fit: %s", ferr.message);
+    return 1;
+  }
+  *seconds = app_clock_seconds() - t0;
+  printf("fit: configs/vdb_plume_volume.ini (frame %d as a volume): %d rungs on %d rays in "
+         "%.1f s (target <= 30); picks", cfg.fog.vdb_frame, r.count, r.rays, *seconds);
+  const double tolerances[] = {0.005, 0.02, 0.1, 0.5};
+  for (int t = 0; t < 4; t++) {
+    int pick = fit_choose(&r, tolerances[t], false);
+    printf("%s %s at %g", t ? "," : "", pick < 0 ? "none" : r.rungs[pick].name, tolerances[t]);
+  }
+  printf(" (max |dtau|)\n");
+  fit_result_destroy(&r);
+  return 0;
+}
+
 int bench_models(int argc, char **argv) {
   bench_image_options options = {.width = 640, .height = 360, .frames = 5,
                                  .out_dir = "build/bench/models"};
@@ -270,6 +307,11 @@ int bench_models(int argc, char **argv) {
   const char *out_dir = options.out_dir;
   char error[1024] = "";
   if (bench_make_folder(out_dir, error, sizeof error)) {
+    fprintf(stderr, "fogpipe bench models: %s\n", error);
+    return 1;
+  }
+  double fit_s = 0.0;
+  if (time_fit(&fit_s, error, sizeof error)) {
     fprintf(stderr, "fogpipe bench models: %s\n", error);
     return 1;
   }
@@ -459,9 +501,10 @@ int bench_models(int argc, char **argv) {
          "height_exact_ms=%.3f height_march_speedup_at_matched_error=%.2f "
          "volume_exact_ms=%.3f volume_march_speedup_at_matched_error=%.2f "
          "volume_empty_skip_speedup=%.2f quadric_exact_ms=%.3f "
-         "quadric_march_speedup_at_matched_error=%.2f rbf_64_ms=%.3f rbf_3000_ms=%.3f\n",
+         "quadric_march_speedup_at_matched_error=%.2f rbf_64_ms=%.3f rbf_3000_ms=%.3f "
+         "fit_s=%.2f\n",
          exact_ms[2], speedup[2], exact_ms[1], speedup[1], exact_ms[3], speedup[3],
-         unskipped_ms / exact_ms[3], exact_ms[4], speedup[4], scale[0].ms, scale[1].ms);
+         unskipped_ms / exact_ms[3], exact_ms[4], speedup[4], scale[0].ms, scale[1].ms, fit_s);
   status = 0;
   goto done;
 

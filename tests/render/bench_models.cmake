@@ -28,7 +28,7 @@ endif()
 string(STRIP "${out}" out)
 string(REGEX MATCH "[^\n]*$" last "${out}")
 set(num "[0-9]+[.]?[0-9]*") # no group: CMake keeps at most 9 per match
-if(NOT last MATCHES "^models: rbf_exact_ms=${num} rbf_march_speedup_at_matched_error=${num} height_exact_ms=${num} height_march_speedup_at_matched_error=${num} volume_exact_ms=${num} volume_march_speedup_at_matched_error=${num} volume_empty_skip_speedup=${num} quadric_exact_ms=${num} quadric_march_speedup_at_matched_error=${num} rbf_64_ms=${num} rbf_3000_ms=${num}$")
+if(NOT last MATCHES "^models: rbf_exact_ms=${num} rbf_march_speedup_at_matched_error=${num} height_exact_ms=${num} height_march_speedup_at_matched_error=${num} volume_exact_ms=${num} volume_march_speedup_at_matched_error=${num} volume_empty_skip_speedup=${num} quadric_exact_ms=${num} quadric_march_speedup_at_matched_error=${num} rbf_64_ms=${num} rbf_3000_ms=${num} fit_s=${num}$")
   message(FATAL_ERROR "last line is not the summary line: '${last}'")
 endif()
 foreach(f models.csv models_chart.csv models_chart.png)

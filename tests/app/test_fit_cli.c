@@ -1,0 +1,111 @@
+/* `fogpipe fit` from the command line: --out writes a scene that loads back with the chosen
+ * model and its fitted parameters, --chart writes the PNG and its CSV; bad input (a
+ * missing VDB, a bad config key, no tolerance, an unwritable --out) fails with a message
+ * naming the file or option, and leaves no file behind. */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include "app/config.h"
+#include "test_bin.h"
+
+static char dir[] = "/tmp/fogpipe_fit_cli_XXXXXX";
+
+static void read_text(const char *path, char *text, size_t size) {
+  FILE *f = fopen(path, "r");
+  size_t n = f ? fread(text, 1, size - 1, f) : 0;
+  text[n] = '\0';
+  if (f) fclose(f);
+}
+
+static bool exists(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0;
+}
+
+/* Runs `fogpipe fit ARGS`, stdout and stderr into DIR/out.txt and DIR/err.txt; the exit
+ * status. */
+static int fit(const char *bin, const char *args, char *out, char *err, size_t size) {
+  char command[2048], out_path[256], err_path[256];
+  snprintf(out_path, sizeof out_path, "%s/out.txt", dir);
+  snprintf(err_path, sizeof err_path, "%s/err.txt", dir);
+  snprintf(command, sizeof command, "'%s' fit %s > '%s' 2> '%s'", bin, args, out_path, err_path);
+  int status = system(command);
+  read_text(out_path, out, size);
+  read_text(err_path, err, size);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+static void write_file(const char *path, const char *text) {
+  FILE *f = fopen(path, "w");
+  if (f) fputs(text, f), fclose(f);
+}
+
+int main(void) {
+  const char *bin = test_bin_and_folder(dir);
+  if (!bin) return test_finish("test_fit_cli");
+  const char *fast = "--rays 8 --samples 16 --size 64x36 --frames 1";
+  char out[8192], err[8192], args[1024], ini[256], scene[256], chart[256], csv[256];
+  snprintf(ini, sizeof ini, "%s/constant.ini", dir);
+  snprintf(scene, sizeof scene, "%s/scene.ini", dir);
+  snprintf(chart, sizeof chart, "%s/fit.png", dir);
+  snprintf(csv, sizeof csv, "%s/fit.csv", dir);
+  write_file(ini, "[fog]\nmodel = homogeneous\ndensity_scale = 0.004\n");
+
+  /* a constant fog: homogeneous, written and charted */
+  snprintf(args, sizeof args, "'%s' --tolerance 0.01,0.5 --out '%s' --chart '%s' %s", ini, scene,
+           chart, fast);
+  int status = fit(bin, args, out, err, sizeof out);
+  CHECK(status == 0, "exit %d: %s", status, err);
+  CHECK(strstr(out, "chosen: homogeneous") != NULL, "stdout: %s", out);
+  CHECK(strstr(out, "at tolerance 0.5: homogeneous") != NULL, "stdout: %s", out);
+  CHECK(exists(chart) && exists(csv), "no chart %s / %s", chart, csv);
+  scene_config cfg;
+  scene_config_error cerr;
+  CHECK(scene_config_load(scene, &cfg, &cerr) == 0, "%s", cerr.message);
+  CHECK(cfg.fog.model == FOG_MODEL_HOMOGENEOUS && fabs(cfg.fog.density_scale - 0.004) < 1e-12,
+        "loaded model %d, K %.9g", (int)cfg.fog.model, cfg.fog.density_scale);
+
+  /* a missing VDB: the file named, nothing written */
+  char missing_out[256];
+  snprintf(missing_out, sizeof missing_out, "%s/missing.ini", dir);
+  snprintf(args, sizeof args, "'%s/none_0001.vdb' --tolerance 0.1 --out '%s' %s", dir,
+           missing_out, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  CHECK(status != 0, "a missing VDB: exit 0");
+  CHECK(strstr(err, "none_0001.vdb") != NULL, "stderr does not name the file: %s", err);
+  CHECK(!exists(missing_out), "%s written", missing_out);
+
+  /* a bad config key: FILE:LINE named */
+  char bad[256];
+  snprintf(bad, sizeof bad, "%s/bad.ini", dir);
+  write_file(bad, "[fog]\nmodel = homogeneous\ndensity_scael = 0.004\n");
+  snprintf(args, sizeof args, "'%s' --tolerance 0.1 --out '%s' %s", bad, missing_out, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  char want[300];
+  snprintf(want, sizeof want, "%s:3", bad);
+  CHECK(status != 0 && strstr(err, want) && strstr(err, "density_scael"),
+        "a bad key: exit %d, stderr %s", status, err);
+  CHECK(!exists(missing_out), "%s written", missing_out);
+
+  /* no tolerance: a usage error */
+  snprintf(args, sizeof args, "'%s' %s", ini, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  CHECK(status == 2 && strstr(err, "--tolerance"), "no tolerance: exit %d, %s", status, err);
+
+  /* an --out that cannot be written: the path named, nothing left */
+  char unwritable[256];
+  snprintf(unwritable, sizeof unwritable, "%s/no/such/folder/scene.ini", dir);
+  snprintf(args, sizeof args, "'%s' --tolerance 0.1 --out '%s' %s", ini, unwritable, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  CHECK(status != 0 && strstr(err, unwritable), "unwritable --out: exit %d, %s", status, err);
+
+  char command[512];
+  snprintf(command, sizeof command, "rm -rf '%s'", dir);
+  if (system(command)) fprintf(stderr, "could not remove %s\n", dir);
+  return test_finish("test_fit_cli");
+}
