@@ -167,8 +167,8 @@ static int make_rungs(fit_result *r, const scene_config *input, const fog_model 
     c->fog.rbf_count = made;
     snprintf(rung->name, sizeof rung->name, "rbf %d", made);
     const fog_rbf *g = &c->fog.rbfs[0];
-    snprintf(rung->params, sizeof rung->params, "%d Gaussians%s (first: %.4g %.4g %.4g r=%.4g c=%.4g)",
-             made, made == 1 ? "" : "", g->centre[0], g->centre[1], g->centre[2], g->radius,
+    snprintf(rung->params, sizeof rung->params, "%d Gaussian%s (first: %.4g %.4g %.4g r=%.4g c=%.4g)",
+             made, made == 1 ? "" : "s", g->centre[0], g->centre[1], g->centre[2], g->radius,
              g->density);
   }
 
