@@ -15,6 +15,7 @@
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/fit.h"
+#include "app/render_fog.h"
 
 static void usage(FILE *out) {
   fprintf(out,
@@ -39,12 +40,17 @@ static void usage(FILE *out) {
           "  --grid NAME          float grid (default density)\n"
           "  --up z|y             the file's up axis (default z: Blender/Mantaflow)\n"
           "  --frame N            frame number of a sequence (default: the last)\n"
+          "sequences (a VDB INPUT, or a config's [fog] vdb):\n"
+          "  --frames all|A-B[:S] fit over these frame numbers (every S-th), the worst frame\n"
+          "                       deciding: the static rungs fit the frames' mean density,\n"
+          "                       the fogmap and the volume play the frames (default: one\n"
+          "                       frame, --frame or the config's vdb_frame)\n"
           "  --density-scale S    extinction per unit of the grid's value (default 1)\n"
           "measurement:\n"
           "  --rays N             rays per side of each view (default %d)\n"
           "  --samples N          density samples along the longest side (default %d)\n"
           "  --size WxH           timed frames (default %dx%d)\n"
-          "  --frames N           timed frames per rung (default %d)\n"
+          "  --timed N            timed frames per rung (default %d)\n"
           "  --help               this text\n",
           FIT_RAYS_PER_SIDE, FIT_SAMPLE_SIDE, FIT_WIDTH, FIT_HEIGHT, FIT_TIMED_FRAMES);
 }
@@ -56,6 +62,7 @@ static bool ends_with(const char *s, const char *suffix) {
 
 typedef struct fit_options {
   const char *input, *out, *chart, *grid;
+  const char *frames; /* --frames all|A-B[:STEP] */
   double tolerance[8]; /* --tolerance T[,T...]: the first picks --out */
   int tolerance_count;
   double density_scale;
@@ -81,7 +88,7 @@ static int parse(int argc, char **argv, fit_options *o) {
     }
     static const char *const valued[] = {"--tolerance", "--by", "--out", "--chart", "--grid", "--up",
                                          "--frame", "--density-scale", "--rays", "--samples",
-                                         "--size", "--frames"};
+                                         "--size", "--timed", "--frames"};
     bool known = false;
     for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++) known |= !strcmp(a, valued[k]);
     if (!known) return cli_usage_error("fit", "unknown option '%s'", a);
@@ -120,8 +127,10 @@ static int parse(int argc, char **argv, fit_options *o) {
       if (cli_int("fit", a, v, 2, 512, &o->desc.sample_side)) return 2;
     } else if (!strcmp(a, "--size")) {
       if (cli_size("fit", a, v, &o->desc.width, &o->desc.height)) return 2;
-    } else if (!strcmp(a, "--frames")) {
+    } else if (!strcmp(a, "--timed")) {
       if (cli_int("fit", a, v, 1, 64, &o->desc.timed_frames)) return 2;
+    } else if (!strcmp(a, "--frames")) {
+      o->frames = v;
     }
   }
   if (!o->input) return cli_usage_error("fit", "no INPUT given");
@@ -152,6 +161,42 @@ static int load_input(const fit_options *o, scene_config *cfg) {
   cfg->fog.density_scale = o->density_scale;
   fit_error err;
   if (fit_scene_for_volume(cfg, &err)) return cli_fail("fit", "%s", err.message);
+  return 0;
+}
+
+/* The frame numbers of --frames in the input's sequence (malloc'd into *out). */
+static int sequence_frames(const fit_options *o, const scene_config *cfg, int **out, int *count) {
+  *out = NULL, *count = 0;
+  if (!o->frames) return 0;
+  if (!cfg->fog.vdb[0])
+    return cli_usage_error("fit", "--frames: the input has no VDB sequence ([fog] vdb)");
+  int first = INT_MIN, last = INT_MAX, step = 1;
+  if (strcmp(o->frames, "all")) {
+    char range[64];
+    snprintf(range, sizeof range, "%s", o->frames);
+    char *colon = strchr(range, ':');
+    if (colon) {
+      *colon = '\0';
+      if (cli_int("fit", "--frames' step", colon + 1, 1, INT_MAX, &step)) return 2;
+    }
+    bool single;
+    if (cli_range("fit", "--frames", range, 0, INT_MAX, &first, &last, &single)) return 2;
+  }
+  vdb_sequence seq;
+  render_error rerr = {{0}};
+  if (render_fog_volume_sequence(cfg, &seq, &rerr)) return cli_fail("fit", "%s", rerr.message);
+  int *list = malloc(sizeof *list * (size_t)seq.count);
+  int n = 0, seen = 0;
+  for (int i = 0; list && i < seq.count; i++)
+    if (seq.frames[i] >= first && seq.frames[i] <= last && seen++ % step == 0)
+      list[n++] = seq.frames[i];
+  vdb_sequence_destroy(&seq);
+  if (!list) return cli_fail("fit", "out of memory");
+  if (n == 0) {
+    free(list);
+    return cli_fail("fit", "--frames %s: no such frames in %s", o->frames, cfg->fog.vdb);
+  }
+  *out = list, *count = n;
   return 0;
 }
 
@@ -196,17 +241,27 @@ int cmd_fit(int argc, char **argv) {
     return status;
   }
   o.desc.input = cfg;
+  int *frames = NULL;
+  if ((status = sequence_frames(&o, cfg, &frames, &o.desc.frame_count))) {
+    free(cfg);
+    return status;
+  }
+  o.desc.frames = frames;
   fit_result r;
   fit_error err;
   double t0 = app_clock_seconds();
   if (fit_run(&o.desc, &r, &err)) {
-    free(cfg);
+    free(cfg), free(frames);
     return cli_fail("fit", "%s: %s", o.input, err.message);
   }
   printf("fogpipe fit: %s, tolerance %g on the %s |dtau|\n", o.input, o.tolerance[0],
          o.desc.by_mean ? "mean" : "max");
-  printf("domain [%.4g, %.4g] x [%.4g, %.4g] x [%.4g, %.4g]; %d rays on %d views\n\n", r.lo[0],
+  printf("domain [%.4g, %.4g] x [%.4g, %.4g] x [%.4g, %.4g]; %d rays on %d views", r.lo[0],
          r.hi[0], r.lo[1], r.hi[1], r.lo[2], r.hi[2], r.rays, 9);
+  if (frames)
+    printf(", %d frames (%d..%d; the worst decides)", r.frame_count, frames[0],
+           frames[r.frame_count - 1]);
+  printf("\n\n");
   printf("  %-24s %12s %12s %10s  %s\n", "rung", "max|dtau|", "mean|dtau|", "GL ms", "parameters");
   for (int i = 0; i < r.count; i++) {
     const fit_rung *g = &r.rungs[i];
@@ -240,6 +295,6 @@ int cmd_fit(int argc, char **argv) {
   }
   printf("fit: %.1f s\n", app_clock_seconds() - t0);
   fit_result_destroy(&r);
-  free(cfg);
+  free(cfg), free(frames);
   return status;
 }

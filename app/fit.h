@@ -36,6 +36,11 @@ typedef struct fit_desc {
   int sample_side;    /* density samples along the domain's longest side, >= 2 */
   int width, height;  /* the timed frames, pixels */
   int timed_frames;   /* >= 1 (after one untimed) */
+  /* Frame numbers of the input's [fog] vdb sequence to fit over, the worst frame deciding
+   * (the static rungs fit the frames' mean density; the fogmap and volume rungs play
+   * the frames); NULL: the input's own frame ([fog] vdb_frame). Timed at the last. */
+  const int *frames;
+  int frame_count;
 } fit_desc;
 
 /* The command's defaults. */
@@ -52,7 +57,8 @@ typedef struct fit_rung {
   char family[16];   /* the chart's series: homogeneous, height, quadric, rbf, fogmap, volume */
   char params[256];  /* the fitted parameters, for the table */
   scene_config *config; /* the input scene with this rung's fog (owned) */
-  double max_error, mean_error; /* |delta tau| on the views */
+  double max_error, mean_error; /* |delta tau| on the views: the worst ray's, the mean over
+                                   the rays (over frames: the worst frame's mean) */
   double ms;         /* GL milliseconds per frame */
 } fit_rung;
 
@@ -61,7 +67,8 @@ typedef struct fit_result {
   int count;
   int chosen;        /* index of the pick, -1: none within the tolerance */
   double lo[3], hi[3]; /* the fit domain */
-  int rays;          /* rays of the views that meet it */
+  int rays;          /* rays of the views that meet it (per frame) */
+  int frame_count;   /* frames measured */
 } fit_result;
 
 /* Errors name the input's file (and line where a key is at fault) or the rung that failed

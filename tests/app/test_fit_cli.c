@@ -48,7 +48,7 @@ static void write_file(const char *path, const char *text) {
 int main(void) {
   const char *bin = test_bin_and_folder(dir);
   if (!bin) return test_finish("test_fit_cli");
-  const char *fast = "--rays 8 --samples 16 --size 64x36 --frames 1";
+  const char *fast = "--rays 8 --samples 16 --size 64x36 --timed 1";
   char out[8192], err[8192], args[1024], ini[256], scene[256], chart[256], csv[256];
   snprintf(ini, sizeof ini, "%s/constant.ini", dir);
   snprintf(scene, sizeof scene, "%s/scene.ini", dir);
@@ -96,6 +96,12 @@ int main(void) {
   snprintf(args, sizeof args, "'%s' %s", ini, fast);
   status = fit(bin, args, out, err, sizeof out);
   CHECK(status == 2 && strstr(err, "--tolerance"), "no tolerance: exit %d, %s", status, err);
+
+  /* --frames without a sequence */
+  snprintf(args, sizeof args, "'%s' --tolerance 0.1 --frames all %s", ini, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  CHECK(status == 2 && strstr(err, "--frames") && strstr(err, "no VDB sequence"),
+        "--frames without a sequence: exit %d, %s", status, err);
 
   /* an --out that cannot be written: the path named, nothing left */
   char unwritable[256];

@@ -1,0 +1,137 @@
+/* The rungs of a fit (app/fit_rungs.h). */
+#include "app/fit_rungs.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+/* Gaussians per bank: 1 to 64 (a config holds SCENE_CONFIG_MAX_RBFS). */
+static const int rbf_sizes[] = {1, 2, 4, 8, 16, 32, 64};
+_Static_assert(SCENE_CONFIG_MAX_RBFS >= 64, "a config holds the largest bank");
+/* The fogmap's rungs: each basis at three LOD factors (levels 3, switching). */
+static const char *const basis_names[] = {"haar", "linear", "quadratic"};
+static const double fogmap_mus[] = {1.0, 0.5, 0.25};
+
+/* The input scene with its fog model's own lines cleared, for an analytic rung. */
+static scene_config *analytic_config(const scene_config *input, fog_model_kind kind) {
+  scene_config *c = malloc(sizeof *c);
+  if (!c) return NULL;
+  *c = *input;
+  scene_fog_config *f = &c->fog;
+  f->model = kind;
+  f->fogmap[0] = f->vdb[0] = f->sequence[0] = '\0';
+  f->rbf_count = f->rbf_emitter_count = f->quadric_count = 0;
+  f->rbf_base = 0.0;
+  f->density_scale = 1.0;
+  f->volume_step = 0.0;
+  f->profile_set = false;
+  return c;
+}
+
+static fit_rung *add_rung(fit_result *r, scene_config *cfg, const char *family,
+                          fit_error *err) {
+  if (!cfg) {
+    snprintf(err->message, sizeof err->message, "out of memory for the rungs");
+    return NULL;
+  }
+  if (r->count == FIT_MAX_RUNGS) { /* a bug: the list below holds at most this many */
+    free(cfg);
+    snprintf(err->message, sizeof err->message, "more than %d rungs", FIT_MAX_RUNGS);
+    return NULL;
+  }
+  fit_rung *rung = &r->rungs[r->count++];
+  *rung = (fit_rung){.config = cfg};
+  snprintf(rung->family, sizeof rung->family, "%s", family);
+  snprintf(rung->name, sizeof rung->name, "%s", family);
+  return rung;
+}
+
+/* The ladder's rungs for this input, in order, their parameters fitted to the samples. */
+int fit_rungs_make(fit_result *r, const scene_config *input, fog_model_kind reference_kind,
+                   const fit_samples *s, fit_error *err) {
+  fit_rung *rung;
+  double k = fit_homogeneous(s);
+  if (!(rung = add_rung(r, analytic_config(input, FOG_MODEL_HOMOGENEOUS), "homogeneous", err)))
+    return 1;
+  rung->config->fog.density_scale = k;
+  snprintf(rung->params, sizeof rung->params, "K=%.6g", k);
+
+  double y0, scale_height;
+  if (fit_height(s, &k, &y0, &scale_height)) {
+    if (!(rung = add_rung(r, analytic_config(input, FOG_MODEL_HEIGHT), "height", err))) return 1;
+    scene_fog_config *f = &rung->config->fog;
+    f->density_scale = k, f->fog_height = y0, f->scale_height = scale_height;
+    snprintf(rung->params, sizeof rung->params, "K=%.6g y0=%.6g H=%.6g", k, y0, scale_height);
+  }
+
+  double centre[3], radii[3], density;
+  if (fit_ellipsoid(s, centre, radii, &density)) {
+    if (!(rung = add_rung(r, analytic_config(input, FOG_MODEL_QUADRIC), "quadric", err)))
+      return 1;
+    snprintf(rung->name, sizeof rung->name, "ellipsoid");
+    scene_fog_config *f = &rung->config->fog;
+    f->quadric_count = 1;
+    f->quadrics[0] = fog_quadric_ellipsoid(centre, radii, density, 0.0);
+    f->quadric_lines[0] = (struct scene_quadric_line){
+        .shape = 1, /* ellipsoid X Y Z RX RY RZ DENSITY (app/config.c) */
+        .count = 7,
+        .numbers = {centre[0], centre[1], centre[2], radii[0], radii[1], radii[2], density}};
+    snprintf(rung->params, sizeof rung->params, "centre %.4g %.4g %.4g radii %.4g %.4g %.4g K=%.4g",
+             centre[0], centre[1], centre[2], radii[0], radii[1], radii[2], density);
+  }
+
+  int previous = 0;
+  for (size_t i = 0; i < sizeof rbf_sizes / sizeof rbf_sizes[0]; i++) {
+    scene_config *c = analytic_config(input, FOG_MODEL_RBF);
+    int made = c ? fit_rbfs(s, rbf_sizes[i], c->fog.rbfs) : -1;
+    if (made < 0) {
+      free(c);
+      snprintf(err->message, sizeof err->message, "out of memory fitting Gaussians");
+      return 1;
+    }
+    if (made <= previous) { /* the fog holds no more clusters */
+      free(c);
+      continue;
+    }
+    previous = made;
+    if (!(rung = add_rung(r, c, "rbf", err))) return 1;
+    c->fog.rbf_count = made;
+    snprintf(rung->name, sizeof rung->name, "rbf %d", made);
+    const fog_rbf *g = &c->fog.rbfs[0];
+    snprintf(rung->params, sizeof rung->params, "%d Gaussian%s (first: %.4g %.4g %.4g r=%.4g c=%.4g)",
+             made, made == 1 ? "" : "s", g->centre[0], g->centre[1], g->centre[2], g->radius,
+             g->density);
+  }
+
+  /* The fogmap: the input's own, or its VDB projected (model = volume's vdb). */
+  const scene_fog_config *in = &input->fog;
+  bool has_map = (in->model == FOG_MODEL_FOGMAP && (in->fogmap[0] || in->vdb[0])) ||
+                 (in->model == FOG_MODEL_VOLUME && in->vdb[0]);
+  for (int degree = 0; has_map && degree < 3; degree++)
+    for (size_t m = 0; m < sizeof fogmap_mus / sizeof fogmap_mus[0]; m++) {
+      scene_config *c = malloc(sizeof *c);
+      if (c) *c = *input;
+      if (!(rung = add_rung(r, c, "fogmap", err))) return 1;
+      scene_fog_config *f = &c->fog;
+      f->model = FOG_MODEL_FOGMAP, f->degree = degree, f->levels = 3,
+      f->mu = fogmap_mus[m], f->lod = SCENE_LOD_SWITCH;
+      f->volume_step = 0.0;
+      snprintf(rung->name, sizeof rung->name, "fogmap %s mu %g", basis_names[degree], f->mu);
+      snprintf(rung->params, sizeof rung->params, "basis %s, levels 3, mu %g, %s",
+               basis_names[degree], f->mu, f->vdb[0] ? "the VDB frame projected" : "the fogmap");
+    }
+
+  if (reference_kind == FOG_MODEL_VOLUME) {
+    scene_config *c = malloc(sizeof *c);
+    if (c) *c = *input, c->fog.model = FOG_MODEL_VOLUME, c->fog.volume_step = 0.0;
+    if (!(rung = add_rung(r, c, "volume", err))) return 1;
+    snprintf(rung->params, sizeof rung->params, "the 3D grid, exact");
+  } else if (in->model != FOG_MODEL_FOGMAP) {
+    scene_config *c = malloc(sizeof *c);
+    if (c) *c = *input;
+    if (!(rung = add_rung(r, c, fog_model_table[in->model].name, err))) return 1;
+    snprintf(rung->name, sizeof rung->name, "%s as given", fog_model_table[in->model].name);
+    snprintf(rung->params, sizeof rung->params, "the input's own model");
+  }
+  return 0;
+}
+

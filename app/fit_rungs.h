@@ -1,0 +1,17 @@
+/* The rungs `fogpipe fit` tries (docs/fit.md): the ladder's models that can represent the
+ * input, each fitted to the density samples (app/fit_density.h) and made into a scene
+ * config. Internal to app/fit.c. */
+#ifndef FOGPIPE_APP_FIT_RUNGS_H
+#define FOGPIPE_APP_FIT_RUNGS_H
+
+#include "app/fit.h"
+#include "app/fit_density.h"
+
+/* Appends the rungs for this input to r, in ladder order: homogeneous, height (where the
+ * layers decay), an ellipsoid, Gaussian banks of 1 to 64, the fogmap at three bases x three
+ * LOD factors (where the input has a fogmap or a VDB), the volume (where the reference is
+ * one), an analytic input as given. */
+int fit_rungs_make(fit_result *r, const scene_config *input, fog_model_kind reference_kind,
+                   const fit_samples *samples, fit_error *err);
+
+#endif
