@@ -87,6 +87,8 @@ static const key_spec keys[] = {
     {"fog", "profile", V_ENUM, F(fog.profile), 0, 0, "slab|exponential|bspline", 0, 0},
     {"fog", "fog_height", V_DOUBLE, F(fog.fog_height), -WORLD, WORLD, NULL, 0, 0},
     {"fog", "scale_height", V_DOUBLE, F(fog.scale_height), MIN_LENGTH, WORLD, NULL, 0, 0},
+    {"fog", "fog_start", V_DOUBLE, F(fog.fog_start), 0, WORLD, NULL, 0, 0},
+    {"fog", "fog_end", V_DOUBLE, F(fog.fog_end), MIN_LENGTH, WORLD, NULL, 0, 0},
     {"fog", "profile_degree", V_INT, F(fog.profile_degree), 0, 3, NULL, 0, 0},
     {"fog", "profile_origin", V_DOUBLE, F(fog.profile_origin), -WORLD, WORLD, NULL, 0, 0},
     {"fog", "profile_spacing", V_DOUBLE, F(fog.profile_spacing), MIN_LENGTH, WORLD, NULL, 0, 0},
@@ -168,7 +170,8 @@ void scene_config_init(scene_config *cfg) {
       .fog = {.density_scale = 1.0, .degree = 1, .levels = 3, .mu = 1.0,
               .lod = SCENE_LOD_SWITCH, .filtering = SCENE_FILTERING_MANUAL,
               .boundary = SCENE_BOUNDARY_SYMMETRIC, .profile = SCENE_PROFILE_SLAB,
-              .fog_height = 0.0, .scale_height = 10.0, .profile_degree = 1,
+              .fog_height = 0.0, .scale_height = 10.0, .fog_start = 0.0, .fog_end = 1000.0,
+              .profile_degree = 1,
               .profile_spacing = 1.0, .colour = {0.75f, 0.78f, 0.82f},
               .albedo = 0.0, .phase_g = 0.7,
               .vdb_grid = "density", .vdb_fps = 24.0, .vdb_frame = -1},
@@ -791,6 +794,12 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
   if (cfg->fog.model == FOG_MODEL_VOLUME && !cfg->fog.vdb[0]) {
     s.line = cfg->fog.model_line;
     fail(&s, "fog", "model", "volume needs a 'vdb = FILE or PATTERN' line (the 3D grid)");
+    return 1;
+  }
+  if (cfg->fog.model == FOG_MODEL_LINEAR && !(cfg->fog.fog_end > cfg->fog.fog_start)) {
+    s.line = cfg->fog.model_line;
+    fail(&s, "fog", "model", "linear fog needs fog_end above fog_start, got fog_start = %g "
+         "and fog_end = %g", cfg->fog.fog_start, cfg->fog.fog_end);
     return 1;
   }
   if (cfg->fog.model == FOG_MODEL_HEIGHT) {

@@ -73,6 +73,7 @@ typedef struct scene_fog_config {
   scene_profile profile;
   double fog_height;                  /* exponential: y0, where the decay starts */
   double scale_height;                /* exponential: H */
+  double fog_start, fog_end;          /* model = linear: the factor's distances (GL_LINEAR) */
   int profile_degree;                 /* bspline: degree p of the profile (0..3) */
   double profile_origin, profile_spacing;
   double profile_coefficients[SCENE_CONFIG_MAX_PROFILE];

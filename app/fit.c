@@ -295,7 +295,8 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
   for (size_t i = 0, n = (size_t)samples.n[0] * samples.n[1] * samples.n[2]; i < n; i++)
     samples.k[i] /= frame_count;
   r->rays = views[0].count;
-  if (fit_rungs_make(r, d->input, refs[0].model.kind, &samples, err)) goto done;
+  if (fit_rungs_make(r, d->input, refs[0].model.kind, &samples, views, frame_count, err))
+    goto done;
   for (int f = 0; f < frame_count; f++) /* one GL context at a time: the rungs make theirs */
     reference_destroy(&refs[f]);
   /* Every rung drawn from view 0, outside the fog looking at it. */

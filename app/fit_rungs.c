@@ -47,13 +47,27 @@ static fit_rung *add_rung(fit_result *r, scene_config *cfg, const char *family,
 
 /* The ladder's rungs for this input, in order, their parameters fitted to the samples. */
 int fit_rungs_make(fit_result *r, const scene_config *input, fog_model_kind reference_kind,
-                   const fit_samples *s, fit_error *err) {
+                   const fit_samples *s, const fit_views *views, int view_sets,
+                   fit_error *err) {
   fit_rung *rung;
   double k = fit_homogeneous(s);
   if (!(rung = add_rung(r, analytic_config(input, FOG_MODEL_HOMOGENEOUS), "homogeneous", err)))
     return 1;
   rung->config->fog.density_scale = k;
   snprintf(rung->params, sizeof rung->params, "K=%.6g", k);
+
+  /* the classic factors: a fog of the camera's distance, fitted on the views */
+  double start, end;
+  fit_views_linear(views, view_sets, &start, &end);
+  if (!(rung = add_rung(r, analytic_config(input, FOG_MODEL_LINEAR), "linear", err))) return 1;
+  rung->config->fog.fog_start = start, rung->config->fog.fog_end = end;
+  snprintf(rung->params, sizeof rung->params, "start=%.6g end=%.6g (from the camera)", start, end);
+  double a = fit_views_exp2(views, view_sets);
+  if (a > 0.0) {
+    if (!(rung = add_rung(r, analytic_config(input, FOG_MODEL_EXP2), "exp2", err))) return 1;
+    rung->config->fog.density_scale = a;
+    snprintf(rung->params, sizeof rung->params, "density=%.6g (from the camera)", a);
+  }
 
   double y0, scale_height;
   if (fit_height(s, &k, &y0, &scale_height)) {

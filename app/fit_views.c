@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define PI 3.14159265358979323846
 
@@ -61,9 +62,11 @@ int fit_views_create(fit_views *v, const fog_model *reference, const double lo[3
     return 1;
   }
   const double half = tan(PI / 6.0); /* 60 degrees across */
+  fog_model ref = *reference; /* a classic factor's eye: each view's camera */
   for (int view = 0; view < FIT_VIEW_COUNT; view++) {
     double o[3], target[3], f[3], r[3], u[3];
     fit_view_pose(lo, hi, view, o, target);
+    memcpy(ref.eye, o, sizeof ref.eye);
     for (int a = 0; a < 3; a++) f[a] = target[a] - o[a];
     double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
     for (int a = 0; a < 3; a++) f[a] /= fl;
@@ -86,7 +89,7 @@ int fit_views_create(fit_views *v, const fog_model *reference, const double lo[3
         int k = v->count++;
         for (int a = 0; a < 3; a++) v->origin[k][a] = o[a], v->dir[k][a] = d[a];
         v->length[k] = exit;
-        v->reference[k] = exp(-fog_model_optical_depth(reference, o, d, exit));
+        v->reference[k] = exp(-fog_model_optical_depth(&ref, o, d, exit));
       }
   }
   return 0;
@@ -95,12 +98,78 @@ int fit_views_create(fit_views *v, const fog_model *reference, const double lo[3
 void fit_views_measure(const fit_views *v, const fog_model *rung, double *max_error,
                        double *mean_error) {
   double worst = 0.0, sum = 0.0;
+  fog_model m = *rung;
+  const bool radial = m.kind == FOG_MODEL_LINEAR || m.kind == FOG_MODEL_EXP2;
   for (int k = 0; k < v->count; k++) {
-    double tau = exp(-fog_model_optical_depth(rung, v->origin[k], v->dir[k], v->length[k]));
+    if (radial) memcpy(m.eye, v->origin[k], sizeof m.eye); /* the view's camera */
+    double tau = exp(-fog_model_optical_depth(&m, v->origin[k], v->dir[k], v->length[k]));
     double e = fabs(tau - v->reference[k]);
     if (!(e <= worst)) worst = e; /* NaN sticks */
     sum += e;
   }
   *max_error = worst;
   *mean_error = v->count ? sum / v->count : 0.0;
+}
+
+/* The worst |delta tau| of a classic factor f(L) over the views' rays (from their cameras). */
+static double classic_error(const fit_views *v, int count, bool linear, double p, double q) {
+  double worst = 0.0;
+  for (int f = 0; f < count; f++)
+    for (int k = 0; k < v[f].count; k++) {
+      double L = v[f].length[k], tau;
+      if (linear)
+        tau = L <= p ? 1.0 : (L >= q ? 0.0 : (q - L) / (q - p));
+      else
+        tau = exp(-(p * L) * (p * L));
+      worst = fmax(worst, fabs(tau - v[f].reference[k]));
+    }
+  return worst;
+}
+
+double fit_views_exp2(const fit_views *v, int count) {
+  /* least squares of (a L)^2 on the depth (capped at 20: e^-20 is opaque) */
+  double dl2 = 0.0, l4 = 0.0;
+  for (int f = 0; f < count; f++)
+    for (int k = 0; k < v[f].count; k++) {
+      double L = v[f].length[k], D = fmin(-log(fmax(v[f].reference[k], 1e-300)), 20.0);
+      dl2 += D * L * L, l4 += L * L * L * L;
+    }
+  if (!(dl2 > 0.0 && l4 > 0.0)) return 0.0;
+  double a0 = sqrt(dl2 / l4), best = a0, best_error = HUGE_VAL;
+  for (int i = -100; i <= 100; i++) { /* a0 x 10^(i/100): a decade either way */
+    double a = a0 * pow(10.0, i / 100.0), e = classic_error(v, count, false, a, 0.0);
+    if (e < best_error) best_error = e, best = a;
+  }
+  return best;
+}
+
+void fit_views_linear(const fit_views *v, int count, double *start, double *end) {
+  double longest = 0.0;
+  for (int f = 0; f < count; f++)
+    for (int k = 0; k < v[f].count; k++) longest = fmax(longest, v[f].length[k]);
+  double best_error = HUGE_VAL;
+  *start = 0.0, *end = 2.0 * longest;
+  for (int i = 0; i < 48; i++) {
+    double s = longest * i / 48.0;
+    for (int j = -40; j <= 24; j++) { /* end - start from longest/32 to 8 longest */
+      double e = s + longest * pow(2.0, j / 8.0), error = classic_error(v, count, true, s, e);
+      if (error < best_error) best_error = error, *start = s, *end = e;
+    }
+  }
+  /* then a pattern search from the grid's best: each step tried both ways on each of the
+   * two, halved when neither helps */
+  double step[2] = {longest / 48.0, (*end - *start) * (pow(2.0, 1.0 / 8.0) - 1.0)};
+  for (int round = 0; round < 200 && (step[0] > 1e-9 * longest || step[1] > 1e-9 * longest);
+       round++) {
+    bool moved = false;
+    for (int which = 0; which < 2; which++)
+      for (int sign = -1; sign <= 1; sign += 2) {
+        double s = *start + (which == 0 ? sign * step[0] : 0.0);
+        double e = *end + (which == 1 ? sign * step[1] : 0.0);
+        if (!(s >= 0.0 && e > s)) continue;
+        double error = classic_error(v, count, true, s, e);
+        if (error < best_error) best_error = error, *start = s, *end = e, moved = true;
+      }
+    if (!moved) step[0] *= 0.5, step[1] *= 0.5;
+  }
 }

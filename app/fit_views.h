@@ -4,7 +4,8 @@
  * rays_per_side^2 rays. Every ray that meets the domain runs from its camera to where it
  * leaves the domain; the reference's transmittance along it is kept, and a rung's error is
  * max and mean |tau_rung - tau_reference| over those rays, each tau = e^{-depth} from the
- * models' exact CPU twins (fog_model_optical_depth, double). */
+ * models' exact CPU twins (fog_model_optical_depth, double). The classic factors (linear,
+ * exp2) are measured from each view's camera as their eye. */
 #ifndef FOGPIPE_APP_FIT_VIEWS_H
 #define FOGPIPE_APP_FIT_VIEWS_H
 
@@ -27,6 +28,14 @@ void fit_views_destroy(fit_views *v);
 /* The rung's max and mean |delta tau| against the reference. */
 void fit_views_measure(const fit_views *v, const fog_model *rung, double *max_error,
                        double *mean_error);
+/* The classic fog factors on the rays of `count` views (frames): each view's camera is
+ * their eye, as a classic fog's eye is the camera that draws it. Their parameters are
+ * searched for the least max |delta tau| against the reference: the exp2 density around
+ * the least-squares fit of (a L)^2 to the depth, the linear fog's start and end over a grid
+ * in (0, twice the longest ray]. */
+double fit_views_exp2(const fit_views *v, int count);
+void fit_views_linear(const fit_views *v, int count, double *start, double *end);
+
 /* View `index`'s camera: where it stands and the point it looks at. */
 void fit_view_pose(const double lo[3], const double hi[3], int index, double position[3],
                    double target[3]);

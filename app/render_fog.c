@@ -197,7 +197,8 @@ fog_model render_fog_model(render_fog *fog) {
                      .y0 = p->model_y0, .scale_height = p->model_scale_height,
                      .rbfs = fog->rbfs, .rbf_count = p->model_rbf_count,
                      .grid3d = fog->grid3d, .quadrics = fog->quadrics,
-                     .quadric_count = p->model_quadric_count};
+                     .quadric_count = p->model_quadric_count, .fog_start = p->model_fog_start,
+                     .fog_end = p->model_fog_end};
 }
 
 /* The fog's shadows for the model (docs/light.md): how T_s is found, and the sun's
@@ -320,6 +321,8 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
       .model_extinction = rbf ? f->rbf_base : f->density_scale,
       .model_y0 = f->fog_height,
       .model_scale_height = f->scale_height,
+      .model_fog_start = f->fog_start,
+      .model_fog_end = f->fog_end,
       .model_quadrics = fog->quadrics,
       .model_quadric_count = quadric ? f->quadric_count : 0,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},

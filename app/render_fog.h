@@ -82,7 +82,9 @@ int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,
  * map must outlive the fog's draws. */
 void render_fog_set_shafts(render_fog *fog, const scene_config *cfg, const sun_shadow_map *map);
 /* The fog as the model table sees it (fog_models.h), pointing into fog (the volume's grid
- * only while render_fog has it: during creation and set_volume_time). */
+ * only while render_fog has it: during creation and set_volume_time). Its eye is the
+ * origin: the classic factors (linear, exp2) count distances from the camera that draws
+ * them, which the caller sets. */
 fog_model render_fog_model(render_fog *fog);
 /* Draws the fog over the scene target (colour 0, distance 1) into out (RGBA32F colour 0,
  * R32F transmittance 1), both width x height. */

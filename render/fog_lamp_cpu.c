@@ -80,6 +80,13 @@ static double depth_at(const double *table, int steps, double t0, double dt, dou
   return table[k] + f * (table[k + 1] - table[k]);
 }
 
+/* The classic factors' media are radial about the eye: their view-ray depth is a closed
+ * form of t, their shadow rays are marched (as in GLSL, where a segment's closed form would
+ * cancel in float). */
+static bool radial_about_eye(const fog_model *m) {
+  return m->kind == FOG_MODEL_LINEAR || m->kind == FOG_MODEL_EXP2;
+}
+
 /* The analytic models' optical depths are closed forms (fog_models.h): tau and T exact. */
 static bool exact_depths(const fog_model *m) {
   return m->kind == FOG_MODEL_HOMOGENEOUS || m->kind == FOG_MODEL_HEIGHT ||
@@ -154,7 +161,10 @@ static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp
           shadow = fog_model_optical_depth(m, x, w, dist);
         }
       } else {
-        depth = depth_at(table, steps, t0, dt, t);
+        /* the classic factors' depth from the camera is the factor itself (a table would
+         * miss its fall to 0 at the linear fog's end, where K grows without bound) */
+        depth = radial_about_eye(m) ? fog_model_optical_depth(m, o, d, t)
+                                    : depth_at(table, steps, t0, dt, t);
         /* T: midpoint steps from x to the lamp */
         double ds = dist / method->shadow_steps;
         for (int j = 0; j < method->shadow_steps; j++) {
@@ -164,6 +174,8 @@ static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp
         }
       }
       double tau = exp(-depth);
+      /* at the linear fog's end (K infinite, tau 0, rounding either way) no light comes back */
+      if (tau == 0.0 || !(k < HUGE_VAL)) continue;
       sum += gl4_w[n] * tau * k * fog_phase_hg(g, cos_theta) * fog_lamp_spot(lamp, x) *
              exp(-shadow);
     }

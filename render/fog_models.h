@@ -17,6 +17,13 @@
  *                          box: fog in spheres, ellipsoids, cylinders, cones and general
  *                          quadrics with a soft edge, exact (piecewise quadratic along a
  *                          ray between the roots of Q_i = 0 and Q_i = -e_i)
+ *   FOG_MODEL_LINEAR       OpenGL's GL_LINEAR fog (Zdrojewska eq. 2): the factor
+ *                          f = (end - d)/(end - start) of the distance d from the eye,
+ *                          1 before start and 0 from end on, as the view ray's
+ *                          transmittance; the medium k(r) = 1/(end - r) radial about the
+ *                          eye (render/fog_classic_cpu.c)
+ *   FOG_MODEL_EXP2         OpenGL's GL_EXP2 fog (eq. 4): f = e^{-(a d)^2}, k(r) = 2 a^2 r
+ *                          (a = extinction); GL_EXP is FOG_MODEL_HOMOGENEOUS
  * Adding a model: see render/fog_models.def. */
 #ifndef FOGPIPE_RENDER_FOG_MODELS_H
 #define FOGPIPE_RENDER_FOG_MODELS_H
@@ -112,6 +119,10 @@ typedef struct fog_model {
   /* FOG_MODEL_QUADRIC: quadric_count (<= FOG_MAX_QUADRICS) volumes, world coordinates. */
   const fog_quadric *quadrics;
   int quadric_count;
+  /* FOG_MODEL_LINEAR and FOG_MODEL_EXP2 (the classic factors): the eye their distances count
+   * from (the camera that draws them), and the linear fog's 0 <= start < end. */
+  double eye[3];
+  double fog_start, fog_end;
 } fog_model;
 
 /* Optical depth from the camera along the unit direction dir up to the first surface
@@ -148,6 +159,15 @@ const fog_model_info *fog_model_find(const char *name);
 #undef FOG_MODEL_ROW
 
 double fog_homogeneous_optical_depth(double extinction, double length);
+/* The classic factors' media (render/fog_classic_cpu.c): k at distance r from the eye, and
+ * the exact optical depth from o along unit d up to length, for any o (from the eye:
+ * ln((end - start)/(end - L)) past start, +inf from end on; (a L)^2). */
+double fog_linear_extinction(double start, double end, double r);
+double fog_exp2_extinction(double density, double r);
+double fog_linear_optical_depth(double start, double end, const double eye[3],
+                                const double o[3], const double d[3], double length);
+double fog_exp2_optical_depth(double density, const double eye[3], const double o[3],
+                              const double d[3], double length);
 /* int_0^L k exp(-(y_c + t dir_y - y0)/H) dt = k e^{-(y_c - y0)/H} L exprel(dir_y L / H). */
 double fog_height_optical_depth(double extinction, double y0, double scale_height,
                                 double camera_y, double dir_y, double length);

@@ -645,6 +645,8 @@ static int fog_pass_common_and_draw(const fog_pass *pass, GLuint prog, const cam
   glUniform1f(fog_loc(prog, "fog_model_y0"), (float)(params->model_y0 - c[1]));
   glUniform1f(fog_loc(prog, "fog_model_scale_height"),
               (float)(params->model_scale_height > 0 ? params->model_scale_height : 1.0));
+  glUniform1f(fog_loc(prog, "fog_model_start"), (float)params->model_fog_start);
+  glUniform1f(fog_loc(prog, "fog_model_end"), (float)params->model_fog_end);
   double right[3], up[3], forward[3];
   camera_basis(cam, width, height, right, up, forward);
   glUniform3d(fog_loc(prog, "fog_camera_right"), right[0], right[1], right[2]);
@@ -940,6 +942,13 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
   if (params->model == FOG_MODEL_HEIGHT && !(params->model_scale_height > 0)) {
     snprintf(err->message, sizeof err->message,
              "fog pass: height fog scale height %g: expected > 0", params->model_scale_height);
+    return 1;
+  }
+  if (params->model == FOG_MODEL_LINEAR &&
+      !(params->model_fog_start >= 0 && params->model_fog_end > params->model_fog_start)) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: linear fog from %g to %g: expected 0 <= start < end",
+             params->model_fog_start, params->model_fog_end);
     return 1;
   }
   if (params->model == FOG_MODEL_VOLUME &&

@@ -94,6 +94,9 @@ typedef struct fog_pass_params {
   fog_model_kind model;      /* FOG_MODEL_FOGMAP (default) or an analytic model */
   double model_extinction;   /* FOG_MODEL_HOMOGENEOUS / _HEIGHT: K (at y0), per world unit */
   double model_y0, model_scale_height; /* FOG_MODEL_HEIGHT: K e^{-(y - y0)/H}; H > 0 */
+  /* FOG_MODEL_LINEAR: the factor's distances from the camera, 0 <= start < end (FOG_MODEL_EXP2
+   * reads model_extinction, the factor's density). */
+  double model_fog_start, model_fog_end;
   /* FOG_MODEL_RBF: model_extinction is the base; these Gaussians (at most FOG_MAX_RBFS,
    * radius > 0, density >= 0) are read at each draw. */
   const fog_rbf *model_rbfs;

@@ -35,6 +35,14 @@ double fog_light_extinction_at(const fog_model *m, const double p[3]) {
       return m->extinction * exp(-(p[1] - m->y0) / m->scale_height);
     case FOG_MODEL_QUADRIC:
       return fog_quadric_extinction_at(m->quadrics, m->quadric_count, p);
+    case FOG_MODEL_LINEAR:
+    case FOG_MODEL_EXP2: {
+      double r = sqrt((p[0] - m->eye[0]) * (p[0] - m->eye[0]) +
+                      (p[1] - m->eye[1]) * (p[1] - m->eye[1]) +
+                      (p[2] - m->eye[2]) * (p[2] - m->eye[2]));
+      return m->kind == FOG_MODEL_LINEAR ? fog_linear_extinction(m->fog_start, m->fog_end, r)
+                                         : fog_exp2_extinction(m->extinction, r);
+    }
     default: {
       double k = m->extinction;
       for (int i = 0; i < m->rbf_count; i++) {
@@ -51,7 +59,8 @@ double fog_light_extinction_at(const fog_model *m, const double p[3]) {
 /* The stretch of the ray that holds fog (fog_light_span): the box, the volume's support,
  * the height fog, homogeneous fog and an RBF base up to an optical depth of
  * FOG_LIGHT_SPAN_DEPTH (the rest weighs < e^-20), the RBFs' reach (6 radii), the quadrics'
- * boxes. */
+ * boxes; the classic factors from the eye (o = eye): the linear fog's [start, end], the
+ * exp2 fog to FOG_LIGHT_SPAN_DEPTH. */
 bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
                     double t_surface, double *t0, double *t1) {
   *t0 = 0.0;
@@ -88,6 +97,13 @@ bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
       *t1 = fmin(t_surface, reach);
       break;
     }
+    case FOG_MODEL_LINEAR:
+      /* nothing before start; opaque from end on (from the eye: the ray's own distances) */
+      *t0 = fmax(m->fog_start, 0.0), *t1 = fmin(t_surface, m->fog_end);
+      break;
+    case FOG_MODEL_EXP2: /* (a t)^2 reaches FOG_LIGHT_SPAN_DEPTH at sqrt(depth) / a */
+      *t1 = fmin(t_surface, m->extinction > 0 ? sqrt(FOG_LIGHT_SPAN_DEPTH) / m->extinction : 0.0);
+      break;
     case FOG_MODEL_QUADRIC: {
       double lo[3], hi[3], a, b;
       if (!fog_quadric_bounds(m->quadrics, m->quadric_count, lo, hi)) return false;

@@ -111,10 +111,18 @@ float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, fl
         shadow = fog_model_extinction * dist;
       }
 #else
+#if FOG_MODEL_KIND == FOG_MODEL_LINEAR
+      float depth = fog_linear_depth(t);  // the factor itself (K grows without bound at end)
+#elif FOG_MODEL_KIND == FOG_MODEL_EXP2
+      float depth = fog_exp2_depth(t);
+#else
       float u = clamp((t - t0) / dt, 0.0, float(steps));
       int c = min(int(floor(u)), steps - 1);
       float depth = fog_lamp_table[c] +
                     clamp(u - float(c), 0.0, 1.0) * (fog_lamp_table[c + 1] - fog_lamp_table[c]);
+#endif
+      // at the linear fog's end (K "infinite", tau 0, rounding either way) no light comes back
+      if (depth >= 1e29 || k >= 1e29) continue;
       float shadow = 0.0, ds = dist / float(fog_lamp_shadow_steps);
       for (int j = 0; j < fog_lamp_shadow_steps; j++)
         shadow += fog_lamp_extinction(x + ((float(j) + 0.5) / float(fog_lamp_shadow_steps)) *

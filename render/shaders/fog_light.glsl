@@ -73,6 +73,15 @@ bool fog_light_span(fog_ray r, out float t0, out float t1) {
     return false;
   t0 = max(t0, 0.0);
   t1 = min(t1, r.t_surface);
+#elif FOG_MODEL_KIND == FOG_MODEL_LINEAR
+  // nothing before start; opaque from end on
+  t0 = max(fog_model_start, 0.0);
+  t1 = min(r.t_surface, fog_model_end);
+#elif FOG_MODEL_KIND == FOG_MODEL_EXP2
+  // (a t)^2 reaches FOG_LIGHT_SPAN_DEPTH at sqrt(depth) / a
+  t0 = 0.0;
+  t1 = fog_model_extinction > 0.0 ? min(r.t_surface, sqrt(FOG_LIGHT_SPAN_DEPTH) / fog_model_extinction)
+                                  : 0.0;
 #else
   t0 = 0.0;
   t1 = min(r.t_surface, fog_model_reach(r.dir));

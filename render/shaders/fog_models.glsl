@@ -1,5 +1,5 @@
 // The fog models besides the fogmap (homogeneous, height, Gaussian RBFs, a 3D volume,
-// quadric volumes): GLSL
+// quadric volumes, the classic linear and exp2 factors): GLSL
 // twins of render/fog_models_cpu.c (same names, same formulas; render/fog_models.h).
 // Positions arrive camera-relative from the CPU, subtracted there in double.
 // FOG_MODEL_*, FOG_MAX_RBFS and FOG_EXPREL_SWITCH come from the C headers
@@ -9,6 +9,9 @@ const int fog_model = FOG_MODEL_KIND;  // specialised per variant (render/fog_pa
 uniform float fog_model_extinction;
 uniform float fog_model_y0;            // y0 - camera y
 uniform float fog_model_scale_height;
+// FOG_MODEL_LINEAR: the factor's start and end distances (FOG_MODEL_EXP2: the density is
+// fog_model_extinction); both media are radial about the camera (render/fog_classic_cpu.c)
+uniform float fog_model_start, fog_model_end;
 // FOG_MODEL_RBF (fog_pass_rbf_uniforms): Gaussian i is texels 2i (xyz: centre - camera,
 // subtracted in double; w: 1/r) and 2i + 1 (x: density) of fog_rbf_data; the view ray of a
 // pixel sums only its screen tile's list (render/fog_rbf_tiles.h: what it leaves out changes
@@ -358,6 +361,12 @@ float fog_grid3d_optical_depth_march(vec3 dir, float length) {
 // K at camera-relative point p, pointwise (the marcher's integrand).
 float fog_model_extinction_at(vec3 p) {
   if (fog_model == FOG_MODEL_HOMOGENEOUS) return fog_model_extinction;
+  if (fog_model == FOG_MODEL_LINEAR) {
+    float r = length(p);
+    return r <= fog_model_start ? 0.0 : (r < fog_model_end ? 1.0 / (fog_model_end - r) : 1e30);
+  }
+  if (fog_model == FOG_MODEL_EXP2)
+    return 2.0 * fog_model_extinction * fog_model_extinction * length(p);
   if (fog_model == FOG_MODEL_QUADRIC) return fog_quadric_extinction_at(p);
   if (fog_model == FOG_MODEL_HEIGHT)
     return fog_model_extinction * exp(-(p.y - fog_model_y0) / fog_model_scale_height);
@@ -379,6 +388,7 @@ float fog_model_extinction_at(vec3 p) {
 // height fog level or going down): the marcher then reports it opaque, as the exact
 // integral is.
 float fog_model_reach(vec3 dir) {
+  if (fog_model == FOG_MODEL_LINEAR) return fog_model_end;  // opaque from there on
   if (fog_model == FOG_MODEL_HEIGHT)
     return dir.y > 0.0 ? max(fog_model_y0 + 36.0 * fog_model_scale_height, 0.0) / dir.y : 1e30;
   if (fog_model == FOG_MODEL_RBF && fog_model_extinction == 0.0) {
@@ -434,6 +444,20 @@ float fog_model_depth_volume(fog_ray r) { return fog_grid3d_optical_depth(r.dir,
 float fog_model_depth_quadric(fog_ray r) {
   return fog_quadric_optical_depth_from(vec3(0.0), r.dir, r.t_surface);
 }
+// The classic factors from the camera (Zdrojewska eq. 2, 4): -ln f(d).
+float fog_linear_depth(float d) {
+  if (d <= fog_model_start) return 0.0;
+  if (d >= fog_model_end) return 1e30;
+  return log((fog_model_end - fog_model_start) / (fog_model_end - d));
+}
+float fog_exp2_depth(float d) {
+  if (fog_model_extinction == 0.0) return 0.0;
+  if (d >= 1e29) return 1e30;
+  float x = fog_model_extinction * d;
+  return x * x;
+}
+float fog_model_depth_linear(fog_ray r) { return fog_linear_depth(r.t_surface); }
+float fog_model_depth_exp2(fog_ray r) { return fog_exp2_depth(r.t_surface); }
 
 float fog_model_march_homogeneous(fog_ray r) {
   return fog_model_optical_depth_march(r.dir, r.t_surface, fog_march_steps, r.jitter);
@@ -441,6 +465,10 @@ float fog_model_march_homogeneous(fog_ray r) {
 float fog_model_march_height(fog_ray r) { return fog_model_march_homogeneous(r); }
 float fog_model_march_rbf(fog_ray r) { return fog_model_march_homogeneous(r); }
 float fog_model_march_quadric(fog_ray r) { return fog_model_march_homogeneous(r); }
+float fog_model_march_linear(fog_ray r) {  // opaque from end on, however it is marched
+  return r.t_surface >= fog_model_end ? 1e30 : fog_model_march_homogeneous(r);
+}
+float fog_model_march_exp2(fog_ray r) { return fog_model_march_homogeneous(r); }
 float fog_model_march_volume(fog_ray r) {
   return fog_grid3d_optical_depth_march(r.dir, r.t_surface);
 }

@@ -61,7 +61,12 @@ int main(void) {
   expect_error("[render]\n[terrain]\nheightmap = hills.png\n", "3: [terrain] heightmap: ", missing);
   /* The fog models of the ladder and their Gaussians. */
   expect_error("[fog]\nmodel = perlin\n", "2: [fog] model: ",
-               "expected one of fogmap|homogeneous|height|rbf|volume|quadric, got 'perlin'");
+               "expected one of fogmap|homogeneous|height|rbf|volume|quadric|linear|exp2, got "
+               "'perlin'");
+  /* The linear fog factor ends after it starts. */
+  expect_error("[fog]\nfog_start = 500\nmodel = linear\nfog_end = 400\n", "3: [fog] model: ",
+               "linear fog needs fog_end above fog_start, got fog_start = 500 and fog_end = 400");
+  expect_error("[fog]\nmodel = linear\nfog_start = -1\n", "3: [fog] fog_start: ", "");
   expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 50\n", "3: [fog] rbf: ",
                "expected X Y Z RADIUS DENSITY (5 numbers), got '0 10 0 50'");
   expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 50 0.1\nrbf = 0 10 0 0 0.1\n", "4: [fog] rbf: ",

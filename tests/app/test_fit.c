@@ -1,6 +1,7 @@
 /* `fogpipe fit` on synthetic inputs with known answers (app/fit.h, docs/fit.md):
  *   a constant density picks homogeneous fog, its K the input's;
  *   an exponential column picks height fog with the input's scale height (to 1 %);
+ *   OpenGL's linear and exp2 fog pick themselves, start, end and density recovered;
  *   a flat-bottomed ground fog (a fogmap over a slab) picks a fogmap;
  *   a single Gaussian picks one RBF, its centre, radius and density the input's (1 %);
  *   a tall leaning plume of thin columns (a VDB written here) picks the volume at
@@ -89,6 +90,34 @@ static void test_height(void) {
         k ? k->max_error : NAN);
   CHECK(!strcmp(chosen_family(&r, 0.01), "height"), "picked %s", chosen_family(&r, 0.01));
   fit_result_destroy(&r);
+}
+
+/* The classic factors, fitted on the views (each view's camera their eye): OpenGL's linear
+ * fog from 300 to 1400 and exp2 fog of density 0.00075 come back as themselves. */
+static void test_classic(void) {
+  for (int exp2 = 0; exp2 < 2; exp2++) {
+    scene_config cfg;
+    scene_config_init(&cfg);
+    cfg.fog.model = exp2 ? FOG_MODEL_EXP2 : FOG_MODEL_LINEAR;
+    cfg.fog.fog_start = 300, cfg.fog.fog_end = 1400, cfg.fog.density_scale = 0.00075;
+    fit_result r;
+    if (!run(exp2 ? "exp2 fog" : "linear fog", &cfg, &r)) continue;
+    const fit_rung *g = rung_named(&r, exp2 ? "exp2" : "linear");
+    CHECK(g != NULL, "no %s rung", exp2 ? "exp2" : "linear");
+    if (g) {
+      const scene_fog_config *f = &g->config->fog;
+      if (exp2)
+        CHECK(fabs(f->density_scale / 0.00075 - 1) < 1e-9, "exp2 density %.12g",
+              f->density_scale);
+      else
+        CHECK(fabs(f->fog_start - 300) < 1e-6 && fabs(f->fog_end - 1400) < 1e-6,
+              "linear from %.12g to %.12g", f->fog_start, f->fog_end);
+      CHECK(g->max_error < 1e-6, "%s error %g", g->name, g->max_error);
+    }
+    const char *want = exp2 ? "exp2" : "linear", *got = chosen_family(&r, 0.01);
+    CHECK(!strcmp(got, want), "picked %s, want %s", got, want);
+    fit_result_destroy(&r);
+  }
 }
 
 static void test_ground_fog(void) {
@@ -265,6 +294,7 @@ int main(void) {
   CHECK(mkdtemp(folder) != NULL, "mkdtemp");
   test_constant();
   test_height();
+  test_classic();
   test_ground_fog();
   test_gaussian();
   test_plume(folder);

@@ -1,7 +1,8 @@
 /* A config's `[fog] model` reaches the pixels as docs/config.md says: render_frame (what
  * `fogpipe render` and `view` draw) of homogeneous, height, Gaussian RBF, volume and quadric
- * fog, each pixel's transmittance against the CPU model of the documented meaning of the
- * keys (density_scale, fog_height, scale_height, rbf_base, rbf lines; quadric lines as
+ * fog, and the classic linear and exp2 factors, each pixel's transmittance against the CPU
+ * model of the documented meaning of the keys (density_scale, fog_height, scale_height,
+ * rbf_base, rbf lines, fog_start and fog_end from the camera; quadric lines as
  * test_config_quadric pins them; for the volume the VDB frame's grid where the bake put
  * it, integrated exactly), along the pixel's ray to
  * the depth render_frame reports (the sky: to infinity). Max |delta tau| <= 2e-4. `fogpipe
@@ -67,11 +68,16 @@ static fog_model documented_model(const scene_config *cfg, fog_rbf *rbfs,
     quadrics[i] = f->quadrics[i]; /* the shapes' coefficients: test_config_quadric */
     quadrics[i].density *= f->density_scale;
   }
+  /* the classic factors: distances from the camera, fog_start and fog_end (linear), the
+   * density density_scale (exp2) */
   return (fog_model){.kind = f->model,
                      .extinction = f->model == FOG_MODEL_RBF ? f->rbf_base : f->density_scale,
                      .y0 = f->fog_height, .scale_height = f->scale_height, .rbfs = rbfs,
                      .rbf_count = f->rbf_count, .quadrics = quadrics,
-                     .quadric_count = f->quadric_count};
+                     .quadric_count = f->quadric_count,
+                     .eye = {cfg->camera.position[0], cfg->camera.position[1],
+                             cfg->camera.position[2]},
+                     .fog_start = f->fog_start, .fog_end = f->fog_end};
 }
 
 static void check_config(const char *path, const char *label) {
@@ -125,13 +131,15 @@ int main(void) {
   static const char *const scene =
       "[camera]\nposition = 0 120 400\nlook_at = 0 20 -100\nfov = 55\n"
       "[terrain]\nsize = 1000 1000\nheight = 120\nresolution = 65\n";
-  static const char *const fogs[3][2] = {
+  static const char *const fogs[5][2] = {
       {"homogeneous", "\n[fog]\nmodel = homogeneous\ndensity_scale = 0.003\n"},
       {"height", "\n[fog]\nmodel = height\ndensity_scale = 0.02\nfog_height = 30\n"
                  "scale_height = 25\n"},
       {"rbf", "\n[fog]\nmodel = rbf\nrbf_base = 0.0005\ndensity_scale = 2\n"
-              "rbf = -50 20 -50 80 0.01\nrbf = 100 0 0 40 0.02\n"}};
-  for (int k = 0; k < 3; k++) {
+              "rbf = -50 20 -50 80 0.01\nrbf = 100 0 0 40 0.02\n"},
+      {"linear", "\n[fog]\nmodel = linear\nfog_start = 250\nfog_end = 900\n"},
+      {"exp2", "\n[fog]\nmodel = exp2\ndensity_scale = 0.0025\n"}};
+  for (int k = 0; k < 5; k++) {
     char path[256];
     snprintf(path, sizeof path, "%s/%s.ini", dir, fogs[k][0]);
     FILE *f = fopen(path, "w");

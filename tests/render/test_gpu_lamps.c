@@ -68,6 +68,8 @@ static double compare(fog_test_gl *gl, const camera *cam, const fog_pass_params 
     }
   printf("%s: peak in-scatter %.4g, max |GL - twin| %.3e (%.2e of the peak), max relative "
          "%.2e\n", name, peak, worst, worst / fmax(peak, 1e-30), worst_rel);
+  CHECK(isfinite(peak) && isfinite(worst), "%s: peak %g, max error %g: not finite", name, peak,
+        worst);
   CHECK(outside == 0, "%s: %d pixel values differ from the twin by more than 2e-4 relative + "
         "2e-5 of the peak (max %.3e)", name, outside, worst);
   return peak;
@@ -145,8 +147,9 @@ int main(void) {
       fog_quadric_sphere((double[3]){42, 5, -18}, 10, 0.08, 0.4),
       fog_quadric_cylinder((double[3]){60, 0, -40}, 5, 18, 0.1, 0.0),
       fog_quadric_cone((double[3]){30, 0, -35}, 12, 16, 0.06, 0.5)};
-  static const char *names[] = {"", "homogeneous", "height", "rbf", "volume", "quadric"};
-  for (int model = FOG_MODEL_HOMOGENEOUS; model <= FOG_MODEL_QUADRIC; model++) {
+  static const char *names[] = {"", "homogeneous", "height", "rbf", "volume", "quadric",
+                                "linear", "exp2"};
+  for (int model = FOG_MODEL_HOMOGENEOUS; model <= FOG_MODEL_EXP2; model++) {
     camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1};
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
@@ -157,7 +160,15 @@ int main(void) {
     if (model == FOG_MODEL_VOLUME) m = (fog_model){.kind = model, .grid3d = &grid3d};
     if (model == FOG_MODEL_QUADRIC)
       m = (fog_model){.kind = model, .quadrics = quadrics, .quadric_count = 3};
+    /* the classic factors: radial about the camera, the lamps' light marched through them */
+    if (model == FOG_MODEL_LINEAR)
+      m = (fog_model){.kind = model, .fog_start = 20, .fog_end = 160,
+                      .eye = {cam.position[0], cam.position[1], cam.position[2]}};
+    if (model == FOG_MODEL_EXP2)
+      m = (fog_model){.kind = model, .extinction = 0.012,
+                      .eye = {cam.position[0], cam.position[1], cam.position[2]}};
     fog_pass_params params = {.model = model, .model_extinction = m.extinction,
+                              .model_fog_start = m.fog_start, .model_fog_end = m.fog_end,
                               .model_y0 = m.y0, .model_scale_height = m.scale_height,
                               .model_rbfs = m.rbfs, .model_rbf_count = m.rbf_count,
                               .model_quadrics = m.quadrics,
