@@ -204,11 +204,11 @@ static int write_chart(const fit_result *r, const char *png) {
   chart_point points[FIT_MAX_RUNGS];
   for (int i = 0; i < r->count; i++)
     points[i] = (chart_point){.series = r->rungs[i].family, .x = r->rungs[i].ms,
-                              .y = fmax(r->rungs[i].max_error, 1e-6)};
+                              .y = fmax(r->rungs[i].max_error, 1e-4)};
   char csv[PATH_MAX], error[512];
   snprintf(csv, sizeof csv, "%.*s.csv", (int)(strlen(png) - 4), png);
   chart_desc desc = {.title = "fogpipe fit: each rung's error against its GL time",
-                     .x_label = "GL ms per frame", .y_label = "max |delta tau| (floor 1e-6)",
+                     .x_label = "GL ms per frame", .y_label = "max |delta tau| (an exact rung at 1e-4)",
                      .log_y = true};
   if (chart_write(&desc, points, r->count, csv, png, error, sizeof error))
     return cli_fail("fit", "%s", error);

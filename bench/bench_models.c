@@ -47,17 +47,21 @@ static const double volume_steps[] = {2.0, 1.0, 0.5, 0.25, 0.125}; /* voxels */
 enum {
   MARCH_COUNT = 6,
   VOLUME_STEP_COUNT = 5,
-  MODEL_COUNT = 5,
+  MODEL_COUNT = 7,
   SCENE_COUNT = 2,
   QUADRIC_COUNT = 8,
-  MAX_ROWS = 1 + 3 * (1 + MARCH_COUNT) + 3 + VOLUME_STEP_COUNT
+  MAX_ROWS = 1 + 3 * (1 + MARCH_COUNT) + 3 + VOLUME_STEP_COUNT + 2
 };
 /* The table's rows this bench times (render/fog_models.def: names and labels come from it). */
 static const fog_model_kind model_kinds[MODEL_COUNT] = {
-    FOG_MODEL_HOMOGENEOUS, FOG_MODEL_HEIGHT, FOG_MODEL_RBF, FOG_MODEL_VOLUME, FOG_MODEL_QUADRIC};
+    FOG_MODEL_HOMOGENEOUS, FOG_MODEL_HEIGHT, FOG_MODEL_RBF, FOG_MODEL_VOLUME, FOG_MODEL_QUADRIC,
+    FOG_MODEL_LINEAR, FOG_MODEL_EXP2};
 static const char *const scene_configs[SCENE_COUNT] = {"rbf_fog_banks.ini",
                                                        "vdb_plume_volume.ini"};
-static const int scene_of_model[MODEL_COUNT] = {0, 0, 0, 1, 0};
+static const int scene_of_model[MODEL_COUNT] = {0, 0, 0, 1, 0, 0, 0};
+/* The rows with marches: the classic factors and homogeneous fog are closed forms of the
+ * distance alone (nothing to march). */
+static bool marched(int m) { return m >= 1 && m <= 4; }
 
 /* The quadric row's volumes on the valley of scene_configs[0]. */
 static void bench_quadrics(fog_quadric q[QUADRIC_COUNT]) {
@@ -354,13 +358,17 @@ int bench_models(int argc, char **argv) {
   bench_quadrics(quadrics);
   double voxel = HUGE_VAL;
   for (int a = 0; a < 3; a++) voxel = fmin(voxel, fabs(frame.world.step[a]));
+  const double *eye = scenes[0].drawn.cam.position; /* the classic factors' */
   const fog_model models[MODEL_COUNT] = {
       {.kind = FOG_MODEL_HOMOGENEOUS, .extinction = 0.002},
       {.kind = FOG_MODEL_HEIGHT, .extinction = 0.01, .y0 = 40.0, .scale_height = 25.0},
       {.kind = FOG_MODEL_RBF, .extinction = banks->fog.rbf_base, .rbfs = rbfs,
        .rbf_count = banks->fog.rbf_count},
       {.kind = FOG_MODEL_VOLUME, .grid3d = &grid},
-      {.kind = FOG_MODEL_QUADRIC, .quadrics = quadrics, .quadric_count = QUADRIC_COUNT}};
+      {.kind = FOG_MODEL_QUADRIC, .quadrics = quadrics, .quadric_count = QUADRIC_COUNT},
+      {.kind = FOG_MODEL_LINEAR, .fog_start = 200.0, .fog_end = 1200.0,
+       .eye = {eye[0], eye[1], eye[2]}},
+      {.kind = FOG_MODEL_EXP2, .extinction = 0.0015, .eye = {eye[0], eye[1], eye[2]}}};
 
   /* The CPU references: tau of each model along every pixel's ray to its surface. */
   for (int m = 0; m < MODEL_COUNT; m++) {
@@ -380,7 +388,7 @@ int bench_models(int argc, char **argv) {
   for (int m = 0; m < MODEL_COUNT; m++) {
     /* s = -3: the volume's exact walk without empty-space skipping; -2: with hardware
      * filtering; -1: exact (the pass's defaults); >= 0: marches */
-    int marches = m == 0 ? 0 : m == 3 ? VOLUME_STEP_COUNT : MARCH_COUNT;
+    int marches = !marched(m) ? 0 : m == 3 ? VOLUME_STEP_COUNT : MARCH_COUNT;
     for (int s = m == 3 ? -3 : -1; s < marches; s++) {
       model_row *r = &rows[row_count++];
       r->model = m;
@@ -394,6 +402,7 @@ int bench_models(int argc, char **argv) {
           .model_y0 = models[m].y0, .model_scale_height = models[m].scale_height,
           .model_rbfs = models[m].rbfs, .model_rbf_count = models[m].rbf_count,
           .model_quadrics = models[m].quadrics, .model_quadric_count = models[m].quadric_count,
+          .model_fog_start = models[m].fog_start, .model_fog_end = models[m].fog_end,
           .fog_colour = {0.75f, 0.78f, 0.82f},
           .integrator = s < 0 ? FOG_INTEGRATOR_EXACT : FOG_INTEGRATOR_MARCH,
           .fetch = s == -2 ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
@@ -477,6 +486,7 @@ int bench_models(int argc, char **argv) {
   printf("\nCSV: %s, %s; PNG: %s\n", table, chart_csv, chart_png);
   double exact_ms[MODEL_COUNT] = {0}, speedup[MODEL_COUNT] = {0}, unskipped_ms = 0.0;
   for (int m = 1; m < MODEL_COUNT; m++) {
+    if (!marched(m)) continue;
     bool matched;
     speedup[m] = march_speedup(rows, row_count, m, &matched);
     for (int i = 0; i < row_count; i++)
