@@ -692,41 +692,11 @@ static int check_file(parse_state *s, const char *section, const char *key, int 
   return 1;
 }
 
-int scene_config_load(const char *path, scene_config *cfg, scene_config_error *err) {
-  scene_config_init(cfg);
-  snprintf(cfg->path, sizeof cfg->path, "%s", path);
-  parse_state s = {.cfg = cfg, .path = path, .err = err};
-  const char *slash = strrchr(path, '/');
-  if (slash) snprintf(s.folder, sizeof s.folder, "%.*s", (int)(slash - path), path);
-  if (slash == path) snprintf(s.folder, sizeof s.folder, "/");
-  s.file = fopen(path, "r");
-  if (!s.file) {
-    snprintf(err->message, sizeof err->message, "%s: cannot open the config (%s)", path,
-             strerror(errno));
-    return 1;
-  }
-  struct stat st;
-  if (fstat(fileno(s.file), &st) != 0 || !S_ISREG(st.st_mode)) {
-    bool folder = fstat(fileno(s.file), &st) == 0 && S_ISDIR(st.st_mode);
-    snprintf(err->message, sizeof err->message, "%s: not a config file (%s)", path,
-             folder ? "a folder" : "not a regular file");
-    fclose(s.file);
-    return 1;
-  }
-  int status = ini_parse_stream(read_line, &s, handle, &s);
-  fclose(s.file);
-  free(s.whole_line);
-  if (s.error_line) return 1;
-  if (status > 0) {
-    snprintf(err->message, sizeof err->message,
-             "%s:%d: expected '[section]', 'key = value' or a comment", path, status);
-    return 1;
-  }
-  if (status < 0) {
-    snprintf(err->message, sizeof err->message, "%s: cannot read the config", path);
-    return 1;
-  }
-  /* Checks across keys, named by the key that was set last. */
+/* The files the config names (fogmap, sequence, VDB, heightmap) and their exclusions,
+ * named by the key that was set last. */
+static int check_sources(parse_state *ps) {
+  parse_state s = *ps;
+  const scene_config *cfg = s.cfg;
   if (cfg->fog.fogmap[0] && cfg->fog.vdb[0]) {
     bool vdb_last = cfg->fog.vdb_line > cfg->fog.fogmap_line;
     s.line = vdb_last ? cfg->fog.vdb_line : cfg->fog.fogmap_line;
@@ -768,11 +738,13 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
   if (cfg->terrain.heightmap[0] &&
       check_file(&s, "terrain", "heightmap", cfg->terrain.heightmap_line, cfg->terrain.heightmap))
     return 1;
-  if (cfg->box.top <= cfg->box.floor) {
-    snprintf(err->message, sizeof err->message,
-             "%s: [box] top (%g) must be above floor (%g)", path, cfg->box.top, cfg->box.floor);
-    return 1;
-  }
+  return 0;
+}
+
+/* What each fog model needs of the other keys. */
+static int check_models(parse_state *ps) {
+  parse_state s = *ps;
+  const scene_config *cfg = s.cfg;
   if (cfg->fog.model == FOG_MODEL_RBF && cfg->fog.rbf_count == 0 &&
       cfg->fog.rbf_emitter_count == 0) {
     s.line = cfg->fog.model_line;
@@ -817,6 +789,49 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
            MAX_EXTINCTION);
       return 1;
     }
+  }
+  return 0;
+}
+
+int scene_config_load(const char *path, scene_config *cfg, scene_config_error *err) {
+  scene_config_init(cfg);
+  snprintf(cfg->path, sizeof cfg->path, "%s", path);
+  parse_state s = {.cfg = cfg, .path = path, .err = err};
+  const char *slash = strrchr(path, '/');
+  if (slash) snprintf(s.folder, sizeof s.folder, "%.*s", (int)(slash - path), path);
+  if (slash == path) snprintf(s.folder, sizeof s.folder, "/");
+  s.file = fopen(path, "r");
+  if (!s.file) {
+    snprintf(err->message, sizeof err->message, "%s: cannot open the config (%s)", path,
+             strerror(errno));
+    return 1;
+  }
+  struct stat st;
+  if (fstat(fileno(s.file), &st) != 0 || !S_ISREG(st.st_mode)) {
+    bool folder = fstat(fileno(s.file), &st) == 0 && S_ISDIR(st.st_mode);
+    snprintf(err->message, sizeof err->message, "%s: not a config file (%s)", path,
+             folder ? "a folder" : "not a regular file");
+    fclose(s.file);
+    return 1;
+  }
+  int status = ini_parse_stream(read_line, &s, handle, &s);
+  fclose(s.file);
+  free(s.whole_line);
+  if (s.error_line) return 1;
+  if (status > 0) {
+    snprintf(err->message, sizeof err->message,
+             "%s:%d: expected '[section]', 'key = value' or a comment", path, status);
+    return 1;
+  }
+  if (status < 0) {
+    snprintf(err->message, sizeof err->message, "%s: cannot read the config", path);
+    return 1;
+  }
+  if (check_sources(&s) || check_models(&s)) return 1;
+  if (cfg->box.top <= cfg->box.floor) {
+    snprintf(err->message, sizeof err->message,
+             "%s: [box] top (%g) must be above floor (%g)", path, cfg->box.top, cfg->box.floor);
+    return 1;
   }
   if (cfg->fog.profile == SCENE_PROFILE_BSPLINE && cfg->fog.profile_count == 0) {
     snprintf(err->message, sizeof err->message,
