@@ -12,6 +12,7 @@
 #include "app/cli.h"
 #include "app/commands.h"
 #include "app/config.h"
+#include "app/frame_exr.h"
 #include "app/player.h"
 #include "sim/sim.h"
 
@@ -37,28 +38,21 @@ static bool ends_with(const char *s, const char *suffix) {
   return n >= m && strcasecmp(s + n - m, suffix) == 0;
 }
 
-/* R, G, B, A as half; depth (also as Z, the channel compositors read), transmittance and
- * inscatter.R/G/B (rgb = transmittance surface + inscatter) as float. Without fog the
- * transmittance is 1 and the in-scatter 0: written anyway, so every render has the same
- * channels for a compositor. */
+/* The frame's EXR (app/frame_exr.h) with the camera as the standard header matrices.
+ * Without fog the transmittance is 1 and the in-scatter 0: written anyway, so every
+ * render has the same channels for a compositor. */
 static int write_exr(const char *out, int width, int height, const frame_pixels *frame,
                      const camera *cam, sim_error *err) {
-  size_t pixels = (size_t)width * height;
-  float *planes = malloc(pixels * 7 * sizeof(float));
+  float *planes = malloc((size_t)width * height * FRAME_EXR_PLANES * sizeof(float));
   if (!planes) return snprintf(err->message, sizeof err->message, "out of memory"), 1;
-  for (size_t k = 0; k < pixels; k++) {
-    for (int c = 0; c < 4; c++) planes[c * pixels + k] = frame->rgba[4 * k + c];
-    for (int c = 0; c < 3; c++) planes[(4 + c) * pixels + k] = frame->inscatter[3 * k + c];
-  }
-  image_channel channels[10] = {
-      {"R", planes, 1}, {"G", planes + pixels, 1}, {"B", planes + 2 * pixels, 1},
-      {"A", planes + 3 * pixels, 1}, {"depth", frame->depth, 0}, {"Z", frame->depth, 0},
-      {"transmittance", frame->transmittance, 0}, {"inscatter.R", planes + 4 * pixels, 0},
-      {"inscatter.G", planes + 5 * pixels, 0}, {"inscatter.B", planes + 6 * pixels, 0}};
+  image_channel channels[FRAME_EXR_CHANNELS];
+  frame_exr_channels(frame->rgba, frame->transmittance, frame->depth, frame->inscatter, width,
+                     height, false, planes, channels);
   image_exr_matrix matrices[2] = {{.name = "worldToCamera"}, {.name = "worldToNDC"}};
   camera_exr_matrices(cam, width, height, matrices[0].m, matrices[1].m);
   const image_exr_header header = {.matrices = matrices, .matrix_count = 2};
-  int status = image_write_exr_with(out, width, height, channels, 10, &header, err);
+  int status = image_write_exr_with(out, width, height, channels, FRAME_EXR_CHANNELS, &header,
+                                    err);
   free(planes);
   return status;
 }

@@ -3,6 +3,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "app/recorder.h"
 
+#include "app/frame_exr.h"
+
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -173,36 +175,9 @@ int recorder_remove_stale_temporaries(const recorder *rec) {
 int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *pixels,
                          float *scratch, recorder_error *err) {
   const int w = rec->width, h = rec->height;
-  const size_t n = (size_t)w * (size_t)h;
-  float *plane[RECORDER_PLANES];
-  for (int c = 0; c < RECORDER_PLANES; c++) plane[c] = scratch + (size_t)c * n;
-  /* De-interleave and flip to top-row-first (EXR order). */
-  for (int y = 0; y < h; y++) {
-    int src_row = pixels->bottom_up ? h - 1 - y : y;
-    const float *rgba = pixels->rgba + (size_t)src_row * w * 4;
-    const float *tr = pixels->transmittance + (size_t)src_row * w;
-    const float *dp = pixels->depth + (size_t)src_row * w;
-    const float *in = pixels->inscatter + (size_t)src_row * w * 3;
-    size_t dst = (size_t)y * w;
-    for (int x = 0; x < w; x++) {
-      for (int c = 0; c < 4; c++) plane[c][dst + x] = rgba[4 * x + c];
-      plane[4][dst + x] = tr[x];
-      plane[5][dst + x] = dp[x];
-      for (int c = 0; c < 3; c++) plane[6 + c][dst + x] = in[3 * x + c];
-    }
-  }
-  const image_channel channels[] = {
-      {.name = "R", .pixels = plane[0], .as_half = 1},
-      {.name = "G", .pixels = plane[1], .as_half = 1},
-      {.name = "B", .pixels = plane[2], .as_half = 1},
-      {.name = "A", .pixels = plane[3], .as_half = 1},
-      {.name = "transmittance", .pixels = plane[4], .as_half = 0},
-      {.name = "depth", .pixels = plane[5], .as_half = 0},
-      {.name = "Z", .pixels = plane[5], .as_half = 0},
-      {.name = "inscatter.R", .pixels = plane[6], .as_half = 0},
-      {.name = "inscatter.G", .pixels = plane[7], .as_half = 0},
-      {.name = "inscatter.B", .pixels = plane[8], .as_half = 0},
-  };
+  image_channel channels[FRAME_EXR_CHANNELS];
+  frame_exr_channels(pixels->rgba, pixels->transmittance, pixels->depth, pixels->inscatter, w,
+                     h, pixels->bottom_up, scratch, channels);
   char path[1200];
   recorder_frame_path(rec, frame, path, sizeof path);
   sim_error serr = {{0}};
@@ -214,8 +189,7 @@ int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *p
                                    .string_count = rec->identity[0] ? 1 : 0,
                                    .matrices = camera,
                                    .matrix_count = 2};
-  if (image_write_exr_with(path, w, h, channels, sizeof channels / sizeof channels[0], &header,
-                           &serr)) {
+  if (image_write_exr_with(path, w, h, channels, FRAME_EXR_CHANNELS, &header, &serr)) {
     struct statvfs vfs;
     int full = statvfs(rec->folder, &vfs) == 0 &&
                (double)vfs.f_bavail * (double)vfs.f_frsize < frame_bytes(w, h);

@@ -1,7 +1,7 @@
 # `fogpipe bench models` smoke test: the benchmark runs at a tiny size, exits 0, writes a
-# table CSV of 30 rows of finite numbers (homogeneous exact; height, rbf and quadric exact
-# + 6 marching each; the volume exact, exact without skipping, exact with hardware filtering
-# and 5 marching), the chart CSV and PNG, ends with its
+# table CSV of 32 rows of finite numbers (homogeneous, linear and exp2 exact; height, rbf and
+# quadric exact + 6 marching each; the volume exact, exact without skipping, exact with
+# hardware filtering and 5 marching), the chart CSV and PNG, ends with its
 # summary line, and its exact rows agree with the CPU model (max tau error <= 1e-4: a bench
 # comparing against the wrong reference fails here). It asserts no speed.
 #
@@ -38,8 +38,8 @@ foreach(f models.csv models_chart.csv models_chart.png)
 endforeach()
 file(STRINGS ${OUT}/models.csv lines)
 list(LENGTH lines count)
-if(NOT count EQUAL 31)
-  message(FATAL_ERROR "models.csv has ${count} lines, expected a header and 30 rows")
+if(NOT count EQUAL 33)
+  message(FATAL_ERROR "models.csv has ${count} lines, expected a header and 32 rows")
 endif()
 list(GET lines 0 header)
 if(NOT header STREQUAL "model,method,setting,ms_per_frame,rmse,max_error")
@@ -48,7 +48,7 @@ endif()
 list(REMOVE_AT lines 0)
 set(finite "[0-9.]+(e[-+][0-9]+)?")
 foreach(line IN LISTS lines)
-  if(NOT line MATCHES "^(homogeneous|height|rbf|volume|quadric),(exact|exact-hardware|exact-no-skip|march),[0-9.]+,${finite},${finite},(${finite})$")
+  if(NOT line MATCHES "^(homogeneous|height|rbf|volume|quadric|linear|exp2),(exact|exact-hardware|exact-no-skip|march),[0-9.]+,${finite},${finite},(${finite})$")
     message(FATAL_ERROR "models.csv row without finite numbers: '${line}'")
   endif()
   set(max_error ${CMAKE_MATCH_5}) # groups: model, method, ms exponent, rmse exponent, max

@@ -1,0 +1,34 @@
+/* The EXR layout of a frame (app/frame_exr.h). */
+#include "app/frame_exr.h"
+
+#include <stddef.h>
+
+void frame_exr_channels(const float *rgba, const float *transmittance, const float *depth,
+                        const float *inscatter, int width, int height, bool bottom_up,
+                        float *scratch, image_channel channels[FRAME_EXR_CHANNELS]) {
+  const size_t n = (size_t)width * (size_t)height;
+  float *plane[FRAME_EXR_PLANES];
+  for (int c = 0; c < FRAME_EXR_PLANES; c++) plane[c] = scratch + (size_t)c * n;
+  for (int y = 0; y < height; y++) {
+    const size_t src = (size_t)(bottom_up ? height - 1 - y : y) * width, dst = (size_t)y * width;
+    for (int x = 0; x < width; x++) {
+      for (int c = 0; c < 4; c++) plane[c][dst + x] = rgba[4 * (src + x) + c];
+      plane[4][dst + x] = transmittance[src + x];
+      plane[5][dst + x] = depth[src + x];
+      for (int c = 0; c < 3; c++) plane[6 + c][dst + x] = inscatter[3 * (src + x) + c];
+    }
+  }
+  const image_channel layout[FRAME_EXR_CHANNELS] = {
+      {.name = "R", .pixels = plane[0], .as_half = 1},
+      {.name = "G", .pixels = plane[1], .as_half = 1},
+      {.name = "B", .pixels = plane[2], .as_half = 1},
+      {.name = "A", .pixels = plane[3], .as_half = 1},
+      {.name = "transmittance", .pixels = plane[4], .as_half = 0},
+      {.name = "depth", .pixels = plane[5], .as_half = 0},
+      {.name = "Z", .pixels = plane[5], .as_half = 0},
+      {.name = "inscatter.R", .pixels = plane[6], .as_half = 0},
+      {.name = "inscatter.G", .pixels = plane[7], .as_half = 0},
+      {.name = "inscatter.B", .pixels = plane[8], .as_half = 0},
+  };
+  for (int c = 0; c < FRAME_EXR_CHANNELS; c++) channels[c] = layout[c];
+}
