@@ -262,12 +262,18 @@ int cmd_fit(int argc, char **argv) {
     printf(", %d frames (%d..%d; the worst decides)", r.frame_count, frames[0],
            frames[r.frame_count - 1]);
   printf("\n\n");
-  printf("  %-24s %12s %12s %10s  %s\n", "rung", "max|dtau|", "mean|dtau|", "GL ms", "parameters");
+  printf("  %-24s %12s %12s %10s %s %s\n", "rung", "max|dtau|", "mean|dtau|", "GL ms",
+         r.lit ? "  light err" : "", " parameters");
   for (int i = 0; i < r.count; i++) {
     const fit_rung *g = &r.rungs[i];
-    printf("%c %-24s %12.3e %12.3e %10.2f  %s\n", i == r.chosen ? '*' : ' ', g->name,
-           g->max_error, g->mean_error, g->ms, g->params);
+    char light[24] = "";
+    if (r.lit) snprintf(light, sizeof light, " %10.3e", g->light_error);
+    printf("%c %-24s %12.3e %12.3e %10.2f%s  %s\n", i == r.chosen ? '*' : ' ', g->name,
+           g->max_error, g->mean_error, g->ms, light, g->params);
   }
+  if (r.lit)
+    printf("(light err: the lit in-scatter's max error, relative to the reference's brightest "
+           "ray)\n");
   printf("\n");
   for (int t = 1; t < o.tolerance_count; t++) {
     int pick = fit_choose(&r, o.tolerance[t], o.desc.by_mean);

@@ -149,8 +149,8 @@ static int time_session(render_session *s, const fit_desc *d, float *pixels, dou
  * the input's VDB (its fogmap, its volume) is rebuilt at each frame; the others are one
  * fog for all. */
 static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *views,
-                        int frame_count, const scene_camera_config *camera, float *pixels,
-                        fit_error *err) {
+                        int frame_count, const fit_light *light,
+                        const scene_camera_config *camera, float *pixels, fit_error *err) {
   scene_config *shot = malloc(sizeof *shot);
   if (!shot) {
     snprintf(err->message, sizeof err->message, "out of memory");
@@ -158,7 +158,7 @@ static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *view
   }
   const bool follows = d->frames && rung->config->fog.vdb[0];
   rung_model m = {0};
-  double worst = 0.0, worst_mean = 0.0;
+  double worst = 0.0, worst_mean = 0.0, worst_light = light ? 0.0 : NAN;
   int status = 1;
   for (int f = 0; f < frame_count; f++) {
     const bool last = f == frame_count - 1;
@@ -173,10 +173,20 @@ static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *view
     fit_views_measure(&views[f], &m.model, &max_error, &mean_error);
     if (!(max_error <= worst)) worst = max_error;
     if (!(mean_error <= worst_mean)) worst_mean = mean_error;
+    if (light) {
+      double light_error;
+      render_error rerr = {{0}};
+      if (fit_views_measure_light(&views[f], &m.model, light, &light_error, &rerr)) {
+        snprintf(err->message, sizeof err->message, "the light: %.500s", rerr.message);
+        goto done;
+      }
+      if (!(light_error <= worst_light)) worst_light = light_error;
+    }
     if (last && time_session(m.session, d, pixels, &rung->ms, err)) goto done;
   }
   rung->max_error = worst;
   rung->mean_error = worst_mean;
+  rung->light_error = worst_light;
   status = 0;
 done:
   if (status) {
@@ -295,6 +305,21 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
   for (size_t i = 0, n = (size_t)samples.n[0] * samples.n[1] * samples.n[2]; i < n; i++)
     samples.k[i] /= frame_count;
   r->rays = views[0].count;
+  /* A lit input: the reference's in-scatter on every frame's rays. */
+  const scene_fog_config *fog = &d->input->fog;
+  const fit_light light = {.sun = scene_config_fog_sun(d->input),
+                           .ambient = {fog->colour[0], fog->colour[1], fog->colour[2]},
+                           .self_shadow = d->input->shadow.fog_self_shadow,
+                           .resolution = d->input->shadow.resolution,
+                           .steps = d->input->shadow.steps};
+  r->lit = fog->albedo > 0.0;
+  for (int f = 0; r->lit && f < frame_count; f++) {
+    render_error rerr = {{0}};
+    if (fit_views_light(&views[f], &refs[f].model, &light, &rerr)) {
+      snprintf(err->message, sizeof err->message, "the light: %.500s", rerr.message);
+      goto done;
+    }
+  }
   if (fit_rungs_make(r, d->input, refs[0].model.kind, &samples, views, frame_count, err))
     goto done;
   for (int f = 0; f < frame_count; f++) /* one GL context at a time: the rungs make theirs */
@@ -312,7 +337,9 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
   camera.near_plane = 1e-3 * reach;
   camera.far_plane = 1e3 * reach;
   for (int i = 0; i < r->count; i++)
-    if (measure_rung(&r->rungs[i], d, views, frame_count, &camera, pixels, err)) goto done;
+    if (measure_rung(&r->rungs[i], d, views, frame_count, r->lit ? &light : NULL, &camera,
+                     pixels, err))
+      goto done;
   r->chosen = fit_choose(r, d->tolerance, d->by_mean);
   status = 0;
 done:

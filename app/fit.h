@@ -60,6 +60,8 @@ typedef struct fit_rung {
   double max_error, mean_error; /* |delta tau| on the views: the worst ray's, the mean over
                                    the rays (over frames: the worst frame's mean) */
   double ms;         /* GL milliseconds per frame */
+  double light_error; /* a lit input ([fog] albedo > 0): the in-scatter's max error relative
+                         to the reference's brightest ray (fit_views_light); NAN unlit */
 } fit_rung;
 
 typedef struct fit_result {
@@ -69,6 +71,7 @@ typedef struct fit_result {
   double lo[3], hi[3]; /* the fit domain */
   int rays;          /* rays of the views that meet it (per frame) */
   int frame_count;   /* frames measured */
+  bool lit;          /* the in-scatter was measured too */
 } fit_result;
 
 /* Errors name the input's file (and line where a key is at fault) or the rung that failed

@@ -1,7 +1,10 @@
 /* The views of a fit and the rungs' errors on them (app/fit_views.h). */
 #include "app/fit_views.h"
 
+#include "render/fog_sun_shadow.h"
+
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -45,7 +48,7 @@ static double box_exit(const double o[3], const double d[3], const double lo[3],
 }
 
 void fit_views_destroy(fit_views *v) {
-  free(v->origin), free(v->dir), free(v->length), free(v->reference);
+  free(v->origin), free(v->dir), free(v->length), free(v->reference), free(v->light);
   *v = (fit_views){0};
 }
 
@@ -172,4 +175,74 @@ void fit_views_linear(const fit_views *v, int count, double *start, double *end)
       }
     if (!moved) step[0] *= 0.5, step[1] *= 0.5;
   }
+}
+
+/* Each ray's in-scattered luminance (fit_light) for model m into out. */
+static int inscatter(const fit_views *v, const fog_model *model, const fit_light *light,
+                     double *out, render_error *err) {
+  const fog_sun *sun = &light->sun;
+  fog_sun_shadow volume = {0};
+  fog_sun_shadow_kind kind =
+      light->self_shadow ? fog_sun_shadow_kind_of(model, sun->direction) : FOG_SUN_SHADOW_NONE;
+  if (kind == FOG_SUN_SHADOW_VOLUME &&
+      (fog_sun_shadow_create(&volume, &(fog_sun_shadow_desc){.across = light->resolution,
+                                                             .along = light->resolution},
+                             err) ||
+       fog_sun_shadow_compute(&volume, model, sun->direction, 2, err))) {
+    fog_sun_shadow_destroy(&volume);
+    return 1;
+  }
+  if (kind == FOG_SUN_SHADOW_HEIGHT) volume.sun[0] = sun->direction[0],
+      volume.sun[1] = sun->direction[1], volume.sun[2] = sun->direction[2];
+  const double ambient = (light->ambient[0] + light->ambient[1] + light->ambient[2]) / 3.0;
+  const double lsun = (sun->radiance[0] + sun->radiance[1] + sun->radiance[2]) / 3.0;
+  fog_model m = *model;
+  const bool radial = m.kind == FOG_MODEL_LINEAR || m.kind == FOG_MODEL_EXP2;
+  for (int k = 0; k < v->count; k++) {
+    if (radial) memcpy(m.eye, v->origin[k], sizeof m.eye);
+    const double *d = v->dir[k];
+    double tau = exp(-fog_model_optical_depth(&m, v->origin[k], d, v->length[k]));
+    double mean = sun->albedo > 0.0
+                      ? fog_sun_mean_transmittance(&m, kind, &volume, light->steps, 30.0,
+                                                   v->origin[k], d, v->length[k])
+                      : 1.0;
+    double cos_theta = d[0] * sun->direction[0] + d[1] * sun->direction[1] +
+                       d[2] * sun->direction[2];
+    out[k] = (ambient + sun->albedo * lsun * fog_phase_hg(sun->phase_g, cos_theta) * mean) *
+             (1.0 - tau);
+  }
+  fog_sun_shadow_destroy(&volume);
+  return 0;
+}
+
+int fit_views_light(fit_views *v, const fog_model *reference, const fit_light *light,
+                    render_error *err) {
+  free(v->light);
+  if (!(v->light = malloc((size_t)(v->count > 0 ? v->count : 1) * sizeof *v->light))) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return 1;
+  }
+  return inscatter(v, reference, light, v->light, err);
+}
+
+int fit_views_measure_light(const fit_views *v, const fog_model *rung, const fit_light *light,
+                            double *relative_error, render_error *err) {
+  double *mine = malloc((size_t)(v->count > 0 ? v->count : 1) * sizeof *mine);
+  if (!mine) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return 1;
+  }
+  if (inscatter(v, rung, light, mine, err)) {
+    free(mine);
+    return 1;
+  }
+  double worst = 0.0, brightest = 0.0;
+  for (int k = 0; k < v->count; k++) {
+    double e = fabs(mine[k] - v->light[k]);
+    if (!(e <= worst)) worst = e;
+    brightest = fmax(brightest, v->light[k]);
+  }
+  free(mine);
+  *relative_error = brightest > 0.0 ? worst / brightest : worst;
+  return 0;
 }

@@ -9,6 +9,7 @@
 #ifndef FOGPIPE_APP_FIT_VIEWS_H
 #define FOGPIPE_APP_FIT_VIEWS_H
 
+#include "render/fog_light.h"
 #include "render/fog_models.h"
 
 #define FIT_VIEW_COUNT 9
@@ -19,6 +20,7 @@ typedef struct fit_views {
   double (*dir)[3];   /* unit */
   double *length;     /* from the camera to the domain's far side */
   double *reference;  /* the reference's tau along each */
+  double *light;      /* lit inputs: the reference's in-scatter along each (fit_views_light) */
 } fit_views;
 
 /* Non-zero: out of memory (nothing allocated). */
@@ -28,6 +30,28 @@ void fit_views_destroy(fit_views *v);
 /* The rung's max and mean |delta tau| against the reference. */
 void fit_views_measure(const fit_views *v, const fog_model *rung, double *max_error,
                        double *mean_error);
+/* A lit input's light (its [fog] albedo > 0): per ray the in-scattered luminance
+ * I = (Y(L_amb) + a Y(L_sun) p(theta) Tbar_s) (1 - tau), Tbar_s the tau K-weighted mean of
+ * the fog's shadow on itself along the ray (the renderer's CPU twin,
+ * fog_sun_mean_transmittance, with the model's own optical-depth volume towards the sun
+ * where it needs one), Y the mean of the three channels. */
+typedef struct fit_light {
+  fog_sun sun;
+  double ambient[3];
+  bool self_shadow;  /* [light] fog_self_shadow */
+  int resolution;    /* the sun's volume: samples per axis */
+  int steps;         /* segments of the mean along a ray */
+} fit_light;
+
+/* The reference's in-scatter on each ray (v->light, allocated here). Non-zero: out of
+ * memory or a volume that cannot be made (err). */
+int fit_views_light(fit_views *v, const fog_model *reference, const fit_light *light,
+                    render_error *err);
+/* The rung's in-scatter error: max |I_rung - I_reference| over the rays, relative to the
+ * reference's brightest ray. */
+int fit_views_measure_light(const fit_views *v, const fog_model *rung, const fit_light *light,
+                            double *relative_error, render_error *err);
+
 /* The classic fog factors on the rays of `count` views (frames): each view's camera is
  * their eye, as a classic fog's eye is the camera that draws it. Their parameters are
  * searched for the least max |delta tau| against the reference: the exp2 density around

@@ -3,7 +3,8 @@
  *   an exponential column picks height fog with the input's scale height (to 1 %);
  *   OpenGL's linear and exp2 fog pick themselves, start, end and density recovered;
  *   a flat-bottomed ground fog (a fogmap over a slab) picks a fogmap;
- *   a single Gaussian picks one RBF, its centre, radius and density the input's (1 %);
+ *   a single Gaussian picks one RBF, its centre, radius and density the input's (1 %), and
+ *   lit (albedo 0.9) its in-scatter is within 1e-3 of the input's, the ellipsoid's not;
  *   a tall leaning plume of thin columns (a VDB written here) picks the volume at
  *   T = 0.01 and a fogmap at T = 0.5;
  *   over a sequence the worst frame decides (a blob that moves in its last frame: one
@@ -38,8 +39,9 @@ static const char *chosen_family(const fit_result *r, double tolerance) {
 static void print_table(const char *title, const fit_result *r) {
   printf("%s: %d rays\n", title, r->rays);
   for (int i = 0; i < r->count; i++)
-    printf("  %-24s max %.3e mean %.3e %7.2f ms  %s\n", r->rungs[i].name, r->rungs[i].max_error,
-           r->rungs[i].mean_error, r->rungs[i].ms, r->rungs[i].params);
+    printf("  %-24s max %.3e mean %.3e %7.2f ms light %.2e  %s\n", r->rungs[i].name,
+           r->rungs[i].max_error, r->rungs[i].mean_error, r->rungs[i].ms,
+           r->rungs[i].light_error, r->rungs[i].params);
 }
 
 static bool run(const char *title, scene_config *cfg, fit_result *r) {
@@ -64,6 +66,7 @@ static void test_constant(void) {
         h ? h->config->fog.density_scale : NAN);
   CHECK(h && h->max_error < 1e-9, "homogeneous error %g", h ? h->max_error : NAN);
   CHECK(!rung_named(&r, "height"), "a constant density has no height fog");
+  CHECK(!r.lit && h && isnan(h->light_error), "unlit: no in-scatter error");
   CHECK(!strcmp(chosen_family(&r, 0.01), "homogeneous"), "picked %s",
         chosen_family(&r, 0.01));
   fit_result_destroy(&r);
@@ -143,8 +146,17 @@ static void test_gaussian(void) {
   cfg.fog.model = FOG_MODEL_RBF;
   cfg.fog.rbfs[0] = (fog_rbf){.centre = {30, 40, -20}, .radius = 25, .density = 0.05};
   cfg.fog.rbf_count = 1;
+  cfg.fog.albedo = 0.9; /* lit: the in-scatter is measured too */
   fit_result r;
   if (!run("one Gaussian", &cfg, &r)) return;
+  const fit_rung *given = rung_named(&r, "rbf as given"), *ball = rung_named(&r, "ellipsoid");
+  CHECK(r.lit && given && given->light_error == 0.0, "lit %d; the input's own in-scatter error %g",
+        r.lit, given ? given->light_error : NAN);
+  CHECK(ball && ball->light_error > 0.05, "the ellipsoid's in-scatter error %g",
+        ball ? ball->light_error : NAN);
+  const fit_rung *one = rung_named(&r, "rbf 1");
+  CHECK(one && one->light_error < 1e-3, "one fitted Gaussian's in-scatter error %g",
+        one ? one->light_error : NAN);
   const fit_rung *g = rung_named(&r, "rbf 1");
   CHECK(g != NULL, "no rbf 1 rung");
   if (g) {
