@@ -18,25 +18,28 @@
 /* Rungs whose times lie within this factor of the fastest one within the tolerance tie. */
 #define FIT_TIE 1.25
 
-/* The reference fog: the model, and what it points into. */
-typedef struct reference {
+/* A fog model and what it points into: the session that built it, and (model = volume,
+ * which a session keeps on the GL only) the grid read from its file. Both the reference
+ * and each rung at a frame are one. */
+typedef struct held_model {
   fog_model model;
-  render_session *session; /* the input's own model, as the renderer builds it */
-  vdb_frame frame;         /* model = volume: the grid */
+  render_session *session;
+  vdb_frame frame;
   volume_grid_desc grid;
   bool has_frame;
-} reference;
+} held_model;
 
-static void reference_destroy(reference *r) {
-  render_session_destroy(r->session);
-  if (r->has_frame) vdb_frame_destroy(&r->frame);
-  *r = (reference){0};
+static void held_model_destroy(held_model *m) {
+  render_session_destroy(m->session);
+  if (m->has_frame) vdb_frame_destroy(&m->frame);
+  *m = (held_model){0};
 }
+
 
 /* The richest fog the input has: the VDB frame as a volume wherever [fog] vdb is set
  * (model = fogmap projects it to 2.5D; the grid is the truth), else the input's model. */
-static int reference_create(reference *r, const scene_config *cfg, fit_error *err) {
-  *r = (reference){0};
+static int reference_create(held_model *r, const scene_config *cfg, fit_error *err) {
+  *r = (held_model){0};
   render_error rerr = {{0}};
   if (cfg->fog.model == FOG_MODEL_VOLUME || cfg->fog.vdb[0]) {
     if (render_fog_load_volume(cfg, &r->frame, &r->grid, &rerr)) {
@@ -81,27 +84,11 @@ static int compare_doubles(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-/* A rung's fog at one frame: the model, with the session that made it and (model =
- * volume, which a session keeps on the GL only) the grid it reads. */
-typedef struct rung_model {
-  fog_model model;
-  render_session *session;
-  vdb_frame frame;
-  volume_grid_desc grid;
-  bool has_frame;
-} rung_model;
-
-static void rung_model_destroy(rung_model *m) {
-  render_session_destroy(m->session);
-  if (m->has_frame) vdb_frame_destroy(&m->frame);
-  *m = (rung_model){0};
-}
-
 /* The volume from its file (and a session only when it is to be timed); any other model
  * from a session. */
-static int rung_model_create(rung_model *m, const scene_config *cfg, const fit_desc *d,
+static int rung_model_create(held_model *m, const scene_config *cfg, const fit_desc *d,
                              bool timed, fit_error *err) {
-  *m = (rung_model){0};
+  *m = (held_model){0};
   const bool volume = cfg->fog.model == FOG_MODEL_VOLUME;
   render_frame_error ferr;
   if ((timed || !volume) &&
@@ -117,7 +104,7 @@ static int rung_model_create(rung_model *m, const scene_config *cfg, const fit_d
   m->has_frame = true;
   if (render_fog_load_volume(cfg, &m->frame, &m->grid, &rerr)) {
     snprintf(err->message, sizeof err->message, "%.500s", rerr.message);
-    rung_model_destroy(m);
+    held_model_destroy(m);
     return 1;
   }
   m->model = (fog_model){.kind = FOG_MODEL_VOLUME, .grid3d = &m->grid};
@@ -157,13 +144,13 @@ static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *view
     return 1;
   }
   const bool follows = d->frames && rung->config->fog.vdb[0];
-  rung_model m = {0};
+  held_model m = {0};
   double worst = 0.0, worst_mean = 0.0, worst_light = light ? 0.0 : NAN;
   int status = 1;
   for (int f = 0; f < frame_count; f++) {
     const bool last = f == frame_count - 1;
     if (f == 0 || follows) {
-      rung_model_destroy(&m);
+      held_model_destroy(&m);
       *shot = *rung->config;
       shot->camera = *camera;
       if (follows) shot->fog.vdb_frame = d->frames[f];
@@ -194,7 +181,7 @@ done:
     snprintf(reason, sizeof reason, "%s", err->message);
     snprintf(err->message, sizeof err->message, "rung %s: %.500s", rung->name, reason);
   }
-  rung_model_destroy(&m);
+  held_model_destroy(&m);
   free(shot);
   return status;
 }
@@ -211,11 +198,11 @@ int fit_choose(const fit_result *r, double tolerance, bool by_mean) {
 }
 
 int fit_scene_for_volume(scene_config *cfg, fit_error *err) {
-  reference ref;
+  held_model ref;
   if (reference_create(&ref, cfg, err)) return 1;
   double lo[3], hi[3], position[3], target[3];
   bool ok = fit_domain(&ref.model, cfg, lo, hi);
-  reference_destroy(&ref);
+  held_model_destroy(&ref);
   if (!ok) {
     snprintf(err->message, sizeof err->message, "%.400s: the grid holds no fog", cfg->path);
     return 1;
@@ -261,7 +248,7 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
   }
   const int frame_count = d->frames ? d->frame_count : 1;
   r->frame_count = frame_count;
-  reference *refs = calloc((size_t)frame_count, sizeof *refs);
+  held_model *refs = calloc((size_t)frame_count, sizeof *refs);
   fit_views *views = calloc((size_t)frame_count, sizeof *views);
   scene_config *framed = malloc(sizeof *framed);
   fit_samples samples = {0};
@@ -323,7 +310,7 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
   if (fit_rungs_make(r, d->input, refs[0].model.kind, &samples, views, frame_count, err))
     goto done;
   for (int f = 0; f < frame_count; f++) /* one GL context at a time: the rungs make theirs */
-    reference_destroy(&refs[f]);
+    held_model_destroy(&refs[f]);
   /* Every rung drawn from view 0, outside the fog looking at it. */
   double position[3], target[3];
   fit_view_pose(r->lo, r->hi, 0, position, target);
@@ -343,7 +330,7 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
   r->chosen = fit_choose(r, d->tolerance, d->by_mean);
   status = 0;
 done:
-  for (int f = 0; refs && f < frame_count; f++) reference_destroy(&refs[f]);
+  for (int f = 0; refs && f < frame_count; f++) held_model_destroy(&refs[f]);
   for (int f = 0; views && f < frame_count; f++) fit_views_destroy(&views[f]);
   free(refs), free(views), free(framed), free(pixels);
   fit_samples_destroy(&samples);

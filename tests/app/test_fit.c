@@ -173,6 +173,15 @@ static void test_gaussian(void) {
   fit_result_destroy(&r);
 }
 
+/* Writes the grid as a VDB file and frees its values. */
+static int write_grid(const char *path, vdb_dense_grid *g) {
+  sim_error err = {{0}};
+  int status = vdb_write_dense(path, g, &(vdb_write_desc){0}, &err);
+  CHECK(status == 0, "%s", err.message);
+  free(g->values);
+  return status;
+}
+
 /* 2 x 4 x 2 m, Z-up as Blender writes it: 12 x 12 thin columns in a checkerboard, dense
  * ones 6 per metre, leaning by one voxel every 24 layers (a quarter column at the top):
  * too fine for 64 Gaussians, not quite a fogmap (the lean), exactly the volume. */
@@ -190,11 +199,7 @@ static int write_plume(const char *path) {
         if ((((shifted / 4) + (j / 4)) & 1) == 0 && shifted < nx)
           g.values[((size_t)k * ny + j) * nx + i] = 4.0f;
       }
-  sim_error err = {{0}};
-  int status = vdb_write_dense(path, &g, &(vdb_write_desc){0}, &err);
-  CHECK(status == 0, "%s", err.message);
-  free(g.values);
-  return status;
+  return write_grid(path, &g);
 }
 
 static void test_plume(const char *folder) {
@@ -240,11 +245,7 @@ static int write_blob_frame(const char *folder, int number, double x0) {
       }
   char path[512];
   snprintf(path, sizeof path, "%s/blob_%04d.vdb", folder, number);
-  sim_error err = {{0}};
-  int status = vdb_write_dense(path, &g, &(vdb_write_desc){0}, &err);
-  CHECK(status == 0, "%s", err.message);
-  free(g.values);
-  return status;
+  return write_grid(path, &g);
 }
 
 /* Over a sequence the worst frame decides: frames 1-2 hold one still blob, which one
