@@ -491,7 +491,7 @@ int cmd_demo(int argc, char **argv) {
                            &(view_options){.width = o.width, .height = o.height,
                                            .render_scale = o.scale > 0 ? o.scale : 0.5,
                                            .play = true, .screenshot = o.screenshot,
-                                           .frames = o.frames > 0 ? o.frames : 1});
+                                           .frames = o.frames > 0 ? o.frames : 1, .rung = -1});
   }
   render_error gerr = {{0}};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW,

@@ -17,6 +17,7 @@
 #include "app/cmd_view.h"
 #include "app/commands.h"
 #include "app/config.h"
+#include "app/fit.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"
 #include "app/vdb_source.h"
@@ -27,7 +28,7 @@
 static void usage(FILE *out) {
   fprintf(out,
           "usage: fogpipe view CONFIG [--size WxH] [--render-scale F] [--play]\n"
-          "                           [--screenshot FILE.png --frames N]\n\n"
+          "                           [--screenshot FILE.png --frames N] [--fit T [--rung N]]\n\n"
           "Opens the scene config in a window with a free camera (needs a display; for\n"
           "headless images use `fogpipe render`).\n"
           "  W A S D  move     Q E  down / up     Shift  4x faster\n"
@@ -42,6 +43,11 @@ static void usage(FILE *out) {
           "                     VDB frame per drawn frame)\n"
           "  --screenshot FILE  save the window's last frame as an 8-bit PNG and exit\n"
           "  --frames N         frames to draw before the screenshot (default 1)\n"
+          "  --fit T            first run `fogpipe fit` on the scene at tolerance T, then show\n"
+          "                     its pick: [ and ] step through every rung of the model ladder,\n"
+          "                     0 returns to the config's own fog; the window title shows the\n"
+          "                     rung, its measured error against the scene's fog and its time\n"
+          "  --rung N           with --fit: start on rung N (its row in fit's table, from 0)\n"
           "  --help             this text\n");
 }
 
@@ -131,6 +137,63 @@ static int volume_playback_update(volume_playback *pb, GLFWwindow *window, doubl
   return render_fog_set_volume_time(fog, cfg, &pb->sequence, a, b, w, err);
 }
 
+/* --fit: the rungs and the one shown (-1: the config's own fog). */
+typedef struct rung_selector {
+  fit_result fit;
+  bool on;
+  int shown;
+  bool bracket_was_down[2];
+  bool zero_was_down;
+} rung_selector;
+
+/* The fog of rung `index` (-1: the config's) in place of the one shown. */
+static int show_rung(view_state *v, rung_selector *sel, int index, const scene_config *cfg,
+                     render_error *err) {
+  const scene_config *shown = index < 0 ? cfg : sel->fit.rungs[index].config;
+  render_fog_destroy(&v->fog);
+  v->has_fog = false;
+  if (render_fog_create(&v->fog, shown, err)) return 1;
+  render_fog_set_shafts(&v->fog, shown, scene_pass_sun_shadow(v->scene));
+  v->has_fog = true;
+  sel->shown = index;
+  if (index < 0)
+    printf("fogpipe view: showing the config's own fog\n");
+  else
+    printf("fogpipe view: showing rung %d: %s (max |dtau| %.3g, mean %.3g, %.2f ms in fit)\n",
+           index, sel->fit.rungs[index].name, sel->fit.rungs[index].max_error,
+           sel->fit.rungs[index].mean_error, sel->fit.rungs[index].ms);
+  return 0;
+}
+
+/* [ and ] step through the rungs, 0 returns to the config's fog; the title says which. */
+static int rung_selector_update(rung_selector *sel, view_state *v, GLFWwindow *window,
+                                const scene_config *cfg, double fps, render_error *err) {
+  static const int keys[2] = {GLFW_KEY_LEFT_BRACKET, GLFW_KEY_RIGHT_BRACKET};
+  int next = sel->shown;
+  for (int k = 0; k < 2; k++) {
+    bool down = glfwGetKey(window, keys[k]) == GLFW_PRESS;
+    if (down && !sel->bracket_was_down[k]) next += k ? 1 : -1;
+    sel->bracket_was_down[k] = down;
+  }
+  bool zero = glfwGetKey(window, GLFW_KEY_0) == GLFW_PRESS;
+  if (zero && !sel->zero_was_down) next = -1;
+  sel->zero_was_down = zero;
+  if (next < -1) next = sel->fit.count - 1;
+  if (next >= sel->fit.count) next = -1;
+  if (next != sel->shown && show_rung(v, sel, next, cfg, err)) return 1;
+  char title[320];
+  if (sel->shown < 0)
+    snprintf(title, sizeof title, "fogpipe view: the config's own fog, %.1f fps ([ ] rungs)",
+             fps);
+  else
+    snprintf(title, sizeof title,
+             "fogpipe view: rung %d/%d %s: max |dtau| %.3g, %.2f ms in fit; %.1f fps ([ ] 0)",
+             sel->shown, sel->fit.count, sel->fit.rungs[sel->shown].name,
+             sel->fit.rungs[sel->shown].max_error, sel->fit.rungs[sel->shown].ms, fps);
+  glfwSetWindowTitle(window, title);
+  return 0;
+}
+
 static void view_destroy(view_state *v) {
   gl_presenter_destroy(v->presenter);
   gl_target_destroy(&v->scene_target);
@@ -187,8 +250,8 @@ static int view_screenshot(const view_state *v, const char *path, int width, int
 }
 
 /* Draws frames until the window closes, or the screenshot is taken. */
-static int view_loop(view_state *v, volume_playback *playback, const scene_config *cfg,
-                     const view_options *opts, render_error *err) {
+static int view_loop(view_state *v, volume_playback *playback, rung_selector *sel,
+                     const scene_config *cfg, const view_options *opts, render_error *err) {
   GLFWwindow *window = gl_context_glfw_window(v->ctx);
   camera cam;
   scene_config_camera(cfg, &cam);
@@ -196,21 +259,24 @@ static int view_loop(view_state *v, volume_playback *playback, const scene_confi
   double last_x = 0, last_y = 0, last_time = glfwGetTime();
   bool dragging = false;
   int target_w = 0, target_h = 0;
+  double fps = 0.0;
   for (int frame = 1; !gl_context_should_close(v->ctx); frame++) {
     gl_context_poll_events(v->ctx);
     double now = glfwGetTime();
+    if (now > last_time) fps = fps > 0 ? 0.9 * fps + 0.1 / (now - last_time) : 1 / (now - last_time);
+    if (sel->on && rung_selector_update(sel, v, window, cfg, fps, err)) return 1;
     fly(window, &cam, now - last_time, speed, &last_x, &last_y, &dragging);
     last_time = now;
     /* With --screenshot the sequence advances one VDB frame per drawn frame (the same
      * image every run), else with the clock. */
     double clock =
         opts->screenshot ? playback->start_time + (frame - 1) / cfg->fog.vdb_fps : now;
-    if (playback->sequence.count &&
+    if (playback->sequence.count && sel->shown < 0 &&
         volume_playback_update(playback, window, clock, &v->fog, cfg, err))
       return 1;
     /* RBF fog from emitters moves with the clock (with --screenshot at 24 frames a second:
      * the same image every run) */
-    if (v->has_fog && render_fog_animated(cfg) &&
+    if (v->has_fog && sel->shown < 0 && render_fog_animated(cfg) &&
         render_fog_set_time(&v->fog, cfg,
                             opts->screenshot ? (frame - 1) / 24.0 : now - playback->start_time,
                             err))
@@ -243,23 +309,47 @@ int view_window_run(const scene_config *cfg, const char *title, const view_optio
   view_state v = {0};
   volume_playback playback = {0};
   render_error err = {0};
+  rung_selector sel = {.shown = -1};
+  if (opts->fit) { /* before the window: fit makes headless contexts of its own */
+    fit_error ferr;
+    if (fit_run(&(fit_desc){.input = cfg, .tolerance = opts->fit_tolerance,
+                            .rays_per_side = FIT_RAYS_PER_SIDE, .sample_side = FIT_SAMPLE_SIDE,
+                            .width = FIT_WIDTH, .height = FIT_HEIGHT,
+                            .timed_frames = FIT_TIMED_FRAMES},
+                &sel.fit, &ferr)) {
+      fprintf(stderr, "fogpipe view: --fit: %s\n", ferr.message);
+      return 1;
+    }
+    sel.on = true;
+    if (opts->rung >= sel.fit.count) {
+      fprintf(stderr, "fogpipe view: --rung %d: the fit has rungs 0..%d\n", opts->rung,
+              sel.fit.count - 1);
+      fit_result_destroy(&sel.fit);
+      return 2;
+    }
+    printf("fogpipe view: fit %d rungs; the pick within %g: %s\n", sel.fit.count,
+           opts->fit_tolerance, sel.fit.chosen < 0 ? "none" : sel.fit.rungs[sel.fit.chosen].name);
+  }
   int width = opts->width > 0 ? opts->width : cfg->width;
   int height = opts->height > 0 ? opts->height : cfg->height;
   v.ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW, .width = width,
                                                .height = height, .title = title,
                                                .vsync = true},
                             &err);
+  const int first = opts->rung >= 0 ? opts->rung : sel.fit.chosen;
   int status = !v.ctx || view_open(&v, &playback, cfg, opts, &err) ||
-               view_loop(&v, &playback, cfg, opts, &err);
+               (sel.on && first >= 0 && show_rung(&v, &sel, first, cfg, &err)) ||
+               view_loop(&v, &playback, &sel, cfg, opts, &err);
   if (status) fprintf(stderr, "fogpipe view: %s\n", err.message);
   if (playback.sequence.count) vdb_sequence_destroy(&playback.sequence);
   view_destroy(&v);
+  if (sel.on) fit_result_destroy(&sel.fit);
   return status;
 }
 
 int cmd_view(int argc, char **argv) {
   const char *config_path = NULL;
-  view_options opts = {.render_scale = 0.5, .frames = 1};
+  view_options opts = {.render_scale = 0.5, .frames = 1, .rung = -1};
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       usage(stdout);
@@ -270,6 +360,11 @@ int cmd_view(int argc, char **argv) {
       opts.screenshot = argv[++i];
     } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
       if (cli_int("view", "--frames", argv[++i], 1, 1000000, &opts.frames)) return 2;
+    } else if (!strcmp(argv[i], "--fit") && i + 1 < argc) {
+      opts.fit = true;
+      if (cli_number("view", "--fit", argv[++i], 1e-12, 1.0, &opts.fit_tolerance)) return 2;
+    } else if (!strcmp(argv[i], "--rung") && i + 1 < argc) {
+      if (cli_int("view", "--rung", argv[++i], 0, FIT_MAX_RUNGS - 1, &opts.rung)) return 2;
     } else if (!strcmp(argv[i], "--render-scale") && i + 1 < argc) {
       if (cli_number("view", "--render-scale", argv[++i], 0.05, 4, &opts.render_scale)) return 2;
     } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
@@ -282,6 +377,7 @@ int cmd_view(int argc, char **argv) {
       return cli_usage_error("view", "one config only, got '%s' and '%s'", config_path, argv[i]);
     }
   }
+  if (opts.rung >= 0 && !opts.fit) return cli_usage_error("view", "--rung needs --fit T");
   if (!config_path) {
     fprintf(stderr, "fogpipe view: no CONFIG given\n\n");
     usage(stderr);

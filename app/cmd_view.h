@@ -14,6 +14,12 @@ typedef struct view_options {
   bool play;                 /* start playing a volume's sequence */
   const char *screenshot;    /* save the last frame as a PNG and return; NULL: run */
   int frames;                /* frames before the screenshot, >= 1 */
+  /* `fogpipe fit` before the window opens (app/fit.h): the window then shows the rungs,
+   * [ and ] step through them, 0 returns to the config's own fog; the title gives each
+   * one's measured error and time beside the window's frame rate. */
+  bool fit;
+  double fit_tolerance;      /* > 0: the pick the window starts on */
+  int rung;                  /* >= 0: start on this rung instead; -1: the pick */
 } view_options;
 
 /* Opens the window (title) and runs until it closes or the screenshot is taken; errors
