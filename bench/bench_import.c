@@ -93,7 +93,8 @@ static const float flat_heights[4] = {0, 0, 0, 0};
  * shifted by the domain min (-3,-3,0) then (x, z, -y); 44.8 deg horizontal fov. */
 static camera preview_camera(void) {
   camera cam = {.position = {0, 3.5, 8},
-                .fov_y = 2 * atan(tan(0.5 * 44.8 * 3.14159265358979323846 / 180) * H / W)};
+                .fov_y = 2 * atan(tan(0.5 * 44.8 * 3.14159265358979323846 / 180) * H / W),
+                    .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
   camera_look_at(&cam, (const double[3]){0, 0.2, 0});
   return cam;
 }

@@ -480,7 +480,8 @@ int bench_render(int argc, char **argv) {
   };
   /* Inside the fog near the map's +Z edge, 35 units above the ground, looking across the
    * map toward -Z and slightly down: rays run up to ~1000 units through the fog. */
-  camera cam = {.fov_y = 55.0 * 3.14159265358979323846 / 180.0};
+  camera cam = {.fov_y = 55.0 * 3.14159265358979323846 / 180.0,
+      .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
   cam.position[0] = 30.0;
   cam.position[2] = 470.0;
   cam.position[1] = terrain_height_at(&geo.terrain, cam.position[0], cam.position[2]) + 35.0;

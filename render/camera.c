@@ -3,12 +3,8 @@
 
 #include <math.h>
 
-static double camera_fov(const camera *cam) {
-  return cam->fov_y > 0 ? cam->fov_y : 1.0471975511965976 /* 60 degrees */;
-}
-
 static double camera_aspect(const camera *cam, int width, int height) {
-  if (cam->aspect > 0) return cam->aspect;
+  if (cam->aspect != CAMERA_ASPECT_OF_IMAGE) return cam->aspect;
   return height > 0 ? (double)width / (double)height : 1.0;
 }
 
@@ -44,7 +40,7 @@ void camera_look_at(camera *cam, const double target[3]) {
 
 void camera_basis(const camera *cam, int width, int height, double right[3], double up[3],
                   double forward[3]) {
-  double half_h = tan(0.5 * camera_fov(cam));
+  double half_h = tan(0.5 * cam->fov_y);
   double half_w = half_h * camera_aspect(cam, width, height);
   camera_axes(cam, right, up, forward);
   for (int i = 0; i < 3; i++) {
@@ -109,14 +105,14 @@ void camera_exr_matrices(const camera *cam, int width, int height, float world_t
 }
 
 void camera_depth_range(const camera *cam, double *near_plane, double *far_plane) {
-  *near_plane = cam->near_plane > 0 ? cam->near_plane : 0.1;
-  *far_plane = cam->far_plane > 0 ? cam->far_plane : 100000.0;
+  *near_plane = cam->near_plane;
+  *far_plane = cam->far_plane;
 }
 
 void camera_projection_matrix(const camera *cam, int width, int height, float m[16]) {
   double n, fa;
   camera_depth_range(cam, &n, &fa);
-  double t = 1.0 / tan(0.5 * camera_fov(cam));
+  double t = 1.0 / tan(0.5 * cam->fov_y);
   double a = camera_aspect(cam, width, height);
   for (int i = 0; i < 16; i++) m[i] = 0.0f;
   m[0] = (float)(t / a);

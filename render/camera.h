@@ -25,10 +25,18 @@
 typedef struct camera {
   double position[3];            /* world */
   double yaw, pitch;             /* radians (see above) */
-  double fov_y;                  /* vertical field of view, radians; 0: 60 degrees */
-  double aspect;                 /* width / height; 0: taken from the image size */
-  double near_plane, far_plane;  /* projection only; 0: 0.1 and 100000 */
+  double fov_y;                  /* vertical field of view, radians, in (0, pi) */
+  double aspect;                 /* width / height, or CAMERA_ASPECT_OF_IMAGE */
+  double near_plane, far_plane;  /* projection only: 0 < near < far */
 } camera;
+
+/* A camera's values are taken as given (no "0 means default" for a physical quantity);
+ * these are what a caller without an opinion writes. */
+#define CAMERA_DEFAULT_FOV_Y 1.0471975511965976 /* 60 degrees */
+#define CAMERA_DEFAULT_NEAR 0.1
+#define CAMERA_DEFAULT_FAR 100000.0
+/* aspect: the image's width / height, whatever its size (a mode, not a ratio). */
+#define CAMERA_ASPECT_OF_IMAGE 0.0
 
 /* Whether two cameras see the same image (every field equal): a rendered view may be
  * reused while the camera has not moved. */

@@ -1152,6 +1152,14 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
                   GLuint surface_colour, GLuint surface_distance, int width, int height,
                   render_error *err) {
   if (fog_pass_check_model(pass, params, err)) return 1;
+  if (!(cam->fov_y > 0 && cam->fov_y < 3.14159265358979323846 && cam->near_plane > 0 &&
+        cam->far_plane > cam->near_plane)) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: camera fov %g rad, near %g, far %g: expected 0 < fov < pi and "
+             "0 < near < far (camera.h's CAMERA_DEFAULT_* where there is no opinion)",
+             cam->fov_y, cam->near_plane, cam->far_plane);
+    return 1;
+  }
   int divisor = params->resolution_divisor > 1 ? params->resolution_divisor : 1;
   if (divisor != 1 && divisor != 2 && divisor != 4) {
     snprintf(err->message, sizeof err->message,

@@ -23,7 +23,8 @@ int main(void) {
     camera cam = {.position = {fog_test_range(-500, 500), fog_test_range(-50, 200),
                                fog_test_range(-500, 500)},
                   .yaw = fog_test_range(-3.1, 3.1), .pitch = fog_test_range(-1.4, 1.4),
-                  .fov_y = fog_test_range(0.2, 2.0), .aspect = (k % 2) ? 0.0 : 1.7};
+                  .fov_y = fog_test_range(0.2, 2.0), .aspect = (k % 2) ? 0.0 : 1.7,
+                      .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     int width = 64 + k % 7 * 33, height = 36 + k % 5 * 21;
     float view[16], view_world[16], proj[16];
     camera_view_matrix(&cam, view);
@@ -55,7 +56,9 @@ int main(void) {
   }
   printf("worst pixel round trip %.2e\n", worst_pixel);
   /* look_at: with an even image the centre lies between the four middle pixels. */
-  camera cam = {.position = {3, 4, 5}};
+  camera cam = {.position = {3, 4, 5},
+                .fov_y = CAMERA_DEFAULT_FOV_Y, .near_plane = CAMERA_DEFAULT_NEAR,
+                .far_plane = CAMERA_DEFAULT_FAR};
   double target[3] = {-20, 1, 30}, o[3], d[3], want[3];
   camera_look_at(&cam, target);
   camera_ray(&cam, 49.5, 29.5, 100, 60, o, d); /* fractional pixel: the exact centre */
@@ -66,7 +69,9 @@ int main(void) {
   }
   for (int i = 0; i < 3; i++) CHECK(fabs(d[i] - want[i] / sqrt(n)) < 1e-12, "look_at centre ray");
   /* Orientation: yaw = pitch = 0 looks along -Z; row 0 looks up, column 0 to -X. */
-  camera flat = {.position = {0, 0, 0}};
+  camera flat = {.position = {0, 0, 0},
+                .fov_y = CAMERA_DEFAULT_FOV_Y, .near_plane = CAMERA_DEFAULT_NEAR,
+                .far_plane = CAMERA_DEFAULT_FAR};
   camera_ray(&flat, 50, 0, 101, 61, o, d);
   CHECK(d[1] > 0.0 && d[2] < 0.0, "top row looks up and forward (-Z)");
   camera_ray(&flat, 0, 30, 101, 61, o, d);

@@ -61,7 +61,7 @@ int main(void) {
                              .index_offset = {-0.5 * lo[0], -0.5 * 0.0, -0.5 * lo[2]}};
   CHECK(fog_pass_upload_grid3d(gl.pass, &grid3d, &err) == 0, "volume: %s", err.message);
 
-  camera cam = {.fov_y = 1.0};
+  camera cam = {.fov_y = 1.0, .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
   cam.position[0] = lo[0] + 3.0;
   cam.position[1] = 2.5;
   cam.position[2] = 0.5 * (lo[2] + hi[2]);

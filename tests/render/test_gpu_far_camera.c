@@ -36,7 +36,8 @@ int main(void) {
   for (int k = 0; k < 4; k++) {
     double D = distances[k];
     /* From the south-west and a little above, the box filling about half the view. */
-    camera cam = {.fov_y = 2.0 * atan(45.0 / D)};
+    camera cam = {.fov_y = 2.0 * atan(45.0 / D),
+        .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     double centre[3] = {0.5 * (lo[0] + hi[0]), 4.0, 0.5 * (lo[2] + hi[2])};
     cam.position[0] = centre[0] - 0.6 * D;
     cam.position[1] = centre[1] + 0.02 * D;

@@ -49,7 +49,8 @@ int main(void) {
   fog_volume v = fog_test_volume(FOG_PROFILE_EXPONENTIAL);
   double lo[3], hi[3];
   fog_volume_box(&v, lo, hi);
-  camera cam = {.position = {0.5 * (lo[0] + hi[0]), 14.0, hi[2] + 25.0}, .fov_y = 0.9};
+  camera cam = {.position = {0.5 * (lo[0] + hi[0]), 14.0, hi[2] + 25.0}, .fov_y = 0.9,
+      .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
   camera_look_at(&cam, (double[3]){0.5 * (lo[0] + hi[0]), 0.0, lo[2]});
 
   /* Surface distances (rows top first): the ground y = 0.5, the sky above the horizon, and

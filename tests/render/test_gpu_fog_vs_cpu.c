@@ -88,7 +88,8 @@ int main(void) {
       if (kinds[kind] == FOG_PROFILE_BSPLINE) v.profile.degree = profile_degrees[kind];
       double lo[3], hi[3];
       fog_volume_box(&v, lo, hi);
-      camera cam = {.fov_y = 1.0};
+      camera cam = {.fov_y = 1.0,
+          .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
       double target_pos[3] = {0.5 * (lo[0] + hi[0]) + 7.0, ground_y, 0.5 * (lo[2] + hi[2])};
       if (inside) {
         cam.position[0] = lo[0] + 0.3 * (hi[0] - lo[0]);
@@ -165,7 +166,8 @@ int main(void) {
     CHECK(fog_pass_upload_lod(gl.pass, &lod, &err) == 0, "re-upload: %s", err.message);
     {
       fog_volume v = fog_test_volume(FOG_PROFILE_SLAB);
-      camera cam = {.position = {60.0, 20.0, 30.0}, .fov_y = 1.0};
+      camera cam = {.position = {60.0, 20.0, 30.0}, .fov_y = 1.0,
+          .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
       camera_look_at(&cam, (double[3]){130.0, ground_y, -30.0});
       fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
       fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
@@ -196,7 +198,8 @@ int main(void) {
     fog_volume v = {.map_width = 1024, .map_height = 64, .cell_size = 1.0, .extinction = 0.004,
                     .profile = {.kind = FOG_PROFILE_EXPONENTIAL, .y_floor = 0.0, .y0 = 0.5,
                                 .scale_height = 3.0, .y_top = 30.0}};
-    camera cam = {.position = {2.0, 1.5, 20.0}, .fov_y = 0.6};
+    camera cam = {.position = {2.0, 1.5, 20.0}, .fov_y = 0.6,
+        .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){1024.0, 0.5, 44.0});
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
     fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
@@ -247,7 +250,8 @@ int main(void) {
   CHECK(fog_pass_upload_grid3d(gl.pass, &grid3d, &err) == 0, "volume upload: %s", err.message);
   for (int model = FOG_MODEL_HOMOGENEOUS; model <= FOG_MODEL_VOLUME; model++)
     for (int view = 0; view < 2; view++) {
-      camera cam = {.position = {10.0, view ? 40.0 : 3.0, 20.0}, .fov_y = 1.1};
+      camera cam = {.position = {10.0, view ? 40.0 : 3.0, 20.0}, .fov_y = 1.1,
+          .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
       camera_look_at(&cam, (double[3]){80.0, view ? 0.0 : 6.0, -60.0});
       fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
       fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
@@ -324,7 +328,8 @@ int main(void) {
     }
   /* Bad model parameters are refused before anything is drawn, saying what was expected. */
   {
-    camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1};
+    camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1,
+        .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     fog_rbf flat = {.centre = {0, 0, 0}, .radius = 0.0, .density = 1.0};
     const fog_pass_params bad[3] = {
         {.model = FOG_MODEL_RBF, .model_rbfs = &flat, .model_rbf_count = 1},
@@ -338,6 +343,13 @@ int main(void) {
                 strstr(e.message, said[k]),
             "bad model parameters %d: '%s' lacks '%s'", k, e.message, said[k]);
     }
+    /* and a camera without a field of view or depth range: no "0 means default" */
+    const camera unset = {.position = {10.0, 3.0, 20.0}};
+    const fog_pass_params fine = {.model = FOG_MODEL_HOMOGENEOUS, .model_extinction = 0.01};
+    render_error e = {{0}};
+    CHECK(fog_test_gl_draw_tau(&gl, &unset, &fine, surface_tex, dist_tex, tau, &e) != 0 &&
+              strstr(e.message, "expected 0 < fov < pi and 0 < near < far"),
+          "a camera of fov 0: '%s'", e.message);
   }
   printf("manual fetch: max |dtau| %.2e; GPU sum vs switching %.2e; colour vs eq. 4 %.2e\n",
          worst_exact, worst_methods, worst_colour);

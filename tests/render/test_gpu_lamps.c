@@ -94,7 +94,8 @@ int main(void) {
     fog_lod lod = {.levels = 0, .approx = &grid};
     fog_model m = {.kind = FOG_MODEL_FOGMAP, .volume = &v, .lod = &lod,
                    .lod_method = FOG_LOD_SWITCH};
-    camera cam = {.position = {96.0, 4.0, -30.0}, .fov_y = 1.1};
+    camera cam = {.position = {96.0, 4.0, -30.0}, .fov_y = 1.1,
+        .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){160.0, 3.0, -24.0});
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
     fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
@@ -150,7 +151,8 @@ int main(void) {
   static const char *names[] = {"", "homogeneous", "height", "rbf", "volume", "quadric",
                                 "linear", "exp2"};
   for (int model = FOG_MODEL_HOMOGENEOUS; model <= FOG_MODEL_EXP2; model++) {
-    camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1};
+    camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1,
+        .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
     fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);

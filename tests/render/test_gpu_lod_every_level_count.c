@@ -36,7 +36,8 @@ int main(void) {
     fog_lod lod = {.levels = J, .approx = approx, .detail = detail, .mu = 0.7};
     CHECK(fog_pass_upload_lod(gl.pass, &lod, &err) == 0, "J = %d upload: %s", J, err.message);
     for (int inside = 0; inside <= 1; inside++) {
-      camera cam = {.fov_y = 1.0};
+      camera cam = {.fov_y = 1.0,
+          .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
       double target[3] = {hi[0], ground_y, lo[2]};
       if (inside) {
         cam.position[0] = lo[0] + 0.1 * (hi[0] - lo[0]);

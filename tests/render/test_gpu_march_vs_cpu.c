@@ -32,7 +32,8 @@ int main(void) {
     fog_volume v = fog_test_volume(degree == 1 ? FOG_PROFILE_EXPONENTIAL : FOG_PROFILE_BSPLINE);
     double lo[3], hi[3];
     fog_volume_box(&v, lo, hi);
-    camera cam = {.position = {lo[0] - 20.0, hi[1] + 5.0, hi[2] + 20.0}, .fov_y = 0.9};
+    camera cam = {.position = {lo[0] - 20.0, hi[1] + 5.0, hi[2] + 20.0}, .fov_y = 0.9,
+        .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){0.5 * (lo[0] + hi[0]), lo[1], 0.5 * (lo[2] + hi[2])});
     double march_error[2] = {0, 0};
     for (int jitter = 0; jitter <= 1; jitter++)

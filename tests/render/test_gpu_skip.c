@@ -82,7 +82,8 @@ int main(void) {
         double lo[3], hi[3];
         fog_volume_box(&v, lo, hi);
         for (int view = 0; view < 2; view++) {
-          camera cam = {.fov_y = 1.0};
+          camera cam = {.fov_y = 1.0,
+              .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
           double target[3];
           if (view == 0) { /* inside the fog, looking across the map */
             cam.position[0] = lo[0] + 0.05 * (hi[0] - lo[0]);
@@ -188,7 +189,8 @@ int main(void) {
                                .index_offset = {-box.origin_x / 1.5, 0.0, -box.origin_z / 1.5}};
     CHECK(fog_pass_upload_grid3d(gl.pass, &grid3d, &err) == 0, "volume: %s", err.message);
     for (int view = 0; view < 2; view++) {
-      camera cam = {.fov_y = 1.0};
+      camera cam = {.fov_y = 1.0,
+          .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
       double target[3] = {box.origin_x + 40.0, 12.0, box.origin_z + 30.0};
       cam.position[0] = box.origin_x + (view ? -15.0 : 3.0);
       cam.position[1] = view ? 60.0 : 8.0;

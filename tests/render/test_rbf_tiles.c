@@ -112,9 +112,11 @@ int main(void) {
     g[i] = (fog_rbf){.centre = {fog_test_range(-500, 500), fog_test_range(0, 60),
                                 fog_test_range(-500, 500)},
                      .radius = fog_test_range(6, 20), .density = fog_test_range(0.001, 0.008)};
-  camera inside = {.position = {0, 20, 480}, .fov_y = 1.0};
+  camera inside = {.position = {0, 20, 480}, .fov_y = 1.0,
+      .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
   camera_look_at(&inside, (double[3]){0, 10, 0});
-  camera above = {.position = {-300, 260, 400}, .fov_y = 0.9};
+  camera above = {.position = {-300, 260, 400}, .fov_y = 0.9,
+      .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
   camera_look_at(&above, (double[3]){50, 0, -100});
   check_view(g, N, &inside, "3000 Gaussians, camera inside the banks", &gl, surface_tex, dist_tex);
   check_view(g, N, &above, "3000 Gaussians, from above", &gl, surface_tex, dist_tex);

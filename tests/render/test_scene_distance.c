@@ -132,7 +132,8 @@ static void test_culled_views(const scene_geometry *geo, scene_pass *pass,
   int n = (int)(sizeof views / sizeof views[0]), fewer = 0, all = 0, culled = 0;
   for (int k = 0; k < n; k++) {
     camera cam = {.position = {views[k].position[0], 0, views[k].position[2]},
-                  .yaw = views[k].yaw, .pitch = views[k].pitch, .fov_y = views[k].fov_y};
+                  .yaw = views[k].yaw, .pitch = views[k].pitch, .fov_y = views[k].fov_y,
+                      .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     cam.position[1] = views[k].position[1] > 0
                           ? views[k].position[1]
                           : terrain_height_at(t, cam.position[0], cam.position[2]) +
@@ -187,7 +188,8 @@ int main(void) {
   gl_target target;
   CHECK(scene_target_create(&target, W, H, &err) == 0, "target: %s", err.message);
   /* A camera above the terrain looking over the boxes toward the horizon (sky visible). */
-  camera cam = {.position = {-20, 0, 60}, .fov_y = 1.0};
+  camera cam = {.position = {-20, 0, 60}, .fov_y = 1.0,
+      .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
   cam.position[1] = terrain_height_at(&geo.terrain, -20, 60) + 40;
   cam.yaw = 0.15;
   cam.pitch = -0.12;

@@ -40,7 +40,8 @@ int main(void) {
                               {250, 0, -100, -200, 40, -400}};
   const double budgets[2] = {1.0, 4.0};
   for (int v = 0; v < 4; v++) {
-    camera cam = {.fov_y = 55.0 * 3.14159265358979323846 / 180.0};
+    camera cam = {.fov_y = 55.0 * 3.14159265358979323846 / 180.0,
+        .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     for (int c = 0; c < 3; c++) cam.position[c] = views[v][c];
     if (views[v][1] == 0)
       cam.position[1] = terrain_height_at(&geo.terrain, cam.position[0], cam.position[2]) + 25.0;

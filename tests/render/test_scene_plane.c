@@ -83,7 +83,8 @@ int main(void) {
     enum { W = 96, H = 64 };
     gl_target target;
     CHECK(scene_target_create(&target, W, H, &err) == 0, "%s", err.message);
-    camera cam = {.position = {0, 90, 150}, .fov_y = 1.1};
+    camera cam = {.position = {0, 90, 150}, .fov_y = 1.1,
+        .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     double at[3] = {0, 0, -150};
     camera_look_at(&cam, at);
     float *distance = malloc(sizeof(float) * W * H);
