@@ -242,7 +242,7 @@ static int design_fogmap(design_options *o, fogmap *map, sim_error *err) {
 }
 
 int cmd_design(int argc, char **argv) {
-  design_options o = {.seed = 1};
+  design_options o = {.seed = 1, .noise = perlin_fog_desc_default()};
   int parsed = parse_design_options(argc, argv, &o);
   if (parsed >= 0) return parsed;
   const int png = ends_with(o.out, ".png");

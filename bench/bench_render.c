@@ -440,7 +440,7 @@ int bench_render(int argc, char **argv) {
    * simulated fog: the default scene's frame 48 (made before this bench's GL context). */
   if (fogmap_create(&extra[EXTRA_DETAILED], map.width, map.height, &serr) ||
       designed_fog_perlin(&extra[EXTRA_DETAILED],
-                          &(perlin_fog_desc){.octaves = 4, .feature_size = 16.0f}, &serr)) {
+                          &(perlin_fog_desc){.octaves = 4, .feature_size = 16.0f, .gain = 1.0f}, &serr)) {
     fprintf(stderr, "fogpipe bench render: detailed fog: %s\n", serr.message);
     goto done;
   }

@@ -96,11 +96,14 @@ static int fail(sim_error *err, const char *message) {
   return 1;
 }
 
+perlin_fog_desc perlin_fog_desc_default(void) {
+  return (perlin_fog_desc){.octaves = 4, .feature_size = 32.0f, .gain = 1.0f};
+}
+
 int designed_fog_perlin(fogmap *map, const perlin_fog_desc *desc, sim_error *err) {
-  perlin_fog_desc d = desc ? *desc : (perlin_fog_desc){0};
-  int octaves = d.octaves ? d.octaves : 4;
-  double size = d.feature_size != 0.0f ? d.feature_size : 32.0;
-  double gain = d.gain != 0.0f ? d.gain : 1.0;
+  const perlin_fog_desc d = *desc;
+  const int octaves = d.octaves;
+  const double size = d.feature_size, gain = d.gain;
   if (!map || !map->density || map->width <= 0 || map->height <= 0)
     return fail(err, "Perlin fog: the fogmap is empty");
   if (octaves < 1 || octaves > 30)

@@ -37,21 +37,25 @@ double perlin_noise3(const perlin_noise *noise, double x, double y, double z);
 /* Turbulence Σ_{o<octaves} |n(2^o p)| / 2^o (octaves < 1 counts as 1). */
 double perlin_turbulence(const perlin_noise *noise, double x, double y, double z, int octaves);
 
+/* Every field is a value (no "0 means default"): start from perlin_fog_desc_default(). */
 typedef struct perlin_fog_desc {
   uint64_t seed;        /* permutation seed; 0: Perlin's reference table */
-  int octaves;          /* 0 means 4 */
-  float feature_size;   /* noise lattice spacing in cells (the largest eddies); 0 means 32 */
+  int octaves;          /* 1 to 30 */
+  float feature_size;   /* noise lattice spacing in cells (the largest eddies), > 0 */
   float velocity[2];    /* translation of the noise in cells per unit time (x, z) */
   float time;           /* animation time: samples turbulence(p - velocity * time) */
   float slice;          /* the noise's third coordinate (in lattice units) */
   float slice_rate;     /* slice change per unit time: the fog also evolves, not only drifts */
-  float gain;           /* density = base + gain * turbulence; 0 means 1 */
+  float gain;           /* density = base + gain * turbulence, > 0 */
   float base;           /* constant density added everywhere (>= 0) */
 } perlin_fog_desc;
 
+/* 4 octaves, eddies of 32 cells, gain 1; no base, still, seed 0. */
+perlin_fog_desc perlin_fog_desc_default(void);
+
 /* Overwrites every cell of map with base + gain * T((x - vx t) / s, (z - vz t) / s,
- * slice + slice_rate t). Fails (map untouched) on negative base or gain, non-finite
- * parameters, or an empty map. */
+ * slice + slice_rate t). Fails (map untouched) on octaves outside 1..30, a feature size or
+ * gain that is not positive, a negative base, non-finite parameters, or an empty map. */
 int designed_fog_perlin(fogmap *map, const perlin_fog_desc *desc, sim_error *err);
 
 /* One Gaussian: peak * exp(-((x - x0)² + (z - z0)²) / (2 sigma²)), in cells. */

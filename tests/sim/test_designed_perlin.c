@@ -129,8 +129,8 @@ static void test_fog_animation(void) {
   sim_error err;
   CHECK(fogmap_create(&at0, w, h, &err) == 0 && fogmap_create(&at_t, w, h, &err) == 0, "%s",
         err.message);
-  perlin_fog_desc desc = {.seed = 3, .feature_size = 12.5f, .velocity = {2.0f, -1.5f},
-                          .gain = 0.7f, .base = 0.05f};
+  perlin_fog_desc desc = {.seed = 3, .octaves = 4, .feature_size = 12.5f,
+                          .velocity = {2.0f, -1.5f}, .gain = 0.7f, .base = 0.05f};
   CHECK(designed_fog_perlin(&at0, &desc, &err) == 0, "%s", err.message);
   desc.time = 4.0f; /* shift (8, -6) cells: the same fog moved by exactly that */
   CHECK(designed_fog_perlin(&at_t, &desc, &err) == 0, "%s", err.message);
@@ -152,12 +152,23 @@ static void test_fog_animation(void) {
 
   /* bad parameters fail and leave the map alone */
   float before = at0.density[5];
-  CHECK(designed_fog_perlin(&at0, &(perlin_fog_desc){.base = -1.0f}, &err) != 0 &&
-            strstr(err.message, "base"),
+  perlin_fog_desc bad = perlin_fog_desc_default();
+  bad.base = -1.0f;
+  CHECK(designed_fog_perlin(&at0, &bad, &err) != 0 && strstr(err.message, "base"),
         "negative base accepted: %s", err.message);
-  CHECK(designed_fog_perlin(&at0, &(perlin_fog_desc){.feature_size = -2.0f}, &err) != 0 &&
-            strstr(err.message, "feature size"),
+  bad = perlin_fog_desc_default();
+  bad.feature_size = -2.0f;
+  CHECK(designed_fog_perlin(&at0, &bad, &err) != 0 && strstr(err.message, "feature size"),
         "negative feature size accepted");
+  /* no "0 means default": zero octaves, size or gain are refused, not replaced */
+  bad = perlin_fog_desc_default();
+  bad.octaves = 0;
+  CHECK(designed_fog_perlin(&at0, &bad, &err) != 0 && strstr(err.message, "octaves"),
+        "0 octaves accepted");
+  bad = perlin_fog_desc_default();
+  bad.gain = 0.0f;
+  CHECK(designed_fog_perlin(&at0, &bad, &err) != 0 && strstr(err.message, "gain"),
+        "gain 0 accepted");
   CHECK(at0.density[5] == before, "failed call changed the map");
   fogmap_destroy(&at0);
   fogmap_destroy(&at_t);
