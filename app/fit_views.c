@@ -246,3 +246,46 @@ int fit_views_measure_light(const fit_views *v, const fog_model *rung, const fit
   *relative_error = brightest > 0.0 ? worst / brightest : worst;
   return 0;
 }
+
+int fit_views_rbf_amplitudes(const fit_views *v, int count, fog_rbf *g, int n) {
+  /* min sum_rays w (sum_i c_i D_i - D_ref)^2, c >= 0: D_i the optical depth of Gaussian i
+   * (density 1) along the ray, D_ref the reference's (capped at 10: opaque is opaque), w =
+   * max(tau_ref, 0.05)^2 (a depth error moves tau by tau times it). */
+  double *a = calloc((size_t)n * n, sizeof *a), *b = calloc((size_t)n, sizeof *b);
+  double *depth = malloc((size_t)n * sizeof *depth);
+  if (!a || !b || !depth) {
+    free(a), free(b), free(depth);
+    return 1;
+  }
+  for (int f = 0; f < count; f++)
+    for (int k = 0; k < v[f].count; k++) {
+      double tau = v[f].reference[k], target = fmin(-log(fmax(tau, 1e-300)), 10.0);
+      double w = fmax(tau, 0.05) * fmax(tau, 0.05);
+      for (int i = 0; i < n; i++) {
+        fog_rbf one = g[i];
+        one.density = 1.0;
+        depth[i] = fog_rbf_optical_depth(0.0, &one, 1, v[f].origin[k], v[f].dir[k],
+                                         v[f].length[k]);
+      }
+      for (int i = 0; i < n; i++) {
+        if (depth[i] == 0.0) continue;
+        b[i] += w * depth[i] * target;
+        for (int j = 0; j < n; j++) a[(size_t)i * n + j] += w * depth[i] * depth[j];
+      }
+    }
+  for (int sweep = 0; sweep < 500; sweep++) { /* projected Gauss-Seidel from the moments */
+    double change = 0.0, size = 0.0;
+    for (int i = 0; i < n; i++) {
+      double diag = a[(size_t)i * n + i];
+      if (!(diag > 0.0)) continue;
+      double r = b[i];
+      for (int j = 0; j < n; j++) r -= a[(size_t)i * n + j] * g[j].density;
+      double next = fmax(0.0, g[i].density + r / diag);
+      change = fmax(change, fabs(next - g[i].density)), size = fmax(size, next);
+      g[i].density = next;
+    }
+    if (change <= 1e-12 * size) break;
+  }
+  free(a), free(b), free(depth);
+  return 0;
+}

@@ -60,6 +60,12 @@ int fit_views_measure_light(const fit_views *v, const fog_model *rung, const fit
 double fit_views_exp2(const fit_views *v, int count);
 void fit_views_linear(const fit_views *v, int count, double *start, double *end);
 
+/* Re-fits the amplitudes of n Gaussians (centres and radii kept) on the optical depth
+ * along the rays of `count` views: weighted non-negative least squares of sum_i c_i D_i
+ * against the reference's depth (capped at 10), each ray weighted by max(tau, 0.05)^2, so
+ * that the fit follows tau where tau can still change. Non-zero: out of memory. */
+int fit_views_rbf_amplitudes(const fit_views *v, int count, fog_rbf *g, int n);
+
 /* View `index`'s camera: where it stands and the point it looks at. */
 void fit_view_pose(const double lo[3], const double hi[3], int index, double position[3],
                    double target[3]);
