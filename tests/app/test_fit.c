@@ -19,6 +19,8 @@
 
 #include "app/config.h"
 #include "app/fit.h"
+#include "app/fit_views.h"
+#include "render/fog_sun_shadow.h"
 #include "sim/sim.h"
 #include "test_bin.h"
 
@@ -302,10 +304,30 @@ static void test_sequence(const char *folder) {
   fit_result_destroy(&r3);
 }
 
+/* The banks' amplitudes on the views' depths (fit_views_rbf_amplitudes): two Gaussians
+ * whose centres and radii are right but amplitudes wrong come back to the reference's. */
+static void test_amplitudes(void) {
+  const fog_rbf truth[2] = {{.centre = {-20, 30, 0}, .radius = 25, .density = 0.02},
+                            {.centre = {25, 35, 10}, .radius = 18, .density = 0.01}};
+  fog_model reference = {.kind = FOG_MODEL_RBF, .rbfs = truth, .rbf_count = 2};
+  double lo[3], hi[3];
+  CHECK(fog_model_bounds(&reference, lo, hi), "bounds");
+  fit_views views;
+  CHECK(fit_views_create(&views, &reference, lo, hi, 16) == 0, "views");
+  fog_rbf guess[2] = {truth[0], truth[1]};
+  guess[0].density = 0.05, guess[1].density = 0.002;
+  CHECK(fit_views_rbf_amplitudes(&views, 1, guess, 2) == 0, "out of memory");
+  for (int i = 0; i < 2; i++)
+    CHECK(fabs(guess[i].density / truth[i].density - 1) < 1e-6, "amplitude %d: %.9g, want %g",
+          i, guess[i].density, truth[i].density);
+  fit_views_destroy(&views);
+}
+
 int main(void) {
   char folder[] = "/tmp/fogpipe_fit_XXXXXX";
   CHECK(mkdtemp(folder) != NULL, "mkdtemp");
   test_constant();
+  test_amplitudes();
   test_height();
   test_classic();
   test_ground_fog();
