@@ -99,6 +99,7 @@ typedef struct fog_pass_variant {
   int skip;               /* FOG_SKIP: 1 empty-space skipping in the fogmap walk */
   int lamps;              /* FOG_LAMPS: 1 point and spot lights (fog_lamps.glsl) */
   int lamp_integral;      /* FOG_LAMP_INTEGRAL: fog_lamp_integral */
+  int surface_lamps;      /* FOG_SURFACE_LAMPS: 1 the fog dims the lamps' light on surfaces */
 } fog_pass_variant;
 
 static const struct {
@@ -123,6 +124,7 @@ static const struct {
     {"FOG_SKIP", offsetof(fog_pass_variant, skip), 1},
     {"FOG_LAMPS", offsetof(fog_pass_variant, lamps), 1},
     {"FOG_LAMP_INTEGRAL", offsetof(fog_pass_variant, lamp_integral), 2},
+    {"FOG_SURFACE_LAMPS", offsetof(fog_pass_variant, surface_lamps), 1},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
@@ -494,13 +496,19 @@ enum fog_pass_unit {
   UNIT_GRID3D_OCCUPANCY,
   UNIT_SUN_SHADOW,
   UNIT_SURFACE_SUN,
+  UNIT_SURFACE_LAMPS,
   UNIT_SUN_VISIBILITY,
   UNIT_RBF_DATA,
   UNIT_RBF_INDICES,
   UNIT_RBF_TILES,
   UNIT_COUNT
 };
-_Static_assert(UNIT_COUNT <= 32, "the fog pass needs more texture units than GL 4.3 offers");
+/* Unit indices stay below GL 4.3's guaranteed 96 combined units; a variant samples far
+ * fewer at once than llvmpipe's 32 per stage (the fogmap's 2J + 1 grids and its walk's
+ * tables, or another model's few textures, plus the light's). */
+_Static_assert(UNIT_COUNT <= 48, "the fog pass needs more texture units than GL 4.3 offers");
+
+static bool fog_pass_has_surface_lamps(const fog_pass_params *params);
 
 /* Binds texture to unit and points sampler `name` of prog at it. */
 static void bind_sampler(GLuint prog, const char *name, int unit, GLenum target,
@@ -593,6 +601,9 @@ static void fog_pass_sun_shadow_uniforms(const fog_pass *pass, GLuint prog, cons
   }
   if (params->surface_sun)
     bind_sampler(prog, "fog_surface_sun", UNIT_SURFACE_SUN, GL_TEXTURE_2D, params->surface_sun);
+  if (fog_pass_has_surface_lamps(params))
+    bind_sampler(prog, "fog_surface_lamps", UNIT_SURFACE_LAMPS, GL_TEXTURE_2D,
+                 params->surface_lamps);
   if (params->self_shadow != FOG_SUN_SHADOW_VOLUME) return;
   const fog_sun_shadow *s = &pass->sun_shadow_place;
   double m[3][3], offset[3];
@@ -617,6 +628,11 @@ static bool fog_pass_has_lamps(const fog_pass_params *params) {
   return params->lamps.count > 0 && params->sun.albedo > 0;
 }
 
+/* The fog dims the lamps' light on the surfaces (whatever the albedo: absorbing fog too). */
+static bool fog_pass_has_surface_lamps(const fog_pass_params *params) {
+  return params->lamps.count > 0 && params->surface_lamps != 0;
+}
+
 /* The lamps (fog_lamps.glsl): camera-relative positions subtracted in double, a I. */
 static void fog_pass_lamp_uniforms(GLuint prog, const camera *cam, const fog_pass_params *params) {
   const fog_lamps *lamps = &params->lamps;
@@ -625,6 +641,9 @@ static void fog_pass_lamp_uniforms(GLuint prog, const camera *cam, const fog_pas
   glUniform1i(fog_loc(prog, "fog_lamp_count"), lamps->count);
   glUniform3fv(fog_loc(prog, "fog_lamp_position"), lamps->count, &u.position[0][0]);
   glUniform3fv(fog_loc(prog, "fog_lamp_scatter"), lamps->count, &u.intensity[0][0]);
+  fog_lamp_uniforms unscaled;
+  fog_lamps_pack(lamps, cam->position, 1.0, &unscaled);
+  glUniform3fv(fog_loc(prog, "fog_lamp_intensity"), lamps->count, &unscaled.intensity[0][0]);
   glUniform4fv(fog_loc(prog, "fog_lamp_axis"), lamps->count, &u.axis[0][0]);
   glUniform3fv(fog_loc(prog, "fog_lamp_cone"), lamps->count, &u.cone[0][0]);
   glUniform1i(fog_loc(prog, "fog_lamp_angle_pieces"), lamps->method.angle_pieces);
@@ -662,7 +681,8 @@ static int fog_pass_common_and_draw(const fog_pass *pass, GLuint prog, const cam
               (float)(sun->albedo * sun->radiance[1]), (float)(sun->albedo * sun->radiance[2]));
   glUniform1f(fog_loc(prog, "fog_phase_g"), (float)sun->phase_g);
   fog_pass_sun_shadow_uniforms(pass, prog, cam, params);
-  if (fog_pass_has_lamps(params)) fog_pass_lamp_uniforms(prog, cam, params);
+  if (fog_pass_has_lamps(params) || fog_pass_has_surface_lamps(params))
+    fog_pass_lamp_uniforms(prog, cam, params);
   bind_sampler(prog, "fog_surface_colour", UNIT_SURFACE_COLOUR, GL_TEXTURE_2D, surface_colour);
   bind_sampler(prog, "fog_surface_distance", UNIT_SURFACE_DISTANCE, GL_TEXTURE_2D,
                surface_distance);
@@ -826,7 +846,8 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
                                     .lamps = fog_pass_has_lamps(params),
                                     .lamp_integral = fog_pass_has_lamps(params)
                                                          ? (int)params->lamps.method.integral
-                                                         : 0};
+                                                         : 0,
+                                    .surface_lamps = fog_pass_has_surface_lamps(params)};
   GLuint prog = fog_pass_variant_program(pass, &variant, err);
   if (!prog) return 1;
   glUseProgram(prog);
@@ -1201,6 +1222,7 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       .skip = fog_pass_skips(pass, params, first, reads),
       .lamps = fog_pass_has_lamps(params),
       .lamp_integral = fog_pass_has_lamps(params) ? (int)params->lamps.method.integral : 0,
+      .surface_lamps = fog_pass_has_surface_lamps(params),
   };
   GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;

@@ -132,6 +132,10 @@ typedef struct fog_pass_params {
   /* Optional (0: none): an RGBA texture of the surfaces' sun-lit share of their colour
    * (scene pass attachment 2, width x height); the fog's shadow takes (1 - T_s(P)) of it. */
   GLuint surface_sun;
+  /* Optional (0: none): the scene pass's attachment 3 (rgb the lamps' share of the colour,
+   * a the packed normal); with lamps, the fog between each lamp and the surface dims it
+   * (fog_lamps.glsl, fog_lamps_surface; the CPU twin fog_lamps_surface_transmittance). */
+  GLuint surface_lamps;
   /* Optional (NULL: none): the scene pass's sun shadow map (scene_pass_sun_shadow): V in
    * the view ray's mean, light shafts (shadow_steps >= 1 then too). */
   const sun_shadow_map *shafts;

@@ -712,7 +712,7 @@ int scene_target_create(gl_target *target, int width, int height, render_error *
                           &(gl_target_desc){.width = width,
                                             .height = height,
                                             .color_formats = {GL_RGBA16F, GL_R32F,
-                                                              GL_RGBA16F},
+                                                              GL_RGBA16F, GL_RGBA32F},
                                             .depth = true},
                           err);
 }

@@ -3,10 +3,11 @@
 // fog_lamps_light to the in-scatter. Specialisation constants FOG_LAMPS 0|1 and
 // FOG_LAMP_INTEGRAL 0|1|2 (fog_lamp_integral: ours, Fogshop's for RBFs, marching). The CPU twin
 // is render/fog_lamp_cpu.c, sample for sample.
-#if FOG_LAMPS
+#if FOG_LAMPS || FOG_SURFACE_LAMPS
 uniform int fog_lamp_count;
 uniform vec3 fog_lamp_position[FOG_MAX_LAMPS];  // camera-relative (subtracted in double)
 uniform vec3 fog_lamp_scatter[FOG_MAX_LAMPS];   // a I per channel
+uniform vec3 fog_lamp_intensity[FOG_MAX_LAMPS]; // I per channel (the surfaces' weights)
 uniform vec4 fog_lamp_axis[FOG_MAX_LAMPS];      // xyz the spot's unit axis; w 1 spot, 0 point
 uniform vec3 fog_lamp_cone[FOG_MAX_LAMPS];      // cos_outer, 1/(cos_inner - cos_outer), r^2
 uniform int fog_lamp_angle_pieces;
@@ -58,6 +59,43 @@ float fog_lamp_spot(int i, vec3 p) {
   return u * u * (3.0 - 2.0 * u);
 }
 
+// The transmittance from camera-relative point x to lamp i: the closed form, or
+// fog_lamp_shadow_steps midpoint steps (as the in-scatter's T).
+float fog_lamp_transmittance(int i, vec3 x) {
+  vec3 to_lamp = fog_lamp_position[i] - x;
+  float dist = length(to_lamp);
+  if (!(dist > 0.0)) return 1.0;
+#if FOG_LAMP_EXACT_DEPTH
+  return exp(-fog_lamp_segment_depth(x, to_lamp / dist, dist));
+#else
+  float shadow = 0.0, ds = dist / float(fog_lamp_shadow_steps);
+  for (int j = 0; j < fog_lamp_shadow_steps; j++)
+    shadow += fog_lamp_extinction(x + ((float(j) + 0.5) / float(fog_lamp_shadow_steps)) * to_lamp) * ds;
+  return exp(-shadow);
+#endif
+}
+
+// The lamps' light on a surface point p (camera-relative, unit normal n) dimmed by the fog
+// between each lamp and p: the factor per channel, sum_i I_i g_i T_i / sum_i I_i g_i, g_i the
+// scene pass's geometry (cos / (d^2 + r^2), the spot's cone). Exact for any number of lamps:
+// the scene pass's lamp share is albedo sum_i I_i g_i / pi.
+vec3 fog_lamps_surface(vec3 p, vec3 n) {
+  vec3 num = vec3(0.0), den = vec3(0.0);
+  for (int i = 0; i < fog_lamp_count; i++) {
+    vec3 l = fog_lamp_position[i] - p;
+    float d2 = dot(l, l), d = sqrt(d2);
+    float g = max(dot(n, l) / max(d, 1e-6), 0.0) * fog_lamp_spot(i, p) / (d2 + fog_lamp_cone[i].z);
+    if (!(g > 0.0)) continue;
+    vec3 w = fog_lamp_intensity[i] * g;
+    num += w * fog_lamp_transmittance(i, p);
+    den += w;
+  }
+  return vec3(den.x > 0.0 ? num.x / den.x : 1.0, den.y > 0.0 ? num.y / den.y : 1.0,
+              den.z > 0.0 ? num.z / den.z : 1.0);
+}
+#endif
+
+#if FOG_LAMPS
 // The optical depth from the camera at the ends of fog_lamp_depth_steps equal segments of
 // the span (fogmap and volume; a global: no array copied into calls).
 float fog_lamp_table[FOG_LAMP_MAX_DEPTH_STEPS + 1];

@@ -13,6 +13,7 @@
 //                                    optical depth and surface distance for
 //                                    the upsampling pass, FOG_UPSAMPLE 1)
 //   #define FOG_LAMPS 0|1            (1: point and spot lights, fog_lamps.glsl)
+//   #define FOG_SURFACE_LAMPS 0|1    (1: the fog dims the lamps' light on the surfaces)
 //   and the specialisation constants of fog_integral.glsl
 uniform int fog_march_steps;  // FOG_INTEGRATOR 1: samples per ray (every model's marcher)
 #include "fog_integral.glsl"
@@ -36,6 +37,18 @@ uniform float fog_phase_g;               // Henyey-Greenstein g
 // The scene pass's sun-lit share of each surface's colour (its attachment 2): the fog's
 // shadow on the surfaces takes (1 - T_s(P)) of it away.
 uniform sampler2D fog_surface_sun;
+#endif
+#if FOG_SURFACE_LAMPS
+// The scene pass's attachment 3: the lamps' share of the colour and the surface's normal,
+// octahedral, 12 bits a component packed into one float (scene_surface_fs.glsl).
+uniform sampler2D fog_surface_lamps;
+vec3 fog_unpack_normal(float code) {
+  uint v = uint(code);
+  vec2 o = vec2(float(v / 4096u), float(v % 4096u)) / 4095.0 * 2.0 - 1.0;
+  vec3 n = vec3(o, 1.0 - abs(o.x) - abs(o.y));
+  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+  return normalize(n);
+}
 #endif
 const int fog_levels = FOG_LEVELS;       // J; 0: one grid (slot 0). Specialised per variant
 // 0: sum of details (paper), 1: approximation switching; specialised per variant
@@ -271,6 +284,15 @@ void main() {
   if (t_surface < 1e29)
     surface.rgb -= (1.0 - exp(-fog_sun_optical_depth(t_surface * vec3(view_dir)))) *
                    texelFetch(fog_surface_sun, pixel, 0).rgb;
+#endif
+#if FOG_SURFACE_LAMPS
+  // The lamps' light on the ground crossed the fog between each lamp and P (Fogshop §4).
+  if (t_surface < 1e29) {
+    vec4 lamp_share = texelFetch(fog_surface_lamps, pixel, 0);
+    if (any(greaterThan(lamp_share.rgb, vec3(0.0))))
+      surface.rgb -= lamp_share.rgb * (1.0 - fog_lamps_surface(t_surface * vec3(view_dir),
+                                                               fog_unpack_normal(lamp_share.a)));
+  }
 #endif
   // Giroud & Biri eq. 4 with L_fog = L_amb + a L_sun p(theta) T_s-mean (fog_light.glsl):
   // with a = 0 the same image, with T_s = 1 the identity of docs/light.md.

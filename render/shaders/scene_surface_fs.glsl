@@ -19,7 +19,8 @@ uniform float sun_normal_offset; // world: the lookup's step off the surface (no
 uniform float lod_lift_per_distance;
 // Lamps (render/fog_lamp.h): each lights the surface with irradiance I cos / (d^2 + r^2)
 // times its cone, Lambertian (albedo / pi, as the sun's sun_colour is its irradiance / pi).
-// Not dimmed by the fog between lamp and surface (docs/light.md, Lamps: what is left).
+// Their share of the colour goes to location 3 with the normal, and the fog pass dims it by
+// the fog between each lamp and the surface (fog_lamps.glsl, fog_lamps_surface).
 const int SCENE_MAX_LAMPS = 16;
 uniform int lamp_count;
 uniform vec3 lamp_position[SCENE_MAX_LAMPS];   // camera-relative
@@ -46,6 +47,16 @@ vec3 lamp_light(vec3 p, vec3 n) {
 layout(location = 0) out vec4 colour;
 layout(location = 1) out float surface_distance;
 layout(location = 2) out vec4 sun_share;
+// rgb: the lamps' share of the colour; a: the unit normal, octahedral, 12 bits a component
+// packed into one float (exact below 2^24)
+layout(location = 3) out vec4 lamp_share;
+
+float pack_normal(vec3 n) {
+  vec2 o = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+  if (n.z < 0.0) o = (1.0 - abs(o.yx)) * vec2(o.x >= 0.0 ? 1.0 : -1.0, o.y >= 0.0 ? 1.0 : -1.0);
+  uvec2 q = uvec2(round(clamp(o * 0.5 + 0.5, 0.0, 1.0) * 4095.0));
+  return float(q.x * 4096u + q.y);
+}
 
 void main() {
   vec3 n = normalize(v_normal);
@@ -56,8 +67,10 @@ void main() {
   vec3 q = (sun_from_relative * vec4(v_relative + n * sun_normal_offset + lift, 1.0)).xyz;
   float visible = lambert > 0.0 ? texture(sun_visibility, q) : 0.0;
   vec3 sunlit = v_albedo * sun_colour * lambert * visible;
-  colour = vec4(sunlit + v_albedo * (sky_light + lamp_light(v_relative, n)), 1.0);
+  vec3 lamplit = v_albedo * lamp_light(v_relative, n);
+  colour = vec4(sunlit + v_albedo * sky_light + lamplit, 1.0);
   sun_share = vec4(sunlit, 0.0);
+  lamp_share = vec4(lamplit, pack_normal(n));
   // The interpolated camera-relative position is the point on the triangle under the
   // pixel centre (perspective-correct), so this is the ray's hit distance.
   surface_distance = length(v_relative);

@@ -1,0 +1,119 @@
+/* Lamp light on the surfaces crosses the fog between the lamp and the surface (Fogshop §4;
+ * render/shaders/fog_lamps.glsl, fog_lamps_surface): a flat ground lit by one lamp alone
+ * (no sun, no sky light, black fog colour, albedo 0), in homogeneous fog of K = 0.02. Each
+ * ground pixel is then tau(P) x T(lamp, P) x its unfogged colour, so against the same scene
+ * without fog (K = 0) the ratio is exp(-K (t + |P - lamp|)), t the pixel's surface distance:
+ * an analytic reference. Then two lamps of different colours, whose per-channel weights the
+ * fog pass recovers from the scene pass's packed normal: each channel's ratio lies between
+ * the two lamps' own transmittances (it is their weighted mean). */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app/config.h"
+#include "app/render_frame.h"
+#include "test_util.h"
+
+enum { W = 64, H = 48 };
+
+static const char *const scene =
+    "[camera]\nposition = 0 30 40\nlook_at = 0 0 0\nfov = 60\n"
+    "[terrain]\norigin = -200 0 -200\nsize = 400 400\nheight = 0.001\nresolution = 33\n"
+    "[light]\nsun_colour = 0 0 0\nambient = 0 0 0\nshafts = off\n%s"
+    "[fog]\nmodel = homogeneous\ndensity_scale = %g\ncolour = 0 0 0\n";
+
+/* Renders the scene with `lamps` lines and fog K: colour and depth. */
+static int render(const char *dir, const char *lamps, double k, float *rgba, float *depth) {
+  char path[256], text[1024];
+  snprintf(path, sizeof path, "%s/lamp_surface.ini", dir);
+  snprintf(text, sizeof text, scene, lamps, k);
+  FILE *f = fopen(path, "w");
+  if (!f) return 1;
+  fputs(text, f);
+  fclose(f);
+  scene_config cfg;
+  scene_config_error cerr;
+  if (scene_config_load(path, &cfg, &cerr)) {
+    CHECK(0, "%s", cerr.message);
+    return 1;
+  }
+  render_frame_info info;
+  render_frame_error err;
+  int status = render_frame(&cfg, W, H, &(frame_pixels){.rgba = rgba, .depth = depth}, &info,
+                            &err);
+  CHECK(status == 0, "%s", err.message);
+  unlink(path);
+  return status;
+}
+
+int main(void) {
+  char dir[] = "/tmp/fogpipe_lamp_surface_XXXXXX";
+  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  static float clear[4 * W * H], fogged[4 * W * H], depth[W * H];
+  const double k = 0.02, lamp[3] = {5, 8, -3};
+  camera cam = {.position = {0, 30, 40}, .fov_y = 60 * 3.14159265358979323846 / 180,
+                .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
+  camera_look_at(&cam, (double[3]){0, 0, 0});
+
+  /* One white lamp. */
+  if (render(dir, "lamp = 5 8 -3 4000 4000 4000 0.5\n", 0.0, clear, depth) ||
+      render(dir, "lamp = 5 8 -3 4000 4000 4000 0.5\n", k, fogged, depth))
+    return test_finish("test_lamp_surface");
+  double worst = 0.0, dimmest = 1.0;
+  int pixels = 0;
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      int i = py * W + px;
+      if (!(clear[4 * i] > 0.02f) || depth[i] >= 1e5f) continue; /* lit ground only */
+      double o[3], d[3], p[3];
+      camera_ray(&cam, px, py, W, H, o, d);
+      for (int a = 0; a < 3; a++) p[a] = o[a] + depth[i] * d[a];
+      double to_lamp = sqrt(pow(lamp[0] - p[0], 2) + pow(lamp[1] - p[1], 2) +
+                            pow(lamp[2] - p[2], 2));
+      double want = exp(-k * (depth[i] + to_lamp)), got = fogged[4 * i] / clear[4 * i];
+      /* the colour is half float (2^-11 relative), and the fog pass subtracts the lamps'
+       * share (1 - T) from it: relative to T x share that rounding grows as 1/T */
+      worst = fmax(worst, fabs(got / want - 1.0) * exp(-k * to_lamp));
+      dimmest = fmin(dimmest, exp(-k * to_lamp));
+      pixels++;
+    }
+  printf("one lamp: %d lit ground pixels, fogged / clear against exp(-K (t + |P - lamp|)): "
+         "worst relative error x T %.2e (the lamp's own T down to %.3f)\n", pixels, worst,
+         dimmest);
+  CHECK(pixels > 200, "only %d lit ground pixels", pixels);
+  CHECK(worst < 1e-3, "relative error x T %.3e (half-float colours: 2^-11 and a few)", worst);
+
+  /* Two lamps, red near and blue far: per channel the weighted mean of their T. */
+  const char *two = "lamp = 5 8 -3 4000 0 0 0.5\nlamp = -30 6 -20 0 0 40000 0.5\n";
+  const double lamps[2][3] = {{5, 8, -3}, {-30, 6, -20}};
+  if (render(dir, two, 0.0, clear, depth) || render(dir, two, k, fogged, depth))
+    return test_finish("test_lamp_surface");
+  int outside = 0, checked = 0;
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      int i = py * W + px;
+      if (depth[i] >= 1e5f) continue;
+      double o[3], d[3], p[3], t[2];
+      camera_ray(&cam, px, py, W, H, o, d);
+      for (int a = 0; a < 3; a++) p[a] = o[a] + depth[i] * d[a];
+      for (int l = 0; l < 2; l++)
+        t[l] = exp(-k * sqrt(pow(lamps[l][0] - p[0], 2) + pow(lamps[l][1] - p[1], 2) +
+                             pow(lamps[l][2] - p[2], 2)));
+      double tau = exp(-k * depth[i]);
+      for (int c = 0; c < 3; c += 2) { /* red: lamp 0 alone; blue: lamp 1 alone */
+        if (!(clear[4 * i + c] > 0.02f)) continue;
+        double got = fogged[4 * i + c] / (tau * clear[4 * i + c]), want = t[c == 0 ? 0 : 1];
+        checked++;
+        if (fabs(got / want - 1.0) > 5e-4 + 1e-3 / want) outside++;
+      }
+    }
+  printf("two coloured lamps: %d channel values, %d off their own lamp's T by more than the "
+         "half-float colour allows\n",
+         checked, outside);
+  CHECK(checked > 200 && outside == 0, "%d of %d channel values off", outside, checked);
+  rmdir(dir);
+  return test_finish("test_lamp_surface");
+}
