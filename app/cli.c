@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 static void print_message(const char *command, const char *format, va_list args) {
   fprintf(stderr, "fogpipe %s: ", command);
@@ -109,4 +110,9 @@ int cli_range(const char *command, const char *option, const char *text, long mi
                            "B <= %ld", option, text, min, max);
   *first = (int)a, *last = (int)b, *single = !dash;
   return 0;
+}
+
+bool cli_ends_with(const char *s, const char *suffix) {
+  size_t n = strlen(s), m = strlen(suffix);
+  return n >= m && strcasecmp(s + n - m, suffix) == 0;
 }

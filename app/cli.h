@@ -21,6 +21,9 @@ int cli_usage_error(const char *command, const char *format, ...)
 /* Images and windows: 1 to CLI_MAX_SIZE pixels a side. */
 #define CLI_MAX_SIZE 16384
 
+/* Whether s ends with suffix, ignoring case (".EXR" is ".exr"). */
+bool cli_ends_with(const char *s, const char *suffix);
+
 /* The quiet cores (true on success), for values read from files too. */
 bool cli_parse_long(const char *text, long min, long max, long *value);
 bool cli_parse_double(const char *text, double min, double max, double *value);

@@ -55,11 +55,6 @@ static void usage(FILE *out) {
           FIT_RAYS_PER_SIDE, FIT_SAMPLE_SIDE, FIT_WIDTH, FIT_HEIGHT, FIT_TIMED_FRAMES);
 }
 
-static bool ends_with(const char *s, const char *suffix) {
-  size_t n = strlen(s), m = strlen(suffix);
-  return n >= m && strcasecmp(s + n - m, suffix) == 0;
-}
-
 typedef struct fit_options {
   const char *input, *out, *chart, *grid;
   const char *frames; /* --frames all|A-B[:STEP] */
@@ -107,10 +102,10 @@ static int parse(int argc, char **argv, fit_options *o) {
         return cli_usage_error("fit", "--by '%s': expected max or mean", v);
       o->desc.by_mean = !strcmp(v, "mean");
     } else if (!strcmp(a, "--out")) {
-      if (!ends_with(v, ".ini")) return cli_usage_error("fit", "--out '%s': expected a .ini file", v);
+      if (!cli_ends_with(v, ".ini")) return cli_usage_error("fit", "--out '%s': expected a .ini file", v);
       o->out = v;
     } else if (!strcmp(a, "--chart")) {
-      if (!ends_with(v, ".png")) return cli_usage_error("fit", "--chart '%s': expected a .png file", v);
+      if (!cli_ends_with(v, ".png")) return cli_usage_error("fit", "--chart '%s': expected a .png file", v);
       o->chart = v;
     } else if (!strcmp(a, "--grid")) {
       o->grid = v;
@@ -141,7 +136,7 @@ static int parse(int argc, char **argv, fit_options *o) {
 
 /* The scene of the input: its config, or a VDB frame as a volume in a scene around it. */
 static int load_input(const fit_options *o, scene_config *cfg) {
-  if (ends_with(o->input, ".ini")) {
+  if (cli_ends_with(o->input, ".ini")) {
     scene_config_error err;
     if (scene_config_load(o->input, cfg, &err)) return cli_fail("fit", "%s", err.message);
     if (o->grid || o->up || o->frame >= 0 || o->density_scale != 1.0)

@@ -33,11 +33,6 @@ static void usage(FILE *out) {
           "The config format is described in docs/config.md.\n");
 }
 
-static bool ends_with(const char *s, const char *suffix) {
-  size_t n = strlen(s), m = strlen(suffix);
-  return n >= m && strcasecmp(s + n - m, suffix) == 0;
-}
-
 /* The frame's EXR (app/frame_exr.h) with the camera as the standard header matrices.
  * Without fog the transmittance is 1 and the in-scatter 0: written anyway, so every
  * render has the same channels for a compositor. */
@@ -97,8 +92,8 @@ int cmd_render(int argc, char **argv) {
     usage(stderr);
     return 2;
   }
-  bool exr = ends_with(out, ".exr");
-  if (!exr && !ends_with(out, ".png")) {
+  bool exr = cli_ends_with(out, ".exr");
+  if (!exr && !cli_ends_with(out, ".png")) {
     fprintf(stderr, "fogpipe render: --out '%s': expected a .exr or .png file name\n", out);
     return 2;
   }

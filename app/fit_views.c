@@ -102,7 +102,7 @@ void fit_views_measure(const fit_views *v, const fog_model *rung, double *max_er
                        double *mean_error) {
   double worst = 0.0, sum = 0.0;
   fog_model m = *rung;
-  const bool radial = m.kind == FOG_MODEL_LINEAR || m.kind == FOG_MODEL_EXP2;
+  const bool radial = fog_model_about_eye(&m);
   for (int k = 0; k < v->count; k++) {
     if (radial) memcpy(m.eye, v->origin[k], sizeof m.eye); /* the view's camera */
     double tau = exp(-fog_model_optical_depth(&m, v->origin[k], v->dir[k], v->length[k]));
@@ -197,7 +197,7 @@ static int inscatter(const fit_views *v, const fog_model *model, const fit_light
   const double ambient = (light->ambient[0] + light->ambient[1] + light->ambient[2]) / 3.0;
   const double lsun = (sun->radiance[0] + sun->radiance[1] + sun->radiance[2]) / 3.0;
   fog_model m = *model;
-  const bool radial = m.kind == FOG_MODEL_LINEAR || m.kind == FOG_MODEL_EXP2;
+  const bool radial = fog_model_about_eye(&m);
   for (int k = 0; k < v->count; k++) {
     if (radial) memcpy(m.eye, v->origin[k], sizeof m.eye);
     const double *d = v->dir[k];

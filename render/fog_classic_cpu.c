@@ -15,6 +15,10 @@ double fog_linear_extinction(double start, double end, double r) {
 
 double fog_exp2_extinction(double density, double r) { return 2.0 * density * density * r; }
 
+bool fog_model_about_eye(const fog_model *m) {
+  return m->kind == FOG_MODEL_LINEAR || m->kind == FOG_MODEL_EXP2;
+}
+
 /* The ray o + t d as seen from the eye: r(t)^2 = h^2 + (t - tc)^2. */
 static void radial_frame(const double eye[3], const double o[3], const double d[3], double *tc,
                          double *h) {

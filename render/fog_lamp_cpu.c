@@ -80,13 +80,6 @@ static double depth_at(const double *table, int steps, double t0, double dt, dou
   return table[k] + f * (table[k + 1] - table[k]);
 }
 
-/* The classic factors' media are radial about the eye: their view-ray depth is a closed
- * form of t, their shadow rays are marched (as in GLSL, where a segment's closed form would
- * cancel in float). */
-static bool radial_about_eye(const fog_model *m) {
-  return m->kind == FOG_MODEL_LINEAR || m->kind == FOG_MODEL_EXP2;
-}
-
 /* The analytic models' optical depths are closed forms (fog_models.h): tau and T exact. */
 static bool exact_depths(const fog_model *m) {
   return m->kind == FOG_MODEL_HOMOGENEOUS || m->kind == FOG_MODEL_HEIGHT ||
@@ -162,8 +155,9 @@ static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp
         }
       } else {
         /* the classic factors' depth from the camera is the factor itself (a table would
-         * miss its fall to 0 at the linear fog's end, where K grows without bound) */
-        depth = radial_about_eye(m) ? fog_model_optical_depth(m, o, d, t)
+         * miss its fall to 0 at the linear fog's end, where K grows without bound); their
+         * shadow rays are marched, as in GLSL, where a segment's closed form cancels */
+        depth = fog_model_about_eye(m) ? fog_model_optical_depth(m, o, d, t)
                                     : depth_at(table, steps, t0, dt, t);
         /* T: midpoint steps from x to the lamp */
         double ds = dist / method->shadow_steps;

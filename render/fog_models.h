@@ -163,6 +163,9 @@ double fog_homogeneous_optical_depth(double extinction, double length);
  * the exact optical depth from o along unit d up to length, for any o (from the eye:
  * ln((end - start)/(end - L)) past start, +inf from end on; (a L)^2). */
 double fog_linear_extinction(double start, double end, double r);
+/* Whether the model's medium is radial about model->eye (the classic factors): its users set
+ * the eye to the camera that looks. */
+bool fog_model_about_eye(const fog_model *model);
 double fog_exp2_extinction(double density, double r);
 double fog_linear_optical_depth(double start, double end, const double eye[3],
                                 const double o[3], const double d[3], double length);

@@ -134,7 +134,8 @@ typedef struct fog_pass_params {
   GLuint surface_sun;
   /* Optional (0: none): the scene pass's attachment 3 (rgb the lamps' share of the colour,
    * a the packed normal); with lamps, the fog between each lamp and the surface dims it
-   * (fog_lamps.glsl, fog_lamps_surface; the CPU twin fog_lamps_surface_transmittance). */
+   * (fog_lamps.glsl, fog_lamps_surface; no CPU twin: test_lamp_surface checks it against
+   * the analytic transmittance of homogeneous fog). */
   GLuint surface_lamps;
   /* Optional (NULL: none): the scene pass's sun shadow map (scene_pass_sun_shadow): V in
    * the view ray's mean, light shafts (shadow_steps >= 1 then too). */
