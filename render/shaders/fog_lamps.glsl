@@ -59,19 +59,19 @@ float fog_lamp_spot(int i, vec3 p) {
   return u * u * (3.0 - 2.0 * u);
 }
 
-// The transmittance from camera-relative point x to lamp i: the closed form, or
-// fog_lamp_shadow_steps midpoint steps (as the in-scatter's T).
-float fog_lamp_transmittance(int i, vec3 x) {
+// The optical depth from camera-relative point x to lamp i: the closed form, or
+// fog_lamp_shadow_steps midpoint steps (the in-scatter's T, and the surfaces').
+float fog_lamp_shadow_depth(int i, vec3 x) {
   vec3 to_lamp = fog_lamp_position[i] - x;
   float dist = length(to_lamp);
-  if (!(dist > 0.0)) return 1.0;
+  if (!(dist > 0.0)) return 0.0;
 #if FOG_LAMP_EXACT_DEPTH
-  return exp(-fog_lamp_segment_depth(x, to_lamp / dist, dist));
+  return fog_lamp_segment_depth(x, to_lamp / dist, dist);
 #else
   float shadow = 0.0, ds = dist / float(fog_lamp_shadow_steps);
   for (int j = 0; j < fog_lamp_shadow_steps; j++)
     shadow += fog_lamp_extinction(x + ((float(j) + 0.5) / float(fog_lamp_shadow_steps)) * to_lamp) * ds;
-  return exp(-shadow);
+  return shadow;
 #endif
 }
 
@@ -87,7 +87,7 @@ vec3 fog_lamps_surface(vec3 p, vec3 n) {
     float g = max(dot(n, l) / max(d, 1e-6), 0.0) * fog_lamp_spot(i, p) / (d2 + fog_lamp_cone[i].z);
     if (!(g > 0.0)) continue;
     vec3 w = fog_lamp_intensity[i] * g;
-    num += w * fog_lamp_transmittance(i, p);
+    num += w * exp(-fog_lamp_shadow_depth(i, p));
     den += w;
   }
   return vec3(den.x > 0.0 ? num.x / den.x : 1.0, den.y > 0.0 ? num.y / den.y : 1.0,
@@ -143,7 +143,7 @@ float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, fl
       float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
 #if FOG_LAMP_EXACT_DEPTH
       float depth = fog_lamp_segment_depth(vec3(0.0), r.dir, t);
-      float shadow = dist > 0.0 ? fog_lamp_segment_depth(x, to_lamp / dist, dist) : 0.0;
+      float shadow = fog_lamp_shadow_depth(i, x);
       if (base_only) {  // Sun et al.'s homogeneous medium: the base alone
         depth = fog_model_extinction * max(t, 0.0);
         shadow = fog_model_extinction * dist;
@@ -161,10 +161,7 @@ float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, fl
 #endif
       // at the linear fog's end (K "infinite", tau 0, rounding either way) no light comes back
       if (depth >= 1e29 || k >= 1e29) continue;
-      float shadow = 0.0, ds = dist / float(fog_lamp_shadow_steps);
-      for (int j = 0; j < fog_lamp_shadow_steps; j++)
-        shadow += fog_lamp_extinction(x + ((float(j) + 0.5) / float(fog_lamp_shadow_steps)) *
-                                              to_lamp) * ds;
+      float shadow = fog_lamp_shadow_depth(i, x);
 #endif
       sum += gw[n] * exp(-depth) * k * fog_phase_hg(fog_phase_g, cos_theta) *
              fog_lamp_spot(i, x) * exp(-shadow);
@@ -193,7 +190,7 @@ float fog_lamp_fogshop_gaussians(int i, fog_ray r, float t0, float t1) {
     vec3 x = t * r.dir, to_lamp = s - x;
     float dist = length(to_lamp);
     float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
-    float shadow = dist > 0.0 ? fog_lamp_segment_depth(x, to_lamp / dist, dist) : 0.0;
+    float shadow = fog_lamp_shadow_depth(i, x);
     sum += depth * exp(-fog_lamp_segment_depth(vec3(0.0), r.dir, t) - shadow) *
            fog_phase_hg(fog_phase_g, cos_theta) * fog_lamp_spot(i, x) /
            (dist * dist + fog_lamp_cone[i].z);
@@ -220,14 +217,7 @@ float fog_lamp_march(int i, fog_ray r, float t0, float t1) {
     vec3 to_lamp = s - x;
     float dist = length(to_lamp);
     float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
-#if FOG_LAMP_EXACT_DEPTH
-    float shadow = dist > 0.0 ? fog_lamp_segment_depth(x, to_lamp / dist, dist) : 0.0;
-#else
-    float shadow = 0.0, ds = dist / float(fog_lamp_shadow_steps);
-    for (int q = 0; q < fog_lamp_shadow_steps; q++)
-      shadow += fog_lamp_extinction(x + ((float(q) + 0.5) / float(fog_lamp_shadow_steps)) *
-                                            to_lamp) * ds;
-#endif
+    float shadow = fog_lamp_shadow_depth(i, x);
     sum += tau * k * fog_phase_hg(fog_phase_g, cos_theta) * fog_lamp_spot(i, x) *
            exp(-shadow) / (dist * dist + fog_lamp_cone[i].z);
   }
