@@ -28,6 +28,7 @@
 #include "app/render_frame.h"
 #include "bench/bench.h"
 #include "render/render.h"
+#include "sim/image.h"
 
 #define FOG_BENCH_LIGHT_STEPS 1024
 #define FOG_BENCH_LIGHT_VOLUME 160
@@ -37,8 +38,10 @@
 static const int step_counts[] = {2, 4, 8, 16, 32};
 static const int resolutions[] = {24, 48, 96};
 static const int march_samples[] = {8, 32, 128, 512};
-enum { STEP_COUNT = 5, RESOLUTION_COUNT = 3, MARCH_COUNT = 4, SCENE_COUNT = 2, MAX_ROWS = 36 };
-enum { SCENE_ROWS = 12 + MARCH_COUNT };
+enum { STEP_COUNT = 5, RESOLUTION_COUNT = 3, MARCH_COUNT = 4, SCENE_COUNT = 2, MAX_ROWS = 44 };
+/* The froxel baseline: the engines' 160 x 90 x 64 grid and one 2x finer in each axis. */
+enum { FROXEL_COUNT = 2, FROXEL_COLUMNS = 160, FROXEL_ROWS = 90, FROXEL_SLICES = 64 };
+enum { SCENE_ROWS = 14 + MARCH_COUNT + FROXEL_COUNT };
 _Static_assert(SCENE_COUNT * SCENE_ROWS <= MAX_ROWS, "the rows of both scenes");
 static const char *const scene_configs[SCENE_COUNT] = {"default.ini", "vdb_plume_volume.ini"};
 
@@ -48,6 +51,7 @@ typedef struct light_row {
   int steps;
   int divisor;    /* fog pass resolution divisor */
   bool march;     /* uniform ray marching of the whole integral: tau too, `steps` samples */
+  int froxel;     /* > 0: the froxel baseline, its grid this many times the engines' */
   char series[64];
   double *times;
   double ms, max_error, mean_error;
@@ -180,6 +184,24 @@ static void row_errors(light_row *r, const light_scene *s, const float *inscatte
   r->mean_error = sum / (3.0 * cols * rows) / s->peak;
 }
 
+/* The froxel grid `scale` times the engines' (0: none), its slices from the fog's box's
+ * nearest point (the camera's near plane inside it) to its farthest corner. */
+static fog_froxel_grid froxel_grid(const light_scene *s, int scale) {
+  if (!scale) return (fog_froxel_grid){0};
+  double lo[3], hi[3], near2 = 0, far2 = 0;
+  fog_model_bounds(&s->model, lo, hi);
+  const double *c = s->drawn.cam.position;
+  for (int a = 0; a < 3; a++) {
+    double below = lo[a] - c[a], above = c[a] - hi[a], gap = fmax(0, fmax(below, above));
+    double reach = fmax(fabs(lo[a] - c[a]), fabs(hi[a] - c[a]));
+    near2 += gap * gap, far2 += reach * reach;
+  }
+  return (fog_froxel_grid){.columns = FROXEL_COLUMNS * scale, .rows = FROXEL_ROWS * scale,
+                           .slices = FROXEL_SLICES * scale,
+                           .near_distance = fmax(sqrt(near2), s->drawn.cam.near_plane),
+                           .far_distance = sqrt(far2)};
+}
+
 /* One draw of row r into out (the volume of its resolution already uploaded). */
 static int draw_row(light_scene *s, const light_row *r, const gl_target *out, render_error *err) {
   fog_pass_params *p = &s->fog.params;
@@ -187,7 +209,9 @@ static int draw_row(light_scene *s, const light_row *r, const gl_target *out, re
   s->fog.ground_shadow = r->resolution != 0;
   p->shadow_steps = r->steps;
   p->resolution_divisor = r->divisor;
-  p->integrator = r->march ? FOG_INTEGRATOR_MARCH : FOG_INTEGRATOR_EXACT;
+  p->integrator = r->froxel ? FOG_INTEGRATOR_FROXEL
+                  : r->march ? FOG_INTEGRATOR_MARCH : FOG_INTEGRATOR_EXACT;
+  p->froxel = froxel_grid(s, r->froxel);
   p->march_steps = r->steps;
   if (p->model == FOG_MODEL_VOLUME) { /* the volume marches at a step: its diagonal / N */
     double lo[3], hi[3];
@@ -206,6 +230,22 @@ static int upload_for(light_scene *s, const light_row *r, render_error *err) {
   return 0;
 }
 
+/* B's partner on one scene's rows: the most accurate of our settings (any resolution) whose
+ * fog pass costs no more time than the froxel baseline's 1x grid; NULL where none does. */
+static const light_row *ours_at_froxel_time(const light_row *rows, const light_row *froxel) {
+  const light_row *best = NULL;
+  for (int i = 0; i < SCENE_ROWS; i++) {
+    const light_row *r = &rows[i];
+    if (!r->resolution || r->march || r->froxel || r->ms > froxel->ms) continue;
+    if (!best || r->max_error < best->max_error) best = r;
+  }
+  return best;
+}
+
+static const char *row_method(const light_row *r) {
+  return !r->resolution ? "unlit" : r->march ? "march" : r->froxel ? "froxel" : "ours";
+}
+
 static int write_table(const char *path, const light_row *rows, int count, char *error,
                        int size) {
   FILE *f = chart_csv_open(path, error, size);
@@ -213,7 +253,7 @@ static int write_table(const char *path, const light_row *rows, int count, char 
   fprintf(f, "scene,method,volume,steps,divisor,ms_per_frame,max_error,mean_error\n");
   for (int i = 0; i < count; i++)
     fprintf(f, "%s,%s,%d,%d,%d,%.6g,%.6g,%.6g\n", scene_configs[rows[i].scene],
-            !rows[i].resolution ? "unlit" : rows[i].march ? "march" : "ours",
+            row_method(&rows[i]),
             rows[i].resolution, rows[i].steps,
             rows[i].divisor, rows[i].ms, rows[i].max_error, rows[i].mean_error);
   return chart_csv_close(f, path, error, size);
@@ -228,6 +268,7 @@ static light_row *add_row(light_row *rows, int *count, int scene, int resolution
   snprintf(r->series, sizeof r->series, "%s %s", scene ? "plume" : "default",
            !resolution        ? "unlit"
            : r->march         ? "uniform marching 48^3 8..512 samples"
+           : divisor > 2      ? "ours at 1/4 resolution"
            : divisor > 1      ? "live (1/2)"
            : resolution != 48 ? "ours 24^3 / 96^3 volume"
                               : "ours 48^3 2..32 steps");
@@ -283,9 +324,20 @@ int bench_light(int argc, char **argv) {
         !add_row(rows, &row_count, s, 48, 8, 2, frames) ||
         !add_row(rows, &row_count, s, 96, 64, 1, frames))
       goto out_of_memory;
+    /* ours at a quarter of the resolution (the fogmap's walk; the volume ignores it) */
+    if (!add_row(rows, &row_count, s, 48, 8, 4, frames) ||
+        !add_row(rows, &row_count, s, 48, 16, 4, frames))
+      goto out_of_memory;
     /* uniform marching of tau and the in-scatter together (negative steps: the marcher) */
     for (int q = 0; q < MARCH_COUNT; q++)
       if (!add_row(rows, &row_count, s, 48, -march_samples[q], 1, frames)) goto out_of_memory;
+    /* the froxel baseline, fed the same density, sun, T_s volume and shadow map */
+    for (int q = 1; q <= FROXEL_COUNT; q++) {
+      light_row *r = add_row(rows, &row_count, s, 48, 1, 1, frames);
+      if (!r) goto out_of_memory;
+      r->froxel = q;
+      snprintf(r->series, sizeof r->series, "%s froxels 160x90x64 / 2x", s ? "plume" : "default");
+    }
   }
   /* Warm-up and errors (the unlit full-resolution draw gives the reference its tau), then
    * the timed rounds, rows of one scene and volume interleaved. */
@@ -297,6 +349,20 @@ int bench_light(int argc, char **argv) {
       goto gl_failed;
     if (!s->reference && scene_reference(s, tau, W, H)) goto out_of_memory;
     row_errors(r, s, inscatter, W, H);
+    /* to look at: ours live, ours at 96^3 x 64 steps (near the reference), froxels 1x */
+    int in_scene = i % SCENE_ROWS;
+    if (in_scene == 9 || in_scene == 11 || in_scene == SCENE_ROWS - FROXEL_COUNT) {
+      char path[4200];
+      snprintf(path, sizeof path, "%s/light_%s_%s.png", options.out_dir,
+               r->scene ? "plume" : "default",
+               in_scene == 9 ? "ours_live" : in_scene == 11 ? "ours_96_64" : "froxels_1x");
+      sim_error serr;
+      if (gl_target_read(&out, 0, 3, inscatter, &rerr)) goto gl_failed;
+      if (image_write_png_srgb(path, W, H, 3, inscatter, &serr)) {
+        fprintf(stderr, "fogpipe bench light: %s\n", serr.message);
+        goto done;
+      }
+    }
   }
   for (int f = 0; f < frames; f++)
     for (int i = 0; i < row_count; i++) {
@@ -328,10 +394,15 @@ int bench_light(int argc, char **argv) {
     const light_row *r = &rows[i];
     char volume[16] = "-";
     if (r->resolution) snprintf(volume, sizeof volume, "%d^3", r->resolution);
-    printf("%-22s %-8s %7s %6d %8s %10.2f %10.2e %10.2e\n", scene_configs[r->scene],
-           !r->resolution ? "unlit" : r->march ? "march" : "ours", volume,
-           r->resolution ? r->steps : 0,
-           r->divisor > 1 ? "1/2" : "full", r->ms, r->max_error, r->mean_error);
+    char steps[16];
+    if (r->froxel)
+      snprintf(steps, sizeof steps, "%dx", r->froxel);
+    else
+      snprintf(steps, sizeof steps, "%d", r->resolution ? r->steps : 0);
+    printf("%-22s %-8s %7s %6s %8s %10.2f %10.2e %10.2e\n", scene_configs[r->scene],
+           row_method(r), volume, steps,
+           r->divisor > 2 ? "1/4" : r->divisor > 1 ? "1/2" : "full", r->ms, r->max_error,
+           r->mean_error);
     points[i] = (chart_point){.series = r->series, .x = r->ms,
                               .y = r->max_error > 1e-6 ? r->max_error : 1e-6};
   }
@@ -359,7 +430,8 @@ int bench_light(int argc, char **argv) {
   double march_ms = NAN, ours_ms = NAN;
   for (int i = 0; i < SCENE_ROWS; i++) {
     const light_row *r = &rows[i];
-    if (!r->resolution || r->divisor > 1 || !(r->max_error <= MATCHED_ERROR)) continue;
+    if (!r->resolution || r->divisor > 1 || r->froxel || !(r->max_error <= MATCHED_ERROR))
+      continue;
     double *best = r->march ? &march_ms : &ours_ms;
     if (!(*best <= r->ms)) *best = r->ms;
   }
@@ -367,10 +439,31 @@ int bench_light(int argc, char **argv) {
     printf("note: %s within max error %g on the default scene; march_speedup_at_matched_error "
            "is nan\n", march_ms == march_ms ? "none of our settings is" : "no marching is",
            MATCHED_ERROR);
+  /* B on each scene: the froxel grid's error over ours at no more time */
+  double froxel_ratio[SCENE_COUNT];
+  for (int sc = 0; sc < SCENE_COUNT; sc++) {
+    const light_row *scene_rows = &rows[sc * SCENE_ROWS];
+    const light_row *froxel = &scene_rows[SCENE_ROWS - FROXEL_COUNT];
+    const light_row *ours = ours_at_froxel_time(scene_rows, froxel);
+    froxel_ratio[sc] = ours ? froxel->max_error / ours->max_error : NAN;
+    if (ours)
+      printf("%s: froxels 1x %.2f ms, max error %.2e (mean %.2e); ours at no more time: %s %d "
+             "steps at %s, %.2f ms, max %.2e (mean %.2e): max ratio %.2f, mean ratio %.2f\n",
+             scene_configs[sc], froxel->ms, froxel->max_error, froxel->mean_error,
+             ours->divisor > 1 ? "the reduced pass" : "full resolution", ours->steps,
+             ours->divisor > 2 ? "1/4" : ours->divisor > 1 ? "1/2" : "1/1", ours->ms,
+             ours->max_error, ours->mean_error, froxel_ratio[sc],
+             froxel->mean_error / ours->mean_error);
+    else
+      printf("%s: froxels 1x %.2f ms, max error %.2e (mean %.2e); none of our settings is as "
+             "fast: froxel_error_ratio_at_equal_time is nan\n", scene_configs[sc], froxel->ms,
+             froxel->max_error, froxel->mean_error);
+  }
   printf("light: lit_over_unlit=%.2f lit_over_unlit_full=%.2f shadow_volume_ms=%.1f "
-         "live_max_error=%.3g march_speedup_at_matched_error=%.2f\n",
+         "live_max_error=%.3g froxel_error_ratio_at_equal_time=%.2f "
+         "march_speedup_at_matched_error=%.2f\n",
          live->ms / unlit_half->ms, ours_full->ms / unlit_full->ms, scenes[0].volume_ms[1],
-         live->max_error, march_ms / ours_ms);
+         live->max_error, froxel_ratio[0], march_ms / ours_ms);
   status = 0;
   goto done;
 

@@ -73,6 +73,10 @@ struct fog_pass {
   fog_rbf_tiles rbf_tiles;
   float *rbf_scratch;
   int rbf_scratch_count;
+  /* FOG_INTEGRATOR_FROXEL: the integrated grid (RGBA32F 3D: in-scatter, transmittance to
+   * each slice's far face) and the attachment-less framebuffer its fill is drawn with. */
+  GLuint froxel_volume, froxel_framebuffer;
+  int froxel_size[3];
 };
 
 /* One compiled program: every draw setting the shader takes as a compile-time constant.
@@ -100,6 +104,7 @@ typedef struct fog_pass_variant {
   int lamps;              /* FOG_LAMPS: 1 point and spot lights (fog_lamps.glsl) */
   int lamp_integral;      /* FOG_LAMP_INTEGRAL: fog_lamp_integral */
   int surface_lamps;      /* FOG_SURFACE_LAMPS: 1 the fog dims the lamps' light on surfaces */
+  int froxel;             /* FOG_FROXEL: 0 none, 1 the froxel grid's fill, 2 its lookup */
 } fog_pass_variant;
 
 static const struct {
@@ -125,6 +130,7 @@ static const struct {
     {"FOG_LAMPS", offsetof(fog_pass_variant, lamps), 1},
     {"FOG_LAMP_INTEGRAL", offsetof(fog_pass_variant, lamp_integral), 2},
     {"FOG_SURFACE_LAMPS", offsetof(fog_pass_variant, surface_lamps), 1},
+    {"FOG_FROXEL", offsetof(fog_pass_variant, froxel), 2},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
@@ -135,7 +141,7 @@ static int variant_field(const fog_pass_variant *v, int f) {
   return *(const int *)((const char *)v + variant_fields[f].offset);
 }
 
-/* The fields packed into bits, in variant_fields' order (26 bits). */
+/* The fields packed into bits, in variant_fields' order (28 bits). */
 static int fog_pass_variant_key(const fog_pass_variant *v) {
   int key = 0, shift = 0;
   for (int f = 0; f < VARIANT_FIELD_COUNT; f++) {
@@ -233,6 +239,8 @@ void fog_pass_destroy(fog_pass *pass) {
   if (pass->grid3d_occupancy) glDeleteTextures(1, &pass->grid3d_occupancy);
   if (pass->sun_shadow) glDeleteTextures(1, &pass->sun_shadow);
   if (pass->cell_layers) glDeleteTextures(1, &pass->cell_layers);
+  if (pass->froxel_volume) glDeleteTextures(1, &pass->froxel_volume);
+  if (pass->froxel_framebuffer) glDeleteFramebuffers(1, &pass->froxel_framebuffer);
   GLuint rbf_textures[3] = {pass->rbf_texture, pass->rbf_index_texture, pass->rbf_ranges};
   GLuint rbf_buffers[2] = {pass->rbf_buffer, pass->rbf_index_buffer};
   glDeleteTextures(3, rbf_textures); /* zeros are ignored */
@@ -501,6 +509,7 @@ enum fog_pass_unit {
   UNIT_RBF_DATA,
   UNIT_RBF_INDICES,
   UNIT_RBF_TILES,
+  UNIT_FROXEL,
   UNIT_COUNT
 };
 /* Unit indices stay below GL 4.3's guaranteed 96 combined units; a variant samples far
@@ -831,6 +840,128 @@ static int fog_pass_skips_share(const fog_pass_params *params, double empty_shar
   return params->walk.skip == FOG_SKIP_BELOW || empty_share >= FOG_SKIP_MIN_EMPTY_SHARE;
 }
 
+/* The analytic and volume models' uniforms for prog (in use). */
+static int fog_pass_analytic_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
+                                      const fog_pass_params *params, int width, int height,
+                                      render_error *err) {
+  glUniform1i(fog_loc(prog, "fog_march_steps"),
+              params->march_steps > 0 ? params->march_steps : 64);
+  glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
+  glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
+  /* The sampler array must still name distinct units of the right type. */
+  GLint units[FOG_PASS_MAX_GRIDS];
+  for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) units[k] = UNIT_GRIDS + k;
+  glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
+  if (params->model == FOG_MODEL_VOLUME) fog_pass_volume_uniforms(pass, prog, cam, params);
+  if (params->model == FOG_MODEL_RBF &&
+      fog_pass_rbf_uniforms(pass, prog, cam, params, width, height, err))
+    return 1;
+  if (params->model == FOG_MODEL_QUADRIC) fog_pass_quadric_uniforms(prog, cam, params);
+  return 0;
+}
+
+/* The fogmap draw's slots: slot `first` shown as slot 0, J levels over `slots` slots, the
+ * slots the LOD method reads (fog_pass_check_fogmap). */
+typedef struct fogmap_slots {
+  int first, J, slots;
+  bool reads[FOG_PASS_MAX_GRIDS];
+} fogmap_slots;
+
+static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
+                                    const fog_pass_params *params, int first, int J,
+                                    int slots, const bool reads[FOG_PASS_MAX_GRIDS],
+                                    render_error *err);
+
+/* Any model's uniforms for prog (made current): fm for the fogmap. */
+static int fog_pass_model_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
+                                   const fog_pass_params *params, const fogmap_slots *fm,
+                                   int width, int height, render_error *err) {
+  glUseProgram(prog);
+  if (params->model == FOG_MODEL_FOGMAP)
+    return fog_pass_fogmap_uniforms(pass, prog, cam, params, fm->first, fm->J, fm->slots,
+                                    fm->reads, err);
+  return fog_pass_analytic_uniforms(pass, prog, cam, params, width, height, err);
+}
+
+/* The froxel grid's texture and framebuffer, (re)made when its size changes. */
+static int fog_pass_froxel_fit(fog_pass *pass, const fog_froxel_grid *g, render_error *err) {
+  if (pass->froxel_volume && pass->froxel_size[0] == g->columns &&
+      pass->froxel_size[1] == g->rows && pass->froxel_size[2] == g->slices)
+    return 0;
+  if (!pass->froxel_volume) glGenTextures(1, &pass->froxel_volume);
+  glBindTexture(GL_TEXTURE_3D, pass->froxel_volume);
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA32F, g->columns, g->rows, g->slices, 0, GL_RGBA,
+               GL_FLOAT, NULL);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  glBindTexture(GL_TEXTURE_3D, 0);
+  GLint caller = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &caller);
+  if (!pass->froxel_framebuffer) glGenFramebuffers(1, &pass->froxel_framebuffer);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, pass->froxel_framebuffer);
+  glFramebufferParameteri(GL_DRAW_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_WIDTH, g->columns);
+  glFramebufferParameteri(GL_DRAW_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_HEIGHT, g->rows);
+  GLenum status = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)caller);
+  pass->froxel_size[0] = g->columns, pass->froxel_size[1] = g->rows,
+  pass->froxel_size[2] = g->slices;
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: froxel framebuffer incomplete (status %#x)", (unsigned)status);
+    return 1;
+  }
+  return gl_util_check("fog pass: froxel grid", err);
+}
+
+static void fog_pass_froxel_uniforms(GLuint prog, const fog_froxel_grid *g) {
+  glUniform3i(fog_loc(prog, "fog_froxel_size"), g->columns, g->rows, g->slices);
+  glUniform1f(fog_loc(prog, "fog_froxel_near"), (float)g->near_distance);
+  glUniform1f(fog_loc(prog, "fog_froxel_far"), (float)g->far_distance);
+}
+
+/* FOG_INTEGRATOR_FROXEL: the fill (one fragment per column of the grid, its slices written
+ * with imageStore) into an attachment-less framebuffer, then the lookup at full resolution
+ * into the caller's. `variant` holds the model's settings; lamps are not carried. */
+static int fog_pass_draw_froxel(fog_pass *pass, const fog_pass_variant *variant,
+                                const camera *cam, const fog_pass_params *params,
+                                const fogmap_slots *fm, GLuint surface_colour,
+                                GLuint surface_distance, int width, int height,
+                                render_error *err) {
+  const fog_froxel_grid *g = &params->froxel;
+  fog_pass_variant fill = *variant, lookup = *variant;
+  fill.integrator = lookup.integrator = FOG_INTEGRATOR_EXACT;
+  fill.reduced = lookup.reduced = 1;
+  fill.lamps = lookup.lamps = fill.lamp_integral = lookup.lamp_integral = 0;
+  fill.surface_sun = fill.surface_lamps = 0;
+  fill.froxel = 1, lookup.froxel = 2;
+  GLuint fill_prog = fog_pass_variant_program(pass, &fill, err);
+  GLuint lookup_prog = fill_prog ? fog_pass_variant_program(pass, &lookup, err) : 0;
+  if (!lookup_prog || fog_pass_froxel_fit(pass, g, err)) return 1;
+  GLint caller = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &caller);
+  if (fog_pass_model_uniforms(pass, lookup_prog, cam, params, fm, width, height, err) ||
+      fog_pass_model_uniforms(pass, fill_prog, cam, params, fm, width, height, err))
+    return 1;
+  fog_pass_froxel_uniforms(fill_prog, g);
+  glBindImageTexture(0, pass->froxel_volume, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glUniform1i(fog_loc(fill_prog, "fog_froxel_image"), 0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, pass->froxel_framebuffer);
+  int failed = fog_pass_common_and_draw(pass, fill_prog, cam, params, surface_colour,
+                                        surface_distance, width, height, g->columns, g->rows,
+                                        err);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)caller);
+  if (failed) return 1;
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  glUseProgram(lookup_prog);
+  fog_pass_froxel_uniforms(lookup_prog, g);
+  bind_sampler(lookup_prog, "fog_froxel_volume", UNIT_FROXEL, GL_TEXTURE_3D, pass->froxel_volume);
+  return fog_pass_common_and_draw(pass, lookup_prog, cam, params, surface_colour,
+                                  surface_distance, width, height, width, height, err);
+}
+
 static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_pass_params *params,
                                   GLuint surface_colour, GLuint surface_distance, int width,
                                   int height, render_error *err) {
@@ -848,22 +979,12 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
                                                          ? (int)params->lamps.method.integral
                                                          : 0,
                                     .surface_lamps = fog_pass_has_surface_lamps(params)};
+  if (params->integrator == FOG_INTEGRATOR_FROXEL)
+    return fog_pass_draw_froxel(pass, &variant, cam, params, NULL, surface_colour,
+                                surface_distance, width, height, err);
   GLuint prog = fog_pass_variant_program(pass, &variant, err);
-  if (!prog) return 1;
-  glUseProgram(prog);
-  glUniform1i(fog_loc(prog, "fog_march_steps"),
-              params->march_steps > 0 ? params->march_steps : 64);
-  glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
-  glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
-  /* The sampler array must still name distinct units of the right type. */
-  GLint units[FOG_PASS_MAX_GRIDS];
-  for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++) units[k] = UNIT_GRIDS + k;
-  glUniform1iv(fog_loc(prog, "fog_grids"), FOG_PASS_MAX_GRIDS, units);
-  if (params->model == FOG_MODEL_VOLUME) fog_pass_volume_uniforms(pass, prog, cam, params);
-  if (params->model == FOG_MODEL_RBF &&
-      fog_pass_rbf_uniforms(pass, prog, cam, params, width, height, err))
+  if (!prog || fog_pass_model_uniforms(pass, prog, cam, params, NULL, width, height, err))
     return 1;
-  if (params->model == FOG_MODEL_QUADRIC) fog_pass_quadric_uniforms(prog, cam, params);
   return fog_pass_common_and_draw(pass, prog, cam, params, surface_colour, surface_distance, width,
                                   height, width, height, err);
 }
@@ -953,6 +1074,20 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
                "for a spot, cos_inner > cos_outer", i, l->radius, l->cos_inner, l->cos_outer);
       return 1;
     }
+  }
+  const fog_froxel_grid *g = &params->froxel;
+  if ((unsigned)params->integrator > FOG_INTEGRATOR_FROXEL ||
+      (params->integrator == FOG_INTEGRATOR_FROXEL &&
+       (g->columns < 1 || g->rows < 1 || g->slices < 1 || g->columns > pass->max_3d_texture_size ||
+        g->rows > pass->max_3d_texture_size || g->slices > pass->max_3d_texture_size ||
+        !(g->near_distance > 0) || !(g->far_distance > g->near_distance) ||
+        !isfinite(g->far_distance)))) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: integrator %d, froxel grid %d x %d x %d from %g to %g: expected an "
+             "fog_integrator and, for the froxels, 1..%d cells a side and 0 < near < far",
+             (int)params->integrator, g->columns, g->rows, g->slices, g->near_distance,
+             g->far_distance, pass->max_3d_texture_size);
+    return 1;
   }
   if (!(params->walk.transmittance_cutoff >= 0 && params->walk.transmittance_cutoff < 1)) {
     snprintf(err->message, sizeof err->message,
@@ -1224,6 +1359,12 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       .lamp_integral = fog_pass_has_lamps(params) ? (int)params->lamps.method.integral : 0,
       .surface_lamps = fog_pass_has_surface_lamps(params),
   };
+  if (params->integrator == FOG_INTEGRATOR_FROXEL) {
+    fogmap_slots fm = {.first = first, .J = J, .slots = slots};
+    memcpy(fm.reads, reads, sizeof fm.reads);
+    return fog_pass_draw_froxel(pass, &variant, cam, params, &fm, surface_colour,
+                                surface_distance, width, height, err);
+  }
   GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;
   /* resolution_divisor > 1: the same settings' upsampling variant (fog_pass_fs.glsl,

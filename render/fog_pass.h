@@ -61,7 +61,20 @@ typedef enum fog_integrator {
   FOG_INTEGRATOR_MARCH,     /* uniform ray marching, march_steps midpoint samples (analytic
                                models: to the surface, or for the sky to where the fog ends,
                                fog_models.glsl) */
+  FOG_INTEGRATOR_FROXEL,    /* the engines' froxel grid (params.froxel, docs/light.md): a
+                               benchmark baseline, the sun and the ambient light only */
 } fog_integrator;
+
+/* FOG_INTEGRATOR_FROXEL's view-frustum grid (Wronski 2014, Hillaire 2015): columns x rows
+ * cells across the image, `slices` along each cell's centre ray, exponentially spaced
+ * between near_distance and far_distance (distances along the ray). One sample of the fog
+ * and its light per cell (at the slice's middle), accumulated front to back with the
+ * energy-conserving slice integral, then looked up per pixel (trilinear). No fog before
+ * near_distance or past far_distance. */
+typedef struct fog_froxel_grid {
+  int columns, rows, slices;
+  double near_distance, far_distance; /* 0 < near < far */
+} fog_froxel_grid;
 
 /* Empty-space skipping of the fogmap's exact walk (render/fog_occupancy.h). */
 typedef enum fog_skip {
@@ -142,6 +155,7 @@ typedef struct fog_pass_params {
   const sun_shadow_map *shafts;
   fog_fetch fetch;
   fog_integrator integrator;
+  fog_froxel_grid froxel;    /* FOG_INTEGRATOR_FROXEL: the grid */
   fog_walk_settings walk;    /* early termination, empty-space skipping */
   int march_steps;           /* FOG_INTEGRATOR_MARCH: 0 means 64 */
   int march_jitter;          /* non-zero: per-pixel jittered sample positions */

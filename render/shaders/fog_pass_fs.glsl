@@ -14,6 +14,7 @@
 //                                    the upsampling pass, FOG_UPSAMPLE 1)
 //   #define FOG_LAMPS 0|1            (1: point and spot lights, fog_lamps.glsl)
 //   #define FOG_SURFACE_LAMPS 0|1    (1: the fog dims the lamps' light on the surfaces)
+//   #define FOG_FROXEL 0|1|2         (the froxel baseline's fill and lookup, fog_froxel.glsl)
 //   and the specialisation constants of fog_integral.glsl
 uniform int fog_march_steps;  // FOG_INTEGRATOR 1: samples per ray (every model's marcher)
 #include "fog_integral.glsl"
@@ -224,8 +225,13 @@ float fog_phase_hg(float g, float cos_theta) {
 }
 
 #include "fog_lamps.glsl"
+#include "fog_froxel.glsl"
 
 void main() {
+#if FOG_FROXEL == 1
+  fog_froxel_fill(ivec2(gl_FragCoord.xy));  // writes the grid; the framebuffer has no attachments
+  return;
+#endif
   // camera_ray(): ndc from the fragment centre, y up; dir = normalize(f + x r + y u).
 #if FOG_REDUCED > 1
   ivec2 pixel = min(ivec2(gl_FragCoord.xy) * FOG_REDUCED + FOG_REDUCED / 2,
@@ -242,7 +248,7 @@ void main() {
   // cos theta between the sun and this pixel's view direction: constant along the ray
   dvec3 view_dir = normalize(fog_camera_forward + ndc.x * fog_camera_right + ndc.y * fog_camera_up);
   float cos_sun = dot(vec3(view_dir), fog_sun_direction);
-  bool walk = true;
+  bool walk = FOG_FROXEL == 0;  // the froxel lookup walks nothing
   float sun_light = 1.0;  // the T_s mean of the ray (fog_light.glsl)
 #if FOG_UPSAMPLE
   walk = !fog_upsampled_depth(pixel, t_surface, optical_depth, sun_light);
@@ -278,7 +284,12 @@ void main() {
   // The pixel's own T_s mean where it walked its own ray (a loop of at most one turn, as
   // above: the upsampled pixels' lane groups skip it).
   for (int turn = walk ? 0 : 1; turn < 1; turn++) sun_light = fog_sun_light(view_dir, t_surface);
+#if FOG_FROXEL == 2
+  vec4 froxel = fog_froxel_lookup(pixel, t_surface);
+  float tau = froxel.a;
+#else
   float tau = exp(-optical_depth);
+#endif
 #if FOG_SURFACE_SUN
   // Fog shadows on the ground: the sun reaching P is attenuated by T_s(P).
   if (t_surface < 1e29)
@@ -296,8 +307,12 @@ void main() {
 #endif
   // Giroud & Biri eq. 4 with L_fog = L_amb + a L_sun p(theta) T_s-mean (fog_light.glsl):
   // with a = 0 the same image, with T_s = 1 the identity of docs/light.md.
+#if FOG_FROXEL == 2
+  vec3 inscatter = froxel.rgb;
+#else
   vec3 inscatter =
       (fog_colour + fog_sun_scatter * fog_phase_hg(fog_phase_g, cos_sun) * sun_light) * (1.0 - tau);
+#endif
 #if FOG_LAMPS
   {  // the lamps (fog_lamps.glsl): their own set-up, as the sun's mean
     double t_in = 1.0, t_out = 0.0;
