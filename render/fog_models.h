@@ -24,11 +24,16 @@
  *                          eye (render/fog_classic_cpu.c)
  *   FOG_MODEL_EXP2         OpenGL's GL_EXP2 fog (eq. 4): f = e^{-(a d)^2}, k(r) = 2 a^2 r
  *                          (a = extinction); GL_EXP is FOG_MODEL_HOMOGENEOUS
+ *   FOG_MODEL_PERLIN       K = extinction e^{-(y - y0)/H} T(p, time) in a box: animated Perlin
+ *                          turbulence (Zdrojewska 2004), octave textures drifting each with
+ *                          its own wind, exact per texel cell or the paper's single sample
+ *                          (render/fog_perlin.h)
  * Adding a model: see render/fog_models.def. */
 #ifndef FOGPIPE_RENDER_FOG_MODELS_H
 #define FOGPIPE_RENDER_FOG_MODELS_H
 
 #include "render/fog_field.h"
+#include "render/fog_perlin.h"
 #include "render/volume_march.h"
 
 #include <stdbool.h>
@@ -123,7 +128,15 @@ typedef struct fog_model {
    * from (the camera that draws them), and the linear fog's 0 <= start < end. */
   double eye[3];
   double fog_start, fog_end;
+  /* FOG_MODEL_PERLIN: the octaves (extinction, y0 and scale_height are the height fog's),
+   * the animation time in seconds and the integral. */
+  const fog_perlin *perlin;
+  double time;
+  fog_perlin_integral perlin_integral;
 } fog_model;
+
+/* FOG_MODEL_PERLIN's medium of a model. */
+fog_perlin_medium fog_model_perlin_medium(const fog_model *model);
 
 /* Optical depth from the camera along the unit direction dir up to the first surface
  * t_surface (HUGE_VAL: none; homogeneous and downward height fog then give +inf): the

@@ -77,6 +77,10 @@ struct fog_pass {
    * each slice's far face) and the attachment-less framebuffer its fill is drawn with. */
   GLuint froxel_volume, froxel_framebuffer;
   int froxel_size[3];
+  /* FOG_MODEL_PERLIN: the octaves' texels (fog_pass_upload_perlin) and what they are of. */
+  GLuint perlin_texture;
+  const fog_perlin *perlin_uploaded;
+  int perlin_size, perlin_octaves;
 };
 
 /* One compiled program: every draw setting the shader takes as a compile-time constant.
@@ -240,6 +244,7 @@ void fog_pass_destroy(fog_pass *pass) {
   if (pass->sun_shadow) glDeleteTextures(1, &pass->sun_shadow);
   if (pass->cell_layers) glDeleteTextures(1, &pass->cell_layers);
   if (pass->froxel_volume) glDeleteTextures(1, &pass->froxel_volume);
+  if (pass->perlin_texture) glDeleteTextures(1, &pass->perlin_texture);
   if (pass->froxel_framebuffer) glDeleteFramebuffers(1, &pass->froxel_framebuffer);
   GLuint rbf_textures[3] = {pass->rbf_texture, pass->rbf_index_texture, pass->rbf_ranges};
   GLuint rbf_buffers[2] = {pass->rbf_buffer, pass->rbf_index_buffer};
@@ -415,6 +420,31 @@ int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_
   return gl_util_check("fog pass: volume upload", err);
 }
 
+int fog_pass_upload_perlin(fog_pass *pass, const fog_perlin *perlin, render_error *err) {
+  const int n = perlin->desc.size, octaves = perlin->desc.octaves;
+  if (!perlin->texels || n * octaves > pass->max_3d_texture_size) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: Perlin octaves of %d^3 x %d texels: expected created octaves within "
+             "GL's 3D texture size %d", n, octaves, pass->max_3d_texture_size);
+    return 1;
+  }
+  if (!pass->perlin_texture) glGenTextures(1, &pass->perlin_texture);
+  glBindTexture(GL_TEXTURE_3D, pass->perlin_texture);
+  if (pass->perlin_size == n && pass->perlin_octaves == octaves) {
+    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n * octaves, GL_RED, GL_FLOAT,
+                    perlin->texels);
+  } else {
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n, n, n * octaves, 0, GL_RED, GL_FLOAT,
+                 perlin->texels);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
+  glBindTexture(GL_TEXTURE_3D, 0);
+  pass->perlin_uploaded = perlin;
+  pass->perlin_size = n, pass->perlin_octaves = octaves;
+  return gl_util_check("fog pass: Perlin upload", err);
+}
+
 int fog_pass_upload_sun_shadow(fog_pass *pass, const fog_sun_shadow *shadow, render_error *err) {
   const int *n = shadow->size;
   if (!shadow->optical_depth || n[0] < 2 || n[1] < 2 || n[2] < 2) {
@@ -510,6 +540,7 @@ enum fog_pass_unit {
   UNIT_RBF_INDICES,
   UNIT_RBF_TILES,
   UNIT_FROXEL,
+  UNIT_PERLIN,
   UNIT_COUNT
 };
 /* Unit indices stay below GL 4.3's guaranteed 96 combined units; a variant samples far
@@ -835,6 +866,37 @@ static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
 
 /* The analytic models need no grids: only the camera and their parameters. */
 /* The walk settings' choice for grids with this share of empty blocks or bricks. */
+/* FOG_MODEL_PERLIN: each octave's texel position at the camera, its drift included, in
+ * double and wrapped into [0, size) (the shader adds camera-relative offsets in float);
+ * the box camera-relative. */
+static void fog_pass_perlin_uniforms(const fog_pass *pass, GLuint prog, const camera *cam,
+                                     const fog_pass_params *params) {
+  const fog_perlin *perlin = params->model_perlin;
+  const double *c = cam->position;
+  const int n = perlin->desc.size;
+  float scale[FOG_PERLIN_MAX_OCTAVES] = {0}, origin[FOG_PERLIN_MAX_OCTAVES][3] = {{0}};
+  for (int i = 0; i < perlin->desc.octaves; i++) {
+    double s = fog_perlin_octave_scale(perlin, i);
+    scale[i] = (float)s;
+    for (int a = 0; a < 3; a++) {
+      double u = fmod((c[a] - perlin->desc.wind[i][a] * params->model_time) * s, (double)n);
+      origin[i][a] = (float)(u < 0 ? u + n : u);
+    }
+  }
+  bind_sampler(prog, "fog_perlin_texels", UNIT_PERLIN, GL_TEXTURE_3D, pass->perlin_texture);
+  glUniform1i(fog_loc(prog, "fog_perlin_octaves"), perlin->desc.octaves);
+  glUniform1i(fog_loc(prog, "fog_perlin_size"), n);
+  glUniform1fv(fog_loc(prog, "fog_perlin_scale"), FOG_PERLIN_MAX_OCTAVES, scale);
+  glUniform3fv(fog_loc(prog, "fog_perlin_camera"), FOG_PERLIN_MAX_OCTAVES, &origin[0][0]);
+  const double *lo = perlin->desc.lo, *hi = perlin->desc.hi;
+  glUniform3f(fog_loc(prog, "fog_perlin_lo"), (float)(lo[0] - c[0]), (float)(lo[1] - c[1]),
+              (float)(lo[2] - c[2]));
+  glUniform3f(fog_loc(prog, "fog_perlin_hi"), (float)(hi[0] - c[0]), (float)(hi[1] - c[1]),
+              (float)(hi[2] - c[2]));
+  glUniform1i(fog_loc(prog, "fog_perlin_paper"),
+              params->model_perlin_integral == FOG_PERLIN_PAPER);
+}
+
 static int fog_pass_skips_share(const fog_pass_params *params, double empty_share) {
   if (params->walk.skip == FOG_SKIP_NONE) return 0;
   return params->walk.skip == FOG_SKIP_BELOW || empty_share >= FOG_SKIP_MIN_EMPTY_SHARE;
@@ -857,6 +919,7 @@ static int fog_pass_analytic_uniforms(fog_pass *pass, GLuint prog, const camera 
       fog_pass_rbf_uniforms(pass, prog, cam, params, width, height, err))
     return 1;
   if (params->model == FOG_MODEL_QUADRIC) fog_pass_quadric_uniforms(prog, cam, params);
+  if (params->model == FOG_MODEL_PERLIN) fog_pass_perlin_uniforms(pass, prog, cam, params);
   return 0;
 }
 
@@ -1093,6 +1156,17 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
     snprintf(err->message, sizeof err->message,
              "fog pass: transmittance cut-off %g: expected 0 (never stop) or in (0, 1)",
              params->walk.transmittance_cutoff);
+    return 1;
+  }
+  if (params->model == FOG_MODEL_PERLIN &&
+      (!params->model_perlin || pass->perlin_uploaded != params->model_perlin ||
+       pass->perlin_size != params->model_perlin->desc.size ||
+       pass->perlin_octaves != params->model_perlin->desc.octaves ||
+       !(params->model_scale_height > 0) || !isfinite(params->model_time) ||
+       (unsigned)params->model_perlin_integral > FOG_PERLIN_PAPER)) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: Perlin fog: expected its octaves uploaded (fog_pass_upload_perlin), a "
+             "scale height > 0, a finite time and a fog_perlin_integral");
     return 1;
   }
   if (params->model == FOG_MODEL_HEIGHT && !(params->model_scale_height > 0)) {

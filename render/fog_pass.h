@@ -118,6 +118,12 @@ typedef struct fog_pass_params {
    * box lo <= hi), read at each draw. */
   const fog_quadric *model_quadrics;
   int model_quadric_count;
+  /* FOG_MODEL_PERLIN: the octaves (uploaded with fog_pass_upload_perlin), the animation time
+   * in seconds and the integral; model_extinction, model_y0 and model_scale_height are its
+   * height fog's. */
+  const fog_perlin *model_perlin;
+  double model_time;
+  fog_perlin_integral model_perlin_integral;
   /* FOG_MODEL_VOLUME (the grid of fog_pass_upload_grid3d) with FOG_INTEGRATOR_MARCH: the
    * step in world units (> 0); the exact integrator needs none. Its exact walk reads the
    * cells' corners (FOG_FETCH_MANUAL: exact on any GL) or samples with the hardware's
@@ -198,6 +204,10 @@ int fog_pass_upload_pyramid(fog_pass *pass, const fog_pyramid *pyramid, render_e
 /* Uploads the density grid of FOG_MODEL_VOLUME as an R32F 3D texture (hardware trilinear,
  * zero border) with its placement; a grid of the same size reuses the texture. */
 int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_error *err);
+
+/* Uploads FOG_MODEL_PERLIN's octave textures (one R32F 3D texture, size x size x size
+ * octaves); the same size reuses the texture. */
+int fog_pass_upload_perlin(fog_pass *pass, const fog_perlin *perlin, render_error *err);
 
 /* Uploads the sun's optical-depth volume (render/fog_sun_shadow.h) as an R32F 3D texture
  * with its placement; the same size reuses the texture. */

@@ -45,6 +45,7 @@ static void constants(text_out *o) {
   put(o, "#define FOG_PROFILE_MAX_COEFFICIENTS %d\n#define FOG_MAX_RBFS %d\n",
       FOG_PROFILE_MAX_COEFFICIENTS, FOG_MAX_RBFS);
   put(o, "#define FOG_MAX_QUADRICS %d\n", FOG_MAX_QUADRICS);
+  put(o, "#define FOG_PERLIN_MAX_OCTAVES %d\n", FOG_PERLIN_MAX_OCTAVES);
   put(o, "#define FOG_LIGHT_SPAN_DEPTH %#.9g\n", FOG_LIGHT_SPAN_DEPTH); /* a float literal */
   put(o, "#define FOG_MAX_LAMPS %d\n#define FOG_LAMP_MAX_DEPTH_STEPS %d\n", FOG_MAX_LAMPS,
       FOG_LAMP_MAX_DEPTH_STEPS);

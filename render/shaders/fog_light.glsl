@@ -73,6 +73,10 @@ bool fog_light_span(fog_ray r, out float t0, out float t1) {
     return false;
   t0 = max(t0, 0.0);
   t1 = min(t1, r.t_surface);
+#elif FOG_MODEL_KIND == FOG_MODEL_PERLIN
+  if (!fog_slab(fog_perlin_lo, fog_perlin_hi, vec3(0.0), r.dir, t0, t1)) return false;
+  t0 = max(t0, 0.0);
+  t1 = min(t1, r.t_surface);
 #elif FOG_MODEL_KIND == FOG_MODEL_LINEAR
   // nothing before start; opaque from end on
   t0 = max(fog_model_start, 0.0);

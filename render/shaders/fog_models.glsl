@@ -23,6 +23,16 @@ uniform usamplerBuffer fog_rbf_indices;  // the tiles' lists
 uniform usampler2D fog_rbf_tiles;        // per tile: first index, count
 uniform int fog_rbf_tile_size;
 ivec2 fog_rbf_tile = ivec2(0);           // the pixel's tile (fog_pass_fs.glsl's main sets it)
+// FOG_MODEL_PERLIN (render/fog_perlin.h; fog_pass_perlin_uniforms): octave i's texels at
+// z in [i size, (i + 1) size) of fog_perlin_texels (R32F, texelFetch, wrapped by the mask);
+// its texel coordinates at camera-relative p are fog_perlin_camera[i] + fog_perlin_scale[i] p
+// (the camera's, drift included, wrapped into [0, size) in double on the CPU).
+uniform sampler3D fog_perlin_texels;
+uniform int fog_perlin_octaves, fog_perlin_size;
+uniform float fog_perlin_scale[FOG_PERLIN_MAX_OCTAVES];
+uniform vec3 fog_perlin_camera[FOG_PERLIN_MAX_OCTAVES];
+uniform vec3 fog_perlin_lo, fog_perlin_hi;  // the box, camera-relative
+uniform int fog_perlin_paper;               // 1: FOG_PERLIN_PAPER, the single sample
 uniform sampler3D fog_grid3d;                  // FOG_MODEL_VOLUME: RG32F, voxel i and i + 1
                                                // along x at texel i + 1 (a ring of zeros)
 uniform mat3 fog_grid3d_index_from_world;      // index position u = M p + offset
@@ -356,6 +366,109 @@ float fog_grid3d_optical_depth_march(vec3 dir, float length) {
   return sum * dt;
 }
 
+// ---- Perlin turbulence fog (fog_perlin.c's twins) ----------------------------------------
+
+struct fog_perlin_cell {
+  vec4 a, b;  // corners (x, y, z) = (k & 1, (k >> 1) & 1, k >> 2): a k = 0..3, b k = 4..7
+};
+
+fog_perlin_cell fog_perlin_cell_load(int i, ivec3 c) {
+  int mask = fog_perlin_size - 1, zo = i * fog_perlin_size;
+  ivec3 c0 = c & mask, c1 = (c + 1) & mask;
+  float v[8];
+  for (int k = 0; k < 8; k++) {
+    ivec3 q = ivec3((k & 1) != 0 ? c1.x : c0.x, (k & 2) != 0 ? c1.y : c0.y,
+                    (k & 4) != 0 ? c1.z : c0.z);
+    v[k] = texelFetch(fog_perlin_texels, ivec3(q.xy, q.z + zo), 0).r;
+  }
+  return fog_perlin_cell(vec4(v[0], v[1], v[2], v[3]), vec4(v[4], v[5], v[6], v[7]));
+}
+
+float fog_perlin_cell_value(fog_perlin_cell cell, vec3 f) {
+  vec4 z = mix(cell.a, cell.b, f.z);  // (x0y0, x1y0, x0y1, x1y1)
+  vec2 y = mix(z.xy, z.zw, f.y);
+  return mix(y.x, y.y, f.x);
+}
+
+// T at camera-relative p.
+float fog_perlin_turbulence(vec3 p) {
+  float sum = 0.0;
+  for (int i = 0; i < fog_perlin_octaves; i++) {
+    vec3 u = fog_perlin_camera[i] + fog_perlin_scale[i] * p, c = floor(u);
+    sum += fog_perlin_cell_value(fog_perlin_cell_load(i, ivec3(c)), u - c) * exp2(-float(i));
+  }
+  return sum;
+}
+
+bool fog_perlin_inside(vec3 p) {
+  return all(greaterThanEqual(p, fog_perlin_lo)) && all(lessThanEqual(p, fog_perlin_hi));
+}
+
+// Octave i over [t0, t1] of the ray (fog_perlin.c's octave_depth): a DDA over its texel
+// cells, each piece's cell from its middle, cut so that the height exponent moves by at
+// most 1/2, 4 Gauss-Legendre nodes each. Stops once `budget` is passed.
+float fog_perlin_octave_depth(int i, vec3 dir, float t0, float t1, float budget) {
+  const float x1 = 0.33998104358485626, x2 = 0.86113631159405258;
+  const float w1 = 0.65214515486254614, w2 = 0.34785484513745386;
+  float s = fog_perlin_scale[i];
+  vec3 ue = fog_perlin_camera[i] + t0 * s * dir, du = s * dir;
+  fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
+           az = fog_axis_start(ue.z, du.z, 0.0);
+  float len = t1 - t0, t = 0.0, sum = 0.0, y_entry = t0 * dir.y;
+  float inv_h = 1.0 / fog_model_scale_height;
+  for (int guard = 0; t < len && sum < budget && guard < 65536; guard++) {
+    float tx = fog_axis_next(ax), ty = fog_axis_next(ay), tz = fog_axis_next(az);
+    float tn = min(min(len, tx), min(ty, tz));
+    if (tn > t) {
+      vec3 c = floor(ue + (0.5 * (t + tn)) * du);
+      fog_perlin_cell cell = fog_perlin_cell_load(i, ivec3(c));
+      vec3 f0 = ue - c;
+      int cuts = max(int(ceil(abs(dir.y) * (tn - t) * inv_h * 2.0)), 1);
+      float h = (tn - t) / float(cuts);
+      for (int k = 0; k < cuts; k++) {
+        float half_h = 0.5 * h, centre = t + (float(k) + 0.5) * h;
+        float ta = centre - x2 * half_h, tb = centre - x1 * half_h, tc = centre + x1 * half_h,
+              td = centre + x2 * half_h;
+        sum += half_h * (w2 * fog_perlin_cell_value(cell, f0 + ta * du) *
+                             exp(-(y_entry + ta * dir.y - fog_model_y0) * inv_h) +
+                         w1 * fog_perlin_cell_value(cell, f0 + tb * du) *
+                             exp(-(y_entry + tb * dir.y - fog_model_y0) * inv_h) +
+                         w1 * fog_perlin_cell_value(cell, f0 + tc * du) *
+                             exp(-(y_entry + tc * dir.y - fog_model_y0) * inv_h) +
+                         w2 * fog_perlin_cell_value(cell, f0 + td * du) *
+                             exp(-(y_entry + td * dir.y - fog_model_y0) * inv_h));
+      }
+    }
+    if (tx <= tn) ax.cell += ax.step;
+    if (ty <= tn) ay.cell += ay.step;
+    if (tz <= tn) az.cell += az.step;
+    t = max(t, tn);
+  }
+  return sum;
+}
+
+// The exact optical depth up to length, or the paper's: T once at the stretch's last point
+// times the height fog over the stretch.
+float fog_perlin_optical_depth(vec3 dir, float length) {
+  float t0, t1;
+  if (fog_model_extinction == 0.0 || !fog_slab(fog_perlin_lo, fog_perlin_hi, vec3(0.0), dir, t0, t1))
+    return 0.0;
+  t0 = max(t0, 0.0);
+  t1 = min(t1, length);
+  if (!(t1 > t0)) return 0.0;
+  if (fog_perlin_paper != 0) {
+    float len = t1 - t0, a = dir.y / fog_model_scale_height;
+    float k = fog_model_extinction * exp(-(t0 * dir.y - fog_model_y0) / fog_model_scale_height);
+    return fog_perlin_turbulence(t1 * dir) * k * len * fog_exprel(a * len);
+  }
+  float sum = 0.0;
+  for (int i = 0; i < fog_perlin_octaves; i++)
+    sum += exp2(-float(i)) *
+           fog_perlin_octave_depth(i, dir, t0, t1,
+                                   (fog_depth_limit - sum) / fog_model_extinction * exp2(float(i)));
+  return fog_model_extinction * sum;
+}
+
 // ---- uniform ray marching of the analytic models (the benchmark's alternative) ----------
 
 // K at camera-relative point p, pointwise (the marcher's integrand).
@@ -368,6 +481,11 @@ float fog_model_extinction_at(vec3 p) {
   if (fog_model == FOG_MODEL_EXP2)
     return 2.0 * fog_model_extinction * fog_model_extinction * length(p);
   if (fog_model == FOG_MODEL_QUADRIC) return fog_quadric_extinction_at(p);
+  if (fog_model == FOG_MODEL_PERLIN)
+    return fog_perlin_inside(p) ? fog_model_extinction *
+                                      exp(-(p.y - fog_model_y0) / fog_model_scale_height) *
+                                      fog_perlin_turbulence(p)
+                                : 0.0;
   if (fog_model == FOG_MODEL_HEIGHT)
     return fog_model_extinction * exp(-(p.y - fog_model_y0) / fog_model_scale_height);
   // RBFs at points of the pixel's view ray (the march, the light's samples): its tile's list
@@ -404,6 +522,10 @@ float fog_model_reach(vec3 dir) {
     float t0, t1;
     return fog_slab(fog_quadric_union_lo, fog_quadric_union_hi, vec3(0.0), dir, t0, t1)
                ? max(t1, 0.0) : 0.0;
+  }
+  if (fog_model == FOG_MODEL_PERLIN) {
+    float t0, t1;
+    return fog_slab(fog_perlin_lo, fog_perlin_hi, vec3(0.0), dir, t0, t1) ? max(t1, 0.0) : 0.0;
   }
   return 1e30;
 }
@@ -469,6 +591,8 @@ float fog_model_march_linear(fog_ray r) {  // opaque from end on, however it is 
   return r.t_surface >= fog_model_end ? 1e30 : fog_model_march_homogeneous(r);
 }
 float fog_model_march_exp2(fog_ray r) { return fog_model_march_homogeneous(r); }
+float fog_model_depth_perlin(fog_ray r) { return fog_perlin_optical_depth(r.dir, r.t_surface); }
+float fog_model_march_perlin(fog_ray r) { return fog_model_march_homogeneous(r); }
 float fog_model_march_volume(fog_ray r) {
   return fog_grid3d_optical_depth_march(r.dir, r.t_surface);
 }
