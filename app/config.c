@@ -101,6 +101,12 @@ static const key_spec keys[] = {
     {"fog", "rbf_emitter", V_RBF_EMITTER, 0, 0, WORLD, NULL, 0, 0},
     {"fog", "rbf_base", V_DOUBLE, F(fog.rbf_base), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"fog", "volume_step", V_DOUBLE, F(fog.volume_step), 0, WORLD, NULL, 0, 0},
+    {"fog", "perlin_octaves", V_INT, F(fog.perlin_octaves), 1, FOG_PERLIN_MAX_OCTAVES, NULL, 0, 0},
+    {"fog", "perlin_size", V_INT, F(fog.perlin_size), FOG_PERLIN_MIN_SIZE, FOG_PERLIN_MAX_SIZE, NULL, 0, 0},
+    {"fog", "perlin_feature", V_DOUBLE, F(fog.perlin_feature), MIN_LENGTH, WORLD, NULL, 0, 0},
+    {"fog", "perlin_seed", V_UINT, F(fog.perlin_seed), 0, 4294967295.0, NULL, 0, 0},
+    {"fog", "perlin_wind", V_LIST, F(fog.perlin_wind), -WORLD, WORLD, NULL, F(fog.perlin_wind_count), 0},
+    {"fog", "perlin_integral", V_ENUM, F(fog.perlin_integral), 0, 0, "exact|paper", 0, 0},
     {"fog", "sequence", V_PATH, F(fog.sequence), 0, 0, NULL, F(fog.sequence_line), sizeof(((scene_config *)0)->fog.sequence)},
     {"fog", "vdb", V_PATH, F(fog.vdb), 0, 0, NULL, F(fog.vdb_line), sizeof(((scene_config *)0)->fog.vdb)},
     {"fog", "vdb_grid", V_STRING, F(fog.vdb_grid), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.vdb_grid)},
@@ -166,6 +172,7 @@ static int sequence_first_frame(const char *pattern);
 static const char *const sections = "fog, box, camera, terrain, objects, light, render, sim";
 
 void scene_config_init(scene_config *cfg) {
+  const fog_perlin_desc perlin = fog_perlin_desc_default();
   *cfg = (scene_config){
       .fog = {.density_scale = 1.0, .degree = 1, .levels = 3, .mu = 1.0,
               .lod = SCENE_LOD_SWITCH, .filtering = SCENE_FILTERING_MANUAL,
@@ -174,7 +181,9 @@ void scene_config_init(scene_config *cfg) {
               .profile_degree = 1,
               .profile_spacing = 1.0, .colour = {0.75f, 0.78f, 0.82f},
               .albedo = 0.0, .phase_g = 0.7,
-              .vdb_grid = "density", .vdb_fps = 24.0, .vdb_frame = -1},
+              .vdb_grid = "density", .vdb_fps = 24.0, .vdb_frame = -1,
+              .perlin_octaves = 3, .perlin_size = 32, .perlin_feature = 48.0, .perlin_seed = 1,
+              .perlin_wind_count = 3 * FOG_PERLIN_MAX_OCTAVES},
       .box = {.origin = {-500, -500}, .cell_size = 1.0, .floor = 0.0, .top = 50.0},
       .camera = {.position = {0, 50, 100}, .fov = 60.0, .near_plane = 0.1, .far_plane = 100000.0},
       .terrain = {.origin = {-500, 0, -500}, .size = {1000, 1000}, .height = 150,
@@ -191,6 +200,7 @@ void scene_config_init(scene_config *cfg) {
       .empty_skip = 1,
       .skip_below = 0.0,
   };
+  memcpy(cfg->fog.perlin_wind, perlin.wind, sizeof perlin.wind); /* a drift per octave */
 }
 
 /* ---- parsing state ---- */
@@ -594,7 +604,8 @@ static int store_lamp_flicker(parse_state *s, const char *section, const char *k
   return 1;
 }
 
-/* V_LIST: 1 to SCENE_CONFIG_MAX_PROFILE densities >= 0, the count at k->aux_offset. */
+/* V_LIST: 1 to SCENE_CONFIG_MAX_PROFILE numbers in the key's range, the count at
+ * k->aux_offset. */
 static int store_list(parse_state *s, const key_spec *k, const char *section, const char *key,
                       const char *value) {
   double *field = (double *)((char *)s->cfg + k->offset);
@@ -603,8 +614,10 @@ static int store_list(parse_state *s, const key_spec *k, const char *section, co
     return fail(s, section, key, "expected 1 to %d numbers, got '%s'", SCENE_CONFIG_MAX_PROFILE,
                 value);
   for (int i = 0; i < n; i++)
-    if (field[i] < 0)
-      return fail(s, section, key, "expected numbers >= 0 (fog density), got '%s'", value);
+    if (!(field[i] >= k->min && field[i] <= k->max))
+      return fail(s, section, key, "expected numbers from %g to %g%s, got '%s'", k->min, k->max,
+                  k->min == 0 ? " (fog density)" : "", value);
+  if (k->offset == F(fog.perlin_wind)) s->cfg->fog.perlin_wind_line = s->line;
   *(int *)((char *)s->cfg + k->aux_offset) = n;
   return 1;
 }
@@ -615,6 +628,7 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
   if (!k) return 0;
   char *field = (char *)cfg + k->offset;
   double v[16];
+  if (k->offset == F(fog.perlin_size)) cfg->fog.perlin_size_line = s->line;
   switch (k->kind) {
     case V_DOUBLE:
       if (numbers(s, k, section, key, value, v, 1, 1, "a number") != 1) return 0;
@@ -774,7 +788,28 @@ static int check_models(parse_state *ps) {
          "and fog_end = %g", cfg->fog.fog_start, cfg->fog.fog_end);
     return 1;
   }
-  if (cfg->fog.model == FOG_MODEL_HEIGHT) {
+  if (cfg->fog.model == FOG_MODEL_PERLIN) {
+    int n = cfg->fog.perlin_size, winds = cfg->fog.perlin_wind_count;
+    if (n & (n - 1)) {
+      s.line = cfg->fog.perlin_size_line;
+      fail(&s, "fog", "perlin_size", "expected a power of two (8, 16, 32, 64 or 128), got %d", n);
+      return 1;
+    }
+    if (winds != 3 && (winds % 3 || winds < 3 * cfg->fog.perlin_octaves)) {
+      s.line = cfg->fog.perlin_wind_line;
+      fail(&s, "fog", "perlin_wind", "expected 3 numbers (one drift for every octave) or 3 per "
+           "octave (%d numbers for %d octaves), got %d numbers", 3 * cfg->fog.perlin_octaves,
+           cfg->fog.perlin_octaves, winds);
+      return 1;
+    }
+    if (!(cfg->box.top > cfg->box.floor)) {
+      s.line = cfg->fog.model_line;
+      fail(&s, "box", "top", "Perlin fog fills the terrain's footprint between [box] floor and "
+           "top: expected top above floor, got floor %g and top %g", cfg->box.floor, cfg->box.top);
+      return 1;
+    }
+  }
+  if (cfg->fog.model == FOG_MODEL_HEIGHT || cfg->fog.model == FOG_MODEL_PERLIN) {
     /* K0 e^{-(y - y0)/H} grows without bound below y0: where the view can reach (down to
      * the camera, the terrain's base and the fog box's floor) it must stay a float. */
     double low = fmin(cfg->camera.position[1], fmin(cfg->terrain.origin[1], cfg->box.floor));

@@ -100,6 +100,17 @@ typedef struct scene_fog_config {
     int count;
     double numbers[18];
   } quadric_lines[FOG_MAX_QUADRICS];
+  /* model = perlin (render/fog_perlin.h): the octaves' count, texture size, feature size and
+   * seed; perlin_wind holds 3 numbers (every octave's drift) or 3 per octave; the integral.
+   * Its height fog is density_scale, fog_height, scale_height; its box the terrain's
+   * footprint between [box] floor and top. */
+  int perlin_octaves, perlin_size;
+  double perlin_feature;
+  unsigned perlin_seed;
+  double perlin_wind[SCENE_CONFIG_MAX_PROFILE];
+  int perlin_wind_count;
+  int perlin_integral; /* fog_perlin_integral: exact 0, paper 1 */
+  int perlin_wind_line, perlin_size_line; /* where they were set, for errors */
   /* model = volume: 0 integrates the grid exactly; > 0 marches it at this step (world). */
   double volume_step;
   /* A fogmap per frame (`fogpipe bake`'s output): frame n of a recording shows the file of

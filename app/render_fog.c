@@ -14,6 +14,7 @@ void render_fog_destroy(render_fog *fog) {
   if (fog->pass) fog_pass_destroy(fog->pass);
   for (int k = 0; k < 2; k++) vdb_frame_destroy(&fog->played[k]);
   fog_sun_shadow_destroy(&fog->sun_shadow);
+  fog_perlin_destroy(&fog->perlin);
   *fog = (render_fog){0};
 }
 
@@ -198,7 +199,8 @@ fog_model render_fog_model(render_fog *fog) {
                      .rbfs = fog->rbfs, .rbf_count = p->model_rbf_count,
                      .grid3d = fog->grid3d, .quadrics = fog->quadrics,
                      .quadric_count = p->model_quadric_count, .fog_start = p->model_fog_start,
-                     .fog_end = p->model_fog_end};
+                     .fog_end = p->model_fog_end, .perlin = p->model_perlin,
+                     .time = p->model_time, .perlin_integral = p->model_perlin_integral};
 }
 
 /* The fog's shadows for the model (docs/light.md): how T_s is found, and the sun's
@@ -297,15 +299,47 @@ static int rbfs_at(render_fog *fog, const scene_config *cfg, double time, render
 }
 
 bool render_fog_animated(const scene_config *cfg) {
-  return cfg->fog.model == FOG_MODEL_RBF && cfg->fog.rbf_emitter_count > 0;
+  return (cfg->fog.model == FOG_MODEL_RBF && cfg->fog.rbf_emitter_count > 0) ||
+         cfg->fog.model == FOG_MODEL_PERLIN;
 }
 
 int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,
                         render_error *err) {
   if (!render_fog_animated(cfg)) return 0;
-  if (rbfs_at(fog, cfg, time, err)) return 1;
+  if (cfg->fog.model == FOG_MODEL_PERLIN)
+    fog->params.model_time = time;
+  else if (rbfs_at(fog, cfg, time, err))
+    return 1;
   fog_model model = render_fog_model(fog);
   return render_fog_shadow(fog, cfg, &model, err);
+}
+
+/* model = perlin: the octaves of the config, filling the terrain's footprint between [box]
+ * floor and top (checked by the config), uploaded to the pass. */
+static int perlin_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
+  const scene_fog_config *f = &cfg->fog;
+  fog_perlin_desc desc = fog_perlin_desc_default();
+  desc.seed = f->perlin_seed;
+  desc.octaves = f->perlin_octaves;
+  desc.size = f->perlin_size;
+  desc.feature_size = f->perlin_feature;
+  for (int i = 0; i < desc.octaves; i++)
+    for (int a = 0; a < 3; a++)
+      desc.wind[i][a] = f->perlin_wind[(f->perlin_wind_count == 3 ? 0 : 3 * i) + a];
+  const scene_terrain_config *t = &cfg->terrain;
+  desc.lo[0] = t->origin[0], desc.lo[1] = cfg->box.floor, desc.lo[2] = t->origin[2];
+  desc.hi[0] = t->origin[0] + t->size[0], desc.hi[1] = cfg->box.top,
+  desc.hi[2] = t->origin[2] + t->size[1];
+  if (fog_perlin_create(&fog->perlin, &desc, err)) {
+    char reason[sizeof err->message];
+    snprintf(reason, sizeof reason, "%s", err->message);
+    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] model = perlin: %.250s",
+             cfg->path, f->model_line, reason);
+    return 1;
+  }
+  fog->params.model_perlin = &fog->perlin;
+  fog->params.model_perlin_integral = (fog_perlin_integral)f->perlin_integral;
+  return fog_pass_upload_perlin(fog->pass, &fog->perlin, err);
 }
 
 static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
@@ -331,8 +365,11 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
       .walk = scene_config_walk(cfg),
   };
   if (rbf && rbfs_at(fog, cfg, 0.0, err)) return 1;
+  if (fog_pass_create(&fog->pass, err) ||
+      (f->model == FOG_MODEL_PERLIN && perlin_fog(fog, cfg, err)))
+    return 1;
   fog_model model = render_fog_model(fog);
-  return fog_pass_create(&fog->pass, err) || render_fog_shadow(fog, cfg, &model, err);
+  return render_fog_shadow(fog, cfg, &model, err);
 }
 
 int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err) {
@@ -482,6 +519,7 @@ int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
   fog->params.volume = &fog->volume; /* the struct may have been copied */
   fog->params.model_rbfs = fog->rbfs;
   fog->params.model_quadrics = fog->quadrics;
+  if (fog->params.model_perlin) fog->params.model_perlin = &fog->perlin;
   fog->volume.profile.coefficients = fog->profile_coefficients;
   fog->params.surface_sun = fog->ground_shadow ? scene->color[2] : 0; /* 0: no attachment 2 */
   fog->params.surface_lamps = scene->color[3]; /* the lamps' share (0: none) */

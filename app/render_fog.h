@@ -24,6 +24,7 @@ typedef struct render_fog {
   fog_rbf *rbfs;
   int rbf_count;
   fog_quadric quadrics[FOG_MAX_QUADRICS]; /* model = quadric: params.model_quadrics, likewise */
+  fog_perlin perlin; /* model = perlin: params.model_perlin, its octaves uploaded */
   fog_pass_params params;
   fog_pass *pass;
   /* The fog's shadow (docs/light.md): the sun's optical-depth volume where the model needs
@@ -71,9 +72,10 @@ int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg,
                                const vdb_sequence *seq, int a, int b, double w,
                                render_error *err);
 /* Whether the fog changes with time by itself: model = rbf with emitters (puffs carried by
- * the wind). */
+ * the wind), model = perlin (its octaves drift). */
 bool render_fog_animated(const scene_config *cfg);
-/* model = rbf with emitters: the puffs at `time` seconds from now on (and the sun's volume
+/* model = rbf with emitters: the puffs at `time` seconds from now on; model = perlin: its
+ * octaves where they have drifted by then (and the sun's volume
  * of the fog's shadow, where the model has one). For the fog made by render_fog_create from
  * cfg; nothing to do for other fog. */
 int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,

@@ -13,6 +13,8 @@
  *     (closed form per volume) and marched at N = 8 .. 256;
  *   - on the valley again: 64 and 3000 Gaussians spread over it (rbf_scale_rows), exact
  *     through the per-tile lists of render/fog_rbf_tiles.h;
+ *   - on the valley again: Perlin turbulence fog (4 octaves, render/fog_perlin.h), exact per
+ *     texel cell, Zdrojewska's single sample (its error: perlin_paper_error) and marched;
  *   - first of all, `fogpipe fit` on the plume config's VDB frame: its seconds (fit_s).
  * Time: GL, glFinish before and after, median of --frames rounds after a warm-up, rows
  * interleaved. Error: tau against the double-precision CPU model on the same rays to the
@@ -21,7 +23,9 @@
  * model and method). Last line: `models: rbf_exact_ms=... rbf_march_speedup_at_matched_error=
  * ... height_exact_ms=... height_march_speedup_at_matched_error=... volume_exact_ms=...
  * volume_march_speedup_at_matched_error=... volume_empty_skip_speedup=... quadric_exact_ms=...
- * quadric_march_speedup_at_matched_error=... rbf_64_ms=... rbf_3000_ms=... fit_s=...`, a speedup being the time of the cheapest
+ * quadric_march_speedup_at_matched_error=... rbf_64_ms=... rbf_3000_ms=... fit_s=...
+ * perlin_exact_ms=... perlin_march_speedup_at_matched_error=... perlin_paper_error=...`, a
+ * speedup being the time of the cheapest
  * marching with max error <= 1e-3 over the exact time. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -47,21 +51,22 @@ static const double volume_steps[] = {2.0, 1.0, 0.5, 0.25, 0.125}; /* voxels */
 enum {
   MARCH_COUNT = 6,
   VOLUME_STEP_COUNT = 5,
-  MODEL_COUNT = 7,
+  MODEL_COUNT = 8,
   SCENE_COUNT = 2,
   QUADRIC_COUNT = 8,
-  MAX_ROWS = 1 + 3 * (1 + MARCH_COUNT) + 3 + VOLUME_STEP_COUNT + 2
+  PERLIN = 7, /* the Perlin row: exact, the paper's single sample, marched */
+  MAX_ROWS = 1 + 3 * (1 + MARCH_COUNT) + 3 + VOLUME_STEP_COUNT + 2 + 2 + MARCH_COUNT
 };
 /* The table's rows this bench times (render/fog_models.def: names and labels come from it). */
 static const fog_model_kind model_kinds[MODEL_COUNT] = {
     FOG_MODEL_HOMOGENEOUS, FOG_MODEL_HEIGHT, FOG_MODEL_RBF, FOG_MODEL_VOLUME, FOG_MODEL_QUADRIC,
-    FOG_MODEL_LINEAR, FOG_MODEL_EXP2};
+    FOG_MODEL_LINEAR, FOG_MODEL_EXP2, FOG_MODEL_PERLIN};
 static const char *const scene_configs[SCENE_COUNT] = {"rbf_fog_banks.ini",
                                                        "vdb_plume_volume.ini"};
-static const int scene_of_model[MODEL_COUNT] = {0, 0, 0, 1, 0, 0, 0};
+static const int scene_of_model[MODEL_COUNT] = {0, 0, 0, 1, 0, 0, 0, 0};
 /* The rows with marches: the classic factors and homogeneous fog are closed forms of the
  * distance alone (nothing to march). */
-static bool marched(int m) { return m >= 1 && m <= 4; }
+static bool marched(int m) { return (m >= 1 && m <= 4) || m == PERLIN; }
 
 /* The quadric row's volumes on the valley of scene_configs[0]. */
 static void bench_quadrics(fog_quadric q[QUADRIC_COUNT]) {
@@ -84,6 +89,7 @@ typedef struct model_row {
   double setting;   /* 0: exact; marching: steps (analytic) or the step in voxels (volume) */
   bool hardware;    /* the volume's exact walk sampling with the hardware's filter */
   bool unskipped;   /* the volume's exact walk without empty-space skipping */
+  bool paper;       /* Perlin: Zdrojewska's single sample (FOG_PERLIN_PAPER) */
   char series[48];
   fog_pass_params params;
   double *times;
@@ -129,16 +135,19 @@ static void print_help(void) {
       "height_exact_ms=C height_march_speedup_at_matched_error=D volume_exact_ms=E\n"
       "volume_march_speedup_at_matched_error=F volume_empty_skip_speedup=S\n"
       "quadric_exact_ms=M quadric_march_speedup_at_matched_error=Q rbf_64_ms=R64\n"
-      "rbf_3000_ms=R fit_s=S: B, D, F, Q = time of the cheapest ray marching with max tau error <=\n"
+      "rbf_3000_ms=R fit_s=S perlin_exact_ms=P perlin_march_speedup_at_matched_error=PM\n"
+      "perlin_paper_error=E: B, D, F, Q, PM = time of the cheapest ray marching with max tau error <=\n"
       "1e-3 / the exact integral's time; S = the volume's exact walk without empty-space\n"
       "skipping / with it; M: 8 quadric volumes; R64, R: 64 and 3000 Gaussians spread over\n"
       "the valley, culled per screen tile (target R <= 4 R64); S: seconds for `fogpipe fit`\n"
-      "on configs/vdb_plume_volume.ini's VDB frame at its defaults (target <= 30).\n");
+      "on configs/vdb_plume_volume.ini's VDB frame at its defaults (target <= 30); P: Perlin\n"
+      "turbulence fog (4 octaves) over the valley; E: max |tau error| of Zdrojewska's single\n"
+      "sample against the ray integral.\n");
 }
 
 static const char *row_method(const model_row *r) {
   return r->setting ? "march" : r->hardware ? "exact-hardware"
-         : r->unskipped ? "exact-no-skip" : "exact";
+         : r->unskipped ? "exact-no-skip" : r->paper ? "paper" : "exact";
 }
 
 /* The cheapest marching row of a model within MATCHED_ERROR (else its most accurate one,
@@ -148,7 +157,7 @@ static double march_speedup(const model_row *rows, int count, int model, bool *m
   for (int i = 0; i < count; i++) {
     if (rows[i].model != model) continue;
     if (!rows[i].setting) {
-      if (!rows[i].hardware && !rows[i].unskipped) exact = i;
+      if (!rows[i].hardware && !rows[i].unskipped && !rows[i].paper) exact = i;
       continue;
     }
     if (rows[i].max_error <= MATCHED_ERROR && (cheapest < 0 || rows[i].ms < rows[cheapest].ms))
@@ -327,6 +336,7 @@ int bench_models(int argc, char **argv) {
   fog_pass *pass = NULL;
   gl_target fog_target = {0};
   vdb_frame frame = {0};
+  fog_perlin perlin = {0};
   float *gpu_tau = malloc(pixels * sizeof(float));
   double *references[MODEL_COUNT] = {0};
   model_row rows[MAX_ROWS] = {{0}};
@@ -356,6 +366,20 @@ int bench_models(int argc, char **argv) {
     goto gl_failed;
   fog_quadric quadrics[QUADRIC_COUNT];
   bench_quadrics(quadrics);
+  /* Perlin turbulence over the valley: 4 octaves of 32^3, eddies of 90 units, at 10 s of
+   * its drift, filling the terrain's footprint up to 70 units */
+  fog_perlin_desc perlin_desc = fog_perlin_desc_default();
+  perlin_desc.octaves = 4;
+  perlin_desc.feature_size = 90.0;
+  const scene_terrain_config *valley = &banks->terrain;
+  for (int a = 0; a < 3; a += 2) {
+    perlin_desc.lo[a] = valley->origin[a];
+    perlin_desc.hi[a] = valley->origin[a] + valley->size[a / 2];
+  }
+  perlin_desc.lo[1] = -10.0, perlin_desc.hi[1] = 70.0;
+  if (fog_perlin_create(&perlin, &perlin_desc, &rerr) ||
+      fog_pass_upload_perlin(pass, &perlin, &rerr))
+    goto gl_failed;
   double voxel = HUGE_VAL;
   for (int a = 0; a < 3; a++) voxel = fmin(voxel, fabs(frame.world.step[a]));
   const double *eye = scenes[0].drawn.cam.position; /* the classic factors' */
@@ -368,7 +392,9 @@ int bench_models(int argc, char **argv) {
       {.kind = FOG_MODEL_QUADRIC, .quadrics = quadrics, .quadric_count = QUADRIC_COUNT},
       {.kind = FOG_MODEL_LINEAR, .fog_start = 200.0, .fog_end = 1200.0,
        .eye = {eye[0], eye[1], eye[2]}},
-      {.kind = FOG_MODEL_EXP2, .extinction = 0.0015, .eye = {eye[0], eye[1], eye[2]}}};
+      {.kind = FOG_MODEL_EXP2, .extinction = 0.0015, .eye = {eye[0], eye[1], eye[2]}},
+      {.kind = FOG_MODEL_PERLIN, .extinction = 0.02, .y0 = 5.0, .scale_height = 18.0,
+       .perlin = &perlin, .time = 10.0}};
 
   /* The CPU references: tau of each model along every pixel's ray to its surface. */
   for (int m = 0; m < MODEL_COUNT; m++) {
@@ -388,21 +414,30 @@ int bench_models(int argc, char **argv) {
   for (int m = 0; m < MODEL_COUNT; m++) {
     /* s = -3: the volume's exact walk without empty-space skipping; -2: with hardware
      * filtering; -1: exact (the pass's defaults); >= 0: marches */
+    /* s = -4: Perlin's paper variant */
     int marches = !marched(m) ? 0 : m == 3 ? VOLUME_STEP_COUNT : MARCH_COUNT;
-    for (int s = m == 3 ? -3 : -1; s < marches; s++) {
+    for (int s = m == 3 ? -3 : m == PERLIN ? -4 : -1; s < marches; s++) {
+      if (m == PERLIN && (s == -3 || s == -2)) continue;
       model_row *r = &rows[row_count++];
       r->model = m;
       r->hardware = s == -2;
       r->unskipped = s == -3;
+      r->paper = s == -4;
       r->setting = s < 0 ? 0.0 : m == 3 ? volume_steps[s] : march_steps[s];
       snprintf(r->series, sizeof r->series, "%s %s", fog_model_table[model_kinds[m]].name,
-               s == -3 ? "exact no skip" : s == -2 ? "exact hardware" : s < 0 ? "exact" : "march");
+               s == -4   ? "paper (single sample)"
+               : s == -3 ? "exact no skip"
+               : s == -2 ? "exact hardware"
+               : s < 0   ? "exact"
+                         : "march");
       r->params = (fog_pass_params){
           .model = models[m].kind, .model_extinction = models[m].extinction,
           .model_y0 = models[m].y0, .model_scale_height = models[m].scale_height,
           .model_rbfs = models[m].rbfs, .model_rbf_count = models[m].rbf_count,
           .model_quadrics = models[m].quadrics, .model_quadric_count = models[m].quadric_count,
           .model_fog_start = models[m].fog_start, .model_fog_end = models[m].fog_end,
+          .model_perlin = models[m].perlin, .model_time = models[m].time,
+          .model_perlin_integral = s == -4 ? FOG_PERLIN_PAPER : FOG_PERLIN_EXACT,
           .fog_colour = {0.75f, 0.78f, 0.82f},
           .integrator = s < 0 ? FOG_INTEGRATOR_EXACT : FOG_INTEGRATOR_MARCH,
           .fetch = s == -2 ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
@@ -485,12 +520,15 @@ int bench_models(int argc, char **argv) {
   }
   printf("\nCSV: %s, %s; PNG: %s\n", table, chart_csv, chart_png);
   double exact_ms[MODEL_COUNT] = {0}, speedup[MODEL_COUNT] = {0}, unskipped_ms = 0.0;
+  double paper_error = NAN, paper_ms = NAN;
+  for (int i = 0; i < row_count; i++)
+    if (rows[i].paper) paper_error = rows[i].max_error, paper_ms = rows[i].ms;
   for (int m = 1; m < MODEL_COUNT; m++) {
     if (!marched(m)) continue;
     bool matched;
     speedup[m] = march_speedup(rows, row_count, m, &matched);
     for (int i = 0; i < row_count; i++)
-      if (rows[i].model == m && !rows[i].setting && !rows[i].hardware) {
+      if (rows[i].model == m && !rows[i].setting && !rows[i].hardware && !rows[i].paper) {
         if (rows[i].unskipped)
           unskipped_ms = rows[i].ms;
         else
@@ -507,14 +545,18 @@ int bench_models(int argc, char **argv) {
            "against the CPU, a pixel's tile lists %.1f %% of them\n", scale[r].count,
            scale[r].ms, scale[r].max_error, 100.0 * scale[r].listed_share);
   printf("rbf: 3000 Gaussians / 64 = %.2f (target <= 4)\n", scale[1].ms / scale[0].ms);
+  printf("perlin: the paper's single sample %.2f ms, max |dtau| %.3f against the ray integral "
+         "(exact %.2f ms)\n", paper_ms, paper_error, exact_ms[PERLIN]);
   printf("models: rbf_exact_ms=%.3f rbf_march_speedup_at_matched_error=%.2f "
          "height_exact_ms=%.3f height_march_speedup_at_matched_error=%.2f "
          "volume_exact_ms=%.3f volume_march_speedup_at_matched_error=%.2f "
          "volume_empty_skip_speedup=%.2f quadric_exact_ms=%.3f "
          "quadric_march_speedup_at_matched_error=%.2f rbf_64_ms=%.3f rbf_3000_ms=%.3f "
-         "fit_s=%.2f\n",
+         "fit_s=%.2f perlin_exact_ms=%.3f perlin_march_speedup_at_matched_error=%.2f "
+         "perlin_paper_error=%.4f\n",
          exact_ms[2], speedup[2], exact_ms[1], speedup[1], exact_ms[3], speedup[3],
-         unskipped_ms / exact_ms[3], exact_ms[4], speedup[4], scale[0].ms, scale[1].ms, fit_s);
+         unskipped_ms / exact_ms[3], exact_ms[4], speedup[4], scale[0].ms, scale[1].ms, fit_s,
+         exact_ms[PERLIN], speedup[PERLIN], paper_error);
   status = 0;
   goto done;
 
@@ -527,6 +569,7 @@ done:
   for (int i = 0; i < row_count; i++) free(rows[i].times);
   for (int m = 0; m < MODEL_COUNT; m++) free(references[m]);
   vdb_frame_destroy(&frame);
+  fog_perlin_destroy(&perlin);
   if (pass) fog_pass_destroy(pass);
   if (fog_target.framebuffer) gl_target_destroy(&fog_target);
   for (int k = 0; k < SCENE_COUNT; k++) scene_destroy(&scenes[k]);

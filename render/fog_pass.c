@@ -77,9 +77,8 @@ struct fog_pass {
    * each slice's far face) and the attachment-less framebuffer its fill is drawn with. */
   GLuint froxel_volume, froxel_framebuffer;
   int froxel_size[3];
-  /* FOG_MODEL_PERLIN: the octaves' texels (fog_pass_upload_perlin) and what they are of. */
+  /* FOG_MODEL_PERLIN: the octaves' texels (fog_pass_upload_perlin) and their size. */
   GLuint perlin_texture;
-  const fog_perlin *perlin_uploaded;
   int perlin_size, perlin_octaves;
 };
 
@@ -440,7 +439,6 @@ int fog_pass_upload_perlin(fog_pass *pass, const fog_perlin *perlin, render_erro
     glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   }
   glBindTexture(GL_TEXTURE_3D, 0);
-  pass->perlin_uploaded = perlin;
   pass->perlin_size = n, pass->perlin_octaves = octaves;
   return gl_util_check("fog pass: Perlin upload", err);
 }
@@ -1159,7 +1157,7 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
     return 1;
   }
   if (params->model == FOG_MODEL_PERLIN &&
-      (!params->model_perlin || pass->perlin_uploaded != params->model_perlin ||
+      (!params->model_perlin || !pass->perlin_texture ||
        pass->perlin_size != params->model_perlin->desc.size ||
        pass->perlin_octaves != params->model_perlin->desc.octaves ||
        !(params->model_scale_height > 0) || !isfinite(params->model_time) ||

@@ -35,6 +35,10 @@ double fog_light_extinction_at(const fog_model *m, const double p[3]) {
       return m->extinction * exp(-(p[1] - m->y0) / m->scale_height);
     case FOG_MODEL_QUADRIC:
       return fog_quadric_extinction_at(m->quadrics, m->quadric_count, p);
+    case FOG_MODEL_PERLIN: {
+      fog_perlin_medium medium = fog_model_perlin_medium(m);
+      return m->perlin ? fog_perlin_extinction_at(m->perlin, &medium, p) : 0.0;
+    }
     case FOG_MODEL_LINEAR:
     case FOG_MODEL_EXP2: {
       double r = sqrt((p[0] - m->eye[0]) * (p[0] - m->eye[0]) +
@@ -104,9 +108,10 @@ bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
     case FOG_MODEL_EXP2: /* (a t)^2 reaches FOG_LIGHT_SPAN_DEPTH at sqrt(depth) / a */
       *t1 = fmin(t_surface, m->extinction > 0 ? sqrt(FOG_LIGHT_SPAN_DEPTH) / m->extinction : 0.0);
       break;
-    case FOG_MODEL_QUADRIC: {
+    case FOG_MODEL_QUADRIC:
+    case FOG_MODEL_PERLIN: {
       double lo[3], hi[3], a, b;
-      if (!fog_quadric_bounds(m->quadrics, m->quadric_count, lo, hi)) return false;
+      if (!fog_model_bounds(m, lo, hi)) return false;
       for (int c = 0; c < 3; c++) lo[c] -= o[c], hi[c] -= o[c];
       if (!fog_slab_entry_exit(lo, hi, d, &a, &b)) return false;
       *t0 = fmax(a, 0.0), *t1 = fmin(b, t_surface);

@@ -69,6 +69,10 @@ bool fog_model_bounds(const fog_model *m, double lo[3], double hi[3]) {
       return true;
     case FOG_MODEL_QUADRIC:
       return fog_quadric_bounds(m->quadrics, m->quadric_count, lo, hi);
+    case FOG_MODEL_PERLIN:
+      if (!m->perlin || !(m->extinction > 0)) return false;
+      for (int c = 0; c < 3; c++) lo[c] = m->perlin->desc.lo[c], hi[c] = m->perlin->desc.hi[c];
+      return true;
     default:
       return false;
   }

@@ -60,9 +60,9 @@ int main(void) {
   snprintf(missing, sizeof missing, "cannot open '%s/hills.png'", dir);
   expect_error("[render]\n[terrain]\nheightmap = hills.png\n", "3: [terrain] heightmap: ", missing);
   /* The fog models of the ladder and their Gaussians. */
-  expect_error("[fog]\nmodel = perlin\n", "2: [fog] model: ",
-               "expected one of fogmap|homogeneous|height|rbf|volume|quadric|linear|exp2, got "
-               "'perlin'");
+  expect_error("[fog]\nmodel = clouds\n", "2: [fog] model: ",
+               "expected one of fogmap|homogeneous|height|rbf|volume|quadric|linear|exp2|perlin, got "
+               "'clouds'");
   /* The linear fog factor ends after it starts. */
   expect_error("[fog]\nfog_start = 500\nmodel = linear\nfog_end = 400\n", "3: [fog] model: ",
                "linear fog needs fog_end above fog_start, got fog_start = 500 and fog_end = 400");

@@ -1,12 +1,14 @@
 /* A config's `[fog] model` reaches the pixels as docs/config.md says: render_frame (what
- * `fogpipe render` and `view` draw) of homogeneous, height, Gaussian RBF, volume and quadric
- * fog, and the classic linear and exp2 factors, each pixel's transmittance against the CPU
+ * `fogpipe render` and `view` draw) of homogeneous, height, Gaussian RBF, volume, quadric
+ * and Perlin fog (its perlin_ keys, its box the terrain's footprint between [box] floor and
+ * top), and the classic linear and exp2 factors, each pixel's transmittance against the CPU
  * model of the documented meaning of the keys (density_scale, fog_height, scale_height,
  * rbf_base, rbf lines, fog_start and fog_end from the camera; quadric lines as
  * test_config_quadric pins them; for the volume the VDB frame's grid where the bake put
  * it, integrated exactly), along the pixel's ray to
  * the depth render_frame reports (the sky: to infinity). Max |delta tau| <= 2e-4. `fogpipe
- * record` of an analytic model gives render's image every frame; the live pipeline
+ * record` of an analytic model gives render's image every frame (fog that moves by itself:
+ * frames that change, and a frame recorded alone equal to the run's); the live pipeline
  * (pipeline_create) refuses these models, naming the line. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -56,10 +58,29 @@ static volume_grid_desc documented_volume(const scene_config *cfg, vdb_frame *fr
   return g;
 }
 
-/* The model the keys describe (docs/config.md, [fog] model). */
+/* The model the keys describe (docs/config.md, [fog] model); for model = perlin its octaves
+ * in *perlin (fog_perlin_destroy when done). */
 static fog_model documented_model(const scene_config *cfg, fog_rbf *rbfs,
-                                   fog_quadric *quadrics) {
+                                   fog_quadric *quadrics, fog_perlin *perlin) {
   const scene_fog_config *f = &cfg->fog;
+  *perlin = (fog_perlin){0};
+  if (f->model == FOG_MODEL_PERLIN) {
+    /* the perlin_ keys; the box: the terrain's footprint between [box] floor and top; one
+     * wind triple per octave (or one for all) */
+    fog_perlin_desc d = fog_perlin_desc_default();
+    d.seed = f->perlin_seed, d.octaves = f->perlin_octaves, d.size = f->perlin_size;
+    d.feature_size = f->perlin_feature;
+    for (int i = 0; i < d.octaves; i++)
+      for (int a = 0; a < 3; a++)
+        d.wind[i][a] = f->perlin_wind[f->perlin_wind_count == 3 ? a : 3 * i + a];
+    for (int a = 0; a < 3; a += 2) {
+      d.lo[a] = cfg->terrain.origin[a];
+      d.hi[a] = cfg->terrain.origin[a] + cfg->terrain.size[a / 2];
+    }
+    d.lo[1] = cfg->box.floor, d.hi[1] = cfg->box.top;
+    render_error e = {{0}};
+    CHECK(fog_perlin_create(perlin, &d, &e) == 0, "perlin: %s", e.message);
+  }
   for (int i = 0; i < f->rbf_count; i++) {
     rbfs[i] = f->rbfs[i];
     rbfs[i].density *= f->density_scale;
@@ -77,7 +98,8 @@ static fog_model documented_model(const scene_config *cfg, fog_rbf *rbfs,
                      .quadric_count = f->quadric_count,
                      .eye = {cfg->camera.position[0], cfg->camera.position[1],
                              cfg->camera.position[2]},
-                     .fog_start = f->fog_start, .fog_end = f->fog_end};
+                     .fog_start = f->fog_start, .fog_end = f->fog_end, .perlin = perlin,
+                     .time = 0.0, .perlin_integral = (fog_perlin_integral)f->perlin_integral};
 }
 
 static void check_config(const char *path, const char *label) {
@@ -98,7 +120,8 @@ static void check_config(const char *path, const char *label) {
   scene_config_camera(&cfg, &cam);
   fog_rbf rbfs[FOG_MAX_RBFS];
   fog_quadric quadrics[FOG_MAX_QUADRICS];
-  fog_model m = documented_model(&cfg, rbfs, quadrics);
+  fog_perlin perlin;
+  fog_model m = documented_model(&cfg, rbfs, quadrics, &perlin);
   vdb_frame frame = {0};
   volume_grid_desc grid;
   if (cfg.fog.model == FOG_MODEL_VOLUME) {
@@ -122,6 +145,7 @@ static void check_config(const char *path, const char *label) {
   CHECK(max_tau - min_tau > 0.2, "%s: tau %.3f..%.3f: the fog barely varies in view", label,
         min_tau, max_tau);
   vdb_frame_destroy(&frame);
+  fog_perlin_destroy(&perlin);
   free(tau), free(depth);
 }
 
@@ -152,6 +176,7 @@ int main(void) {
   check_config("configs/rbf_fog_banks.ini", "rbf (configs/rbf_fog_banks.ini)");
   check_config("configs/vdb_plume_volume.ini", "volume (configs/vdb_plume_volume.ini)");
   check_config("configs/quadric_volumes.ini", "quadric (configs/quadric_volumes.ini)");
+  check_config("configs/perlin_fog.ini", "perlin (configs/perlin_fog.ini)");
 
   /* `fogpipe record` of an analytic model: every frame is render's image (it stands still). */
   const char *bin = getenv("FOGPIPE_BIN");
@@ -182,16 +207,18 @@ int main(void) {
     CHECK(system(command) == 0, "cleanup");
   }
 
-  /* RBF fog that moves (configs/rbf_emitter.ini: puffs from an emitter in the wind): the
-   * frames change, and frame 3 recorded alone (a farm's range) is frame 3 of the whole run,
-   * bit for bit (each frame a closed form of its time). */
-  if (bin) {
+  /* Fog that moves by itself (configs/rbf_emitter.ini: puffs from an emitter in the wind;
+   * configs/perlin_fog.ini: octaves of turbulence drifting): the frames change, and frame 3
+   * recorded alone (a farm's range) is frame 3 of the whole run, bit for bit (each frame a
+   * closed form of its time). */
+  static const char *const moving[2] = {"rbf_emitter", "perlin_fog"};
+  for (int c = 0; bin && c < 2; c++) {
     char command[1024], path[300];
     snprintf(command, sizeof command,
-             "'%s' record configs/rbf_emitter.ini --frames 3 --fps 2 --size 48x27 --out "
-             "'%s/all' > /dev/null && '%s' record configs/rbf_emitter.ini --frames 3-3 --fps 2 "
+             "'%s' record configs/%s.ini --frames 3 --fps 2 --size 48x27 --out "
+             "'%s/all' > /dev/null && '%s' record configs/%s.ini --frames 3-3 --fps 2 "
              "--size 48x27 --out '%s/one' > /dev/null",
-             bin, dir, bin, dir);
+             bin, moving[c], dir, bin, moving[c], dir);
     CHECK(system(command) == 0, "%s", command);
     float *frames[3], *alone;
     for (int n = 1; n <= 3; n++) {
@@ -205,11 +232,12 @@ int main(void) {
       moved = fmax(moved, fabs((double)frames[2][k] - frames[0][k]));
       range = fmax(range, fabs((double)alone[k] - frames[2][k]));
     }
-    printf("rbf emitter: frame 3 differs from frame 1 by up to %.3f; recorded alone, by %g\n",
-           moved, range);
-    CHECK(frames[0] && frames[2] && alone, "the emitter's frames were not written");
-    CHECK(moved > 1e-3, "the puffs did not move (%.3e)", moved);
-    CHECK(range == 0.0, "frame 3 alone differs from frame 3 of the run by %g", range);
+    printf("%s: frame 3 differs from frame 1 by up to %.3f; recorded alone, by %g\n",
+           moving[c], moved, range);
+    CHECK(frames[0] && frames[2] && alone, "%s: the frames were not written", moving[c]);
+    CHECK(moved > 1e-3, "%s: the fog did not move (%.3e)", moving[c], moved);
+    CHECK(range == 0.0, "%s: frame 3 alone differs from frame 3 of the run by %g", moving[c],
+          range);
     for (int n = 0; n < 3; n++) free(frames[n]);
     free(alone);
     snprintf(command, sizeof command, "rm -rf '%s/all' '%s/one'", dir, dir);

@@ -1,7 +1,8 @@
 # `fogpipe bench models` smoke test: the benchmark runs at a tiny size, exits 0, writes a
-# table CSV of 32 rows of finite numbers (homogeneous, linear and exp2 exact; height, rbf and
+# table CSV of 40 rows of finite numbers (homogeneous, linear and exp2 exact; height, rbf and
 # quadric exact + 6 marching each; the volume exact, exact without skipping, exact with
-# hardware filtering and 5 marching), the chart CSV and PNG, ends with its
+# hardware filtering and 5 marching; Perlin exact, the paper's single sample and 6
+# marching), the chart CSV and PNG, ends with its
 # summary line, and its exact rows agree with the CPU model (max tau error <= 1e-4: a bench
 # comparing against the wrong reference fails here). It asserts no speed.
 #
@@ -28,7 +29,7 @@ endif()
 string(STRIP "${out}" out)
 string(REGEX MATCH "[^\n]*$" last "${out}")
 set(num "[0-9]+[.]?[0-9]*") # no group: CMake keeps at most 9 per match
-if(NOT last MATCHES "^models: rbf_exact_ms=${num} rbf_march_speedup_at_matched_error=${num} height_exact_ms=${num} height_march_speedup_at_matched_error=${num} volume_exact_ms=${num} volume_march_speedup_at_matched_error=${num} volume_empty_skip_speedup=${num} quadric_exact_ms=${num} quadric_march_speedup_at_matched_error=${num} rbf_64_ms=${num} rbf_3000_ms=${num} fit_s=${num}$")
+if(NOT last MATCHES "^models: rbf_exact_ms=${num} rbf_march_speedup_at_matched_error=${num} height_exact_ms=${num} height_march_speedup_at_matched_error=${num} volume_exact_ms=${num} volume_march_speedup_at_matched_error=${num} volume_empty_skip_speedup=${num} quadric_exact_ms=${num} quadric_march_speedup_at_matched_error=${num} rbf_64_ms=${num} rbf_3000_ms=${num} fit_s=${num} perlin_exact_ms=${num} perlin_march_speedup_at_matched_error=${num} perlin_paper_error=${num}$")
   message(FATAL_ERROR "last line is not the summary line: '${last}'")
 endif()
 foreach(f models.csv models_chart.csv models_chart.png)
@@ -38,8 +39,8 @@ foreach(f models.csv models_chart.csv models_chart.png)
 endforeach()
 file(STRINGS ${OUT}/models.csv lines)
 list(LENGTH lines count)
-if(NOT count EQUAL 33)
-  message(FATAL_ERROR "models.csv has ${count} lines, expected a header and 32 rows")
+if(NOT count EQUAL 41)
+  message(FATAL_ERROR "models.csv has ${count} lines, expected a header and 40 rows")
 endif()
 list(GET lines 0 header)
 if(NOT header STREQUAL "model,method,setting,ms_per_frame,rmse,max_error")
@@ -48,7 +49,7 @@ endif()
 list(REMOVE_AT lines 0)
 set(finite "[0-9.]+(e[-+][0-9]+)?")
 foreach(line IN LISTS lines)
-  if(NOT line MATCHES "^(homogeneous|height|rbf|volume|quadric|linear|exp2),(exact|exact-hardware|exact-no-skip|march),[0-9.]+,${finite},${finite},(${finite})$")
+  if(NOT line MATCHES "^(homogeneous|height|rbf|volume|quadric|linear|exp2|perlin),(exact|exact-hardware|exact-no-skip|paper|march),[0-9.]+,${finite},${finite},(${finite})$")
     message(FATAL_ERROR "models.csv row without finite numbers: '${line}'")
   endif()
   set(max_error ${CMAKE_MATCH_5}) # groups: model, method, ms exponent, rmse exponent, max

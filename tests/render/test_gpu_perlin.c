@@ -80,17 +80,19 @@ int main(void) {
           free(exact);
         }
       }
-  /* Not uploaded: refused. */
+  /* Octaves of another size than those uploaded: refused. */
   {
     fog_perlin other;
-    CHECK(fog_perlin_create(&other, &desc, &err) == 0, "create: %s", err.message);
+    fog_perlin_desc smaller = desc;
+    smaller.size = 16;
+    CHECK(fog_perlin_create(&other, &smaller, &err) == 0, "create: %s", err.message);
     camera cam = {.position = {0, 5, 0}, .fov_y = 1.0, .near_plane = CAMERA_DEFAULT_NEAR,
                   .far_plane = CAMERA_DEFAULT_FAR};
     fog_pass_params params = {.model = FOG_MODEL_PERLIN, .model_extinction = 0.06,
                               .model_scale_height = 8.0, .model_perlin = &other};
     render_error e = {{0}};
     CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &e) != 0,
-          "octaves never uploaded: drawn");
+          "octaves not uploaded: drawn");
     fog_perlin_destroy(&other);
   }
   glDeleteTextures(1, &surface_tex);
