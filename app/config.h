@@ -176,6 +176,7 @@ typedef struct scene_shadow_config {
   int shafts;          /* 1 (on): V in the fog, the terrain's and boxes' shadows: shafts */
   int resolution;      /* the sun's optical-depth volume: samples along each axis */
   int steps;           /* segments of the view ray's T_s mean (fog_light.glsl) */
+  int nodes;           /* its samples per segment: 1 midpoint, 2 Gauss-Legendre */
 } scene_shadow_config;
 
 /* [light] lamp and spot lines as written (docs/config.md): a spot's axis as given (made

@@ -41,6 +41,7 @@ typedef struct fit_light {
   bool self_shadow;  /* [light] fog_self_shadow */
   int resolution;    /* the sun's volume: samples per axis */
   int steps;         /* segments of the mean along a ray */
+  int nodes;         /* and its samples per segment */
 } fit_light;
 
 /* The reference's in-scatter on each ray (v->light, allocated here). Non-zero: out of

@@ -91,6 +91,7 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .resolution_divisor = settings->resolution_divisor,
       .self_shadow = settings->self_shadow,
       .shadow_steps = settings->shadow_steps,
+      .shadow_nodes = settings->shadow_nodes,
       .shafts = settings->shafts,
       .walk = settings->walk,
       .surface_sun = settings->self_shadow != FOG_SUN_SHADOW_NONE ? scene->color[2] : 0,

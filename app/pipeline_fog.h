@@ -28,10 +28,10 @@ typedef struct pipeline_fog_settings {
   fog_lamps lamps;
   bool hardware_filtering;
   int resolution_divisor; /* fog_pass_params.resolution_divisor */
-  /* fog_pass_params.self_shadow and shadow_steps; with a shadow the fog also dims the
+  /* fog_pass_params.self_shadow, shadow_steps and shadow_nodes; with a shadow the fog also dims the
    * surfaces' sun-lit share (the scene target's attachment 2). */
   fog_sun_shadow_kind self_shadow;
-  int shadow_steps;
+  int shadow_steps, shadow_nodes;
   const sun_shadow_map *shafts; /* fog_pass_params.shafts: NULL none */
   fog_walk_settings walk;       /* fog_pass_params.walk */
 } pipeline_fog_settings;

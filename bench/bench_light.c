@@ -38,12 +38,27 @@
 static const int step_counts[] = {2, 4, 8, 16, 32};
 static const int resolutions[] = {24, 48, 96};
 static const int march_samples[] = {8, 32, 128, 512};
-enum { STEP_COUNT = 5, RESOLUTION_COUNT = 3, MARCH_COUNT = 4, SCENE_COUNT = 2, MAX_ROWS = 44 };
+enum { STEP_COUNT = 5, RESOLUTION_COUNT = 3, MARCH_COUNT = 4, SCENE_COUNT = 2, MAX_ROWS = 50 };
+/* Ours with two Gauss nodes a segment: 1 .. 16 segments (2 .. 32 samples). */
+enum { NODE_STEP_COUNT = 5 };
 /* The froxel baseline: the engines' 160 x 90 x 64 grid and one 2x finer in each axis. */
 enum { FROXEL_COUNT = 2, FROXEL_COLUMNS = 160, FROXEL_ROWS = 90, FROXEL_SLICES = 64 };
-enum { SCENE_ROWS = 14 + MARCH_COUNT + FROXEL_COUNT };
+enum { SCENE_ROWS = 2 + STEP_COUNT + NODE_STEP_COUNT + 7 + MARCH_COUNT + FROXEL_COUNT };
+/* Where a scene's rows start: unlit (full, half), ours midpoint 2..32 steps, ours two nodes
+ * 1..16 steps, the product's default setting at 24^3 and 96^3, live (half resolution) at
+ * the default and at half its steps, 96^3 x 64 x 2 nodes, a quarter of the resolution
+ * (default, half the steps), marching, froxels. */
+enum {
+  ROW_UNLIT_FULL = 0,
+  ROW_UNLIT_HALF = 1,
+  ROW_DEFAULT_24 = 2 + STEP_COUNT + NODE_STEP_COUNT,
+  ROW_LIVE = ROW_DEFAULT_24 + 2,
+  ROW_NEAR_CONVERGED = ROW_LIVE + 2,
+  ROW_FROXEL = SCENE_ROWS - FROXEL_COUNT,
+};
 _Static_assert(SCENE_COUNT * SCENE_ROWS <= MAX_ROWS, "the rows of both scenes");
 static const char *const scene_configs[SCENE_COUNT] = {"default.ini", "vdb_plume_volume.ini"};
+static const char *const scene_names[SCENE_COUNT] = {"default", "plume"};
 
 typedef struct light_row {
   int scene;
@@ -52,6 +67,7 @@ typedef struct light_row {
   int divisor;    /* fog pass resolution divisor */
   bool march;     /* uniform ray marching of the whole integral: tau too, `steps` samples */
   int froxel;     /* > 0: the froxel baseline, its grid this many times the engines' */
+  int nodes;      /* ours: samples per segment (1 midpoint, 2 Gauss-Legendre) */
   char series[64];
   double *times;
   double ms, max_error, mean_error;
@@ -154,7 +170,8 @@ static int scene_reference(light_scene *s, const float *tau, int W, int H) {
       camera_ray(&s->drawn.cam, px, py, W, H, o, d);
       double ts = s->drawn.distance[k] >= 1e29f ? HUGE_VAL : (double)s->drawn.distance[k];
       double mean = fog_sun_mean_transmittance(&s->model, s->kind, &s->converged,
-                                               FOG_BENCH_LIGHT_STEPS, fog_pass_depth_limit(p->walk.transmittance_cutoff), o,
+                                               FOG_BENCH_LIGHT_STEPS, 2,
+                                               fog_pass_depth_limit(p->walk.transmittance_cutoff), o,
                                                d, ts);
       double ph = phase_hg(sun->phase_g, d[0] * sun->direction[0] + d[1] * sun->direction[1] +
                                              d[2] * sun->direction[2]);
@@ -208,6 +225,7 @@ static int draw_row(light_scene *s, const light_row *r, const gl_target *out, re
   p->self_shadow = r->resolution ? s->kind : FOG_SUN_SHADOW_NONE;
   s->fog.ground_shadow = r->resolution != 0;
   p->shadow_steps = r->steps;
+  p->shadow_nodes = r->nodes;
   p->resolution_divisor = r->divisor;
   p->integrator = r->froxel ? FOG_INTEGRATOR_FROXEL
                   : r->march ? FOG_INTEGRATOR_MARCH : FOG_INTEGRATOR_EXACT;
@@ -250,28 +268,29 @@ static int write_table(const char *path, const light_row *rows, int count, char 
                        int size) {
   FILE *f = chart_csv_open(path, error, size);
   if (!f) return 1;
-  fprintf(f, "scene,method,volume,steps,divisor,ms_per_frame,max_error,mean_error\n");
+  fprintf(f, "scene,method,volume,steps,nodes,divisor,ms_per_frame,max_error,mean_error\n");
   for (int i = 0; i < count; i++)
-    fprintf(f, "%s,%s,%d,%d,%d,%.6g,%.6g,%.6g\n", scene_configs[rows[i].scene],
+    fprintf(f, "%s,%s,%d,%d,%d,%d,%.6g,%.6g,%.6g\n", scene_configs[rows[i].scene],
             row_method(&rows[i]),
-            rows[i].resolution, rows[i].steps,
+            rows[i].resolution, rows[i].steps, rows[i].nodes,
             rows[i].divisor, rows[i].ms, rows[i].max_error, rows[i].mean_error);
   return chart_csv_close(f, path, error, size);
 }
 
 static light_row *add_row(light_row *rows, int *count, int scene, int resolution, int steps,
-                          int divisor, int frames) {
+                          int nodes, int divisor, int frames) {
   light_row *r = &rows[(*count)++];
   *r = (light_row){.scene = scene, .resolution = resolution, .steps = steps, .divisor = divisor,
-                   .march = steps < 0};
+                   .march = steps < 0, .nodes = nodes};
   if (r->march) r->steps = -steps;
-  snprintf(r->series, sizeof r->series, "%s %s", scene ? "plume" : "default",
+  snprintf(r->series, sizeof r->series, "%s %s", scene_names[scene],
            !resolution        ? "unlit"
            : r->march         ? "uniform marching 48^3 8..512 samples"
            : divisor > 2      ? "ours at 1/4 resolution"
            : divisor > 1      ? "live (1/2)"
            : resolution != 48 ? "ours 24^3 / 96^3 volume"
-                              : "ours 48^3 2..32 steps");
+           : nodes == 2       ? "ours 48^3 2 nodes x 1..16 steps"
+                              : "ours 48^3 midpoints 2..32 steps");
   r->times = malloc((size_t)frames * sizeof(double));
   return r->times ? r : NULL;
 }
@@ -311,32 +330,38 @@ int bench_light(int argc, char **argv) {
                                                                          GL_RGBA32F}},
                                &rerr))
     goto gl_failed;
+  /* the product's default light settings ([light] shadow_steps, shadow_nodes) */
+  scene_config defaults;
+  scene_config_init(&defaults);
   for (int s = 0; s < SCENE_COUNT; s++) {
     if (scene_create(&scenes[s], scene_configs[s], W, H, &rerr)) goto gl_failed;
-    if (!add_row(rows, &row_count, s, 0, 1, 1, frames) ||
-        !add_row(rows, &row_count, s, 0, 1, 2, frames))
+    const int D = defaults.shadow.steps, N = defaults.shadow.nodes;
+    if (!add_row(rows, &row_count, s, 0, 1, 1, 1, frames) ||
+        !add_row(rows, &row_count, s, 0, 1, 1, 2, frames))
       goto out_of_memory;
     for (int q = 0; q < STEP_COUNT; q++)
-      if (!add_row(rows, &row_count, s, 48, step_counts[q], 1, frames)) goto out_of_memory;
-    if (!add_row(rows, &row_count, s, 24, 8, 1, frames) ||
-        !add_row(rows, &row_count, s, 96, 8, 1, frames) ||
-        !add_row(rows, &row_count, s, 48, 16, 2, frames) ||
-        !add_row(rows, &row_count, s, 48, 8, 2, frames) ||
-        !add_row(rows, &row_count, s, 96, 64, 1, frames))
+      if (!add_row(rows, &row_count, s, 48, step_counts[q], 1, 1, frames)) goto out_of_memory;
+    for (int q = 0; q < NODE_STEP_COUNT; q++)
+      if (!add_row(rows, &row_count, s, 48, 1 << q, 2, 1, frames)) goto out_of_memory;
+    if (!add_row(rows, &row_count, s, 24, D, N, 1, frames) ||
+        !add_row(rows, &row_count, s, 96, D, N, 1, frames) ||
+        !add_row(rows, &row_count, s, 48, D, N, 2, frames) ||
+        !add_row(rows, &row_count, s, 48, (D + 1) / 2, N, 2, frames) ||
+        !add_row(rows, &row_count, s, 96, 64, 2, 1, frames))
       goto out_of_memory;
     /* ours at a quarter of the resolution (the fogmap's walk; the volume ignores it) */
-    if (!add_row(rows, &row_count, s, 48, 8, 4, frames) ||
-        !add_row(rows, &row_count, s, 48, 16, 4, frames))
+    if (!add_row(rows, &row_count, s, 48, D, N, 4, frames) ||
+        !add_row(rows, &row_count, s, 48, (D + 1) / 2, N, 4, frames))
       goto out_of_memory;
     /* uniform marching of tau and the in-scatter together (negative steps: the marcher) */
     for (int q = 0; q < MARCH_COUNT; q++)
-      if (!add_row(rows, &row_count, s, 48, -march_samples[q], 1, frames)) goto out_of_memory;
+      if (!add_row(rows, &row_count, s, 48, -march_samples[q], 1, 1, frames)) goto out_of_memory;
     /* the froxel baseline, fed the same density, sun, T_s volume and shadow map */
     for (int q = 1; q <= FROXEL_COUNT; q++) {
-      light_row *r = add_row(rows, &row_count, s, 48, 1, 1, frames);
+      light_row *r = add_row(rows, &row_count, s, 48, 1, 1, 1, frames);
       if (!r) goto out_of_memory;
       r->froxel = q;
-      snprintf(r->series, sizeof r->series, "%s froxels 160x90x64 / 2x", s ? "plume" : "default");
+      snprintf(r->series, sizeof r->series, "%s froxels 160x90x64 / 2x", scene_names[s]);
     }
   }
   /* Warm-up and errors (the unlit full-resolution draw gives the reference its tau), then
@@ -351,11 +376,11 @@ int bench_light(int argc, char **argv) {
     row_errors(r, s, inscatter, W, H);
     /* to look at: ours live, ours at 96^3 x 64 steps (near the reference), froxels 1x */
     int in_scene = i % SCENE_ROWS;
-    if (in_scene == 9 || in_scene == 11 || in_scene == SCENE_ROWS - FROXEL_COUNT) {
+    if (in_scene == ROW_LIVE || in_scene == ROW_NEAR_CONVERGED || in_scene == ROW_FROXEL) {
       char path[4200];
-      snprintf(path, sizeof path, "%s/light_%s_%s.png", options.out_dir,
-               r->scene ? "plume" : "default",
-               in_scene == 9 ? "ours_live" : in_scene == 11 ? "ours_96_64" : "froxels_1x");
+      snprintf(path, sizeof path, "%s/light_%s_%s.png", options.out_dir, scene_names[r->scene],
+               in_scene == ROW_LIVE ? "ours_live" : in_scene == ROW_NEAR_CONVERGED ? "ours_96_64"
+                                                                                   : "froxels_1x");
       sim_error serr;
       if (gl_target_read(&out, 0, 3, inscatter, &rerr)) goto gl_failed;
       if (image_write_png_srgb(path, W, H, 3, inscatter, &serr)) {
@@ -387,8 +412,8 @@ int bench_light(int argc, char **argv) {
     printf("%s: sun volume CPU ms (2 threads) %.1f (24^3) %.1f (48^3) %.1f (96^3)\n",
            scene_configs[s], scenes[s].volume_ms[0], scenes[s].volume_ms[1],
            scenes[s].volume_ms[2]);
-  printf("\n%-22s %-8s %7s %6s %8s %10s %10s %10s\n", "scene", "method", "volume", "steps",
-         "res", "ms/frame", "max err", "mean err");
+  printf("\n%-22s %-8s %7s %6s %5s %8s %10s %10s %10s\n", "scene", "method", "volume", "steps",
+         "nodes", "res", "ms/frame", "max err", "mean err");
   chart_point points[MAX_ROWS];
   for (int i = 0; i < row_count; i++) {
     const light_row *r = &rows[i];
@@ -399,8 +424,8 @@ int bench_light(int argc, char **argv) {
       snprintf(steps, sizeof steps, "%dx", r->froxel);
     else
       snprintf(steps, sizeof steps, "%d", r->resolution ? r->steps : 0);
-    printf("%-22s %-8s %7s %6s %8s %10.2f %10.2e %10.2e\n", scene_configs[r->scene],
-           row_method(r), volume, steps,
+    printf("%-22s %-8s %7s %6s %5d %8s %10.2f %10.2e %10.2e\n", scene_configs[r->scene],
+           row_method(r), volume, steps, r->resolution && !r->march && !r->froxel ? r->nodes : 0,
            r->divisor > 2 ? "1/4" : r->divisor > 1 ? "1/2" : "full", r->ms, r->max_error,
            r->mean_error);
     points[i] = (chart_point){.series = r->series, .x = r->ms,
@@ -421,10 +446,14 @@ int bench_light(int argc, char **argv) {
     goto done;
   }
   printf("\nCSV: %s, %s; PNG: %s\n", table, chart_csv, chart_png);
-  /* The default scene's rows: 0 unlit full, 1 unlit 1/2, 5 ours at the defaults (48^3,
-   * 16 steps) full, 9 the same at 1/2 (live). */
-  const light_row *unlit_full = &rows[0], *unlit_half = &rows[1], *ours_full = &rows[5],
-                  *live = &rows[9];
+  /* The default scene's rows: unlit at full and half resolution, ours at the product's
+   * defaults (48^3, [light] shadow_steps and shadow_nodes) at full and half (live). */
+  const light_row *unlit_full = &rows[ROW_UNLIT_FULL], *unlit_half = &rows[ROW_UNLIT_HALF],
+                  *live = &rows[ROW_LIVE], *ours_full = NULL;
+  for (int i = 0; i < SCENE_ROWS; i++)
+    if (rows[i].resolution == 48 && rows[i].divisor == 1 && !rows[i].march && !rows[i].froxel &&
+        rows[i].steps == live->steps && rows[i].nodes == live->nodes)
+      ours_full = &rows[i];
   /* C: the cheapest marching within MATCHED_ERROR over our cheapest full-resolution setting
    * within it (each the default scene's); NAN where either has none. */
   double march_ms = NAN, ours_ms = NAN;
@@ -443,7 +472,7 @@ int bench_light(int argc, char **argv) {
   double froxel_ratio[SCENE_COUNT];
   for (int sc = 0; sc < SCENE_COUNT; sc++) {
     const light_row *scene_rows = &rows[sc * SCENE_ROWS];
-    const light_row *froxel = &scene_rows[SCENE_ROWS - FROXEL_COUNT];
+    const light_row *froxel = &scene_rows[ROW_FROXEL];
     const light_row *ours = ours_at_froxel_time(scene_rows, froxel);
     froxel_ratio[sc] = ours ? froxel->max_error / ours->max_error : NAN;
     if (ours)
@@ -462,7 +491,8 @@ int bench_light(int argc, char **argv) {
   printf("light: lit_over_unlit=%.2f lit_over_unlit_full=%.2f shadow_volume_ms=%.1f "
          "live_max_error=%.3g froxel_error_ratio_at_equal_time=%.2f "
          "march_speedup_at_matched_error=%.2f\n",
-         live->ms / unlit_half->ms, ours_full->ms / unlit_full->ms, scenes[0].volume_ms[1],
+         live->ms / unlit_half->ms, ours_full ? ours_full->ms / unlit_full->ms : NAN,
+         scenes[0].volume_ms[1],
          live->max_error, froxel_ratio[0], march_ms / ours_ms);
   status = 0;
   goto done;

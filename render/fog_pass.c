@@ -625,6 +625,7 @@ static void fog_pass_sun_shadow_uniforms(const fog_pass *pass, GLuint prog, cons
   const double limit = fog_pass_depth_limit(params->walk.transmittance_cutoff);
   glUniform1f(fog_loc(prog, "fog_depth_limit"), limit < 1e30 ? (float)limit : 1e30f);
   glUniform1i(fog_loc(prog, "fog_shadow_steps"), params->shadow_steps);
+  glUniform1i(fog_loc(prog, "fog_shadow_nodes"), params->shadow_nodes);
   if (params->shafts) {
     const sun_shadow_map *map = params->shafts;
     double m[4][4];
@@ -1094,12 +1095,14 @@ static int fog_pass_finish_reduced(fog_pass *pass, GLuint prog, const camera *ca
 static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *params,
                                 render_error *err) {
   if ((unsigned)params->self_shadow > FOG_SUN_SHADOW_OPAQUE ||
-      ((params->self_shadow != FOG_SUN_SHADOW_NONE || params->shafts) && params->shadow_steps < 1) ||
+      ((params->self_shadow != FOG_SUN_SHADOW_NONE || params->shafts) &&
+       (params->shadow_steps < 1 || params->shadow_nodes < 1 || params->shadow_nodes > 2)) ||
       (params->self_shadow == FOG_SUN_SHADOW_VOLUME && !pass->sun_shadow)) {
     snprintf(err->message, sizeof err->message,
-             "fog pass: self-shadow %d with %d steps: expected a fog_sun_shadow_kind, >= 1 "
-             "steps and, for the volume, fog_pass_upload_sun_shadow first",
-             (int)params->self_shadow, params->shadow_steps);
+             "fog pass: self-shadow %d with %d steps of %d nodes: expected a "
+             "fog_sun_shadow_kind, >= 1 steps of 1 or 2 nodes and, for the volume, "
+             "fog_pass_upload_sun_shadow first",
+             (int)params->self_shadow, params->shadow_steps, params->shadow_nodes);
     return 1;
   }
   const fog_lamps *lamps = &params->lamps;

@@ -148,6 +148,8 @@ typedef struct fog_pass_params {
    * NONE). */
   fog_sun_shadow_kind self_shadow;
   int shadow_steps;
+  int shadow_nodes; /* samples per segment: 1 the midpoint, 2 two Gauss-Legendre nodes
+                       (fog_sun_mean_transmittance) */
   /* Optional (0: none): an RGBA texture of the surfaces' sun-lit share of their colour
    * (scene pass attachment 2, width x height); the fog's shadow takes (1 - T_s(P)) of it. */
   GLuint surface_sun;

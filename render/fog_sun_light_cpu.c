@@ -133,27 +133,61 @@ bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
 }
 
 double fog_sun_mean_transmittance(const fog_model *m, fog_sun_shadow_kind kind,
-                                  const fog_sun_shadow *volume, int steps, double depth_limit,
-                                  const double o[3], const double d[3], double t_surface) {
-  return fog_sun_mean_light(m, kind, volume, steps, depth_limit, o, d, t_surface, NULL, NULL);
+                                  const fog_sun_shadow *volume, int steps, int nodes,
+                                  double depth_limit, const double o[3], const double d[3],
+                                  double t_surface) {
+  return fog_sun_mean_light(m, kind, volume, steps, nodes, depth_limit, o, d, t_surface, NULL,
+                            NULL);
+}
+
+/* T_s V at the ray's point t. */
+static double sun_light_at(const fog_model *m, fog_sun_shadow_kind kind,
+                           const fog_sun_shadow *volume, const double o[3], const double d[3],
+                           double t, fog_sun_visibility_fn visible, const void *user) {
+  double p[3];
+  for (int a = 0; a < 3; a++) p[a] = o[a] + t * d[a];
+  return exp(-fog_sun_optical_depth(m, kind, volume, p)) * (visible ? visible(user, p) : 1.0);
+}
+
+static double extinction_on_ray(const fog_model *m, const double o[3], const double d[3],
+                                double t) {
+  double p[3];
+  for (int a = 0; a < 3; a++) p[a] = o[a] + t * d[a];
+  return fog_light_extinction_at(m, p);
 }
 
 double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
-                          const fog_sun_shadow *volume, int steps, double depth_limit,
-                          const double o[3], const double d[3], double t_surface,
-                          fog_sun_visibility_fn visible, const void *user) {
+                          const fog_sun_shadow *volume, int steps, int nodes,
+                          double depth_limit, const double o[3], const double d[3],
+                          double t_surface, fog_sun_visibility_fn visible, const void *user) {
   if (kind == FOG_SUN_SHADOW_NONE && !visible) return 1.0;
   if (kind == FOG_SUN_SHADOW_OPAQUE) return 0.0;
   double t0, t1;
   if (!fog_light_span(m, o, d, t_surface, &t0, &t1)) return 1.0;
+  /* the Gauss nodes' offset from the middle, in segments: 1/(2 sqrt 3) */
+  const double g = 0.28867513459481288225;
   double dt = (t1 - t0) / steps, before = 0.0, weights = 0.0, lit = 0.0;
   for (int i = 0; i < steps && before < depth_limit; i++) {
-    double t = t0 + (i + 0.5) * dt, p[3];
-    for (int a = 0; a < 3; a++) p[a] = o[a] + t * d[a];
-    double step_depth = fog_light_extinction_at(m, p) * dt;
+    double mid = t0 + (i + 0.5) * dt, step_depth, light;
+    if (nodes == 2) {
+      double ta = mid - g * dt, tb = mid + g * dt;
+      double ka = extinction_on_ray(m, o, d, ta), kb = extinction_on_ray(m, o, d, tb);
+      step_depth = 0.5 * dt * (ka + kb);
+      /* depths from the segment's start to the nodes, K linear through them */
+      double la = (0.5 - g) * dt, slope = (kb - ka) / (2.0 * g * dt);
+      double da = la * (ka - 0.5 * slope * la), db = da + g * dt * (ka + kb);
+      double sa = ka * exp(-da), sb = kb * exp(-db);
+      light = sa + sb > 0.0
+                  ? (sa * sun_light_at(m, kind, volume, o, d, ta, visible, user) +
+                     sb * sun_light_at(m, kind, volume, o, d, tb, visible, user)) / (sa + sb)
+                  : 0.0;
+    } else {
+      step_depth = extinction_on_ray(m, o, d, mid) * dt;
+      light = sun_light_at(m, kind, volume, o, d, mid, visible, user);
+    }
     double w = exp(-before) * -expm1(-step_depth);
     weights += w;
-    lit += w * exp(-fog_sun_optical_depth(m, kind, volume, p)) * (visible ? visible(user, p) : 1.0);
+    lit += w * light;
     before += step_depth;
   }
   return weights > 0.0 ? lit / weights : 1.0;

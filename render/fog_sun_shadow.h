@@ -94,17 +94,23 @@ bool fog_light_span(const fog_model *model, const double o[3], const double d[3]
 double fog_sun_optical_depth(const fog_model *model, fog_sun_shadow_kind kind,
                              const fog_sun_shadow *volume, const double p[3]);
 /* The tau K-weighted mean of T_s along the ray o + t d up to t_surface: `steps` equal
- * segments of the ray's fog span, each weighing e^{-D} (1 - e^{-K dt}) (K at its midpoint,
- * D the depth before it) with T_s at its midpoint, stopping past depth_limit; 1 where the
- * ray holds no fog. The sun's in-scatter is then a L_sun p(theta) mean (1 - tau). */
+ * segments of the ray's fog span, each weighing e^{-D} (1 - e^{-dD}) (D the depth before it,
+ * dD its own) and seeing T_s at `nodes` points, stopping past depth_limit; 1 where the ray
+ * holds no fog. nodes 1: K and T_s at the midpoint, dD = K dt. nodes 2: at the two
+ * Gauss-Legendre nodes m -+ dt/(2 sqrt 3), dD = dt (K_a + K_b)/2, the segment's T_s the
+ * nodes' weighted by K e^{-d} (d the depth from the segment's start to the node, K linear
+ * through the nodes): fourth order in dt where the midpoint is second. The sun's in-scatter
+ * is then a L_sun p(theta) mean (1 - tau). */
 double fog_sun_mean_transmittance(const fog_model *model, fog_sun_shadow_kind kind,
-                                  const fog_sun_shadow *volume, int steps, double depth_limit,
-                                  const double o[3], const double d[3], double t_surface);
+                                  const fog_sun_shadow *volume, int steps, int nodes,
+                                  double depth_limit, const double o[3], const double d[3],
+                                  double t_surface);
 /* The same mean of T_s V, V(p) in [0, 1] the sun's visibility past the scene at world point
  * p (the shadow map's twin or exact ray casts): light shafts. visible NULL: V = 1. */
 typedef double (*fog_sun_visibility_fn)(const void *user, const double p[3]);
 double fog_sun_mean_light(const fog_model *model, fog_sun_shadow_kind kind,
-                          const fog_sun_shadow *volume, int steps, double depth_limit,
+                          const fog_sun_shadow *volume, int steps, int nodes,
+                          double depth_limit,
                           const double o[3], const double d[3], double t_surface,
                           fog_sun_visibility_fn visible, const void *user);
 

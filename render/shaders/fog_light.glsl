@@ -6,9 +6,8 @@
 // (1 - tau) times the mean of T_s weighted by tau K (the weights integrate to 1 - tau), the
 // transmittance tau stays the model's exact integral and with T_s = 1 the in-scatter is
 // exactly (L_amb + a L_sun p) (1 - tau) (the identity of docs/light.md). The mean is taken
-// over fog_shadow_steps equal segments of the ray's fog span: segment i weighs
-// e^{-D_i} (1 - e^{-K_i dt}) (K_i at its midpoint, D_i the depth before it) and sees T_s
-// at its midpoint.
+// over fog_shadow_steps equal segments of the ray's fog span (fog_sun_mean_transmittance
+// below: one or two samples each).
 uniform sampler3D fog_sun_shadow_map;   // R32F optical depth towards the sun
 uniform mat3 fog_sun_shadow_to_tex;     // fog_sun_shadow_tex_map's M
 uniform vec3 fog_sun_shadow_tex_camera; // M (camera - origin) + offset, in double on the CPU
@@ -109,7 +108,18 @@ float fog_light_extinction(vec3 dir, float t) {
 #endif
 }
 
-// The tau K-weighted mean of T_s V along the ray (1 where the ray holds no fog).
+// T_s V at distance t along unit dir.
+float fog_sun_light_at(vec3 dir, float t) {
+  return exp(-fog_sun_optical_depth(t * dir)) * fog_sun_visible(t * dir);
+}
+
+// The tau K-weighted mean of T_s V along the ray (1 where the ray holds no fog), over
+// fog_shadow_steps equal segments of fog_shadow_nodes samples (fog_sun_mean_light in C):
+// 1, the midpoint; 2, the Gauss-Legendre nodes m -+ dt/(2 sqrt 3), the segment's depth
+// their 2-node sum and its T_s V theirs weighted by K e^{-d} (d from the segment's start to
+// the node, K linear through the nodes). Segment i weighs e^{-D_i} (1 - e^{-dD_i}) either
+// way, so with T_s V = 1 the mean is 1.
+uniform int fog_shadow_nodes;
 float fog_sun_mean_transmittance(fog_ray r) {
 #if FOG_SUN_SHADOW == 3
   return 0.0;
@@ -118,15 +128,29 @@ float fog_sun_mean_transmittance(fog_ray r) {
 #else
   float t0, t1;
   if (!fog_light_span(r, t0, t1)) return 1.0;
+  const float g = 0.28867513459481288;  // 1/(2 sqrt 3)
   float dt = (t1 - t0) / float(fog_shadow_steps), before = 0.0, weights = 0.0, lit = 0.0;
   // Past an optical depth of fog_depth_limit (early termination) the rest weighs less than
   // the transmittance cut-off: stop there.
   for (int i = 0; i < fog_shadow_steps && before < fog_depth_limit; i++) {
-    float t = t0 + (float(i) + 0.5) * dt;
-    float step_depth = fog_light_extinction(r.dir, t) * dt;
+    float mid = t0 + (float(i) + 0.5) * dt, step_depth, light;
+    if (fog_shadow_nodes == 2) {
+      float ta = mid - g * dt, tb = mid + g * dt;
+      float ka = fog_light_extinction(r.dir, ta), kb = fog_light_extinction(r.dir, tb);
+      step_depth = 0.5 * dt * (ka + kb);
+      float la = (0.5 - g) * dt, slope = (kb - ka) / (2.0 * g * dt);
+      float da = la * (ka - 0.5 * slope * la), db = da + g * dt * (ka + kb);
+      float sa = ka * exp(-da), sb = kb * exp(-db);
+      light = sa + sb > 0.0 ? (sa * fog_sun_light_at(r.dir, ta) + sb * fog_sun_light_at(r.dir, tb)) /
+                                  (sa + sb)
+                            : 0.0;
+    } else {
+      step_depth = fog_light_extinction(r.dir, mid) * dt;
+      light = fog_sun_light_at(r.dir, mid);
+    }
     float w = exp(-before) * step_depth * fog_exprel(step_depth);  // 1 - e^-x, no cancellation
     weights += w;
-    lit += w * exp(-fog_sun_optical_depth(t * r.dir)) * fog_sun_visible(t * r.dir);
+    lit += w * light;
     before += step_depth;
   }
   return weights > 0.0 ? lit / weights : 1.0;

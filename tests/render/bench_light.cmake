@@ -1,7 +1,8 @@
 # `fogpipe bench light` smoke test: the benchmark runs at a tiny size, exits 0, writes its
-# table CSV (40 rows of finite numbers: per scene unlit at full and half resolution, ours at
-# 5 step counts, 2 more volume sizes, the live rows at 16 and 8 steps, 96^3 x 64, two rows at
-# a quarter of the resolution, marching at 4 sample counts, the froxel grid at 1x and 2x), the
+# table CSV (50 rows of finite numbers: per scene unlit at full and half resolution, ours
+# with midpoints at 5 step counts and with two Gauss nodes at 5, the default setting at 2
+# more volume sizes, the live rows at the default steps and half of them, 96^3 x 64, two rows
+# at a quarter of the resolution, marching at 4 sample counts, the froxel grid at 1x and 2x), the
 # chart CSV and PNG, the images to look at, and ends with its summary line. It asserts no
 # speed (and no accuracy: test_fog_shadow and test_gpu_froxel do).
 if(NOT CMAKE_SCRIPT_MODE_FILE)
@@ -35,17 +36,17 @@ foreach(f light.csv light_chart.csv light_chart.png light_default_froxels_1x.png
 endforeach()
 file(STRINGS ${OUT}/light.csv lines)
 list(LENGTH lines count)
-if(NOT count EQUAL 41)
-  message(FATAL_ERROR "light.csv has ${count} lines, expected a header and 40 rows")
+if(NOT count EQUAL 51)
+  message(FATAL_ERROR "light.csv has ${count} lines, expected a header and 50 rows")
 endif()
 list(GET lines 0 header)
-if(NOT header STREQUAL "scene,method,volume,steps,divisor,ms_per_frame,max_error,mean_error")
+if(NOT header STREQUAL "scene,method,volume,steps,nodes,divisor,ms_per_frame,max_error,mean_error")
   message(FATAL_ERROR "light.csv header: '${header}'")
 endif()
 list(REMOVE_AT lines 0)
 set(finite "[0-9.]+(e[-+][0-9]+)?")
 foreach(line IN LISTS lines)
-  if(NOT line MATCHES "^[a-z_.]+,(unlit|ours|march|froxel),[0-9]+,[0-9]+,[124],${finite},${finite},${finite}$")
+  if(NOT line MATCHES "^[a-z_.]+,(unlit|ours|march|froxel),[0-9]+,[0-9]+,[12],[124],${finite},${finite},${finite}$")
     message(FATAL_ERROR "light.csv row without finite numbers: '${line}'")
   endif()
 endforeach()

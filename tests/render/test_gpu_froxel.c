@@ -100,7 +100,7 @@ int main(void) {
         .model_scale_height = 4.0, .fog_colour = {0.05f, 0.06f, 0.08f},
         .sun = {.albedo = 0.9, .phase_g = 0.6, .direction = {0.93, 0.25, 0.27},
                 .radiance = {3.0, 2.7, 2.2}},
-        .self_shadow = FOG_SUN_SHADOW_HEIGHT, .shadow_steps = 512};
+        .self_shadow = FOG_SUN_SHADOW_HEIGHT, .shadow_steps = 512, .shadow_nodes = 2};
     double norm = sqrt(0.93 * 0.93 + 0.25 * 0.25 + 0.27 * 0.27);
     for (int a = 0; a < 3; a++) params.sun.direction[a] /= norm;
     CHECK(draw(&gl, &cam, &params, surface_tex, dist_tex, exact, tau, &err) == 0,
