@@ -1024,9 +1024,14 @@ static int fog_pass_draw_froxel(fog_pass *pass, const fog_pass_variant *variant,
                                   surface_distance, width, height, width, height, err);
 }
 
+static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const camera *cam,
+                                 const fog_pass_params *params, const fogmap_slots *fm,
+                                 int divisor, GLuint surface_colour, GLuint surface_distance,
+                                 int width, int height, render_error *err);
+
 static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_pass_params *params,
                                   GLuint surface_colour, GLuint surface_distance, int width,
-                                  int height, render_error *err) {
+                                  int height, int divisor, render_error *err) {
   bool march = params->integrator == FOG_INTEGRATOR_MARCH;
   bool hardware = params->model == FOG_MODEL_VOLUME && params->fetch == FOG_FETCH_HARDWARE;
   const fog_pass_variant variant = {.fetch_hardware = hardware, .integrator = march,
@@ -1044,11 +1049,8 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
   if (params->integrator == FOG_INTEGRATOR_FROXEL)
     return fog_pass_draw_froxel(pass, &variant, cam, params, NULL, surface_colour,
                                 surface_distance, width, height, err);
-  GLuint prog = fog_pass_variant_program(pass, &variant, err);
-  if (!prog || fog_pass_model_uniforms(pass, prog, cam, params, NULL, width, height, err))
-    return 1;
-  return fog_pass_common_and_draw(pass, prog, cam, params, surface_colour, surface_distance, width,
-                                  height, width, height, err);
+  return fog_pass_draw_variant(pass, variant, cam, params, NULL, divisor, surface_colour,
+                               surface_distance, width, height, err);
 }
 
 /* resolution_divisor > 1, before the reduced draw: the reduced target (reallocated only when
@@ -1089,6 +1091,43 @@ static int fog_pass_finish_reduced(fog_pass *pass, GLuint prog, const camera *ca
   glUniform1i(fog_loc(prog, "fog_divisor"), divisor);
   return fog_pass_common_and_draw(pass, prog, cam, params, surface_colour, surface_distance, width,
                                   height, width, height, err);
+}
+
+/* Draws `variant` (any model; fm for the fogmap) at full resolution, or for divisor > 1 its
+ * reduced pass and then the same settings' upsampling variant (fog_pass_fs.glsl,
+ * FOG_UPSAMPLE), which needs the same uniforms: it walks the pixels no reduced sample
+ * matches. */
+static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const camera *cam,
+                                 const fog_pass_params *params, const fogmap_slots *fm,
+                                 int divisor, GLuint surface_colour, GLuint surface_distance,
+                                 int width, int height, render_error *err) {
+  variant.reduced = divisor > 1 ? divisor : 1;
+  GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
+  if (!walk_prog) return 1;
+  GLuint programs[2] = {walk_prog, 0};
+  if (divisor > 1) {
+    fog_pass_variant upsample = variant;
+    upsample.reduced = 1;
+    upsample.upsample = 1;
+    programs[1] = fog_pass_variant_program(pass, &upsample, err);
+    if (!programs[1]) return 1;
+  }
+  for (int pi = 0; pi < 2 && programs[pi]; pi++)
+    if (fog_pass_model_uniforms(pass, programs[pi], cam, params, fm, width, height, err))
+      return 1;
+  glUseProgram(walk_prog);
+  if (divisor == 1)
+    return fog_pass_common_and_draw(pass, walk_prog, cam, params, surface_colour, surface_distance,
+                                    width, height, width, height, err);
+  GLint caller = 0;
+  if (fog_pass_begin_reduced(pass, divisor, width, height, &caller, err)) return 1;
+  if (fog_pass_common_and_draw(pass, walk_prog, cam, params, surface_colour, surface_distance,
+                               width, height, pass->reduced.width, pass->reduced.height, err)) {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)caller);
+    return 1;
+  }
+  return fog_pass_finish_reduced(pass, programs[1], cam, params, divisor, caller,
+                                 surface_colour, surface_distance, width, height, err);
 }
 
 /* The analytic and volume models' parameters, before anything is drawn. */
@@ -1399,7 +1438,7 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
     return 1;
   }
   if (params->model != FOG_MODEL_FOGMAP) return fog_pass_draw_analytic(pass, cam, params,
-      surface_colour, surface_distance, width, height, err);
+      surface_colour, surface_distance, width, height, divisor, err);
   bool reads[FOG_PASS_MAX_GRIDS];
   if (fog_pass_check_fogmap(pass, params, reads, err)) return 1;
   int J = params->levels, slots = 2 * J + 1;
@@ -1434,42 +1473,13 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
       .lamp_integral = fog_pass_has_lamps(params) ? (int)params->lamps.method.integral : 0,
       .surface_lamps = fog_pass_has_surface_lamps(params),
   };
-  if (params->integrator == FOG_INTEGRATOR_FROXEL) {
-    fogmap_slots fm = {.first = first, .J = J, .slots = slots};
-    memcpy(fm.reads, reads, sizeof fm.reads);
+  fogmap_slots fm = {.first = first, .J = J, .slots = slots};
+  memcpy(fm.reads, reads, sizeof fm.reads);
+  if (params->integrator == FOG_INTEGRATOR_FROXEL)
     return fog_pass_draw_froxel(pass, &variant, cam, params, &fm, surface_colour,
                                 surface_distance, width, height, err);
-  }
-  GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
-  if (!walk_prog) return 1;
-  /* resolution_divisor > 1: the same settings' upsampling variant (fog_pass_fs.glsl,
-   * FOG_UPSAMPLE) needs the same uniforms: it walks the pixels no reduced sample matches. */
-  GLuint programs[2] = {walk_prog, 0};
-  if (divisor > 1) {
-    fog_pass_variant upsample = variant;
-    upsample.reduced = 1;
-    upsample.upsample = 1;
-    programs[1] = fog_pass_variant_program(pass, &upsample, err);
-    if (!programs[1]) return 1;
-  }
-  for (int pi = 0; pi < 2 && programs[pi]; pi++) {
-    glUseProgram(programs[pi]);
-    if (fog_pass_fogmap_uniforms(pass, programs[pi], cam, params, first, J, slots, reads, err))
-      return 1;
-  }
-  glUseProgram(walk_prog);
-  if (divisor == 1)
-    return fog_pass_common_and_draw(pass, walk_prog, cam, params, surface_colour, surface_distance,
-                                    width, height, width, height, err);
-  GLint caller = 0;
-  if (fog_pass_begin_reduced(pass, divisor, width, height, &caller, err)) return 1;
-  if (fog_pass_common_and_draw(pass, walk_prog, cam, params, surface_colour, surface_distance,
-                               width, height, pass->reduced.width, pass->reduced.height, err)) {
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)caller);
-    return 1;
-  }
-  return fog_pass_finish_reduced(pass, programs[1], cam, params, divisor, caller,
-                                 surface_colour, surface_distance, width, height, err);
+  return fog_pass_draw_variant(pass, variant, cam, params, &fm, divisor, surface_colour,
+                               surface_distance, width, height, err);
 }
 
 void fog_pass_finish(void) { glFinish(); }

@@ -173,8 +173,8 @@ typedef struct fog_pass_params {
    * resolution pixel k D + D/2 to that pixel's surface distance), then a joint bilateral
    * upsampling guided by the full-resolution surface distance (fog_pass_fs.glsl with FOG_UPSAMPLE) blends
    * at full resolution: ~D^2 less walk work, edges of surfaces stay sharp, the smooth fog is
-   * interpolated (docs/integral.md, Performance: measured error). FOG_MODEL_FOGMAP only;
-   * the analytic models are cheap and ignore it. The pass keeps a (width/D) x (height/D)
+   * interpolated (docs/integral.md, Performance: measured error). Every model (the
+   * froxel baseline ignores it). The pass keeps a (width/D) x (height/D)
    * RGBA32F target of its own (created on first use, again when the size changes) and
    * restores the caller's draw framebuffer. */
   int resolution_divisor;

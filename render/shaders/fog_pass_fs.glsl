@@ -270,11 +270,15 @@ void main() {
     // The variant's model (fog_model_table.glsl, generated from render/fog_models.def).
     optical_depth = fog_model_optical_depth(fog_ray(dir_d, dir, t_in, t_out, t_surface, jitter));
 #if FOG_REDUCED > 1
-    // And the extinction where the ray meets the surface (A_0; 0 outside the box or for
-    // the sky): d(optical depth)/dt there, for the upsampling's first-order distance
-    // correction.
+    // And the extinction where the ray meets the surface (the fogmap's A_0, 0 outside its
+    // box; the other models' pointwise K; 0 for the sky): d(optical depth)/dt there, for the
+    // upsampling's first-order distance correction.
+#if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
     if (t_surface < 1e29 && t_surface >= t_in && t_surface <= t_out)
       k_end = fog_extinction_scale * fog_extinction_at(0, dir, t_surface);
+#else
+    if (t_surface < 1e29) k_end = fog_light_extinction(dir, t_surface);
+#endif
 #endif
   }
 #if FOG_REDUCED > 1

@@ -12,6 +12,7 @@
 #ifndef FOGPIPE_TESTS_RENDER_FOG_TEST_GL_H
 #define FOGPIPE_TESTS_RENDER_FOG_TEST_GL_H
 
+#include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
 
@@ -91,6 +92,16 @@ static inline void fog_test_gl_ground_distance(const fog_test_gl *gl, const came
       double t = (d[1] < 0.0) ? (ground_y - o[1]) / d[1] : -1.0;
       dist[py * gl->width + px] = (t > 0.0) ? (float)t : 1e30f;
     }
+}
+
+/* Pixel (px, py)'s ray (rows top first) and its surface distance from dist (as
+ * fog_test_gl_ground_distance writes it): HUGE_VAL for the sky. */
+static inline double fog_test_gl_pixel_ray(const fog_test_gl *gl, const camera *cam,
+                                           const float *dist, int px, int py, double o[3],
+                                           double d[3]) {
+  camera_ray(cam, px, py, gl->width, gl->height, o, d);
+  float t = dist[py * gl->width + px];
+  return t >= 1e29f ? HUGE_VAL : (double)t;
 }
 
 /* Draws the fog pass into the target and reads its transmittance (attachment 1, rows

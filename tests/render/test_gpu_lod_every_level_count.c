@@ -62,8 +62,7 @@ int main(void) {
         for (int py = 0; py < H; py++)
           for (int px = 0; px < W; px++) {
             double o[3], d[3];
-            camera_ray(&cam, px, py, W, H, o, d);
-            double t_surface = dist[py * W + px] >= 1e29f ? HUGE_VAL : dist[py * W + px];
+            double t_surface = fog_test_gl_pixel_ray(&gl, &cam, dist, px, py, o, d);
             double want = fog_transmittance(
                 fog_optical_depth_lod(&v, &lod, (fog_lod_method)method, o, d, t_surface));
             worst = fmax(worst, fabs(want - got[py * W + px]));

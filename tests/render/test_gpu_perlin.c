@@ -49,9 +49,7 @@ int main(void) {
         double worst = 0, min_tau = 1;
         for (int py = 0; py < H; py++)
           for (int px = 0; px < W; px++) {
-            double o[3], d[3];
-            camera_ray(&cam, px, py, W, H, o, d);
-            double t = dist[py * W + px] >= 1e29f ? HUGE_VAL : dist[py * W + px];
+            double o[3], d[3], t = fog_test_gl_pixel_ray(&gl, &cam, dist, px, py, o, d);
             double want = exp(-fog_perlin_optical_depth(&perlin, &m, o, d, t));
             double e = fabs(want - tau[py * W + px]);
             worst = fmax(worst, e == e ? e : HUGE_VAL);
