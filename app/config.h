@@ -176,7 +176,9 @@ typedef struct scene_shadow_config {
   int shafts;          /* 1 (on): V in the fog, the terrain's and boxes' shadows: shafts */
   int resolution;      /* the sun's optical-depth volume: samples along each axis */
   int steps;           /* segments of the view ray's T_s mean (fog_light.glsl) */
-  int nodes;           /* its samples per segment: 1 midpoint, 2 Gauss-Legendre */
+  int nodes;           /* its samples per segment: 1 midpoint, 2 Gauss-Legendre (or per
+                          piece, with pieces) */
+  int pieces;          /* 1 (on): Perlin fog's mean per piece of its exact walk */
 } scene_shadow_config;
 
 /* [light] lamp and spot lines as written (docs/config.md): a spot's axis as given (made
@@ -261,6 +263,8 @@ double scene_live_terrain_lod(double lod_error);
 fog_walk_settings scene_config_walk(const scene_config *cfg);
 /* The sun as the fog sees it: [fog] albedo and phase_g, [light]'s resolved sun. */
 fog_sun scene_config_fog_sun(const scene_config *cfg);
+/* [light] shadow_steps, shadow_nodes and shadow_pieces as the view ray's light rule. */
+fog_light_rule scene_config_light_rule(const scene_config *cfg);
 /* The surfaces show albedo x sun_colour x cos: [light] sun_colour is the sun's irradiance
  * over pi, so the fog's fog_sun.radiance is SCENE_SUN_IRRADIANCE_PER_COLOUR x sun_colour. */
 #define SCENE_SUN_IRRADIANCE_PER_COLOUR 3.14159265358979323846

@@ -298,8 +298,7 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
                            .ambient = {fog->colour[0], fog->colour[1], fog->colour[2]},
                            .self_shadow = d->input->shadow.fog_self_shadow,
                            .resolution = d->input->shadow.resolution,
-                           .steps = d->input->shadow.steps,
-                           .nodes = d->input->shadow.nodes};
+                           .rule = scene_config_light_rule(d->input)};
   r->lit = fog->albedo > 0.0;
   for (int f = 0; r->lit && f < frame_count; f++) {
     render_error rerr = {{0}};

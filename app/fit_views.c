@@ -203,7 +203,7 @@ static int inscatter(const fit_views *v, const fog_model *model, const fit_light
     const double *d = v->dir[k];
     double tau = exp(-fog_model_optical_depth(&m, v->origin[k], d, v->length[k]));
     double mean = sun->albedo > 0.0
-                      ? fog_sun_mean_transmittance(&m, kind, &volume, light->steps, light->nodes, 30.0,
+                      ? fog_sun_mean_transmittance(&m, kind, &volume, light->rule, 30.0,
                                                    v->origin[k], d, v->length[k])
                       : 1.0;
     double cos_theta = d[0] * sun->direction[0] + d[1] * sun->direction[1] +

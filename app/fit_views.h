@@ -11,6 +11,7 @@
 
 #include "render/fog_light.h"
 #include "render/fog_models.h"
+#include "render/fog_sun_shadow.h"
 
 #define FIT_VIEW_COUNT 9
 
@@ -40,8 +41,7 @@ typedef struct fit_light {
   double ambient[3];
   bool self_shadow;  /* [light] fog_self_shadow */
   int resolution;    /* the sun's volume: samples per axis */
-  int steps;         /* segments of the mean along a ray */
-  int nodes;         /* and its samples per segment */
+  fog_light_rule rule; /* how the mean along a ray is taken */
 } fit_light;
 
 /* The reference's in-scatter on each ray (v->light, allocated here). Non-zero: out of

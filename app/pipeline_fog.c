@@ -92,6 +92,7 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .self_shadow = settings->self_shadow,
       .shadow_steps = settings->shadow_steps,
       .shadow_nodes = settings->shadow_nodes,
+      .shadow_pieces = settings->shadow_pieces,
       .shafts = settings->shafts,
       .walk = settings->walk,
       .surface_sun = settings->self_shadow != FOG_SUN_SHADOW_NONE ? scene->color[2] : 0,

@@ -32,6 +32,7 @@ typedef struct pipeline_fog_settings {
    * surfaces' sun-lit share (the scene target's attachment 2). */
   fog_sun_shadow_kind self_shadow;
   int shadow_steps, shadow_nodes;
+  bool shadow_pieces;
   const sun_shadow_map *shafts; /* fog_pass_params.shafts: NULL none */
   fog_walk_settings walk;       /* fog_pass_params.walk */
 } pipeline_fog_settings;

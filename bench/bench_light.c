@@ -170,7 +170,7 @@ static int scene_reference(light_scene *s, const float *tau, int W, int H) {
       camera_ray(&s->drawn.cam, px, py, W, H, o, d);
       double ts = s->drawn.distance[k] >= 1e29f ? HUGE_VAL : (double)s->drawn.distance[k];
       double mean = fog_sun_mean_transmittance(&s->model, s->kind, &s->converged,
-                                               FOG_BENCH_LIGHT_STEPS, 2,
+                                               (fog_light_rule){.steps = FOG_BENCH_LIGHT_STEPS, .nodes = 2},
                                                fog_pass_depth_limit(p->walk.transmittance_cutoff), o,
                                                d, ts);
       double ph = phase_hg(sun->phase_g, d[0] * sun->direction[0] + d[1] * sun->direction[1] +

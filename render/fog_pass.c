@@ -626,6 +626,23 @@ static void fog_pass_sun_shadow_uniforms(const fog_pass *pass, GLuint prog, cons
   glUniform1f(fog_loc(prog, "fog_depth_limit"), limit < 1e30 ? (float)limit : 1e30f);
   glUniform1i(fog_loc(prog, "fog_shadow_steps"), params->shadow_steps);
   glUniform1i(fog_loc(prog, "fog_shadow_nodes"), params->shadow_nodes);
+  if (params->model == FOG_MODEL_PERLIN) { /* the per-piece mean's rule */
+    double x[FOG_PIECE_MAX_NODES], w[FOG_PIECE_MAX_NODES],
+        partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES] = {{0}};
+    int n = params->shadow_nodes >= 1 && params->shadow_nodes <= FOG_PIECE_MAX_NODES
+                ? params->shadow_nodes : 1;
+    fog_gauss_rule(n, x, w, partial);
+    float xf[4] = {0}, wf[4] = {0}, pf[16] = {0};
+    for (int j = 0; j < n; j++) {
+      xf[j] = (float)x[j], wf[j] = (float)w[j];
+      for (int q = 0; q < n; q++) pf[4 * j + q] = (float)partial[j][q]; /* m[j][q] */
+    }
+    glUniform1i(fog_loc(prog, "fog_shadow_pieces"), params->shadow_pieces);
+    glUniform1i(fog_loc(prog, "fog_piece_nodes"), n);
+    glUniform1fv(fog_loc(prog, "fog_piece_x"), 4, xf);
+    glUniform1fv(fog_loc(prog, "fog_piece_w"), 4, wf);
+    glUniformMatrix4fv(fog_loc(prog, "fog_piece_partial"), 1, GL_FALSE, pf);
+  }
   if (params->shafts) {
     const sun_shadow_map *map = params->shafts;
     double m[4][4];

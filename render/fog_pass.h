@@ -149,7 +149,8 @@ typedef struct fog_pass_params {
   fog_sun_shadow_kind self_shadow;
   int shadow_steps;
   int shadow_nodes; /* samples per segment: 1 the midpoint, 2 two Gauss-Legendre nodes
-                       (fog_sun_mean_transmittance) */
+                       (fog_sun_mean_transmittance); per piece with shadow_pieces */
+  bool shadow_pieces; /* FOG_MODEL_PERLIN: the mean per piece of its exact walk */
   /* Optional (0: none): an RGBA texture of the surfaces' sun-lit share of their colour
    * (scene pass attachment 2, width x height); the fog's shadow takes (1 - T_s(P)) of it. */
   GLuint surface_sun;
@@ -179,6 +180,12 @@ typedef struct fog_pass_params {
    * restores the caller's draw framebuffer. */
   int resolution_divisor;
 } fog_pass_params;
+
+/* The CPU twin's rule for the pass's mean (fog_sun_mean_light). */
+static inline fog_light_rule fog_pass_light_rule(const fog_pass_params *p) {
+  return (fog_light_rule){.steps = p->shadow_steps, .nodes = p->shadow_nodes,
+                          .pieces = p->shadow_pieces};
+}
 
 #define FOG_PASS_TRANSMITTANCE_CUTOFF 1e-4
 /* The optical depth where a walk with that cut-off stops: -ln(cutoff), or HUGE_VAL for 0. */

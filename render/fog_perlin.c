@@ -270,3 +270,108 @@ double fog_model_depth_perlin(const fog_model *m, const double camera[3], const 
   fog_perlin_medium medium = fog_model_perlin_medium(m);
   return fog_perlin_optical_depth(m->perlin, &medium, camera, dir, t_surface);
 }
+
+void fog_gauss_rule(int n, double x[FOG_PIECE_MAX_NODES], double w[FOG_PIECE_MAX_NODES],
+                    double partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES]) {
+  static const double nodes[4][4] = {{0.0},
+                                     {-0.57735026918962576, 0.57735026918962576},
+                                     {-0.77459666924148338, 0.0, 0.77459666924148338},
+                                     {-0.86113631159405258, -0.33998104358485626,
+                                      0.33998104358485626, 0.86113631159405258}};
+  static const double weights[4][4] = {{2.0},
+                                       {1.0, 1.0},
+                                       {0.55555555555555556, 0.88888888888888889,
+                                        0.55555555555555556},
+                                       {0.34785484513745386, 0.65214515486254614,
+                                        0.65214515486254614, 0.34785484513745386}};
+  for (int k = 0; k < n; k++) x[k] = nodes[n - 1][k], w[k] = weights[n - 1][k];
+  /* L_k has degree n - 1: the same rule mapped onto [-1, x_j] integrates it exactly */
+  for (int j = 0; j < n; j++)
+    for (int k = 0; k < n; k++) {
+      double half = 0.5 * (x[j] + 1.0), sum = 0.0;
+      for (int q = 0; q < n; q++) {
+        double s = -1.0 + half * (x[q] + 1.0), l = 1.0;
+        for (int m = 0; m < n; m++)
+          if (m != k) l *= (s - x[m]) / (x[k] - x[m]);
+        sum += w[q] * l;
+      }
+      partial[j][k] = half * sum;
+    }
+}
+
+double fog_perlin_light_integral(const fog_perlin *perlin, const fog_perlin_medium *m,
+                                 const double o[3], const double d[3], double length,
+                                 int nodes, double depth_limit, fog_perlin_light_fn light,
+                                 const void *user, double *depth) {
+  *depth = 0.0;
+  double t0, t1;
+  if (m->extinction == 0.0 || nodes < 1 || nodes > FOG_PIECE_MAX_NODES ||
+      !box_stretch(perlin, o, d, length, &t0, &t1))
+    return 0.0;
+  double gx[FOG_PIECE_MAX_NODES], gw[FOG_PIECE_MAX_NODES],
+      partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES];
+  fog_gauss_rule(nodes, gx, gw, partial);
+  const int octaves = perlin->desc.octaves;
+  double u0[FOG_PERLIN_MAX_OCTAVES][3], du[FOG_PERLIN_MAX_OCTAVES][3];
+  double next[FOG_PERLIN_MAX_OCTAVES][3], delta[FOG_PERLIN_MAX_OCTAVES][3];
+  for (int i = 0; i < octaves; i++) {
+    double s = fog_perlin_octave_scale(perlin, i);
+    for (int a = 0; a < 3; a++) {
+      u0[i][a] = (o[a] + t0 * d[a] - perlin->desc.wind[i][a] * m->time) * s;
+      du[i][a] = d[a] * s;
+      double cell = floor(u0[i][a]);
+      if (du[i][a] > 0) {
+        delta[i][a] = 1.0 / du[i][a], next[i][a] = (cell + 1 - u0[i][a]) / du[i][a];
+      } else if (du[i][a] < 0) {
+        delta[i][a] = -1.0 / du[i][a], next[i][a] = (cell - u0[i][a]) / du[i][a];
+      } else {
+        delta[i][a] = HUGE_VAL, next[i][a] = HUGE_VAL;
+      }
+    }
+  }
+  const double len = t1 - t0, y_entry = o[1] + t0 * d[1];
+  double t = 0.0, D = 0.0, S = 0.0;
+  while (t < len && D < depth_limit) {
+    double tn = len;
+    for (int i = 0; i < octaves; i++)
+      for (int a = 0; a < 3; a++) tn = fmin(tn, next[i][a]);
+    if (tn > t) {
+      long c[FOG_PERLIN_MAX_OCTAVES][3];
+      double mid = 0.5 * (t + tn);
+      for (int i = 0; i < octaves; i++)
+        for (int a = 0; a < 3; a++) c[i][a] = (long)floor(u0[i][a] + mid * du[i][a]);
+      int cuts = (int)ceil(fabs(d[1]) * (tn - t) / m->scale_height / 0.5);
+      if (cuts < 1) cuts = 1;
+      double h = 0.5 * (tn - t) / cuts;
+      for (int k = 0; k < cuts; k++) {
+        double centre = t + (2 * k + 1) * h, K[FOG_PIECE_MAX_NODES], tj[FOG_PIECE_MAX_NODES];
+        for (int j = 0; j < nodes; j++) {
+          tj[j] = centre + h * gx[j];
+          double turbulence = 0.0;
+          for (int i = 0; i < octaves; i++) {
+            double f[3];
+            for (int a = 0; a < 3; a++) f[a] = u0[i][a] + tj[j] * du[i][a] - (double)c[i][a];
+            turbulence += ldexp(octave_cell_value(perlin, i, c[i], f), -i);
+          }
+          K[j] = m->extinction * exp(-(y_entry + tj[j] * d[1] - m->y0) / m->scale_height) *
+                 turbulence;
+        }
+        double piece_depth = 0.0;
+        for (int j = 0; j < nodes; j++) {
+          double dj = 0.0, x[3];
+          for (int q = 0; q < nodes; q++) dj += partial[j][q] * K[q];
+          for (int a = 0; a < 3; a++) x[a] = o[a] + (t0 + tj[j]) * d[a];
+          S += h * gw[j] * K[j] * exp(-(D + h * dj)) * light(user, x);
+          piece_depth += h * gw[j] * K[j];
+        }
+        D += piece_depth;
+      }
+    }
+    for (int i = 0; i < octaves; i++)
+      for (int a = 0; a < 3; a++)
+        if (next[i][a] <= tn) next[i][a] += delta[i][a];
+    t = fmax(t, tn);
+  }
+  *depth = D;
+  return S;
+}

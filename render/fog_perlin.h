@@ -81,4 +81,26 @@ double fog_perlin_extinction_at(const fog_perlin *perlin, const fog_perlin_mediu
 double fog_perlin_optical_depth(const fog_perlin *perlin, const fog_perlin_medium *medium,
                                 const double o[3], const double d[3], double length);
 
+/* The light a view ray gathers, per piece of the exact walk (docs/light.md, per-piece
+ * light): S = int_0^L tau(u) K(u) f(u) du with f = light(user, point) in [0, 1] (T_s V),
+ * every octave walked at once, so that the pieces lie between consecutive texel planes of
+ * any octave (cut where the height exponent moves by 1/2), and `nodes` (1..4) Gauss-Legendre
+ * nodes on each. tau at a node is e^{-(D + d)}: D the walk's running depth at the piece's
+ * start, d the integral from there to the node of the polynomial through the piece's K at
+ * its nodes. *depth receives the walk's optical depth over [0, length] (the nodes' sum: the
+ * exact integral for nodes >= 2 up to the exponential's share, as the depth walk). The
+ * walk stops past depth_limit. */
+typedef double (*fog_perlin_light_fn)(const void *user, const double x[3]);
+#define FOG_PIECE_MAX_NODES 4
+/* The n-node Gauss-Legendre rule on [-1, 1] (n = 1..FOG_PIECE_MAX_NODES): nodes x, weights
+ * w, and partial[j][k] = int_{-1}^{x_j} L_k(s) ds, L_k the Lagrange basis on the nodes: the
+ * integral up to node j of the polynomial through values at the nodes is
+ * sum_k partial[j][k] v_k. */
+void fog_gauss_rule(int n, double x[FOG_PIECE_MAX_NODES], double w[FOG_PIECE_MAX_NODES],
+                    double partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES]);
+double fog_perlin_light_integral(const fog_perlin *perlin, const fog_perlin_medium *medium,
+                                 const double o[3], const double d[3], double length,
+                                 int nodes, double depth_limit, fog_perlin_light_fn light,
+                                 const void *user, double *depth);
+
 #endif

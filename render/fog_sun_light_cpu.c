@@ -133,11 +133,25 @@ bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
 }
 
 double fog_sun_mean_transmittance(const fog_model *m, fog_sun_shadow_kind kind,
-                                  const fog_sun_shadow *volume, int steps, int nodes,
+                                  const fog_sun_shadow *volume, fog_light_rule rule,
                                   double depth_limit, const double o[3], const double d[3],
                                   double t_surface) {
-  return fog_sun_mean_light(m, kind, volume, steps, nodes, depth_limit, o, d, t_surface, NULL,
-                            NULL);
+  return fog_sun_mean_light(m, kind, volume, rule, depth_limit, o, d, t_surface, NULL, NULL);
+}
+
+/* T_s V at a point, for fog_perlin_light_integral. */
+typedef struct sun_light_user {
+  const fog_model *m;
+  fog_sun_shadow_kind kind;
+  const fog_sun_shadow *volume;
+  fog_sun_visibility_fn visible;
+  const void *user;
+} sun_light_user;
+
+static double sun_light_point(const void *user, const double p[3]) {
+  const sun_light_user *u = user;
+  return exp(-fog_sun_optical_depth(u->m, u->kind, u->volume, p)) *
+         (u->visible ? u->visible(u->user, p) : 1.0);
 }
 
 /* T_s V at the ray's point t. */
@@ -157,11 +171,20 @@ static double extinction_on_ray(const fog_model *m, const double o[3], const dou
 }
 
 double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
-                          const fog_sun_shadow *volume, int steps, int nodes,
+                          const fog_sun_shadow *volume, fog_light_rule rule,
                           double depth_limit, const double o[3], const double d[3],
                           double t_surface, fog_sun_visibility_fn visible, const void *user) {
   if (kind == FOG_SUN_SHADOW_NONE && !visible) return 1.0;
   if (kind == FOG_SUN_SHADOW_OPAQUE) return 0.0;
+  if (rule.pieces && m->kind == FOG_MODEL_PERLIN && m->perlin) {
+    /* per piece of the exact walk: S over 1 - e^{-D} of the same walk */
+    sun_light_user u = {m, kind, volume, visible, user};
+    fog_perlin_medium medium = fog_model_perlin_medium(m);
+    double D, S = fog_perlin_light_integral(m->perlin, &medium, o, d, t_surface, rule.nodes,
+                                            depth_limit, sun_light_point, &u, &D);
+    return D > 0.0 ? S / -expm1(-D) : 1.0;
+  }
+  const int steps = rule.steps, nodes = rule.nodes;
   double t0, t1;
   if (!fog_light_span(m, o, d, t_surface, &t0, &t1)) return 1.0;
   /* the Gauss nodes' offset from the middle, in segments: 1/(2 sqrt 3) */

@@ -93,6 +93,15 @@ bool fog_light_span(const fog_model *model, const double o[3], const double d[3]
  * the volume, for _HEIGHT only its sun). */
 double fog_sun_optical_depth(const fog_model *model, fog_sun_shadow_kind kind,
                              const fog_sun_shadow *volume, const double p[3]);
+/* How the view ray's mean of T_s V is taken (docs/light.md): `steps` equal segments of
+ * `nodes` samples, or for FOG_MODEL_PERLIN with `pieces` per piece of its exact walk with
+ * `nodes` Gauss nodes each (fog_perlin_light_integral; steps unused). */
+typedef struct fog_light_rule {
+  int steps;   /* >= 1 */
+  int nodes;   /* segments: 1 or 2; pieces: 1 .. FOG_PIECE_MAX_NODES */
+  bool pieces;
+} fog_light_rule;
+
 /* The tau K-weighted mean of T_s along the ray o + t d up to t_surface: `steps` equal
  * segments of the ray's fog span, each weighing e^{-D} (1 - e^{-dD}) (D the depth before it,
  * dD its own) and seeing T_s at `nodes` points, stopping past depth_limit; 1 where the ray
@@ -102,14 +111,14 @@ double fog_sun_optical_depth(const fog_model *model, fog_sun_shadow_kind kind,
  * through the nodes): fourth order in dt where the midpoint is second. The sun's in-scatter
  * is then a L_sun p(theta) mean (1 - tau). */
 double fog_sun_mean_transmittance(const fog_model *model, fog_sun_shadow_kind kind,
-                                  const fog_sun_shadow *volume, int steps, int nodes,
+                                  const fog_sun_shadow *volume, fog_light_rule rule,
                                   double depth_limit, const double o[3], const double d[3],
                                   double t_surface);
 /* The same mean of T_s V, V(p) in [0, 1] the sun's visibility past the scene at world point
  * p (the shadow map's twin or exact ray casts): light shafts. visible NULL: V = 1. */
 typedef double (*fog_sun_visibility_fn)(const void *user, const double p[3]);
 double fog_sun_mean_light(const fog_model *model, fog_sun_shadow_kind kind,
-                          const fog_sun_shadow *volume, int steps, int nodes,
+                          const fog_sun_shadow *volume, fog_light_rule rule,
                           double depth_limit,
                           const double o[3], const double d[3], double t_surface,
                           fog_sun_visibility_fn visible, const void *user);

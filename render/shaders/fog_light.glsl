@@ -113,6 +113,93 @@ float fog_sun_light_at(vec3 dir, float t) {
   return exp(-fog_sun_optical_depth(t * dir)) * fog_sun_visible(t * dir);
 }
 
+#if FOG_MODEL_KIND == FOG_MODEL_PERLIN
+// Perlin fog's mean per piece of its exact walk (fog_perlin_light_integral in C): every
+// octave walked at once, fog_piece_nodes Gauss nodes on each piece between texel planes of
+// any octave (cut where the height exponent moves by 1/2), tau at a node from the walk's
+// running depth and the piece's polynomial through its nodes (fog_piece_partial[j][k]);
+// the mean is S / (1 - e^{-D}) of the same walk.
+uniform int fog_shadow_pieces;
+uniform int fog_piece_nodes;
+uniform float fog_piece_x[4], fog_piece_w[4];
+uniform mat4 fog_piece_partial;
+float fog_perlin_sun_mean(fog_ray r) {
+  float t0, t1;
+  if (fog_model_extinction == 0.0 ||
+      !fog_slab(fog_perlin_lo, fog_perlin_hi, vec3(0.0), r.dir, t0, t1))
+    return 1.0;
+  t0 = max(t0, 0.0);
+  t1 = min(t1, r.t_surface);
+  if (!(t1 > t0)) return 1.0;
+  vec3 dir = r.dir;
+  vec3 ue[FOG_PERLIN_MAX_OCTAVES], du[FOG_PERLIN_MAX_OCTAVES];
+  vec3 next[FOG_PERLIN_MAX_OCTAVES], delta[FOG_PERLIN_MAX_OCTAVES];
+  for (int i = 0; i < fog_perlin_octaves; i++) {
+    float s = fog_perlin_scale[i];
+    ue[i] = fog_perlin_camera[i] + t0 * s * dir;
+    du[i] = s * dir;
+    vec3 c = floor(ue[i]);
+    for (int a = 0; a < 3; a++) {
+      if (du[i][a] > 0.0) {
+        delta[i][a] = 1.0 / du[i][a];
+        next[i][a] = (c[a] + 1.0 - ue[i][a]) / du[i][a];
+      } else if (du[i][a] < 0.0) {
+        delta[i][a] = -1.0 / du[i][a];
+        next[i][a] = (c[a] - ue[i][a]) / du[i][a];
+      } else {
+        delta[i][a] = FOG_INFINITY;
+        next[i][a] = FOG_INFINITY;
+      }
+    }
+  }
+  float len = t1 - t0, t = 0.0, D = 0.0, S = 0.0, y_entry = t0 * dir.y;
+  float inv_h = 1.0 / fog_model_scale_height;
+  for (int guard = 0; t < len && D < fog_depth_limit && guard < 65536; guard++) {
+    float tn = len;
+    for (int i = 0; i < fog_perlin_octaves; i++)
+      tn = min(tn, min(next[i].x, min(next[i].y, next[i].z)));
+    if (tn > t) {
+      fog_perlin_cell cells[FOG_PERLIN_MAX_OCTAVES];
+      vec3 f0[FOG_PERLIN_MAX_OCTAVES];
+      for (int i = 0; i < fog_perlin_octaves; i++) {
+        vec3 c = floor(ue[i] + (0.5 * (t + tn)) * du[i]);
+        cells[i] = fog_perlin_cell_load(i, ivec3(c));
+        f0[i] = ue[i] - c;
+      }
+      int cuts = max(int(ceil(abs(dir.y) * (tn - t) * inv_h * 2.0)), 1);
+      float h = 0.5 * (tn - t) / float(cuts);
+      for (int k = 0; k < cuts; k++) {
+        float centre = t + float(2 * k + 1) * h;
+        float K[4];
+        for (int j = 0; j < fog_piece_nodes; j++) {
+          float tj = centre + h * fog_piece_x[j], turbulence = 0.0;
+          for (int i = 0; i < fog_perlin_octaves; i++)
+            turbulence += exp2(-float(i)) * fog_perlin_cell_value(cells[i], f0[i] + tj * du[i]);
+          K[j] = fog_model_extinction * exp(-(y_entry + tj * dir.y - fog_model_y0) * inv_h) *
+                 turbulence;
+        }
+        float piece = 0.0;
+        for (int j = 0; j < fog_piece_nodes; j++) {
+          float dj = 0.0;
+          for (int q = 0; q < fog_piece_nodes; q++) dj += fog_piece_partial[j][q] * K[q];
+          float tj = centre + h * fog_piece_x[j];
+          S += h * fog_piece_w[j] * K[j] * exp(-(D + h * dj)) * fog_sun_light_at(dir, t0 + tj);
+          piece += h * fog_piece_w[j] * K[j];
+        }
+        D += piece;
+      }
+    }
+    for (int i = 0; i < fog_perlin_octaves; i++) {
+      if (next[i].x <= tn) next[i].x += delta[i].x;
+      if (next[i].y <= tn) next[i].y += delta[i].y;
+      if (next[i].z <= tn) next[i].z += delta[i].z;
+    }
+    t = max(t, tn);
+  }
+  return D > 0.0 ? S / (D * fog_exprel(D)) : 1.0;  // 1 - e^{-D} without cancellation
+}
+#endif
+
 // The tau K-weighted mean of T_s V along the ray (1 where the ray holds no fog), over
 // fog_shadow_steps equal segments of fog_shadow_nodes samples (fog_sun_mean_light in C):
 // 1, the midpoint; 2, the Gauss-Legendre nodes m -+ dt/(2 sqrt 3), the segment's depth
@@ -126,6 +213,9 @@ float fog_sun_mean_transmittance(fog_ray r) {
 #elif !FOG_LIGHT_MARCH
   return 1.0;
 #else
+#if FOG_MODEL_KIND == FOG_MODEL_PERLIN
+  if (fog_shadow_pieces != 0) return fog_perlin_sun_mean(r);
+#endif
   float t0, t1;
   if (!fog_light_span(r, t0, t1)) return 1.0;
   const float g = 0.28867513459481288;  // 1/(2 sqrt 3)

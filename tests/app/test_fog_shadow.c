@@ -129,7 +129,7 @@ static void check_shafts(bool homogeneous) {
       camera_ray(&cam, px, py, W, H, o, d);
       double t_surface = lit.depth[k] >= 0.999 * cam.far_plane ? HUGE_VAL : lit.depth[k];
       double mean = fog_sun_mean_light(&model, params->self_shadow, &fog->sun_shadow,
-                                       params->shadow_steps, params->shadow_nodes,
+                                       fog_pass_light_rule(params),
                                        fog_pass_depth_limit(params->walk.transmittance_cutoff), o, d,
                                        t_surface, exact_visible, &exact);
       const double mu = d[0] * sun->direction[0] + d[1] * sun->direction[1] +
@@ -223,7 +223,7 @@ static void check_case(model_case *mc) {
       camera_ray(&cam, px, py, W, H, o, d);
       double t_surface = lit.depth[k] >= 0.999 * cam.far_plane ? HUGE_VAL : lit.depth[k];
       double mean = fog_sun_mean_transmittance(&model, params->self_shadow, volume,
-                                               params->shadow_steps, params->shadow_nodes,
+                                               fog_pass_light_rule(params),
                                                fog_pass_depth_limit(params->walk.transmittance_cutoff), o,
                                                d, t_surface);
       const double mu = d[0] * sun->direction[0] + d[1] * sun->direction[1] +
@@ -295,7 +295,7 @@ static int load(const char *path, scene_config *cfg) {
 }
 
 int main(void) {
-  static model_case cases[6];
+  static model_case cases[8];
   int n = 0;
   model_case *c = &cases[n];
   if (!load("configs/default.ini", &c->cfg)) {
@@ -351,6 +351,16 @@ int main(void) {
   if (!load("configs/quadric_volumes.ini", &c->cfg)) {
     c->label = "quadric (configs/quadric_volumes.ini)";
     n++;
+  }
+  /* Perlin fog: its mean per piece of the exact walk (the default), and by segments */
+  for (int pieces = 1; pieces >= 0; pieces--) {
+    c = &cases[n];
+    if (!load("configs/perlin_fog.ini", &c->cfg)) {
+      c->label = pieces ? "perlin (configs/perlin_fog.ini), per piece"
+                        : "perlin (configs/perlin_fog.ini), 32 segments";
+      c->cfg.shadow.pieces = pieces;
+      n++;
+    }
   }
   for (int i = 0; i < n; i++) check_case(&cases[i]);
   check_shafts(false);

@@ -41,8 +41,9 @@ int main(void) {
     for (int nodes = 1; nodes <= 2; nodes++)
       for (int l = 0; l < LEVELS; l++) {
         int segments = (4 << l) / nodes;
-        double mean = fog_sun_mean_light(&m, FOG_SUN_SHADOW_HEIGHT, &volume, segments, nodes,
-                                         HUGE_VAL, o, d, t_surface, NULL, NULL);
+        fog_light_rule rule = {.steps = segments, .nodes = nodes};
+        double mean = fog_sun_mean_light(&m, FOG_SUN_SHADOW_HEIGHT, &volume, rule, HUGE_VAL, o,
+                                         d, t_surface, NULL, NULL);
         double e = fabs(mean * (1 - tau) - s_ref) / s_ref;
         errors[nodes - 1][l] = fmax(errors[nodes - 1][l], e);
       }
