@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdbool.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,7 +20,7 @@
 #define FOG_PASS_MAX_VARIANTS 256
 
 typedef struct fog_pass_variant_entry {
-  int key;
+  uint64_t key;
   GLuint program;
 } fog_pass_variant_entry;
 
@@ -144,18 +145,26 @@ static int variant_field(const fog_pass_variant *v, int f) {
   return *(const int *)((const char *)v + variant_fields[f].offset);
 }
 
-/* The fields packed into bits, in variant_fields' order (28 bits). */
-static int fog_pass_variant_key(const fog_pass_variant *v) {
-  int key = 0, shift = 0;
+/* The fields packed into bits, in variant_fields' order (32 of the 64; fog_pass_create
+ * checks the sum). */
+static int variant_key_bits(void) {
+  int bits = 0;
+  for (int f = 0; f < VARIANT_FIELD_COUNT; f++) bits += variant_fields[f].bits;
+  return bits;
+}
+
+static uint64_t fog_pass_variant_key(const fog_pass_variant *v) {
+  uint64_t key = 0;
+  int shift = 0;
   for (int f = 0; f < VARIANT_FIELD_COUNT; f++) {
-    key |= (variant_field(v, f) & ((1 << variant_fields[f].bits) - 1)) << shift;
+    key |= (uint64_t)(variant_field(v, f) & ((1 << variant_fields[f].bits) - 1)) << shift;
     shift += variant_fields[f].bits;
   }
   return key;
 }
 
 /* Builds one variant: the fragment text with its #defines inserted after the #version line. */
-static GLuint fog_pass_program(const fog_pass_variant *v, int key, render_error *err) {
+static GLuint fog_pass_program(const fog_pass_variant *v, uint64_t key, render_error *err) {
   char *vs = gl_util_shader_text("fog_pass_vs.glsl", err);
   if (!vs) return 0;
   char *fs = gl_util_shader_text("fog_pass_fs.glsl", err);
@@ -178,7 +187,7 @@ static GLuint fog_pass_program(const fog_pass_variant *v, int key, render_error 
     strcpy(text + head, defines);
     strcat(text, fs + head);
     char label[64];
-    snprintf(label, sizeof label, "fog_pass_fs.glsl (variant %#x)", key);
+    snprintf(label, sizeof label, "fog_pass_fs.glsl (variant %#llx)", (unsigned long long)key);
     program = gl_util_program_from_source(label, vs, text, err);
   } else {
     snprintf(err->message, sizeof err->message, "fog pass: out of memory for shader text");
@@ -192,7 +201,7 @@ static GLuint fog_pass_program(const fog_pass_variant *v, int key, render_error 
 /* The program of a variant, compiled on its first use and kept (looked up by key). */
 static GLuint fog_pass_variant_program(fog_pass *pass, const fog_pass_variant *v,
                                        render_error *err) {
-  const int key = fog_pass_variant_key(v);
+  const uint64_t key = fog_pass_variant_key(v);
   for (int i = 0; i < pass->variant_count; i++)
     if (pass->variants[i].key == key) return pass->variants[i].program;
   if (pass->variant_count == FOG_PASS_MAX_VARIANTS) {
@@ -212,6 +221,13 @@ int fog_pass_create(fog_pass **out, render_error *err) {
   fog_pass *pass = calloc(1, sizeof *pass);
   if (!pass) {
     snprintf(err->message, sizeof err->message, "fog pass: out of memory");
+    return 1;
+  }
+  if (variant_key_bits() > 64) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: the variant fields take %d bits, more than the key's 64",
+             variant_key_bits());
+    free(pass);
     return 1;
   }
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &pass->max_texture_size);
