@@ -109,6 +109,8 @@ typedef struct fog_pass_variant {
   int lamp_integral;      /* FOG_LAMP_INTEGRAL: fog_lamp_integral */
   int surface_lamps;      /* FOG_SURFACE_LAMPS: 1 the fog dims the lamps' light on surfaces */
   int froxel;             /* FOG_FROXEL: 0 none, 1 the froxel grid's fill, 2 its lookup */
+  int shadow_nodes;       /* FOG_SHADOW_NODES: the light mean's nodes a segment or piece */
+  int shadow_pieces;      /* FOG_SHADOW_PIECES: 1 Perlin fog's mean per piece */
 } fog_pass_variant;
 
 static const struct {
@@ -135,6 +137,8 @@ static const struct {
     {"FOG_LAMP_INTEGRAL", offsetof(fog_pass_variant, lamp_integral), 2},
     {"FOG_SURFACE_LAMPS", offsetof(fog_pass_variant, surface_lamps), 1},
     {"FOG_FROXEL", offsetof(fog_pass_variant, froxel), 2},
+    {"FOG_SHADOW_NODES", offsetof(fog_pass_variant, shadow_nodes), 3},
+    {"FOG_SHADOW_PIECES", offsetof(fog_pass_variant, shadow_pieces), 1},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
@@ -145,7 +149,7 @@ static int variant_field(const fog_pass_variant *v, int f) {
   return *(const int *)((const char *)v + variant_fields[f].offset);
 }
 
-/* The fields packed into bits, in variant_fields' order (32 of the 64; fog_pass_create
+/* The fields packed into bits, in variant_fields' order (36 of the 64; fog_pass_create
  * checks the sum). */
 static int variant_key_bits(void) {
   int bits = 0;
@@ -172,11 +176,18 @@ static GLuint fog_pass_program(const fog_pass_variant *v, uint64_t key, render_e
     free(vs);
     return 0;
   }
-  char defines[512];
+  char defines[1024];
   size_t used = 0;
-  for (int f = 0; f < VARIANT_FIELD_COUNT; f++)
+  for (int f = 0; f < VARIANT_FIELD_COUNT && used < sizeof defines; f++)
     used += (size_t)snprintf(defines + used, sizeof defines - used, "#define %s %d\n",
                              variant_fields[f].define, variant_field(v, f));
+  if (used >= sizeof defines) { /* a truncated block would leave a setting at 0 unseen */
+    snprintf(err->message, sizeof err->message,
+             "fog pass: the variant's #defines outgrew their %zu bytes", sizeof defines);
+    free(vs);
+    free(fs);
+    return 0;
+  }
   const char *eol = strchr(fs, '\n');
   size_t head = eol ? (size_t)(eol - fs) + 1 : 0;
   size_t total = strlen(fs) + strlen(defines) + 1;
@@ -641,7 +652,6 @@ static void fog_pass_sun_shadow_uniforms(const fog_pass *pass, GLuint prog, cons
   const double limit = fog_pass_depth_limit(params->walk.transmittance_cutoff);
   glUniform1f(fog_loc(prog, "fog_depth_limit"), limit < 1e30 ? (float)limit : 1e30f);
   glUniform1i(fog_loc(prog, "fog_shadow_steps"), params->shadow_steps);
-  glUniform1i(fog_loc(prog, "fog_shadow_nodes"), params->shadow_nodes);
   if (params->model == FOG_MODEL_PERLIN) { /* the per-piece mean's rule */
     double x[FOG_PIECE_MAX_NODES], w[FOG_PIECE_MAX_NODES],
         partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES] = {{0}};
@@ -653,8 +663,6 @@ static void fog_pass_sun_shadow_uniforms(const fog_pass *pass, GLuint prog, cons
       xf[j] = (float)x[j], wf[j] = (float)w[j];
       for (int q = 0; q < n; q++) pf[4 * j + q] = (float)partial[j][q]; /* m[j][q] */
     }
-    glUniform1i(fog_loc(prog, "fog_shadow_pieces"), params->shadow_pieces);
-    glUniform1i(fog_loc(prog, "fog_piece_nodes"), n);
     glUniform1fv(fog_loc(prog, "fog_piece_x"), 4, xf);
     glUniform1fv(fog_loc(prog, "fog_piece_w"), 4, wf);
     glUniformMatrix4fv(fog_loc(prog, "fog_piece_partial"), 1, GL_FALSE, pf);
@@ -1032,6 +1040,7 @@ static int fog_pass_draw_froxel(fog_pass *pass, const fog_pass_variant *variant,
   fill.lamps = lookup.lamps = fill.lamp_integral = lookup.lamp_integral = 0;
   fill.surface_sun = fill.surface_lamps = 0;
   fill.froxel = 1, lookup.froxel = 2;
+  fill.shadow_nodes = lookup.shadow_nodes = params->shadow_nodes;
   GLuint fill_prog = fog_pass_variant_program(pass, &fill, err);
   GLuint lookup_prog = fill_prog ? fog_pass_variant_program(pass, &lookup, err) : 0;
   if (!lookup_prog || fog_pass_froxel_fit(pass, g, err)) return 1;
@@ -1135,6 +1144,8 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
                                  int divisor, GLuint surface_colour, GLuint surface_distance,
                                  int width, int height, render_error *err) {
   variant.reduced = divisor > 1 ? divisor : 1;
+  variant.shadow_nodes = params->shadow_nodes;
+  variant.shadow_pieces = params->model == FOG_MODEL_PERLIN && params->shadow_pieces;
   GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;
   GLuint programs[2] = {walk_prog, 0};

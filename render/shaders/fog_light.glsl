@@ -119,8 +119,7 @@ float fog_sun_light_at(vec3 dir, float t) {
 // any octave (cut where the height exponent moves by 1/2), tau at a node from the walk's
 // running depth and the piece's polynomial through its nodes (fog_piece_partial[j][k]);
 // the mean is S / (1 - e^{-D}) of the same walk.
-uniform int fog_shadow_pieces;
-uniform int fog_piece_nodes;
+const int fog_piece_nodes = FOG_SHADOW_NODES > 0 ? FOG_SHADOW_NODES : 1;
 uniform float fog_piece_x[4], fog_piece_w[4];
 uniform mat4 fog_piece_partial;
 float fog_perlin_sun_mean(fog_ray r) {
@@ -206,15 +205,16 @@ float fog_perlin_sun_mean(fog_ray r) {
 // their 2-node sum and its T_s V theirs weighted by K e^{-d} (d from the segment's start to
 // the node, K linear through the nodes). Segment i weighs e^{-D_i} (1 - e^{-dD_i}) either
 // way, so with T_s V = 1 the mean is 1.
-uniform int fog_shadow_nodes;
+// FOG_SHADOW_NODES (1 or 2) and FOG_SHADOW_PIECES are specialisation constants: as a
+// uniform, the two-node branch cost the one-node loop 40 % on llvmpipe.
 float fog_sun_mean_transmittance(fog_ray r) {
 #if FOG_SUN_SHADOW == 3
   return 0.0;
 #elif !FOG_LIGHT_MARCH
   return 1.0;
 #else
-#if FOG_MODEL_KIND == FOG_MODEL_PERLIN
-  if (fog_shadow_pieces != 0) return fog_perlin_sun_mean(r);
+#if FOG_MODEL_KIND == FOG_MODEL_PERLIN && FOG_SHADOW_PIECES
+  return fog_perlin_sun_mean(r);
 #endif
   float t0, t1;
   if (!fog_light_span(r, t0, t1)) return 1.0;
@@ -224,7 +224,8 @@ float fog_sun_mean_transmittance(fog_ray r) {
   // the transmittance cut-off: stop there.
   for (int i = 0; i < fog_shadow_steps && before < fog_depth_limit; i++) {
     float mid = t0 + (float(i) + 0.5) * dt, step_depth, light;
-    if (fog_shadow_nodes == 2) {
+#if FOG_SHADOW_NODES == 2
+    {
       float ta = mid - g * dt, tb = mid + g * dt;
       float ka = fog_light_extinction(r.dir, ta), kb = fog_light_extinction(r.dir, tb);
       step_depth = 0.5 * dt * (ka + kb);
@@ -234,10 +235,11 @@ float fog_sun_mean_transmittance(fog_ray r) {
       light = sa + sb > 0.0 ? (sa * fog_sun_light_at(r.dir, ta) + sb * fog_sun_light_at(r.dir, tb)) /
                                   (sa + sb)
                             : 0.0;
-    } else {
-      step_depth = fog_light_extinction(r.dir, mid) * dt;
-      light = fog_sun_light_at(r.dir, mid);
     }
+#else
+    step_depth = fog_light_extinction(r.dir, mid) * dt;
+    light = fog_sun_light_at(r.dir, mid);
+#endif
     float w = exp(-before) * step_depth * fog_exprel(step_depth);  // 1 - e^-x, no cancellation
     weights += w;
     lit += w * light;

@@ -15,6 +15,8 @@
 //   #define FOG_LAMPS 0|1            (1: point and spot lights, fog_lamps.glsl)
 //   #define FOG_SURFACE_LAMPS 0|1    (1: the fog dims the lamps' light on the surfaces)
 //   #define FOG_FROXEL 0|1|2         (the froxel baseline's fill and lookup, fog_froxel.glsl)
+//   #define FOG_SHADOW_NODES 1|2     (the light mean's nodes a segment or piece, fog_light.glsl)
+//   #define FOG_SHADOW_PIECES 0|1    (1: Perlin fog's mean per piece of its walk)
 //   and the specialisation constants of fog_integral.glsl
 uniform int fog_march_steps;  // FOG_INTEGRATOR 1: samples per ray (every model's marcher)
 #include "fog_integral.glsl"

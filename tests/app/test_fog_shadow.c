@@ -357,7 +357,7 @@ int main(void) {
     c = &cases[n];
     if (!load("configs/perlin_fog.ini", &c->cfg)) {
       c->label = pieces ? "perlin (configs/perlin_fog.ini), per piece"
-                        : "perlin (configs/perlin_fog.ini), 32 segments";
+                        : "perlin (configs/perlin_fog.ini), 8 segments";
       c->cfg.shadow.pieces = pieces;
       n++;
     }
