@@ -90,6 +90,29 @@ int bench_image_option(const char *stage, int argc, char **argv, int *i,
   return 0;
 }
 
+int bench_image_command(const char *stage, int argc, char **argv, bench_image_options *options,
+                        void (*print_help)(void)) {
+  for (int i = 1; i < argc; i++) {
+    int common = bench_image_option(stage, argc, argv, &i, options);
+    if (common < 0) return 2;
+    if (common) continue;
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      print_help();
+      return 0;
+    }
+    fprintf(stderr, "fogpipe bench %s: unknown option '%s' (or it lacks its value)\n", stage,
+            argv[i]);
+    print_help();
+    return 2;
+  }
+  char error[1024];
+  if (bench_make_folder(options->out_dir, error, sizeof error)) {
+    fprintf(stderr, "fogpipe bench %s: %s\n", stage, error);
+    return 1;
+  }
+  return -1;
+}
+
 int bench_make_folder(const char *path, char *error, int size) {
   char buffer[4096];
   snprintf(buffer, sizeof buffer, "%s", path);

@@ -30,6 +30,13 @@ typedef struct bench_image_options {
  * for a bad value. */
 int bench_image_option(const char *stage, int argc, char **argv, int *i,
                        bench_image_options *options);
+/* The whole command line of an image bench that takes only those options and --help:
+ * parses it into *options (print_help for --help; a message naming the bad option, then
+ * print_help, otherwise) and creates options->out_dir. Returns -1 when the bench should
+ * run, else the process's exit status (0 after --help, 2 for a bad option, 1 when the
+ * folder cannot be made). */
+int bench_image_command(const char *stage, int argc, char **argv, bench_image_options *options,
+                        void (*print_help)(void));
 /* Tables: chart_csv_open / chart_csv_close (app/chart.h). */
 #include "app/chart.h"
 /* mkdir -p; non-zero and a message naming the folder on failure. */

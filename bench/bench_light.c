@@ -2,10 +2,13 @@
  * side by side in one run, on the lit default scene (its fogmap, static, through `render`'s
  * fog) and on the plume volume (configs/vdb_plume_volume.ini, the sun from the side):
  *   - unlit: the sun's in-scatter without T_s (fog_self_shadow off): the baseline;
- *   - ours: the tau K-weighted T_s mean over N = 2..32 segments of each ray with the sun's
- *     optical-depth volume at 24^3, 48^3 (the default) and 96^3; and the live setting (the
- *     fog pass at half resolution, upsampled, as the demo runs on a software renderer) at
- *     16 (the default) and 8 steps.
+ *   - ours: the tau K-weighted T_s mean over 2..32 segments of one midpoint and 1..16 of two
+ *     Gauss nodes, with the sun's optical-depth volume at 48^3 (the default), and the
+ *     product's default (8 x 2) at 24^3 and 96^3; the live setting (the fog pass at half
+ *     resolution, upsampled, as the demo runs on a software renderer) at the default and
+ *     half its segments, and a quarter of the resolution;
+ *   - uniform marching of tau and in-scatter together (8..512 samples), and the engines'
+ *     froxel grid (160 x 90 x 64 and 2x, FOG_INTEGRATOR_FROXEL) fed the same fog and light.
  * Time: the fog pass, GL, glFinish before and after, median of --frames rounds after a
  * warm-up; the volume's CPU time (both cores) beside it. Error: the in-scattered radiance
  * against the CPU twin in double converged (FOG_BENCH_LIGHT_STEPS segments, a
@@ -13,10 +16,13 @@
  * independent nested-quadrature reference (test_fog_shadow) to its volume's interpolation
  * error. Relative to the largest in-scatter in view; max and mean.
  * Writes light.csv and light_chart.{csv,png} (max error vs ms). Last line:
- * `light: lit_over_unlit=A lit_over_unlit_full=A2 shadow_volume_ms=V live_max_error=E`:
+ * `light: lit_over_unlit=A lit_over_unlit_full=A2 shadow_volume_ms=V live_max_error=E
+ * froxel_error_ratio_at_equal_time=B march_speedup_at_matched_error=C`:
  * A = the live setting's fog pass / the unlit one at the same (half) resolution, A2 the
  * same at full resolution with the default settings, V the default volume's CPU ms, E the
- * live setting's max relative error. */
+ * live setting's max relative error, B the froxel grid's (1x) max error over our most
+ * accurate setting costing no more time (default scene), C the cheapest marching within
+ * MATCHED_ERROR over our cheapest full-resolution setting within it. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -93,7 +99,8 @@ static void print_help(void) {
          "  --frames N   timed rounds per row, median after one warm-up (default 5)\n"
          "  --out DIR    light.csv, light_chart.csv, light_chart.png (default build/bench/light)\n"
          "Last line: light: lit_over_unlit=A lit_over_unlit_full=A2 shadow_volume_ms=V\n"
-         "live_max_error=E (see the header of bench/bench_light.c).\n");
+         "live_max_error=E froxel_error_ratio_at_equal_time=B march_speedup_at_matched_error=C\n"
+         "(see the header of bench/bench_light.c).\n");
 }
 
 static int scene_create(light_scene *s, const char *name, int W, int H, render_error *err) {
@@ -298,24 +305,10 @@ static light_row *add_row(light_row *rows, int *count, int scene, int resolution
 int bench_light(int argc, char **argv) {
   bench_image_options options = {.width = 640, .height = 360, .frames = 5,
                                  .out_dir = "build/bench/light"};
-  for (int i = 1; i < argc; i++) {
-    int common = bench_image_option("light", argc, argv, &i, &options);
-    if (common < 0) return 2;
-    if (common) continue;
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      print_help();
-      return 0;
-    }
-    fprintf(stderr, "fogpipe bench light: unknown option '%s' (or it lacks its value)\n", argv[i]);
-    print_help();
-    return 2;
-  }
+  int exit_status = bench_image_command("light", argc, argv, &options, print_help);
+  if (exit_status >= 0) return exit_status;
   const int W = options.width, H = options.height, frames = options.frames;
   char error[1024] = "";
-  if (bench_make_folder(options.out_dir, error, sizeof error)) {
-    fprintf(stderr, "fogpipe bench light: %s\n", error);
-    return 1;
-  }
   int status = 1, row_count = 0;
   size_t pixels = (size_t)W * H;
   render_error rerr = {{0}};

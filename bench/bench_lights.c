@@ -207,24 +207,10 @@ static int write_table(const char *path, const lights_row *rows, int count, char
 int bench_lights(int argc, char **argv) {
   bench_image_options options = {.width = 320, .height = 180, .frames = 3,
                                  .out_dir = "build/bench/lights"};
-  for (int i = 1; i < argc; i++) {
-    int common = bench_image_option("lights", argc, argv, &i, &options);
-    if (common < 0) return 2;
-    if (common) continue;
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      print_help();
-      return 0;
-    }
-    fprintf(stderr, "fogpipe bench lights: unknown option '%s' (or it lacks its value)\n", argv[i]);
-    print_help();
-    return 2;
-  }
+  int exit_status = bench_image_command("lights", argc, argv, &options, print_help);
+  if (exit_status >= 0) return exit_status;
   const int W = options.width, H = options.height, frames = options.frames;
   char error[1024] = "";
-  if (bench_make_folder(options.out_dir, error, sizeof error)) {
-    fprintf(stderr, "fogpipe bench lights: %s\n", error);
-    return 1;
-  }
   int status = 1, row_count = 0;
   size_t pixels = (size_t)W * H;
   const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows_e = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;

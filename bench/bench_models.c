@@ -303,26 +303,11 @@ static int time_fit(double *seconds, char *error, int size) {
 int bench_models(int argc, char **argv) {
   bench_image_options options = {.width = 640, .height = 360, .frames = 5,
                                  .out_dir = "build/bench/models"};
-  for (int i = 1; i < argc; i++) {
-    int common = bench_image_option("models", argc, argv, &i, &options);
-    if (common < 0) return 2;
-    if (common) continue;
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      print_help();
-      return 0;
-    }
-    fprintf(stderr, "fogpipe bench models: unknown option '%s' (or it lacks its value)\n",
-            argv[i]);
-    print_help();
-    return 2;
-  }
+  int exit_status = bench_image_command("models", argc, argv, &options, print_help);
+  if (exit_status >= 0) return exit_status;
   const int W = options.width, H = options.height, frames = options.frames;
   const char *out_dir = options.out_dir;
   char error[1024] = "";
-  if (bench_make_folder(out_dir, error, sizeof error)) {
-    fprintf(stderr, "fogpipe bench models: %s\n", error);
-    return 1;
-  }
   double fit_s = 0.0;
   if (time_fit(&fit_s, error, sizeof error)) {
     fprintf(stderr, "fogpipe bench models: %s\n", error);
