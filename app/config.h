@@ -178,7 +178,9 @@ typedef struct scene_shadow_config {
   int steps;           /* segments of the view ray's T_s mean (fog_light.glsl) */
   int nodes;           /* its samples per segment: 1 midpoint, 2 Gauss-Legendre (or per
                           piece, with pieces) */
-  int pieces;          /* 1 (on): Perlin fog's mean per piece of its exact walk */
+  int pieces;          /* the mean per piece of the exact walk (Perlin fog and the volume):
+                          0 off, 1 on, 2 auto (on for Perlin fog only:
+                          scene_config_light_rule resolves it) */
 } scene_shadow_config;
 
 /* [light] lamp and spot lines as written (docs/config.md): a spot's axis as given (made

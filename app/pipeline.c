@@ -991,7 +991,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       .self_shadow = p->shown_self_shadow,
       .shadow_steps = p->config.shadow.steps,
       .shadow_nodes = p->config.shadow.nodes,
-      .shadow_pieces = p->config.shadow.pieces != 0,
+      .shadow_pieces = scene_config_light_rule(&p->config).pieces,
       .shafts = params.sun.albedo > 0 && params.shafts ? scene_pass_sun_shadow(p->scene) : NULL,
       .walk = scene_config_walk(&p->config),
   };

@@ -44,16 +44,16 @@
 static const int step_counts[] = {2, 4, 8, 16, 32};
 static const int resolutions[] = {24, 48, 96};
 static const int march_samples[] = {8, 32, 128, 512};
-enum { STEP_COUNT = 5, RESOLUTION_COUNT = 3, MARCH_COUNT = 4, SCENE_COUNT = 2, MAX_ROWS = 50 };
+enum { STEP_COUNT = 5, RESOLUTION_COUNT = 3, MARCH_COUNT = 4, SCENE_COUNT = 2, MAX_ROWS = 54 };
 /* Ours with two Gauss nodes a segment: 1 .. 16 segments (2 .. 32 samples). */
 enum { NODE_STEP_COUNT = 5 };
 /* The froxel baseline: the engines' 160 x 90 x 64 grid and one 2x finer in each axis. */
 enum { FROXEL_COUNT = 2, FROXEL_COLUMNS = 160, FROXEL_ROWS = 90, FROXEL_SLICES = 64 };
-enum { SCENE_ROWS = 2 + STEP_COUNT + NODE_STEP_COUNT + 7 + MARCH_COUNT + FROXEL_COUNT };
+enum { SCENE_ROWS = 2 + STEP_COUNT + NODE_STEP_COUNT + 8 + MARCH_COUNT + FROXEL_COUNT };
 /* Where a scene's rows start: unlit (full, half), ours midpoint 2..32 steps, ours two nodes
  * 1..16 steps, the product's default setting at 24^3 and 96^3, live (half resolution) at
  * the default and at half its steps, 96^3 x 64 x 2 nodes, a quarter of the resolution
- * (default, half the steps), marching, froxels. */
+ * (default, half the steps), per piece of the exact walk (two nodes), marching, froxels. */
 enum {
   ROW_UNLIT_FULL = 0,
   ROW_UNLIT_HALF = 1,
@@ -74,6 +74,7 @@ typedef struct light_row {
   bool march;     /* uniform ray marching of the whole integral: tau too, `steps` samples */
   int froxel;     /* > 0: the froxel baseline, its grid this many times the engines' */
   int nodes;      /* ours: samples per segment (1 midpoint, 2 Gauss-Legendre) */
+  bool pieces;    /* ours per piece of the exact walk (the volume; the fogmap: segments) */
   char series[64];
   double *times;
   double ms, max_error, mean_error;
@@ -233,6 +234,7 @@ static int draw_row(light_scene *s, const light_row *r, const gl_target *out, re
   s->fog.ground_shadow = r->resolution != 0;
   p->shadow_steps = r->steps;
   p->shadow_nodes = r->nodes;
+  p->shadow_pieces = r->pieces;
   p->resolution_divisor = r->divisor;
   p->integrator = r->froxel ? FOG_INTEGRATOR_FROXEL
                   : r->march ? FOG_INTEGRATOR_MARCH : FOG_INTEGRATOR_EXACT;
@@ -268,7 +270,8 @@ static const light_row *ours_at_froxel_time(const light_row *rows, const light_r
 }
 
 static const char *row_method(const light_row *r) {
-  return !r->resolution ? "unlit" : r->march ? "march" : r->froxel ? "froxel" : "ours";
+  return !r->resolution ? "unlit" : r->march ? "march" : r->froxel ? "froxel"
+         : r->pieces ? "pieces" : "ours";
 }
 
 static int write_table(const char *path, const light_row *rows, int count, char *error,
@@ -346,6 +349,12 @@ int bench_light(int argc, char **argv) {
     if (!add_row(rows, &row_count, s, 48, D, N, 4, frames) ||
         !add_row(rows, &row_count, s, 48, (D + 1) / 2, N, 4, frames))
       goto out_of_memory;
+    /* ours per piece of the exact walk, two nodes (the volume; the fogmap takes segments) */
+    light_row *piece_row = add_row(rows, &row_count, s, 48, D, 2, 1, frames);
+    if (!piece_row) goto out_of_memory;
+    piece_row->pieces = true;
+    snprintf(piece_row->series, sizeof piece_row->series, "%s ours 48^3 per piece",
+             scene_names[s]);
     /* uniform marching of tau and the in-scatter together (negative steps: the marcher) */
     for (int q = 0; q < MARCH_COUNT; q++)
       if (!add_row(rows, &row_count, s, 48, -march_samples[q], 1, 1, frames)) goto out_of_memory;
@@ -415,6 +424,8 @@ int bench_light(int argc, char **argv) {
     char steps[16];
     if (r->froxel)
       snprintf(steps, sizeof steps, "%dx", r->froxel);
+    else if (r->pieces)
+      snprintf(steps, sizeof steps, "piece");
     else
       snprintf(steps, sizeof steps, "%d", r->resolution ? r->steps : 0);
     printf("%-22s %-8s %7s %6s %5d %8s %10.2f %10.2e %10.2e\n", scene_configs[r->scene],
@@ -445,7 +456,7 @@ int bench_light(int argc, char **argv) {
                   *live = &rows[ROW_LIVE], *ours_full = NULL;
   for (int i = 0; i < SCENE_ROWS; i++)
     if (rows[i].resolution == 48 && rows[i].divisor == 1 && !rows[i].march && !rows[i].froxel &&
-        rows[i].steps == live->steps && rows[i].nodes == live->nodes)
+        !rows[i].pieces && rows[i].steps == live->steps && rows[i].nodes == live->nodes)
       ours_full = &rows[i];
   /* C: the cheapest marching within MATCHED_ERROR over our cheapest full-resolution setting
    * within it (each the default scene's); NAN where either has none. */

@@ -83,6 +83,56 @@ double fog_grid3d_optical_depth(const volume_grid_desc *g, const double camera[3
   return sum;
 }
 
+double fog_grid3d_light_integral(const volume_grid_desc *g, const double camera[3],
+                                 const double dir[3], double length, int nodes,
+                                 double depth_limit, fog_point_light_fn light,
+                                 const void *user, double *depth) {
+  *depth = 0.0;
+  double u0[3], du[3], t0, t1;
+  if (nodes < 1 || nodes > FOG_PIECE_MAX_NODES ||
+      !grid3d_stretch(g, camera, dir, length, u0, du, &t0, &t1))
+    return 0.0;
+  double gx[FOG_PIECE_MAX_NODES], gw[FOG_PIECE_MAX_NODES],
+      partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES];
+  fog_gauss_rule(nodes, gx, gw, partial);
+  double ue[3], t_next[3];
+  int cell[3];
+  for (int c = 0; c < 3; c++) {
+    ue[c] = u0[c] + t0 * du[c];
+    cell[c] = (int)floor(ue[c]);
+    t_next[c] = du[c] == 0.0 ? HUGE_VAL : (cell[c] + (du[c] > 0.0) - ue[c]) / du[c];
+  }
+  double len = t1 - t0, t = 0.0, D = 0.0, S = 0.0;
+  while (t < len && D < depth_limit) {
+    double tn = fmin(len, fmin(t_next[0], fmin(t_next[1], t_next[2])));
+    if (tn > t) {
+      double h = 0.5 * (tn - t), mid = 0.5 * (tn + t), K[FOG_PIECE_MAX_NODES];
+      for (int j = 0; j < nodes; j++) {
+        double u[3];
+        for (int c = 0; c < 3; c++) u[c] = ue[c] + (mid + h * gx[j]) * du[c];
+        K[j] = grid3d_sample(g, u);
+      }
+      double piece = 0.0;
+      for (int j = 0; j < nodes; j++) {
+        double dj = 0.0, x[3];
+        for (int q = 0; q < nodes; q++) dj += partial[j][q] * K[q];
+        for (int a = 0; a < 3; a++) x[a] = camera[a] + (t0 + mid + h * gx[j]) * dir[a];
+        S += h * gw[j] * K[j] * exp(-(D + h * dj)) * light(user, x);
+        piece += h * gw[j] * K[j];
+      }
+      D += piece;
+    }
+    for (int c = 0; c < 3; c++)
+      if (t_next[c] <= tn) {
+        cell[c] += du[c] > 0.0 ? 1 : -1;
+        t_next[c] = (cell[c] + (du[c] > 0.0) - ue[c]) / du[c];
+      }
+    t = fmax(t, tn);
+  }
+  *depth = D;
+  return S;
+}
+
 double fog_grid3d_optical_depth_march(const volume_grid_desc *g, double step,
                                       const double camera[3], const double dir[3],
                                       double length) {

@@ -206,6 +206,14 @@ double fog_grid3d_optical_depth(const volume_grid_desc *grid, const double camer
 double fog_grid3d_optical_depth_march(const volume_grid_desc *grid, double step,
                                       const double camera[3], const double dir[3],
                                       double length);
+/* The light a view ray gathers through the volume per lattice cell of its exact walk, as
+ * fog_perlin_light_integral does for Perlin fog: S = int_0^L tau K f du, `nodes` (1..4)
+ * Gauss-Legendre nodes a cell piece, tau at a node from the running depth plus the partial
+ * integral of the polynomial through the piece's nodes; *depth the walk's optical depth. */
+double fog_grid3d_light_integral(const volume_grid_desc *grid, const double camera[3],
+                                 const double dir[3], double length, int nodes,
+                                 double depth_limit, fog_point_light_fn light,
+                                 const void *user, double *depth);
 /* The volume's trilinear K at world point p (zero beyond the outer voxels). */
 double fog_grid3d_extinction_at(const volume_grid_desc *grid, const double p[3]);
 /* erf(u1) - erf(u0) for u0 <= u1 without cancellation: through erfc where both have the

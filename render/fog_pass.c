@@ -652,7 +652,8 @@ static void fog_pass_sun_shadow_uniforms(const fog_pass *pass, GLuint prog, cons
   const double limit = fog_pass_depth_limit(params->walk.transmittance_cutoff);
   glUniform1f(fog_loc(prog, "fog_depth_limit"), limit < 1e30 ? (float)limit : 1e30f);
   glUniform1i(fog_loc(prog, "fog_shadow_steps"), params->shadow_steps);
-  if (params->model == FOG_MODEL_PERLIN) { /* the per-piece mean's rule */
+  if (params->model == FOG_MODEL_PERLIN || params->model == FOG_MODEL_VOLUME) {
+    /* the per-piece mean's rule */
     double x[FOG_PIECE_MAX_NODES], w[FOG_PIECE_MAX_NODES],
         partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES] = {{0}};
     int n = params->shadow_nodes >= 1 && params->shadow_nodes <= FOG_PIECE_MAX_NODES
@@ -1145,7 +1146,9 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
                                  int width, int height, render_error *err) {
   variant.reduced = divisor > 1 ? divisor : 1;
   variant.shadow_nodes = params->shadow_nodes;
-  variant.shadow_pieces = params->model == FOG_MODEL_PERLIN && params->shadow_pieces;
+  variant.shadow_pieces =
+      (params->model == FOG_MODEL_PERLIN || params->model == FOG_MODEL_VOLUME) &&
+      params->shadow_pieces;
   GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;
   GLuint programs[2] = {walk_prog, 0};

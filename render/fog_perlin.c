@@ -301,7 +301,7 @@ void fog_gauss_rule(int n, double x[FOG_PIECE_MAX_NODES], double w[FOG_PIECE_MAX
 
 double fog_perlin_light_integral(const fog_perlin *perlin, const fog_perlin_medium *m,
                                  const double o[3], const double d[3], double length,
-                                 int nodes, double depth_limit, fog_perlin_light_fn light,
+                                 int nodes, double depth_limit, fog_point_light_fn light,
                                  const void *user, double *depth) {
   *depth = 0.0;
   double t0, t1;

@@ -90,7 +90,7 @@ double fog_perlin_optical_depth(const fog_perlin *perlin, const fog_perlin_mediu
  * its nodes. *depth receives the walk's optical depth over [0, length] (the nodes' sum: the
  * exact integral for nodes >= 2 up to the exponential's share, as the depth walk). The
  * walk stops past depth_limit. */
-typedef double (*fog_perlin_light_fn)(const void *user, const double x[3]);
+typedef double (*fog_point_light_fn)(const void *user, const double x[3]);
 #define FOG_PIECE_MAX_NODES 4
 /* The n-node Gauss-Legendre rule on [-1, 1] (n = 1..FOG_PIECE_MAX_NODES): nodes x, weights
  * w, and partial[j][k] = int_{-1}^{x_j} L_k(s) ds, L_k the Lagrange basis on the nodes: the
@@ -100,7 +100,7 @@ void fog_gauss_rule(int n, double x[FOG_PIECE_MAX_NODES], double w[FOG_PIECE_MAX
                     double partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES]);
 double fog_perlin_light_integral(const fog_perlin *perlin, const fog_perlin_medium *medium,
                                  const double o[3], const double d[3], double length,
-                                 int nodes, double depth_limit, fog_perlin_light_fn light,
+                                 int nodes, double depth_limit, fog_point_light_fn light,
                                  const void *user, double *depth);
 
 #endif

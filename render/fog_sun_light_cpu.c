@@ -176,12 +176,19 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
                           double t_surface, fog_sun_visibility_fn visible, const void *user) {
   if (kind == FOG_SUN_SHADOW_NONE && !visible) return 1.0;
   if (kind == FOG_SUN_SHADOW_OPAQUE) return 0.0;
-  if (rule.pieces && m->kind == FOG_MODEL_PERLIN && m->perlin) {
+  if (rule.pieces && ((m->kind == FOG_MODEL_PERLIN && m->perlin) ||
+                      (m->kind == FOG_MODEL_VOLUME && m->grid3d))) {
     /* per piece of the exact walk: S over 1 - e^{-D} of the same walk */
     sun_light_user u = {m, kind, volume, visible, user};
-    fog_perlin_medium medium = fog_model_perlin_medium(m);
-    double D, S = fog_perlin_light_integral(m->perlin, &medium, o, d, t_surface, rule.nodes,
-                                            depth_limit, sun_light_point, &u, &D);
+    double D, S;
+    if (m->kind == FOG_MODEL_PERLIN) {
+      fog_perlin_medium medium = fog_model_perlin_medium(m);
+      S = fog_perlin_light_integral(m->perlin, &medium, o, d, t_surface, rule.nodes,
+                                    depth_limit, sun_light_point, &u, &D);
+    } else {
+      S = fog_grid3d_light_integral(m->grid3d, o, d, t_surface, rule.nodes, depth_limit,
+                                    sun_light_point, &u, &D);
+    }
     return D > 0.0 ? S / -expm1(-D) : 1.0;
   }
   const int steps = rule.steps, nodes = rule.nodes;

@@ -113,15 +113,59 @@ float fog_sun_light_at(vec3 dir, float t) {
   return exp(-fog_sun_optical_depth(t * dir)) * fog_sun_visible(t * dir);
 }
 
+#if FOG_MODEL_KIND == FOG_MODEL_PERLIN || FOG_MODEL_KIND == FOG_MODEL_VOLUME
+const int fog_piece_nodes = FOG_SHADOW_NODES > 0 ? FOG_SHADOW_NODES : 1;
+uniform float fog_piece_x[4], fog_piece_w[4];
+uniform mat4 fog_piece_partial;
+#endif
+
+#if FOG_MODEL_KIND == FOG_MODEL_VOLUME
+// The volume's mean per lattice cell of its exact walk (fog_grid3d_light_integral in C):
+// fog_piece_nodes Gauss nodes a cell piece, tau at a node from the running depth and the
+// piece's polynomial through its nodes; S / (1 - e^{-D}) of the same walk.
+float fog_grid3d_sun_mean(fog_ray r) {
+  vec3 u0, du;
+  float t0, t1;
+  if (!fog_grid3d_stretch(r.dir, r.t_surface, u0, du, t0, t1)) return 1.0;
+  vec3 ue = u0 + t0 * du;
+  fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
+           az = fog_axis_start(ue.z, du.z, 0.0);
+  float len = t1 - t0, t = 0.0, D = 0.0, S = 0.0;
+  for (int guard = 0; t < len && D < fog_depth_limit && guard < 65536; guard++) {
+    float tx = fog_axis_next(ax), ty = fog_axis_next(ay), tz = fog_axis_next(az);
+    float tn = min(min(len, tx), min(ty, tz));
+    if (tn > t) {
+      ivec3 c = ivec3(ax.cell, ay.cell, az.cell);
+      fog_grid3d_cell cell = fog_grid3d_cell_load(c);
+      vec3 f = ue - vec3(c);
+      float h = 0.5 * (tn - t), mid = 0.5 * (tn + t), K[4];
+      for (int j = 0; j < fog_piece_nodes; j++)
+        K[j] = fog_grid3d_cell_value(cell, f + (mid + h * fog_piece_x[j]) * du);
+      float piece = 0.0;
+      for (int j = 0; j < fog_piece_nodes; j++) {
+        float dj = 0.0;
+        for (int q = 0; q < fog_piece_nodes; q++) dj += fog_piece_partial[j][q] * K[q];
+        S += h * fog_piece_w[j] * K[j] * exp(-(D + h * dj)) *
+             fog_sun_light_at(r.dir, t0 + mid + h * fog_piece_x[j]);
+        piece += h * fog_piece_w[j] * K[j];
+      }
+      D += piece;
+    }
+    if (tx <= tn) ax.cell += ax.step;
+    if (ty <= tn) ay.cell += ay.step;
+    if (tz <= tn) az.cell += az.step;
+    t = max(t, tn);
+  }
+  return D > 0.0 ? S / (D * fog_exprel(D)) : 1.0;
+}
+#endif
+
 #if FOG_MODEL_KIND == FOG_MODEL_PERLIN
 // Perlin fog's mean per piece of its exact walk (fog_perlin_light_integral in C): every
 // octave walked at once, fog_piece_nodes Gauss nodes on each piece between texel planes of
 // any octave (cut where the height exponent moves by 1/2), tau at a node from the walk's
 // running depth and the piece's polynomial through its nodes (fog_piece_partial[j][k]);
 // the mean is S / (1 - e^{-D}) of the same walk.
-const int fog_piece_nodes = FOG_SHADOW_NODES > 0 ? FOG_SHADOW_NODES : 1;
-uniform float fog_piece_x[4], fog_piece_w[4];
-uniform mat4 fog_piece_partial;
 float fog_perlin_sun_mean(fog_ray r) {
   float t0, t1;
   if (fog_model_extinction == 0.0 ||
@@ -215,6 +259,8 @@ float fog_sun_mean_transmittance(fog_ray r) {
 #else
 #if FOG_MODEL_KIND == FOG_MODEL_PERLIN && FOG_SHADOW_PIECES
   return fog_perlin_sun_mean(r);
+#elif FOG_MODEL_KIND == FOG_MODEL_VOLUME && FOG_SHADOW_PIECES
+  return fog_grid3d_sun_mean(r);
 #endif
   float t0, t1;
   if (!fog_light_span(r, t0, t1)) return 1.0;

@@ -295,7 +295,7 @@ static int load(const char *path, scene_config *cfg) {
 }
 
 int main(void) {
-  static model_case cases[8];
+  static model_case cases[10];
   int n = 0;
   model_case *c = &cases[n];
   if (!load("configs/default.ini", &c->cfg)) {
@@ -337,6 +337,13 @@ int main(void) {
   if (!load("configs/vdb_plume_volume.ini", &c->cfg)) {
     c->label = "volume (configs/vdb_plume_volume.ini)";
     c->cfg.light.sun_azimuth = 75, c->cfg.light.sun_elevation = 20;
+    n++;
+  }
+  c = &cases[n];
+  if (!load("configs/vdb_plume_volume.ini", &c->cfg)) {
+    c->label = "volume (configs/vdb_plume_volume.ini), per piece";
+    c->cfg.light.sun_azimuth = 75, c->cfg.light.sun_elevation = 20;
+    c->cfg.shadow.pieces = 1;
     n++;
   }
   c = &cases[n];
