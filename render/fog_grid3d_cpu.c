@@ -49,35 +49,56 @@ static int grid3d_stretch(const volume_grid_desc *g, const double camera[3], con
   return *t0 < *t1;
 }
 
+/* The 3D DDA over index space's lattice cells from the ray's entry ue (parameter 0):
+ * cell[c] = floor(u), the next lattice plane along axis c at t_next[c]. */
+typedef struct grid3d_dda {
+  double ue[3], du[3], t_next[3];
+  int cell[3];
+} grid3d_dda;
+
+static grid3d_dda grid3d_dda_start(const double u0[3], const double du[3], double t0) {
+  grid3d_dda w;
+  for (int c = 0; c < 3; c++) {
+    w.du[c] = du[c];
+    w.ue[c] = u0[c] + t0 * du[c];
+    w.cell[c] = (int)floor(w.ue[c]);
+    w.t_next[c] = du[c] == 0.0 ? HUGE_VAL : (w.cell[c] + (du[c] > 0.0) - w.ue[c]) / du[c];
+  }
+  return w;
+}
+
+/* The end of the piece from t (capped at len). */
+static double grid3d_dda_piece_end(const grid3d_dda *w, double len) {
+  return fmin(len, fmin(w->t_next[0], fmin(w->t_next[1], w->t_next[2])));
+}
+
+/* Past the piece that ends at tn: every axis whose plane it reached steps on. */
+static void grid3d_dda_step(grid3d_dda *w, double tn) {
+  for (int c = 0; c < 3; c++)
+    if (w->t_next[c] <= tn) {
+      w->cell[c] += w->du[c] > 0.0 ? 1 : -1;
+      w->t_next[c] = (w->cell[c] + (w->du[c] > 0.0) - w->ue[c]) / w->du[c];
+    }
+}
+
 double fog_grid3d_optical_depth(const volume_grid_desc *g, const double camera[3],
                                 const double dir[3], double length) {
   double u0[3], du[3], t0, t1;
   if (!grid3d_stretch(g, camera, dir, length, u0, du, &t0, &t1)) return 0.0;
-  /* DDA from the entry: cell[c] = floor(u), the next lattice plane at t_next[c]. */
-  double ue[3], t_next[3];
-  int cell[3];
-  for (int c = 0; c < 3; c++) {
-    ue[c] = u0[c] + t0 * du[c];
-    cell[c] = (int)floor(ue[c]);
-    t_next[c] = du[c] == 0.0 ? HUGE_VAL : (cell[c] + (du[c] > 0.0) - ue[c]) / du[c];
-  }
+  grid3d_dda w = grid3d_dda_start(u0, du, t0);
   const double node = 0.57735026918962576; /* 1/sqrt(3): two-point Gauss-Legendre */
   double len = t1 - t0, t = 0.0, sum = 0.0;
   while (t < len) {
-    double tn = fmin(len, fmin(t_next[0], fmin(t_next[1], t_next[2])));
+    double tn = grid3d_dda_piece_end(&w, len);
     if (tn > t) {
       double half = 0.5 * (tn - t), mid = 0.5 * (tn + t);
       for (int s = -1; s <= 1; s += 2) {
         double u[3];
-        for (int c = 0; c < 3; c++) u[c] = ue[c] + (mid + s * node * half) * du[c];
+        for (int c = 0; c < 3; c++) u[c] = w.ue[c] + (mid + s * node * half) * du[c];
         sum += half * grid3d_sample(g, u);
       }
     }
-    for (int c = 0; c < 3; c++)
-      if (t_next[c] <= tn) {
-        cell[c] += du[c] > 0.0 ? 1 : -1;
-        t_next[c] = (cell[c] + (du[c] > 0.0) - ue[c]) / du[c];
-      }
+    grid3d_dda_step(&w, tn);
     t = fmax(t, tn);
   }
   return sum;
@@ -95,21 +116,15 @@ double fog_grid3d_light_integral(const volume_grid_desc *g, const double camera[
   double gx[FOG_PIECE_MAX_NODES], gw[FOG_PIECE_MAX_NODES],
       partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES];
   fog_gauss_rule(nodes, gx, gw, partial);
-  double ue[3], t_next[3];
-  int cell[3];
-  for (int c = 0; c < 3; c++) {
-    ue[c] = u0[c] + t0 * du[c];
-    cell[c] = (int)floor(ue[c]);
-    t_next[c] = du[c] == 0.0 ? HUGE_VAL : (cell[c] + (du[c] > 0.0) - ue[c]) / du[c];
-  }
+  grid3d_dda w = grid3d_dda_start(u0, du, t0);
   double len = t1 - t0, t = 0.0, D = 0.0, S = 0.0;
   while (t < len && D < depth_limit) {
-    double tn = fmin(len, fmin(t_next[0], fmin(t_next[1], t_next[2])));
+    double tn = grid3d_dda_piece_end(&w, len);
     if (tn > t) {
       double h = 0.5 * (tn - t), mid = 0.5 * (tn + t), K[FOG_PIECE_MAX_NODES];
       for (int j = 0; j < nodes; j++) {
         double u[3];
-        for (int c = 0; c < 3; c++) u[c] = ue[c] + (mid + h * gx[j]) * du[c];
+        for (int c = 0; c < 3; c++) u[c] = w.ue[c] + (mid + h * gx[j]) * du[c];
         K[j] = grid3d_sample(g, u);
       }
       double piece = 0.0;
@@ -122,11 +137,7 @@ double fog_grid3d_light_integral(const volume_grid_desc *g, const double camera[
       }
       D += piece;
     }
-    for (int c = 0; c < 3; c++)
-      if (t_next[c] <= tn) {
-        cell[c] += du[c] > 0.0 ? 1 : -1;
-        t_next[c] = (cell[c] + (du[c] > 0.0) - ue[c]) / du[c];
-      }
+    grid3d_dda_step(&w, tn);
     t = fmax(t, tn);
   }
   *depth = D;

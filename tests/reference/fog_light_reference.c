@@ -370,3 +370,8 @@ light_ref_medium light_ref_height_medium(const light_ref_height *h) {
   m.box_max[1] = h->y0 + 700.0 * h->scale_height;
   return m;
 }
+
+double light_ref_sun_point_light(const void *user, const double x[3]) {
+  const light_ref_sun_point *u = user;
+  return light_ref_sun_transmittance(u->medium, x, u->sun, u->tol);
+}

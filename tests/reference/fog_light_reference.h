@@ -64,6 +64,15 @@ double light_ref_sun_inscatter(const light_ref_medium *m, const double o[3], con
                                double t_surf, const double sun_dir[3], int shadowed, double tol,
                                double *tau);
 
+/* T_s at x through `medium` towards unit `sun` to `tol`, as a callback (user: this struct):
+ * the exact sun light handed to the renderer's per-piece walks (fog_point_light_fn). */
+typedef struct light_ref_sun_point {
+  const light_ref_medium *medium;
+  double sun[3];
+  double tol;
+} light_ref_sun_point;
+double light_ref_sun_point_light(const void *user, const double x[3]);
+
 /* The fogmap model K = extinction f(x, z) g(y) (render/fog_field.h): the density is
  * fog_extinction_oracle (brute-force B-spline sums), the box fog_box_oracle, the breaks the
  * knot lines of f in x and z, the knots of a B-spline profile and y0 of the exponential

@@ -46,16 +46,6 @@ static int ref_stretch(const fog_perlin *p, const double o[3], const double d[3]
   return hi > lo;
 }
 
-/* T_s at x by the reference's nested quadrature towards the sun. */
-typedef struct sun_ref {
-  const light_ref_medium *medium;
-  double sun[3];
-} sun_ref;
-
-static double sun_ref_light(const void *user, const double x[3]) {
-  const sun_ref *u = user;
-  return light_ref_sun_transmittance(u->medium, x, u->sun, 1e-10);
-}
 
 int main(void) {
   render_error err = {{0}};
@@ -169,7 +159,7 @@ int main(void) {
     fog_perlin_medium m = {.extinction = 0.05, .y0 = 2.0, .scale_height = 6.0, .time = 1.5,
                            .integral = FOG_PERLIN_EXACT};
     light_ref_medium medium = light_ref_perlin_medium(&p, &m);
-    sun_ref user = {.medium = &medium, .sun = {0.6, 0.35, -0.72}};
+    light_ref_sun_point user = {.medium = &medium, .tol = 1e-10, .sun = {0.6, 0.35, -0.72}};
     double norm = 0;
     for (int a = 0; a < 3; a++) norm += user.sun[a] * user.sun[a];
     for (int a = 0; a < 3; a++) user.sun[a] /= sqrt(norm);
@@ -184,7 +174,7 @@ int main(void) {
       CHECK(s_ref == s_ref && s_ref > 1e-3, "light ray %d: reference S %g", r, s_ref);
       for (int nodes = 1; nodes <= 3; nodes++) {
         double D, S = fog_perlin_light_integral(&p, &m, o, d, 45.0, nodes, HUGE_VAL,
-                                                sun_ref_light, &user, &D);
+                                                light_ref_sun_point_light, &user, &D);
         worst[nodes - 1] = fmax(worst[nodes - 1], fabs(S - s_ref) / s_ref);
         if (nodes == 3) worst_depth = fmax(worst_depth, fabs(exp(-D) - ref_tau));
       }

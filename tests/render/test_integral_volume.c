@@ -62,16 +62,6 @@ static int compare_doubles(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-/* T_s at x by the reference's nested quadrature towards the sun. */
-typedef struct sun_ref {
-  const light_ref_medium *medium;
-  double sun[3];
-} sun_ref;
-
-static double sun_ref_light(const void *user, const double x[3]) {
-  const sun_ref *u = user;
-  return light_ref_sun_transmittance(u->medium, x, u->sun, 1e-10);
-}
 
 /* Light per lattice cell against the reference (see the header). */
 static void check_light(void) {
@@ -82,7 +72,7 @@ static void check_light(void) {
                         .index_from_world = {{0.5, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 0.5}},
                         .index_offset = {2.0, 1.0, 3.0}};
   light_ref_medium medium = light_ref_volume_medium(&g);
-  sun_ref user = {.medium = &medium, .sun = {0.5, 0.6, -0.62}};
+  light_ref_sun_point user = {.medium = &medium, .tol = 1e-10, .sun = {0.5, 0.6, -0.62}};
   fog_test_unit(user.sun);
   double worst[3] = {0, 0, 0}, worst_tau = 0;
   for (int r = 0; r < 4; r++) {
@@ -92,8 +82,8 @@ static void check_light(void) {
                                                     &ref_tau);
     CHECK(s_ref == s_ref && s_ref > 1e-3, "light ray %d: reference S %g", r, s_ref);
     for (int nodes = 1; nodes <= 3; nodes++) {
-      double D, S = fog_grid3d_light_integral(&g, o, d, HUGE_VAL, nodes, HUGE_VAL, sun_ref_light,
-                                              &user, &D);
+      double D, S = fog_grid3d_light_integral(&g, o, d, HUGE_VAL, nodes, HUGE_VAL,
+                                              light_ref_sun_point_light, &user, &D);
       worst[nodes - 1] = fmax(worst[nodes - 1], fabs(S - s_ref) / s_ref);
       if (nodes == 2) worst_tau = fmax(worst_tau, fabs(exp(-D) - ref_tau));
     }
