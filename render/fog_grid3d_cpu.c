@@ -127,15 +127,13 @@ double fog_grid3d_light_integral(const volume_grid_desc *g, const double camera[
         for (int c = 0; c < 3; c++) u[c] = w.ue[c] + (mid + h * gx[j]) * du[c];
         K[j] = grid3d_sample(g, u);
       }
-      double piece = 0.0;
+      double f[FOG_PIECE_MAX_NODES];
       for (int j = 0; j < nodes; j++) {
-        double dj = 0.0, x[3];
-        for (int q = 0; q < nodes; q++) dj += partial[j][q] * K[q];
+        double x[3];
         for (int a = 0; a < 3; a++) x[a] = camera[a] + (t0 + mid + h * gx[j]) * dir[a];
-        S += h * gw[j] * K[j] * exp(-(D + h * dj)) * light(user, x);
-        piece += h * gw[j] * K[j];
+        f[j] = light(user, x);
       }
-      D += piece;
+      S += fog_piece_light(nodes, gw, partial, h, K, f, &D);
     }
     grid3d_dda_step(&w, tn);
     t = fmax(t, tn);

@@ -299,6 +299,21 @@ void fog_gauss_rule(int n, double x[FOG_PIECE_MAX_NODES], double w[FOG_PIECE_MAX
     }
 }
 
+double fog_piece_light(int n, const double w[FOG_PIECE_MAX_NODES],
+                       const double partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES], double h,
+                       const double K[FOG_PIECE_MAX_NODES], const double f[FOG_PIECE_MAX_NODES],
+                       double *depth) {
+  double S = 0.0, piece = 0.0;
+  for (int j = 0; j < n; j++) {
+    double dj = 0.0;
+    for (int q = 0; q < n; q++) dj += partial[j][q] * K[q];
+    S += h * w[j] * K[j] * exp(-(*depth + h * dj)) * f[j];
+    piece += h * w[j] * K[j];
+  }
+  *depth += piece;
+  return S;
+}
+
 double fog_perlin_light_integral(const fog_perlin *perlin, const fog_perlin_medium *m,
                                  const double o[3], const double d[3], double length,
                                  int nodes, double depth_limit, fog_point_light_fn light,
@@ -356,15 +371,13 @@ double fog_perlin_light_integral(const fog_perlin *perlin, const fog_perlin_medi
           K[j] = m->extinction * exp(-(y_entry + tj[j] * d[1] - m->y0) / m->scale_height) *
                  turbulence;
         }
-        double piece_depth = 0.0;
+        double f[FOG_PIECE_MAX_NODES];
         for (int j = 0; j < nodes; j++) {
-          double dj = 0.0, x[3];
-          for (int q = 0; q < nodes; q++) dj += partial[j][q] * K[q];
+          double x[3];
           for (int a = 0; a < 3; a++) x[a] = o[a] + (t0 + tj[j]) * d[a];
-          S += h * gw[j] * K[j] * exp(-(D + h * dj)) * light(user, x);
-          piece_depth += h * gw[j] * K[j];
+          f[j] = light(user, x);
         }
-        D += piece_depth;
+        S += fog_piece_light(nodes, gw, partial, h, K, f, &D);
       }
     }
     for (int i = 0; i < octaves; i++)
