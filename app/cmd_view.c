@@ -212,10 +212,13 @@ static int view_open(view_state *v, volume_playback *playback, const scene_confi
   v->geo_made = true;
   if (!(v->scene = scene_pass_create(&v->geo, err))) return 1;
   const fog_lamps lamps = scene_config_fog_lamps(cfg);
-  scene_pass_set_lamps(v->scene, &lamps);
+  if (scene_pass_set_lamp_shadows(v->scene, scene_config_lamp_shadow_size(cfg), err) ||
+      scene_pass_set_lamps(v->scene, &lamps, err))
+    return 1;
   if (scene_config_has_fog(cfg)) {
     if (render_fog_create(&v->fog, cfg, err)) return 1;
     render_fog_set_shafts(&v->fog, cfg, scene_pass_sun_shadow(v->scene));
+    render_fog_set_lamp_shadows(&v->fog, scene_pass_lamp_shadows(v->scene));
     v->has_fog = true;
   }
   playback->playing = opts->play;

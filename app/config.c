@@ -159,6 +159,8 @@ static const key_spec keys[] = {
     {"light", "lamp_span_pieces", V_INT, F(lamp_method.span_pieces), 0, 256, NULL, 0, 0},
     {"light", "lamp_depth_steps", V_INT, F(lamp_method.depth_steps), 1, FOG_LAMP_MAX_DEPTH_STEPS, NULL, 0, 0},
     {"light", "lamp_shadow_steps", V_INT, F(lamp_method.shadow_steps), 1, 1024, NULL, 0, 0},
+    {"light", "lamp_shadows", V_ENUM, F(shadow.lamp_shadows), 0, 0, "off|on", 0, 0},
+    {"light", "lamp_shadow_size", V_INT, F(shadow.lamp_shadow_size), LAMP_SHADOW_SIZE_MIN, LAMP_SHADOW_SIZE_MAX, NULL, 0, 0},
     {"render", "width", V_INT, F(width), 1, 16384, NULL, 0, 0},
     {"render", "height", V_INT, F(height), 1, 16384, NULL, 0, 0},
     {"render", "transmittance_cutoff", V_DOUBLE, F(transmittance_cutoff), 0, 0.5, NULL, 0, 0},
@@ -193,7 +195,7 @@ void scene_config_init(scene_config *cfg) {
                   .seed = 1, .lod_error = 1.0},
       .light = scene_light_default(),
       .shadow = {.fog_self_shadow = 1, .shafts = 1, .resolution = 48, .steps = 8, .nodes = 2,
-                 .pieces = 2},
+                 .pieces = 2, .lamp_shadows = 1, .lamp_shadow_size = LAMP_SHADOW_SIZE},
       .lamp_method = {.angle_pieces = FOG_LAMP_ANGLE_PIECES,
                       .span_pieces = FOG_LAMP_SPAN_PIECES, .march_steps = 64, .depth_steps = FOG_LAMP_DEPTH_STEPS,
                       .shadow_steps = FOG_LAMP_SHADOW_STEPS},
@@ -1123,6 +1125,10 @@ bool scene_config_lamps_animated(const scene_config *cfg) {
   for (int i = 0; i < cfg->lamp_count; i++)
     if (cfg->lamps[i].key_count > 0 || cfg->lamps[i].flicker_amount > 0) return true;
   return false;
+}
+
+int scene_config_lamp_shadow_size(const scene_config *cfg) {
+  return cfg->shadow.lamp_shadows ? cfg->shadow.lamp_shadow_size : 0;
 }
 
 /* A lamp's position at `time`: straight between its keys, held before and after. */

@@ -181,6 +181,8 @@ typedef struct scene_shadow_config {
   int pieces;          /* the mean per piece of the exact walk (Perlin fog and the volume):
                           0 off, 1 on, 2 auto (on for Perlin fog only:
                           scene_config_light_rule resolves it) */
+  int lamp_shadows;     /* 1 (on): each lamp's shadow cube, V_i in the fog and on surfaces */
+  int lamp_shadow_size; /* its texels per face side (LAMP_SHADOW_SIZE_MIN..MAX) */
 } scene_shadow_config;
 
 /* [light] lamp and spot lines as written (docs/config.md): a spot's axis as given (made
@@ -276,6 +278,9 @@ fog_lamps scene_config_fog_lamps(const scene_config *cfg);
 fog_lamps scene_config_fog_lamps_at(const scene_config *cfg, double time);
 /* Whether any lamp moves or flickers (frames must then set the lamps of their time). */
 bool scene_config_lamps_animated(const scene_config *cfg);
+/* The lamp shadow cubes' size for scene_pass_set_lamp_shadows: [light] lamp_shadow_size, or
+ * 0 with lamp_shadows = off. */
+int scene_config_lamp_shadow_size(const scene_config *cfg);
 /* The scene pass's description. heights (may be NULL) are the loaded heightmap (values in
  * [0, 1], width x height) when cfg->terrain.heightmap is set. */
 void scene_config_scene_desc(const scene_config *cfg, const float *heights, int width,

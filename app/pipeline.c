@@ -584,10 +584,12 @@ static int load_scene(pipeline *p, pipeline_error *err) {
   /* Terrain LOD in the live demo only: recordings draw the full mesh (their depth is the
    * exact first hit, as render's). */
   if (!p->scene ||
-      scene_pass_set_terrain_lod(p->scene, p->live ? p->config.terrain.lod_error : 0.0, &rerr))
+      scene_pass_set_terrain_lod(p->scene, p->live ? p->config.terrain.lod_error : 0.0, &rerr) ||
+      scene_pass_set_lamp_shadows(p->scene, scene_config_lamp_shadow_size(&p->config), &rerr))
     return fail(err, "scene pass: %s", rerr.message);
   p->shown_lamps = scene_config_fog_lamps(&p->config);
-  scene_pass_set_lamps(p->scene, &p->shown_lamps);
+  if (scene_pass_set_lamps(p->scene, &p->shown_lamps, &rerr))
+    return fail(err, "scene pass: %s", rerr.message);
   p->lamps_animated = scene_config_lamps_animated(&p->config);
   p->shown_lamps_time = NAN;
   return 0;
@@ -942,6 +944,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
     scene_light_sun_direction(light, p->geometry.sun_direction);
     p->scene_current = false;
   }
+  render_error lamp_err = {{0}};
   if (!p->lamps_animated) {
     pthread_mutex_lock(&p->lock);
     const fog_lamps placed = p->params.lamps;
@@ -949,7 +952,8 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
     if (!fog_lamps_equal(&placed, &p->shown_lamps)) {
       /* the panel placed, moved or removed a lamp: the surfaces are lit anew */
       p->shown_lamps = placed;
-      scene_pass_set_lamps(p->scene, &p->shown_lamps);
+      if (scene_pass_set_lamps(p->scene, &p->shown_lamps, &lamp_err))
+        return fail(err, "lamps: %s", lamp_err.message);
       p->scene_current = false;
     }
   } else {
@@ -957,7 +961,8 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
     if (!(time == p->shown_lamps_time)) {
       p->shown_lamps = scene_config_fog_lamps_at(&p->config, time);
       p->shown_lamps_time = time;
-      scene_pass_set_lamps(p->scene, &p->shown_lamps);
+      if (scene_pass_set_lamps(p->scene, &p->shown_lamps, &lamp_err))
+        return fail(err, "lamps: %s", lamp_err.message);
       p->scene_current = false;
     }
   }
@@ -993,6 +998,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       .shadow_nodes = p->config.shadow.nodes,
       .shadow_pieces = scene_config_light_rule(&p->config).pieces,
       .shafts = params.sun.albedo > 0 && params.shafts ? scene_pass_sun_shadow(p->scene) : NULL,
+      .lamp_shadows = scene_pass_lamp_shadows(p->scene),
       .walk = scene_config_walk(&p->config),
   };
   if (pipeline_fog_render(p->fog, cam, &p->scene_target, &settings, &rerr))

@@ -94,6 +94,7 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .shadow_nodes = settings->shadow_nodes,
       .shadow_pieces = settings->shadow_pieces,
       .shafts = settings->shafts,
+      .lamp_shadows = settings->lamp_shadows,
       .walk = settings->walk,
       .surface_sun = settings->self_shadow != FOG_SUN_SHADOW_NONE ? scene->color[2] : 0,
       .surface_lamps = scene->color[3],

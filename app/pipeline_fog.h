@@ -34,6 +34,7 @@ typedef struct pipeline_fog_settings {
   int shadow_steps, shadow_nodes;
   bool shadow_pieces;
   const sun_shadow_map *shafts; /* fog_pass_params.shafts: NULL none */
+  const lamp_shadow_maps *lamp_shadows; /* fog_pass_params.lamp_shadows: NULL none */
   fog_walk_settings walk;       /* fog_pass_params.walk */
 } pipeline_fog_settings;
 

@@ -189,6 +189,10 @@ void render_fog_set_shafts(render_fog *fog, const scene_config *cfg, const sun_s
   fog->shafts = cfg->fog.albedo > 0 && cfg->shadow.shafts ? map : NULL;
 }
 
+void render_fog_set_lamp_shadows(render_fog *fog, const lamp_shadow_maps *maps) {
+  fog->lamp_shadows = maps;
+}
+
 fog_model render_fog_model(render_fog *fog) {
   const fog_pass_params *p = &fog->params;
   fog->lod = (fog_lod){.levels = fog->pyramid.levels, .approx = fog->pyramid.approx,
@@ -526,6 +530,7 @@ int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
   fog->params.surface_sun = fog->ground_shadow ? scene->color[2] : 0; /* 0: no attachment 2 */
   fog->params.surface_lamps = scene->color[3]; /* the lamps' share (0: none) */
   fog->params.shafts = fog->shafts;
+  fog->params.lamp_shadows = fog->lamp_shadows;
   return fog_pass_draw(fog->pass, cam, &fog->params, scene->color[0], scene->color[1],
                        scene->width, scene->height, err);
 }

@@ -33,6 +33,8 @@ typedef struct render_fog {
   bool ground_shadow;
   /* Light shafts: the scene pass's sun shadow map (render_fog_set_shafts); NULL: none. */
   const sun_shadow_map *shafts;
+  /* The lamps' shadow cubes (render_fog_set_lamp_shadows); NULL: none. */
+  const lamp_shadow_maps *lamp_shadows;
   fog_lod lod;                     /* model = fogmap: the pyramid as render_fog_model's */
   const volume_grid_desc *grid3d;  /* model = volume: the grid shown, while it is at hand */
   /* model = volume played (render_fog_set_volume_time): the last two VDB frames read (a
@@ -83,6 +85,9 @@ int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,
 /* The scene pass's sun shadow map for light shafts ([light] shafts, with albedo > 0); the
  * map must outlive the fog's draws. */
 void render_fog_set_shafts(render_fog *fog, const scene_config *cfg, const sun_shadow_map *map);
+/* The scene pass's lamp shadow cubes (scene_pass_lamp_shadows, for the same lamps as the
+ * fog's), read at each draw. */
+void render_fog_set_lamp_shadows(render_fog *fog, const lamp_shadow_maps *maps);
 /* The fog as the model table sees it (fog_models.h), pointing into fog (the volume's grid
  * only while render_fog has it: during creation and set_volume_time). Its eye is the
  * origin: the classic factors (linear, exp2) count distances from the camera that draws

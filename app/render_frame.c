@@ -62,7 +62,9 @@ int render_scene_create(render_scene *s, const scene_config *cfg, int width, int
   s->pass = scene_pass_create(&s->geo, err);
   if (!s->pass || scene_target_create(&s->target, width, height, err)) goto done;
   const fog_lamps lamps = scene_config_fog_lamps(cfg);
-  scene_pass_set_lamps(s->pass, &lamps);
+  if (scene_pass_set_lamp_shadows(s->pass, scene_config_lamp_shadow_size(cfg), err) ||
+      scene_pass_set_lamps(s->pass, &lamps, err))
+    goto done;
   s->distance = malloc((size_t)width * height * sizeof *s->distance);
   if (!s->distance) {
     snprintf(err->message, sizeof err->message, "out of memory");
@@ -118,7 +120,10 @@ render_session *render_session_create(const scene_config *cfg, int width, int he
                                           .color_formats = {GL_RGBA32F, GL_R32F, GL_RGBA32F}},
                         &rerr)))
     goto fail;
-  if (s->has_fog) render_fog_set_shafts(&s->fog, cfg, scene_pass_sun_shadow(s->scene.pass));
+  if (s->has_fog) {
+    render_fog_set_shafts(&s->fog, cfg, scene_pass_sun_shadow(s->scene.pass));
+    render_fog_set_lamp_shadows(&s->fog, scene_pass_lamp_shadows(s->scene.pass));
+  }
   s->config = *cfg;
   s->lamps_animated = scene_config_lamps_animated(cfg);
   return s;
@@ -141,9 +146,12 @@ int render_session_set_time(render_session *s, double time, render_frame_error *
   if (!s->lamps_animated) return 0;
   const fog_lamps lamps = scene_config_fog_lamps_at(&s->config, time);
   if (s->has_fog) s->fog.params.lamps = lamps;
-  scene_pass_set_lamps(s->scene.pass, &lamps);
-  scene_pass_run(s->scene.pass, &s->scene.cam, &s->scene.target);
   render_error rerr = {0};
+  if (scene_pass_set_lamps(s->scene.pass, &lamps, &rerr)) {
+    snprintf(err->message, sizeof err->message, "%s", rerr.message);
+    return 1;
+  }
+  scene_pass_run(s->scene.pass, &s->scene.cam, &s->scene.target);
   if (gl_util_check("render: lamps", &rerr)) {
     snprintf(err->message, sizeof err->message, "%s", rerr.message);
     return 1;

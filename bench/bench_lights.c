@@ -1,6 +1,6 @@
 /* fogpipe bench lights: lamps in the fog (docs/light.md, Lamps), speed against accuracy,
  * side by side in one run, on two scenes:
- *   - valley: configs/night_lamps.ini, 8 lamps (a spot among them) in the default scene's
+ *   - valley: configs/night_lamps.ini, 9 lamps (a spot among them) in the default scene's
  *     fogmap (static: the simulation's initial fog, through `render`'s fog);
  *   - tube: configs/rbf_lamp_tube.ini, Fogshop's shaft scene (59 Gaussians, a lamp inside).
  * Rows per scene: unlit (no lamps: the baseline); ours at 4+4, 8+8 (the default), 12+12,
@@ -14,7 +14,7 @@
  * Fogshop's against the converged twin.
  * Writes lights.csv and lights_chart.{csv,png}. Last line:
  * `lights: ms_per_light=A march_speedup_at_matched_error=B fogshop_halo_error_ratio=C`:
- * A = (valley, ours default - unlit) / 8 lamps, scaled to 640x360 by pixels; B = on the tube, the cheapest marching
+ * A = (valley, ours default - unlit) / its lamps, scaled to 640x360 by pixels; B = on the tube, the cheapest marching
  * within 1e-3 of the peak / our cheapest within it; C = Fogshop's max halo error / ours. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -97,12 +97,14 @@ static void scene_destroy(lights_scene *s) {
   free(s->cfg);
 }
 
-/* The lamps' converged in-scatter at the error pixels (the CPU twin). */
-static void scene_reference(lights_scene *s, int W, int H) {
+/* The lamps' converged in-scatter at the error pixels (the CPU twin), with V (NULL: 1), into
+ * out (3 per error pixel); returns its largest value. */
+static double scene_reference(const lights_scene *s, int W, int H, fog_lamp_visibility_fn visible,
+                              const void *user, double *out) {
   const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
   fog_lamps lamps = s->lamps;
   lamps.method = converged;
-  s->peak = 0;
+  double peak = 0;
   for (int j = 0; j < rows; j++)
     for (int i = 0; i < cols; i++) {
       int px = i * ERROR_STRIDE, py = j * ERROR_STRIDE;
@@ -110,13 +112,14 @@ static void scene_reference(lights_scene *s, int W, int H) {
       double o[3], d[3], v[3];
       camera_ray(&s->drawn.cam, px, py, W, H, o, d);
       double ts = s->drawn.distance[k] >= 1e29f ? HUGE_VAL : (double)s->drawn.distance[k];
-      fog_lamps_inscatter(&s->model, &lamps, s->fog.params.sun.albedo, s->fog.params.sun.phase_g,
-                          o, d, ts, v);
+      fog_lamps_inscatter_shadowed(&s->model, &lamps, s->fog.params.sun.albedo,
+                                   s->fog.params.sun.phase_g, o, d, ts, visible, user, v);
       for (int c = 0; c < 3; c++) {
-        s->reference[((size_t)j * cols + i) * 3 + c] = v[c];
-        s->peak = fmax(s->peak, v[c]);
+        out[((size_t)j * cols + i) * 3 + c] = v[c];
+        peak = fmax(peak, v[c]);
       }
     }
+  return peak;
 }
 
 static void row_errors(lights_row *r, const lights_scene *s, const float *inscatter, int W, int H) {
@@ -194,6 +197,95 @@ static double halo_ratio(double *ours_error, double *fogshop_error) {
   return ef / eo;
 }
 
+/* V by an exact ray cast from x to lamp i against the scene's terrain and boxes. */
+typedef struct exact_lamps {
+  const scene_geometry *geo;
+  const fog_lamps *lamps;
+} exact_lamps;
+static double exact_visible(const void *user, int i, const double x[3]) {
+  const exact_lamps *e = user;
+  double w[3], dist = 0, s;
+  for (int a = 0; a < 3; a++) w[a] = e->lamps->lamp[i].position[a] - x[a], dist += w[a] * w[a];
+  dist = sqrt(dist);
+  if (!(dist > 0)) return 1.0;
+  for (int a = 0; a < 3; a++) w[a] /= dist;
+  return scene_geometry_intersect(e->geo, x, w, dist, &s, NULL) ? 0.0 : 1.0;
+}
+
+/* The lamps' shadow cubes on the valley: the time to render all of them (every lamp nudged
+ * by a micron, so each cube is drawn again), the fog pass with and without them, and both
+ * against the twin converged with V by exact ray casts. Returns 0, or 1 on a GL error. */
+static int shadow_rows(lights_scene *s, const lights_row *plain, int W, int H, int frames,
+                       float *inscatter, const gl_target *out, render_error *err) {
+  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  double *times = malloc((size_t)frames * sizeof(double));
+  if (!times) {
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return 1;
+  }
+  /* the reference with V, in place of the row's (restored below) */
+  double *unshadowed = s->reference, peak = s->peak;
+  double *shadowed = malloc((size_t)cols * rows * 3 * sizeof(double));
+  if (!shadowed) {
+    free(times);
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return 1;
+  }
+  const exact_lamps exact = {&s->drawn.geo, &s->lamps};
+  s->peak = scene_reference(s, W, H, exact_visible, &exact, shadowed);
+  s->reference = shadowed;
+  lights_row with = *plain, without = *plain;
+  with.times = without.times = times;
+  int failed = 0;
+  /* the cubes */
+  fog_lamps nudged = s->lamps;
+  for (int f = 0; f < frames && !failed; f++) {
+    for (int i = 0; i < nudged.count; i++) nudged.lamp[i].position[1] += (f & 1 ? -1e-6 : 1e-6);
+    fog_pass_finish();
+    double t0 = app_clock_seconds();
+    failed = scene_pass_set_lamps(s->drawn.pass, &nudged, err);
+    fog_pass_finish();
+    times[f] = app_clock_seconds() - t0;
+  }
+  const double cube_ms = 1e3 * bench_median(times, frames);
+  failed = failed || scene_pass_set_lamps(s->drawn.pass, &s->lamps, err);
+  const lamp_shadow_maps *maps = scene_pass_lamp_shadows(s->drawn.pass);
+  /* the fog pass with the cubes, then without, against the shadowed reference */
+  for (int pass = 0; pass < 2 && !failed && maps; pass++) {
+    lights_row *r = pass == 0 ? &with : &without;
+    s->fog.lamp_shadows = pass == 0 ? maps : NULL;
+    failed = draw_row(s, r, out, err) || gl_target_read(out, 2, 3, inscatter, err);
+    if (failed) break;
+    row_errors(r, s, inscatter, W, H);
+    for (int f = 0; f < frames && !failed; f++) {
+      fog_pass_finish();
+      double t0 = app_clock_seconds();
+      failed = draw_row(s, r, out, err);
+      fog_pass_finish();
+      times[f] = app_clock_seconds() - t0;
+    }
+    r->ms = 1e3 * bench_median(times, frames);
+  }
+  s->fog.lamp_shadows = NULL;
+  s->reference = unshadowed, s->peak = peak;
+  if (!failed && maps) {
+    const double scale = 640.0 * 360.0 / ((double)W * H);
+    printf("\nlamp shadow cubes on the valley (%d lamps, %d texels a face side):\n", s->lamps.count,
+           maps->size);
+    printf("  rendering every lamp's cube: %.2f ms (%.2f ms a lamp)\n", cube_ms,
+           cube_ms / s->lamps.count);
+    printf("  fog pass (ours %d+%d) with the cubes %.2f ms, without %.2f ms: %+.2f ms a lamp at "
+           "640x360\n", plain->method.angle_pieces, plain->method.span_pieces, with.ms,
+           without.ms, (with.ms - without.ms) / s->lamps.count * scale);
+    printf("  against the twin converged with V by exact ray casts: with the cubes max %.2e "
+           "(mean %.2e), without %.2e (mean %.2e)\n", with.max_error, with.mean_error,
+           without.max_error, without.mean_error);
+  }
+  free(times);
+  free(shadowed);
+  return failed;
+}
+
 static int write_table(const char *path, const lights_row *rows, int count, char *error, int size) {
   FILE *f = chart_csv_open(path, error, size);
   if (!f) return 1;
@@ -237,7 +329,7 @@ int bench_lights(int argc, char **argv) {
     for (size_t q = 0; q < sizeof march_samples / sizeof march_samples[0] - (s == 0); q++)
       if (!add_row(rows, &row_count, s, "march", march_samples[q], frames)) goto out_of_memory;
     if (s == 1 && !add_row(rows, &row_count, s, "fogshop", 8, frames)) goto out_of_memory;
-    scene_reference(&scenes[s], W, H);
+    scenes[s].peak = scene_reference(&scenes[s], W, H, NULL, NULL, scenes[s].reference);
   }
   /* Warm-up and errors (the unlit row first: the others subtract its in-scatter), then the
    * timed rounds, rows interleaved. */
@@ -317,6 +409,7 @@ int bench_lights(int argc, char **argv) {
            MATCHED_ERROR, march_ms, ours_ms,
            b[s] == b[s] ? "ratio below" : "nan: one of them never gets there");
   }
+  if (shadow_rows(&scenes[0], &rows[2], W, H, frames, inscatter, &out, &rerr)) goto gl_failed;
   double halo_ours, halo_fogshop;
   double c = halo_ratio(&halo_ours, &halo_fogshop);
   printf("halo (g 0.7, CPU twins): ours max error %.2e, Fogshop's %.2e of the peak\n", halo_ours,

@@ -26,6 +26,13 @@
 #include "render/fog_models.h"
 
 #define FOG_MAX_LAMPS 16
+/* With shadow cubes (or a visibility callback), a piece of the angle integral that a
+ * shadow's edge crosses is cut there: V is known at the piece's ends and its 4 nodes; an
+ * edge between two of those on different sides of V = 1/2 is found by
+ * FOG_LAMP_EDGE_BISECTIONS bisections, and the rest of the integrand (smooth) is integrated
+ * over the lit stretches as the cubic through its 4 nodes (fog_lamp_lagrange_integrals):
+ * no more samples of the expensive integrand than an uncut piece. */
+#define FOG_LAMP_EDGE_BISECTIONS 10
 /* The optical-depth table's most segments (a GLSL array per pixel). */
 #define FOG_LAMP_MAX_DEPTH_STEPS 64
 
@@ -108,6 +115,20 @@ double fog_lamp_spot(const fog_lamp *lamp, const double x[3]);
 void fog_lamps_inscatter(const fog_model *model, const fog_lamps *lamps, double albedo,
                          double phase_g, const double o[3], const double d[3],
                          double t_surface, double out[3]);
+
+/* V_i(x) in [0, 1]: lamp i's visibility past the scene's surfaces at world point x (the
+ * shadow cubes' twin, or exact ray casts). */
+typedef double (*fog_lamp_visibility_fn)(const void *user, int lamp, const double x[3]);
+/* The same with each lamp's V in the integrand (its shafts); visible NULL: V = 1. Fogshop's
+ * approximation takes no V (the paper's airlight has none). */
+void fog_lamps_inscatter_shadowed(const fog_model *model, const fog_lamps *lamps, double albedo,
+                                  double phase_g, const double o[3], const double d[3],
+                                  double t_surface, fog_lamp_visibility_fn visible,
+                                  const void *user, double out[3]);
+
+/* The integrals over [u0, u1] of the Lagrange polynomials through the 4 Gauss-Legendre nodes
+ * on [-1, 1] (over [-1, 1]: the weights). */
+void fog_lamp_lagrange_integrals(double u0, double u1, double out[4]);
 
 /* One lamp's share, without the factor a I (per unit intensity): for tests and the bench. */
 double fog_lamp_inscatter_unit(const fog_model *model, const fog_lamp *lamp,

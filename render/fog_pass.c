@@ -111,6 +111,7 @@ typedef struct fog_pass_variant {
   int froxel;             /* FOG_FROXEL: 0 none, 1 the froxel grid's fill, 2 its lookup */
   int shadow_nodes;       /* FOG_SHADOW_NODES: the light mean's nodes a segment or piece */
   int shadow_pieces;      /* FOG_SHADOW_PIECES: 1 Perlin fog's mean per piece */
+  int lamp_shadows;       /* FOG_LAMP_SHADOWS: 1 the lamps' shadow cubes (lamp_shadow.glsl) */
 } fog_pass_variant;
 
 static const struct {
@@ -139,6 +140,7 @@ static const struct {
     {"FOG_FROXEL", offsetof(fog_pass_variant, froxel), 2},
     {"FOG_SHADOW_NODES", offsetof(fog_pass_variant, shadow_nodes), 3},
     {"FOG_SHADOW_PIECES", offsetof(fog_pass_variant, shadow_pieces), 1},
+    {"FOG_LAMP_SHADOWS", offsetof(fog_pass_variant, lamp_shadows), 1},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
@@ -566,6 +568,7 @@ enum fog_pass_unit {
   UNIT_RBF_TILES,
   UNIT_FROXEL,
   UNIT_PERLIN,
+  UNIT_LAMP_SHADOWS,
   UNIT_COUNT
 };
 /* Unit indices stay below GL 4.3's guaranteed 96 combined units; a variant samples far
@@ -714,6 +717,13 @@ static bool fog_pass_has_surface_lamps(const fog_pass_params *params) {
   return params->lamps.count > 0 && params->surface_lamps != 0;
 }
 
+/* The lamps' shadow cubes (the scene pass's) serve the lamps in the fog or on the surfaces:
+ * the cubes follow the lamps' order, one per lamp. */
+static bool fog_pass_has_lamp_shadows(const fog_pass_params *params) {
+  return (fog_pass_has_lamps(params) || fog_pass_has_surface_lamps(params)) &&
+         params->lamp_shadows && params->lamp_shadows->count >= params->lamps.count;
+}
+
 /* The lamps (fog_lamps.glsl): camera-relative positions subtracted in double, a I. */
 static void fog_pass_lamp_uniforms(GLuint prog, const camera *cam, const fog_pass_params *params) {
   const fog_lamps *lamps = &params->lamps;
@@ -732,6 +742,15 @@ static void fog_pass_lamp_uniforms(GLuint prog, const camera *cam, const fog_pas
   glUniform1i(fog_loc(prog, "fog_lamp_depth_steps"), lamps->method.depth_steps);
   glUniform1i(fog_loc(prog, "fog_lamp_shadow_steps"), lamps->method.shadow_steps);
   glUniform1i(fog_loc(prog, "fog_lamp_march_steps"), lamps->method.march_steps);
+  if (!fog_pass_has_lamp_shadows(params)) return;
+  const lamp_shadow_maps *maps = params->lamp_shadows;
+  float inv_far[FOG_MAX_LAMPS] = {0};
+  for (int i = 0; i < lamps->count; i++) inv_far[i] = (float)(1.0 / maps->far[i]);
+  bind_sampler(prog, "lamp_shadow_map", UNIT_LAMP_SHADOWS, GL_TEXTURE_CUBE_MAP_ARRAY,
+               maps->texture);
+  glUniform1fv(fog_loc(prog, "lamp_shadow_inv_far"), FOG_MAX_LAMPS, inv_far);
+  glUniform1f(fog_loc(prog, "lamp_shadow_slack"),
+              (float)(LAMP_SHADOW_SLACK_TEXELS * 2.0 / maps->size));
 }
 
 /* Uniforms every model uses (camera, blend, model selection), the surface textures, and
@@ -1146,6 +1165,7 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
                                  int width, int height, render_error *err) {
   variant.reduced = divisor > 1 ? divisor : 1;
   variant.shadow_nodes = params->shadow_nodes;
+  variant.lamp_shadows = fog_pass_has_lamp_shadows(params);
   variant.shadow_pieces =
       (params->model == FOG_MODEL_PERLIN || params->model == FOG_MODEL_VOLUME) &&
       params->shadow_pieces;

@@ -41,6 +41,7 @@
 #include "render/fog_light.h"
 #include "render/fog_models.h"
 #include "render/fog_sun_shadow.h"
+#include "render/lamp_shadow_map.h"
 #include "render/sun_shadow_map.h"
 #include "render/render_error.h"
 #include "transform/transform.h"
@@ -162,6 +163,10 @@ typedef struct fog_pass_params {
   /* Optional (NULL: none): the scene pass's sun shadow map (scene_pass_sun_shadow): V in
    * the view ray's mean, light shafts (shadow_steps >= 1 then too). */
   const sun_shadow_map *shafts;
+  /* Optional (NULL: none): the lamps' shadow cubes (scene_pass_lamp_shadows, rendered for
+   * these lamps in this order): V_i in the lamps' in-scatter (their shafts) and on the
+   * surfaces they light. */
+  const lamp_shadow_maps *lamp_shadows;
   fog_fetch fetch;
   fog_integrator integrator;
   fog_froxel_grid froxel;    /* FOG_INTEGRATOR_FROXEL: the grid */

@@ -49,6 +49,7 @@ static void constants(text_out *o) {
   put(o, "#define FOG_LIGHT_SPAN_DEPTH %#.9g\n", FOG_LIGHT_SPAN_DEPTH); /* a float literal */
   put(o, "#define FOG_MAX_LAMPS %d\n#define FOG_LAMP_MAX_DEPTH_STEPS %d\n", FOG_MAX_LAMPS,
       FOG_LAMP_MAX_DEPTH_STEPS);
+  put(o, "#define FOG_LAMP_EDGE_BISECTIONS %d\n", FOG_LAMP_EDGE_BISECTIONS);
   /* %.9g: the float nearest the C double, as the C twins' switch in float */
   put(o, "#define FOG_EXPREL_SWITCH %.9g\n", FOG_EXPREL_SWITCH);
 }

@@ -8,7 +8,7 @@
 #include <stdio.h>
 
 #include "render/frustum.h"
-#include "render/terrain_lod.h"
+#include "render/scene_internal.h"
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -120,48 +120,6 @@ double scene_geometry_pixel_distance(const scene_geometry *geo, const camera *ca
  * triangles as a list, 0.5-1.7 ms faster on llvmpipe (six A/B pairs), 2.6x fewer indices. */
 #define TILE 16
 #define RESTART 0xFFFFFFFFu /* GL_PRIMITIVE_RESTART_FIXED_INDEX for unsigned int */
-
-typedef struct scene_tile_order {
-  double distance; /* squared, camera to the tile's box */
-  int tile;
-} scene_tile_order;
-
-typedef struct scene_tile {
-  double lo[3], hi[3]; /* world; the float vertices as the GPU gets them */
-  GLsizei first, count; /* index range: one triangle strip per row of quads */
-  int triangles;
-} scene_tile;
-
-struct scene_pass {
-  const scene_geometry *geo;
-  GLuint surface_program, sky_program;
-  GLuint vao, vertex_buffer, index_buffer;
-  GLsizei index_count;
-  scene_tile *tiles;
-  int tile_count;
-  GLsizei box_first; /* the boxes' indices: [box_first, index_count), always drawn */
-  GLsizei *draw_counts; /* per frame: the merged index ranges of the drawn tiles */
-  const void **draw_offsets;
-  long triangles_drawn;
-  /* Terrain LOD (render/terrain_lod.h): off while lod_pixels is 0 (the full mesh, drawn
-   * from the static strips above); on, each run streams the visible tiles' triangles. */
-  double lod_pixels;
-  terrain_lod lod;
-  GLuint lod_index_buffer;
-  uint32_t *lod_indices;
-  scene_tile_order *lod_order; /* the visible tiles, sorted near to far */
-  /* The sun's shadow map (render/sun_shadow_map.h), rendered for `shadow.sun`. */
-  sun_shadow_map shadow;
-  GLuint shadow_framebuffer;
-  bool shadow_rendered;
-  /* uniform locations */
-  GLint u_offset, u_view, u_projection, u_sun_direction, u_sun_colour, u_ambient;
-  GLint u_sun_from_relative, u_sun_visibility, u_sun_normal_offset, u_lod_lift;
-  GLint u_lamp_count, u_lamp_position, u_lamp_intensity, u_lamp_axis, u_lamp_cone;
-  fog_lamps lamps; /* scene_pass_set_lamps: they light the surfaces too */
-  GLint u_sky_right, u_sky_up, u_sky_forward, u_sky_viewport, u_sky_horizon, u_sky_zenith,
-      u_sky_sun_direction, u_sky_sun_colour;
-};
 
 typedef struct vertex {
   float position[3]; /* relative to the terrain origin */
@@ -453,6 +411,17 @@ scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err) {
   pass->u_lamp_intensity = glGetUniformLocation(s, "lamp_intensity");
   pass->u_lamp_axis = glGetUniformLocation(s, "lamp_axis");
   pass->u_lamp_cone = glGetUniformLocation(s, "lamp_cone");
+  pass->u_lamp_shadow_map = glGetUniformLocation(s, "lamp_shadow_map");
+  pass->u_lamp_shadow_inv_far = glGetUniformLocation(s, "lamp_shadow_inv_far");
+  pass->u_lamp_shadow_slack = glGetUniformLocation(s, "lamp_shadow_slack");
+  pass->u_lamp_shadows_on = glGetUniformLocation(s, "lamp_shadows_on");
+  pass->lamp_shadow_size = LAMP_SHADOW_SIZE;
+  /* the samplers' units, apart from the start: two sampler types may not share a unit, even
+   * unused (the sun's shadow map is drawn with this program too) */
+  glUseProgram(s);
+  glUniform1i(pass->u_sun_visibility, 0);
+  glUniform1i(pass->u_lamp_shadow_map, 1);
+  glUseProgram(0);
   if (shadow_map_create(pass, err)) {
     scene_pass_destroy(pass);
     return NULL;
@@ -472,6 +441,7 @@ void scene_pass_destroy(scene_pass *pass) {
   if (!pass) return;
   if (pass->shadow.texture) glDeleteTextures(1, &(GLuint){pass->shadow.texture});
   if (pass->shadow_framebuffer) glDeleteFramebuffers(1, &pass->shadow_framebuffer);
+  scene_lamp_shadows_destroy(pass);
   if (pass->surface_program) glDeleteProgram(pass->surface_program);
   if (pass->sky_program) glDeleteProgram(pass->sky_program);
   if (pass->vertex_buffer) glDeleteBuffers(1, &pass->vertex_buffer);
@@ -548,19 +518,15 @@ static GLsizei lod_tiles(scene_pass *pass, const camera *cam, int width, int hei
   return (GLsizei)n;
 }
 
-/* The terrain's index ranges to draw: the tiles the camera's frustum keeps, adjacent ones
- * merged. Their count; triangles_drawn counts the boxes too. */
-static GLsizei cull_tiles(scene_pass *pass, const camera *cam, int width, int height) {
-  frustum f;
-  frustum_from_camera(&f, cam, width, height);
+GLsizei scene_tile_ranges(scene_pass *pass, const double eye[3], scene_box_culled culled,
+                          const void *user, long *triangles) {
   GLsizei n = 0, end = -1;
-  long triangles = 12L * pass->geo->box_count;
+  long drawn = 0;
   for (int k = 0; k < pass->tile_count; k++) {
     const scene_tile *tile = &pass->tiles[k];
     double lo[3], hi[3];
-    for (int c = 0; c < 3; c++)
-      lo[c] = tile->lo[c] - cam->position[c], hi[c] = tile->hi[c] - cam->position[c];
-    if (tile->count == 0 || frustum_culls_box(&f, lo, hi)) continue;
+    for (int c = 0; c < 3; c++) lo[c] = tile->lo[c] - eye[c], hi[c] = tile->hi[c] - eye[c];
+    if (tile->count == 0 || culled(user, lo, hi)) continue;
     if (tile->first == end) {
       pass->draw_counts[n - 1] += tile->count;
     } else {
@@ -568,9 +534,24 @@ static GLsizei cull_tiles(scene_pass *pass, const camera *cam, int width, int he
       pass->draw_offsets[n++] = (const void *)(uintptr_t)(tile->first * sizeof(GLuint));
     }
     end = tile->first + tile->count;
-    triangles += tile->triangles;
+    drawn += tile->triangles;
   }
-  pass->triangles_drawn = triangles;
+  if (triangles) *triangles = drawn;
+  return n;
+}
+
+static bool frustum_culled(const void *user, const double lo[3], const double hi[3]) {
+  return frustum_culls_box(user, lo, hi);
+}
+
+/* The terrain's index ranges the camera's frustum keeps; triangles_drawn counts the boxes
+ * too. */
+static GLsizei cull_tiles(scene_pass *pass, const camera *cam, int width, int height) {
+  frustum f;
+  frustum_from_camera(&f, cam, width, height);
+  long triangles = 0;
+  GLsizei n = scene_tile_ranges(pass, cam->position, frustum_culled, &f, &triangles);
+  pass->triangles_drawn = 12L * pass->geo->box_count + triangles;
   return n;
 }
 
@@ -594,10 +575,34 @@ bool scene_terrain_back_faces_hidden(const terrain *t, const camera *cam) {
 
 _Static_assert(FOG_MAX_LAMPS == 16, "scene_surface_fs.glsl's SCENE_MAX_LAMPS is 16");
 
-void scene_pass_set_lamps(scene_pass *pass, const fog_lamps *lamps) {
+int scene_pass_set_lamps(scene_pass *pass, const fog_lamps *lamps, render_error *err) {
   pass->lamps = *lamps;
   if (pass->lamps.count < 0) pass->lamps.count = 0;
   if (pass->lamps.count > FOG_MAX_LAMPS) pass->lamps.count = FOG_MAX_LAMPS;
+  return scene_lamp_shadows_update(pass, err);
+}
+
+int scene_pass_set_lamp_shadows(scene_pass *pass, int size, render_error *err) {
+  if (size != 0 && !(size >= LAMP_SHADOW_SIZE_MIN && size <= LAMP_SHADOW_SIZE_MAX)) {
+    snprintf(err->message, sizeof err->message,
+             "lamp shadow cubes of %d texels: expected 0 (none) or %d..%d", size,
+             LAMP_SHADOW_SIZE_MIN, LAMP_SHADOW_SIZE_MAX);
+    return 1;
+  }
+  pass->lamp_shadow_size = size;
+  if (size == 0) {
+    scene_lamp_shadows_destroy(pass);
+    return 0;
+  }
+  return scene_lamp_shadows_update(pass, err);
+}
+
+const lamp_shadow_maps *scene_pass_lamp_shadows(const scene_pass *pass) {
+  const lamp_shadow_maps *maps = &pass->lamp_shadows;
+  return pass->lamp_shadow_size > 0 && pass->lamps.count > 0 && maps->texture &&
+                 maps->count >= pass->lamps.count
+             ? maps
+             : NULL;
 }
 
 /* The lamps on the surfaces (scene_surface_fs.glsl): camera-relative, in double first. */
@@ -665,6 +670,7 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, pass->shadow.texture);
   glUniform1i(pass->u_sun_visibility, 0);
+  scene_lamp_shadows_bind(pass, 1);
   glBindVertexArray(pass->vao);
   const bool lod = pass->lod_pixels > 0;
   GLsizei ranges = lod ? 0 : cull_tiles(pass, cam, w, h);

@@ -21,6 +21,7 @@
 #include "render/camera.h"
 #include "render/fog_lamp.h"
 #include "render/gl_util.h"
+#include "render/lamp_shadow_map.h"
 #include "render/render_error.h"
 #include "render/sun_shadow_map.h"
 #include "render/terrain.h"
@@ -103,8 +104,16 @@ void scene_pass_destroy(scene_pass *pass);
  * allocate. */
 void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target);
 /* The lamps that light the surfaces (render/fog_lamp.h; copied; none until set): Lambertian,
- * irradiance I cos / (d^2 + r^2) times the spot's cone, not dimmed by the fog. */
-void scene_pass_set_lamps(scene_pass *pass, const fog_lamps *lamps);
+ * irradiance I cos / (d^2 + r^2) times the spot's cone and V, the lamp's visibility past
+ * the terrain and boxes (its shadow cube, rendered here for each lamp that moved since its
+ * last), not dimmed by the fog. Fails only when GL does (the cubes' memory). */
+int scene_pass_set_lamps(scene_pass *pass, const fog_lamps *lamps, render_error *err);
+/* The lamps' shadow cubes (render/lamp_shadow_map.h): `size` texels per face side, in
+ * LAMP_SHADOW_SIZE_MIN..MAX, or 0: no lamp shadows (V = 1). LAMP_SHADOW_SIZE at creation. */
+int scene_pass_set_lamp_shadows(scene_pass *pass, int size, render_error *err);
+/* The cubes of the lamps set, for the fog's shafts (fog_pass_params.lamp_shadows); NULL when
+ * lamp shadows are off or there are no lamps. */
+const lamp_shadow_maps *scene_pass_lamp_shadows(const scene_pass *pass);
 /* The sun's shadow map the surfaces are shadowed with (rendered by each run whose sun
  * differs from the map's, the first included): for the fog's light shafts, drawn after a
  * run. */

@@ -14,6 +14,14 @@ uniform int fog_lamp_angle_pieces;
 uniform int fog_lamp_span_pieces;
 uniform int fog_lamp_depth_steps;
 uniform int fog_lamp_shadow_steps;
+// V_i: the lamp past the terrain and boxes, from the scene pass's shadow cubes
+// (FOG_LAMP_SHADOWS 1), at camera-relative point x.
+#if FOG_LAMP_SHADOWS
+#include "lamp_shadow.glsl"
+float fog_lamp_visible(int i, vec3 x) { return lamp_shadow_visible(i, x - fog_lamp_position[i]); }
+#else
+float fog_lamp_visible(int i, vec3 x) { return 1.0; }
+#endif
 
 // K at camera-relative point p (zero outside the fogmap's box: the march to a lamp leaves it).
 float fog_lamp_extinction(vec3 p) {
@@ -85,6 +93,9 @@ vec3 fog_lamps_surface(vec3 p, vec3 n) {
     vec3 l = fog_lamp_position[i] - p;
     float d2 = dot(l, l), d = sqrt(d2);
     float g = max(dot(n, l) / max(d, 1e-6), 0.0) * fog_lamp_spot(i, p) / (d2 + fog_lamp_cone[i].z);
+#if FOG_LAMP_SHADOWS
+    if (g > 0.0) g *= lamp_shadow_visible_surface(i, -l, n);  // as the scene pass weighs it
+#endif
     if (!(g > 0.0)) continue;
     vec3 w = fog_lamp_intensity[i] * g;
     num += w * exp(-fog_lamp_shadow_depth(i, p));
@@ -100,25 +111,147 @@ vec3 fog_lamps_surface(vec3 p, vec3 n) {
 // the span (fogmap and volume; a global: no array copied into calls).
 float fog_lamp_table[FOG_LAMP_MAX_DEPTH_STEPS + 1];
 
-// Lamp i's integral over the angle phi (t = t_s + h' tan phi) of tau K p S T, without the
-// factor a I / h': Gauss-Legendre with 4 nodes on each piece of fog_lamp_method's union of
-// equal steps in phi and in t. tau from fog_lamp_table and T by fog_lamp_shadow_steps
-// midpoint steps towards the lamp, or for the analytic models both in closed form.
-// base_only: the RBFs' homogeneous base alone, K, tau and T (Fogshop's base term: Sun et
-// al.'s airlight, which the Gaussians do not shadow).
-float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, float hp,
-                              bool base_only) {
-  const float gx[4] = float[4](-0.86113631159405258, -0.33998104358485626,
-                               0.33998104358485626, 0.86113631159405258);
-  const float gw[4] = float[4](0.34785484513745386, 0.65214515486254614,
-                               0.65214515486254614, 0.34785484513745386);
+const float FOG_LAMP_GX[4] = float[4](-0.86113631159405258, -0.33998104358485626,
+                                      0.33998104358485626, 0.86113631159405258);
+const float FOG_LAMP_GW[4] = float[4](0.34785484513745386, 0.65214515486254614,
+                                      0.65214515486254614, 0.34785484513745386);
+
+// The angle of node n of the piece [phi_a, phi_b].
+float fog_lamp_node(float phi_a, float phi_b, int n) {
+  return phi_a + 0.5 * (1.0 + FOG_LAMP_GX[n]) * (phi_b - phi_a);
+}
+
+// The integrand tau K p S T (V apart) of lamp i's integral over the angle phi (t = t_s +
+// h' tan phi), without the factor a I / h', at the 4 Gauss-Legendre nodes of the piece
+// [phi_a, phi_b] where `need` asks (0 elsewhere). tau from fog_lamp_table and T by
+// fog_lamp_shadow_steps midpoint steps towards the lamp, or for the analytic models both in
+// closed form. base_only: the RBFs' homogeneous base alone, K, tau and T (Fogshop's base
+// term: Sun et al.'s airlight, which the Gaussians do not shadow).
+vec4 fog_lamp_node_values(int i, fog_ray r, float phi_a, float phi_b, float t0, float dt,
+                          float ts, float hp, bool base_only, bvec4 need) {
   vec3 s = fog_lamp_position[i];
   int steps = fog_lamp_depth_steps;
-  float dt = (t1 - t0) / float(steps);
+  vec4 f = vec4(0.0);
+  for (int n = 0; n < 4; n++) {
+    if (!need[n]) continue;
+    float t = ts + hp * tan(fog_lamp_node(phi_a, phi_b, n));
+    vec3 x = t * r.dir;
+    float spot = fog_lamp_spot(i, x);
+    if (!(spot > 0.0)) continue;
+    float k = base_only ? fog_model_extinction : fog_lamp_extinction(x);
+    if (!(k > 0.0)) continue;
+    vec3 to_lamp = s - x;
+    float dist = length(to_lamp);
+    float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
+#if FOG_LAMP_EXACT_DEPTH
+    float depth = fog_lamp_segment_depth(vec3(0.0), r.dir, t);
+    float shadow = fog_lamp_shadow_depth(i, x);
+    if (base_only) {  // Sun et al.'s homogeneous medium: the base alone
+      depth = fog_model_extinction * max(t, 0.0);
+      shadow = fog_model_extinction * dist;
+    }
+#else
+#if FOG_MODEL_KIND == FOG_MODEL_LINEAR
+    float depth = fog_linear_depth(t);  // the factor itself (K grows without bound at end)
+#elif FOG_MODEL_KIND == FOG_MODEL_EXP2
+    float depth = fog_exp2_depth(t);
+#else
+    float u = clamp((t - t0) / dt, 0.0, float(steps));
+    int c = min(int(floor(u)), steps - 1);
+    float depth = fog_lamp_table[c] +
+                  clamp(u - float(c), 0.0, 1.0) * (fog_lamp_table[c + 1] - fog_lamp_table[c]);
+#endif
+    // at the linear fog's end (K "infinite", tau 0, rounding either way) no light comes back
+    if (depth >= 1e29 || k >= 1e29) continue;
+    float shadow = fog_lamp_shadow_depth(i, x);
+#endif
+    f[n] = exp(-depth) * k * fog_phase_hg(fog_phase_g, cos_theta) * spot * exp(-shadow);
+  }
+  return f;
+}
+
+// One piece with V given at its nodes: 4 nodes of f V.
+float fog_lamp_piece(int i, fog_ray r, float phi_a, float phi_b, float t0, float dt, float ts,
+                     float hp, bool base_only, vec4 visible) {
+  if (!(phi_b > phi_a)) return 0.0;
+  vec4 f = fog_lamp_node_values(i, r, phi_a, phi_b, t0, dt, ts, hp, base_only,
+                                greaterThan(visible, vec4(0.0)));
+  return 0.5 * (phi_b - phi_a) *
+         dot(vec4(FOG_LAMP_GW[0], FOG_LAMP_GW[1], FOG_LAMP_GW[2], FOG_LAMP_GW[3]), f * visible);
+}
+
+#if FOG_LAMP_SHADOWS
+// V of lamp i at the ray's point at angle phi.
+float fog_lamp_visible_at(int i, fog_ray r, float phi, float ts, float hp) {
+  return fog_lamp_visible(i, (ts + hp * tan(phi)) * r.dir);
+}
+
+// V at the 4 nodes of [phi_a, phi_b].
+vec4 fog_lamp_node_visibility(int i, fog_ray r, float phi_a, float phi_b, float ts, float hp) {
+  vec4 v;
+  for (int n = 0; n < 4; n++) v[n] = fog_lamp_visible_at(i, r, fog_lamp_node(phi_a, phi_b, n), ts, hp);
+  return v;
+}
+
+// The integrals over [u0, u1] (in [-1, 1]) of the Lagrange polynomials through the 4 Gauss-
+// Legendre nodes (render/fog_lamp.h, fog_lamp_lagrange_integrals): L_n(u) = sum_j c_nj u^j.
+vec4 fog_lamp_lagrange_integrals(float u0, float u1) {
+  const mat4 c = mat4(-0.09232659844072881, 0.10721484763523989, 0.7987620630283673, -0.9275675085048682,
+                      0.5923265984407289, -1.7422341910450936, -0.7987620630283672, 2.3494311759443827,
+                      0.5923265984407288, 1.742234191045094, -0.7987620630283674, -2.349431175944382,
+                      -0.0923265984407288, -0.1072148476352399, 0.7987620630283672, 0.927567508504868);
+  vec4 m = vec4(u1 - u0, (u1 * u1 - u0 * u0) / 2.0, (u1 * u1 * u1 - u0 * u0 * u0) / 3.0,
+                (u1 * u1 * u1 * u1 - u0 * u0 * u0 * u0) / 4.0);
+  return m * c;  // row n: column n of the GLSL matrix dotted with m
+}
+
+// A piece with V known at its ends and nodes (lit: bit 0 the start, 1-4 the nodes, 5 the
+// end, set where V >= 1/2). All dark (and V 0 at the nodes): nothing. All lit: its 4 nodes of
+// f V. Else a shadow's edge crosses it: between two of those points on different sides of
+// V = 1/2 the edge is found by FOG_LAMP_EDGE_BISECTIONS bisections, and f (smooth: V apart)
+// is integrated over the lit stretches as the cubic through its 4 nodes (V 1 there, 0 on
+// the dark ones). Without the cut the edge is a jump the nodes sample: rings of error
+// around the lamp where it crosses a node.
+float fog_lamp_piece_shadowed(int i, fog_ray r, float phi_a, float phi_b, float t0, float dt,
+                              float ts, float hp, uint lit, vec4 visible) {
+  if (lit == 63u || (lit == 0u && any(greaterThan(visible, vec4(0.0)))))
+    return fog_lamp_piece(i, r, phi_a, phi_b, t0, dt, ts, hp, false, visible);
+  if (lit == 0u) return 0.0;
+  vec4 f = fog_lamp_node_values(i, r, phi_a, phi_b, t0, dt, ts, hp, false, bvec4(true));
+  float dphi = phi_b - phi_a, start = -1.0, before_at = phi_a, total = 0.0;
+  for (int k = 1; k <= 5; k++) {
+    float at = k == 5 ? phi_b : fog_lamp_node(phi_a, phi_b, k - 1);
+    bool before = ((lit >> (k - 1)) & 1u) != 0u, now = ((lit >> k) & 1u) != 0u;
+    if (now != before) {
+      float lo = before_at, hi = at;  // lo on `before`'s side
+      for (int b = 0; b < FOG_LAMP_EDGE_BISECTIONS; b++) {
+        float mid = 0.5 * (lo + hi);
+        if ((fog_lamp_visible_at(i, r, mid, ts, hp) >= 0.5) == before) lo = mid; else hi = mid;
+      }
+      float edge = 2.0 * (0.5 * (lo + hi) - phi_a) / dphi - 1.0;
+      if (before) total += dot(f, fog_lamp_lagrange_integrals(start, edge));
+      start = edge;
+    }
+    before_at = at;
+  }
+  if ((lit & 32u) != 0u) total += dot(f, fog_lamp_lagrange_integrals(start, 1.0));
+  return 0.5 * dphi * total;
+}
+#endif
+
+// Lamp i's integral over the angle phi, without the factor a I / h': fog_lamp_piece on each
+// piece of fog_lamp_method's union of equal steps in phi and in t (with the shadow cubes,
+// fog_lamp_piece_shadowed: cut at V's edges).
+float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, float hp,
+                              bool base_only) {
+  float dt = (t1 - t0) / float(fog_lamp_depth_steps);
   float phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp), lamp_sum = 0.0;
   const int na = fog_lamp_angle_pieces, nt = fog_lamp_span_pieces;
   float phi_a = phi0;
   bool cut = !(phi0 < 0.0 && phi1 > 0.0);  // and a cut at phi = 0, the closest point
+#if FOG_LAMP_SHADOWS
+  bool lit_a = !base_only && fog_lamp_visible_at(i, r, phi0, ts, hp) >= 0.5;  // at the start
+#endif
   for (int ia = 1, it = 1; ia <= na || it <= nt;) {
     float next_a = ia <= na ? phi0 + float(ia) * (phi1 - phi0) / float(na) : 1e30;
     float next_t = it <= nt ? atan((t0 + float(it) * (t1 - t0) / float(nt) - ts) / hp) : 1e30;
@@ -131,42 +264,21 @@ float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, fl
     } else {
       it++;
     }
-    float dphi = phi_b - phi_a, sum = 0.0;
-    for (int n = 0; n < 4 && dphi > 0.0; n++) {
-      float phi = phi_a + 0.5 * (1.0 + gx[n]) * dphi;
-      float t = ts + hp * tan(phi);
-      vec3 x = t * r.dir;
-      float k = base_only ? fog_model_extinction : fog_lamp_extinction(x);
-      if (!(k > 0.0)) continue;
-      vec3 to_lamp = s - x;
-      float dist = length(to_lamp);
-      float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
-#if FOG_LAMP_EXACT_DEPTH
-      float depth = fog_lamp_segment_depth(vec3(0.0), r.dir, t);
-      float shadow = fog_lamp_shadow_depth(i, x);
-      if (base_only) {  // Sun et al.'s homogeneous medium: the base alone
-        depth = fog_model_extinction * max(t, 0.0);
-        shadow = fog_model_extinction * dist;
-      }
-#else
-#if FOG_MODEL_KIND == FOG_MODEL_LINEAR
-      float depth = fog_linear_depth(t);  // the factor itself (K grows without bound at end)
-#elif FOG_MODEL_KIND == FOG_MODEL_EXP2
-      float depth = fog_exp2_depth(t);
-#else
-      float u = clamp((t - t0) / dt, 0.0, float(steps));
-      int c = min(int(floor(u)), steps - 1);
-      float depth = fog_lamp_table[c] +
-                    clamp(u - float(c), 0.0, 1.0) * (fog_lamp_table[c + 1] - fog_lamp_table[c]);
-#endif
-      // at the linear fog's end (K "infinite", tau 0, rounding either way) no light comes back
-      if (depth >= 1e29 || k >= 1e29) continue;
-      float shadow = fog_lamp_shadow_depth(i, x);
-#endif
-      sum += gw[n] * exp(-depth) * k * fog_phase_hg(fog_phase_g, cos_theta) *
-             fog_lamp_spot(i, x) * exp(-shadow);
+#if FOG_LAMP_SHADOWS
+    if (!base_only && phi_b > phi_a) {
+      // V at the nodes and the piece's end (the next one's start): an edge anywhere between
+      // two of them is found
+      vec4 v = fog_lamp_node_visibility(i, r, phi_a, phi_b, ts, hp);
+      bool lit_b = fog_lamp_visible_at(i, r, phi_b, ts, hp) >= 0.5;
+      uint lit = (lit_a ? 1u : 0u) | (lit_b ? 32u : 0u);
+      for (int n = 0; n < 4; n++) lit |= v[n] >= 0.5 ? 2u << n : 0u;
+      lamp_sum += fog_lamp_piece_shadowed(i, r, phi_a, phi_b, t0, dt, ts, hp, lit, v);
+      lit_a = lit_b;
+      phi_a = phi_b;
+      continue;
     }
-    lamp_sum += 0.5 * dphi * sum;
+#endif
+    lamp_sum += fog_lamp_piece(i, r, phi_a, phi_b, t0, dt, ts, hp, base_only, vec4(1.0));
     phi_a = phi_b;
   }
   return lamp_sum;
@@ -175,7 +287,8 @@ float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, fl
 #if FOG_LAMP_INTEGRAL == 1
 // Fogshop's approximation (Zhou et al. 2007, eq. 11; render/fog_lamp.h): each Gaussian's
 // optical depth along the ray times tau p S T / falloff taken once, at the projection of its
-// centre on the ray (clamped to the span), with the closed-form depths.
+// centre on the ray (clamped to the span), with the closed-form depths. As in the paper, no
+// shadows of the scene's surfaces (V = 1).
 float fog_lamp_fogshop_gaussians(int i, fog_ray r, float t0, float t1) {
   vec3 s = fog_lamp_position[i];
   float sum = 0.0;
@@ -213,12 +326,13 @@ float fog_lamp_march(int i, fog_ray r, float t0, float t1) {
     float k = fog_lamp_extinction(x);
     float tau = exp(-(before + 0.5 * k * dt));
     before += k * dt;
-    if (!(k > 0.0)) continue;
+    float lit = fog_lamp_spot(i, x) * fog_lamp_visible(i, x);
+    if (!(k > 0.0) || !(lit > 0.0)) continue;
     vec3 to_lamp = s - x;
     float dist = length(to_lamp);
     float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
     float shadow = fog_lamp_shadow_depth(i, x);
-    sum += tau * k * fog_phase_hg(fog_phase_g, cos_theta) * fog_lamp_spot(i, x) *
+    sum += tau * k * fog_phase_hg(fog_phase_g, cos_theta) * lit *
            exp(-shadow) / (dist * dist + fog_lamp_cone[i].z);
   }
   return sum * dt;

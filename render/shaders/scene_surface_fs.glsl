@@ -18,7 +18,7 @@ uniform float sun_normal_offset; // world: the lookup's step off the surface (no
 // height; the lookup rises by that much, or the full mesh would shadow its own coarser copy.
 uniform float lod_lift_per_distance;
 // Lamps (render/fog_lamp.h): each lights the surface with irradiance I cos / (d^2 + r^2)
-// times its cone, Lambertian (albedo / pi, as the sun's sun_colour is its irradiance / pi).
+// times its cone and its shadow, Lambertian (albedo / pi, as the sun's sun_colour is its irradiance / pi).
 // Their share of the colour goes to location 3 with the normal, and the fog pass dims it by
 // the fog between each lamp and the surface (fog_lamps.glsl, fog_lamps_surface).
 const int SCENE_MAX_LAMPS = 16;
@@ -27,6 +27,9 @@ uniform vec3 lamp_position[SCENE_MAX_LAMPS];   // camera-relative
 uniform vec3 lamp_intensity[SCENE_MAX_LAMPS];  // I per channel
 uniform vec4 lamp_axis[SCENE_MAX_LAMPS];       // xyz spot axis; w 1 spot, 0 point
 uniform vec3 lamp_cone[SCENE_MAX_LAMPS];       // cos_outer, 1/(cos_inner - cos_outer), r^2
+// Each lamp's shadow of the terrain and boxes (render/lamp_shadow_map.h), when on.
+uniform bool lamp_shadows_on;
+#include "lamp_shadow.glsl"
 
 vec3 lamp_light(vec3 p, vec3 n) {
   vec3 sum = vec3(0.0);
@@ -39,6 +42,7 @@ vec3 lamp_light(vec3 p, vec3 n) {
                       0.0, 1.0);
       cone = u * u * (3.0 - 2.0 * u);
     }
+    if (lamp_shadows_on && cos_n * cone > 0.0) cone *= lamp_shadow_visible_surface(i, -l, n);
     sum += lamp_intensity[i] * (cos_n * cone / (3.14159265358979 * (d2 + lamp_cone[i].z)));
   }
   return sum;

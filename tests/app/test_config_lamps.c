@@ -12,8 +12,8 @@ int main(void) {
   scene_config_error err = {{0}};
   CHECK(scene_config_load("configs/night_lamps.ini", &cfg, &err) == 0, "night_lamps.ini: %s",
         err.message);
-  CHECK(cfg.lamp_count == 8, "lamps: %d, expected 7 lamp lines and 1 spot", cfg.lamp_count);
-  const scene_lamp_config *first = &cfg.lamps[0], *spot = &cfg.lamps[7];
+  CHECK(cfg.lamp_count == 9, "lamps: %d, expected 8 lamp lines and 1 spot", cfg.lamp_count);
+  const scene_lamp_config *first = &cfg.lamps[0], *spot = &cfg.lamps[8];
   CHECK(!first->spot && first->position[0] == -100 && first->position[1] == 74 &&
             first->position[2] == 250 && first->colour[0] == 1800 && first->colour[2] == 450 &&
             first->radius == 0.5,
@@ -28,10 +28,10 @@ int main(void) {
         "method defaults %d %d %d", cfg.lamp_method.angle_pieces, cfg.lamp_method.depth_steps,
         cfg.lamp_method.shadow_steps);
   fog_lamps lamps = scene_config_fog_lamps(&cfg);
-  const fog_lamp *s = &lamps.lamp[7];
+  const fog_lamp *s = &lamps.lamp[8];
   double len = sqrt(s->axis[0] * s->axis[0] + s->axis[1] * s->axis[1] + s->axis[2] * s->axis[2]);
   double want_y = -127 / sqrt(50.0 * 50 + 127.0 * 127 + 170.0 * 170);
-  CHECK(lamps.count == 8 && s->kind == FOG_LAMP_SPOT && fabs(len - 1) < 1e-15 &&
+  CHECK(lamps.count == 9 && s->kind == FOG_LAMP_SPOT && fabs(len - 1) < 1e-15 &&
             fabs(s->axis[1] - want_y) < 1e-15,
         "spot axis (%.17g %.17g %.17g)", s->axis[0], s->axis[1], s->axis[2]);
   CHECK(fabs(s->cos_inner - cos(8 * 3.14159265358979323846 / 180)) < 1e-15 &&

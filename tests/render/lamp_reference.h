@@ -78,7 +78,18 @@ typedef struct lamp_ref_medium {
   double phase_g;   /* Henyey-Greenstein g, |g| < 1 */
   double max_step;  /* longest piece accepted unsplit (see above); <= 0: no cap */
   double tolerance; /* relative target of L (and of lamp_ref_optical_depth); <= 0: 1e-9 */
+  /* V(x): whether the lamp at `lamp` sees world point x past the scene's surfaces (exact ray
+   * casts, 1 or 0); NULL: always. Where V jumps along the view ray the integrand does too:
+   * V is sampled at LAMP_REF_SHADOW_SAMPLES equal steps of [0, t_end] and each change is
+   * bisected to the last bit and made an outer break (a shadow narrower than a step between
+   * samples can be missed: size the samples to the scene). */
+  bool (*visible)(const void *user, const double x[3], const double lamp[3]);
+  const void *visible_user;
 } lamp_ref_medium;
+
+#ifndef LAMP_REF_SHADOW_SAMPLES
+#define LAMP_REF_SHADOW_SAMPLES 4096
+#endif
 
 typedef struct lamp_ref_info {
   double error_estimate;      /* absolute, on L: a I sum |K15 - G7| of the outer rule */
@@ -336,6 +347,7 @@ static inline double lamp_ref__integrand(void *vsc, double t) {
   double x[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
   double s = lamp_ref_spot_factor(lamp, x);
   if (s == 0.0) return 0.0;
+  if (sc->m->visible && !sc->m->visible(sc->m->visible_user, x, lamp->position)) return 0.0;
   sc->calls++;
   double k = sc->m->extinction(sc->m->user, x);
   if (k == 0.0) return 0.0;
@@ -382,11 +394,38 @@ static inline void lamp_ref__cone_breaks(const lamp_ref_lamp *lamp, const double
   if (qq != 0.0) lamp_ref__add_break(br, n, qc / qq, t_end);
 }
 
+/* The view ray's points where V jumps (lamp_ref_medium.visible): each change between
+ * samples, bisected until the bracket is one ulp wide. */
+static inline void lamp_ref__shadow_breaks(const lamp_ref_medium *m, const lamp_ref_lamp *lamp,
+                                           const double o[3], const double d[3], double t_end,
+                                           double *br, int *n) {
+  if (!m->visible) return;
+  const int samples = LAMP_REF_SHADOW_SAMPLES;
+  bool before = false;
+  for (int i = 0; i <= samples; i++) {
+    double t = t_end * i / samples, x[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
+    bool now = m->visible(m->visible_user, x, lamp->position);
+    if (i > 0 && now != before) {
+      double a = t_end * (i - 1) / samples, b = t;
+      for (int k = 0; k < 80 && b - a > 0.0; k++) {
+        double c = 0.5 * (a + b);
+        if (c <= a || c >= b) break;
+        double y[3] = {o[0] + c * d[0], o[1] + c * d[1], o[2] + c * d[2]};
+        if (m->visible(m->visible_user, y, lamp->position) == before) a = c; else b = c;
+      }
+      lamp_ref__add_break(br, n, 0.5 * (a + b), t_end);
+    }
+    before = now;
+  }
+}
+
 /* Outer breakpoints: 0, t_end, the closest point t_c, t_c +- h 4^k up to w, t_c +- w 4^k
- * beyond, and the spot's cone crossings; sorted, without duplicates. */
-static inline int lamp_ref__outer_breaks(const lamp_ref_lamp *lamp, const double o[3],
+ * beyond, the spot's cone crossings and V's jumps; sorted, without duplicates. */
+static inline int lamp_ref__outer_breaks(const lamp_ref_medium *medium,
+                                         const lamp_ref_lamp *lamp, const double o[3],
                                          const double d[3], double t_end, double *br) {
   int n = 0;
+  lamp_ref__shadow_breaks(medium, lamp, o, d, t_end, br, &n);
   double q[3] = {lamp->position[0] - o[0], lamp->position[1] - o[1], lamp->position[2] - o[2]};
   double tc = lamp_ref__dot(q, d);
   double perp[3] = {q[0] - tc * d[0], q[1] - tc * d[1], q[2] - tc * d[2]};
@@ -463,7 +502,7 @@ static inline double lamp_ref_inscatter_ex(const lamp_ref_medium *m, const lamp_
   sc.ntable = n;
 
   /* The outer integral. */
-  int nb = lamp_ref__outer_breaks(lamp, o, d, t_end, ws.breaks);
+  int nb = lamp_ref__outer_breaks(m, lamp, o, d, t_end, ws.breaks);
   int nseg = 0;
   double err = 0.0;
   double v = lamp_ref__integrate(lamp_ref__integrand, &sc, ws.breaks, nb, m->max_step,

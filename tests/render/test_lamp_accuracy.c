@@ -43,7 +43,7 @@ static sweep_error sweep(const char *name, const fog_model *m, const fog_lamp *l
                             .spot = lamp->kind == FOG_LAMP_SPOT,
                             .axis = {lamp->axis[0], lamp->axis[1], lamp->axis[2]},
                             .cos_inner = lamp->cos_inner, .cos_outer = lamp->cos_outer};
-  lamp_ref_medium medium = {model_k, m, 1.0, g, max_step, 1e-9};
+  lamp_ref_medium medium = {model_k, m, 1.0, g, max_step, 1e-9, NULL, NULL};
   double peak = 0.0, worst = 0.0, worst_fogshop = 0.0;
   double *want = malloc(sizeof(double) * n), *ours = malloc(sizeof(double) * n),
          *theirs = malloc(sizeof(double) * n);

@@ -10,7 +10,11 @@
  *      brute-force composite Simpson sum (2e5 intervals) with closed-form tau and T;
  *   5. spots: cone containing the lit ray = point lamp; cone away = 0; cone edges crossing
  *      the ray against brute-force Simpson;
- *   6. a lamp 1e-3 from the ray with r = 1e-2: the atan limit and the theta substitution.
+ *   6. a lamp 1e-3 from the ray with r = 1e-2: the atan limit and the theta substitution;
+ *   7. visibility: a wall filling the plane z = 0 with the lamp before it; a ray through the
+ *      wall's shadow is lit only past z = 0, so L with V equals L without V over the whole
+ *      ray minus L without V over its shadowed start (exact), and a wall with a slit lets
+ *      through what the same identity gives for the slit's stretch.
  * Prints the worst error of each group and the time per ray. Everything here is written
  * independently of the header: own adaptive Simpson, own phase and spot functions. */
 #include <math.h>
@@ -266,7 +270,7 @@ static void rule_check(void) {
 /* ---- 1 ---- */
 static void sun_check(void) {
   homogeneous hom = {0.25};
-  lamp_ref_medium m = {homogeneous_k, &hom, 0.8, 0.0, 0.0, 1e-9};
+  lamp_ref_medium m = {homogeneous_k, &hom, 0.8, 0.0, 0.0, 1e-9, NULL, NULL};
   double o[3] = {1.0, -2.0, 0.5}, d[3] = {0.3, -0.5, 0.8}, n[3] = {0.8, 0.0, -0.3};
   unit3(d);
   double dn = dot3(n, d);
@@ -316,7 +320,7 @@ static void sun_check(void) {
 /* ---- 2 ---- */
 static void identity_check(void) {
   homogeneous zero = {0.0}, hom = {0.4};
-  lamp_ref_medium m = {homogeneous_k, &zero, 0.9, 0.5, 0.0, 1e-9};
+  lamp_ref_medium m = {homogeneous_k, &zero, 0.9, 0.5, 0.0, 1e-9, NULL, NULL};
   double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
   lamp_ref_lamp lamp = point_lamp(3.0, 0.5, 0.0, 5.0, 0.01);
   double v0 = run(&m, &lamp, o, d, 10.0, "K = 0");
@@ -336,7 +340,7 @@ static void identity_check(void) {
 /* ---- 3 ---- */
 static void thin_check(void) {
   homogeneous hom = {1e-12};
-  lamp_ref_medium m = {homogeneous_k, &hom, 0.7, 0.0, 0.0, 1e-9};
+  lamp_ref_medium m = {homogeneous_k, &hom, 0.7, 0.0, 0.0, 1e-9, NULL, NULL};
   double worst = 0.0;
   for (int i = 0; i < 40; i++) {
     double o[3] = {uniform(-5, 5), uniform(-5, 5), uniform(-5, 5)};
@@ -365,7 +369,7 @@ static gaussians test_gaussians(void) {
 }
 static void gaussian_check(void) {
   gaussians g = test_gaussians();
-  lamp_ref_medium m = {gaussians_k, &g, 0.85, 0.4, 0.7 / 4.0, 1e-9};
+  lamp_ref_medium m = {gaussians_k, &g, 0.85, 0.4, 0.7 / 4.0, 1e-9, NULL, NULL};
   double worst_od = 0.0, worst_t = 0.0;
   for (int i = 0; i < 40; i++) {
     double a[3] = {uniform(-8, 8), uniform(-3, 3), uniform(-3, 3)};
@@ -420,7 +424,7 @@ static void gaussian_check(void) {
 /* ---- 5 ---- */
 static void spot_check(void) {
   homogeneous hom = {0.3};
-  lamp_ref_medium m = {homogeneous_k, &hom, 0.75, 0.5, 0.0, 1e-9};
+  lamp_ref_medium m = {homogeneous_k, &hom, 0.75, 0.5, 0.0, 1e-9, NULL, NULL};
   double o[3] = {-6.0, 0.0, 0.0}, d[3] = {1.0, 0.0, 0.0};
   lamp_ref_lamp point = point_lamp(0.0, 2.0, 0.0, 4.0, 0.02);
   lamp_ref_lamp spot = point;
@@ -473,7 +477,7 @@ static void near_check(void) {
       double t_end = ends[i], tl = tls[i], h = on_ray ? 0.0 : 1e-3;
       lamp_ref_lamp lamp = point_lamp(0, 0, 0, 1.0, 1e-2);
       for (int k = 0; k < 3; k++) lamp.position[k] = o[k] + tl * d[k] + h * n[k];
-      lamp_ref_medium m = {homogeneous_k, &thin, 0.6, 0.0, 0.0, 1e-9};
+      lamp_ref_medium m = {homogeneous_k, &thin, 0.6, 0.0, 0.0, 1e-9, NULL, NULL};
       double v = run(&m, &lamp, o, d, t_end, "near thin");
       double e = rel_err(v, thin_inscatter(thin.k, m.albedo, &lamp, o, d, t_end));
       CHECK(e < 1e-9, "near thin t_l %g h %g: %.2e", tl, h, e);
@@ -500,8 +504,64 @@ static void near_check(void) {
          worst_thin, worst_theta, ratio);
 }
 
+/* V of section 7: a wall in the plane z = 0, open where |x| < slit (slit 0: no opening),
+ * the lamp on the side z > 0. */
+static bool wall_visible(const void *u, const double x[3], const double lamp[3]) {
+  const double slit = *(const double *)u;
+  if ((x[2] > 0) == (lamp[2] > 0)) return true;
+  const double f = lamp[2] / (lamp[2] - x[2]); /* where the segment meets z = 0 */
+  const double cross = lamp[0] + f * (x[0] - lamp[0]);
+  return fabs(cross) < slit;
+}
+
+static void visibility_check(void) {
+  const double hom = 0.05, no_slit = 0.0, slit = 0.5;
+  lamp_ref_medium plain = {homogeneous_k, &hom, 0.8, 0.3, 0.0, 1e-10, NULL, NULL};
+  lamp_ref_medium walled = plain, slitted = plain;
+  walled.visible = wall_visible, walled.visible_user = &no_slit;
+  slitted.visible = wall_visible, slitted.visible_user = &slit;
+  const lamp_ref_lamp lamp = point_lamp(0.3, 1.0, 2.0, 100.0, 0.2);
+  double worst = 0, worst_slit = 0;
+  for (int k = 0; k < 6; k++) {
+    /* from behind the wall (z < 0) through it at a slant */
+    double o[3] = {uniform(-3, 3), uniform(-2, 2), -uniform(3, 8)}, d[3] = {uniform(-0.3, 0.3),
+                   uniform(-0.3, 0.3), 1.0};
+    unit3(d);
+    const double t_wall = -o[2] / d[2], t_end = t_wall + uniform(2, 10);
+    const double whole = run(&plain, &lamp, o, d, t_end, "7. visibility"), start = run(&plain, &lamp, o, d, t_wall, "7. visibility");
+    worst = fmax(worst, rel_err(run(&walled, &lamp, o, d, t_end, "7. visibility"), whole - start));
+    /* the slit's stretches behind the wall: the segment from x(t) to the lamp meets z = 0 at
+     * x = c where L2 x0(t) + (c - L0) x2(t) - c L2 = 0, linear in t; the roots for c = -+
+     * slit cut [0, t_wall] into pieces lit or dark throughout (V at a piece's middle) */
+    double want = whole - start, cuts[4] = {0.0, t_wall, t_wall, t_wall};
+    for (int e = 0; e < 2; e++) {
+      const double c = e ? slit : -slit, *L = lamp.position;
+      const double t = -(L[2] * o[0] + (c - L[0]) * o[2] - c * L[2]) /
+                       (L[2] * d[0] + (c - L[0]) * d[2]);
+      if (t > 0 && t < t_wall) cuts[1 + e] = t;
+    }
+    if (cuts[1] > cuts[2]) {
+      const double swap = cuts[1];
+      cuts[1] = cuts[2], cuts[2] = swap;
+    }
+    for (int piece = 0; piece < 3; piece++) {
+      const double mid = 0.5 * (cuts[piece] + cuts[piece + 1]);
+      const double x[3] = {o[0] + mid * d[0], o[1] + mid * d[1], o[2] + mid * d[2]};
+      if (cuts[piece] < cuts[piece + 1] && wall_visible(&slit, x, lamp.position))
+        want += run(&plain, &lamp, o, d, cuts[piece + 1], "7. visibility") -
+                run(&plain, &lamp, o, d, cuts[piece], "7. visibility");
+    }
+    worst_slit = fmax(worst_slit, rel_err(run(&slitted, &lamp, o, d, t_end, "7. visibility"), want));
+  }
+  printf("7. visibility: a wall %.2e, a wall with a slit %.2e (relative, 6 rays)\n", worst,
+         worst_slit);
+  CHECK(worst < 1e-8, "reference with V off the identity by %.2e", worst);
+  CHECK(worst_slit < 1e-6, "reference with a slit off by %.2e", worst_slit);
+}
+
 int main(void) {
   clock_t c0 = clock();
+  visibility_check();
   rule_check();
   sun_check();
   identity_check();
