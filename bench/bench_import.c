@@ -216,7 +216,7 @@ static int preview_frame(preview *p, const char *vdb, const char *png, double ti
   /* The full-detail fogmap (A_J, what LOD mu = 1 shows) as one grid: the pyramid above
    * is what the LOD variants would upload. */
   fog_pass_params params = {.volume = &volume, .fog_colour = {0.8f, 0.8f, 0.8f},
-                            .integrator = p->integrator};
+                            .integrator = p->integrator, .march_steps = FOG_PASS_MARCH_STEPS};
   int status = fog_pass_upload_grid(p->fog, 0, &p->finest, &rerr);
   double t2b = t2, t2c = t2;
   if (!status) {

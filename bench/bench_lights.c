@@ -41,6 +41,7 @@ static const fog_lamp_method converged = {.integral = FOG_LAMP_ANGLE, .angle_pie
 
 typedef struct lights_row {
   int scene;
+  int divisor; /* fog_pass_params.resolution_divisor: 0 full, 2 the live demo's */
   fog_lamp_method method;
   bool unlit;
   char name[32], series[48];
@@ -55,6 +56,7 @@ typedef struct lights_scene {
   fog_model model;
   fog_lamps lamps;
   float *unlit;      /* the unlit row's in-scatter, 3 per pixel */
+  float *unlit_half; /* the same at half resolution (the live rows subtract it) */
   double *reference; /* the lamps' converged in-scatter, 3 per error pixel */
   double peak;
 } lights_scene;
@@ -93,6 +95,7 @@ static void scene_destroy(lights_scene *s) {
     render_scene_destroy(&s->drawn);
   }
   free(s->unlit);
+  free(s->unlit_half);
   free(s->reference);
   free(s->cfg);
 }
@@ -123,13 +126,14 @@ static double scene_reference(const lights_scene *s, int W, int H, fog_lamp_visi
 }
 
 static void row_errors(lights_row *r, const lights_scene *s, const float *inscatter, int W, int H) {
+  const float *unlit = r->divisor > 1 ? s->unlit_half : s->unlit;
   const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
   double worst = 0, sum = 0;
   for (int j = 0; j < rows; j++)
     for (int i = 0; i < cols; i++) {
       size_t k = (size_t)(j * ERROR_STRIDE) * W + i * ERROR_STRIDE;
       for (int c = 0; c < 3; c++) {
-        double lamps = (double)inscatter[3 * k + c] - s->unlit[3 * k + c];
+        double lamps = (double)inscatter[3 * k + c] - unlit[3 * k + c];
         double e = fabs(lamps - s->reference[((size_t)j * cols + i) * 3 + c]);
         if (!(e == e)) e = HUGE_VAL;
         worst = fmax(worst, e);
@@ -144,6 +148,7 @@ static int draw_row(lights_scene *s, const lights_row *r, const gl_target *out, 
   s->fog.params.lamps = s->lamps;
   s->fog.params.lamps.count = r->unlit ? 0 : s->lamps.count;
   s->fog.params.lamps.method = r->method;
+  s->fog.params.resolution_divisor = r->divisor;
   return render_fog_draw(&s->fog, &s->drawn.cam, &s->drawn.target, out, err);
 }
 
@@ -303,7 +308,7 @@ int bench_lights(int argc, char **argv) {
   if (exit_status >= 0) return exit_status;
   const int W = options.width, H = options.height, frames = options.frames;
   char error[1024] = "";
-  int status = 1, row_count = 0;
+  int status = 1, row_count = 0, live_rows[2] = {0, 0};
   size_t pixels = (size_t)W * H;
   const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows_e = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
   render_error rerr = {{0}};
@@ -329,6 +334,18 @@ int bench_lights(int argc, char **argv) {
     for (size_t q = 0; q < sizeof march_samples / sizeof march_samples[0] - (s == 0); q++)
       if (!add_row(rows, &row_count, s, "march", march_samples[q], frames)) goto out_of_memory;
     if (s == 1 && !add_row(rows, &row_count, s, "fogshop", 8, frames)) goto out_of_memory;
+    if (s == 0) { /* the live demo's setting: the fog at half resolution */
+      scenes[s].unlit_half = malloc(3 * pixels * sizeof(float));
+      if (!scenes[s].unlit_half) goto out_of_memory;
+      for (int live = 0; live < 2; live++) {
+        lights_row *r = add_row(rows, &row_count, s, live ? "ours" : "unlit", FOG_LAMP_ANGLE_PIECES, frames);
+        if (!r) goto out_of_memory;
+        r->divisor = 2;
+        live_rows[live] = row_count - 1;
+        snprintf(r->name, sizeof r->name, "%s 1/2", live ? "ours 8+8" : "unlit");
+        snprintf(r->series, sizeof r->series, "valley ours 8+8 at 1/2 resolution");
+      }
+    }
     scenes[s].peak = scene_reference(&scenes[s], W, H, NULL, NULL, scenes[s].reference);
   }
   /* Warm-up and errors (the unlit row first: the others subtract its in-scatter), then the
@@ -336,7 +353,8 @@ int bench_lights(int argc, char **argv) {
   for (int i = 0; i < row_count; i++) {
     lights_row *r = &rows[i];
     lights_scene *s = &scenes[r->scene];
-    if (draw_row(s, r, &out, &rerr) || gl_target_read(&out, 2, 3, r->unlit ? s->unlit : inscatter, &rerr))
+    float *into = !r->unlit ? inscatter : r->divisor > 1 ? s->unlit_half : s->unlit;
+    if (draw_row(s, r, &out, &rerr) || gl_target_read(&out, 2, 3, into, &rerr))
       goto gl_failed;
     if (!r->unlit) row_errors(r, s, inscatter, W, H);
   }
@@ -392,13 +410,21 @@ int bench_lights(int argc, char **argv) {
                            (640.0 * 360.0) / ((double)W * H);
   printf("A: (%.2f - %.2f) ms / %d lamps at %dx%d, x %.2f to 640x360\n", rows[2].ms, rows[0].ms,
          scenes[0].lamps.count, W, H, 640.0 * 360.0 / ((double)W * H));
+  /* A at the live setting: the same at half resolution (the demo's fog), per lamp at
+   * 640x360 */
+  const lights_row *live_unlit = &rows[live_rows[0]], *live = &rows[live_rows[1]];
+  printf("A at the live setting (the fog at 1/2 resolution): (%.2f - %.2f) ms / %d lamps: "
+         "%.2f ms a lamp at 640x360 (max error %.2e of the peak, mean %.2e)\n", live->ms,
+         live_unlit->ms, scenes[0].lamps.count,
+         (live->ms - live_unlit->ms) / scenes[0].lamps.count * (640.0 * 360.0) / ((double)W * H),
+         live->max_error, live->mean_error);
   /* B: on each scene the cheapest marching within MATCHED_ERROR over our cheapest. */
   double b[SCENE_COUNT];
   for (int s = 0; s < SCENE_COUNT; s++) {
     double march_ms = NAN, ours_ms = NAN;
     for (int i = 0; i < row_count; i++) {
       const lights_row *r = &rows[i];
-      if (r->scene != s || r->unlit || r->method.integral == FOG_LAMP_FOGSHOP ||
+      if (r->scene != s || r->unlit || r->divisor > 1 || r->method.integral == FOG_LAMP_FOGSHOP ||
           !(r->max_error <= MATCHED_ERROR))
         continue;
       double *best = r->method.integral == FOG_LAMP_MARCH ? &march_ms : &ours_ms;

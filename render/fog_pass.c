@@ -553,6 +553,7 @@ enum fog_pass_unit {
   UNIT_GRIDS, /* fog_grids[k] on UNIT_GRIDS + k */
   UNIT_GRID_LAYERS = UNIT_GRIDS + FOG_PASS_MAX_GRIDS,
   UNIT_REDUCED,
+  UNIT_REDUCED_LAMPS,
   UNIT_CELLS,
   UNIT_CELL_LAYERS,
   UNIT_OCCUPANCY,
@@ -966,8 +967,7 @@ static int fog_pass_skips_share(const fog_pass_params *params, double empty_shar
 static int fog_pass_analytic_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
                                       const fog_pass_params *params, int width, int height,
                                       render_error *err) {
-  glUniform1i(fog_loc(prog, "fog_march_steps"),
-              params->march_steps > 0 ? params->march_steps : 64);
+  glUniform1i(fog_loc(prog, "fog_march_steps"), params->march_steps);
   glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
   glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
   /* The sampler array must still name distinct units of the right type. */
@@ -1118,7 +1118,7 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
 /* resolution_divisor > 1, before the reduced draw: the reduced target (reallocated only when
  * the size changes) bound, the caller's framebuffer remembered. */
 static int fog_pass_begin_reduced(fog_pass *pass, int divisor, int width, int height,
-                                  GLint *caller_framebuffer, render_error *err) {
+                                  bool lamps, GLint *caller_framebuffer, render_error *err) {
   int w = (width + divisor - 1) / divisor, h = (height + divisor - 1) / divisor;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, caller_framebuffer);
   if (pass->reduced.framebuffer && (pass->reduced.width != w || pass->reduced.height != h)) {
@@ -1129,14 +1129,21 @@ static int fog_pass_begin_reduced(fog_pass *pass, int divisor, int width, int he
     /* gl_target_create leaves framebuffer 0 bound for reading too: keep the caller's. */
     GLint caller_read = 0;
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &caller_read);
-    int failed = gl_target_create(&pass->reduced, &(gl_target_desc){.width = w, .height = h,
-                                                                    .color_formats = {GL_RGBA32F}},
+    /* 0: depth, distance, K there, T_s mean; 2: the lamps' in-scatter (1 unused: the
+     * shader's transmittance output) */
+    int failed = gl_target_create(&pass->reduced,
+                                  &(gl_target_desc){.width = w, .height = h,
+                                                    .color_formats = {GL_RGBA32F, GL_R32F,
+                                                                      GL_RGBA32F}},
                                   err);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)caller_read);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)*caller_framebuffer);
     if (failed) return 1;
   }
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, pass->reduced.framebuffer);
+  /* the lamps' attachment only with lamps: an RGBA32F write a sample is not free */
+  static const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_COLOR_ATTACHMENT2};
+  glDrawBuffers(lamps ? 3 : 1, buffers);
   return 0;
 }
 
@@ -1150,6 +1157,9 @@ static int fog_pass_finish_reduced(fog_pass *pass, GLuint prog, const camera *ca
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)caller_framebuffer);
   glUseProgram(prog);
   bind_sampler(prog, "fog_reduced", UNIT_REDUCED, GL_TEXTURE_2D, pass->reduced.color[0]);
+  if (fog_pass_has_lamps(params))
+    bind_sampler(prog, "fog_reduced_lamps", UNIT_REDUCED_LAMPS, GL_TEXTURE_2D,
+                 pass->reduced.color[2]);
   glUniform1i(fog_loc(prog, "fog_divisor"), divisor);
   return fog_pass_common_and_draw(pass, prog, cam, params, surface_colour, surface_distance, width,
                                   height, width, height, err);
@@ -1187,7 +1197,8 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
     return fog_pass_common_and_draw(pass, walk_prog, cam, params, surface_colour, surface_distance,
                                     width, height, width, height, err);
   GLint caller = 0;
-  if (fog_pass_begin_reduced(pass, divisor, width, height, &caller, err)) return 1;
+  if (fog_pass_begin_reduced(pass, divisor, width, height, variant.lamps, &caller, err))
+    return 1;
   if (fog_pass_common_and_draw(pass, walk_prog, cam, params, surface_colour, surface_distance,
                                width, height, pass->reduced.width, pass->reduced.height, err)) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)caller);
@@ -1209,6 +1220,13 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
              "fog_sun_shadow_kind, >= 1 steps of 1 or 2 nodes and, for the volume, "
              "fog_pass_upload_sun_shadow first",
              (int)params->self_shadow, params->shadow_steps, params->shadow_nodes);
+    return 1;
+  }
+  if (params->integrator == FOG_INTEGRATOR_MARCH && params->model != FOG_MODEL_VOLUME &&
+      params->march_steps < 1) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: marching with %d samples a ray: expected >= 1 (FOG_PASS_MARCH_STEPS "
+             "is the usual choice)", params->march_steps);
     return 1;
   }
   const fog_lamps *lamps = &params->lamps;
@@ -1460,8 +1478,7 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
   if (bspline) glUniform1fv(fog_loc(prog, "fog_profile_coefficients"), p->count, coefficients);
 
   glUniform1d(fog_loc(prog, "fog_mu"), J > 0 ? params->mu : 1.0);
-  glUniform1i(fog_loc(prog, "fog_march_steps"),
-              params->march_steps > 0 ? params->march_steps : 64);
+  glUniform1i(fog_loc(prog, "fog_march_steps"), params->march_steps);
   glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
   glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
   return 0;

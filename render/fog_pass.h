@@ -104,6 +104,9 @@ typedef struct fog_walk_settings {
                                 block counts as empty; >= 0 */
 } fog_walk_settings;
 
+/* The benches' and the preview's marching sample count (fog_pass_params.march_steps). */
+#define FOG_PASS_MARCH_STEPS 64
+
 typedef struct fog_pass_params {
   fog_model_kind model;      /* FOG_MODEL_FOGMAP (default) or an analytic model */
   double model_extinction;   /* FOG_MODEL_HOMOGENEOUS / _HEIGHT: K (at y0), per world unit */
@@ -171,7 +174,9 @@ typedef struct fog_pass_params {
   fog_integrator integrator;
   fog_froxel_grid froxel;    /* FOG_INTEGRATOR_FROXEL: the grid */
   fog_walk_settings walk;    /* early termination, empty-space skipping */
-  int march_steps;           /* FOG_INTEGRATOR_MARCH: 0 means 64 */
+  int march_steps;           /* FOG_INTEGRATOR_MARCH: samples a ray, >= 1 (every model but the
+                                volume, which steps by model_grid3d_step); FOG_PASS_MARCH_STEPS
+                                is the benches' usual choice */
   int march_jitter;          /* non-zero: per-pixel jittered sample positions */
   unsigned frame;            /* jitter seed */
   /* 0 or 1: the fog at full resolution (render, record: the reference). 2 or 4: the walk

@@ -194,28 +194,49 @@ float fog_model_march_fogmap(fog_ray r) { return fog_model_depth_fogmap(r); }
 // Where no sample is on the pixel's surface (weight sum below FOG_UPSAMPLE_MIN_WEIGHT) the
 // pixel walks its own ray (main): exact there, at the cost of the edge pixels only.
 uniform sampler2D fog_reduced;  // RGBA32F: optical depth, surface distance, K there
+#if FOG_LAMPS
+// RGBA32F: the lamps' in-scatter of the sample's ray (fog_lamps.glsl), rgb: upsampled with
+// the same weights as the depth (no first-order term: the lamps' light grows with distance
+// far more slowly than it varies across a halo)
+uniform sampler2D fog_reduced_lamps;
+#endif
 uniform int fog_divisor;
 const float FOG_UPSAMPLE_SIGMA = 0.02;  // a relative distance difference of one "sigma"
 const float FOG_UPSAMPLE_MIN_WEIGHT = 0.25;
+const float FOG_UPSAMPLE_LAMP_SPREAD = 0.25;  // the lamps' light: samples within 25 %
 
-bool fog_upsampled_depth(ivec2 pixel, float t, out float optical_depth, out float sun_light) {
+bool fog_upsampled_depth(ivec2 pixel, float t, out float optical_depth, out float sun_light,
+                         out vec3 lamp_light) {
   ivec2 size = textureSize(fog_reduced, 0);
   vec2 q = (vec2(pixel) - float(fog_divisor / 2)) / float(fog_divisor);
   ivec2 q0 = ivec2(floor(q));
   vec2 f = q - vec2(q0);
   float weight_sum = 0.0, depth_sum = 0.0, sun_sum = 0.0;
+  vec3 lamp_sum = vec3(0.0), lamp_lo = vec3(1e30), lamp_hi = vec3(0.0);
   for (int k = 0; k < 4; k++) {  // constant bound: unrolled
     ivec2 o = ivec2(k & 1, k >> 1);
-    vec4 s = texelFetch(fog_reduced, clamp(q0 + o, ivec2(0), size - 1), 0);
+    ivec2 at = clamp(q0 + o, ivec2(0), size - 1);
+    vec4 s = texelFetch(fog_reduced, at, 0);
     float wb = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
     float rel = abs(s.y - t) / max(min(s.y, t), 1e-3);  // both sky (1e30): 0
     float w = wb * exp(-(rel * rel) / (FOG_UPSAMPLE_SIGMA * FOG_UPSAMPLE_SIGMA));
     weight_sum += w;
     depth_sum += w * max(s.x + s.z * (t - s.y), 0.0);  // w = 0 wherever t - s.y is huge
     sun_sum += w * s.w;  // the sample's T_s mean (fog_light.glsl): smooth, interpolated
+#if FOG_LAMPS
+    vec3 lamp = texelFetch(fog_reduced_lamps, at, 0).rgb;
+    lamp_sum += w * lamp;
+    if (w > 1e-3 * wb) lamp_lo = min(lamp_lo, lamp), lamp_hi = max(lamp_hi, lamp);
+#endif
   }
   optical_depth = depth_sum / max(weight_sum, 1e-30);
   sun_light = sun_sum / max(weight_sum, 1e-30);
+  lamp_light = lamp_sum / max(weight_sum, 1e-30);
+#if FOG_LAMPS
+  // A lamp's halo changes by more than FOG_UPSAMPLE_LAMP_SPREAD between the samples (its
+  // 1/d^2 core, which samples a reduced pixel apart miss): the pixel walks its own ray.
+  if (any(greaterThan(lamp_hi - lamp_lo, FOG_UPSAMPLE_LAMP_SPREAD * lamp_hi + 1e-6))) return false;
+#endif
   return weight_sum >= FOG_UPSAMPLE_MIN_WEIGHT;
 }
 #endif
@@ -228,6 +249,18 @@ float fog_phase_hg(float g, float cos_theta) {
 
 #include "fog_lamps.glsl"
 #include "fog_froxel.glsl"
+
+#if FOG_LAMPS
+// The lamps' in-scatter of the pixel's ray (fog_lamps.glsl): their own set-up, as the sun's
+// mean.
+vec3 fog_lamps_ray_light(dvec3 view_dir, float t_surface) {
+  double t_in = 1.0, t_out = 0.0;
+#if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
+  if (!fog_box_entry_exit(view_dir, t_in, t_out)) t_in = 1.0, t_out = 0.0;
+#endif
+  return fog_lamps_light(fog_ray(view_dir, vec3(view_dir), t_in, t_out, t_surface, 0.5));
+}
+#endif
 
 void main() {
 #if FOG_FROXEL == 1
@@ -252,8 +285,9 @@ void main() {
   float cos_sun = dot(vec3(view_dir), fog_sun_direction);
   bool walk = FOG_FROXEL == 0;  // the froxel lookup walks nothing
   float sun_light = 1.0;  // the T_s mean of the ray (fog_light.glsl)
+  vec3 lamp_light = vec3(0.0);  // the lamps' in-scatter, upsampled (or walked below)
 #if FOG_UPSAMPLE
-  walk = !fog_upsampled_depth(pixel, t_surface, optical_depth, sun_light);
+  walk = !fog_upsampled_depth(pixel, t_surface, optical_depth, sun_light, lamp_light);
 #endif
   // The ray's own integral. llvmpipe runs the body of an `if` under a mask for every lane
   // but leaves a loop as soon as no lane is in it: as a loop of at most one turn, the
@@ -285,6 +319,9 @@ void main() {
   }
 #if FOG_REDUCED > 1
   fog_out_colour = vec4(optical_depth, t_surface, k_end, fog_sun_light(view_dir, t_surface));
+#if FOG_LAMPS
+  fog_out_inscatter = vec4(fog_lamps_ray_light(view_dir, t_surface), 0.0);
+#endif
   return;
 #endif
   // The pixel's own T_s mean where it walked its own ray (a loop of at most one turn, as
@@ -320,13 +357,10 @@ void main() {
       (fog_colour + fog_sun_scatter * fog_phase_hg(fog_phase_g, cos_sun) * sun_light) * (1.0 - tau);
 #endif
 #if FOG_LAMPS
-  {  // the lamps (fog_lamps.glsl): their own set-up, as the sun's mean
-    double t_in = 1.0, t_out = 0.0;
-#if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
-    if (!fog_box_entry_exit(view_dir, t_in, t_out)) t_in = 1.0, t_out = 0.0;
-#endif
-    inscatter += fog_lamps_light(fog_ray(view_dir, vec3(view_dir), t_in, t_out, t_surface, 0.5));
-  }
+  // the lamps: upsampled from the reduced pass, or the pixel's own (a loop of at most one
+  // turn, as above)
+  for (int turn = walk ? 0 : 1; turn < 1; turn++) lamp_light = fog_lamps_ray_light(view_dir, t_surface);
+  inscatter += lamp_light;
 #endif
   fog_out_colour = vec4(tau * surface.rgb + inscatter, surface.a);
   fog_out_transmittance = tau;
