@@ -117,6 +117,21 @@ float fog_sun_light_at(vec3 dir, float t) {
 const int fog_piece_nodes = FOG_SHADOW_NODES > 0 ? FOG_SHADOW_NODES : 1;
 uniform float fog_piece_x[4], fog_piece_w[4];
 uniform mat4 fog_piece_partial;
+
+// One piece of a per-piece mean (fog_piece_light in C): K at the piece's fog_piece_nodes
+// Gauss nodes, its half-length h and centre `at` along dir; tau at node j from the running
+// depth D plus the partial integral of K's polynomial through the nodes (fog_piece_partial).
+// Adds the piece's tau K T_s V to S and returns its optical depth.
+float fog_piece_light(float K[4], float h, float at, vec3 dir, float D, inout float S) {
+  float piece = 0.0;
+  for (int j = 0; j < fog_piece_nodes; j++) {
+    float dj = 0.0;
+    for (int q = 0; q < fog_piece_nodes; q++) dj += fog_piece_partial[j][q] * K[q];
+    S += h * fog_piece_w[j] * K[j] * exp(-(D + h * dj)) * fog_sun_light_at(dir, at + h * fog_piece_x[j]);
+    piece += h * fog_piece_w[j] * K[j];
+  }
+  return piece;
+}
 #endif
 
 #if FOG_MODEL_KIND == FOG_MODEL_VOLUME
@@ -141,15 +156,7 @@ float fog_grid3d_sun_mean(fog_ray r) {
       float h = 0.5 * (tn - t), mid = 0.5 * (tn + t), K[4];
       for (int j = 0; j < fog_piece_nodes; j++)
         K[j] = fog_grid3d_cell_value(cell, f + (mid + h * fog_piece_x[j]) * du);
-      float piece = 0.0;
-      for (int j = 0; j < fog_piece_nodes; j++) {
-        float dj = 0.0;
-        for (int q = 0; q < fog_piece_nodes; q++) dj += fog_piece_partial[j][q] * K[q];
-        S += h * fog_piece_w[j] * K[j] * exp(-(D + h * dj)) *
-             fog_sun_light_at(r.dir, t0 + mid + h * fog_piece_x[j]);
-        piece += h * fog_piece_w[j] * K[j];
-      }
-      D += piece;
+      D += fog_piece_light(K, h, t0 + mid, r.dir, D, S);
     }
     if (tx <= tn) ax.cell += ax.step;
     if (ty <= tn) ay.cell += ay.step;
@@ -221,15 +228,7 @@ float fog_perlin_sun_mean(fog_ray r) {
           K[j] = fog_model_extinction * exp(-(y_entry + tj * dir.y - fog_model_y0) * inv_h) *
                  turbulence;
         }
-        float piece = 0.0;
-        for (int j = 0; j < fog_piece_nodes; j++) {
-          float dj = 0.0;
-          for (int q = 0; q < fog_piece_nodes; q++) dj += fog_piece_partial[j][q] * K[q];
-          float tj = centre + h * fog_piece_x[j];
-          S += h * fog_piece_w[j] * K[j] * exp(-(D + h * dj)) * fog_sun_light_at(dir, t0 + tj);
-          piece += h * fog_piece_w[j] * K[j];
-        }
-        D += piece;
+        D += fog_piece_light(K, h, t0 + centre, dir, D, S);
       }
     }
     for (int i = 0; i < fog_perlin_octaves; i++) {
