@@ -53,6 +53,15 @@ void scene_geometry_destroy(scene_geometry *geo) {
   *geo = (scene_geometry){0};
 }
 
+void scene_geometry_bounds(const scene_geometry *geo, double lo[3], double hi[3]) {
+  const terrain *t = &geo->terrain;
+  lo[0] = t->origin[0], lo[1] = t->min_y, lo[2] = t->origin[2];
+  hi[0] = t->origin[0] + t->size[0], hi[1] = t->max_y, hi[2] = t->origin[2] + t->size[1];
+  for (int b = 0; b < geo->box_count; b++)
+    for (int c = 0; c < 3; c++)
+      lo[c] = fmin(lo[c], geo->boxes[b].min[c]), hi[c] = fmax(hi[c], geo->boxes[b].max[c]);
+}
+
 /* Ray-box (slabs, Kay & Kajiya 1986): nearest s > 0 on the box's surface. */
 static bool box_hit(const scene_box *box, const double o[3], const double d[3], double *s,
                     int *axis, int *sign) {
@@ -331,12 +340,8 @@ static int shadow_map_create(scene_pass *pass, render_error *err) {
  * shadows with its back faces too). */
 static void shadow_map_render(scene_pass *pass) {
   const scene_geometry *geo = pass->geo;
-  const terrain *t = &geo->terrain;
-  double lo[3] = {t->origin[0], t->min_y, t->origin[2]};
-  double hi[3] = {t->origin[0] + t->size[0], t->max_y, t->origin[2] + t->size[1]};
-  for (int b = 0; b < geo->box_count; b++)
-    for (int c = 0; c < 3; c++)
-      lo[c] = fmin(lo[c], geo->boxes[b].min[c]), hi[c] = fmax(hi[c], geo->boxes[b].max[c]);
+  double lo[3], hi[3];
+  scene_geometry_bounds(geo, lo, hi);
   sun_shadow_map *map = &pass->shadow;
   sun_shadow_map_fit(map, geo->sun_direction, lo, hi);
   /* view: rows e0, e1, sun (column-major below); projection: light space to NDC, depth
@@ -362,7 +367,7 @@ static void shadow_map_render(scene_pass *pass) {
   glClear(GL_DEPTH_BUFFER_BIT);
   glDisable(GL_CULL_FACE);
   glUseProgram(pass->surface_program);
-  const double *o = t->origin;
+  const double *o = geo->terrain.origin;
   glUniform3f(pass->u_offset, (float)(o[0] - map->centre[0]), (float)(o[1] - map->centre[1]),
               (float)(o[2] - map->centre[2]));
   glUniformMatrix4fv(pass->u_view, 1, GL_FALSE, view);

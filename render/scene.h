@@ -80,6 +80,8 @@ typedef struct scene_geometry {
 
 int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_error *err);
 void scene_geometry_destroy(scene_geometry *geo);
+/* The world box around the terrain and the boxes (what the shadow maps must cover). */
+void scene_geometry_bounds(const scene_geometry *geo, double lo[3], double hi[3]);
 /* The unit direction towards the light's sun (what the surfaces and the fog are lit by). */
 void scene_light_sun_direction(const scene_light *light, double sun_direction[3]);
 

@@ -96,13 +96,8 @@ int scene_lamp_shadows_update(scene_pass *pass, render_error *err) {
     maps->count = count;
     return 0;
   }
-  const scene_geometry *geo = pass->geo;
-  const terrain *t = &geo->terrain;
-  double lo[3] = {t->origin[0], t->min_y, t->origin[2]};
-  double hi[3] = {t->origin[0] + t->size[0], t->max_y, t->origin[2] + t->size[1]};
-  for (int b = 0; b < geo->box_count; b++)
-    for (int c = 0; c < 3; c++)
-      lo[c] = fmin(lo[c], geo->boxes[b].min[c]), hi[c] = fmax(hi[c], geo->boxes[b].max[c]);
+  double lo[3], hi[3];
+  scene_geometry_bounds(pass->geo, lo, hi);
   glBindFramebuffer(GL_FRAMEBUFFER, pass->lamp_shadow_framebuffer);
   glDrawBuffer(GL_NONE);
   glReadBuffer(GL_NONE);

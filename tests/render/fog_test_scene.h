@@ -8,6 +8,8 @@
 #include <stdlib.h>
 
 #include "render/fog_field.h"
+#include "render/fog_models.h"
+#include "render/volume_march.h"
 #include "transform/transform.h"
 
 static uint64_t fog_test_rng = 0x9E3779B97F4A7C15ull;
@@ -156,6 +158,31 @@ static inline void fog_test_ray(const fog_volume *v, double camera[3], double di
     dir[a] = target[a] - camera[a];
   }
   fog_test_unit(dir);
+}
+
+/* The analytic models' scene of test_gpu_fog_vs_cpu and test_gpu_lamps: a dozen Gaussians
+ * between the camera and the view's far side, drawn from the generator in this order. */
+enum { FOG_TEST_RBF_COUNT = 12 };
+static inline void fog_test_scene_rbfs(fog_rbf rbfs[FOG_TEST_RBF_COUNT]) {
+  for (int i = 0; i < FOG_TEST_RBF_COUNT; i++) {
+    double s_i = fog_test_range(0.15, 1.0);
+    rbfs[i] = (fog_rbf){.centre = {10.0 + 70.0 * s_i + fog_test_range(-15, 15),
+                                   fog_test_range(0.0, 14.0),
+                                   20.0 - 80.0 * s_i + fog_test_range(-15, 15)},
+                        .radius = fog_test_range(3.0, 15.0), .density = fog_test_range(0.04, 0.15)};
+  }
+}
+
+/* And its volume: 2-unit voxels over x 30..78, z -50..-10, y 0..20, index axes (z, x, y): a
+ * permutation that is not its own transpose (the matrix's layout matters), random density.
+ * The values are malloc'ed into *values (the caller frees them). */
+static inline volume_grid_desc fog_test_scene_volume(float **values) {
+  enum { GX = 24, GZ = 20, GY = 10 };
+  *values = malloc(sizeof(float) * GX * GZ * GY);
+  for (int i = 0; i < GX * GZ * GY; i++) (*values)[i] = (float)fog_test_range(0.0, 0.12);
+  return (volume_grid_desc){.dim = {GZ, GX, GY}, .values = *values,
+                            .index_from_world = {{0, 0, 0.5}, {0.5, 0, 0}, {0, 0.5, 0}},
+                            .index_offset = {25.0, -15.0, 0.0}};
 }
 
 #endif

@@ -230,23 +230,10 @@ int main(void) {
   /* The analytic models of the ladder (fog_models.h) through the same pass; the RBFs are
    * a dozen Gaussians between the camera and the view's far side, over no base (view 0:
    * the sky stays finite) and over a thin one (view 1). */
-  fog_rbf rbfs[12];
-  for (int i = 0; i < 12; i++) {
-    double s_i = fog_test_range(0.15, 1.0);
-    rbfs[i] = (fog_rbf){.centre = {10.0 + 70.0 * s_i + fog_test_range(-15, 15),
-                                   fog_test_range(0.0, 14.0),
-                                   20.0 - 80.0 * s_i + fog_test_range(-15, 15)},
-                        .radius = fog_test_range(3.0, 15.0), .density = fog_test_range(0.04, 0.15)};
-  }
-  /* The volume: 2-unit voxels over x 30..78, z -50..-10, y 0..20, index axes (z, x, y):
-   * a permutation that is not its own transpose (the matrix's layout matters), random
-   * density. */
-  enum { GX = 24, GZ = 20, GY = 10 };
-  float *grid_values = malloc(sizeof(float) * GX * GZ * GY);
-  for (int i = 0; i < GX * GZ * GY; i++) grid_values[i] = (float)fog_test_range(0.0, 0.12);
-  volume_grid_desc grid3d = {.dim = {GZ, GX, GY}, .values = grid_values,
-                             .index_from_world = {{0, 0, 0.5}, {0.5, 0, 0}, {0, 0.5, 0}},
-                             .index_offset = {25.0, -15.0, 0.0}};
+  fog_rbf rbfs[FOG_TEST_RBF_COUNT];
+  fog_test_scene_rbfs(rbfs);
+  float *grid_values;
+  volume_grid_desc grid3d = fog_test_scene_volume(&grid_values);
   CHECK(fog_pass_upload_grid3d(gl.pass, &grid3d, &err) == 0, "volume upload: %s", err.message);
   for (int model = FOG_MODEL_HOMOGENEOUS; model <= FOG_MODEL_VOLUME; model++)
     for (int view = 0; view < 2; view++) {
@@ -258,7 +245,7 @@ int main(void) {
       fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
       if (model == FOG_MODEL_RBF)
         m = (fog_model){.kind = model, .extinction = view ? 0.002 : 0.0, .rbfs = rbfs,
-                        .rbf_count = 12};
+                        .rbf_count = FOG_TEST_RBF_COUNT};
       if (model == FOG_MODEL_VOLUME) m = (fog_model){.kind = model, .grid3d = &grid3d};
       fog_pass_params params = {.model = model, .model_extinction = m.extinction,
                                 .model_y0 = m.y0, .model_scale_height = m.scale_height,

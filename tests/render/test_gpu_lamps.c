@@ -127,20 +127,10 @@ int main(void) {
   }
 
   /* The analytic models and the volume (the scene of test_gpu_fog_vs_cpu). */
-  fog_rbf rbfs[12];
-  for (int i = 0; i < 12; i++) {
-    double s_i = fog_test_range(0.15, 1.0);
-    rbfs[i] = (fog_rbf){.centre = {10.0 + 70.0 * s_i + fog_test_range(-15, 15),
-                                   fog_test_range(0.0, 14.0),
-                                   20.0 - 80.0 * s_i + fog_test_range(-15, 15)},
-                        .radius = fog_test_range(3.0, 15.0), .density = fog_test_range(0.04, 0.15)};
-  }
-  enum { GX = 24, GZ = 20, GY = 10 };
-  float *grid_values = malloc(sizeof(float) * GX * GZ * GY);
-  for (int i = 0; i < GX * GZ * GY; i++) grid_values[i] = (float)fog_test_range(0.0, 0.12);
-  volume_grid_desc grid3d = {.dim = {GZ, GX, GY}, .values = grid_values,
-                             .index_from_world = {{0, 0, 0.5}, {0.5, 0, 0}, {0, 0.5, 0}},
-                             .index_offset = {25.0, -15.0, 0.0}};
+  fog_rbf rbfs[FOG_TEST_RBF_COUNT];
+  fog_test_scene_rbfs(rbfs);
+  float *grid_values;
+  volume_grid_desc grid3d = fog_test_scene_volume(&grid_values);
   CHECK(fog_pass_upload_grid3d(gl.pass, &grid3d, &err) == 0, "volume upload: %s", err.message);
   /* quadric volumes near the lamps: a soft sphere around the first, a hard cylinder, and a
    * soft cone the second's light crosses */
@@ -158,7 +148,7 @@ int main(void) {
     fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
     fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
     if (model == FOG_MODEL_RBF)
-      m = (fog_model){.kind = model, .extinction = 0.002, .rbfs = rbfs, .rbf_count = 12};
+      m = (fog_model){.kind = model, .extinction = 0.002, .rbfs = rbfs, .rbf_count = FOG_TEST_RBF_COUNT};
     if (model == FOG_MODEL_VOLUME) m = (fog_model){.kind = model, .grid3d = &grid3d};
     if (model == FOG_MODEL_QUADRIC)
       m = (fog_model){.kind = model, .quadrics = quadrics, .quadric_count = 3};
