@@ -56,19 +56,7 @@ static void check_phase_normalised(void) {
   }
 }
 
-typedef struct frame {
-  float rgba[4 * W * H], tau[W * H], depth[W * H], inscatter[3 * W * H];
-} frame;
-
-static int render(const scene_config *cfg, frame *f, const char *label) {
-  render_frame_info info;
-  render_frame_error err = {{0}};
-  const frame_pixels out = {.rgba = f->rgba, .transmittance = f->tau, .depth = f->depth,
-                            .inscatter = f->inscatter};
-  const int failed = render_frame(cfg, W, H, &out, &info, &err);
-  CHECK(!failed, "%s: %s", label, err.message);
-  return failed;
-}
+#include "frame_util.h"
 
 /* S: the same scene and light without fog. */
 static int render_surface(const scene_config *cfg, frame *f, const char *label) {

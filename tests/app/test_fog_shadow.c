@@ -35,19 +35,7 @@ static const double pi = 3.14159265358979323846;
  * hyperboloid). */
 #define FOG_SHADOW_GL_TOLERANCE_QUADRIC 1e-4
 
-typedef struct frame {
-  float rgba[4 * W * H], tau[W * H], depth[W * H], inscatter[3 * W * H];
-} frame;
-
-static int render(const scene_config *cfg, frame *f, const char *label) {
-  render_frame_info info;
-  render_frame_error err = {{0}};
-  const frame_pixels out = {.rgba = f->rgba, .transmittance = f->tau, .depth = f->depth,
-                            .inscatter = f->inscatter};
-  const int failed = render_frame(cfg, W, H, &out, &info, &err);
-  CHECK(!failed, "%s: %s", label, err.message);
-  return failed;
-}
+#include "frame_util.h"
 
 /* The same scene without fog; sunless: the sun dimmed to nothing (0 would mean default). */
 static int render_surface(const scene_config *cfg, frame *f, bool sunless, const char *label) {

@@ -37,9 +37,7 @@ static const char *const scene_text =
     "[fog]\nmodel = homogeneous\ndensity_scale = 0.02\ncolour = 0 0 0\nalbedo = 0.9\n"
     "phase_g = 0.3\n";
 
-typedef struct frame {
-  float rgba[4 * W * H], tau[W * H], depth[W * H], inscatter[3 * W * H];
-} frame;
+#include "frame_util.h"
 
 static int load(const char *extra, scene_config *cfg) {
   char path[] = "/tmp/fogpipe_lamp_shafts_XXXXXX";
@@ -52,16 +50,6 @@ static int load(const char *extra, scene_config *cfg) {
   int failed = scene_config_load(path, cfg, &cerr);
   CHECK(!failed, "%s", cerr.message);
   unlink(path);
-  return failed;
-}
-
-static int render(const scene_config *cfg, frame *f) {
-  render_frame_info info;
-  render_frame_error err = {{0}};
-  const frame_pixels out = {.rgba = f->rgba, .transmittance = f->tau, .depth = f->depth,
-                            .inscatter = f->inscatter};
-  const int failed = render_frame(cfg, W, H, &out, &info, &err);
-  CHECK(!failed, "render: %s", err.message);
   return failed;
 }
 
@@ -140,7 +128,8 @@ int main(void) {
   if (load("", &cfg) || load("lamp_shadows = off\n", &off)) return test_finish("test_lamp_shafts");
   CHECK(cfg.shadow.lamp_shadows == 1 && off.shadow.lamp_shadows == 0,
         "[light] lamp_shadows: expected on by default");
-  if (render(&cfg, &lit) || render(&off, &unshadowed)) return test_finish("test_lamp_shafts");
+  if (render(&cfg, &lit, "lamp shadows on") || render(&off, &unshadowed, "lamp shadows off"))
+    return test_finish("test_lamp_shafts");
   const double peak = check_against_twin(&cfg, &lit, "point lamp behind a slit", twin);
 
   /* the wall's shadow: light the cubes take away */
@@ -192,7 +181,8 @@ int main(void) {
 
   /* a spot and a point lamp: each reads its own cube */
   scene_config two;
-  if (!load("spot = 6 14 -20 20000 20000 20000 -0.3 -0.4 1 12 20\n", &two) && !render(&two, &lit))
+  if (!load("spot = 6 14 -20 20000 20000 20000 -0.3 -0.4 1 12 20\n", &two) &&
+      !render(&two, &lit, "a spot and a point lamp"))
     check_against_twin(&two, &lit, "a spot and a point lamp", twin);
   return test_finish("test_lamp_shafts");
 }
