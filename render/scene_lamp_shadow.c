@@ -38,6 +38,8 @@ static int lamp_shadows_allocate(scene_pass *pass, int count, render_error *err)
   glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
   glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
   glBindTexture(GL_TEXTURE_CUBE_MAP_ARRAY, 0);
+  /* the 2 x 2 filter reads across a face's edge into its neighbour, not a clamped texel */
+  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
   return gl_util_check("lamp shadow cubes", err);
 }
 

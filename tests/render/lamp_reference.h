@@ -53,6 +53,8 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "reference/gauss_kronrod.h"
+
 #ifndef LAMP_REF_MAX_SEGMENTS
 #define LAMP_REF_MAX_SEGMENTS 2048 /* segments per adaptive integral */
 #endif
@@ -121,20 +123,10 @@ static inline double lamp_ref__inner_tolerance(const lamp_ref_medium *m) {
   return tol < 4e-15 ? 4e-15 : tol;
 }
 
-/* 15-point Kronrod rule with its embedded 7-point Gauss rule on [a, b] (nodes and weights
- * of QUADPACK's qk15); error = |K15 - G7|. */
+/* 15-point Kronrod rule with its embedded 7-point Gauss rule on [a, b] (QUADPACK's qk15,
+ * tests/reference/gauss_kronrod.h); error = |K15 - G7|. */
 static inline void lamp_ref__gk15(lamp_ref__fn f, void *ctx, double a, double b, double *value,
                                   double *error) {
-  static const double xgk[8] = {0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
-                                0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
-                                0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
-                                0.207784955007898467600689403773245, 0.0};
-  static const double wgk[8] = {0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
-                                0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
-                                0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
-                                0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
-  static const double wg[4] = {0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
-                               0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
   double c = 0.5 * (a + b), h = 0.5 * (b - a);
   double fc = f(ctx, c);
   double rk = wgk[7] * fc, rg = wg[3] * fc;
