@@ -752,6 +752,7 @@ static void fog_pass_lamp_uniforms(GLuint prog, const camera *cam, const fog_pas
   glUniform1fv(fog_loc(prog, "lamp_shadow_inv_far"), FOG_MAX_LAMPS, inv_far);
   glUniform1f(fog_loc(prog, "lamp_shadow_slack"),
               (float)(LAMP_SHADOW_SLACK_TEXELS * 2.0 / maps->size));
+  glUniform1f(fog_loc(prog, "lamp_shadow_lift"), (float)maps->lift_per_distance);
 }
 
 /* Uniforms every model uses (camera, blend, model selection), the surface textures, and
@@ -1061,6 +1062,7 @@ static int fog_pass_draw_froxel(fog_pass *pass, const fog_pass_variant *variant,
   fill.surface_sun = fill.surface_lamps = 0;
   fill.froxel = 1, lookup.froxel = 2;
   fill.shadow_nodes = lookup.shadow_nodes = params->shadow_nodes;
+  lookup.lamp_shadows = fog_pass_has_lamp_shadows(params); /* the surfaces' lamp weights */
   GLuint fill_prog = fog_pass_variant_program(pass, &fill, err);
   GLuint lookup_prog = fill_prog ? fog_pass_variant_program(pass, &lookup, err) : 0;
   if (!lookup_prog || fog_pass_froxel_fit(pass, g, err)) return 1;

@@ -39,6 +39,10 @@ typedef struct lamp_shadow_maps {
   unsigned texture;  /* GL_TEXTURE_CUBE_MAP_ARRAY, DEPTH_COMPONENT32F, compare mode on */
   double far[FOG_MAX_LAMPS]; /* per lamp: depth = distance / far */
   fog_lamp rendered[FOG_MAX_LAMPS]; /* what each cube was rendered for */
+  /* Terrain LOD (the scene pass's last run): the drawn surface may lie below the full mesh
+   * the cubes hold by up to this much per unit of distance from the camera, so a surface's
+   * lookup rises by that (as the sun's does); 0 without LOD. */
+  double lift_per_distance;
 } lamp_shadow_maps;
 
 /* The world distance past every point of the box [lo, hi] from lamp position p (a margin

@@ -420,6 +420,7 @@ scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err) {
   pass->u_lamp_shadow_inv_far = glGetUniformLocation(s, "lamp_shadow_inv_far");
   pass->u_lamp_shadow_slack = glGetUniformLocation(s, "lamp_shadow_slack");
   pass->u_lamp_shadows_on = glGetUniformLocation(s, "lamp_shadows_on");
+  pass->u_lamp_shadow_lift = glGetUniformLocation(s, "lamp_shadow_lift");
   pass->lamp_shadow_size = LAMP_SHADOW_SIZE;
   /* the samplers' units, apart from the start: two sampler types may not share a unit, even
    * unused (the sun's shadow map is drawn with this program too) */
@@ -669,8 +670,10 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glUniformMatrix4fv(pass->u_sun_from_relative, 1, GL_TRUE, shadow_rows);
   /* the lookup moves 1.5 texels off the surface along its normal: no shadow acne */
   glUniform1f(pass->u_sun_normal_offset, (float)(1.5 * sun_shadow_map_texel(&pass->shadow)));
-  glUniform1f(pass->u_lod_lift,
-              (float)(pass->lod_pixels > 0 ? pass->lod_pixels * 2.0 * tan(0.5 * cam->fov_y) / h : 0.0));
+  const double lod_lift =
+      pass->lod_pixels > 0 ? pass->lod_pixels * 2.0 * tan(0.5 * cam->fov_y) / h : 0.0;
+  glUniform1f(pass->u_lod_lift, (float)lod_lift);
+  pass->lamp_shadows.lift_per_distance = lod_lift; /* the fog pass's surface lookups too */
   scene_pass_lamp_uniforms(pass, cam);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, pass->shadow.texture);

@@ -51,7 +51,8 @@ struct scene_pass {
   lamp_shadow_maps lamp_shadows;
   GLuint lamp_shadow_program, lamp_shadow_framebuffer;
   GLint u_shadow_offset, u_shadow_clip, u_shadow_inv_far;
-  GLint u_lamp_shadow_map, u_lamp_shadow_inv_far, u_lamp_shadow_slack, u_lamp_shadows_on;
+  GLint u_lamp_shadow_map, u_lamp_shadow_inv_far, u_lamp_shadow_slack, u_lamp_shadows_on,
+      u_lamp_shadow_lift;
   GLint u_sky_right, u_sky_up, u_sky_forward, u_sky_viewport, u_sky_horizon, u_sky_zenith,
       u_sky_sun_direction, u_sky_sun_colour;
 };
@@ -63,8 +64,9 @@ typedef bool (*scene_box_culled)(const void *user, const double lo[3], const dou
 GLsizei scene_tile_ranges(scene_pass *pass, const double eye[3], scene_box_culled culled,
                           const void *user, long *triangles);
 
-/* The lamps' shadow cubes: render those whose lamp moved (scene_pass_run, before the
- * surfaces), and release them. */
+/* The lamps' shadow cubes: render those whose lamp moved (scene_pass_set_lamps and
+ * scene_pass_set_lamp_shadows; they leave framebuffer 0 bound and the GL state of their
+ * draw, which scene_pass_run and the fog pass set again), and release them. */
 int scene_lamp_shadows_update(scene_pass *pass, render_error *err);
 void scene_lamp_shadows_destroy(scene_pass *pass);
 /* The surface program's lamp-shadow uniforms (lamp_shadow.glsl; the program in use), the

@@ -137,6 +137,7 @@ void scene_lamp_shadows_bind(const scene_pass *pass, int unit) {
   glUniform1fv(pass->u_lamp_shadow_inv_far, FOG_MAX_LAMPS, inv_far);
   glUniform1f(pass->u_lamp_shadow_slack,
               (float)(LAMP_SHADOW_SLACK_TEXELS * 2.0 / maps->size));
+  glUniform1f(pass->u_lamp_shadow_lift, (float)maps->lift_per_distance);
   glActiveTexture(GL_TEXTURE0);
 }
 

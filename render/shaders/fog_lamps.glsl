@@ -94,7 +94,7 @@ vec3 fog_lamps_surface(vec3 p, vec3 n) {
     float d2 = dot(l, l), d = sqrt(d2);
     float g = max(dot(n, l) / max(d, 1e-6), 0.0) * fog_lamp_spot(i, p) / (d2 + fog_lamp_cone[i].z);
 #if FOG_LAMP_SHADOWS
-    if (g > 0.0) g *= lamp_shadow_visible_surface(i, -l, n);  // as the scene pass weighs it
+    if (g > 0.0) g *= lamp_shadow_visible_surface(i, -l, n, length(p));  // as the scene pass
 #endif
     if (!(g > 0.0)) continue;
     vec3 w = fog_lamp_intensity[i] * g;

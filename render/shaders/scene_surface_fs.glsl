@@ -42,7 +42,8 @@ vec3 lamp_light(vec3 p, vec3 n) {
                       0.0, 1.0);
       cone = u * u * (3.0 - 2.0 * u);
     }
-    if (lamp_shadows_on && cos_n * cone > 0.0) cone *= lamp_shadow_visible_surface(i, -l, n);
+    if (lamp_shadows_on && cos_n * cone > 0.0)
+      cone *= lamp_shadow_visible_surface(i, -l, n, length(p));
     sum += lamp_intensity[i] * (cos_n * cone / (3.14159265358979 * (d2 + lamp_cone[i].z)));
   }
   return sum;

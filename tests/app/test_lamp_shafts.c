@@ -7,7 +7,7 @@
  *   bounded, not the max;
  * - the wall takes light: without the cubes the in-scatter is far larger beside the shaft
  *   (the wall's shadow);
- * - the twin's integral (Gauss nodes on pieces cut at V's edges, FOG_LAMP_EDGE_PROBES)
+ * - the twin's integral (Gauss nodes on pieces cut at V's edges, FOG_LAMP_EDGE_BISECTIONS)
  *   against the independent reference with the same V (tests/render/lamp_reference.h: V's
  *   jumps found by its own sampling and made breaks, adaptive quadrature between), on rays
  *   across the shaft: printed and bounded (without the cuts 7.8e-3 of the peak);
