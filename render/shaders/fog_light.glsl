@@ -294,15 +294,21 @@ float fog_sun_mean_transmittance(fog_ray r) {
 #endif
 }
 
-// The sun's share of the in-scatter of the pixel's view ray (unit dir_d, surface at
-// t_surface): the mean above, its own ray set-up (the upsampling pass skips the walk's).
-float fog_sun_light(dvec3 dir_d, float t_surface) {
-#if FOG_LIGHT_MARCH
+// The light's own set-up of the pixel's view ray (unit dir_d, surface at t_surface), for
+// the sun's mean and the lamps: the fogmap's box span (the upsampling pass skips the
+// walk's).
+fog_ray fog_light_ray(dvec3 dir_d, float t_surface) {
   double t_in = 1.0, t_out = 0.0;
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
   if (!fog_box_entry_exit(dir_d, t_in, t_out)) t_in = 1.0, t_out = 0.0;
 #endif
-  return fog_sun_mean_transmittance(fog_ray(dir_d, vec3(dir_d), t_in, t_out, t_surface, 0.5));
+  return fog_ray(dir_d, vec3(dir_d), t_in, t_out, t_surface, 0.5);
+}
+
+// The sun's share of the in-scatter of the pixel's view ray: the mean above.
+float fog_sun_light(dvec3 dir_d, float t_surface) {
+#if FOG_LIGHT_MARCH
+  return fog_sun_mean_transmittance(fog_light_ray(dir_d, t_surface));
 #else
   return fog_sun_mean_transmittance(fog_ray(dir_d, vec3(dir_d), 1.0, 0.0, t_surface, 0.5));
 #endif

@@ -250,17 +250,6 @@ float fog_phase_hg(float g, float cos_theta) {
 #include "fog_lamps.glsl"
 #include "fog_froxel.glsl"
 
-#if FOG_LAMPS
-// The lamps' in-scatter of the pixel's ray (fog_lamps.glsl): their own set-up, as the sun's
-// mean.
-vec3 fog_lamps_ray_light(dvec3 view_dir, float t_surface) {
-  double t_in = 1.0, t_out = 0.0;
-#if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
-  if (!fog_box_entry_exit(view_dir, t_in, t_out)) t_in = 1.0, t_out = 0.0;
-#endif
-  return fog_lamps_light(fog_ray(view_dir, vec3(view_dir), t_in, t_out, t_surface, 0.5));
-}
-#endif
 
 void main() {
 #if FOG_FROXEL == 1
@@ -320,7 +309,7 @@ void main() {
 #if FOG_REDUCED > 1
   fog_out_colour = vec4(optical_depth, t_surface, k_end, fog_sun_light(view_dir, t_surface));
 #if FOG_LAMPS
-  fog_out_inscatter = vec4(fog_lamps_ray_light(view_dir, t_surface), 0.0);
+  fog_out_inscatter = vec4(fog_lamps_light(fog_light_ray(view_dir, t_surface)), 0.0);
 #endif
   return;
 #endif
@@ -359,7 +348,8 @@ void main() {
 #if FOG_LAMPS
   // the lamps: upsampled from the reduced pass, or the pixel's own (a loop of at most one
   // turn, as above)
-  for (int turn = walk ? 0 : 1; turn < 1; turn++) lamp_light = fog_lamps_ray_light(view_dir, t_surface);
+  for (int turn = walk ? 0 : 1; turn < 1; turn++)
+    lamp_light = fog_lamps_light(fog_light_ray(view_dir, t_surface));
   inscatter += lamp_light;
 #endif
   fog_out_colour = vec4(tau * surface.rgb + inscatter, surface.a);
