@@ -334,6 +334,14 @@ int bench_lights(int argc, char **argv) {
     for (size_t q = 0; q < sizeof march_samples / sizeof march_samples[0] - (s == 0); q++)
       if (!add_row(rows, &row_count, s, "march", march_samples[q], frames)) goto out_of_memory;
     if (s == 1 && !add_row(rows, &row_count, s, "fogshop", 8, frames)) goto out_of_memory;
+    if (s == 0) /* T's walk to the lamp (the fogmap's): 4 and 16 steps beside the default 8 */
+      for (int q = 0; q < 2; q++) {
+        lights_row *r = add_row(rows, &row_count, s, "ours", FOG_LAMP_ANGLE_PIECES, frames);
+        if (!r) goto out_of_memory;
+        r->method.shadow_steps = q ? 16 : 4;
+        snprintf(r->name, sizeof r->name, "ours 8+8 walk %d", r->method.shadow_steps);
+        snprintf(r->series, sizeof r->series, "valley ours 8+8 walk 4 and 16 steps");
+      }
     if (s == 0) { /* the live demo's setting: the fog at half resolution */
       scenes[s].unlit_half = malloc(3 * pixels * sizeof(float));
       if (!scenes[s].unlit_half) goto out_of_memory;
