@@ -745,14 +745,12 @@ static void fog_pass_lamp_uniforms(GLuint prog, const camera *cam, const fog_pas
   glUniform1i(fog_loc(prog, "fog_lamp_march_steps"), lamps->method.march_steps);
   if (!fog_pass_has_lamp_shadows(params)) return;
   const lamp_shadow_maps *maps = params->lamp_shadows;
-  float inv_far[FOG_MAX_LAMPS] = {0};
-  for (int i = 0; i < lamps->count; i++) inv_far[i] = (float)(1.0 / maps->far[i]);
+  const lamp_shadow_uniforms shadow = lamp_shadow_maps_uniforms(maps);
   bind_sampler(prog, "lamp_shadow_map", UNIT_LAMP_SHADOWS, GL_TEXTURE_CUBE_MAP_ARRAY,
                maps->texture);
-  glUniform1fv(fog_loc(prog, "lamp_shadow_inv_far"), FOG_MAX_LAMPS, inv_far);
-  glUniform1f(fog_loc(prog, "lamp_shadow_slack"),
-              (float)(LAMP_SHADOW_SLACK_TEXELS * 2.0 / maps->size));
-  glUniform1f(fog_loc(prog, "lamp_shadow_lift"), (float)maps->lift_per_distance);
+  glUniform1fv(fog_loc(prog, "lamp_shadow_inv_far"), FOG_MAX_LAMPS, shadow.inv_far);
+  glUniform1f(fog_loc(prog, "lamp_shadow_slack"), shadow.slack);
+  glUniform1f(fog_loc(prog, "lamp_shadow_lift"), shadow.lift);
 }
 
 /* Uniforms every model uses (camera, blend, model selection), the surface textures, and

@@ -80,3 +80,10 @@ bool lamp_shadow_same_placement(const fog_lamp *was, const fog_lamp *now) {
     if (was->axis[c] != now->axis[c]) return false;
   return was->cos_outer == now->cos_outer;
 }
+
+lamp_shadow_uniforms lamp_shadow_maps_uniforms(const lamp_shadow_maps *maps) {
+  lamp_shadow_uniforms u = {.slack = (float)(LAMP_SHADOW_SLACK_TEXELS * 2.0 / maps->size),
+                            .lift = (float)maps->lift_per_distance};
+  for (int i = 0; i < maps->count && i < FOG_MAX_LAMPS; i++) u.inv_far[i] = (float)(1.0 / maps->far[i]);
+  return u;
+}

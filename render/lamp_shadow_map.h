@@ -64,6 +64,15 @@ bool lamp_shadow_face_culls_box(int face, const double lo[3], const double hi[3]
  * half-angle plus 54.7 degrees, the face's centre-to-corner angle, of the face's axis). */
 bool lamp_shadow_face_needed(const fog_lamp *lamp, int face);
 
+/* lamp_shadow.glsl's uniforms for maps, as floats: each cube's 1/far (count of them, the
+ * rest 0), the comparison's slack (LAMP_SHADOW_SLACK_TEXELS texels' angle) and the terrain
+ * LOD lift. The surfaces' program and the fog pass both set them from here. */
+typedef struct lamp_shadow_uniforms {
+  float inv_far[FOG_MAX_LAMPS];
+  float slack, lift;
+} lamp_shadow_uniforms;
+lamp_shadow_uniforms lamp_shadow_maps_uniforms(const lamp_shadow_maps *maps);
+
 /* Whether the cube rendered for `was` serves `now`: the same kind, position and cone. */
 bool lamp_shadow_same_placement(const fog_lamp *was, const fog_lamp *now);
 

@@ -130,14 +130,12 @@ void scene_lamp_shadows_bind(const scene_pass *pass, int unit) {
   /* its own unit even when off: two sampler types may not share one */
   glUniform1i(pass->u_lamp_shadow_map, unit);
   if (!on) return;
-  float inv_far[FOG_MAX_LAMPS] = {0};
-  for (int i = 0; i < maps->count; i++) inv_far[i] = (float)(1.0 / maps->far[i]);
+  const lamp_shadow_uniforms u = lamp_shadow_maps_uniforms(maps);
   glActiveTexture(GL_TEXTURE0 + unit);
   glBindTexture(GL_TEXTURE_CUBE_MAP_ARRAY, maps->texture);
-  glUniform1fv(pass->u_lamp_shadow_inv_far, FOG_MAX_LAMPS, inv_far);
-  glUniform1f(pass->u_lamp_shadow_slack,
-              (float)(LAMP_SHADOW_SLACK_TEXELS * 2.0 / maps->size));
-  glUniform1f(pass->u_lamp_shadow_lift, (float)maps->lift_per_distance);
+  glUniform1fv(pass->u_lamp_shadow_inv_far, FOG_MAX_LAMPS, u.inv_far);
+  glUniform1f(pass->u_lamp_shadow_slack, u.slack);
+  glUniform1f(pass->u_lamp_shadow_lift, u.lift);
   glActiveTexture(GL_TEXTURE0);
 }
 
