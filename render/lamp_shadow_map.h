@@ -36,6 +36,7 @@
 typedef struct lamp_shadow_maps {
   int size;          /* texels per face side */
   int count;         /* lamps rendered: the cubes 0 .. count-1 match fog_lamps' order */
+  int capacity;      /* cubes the texture holds (>= 1) */
   unsigned texture;  /* GL_TEXTURE_CUBE_MAP_ARRAY, DEPTH_COMPONENT32F, compare mode on */
   double far[FOG_MAX_LAMPS]; /* per lamp: depth = distance / far */
   fog_lamp rendered[FOG_MAX_LAMPS]; /* what each cube was rendered for */

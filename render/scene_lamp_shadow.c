@@ -28,9 +28,10 @@ static int lamp_shadows_allocate(scene_pass *pass, int count, render_error *err)
   maps->texture = tex;
   maps->size = pass->lamp_shadow_size;
   maps->count = 0;
+  maps->capacity = count > 0 ? count : 1;
   glBindTexture(GL_TEXTURE_CUBE_MAP_ARRAY, tex);
   glTexStorage3D(GL_TEXTURE_CUBE_MAP_ARRAY, 1, GL_DEPTH_COMPONENT32F, maps->size, maps->size,
-                 6 * (count > 0 ? count : 1));
+                 6 * maps->capacity);
   glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -81,14 +82,8 @@ int scene_lamp_shadows_update(scene_pass *pass, render_error *err) {
   lamp_shadow_maps *maps = &pass->lamp_shadows;
   const int count = pass->lamps.count;
   if (pass->lamp_shadow_size == 0 || count == 0) return 0;
-  /* a new size, or more lamps than layers: allocate afresh (every cube again) */
-  GLint layers = 0;
-  if (maps->texture) {
-    glBindTexture(GL_TEXTURE_CUBE_MAP_ARRAY, maps->texture);
-    glGetTexLevelParameteriv(GL_TEXTURE_CUBE_MAP_ARRAY, 0, GL_TEXTURE_DEPTH, &layers);
-    glBindTexture(GL_TEXTURE_CUBE_MAP_ARRAY, 0);
-  }
-  if (!maps->texture || maps->size != pass->lamp_shadow_size || layers < 6 * count) {
+  /* a new size, or more lamps than cubes: allocate afresh (every cube again) */
+  if (!maps->texture || maps->size != pass->lamp_shadow_size || maps->capacity < count) {
     if (lamp_shadows_allocate(pass, count, err)) return 1;
   }
   bool stale = false;
