@@ -191,6 +191,9 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
     }
     return D > 0.0 ? S / -expm1(-D) : 1.0;
   }
+  /* The mean of T_s V weighted by tau K. A negative K (a linear or quadratic wavelet
+   * approximation's ringing, or an empty region's float rounding) weighs nothing: signed
+   * weights that nearly cancel made this "mean" 70 on a ray through such a region. */
   const int steps = rule.steps, nodes = rule.nodes;
   double t0, t1;
   if (!fog_light_span(m, o, d, t_surface, &t0, &t1)) return 1.0;
@@ -201,7 +204,8 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
     double mid = t0 + (i + 0.5) * dt, step_depth, light;
     if (nodes == 2) {
       double ta = mid - g * dt, tb = mid + g * dt;
-      double ka = extinction_on_ray(m, o, d, ta), kb = extinction_on_ray(m, o, d, tb);
+      double ka = fmax(extinction_on_ray(m, o, d, ta), 0.0),
+             kb = fmax(extinction_on_ray(m, o, d, tb), 0.0);
       step_depth = 0.5 * dt * (ka + kb);
       /* depths from the segment's start to the nodes, K linear through them */
       double la = (0.5 - g) * dt, slope = (kb - ka) / (2.0 * g * dt);
@@ -212,7 +216,7 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
                      sb * sun_light_at(m, kind, volume, o, d, tb, visible, user)) / (sa + sb)
                   : 0.0;
     } else {
-      step_depth = extinction_on_ray(m, o, d, mid) * dt;
+      step_depth = fmax(extinction_on_ray(m, o, d, mid), 0.0) * dt;
       light = sun_light_at(m, kind, volume, o, d, mid, visible, user);
     }
     double w = exp(-before) * -expm1(-step_depth);

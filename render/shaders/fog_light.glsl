@@ -263,6 +263,7 @@ float fog_sun_mean_transmittance(fog_ray r) {
 #endif
   float t0, t1;
   if (!fog_light_span(r, t0, t1)) return 1.0;
+  // A negative K (wavelet ringing, rounding) weighs nothing (fog_sun_mean_light in C).
   const float g = 0.28867513459481288;  // 1/(2 sqrt 3)
   float dt = (t1 - t0) / float(fog_shadow_steps), before = 0.0, weights = 0.0, lit = 0.0;
   // Past an optical depth of fog_depth_limit (early termination) the rest weighs less than
@@ -272,7 +273,8 @@ float fog_sun_mean_transmittance(fog_ray r) {
 #if FOG_SHADOW_NODES == 2
     {
       float ta = mid - g * dt, tb = mid + g * dt;
-      float ka = fog_light_extinction(r.dir, ta), kb = fog_light_extinction(r.dir, tb);
+      float ka = max(fog_light_extinction(r.dir, ta), 0.0),
+            kb = max(fog_light_extinction(r.dir, tb), 0.0);
       step_depth = 0.5 * dt * (ka + kb);
       float la = (0.5 - g) * dt, slope = (kb - ka) / (2.0 * g * dt);
       float da = la * (ka - 0.5 * slope * la), db = da + g * dt * (ka + kb);
@@ -282,7 +284,7 @@ float fog_sun_mean_transmittance(fog_ray r) {
                             : 0.0;
     }
 #else
-    step_depth = fog_light_extinction(r.dir, mid) * dt;
+    step_depth = max(fog_light_extinction(r.dir, mid), 0.0) * dt;
     light = fog_sun_light_at(r.dir, mid);
 #endif
     float w = exp(-before) * step_depth * fog_exprel(step_depth);  // 1 - e^-x, no cancellation
