@@ -219,6 +219,9 @@ typedef struct parse_state {
   char *whole_line; /* the line being read, whatever its length (getline) */
   size_t whole_line_size;
   int error_line;     /* first error (0: none) */
+  /* The line starts with blanks: libinih (INI_ALLOW_MULTILINE) hands it over as more of
+   * the previous key's value; a list (V_LIST) appends it. */
+  bool continuation;
   scene_config_error *err;
 } parse_state;
 
@@ -233,6 +236,7 @@ static char *read_line(char *buffer, int size, void *stream) {
    * comment became a key. Here a whole line is read: a long comment or blank line is
    * passed on cut short (it means nothing), a long line with content is an error. */
   const char *p = s->whole_line + strspn(s->whole_line, " \t\r\n");
+  s->continuation = p > s->whole_line && *p && *p != ';' && *p != '#' && *p != '[';
   if (n < size) {
     memcpy(buffer, s->whole_line, (size_t)n + 1);
   } else if (*p == ';' || *p == '#' || !*p) {
@@ -610,20 +614,23 @@ static int store_lamp_flicker(parse_state *s, const char *section, const char *k
 }
 
 /* V_LIST: 1 to SCENE_CONFIG_MAX_PROFILE numbers in the key's range, the count at
- * k->aux_offset. */
+ * k->aux_offset. They may go on over indented lines below the key (a config line holds
+ * 199 bytes; 64 coefficients take more): each such line appends. */
 static int store_list(parse_state *s, const key_spec *k, const char *section, const char *key,
                       const char *value) {
-  double *field = (double *)((char *)s->cfg + k->offset);
-  int n = parse_numbers(value, field, SCENE_CONFIG_MAX_PROFILE);
+  int *count = (int *)((char *)s->cfg + k->aux_offset);
+  const int had = s->continuation ? *count : 0;
+  double *field = (double *)((char *)s->cfg + k->offset) + had;
+  int n = parse_numbers(value, field, SCENE_CONFIG_MAX_PROFILE - had);
   if (n < 1)
-    return fail(s, section, key, "expected 1 to %d numbers, got '%s'", SCENE_CONFIG_MAX_PROFILE,
-                value);
+    return fail(s, section, key, "expected 1 to %d numbers in all, got '%s'%s",
+                SCENE_CONFIG_MAX_PROFILE, value, had ? " after those above" : "");
   for (int i = 0; i < n; i++)
     if (!(field[i] >= k->min && field[i] <= k->max))
       return fail(s, section, key, "expected numbers from %g to %g%s, got '%s'", k->min, k->max,
                   k->min == 0 ? " (fog density)" : "", value);
-  if (k->offset == F(fog.perlin_wind)) s->cfg->fog.perlin_wind_line = s->line;
-  *(int *)((char *)s->cfg + k->aux_offset) = n;
+  if (k->offset == F(fog.perlin_wind) && !had) s->cfg->fog.perlin_wind_line = s->line;
+  *count = had + n;
   return 1;
 }
 
@@ -974,11 +981,14 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
     case V_STRING:
       if (field[0]) fprintf(f, "%s = %s\n", k->key, field);
       break;
-    case V_LIST: {
+    case V_LIST: { /* 8 numbers a line, the rest on indented lines (store_list) */
       int count = *(const int *)((const char *)cfg + k->aux_offset);
       if (!count) break;
       fprintf(f, "%s =", k->key);
-      for (int i = 0; i < count; i++) fprintf(f, " %.17g", d[i]);
+      for (int i = 0; i < count; i++) {
+        if (i > 0 && i % 8 == 0) fputs("\n   ", f);
+        write_number(f, d[i]);
+      }
       fputc('\n', f);
       break;
     }

@@ -1,8 +1,10 @@
 /* scene_config_write (what `fogpipe bake` writes its bake.ini with) gives a config that
  * loads back into the same scene: for every shipped config, write, load again, and the
  * scene's fingerprint (every key's value, the files' contents) is the same, and so is a
- * second write's text. A folder that cannot be written is an error naming the file, with
- * nothing left behind. */
+ * second write's text. A list of 64 numbers (a B-spline profile, fit's projected fogmap)
+ * is more than a config line holds: it is written over indented lines and reads back bit
+ * for bit; indented lines append to a list, past 64 numbers an error names the line. A
+ * folder that cannot be written is an error naming the file, with nothing left behind. */
 #define _XOPEN_SOURCE 700
 #include <dirent.h>
 #include <stdio.h>
@@ -63,6 +65,38 @@ int main(void) {
   scene_config cfg;
   scene_config_error err = {{0}};
   scene_config_init(&cfg);
+  /* 64 coefficients, each needing 17 digits */
+  char written[700];
+  snprintf(written, sizeof written, "%s/long.ini", dir);
+  cfg.fog.profile = SCENE_PROFILE_BSPLINE, cfg.fog.profile_set = true;
+  cfg.fog.profile_degree = 1, cfg.fog.profile_spacing = 1.0 / 3.0;
+  cfg.fog.profile_count = SCENE_CONFIG_MAX_PROFILE;
+  for (int k = 0; k < SCENE_CONFIG_MAX_PROFILE; k++) cfg.fog.profile_coefficients[k] = 1.0 / (k + 3);
+  scene_config back;
+  CHECK(scene_config_write(&cfg, written, &err) == 0, "write: %s", err.message);
+  CHECK(scene_config_load(written, &back, &err) == 0, "64 coefficients read back: %s", err.message);
+  CHECK(back.fog.profile_count == SCENE_CONFIG_MAX_PROFILE &&
+            !memcmp(back.fog.profile_coefficients, cfg.fog.profile_coefficients,
+                    sizeof cfg.fog.profile_coefficients),
+        "%d coefficients read back, not the 64 written", back.fog.profile_count);
+  FILE *f = fopen(written, "w");
+  if (f) {
+    fputs("[fog]\nprofile = bspline\nprofile_coefficients = 1 2\n  3, 4\n\t5\n", f);
+    fclose(f);
+  }
+  CHECK(scene_config_load(written, &back, &err) == 0 && back.fog.profile_count == 5 &&
+            back.fog.profile_coefficients[4] == 5.0,
+        "indented lines: %d numbers (%s)", back.fog.profile_count, err.message);
+  if ((f = fopen(written, "w"))) {
+    fputs("[fog]\nprofile = bspline\nprofile_coefficients =", f);
+    for (int k = 0; k < 65; k++) fprintf(f, k % 10 == 9 ? " 1\n  " : " 1");
+    fputs("\n", f);
+    fclose(f);
+  }
+  CHECK(scene_config_load(written, &back, &err) != 0 && strstr(err.message, "long.ini:9") &&
+            strstr(err.message, "64"),
+        "65 numbers: %s", err.message);
+  unlink(written);
   char bad[700];
   snprintf(bad, sizeof bad, "%s/missing/x.ini", dir);
   CHECK(scene_config_write(&cfg, bad, &err) != 0 && strstr(err.message, bad),
