@@ -16,6 +16,7 @@
 #include "app/config.h"
 #include "app/fit.h"
 #include "app/render_fog.h"
+#include "sim/sim.h"
 
 static void usage(FILE *out) {
   fprintf(out,
@@ -34,7 +35,8 @@ static void usage(FILE *out) {
           "  --by max|mean        the tolerance bounds each rung's max error (default) or\n"
           "                       its mean error over the rays\n"
           "  --out FILE.ini       write the scene with the chosen model (nothing is written\n"
-          "                       when none is within T)\n"
+          "                       when none is within T); a fogmap projected from an\n"
+          "                       analytic fog goes beside it as FILE.fogmap.exr\n"
           "  --chart FILE.png     error against ms, one series per family (and FILE.csv)\n"
           "VDB input:\n"
           "  --grid NAME          float grid (default density)\n"
@@ -221,6 +223,39 @@ static bool folder_exists(const char *file) {
   return stat(folder, &st) == 0 && S_ISDIR(st.st_mode);
 }
 
+/* The chosen rung's scene to `out`; a fogmap projected into the fit's scratch folder goes
+ * beside it first, as OUT.fogmap.exr (without .ini), and the scene names that copy. On
+ * failure neither file is left. */
+static int write_scene(const fit_result *r, const fit_rung *g, const char *out) {
+  const char *map = g->config->fog.fogmap;
+  const size_t n = strlen(r->scratch);
+  scene_config_error werr;
+  if (!(n && g->config->fog.model == FOG_MODEL_FOGMAP && !strncmp(map, r->scratch, n))) {
+    if (scene_config_write(g->config, out, &werr)) return cli_fail("fit", "%s", werr.message);
+    return 0;
+  }
+  scene_config *c = malloc(sizeof *c);
+  if (!c) return cli_fail("fit", "out of memory");
+  *c = *g->config;
+  snprintf(c->fog.fogmap, sizeof c->fog.fogmap, "%.*s.fogmap.exr",
+           (int)(strlen(out) - strlen(".ini")), out);
+  fogmap copy = {0};
+  sim_error serr = {{0}};
+  int status = 0;
+  if (fogmap_load(map, &(fogmap_load_desc){0}, &copy, &serr) ||
+      fogmap_save_exr(c->fog.fogmap, &copy, &serr)) {
+    status = cli_fail("fit", "%s", serr.message);
+  } else if (scene_config_write(c, out, &werr)) {
+    remove(c->fog.fogmap);
+    status = cli_fail("fit", "%s", werr.message);
+  } else {
+    printf("wrote %s (the scene's fogmap)\n", c->fog.fogmap);
+  }
+  fogmap_destroy(&copy);
+  free(c);
+  return status;
+}
+
 int cmd_fit(int argc, char **argv) {
   fit_options o;
   int status = parse(argc, argv, &o);
@@ -282,13 +317,7 @@ int cmd_fit(int argc, char **argv) {
     printf("chosen: %s (%s |dtau| %.3g <= %g, %.2f GL ms)\n", g->name,
            o.desc.by_mean ? "mean" : "max", o.desc.by_mean ? g->mean_error : g->max_error,
            o.tolerance[0], g->ms);
-    if (o.out) {
-      scene_config_error werr;
-      if (scene_config_write(g->config, o.out, &werr))
-        status = cli_fail("fit", "%s", werr.message);
-      else
-        printf("wrote %s\n", o.out);
-    }
+    if (o.out && !(status = write_scene(&r, g, o.out))) printf("wrote %s\n", o.out);
   }
   if (!status && o.chart) {
     status = write_chart(&r, o.chart);

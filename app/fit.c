@@ -1,13 +1,16 @@
 /* `fogpipe fit`: rungs fitted, measured and timed (app/fit.h). */
+#define _POSIX_C_SOURCE 200809L
 #include "app/fit.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "app/clock.h"
 #include "app/fit_density.h"
+#include "app/fit_fogmap.h"
 #include "app/fit_rungs.h"
 #include "app/fit_views.h"
 #include "app/render_fog.h"
@@ -230,6 +233,12 @@ int fit_scene_for_volume(scene_config *cfg, fit_error *err) {
 
 void fit_result_destroy(fit_result *r) {
   for (int i = 0; i < r->count; i++) free(r->rungs[i].config);
+  if (r->scratch[0]) {
+    char path[sizeof r->scratch + 32];
+    snprintf(path, sizeof path, "%s/%s", r->scratch, FIT_FOGMAP_FILE);
+    remove(path);
+    rmdir(r->scratch);
+  }
   *r = (fit_result){.chosen = -1};
 }
 
@@ -307,7 +316,7 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
       goto done;
     }
   }
-  if (fit_rungs_make(r, d->input, refs[0].model.kind, &samples, views, frame_count, err))
+  if (fit_rungs_make(r, d->input, &refs[0].model, &samples, views, frame_count, err))
     goto done;
   for (int f = 0; f < frame_count; f++) /* one GL context at a time: the rungs make theirs */
     held_model_destroy(&refs[f]);

@@ -12,8 +12,9 @@
  * bounds; for fog without an end, the terrain's footprint between [box] floor and top) the
  * reference's extinction is sampled and every rung that can represent it is fitted
  * (app/fit_density.h: homogeneous, height, one ellipsoid, banks of 1 to 64 Gaussians; the
- * fogmap at three bases x three LOD factors where the input has a fogmap or a VDB; the
- * volume where the input has one; an analytic input as given). Each rung is then rendered:
+ * fogmap at three bases x three LOD factors: the input's fogmap or VDB, or an analytic
+ * input's density projected (app/fit_fogmap.h); the volume where the input has one; an
+ * analytic input as given). Each rung is then rendered:
  * its error on nine views (app/fit_views.h: max and mean |delta tau| against the
  * reference, CPU twins in double) and its GL milliseconds per frame (a headless session
  * drawn from view 0, the median of timed_frames frames). The choice: the fastest rung within
@@ -72,6 +73,10 @@ typedef struct fit_result {
   int rays;          /* rays of the views that meet it (per frame) */
   int frame_count;   /* frames measured */
   bool lit;          /* the in-scatter was measured too */
+  /* A folder the rungs' own files live in (the fogmap projected from an analytic input,
+   * app/fit_fogmap.h), their configs naming them; "" when no rung has one. Removed by
+   * fit_result_destroy: a config written from such a rung must take its files along. */
+  char scratch[64];
 } fit_result;
 
 /* Errors name the input's file (and line where a key is at fault) or the rung that failed

@@ -19,13 +19,19 @@ void fit_sample_position(const fit_samples *s, int i, int j, int l, double p[3])
 
 int fit_samples_create(fit_samples *s, const fog_model *model, const double lo[3],
                        const double hi[3], int max_side) {
-  *s = (fit_samples){0};
   double longest = 0.0;
   for (int a = 0; a < 3; a++) longest = fmax(longest, hi[a] - lo[a]);
+  int n[3];
+  for (int a = 0; a < 3; a++) n[a] = (int)ceil(max_side * (hi[a] - lo[a]) / longest);
+  return fit_samples_create_grid(s, model, lo, hi, n);
+}
+
+int fit_samples_create_grid(fit_samples *s, const fog_model *model, const double lo[3],
+                            const double hi[3], const int n[3]) {
+  *s = (fit_samples){0};
   for (int a = 0; a < 3; a++) {
     s->lo[a] = lo[a], s->hi[a] = hi[a];
-    int n = (int)ceil(max_side * (hi[a] - lo[a]) / longest);
-    s->n[a] = n < 2 ? 2 : n;
+    s->n[a] = n[a] < 2 ? 2 : n[a];
     s->cell[a] = (hi[a] - lo[a]) / s->n[a];
   }
   s->k = malloc(sample_count(s) * sizeof *s->k);

@@ -30,6 +30,9 @@ typedef struct fit_samples {
  * proportion, at least 2). Non-zero: out of memory (nothing allocated). */
 int fit_samples_create(fit_samples *s, const fog_model *model, const double lo[3],
                        const double hi[3], int max_side);
+/* The same on a grid of n[a] cells along axis a (at least 2). */
+int fit_samples_create_grid(fit_samples *s, const fog_model *model, const double lo[3],
+                            const double hi[3], const int n[3]);
 void fit_samples_destroy(fit_samples *s);
 /* The centre of cell (i, j, l). */
 void fit_sample_position(const fit_samples *s, int i, int j, int l, double p[3]);

@@ -1,10 +1,14 @@
 /* The rungs of a fit (app/fit_rungs.h). */
+#define _POSIX_C_SOURCE 200809L
 #include "app/fit_rungs.h"
 
 #include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+#include "app/fit_fogmap.h"
 
 /* Gaussians per bank: 1 to 64 (a config holds SCENE_CONFIG_MAX_RBFS). */
 static const int rbf_sizes[] = {1, 2, 4, 8, 16, 32, 64};
@@ -77,7 +81,7 @@ static int refine_amplitudes(const fit_views *views, int view_sets, fog_rbf *g, 
 }
 
 /* The ladder's rungs for this input, in order, their parameters fitted to the samples. */
-int fit_rungs_make(fit_result *r, const scene_config *input, fog_model_kind reference_kind,
+int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *reference,
                    const fit_samples *s, const fit_views *views, int view_sets,
                    fit_error *err) {
   fit_rung *rung;
@@ -152,25 +156,57 @@ int fit_rungs_make(fit_result *r, const scene_config *input, fog_model_kind refe
              g->density);
   }
 
-  /* The fogmap: the input's own, or its VDB projected (model = volume's vdb). */
+  /* The fogmap: the input's own, or its VDB projected (model = volume's vdb), or the
+   * samples of an analytic input's density projected (app/fit_fogmap.h) into a file of the
+   * result's scratch folder. The classic factors are fog of the camera's distance, which no
+   * fogmap holds. */
   const scene_fog_config *in = &input->fog;
   bool has_map = (in->model == FOG_MODEL_FOGMAP && (in->fogmap[0] || in->vdb[0])) ||
                  (in->model == FOG_MODEL_VOLUME && in->vdb[0]);
-  for (int degree = 0; has_map && degree < 3; degree++)
+  bool projects = !has_map && reference->kind != FOG_MODEL_VOLUME &&
+                  in->model != FOG_MODEL_LINEAR && in->model != FOG_MODEL_EXP2;
+  char projected[sizeof r->scratch + 32] = "";
+  fit_fogmap ff = {0};
+  if (projects) {
+    if (fit_fogmap_project(reference, s->lo, s->hi, s->n[0] > s->n[2] ? s->n[0] : s->n[2], &ff, err))
+      return 1;
+    snprintf(r->scratch, sizeof r->scratch, "%s", "/tmp/fogpipe-fit-XXXXXX");
+    sim_error serr = {{0}};
+    if (!mkdtemp(r->scratch)) {
+      snprintf(err->message, sizeof err->message, "the fogmap rungs: no folder in /tmp");
+      r->scratch[0] = '\0';
+      fit_fogmap_destroy(&ff);
+      return 1;
+    }
+    snprintf(projected, sizeof projected, "%s/%s", r->scratch, FIT_FOGMAP_FILE);
+    if (fogmap_save_exr(projected, &ff.map, &serr)) {
+      snprintf(err->message, sizeof err->message, "the fogmap rungs: %.500s", serr.message);
+      fit_fogmap_destroy(&ff);
+      return 1;
+    }
+  }
+  for (int degree = 0; (has_map || projects) && degree < 3; degree++)
     for (size_t m = 0; m < sizeof fogmap_mus / sizeof fogmap_mus[0]; m++) {
       scene_config *c = malloc(sizeof *c);
       if (c) *c = *input;
-      if (!(rung = add_rung(r, c, "fogmap", err))) return 1;
+      if (c && projects) fit_fogmap_apply(&ff, projected, c);
+      if (!(rung = add_rung(r, c, "fogmap", err))) {
+        fit_fogmap_destroy(&ff);
+        return 1;
+      }
       scene_fog_config *f = &c->fog;
       f->model = FOG_MODEL_FOGMAP, f->degree = degree, f->levels = 3,
       f->mu = fogmap_mus[m], f->lod = SCENE_LOD_SWITCH;
       f->volume_step = 0.0;
       snprintf(rung->name, sizeof rung->name, "fogmap %s mu %g", basis_names[degree], f->mu);
       snprintf(rung->params, sizeof rung->params, "basis %s, levels 3, mu %g, %s",
-               basis_names[degree], f->mu, f->vdb[0] ? "the VDB frame projected" : "the fogmap");
+               basis_names[degree], f->mu,
+               projects ? "the density projected (a 2D map and a profile)"
+               : f->vdb[0] ? "the VDB frame projected" : "the fogmap");
     }
+  fit_fogmap_destroy(&ff);
 
-  if (reference_kind == FOG_MODEL_VOLUME) {
+  if (reference->kind == FOG_MODEL_VOLUME) {
     scene_config *c = malloc(sizeof *c);
     if (c) *c = *input, c->fog.model = FOG_MODEL_VOLUME, c->fog.volume_step = 0.0;
     if (!(rung = add_rung(r, c, "volume", err))) return 1;

@@ -8,12 +8,13 @@
 #include "app/fit_density.h"
 #include "app/fit_views.h"
 
-/* Appends the rungs for this input to r, in ladder order: homogeneous, the classic linear
+/* Appends the rungs for this input, in ladder order: homogeneous, the classic linear
  * and exp2 factors (fitted on the views: view_sets of them, one per frame), height (where the
  * layers decay), an ellipsoid, Gaussian banks of 1 to 64, the fogmap at three bases x three
- * LOD factors (where the input has a fogmap or a VDB), the volume (where the reference is
- * one), an analytic input as given. */
-int fit_rungs_make(fit_result *r, const scene_config *input, fog_model_kind reference_kind,
+ * LOD factors (the input's fogmap or VDB; else the reference's density projected,
+ * app/fit_fogmap.h, into a file of r->scratch), the volume (where the reference is one),
+ * an analytic input as given. */
+int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *reference,
                    const fit_samples *samples, const fit_views *views, int view_sets,
                    fit_error *err);
 
