@@ -66,6 +66,9 @@ void fit_fogmap_destroy(fit_fogmap *f) {
 }
 
 void fit_fogmap_apply(const fit_fogmap *f, const char *path, scene_config *c) {
+  /* The input's light method carries over: a fog lit per piece of its walk (Perlin fog's
+   * `auto`) stays so, which for the fogmap `auto` is not (docs/light.md). */
+  if (scene_config_light_rule(c).pieces) c->shadow.pieces = 1;
   scene_fog_config *fog = &c->fog;
   fog->model = FOG_MODEL_FOGMAP;
   snprintf(fog->fogmap, sizeof fog->fogmap, "%s", path);

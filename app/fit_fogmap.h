@@ -40,7 +40,8 @@ void fit_fogmap_destroy(fit_fogmap *f);
 /* c's fog becomes this fogmap, read from `path` (the caller saves f->map there,
  * fogmap_save_exr): model fogmap, density_scale 1, the box placed and the profile set
  * (both as written keys, so scene_config_write gives them back). The input's other fog
- * lines are cleared. */
+ * lines are cleared. An input lit per piece of its walk ([light] shadow_pieces, Perlin
+ * fog's auto) keeps that light: shadow_pieces = on. */
 void fit_fogmap_apply(const fit_fogmap *f, const char *path, scene_config *c);
 
 #endif

@@ -74,7 +74,7 @@ typedef struct light_row {
   bool march;     /* uniform ray marching of the whole integral: tau too, `steps` samples */
   int froxel;     /* > 0: the froxel baseline, its grid this many times the engines' */
   int nodes;      /* ours: samples per segment (1 midpoint, 2 Gauss-Legendre) */
-  bool pieces;    /* ours per piece of the exact walk (the volume; the fogmap: segments) */
+  bool pieces;    /* ours per piece of the exact walk */
   char series[64];
   double *times;
   double ms, max_error, mean_error;
@@ -349,7 +349,7 @@ int bench_light(int argc, char **argv) {
     if (!add_row(rows, &row_count, s, 48, D, N, 4, frames) ||
         !add_row(rows, &row_count, s, 48, (D + 1) / 2, N, 4, frames))
       goto out_of_memory;
-    /* ours per piece of the exact walk, two nodes (the volume; the fogmap takes segments) */
+    /* ours per piece of the exact walk, two nodes */
     light_row *piece_row = add_row(rows, &row_count, s, 48, D, 2, 1, frames);
     if (!piece_row) goto out_of_memory;
     piece_row->pieces = true;

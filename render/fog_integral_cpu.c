@@ -5,6 +5,7 @@
 #include <stdint.h>
 
 #include "render/fog_field.h"
+#include "render/fog_models.h"
 #include "render/fog_occupancy.h"
 
 /* Gauss-Legendre nodes and weights on [-1, 1] for 1..4 points (exact to degree 2m-1) and
@@ -510,6 +511,75 @@ void fog_optical_depth_samples(const fog_volume *v, const transform_grid *g,
     }
     out[k] = fog_extinction(v) * sum;
   }
+}
+
+/* ---- the light a ray gathers, per piece of the walk (fog_fogmap_light_integral) --------- */
+
+/* g at walk parameter t of the current piece. */
+static double fog_walk_profile(const fog_ray_walk *w, double t) {
+  const fog_profile *p = w->profile;
+  if (p->kind == FOG_PROFILE_BSPLINE)
+    return fog_profile_bspline_value(p, w->y.cell, w->y.x0 + t * w->y.dx);
+  if (p->kind == FOG_PROFILE_EXPONENTIAL) {
+    double y = w->y_camera + t * w->dir_y;
+    return y > p->y0 ? exp(-(y - p->y0) / p->scale_height) : 1.0;
+  }
+  return 1.0;
+}
+
+double fog_fogmap_light_integral(const fog_volume *v, const transform_grid *g,
+                                 const double camera[3], const double dir[3], double length,
+                                 int nodes, double depth_limit, fog_point_light_fn light,
+                                 const void *user, double *depth) {
+  *depth = 0.0;
+  fog_ray_walk w;
+  double t0, t1;
+  if (nodes < 1 || nodes > FOG_PIECE_MAX_NODES ||
+      !fog_walk_setup(v, g, camera, dir, 0.0, length, &w, &t0, &t1))
+    return 0.0;
+  double gx[FOG_PIECE_MAX_NODES], gw[FOG_PIECE_MAX_NODES],
+      partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES];
+  fog_gauss_rule(nodes, gx, gw, partial);
+  const fog_profile *p = &v->profile;
+  /* The exponential's breaks as the GLSL walk has them, y0 + k H/2: on a piece the exponent
+   * moves by at most 1/2, so a few nodes hold it. */
+  fog_axis breaks = {0};
+  const bool exponential = p->kind == FOG_PROFILE_EXPONENTIAL;
+  if (exponential)
+    fog_axis_start(&breaks, (w.y_camera - p->y0) * 2.0 / p->scale_height,
+                   dir[1] * 2.0 / p->scale_height, 0.0, 0.0);
+  const double scale = fog_extinction(v), len = t1 - t0;
+  double t = 0.0, D = 0.0, S = 0.0;
+  for (long guard = 0; t < len && D < depth_limit && guard < 100000000L; guard++) {
+    double tx = fog_axis_next(&w.x), tz = fog_axis_next(&w.z);
+    double ty = p->kind == FOG_PROFILE_BSPLINE ? fog_axis_next(&w.y)
+                : exponential                  ? fog_axis_next(&breaks)
+                                               : HUGE_VAL;
+    double tn = fmin(len, fmin(tx, fmin(tz, ty)));
+    if (tn > t) {
+      double h = 0.5 * (tn - t), mid = 0.5 * (tn + t);
+      double K[FOG_PIECE_MAX_NODES], f[FOG_PIECE_MAX_NODES];
+      for (int j = 0; j < nodes; j++) {
+        double tj = mid + h * gx[j], x[3];
+        K[j] = scale * fog_walk_value(&w, tj) * fog_walk_profile(&w, tj);
+        for (int a = 0; a < 3; a++) x[a] = camera[a] + (t0 + tj) * dir[a];
+        f[j] = light(user, x);
+      }
+      S += fog_piece_light(nodes, gw, partial, h, K, f, &D);
+    }
+    if (tx <= tn) {
+      fog_axis_step(&w.x);
+      fog_block_step_x(&w);
+    }
+    if (tz <= tn) {
+      fog_axis_step(&w.z);
+      fog_block_step_z(&w);
+    }
+    if (ty <= tn) fog_axis_step(p->kind == FOG_PROFILE_BSPLINE ? &w.y : &breaks);
+    t = fmax(t, tn);
+  }
+  *depth = D;
+  return S;
 }
 
 /* ---- uniform ray marching (the benchmark's alternative integrator) ---------------------- */

@@ -214,6 +214,14 @@ double fog_grid3d_light_integral(const volume_grid_desc *grid, const double came
                                  const double dir[3], double length, int nodes,
                                  double depth_limit, fog_point_light_fn light,
                                  const void *user, double *depth);
+/* The same for the 2.5D fogmap, per piece of its exact walk (fog_optical_depth's pieces:
+ * the knot cells of `grid` crossed, and the profile's breaks: a B-spline's knots, or the
+ * exponential's y0 + k H/2 as the GLSL walk cuts it). K at a node is the grid's f times g
+ * times the volume's extinction; the ray is clipped to the box and to [0, length]. */
+double fog_fogmap_light_integral(const fog_volume *volume, const transform_grid *grid,
+                                 const double camera[3], const double dir[3], double length,
+                                 int nodes, double depth_limit, fog_point_light_fn light,
+                                 const void *user, double *depth);
 /* The volume's trilinear K at world point p (zero beyond the outer voxels). */
 double fog_grid3d_extinction_at(const volume_grid_desc *grid, const double p[3]);
 /* erf(u1) - erf(u0) for u0 <= u1 without cancellation: through erfc where both have the

@@ -110,7 +110,7 @@ typedef struct fog_pass_variant {
   int surface_lamps;      /* FOG_SURFACE_LAMPS: 1 the fog dims the lamps' light on surfaces */
   int froxel;             /* FOG_FROXEL: 0 none, 1 the froxel grid's fill, 2 its lookup */
   int shadow_nodes;       /* FOG_SHADOW_NODES: the light mean's nodes a segment or piece */
-  int shadow_pieces;      /* FOG_SHADOW_PIECES: 1 Perlin fog's mean per piece */
+  int shadow_pieces;      /* FOG_SHADOW_PIECES: 1 the mean per piece of the exact walk */
   int lamp_shadows;       /* FOG_LAMP_SHADOWS: 1 the lamps' shadow cubes (lamp_shadow.glsl) */
 } fog_pass_variant;
 
@@ -656,7 +656,8 @@ static void fog_pass_sun_shadow_uniforms(const fog_pass *pass, GLuint prog, cons
   const double limit = fog_pass_depth_limit(params->walk.transmittance_cutoff);
   glUniform1f(fog_loc(prog, "fog_depth_limit"), limit < 1e30 ? (float)limit : 1e30f);
   glUniform1i(fog_loc(prog, "fog_shadow_steps"), params->shadow_steps);
-  if (params->model == FOG_MODEL_PERLIN || params->model == FOG_MODEL_VOLUME) {
+  if (params->model == FOG_MODEL_PERLIN || params->model == FOG_MODEL_VOLUME ||
+      params->model == FOG_MODEL_FOGMAP) {
     /* the per-piece mean's rule */
     double x[FOG_PIECE_MAX_NODES], w[FOG_PIECE_MAX_NODES],
         partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES] = {{0}};
@@ -1176,9 +1177,9 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
   variant.reduced = divisor > 1 ? divisor : 1;
   variant.shadow_nodes = params->shadow_nodes;
   variant.lamp_shadows = fog_pass_has_lamp_shadows(params);
-  variant.shadow_pieces =
-      (params->model == FOG_MODEL_PERLIN || params->model == FOG_MODEL_VOLUME) &&
-      params->shadow_pieces;
+  variant.shadow_pieces = (params->model == FOG_MODEL_PERLIN || params->model == FOG_MODEL_VOLUME ||
+                           params->model == FOG_MODEL_FOGMAP) &&
+                          params->shadow_pieces;
   GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;
   GLuint programs[2] = {walk_prog, 0};

@@ -154,7 +154,7 @@ typedef struct fog_pass_params {
   int shadow_steps;
   int shadow_nodes; /* samples per segment: 1 the midpoint, 2 two Gauss-Legendre nodes
                        (fog_sun_mean_transmittance); per piece with shadow_pieces */
-  bool shadow_pieces; /* FOG_MODEL_PERLIN and _VOLUME: the mean per piece of the exact walk */
+  bool shadow_pieces; /* FOG_MODEL_PERLIN, _VOLUME, _FOGMAP: the mean per piece of the exact walk */
   /* Optional (0: none): an RGBA texture of the surfaces' sun-lit share of their colour
    * (scene pass attachment 2, width x height); the fog's shadow takes (1 - T_s(P)) of it. */
   GLuint surface_sun;

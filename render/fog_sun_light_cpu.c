@@ -177,11 +177,17 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
   if (kind == FOG_SUN_SHADOW_NONE && !visible) return 1.0;
   if (kind == FOG_SUN_SHADOW_OPAQUE) return 0.0;
   if (rule.pieces && ((m->kind == FOG_MODEL_PERLIN && m->perlin) ||
-                      (m->kind == FOG_MODEL_VOLUME && m->grid3d))) {
+                      (m->kind == FOG_MODEL_VOLUME && m->grid3d) ||
+                      (m->kind == FOG_MODEL_FOGMAP && m->volume && m->lod))) {
     /* per piece of the exact walk: S over 1 - e^{-D} of the same walk */
     sun_light_user u = {m, kind, volume, visible, user};
     double D, S;
-    if (m->kind == FOG_MODEL_PERLIN) {
+    if (m->kind == FOG_MODEL_FOGMAP) {
+      /* the approximation fog_light_extinction_at reads */
+      int slot = m->lod_method == FOG_LOD_SWITCH ? m->lod->levels : 0;
+      S = fog_fogmap_light_integral(m->volume, &m->lod->approx[slot], o, d, t_surface,
+                                    rule.nodes, depth_limit, sun_light_point, &u, &D);
+    } else if (m->kind == FOG_MODEL_PERLIN) {
       fog_perlin_medium medium = fog_model_perlin_medium(m);
       S = fog_perlin_light_integral(m->perlin, &medium, o, d, t_surface, rule.nodes,
                                     depth_limit, sun_light_point, &u, &D);

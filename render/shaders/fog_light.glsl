@@ -113,7 +113,8 @@ float fog_sun_light_at(vec3 dir, float t) {
   return exp(-fog_sun_optical_depth(t * dir)) * fog_sun_visible(t * dir);
 }
 
-#if FOG_MODEL_KIND == FOG_MODEL_PERLIN || FOG_MODEL_KIND == FOG_MODEL_VOLUME
+#if FOG_MODEL_KIND == FOG_MODEL_PERLIN || FOG_MODEL_KIND == FOG_MODEL_VOLUME || \
+    FOG_MODEL_KIND == FOG_MODEL_FOGMAP
 const int fog_piece_nodes = FOG_SHADOW_NODES > 0 ? FOG_SHADOW_NODES : 1;
 uniform float fog_piece_x[4], fog_piece_w[4];
 uniform mat4 fog_piece_partial;
@@ -131,6 +132,50 @@ float fog_piece_light(float K[4], float h, float at, vec3 dir, float D, inout fl
     piece += h * fog_piece_w[j] * K[j];
   }
   return piece;
+}
+#endif
+
+#if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
+// The fogmap's mean per piece of its exact walk (fog_fogmap_light_integral in C): the
+// walk's own pieces through the approximation fog_light_extinction reads (the knot cells
+// crossed, the profile's knots or the exponential's y0 + k H/2), fog_piece_nodes Gauss
+// nodes each, tau at a node from the running depth and the piece's polynomial through its
+// nodes; S / (1 - e^{-D}) of the same walk. Nothing to alias: the pieces follow the fog.
+float fog_fogmap_sun_mean(fog_ray r) {
+  float t0, t1;
+  if (!fog_light_span(r, t0, t1)) return 1.0;
+  fog_ray_walk w = fog_walk_start(fog_lod_method == FOG_LOD_SWITCH ? fog_levels : 0, r.dir_d,
+                                  double(t0));
+  float len = t1 - t0, t = 0.0, D = 0.0, S = 0.0;
+  for (int guard = 0; t < len && D < fog_depth_limit && guard < 65536; guard++) {
+    float tx = fog_axis_next(w.x), tz = fog_axis_next(w.z);
+    float ty = (fog_profile_kind != FOG_PROFILE_SLAB) ? fog_axis_next(w.y) : FOG_INFINITY;
+    float tn = min(min(len, tx), min(tz, ty));
+    if (tn > t) {
+#if FOG_FETCH_HARDWARE
+      mat3 cell = mat3(0.0);
+#else
+      mat3 cell = fog_cell_load(w.grid, w.size, w.x.cell, w.z.cell);
+#endif
+      float h = 0.5 * (tn - t), mid = 0.5 * (tn + t), K[4];
+      for (int j = 0; j < fog_piece_nodes; j++) {
+        float tj = mid + h * fog_piece_x[j], g = 1.0;
+        if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL) {
+          float y = w.y_entry + tj * w.dir_y;
+          g = y > fog_profile_y0 ? exp(-(y - fog_profile_y0) * fog_profile_inv_scale_height) : 1.0;
+        } else if (fog_profile_kind == FOG_PROFILE_BSPLINE) {
+          g = fog_profile_bspline_value(w.y.cell, w.y.x0 + tj * w.y.dx);
+        }
+        K[j] = fog_extinction_scale * fog_walk_value(w, cell, tj) * g;
+      }
+      D += fog_piece_light(K, h, t0 + mid, r.dir, D, S);
+    }
+    if (tx <= tn) w.x.cell += w.x.step;
+    if (tz <= tn) w.z.cell += w.z.step;
+    if (ty <= tn) w.y.cell += w.y.step;
+    t = max(t, tn);
+  }
+  return D > 0.0 ? S / (D * fog_exprel(D)) : 1.0;
 }
 #endif
 
@@ -260,6 +305,8 @@ float fog_sun_mean_transmittance(fog_ray r) {
   return fog_perlin_sun_mean(r);
 #elif FOG_MODEL_KIND == FOG_MODEL_VOLUME && FOG_SHADOW_PIECES
   return fog_grid3d_sun_mean(r);
+#elif FOG_MODEL_KIND == FOG_MODEL_FOGMAP && FOG_SHADOW_PIECES
+  return fog_fogmap_sun_mean(r);
 #endif
   float t0, t1;
   if (!fog_light_span(r, t0, t1)) return 1.0;

@@ -86,6 +86,8 @@ int main(void) {
             cfg.fog.profile == SCENE_PROFILE_BSPLINE && cfg.fog.profile_count > 8,
         "loaded model %d, fogmap '%s', profile %d of %d knots", (int)cfg.fog.model,
         cfg.fog.fogmap, (int)cfg.fog.profile, cfg.fog.profile_count);
+  /* lit per piece as the Perlin fog was (its auto), not by the fogmap's segments */
+  CHECK(scene_config_light_rule(&cfg).pieces, "the fitted fogmap is lit by segments");
 
   /* a missing VDB: the file named, nothing written */
   char missing_out[256];

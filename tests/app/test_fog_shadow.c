@@ -10,7 +10,8 @@
  *   the fogmap: the volume's interpolation too);
  * - the shadow darkens: self-shadowed in-scatter <= unshadowed, and somewhere clearly so;
  * - cases: the default fogmap from its camera, and from inside the ground fog (a valley
- *   floor) under a high sun; the plume volume lit from the side; height fog;
+ *   floor) under a high sun, each by segments and per piece of its walk; the plume volume
+ *   lit from the side; height fog;
  * - fog shadows on the ground: with the shadow on, surface pixels under fog lose
  *   tau (1 - T_s(P)) of their sun-lit share, S_sun = S - S(sun dimmed to nothing),
  *   T_s(P) from the twin. */
@@ -283,7 +284,7 @@ static int load(const char *path, scene_config *cfg) {
 }
 
 int main(void) {
-  static model_case cases[10];
+  static model_case cases[12];
   int n = 0;
   model_case *c = &cases[n];
   if (!load("configs/default.ini", &c->cfg)) {
@@ -320,6 +321,14 @@ int main(void) {
       c->reference = true, c->reference_bound = 0.02;
       n++;
     }
+  }
+  /* the two fogmap cases again with the mean per piece of the exact walk */
+  for (int k = 0, fogmaps = n; k < fogmaps; k++) {
+    c = &cases[n++];
+    *c = cases[k];
+    c->label = k == 0 ? "fogmap (configs/default.ini), per piece"
+                      : "fogmap, camera inside the fog, per piece";
+    c->cfg.shadow.pieces = 1;
   }
   c = &cases[n];
   if (!load("configs/vdb_plume_volume.ini", &c->cfg)) {
