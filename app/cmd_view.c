@@ -2,6 +2,7 @@
  * W/A/S/D move, Q/E down/up, Shift faster, right mouse button + drag to look, Esc quits.
  * The fog is the config's fogmap as it is (no simulation: that is `fogpipe demo`), or its
  * other fog model; a volume's VDB sequence plays with P (or from the start with --play).
+ * B turns on the Gaussian brush on an RBF scene (app/rbf_brush.h: paint, erase, copy).
  * --screenshot FILE --frames N renders N frames, saves the last one as seen in the window
  * (read from GL_BACK before the swap) and exits: for tests and for looking at a scene
  * without sitting at the display (xvfb-run); a playing sequence then advances one VDB frame
@@ -18,6 +19,7 @@
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/fit.h"
+#include "app/rbf_brush.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"
 #include "app/vdb_source.h"
@@ -34,7 +36,11 @@ static void usage(FILE *out) {
           "  W A S D  move     Q E  down / up     Shift  4x faster\n"
           "  right mouse button + drag  look around     Esc  quit\n"
           "  P  play / pause the VDB sequence of [fog] model = volume (from vdb_frame, looping\n"
-          "     at vdb_fps, blended between frames)\n\n"
+          "     at vdb_fps, blended between frames)\n"
+          "  B  the Gaussian brush of [fog] model = rbf (Fogshop's; the title shows it):\n"
+          "     left drag paints Gaussians on the surface, Shift + left drag erases them,\n"
+          "     C picks up the group under the cursor and V puts a copy of it down there,\n"
+          "     - and = size, , and . density, Ctrl+S writes CONFIG.painted.ini\n\n"
           "options:\n"
           "  --render-scale F   render at F times the window size, shown scaled up\n"
           "                     (default 0.5: software GL is slow; 1 on a GPU)\n"
@@ -135,6 +141,135 @@ static int volume_playback_update(volume_playback *pb, GLFWwindow *window, doubl
   double w;
   vdb_sequence_position(position, count, 1, &a, &b, &w);
   return render_fog_set_volume_time(fog, cfg, &pb->sequence, a, b, w, err);
+}
+
+/* ---- the Gaussian brush (model = rbf; app/rbf_brush.h) ---- */
+
+enum { BRUSH_KEY_B, BRUSH_KEY_C, BRUSH_KEY_V, BRUSH_KEY_SMALLER, BRUSH_KEY_LARGER,
+       BRUSH_KEY_THINNER, BRUSH_KEY_DENSER, BRUSH_KEY_SAVE, BRUSH_KEYS };
+
+typedef struct view_brush {
+  bool on;
+  rbf_brush brush;
+  scene_config *painted;   /* the scene with the brush's Gaussians (owned; made at first B) */
+  const char *config_path; /* Ctrl+S writes NAME.painted.ini beside it */
+  bool stroke;             /* the left button went down on the surface */
+  double carried, last[3];
+  bool have_group;
+  double group[3];         /* where C picked a group up */
+  bool key_was_down[BRUSH_KEYS];
+} view_brush;
+
+/* The surface point under the cursor, from the scene target's distance (false: the sky). */
+static bool view_pick(const view_state *v, GLFWwindow *window, const camera *cam, double hit[3]) {
+  double x, y;
+  int win_w = 0, win_h = 0;
+  glfwGetCursorPos(window, &x, &y);
+  glfwGetWindowSize(window, &win_w, &win_h);
+  const int w = v->scene_target.width, h = v->scene_target.height;
+  int px = (int)(x * w / (win_w > 0 ? win_w : 1)), py = (int)(y * h / (win_h > 0 ? win_h : 1));
+  if (px < 0 || py < 0 || px >= w || py >= h) return false;
+  const float distance = gl_target_read_texel(&v->scene_target, 1, px, py);
+  if (!(distance < 0.5f * SCENE_SKY_DISTANCE)) return false;
+  double origin[3], dir[3];
+  camera_ray(cam, px, py, w, h, origin, dir);
+  for (int a = 0; a < 3; a++) hit[a] = origin[a] + distance * dir[a];
+  return true;
+}
+
+static bool brush_key(view_brush *b, GLFWwindow *window, int key, int which) {
+  bool down = glfwGetKey(window, key) == GLFW_PRESS;
+  bool pressed = down && !b->key_was_down[which];
+  b->key_was_down[which] = down;
+  return pressed;
+}
+
+static void brush_title(const view_brush *b, GLFWwindow *window) {
+  char title[320];
+  if (b->on)
+    snprintf(title, sizeof title,
+             "fogpipe view: brush r %.3g c %.3g, %d Gaussians (drag paints, Shift erases, C/V "
+             "copy, -/= size, ,/. density, Ctrl+S saves, B off)",
+             b->brush.radius, b->brush.density, b->painted->fog.rbf_count);
+  else
+    snprintf(title, sizeof title, "fogpipe view: %s", b->config_path);
+  glfwSetWindowTitle(window, title);
+}
+
+/* Ctrl+S: the painted scene as NAME.painted.ini beside the config. */
+static void brush_save(const view_brush *b) {
+  char path[SCENE_CONFIG_PATH_MAX + 16];
+  size_t n = strlen(b->config_path);
+  int stem = n > 4 && !strcmp(b->config_path + n - 4, ".ini") ? (int)(n - 4) : (int)n;
+  snprintf(path, sizeof path, "%.*s.painted.ini", stem, b->config_path);
+  scene_config_error werr;
+  if (scene_config_write(b->painted, path, &werr))
+    fprintf(stderr, "fogpipe view: the brush: %s\n", werr.message);
+  else
+    printf("fogpipe view: wrote %s (%d Gaussians)\n", path, b->painted->fog.rbf_count);
+}
+
+/* B, the mouse and the brush's keys for one frame; the fog takes the changed Gaussians. */
+static int view_brush_update(view_brush *b, view_state *v, GLFWwindow *window,
+                             const scene_config *cfg, const camera *cam, double time,
+                             render_error *err) {
+  if (brush_key(b, window, GLFW_KEY_B, BRUSH_KEY_B)) {
+    if (cfg->fog.model != FOG_MODEL_RBF || !v->has_fog) {
+      printf("fogpipe view: the brush paints Gaussians: it needs [fog] model = rbf\n");
+      return 0;
+    }
+    if (!b->painted) {
+      if (!(b->painted = malloc(sizeof *b->painted))) {
+        snprintf(err->message, sizeof err->message, "out of memory for the brush");
+        return 1;
+      }
+      *b->painted = *cfg;
+      b->brush = rbf_brush_for(cfg->fog.rbfs, cfg->fog.rbf_count,
+                               fmax(cfg->terrain.size[0], cfg->terrain.size[1]), 0.02);
+    }
+    b->on = !b->on;
+    brush_title(b, window);
+  }
+  if (!b->on) return 0;
+  bool ctrl = glfwGetKey(window, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+              glfwGetKey(window, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+  bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+               glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+  rbf_brush *brush = &b->brush;
+  bool retitle = false;
+  if (brush_key(b, window, GLFW_KEY_MINUS, BRUSH_KEY_SMALLER)) brush->radius /= 1.25, retitle = true;
+  if (brush_key(b, window, GLFW_KEY_EQUAL, BRUSH_KEY_LARGER)) brush->radius *= 1.25, retitle = true;
+  if (brush_key(b, window, GLFW_KEY_COMMA, BRUSH_KEY_THINNER)) brush->density /= 1.25, retitle = true;
+  if (brush_key(b, window, GLFW_KEY_PERIOD, BRUSH_KEY_DENSER)) brush->density *= 1.25, retitle = true;
+  brush->spacing = brush->lift = 0.5 * brush->radius;
+  if (brush_key(b, window, GLFW_KEY_S, BRUSH_KEY_SAVE) && ctrl) brush_save(b);
+  scene_fog_config *f = &b->painted->fog;
+  rbf_bank bank = {.rbfs = f->rbfs, .count = f->rbf_count, .capacity = SCENE_CONFIG_MAX_RBFS};
+  int changed = 0;
+  double hit[3];
+  bool picked = view_pick(v, window, cam, hit);
+  if (brush_key(b, window, GLFW_KEY_C, BRUSH_KEY_C) && picked) {
+    b->have_group = true;
+    memcpy(b->group, hit, sizeof hit);
+  }
+  if (brush_key(b, window, GLFW_KEY_V, BRUSH_KEY_V) && picked && b->have_group)
+    changed += rbf_brush_copy(&bank, b->group, 2.0 * brush->radius, hit);
+  bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  if (left && picked && shift) {
+    changed += rbf_brush_erase(&bank, hit, 1.5 * brush->radius);
+  } else if (left && picked) {
+    if (!b->stroke) b->carried = rbf_brush_stroke_start(brush), memcpy(b->last, hit, sizeof hit);
+    changed += rbf_brush_stroke(&bank, brush, b->last, hit, &b->carried);
+    memcpy(b->last, hit, sizeof hit);
+  }
+  b->stroke = left && picked && !shift;
+  f->rbf_count = bank.count;
+  if (changed) {
+    if (render_fog_set_rbfs(&v->fog, b->painted, time, err)) return 1;
+    retitle = true;
+  }
+  if (retitle) brush_title(b, window);
+  return 0;
 }
 
 /* --fit: the rungs and the one shown (-1: the config's own fog). */
@@ -254,8 +389,12 @@ static int view_screenshot(const view_state *v, const char *path, int width, int
 
 /* Draws frames until the window closes, or the screenshot is taken. */
 static int view_loop(view_state *v, volume_playback *playback, rung_selector *sel,
-                     const scene_config *cfg, const view_options *opts, render_error *err) {
+                     view_brush *brush, const scene_config *cfg, const view_options *opts,
+                     render_error *err) {
   GLFWwindow *window = gl_context_glfw_window(v->ctx);
+  /* A key tapped between two polls still counts as pressed once: at a few frames a second
+   * (software GL) a quick tap of B or [ fell between frames. */
+  glfwSetInputMode(window, GLFW_STICKY_KEYS, GLFW_TRUE);
   camera cam;
   scene_config_camera(cfg, &cam);
   double speed = 0.05 * fmax(cfg->terrain.size[0], cfg->terrain.size[1]);
@@ -279,10 +418,14 @@ static int view_loop(view_state *v, volume_playback *playback, rung_selector *se
       return 1;
     /* RBF fog from emitters moves with the clock (with --screenshot at 24 frames a second:
      * the same image every run) */
-    if (v->has_fog && sel->shown < 0 && render_fog_animated(cfg) &&
-        render_fog_set_time(&v->fog, cfg,
-                            opts->screenshot ? (frame - 1) / 24.0 : now - playback->start_time,
-                            err))
+    const double fog_time = opts->screenshot ? (frame - 1) / 24.0 : now - playback->start_time;
+    const scene_config *fog_cfg = brush->painted ? brush->painted : cfg;
+    if (v->has_fog && sel->shown < 0 && render_fog_animated(fog_cfg) &&
+        render_fog_set_time(&v->fog, fog_cfg, fog_time, err))
+      return 1;
+    /* the brush picks from the last frame's distances */
+    if (frame > 1 && sel->shown < 0 &&
+        view_brush_update(brush, v, window, cfg, &cam, fog_time, err))
       return 1;
     int fb_w, fb_h;
     gl_context_framebuffer_size(v->ctx, &fb_w, &fb_h);
@@ -313,6 +456,7 @@ int view_window_run(const scene_config *cfg, const char *title, const view_optio
   volume_playback playback = {0};
   render_error err = {0};
   rung_selector sel = {.shown = -1};
+  view_brush brush = {.config_path = title};
   if (opts->fit) { /* before the window: fit makes headless contexts of its own */
     fit_error ferr;
     if (fit_run(&(fit_desc){.input = cfg, .tolerance = opts->fit_tolerance,
@@ -342,11 +486,12 @@ int view_window_run(const scene_config *cfg, const char *title, const view_optio
   const int first = opts->rung >= 0 ? opts->rung : sel.fit.chosen;
   int status = !v.ctx || view_open(&v, &playback, cfg, opts, &err) ||
                (sel.on && first >= 0 && show_rung(&v, &sel, first, cfg, &err)) ||
-               view_loop(&v, &playback, &sel, cfg, opts, &err);
+               view_loop(&v, &playback, &sel, &brush, cfg, opts, &err);
   if (status) fprintf(stderr, "fogpipe view: %s\n", err.message);
   if (playback.sequence.count) vdb_sequence_destroy(&playback.sequence);
   view_destroy(&v);
   if (sel.on) fit_result_destroy(&sel.fit);
+  free(brush.painted);
   return status;
 }
 

@@ -28,7 +28,7 @@
 #define SCENE_CONFIG_MAX_PROFILE 64
 /* The most `rbf =` lines a config holds (a scene config is a value; the renderer takes
  * up to FOG_MAX_RBFS Gaussians from code: bench models' 3000-Gaussian banks). */
-#define SCENE_CONFIG_MAX_RBFS 64
+#define SCENE_CONFIG_MAX_RBFS 1024
 /* The most `rbf_emitter` lines (their puffs together at most FOG_MAX_RBFS). */
 #define SCENE_CONFIG_MAX_EMITTERS 4
 

@@ -289,9 +289,13 @@ static int rbfs_at(render_fog *fog, const scene_config *cfg, double time, render
   const scene_fog_config *f = &cfg->fog;
   int n = f->rbf_count;
   for (int e = 0; e < f->rbf_emitter_count; e++) n += fog_rbf_emitter_count(&f->rbf_emitters[e]);
-  if (!fog->rbfs && !(fog->rbfs = malloc(sizeof(fog_rbf) * (size_t)(n > 0 ? n : 1)))) {
-    snprintf(err->message, sizeof err->message, "rbf fog: out of memory (%d Gaussians)", n);
-    return 1;
+  if (!fog->rbfs || n > fog->rbf_capacity) {
+    fog_rbf *grown = realloc(fog->rbfs, sizeof(fog_rbf) * (size_t)(n > 0 ? n : 1));
+    if (!grown) {
+      snprintf(err->message, sizeof err->message, "rbf fog: out of memory (%d Gaussians)", n);
+      return 1;
+    }
+    fog->rbfs = grown, fog->rbf_capacity = n > 0 ? n : 1;
   }
   fog->rbf_count = 0;
   for (int i = 0; i < f->rbf_count; i++) fog->rbfs[fog->rbf_count++] = f->rbfs[i];
@@ -302,6 +306,14 @@ static int rbfs_at(render_fog *fog, const scene_config *cfg, double time, render
   fog->params.model_rbfs = fog->rbfs;
   fog->params.model_rbf_count = fog->rbf_count;
   return 0;
+}
+
+int render_fog_set_rbfs(render_fog *fog, const scene_config *cfg, double time,
+                        render_error *err) {
+  if (cfg->fog.model != FOG_MODEL_RBF) return 0;
+  if (rbfs_at(fog, cfg, time, err)) return 1;
+  fog_model model = render_fog_model(fog);
+  return render_fog_shadow(fog, cfg, &model, err);
 }
 
 bool render_fog_animated(const scene_config *cfg) {

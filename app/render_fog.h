@@ -22,7 +22,7 @@ typedef struct render_fog {
   /* model = rbf: params.model_rbfs, density_scale applied: the config's rbf lines, then its
    * emitters' puffs at the time shown (render_fog_set_time); rbf_count of them */
   fog_rbf *rbfs;
-  int rbf_count;
+  int rbf_count, rbf_capacity;
   fog_quadric quadrics[FOG_MAX_QUADRICS]; /* model = quadric: params.model_quadrics, likewise */
   fog_perlin perlin; /* model = perlin: params.model_perlin, its octaves uploaded */
   fog_pass_params params;
@@ -81,6 +81,11 @@ bool render_fog_animated(const scene_config *cfg);
  * of the fog's shadow, where the model has one). For the fog made by render_fog_create from
  * cfg; nothing to do for other fog. */
 int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,
+                        render_error *err);
+/* model = rbf: the config's Gaussians read again (a brush changed them, and their count;
+ * app/rbf_brush.h) with its emitters' puffs at `time`, and the sun's shadow volume of them.
+ * For the fog made by render_fog_create from a config of the same model. */
+int render_fog_set_rbfs(render_fog *fog, const scene_config *cfg, double time,
                         render_error *err);
 /* The scene pass's sun shadow map for light shafts ([light] shafts, with albedo > 0); the
  * map must outlive the fog's draws. */

@@ -133,15 +133,15 @@ int main(void) {
   expect_error("[fog]\nrbf_emitter = 0 10 0 40 25 5 0.06 4 25 -7 1 0 1.5\n",
                "2: [fog] rbf_emitter: ", "SEED (1.5): expected a whole number");
   expect_error("[fog]\nrbf_emitter = 0 10 0 400 25 5 0.06 4 25 -7 1 0\n", "2: [fog] rbf_emitter: ",
-               "RATE x LIFETIME: 10000 puffs alive at once in all, expected at most 4032");
+               "RATE x LIFETIME: 10000 puffs alive at once in all, expected at most 3072");
   expect_error("[fog]\n\nmodel = volume\n", "3: [fog] model: ",
                "volume needs a 'vdb = FILE or PATTERN' line");
   {
-    char text[8192] = "[fog]\nmodel = rbf\n";
+    static char text[32768] = "[fog]\nmodel = rbf\n";
     for (int i = 0; i <= SCENE_CONFIG_MAX_RBFS; i++) strcat(text, "rbf = 1 2 3 4 0.5\n");
     char prefix[64];
     snprintf(prefix, sizeof prefix, "%d: [fog] rbf: ", 3 + SCENE_CONFIG_MAX_RBFS);
-    expect_error(text, prefix, "at most 64 Gaussians");
+    expect_error(text, prefix, "at most 1024 Gaussians");
   }
   /* The first error wins when there are several. */
   expect_error("[fog]\nmu = x\nbasis = y\n", "2: [fog] mu: ", "expected a number");
