@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "bench/bench.h"
 #include "app/commands.h"
+#include "render/fog_pass.h"
 
 #include <errno.h>
 #include <math.h>
@@ -142,4 +143,17 @@ void bench_tau_errors(const float *gpu, const double *ref, size_t n, double *rms
   }
   *rmse = sqrt(sq / (double)n);
   *max_error = worst;
+}
+
+int bench_time_rows(const bench_timed_rows *t, render_error *err) {
+  for (int f = 0; f < t->frames; f++)
+    for (int i = 0; i < t->count; i++) {
+      if (t->prepare && t->prepare(t->user, i, f, err)) return 1;
+      fog_pass_finish();
+      double t0 = app_clock_seconds();
+      if (t->draw(t->user, i, err)) return 1;
+      fog_pass_finish();
+      t->times(t->user, i)[f] = app_clock_seconds() - t0;
+    }
+  return 0;
 }

@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "app/clock.h"
+#include "render/render_error.h"
 
 #define FOG_BENCH(name, summary) int bench_##name(int argc, char **argv);
 #include "bench/stages.def"
@@ -37,6 +38,19 @@ int bench_image_option(const char *stage, int argc, char **argv, int *i,
  * folder cannot be made). */
 int bench_image_command(const char *stage, int argc, char **argv, bench_image_options *options,
                         void (*print_help)(void));
+/* GL draws timed side by side: `frames` rounds, each drawing every row once, so a host that
+ * slows down during the run slows every row alike. Per row and round: prepare (untimed, may
+ * be NULL: uploads, binding the target, the round's jitter), then draw between two
+ * glFinish (fog_pass_finish), its seconds into times(user, row)[round]. Stops at the first
+ * error (err filled by the callback). */
+typedef struct bench_timed_rows {
+  int count, frames;
+  void *user;
+  int (*prepare)(void *user, int row, int round, render_error *err);
+  int (*draw)(void *user, int row, render_error *err);
+  double *(*times)(void *user, int row);
+} bench_timed_rows;
+int bench_time_rows(const bench_timed_rows *rows, render_error *err);
 /* Tables: chart_csv_open / chart_csv_close (app/chart.h). */
 #include "app/chart.h"
 /* mkdir -p; non-zero and a message naming the folder on failure. */

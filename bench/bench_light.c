@@ -257,6 +257,23 @@ static int upload_for(light_scene *s, const light_row *r, render_error *err) {
   return 0;
 }
 
+/* bench_time_rows' callbacks: the row's sun volume uploaded, then its draw timed. */
+typedef struct timing_user {
+  light_scene *scenes;
+  light_row *rows;
+  const gl_target *out;
+} timing_user;
+static int timing_prepare(void *user, int row, int round, render_error *err) {
+  (void)round;
+  timing_user *u = user;
+  return upload_for(&u->scenes[u->rows[row].scene], &u->rows[row], err);
+}
+static int timing_draw(void *user, int row, render_error *err) {
+  timing_user *u = user;
+  return draw_row(&u->scenes[u->rows[row].scene], &u->rows[row], u->out, err);
+}
+static double *timing_times(void *user, int row) { return ((timing_user *)user)->rows[row].times; }
+
 /* B's partner on one scene's rows: the most accurate of our settings (any resolution) whose
  * fog pass costs no more time than the froxel baseline's 1x grid; NULL where none does. */
 static const light_row *ours_at_froxel_time(const light_row *rows, const light_row *froxel) {
@@ -391,16 +408,12 @@ int bench_light(int argc, char **argv) {
       }
     }
   }
-  for (int f = 0; f < frames; f++)
-    for (int i = 0; i < row_count; i++) {
-      light_scene *s = &scenes[rows[i].scene];
-      if (upload_for(s, &rows[i], &rerr)) goto gl_failed;
-      fog_pass_finish();
-      double t0 = app_clock_seconds();
-      if (draw_row(s, &rows[i], &out, &rerr)) goto gl_failed;
-      fog_pass_finish();
-      rows[i].times[f] = app_clock_seconds() - t0;
-    }
+  timing_user user = {scenes, rows, &out};
+  if (bench_time_rows(&(bench_timed_rows){.count = row_count, .frames = frames, .user = &user,
+                                          .prepare = timing_prepare, .draw = timing_draw,
+                                          .times = timing_times},
+                      &rerr))
+    goto gl_failed;
   for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
 
   bench_print_build();

@@ -152,6 +152,18 @@ static int draw_row(lights_scene *s, const lights_row *r, const gl_target *out, 
   return render_fog_draw(&s->fog, &s->drawn.cam, &s->drawn.target, out, err);
 }
 
+/* bench_time_rows' callbacks: the row's draw timed. */
+typedef struct timing_user {
+  lights_scene *scenes;
+  lights_row *rows;
+  const gl_target *out;
+} timing_user;
+static int timing_draw(void *user, int row, render_error *err) {
+  timing_user *u = user;
+  return draw_row(&u->scenes[u->rows[row].scene], &u->rows[row], u->out, err);
+}
+static double *timing_times(void *user, int row) { return ((timing_user *)user)->rows[row].times; }
+
 static lights_row *add_row(lights_row *rows, int *count, int scene, const char *kind, int n,
                            int frames) {
   lights_row *r = &rows[(*count)++];
@@ -366,15 +378,11 @@ int bench_lights(int argc, char **argv) {
       goto gl_failed;
     if (!r->unlit) row_errors(r, s, inscatter, W, H);
   }
-  for (int f = 0; f < frames; f++)
-    for (int i = 0; i < row_count; i++) {
-      lights_scene *s = &scenes[rows[i].scene];
-      fog_pass_finish();
-      double t0 = app_clock_seconds();
-      if (draw_row(s, &rows[i], &out, &rerr)) goto gl_failed;
-      fog_pass_finish();
-      rows[i].times[f] = app_clock_seconds() - t0;
-    }
+  timing_user user = {scenes, rows, &out};
+  if (bench_time_rows(&(bench_timed_rows){.count = row_count, .frames = frames, .user = &user,
+                                          .draw = timing_draw, .times = timing_times},
+                      &rerr))
+    goto gl_failed;
   for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
 
   bench_print_build();

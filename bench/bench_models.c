@@ -186,6 +186,27 @@ static int write_table(const char *path, const model_row *rows, int count, char 
  * after a warm-up; max_error: tau against the CPU's sum of every Gaussian's closed form
  * (the 3000's through the same tiles' lists: within FOG_RBF_CULL_BOUND of the full sum,
  * test_rbf_tiles; the full sum at 640 x 360 would take a minute). */
+/* bench_time_rows' callbacks: the fog target bound, then the row's fog pass timed. */
+typedef struct timing_user {
+  bench_scene *scenes;
+  model_row *rows;
+  fog_pass *pass;
+  const gl_target *target;
+  int width, height;
+} timing_user;
+static int timing_prepare(void *user, int row, int round, render_error *err) {
+  (void)row, (void)round, (void)err;
+  gl_target_bind(((timing_user *)user)->target);
+  return 0;
+}
+static int timing_draw(void *user, int row, render_error *err) {
+  timing_user *u = user;
+  const render_scene *sc = &u->scenes[scene_of_model[u->rows[row].model]].drawn;
+  return fog_pass_draw(u->pass, &sc->cam, &u->rows[row].params, sc->target.color[0],
+                       sc->target.color[1], u->width, u->height, err);
+}
+static double *timing_times(void *user, int row) { return ((timing_user *)user)->rows[row].times; }
+
 typedef struct rbf_scale_row {
   int count;
   fog_rbf *rbfs;
@@ -446,18 +467,12 @@ int bench_models(int argc, char **argv) {
       goto gl_failed;
     bench_tau_errors(gpu_tau, references[r->model], pixels, &r->rmse, &r->max_error, &where);
   }
-  for (int f = 0; f < frames; f++)
-    for (int i = 0; i < row_count; i++) {
-      const render_scene *sc = &scenes[scene_of_model[rows[i].model]].drawn;
-      gl_target_bind(&fog_target);
-      fog_pass_finish();
-      double t0 = app_clock_seconds();
-      if (fog_pass_draw(pass, &sc->cam, &rows[i].params, sc->target.color[0],
-                        sc->target.color[1], W, H, &rerr))
-        goto gl_failed;
-      fog_pass_finish();
-      rows[i].times[f] = app_clock_seconds() - t0;
-    }
+  timing_user user = {scenes, rows, pass, &fog_target, W, H};
+  if (bench_time_rows(&(bench_timed_rows){.count = row_count, .frames = frames, .user = &user,
+                                          .prepare = timing_prepare, .draw = timing_draw,
+                                          .times = timing_times},
+                      &rerr))
+    goto gl_failed;
   for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
   static fog_rbf scale_rbfs[64 + 3000];
   rbf_scale_row scale[2] = {{.count = 64, .rbfs = scale_rbfs},

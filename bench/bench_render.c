@@ -265,6 +265,30 @@ typedef struct bench_row {
   uint64_t tau_hash;           /* FNV-1a of the read-back tau's bytes: bit-for-bit checks */
 } bench_row;
 
+/* bench_time_rows' callbacks: the round's jitter frame and the fog target, then the row's
+ * fog pass timed. */
+typedef struct timing_user {
+  bench_row *rows;
+  fog_pass **passes;
+  const camera *cam;
+  const gl_target *scene, *target;
+  int width, height;
+} timing_user;
+static int timing_prepare(void *user, int row, int round, render_error *err) {
+  (void)err;
+  timing_user *u = user;
+  u->rows[row].params.frame = (unsigned)round;
+  gl_target_bind(u->target);
+  return 0;
+}
+static int timing_draw(void *user, int row, render_error *err) {
+  timing_user *u = user;
+  const bench_row *r = &u->rows[row];
+  return fog_pass_draw(u->passes[r->pass], u->cam, &r->params, u->scene->color[0],
+                       u->scene->color[1], u->width, u->height, err);
+}
+static double *timing_times(void *user, int row) { return ((timing_user *)user)->rows[row].times; }
+
 static uint64_t fnv1a(const void *data, size_t bytes) {
   const unsigned char *p = data;
   uint64_t h = 1469598103934665603ull;
@@ -683,19 +707,12 @@ int bench_render(int argc, char **argv) {
     }
   }
   /* Timed rounds, all rows interleaved. */
-  for (int f = 0; f < frames; f++)
-    for (int i = 0; i < row_count; i++) {
-      bench_row *r = &rows[i];
-      r->params.frame = (unsigned)f;
-      gl_target_bind(&fog_target);
-      fog_pass_finish();
-      double t0 = app_clock_seconds();
-      if (fog_pass_draw(passes[r->pass], &cam, &r->params, scene_target.color[0],
-                        scene_target.color[1], W, H, &rerr))
-        goto gl_failed;
-      fog_pass_finish();
-      r->times[f] = app_clock_seconds() - t0;
-    }
+  timing_user user = {rows, passes, &cam, &scene_target, &fog_target, W, H};
+  if (bench_time_rows(&(bench_timed_rows){.count = row_count, .frames = frames, .user = &user,
+                                          .prepare = timing_prepare, .draw = timing_draw,
+                                          .times = timing_times},
+                      &rerr))
+    goto gl_failed;
   for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
   bench_upload_timing upload = {0};
   if (bench_time_uploads(&lod, 21, &upload, &rerr)) goto gl_failed;
