@@ -783,6 +783,14 @@ static int check_models(parse_state *ps) {
     fail(&s, "fog", "model", "quadric needs at least one 'quadric = SHAPE ...' line");
     return 1;
   }
+  if ((cfg->fog.model == FOG_MODEL_LINEAR || cfg->fog.model == FOG_MODEL_EXP2) &&
+      cfg->fog.quadric_count > 0) {
+    s.line = cfg->fog.model_line;
+    fail(&s, "fog", "model", "%s is a fog of the distance from the camera: it takes no "
+         "'quadric' volumes beside it (any other model does)",
+         fog_model_table[cfg->fog.model].name);
+    return 1;
+  }
   if (cfg->lamp_method.integral == FOG_LAMP_FOGSHOP && cfg->fog.model != FOG_MODEL_RBF) {
     s.line = cfg->lamp_integral_line;
     fail(&s, "light", "lamp_integral", "fogshop is Fogshop's approximation for Gaussian fog: "

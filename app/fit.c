@@ -69,7 +69,7 @@ static int reference_create(held_model *r, const scene_config *cfg, fit_error *e
 }
 
 /* The fog's bounds; for fog without an end, the terrain's footprint between the box's
- * floor and top. */
+ * floor and top; joined with the quadric volumes beside it. */
 static bool fit_domain(const fog_model *m, const scene_config *cfg, double lo[3], double hi[3]) {
   if (!fog_model_bounds(m, lo, hi)) {
     const scene_terrain_config *t = &cfg->terrain;
@@ -77,6 +77,9 @@ static bool fit_domain(const fog_model *m, const scene_config *cfg, double lo[3]
     lo[2] = t->origin[2], hi[2] = t->origin[2] + t->size[1];
     lo[1] = cfg->box.floor, hi[1] = cfg->box.top;
   }
+  double qlo[3], qhi[3]; /* and the quadric volumes beside the model */
+  if (fog_model_quadrics_beside(m) && fog_quadric_bounds(m->quadrics, m->quadric_count, qlo, qhi))
+    for (int a = 0; a < 3; a++) lo[a] = fmin(lo[a], qlo[a]), hi[a] = fmax(hi[a], qhi[a]);
   for (int a = 0; a < 3; a++)
     if (!(lo[a] < hi[a]) || !isfinite(lo[a]) || !isfinite(hi[a])) return false;
   return true;

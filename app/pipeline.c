@@ -984,8 +984,17 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
   render_error rerr = {{0}};
   fog_sun sun = params.sun;
   memcpy(sun.direction, p->geometry.sun_direction, sizeof sun.direction);
+  /* [fog] quadric lines beside the fogmap: their densities on the live density scale */
+  fog_quadric quadrics[FOG_MAX_QUADRICS];
+  const int quadric_count = p->config.fog.quadric_count;
+  for (int i = 0; i < quadric_count; i++) {
+    quadrics[i] = p->config.fog.quadrics[i];
+    quadrics[i].density *= params.density;
+  }
   pipeline_fog_settings settings = {
       .volume = &volume,
+      .quadrics = quadrics,
+      .quadric_count = quadric_count,
       .mu = params.mu,
       .lod_method = params.lod_method,
       .fog_colour = {params.fog_colour[0], params.fog_colour[1], params.fog_colour[2]},

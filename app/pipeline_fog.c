@@ -98,6 +98,8 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .walk = settings->walk,
       .surface_sun = settings->self_shadow != FOG_SUN_SHADOW_NONE ? scene->color[2] : 0,
       .surface_lamps = scene->color[3],
+      .model_quadrics = settings->quadrics,
+      .model_quadric_count = settings->quadric_count,
   };
   gl_target_bind(&fog->target);
   return fog_pass_draw(fog->pass, cam, &params, scene->color[0], scene->color[1], fog->width,

@@ -36,6 +36,9 @@ typedef struct pipeline_fog_settings {
   const sun_shadow_map *shafts; /* fog_pass_params.shafts: NULL none */
   const lamp_shadow_maps *lamp_shadows; /* fog_pass_params.lamp_shadows: NULL none */
   fog_walk_settings walk;       /* fog_pass_params.walk */
+  /* fog_pass_params.model_quadrics: quadric volumes beside the fogmap (densities scaled) */
+  const fog_quadric *quadrics;
+  int quadric_count;
 } pipeline_fog_settings;
 
 typedef struct pipeline_fog pipeline_fog;

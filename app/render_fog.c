@@ -390,7 +390,29 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
   return render_fog_shadow(fog, cfg, &model, err);
 }
 
+/* Quadric volumes beside another model's fog ([fog] quadric lines with any model): their
+ * densities times density_scale, as model = quadric takes them; the pass adds their depth,
+ * extinction and shadow (fog_model_quadrics_beside). */
+static void render_fog_beside(render_fog *fog, const scene_config *cfg) {
+  const scene_fog_config *f = &cfg->fog;
+  if (f->model == FOG_MODEL_QUADRIC || f->quadric_count == 0) return;
+  for (int i = 0; i < f->quadric_count; i++) {
+    fog->quadrics[i] = f->quadrics[i];
+    fog->quadrics[i].density *= f->density_scale;
+  }
+  fog->params.model_quadrics = fog->quadrics;
+  fog->params.model_quadric_count = f->quadric_count;
+}
+
+static int render_fog_create_model(render_fog *fog, const scene_config *cfg, render_error *err);
+
 int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err) {
+  int status = render_fog_create_model(fog, cfg, err);
+  if (!status) render_fog_beside(fog, cfg);
+  return status;
+}
+
+static int render_fog_create_model(render_fog *fog, const scene_config *cfg, render_error *err) {
   *fog = (render_fog){0};
   const scene_fog_config *f = &cfg->fog;
   if (f->model == FOG_MODEL_VOLUME) {
@@ -519,6 +541,7 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   if (fog_pass_upload_pyramid(fog->pass, &fog->pyramid, err)) goto done;
   fog_model model = render_fog_model(fog);
   if (render_fog_shadow(fog, cfg, &model, err)) goto done;
+  render_fog_beside(fog, cfg);
   status = 0;
 done:
   for (int l = 0; l <= FOG_MAX_LEVELS; l++) free(approx[l]), free(detail[l]);

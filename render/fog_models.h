@@ -121,7 +121,9 @@ typedef struct fog_model {
   /* FOG_MODEL_VOLUME: the grid (extinction per world unit; render/volume_march.h's
    * placement). fog_model_optical_depth integrates it exactly. */
   const volume_grid_desc *grid3d;
-  /* FOG_MODEL_QUADRIC: quadric_count (<= FOG_MAX_QUADRICS) volumes, world coordinates. */
+  /* FOG_MODEL_QUADRIC: quadric_count (<= FOG_MAX_QUADRICS) volumes, world coordinates. Any
+   * other kind: quadric volumes beside the model's fog (fog_model_quadrics_beside), their
+   * extinction added to the model's wherever K is read, their optical depth exact. */
   const fog_quadric *quadrics;
   int quadric_count;
   /* FOG_MODEL_LINEAR and FOG_MODEL_EXP2 (the classic factors): the eye their distances count
@@ -135,12 +137,18 @@ typedef struct fog_model {
   fog_perlin_integral perlin_integral;
 } fog_model;
 
+/* Whether quadric volumes stand beside the model's own fog (a kind other than
+ * FOG_MODEL_QUADRIC with quadric_count > 0). */
+bool fog_model_quadrics_beside(const fog_model *model);
+/* The model without the quadrics beside it (itself otherwise). */
+fog_model fog_model_alone(const fog_model *model);
+
 /* FOG_MODEL_PERLIN's medium of a model. */
 fog_perlin_medium fog_model_perlin_medium(const fog_model *model);
 
 /* Optical depth from the camera along the unit direction dir up to the first surface
  * t_surface (HUGE_VAL: none; homogeneous and downward height fog then give +inf): the
- * model's CPU twin from the table. */
+ * model's CPU twin from the table, plus the quadrics beside it. */
 double fog_model_optical_depth(const fog_model *model, const double camera[3],
                                const double dir[3], double t_surface);
 

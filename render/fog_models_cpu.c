@@ -92,8 +92,21 @@ const fog_model_info *fog_model_find(const char *name) {
   return NULL;
 }
 
+bool fog_model_quadrics_beside(const fog_model *m) {
+  return m->kind != FOG_MODEL_QUADRIC && m->quadric_count > 0 && m->quadrics;
+}
+
+fog_model fog_model_alone(const fog_model *m) {
+  fog_model alone = *m;
+  if (fog_model_quadrics_beside(m)) alone.quadrics = NULL, alone.quadric_count = 0;
+  return alone;
+}
+
 double fog_model_optical_depth(const fog_model *m, const double camera[3], const double dir[3],
                                double t_surface) {
   if ((unsigned)m->kind >= FOG_MODEL_COUNT) return NAN;
-  return fog_model_table[m->kind].optical_depth(m, camera, dir, t_surface);
+  double depth = fog_model_table[m->kind].optical_depth(m, camera, dir, t_surface);
+  if (fog_model_quadrics_beside(m))
+    depth += fog_quadric_optical_depth(m->quadrics, m->quadric_count, camera, dir, t_surface);
+  return depth;
 }

@@ -112,6 +112,7 @@ typedef struct fog_pass_variant {
   int shadow_nodes;       /* FOG_SHADOW_NODES: the light mean's nodes a segment or piece */
   int shadow_pieces;      /* FOG_SHADOW_PIECES: 1 the mean per piece of the exact walk */
   int lamp_shadows;       /* FOG_LAMP_SHADOWS: 1 the lamps' shadow cubes (lamp_shadow.glsl) */
+  int quadrics_beside;    /* FOG_QUADRICS_BESIDE: 1 quadric volumes beside the model's fog */
 } fog_pass_variant;
 
 static const struct {
@@ -141,6 +142,7 @@ static const struct {
     {"FOG_SHADOW_NODES", offsetof(fog_pass_variant, shadow_nodes), 3},
     {"FOG_SHADOW_PIECES", offsetof(fog_pass_variant, shadow_pieces), 1},
     {"FOG_LAMP_SHADOWS", offsetof(fog_pass_variant, lamp_shadows), 1},
+    {"FOG_QUADRICS_BESIDE", offsetof(fog_pass_variant, quadrics_beside), 1},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
@@ -885,6 +887,11 @@ static int fog_pass_rbf_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
 /* FOG_MODEL_QUADRIC's volumes camera-relative (fog_models.glsl): Q(camera + p) =
  * p.(M p) + 2 g.p + c0 with g = M camera + l and c0 = Q(camera), in double (the shader keeps
  * g and c0 in double). */
+/* Quadric volumes beside another model's fog (fog_pass_params.model_quadrics). */
+static bool fog_pass_quadrics_beside(const fog_pass_params *p) {
+  return p->model != FOG_MODEL_QUADRIC && p->model_quadric_count > 0;
+}
+
 static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
                                       const fog_pass_params *params) {
   float diag[FOG_MAX_QUADRICS][3], off[FOG_MAX_QUADRICS][4], edge[FOG_MAX_QUADRICS];
@@ -978,7 +985,8 @@ static int fog_pass_analytic_uniforms(fog_pass *pass, GLuint prog, const camera 
   if (params->model == FOG_MODEL_RBF &&
       fog_pass_rbf_uniforms(pass, prog, cam, params, width, height, err))
     return 1;
-  if (params->model == FOG_MODEL_QUADRIC) fog_pass_quadric_uniforms(prog, cam, params);
+  if (params->model == FOG_MODEL_QUADRIC || fog_pass_quadrics_beside(params))
+    fog_pass_quadric_uniforms(prog, cam, params);
   if (params->model == FOG_MODEL_PERLIN) fog_pass_perlin_uniforms(pass, prog, cam, params);
   return 0;
 }
@@ -1000,9 +1008,11 @@ static int fog_pass_model_uniforms(fog_pass *pass, GLuint prog, const camera *ca
                                    const fog_pass_params *params, const fogmap_slots *fm,
                                    int width, int height, render_error *err) {
   glUseProgram(prog);
-  if (params->model == FOG_MODEL_FOGMAP)
+  if (params->model == FOG_MODEL_FOGMAP) {
+    if (fog_pass_quadrics_beside(params)) fog_pass_quadric_uniforms(prog, cam, params);
     return fog_pass_fogmap_uniforms(pass, prog, cam, params, fm->first, fm->J, fm->slots,
                                     fm->reads, err);
+  }
   return fog_pass_analytic_uniforms(pass, prog, cam, params, width, height, err);
 }
 
@@ -1055,6 +1065,7 @@ static int fog_pass_draw_froxel(fog_pass *pass, const fog_pass_variant *variant,
                                 render_error *err) {
   const fog_froxel_grid *g = &params->froxel;
   fog_pass_variant fill = *variant, lookup = *variant;
+  fill.quadrics_beside = lookup.quadrics_beside = fog_pass_quadrics_beside(params);
   fill.integrator = lookup.integrator = FOG_INTEGRATOR_EXACT;
   fill.reduced = lookup.reduced = 1;
   fill.lamps = lookup.lamps = fill.lamp_integral = lookup.lamp_integral = 0;
@@ -1177,9 +1188,10 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
   variant.reduced = divisor > 1 ? divisor : 1;
   variant.shadow_nodes = params->shadow_nodes;
   variant.lamp_shadows = fog_pass_has_lamp_shadows(params);
+  variant.quadrics_beside = fog_pass_quadrics_beside(params);
   variant.shadow_pieces = (params->model == FOG_MODEL_PERLIN || params->model == FOG_MODEL_VOLUME ||
                            params->model == FOG_MODEL_FOGMAP) &&
-                          params->shadow_pieces;
+                          params->shadow_pieces && !variant.quadrics_beside;
   GLuint walk_prog = fog_pass_variant_program(pass, &variant, err);
   if (!walk_prog) return 1;
   GLuint programs[2] = {walk_prog, 0};
@@ -1330,7 +1342,7 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
         return 1;
       }
   }
-  if (params->model == FOG_MODEL_QUADRIC) {
+  if (params->model == FOG_MODEL_QUADRIC || params->model_quadric_count != 0) {
     int n = params->model_quadric_count;
     if (n < 0 || n > FOG_MAX_QUADRICS || (n > 0 && !params->model_quadrics)) {
       snprintf(err->message, sizeof err->message,

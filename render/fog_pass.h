@@ -119,7 +119,9 @@ typedef struct fog_pass_params {
   const fog_rbf *model_rbfs;
   int model_rbf_count;
   /* FOG_MODEL_QUADRIC: these volumes (at most FOG_MAX_QUADRICS; density >= 0, edge >= 0, a
-   * box lo <= hi), read at each draw. */
+   * box lo <= hi), read at each draw. Any other model: volumes beside its fog, their
+   * extinction added (fog_model_quadrics_beside: the depth, the light, the lamps; the sun's
+   * mean by segments, not per piece). */
   const fog_quadric *model_quadrics;
   int model_quadric_count;
   /* FOG_MODEL_PERLIN: the octaves (uploaded with fog_pass_upload_perlin), the animation time

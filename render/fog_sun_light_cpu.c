@@ -5,14 +5,23 @@
 
 #include "render/fog_sun_shadow.h"
 
+/* The quadrics beside the model: their exact depth from p towards the sun. */
+static double beside_towards_sun(const fog_model *m, const fog_sun_shadow *volume,
+                                 const double p[3]) {
+  return fog_model_quadrics_beside(m)
+             ? fog_quadric_optical_depth(m->quadrics, m->quadric_count, p, volume->sun, HUGE_VAL)
+             : 0.0;
+}
+
 double fog_sun_optical_depth(const fog_model *m, fog_sun_shadow_kind kind,
                              const fog_sun_shadow *volume, const double p[3]) {
   switch (kind) {
     case FOG_SUN_SHADOW_VOLUME:
-      return fog_sun_shadow_depth_at(volume, p);
+      return fog_sun_shadow_depth_at(volume, p) + beside_towards_sun(m, volume, p);
     case FOG_SUN_SHADOW_HEIGHT: /* K H e^{-(y - y0)/H} / w_y */
       return m->extinction * m->scale_height * exp(-(p[1] - m->y0) / m->scale_height) /
-             volume->sun[1];
+                 volume->sun[1] +
+             beside_towards_sun(m, volume, p);
     case FOG_SUN_SHADOW_OPAQUE:
       return HUGE_VAL;
     default:
@@ -23,7 +32,15 @@ double fog_sun_optical_depth(const fog_model *m, fog_sun_shadow_kind kind,
 /* K at p, as the shadow mean samples it: the fogmap's finest approximation the draw reads
  * (switching: A_J; the sum of details: A_0), the volume trilinear, the analytic models
  * pointwise. */
+static double model_extinction_at(const fog_model *m, const double p[3]);
+
 double fog_light_extinction_at(const fog_model *m, const double p[3]) {
+  double k = model_extinction_at(m, p);
+  if (fog_model_quadrics_beside(m)) k += fog_quadric_extinction_at(m->quadrics, m->quadric_count, p);
+  return k;
+}
+
+static double model_extinction_at(const fog_model *m, const double p[3]) {
   switch (m->kind) {
     case FOG_MODEL_FOGMAP: {
       int slot = m->lod_method == FOG_LOD_SWITCH ? m->lod->levels : 0;
@@ -65,8 +82,28 @@ double fog_light_extinction_at(const fog_model *m, const double p[3]) {
  * FOG_LIGHT_SPAN_DEPTH (the rest weighs < e^-20), the RBFs' reach (6 radii), the quadrics'
  * boxes; the classic factors from the eye (o = eye): the linear fog's [start, end], the
  * exp2 fog to FOG_LIGHT_SPAN_DEPTH. */
+static bool model_light_span(const fog_model *m, const double o[3], const double d[3],
+                             double t_surface, double *t0, double *t1);
+
 bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
                     double t_surface, double *t0, double *t1) {
+  bool some = model_light_span(m, o, d, t_surface, t0, t1);
+  double lo[3], hi[3], a, b;
+  if (!fog_model_quadrics_beside(m) ||
+      !fog_quadric_bounds(m->quadrics, m->quadric_count, lo, hi))
+    return some;
+  for (int c = 0; c < 3; c++) lo[c] -= o[c], hi[c] -= o[c];
+  if (!fog_slab_entry_exit(lo, hi, d, &a, &b)) return some;
+  a = fmax(a, 0.0), b = fmin(b, t_surface);
+  if (!(a < b && b < 1e29)) return some;
+  /* the union's hull: the two stretches and what lies between */
+  if (some) a = fmin(a, *t0), b = fmax(b, *t1);
+  *t0 = a, *t1 = b;
+  return true;
+}
+
+static bool model_light_span(const fog_model *m, const double o[3], const double d[3],
+                             double t_surface, double *t0, double *t1) {
   *t0 = 0.0;
   *t1 = t_surface;
   switch (m->kind) {
@@ -176,7 +213,7 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
                           double t_surface, fog_sun_visibility_fn visible, const void *user) {
   if (kind == FOG_SUN_SHADOW_NONE && !visible) return 1.0;
   if (kind == FOG_SUN_SHADOW_OPAQUE) return 0.0;
-  if (rule.pieces && ((m->kind == FOG_MODEL_PERLIN && m->perlin) ||
+  if (rule.pieces && !fog_model_quadrics_beside(m) && ((m->kind == FOG_MODEL_PERLIN && m->perlin) ||
                       (m->kind == FOG_MODEL_VOLUME && m->grid3d) ||
                       (m->kind == FOG_MODEL_FOGMAP && m->volume && m->lod))) {
     /* per piece of the exact walk: S over 1 - e^{-D} of the same walk */

@@ -181,8 +181,10 @@ static void *shadow_rows(void *arg) {
   return NULL;
 }
 
-int fog_sun_shadow_compute(fog_sun_shadow *s, const fog_model *model, const double sun_dir[3],
+int fog_sun_shadow_compute(fog_sun_shadow *s, const fog_model *beside, const double sun_dir[3],
                            int threads, render_error *err) {
+  /* the model alone: the quadrics beside it add their exact depth at each lookup */
+  const fog_model alone = fog_model_alone(beside), *model = &alone;
   double lo[3], hi[3];
   if (!s->optical_depth || !fog_model_bounds(model, lo, hi)) {
     snprintf(err->message, sizeof err->message,

@@ -48,11 +48,12 @@ typedef struct fog_sun_shadow {
   float *optical_depth; /* size[0] size[1] size[2], i fastest, then j, then k */
 } fog_sun_shadow;
 
-/* How a model's T_s is found for the unit direction sun_dir towards the sun. */
+/* How a model's T_s is found for the unit direction sun_dir towards the sun: from the model
+ * alone (quadrics beside it add their exact depth in fog_sun_optical_depth). */
 fog_sun_shadow_kind fog_sun_shadow_kind_of(const fog_model *model, const double sun_dir[3]);
 
-/* The model's fog lies inside [lo, hi] (false: it has no bound). For RBFs: 6 radii around
- * each centre, where a Gaussian has fallen to e^-36. */
+/* The model's own fog lies inside [lo, hi] (false: it has no bound; quadrics beside it are
+ * not counted). For RBFs: 6 radii around each centre, where a Gaussian has fallen to e^-36. */
 bool fog_model_bounds(const fog_model *model, double lo[3], double hi[3]);
 
 /* Allocates the volume (size from desc, checked) for fog_sun_shadow_compute. */
@@ -78,24 +79,25 @@ void fog_sun_shadow_tex_map(const fog_sun_shadow *shadow, double m[3][3], double
 /* The CPU twins of fog_light.glsl (render/fog_sun_light_cpu.c), in double. */
 /* K at world point p as the light's samples read it: the fogmap's finest approximation
  * the draw reads (switching: A_J; the sum of details: A_0), zero outside its box; the volume
- * trilinear; the analytic models pointwise. */
+ * trilinear; the analytic models pointwise; plus the quadrics beside the model. */
 double fog_light_extinction_at(const fog_model *model, const double p[3]);
 /* Where the fog never ends (height fog, homogeneous fog, an RBF base) the light's span stops
  * at this optical depth from the camera: the rest weighs < e^-20 (2e-9). */
 #define FOG_LIGHT_SPAN_DEPTH 20.0
 /* The stretch [t0, t1] of the ray o + t d up to t_surface that holds fog, finite (fog_light_span
  * in GLSL; the sun's mean and the lamps' span): the box, the volume's support, the
- * quadrics' boxes, the RBFs' reach (6 radii), the endless models to FOG_LIGHT_SPAN_DEPTH;
- * false where it is empty. */
+ * quadrics' boxes, the RBFs' reach (6 radii), the endless models to FOG_LIGHT_SPAN_DEPTH,
+ * joined with the boxes of the quadrics beside the model; false where it is empty. */
 bool fog_light_span(const fog_model *model, const double o[3], const double d[3],
                     double t_surface, double *t0, double *t1);
 /* Optical depth towards the sun at world point p for a model's kind (volume: for _VOLUME
- * the volume, for _HEIGHT only its sun). */
+ * the volume, for _HEIGHT only its sun). With _VOLUME and _HEIGHT the quadrics beside the
+ * model add their exact depth towards volume->sun (the volume holds the model alone). */
 double fog_sun_optical_depth(const fog_model *model, fog_sun_shadow_kind kind,
                              const fog_sun_shadow *volume, const double p[3]);
 /* How the view ray's mean of T_s V is taken (docs/light.md): `steps` equal segments of
- * `nodes` samples, or for FOG_MODEL_PERLIN with `pieces` per piece of its exact walk with
- * `nodes` Gauss nodes each (fog_perlin_light_integral; steps unused). */
+ * `nodes` samples, or with `pieces` (Perlin fog, the volume, the fogmap; not with quadrics
+ * beside them) per piece of the exact walk with `nodes` Gauss nodes each (steps unused). */
 typedef struct fog_light_rule {
   int steps;   /* >= 1 */
   int nodes;   /* segments: 1 or 2; pieces: 1 .. FOG_PIECE_MAX_NODES */

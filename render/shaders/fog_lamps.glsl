@@ -24,7 +24,7 @@ float fog_lamp_visible(int i, vec3 x) { return 1.0; }
 #endif
 
 // K at camera-relative point p (zero outside the fogmap's box: the march to a lamp leaves it).
-float fog_lamp_extinction(vec3 p) {
+float fog_lamp_model_extinction(vec3 p) {
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
   if (any(lessThan(p, vec3(fog_box_min))) || any(greaterThan(p, vec3(fog_box_max)))) return 0.0;
   return fog_extinction_scale *
@@ -35,13 +35,28 @@ float fog_lamp_extinction(vec3 p) {
   return fog_model_extinction_at(p);
 #endif
 }
+float fog_lamp_extinction(vec3 p) {
+#if FOG_QUADRICS_BESIDE
+  return fog_lamp_model_extinction(p) + fog_quadric_extinction_at(p);
+#else
+  return fog_lamp_model_extinction(p);
+#endif
+}
 
 // The analytic models' optical depths in closed form (fog_models.glsl): from the camera
 // to distance t along the ray, and from point x along unit w for length len.
 #define FOG_LAMP_EXACT_DEPTH (FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS || \
                               FOG_MODEL_KIND == FOG_MODEL_HEIGHT || FOG_MODEL_KIND == FOG_MODEL_RBF || \
                               FOG_MODEL_KIND == FOG_MODEL_QUADRIC)
+float fog_lamp_model_segment_depth(vec3 x, vec3 w, float len);
 float fog_lamp_segment_depth(vec3 x, vec3 w, float len) {
+#if FOG_QUADRICS_BESIDE
+  return fog_lamp_model_segment_depth(x, w, len) + fog_quadric_optical_depth_from(x, w, len);
+#else
+  return fog_lamp_model_segment_depth(x, w, len);
+#endif
+}
+float fog_lamp_model_segment_depth(vec3 x, vec3 w, float len) {
 #if FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS
   return fog_homogeneous_optical_depth(fog_model_extinction, len);
 #elif FOG_MODEL_KIND == FOG_MODEL_HEIGHT

@@ -31,12 +31,21 @@ float fog_sun_visible(vec3 p) { return 1.0; }
 
 // Optical depth from camera-relative point p towards the sun.
 float fog_sun_optical_depth(vec3 p) {
+// The quadrics beside the model add their exact depth towards the sun (the volume holds the
+// model alone: fog_sun_optical_depth in C).
+#if FOG_QUADRICS_BESIDE
+#define FOG_SUN_BESIDE(p) fog_quadric_optical_depth_from(p, fog_sun_direction, 1e30)
+#else
+#define FOG_SUN_BESIDE(p) 0.0
+#endif
 #if FOG_SUN_SHADOW == 1
-  return texture(fog_sun_shadow_map, fog_sun_shadow_tex_camera + fog_sun_shadow_to_tex * p).r;
+  return texture(fog_sun_shadow_map, fog_sun_shadow_tex_camera + fog_sun_shadow_to_tex * p).r +
+         FOG_SUN_BESIDE(p);
 #elif FOG_SUN_SHADOW == 2
   // int_0^inf K e^{-(y + s w_y - y0)/H} ds = K H e^{-(y - y0)/H} / w_y (w_y > 0)
   return fog_model_extinction * fog_model_scale_height *
-         exp(-(p.y - fog_model_y0) / fog_model_scale_height) / fog_sun_direction.y;
+             exp(-(p.y - fog_model_y0) / fog_model_scale_height) / fog_sun_direction.y +
+         FOG_SUN_BESIDE(p);
 #elif FOG_SUN_SHADOW == 3
   return FOG_INFINITY;
 #else
@@ -45,8 +54,26 @@ float fog_sun_optical_depth(vec3 p) {
 }
 
 // The stretch [t0, t1] of the ray that holds the model's fog (finite), and K along it
-// (the sun's march and the lamps, fog_lamps.glsl).
+// (the sun's march and the lamps, fog_lamps.glsl); with quadrics beside the model, the
+// hull of both stretches (fog_light_span in C).
+bool fog_model_light_span(fog_ray r, out float t0, out float t1);
 bool fog_light_span(fog_ray r, out float t0, out float t1) {
+  bool some = fog_model_light_span(r, t0, t1);
+#if FOG_QUADRICS_BESIDE
+  float a, b;
+  if (fog_slab(fog_quadric_union_lo, fog_quadric_union_hi, vec3(0.0), r.dir, a, b)) {
+    a = max(a, 0.0);
+    b = min(b, r.t_surface);
+    if (a < b && b < 1e29) {
+      if (some) a = min(a, t0), b = max(b, t1);
+      t0 = a, t1 = b;
+      return true;
+    }
+  }
+#endif
+  return some;
+}
+bool fog_model_light_span(fog_ray r, out float t0, out float t1) {
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
   t0 = float(max(r.t_in, 0.0));
   t1 = min(float(r.t_out), r.t_surface);
@@ -97,14 +124,20 @@ bool fog_light_span(fog_ray r, out float t0, out float t1) {
 }
 
 float fog_light_extinction(vec3 dir, float t) {
+#if FOG_QUADRICS_BESIDE
+  float beside = fog_quadric_extinction_at(t * dir);
+#else
+  const float beside = 0.0;
+#endif
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
   // the finest approximation the draw reads (switching: A_J in slot J; else slot 0)
   return fog_extinction_scale *
-         fog_extinction_at(fog_lod_method == FOG_LOD_SWITCH ? fog_levels : 0, dir, t);
+         fog_extinction_at(fog_lod_method == FOG_LOD_SWITCH ? fog_levels : 0, dir, t) + beside;
 #elif FOG_MODEL_KIND == FOG_MODEL_VOLUME
-  return fog_grid3d_density(fog_grid3d_camera_index + t * (fog_grid3d_index_from_world * dir));
+  return fog_grid3d_density(fog_grid3d_camera_index + t * (fog_grid3d_index_from_world * dir)) +
+         beside;
 #else
-  return fog_model_extinction_at(t * dir);
+  return fog_model_extinction_at(t * dir) + beside;
 #endif
 }
 

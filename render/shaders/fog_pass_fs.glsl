@@ -16,7 +16,9 @@
 //   #define FOG_SURFACE_LAMPS 0|1    (1: the fog dims the lamps' light on the surfaces)
 //   #define FOG_FROXEL 0|1|2         (the froxel baseline's fill and lookup, fog_froxel.glsl)
 //   #define FOG_SHADOW_NODES 1|2     (the light mean's nodes a segment or piece, fog_light.glsl)
-//   #define FOG_SHADOW_PIECES 0|1    (1: Perlin fog's mean per piece of its walk)
+//   #define FOG_SHADOW_PIECES 0|1    (1: the sun's mean per piece of the model's walk)
+//   #define FOG_QUADRICS_BESIDE 0|1  (1: quadric volumes beside the model's fog: their
+//                                    depth, extinction and shadow add; fog_models.glsl)
 //   and the specialisation constants of fog_integral.glsl
 uniform int fog_march_steps;  // FOG_INTEGRATOR 1: samples per ray (every model's marcher)
 #include "fog_integral.glsl"
@@ -294,6 +296,10 @@ void main() {
     if (!fog_box_entry_exit(dir_d, t_in, t_out)) t_in = 1.0, t_out = 0.0;
     // The variant's model (fog_model_table.glsl, generated from render/fog_models.def).
     optical_depth = fog_model_optical_depth(fog_ray(dir_d, dir, t_in, t_out, t_surface, jitter));
+#if FOG_QUADRICS_BESIDE
+    // quadric volumes beside the model's fog: their exact depth adds
+    optical_depth += fog_quadric_optical_depth_from(vec3(0.0), dir, t_surface);
+#endif
 #if FOG_REDUCED > 1
     // And the extinction where the ray meets the surface (the fogmap's A_0, 0 outside its
     // box; the other models' pointwise K; 0 for the sky): d(optical depth)/dt there, for the
@@ -301,6 +307,9 @@ void main() {
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
     if (t_surface < 1e29 && t_surface >= t_in && t_surface <= t_out)
       k_end = fog_extinction_scale * fog_extinction_at(0, dir, t_surface);
+#if FOG_QUADRICS_BESIDE
+    if (t_surface < 1e29) k_end += fog_quadric_extinction_at(t_surface * dir);
+#endif
 #else
     if (t_surface < 1e29) k_end = fog_light_extinction(dir, t_surface);
 #endif

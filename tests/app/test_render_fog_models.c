@@ -4,8 +4,9 @@
  * top), and the classic linear and exp2 factors, each pixel's transmittance against the CPU
  * model of the documented meaning of the keys (density_scale, fog_height, scale_height,
  * rbf_base, rbf lines, fog_start and fog_end from the camera; quadric lines as
- * test_config_quadric pins them; for the volume the VDB frame's grid where the bake put
- * it, integrated exactly), along the pixel's ray to
+ * test_config_quadric pins them, for model = quadric and beside the height and RBF fog; for
+ * the volume the VDB frame's grid where the bake put it, integrated exactly), along the
+ * pixel's ray to
  * the depth render_frame reports (the sky: to infinity). Max |delta tau| <= 2e-4. `fogpipe
  * record` of an analytic model gives render's image every frame (fog that moves by itself:
  * frames that change, and a frame recorded alone equal to the run's); the live pipeline
@@ -155,17 +156,23 @@ int main(void) {
   static const char *const scene =
       "[camera]\nposition = 0 120 400\nlook_at = 0 20 -100\nfov = 55\n"
       "[terrain]\nsize = 1000 1000\nheight = 120\nresolution = 65\n";
-  static const char *const fogs[5][2] = {
+  static const char *const fogs[7][2] = {
       {"homogeneous", "\n[fog]\nmodel = homogeneous\ndensity_scale = 0.003\n"},
       {"height", "\n[fog]\nmodel = height\ndensity_scale = 0.02\nfog_height = 30\n"
                  "scale_height = 25\n"},
       {"rbf", "\n[fog]\nmodel = rbf\nrbf_base = 0.0005\ndensity_scale = 2\n"
               "rbf = -50 20 -50 80 0.01\nrbf = 100 0 0 40 0.02\n"},
       {"linear", "\n[fog]\nmodel = linear\nfog_start = 250\nfog_end = 900\n"},
-      {"exp2", "\n[fog]\nmodel = exp2\ndensity_scale = 0.0025\n"}};
-  for (int k = 0; k < 5; k++) {
+      {"exp2", "\n[fog]\nmodel = exp2\ndensity_scale = 0.0025\n"},
+      /* quadric volumes beside another model's fog: their depth adds (on its density_scale) */
+      {"height + quadrics", "\n[fog]\nmodel = height\ndensity_scale = 0.01\nfog_height = 0\n"
+                            "scale_height = 25\nquadric = sphere -60 80 -100 70 2 0.5\n"
+                            "quadric = cylinder 120 0 -60 30 160 3\n"},
+      {"rbf + quadrics", "\n[fog]\nmodel = rbf\nrbf = -50 20 -50 80 0.01\n"
+                         "quadric = ellipsoid 100 40 0 90 30 60 0.02 0.3\n"}};
+  for (int k = 0; k < 7; k++) {
     char path[256];
-    snprintf(path, sizeof path, "%s/%s.ini", dir, fogs[k][0]);
+    snprintf(path, sizeof path, "%s/fog%d.ini", dir, k);
     FILE *f = fopen(path, "w");
     fputs(scene, f);
     fputs(fogs[k][1], f);

@@ -1,7 +1,8 @@
 /* The lamps' in-scatter (render/fog_lamp.h, fog_lamps.glsl) on the GL pass against its CPU
  * twin (fog_lamps_inscatter, double), pixel by pixel, for every fog model: a point lamp
  * and a spot lamp inside the fog, the sun's radiance and the fog colour 0 and a black
- * surface, so the pass's colour is the lamps' in-scatter alone. Also: albedo 0 draws
+ * surface, so the pass's colour is the lamps' in-scatter alone; and with quadric volumes
+ * beside the height fog and the volume. Also: albedo 0 draws
  * nothing (the lamps scatter with the fog's albedo), and the spot's cone really cuts. */
 #include <math.h>
 #include <stdio.h>
@@ -177,6 +178,25 @@ int main(void) {
       params.lamps.method.march_steps = 48;
       compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "rbf, marched");
     }
+  }
+  /* the quadrics beside the height fog (closed-form depths) and the volume (marched T) */
+  for (int k = 0; k < 2; k++) {
+    const int model = k ? FOG_MODEL_VOLUME : FOG_MODEL_HEIGHT;
+    camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1,
+        .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
+    camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
+    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
+    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+    fog_model m = {.kind = model, .extinction = 0.01, .y0 = 4.0, .scale_height = 6.0,
+                   .grid3d = k ? &grid3d : NULL, .quadrics = quadrics, .quadric_count = 3};
+    fog_pass_params params = {.model = model, .model_extinction = m.extinction,
+                              .model_y0 = m.y0, .model_scale_height = m.scale_height,
+                              .model_quadrics = quadrics, .model_quadric_count = 3, .sun = sun,
+                              .lamps = two_lamps((double[3]){40, 4, -15},
+                                                 (double[3]){55, 12, -30})};
+    const char *name = k ? "volume, quadrics beside" : "height, quadrics beside";
+    double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, name);
+    CHECK(peak > 0.05, "%s: peak in-scatter %g", name, peak);
   }
   free(grid_values);
   glDeleteTextures(1, &surface_tex);
