@@ -31,19 +31,13 @@ void fog_froxel_fill(ivec2 cell) {
   vec3 dir = vec3(dir_d);
   fog_rbf_tile = ivec2((vec2(cell) + 0.5) * fog_viewport / vec2(fog_froxel_size.xy)) /
                  max(fog_rbf_tile_size, 1);
-  float t_in = 0.0, t_out = FOG_INFINITY;  // where the model has fog along the ray
-#if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
-  double a = 1.0, b = 0.0;
-  if (!fog_box_entry_exit(dir_d, a, b)) a = 1.0, b = 0.0;
-  t_in = float(a), t_out = float(b);
-#endif
   vec3 sun = fog_sun_scatter * fog_phase_hg(fog_phase_g, dot(dir, fog_sun_direction));
   vec3 light = vec3(0.0);
   float transmittance = 1.0, t_a = fog_froxel_near;
   for (int k = 0; k < fog_froxel_size.z; k++) {
     float t_b = fog_froxel_face(k + 1), t = 0.5 * (t_a + t_b);
     vec3 p = t * dir;
-    float extinction = (t >= t_in && t <= t_out) ? fog_light_extinction(dir, t) : 0.0;
+    float extinction = fog_light_extinction(dir, t);  // zero outside the fogmap's box
     float x = extinction * (t_b - t_a);
     vec3 source = fog_colour + sun * exp(-fog_sun_optical_depth(p)) * fog_sun_visible(p);
     light += transmittance * source * (x * fog_exprel(x));  // s (1 - e^{-x}), no cancellation

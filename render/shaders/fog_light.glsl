@@ -130,7 +130,10 @@ float fog_light_extinction(vec3 dir, float t) {
   const float beside = 0.0;
 #endif
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
-  // the finest approximation the draw reads (switching: A_J in slot J; else slot 0)
+  // the finest approximation the draw reads (switching: A_J in slot J; else slot 0), zero
+  // outside the box (fog_extinction_point in C: beside quadrics the span reaches past it)
+  vec3 p = t * dir;
+  if (any(lessThan(p, vec3(fog_box_min))) || any(greaterThan(p, vec3(fog_box_max)))) return beside;
   return fog_extinction_scale *
          fog_extinction_at(fog_lod_method == FOG_LOD_SWITCH ? fog_levels : 0, dir, t) + beside;
 #elif FOG_MODEL_KIND == FOG_MODEL_VOLUME
@@ -199,7 +202,8 @@ float fog_fogmap_sun_mean(fog_ray r) {
         } else if (fog_profile_kind == FOG_PROFILE_BSPLINE) {
           g = fog_profile_bspline_value(w.y.cell, w.y.x0 + tj * w.y.dx);
         }
-        K[j] = fog_extinction_scale * fog_walk_value(w, cell, tj) * g;
+        // a negative K (ringing) weighs nothing, as in the segments' mean
+        K[j] = max(fog_extinction_scale * fog_walk_value(w, cell, tj) * g, 0.0);
       }
       D += fog_piece_light(K, h, t0 + mid, r.dir, D, S);
     }
