@@ -561,7 +561,9 @@ double fog_fogmap_light_integral(const fog_volume *v, const transform_grid *g,
       double K[FOG_PIECE_MAX_NODES], f[FOG_PIECE_MAX_NODES];
       for (int j = 0; j < nodes; j++) {
         double tj = mid + h * gx[j], x[3];
-        K[j] = scale * fog_walk_value(&w, tj) * fog_walk_profile(&w, tj);
+        /* a negative K (a linear or quadratic map's ringing) weighs nothing, as in the
+         * segments' mean (fog_sun_mean_light) */
+        K[j] = fmax(scale * fog_walk_value(&w, tj) * fog_walk_profile(&w, tj), 0.0);
         for (int a = 0; a < 3; a++) x[a] = camera[a] + (t0 + tj) * dir[a];
         f[j] = light(user, x);
       }

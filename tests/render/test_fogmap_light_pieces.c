@@ -15,7 +15,8 @@
  *   - the walk's depth D is the optical depth: |e^{-D} - tau_ref| <= 1e-7 with 3 nodes (a
  *     piece's K is a polynomial of degree <= 5 but for the exponential's share);
  *   - with T_s = 1 the mean S / (1 - e^{-D}) tends to 1 (docs/light.md's identity; per
- *     piece it is the nodes' quadrature of int tau K): within 1e-5 with 3 nodes. */
+ *     piece it is the nodes' quadrature of int tau K): within 1e-5 with 3 nodes;
+ *   - on a map that rings below zero the mean stays a mean (negative K weighs nothing). */
 #include <math.h>
 #include <stdio.h>
 
@@ -27,6 +28,12 @@
 static double unlit(const void *user, const double x[3]) {
   (void)user, (void)x;
   return 1.0;
+}
+
+/* The sun reaches x < 16 only. */
+static double west_lit(const void *user, const double x[3]) {
+  (void)user;
+  return x[0] < 16.0 ? 1.0 : 0.0;
 }
 
 /* 10 x 10 coefficients at spacing 1, two samples outside the box corner. */
@@ -121,6 +128,31 @@ int main(void) {
     printf("the sun overhead, Haar in a slab, 3 nodes: S within %.2e of the reference\n",
            worst_overhead);
     CHECK(worst_overhead <= 1e-8, "the sun overhead: S off by %.3e", worst_overhead);
+    transform_grid_destroy(&g);
+  }
+  /* a map that rings below zero (as a linear or quadratic approximation does next to a
+   * sharp edge): negative K weighs nothing, so the mean of a light in [0, 1] (here the sun
+   * on half the map) stays in it */
+  {
+    transform_grid g = make_grid(1);
+    for (int i = 0; i < 100; i++) g.coefficients[i] = (float)(0.1 + 0.9 * sin(2.1 * i));
+    const fog_volume v = {.map_width = 6, .map_height = 6, .origin_x = 10.0,
+                          .origin_z = -5.0, .cell_size = 2.0, .extinction = 0.15,
+                          .profile = profile_of(2)};
+    double worst_out = 0.0;
+    for (int r = 0; r < 5; r++) {
+      double d[3] = {rays[r][3], rays[r][4], rays[r][5]};
+      unit(d);
+      for (int nodes = 1; nodes <= 3; nodes++) {
+        double D, S = fog_fogmap_light_integral(&v, &g, rays[r], d, rays[r][6], nodes, HUGE_VAL,
+                                                west_lit, NULL, &D);
+        double mean = D > 0.0 ? S / -expm1(-D) : 1.0;
+        worst_out = fmax(worst_out, fmax(mean - 1.0, -mean));
+        CHECK(mean == mean && mean >= 0.0 && mean <= 1.0 + 1e-2,
+              "a ringing map, ray %d, %d nodes: the mean %g", r, nodes, mean);
+      }
+    }
+    printf("a ringing map: the mean of a light in [0, 1] beyond it by %.1e at most\n", worst_out);
     transform_grid_destroy(&g);
   }
   static const char *const bases[3] = {"Haar", "linear", "quadratic"};
