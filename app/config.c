@@ -219,9 +219,10 @@ typedef struct parse_state {
   char *whole_line; /* the line being read, whatever its length (getline) */
   size_t whole_line_size;
   int error_line;     /* first error (0: none) */
-  /* The line starts with blanks: libinih (INI_ALLOW_MULTILINE) hands it over as more of
-   * the previous key's value; a list (V_LIST) appends it. */
-  bool continuation;
+  /* The line starts with blanks after a key of the same section: libinih
+   * (INI_ALLOW_MULTILINE) hands it over as more of that key's value; a list (V_LIST)
+   * appends it. after_key: a key was read since the section began (libinih's prev_name). */
+  bool continuation, after_key;
   scene_config_error *err;
 } parse_state;
 
@@ -236,7 +237,8 @@ static char *read_line(char *buffer, int size, void *stream) {
    * comment became a key. Here a whole line is read: a long comment or blank line is
    * passed on cut short (it means nothing), a long line with content is an error. */
   const char *p = s->whole_line + strspn(s->whole_line, " \t\r\n");
-  s->continuation = p > s->whole_line && *p && *p != ';' && *p != '#' && *p != '[';
+  if (*p == '[') s->after_key = false; /* a section starts: no key to go on */
+  s->continuation = s->after_key && p > s->whole_line && *p && *p != ';' && *p != '#';
   if (n < size) {
     memcpy(buffer, s->whole_line, (size_t)n + 1);
   } else if (*p == ';' || *p == '#' || !*p) {
@@ -636,6 +638,7 @@ static int store_list(parse_state *s, const key_spec *k, const char *section, co
 
 static int handle_key(parse_state *s, const char *section, const char *key, const char *value) {
   scene_config *cfg = s->cfg;
+  s->after_key = true;
   const key_spec *k = lookup_key(s, section, key);
   if (!k) return 0;
   char *field = (char *)cfg + k->offset;
@@ -789,6 +792,13 @@ static int check_models(parse_state *ps) {
     fail(&s, "fog", "model", "%s is a fog of the distance from the camera: it takes no "
          "'quadric' volumes beside it (any other model does)",
          fog_model_table[cfg->fog.model].name);
+    return 1;
+  }
+  if (cfg->lamp_method.integral == FOG_LAMP_FOGSHOP && cfg->fog.quadric_count > 0 &&
+      cfg->fog.model == FOG_MODEL_RBF) {
+    s.line = cfg->lamp_integral_line;
+    fail(&s, "light", "lamp_integral", "fogshop is Fogshop's approximation for Gaussian fog "
+         "alone: it does not light the 'quadric' volumes beside it (use angle or march)");
     return 1;
   }
   if (cfg->lamp_method.integral == FOG_LAMP_FOGSHOP && cfg->fog.model != FOG_MODEL_RBF) {
@@ -989,13 +999,18 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
     case V_STRING:
       if (field[0]) fprintf(f, "%s = %s\n", k->key, field);
       break;
-    case V_LIST: { /* 8 numbers a line, the rest on indented lines (store_list) */
+    case V_LIST: { /* lines of at most ~120 bytes, the rest indented below (store_list) */
       int count = *(const int *)((const char *)cfg + k->aux_offset);
       if (!count) break;
-      fprintf(f, "%s =", k->key);
+      int length = fprintf(f, "%s =", k->key);
       for (int i = 0; i < count; i++) {
-        if (i > 0 && i % 8 == 0) fputs("\n   ", f);
-        write_number(f, d[i]);
+        char number[32];
+        for (int digits = 1; digits <= 17; digits++) { /* write_number's shortest form */
+          snprintf(number, sizeof number, "%.*g", digits, d[i]);
+          if (strtod(number, NULL) == d[i]) break;
+        }
+        if (length + 1 + (int)strlen(number) > 120) length = fprintf(f, "\n   ");
+        length += fprintf(f, " %s", number);
       }
       fputc('\n', f);
       break;

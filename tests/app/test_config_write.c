@@ -7,6 +7,7 @@
  * folder that cannot be written is an error naming the file, with nothing left behind. */
 #define _XOPEN_SOURCE 700
 #include <dirent.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,7 +72,9 @@ int main(void) {
   cfg.fog.profile = SCENE_PROFILE_BSPLINE, cfg.fog.profile_set = true;
   cfg.fog.profile_degree = 1, cfg.fog.profile_spacing = 1.0 / 3.0;
   cfg.fog.profile_count = SCENE_CONFIG_MAX_PROFILE;
-  for (int k = 0; k < SCENE_CONFIG_MAX_PROFILE; k++) cfg.fog.profile_coefficients[k] = 1.0 / (k + 3);
+  /* 17 significant digits and an exponent: the longest numbers there are */
+  for (int k = 0; k < SCENE_CONFIG_MAX_PROFILE; k++)
+    cfg.fog.profile_coefficients[k] = (1.0 / (k + 3)) * pow(10.0, -(k % 19));
   scene_config back;
   CHECK(scene_config_write(&cfg, written, &err) == 0, "write: %s", err.message);
   CHECK(scene_config_load(written, &back, &err) == 0, "64 coefficients read back: %s", err.message);
@@ -87,6 +90,14 @@ int main(void) {
   CHECK(scene_config_load(written, &back, &err) == 0 && back.fog.profile_count == 5 &&
             back.fog.profile_coefficients[4] == 5.0,
         "indented lines: %d numbers (%s)", back.fog.profile_count, err.message);
+  /* an indented key right after a section line is a key, as libinih reads it: it replaces */
+  if ((f = fopen(written, "w"))) {
+    fputs("[fog]\nmodel = perlin\n[fog]\n  perlin_wind = 1 2 3\n", f);
+    fclose(f);
+  }
+  CHECK(scene_config_load(written, &back, &err) == 0 && back.fog.perlin_wind_count == 3 &&
+            back.fog.perlin_wind[2] == 3.0,
+        "an indented first key: %d numbers (%s)", back.fog.perlin_wind_count, err.message);
   if ((f = fopen(written, "w"))) {
     fputs("[fog]\nprofile = bspline\nprofile_coefficients =", f);
     for (int k = 0; k < 65; k++) fprintf(f, k % 10 == 9 ? " 1\n  " : " 1");
