@@ -41,6 +41,10 @@ int fit_fogmap_project(const fog_model *model, const double lo[3], const double 
         c.layer_mass[j] += k * area;
         c.mass += k * area * s->cell[1];
       }
+  if (!(c.mass > 0.0)) { /* no fog in the domain: nothing to project */
+    status = -1;
+    goto done;
+  }
   /* degree 1, a knot per layer (FIT_FOGMAP_LAYERS <= SCENE_CONFIG_MAX_PROFILE) */
   if (vdb_profile_fit(c.layer_mass, ny, c.y_min, c.layer_height,
                       &(vdb_profile_desc){.kind = VDB_PROFILE_BSPLINE}, &out->profile, &serr) ||
@@ -85,7 +89,7 @@ void fit_fogmap_apply(const fit_fogmap *f, const char *path, scene_config *c) {
   fog->profile_count = g->count;
   memcpy(fog->profile_coefficients, g->values, (size_t)g->count * sizeof g->values[0]);
   fog->profile_set = true;
-  /* g's support: the knots' hats reach half a spacing past the first and last knot */
+  /* g's support: a degree-d B-spline reaches (d + 1)/2 spacings past its end knots */
   const double half = 0.5 * (g->degree + 1) * g->spacing;
   scene_box_config *box = &c->box;
   box->origin[0] = f->place.origin_x, box->origin[1] = f->place.origin_z;

@@ -31,8 +31,9 @@ typedef struct fit_fogmap {
 
 /* The projection of the model's density over the domain [lo, hi]: side cells along the
  * longer horizontal side, FIT_FOGMAP_LAYERS layers (a ground layer is thin beside its
- * footprint: the fit's own samples, isotropic, would give it a handful). Fails (nothing
- * allocated) for a domain without fog, or out of memory. */
+ * footprint: the fit's own samples, isotropic, would give it a handful). Returns -1 for a
+ * domain without fog (nothing to project), 1 out of memory (err); nothing stays allocated
+ * unless it returns 0. */
 int fit_fogmap_project(const fog_model *model, const double lo[3], const double hi[3],
                        int side, fit_fogmap *out, fit_error *err);
 void fit_fogmap_destroy(fit_fogmap *f);

@@ -167,9 +167,13 @@ int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *re
                   in->model != FOG_MODEL_LINEAR && in->model != FOG_MODEL_EXP2;
   char projected[sizeof r->scratch + 32] = "";
   fit_fogmap ff = {0};
+  int projected_status = projects ? fit_fogmap_project(reference, s->lo, s->hi,
+                                                      s->n[0] > s->n[2] ? s->n[0] : s->n[2],
+                                                      &ff, err)
+                                   : 0;
+  if (projected_status > 0) return 1;
+  if (projected_status < 0) projects = false; /* no fog to project: no fogmap rungs */
   if (projects) {
-    if (fit_fogmap_project(reference, s->lo, s->hi, s->n[0] > s->n[2] ? s->n[0] : s->n[2], &ff, err))
-      return 1;
     snprintf(r->scratch, sizeof r->scratch, "%s", "/tmp/fogpipe-fit-XXXXXX");
     sim_error serr = {{0}};
     if (!mkdtemp(r->scratch)) {

@@ -23,7 +23,8 @@ typedef struct render_fog {
    * emitters' puffs at the time shown (render_fog_set_time); rbf_count of them */
   fog_rbf *rbfs;
   int rbf_count, rbf_capacity;
-  fog_quadric quadrics[FOG_MAX_QUADRICS]; /* model = quadric: params.model_quadrics, likewise */
+  fog_quadric quadrics[FOG_MAX_QUADRICS]; /* params.model_quadrics, density_scale applied:
+                                             model = quadric's, or those beside the model */
   fog_perlin perlin; /* model = perlin: params.model_perlin, its octaves uploaded */
   fog_pass_params params;
   fog_pass *pass;

@@ -180,12 +180,6 @@ static int write_table(const char *path, const model_row *rows, int count, char 
   return chart_csv_close(f, path, error, size);
 }
 
-/* Gaussian banks at scale (render/fog_rbf_tiles.h): `count` Gaussians spread over the
- * valley of scene_configs[0] (radii shrinking as the count grows, so the fog's amount stays
- * alike), the exact integral per pixel through the per-tile lists. ms: median of `frames`
- * after a warm-up; max_error: tau against the CPU's sum of every Gaussian's closed form
- * (the 3000's through the same tiles' lists: within FOG_RBF_CULL_BOUND of the full sum,
- * test_rbf_tiles; the full sum at 640 x 360 would take a minute). */
 /* bench_time_rows' callbacks: the fog target bound, then the row's fog pass timed. */
 typedef struct timing_user {
   bench_scene *scenes;
@@ -207,6 +201,12 @@ static int timing_draw(void *user, int row, render_error *err) {
 }
 static double *timing_times(void *user, int row) { return ((timing_user *)user)->rows[row].times; }
 
+/* Gaussian banks at scale (render/fog_rbf_tiles.h): `count` Gaussians spread over the
+ * valley of scene_configs[0] (radii shrinking as the count grows, so the fog's amount stays
+ * alike), the exact integral per pixel through the per-tile lists. ms: median of `frames`
+ * after a warm-up; max_error: tau against the CPU's sum of every Gaussian's closed form
+ * (the 3000's through the same tiles' lists: within FOG_RBF_CULL_BOUND of the full sum,
+ * test_rbf_tiles; the full sum at 640 x 360 would take a minute). */
 typedef struct rbf_scale_row {
   int count;
   fog_rbf *rbfs;

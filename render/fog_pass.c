@@ -884,14 +884,14 @@ static int fog_pass_rbf_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
   return gl_util_check("fog pass: RBF tiles", err);
 }
 
-/* FOG_MODEL_QUADRIC's volumes camera-relative (fog_models.glsl): Q(camera + p) =
- * p.(M p) + 2 g.p + c0 with g = M camera + l and c0 = Q(camera), in double (the shader keeps
- * g and c0 in double). */
 /* Quadric volumes beside another model's fog (fog_pass_params.model_quadrics). */
 static bool fog_pass_quadrics_beside(const fog_pass_params *p) {
   return p->model != FOG_MODEL_QUADRIC && p->model_quadric_count > 0;
 }
 
+/* The quadric volumes camera-relative (fog_models.glsl), of FOG_MODEL_QUADRIC or beside
+ * another model: Q(camera + p) = p.(M p) + 2 g.p + c0 with g = M camera + l and c0 =
+ * Q(camera), in double (the shader keeps g and c0 in double). */
 static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
                                       const fog_pass_params *params) {
   float diag[FOG_MAX_QUADRICS][3], off[FOG_MAX_QUADRICS][4], edge[FOG_MAX_QUADRICS];
