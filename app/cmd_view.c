@@ -114,6 +114,10 @@ static void fly(GLFWwindow *window, camera *cam, double dt, double speed, double
   int w = glfwGetKey(window, GLFW_KEY_W) == GLFW_PRESS, s = glfwGetKey(window, GLFW_KEY_S) == GLFW_PRESS;
   int a = glfwGetKey(window, GLFW_KEY_A) == GLFW_PRESS, d = glfwGetKey(window, GLFW_KEY_D) == GLFW_PRESS;
   int q = glfwGetKey(window, GLFW_KEY_Q) == GLFW_PRESS, e = glfwGetKey(window, GLFW_KEY_E) == GLFW_PRESS;
+  /* Ctrl + a key is a command (the brush's Ctrl+S), not a step */
+  if (glfwGetKey(window, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+      glfwGetKey(window, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS)
+    w = s = a = d = q = e = 0;
   for (int k = 0; k < 3; k++) move[k] += (w - s) * forward[k] + (d - a) * right[k] / rl;
   move[1] += e - q;
   for (int k = 0; k < 3; k++) cam->position[k] += step * move[k];
