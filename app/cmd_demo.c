@@ -21,6 +21,7 @@
 #include "app/cli.h"
 #include "app/cmd_record.h"
 #include "app/cmd_view.h"
+#include "app/live_rung.h"
 #include "app/recorder.h"
 #include "render/fog_field.h"
 #include "render/gl_context.h"
@@ -47,7 +48,8 @@ static void print_help(FILE *out) {
           "  Space           pause / resume the simulation;  N: one step;  R: reset\n"
           "  Esc             quit\n"
           "The panel sets the basis, levels, mu, LOD method, density, colour, vertical\n"
-          "profile, wind, viscosity and emitter rate, and shows the per-stage timings.\n\n"
+          "profile, wind, viscosity and emitter rate, and shows the per-stage timings; its\n"
+          "model menu draws a cheaper model fitted to the fog live, with its error.\n\n"
           "Without a display (no DISPLAY/WAYLAND_DISPLAY, or the window cannot open) the\n"
           "scene is recorded headless instead: %d frames at %dx%d into ./out/demo (or a\n"
           "temporary folder if that is not writable).\n\n"
@@ -57,6 +59,8 @@ static void print_help(FILE *out) {
           "                       a GPU; 0.5 on a software renderer such as llvmpipe, with\n"
           "                       the fog at half of that, upsampled by depth: the fog pass\n"
           "                       costs per pixel; the panel changes both)\n"
+          "  --model NAME         start with the panel's model: fogmap (default),\n"
+          "                       homogeneous or height (fitted to the fog live)\n"
           "  --screenshot FILE    after --frames frames, save the window as a PNG and quit\n"
           "  --frames N           frames before the screenshot (default 30); without a\n"
           "                       display, frames recorded (default %d)\n"
@@ -149,6 +153,25 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
         if (ordered[i] > top) top = ordered[i];
       }
       panel_plot(ui, "frame ms", ordered, 120, 1.1f * top);
+    }
+    if (panel_header(ui, "model", true)) {
+      /* the ladder live: a cheaper model fitted to the simulated fog as it moves, drawn in
+       * its place, with its error against it (app/live_rung.h) */
+      changed |= panel_combo(ui, "model", &params.live_rung, live_rung_names, LIVE_RUNG_COUNT);
+      live_rung r;
+      if (pipeline_live_rung(pipe, &r)) {
+        if (r.model.kind == FOG_MODEL_HEIGHT)
+          panel_text(ui, "K %.4g at y0 %.1f, H %.1f", r.model.extinction, r.model.y0,
+                     r.model.scale_height);
+        else
+          panel_text(ui, "K %.4g per unit", r.model.extinction);
+        if (r.rays > 0)
+          panel_text(ui, "|dtau| vs the fogmap: max %.3f, mean %.3f (%d rays)", r.max_error,
+                     r.mean_error, r.rays);
+      } else {
+        panel_text(ui, "the fogmap itself: the exact walk");
+      }
+      panel_text(ui, "fog pass + scene %.2f ms (median)", med.render);
     }
     if (panel_header(ui, "simulation", true)) {
       changed |= panel_checkbox(ui, "pause", &params.paused);
@@ -296,6 +319,7 @@ typedef struct demo_options {
   const char *config_path, *screenshot;
   int width, height, frames; /* frames 0: HEADLESS_FRAMES headless, 30 before a screenshot */
   double scale;              /* 0: chosen from the renderer */
+  int live_rung;             /* live_rung_kind the panel starts with */
 } demo_options;
 
 /* -1 to go on, else the exit status. */
@@ -309,6 +333,15 @@ static int parse_demo_options(int argc, char **argv, demo_options *o) {
       if (cli_size("demo", "--size", argv[++i], &o->width, &o->height)) return 2;
     } else if (!strcmp(a, "--scale") && value) {
       if (cli_number("demo", "--scale", argv[++i], 0.25, 1.0, &o->scale)) return 2;
+    } else if (!strcmp(a, "--model") && value) {
+      static const char *const models[LIVE_RUNG_COUNT] = {"fogmap", "homogeneous", "height"};
+      o->live_rung = -1;
+      for (int k = 0; k < LIVE_RUNG_COUNT; k++)
+        if (!strcmp(value, models[k])) o->live_rung = k;
+      if (o->live_rung < 0)
+        return cli_usage_error("demo", "--model '%s': expected fogmap, homogeneous or height",
+                               value);
+      i++;
     } else if (!strcmp(a, "--screenshot") && value) {
       o->screenshot = argv[++i];
     } else if (!strcmp(a, "--frames") && value) {
@@ -536,6 +569,7 @@ int cmd_demo(int argc, char **argv) {
   } else {
     pipeline_params initial = pipeline_get_params(pipe);
     initial.fog_resolution_divisor = fog_divisor;
+    initial.live_rung = o.live_rung;
     pipeline_set_params(pipe, &initial);
     status = demo_loop(gl, pipe, ui, &d, &config, &o);
   }

@@ -13,6 +13,7 @@
 #include <time.h>
 
 #include "app/clock.h"
+#include "app/live_rung.h"
 #include "app/pipeline_fog.h"
 #include "app/vdb_source.h"
 #include "render/fog_pass.h"
@@ -197,7 +198,16 @@ struct pipeline {
   double shown_shadow_sun[3];
   transform_grid shadow_grid;
   fog_sun_shadow shadow_volume;
+  /* The demo's live rung (params.live_rung, app/live_rung.h): fitted to the finest grid of
+   * the shown step (shadow_grid) when the step or the kind changes, measured every
+   * LIVE_RUNG_INTERVAL frames on the view's surface distances (rung_depth). */
+  live_rung rung;
+  long rung_step;
+  int rung_frames;
+  float *rung_depth;
 };
+
+#define LIVE_RUNG_INTERVAL 8
 
 static int fail(pipeline_error *err, const char *fmt, ...) {
   va_list ap;
@@ -713,6 +723,7 @@ void pipeline_destroy(pipeline *p) {
   for (int s = 0; s < 2; s++) fog_sun_shadow_destroy(&p->slots[s].sun_shadow);
   fog_sun_shadow_destroy(&p->shadow_volume);
   transform_grid_destroy(&p->shadow_grid);
+  free(p->rung_depth);
   plan_destroy(&p->cpu);
   if (p->cpu.sim) fluid_sim_destroy(p->cpu.sim);
   fogmap_destroy(&p->cpu.base);
@@ -735,6 +746,8 @@ int pipeline_resize(pipeline *p, int width, int height, pipeline_error *err) {
   p->scene_current = false;
   if (scene_target_create(&p->scene_target, width, height, &rerr))
     return fail(err, "scene target: %s", rerr.message);
+  free(p->rung_depth); /* the live rung's view: its size follows */
+  p->rung_depth = NULL;
   if (p->fog && pipeline_fog_resize(p->fog, width, height, &rerr))
     return fail(err, "fog target: %s", rerr.message);
   p->width = width;
@@ -991,8 +1004,25 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
     quadrics[i] = p->config.fog.quadrics[i];
     quadrics[i].density *= params.density;
   }
+  /* The live rung: the fitted model drawn in the fogmap's place, lit as that model is. */
+  fog_lod finest = {.levels = 0, .approx = &p->shadow_grid};
+  const fog_model fogmap_model = {.kind = FOG_MODEL_FOGMAP, .volume = &volume, .lod = &finest,
+                                  .lod_method = FOG_LOD_SWITCH};
+  const bool rung = params.live_rung > LIVE_RUNG_FOGMAP && params.live_rung < LIVE_RUNG_COUNT &&
+                    p->shadow_grid.coefficients;
+  if (rung && ((int)p->rung.kind != params.live_rung || p->rung_step != p->shown_step)) {
+    live_rung_fit(&fogmap_model, (live_rung_kind)params.live_rung, &p->rung);
+    p->rung_step = p->shown_step;
+    p->rung_frames = LIVE_RUNG_INTERVAL; /* measure this frame */
+  }
+  fog_sun_shadow_kind self_shadow = p->shown_self_shadow;
+  if (rung)
+    self_shadow = self_shadow != FOG_SUN_SHADOW_NONE
+                      ? fog_sun_shadow_kind_of(&p->rung.model, sun.direction)
+                      : FOG_SUN_SHADOW_NONE;
   pipeline_fog_settings settings = {
       .volume = &volume,
+      .rung = rung ? &p->rung.model : NULL,
       .quadrics = quadrics,
       .quadric_count = quadric_count,
       .mu = params.mu,
@@ -1002,7 +1032,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       .lamps = p->lamps_animated ? p->shown_lamps : params.lamps,
       .hardware_filtering = p->config.fog.filtering == SCENE_FILTERING_HARDWARE,
       .resolution_divisor = params.fog_resolution_divisor,
-      .self_shadow = p->shown_self_shadow,
+      .self_shadow = self_shadow,
       .shadow_steps = p->config.shadow.steps,
       .shadow_nodes = p->config.shadow.nodes,
       .shadow_pieces = scene_config_light_rule(&p->config).pieces,
@@ -1016,6 +1046,15 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
    * the time of this frame's drawing, not of the next read-back. */
   gl_finish();
   double t1 = now_ms();
+  if (rung && ++p->rung_frames >= LIVE_RUNG_INTERVAL) {
+    if (!p->rung_depth &&
+        !(p->rung_depth = malloc((size_t)p->width * p->height * sizeof *p->rung_depth)))
+      return fail(err, "out of memory for the live rung's view");
+    if (gl_target_read(&p->scene_target, 1, 1, p->rung_depth, &rerr))
+      return fail(err, "live rung: %s", rerr.message);
+    live_rung_measure(&fogmap_model, cam, p->width, p->height, p->rung_depth, &p->rung);
+    p->rung_frames = 0;
+  }
   if (gl_util_check("pipeline frame", &rerr)) return fail(err, "%s", rerr.message);
 
   p->last.upload = upload_ms;
@@ -1057,6 +1096,13 @@ int pipeline_present(pipeline *p, int width, int height, pipeline_error *err) {
   if (pipeline_fog_present(p->fog, width, height, &rerr))
     return fail(err, "present: %s", rerr.message);
   return 0;
+}
+
+bool pipeline_live_rung(const pipeline *p, live_rung *out) {
+  pipeline_params params = pipeline_get_params(p);
+  if (params.live_rung <= LIVE_RUNG_FOGMAP || (int)p->rung.kind != params.live_rung) return false;
+  *out = p->rung;
+  return true;
 }
 
 pipeline_params pipeline_get_params(const pipeline *p) {

@@ -95,6 +95,9 @@ typedef struct pipeline_params {
    * for a live view on a slow (software) renderer. */
   int fog_resolution_divisor;
   bool paused;
+  /* live_rung_kind (app/live_rung.h): 0 the fogmap; else a rung of the model ladder fitted
+   * to it as it moves, drawn in its place and measured against it (the demo's "model") */
+  int live_rung;
 } pipeline_params;
 
 pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err);
@@ -147,6 +150,11 @@ bool pipeline_pick_surface(pipeline *p, const camera *cam, int px, int py, doubl
 
 /* Moving medians of the last frames; `last` (may be NULL) gets the last frame's values. */
 pipeline_timings pipeline_get_timings(const pipeline *p, pipeline_timings *last);
+/* The rung drawn in the fogmap's place (params.live_rung > 0): its fitted model and its
+ * error on the last measured view (every LIVE_RUNG_INTERVAL frames); false: none (GL
+ * thread). */
+struct live_rung;
+bool pipeline_live_rung(const pipeline *p, struct live_rung *out);
 
 /* The fogmap size (cells) and its world placement, for the panel and painting. */
 void pipeline_fog_extent(const pipeline *p, int *cells_x, int *cells_z, double *origin_x,

@@ -101,6 +101,12 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .model_quadrics = settings->quadrics,
       .model_quadric_count = settings->quadric_count,
   };
+  if (settings->rung) {
+    params.model = settings->rung->kind;
+    params.model_extinction = settings->rung->extinction;
+    params.model_y0 = settings->rung->y0;
+    params.model_scale_height = settings->rung->scale_height;
+  }
   gl_target_bind(&fog->target);
   return fog_pass_draw(fog->pass, cam, &params, scene->color[0], scene->color[1], fog->width,
                        fog->height, err);

@@ -1,0 +1,50 @@
+/* The live demo's model selector (issue 17, docs/demo.md): the simulated fogmap shown through
+ * a cheaper rung of the model ladder, fitted to it as it moves, with the rung's measured
+ * error against it. What the panel's "model" menu runs in the pipeline (app/pipeline.c):
+ *
+ *   live_rung_fit(&fogmap_model, LIVE_RUNG_HEIGHT, &rung);       every few frames
+ *   ...draw rung.model instead of the fogmap...
+ *   live_rung_measure(&fogmap_model, &rung.model, &cam, w, h, depth, &rung);
+ *
+ * The fit is fit's (app/fit_density.h) on the model's extinction sampled over its box; the
+ * error is |tau_rung - tau_fogmap| on a grid of the view's pixels, both exact CPU twins in
+ * double along each pixel's ray to its surface. */
+#ifndef FOGPIPE_APP_LIVE_RUNG_H
+#define FOGPIPE_APP_LIVE_RUNG_H
+
+#include "render/render.h"
+
+typedef enum live_rung_kind {
+  LIVE_RUNG_FOGMAP = 0, /* the simulated fogmap itself */
+  LIVE_RUNG_HOMOGENEOUS,
+  LIVE_RUNG_HEIGHT,
+  LIVE_RUNG_COUNT,
+} live_rung_kind;
+
+/* The panel's names, indexed by live_rung_kind. */
+extern const char *const live_rung_names[LIVE_RUNG_COUNT];
+
+/* Pixels measured a side of the view's grid (LIVE_RUNG_COLUMNS x LIVE_RUNG_ROWS rays). */
+#define LIVE_RUNG_COLUMNS 16
+#define LIVE_RUNG_ROWS 9
+
+typedef struct live_rung {
+  live_rung_kind kind;
+  fog_model model;    /* the fitted analytic model (kind homogeneous or height) */
+  bool fitted;        /* false: the fog held nothing to fit (the model is then fog-free) */
+  double max_error, mean_error; /* |delta tau| on the last measured view (NAN: none yet) */
+  int rays;           /* that view's rays */
+} live_rung;
+
+/* Fits the rung to the fogmap model's extinction sampled over its box (24 x 24 cells
+ * across, 16 layers): homogeneous, the mean; height fog, fit_height's k, y0 and H (layers
+ * that do not decay upwards fall back to the homogeneous mean). */
+void live_rung_fit(const fog_model *fogmap, live_rung_kind kind, live_rung *out);
+
+/* The error of out->model against the fogmap seen by cam (width x height pixels, depth the
+ * surface distance per pixel, row 0 at the top, >= 1e29 for the sky) on the grid's pixel
+ * centres. */
+void live_rung_measure(const fog_model *fogmap, const camera *cam, int width, int height,
+                       const float *depth, live_rung *out);
+
+#endif
