@@ -26,6 +26,14 @@ static char *read_text(const char *path) {
   return strdup(buffer);
 }
 
+/* The config `text` written to path and loaded into *cfg: scene_config_load's status. */
+static int load_text(const char *path, const char *text, scene_config *cfg,
+                     scene_config_error *err) {
+  FILE *f = fopen(path, "w");
+  if (f) fputs(text, f), fclose(f);
+  return scene_config_load(path, cfg, err);
+}
+
 int main(void) {
   char dir[] = "/tmp/fogpipe-config-write-XXXXXX";
   CHECK(mkdtemp(dir) != NULL, "mkdtemp");
@@ -82,29 +90,19 @@ int main(void) {
             !memcmp(back.fog.profile_coefficients, cfg.fog.profile_coefficients,
                     sizeof cfg.fog.profile_coefficients),
         "%d coefficients read back, not the 64 written", back.fog.profile_count);
-  FILE *f = fopen(written, "w");
-  if (f) {
-    fputs("[fog]\nprofile = bspline\nprofile_coefficients = 1 2\n  3, 4\n\t5\n", f);
-    fclose(f);
-  }
-  CHECK(scene_config_load(written, &back, &err) == 0 && back.fog.profile_count == 5 &&
-            back.fog.profile_coefficients[4] == 5.0,
+  CHECK(load_text(written, "[fog]\nprofile = bspline\nprofile_coefficients = 1 2\n  3, 4\n\t5\n",
+                  &back, &err) == 0 &&
+            back.fog.profile_count == 5 && back.fog.profile_coefficients[4] == 5.0,
         "indented lines: %d numbers (%s)", back.fog.profile_count, err.message);
   /* an indented key right after a section line is a key, as libinih reads it: it replaces */
-  if ((f = fopen(written, "w"))) {
-    fputs("[fog]\nmodel = perlin\n[fog]\n  perlin_wind = 1 2 3\n", f);
-    fclose(f);
-  }
-  CHECK(scene_config_load(written, &back, &err) == 0 && back.fog.perlin_wind_count == 3 &&
-            back.fog.perlin_wind[2] == 3.0,
+  CHECK(load_text(written, "[fog]\nmodel = perlin\n[fog]\n  perlin_wind = 1 2 3\n", &back,
+                  &err) == 0 &&
+            back.fog.perlin_wind_count == 3 && back.fog.perlin_wind[2] == 3.0,
         "an indented first key: %d numbers (%s)", back.fog.perlin_wind_count, err.message);
-  if ((f = fopen(written, "w"))) {
-    fputs("[fog]\nprofile = bspline\nprofile_coefficients =", f);
-    for (int k = 0; k < 65; k++) fprintf(f, k % 10 == 9 ? " 1\n  " : " 1");
-    fputs("\n", f);
-    fclose(f);
-  }
-  CHECK(scene_config_load(written, &back, &err) != 0 && strstr(err.message, "long.ini:9") &&
+  char text[512] = "[fog]\nprofile = bspline\nprofile_coefficients =";
+  for (int k = 0; k < 65; k++) strcat(text, k % 10 == 9 ? " 1\n  " : " 1");
+  strcat(text, "\n");
+  CHECK(load_text(written, text, &back, &err) != 0 && strstr(err.message, "long.ini:9") &&
             strstr(err.message, "64"),
         "65 numbers: %s", err.message);
   unlink(written);
