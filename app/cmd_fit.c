@@ -22,8 +22,9 @@ static void usage(FILE *out) {
   fprintf(out,
           "usage: fogpipe fit INPUT --tolerance T [options]\n\n"
           "Fits every model of the ladder that can represent the input's fog (homogeneous,\n"
-          "height, an ellipsoid, banks of 1 to 64 Gaussians, the fogmap at three bases x\n"
-          "three LOD factors, the 3D volume), measures each on nine views around and inside\n"
+          "height, an ellipsoid and banks of 2 to 16, banks of 1 to 64 Gaussians, the\n"
+          "fogmap at three bases x three LOD factors (an analytic fog's density projected),\n"
+          "the 3D volume), measures each on nine views around and inside\n"
           "the fog (max and mean |delta tau| against the input's own fog, exact integrals in\n"
           "double) and times it on the GL (headless), prints the table and picks the fastest\n"
           "within the tolerance (docs/fit.md).\n\n"

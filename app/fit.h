@@ -11,10 +11,10 @@
  * frame), else the input's model as the renderer builds it. Over the fit domain (the fog's
  * bounds; for fog without an end, the terrain's footprint between [box] floor and top) the
  * reference's extinction is sampled and every rung that can represent it is fitted
- * (app/fit_density.h: homogeneous, height, one ellipsoid, banks of 1 to 64 Gaussians; the
- * fogmap at three bases x three LOD factors: the input's fogmap or VDB, or an analytic
- * input's density projected (app/fit_fogmap.h); the volume where the input has one; an
- * analytic input as given). Each rung is then rendered:
+ * (app/fit_density.h: homogeneous, height, one ellipsoid and banks of 2 to 16, banks of 1
+ * to 64 Gaussians; the fogmap at three bases x three LOD factors: the input's fogmap or VDB,
+ * or an analytic input's density projected (app/fit_fogmap.h); the volume where the input
+ * has one; an analytic input as given). Each rung is then rendered:
  * its error on nine views (app/fit_views.h: max and mean |delta tau| against the
  * reference, CPU twins in double) and its GL milliseconds per frame (a headless session
  * drawn from view 0, the median of timed_frames frames). The choice: the fastest rung within
@@ -51,7 +51,7 @@ typedef struct fit_desc {
 #define FIT_HEIGHT 180
 #define FIT_TIMED_FRAMES 3
 
-#define FIT_MAX_RUNGS 24
+#define FIT_MAX_RUNGS 32
 
 typedef struct fit_rung {
   char name[32];     /* "rbf 8", "fogmap linear mu 0.5" */

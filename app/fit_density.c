@@ -142,39 +142,47 @@ static bool cluster_gaussian(const fog_points *pts, const int *label, int cluste
   return true;
 }
 
-int fit_rbfs(const fit_samples *s, int count, fog_rbf *out) {
-  fog_points pts;
-  if (fog_points_gather(s, &pts)) return -1;
-  if (pts.count == 0 || count < 1) return 0;
-  if ((size_t)count > pts.count) count = (int)pts.count;
+/* Weighted k-means of the fog's cells into `count` clusters (fewer where fewer cells hold
+ * fog): the points and each one's cluster label, for the banks below. Returns the cluster
+ * count (0: no fog), -1 out of memory (nothing stays allocated then, nor with 0). */
+static int fit_clusters(const fit_samples *s, int count, fog_points *pts, int **labels) {
+  *labels = NULL;
+  if (fog_points_gather(s, pts)) return -1;
+  if (pts->count == 0 || count < 1) {
+    free(pts->p), free(pts->w);
+    return 0;
+  }
+  if ((size_t)count > pts->count) count = (int)pts->count;
   double(*centre)[3] = malloc((size_t)count * sizeof *centre);
-  int *label = malloc(pts.count * sizeof *label);
-  double *near2 = malloc(pts.count * sizeof *near2);
-  int made = -1;
-  if (!centre || !label || !near2) goto done;
+  int *label = malloc(pts->count * sizeof *label);
+  double *near2 = malloc(pts->count * sizeof *near2);
+  if (!centre || !label || !near2) {
+    free(centre), free(label), free(near2), free(pts->p), free(pts->w);
+    return -1;
+  }
   /* Seeds: the densest cell, then each time the cell of most weight x squared distance
    * to its nearest seed (k-means++ made deterministic). */
   size_t first = 0;
-  for (size_t i = 1; i < pts.count; i++)
-    if (pts.w[i] > pts.w[first]) first = i;
-  for (int a = 0; a < 3; a++) centre[0][a] = pts.p[first][a];
-  for (size_t i = 0; i < pts.count; i++) near2[i] = distance2(pts.p[i], centre[0]);
+  for (size_t i = 1; i < pts->count; i++)
+    if (pts->w[i] > pts->w[first]) first = i;
+  for (int a = 0; a < 3; a++) centre[0][a] = pts->p[first][a];
+  for (size_t i = 0; i < pts->count; i++) near2[i] = distance2(pts->p[i], centre[0]);
   for (int c = 1; c < count; c++) {
     size_t best = 0;
-    for (size_t i = 1; i < pts.count; i++)
-      if (pts.w[i] * near2[i] > pts.w[best] * near2[best]) best = i;
-    for (int a = 0; a < 3; a++) centre[c][a] = pts.p[best][a];
-    for (size_t i = 0; i < pts.count; i++)
-      near2[i] = fmin(near2[i], distance2(pts.p[i], centre[c]));
+    for (size_t i = 1; i < pts->count; i++)
+      if (pts->w[i] * near2[i] > pts->w[best] * near2[best]) best = i;
+    for (int a = 0; a < 3; a++) centre[c][a] = pts->p[best][a];
+    for (size_t i = 0; i < pts->count; i++)
+      near2[i] = fmin(near2[i], distance2(pts->p[i], centre[c]));
   }
   /* Lloyd's iterations on the weighted points. */
   for (int iteration = 0; iteration < 25; iteration++) {
     bool moved = false;
-    for (size_t i = 0; i < pts.count; i++) {
+    for (size_t i = 0; i < pts->count; i++) {
       int best = 0;
-      double best_d = distance2(pts.p[i], centre[0]);
+      double best_d = distance2(pts->p[i], centre[0]);
       for (int c = 1; c < count; c++) {
-        double d = distance2(pts.p[i], centre[c]);
+        double d = distance2(pts->p[i], centre[c]);
         if (d < best_d) best_d = d, best = c;
       }
       if (iteration == 0 || label[i] != best) moved = true;
@@ -183,20 +191,65 @@ int fit_rbfs(const fit_samples *s, int count, fog_rbf *out) {
     if (!moved) break;
     for (int c = 0; c < count; c++) {
       double w = 0, m[3] = {0, 0, 0};
-      for (size_t i = 0; i < pts.count; i++)
+      for (size_t i = 0; i < pts->count; i++)
         if (label[i] == c) {
-          w += pts.w[i];
-          for (int a = 0; a < 3; a++) m[a] += pts.w[i] * pts.p[i][a];
+          w += pts->w[i];
+          for (int a = 0; a < 3; a++) m[a] += pts->w[i] * pts->p[i][a];
         }
       if (w > 0.0)
         for (int a = 0; a < 3; a++) centre[c][a] = m[a] / w;
     }
   }
-  made = 0;
-  for (int c = 0; c < count; c++)
+  free(centre), free(near2);
+  *labels = label;
+  return count;
+}
+
+int fit_rbfs(const fit_samples *s, int count, fog_rbf *out) {
+  fog_points pts;
+  int *label;
+  int clusters = fit_clusters(s, count, &pts, &label);
+  if (clusters <= 0) return clusters;
+  int made = 0;
+  for (int c = 0; c < clusters; c++)
     if (cluster_gaussian(&pts, label, c, s->cell, &out[made])) made++;
-done:
-  free(centre), free(label), free(near2), free(pts.p), free(pts.w);
+  free(label), free(pts.p), free(pts.w);
+  return made;
+}
+
+/* One cluster's moments as an axis-aligned uniform ellipsoid: the same mass, centroid and
+ * per-axis variances (a uniform ellipsoid's is a^2/5; each cell's own size added as a
+ * uniform box's, cell^2/12). */
+static bool cluster_ellipsoid(const fog_points *pts, const int *label, int cluster,
+                              const double cell[3], fog_quadric *out) {
+  double w = 0, m[3] = {0, 0, 0}, var[3] = {0, 0, 0};
+  for (size_t i = 0; i < pts->count; i++)
+    if (label[i] == cluster) {
+      w += pts->w[i];
+      for (int a = 0; a < 3; a++) m[a] += pts->w[i] * pts->p[i][a];
+    }
+  if (!(w > 0.0)) return false;
+  for (int a = 0; a < 3; a++) m[a] /= w;
+  for (size_t i = 0; i < pts->count; i++)
+    if (label[i] == cluster)
+      for (int a = 0; a < 3; a++) var[a] += pts->w[i] * (pts->p[i][a] - m[a]) * (pts->p[i][a] - m[a]);
+  double r[3];
+  for (int a = 0; a < 3; a++)
+    r[a] = fmax(sqrt(5.0 * (var[a] / w + cell[a] * cell[a] / 12.0)), 0.5 * cell[a]);
+  const double mass = w * cell[0] * cell[1] * cell[2];
+  *out = fog_quadric_ellipsoid(m, r, mass / (4.0 / 3.0 * PI * r[0] * r[1] * r[2]), 0.0);
+  return true;
+}
+
+int fit_ellipsoids(const fit_samples *s, int count, fog_quadric *out) {
+  fog_points pts;
+  int *label;
+  int clusters = fit_clusters(s, count, &pts, &label);
+  if (clusters <= 0) return clusters;
+  int made = 0;
+  for (int c = 0; c < clusters; c++)
+    if (cluster_ellipsoid(&pts, label, c, s->cell, &out[made])) made++;
+  free(label), free(pts.p), free(pts.w);
   return made;
 }
 

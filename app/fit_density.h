@@ -9,6 +9,7 @@
  *                each cluster's mass, centroid and variance as one Gaussian's
  *   ellipsoid    one quadric volume: the axis-aligned ellipsoid of the samples' mass,
  *                centroid and variances (a uniform ellipsoid's variance is a^2/5)
+ *   ellipsoids K K quadric volumes: the same per cluster of rbf K's k-means
  *
  * All on the CPU, in double, no GL. */
 #ifndef FOGPIPE_APP_FIT_DENSITY_H
@@ -45,6 +46,10 @@ bool fit_height(const fit_samples *s, double *k, double *y0, double *scale_heigh
 /* At most `count` Gaussians (fewer where fewer cells hold fog); returns how many. Non-zero
  * `count` with no fog at all gives 0. -1: out of memory. */
 int fit_rbfs(const fit_samples *s, int count, fog_rbf *out);
+/* At most `count` axis-aligned uniform ellipsoids (hard-edged quadric volumes), one per
+ * cluster of the same k-means as fit_rbfs, each with its cluster's mass, centroid and
+ * per-axis variances; returns how many (0: no fog, -1 out of memory). */
+int fit_ellipsoids(const fit_samples *s, int count, fog_quadric *out);
 /* The ellipsoid: centre, semi-axes and density (edge 0: a hard edge); false without fog. */
 bool fit_ellipsoid(const fit_samples *s, double centre[3], double radii[3], double *density);
 

@@ -128,7 +128,38 @@ int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *re
              centre[0], centre[1], centre[2], radii[0], radii[1], radii[2], density);
   }
 
-  int previous = 0;
+  /* banks of ellipsoids, one per cluster (the quadric volumes a scene holds at most) */
+  int previous = 1;
+  for (int count = 2; count <= FOG_MAX_QUADRICS; count *= 2) {
+    scene_config *c = analytic_config(input, FOG_MODEL_QUADRIC);
+    int made = c ? fit_ellipsoids(s, count, c->fog.quadrics) : -1;
+    if (made < 0) {
+      free(c);
+      snprintf(err->message, sizeof err->message, "out of memory fitting ellipsoids");
+      return 1;
+    }
+    if (made <= previous) { /* the fog holds no more clusters */
+      free(c);
+      continue;
+    }
+    previous = made;
+    if (!(rung = add_rung(r, c, "quadric", err))) return 1;
+    c->fog.quadric_count = made;
+    for (int q = 0; q < made; q++) { /* ellipsoid X Y Z RX RY RZ DENSITY, from its box */
+      const fog_quadric *v = &c->fog.quadrics[q];
+      struct scene_quadric_line *line = &c->fog.quadric_lines[q];
+      *line = (struct scene_quadric_line){.shape = 1, .count = 7};
+      for (int a = 0; a < 3; a++)
+        line->numbers[a] = 0.5 * (v->lo[a] + v->hi[a]),
+        line->numbers[3 + a] = 0.5 * (v->hi[a] - v->lo[a]);
+      line->numbers[6] = v->density;
+    }
+    snprintf(rung->name, sizeof rung->name, "ellipsoids %d", made);
+    snprintf(rung->params, sizeof rung->params, "%d ellipsoids, one per cluster of the density",
+             made);
+  }
+
+  previous = 0;
   for (size_t i = 0; i < sizeof rbf_sizes / sizeof rbf_sizes[0]; i++) {
     scene_config *c = analytic_config(input, FOG_MODEL_RBF);
     int made = c ? fit_rbfs(s, rbf_sizes[i], c->fog.rbfs) : -1;
