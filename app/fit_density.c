@@ -117,28 +117,38 @@ static double distance2(const double a[3], const double b[3]) {
   return x * x + y * y + z * z;
 }
 
+/* A cluster's weight, centroid and per-axis variances; false where it is empty. */
+static bool cluster_moments(const fog_points *pts, const int *label, int cluster, double *w,
+                            double m[3], double var[3]) {
+  *w = 0.0;
+  for (int a = 0; a < 3; a++) m[a] = var[a] = 0.0;
+  for (size_t i = 0; i < pts->count; i++)
+    if (label[i] == cluster) {
+      *w += pts->w[i];
+      for (int a = 0; a < 3; a++) m[a] += pts->w[i] * pts->p[i][a];
+    }
+  if (!(*w > 0.0)) return false;
+  for (int a = 0; a < 3; a++) m[a] /= *w;
+  for (size_t i = 0; i < pts->count; i++)
+    if (label[i] == cluster)
+      for (int a = 0; a < 3; a++) var[a] += pts->w[i] * (pts->p[i][a] - m[a]) * (pts->p[i][a] - m[a]);
+  for (int a = 0; a < 3; a++) var[a] /= *w;
+  return true;
+}
+
 /* One cluster's moments as a Gaussian c e^{-|x - m|^2 / r^2}: mass M = c pi^{3/2} r^3 and
  * per-axis variance r^2 / 2 (the cells' own size added, each cell a uniform box). */
 static bool cluster_gaussian(const fog_points *pts, const int *label, int cluster,
-                             const double cell[3], fog_rbf *out) {
-  double w = 0, m[3] = {0, 0, 0};
-  for (size_t i = 0; i < pts->count; i++)
-    if (label[i] == cluster) {
-      w += pts->w[i];
-      for (int a = 0; a < 3; a++) m[a] += pts->w[i] * pts->p[i][a];
-    }
-  if (!(w > 0.0)) return false;
-  for (int a = 0; a < 3; a++) m[a] /= w;
-  double var = 0.0;
-  for (size_t i = 0; i < pts->count; i++)
-    if (label[i] == cluster) var += pts->w[i] * distance2(pts->p[i], m);
-  var = var / (3.0 * w);
+                             const double cell[3], void *item) {
+  double w, m[3], var3[3];
+  if (!cluster_moments(pts, label, cluster, &w, m, var3)) return false;
+  double var = (var3[0] + var3[1] + var3[2]) / 3.0;
   double r = sqrt(2.0 * var);
   double mass = w * cell[0] * cell[1] * cell[2];
   double floor_r = 0.5 * fmin(cell[0], fmin(cell[1], cell[2]));
   if (!(r > floor_r)) r = floor_r; /* a single cell: no narrower than the sampling */
-  *out = (fog_rbf){.centre = {m[0], m[1], m[2]}, .radius = r,
-                   .density = mass / (pow(PI, 1.5) * r * r * r)};
+  *(fog_rbf *)item = (fog_rbf){.centre = {m[0], m[1], m[2]}, .radius = r,
+                               .density = mass / (pow(PI, 1.5) * r * r * r)};
   return true;
 }
 
@@ -205,52 +215,41 @@ static int fit_clusters(const fit_samples *s, int count, fog_points *pts, int **
   return count;
 }
 
-int fit_rbfs(const fit_samples *s, int count, fog_rbf *out) {
-  fog_points pts;
-  int *label;
-  int clusters = fit_clusters(s, count, &pts, &label);
-  if (clusters <= 0) return clusters;
-  int made = 0;
-  for (int c = 0; c < clusters; c++)
-    if (cluster_gaussian(&pts, label, c, s->cell, &out[made])) made++;
-  free(label), free(pts.p), free(pts.w);
-  return made;
-}
-
 /* One cluster's moments as an axis-aligned uniform ellipsoid: the same mass, centroid and
  * per-axis variances (a uniform ellipsoid's is a^2/5; each cell's own size added as a
  * uniform box's, cell^2/12). */
 static bool cluster_ellipsoid(const fog_points *pts, const int *label, int cluster,
-                              const double cell[3], fog_quadric *out) {
-  double w = 0, m[3] = {0, 0, 0}, var[3] = {0, 0, 0};
-  for (size_t i = 0; i < pts->count; i++)
-    if (label[i] == cluster) {
-      w += pts->w[i];
-      for (int a = 0; a < 3; a++) m[a] += pts->w[i] * pts->p[i][a];
-    }
-  if (!(w > 0.0)) return false;
-  for (int a = 0; a < 3; a++) m[a] /= w;
-  for (size_t i = 0; i < pts->count; i++)
-    if (label[i] == cluster)
-      for (int a = 0; a < 3; a++) var[a] += pts->w[i] * (pts->p[i][a] - m[a]) * (pts->p[i][a] - m[a]);
-  double r[3];
+                              const double cell[3], void *item) {
+  double w, m[3], var[3], r[3];
+  if (!cluster_moments(pts, label, cluster, &w, m, var)) return false;
   for (int a = 0; a < 3; a++)
-    r[a] = fmax(sqrt(5.0 * (var[a] / w + cell[a] * cell[a] / 12.0)), 0.5 * cell[a]);
+    r[a] = fmax(sqrt(5.0 * (var[a] + cell[a] * cell[a] / 12.0)), 0.5 * cell[a]);
   const double mass = w * cell[0] * cell[1] * cell[2];
-  *out = fog_quadric_ellipsoid(m, r, mass / (4.0 / 3.0 * PI * r[0] * r[1] * r[2]), 0.0);
+  *(fog_quadric *)item = fog_quadric_ellipsoid(m, r, mass / (4.0 / 3.0 * PI * r[0] * r[1] * r[2]), 0.0);
   return true;
 }
 
-int fit_ellipsoids(const fit_samples *s, int count, fog_quadric *out) {
+/* A bank of up to `count` items, one per cluster, made by `make` into out (items of `size`
+ * bytes); how many (0: no fog, -1 out of memory). */
+static int fit_bank(const fit_samples *s, int count, void *out, size_t size,
+                    bool (*make)(const fog_points *, const int *, int, const double *, void *)) {
   fog_points pts;
   int *label;
   int clusters = fit_clusters(s, count, &pts, &label);
   if (clusters <= 0) return clusters;
   int made = 0;
   for (int c = 0; c < clusters; c++)
-    if (cluster_ellipsoid(&pts, label, c, s->cell, &out[made])) made++;
+    if (make(&pts, label, c, s->cell, (char *)out + (size_t)made * size)) made++;
   free(label), free(pts.p), free(pts.w);
   return made;
+}
+
+int fit_rbfs(const fit_samples *s, int count, fog_rbf *out) {
+  return fit_bank(s, count, out, sizeof *out, cluster_gaussian);
+}
+
+int fit_ellipsoids(const fit_samples *s, int count, fog_quadric *out) {
+  return fit_bank(s, count, out, sizeof *out, cluster_ellipsoid);
 }
 
 bool fit_ellipsoid(const fit_samples *s, double centre[3], double radii[3], double *density) {
