@@ -133,6 +133,162 @@ typedef struct demo_ui {
   int history_next;
 } demo_ui;
 
+/* The stage timings and the frame-time plot. */
+static void panel_timings(panel *ui, pipeline *pipe, const pipeline_timings *med, demo_ui *d) {
+  if (!panel_header(ui, "timings (median ms)", true)) return;
+  panel_text(ui, "%.1f fps   step %ld", med->frame > 0 ? 1000.0 / med->frame : 0.0,
+             pipeline_step_index(pipe));
+  panel_text(ui, "sim %6.2f   transform %6.2f", med->sim, med->transform);
+  panel_text(ui, "upload %6.2f   render %6.2f", med->upload, med->render);
+  panel_text(ui, "frame %6.2f   sun shadow %6.2f", med->frame, med->sun_shadow);
+  float ordered[120], top = 34.0f; /* at least the 30 fps line's scale */
+  for (int i = 0; i < 120; i++) {
+    ordered[i] = d->frame_history[(d->history_next + i) % 120];
+    if (ordered[i] > top) top = ordered[i];
+  }
+  panel_plot(ui, "frame ms", ordered, 120, 1.1f * top);
+}
+
+/* The ladder live: a cheaper model fitted to the simulated fog as it moves, drawn in its
+ * place, with its error against it (app/live_rung.h). */
+static bool panel_model(panel *ui, pipeline *pipe, const pipeline_timings *med,
+                        pipeline_params *params) {
+  if (!panel_header(ui, "model", true)) return false;
+  bool changed = false;
+  changed |= panel_combo(ui, "model", &params->live_rung, live_rung_names, LIVE_RUNG_COUNT);
+  live_rung r;
+  if (pipeline_live_rung(pipe, &r)) {
+    if (r.model.kind == FOG_MODEL_HEIGHT)
+      panel_text(ui, "K %.4g at y0 %.1f, H %.1f", r.model.extinction, r.model.y0,
+                 r.model.scale_height);
+    else
+      panel_text(ui, "K %.4g per unit", r.model.extinction);
+    if (r.rays > 0)
+      panel_text(ui, "|dtau| vs the fogmap: max %.3f, mean %.3f (%d rays)", r.max_error,
+                 r.mean_error, r.rays);
+  } else {
+    panel_text(ui, "the fogmap itself: the exact walk");
+  }
+  panel_text(ui, "fog pass + scene %.2f ms (median)", med->render);
+  return changed;
+}
+
+/* Pause, step, reset and the fluid's forces. */
+static bool panel_simulation(panel *ui, pipeline *pipe, pipeline_params *params) {
+  if (!panel_header(ui, "simulation", true)) return false;
+  bool changed = false;
+  changed |= panel_checkbox(ui, "pause", &params->paused);
+  panel_same_line(ui);
+  if (panel_button(ui, "step")) pipeline_step_once(pipe);
+  panel_same_line(ui);
+  if (panel_button(ui, "reset")) pipeline_reset(pipe);
+  changed |= panel_slider_float(ui, "wind x", &params->wind[0], -40.0f, 40.0f, "%.1f", false);
+  changed |= panel_slider_float(ui, "wind z", &params->wind[1], -40.0f, 40.0f, "%.1f", false);
+  changed |= panel_slider_float(ui, "turbulence", &params->turbulence, 0.0f, 40.0f, "%.2f", false);
+  changed |= panel_slider_float(ui, "viscosity", &params->viscosity, 0.0f, 10.0f, "%.5f", true);
+  changed |= panel_slider_float(ui, "emitter rate", &params->emitter_rate, 0.0f, 5.0f, "%.2f", false);
+  return changed;
+}
+
+/* Density, colour and the vertical profile. */
+static bool panel_fog(panel *ui, pipeline_params *params, demo_ui *d) {
+  if (!panel_header(ui, "fog", true)) return false;
+  bool changed = false;
+  changed |= panel_slider_float(ui, "density", &params->density, 0.0001f, 1.0f, "%.4f", true);
+  changed |= panel_color3(ui, "colour", params->fog_colour);
+  /* fog_profile_kind order; the B-spline profile only when the config has one. */
+  static const char *const profiles[] = {"slab", "exponential", "B-spline (config)"};
+  changed |= panel_combo(ui, "profile", &params->profile_kind, profiles,
+                         d->has_bspline_profile ? 3 : 2);
+  if (params->profile_kind == FOG_PROFILE_EXPONENTIAL) {
+    changed |= panel_slider_float(ui, "fog height", &params->fog_height, -50.0f, 200.0f, "%.1f", false);
+    changed |= panel_slider_float(ui, "scale height", &params->scale_height, 1.0f, 200.0f, "%.1f", true);
+  }
+  return changed;
+}
+
+/* The sun (a time of day), its colour, albedo, phase and shadows. */
+static bool panel_sunlight(panel *ui, pipeline_params *params) {
+  if (!panel_header(ui, "sunlight in the fog", true)) return false;
+  bool changed = false;
+  /* sigma_s = albedo K, Henyey-Greenstein g (docs/light.md); the sun (a time of day)
+   * lights the terrain and the fog */
+  float albedo = (float)params->sun.albedo, g = (float)params->sun.phase_g;
+  /* down to a sun just under the horizon (dusk: the fog's self-shadow turns opaque) */
+  changed |= panel_slider_float(ui, "sun azimuth", &params->sun_azimuth, -180.0f, 180.0f,
+                                "%.0f deg", false);
+  changed |= panel_slider_float(ui, "sun elevation", &params->sun_elevation, -5.0f, 90.0f,
+                                "%.1f deg", false);
+  if (panel_slider_float(ui, "albedo", &albedo, 0.0f, 1.0f, "%.2f", false)) {
+    params->sun.albedo = albedo;
+    changed = true;
+  }
+  if (panel_slider_float(ui, "phase g", &g, -0.95f, 0.95f, "%.2f", false)) {
+    params->sun.phase_g = g;
+    changed = true;
+  }
+  /* [light] sun_colour (HDR) as a hue and a strength: the surfaces' sun and pi x it the
+   * fog's (the pipeline relights both) */
+  float hue[3], strength = 0.0f;
+  for (int c = 0; c < 3; c++) {
+    hue[c] = (float)(params->sun.radiance[c] / SCENE_SUN_IRRADIANCE_PER_COLOUR);
+    strength = fmaxf(strength, hue[c]);
+  }
+  for (int c = 0; c < 3; c++) hue[c] = strength > 0.0f ? hue[c] / strength : 1.0f;
+  bool hue_changed = panel_color3(ui, "sun colour", hue);
+  if (panel_slider_float(ui, "sun strength", &strength, 0.0f, 10.0f, "%.2f", false) ||
+      hue_changed) {
+    for (int c = 0; c < 3; c++)
+      params->sun.radiance[c] = SCENE_SUN_IRRADIANCE_PER_COLOUR * hue[c] * strength;
+    changed = true;
+  }
+  /* T_s: the fog's shadow on itself and on the ground (albedo > 0) */
+  changed |= panel_checkbox(ui, "fog self-shadow", &params->fog_self_shadow);
+  panel_same_line(ui);
+  changed |= panel_checkbox(ui, "light shafts", &params->shafts);
+  return changed;
+}
+
+/* The transform's basis and levels, the LOD and the fog pass's resolution. */
+static bool panel_wavelets(panel *ui, pipeline_params *params) {
+  if (!panel_header(ui, "wavelets", true)) return false;
+  bool changed = false;
+  static const char *const bases[] = {"Haar (degree 0)", "linear (CDF 5/3)", "quadratic (bior3.3)"};
+  changed |= panel_combo(ui, "basis", &params->degree, bases, 3);
+  changed |= panel_slider_int(ui, "levels J", &params->levels, 0, 7);
+  changed |= panel_slider_float(ui, "mu", &params->mu, 0.0f, 1.0f, "%.3f", false);
+  static const char *const methods[] = {"sum of details (paper)", "switch A_l (ours)"};
+  changed |= panel_combo(ui, "LOD", &params->lod_method, methods, 2);
+  static const char *const divisors[] = {"full", "1/2", "1/4"};
+  int divisor_index = params->fog_resolution_divisor >= 4 ? 2 : params->fog_resolution_divisor >= 2;
+  if (panel_combo(ui, "fog resolution", &divisor_index, divisors, 3)) {
+    params->fog_resolution_divisor = 1 << divisor_index;
+    changed = true;
+  }
+  return changed;
+}
+
+/* Placing lamps with the mouse: their colour, intensity and height. */
+static void panel_lamps(panel *ui, const pipeline_params *params, demo_ui *d) {
+  if (!panel_header(ui, "lamps", false)) return;
+  panel_checkbox(ui, "place lamps with the mouse", &d->placing_lamps);
+  panel_color3(ui, "lamp colour", d->lamp_colour);
+  panel_slider_float(ui, "lamp intensity", &d->lamp_intensity, 10.0f, 20000.0f, "%.0f", true);
+  panel_slider_float(ui, "lamp height", &d->lamp_height, 0.5f, 100.0f, "%.1f", true);
+  panel_text(ui, "left: place / drag a lamp   right: remove");
+  panel_text(ui, "%d of %d lamps (scattered with albedo > 0)", params->lamps.count,
+             FOG_MAX_LAMPS);
+}
+
+/* The density brush. */
+static void panel_brush(panel *ui, demo_ui *d) {
+  if (!panel_header(ui, "brush", false)) return;
+  panel_slider_float(ui, "radius", &d->brush_radius, 1.0f, 200.0f, "%.0f", true);
+  panel_slider_float(ui, "strength", &d->brush_strength, 0.1f, 20.0f, "%.1f", true);
+  panel_text(ui, "left drag: paint   right / shift: erase");
+  panel_slider_float(ui, "render scale", &d->render_scale, 0.25f, 1.0f, "%.2f", false);
+}
+
 static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
   pipeline_params params = pipeline_get_params(pipe);
   bool changed = false;
@@ -141,128 +297,14 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
     pipeline_timings med = pipeline_get_timings(pipe, &last);
     d->frame_history[d->history_next] = (float)last.frame;
     d->history_next = (d->history_next + 1) % 120;
-    if (panel_header(ui, "timings (median ms)", true)) {
-      panel_text(ui, "%.1f fps   step %ld", med.frame > 0 ? 1000.0 / med.frame : 0.0,
-                 pipeline_step_index(pipe));
-      panel_text(ui, "sim %6.2f   transform %6.2f", med.sim, med.transform);
-      panel_text(ui, "upload %6.2f   render %6.2f", med.upload, med.render);
-      panel_text(ui, "frame %6.2f   sun shadow %6.2f", med.frame, med.sun_shadow);
-      float ordered[120], top = 34.0f; /* at least the 30 fps line's scale */
-      for (int i = 0; i < 120; i++) {
-        ordered[i] = d->frame_history[(d->history_next + i) % 120];
-        if (ordered[i] > top) top = ordered[i];
-      }
-      panel_plot(ui, "frame ms", ordered, 120, 1.1f * top);
-    }
-    if (panel_header(ui, "model", true)) {
-      /* the ladder live: a cheaper model fitted to the simulated fog as it moves, drawn in
-       * its place, with its error against it (app/live_rung.h) */
-      changed |= panel_combo(ui, "model", &params.live_rung, live_rung_names, LIVE_RUNG_COUNT);
-      live_rung r;
-      if (pipeline_live_rung(pipe, &r)) {
-        if (r.model.kind == FOG_MODEL_HEIGHT)
-          panel_text(ui, "K %.4g at y0 %.1f, H %.1f", r.model.extinction, r.model.y0,
-                     r.model.scale_height);
-        else
-          panel_text(ui, "K %.4g per unit", r.model.extinction);
-        if (r.rays > 0)
-          panel_text(ui, "|dtau| vs the fogmap: max %.3f, mean %.3f (%d rays)", r.max_error,
-                     r.mean_error, r.rays);
-      } else {
-        panel_text(ui, "the fogmap itself: the exact walk");
-      }
-      panel_text(ui, "fog pass + scene %.2f ms (median)", med.render);
-    }
-    if (panel_header(ui, "simulation", true)) {
-      changed |= panel_checkbox(ui, "pause", &params.paused);
-      panel_same_line(ui);
-      if (panel_button(ui, "step")) pipeline_step_once(pipe);
-      panel_same_line(ui);
-      if (panel_button(ui, "reset")) pipeline_reset(pipe);
-      changed |= panel_slider_float(ui, "wind x", &params.wind[0], -40.0f, 40.0f, "%.1f", false);
-      changed |= panel_slider_float(ui, "wind z", &params.wind[1], -40.0f, 40.0f, "%.1f", false);
-      changed |= panel_slider_float(ui, "turbulence", &params.turbulence, 0.0f, 40.0f, "%.2f", false);
-      changed |= panel_slider_float(ui, "viscosity", &params.viscosity, 0.0f, 10.0f, "%.5f", true);
-      changed |= panel_slider_float(ui, "emitter rate", &params.emitter_rate, 0.0f, 5.0f, "%.2f", false);
-    }
-    if (panel_header(ui, "fog", true)) {
-      changed |= panel_slider_float(ui, "density", &params.density, 0.0001f, 1.0f, "%.4f", true);
-      changed |= panel_color3(ui, "colour", params.fog_colour);
-      /* fog_profile_kind order; the B-spline profile only when the config has one. */
-      static const char *const profiles[] = {"slab", "exponential", "B-spline (config)"};
-      changed |= panel_combo(ui, "profile", &params.profile_kind, profiles,
-                             d->has_bspline_profile ? 3 : 2);
-      if (params.profile_kind == FOG_PROFILE_EXPONENTIAL) {
-        changed |= panel_slider_float(ui, "fog height", &params.fog_height, -50.0f, 200.0f, "%.1f", false);
-        changed |= panel_slider_float(ui, "scale height", &params.scale_height, 1.0f, 200.0f, "%.1f", true);
-      }
-    }
-    if (panel_header(ui, "sunlight in the fog", true)) {
-      /* sigma_s = albedo K, Henyey-Greenstein g (docs/light.md); the sun (a time of day)
-       * lights the terrain and the fog */
-      float albedo = (float)params.sun.albedo, g = (float)params.sun.phase_g;
-      /* down to a sun just under the horizon (dusk: the fog's self-shadow turns opaque) */
-      changed |= panel_slider_float(ui, "sun azimuth", &params.sun_azimuth, -180.0f, 180.0f,
-                                    "%.0f deg", false);
-      changed |= panel_slider_float(ui, "sun elevation", &params.sun_elevation, -5.0f, 90.0f,
-                                    "%.1f deg", false);
-      if (panel_slider_float(ui, "albedo", &albedo, 0.0f, 1.0f, "%.2f", false)) {
-        params.sun.albedo = albedo;
-        changed = true;
-      }
-      if (panel_slider_float(ui, "phase g", &g, -0.95f, 0.95f, "%.2f", false)) {
-        params.sun.phase_g = g;
-        changed = true;
-      }
-      /* [light] sun_colour (HDR) as a hue and a strength: the surfaces' sun and pi x it the
-       * fog's (the pipeline relights both) */
-      float hue[3], strength = 0.0f;
-      for (int c = 0; c < 3; c++) {
-        hue[c] = (float)(params.sun.radiance[c] / SCENE_SUN_IRRADIANCE_PER_COLOUR);
-        strength = fmaxf(strength, hue[c]);
-      }
-      for (int c = 0; c < 3; c++) hue[c] = strength > 0.0f ? hue[c] / strength : 1.0f;
-      bool hue_changed = panel_color3(ui, "sun colour", hue);
-      if (panel_slider_float(ui, "sun strength", &strength, 0.0f, 10.0f, "%.2f", false) ||
-          hue_changed) {
-        for (int c = 0; c < 3; c++)
-          params.sun.radiance[c] = SCENE_SUN_IRRADIANCE_PER_COLOUR * hue[c] * strength;
-        changed = true;
-      }
-      /* T_s: the fog's shadow on itself and on the ground (albedo > 0) */
-      changed |= panel_checkbox(ui, "fog self-shadow", &params.fog_self_shadow);
-      panel_same_line(ui);
-      changed |= panel_checkbox(ui, "light shafts", &params.shafts);
-    }
-    if (panel_header(ui, "wavelets", true)) {
-      static const char *const bases[] = {"Haar (degree 0)", "linear (CDF 5/3)", "quadratic (bior3.3)"};
-      changed |= panel_combo(ui, "basis", &params.degree, bases, 3);
-      changed |= panel_slider_int(ui, "levels J", &params.levels, 0, 7);
-      changed |= panel_slider_float(ui, "mu", &params.mu, 0.0f, 1.0f, "%.3f", false);
-      static const char *const methods[] = {"sum of details (paper)", "switch A_l (ours)"};
-      changed |= panel_combo(ui, "LOD", &params.lod_method, methods, 2);
-      static const char *const divisors[] = {"full", "1/2", "1/4"};
-      int divisor_index = params.fog_resolution_divisor >= 4 ? 2 : params.fog_resolution_divisor >= 2;
-      if (panel_combo(ui, "fog resolution", &divisor_index, divisors, 3)) {
-        params.fog_resolution_divisor = 1 << divisor_index;
-        changed = true;
-      }
-    }
-    if (panel_header(ui, "lamps", false)) {
-      panel_checkbox(ui, "place lamps with the mouse", &d->placing_lamps);
-      panel_color3(ui, "lamp colour", d->lamp_colour);
-      panel_slider_float(ui, "lamp intensity", &d->lamp_intensity, 10.0f, 20000.0f, "%.0f", true);
-      panel_slider_float(ui, "lamp height", &d->lamp_height, 0.5f, 100.0f, "%.1f", true);
-      panel_text(ui, "left: place / drag a lamp   right: remove");
-      panel_text(ui, "%d of %d lamps (scattered with albedo > 0)", params.lamps.count,
-                 FOG_MAX_LAMPS);
-    }
-    if (panel_header(ui, "brush", false)) {
-      panel_slider_float(ui, "radius", &d->brush_radius, 1.0f, 200.0f, "%.0f", true);
-      panel_slider_float(ui, "strength", &d->brush_strength, 0.1f, 20.0f, "%.1f", true);
-      panel_text(ui, "left drag: paint   right / shift: erase");
-      panel_slider_float(ui, "render scale", &d->render_scale, 0.25f, 1.0f, "%.2f", false);
-    }
+    panel_timings(ui, pipe, &med, d);
+    changed |= panel_model(ui, pipe, &med, &params);
+    changed |= panel_simulation(ui, pipe, &params);
+    changed |= panel_fog(ui, &params, d);
+    changed |= panel_sunlight(ui, &params);
+    changed |= panel_wavelets(ui, &params);
+    panel_lamps(ui, &params, d);
+    panel_brush(ui, d);
   }
   panel_window_end(ui);
   if (changed) pipeline_set_params(pipe, &params);

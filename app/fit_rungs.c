@@ -80,10 +80,9 @@ static int refine_amplitudes(const fit_views *views, int view_sets, fog_rbf *g, 
   return 0;
 }
 
-/* The ladder's rungs for this input, in order, their parameters fitted to the samples. */
-int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *reference,
-                   const fit_samples *s, const fit_views *views, int view_sets,
-                   fit_error *err) {
+/* Homogeneous, the classic factors of distance, and height fog. */
+static int add_analytic_rungs(fit_result *r, const scene_config *input, const fit_samples *s,
+                              const fit_views *views, int view_sets, fit_error *err) {
   fit_rung *rung;
   double k = fit_homogeneous(s);
   if (!(rung = add_rung(r, analytic_config(input, FOG_MODEL_HOMOGENEOUS), "homogeneous", err)))
@@ -111,7 +110,13 @@ int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *re
     f->density_scale = k, f->fog_height = y0, f->scale_height = scale_height;
     snprintf(rung->params, sizeof rung->params, "K=%.6g y0=%.6g H=%.6g", k, y0, scale_height);
   }
+  return 0;
+}
 
+/* One ellipsoid of the density's moments, then banks of them, one per cluster. */
+static int add_quadric_rungs(fit_result *r, const scene_config *input, const fit_samples *s,
+                             fit_error *err) {
+  fit_rung *rung;
   double centre[3], radii[3], density;
   if (fit_ellipsoid(s, centre, radii, &density)) {
     if (!(rung = add_rung(r, analytic_config(input, FOG_MODEL_QUADRIC), "quadric", err)))
@@ -158,8 +163,14 @@ int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *re
     snprintf(rung->params, sizeof rung->params, "%d ellipsoids, one per cluster of the density",
              made);
   }
+  return 0;
+}
 
-  previous = 0;
+/* Banks of Gaussians of growing size, their amplitudes refined on the views. */
+static int add_rbf_rungs(fit_result *r, const scene_config *input, const fit_samples *s,
+                         const fit_views *views, int view_sets, fit_error *err) {
+  fit_rung *rung;
+  int previous = 0;
   for (size_t i = 0; i < sizeof rbf_sizes / sizeof rbf_sizes[0]; i++) {
     scene_config *c = analytic_config(input, FOG_MODEL_RBF);
     int made = c ? fit_rbfs(s, rbf_sizes[i], c->fog.rbfs) : -1;
@@ -186,11 +197,16 @@ int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *re
              made, made == 1 ? "" : "s", g->centre[0], g->centre[1], g->centre[2], g->radius,
              g->density);
   }
+  return 0;
+}
 
-  /* The fogmap: the input's own, or its VDB projected (model = volume's vdb), or the
-   * samples of an analytic input's density projected (app/fit_fogmap.h) into a file of the
-   * result's scratch folder. The classic factors are fog of the camera's distance, which no
-   * fogmap holds. */
+/* The fogmap: the input's own, or its VDB projected (model = volume's vdb), or the
+ * samples of an analytic input's density projected (app/fit_fogmap.h) into a file of the
+ * result's scratch folder. The classic factors are fog of the camera's distance, which no
+ * fogmap holds. */
+static int add_fogmap_rungs(fit_result *r, const scene_config *input, const fog_model *reference,
+                            const fit_samples *s, fit_error *err) {
+  fit_rung *rung;
   const scene_fog_config *in = &input->fog;
   bool has_map = (in->model == FOG_MODEL_FOGMAP && (in->fogmap[0] || in->vdb[0])) ||
                  (in->model == FOG_MODEL_VOLUME && in->vdb[0]);
@@ -240,7 +256,21 @@ int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *re
                : f->vdb[0] ? "the VDB frame projected" : "the fogmap");
     }
   fit_fogmap_destroy(&ff);
+  return 0;
+}
 
+/* The ladder's rungs for this input, in order, their parameters fitted to the samples; the
+ * last rung is the richest: the 3D volume, or the input's own model. */
+int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *reference,
+                   const fit_samples *s, const fit_views *views, int view_sets,
+                   fit_error *err) {
+  if (add_analytic_rungs(r, input, s, views, view_sets, err) ||
+      add_quadric_rungs(r, input, s, err) ||
+      add_rbf_rungs(r, input, s, views, view_sets, err) ||
+      add_fogmap_rungs(r, input, reference, s, err))
+    return 1;
+  const scene_fog_config *in = &input->fog;
+  fit_rung *rung;
   if (reference->kind == FOG_MODEL_VOLUME) {
     scene_config *c = malloc(sizeof *c);
     if (c) *c = *input, c->fog.model = FOG_MODEL_VOLUME, c->fog.volume_step = 0.0;

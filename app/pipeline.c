@@ -932,14 +932,24 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *
   return 1;
 }
 
-int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *err) {
-  double frame_start = now_ms();
-  double upload_ms = 0.0;
-  int taken = take_slot(p, wait, &upload_ms, err);
-  if (taken < 0) return 1;
-  /* Without a new step (live, worker still busy) sim and transform keep the values of the
-   * step on screen, so the medians describe steps, not idle frames. */
+/* Every LIVE_RUNG_INTERVAL frames the live rung's error against the fogmap it stands for,
+ * over this frame's view (app/live_rung.h). */
+static int measure_live_rung(pipeline *p, const fog_model *fogmap_model, const camera *cam,
+                             pipeline_error *err) {
+  render_error rerr = {{0}};
+  if (!p->rung_depth &&
+      !(p->rung_depth = malloc((size_t)p->width * p->height * sizeof *p->rung_depth)))
+    return fail(err, "out of memory for the live rung's view");
+  if (gl_target_read(&p->scene_target, 1, 1, p->rung_depth, &rerr))
+    return fail(err, "live rung: %s", rerr.message);
+  live_rung_measure(fogmap_model, cam, p->width, p->height, p->rung_depth, &p->rung);
+  p->rung_frames = 0;
+  return 0;
+}
 
+/* The panel's sun and lamps (or the lamps' animation at the shown step) reach the
+ * surfaces: what changed marks the scene pass stale. */
+static int sync_surface_light(pipeline *p, pipeline_error *err) {
   pthread_mutex_lock(&p->lock);
   const double sun_azimuth = p->params.sun_azimuth, sun_elevation = p->params.sun_elevation;
   float sun_colour[3]; /* the surfaces' sun_colour is the fog's irradiance over pi */
@@ -979,6 +989,18 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       p->scene_current = false;
     }
   }
+  return 0;
+}
+
+int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *err) {
+  double frame_start = now_ms();
+  double upload_ms = 0.0;
+  int taken = take_slot(p, wait, &upload_ms, err);
+  if (taken < 0) return 1;
+  /* Without a new step (live, worker still busy) sim and transform keep the values of the
+   * step on screen, so the medians describe steps, not idle frames. */
+
+  if (sync_surface_light(p, err)) return 1;
   double t0 = now_ms();
   if (!p->scene_current || !camera_equal(&p->scene_camera, cam)) {
     scene_pass_run(p->scene, cam, &p->scene_target);
@@ -1046,15 +1068,9 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
    * the time of this frame's drawing, not of the next read-back. */
   gl_finish();
   double t1 = now_ms();
-  if (rung && ++p->rung_frames >= LIVE_RUNG_INTERVAL) {
-    if (!p->rung_depth &&
-        !(p->rung_depth = malloc((size_t)p->width * p->height * sizeof *p->rung_depth)))
-      return fail(err, "out of memory for the live rung's view");
-    if (gl_target_read(&p->scene_target, 1, 1, p->rung_depth, &rerr))
-      return fail(err, "live rung: %s", rerr.message);
-    live_rung_measure(&fogmap_model, cam, p->width, p->height, p->rung_depth, &p->rung);
-    p->rung_frames = 0;
-  }
+  if (rung && ++p->rung_frames >= LIVE_RUNG_INTERVAL &&
+      measure_live_rung(p, &fogmap_model, cam, err))
+    return 1;
   if (gl_util_check("pipeline frame", &rerr)) return fail(err, "%s", rerr.message);
 
   p->last.upload = upload_ms;

@@ -1221,8 +1221,8 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
                                  surface_colour, surface_distance, width, height, err);
 }
 
-/* The analytic and volume models' parameters, before anything is drawn. */
-static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *params,
+/* The sun's shadow settings and the lamps, before anything is drawn. */
+static int fog_pass_check_light(const fog_pass *pass, const fog_pass_params *params,
                                 render_error *err) {
   if ((unsigned)params->self_shadow > FOG_SUN_SHADOW_OPAQUE ||
       ((params->self_shadow != FOG_SUN_SHADOW_NONE || params->shafts) &&
@@ -1233,13 +1233,6 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
              "fog_sun_shadow_kind, >= 1 steps of 1 or 2 nodes and, for the volume, "
              "fog_pass_upload_sun_shadow first",
              (int)params->self_shadow, params->shadow_steps, params->shadow_nodes);
-    return 1;
-  }
-  if (params->integrator == FOG_INTEGRATOR_MARCH && params->model != FOG_MODEL_VOLUME &&
-      params->march_steps < 1) {
-    snprintf(err->message, sizeof err->message,
-             "fog pass: marching with %d samples a ray: expected >= 1 (FOG_PASS_MARCH_STEPS "
-             "is the usual choice)", params->march_steps);
     return 1;
   }
   const fog_lamps *lamps = &params->lamps;
@@ -1276,6 +1269,19 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
       return 1;
     }
   }
+  return 0;
+}
+
+/* The integrator's settings: marching samples, the froxel grid, the walk's cut-off. */
+static int fog_pass_check_integrator(const fog_pass *pass, const fog_pass_params *params,
+                                     render_error *err) {
+  if (params->integrator == FOG_INTEGRATOR_MARCH && params->model != FOG_MODEL_VOLUME &&
+      params->march_steps < 1) {
+    snprintf(err->message, sizeof err->message,
+             "fog pass: marching with %d samples a ray: expected >= 1 (FOG_PASS_MARCH_STEPS "
+             "is the usual choice)", params->march_steps);
+    return 1;
+  }
   const fog_froxel_grid *g = &params->froxel;
   if ((unsigned)params->integrator > FOG_INTEGRATOR_FROXEL ||
       (params->integrator == FOG_INTEGRATOR_FROXEL &&
@@ -1296,6 +1302,14 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
              params->walk.transmittance_cutoff);
     return 1;
   }
+  return 0;
+}
+
+/* The analytic and volume models' parameters, before anything is drawn. */
+static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *params,
+                                render_error *err) {
+  if (fog_pass_check_light(pass, params, err) || fog_pass_check_integrator(pass, params, err))
+    return 1;
   if (params->model == FOG_MODEL_PERLIN &&
       (!params->model_perlin || !pass->perlin_texture ||
        pass->perlin_size != params->model_perlin->desc.size ||

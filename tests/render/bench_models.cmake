@@ -5,50 +5,18 @@
 # marching), the chart CSV and PNG, ends with its
 # summary line, and its exact rows agree with the CPU model (max tau error <= 1e-4: a bench
 # comparing against the wrong reference fails here). It asserts no speed.
-#
-# Both the test's definition (included by tests/CMakeLists.txt) and its script (run with
-# `cmake -DFOGPIPE=... -DOUT=... -P bench_models.cmake`).
+include(${CMAKE_CURRENT_LIST_DIR}/bench_smoke.cmake)
 if(NOT CMAKE_SCRIPT_MODE_FILE)
-  add_test(NAME render/bench_models_smoke
-           COMMAND ${CMAKE_COMMAND} -DFOGPIPE=$<TARGET_FILE:fogpipe>
-                   -DOUT=${CMAKE_CURRENT_BINARY_DIR}/bench_models_smoke
-                   -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(render/bench_models_smoke PROPERTIES
-    WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}
-    ENVIRONMENT "LP_NUM_THREADS=1" TIMEOUT 120)
+  bench_smoke_add(models ${CMAKE_CURRENT_LIST_FILE} 120)
   return()
 endif()
 
-file(REMOVE_RECURSE ${OUT})
-execute_process(COMMAND ${FOGPIPE} bench models --size 32x18 --frames 1 --out ${OUT}
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message("${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "fogpipe bench models exited with ${rc}: ${err}")
-endif()
-string(STRIP "${out}" out)
-string(REGEX MATCH "[^\n]*$" last "${out}")
 set(num "[0-9]+[.]?[0-9]*") # no group: CMake keeps at most 9 per match
-if(NOT last MATCHES "^models: rbf_exact_ms=${num} rbf_march_speedup_at_matched_error=${num} height_exact_ms=${num} height_march_speedup_at_matched_error=${num} volume_exact_ms=${num} volume_march_speedup_at_matched_error=${num} volume_empty_skip_speedup=${num} quadric_exact_ms=${num} quadric_march_speedup_at_matched_error=${num} rbf_64_ms=${num} rbf_3000_ms=${num} fit_s=${num} perlin_exact_ms=${num} perlin_march_speedup_at_matched_error=${num} perlin_paper_error=${num}$")
-  message(FATAL_ERROR "last line is not the summary line: '${last}'")
-endif()
-foreach(f models.csv models_chart.csv models_chart.png)
-  if(NOT EXISTS ${OUT}/${f})
-    message(FATAL_ERROR "missing output ${OUT}/${f}")
-  endif()
-endforeach()
-file(STRINGS ${OUT}/models.csv lines)
-list(LENGTH lines count)
-if(NOT count EQUAL 41)
-  message(FATAL_ERROR "models.csv has ${count} lines, expected a header and 40 rows")
-endif()
-list(GET lines 0 header)
-if(NOT header STREQUAL "model,method,setting,ms_per_frame,rmse,max_error")
-  message(FATAL_ERROR "models.csv header: '${header}'")
-endif()
-list(REMOVE_AT lines 0)
-set(finite "[0-9.]+(e[-+][0-9]+)?")
-foreach(line IN LISTS lines)
+bench_smoke_run(models "^models: rbf_exact_ms=${num} rbf_march_speedup_at_matched_error=${num} height_exact_ms=${num} height_march_speedup_at_matched_error=${num} volume_exact_ms=${num} volume_march_speedup_at_matched_error=${num} volume_empty_skip_speedup=${num} quadric_exact_ms=${num} quadric_march_speedup_at_matched_error=${num} rbf_64_ms=${num} rbf_3000_ms=${num} fit_s=${num} perlin_exact_ms=${num} perlin_march_speedup_at_matched_error=${num} perlin_paper_error=${num}$"
+                --size 32x18 --frames 1)
+bench_smoke_expect_files(models.csv models_chart.csv models_chart.png)
+bench_smoke_read_csv(models.csv "model,method,setting,ms_per_frame,rmse,max_error" 40)
+foreach(line IN LISTS bench_rows)
   if(NOT line MATCHES "^(homogeneous|height|rbf|volume|quadric|linear|exp2|perlin),(exact|exact-hardware|exact-no-skip|paper|march),[0-9.]+,${finite},${finite},(${finite})$")
     message(FATAL_ERROR "models.csv row without finite numbers: '${line}'")
   endif()

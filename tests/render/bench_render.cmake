@@ -4,64 +4,30 @@
 # ground fog), the
 # chart CSV and PNG, and ends with the summary line. It asserts no speed (speed targets
 # live in the benchmark itself).
-#
-# This one file is both: included by tests/CMakeLists.txt (adds the test), and run by that
-# test as a script (`cmake -DFOGPIPE=... -DOUT=... -P bench_render.cmake`, the checks).
+include(${CMAKE_CURRENT_LIST_DIR}/bench_smoke.cmake)
 if(NOT CMAKE_SCRIPT_MODE_FILE)
-  add_test(NAME render/bench_render_smoke
-           COMMAND ${CMAKE_COMMAND} -DFOGPIPE=$<TARGET_FILE:fogpipe>
-                   -DOUT=${CMAKE_CURRENT_BINARY_DIR}/bench_render_smoke
-                   -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(render/bench_render_smoke PROPERTIES
-    WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}
-    ENVIRONMENT "LP_NUM_THREADS=1;FOGPIPE_BIN=$<TARGET_FILE:fogpipe>" TIMEOUT 120)
+  bench_smoke_add(render ${CMAKE_CURRENT_LIST_FILE} 120)
   return()
 endif()
 
-file(REMOVE_RECURSE ${OUT})
-execute_process(COMMAND ${FOGPIPE} bench render --size 32x18 --frames 1 --out ${OUT}
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message("${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "fogpipe bench render exited with ${rc}: ${err}")
-endif()
-
-# The last line is exactly the summary line, with three finite positive numbers.
-string(STRIP "${out}" out)
-string(REGEX MATCH "[^\n]*$" last "${out}")
 set(num "[0-9]+(\\.[0-9]+)?")
-if(NOT last MATCHES "^render: exact_speedup_at_matched_error=${num} lod_switch_speedup_vs_sum=${num} lod_overhead_at_mu1=${num} empty_skip_speedup=${num} exact_speedup_at_matched_error_detailed=${num}$")
-  message(FATAL_ERROR "last line is not the summary line: '${last}'")
-endif()
+bench_smoke_run(render "^render: exact_speedup_at_matched_error=${num} lod_switch_speedup_vs_sum=${num} lod_overhead_at_mu1=${num} empty_skip_speedup=${num} exact_speedup_at_matched_error_detailed=${num}$"
+                --size 32x18 --frames 1)
 
 # The upload comparison that decides against a pixel-unpack buffer path (bench_upload.c).
-if(NOT out MATCHES "glTexSubImage2D from client memory ${num} ms; through a pixel-unpack buffer ${num} ms")
+if(NOT bench_output MATCHES "glTexSubImage2D from client memory ${num} ms; through a pixel-unpack buffer ${num} ms")
   message(FATAL_ERROR "no upload comparison (direct vs pixel-unpack buffer) in the output")
 endif()
 
 # Empty-space skipping is exact: the ground fog's tau images agree bit for bit.
-if(NOT out MATCHES "tau images identical bit for bit")
+if(NOT bench_output MATCHES "tau images identical bit for bit")
   message(FATAL_ERROR "the ground fog rows with and without skipping differ")
 endif()
 
 # The table: header + 56 rows; every number finite (no nan/inf), errors and times >= 0.
-foreach(f render.csv render_chart.csv render_chart.png render_tau.png)
-  if(NOT EXISTS ${OUT}/${f})
-    message(FATAL_ERROR "missing output ${OUT}/${f}")
-  endif()
-endforeach()
-file(STRINGS ${OUT}/render.csv lines)
-list(LENGTH lines count)
-if(NOT count EQUAL 57)
-  message(FATAL_ERROR "render.csv has ${count} lines, expected a header and 56 rows")
-endif()
-list(GET lines 0 header)
-if(NOT header STREQUAL "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full")
-  message(FATAL_ERROR "render.csv header: '${header}'")
-endif()
-list(REMOVE_AT lines 0)
-set(finite "[0-9.]+(e[-+][0-9]+)?") # one group each: CMake allows 9
-foreach(line IN LISTS lines)
+bench_smoke_expect_files(render.csv render_chart.csv render_chart.png render_tau.png)
+bench_smoke_read_csv(render.csv "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full" 56)
+foreach(line IN LISTS bench_rows)
   # method,setting,ms,rmse,max[,rmse_full,max_full] (the last two only for LOD rows)
   if(NOT line MATCHES "^[^,]+,[^,]+,${finite},${finite},${finite},(${finite},${finite}|,)$")
     message(FATAL_ERROR "render.csv row without finite numbers: '${line}'")
@@ -72,7 +38,7 @@ foreach(line IN LISTS lines)
 endforeach()
 # The exact rows really are exact (manual fetch, linear basis: float rounding of tau) - the
 # smoke test should notice a bench that compares against the wrong reference.
-foreach(line IN LISTS lines)
+foreach(line IN LISTS bench_rows)
   if(line MATCHES "^exact,linear,${finite},${finite},(${finite}),")
     set(max_error ${CMAKE_MATCH_3})
   endif()
@@ -88,7 +54,7 @@ endif()
 # their own references.
 foreach(fog detailed simulated)
   unset(extra_error)
-  foreach(line IN LISTS lines)
+  foreach(line IN LISTS bench_rows)
     if(line MATCHES "^${fog} exact,linear,${finite},${finite},(${finite}),")
       set(extra_error ${CMAKE_MATCH_3})
     endif()
