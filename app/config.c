@@ -449,11 +449,12 @@ static int store_rbf_emitter(parse_state *s, const char *section, const char *ke
   return 1;
 }
 
-/* V_QUADRIC: quadric = SHAPE NUMBERS [EDGE], appended; the shapes' numbers (docs/config.md):
- *   sphere X Y Z R DENSITY, ellipsoid X Y Z RX RY RZ DENSITY, cylinder and cone X Y Z R
- *   HEIGHT DENSITY (upright, standing on (X, Y, Z); the cone's apex on top), general A B C D E
- *   F G H I J XMIN YMIN ZMIN XMAX YMAX ZMAX DENSITY; then EDGE, the soft edge (default 0: a
- *   hard edge; for the shapes a share of Q's range, 0..1). */
+/* V_QUADRIC: quadric = SHAPE NUMBERS [EDGE [NOISE]], appended; the shapes' numbers
+ *   (docs/config.md): sphere X Y Z R DENSITY, ellipsoid X Y Z RX RY RZ DENSITY, cylinder and
+ *   cone X Y Z R HEIGHT DENSITY (upright, standing on (X, Y, Z); the cone's apex on top),
+ *   general A B C D E F G H I J XMIN YMIN ZMIN XMAX YMAX ZMAX DENSITY; then EDGE, the soft
+ *   edge (default 0: a hard edge; for the shapes a share of Q's range, 0..1), and NOISE, the
+ *   share of the density the Perlin octaves' turbulence modulates (default 0; 0..1). */
 #define QUADRIC_MAX_COEFFICIENT 1e12
 enum quadric_shape { SHAPE_SPHERE, SHAPE_ELLIPSOID, SHAPE_CYLINDER, SHAPE_CONE, SHAPE_GENERAL };
 static const struct {
@@ -474,17 +475,19 @@ static int store_quadric(parse_state *s, const char *section, const char *key, c
   if (kind < 0)
     return fail(s, section, key, "expected a shape (sphere, ellipsoid, cylinder, cone or "
                 "general) and its numbers, got '%s'", value);
-  double v[18];
-  const int want = shapes[kind].count, n = parse_numbers(value + word, v, want + 1);
-  if (n != want && n != want + 1)
-    return fail(s, section, key, "expected %s %s [EDGE] (%d or %d numbers), got '%s'",
-                shapes[kind].name, shapes[kind].numbers, want, want + 1, value);
+  double v[19];
+  const int want = shapes[kind].count, n = parse_numbers(value + word, v, want + 2);
+  if (n < want || n > want + 2)
+    return fail(s, section, key, "expected %s %s [EDGE [NOISE]] (%d to %d numbers), got '%s'",
+                shapes[kind].name, shapes[kind].numbers, want, want + 2, value);
   const double density = v[want - 1], edge = n > want ? v[want] : 0.0;
+  const double noise = n > want + 1 ? v[want + 1] : 0.0;
   const bool general = kind == SHAPE_GENERAL;
   if (!(density >= 0 && density <= MAX_EXTINCTION && edge >= 0 &&
-        edge <= (general ? QUADRIC_MAX_COEFFICIENT : 1.0)))
-    return fail(s, section, key, "expected DENSITY from 0 to %g and EDGE from 0 to %g, got '%s'",
-                MAX_EXTINCTION, general ? QUADRIC_MAX_COEFFICIENT : 1.0, value);
+        edge <= (general ? QUADRIC_MAX_COEFFICIENT : 1.0) && noise >= 0 && noise <= 1))
+    return fail(s, section, key, "expected DENSITY from 0 to %g, EDGE from 0 to %g and NOISE "
+                "from 0 to 1, got '%s'", MAX_EXTINCTION, general ? QUADRIC_MAX_COEFFICIENT : 1.0,
+                value);
   for (int i = 0; i < want - 1; i++) {
     /* general: coefficients, then a box; the shapes: a position, then lengths */
     bool coefficient = general && i < 10, position = general ? i >= 10 : i < 3;
@@ -513,6 +516,7 @@ static int store_quadric(parse_state *s, const char *section, const char *key, c
       for (int i = 0; i < 10; i++) q->q[i] = v[i];
       for (int a = 0; a < 3; a++) q->lo[a] = v[10 + a], q->hi[a] = v[13 + a];
   }
+  q->noise = noise;
   return 1;
 }
 
@@ -792,6 +796,13 @@ static int check_models(parse_state *ps) {
     fail(&s, "fog", "model", "%s is a fog of the distance from the camera: it takes no "
          "'quadric' volumes beside it (any other model does)",
          fog_model_table[cfg->fog.model].name);
+    return 1;
+  }
+  if (fog_quadric_noisy(cfg->fog.quadrics, cfg->fog.quadric_count) &&
+      cfg->fog.model != FOG_MODEL_QUADRIC && cfg->fog.model != FOG_MODEL_PERLIN) {
+    s.line = cfg->fog.model_line;
+    fail(&s, "fog", "model", "%s: 'quadric' volumes with NOISE need model = quadric or perlin "
+         "(their turbulence is the perlin_* octaves)", fog_model_table[cfg->fog.model].name);
     return 1;
   }
   if (cfg->lamp_method.integral == FOG_LAMP_FOGSHOP && cfg->fog.quadric_count > 0 &&

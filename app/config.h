@@ -98,7 +98,7 @@ typedef struct scene_fog_config {
   struct scene_quadric_line {
     int shape; /* index in the shape names: sphere, ellipsoid, cylinder, cone, general */
     int count;
-    double numbers[18];
+    double numbers[19];
   } quadric_lines[FOG_MAX_QUADRICS];
   /* model = perlin (render/fog_perlin.h): the octaves' count, texture size, feature size and
    * seed; perlin_wind holds 3 numbers (every octave's drift) or 3 per octave; the integral.

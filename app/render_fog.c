@@ -316,15 +316,22 @@ int render_fog_set_rbfs(render_fog *fog, const scene_config *cfg, double time,
   return render_fog_shadow(fog, cfg, &model, err);
 }
 
+/* The config's fog reads the Perlin octaves: model = perlin, or quadric volumes with noise. */
+static bool uses_octaves(const scene_config *cfg) {
+  return cfg->fog.model == FOG_MODEL_PERLIN ||
+         (cfg->fog.model == FOG_MODEL_QUADRIC &&
+          fog_quadric_noisy(cfg->fog.quadrics, cfg->fog.quadric_count));
+}
+
 bool render_fog_animated(const scene_config *cfg) {
   return (cfg->fog.model == FOG_MODEL_RBF && cfg->fog.rbf_emitter_count > 0) ||
-         cfg->fog.model == FOG_MODEL_PERLIN;
+         uses_octaves(cfg);
 }
 
 int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,
                         render_error *err) {
   if (!render_fog_animated(cfg)) return 0;
-  if (cfg->fog.model == FOG_MODEL_PERLIN)
+  if (uses_octaves(cfg))
     fog->params.model_time = time;
   else if (rbfs_at(fog, cfg, time, err))
     return 1;
@@ -332,8 +339,9 @@ int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,
   return render_fog_shadow(fog, cfg, &model, err);
 }
 
-/* model = perlin: the octaves of the config, filling the terrain's footprint between [box]
- * floor and top (checked by the config), uploaded to the pass. */
+/* model = perlin (or quadric volumes with noise): the octaves of the config, the Perlin
+ * fog filling the terrain's footprint between [box] floor and top (checked by the config),
+ * uploaded to the pass. */
 static int perlin_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
   const scene_fog_config *f = &cfg->fog;
   fog_perlin_desc desc = fog_perlin_desc_default();
@@ -351,8 +359,8 @@ static int perlin_fog(render_fog *fog, const scene_config *cfg, render_error *er
   if (fog_perlin_create(&fog->perlin, &desc, err)) {
     char reason[sizeof err->message];
     snprintf(reason, sizeof reason, "%s", err->message);
-    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] model = perlin: %.250s",
-             cfg->path, f->model_line, reason);
+    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] model = %s: %.250s",
+             cfg->path, f->model_line, fog_model_table[f->model].name, reason);
     return 1;
   }
   fog->params.model_perlin = &fog->perlin;
@@ -384,7 +392,7 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_
   };
   if (rbf && rbfs_at(fog, cfg, 0.0, err)) return 1;
   if (fog_pass_create(&fog->pass, err) ||
-      (f->model == FOG_MODEL_PERLIN && perlin_fog(fog, cfg, err)))
+      (uses_octaves(cfg) && perlin_fog(fog, cfg, err)))
     return 1;
   fog_model model = render_fog_model(fog);
   return render_fog_shadow(fog, cfg, &model, err);

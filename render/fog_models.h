@@ -71,9 +71,20 @@ typedef struct fog_quadric {
   double lo[3], hi[3];
   double density; /* >= 0 */
   double edge;    /* in [0, 1] for the shapes below; >= 0 for a general quadric */
+  double noise;   /* in [0, 1]: the share of the density the turbulence modulates (below) */
 } fog_quadric;
 /* Doubles only: configs hash and compare it as bytes. */
-_Static_assert(sizeof(fog_quadric) == 18 * sizeof(double), "fog_quadric has padding");
+_Static_assert(sizeof(fog_quadric) == 19 * sizeof(double), "fog_quadric has padding");
+
+/* Noise inside the volumes (the course slides' noise-modulated fog volumes): a volume with
+ * noise n > 0 has K = density e(Q) (1 - n + n T(p, time) / T_mean), T the Perlin
+ * turbulence (render/fog_perlin.h, its octaves drifting with their winds) and T_mean its
+ * mean over the texture's period, so that the fog's mean density stays `density`. A NULL
+ * perlin leaves every volume homogeneous. */
+typedef struct fog_quadric_noise {
+  const fog_perlin *perlin;
+  double time;
+} fog_quadric_noise;
 
 /* The shapes (Q normalised as above; the box is the shape's own bounds):
  * a sphere of radius r, an ellipsoid of semi-axes r[3], an upright cylinder and an upright
@@ -94,11 +105,16 @@ double fog_quadric_value(const fog_quadric *v, const double p[3]);
  * Q(t) = -edge on it (Q(o + t d) = a t^2 + 2 b t + c, roots without cancellation: q = -(b +
  * sign(b) sqrt(b^2 - a c)), t = q/a and c/q; a tangent ray has a double root, a = 0 one);
  * between consecutive breaks K is 0, density, or density (-Q/edge), a quadratic integrated
- * exactly by Simpson's rule. */
-double fog_quadric_optical_depth(const fog_quadric *v, int count, const double o[3],
-                                 const double d[3], double length);
+ * exactly by Simpson's rule. With noise, the turbulence's share is cut further at every
+ * octave's texel cells, where it is trilinear (a cubic along the ray): times the quadratic
+ * weight a quintic, which 3 Gauss-Legendre nodes integrate exactly. */
+double fog_quadric_optical_depth(const fog_quadric *v, int count, const fog_quadric_noise *noise,
+                                 const double o[3], const double d[3], double length);
 /* K at p: the sum of the volumes' extinctions. */
-double fog_quadric_extinction_at(const fog_quadric *v, int count, const double p[3]);
+double fog_quadric_extinction_at(const fog_quadric *v, int count, const fog_quadric_noise *noise,
+                                 const double p[3]);
+/* Whether any of the volumes has noise > 0. */
+bool fog_quadric_noisy(const fog_quadric *v, int count);
 /* The union of the volumes' boxes (false for count < 1). */
 bool fog_quadric_bounds(const fog_quadric *v, int count, double lo[3], double hi[3]);
 
@@ -131,7 +147,8 @@ typedef struct fog_model {
   double eye[3];
   double fog_start, fog_end;
   /* FOG_MODEL_PERLIN: the octaves (extinction, y0 and scale_height are the height fog's),
-   * the animation time in seconds and the integral. */
+   * the animation time in seconds and the integral. Quadric volumes with noise: the
+   * octaves and the time of their turbulence. */
   const fog_perlin *perlin;
   double time;
   fog_perlin_integral perlin_integral;
@@ -142,6 +159,10 @@ typedef struct fog_model {
 bool fog_model_quadrics_beside(const fog_model *model);
 /* The model without the quadrics beside it (itself otherwise). */
 fog_model fog_model_alone(const fog_model *model);
+
+/* The turbulence of the model's quadric volumes: its perlin and time (the Perlin model's
+ * own octaves, or those of `quadric` volumes with noise). */
+fog_quadric_noise fog_model_quadric_noise(const fog_model *model);
 
 /* FOG_MODEL_PERLIN's medium of a model. */
 fog_perlin_medium fog_model_perlin_medium(const fog_model *model);

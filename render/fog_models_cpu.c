@@ -106,7 +106,10 @@ double fog_model_optical_depth(const fog_model *m, const double camera[3], const
                                double t_surface) {
   if ((unsigned)m->kind >= FOG_MODEL_COUNT) return NAN;
   double depth = fog_model_table[m->kind].optical_depth(m, camera, dir, t_surface);
-  if (fog_model_quadrics_beside(m))
-    depth += fog_quadric_optical_depth(m->quadrics, m->quadric_count, camera, dir, t_surface);
+  if (fog_model_quadrics_beside(m)) {
+    const fog_quadric_noise noise = fog_model_quadric_noise(m);
+    depth += fog_quadric_optical_depth(m->quadrics, m->quadric_count, &noise, camera, dir,
+                                       t_surface);
+  }
   return depth;
 }

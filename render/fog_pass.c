@@ -895,6 +895,7 @@ static bool fog_pass_quadrics_beside(const fog_pass_params *p) {
 static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
                                       const fog_pass_params *params) {
   float diag[FOG_MAX_QUADRICS][3], off[FOG_MAX_QUADRICS][4], edge[FOG_MAX_QUADRICS];
+  float noise[FOG_MAX_QUADRICS];
   float lo[FOG_MAX_QUADRICS][3], hi[FOG_MAX_QUADRICS][3];
   double grad_c0[FOG_MAX_QUADRICS][4];
   const double *o = cam->position;
@@ -916,12 +917,17 @@ static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
     off[i][0] = (float)m[0][1], off[i][1] = (float)m[1][2], off[i][2] = (float)m[0][2];
     off[i][3] = (float)v->density;
     edge[i] = (float)v->edge;
+    /* without octaves (fog_pass_check_model refuses that) the volume stays homogeneous */
+    noise[i] = params->model_perlin ? (float)v->noise : 0.0f;
   }
   glUniform1i(fog_loc(prog, "fog_quadric_count"), n);
+  /* the noise reads the octaves' sampler: it must name its own unit even when unused */
+  glUniform1i(fog_loc(prog, "fog_perlin_texels"), UNIT_PERLIN);
   if (n > 0) {
     glUniform3fv(fog_loc(prog, "fog_quadric_diag"), n, &diag[0][0]);
     glUniform4fv(fog_loc(prog, "fog_quadric_off"), n, &off[0][0]);
     glUniform1fv(fog_loc(prog, "fog_quadric_edge"), n, edge);
+    glUniform1fv(fog_loc(prog, "fog_quadric_noise"), n, noise);
     glUniform4dv(fog_loc(prog, "fog_quadric_grad_c0"), n, &grad_c0[0][0]);
     glUniform3fv(fog_loc(prog, "fog_quadric_lo"), n, &lo[0][0]);
     glUniform3fv(fog_loc(prog, "fog_quadric_hi"), n, &hi[0][0]);
@@ -963,6 +969,7 @@ static void fog_pass_perlin_uniforms(const fog_pass *pass, GLuint prog, const ca
               (float)(hi[2] - c[2]));
   glUniform1i(fog_loc(prog, "fog_perlin_paper"),
               params->model_perlin_integral == FOG_PERLIN_PAPER);
+  glUniform1f(fog_loc(prog, "fog_perlin_mean"), (float)perlin->mean_turbulence);
 }
 
 static int fog_pass_skips_share(const fog_pass_params *params, double empty_share) {
@@ -987,7 +994,8 @@ static int fog_pass_analytic_uniforms(fog_pass *pass, GLuint prog, const camera 
     return 1;
   if (params->model == FOG_MODEL_QUADRIC || fog_pass_quadrics_beside(params))
     fog_pass_quadric_uniforms(prog, cam, params);
-  if (params->model == FOG_MODEL_PERLIN) fog_pass_perlin_uniforms(pass, prog, cam, params);
+  /* the Perlin fog's octaves, or the turbulence inside quadric volumes with noise */
+  if (params->model_perlin) fog_pass_perlin_uniforms(pass, prog, cam, params);
   return 0;
 }
 
@@ -1363,15 +1371,25 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
                "fog pass: %d quadric volumes: expected 0..%d (and the array)", n, FOG_MAX_QUADRICS);
       return 1;
     }
+    const fog_perlin *octaves = params->model_perlin;
+    if (fog_quadric_noisy(params->model_quadrics, n) &&
+        (params->model == FOG_MODEL_FOGMAP || !octaves || !pass->perlin_texture ||
+         pass->perlin_size != octaves->desc.size || pass->perlin_octaves != octaves->desc.octaves ||
+         !isfinite(params->model_time))) {
+      snprintf(err->message, sizeof err->message,
+               "fog pass: quadric volumes with noise: expected model quadric or perlin, its "
+               "octaves uploaded (fog_pass_upload_perlin) and a finite time");
+      return 1;
+    }
     for (int i = 0; i < n; i++) {
       const fog_quadric *v = &params->model_quadrics[i];
-      bool ok = v->density >= 0 && v->edge >= 0;
+      bool ok = v->density >= 0 && v->edge >= 0 && v->noise >= 0 && v->noise <= 1;
       for (int a = 0; a < 3; a++) ok = ok && v->lo[a] <= v->hi[a];
       for (int k = 0; k < 10; k++) ok = ok && isfinite(v->q[k]);
       if (!ok) {
         snprintf(err->message, sizeof err->message,
                  "fog pass: quadric volume %d: expected finite coefficients, density >= 0, "
-                 "edge >= 0 and a box lo <= hi", i);
+                 "edge >= 0, noise in [0, 1] and a box lo <= hi", i);
         return 1;
       }
     }

@@ -126,7 +126,8 @@ typedef struct fog_pass_params {
   int model_quadric_count;
   /* FOG_MODEL_PERLIN: the octaves (uploaded with fog_pass_upload_perlin), the animation time
    * in seconds and the integral; model_extinction, model_y0 and model_scale_height are its
-   * height fog's. */
+   * height fog's. FOG_MODEL_QUADRIC (or quadrics beside the Perlin fog) with noise: the
+   * octaves and the time of the volumes' turbulence (required: NULL is refused). */
   const fog_perlin *model_perlin;
   double model_time;
   fog_perlin_integral model_perlin_integral;

@@ -100,11 +100,15 @@ int fog_perlin_create(fog_perlin *perlin, const fog_perlin_desc *desc, render_er
       perm[k] = perm[j], perm[j] = t;
     }
     float *octave = perlin->texels + per_octave * (size_t)i;
+    double sum = 0.0;
     for (int z = 0; z < n; z++)
       for (int y = 0; y < n; y++)
-        for (int x = 0; x < n; x++)
-          octave[((size_t)z * n + y) * n + x] =
-              (float)fabs(periodic_noise(perm, period, x * step, y * step, z * step));
+        for (int x = 0; x < n; x++) {
+          float v = (float)fabs(periodic_noise(perm, period, x * step, y * step, z * step));
+          octave[((size_t)z * n + y) * n + x] = v;
+          sum += v;
+        }
+    perlin->mean_turbulence += ldexp(sum / (double)per_octave, -i);
   }
   return 0;
 }

@@ -54,6 +54,9 @@ fog_perlin_desc fog_perlin_desc_default(void);
 typedef struct fog_perlin {
   fog_perlin_desc desc;
   float *texels;
+  /* T's mean over the texture's period: sum_i 2^{-i} (the mean of octave i's texels; the
+   * trilinear interpolant of periodic samples has their mean) */
+  double mean_turbulence;
 } fog_perlin;
 
 /* Fills the textures. Fails naming the field on a bad descriptor (out-of-range octaves or

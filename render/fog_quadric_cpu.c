@@ -97,10 +97,59 @@ static void order(double *x, double *y) {
   *x = lo, *y = hi;
 }
 
-/* int_{t0}^{t1} of one volume's K along Q(t) = a t^2 + 2 b t + c: the breaks at Q = 0 and
- * Q = -edge sorted by the GLSL twin's network (a sort without dynamic indexing there). */
-static double span_integral(double a, double b, double c, double density, double edge,
+/* int over [ta, tb] of w(t) T(o + t d), w = w[0] + w[1] t + w[2] t^2: T is trilinear in each
+ * texel cell of each octave, so w T is a quintic between consecutive crossings of any
+ * octave's cells (a DDA per octave and axis, as fog_perlin.c's octave_depth), where 3
+ * Gauss-Legendre nodes are exact. */
+static double weighted_turbulence(const fog_quadric_noise *noise, const double o[3],
+                                  const double d[3], double ta, double tb, const double w[3]) {
+  static const double x3 = 0.77459666924148338, w_end = 5.0 / 9.0, w_mid = 8.0 / 9.0;
+  const fog_perlin *perlin = noise->perlin;
+  const int octaves = perlin->desc.octaves;
+  double next[FOG_PERLIN_MAX_OCTAVES][3], delta[FOG_PERLIN_MAX_OCTAVES][3];
+  for (int i = 0; i < octaves; i++) {
+    double s = fog_perlin_octave_scale(perlin, i);
+    for (int a = 0; a < 3; a++) {
+      double u = (o[a] + ta * d[a] - perlin->desc.wind[i][a] * noise->time) * s, du = d[a] * s;
+      double cell = floor(u);
+      delta[i][a] = du != 0.0 ? fabs(1.0 / du) : HUGE_VAL;
+      next[i][a] = du > 0.0 ? (cell + 1.0 - u) / du : du < 0.0 ? (cell - u) / du : HUGE_VAL;
+    }
+  }
+  double len = tb - ta, t = 0.0, sum = 0.0;
+  while (t < len) {
+    double tn = len;
+    for (int i = 0; i < octaves; i++)
+      for (int a = 0; a < 3; a++) tn = fmin(tn, next[i][a]);
+    if (tn > t) {
+      double half = 0.5 * (tn - t), mid = ta + t + half, piece = 0.0;
+      for (int k = -1; k <= 1; k++) {
+        double tk = mid + k * x3 * half;
+        double p[3] = {o[0] + tk * d[0], o[1] + tk * d[1], o[2] + tk * d[2]};
+        double weight = (w[2] * tk + w[1]) * tk + w[0];
+        piece += (k ? w_end : w_mid) * weight * fog_perlin_turbulence(perlin, noise->time, p);
+      }
+      sum += half * piece;
+    }
+    for (int i = 0; i < octaves; i++)
+      for (int a = 0; a < 3; a++)
+        if (next[i][a] <= tn) next[i][a] += delta[i][a];
+    t = fmax(t, tn);
+  }
+  return sum;
+}
+
+/* int_{t0}^{t1} of one volume's K along Q(t) = a t^2 + 2 b t + c (from o, unit d): the
+ * breaks at Q = 0 and Q = -edge sorted by the GLSL twin's network (a sort without dynamic
+ * indexing there); per piece K's weight, 0, density or density (-Q/edge), and with noise
+ * that weight times the turbulence's share. */
+static double span_integral(const fog_quadric *v, const fog_quadric_noise *noise, double a,
+                            double b, double c, const double o[3], const double d[3],
                             double t0, double t1) {
+  const double density = v->density, edge = v->edge;
+  const bool noisy = v->noise > 0.0 && noise && noise->perlin;
+  const double plain = noisy ? 1.0 - v->noise : 1.0;
+  const double turbulent = noisy ? v->noise / noise->perlin->mean_turbulence : 0.0;
   double cut[6] = {t0, t1, t1, t1, t1, t1};
   breaks(a, b, c, t0, t1, cut + 1);
   if (edge > 0.0) breaks(a, b, c + edge, t0, t1, cut + 3);
@@ -112,18 +161,25 @@ static double span_integral(double a, double b, double c, double density, double
     double ta = cut[i], tb = cut[i + 1], tm = 0.5 * (ta + tb);
     double qm = (a * tm + 2.0 * b) * tm + c;
     if (!(tb > ta) || qm >= 0.0) continue; /* outside */
-    if (edge == 0.0 || qm <= -edge) {
-      sum += density * (tb - ta); /* the core */
+    bool core = edge == 0.0 || qm <= -edge;
+    if (core) {
+      sum += plain * density * (tb - ta);
     } else { /* the soft edge: density (-Q/edge), Simpson exact for the quadratic */
       double qa = (a * ta + 2.0 * b) * ta + c, qb = (a * tb + 2.0 * b) * tb + c;
-      sum -= density / edge * (tb - ta) * (qa + 4.0 * qm + qb) / 6.0;
+      sum -= plain * density / edge * (tb - ta) * (qa + 4.0 * qm + qb) / 6.0;
+    }
+    if (noisy) {
+      const double w[3] = {core ? density : -density * c / edge,
+                           core ? 0.0 : -2.0 * density * b / edge,
+                           core ? 0.0 : -density * a / edge};
+      sum += turbulent * weighted_turbulence(noise, o, d, ta, tb, w);
     }
   }
   return sum;
 }
 
-double fog_quadric_optical_depth(const fog_quadric *v, int count, const double o[3],
-                                 const double d[3], double length) {
+double fog_quadric_optical_depth(const fog_quadric *v, int count, const fog_quadric_noise *noise,
+                                 const double o[3], const double d[3], double length) {
   double sum = 0.0;
   for (int i = 0; i < count; i++) {
     double lo[3], hi[3], t0, t1;
@@ -141,22 +197,39 @@ double fog_quadric_optical_depth(const fog_quadric *v, int count, const double o
     }
     /* re-centred on t0, as the GLSL twin (where this keeps float from cancelling) */
     double c = fog_quadric_value(&v[i], o);
-    sum += span_integral(a, b + a * t0, (a * t0 + 2.0 * b) * t0 + c, v[i].density, v[i].edge,
+    const double start[3] = {o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2]};
+    sum += span_integral(&v[i], noise, a, b + a * t0, (a * t0 + 2.0 * b) * t0 + c, start, d,
                          0.0, t1 - t0);
   }
   return sum;
 }
 
-double fog_quadric_extinction_at(const fog_quadric *v, int count, const double p[3]) {
-  double k = 0.0;
+double fog_quadric_extinction_at(const fog_quadric *v, int count, const fog_quadric_noise *noise,
+                                 const double p[3]) {
+  double k = 0.0, turbulence = -1.0; /* T(p), once, when a noisy volume holds p */
   for (int i = 0; i < count; i++) {
     bool inside = true;
     for (int a = 0; a < 3; a++) inside = inside && p[a] >= v[i].lo[a] && p[a] <= v[i].hi[a];
     double q = inside ? fog_quadric_value(&v[i], p) : 0.0;
     if (!(q < 0.0)) continue;
-    k += v[i].edge > 0.0 ? v[i].density * fmin(1.0, -q / v[i].edge) : v[i].density;
+    double ki = v[i].edge > 0.0 ? v[i].density * fmin(1.0, -q / v[i].edge) : v[i].density;
+    if (v[i].noise > 0.0 && noise && noise->perlin) {
+      if (turbulence < 0.0) turbulence = fog_perlin_turbulence(noise->perlin, noise->time, p);
+      ki *= 1.0 - v[i].noise + v[i].noise * turbulence / noise->perlin->mean_turbulence;
+    }
+    k += ki;
   }
   return k;
+}
+
+bool fog_quadric_noisy(const fog_quadric *v, int count) {
+  for (int i = 0; i < count; i++)
+    if (v[i].noise > 0.0) return true;
+  return false;
+}
+
+fog_quadric_noise fog_model_quadric_noise(const fog_model *m) {
+  return (fog_quadric_noise){.perlin = m->perlin, .time = m->time};
 }
 
 bool fog_quadric_bounds(const fog_quadric *v, int count, double lo[3], double hi[3]) {
@@ -168,5 +241,6 @@ bool fog_quadric_bounds(const fog_quadric *v, int count, double lo[3], double hi
 
 double fog_model_depth_quadric(const fog_model *m, const double camera[3], const double dir[3],
                                double t_surface) {
-  return fog_quadric_optical_depth(m->quadrics, m->quadric_count, camera, dir, t_surface);
+  const fog_quadric_noise noise = fog_model_quadric_noise(m);
+  return fog_quadric_optical_depth(m->quadrics, m->quadric_count, &noise, camera, dir, t_surface);
 }

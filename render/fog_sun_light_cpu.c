@@ -8,9 +8,10 @@
 /* The quadrics beside the model: their exact depth from p towards the sun. */
 static double beside_towards_sun(const fog_model *m, const fog_sun_shadow *volume,
                                  const double p[3]) {
-  return fog_model_quadrics_beside(m)
-             ? fog_quadric_optical_depth(m->quadrics, m->quadric_count, p, volume->sun, HUGE_VAL)
-             : 0.0;
+  if (!fog_model_quadrics_beside(m)) return 0.0;
+  const fog_quadric_noise noise = fog_model_quadric_noise(m);
+  return fog_quadric_optical_depth(m->quadrics, m->quadric_count, &noise, p, volume->sun,
+                                   HUGE_VAL);
 }
 
 double fog_sun_optical_depth(const fog_model *m, fog_sun_shadow_kind kind,
@@ -36,7 +37,9 @@ static double model_extinction_at(const fog_model *m, const double p[3]);
 
 double fog_light_extinction_at(const fog_model *m, const double p[3]) {
   double k = model_extinction_at(m, p);
-  if (fog_model_quadrics_beside(m)) k += fog_quadric_extinction_at(m->quadrics, m->quadric_count, p);
+  const fog_quadric_noise noise = fog_model_quadric_noise(m);
+  if (fog_model_quadrics_beside(m))
+    k += fog_quadric_extinction_at(m->quadrics, m->quadric_count, &noise, p);
   return k;
 }
 
@@ -50,8 +53,10 @@ static double model_extinction_at(const fog_model *m, const double p[3]) {
       return fog_grid3d_extinction_at(m->grid3d, p);
     case FOG_MODEL_HEIGHT:
       return m->extinction * exp(-(p[1] - m->y0) / m->scale_height);
-    case FOG_MODEL_QUADRIC:
-      return fog_quadric_extinction_at(m->quadrics, m->quadric_count, p);
+    case FOG_MODEL_QUADRIC: {
+      const fog_quadric_noise noise = fog_model_quadric_noise(m);
+      return fog_quadric_extinction_at(m->quadrics, m->quadric_count, &noise, p);
+    }
     case FOG_MODEL_PERLIN: {
       fog_perlin_medium medium = fog_model_perlin_medium(m);
       return m->perlin ? fog_perlin_extinction_at(m->perlin, &medium, p) : 0.0;

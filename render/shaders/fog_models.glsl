@@ -33,6 +33,7 @@ uniform float fog_perlin_scale[FOG_PERLIN_MAX_OCTAVES];
 uniform vec3 fog_perlin_camera[FOG_PERLIN_MAX_OCTAVES];
 uniform vec3 fog_perlin_lo, fog_perlin_hi;  // the box, camera-relative
 uniform int fog_perlin_paper;               // 1: FOG_PERLIN_PAPER, the single sample
+uniform float fog_perlin_mean;              // T's mean (fog_perlin.mean_turbulence)
 uniform sampler3D fog_grid3d;                  // FOG_MODEL_VOLUME: RG32F, voxel i and i + 1
                                                // along x at texel i + 1 (a ring of zeros)
 uniform mat3 fog_grid3d_index_from_world;      // index position u = M p + offset
@@ -48,6 +49,7 @@ uniform int fog_quadric_count;
 uniform vec3 fog_quadric_diag[FOG_MAX_QUADRICS];   // M's diagonal
 uniform vec4 fog_quadric_off[FOG_MAX_QUADRICS];    // M's xy, yz, xz; w: density
 uniform float fog_quadric_edge[FOG_MAX_QUADRICS];
+uniform float fog_quadric_noise[FOG_MAX_QUADRICS];  // the turbulence's share (fog_quadric.noise)
 uniform dvec4 fog_quadric_grad_c0[FOG_MAX_QUADRICS];  // g; w: c0
 uniform vec3 fog_quadric_lo[FOG_MAX_QUADRICS];     // the clip box, camera-relative
 uniform vec3 fog_quadric_hi[FOG_MAX_QUADRICS];
@@ -177,27 +179,38 @@ vec2 fog_quadric_breaks(float a, float b, float c, float t0, float t1) {
   return vec2(k > 0 && r0 > t0 && r0 < t1 ? r0 : t1, k > 1 && r1 > t0 && r1 < t1 ? r1 : t1);
 }
 
-// int_{t0}^{t1} of one volume's K along Q(t) = a t^2 + 2 b t + c: the breaks at Q = 0 and
-// Q = -edge sorted by a network of min/max (no dynamic indexing), then per piece 0, the
-// density, or density (-Q/edge) by Simpson's rule (exact).
-float fog_quadric_span(float a, float b, float c, float density, float edge, float t0, float t1) {
+// Defined with the Perlin fog below.
+float fog_quadric_weighted_turbulence(vec3 start, vec3 dir, float ta, float tb, vec3 w);
+float fog_perlin_turbulence(vec3 p);
+
+// int_{t0}^{t1} of one volume's K along Q(t) = a t^2 + 2 b t + c (the ray start + t dir): the
+// breaks at Q = 0 and Q = -edge sorted by a network of min/max (no dynamic indexing), then
+// per piece 0, the density, or density (-Q/edge) by Simpson's rule (exact); with noise, that
+// weight times the turbulence's share (fog_quadric_weighted_turbulence).
+float fog_quadric_span(float a, float b, float c, float density, float edge, float amount,
+                       vec3 start, vec3 dir, float t0, float t1) {
   vec4 s = vec4(fog_quadric_breaks(a, b, c, t0, t1),
                 edge > 0.0 ? fog_quadric_breaks(a, b, c + edge, t0, t1) : vec2(t1));
   s = vec4(min(s.x, s.y), max(s.x, s.y), min(s.z, s.w), max(s.z, s.w));
   s = vec4(min(s.x, s.z), min(s.y, s.w), max(s.x, s.z), max(s.y, s.w));
   s = vec4(s.x, min(s.y, s.z), max(s.y, s.z), s.w);
   float cut[6] = float[6](t0, s.x, s.y, s.z, s.w, t1);
-  float sum = 0.0;
+  float sum = 0.0, plain = 1.0 - amount, turbulent = amount / fog_perlin_mean;
   for (int i = 0; i < 5; i++) {
     float ta = cut[i], tb = cut[i + 1], tm = 0.5 * (ta + tb);
     float qm = (a * tm + 2.0 * b) * tm + c;
     if (!(tb > ta) || qm >= 0.0) continue;
-    if (edge == 0.0 || qm <= -edge) {
-      sum += density * (tb - ta);
+    bool core = edge == 0.0 || qm <= -edge;
+    if (core) {
+      sum += plain * density * (tb - ta);
     } else {
       float qa = (a * ta + 2.0 * b) * ta + c, qb = (a * tb + 2.0 * b) * tb + c;
-      sum -= density / edge * (tb - ta) * (qa + 4.0 * qm + qb) / 6.0;
+      sum -= plain * density / edge * (tb - ta) * (qa + 4.0 * qm + qb) / 6.0;
     }
+    if (amount > 0.0)
+      sum += turbulent * fog_quadric_weighted_turbulence(
+                             start, dir, ta, tb,
+                             core ? vec3(density, 0.0, 0.0) : -density / edge * vec3(c, 2.0 * b, a));
   }
   return sum;
 }
@@ -223,14 +236,15 @@ float fog_quadric_optical_depth_from(vec3 origin, vec3 dir, float length) {
     double c = dot(x, m * x) + 2.0 * dot(g, x) + fog_quadric_grad_c0[i].w;
     double s = double(t0);
     sum += fog_quadric_span(float(a), float(b + a * s), float((a * s + 2.0 * b) * s + c), density,
-                            fog_quadric_edge[i], 0.0, t1 - t0);
+                            fog_quadric_edge[i], fog_quadric_noise[i], origin + t0 * dir, dir,
+                            0.0, t1 - t0);
   }
   return sum;
 }
 
 // K at camera-relative p: the volumes' extinctions summed (fog_quadric_extinction_at).
 float fog_quadric_extinction_at(vec3 p) {
-  float k = 0.0;
+  float k = 0.0, turbulence = -1.0;  // T(p), once, when a noisy volume holds p
   for (int i = 0; i < fog_quadric_count; i++) {
     if (any(lessThan(p, fog_quadric_lo[i])) || any(greaterThan(p, fog_quadric_hi[i]))) continue;
     // in double: Q's terms far from the camera cancel (fog_quadric_optical_depth_from)
@@ -238,8 +252,13 @@ float fog_quadric_extinction_at(vec3 p) {
     float q = float(dot(x, dmat3(fog_quadric_matrix(i)) * x) + 2.0 * dot(g, x) +
                     fog_quadric_grad_c0[i].w);
     if (!(q < 0.0)) continue;
-    float edge = fog_quadric_edge[i], density = fog_quadric_off[i].w;
-    k += edge > 0.0 ? density * min(1.0, -q / edge) : density;
+    float edge = fog_quadric_edge[i], density = fog_quadric_off[i].w, amount = fog_quadric_noise[i];
+    float ki = edge > 0.0 ? density * min(1.0, -q / edge) : density;
+    if (amount > 0.0) {
+      if (turbulence < 0.0) turbulence = fog_perlin_turbulence(p);
+      ki *= 1.0 - amount + amount * turbulence / fog_perlin_mean;
+    }
+    k += ki;
   }
   return k;
 }
@@ -443,6 +462,43 @@ float fog_perlin_octave_depth(int i, vec3 dir, float t0, float t1, float budget)
     if (ty <= tn) ay.cell += ay.step;
     if (tz <= tn) az.cell += az.step;
     t = max(t, tn);
+  }
+  return sum;
+}
+
+// int over [ta, tb] of w(t) T(start + t dir), w = w.x + w.y t + w.z t^2 (fog_quadric_cpu.c's
+// weighted_turbulence, per octave here): each octave's DDA over its texel cells, where N_i
+// is trilinear (a cubic along the ray), 3 Gauss-Legendre nodes per piece (exact for w N_i).
+float fog_quadric_weighted_turbulence(vec3 start, vec3 dir, float ta, float tb, vec3 w) {
+  const float x3 = 0.77459666924148338, w_end = 5.0 / 9.0, w_mid = 8.0 / 9.0;
+  float sum = 0.0, len = tb - ta;
+  for (int i = 0; i < fog_perlin_octaves; i++) {
+    float s = fog_perlin_scale[i];
+    vec3 ue = fog_perlin_camera[i] + s * (start + ta * dir), du = s * dir;
+    fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
+             az = fog_axis_start(ue.z, du.z, 0.0);
+    float t = 0.0, octave = 0.0;
+    for (int guard = 0; t < len && guard < 65536; guard++) {
+      float tx = fog_axis_next(ax), ty = fog_axis_next(ay), tz = fog_axis_next(az);
+      float tn = min(min(len, tx), min(ty, tz));
+      if (tn > t) {
+        vec3 c = floor(ue + (0.5 * (t + tn)) * du);
+        fog_perlin_cell cell = fog_perlin_cell_load(i, ivec3(c));
+        vec3 f0 = ue - c;
+        float half_h = 0.5 * (tn - t), mid = t + half_h, piece = 0.0;
+        for (int k = -1; k <= 1; k++) {
+          float tk = mid + float(k) * x3 * half_h, x = ta + tk;
+          piece += (k == 0 ? w_mid : w_end) * ((w.z * x + w.y) * x + w.x) *
+                   fog_perlin_cell_value(cell, f0 + tk * du);
+        }
+        octave += half_h * piece;
+      }
+      if (tx <= tn) ax.cell += ax.step;
+      if (ty <= tn) ay.cell += ay.step;
+      if (tz <= tn) az.cell += az.step;
+      t = max(t, tn);
+    }
+    sum += exp2(-float(i)) * octave;
   }
   return sum;
 }

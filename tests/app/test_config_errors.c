@@ -76,11 +76,11 @@ int main(void) {
   expect_error("[fog]\nmodel = quadric\nquadric = torus 0 0 0 5 1\n", "3: [fog] quadric: ",
                "expected a shape (sphere, ellipsoid, cylinder, cone or general)");
   expect_error("[fog]\nmodel = quadric\n\nquadric = sphere 0 10 0 50\n", "4: [fog] quadric: ",
-               "expected sphere X Y Z R DENSITY [EDGE] (5 or 6 numbers), got 'sphere 0 10 0 50'");
+               "expected sphere X Y Z R DENSITY [EDGE [NOISE]] (5 to 7 numbers), got 'sphere 0 10 0 50'");
   expect_error("[fog]\nquadric = cone 0 0 0 5 0 0.1\n", "2: [fog] quadric: ",
                "number 5 (0) of cone X Y Z R HEIGHT DENSITY: expected 0.0001 to 1e+07");
   expect_error("[fog]\nquadric = sphere 0 0 0 5 0.1 1.5\n", "2: [fog] quadric: ",
-               "expected DENSITY from 0 to 1e+12 and EDGE from 0 to 1");
+               "expected DENSITY from 0 to 1e+12, EDGE from 0 to 1 and NOISE from 0 to 1");
   expect_error("[fog]\nquadric = general 1 1 1 0 0 0 0 0 0 -1 -1 -1 -1 1 -1 1 0.1\n",
                "2: [fog] quadric: ", "expected XMIN < XMAX, YMIN < YMAX and ZMIN < ZMAX");
   expect_error("[fog]\nquadric = general 1e13 1 1 0 0 0 0 0 0 -1 -1 -1 -1 1 1 1 0.1\n",

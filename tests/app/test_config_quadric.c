@@ -1,7 +1,8 @@
 /* `[fog] quadric = SHAPE ...` lines mean what docs/config.md says: each shape's surface (the
  * equation written out here, not through the render library's constructors) is where the
  * loaded volume's Q is 0, its core where Q = -1, its box the shape's bounds; `general` keeps
- * its ten coefficients and box as written; EDGE defaults to 0 (a hard edge); volumes stay in
+ * its ten coefficients and box as written; EDGE defaults to 0 (a hard edge), NOISE (after
+ * EDGE) to 0; volumes stay in
  * file order; `scene_config_write` gives them back as the same scene. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -34,7 +35,7 @@ int main(void) {
         "quadric = sphere 10 20 30 5 0.1\n"
         "quadric = ellipsoid -10 0 5 4 2 8 0.2 0.25\n"
         "quadric = cylinder 100 -5 50 3 40 0.3 0.5\n"
-        "quadric = cone -50 10 -60 12 30 0.4 1\n"
+        "quadric = cone -50 10 -60 12 30 0.4 1 0.35\n"
         "quadric = general 1 -2 3 0.5 -0.25 0.125 7 8 9 -10 -1 -2 -3 4 5 6 0.05 0.75\n", f);
   fclose(f);
   scene_config cfg;
@@ -54,6 +55,7 @@ int main(void) {
   near(q_at(s, 10, 20, 30), -1, 1e-13, "sphere centre");
   near(s->lo[0], 5, 0, "sphere box"), near(s->hi[2], 35, 0, "sphere box");
   near(s->density, 0.1, 0, "sphere density"), near(s->edge, 0, 0, "default edge");
+  near(s->noise, 0, 0, "default noise"), near(co->noise, 0.35, 0, "cone noise (after EDGE)");
   /* ellipsoid: ((x + 10)/4)^2 + (y/2)^2 + ((z - 5)/8)^2 = 1 */
   near(q_at(e, -6, 0, 5), 0, 1e-13, "ellipsoid x");
   near(q_at(e, -10, -2, 5), 0, 1e-13, "ellipsoid y");

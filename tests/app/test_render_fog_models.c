@@ -4,7 +4,8 @@
  * top), and the classic linear and exp2 factors, each pixel's transmittance against the CPU
  * model of the documented meaning of the keys (density_scale, fog_height, scale_height,
  * rbf_base, rbf lines, fog_start and fog_end from the camera; quadric lines as
- * test_config_quadric pins them, for model = quadric and beside the height and RBF fog; for
+ * test_config_quadric pins them, for model = quadric and beside the height, RBF and Perlin
+ * fog, NOISE modulating them by the perlin_ keys' turbulence (K (1 - n + n T / T_mean)); for
  * the volume the VDB frame's grid where the bake put it, integrated exactly), along the
  * pixel's ray to
  * the depth render_frame reports (the sky: to infinity). Max |delta tau| <= 2e-4. `fogpipe
@@ -65,7 +66,9 @@ static fog_model documented_model(const scene_config *cfg, fog_rbf *rbfs,
                                    fog_quadric *quadrics, fog_perlin *perlin) {
   const scene_fog_config *f = &cfg->fog;
   *perlin = (fog_perlin){0};
-  if (f->model == FOG_MODEL_PERLIN) {
+  bool noisy = false; /* quadric volumes with NOISE: the perlin_ keys' turbulence */
+  for (int i = 0; i < f->quadric_count; i++) noisy = noisy || f->quadrics[i].noise > 0;
+  if (f->model == FOG_MODEL_PERLIN || noisy) {
     /* the perlin_ keys; the box: the terrain's footprint between [box] floor and top; one
      * wind triple per octave (or one for all) */
     fog_perlin_desc d = fog_perlin_desc_default();
@@ -99,7 +102,8 @@ static fog_model documented_model(const scene_config *cfg, fog_rbf *rbfs,
                      .quadric_count = f->quadric_count,
                      .eye = {cfg->camera.position[0], cfg->camera.position[1],
                              cfg->camera.position[2]},
-                     .fog_start = f->fog_start, .fog_end = f->fog_end, .perlin = perlin,
+                     .fog_start = f->fog_start, .fog_end = f->fog_end,
+                     .perlin = perlin->texels ? perlin : NULL,
                      .time = 0.0, .perlin_integral = (fog_perlin_integral)f->perlin_integral};
 }
 
@@ -184,6 +188,21 @@ int main(void) {
   check_config("configs/vdb_plume_volume.ini", "volume (configs/vdb_plume_volume.ini)");
   check_config("configs/quadric_volumes.ini", "quadric (configs/quadric_volumes.ini)");
   check_config("configs/perlin_fog.ini", "perlin (configs/perlin_fog.ini)");
+  /* noise inside quadric volumes beside the Perlin fog (its [fog] section is the file's last:
+   * the lines append to it): both read its octaves */
+  char beside[256];
+  snprintf(beside, sizeof beside, "%s/perlin_beside.ini", dir);
+  FILE *in = fopen("configs/perlin_fog.ini", "r"), *out = fopen(beside, "w");
+  CHECK(in && out, "copy configs/perlin_fog.ini");
+  if (in && out) {
+    for (int c; (c = fgetc(in)) != EOF;) fputc(c, out);
+    fputs("\nquadric = sphere -20 100 -60 45 0.3 0.5 1\n"
+          "quadric = cylinder 90 0 -40 20 160 0.4 0 0.6\n", out);
+  }
+  if (in) fclose(in);
+  if (out) fclose(out);
+  check_config(beside, "perlin + noisy quadrics");
+  unlink(beside);
 
   /* `fogpipe record` of an analytic model: every frame is render's image (it stands still). */
   const char *bin = getenv("FOGPIPE_BIN");

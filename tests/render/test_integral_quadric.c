@@ -130,7 +130,7 @@ static void compare(const fog_quadric *v, int n, const double o[3], const double
   quadric_reference_volume ref[FOG_MAX_QUADRICS];
   for (int i = 0; i < n; i++) ref[i] = to_reference(&v[i]);
   double want = quadric_reference_optical_depth(ref, n, o, d, length);
-  double got = fog_quadric_optical_depth(v, n, o, d, length);
+  double got = fog_quadric_optical_depth(v, n, NULL, o, d, length);
   double error = fabs(got - want) / (1.0 + want);
   worst_error = fmax(worst_error, error);
   CHECK(error <= 1e-9, "%s: twin %.17g, reference %.17g", what, got, want);
@@ -167,20 +167,20 @@ static void check_cases(void) {
   fog_quadric s = fog_quadric_sphere(c, 2.0, 0.3, 0.0);
   /* tangent: the line x = 3 (distance 2) along z */
   double o[3] = {3, 2, -50}, d[3] = {0, 0, 1};
-  double t = fog_quadric_optical_depth(&s, 1, o, d, HUGE_VAL);
+  double t = fog_quadric_optical_depth(&s, 1, NULL, o, d, HUGE_VAL);
   printf("tangent ray: %.3e\n", t);
   CHECK(fabs(t) <= 1e-12, "tangent ray: %g", t);
   /* through the centre: 0.3 * 4; from the centre: 0.3 * 2 */
   double oc[3] = {1, 2, -50};
-  CHECK(fabs(fog_quadric_optical_depth(&s, 1, oc, d, HUGE_VAL) - 1.2) <= 1e-13, "sphere chord");
-  CHECK(fabs(fog_quadric_optical_depth(&s, 1, c, d, HUGE_VAL) - 0.6) <= 1e-13, "from the centre");
+  CHECK(fabs(fog_quadric_optical_depth(&s, 1, NULL, oc, d, HUGE_VAL) - 1.2) <= 1e-13, "sphere chord");
+  CHECK(fabs(fog_quadric_optical_depth(&s, 1, NULL, c, d, HUGE_VAL) - 0.6) <= 1e-13, "from the centre");
   /* a = 0: a vertical ray in an upright cylinder sees Q constant: density over the height */
   fog_quadric cy = fog_quadric_cylinder((double[3]){0, 0, 0}, 5, 20, 0.1, 0.5);
   double up[3] = {0, 1, 0}, below[3] = {1, -40, 1};
   double k = 0.1 * fmin(1.0, (1.0 - 2.0 / 25.0) / 0.5); /* Q = 2/25 - 1 at x = z = 1 */
   compare(&cy, 1, below, up, HUGE_VAL, "a = 0");
-  CHECK(fabs(fog_quadric_optical_depth(&cy, 1, below, up, HUGE_VAL) - 20 * k) <= 1e-12,
-        "a = 0: %.17g vs %.17g", fog_quadric_optical_depth(&cy, 1, below, up, HUGE_VAL), 20 * k);
+  CHECK(fabs(fog_quadric_optical_depth(&cy, 1, NULL, below, up, HUGE_VAL) - 20 * k) <= 1e-12,
+        "a = 0: %.17g vs %.17g", fog_quadric_optical_depth(&cy, 1, NULL, below, up, HUGE_VAL), 20 * k);
   /* a ray lying in the cylinder's top face (the closed box keeps it) */
   double face[3] = {-50, 20, 0}, along_x[3] = {1, 0, 0};
   compare(&cy, 1, face, along_x, HUGE_VAL, "ray in a box face");
@@ -188,12 +188,12 @@ static void check_cases(void) {
   fog_quadric cone = {.q = {1, -1, 1, 0, 0, 0, 0, 0, 0, 0}, .lo = {-2, -2, -2},
                       .hi = {2, 2, 2}, .density = 1.0};
   double oy[3] = {0.5, -5, 0};
-  CHECK(fabs(fog_quadric_optical_depth(&cone, 1, oy, up, HUGE_VAL) - 3.0) <= 1e-13, "double cone");
+  CHECK(fabs(fog_quadric_optical_depth(&cone, 1, NULL, oy, up, HUGE_VAL) - 3.0) <= 1e-13, "double cone");
   /* soft sphere, edge 1: K = c (1 - r^2) on the diameter: c 4/3 */
   fog_quadric soft = fog_quadric_sphere((double[3]){0, 0, 0}, 1, 0.6, 1.0);
   double ox[3] = {-3, 0, 0};
-  CHECK(fabs(fog_quadric_optical_depth(&soft, 1, ox, along_x, HUGE_VAL) - 0.8) <= 1e-14,
-        "soft sphere: %.17g", fog_quadric_optical_depth(&soft, 1, ox, along_x, HUGE_VAL));
+  CHECK(fabs(fog_quadric_optical_depth(&soft, 1, NULL, ox, along_x, HUGE_VAL) - 0.8) <= 1e-14,
+        "soft sphere: %.17g", fog_quadric_optical_depth(&soft, 1, NULL, ox, along_x, HUGE_VAL));
 }
 
 static void check_extinction(void) {
@@ -205,7 +205,7 @@ static void check_extinction(void) {
     for (int k = 0; k < 200; k++) {
       double p[3] = {fog_test_range(-80, 80), fog_test_range(-60, 60), fog_test_range(-80, 80)};
       double want = quadric_reference_extinction(ref, 6, p);
-      worst = fmax(worst, fabs(fog_quadric_extinction_at(v, 6, p) - want) / (1.0 + want));
+      worst = fmax(worst, fabs(fog_quadric_extinction_at(v, 6, NULL, p) - want) / (1.0 + want));
     }
   }
   printf("pointwise extinction vs the reference: %.2e\n", worst);
