@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "app/cli.h"
+#include "app/cli_options.h"
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/pipeline.h"
@@ -17,52 +18,36 @@
 #include "render/gl_context.h"
 #include "sim/sim.h"
 
-static void print_help(FILE *out) {
-  fprintf(out,
-          "usage: fogpipe bake CONFIG --frames N --out DIR [--fps F]\n\n"
-          "Runs the scene's fog simulation for N frames and writes each frame's fogmap\n"
-          "(DIR/fog.0001.exr ...) and DIR/bake.ini, the scene playing them. Render ranges\n"
-          "of it on a farm: fogpipe record DIR/bake.ini --frames A-B --out FRAMES/\n\n"
-          "options:\n"
-          "  --frames N   frames to bake, 1 to 9999999\n"
-          "  --out DIR    the bake's folder (created if missing)\n"
-          "  --fps F      frames per second of simulated time, as record's --fps (default 24)\n"
-          "  -h, --help   this help\n");
-}
-
 typedef struct bake_job {
   const char *config_path, *out;
   int frames;
   double fps;
 } bake_job;
 
-/* -1 to go on, else the exit status. */
+/* 0 to go on, CLI_HELP, or the exit status of a bad command line. */
 static int parse_bake_options(int argc, char **argv, bake_job *job) {
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-      print_help(stdout);
-      return 0;
-    } else if (!strcmp(a, "--frames") && value) {
-      if (cli_int("bake", "--frames", argv[++i], 1, 9999999, &job->frames)) return 2;
-    } else if (!strcmp(a, "--fps") && value) {
-      if (cli_number("bake", "--fps", argv[++i], 1.0 / PIPELINE_MAX_FRAME_SECONDS, 1000,
-                     &job->fps))
-        return 2;
-    } else if (!strcmp(a, "--out") && value) {
-      job->out = argv[++i];
-    } else if (a[0] == '-' && a[1]) {
-      return cli_usage_error("bake", "unknown option or missing value: '%s'", a);
-    } else if (!job->config_path) {
-      job->config_path = a;
-    } else {
-      return cli_usage_error("bake", "unexpected argument '%s' (one CONFIG only)", a);
-    }
-  }
-  if (!job->config_path || !job->frames || !job->out)
-    return cli_usage_error("bake", "%s missing",
-                           !job->config_path ? "CONFIG" : !job->frames ? "--frames N" : "--out DIR");
-  return -1;
+  const cli_option options[] = {
+      {.kind = CLI_INT, .name = "--frames", .value = "N", .target = &job->frames, .min = 1,
+       .max = 9999999, .help = "frames to bake, 1 to 9999999 (required)"},
+      {.kind = CLI_TEXT, .name = "--out", .value = "DIR", .target = &job->out,
+       .help = "the bake's folder (created if missing; required)"},
+      {.kind = CLI_NUMBER, .name = "--fps", .value = "F", .target = &job->fps,
+       .min = 1.0 / PIPELINE_MAX_FRAME_SECONDS, .max = 1000,
+       .help = "frames per second of simulated time, as record's --fps (default 24)"},
+  };
+  const cli_spec spec = {
+      .command = "bake",
+      .usage = "CONFIG --frames N --out DIR [--fps F]",
+      .about = "Runs the scene's fog simulation for N frames and writes each frame's fogmap\n"
+               "(DIR/fog.0001.exr ...) and DIR/bake.ini, the scene playing them. Render ranges\n"
+               "of it on a farm: fogpipe record DIR/bake.ini --frames A-B --out FRAMES/",
+      .operand = "CONFIG", .min_operands = 1, .max_operands = 1,
+      .options = options, .option_count = sizeof options / sizeof options[0]};
+  int operands = 0, parsed = cli_parse(&spec, argc, argv, &job->config_path, &operands);
+  if (parsed) return parsed;
+  if (!job->frames) return cli_usage_error("bake", "--frames N is required");
+  if (!job->out) return cli_usage_error("bake", "--out DIR is required");
+  return 0;
 }
 
 /* The frame files' pattern: at least 4 digits, more for longer bakes. */
@@ -116,7 +101,7 @@ static int bake_frames(const bake_job *job, const scene_config *cfg, const char 
 int cmd_bake(int argc, char **argv) {
   bake_job job = {.fps = 24.0};
   int parsed = parse_bake_options(argc, argv, &job);
-  if (parsed >= 0) return parsed;
+  if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   scene_config cfg;
   scene_config_error cerr = {{0}};
   if (scene_config_load(job.config_path, &cfg, &cerr)) return cli_fail("bake", "%s", cerr.message);

@@ -19,6 +19,7 @@
 #include "app/panel.h"
 #include "app/pipeline.h"
 #include "app/cli.h"
+#include "app/cli_options.h"
 #include "app/cmd_record.h"
 #include "app/cmd_view.h"
 #include "app/live_rung.h"
@@ -34,39 +35,6 @@
 #define HEADLESS_WIDTH 640
 #define HEADLESS_HEIGHT 360
 
-static void print_help(FILE *out) {
-  fprintf(out,
-          "usage: fogpipe demo [CONFIG] [options]\n\n"
-          "The live fog demo: the fog is simulated (FFT stable fluids), wavelet-transformed and\n"
-          "rendered with the exact extinction integral every frame. CONFIG defaults to\n"
-          "%s.\n\n"
-          "In the window:\n"
-          "  W A S D         move (Q/E down/up, Shift faster)\n"
-          "  middle drag     look around (or the arrow keys)\n"
-          "  left drag       paint fog on the terrain\n"
-          "  right drag or Shift+left drag   erase fog\n"
-          "  Space           pause / resume the simulation;  N: one step;  R: reset\n"
-          "  Esc             quit\n"
-          "The panel sets the basis, levels, mu, LOD method, density, colour, vertical\n"
-          "profile, wind, viscosity and emitter rate, and shows the per-stage timings; its\n"
-          "model menu draws a cheaper model fitted to the fog live, with its error.\n\n"
-          "Without a display (no DISPLAY/WAYLAND_DISPLAY, or the window cannot open) the\n"
-          "scene is recorded headless instead: %d frames at %dx%d into ./out/demo (or a\n"
-          "temporary folder if that is not writable).\n\n"
-          "options:\n"
-          "  --size WxH           window size (default 1280x720)\n"
-          "  --scale S            render at S times the window size, 0.25..1 (default 1 on\n"
-          "                       a GPU; 0.5 on a software renderer such as llvmpipe, with\n"
-          "                       the fog at half of that, upsampled by depth: the fog pass\n"
-          "                       costs per pixel; the panel changes both)\n"
-          "  --model NAME         start with the panel's model: fogmap (default),\n"
-          "                       homogeneous or height (fitted to the fog live)\n"
-          "  --screenshot FILE    after --frames frames, save the window as a PNG and quit\n"
-          "  --frames N           frames before the screenshot (default 30); without a\n"
-          "                       display, frames recorded (default %d)\n"
-          "  -h, --help           this help\n",
-          DEFAULT_CONFIG, HEADLESS_FRAMES, HEADLESS_WIDTH, HEADLESS_HEIGHT, HEADLESS_FRAMES);
-}
 
 /* ---- free camera ---- */
 
@@ -364,40 +332,58 @@ typedef struct demo_options {
   int live_rung;             /* live_rung_kind the panel starts with */
 } demo_options;
 
-/* -1 to go on, else the exit status. */
+/* 0 to go on, CLI_HELP, or the exit status of a bad command line. */
 static int parse_demo_options(int argc, char **argv, demo_options *o) {
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-      print_help(stdout);
-      return 0;
-    } else if (!strcmp(a, "--size") && value) {
-      if (cli_size("demo", "--size", argv[++i], &o->width, &o->height)) return 2;
-    } else if (!strcmp(a, "--scale") && value) {
-      if (cli_number("demo", "--scale", argv[++i], 0.25, 1.0, &o->scale)) return 2;
-    } else if (!strcmp(a, "--model") && value) {
-      static const char *const models[LIVE_RUNG_COUNT] = {"fogmap", "homogeneous", "height"};
-      o->live_rung = -1;
-      for (int k = 0; k < LIVE_RUNG_COUNT; k++)
-        if (!strcmp(value, models[k])) o->live_rung = k;
-      if (o->live_rung < 0)
-        return cli_usage_error("demo", "--model '%s': expected fogmap, homogeneous or height",
-                               value);
-      i++;
-    } else if (!strcmp(a, "--screenshot") && value) {
-      o->screenshot = argv[++i];
-    } else if (!strcmp(a, "--frames") && value) {
-      if (cli_int("demo", "--frames", argv[++i], 1, 1000000, &o->frames)) return 2;
-    } else if (a[0] == '-' && a[1]) {
-      return cli_usage_error("demo", "unknown option or missing value: '%s'", a);
-    } else if (!o->config_path) {
-      o->config_path = a;
-    } else {
-      return cli_usage_error("demo", "unexpected argument '%s' (one CONFIG only)", a);
-    }
-  }
+  static const char *const models[LIVE_RUNG_COUNT + 1] = {"fogmap", "homogeneous", "height",
+                                                          NULL};
+  int size[2] = {o->width, o->height};
+  const cli_option options[] = {
+      {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
+       .help = "window size (default 1280x720)"},
+      {.kind = CLI_NUMBER, .name = "--scale", .value = "S", .target = &o->scale, .min = 0.25,
+       .max = 1.0,
+       .help = "render at S times the window size, 0.25..1 (default 1 on\n"
+               "a GPU; 0.5 on a software renderer such as llvmpipe, with\n"
+               "the fog at half of that, upsampled by depth: the fog pass\n"
+               "costs per pixel; the panel changes both)"},
+      {.kind = CLI_CHOICE, .name = "--model", .value = "NAME", .target = &o->live_rung,
+       .choices = models,
+       .help = "start with the panel's model: fogmap (default),\n"
+               "homogeneous or height (fitted to the fog live)"},
+      {.kind = CLI_TEXT, .name = "--screenshot", .value = "FILE", .target = &o->screenshot,
+       .help = "after --frames frames, save the window as a PNG and quit"},
+      {.kind = CLI_INT, .name = "--frames", .value = "N", .target = &o->frames, .min = 1,
+       .max = 1000000,
+       .help = "frames before the screenshot (default 30); without a\n"
+               "display, frames recorded (default " CLI_TEXT_OF(HEADLESS_FRAMES) ")"},
+  };
+  const cli_spec spec = {
+      .command = "demo",
+      .usage = "[CONFIG] [options]",
+      .about = "The live fog demo: the fog is simulated (FFT stable fluids), wavelet-transformed and\n"
+               "rendered with the exact extinction integral every frame. CONFIG defaults to\n"
+               DEFAULT_CONFIG ".\n\n"
+               "In the window:\n"
+               "  W A S D         move (Q/E down/up, Shift faster)\n"
+               "  middle drag     look around (or the arrow keys)\n"
+               "  left drag       paint fog on the terrain\n"
+               "  right drag or Shift+left drag   erase fog\n"
+               "  Space           pause / resume the simulation;  N: one step;  R: reset\n"
+               "  Esc             quit\n"
+               "The panel sets the basis, levels, mu, LOD method, density, colour, vertical\n"
+               "profile, wind, viscosity and emitter rate, and shows the per-stage timings; its\n"
+               "model menu draws a cheaper model fitted to the fog live, with its error.\n\n"
+               "Without a display (no DISPLAY/WAYLAND_DISPLAY, or the window cannot open) the\n"
+               "scene is recorded headless instead: " CLI_TEXT_OF(HEADLESS_FRAMES) " frames at "
+               CLI_TEXT_OF(HEADLESS_WIDTH) "x" CLI_TEXT_OF(HEADLESS_HEIGHT) " into ./out/demo (or a\n"
+               "temporary folder if that is not writable).",
+      .operand = "CONFIG", .min_operands = 0, .max_operands = 1,
+      .options = options, .option_count = sizeof options / sizeof options[0]};
+  int operands = 0, parsed = cli_parse(&spec, argc, argv, &o->config_path, &operands);
+  if (parsed) return parsed;
+  o->width = size[0], o->height = size[1];
   if (!o->config_path) o->config_path = DEFAULT_CONFIG;
-  return -1;
+  return 0;
 }
 
 /* What the window's input remembers between frames. */
@@ -544,7 +530,7 @@ static int demo_loop(gl_context *gl, pipeline *pipe, panel *ui, demo_ui *d,
 int cmd_demo(int argc, char **argv) {
   demo_options o = {.width = 1280, .height = 720};
   int parsed = parse_demo_options(argc, argv, &o);
-  if (parsed >= 0) return parsed;
+  if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   int fog_divisor = 1; /* fog resolution divisor; 2 with the automatic scale on software GL */
   scene_config config;
   scene_config_error cerr = {{0}};

@@ -7,61 +7,12 @@
 #include <string.h>
 
 #include "app/cli.h"
+#include "app/cli_options.h"
 #include "app/commands.h"
 #include "sim/designed_fog.h"
 #include "sim/fogmap.h"
 
 enum { max_blobs = 256 };
-
-static void print_help(FILE *out) {
-  fprintf(out,
-          "usage: fogpipe design (--perlin | --blobs N | --blob X,Z,SIGMA,PEAK)... --size WxH\n"
-          "                      --out FILE.exr|FILE.png [options]\n"
-          "\n"
-          "Writes a designed fogmap. Perlin turbulence (Perlin 2002 improved noise, summed\n"
-          "over octaves, drifting with --velocity over --time as in Zdrojewska 2004), Gaussian\n"
-          "blobs c*exp(-|x-b|^2/(2 sigma^2)), or, with both, the turbulence multiplied by\n"
-          "(--blob-base + the blob sum): turbulence modulated by Gaussian banks.\n"
-          "Positions and sizes are in fogmap cells; cell (x, z) is at (x, z), z = image row.\n"
-          "\n"
-          "what:\n"
-          "  --perlin               Perlin turbulence base + gain * T(p - velocity * time)\n"
-          "  --blobs N              N Gaussian blobs placed at random from --seed\n"
-          "  --blob X,Z,SIGMA,PEAK  one Gaussian blob (repeatable, at most %d blobs in all)\n"
-          "output:\n"
-          "  --size WxH             fogmap size in cells (required)\n"
-          "  --out FILE             .exr: one float channel \"Y\" (exactly what fogmap_load reads);\n"
-          "                         .png: 16-bit grey, density / png-max * 65535 (required)\n"
-          "  --half                 EXR: store the channel as 16-bit half floats\n"
-          "  --png-max D            PNG: the density stored as 65535 (default: the map's maximum;\n"
-          "                         load the PNG with density_scale D to get densities back)\n"
-          "Perlin turbulence:\n"
-          "  --seed N               permutation seed, also places random blobs (default 1;\n"
-          "                         0 is Perlin's reference permutation)\n"
-          "  --time T               animation time (default 0)\n"
-          "  --velocity VX,VZ       drift of the noise in cells per unit time (default 0,0)\n"
-          "  --feature-size S       noise lattice spacing in cells, the largest eddies (default 32)\n"
-          "  --octaves N            turbulence octaves (default 4)\n"
-          "  --gain G               turbulence gain (default 1)\n"
-          "  --base B               density added to the turbulence (default 0)\n"
-          "  --slice S              the noise's third coordinate (default 0)\n"
-          "  --slice-rate R         slice change per unit time: evolving, not only drifting fog\n"
-          "blobs:\n"
-          "  --blob-base B          density added to the blob sum (default 0; with --perlin it\n"
-          "                         is the turbulence left between the banks)\n"
-          "  --help                 this text\n",
-          max_blobs);
-}
-
-static int takes_value(const char *opt) {
-  static const char *const valued[] = {
-      "--size",  "--out",  "--seed", "--blobs", "--blob",  "--time",       "--velocity",
-      "--feature-size", "--octaves", "--gain", "--base", "--slice", "--slice-rate",
-      "--blob-base", "--png-max"};
-  for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
-    if (!strcmp(opt, valued[i])) return 1;
-  return 0;
-}
 
 /* Parses exactly `count` comma-separated finite numbers. */
 static int parse_numbers(const char *text, double *values, int count) {
@@ -108,96 +59,99 @@ typedef struct design_options {
   perlin_fog_desc noise;
 } design_options;
 
-/* One option with its value; 0, or the usage error's exit status. */
-static int design_value(design_options *o, const char *opt, const char *value) {
+/* --blob X,Z,SIGMA,PEAK, appended. */
+static int parse_blob(const char *command, const char *option, const char *text, void *target) {
+  design_options *o = target;
   double v[4];
-  long n;
-  if (!strcmp(opt, "--size")) {
-    int w, h;
-    if (cli_size("design", "--size", value, &w, &h)) return 2;
-    o->width = w, o->height = h;
-  } else if (!strcmp(opt, "--out")) {
-    o->out = value;
-  } else if (!strcmp(opt, "--seed")) {
-    if (!cli_parse_long(value, 0, 0x7fffffffL, &o->seed))
-      return cli_usage_error("design", "--seed expects an integer 0 to 2147483647, got '%s'", value);
-  } else if (!strcmp(opt, "--blobs")) {
-    if (!cli_parse_long(value, 1, max_blobs, &n))
-      return cli_usage_error("design", "--blobs expects a count 1 to 256, got '%s'", value);
-    o->random_blobs = (int)n;
-  } else if (!strcmp(opt, "--blob")) {
-    if (parse_numbers(value, v, 4) || !(v[2] > 0) || !(v[3] >= 0))
-      return cli_usage_error("design", "--blob expects X,Z,SIGMA,PEAK with SIGMA > 0 and PEAK >= 0, got "
-                         "'%s'", value);
-    if (o->blob_count >= max_blobs) return cli_usage_error("design", "more than 256 blobs");
-    o->blobs[o->blob_count++] = (fog_blob){(float)v[0], (float)v[1], (float)v[2], (float)v[3]};
-  } else if (!strcmp(opt, "--time")) {
-    if (parse_numbers(value, v, 1)) return cli_usage_error("design", "--time expects a number, got '%s'", value);
-    o->noise.time = (float)v[0];
-  } else if (!strcmp(opt, "--velocity")) {
-    if (parse_numbers(value, v, 2))
-      return cli_usage_error("design", "--velocity expects VX,VZ (two numbers), got '%s'", value);
-    o->noise.velocity[0] = (float)v[0];
-    o->noise.velocity[1] = (float)v[1];
-  } else if (!strcmp(opt, "--feature-size")) {
-    if (parse_numbers(value, v, 1) || !(v[0] > 0))
-      return cli_usage_error("design", "--feature-size expects a positive number of cells, got '%s'",
-                         value);
-    o->noise.feature_size = (float)v[0];
-  } else if (!strcmp(opt, "--octaves")) {
-    if (!cli_parse_long(value, 1, 30, &n))
-      return cli_usage_error("design", "--octaves expects 1 to 30, got '%s'", value);
-    o->noise.octaves = (int)n;
-  } else if (!strcmp(opt, "--gain")) {
-    if (parse_numbers(value, v, 1) || !(v[0] > 0))
-      return cli_usage_error("design", "--gain expects a positive number, got '%s'", value);
-    o->noise.gain = (float)v[0];
-  } else if (!strcmp(opt, "--base")) {
-    if (parse_numbers(value, v, 1) || !(v[0] >= 0))
-      return cli_usage_error("design", "--base expects a number >= 0, got '%s'", value);
-    o->noise.base = (float)v[0];
-  } else if (!strcmp(opt, "--slice")) {
-    if (parse_numbers(value, v, 1)) return cli_usage_error("design", "--slice expects a number, got '%s'", value);
-    o->noise.slice = (float)v[0];
-  } else if (!strcmp(opt, "--slice-rate")) {
-    if (parse_numbers(value, v, 1))
-      return cli_usage_error("design", "--slice-rate expects a number, got '%s'", value);
-    o->noise.slice_rate = (float)v[0];
-  } else if (!strcmp(opt, "--blob-base")) {
-    if (parse_numbers(value, v, 1) || !(v[0] >= 0))
-      return cli_usage_error("design", "--blob-base expects a number >= 0, got '%s'", value);
-    o->blob_base = v[0];
-  } else if (!strcmp(opt, "--png-max")) {
-    if (parse_numbers(value, v, 1) || !(v[0] > 0))
-      return cli_usage_error("design", "--png-max expects a positive density, got '%s'", value);
-    o->png_max = v[0];
-  } else {
-    return cli_usage_error("design", "unknown option '%s'", opt);
-  }
+  if (parse_numbers(text, v, 4) || !(v[2] > 0) || !(v[3] >= 0))
+    return cli_usage_error(command, "%s '%s': expected X,Z,SIGMA,PEAK with SIGMA > 0 and "
+                           "PEAK >= 0", option, text);
+  if (o->blob_count >= max_blobs) return cli_usage_error(command, "more than %d blobs", max_blobs);
+  o->blobs[o->blob_count++] = (fog_blob){(float)v[0], (float)v[1], (float)v[2], (float)v[3]};
   return 0;
 }
 
-/* -1 to go on, else the exit status. */
+/* --velocity VX,VZ */
+static int parse_velocity(const char *command, const char *option, const char *text,
+                          void *target) {
+  double v[2];
+  if (parse_numbers(text, v, 2))
+    return cli_usage_error(command, "%s '%s': expected VX,VZ (two numbers)", option, text);
+  float *velocity = target;
+  velocity[0] = (float)v[0], velocity[1] = (float)v[1];
+  return 0;
+}
+
+/* 0 to go on, CLI_HELP, or the exit status of a bad command line. */
 static int parse_design_options(int argc, char **argv, design_options *o) {
-  for (int i = 1; i < argc; i++) {
-    const char *opt = argv[i];
-    if (!strcmp(opt, "--help") || !strcmp(opt, "-h")) {
-      print_help(stdout);
-      return 0;
-    }
-    if (!strcmp(opt, "--perlin")) {
-      o->perlin = 1;
-      continue;
-    }
-    if (!strcmp(opt, "--half")) {
-      o->half = 1;
-      continue;
-    }
-    if (!takes_value(opt)) return cli_usage_error("design", "unknown option '%s'", opt);
-    if (i + 1 >= argc) return cli_usage_error("design", "%s needs a value", opt);
-    int status = design_value(o, opt, argv[++i]);
-    if (status) return status;
-  }
+  int size[2] = {0, 0}, seed = 1;
+  bool perlin = false, half = false;
+  const cli_option options[] = {
+      {.kind = CLI_SECTION, .name = "what:"},
+      {.kind = CLI_FLAG, .name = "--perlin", .target = &perlin,
+       .help = "Perlin turbulence base + gain * T(p - velocity * time)"},
+      {.kind = CLI_INT, .name = "--blobs", .value = "N", .target = &o->random_blobs, .min = 1,
+       .max = max_blobs, .help = "N Gaussian blobs placed at random from --seed"},
+      {.kind = CLI_CUSTOM, .name = "--blob", .value = "X,Z,SIGMA,PEAK", .target = o,
+       .parse = parse_blob, .help = "one Gaussian blob (repeatable, at most 256 blobs in all)"},
+      {.kind = CLI_SECTION, .name = "output:"},
+      {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
+       .help = "fogmap size in cells (required)"},
+      {.kind = CLI_TEXT, .name = "--out", .value = "FILE", .target = &o->out,
+       .help = ".exr: one float channel \"Y\" (exactly what fogmap_load reads);\n"
+               ".png: 16-bit grey, density / png-max * 65535 (required)"},
+      {.kind = CLI_FLAG, .name = "--half", .target = &half,
+       .help = "EXR: store the channel as 16-bit half floats"},
+      {.kind = CLI_NUMBER, .name = "--png-max", .value = "D", .target = &o->png_max,
+       .min = 1e-30, .max = 1e30,
+       .help = "PNG: the density stored as 65535 (default: the map's maximum;\n"
+               "load the PNG with density_scale D to get densities back)"},
+      {.kind = CLI_SECTION, .name = "Perlin turbulence:"},
+      {.kind = CLI_INT, .name = "--seed", .value = "N", .target = &seed, .min = 0,
+       .max = 0x7fffffff,
+       .help = "permutation seed, also places random blobs (default 1;\n"
+               "0 is Perlin's reference permutation)"},
+      {.kind = CLI_FLOAT, .name = "--time", .value = "T", .target = &o->noise.time, .min = -1e9,
+       .max = 1e9, .help = "animation time (default 0)"},
+      {.kind = CLI_CUSTOM, .name = "--velocity", .value = "VX,VZ", .target = o->noise.velocity,
+       .parse = parse_velocity,
+       .help = "drift of the noise in cells per unit time (default 0,0)"},
+      {.kind = CLI_FLOAT, .name = "--feature-size", .value = "S", .target = &o->noise.feature_size,
+       .min = 1e-3, .max = 1e9,
+       .help = "noise lattice spacing in cells, the largest eddies (default 32)"},
+      {.kind = CLI_INT, .name = "--octaves", .value = "N", .target = &o->noise.octaves, .min = 1,
+       .max = 30, .help = "turbulence octaves (default 4)"},
+      {.kind = CLI_FLOAT, .name = "--gain", .value = "G", .target = &o->noise.gain, .min = 1e-9,
+       .max = 1e9, .help = "turbulence gain (default 1)"},
+      {.kind = CLI_FLOAT, .name = "--base", .value = "B", .target = &o->noise.base, .min = 0,
+       .max = 1e9, .help = "density added to the turbulence (default 0)"},
+      {.kind = CLI_FLOAT, .name = "--slice", .value = "S", .target = &o->noise.slice, .min = -1e9,
+       .max = 1e9, .help = "the noise's third coordinate (default 0)"},
+      {.kind = CLI_FLOAT, .name = "--slice-rate", .value = "R", .target = &o->noise.slice_rate,
+       .min = -1e9, .max = 1e9,
+       .help = "slice change per unit time: evolving, not only drifting fog"},
+      {.kind = CLI_SECTION, .name = "blobs:"},
+      {.kind = CLI_NUMBER, .name = "--blob-base", .value = "B", .target = &o->blob_base,
+       .min = 0, .max = 1e9,
+       .help = "density added to the blob sum (default 0; with --perlin it\n"
+               "is the turbulence left between the banks)"},
+  };
+  const cli_spec spec = {
+      .command = "design",
+      .usage = "(--perlin | --blobs N | --blob X,Z,SIGMA,PEAK)... --size WxH\n"
+               "                      --out FILE.exr|FILE.png [options]",
+      .about = "Writes a designed fogmap. Perlin turbulence (Perlin 2002 improved noise, summed\n"
+               "over octaves, drifting with --velocity over --time as in Zdrojewska 2004), Gaussian\n"
+               "blobs c*exp(-|x-b|^2/(2 sigma^2)), or, with both, the turbulence multiplied by\n"
+               "(--blob-base + the blob sum): turbulence modulated by Gaussian banks.\n"
+               "Positions and sizes are in fogmap cells; cell (x, z) is at (x, z), z = image row.",
+      .operand = "operand", .min_operands = 0, .max_operands = 0,
+      .options = options, .option_count = sizeof options / sizeof options[0]};
+  const char *none = NULL;
+  int operands = 0, parsed = cli_parse(&spec, argc, argv, &none, &operands);
+  if (parsed) return parsed;
+  o->perlin = perlin, o->half = half, o->seed = seed;
+  o->width = size[0], o->height = size[1];
   if (!o->perlin && !o->random_blobs && !o->blob_count)
     return cli_usage_error("design", "say what to design: --perlin, --blobs N and/or --blob X,Z,SIGMA,PEAK");
   if (!o->width) return cli_usage_error("design", "--size WxH is required");
@@ -206,7 +160,7 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
     return cli_usage_error("design", "--out '%s': the name must end in .exr or .png", o->out);
   if (o->random_blobs + o->blob_count > max_blobs)
     return cli_usage_error("design", "more than 256 blobs");
-  return -1;
+  return 0;
 }
 
 /* The fogmap: Perlin turbulence and/or the blobs (random banks added to the given ones),
@@ -244,7 +198,7 @@ static int design_fogmap(design_options *o, fogmap *map, sim_error *err) {
 int cmd_design(int argc, char **argv) {
   design_options o = {.seed = 1, .noise = perlin_fog_desc_default()};
   int parsed = parse_design_options(argc, argv, &o);
-  if (parsed >= 0) return parsed;
+  if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   const int png = ends_with(o.out, ".png");
   sim_error err;
   fogmap map = {0};

@@ -11,52 +11,13 @@
 
 #include "app/chart.h"
 #include "app/cli.h"
+#include "app/cli_options.h"
 #include "app/clock.h"
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/fit.h"
 #include "app/render_fog.h"
 #include "sim/sim.h"
-
-static void usage(FILE *out) {
-  fprintf(out,
-          "usage: fogpipe fit INPUT --tolerance T [options]\n\n"
-          "Fits every model of the ladder that can represent the input's fog (homogeneous,\n"
-          "height, an ellipsoid and banks of 2 to 16, banks of 1 to 64 Gaussians, the\n"
-          "fogmap at three bases x three LOD factors (an analytic fog's density projected),\n"
-          "the 3D volume), measures each on nine views around and inside\n"
-          "the fog (max and mean |delta tau| against the input's own fog, exact integrals in\n"
-          "double) and times it on the GL (headless), prints the table and picks the fastest\n"
-          "within the tolerance (docs/fit.md).\n\n"
-          "INPUT: a scene config (.ini), or a VDB file or sequence (a #### pattern, a folder)\n"
-          "whose frame is fitted as a 3D volume.\n\n"
-          "options:\n"
-          "  --tolerance T[,T..]  max |delta tau| allowed on every ray (required, > 0); more\n"
-          "                       values print the pick at each (the first one's is written)\n"
-          "  --by max|mean        the tolerance bounds each rung's max error (default) or\n"
-          "                       its mean error over the rays\n"
-          "  --out FILE.ini       write the scene with the chosen model (nothing is written\n"
-          "                       when none is within T); a fogmap projected from an\n"
-          "                       analytic fog goes beside it as FILE.fogmap.exr\n"
-          "  --chart FILE.png     error against ms, one series per family (and FILE.csv)\n"
-          "VDB input:\n"
-          "  --grid NAME          float grid (default density)\n"
-          "  --up z|y             the file's up axis (default z: Blender/Mantaflow)\n"
-          "  --frame N            frame number of a sequence (default: the last)\n"
-          "sequences (a VDB INPUT, or a config's [fog] vdb):\n"
-          "  --frames all|A-B[:S] fit over these frame numbers (every S-th), the worst frame\n"
-          "                       deciding: the static rungs fit the frames' mean density,\n"
-          "                       the fogmap and the volume play the frames (default: one\n"
-          "                       frame, --frame or the config's vdb_frame)\n"
-          "  --density-scale S    extinction per unit of the grid's value (default 1)\n"
-          "measurement:\n"
-          "  --rays N             rays per side of each view (default %d)\n"
-          "  --samples N          density samples along the longest side (default %d)\n"
-          "  --size WxH           timed frames (default %dx%d)\n"
-          "  --timed N            timed frames per rung (default %d)\n"
-          "  --help               this text\n",
-          FIT_RAYS_PER_SIDE, FIT_SAMPLE_SIDE, FIT_WIDTH, FIT_HEIGHT, FIT_TIMED_FRAMES);
-}
 
 typedef struct fit_options {
   const char *input, *out, *chart, *grid;
@@ -68,71 +29,104 @@ typedef struct fit_options {
   fit_desc desc;
 } fit_options;
 
+/* --tolerance T[,T...]: up to 8 values in (0, 1]. */
+static int parse_tolerances(const char *command, const char *option, const char *text,
+                            void *target) {
+  fit_options *o = target;
+  char list[256], *save = NULL;
+  snprintf(list, sizeof list, "%s", text);
+  o->tolerance_count = 0;
+  for (char *t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+    if (o->tolerance_count == 8) return cli_usage_error(command, "%s: at most 8 values", option);
+    if (cli_number(command, option, t, 1e-12, 1.0, &o->tolerance[o->tolerance_count++]))
+      return 2;
+  }
+  return 0;
+}
+
+static int parse_ini(const char *command, const char *option, const char *text, void *target) {
+  if (!cli_ends_with(text, ".ini"))
+    return cli_usage_error(command, "%s '%s': expected a .ini file", option, text);
+  *(const char **)target = text;
+  return 0;
+}
+
+static int parse_png(const char *command, const char *option, const char *text, void *target) {
+  if (!cli_ends_with(text, ".png"))
+    return cli_usage_error(command, "%s '%s': expected a .png file", option, text);
+  *(const char **)target = text;
+  return 0;
+}
+
 static int parse(int argc, char **argv, fit_options *o) {
   *o = (fit_options){.density_scale = 1.0, .frame = -1,
                      .desc = {.rays_per_side = FIT_RAYS_PER_SIDE, .sample_side = FIT_SAMPLE_SIDE,
                               .width = FIT_WIDTH, .height = FIT_HEIGHT,
                               .timed_frames = FIT_TIMED_FRAMES}};
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      usage(stdout);
-      return -1;
-    }
-    if (a[0] != '-' || !a[1]) {
-      if (o->input) return cli_usage_error("fit", "one INPUT only, got '%s' and '%s'", o->input, a);
-      o->input = a;
-      continue;
-    }
-    static const char *const valued[] = {"--tolerance", "--by", "--out", "--chart", "--grid", "--up",
-                                         "--frame", "--density-scale", "--rays", "--samples",
-                                         "--size", "--timed", "--frames"};
-    bool known = false;
-    for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++) known |= !strcmp(a, valued[k]);
-    if (!known) return cli_usage_error("fit", "unknown option '%s'", a);
-    if (i + 1 >= argc) return cli_usage_error("fit", "%s needs a value", a);
-    const char *v = argv[++i];
-    if (!strcmp(a, "--tolerance")) {
-      char list[256], *save = NULL;
-      snprintf(list, sizeof list, "%s", v);
-      o->tolerance_count = 0;
-      for (char *t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
-        if (o->tolerance_count == 8) return cli_usage_error("fit", "--tolerance: at most 8 values");
-        if (cli_number("fit", a, t, 1e-12, 1.0, &o->tolerance[o->tolerance_count++])) return 2;
-      }
-    } else if (!strcmp(a, "--by")) {
-      if (strcmp(v, "max") && strcmp(v, "mean"))
-        return cli_usage_error("fit", "--by '%s': expected max or mean", v);
-      o->desc.by_mean = !strcmp(v, "mean");
-    } else if (!strcmp(a, "--out")) {
-      if (!cli_ends_with(v, ".ini")) return cli_usage_error("fit", "--out '%s': expected a .ini file", v);
-      o->out = v;
-    } else if (!strcmp(a, "--chart")) {
-      if (!cli_ends_with(v, ".png")) return cli_usage_error("fit", "--chart '%s': expected a .png file", v);
-      o->chart = v;
-    } else if (!strcmp(a, "--grid")) {
-      o->grid = v;
-    } else if (!strcmp(a, "--up")) {
-      if (strcmp(v, "z") && strcmp(v, "y")) return cli_usage_error("fit", "--up '%s': expected z or y", v);
-      o->up = !strcmp(v, "y");
-    } else if (!strcmp(a, "--frame")) {
-      if (cli_int("fit", a, v, 0, INT_MAX, &o->frame)) return 2;
-    } else if (!strcmp(a, "--density-scale")) {
-      if (cli_number("fit", a, v, 1e-12, 1e12, &o->density_scale)) return 2;
-    } else if (!strcmp(a, "--rays")) {
-      if (cli_int("fit", a, v, 1, 1024, &o->desc.rays_per_side)) return 2;
-    } else if (!strcmp(a, "--samples")) {
-      if (cli_int("fit", a, v, 2, 512, &o->desc.sample_side)) return 2;
-    } else if (!strcmp(a, "--size")) {
-      if (cli_size("fit", a, v, &o->desc.width, &o->desc.height)) return 2;
-    } else if (!strcmp(a, "--timed")) {
-      if (cli_int("fit", a, v, 1, 64, &o->desc.timed_frames)) return 2;
-    } else if (!strcmp(a, "--frames")) {
-      o->frames = v;
-    }
-  }
-  if (!o->input) return cli_usage_error("fit", "no INPUT given");
+  static const char *const by[] = {"max", "mean", NULL}, *const up[] = {"z", "y", NULL};
+  int by_mean = 0, size[2] = {FIT_WIDTH, FIT_HEIGHT};
+  const cli_option options[] = {
+      {.kind = CLI_CUSTOM, .name = "--tolerance", .value = "T[,T..]", .target = o,
+       .parse = parse_tolerances,
+       .help = "max |delta tau| allowed on every ray (required, > 0); more\n"
+               "values print the pick at each (the first one's is written)"},
+      {.kind = CLI_CHOICE, .name = "--by", .value = "max|mean", .target = &by_mean, .choices = by,
+       .help = "the tolerance bounds each rung's max error (default) or\n"
+               "its mean error over the rays"},
+      {.kind = CLI_CUSTOM, .name = "--out", .value = "FILE.ini", .target = &o->out,
+       .parse = parse_ini,
+       .help = "write the scene with the chosen model (nothing is written\n"
+               "when none is within T); a fogmap projected from an\n"
+               "analytic fog goes beside it as FILE.fogmap.exr"},
+      {.kind = CLI_CUSTOM, .name = "--chart", .value = "FILE.png", .target = &o->chart,
+       .parse = parse_png, .help = "error against ms, one series per family (and FILE.csv)"},
+      {.kind = CLI_SECTION, .name = "VDB input:"},
+      {.kind = CLI_TEXT, .name = "--grid", .value = "NAME", .target = &o->grid,
+       .help = "float grid (default density)"},
+      {.kind = CLI_CHOICE, .name = "--up", .value = "z|y", .target = &o->up, .choices = up,
+       .help = "the file's up axis (default z: Blender/Mantaflow)"},
+      {.kind = CLI_INT, .name = "--frame", .value = "N", .target = &o->frame, .min = 0,
+       .max = INT_MAX, .help = "frame number of a sequence (default: the last)"},
+      {.kind = CLI_SECTION, .name = "sequences (a VDB INPUT, or a config's [fog] vdb):"},
+      {.kind = CLI_TEXT, .name = "--frames", .value = "all|A-B[:S]", .target = &o->frames,
+       .help = "fit over these frame numbers (every S-th), the worst frame\n"
+               "deciding: the static rungs fit the frames' mean density,\n"
+               "the fogmap and the volume play the frames (default: one\n"
+               "frame, --frame or the config's vdb_frame)"},
+      {.kind = CLI_NUMBER, .name = "--density-scale", .value = "S", .target = &o->density_scale,
+       .min = 1e-12, .max = 1e12, .help = "extinction per unit of the grid's value (default 1)"},
+      {.kind = CLI_SECTION, .name = "measurement:"},
+      {.kind = CLI_INT, .name = "--rays", .value = "N", .target = &o->desc.rays_per_side,
+       .min = 1, .max = 1024,
+       .help = "rays per side of each view (default " CLI_TEXT_OF(FIT_RAYS_PER_SIDE) ")"},
+      {.kind = CLI_INT, .name = "--samples", .value = "N", .target = &o->desc.sample_side,
+       .min = 2, .max = 512,
+       .help = "density samples along the longest side (default " CLI_TEXT_OF(FIT_SAMPLE_SIDE) ")"},
+      {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
+       .help = "timed frames (default " CLI_TEXT_OF(FIT_WIDTH) "x" CLI_TEXT_OF(FIT_HEIGHT) ")"},
+      {.kind = CLI_INT, .name = "--timed", .value = "N", .target = &o->desc.timed_frames,
+       .min = 1, .max = 64,
+       .help = "timed frames per rung (default " CLI_TEXT_OF(FIT_TIMED_FRAMES) ")"},
+  };
+  const cli_spec spec = {
+      .command = "fit",
+      .usage = "INPUT --tolerance T [options]",
+      .about = "Fits every model of the ladder that can represent the input's fog (homogeneous,\n"
+               "height, an ellipsoid and banks of 2 to 16, banks of 1 to 64 Gaussians, the\n"
+               "fogmap at three bases x three LOD factors (an analytic fog's density projected),\n"
+               "the 3D volume), measures each on nine views around and inside\n"
+               "the fog (max and mean |delta tau| against the input's own fog, exact integrals in\n"
+               "double) and times it on the GL (headless), prints the table and picks the fastest\n"
+               "within the tolerance (docs/fit.md).\n\n"
+               "INPUT: a scene config (.ini), or a VDB file or sequence (a #### pattern, a folder)\n"
+               "whose frame is fitted as a 3D volume.",
+      .operand = "INPUT", .min_operands = 1, .max_operands = 1,
+      .options = options, .option_count = sizeof options / sizeof options[0]};
+  int operands = 0, parsed = cli_parse(&spec, argc, argv, &o->input, &operands);
+  if (parsed) return parsed;
   if (o->tolerance_count < 1) return cli_usage_error("fit", "no --tolerance T given");
+  o->desc.by_mean = by_mean;
+  o->desc.width = size[0], o->desc.height = size[1];
   o->desc.tolerance = o->tolerance[0];
   return 0;
 }

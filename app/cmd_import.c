@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "app/cli.h"
+#include "app/cli_options.h"
 #include "app/clock.h"
 #include "app/commands.h"
 #include "app/chart.h"
@@ -24,62 +25,12 @@
 enum { max_inputs = 256, report_rows = 9 };
 static const double report_elevations[report_rows] = {5, 10, 15, 20, 30, 45, 60, 75, 90};
 
-static void print_help(FILE *out) {
-  fprintf(out,
-          "usage: fogpipe import INPUT... --out DIR [options]\n"
-          "\n"
-          "Projects OpenVDB fog (Blender/Mantaflow, Houdini, EmberGen caches) to a 2D fogmap\n"
-          "f(x,z) per frame and a vertical profile g(y): K(x,y,z) = f(x,z)*g(y), where g has\n"
-          "max 1, T = integral of g dy, and f = (column integral of the density) / T, so the\n"
-          "column optical depth is kept exactly. fogpipe's world is Y-up; the fogmap spans X\n"
-          "(columns) and Z (rows). Writes DIR/NAME.####.exr (one float channel Y, #### = the\n"
-          "source frame number) and DIR/NAME.ini (placement: origin, cell size; the profile).\n"
-          "Nothing is left in DIR when any frame fails.\n"
-          "\n"
-          "INPUT: a .vdb file, a folder (every *.vdb), a #### or printf pattern\n"
-          "       (data/fluid_data_####.vdb, data/fluid_data_%%04d.vdb) or a glob ('data/*.vdb').\n"
-          "\n"
-          "input:\n"
-          "  --grid NAME            float grid to read (default density)\n"
-          "  --frames A-B | A       frame range (default: all found); frames missing inside\n"
-          "                         the range are an error\n"
-          "  --skip-missing         warn about missing frames instead of failing\n"
-          "  --list                 list every grid of every input file and exit\n"
-          "  --max-voxels N         refuse grids whose dense box is larger (default 268435456)\n"
-          "placement:\n"
-          "  --up z|y               the file's up axis: z = Blender/Mantaflow (default),\n"
-          "                         y = Houdini/EmberGen. Z-up maps (x,y,z) to (x, z, -y)\n"
-          "  --scale S              world scale of the source (default 1)\n"
-          "  --offset X,Y,Z         fogpipe-world offset added last (default 0,0,0)\n"
-          "  --config FILE|none     Mantaflow config_####.uni (default: ../config/config_####.uni\n"
-          "                         beside each data/ file when present; it places the domain\n"
-          "                         and replaces adaptive domains' wrong VDB voxel size)\n"
-          "fogmap and profile:\n"
-          "  --resolution N         fogmap cells along the longer side (default: one per voxel)\n"
-          "  --cell SIZE            or a world cell size\n"
-          "  --name NAME            output base name (default fog)\n"
-          "  --profile bspline|exponential   g(y): centred B-spline of the mean vertical density\n"
-          "                         (default) or a moment-fitted exponential\n"
-          "  --profile-knots N      B-spline coefficients (default one per voxel layer, max 64)\n"
-          "  --profile-degree 0|1   B-spline degree (default 1: hats; 0: the layer histogram)\n"
-          "  --profile-per sequence|frame   one g for the whole sequence (default) or one per\n"
-          "                         frame ([profile.####] sections in NAME.ini)\n"
-          "report:\n"
-          "  --report               also compare the 2.5D model with a CPU ray march of the 3D\n"
-          "                         grid: transmittance error per view elevation 5..90 deg, as\n"
-          "                         a table, DIR/NAME.report.csv and DIR/NAME.report.png\n"
-          "  --report-frame N       the frame to report on (default: the last)\n"
-          "  --report-rays N        rays per side of each view (default 48)\n"
-          "other:\n"
-          "  --verbose              one line per frame (mass, voxels)\n"
-          "  --help                 this text\n");
-}
-
 typedef struct import_options {
   const char *inputs[max_inputs];
   int input_count;
   const char *out, *name, *grid, *config;
-  int first, last, skip_missing, list, verbose;
+  int first, last;
+  bool skip_missing, list, verbose;
   long long max_voxels;
   vdb_up_axis up;
   double scale, offset[3];
@@ -87,107 +38,124 @@ typedef struct import_options {
   double cell;
   vdb_profile_desc profile;
   int profile_per_frame;
-  int report, report_frame, report_rays;
+  bool report;
+  int report_frame, report_rays;
 } import_options;
+
+/* --name: a plain file name (the outputs' base in DIR). */
+static int parse_name(const char *command, const char *option, const char *text, void *target) {
+  if (!*text || strchr(text, '/'))
+    return cli_usage_error(command, "%s '%s': a plain file name", option, text);
+  *(const char **)target = text;
+  return 0;
+}
+
+/* --max-voxels N: a count; past long long, no limit. */
+static int parse_voxels(const char *command, const char *option, const char *text, void *target) {
+  double m;
+  if (cli_number(command, option, text, 1, 1e300, &m)) return 2;
+  *(long long *)target = m < 0x1p62 ? (long long)m : 1LL << 62;
+  return 0;
+}
+
+/* --offset X,Y,Z */
+static int parse_offset(const char *command, const char *option, const char *text, void *target) {
+  double *v = target;
+  char tail;
+  if (sscanf(text, "%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &tail) != 3 || !isfinite(v[0]) ||
+      !isfinite(v[1]) || !isfinite(v[2]))
+    return cli_usage_error(command, "%s '%s': expected X,Y,Z", option, text);
+  return 0;
+}
 
 static int parse_options(int argc, char **argv, import_options *o) {
   *o = (import_options){.name = "fog", .first = -1, .last = -1, .report_frame = -1};
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (a[0] != '-' || !a[1]) {
-      if (o->input_count == max_inputs) return cli_usage_error("import", "more than %d inputs", max_inputs);
-      o->inputs[o->input_count++] = a;
-      continue;
-    }
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      print_help(stdout);
-      return -1;
-    }
-    if (!strcmp(a, "--skip-missing")) {
-      o->skip_missing = 1;
-      continue;
-    }
-    if (!strcmp(a, "--list")) {
-      o->list = 1;
-      continue;
-    }
-    if (!strcmp(a, "--report")) {
-      o->report = 1;
-      continue;
-    }
-    if (!strcmp(a, "--verbose")) {
-      o->verbose = 1;
-      continue;
-    }
-    static const char *const valued[] = {
-        "--out", "--name", "--grid", "--frames", "--max-voxels", "--up", "--scale",
-        "--offset", "--config", "--resolution", "--cell", "--profile", "--profile-knots",
-        "--profile-degree", "--profile-per", "--report-frame", "--report-rays"};
-    int known = 0;
-    for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++) known |= !strcmp(a, valued[k]);
-    if (!known) return cli_usage_error("import", "unknown option '%s'", a);
-    if (i + 1 >= argc) return cli_usage_error("import", "%s needs a value", a);
-    const char *v = argv[++i];
-    if (!strcmp(a, "--out"))
-      o->out = v;
-    else if (!strcmp(a, "--name")) {
-      if (!*v || strchr(v, '/')) return cli_usage_error("import", "--name '%s': a plain file name", v);
-      o->name = v;
-    } else if (!strcmp(a, "--grid"))
-      o->grid = v;
-    else if (!strcmp(a, "--config"))
-      o->config = v;
-    else if (!strcmp(a, "--frames")) {
-      bool single;
-      if (cli_range("import", "--frames", v, 0, INT_MAX, &o->first, &o->last, &single)) return 2;
-    } else if (!strcmp(a, "--max-voxels")) {
-      double m;
-      if (cli_number("import", "--max-voxels", v, 1, 1e300, &m)) return 2;
-      o->max_voxels = m < 0x1p62 ? (long long)m : 1LL << 62; /* past long long: no limit */
-    } else if (!strcmp(a, "--up")) {
-      if (!strcmp(v, "z") || !strcmp(v, "Z"))
-        o->up = VDB_UP_Z;
-      else if (!strcmp(v, "y") || !strcmp(v, "Y"))
-        o->up = VDB_UP_Y;
-      else
-        return cli_usage_error("import", "--up '%s': expected z or y", v);
-    } else if (!strcmp(a, "--scale")) {
-      if (cli_number("import", "--scale", v, 1e-12, 1e12, &o->scale)) return 2;
-    } else if (!strcmp(a, "--offset")) {
-      if (sscanf(v, "%lf,%lf,%lf", &o->offset[0], &o->offset[1], &o->offset[2]) != 3)
-        return cli_usage_error("import", "--offset '%s': expected X,Y,Z", v);
-    } else if (!strcmp(a, "--resolution")) {
-      if (cli_int("import", "--resolution", v, 1, CLI_MAX_SIZE, &o->resolution)) return 2;
-    } else if (!strcmp(a, "--cell")) {
-      if (cli_number("import", "--cell", v, 1e-12, 1e12, &o->cell)) return 2;
-    } else if (!strcmp(a, "--profile")) {
-      if (!strcmp(v, "bspline"))
-        o->profile.kind = VDB_PROFILE_BSPLINE;
-      else if (!strcmp(v, "exponential"))
-        o->profile.kind = VDB_PROFILE_EXPONENTIAL;
-      else
-        return cli_usage_error("import", "--profile '%s': expected bspline or exponential", v);
-    } else if (!strcmp(a, "--profile-knots")) {
-      if (cli_int("import", "--profile-knots", v, 1, VDB_PROFILE_MAX_KNOTS, &o->profile.knots))
-        return 2;
-    } else if (!strcmp(a, "--profile-degree")) {
-      if (strcmp(v, "0") && strcmp(v, "1"))
-        return cli_usage_error("import", "--profile-degree '%s': expected 0 or 1", v);
-      o->profile.degree_box = !strcmp(v, "0");
-    } else if (!strcmp(a, "--profile-per")) {
-      if (!strcmp(v, "sequence"))
-        o->profile_per_frame = 0;
-      else if (!strcmp(v, "frame"))
-        o->profile_per_frame = 1;
-      else
-        return cli_usage_error("import", "--profile-per '%s': expected sequence or frame", v);
-    } else if (!strcmp(a, "--report-frame")) {
-      if (cli_int("import", "--report-frame", v, 0, INT_MAX, &o->report_frame)) return 2;
-    } else if (!strcmp(a, "--report-rays")) {
-      if (cli_int("import", "--report-rays", v, 1, 1024, &o->report_rays)) return 2;
-    }
-  }
-  if (!o->input_count) return cli_usage_error("import", "no INPUT given");
+  static const char *const up[] = {"z", "y", NULL}, *const profiles[] = {"bspline", "exponential", NULL};
+  static const char *const degrees[] = {"1", "0", NULL}, *const per[] = {"sequence", "frame", NULL};
+  int frames[3] = {-1, -1, 0}, up_axis = VDB_UP_Z, profile = VDB_PROFILE_BSPLINE;
+  const cli_option options[] = {
+      {.kind = CLI_SECTION, .name = "input:"},
+      {.kind = CLI_TEXT, .name = "--grid", .value = "NAME", .target = &o->grid,
+       .help = "float grid to read (default density)"},
+      {.kind = CLI_RANGE, .name = "--frames", .value = "A-B | A", .target = frames, .min = 0,
+       .max = INT_MAX,
+       .help = "frame range (default: all found); frames missing inside\n"
+               "the range are an error"},
+      {.kind = CLI_FLAG, .name = "--skip-missing", .target = &o->skip_missing,
+       .help = "warn about missing frames instead of failing"},
+      {.kind = CLI_FLAG, .name = "--list", .target = &o->list,
+       .help = "list every grid of every input file and exit"},
+      {.kind = CLI_CUSTOM, .name = "--max-voxels", .value = "N", .target = &o->max_voxels,
+       .parse = parse_voxels,
+       .help = "refuse grids whose dense box is larger (default 268435456)"},
+      {.kind = CLI_SECTION, .name = "placement:"},
+      {.kind = CLI_CHOICE, .name = "--up", .value = "z|y", .target = &up_axis, .choices = up,
+       .help = "the file's up axis: z = Blender/Mantaflow (default),\n"
+               "y = Houdini/EmberGen. Z-up maps (x,y,z) to (x, z, -y)"},
+      {.kind = CLI_NUMBER, .name = "--scale", .value = "S", .target = &o->scale, .min = 1e-12,
+       .max = 1e12, .help = "world scale of the source (default 1)"},
+      {.kind = CLI_CUSTOM, .name = "--offset", .value = "X,Y,Z", .target = o->offset,
+       .parse = parse_offset, .help = "fogpipe-world offset added last (default 0,0,0)"},
+      {.kind = CLI_TEXT, .name = "--config", .value = "FILE|none", .target = &o->config,
+       .help = "Mantaflow config_####.uni (default: ../config/config_####.uni\n"
+               "beside each data/ file when present; it places the domain\n"
+               "and replaces adaptive domains' wrong VDB voxel size)"},
+      {.kind = CLI_SECTION, .name = "fogmap and profile:"},
+      {.kind = CLI_INT, .name = "--resolution", .value = "N", .target = &o->resolution,
+       .min = 1, .max = CLI_MAX_SIZE,
+       .help = "fogmap cells along the longer side (default: one per voxel)"},
+      {.kind = CLI_NUMBER, .name = "--cell", .value = "SIZE", .target = &o->cell, .min = 1e-12,
+       .max = 1e12, .help = "or a world cell size"},
+      {.kind = CLI_CUSTOM, .name = "--name", .value = "NAME", .target = &o->name,
+       .parse = parse_name, .help = "output base name (default fog)"},
+      {.kind = CLI_CHOICE, .name = "--profile", .value = "bspline|exponential",
+       .target = &profile, .choices = profiles,
+       .help = "g(y): centred B-spline of the mean vertical density\n"
+               "(default) or a moment-fitted exponential"},
+      {.kind = CLI_INT, .name = "--profile-knots", .value = "N", .target = &o->profile.knots,
+       .min = 1, .max = VDB_PROFILE_MAX_KNOTS,
+       .help = "B-spline coefficients (default one per voxel layer, max 64)"},
+      {.kind = CLI_CHOICE, .name = "--profile-degree", .value = "0|1",
+       .target = &o->profile.degree_box, .choices = degrees,
+       .help = "B-spline degree (default 1: hats; 0: the layer histogram)"},
+      {.kind = CLI_CHOICE, .name = "--profile-per", .value = "sequence|frame",
+       .target = &o->profile_per_frame, .choices = per,
+       .help = "one g for the whole sequence (default) or one per\n"
+               "frame ([profile.####] sections in NAME.ini)"},
+      {.kind = CLI_SECTION, .name = "report:"},
+      {.kind = CLI_FLAG, .name = "--report", .target = &o->report,
+       .help = "also compare the 2.5D model with a CPU ray march of the 3D\n"
+               "grid: transmittance error per view elevation 5..90 deg, as\n"
+               "a table, DIR/NAME.report.csv and DIR/NAME.report.png"},
+      {.kind = CLI_INT, .name = "--report-frame", .value = "N", .target = &o->report_frame,
+       .min = 0, .max = INT_MAX, .help = "the frame to report on (default: the last)"},
+      {.kind = CLI_INT, .name = "--report-rays", .value = "N", .target = &o->report_rays,
+       .min = 1, .max = 1024, .help = "rays per side of each view (default 48)"},
+      {.kind = CLI_SECTION, .name = "other:"},
+      {.kind = CLI_TEXT, .name = "--out", .value = "DIR", .target = &o->out,
+       .help = "the output folder (required, but for --list)"},
+      {.kind = CLI_FLAG, .name = "--verbose", .target = &o->verbose,
+       .help = "one line per frame (mass, voxels)"},
+  };
+  const cli_spec spec = {
+      .command = "import",
+      .usage = "INPUT... --out DIR [options]",
+      .about = "Projects OpenVDB fog (Blender/Mantaflow, Houdini, EmberGen caches) to a 2D fogmap\n"
+               "f(x,z) per frame and a vertical profile g(y): K(x,y,z) = f(x,z)*g(y), where g has\n"
+               "max 1, T = integral of g dy, and f = (column integral of the density) / T, so the\n"
+               "column optical depth is kept exactly. fogpipe's world is Y-up; the fogmap spans X\n"
+               "(columns) and Z (rows). Writes DIR/NAME.####.exr (one float channel Y, #### = the\n"
+               "source frame number) and DIR/NAME.ini (placement: origin, cell size; the profile).\n"
+               "Nothing is left in DIR when any frame fails.\n\n"
+               "INPUT: a .vdb file, a folder (every *.vdb), a #### or printf pattern\n"
+               "       (data/fluid_data_####.vdb, data/fluid_data_%04d.vdb) or a glob ('data/*.vdb').",
+      .operand = "INPUT", .min_operands = 1, .max_operands = max_inputs,
+      .options = options, .option_count = sizeof options / sizeof options[0]};
+  int parsed = cli_parse(&spec, argc, argv, o->inputs, &o->input_count);
+  if (parsed) return parsed;
+  o->first = frames[0], o->last = frames[1];
+  o->up = (vdb_up_axis)up_axis;
+  o->profile.kind = (vdb_profile_kind)profile;
   if (!o->out && !o->list) return cli_usage_error("import", "--out DIR is required");
   return 0;
 }

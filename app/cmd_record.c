@@ -15,6 +15,7 @@
 #include "app/pipeline.h"
 #include "app/player.h"
 #include "app/cli.h"
+#include "app/cli_options.h"
 #include "app/cmd_record.h"
 #include "app/recorder.h"
 #include "sim/sim.h"
@@ -23,81 +24,54 @@ static volatile sig_atomic_t interrupted;
 
 static void on_interrupt(int signal_number) { interrupted = signal_number; }
 
-static void print_help(FILE *out) {
-  fprintf(out,
-          "usage: fogpipe record CONFIG --frames N --out DIR [options]\n\n"
-          "Renders the scene CONFIG headless (EGL, no window) for N frames and writes an\n"
-          "OpenEXR sequence DIR/frame.0001.exr ... (channels R,G,B,A half; transmittance,\n"
-          "depth, Z, inscatter.R/G/B float). The same config gives bit-identical pixels every run. Each frame is\n"
-          "written to a temporary file and renamed, so no partial frame ever exists.\n"
-          "Ctrl-C finishes the current frame and stops (exit status 130); --resume goes on.\n"
-          "A fogmap scene is simulated (or its [fog] vdb sequence played as 2.5D fogmaps);\n"
-          "[fog] model = volume plays the VDB frames in 3D (blended between frames);\n"
-          "the analytic models stand still.\n\n"
-          "options:\n"
-          "  --frames N|A-B    frames 1..N, or only A..B (required): a range renders\n"
-          "                    exactly those frames of the full run, bit for bit, so\n"
-          "                    ranges can go to different machines (docs/farm.md)\n"
-          "  --out DIR         output folder, created if missing (required)\n"
-          "  --fps F           frames per second of simulated time (default 24)\n"
-          "  --size WxH        image size (default: the config's [render] size)\n"
-          "  --resume          continue after the last complete frame in DIR (the\n"
-          "                    simulation is re-run to that frame; same frames as an\n"
-          "                    uninterrupted run)\n"
-          "  --preview FILE    also encode the finished sequence to a video with ffmpeg\n"
-          "                    (e.g. out.mp4; skipped with a note if ffmpeg is missing)\n"
-          "  --synchronous     run the simulation and transform on the rendering thread\n"
-          "                    instead of the worker thread (same frames; for comparison)\n"
-          "  -h, --help        this help\n");
-}
-
 int cmd_record(int argc, char **argv) {
   record_job job = {.command = "record"};
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    const char *value = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-      print_help(stdout);
-      return 0;
-    } else if (!strcmp(a, "--resume")) {
-      job.resume = true;
-    } else if (!strcmp(a, "--synchronous")) {
-      job.synchronous = true;
-    } else if (!strcmp(a, "--frames") || !strcmp(a, "--out") || !strcmp(a, "--fps") ||
-               !strcmp(a, "--size") || !strcmp(a, "--preview")) {
-      if (!value) return cli_usage_error("record", "%s needs a value", a);
-      i++;
-      if (!strcmp(a, "--frames")) {
-        /* N (frames 1..N) or A-B (frames A..B, for a farm's job array) */
-        bool single;
-        if (cli_range("record", "--frames", value, 1, 9999999, &job.first_frame, &job.frames,
-                      &single))
-          return 2;
-        if (single) job.first_frame = 1;
-      } else if (!strcmp(a, "--fps")) {
-        if (cli_number("record", "--fps", value, 1.0 / PIPELINE_MAX_FRAME_SECONDS, 1000, &job.fps))
-          return 2;
-      } else if (!strcmp(a, "--size")) {
-        if (cli_size("record", "--size", value, &job.width, &job.height)) return 2;
-      } else if (!strcmp(a, "--out")) {
-        job.out = value;
-      } else {
-        job.preview = value;
-      }
-    } else if (a[0] == '-' && a[1]) {
-      return cli_usage_error("record", "unknown option '%s'", a);
-    } else if (!job.config_path) {
-      job.config_path = a;
-    } else {
-      return cli_usage_error("record", "unexpected argument '%s' (one CONFIG only)", a);
-    }
-  }
-  if (!job.config_path || !job.frames || !job.out) {
-    fprintf(stderr, "fogpipe record: %s missing\n\n",
-            !job.config_path ? "CONFIG" : !job.frames ? "--frames N" : "--out DIR");
-    print_help(stderr);
-    return 2;
-  }
+  int frames[3] = {0, 0, 0}, size[2] = {0, 0};
+  const cli_option options[] = {
+      {.kind = CLI_RANGE, .name = "--frames", .value = "N|A-B", .target = frames, .min = 1,
+       .max = 9999999,
+       .help = "frames 1..N, or only A..B (required): a range renders\n"
+               "exactly those frames of the full run, bit for bit, so\n"
+               "ranges can go to different machines (docs/farm.md)"},
+      {.kind = CLI_TEXT, .name = "--out", .value = "DIR", .target = &job.out,
+       .help = "output folder, created if missing (required)"},
+      {.kind = CLI_NUMBER, .name = "--fps", .value = "F", .target = &job.fps,
+       .min = 1.0 / PIPELINE_MAX_FRAME_SECONDS, .max = 1000,
+       .help = "frames per second of simulated time (default 24)"},
+      {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
+       .help = "image size (default: the config's [render] size)"},
+      {.kind = CLI_FLAG, .name = "--resume", .target = &job.resume,
+       .help = "continue after the last complete frame in DIR (the\n"
+               "simulation is re-run to that frame; same frames as an\n"
+               "uninterrupted run)"},
+      {.kind = CLI_TEXT, .name = "--preview", .value = "FILE", .target = &job.preview,
+       .help = "also encode the finished sequence to a video with ffmpeg\n"
+               "(e.g. out.mp4; skipped with a note if ffmpeg is missing)"},
+      {.kind = CLI_FLAG, .name = "--synchronous", .target = &job.synchronous,
+       .help = "run the simulation and transform on the rendering thread\n"
+               "instead of the worker thread (same frames; for comparison)"},
+  };
+  const cli_spec spec = {
+      .command = "record",
+      .usage = "CONFIG --frames N --out DIR [options]",
+      .about = "Renders the scene CONFIG headless (EGL, no window) for N frames and writes an\n"
+               "OpenEXR sequence DIR/frame.0001.exr ... (channels R,G,B,A half; transmittance,\n"
+               "depth, Z, inscatter.R/G/B float). The same config gives bit-identical pixels\n"
+               "every run. Each frame is written to a temporary file and renamed, so no partial\n"
+               "frame ever exists. Ctrl-C finishes the current frame and stops (exit status\n"
+               "130); --resume goes on. A fogmap scene is simulated (or its [fog] vdb sequence\n"
+               "played as 2.5D fogmaps); [fog] model = volume plays the VDB frames in 3D\n"
+               "(blended between frames); Perlin fog, noisy quadric volumes and RBF emitters\n"
+               "move with time; the other analytic models stand still.",
+      .operand = "CONFIG", .min_operands = 1, .max_operands = 1,
+      .options = options, .option_count = sizeof options / sizeof options[0]};
+  int operands = 0, parsed = cli_parse(&spec, argc, argv, &job.config_path, &operands);
+  if (parsed) return parsed == CLI_HELP ? 0 : parsed;
+  if (!frames[1]) return cli_usage_error("record", "--frames N is required");
+  if (!job.out) return cli_usage_error("record", "--out DIR is required");
+  /* N (frames 1..N) or A-B (frames A..B, for a farm's job array) */
+  job.first_frame = frames[2] ? 1 : frames[0], job.frames = frames[1];
+  job.width = size[0], job.height = size[1];
   if (job.preview && job.first_frame > 1) {
     fprintf(stderr, "fogpipe record: --preview encodes a whole sequence; it takes --frames N, "
             "not a range (encode the joined ranges afterwards)\n");

@@ -10,28 +10,12 @@
 #include <strings.h>
 
 #include "app/cli.h"
+#include "app/cli_options.h"
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/frame_exr.h"
 #include "app/player.h"
 #include "sim/sim.h"
-
-static void usage(FILE *out) {
-  fprintf(out,
-          "usage: fogpipe render CONFIG --out FILE.exr|FILE.png [--size WxH] [--vdb-frame N]\n\n"
-          "Renders one frame of the scene config headless (EGL; no display needed).\n\n"
-          "options:\n"
-          "  --out FILE    output image: .exr (channels R G B A as half; transmittance,\n"
-          "                depth (and Z, the same), inscatter.R/G/B as float; depth =\n"
-          "                distance along the view ray to the first surface, the far plane\n"
-          "                for the sky; RGB = transmittance x surface + inscatter) or .png\n"
-          "                (8-bit sRGB RGB)\n"
-          "  --size WxH    image size (default: [render] width and height of the config)\n"
-          "  --vdb-frame N with a [fog] vdb sequence: render its frame number N (as in the\n"
-          "                file names; default: [fog] vdb_frame, else the last frame)\n"
-          "  --help        this text\n\n"
-          "The config format is described in docs/config.md.\n");
-}
 
 /* The frame's EXR (app/frame_exr.h) with the camera as the standard header matrices.
  * Without fog the transmittance is 1 and the in-scatter 0: written anyway, so every
@@ -66,32 +50,34 @@ static int write_png(const char *out, int width, int height, const float *rgba,
 }
 
 int cmd_render(int argc, char **argv) {
-  const char *config_path = NULL, *out = NULL;
-  int width = 0, height = 0, vdb_frame = -2;
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      usage(stdout);
-      return 0;
-    } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
-      out = argv[++i];
-    } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
-      if (cli_size("render", "--size", argv[++i], &width, &height)) return 2;
-    } else if (!strcmp(argv[i], "--vdb-frame") && i + 1 < argc) {
-      if (cli_int("render", "--vdb-frame", argv[++i], 0, INT_MAX, &vdb_frame)) return 2;
-    } else if (argv[i][0] == '-') {
-      return cli_usage_error("render", "unknown option '%s' (or it lacks its value)", argv[i]);
-    } else if (!config_path) {
-      config_path = argv[i];
-    } else {
-      return cli_usage_error("render", "one config only, got '%s' and '%s'", config_path,
-                             argv[i]);
-    }
-  }
-  if (!config_path || !out) {
-    fprintf(stderr, "fogpipe render: %s\n\n", !config_path ? "no CONFIG given" : "no --out FILE given");
-    usage(stderr);
-    return 2;
-  }
+  const char *out = NULL;
+  int size[2] = {0, 0}, vdb_frame = -2;
+  const cli_option options[] = {
+      {.kind = CLI_TEXT, .name = "--out", .value = "FILE", .target = &out,
+       .help = "output image: .exr (channels R G B A as half; transmittance,\n"
+               "depth (and Z, the same), inscatter.R/G/B as float; depth =\n"
+               "distance along the view ray to the first surface, the far plane\n"
+               "for the sky; RGB = transmittance x surface + inscatter) or .png\n"
+               "(8-bit sRGB RGB)"},
+      {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
+       .help = "image size (default: [render] width and height of the config)"},
+      {.kind = CLI_INT, .name = "--vdb-frame", .value = "N", .target = &vdb_frame, .min = 0,
+       .max = INT_MAX,
+       .help = "with a [fog] vdb sequence: render its frame number N (as in the\n"
+               "file names; default: [fog] vdb_frame, else the last frame)"},
+  };
+  const cli_spec spec = {
+      .command = "render",
+      .usage = "CONFIG --out FILE.exr|FILE.png [--size WxH] [--vdb-frame N]",
+      .about = "Renders one frame of the scene config headless (EGL; no display needed).",
+      .operand = "CONFIG", .min_operands = 1, .max_operands = 1,
+      .options = options, .option_count = sizeof options / sizeof options[0],
+      .footer = "The config format is described in docs/config.md."};
+  const char *config_path = NULL;
+  int operands = 0, parsed = cli_parse(&spec, argc, argv, &config_path, &operands);
+  if (parsed) return parsed == CLI_HELP ? 0 : parsed;
+  if (!out) return cli_usage_error("render", "no --out FILE given");
+  int width = size[0], height = size[1];
   bool exr = cli_ends_with(out, ".exr");
   if (!exr && !cli_ends_with(out, ".png")) {
     fprintf(stderr, "fogpipe render: --out '%s': expected a .exr or .png file name\n", out);

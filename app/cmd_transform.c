@@ -13,40 +13,12 @@
 #include <OpenEXR/openexr.h>
 
 #include "app/cli.h"
+#include "app/cli_options.h"
 #include "app/commands.h"
 #include "sim/sim.h"
 #include "transform/transform.h"
 
 static const char *const orientation_names[3] = {"x", "y", "xy"};
-
-static void usage(FILE *out) {
-  fprintf(out,
-          "usage: fogpipe transform IN --levels J --out DIR [options]\n"
-          "       fogpipe transform --inverse DIR --out FILE\n\n"
-          "Decomposes the fogmap IN (PNG or EXR) in a B-spline wavelet basis\n"
-          "(Mallat's algorithm, unnormalised lifting; docs/transform.md) and writes to DIR:\n"
-          "  approx_L.exr            approximation pyramid A_L, L = 0 (coarsest) .. J\n"
-          "  detail_L_{x,y,xy}.exr   detail band L (1 = coarsest .. J), by orientation\n"
-          "  deconstructed_L.exr     band L pushed through the synthesis filters once: a\n"
-          "                          scaling grid at level L (A_L = refine(A_L-1) + it)\n"
-          "  transform.ini           basis, levels, mode, sizes, grid origins, energies\n"
-          "With --inverse, reads such a folder and writes the reconstructed fogmap EXR.\n\n"
-          "options:\n"
-          "  --basis haar|linear|quadratic   B-spline degree 0, 1 (CDF 5/3), 2 (bior3.3);\n"
-          "                                  default linear\n"
-          "  --levels J                      decomposition levels (required; too many for\n"
-          "                                  the size is an error naming the largest J)\n"
-          "  --mode symmetric|periodic       boundary extension; default symmetric\n"
-          "                                  (periodic needs sizes divisible by 2^J)\n"
-          "  --standard                      standard decomposition (default: non-standard)\n"
-          "  --channel NAME                  the channel of a multi-channel IN: an EXR\n"
-          "                                  channel (R, Y, density, ...) or R, G, B, A of a\n"
-          "                                  PNG; default: IN must have one channel\n"
-          "  --threads 1|2                   default 1\n"
-          "  --out DIR|FILE                  output folder (forward) or EXR file (--inverse)\n"
-          "  --inverse DIR                   reconstruct from DIR\n"
-          "  --help                          this text\n");
-}
 
 static const char *basis_word(transform_basis b) {
   return b == TRANSFORM_HAAR ? "haar" : b == TRANSFORM_LINEAR ? "linear" : "quadratic";
@@ -371,58 +343,63 @@ done:
 }
 
 int cmd_transform(int argc, char **argv) {
-  const char *in = NULL, *out = NULL, *inverse = NULL, *channel = NULL;
+  const char *out = NULL, *inverse = NULL, *channel = NULL;
   transform_desc desc = {.levels = -1};
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    int has_value = i + 1 < argc;
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      usage(stdout);
-      return 0;
-    } else if (!strcmp(a, "--standard")) {
-      desc.decomposition = TRANSFORM_STANDARD;
-    } else if (!strcmp(a, "--basis") && has_value) {
-      if (parse_basis(argv[++i], &desc.basis))
-        return cli_usage_error("transform", "--basis '%s': expected haar, linear or quadratic",
-                               argv[i]);
-    } else if (!strcmp(a, "--levels") && has_value) {
-      if (cli_int("transform", "--levels", argv[++i], 0, 60, &desc.levels)) return 2;
-    } else if (!strcmp(a, "--mode") && has_value) {
-      i++;
-      if (!strcmp(argv[i], "symmetric")) desc.boundary = TRANSFORM_SYMMETRIC;
-      else if (!strcmp(argv[i], "periodic")) desc.boundary = TRANSFORM_PERIODIC;
-      else return cli_usage_error("transform", "--mode '%s': expected symmetric or periodic",
-                                  argv[i]);
-    } else if (!strcmp(a, "--threads") && has_value) {
-      if (cli_int("transform", "--threads", argv[++i], 1, 2, &desc.threads)) return 2;
-    } else if (!strcmp(a, "--out") && has_value) {
-      out = argv[++i];
-    } else if (!strcmp(a, "--channel") && has_value) {
-      channel = argv[++i];
-    } else if (!strcmp(a, "--inverse") && has_value) {
-      inverse = argv[++i];
-    } else if (a[0] == '-' && a[1]) {
-      return cli_usage_error("transform", "unknown option or missing value: '%s'", a);
-    } else if (!in) {
-      in = a;
-    } else {
-      return cli_usage_error("transform", "more than one input: %s and %s", in, a);
-    }
-  }
-  if (!out) {
-    usage(stderr);
-    return cli_fail("transform", "--out is required");
-  }
+  /* in the enums' order: transform_basis, transform_boundary */
+  static const char *const bases[] = {"linear", "haar", "quadratic", NULL};
+  static const char *const modes[] = {"symmetric", "periodic", NULL};
+  int basis = TRANSFORM_LINEAR, mode = TRANSFORM_SYMMETRIC;
+  bool standard = false;
+  const cli_option options[] = {
+      {.kind = CLI_CHOICE, .name = "--basis", .value = "haar|linear|quadratic", .target = &basis,
+       .choices = bases, .help = "B-spline degree 0, 1 (CDF 5/3), 2 (bior3.3);\ndefault linear"},
+      {.kind = CLI_INT, .name = "--levels", .value = "J", .target = &desc.levels, .min = 0,
+       .max = 60,
+       .help = "decomposition levels (required; too many for\n"
+               "the size is an error naming the largest J)"},
+      {.kind = CLI_CHOICE, .name = "--mode", .value = "symmetric|periodic", .target = &mode,
+       .choices = modes,
+       .help = "boundary extension; default symmetric\n(periodic needs sizes divisible by 2^J)"},
+      {.kind = CLI_FLAG, .name = "--standard", .target = &standard,
+       .help = "standard decomposition (default: non-standard)"},
+      {.kind = CLI_TEXT, .name = "--channel", .value = "NAME", .target = &channel,
+       .help = "the channel of a multi-channel IN: an EXR\n"
+               "channel (R, Y, density, ...) or R, G, B, A of a\n"
+               "PNG; default: IN must have one channel"},
+      {.kind = CLI_INT, .name = "--threads", .value = "1|2", .target = &desc.threads, .min = 1,
+       .max = 2, .help = "default 1"},
+      {.kind = CLI_TEXT, .name = "--out", .value = "DIR|FILE", .target = &out,
+       .help = "output folder (forward) or EXR file (--inverse)"},
+      {.kind = CLI_TEXT, .name = "--inverse", .value = "DIR", .target = &inverse,
+       .help = "reconstruct from DIR"},
+  };
+  const cli_spec spec = {
+      .command = "transform",
+      .usage = "IN --levels J --out DIR [options]\n"
+               "       fogpipe transform --inverse DIR --out FILE",
+      .about = "Decomposes the fogmap IN (PNG or EXR) in a B-spline wavelet basis\n"
+               "(Mallat's algorithm, unnormalised lifting; docs/transform.md) and writes to DIR:\n"
+               "  approx_L.exr            approximation pyramid A_L, L = 0 (coarsest) .. J\n"
+               "  detail_L_{x,y,xy}.exr   detail band L (1 = coarsest .. J), by orientation\n"
+               "  deconstructed_L.exr     band L pushed through the synthesis filters once: a\n"
+               "                          scaling grid at level L (A_L = refine(A_L-1) + it)\n"
+               "  transform.ini           basis, levels, mode, sizes, grid origins, energies\n"
+               "With --inverse, reads such a folder and writes the reconstructed fogmap EXR.",
+      .operand = "IN", .min_operands = 0, .max_operands = 1,
+      .options = options, .option_count = sizeof options / sizeof options[0]};
+  const char *in = NULL;
+  int operands = 0, parsed = cli_parse(&spec, argc, argv, &in, &operands);
+  if (parsed) return parsed == CLI_HELP ? 0 : parsed;
+  desc.basis = (transform_basis)basis, desc.boundary = (transform_boundary)mode;
+  desc.decomposition = standard ? TRANSFORM_STANDARD : TRANSFORM_NONSTANDARD;
+  if (!out) return cli_usage_error("transform", "--out is required");
   if (inverse) {
     if (in) return cli_fail("transform", "--inverse takes no input fogmap (%s)", in);
     if (channel) return cli_fail("transform", "--inverse reads its folder's own channels; "
                                  "--channel is for a forward transform");
     return run_inverse(inverse, out, desc.threads);
   }
-  if (!in) {
-    usage(stderr);
-    return cli_fail("transform", "no input fogmap given");
-  }
+  if (!in) return cli_usage_error("transform", "no input fogmap given");
   if (desc.levels < 0) return cli_fail("transform", "--levels is required");
   return run_forward(in, channel, out, desc);
 }

@@ -15,6 +15,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app/cli.h"
+#include "app/cli_options.h"
 #include "app/cmd_view.h"
 #include "app/commands.h"
 #include "app/config.h"
@@ -26,36 +27,6 @@
 #include "render/gl_present.h"
 #include "render/render.h"
 #include "sim/sim.h"
-
-static void usage(FILE *out) {
-  fprintf(out,
-          "usage: fogpipe view CONFIG [--size WxH] [--render-scale F] [--play]\n"
-          "                           [--screenshot FILE.png --frames N] [--fit T [--rung N]]\n\n"
-          "Opens the scene config in a window with a free camera (needs a display; for\n"
-          "headless images use `fogpipe render`).\n"
-          "  W A S D  move     Q E  down / up     Shift  4x faster\n"
-          "  right mouse button + drag  look around     Esc  quit\n"
-          "  P  play / pause the VDB sequence of [fog] model = volume (from vdb_frame, looping\n"
-          "     at vdb_fps, blended between frames)\n"
-          "  B  the Gaussian brush of [fog] model = rbf (Fogshop's; the title shows it):\n"
-          "     left drag paints Gaussians on the surface, Shift + left drag erases them,\n"
-          "     C picks up the group under the cursor and V puts a copy of it down there,\n"
-          "     - and = size, , and . density, Ctrl+S writes CONFIG.painted.ini\n\n"
-          "options:\n"
-          "  --render-scale F   render at F times the window size, shown scaled up\n"
-          "                     (default 0.5: software GL is slow; 1 on a GPU)\n"
-          "  --size WxH         window size (default: [render] width and height)\n"
-          "  --play             start playing the volume's sequence (with --screenshot: one\n"
-          "                     VDB frame per drawn frame)\n"
-          "  --screenshot FILE  save the window's last frame as an 8-bit PNG and exit\n"
-          "  --frames N         frames to draw before the screenshot (default 1)\n"
-          "  --fit T            first run `fogpipe fit` on the scene at tolerance T, then show\n"
-          "                     its pick: [ and ] step through every rung of the model ladder,\n"
-          "                     0 returns to the config's own fog; the window title shows the\n"
-          "                     rung, its measured error against the scene's fog and its time\n"
-          "  --rung N           with --fit: start on rung N (its row in fit's table, from 0)\n"
-          "  --help             this text\n");
-}
 
 /* model = volume: its VDB sequence, played from the config's frame. */
 typedef struct volume_playback {
@@ -500,41 +471,53 @@ int view_window_run(const scene_config *cfg, const char *title, const view_optio
 }
 
 int cmd_view(int argc, char **argv) {
-  const char *config_path = NULL;
   view_options opts = {.render_scale = 0.5, .frames = 1, .rung = -1};
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      usage(stdout);
-      return 0;
-    } else if (!strcmp(argv[i], "--play")) {
-      opts.play = true;
-    } else if (!strcmp(argv[i], "--screenshot") && i + 1 < argc) {
-      opts.screenshot = argv[++i];
-    } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
-      if (cli_int("view", "--frames", argv[++i], 1, 1000000, &opts.frames)) return 2;
-    } else if (!strcmp(argv[i], "--fit") && i + 1 < argc) {
-      opts.fit = true;
-      if (cli_number("view", "--fit", argv[++i], 1e-12, 1.0, &opts.fit_tolerance)) return 2;
-    } else if (!strcmp(argv[i], "--rung") && i + 1 < argc) {
-      if (cli_int("view", "--rung", argv[++i], 0, FIT_MAX_RUNGS - 1, &opts.rung)) return 2;
-    } else if (!strcmp(argv[i], "--render-scale") && i + 1 < argc) {
-      if (cli_number("view", "--render-scale", argv[++i], 0.05, 4, &opts.render_scale)) return 2;
-    } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
-      if (cli_size("view", "--size", argv[++i], &opts.width, &opts.height)) return 2;
-    } else if (argv[i][0] == '-') {
-      return cli_usage_error("view", "unknown option '%s' (or it lacks its value)", argv[i]);
-    } else if (!config_path) {
-      config_path = argv[i];
-    } else {
-      return cli_usage_error("view", "one config only, got '%s' and '%s'", config_path, argv[i]);
-    }
-  }
+  int size[2] = {0, 0};
+  const cli_option options[] = {
+      {.kind = CLI_NUMBER, .name = "--render-scale", .value = "F", .target = &opts.render_scale,
+       .min = 0.05, .max = 4,
+       .help = "render at F times the window size, shown scaled up\n"
+               "(default 0.5: software GL is slow; 1 on a GPU)"},
+      {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
+       .help = "window size (default: [render] width and height)"},
+      {.kind = CLI_FLAG, .name = "--play", .target = &opts.play,
+       .help = "start playing the volume's sequence (with --screenshot: one\n"
+               "VDB frame per drawn frame)"},
+      {.kind = CLI_TEXT, .name = "--screenshot", .value = "FILE", .target = &opts.screenshot,
+       .help = "save the window's last frame as an 8-bit PNG and exit"},
+      {.kind = CLI_INT, .name = "--frames", .value = "N", .target = &opts.frames, .min = 1,
+       .max = 1000000, .help = "frames to draw before the screenshot (default 1)"},
+      {.kind = CLI_NUMBER, .name = "--fit", .value = "T", .target = &opts.fit_tolerance,
+       .min = 1e-12, .max = 1.0, .given = &opts.fit,
+       .help = "first run `fogpipe fit` on the scene at tolerance T, then show\n"
+               "its pick: [ and ] step through every rung of the model ladder,\n"
+               "0 returns to the config's own fog; the window title shows the\n"
+               "rung, its measured error against the scene's fog and its time"},
+      {.kind = CLI_INT, .name = "--rung", .value = "N", .target = &opts.rung, .min = 0,
+       .max = FIT_MAX_RUNGS - 1,
+       .help = "with --fit: start on rung N (its row in fit's table, from 0)"},
+  };
+  const cli_spec spec = {
+      .command = "view",
+      .usage = "CONFIG [--size WxH] [--render-scale F] [--play]\n"
+               "                           [--screenshot FILE.png --frames N] [--fit T [--rung N]]",
+      .about = "Opens the scene config in a window with a free camera (needs a display; for\n"
+               "headless images use `fogpipe render`).\n"
+               "  W A S D  move     Q E  down / up     Shift  4x faster\n"
+               "  right mouse button + drag  look around     Esc  quit\n"
+               "  P  play / pause the VDB sequence of [fog] model = volume (from vdb_frame, looping\n"
+               "     at vdb_fps, blended between frames)\n"
+               "  B  the Gaussian brush of [fog] model = rbf (Fogshop's; the title shows it):\n"
+               "     left drag paints Gaussians on the surface, Shift + left drag erases them,\n"
+               "     C picks up the group under the cursor and V puts a copy of it down there,\n"
+               "     - and = size, , and . density, Ctrl+S writes CONFIG.painted.ini",
+      .operand = "CONFIG", .min_operands = 1, .max_operands = 1,
+      .options = options, .option_count = sizeof options / sizeof options[0]};
+  const char *config_path = NULL;
+  int operands = 0, parsed = cli_parse(&spec, argc, argv, &config_path, &operands);
+  if (parsed) return parsed == CLI_HELP ? 0 : parsed;
+  opts.width = size[0], opts.height = size[1];
   if (opts.rung >= 0 && !opts.fit) return cli_usage_error("view", "--rung needs --fit T");
-  if (!config_path) {
-    fprintf(stderr, "fogpipe view: no CONFIG given\n\n");
-    usage(stderr);
-    return 2;
-  }
   scene_config cfg;
   scene_config_error cfg_err;
   if (scene_config_load(config_path, &cfg, &cfg_err)) {

@@ -1,0 +1,126 @@
+/* The option tables (app/cli_options.h): cli_parse stores every kind of value where its row
+ * says, refuses what the row does not allow with exit status 2 (unknown options, missing
+ * values, numbers out of range or with trailing text, unknown choices, too many or too few
+ * operands), answers --help with CLI_HELP, and cli_print_help lists every row (sections,
+ * options with their values and each line of their help). */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/cli.h"
+#include "app/cli_options.h"
+#include "test_util.h"
+
+typedef struct values {
+  bool flag, given_number;
+  int count, size[2], range[3], choice;
+  double number;
+  float ratio;
+  const char *text, *custom;
+} values;
+
+static int parse_upper(const char *command, const char *option, const char *text, void *target) {
+  if (!(text[0] >= 'A' && text[0] <= 'Z'))
+    return cli_usage_error(command, "%s '%s': expected a capital first", option, text);
+  *(const char **)target = text;
+  return 0;
+}
+
+static const char *const choices[] = {"red", "green", "blue", NULL};
+
+static int run(values *v, const char **operands, int *count, const char *line) {
+  *v = (values){.count = -1, .choice = -1};
+  const cli_option options[] = {
+      {.kind = CLI_SECTION, .name = "first:"},
+      {.kind = CLI_FLAG, .name = "--flag", .target = &v->flag, .help = "a flag"},
+      {.kind = CLI_INT, .name = "--count", .value = "N", .target = &v->count, .min = 1, .max = 9,
+       .help = "a count\nover two lines"},
+      {.kind = CLI_NUMBER, .name = "--number", .value = "X", .target = &v->number, .min = -1,
+       .max = 1, .given = &v->given_number, .help = "a number"},
+      {.kind = CLI_FLOAT, .name = "--ratio", .value = "R", .target = &v->ratio, .min = 0,
+       .max = 2, .help = "a float"},
+      {.kind = CLI_SECTION, .name = "second:"},
+      {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = v->size, .help = "a size"},
+      {.kind = CLI_RANGE, .name = "--frames", .value = "A-B", .target = v->range, .min = 0,
+       .max = 100, .help = "a range"},
+      {.kind = CLI_TEXT, .name = "--text", .value = "TEXT", .target = &v->text, .help = "text"},
+      {.kind = CLI_CHOICE, .name = "--colour", .value = "red|green|blue", .target = &v->choice,
+       .choices = choices, .help = "a choice"},
+      {.kind = CLI_CUSTOM, .name = "--name", .value = "NAME", .target = &v->custom,
+       .parse = parse_upper, .help = "a custom value"},
+  };
+  const cli_spec spec = {.command = "test", .usage = "FILE... [options]", .about = "About.",
+                         .operand = "FILE", .min_operands = 1, .max_operands = 2,
+                         .options = options, .option_count = sizeof options / sizeof options[0],
+                         .footer = "Footer."};
+  char buffer[512], *argv[32];
+  snprintf(buffer, sizeof buffer, "test %s", line);
+  int argc = 0;
+  for (char *w = strtok(buffer, " "); w && argc < 32; w = strtok(NULL, " ")) argv[argc++] = w;
+  static char keep[32][64]; /* operands point into argv: keep the words */
+  for (int i = 0; i < argc; i++) {
+    snprintf(keep[i], sizeof keep[i], "%s", argv[i]);
+    argv[i] = keep[i];
+  }
+  int status = cli_parse(&spec, argc, argv, operands, count);
+  if (status == CLI_HELP) { /* the help again, into a string, to check its lines */
+    char *text = NULL;
+    size_t length = 0;
+    FILE *f = open_memstream(&text, &length);
+    cli_print_help(&spec, f);
+    fclose(f);
+    const char *lines[] = {"usage: fogpipe test FILE... [options]", "About.", "first:",
+                           "  --flag ", "  --count N ", "a count\n", "over two lines\n",
+                           "  --ratio R", "second:", "  --size WxH", "  --frames A-B",
+                           "  --colour red|green|blue", "  --name NAME", "  --help", "Footer."};
+    for (size_t k = 0; k < sizeof lines / sizeof lines[0]; k++)
+      CHECK(strstr(text, lines[k]) != NULL, "help lacks '%s':\n%s", lines[k], text);
+    free(text);
+  }
+  return status;
+}
+
+int main(void) {
+  values v;
+  const char *operands[2];
+  int count;
+  int status = run(&v, operands, &count,
+                   "a.ini --flag --count 7 --number -0.5 --ratio 1.5 --size 640x360 "
+                   "--frames 3-9 --text hello --colour blue --name Fog b.ini");
+  CHECK(status == 0, "a full line: status %d", status);
+  CHECK(count == 2 && !strcmp(operands[0], "a.ini") && !strcmp(operands[1], "b.ini"),
+        "operands");
+  CHECK(v.flag && v.count == 7 && v.number == -0.5 && v.ratio == 1.5f && v.given_number,
+        "flag, int, number, float");
+  CHECK(v.size[0] == 640 && v.size[1] == 360, "size %dx%d", v.size[0], v.size[1]);
+  CHECK(v.range[0] == 3 && v.range[1] == 9 && v.range[2] == 0, "range %d-%d", v.range[0],
+        v.range[1]);
+  CHECK(!strcmp(v.text, "hello") && v.choice == 2 && !strcmp(v.custom, "Fog"),
+        "text, choice, custom");
+  CHECK(run(&v, operands, &count, "a.ini --frames 5") == 0 && v.range[0] == 5 &&
+            v.range[1] == 5 && v.range[2] == 1,
+        "a single frame");
+  CHECK(run(&v, operands, &count, "a.ini") == 0 && !v.given_number && v.count == -1,
+        "untouched without the options");
+  CHECK(run(&v, operands, &count, "--help") == CLI_HELP, "--help");
+  CHECK(run(&v, operands, &count, "a.ini -h") == CLI_HELP, "-h");
+
+  const char *bad[] = {
+      "a.ini --bogus",          /* unknown */
+      "a.ini --count",          /* no value */
+      "a.ini --count 10",       /* out of range */
+      "a.ini --count 3x",       /* trailing text */
+      "a.ini --number nan",     /* not finite */
+      "a.ini --ratio 2.5",      /* float out of range */
+      "a.ini --size 0x10",      /* size */
+      "a.ini --frames 9-3",     /* range backwards */
+      "a.ini --colour purple",  /* unknown choice */
+      "a.ini --name fog",       /* custom refusal */
+      "a.ini b.ini c.ini",      /* too many operands */
+      "--flag",                 /* too few */
+  };
+  for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
+    CHECK(run(&v, operands, &count, bad[k]) == 2, "'%s' was not refused with 2", bad[k]);
+  return test_finish("test_cli_options");
+}
