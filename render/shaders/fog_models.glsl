@@ -517,11 +517,14 @@ float fog_perlin_optical_depth(vec3 dir, float length) {
     float k = fog_model_extinction * exp(-(t0 * dir.y - fog_model_y0) / fog_model_scale_height);
     return fog_perlin_turbulence(t1 * dir) * k * len * fog_exprel(a * len);
   }
+  // sum is the depth over the extinction: what is left of the opacity budget, in octave i's
+  // units, is (limit / K - sum) 2^i (not (limit - sum) / K 2^i, which mixed the units and
+  // dropped the finer octaves wherever K < 1 and the fog was thin: up to 5.8e-2 in tau)
   float sum = 0.0;
   for (int i = 0; i < fog_perlin_octaves; i++)
     sum += exp2(-float(i)) *
            fog_perlin_octave_depth(i, dir, t0, t1,
-                                   (fog_depth_limit - sum) / fog_model_extinction * exp2(float(i)));
+                                   (fog_depth_limit / fog_model_extinction - sum) * exp2(float(i)));
   return fog_model_extinction * sum;
 }
 

@@ -160,7 +160,7 @@ int main(void) {
   static const char *const scene =
       "[camera]\nposition = 0 120 400\nlook_at = 0 20 -100\nfov = 55\n"
       "[terrain]\nsize = 1000 1000\nheight = 120\nresolution = 65\n";
-  static const char *const fogs[7][2] = {
+  static const char *const fogs[8][2] = {
       {"homogeneous", "\n[fog]\nmodel = homogeneous\ndensity_scale = 0.003\n"},
       {"height", "\n[fog]\nmodel = height\ndensity_scale = 0.02\nfog_height = 30\n"
                  "scale_height = 25\n"},
@@ -173,8 +173,12 @@ int main(void) {
                             "scale_height = 25\nquadric = sphere -60 80 -100 70 2 0.5\n"
                             "quadric = cylinder 120 0 -60 30 160 3\n"},
       {"rbf + quadrics", "\n[fog]\nmodel = rbf\nrbf = -50 20 -50 80 0.01\n"
-                         "quadric = ellipsoid 100 40 0 90 30 60 0.02 0.3\n"}};
-  for (int k = 0; k < 7; k++) {
+                         "quadric = ellipsoid 100 40 0 90 30 60 0.02 0.3\n"},
+      /* thin Perlin fog (K < 1) of three octaves around the camera: the opacity budget of
+       * the finer octaves once dropped them (5.8e-2 in tau) */
+      {"perlin, thin", "\n[fog]\nmodel = perlin\ndensity_scale = 0.012\nfog_height = 0\n"
+                       "scale_height = 30\nperlin_feature = 30\n[box]\nfloor = 0\ntop = 200\n"}};
+  for (int k = 0; k < 8; k++) {
     char path[256];
     snprintf(path, sizeof path, "%s/fog%d.ini", dir, k);
     FILE *f = fopen(path, "w");
