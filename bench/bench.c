@@ -1,6 +1,7 @@
 /* The bench dispatcher and the small timing helpers every stage shares. */
 #define _POSIX_C_SOURCE 200809L
 #include "bench/bench.h"
+#include "app/cli_options.h"
 #include "app/commands.h"
 #include "render/fog_pass.h"
 
@@ -61,54 +62,46 @@ void bench_print_build(void) {
          __GNUC__, __GNUC_MINOR__);
 }
 
-int bench_image_option(const char *stage, int argc, char **argv, int *i,
-                       bench_image_options *o) {
-  const char *arg = argv[*i];
-  if (*i + 1 >= argc) return 0;
-  if (!strcmp(arg, "--size")) {
-    char tail = 0;
-    const char *value = argv[++*i];
-    if (sscanf(value, "%dx%d%c", &o->width, &o->height, &tail) != 2 || o->width < 8 ||
-        o->height < 8 || o->width > 8192 || o->height > 8192) {
-      fprintf(stderr, "fogpipe bench %s: --size '%s': expected WxH, 8..8192 each, e.g. 640x360\n",
-              stage, value);
-      return -1;
-    }
-    return 1;
+int bench_parse(const bench_command *c, int argc, char **argv) {
+  enum { max_rows = 32 };
+  cli_option rows[max_rows];
+  int n = 0;
+  char size_help[64], frames_help[128], out_help[256], command[64];
+  bench_image_options *image = c->image;
+  if (image) {
+    snprintf(size_help, sizeof size_help, "image size (default %dx%d)", image->width,
+             image->height);
+    snprintf(frames_help, sizeof frames_help, "%s (default %d)",
+             c->frames_help ? c->frames_help : "timed rounds per row, median after one warm-up",
+             image->frames);
+    const char *what = c->out_help ? c->out_help : "output folder";
+    if (image->out_dir)
+      snprintf(out_help, sizeof out_help, "%s\n(default %s; created if missing)", what,
+               image->out_dir);
+    else
+      snprintf(out_help, sizeof out_help, "%s", what);
+    /* width and height: two adjacent ints, CLI_SIZE's pair */
+    rows[n++] = (cli_option){.kind = CLI_SIZE, .name = "--size", .value = "WxH",
+                             .target = &image->width, .help = size_help};
+    rows[n++] = (cli_option){.kind = CLI_INT, .name = "--frames", .value = "N",
+                             .target = &image->frames, .min = 1, .max = 100000000,
+                             .help = frames_help};
+    if (!c->without_out)
+      rows[n++] = (cli_option){.kind = CLI_TEXT, .name = "--out", .value = "DIR",
+                               .target = &image->out_dir, .help = out_help};
   }
-  if (!strcmp(arg, "--frames")) {
-    o->frames = atoi(argv[++*i]);
-    if (o->frames < 1) {
-      fprintf(stderr, "fogpipe bench %s: --frames needs a positive number\n", stage);
-      return -1;
-    }
-    return 1;
-  }
-  if (!strcmp(arg, "--out")) {
-    o->out_dir = argv[++*i];
-    return 1;
-  }
-  return 0;
-}
-
-int bench_image_command(const char *stage, int argc, char **argv, bench_image_options *options,
-                        void (*print_help)(void)) {
-  for (int i = 1; i < argc; i++) {
-    int common = bench_image_option(stage, argc, argv, &i, options);
-    if (common < 0) return 2;
-    if (common) continue;
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      print_help();
-      return 0;
-    }
-    fprintf(stderr, "fogpipe bench %s: unknown option '%s' (or it lacks its value)\n", stage,
-            argv[i]);
-    print_help();
-    return 2;
-  }
+  for (int k = 0; k < c->option_count && n < max_rows; k++) rows[n++] = c->options[k];
+  snprintf(command, sizeof command, "bench %s", c->stage);
+  const cli_spec spec = {.command = command, .usage = c->usage, .about = c->about,
+                         .footer = c->footer, .operand = c->operand ? c->operand : "operand",
+                         .max_operands = c->max_operands, .options = rows, .option_count = n};
+  const char *none = NULL;
+  int count = 0;
+  int parsed = cli_parse(&spec, argc, argv, c->operands ? c->operands : &none, &count);
+  if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   char error[1024];
-  if (bench_make_folder(options->out_dir, error, sizeof error)) {
-    fprintf(stderr, "fogpipe bench %s: %s\n", stage, error);
+  if (image && image->out_dir && bench_make_folder(image->out_dir, error, sizeof error)) {
+    fprintf(stderr, "fogpipe bench %s: %s\n", c->stage, error);
     return 1;
   }
   return -1;

@@ -5,6 +5,7 @@
 #define FOGPIPE_BENCH_H
 
 /* Stages time with app_clock_seconds(), the clock the pipeline times with too. */
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "app/clock.h"
@@ -21,23 +22,34 @@
 double bench_median(double *values, int n);
 /* Prints one line naming the build measured (type, -march=native or portable, compiler). */
 void bench_print_build(void);
-/* The options of the image benches (render, models): --size WxH, --frames N, --out DIR. */
+/* The options of the image benches (render, models, light, lights, soak): --size WxH,
+ * --frames N, --out DIR. */
 typedef struct bench_image_options {
   int width, height, frames;
   const char *out_dir;
 } bench_image_options;
-/* If argv[*i] is one of those options, reads it and its value (advancing *i) and returns
- * 1; returns 0 for any other argument, and -1 after a message on stderr naming `stage`
- * for a bad value. */
-int bench_image_option(const char *stage, int argc, char **argv, int *i,
-                       bench_image_options *options);
-/* The whole command line of an image bench that takes only those options and --help:
- * parses it into *options (print_help for --help; a message naming the bad option, then
- * print_help, otherwise) and creates options->out_dir. Returns -1 when the bench should
- * run, else the process's exit status (0 after --help, 2 for a bad option, 1 when the
- * folder cannot be made). */
-int bench_image_command(const char *stage, int argc, char **argv, bench_image_options *options,
-                        void (*print_help)(void));
+
+/* A stage's command line by an option table (app/cli_options.h: one parser and one
+ * message style for every command, --help generated): with image options, their --size,
+ * --frames and --out rows first (their defaults, the values in *image, in the help), then
+ * the stage's own rows. usage follows "fogpipe bench STAGE "; about and footer frame the
+ * options in --help. Operands (at most max_operands, named operand) go to operands.
+ * Creates image->out_dir when set. Returns -1 when the stage should run, else the
+ * process's exit status (0 after --help, 2 for a bad command line, 1 when the folder
+ * cannot be made). */
+typedef struct bench_command {
+  const char *stage, *usage, *about, *footer;
+  bench_image_options *image;      /* NULL: the stage takes no image options */
+  bool without_out;                /* the image options but --out (a stage writing no files) */
+  const char *frames_help, *out_help; /* the image rows' help (NULL: generic) */
+  const struct cli_option *options; /* the stage's own rows */
+  int option_count;
+  const char *operand;
+  const char **operands;
+  int max_operands;
+} bench_command;
+int bench_parse(const bench_command *command, int argc, char **argv);
+
 /* GL draws timed side by side: `frames` rounds, each drawing every row once, so a host that
  * slows down during the run slows every row alike. Per row and round: prepare (untimed, may
  * be NULL: uploads, binding the target, the round's jitter), then draw between two

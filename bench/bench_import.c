@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "app/cli_options.h"
 #include "bench/bench.h"
 #include "render/camera.h"
 #include "render/fog_pass.h"
@@ -23,26 +24,6 @@
 
 enum { W = 640, H = 480, max_levels = 3, max_runs = 64, parts_count = 6 };
 
-static void print_help(void) {
-  printf("usage: fogpipe bench import [--runs N] [--preview-runs N] [--vdb-render PATH]\n"
-         "                            [--images DIR] [preview variants]\n\n"
-         "Import: every frame of ../shared/data/vdb/groundfog (read + project + profile +\n"
-         "resample), N runs after a warm-up (default 3), median ms per frame.\n"
-         "Preview of frame 48 at %dx%d, median of --preview-runs (default 5) after a warm-up:\n"
-         "fogpipe = import + project + transform + headless GL render + readback + PNG, with\n"
-         "the GL context and shaders made once before (an open viewer's situation; the cold\n"
-         "first frame is printed too); vdb_render = the whole command (its own read, ray\n"
-         "march with lighting, PNG) with -light given all 6 numbers.\n"
-         "  --images DIR   keep both preview images there (fogpipe.png, vdb_render.png)\n"
-         "preview variants (default: native 64x64 fogmap, B-spline profile with one knot\n"
-         "per layer, exact integral):\n"
-         "  --resolution N       fogmap cells along the longer side\n"
-         "  --profile-knots N    B-spline profile coefficients\n"
-         "  --exponential        exponential profile\n"
-         "  --march              the summary's B from the fog pass's 64-step ray march\n"
-         "                       (default: the exact integral; both are measured)\n",
-         W, H);
-}
 
 /* Wall seconds of one vdb_render run; < 0 when it failed. */
 static double time_vdb_render(const char *exe, const char *vdb, const char *png) {
@@ -378,42 +359,47 @@ static int cpu_preview(const char *vdb, const camera *cam, float *rgb, const cha
 }
 
 int bench_import(int argc, char **argv) {
-  int runs = 3, preview_runs = 5, march = 0, exponential = 0, knots = 0, resolution = 0;
+  int runs = 3, preview_runs = 5, knots = 0, resolution = 0;
+  bool march_flag = false, exponential_flag = false;
   const char *exe = "/usr/bin/vdb_render", *images = NULL;
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      print_help();
-      return 0;
-    } else if (!strcmp(argv[i], "--runs") && i + 1 < argc) {
-      runs = atoi(argv[++i]);
-    } else if (!strcmp(argv[i], "--preview-runs") && i + 1 < argc) {
-      preview_runs = atoi(argv[++i]);
-    } else if (!strcmp(argv[i], "--vdb-render") && i + 1 < argc) {
-      exe = argv[++i];
-    } else if (!strcmp(argv[i], "--march")) {
-      march = 1;
-    } else if (!strcmp(argv[i], "--exponential")) {
-      exponential = 1;
-    } else if (!strcmp(argv[i], "--profile-knots") && i + 1 < argc) {
-      knots = atoi(argv[++i]);
-    } else if (!strcmp(argv[i], "--resolution") && i + 1 < argc) {
-      resolution = atoi(argv[++i]);
-    } else if (!strcmp(argv[i], "--images") && i + 1 < argc) {
-      images = argv[++i];
-    } else {
-      fprintf(stderr, "fogpipe bench import: unknown option '%s' (see --help)\n", argv[i]);
-      return 2;
-    }
-  }
-  if (knots < 0 || knots > VDB_PROFILE_MAX_KNOTS || resolution < 0 || resolution > 4096) {
-    fprintf(stderr, "fogpipe bench import: --profile-knots 1..%d, --resolution 1..4096\n",
-            VDB_PROFILE_MAX_KNOTS);
-    return 2;
-  }
-  if (runs < 1 || runs > max_runs || preview_runs < 1 || preview_runs > max_runs) {
-    fprintf(stderr, "fogpipe bench import: runs must be 1..%d\n", max_runs);
-    return 2;
-  }
+  const cli_option options[] = {
+      {.kind = CLI_INT, .name = "--runs", .value = "N", .target = &runs, .min = 1,
+       .max = max_runs, .help = "import runs after a warm-up (default 3)"},
+      {.kind = CLI_INT, .name = "--preview-runs", .value = "N", .target = &preview_runs,
+       .min = 1, .max = max_runs, .help = "preview runs after a warm-up (default 5)"},
+      {.kind = CLI_TEXT, .name = "--vdb-render", .value = "PATH", .target = &exe,
+       .help = "the vdb_render to time (default /usr/bin/vdb_render)"},
+      {.kind = CLI_TEXT, .name = "--images", .value = "DIR", .target = &images,
+       .help = "keep both preview images there (fogpipe.png, vdb_render.png)"},
+      {.kind = CLI_SECTION,
+       .name = "preview variants (default: native 64x64 fogmap, B-spline profile with one knot\n"
+               "per layer, exact integral):"},
+      {.kind = CLI_INT, .name = "--resolution", .value = "N", .target = &resolution, .min = 1,
+       .max = 4096, .help = "fogmap cells along the longer side"},
+      {.kind = CLI_INT, .name = "--profile-knots", .value = "N", .target = &knots, .min = 1,
+       .max = VDB_PROFILE_MAX_KNOTS, .help = "B-spline profile coefficients"},
+      {.kind = CLI_FLAG, .name = "--exponential", .target = &exponential_flag,
+       .help = "exponential profile"},
+      {.kind = CLI_FLAG, .name = "--march", .target = &march_flag,
+       .help = "the summary's B from the fog pass's 64-step ray march\n"
+               "(default: the exact integral; both are measured)"},
+  };
+  const bench_command command = {
+      .stage = "import",
+      .usage = "[--runs N] [--preview-runs N] [--vdb-render PATH]\n"
+               "                            [--images DIR] [preview variants]",
+      .about = "Import: every frame of ../shared/data/vdb/groundfog (read + project + profile +\n"
+               "resample), N runs after a warm-up, median ms per frame.\n"
+               "Preview of frame 48 at 640x480, median of --preview-runs after a warm-up:\n"
+               "fogpipe = import + project + transform + headless GL render + readback + PNG, with\n"
+               "the GL context and shaders made once before (an open viewer's situation; the cold\n"
+               "first frame is printed too); vdb_render = the whole command (its own read, ray\n"
+               "march with lighting, PNG) with -light given all 6 numbers.",
+      .options = options, .option_count = sizeof options / sizeof options[0]};
+  int exit_status = bench_parse(&command, argc, argv);
+  if (exit_status >= 0) return exit_status;
+  const int march = march_flag, exponential = exponential_flag;
+
   bench_print_build();
   const char *pattern = FOGPIPE_SOURCE_DIR "/../shared/data/vdb/groundfog/data/fluid_data_####.vdb";
   const char *inputs[] = {pattern};

@@ -32,6 +32,7 @@
 #include "app/config.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"
+#include "app/cli_options.h"
 #include "bench/bench.h"
 #include "render/render.h"
 #include "sim/image.h"
@@ -94,15 +95,6 @@ typedef struct light_scene {
   double peak;       /* the largest reference in-scatter */
 } light_scene;
 
-static void print_help(void) {
-  printf("usage: fogpipe bench light [--size WxH] [--frames N] [--out DIR]\n"
-         "  --size WxH   image size (default 640x360)\n"
-         "  --frames N   timed rounds per row, median after one warm-up (default 5)\n"
-         "  --out DIR    light.csv, light_chart.csv, light_chart.png (default build/bench/light)\n"
-         "Last line: light: lit_over_unlit=A lit_over_unlit_full=A2 shadow_volume_ms=V\n"
-         "live_max_error=E froxel_error_ratio_at_equal_time=B march_speedup_at_matched_error=C\n"
-         "(see the header of bench/bench_light.c).\n");
-}
 
 static int scene_create(light_scene *s, const char *name, int W, int H, render_error *err) {
   char path[1024];
@@ -325,7 +317,13 @@ static light_row *add_row(light_row *rows, int *count, int scene, int resolution
 int bench_light(int argc, char **argv) {
   bench_image_options options = {.width = 640, .height = 360, .frames = 5,
                                  .out_dir = "build/bench/light"};
-  int exit_status = bench_image_command("light", argc, argv, &options, print_help);
+  const bench_command command = {
+      .stage = "light", .usage = "[--size WxH] [--frames N] [--out DIR]", .image = &options,
+      .out_help = "light.csv, light_chart.csv, light_chart.png",
+      .about = "Last line: light: lit_over_unlit=A lit_over_unlit_full=A2 shadow_volume_ms=V\n"
+               "live_max_error=E froxel_error_ratio_at_equal_time=B march_speedup_at_matched_error=C\n"
+               "(see the header of bench/bench_light.c)."};
+  int exit_status = bench_parse(&command, argc, argv);
   if (exit_status >= 0) return exit_status;
   const int W = options.width, H = options.height, frames = options.frames;
   char error[1024] = "";

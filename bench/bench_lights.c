@@ -25,6 +25,7 @@
 #include "app/config.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"
+#include "app/cli_options.h"
 #include "bench/bench.h"
 #include "render/render.h"
 
@@ -61,14 +62,6 @@ typedef struct lights_scene {
   double peak;
 } lights_scene;
 
-static void print_help(void) {
-  printf("usage: fogpipe bench lights [--size WxH] [--frames N] [--out DIR]\n"
-         "  --size WxH   image size (default 320x180; A is scaled to 640x360 by pixels)\n"
-         "  --frames N   timed rounds per row, median after one warm-up (default 3)\n"
-         "  --out DIR    lights.csv, lights_chart.csv, lights_chart.png (default build/bench/lights)\n"
-         "Last line: lights: ms_per_light=A march_speedup_at_matched_error=B\n"
-         "fogshop_halo_error_ratio=C (see the header of bench/bench_lights.c).\n");
-}
 
 static int scene_create(lights_scene *s, int index, int W, int H, render_error *err) {
   char path[1024];
@@ -316,7 +309,13 @@ static int write_table(const char *path, const lights_row *rows, int count, char
 int bench_lights(int argc, char **argv) {
   bench_image_options options = {.width = 320, .height = 180, .frames = 3,
                                  .out_dir = "build/bench/lights"};
-  int exit_status = bench_image_command("lights", argc, argv, &options, print_help);
+  const bench_command command = {
+      .stage = "lights", .usage = "[--size WxH] [--frames N] [--out DIR]", .image = &options,
+      .out_help = "lights.csv, lights_chart.csv, lights_chart.png; A is scaled to 640x360 by "
+                  "pixels",
+      .about = "Last line: lights: ms_per_light=A march_speedup_at_matched_error=B\n"
+               "fogshop_halo_error_ratio=C (see the header of bench/bench_lights.c)."};
+  int exit_status = bench_parse(&command, argc, argv);
   if (exit_status >= 0) return exit_status;
   const int W = options.width, H = options.height, frames = options.frames;
   char error[1024] = "";

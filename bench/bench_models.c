@@ -36,6 +36,7 @@
 #include "app/config.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"
+#include "app/cli_options.h"
 #include "bench/bench.h"
 #include "app/chart.h"
 #include "app/clock.h"
@@ -123,27 +124,6 @@ static void scene_destroy(bench_scene *s) {
   free(s->cfg);
 }
 
-static void print_help(void) {
-  printf(
-      "usage: fogpipe bench models [--size WxH] [--frames N] [--out DIR]\n"
-      "  --size WxH   image size (default 640x360)\n"
-      "  --frames N   timed rounds; each row's time is the median of N frames after one\n"
-      "               warm-up frame (default 5)\n"
-      "  --out DIR    where models.csv, models_chart.csv and models_chart.png go (default\n"
-      "               build/bench/models; created if missing)\n"
-      "Last line: models: rbf_exact_ms=A rbf_march_speedup_at_matched_error=B\n"
-      "height_exact_ms=C height_march_speedup_at_matched_error=D volume_exact_ms=E\n"
-      "volume_march_speedup_at_matched_error=F volume_empty_skip_speedup=S\n"
-      "quadric_exact_ms=M quadric_march_speedup_at_matched_error=Q rbf_64_ms=R64\n"
-      "rbf_3000_ms=R fit_s=S perlin_exact_ms=P perlin_march_speedup_at_matched_error=PM\n"
-      "perlin_paper_error=E: B, D, F, Q, PM = time of the cheapest ray marching with max tau error <=\n"
-      "1e-3 / the exact integral's time; S = the volume's exact walk without empty-space\n"
-      "skipping / with it; M: 8 quadric volumes; R64, R: 64 and 3000 Gaussians spread over\n"
-      "the valley, culled per screen tile (target R <= 4 R64); S: seconds for `fogpipe fit`\n"
-      "on configs/vdb_plume_volume.ini's VDB frame at its defaults (target <= 30); P: Perlin\n"
-      "turbulence fog (4 octaves) over the valley; E: max |tau error| of Zdrojewska's single\n"
-      "sample against the ray integral.\n");
-}
 
 static const char *row_method(const model_row *r) {
   return r->setting ? "march" : r->hardware ? "exact-hardware"
@@ -324,7 +304,25 @@ static int time_fit(double *seconds, char *error, int size) {
 int bench_models(int argc, char **argv) {
   bench_image_options options = {.width = 640, .height = 360, .frames = 5,
                                  .out_dir = "build/bench/models"};
-  int exit_status = bench_image_command("models", argc, argv, &options, print_help);
+  const bench_command command = {
+      .stage = "models", .usage = "[--size WxH] [--frames N] [--out DIR]", .image = &options,
+      .frames_help = "timed rounds; each row's time is the median of N frames after one\n"
+                     "warm-up frame",
+      .out_help = "where models.csv, models_chart.csv and models_chart.png go",
+      .about =
+          "Last line: models: rbf_exact_ms=A rbf_march_speedup_at_matched_error=B\n"
+          "height_exact_ms=C height_march_speedup_at_matched_error=D volume_exact_ms=E\n"
+          "volume_march_speedup_at_matched_error=F volume_empty_skip_speedup=S\n"
+          "quadric_exact_ms=M quadric_march_speedup_at_matched_error=Q rbf_64_ms=R64\n"
+          "rbf_3000_ms=R fit_s=S perlin_exact_ms=P perlin_march_speedup_at_matched_error=PM\n"
+          "perlin_paper_error=E: B, D, F, Q, PM = time of the cheapest ray marching with max tau error <=\n"
+          "1e-3 / the exact integral's time; S = the volume's exact walk without empty-space\n"
+          "skipping / with it; M: 8 quadric volumes; R64, R: 64 and 3000 Gaussians spread over\n"
+          "the valley, culled per screen tile (target R <= 4 R64); S: seconds for `fogpipe fit`\n"
+          "on configs/vdb_plume_volume.ini's VDB frame at its defaults (target <= 30); P: Perlin\n"
+          "turbulence fog (4 octaves) over the valley; E: max |tau error| of Zdrojewska's single\n"
+          "sample against the ray integral."};
+  int exit_status = bench_parse(&command, argc, argv);
   if (exit_status >= 0) return exit_status;
   const int W = options.width, H = options.height, frames = options.frames;
   const char *out_dir = options.out_dir;

@@ -23,6 +23,7 @@
 
 #include "app/config.h"
 #include "app/pipeline.h"
+#include "app/cli_options.h"
 #include "bench/bench.h"
 #include "render/gl_context.h"
 
@@ -118,55 +119,34 @@ done:
   return status;
 }
 
-static void print_help(FILE *out) {
-  fprintf(out,
-          "usage: fogpipe bench pipeline [options]\n\n"
-          "Per-stage ms (sim, transform, upload, render, frame; medians) and fps of a scene\n"
-          "rendered headless through the whole pipeline, with the CPU stages in the worker\n"
-          "thread and on the GL thread, with the camera still and turning. Last line:\n"
-          "pipeline: fps=C cpu_stage_share=D fps_moving_camera=E moving_over_still=R\n"
-          "(R = E / C, target >= 0.85).\n\n"
-          "options:\n"
-          "  --config PATH   scene (default: configs/default.ini of the source tree)\n"
-          "  --size WxH      render size (default 640x360)\n"
-          "  --frames N      measured frames per mode (default 60; at most ~20 s each)\n"
-          "  --fog-resolution D  fog pass at 1/D resolution for the live row (1, 2 or 4;\n"
-          "                  default: as the demo, 2 on a software renderer, 1 on a GPU)\n"
-          "  -h, --help      this help\n");
-}
 
 int bench_pipeline(int argc, char **argv) {
   const char *config_path = FOGPIPE_SOURCE_DIR "/configs/default.ini";
-  int width = 640, height = 360, frames = 60;
-  int live_divisor = 0; /* 0: as the demo chooses (2 on software GL, else 1) */
-  for (int i = 1; i < argc; i++) {
-    char x = 0, tail = 0;
-    if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-      print_help(stdout);
-      return 0;
-    } else if (!strcmp(argv[i], "--config") && i + 1 < argc) {
-      config_path = argv[++i];
-    } else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
-      if (sscanf(argv[++i], "%d%c%d%c", &width, &x, &height, &tail) != 3 || x != 'x' ||
-          width < 1 || height < 1) {
-        fprintf(stderr, "fogpipe bench pipeline: --size %s: expected WIDTHxHEIGHT\n", argv[i]);
-        return 2;
-      }
-    } else if (!strcmp(argv[i], "--fog-resolution") && i + 1 < argc) {
-      live_divisor = atoi(argv[++i]);
-      if (live_divisor != 1 && live_divisor != 2 && live_divisor != 4) {
-        fprintf(stderr, "fogpipe bench pipeline: --fog-resolution %s: expected 1, 2 or 4\n",
-                argv[i]);
-        return 2;
-      }
-    } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
-      frames = atoi(argv[++i]);
-      if (frames < 5) frames = 5;
-    } else {
-      fprintf(stderr, "fogpipe bench pipeline: unknown option %s (see --help)\n", argv[i]);
-      return 2;
-    }
-  }
+  bench_image_options image = {.width = 640, .height = 360, .frames = 60};
+  static const char *const divisor_names[] = {"1", "2", "4", NULL};
+  int divisor_index = -1; /* -1: as the demo chooses (2 on software GL, else 1) */
+  const cli_option options[] = {
+      {.kind = CLI_TEXT, .name = "--config", .value = "PATH", .target = &config_path,
+       .help = "scene (default: configs/default.ini of the source tree)"},
+      {.kind = CLI_CHOICE, .name = "--fog-resolution", .value = "D", .target = &divisor_index,
+       .choices = divisor_names,
+       .help = "fog pass at 1/D resolution for the live row (1, 2 or 4;\n"
+               "default: as the demo, 2 on a software renderer, 1 on a GPU)"},
+  };
+  const bench_command command = {
+      .stage = "pipeline", .usage = "[options]", .image = &image, .without_out = true,
+      .frames_help = "measured frames per mode (at least 5; at most ~20 s each)",
+      .about = "Per-stage ms (sim, transform, upload, render, frame; medians) and fps of a scene\n"
+               "rendered headless through the whole pipeline, with the CPU stages in the worker\n"
+               "thread and on the GL thread, with the camera still and turning. Last line:\n"
+               "pipeline: fps=C cpu_stage_share=D fps_moving_camera=E moving_over_still=R\n"
+               "(R = E / C, target >= 0.85).",
+      .options = options, .option_count = sizeof options / sizeof options[0]};
+  int exit_status = bench_parse(&command, argc, argv);
+  if (exit_status >= 0) return exit_status;
+  const int width = image.width, height = image.height;
+  const int frames = image.frames < 5 ? 5 : image.frames;
+  int live_divisor = divisor_index < 0 ? 0 : 1 << divisor_index;
   scene_config cfg;
   scene_config_error cerr = {{0}};
   if (scene_config_load(config_path, &cfg, &cerr)) {

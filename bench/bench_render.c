@@ -45,6 +45,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "app/cli_options.h"
 #include "bench/bench.h"
 #include "bench/bench_upload.h"
 #include "app/chart.h"
@@ -65,30 +66,6 @@ enum { EXTRA_DETAILED, EXTRA_SIMULATED, EXTRA_COUNT };
 static const char *const extra_names[EXTRA_COUNT] = {"detailed", "simulated"};
 #define SIMULATED_FRAME 48
 
-static void print_help(void) {
-  printf(
-      "usage: fogpipe bench render [--size WxH] [--frames N] [--out DIR]\n"
-      "                           [--profile exponential|slab] [--fogmap FILE]\n"
-      "  --size WxH   image size (default 640x360)\n"
-      "  --frames N   timed rounds; each row's time is the median of N frames after one\n"
-      "               warm-up frame (default 3)\n"
-      "  --out DIR    where render.csv, render_chart.csv, render_chart.png and\n"
-      "               render_tau.png go (default build/bench/render, relative to the\n"
-      "               working directory; created if missing)\n"
-      "  --profile P  vertical profile: exponential (default: g = 1 below y = 50, then\n"
-      "               exp(-(y - 50)/25)) or slab (g = 1 on 0..220)\n"
-      "  --fogmap F   the fogmap (default data/fogmap_sample.png, else\n"
-      "               <source>/data/fogmap_sample.png)\n"
-      "  --help       this text\n"
-      "Last line: render: exact_speedup_at_matched_error=X lod_switch_speedup_vs_sum=Y\n"
-      "lod_overhead_at_mu1=Z empty_skip_speedup=S exact_speedup_at_matched_error_detailed=X2,\n"
-      "where X = time of the cheapest ray marching with max tau error <= 1e-3 / exact linear\n"
-      "time (targets X >= 5; X2 the same on detailed Perlin fog, marching to 2048 steps), Y =\n"
-      "sum-of-details time / approximation-switching time at mu = 0.6, 3 levels (Y >= 1.5),\n"
-      "Z = switching time at mu = 1 / the fogmap alone without decomposition (Z <= 1.05),\n"
-      "S = the exact linear walk on the ground fog (data/fogmap_groundfog.exr) without\n"
-      "empty-space skipping / with it (the pass's default).\n");
-}
 
 /* ---- the CPU reference (double), two threads ------------------------------------------ */
 
@@ -341,34 +318,38 @@ int bench_render(int argc, char **argv) {
   bench_image_options options = {.width = 640, .height = 360, .frames = 3,
                                  .out_dir = "build/bench/render"};
   const char *fogmap_path = NULL;
-  fog_profile_kind profile = FOG_PROFILE_EXPONENTIAL;
-  for (int i = 1; i < argc; i++) {
-    int common = bench_image_option("render", argc, argv, &i, &options);
-    if (common < 0) return 2;
-    if (common) continue;
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      print_help();
-      return 0;
-    } else if (!strcmp(argv[i], "--profile") && i + 1 < argc) {
-      i++;
-      if (!strcmp(argv[i], "slab")) {
-        profile = FOG_PROFILE_SLAB;
-      } else if (!strcmp(argv[i], "exponential")) {
-        profile = FOG_PROFILE_EXPONENTIAL;
-      } else {
-        fprintf(stderr, "fogpipe bench render: --profile '%s': expected slab or exponential\n",
-                argv[i]);
-        return 2;
-      }
-    } else if (!strcmp(argv[i], "--fogmap") && i + 1 < argc) {
-      fogmap_path = argv[++i];
-    } else {
-      fprintf(stderr, "fogpipe bench render: unknown option '%s' (or it lacks its value)\n",
-              argv[i]);
-      print_help();
-      return 2;
-    }
-  }
+  static const char *const profiles[] = {"slab", "exponential", NULL}; /* fog_profile_kind */
+  int profile = FOG_PROFILE_EXPONENTIAL;
+  const cli_option stage_options[] = {
+      {.kind = CLI_CHOICE, .name = "--profile", .value = "P", .target = &profile,
+       .choices = profiles,
+       .help = "vertical profile: exponential (default: g = 1 below y = 50, then\n"
+               "exp(-(y - 50)/25)) or slab (g = 1 on 0..220)"},
+      {.kind = CLI_TEXT, .name = "--fogmap", .value = "F", .target = &fogmap_path,
+       .help = "the fogmap (default data/fogmap_sample.png, else\n"
+               "<source>/data/fogmap_sample.png)"},
+  };
+  const bench_command command = {
+      .stage = "render",
+      .usage = "[--size WxH] [--frames N] [--out DIR]\n"
+               "                           [--profile exponential|slab] [--fogmap FILE]",
+      .image = &options, .options = stage_options,
+      .option_count = sizeof stage_options / sizeof stage_options[0],
+      .frames_help = "timed rounds; each row's time is the median of N frames after one\n"
+                     "warm-up frame",
+      .out_help = "where render.csv, render_chart.csv, render_chart.png and\n"
+                  "render_tau.png go, relative to the working directory",
+      .about =
+          "Last line: render: exact_speedup_at_matched_error=X lod_switch_speedup_vs_sum=Y\n"
+          "lod_overhead_at_mu1=Z empty_skip_speedup=S exact_speedup_at_matched_error_detailed=X2,\n"
+          "where X = time of the cheapest ray marching with max tau error <= 1e-3 / exact linear\n"
+          "time (targets X >= 5; X2 the same on detailed Perlin fog, marching to 2048 steps), Y =\n"
+          "sum-of-details time / approximation-switching time at mu = 0.6, 3 levels (Y >= 1.5),\n"
+          "Z = switching time at mu = 1 / the fogmap alone without decomposition (Z <= 1.05),\n"
+          "S = the exact linear walk on the ground fog (data/fogmap_groundfog.exr) without\n"
+          "empty-space skipping / with it (the pass's default)."};
+  int exit_status = bench_parse(&command, argc, argv);
+  if (exit_status >= 0) return exit_status;
   const int W = options.width, H = options.height, frames = options.frames;
   const char *out_dir = options.out_dir;
   if (!fogmap_path) fogmap_path = source_file("data", "fogmap_sample.png");
@@ -376,10 +357,6 @@ int bench_render(int argc, char **argv) {
    * 24 as a 128 x 128 fogmap, 60 % of its blocks empty, over the same box. */
   const char *ground_path = source_file("data", "fogmap_groundfog.exr");
   char message[1024] = "";
-  if (bench_make_folder(out_dir, message, sizeof message)) {
-    fprintf(stderr, "fogpipe bench render: %s\n", message);
-    return 1;
-  }
 
   /* ---- the fogmap, its full grid per basis and the linear LOD pyramid ---- */
   fogmap map = {0};

@@ -13,16 +13,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app/cli_options.h"
 #include "bench/bench.h"
 #include "sim/sim.h"
 
-static void print_help(void) {
-  printf("usage: fogpipe bench sim [--rounds N] [--quick]\n"
-         "  --rounds N  timing rounds per size (each: 5 steps, 5 FFT pairs, 5 advections;\n"
-         "              default 12)\n"
-         "  --quick     only 256² and 512², fewer rounds (a smoke run)\n"
-         "  --help      this text\n");
-}
 
 typedef struct sim_figures {
   double step_ms, fft_ms, advect_ms;          /* medians */
@@ -95,25 +89,22 @@ static int measure(int n, fluid_advection scheme, int rounds, sim_figures *out) 
 }
 
 int bench_sim(int argc, char **argv) {
-  int rounds = 12, quick = 0;
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      print_help();
-      return 0;
-    } else if (!strcmp(argv[i], "--rounds") && i + 1 < argc) {
-      rounds = atoi(argv[++i]);
-      if (rounds < 1) {
-        fprintf(stderr, "fogpipe bench sim: --rounds needs a positive number\n");
-        return 2;
-      }
-    } else if (!strcmp(argv[i], "--quick")) {
-      quick = 1;
-    } else {
-      fprintf(stderr, "fogpipe bench sim: unknown option '%s'\n", argv[i]);
-      print_help();
-      return 2;
-    }
-  }
+  int rounds = 12;
+  bool quick = false;
+  const cli_option options[] = {
+      {.kind = CLI_INT, .name = "--rounds", .value = "N", .target = &rounds, .min = 1,
+       .max = 100000,
+       .help = "timing rounds per size (each: 5 steps, 5 FFT pairs, 5 advections;\n"
+               "default 12)"},
+      {.kind = CLI_FLAG, .name = "--quick", .target = &quick,
+       .help = "only 256^2 and 512^2, fewer rounds (a smoke run)"},
+  };
+  const bench_command command = {.stage = "sim", .usage = "[--rounds N] [--quick]",
+                                 .about = "The FFT stable-fluid step against its FFT bound.",
+                                 .options = options,
+                                 .option_count = sizeof options / sizeof options[0]};
+  int exit_status = bench_parse(&command, argc, argv);
+  if (exit_status >= 0) return exit_status;
   if (quick) rounds = rounds < 4 ? rounds : 4;
   bench_print_build();
   printf("one thread; medians over %d timed calls per figure after warm-up; FFT = the\n"

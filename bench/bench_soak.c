@@ -35,6 +35,7 @@
 
 #include "app/config.h"
 #include "app/pipeline.h"
+#include "app/cli_options.h"
 #include "bench/bench.h"
 #include "render/gl_context.h"
 
@@ -93,53 +94,29 @@ static int plan_checkpoints(long frames, long out[SOAK_MAX_CHECKPOINTS]) {
   return n;
 }
 
-static void print_help(FILE *out) {
-  fprintf(out,
-          "usage: fogpipe bench soak [CONFIG] [options]\n\n"
-          "Runs the live pipeline headless for N frames as the headless demo does (sim step,\n"
-          "transform, upload, render and read-back every frame; no files written) and\n"
-          "samples memory: peak RSS (getrusage) and current RSS (/proc/self/statm) at\n"
-          "frames 1, 100, 1000, every N/10 and N, with ms per frame between checkpoints.\n"
-          "Also the malloc heap in use (glibc mallinfo2), which shows a leak that freed,\n"
-          "still-resident memory hides from RSS. Fails (exit 1) if the peak RSS or the heap\n"
-          "grows by more than %.0f KB per 1000 frames after frame 1000. Last line:\n"
-          "soak: frames=N rss_1k_mb=A rss_end_mb=B growth_mb=C growth_per_1k_frames_kb=D\n"
-          "      heap_growth_per_1k_frames_kb=E\n\n"
-          "CONFIG defaults to configs/default.ini of the source tree (a fogmap scene).\n\n"
-          "options:\n"
-          "  --size WxH      render size (default 160x90)\n"
-          "  --frames N      frames (default 100000)\n"
-          "  -h, --help      this help\n"
-          "SIGINT/SIGTERM end the run after the current frame with the figures so far\n"
-          "(exit 130).\n",
-          SOAK_MAX_GROWTH_KB_PER_1K);
-}
 
 int bench_soak(int argc, char **argv) {
   const char *config_path = NULL;
   bench_image_options options = {.width = 160, .height = 90, .frames = 100000};
-  for (int i = 1; i < argc; i++) {
-    int common = bench_image_option("soak", argc, argv, &i, &options);
-    if (common < 0) return 2;
-    if (common) continue;
-    if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-      print_help(stdout);
-      return 0;
-    } else if (argv[i][0] == '-' && argv[i][1]) {
-      fprintf(stderr, "fogpipe bench soak: unknown option '%s' (or it lacks its value; "
-                      "see --help)\n", argv[i]);
-      return 2;
-    } else if (!config_path) {
-      config_path = argv[i];
-    } else {
-      fprintf(stderr, "fogpipe bench soak: unexpected argument %s (one CONFIG only)\n", argv[i]);
-      return 2;
-    }
-  }
-  if (options.out_dir) {
-    fprintf(stderr, "fogpipe bench soak: --out: the soak writes no files\n");
-    return 2;
-  }
+  const bench_command command = {
+      .stage = "soak", .usage = "[CONFIG] [options]", .image = &options, .without_out = true,
+      .frames_help = "frames",
+      .about = "Runs the live pipeline headless for N frames as the headless demo does (sim step,\n"
+               "transform, upload, render and read-back every frame; no files written) and\n"
+               "samples memory: peak RSS (getrusage) and current RSS (/proc/self/statm) at\n"
+               "frames 1, 100, 1000, every N/10 and N, with ms per frame between checkpoints.\n"
+               "Also the malloc heap in use (glibc mallinfo2), which shows a leak that freed,\n"
+               "still-resident memory hides from RSS. Fails (exit 1) if the peak RSS or the heap\n"
+               "grows by more than " CLI_TEXT_OF(SOAK_MAX_GROWTH_KB_PER_1K) " KB per 1000 frames "
+               "after frame 1000. Last line:\n"
+               "soak: frames=N rss_1k_mb=A rss_end_mb=B growth_mb=C growth_per_1k_frames_kb=D\n"
+               "      heap_growth_per_1k_frames_kb=E\n\n"
+               "CONFIG defaults to configs/default.ini of the source tree (a fogmap scene).",
+      .footer = "SIGINT/SIGTERM end the run after the current frame with the figures so far\n"
+                "(exit 130).",
+      .operand = "CONFIG", .operands = &config_path, .max_operands = 1};
+  int exit_status = bench_parse(&command, argc, argv);
+  if (exit_status >= 0) return exit_status;
   if (!config_path) config_path = FOGPIPE_SOURCE_DIR "/configs/default.ini";
   const long frames = options.frames;
   const int width = options.width, height = options.height;

@@ -22,6 +22,7 @@
 #include <gsl/gsl_wavelet.h>
 #include <gsl/gsl_wavelet2d.h>
 
+#include "app/cli_options.h"
 #include "bench/bench.h"
 #include "transform/transform.h"
 
@@ -197,14 +198,14 @@ static void time_pywt(float *const *data, double *ms) {
 static double gbps(int n, double ms) { return 2.0 * 4.0 * n * (double)n / (ms * 1e-3) / 1e9; }
 
 int bench_transform(int argc, char **argv) {
-  if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
-    printf("usage: fogpipe bench transform\n\n"
-           "Forward/inverse (3 levels, full decomposition) and one fused level at 256^2,\n"
-           "512^2, 1024^2 for each basis, 1 and 2 threads, against GSL 2.7 (bspline 202,\n"
-           "full), PyWavelets (wavedec2 bior2.2 level 3, float32) and memcpy.\n"
-           "Last line: transform: speedup_vs_gsl=X speedup_vs_pywt=Y bandwidth_fraction=Z\n");
-    return 0;
-  }
+  const bench_command command = {
+      .stage = "transform", .usage = "",
+      .about = "Forward/inverse (3 levels, full decomposition) and one fused level at 256^2,\n"
+               "512^2, 1024^2 for each basis, 1 and 2 threads, against GSL 2.7 (bspline 202,\n"
+               "full), PyWavelets (wavedec2 bior2.2 level 3, float32) and memcpy.\n"
+               "Last line: transform: speedup_vs_gsl=X speedup_vs_pywt=Y bandwidth_fraction=Z"};
+  int exit_status = bench_parse(&command, argc, argv);
+  if (exit_status >= 0) return exit_status;
   bench_print_build();
   float *data[3];
   for (int s = 0; s < 3; s++) /* aligned, as the pipeline's */
