@@ -70,7 +70,9 @@ static int parse_offset(const char *command, const char *option, const char *tex
 
 static int parse_options(int argc, char **argv, import_options *o) {
   *o = (import_options){.name = "fog", .first = -1, .last = -1, .report_frame = -1};
-  static const char *const up[] = {"z", "y", NULL}, *const profiles[] = {"bspline", "exponential", NULL};
+  /* either case, as the Z-up / Y-up convention is written both ways */
+  static const char *const up[] = {"z", "y", "Z", "Y", NULL};
+  static const char *const profiles[] = {"bspline", "exponential", NULL};
   static const char *const degrees[] = {"1", "0", NULL}, *const per[] = {"sequence", "frame", NULL};
   int frames[3] = {-1, -1, 0}, up_axis = VDB_UP_Z, profile = VDB_PROFILE_BSPLINE;
   const cli_option options[] = {
@@ -154,7 +156,7 @@ static int parse_options(int argc, char **argv, import_options *o) {
   int parsed = cli_parse(&spec, argc, argv, o->inputs, &o->input_count);
   if (parsed) return parsed;
   o->first = frames[0], o->last = frames[1];
-  o->up = (vdb_up_axis)up_axis;
+  o->up = (vdb_up_axis)(up_axis % 2);
   o->profile.kind = (vdb_profile_kind)profile;
   if (!o->out && !o->list) return cli_usage_error("import", "--out DIR is required");
   return 0;

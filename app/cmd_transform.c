@@ -394,12 +394,12 @@ int cmd_transform(int argc, char **argv) {
   desc.decomposition = standard ? TRANSFORM_STANDARD : TRANSFORM_NONSTANDARD;
   if (!out) return cli_usage_error("transform", "--out is required");
   if (inverse) {
-    if (in) return cli_fail("transform", "--inverse takes no input fogmap (%s)", in);
-    if (channel) return cli_fail("transform", "--inverse reads its folder's own channels; "
+    if (in) return cli_usage_error("transform", "--inverse takes no input fogmap (%s)", in);
+    if (channel) return cli_usage_error("transform", "--inverse reads its folder's own channels; "
                                  "--channel is for a forward transform");
     return run_inverse(inverse, out, desc.threads);
   }
   if (!in) return cli_usage_error("transform", "no input fogmap given");
-  if (desc.levels < 0) return cli_fail("transform", "--levels is required");
+  if (desc.levels < 0) return cli_usage_error("transform", "--levels is required");
   return run_forward(in, channel, out, desc);
 }

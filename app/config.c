@@ -829,7 +829,9 @@ static int check_models(parse_state *ps) {
          "and fog_end = %g", cfg->fog.fog_start, cfg->fog.fog_end);
     return 1;
   }
-  if (cfg->fog.model == FOG_MODEL_PERLIN) {
+  /* the octaves: Perlin fog's, or the turbulence inside quadric volumes with NOISE */
+  if (cfg->fog.model == FOG_MODEL_PERLIN ||
+      fog_quadric_noisy(cfg->fog.quadrics, cfg->fog.quadric_count)) {
     int n = cfg->fog.perlin_size, winds = cfg->fog.perlin_wind_count;
     if (n & (n - 1)) {
       s.line = cfg->fog.perlin_size_line;
@@ -843,7 +845,7 @@ static int check_models(parse_state *ps) {
            cfg->fog.perlin_octaves, winds);
       return 1;
     }
-    if (!(cfg->box.top > cfg->box.floor)) {
+    if (cfg->fog.model == FOG_MODEL_PERLIN && !(cfg->box.top > cfg->box.floor)) {
       s.line = cfg->fog.model_line;
       fail(&s, "box", "top", "Perlin fog fills the terrain's footprint between [box] floor and "
            "top: expected top above floor, got floor %g and top %g", cfg->box.floor, cfg->box.top);

@@ -51,7 +51,7 @@ typedef struct fit_desc {
 #define FIT_HEIGHT 180
 #define FIT_TIMED_FRAMES 3
 
-#define FIT_MAX_RUNGS 32
+#define FIT_MAX_RUNGS 40
 
 typedef struct fit_rung {
   char name[32];     /* "rbf 8", "fogmap linear mu 0.5" */

@@ -229,6 +229,23 @@ static bool cluster_ellipsoid(const fog_points *pts, const int *label, int clust
   return true;
 }
 
+/* One cluster's moments as an upright uniform cylinder: the same mass, centroid, mean
+ * horizontal variance (a uniform disc's is R^2/4 per axis) and vertical variance (a uniform
+ * height's is h^2/12); each cell's own size added as a uniform box's. A plume or a column is
+ * a cylinder more than an ellipsoid. */
+static bool cluster_cylinder(const fog_points *pts, const int *label, int cluster,
+                             const double cell[3], void *item) {
+  double w, m[3], var[3];
+  if (!cluster_moments(pts, label, cluster, &w, m, var)) return false;
+  const double across = 0.5 * (var[0] + cell[0] * cell[0] / 12.0 + var[2] + cell[2] * cell[2] / 12.0);
+  const double r = fmax(2.0 * sqrt(across), 0.5 * fmin(cell[0], cell[2]));
+  const double h = fmax(sqrt(12.0 * var[1] + cell[1] * cell[1]), cell[1]);
+  const double base[3] = {m[0], m[1] - 0.5 * h, m[2]};
+  const double mass = w * cell[0] * cell[1] * cell[2];
+  *(fog_quadric *)item = fog_quadric_cylinder(base, r, h, mass / (PI * r * r * h), 0.0);
+  return true;
+}
+
 /* A bank of up to `count` items, one per cluster, made by `make` into out (items of `size`
  * bytes); how many (0: no fog, -1 out of memory). */
 static int fit_bank(const fit_samples *s, int count, void *out, size_t size,
@@ -250,6 +267,10 @@ int fit_rbfs(const fit_samples *s, int count, fog_rbf *out) {
 
 int fit_ellipsoids(const fit_samples *s, int count, fog_quadric *out) {
   return fit_bank(s, count, out, sizeof *out, cluster_ellipsoid);
+}
+
+int fit_cylinders(const fit_samples *s, int count, fog_quadric *out) {
+  return fit_bank(s, count, out, sizeof *out, cluster_cylinder);
 }
 
 bool fit_ellipsoid(const fit_samples *s, double centre[3], double radii[3], double *density) {

@@ -50,6 +50,9 @@ int fit_rbfs(const fit_samples *s, int count, fog_rbf *out);
  * cluster of the same k-means as fit_rbfs, each with its cluster's mass, centroid and
  * per-axis variances; returns how many (0: no fog, -1 out of memory). */
 int fit_ellipsoids(const fit_samples *s, int count, fog_quadric *out);
+/* The same with upright uniform cylinders (a cluster's horizontal and vertical variances
+ * as a disc's and a height's). */
+int fit_cylinders(const fit_samples *s, int count, fog_quadric *out);
 /* The ellipsoid: centre, semi-axes and density (edge 0: a hard edge); false without fog. */
 bool fit_ellipsoid(const fit_samples *s, double centre[3], double radii[3], double *density);
 

@@ -113,7 +113,61 @@ static int add_analytic_rungs(fit_result *r, const scene_config *input, const fi
   return 0;
 }
 
-/* One ellipsoid of the density's moments, then banks of them, one per cluster. */
+/* Banks of quadric volumes, one per cluster of the density (app/fit_density.h), of one
+ * shape, and how a config line writes each (app/config.c's shapes). */
+typedef enum bank_shape { BANK_ELLIPSOIDS, BANK_CYLINDERS } bank_shape;
+static const struct {
+  const char *one, *many;
+  int (*fit)(const fit_samples *, int, fog_quadric *);
+} bank_shapes[] = {[BANK_ELLIPSOIDS] = {"ellipsoid", "ellipsoids", fit_ellipsoids},
+                   [BANK_CYLINDERS] = {"cylinder", "cylinders", fit_cylinders}};
+
+/* The config line of a fitted volume, from its box: ellipsoid X Y Z RX RY RZ DENSITY, or
+ * cylinder X Y Z R HEIGHT DENSITY (standing on its base). */
+static struct scene_quadric_line bank_line(bank_shape shape, const fog_quadric *v) {
+  double c[3], half[3];
+  for (int a = 0; a < 3; a++) c[a] = 0.5 * (v->lo[a] + v->hi[a]), half[a] = 0.5 * (v->hi[a] - v->lo[a]);
+  if (shape == BANK_CYLINDERS)
+    return (struct scene_quadric_line){
+        .shape = 2, .count = 6, .numbers = {c[0], v->lo[1], c[2], half[0], 2 * half[1], v->density}};
+  return (struct scene_quadric_line){
+      .shape = 1, .count = 7, .numbers = {c[0], c[1], c[2], half[0], half[1], half[2], v->density}};
+}
+
+/* Banks of `from`, 2 from, ... up to FOG_MAX_QUADRICS volumes (the most a scene holds), one
+ * rung each while the fog holds more clusters. */
+static int add_quadric_banks(fit_result *r, const scene_config *input, const fit_samples *s,
+                             bank_shape shape, int from, fit_error *err) {
+  int previous = from - 1;
+  for (int count = from; count <= FOG_MAX_QUADRICS; count *= 2) {
+    scene_config *c = analytic_config(input, FOG_MODEL_QUADRIC);
+    int made = c ? bank_shapes[shape].fit(s, count, c->fog.quadrics) : -1;
+    if (made < 0) {
+      free(c);
+      snprintf(err->message, sizeof err->message, "out of memory fitting %s",
+               bank_shapes[shape].many);
+      return 1;
+    }
+    if (made <= previous) { /* the fog holds no more clusters */
+      free(c);
+      continue;
+    }
+    previous = made;
+    fit_rung *rung = add_rung(r, c, "quadric", err);
+    if (!rung) return 1;
+    c->fog.quadric_count = made;
+    for (int q = 0; q < made; q++) c->fog.quadric_lines[q] = bank_line(shape, &c->fog.quadrics[q]);
+    if (made == 1)
+      snprintf(rung->name, sizeof rung->name, "%s", bank_shapes[shape].one);
+    else
+      snprintf(rung->name, sizeof rung->name, "%s %d", bank_shapes[shape].many, made);
+    snprintf(rung->params, sizeof rung->params, "%d %s, one per cluster of the density", made,
+             made == 1 ? bank_shapes[shape].one : bank_shapes[shape].many);
+  }
+  return 0;
+}
+
+/* One ellipsoid of the density's moments, then banks of ellipsoids and of cylinders. */
 static int add_quadric_rungs(fit_result *r, const scene_config *input, const fit_samples *s,
                              fit_error *err) {
   fit_rung *rung;
@@ -133,37 +187,8 @@ static int add_quadric_rungs(fit_result *r, const scene_config *input, const fit
              centre[0], centre[1], centre[2], radii[0], radii[1], radii[2], density);
   }
 
-  /* banks of ellipsoids, one per cluster (the quadric volumes a scene holds at most) */
-  int previous = 1;
-  for (int count = 2; count <= FOG_MAX_QUADRICS; count *= 2) {
-    scene_config *c = analytic_config(input, FOG_MODEL_QUADRIC);
-    int made = c ? fit_ellipsoids(s, count, c->fog.quadrics) : -1;
-    if (made < 0) {
-      free(c);
-      snprintf(err->message, sizeof err->message, "out of memory fitting ellipsoids");
-      return 1;
-    }
-    if (made <= previous) { /* the fog holds no more clusters */
-      free(c);
-      continue;
-    }
-    previous = made;
-    if (!(rung = add_rung(r, c, "quadric", err))) return 1;
-    c->fog.quadric_count = made;
-    for (int q = 0; q < made; q++) { /* ellipsoid X Y Z RX RY RZ DENSITY, from its box */
-      const fog_quadric *v = &c->fog.quadrics[q];
-      struct scene_quadric_line *line = &c->fog.quadric_lines[q];
-      *line = (struct scene_quadric_line){.shape = 1, .count = 7};
-      for (int a = 0; a < 3; a++)
-        line->numbers[a] = 0.5 * (v->lo[a] + v->hi[a]),
-        line->numbers[3 + a] = 0.5 * (v->hi[a] - v->lo[a]);
-      line->numbers[6] = v->density;
-    }
-    snprintf(rung->name, sizeof rung->name, "ellipsoids %d", made);
-    snprintf(rung->params, sizeof rung->params, "%d ellipsoids, one per cluster of the density",
-             made);
-  }
-  return 0;
+  return add_quadric_banks(r, input, s, BANK_ELLIPSOIDS, 2, err) ||
+         add_quadric_banks(r, input, s, BANK_CYLINDERS, 1, err);
 }
 
 /* Banks of Gaussians of growing size, their amplitudes refined on the views. */

@@ -356,6 +356,8 @@ static int perlin_fog(render_fog *fog, const scene_config *cfg, render_error *er
   desc.lo[0] = t->origin[0], desc.lo[1] = cfg->box.floor, desc.lo[2] = t->origin[2];
   desc.hi[0] = t->origin[0] + t->size[0], desc.hi[1] = cfg->box.top,
   desc.hi[2] = t->origin[2] + t->size[1];
+  if (f->model != FOG_MODEL_PERLIN) /* the volumes' turbulence reads no box: any valid one */
+    for (int a = 0; a < 3; a++) desc.lo[a] = -1.0, desc.hi[a] = 1.0;
   if (fog_perlin_create(&fog->perlin, &desc, err)) {
     char reason[sizeof err->message];
     snprintf(reason, sizeof reason, "%s", err->message);
