@@ -161,8 +161,12 @@ static int add_quadric_banks(fit_result *r, const scene_config *input, const fit
       snprintf(rung->name, sizeof rung->name, "%s", bank_shapes[shape].one);
     else
       snprintf(rung->name, sizeof rung->name, "%s %d", bank_shapes[shape].many, made);
-    snprintf(rung->params, sizeof rung->params, "%d %s, one per cluster of the density", made,
-             made == 1 ? bank_shapes[shape].one : bank_shapes[shape].many);
+    if (made == 1)
+      snprintf(rung->params, sizeof rung->params, "one %s of the density's moments",
+               bank_shapes[shape].one);
+    else
+      snprintf(rung->params, sizeof rung->params, "%d %s, one per cluster of the density", made,
+               bank_shapes[shape].many);
   }
   return 0;
 }
