@@ -103,7 +103,7 @@ static const key_spec keys[] = {
     {"fog", "volume_step", V_DOUBLE, F(fog.volume_step), 0, WORLD, NULL, 0, 0},
     {"fog", "perlin_octaves", V_INT, F(fog.perlin_octaves), 1, FOG_PERLIN_MAX_OCTAVES, NULL, 0, 0},
     {"fog", "perlin_size", V_INT, F(fog.perlin_size), FOG_PERLIN_MIN_SIZE, FOG_PERLIN_MAX_SIZE, NULL, 0, 0},
-    {"fog", "perlin_feature", V_DOUBLE, F(fog.perlin_feature), MIN_LENGTH, WORLD, NULL, 0, 0},
+    {"fog", "perlin_feature", V_DOUBLE, F(fog.perlin_feature), 1.0, WORLD, NULL, 0, 0},
     {"fog", "perlin_seed", V_UINT, F(fog.perlin_seed), 0, 4294967295.0, NULL, 0, 0},
     {"fog", "perlin_wind", V_LIST, F(fog.perlin_wind), -WORLD, WORLD, NULL, F(fog.perlin_wind_count), 0},
     {"fog", "perlin_integral", V_ENUM, F(fog.perlin_integral), 0, 0, "exact|paper", 0, 0},
@@ -385,6 +385,13 @@ static int store_box(parse_state *s, const char *section, const char *key, const
     return fail(s, section, key, "expected X Z WIDTH HEIGHT DEPTH [R G B], got '%s'", value);
   if (!(v[2] > 0 && v[3] > 0 && v[4] > 0))
     return fail(s, section, key, "expected positive WIDTH HEIGHT DEPTH, got '%s'", value);
+  for (int i = 0; i < n; i++) {
+    bool colour = i >= 5, position = i < 2;
+    double lo = colour ? 0.0 : position ? -WORLD : MIN_LENGTH, hi = colour ? MAX_RADIANCE : WORLD;
+    if (!(v[i] >= lo && v[i] <= hi))
+      return fail(s, section, key, "number %d (%g) of X Z WIDTH HEIGHT DEPTH [R G B]: expected "
+                  "%g to %g, got '%s'", i + 1, v[i], lo, hi, value);
+  }
   if (cfg->object_count == SCENE_MAX_BOXES)
     return fail(s, section, key, "at most %d boxes", SCENE_MAX_BOXES);
   scene_box_desc *b = &cfg->objects[cfg->object_count++];
@@ -402,6 +409,8 @@ static int store_rbf(parse_state *s, const char *section, const char *key, const
   int n = parse_numbers(value, v, 5);
   if (n != 5)
     return fail(s, section, key, "expected X Y Z RADIUS DENSITY (5 numbers), got '%s'", value);
+  if (!(fabs(v[0]) <= WORLD && fabs(v[1]) <= WORLD && fabs(v[2]) <= WORLD))
+    return fail(s, section, key, "expected X Y Z from -%g to %g, got '%s'", WORLD, WORLD, value);
   if (!(v[3] >= MIN_LENGTH && v[3] <= WORLD && v[4] >= 0 && v[4] <= MAX_EXTINCTION))
     return fail(s, section, key, "expected RADIUS from %g to %g and DENSITY from 0 to %g, "
                 "got '%s'", MIN_LENGTH, WORLD, MAX_EXTINCTION, value);
@@ -645,6 +654,9 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
   s->after_key = true;
   const key_spec *k = lookup_key(s, section, key);
   if (!k) return 0;
+  if (s->continuation && k->kind != V_LIST) /* libinih hands an indented line to the key above */
+    return fail(s, section, key, "an indented line goes on with the key above, and only a list "
+                "(profile_coefficients, perlin_wind) goes on over lines: unindent '%s'", value);
   char *field = (char *)cfg + k->offset;
   double v[16];
   if (k->offset == F(fog.perlin_size)) cfg->fog.perlin_size_line = s->line;
@@ -985,19 +997,41 @@ static void write_number(FILE *f, double x) {
   fprintf(f, " %s", number);
 }
 
+/* A float in the shortest form that reads back as the same float. */
+static void write_float(FILE *f, float x) {
+  char number[32];
+  for (int digits = 1; digits <= 9; digits++) {
+    snprintf(number, sizeof number, "%.*g", digits, (double)x);
+    if ((float)strtod(number, NULL) == x) break;
+  }
+  fprintf(f, " %s", number);
+}
+
+/* `key =` and the numbers, each in its shortest exact form: a written line of many numbers
+ * stays under the reader's line length (%.17g made a spot line 253 bytes). */
+static void write_numbers(FILE *f, const char *key, const double *v, int n) {
+  fprintf(f, "%s =", key);
+  for (int i = 0; i < n; i++) write_number(f, v[i]);
+  fputc('\n', f);
+}
+
 static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
   if (key_unset(cfg, k)) return;
   const char *field = (const char *)cfg + k->offset;
   const double *d = (const double *)field;
   const float *c = (const float *)field;
   switch (k->kind) {
-    case V_DOUBLE: fprintf(f, "%s = %.17g\n", k->key, d[0]); break;
-    case V_DOUBLE2: fprintf(f, "%s = %.17g %.17g\n", k->key, d[0], d[1]); break;
+    case V_DOUBLE: write_numbers(f, k->key, d, 1); break;
+    case V_DOUBLE2: write_numbers(f, k->key, d, 2); break;
     case V_LOOK_AT:
       if (!cfg->camera.look_at_set) break;
       /* fall through */
-    case V_DOUBLE3: fprintf(f, "%s = %.17g %.17g %.17g\n", k->key, d[0], d[1], d[2]); break;
-    case V_FLOAT3: fprintf(f, "%s = %.9g %.9g %.9g\n", k->key, c[0], c[1], c[2]); break;
+    case V_DOUBLE3: write_numbers(f, k->key, d, 3); break;
+    case V_FLOAT3:
+      fprintf(f, "%s =", k->key);
+      for (int n = 0; n < 3; n++) write_float(f, c[n]);
+      fputc('\n', f);
+      break;
     case V_INT: fprintf(f, "%s = %d\n", k->key, *(const int *)field); break;
     case V_UINT: fprintf(f, "%s = %u\n", k->key, *(const unsigned *)field); break;
     case V_ENUM: {
@@ -1031,16 +1065,19 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
     case V_OBJECT:
       for (int i = 0; i < cfg->object_count; i++) {
         const scene_box_desc *b = &cfg->objects[i];
-        fprintf(f, "%s = %.17g %.17g %.17g %.17g %.17g %.9g %.9g %.9g\n", k->key, b->center[0],
-                b->center[1], b->size[0], b->size[1], b->size[2], b->colour[0], b->colour[1],
-                b->colour[2]);
+        fprintf(f, "%s =", k->key);
+        const double numbers[5] = {b->center[0], b->center[1], b->size[0], b->size[1], b->size[2]};
+        for (int n = 0; n < 5; n++) write_number(f, numbers[n]);
+        for (int n = 0; n < 3; n++) write_float(f, b->colour[n]);
+        fputc('\n', f);
       }
       break;
     case V_RBF:
       for (int i = 0; i < cfg->fog.rbf_count; i++) {
         const fog_rbf *g = &cfg->fog.rbfs[i];
-        fprintf(f, "%s = %.17g %.17g %.17g %.17g %.17g\n", k->key, g->centre[0], g->centre[1],
-                g->centre[2], g->radius, g->density);
+        const double numbers[5] = {g->centre[0], g->centre[1], g->centre[2], g->radius,
+                                   g->density};
+        write_numbers(f, k->key, numbers, 5);
       }
       break;
     case V_RBF_EMITTER:
@@ -1066,12 +1103,12 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
       for (int i = 0; i < cfg->lamp_count; i++) {
         const scene_lamp_config *l = &cfg->lamps[i];
         if (l->spot != !strcmp(k->key, "spot")) continue;
-        fprintf(f, "%s = %.17g %.17g %.17g %.17g %.17g %.17g", k->key, l->position[0],
-                l->position[1], l->position[2], l->colour[0], l->colour[1], l->colour[2]);
-        if (l->spot)
-          fprintf(f, " %.17g %.17g %.17g %.17g %.17g", l->axis[0], l->axis[1], l->axis[2],
-                  l->inner, l->outer);
-        fprintf(f, " %.17g\n", l->radius);
+        const double lamp[7] = {l->position[0], l->position[1], l->position[2], l->colour[0],
+                                l->colour[1], l->colour[2], l->radius};
+        const double spot[12] = {l->position[0], l->position[1], l->position[2], l->colour[0],
+                                 l->colour[1], l->colour[2], l->axis[0], l->axis[1],
+                                 l->axis[2], l->inner, l->outer, l->radius};
+        write_numbers(f, k->key, l->spot ? spot : lamp, l->spot ? 12 : 7);
       }
       break;
     case V_LAMP_PATH: /* lamp numbers in file order: the lamp lines, then the spot lines */
@@ -1080,8 +1117,8 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
         if (l->spot != (i >= cfg->lamp_count)) continue;
         index++;
         for (int j = 0; j < l->key_count; j++)
-          fprintf(f, "%s = %d %.17g %.17g %.17g %.17g\n", k->key, index, l->keys[j][0],
-                  l->keys[j][1], l->keys[j][2], l->keys[j][3]);
+          write_numbers(f, k->key, (const double[5]){index, l->keys[j][0], l->keys[j][1],
+                                                     l->keys[j][2], l->keys[j][3]}, 5);
       }
       break;
     case V_LAMP_FLICKER:
@@ -1090,8 +1127,8 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
         if (l->spot != (i >= cfg->lamp_count)) continue;
         index++;
         if (l->flicker_amount > 0)
-          fprintf(f, "%s = %d %.17g %.17g %u\n", k->key, index, l->flicker_amount,
-                  l->flicker_rate, l->flicker_seed);
+          write_numbers(f, k->key, (const double[4]){index, l->flicker_amount, l->flicker_rate,
+                                                     l->flicker_seed}, 4);
       }
       break;
   }

@@ -229,7 +229,8 @@ static int make_base(const scene_config *cfg, fogmap *base, pipeline_error *err)
     fogmap loaded = {0};
     fogmap_load_desc desc = {.channel = cfg->fog.channel[0] ? cfg->fog.channel : NULL};
     if (fogmap_load(cfg->fog.fogmap, &desc, &loaded, &serr))
-      return fail(err, "%s", serr.message);
+      return fail(err, "%.200s:%d: [fog] fogmap: %s", cfg->path, cfg->fog.fogmap_line,
+                  serr.message);
     bool usable = loaded.width % 2 == 0 && loaded.height % 2 == 0 && loaded.width >= 8 &&
                   loaded.height >= 8 && loaded.width <= 2048 && loaded.height <= 2048;
     if (usable) {
@@ -385,7 +386,9 @@ static int load_sequence_frame(pipeline *p, long n, fogmap *map, pipeline_error 
                 cfg->fog.sequence_line, n);
   fogmap loaded = {0};
   sim_error serr = {{0}};
-  if (fogmap_load(path, NULL, &loaded, &serr))
+  /* the config's channel, as render reads the sequence's first frame */
+  const fogmap_load_desc desc = {.channel = cfg->fog.channel[0] ? cfg->fog.channel : NULL};
+  if (fogmap_load(path, &desc, &loaded, &serr))
     return fail(err, "%s:%d: [fog] sequence: frame %ld: %s", cfg->path, cfg->fog.sequence_line,
                 n, serr.message);
   const fogmap *first = &p->cpu.base;
@@ -582,7 +585,8 @@ static int load_scene(pipeline *p, pipeline_error *err) {
   fogmap heights = {0};
   sim_error serr = {{0}};
   if (cfg->terrain.heightmap[0] && fogmap_load(cfg->terrain.heightmap, NULL, &heights, &serr))
-    return fail(err, "%s", serr.message);
+    return fail(err, "%.200s:%d: [terrain] heightmap: %s", cfg->path,
+                cfg->terrain.heightmap_line, serr.message);
   scene_desc desc;
   scene_config_scene_desc(cfg, heights.density, heights.width, heights.height, &desc);
   render_error rerr = {{0}};

@@ -52,22 +52,28 @@ static const double volume_steps[] = {2.0, 1.0, 0.5, 0.25, 0.125}; /* voxels */
 enum {
   MARCH_COUNT = 6,
   VOLUME_STEP_COUNT = 5,
-  MODEL_COUNT = 8,
+  MODEL_COUNT = 9,
   SCENE_COUNT = 2,
   QUADRIC_COUNT = 8,
   PERLIN = 7, /* the Perlin row: exact, the paper's single sample, marched */
-  MAX_ROWS = 1 + 3 * (1 + MARCH_COUNT) + 3 + VOLUME_STEP_COUNT + 2 + 2 + MARCH_COUNT
+  QUADRIC_NOISE = 8, /* the quadric volumes with noise inside (the Perlin row's octaves) */
+  MAX_ROWS = 1 + 3 * (1 + MARCH_COUNT) + 3 + VOLUME_STEP_COUNT + 2 + 2 + MARCH_COUNT +
+             1 + MARCH_COUNT
 };
 /* The table's rows this bench times (render/fog_models.def: names and labels come from it). */
 static const fog_model_kind model_kinds[MODEL_COUNT] = {
     FOG_MODEL_HOMOGENEOUS, FOG_MODEL_HEIGHT, FOG_MODEL_RBF, FOG_MODEL_VOLUME, FOG_MODEL_QUADRIC,
-    FOG_MODEL_LINEAR, FOG_MODEL_EXP2, FOG_MODEL_PERLIN};
+    FOG_MODEL_LINEAR, FOG_MODEL_EXP2, FOG_MODEL_PERLIN, FOG_MODEL_QUADRIC};
+/* The rows' names: the table's, but the noisy quadric volumes' own. */
+static const char *model_name(int m) {
+  return m == QUADRIC_NOISE ? "quadric-noise" : fog_model_table[model_kinds[m]].name;
+}
 static const char *const scene_configs[SCENE_COUNT] = {"rbf_fog_banks.ini",
                                                        "vdb_plume_volume.ini"};
-static const int scene_of_model[MODEL_COUNT] = {0, 0, 0, 1, 0, 0, 0, 0};
+static const int scene_of_model[MODEL_COUNT] = {0, 0, 0, 1, 0, 0, 0, 0, 0};
 /* The rows with marches: the classic factors and homogeneous fog are closed forms of the
  * distance alone (nothing to march). */
-static bool marched(int m) { return (m >= 1 && m <= 4) || m == PERLIN; }
+static bool marched(int m) { return (m >= 1 && m <= 4) || m == PERLIN || m == QUADRIC_NOISE; }
 
 /* The quadric row's volumes on the valley of scene_configs[0]. */
 static void bench_quadrics(fog_quadric q[QUADRIC_COUNT]) {
@@ -155,7 +161,7 @@ static int write_table(const char *path, const model_row *rows, int count, char 
   if (!f) return 1;
   fprintf(f, "model,method,setting,ms_per_frame,rmse,max_error\n");
   for (int i = 0; i < count; i++)
-    fprintf(f, "%s,%s,%g,%.6g,%.6g,%.6g\n", fog_model_table[model_kinds[rows[i].model]].name, row_method(&rows[i]),
+    fprintf(f, "%s,%s,%g,%.6g,%.6g,%.6g\n", model_name(rows[i].model), row_method(&rows[i]),
             rows[i].setting, rows[i].ms, rows[i].rmse, rows[i].max_error);
   return chart_csv_close(f, path, error, size);
 }
@@ -368,8 +374,9 @@ int bench_models(int argc, char **argv) {
   if (render_fog_load_volume(scenes[1].cfg, &frame, &grid, &rerr) ||
       fog_pass_upload_grid3d(pass, &grid, &rerr))
     goto gl_failed;
-  fog_quadric quadrics[QUADRIC_COUNT];
+  fog_quadric quadrics[QUADRIC_COUNT], noisy[QUADRIC_COUNT];
   bench_quadrics(quadrics);
+  for (int q = 0; q < QUADRIC_COUNT; q++) noisy[q] = quadrics[q], noisy[q].noise = 0.8;
   /* Perlin turbulence over the valley: 4 octaves of 32^3, eddies of 90 units, at 10 s of
    * its drift, filling the terrain's footprint up to 70 units */
   fog_perlin_desc perlin_desc = fog_perlin_desc_default();
@@ -398,6 +405,8 @@ int bench_models(int argc, char **argv) {
        .eye = {eye[0], eye[1], eye[2]}},
       {.kind = FOG_MODEL_EXP2, .extinction = 0.0015, .eye = {eye[0], eye[1], eye[2]}},
       {.kind = FOG_MODEL_PERLIN, .extinction = 0.02, .y0 = 5.0, .scale_height = 18.0,
+       .perlin = &perlin, .time = 10.0},
+      {.kind = FOG_MODEL_QUADRIC, .quadrics = noisy, .quadric_count = QUADRIC_COUNT,
        .perlin = &perlin, .time = 10.0}};
 
   /* The CPU references: tau of each model along every pixel's ray to its surface. */
@@ -428,7 +437,7 @@ int bench_models(int argc, char **argv) {
       r->unskipped = s == -3;
       r->paper = s == -4;
       r->setting = s < 0 ? 0.0 : m == 3 ? volume_steps[s] : march_steps[s];
-      snprintf(r->series, sizeof r->series, "%s %s", fog_model_table[model_kinds[m]].name,
+      snprintf(r->series, sizeof r->series, "%s %s", model_name(m),
                s == -4   ? "paper (single sample)"
                : s == -3 ? "exact no skip"
                : s == -2 ? "exact hardware"
@@ -499,7 +508,7 @@ int bench_models(int argc, char **argv) {
     char setting[24] = "";
     if (r->setting)
       snprintf(setting, sizeof setting, r->model == 3 ? "%g vox" : "%g", r->setting);
-    printf("%-12s %-14s %8s %10.2f %10.2e %10.2e\n", fog_model_table[model_kinds[r->model]].name, row_method(r),
+    printf("%-12s %-14s %8s %10.2f %10.2e %10.2e\n", model_name(r->model), row_method(r),
            setting, r->ms, r->rmse, r->max_error);
     points[i] = (chart_point){.series = r->series, .x = r->ms,
                               .y = r->max_error > ERROR_FLOOR ? r->max_error : ERROR_FLOOR};
@@ -534,7 +543,7 @@ int bench_models(int argc, char **argv) {
       }
     if (!matched)
       printf("note: no marching of %s reached max error <= %g; its speedup uses the most "
-             "accurate one\n", fog_model_table[model_kinds[m]].name, MATCHED_ERROR);
+             "accurate one\n", model_name(m), MATCHED_ERROR);
   }
   printf("volume: exact walk without empty-space skipping %.2f ms / with it (brick by brick, "
          "the default) %.2f ms = %.2f\n", unskipped_ms, exact_ms[3], unskipped_ms / exact_ms[3]);
@@ -545,6 +554,10 @@ int bench_models(int argc, char **argv) {
   printf("rbf: 3000 Gaussians / 64 = %.2f (target <= 4)\n", scale[1].ms / scale[0].ms);
   printf("perlin: the paper's single sample %.2f ms, max |dtau| %.3f against the ray integral "
          "(exact %.2f ms)\n", paper_ms, paper_error, exact_ms[PERLIN]);
+  printf("quadric volumes with noise 0.8 inside (the Perlin row's octaves): exact %.2f ms, "
+         "%.2f x the homogeneous volumes' %.2f ms; marching within %g: speedup %.2f\n",
+         exact_ms[QUADRIC_NOISE], exact_ms[QUADRIC_NOISE] / exact_ms[4], exact_ms[4],
+         MATCHED_ERROR, speedup[QUADRIC_NOISE]);
   printf("models: rbf_exact_ms=%.3f rbf_march_speedup_at_matched_error=%.2f "
          "height_exact_ms=%.3f height_march_speedup_at_matched_error=%.2f "
          "volume_exact_ms=%.3f volume_march_speedup_at_matched_error=%.2f "

@@ -113,6 +113,9 @@ typedef struct fog_pass_variant {
   int shadow_pieces;      /* FOG_SHADOW_PIECES: 1 the mean per piece of the exact walk */
   int lamp_shadows;       /* FOG_LAMP_SHADOWS: 1 the lamps' shadow cubes (lamp_shadow.glsl) */
   int quadrics_beside;    /* FOG_QUADRICS_BESIDE: 1 quadric volumes beside the model's fog */
+  int quadric_noise;      /* FOG_QUADRIC_NOISE: 1 noise inside the quadric volumes (compiled
+                             only then: llvmpipe runs an untaken branch's body under a mask,
+                             and the turbulence doubled the homogeneous volumes' time) */
 } fog_pass_variant;
 
 static const struct {
@@ -143,6 +146,7 @@ static const struct {
     {"FOG_SHADOW_PIECES", offsetof(fog_pass_variant, shadow_pieces), 1},
     {"FOG_LAMP_SHADOWS", offsetof(fog_pass_variant, lamp_shadows), 1},
     {"FOG_QUADRICS_BESIDE", offsetof(fog_pass_variant, quadrics_beside), 1},
+    {"FOG_QUADRIC_NOISE", offsetof(fog_pass_variant, quadric_noise), 1},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
@@ -153,7 +157,7 @@ static int variant_field(const fog_pass_variant *v, int f) {
   return *(const int *)((const char *)v + variant_fields[f].offset);
 }
 
-/* The fields packed into bits, in variant_fields' order (36 of the 64; fog_pass_create
+/* The fields packed into bits, in variant_fields' order (37 of the 64; fog_pass_create
  * checks the sum). */
 static int variant_key_bits(void) {
   int bits = 0;
@@ -889,6 +893,14 @@ static bool fog_pass_quadrics_beside(const fog_pass_params *p) {
   return p->model != FOG_MODEL_QUADRIC && p->model_quadric_count > 0;
 }
 
+/* Noise inside the quadric volumes: drawn with the octaves (fog_pass_check_model refuses
+ * noise without them, or beside the fogmap). */
+static bool fog_pass_quadric_noise(const fog_pass_params *p) {
+  return p->model_perlin && p->model != FOG_MODEL_FOGMAP &&
+         (p->model == FOG_MODEL_QUADRIC || fog_pass_quadrics_beside(p)) &&
+         fog_quadric_noisy(p->model_quadrics, p->model_quadric_count);
+}
+
 /* The quadric volumes camera-relative (fog_models.glsl), of FOG_MODEL_QUADRIC or beside
  * another model: Q(camera + p) = p.(M p) + 2 g.p + c0 with g = M camera + l and c0 =
  * Q(camera), in double (the shader keeps g and c0 in double). */
@@ -1074,6 +1086,7 @@ static int fog_pass_draw_froxel(fog_pass *pass, const fog_pass_variant *variant,
   const fog_froxel_grid *g = &params->froxel;
   fog_pass_variant fill = *variant, lookup = *variant;
   fill.quadrics_beside = lookup.quadrics_beside = fog_pass_quadrics_beside(params);
+  fill.quadric_noise = lookup.quadric_noise = fog_pass_quadric_noise(params);
   fill.integrator = lookup.integrator = FOG_INTEGRATOR_EXACT;
   fill.reduced = lookup.reduced = 1;
   fill.lamps = lookup.lamps = fill.lamp_integral = lookup.lamp_integral = 0;
@@ -1197,6 +1210,7 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
   variant.shadow_nodes = params->shadow_nodes;
   variant.lamp_shadows = fog_pass_has_lamp_shadows(params);
   variant.quadrics_beside = fog_pass_quadrics_beside(params);
+  variant.quadric_noise = fog_pass_quadric_noise(params);
   variant.shadow_pieces = (params->model == FOG_MODEL_PERLIN || params->model == FOG_MODEL_VOLUME ||
                            params->model == FOG_MODEL_FOGMAP) &&
                           params->shadow_pieces && !variant.quadrics_beside;

@@ -206,19 +206,21 @@ double fog_quadric_optical_depth(const fog_quadric *v, int count, const fog_quad
 
 double fog_quadric_extinction_at(const fog_quadric *v, int count, const fog_quadric_noise *noise,
                                  const double p[3]) {
-  double k = 0.0, turbulence = -1.0; /* T(p), once, when a noisy volume holds p */
+  /* K = sum c_i w_i (1 - n_i + n_i T/T_mean) = sum c_i w_i + (T/T_mean - 1) sum c_i w_i n_i,
+   * T once (as the GLSL twin) */
+  double k = 0.0, noisy = 0.0;
   for (int i = 0; i < count; i++) {
     bool inside = true;
     for (int a = 0; a < 3; a++) inside = inside && p[a] >= v[i].lo[a] && p[a] <= v[i].hi[a];
     double q = inside ? fog_quadric_value(&v[i], p) : 0.0;
     if (!(q < 0.0)) continue;
     double ki = v[i].edge > 0.0 ? v[i].density * fmin(1.0, -q / v[i].edge) : v[i].density;
-    if (v[i].noise > 0.0 && noise && noise->perlin) {
-      if (turbulence < 0.0) turbulence = fog_perlin_turbulence(noise->perlin, noise->time, p);
-      ki *= 1.0 - v[i].noise + v[i].noise * turbulence / noise->perlin->mean_turbulence;
-    }
     k += ki;
+    noisy += ki * v[i].noise;
   }
+  if (noisy > 0.0 && noise && noise->perlin)
+    k += noisy * (fog_perlin_turbulence(noise->perlin, noise->time, p) /
+                      noise->perlin->mean_turbulence - 1.0);
   return k;
 }
 

@@ -257,7 +257,9 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
       step_depth = 0.5 * dt * (ka + kb);
       /* depths from the segment's start to the nodes, K linear through them */
       double la = (0.5 - g) * dt, slope = (kb - ka) / (2.0 * g * dt);
-      double da = la * (ka - 0.5 * slope * la), db = da + g * dt * (ka + kb);
+      /* a steep K extrapolated back to the start can dip below 0 (and e^{-da} overflow):
+       * no depth is negative */
+      double da = fmax(la * (ka - 0.5 * slope * la), 0.0), db = da + g * dt * (ka + kb);
       double sa = ka * exp(-da), sb = kb * exp(-db);
       light = sa + sb > 0.0
                   ? (sa * sun_light_at(m, kind, volume, o, d, ta, visible, user) +

@@ -361,7 +361,8 @@ float fog_sun_mean_transmittance(fog_ray r) {
             kb = max(fog_light_extinction(r.dir, tb), 0.0);
       step_depth = 0.5 * dt * (ka + kb);
       float la = (0.5 - g) * dt, slope = (kb - ka) / (2.0 * g * dt);
-      float da = la * (ka - 0.5 * slope * la), db = da + g * dt * (ka + kb);
+      // no negative depth: a steep K extrapolated back dipped below 0 and e^{-da} overflowed
+      float da = max(la * (ka - 0.5 * slope * la), 0.0), db = da + g * dt * (ka + kb);
       float sa = ka * exp(-da), sb = kb * exp(-db);
       light = sa + sb > 0.0 ? (sa * fog_sun_light_at(r.dir, ta) + sb * fog_sun_light_at(r.dir, tb)) /
                                   (sa + sb)

@@ -207,10 +207,12 @@ float fog_quadric_span(float a, float b, float c, float density, float edge, flo
       float qa = (a * ta + 2.0 * b) * ta + c, qb = (a * tb + 2.0 * b) * tb + c;
       sum -= plain * density / edge * (tb - ta) * (qa + 4.0 * qm + qb) / 6.0;
     }
+#if FOG_QUADRIC_NOISE
     if (amount > 0.0)
       sum += turbulent * fog_quadric_weighted_turbulence(
                              start, dir, ta, tb,
                              core ? vec3(density, 0.0, 0.0) : -density / edge * vec3(c, 2.0 * b, a));
+#endif
   }
   return sum;
 }
@@ -244,7 +246,9 @@ float fog_quadric_optical_depth_from(vec3 origin, vec3 dir, float length) {
 
 // K at camera-relative p: the volumes' extinctions summed (fog_quadric_extinction_at).
 float fog_quadric_extinction_at(vec3 p) {
-  float k = 0.0, turbulence = -1.0;  // T(p), once, when a noisy volume holds p
+  // K = sum c_i w_i (1 - n_i + n_i T/T_mean) = sum c_i w_i + (T/T_mean - 1) sum c_i w_i n_i:
+  // T once, after the loop (inside it, llvmpipe paid it per volume, every branch masked)
+  float k = 0.0, noisy = 0.0;
   for (int i = 0; i < fog_quadric_count; i++) {
     if (any(lessThan(p, fog_quadric_lo[i])) || any(greaterThan(p, fog_quadric_hi[i]))) continue;
     // in double: Q's terms far from the camera cancel (fog_quadric_optical_depth_from)
@@ -252,14 +256,15 @@ float fog_quadric_extinction_at(vec3 p) {
     float q = float(dot(x, dmat3(fog_quadric_matrix(i)) * x) + 2.0 * dot(g, x) +
                     fog_quadric_grad_c0[i].w);
     if (!(q < 0.0)) continue;
-    float edge = fog_quadric_edge[i], density = fog_quadric_off[i].w, amount = fog_quadric_noise[i];
+    float edge = fog_quadric_edge[i], density = fog_quadric_off[i].w;
     float ki = edge > 0.0 ? density * min(1.0, -q / edge) : density;
-    if (amount > 0.0) {
-      if (turbulence < 0.0) turbulence = fog_perlin_turbulence(p);
-      ki *= 1.0 - amount + amount * turbulence / fog_perlin_mean;
-    }
     k += ki;
+    noisy += ki * fog_quadric_noise[i];
   }
+#if FOG_QUADRIC_NOISE
+  for (int turn = noisy > 0.0 ? 0 : 1; turn < 1; turn++)  // a loop: skipped when no lane needs it
+    k += noisy * (fog_perlin_turbulence(p) / fog_perlin_mean - 1.0);
+#endif
   return k;
 }
 
@@ -379,7 +384,9 @@ float fog_grid3d_optical_depth_march(vec3 dir, float length) {
   vec3 u0, du;
   float t0, t1;
   if (!fog_grid3d_stretch(dir, length, u0, du, t0, t1)) return 0.0;
-  int n = int(ceil((t1 - t0) / fog_grid3d_step));
+  // at most 16384 samples a ray (docs/config.md, volume_step): a finer step overflowed the
+  // count and summed away its own terms in float
+  int n = int(clamp(ceil((t1 - t0) / fog_grid3d_step), 1.0, 16384.0));
   float dt = (t1 - t0) / float(n), sum = 0.0;
   for (int s = 0; s < n; s++) sum += fog_grid3d_density(u0 + (t0 + (float(s) + 0.5) * dt) * du);
   return sum * dt;

@@ -105,6 +105,17 @@ int main(void) {
   CHECK(load_text(written, text, &back, &err) != 0 && strstr(err.message, "long.ini:9") &&
             strstr(err.message, "64"),
         "65 numbers: %s", err.message);
+  /* a spot lamp of numbers that need 17 digits each: %.17g made the line 253 bytes and the
+   * written config did not load (as a bake writes its scene) */
+  CHECK(load_text(written,
+                  "[light]\nspot = -0.1 -0.1 -0.1 0.1 0.1 0.1 -0.1 -0.1 -0.1 0.1 0.7 0.3\n"
+                  "[objects]\nbox = 0.1 -0.3 0.7 0.1 0.3 0.55 0.25 0.18\n",
+                  &back, &err) == 0, "a spot lamp: %s", err.message);
+  scene_config again;
+  CHECK(scene_config_write(&back, written, &err) == 0 &&
+            scene_config_load(written, &again, &err) == 0 &&
+            scene_config_fingerprint(&again) == scene_config_fingerprint(&back),
+        "a spot lamp written and read back: %s", err.message);
   unlink(written);
   char bad[700];
   snprintf(bad, sizeof bad, "%s/missing/x.ini", dir);

@@ -49,6 +49,22 @@ static void signed_extinction(void) {
   CHECK(worst < 1e-9, "the mean %.3e from the lit Gaussian's 1", worst);
 }
 
+/* A very dense soft-edged sphere (1e6 per unit) met steeply inside a segment: K linear
+ * through the two nodes, extrapolated back to the segment's start, gave a negative depth
+ * to the first node (-1350), e^1350 overflowed and 0 x inf made the mean NaN (a lit render
+ * of such a quadric wrote NaN). The mean stays a mean. */
+static void steep_dense_fog(void) {
+  const fog_quadric v = fog_quadric_sphere((double[3]){0, 0, 0}, 30, 1e6, 1.0);
+  const fog_model m = {.kind = FOG_MODEL_QUADRIC, .quadrics = &v, .quadric_count = 1};
+  for (int r = 0; r < 9; r++) {
+    const double o[3] = {-60, 1.5 * r, 0}, d[3] = {1, 0, 0};
+    double mean = fog_sun_mean_light(&m, FOG_SUN_SHADOW_NONE, NULL,
+                                     (fog_light_rule){.steps = 8, .nodes = 2}, HUGE_VAL, o, d,
+                                     120.0, west_lit, NULL);
+    CHECK(mean >= 0.0 && mean <= 1.0 + 1e-12, "dense sphere, ray %d: mean %g", r, mean);
+  }
+}
+
 int main(void) {
   const double sun_dir_raw[3] = {0.8, 0.3, -0.5};
   double sun[3], n = 0;
@@ -96,5 +112,6 @@ int main(void) {
     CHECK(errors[1][l] < errors[0][l], "%d samples: two nodes %.3e not below midpoints %.3e",
           4 << l, errors[1][l], errors[0][l]);
   signed_extinction();
+  steep_dense_fog();
   return test_finish("test_sun_mean_nodes");
 }
