@@ -224,7 +224,15 @@ typedef struct parse_state {
    * appends it. after_key: a key was read since the section began (libinih's prev_name). */
   bool continuation, after_key;
   scene_config_error *err;
+  int key_line[sizeof keys / sizeof keys[0]]; /* where each key was last set (0: default) */
 } parse_state;
+
+/* The line of [section] key (0: not in the file: its default). */
+static int key_line(const parse_state *s, const char *section, const char *key) {
+  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+    if (!strcmp(keys[i].section, section) && !strcmp(keys[i].key, key)) return s->key_line[i];
+  return 0;
+}
 
 /* fgets-style reader for ini_parse_stream that counts lines. */
 static char *read_line(char *buffer, int size, void *stream) {
@@ -259,9 +267,12 @@ static int fail(parse_state *s, const char *section, const char *key, const char
     __attribute__((format(printf, 4, 5)));
 static int fail(parse_state *s, const char *section, const char *key, const char *fmt, ...) {
   if (s->error_line) return 0; /* keep the first error */
-  s->error_line = s->line;
-  int n = snprintf(s->err->message, sizeof s->err->message, "%s:%d: [%s] %s: ", s->path,
-                   s->line, section, key);
+  s->error_line = s->line ? s->line : -1;
+  /* line 0: a check after parsing on a key the file does not set (its default) */
+  int n = s->line ? snprintf(s->err->message, sizeof s->err->message, "%s:%d: [%s] %s: ",
+                             s->path, s->line, section, key)
+                  : snprintf(s->err->message, sizeof s->err->message,
+                             "%s: [%s] %s (its default): ", s->path, section, key);
   if (n < 0 || (size_t)n >= sizeof s->err->message) return 0;
   va_list args;
   va_start(args, fmt);
@@ -526,6 +537,7 @@ static int store_quadric(parse_state *s, const char *section, const char *key, c
       for (int a = 0; a < 3; a++) q->lo[a] = v[10 + a], q->hi[a] = v[13 + a];
   }
   q->noise = noise;
+  if (noise > 0 && !cfg->fog.quadric_noise_line) cfg->fog.quadric_noise_line = s->line;
   return 1;
 }
 
@@ -654,6 +666,7 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
   s->after_key = true;
   const key_spec *k = lookup_key(s, section, key);
   if (!k) return 0;
+  s->key_line[k - keys] = s->line;
   if (s->continuation && k->kind != V_LIST) /* libinih hands an indented line to the key above */
     return fail(s, section, key, "an indented line goes on with the key above, and only a list "
                 "(profile_coefficients, perlin_wind) goes on over lines: unindent '%s'", value);
@@ -812,9 +825,9 @@ static int check_models(parse_state *ps) {
   }
   if (fog_quadric_noisy(cfg->fog.quadrics, cfg->fog.quadric_count) &&
       cfg->fog.model != FOG_MODEL_QUADRIC && cfg->fog.model != FOG_MODEL_PERLIN) {
-    s.line = cfg->fog.model_line;
-    fail(&s, "fog", "model", "%s: 'quadric' volumes with NOISE need model = quadric or perlin "
-         "(their turbulence is the perlin_* octaves)", fog_model_table[cfg->fog.model].name);
+    s.line = cfg->fog.quadric_noise_line;
+    fail(&s, "fog", "quadric", "NOISE needs [fog] model = quadric or perlin (the turbulence is "
+         "the perlin_* octaves), not %s", fog_model_table[cfg->fog.model].name);
     return 1;
   }
   if (cfg->lamp_method.integral == FOG_LAMP_FOGSHOP && cfg->fog.quadric_count > 0 &&
@@ -858,7 +871,7 @@ static int check_models(parse_state *ps) {
       return 1;
     }
     if (cfg->fog.model == FOG_MODEL_PERLIN && !(cfg->box.top > cfg->box.floor)) {
-      s.line = cfg->fog.model_line;
+      s.line = key_line(&s, "box", "top");
       fail(&s, "box", "top", "Perlin fog fills the terrain's footprint between [box] floor and "
            "top: expected top above floor, got floor %g and top %g", cfg->box.floor, cfg->box.top);
       return 1;
@@ -918,19 +931,24 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
     return 1;
   }
   if (check_sources(&s) || check_models(&s)) return 1;
+  /* the pairs below name the key the file set last (the other may be a default) */
+  const int top = key_line(&s, "box", "top"), floor_line = key_line(&s, "box", "floor");
   if (cfg->box.top <= cfg->box.floor) {
-    snprintf(err->message, sizeof err->message,
-             "%s: [box] top (%g) must be above floor (%g)", path, cfg->box.top, cfg->box.floor);
+    s.line = top > floor_line ? top : floor_line;
+    fail(&s, "box", top > floor_line ? "top" : "floor", "top (%g) must be above floor (%g)",
+         cfg->box.top, cfg->box.floor);
     return 1;
   }
   if (cfg->fog.profile == SCENE_PROFILE_BSPLINE && cfg->fog.profile_count == 0) {
-    snprintf(err->message, sizeof err->message,
-             "%s: [fog] profile = bspline needs profile_coefficients", path);
+    s.line = key_line(&s, "fog", "profile");
+    fail(&s, "fog", "profile", "bspline needs profile_coefficients");
     return 1;
   }
+  const int near = key_line(&s, "camera", "near"), far = key_line(&s, "camera", "far");
   if (cfg->camera.near_plane >= cfg->camera.far_plane) {
-    snprintf(err->message, sizeof err->message, "%s: [camera] near (%g) must be below far (%g)",
-             path, cfg->camera.near_plane, cfg->camera.far_plane);
+    s.line = near > far ? near : far;
+    fail(&s, "camera", near > far ? "near" : "far", "near (%g) must be below far (%g)",
+         cfg->camera.near_plane, cfg->camera.far_plane);
     return 1;
   }
   return 0;

@@ -61,6 +61,7 @@ typedef enum scene_boundary {
 typedef struct scene_fog_config {
   fog_model_kind model;               /* a row of render/fog_models.def (its name in [fog] model) */
   int model_line;                     /* where model was set (0: default), for errors */
+  int quadric_noise_line; /* the first quadric line with NOISE > 0 (0: none), for errors */
   char fogmap[SCENE_CONFIG_PATH_MAX]; /* resolved path; "" means no fog */
   char channel[16];                   /* image channel ("" : the only one) */
   double density_scale;               /* extinction per world unit where f = g = 1 */
