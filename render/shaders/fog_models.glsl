@@ -430,25 +430,55 @@ bool fog_perlin_inside(vec3 p) {
   return all(greaterThanEqual(p, fog_perlin_lo)) && all(lessThanEqual(p, fog_perlin_hi));
 }
 
+// Octave i's texel cells along origin + t dir (origin camera-relative): the DDA that the
+// Perlin fog's walk and the noisy quadric volumes' walk both take.
+struct fog_perlin_walk {
+  int octave;
+  vec3 ue, du;  // texel coordinates at t = 0, and per unit of t
+  fog_axis x, y, z;
+};
+
+fog_perlin_walk fog_perlin_walk_start(int i, vec3 origin, vec3 dir) {
+  float s = fog_perlin_scale[i];
+  vec3 ue = fog_perlin_camera[i] + s * origin, du = s * dir;
+  return fog_perlin_walk(i, ue, du, fog_axis_start(ue.x, du.x, 0.0),
+                         fog_axis_start(ue.y, du.y, 0.0), fog_axis_start(ue.z, du.z, 0.0));
+}
+
+// The next crossing of a cell face after the current cell's entry, at most len.
+float fog_perlin_walk_next(fog_perlin_walk w, float len) {
+  return min(min(len, fog_axis_next(w.x)), min(fog_axis_next(w.y), fog_axis_next(w.z)));
+}
+
+// The cell of the piece [t, tn] (from its middle), and the walk's t = 0 in its frame.
+fog_perlin_cell fog_perlin_walk_cell(fog_perlin_walk w, float t, float tn, out vec3 f0) {
+  vec3 c = floor(w.ue + (0.5 * (t + tn)) * w.du);
+  f0 = w.ue - c;
+  return fog_perlin_cell_load(w.octave, ivec3(c));
+}
+
+// Past the faces crossed at tn.
+void fog_perlin_walk_step(inout fog_perlin_walk w, float tn) {
+  if (fog_axis_next(w.x) <= tn) w.x.cell += w.x.step;
+  if (fog_axis_next(w.y) <= tn) w.y.cell += w.y.step;
+  if (fog_axis_next(w.z) <= tn) w.z.cell += w.z.step;
+}
+
 // Octave i over [t0, t1] of the ray (fog_perlin.c's octave_depth): a DDA over its texel
 // cells, each piece's cell from its middle, cut so that the height exponent moves by at
 // most 1/2, 4 Gauss-Legendre nodes each. Stops once `budget` is passed.
 float fog_perlin_octave_depth(int i, vec3 dir, float t0, float t1, float budget) {
   const float x1 = 0.33998104358485626, x2 = 0.86113631159405258;
   const float w1 = 0.65214515486254614, w2 = 0.34785484513745386;
-  float s = fog_perlin_scale[i];
-  vec3 ue = fog_perlin_camera[i] + t0 * s * dir, du = s * dir;
-  fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
-           az = fog_axis_start(ue.z, du.z, 0.0);
+  fog_perlin_walk w = fog_perlin_walk_start(i, t0 * dir, dir);
+  vec3 du = w.du;
   float len = t1 - t0, t = 0.0, sum = 0.0, y_entry = t0 * dir.y;
   float inv_h = 1.0 / fog_model_scale_height;
   for (int guard = 0; t < len && sum < budget && guard < 65536; guard++) {
-    float tx = fog_axis_next(ax), ty = fog_axis_next(ay), tz = fog_axis_next(az);
-    float tn = min(min(len, tx), min(ty, tz));
+    float tn = fog_perlin_walk_next(w, len);
     if (tn > t) {
-      vec3 c = floor(ue + (0.5 * (t + tn)) * du);
-      fog_perlin_cell cell = fog_perlin_cell_load(i, ivec3(c));
-      vec3 f0 = ue - c;
+      vec3 f0;
+      fog_perlin_cell cell = fog_perlin_walk_cell(w, t, tn, f0);
       int cuts = max(int(ceil(abs(dir.y) * (tn - t) * inv_h * 2.0)), 1);
       float h = (tn - t) / float(cuts);
       for (int k = 0; k < cuts; k++) {
@@ -465,9 +495,7 @@ float fog_perlin_octave_depth(int i, vec3 dir, float t0, float t1, float budget)
                              exp(-(y_entry + td * dir.y - fog_model_y0) * inv_h));
       }
     }
-    if (tx <= tn) ax.cell += ax.step;
-    if (ty <= tn) ay.cell += ay.step;
-    if (tz <= tn) az.cell += az.step;
+    fog_perlin_walk_step(w, tn);
     t = max(t, tn);
   }
   return sum;
@@ -480,29 +508,22 @@ float fog_quadric_weighted_turbulence(vec3 start, vec3 dir, float ta, float tb, 
   const float x3 = 0.77459666924148338, w_end = 5.0 / 9.0, w_mid = 8.0 / 9.0;
   float sum = 0.0, len = tb - ta;
   for (int i = 0; i < fog_perlin_octaves; i++) {
-    float s = fog_perlin_scale[i];
-    vec3 ue = fog_perlin_camera[i] + s * (start + ta * dir), du = s * dir;
-    fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
-             az = fog_axis_start(ue.z, du.z, 0.0);
+    fog_perlin_walk walk = fog_perlin_walk_start(i, start + ta * dir, dir);
     float t = 0.0, octave = 0.0;
     for (int guard = 0; t < len && guard < 65536; guard++) {
-      float tx = fog_axis_next(ax), ty = fog_axis_next(ay), tz = fog_axis_next(az);
-      float tn = min(min(len, tx), min(ty, tz));
+      float tn = fog_perlin_walk_next(walk, len);
       if (tn > t) {
-        vec3 c = floor(ue + (0.5 * (t + tn)) * du);
-        fog_perlin_cell cell = fog_perlin_cell_load(i, ivec3(c));
-        vec3 f0 = ue - c;
+        vec3 f0;
+        fog_perlin_cell cell = fog_perlin_walk_cell(walk, t, tn, f0);
         float half_h = 0.5 * (tn - t), mid = t + half_h, piece = 0.0;
         for (int k = -1; k <= 1; k++) {
           float tk = mid + float(k) * x3 * half_h, x = ta + tk;
           piece += (k == 0 ? w_mid : w_end) * ((w.z * x + w.y) * x + w.x) *
-                   fog_perlin_cell_value(cell, f0 + tk * du);
+                   fog_perlin_cell_value(cell, f0 + tk * walk.du);
         }
         octave += half_h * piece;
       }
-      if (tx <= tn) ax.cell += ax.step;
-      if (ty <= tn) ay.cell += ay.step;
-      if (tz <= tn) az.cell += az.step;
+      fog_perlin_walk_step(walk, tn);
       t = max(t, tn);
     }
     sum += exp2(-float(i)) * octave;
