@@ -30,17 +30,6 @@ static int parse_numbers(const char *text, double *values, int count) {
   return *p != '\0';
 }
 
-static int ends_with(const char *s, const char *suffix) {
-  size_t n = strlen(s), m = strlen(suffix);
-  if (n < m) return 0;
-  for (size_t i = 0; i < m; i++) {
-    char c = s[n - m + i];
-    if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
-    if (c != suffix[i]) return 0;
-  }
-  return 1;
-}
-
 /* splitmix64: random blob placement from the seed, the same on every platform. */
 static double next_uniform(uint64_t *state) {
   uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
@@ -156,7 +145,7 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
     return cli_usage_error("design", "say what to design: --perlin, --blobs N and/or --blob X,Z,SIGMA,PEAK");
   if (!o->width) return cli_usage_error("design", "--size WxH is required");
   if (!o->out) return cli_usage_error("design", "--out FILE.exr or FILE.png is required");
-  if (!ends_with(o->out, ".png") && !ends_with(o->out, ".exr"))
+  if (!cli_ends_with(o->out, ".png") && !cli_ends_with(o->out, ".exr"))
     return cli_usage_error("design", "--out '%s': the name must end in .exr or .png", o->out);
   if (o->random_blobs + o->blob_count > max_blobs)
     return cli_usage_error("design", "more than 256 blobs");
@@ -199,7 +188,7 @@ int cmd_design(int argc, char **argv) {
   design_options o = {.seed = 1, .noise = perlin_fog_desc_default()};
   int parsed = parse_design_options(argc, argv, &o);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
-  const int png = ends_with(o.out, ".png");
+  const int png = cli_ends_with(o.out, ".png");
   sim_error err;
   fogmap map = {0};
   int status = design_fogmap(&o, &map, &err);
