@@ -67,10 +67,10 @@ static void remove_frames(const char *pattern, int written) {
 /* Simulates frame after frame and writes each density; *written counts the files. */
 static int bake_frames(const bake_job *job, const scene_config *cfg, const char *pattern,
                        int *written) {
-  render_error gerr = {{0}};
+  fog_error gerr = {0};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
   if (!gl) return cli_fail("bake", "%s", gerr.message);
-  pipeline_error perr = {{0}};
+  fog_error perr = {0};
   /* The pipeline the recording runs (its sim set-up, steps per frame), drawing nothing. */
   pipeline *p = pipeline_create(&(pipeline_desc){.config = cfg, .width = 16, .height = 16,
                                                  .frame_seconds = 1.0 / job->fps,
@@ -86,7 +86,7 @@ static int bake_frames(const bake_job *job, const scene_config *cfg, const char 
     char path[SCENE_CONFIG_PATH_MAX + 32];
     scene_config_sequence_path(pattern, n, path, sizeof path);
     image_channel y = {.name = "Y", .pixels = density->density, .as_half = 0};
-    sim_error serr = {{0}};
+    fog_error serr = {0};
     if (image_write_exr(path, density->width, density->height, &y, 1, &serr)) {
       status = cli_fail("bake", "%s", serr.message);
       break;
@@ -103,7 +103,7 @@ int cmd_bake(int argc, char **argv) {
   int parsed = parse_bake_options(argc, argv, &job);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   scene_config cfg;
-  scene_config_error cerr = {{0}};
+  fog_error cerr = {0};
   if (scene_config_load(job.config_path, &cfg, &cerr)) return cli_fail("bake", "%s", cerr.message);
   if (cfg.fog.model != FOG_MODEL_FOGMAP || cfg.fog.vdb[0] || cfg.fog.sequence[0])
     return cli_fail("bake", "%s: nothing to bake: %s", job.config_path,
@@ -114,7 +114,7 @@ int cmd_bake(int argc, char **argv) {
                                           "directly)");
   recorder folders = {.folder = ""};
   snprintf(folders.folder, sizeof folders.folder, "%s", job.out);
-  recorder_error rerr = {{0}};
+  fog_error rerr = {0};
   if (recorder_make_folders(job.out, folders.created, sizeof folders.created, &rerr))
     return cli_fail("bake", "%s", rerr.message);
   char pattern[SCENE_CONFIG_PATH_MAX], ini[SCENE_CONFIG_PATH_MAX + 16];

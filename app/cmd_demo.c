@@ -283,7 +283,7 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
 static int record_instead(const char *config_path, int frames, const char *reason) {
   char folder[PATH_MAX + 1] = "out/demo";
   recorder probe;
-  recorder_error rerr = {{0}};
+  fog_error rerr = {0};
   if (recorder_open(&probe, &(recorder_desc){.folder = folder, .width = HEADLESS_WIDTH,
                                              .height = HEADLESS_HEIGHT},
                     &rerr)) {
@@ -312,8 +312,8 @@ static int record_instead(const char *config_path, int frames, const char *reaso
 static int save_screenshot(const char *path, int width, int height) {
   float *pixels = malloc((size_t)width * height * 3 * sizeof(float));
   if (!pixels) return 1;
-  render_error rerr = {{0}};
-  sim_error serr = {{0}};
+  fog_error rerr = {0};
+  fog_error serr = {0};
   int status = gl_read_window(width, height, pixels, &rerr);
   if (status) fprintf(stderr, "fogpipe demo: screenshot: %s\n", rerr.message);
   if (!status && image_write_png(path, width, height, 3, pixels, &serr)) {
@@ -490,7 +490,7 @@ static int demo_loop(gl_context *gl, pipeline *pipe, panel *ui, demo_ui *d,
   free_camera fc = {.speed = 80.0};
   scene_config_camera(config, &fc.cam);
   demo_input in = {0};
-  pipeline_error perr = {{0}};
+  fog_error perr = {0};
   double last_time = glfwGetTime();
   for (int frame = 0; !gl_context_should_close(gl); frame++) {
     gl_context_poll_events(gl);
@@ -533,7 +533,7 @@ int cmd_demo(int argc, char **argv) {
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   int fog_divisor = 1; /* fog resolution divisor; 2 with the automatic scale on software GL */
   scene_config config;
-  scene_config_error cerr = {{0}};
+  fog_error cerr = {0};
   if (scene_config_load(o.config_path, &config, &cerr)) {
     fprintf(stderr, "fogpipe demo: %s\n", cerr.message);
     return 1;
@@ -554,13 +554,13 @@ int cmd_demo(int argc, char **argv) {
                                            .play = true, .screenshot = o.screenshot,
                                            .frames = o.frames > 0 ? o.frames : 1, .rung = -1});
   }
-  render_error gerr = {{0}};
+  fog_error gerr = {0};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW,
                                                         .width = o.width, .height = o.height,
                                                         .title = "fogpipe demo", .vsync = true},
                                      &gerr);
   if (!gl) {
-    char reason[600];
+    char reason[sizeof gerr.message + 16];
     snprintf(reason, sizeof reason, "no window (%s)", gerr.message);
     return record_instead(o.config_path, headless_frames, reason);
   }
@@ -581,7 +581,7 @@ int cmd_demo(int argc, char **argv) {
                .lamp_colour = {1.0f, 0.8f, 0.55f}, .lamp_intensity = 2000.0f, .lamp_height = 8.0f,
                .dragged_lamp = -1,
                .has_bspline_profile = config.fog.profile_count > 0};
-  pipeline_error perr = {{0}};
+  fog_error perr = {0};
   pipeline *pipe = pipeline_create(&(pipeline_desc){.config = &config,
                                                     .width = (int)(fb_w * d.render_scale),
                                                     .height = (int)(fb_h * d.render_scale),

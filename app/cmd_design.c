@@ -154,7 +154,7 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
 
 /* The fogmap: Perlin turbulence and/or the blobs (random banks added to the given ones),
  * the turbulence multiplied by the banks when both are asked for. */
-static int design_fogmap(design_options *o, fogmap *map, sim_error *err) {
+static int design_fogmap(design_options *o, fogmap *map, fog_error *err) {
   /* Random banks: centres inside the middle 80%, widths 1/16 to 1/5 of the smaller side. */
   uint64_t state = (uint64_t)o->seed * 0x2545f4914f6cdd1dull + 1;
   const long width = o->width, height = o->height;
@@ -189,7 +189,7 @@ int cmd_design(int argc, char **argv) {
   int parsed = parse_design_options(argc, argv, &o);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   const int png = cli_ends_with(o.out, ".png");
-  sim_error err;
+  fog_error err;
   fogmap map = {0};
   int status = design_fogmap(&o, &map, &err);
   float max = status ? 0.0f : fogmap_max_density(&map);

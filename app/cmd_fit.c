@@ -134,7 +134,7 @@ static int parse(int argc, char **argv, fit_options *o) {
 /* The scene of the input: its config, or a VDB frame as a volume in a scene around it. */
 static int load_input(const fit_options *o, scene_config *cfg) {
   if (cli_ends_with(o->input, ".ini")) {
-    scene_config_error err;
+    fog_error err;
     if (scene_config_load(o->input, cfg, &err)) return cli_fail("fit", "%s", err.message);
     if (o->grid || o->up || o->frame >= 0 || o->density_scale != 1.0)
       return cli_usage_error("fit", "--grid, --up, --frame and --density-scale are for a VDB "
@@ -151,7 +151,7 @@ static int load_input(const fit_options *o, scene_config *cfg) {
   cfg->fog.vdb_up = o->up;
   cfg->fog.vdb_frame = o->frame;
   cfg->fog.density_scale = o->density_scale;
-  fit_error err;
+  fog_error err;
   if (fit_scene_for_volume(cfg, &err)) return cli_fail("fit", "%s", err.message);
   return 0;
 }
@@ -175,7 +175,7 @@ static int sequence_frames(const fit_options *o, const scene_config *cfg, int **
     if (cli_range("fit", "--frames", range, 0, INT_MAX, &first, &last, &single)) return 2;
   }
   vdb_sequence seq;
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   if (render_fog_volume_sequence(cfg, &seq, &rerr)) return cli_fail("fit", "%s", rerr.message);
   int *list = malloc(sizeof *list * (size_t)seq.count);
   int n = 0, seen = 0;
@@ -224,7 +224,7 @@ static bool folder_exists(const char *file) {
 static int write_scene(const fit_result *r, const fit_rung *g, const char *out) {
   const char *map = g->config->fog.fogmap;
   const size_t n = strlen(r->scratch);
-  scene_config_error werr;
+  fog_error werr;
   if (!(n && g->config->fog.model == FOG_MODEL_FOGMAP && !strncmp(map, r->scratch, n))) {
     if (scene_config_write(g->config, out, &werr)) return cli_fail("fit", "%s", werr.message);
     return 0;
@@ -235,7 +235,7 @@ static int write_scene(const fit_result *r, const fit_rung *g, const char *out) 
   snprintf(c->fog.fogmap, sizeof c->fog.fogmap, "%.*s.fogmap.exr",
            (int)(strlen(out) - strlen(".ini")), out);
   fogmap copy = {0};
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   int status = 0;
   if (fogmap_load(map, &(fogmap_load_desc){0}, &copy, &serr) ||
       fogmap_save_exr(c->fog.fogmap, &copy, &serr)) {
@@ -273,7 +273,7 @@ int cmd_fit(int argc, char **argv) {
   }
   o.desc.frames = frames;
   fit_result r;
-  fit_error err;
+  fog_error err;
   double t0 = app_clock_seconds();
   if (fit_run(&o.desc, &r, &err)) {
     free(cfg), free(frames);

@@ -164,7 +164,7 @@ static int parse_options(int argc, char **argv, import_options *o) {
 
 static int list_grids(const import_options *o) {
   vdb_sequence seq;
-  sim_error err = {{0}};
+  fog_error err = {0};
   if (vdb_sequence_find(o->inputs, o->input_count, o->first, o->last, &seq, &err))
     return cli_fail("import", "%s", err.message);
   int status = 0;
@@ -247,12 +247,12 @@ static void write_profile(FILE *f, const char *section, const vdb_profile *p) {
 
 static int write_sidecar(const char *path, const import_options *o, const vdb_sequence *seq,
                          const vdb_frame *frames, const vdb_fogmap_place *place,
-                         const vdb_profile *profile, sim_error *err) {
+                         const vdb_profile *profile, fog_error *err) {
   char temp[4400];
   snprintf(temp, sizeof temp, "%s.tmp", path);
   FILE *f = fopen(temp, "w");
   if (!f) {
-    snprintf(err->message, sizeof err->message, "%.400s: cannot write", path);
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: cannot write", path);
     return 1;
   }
   /* The box spans every frame's profile support (one box for the whole sequence). */
@@ -298,7 +298,7 @@ static int write_sidecar(const char *path, const import_options *o, const vdb_se
   }
   if (fclose(f) != 0 || rename(temp, path) != 0) {
     remove(temp);
-    snprintf(err->message, sizeof err->message, "%.400s: write failed", path);
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: write failed", path);
     return 1;
   }
   return 0;
@@ -316,7 +316,7 @@ static int report_gl_march(const vdb_frame *full, const vdb_fogmap_place *place,
   const vdb_dense_grid *g = &full->grid;
   const vdb_world_map *w = &full->world;
   double lo[3], hi[3], y_mid, step;
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   if (vdb_report_geometry(g, w, place, profile, desc, lo, hi, &y_mid, &step, &serr)) {
     snprintf(why, why_size, "%s", serr.message);
     return 1;
@@ -328,7 +328,7 @@ static int report_gl_march(const vdb_frame *full, const vdb_fogmap_place *place,
     grid.index_from_world[c][a] = 1.0 / w->step[a];
     grid.index_offset[c] = -w->base[a] / w->step[a] - g->index_min[c];
   }
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
   volume_march *march = gl ? volume_march_create(&grid, &rerr) : NULL;
   float *depth = malloc(sizeof(float) * (size_t)side * side);
@@ -366,7 +366,7 @@ static int run_report(const import_options *o, const vdb_sequence *seq, const vd
     if (index < 0) return cli_fail("import", "--report-frame %d: no such frame imported", o->report_frame);
   }
   const vdb_profile *profile = seq_profile ? seq_profile : &frames[index].profile;
-  sim_error err = {{0}};
+  fog_error err = {0};
   vdb_frame full;
   vdb_frame_desc desc = {.grid = o->grid, .up = o->up, .scale = o->scale,
                          .offset = {o->offset[0], o->offset[1], o->offset[2]},
@@ -461,7 +461,7 @@ static int check_missing(const import_options *o, const vdb_sequence *seq) {
  * with the warnings a frame earns. 0 or the exit status; *loaded frames need destroying. */
 static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_frame *frames,
                        int *loaded) {
-  sim_error err = {{0}};
+  fog_error err = {0};
   vdb_frame_desc desc = {.grid = o->grid, .up = o->up, .scale = o->scale,
                          .offset = {o->offset[0], o->offset[1], o->offset[2]},
                          .config = o->config, .profile = o->profile, .max_voxels = o->max_voxels};
@@ -490,7 +490,7 @@ static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_fra
 
 /* One fogmap grid for the whole sequence: the union of the frames' footprints. */
 static int place_sequence(const import_options *o, const vdb_frame *frames, int count,
-                          vdb_fogmap_place *place, sim_error *err) {
+                          vdb_fogmap_place *place, fog_error *err) {
   double x0 = INFINITY, x1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY;
   for (int i = 0; i < count; i++) {
     const vdb_columns *c = &frames[i].columns;
@@ -543,7 +543,7 @@ int cmd_import(int argc, char **argv) {
   if (parsed) return parsed < 0 ? 0 : parsed;
   if (o.list) return list_grids(&o);
 
-  sim_error err = {{0}};
+  fog_error err = {0};
   vdb_sequence seq;
   if (vdb_sequence_find(o.inputs, o.input_count, o.first, o.last, &seq, &err))
     return cli_fail("import", "%s", err.message);

@@ -100,8 +100,8 @@ static void resume_hint(const record_job *job, char *text, size_t size) {
 static int open_output(const record_job *job, recorder *rec, scene_config *config, int *width,
                        int *height) {
   const char *cmd = job->command;
-  recorder_error rerr = {{0}};
-  scene_config_error cerr = {{0}};
+  fog_error rerr = {0};
+  fog_error cerr = {0};
   *width = job->width, *height = job->height;
   if (recorder_open(rec,
                     &(recorder_desc){.folder = job->out, .width = *width > 0 ? *width : 1,
@@ -131,7 +131,7 @@ static int open_output(const record_job *job, recorder *rec, scene_config *confi
  * other sources' frames are independent). NULL (printed) on failure. */
 static player *start_player(const record_job *job, const scene_config *config, int width,
                             int height, double fps, int first, int done) {
-  render_error err = {{0}};
+  fog_error err = {0};
   player *src = player_create(&(player_desc){.config = config, .width = width,
                                              .height = height, .fps = fps, .play = true,
                                              .synchronous = job->synchronous},
@@ -173,8 +173,8 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
   interrupted = 0;
   sigaction(SIGINT, &action, &old_int);
   sigaction(SIGTERM, &action, &old_term);
-  render_error perr = {{0}};
-  recorder_error rerr = {{0}};
+  fog_error perr = {0};
+  fog_error rerr = {0};
   recorder_progress progress;
   int status = 0;
   if (!job->quiet) recorder_progress_begin(&progress, stdout, done - first + 1, last - first + 1);
@@ -221,7 +221,7 @@ static int finish_output(const record_job *job, const recorder *rec, int width, 
   printf("%d frame%s (%dx%d) in %s: %s .. %s\n", last - first + 1, last == first ? "" : "s",
          width, height, rec->folder, strrchr(first_path, '/') + 1, strrchr(last_path, '/') + 1);
   if (!job->preview) return 0;
-  recorder_error rerr = {{0}};
+  fog_error rerr = {0};
   if (!recorder_have_ffmpeg()) {
     printf("note: ffmpeg is not installed, so no preview video was written "
            "(apt-get install ffmpeg)\n");
@@ -245,7 +245,7 @@ static int record_into(const record_job *job, recorder *rec) {
   const int first = job->first_frame > 0 ? job->first_frame : 1, last = job->frames;
   int done = first - 1; /* the last frame on disk of the range */
   if (job->resume) {
-    recorder_error rerr = {{0}};
+    fog_error rerr = {0};
     done = recorder_complete_frames(rec, first, last, &rerr);
     if (done < 0) {
       fprintf(stderr, "fogpipe %s: cannot resume: %s (use the same config and settings, or "

@@ -21,9 +21,9 @@
  * Without fog the transmittance is 1 and the in-scatter 0: written anyway, so every
  * render has the same channels for a compositor. */
 static int write_exr(const char *out, int width, int height, const frame_pixels *frame,
-                     const camera *cam, sim_error *err) {
+                     const camera *cam, fog_error *err) {
   float *planes = malloc((size_t)width * height * FRAME_EXR_PLANES * sizeof(float));
-  if (!planes) return snprintf(err->message, sizeof err->message, "out of memory"), 1;
+  if (!planes) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
   image_channel channels[FRAME_EXR_CHANNELS];
   frame_exr_channels(frame->rgba, frame->transmittance, frame->depth, frame->inscatter, width,
                      height, false, planes, channels);
@@ -37,11 +37,10 @@ static int write_exr(const char *out, int width, int height, const frame_pixels 
 }
 
 /* 8-bit sRGB RGB. */
-static int write_png(const char *out, int width, int height, const float *rgba,
-                     sim_error *err) {
+static int write_png(const char *out, int width, int height, const float *rgba, fog_error *err) {
   size_t pixels = (size_t)width * height;
   float *rgb = malloc(pixels * 3 * sizeof(float));
-  if (!rgb) return snprintf(err->message, sizeof err->message, "out of memory"), 1;
+  if (!rgb) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
   for (size_t k = 0; k < pixels; k++)
     for (int c = 0; c < 3; c++) rgb[3 * k + c] = rgba[4 * k + c];
   int status = image_write_png_srgb(out, width, height, 3, rgb, err);
@@ -85,7 +84,7 @@ int cmd_render(int argc, char **argv) {
   }
 
   scene_config cfg;
-  scene_config_error cfg_err;
+  fog_error cfg_err;
   if (scene_config_load(config_path, &cfg, &cfg_err)) {
     fprintf(stderr, "fogpipe render: %s\n", cfg_err.message);
     return 1;
@@ -112,7 +111,7 @@ int cmd_render(int argc, char **argv) {
     goto done;
   }
   /* Frame 1 of the scene as its files hold it: no simulation step. */
-  render_error err = {{0}};
+  fog_error err = {0};
   player *frames = player_create(&(player_desc){.config = &cfg, .width = width,
                                                 .height = height, .fps = 24.0},
                                  &err);
@@ -125,7 +124,7 @@ int cmd_render(int argc, char **argv) {
   snprintf(gl_description, sizeof gl_description, "%s", player_gl_description(frames));
   const camera cam = *player_camera(frames);
   player_destroy(frames);
-  sim_error werr = {{0}};
+  fog_error werr = {0};
   if (exr ? write_exr(out, width, height, &frame, &cam, &werr)
           : write_png(out, width, height, rgba, &werr)) {
     fprintf(stderr, "fogpipe render: %s\n", werr.message);

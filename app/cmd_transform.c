@@ -112,7 +112,7 @@ static int write_exr(const char *dir, const char *name, int w, int h, const floa
   char path[4096];
   snprintf(path, sizeof path, "%s/%s", dir, name);
   image_channel y = {.name = "Y", .pixels = v, .as_half = 0};
-  sim_error err;
+  fog_error err;
   if (image_write_exr(path, w, h, &y, 1, &err)) return cli_fail("transform", "%s", err.message);
   return 0;
 }
@@ -156,12 +156,12 @@ static int write_manifest(const char *dir, transform_plan *plan, const char *inp
 static int run_forward(const char *in, const char *channel, const char *dir,
                        transform_desc desc) {
   fogmap map;
-  sim_error serr;
+  fog_error serr;
   if (fogmap_load(in, &(fogmap_load_desc){.channel = channel}, &map, &serr))
     return cli_fail("transform", "%s", serr.message);
   desc.width = map.width, desc.height = map.height;
   transform_plan *plan = NULL;
-  transform_error terr;
+  fog_error terr;
   int status = 1;
   size_t n = (size_t)map.width * map.height;
   float *coef = NULL, *approx[64] = {0}, *detail[64] = {0}, *band = NULL;
@@ -305,12 +305,12 @@ static int run_inverse(const char *dir, const char *out, int threads) {
   if (read_manifest(dir, &desc, msg, sizeof msg)) return cli_fail("transform", "%s", msg);
   desc.threads = threads;
   transform_plan *plan;
-  transform_error terr;
+  fog_error terr;
   if (transform_plan_create(&plan, &desc, &terr))
     return cli_fail("transform", "%s/transform.ini: %s", dir, terr.message);
   size_t W = (size_t)desc.width;
   fogmap map = {0};
-  sim_error serr;
+  fog_error serr;
   int status = 1;
   if (fogmap_create(&map, desc.width, desc.height, &serr)) {
     cli_fail("transform", "%s", serr.message);

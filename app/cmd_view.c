@@ -49,7 +49,7 @@ typedef struct view_state {
   gl_presenter *presenter;
 } view_state;
 
-static int make_targets(view_state *v, int width, int height, render_error *err) {
+static int make_targets(view_state *v, int width, int height, fog_error *err) {
   gl_target_destroy(&v->scene_target);
   gl_target_destroy(&v->fog_target);
   if (scene_target_create(&v->scene_target, width, height, err)) return 1;
@@ -99,7 +99,7 @@ static void fly(GLFWwindow *window, camera *cam, double dt, double speed, double
  * vdb_fps, wrapping around, between frames blended as record blends them. Loads and
  * uploads only when the position changes. */
 static int volume_playback_update(volume_playback *pb, GLFWwindow *window, double now,
-                                  render_fog *fog, const scene_config *cfg, render_error *err) {
+                                  render_fog *fog, const scene_config *cfg, fog_error *err) {
   bool p_down = glfwGetKey(window, GLFW_KEY_P) == GLFW_PRESS;
   if (p_down && !pb->p_was_down) {
     pb->playing = !pb->playing;
@@ -177,7 +177,7 @@ static void brush_save(const view_brush *b) {
   size_t n = strlen(b->config_path);
   int stem = n > 4 && !strcmp(b->config_path + n - 4, ".ini") ? (int)(n - 4) : (int)n;
   snprintf(path, sizeof path, "%.*s.painted.ini", stem, b->config_path);
-  scene_config_error werr;
+  fog_error werr;
   if (scene_config_write(b->painted, path, &werr))
     fprintf(stderr, "fogpipe view: the brush: %s\n", werr.message);
   else
@@ -187,7 +187,7 @@ static void brush_save(const view_brush *b) {
 /* B, the mouse and the brush's keys for one frame; the fog takes the changed Gaussians. */
 static int view_brush_update(view_brush *b, view_state *v, GLFWwindow *window,
                              const scene_config *cfg, const camera *cam, double time,
-                             render_error *err) {
+                             fog_error *err) {
   if (brush_key(b, window, GLFW_KEY_B, BRUSH_KEY_B)) {
     if (cfg->fog.model != FOG_MODEL_RBF || !v->has_fog) {
       printf("fogpipe view: the brush paints Gaussians: it needs [fog] model = rbf\n");
@@ -195,7 +195,7 @@ static int view_brush_update(view_brush *b, view_state *v, GLFWwindow *window,
     }
     if (!b->painted) {
       if (!(b->painted = malloc(sizeof *b->painted))) {
-        snprintf(err->message, sizeof err->message, "out of memory for the brush");
+        fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the brush");
         return 1;
       }
       *b->painted = *cfg;
@@ -258,7 +258,7 @@ typedef struct rung_selector {
 
 /* The fog of rung `index` (-1: the config's) in place of the one shown. */
 static int show_rung(view_state *v, rung_selector *sel, int index, const scene_config *cfg,
-                     render_error *err) {
+                     fog_error *err) {
   const scene_config *shown = index < 0 ? cfg : sel->fit.rungs[index].config;
   render_fog_destroy(&v->fog);
   v->has_fog = false;
@@ -277,7 +277,7 @@ static int show_rung(view_state *v, rung_selector *sel, int index, const scene_c
 
 /* [ and ] step through the rungs, 0 returns to the config's fog; the title says which. */
 static int rung_selector_update(rung_selector *sel, view_state *v, GLFWwindow *window,
-                                const scene_config *cfg, double fps, render_error *err) {
+                                const scene_config *cfg, double fps, fog_error *err) {
   static const int keys[2] = {GLFW_KEY_LEFT_BRACKET, GLFW_KEY_RIGHT_BRACKET};
   int next = sel->shown;
   for (int k = 0; k < 2; k++) {
@@ -317,7 +317,7 @@ static void view_destroy(view_state *v) {
 /* Scene, fog, playback and presenter for a window whose GL context v->ctx is current.
  * Errors in err. */
 static int view_open(view_state *v, volume_playback *playback, const scene_config *cfg,
-                     const view_options *opts, render_error *err) {
+                     const view_options *opts, fog_error *err) {
   if (render_scene_geometry_create(cfg, &v->geo, err)) return 1;
   v->geo_made = true;
   if (!(v->scene = scene_pass_create(&v->geo, err))) return 1;
@@ -344,15 +344,14 @@ static int view_open(view_state *v, volume_playback *playback, const scene_confi
 }
 
 /* The window's last frame as an 8-bit PNG. */
-static int view_screenshot(const view_state *v, const char *path, int width, int height,
-                           int frame, render_error *err) {
+static int view_screenshot(const view_state *v, const char *path, int width, int height, int frame,
+                           fog_error *err) {
   float *rgb = malloc((size_t)width * height * 3 * sizeof(float));
-  if (!rgb) return snprintf(err->message, sizeof err->message, "out of memory for the "
-                            "screenshot"), 1;
+  if (!rgb) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the screenshot");
   int status = gl_read_window(width, height, rgb, err);
-  sim_error serr;
+  fog_error serr;
   if (!status && image_write_png(path, width, height, 3, rgb, &serr)) {
-    snprintf(err->message, sizeof err->message, "%s", serr.message);
+    fog_error_pass(err, &serr);
     status = 1;
   }
   free(rgb);
@@ -365,7 +364,7 @@ static int view_screenshot(const view_state *v, const char *path, int width, int
 /* Draws frames until the window closes, or the screenshot is taken. */
 static int view_loop(view_state *v, volume_playback *playback, rung_selector *sel,
                      view_brush *brush, const scene_config *cfg, const view_options *opts,
-                     render_error *err) {
+                     fog_error *err) {
   GLFWwindow *window = gl_context_glfw_window(v->ctx);
   /* A key tapped between two polls still counts as pressed once: at a few frames a second
    * (software GL) a quick tap of B or [ fell between frames. */
@@ -429,11 +428,11 @@ static int view_loop(view_state *v, volume_playback *playback, rung_selector *se
 int view_window_run(const scene_config *cfg, const char *title, const view_options *opts) {
   view_state v = {0};
   volume_playback playback = {0};
-  render_error err = {0};
+  fog_error err = {0};
   rung_selector sel = {.shown = -1};
   view_brush brush = {.config_path = title};
   if (opts->fit) { /* before the window: fit makes headless contexts of its own */
-    fit_error ferr;
+    fog_error ferr;
     if (fit_run(&(fit_desc){.input = cfg, .tolerance = opts->fit_tolerance,
                             .rays_per_side = FIT_RAYS_PER_SIDE, .sample_side = FIT_SAMPLE_SIDE,
                             .width = FIT_WIDTH, .height = FIT_HEIGHT,
@@ -519,7 +518,7 @@ int cmd_view(int argc, char **argv) {
   opts.width = size[0], opts.height = size[1];
   if (opts.rung >= 0 && !opts.fit) return cli_usage_error("view", "--rung needs --fit T");
   scene_config cfg;
-  scene_config_error cfg_err;
+  fog_error cfg_err;
   if (scene_config_load(config_path, &cfg, &cfg_err)) {
     fprintf(stderr, "fogpipe view: %s\n", cfg_err.message);
     return 1;

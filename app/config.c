@@ -223,7 +223,7 @@ typedef struct parse_state {
    * (INI_ALLOW_MULTILINE) hands it over as more of that key's value; a list (V_LIST)
    * appends it. after_key: a key was read since the section began (libinih's prev_name). */
   bool continuation, after_key;
-  scene_config_error *err;
+  fog_error *err;
   int key_line[sizeof keys / sizeof keys[0]]; /* where each key was last set (0: default) */
 } parse_state;
 
@@ -253,9 +253,10 @@ static char *read_line(char *buffer, int size, void *stream) {
     snprintf(buffer, (size_t)size, ";\n");
   } else if (!s->error_line) {
     s->error_line = s->line;
-    snprintf(s->err->message, sizeof s->err->message,
+    fog_fail(s->err, FOG_ERR_BAD_CONFIG,
              "%s:%d: the line is %zd bytes long; a config line other than a comment can hold "
-             "at most %d", s->path, s->line, n, size - 1);
+             "at most %d",
+             s->path, s->line, n, size - 1);
     return NULL;
   } else {
     return NULL;
@@ -268,16 +269,18 @@ static int fail(parse_state *s, const char *section, const char *key, const char
 static int fail(parse_state *s, const char *section, const char *key, const char *fmt, ...) {
   if (s->error_line) return 0; /* keep the first error */
   s->error_line = s->line ? s->line : -1;
-  /* line 0: a check after parsing on a key the file does not set (its default) */
-  int n = s->line ? snprintf(s->err->message, sizeof s->err->message, "%s:%d: [%s] %s: ",
-                             s->path, s->line, section, key)
-                  : snprintf(s->err->message, sizeof s->err->message,
-                             "%s: [%s] %s (its default): ", s->path, section, key);
-  if (n < 0 || (size_t)n >= sizeof s->err->message) return 0;
+  char detail[sizeof s->err->message];
   va_list args;
   va_start(args, fmt);
-  vsnprintf(s->err->message + n, sizeof s->err->message - n, fmt, args);
+  vsnprintf(detail, sizeof detail, fmt, args);
   va_end(args);
+  /* line 0: a check after parsing on a key the file does not set (its default) */
+  if (s->line)
+    fog_fail(s->err, FOG_ERR_BAD_CONFIG, "%s:%d: [%s] %s: %s", s->path, s->line, section, key,
+             detail);
+  else
+    fog_fail(s->err, FOG_ERR_BAD_CONFIG, "%s: [%s] %s (its default): %s", s->path, section, key,
+             detail);
   return 0;
 }
 
@@ -746,7 +749,9 @@ static int check_file(parse_state *s, const char *section, const char *key, int 
     return 0;
   }
   s->line = line;
+  const bool first = !s->error_line;
   fail(s, section, key, "cannot open '%s' (%s)", path, strerror(errno));
+  if (first) s->err->code = FOG_ERR_FILE_ACCESS; /* the line is sound; its file is not there */
   return 1;
 }
 
@@ -784,7 +789,7 @@ static int check_sources(parse_state *ps) {
   if (cfg->fog.vdb[0]) {
     /* The files must exist now; their contents are read by the command (vdb_source). */
     vdb_sequence seq;
-    sim_error serr = {{0}};
+    fog_error serr = {0};
     const char *input = cfg->fog.vdb;
     if (vdb_sequence_find(&input, 1, -1, -1, &seq, &serr)) {
       s.line = cfg->fog.vdb_line;
@@ -896,7 +901,7 @@ static int check_models(parse_state *ps) {
   return 0;
 }
 
-int scene_config_load(const char *path, scene_config *cfg, scene_config_error *err) {
+int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
   scene_config_init(cfg);
   snprintf(cfg->path, sizeof cfg->path, "%s", path);
   parse_state s = {.cfg = cfg, .path = path, .err = err};
@@ -905,14 +910,13 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
   if (slash == path) snprintf(s.folder, sizeof s.folder, "/");
   s.file = fopen(path, "r");
   if (!s.file) {
-    snprintf(err->message, sizeof err->message, "%s: cannot open the config (%s)", path,
-             strerror(errno));
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot open the config (%s)", path, strerror(errno));
     return 1;
   }
   struct stat st;
   if (fstat(fileno(s.file), &st) != 0 || !S_ISREG(st.st_mode)) {
     bool folder = fstat(fileno(s.file), &st) == 0 && S_ISDIR(st.st_mode);
-    snprintf(err->message, sizeof err->message, "%s: not a config file (%s)", path,
+    fog_fail(err, FOG_ERR_BAD_CONFIG, "%s: not a config file (%s)", path,
              folder ? "a folder" : "not a regular file");
     fclose(s.file);
     return 1;
@@ -922,12 +926,12 @@ int scene_config_load(const char *path, scene_config *cfg, scene_config_error *e
   free(s.whole_line);
   if (s.error_line) return 1;
   if (status > 0) {
-    snprintf(err->message, sizeof err->message,
-             "%s:%d: expected '[section]', 'key = value' or a comment", path, status);
+    fog_fail(err, FOG_ERR_BAD_CONFIG, "%s:%d: expected '[section]', 'key = value' or a comment",
+             path, status);
     return 1;
   }
   if (status < 0) {
-    snprintf(err->message, sizeof err->message, "%s: cannot read the config", path);
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot read the config", path);
     return 1;
   }
   if (check_sources(&s) || check_models(&s)) return 1;
@@ -1152,13 +1156,12 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
   }
 }
 
-int scene_config_write(const scene_config *cfg, const char *path, scene_config_error *err) {
+int scene_config_write(const scene_config *cfg, const char *path, fog_error *err) {
   char temp[SCENE_CONFIG_PATH_MAX + 16];
   snprintf(temp, sizeof temp, "%s.tmp", path);
   FILE *f = fopen(temp, "w");
   if (!f) {
-    snprintf(err->message, sizeof err->message, "%.400s: cannot write: %s", path,
-             strerror(errno));
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: cannot write: %s", path, strerror(errno));
     return 1;
   }
   fprintf(f, "; written by fogpipe (scene_config_write): every key of the scene\n");
@@ -1172,7 +1175,7 @@ int scene_config_write(const scene_config *cfg, const char *path, scene_config_e
   }
   if (ferror(f) | fclose(f) || rename(temp, path)) {
     remove(temp);
-    snprintf(err->message, sizeof err->message, "%.400s: write failed (disk full?)", path);
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: write failed (disk full?)", path);
     return 1;
   }
   return 0;
@@ -1347,7 +1350,7 @@ static uint64_t fnv_file(uint64_t hash, const char *path) {
  * much to read at every start. */
 static uint64_t fnv_vdb_sequence(uint64_t hash, const char *pattern) {
   vdb_sequence seq;
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   if (vdb_sequence_find(&pattern, 1, -1, -1, &seq, &serr)) return fnv(hash, "missing", 7);
   for (int i = 0; i < seq.count; i++) {
     struct stat st;

@@ -1,7 +1,7 @@
 /* Scene configs: the .ini files in configs/ (format: docs/config.md), parsed with libinih.
  *
  *   scene_config cfg;
- *   scene_config_error err;
+ *   fog_error err;
  *   if (scene_config_load("configs/default.ini", &cfg, &err)) { print err.message; exit }
  *
  * scene_config_init() fills every documented default, so a config file only names what it
@@ -13,6 +13,7 @@
 #ifndef FOGPIPE_APP_CONFIG_H
 #define FOGPIPE_APP_CONFIG_H
 
+#include "transform/fog_error.h"
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -31,10 +32,6 @@
 #define SCENE_CONFIG_MAX_RBFS 1024
 /* The most `rbf_emitter` lines (their puffs together at most FOG_MAX_RBFS). */
 #define SCENE_CONFIG_MAX_EMITTERS 4
-
-typedef struct scene_config_error {
-  char message[512];
-} scene_config_error;
 
 /* Values equal to render/fog_field.h's enums where one exists. */
 typedef enum scene_lod {
@@ -245,12 +242,12 @@ bool scene_config_sequence_path(const char *pattern, long n, char *out, size_t s
 /* Writes cfg as a config file that loads back into the same scene (the same fingerprint):
  * every key with its value, in full precision, paths made absolute. Non-zero and err
  * naming the file when it cannot be written (nothing is left behind then). */
-int scene_config_write(const scene_config *cfg, const char *path, scene_config_error *err);
+int scene_config_write(const scene_config *cfg, const char *path, fog_error *err);
 
 /* Every documented default (docs/config.md). */
 void scene_config_init(scene_config *cfg);
 /* init + parse path. Non-zero and err on the first error. */
-int scene_config_load(const char *path, scene_config *cfg, scene_config_error *err);
+int scene_config_load(const char *path, scene_config *cfg, fog_error *err);
 
 /* A 64-bit FNV-1a hash of the resolved scene: every key's value (defaults included) and
  * the bytes of the fogmap and heightmap files it names (a VDB sequence by its frame

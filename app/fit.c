@@ -41,13 +41,13 @@ static void held_model_destroy(held_model *m) {
 
 /* The richest fog the input has: the VDB frame as a volume wherever [fog] vdb is set
  * (model = fogmap projects it to 2.5D; the grid is the truth), else the input's model. */
-static int reference_create(held_model *r, const scene_config *cfg, fit_error *err) {
+static int reference_create(held_model *r, const scene_config *cfg, fog_error *err) {
   *r = (held_model){0};
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   if (cfg->fog.model == FOG_MODEL_VOLUME || cfg->fog.vdb[0]) {
     if (render_fog_load_volume(cfg, &r->frame, &r->grid, &rerr)) {
       vdb_frame_destroy(&r->frame);
-      snprintf(err->message, sizeof err->message, "%s", rerr.message);
+      fog_error_pass(err, &rerr);
       return 1;
     }
     r->has_frame = true;
@@ -55,13 +55,12 @@ static int reference_create(held_model *r, const scene_config *cfg, fit_error *e
     return 0;
   }
   if (!scene_config_has_fog(cfg)) {
-    snprintf(err->message, sizeof err->message, "%.400s: the scene has no fog to fit",
-             cfg->path);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.400s: the scene has no fog to fit", cfg->path);
     return 1;
   }
-  render_frame_error ferr;
+  fog_error ferr;
   if (!(r->session = render_session_create(cfg, 8, 8, &ferr))) {
-    snprintf(err->message, sizeof err->message, "%s", ferr.message);
+    fog_error_pass(err, &ferr);
     return 1;
   }
   r->model = render_fog_model(render_session_fog(r->session));
@@ -92,24 +91,24 @@ static int compare_doubles(const void *a, const void *b) {
 
 /* The volume from its file (and a session only when it is to be timed); any other model
  * from a session. */
-static int rung_model_create(held_model *m, const scene_config *cfg, const fit_desc *d,
-                             bool timed, fit_error *err) {
+static int rung_model_create(held_model *m, const scene_config *cfg, const fit_desc *d, bool timed,
+                             fog_error *err) {
   *m = (held_model){0};
   const bool volume = cfg->fog.model == FOG_MODEL_VOLUME;
-  render_frame_error ferr;
+  fog_error ferr;
   if ((timed || !volume) &&
       !(m->session = render_session_create(cfg, d->width, d->height, &ferr))) {
-    snprintf(err->message, sizeof err->message, "%.500s", ferr.message);
+    fog_error_pass(err, &ferr);
     return 1;
   }
   if (!volume) {
     m->model = render_fog_model(render_session_fog(m->session));
     return 0;
   }
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   m->has_frame = true;
   if (render_fog_load_volume(cfg, &m->frame, &m->grid, &rerr)) {
-    snprintf(err->message, sizeof err->message, "%.500s", rerr.message);
+    fog_error_pass(err, &rerr);
     held_model_destroy(m);
     return 1;
   }
@@ -119,15 +118,15 @@ static int rung_model_create(held_model *m, const scene_config *cfg, const fit_d
 
 /* The session's GL milliseconds per frame: the median of d->timed_frames after one. */
 static int time_session(render_session *s, const fit_desc *d, float *pixels, double *ms,
-                        fit_error *err) {
+                        fog_error *err) {
   const frame_pixels out = {.transmittance = pixels};
   double times[64];
   const int n = d->timed_frames < 64 ? d->timed_frames : 64;
-  render_frame_error ferr;
+  fog_error ferr;
   for (int i = -1; i < n; i++) {
     double t0 = app_clock_seconds();
     if (render_session_frame(s, &out, &ferr)) {
-      snprintf(err->message, sizeof err->message, "%.500s", ferr.message);
+      fog_error_pass(err, &ferr);
       return 1;
     }
     if (i >= 0) times[i] = 1e3 * (app_clock_seconds() - t0);
@@ -141,12 +140,12 @@ static int time_session(render_session *s, const fit_desc *d, float *pixels, dou
  * and its GL time at the last frame (a headless session from view 0). A rung that plays
  * the input's VDB (its fogmap, its volume) is rebuilt at each frame; the others are one
  * fog for all. */
-static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *views,
-                        int frame_count, const fit_light *light,
-                        const scene_camera_config *camera, float *pixels, fit_error *err) {
+static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *views, int frame_count,
+                        const fit_light *light, const scene_camera_config *camera, float *pixels,
+                        fog_error *err) {
   scene_config *shot = malloc(sizeof *shot);
   if (!shot) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return 1;
   }
   const bool follows = d->frames && rung->config->fog.vdb[0];
@@ -168,9 +167,9 @@ static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *view
     if (!(mean_error <= worst_mean)) worst_mean = mean_error;
     if (light) {
       double light_error;
-      render_error rerr = {{0}};
+      fog_error rerr = {0};
       if (fit_views_measure_light(&views[f], &m.model, light, &light_error, &rerr)) {
-        snprintf(err->message, sizeof err->message, "the light: %.500s", rerr.message);
+        fog_error_wrap(err, &rerr, "the light: ");
         goto done;
       }
       if (!(light_error <= worst_light)) worst_light = light_error;
@@ -185,7 +184,7 @@ done:
   if (status) {
     char reason[sizeof err->message];
     snprintf(reason, sizeof reason, "%s", err->message);
-    snprintf(err->message, sizeof err->message, "rung %s: %.500s", rung->name, reason);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "rung %s: %.500s", rung->name, reason);
   }
   held_model_destroy(&m);
   free(shot);
@@ -203,14 +202,14 @@ int fit_choose(const fit_result *r, double tolerance, bool by_mean) {
   return -1;
 }
 
-int fit_scene_for_volume(scene_config *cfg, fit_error *err) {
+int fit_scene_for_volume(scene_config *cfg, fog_error *err) {
   held_model ref;
   if (reference_create(&ref, cfg, err)) return 1;
   double lo[3], hi[3], position[3], target[3];
   bool ok = fit_domain(&ref.model, cfg, lo, hi);
   held_model_destroy(&ref);
   if (!ok) {
-    snprintf(err->message, sizeof err->message, "%.400s: the grid holds no fog", cfg->path);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.400s: the grid holds no fog", cfg->path);
     return 1;
   }
   double reach = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
@@ -245,16 +244,16 @@ void fit_result_destroy(fit_result *r) {
   *r = (fit_result){.chosen = -1};
 }
 
-int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
+int fit_run(const fit_desc *d, fit_result *r, fog_error *err) {
   *r = (fit_result){.chosen = -1};
   if (!(d->tolerance > 0) || d->rays_per_side < 1 || d->sample_side < 2 || d->width < 1 ||
       d->height < 1 || d->timed_frames < 1 || (d->frames && d->frame_count < 1)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fit: expected tolerance > 0, rays, samples, size and frames >= 1");
     return 1;
   }
   if (d->frames && !d->input->fog.vdb[0]) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "%.400s: frames of a sequence need [fog] vdb (a VDB sequence)", d->input->path);
     return 1;
   }
@@ -267,7 +266,7 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
   float *pixels = malloc((size_t)d->width * d->height * sizeof *pixels);
   int status = 1;
   if (!refs || !views || !framed || !pixels) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     goto done;
   }
   /* The references, frame by frame, and the domain that holds them all. */
@@ -277,7 +276,7 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
     if (reference_create(&refs[f], framed, err)) goto done;
     double lo[3], hi[3];
     if (!fit_domain(&refs[f].model, d->input, lo, hi)) {
-      snprintf(err->message, sizeof err->message,
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                "%.400s: the fog has no extent to fit (an empty grid, or [box] floor >= top)",
                d->input->path);
       goto done;
@@ -292,7 +291,7 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
     fit_samples one;
     if (fit_samples_create(f ? &one : &samples, &refs[f].model, r->lo, r->hi, d->sample_side) ||
         fit_views_create(&views[f], &refs[f].model, r->lo, r->hi, d->rays_per_side)) {
-      snprintf(err->message, sizeof err->message, "out of memory for the fit's samples and rays");
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the fit's samples and rays");
       goto done;
     }
     if (f) {
@@ -313,9 +312,9 @@ int fit_run(const fit_desc *d, fit_result *r, fit_error *err) {
                            .rule = scene_config_light_rule(d->input)};
   r->lit = fog->albedo > 0.0;
   for (int f = 0; r->lit && f < frame_count; f++) {
-    render_error rerr = {{0}};
+    fog_error rerr = {0};
     if (fit_views_light(&views[f], &refs[f].model, &light, &rerr)) {
-      snprintf(err->message, sizeof err->message, "the light: %.500s", rerr.message);
+      fog_error_wrap(err, &rerr, "the light: ");
       goto done;
     }
   }

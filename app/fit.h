@@ -2,7 +2,7 @@
  * tolerance (docs/fit.md). "Model no more than a scene needs", measured:
  *
  *   fit_result result;
- *   fit_error err;
+ *   fog_error err;
  *   if (fit_run(&(fit_desc){.input = &cfg, .tolerance = 0.02, ...}, &result, &err)) ...
  *   result.rungs[result.chosen].config   the scene with that rung's fog, to write
  *   fit_result_destroy(&result);
@@ -18,16 +18,14 @@
  * its error on nine views (app/fit_views.h: max and mean |delta tau| against the
  * reference, CPU twins in double) and its GL milliseconds per frame (a headless session
  * drawn from view 0, the median of timed_frames frames). The choice: the fastest rung within
- * the tolerance (of its max error, or its mean error with by_mean), where rungs within 25 % of its time count as ties that the simpler rung
- * (earlier on the ladder) wins. Needs EGL (a headless GL context). */
+ * the tolerance (of its max error, or its mean error with by_mean), where rungs within 25 % of its
+ * time count as ties that the simpler rung (earlier on the ladder) wins. Needs EGL (a headless GL
+ * context). */
 #ifndef FOGPIPE_APP_FIT_H
 #define FOGPIPE_APP_FIT_H
 
+#include "transform/fog_error.h"
 #include "app/config.h"
-
-typedef struct fit_error {
-  char message[600];
-} fit_error;
 
 typedef struct fit_desc {
   const scene_config *input;
@@ -81,12 +79,12 @@ typedef struct fit_result {
 
 /* Errors name the input's file (and line where a key is at fault) or the rung that failed
  * to render. On failure nothing stays allocated. */
-int fit_run(const fit_desc *desc, fit_result *result, fit_error *err);
+int fit_run(const fit_desc *desc, fit_result *result, fog_error *err);
 void fit_result_destroy(fit_result *result);
 /* The pick at another tolerance from the same measurements (fit_run's rule); -1: none. */
 int fit_choose(const fit_result *result, double tolerance, bool by_mean);
 /* A scene around a VDB frame (cfg: model = volume, [fog] vdb set): a flat ground just under
  * the grid, no boxes, and the camera of view 0 (app/fit_views.h), so the fog is in sight. */
-int fit_scene_for_volume(scene_config *cfg, fit_error *err);
+int fit_scene_for_volume(scene_config *cfg, fog_error *err);
 
 #endif

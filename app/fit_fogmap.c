@@ -6,15 +6,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-int fit_fogmap_project(const fog_model *model, const double lo[3], const double hi[3],
-                       int side, fit_fogmap *out, fit_error *err) {
+int fit_fogmap_project(const fog_model *model, const double lo[3], const double hi[3], int side,
+                       fit_fogmap *out, fog_error *err) {
   *out = (fit_fogmap){0};
   const double wide = fmax(hi[0] - lo[0], hi[2] - lo[2]);
   const int n[3] = {(int)ceil(side * (hi[0] - lo[0]) / wide), FIT_FOGMAP_LAYERS,
                     (int)ceil(side * (hi[2] - lo[2]) / wide)};
   fit_samples samples;
   if (fit_samples_create_grid(&samples, model, lo, hi, n)) {
-    snprintf(err->message, sizeof err->message, "out of memory projecting the fog to a fogmap");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory projecting the fog to a fogmap");
     return 1;
   }
   const fit_samples *s = &samples;
@@ -26,10 +26,10 @@ int fit_fogmap_project(const fog_model *model, const double lo[3], const double 
                    .y_min = s->lo[1], .layer_height = s->cell[1]};
   c.tau = calloc((size_t)nx * nz, sizeof *c.tau);
   c.layer_mass = calloc((size_t)ny, sizeof *c.layer_mass);
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   int status = 1;
   if (!c.tau || !c.layer_mass) {
-    snprintf(err->message, sizeof err->message, "out of memory projecting the fog to a fogmap");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory projecting the fog to a fogmap");
     goto done;
   }
   const double area = s->cell[0] * s->cell[2];
@@ -52,7 +52,7 @@ int fit_fogmap_project(const fog_model *model, const double lo[3], const double 
                            0.0, &out->place, &serr) ||
       fogmap_create(&out->map, out->place.width, out->place.height, &serr) ||
       vdb_columns_resample(&c, &out->place, out->profile.thickness, &out->map, &serr)) {
-    snprintf(err->message, sizeof err->message, "the fogmap rungs: %.500s", serr.message);
+    fog_error_wrap(err, &serr, "the fogmap rungs: ");
     fogmap_destroy(&out->map);
     goto done;
   }

@@ -34,8 +34,8 @@ typedef struct fit_fogmap {
  * footprint: the fit's own samples, isotropic, would give it a handful). Returns -1 for a
  * domain without fog (nothing to project), 1 out of memory (err); nothing stays allocated
  * unless it returns 0. */
-int fit_fogmap_project(const fog_model *model, const double lo[3], const double hi[3],
-                       int side, fit_fogmap *out, fit_error *err);
+int fit_fogmap_project(const fog_model *model, const double lo[3], const double hi[3], int side,
+                       fit_fogmap *out, fog_error *err);
 void fit_fogmap_destroy(fit_fogmap *f);
 
 /* c's fog becomes this fogmap, read from `path` (the caller saves f->map there,

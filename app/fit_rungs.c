@@ -33,15 +33,14 @@ static scene_config *analytic_config(const scene_config *input, fog_model_kind k
   return c;
 }
 
-static fit_rung *add_rung(fit_result *r, scene_config *cfg, const char *family,
-                          fit_error *err) {
+static fit_rung *add_rung(fit_result *r, scene_config *cfg, const char *family, fog_error *err) {
   if (!cfg) {
-    snprintf(err->message, sizeof err->message, "out of memory for the rungs");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the rungs");
     return NULL;
   }
   if (r->count == FIT_MAX_RUNGS) { /* a bug: the list below holds at most this many */
     free(cfg);
-    snprintf(err->message, sizeof err->message, "more than %d rungs", FIT_MAX_RUNGS);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "more than %d rungs", FIT_MAX_RUNGS);
     return NULL;
   }
   fit_rung *rung = &r->rungs[r->count++];
@@ -82,7 +81,7 @@ static int refine_amplitudes(const fit_views *views, int view_sets, fog_rbf *g, 
 
 /* Homogeneous, the classic factors of distance, and height fog. */
 static int add_analytic_rungs(fit_result *r, const scene_config *input, const fit_samples *s,
-                              const fit_views *views, int view_sets, fit_error *err) {
+                              const fit_views *views, int view_sets, fog_error *err) {
   fit_rung *rung;
   double k = fit_homogeneous(s);
   if (!(rung = add_rung(r, analytic_config(input, FOG_MODEL_HOMOGENEOUS), "homogeneous", err)))
@@ -137,15 +136,14 @@ static struct scene_quadric_line bank_line(bank_shape shape, const fog_quadric *
 /* Banks of `from`, 2 from, ... up to FOG_MAX_QUADRICS volumes (the most a scene holds), one
  * rung each while the fog holds more clusters. */
 static int add_quadric_banks(fit_result *r, const scene_config *input, const fit_samples *s,
-                             bank_shape shape, int from, fit_error *err) {
+                             bank_shape shape, int from, fog_error *err) {
   int previous = from - 1;
   for (int count = from; count <= FOG_MAX_QUADRICS; count *= 2) {
     scene_config *c = analytic_config(input, FOG_MODEL_QUADRIC);
     int made = c ? bank_shapes[shape].fit(s, count, c->fog.quadrics) : -1;
     if (made < 0) {
       free(c);
-      snprintf(err->message, sizeof err->message, "out of memory fitting %s",
-               bank_shapes[shape].many);
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory fitting %s", bank_shapes[shape].many);
       return 1;
     }
     if (made <= previous) { /* the fog holds no more clusters */
@@ -173,7 +171,7 @@ static int add_quadric_banks(fit_result *r, const scene_config *input, const fit
 
 /* One ellipsoid of the density's moments, then banks of ellipsoids and of cylinders. */
 static int add_quadric_rungs(fit_result *r, const scene_config *input, const fit_samples *s,
-                             fit_error *err) {
+                             fog_error *err) {
   fit_rung *rung;
   double centre[3], radii[3], density;
   if (fit_ellipsoid(s, centre, radii, &density)) {
@@ -197,7 +195,7 @@ static int add_quadric_rungs(fit_result *r, const scene_config *input, const fit
 
 /* Banks of Gaussians of growing size, their amplitudes refined on the views. */
 static int add_rbf_rungs(fit_result *r, const scene_config *input, const fit_samples *s,
-                         const fit_views *views, int view_sets, fit_error *err) {
+                         const fit_views *views, int view_sets, fog_error *err) {
   fit_rung *rung;
   int previous = 0;
   for (size_t i = 0; i < sizeof rbf_sizes / sizeof rbf_sizes[0]; i++) {
@@ -205,7 +203,7 @@ static int add_rbf_rungs(fit_result *r, const scene_config *input, const fit_sam
     int made = c ? fit_rbfs(s, rbf_sizes[i], c->fog.rbfs) : -1;
     if (made < 0) {
       free(c);
-      snprintf(err->message, sizeof err->message, "out of memory fitting Gaussians");
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory fitting Gaussians");
       return 1;
     }
     if (made <= previous) { /* the fog holds no more clusters */
@@ -214,7 +212,7 @@ static int add_rbf_rungs(fit_result *r, const scene_config *input, const fit_sam
     }
     if (made > 1 && refine_amplitudes(views, view_sets, c->fog.rbfs, made)) {
       free(c);
-      snprintf(err->message, sizeof err->message, "out of memory fitting Gaussians");
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory fitting Gaussians");
       return 1;
     }
     previous = made;
@@ -234,7 +232,7 @@ static int add_rbf_rungs(fit_result *r, const scene_config *input, const fit_sam
  * result's scratch folder. The classic factors are fog of the camera's distance, which no
  * fogmap holds. */
 static int add_fogmap_rungs(fit_result *r, const scene_config *input, const fog_model *reference,
-                            const fit_samples *s, fit_error *err) {
+                            const fit_samples *s, fog_error *err) {
   fit_rung *rung;
   const scene_fog_config *in = &input->fog;
   bool has_map = (in->model == FOG_MODEL_FOGMAP && (in->fogmap[0] || in->vdb[0])) ||
@@ -251,16 +249,16 @@ static int add_fogmap_rungs(fit_result *r, const scene_config *input, const fog_
   if (projected_status < 0) projects = false; /* no fog to project: no fogmap rungs */
   if (projects) {
     snprintf(r->scratch, sizeof r->scratch, "%s", "/tmp/fogpipe-fit-XXXXXX");
-    sim_error serr = {{0}};
+    fog_error serr = {0};
     if (!mkdtemp(r->scratch)) {
-      snprintf(err->message, sizeof err->message, "the fogmap rungs: no folder in /tmp");
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "the fogmap rungs: no folder in /tmp");
       r->scratch[0] = '\0';
       fit_fogmap_destroy(&ff);
       return 1;
     }
     snprintf(projected, sizeof projected, "%s/%s", r->scratch, FIT_FOGMAP_FILE);
     if (fogmap_save_exr(projected, &ff.map, &serr)) {
-      snprintf(err->message, sizeof err->message, "the fogmap rungs: %.500s", serr.message);
+      fog_error_wrap(err, &serr, "the fogmap rungs: ");
       fit_fogmap_destroy(&ff);
       return 1;
     }
@@ -291,8 +289,7 @@ static int add_fogmap_rungs(fit_result *r, const scene_config *input, const fog_
 /* The ladder's rungs for this input, in order, their parameters fitted to the samples; the
  * last rung is the richest: the 3D volume, or the input's own model. */
 int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *reference,
-                   const fit_samples *s, const fit_views *views, int view_sets,
-                   fit_error *err) {
+                   const fit_samples *s, const fit_views *views, int view_sets, fog_error *err) {
   if (add_analytic_rungs(r, input, s, views, view_sets, err) ||
       add_quadric_rungs(r, input, s, err) ||
       add_rbf_rungs(r, input, s, views, view_sets, err) ||
@@ -314,4 +311,3 @@ int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *re
   }
   return 0;
 }
-

@@ -16,6 +16,6 @@
  * an analytic input as given. */
 int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *reference,
                    const fit_samples *samples, const fit_views *views, int view_sets,
-                   fit_error *err);
+                   fog_error *err);
 
 #endif

@@ -179,7 +179,7 @@ void fit_views_linear(const fit_views *v, int count, double *start, double *end)
 
 /* Each ray's in-scattered luminance (fit_light) for model m into out. */
 static int inscatter(const fit_views *v, const fog_model *model, const fit_light *light,
-                     double *out, render_error *err) {
+                     double *out, fog_error *err) {
   const fog_sun *sun = &light->sun;
   fog_sun_shadow volume = {0};
   fog_sun_shadow_kind kind =
@@ -216,20 +216,20 @@ static int inscatter(const fit_views *v, const fog_model *model, const fit_light
 }
 
 int fit_views_light(fit_views *v, const fog_model *reference, const fit_light *light,
-                    render_error *err) {
+                    fog_error *err) {
   free(v->light);
   if (!(v->light = malloc((size_t)(v->count > 0 ? v->count : 1) * sizeof *v->light))) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return 1;
   }
   return inscatter(v, reference, light, v->light, err);
 }
 
 int fit_views_measure_light(const fit_views *v, const fog_model *rung, const fit_light *light,
-                            double *relative_error, render_error *err) {
+                            double *relative_error, fog_error *err) {
   double *mine = malloc((size_t)(v->count > 0 ? v->count : 1) * sizeof *mine);
   if (!mine) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return 1;
   }
   if (inscatter(v, rung, light, mine, err)) {

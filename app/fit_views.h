@@ -47,11 +47,11 @@ typedef struct fit_light {
 /* The reference's in-scatter on each ray (v->light, allocated here). Non-zero: out of
  * memory or a volume that cannot be made (err). */
 int fit_views_light(fit_views *v, const fog_model *reference, const fit_light *light,
-                    render_error *err);
+                    fog_error *err);
 /* The rung's in-scatter error: max |I_rung - I_reference| over the rays, relative to the
  * reference's brightest ray. */
 int fit_views_measure_light(const fit_views *v, const fog_model *rung, const fit_light *light,
-                            double *relative_error, render_error *err);
+                            double *relative_error, fog_error *err);
 
 /* The classic fog factors on the rays of `count` views (frames): each view's camera is
  * their eye, as a classic fog's eye is the camera that draws it. Their parameters are

@@ -158,7 +158,7 @@ struct pipeline {
   int stroke_count;
   bool reset_requested;
   int step_requests;
-  char worker_error[512];
+  fog_error worker_error; /* the worker's failure: code FOG_SUCCESS while it has none */
 
   bool stepped_once;        /* the CPU stages produced a step (the first frame needs one) */
 
@@ -209,28 +209,20 @@ struct pipeline {
 
 #define LIVE_RUNG_INTERVAL 8
 
-static int fail(pipeline_error *err, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(err->message, sizeof err->message, fmt, ap);
-  va_end(ap);
-  return 1;
-}
-
 /* ---- the CPU stages (run by the worker, or inline when synchronous) ---- */
 
 /* The base density the simulation starts from and relaxes toward: the config's fogmap
  * when it has one (its own size when the FFT solver accepts it: even, >= 8; otherwise
  * resampled to DEFAULT_GRID² by nearest cell), else Perlin turbulence (Zdrojewska 2004)
  * so the first frame already has structure. */
-static int make_base(const scene_config *cfg, fogmap *base, pipeline_error *err) {
-  sim_error serr = {{0}};
+static int make_base(const scene_config *cfg, fogmap *base, fog_error *err) {
+  fog_error serr = {0};
   if (cfg->fog.fogmap[0]) {
     fogmap loaded = {0};
     fogmap_load_desc desc = {.channel = cfg->fog.channel[0] ? cfg->fog.channel : NULL};
     if (fogmap_load(cfg->fog.fogmap, &desc, &loaded, &serr))
-      return fail(err, "%.200s:%d: [fog] fogmap: %s", cfg->path, cfg->fog.fogmap_line,
-                  serr.message);
+      return fog_error_wrap(err, &serr, "%.200s:%d: [fog] fogmap: ", cfg->path,
+                            cfg->fog.fogmap_line);
     bool usable = loaded.width % 2 == 0 && loaded.height % 2 == 0 && loaded.width >= 8 &&
                   loaded.height >= 8 && loaded.width <= 2048 && loaded.height <= 2048;
     if (usable) {
@@ -240,7 +232,7 @@ static int make_base(const scene_config *cfg, fogmap *base, pipeline_error *err)
     const int n = DEFAULT_GRID;
     if (fogmap_create(base, n, n, &serr)) {
       fogmap_destroy(&loaded);
-      return fail(err, "%s", serr.message);
+      return fog_error_pass(err, &serr);
     }
     for (int z = 0; z < n; z++)
       for (int x = 0; x < n; x++) {
@@ -251,10 +243,10 @@ static int make_base(const scene_config *cfg, fogmap *base, pipeline_error *err)
     return 0;
   }
   const int n = DEFAULT_GRID;
-  if (fogmap_create(base, n, n, &serr)) return fail(err, "%s", serr.message);
+  if (fogmap_create(base, n, n, &serr)) return fog_error_pass(err, &serr);
   perlin_fog_desc perlin = {.seed = cfg->sim.seed ? cfg->sim.seed : 7, .octaves = 4,
                             .feature_size = n / 4.0f, .gain = 1.2f, .base = 0.05f};
-  if (designed_fog_perlin(base, &perlin, &serr)) return fail(err, "%s", serr.message);
+  if (designed_fog_perlin(base, &perlin, &serr)) return fog_error_pass(err, &serr);
   return 0;
 }
 
@@ -283,13 +275,13 @@ static fluid_sim_desc sim_desc(pipeline *p, const pipeline_params *params, const
 }
 
 static int sim_create(pipeline *p, const pipeline_params *params, const fogmap *start,
-                      pipeline_error *err) {
+                      fog_error *err) {
   cpu_stages *c = &p->cpu;
   if (c->has_vdb || c->has_sequence) return 0; /* a sequence is played, not simulated */
   fluid_sim_desc desc = sim_desc(p, params, start);
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   fluid_sim *sim = fluid_sim_create(&desc, &serr);
-  if (!sim) return fail(err, "simulation: %s", serr.message);
+  if (!sim) return fog_error_wrap(err, &serr, "simulation: ");
   if (c->sim) fluid_sim_destroy(c->sim);
   c->sim = sim;
   return 0;
@@ -307,7 +299,7 @@ static void plan_destroy(cpu_stages *c) {
   }
 }
 
-static int plan_create(pipeline *p, int degree, int levels, pipeline_error *err) {
+static int plan_create(pipeline *p, int degree, int levels, fog_error *err) {
   cpu_stages *c = &p->cpu;
   plan_destroy(c);
   const int w = c->base.width, h = c->base.height;
@@ -318,10 +310,11 @@ static int plan_create(pipeline *p, int degree, int levels, pipeline_error *err)
   if (levels > max_levels) levels = max_levels;
   if (levels > FOG_MAX_LEVELS) levels = FOG_MAX_LEVELS;
   if (levels < 0) levels = 0;
-  transform_error terr = {{0}};
+  fog_error terr = {0};
   transform_desc desc = {.width = w, .height = h, .levels = levels,
                          .basis = transform_basis_of_degree(degree), .boundary = boundary};
-  if (transform_plan_create(&c->plan, &desc, &terr)) return fail(err, "transform: %s", terr.message);
+  if (transform_plan_create(&c->plan, &desc, &terr))
+    return fog_error_wrap(err, &terr, "transform: ");
   c->coefficients = transform_alloc_floats((size_t)w * h);
   bool ok = c->coefficients != NULL;
   for (int l = 0; l <= levels && ok; l++) {
@@ -331,14 +324,14 @@ static int plan_create(pipeline *p, int degree, int levels, pipeline_error *err)
     c->detail[l] = transform_alloc_floats((size_t)w * h);
     ok = c->approx[l] && c->detail[l];
   }
-  if (!ok) return fail(err, "out of memory for the transform");
+  if (!ok) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the transform");
   c->degree = degree;
   c->levels = levels;
   return 0;
 }
 
 /* Makes the slot's grids match the plan (allocates only when the plan changed). */
-static int slot_shape(pipeline *p, pipeline_slot *slot, pipeline_error *err) {
+static int slot_shape(pipeline *p, pipeline_slot *slot, fog_error *err) {
   cpu_stages *c = &p->cpu;
   fog_pyramid *py = &slot->pyramid;
   bool same = py->levels == c->levels && py->degree == c->degree && py->approx[0].coefficients;
@@ -346,13 +339,13 @@ static int slot_shape(pipeline *p, pipeline_slot *slot, pipeline_error *err) {
   fog_pyramid_destroy(py);
   py->levels = c->levels;
   py->degree = c->degree;
-  transform_error terr = {{0}};
+  fog_error terr = {0};
   for (int l = 0; l <= c->levels; l++) {
     int w = 0, h = 0;
     transform_grid_size(c->plan, l, &w, &h);
     if (transform_grid_create(&py->approx[l], w, h, &terr) ||
         transform_grid_create(&py->detail[l], w, h, &terr))
-      return fail(err, "transform: %s", terr.message);
+      return fog_error_wrap(err, &terr, "transform: ");
   }
   return 0;
 }
@@ -378,25 +371,26 @@ static bool sim_params_differ(const pipeline_params *a, const pipeline_params *b
  * dt) and the transform of its density into the slot's grids. */
 /* Frame n of the config's [fog] sequence into *map (replacing what it held); it must have
  * the size of frame 1. */
-static int load_sequence_frame(pipeline *p, long n, fogmap *map, pipeline_error *err) {
+static int load_sequence_frame(pipeline *p, long n, fogmap *map, fog_error *err) {
   const scene_config *cfg = &p->config;
   char path[SCENE_CONFIG_PATH_MAX + 32];
   if (!scene_config_sequence_path(cfg->fog.sequence, n, path, sizeof path))
-    return fail(err, "%s:%d: [fog] sequence: no path for frame %ld", cfg->path,
-                cfg->fog.sequence_line, n);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s:%d: [fog] sequence: no path for frame %ld",
+                    cfg->path, cfg->fog.sequence_line, n);
   fogmap loaded = {0};
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   /* the config's channel, as render reads the sequence's first frame */
   const fogmap_load_desc desc = {.channel = cfg->fog.channel[0] ? cfg->fog.channel : NULL};
   if (fogmap_load(path, &desc, &loaded, &serr))
-    return fail(err, "%s:%d: [fog] sequence: frame %ld: %s", cfg->path, cfg->fog.sequence_line,
-                n, serr.message);
+    return fog_error_wrap(err, &serr, "%s:%d: [fog] sequence: frame %ld: ", cfg->path,
+                          cfg->fog.sequence_line, n);
   const fogmap *first = &p->cpu.base;
   if (first->density && (loaded.width != first->width || loaded.height != first->height)) {
     fogmap_destroy(&loaded);
-    return fail(err, "%s:%d: [fog] sequence: frame %ld (%s) is %dx%d, frame 1 %dx%d",
-                cfg->path, cfg->fog.sequence_line, n, path, loaded.width, loaded.height,
-                first->width, first->height);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "%s:%d: [fog] sequence: frame %ld (%s) is %dx%d, frame 1 %dx%d", cfg->path,
+                    cfg->fog.sequence_line, n, path, loaded.width, loaded.height, first->width,
+                    first->height);
   }
   fogmap_destroy(map);
   *map = loaded;
@@ -418,8 +412,7 @@ static void sun_direction_of(const pipeline *p, const pipeline_params *params, d
  * the finest grid (threads: the worker's one, or both cores when the GL thread waits). */
 static int compute_shadow(const pipeline *p, const pipeline_params *params,
                           const transform_grid *finest, const double sun[3], int threads,
-                          fog_sun_shadow_kind *kind, fog_sun_shadow *volume,
-                          pipeline_error *err) {
+                          fog_sun_shadow_kind *kind, fog_sun_shadow *volume, fog_error *err) {
   *kind = FOG_SUN_SHADOW_NONE;
   if (!(params->sun.albedo > 0) || !params->fog_self_shadow) return 0;
   fog_volume v = volume_of(p, params);
@@ -427,18 +420,18 @@ static int compute_shadow(const pipeline *p, const pipeline_params *params,
   fog_model m = {.kind = FOG_MODEL_FOGMAP, .volume = &v, .lod = &lod};
   *kind = fog_sun_shadow_kind_of(&m, sun);
   if (*kind != FOG_SUN_SHADOW_VOLUME) return 0;
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   const int n = p->config.shadow.resolution;
   if (!volume->optical_depth &&
       fog_sun_shadow_create(volume, &(fog_sun_shadow_desc){.across = n, .along = n}, &rerr))
-    return fail(err, "sun shadow: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "sun shadow: ");
   if (fog_sun_shadow_compute(volume, &m, sun, threads, &rerr))
-    return fail(err, "sun shadow: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "sun shadow: ");
   return 0;
 }
 
 static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *slot,
-                          pipeline_error *err) {
+                          fog_error *err) {
   cpu_stages *c = &p->cpu;
   if (r->params_changed) {
     if (r->params.degree != c->degree || r->params.levels != c->levels) {
@@ -448,9 +441,9 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
      * and the flow carry on (no reallocation, no FFTW replanning). */
     if (c->sim && sim_params_differ(&r->params, &p->applied)) {
       fluid_sim_desc desc = sim_desc(p, &r->params, NULL);
-      sim_error serr = {{0}};
+      fog_error serr = {0};
       if (fluid_sim_set_params(c->sim, &desc, &serr))
-        return fail(err, "simulation: %s", serr.message);
+        return fog_error_wrap(err, &serr, "simulation: ");
     }
     p->applied = r->params;
   }
@@ -459,18 +452,18 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
     c->steps = 0;
     c->shadow_step = 0; /* new fog: a new sun volume with the next step */
   }
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   for (int s = 0; s < r->stroke_count && c->sim; s++)
     fluid_sim_paint(c->sim, &r->strokes[s], &serr); /* bad strokes are dropped */
 
   double t0 = now_ms(), c0 = thread_cpu_ms();
   for (int s = 0; s < p->steps_per_frame && c->sim; s++)
-    if (fluid_sim_step(c->sim, &serr)) return fail(err, "simulation: %s", serr.message);
+    if (fluid_sim_step(c->sim, &serr)) return fog_error_wrap(err, &serr, "simulation: ");
   c->steps++;
   if (c->has_vdb &&
       vdb_source_fogmap_at(&c->vdb, (double)(c->steps - 1) * p->frame_seconds, &c->vdb_map,
                            &serr))
-    return fail(err, "vdb: %s", serr.message);
+    return fog_error_wrap(err, &serr, "vdb: ");
   double t1 = now_ms(), c1 = thread_cpu_ms();
   if (slot_shape(p, slot, err)) return 1;
   if (c->has_sequence && (c->steps <= c->sequence_count || !c->sequence_map.density) &&
@@ -484,13 +477,13 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
   transform_pyramid(c->plan, c->coefficients, c->approx);
   if (p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS)
     transform_details(c->plan, c->coefficients, c->detail);
-  transform_error terr = {{0}};
+  fog_error terr = {0};
   for (int l = 0; l <= c->levels; l++) {
     if (transform_grid_export(c->plan, l, c->approx[l], &slot->pyramid.approx[l], &terr))
-      return fail(err, "transform: %s", terr.message);
+      return fog_error_wrap(err, &terr, "transform: ");
     if (l > 0 && p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS &&
         transform_grid_export(c->plan, l, c->detail[l], &slot->pyramid.detail[l], &terr))
-      return fail(err, "transform: %s", terr.message);
+      return fog_error_wrap(err, &terr, "transform: ");
   }
   slot->pyramid.has_details = p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS;
   double t2 = now_ms(), c2 = thread_cpu_ms();
@@ -526,7 +519,7 @@ static void *worker_main(void *arg) {
     pipeline_slot *slot = &p->slots[p->fill_index];
     bool may_step = !p->params.paused || p->step_requests > 0 || p->reset_requested ||
                     !p->stepped_once;
-    if (slot->state != SLOT_FREE || !may_step || p->worker_error[0]) {
+    if (slot->state != SLOT_FREE || !may_step || p->worker_error.code) {
       pthread_cond_wait(&p->changed, &p->lock);
       continue;
     }
@@ -535,12 +528,13 @@ static void *worker_main(void *arg) {
     slot->state = SLOT_FILLING;
     pthread_mutex_unlock(&p->lock);
 
-    pipeline_error err = {{0}};
+    fog_error err = {0};
     int status = cpu_stages_run(p, r, slot, &err);
 
     pthread_mutex_lock(&p->lock);
     if (status) {
-      snprintf(p->worker_error, sizeof p->worker_error, "%s", err.message);
+      p->worker_error = err;
+      if (!p->worker_error.code) p->worker_error.code = FOG_ERR_INVALID_ARGUMENT;
       slot->state = SLOT_FREE;
     } else {
       slot->state = SLOT_READY;
@@ -580,19 +574,19 @@ static pipeline_params params_from_config(const scene_config *cfg) {
   };
 }
 
-static int load_scene(pipeline *p, pipeline_error *err) {
+static int load_scene(pipeline *p, fog_error *err) {
   const scene_config *cfg = &p->config;
   fogmap heights = {0};
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   if (cfg->terrain.heightmap[0] && fogmap_load(cfg->terrain.heightmap, NULL, &heights, &serr))
-    return fail(err, "%.200s:%d: [terrain] heightmap: %s", cfg->path,
-                cfg->terrain.heightmap_line, serr.message);
+    return fog_error_wrap(err, &serr, "%.200s:%d: [terrain] heightmap: ", cfg->path,
+                          cfg->terrain.heightmap_line);
   scene_desc desc;
   scene_config_scene_desc(cfg, heights.density, heights.width, heights.height, &desc);
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   int status = scene_geometry_create(&p->geometry, &desc, &rerr);
   fogmap_destroy(&heights);
-  if (status) return fail(err, "scene: %s", rerr.message);
+  if (status) return fog_error_wrap(err, &rerr, "scene: ");
   p->geometry_made = true;
   p->scene = scene_pass_create(&p->geometry, &rerr);
   /* Terrain LOD in the live demo only: recordings draw the full mesh (their depth is the
@@ -600,30 +594,30 @@ static int load_scene(pipeline *p, pipeline_error *err) {
   if (!p->scene ||
       scene_pass_set_terrain_lod(p->scene, p->live ? p->config.terrain.lod_error : 0.0, &rerr) ||
       scene_pass_set_lamp_shadows(p->scene, scene_config_lamp_shadow_size(&p->config), &rerr))
-    return fail(err, "scene pass: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "scene pass: ");
   p->shown_lamps = scene_config_fog_lamps(&p->config);
   if (scene_pass_set_lamps(p->scene, &p->shown_lamps, &rerr))
-    return fail(err, "scene pass: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "scene pass: ");
   p->lamps_animated = scene_config_lamps_animated(&p->config);
   p->shown_lamps_time = NAN;
   return 0;
 }
 
-pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
+pipeline *pipeline_create(const pipeline_desc *desc, fog_error *err) {
   pipeline *p = calloc(1, sizeof *p);
   if (!p) {
-    fail(err, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return NULL;
   }
   p->config = *desc->config;
   if (p->config.fog.model != FOG_MODEL_FOGMAP) {
     /* The other models have nothing to simulate: render and view draw them, and record
      * through a render session (cmd_record.c), a volume stepping through its frames. */
-    fail(err, "%s:%d: [fog] model = %s: the live pipeline simulates or plays a fogmap; "
-              "expected model = fogmap here (fogpipe record, render and view draw the other "
-              "models)",
-         p->config.path, p->config.fog.model_line,
-         fog_model_table[p->config.fog.model].name);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "%s:%d: [fog] model = %s: the live pipeline simulates or plays a fogmap; "
+             "expected model = fogmap here (fogpipe record, render and view draw the other "
+             "models)",
+             p->config.path, p->config.fog.model_line, fog_model_table[p->config.fog.model].name);
     free(p);
     return NULL;
   }
@@ -631,8 +625,9 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
   p->height = desc->height > 0 ? desc->height : p->config.height;
   p->frame_seconds = desc->frame_seconds > 0 ? desc->frame_seconds : 1.0 / 24.0;
   if (!(p->frame_seconds <= PIPELINE_MAX_FRAME_SECONDS)) {
-    fail(err, "a frame of %g s of simulated time: expected at most %g s (240 steps of 1/24 s)",
-         p->frame_seconds, PIPELINE_MAX_FRAME_SECONDS);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "a frame of %g s of simulated time: expected at most %g s (240 steps of 1/24 s)",
+             p->frame_seconds, PIPELINE_MAX_FRAME_SECONDS);
     free(p);
     return NULL;
   }
@@ -666,9 +661,9 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
   } else if (p->config.fog.vdb[0]) {
     /* The sequence places the fog and gives its profile (vdb_source_apply_config) before
      * the params are taken from the config. */
-    scene_config_error cerr;
+    fog_error cerr;
     if (vdb_source_open_config(&c->vdb, &p->config, &cerr)) {
-      fail(err, "%s", cerr.message);
+      fog_error_pass(err, &cerr);
       pipeline_destroy(p);
       return NULL;
     }
@@ -676,9 +671,9 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
     vdb_source_apply_config(&c->vdb, &p->config);
     p->params = params_from_config(&p->config);
     p->applied = p->params;
-    sim_error serr = {{0}};
+    fog_error serr = {0};
     if (vdb_source_fogmap_at(&c->vdb, 0.0, &c->base, &serr)) {
-      fail(err, "vdb: %s", serr.message);
+      fog_error_wrap(err, &serr, "vdb: ");
       pipeline_destroy(p);
       return NULL;
     }
@@ -700,10 +695,10 @@ pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err) {
   }
   p->params.levels = c->levels; /* clamped to what the grid allows */
   p->applied = p->params;
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   p->fog = pipeline_fog_create(&rerr);
   if (!p->fog) {
-    fail(err, "fog pass: %s", rerr.message);
+    fog_error_wrap(err, &rerr, "fog pass: ");
     pipeline_destroy(p);
     return NULL;
   }
@@ -743,17 +738,19 @@ void pipeline_destroy(pipeline *p) {
   free(p);
 }
 
-int pipeline_resize(pipeline *p, int width, int height, pipeline_error *err) {
-  if (width < 1 || height < 1) return fail(err, "render size %dx%d is not positive", width, height);
-  render_error rerr = {{0}};
+int pipeline_resize(pipeline *p, int width, int height, fog_error *err) {
+  if (width < 1 || height < 1)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "render size %dx%d is not positive", width,
+                    height);
+  fog_error rerr = {0};
   gl_target_destroy(&p->scene_target);
   p->scene_current = false;
   if (scene_target_create(&p->scene_target, width, height, &rerr))
-    return fail(err, "scene target: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "scene target: ");
   free(p->rung_depth); /* the live rung's view: its size follows */
   p->rung_depth = NULL;
   if (p->fog && pipeline_fog_resize(p->fog, width, height, &rerr))
-    return fail(err, "fog target: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "fog target: ");
   p->width = width;
   p->height = height;
   return 0;
@@ -766,12 +763,13 @@ void pipeline_size(const pipeline *p, int *width, int *height) {
 
 long pipeline_step_index(const pipeline *p) { return p->shown_step; }
 
-int pipeline_skip(pipeline *p, long steps, pipeline_error *err) {
-  if (p->worker_running) return fail(err, "pipeline_skip after the first frame");
-  sim_error serr = {{0}};
+int pipeline_skip(pipeline *p, long steps, fog_error *err) {
+  if (p->worker_running)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "pipeline_skip after the first frame");
+  fog_error serr = {0};
   for (long s = 0; s < steps; s++) {
     for (int k = 0; k < p->steps_per_frame && p->cpu.sim; k++)
-      if (fluid_sim_step(p->cpu.sim, &serr)) return fail(err, "simulation: %s", serr.message);
+      if (fluid_sim_step(p->cpu.sim, &serr)) return fog_error_wrap(err, &serr, "simulation: ");
     p->cpu.steps++;
   }
   p->shown_step = p->cpu.steps;
@@ -813,17 +811,17 @@ static fog_volume volume_of(const pipeline *p, const pipeline_params *params) {
 
 /* After a slot's grids went up: its shadow volume too, and a copy of its finest grid for
  * re-lighting (GL thread; the slot is still held). */
-static int show_slot_shadow(pipeline *p, const pipeline_slot *slot, pipeline_error *err) {
-  render_error rerr = {{0}};
+static int show_slot_shadow(pipeline *p, const pipeline_slot *slot, fog_error *err) {
+  fog_error rerr = {0};
   p->shown_self_shadow = slot->self_shadow;
   if (slot->shadow_fresh) p->last.sun_shadow = slot->sun_shadow_ms;
   const transform_grid *finest = &slot->pyramid.approx[slot->pyramid.levels];
   transform_grid *copy = &p->shadow_grid;
   if (copy->width != finest->width || copy->height != finest->height) {
     transform_grid_destroy(copy);
-    transform_error terr = {{0}};
+    fog_error terr = {0};
     if (transform_grid_create(copy, finest->width, finest->height, &terr))
-      return fail(err, "sun shadow: %s", terr.message);
+      return fog_error_wrap(err, &terr, "sun shadow: ");
   }
   float *coefficients = copy->coefficients;
   *copy = *finest;
@@ -833,13 +831,13 @@ static int show_slot_shadow(pipeline *p, const pipeline_slot *slot, pipeline_err
   if (!slot->shadow_fresh || slot->self_shadow != FOG_SUN_SHADOW_VOLUME) return 0;
   memcpy(p->shown_shadow_sun, slot->sun_shadow.sun, sizeof p->shown_shadow_sun);
   if (pipeline_fog_upload_sun_shadow(p->fog, &slot->sun_shadow, &rerr))
-    return fail(err, "upload: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "upload: ");
   return 0;
 }
 
 /* The sun moved (or the albedo became > 0) since the volume on screen was computed, and
  * no step brought one for this sun: compute it here from the last step's finest grid. */
-static int relight(pipeline *p, const pipeline_params *params, pipeline_error *err) {
+static int relight(pipeline *p, const pipeline_params *params, fog_error *err) {
   if (!(params->sun.albedo > 0) || !params->fog_self_shadow) {
     p->shown_self_shadow = FOG_SUN_SHADOW_NONE; /* switched off: at once */
     return 0;
@@ -856,16 +854,16 @@ static int relight(pipeline *p, const pipeline_params *params, pipeline_error *e
     return 1;
   p->shown_self_shadow = kind;
   memcpy(p->shown_shadow_sun, sun, sizeof sun);
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   if (kind == FOG_SUN_SHADOW_VOLUME &&
       pipeline_fog_upload_sun_shadow(p->fog, &p->shadow_volume, &rerr))
-    return fail(err, "upload: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "upload: ");
   p->last.sun_shadow = now_ms() - t0;
   return 0;
 }
 
 /* Takes a ready slot (waiting for one if asked) and uploads it; returns 1 if uploaded. */
-static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *err) {
+static int take_slot(pipeline *p, bool wait, double *upload_ms, fog_error *err) {
   *upload_ms = 0.0;
   if (p->synchronous) {
     pipeline_slot *slot = &p->slots[0];
@@ -886,9 +884,9 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *
     p->last.sim_cpu = slot->sim_cpu_ms;
     p->last.transform_cpu = slot->transform_cpu_ms;
     double t0 = now_ms();
-    render_error rerr = {{0}};
+    fog_error rerr = {0};
     if (pipeline_fog_upload(p->fog, &slot->pyramid, &rerr))
-      return fail(err, "upload: %s", rerr.message), -1;
+      return fog_error_wrap(err, &rerr, "upload: "), -1;
     if (show_slot_shadow(p, slot, err)) return -1;
     *upload_ms = now_ms() - t0;
     p->shown_step = slot->step;
@@ -896,7 +894,7 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *
   }
   if (!p->worker_running) {
     if (pthread_create(&p->worker, NULL, worker_main, p) != 0)
-      return fail(err, "cannot start the pipeline's worker thread"), -1;
+      return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "cannot start the pipeline's worker thread"), -1;
     p->worker_running = true;
   }
   pthread_mutex_lock(&p->lock);
@@ -904,10 +902,10 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *
   /* The first frame always waits: there is nothing to show before it. While paused the
    * worker steps only on request, so waiting then would block for ever. */
   bool must_wait = (wait && (!p->params.paused || p->step_requests > 0)) || !p->have_frame;
-  while (must_wait && slot->state != SLOT_READY && !p->worker_error[0])
+  while (must_wait && slot->state != SLOT_READY && !p->worker_error.code)
     pthread_cond_wait(&p->changed, &p->lock);
-  if (p->worker_error[0]) {
-    fail(err, "%s", p->worker_error);
+  if (p->worker_error.code) {
+    fog_error_pass(err, &p->worker_error);
     pthread_mutex_unlock(&p->lock);
     return -1;
   }
@@ -916,9 +914,9 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *
   if (!ready) return 0;
 
   double t0 = now_ms();
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   int status = pipeline_fog_upload(p->fog, &slot->pyramid, &rerr);
-  pipeline_error shadow_err = {{0}};
+  fog_error shadow_err = {0};
   bool shadow_failed = !status && show_slot_shadow(p, slot, &shadow_err);
   *upload_ms = now_ms() - t0;
   p->last.sim = slot->sim_ms;
@@ -931,21 +929,21 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, pipeline_error *
   p->take_index ^= 1;
   pthread_cond_broadcast(&p->changed);
   pthread_mutex_unlock(&p->lock);
-  if (status) return fail(err, "upload: %s", rerr.message), -1;
-  if (shadow_failed) return fail(err, "%s", shadow_err.message), -1;
+  if (status) return fog_error_wrap(err, &rerr, "upload: "), -1;
+  if (shadow_failed) return fog_error_pass(err, &shadow_err), -1;
   return 1;
 }
 
 /* Every LIVE_RUNG_INTERVAL frames the live rung's error against the fogmap it stands for,
  * over this frame's view (app/live_rung.h). */
 static int measure_live_rung(pipeline *p, const fog_model *fogmap_model, const camera *cam,
-                             pipeline_error *err) {
-  render_error rerr = {{0}};
+                             fog_error *err) {
+  fog_error rerr = {0};
   if (!p->rung_depth &&
       !(p->rung_depth = malloc((size_t)p->width * p->height * sizeof *p->rung_depth)))
-    return fail(err, "out of memory for the live rung's view");
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the live rung's view");
   if (gl_target_read(&p->scene_target, 1, 1, p->rung_depth, &rerr))
-    return fail(err, "live rung: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "live rung: ");
   live_rung_measure(fogmap_model, cam, p->width, p->height, p->rung_depth, &p->rung);
   p->rung_frames = 0;
   return 0;
@@ -953,7 +951,7 @@ static int measure_live_rung(pipeline *p, const fog_model *fogmap_model, const c
 
 /* The panel's sun and lamps (or the lamps' animation at the shown step) reach the
  * surfaces: what changed marks the scene pass stale. */
-static int sync_surface_light(pipeline *p, pipeline_error *err) {
+static int sync_surface_light(pipeline *p, fog_error *err) {
   pthread_mutex_lock(&p->lock);
   const double sun_azimuth = p->params.sun_azimuth, sun_elevation = p->params.sun_elevation;
   float sun_colour[3]; /* the surfaces' sun_colour is the fog's irradiance over pi */
@@ -971,7 +969,7 @@ static int sync_surface_light(pipeline *p, pipeline_error *err) {
     scene_light_sun_direction(light, p->geometry.sun_direction);
     p->scene_current = false;
   }
-  render_error lamp_err = {{0}};
+  fog_error lamp_err = {0};
   if (!p->lamps_animated) {
     pthread_mutex_lock(&p->lock);
     const fog_lamps placed = p->params.lamps;
@@ -980,7 +978,7 @@ static int sync_surface_light(pipeline *p, pipeline_error *err) {
       /* the panel placed, moved or removed a lamp: the surfaces are lit anew */
       p->shown_lamps = placed;
       if (scene_pass_set_lamps(p->scene, &p->shown_lamps, &lamp_err))
-        return fail(err, "lamps: %s", lamp_err.message);
+        return fog_error_wrap(err, &lamp_err, "lamps: ");
       p->scene_current = false;
     }
   } else {
@@ -989,14 +987,14 @@ static int sync_surface_light(pipeline *p, pipeline_error *err) {
       p->shown_lamps = scene_config_fog_lamps_at(&p->config, time);
       p->shown_lamps_time = time;
       if (scene_pass_set_lamps(p->scene, &p->shown_lamps, &lamp_err))
-        return fail(err, "lamps: %s", lamp_err.message);
+        return fog_error_wrap(err, &lamp_err, "lamps: ");
       p->scene_current = false;
     }
   }
   return 0;
 }
 
-int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *err) {
+int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
   double frame_start = now_ms();
   double upload_ms = 0.0;
   int taken = take_slot(p, wait, &upload_ms, err);
@@ -1020,7 +1018,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
   pthread_mutex_unlock(&p->lock);
   fog_volume volume = volume_of(p, &params);
   if (relight(p, &params, err)) return 1;
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   fog_sun sun = params.sun;
   memcpy(sun.direction, p->geometry.sun_direction, sizeof sun.direction);
   /* [fog] quadric lines beside the fogmap: their densities on the live density scale */
@@ -1067,7 +1065,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
       .walk = scene_config_walk(&p->config),
   };
   if (pipeline_fog_render(p->fog, cam, &p->scene_target, &settings, &rerr))
-    return fail(err, "render: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "render: ");
   /* llvmpipe (and GPUs) run the commands asynchronously: finish so the render time is
    * the time of this frame's drawing, not of the next read-back. */
   gl_finish();
@@ -1075,7 +1073,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
   if (rung && ++p->rung_frames >= LIVE_RUNG_INTERVAL &&
       measure_live_rung(p, &fogmap_model, cam, err))
     return 1;
-  if (gl_util_check("pipeline frame", &rerr)) return fail(err, "%s", rerr.message);
+  if (gl_util_check("pipeline frame", &rerr)) return fog_error_pass(err, &rerr);
 
   p->last.upload = upload_ms;
   p->last.render = t1 - t0;
@@ -1093,14 +1091,14 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *er
   return 0;
 }
 
-int pipeline_read_frame(pipeline *p, const frame_pixels *out, pipeline_error *err) {
-  render_error rerr = {{0}};
+int pipeline_read_frame(pipeline *p, const frame_pixels *out, fog_error *err) {
+  fog_error rerr = {0};
   if (pipeline_fog_read(p->fog, out->rgba, out->transmittance, out->inscatter, &rerr))
-    return fail(err, "read-back: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "read-back: ");
   float *depth = out->depth;
   if (depth) {
     if (gl_target_read(&p->scene_target, 1, 1, depth, &rerr))
-      return fail(err, "read-back: %s", rerr.message);
+      return fog_error_wrap(err, &rerr, "read-back: ");
     /* The sky's distance is SCENE_SKY_DISTANCE (1e30); EXR readers and compositors want
      * a finite far value: the camera's far plane. */
     double near, far;
@@ -1111,10 +1109,10 @@ int pipeline_read_frame(pipeline *p, const frame_pixels *out, pipeline_error *er
   return 0;
 }
 
-int pipeline_present(pipeline *p, int width, int height, pipeline_error *err) {
-  render_error rerr = {{0}};
+int pipeline_present(pipeline *p, int width, int height, fog_error *err) {
+  fog_error rerr = {0};
   if (pipeline_fog_present(p->fog, width, height, &rerr))
-    return fail(err, "present: %s", rerr.message);
+    return fog_error_wrap(err, &rerr, "present: ");
   return 0;
 }
 

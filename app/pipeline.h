@@ -21,6 +21,7 @@
 #ifndef FOGPIPE_APP_PIPELINE_H
 #define FOGPIPE_APP_PIPELINE_H
 
+#include "transform/fog_error.h"
 #include "app/frame_pixels.h"
 #include <stdbool.h>
 
@@ -28,10 +29,6 @@
 #include "render/camera.h"
 
 #define PIPELINE_TIMING_WINDOW 31
-
-typedef struct pipeline_error {
-  char message[512];
-} pipeline_error;
 
 typedef struct pipeline pipeline;
 
@@ -100,24 +97,24 @@ typedef struct pipeline_params {
   int live_rung;
 } pipeline_params;
 
-pipeline *pipeline_create(const pipeline_desc *desc, pipeline_error *err);
+pipeline *pipeline_create(const pipeline_desc *desc, fog_error *err);
 void pipeline_destroy(pipeline *p);
 
 /* Renders the next frame into the pipeline's target with the given camera. wait: block
  * until the worker has the next simulation step (recording; while paused only for a
  * requested step); otherwise take the next ready step or re-render the current one
  * (live). Returns non-zero on a GL error or a failed CPU stage. */
-int pipeline_frame(pipeline *p, const camera *cam, bool wait, pipeline_error *err);
+int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err);
 
 /* Reads the last frame back into out (app/frame_pixels.h). */
-int pipeline_read_frame(pipeline *p, const frame_pixels *out, pipeline_error *err);
+int pipeline_read_frame(pipeline *p, const frame_pixels *out, fog_error *err);
 
 /* Draws the last frame's colour into the default framebuffer (window), scaled to w x h. */
-int pipeline_present(pipeline *p, int width, int height, pipeline_error *err);
+int pipeline_present(pipeline *p, int width, int height, fog_error *err);
 
 /* Render size; resizing re-creates the render targets. */
 void pipeline_size(const pipeline *p, int *width, int *height);
-int pipeline_resize(pipeline *p, int width, int height, pipeline_error *err);
+int pipeline_resize(pipeline *p, int width, int height, fog_error *err);
 
 /* Number of simulation steps shown so far (the frame index of the last pipeline_frame). */
 long pipeline_step_index(const pipeline *p);
@@ -125,7 +122,7 @@ long pipeline_step_index(const pipeline *p);
 /* Runs the simulation alone (no transform, no render) for `steps` frames: how --resume
  * reaches frame n deterministically. Only before the first pipeline_frame. A played
  * sequence (VDB or bake) only moves its frame counter. */
-int pipeline_skip(pipeline *p, long steps, pipeline_error *err);
+int pipeline_skip(pipeline *p, long steps, fog_error *err);
 /* Whether frames come from the simulation (else from a VDB or fogmap sequence). */
 bool pipeline_simulates(const pipeline *p);
 /* The simulation's density after the last step or skip (what the transform of that frame

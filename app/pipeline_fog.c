@@ -19,10 +19,10 @@ struct pipeline_fog {
   gl_presenter *presenter;
 };
 
-pipeline_fog *pipeline_fog_create(render_error *err) {
+pipeline_fog *pipeline_fog_create(fog_error *err) {
   pipeline_fog *fog = calloc(1, sizeof *fog);
   if (!fog) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return NULL;
   }
   if (fog_pass_create(&fog->pass, err)) {
@@ -40,7 +40,7 @@ void pipeline_fog_destroy(pipeline_fog *fog) {
   free(fog);
 }
 
-int pipeline_fog_resize(pipeline_fog *fog, int width, int height, render_error *err) {
+int pipeline_fog_resize(pipeline_fog *fog, int width, int height, fog_error *err) {
   gl_target_destroy(&fog->target);
   fog->width = fog->height = 0;
   /* Presenting scales the colour to the window: filtered (read-back uses glReadPixels, and
@@ -54,7 +54,7 @@ int pipeline_fog_resize(pipeline_fog *fog, int width, int height, render_error *
   return 0;
 }
 
-int pipeline_fog_upload(pipeline_fog *fog, const fog_pyramid *pyramid, render_error *err) {
+int pipeline_fog_upload(pipeline_fog *fog, const fog_pyramid *pyramid, fog_error *err) {
   if (fog_pass_upload_pyramid(fog->pass, pyramid, err)) return 1;
   fog->levels = pyramid->levels;
   fog->degree = pyramid->degree;
@@ -64,14 +64,14 @@ int pipeline_fog_upload(pipeline_fog *fog, const fog_pyramid *pyramid, render_er
 }
 
 int pipeline_fog_upload_sun_shadow(pipeline_fog *fog, const fog_sun_shadow *shadow,
-                                   render_error *err) {
+                                   fog_error *err) {
   return fog_pass_upload_sun_shadow(fog->pass, shadow, err);
 }
 
 int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *scene,
-                        const pipeline_fog_settings *settings, render_error *err) {
+                        const pipeline_fog_settings *settings, fog_error *err) {
   if (!fog->uploaded) {
-    snprintf(err->message, sizeof err->message, "no fog grids uploaded yet");
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "no fog grids uploaded yet");
     return 1;
   }
   /* The sum of details needs D_1..D_J; a step computed before the method changed has only
@@ -113,14 +113,14 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
 }
 
 int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, float *inscatter,
-                      render_error *err) {
+                      fog_error *err) {
   if (rgba && gl_target_read(&fog->target, 0, 4, rgba, err)) return 1;
   if (transmittance && gl_target_read(&fog->target, 1, 1, transmittance, err)) return 1;
   if (inscatter && gl_target_read(&fog->target, 2, 3, inscatter, err)) return 1;
   return 0;
 }
 
-int pipeline_fog_present(pipeline_fog *fog, int width, int height, render_error *err) {
+int pipeline_fog_present(pipeline_fog *fog, int width, int height, fog_error *err) {
   /* made on the first present: headless recordings never show a window */
   if (!fog->presenter && !(fog->presenter = gl_presenter_create(err))) return 1;
   if (fog->target.framebuffer)

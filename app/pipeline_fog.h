@@ -15,7 +15,7 @@
 #include "render/fog_sun_shadow.h"
 #include "render/sun_shadow_map.h"
 #include "render/gl_util.h"
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 #include "transform/transform.h"
 
 
@@ -46,21 +46,20 @@ typedef struct pipeline_fog_settings {
 
 typedef struct pipeline_fog pipeline_fog;
 
-pipeline_fog *pipeline_fog_create(render_error *err);
+pipeline_fog *pipeline_fog_create(fog_error *err);
 void pipeline_fog_destroy(pipeline_fog *fog);
-int pipeline_fog_resize(pipeline_fog *fog, int width, int height, render_error *err);
+int pipeline_fog_resize(pipeline_fog *fog, int width, int height, fog_error *err);
 /* Copies the grids (render/fog_field.h) into textures (re-created when their sizes change). */
-int pipeline_fog_upload(pipeline_fog *fog, const fog_pyramid *pyramid, render_error *err);
+int pipeline_fog_upload(pipeline_fog *fog, const fog_pyramid *pyramid, fog_error *err);
 /* Uploads the sun's optical-depth volume (settings.self_shadow = FOG_SUN_SHADOW_VOLUME). */
-int pipeline_fog_upload_sun_shadow(pipeline_fog *fog, const fog_sun_shadow *shadow,
-                                   render_error *err);
+int pipeline_fog_upload_sun_shadow(pipeline_fog *fog, const fog_sun_shadow *shadow, fog_error *err);
 /* Draws the fog over the scene target (colour 0, distance 1) into the fog target. */
 int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *scene,
-                        const pipeline_fog_settings *settings, render_error *err);
+                        const pipeline_fog_settings *settings, fog_error *err);
 /* Rows top first; any pointer may be NULL (inscatter: 3 floats a pixel). */
 int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, float *inscatter,
-                      render_error *err);
+                      fog_error *err);
 /* Blits the fog target's colour to the default framebuffer at width x height. */
-int pipeline_fog_present(pipeline_fog *fog, int width, int height, render_error *err);
+int pipeline_fog_present(pipeline_fog *fog, int width, int height, fog_error *err);
 
 #endif

@@ -33,32 +33,32 @@ void player_destroy(player *p) {
   free(p);
 }
 
-static int create_simulated(player *p, const player_desc *desc, render_error *err) {
+static int create_simulated(player *p, const player_desc *desc, fog_error *err) {
   p->gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, err);
   if (!p->gl) return 1;
   snprintf(p->gl_description, sizeof p->gl_description, "%s, %s, %s",
            gl_context_platform(p->gl), gl_context_version(p->gl), gl_context_renderer(p->gl));
-  pipeline_error perr = {{0}};
+  fog_error perr = {0};
   p->pipe = pipeline_create(&(pipeline_desc){.config = &p->config, .width = desc->width,
                                              .height = desc->height,
                                              .frame_seconds = 1.0 / desc->fps,
                                              .synchronous = desc->synchronous},
                             &perr);
   if (!p->pipe) {
-    snprintf(err->message, sizeof err->message, "%s", perr.message);
+    fog_error_pass(err, &perr);
     return 1;
   }
   return 0;
 }
 
-static int create_session(player *p, const player_desc *desc, render_error *err) {
+static int create_session(player *p, const player_desc *desc, fog_error *err) {
   if (desc->play && p->config.fog.model == FOG_MODEL_VOLUME &&
       render_fog_volume_sequence(&p->config, &p->sequence, err))
     return 1;
-  render_frame_error ferr = {{0}};
+  fog_error ferr = {0};
   p->session = render_session_create(&p->config, desc->width, desc->height, &ferr);
   if (!p->session) {
-    snprintf(err->message, sizeof err->message, "%s", ferr.message);
+    fog_error_pass(err, &ferr);
     return 1;
   }
   snprintf(p->gl_description, sizeof p->gl_description, "%s",
@@ -66,16 +66,16 @@ static int create_session(player *p, const player_desc *desc, render_error *err)
   return 0;
 }
 
-player *player_create(const player_desc *desc, render_error *err) {
+player *player_create(const player_desc *desc, fog_error *err) {
   if (!(desc->width > 0 && desc->height > 0 && desc->fps > 0)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "player: %d x %d pixels at %g frames per second: expected sizes and a rate > 0",
              desc->width, desc->height, desc->fps);
     return NULL;
   }
   player *p = calloc(1, sizeof *p);
   if (!p) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return NULL;
   }
   p->config = *desc->config;
@@ -94,31 +94,31 @@ const char *player_gl_description(const player *p) { return p->gl_description; }
 
 bool player_is_sequential(const player *p) { return p->pipe && pipeline_simulates(p->pipe); }
 
-int player_skip(player *p, long frames, render_error *err) {
+int player_skip(player *p, long frames, fog_error *err) {
   if (!p->pipe || frames <= 0) return 0; /* a session draws any frame n directly */
-  pipeline_error perr = {{0}};
+  fog_error perr = {0};
   if (pipeline_skip(p->pipe, frames, &perr)) {
-    snprintf(err->message, sizeof err->message, "%s", perr.message);
+    fog_error_pass(err, &perr);
     return 1;
   }
   return 0;
 }
 
-int player_frame(player *p, int n, const frame_pixels *out, render_error *err) {
+int player_frame(player *p, int n, const frame_pixels *out, fog_error *err) {
   if (p->pipe) {
-    pipeline_error perr = {{0}};
+    fog_error perr = {0};
     if (pipeline_frame(p->pipe, &p->cam, true, &perr) ||
         pipeline_read_frame(p->pipe, out, &perr)) {
-      snprintf(err->message, sizeof err->message, "%s", perr.message);
+      fog_error_pass(err, &perr);
       return 1;
     }
     return 0;
   }
   const scene_fog_config *f = &p->config.fog;
   {
-    render_frame_error terr = {{0}};
+    fog_error terr = {0};
     if (render_session_set_time(p->session, (n - 1) / p->fps, &terr)) {
-      snprintf(err->message, sizeof err->message, "%s", terr.message);
+      fog_error_pass(err, &terr);
       return 1;
     }
   }
@@ -133,9 +133,9 @@ int player_frame(player *p, int n, const frame_pixels *out, render_error *err) {
                                    a, b, w, err))
       return 1;
   }
-  render_frame_error ferr = {{0}};
+  fog_error ferr = {0};
   if (render_session_frame(p->session, out, &ferr)) {
-    snprintf(err->message, sizeof err->message, "%s", ferr.message);
+    fog_error_pass(err, &ferr);
     return 1;
   }
   return 0;

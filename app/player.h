@@ -23,7 +23,7 @@
 #include <stdbool.h>
 
 #include "app/config.h"
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 
 typedef struct player player;
 
@@ -35,7 +35,7 @@ typedef struct player_desc {
   bool synchronous;           /* the pipeline's CPU stages on the GL thread */
 } player_desc;
 
-player *player_create(const player_desc *desc, render_error *err);
+player *player_create(const player_desc *desc, fog_error *err);
 void player_destroy(player *player);
 /* The GL the frames are drawn with: "egl-surfaceless, 4.5 (Core Profile) Mesa ..., llvmpipe". */
 const char *player_gl_description(const player *player);
@@ -46,12 +46,12 @@ bool player_is_sequential(const player *player);
 /* Moves the source on by `frames` frames without drawing them (only before the first
  * player_frame): a simulation runs them, a played bake only counts them; a render session
  * draws any frame directly and ignores it. */
-int player_skip(player *player, long frames, render_error *err);
+int player_skip(player *player, long frames, fog_error *err);
 /* Draws frame n (1-based; a sequential source: the one after the last drawn or skipped) and
  * reads it back, rows top first, any output may be NULL: rgba (4 linear floats a pixel),
  * the transmittance (1 where no fog) and the depth (distance along the view ray to the first
  * surface; the camera's far plane for the sky). */
-int player_frame(player *player, int n, const frame_pixels *out, render_error *err);
+int player_frame(player *player, int n, const frame_pixels *out, fog_error *err);
 /* The camera the frames are drawn with. */
 const camera *player_camera(const player *player);
 

@@ -22,20 +22,12 @@
 #include "app/clock.h"
 #include "sim/sim.h"
 
-static int fail(recorder_error *err, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(err->message, sizeof err->message, fmt, ap);
-  va_end(ap);
-  return 1;
-}
-
 /* mkdir -p: creates each missing component of path; created gets the first one it made. */
-int recorder_make_folders(const char *path, char *created, size_t created_size,
-                          recorder_error *err) {
+int recorder_make_folders(const char *path, char *created, size_t created_size, fog_error *err) {
   char partial[1024];
   size_t n = strlen(path);
-  if (n == 0 || n >= sizeof partial) return fail(err, "output folder name is empty or too long");
+  if (n == 0 || n >= sizeof partial)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "output folder name is empty or too long");
   memcpy(partial, path, n + 1);
   for (size_t i = 1; i <= n; i++) {
     if (partial[i] != '/' && partial[i] != '\0') continue;
@@ -44,13 +36,15 @@ int recorder_make_folders(const char *path, char *created, size_t created_size,
     if (mkdir(partial, 0777) == 0) {
       if (!created[0]) snprintf(created, created_size, "%s", partial);
     } else if (errno != EEXIST) {
-      return fail(err, "cannot create the output folder %s: %s", partial, strerror(errno));
+      return fog_fail(err, FOG_ERR_FILE_ACCESS, "cannot create the output folder %s: %s", partial,
+                      strerror(errno));
     }
     partial[i] = saved;
   }
   struct stat st;
   if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode))
-    return fail(err, "the output path %s exists and is not a folder", path);
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "the output path %s exists and is not a folder",
+                    path);
   return 0;
 }
 
@@ -59,11 +53,13 @@ static double frame_bytes(int width, int height) {
   return (double)width * (double)height * (4 * 2 + 6 * 4);
 }
 
-int recorder_open(recorder *rec, const recorder_desc *desc, recorder_error *err) {
+int recorder_open(recorder *rec, const recorder_desc *desc, fog_error *err) {
   *rec = (recorder){.width = desc->width, .height = desc->height};
-  if (!desc->folder || !*desc->folder) return fail(err, "no output folder given (--out DIR)");
+  if (!desc->folder || !*desc->folder)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "no output folder given (--out DIR)");
   if (desc->width <= 0 || desc->height <= 0)
-    return fail(err, "frame size %dx%d is not positive", desc->width, desc->height);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "frame size %dx%d is not positive", desc->width,
+                    desc->height);
   snprintf(rec->folder, sizeof rec->folder, "%s", desc->folder);
   /* Strip trailing slashes so paths read FOLDER/NAME.0001.exr. */
   for (size_t n = strlen(rec->folder); n > 1 && rec->folder[n - 1] == '/'; n--)
@@ -77,7 +73,8 @@ int recorder_open(recorder *rec, const recorder_desc *desc, recorder_error *err)
   snprintf(probe, sizeof probe, "%s/.fogpipe-write-probe-%ld.tmp", rec->folder, (long)getpid());
   int fd = open(probe, O_WRONLY | O_CREAT | O_TRUNC, 0666);
   if (fd < 0)
-    return fail(err, "the output folder %s is not writable: %s", rec->folder, strerror(errno));
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "the output folder %s is not writable: %s",
+                    rec->folder, strerror(errno));
   static const char block[4096];
   ssize_t wrote = write(fd, block, sizeof block);
   int write_errno = wrote < 0 ? errno : 0;
@@ -87,18 +84,18 @@ int recorder_open(recorder *rec, const recorder_desc *desc, recorder_error *err)
   unlink(probe);
   if (wrote != (ssize_t)sizeof block || sync_failed) {
     int e = write_errno ? write_errno : sync_errno ? sync_errno : ENOSPC;
-    return fail(err, "cannot write into the output folder %s: %s%s", rec->folder, strerror(e),
-                e == ENOSPC ? " (the disk is full)" : "");
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "cannot write into the output folder %s: %s%s",
+                    rec->folder, strerror(e), e == ENOSPC ? " (the disk is full)" : "");
   }
   struct statvfs vfs;
   if (statvfs(rec->folder, &vfs) == 0) {
     double free_bytes = (double)vfs.f_bavail * (double)vfs.f_frsize;
     if (free_bytes < frame_bytes(rec->width, rec->height))
-      return fail(err,
-                  "the disk holding %s is full: %.1f MB free, one %dx%d frame needs up to "
-                  "%.1f MB",
-                  rec->folder, free_bytes / 1e6, rec->width, rec->height,
-                  frame_bytes(rec->width, rec->height) / 1e6);
+      return fog_fail(err, FOG_ERR_FILE_ACCESS,
+                      "the disk holding %s is full: %.1f MB free, one %dx%d frame needs up to "
+                      "%.1f MB",
+                      rec->folder, free_bytes / 1e6, rec->width, rec->height,
+                      frame_bytes(rec->width, rec->height) / 1e6);
   }
   return 0;
 }
@@ -120,7 +117,7 @@ void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size
   snprintf(path, size, "%s/%s.%04d.exr", rec->folder, rec->name, frame);
 }
 
-int recorder_complete_frames(const recorder *rec, int first, int last, recorder_error *err) {
+int recorder_complete_frames(const recorder *rec, int first, int last, fog_error *err) {
   int done = first - 1;
   char path[1200];
   for (int frame = first; frame <= last; frame++) {
@@ -128,18 +125,21 @@ int recorder_complete_frames(const recorder *rec, int first, int last, recorder_
     struct stat st;
     if (stat(path, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0) break;
     char identity[sizeof rec->identity] = "";
-    sim_error serr = {{0}};
+    fog_error serr = {0};
     if (image_read_exr_string(path, RECORDER_IDENTITY_ATTRIBUTE, identity, sizeof identity,
                               &serr) == 0 &&
         strcmp(identity, rec->identity) != 0)
     {
-      fail(err, "%s was recorded from another scene or settings (%s; this run: %s)", path,
-           identity, rec->identity);
+      fog_fail(err, FOG_ERR_BAD_FILE,
+               "%s was recorded from another scene or settings (%s; this run: %s)", path, identity,
+               rec->identity);
       return -1;
     }
     if (!identity[0] && strstr(serr.message, "no string attribute")) {
-      fail(err, "%s carries no recording identity (made by an older fogpipe or another "
-           "program): cannot tell it belongs to this scene", path);
+      fog_fail(err, FOG_ERR_BAD_FILE,
+               "%s carries no recording identity (made by an older fogpipe or another "
+               "program): cannot tell it belongs to this scene",
+               path);
       return -1;
     }
     /* Every chunk decodes: loading one channel decodes them all. */
@@ -173,14 +173,14 @@ int recorder_remove_stale_temporaries(const recorder *rec) {
 }
 
 int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *pixels,
-                         float *scratch, recorder_error *err) {
+                         float *scratch, fog_error *err) {
   const int w = rec->width, h = rec->height;
   image_channel channels[FRAME_EXR_CHANNELS];
   frame_exr_channels(pixels->rgba, pixels->transmittance, pixels->depth, pixels->inscatter, w,
                      h, pixels->bottom_up, scratch, channels);
   char path[1200];
   recorder_frame_path(rec, frame, path, sizeof path);
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   const image_exr_string identity = {RECORDER_IDENTITY_ATTRIBUTE, rec->identity};
   image_exr_matrix camera[2] = {{.name = "worldToCamera"}, {.name = "worldToNDC"}};
   memcpy(camera[0].m, pixels->world_to_camera, sizeof camera[0].m);
@@ -193,8 +193,8 @@ int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *p
     struct statvfs vfs;
     int full = statvfs(rec->folder, &vfs) == 0 &&
                (double)vfs.f_bavail * (double)vfs.f_frsize < frame_bytes(w, h);
-    return fail(err, "cannot write frame %d: %s%s", frame, serr.message,
-                full ? " (the disk is full)" : "");
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "cannot write frame %d: %s%s", frame, serr.message,
+                    full ? " (the disk is full)" : "");
   }
   return 0;
 }
@@ -232,11 +232,11 @@ static void append_quoted(char *cmd, size_t size, const char *s) {
   cmd[used] = '\0';
 }
 
-
-int recorder_write_preview(const recorder *rec, int frame_count, double fps,
-                           const char *video_path, recorder_error *err) {
+int recorder_write_preview(const recorder *rec, int frame_count, double fps, const char *video_path,
+                           fog_error *err) {
   if (!recorder_have_ffmpeg())
-    return fail(err, "ffmpeg is not installed: no preview written (apt-get install ffmpeg)");
+    return fog_fail(err, FOG_ERR_UNSUPPORTED,
+                    "ffmpeg is not installed: no preview written (apt-get install ffmpeg)");
   /* ffmpeg picks the container from the extension, so the temporary name keeps it. */
   char temp[1200];
   const char *dot = strrchr(video_path, '.');
@@ -255,43 +255,48 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps,
   append_quoted(cmd, sizeof cmd, temp);
   size_t n = (size_t)w * (size_t)h;
   uint8_t *rgb = malloc(n * 3);
-  if (!rgb) return fail(err, "out of memory for the preview");
+  if (!rgb) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the preview");
   srgb8_encoder encoder; /* linear frames -> 8-bit sRGB video */
   srgb8_encoder_init(&encoder);
   struct sigaction ignore = {.sa_handler = SIG_IGN}, previous;
   sigaction(SIGPIPE, &ignore, &previous); /* a dying ffmpeg must not kill us */
   FILE *pipe = popen(cmd, "w");
   int status = 0;
-  if (!pipe) status = fail(err, "cannot start ffmpeg: %s", strerror(errno));
+  if (!pipe)
+    status = fog_fail(err, FOG_ERR_FILE_ACCESS, "cannot start ffmpeg: %s", strerror(errno));
   static const char *const names[3] = {"R", "G", "B"};
   char path[1200];
   for (int frame = 1; frame <= frame_count && !status; frame++) {
     recorder_frame_path(rec, frame, path, sizeof path);
     for (int c = 0; c < 3 && !status; c++) {
       fogmap plane = {0};
-      sim_error serr = {{0}};
+      fog_error serr = {0};
       if (fogmap_load(path, &(fogmap_load_desc){.channel = names[c]}, &plane, &serr)) {
-        status = fail(err, "preview: cannot read back frame %d: %s", frame, serr.message);
+        status = fog_error_wrap(err, &serr, "preview: cannot read back frame %d: ", frame);
         break;
       }
       if (plane.width != w || plane.height != h)
-        status = fail(err, "preview: frame %s is %dx%d, expected %dx%d", path, plane.width,
-                      plane.height, w, h);
+        status =
+            fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "preview: frame %s is %dx%d, expected %dx%d",
+                     path, plane.width, plane.height, w, h);
       for (size_t i = 0; i < n && !status; i++)
         rgb[3 * i + c] = srgb8_encode(&encoder, plane.density[i]);
       fogmap_destroy(&plane);
     }
     if (!status && fwrite(rgb, 3, n, pipe) != n)
-      status = fail(err, "preview: ffmpeg stopped reading frames (see its message above)");
+      status = fog_fail(err, FOG_ERR_FILE_ACCESS,
+                        "preview: ffmpeg stopped reading frames (see its message above)");
   }
   if (pipe) {
     int rc = pclose(pipe);
-    if (!status && rc != 0) status = fail(err, "preview: ffmpeg failed (exit status %d)", rc);
+    if (!status && rc != 0)
+      status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: ffmpeg failed (exit status %d)", rc);
   }
   sigaction(SIGPIPE, &previous, NULL);
   free(rgb);
   if (!status && rename(temp, video_path) != 0)
-    status = fail(err, "preview: cannot rename %s to %s: %s", temp, video_path, strerror(errno));
+    status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: cannot rename %s to %s: %s", temp,
+                      video_path, strerror(errno));
   if (status) unlink(temp);
   return status;
 }

@@ -14,13 +14,10 @@
 #ifndef FOGPIPE_APP_RECORDER_H
 #define FOGPIPE_APP_RECORDER_H
 
+#include "transform/fog_error.h"
 #include "app/frame_exr.h"
 #include <stdbool.h>
 #include <stdio.h>
-
-typedef struct recorder_error {
-  char message[512];
-} recorder_error;
 
 typedef struct recorder_desc {
   const char *folder;  /* output folder; created (with parents) if missing */
@@ -59,7 +56,7 @@ typedef struct recorder_frame {
 
 /* Creates the folder if needed and proves it is writable by creating and removing a probe
  * file, so a read-only folder or a full disk is reported before any rendering. */
-int recorder_open(recorder *rec, const recorder_desc *desc, recorder_error *err);
+int recorder_open(recorder *rec, const recorder_desc *desc, fog_error *err);
 
 /* Path of 1-based frame number `frame`: FOLDER/NAME.%04d.exr. */
 void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size);
@@ -69,7 +66,7 @@ void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size
  * truncated by hand or by a broken disk is rendered again) and carries rec->identity.
  * -1 with err set when a frame there was made from another recording (its identity
  * differs, or it has none): resuming would mix two sequences. */
-int recorder_complete_frames(const recorder *rec, int first, int last, recorder_error *err);
+int recorder_complete_frames(const recorder *rec, int first, int last, fog_error *err);
 
 /* Removes temporary files a killed run (SIGKILL, power loss) may have left beside the
  * frames: image_write_exr's ".NAME.NNNN.exr.tmp.XXXXXX". Returns how many were removed. */
@@ -79,7 +76,7 @@ int recorder_remove_stale_temporaries(const recorder *rec);
  * depth (also as Z, what compositors read) and inscatter.R/G/B as 32-bit float. `scratch`
  * must hold RECORDER_PLANES*width*height floats (no allocation per frame). On failure (disk full, folder removed) nothing is left at the frame's path. */
 int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *pixels,
-                         float *scratch, recorder_error *err);
+                         float *scratch, fog_error *err);
 
 /* True when an `ffmpeg` executable is on PATH. */
 bool recorder_have_ffmpeg(void);
@@ -87,8 +84,8 @@ bool recorder_have_ffmpeg(void);
 /* Encodes frames 1..frame_count of the folder into an H.264 video at `fps` by reading each
  * EXR's R, G, B back and piping 8-bit sRGB to ffmpeg (so a resumed recording gets the same
  * preview as an uninterrupted one). Written to a temporary name and renamed. */
-int recorder_write_preview(const recorder *rec, int frame_count, double fps,
-                           const char *video_path, recorder_error *err);
+int recorder_write_preview(const recorder *rec, int frame_count, double fps, const char *video_path,
+                           fog_error *err);
 
 /* Progress of a sequence: on a terminal one line redrawn in place with a bar and the ETA;
  * otherwise one plain line per frame (logs stay readable). */
@@ -112,7 +109,6 @@ void recorder_progress_end(recorder_progress *p);
 void recorder_remove_created_folders(const recorder *rec);
 /* mkdir -p path; created (created_size bytes, "" to start) gets the first folder it made,
  * for recorder_remove_created_folders. */
-int recorder_make_folders(const char *path, char *created, size_t created_size,
-                          recorder_error *err);
+int recorder_make_folders(const char *path, char *created, size_t created_size, fog_error *err);
 
 #endif

@@ -20,11 +20,11 @@ void render_fog_destroy(render_fog *fog) {
 
 /* The fog of a `[fog] vdb` config: frame cfg->fog.vdb_frame of the sequence (the last by
  * default), placed and profiled by the sequence (vdb_source_apply_config). */
-static int render_vdb_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
+static int render_vdb_fog(render_fog *fog, const scene_config *cfg, fog_error *err) {
   vdb_source source;
-  scene_config_error cerr;
+  fog_error cerr;
   if (vdb_source_open_config(&source, cfg, &cerr)) {
-    snprintf(err->message, sizeof err->message, "%s", cerr.message);
+    fog_error_pass(err, &cerr);
     return 1;
   }
   int status = 1;
@@ -32,11 +32,11 @@ static int render_vdb_fog(render_fog *fog, const scene_config *cfg, render_error
   scene_config *placed = malloc(sizeof *placed);
   int index = vdb_source_index_of(&source, cfg->fog.vdb_frame);
   if (!placed) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     goto done;
   }
   if (index < 0) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "%.200s:%d: [fog] vdb: no frame %d in the sequence (frames %d..%d)", cfg->path,
              cfg->fog.vdb_line, cfg->fog.vdb_frame, source.frame_numbers[0],
              source.frame_numbers[source.count - 1]);
@@ -44,10 +44,9 @@ static int render_vdb_fog(render_fog *fog, const scene_config *cfg, render_error
   }
   *placed = *cfg;
   vdb_source_apply_config(&source, placed);
-  sim_error serr;
+  fog_error serr;
   if (vdb_source_fogmap_at(&source, index / source.fps, &map, &serr)) {
-    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] vdb: %.280s", cfg->path,
-             cfg->fog.vdb_line, serr.message);
+    fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, cfg->fog.vdb_line);
     goto done;
   }
   status = render_fog_create_map(fog, placed, &map, err);
@@ -58,12 +57,11 @@ done:
   return status;
 }
 
-int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, render_error *err) {
-  sim_error serr = {{0}};
+int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, fog_error *err) {
+  fog_error serr = {0};
   const char *input = cfg->fog.vdb;
   if (vdb_sequence_find(&input, 1, -1, -1, seq, &serr)) {
-    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] vdb: %.280s", cfg->path,
-             cfg->fog.vdb_line, serr.message);
+    fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, cfg->fog.vdb_line);
     return 1;
   }
   return 0;
@@ -71,16 +69,15 @@ int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, rende
 
 /* One file of the sequence as the volume's grid (render_fog_load_volume). */
 static int load_volume_file(const scene_config *cfg, const char *path, vdb_frame *frame,
-                            volume_grid_desc *grid, render_error *err) {
+                            volume_grid_desc *grid, fog_error *err) {
   const scene_fog_config *f = &cfg->fog;
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   if (vdb_frame_load(path,
                      &(vdb_frame_desc){.grid = f->vdb_grid,
                                        .up = f->vdb_up == 1 ? VDB_UP_Y : VDB_UP_Z,
                                        .keep_grid = 1, .grid_only = 1},
                      frame, &serr)) {
-    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] vdb: %.280s", cfg->path,
-             f->vdb_line, serr.message);
+    fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, f->vdb_line);
     return 1;
   }
   vdb_dense_grid *g = &frame->grid;
@@ -98,7 +95,7 @@ static int load_volume_file(const scene_config *cfg, const char *path, vdb_frame
 }
 
 int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_grid_desc *grid,
-                           render_error *err) {
+                           fog_error *err) {
   const scene_fog_config *f = &cfg->fog;
   *frame = (vdb_frame){0};
   vdb_sequence seq;
@@ -106,7 +103,7 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
   int index = vdb_frame_index(seq.frames, seq.count, f->vdb_frame);
   int status = 1;
   if (index < 0)
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "%.200s:%d: [fog] vdb: no frame %d in the sequence (frames %d..%d)", cfg->path,
              f->vdb_line, f->vdb_frame, seq.frames[0], seq.frames[seq.count - 1]);
   else
@@ -128,8 +125,7 @@ static bool same_placement(const vdb_frame *a, const vdb_frame *b) {
 /* (1 - w) a + w b on the union of the two grids' index boxes (zero beyond each), into
  * out (malloc'd values); the placement is a's with the union's corner. */
 static int blend_grids(const vdb_frame *fa, const volume_grid_desc *a, const vdb_frame *fb,
-                       const volume_grid_desc *b, double w, volume_grid_desc *out,
-                       render_error *err) {
+                       const volume_grid_desc *b, double w, volume_grid_desc *out, fog_error *err) {
   const vdb_dense_grid *ga = &fa->grid, *gb = &fb->grid;
   int lo[3], dim[3];
   for (int c = 0; c < 3; c++) {
@@ -140,7 +136,7 @@ static int blend_grids(const vdb_frame *fa, const volume_grid_desc *a, const vdb
   size_t n = (size_t)dim[0] * dim[1] * dim[2];
   float *values = calloc(n, sizeof *values);
   if (!values) {
-    snprintf(err->message, sizeof err->message, "out of memory blending two volume frames");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory blending two volume frames");
     return 1;
   }
   const vdb_dense_grid *grids[2] = {ga, gb};
@@ -170,7 +166,7 @@ static int blend_grids(const vdb_frame *fa, const volume_grid_desc *a, const vdb
  * read into the slot that does not hold `keep` (the other frame of the pair being shown)
  * when it is not there. */
 static int played_frame(render_fog *fog, const scene_config *cfg, const vdb_sequence *seq,
-                        int index, int keep, int *slot, render_error *err) {
+                        int index, int keep, int *slot, fog_error *err) {
   for (int k = 0; k < 2; k++)
     if (fog->played[k].grid.values && fog->played_index[k] == index) {
       *slot = k;
@@ -211,7 +207,7 @@ fog_model render_fog_model(render_fog *fog) {
  * optical-depth volume computed and uploaded where the model needs one. Only with
  * [fog] albedo > 0: albedo 0 is eq. 4, the image as it was. */
 static int render_fog_shadow(render_fog *fog, const scene_config *cfg, const fog_model *model,
-                             render_error *err) {
+                             fog_error *err) {
   fog_pass_params *p = &fog->params;
   bool on = cfg->fog.albedo > 0 && cfg->shadow.fog_self_shadow;
   p->self_shadow = on ? fog_sun_shadow_kind_of(model, p->sun.direction) : FOG_SUN_SHADOW_NONE;
@@ -229,9 +225,8 @@ static int render_fog_shadow(render_fog *fog, const scene_config *cfg, const fog
   return fog_pass_upload_sun_shadow(fog->pass, &fog->sun_shadow, err);
 }
 
-int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg,
-                               const vdb_sequence *seq, int a, int b, double w,
-                               render_error *err) {
+int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg, const vdb_sequence *seq,
+                               int a, int b, double w, fog_error *err) {
   int sa, sb;
   if (played_frame(fog, cfg, seq, a, b, &sa, err)) return 1;
   const volume_grid_desc *shown = &fog->played_grid[sa];
@@ -258,7 +253,7 @@ int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg,
 
 /* model = volume: the grid of render_fog_load_volume, integrated exactly, or marched at
  * volume_step when that is set. */
-static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
+static int render_volume_fog(render_fog *fog, const scene_config *cfg, fog_error *err) {
   const scene_fog_config *f = &cfg->fog;
   vdb_frame frame;
   volume_grid_desc grid;
@@ -285,14 +280,14 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, render_er
 /* An analytic model of the ladder (docs/architecture.md, the model table): no fogmap and no transform, the pass's
  * parameters alone (render/fog_models.def lists the keys each reads; docs/config.md what they mean). */
 /* model = rbf: the rbf lines and the emitters' puffs at `time`, density_scale applied. */
-static int rbfs_at(render_fog *fog, const scene_config *cfg, double time, render_error *err) {
+static int rbfs_at(render_fog *fog, const scene_config *cfg, double time, fog_error *err) {
   const scene_fog_config *f = &cfg->fog;
   int n = f->rbf_count;
   for (int e = 0; e < f->rbf_emitter_count; e++) n += fog_rbf_emitter_count(&f->rbf_emitters[e]);
   if (!fog->rbfs || n > fog->rbf_capacity) {
     fog_rbf *grown = realloc(fog->rbfs, sizeof(fog_rbf) * (size_t)(n > 0 ? n : 1));
     if (!grown) {
-      snprintf(err->message, sizeof err->message, "rbf fog: out of memory (%d Gaussians)", n);
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "rbf fog: out of memory (%d Gaussians)", n);
       return 1;
     }
     fog->rbfs = grown, fog->rbf_capacity = n > 0 ? n : 1;
@@ -308,8 +303,7 @@ static int rbfs_at(render_fog *fog, const scene_config *cfg, double time, render
   return 0;
 }
 
-int render_fog_set_rbfs(render_fog *fog, const scene_config *cfg, double time,
-                        render_error *err) {
+int render_fog_set_rbfs(render_fog *fog, const scene_config *cfg, double time, fog_error *err) {
   if (cfg->fog.model != FOG_MODEL_RBF) return 0;
   if (rbfs_at(fog, cfg, time, err)) return 1;
   fog_model model = render_fog_model(fog);
@@ -328,8 +322,7 @@ bool render_fog_animated(const scene_config *cfg) {
          uses_octaves(cfg);
 }
 
-int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,
-                        render_error *err) {
+int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time, fog_error *err) {
   if (!render_fog_animated(cfg)) return 0;
   if (uses_octaves(cfg))
     fog->params.model_time = time;
@@ -342,7 +335,7 @@ int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,
 /* model = perlin (or quadric volumes with noise): the octaves of the config, the Perlin
  * fog filling the terrain's footprint between [box] floor and top (checked by the config),
  * uploaded to the pass. */
-static int perlin_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
+static int perlin_fog(render_fog *fog, const scene_config *cfg, fog_error *err) {
   const scene_fog_config *f = &cfg->fog;
   fog_perlin_desc desc = fog_perlin_desc_default();
   desc.seed = f->perlin_seed;
@@ -361,8 +354,8 @@ static int perlin_fog(render_fog *fog, const scene_config *cfg, render_error *er
   if (fog_perlin_create(&fog->perlin, &desc, err)) {
     char reason[sizeof err->message];
     snprintf(reason, sizeof reason, "%s", err->message);
-    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] model = %s: %.250s",
-             cfg->path, f->model_line, fog_model_table[f->model].name, reason);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.200s:%d: [fog] model = %s: %.250s", cfg->path,
+             f->model_line, fog_model_table[f->model].name, reason);
     return 1;
   }
   fog->params.model_perlin = &fog->perlin;
@@ -370,7 +363,7 @@ static int perlin_fog(render_fog *fog, const scene_config *cfg, render_error *er
   return fog_pass_upload_perlin(fog->pass, &fog->perlin, err);
 }
 
-static int render_analytic_fog(render_fog *fog, const scene_config *cfg, render_error *err) {
+static int render_analytic_fog(render_fog *fog, const scene_config *cfg, fog_error *err) {
   const scene_fog_config *f = &cfg->fog;
   bool rbf = f->model == FOG_MODEL_RBF;
   bool quadric = f->model == FOG_MODEL_QUADRIC;
@@ -414,15 +407,15 @@ static void render_fog_beside(render_fog *fog, const scene_config *cfg) {
   fog->params.model_quadric_count = f->quadric_count;
 }
 
-static int render_fog_create_model(render_fog *fog, const scene_config *cfg, render_error *err);
+static int render_fog_create_model(render_fog *fog, const scene_config *cfg, fog_error *err);
 
-int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err) {
+int render_fog_create(render_fog *fog, const scene_config *cfg, fog_error *err) {
   int status = render_fog_create_model(fog, cfg, err);
   if (!status) render_fog_beside(fog, cfg);
   return status;
 }
 
-static int render_fog_create_model(render_fog *fog, const scene_config *cfg, render_error *err) {
+static int render_fog_create_model(render_fog *fog, const scene_config *cfg, fog_error *err) {
   *fog = (render_fog){0};
   const scene_fog_config *f = &cfg->fog;
   if (f->model == FOG_MODEL_VOLUME) {
@@ -440,11 +433,10 @@ static int render_fog_create_model(render_fog *fog, const scene_config *cfg, ren
   const char *key = baked ? "sequence" : "fogmap";
   const int line = baked ? f->sequence_line : f->fogmap_line;
   fogmap map = {0};
-  sim_error serr;
+  fog_error serr;
   fogmap_load_desc load = {.channel = f->channel[0] ? f->channel : NULL};
   if (fogmap_load(path, &load, &map, &serr)) {
-    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] %s: %.280s", cfg->path, line,
-             key, serr.message);
+    fog_error_wrap(err, &serr, "%.200s:%d: [fog] %s: ", cfg->path, line, key);
     return 1;
   }
   int status = render_fog_create_map(fog, cfg, &map, err);
@@ -452,14 +444,14 @@ static int render_fog_create_model(render_fog *fog, const scene_config *cfg, ren
   if (status) { /* name the file: the GL's limits, the transform's sizes are about it */
     char reason[sizeof err->message];
     snprintf(reason, sizeof reason, "%s", err->message);
-    snprintf(err->message, sizeof err->message, "%.120s:%d: [fog] %s %.120s: %.250s",
-             cfg->path, line, key, path, reason);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.120s:%d: [fog] %s %.120s: %.250s", cfg->path, line,
+             key, path, reason);
   }
   return status;
 }
 
 int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap *given,
-                          render_error *err) {
+                          fog_error *err) {
   *fog = (render_fog){0};
   const scene_fog_config *f = &cfg->fog;
   const fogmap map = *given;
@@ -470,7 +462,7 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   if (levels > max_levels) levels = max_levels;
   if (levels > FOG_MAX_LEVELS) levels = FOG_MAX_LEVELS;
   transform_plan *plan = NULL;
-  transform_error terr = {{0}};
+  fog_error terr = {0};
   transform_desc desc = {.width = map.width, .height = map.height, .levels = levels,
                          .basis = transform_basis_of_degree(f->degree), .boundary = boundary};
   size_t n = (size_t)map.width * map.height;
@@ -478,12 +470,11 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   float *approx[FOG_MAX_LEVELS + 1] = {0}, *detail[FOG_MAX_LEVELS + 1] = {0};
   int status = 1;
   if (!coefficients) {
-    snprintf(err->message, sizeof err->message, "out of memory for the fog transform");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the fog transform");
     goto done;
   }
   if (transform_plan_create(&plan, &desc, &terr)) {
-    snprintf(err->message, sizeof err->message, "%.200s: [fog] transform: %.280s", cfg->path,
-             terr.message);
+    fog_error_wrap(err, &terr, "%.200s: [fog] transform: ", cfg->path);
     goto done;
   }
   for (int l = 0; l <= levels; l++) {
@@ -492,7 +483,7 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
     approx[l] = transform_alloc_floats((size_t)w * h);
     detail[l] = transform_alloc_floats((size_t)w * h);
     if (!approx[l] || !detail[l]) {
-      snprintf(err->message, sizeof err->message, "out of memory for the fog pyramid");
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the fog pyramid");
       goto done;
     }
   }
@@ -505,7 +496,7 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
     if (transform_grid_create_level(plan, l, approx[l], &fog->pyramid.approx[l], &terr) ||
         (l > 0 &&
          transform_grid_create_level(plan, l, detail[l], &fog->pyramid.detail[l], &terr))) {
-      snprintf(err->message, sizeof err->message, "fog pyramid: %.400s", terr.message);
+      fog_error_wrap(err, &terr, "fog pyramid: ");
       goto done;
     }
   }
@@ -565,7 +556,7 @@ done:
 }
 
 int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
-                    const gl_target *out, render_error *err) {
+                    const gl_target *out, fog_error *err) {
   gl_target_bind(out);
   fog->params.volume = &fog->volume; /* the struct may have been copied */
   fog->params.model_rbfs = fog->rbfs;

@@ -50,30 +50,29 @@ typedef struct render_fog {
  * cfg->fog.vdb placed and profiled by the sequence: app/vdb_source.h), transforms it, creates the fog pass and
  * uploads the grids; for an analytic model (cfg->fog.model) only the pass and its
  * parameters. Needs a current GL context. Errors name the config's file:line. */
-int render_fog_create(render_fog *fog, const scene_config *cfg, render_error *err);
+int render_fog_create(render_fog *fog, const scene_config *cfg, fog_error *err);
 /* The same for a fogmap in memory (a VDB frame: app/vdb_source.h); cfg gives the box,
  * profile and rendering settings, cfg->fog.fogmap is not read. map is not kept. */
 int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap *map,
-                          render_error *err);
+                          fog_error *err);
 void render_fog_destroy(render_fog *fog);
 /* model = volume: cfg->fog.vdb as a sequence (vdb_sequence_destroy when done). Errors
  * name [fog] vdb's file:line. */
-int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, render_error *err);
+int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, fog_error *err);
 /* model = volume's grid: frame cfg->fog.vdb_frame of cfg->fog.vdb (the last for -1) with
  * density_scale applied, placed where the bake put it (the VDB's transform, its up axis
  * turned into Y; [box] does not move it). grid->values live in *frame: vdb_frame_destroy
  * when done (also safe after a failure). Errors name the config's file:line. */
 int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_grid_desc *grid,
-                           render_error *err);
+                           fog_error *err);
 /* model = volume: shows (1 - w) F[a] + w F[b] of seq (cfg's sequence; a, b its indices, as
  * vdb_sequence_position gives them) from now on, the two grids laid over each other voxel
  * by voxel on the union of their boxes: the fog at a time between two frames, as the 2.5D
  * fogmaps blend (the exact integral is linear in the density, so its optical depth is the
  * blend of the frames'). Frames placed differently (another transform) are not blended:
  * the nearer one shows. For the fog made by render_fog_create from cfg. */
-int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg,
-                               const vdb_sequence *seq, int a, int b, double w,
-                               render_error *err);
+int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg, const vdb_sequence *seq,
+                               int a, int b, double w, fog_error *err);
 /* Whether the fog changes with time by itself: model = rbf with emitters (puffs carried by
  * the wind), model = perlin (its octaves drift). */
 bool render_fog_animated(const scene_config *cfg);
@@ -81,13 +80,11 @@ bool render_fog_animated(const scene_config *cfg);
  * octaves where they have drifted by then (and the sun's volume
  * of the fog's shadow, where the model has one). For the fog made by render_fog_create from
  * cfg; nothing to do for other fog. */
-int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time,
-                        render_error *err);
+int render_fog_set_time(render_fog *fog, const scene_config *cfg, double time, fog_error *err);
 /* model = rbf: the config's Gaussians read again (a brush changed them, and their count;
  * app/rbf_brush.h) with its emitters' puffs at `time`, and the sun's shadow volume of them.
  * For the fog made by render_fog_create from a config of the same model. */
-int render_fog_set_rbfs(render_fog *fog, const scene_config *cfg, double time,
-                        render_error *err);
+int render_fog_set_rbfs(render_fog *fog, const scene_config *cfg, double time, fog_error *err);
 /* The scene pass's sun shadow map for light shafts ([light] shafts, with albedo > 0); the
  * map must outlive the fog's draws. */
 void render_fog_set_shafts(render_fog *fog, const scene_config *cfg, const sun_shadow_map *map);
@@ -102,6 +99,6 @@ fog_model render_fog_model(render_fog *fog);
 /* Draws the fog over the scene target (colour 0, distance 1) into out (RGBA32F colour 0,
  * R32F transmittance 1), both width x height. */
 int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
-                    const gl_target *out, render_error *err);
+                    const gl_target *out, fog_error *err);
 
 #endif

@@ -9,17 +9,17 @@
 #include "render/render.h"
 #include "sim/sim.h"
 
-int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *width,
-                                int *height, render_frame_error *err) {
+int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *width, int *height,
+                                fog_error *err) {
   *heights = NULL;
   *width = *height = 0;
   if (!cfg->terrain.heightmap[0]) return 0;
   fogmap map;
-  sim_error serr;
+  fog_error serr;
   /* A 16-bit grey PNG reads as value / 65535: heights in [0, 1]. */
   if (fogmap_load(cfg->terrain.heightmap, &(fogmap_load_desc){0}, &map, &serr)) {
-    snprintf(err->message, sizeof err->message, "%.200s:%d: [terrain] heightmap: %.280s", cfg->path,
-             cfg->terrain.heightmap_line, serr.message);
+    fog_error_wrap(err, &serr, "%.200s:%d: [terrain] heightmap: ", cfg->path,
+                   cfg->terrain.heightmap_line);
     return 1;
   }
   *heights = map.density; /* ownership moves to the caller */
@@ -36,13 +36,12 @@ void render_scene_destroy(render_scene *s) {
   *s = (render_scene){0};
 }
 
-int render_scene_geometry_create(const scene_config *cfg, scene_geometry *geo,
-                                 render_error *err) {
+int render_scene_geometry_create(const scene_config *cfg, scene_geometry *geo, fog_error *err) {
   float *heights = NULL;
   int hw = 0, hh = 0;
-  render_frame_error ferr;
+  fog_error ferr;
   if (render_frame_load_heightmap(cfg, &heights, &hw, &hh, &ferr)) {
-    snprintf(err->message, sizeof err->message, "%s", ferr.message);
+    fog_error_pass(err, &ferr);
     return 1;
   }
   scene_desc desc;
@@ -53,7 +52,7 @@ int render_scene_geometry_create(const scene_config *cfg, scene_geometry *geo,
 }
 
 int render_scene_create(render_scene *s, const scene_config *cfg, int width, int height,
-                        render_error *err) {
+                        fog_error *err) {
   *s = (render_scene){.width = width, .height = height};
   scene_config_camera(cfg, &s->cam);
   int status = 1;
@@ -67,7 +66,7 @@ int render_scene_create(render_scene *s, const scene_config *cfg, int width, int
     goto done;
   s->distance = malloc((size_t)width * height * sizeof *s->distance);
   if (!s->distance) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     goto done;
   }
   scene_pass_run(s->pass, &s->cam, &s->target);
@@ -98,13 +97,13 @@ void render_session_destroy(render_session *s) {
 }
 
 render_session *render_session_create(const scene_config *cfg, int width, int height,
-                                      render_frame_error *err) {
+                                      fog_error *err) {
   render_session *s = calloc(1, sizeof *s);
   if (!s) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return NULL;
   }
-  render_error rerr = {0};
+  fog_error rerr = {0};
   s->ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
   if (!s->ctx) goto fail;
   snprintf(s->gl_description, sizeof s->gl_description, "%s, %s, %s",
@@ -128,32 +127,32 @@ render_session *render_session_create(const scene_config *cfg, int width, int he
   s->lamps_animated = scene_config_lamps_animated(cfg);
   return s;
 fail:
-  snprintf(err->message, sizeof err->message, "%s", rerr.message);
+  fog_error_pass(err, &rerr);
   render_session_destroy(s);
   return NULL;
 }
 
 const char *render_session_gl_description(const render_session *s) { return s->gl_description; }
 
-int render_session_set_time(render_session *s, double time, render_frame_error *err) {
+int render_session_set_time(render_session *s, double time, fog_error *err) {
   if (s->has_fog && render_fog_animated(&s->config)) {
-    render_error ferr = {0};
+    fog_error ferr = {0};
     if (render_fog_set_time(&s->fog, &s->config, time, &ferr)) {
-      snprintf(err->message, sizeof err->message, "%s", ferr.message);
+      fog_error_pass(err, &ferr);
       return 1;
     }
   }
   if (!s->lamps_animated) return 0;
   const fog_lamps lamps = scene_config_fog_lamps_at(&s->config, time);
   if (s->has_fog) s->fog.params.lamps = lamps;
-  render_error rerr = {0};
+  fog_error rerr = {0};
   if (scene_pass_set_lamps(s->scene.pass, &lamps, &rerr)) {
-    snprintf(err->message, sizeof err->message, "%s", rerr.message);
+    fog_error_pass(err, &rerr);
     return 1;
   }
   scene_pass_run(s->scene.pass, &s->scene.cam, &s->scene.target);
   if (gl_util_check("render: lamps", &rerr)) {
-    snprintf(err->message, sizeof err->message, "%s", rerr.message);
+    fog_error_pass(err, &rerr);
     return 1;
   }
   return 0;
@@ -163,8 +162,8 @@ render_fog *render_session_fog(render_session *s) { return s->has_fog ? &s->fog 
 
 /* The scene was drawn once (render_scene_create: the camera does not move in a session);
  * a frame is the fog over it. */
-int render_session_frame(render_session *s, const frame_pixels *out, render_frame_error *err) {
-  render_error rerr = {0};
+int render_session_frame(render_session *s, const frame_pixels *out, fog_error *err) {
+  fog_error rerr = {0};
   const render_scene *sc = &s->scene;
   size_t pixels = (size_t)sc->width * sc->height;
   if (s->has_fog) {
@@ -187,12 +186,12 @@ int render_session_frame(render_session *s, const frame_pixels *out, render_fram
           sc->distance[k] >= SCENE_SKY_DISTANCE ? (float)sc->cam.far_plane : sc->distance[k];
   return 0;
 fail:
-  snprintf(err->message, sizeof err->message, "%s", rerr.message);
+  fog_error_pass(err, &rerr);
   return 1;
 }
 
 int render_frame(const scene_config *cfg, int width, int height, const frame_pixels *out,
-                 render_frame_info *info, render_frame_error *err) {
+                 render_frame_info *info, fog_error *err) {
   *info = (render_frame_info){0};
   render_session *s = render_session_create(cfg, width, height, err);
   if (!s) return 1;

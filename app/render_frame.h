@@ -5,15 +5,12 @@
 #ifndef FOGPIPE_APP_RENDER_FRAME_H
 #define FOGPIPE_APP_RENDER_FRAME_H
 
+#include "transform/fog_error.h"
 #include "app/frame_pixels.h"
 #include <stdbool.h>
 
 #include "app/config.h"
 #include "render/render.h"
-
-typedef struct render_frame_error {
-  char message[512];
-} render_frame_error;
 
 typedef struct render_frame_info {
   bool has_fog;              /* false: the fog pass is not part of this build yet */
@@ -35,19 +32,18 @@ typedef struct render_scene {
 
 /* The config's terrain (its heightmap loaded) and boxes as geometry. Errors name the
  * heightmap's file:line. */
-int render_scene_geometry_create(const scene_config *cfg, scene_geometry *geo,
-                                 render_error *err);
+int render_scene_geometry_create(const scene_config *cfg, scene_geometry *geo, fog_error *err);
 /* Loads the config's heightmap, builds the geometry and draws it. Errors name the
  * heightmap's file:line. */
 int render_scene_create(render_scene *scene, const scene_config *cfg, int width, int height,
-                        render_error *err);
+                        fog_error *err);
 void render_scene_destroy(render_scene *scene);
 
 typedef struct render_session render_session;
 
 /* Makes the context, the scene and the fog of cfg (copied) for width x height frames. */
 render_session *render_session_create(const scene_config *cfg, int width, int height,
-                                      render_frame_error *err);
+                                      fog_error *err);
 void render_session_destroy(render_session *session);
 /* "egl-surfaceless, 4.5 (Core Profile) Mesa ..., llvmpipe" */
 const char *render_session_gl_description(const render_session *session);
@@ -56,18 +52,17 @@ struct render_fog *render_session_fog(render_session *session);
 /* The scene time of the next frames, seconds: lamps that move or flicker ([light] lamp_path,
  * lamp_flicker) are set for it (the surfaces they light drawn again), and so are the puffs
  * of [fog] rbf_emitter lines (render_fog_set_time); nothing else moves. */
-int render_session_set_time(render_session *session, double time, render_frame_error *err);
+int render_session_set_time(render_session *session, double time, fog_error *err);
 /* One frame, outputs as render_frame's. */
-int render_session_frame(render_session *session, const frame_pixels *out,
-                         render_frame_error *err);
+int render_session_frame(render_session *session, const frame_pixels *out, fog_error *err);
 
 /* Renders cfg at width x height (a session of one frame) into out (app/frame_pixels.h). */
 int render_frame(const scene_config *cfg, int width, int height, const frame_pixels *out,
-                 render_frame_info *info, render_frame_error *err);
+                 render_frame_info *info, fog_error *err);
 
 /* The heightmap of cfg (if any) as heights in [0, 1]: *heights is malloc'd (NULL and
  * sizes 0 for a procedural terrain). */
-int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *width,
-                                int *height, render_frame_error *err);
+int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *width, int *height,
+                                fog_error *err);
 
 #endif

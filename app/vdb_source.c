@@ -17,7 +17,7 @@ void vdb_source_destroy(vdb_source *source) {
   *source = (vdb_source){0};
 }
 
-int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, sim_error *err) {
+int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, fog_error *err) {
   *source = (vdb_source){.cached = {-1, -1}};
   source->fps = desc->fps > 0 ? desc->fps : 24.0;
   source->loop = desc->loop;
@@ -28,7 +28,7 @@ int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, sim_error *
   const vdb_columns **cols = NULL;
   if (seq.missing_count) {
     /* Playing across a hole would silently change the speed: refuse, like `import`. */
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "%.300s: %d frame%s missing inside %d..%d (the first: %d)", desc->path,
              seq.missing_count, seq.missing_count == 1 ? "" : "s", seq.frames[0],
              seq.frames[seq.count - 1], seq.missing[0]);
@@ -40,8 +40,8 @@ int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, sim_error *
   source->mass = malloc((size_t)seq.count * sizeof *source->mass);
   cols = malloc((size_t)seq.count * sizeof *cols);
   if (!source->columns || !source->frame_numbers || !source->mass || !cols) {
-    snprintf(err->message, sizeof err->message, "%.300s: out of memory for %d frames",
-             desc->path, seq.count);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%.300s: out of memory for %d frames", desc->path,
+             seq.count);
     goto done;
   }
   /* Pass 1 (as `fogpipe import`): read, place and project every frame; keep its columns. */
@@ -65,14 +65,14 @@ int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, sim_error *
   }
   /* One fogmap grid (the union of the footprints) and one g for the whole sequence, so
    * that frames can be blended cell by cell and f·g stays comparable between frames. */
-  sim_error inner = {{0}};
+  fog_error inner = {0};
   if (vdb_fogmap_place_fit(x0, x1, z0, z1, desc->resolution, 0.0, native, &source->place,
                            &inner) ||
       vdb_profile_fit_columns(cols, seq.count, &(vdb_profile_desc){0}, &source->profile,
                               &inner) ||
       fogmap_create(&source->cache[0], source->place.width, source->place.height, &inner) ||
       fogmap_create(&source->cache[1], source->place.width, source->place.height, &inner)) {
-    snprintf(err->message, sizeof err->message, "%.300s: %.200s", desc->path, inner.message);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.300s: %.200s", desc->path, inner.message);
     goto done;
   }
   status = 0;
@@ -84,7 +84,7 @@ done:
 }
 
 /* The cached fogmap of frame index, resampling it into the slot not holding `keep`. */
-static const fogmap *frame_map(vdb_source *s, int index, int keep, sim_error *err) {
+static const fogmap *frame_map(vdb_source *s, int index, int keep, fog_error *err) {
   for (int k = 0; k < 2; k++)
     if (s->cached[k] == index) return &s->cache[k];
   int slot = s->cached[0] == keep ? 1 : 0;
@@ -117,17 +117,17 @@ void vdb_sequence_position(double p, int count, int loop, int *a, int *b, double
   }
 }
 
-int vdb_source_fogmap_at(vdb_source *source, double t, fogmap *out, sim_error *err) {
+int vdb_source_fogmap_at(vdb_source *source, double t, fogmap *out, fog_error *err) {
   const int w = source->place.width, h = source->place.height, n = source->count;
   if (!out->density && fogmap_create(out, w, h, err)) return 1;
   if (out->width != w || out->height != h) {
-    snprintf(err->message, sizeof err->message,
-             "vdb source: fogmap is %dx%d, the sequence's grid is %dx%d", out->width,
-             out->height, w, h);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "vdb source: fogmap is %dx%d, the sequence's grid is %dx%d", out->width, out->height,
+             w, h);
     return 1;
   }
   if (!isfinite(t)) {
-    snprintf(err->message, sizeof err->message, "vdb source: time %g is not finite", t);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "vdb source: time %g is not finite", t);
     return 1;
   }
   int a, b;
@@ -162,10 +162,9 @@ int vdb_source_index_of(const vdb_source *source, int number) {
 
 double vdb_source_duration(const vdb_source *source) { return source->count / source->fps; }
 
-int vdb_source_open_config(vdb_source *source, const scene_config *cfg,
-                           scene_config_error *err) {
+int vdb_source_open_config(vdb_source *source, const scene_config *cfg, fog_error *err) {
   const scene_fog_config *f = &cfg->fog;
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   vdb_source_desc desc = {.path = f->vdb,
                           .grid = f->vdb_grid[0] ? f->vdb_grid : NULL,
                           .up = f->vdb_up == 1 ? VDB_UP_Y : VDB_UP_Z,
@@ -173,8 +172,7 @@ int vdb_source_open_config(vdb_source *source, const scene_config *cfg,
                           .resolution = f->vdb_resolution,
                           .loop = f->vdb_loop};
   if (vdb_source_open(source, &desc, &serr)) {
-    snprintf(err->message, sizeof err->message, "%.200s:%d: [fog] vdb: %.280s", cfg->path,
-             f->vdb_line, serr.message);
+    fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, f->vdb_line);
     return 1;
   }
   return 0;

@@ -50,7 +50,7 @@ typedef struct vdb_source {
 /* Fails (naming the pattern or the file) for no matching files, missing frames inside
  * the sequence's range, or any frame vdb_frame_load refuses. Nothing stays allocated on
  * failure. */
-int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, sim_error *err);
+int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, fog_error *err);
 void vdb_source_destroy(vdb_source *source);
 
 /* The fogmap at time t (seconds; frame index position p = t·fps, index 0 the first file):
@@ -58,7 +58,7 @@ void vdb_source_destroy(vdb_source *source);
  * p: the frame itself). Out of range: clamped to [first, last] frame, or with loop p is
  * taken modulo count (b = 0 after the last frame). out: an empty fogmap ({0}) is created
  * at place's size; otherwise it must have that size. */
-int vdb_source_fogmap_at(vdb_source *source, double t, fogmap *out, sim_error *err);
+int vdb_source_fogmap_at(vdb_source *source, double t, fogmap *out, fog_error *err);
 
 /* Frame index position p (time · fps; index 0 the first file) as the two frames around it
  * and the weight of the second, (1 - w) F[a] + w F[b]: out of range wrapped modulo count
@@ -77,8 +77,7 @@ double vdb_source_duration(const vdb_source *source);
 
 /* Opens cfg->fog.vdb with the config's [fog] vdb_* keys; errors are
  * "FILE:LINE: [fog] vdb: ...". */
-int vdb_source_open_config(vdb_source *source, const scene_config *cfg,
-                           scene_config_error *err);
+int vdb_source_open_config(vdb_source *source, const scene_config *cfg, fog_error *err);
 /* Puts the source's placement and profile into cfg, except what the file set itself:
  * [box] origin and cell_size from the fogmap grid, floor and top from g's support, and
  * g as [fog] profile = bspline (or exponential), unless `profile` was set. */

@@ -138,7 +138,7 @@ void bench_tau_errors(const float *gpu, const double *ref, size_t n, double *rms
   *max_error = worst;
 }
 
-int bench_time_rows(const bench_timed_rows *t, render_error *err) {
+int bench_time_rows(const bench_timed_rows *t, fog_error *err) {
   for (int f = 0; f < t->frames; f++)
     for (int i = 0; i < t->count; i++) {
       if (t->prepare && t->prepare(t->user, i, f, err)) return 1;

@@ -9,7 +9,7 @@
 #include <stddef.h>
 
 #include "app/clock.h"
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 
 #define FOG_BENCH(name, summary) int bench_##name(int argc, char **argv);
 #include "bench/stages.def"
@@ -58,11 +58,11 @@ int bench_parse(const bench_command *command, int argc, char **argv);
 typedef struct bench_timed_rows {
   int count, frames;
   void *user;
-  int (*prepare)(void *user, int row, int round, render_error *err);
-  int (*draw)(void *user, int row, render_error *err);
+  int (*prepare)(void *user, int row, int round, fog_error *err);
+  int (*draw)(void *user, int row, fog_error *err);
   double *(*times)(void *user, int row);
 } bench_timed_rows;
-int bench_time_rows(const bench_timed_rows *rows, render_error *err);
+int bench_time_rows(const bench_timed_rows *rows, fog_error *err);
 /* Tables: chart_csv_open / chart_csv_close (app/chart.h). */
 #include "app/chart.h"
 /* mkdir -p; non-zero and a message naming the folder on failure. */

@@ -81,7 +81,7 @@ static camera preview_camera(void) {
 }
 
 static int preview_create(preview *p, int map_w, int map_h, char *error, size_t size) {
-  render_error err = {{0}};
+  fog_error err = {0};
   *p = (preview){0};
   p->ctx = gl_context_create(&(gl_context_desc){0}, &err);
   if (!p->ctx) goto fail;
@@ -97,7 +97,7 @@ static int preview_create(preview *p, int map_w, int map_h, char *error, size_t 
                        &err))
     goto fail;
   if (fog_pass_create(&p->fog, &err)) goto fail;
-  transform_error terr = {{0}};
+  fog_error terr = {0};
   p->levels = transform_max_levels(map_w, map_h, TRANSFORM_SYMMETRIC);
   if (p->levels > max_levels) p->levels = max_levels;
   transform_desc td = {.width = map_w, .height = map_h, .levels = p->levels,
@@ -160,8 +160,8 @@ static void preview_destroy(preview *p) {
 /* One preview: import + project, transform, render, read back, PNG. Times in seconds. */
 static int preview_frame(preview *p, const char *vdb, const char *png, double times[parts_count],
                          char *error, size_t size) {
-  sim_error serr = {{0}};
-  render_error rerr = {{0}};
+  fog_error serr = {0};
+  fog_error rerr = {0};
   double t0 = app_clock_seconds();
   vdb_frame frame;
   if (vdb_frame_load(vdb, &p->frame_desc, &frame, &serr)) {
@@ -172,7 +172,7 @@ static int preview_frame(preview *p, const char *vdb, const char *png, double ti
   transform_forward(p->plan, frame.map.density, p->coefficients);
   transform_pyramid(p->plan, p->coefficients, p->approx);
   if (p->levels > 0) transform_details(p->plan, p->coefficients, p->detail);
-  transform_error terr = {{0}};
+  fog_error terr = {0};
   for (int l = 0; l <= p->levels; l++) {
     transform_grid_export(p->plan, l, p->approx[l], &p->approx_grid[l], &terr);
     if (l > 0) transform_grid_export(p->plan, l, p->detail[l], &p->detail_grid[l - 1], &terr);
@@ -312,7 +312,7 @@ static void *cpu_render_rows(void *arg) {
 /* import + project + CPU render + PNG; times[0] import, [1] render, [2] PNG. */
 static int cpu_preview(const char *vdb, const camera *cam, float *rgb, const char *png,
                        double times[3], char *error, size_t size) {
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   const double t0 = app_clock_seconds();
   vdb_frame frame;
   if (vdb_frame_load(vdb, &(vdb_frame_desc){0}, &frame, &serr)) {
@@ -404,7 +404,7 @@ int bench_import(int argc, char **argv) {
   const char *pattern = FOGPIPE_SOURCE_DIR "/../shared/data/vdb/groundfog/data/fluid_data_####.vdb";
   const char *inputs[] = {pattern};
   vdb_sequence seq;
-  sim_error err = {{0}};
+  fog_error err = {0};
   if (vdb_sequence_find(inputs, 1, -1, -1, &seq, &err)) {
     fprintf(stderr, "fogpipe bench import: %s\n", err.message);
     return 1;
@@ -482,7 +482,7 @@ int bench_import(int argc, char **argv) {
   snprintf(ours_png, sizeof ours_png, "%s/fogpipe.png", dir);
   snprintf(theirs_png, sizeof theirs_png, "%s/vdb_render.png", dir);
   preview p;
-  char error[600] = "";
+  char error[1024] = "";
   double cold = 0, warm[max_runs], parts[parts_count][max_runs];
   const double t_cold = app_clock_seconds();
   int gl_ok = !preview_create(&p, 64, 64, error, sizeof error);

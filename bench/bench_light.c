@@ -95,17 +95,16 @@ typedef struct light_scene {
   double peak;       /* the largest reference in-scatter */
 } light_scene;
 
-
-static int scene_create(light_scene *s, const char *name, int W, int H, render_error *err) {
+static int scene_create(light_scene *s, const char *name, int W, int H, fog_error *err) {
   char path[1024];
   snprintf(path, sizeof path, "%s/configs/%s", FOGPIPE_SOURCE_DIR, name);
-  scene_config_error cerr;
+  fog_error cerr;
   if (!(s->cfg = malloc(sizeof *s->cfg))) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return 1;
   }
   if (scene_config_load(path, s->cfg, &cerr)) {
-    snprintf(err->message, sizeof err->message, "%s", cerr.message);
+    fog_error_pass(err, &cerr);
     return 1;
   }
   scene_config *cfg = s->cfg;
@@ -121,7 +120,7 @@ static int scene_create(light_scene *s, const char *name, int W, int H, render_e
   s->model = render_fog_model(&s->fog);
   s->kind = s->fog.params.self_shadow;
   if (s->kind != FOG_SUN_SHADOW_VOLUME) {
-    snprintf(err->message, sizeof err->message, "%s: expected a fog with a sun volume", name);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: expected a fog with a sun volume", name);
     return 1;
   }
   const double *sun = s->fog.params.sun.direction;
@@ -220,7 +219,7 @@ static fog_froxel_grid froxel_grid(const light_scene *s, int scale) {
 }
 
 /* One draw of row r into out (the volume of its resolution already uploaded). */
-static int draw_row(light_scene *s, const light_row *r, const gl_target *out, render_error *err) {
+static int draw_row(light_scene *s, const light_row *r, const gl_target *out, fog_error *err) {
   fog_pass_params *p = &s->fog.params;
   p->self_shadow = r->resolution ? s->kind : FOG_SUN_SHADOW_NONE;
   s->fog.ground_shadow = r->resolution != 0;
@@ -242,7 +241,7 @@ static int draw_row(light_scene *s, const light_row *r, const gl_target *out, re
   return render_fog_draw(&s->fog, &s->drawn.cam, &s->drawn.target, out, err);
 }
 
-static int upload_for(light_scene *s, const light_row *r, render_error *err) {
+static int upload_for(light_scene *s, const light_row *r, fog_error *err) {
   for (int q = 0; q < RESOLUTION_COUNT; q++)
     if (resolutions[q] == r->resolution)
       return fog_pass_upload_sun_shadow(s->fog.pass, &s->volumes[q], err);
@@ -255,12 +254,12 @@ typedef struct timing_user {
   light_row *rows;
   const gl_target *out;
 } timing_user;
-static int timing_prepare(void *user, int row, int round, render_error *err) {
+static int timing_prepare(void *user, int row, int round, fog_error *err) {
   (void)round;
   timing_user *u = user;
   return upload_for(&u->scenes[u->rows[row].scene], &u->rows[row], err);
 }
-static int timing_draw(void *user, int row, render_error *err) {
+static int timing_draw(void *user, int row, fog_error *err) {
   timing_user *u = user;
   return draw_row(&u->scenes[u->rows[row].scene], &u->rows[row], u->out, err);
 }
@@ -329,7 +328,7 @@ int bench_light(int argc, char **argv) {
   char error[1024] = "";
   int status = 1, row_count = 0;
   size_t pixels = (size_t)W * H;
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   light_scene scenes[SCENE_COUNT] = {{0}};
   light_row rows[MAX_ROWS] = {{0}};
   gl_target out = {0};
@@ -398,7 +397,7 @@ int bench_light(int argc, char **argv) {
       snprintf(path, sizeof path, "%s/light_%s_%s.png", options.out_dir, scene_names[r->scene],
                in_scene == ROW_LIVE ? "ours_live" : in_scene == ROW_NEAR_CONVERGED ? "ours_96_64"
                                                                                    : "froxels_1x");
-      sim_error serr;
+      fog_error serr;
       if (gl_target_read(&out, 0, 3, inscatter, &rerr)) goto gl_failed;
       if (image_write_png_srgb(path, W, H, 3, inscatter, &serr)) {
         fprintf(stderr, "fogpipe bench light: %s\n", serr.message);

@@ -62,17 +62,16 @@ typedef struct lights_scene {
   double peak;
 } lights_scene;
 
-
-static int scene_create(lights_scene *s, int index, int W, int H, render_error *err) {
+static int scene_create(lights_scene *s, int index, int W, int H, fog_error *err) {
   char path[1024];
   snprintf(path, sizeof path, "%s/configs/%s", FOGPIPE_SOURCE_DIR, scene_configs[index]);
-  scene_config_error cerr;
+  fog_error cerr;
   if (!(s->cfg = malloc(sizeof *s->cfg))) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return 1;
   }
   if (scene_config_load(path, s->cfg, &cerr)) {
-    snprintf(err->message, sizeof err->message, "%s", cerr.message);
+    fog_error_pass(err, &cerr);
     return 1;
   }
   if (render_scene_create(&s->drawn, s->cfg, W, H, err) || render_fog_create(&s->fog, s->cfg, err))
@@ -137,7 +136,7 @@ static void row_errors(lights_row *r, const lights_scene *s, const float *inscat
   r->mean_error = sum / (3.0 * cols * rows) / s->peak;
 }
 
-static int draw_row(lights_scene *s, const lights_row *r, const gl_target *out, render_error *err) {
+static int draw_row(lights_scene *s, const lights_row *r, const gl_target *out, fog_error *err) {
   s->fog.params.lamps = s->lamps;
   s->fog.params.lamps.count = r->unlit ? 0 : s->lamps.count;
   s->fog.params.lamps.method = r->method;
@@ -151,7 +150,7 @@ typedef struct timing_user {
   lights_row *rows;
   const gl_target *out;
 } timing_user;
-static int timing_draw(void *user, int row, render_error *err) {
+static int timing_draw(void *user, int row, fog_error *err) {
   timing_user *u = user;
   return draw_row(&u->scenes[u->rows[row].scene], &u->rows[row], u->out, err);
 }
@@ -226,11 +225,11 @@ static double exact_visible(const void *user, int i, const double x[3]) {
  * by a micron, so each cube is drawn again), the fog pass with and without them, and both
  * against the twin converged with V by exact ray casts. Returns 0, or 1 on a GL error. */
 static int shadow_rows(lights_scene *s, const lights_row *plain, int W, int H, int frames,
-                       float *inscatter, const gl_target *out, render_error *err) {
+                       float *inscatter, const gl_target *out, fog_error *err) {
   const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
   double *times = malloc((size_t)frames * sizeof(double));
   if (!times) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return 1;
   }
   /* the reference with V, in place of the row's (restored below) */
@@ -238,7 +237,7 @@ static int shadow_rows(lights_scene *s, const lights_row *plain, int W, int H, i
   double *shadowed = malloc((size_t)cols * rows * 3 * sizeof(double));
   if (!shadowed) {
     free(times);
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return 1;
   }
   const exact_lamps exact = {&s->drawn.geo, &s->lamps};
@@ -322,7 +321,7 @@ int bench_lights(int argc, char **argv) {
   int status = 1, row_count = 0, live_rows[2] = {0, 0};
   size_t pixels = (size_t)W * H;
   const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows_e = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   lights_scene scenes[SCENE_COUNT] = {{0}};
   lights_row rows[MAX_ROWS] = {{0}};
   gl_target out = {0};

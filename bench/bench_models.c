@@ -109,17 +109,17 @@ typedef struct bench_scene {
   render_scene drawn;
 } bench_scene;
 
-static int scene_create(bench_scene *s, const char *name, int W, int H, render_error *err) {
+static int scene_create(bench_scene *s, const char *name, int W, int H, fog_error *err) {
   char path[1024];
   snprintf(path, sizeof path, "%s/configs/%s", FOGPIPE_SOURCE_DIR, name);
-  scene_config_error cerr;
+  fog_error cerr;
   s->cfg = malloc(sizeof *s->cfg);
   if (!s->cfg) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return 1;
   }
   if (scene_config_load(path, s->cfg, &cerr)) {
-    snprintf(err->message, sizeof err->message, "%s", cerr.message);
+    fog_error_pass(err, &cerr);
     return 1;
   }
   return render_scene_create(&s->drawn, s->cfg, W, H, err);
@@ -174,12 +174,12 @@ typedef struct timing_user {
   const gl_target *target;
   int width, height;
 } timing_user;
-static int timing_prepare(void *user, int row, int round, render_error *err) {
+static int timing_prepare(void *user, int row, int round, fog_error *err) {
   (void)row, (void)round, (void)err;
   gl_target_bind(((timing_user *)user)->target);
   return 0;
 }
-static int timing_draw(void *user, int row, render_error *err) {
+static int timing_draw(void *user, int row, fog_error *err) {
   timing_user *u = user;
   const render_scene *sc = &u->scenes[scene_of_model[u->rows[row].model]].drawn;
   return fog_pass_draw(u->pass, &sc->cam, &u->rows[row].params, sc->target.color[0],
@@ -201,7 +201,7 @@ typedef struct rbf_scale_row {
 
 static int rbf_scale_rows(fog_pass *pass, const render_scene *sc, gl_target *target, int W, int H,
                           int frames, rbf_scale_row *rows, int count, float *gpu_tau,
-                          render_error *err) {
+                          fog_error *err) {
   uint64_t seed = 0x5DEECE66Dull;
   for (int r = 0; r < count; r++) {
     double radius_max = 90.0 / sqrt(rows[r].count / 64.0), density = 0.012;
@@ -218,7 +218,7 @@ static int rbf_scale_rows(fog_pass *pass, const render_scene *sc, gl_target *tar
   }
   double *times = malloc(sizeof(double) * (size_t)frames * count);
   if (!times) {
-    snprintf(err->message, sizeof err->message, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return 1;
   }
   for (int f = -1; f < frames; f++)
@@ -279,13 +279,13 @@ static int rbf_scale_rows(fog_pass *pass, const render_scene *sc, gl_target *tar
  * before the benchmark's own GL context exists: fit makes a context per rung. */
 static int time_fit(double *seconds, char *error, int size) {
   scene_config cfg;
-  scene_config_error cerr;
+  fog_error cerr;
   if (scene_config_load("configs/vdb_plume_volume.ini", &cfg, &cerr)) {
     snprintf(error, (size_t)size, "%s", cerr.message);
     return 1;
   }
   fit_result r;
-  fit_error ferr;
+  fog_error ferr;
   double t0 = app_clock_seconds();
   if (fit_run(&(fit_desc){.input = &cfg, .tolerance = 0.02, .rays_per_side = FIT_RAYS_PER_SIDE,
                           .sample_side = FIT_SAMPLE_SIDE, .width = FIT_WIDTH,
@@ -340,7 +340,7 @@ int bench_models(int argc, char **argv) {
   }
   int status = 1;
   size_t pixels = (size_t)W * H;
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   gl_context *ctx = NULL;
   bench_scene scenes[SCENE_COUNT] = {{0}};
   fog_pass *pass = NULL;

@@ -44,8 +44,7 @@ typedef struct samples {
  * reuses the scene pass (app/pipeline.c), as while the user watches the fog. */
 #define MOVING_YAW_STEP 0.003 /* radians per frame: ~10 degrees in 60 frames */
 
-static int record_frame(pipeline *p, const camera *still, bool moving, samples *s,
-                        pipeline_error *err) {
+static int record_frame(pipeline *p, const camera *still, bool moving, samples *s, fog_error *err) {
   camera cam = *still;
   if (moving) cam.yaw += MOVING_YAW_STEP * (double)(s->n + 1);
   if (pipeline_frame(p, &cam, true, err)) return 1;
@@ -72,13 +71,13 @@ static int measure(const scene_config *cfg, int width, int height, int fog_divis
                    bool moving, int warmup, int frames, double max_seconds, run_result *threaded,
                    run_result *synchronous) {
   enum { block = 4 };
-  pipeline_error err = {{0}};
+  fog_error err = {0};
   pipeline *p[2] = {NULL, NULL};
   double *storage = malloc(sizeof(double) * 2 * PIPELINE_TIMING_FIELDS * (size_t)frames);
   samples s[2] = {{.n = 0}, {.n = 0}};
   int status = 1;
   if (!storage) {
-    snprintf(err.message, sizeof err.message, "out of memory");
+    fog_fail(&err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     goto done;
   }
   for (int m = 0; m < 2; m++) {
@@ -148,12 +147,12 @@ int bench_pipeline(int argc, char **argv) {
   const int frames = image.frames < 5 ? 5 : image.frames;
   int live_divisor = divisor_index < 0 ? 0 : 1 << divisor_index;
   scene_config cfg;
-  scene_config_error cerr = {{0}};
+  fog_error cerr = {0};
   if (scene_config_load(config_path, &cfg, &cerr)) {
     fprintf(stderr, "fogpipe bench pipeline: %s\n", cerr.message);
     return 1;
   }
-  render_error gerr = {{0}};
+  fog_error gerr = {0};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
   if (!gl) {
     fprintf(stderr, "fogpipe bench pipeline: %s\n", gerr.message);

@@ -251,14 +251,14 @@ typedef struct timing_user {
   const gl_target *scene, *target;
   int width, height;
 } timing_user;
-static int timing_prepare(void *user, int row, int round, render_error *err) {
+static int timing_prepare(void *user, int row, int round, fog_error *err) {
   (void)err;
   timing_user *u = user;
   u->rows[row].params.frame = (unsigned)round;
   gl_target_bind(u->target);
   return 0;
 }
-static int timing_draw(void *user, int row, render_error *err) {
+static int timing_draw(void *user, int row, fog_error *err) {
   timing_user *u = user;
   const bench_row *r = &u->rows[row];
   return fog_pass_draw(u->passes[r->pass], u->cam, &r->params, u->scene->color[0],
@@ -360,13 +360,13 @@ int bench_render(int argc, char **argv) {
 
   /* ---- the fogmap, its full grid per basis and the linear LOD pyramid ---- */
   fogmap map = {0};
-  sim_error serr;
+  fog_error serr;
   if (fogmap_load(fogmap_path, &(fogmap_load_desc){0}, &map, &serr)) {
     fprintf(stderr, "fogpipe bench render: %s\n", serr.message);
     return 1;
   }
   int status = 1;
-  transform_error terr = {{0}};
+  fog_error terr = {0};
   fogmap ground = {0};
   transform_plan *ground_plan = NULL;
   transform_grid ground_grid = {0};
@@ -392,7 +392,7 @@ int bench_render(int argc, char **argv) {
   bench_row rows[MAX_ROWS];
   int row_count = 0;
   chart_point points[MAX_ROWS];
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   size_t pixels = (size_t)W * H;
   if (!coefficients) goto out_of_memory;
   for (int d = 0; d < 3; d++) {

@@ -30,7 +30,7 @@ static double min_of(const double *v, int n) {
 }
 
 static int measure(int n, fluid_advection scheme, int rounds, sim_figures *out) {
-  sim_error err;
+  fog_error err;
   const fluid_emitter emitters[3] = {{0.25f * n, 0.5f * n, n / 40.0f, 2.0f},
                                      {0.6f * n, 0.3f * n, n / 30.0f, 1.5f},
                                      {0.7f * n, 0.8f * n, n / 50.0f, 3.0f}};

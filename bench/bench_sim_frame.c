@@ -13,18 +13,18 @@
 int bench_simulated_density(const char *config_path, int frame, double fps, fogmap *out,
                             char *error, size_t cap) {
   scene_config cfg;
-  scene_config_error cerr = {{0}};
+  fog_error cerr = {0};
   if (scene_config_load(config_path, &cfg, &cerr)) {
     snprintf(error, cap, "%s", cerr.message);
     return 1;
   }
-  render_error gerr = {{0}};
+  fog_error gerr = {0};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
   if (!gl) {
     snprintf(error, cap, "%s", gerr.message);
     return 1;
   }
-  pipeline_error perr = {{0}};
+  fog_error perr = {0};
   pipeline *p = pipeline_create(&(pipeline_desc){.config = &cfg, .width = 16, .height = 16,
                                                  .frame_seconds = 1.0 / fps,
                                                  .synchronous = true},
@@ -35,7 +35,7 @@ int bench_simulated_density(const char *config_path, int frame, double fps, fogm
              !p || perr.message[0] ? perr.message : "it simulates nothing");
   } else {
     const fogmap *density = pipeline_sim_density(p);
-    sim_error serr = {{0}};
+    fog_error serr = {0};
     status = fogmap_create(out, density->width, density->height, &serr);
     if (status)
       snprintf(error, cap, "%s", serr.message);

@@ -122,18 +122,18 @@ int bench_soak(int argc, char **argv) {
   const int width = options.width, height = options.height;
 
   scene_config cfg;
-  scene_config_error cerr = {{0}};
+  fog_error cerr = {0};
   if (scene_config_load(config_path, &cfg, &cerr)) {
     fprintf(stderr, "fogpipe bench soak: %s\n", cerr.message);
     return 1;
   }
-  render_error gerr = {{0}};
+  fog_error gerr = {0};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
   if (!gl) {
     fprintf(stderr, "fogpipe bench soak: %s\n", gerr.message);
     return 1;
   }
-  pipeline_error perr = {{0}};
+  fog_error perr = {0};
   /* As record_run builds it for the headless demo: worker thread, 1/24 s per frame, the
    * pipeline's default parameters (full-resolution fog). */
   pipeline *pipe = pipeline_create(&(pipeline_desc){.config = &cfg, .width = width,

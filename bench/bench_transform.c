@@ -50,7 +50,7 @@ typedef enum { FORWARD, INVERSE } direction;
 static double time_transform(int n, int levels, transform_basis basis, int threads,
                              direction dir, const float *in, float *coef, float *out) {
   transform_plan *plan;
-  transform_error err;
+  fog_error err;
   if (transform_plan_create(&plan, &(transform_desc){.width = n, .height = n, .levels = levels,
           .basis = basis, .threads = threads}, &err)) {
     fprintf(stderr, "fogpipe bench transform: %s\n", err.message);
@@ -85,7 +85,7 @@ static double time_transform(int n, int levels, transform_basis basis, int threa
  * worker (it spins between passes). */
 static void warm_up_two_threads(const float *in, float *coef, double seconds) {
   transform_plan *plan;
-  transform_error err;
+  fog_error err;
   if (transform_plan_create(&plan, &(transform_desc){.width = 512, .height = 512, .levels = 3,
           .threads = 2}, &err))
     return;
@@ -114,7 +114,7 @@ static double time_memcpy(int n, const float *in, float *out) {
 static void time_fused_vs_memcpy(int n, const float *in, float *coef, float *out,
                                  double *fused_ms, double *copy_ms) {
   transform_plan *plan;
-  transform_error err;
+  fog_error err;
   *fused_ms = *copy_ms = NAN;
   if (transform_plan_create(&plan, &(transform_desc){.width = n, .height = n, .levels = 1,
           .basis = TRANSFORM_LINEAR, .threads = 1}, &err)) {

@@ -51,8 +51,7 @@ static int upload_staged(GLuint buffer, size_t total, const upload_texture *t, i
   return 0;
 }
 
-int bench_time_uploads(const fog_lod *lod, int rounds, bench_upload_timing *out,
-                       render_error *err) {
+int bench_time_uploads(const fog_lod *lod, int rounds, bench_upload_timing *out, fog_error *err) {
   upload_texture t[MAX_TEXTURES] = {0};
   float *cells[MAX_TEXTURES / 2] = {0};
   double *direct = malloc(sizeof(double) * (size_t)rounds);
@@ -61,7 +60,7 @@ int bench_time_uploads(const fog_lod *lod, int rounds, bench_upload_timing *out,
   int count = 0, status = 1;
   size_t total = 0;
   if (!direct || !staged || 2 * (2 * lod->levels + 1) > MAX_TEXTURES) {
-    snprintf(err->message, sizeof err->message, "bench upload: out of memory or too many levels");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "bench upload: out of memory or too many levels");
     goto done;
   }
   for (int g = 0; g < 2 * lod->levels + 1; g++) {
@@ -71,7 +70,7 @@ int bench_time_uploads(const fog_lod *lod, int rounds, bench_upload_timing *out,
     fog_cell_poly_size(grid->width, grid->height, grid->degree, &cw, &ch);
     cells[g] = malloc(sizeof(float) * 4 * (size_t)cw * (size_t)ch);
     if (!cells[g]) {
-      snprintf(err->message, sizeof err->message, "bench upload: out of memory");
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "bench upload: out of memory");
       goto done;
     }
     fog_cell_poly_build(grid, cells[g]);
@@ -100,7 +99,7 @@ int bench_time_uploads(const fog_lod *lod, int rounds, bench_upload_timing *out,
     glFinish();
     double t1 = app_clock_seconds();
     if (upload_staged(buffer, total, t, count)) {
-      snprintf(err->message, sizeof err->message, "bench upload: glMapBufferRange failed");
+      fog_fail(err, FOG_ERR_GRAPHICS, "bench upload: glMapBufferRange failed");
       goto done;
     }
     glFinish();

@@ -15,7 +15,6 @@ typedef struct bench_upload_timing {
   int textures;
 } bench_upload_timing;
 
-int bench_time_uploads(const fog_lod *lod, int rounds, bench_upload_timing *out,
-                       render_error *err);
+int bench_time_uploads(const fog_lod *lod, int rounds, bench_upload_timing *out, fog_error *err);
 
 #endif

@@ -176,7 +176,7 @@ static uint64_t fog_pass_variant_key(const fog_pass_variant *v) {
 }
 
 /* Builds one variant: the fragment text with its #defines inserted after the #version line. */
-static GLuint fog_pass_program(const fog_pass_variant *v, uint64_t key, render_error *err) {
+static GLuint fog_pass_program(const fog_pass_variant *v, uint64_t key, fog_error *err) {
   char *vs = gl_util_shader_text("fog_pass_vs.glsl", err);
   if (!vs) return 0;
   char *fs = gl_util_shader_text("fog_pass_fs.glsl", err);
@@ -190,7 +190,7 @@ static GLuint fog_pass_program(const fog_pass_variant *v, uint64_t key, render_e
     used += (size_t)snprintf(defines + used, sizeof defines - used, "#define %s %d\n",
                              variant_fields[f].define, variant_field(v, f));
   if (used >= sizeof defines) { /* a truncated block would leave a setting at 0 unseen */
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: the variant's #defines outgrew their %zu bytes", sizeof defines);
     free(vs);
     free(fs);
@@ -209,7 +209,7 @@ static GLuint fog_pass_program(const fog_pass_variant *v, uint64_t key, render_e
     snprintf(label, sizeof label, "fog_pass_fs.glsl (variant %#llx)", (unsigned long long)key);
     program = gl_util_program_from_source(label, vs, text, err);
   } else {
-    snprintf(err->message, sizeof err->message, "fog pass: out of memory for shader text");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "fog pass: out of memory for shader text");
   }
   free(text);
   free(vs);
@@ -218,13 +218,12 @@ static GLuint fog_pass_program(const fog_pass_variant *v, uint64_t key, render_e
 }
 
 /* The program of a variant, compiled on its first use and kept (looked up by key). */
-static GLuint fog_pass_variant_program(fog_pass *pass, const fog_pass_variant *v,
-                                       render_error *err) {
+static GLuint fog_pass_variant_program(fog_pass *pass, const fog_pass_variant *v, fog_error *err) {
   const uint64_t key = fog_pass_variant_key(v);
   for (int i = 0; i < pass->variant_count; i++)
     if (pass->variants[i].key == key) return pass->variants[i].program;
   if (pass->variant_count == FOG_PASS_MAX_VARIANTS) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: more than %d shader variants (draw settings) in one pass",
              FOG_PASS_MAX_VARIANTS);
     return 0;
@@ -235,15 +234,15 @@ static GLuint fog_pass_variant_program(fog_pass *pass, const fog_pass_variant *v
   return program;
 }
 
-int fog_pass_create(fog_pass **out, render_error *err) {
+int fog_pass_create(fog_pass **out, fog_error *err) {
   *out = NULL;
   fog_pass *pass = calloc(1, sizeof *pass);
   if (!pass) {
-    snprintf(err->message, sizeof err->message, "fog pass: out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "fog pass: out of memory");
     return 1;
   }
   if (variant_key_bits() > 64) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: the variant fields take %d bits, more than the key's 64",
              variant_key_bits());
     free(pass);
@@ -308,16 +307,15 @@ static void texel_texture_fill(GLuint *texture, int *width, int *height, GLenum 
   *height = h;
 }
 
-int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
-                         render_error *err) {
+int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid, fog_error *err) {
   if (slot < 0 || slot >= FOG_PASS_MAX_GRIDS) {
-    snprintf(err->message, sizeof err->message, "fog pass: grid slot %d outside 0..%d", slot,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fog pass: grid slot %d outside 0..%d", slot,
              FOG_PASS_MAX_GRIDS - 1);
     return 1;
   }
   if (grid->width <= 0 || grid->height <= 0 || !grid->coefficients || grid->degree < 0 ||
       grid->degree > 2 || !(grid->spacing > 0)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: grid for slot %d is %dx%d, degree %d, spacing %g: expected a non-empty "
              "grid of degree 0..2 with positive spacing",
              slot, grid->width, grid->height, grid->degree, grid->spacing);
@@ -329,7 +327,7 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
   if (cw > largest) largest = cw;
   if (ch > largest) largest = ch;
   if (largest > pass->max_texture_size) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_GRAPHICS,
              "fog pass: a %dx%d grid needs a %d-texel texture side; this GL's largest is %d",
              grid->width, grid->height, largest, pass->max_texture_size);
     return 1;
@@ -358,7 +356,7 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
     float *grown = realloc(pass->cell_scratch, texels * 4 * sizeof(float));
     if (!grown) {
       glBindTexture(GL_TEXTURE_2D, 0);
-      snprintf(err->message, sizeof err->message,
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY,
                "fog pass: out of memory for the cell polynomials of a %dx%d grid", grid->width,
                grid->height);
       return 1;
@@ -384,10 +382,10 @@ int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
   return gl_util_check("fog pass: grid upload", err);
 }
 
-int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_error *err) {
+int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, fog_error *err) {
   const int *d = grid->dim;
   if (d[0] < 1 || d[1] < 1 || d[2] < 1 || !grid->values) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: volume grid %dx%dx%d: expected positive sizes and values", d[0], d[1],
              d[2]);
     return 1;
@@ -400,15 +398,16 @@ int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_
   const int pw = d[0] + 2, ph = d[1] + 2, pd = d[2] + 2;
   int largest = pw > ph ? (pw > pd ? pw : pd) : (ph > pd ? ph : pd);
   if (largest > pass->max_3d_texture_size) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_GRAPHICS,
              "fog pass: a %dx%dx%d volume needs a %d-texel 3D texture side; this GL's largest "
-             "is %d", d[0], d[1], d[2], largest, pass->max_3d_texture_size);
+             "is %d",
+             d[0], d[1], d[2], largest, pass->max_3d_texture_size);
     return 1;
   }
   size_t padded_count = (size_t)pw * ph * pd;
   float *padded = calloc(2 * padded_count, sizeof *padded); /* RG: voxel and its +x neighbour */
   if (!padded) {
-    snprintf(err->message, sizeof err->message, "fog pass: out of memory for the volume");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "fog pass: out of memory for the volume");
     return 1;
   }
   for (int k = 0; k < d[2]; k++)
@@ -436,7 +435,7 @@ int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_
   float *bound = malloc((size_t)bricks[0] * bricks[1] * bricks[2] * sizeof *bound);
   if (!bound) {
     glBindTexture(GL_TEXTURE_3D, 0);
-    snprintf(err->message, sizeof err->message, "fog pass: out of memory for the bricks");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "fog pass: out of memory for the bricks");
     return 1;
   }
   pass->grid3d_empty_share =
@@ -454,12 +453,13 @@ int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_
   return gl_util_check("fog pass: volume upload", err);
 }
 
-int fog_pass_upload_perlin(fog_pass *pass, const fog_perlin *perlin, render_error *err) {
+int fog_pass_upload_perlin(fog_pass *pass, const fog_perlin *perlin, fog_error *err) {
   const int n = perlin->desc.size, octaves = perlin->desc.octaves;
   if (!perlin->texels || n * octaves > pass->max_3d_texture_size) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_GRAPHICS,
              "fog pass: Perlin octaves of %d^3 x %d texels: expected created octaves within "
-             "GL's 3D texture size %d", n, octaves, pass->max_3d_texture_size);
+             "GL's 3D texture size %d",
+             n, octaves, pass->max_3d_texture_size);
     return 1;
   }
   if (!pass->perlin_texture) glGenTextures(1, &pass->perlin_texture);
@@ -478,19 +478,19 @@ int fog_pass_upload_perlin(fog_pass *pass, const fog_perlin *perlin, render_erro
   return gl_util_check("fog pass: Perlin upload", err);
 }
 
-int fog_pass_upload_sun_shadow(fog_pass *pass, const fog_sun_shadow *shadow, render_error *err) {
+int fog_pass_upload_sun_shadow(fog_pass *pass, const fog_sun_shadow *shadow, fog_error *err) {
   const int *n = shadow->size;
   if (!shadow->optical_depth || n[0] < 2 || n[1] < 2 || n[2] < 2) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: sun shadow volume %dx%dx%d: expected >= 2 samples per axis and values",
              n[0], n[1], n[2]);
     return 1;
   }
   int largest = n[0] > n[1] ? (n[0] > n[2] ? n[0] : n[2]) : (n[1] > n[2] ? n[1] : n[2]);
   if (largest > pass->max_3d_texture_size) {
-    snprintf(err->message, sizeof err->message,
-             "fog pass: a %dx%dx%d sun shadow volume exceeds this GL's 3D texture side %d",
-             n[0], n[1], n[2], pass->max_3d_texture_size);
+    fog_fail(err, FOG_ERR_GRAPHICS,
+             "fog pass: a %dx%dx%d sun shadow volume exceeds this GL's 3D texture side %d", n[0],
+             n[1], n[2], pass->max_3d_texture_size);
     return 1;
   }
   bool same = pass->sun_shadow && !memcmp(pass->sun_shadow_place.size, n, sizeof shadow->size);
@@ -520,10 +520,10 @@ int fog_pass_upload_sun_shadow(fog_pass *pass, const fog_sun_shadow *shadow, ren
   return gl_util_check("fog pass: sun shadow upload", err);
 }
 
-int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err) {
+int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, fog_error *err) {
   int J = lod->levels;
   if (J < 0 || 2 * J + 1 > FOG_PASS_MAX_GRIDS) {
-    snprintf(err->message, sizeof err->message, "fog pass: %d LOD levels: expected 0..%d", J,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fog pass: %d LOD levels: expected 0..%d", J,
              FOG_MAX_LEVELS);
     return 1;
   }
@@ -534,14 +534,14 @@ int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err) {
   return 0;
 }
 
-int fog_pass_upload_pyramid(fog_pass *pass, const fog_pyramid *pyramid, render_error *err) {
+int fog_pass_upload_pyramid(fog_pass *pass, const fog_pyramid *pyramid, fog_error *err) {
   if (pyramid->has_details) {
     fog_lod lod = fog_pyramid_lod(pyramid, 1.0);
     return fog_pass_upload_lod(pass, &lod, err);
   }
   /* approximations only: slots 0..J (switching reads no more) */
   if (pyramid->levels < 0 || 2 * pyramid->levels + 1 > FOG_PASS_MAX_GRIDS) {
-    snprintf(err->message, sizeof err->message, "fog pass: %d LOD levels: expected 0..%d",
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fog pass: %d LOD levels: expected 0..%d",
              pyramid->levels, FOG_MAX_LEVELS);
     return 1;
   }
@@ -614,7 +614,7 @@ static void array_texture_fit(GLuint *texture, int *width, int *height, int *cou
 /* Slots 0..count-1 into the layers of pass->layers (reallocated only when the largest slot
  * size or the count changes; zero-filled, so texelFetch and GL_LINEAR read 0 beyond a
  * smaller grid exactly as the border colour of its own texture would give). */
-static int fog_pass_update_layers(fog_pass *pass, int count, render_error *err) {
+static int fog_pass_update_layers(fog_pass *pass, int count, fog_error *err) {
   if (!pass->layers_stale && pass->layers && pass->layers_count == count) return 0;
   int w = 1, h = 1, cw = 1, ch = 1, ow = 1, oh = 1;
   for (int k = 0; k < count; k++) {
@@ -762,10 +762,10 @@ static void fog_pass_lamp_uniforms(GLuint prog, const camera *cam, const fog_pas
 
 /* Uniforms every model uses (camera, blend, model selection), the surface textures, and
  * the full-screen triangle. */
-static int fog_pass_common_and_draw(const fog_pass *pass, GLuint prog, const camera *cam, const fog_pass_params *params,
-                                    GLuint surface_colour, GLuint surface_distance, int width,
-                                    int height, int viewport_width, int viewport_height,
-                                    render_error *err) {
+static int fog_pass_common_and_draw(const fog_pass *pass, GLuint prog, const camera *cam,
+                                    const fog_pass_params *params, GLuint surface_colour,
+                                    GLuint surface_distance, int width, int height,
+                                    int viewport_width, int viewport_height, fog_error *err) {
   const double *c = cam->position;
   glUniform1f(fog_loc(prog, "fog_model_extinction"), (float)params->model_extinction);
   glUniform1f(fog_loc(prog, "fog_model_y0"), (float)(params->model_y0 - c[1]));
@@ -843,12 +843,12 @@ static void buffer_texture_fill(GLuint *buffer, GLuint *texture, GLenum format, 
  * of the width x height image the list of those its rays can see (render/fog_rbf_tiles.h). */
 static int fog_pass_rbf_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
                                  const fog_pass_params *params, int width, int height,
-                                 render_error *err) {
+                                 fog_error *err) {
   const int n = params->model_rbf_count;
   if (n > pass->rbf_scratch_count) {
     float *more = realloc(pass->rbf_scratch, (size_t)n * 8 * sizeof(float));
     if (!more) {
-      snprintf(err->message, sizeof err->message, "fog pass: out of memory (%d RBFs)", n);
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "fog pass: out of memory (%d RBFs)", n);
       return 1;
     }
     pass->rbf_scratch = more, pass->rbf_scratch_count = n;
@@ -992,7 +992,7 @@ static int fog_pass_skips_share(const fog_pass_params *params, double empty_shar
 /* The analytic and volume models' uniforms for prog (in use). */
 static int fog_pass_analytic_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
                                       const fog_pass_params *params, int width, int height,
-                                      render_error *err) {
+                                      fog_error *err) {
   glUniform1i(fog_loc(prog, "fog_march_steps"), params->march_steps);
   glUniform1i(fog_loc(prog, "fog_march_jitter"), params->march_jitter != 0);
   glUniform1ui(fog_loc(prog, "fog_frame"), params->frame);
@@ -1019,14 +1019,13 @@ typedef struct fogmap_slots {
 } fogmap_slots;
 
 static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
-                                    const fog_pass_params *params, int first, int J,
-                                    int slots, const bool reads[FOG_PASS_MAX_GRIDS],
-                                    render_error *err);
+                                    const fog_pass_params *params, int first, int J, int slots,
+                                    const bool reads[FOG_PASS_MAX_GRIDS], fog_error *err);
 
 /* Any model's uniforms for prog (made current): fm for the fogmap. */
 static int fog_pass_model_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
-                                   const fog_pass_params *params, const fogmap_slots *fm,
-                                   int width, int height, render_error *err) {
+                                   const fog_pass_params *params, const fogmap_slots *fm, int width,
+                                   int height, fog_error *err) {
   glUseProgram(prog);
   if (params->model == FOG_MODEL_FOGMAP) {
     if (fog_pass_quadrics_beside(params)) fog_pass_quadric_uniforms(prog, cam, params);
@@ -1037,7 +1036,7 @@ static int fog_pass_model_uniforms(fog_pass *pass, GLuint prog, const camera *ca
 }
 
 /* The froxel grid's texture and framebuffer, (re)made when its size changes. */
-static int fog_pass_froxel_fit(fog_pass *pass, const fog_froxel_grid *g, render_error *err) {
+static int fog_pass_froxel_fit(fog_pass *pass, const fog_froxel_grid *g, fog_error *err) {
   if (pass->froxel_volume && pass->froxel_size[0] == g->columns &&
       pass->froxel_size[1] == g->rows && pass->froxel_size[2] == g->slices)
     return 0;
@@ -1062,8 +1061,8 @@ static int fog_pass_froxel_fit(fog_pass *pass, const fog_froxel_grid *g, render_
   pass->froxel_size[0] = g->columns, pass->froxel_size[1] = g->rows,
   pass->froxel_size[2] = g->slices;
   if (status != GL_FRAMEBUFFER_COMPLETE) {
-    snprintf(err->message, sizeof err->message,
-             "fog pass: froxel framebuffer incomplete (status %#x)", (unsigned)status);
+    fog_fail(err, FOG_ERR_GRAPHICS, "fog pass: froxel framebuffer incomplete (status %#x)",
+             (unsigned)status);
     return 1;
   }
   return gl_util_check("fog pass: froxel grid", err);
@@ -1078,11 +1077,10 @@ static void fog_pass_froxel_uniforms(GLuint prog, const fog_froxel_grid *g) {
 /* FOG_INTEGRATOR_FROXEL: the fill (one fragment per column of the grid, its slices written
  * with imageStore) into an attachment-less framebuffer, then the lookup at full resolution
  * into the caller's. `variant` holds the model's settings; lamps are not carried. */
-static int fog_pass_draw_froxel(fog_pass *pass, const fog_pass_variant *variant,
-                                const camera *cam, const fog_pass_params *params,
-                                const fogmap_slots *fm, GLuint surface_colour,
-                                GLuint surface_distance, int width, int height,
-                                render_error *err) {
+static int fog_pass_draw_froxel(fog_pass *pass, const fog_pass_variant *variant, const camera *cam,
+                                const fog_pass_params *params, const fogmap_slots *fm,
+                                GLuint surface_colour, GLuint surface_distance, int width,
+                                int height, fog_error *err) {
   const fog_froxel_grid *g = &params->froxel;
   fog_pass_variant fill = *variant, lookup = *variant;
   fill.quadrics_beside = lookup.quadrics_beside = fog_pass_quadrics_beside(params);
@@ -1120,13 +1118,13 @@ static int fog_pass_draw_froxel(fog_pass *pass, const fog_pass_variant *variant,
 }
 
 static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const camera *cam,
-                                 const fog_pass_params *params, const fogmap_slots *fm,
-                                 int divisor, GLuint surface_colour, GLuint surface_distance,
-                                 int width, int height, render_error *err);
+                                 const fog_pass_params *params, const fogmap_slots *fm, int divisor,
+                                 GLuint surface_colour, GLuint surface_distance, int width,
+                                 int height, fog_error *err);
 
 static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_pass_params *params,
                                   GLuint surface_colour, GLuint surface_distance, int width,
-                                  int height, int divisor, render_error *err) {
+                                  int height, int divisor, fog_error *err) {
   bool march = params->integrator == FOG_INTEGRATOR_MARCH;
   bool hardware = params->model == FOG_MODEL_VOLUME && params->fetch == FOG_FETCH_HARDWARE;
   const fog_pass_variant variant = {.fetch_hardware = hardware, .integrator = march,
@@ -1150,8 +1148,8 @@ static int fog_pass_draw_analytic(fog_pass *pass, const camera *cam, const fog_p
 
 /* resolution_divisor > 1, before the reduced draw: the reduced target (reallocated only when
  * the size changes) bound, the caller's framebuffer remembered. */
-static int fog_pass_begin_reduced(fog_pass *pass, int divisor, int width, int height,
-                                  bool lamps, GLint *caller_framebuffer, render_error *err) {
+static int fog_pass_begin_reduced(fog_pass *pass, int divisor, int width, int height, bool lamps,
+                                  GLint *caller_framebuffer, fog_error *err) {
   int w = (width + divisor - 1) / divisor, h = (height + divisor - 1) / divisor;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, caller_framebuffer);
   if (pass->reduced.framebuffer && (pass->reduced.width != w || pass->reduced.height != h)) {
@@ -1185,8 +1183,7 @@ static int fog_pass_begin_reduced(fog_pass *pass, int divisor, int width, int he
 static int fog_pass_finish_reduced(fog_pass *pass, GLuint prog, const camera *cam,
                                    const fog_pass_params *params, int divisor,
                                    GLint caller_framebuffer, GLuint surface_colour,
-                                   GLuint surface_distance, int width, int height,
-                                   render_error *err) {
+                                   GLuint surface_distance, int width, int height, fog_error *err) {
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)caller_framebuffer);
   glUseProgram(prog);
   bind_sampler(prog, "fog_reduced", UNIT_REDUCED, GL_TEXTURE_2D, pass->reduced.color[0]);
@@ -1203,9 +1200,9 @@ static int fog_pass_finish_reduced(fog_pass *pass, GLuint prog, const camera *ca
  * FOG_UPSAMPLE), which needs the same uniforms: it walks the pixels no reduced sample
  * matches. */
 static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const camera *cam,
-                                 const fog_pass_params *params, const fogmap_slots *fm,
-                                 int divisor, GLuint surface_colour, GLuint surface_distance,
-                                 int width, int height, render_error *err) {
+                                 const fog_pass_params *params, const fogmap_slots *fm, int divisor,
+                                 GLuint surface_colour, GLuint surface_distance, int width,
+                                 int height, fog_error *err) {
   variant.reduced = divisor > 1 ? divisor : 1;
   variant.shadow_nodes = params->shadow_nodes;
   variant.lamp_shadows = fog_pass_has_lamp_shadows(params);
@@ -1245,12 +1242,12 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
 
 /* The sun's shadow settings and the lamps, before anything is drawn. */
 static int fog_pass_check_light(const fog_pass *pass, const fog_pass_params *params,
-                                render_error *err) {
+                                fog_error *err) {
   if ((unsigned)params->self_shadow > FOG_SUN_SHADOW_OPAQUE ||
       ((params->self_shadow != FOG_SUN_SHADOW_NONE || params->shafts) &&
        (params->shadow_steps < 1 || params->shadow_nodes < 1 || params->shadow_nodes > 2)) ||
       (params->self_shadow == FOG_SUN_SHADOW_VOLUME && !pass->sun_shadow)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: self-shadow %d with %d steps of %d nodes: expected a "
              "fog_sun_shadow_kind, >= 1 steps of 1 or 2 nodes and, for the volume, "
              "fog_pass_upload_sun_shadow first",
@@ -1263,20 +1260,20 @@ static int fog_pass_check_light(const fog_pass *pass, const fog_pass_params *par
        (lamps->method.angle_pieces < 1 || lamps->method.span_pieces < 0 ||
         lamps->method.shadow_steps < 1 ||
         lamps->method.depth_steps < 1 || lamps->method.depth_steps > FOG_LAMP_MAX_DEPTH_STEPS))) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: %d lamps with %d + %d pieces, %d depth steps, %d shadow steps: expected "
              "0 to %d lamps, >= 1 angle pieces, >= 0 span pieces, >= 1 shadow steps, 1 to %d "
              "depth steps",
              lamps->count, lamps->method.angle_pieces, lamps->method.span_pieces,
-             lamps->method.depth_steps,
-             lamps->method.shadow_steps, FOG_MAX_LAMPS, FOG_LAMP_MAX_DEPTH_STEPS);
+             lamps->method.depth_steps, lamps->method.shadow_steps, FOG_MAX_LAMPS,
+             FOG_LAMP_MAX_DEPTH_STEPS);
     return 1;
   }
   if (lamps->count > 0 &&
       ((lamps->method.integral == FOG_LAMP_FOGSHOP && params->model != FOG_MODEL_RBF) ||
        (lamps->method.integral == FOG_LAMP_MARCH && lamps->method.march_steps < 1) ||
        (unsigned)lamps->method.integral > FOG_LAMP_MARCH)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: lamp integral %d with model %d, %d march steps: expected FOG_LAMP_ANGLE, "
              "FOG_LAMP_FOGSHOP with FOG_MODEL_RBF, or FOG_LAMP_MARCH with >= 1 steps",
              (int)lamps->method.integral, (int)params->model, lamps->method.march_steps);
@@ -1285,9 +1282,10 @@ static int fog_pass_check_light(const fog_pass *pass, const fog_pass_params *par
   for (int i = 0; i < lamps->count; i++) {
     const fog_lamp *l = &lamps->lamp[i];
     if (!(l->radius > 0) || (l->kind == FOG_LAMP_SPOT && !(l->cos_inner > l->cos_outer))) {
-      snprintf(err->message, sizeof err->message,
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                "fog pass: lamp %d: radius %g, cone cosines %g > %g: expected radius > 0 and, "
-               "for a spot, cos_inner > cos_outer", i, l->radius, l->cos_inner, l->cos_outer);
+               "for a spot, cos_inner > cos_outer",
+               i, l->radius, l->cos_inner, l->cos_outer);
       return 1;
     }
   }
@@ -1296,12 +1294,13 @@ static int fog_pass_check_light(const fog_pass *pass, const fog_pass_params *par
 
 /* The integrator's settings: marching samples, the froxel grid, the walk's cut-off. */
 static int fog_pass_check_integrator(const fog_pass *pass, const fog_pass_params *params,
-                                     render_error *err) {
+                                     fog_error *err) {
   if (params->integrator == FOG_INTEGRATOR_MARCH && params->model != FOG_MODEL_VOLUME &&
       params->march_steps < 1) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: marching with %d samples a ray: expected >= 1 (FOG_PASS_MARCH_STEPS "
-             "is the usual choice)", params->march_steps);
+             "is the usual choice)",
+             params->march_steps);
     return 1;
   }
   const fog_froxel_grid *g = &params->froxel;
@@ -1311,7 +1310,7 @@ static int fog_pass_check_integrator(const fog_pass *pass, const fog_pass_params
         g->rows > pass->max_3d_texture_size || g->slices > pass->max_3d_texture_size ||
         !(g->near_distance > 0) || !(g->far_distance > g->near_distance) ||
         !isfinite(g->far_distance)))) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: integrator %d, froxel grid %d x %d x %d from %g to %g: expected an "
              "fog_integrator and, for the froxels, 1..%d cells a side and 0 < near < far",
              (int)params->integrator, g->columns, g->rows, g->slices, g->near_distance,
@@ -1319,7 +1318,7 @@ static int fog_pass_check_integrator(const fog_pass *pass, const fog_pass_params
     return 1;
   }
   if (!(params->walk.transmittance_cutoff >= 0 && params->walk.transmittance_cutoff < 1)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: transmittance cut-off %g: expected 0 (never stop) or in (0, 1)",
              params->walk.transmittance_cutoff);
     return 1;
@@ -1329,7 +1328,7 @@ static int fog_pass_check_integrator(const fog_pass *pass, const fog_pass_params
 
 /* The analytic and volume models' parameters, before anything is drawn. */
 static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *params,
-                                render_error *err) {
+                                fog_error *err) {
   if (fog_pass_check_light(pass, params, err) || fog_pass_check_integrator(pass, params, err))
     return 1;
   if (params->model == FOG_MODEL_PERLIN &&
@@ -1338,19 +1337,19 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
        pass->perlin_octaves != params->model_perlin->desc.octaves ||
        !(params->model_scale_height > 0) || !isfinite(params->model_time) ||
        (unsigned)params->model_perlin_integral > FOG_PERLIN_PAPER)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: Perlin fog: expected its octaves uploaded (fog_pass_upload_perlin), a "
              "scale height > 0, a finite time and a fog_perlin_integral");
     return 1;
   }
   if (params->model == FOG_MODEL_HEIGHT && !(params->model_scale_height > 0)) {
-    snprintf(err->message, sizeof err->message,
-             "fog pass: height fog scale height %g: expected > 0", params->model_scale_height);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fog pass: height fog scale height %g: expected > 0",
+             params->model_scale_height);
     return 1;
   }
   if (params->model == FOG_MODEL_LINEAR &&
       !(params->model_fog_start >= 0 && params->model_fog_end > params->model_fog_start)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: linear fog from %g to %g: expected 0 <= start < end",
              params->model_fog_start, params->model_fog_end);
     return 1;
@@ -1358,30 +1357,30 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
   if (params->model == FOG_MODEL_VOLUME &&
       (!pass->grid3d ||
        (params->integrator == FOG_INTEGRATOR_MARCH && !(params->model_grid3d_step > 0)))) {
-    snprintf(err->message, sizeof err->message,
-             "fog pass: volume model: %s", !pass->grid3d ? "no grid uploaded (fog_pass_upload_grid3d)"
-                                                       : "expected a march step > 0");
+    fog_fail(
+        err, FOG_ERR_INVALID_ARGUMENT, "fog pass: volume model: %s",
+        !pass->grid3d ? "no grid uploaded (fog_pass_upload_grid3d)" : "expected a march step > 0");
     return 1;
   }
   if (params->model == FOG_MODEL_RBF) {
     int n = params->model_rbf_count;
     if (n < 0 || n > FOG_MAX_RBFS || (n > 0 && !params->model_rbfs)) {
-      snprintf(err->message, sizeof err->message,
-               "fog pass: %d RBFs: expected 0..%d (and the array)", n, FOG_MAX_RBFS);
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fog pass: %d RBFs: expected 0..%d (and the array)",
+               n, FOG_MAX_RBFS);
       return 1;
     }
     for (int i = 0; i < n; i++)
       if (!(params->model_rbfs[i].radius > 0) || !(params->model_rbfs[i].density >= 0)) {
-        snprintf(err->message, sizeof err->message,
-                 "fog pass: RBF %d: radius %g and density %g: expected radius > 0, density >= 0",
-                 i, params->model_rbfs[i].radius, params->model_rbfs[i].density);
+        fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                 "fog pass: RBF %d: radius %g and density %g: expected radius > 0, density >= 0", i,
+                 params->model_rbfs[i].radius, params->model_rbfs[i].density);
         return 1;
       }
   }
   if (params->model == FOG_MODEL_QUADRIC || params->model_quadric_count != 0) {
     int n = params->model_quadric_count;
     if (n < 0 || n > FOG_MAX_QUADRICS || (n > 0 && !params->model_quadrics)) {
-      snprintf(err->message, sizeof err->message,
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                "fog pass: %d quadric volumes: expected 0..%d (and the array)", n, FOG_MAX_QUADRICS);
       return 1;
     }
@@ -1390,7 +1389,7 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
         (params->model == FOG_MODEL_FOGMAP || !octaves || !pass->perlin_texture ||
          pass->perlin_size != octaves->desc.size || pass->perlin_octaves != octaves->desc.octaves ||
          !isfinite(params->model_time))) {
-      snprintf(err->message, sizeof err->message,
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                "fog pass: quadric volumes with noise: expected model quadric or perlin, its "
                "octaves uploaded (fog_pass_upload_perlin) and a finite time");
       return 1;
@@ -1401,9 +1400,10 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
       for (int a = 0; a < 3; a++) ok = ok && v->lo[a] <= v->hi[a];
       for (int k = 0; k < 10; k++) ok = ok && isfinite(v->q[k]);
       if (!ok) {
-        snprintf(err->message, sizeof err->message,
+        fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                  "fog pass: quadric volume %d: expected finite coefficients, density >= 0, "
-                 "edge >= 0, noise in [0, 1] and a box lo <= hi", i);
+                 "edge >= 0, noise in [0, 1] and a box lo <= hi",
+                 i);
         return 1;
       }
     }
@@ -1415,33 +1415,32 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
  * the LOD method reads (switching A_0..A_J, slots 0..J; the sum of details A_0 and D_1..D_J,
  * slots 0 and J+1..2J), each must have been uploaded. */
 static int fog_pass_check_fogmap(const fog_pass *pass, const fog_pass_params *params,
-                                 bool reads[FOG_PASS_MAX_GRIDS], render_error *err) {
+                                 bool reads[FOG_PASS_MAX_GRIDS], fog_error *err) {
   const fog_volume *v = params->volume;
   const int J = params->levels, slots = 2 * J + 1;
   if (!v || J < 0 || slots > FOG_PASS_MAX_GRIDS) {
-    snprintf(err->message, sizeof err->message,
-             "fog pass: draw needs a fog volume and 0..%d LOD levels (got %d)", FOG_MAX_LEVELS,
-             J);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "fog pass: draw needs a fog volume and 0..%d LOD levels (got %d)", FOG_MAX_LEVELS, J);
     return 1;
   }
   for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++)
     reads[k] = k < slots && ((k == 0) || (params->lod_method == FOG_LOD_SWITCH ? k <= J : k > J));
   for (int k = 0; k < slots; k++)
     if (reads[k] && !pass->slots[k].texture) {
-      snprintf(err->message, sizeof err->message,
-               "fog pass: grid slot %d (%s) was never uploaded", k,
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fog pass: grid slot %d (%s) was never uploaded", k,
                k <= J ? "an approximation A_l in slot l" : "a detail D_l in slot J + l");
       return 1;
     }
   if (!(v->cell_size > 0) || !(v->extinction >= 0) || !isfinite(v->cell_size) ||
       !isfinite(v->extinction)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: fog volume cell size %g and extinction %g: expected a cell size > 0 "
-             "and an extinction >= 0 (0: no fog), both finite", v->cell_size, v->extinction);
+             "and an extinction >= 0 (0: no fog), both finite",
+             v->cell_size, v->extinction);
     return 1;
   }
   if (params->walk.skip == FOG_SKIP_BELOW && !(params->walk.skip_below >= 0 && isfinite(params->walk.skip_below))) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: skip_below %g: expected a finite bound >= 0 of the fog skipped",
              params->walk.skip_below);
     return 1;
@@ -1450,7 +1449,7 @@ static int fog_pass_check_fogmap(const fog_pass *pass, const fog_pass_params *pa
   if (p->kind == FOG_PROFILE_BSPLINE &&
       (p->count < 1 || p->count > FOG_PROFILE_MAX_COEFFICIENTS || p->degree < 0 ||
        p->degree > 3 || !(p->spacing > 0))) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: B-spline profile with %d coefficients of degree %d: expected 1..%d "
              "coefficients of degree 0..3 and a positive spacing",
              p->count, p->degree, FOG_PROFILE_MAX_COEFFICIENTS);
@@ -1463,9 +1462,8 @@ static int fog_pass_check_fogmap(const fog_pass *pass, const fog_pass_params *pa
  * double (fog_integral.glsl, fog_optical_depth_inside) and the profile, for program prog
  * of a draw with J levels over `slots` slots. */
 static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
-                                    const fog_pass_params *params, int first, int J,
-                                    int slots, const bool reads[FOG_PASS_MAX_GRIDS],
-                                    render_error *err) {
+                                    const fog_pass_params *params, int first, int J, int slots,
+                                    const bool reads[FOG_PASS_MAX_GRIDS], fog_error *err) {
   const fog_volume *v = params->volume;
   const fog_profile *p = &v->profile;
   const double *c = cam->position;
@@ -1563,11 +1561,11 @@ double fog_pass_depth_limit(double transmittance_cutoff) {
 
 int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *params,
                   GLuint surface_colour, GLuint surface_distance, int width, int height,
-                  render_error *err) {
+                  fog_error *err) {
   if (fog_pass_check_model(pass, params, err)) return 1;
   if (!(cam->fov_y > 0 && cam->fov_y < 3.14159265358979323846 && cam->near_plane > 0 &&
         cam->far_plane > cam->near_plane)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: camera fov %g rad, near %g, far %g: expected 0 < fov < pi and "
              "0 < near < far (camera.h's CAMERA_DEFAULT_* where there is no opinion)",
              cam->fov_y, cam->near_plane, cam->far_plane);
@@ -1575,7 +1573,7 @@ int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *para
   }
   int divisor = params->resolution_divisor > 1 ? params->resolution_divisor : 1;
   if (divisor != 1 && divisor != 2 && divisor != 4) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fog pass: resolution divisor %d: expected 0 or 1 (full), 2 or 4",
              params->resolution_divisor);
     return 1;

@@ -43,7 +43,7 @@
 #include "render/fog_sun_shadow.h"
 #include "render/lamp_shadow_map.h"
 #include "render/sun_shadow_map.h"
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 #include "transform/transform.h"
 
 #define FOG_PASS_MAX_GRIDS 16
@@ -211,35 +211,34 @@ double fog_pass_depth_limit(double transmittance_cutoff);
 typedef struct fog_pass fog_pass;
 
 /* Compiles the default variant (manual fetch, exact). */
-int fog_pass_create(fog_pass **pass, render_error *err);
+int fog_pass_create(fog_pass **pass, fog_error *err);
 void fog_pass_destroy(fog_pass *pass);
 
 /* Uploads grid into slot (0 .. FOG_PASS_MAX_GRIDS-1) as an R32F texture. Re-uploading a
  * grid of the same size reuses the texture (glTexSubImage2D). */
-int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid,
-                         render_error *err);
+int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid, fog_error *err);
 /* Uploads lod->approx[0..J] and lod->detail[0..J-1] into their slots. */
-int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, render_error *err);
+int fog_pass_upload_lod(fog_pass *pass, const fog_lod *lod, fog_error *err);
 /* Uploads a pyramid: its approximations, and its details when it has them. */
-int fog_pass_upload_pyramid(fog_pass *pass, const fog_pyramid *pyramid, render_error *err);
+int fog_pass_upload_pyramid(fog_pass *pass, const fog_pyramid *pyramid, fog_error *err);
 
 /* Uploads the density grid of FOG_MODEL_VOLUME as an R32F 3D texture (hardware trilinear,
  * zero border) with its placement; a grid of the same size reuses the texture. */
-int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, render_error *err);
+int fog_pass_upload_grid3d(fog_pass *pass, const volume_grid_desc *grid, fog_error *err);
 
 /* Uploads FOG_MODEL_PERLIN's octave textures (one R32F 3D texture, size x size x size
  * octaves); the same size reuses the texture. */
-int fog_pass_upload_perlin(fog_pass *pass, const fog_perlin *perlin, render_error *err);
+int fog_pass_upload_perlin(fog_pass *pass, const fog_perlin *perlin, fog_error *err);
 
 /* Uploads the sun's optical-depth volume (render/fog_sun_shadow.h) as an R32F 3D texture
  * with its placement; the same size reuses the texture. */
-int fog_pass_upload_sun_shadow(fog_pass *pass, const fog_sun_shadow *shadow, render_error *err);
+int fog_pass_upload_sun_shadow(fog_pass *pass, const fog_sun_shadow *shadow, fog_error *err);
 
 /* Draws the fog over the bound framebuffer (see above). width x height is the viewport and
  * the size of both surface textures. */
 int fog_pass_draw(fog_pass *pass, const camera *cam, const fog_pass_params *params,
                   GLuint surface_colour, GLuint surface_distance, int width, int height,
-                  render_error *err);
+                  fog_error *err);
 
 /* Blocks until the GL has finished every command (glFinish): time a draw as
  * fog_pass_finish(); t0 = now; fog_pass_draw(...); fog_pass_finish(); t = now - t0. */

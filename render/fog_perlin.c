@@ -61,7 +61,7 @@ static bool finite3(const double v[3]) {
   return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
 }
 
-int fog_perlin_create(fog_perlin *perlin, const fog_perlin_desc *desc, render_error *err) {
+int fog_perlin_create(fog_perlin *perlin, const fog_perlin_desc *desc, fog_error *err) {
   memset(perlin, 0, sizeof *perlin);
   const char *bad = NULL;
   int n = desc->size;
@@ -77,14 +77,14 @@ int fog_perlin_create(fog_perlin *perlin, const fog_perlin_desc *desc, render_er
   for (int i = 0; !bad && i < desc->octaves; i++)
     if (!finite3(desc->wind[i])) bad = "wind: expected finite velocities";
   if (bad) {
-    snprintf(err->message, sizeof err->message, "Perlin fog: %s", bad);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "Perlin fog: %s", bad);
     return 1;
   }
   size_t per_octave = (size_t)n * n * n;
   perlin->texels = malloc(per_octave * (size_t)desc->octaves * sizeof(float));
   if (!perlin->texels) {
-    snprintf(err->message, sizeof err->message, "Perlin fog: out of memory for %d^3 x %d texels",
-             n, desc->octaves);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "Perlin fog: out of memory for %d^3 x %d texels", n,
+             desc->octaves);
     return 1;
   }
   perlin->desc = *desc;

@@ -23,7 +23,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 
 #define FOG_PERLIN_MAX_OCTAVES 6
 #define FOG_PERLIN_TEXELS_PER_LATTICE 4
@@ -61,7 +61,7 @@ typedef struct fog_perlin {
 
 /* Fills the textures. Fails naming the field on a bad descriptor (out-of-range octaves or
  * size, a feature size <= 0, an empty box, non-finite values). */
-int fog_perlin_create(fog_perlin *perlin, const fog_perlin_desc *desc, render_error *err);
+int fog_perlin_create(fog_perlin *perlin, const fog_perlin_desc *desc, fog_error *err);
 void fog_perlin_destroy(fog_perlin *perlin);
 
 /* Octave i's texel coordinates per world unit: 2^i TEXELS_PER_LATTICE / feature_size. */

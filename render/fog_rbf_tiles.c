@@ -11,13 +11,13 @@ double fog_rbf_cull_radius(const fog_rbf *g, int count) {
   return reach > 1.0 ? g->radius * sqrt(log(reach)) : -1.0;
 }
 
-static int grow(fog_rbf_tiles *t, size_t need, render_error *err) {
+static int grow(fog_rbf_tiles *t, size_t need, fog_error *err) {
   if (need <= t->index_capacity) return 0;
   size_t capacity = t->index_capacity ? t->index_capacity : 4096;
   while (capacity < need) capacity *= 2;
   uint32_t *more = realloc(t->indices, capacity * sizeof *more);
   if (!more) {
-    snprintf(err->message, sizeof err->message, "RBF tiles: out of memory (%zu indices)", need);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "RBF tiles: out of memory (%zu indices)", need);
     return 1;
   }
   t->indices = more;
@@ -26,13 +26,13 @@ static int grow(fog_rbf_tiles *t, size_t need, render_error *err) {
 }
 
 int fog_rbf_tiles_build(fog_rbf_tiles *t, const camera *cam, int width, int height,
-                        const fog_rbf *rbfs, int count, render_error *err) {
+                        const fog_rbf *rbfs, int count, fog_error *err) {
   const int T = FOG_RBF_TILE_SIZE, tx = (width + T - 1) / T, ty = (height + T - 1) / T;
   if (tx != t->tiles_x || ty != t->tiles_y || !t->ranges) {
     free(t->ranges);
     t->ranges = malloc((size_t)tx * ty * 2 * sizeof *t->ranges);
     if (!t->ranges) {
-      snprintf(err->message, sizeof err->message, "RBF tiles: out of memory (%d x %d)", tx, ty);
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "RBF tiles: out of memory (%d x %d)", tx, ty);
       t->tiles_x = t->tiles_y = 0;
       return 1;
     }
@@ -47,7 +47,7 @@ int fog_rbf_tiles_build(fog_rbf_tiles *t, const camera *cam, int width, int heig
   } seen_from;
   seen_from *from = malloc((size_t)(count > 0 ? count : 1) * sizeof *from);
   if (!from) {
-    snprintf(err->message, sizeof err->message, "RBF tiles: out of memory (%d RBFs)", count);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "RBF tiles: out of memory (%d RBFs)", count);
     return 1;
   }
   const double *origin = cam->position; /* every pixel ray starts there (camera_ray) */

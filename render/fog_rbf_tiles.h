@@ -17,7 +17,7 @@
 
 #include "render/camera.h"
 #include "render/fog_models.h"
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 
 #define FOG_RBF_CULL_BOUND 1e-6 /* optical depth, all culled Gaussians of a ray together */
 #define FOG_RBF_TILE_SIZE 16    /* pixels */
@@ -36,7 +36,7 @@ typedef struct fog_rbf_tiles {
 /* (Re)builds the lists for the camera's width x height image; grows the arrays as needed
  * (fog_rbf_tiles_destroy frees them). Non-zero and a message when out of memory. */
 int fog_rbf_tiles_build(fog_rbf_tiles *tiles, const camera *cam, int width, int height,
-                        const fog_rbf *rbfs, int count, render_error *err);
+                        const fog_rbf *rbfs, int count, fog_error *err);
 void fog_rbf_tiles_destroy(fog_rbf_tiles *tiles);
 
 #endif

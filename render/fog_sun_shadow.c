@@ -78,21 +78,20 @@ bool fog_model_bounds(const fog_model *m, double lo[3], double hi[3]) {
   }
 }
 
-int fog_sun_shadow_create(fog_sun_shadow *s, const fog_sun_shadow_desc *desc,
-                          render_error *err) {
+int fog_sun_shadow_create(fog_sun_shadow *s, const fog_sun_shadow_desc *desc, fog_error *err) {
   memset(s, 0, sizeof *s);
   if (desc->across < 2 || desc->along < 2 || desc->across > FOG_SUN_SHADOW_MAX_SIZE ||
       desc->along > FOG_SUN_SHADOW_MAX_SIZE) {
-    snprintf(err->message, sizeof err->message,
-             "sun shadow volume %d x %d x %d: expected 2..%d samples along each axis",
-             desc->across, desc->across, desc->along, FOG_SUN_SHADOW_MAX_SIZE);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "sun shadow volume %d x %d x %d: expected 2..%d samples along each axis", desc->across,
+             desc->across, desc->along, FOG_SUN_SHADOW_MAX_SIZE);
     return 1;
   }
   s->size[0] = s->size[1] = desc->across;
   s->size[2] = desc->along;
   s->optical_depth = calloc((size_t)desc->across * desc->across * desc->along, sizeof(float));
   if (!s->optical_depth) {
-    snprintf(err->message, sizeof err->message, "sun shadow volume: out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "sun shadow volume: out of memory");
     return 1;
   }
   return 0;
@@ -182,19 +181,18 @@ static void *shadow_rows(void *arg) {
 }
 
 int fog_sun_shadow_compute(fog_sun_shadow *s, const fog_model *beside, const double sun_dir[3],
-                           int threads, render_error *err) {
+                           int threads, fog_error *err) {
   /* the model alone: the quadrics beside it add their exact depth at each lookup */
   const fog_model alone = fog_model_alone(beside), *model = &alone;
   double lo[3], hi[3];
   if (!s->optical_depth || !fog_model_bounds(model, lo, hi)) {
-    snprintf(err->message, sizeof err->message,
-             "sun shadow volume: %s", !s->optical_depth ? "not created"
-                                                         : "the fog model has no bounds");
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "sun shadow volume: %s",
+             !s->optical_depth ? "not created" : "the fog model has no bounds");
     return 1;
   }
   double len = sqrt(sun_dir[0] * sun_dir[0] + sun_dir[1] * sun_dir[1] + sun_dir[2] * sun_dir[2]);
   if (!(fabs(len - 1.0) < 1e-6)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "sun shadow volume: sun direction of length %g: expected a unit vector", len);
     return 1;
   }

@@ -19,7 +19,7 @@
 #include <stdbool.h>
 
 #include "render/fog_models.h"
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 
 /* How the fog pass finds T_s for a model (the shader variant's FOG_SUN_SHADOW). */
 typedef enum fog_sun_shadow_kind {
@@ -57,15 +57,14 @@ fog_sun_shadow_kind fog_sun_shadow_kind_of(const fog_model *model, const double 
 bool fog_model_bounds(const fog_model *model, double lo[3], double hi[3]);
 
 /* Allocates the volume (size from desc, checked) for fog_sun_shadow_compute. */
-int fog_sun_shadow_create(fog_sun_shadow *shadow, const fog_sun_shadow_desc *desc,
-                          render_error *err);
+int fog_sun_shadow_create(fog_sun_shadow *shadow, const fog_sun_shadow_desc *desc, fog_error *err);
 void fog_sun_shadow_destroy(fog_sun_shadow *shadow);
 
 /* Fits the box to the model's bounds in the frame of sun_dir (unit, towards the sun) and
  * fills every sample. The model must have bounds (fog_sun_shadow_kind_of gives VOLUME).
  * threads >= 1 share the columns. */
-int fog_sun_shadow_compute(fog_sun_shadow *shadow, const fog_model *model,
-                           const double sun_dir[3], int threads, render_error *err);
+int fog_sun_shadow_compute(fog_sun_shadow *shadow, const fog_model *model, const double sun_dir[3],
+                           int threads, fog_error *err);
 
 /* Trilinear interpolation of the optical depth towards the sun at world point p, as the
  * GL lookup does it (the CPU twin): across the sunlight the volume fades to 0 in the half

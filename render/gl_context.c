@@ -7,7 +7,7 @@
 
 #include "render/gl_context_backend.h"
 
-gl_context *gl_context_create(const gl_context_desc *desc, render_error *err) {
+gl_context *gl_context_create(const gl_context_desc *desc, fog_error *err) {
   gl_context_desc d = desc ? *desc : (gl_context_desc){0};
   if (d.kind == GL_CONTEXT_WINDOW) return gl_context_glfw_create(&d, err);
   return gl_context_egl_create(&d, err);
@@ -68,11 +68,11 @@ static void APIENTRY debug_message(GLenum source, GLenum type, GLuint id, GLenum
 }
 #endif
 
-int gl_context_finish_setup(gl_context *ctx, render_error *err) {
+int gl_context_finish_setup(gl_context *ctx, fog_error *err) {
   const char *version = (const char *)glGetString(GL_VERSION);
   const char *renderer = (const char *)glGetString(GL_RENDERER);
   if (!version) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_GRAPHICS,
              "the %s context is current but glGetString(GL_VERSION) returned NULL "
              "(GL entry points not reaching the driver?)",
              ctx->platform);
@@ -83,9 +83,8 @@ int gl_context_finish_setup(gl_context *ctx, render_error *err) {
   glGetIntegerv(GL_MAJOR_VERSION, &ctx->major);
   glGetIntegerv(GL_MINOR_VERSION, &ctx->minor);
   if (ctx->major < 4 || (ctx->major == 4 && ctx->minor < 3)) {
-    snprintf(err->message, sizeof err->message,
-             "OpenGL %d.%d from %s (%s): fogpipe needs 4.3 core or newer", ctx->major,
-             ctx->minor, ctx->platform, ctx->renderer);
+    fog_fail(err, FOG_ERR_GRAPHICS, "OpenGL %d.%d from %s (%s): fogpipe needs 4.3 core or newer",
+             ctx->major, ctx->minor, ctx->platform, ctx->renderer);
     return 1;
   }
 #ifndef NDEBUG

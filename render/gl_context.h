@@ -10,7 +10,7 @@
 
 #include <stdbool.h>
 
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 
 typedef enum gl_context_kind {
   GL_CONTEXT_HEADLESS = 0, /* default */
@@ -28,7 +28,7 @@ typedef struct gl_context gl_context;
 
 /* Creates the context and makes it current on the calling thread. Returns NULL and fills
  * err when no context can be made (e.g. no display for a window). */
-gl_context *gl_context_create(const gl_context_desc *desc, render_error *err);
+gl_context *gl_context_create(const gl_context_desc *desc, fog_error *err);
 void gl_context_destroy(gl_context *ctx);
 
 /* "4.5 (Core Profile) Mesa 22.3.6" and the renderer string, for logs and benchmarks. */

@@ -27,12 +27,12 @@ struct gl_context {
 };
 
 /* The two backends (gl_context_egl.c, gl_context_glfw.c). */
-gl_context *gl_context_egl_create(const gl_context_desc *desc, render_error *err);
-gl_context *gl_context_glfw_create(const gl_context_desc *desc, render_error *err);
+gl_context *gl_context_egl_create(const gl_context_desc *desc, fog_error *err);
+gl_context *gl_context_glfw_create(const gl_context_desc *desc, fog_error *err);
 
 /* Shared by both once their context is current: reads version and renderer strings,
  * checks for a 4.x core context, and (debug builds) routes KHR_debug output into
  * ctx->debug_log. Returns non-zero with err filled if the context is unusable. */
-int gl_context_finish_setup(gl_context *ctx, render_error *err);
+int gl_context_finish_setup(gl_context *ctx, fog_error *err);
 
 #endif

@@ -157,10 +157,10 @@ static void egl_destroy(gl_context *base) {
 
 static const gl_context_backend egl_backend = {.destroy = egl_destroy};
 
-gl_context *gl_context_egl_create(const gl_context_desc *desc, render_error *err) {
+gl_context *gl_context_egl_create(const gl_context_desc *desc, fog_error *err) {
   egl_context *ctx = calloc(1, sizeof *ctx);
   if (!ctx) {
-    snprintf(err->message, sizeof err->message, "out of memory for the EGL context");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the EGL context");
     return NULL;
   }
   ctx->base.backend = &egl_backend;
@@ -210,7 +210,7 @@ gl_context *gl_context_egl_create(const gl_context_desc *desc, render_error *err
     if (ctx->context != EGL_NO_CONTEXT) ctx->display = d, ctx->base.platform = "egl-default";
   }
   if (ctx->context == EGL_NO_CONTEXT) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_GRAPHICS,
              "no headless OpenGL 4.3+ core context from EGL (%d devices enumerated): %s",
              (int)device_count, log[0] ? log : "no EGL platform available");
     free(ctx);

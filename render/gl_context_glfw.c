@@ -48,13 +48,13 @@ static const gl_context_backend glfw_backend = {
     .framebuffer_size = glfw_framebuffer_size,
 };
 
-gl_context *gl_context_glfw_create(const gl_context_desc *desc, render_error *err) {
+gl_context *gl_context_glfw_create(const gl_context_desc *desc, fog_error *err) {
   glfwSetErrorCallback(glfw_error);
   glfw_last_error[0] = '\0';
   if (!glfwInit()) {
     const char *display = getenv("DISPLAY");
     const char *wayland = getenv("WAYLAND_DISPLAY");
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_GRAPHICS,
              "cannot open a window: %s (GLFW: %s); for headless rendering use `fogpipe "
              "render`, or run under xvfb-run",
              (display && *display) || (wayland && *wayland) ? "the display refused GLFW"
@@ -65,7 +65,7 @@ gl_context *gl_context_glfw_create(const gl_context_desc *desc, render_error *er
   glfw_context *ctx = calloc(1, sizeof *ctx);
   if (!ctx) {
     glfwTerminate();
-    snprintf(err->message, sizeof err->message, "out of memory for the window context");
+    fog_fail(err, FOG_ERR_GRAPHICS, "out of memory for the window context");
     return NULL;
   }
   ctx->base.backend = &glfw_backend;
@@ -93,8 +93,7 @@ gl_context *gl_context_glfw_create(const gl_context_desc *desc, render_error *er
     }
   }
   if (!ctx->window) {
-    snprintf(err->message, sizeof err->message, "cannot create an OpenGL 4.3+ core window: %s",
-             log);
+    fog_fail(err, FOG_ERR_GRAPHICS, "cannot create an OpenGL 4.3+ core window: %s", log);
     glfw_destroy(&ctx->base);
     return NULL;
   }

@@ -10,10 +10,10 @@ struct gl_presenter {
   GLint u_image, u_image_per_pixel, u_bilinear;
 };
 
-gl_presenter *gl_presenter_create(render_error *err) {
+gl_presenter *gl_presenter_create(fog_error *err) {
   gl_presenter *p = calloc(1, sizeof *p);
   if (!p) {
-    snprintf(err->message, sizeof err->message, "out of memory for the window presenter");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the window presenter");
     return NULL;
   }
   p->program = gl_util_program("scene_sky_vs.glsl", "scene_present_fs.glsl", err);
@@ -51,7 +51,7 @@ void gl_presenter_draw(gl_presenter *p, const gl_target *source, int width, int 
   glUseProgram(0);
 }
 
-int gl_read_window(int width, int height, float *rgb, render_error *err) {
+int gl_read_window(int width, int height, float *rgb, fog_error *err) {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   return gl_util_read_pixels(GL_BACK, width, height, 3, rgb, err);
 }

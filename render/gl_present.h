@@ -21,13 +21,13 @@ typedef enum gl_present_scaling {
   GL_PRESENT_BILINEAR,    /* the texture's own filter (the demo's reduced render scale) */
 } gl_present_scaling;
 
-gl_presenter *gl_presenter_create(render_error *err);
+gl_presenter *gl_presenter_create(fog_error *err);
 void gl_presenter_destroy(gl_presenter *presenter);
 /* Draws colour attachment 0 of source scaled to the window's width x height. */
 void gl_presenter_draw(gl_presenter *presenter, const gl_target *source, int width, int height,
                        gl_present_scaling scaling);
 /* The default framebuffer's back buffer as RGB floats, rows top first. */
-int gl_read_window(int width, int height, float *rgb, render_error *err);
+int gl_read_window(int width, int height, float *rgb, fog_error *err);
 /* One texel of colour attachment `attachment` of target at image pixel (x, y), row 0 at the
  * top; NAN on a GL error. */
 float gl_target_read_texel(const gl_target *target, int attachment, int x, int y);

@@ -29,24 +29,24 @@ static int append(text_buffer *b, const char *s, size_t n) {
   return 0;
 }
 
-static int expand(text_buffer *out, const char *name, int depth, render_error *err) {
+static int expand(text_buffer *out, const char *name, int depth, fog_error *err) {
   char generated[FOG_SHADER_GENERATED_MAX];
   int generated_length = fog_shader_generated(name, generated, sizeof generated);
   if (generated_length == -2) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_GRAPHICS,
              "generated shader header %s is longer than FOG_SHADER_GENERATED_MAX", name);
     return 1;
   }
   const char *text = generated_length >= 0 ? generated : render_shader_source(name);
   if (!text) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_GRAPHICS,
              "shader file render/shaders/%s is not embedded (missing, or the build ran "
              "before it existed: re-run cmake)",
              name);
     return 1;
   }
   if (depth > 8) {
-    snprintf(err->message, sizeof err->message, "%s: #include nested deeper than 8", name);
+    fog_fail(err, FOG_ERR_GRAPHICS, "%s: #include nested deeper than 8", name);
     return 1;
   }
   for (const char *line = text; *line;) {
@@ -58,7 +58,7 @@ static int expand(text_buffer *out, const char *name, int depth, render_error *e
       const char *open = strchr(p, '"');
       const char *close = open ? strchr(open + 1, '"') : NULL;
       if (!close || close > line + n) {
-        snprintf(err->message, sizeof err->message, "%s: malformed #include line", name);
+        fog_fail(err, FOG_ERR_GRAPHICS, "%s: malformed #include line", name);
         return 1;
       }
       char included[128];
@@ -72,11 +72,11 @@ static int expand(text_buffer *out, const char *name, int depth, render_error *e
   }
   return 0;
 oom:
-  snprintf(err->message, sizeof err->message, "out of memory expanding %s", name);
+  fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory expanding %s", name);
   return 1;
 }
 
-char *gl_util_shader_text(const char *name, render_error *err) {
+char *gl_util_shader_text(const char *name, fog_error *err) {
   text_buffer b = {0};
   if (expand(&b, name, 0, err)) {
     free(b.data);
@@ -96,7 +96,7 @@ static const char *stage_name(GLenum stage) {
   }
 }
 
-static GLuint compile(GLenum stage, const char *label, const char *source, render_error *err) {
+static GLuint compile(GLenum stage, const char *label, const char *source, fog_error *err) {
   GLuint shader = glCreateShader(stage);
   glShaderSource(shader, 1, &source, NULL);
   glCompileShader(shader);
@@ -105,15 +105,15 @@ static GLuint compile(GLenum stage, const char *label, const char *source, rende
   if (!ok) {
     char log[400] = "";
     glGetShaderInfoLog(shader, sizeof log, NULL, log);
-    snprintf(err->message, sizeof err->message, "%s: %s shader does not compile: %s", label,
-             stage_name(stage), log);
+    fog_fail(err, FOG_ERR_GRAPHICS, "%s: %s shader does not compile: %s", label, stage_name(stage),
+             log);
     glDeleteShader(shader);
     return 0;
   }
   return shader;
 }
 
-static GLuint link(const char *label, GLuint *shaders, int count, render_error *err) {
+static GLuint link(const char *label, GLuint *shaders, int count, fog_error *err) {
   GLuint program = glCreateProgram();
   for (int i = 0; i < count; i++) glAttachShader(program, shaders[i]);
   glLinkProgram(program);
@@ -123,7 +123,7 @@ static GLuint link(const char *label, GLuint *shaders, int count, render_error *
   if (!ok) {
     char log[400] = "";
     glGetProgramInfoLog(program, sizeof log, NULL, log);
-    snprintf(err->message, sizeof err->message, "%s: program does not link: %s", label, log);
+    fog_fail(err, FOG_ERR_GRAPHICS, "%s: program does not link: %s", label, log);
     glDeleteProgram(program);
     return 0;
   }
@@ -131,7 +131,7 @@ static GLuint link(const char *label, GLuint *shaders, int count, render_error *
 }
 
 GLuint gl_util_program_from_source(const char *label, const char *vertex_source,
-                                   const char *fragment_source, render_error *err) {
+                                   const char *fragment_source, fog_error *err) {
   GLuint shaders[2];
   shaders[0] = compile(GL_VERTEX_SHADER, label, vertex_source, err);
   if (!shaders[0]) return 0;
@@ -143,7 +143,7 @@ GLuint gl_util_program_from_source(const char *label, const char *vertex_source,
   return link(label, shaders, 2, err);
 }
 
-GLuint gl_util_program(const char *vertex_name, const char *fragment_name, render_error *err) {
+GLuint gl_util_program(const char *vertex_name, const char *fragment_name, fog_error *err) {
   char *vs = gl_util_shader_text(vertex_name, err);
   if (!vs) return 0;
   char *fs = gl_util_shader_text(fragment_name, err);
@@ -164,7 +164,7 @@ GLuint gl_util_program(const char *vertex_name, const char *fragment_name, rende
   return link(label, shaders, 2, err);
 }
 
-GLuint gl_util_compute_program(const char *compute_name, render_error *err) {
+GLuint gl_util_compute_program(const char *compute_name, fog_error *err) {
   char *cs = gl_util_shader_text(compute_name, err);
   if (!cs) return 0;
   GLuint shader = compile(GL_COMPUTE_SHADER, compute_name, cs, err);
@@ -186,23 +186,22 @@ static const char *gl_error_name(GLenum e) {
   }
 }
 
-int gl_util_check(const char *what, render_error *err) {
+int gl_util_check(const char *what, fog_error *err) {
   GLenum first = glGetError();
   if (first == GL_NO_ERROR) return 0;
   while (glGetError() != GL_NO_ERROR) {
   }
-  snprintf(err->message, sizeof err->message, "%s: %s (0x%x)", what, gl_error_name(first),
-           first);
+  fog_fail(err, FOG_ERR_GRAPHICS, "%s: %s (0x%x)", what, gl_error_name(first), first);
   return 1;
 }
 
 /* ---- render targets ---- */
 
-int gl_target_create(gl_target *target, const gl_target_desc *desc, render_error *err) {
+int gl_target_create(gl_target *target, const gl_target_desc *desc, fog_error *err) {
   *target = (gl_target){.width = desc->width, .height = desc->height};
   if (desc->width <= 0 || desc->height <= 0) {
-    snprintf(err->message, sizeof err->message, "render target size %dx%d: expected > 0",
-             desc->width, desc->height);
+    fog_fail(err, FOG_ERR_GRAPHICS, "render target size %dx%d: expected > 0", desc->width,
+             desc->height);
     return 1;
   }
   glGetError();
@@ -241,9 +240,9 @@ int gl_target_create(gl_target *target, const gl_target_desc *desc, render_error
   GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
-    snprintf(err->message, sizeof err->message,
-             "render target %dx%d with %d colour textures is incomplete (status 0x%x)",
-             desc->width, desc->height, target->color_count, status);
+    fog_fail(err, FOG_ERR_GRAPHICS,
+             "render target %dx%d with %d colour textures is incomplete (status 0x%x)", desc->width,
+             desc->height, target->color_count, status);
     gl_target_destroy(target);
     return 1;
   }
@@ -272,13 +271,13 @@ static GLenum channel_format(int channels) {
 }
 
 /* Reads the bound read framebuffer; flips rows so the top row comes first. */
-static int read_flipped(int width, int height, int channels, float *out, render_error *err) {
+static int read_flipped(int width, int height, int channels, float *out, fog_error *err) {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, channel_format(channels), GL_FLOAT, out);
   size_t row = (size_t)width * channels;
   float *swap = malloc(row * sizeof *swap);
   if (!swap) {
-    snprintf(err->message, sizeof err->message, "out of memory reading pixels");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory reading pixels");
     return 1;
   }
   for (int y = 0; y < height / 2; y++) {
@@ -292,7 +291,7 @@ static int read_flipped(int width, int height, int channels, float *out, render_
 }
 
 int gl_target_read(const gl_target *target, int attachment, int channels, float *out,
-                   render_error *err) {
+                   fog_error *err) {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, target->framebuffer);
   glReadBuffer(GL_COLOR_ATTACHMENT0 + attachment);
   int status = read_flipped(target->width, target->height, channels, out, err);
@@ -301,7 +300,7 @@ int gl_target_read(const gl_target *target, int attachment, int channels, float 
 }
 
 int gl_util_read_pixels(GLenum read_buffer, int width, int height, int channels, float *out,
-                        render_error *err) {
+                        fog_error *err) {
   glReadBuffer(read_buffer);
   return read_flipped(width, height, channels, out, err);
 }

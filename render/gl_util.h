@@ -9,7 +9,7 @@
 
 #include <GL/glcorearb.h>
 
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 
 /* The text of render/shaders/<name> embedded at build time (render/embed_shaders.cmake);
  * NULL if there is no such file. */
@@ -18,20 +18,20 @@ const char *render_shader_source(const char *name);
 /* The embedded file with every line `#include "other.glsl"` replaced by that file's text
  * (recursively, depth 8), so CPU-mirrored formulas live in one .glsl file. Returns a
  * malloc'd string (caller frees) or NULL with err naming the missing file. */
-char *gl_util_shader_text(const char *name, render_error *err);
+char *gl_util_shader_text(const char *name, fog_error *err);
 
 /* Compiles and links a program from embedded files: a vertex + fragment pair, or a
  * compute shader. On failure returns 0 and err holds "<file>: <stage> shader: <info log>"
  * (or the link log). */
-GLuint gl_util_program(const char *vertex_name, const char *fragment_name, render_error *err);
-GLuint gl_util_compute_program(const char *compute_name, render_error *err);
+GLuint gl_util_program(const char *vertex_name, const char *fragment_name, fog_error *err);
+GLuint gl_util_compute_program(const char *compute_name, fog_error *err);
 /* The same from source strings; label names them in errors. */
 GLuint gl_util_program_from_source(const char *label, const char *vertex_source,
-                                   const char *fragment_source, render_error *err);
+                                   const char *fragment_source, fog_error *err);
 
 /* Returns non-zero and fills err ("<what>: GL_INVALID_OPERATION") if glGetError reports
  * anything; clears every pending error. */
-int gl_util_check(const char *what, render_error *err);
+int gl_util_check(const char *what, fog_error *err);
 
 /* A framebuffer with up to 4 colour textures (any sized internal format: GL_RGBA16F,
  * GL_RGBA32F, GL_R32F, GL_RGBA8, ...) and an optional depth texture (GL_DEPTH_COMPONENT32F).
@@ -52,7 +52,7 @@ typedef struct gl_target {
   GLuint depth;  /* 0 when none */
 } gl_target;
 
-int gl_target_create(gl_target *target, const gl_target_desc *desc, render_error *err);
+int gl_target_create(gl_target *target, const gl_target_desc *desc, fog_error *err);
 void gl_target_destroy(gl_target *target);
 /* Binds the framebuffer for drawing and sets the viewport to its size. */
 void gl_target_bind(const gl_target *target);
@@ -61,11 +61,11 @@ void gl_target_bind(const gl_target *target);
  * 2: GL_RG, 3: GL_RGB, 4: GL_RGBA) into out (width*height*channels), rows TOP FIRST (GL
  * reads bottom-up; this flips). Returns non-zero on a GL error. */
 int gl_target_read(const gl_target *target, int attachment, int channels, float *out,
-                   render_error *err);
+                   fog_error *err);
 /* Reads the bound read framebuffer's buffer `read_buffer` (e.g. GL_BACK for a window) as
  * RGB floats, rows top first. */
 int gl_util_read_pixels(GLenum read_buffer, int width, int height, int channels, float *out,
-                        render_error *err);
+                        fog_error *err);
 
 /* A VAO to bind for gl_VertexID full-screen triangles (core profile needs one bound).
  * Created on first use (and again when a new context no longer knows it). */

@@ -5,7 +5,7 @@
 #ifndef FOGPIPE_RENDER_H
 #define FOGPIPE_RENDER_H
 
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 #include "render/gl_context.h"
 #include "render/gl_util.h"
 #include "render/gl_present.h"

@@ -12,10 +12,10 @@
 
 #define DEG (3.14159265358979323846 / 180.0)
 
-int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_error *err) {
+int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, fog_error *err) {
   *geo = (scene_geometry){0};
   if (desc->box_count < 0 || desc->box_count > SCENE_MAX_BOXES) {
-    snprintf(err->message, sizeof err->message, "%d boxes: at most %d", desc->box_count,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%d boxes: at most %d", desc->box_count,
              SCENE_MAX_BOXES);
     return 1;
   }
@@ -24,8 +24,8 @@ int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_er
   for (int b = 0; b < desc->box_count; b++) {
     const scene_box_desc *d = &desc->boxes[b];
     if (!(d->size[0] > 0 && d->size[1] > 0 && d->size[2] > 0)) {
-      snprintf(err->message, sizeof err->message, "box %d has size %g x %g x %g: expected > 0",
-               b + 1, d->size[0], d->size[1], d->size[2]);
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "box %d has size %g x %g x %g: expected > 0", b + 1,
+               d->size[0], d->size[1], d->size[2]);
       terrain_destroy(&geo->terrain);
       return 1;
     }
@@ -246,7 +246,7 @@ static size_t box_mesh(const scene_geometry *geo, size_t base, vertex *vertices,
   return k;
 }
 
-static int upload_geometry(scene_pass *pass, render_error *err) {
+static int upload_geometry(scene_pass *pass, fog_error *err) {
   const scene_geometry *geo = pass->geo;
   const terrain *t = &geo->terrain;
   int rx = t->resolution_x, rz = t->resolution_z;
@@ -266,7 +266,7 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
   if (!vertices || !indices || !pass->tiles || !pass->draw_counts || !pass->draw_offsets) {
     free(vertices);
     free(indices);
-    snprintf(err->message, sizeof err->message, "out of memory for the scene meshes");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the scene meshes");
     return 1; /* the tiles and draw arrays go with the pass */
   }
   terrain_mesh_vertices(t, vertices);
@@ -276,7 +276,7 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
   if (k != index_count) { /* the count above and the meshes disagree: a bug, not input */
     free(vertices);
     free(indices);
-    snprintf(err->message, sizeof err->message, "scene meshes: %zu indices, %zu expected", k,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "scene meshes: %zu indices, %zu expected", k,
              index_count);
     return 1;
   }
@@ -303,7 +303,7 @@ static int upload_geometry(scene_pass *pass, render_error *err) {
 }
 
 /* The depth texture (compare mode: sampler2DShadow, 2 x 2 filtered) and its framebuffer. */
-static int shadow_map_create(scene_pass *pass, render_error *err) {
+static int shadow_map_create(scene_pass *pass, fog_error *err) {
   GLuint tex = 0;
   pass->shadow.size = SCENE_SUN_SHADOW_SIZE;
   glGenTextures(1, &tex);
@@ -328,8 +328,7 @@ static int shadow_map_create(scene_pass *pass, render_error *err) {
   GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
-    snprintf(err->message, sizeof err->message, "sun shadow map: framebuffer incomplete (%#x)",
-             status);
+    fog_fail(err, FOG_ERR_GRAPHICS, "sun shadow map: framebuffer incomplete (%#x)", status);
     return 1;
   }
   return gl_util_check("sun shadow map", err);
@@ -386,10 +385,10 @@ static void shadow_map_render(scene_pass *pass) {
 
 const sun_shadow_map *scene_pass_sun_shadow(const scene_pass *pass) { return &pass->shadow; }
 
-scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err) {
+scene_pass *scene_pass_create(const scene_geometry *geo, fog_error *err) {
   scene_pass *pass = calloc(1, sizeof *pass);
   if (!pass) {
-    snprintf(err->message, sizeof err->message, "out of memory for the scene pass");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the scene pass");
     return NULL;
   }
   pass->geo = geo;
@@ -463,9 +462,9 @@ void scene_pass_destroy(scene_pass *pass) {
   free(pass);
 }
 
-int scene_pass_set_terrain_lod(scene_pass *pass, double max_pixels, render_error *err) {
+int scene_pass_set_terrain_lod(scene_pass *pass, double max_pixels, fog_error *err) {
   if (!(max_pixels >= 0 && isfinite(max_pixels))) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "terrain LOD error %g pixels: expected a finite number >= 0 (0: the full mesh)",
              max_pixels);
     return 1;
@@ -476,7 +475,7 @@ int scene_pass_set_terrain_lod(scene_pass *pass, double max_pixels, render_error
     pass->lod_indices = malloc(tiles * terrain_lod_max_indices() * sizeof *pass->lod_indices);
     pass->lod_order = malloc(tiles * sizeof *pass->lod_order);
     if (!pass->lod_indices || !pass->lod_order) {
-      snprintf(err->message, sizeof err->message, "out of memory for the terrain's LOD mesh");
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the terrain's LOD mesh");
       return 1;
     }
     glGenBuffers(1, &pass->lod_index_buffer);
@@ -581,16 +580,16 @@ bool scene_terrain_back_faces_hidden(const terrain *t, const camera *cam) {
 
 _Static_assert(FOG_MAX_LAMPS == 16, "scene_surface_fs.glsl's SCENE_MAX_LAMPS is 16");
 
-int scene_pass_set_lamps(scene_pass *pass, const fog_lamps *lamps, render_error *err) {
+int scene_pass_set_lamps(scene_pass *pass, const fog_lamps *lamps, fog_error *err) {
   pass->lamps = *lamps;
   if (pass->lamps.count < 0) pass->lamps.count = 0;
   if (pass->lamps.count > FOG_MAX_LAMPS) pass->lamps.count = FOG_MAX_LAMPS;
   return scene_lamp_shadows_update(pass, err);
 }
 
-int scene_pass_set_lamp_shadows(scene_pass *pass, int size, render_error *err) {
+int scene_pass_set_lamp_shadows(scene_pass *pass, int size, fog_error *err) {
   if (size != 0 && !(size >= LAMP_SHADOW_SIZE_MIN && size <= LAMP_SHADOW_SIZE_MAX)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "lamp shadow cubes of %d texels: expected 0 (none) or %d..%d", size,
              LAMP_SHADOW_SIZE_MIN, LAMP_SHADOW_SIZE_MAX);
     return 1;
@@ -728,7 +727,7 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glDisable(GL_DEPTH_TEST);
 }
 
-int scene_target_create(gl_target *target, int width, int height, render_error *err) {
+int scene_target_create(gl_target *target, int width, int height, fog_error *err) {
   return gl_target_create(target,
                           &(gl_target_desc){.width = width,
                                             .height = height,

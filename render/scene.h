@@ -22,7 +22,7 @@
 #include "render/fog_lamp.h"
 #include "render/gl_util.h"
 #include "render/lamp_shadow_map.h"
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 #include "render/sun_shadow_map.h"
 #include "render/terrain.h"
 
@@ -78,7 +78,7 @@ typedef struct scene_geometry {
   double sun_direction[3];  /* unit vector toward the sun, from azimuth and elevation */
 } scene_geometry;
 
-int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, render_error *err);
+int scene_geometry_create(scene_geometry *geo, const scene_desc *desc, fog_error *err);
 void scene_geometry_destroy(scene_geometry *geo);
 /* The world box around the terrain and the boxes (what the shadow maps must cover). */
 void scene_geometry_bounds(const scene_geometry *geo, double lo[3], double hi[3]);
@@ -99,7 +99,7 @@ double scene_geometry_pixel_distance(const scene_geometry *geo, const camera *ca
 typedef struct scene_pass scene_pass;
 
 /* Uploads geo's meshes and builds the shaders; geo must outlive the pass. */
-scene_pass *scene_pass_create(const scene_geometry *geo, render_error *err);
+scene_pass *scene_pass_create(const scene_geometry *geo, fog_error *err);
 void scene_pass_destroy(scene_pass *pass);
 /* Draws sky, terrain and boxes into target (made by scene_target_create, or any target
  * with colour 0 and R32F colour 1 and a depth buffer; colour 2 optional), at the target's size. Does not
@@ -109,10 +109,10 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
  * irradiance I cos / (d^2 + r^2) times the spot's cone and V, the lamp's visibility past
  * the terrain and boxes (its shadow cube, rendered here for each lamp that moved since its
  * last), not dimmed by the fog. Fails only when GL does (the cubes' memory). */
-int scene_pass_set_lamps(scene_pass *pass, const fog_lamps *lamps, render_error *err);
+int scene_pass_set_lamps(scene_pass *pass, const fog_lamps *lamps, fog_error *err);
 /* The lamps' shadow cubes (render/lamp_shadow_map.h): `size` texels per face side, in
  * LAMP_SHADOW_SIZE_MIN..MAX, or 0: no lamp shadows (V = 1). LAMP_SHADOW_SIZE at creation. */
-int scene_pass_set_lamp_shadows(scene_pass *pass, int size, render_error *err);
+int scene_pass_set_lamp_shadows(scene_pass *pass, int size, fog_error *err);
 /* The cubes of the lamps set, for the fog's shafts (fog_pass_params.lamp_shadows); NULL when
  * lamp shadows are off or there are no lamps. */
 const lamp_shadow_maps *scene_pass_lamp_shadows(const scene_pass *pass);
@@ -127,7 +127,7 @@ const sun_shadow_map *scene_pass_sun_shadow(const scene_pass *pass);
  * coarsest level whose height error spans at most max_pixels on screen, seams stitched
  * watertight. 0 (the state at creation): the full mesh, exactly the triangles
  * terrain_intersect hits. The shadow map always draws the full mesh. */
-int scene_pass_set_terrain_lod(scene_pass *pass, double max_pixels, render_error *err);
+int scene_pass_set_terrain_lod(scene_pass *pass, double max_pixels, fog_error *err);
 /* Triangles the last run drew: the terrain tiles in the camera's view, and the boxes. */
 long scene_pass_triangles_drawn(const scene_pass *pass);
 /* Whether the scene pass may cull the terrain's back faces for this camera (above the
@@ -136,6 +136,6 @@ bool scene_terrain_back_faces_hidden(const terrain *t, const camera *cam);
 
 /* A render target with the scene pass's layout (RGBA16F colour, R32F distance, RGBA16F
  * sun-lit share, depth). */
-int scene_target_create(gl_target *target, int width, int height, render_error *err);
+int scene_target_create(gl_target *target, int width, int height, fog_error *err);
 
 #endif

@@ -67,7 +67,7 @@ GLsizei scene_tile_ranges(scene_pass *pass, const double eye[3], scene_box_culle
 /* The lamps' shadow cubes: render those whose lamp moved (scene_pass_set_lamps and
  * scene_pass_set_lamp_shadows; they leave framebuffer 0 bound and the GL state of their
  * draw, which scene_pass_run and the fog pass set again), and release them. */
-int scene_lamp_shadows_update(scene_pass *pass, render_error *err);
+int scene_lamp_shadows_update(scene_pass *pass, fog_error *err);
 void scene_lamp_shadows_destroy(scene_pass *pass);
 /* The surface program's lamp-shadow uniforms (lamp_shadow.glsl; the program in use), the
  * cubes on texture unit `unit`. */

@@ -11,7 +11,7 @@
 /* Allocates the cube array for `count` lamps at `size` (at least one cube, so the
  * surfaces' sampler always has a complete texture) and the framebuffer and program on first
  * use. Every cube is marked unrendered. */
-static int lamp_shadows_allocate(scene_pass *pass, int count, render_error *err) {
+static int lamp_shadows_allocate(scene_pass *pass, int count, fog_error *err) {
   lamp_shadow_maps *maps = &pass->lamp_shadows;
   if (!pass->lamp_shadow_program) {
     pass->lamp_shadow_program = gl_util_program("lamp_shadow_vs.glsl", "lamp_shadow_fs.glsl", err);
@@ -78,7 +78,7 @@ static void render_cube(scene_pass *pass, int i, const double lo[3], const doubl
   }
 }
 
-int scene_lamp_shadows_update(scene_pass *pass, render_error *err) {
+int scene_lamp_shadows_update(scene_pass *pass, fog_error *err) {
   lamp_shadow_maps *maps = &pass->lamp_shadows;
   const int count = pass->lamps.count;
   if (pass->lamp_shadow_size == 0 || count == 0) return 0;

@@ -39,7 +39,7 @@ static double value_noise(double x, double z, uint32_t seed) {
 
 /* ---- creation ---- */
 
-int terrain_create(terrain *t, const terrain_desc *desc, render_error *err) {
+int terrain_create(terrain *t, const terrain_desc *desc, fog_error *err) {
   *t = (terrain){0};
   for (int k = 0; k < 3; k++) t->origin[k] = desc->origin[k];
   t->size[0] = desc->size[0] > 0 ? desc->size[0] : 1000.0;
@@ -47,9 +47,8 @@ int terrain_create(terrain *t, const terrain_desc *desc, render_error *err) {
   t->height = desc->height > 0 ? desc->height : 150.0;
   if (desc->heights) {
     if (desc->heights_width < 2 || desc->heights_height < 2) {
-      snprintf(err->message, sizeof err->message,
-               "terrain heights are %dx%d: expected at least 2x2", desc->heights_width,
-               desc->heights_height);
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "terrain heights are %dx%d: expected at least 2x2",
+               desc->heights_width, desc->heights_height);
       return 1;
     }
     t->resolution_x = desc->heights_width;
@@ -57,7 +56,7 @@ int terrain_create(terrain *t, const terrain_desc *desc, render_error *err) {
   } else {
     int n = desc->resolution > 0 ? desc->resolution : 257;
     if (n < 2 || n > TERRAIN_MAX_RESOLUTION) {
-      snprintf(err->message, sizeof err->message,
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                "terrain resolution %d: expected 2 to %d vertices per side", n,
                TERRAIN_MAX_RESOLUTION);
       return 1;
@@ -66,7 +65,7 @@ int terrain_create(terrain *t, const terrain_desc *desc, render_error *err) {
   }
   if ((double)t->resolution_x * t->resolution_z >
       (double)TERRAIN_MAX_RESOLUTION * TERRAIN_MAX_RESOLUTION) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "terrain of %dx%d vertices: at most %d x %d (its mesh must stay under 2 GiB)",
              t->resolution_x, t->resolution_z, TERRAIN_MAX_RESOLUTION, TERRAIN_MAX_RESOLUTION);
     return 1;
@@ -74,8 +73,8 @@ int terrain_create(terrain *t, const terrain_desc *desc, render_error *err) {
   size_t count = (size_t)t->resolution_x * t->resolution_z;
   t->h = malloc(count * sizeof *t->h);
   if (!t->h) {
-    snprintf(err->message, sizeof err->message, "out of memory for a %dx%d terrain",
-             t->resolution_x, t->resolution_z);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for a %dx%d terrain", t->resolution_x,
+             t->resolution_z);
     return 1;
   }
   if (desc->heights) {

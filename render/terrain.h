@@ -13,7 +13,7 @@
 
 #include <stdbool.h>
 
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 
 /* The largest procedural terrain, vertices per side (and a heightmap's largest pixel count,
  * squared): its mesh, 36 bytes a vertex, must stay under 2 GiB, past which Mesa's GL
@@ -47,7 +47,7 @@ typedef struct terrain {
   double min_y, max_y;  /* world height range of the vertices */
 } terrain;
 
-int terrain_create(terrain *t, const terrain_desc *desc, render_error *err);
+int terrain_create(terrain *t, const terrain_desc *desc, fog_error *err);
 void terrain_destroy(terrain *t);
 
 /* World position of vertex (i, j) (double). */

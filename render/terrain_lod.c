@@ -149,7 +149,7 @@ static double level_error(const terrain_lod *lod, int tile, int level, uint32_t 
   return worst * t->height;
 }
 
-int terrain_lod_create(terrain_lod *lod, const terrain *t, render_error *err) {
+int terrain_lod_create(terrain_lod *lod, const terrain *t, fog_error *err) {
   *lod = (terrain_lod){.terrain = t};
   lod->tiles_x = (t->resolution_x - 1) / TERRAIN_LOD_TILE;
   lod->tiles_z = (t->resolution_z - 1) / TERRAIN_LOD_TILE;
@@ -164,7 +164,7 @@ int terrain_lod_create(terrain_lod *lod, const terrain *t, render_error *err) {
   if (!lod->error || !lod->lo || !lod->hi || !lod->level || !scratch) {
     free(scratch);
     terrain_lod_destroy(lod);
-    snprintf(err->message, sizeof err->message, "out of memory for the terrain's LOD tiles");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the terrain's LOD tiles");
     return 1;
   }
   for (size_t k = 0; k < tiles; k++) {

@@ -29,7 +29,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 #include "render/terrain.h"
 
 #define TERRAIN_LOD_TILE 16
@@ -43,7 +43,7 @@ typedef struct terrain_lod {
   uint8_t *level; /* tiles: the level chosen by terrain_lod_choose (0 at creation) */
 } terrain_lod;
 
-int terrain_lod_create(terrain_lod *lod, const terrain *t, render_error *err);
+int terrain_lod_create(terrain_lod *lod, const terrain *t, fog_error *err);
 void terrain_lod_destroy(terrain_lod *lod);
 
 /* Chooses each tile's level for a camera at `camera` (world). */

@@ -26,17 +26,17 @@ void volume_grid_gl_matrix(const volume_grid_desc *grid, float m[9]) {
     for (int a = 0; a < 3; a++) m[3 * a + c] = (float)grid->index_from_world[c][a];
 }
 
-volume_march *volume_march_create(const volume_grid_desc *grid, render_error *err) {
+volume_march *volume_march_create(const volume_grid_desc *grid, fog_error *err) {
   for (int c = 0; c < 3; c++)
     if (grid->dim[c] < 1) {
-      snprintf(err->message, sizeof err->message,
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                "volume march: grid %dx%dx%d: every dimension must be positive", grid->dim[0],
                grid->dim[1], grid->dim[2]);
       return NULL;
     }
   volume_march *m = calloc(1, sizeof *m);
   if (!m) {
-    snprintf(err->message, sizeof err->message, "volume march: out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "volume march: out of memory");
     return NULL;
   }
   for (int c = 0; c < 3; c++) {
@@ -73,9 +73,9 @@ void volume_march_destroy(volume_march *m) {
 }
 
 int volume_march_view(volume_march *m, const volume_view_desc *v, float *optical_depth,
-                      render_error *err) {
+                      fog_error *err) {
   if (v->side < 1 || !(v->step > 0)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "volume march: %d rays per side, step %g: expected >= 1 and > 0", v->side, v->step);
     return 1;
   }

@@ -15,7 +15,7 @@
 #ifndef FOGPIPE_RENDER_VOLUME_MARCH_H
 #define FOGPIPE_RENDER_VOLUME_MARCH_H
 
-#include "render/render_error.h"
+#include "transform/fog_error.h"
 
 typedef struct volume_grid_desc {
   int dim[3];
@@ -40,11 +40,11 @@ typedef struct volume_view_desc {
 typedef struct volume_march volume_march;
 
 /* Needs a current GL context. Uploads the grid and compiles the program. */
-volume_march *volume_march_create(const volume_grid_desc *grid, render_error *err);
+volume_march *volume_march_create(const volume_grid_desc *grid, fog_error *err);
 void volume_march_destroy(volume_march *march);
 
 /* optical_depth: side * side floats (iz major, ix minor). */
 int volume_march_view(volume_march *march, const volume_view_desc *view, float *optical_depth,
-                      render_error *err);
+                      fog_error *err);
 
 #endif

@@ -11,33 +11,25 @@
 
 #include "sim/image_io.h"
 
-int sim_fail(sim_error *err, const char *format, ...) {
-  if (err) {
-    va_list args;
-    va_start(args, format);
-    vsnprintf(err->message, sizeof err->message, format, args);
-    va_end(args);
-  }
-  return 1;
-}
-
-int atomic_file_open(atomic_file *file, const char *path, sim_error *err) {
+int atomic_file_open(atomic_file *file, const char *path, fog_error *err) {
   *file = (atomic_file){.path = path, .fd = -1};
-  if (!path || !*path) return sim_fail(err, "no output file name given");
+  if (!path || !*path) return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "no output file name given");
   /* ".NAME.tmp.XXXXXX" in the target's folder: the same file system, so rename is atomic;
    * hidden, so a folder listing during a long write is not confusing. */
   const char *slash = strrchr(path, '/');
   int folder_len = slash ? (int)(slash - path) + 1 : 0;
   const char *name = path + folder_len;
-  if (!*name) return sim_fail(err, "%s: is a folder name, expected a file name", path);
+  if (!*name)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: is a folder name, expected a file name",
+                    path);
   int n = snprintf(file->temp_path, sizeof file->temp_path, "%.*s.%s.tmp.XXXXXX", folder_len,
                    path, name);
   if (n < 0 || (size_t)n >= sizeof file->temp_path)
-    return sim_fail(err, "%s: file name too long", path);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: file name too long", path);
   file->fd = mkstemp(file->temp_path);
   if (file->fd < 0) {
     int e = errno;
-    return sim_fail(err, "%s: cannot create a file in folder '%.*s': %s", path,
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot create a file in folder '%.*s': %s", path,
                     folder_len ? folder_len : 1, folder_len ? path : ".", strerror(e));
   }
   return 0;
@@ -67,11 +59,11 @@ void atomic_file_abandon(atomic_file *file) {
   file->temp_path[0] = '\0';
 }
 
-int atomic_file_commit(atomic_file *file, sim_error *err) {
+int atomic_file_commit(atomic_file *file, fog_error *err) {
   if (file->write_errno) {
     int e = file->write_errno;
     atomic_file_abandon(file);
-    return sim_fail(err, "%s: write failed: %s", file->path, strerror(e));
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: write failed: %s", file->path, strerror(e));
   }
   /* mkstemp makes 0600; images are for sharing (the process umask is not readable
    * thread-safely, so use the common 0644). */
@@ -81,13 +73,15 @@ int atomic_file_commit(atomic_file *file, sim_error *err) {
   if (status != 0) {
     int e = errno;
     atomic_file_abandon(file);
-    return sim_fail(err, "%s: write failed on close: %s", file->path, strerror(e));
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: write failed on close: %s", file->path,
+                    strerror(e));
   }
   if (rename(file->temp_path, file->path) != 0) {
     int e = errno;
     atomic_file_abandon(file);
-    return sim_fail(err, "%s: cannot rename the finished temporary file onto it: %s",
-                    file->path, strerror(e));
+    return fog_fail(err, FOG_ERR_FILE_ACCESS,
+                    "%s: cannot rename the finished temporary file onto it: %s", file->path,
+                    strerror(e));
   }
   file->temp_path[0] = '\0';
   return 0;

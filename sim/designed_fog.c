@@ -91,30 +91,28 @@ double perlin_turbulence(const perlin_noise *noise, double x, double y, double z
   return sum;
 }
 
-static int fail(sim_error *err, const char *message) {
-  if (err) snprintf(err->message, sizeof err->message, "%s", message);
-  return 1;
-}
-
 perlin_fog_desc perlin_fog_desc_default(void) {
   return (perlin_fog_desc){.octaves = 4, .feature_size = 32.0f, .gain = 1.0f};
 }
 
-int designed_fog_perlin(fogmap *map, const perlin_fog_desc *desc, sim_error *err) {
+int designed_fog_perlin(fogmap *map, const perlin_fog_desc *desc, fog_error *err) {
   const perlin_fog_desc d = *desc;
   const int octaves = d.octaves;
   const double size = d.feature_size, gain = d.gain;
   if (!map || !map->density || map->width <= 0 || map->height <= 0)
-    return fail(err, "Perlin fog: the fogmap is empty");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "Perlin fog: the fogmap is empty");
   if (octaves < 1 || octaves > 30)
-    return fail(err, "Perlin fog: octaves must be 1 to 30");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "Perlin fog: octaves must be 1 to 30");
   if (!(size > 0.0) || !isfinite(size))
-    return fail(err, "Perlin fog: feature size must be positive and finite");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "Perlin fog: feature size must be positive and finite");
   if (!(gain > 0.0) || !isfinite(gain) || !(d.base >= 0.0f) || !isfinite(d.base))
-    return fail(err, "Perlin fog: gain must be positive and base >= 0, both finite");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "Perlin fog: gain must be positive and base >= 0, both finite");
   if (!isfinite(d.velocity[0]) || !isfinite(d.velocity[1]) || !isfinite(d.time) ||
       !isfinite(d.slice) || !isfinite(d.slice_rate))
-    return fail(err, "Perlin fog: velocity, time and slice must be finite");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "Perlin fog: velocity, time and slice must be finite");
   perlin_noise noise;
   perlin_noise_init(&noise, d.seed);
   /* Zdrojewska: the fog drifts by translating the noise domain, p - v t. */
@@ -131,21 +129,22 @@ int designed_fog_perlin(fogmap *map, const perlin_fog_desc *desc, sim_error *err
   return 0;
 }
 
-int designed_fog_blobs(fogmap *map, const blob_fog_desc *desc, sim_error *err) {
+int designed_fog_blobs(fogmap *map, const blob_fog_desc *desc, fog_error *err) {
   blob_fog_desc d = desc ? *desc : (blob_fog_desc){0};
   double cutoff = d.cutoff != 0.0f ? d.cutoff : 6.0;
   if (!map || !map->density || map->width <= 0 || map->height <= 0)
-    return fail(err, "Gaussian blobs: the fogmap is empty");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "Gaussian blobs: the fogmap is empty");
   if (d.blob_count < 0 || (d.blob_count > 0 && !d.blobs))
-    return fail(err, "Gaussian blobs: no blob array given");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "Gaussian blobs: no blob array given");
   if (!(cutoff > 0.0) || !isfinite(cutoff))
-    return fail(err, "Gaussian blobs: cutoff must be positive and finite");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "Gaussian blobs: cutoff must be positive and finite");
   for (int i = 0; i < d.blob_count; i++) {
     const fog_blob *b = &d.blobs[i];
     if (!(b->sigma > 0.0f) || !isfinite(b->sigma) || !(b->peak >= 0.0f) ||
         !isfinite(b->peak) || !isfinite(b->x) || !isfinite(b->z)) {
       if (err)
-        snprintf(err->message, sizeof err->message,
+        fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                  "Gaussian blob %d: sigma must be > 0, peak >= 0, all finite (got centre "
                  "(%g, %g), sigma %g, peak %g)",
                  i, (double)b->x, (double)b->z, (double)b->sigma, (double)b->peak);
@@ -176,10 +175,11 @@ int designed_fog_blobs(fogmap *map, const blob_fog_desc *desc, sim_error *err) {
   return 0;
 }
 
-int designed_fog_multiply(fogmap *map, const fogmap *other, sim_error *err) {
+int designed_fog_multiply(fogmap *map, const fogmap *other, fog_error *err) {
   if (!map || !other || !map->density || !other->density || map->width != other->width ||
       map->height != other->height)
-    return fail(err, "fogmap multiply: both fogmaps must exist and have the same size");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "fogmap multiply: both fogmaps must exist and have the same size");
   size_t count = (size_t)map->width * (size_t)map->height;
   for (size_t i = 0; i < count; i++) map->density[i] *= other->density[i];
   return 0;

@@ -56,7 +56,7 @@ perlin_fog_desc perlin_fog_desc_default(void);
 /* Overwrites every cell of map with base + gain * T((x - vx t) / s, (z - vz t) / s,
  * slice + slice_rate t). Fails (map untouched) on octaves outside 1..30, a feature size or
  * gain that is not positive, a negative base, non-finite parameters, or an empty map. */
-int designed_fog_perlin(fogmap *map, const perlin_fog_desc *desc, sim_error *err);
+int designed_fog_perlin(fogmap *map, const perlin_fog_desc *desc, fog_error *err);
 
 /* One Gaussian: peak * exp(-((x - x0)² + (z - z0)²) / (2 sigma²)), in cells. */
 typedef struct fog_blob {
@@ -77,9 +77,9 @@ typedef struct blob_fog_desc {
  * grid is 2πσ²c per blob up to an exp(-2π²σ²) aliasing term (Poisson summation), so mass
  * is conserved for sigma >= 1 cell. Fails (map untouched) on sigma <= 0, negative peak,
  * or non-finite values. */
-int designed_fog_blobs(fogmap *map, const blob_fog_desc *desc, sim_error *err);
+int designed_fog_blobs(fogmap *map, const blob_fog_desc *desc, fog_error *err);
 
 /* Multiplies map by other, cell by cell (same size): turbulence modulated by blobs. */
-int designed_fog_multiply(fogmap *map, const fogmap *other, sim_error *err);
+int designed_fog_multiply(fogmap *map, const fogmap *other, fog_error *err);
 
 #endif

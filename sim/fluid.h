@@ -98,7 +98,7 @@ typedef struct fluid_sim fluid_sim;
 
 /* Validates the desc, allocates every buffer and makes the FFTW plans. NULL on error
  * (err says which field is wrong). */
-fluid_sim *fluid_sim_create(const fluid_sim_desc *desc, sim_error *err);
+fluid_sim *fluid_sim_create(const fluid_sim_desc *desc, fog_error *err);
 void fluid_sim_destroy(fluid_sim *sim);
 /* Changes the per-step parameters between steps, keeping the state (density, velocity,
  * time, turbulence phases): dt, viscosity, the wind (drift, turbulence, its scale and
@@ -111,7 +111,7 @@ void fluid_sim_destroy(fluid_sim *sim);
  * refused with err naming the field, as is an invalid desc (as fluid_sim_create); a
  * refused call leaves the sim untouched. Returns 0 on success. fluid_sim_reset then goes
  * back to the base with the new parameters. */
-int fluid_sim_set_params(fluid_sim *sim, const fluid_sim_desc *desc, sim_error *err);
+int fluid_sim_set_params(fluid_sim *sim, const fluid_sim_desc *desc, fog_error *err);
 /* Back to the state after create: density = base (or 0), velocity = the drift, time 0,
  * initial turbulence phases. */
 void fluid_sim_reset(fluid_sim *sim);
@@ -120,15 +120,15 @@ void fluid_sim_reset(fluid_sim *sim);
  * Order: advect (u, v, density) by the current velocity in one fused pass; to Fourier
  * space; mean flow := drift, relax toward the turbulence, viscosity, projection; back;
  * then the density's emitters, relaxation, dissipation and clamp. */
-int fluid_sim_step(fluid_sim *sim, sim_error *err);
+int fluid_sim_step(fluid_sim *sim, fog_error *err);
 
 /* Paints a stroke into the density now (clamped at 0). Non-finite values or a
  * non-positive radius are rejected (returns non-zero, density untouched). */
-int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *stroke, sim_error *err);
+int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *stroke, fog_error *err);
 /* Adds a Gaussian velocity impulse (sigma `radius`, peak (du, dv) cells/s) now; the next
  * step projects it to its divergence-free part. Non-finite input is rejected. */
 int fluid_sim_add_impulse(fluid_sim *sim, float x, float z, float radius, float du, float dv,
-                          sim_error *err);
+                          fog_error *err);
 
 /* Accessors, valid until the next step/paint/reset. */
 const fogmap *fluid_sim_density(const fluid_sim *sim);

@@ -60,7 +60,7 @@ static inline float fluid_flush_tiny(float v) { return fabsf(v) < 1e-20f ? 0.0f 
 /* fluid_sources.c: the per-step density update after advection (emission, relaxation,
  * dissipation, clamp) and the emission table made at create (refilled by set_params). */
 void fluid_density_sources(fluid_sim *sim, float *density);
-int fluid_emission_build(fluid_sim *sim, sim_error *err);
+int fluid_emission_build(fluid_sim *sim, fog_error *err);
 /* Recomputes the emission table (allocated by fluid_emission_build) from sim->emitters
  * and sim->desc.dt; no-op without emitters. */
 void fluid_emission_fill(fluid_sim *sim);

@@ -10,12 +10,7 @@
 
 static const double two_pi = 6.283185307179586476925286766559;
 
-static int fail(sim_error *err, const char *message) {
-  snprintf(err->message, sizeof err->message, "fluid sim: %s", message);
-  return 1;
-}
-
-static int resolve_desc(const fluid_sim_desc *in, fluid_sim_desc *d, sim_error *err) {
+static int resolve_desc(const fluid_sim_desc *in, fluid_sim_desc *d, fog_error *err) {
   *d = *in;
   if (!d->width) d->width = 256;
   if (!d->height) d->height = 256;
@@ -23,39 +18,44 @@ static int resolve_desc(const fluid_sim_desc *in, fluid_sim_desc *d, sim_error *
   if (d->wind_coupling == 0) d->wind_coupling = 2.0f;
   if (d->advection == FLUID_ADVECT_DEFAULT) d->advection = FLUID_ADVECT_MONOTONE_CUBIC;
   if (d->width < 8 || d->height < 8 || (d->width & 1) || (d->height & 1)) {
-    snprintf(err->message, sizeof err->message,
-             "fluid sim: grid %dx%d: width and height must be even and at least 8",
-             d->width, d->height);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "fluid sim: grid %dx%d: width and height must be even and at least 8", d->width,
+             d->height);
     return 1;
   }
-  if (!(d->dt > 0) || !isfinite(d->dt)) return fail(err, "dt must be positive and finite");
+  if (!(d->dt > 0) || !isfinite(d->dt))
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fluid sim: dt must be positive and finite");
   if (!(d->viscosity >= 0) || !isfinite(d->viscosity))
-    return fail(err, "viscosity must be >= 0 and finite");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fluid sim: viscosity must be >= 0 and finite");
   if (!(d->relaxation >= 0) || !isfinite(d->relaxation) || !(d->dissipation >= 0) ||
       !isfinite(d->dissipation))
-    return fail(err, "relaxation and dissipation must be >= 0 and finite");
-  if (!isfinite(d->wind_coupling)) return fail(err, "wind_coupling must be finite");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "fluid sim: relaxation and dissipation must be >= 0 and finite");
+  if (!isfinite(d->wind_coupling))
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fluid sim: wind_coupling must be finite");
   if (d->advection != FLUID_ADVECT_BILINEAR && d->advection != FLUID_ADVECT_MONOTONE_CUBIC &&
       d->advection != FLUID_ADVECT_MACCORMACK && d->advection != FLUID_ADVECT_MACCORMACK_BILINEAR)
-    return fail(err, "advection must be one of the fluid_advection values");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "fluid sim: advection must be one of the fluid_advection values");
   if (d->fft_planning != FLUID_FFT_REPRODUCIBLE &&
       d->fft_planning != FLUID_FFT_MEASURED_WISDOM)
-    return fail(err, "fft_planning must be one of the fluid_fft_planning values");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "fluid sim: fft_planning must be one of the fluid_fft_planning values");
   if (d->emitter_count < 0 || (d->emitter_count > 0 && !d->emitters))
-    return fail(err, "emitter_count > 0 needs an emitters array");
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "fluid sim: emitter_count > 0 needs an emitters array");
   for (int e = 0; e < d->emitter_count; e++) {
     const fluid_emitter *em = &d->emitters[e];
     if (!isfinite(em->x) || !isfinite(em->z) || !(em->radius > 0) || !isfinite(em->radius) ||
         !(em->rate >= 0) || !isfinite(em->rate)) {
-      snprintf(err->message, sizeof err->message,
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                "fluid sim: emitter %d: position must be finite, radius > 0, rate >= 0", e);
       return 1;
     }
   }
   if (d->base && (d->base->width != d->width || d->base->height != d->height)) {
-    snprintf(err->message, sizeof err->message,
-             "fluid sim: base fogmap is %dx%d, the grid is %dx%d", d->base->width,
-             d->base->height, d->width, d->height);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fluid sim: base fogmap is %dx%d, the grid is %dx%d",
+             d->base->width, d->base->height, d->width, d->height);
     return 1;
   }
   return 0;
@@ -98,12 +98,12 @@ void fluid_sim_destroy(fluid_sim *sim) {
   fftwf_free(sim);
 }
 
-fluid_sim *fluid_sim_create(const fluid_sim_desc *in, sim_error *err) {
+fluid_sim *fluid_sim_create(const fluid_sim_desc *in, fog_error *err) {
   fluid_sim_desc d;
   if (resolve_desc(in, &d, err)) return NULL;
   fluid_sim *sim = fftwf_malloc(sizeof *sim);
   if (!sim) {
-    fail(err, "out of memory");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "fluid sim: out of memory");
     return NULL;
   }
   const int w = d.width, h = d.height, mx = w / 2 + 1;
@@ -132,7 +132,7 @@ fluid_sim *fluid_sim_create(const fluid_sim_desc *in, sim_error *err) {
   if (!sim->arena || !sim->spectrum || !sim->scratch || !sim->viscous_x || !sim->viscous_z ||
       !sim->symbol_x || !sim->symbol_z || (d.base && !sim->base) ||
       (d.emitter_count && !sim->emitters)) {
-    snprintf(err->message, sizeof err->message, "fluid sim: out of memory for %dx%d", w, h);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "fluid sim: out of memory for %dx%d", w, h);
     fluid_sim_destroy(sim);
     return NULL;
   }
@@ -178,7 +178,7 @@ fluid_sim *fluid_sim_create(const fluid_sim_desc *in, sim_error *err) {
                                          (int)sim->mode_stride, sim->velocity, NULL, 1,
                                          (int)sim->stride, flags);
   if (!sim->forward || !sim->inverse) {
-    snprintf(err->message, sizeof err->message, "fluid sim: FFTW could not plan %dx%d", w, h);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fluid sim: FFTW could not plan %dx%d", w, h);
     fluid_sim_destroy(sim);
     return NULL;
   }
@@ -187,7 +187,7 @@ fluid_sim *fluid_sim_create(const fluid_sim_desc *in, sim_error *err) {
   return sim;
 }
 
-int fluid_sim_set_params(fluid_sim *sim, const fluid_sim_desc *in, sim_error *err) {
+int fluid_sim_set_params(fluid_sim *sim, const fluid_sim_desc *in, fog_error *err) {
   fluid_sim_desc d;
   if (resolve_desc(in, &d, err)) return 1;
   const fluid_sim_desc *now = &sim->desc;
@@ -204,7 +204,7 @@ int fluid_sim_set_params(fluid_sim *sim, const fluid_sim_desc *in, sim_error *er
   else if (d.base)
     fixed = "base (must be NULL: the base fogmap stays)";
   if (fixed) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fluid sim: %s cannot change in place; create a new sim", fixed);
     return 1;
   }
@@ -339,8 +339,9 @@ static void advect_state(fluid_sim *sim) {
   advect_fields(&pass, 3, src, dst);
 }
 
-int fluid_sim_step(fluid_sim *sim, sim_error *err) {
-  if (!sim) return err ? fail(err, "step of a NULL sim") : 1;
+int fluid_sim_step(fluid_sim *sim, fog_error *err) {
+  if (!sim)
+    return err ? fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fluid sim: step of a NULL sim") : 1;
   /* Self-advection of the velocity and transport of the density by the same
    * divergence-free velocity u^n, traced once (Stam 2001 §3 "advect"). */
   advect_state(sim);

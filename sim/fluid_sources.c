@@ -22,13 +22,13 @@ static void cover(float centre_lo, float centre_hi, float reach, int n, int *lo,
   if (*count > n) *count = n;
 }
 
-int fluid_emission_build(fluid_sim *sim, sim_error *err) {
+int fluid_emission_build(fluid_sim *sim, fog_error *err) {
   if (!sim->desc.emitter_count) return 0;
   const int w = sim->width, h = sim->height;
   const size_t n = (size_t)w * h;
   sim->emission = fftwf_malloc(n * sizeof(float));
   if (!sim->emission) {
-    snprintf(err->message, sizeof err->message, "fluid sim: out of memory for emitters");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "fluid sim: out of memory for emitters");
     return 1;
   }
   fluid_emission_fill(sim);
@@ -93,10 +93,10 @@ static float segment_distance2(float px, float pz, float ax, float az, float bx,
   return ex * ex + ez * ez;
 }
 
-int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *s, sim_error *err) {
+int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *s, fog_error *err) {
   if (!isfinite(s->x0) || !isfinite(s->z0) || !isfinite(s->x1) || !isfinite(s->z1) ||
       !isfinite(s->amount) || !(s->radius > 0) || !isfinite(s->radius)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fluid sim: stroke needs finite end points and amount and a radius > 0");
     return 1;
   }
@@ -123,10 +123,10 @@ int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *s, sim_error *err) {
 }
 
 int fluid_sim_add_impulse(fluid_sim *sim, float x, float z, float radius, float du, float dv,
-                          sim_error *err) {
+                          fog_error *err) {
   if (!isfinite(x) || !isfinite(z) || !isfinite(du) || !isfinite(dv) || !(radius > 0) ||
       !isfinite(radius)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "fluid sim: impulse needs a finite position and velocity and a radius > 0");
     return 1;
   }

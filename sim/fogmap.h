@@ -17,7 +17,7 @@ typedef struct fogmap {
 } fogmap;
 
 /* Allocates a zeroed width x height fogmap. */
-int fogmap_create(fogmap *map, int width, int height, sim_error *err);
+int fogmap_create(fogmap *map, int width, int height, fog_error *err);
 void fogmap_destroy(fogmap *map);
 
 /* Loading reads the stored values as they are; a scale is the caller's (fogmap_scale), so
@@ -36,7 +36,7 @@ typedef struct fogmap_load_desc {
 #define FOGMAP_MAX_DENSITY 1e12f
 
 /* Multiplies every density by factor (>= 0 and finite). */
-int fogmap_scale(fogmap *map, double factor, sim_error *err);
+int fogmap_scale(fogmap *map, double factor, fog_error *err);
 
 /* Loads a greyscale PNG (8 or 16 bit: value / 255 or / 65535) or an EXR channel (half or
  * float) into a new fogmap. Fails (nothing allocated) on unreadable or non-image files,
@@ -44,10 +44,10 @@ int fogmap_scale(fogmap *map, double factor, sim_error *err);
  * pixel is named); PNG samples are taken as stored (no gamma: a fogmap is
  * data), indexed PNGs are expanded to "R", "G", "B", "A", grey bit depths below 8 are
  * refused; EXR reads part 0, scanline or tiled (the full-resolution level). */
-int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, sim_error *err);
+int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, fog_error *err);
 
 /* Saves a fogmap as a single float channel "Y" EXR (what fogmap_load reads back exactly). */
-int fogmap_save_exr(const char *path, const fogmap *map, sim_error *err);
+int fogmap_save_exr(const char *path, const fogmap *map, fog_error *err);
 
 /* The largest density of the map (0 for an all-zero map). */
 float fogmap_max_density(const fogmap *map);
@@ -56,6 +56,6 @@ float fogmap_max_density(const fogmap *map);
  * clamped to [0, 65535]; max_density 0 means fogmap_max_density(map) (1 if that is 0).
  * fogmap_load then fogmap_scale by max_density reads it back within max_density / 131070.
  * Temporary file + rename like image_write_exr. */
-int fogmap_save_png16(const char *path, const fogmap *map, float max_density, sim_error *err);
+int fogmap_save_png16(const char *path, const fogmap *map, float max_density, fog_error *err);
 
 #endif

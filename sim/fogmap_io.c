@@ -36,20 +36,20 @@ static const char *other_kind(const unsigned char *b, size_t n) {
 /* Reads the file: only its first bytes (enough to recognise it) unless whole is set, then
  * all of it (PNGs are decoded from memory; the EXR reader reads chunks itself). */
 static int read_file(const char *path, int whole, unsigned char **bytes, size_t *size,
-                     sim_error *err) {
+                     fog_error *err) {
   FILE *f = fopen(path, "rb");
-  if (!f) return sim_fail(err, "%s: cannot open: %s", path, strerror(errno));
+  if (!f) return fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot open: %s", path, strerror(errno));
   struct stat st;
   if (fstat(fileno(f), &st) != 0 || S_ISDIR(st.st_mode)) {
     fclose(f);
-    return sim_fail(err, "%s: is a folder, expected a PNG or EXR file", path);
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: is a folder, expected a PNG or EXR file", path);
   }
   size_t capacity = whole ? (st.st_size > 0 ? (size_t)st.st_size : 4096) : 512, used = 0;
   unsigned char *data = malloc(capacity + 1);
   for (;;) {
     if (!data) {
       fclose(f);
-      return sim_fail(err, "%s: out of memory reading the file", path);
+      return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory reading the file", path);
     }
     used += fread(data + used, 1, capacity - used, f);
     if (used < capacity || !whole) break;
@@ -62,17 +62,17 @@ static int read_file(const char *path, int whole, unsigned char **bytes, size_t 
   fclose(f);
   if (failed) {
     free(data);
-    return sim_fail(err, "%s: read failed", path);
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: read failed", path);
   }
   *bytes = data;
   *size = used;
   return 0;
 }
 
-int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, sim_error *err) {
+int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, fog_error *err) {
   fogmap_load_desc d = desc ? *desc : (fogmap_load_desc){0};
   *out = (fogmap){0};
-  if (!path || !*path) return sim_fail(err, "no fogmap file name given");
+  if (!path || !*path) return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "no fogmap file name given");
 
   unsigned char *bytes = NULL;
   size_t size = 0;
@@ -86,13 +86,13 @@ int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, sim
   float *pixels = NULL;
   int status;
   if (size == 0) {
-    status = sim_fail(err, "%s: empty file; expected a PNG or EXR image", path);
+    status = fog_fail(err, FOG_ERR_BAD_FILE, "%s: empty file; expected a PNG or EXR image", path);
   } else if (size >= 8 && !memcmp(bytes, png_magic, 8)) {
     status = png_read_channel(path, bytes, size, d.channel, &width, &height, &pixels, err);
   } else if (size >= 4 && !memcmp(bytes, exr_magic, 4)) {
     status = exr_read_channel(path, d.channel, &width, &height, &pixels, err);
   } else {
-    status = sim_fail(err, "%s: not a PNG or EXR image (looks like %s)", path,
+    status = fog_fail(err, FOG_ERR_BAD_FILE, "%s: not a PNG or EXR image (looks like %s)", path,
                       other_kind(bytes, size));
   }
   free(bytes);
@@ -109,8 +109,9 @@ int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, sim
                          : isinf(v) ? "is infinite"
                          : v < 0.0f ? "is negative"
                                     : "is too large";
-      sim_fail(err, "%s: pixel (%d, %d) %s (%g); densities must be finite, >= 0 and at most %g",
-               path, x, z, what, (double)v, (double)FOGMAP_MAX_DENSITY);
+      fog_fail(err, FOG_ERR_BAD_FILE,
+               "%s: pixel (%d, %d) %s (%g); densities must be finite, >= 0 and at most %g", path, x,
+               z, what, (double)v, (double)FOGMAP_MAX_DENSITY);
       free(pixels);
       return 1;
     }
@@ -119,7 +120,7 @@ int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, sim
   return 0;
 }
 
-int fogmap_save_exr(const char *path, const fogmap *map, sim_error *err) {
+int fogmap_save_exr(const char *path, const fogmap *map, fog_error *err) {
   image_channel y = {.name = "Y", .pixels = map->density, .as_half = 0};
   return image_write_exr(path, map->width, map->height, &y, 1, err);
 }
@@ -132,17 +133,20 @@ float fogmap_max_density(const fogmap *map) {
   return max;
 }
 
-int fogmap_save_png16(const char *path, const fogmap *map, float max_density, sim_error *err) {
+int fogmap_save_png16(const char *path, const fogmap *map, float max_density, fog_error *err) {
   if (max_density == 0.0f) max_density = fogmap_max_density(map);
   if (max_density == 0.0f) max_density = 1.0f;
   if (!(max_density > 0.0f) || isinf(max_density))
-    return sim_fail(err, "%s: PNG full-scale density %g must be positive and finite", path,
+    return fog_fail(err, FOG_ERR_BAD_FILE,
+                    "%s: PNG full-scale density %g must be positive and finite", path,
                     (double)max_density);
   if (map->width <= 0 || map->height <= 0 || !map->density)
-    return sim_fail(err, "%s: fogmap is empty (%dx%d)", path, map->width, map->height);
+    return fog_fail(err, FOG_ERR_BAD_FILE, "%s: fogmap is empty (%dx%d)", path, map->width,
+                    map->height);
   size_t count = (size_t)map->width * (size_t)map->height;
   uint16_t *samples = malloc(count * sizeof *samples);
-  if (!samples) return sim_fail(err, "%s: out of memory for a 16-bit PNG", path);
+  if (!samples)
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for a 16-bit PNG", path);
   for (size_t i = 0; i < count; i++) {
     double v = (double)map->density[i] / max_density;
     v = v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; /* clamps, and NaN -> 0 */

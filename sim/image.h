@@ -1,16 +1,14 @@
 /* Image files of any kind: EXR (OpenEXR Core) and PNG (libspng) writers, the sRGB encoder,
- * EXR header strings; and sim_error, the library's error. Fogmaps (sim/fogmap.h) load and
+ * EXR header strings; and fog_error, the library's error. Fogmaps (sim/fogmap.h) load and
  * save through these. (Part of the sim library; include "sim/sim.h".) */
 #ifndef FOGPIPE_SIM_IMAGE_H
 #define FOGPIPE_SIM_IMAGE_H
 
+#include "transform/fog_error.h"
 #include <stddef.h>
 
 /* Errors are returned, never printed: a failing call fills message (naming the file and,
  * for bad pixels, the first offending pixel) and returns non-zero. */
-typedef struct sim_error {
-  char message[512];
-} sim_error;
 
 /* One channel of an EXR image to write. */
 typedef struct image_channel {
@@ -25,7 +23,7 @@ typedef struct image_channel {
  * Refuses (before creating anything) an image holding a NaN or infinite value, or a value a
  * half channel would turn infinite (|v| > 65504), naming the channel and the pixel. */
 int image_write_exr(const char *path, int width, int height, const image_channel *channels,
-                    int channel_count, sim_error *err);
+                    int channel_count, fog_error *err);
 
 /* A string attribute of an EXR header: what an image was made from, for the tools that
  * read it back (record --resume). The name must not be one of EXR's standard attributes. */
@@ -50,19 +48,19 @@ typedef struct image_exr_header {
 
 /* image_write_exr with attributes in the header (header may be NULL). */
 int image_write_exr_with(const char *path, int width, int height, const image_channel *channels,
-                         int channel_count, const image_exr_header *header, sim_error *err);
+                         int channel_count, const image_exr_header *header, fog_error *err);
 
 /* Reads the string attribute name of part 0 into value (at most size - 1 bytes). Fails
  * naming the file when it is not a readable EXR or has no such string attribute. */
 int image_read_exr_string(const char *path, const char *name, char *value, size_t size,
-                          sim_error *err);
+                          fog_error *err);
 /* Reads the M44f attribute name of part 0 (image_exr_matrix's layout). */
-int image_read_exr_matrix(const char *path, const char *name, float m[16], sim_error *err);
+int image_read_exr_matrix(const char *path, const char *name, float m[16], fog_error *err);
 
 /* Writes an 8-bit PNG (1 channel grey, 3 RGB or 4 RGBA) from interleaved float values in
  * [0,1] (clamped), top row first; temporary file + rename like image_write_exr. */
-int image_write_png(const char *path, int width, int height, int channels,
-                    const float *interleaved, sim_error *err);
+int image_write_png(const char *path, int width, int height, int channels, const float *interleaved,
+                    fog_error *err);
 
 /* The sRGB transfer function (IEC 61966-2-1) to 8 bits, by table, for every float exactly
  * lround(255 srgb(x)) of the formula in double: threshold[k] is the smallest float whose
@@ -79,7 +77,7 @@ unsigned char srgb8_encode(const srgb8_encoder *encoder, float linear);
 /* Writes an 8-bit sRGB PNG (3 RGB or 4 RGBA: alpha stays linear) from linear interleaved
  * floats (clamped to [0, 1]), top row first; temporary file + rename. NaN or infinite
  * values are refused as image_write_exr refuses them (clamping would hide them). */
-int image_write_png_srgb(const char *path, int width, int height, int channels,
-                         const float *linear, sim_error *err);
+int image_write_png_srgb(const char *path, int width, int height, int channels, const float *linear,
+                         fog_error *err);
 
 #endif

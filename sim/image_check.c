@@ -6,15 +6,16 @@
 #include "sim/image_io.h"
 
 int image_check_finite(const char *path, const char *channel, const float *values, int width,
-                       int height, int stride, float limit, sim_error *err) {
+                       int height, int stride, float limit, fog_error *err) {
   size_t count = (size_t)width * (size_t)height;
   for (size_t i = 0; i < count; i++) {
     float v = values[i * (size_t)stride];
     if (fabsf(v) <= limit) continue; /* false for NaN too */
     int x = (int)(i % (size_t)width), y = (int)(i / (size_t)width);
     const char *what = isnan(v) ? "NaN" : isinf(v) ? "infinite" : "beyond half-float range";
-    return sim_fail(err, "%s: not written: pixel (%d, %d) of channel \"%s\" is %s (%g)", path,
-                    x, y, channel, what, (double)v);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "%s: not written: pixel (%d, %d) of channel \"%s\" is %s (%g)", path, x, y,
+                    channel, what, (double)v);
   }
   return 0;
 }

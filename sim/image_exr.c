@@ -26,7 +26,7 @@ typedef struct exr_stream {
   int fd;
   int64_t size;
   atomic_file *out;  /* when writing */
-  char message[256]; /* the library's last error message */
+  char last_message[256]; /* the library's last error message */
 } exr_stream;
 
 /* The stream of the read or write under way on this thread, for remember_error. The error
@@ -37,7 +37,7 @@ static _Thread_local exr_stream *current_stream;
 
 static void remember_error(exr_const_context_t ctxt, exr_result_t code, const char *msg) {
   exr_stream *stream = current_stream;
-  if (stream) snprintf(stream->message, sizeof stream->message, "%s", msg ? msg : "");
+  if (stream) snprintf(stream->last_message, sizeof stream->last_message, "%s", msg ? msg : "");
 }
 
 static int64_t stream_read(exr_const_context_t ctxt, void *user, void *buffer, uint64_t size,
@@ -73,7 +73,7 @@ static int64_t stream_write(exr_const_context_t ctxt, void *user, const void *bu
 
 /* "the library's message" or, when it gave none, the generic text of the code. */
 static const char *exr_reason(const exr_stream *stream, exr_result_t code) {
-  return stream->message[0] ? stream->message : exr_get_default_error_message(code);
+  return stream->last_message[0] ? stream->last_message : exr_get_default_error_message(code);
 }
 
 static void list_channels(const exr_attr_chlist_t *list, char *out, size_t size) {
@@ -128,10 +128,11 @@ static exr_result_t decode_chunk(exr_context_t ctxt, const exr_chunk_info_t *chu
 
 /* Opens path for reading through our stream (the current one of this thread) and fills the
  * context initialiser; 1 with err set when the file cannot be opened. */
-static int open_read_stream(const char *path, exr_stream *stream,
-                            exr_context_initializer_t *init, sim_error *err) {
+static int open_read_stream(const char *path, exr_stream *stream, exr_context_initializer_t *init,
+                            fog_error *err) {
   *stream = (exr_stream){.fd = open(path, O_RDONLY | O_CLOEXEC)};
-  if (stream->fd < 0) return sim_fail(err, "%s: cannot open: %s", path, strerror(errno));
+  if (stream->fd < 0)
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot open: %s", path, strerror(errno));
   current_stream = stream;
   struct stat st;
   stream->size = fstat(stream->fd, &st) == 0 ? (int64_t)st.st_size : -1;
@@ -148,21 +149,23 @@ static int open_read_stream(const char *path, exr_stream *stream,
 static int exr_read_layout(exr_context_t ctxt, const char *path, exr_stream *stream,
                            exr_storage_t *storage, exr_attr_box2i_t *window,
                            const exr_attr_chlist_t **list, int64_t *width, int64_t *height,
-                           sim_error *err) {
+                           fog_error *err) {
   exr_result_t rv = exr_get_storage(ctxt, 0, storage);
   if (rv == EXR_ERR_SUCCESS) rv = exr_get_data_window(ctxt, 0, window);
   if (rv == EXR_ERR_SUCCESS) rv = exr_get_channels(ctxt, 0, list);
   if (rv != EXR_ERR_SUCCESS || !*list)
-    return sim_fail(err, "%s: EXR header incomplete: %s", path, exr_reason(stream, rv));
+    return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR header incomplete: %s", path,
+                    exr_reason(stream, rv));
   if (*storage != EXR_STORAGE_SCANLINE && *storage != EXR_STORAGE_TILED)
-    return sim_fail(err, "%s: deep EXR data; expected a scanline or tiled image", path);
+    return fog_fail(err, FOG_ERR_BAD_FILE, "%s: deep EXR data; expected a scanline or tiled image",
+                    path);
   *width = (int64_t)window->max.x - window->min.x + 1;
   *height = (int64_t)window->max.y - window->min.y + 1;
   if (*width <= 0 || *height <= 0)
-    return sim_fail(err, "%s: EXR data window has zero size (%lldx%lld)", path,
+    return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR data window has zero size (%lldx%lld)", path,
                     (long long)*width, (long long)*height);
   if (*width > 1 << 20 || *height > 1 << 20 || *width * *height > (int64_t)1 << 28)
-    return sim_fail(err, "%s: EXR size %lldx%lld is too large for a fogmap", path,
+    return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR size %lldx%lld is too large for a fogmap", path,
                     (long long)*width, (long long)*height);
   return 0;
 }
@@ -170,29 +173,39 @@ static int exr_read_layout(exr_context_t ctxt, const char *path, exr_stream *str
 /* The channel to load: the one named, or the only one; half or float, full resolution. */
 static const exr_attr_chlist_entry_t *exr_pick_channel(const exr_attr_chlist_t *list,
                                                        const char *path, const char *channel,
-                                                       sim_error *err) {
+                                                       fog_error *err) {
   char names[256];
   list_channels(list, names, sizeof names);
   const exr_attr_chlist_entry_t *entry = NULL;
-  if (list->num_channels == 0) return sim_fail(err, "%s: EXR has no channels", path), NULL;
+  if (list->num_channels == 0)
+    return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR has no channels", path), NULL;
   if (!channel) {
     if (list->num_channels != 1)
-      return sim_fail(err, "%s: EXR has %d channels (%s); name the one to load (fogmap "
-                      "channel)", path, list->num_channels, names), NULL;
+      return fog_fail(err, FOG_ERR_BAD_FILE,
+                      "%s: EXR has %d channels (%s); name the one to load (fogmap "
+                      "channel)",
+                      path, list->num_channels, names),
+             NULL;
     entry = &list->entries[0];
   } else {
     for (int c = 0; c < list->num_channels; c++)
       if (!strcmp(list->entries[c].name.str, channel)) entry = &list->entries[c];
     if (!entry)
-      return sim_fail(err, "%s: EXR has no channel \"%s\"; it has %s", path, channel, names),
+      return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR has no channel \"%s\"; it has %s", path,
+                      channel, names),
              NULL;
   }
   if (entry->pixel_type != EXR_PIXEL_HALF && entry->pixel_type != EXR_PIXEL_FLOAT)
-    return sim_fail(err, "%s: EXR channel \"%s\" holds 32-bit unsigned integers; expected "
-                    "half or float", path, entry->name.str), NULL;
+    return fog_fail(err, FOG_ERR_BAD_FILE,
+                    "%s: EXR channel \"%s\" holds 32-bit unsigned integers; expected "
+                    "half or float",
+                    path, entry->name.str),
+           NULL;
   if (entry->x_sampling != 1 || entry->y_sampling != 1)
-    return sim_fail(err, "%s: EXR channel \"%s\" is subsampled (%d x %d); expected one value "
-                    "per pixel", path, entry->name.str, entry->x_sampling, entry->y_sampling),
+    return fog_fail(err, FOG_ERR_BAD_FILE,
+                    "%s: EXR channel \"%s\" is subsampled (%d x %d); expected one value "
+                    "per pixel",
+                    path, entry->name.str, entry->x_sampling, entry->y_sampling),
            NULL;
   return entry;
 }
@@ -259,8 +272,8 @@ static exr_result_t exr_read_chunks(exr_context_t ctxt, exr_storage_t storage,
   return rv;
 }
 
-int exr_read_channel(const char *path, const char *channel, int *width_out,
-                     int *height_out, float **pixels, sim_error *err) {
+int exr_read_channel(const char *path, const char *channel, int *width_out, int *height_out,
+                     float **pixels, fog_error *err) {
   exr_stream stream;
   exr_context_initializer_t init;
   if (open_read_stream(path, &stream, &init, err)) return 1;
@@ -269,7 +282,7 @@ int exr_read_channel(const char *path, const char *channel, int *width_out,
   int status = 1;
   exr_result_t rv = exr_start_read(&ctxt, path, &init);
   if (rv != EXR_ERR_SUCCESS) {
-    sim_fail(err, "%s: not a readable EXR: %s", path, exr_reason(&stream, rv));
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: not a readable EXR: %s", path, exr_reason(&stream, rv));
     goto done;
   }
   exr_storage_t storage;
@@ -282,20 +295,20 @@ int exr_read_channel(const char *path, const char *channel, int *width_out,
   if (!entry) goto done;
   out = calloc((size_t)width * (size_t)height, sizeof *out);
   if (!out) {
-    sim_fail(err, "%s: out of memory for a %lldx%lld fogmap", path, (long long)width,
-             (long long)height);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for a %lldx%lld fogmap", path,
+             (long long)width, (long long)height);
     goto done;
   }
   int out_of_memory = 0;
   rv = exr_read_chunks(ctxt, storage, &window, width, height, entry->name.str, out,
                        &out_of_memory);
   if (out_of_memory) {
-    sim_fail(err, "%s: out of memory for an EXR chunk", path);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for an EXR chunk", path);
     goto done;
   }
   if (rv != EXR_ERR_SUCCESS) {
-    sim_fail(err, "%s: EXR pixel data unreadable (damaged or truncated?): %s", path,
-             exr_reason(&stream, rv));
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR pixel data unreadable (damaged or truncated?): %s",
+             path, exr_reason(&stream, rv));
     goto done;
   }
   *width_out = (int)width;
@@ -316,31 +329,34 @@ static int by_name(const void *a, const void *b) {
 }
 
 int image_write_exr(const char *path, int width, int height, const image_channel *channels,
-                    int channel_count, sim_error *err) {
+                    int channel_count, fog_error *err) {
   return image_write_exr_with(path, width, height, channels, channel_count, NULL, err);
 }
 
 int image_write_exr_with(const char *path, int width, int height, const image_channel *channels,
-                         int channel_count, const image_exr_header *header, sim_error *err) {
+                         int channel_count, const image_exr_header *header, fog_error *err) {
   const image_exr_header none = {0};
   if (!header) header = &none;
   if (width <= 0 || height <= 0)
-    return sim_fail(err, "%s: image size %dx%d: both must be positive", path, width, height);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: image size %dx%d: both must be positive",
+                    path, width, height);
   if (channel_count <= 0 || channel_count > 64)
-    return sim_fail(err, "%s: an EXR needs 1 to 64 channels, not %d", path, channel_count);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: an EXR needs 1 to 64 channels, not %d",
+                    path, channel_count);
   image_channel sorted[64];
   for (int c = 0; c < channel_count; c++) {
     sorted[c] = channels[c];
     if (!sorted[c].name || !sorted[c].name[0] || strlen(sorted[c].name) > 31 ||
         !sorted[c].pixels)
-      return sim_fail(err, "%s: channel %d needs a name (1 to 31 characters) and pixels", path,
-                      c);
+      return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                      "%s: channel %d needs a name (1 to 31 characters) and pixels", path, c);
   }
   /* EXR requires channels sorted by name (the channel list attribute is sorted). */
   qsort(sorted, (size_t)channel_count, sizeof sorted[0], by_name);
   for (int c = 1; c < channel_count; c++)
     if (!strcmp(sorted[c - 1].name, sorted[c].name))
-      return sim_fail(err, "%s: channel \"%s\" given twice", path, sorted[c].name);
+      return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: channel \"%s\" given twice", path,
+                      sorted[c].name);
 
   for (int c = 0; c < channel_count; c++)
     if (image_check_finite(path, sorted[c].name, sorted[c].pixels, width, height, 1,
@@ -418,9 +434,10 @@ int image_write_exr_with(const char *path, int width, int height, const image_ch
   if (rv == EXR_ERR_SUCCESS) rv = finish;
   if (rv != EXR_ERR_SUCCESS || file.write_errno) {
     if (file.write_errno)
-      sim_fail(err, "%s: write failed while %s: %s", path, stage, strerror(file.write_errno));
+      fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: write failed while %s: %s", path, stage,
+               strerror(file.write_errno));
     else
-      sim_fail(err, "%s: EXR writing failed while %s: %s", path, stage,
+      fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: EXR writing failed while %s: %s", path, stage,
                exr_reason(&stream, rv));
     atomic_file_abandon(&file);
     return 1;
@@ -436,7 +453,7 @@ typedef struct header_query {
   float *matrix;
 } header_query;
 
-static int read_header_attribute(const char *path, const header_query *q, sim_error *err) {
+static int read_header_attribute(const char *path, const header_query *q, fog_error *err) {
   exr_stream stream;
   exr_context_initializer_t init;
   if (open_read_stream(path, &stream, &init, err)) return 1;
@@ -444,11 +461,12 @@ static int read_header_attribute(const char *path, const header_query *q, sim_er
   int status = 1;
   exr_result_t rv = exr_start_read(&ctxt, path, &init);
   if (rv != EXR_ERR_SUCCESS) {
-    sim_fail(err, "%s: not a readable EXR: %s", path, exr_reason(&stream, rv));
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: not a readable EXR: %s", path, exr_reason(&stream, rv));
   } else if (q->matrix) {
     exr_attr_m44f_t value;
     if (exr_attr_get_m44f(ctxt, 0, q->name, &value) != EXR_ERR_SUCCESS) {
-      sim_fail(err, "%s: no 4x4 matrix attribute \"%s\" in the EXR header", path, q->name);
+      fog_fail(err, FOG_ERR_BAD_FILE, "%s: no 4x4 matrix attribute \"%s\" in the EXR header", path,
+               q->name);
     } else {
       memcpy(q->matrix, value.m, sizeof value.m);
       status = 0;
@@ -458,7 +476,8 @@ static int read_header_attribute(const char *path, const header_query *q, sim_er
     const char *text = NULL;
     rv = exr_attr_get_string(ctxt, 0, q->name, &length, &text);
     if (rv != EXR_ERR_SUCCESS || !text) {
-      sim_fail(err, "%s: no string attribute \"%s\" in the EXR header", path, q->name);
+      fog_fail(err, FOG_ERR_BAD_FILE, "%s: no string attribute \"%s\" in the EXR header", path,
+               q->name);
     } else {
       snprintf(q->text, q->size, "%.*s", (int)length, text);
       status = 0;
@@ -471,11 +490,11 @@ static int read_header_attribute(const char *path, const header_query *q, sim_er
 }
 
 int image_read_exr_string(const char *path, const char *name, char *value, size_t size,
-                          sim_error *err) {
+                          fog_error *err) {
   return read_header_attribute(path, &(header_query){.name = name, .text = value, .size = size},
                                err);
 }
 
-int image_read_exr_matrix(const char *path, const char *name, float m[16], sim_error *err) {
+int image_read_exr_matrix(const char *path, const char *name, float m[16], fog_error *err) {
   return read_header_attribute(path, &(header_query){.name = name, .matrix = m}, err);
 }

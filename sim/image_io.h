@@ -21,38 +21,30 @@ typedef struct atomic_file {
 } atomic_file;
 
 /* Creates the temporary; fails naming the target's folder and the reason. */
-int atomic_file_open(atomic_file *file, const char *path, sim_error *err);
+int atomic_file_open(atomic_file *file, const char *path, fog_error *err);
 /* pwrite of all n bytes at offset; on failure remembers errno (the first one) and fails. */
 int atomic_file_pwrite(atomic_file *file, const void *bytes, size_t n, uint64_t offset);
 /* Closes, sets the usual 0644 permissions and renames over the target; on failure (a
  * remembered write error, close or rename failing) removes the temporary and fails. */
-int atomic_file_commit(atomic_file *file, sim_error *err);
+int atomic_file_commit(atomic_file *file, fog_error *err);
 /* Closes and removes the temporary (after a failure elsewhere). */
 void atomic_file_abandon(atomic_file *file);
 
 /* Decoded single-channel float images: both readers allocate *pixels (width*height
  * floats, top row first) only on success. */
-int png_read_channel(const char *path, const unsigned char *bytes, size_t size,
-                     const char *channel, int *width, int *height, float **pixels,
-                     sim_error *err);
-int exr_read_channel(const char *path, const char *channel, int *width, int *height,
-                     float **pixels, sim_error *err);
+int png_read_channel(const char *path, const unsigned char *bytes, size_t size, const char *channel,
+                     int *width, int *height, float **pixels, fog_error *err);
+int exr_read_channel(const char *path, const char *channel, int *width, int *height, float **pixels,
+                     fog_error *err);
 
 /* Writes an 8- or 16-bit PNG of interleaved samples (uint8_t or host-endian uint16_t). */
 int png_write_samples(const char *path, int width, int height, int channels, int bit_depth,
-                      const void *samples, sim_error *err);
+                      const void *samples, fog_error *err);
 
 /* Fails naming the first pixel (x, y) of an interleaved image (stride values per pixel, the
  * channel's value first) that is NaN or whose magnitude exceeds limit (FLT_MAX: infinite;
  * 65504: what a half channel cannot hold). channel names it in the message. */
 int image_check_finite(const char *path, const char *channel, const float *values, int width,
-                       int height, int stride, float limit, sim_error *err);
-
-/* snprintf into err->message; returns 1 (the failing status) for `return fail(...)`. */
-int sim_fail(sim_error *err, const char *format, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
+                       int height, int stride, float limit, fog_error *err);
 
 #endif

@@ -38,11 +38,11 @@ static void list_names(const png_layout *layout, char *out, size_t size) {
   }
 }
 
-int png_read_channel(const char *path, const unsigned char *bytes, size_t size,
-                     const char *channel, int *width, int *height, float **pixels,
-                     sim_error *err) {
+int png_read_channel(const char *path, const unsigned char *bytes, size_t size, const char *channel,
+                     int *width, int *height, float **pixels, fog_error *err) {
   spng_ctx *ctx = spng_ctx_new(0);
-  if (!ctx) return sim_fail(err, "%s: out of memory starting the PNG decoder", path);
+  if (!ctx)
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory starting the PNG decoder", path);
   unsigned char *samples = NULL;
   float *out = NULL;
   int status = 1;
@@ -51,27 +51,27 @@ int png_read_channel(const char *path, const unsigned char *bytes, size_t size,
   if (!e) e = spng_get_ihdr(ctx, &ihdr);
   if (e) {
     if (e == SPNG_EWIDTH || e == SPNG_EHEIGHT)
-      sim_fail(err, "%s: PNG header has an invalid (zero or too large) size: %s", path,
-               spng_strerror(e));
+      fog_fail(err, FOG_ERR_BAD_FILE, "%s: PNG header has an invalid (zero or too large) size: %s",
+               path, spng_strerror(e));
     else
-      sim_fail(err, "%s: not a valid PNG (header): %s", path, spng_strerror(e));
+      fog_fail(err, FOG_ERR_BAD_FILE, "%s: not a valid PNG (header): %s", path, spng_strerror(e));
     goto done;
   }
   if (ihdr.width == 0 || ihdr.height == 0) {
-    sim_fail(err, "%s: PNG has zero size %ux%u", path, ihdr.width, ihdr.height);
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: PNG has zero size %ux%u", path, ihdr.width, ihdr.height);
     goto done;
   }
   if (ihdr.width > 1u << 20 || ihdr.height > 1u << 20 ||
       (uint64_t)ihdr.width * ihdr.height > (uint64_t)1 << 28) {
-    sim_fail(err, "%s: PNG size %ux%u is too large for a fogmap", path, ihdr.width,
-             ihdr.height);
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: PNG size %ux%u is too large for a fogmap", path,
+             ihdr.width, ihdr.height);
     goto done;
   }
   png_layout layout = layout_of(ihdr.color_type);
   int indexed = ihdr.color_type == SPNG_COLOR_TYPE_INDEXED;
   int depth = indexed ? 8 : ihdr.bit_depth;
   if (!layout.channels || (depth != 8 && depth != 16)) {
-    sim_fail(err, "%s: %d-bit %s PNG; expected 8 or 16 bits per sample", path,
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: %d-bit %s PNG; expected 8 or 16 bits per sample", path,
              ihdr.bit_depth, layout.kind);
     goto done;
   }
@@ -82,8 +82,9 @@ int png_read_channel(const char *path, const unsigned char *bytes, size_t size,
   int pick = -1;
   if (!channel) {
     if (layout.channels != 1) {
-      sim_fail(err, "%s: %s PNG has channels %s; name the one to load (fogmap channel)",
-               path, layout.kind, names);
+      fog_fail(err, FOG_ERR_BAD_FILE,
+               "%s: %s PNG has channels %s; name the one to load (fogmap channel)", path,
+               layout.kind, names);
       goto done;
     }
     pick = 0;
@@ -91,8 +92,8 @@ int png_read_channel(const char *path, const unsigned char *bytes, size_t size,
     for (int c = 0; c < layout.channels; c++)
       if (!strcmp(channel, layout.names[c])) pick = c;
     if (pick < 0) {
-      sim_fail(err, "%s: %s PNG has no channel \"%s\"; it has %s", path, layout.kind,
-               channel, names);
+      fog_fail(err, FOG_ERR_BAD_FILE, "%s: %s PNG has no channel \"%s\"; it has %s", path,
+               layout.kind, channel, names);
       goto done;
     }
   }
@@ -103,19 +104,21 @@ int png_read_channel(const char *path, const unsigned char *bytes, size_t size,
   if (!e) {
     samples = malloc(decoded_size);
     if (!samples) {
-      sim_fail(err, "%s: out of memory decoding a %ux%u PNG", path, ihdr.width, ihdr.height);
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory decoding a %ux%u PNG", path,
+               ihdr.width, ihdr.height);
       goto done;
     }
     e = spng_decode_image(ctx, samples, decoded_size, fmt, 0);
   }
   if (e) {
-    sim_fail(err, "%s: PNG image data is damaged: %s", path, spng_strerror(e));
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: PNG image data is damaged: %s", path, spng_strerror(e));
     goto done;
   }
   size_t count = (size_t)ihdr.width * ihdr.height;
   out = malloc(count * sizeof *out);
   if (!out) {
-    sim_fail(err, "%s: out of memory for a %ux%u fogmap", path, ihdr.width, ihdr.height);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for a %ux%u fogmap", path, ihdr.width,
+             ihdr.height);
     goto done;
   }
   if (depth == 8) {
@@ -139,18 +142,20 @@ done:
 }
 
 int png_write_samples(const char *path, int width, int height, int channels, int bit_depth,
-                      const void *samples, sim_error *err) {
+                      const void *samples, fog_error *err) {
   static const uint8_t color_types[5] = {0, SPNG_COLOR_TYPE_GRAYSCALE,
                                          SPNG_COLOR_TYPE_GRAYSCALE_ALPHA,
                                          SPNG_COLOR_TYPE_TRUECOLOR,
                                          SPNG_COLOR_TYPE_TRUECOLOR_ALPHA};
   if (width <= 0 || height <= 0)
-    return sim_fail(err, "%s: image size %dx%d: both must be positive", path, width, height);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: image size %dx%d: both must be positive",
+                    path, width, height);
   if (channels < 1 || channels > 4 || (bit_depth != 8 && bit_depth != 16))
-    return sim_fail(err, "%s: cannot write a %d-channel %d-bit PNG", path, channels,
-                    bit_depth);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: cannot write a %d-channel %d-bit PNG", path,
+                    channels, bit_depth);
   spng_ctx *ctx = spng_ctx_new(SPNG_CTX_ENCODER);
-  if (!ctx) return sim_fail(err, "%s: out of memory starting the PNG encoder", path);
+  if (!ctx)
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory starting the PNG encoder", path);
   struct spng_ihdr ihdr = {.width = (uint32_t)width,
                            .height = (uint32_t)height,
                            .bit_depth = (uint8_t)bit_depth,
@@ -174,7 +179,8 @@ int png_write_samples(const char *path, int width, int height, int channels, int
   spng_ctx_free(ctx);
   if (e || !png) {
     free(png);
-    return sim_fail(err, "%s: PNG encoding failed: %s", path, spng_strerror(e));
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: PNG encoding failed: %s", path,
+                    spng_strerror(e));
   }
   atomic_file file;
   if (atomic_file_open(&file, path, err)) {
@@ -186,16 +192,20 @@ int png_write_samples(const char *path, int width, int height, int channels, int
   return atomic_file_commit(&file, err);
 }
 
-int image_write_png(const char *path, int width, int height, int channels,
-                    const float *interleaved, sim_error *err) {
+int image_write_png(const char *path, int width, int height, int channels, const float *interleaved,
+                    fog_error *err) {
   if (channels != 1 && channels != 3 && channels != 4)
-    return sim_fail(err, "%s: PNG writing takes 1 (grey), 3 (RGB) or 4 (RGBA) channels, not %d",
-                    path, channels);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "%s: PNG writing takes 1 (grey), 3 (RGB) or 4 (RGBA) channels, not %d", path,
+                    channels);
   if (width <= 0 || height <= 0)
-    return sim_fail(err, "%s: image size %dx%d: both must be positive", path, width, height);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: image size %dx%d: both must be positive",
+                    path, width, height);
   size_t count = (size_t)width * height * channels;
   uint8_t *samples = malloc(count);
-  if (!samples) return sim_fail(err, "%s: out of memory for a %dx%d PNG", path, width, height);
+  if (!samples)
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for a %dx%d PNG", path, width,
+                    height);
   for (size_t i = 0; i < count; i++) {
     float v = interleaved[i];
     v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; /* clamps, and NaN -> 0 */

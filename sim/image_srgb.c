@@ -56,13 +56,15 @@ unsigned char srgb8_encode(const srgb8_encoder *e, float linear) {
   return (unsigned char)(k + (e->threshold[k + 1] <= linear)); /* at most one level up */
 }
 
-int image_write_png_srgb(const char *path, int width, int height, int channels,
-                         const float *linear, sim_error *err) {
+int image_write_png_srgb(const char *path, int width, int height, int channels, const float *linear,
+                         fog_error *err) {
   if (channels != 3 && channels != 4)
-    return sim_fail(err, "%s: sRGB PNG writing takes 3 (RGB) or 4 (RGBA) channels, not %d",
-                    path, channels);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "%s: sRGB PNG writing takes 3 (RGB) or 4 (RGBA) channels, not %d", path,
+                    channels);
   if (width <= 0 || height <= 0)
-    return sim_fail(err, "%s: image size %dx%d: both must be positive", path, width, height);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: image size %dx%d: both must be positive",
+                    path, width, height);
   static const char *const names[] = {"R", "G", "B", "A"};
   for (int c = 0; c < channels; c++)
     if (image_check_finite(path, names[c], linear + c, width, height, channels, FLT_MAX, err))
@@ -71,7 +73,9 @@ int image_write_png_srgb(const char *path, int width, int height, int channels,
   srgb8_encoder_init(&encoder);
   size_t count = (size_t)width * height * channels;
   uint8_t *samples = malloc(count);
-  if (!samples) return sim_fail(err, "%s: out of memory for a %dx%d PNG", path, width, height);
+  if (!samples)
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for a %dx%d PNG", path, width,
+                    height);
   for (size_t i = 0; i < count; i++) {
     float v = linear[i];
     if (channels == 4 && i % 4 == 3) { /* alpha: linear */

@@ -25,11 +25,11 @@ static float read_f32(const unsigned char **p) {
   return f;
 }
 
-int mantaflow_config_read(const char *path, mantaflow_config *out, sim_error *err) {
+int mantaflow_config_read(const char *path, mantaflow_config *out, fog_error *err) {
   *out = (mantaflow_config){0};
   FILE *f = fopen(path, "rb");
   if (!f) {
-    snprintf(err->message, sizeof err->message, "%s: cannot open Mantaflow config", path);
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot open Mantaflow config", path);
     return 1;
   }
   unsigned char magic[2] = {0};
@@ -37,22 +37,22 @@ int mantaflow_config_read(const char *path, mantaflow_config *out, sim_error *er
   fclose(f);
   /* gzread passes non-gzip bytes through unchanged: check the gzip magic ourselves. */
   if (got < 2 || magic[0] != 0x1f || magic[1] != 0x8b) {
-    snprintf(err->message, sizeof err->message,
-             "%s: not a Mantaflow config (expected a gzip file)", path);
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: not a Mantaflow config (expected a gzip file)", path);
     return 1;
   }
   gzFile gz = gzopen(path, "rb");
   if (!gz) {
-    snprintf(err->message, sizeof err->message, "%s: cannot open Mantaflow config", path);
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot open Mantaflow config", path);
     return 1;
   }
   unsigned char bytes[CONFIG_BYTES + 1];
   int n = gzread(gz, bytes, sizeof bytes);
   int gz_status = gzclose(gz);
   if (n != CONFIG_BYTES || gz_status != Z_OK) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_BAD_FILE,
              "%s: Mantaflow config has %d bytes after gunzip (or is truncated), expected %d "
-             "(Blender 3.x layout)", path, n, CONFIG_BYTES);
+             "(Blender 3.x layout)",
+             path, n, CONFIG_BYTES);
     return 1;
   }
   const unsigned char *p = bytes;
@@ -77,10 +77,10 @@ int mantaflow_config_read(const char *path, mantaflow_config *out, sim_error *er
   out->cache_version[4] = 0;
   for (int a = 0; a < 3; a++)
     if (out->base_res[a] <= 0 || out->res[a] <= 0 || !(out->p1[a] > out->p0[a])) {
-      snprintf(err->message, sizeof err->message,
+      fog_fail(err, FOG_ERR_BAD_FILE,
                "%s: Mantaflow config has a degenerate domain on axis %d (base_res %d, res "
-               "%d, p0 %g, p1 %g)", path, a, out->base_res[a], out->res[a], out->p0[a],
-               out->p1[a]);
+               "%d, p0 %g, p1 %g)",
+               path, a, out->base_res[a], out->res[a], out->p0[a], out->p1[a]);
       return 1;
     }
   return 0;

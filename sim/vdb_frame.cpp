@@ -7,10 +7,10 @@
 #include "sim/vdb_import.h"
 
 extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_frame *out,
-                              sim_error *err) {
+                              fog_error *err) {
   *out = vdb_frame{};
   const vdb_frame_desc d = desc ? *desc : vdb_frame_desc{};
-  sim_error inner{};
+  fog_error inner{};
   vdb_dense_grid grid{};
   vdb_read_desc read{};
   read.grid = d.grid;
@@ -77,7 +77,7 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
     status = vdb_columns_resample(&out->columns, &out->fogmap_place, out->profile.thickness,
                                   &out->map, &inner);
   if (status) {
-    snprintf(err->message, sizeof err->message, "%.200s: %.300s", path, inner.message);
+    fog_fail(err, FOG_ERR_BAD_FILE, "%.200s: %.300s", path, inner.message);
     vdb_dense_grid_destroy(&grid);
     vdb_frame_destroy(out);
     return 1;

@@ -51,12 +51,12 @@ typedef struct vdb_grid_info {
  * length, count and offset against the bytes there. OpenVDB allocates such lengths
  * before any check (a bit flip made it take gigabytes); vdb_list_grids and vdb_read_dense
  * call this first. 0: looks sound; 1: err->message names the file and what is damaged. */
-int vdb_precheck_file(const char *path, sim_error *err);
+int vdb_precheck_file(const char *path, fog_error *err);
 
 /* Lists the grids of a .vdb file (at most capacity; *count is the number in the file).
  * Fails naming the file for missing, unreadable, non-VDB or truncated files. */
 int vdb_list_grids(const char *path, vdb_grid_info *grids, int capacity, int *count,
-                   sim_error *err);
+                   fog_error *err);
 
 /* A float grid copied to a dense box (the active bounding box). */
 typedef struct vdb_dense_grid {
@@ -81,7 +81,7 @@ typedef struct vdb_read_desc {
  * is named), a rotated or sheared transform, more than max_voxels. Every OpenVDB
  * exception becomes err->message; nothing is allocated on failure. */
 int vdb_read_dense(const char *path, const vdb_read_desc *desc, vdb_dense_grid *out,
-                   sim_error *err);
+                   fog_error *err);
 void vdb_dense_grid_destroy(vdb_dense_grid *grid);
 
 /* Writes one float grid (fog volume) to a .vdb file: for tests and tools. values as in
@@ -101,7 +101,7 @@ typedef struct vdb_write_desc {
   vdb_compression compression;
 } vdb_write_desc;
 int vdb_write_dense(const char *path, const vdb_dense_grid *grid, const vdb_write_desc *desc,
-                    sim_error *err);
+                    fog_error *err);
 
 /* ----------------------------------------------------- Mantaflow config (.uni, C) */
 
@@ -124,7 +124,7 @@ typedef struct mantaflow_config {
 } mantaflow_config;
 
 /* Fails naming the file for missing, non-gzip, wrong-size files. */
-int mantaflow_config_read(const char *path, mantaflow_config *out, sim_error *err);
+int mantaflow_config_read(const char *path, mantaflow_config *out, fog_error *err);
 
 /* ------------------------------------------------------------- placement (C) */
 
@@ -150,8 +150,8 @@ typedef struct vdb_world_map {
 
 /* Combines the grid's transform, the optional config and the options. Fails for a
  * config whose base_res or box is degenerate. */
-int vdb_world_map_make(const vdb_dense_grid *grid, const vdb_placement *desc,
-                       vdb_world_map *out, sim_error *err);
+int vdb_world_map_make(const vdb_dense_grid *grid, const vdb_placement *desc, vdb_world_map *out,
+                       fog_error *err);
 
 /* ------------------------------------------------------------- projection (C) */
 
@@ -169,8 +169,8 @@ typedef struct vdb_columns {
 
 /* box: NULL projects the dense box; else an index box {imin,jmin,kmin,imax,jmax,kmax}
  * (inclusive, e.g. the Mantaflow domain) that must contain the dense box. */
-int vdb_columns_project(const vdb_dense_grid *grid, const vdb_world_map *map,
-                        const int *box, vdb_columns *out, sim_error *err);
+int vdb_columns_project(const vdb_dense_grid *grid, const vdb_world_map *map, const int *box,
+                        vdb_columns *out, fog_error *err);
 void vdb_columns_destroy(vdb_columns *columns);
 
 /* Where a fogmap lies in the world: cell (x, z) covers
@@ -186,13 +186,13 @@ typedef struct vdb_fogmap_place {
  * the longer side, else cell_size > 0, else the columns' own cell (native). */
 int vdb_fogmap_place_fit(double x0, double x1, double z0, double z1, int resolution,
                          double cell_size, double native_cell, vdb_fogmap_place *out,
-                         sim_error *err);
+                         fog_error *err);
 
 /* Area-weighted (conservative) resampling of tau/thickness onto place: every column's
  * optical depth × area is split over the fogmap cells by overlap area, so
  * Σ f·cell²·thickness = Σ tau·column area to rounding. map must be place's size. */
 int vdb_columns_resample(const vdb_columns *columns, const vdb_fogmap_place *place,
-                         double thickness, fogmap *map, sim_error *err);
+                         double thickness, fogmap *map, fog_error *err);
 
 /* ------------------------------------------------------------- profile (C) */
 
@@ -235,11 +235,11 @@ typedef struct vdb_profile {
 /* Fits g to a mean vertical distribution (mass per layer, bottom first, uniform layers
  * of layer_height from y_min). Fails for zero or non-finite total mass. */
 int vdb_profile_fit(const double *layer_mass, int layers, double y_min, double layer_height,
-                    const vdb_profile_desc *desc, vdb_profile *out, sim_error *err);
+                    const vdb_profile_desc *desc, vdb_profile *out, fog_error *err);
 /* The sequence profile: the summed vertical distribution of several frames (their layers
  * may start at different heights; the layer height must be the same). */
 int vdb_profile_fit_columns(const vdb_columns *const *columns, int count,
-                            const vdb_profile_desc *desc, vdb_profile *out, sim_error *err);
+                            const vdb_profile_desc *desc, vdb_profile *out, fog_error *err);
 double vdb_profile_eval(const vdb_profile *profile, double y);
 
 /* ------------------------------------------------------------- sequences (C) */
@@ -260,7 +260,7 @@ typedef struct vdb_sequence {
  * from the first to the last (the range, or the frame numbers found). A printf pattern has
  * one integer conversion and otherwise only "%%" (else it is a file name or glob). */
 int vdb_sequence_find(const char *const *inputs, int input_count, int first, int last,
-                      vdb_sequence *out, sim_error *err);
+                      vdb_sequence *out, fog_error *err);
 void vdb_sequence_destroy(vdb_sequence *sequence);
 
 /* The config beside a Blender cache file: DIR/data/fluid_data_0048.vdb ->
@@ -300,8 +300,7 @@ typedef struct vdb_frame {
 
 /* Reads path, places it, projects it and fits (or applies) the profile. On failure
  * nothing is allocated and err->message names the file. */
-int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_frame *out,
-                   sim_error *err);
+int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_frame *out, fog_error *err);
 void vdb_frame_destroy(vdb_frame *frame);
 
 /* ------------------------------------------------------------- 2.5D accuracy (C) */
@@ -334,16 +333,16 @@ typedef struct vdb_report_desc {
 int vdb_report_geometry(const vdb_dense_grid *grid, const vdb_world_map *world,
                         const vdb_fogmap_place *place, const vdb_profile *profile,
                         const vdb_report_desc *desc, double lo[3], double hi[3], double *y_mid,
-                        double *step, sim_error *err);
+                        double *step, fog_error *err);
 void vdb_report_direction(double elevation_deg, int azimuth, int azimuths, double dir[3]);
 
 /* Orthographic views at each elevation: transmittance of the original 3D grid
  * (trilinear, fine march) against the 2.5D model f·g (f bilinear on cell centres,
  * the linear B-spline), same rays and steps. rows[n].elevation_deg are inputs. */
-int vdb_report_run(const vdb_dense_grid *grid, const vdb_world_map *world,
-                   const fogmap *map, const vdb_fogmap_place *place,
-                   const vdb_profile *profile, const vdb_report_desc *desc,
-                   vdb_report_row *rows, int row_count, sim_error *err);
+int vdb_report_run(const vdb_dense_grid *grid, const vdb_world_map *world, const fogmap *map,
+                   const vdb_fogmap_place *place, const vdb_profile *profile,
+                   const vdb_report_desc *desc, vdb_report_row *rows, int row_count,
+                   fog_error *err);
 
 #ifdef __cplusplus
 }

@@ -49,7 +49,7 @@
 typedef struct vdb_in {
   int fd;
   const char *path;
-  sim_error *err;
+  fog_error *err;
   uint64_t size;        /* of the file */
   uint64_t pos;         /* the stream position OpenVDB would be at */
   uint64_t end;         /* reads must end by here: the file's end or the current block's */
@@ -73,8 +73,8 @@ static int damaged(vdb_in *in, const char *format, ...) {
   va_start(args, format);
   vsnprintf(detail, sizeof detail, format, args);
   va_end(args);
-  return sim_fail(in->err, "%s: cannot read: damaged OpenVDB %s: %s", in->path, in->section,
-                  detail);
+  return fog_fail(in->err, FOG_ERR_BAD_FILE, "%s: cannot read: damaged OpenVDB %s: %s", in->path,
+                  in->section, detail);
 }
 
 /* n more bytes must lie before in->end; what describes them ("the grid count (4 bytes)"). */
@@ -103,7 +103,7 @@ static int get(vdb_in *in, void *dst, size_t n, const char *what) {
       in->cache_len = got > 0 ? (size_t)got : 0;
     }
     if (got < (ssize_t)n)
-      return sim_fail(in->err, "%s: cannot read: %s", in->path,
+      return fog_fail(in->err, FOG_ERR_FILE_ACCESS, "%s: cannot read: %s", in->path,
                       got < 0 ? strerror(errno) : "the file shrank while being read");
     if (n > sizeof in->cache) {
       in->pos += n;
@@ -200,10 +200,12 @@ static int read_header(vdb_in *in, uint32_t *version, int *has_offsets) {
    * other layouts, each with lengths OpenVDB trusts (fuzzing flipped the version of a
    * current file to 218 and OpenVDB read a 1.8 GB transform name): refused, not checked. */
   if (v < VERSION_NODE_MASK_COMPRESSION)
-    return sim_fail(in->err, "%s: cannot read: OpenVDB file format %" PRIu32 " is older than "
+    return fog_fail(in->err, FOG_ERR_BAD_FILE,
+                    "%s: cannot read: OpenVDB file format %" PRIu32
+                    " is older than "
                     "222 (OpenVDB 3.0, 2014), the oldest fogpipe checks before OpenVDB reads "
-                    "it; re-save the file with a current OpenVDB (or it is damaged)", in->path,
-                    v);
+                    "it; re-save the file with a current OpenVDB (or it is damaged)",
+                    in->path, v);
   if (v >= 211 && skip(in, 8, "the library version (8 bytes)")) return 1;
   *has_offsets = 1;
   if (v >= 212) {
@@ -490,7 +492,8 @@ static int decode_chunk(vdb_in *in, int blosc, uint64_t size, uint64_t bytes, co
   if (!packed || !unpacked) {
     free(packed);
     free(unpacked);
-    return sim_fail(in->err, "%s: out of memory checking the file", in->path);
+    return fog_fail(in->err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory checking the file",
+                    in->path);
   }
   const uint64_t chunk = in->pos;
   char phrase[256];
@@ -618,7 +621,9 @@ static int read_internal(vdb_in *in, tree_walk *w, int level) {
     if (w->leaves == w->leaf_capacity) {
       const size_t capacity = w->leaf_capacity ? 2 * w->leaf_capacity : 1024;
       unsigned char *grown = realloc(w->leaf_masks, capacity * leaf_bytes);
-      if (!grown) return sim_fail(in->err, "%s: out of memory checking the file", in->path);
+      if (!grown)
+        return fog_fail(in->err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory checking the file",
+                        in->path);
       w->leaf_masks = grown;
       w->leaf_capacity = capacity;
     }
@@ -665,7 +670,7 @@ static int walk_tree(vdb_in *in, tree_walk *w, uint32_t tiles, uint32_t children
   w->value_mask = malloc(largest);
   w->children = malloc(((size_t)children + 1) * sizeof *w->children);
   if (!w->child_mask[0] || !w->child_mask[1] || !w->value_mask || !w->children)
-    bad = sim_fail(in->err, "%s: out of memory checking the file", in->path);
+    bad = fog_fail(in->err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory checking the file", in->path);
   for (uint32_t c = 0; !bad && c < children; c++) {
     unsigned char b[12];
     bad = get(in, b, 12, "a root child's origin (12 bytes)");
@@ -835,14 +840,15 @@ static int read_descriptors(vdb_in *in, uint32_t version, int has_offsets) {
   return 0;
 }
 
-int vdb_precheck_file(const char *path, sim_error *err) {
+int vdb_precheck_file(const char *path, fog_error *err) {
   vdb_in in = {.path = path, .err = err, .within = "the file", .section = "header"};
   in.fd = open(path, O_RDONLY);
-  if (in.fd < 0) return sim_fail(err, "%s: cannot open: %s", path, strerror(errno));
+  if (in.fd < 0)
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot open: %s", path, strerror(errno));
   struct stat st;
   if (fstat(in.fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     close(in.fd);
-    return sim_fail(err, "%s: not a regular file", path);
+    return fog_fail(err, FOG_ERR_BAD_FILE, "%s: not a regular file", path);
   }
   in.size = in.end = (uint64_t)st.st_size;
   uint32_t version = 0;

@@ -19,7 +19,7 @@ static double exponential_mean(double H, double L) {
 }
 
 int vdb_profile_fit(const double *layer_mass, int layers, double y_min, double layer_height,
-                    const vdb_profile_desc *desc, vdb_profile *out, sim_error *err) {
+                    const vdb_profile_desc *desc, vdb_profile *out, fog_error *err) {
   *out = (vdb_profile){0};
   const double L = layers * layer_height;
   double total = 0, moment = 0;
@@ -28,8 +28,8 @@ int vdb_profile_fit(const double *layer_mass, int layers, double y_min, double l
     moment += layer_mass[l] * (l + 0.5) * layer_height;
   }
   if (layers <= 0 || !(total > 0) || !isfinite(total) || !(L > 0)) {
-    snprintf(err->message, sizeof err->message,
-             "cannot fit a vertical profile: total mass %g over %d layers", total, layers);
+    fog_fail(err, FOG_ERR_BAD_FILE, "cannot fit a vertical profile: total mass %g over %d layers",
+             total, layers);
     return 1;
   }
   out->kind = desc ? desc->kind : VDB_PROFILE_BSPLINE;
@@ -92,18 +92,18 @@ int vdb_profile_fit(const double *layer_mass, int layers, double y_min, double l
 }
 
 int vdb_profile_fit_columns(const vdb_columns *const *columns, int count,
-                            const vdb_profile_desc *desc, vdb_profile *out, sim_error *err) {
+                            const vdb_profile_desc *desc, vdb_profile *out, fog_error *err) {
   if (count <= 0) {
-    snprintf(err->message, sizeof err->message, "no frames to fit a profile to");
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "no frames to fit a profile to");
     return 1;
   }
   const double h = columns[0]->layer_height;
   double y0 = columns[0]->y_min, y1 = y0 + columns[0]->layers * h;
   for (int i = 1; i < count; i++) {
     if (fabs(columns[i]->layer_height - h) > 1e-9 * h) {
-      snprintf(err->message, sizeof err->message,
-               "frames have different layer heights (%g and %g): fit the profile per frame",
-               h, columns[i]->layer_height);
+      fog_fail(err, FOG_ERR_BAD_FILE,
+               "frames have different layer heights (%g and %g): fit the profile per frame", h,
+               columns[i]->layer_height);
       return 1;
     }
     y0 = fmin(y0, columns[i]->y_min);
@@ -112,7 +112,7 @@ int vdb_profile_fit_columns(const vdb_columns *const *columns, int count,
   const int layers = (int)lround((y1 - y0) / h);
   double *mass = calloc((size_t)layers, sizeof(double));
   if (!mass) {
-    snprintf(err->message, sizeof err->message, "out of memory for %d layers", layers);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for %d layers", layers);
     return 1;
   }
   for (int i = 0; i < count; i++) {

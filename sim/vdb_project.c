@@ -8,8 +8,8 @@
 
 #include "sim/vdb_import.h"
 
-int vdb_world_map_make(const vdb_dense_grid *grid, const vdb_placement *desc,
-                       vdb_world_map *out, sim_error *err) {
+int vdb_world_map_make(const vdb_dense_grid *grid, const vdb_placement *desc, vdb_world_map *out,
+                       fog_error *err) {
   *out = (vdb_world_map){0};
   const double scale = desc && desc->scale != 0 ? desc->scale : 1.0;
   const mantaflow_config *cfg = desc ? desc->config : NULL;
@@ -24,9 +24,10 @@ int vdb_world_map_make(const vdb_dense_grid *grid, const vdb_placement *desc,
     for (int r = 0; r < 3; r++)
       for (int c = 0; c < 3; c++)
         if (r != c && fabs(cfg->obmat[r][c]) > 1e-6 * fabs(cfg->obmat[r][r])) {
-          snprintf(err->message, sizeof err->message,
+          fog_fail(err, FOG_ERR_BAD_FILE,
                    "the Mantaflow domain object is rotated (obmat[%d][%d] = %g); only "
-                   "scaled and translated domains are supported", r, c, cfg->obmat[r][c]);
+                   "scaled and translated domains are supported",
+                   r, c, cfg->obmat[r][c]);
           return 1;
         }
     int adaptive = 0;
@@ -71,8 +72,10 @@ int vdb_world_map_make(const vdb_dense_grid *grid, const vdb_placement *desc,
     out->base[a] = sign * scale * B[c] + (desc ? desc->offset[a] : 0);
     out->step[a] = sign * scale * S[c];
     if (!(fabs(out->step[a]) > 0) || !isfinite(out->step[a]) || !isfinite(out->base[a])) {
-      snprintf(err->message, sizeof err->message, "degenerate placement on world axis %d "
-               "(cell %g)", a, out->step[a]);
+      fog_fail(err, FOG_ERR_BAD_FILE,
+               "degenerate placement on world axis %d "
+               "(cell %g)",
+               a, out->step[a]);
       return 1;
     }
   }
@@ -90,7 +93,7 @@ static void world_range(const vdb_world_map *map, int a, int lo, int hi, double 
 }
 
 int vdb_columns_project(const vdb_dense_grid *grid, const vdb_world_map *map, const int *box,
-                        vdb_columns *out, sim_error *err) {
+                        vdb_columns *out, fog_error *err) {
   *out = (vdb_columns){0};
   int lo[3], hi[3];
   for (int c = 0; c < 3; c++) {
@@ -98,9 +101,10 @@ int vdb_columns_project(const vdb_dense_grid *grid, const vdb_world_map *map, co
     hi[c] = grid->index_min[c] + grid->dim[c] - 1;
     if (box) {
       if (box[c] > lo[c] || box[3 + c] < hi[c]) {
-        snprintf(err->message, sizeof err->message,
+        fog_fail(err, FOG_ERR_BAD_FILE,
                  "the grid's active voxels [%d..%d] on index axis %d lie outside the domain "
-                 "[%d..%d]", lo[c], hi[c], c, box[c], box[3 + c]);
+                 "[%d..%d]",
+                 lo[c], hi[c], c, box[c], box[3 + c]);
         return 1;
       }
       lo[c] = box[c];
@@ -118,8 +122,8 @@ int vdb_columns_project(const vdb_dense_grid *grid, const vdb_world_map *map, co
   out->layer_mass = calloc((size_t)out->layers, sizeof(double));
   if (!out->tau || !out->layer_mass) {
     vdb_columns_destroy(out);
-    snprintf(err->message, sizeof err->message, "out of memory for %dx%d columns",
-             out->width, out->height);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for %dx%d columns", out->width,
+             out->height);
     return 1;
   }
   /* World-ordered cell number of source index n along fogpipe axis a: n - lo when the
@@ -164,7 +168,7 @@ void vdb_columns_destroy(vdb_columns *columns) {
 
 int vdb_fogmap_place_fit(double x0, double x1, double z0, double z1, int resolution,
                          double cell_size, double native_cell, vdb_fogmap_place *out,
-                         sim_error *err) {
+                         fog_error *err) {
   *out = (vdb_fogmap_place){0};
   const double sx = x1 - x0, sz = z1 - z0;
   double cell = native_cell;
@@ -173,15 +177,15 @@ int vdb_fogmap_place_fit(double x0, double x1, double z0, double z1, int resolut
   else if (cell_size > 0)
     cell = cell_size;
   if (!(sx > 0) || !(sz > 0) || !(cell > 0) || !isfinite(cell)) {
-    snprintf(err->message, sizeof err->message,
-             "cannot fit a fogmap to [%g, %g] x [%g, %g] with cell %g", x0, x1, z0, z1, cell);
+    fog_fail(err, FOG_ERR_BAD_FILE, "cannot fit a fogmap to [%g, %g] x [%g, %g] with cell %g", x0,
+             x1, z0, z1, cell);
     return 1;
   }
   /* ceil with a tolerance, so that an exact multiple gives no extra empty cell */
   const double w = ceil(sx / cell - 1e-6), h = ceil(sz / cell - 1e-6);
   if (w < 1 || h < 1 || w * h > (double)(1 << 28)) {
-    snprintf(err->message, sizeof err->message,
-             "a fogmap of %.0f x %.0f cells (cell %g) is out of range", w, h, cell);
+    fog_fail(err, FOG_ERR_BAD_FILE, "a fogmap of %.0f x %.0f cells (cell %g) is out of range", w, h,
+             cell);
     return 1;
   }
   *out = (vdb_fogmap_place){.origin_x = x0, .origin_z = z0, .cell_size = cell,
@@ -217,9 +221,9 @@ static double redistribute(const double *in, int sn, size_t in_stride, double s0
 }
 
 int vdb_columns_resample(const vdb_columns *columns, const vdb_fogmap_place *place,
-                         double thickness, fogmap *map, sim_error *err) {
+                         double thickness, fogmap *map, fog_error *err) {
   if (map->width != place->width || map->height != place->height || !(thickness > 0)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "resample: fogmap %dx%d does not match the placement %dx%d (or thickness %g)",
              map->width, map->height, place->width, place->height, thickness);
     return 1;
@@ -235,7 +239,7 @@ int vdb_columns_resample(const vdb_columns *columns, const vdb_fogmap_place *pla
     free(rows);
     free(mass);
     free(src);
-    snprintf(err->message, sizeof err->message, "out of memory resampling to %dx%d", dw, dh);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory resampling to %dx%d", dw, dh);
     return 1;
   }
   const double column_area = columns->cell_x * columns->cell_z;
@@ -250,10 +254,10 @@ int vdb_columns_resample(const vdb_columns *columns, const vdb_fogmap_place *pla
                          mass + x, dh, (size_t)dw, place->origin_z, place->cell_size);
   const double total = columns->mass;
   if (fabs(lost) > 1e-6 * fabs(total) && fabs(lost) > 0) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_BAD_FILE,
              "the fogmap grid (origin %g, %g, %dx%d cells of %g) misses %.3g%% of the fog's "
-             "mass", place->origin_x, place->origin_z, dw, dh, place->cell_size,
-             100.0 * lost / total);
+             "mass",
+             place->origin_x, place->origin_z, dw, dh, place->cell_size, 100.0 * lost / total);
     free(rows);
     free(mass);
     free(src);

@@ -1,6 +1,6 @@
 // The thin C++ adapter over OpenVDB 10 behind sim/vdb_import.h: list grids, read a
 // scalar grid into a dense box (leaf voxels and active tiles alike), write one (tests).
-// Every exception stops here and becomes a sim_error message naming the file.
+// Every exception stops here and becomes a fog_error message naming the file.
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 
@@ -22,28 +22,20 @@
 
 namespace {
 
-void set_error(sim_error *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-void set_error(sim_error *err, const char *fmt, ...) {
-  va_list args;
-  va_start(args, fmt);
-  vsnprintf(err->message, sizeof err->message, fmt, args);
-  va_end(args);
-}
-
 // A missing file gets the system's reason, not OpenVDB's generic "could not open".
-bool check_readable(const char *path, sim_error *err) {
+bool check_readable(const char *path, fog_error *err) {
   struct stat st;
   if (stat(path, &st) != 0) {
-    set_error(err, "%s: cannot open: %s", path, strerror(errno));
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot open: %s", path, strerror(errno));
     return false;
   }
   if (!S_ISREG(st.st_mode)) {
-    set_error(err, "%s: not a regular file", path);
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: not a regular file", path);
     return false;
   }
   FILE *f = fopen(path, "rb");
   if (!f) {
-    set_error(err, "%s: cannot open: %s", path, strerror(errno));
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot open: %s", path, strerror(errno));
     return false;
   }
   // OpenVDB files start with the magic number 0x56444220 ("VDB " little-endian) as int64.
@@ -51,7 +43,8 @@ bool check_readable(const char *path, sim_error *err) {
   size_t n = fread(magic, 1, sizeof magic, f);
   fclose(f);
   if (n < 4 || !(magic[0] == 0x20 && magic[1] == 0x42 && magic[2] == 0x44 && magic[3] == 0x56)) {
-    set_error(err, "%s: not an OpenVDB file (no 'VDB' magic number in the first bytes)", path);
+    fog_fail(err, FOG_ERR_BAD_FILE,
+             "%s: not an OpenVDB file (no 'VDB' magic number in the first bytes)", path);
     return false;
   }
   // OpenVDB allocates lengths read from the file before checking them: refuse damaged
@@ -79,11 +72,13 @@ std::string type_names(const openvdb::GridPtrVecPtr &grids) {
 
 // The grid's index->world map, which must be axis-aligned (scale + translation).
 bool axis_aligned_map(const openvdb::GridBase &grid, const char *path, double voxel_size[3],
-                      double translation[3], sim_error *err) {
+                      double translation[3], fog_error *err) {
   const openvdb::math::MapBase::ConstPtr map = grid.transform().baseMap();
   if (!map->isLinear()) {
-    set_error(err, "%s: grid '%s' has a non-linear (frustum) transform; only linear maps "
-              "are supported", path, grid.getName().c_str());
+    fog_fail(err, FOG_ERR_BAD_FILE,
+             "%s: grid '%s' has a non-linear (frustum) transform; only linear maps "
+             "are supported",
+             path, grid.getName().c_str());
     return false;
   }
   // OpenVDB uses row vectors: world = index * M, translation in row 3.
@@ -93,16 +88,18 @@ bool axis_aligned_map(const openvdb::GridBase &grid, const char *path, double vo
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++)
       if (r != c && std::fabs(m[r][c]) > 1e-9 * largest) {
-        set_error(err, "%s: grid '%s' has a rotated or sheared transform; only scale + "
-                  "translation is supported", path, grid.getName().c_str());
+        fog_fail(err, FOG_ERR_BAD_FILE,
+                 "%s: grid '%s' has a rotated or sheared transform; only scale + "
+                 "translation is supported",
+                 path, grid.getName().c_str());
         return false;
       }
   for (int a = 0; a < 3; a++) {
     voxel_size[a] = m[a][a];
     translation[a] = m[3][a];
     if (!(std::fabs(voxel_size[a]) > 0) || !std::isfinite(voxel_size[a])) {
-      set_error(err, "%s: grid '%s' has a degenerate voxel size along axis %d", path,
-                grid.getName().c_str(), a);
+      fog_fail(err, FOG_ERR_BAD_FILE, "%s: grid '%s' has a degenerate voxel size along axis %d",
+               path, grid.getName().c_str(), a);
       return false;
     }
   }
@@ -110,11 +107,12 @@ bool axis_aligned_map(const openvdb::GridBase &grid, const char *path, double vo
 }
 
 template <typename GridT>
-int copy_to_dense(const GridT &grid, const char *path, long long max_voxels,
-                  vdb_dense_grid *out, sim_error *err) {
+int copy_to_dense(const GridT &grid, const char *path, long long max_voxels, vdb_dense_grid *out,
+                  fog_error *err) {
   const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
   if (box.empty() || grid.activeVoxelCount() == 0) {
-    set_error(err, "%s: grid '%s' is empty (no active voxels)", path, grid.getName().c_str());
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: grid '%s' is empty (no active voxels)", path,
+             grid.getName().c_str());
     return 1;
   }
   // In 64 bits: CoordBBox::dim() is int and a damaged file's box spans up to 2^32 a side,
@@ -126,15 +124,17 @@ int copy_to_dense(const GridT &grid, const char *path, long long max_voxels,
                     dim[1] <= INT_MAX && dim[2] <= INT_MAX && dim[0] <= max_voxels &&
                     dim[1] <= max_voxels / dim[0] && dim[2] <= max_voxels / (dim[0] * dim[1]);
   if (!fits) {
-    set_error(err, "%s: grid '%s' spans %lld x %lld x %lld voxels (%.6g), more than the limit "
-              "of %lld", path, grid.getName().c_str(), dim[0], dim[1], dim[2],
-              (double)dim[0] * (double)dim[1] * (double)dim[2], max_voxels);
+    fog_fail(err, FOG_ERR_BAD_FILE,
+             "%s: grid '%s' spans %lld x %lld x %lld voxels (%.6g), more than the limit "
+             "of %lld",
+             path, grid.getName().c_str(), dim[0], dim[1], dim[2],
+             (double)dim[0] * (double)dim[1] * (double)dim[2], max_voxels);
     return 1;
   }
   const long long count = dim[0] * dim[1] * dim[2];
   float *values = (float *)calloc((size_t)count, sizeof(float));
   if (!values) {
-    set_error(err, "%s: out of memory for %lld voxels", path, count);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for %lld voxels", path, count);
     return 1;
   }
   const long long sy = dim[0], sz = dim[0] * dim[1];
@@ -153,9 +153,10 @@ int copy_to_dense(const GridT &grid, const char *path, long long max_voxels,
     // A double grid's finite values past FLT_MAX would turn infinite in the float copy.
     if (!std::isfinite(v) || std::fabs(v) > (double)FLT_MAX) {
       const openvdb::Coord c = b.min();
-      set_error(err, "%s: grid '%s' has a %s value (%g) at voxel (%d, %d, %d)", path,
-                grid.getName().c_str(), std::isfinite(v) ? "too large (past float's range)"
-                : "non-finite", v, c.x(), c.y(), c.z());
+      fog_fail(err, FOG_ERR_BAD_FILE, "%s: grid '%s' has a %s value (%g) at voxel (%d, %d, %d)",
+               path, grid.getName().c_str(),
+               std::isfinite(v) ? "too large (past float's range)" : "non-finite", v, c.x(), c.y(),
+               c.z());
       free(values);
       return 1;
     }
@@ -185,8 +186,8 @@ int copy_to_dense(const GridT &grid, const char *path, long long max_voxels,
 
 }  // namespace
 
-extern "C" int vdb_list_grids(const char *path, vdb_grid_info *grids, int capacity,
-                              int *count, sim_error *err) {
+extern "C" int vdb_list_grids(const char *path, vdb_grid_info *grids, int capacity, int *count,
+                              fog_error *err) {
   *count = 0;
   if (!check_readable(path, err)) return 1;
   try {
@@ -218,15 +219,16 @@ extern "C" int vdb_list_grids(const char *path, vdb_grid_info *grids, int capaci
     *count = n;
     return 0;
   } catch (const std::exception &e) {
-    set_error(err, "%s: cannot read as OpenVDB (truncated or corrupt?): %s", path, e.what());
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: cannot read as OpenVDB (truncated or corrupt?): %s", path,
+             e.what());
   } catch (...) {
-    set_error(err, "%s: cannot read as OpenVDB (unknown error)", path);
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: cannot read as OpenVDB (unknown error)", path);
   }
   return 1;
 }
 
 extern "C" int vdb_read_dense(const char *path, const vdb_read_desc *desc, vdb_dense_grid *out,
-                              sim_error *err) {
+                              fog_error *err) {
   *out = vdb_dense_grid{};
   const char *name = desc && desc->grid ? desc->grid : "density";
   const long long max_voxels = desc && desc->max_voxels > 0 ? desc->max_voxels : (1LL << 28);
@@ -236,8 +238,8 @@ extern "C" int vdb_read_dense(const char *path, const vdb_read_desc *desc, vdb_d
     openvdb::io::File file(path);
     file.open(false);
     if (!file.hasGrid(name)) {
-      set_error(err, "%s: no grid named '%s'; the file has: %s", path, name,
-                grid_names(file).c_str());
+      fog_fail(err, FOG_ERR_BAD_FILE, "%s: no grid named '%s'; the file has: %s", path, name,
+               grid_names(file).c_str());
       file.close();
       return 1;
     }
@@ -259,9 +261,10 @@ extern "C" int vdb_read_dense(const char *path, const vdb_read_desc *desc, vdb_d
       status = copy_to_dense(*openvdb::gridPtrCast<openvdb::DoubleGrid>(base), path,
                              max_voxels, out, err);
     } else {
-      set_error(err, "%s: grid '%s' holds %s values, expected a scalar float grid (density); "
-                "the file has: %s", path, name, base->valueType().c_str(),
-                type_names(meta).c_str());
+      fog_fail(err, FOG_ERR_BAD_FILE,
+               "%s: grid '%s' holds %s values, expected a scalar float grid (density); "
+               "the file has: %s",
+               path, name, base->valueType().c_str(), type_names(meta).c_str());
       return 1;
     }
     if (status) return status;
@@ -272,11 +275,11 @@ extern "C" int vdb_read_dense(const char *path, const vdb_read_desc *desc, vdb_d
     return 0;
   } catch (const std::exception &e) {
     vdb_dense_grid_destroy(out);
-    set_error(err, "%s: cannot read grid '%s' (truncated or corrupt file?): %s", path, name,
-              e.what());
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: cannot read grid '%s' (truncated or corrupt file?): %s",
+             path, name, e.what());
   } catch (...) {
     vdb_dense_grid_destroy(out);
-    set_error(err, "%s: cannot read grid '%s' (unknown error)", path, name);
+    fog_fail(err, FOG_ERR_BAD_FILE, "%s: cannot read grid '%s' (unknown error)", path, name);
   }
   return 1;
 }
@@ -287,7 +290,7 @@ extern "C" void vdb_dense_grid_destroy(vdb_dense_grid *grid) {
 }
 
 extern "C" int vdb_write_dense(const char *path, const vdb_dense_grid *grid,
-                               const vdb_write_desc *desc, sim_error *err) {
+                               const vdb_write_desc *desc, fog_error *err) {
   const char *name = desc && desc->grid ? desc->grid : "density";
   std::string tmp = std::string(path) + ".tmp" + std::to_string((long)getpid());
   try {
@@ -345,15 +348,16 @@ extern "C" int vdb_write_dense(const char *path, const vdb_dense_grid *grid,
     file.close();
   } catch (const std::exception &e) {
     unlink(tmp.c_str());
-    set_error(err, "%s: cannot write OpenVDB file: %s", path, e.what());
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot write OpenVDB file: %s", path, e.what());
     return 1;
   } catch (...) {
     unlink(tmp.c_str());
-    set_error(err, "%s: cannot write OpenVDB file (unknown error)", path);
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot write OpenVDB file (unknown error)", path);
     return 1;
   }
   if (rename(tmp.c_str(), path) != 0) {
-    set_error(err, "%s: cannot rename %s into place: %s", path, tmp.c_str(), strerror(errno));
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot rename %s into place: %s", path, tmp.c_str(),
+             strerror(errno));
     unlink(tmp.c_str());
     return 1;
   }

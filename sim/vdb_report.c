@@ -73,7 +73,7 @@ static double fogmap_bilinear(const fogmap *map, const vdb_fogmap_place *place, 
 int vdb_report_geometry(const vdb_dense_grid *grid, const vdb_world_map *world,
                         const vdb_fogmap_place *place, const vdb_profile *profile,
                         const vdb_report_desc *desc, double lo[3], double hi[3], double *y_mid,
-                        double *step, sim_error *err) {
+                        double *step, fog_error *err) {
   const double step_fraction = desc && desc->step > 0 ? desc->step : 0.25;
   for (int a = 0; a < 3; a++) {
     const int c = world->index_axis[a];
@@ -93,7 +93,7 @@ int vdb_report_geometry(const vdb_dense_grid *grid, const vdb_world_map *world,
   *step = step_fraction * cell;
   *y_mid = 0.5 * (lo[1] + hi[1]);
   if (!(*step > 0) || !isfinite(*step)) {
-    snprintf(err->message, sizeof err->message, "report: degenerate step %g", *step);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "report: degenerate step %g", *step);
     return 1;
   }
   return 0;
@@ -110,7 +110,7 @@ void vdb_report_direction(double elevation_deg, int azimuth, int azimuths, doubl
 int vdb_report_run(const vdb_dense_grid *grid, const vdb_world_map *world, const fogmap *map,
                    const vdb_fogmap_place *place, const vdb_profile *profile,
                    const vdb_report_desc *desc, vdb_report_row *rows, int row_count,
-                   sim_error *err) {
+                   fog_error *err) {
   const int side = desc && desc->rays_per_side > 0 ? desc->rays_per_side : 48;
   const int azimuths = desc && desc->azimuths > 0 ? desc->azimuths : 4;
   double *reference = desc ? desc->reference_depth : NULL;

@@ -180,12 +180,12 @@ static int add_pattern(entry_list *list, const char *pattern, int first, int las
 }
 
 int vdb_sequence_find(const char *const *inputs, int input_count, int first, int last,
-                      vdb_sequence *out, sim_error *err) {
+                      vdb_sequence *out, fog_error *err) {
   *out = (vdb_sequence){0};
   entry_list list = {0};
   if (first >= 0 && last >= 0 && (int64_t)last - first + 1 > max_span) {
-    snprintf(err->message, sizeof err->message, "frames %d..%d: more than %d frames", first,
-             last, max_span);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "frames %d..%d: more than %d frames", first, last,
+             max_span);
     return 1;
   }
   for (int n = 0; n < input_count; n++) {
@@ -202,9 +202,10 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
        * glob walk whole trees ("/ * / * / *" took minutes; found by the config fuzzer). */
       const char *slash = strrchr(in, '/');
       if (slash && strcspn(in, "*?[") < (size_t)(slash - in)) {
-        snprintf(err->message, sizeof err->message,
+        fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                  "%s: wildcards go in the file name only (e.g. bake/fluid_*.vdb), not in "
-                 "folder names", in);
+                 "folder names",
+                 in);
         goto fail;
       }
       status = add_glob(&list, in, &matched);
@@ -216,19 +217,18 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
       status = push(&list, f < 0 ? list.count : (int)f, in);
       matched = 1;
     } else {
-      snprintf(err->message, sizeof err->message, "%s: no such file or directory", in);
+      fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: no such file or directory", in);
       goto fail;
     }
     if (status) {
-      snprintf(err->message, sizeof err->message, "%s: cannot list (out of memory?)", in);
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: cannot list (out of memory?)", in);
       goto fail;
     }
     if (!matched) {
       if (last >= 0)
-        snprintf(err->message, sizeof err->message, "%s: no files for frames %d..%d", in,
-                 first, last);
+        fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: no files for frames %d..%d", in, first, last);
       else
-        snprintf(err->message, sizeof err->message, "%s: no files match", in);
+        fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: no files match", in);
       goto fail;
     }
   }
@@ -246,7 +246,7 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
   }
   list.count = kept;
   if (kept == 0) {
-    snprintf(err->message, sizeof err->message, "%s: no frames in the range %d..%d",
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: no frames in the range %d..%d",
              input_count ? inputs[0] : "(no input)", first, last);
     goto fail;
   }
@@ -256,15 +256,16 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
   const int64_t lo = first >= 0 ? first : list.items[0].frame;
   const int64_t hi = last >= 0 ? last : list.items[kept - 1].frame;
   if (hi - lo + 1 > max_span) {
-    snprintf(err->message, sizeof err->message,
-             "%s: frame numbers %" PRId64 " to %" PRId64 " span more than %d frames (a pattern "
-             "or folder matching unrelated files?)", input_count ? inputs[0] : "(no input)", lo,
-             hi, max_span);
+    fog_fail(err, FOG_ERR_BAD_FILE,
+             "%s: frame numbers %" PRId64 " to %" PRId64
+             " span more than %d frames (a pattern "
+             "or folder matching unrelated files?)",
+             input_count ? inputs[0] : "(no input)", lo, hi, max_span);
     goto fail;
   }
   out->missing = malloc((size_t)(hi - lo + 1 > 0 ? hi - lo + 1 : 1) * sizeof(int));
   if (!out->frames || !out->paths || !out->missing) {
-    snprintf(err->message, sizeof err->message, "out of memory listing %d frames", kept);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory listing %d frames", kept);
     goto fail;
   }
   for (int i = 0; i < kept; i++) {

@@ -29,10 +29,10 @@ void wind_field_destroy(wind_field *wind) {
   fftwf_free(wind);
 }
 
-static int check_desc(const wind_desc *desc, sim_error *err) {
+static int check_desc(const wind_desc *desc, fog_error *err) {
   const int w = desc->width, h = desc->height;
   if (w < 8 || h < 8 || (w & 1) || (h & 1)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "wind grid %dx%d: both sides must be even and at least 8", w, h);
     return 1;
   }
@@ -40,7 +40,7 @@ static int check_desc(const wind_desc *desc, sim_error *err) {
   const double slope = desc->slope != 0 ? desc->slope : -5.0 / 3.0;
   if (!(scale > 4.0) || !isfinite(slope) || !isfinite(desc->turbulence) ||
       desc->turbulence < 0 || !isfinite(desc->drift_x) || !isfinite(desc->drift_z)) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "wind: turbulence scale %g must exceed 4 cells; turbulence %g must be >= 0; "
              "drift and slope must be finite",
              scale, desc->turbulence);
@@ -126,7 +126,7 @@ static void spectrum_tables(wind_field *wind, const wind_desc *desc, int write_p
   wind->rotation_dt = -1.0f; /* omega may have changed: wind_field_advance recomputes */
 }
 
-wind_field *wind_field_create(const wind_desc *desc, sim_error *err) {
+wind_field *wind_field_create(const wind_desc *desc, fog_error *err) {
   if (check_desc(desc, err)) return NULL;
   const int w = desc->width, h = desc->height;
   wind_field *wind = fftwf_malloc(sizeof *wind);
@@ -154,22 +154,22 @@ wind_field *wind_field_create(const wind_desc *desc, sim_error *err) {
       2, dims, 2, (fftwf_complex *)wind->spectrum, NULL, 1, (int)modes, wind->real, NULL, 1,
       w * h, FFTW_ESTIMATE);
   if (!wind->plan_inverse) {
-    snprintf(err->message, sizeof err->message, "wind: FFTW could not plan %dx%d", w, h);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "wind: FFTW could not plan %dx%d", w, h);
     wind_field_destroy(wind);
     return NULL;
   }
   wind_field_reset(wind);
   return wind;
 oom:
-  snprintf(err->message, sizeof err->message, "wind: out of memory for a %dx%d grid", w, h);
+  fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "wind: out of memory for a %dx%d grid", w, h);
   wind_field_destroy(wind);
   return NULL;
 }
 
-int wind_field_set(wind_field *wind, const wind_desc *desc, sim_error *err) {
+int wind_field_set(wind_field *wind, const wind_desc *desc, fog_error *err) {
   if (check_desc(desc, err)) return 1;
   if (desc->width != wind->width || desc->height != wind->height) {
-    snprintf(err->message, sizeof err->message,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "wind: grid %dx%d cannot change in place (the field is %dx%d)", desc->width,
              desc->height, wind->width, wind->height);
     return 1;

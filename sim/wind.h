@@ -17,7 +17,7 @@
 
 #include <stdint.h>
 
-#include "sim/fogmap.h" /* sim_error */
+#include "sim/fogmap.h" /* fog_error */
 
 typedef struct wind_desc {
   int width, height;      /* periodic grid, both even and >= 8 */
@@ -52,13 +52,13 @@ typedef struct wind_field {
 } wind_field;
 
 /* Allocates the mode tables and the sampling plan (FFTW_ESTIMATE). */
-wind_field *wind_field_create(const wind_desc *desc, sim_error *err);
+wind_field *wind_field_create(const wind_desc *desc, fog_error *err);
 void wind_field_destroy(wind_field *wind);
 /* Changes drift, turbulence, scale and slope in place: the amplitudes and frequencies
  * are recomputed, the current phases (and time) kept, nothing allocated. The seed and
  * the grid cannot change (desc->seed is ignored; another size is an error). Returns
  * non-zero with err filled, the field untouched, for a bad desc. */
-int wind_field_set(wind_field *wind, const wind_desc *desc, sim_error *err);
+int wind_field_set(wind_field *wind, const wind_desc *desc, fog_error *err);
 /* Back to time 0 with the initial phases. */
 void wind_field_reset(wind_field *wind);
 /* Advances every phase by omega(k) dt (one complex multiply per mode; the rotations are

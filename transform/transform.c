@@ -213,14 +213,14 @@ static float apply_rule(const ghost_rule *r, const float *c, size_t step) {
 }
 
 int transform_grid_export(const transform_plan *p, int level, const float *stored,
-                          transform_grid *grid, transform_error *err) {
+                          transform_grid *grid, fog_error *err) {
   int gw, gh;
   transform_grid_size(p, level, &gw, &gh);
   if (level < 0 || level > p->levels || grid->width != gw || grid->height != gh ||
       !grid->coefficients) {
-    snprintf(err->message, sizeof err->message,
-             "grid for level %d must be %dx%d (transform_grid_size), got %dx%d", level, gw,
-             gh, grid->width, grid->height);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "grid for level %d must be %dx%d (transform_grid_size), got %dx%d", level, gw, gh,
+             grid->width, grid->height);
     return 1;
   }
   int g = ghost_count(p), w = p->len_w[level], h = p->len_h[level];
@@ -253,10 +253,10 @@ int transform_grid_export(const transform_plan *p, int level, const float *store
 }
 
 int transform_grid_create_level(const transform_plan *p, int level, const float *stored,
-                                transform_grid *grid, transform_error *err) {
+                                transform_grid *grid, fog_error *err) {
   int gw, gh;
   if (level < 0 || level > p->levels) {
-    snprintf(err->message, sizeof err->message, "level %d outside 0..%d", level, p->levels);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "level %d outside 0..%d", level, p->levels);
     return 1;
   }
   transform_grid_size(p, level, &gw, &gh);

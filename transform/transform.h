@@ -6,12 +6,10 @@
 #ifndef FOGPIPE_TRANSFORM_H
 #define FOGPIPE_TRANSFORM_H
 
+#include "transform/fog_error.h"
 #include <stddef.h>
 
 /* Errors are returned, never printed: a failing call fills message and returns non-zero. */
-typedef struct transform_error {
-  char message[512];
-} transform_error;
 
 /* A scaling-function grid ready to be rendered: the continuous function
  *   f(u, v) = sum_{i<width, j<height} coefficients[j*width + i]
@@ -32,7 +30,7 @@ typedef struct transform_grid {
 } transform_grid;
 
 /* Allocates a zeroed grid's coefficients; transform_grid_destroy frees them. */
-int transform_grid_create(transform_grid *grid, int width, int height, transform_error *err);
+int transform_grid_create(transform_grid *grid, int width, int height, fog_error *err);
 void transform_grid_destroy(transform_grid *grid);
 
 /* ---------------------------------------------------------------------------------
@@ -98,8 +96,7 @@ int transform_max_levels(int width, int height, transform_boundary boundary);
 float *transform_alloc_floats(size_t count);
 
 /* Fails (naming the largest J that fits) when the size is too small for desc->levels. */
-int transform_plan_create(transform_plan **plan, const transform_desc *desc,
-                          transform_error *err);
+int transform_plan_create(transform_plan **plan, const transform_desc *desc, fog_error *err);
 void transform_plan_destroy(transform_plan *plan);
 const transform_desc *transform_plan_desc(const transform_plan *plan);
 
@@ -142,10 +139,10 @@ void transform_detail_energy(const transform_plan *plan, const float *coefficien
  * transform's; origin = position of grid coefficient (0,0); spacing 2^(J-l). */
 void transform_grid_size(const transform_plan *plan, int level, int *width, int *height);
 int transform_grid_export(const transform_plan *plan, int level, const float *stored,
-                          transform_grid *grid, transform_error *err);
+                          transform_grid *grid, fog_error *err);
 /* transform_grid_create (right size) + transform_grid_export: allocates. */
 int transform_grid_create_level(const transform_plan *plan, int level, const float *stored,
-                                transform_grid *grid, transform_error *err);
+                                transform_grid *grid, fog_error *err);
 
 /* GPU upload: the grids of one pyramid (approximations A_0..A_J, or deconstructed
  * details D_1..D_J) packed in one single-channel float texture ("atlas"), unused texels

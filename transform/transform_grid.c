@@ -4,17 +4,16 @@
 
 #include "transform/transform.h"
 
-int transform_grid_create(transform_grid *grid, int width, int height, transform_error *err) {
+int transform_grid_create(transform_grid *grid, int width, int height, fog_error *err) {
   *grid = (transform_grid){.width = width, .height = height, .spacing = 1.0};
   if (width <= 0 || height <= 0) {
-    snprintf(err->message, sizeof err->message, "grid size %dx%d: both must be positive",
-             width, height);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "grid size %dx%d: both must be positive", width,
+             height);
     return 1;
   }
   grid->coefficients = calloc((size_t)width * (size_t)height, sizeof(float));
   if (!grid->coefficients) {
-    snprintf(err->message, sizeof err->message, "out of memory for a %dx%d grid", width,
-             height);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for a %dx%d grid", width, height);
     return 1;
   }
   return 0;

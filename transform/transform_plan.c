@@ -38,21 +38,15 @@ static const char *basis_name(transform_basis b) {
   return b == TRANSFORM_HAAR ? "haar" : b == TRANSFORM_LINEAR ? "linear" : "quadratic";
 }
 
-static int fail(transform_error *err, const char *message) {
-  snprintf(err->message, sizeof err->message, "%s", message);
-  return 1;
-}
-
 /* Lengths and ghost rules of one dimension, level J down to 0. */
-static int plan_dimension(transform_plan *p, int n, int *len, level_rules *rules,
-                          transform_error *err) {
+static int plan_dimension(transform_plan *p, int n, int *len, level_rules *rules, fog_error *err) {
   const transform_desc *d = &p->desc;
   len[p->levels] = n;
   rules[p->levels] = ghost_rules_finest(d->basis, d->boundary, n);
   for (int l = p->levels; l >= 1; l--) {
     len[l - 1] = (len[l] + 1) / 2;
     if (ghost_rules_coarsen(d->basis, d->boundary, len[l], &rules[l], &rules[l - 1])) {
-      snprintf(err->message, sizeof err->message,
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                "internal: singular boundary rule at level %d (length %d)", l, len[l]);
       return 1;
     }
@@ -60,25 +54,28 @@ static int plan_dimension(transform_plan *p, int n, int *len, level_rules *rules
   return 0;
 }
 
-int transform_plan_create(transform_plan **out, const transform_desc *desc,
-                          transform_error *err) {
+int transform_plan_create(transform_plan **out, const transform_desc *desc, fog_error *err) {
   *out = NULL;
   transform_desc d = *desc;
   if (d.width <= 0 || d.height <= 0) {
-    snprintf(err->message, sizeof err->message, "fogmap size %dx%d: both must be positive",
-             d.width, d.height);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fogmap size %dx%d: both must be positive", d.width,
+             d.height);
     return 1;
   }
-  if ((unsigned)d.basis > TRANSFORM_QUADRATIC) return fail(err, "unknown basis");
-  if ((unsigned)d.boundary > TRANSFORM_PERIODIC) return fail(err, "unknown boundary mode");
-  if ((unsigned)d.decomposition > TRANSFORM_STANDARD) return fail(err, "unknown decomposition");
-  if (d.threads < 0 || d.threads > 2) return fail(err, "threads must be 0, 1 or 2");
-  if (d.levels < 0) return fail(err, "levels must be >= 0");
+  if ((unsigned)d.basis > TRANSFORM_QUADRATIC)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "unknown basis");
+  if ((unsigned)d.boundary > TRANSFORM_PERIODIC)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "unknown boundary mode");
+  if ((unsigned)d.decomposition > TRANSFORM_STANDARD)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "unknown decomposition");
+  if (d.threads < 0 || d.threads > 2)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "threads must be 0, 1 or 2");
+  if (d.levels < 0) return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "levels must be >= 0");
   int jmax = transform_max_levels(d.width, d.height, d.boundary);
   if (d.levels > jmax) {
-    snprintf(err->message, sizeof err->message,
-             "%dx%d is too small for %d levels%s: the largest J that fits is %d", d.width,
-             d.height, d.levels,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "%dx%d is too small for %d levels%s: the largest J that fits is %d", d.width, d.height,
+             d.levels,
              d.boundary == TRANSFORM_PERIODIC
                  ? " in periodic mode (every level needs an even width and height)"
                  : "",
@@ -86,7 +83,7 @@ int transform_plan_create(transform_plan **out, const transform_desc *desc,
     return 1;
   }
   transform_plan *p = calloc(1, sizeof *p);
-  if (!p) return fail(err, "out of memory for a transform plan");
+  if (!p) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for a transform plan");
   p->desc = d;
   p->levels = d.levels;
   p->threads = d.threads == 2 ? 2 : 1;
@@ -126,7 +123,7 @@ int transform_plan_create(transform_plan **out, const transform_desc *desc,
   if (ok && p->threads == 2) ok = !transform_workers_start(p);
   if (!ok) {
     transform_plan_destroy(p);
-    return fail(err, "out of memory for a transform plan");
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for a transform plan");
   }
   *out = p;
   return 0;

@@ -9,7 +9,7 @@
 static inline float *load_exr_channel(const char *path, const char *channel, int width,
                                       int height) {
   fogmap map = {0};
-  sim_error err;
+  fog_error err;
   if (fogmap_load(path, &(fogmap_load_desc){.channel = channel}, &map, &err)) {
     CHECK(0, "%s channel %s: %s", path, channel, err.message);
     return NULL;

@@ -15,7 +15,7 @@ typedef struct frame {
 /* Renders cfg into f, CHECKing the result (label names it); non-zero on failure. */
 static inline int render(const scene_config *cfg, frame *f, const char *label) {
   render_frame_info info;
-  render_frame_error err = {{0}};
+  fog_error err = {0};
   const frame_pixels out = {.rgba = f->rgba, .transmittance = f->tau, .depth = f->depth,
                             .inscatter = f->inscatter};
   const int failed = render_frame(cfg, W, H, &out, &info, &err);

@@ -12,7 +12,7 @@
 /* One frame drawn (waiting for the step) and read back into out; non-zero (printed) on
  * failure. */
 static inline int pipeline_check_frame(pipeline *p, const camera *cam, const frame_pixels *out) {
-  pipeline_error err = {{0}};
+  fog_error err = {0};
   if (pipeline_frame(p, cam, true, &err) || pipeline_read_frame(p, out, &err)) {
     fprintf(stderr, "frame: %s\n", err.message);
     return 1;
@@ -23,12 +23,12 @@ static inline int pipeline_check_frame(pipeline *p, const camera *cam, const fra
 /* NULL (the reason printed) when the config or the context fails. */
 static inline gl_context *pipeline_check_begin(const char *config_path, scene_config *cfg,
                                                camera *cam) {
-  scene_config_error cerr = {{0}};
+  fog_error cerr = {0};
   if (scene_config_load(config_path, cfg, &cerr)) {
     fprintf(stderr, "%s\n", cerr.message);
     return NULL;
   }
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   gl_context *gl = gl_context_create(&(gl_context_desc){0}, &rerr);
   if (!gl) fprintf(stderr, "%s\n", rerr.message);
   scene_config_camera(cfg, cam);

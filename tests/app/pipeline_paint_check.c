@@ -21,7 +21,7 @@
 enum { W = 96, H = 54 };
 
 static pipeline *make(const scene_config *cfg) {
-  pipeline_error err = {{0}};
+  fog_error err = {0};
   pipeline *p = pipeline_create(
       &(pipeline_desc){.config = cfg, .width = W, .height = H, .synchronous = true}, &err);
   if (!p) fprintf(stderr, "pipeline_create: %s\n", err.message);
@@ -37,7 +37,7 @@ int main(void) {
   camera cam;
   gl_context *gl = pipeline_check_begin("configs/default.ini", &cfg, &cam);
   if (!gl) return 1;
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   pipeline *painted = make(&cfg), *plain = make(&cfg);
   CHECK(painted && plain, "pipelines not created");
   if (!painted || !plain) return test_finish("pipeline_paint_check");

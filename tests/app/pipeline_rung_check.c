@@ -24,7 +24,7 @@ int main(void) {
   gl_context *gl = pipeline_check_begin("configs/default.ini", &cfg, &cam);
   CHECK(gl != NULL, "no GL context");
   if (!gl) return test_finish("pipeline_rung_check");
-  pipeline_error perr = {{0}};
+  fog_error perr = {0};
   pipeline *p = pipeline_create(&(pipeline_desc){.config = &cfg, .width = W, .height = H,
                                                  .synchronous = true}, &perr);
   pipeline *plain = pipeline_create(&(pipeline_desc){.config = &cfg, .width = W, .height = H,

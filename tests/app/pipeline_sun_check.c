@@ -35,7 +35,7 @@ static int frame(pipeline *p, const camera *cam, float *rgba, float *tau, float 
 static void check_paused_change(const scene_config *cfg, const scene_config *born_cfg,
                                 const camera *cam,
                                 void (*change)(pipeline_params *), const char *what) {
-  pipeline_error perr = {{0}};
+  fog_error perr = {0};
   pipeline *changed_p = pipeline_create(&(pipeline_desc){.config = cfg, .width = W, .height = H,
                                                          .synchronous = true}, &perr);
   pipeline *born = pipeline_create(&(pipeline_desc){.config = born_cfg, .width = W,
@@ -103,7 +103,7 @@ int main(void) {
   if (!gl) return 1;
   const scene_config shadowed = cfg;
   cfg.shadow.fog_self_shadow = 0, cfg.shadow.shafts = 0;
-  pipeline_error perr = {{0}};
+  fog_error perr = {0};
   const pipeline_desc desc = {.config = &cfg, .width = W, .height = H, .synchronous = true};
   pipeline *moved = pipeline_create(&desc, &perr), *still = pipeline_create(&desc, &perr);
   CHECK(moved && still, "pipeline_create: %s", perr.message);

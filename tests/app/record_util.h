@@ -103,7 +103,7 @@ static inline uint64_t record_hash_frame(const char *path, int *width, int *heig
   uint64_t hash = 1469598103934665603ull;
   for (size_t c = 0; c < sizeof channels / sizeof channels[0]; c++) {
     fogmap plane = {0};
-    sim_error err = {{0}};
+    fog_error err = {0};
     if (fogmap_load(path, &(fogmap_load_desc){.channel = channels[c]}, &plane, &err)) {
       fprintf(stderr, "cannot read channel %s: %s\n", channels[c], err.message);
       return 0;

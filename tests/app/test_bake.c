@@ -55,7 +55,7 @@ int main(void) {
   snprintf(p1, sizeof p1, "%s/fog.0001.exr", bake);
   snprintf(p2, sizeof p2, "%s/fog.%04d.exr", bake, FRAMES);
   fogmap m1 = {0}, m2 = {0};
-  sim_error serr = {{0}};
+  fog_error serr = {0};
   int loaded = !fogmap_load(p1, NULL, &m1, &serr) && !fogmap_load(p2, NULL, &m2, &serr);
   CHECK(loaded, "the bake's frames do not load: %s", serr.message);
   double change = 0.0;
@@ -75,7 +75,7 @@ int main(void) {
 
   /* The bake's config is the scene with the frames as its fog. */
   scene_config original, baked;
-  scene_config_error err = {{0}};
+  fog_error err = {0};
   CHECK(scene_config_load(RECORD_TEST_CONFIG, &original, &err) == 0, "%s", err.message);
   CHECK(scene_config_load(ini, &baked, &err) == 0, "%s", err.message);
   CHECK(baked.fog.sequence[0] && !baked.fog.fogmap[0] &&

@@ -18,7 +18,7 @@ static void write_file(const char *path, const char *text) {
 
 int main(void) {
   scene_config cfg;
-  scene_config_error err = {{0}};
+  fog_error err = {0};
   int status = scene_config_load("configs/default.ini", &cfg, &err);
   CHECK(status == 0, "default.ini: %s", err.message);
   CHECK(!strcmp(cfg.fog.fogmap, "configs/../data/fogmap_sample.png"), "fogmap '%s'",

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "app/config.h"
+#include "app/render_fog.h"
 #include "test_util.h"
 
 static char dir[] = "/tmp/fogpipe_config_errors_XXXXXX";
@@ -20,13 +21,19 @@ static void expect_error(const char *text, const char *prefix, const char *detai
   fputs(text, f);
   fclose(f);
   scene_config cfg;
-  scene_config_error err = {{0}};
+  fog_error err = {0};
   int status = scene_config_load(path, &cfg, &err);
   snprintf(want, sizeof want, "%s:%s", path, prefix);
   CHECK(status != 0, "accepted: %s", text);
   CHECK(strncmp(err.message, want, strlen(want)) == 0, "message '%s' does not start with '%s'",
         err.message, want);
   CHECK(strstr(err.message, detail) != NULL, "message '%s' lacks '%s'", err.message, detail);
+  /* a sound line naming a file that is not there is an access failure; the rest, the
+   * config's own fault */
+  const fog_result want_code =
+      !strncmp(detail, "cannot open '", 13) ? FOG_ERR_FILE_ACCESS : FOG_ERR_BAD_CONFIG;
+  CHECK(err.code == want_code, "'%s': code %d (%s), expected %s", err.message, err.code,
+        fog_result_text(err.code), fog_result_text(want_code));
   unlink(path);
 }
 
@@ -115,7 +122,7 @@ int main(void) {
     fputs(text, f);
     fclose(f);
     scene_config cfg;
-    scene_config_error err = {{0}};
+    fog_error err = {0};
     CHECK(scene_config_load(path, &cfg, &err) == 0, "a long comment: %s", err.message);
     CHECK(cfg.fog.density_scale == 1.0 && cfg.camera.fov == 40.0,
           "a long comment changed the scene: density_scale %g, fov %g", cfg.fog.density_scale,
@@ -148,10 +155,45 @@ int main(void) {
 
   /* A config that cannot be opened at all. */
   scene_config cfg;
-  scene_config_error err = {{0}};
+  fog_error err = {0};
   CHECK(scene_config_load("/nonexistent/scene.ini", &cfg, &err) != 0 &&
-            strstr(err.message, "/nonexistent/scene.ini: cannot open the config") == err.message,
-        "%s", err.message);
+            strstr(err.message, "/nonexistent/scene.ini: cannot open the config") == err.message &&
+            err.code == FOG_ERR_FILE_ACCESS,
+        "%s (code %d)", err.message, err.code);
+
+  /* A file the config names and that is not there is an access failure, at the config's
+   * line; one that is there but no image fails when read (no GL is needed to get there: the
+   * map is read before anything is uploaded), as a bad file, with the config's line. */
+  const char *fogmaps[2] = {"missing.png", "notes.png"};
+  const fog_result codes[2] = {FOG_ERR_FILE_ACCESS, FOG_ERR_BAD_FILE};
+  char notes[300], ini[300];
+  snprintf(notes, sizeof notes, "%s/notes.png", dir);
+  FILE *text = fopen(notes, "w");
+  fputs("not an image\n", text);
+  fclose(text);
+  snprintf(ini, sizeof ini, "%s/scene.ini", dir);
+  for (int k = 0; k < 2; k++) {
+    FILE *f = fopen(ini, "w");
+    fprintf(f, "[fog]\n; the map\nfogmap = %s\n", fogmaps[k]);
+    fclose(f);
+    fog_error ferr = {0};
+    char want[400];
+    if (k == 0) {
+      CHECK(scene_config_load(ini, &cfg, &ferr) != 0, "%s accepted", fogmaps[k]);
+      snprintf(want, sizeof want, "%s:3: [fog] fogmap: cannot open '%s/%s'", ini, dir,
+               fogmaps[k]);
+    } else {
+      CHECK(scene_config_load(ini, &cfg, &ferr) == 0, "%s", ferr.message);
+      render_fog fog;
+      CHECK(render_fog_create(&fog, &cfg, &ferr) != 0, "%s accepted", fogmaps[k]);
+      snprintf(want, sizeof want, "%s:3: [fog] fogmap: %s/%s", ini, dir, fogmaps[k]);
+    }
+    CHECK(strstr(ferr.message, want) == ferr.message && ferr.code == codes[k],
+          "'%s' (code %s), expected '%s...' and %s", ferr.message, fog_result_text(ferr.code),
+          want, fog_result_text(codes[k]));
+  }
+  unlink(notes);
+  unlink(ini);
   rmdir(dir);
   return test_finish("test_config_errors");
 }

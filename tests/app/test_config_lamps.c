@@ -9,7 +9,7 @@
 
 int main(void) {
   scene_config cfg;
-  scene_config_error err = {{0}};
+  fog_error err = {0};
   CHECK(scene_config_load("configs/night_lamps.ini", &cfg, &err) == 0, "night_lamps.ini: %s",
         err.message);
   CHECK(cfg.lamp_count == 9, "lamps: %d, expected 8 lamp lines and 1 spot", cfg.lamp_count);

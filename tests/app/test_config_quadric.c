@@ -39,7 +39,7 @@ int main(void) {
         "quadric = general 1 -2 3 0.5 -0.25 0.125 7 8 9 -10 -1 -2 -3 4 5 6 0.05 0.75\n", f);
   fclose(f);
   scene_config cfg;
-  scene_config_error err = {{0}};
+  fog_error err = {0};
   if (scene_config_load(path, &cfg, &err)) {
     CHECK(0, "%s", err.message);
     return test_finish("test_config_quadric");

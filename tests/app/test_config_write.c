@@ -27,8 +27,7 @@ static char *read_text(const char *path) {
 }
 
 /* The config `text` written to path and loaded into *cfg: scene_config_load's status. */
-static int load_text(const char *path, const char *text, scene_config *cfg,
-                     scene_config_error *err) {
+static int load_text(const char *path, const char *text, scene_config *cfg, fog_error *err) {
   FILE *f = fopen(path, "w");
   if (f) fputs(text, f), fclose(f);
   return scene_config_load(path, cfg, err);
@@ -49,7 +48,7 @@ int main(void) {
     snprintf(first, sizeof first, "%s/first.ini", dir);
     snprintf(second, sizeof second, "%s/second.ini", dir);
     scene_config a, b, c;
-    scene_config_error err = {{0}};
+    fog_error err = {0};
     if (scene_config_load(path, &a, &err)) {
       CHECK(0, "%s: %s", path, err.message);
       continue;
@@ -72,7 +71,7 @@ int main(void) {
   CHECK(checked >= 5, "only %d configs checked", checked);
 
   scene_config cfg;
-  scene_config_error err = {{0}};
+  fog_error err = {0};
   scene_config_init(&cfg);
   /* 64 coefficients, each needing 17 digits */
   char written[700];

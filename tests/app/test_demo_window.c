@@ -24,7 +24,7 @@ int main(void) {
   if (status != 0) record_print_log(log);
 
   fogmap r = {0}, g = {0}, b = {0};
-  sim_error err = {{0}};
+  fog_error err = {0};
   int loaded = !fogmap_load(png, &(fogmap_load_desc){.channel = "R"}, &r, &err) &&
                !fogmap_load(png, &(fogmap_load_desc){.channel = "G"}, &g, &err) &&
                !fogmap_load(png, &(fogmap_load_desc){.channel = "B"}, &b, &err);

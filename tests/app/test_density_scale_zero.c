@@ -19,7 +19,7 @@ enum { W = 48, H = 27 };
 static int render_tau(const scene_config *cfg, double *min_tau, double *mean_tau) {
   float *tau = malloc(sizeof(float) * W * H);
   render_frame_info info;
-  render_frame_error err = {{0}};
+  fog_error err = {0};
   int failed = render_frame(cfg, W, H, &(frame_pixels){.transmittance = tau}, &info, &err);
   CHECK(!failed, "render: %s", err.message);
   *min_tau = 1.0, *mean_tau = 0.0;
@@ -33,7 +33,7 @@ static int render_tau(const scene_config *cfg, double *min_tau, double *mean_tau
 
 static void check_config(const char *path) {
   scene_config cfg;
-  scene_config_error cerr;
+  fog_error cerr;
   if (scene_config_load(path, &cfg, &cerr)) {
     CHECK(0, "%s", cerr.message);
     return;

@@ -58,7 +58,7 @@ static void print_table(const char *title, const fit_result *r) {
 static bool run(const char *title, scene_config *cfg, fit_result *r) {
   fit_desc d = quick;
   d.input = cfg;
-  fit_error err;
+  fog_error err;
   int status = fit_run(&d, r, &err);
   CHECK(status == 0, "%s: %s", title, err.message);
   if (status) return false;
@@ -225,7 +225,7 @@ static void test_projected_fogmap(void) {
   const fog_model model = {.kind = FOG_MODEL_QUADRIC, .quadrics = cfg.fog.quadrics,
                            .quadric_count = 1};
   fit_fogmap f;
-  fit_error err;
+  fog_error err;
   if (fit_fogmap_project(&model, r.lo, r.hi, 48, &f, &err) == 0) {
     double map_mass = 0.0;
     for (int i = 0; i < f.map.width * f.map.height; i++) map_mass += f.map.density[i];
@@ -293,7 +293,7 @@ static void test_two_ellipsoids(void) {
 
 /* Writes the grid as a VDB file and frees its values. */
 static int write_grid(const char *path, vdb_dense_grid *g) {
-  sim_error err = {{0}};
+  fog_error err = {0};
   int status = vdb_write_dense(path, g, &(vdb_write_desc){0}, &err);
   CHECK(status == 0, "%s", err.message);
   free(g->values);
@@ -329,7 +329,7 @@ static void test_plume(const char *folder) {
   cfg.fog.model = FOG_MODEL_VOLUME;
   snprintf(cfg.fog.vdb, sizeof cfg.fog.vdb, "%s", path);
   snprintf(cfg.path, sizeof cfg.path, "%s", path);
-  fit_error err;
+  fog_error err;
   CHECK(fit_scene_for_volume(&cfg, &err) == 0, "%s", err.message);
   fit_result r;
   if (!run("tall plume", &cfg, &r)) return;
@@ -378,7 +378,7 @@ static void test_sequence(const char *folder) {
   cfg.fog.model = FOG_MODEL_VOLUME;
   snprintf(cfg.fog.vdb, sizeof cfg.fog.vdb, "%s/blob_####.vdb", folder);
   snprintf(cfg.path, sizeof cfg.path, "%s", cfg.fog.vdb);
-  fit_error err;
+  fog_error err;
   CHECK(fit_scene_for_volume(&cfg, &err) == 0, "%s", err.message);
   const int still[] = {1, 2}, all[] = {1, 2, 3};
   fit_result r2, r3;

@@ -67,7 +67,7 @@ int main(void) {
   CHECK(strstr(out, "at tolerance 0.5: ") != NULL, "stdout: %s", out);
   CHECK(exists(chart) && exists(csv), "no chart %s / %s", chart, csv);
   scene_config cfg;
-  scene_config_error cerr;
+  fog_error cerr;
   CHECK(scene_config_load(scene, &cfg, &cerr) == 0, "%s", cerr.message);
   CHECK(cfg.fog.model == FOG_MODEL_HOMOGENEOUS && fabs(cfg.fog.density_scale - 0.004) < 1e-12,
         "loaded model %d, K %.9g", (int)cfg.fog.model, cfg.fog.density_scale);

@@ -69,7 +69,7 @@ static int render_surface(const scene_config *cfg, frame *f, const char *label) 
 static void check_model(const char *path, const char *label) {
   static frame lit, unlit, moved, surface;
   scene_config cfg;
-  scene_config_error cerr;
+  fog_error cerr;
   if (scene_config_load(path, &cfg, &cerr)) {
     CHECK(0, "%s: %s", label, cerr.message);
     return;
@@ -161,7 +161,7 @@ static void row_times(const double p[3], const float m[16], double out[4]) {
 
 static void check_camera_matrices(const char *exr, const scene_config *cfg, const float *depth) {
   float to_camera[16], to_ndc[16];
-  sim_error err;
+  fog_error err;
   if (image_read_exr_matrix(exr, "worldToCamera", to_camera, &err) ||
       image_read_exr_matrix(exr, "worldToNDC", to_ndc, &err)) {
     CHECK(0, "%s", err.message);
@@ -210,7 +210,7 @@ static void check_exr_channels(void) {
            H, exr);
   CHECK(system(cmd) == 0, "%s failed", cmd);
   scene_config cfg;
-  scene_config_error cerr;
+  fog_error cerr;
   static frame want;
   if (scene_config_load(ini, &cfg, &cerr) == 0 && render(&cfg, &want, "exr") == 0) {
     const char *names[3] = {"inscatter.R", "inscatter.G", "inscatter.B"};
@@ -235,7 +235,7 @@ static void check_exr_channels(void) {
            W, H, seq);
   CHECK(system(cmd) == 0, "%s failed", cmd);
   float a[16], b[16];
-  sim_error err;
+  fog_error err;
   for (int k = 0; k < 2; k++) {
     const char *name = k ? "worldToNDC" : "worldToCamera";
     CHECK(image_read_exr_matrix(exr, name, a, &err) == 0 &&

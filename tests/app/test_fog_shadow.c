@@ -80,7 +80,7 @@ static double exact_visible(const void *user, const double p[3]) {
 static void check_shafts(bool homogeneous) {
   static frame lit, unshafted;
   scene_config cfg;
-  scene_config_error cerr;
+  fog_error cerr;
   if (scene_config_load("configs/default.ini", &cfg, &cerr)) {
     CHECK(0, "%s", cerr.message);
     return;
@@ -94,7 +94,7 @@ static void check_shafts(bool homogeneous) {
   scene_config off = cfg;
   off.shadow.shafts = 0;
   if (render(&cfg, &lit, "shafts") || render(&off, &unshafted, "shafts")) return;
-  render_frame_error ferr = {{0}};
+  fog_error ferr = {0};
   render_session *session = render_session_create(&cfg, W, H, &ferr);
   CHECK(session, "%s", ferr.message);
   if (!session) return;
@@ -102,7 +102,7 @@ static void check_shafts(bool homogeneous) {
   fog_model model = render_fog_model(fog);
   const fog_pass_params *params = &fog->params;
   scene_geometry geo;
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   CHECK(!render_scene_geometry_create(&cfg, &geo, &rerr), "%s", rerr.message);
   exact_sun exact = {&geo};
   camera cam;
@@ -172,14 +172,14 @@ static void check_case(model_case *mc) {
       render_surface(cfg, &surface, false, label) || render_surface(cfg, &sunless, true, label))
     return;
 
-  render_frame_error ferr = {{0}};
+  fog_error ferr = {0};
   render_session *session = render_session_create(cfg, W, H, &ferr);
   CHECK(session, "%s: %s", label, ferr.message);
   if (!session) return;
   render_fog *fog = render_session_fog(session);
   vdb_frame vframe = {0};
   volume_grid_desc grid = {0};
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   if (cfg->fog.model == FOG_MODEL_VOLUME)
     CHECK(!render_fog_load_volume(cfg, &vframe, &grid, &rerr), "%s: %s", label, rerr.message);
   fog->grid3d = &grid;
@@ -275,7 +275,7 @@ static void check_case(model_case *mc) {
 }
 
 static int load(const char *path, scene_config *cfg) {
-  scene_config_error cerr;
+  fog_error cerr;
   if (scene_config_load(path, cfg, &cerr)) {
     CHECK(0, "%s: %s", path, cerr.message);
     return 1;
@@ -298,7 +298,7 @@ int main(void) {
      * y0), looking across the valley; a high sun */
     c->label = "fogmap, camera inside the fog, sun 60 deg up";
     scene_geometry geo;
-    render_error gerr = {{0}};
+    fog_error gerr = {0};
     if (render_scene_geometry_create(&c->cfg, &geo, &gerr)) {
       CHECK(0, "%s", gerr.message);
     } else {

@@ -25,7 +25,7 @@ static void write_file(const char *path, const char *text) {
 
 /* Frame n of cfg through the player (after frames 1..n-1). */
 static int frame_of(const scene_config *cfg, double fps, int n, float *rgba) {
-  render_error err = {{0}};
+  fog_error err = {0};
   player *p = player_create(&(player_desc){.config = cfg, .width = W, .height = H, .fps = fps,
                                            .play = true, .synchronous = true},
                             &err);
@@ -81,7 +81,7 @@ int main(void) {
              "lamp_path = 1 0 -40 10 0\nlamp_path = 1 1 40 10 0\nlamp_path = 1 2 40 30 20\n"
              "lamp_flicker = 2 0.6 3 7\n");
   scene_config cfg;
-  scene_config_error err = {{0}};
+  fog_error err = {0};
   CHECK(scene_config_load(ini, &cfg, &err) == 0, "%s", err.message);
   CHECK(scene_config_lamps_animated(&cfg), "the lamps should animate");
   /* the keys exactly, linear between, held past the ends; the flicker within its amount */

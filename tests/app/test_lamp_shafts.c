@@ -48,7 +48,7 @@ static int load(const char *extra, scene_config *cfg) {
   FILE *f = fdopen(fd, "w");
   fprintf(f, scene_text, extra);
   fclose(f);
-  scene_config_error cerr;
+  fog_error cerr;
   int failed = scene_config_load(path, cfg, &cerr);
   CHECK(!failed, "%s", cerr.message);
   unlink(path);
@@ -88,7 +88,7 @@ static double homogeneous(const void *user, const double p[3]) {
 static double check_against_twin(const scene_config *cfg, const frame *lit, const char *label,
                                  double *twin_out, double mean_bound, int off_share) {
   scene_geometry geo;
-  render_error rerr = {{0}};
+  fog_error rerr = {0};
   CHECK(!render_scene_geometry_create(cfg, &geo, &rerr), "%s", rerr.message);
   const fog_lamps lamps = scene_config_fog_lamps(cfg);
   const exact_lamps exact = {&geo, &lamps};
@@ -143,7 +143,7 @@ int main(void) {
   /* the twin's integral against the reference with the same V, across the shaft */
   {
     scene_geometry geo;
-    render_error rerr = {{0}};
+    fog_error rerr = {0};
     CHECK(!render_scene_geometry_create(&cfg, &geo, &rerr), "%s", rerr.message);
     const fog_lamps lamps = scene_config_fog_lamps(&cfg);
     const fog_lamp *l = &lamps.lamp[0];
@@ -183,7 +183,7 @@ int main(void) {
 
   /* the live demo's setting: the fog at half resolution, the cubes in its reduced pass */
   {
-    render_frame_error ferr = {{0}};
+    fog_error ferr = {0};
     render_session *session = render_session_create(&cfg, W, H, &ferr);
     CHECK(session != NULL, "session: %s", ferr.message);
     if (session) {

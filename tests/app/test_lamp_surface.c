@@ -35,13 +35,13 @@ static int render(const char *dir, const char *lamps, double k, float *rgba, flo
   fputs(text, f);
   fclose(f);
   scene_config cfg;
-  scene_config_error cerr;
+  fog_error cerr;
   if (scene_config_load(path, &cfg, &cerr)) {
     CHECK(0, "%s", cerr.message);
     return 1;
   }
   render_frame_info info;
-  render_frame_error err;
+  fog_error err;
   int status = render_frame(&cfg, W, H, &(frame_pixels){.rgba = rgba, .depth = depth}, &info,
                             &err);
   CHECK(status == 0, "%s", err.message);

@@ -32,7 +32,7 @@ static int config_model(const char *name, const char *folder, int *kind) {
           !strcmp(name, "volume") ? vdb : "");
   fclose(f);
   scene_config cfg;
-  scene_config_error err;
+  fog_error err;
   int failed = scene_config_load(path, &cfg, &err);
   CHECK(!failed, "model = %s: %s", name, err.message);
   remove(path);
@@ -113,7 +113,7 @@ int main(void) {
     fputs("[fog]\nmodel = fogg\n", f);
     fclose(f);
     scene_config cfg;
-    scene_config_error err;
+    fog_error err;
     CHECK(scene_config_load(path, &cfg, &err) != 0 && strstr(err.message, fog_model_table[
           FOG_MODEL_COUNT - 1].name) && strstr(err.message, "bad.ini:2"),
           "model = fogg: %s", err.message);

@@ -114,7 +114,7 @@ int main(void) {
   record_frame_path(legacy, 1, frame1, sizeof frame1);
   float pixels[64 * 36] = {0};
   image_channel y = {.name = "A", .pixels = pixels, .as_half = 1};
-  sim_error err;
+  fog_error err;
   CHECK(image_write_exr(frame1, 64, 36, &y, 1, &err) == 0, "%s", err.message);
   status = record_wait(start(RECORD_TEST_CONFIG, "2", legacy, "--resume", log[3]));
   CHECK(status == 1 && record_log_contains(log[3], "carries no recording identity"),

@@ -33,7 +33,7 @@ enum { W = 96, H = 54 };
  * VDB's own transform (sim's world map), density_scale applied. values: owned by *frame. */
 static volume_grid_desc documented_volume(const scene_config *cfg, vdb_frame *frame) {
   vdb_sequence seq;
-  sim_error err = {{0}};
+  fog_error err = {0};
   const char *input = cfg->fog.vdb;
   volume_grid_desc g = {.values = NULL};
   *frame = (vdb_frame){0};
@@ -82,7 +82,7 @@ static fog_model documented_model(const scene_config *cfg, fog_rbf *rbfs,
       d.hi[a] = cfg->terrain.origin[a] + cfg->terrain.size[a / 2];
     }
     d.lo[1] = cfg->box.floor, d.hi[1] = cfg->box.top;
-    render_error e = {{0}};
+    fog_error e = {0};
     CHECK(fog_perlin_create(perlin, &d, &e) == 0, "perlin: %s", e.message);
   }
   for (int i = 0; i < f->rbf_count; i++) {
@@ -109,11 +109,11 @@ static fog_model documented_model(const scene_config *cfg, fog_rbf *rbfs,
 
 static void check_config(const char *path, const char *label) {
   scene_config cfg;
-  scene_config_error cerr;
+  fog_error cerr;
   CHECK(scene_config_load(path, &cfg, &cerr) == 0, "%s: %s", label, cerr.message);
   float *tau = malloc(sizeof(float) * W * H), *depth = malloc(sizeof(float) * W * H);
   render_frame_info info;
-  render_frame_error err;
+  fog_error err;
   if (render_frame(&cfg, W, H, &(frame_pixels){.transmittance = tau, .depth = depth}, &info,
                    &err)) {
     CHECK(0, "%s: render_frame: %s", label, err.message);
@@ -276,9 +276,9 @@ int main(void) {
 
   /* The live animation has nothing to simulate in an analytic model. */
   scene_config cfg;
-  scene_config_error cerr;
+  fog_error cerr;
   CHECK(scene_config_load("configs/rbf_fog_banks.ini", &cfg, &cerr) == 0, "%s", cerr.message);
-  pipeline_error perr = {{0}};
+  fog_error perr = {0};
   pipeline *p = pipeline_create(&(pipeline_desc){.config = &cfg, .width = 32, .height = 18},
                                 &perr);
   CHECK(p == NULL, "the pipeline accepted model = rbf");

@@ -63,7 +63,7 @@ int main(void) {
   if (getenv("FOGPIPE_UPDATE_GOLDEN") && got[0] && got[1] && got[2] && got[3]) {
     image_channel channels[4] = {{"R", got[0], 1}, {"G", got[1], 1}, {"B", got[2], 1},
                                  {"transmittance", got[3], 0}};
-    sim_error err;
+    fog_error err;
     CHECK(image_write_exr(REFERENCE, W, H, channels, 4, &err) == 0, "%s", err.message);
     printf("rewrote %s\n", REFERENCE);
   }
@@ -86,12 +86,12 @@ int main(void) {
    * smooth (a silhouette pixel may legitimately differ). */
   if (depth) {
     scene_config cfg;
-    scene_config_error cerr;
+    fog_error cerr;
     CHECK(scene_config_load("configs/default.ini", &cfg, &cerr) == 0, "%s", cerr.message);
     scene_desc desc;
     scene_config_scene_desc(&cfg, NULL, 0, 0, &desc);
     scene_geometry geo;
-    render_error rerr;
+    fog_error rerr;
     CHECK(scene_geometry_create(&geo, &desc, &rerr) == 0, "%s", rerr.message);
     camera cam;
     scene_config_camera(&cfg, &cam);

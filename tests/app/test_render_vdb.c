@@ -42,7 +42,7 @@ int main(void) {
 
   /* The fog box, independently of the renderer: the sequence's placement and profile. */
   scene_config cfg;
-  scene_config_error cerr;
+  fog_error cerr;
   CHECK(scene_config_load(CONFIG, &cfg, &cerr) == 0, "%s", cerr.message);
   vdb_source source;
   CHECK(vdb_source_open_config(&source, &cfg, &cerr) == 0, "%s", cerr.message);

@@ -33,7 +33,7 @@ static int load_frame(const vdb_source *s, int number, fogmap *out) {
   char path[256];
   snprintf(path, sizeof path, "../shared/data/vdb/groundfog/data/fluid_data_%04d.vdb", number);
   vdb_frame frame;
-  sim_error err;
+  fog_error err;
   vdb_frame_desc desc = {.place = &s->place, .fixed_profile = &s->profile};
   if (vdb_frame_load(path, &desc, &frame, &err)) {
     fprintf(stderr, "%s\n", err.message);
@@ -47,7 +47,7 @@ static int load_frame(const vdb_source *s, int number, fogmap *out) {
 
 static void test_sequence(void) {
   vdb_source s;
-  sim_error err = {{0}};
+  fog_error err = {0};
   int status = vdb_source_open(&s, &(vdb_source_desc){.path = PATTERN, .fps = 24}, &err);
   CHECK(status == 0, "open: %s", err.message);
   if (status) return;
@@ -117,7 +117,7 @@ done:
 
 static char dir[] = "/tmp/fogpipe_vdb_source_XXXXXX";
 
-static int load_text(const char *text, scene_config *cfg, scene_config_error *err) {
+static int load_text(const char *text, scene_config *cfg, fog_error *err) {
   char path[256];
   snprintf(path, sizeof path, "%s/scene.ini", dir);
   FILE *f = fopen(path, "w");
@@ -133,7 +133,7 @@ static void test_config(void) {
   char cwd[512], text[1400];
   CHECK(getcwd(cwd, sizeof cwd) != NULL, "getcwd");
   scene_config cfg;
-  scene_config_error err = {{0}};
+  fog_error err = {0};
   /* defaults */
   snprintf(text, sizeof text, "[fog]\nvdb = %s/" PATTERN "\n", cwd);
   CHECK(load_text(text, &cfg, &err) == 0, "%s", err.message);

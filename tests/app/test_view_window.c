@@ -17,7 +17,7 @@
 
 static float *load(const char *path, const char *channel, int *w, int *h) {
   fogmap map = {0};
-  sim_error err;
+  fog_error err;
   if (fogmap_load(path, &(fogmap_load_desc){.channel = channel}, &map, &err)) {
     CHECK(0, "%s %s: %s", path, channel, err.message);
     return NULL;

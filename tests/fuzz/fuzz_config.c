@@ -49,7 +49,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (leaves_scratch(data, size)) return -1; /* -1: not added to the corpus */
   const char *path = fuzz_write_file(dir, "scene.ini", data, size);
   static scene_config cfg; /* 100 KB: not on the stack */
-  scene_config_error err;
+  fog_error err;
   memset(&err, 0x55, sizeof err); /* a message that is not terminated shows up below */
   if (scene_config_load(path, &cfg, &err) == 0) {
     /* What the commands do next with a loaded config. */

@@ -16,7 +16,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   fogmap_load_desc desc = {.channel = channels[data[0] % 7]};
   const char *path = fuzz_memfd_path(data + 1, size - 1);
   fogmap map;
-  sim_error err;
+  fog_error err;
   if (fogmap_load(path, &desc, &map, &err) == 0) {
     if (map.width <= 0 || map.height <= 0 || !map.density) abort();
     size_t count = (size_t)map.width * (size_t)map.height;

@@ -14,7 +14,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   const char *channel = channels[data[0] % 6];
   int width = 0, height = 0;
   float *pixels = NULL;
-  sim_error err;
+  fog_error err;
   if (png_read_channel("fuzz.png", data + 1, size - 1, channel, &width, &height, &pixels,
                        &err) == 0) {
     /* Every pixel must be there and be a sample / (2^depth - 1). */

@@ -29,11 +29,15 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
                 const char *csv_path, const char *png_path, char *error, int error_size) {
   abort();
 }
-gl_context *gl_context_create(const gl_context_desc *desc, render_error *err) { abort(); }
+gl_context *gl_context_create(const gl_context_desc *desc, fog_error *err) {
+  abort();
+}
 void gl_context_destroy(gl_context *ctx) { abort(); }
-volume_march *volume_march_create(const volume_grid_desc *grid, render_error *err) { abort(); }
+volume_march *volume_march_create(const volume_grid_desc *grid, fog_error *err) {
+  abort();
+}
 void volume_march_destroy(volume_march *march) { abort(); }
 int volume_march_view(volume_march *march, const volume_view_desc *view, float *optical_depth,
-                      render_error *err) {
+                      fog_error *err) {
   abort();
 }

@@ -11,7 +11,7 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   const char *path = fuzz_memfd_path(data, size);
   mantaflow_config cfg;
-  sim_error err;
+  fog_error err;
   memset(&err, 0x55, sizeof err);
   if (mantaflow_config_read(path, &cfg, &err) == 0) {
     for (int a = 0; a < 3; a++)

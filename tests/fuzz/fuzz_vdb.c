@@ -21,7 +21,7 @@ enum { max_grids = 32 };
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   const char *path = fuzz_memfd_path(data, size);
-  sim_error err;
+  fog_error err;
   memset(&err, 0x55, sizeof err);
   if (vdb_precheck_file(path, &err) != 0) {
     if (!memchr(err.message, '\0', sizeof err.message)) abort();

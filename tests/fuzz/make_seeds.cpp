@@ -214,7 +214,7 @@ void vdb_dense(const char *name, int nx, int ny, int nz, int pattern, vdb_write_
   grid.index_min[0] = -2, grid.index_min[1] = 0, grid.index_min[2] = 3;
   for (int a = 0; a < 3; a++) grid.voxel_size[a] = 0.25, grid.translation[a] = 0.5 * a;
   grid.values = values.data();
-  sim_error err;
+  fog_error err;
   const std::string path = root + "/vdb/" + name;
   if (vdb_write_dense(path.c_str(), &grid, &desc, &err)) fail(err.message);
   std::printf("%s\n", path.c_str());

@@ -37,7 +37,7 @@ static inline void fog_test_gl_teardown(fog_test_gl *gl) {
 /* CHECKs each step (context, pass, target) and returns true when all three exist. On
  * false it has released what it made and the test should return test_finish(...) at
  * once (the failures are recorded). */
-static inline bool fog_test_gl_setup(fog_test_gl *gl, int width, int height, render_error *err) {
+static inline bool fog_test_gl_setup(fog_test_gl *gl, int width, int height, fog_error *err) {
   *gl = (fog_test_gl){.width = width, .height = height};
   gl->ctx = gl_context_create(&(gl_context_desc){0}, err);
   CHECK(gl->ctx != NULL, "headless context: %s", err->message);
@@ -111,7 +111,7 @@ static inline double fog_test_gl_pixel_ray(const fog_test_gl *gl, const camera *
  * CHECKs it, so a failure names the test's own line and case. */
 static inline int fog_test_gl_draw_tau(fog_test_gl *gl, const camera *cam,
                                        const fog_pass_params *params, GLuint colour_tex,
-                                       GLuint distance_tex, float *tau, render_error *err) {
+                                       GLuint distance_tex, float *tau, fog_error *err) {
   gl_target_bind(&gl->target);
   static const float unwritten[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
   glClearBufferfv(GL_COLOR, 0, unwritten);

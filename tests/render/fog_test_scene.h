@@ -28,7 +28,7 @@ enum { FOG_TEST_W = 24, FOG_TEST_H = 16 };
  * d+1 coarse cells (and an arbitrary sub-cell origin offset). */
 static inline transform_grid fog_test_grid(int degree, double spacing, double offset) {
   transform_grid g;
-  transform_error err;
+  fog_error err;
   int margin = degree + 1;
   int w = (int)ceil(FOG_TEST_W / spacing) + 2 * margin + 1;
   int h = (int)ceil(FOG_TEST_H / spacing) + 2 * margin + 1;
@@ -48,7 +48,7 @@ static inline transform_grid fog_test_refine(const transform_grid *c) {
   static const double mask[3][4] = {{1, 1}, {0.5, 1, 0.5}, {0.25, 0.75, 0.75, 0.25}};
   int d = c->degree;
   transform_grid f;
-  transform_error err;
+  fog_error err;
   transform_grid_create(&f, 2 * c->width + d, 2 * c->height + d, &err);
   f.degree = d;
   f.spacing = 0.5 * c->spacing;
@@ -111,7 +111,7 @@ enum { FOG_TEST_PATCH_W = 180, FOG_TEST_PATCH_H = 120 };
 
 static inline transform_grid fog_test_patch_grid(int degree, double spacing, float background) {
   transform_grid g;
-  transform_error err;
+  fog_error err;
   int margin = degree + 1;
   int w = (int)ceil(FOG_TEST_PATCH_W / spacing) + 2 * margin + 1;
   int h = (int)ceil(FOG_TEST_PATCH_H / spacing) + 2 * margin + 1;

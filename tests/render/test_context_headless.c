@@ -25,7 +25,7 @@ static const char *fragment_source =
     "}\n";
 
 int main(void) {
-  render_error err = {0};
+  fog_error err = {0};
   gl_context *ctx = gl_context_create(&(gl_context_desc){0}, &err);
   CHECK(ctx != NULL, "headless context: %s", err.message);
   if (!ctx) return test_finish("test_context_headless");
@@ -51,7 +51,7 @@ int main(void) {
   CHECK(program != 0, "program: %s", err.message);
 
   /* A broken shader gives the info log in the message. */
-  render_error bad = {0};
+  fog_error bad = {0};
   GLuint broken = gl_util_program_from_source("broken.glsl", vertex_source,
                                               "#version 430 core\nvoid main() { x = 1; }\n", &bad);
   CHECK(broken == 0 && strstr(bad.message, "broken.glsl: fragment shader") != NULL,

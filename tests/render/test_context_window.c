@@ -10,7 +10,7 @@
 int main(void) {
   unsetenv("DISPLAY");
   unsetenv("WAYLAND_DISPLAY");
-  render_error err = {0};
+  fog_error err = {0};
   gl_context *ctx =
       gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_WINDOW, .width = 64, .height = 48}, &err);
   CHECK(ctx == NULL, "a window context was created without a display");
@@ -19,7 +19,7 @@ int main(void) {
   CHECK(strchr(err.message, '\n') == NULL, "message is not one line: %s", err.message);
   printf("message: %s\n", err.message);
   /* The headless backend still works in the same process afterwards. */
-  render_error err2 = {0};
+  fog_error err2 = {0};
   ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &err2);
   CHECK(ctx != NULL, "headless after failed window: %s", err2.message);
   gl_context_destroy(ctx);

@@ -39,7 +39,7 @@ static double west_lit(const void *user, const double x[3]) {
 /* 10 x 10 coefficients at spacing 1, two samples outside the box corner. */
 static transform_grid make_grid(int degree) {
   transform_grid g;
-  transform_error err;
+  fog_error err;
   transform_grid_create(&g, 10, 10, &err);
   g.degree = degree, g.spacing = 1.0, g.origin_u = g.origin_v = -2.5;
   for (int j = 0; j < 10; j++)

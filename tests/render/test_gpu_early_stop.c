@@ -29,13 +29,13 @@ typedef struct drawn {
 } drawn;
 
 static int draw(fog_test_gl *gl, const camera *cam, const fog_pass_params *params,
-                GLuint colour_tex, GLuint dist_tex, drawn *out, render_error *err) {
+                GLuint colour_tex, GLuint dist_tex, drawn *out, fog_error *err) {
   if (fog_test_gl_draw_tau(gl, cam, params, colour_tex, dist_tex, out->tau, err)) return 1;
   return gl_target_read(&gl->target, 0, 4, out->rgba, err);
 }
 
 int main(void) {
-  render_error err = {0};
+  fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_early_stop");
   static float dist[W * H], surface[4 * W * H];

@@ -36,7 +36,7 @@ static double cmp_max(const float *a, const float *b, double *mean) {
 }
 
 int main(void) {
-  render_error err = {0};
+  fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_fog_resolution");
 

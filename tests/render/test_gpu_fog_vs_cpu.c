@@ -53,7 +53,7 @@ static double max_tau_error(const double *want, const float *tau, int *wx, int *
 }
 
 int main(void) {
-  render_error err = {0};
+  fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_fog_vs_cpu");
   float *dist = malloc(sizeof(float) * W * H), *tau = malloc(sizeof(float) * W * H);
@@ -189,7 +189,7 @@ int main(void) {
    * iterations; fog_integral.glsl), which silently cut such walks short once. */
   for (int degree = 0; degree <= 2; degree++) {
     transform_grid g;
-    transform_error terr;
+    fog_error terr;
     transform_grid_create(&g, 1024 + 6, 64 + 6, &terr);
     g.degree = degree;
     g.origin_u = g.origin_v = -3.0;
@@ -325,7 +325,7 @@ int main(void) {
     const char *const said[3] = {"expected radius > 0", "expected 0..4096",
                                  "expected a march step > 0"};
     for (int k = 0; k < 3; k++) {
-      render_error e = {{0}};
+      fog_error e = {0};
       CHECK(fog_test_gl_draw_tau(&gl, &cam, &bad[k], surface_tex, dist_tex, tau, &e) != 0 &&
                 strstr(e.message, said[k]),
             "bad model parameters %d: '%s' lacks '%s'", k, e.message, said[k]);
@@ -333,7 +333,7 @@ int main(void) {
     /* and a camera without a field of view or depth range: no "0 means default" */
     const camera unset = {.position = {10.0, 3.0, 20.0}};
     const fog_pass_params fine = {.model = FOG_MODEL_HOMOGENEOUS, .model_extinction = 0.01};
-    render_error e = {{0}};
+    fog_error e = {0};
     CHECK(fog_test_gl_draw_tau(&gl, &unset, &fine, surface_tex, dist_tex, tau, &e) != 0 &&
               strstr(e.message, "expected 0 < fov < pi and 0 < near < far"),
           "a camera of fov 0: '%s'", e.message);

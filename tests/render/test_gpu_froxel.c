@@ -34,13 +34,13 @@ static double max_rel_error(const float *got, const float *want, int n) {
 }
 
 static int draw(fog_test_gl *gl, const camera *cam, const fog_pass_params *params, GLuint colour,
-                GLuint distance, float *rgba, float *tau, render_error *err) {
+                GLuint distance, float *rgba, float *tau, fog_error *err) {
   if (fog_test_gl_draw_tau(gl, cam, params, colour, distance, tau, err)) return 1;
   return gl_target_read(&gl->target, 0, 4, rgba, err);
 }
 
 int main(void) {
-  render_error err = {{0}};
+  fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_froxel");
   float *dist = malloc(sizeof(float) * W * H), *rgba = malloc(sizeof(float) * 4 * W * H),
@@ -132,7 +132,7 @@ int main(void) {
     for (int k = 0; k < 3; k++) {
       fog_pass_params params = {.model = FOG_MODEL_HOMOGENEOUS, .model_extinction = 0.01,
                                 .integrator = FOG_INTEGRATOR_FROXEL, .froxel = bad[k]};
-      render_error e = {{0}};
+      fog_error e = {0};
       CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &e) != 0 &&
                 strstr(e.message, "0 < near < far"),
             "bad froxel grid %d: '%s'", k, e.message);

@@ -44,7 +44,7 @@ static double compare(fog_test_gl *gl, const camera *cam, const fog_pass_params 
                       const fog_model *m, GLuint surface_tex, GLuint dist_tex, const float *dist,
                       const char *name) {
   static float rgba[4 * W * H], tau[W * H];
-  render_error err = {0};
+  fog_error err = {0};
   CHECK(fog_test_gl_draw_tau(gl, cam, params, surface_tex, dist_tex, tau, &err) == 0 &&
             gl_target_read(&gl->target, 0, 4, rgba, &err) == 0,
         "%s: %s", name, err.message);
@@ -77,7 +77,7 @@ static double compare(fog_test_gl *gl, const camera *cam, const fog_pass_params 
 }
 
 int main(void) {
-  render_error err = {0};
+  fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_lamps");
   static float dist[W * H], surface[4 * W * H];

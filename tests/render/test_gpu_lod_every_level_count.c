@@ -17,7 +17,7 @@ enum { W = 64, H = 36, MAX_J = 7 };
 static const double ground_y = 0.5;
 
 int main(void) {
-  render_error err = {0};
+  fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_lod_every_level_count");
   float *dist = malloc(sizeof(float) * W * H), *tau = malloc(sizeof(float) * W * H);

@@ -15,7 +15,7 @@
 enum { W = 96, H = 54, J = 1 };
 
 int main(void) {
-  render_error err = {0};
+  fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_march_vs_cpu");
   float *zeros = calloc((size_t)W * H * 4, sizeof(float)), *sky = malloc(sizeof(float) * W * H);

@@ -15,7 +15,7 @@
 enum { W = 96, H = 54 };
 
 int main(void) {
-  render_error err = {{0}};
+  fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_perlin");
   fog_perlin_desc desc = fog_perlin_desc_default();
@@ -88,7 +88,7 @@ int main(void) {
                   .far_plane = CAMERA_DEFAULT_FAR};
     fog_pass_params params = {.model = FOG_MODEL_PERLIN, .model_extinction = 0.06,
                               .model_scale_height = 8.0, .model_perlin = &other};
-    render_error e = {{0}};
+    fog_error e = {0};
     CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &e) != 0,
           "octaves not uploaded: drawn");
     fog_perlin_destroy(&other);

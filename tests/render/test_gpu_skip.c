@@ -36,7 +36,7 @@ static double profile_max(const fog_profile *p) {
  * dyadic rule expects. */
 static transform_grid coarser(const transform_grid *f) {
   transform_grid c;
-  transform_error err;
+  fog_error err;
   transform_grid_create(&c, (f->width + 1) / 2 + 1, (f->height + 1) / 2 + 1, &err);
   c.degree = f->degree;
   c.spacing = 2.0 * f->spacing;
@@ -56,7 +56,7 @@ static transform_grid coarser(const transform_grid *f) {
 }
 
 int main(void) {
-  render_error err = {0};
+  fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_skip");
   float *dist = malloc(sizeof(float) * W * H), *plain = malloc(sizeof(float) * W * H);

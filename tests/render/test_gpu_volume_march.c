@@ -63,7 +63,7 @@ static double cpu_depth(const float *v, const volume_view_desc *view, int ix, in
 }
 
 int main(void) {
-  render_error err = {{0}};
+  fog_error err = {0};
   gl_context *ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &err);
   CHECK(ctx != NULL, "headless GL context: %s", err.message);
   if (!ctx) return test_finish("test_gpu_volume_march");

@@ -48,7 +48,7 @@ static int ref_stretch(const fog_perlin *p, const double o[3], const double d[3]
 
 
 int main(void) {
-  render_error err = {{0}};
+  fog_error err = {0};
   fog_perlin_desc desc = fog_perlin_desc_default();
   desc.octaves = 4;
   desc.size = 16;
@@ -197,7 +197,7 @@ int main(void) {
     if (k == 2) bad.feature_size = 0;
     if (k == 3) bad.hi[1] = bad.lo[1];
     fog_perlin q;
-    render_error e = {{0}};
+    fog_error e = {0};
     CHECK(fog_perlin_create(&q, &bad, &e) != 0 && strstr(e.message, said[k]) && !q.texels,
           "bad descriptor %d: '%s'", k, e.message);
   }

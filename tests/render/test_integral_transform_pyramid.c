@@ -27,7 +27,7 @@ int main(void) {
       fogmap[y * MAP_W + x] = (float)(0.6 + 0.3 * sin(0.4 * x) * cos(0.3 * y) + 0.1 * fog_test_uniform());
   double worst_sample = 0.0, worst_methods = 0.0;
   for (int b = 0; b < 3; b++) {
-    transform_error terr = {{0}};
+    fog_error terr = {0};
     transform_plan *plan = NULL;
     transform_desc desc = {.width = MAP_W, .height = MAP_H, .levels = LEVELS, .basis = bases[b]};
     CHECK(transform_plan_create(&plan, &desc, &terr) == 0, "plan: %s", terr.message);

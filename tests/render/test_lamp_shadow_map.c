@@ -186,7 +186,7 @@ static bool lamp_pixel(const scene_geometry *geo, const camera *cam, const fog_l
 
 static lamp_stats compare(const scene_geometry *geo, scene_pass *pass, const gl_target *t,
                           const camera *cam, const fog_lamp *lamp, float *share) {
-  render_error err = {{0}};
+  fog_error err = {0};
   const fog_lamps lamps = {.lamp = {*lamp}, .count = 1};
   CHECK(scene_pass_set_lamps(pass, &lamps, &err) == 0, "lamps: %s", err.message);
   scene_pass_run(pass, cam, t);
@@ -215,7 +215,7 @@ static lamp_stats compare(const scene_geometry *geo, scene_pass *pass, const gl_
 int main(void) {
   check_faces();
   check_lagrange();
-  render_error err = {{0}};
+  fog_error err = {0};
   gl_context *ctx = gl_context_create(NULL, &err);
   CHECK(ctx != NULL, "context: %s", err.message);
   if (!ctx) return test_finish("test_lamp_shadow_map");

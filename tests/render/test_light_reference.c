@@ -29,7 +29,7 @@ static void aim(const double from[3], const double to[3], double d[3]) {
  * the box corner u = -1/2: random-ish in [0.2, 1.0], or `constant` everywhere if > 0. */
 static transform_grid make_grid(int size, int degree, double margin, double constant) {
   transform_grid g;
-  transform_error err;
+  fog_error err;
   transform_grid_create(&g, size, size, &err);
   g.degree = degree;
   g.spacing = 1.0;

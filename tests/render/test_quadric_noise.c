@@ -189,7 +189,7 @@ int main(void) {
   desc.octaves = 3, desc.size = 16, desc.feature_size = 40.0, desc.seed = 11;
   for (int i = 0; i < 3; i++) desc.wind[i][0] = 3.0 * (i + 1), desc.wind[i][2] = -2.0 * i;
   fog_perlin perlin;
-  render_error err = {{0}};
+  fog_error err = {0};
   CHECK(fog_perlin_create(&perlin, &desc, &err) == 0, "perlin: %s", err.message);
   const double mean = ref_mean(&perlin);
   CHECK(fabs(perlin.mean_turbulence - mean) <= 1e-12 * mean, "T_mean %.17g, reference %.17g",

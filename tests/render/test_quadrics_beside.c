@@ -105,7 +105,7 @@ int main(void) {
   /* the sun's volume holds the model alone */
   fog_sun_shadow with = {0}, alone = {0};
   const fog_model lone = fog_model_alone(&rbf);
-  render_error err = {{0}};
+  fog_error err = {0};
   const fog_sun_shadow_desc desc = {.across = 16, .along = 16};
   const double towards[3] = {0.6, 0.8, 0.0};
   CHECK(fog_sun_shadow_create(&with, &desc, &err) == 0 &&

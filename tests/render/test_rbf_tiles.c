@@ -37,7 +37,7 @@ static double depth_of(const fog_rbf *g, const uint32_t *listed, int n, const do
 static void check_view(const fog_rbf *g, int count, const camera *cam, const char *label,
                        fog_test_gl *gl, GLuint surface_tex, GLuint dist_tex) {
   fog_rbf_tiles tiles = {0};
-  render_error err = {{0}};
+  fog_error err = {0};
   if (fog_rbf_tiles_build(&tiles, cam, W, H, g, count, &err)) {
     CHECK(0, "%s: %s", label, err.message);
     return;
@@ -99,7 +99,7 @@ static void check_view(const fog_rbf *g, int count, const camera *cam, const cha
 }
 
 int main(void) {
-  render_error err = {{0}};
+  fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_rbf_tiles");
   static float black[4 * W * H];

@@ -29,7 +29,7 @@ static double jittered(const scene_geometry *geo, const camera *cam, double px, 
 }
 
 static void test_dda_matches_brute_force(void) {
-  render_error err = {0};
+  fog_error err = {0};
   terrain t;
   int status = terrain_create(&t, &(terrain_desc){.origin = {-200, 10, -300}, .size = {400, 600},
                                                   .height = 120, .resolution = 65, .seed = 7},
@@ -70,7 +70,7 @@ static view_stats compare_view(const scene_geometry *geo, scene_pass *pass,
                                const gl_target *target, const camera *cam, int step,
                                float *distance) {
   view_stats v = {0};
-  render_error err = {0};
+  fog_error err = {0};
   int W = target->width, H = target->height;
   scene_pass_run(pass, cam, target);
   CHECK(gl_target_read(target, 1, 1, distance, &err) == 0, "read: %s", err.message);
@@ -165,7 +165,7 @@ static void test_culled_views(const scene_geometry *geo, scene_pass *pass,
 int main(void) {
   test_dda_matches_brute_force();
 
-  render_error err = {0};
+  fog_error err = {0};
   gl_context *ctx = gl_context_create(NULL, &err);
   CHECK(ctx != NULL, "context: %s", err.message);
   if (!ctx) return test_finish("test_scene_distance");

@@ -18,7 +18,7 @@
 enum { W = 320, H = 180 };
 
 int main(void) {
-  render_error err = {0};
+  fog_error err = {0};
   gl_context *ctx = gl_context_create(&(gl_context_desc){0}, &err);
   CHECK(ctx != NULL, "context: %s", err.message);
   if (!ctx) return test_finish("test_scene_lod");

@@ -36,7 +36,7 @@ int main(void) {
                                  .height = hi - lo, .heights = heights, .heights_width = N,
                                  .heights_height = N},
                      .light = scene_light_default()};
-  render_error err = {0};
+  fog_error err = {0};
   scene_geometry geo;
   int status = scene_geometry_create(&geo, &desc, &err);
   CHECK(status == 0, "%s", err.message);

@@ -38,7 +38,7 @@ static double rbf_exact(const double p[3], const double sun[3]) {
 /* Max |interpolated - exact| over random points of the fog's bounds, at resolution n. */
 static double rbf_interpolation_error(const fog_model *m, const double sun[3], int n) {
   fog_sun_shadow s;
-  render_error err;
+  fog_error err;
   CHECK(!fog_sun_shadow_create(&s, &(fog_sun_shadow_desc){.across = n, .along = n}, &err),
         "%s", err.message);
   CHECK(!fog_sun_shadow_compute(&s, m, sun, 2, &err), "%s", err.message);
@@ -60,7 +60,7 @@ static void test_rbf(void) {
     double sun[3];
     unit(sun_dirs[d], sun);
     fog_sun_shadow s;
-    render_error err;
+    fog_error err;
     CHECK(!fog_sun_shadow_create(&s, &(fog_sun_shadow_desc){.across = 24, .along = 20}, &err),
           "%s", err.message);
     CHECK(!fog_sun_shadow_compute(&s, &m, sun, 2, &err), "%s", err.message);
@@ -109,7 +109,7 @@ static void test_fogmap(void) {
     unit(sun_dirs[pk], sun);
     CHECK(fog_sun_shadow_kind_of(&m, sun) == FOG_SUN_SHADOW_VOLUME, "fogmap: a volume");
     fog_sun_shadow s;
-    render_error err;
+    fog_error err;
     CHECK(!fog_sun_shadow_create(&s, &(fog_sun_shadow_desc){.across = 20, .along = 33}, &err),
           "%s", err.message);
     CHECK(!fog_sun_shadow_compute(&s, &m, sun, 2, &err), "%s", err.message);
@@ -143,7 +143,7 @@ static void test_kinds(void) {
   CHECK(fog_sun_shadow_kind_of(&rbf_base, up) == FOG_SUN_SHADOW_OPAQUE, "rbf over a base");
   CHECK(fog_sun_shadow_kind_of(&none, up) == FOG_SUN_SHADOW_NONE, "no fog");
   fog_sun_shadow s;
-  render_error err;
+  fog_error err;
   CHECK(fog_sun_shadow_create(&s, &(fog_sun_shadow_desc){.across = 1, .along = 8}, &err) != 0 &&
             strstr(err.message, "expected 2.."),
         "a 1-column volume is refused: %s", err.message);

@@ -46,7 +46,7 @@ static int exact_shadow(const scene_geometry *geo, const camera *cam, int px, in
 
 static shadow_stats compare(const scene_geometry *geo, scene_pass *pass, const gl_target *t,
                             const camera *cam, float *share) {
-  render_error err = {{0}};
+  fog_error err = {0};
   scene_pass_run(pass, cam, t);
   CHECK(gl_target_read(t, 2, 3, share, &err) == 0, "read: %s", err.message);
   shadow_stats st = {.texel = sun_shadow_map_texel(scene_pass_sun_shadow(pass))};
@@ -72,7 +72,7 @@ static void set_sun(scene_geometry *geo, double azimuth_deg, double elevation_de
  * ground pixels the GL finds dark. */
 static double post_shadow_found(double width, gl_context *ctx) {
   (void)ctx;
-  render_error err = {{0}};
+  fog_error err = {0};
   scene_desc desc = {
       .terrain = {.origin = {-2000, 0, -2000}, .size = {4000, 4000}, .height = 1e-3,
                   .resolution = 9, .seed = 1},
@@ -111,7 +111,7 @@ static double post_shadow_found(double width, gl_context *ctx) {
 }
 
 int main(void) {
-  render_error err = {{0}};
+  fog_error err = {0};
   gl_context *ctx = gl_context_create(NULL, &err);
   CHECK(ctx != NULL, "context: %s", err.message);
   if (!ctx) return test_finish("test_sun_shadow_map");

@@ -82,7 +82,7 @@ static long check_mesh(const terrain_lod *lod, const char *what) {
 }
 
 int main(void) {
-  render_error err = {0};
+  fog_error err = {0};
   const int sizes[2][2] = {{129, 129}, {101, 77}};
   for (int sz = 0; sz < 2; sz++) {
     terrain t;

@@ -64,7 +64,7 @@ int main(void) {
 
   /* The full simulation at large steps: turbulence rms 40 cells/s, dt 0.05..0.5 s
    * (CFL ~2-20 and more at the gusts), no sources: density stays in [0, max0]. */
-  sim_error err;
+  fog_error err;
   fogmap base;
   fogmap_create(&base, N, N, &err);
   for (int i = 0; i < N * N; i++) base.density[i] = init[i];

@@ -47,7 +47,7 @@ static double centroid_miss(const float *rho, double xe, double ze) {
 
 static double run(fluid_advection scheme, float vx, float vz, float dt, int steps, double x0,
                   double z0, double *max_error, double *l2, double *mass_drift) {
-  sim_error err;
+  fog_error err;
   fogmap base;
   fogmap_create(&base, N, N, &err);
   const double sigma = 4;

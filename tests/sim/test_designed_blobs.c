@@ -33,7 +33,7 @@ static void test_mass_and_centroid(void) {
       {.x = 70.9f, .z = 45.1f, .sigma = 1.0f, .peak = 5.0f},
   };
   fogmap map;
-  sim_error err;
+  fog_error err;
   CHECK(fogmap_create(&map, 140, 110, &err) == 0, "%s", err.message);
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     const fog_blob *b = &cases[i];
@@ -64,7 +64,7 @@ static void test_mass_and_centroid(void) {
 
 static void test_superposition_and_cutoff(void) {
   fogmap one, two, both;
-  sim_error err;
+  fog_error err;
   fogmap_create(&one, 64, 64, &err);
   fogmap_create(&two, 64, 64, &err);
   fogmap_create(&both, 64, 64, &err);
@@ -107,7 +107,7 @@ static void test_superposition_and_cutoff(void) {
 
 static void test_bad_blobs(void) {
   fogmap map;
-  sim_error err;
+  fog_error err;
   fogmap_create(&map, 16, 16, &err);
   map.density[3] = 7.0f;
   fog_blob bad[2] = {{.x = 5, .z = 5, .sigma = 1, .peak = 1}, {.x = 5, .z = 5, .sigma = 0}};

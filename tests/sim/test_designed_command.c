@@ -42,7 +42,7 @@ static void test_output_matches_library(void) {
 
   /* the same fog with the library */
   fogmap expect, banks;
-  sim_error err;
+  fog_error err;
   fogmap_create(&expect, 64, 48, &err);
   fogmap_create(&banks, 64, 48, &err);
   designed_fog_perlin(&expect, &(perlin_fog_desc){.seed = 11, .octaves = 3, .feature_size = 20,
@@ -117,7 +117,7 @@ static void test_bad_options(void) {
 
 static void test_sample_data(void) {
   fogmap png, exr;
-  sim_error err;
+  fog_error err;
   CHECK(fogmap_load("data/fogmap_sample.png", NULL, &png, &err) == 0, "%s", err.message);
   CHECK(fogmap_load("data/fogmap_sample.exr", NULL, &exr, &err) == 0, "%s", err.message);
   CHECK(png.width == 256 && png.height == 256 && exr.width == 256 && exr.height == 256,

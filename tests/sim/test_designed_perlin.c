@@ -126,7 +126,7 @@ static void test_bounded(void) {
 static void test_fog_animation(void) {
   const int w = 48, h = 40;
   fogmap at0, at_t;
-  sim_error err;
+  fog_error err;
   CHECK(fogmap_create(&at0, w, h, &err) == 0 && fogmap_create(&at_t, w, h, &err) == 0, "%s",
         err.message);
   perlin_fog_desc desc = {.seed = 3, .octaves = 4, .feature_size = 12.5f,

@@ -12,7 +12,7 @@
 enum { N = 96, STEPS = 90 };
 
 static void drive(fluid_sim *sim, int steps) {
-  sim_error err;
+  fog_error err;
   for (int s = 0; s < steps; s++) {
     if (s == 10) fluid_sim_paint(sim, &(fluid_stroke){10, 10, 60, 40, 5, 0.8f}, &err);
     if (s == 20) fluid_sim_add_impulse(sim, 48, 48, 8, 30, -10, &err);
@@ -29,7 +29,7 @@ static int same(const fluid_sim *a, const fluid_sim *b) {
 }
 
 int main(void) {
-  sim_error err;
+  fog_error err;
   fogmap base;
   fogmap_create(&base, N, N, &err);
   for (int i = 0; i < N * N; i++) base.density[i] = 0.1f + 0.05f * (float)((i * 7) % 13);

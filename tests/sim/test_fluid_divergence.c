@@ -26,7 +26,7 @@ static void measure(const float *u, const float *v, double *spectral, double *fd
 }
 
 int main(void) {
-  sim_error err;
+  fog_error err;
   const fluid_advection schemes[3] = {FLUID_ADVECT_BILINEAR, FLUID_ADVECT_MONOTONE_CUBIC,
                                       FLUID_ADVECT_MACCORMACK};
   for (int s = 0; s < 3; s++) {

@@ -15,7 +15,7 @@
 enum { N = 64, STEPS = 30 };
 
 static float *run(fluid_fft_planning planning) {
-  sim_error err;
+  fog_error err;
   fluid_sim *sim = fluid_sim_create(
       &(fluid_sim_desc){.width = N, .height = N, .turbulence = 10, .seed = 9,
                         .fft_planning = planning,

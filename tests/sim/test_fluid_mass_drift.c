@@ -16,7 +16,7 @@
 enum { N = 128, STEPS = 300 };
 
 int main(void) {
-  sim_error err;
+  fog_error err;
   fogmap base;
   fogmap_create(&base, N, N, &err);
   /* A smooth fog with structure at several scales, all positive. */

@@ -50,7 +50,7 @@ static int unchanged(const fluid_sim *sim, const snapshot *s) {
 }
 
 int main(void) {
-  sim_error err = {{0}};
+  fog_error err = {0};
   fogmap base;
   fogmap_create(&base, N, N, &err);
   for (int z = 0; z < N; z++)

@@ -16,7 +16,7 @@
 enum { N = 64 };
 
 int main(void) {
-  sim_error err;
+  fog_error err;
   const float dt = 0.05f;
   /* Emitter near a corner: its Gaussian wraps onto the opposite sides. */
   const fluid_emitter em = {2.0f, 61.0f, 3.0f, 4.0f};

@@ -15,7 +15,7 @@
 enum { N = 256 };
 
 static void check_wind(float slope, float scale, int advance_steps) {
-  sim_error err;
+  fog_error err;
   const float turbulence = 12.0f;
   wind_field *wind = wind_field_create(
       &(wind_desc){.width = N, .height = N, .drift_x = 3.0f, .drift_z = -1.0f,

@@ -6,6 +6,7 @@
 #include <dirent.h>
 #include <math.h>
 #include <signal.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -69,7 +70,7 @@ static void check_listing(const char *expected, const char *when) {
 static void expect_load_failure(const char *path, const fogmap_load_desc *desc,
                                 const char *part1, const char *part2) {
   fogmap map = {.width = 99, .density = (float *)&map};
-  sim_error err = {{0}};
+  fog_error err = {0};
   int status = fogmap_load(path, desc, &map, &err);
   CHECK(status != 0, "loading %s succeeded", path);
   CHECK(map.density == NULL && map.width == 0 && map.height == 0,
@@ -77,6 +78,11 @@ static void expect_load_failure(const char *path, const fogmap_load_desc *desc,
   CHECK(strstr(err.message, path) != NULL, "message does not name the file: %s", err.message);
   CHECK(!part1 || strstr(err.message, part1), "message lacks \"%s\": %s", part1, err.message);
   CHECK(!part2 || strstr(err.message, part2), "message lacks \"%s\": %s", part2, err.message);
+  /* a file that cannot be opened is an access failure; whatever its bytes say, a bad file */
+  const bool unopened = part1 && (!strcmp(part1, "cannot open") || !strcmp(part1, "folder"));
+  const fog_result want = unopened ? FOG_ERR_FILE_ACCESS : FOG_ERR_BAD_FILE;
+  CHECK(err.code == want, "%s: code %s, expected %s", path, fog_result_text(err.code),
+        fog_result_text(want));
   printf("  ok: %s\n", err.message);
 }
 
@@ -91,7 +97,7 @@ static uint32_t crc32_png(const unsigned char *p, size_t n) {
 }
 
 static void test_bad_files(void) {
-  sim_error err;
+  fog_error err;
   expect_load_failure(in_folder("missing.png"), NULL, "cannot open", "No such file");
   check_listing("", "a missing file");
   expect_load_failure(folder, NULL, "folder", "PNG or EXR");
@@ -187,7 +193,7 @@ static void test_bad_files(void) {
 }
 
 /* A failed write leaves no file, or the old one untouched, and no temporary. */
-static void expect_write_failure(int status, const sim_error *err, const char *path,
+static void expect_write_failure(int status, const fog_error *err, const char *path,
                                  const char *part1, const char *part2) {
   CHECK(status != 0, "writing %s succeeded", path);
   CHECK(strstr(err->message, path) != NULL, "message does not name the file: %s",
@@ -196,6 +202,11 @@ static void expect_write_failure(int status, const sim_error *err, const char *p
         err->message);
   CHECK(!part2 || strstr(err->message, part2), "message lacks \"%s\": %s", part2,
         err->message);
+  /* the file system refused, or the caller passed pixels no image can hold */
+  const bool refused = part1 && (!strcmp(part1, "cannot create") || !strcmp(part1, "write failed"));
+  const fog_result want = refused ? FOG_ERR_FILE_ACCESS : FOG_ERR_INVALID_ARGUMENT;
+  CHECK(err->code == want, "%s: code %s, expected %s", path, fog_result_text(err->code),
+        fog_result_text(want));
   printf("  ok: %s\n", err->message);
 }
 
@@ -208,7 +219,7 @@ static void test_failed_writes(void) {
     noise[i] = (float)(s >> 8) / 16777216.0f; /* incompressible: ~256 KiB as float EXR */
   }
   fogmap map = {.width = w, .height = h, .density = noise};
-  sim_error err;
+  fog_error err;
 
   /* a folder that does not exist, and a "folder" that is a file */
   char *nowhere = in_folder("no/such/folder/out.exr");
@@ -235,12 +246,12 @@ static void test_failed_writes(void) {
   struct rlimit small = {.rlim_cur = 16384, .rlim_max = saved.rlim_max};
   CHECK(setrlimit(RLIMIT_FSIZE, &small) == 0, "setrlimit failed");
   int exr_status = fogmap_save_exr(exr, &map, &err);
-  sim_error exr_err = err;
+  fog_error exr_err = err;
   int png_status = image_write_png(png, w, h, 3, noise, &err);
-  sim_error png_err = err;
+  fog_error png_err = err;
   image_channel two[2] = {{"R", noise, 1}, {"G", noise + w * h, 0}};
   int multi_status = image_write_exr(exr, w, h, two, 2, &err);
-  sim_error multi_err = err;
+  fog_error multi_err = err;
   setrlimit(RLIMIT_FSIZE, &saved);
   signal(SIGXFSZ, SIG_DFL);
   expect_write_failure(exr_status, &exr_err, exr, "write failed", "File too large");

@@ -39,7 +39,7 @@ static float uniform(void) { return (float)(next_u32() >> 8) / 16777216.0f; }
 static void test_exr_float_bit_exact(void) {
   const int w = 37, h = 23; /* not a multiple of the 16-line ZIP chunk */
   fogmap map;
-  sim_error err;
+  fog_error err;
   CHECK(fogmap_create(&map, w, h, &err) == 0, "%s", err.message);
   for (int i = 0; i < w * h; i++) {
     /* every exponent range a fogmap may hold: zeros, denormals, tiny, ordinary, huge */
@@ -91,7 +91,7 @@ static void test_exr_channels_half_and_sorted(void) {
       {.name = "A", .pixels = exact, .as_half = 1},
   };
   const char *path = in_folder("channels.exr");
-  sim_error err;
+  fog_error err;
   CHECK(image_write_exr(path, w, h, channels, 3, &err) == 0, "write: %s", err.message);
 
   /* Independent check of the file's channel list with the OpenEXR C API. */
@@ -171,7 +171,7 @@ static void test_png8_exact(void) {
   float *grey = malloc(sizeof(float) * w * h);
   for (int i = 0; i < w * h; i++) grey[i] = (float)((i * 7) % 256) / 255.0f;
   const char *path = in_folder("grey8.png");
-  sim_error err;
+  fog_error err;
   CHECK(image_write_png(path, w, h, 1, grey, &err) == 0, "write: %s", err.message);
   struct spng_ihdr ihdr = {0};
   size_t size = 0;
@@ -257,7 +257,7 @@ static void test_png16_exact(void) {
   const char *path = in_folder("grey16.png");
   CHECK(spng_write_raw(path, w, h, SPNG_COLOR_TYPE_GRAYSCALE, 16, raw, n * 2) == 0,
         "libspng could not write the reference PNG");
-  sim_error err;
+  fog_error err;
   fogmap back;
   CHECK(fogmap_load(path, NULL, &back, &err) == 0 && fogmap_scale(&back, 3.0, &err) == 0,
         "load: %s", err.message);
@@ -354,7 +354,7 @@ static void test_exr_tiled(void) {
   if (started) exr_encoding_destroy(ctxt, &encode);
   if (ctxt) exr_finish(&ctxt);
   CHECK(rv == EXR_ERR_SUCCESS, "writing the tiled reference failed: %d", (int)rv);
-  sim_error err;
+  fog_error err;
   fogmap back;
   CHECK(fogmap_load(path, NULL, &back, &err) == 0, "tiled load: %s", err.message);
   CHECK(back.density && back.width == w && back.height == h &&

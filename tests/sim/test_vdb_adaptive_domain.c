@@ -35,7 +35,7 @@ int main(void) {
                          .translation = {0.7, 0.7, 0.7}, .values = values};
   mantaflow_config cfg = adaptive_config();
   vdb_world_map map;
-  sim_error err = {{0}};
+  fog_error err = {0};
   int status = vdb_world_map_make(&grid, &(vdb_placement){.config = &cfg}, &map, &err);
   CHECK(status == 0, "adaptive placement: %s", err.message);
   CHECK(map.used_config == 1, "the config was not used");

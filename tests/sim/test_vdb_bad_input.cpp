@@ -34,7 +34,7 @@ static void write_bytes(const std::string &path, const void *bytes, size_t n) {
 static void expect_failure(const std::string &path, const char *grid,
                            std::initializer_list<const char *> words) {
   vdb_dense_grid g;
-  sim_error err{};
+  fog_error err{};
   vdb_read_desc desc{};
   desc.grid = grid;
   desc.max_voxels = 1LL << 24;
@@ -138,7 +138,7 @@ int main() {
   {
     vdb_grid_info info[16];
     int count = 0;
-    sim_error err{};
+    fog_error err{};
     CHECK(vdb_list_grids((dir + "/text.vdb").c_str(), info, 16, &count, &err) != 0,
           "list of a text file succeeded");
     CHECK(strstr(err.message, "text.vdb") != nullptr, "list message: %s", err.message);
@@ -160,7 +160,7 @@ int main() {
   // a broken config beside the cache: gzip magic missing, or wrong size
   {
     mantaflow_config cfg;
-    sim_error err{};
+    fog_error err{};
     CHECK(mantaflow_config_read((dir + "/text.vdb").c_str(), &cfg, &err) != 0, "text config");
     CHECK(strstr(err.message, "text.vdb") && strstr(err.message, "gzip"), "%s", err.message);
     CHECK(mantaflow_config_read("../shared/data/vdb/plume/config/config_0001.uni", &cfg, &err) ==

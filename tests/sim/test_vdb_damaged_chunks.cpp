@@ -75,7 +75,7 @@ static flip_counts flip_every_byte(const std::string &path, const std::string &s
     std::vector<unsigned char> bytes = original;
     bytes[i] ^= (unsigned char)(1u << (i % 8));
     write_all(scratch, bytes);
-    sim_error err{};
+    fog_error err{};
     if (vdb_precheck_file(scratch.c_str(), &err) != 0) {
       c.refused++;
       continue;
@@ -121,7 +121,7 @@ static void check_duplicate_root_child(const std::string &dir) {
     }
   CHECK(found == 1, "the second root child's origin occurs %d times in %s", found, path.c_str());
   write_all(bad, bytes);
-  sim_error err{};
+  fog_error err{};
   CHECK(vdb_precheck_file(path.c_str(), &err) == 0, "%s: %s", path.c_str(), err.message);
   CHECK(vdb_precheck_file(bad.c_str(), &err) != 0 && strstr(err.message, "two root children"),
         "%s: two root children at one origin not refused (%s)", bad.c_str(), err.message);
@@ -156,7 +156,7 @@ int main() {
     desc.grid = "density";
     desc.max_voxels = 1LL << 22;
     vdb_dense_grid grid;
-    sim_error err{};
+    fog_error err{};
     const int status = vdb_read_dense(path.c_str(), &desc, &grid, &err);
     if (k.active_tiles)
       CHECK(status != 0 && strstr(err.message, "more than the limit"), "%s: %s", k.name,

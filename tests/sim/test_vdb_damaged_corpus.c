@@ -80,7 +80,7 @@ static void child_read(const char *path, int fd) {
   alarm(CHILD_SECONDS);
   vdb_grid_info info[16];
   int count;
-  sim_error list_err = {{0}}, read_err = {{0}};
+  fog_error list_err = {0}, read_err = {0};
   const int list_failed = vdb_list_grids(path, info, 16, &count, &list_err);
   vdb_dense_grid g;
   const int read_failed = vdb_read_dense(path, &(vdb_read_desc){0}, &g, &read_err);
@@ -90,6 +90,10 @@ static void child_read(const char *path, int fd) {
   if ((list_failed && !strstr(list_err.message, path)) ||
       (read_failed && !strstr(read_err.message, path)))
     _exit(3);
+  /* a damaged file is a bad file, not an access failure nor an argument */
+  if ((list_failed && list_err.code != FOG_ERR_BAD_FILE) ||
+      (read_failed && read_err.code != FOG_ERR_BAD_FILE))
+    _exit(5);
   _exit(list_failed || read_failed);
 }
 
@@ -147,7 +151,9 @@ static void read_in_child(const char *path, tally *t) {
   CHECK(ru.ru_maxrss < CHILD_RSS_BUDGET_MIB * 1024, "%s: the reader peaked at %ld MiB: %s",
         path, ru.ru_maxrss / 1024, message);
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  CHECK(code == 0 || code == 1, "%s: child exit status %d (3: message lacks the file): %s",
+  CHECK(code == 0 || code == 1,
+        "%s: child exit status %d (3: message lacks the file, 5: its code is not "
+        "FOG_ERR_BAD_FILE): %s",
         path, code, message);
   /* OpenVDB asked for more memory than the limit (or the machine) allows */
   if (strstr(message, "bad_alloc")) t->out_of_memory++;
@@ -256,10 +262,11 @@ int main(void) {
     snprintf(path, sizeof path, "%s/name_length_fffffff0.vdb", dir);
     CHECK(write_file(path, bytes, n) == 0, "cannot write %s", path);
     free(bytes);
-    sim_error err = {{0}};
+    fog_error err = {0};
     CHECK(vdb_precheck_file(path, &err) != 0, "%s: precheck passed", path);
-    CHECK(strstr(err.message, path) && strstr(err.message, "name length 4294967280"),
-          "message: %s", err.message);
+    CHECK(strstr(err.message, path) && strstr(err.message, "name length 4294967280") &&
+              err.code == FOG_ERR_BAD_FILE,
+          "message: %s (code %d)", err.message, err.code);
     printf("ok: %s\n", err.message);
     read_in_child(path, &t);
     index++;
@@ -270,10 +277,10 @@ int main(void) {
     char path[128];
     snprintf(path, sizeof path, "%s/cut.vdb", dir);
     CHECK(write_file(path, src, n - 100) == 0, "cannot write %s", path);
-    sim_error err = {{0}};
+    fog_error err = {0};
     CHECK(vdb_precheck_file(path, &err) != 0 && strstr(err.message, path) &&
-              strstr(err.message, "truncated"),
-          "cut file: %s", err.message);
+              strstr(err.message, "truncated") && err.code == FOG_ERR_BAD_FILE,
+          "cut file: %s (code %d)", err.message, err.code);
     printf("ok: %s\n", err.message);
     unlink(path);
   }
@@ -299,7 +306,7 @@ int main(void) {
       snprintf(path, sizeof path,
                FOGPIPE_SOURCE_DIR "/../shared/data/vdb/%s/data/fluid_data_%04d.vdb", bakes[b],
                frame);
-      sim_error err = {{0}};
+      fog_error err = {0};
       CHECK(vdb_precheck_file(path, &err) == 0, "%s", err.message);
       frames++;
     }
@@ -319,7 +326,7 @@ int main(void) {
         snprintf(path, sizeof path, "%s/written_%d_%d.vdb", dir, c, half);
         vdb_write_desc wd = {.as_half = half, .constant_blocks_as_tiles = 1,
                              .compression = (vdb_compression)c};
-        sim_error err = {{0}};
+        fog_error err = {0};
         CHECK(vdb_write_dense(path, &g, &wd, &err) == 0, "%s", err.message);
         CHECK(vdb_precheck_file(path, &err) == 0, "%s", err.message);
         vdb_dense_grid back;

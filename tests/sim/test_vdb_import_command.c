@@ -91,7 +91,7 @@ int main(void) {
     char exr[700];
     snprintf(exr, sizeof exr, "%s/gf.%04d.exr", out, frame);
     fogmap map;
-    sim_error err = {{0}};
+    fog_error err = {0};
     if (fogmap_load(exr, &(fogmap_load_desc){0}, &map, &err)) {
       CHECK(0, "%s", err.message);
       continue;

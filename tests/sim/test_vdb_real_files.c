@@ -33,7 +33,7 @@ static double fogmap_mass(const vdb_frame *f) {
 static void check_globs(void) {
   const char *name_glob = "../shared/data/vdb/plume/data/fluid_data_00*.vdb";
   vdb_sequence seq;
-  sim_error err = {{0}};
+  fog_error err = {0};
   CHECK(vdb_sequence_find(&name_glob, 1, -1, -1, &seq, &err) == 0 && seq.count == 48,
         "%s: %s", name_glob, err.message);
   if (!err.message[0]) vdb_sequence_destroy(&seq);
@@ -54,7 +54,7 @@ int main(void) {
     snprintf(pattern, sizeof pattern, "../shared/data/vdb/%s/data/fluid_data_####.vdb", sc->name);
     const char *inputs[] = {pattern};
     vdb_sequence seq;
-    sim_error err = {{0}};
+    fog_error err = {0};
     if (vdb_sequence_find(inputs, 1, -1, -1, &seq, &err)) {
       CHECK(0, "%s", err.message);
       continue;

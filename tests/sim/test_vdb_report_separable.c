@@ -35,7 +35,7 @@ static int report(double (*fn)(double, double, double), vdb_report_row *rows, in
     for (int j = 0; j < dim[1]; j++)
       for (int x = 0; x < dim[0]; x++)
         g.values[i++] = (float)fn(h * (x - 20), h * (j - 20), h * (k + 0.5));
-  sim_error err = {{0}};
+  fog_error err = {0};
   vdb_world_map world;
   vdb_columns cols;
   vdb_profile prof;

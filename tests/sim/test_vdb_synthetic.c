@@ -56,7 +56,7 @@ static void test_blob(void) {
   vdb_dense_grid g = make_grid(dim, lo, h, t, blob);
   char path[512];
   snprintf(path, sizeof path, "%s/blob.vdb", dir);
-  sim_error err = {{0}};
+  fog_error err = {0};
   CHECK(!vdb_write_dense(path, &g, &(vdb_write_desc){0}, &err), "%s", err.message);
   const double analytic = blob_amp * pow(2 * 3.14159265358979323846, 1.5) * pow(blob_sigma, 3);
 
@@ -162,7 +162,7 @@ static void test_tiles_vs_voxels(void) {
   char voxels[512], tiles[512];
   snprintf(voxels, sizeof voxels, "%s/slab_voxels.vdb", dir);
   snprintf(tiles, sizeof tiles, "%s/slab_tiles.vdb", dir);
-  sim_error err = {{0}};
+  fog_error err = {0};
   CHECK(!vdb_write_dense(voxels, &g, &(vdb_write_desc){0}, &err), "%s", err.message);
   CHECK(!vdb_write_dense(tiles, &g, &(vdb_write_desc){.constant_blocks_as_tiles = 1}, &err), "%s",
         err.message);
@@ -201,7 +201,7 @@ static void test_exponential_profile(void) {
   vdb_dense_grid g = make_grid(dim, lo, h, t, expo);
   char path[512];
   snprintf(path, sizeof path, "%s/expo.vdb", dir);
-  sim_error err = {{0}};
+  fog_error err = {0};
   CHECK(!vdb_write_dense(path, &g, &(vdb_write_desc){0}, &err), "%s", err.message);
   vdb_frame f;
   int status = vdb_frame_load(path, &(vdb_frame_desc){.profile.kind = VDB_PROFILE_EXPONENTIAL},

@@ -44,7 +44,7 @@ static void roundtrip(const char *options, const char *name) {
   rc = run(args, err, sizeof err);
   CHECK(rc == 0, "inverse %s failed: %s", options, err);
   fogmap a, b;
-  sim_error e;
+  fog_error e;
   if (fogmap_load("data/fogmap_sample.exr", NULL, &a, &e)) {
     CHECK(0, "%s", e.message);
     return;

@@ -13,7 +13,7 @@ int main(int argc, char **argv) {
                                                        : TRANSFORM_QUADRATIC;
   int w = atoi(argv[3]), h = atoi(argv[4]), J = atoi(argv[5]);
   transform_plan *plan;
-  transform_error err;
+  fog_error err;
   if (transform_plan_create(&plan, &(transform_desc){.width = w, .height = h, .levels = J,
           .basis = basis, .boundary = TRANSFORM_PERIODIC,
           .decomposition = strcmp(argv[2], "standard") ? TRANSFORM_NONSTANDARD

@@ -9,7 +9,7 @@
 
 static void check(int b, int w, int h, int J) {
   transform_plan *plan;
-  transform_error err;
+  fog_error err;
   CHECK(!transform_plan_create(&plan, &(transform_desc){.width = w, .height = h, .levels = J,
       .basis = test_bases[b]}, &err), "%s", err.message);
   size_t n = (size_t)w * h;

@@ -8,7 +8,7 @@
 
 static void refused(int w, int h, int J, transform_boundary mode, int largest) {
   transform_plan *plan = (transform_plan *)1;
-  transform_error err = {{0}};
+  fog_error err = {0};
   int rc = transform_plan_create(&plan, &(transform_desc){.width = w, .height = h,
       .levels = J, .boundary = mode}, &err);
   char want[64];
@@ -16,6 +16,8 @@ static void refused(int w, int h, int J, transform_boundary mode, int largest) {
   CHECK(rc != 0 && plan == NULL, "%dx%d J=%d accepted", w, h, J);
   CHECK(strstr(err.message, want) != NULL, "%dx%d J=%d: message \"%s\" lacks \"%s\"", w, h, J,
         err.message, want);
+  CHECK(err.code == FOG_ERR_INVALID_ARGUMENT, "%dx%d J=%d: code %s", w, h, J,
+        fog_result_text(err.code));
   CHECK(transform_max_levels(w, h, mode) == largest, "max levels of %dx%d: %d, want %d", w, h,
         transform_max_levels(w, h, mode), largest);
   /* and the largest J itself is accepted */
@@ -33,7 +35,7 @@ int main(void) {
   refused(48, 40, 4, TRANSFORM_PERIODIC, 3);   /* 40 = 8 * 5 */
   refused(17, 16, 1, TRANSFORM_PERIODIC, 0);   /* odd width */
   transform_plan *plan;
-  transform_error err;
+  fog_error err;
   CHECK(transform_plan_create(&plan, &(transform_desc){.width = 0, .height = 4}, &err) != 0,
         "0x4 accepted");
   CHECK(transform_plan_create(&plan, &(transform_desc){.width = 4, .height = 4, .levels = -1},

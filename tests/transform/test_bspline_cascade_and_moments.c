@@ -16,7 +16,7 @@
 static void cascade(int b) {
   const int N = 256, J = 6;
   transform_plan *plan;
-  transform_error err;
+  fog_error err;
   CHECK(!transform_plan_create(&plan, &(transform_desc){.width = N, .height = N, .levels = J,
       .basis = test_bases[b], .boundary = TRANSFORM_PERIODIC}, &err), "%s", err.message);
   float *c = calloc((size_t)N * N, sizeof *c);
@@ -60,7 +60,7 @@ static double interior_details(transform_plan *plan, const float *c, int W, int 
 static void moments(int b, transform_decomposition dec) {
   const int W = 160, H = 144, J = 3;
   transform_plan *plan;
-  transform_error err;
+  fog_error err;
   CHECK(!transform_plan_create(&plan, &(transform_desc){.width = W, .height = H, .levels = J,
       .basis = test_bases[b], .decomposition = dec}, &err), "%s", err.message);
   int degree = transform_basis_degree(test_bases[b]);

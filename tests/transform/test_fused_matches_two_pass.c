@@ -21,7 +21,7 @@ int main(void) {
       int J = transform_max_levels(w, h, TRANSFORM_SYMMETRIC);
       transform_desc desc = {.width = w, .height = h, .levels = J, .basis = test_bases[b]};
       transform_plan *one, *two, *split;
-      transform_error err;
+      fog_error err;
       test_plan_pair(desc, &one, &two);
       desc.threads = 2;
       CHECK(!transform_plan_create(&split, &desc, &err), "%s", err.message);

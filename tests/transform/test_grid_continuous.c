@@ -19,7 +19,7 @@
 static void check(int b, transform_boundary mode, transform_decomposition dec, int w, int h,
                   int J) {
   transform_plan *plan;
-  transform_error err;
+  fog_error err;
   int rc = transform_plan_create(&plan, &(transform_desc){.width = w, .height = h,
       .levels = J, .basis = test_bases[b], .boundary = mode, .decomposition = dec}, &err);
   CHECK(rc == 0, "plan: %s", err.message);

@@ -11,7 +11,7 @@
 static void check(transform_basis basis, transform_boundary mode, transform_decomposition dec,
                   int w, int h, int levels, int threads) {
   transform_plan *plan;
-  transform_error err;
+  fog_error err;
   int rc = transform_plan_create(&plan, &(transform_desc){.width = w, .height = h,
       .levels = levels, .basis = basis, .boundary = mode, .decomposition = dec,
       .threads = threads}, &err);

@@ -65,7 +65,7 @@ static const char *const test_basis_names[3] = {"haar", "linear", "quadratic"};
  * tests compare. Fails the test with the plan's message. */
 static inline void test_plan_pair(transform_desc d, transform_plan **fused,
                                   transform_plan **two_pass) {
-  transform_error err;
+  fog_error err;
   d.threads = 1;
   CHECK(!transform_plan_create(fused, &d, &err), "%s", err.message);
   d.threads = 2, d.two_pass = 1;
