@@ -27,8 +27,19 @@ typedef struct fog_sun {
  * to 1 over the sphere (Henyey & Greenstein 1941). */
 double fog_phase_hg(double g, double cos_theta);
 
+/* The sun's apparent radius, radians (0.27 degrees). */
+#define FOG_SUN_ANGULAR_RADIUS 0.0047
+
+/* The share of the sun's disc above the horizon, for the unit direction towards it: 1 from
+ * an elevation of +FOG_SUN_ANGULAR_RADIUS, 0 below minus it, linear in the sine between
+ * (0.5 with the sun's centre on the horizon). At the scene's scale the ground plane is the
+ * horizon: a sun below it lights neither the fog nor the surfaces (the demo's dusk), which
+ * the fog pass, its CPU twin, the surfaces and the sky all take from here. */
+double fog_sun_above_horizon(const double direction[3]);
+
 /* The in-scattered radiance of a view ray (unit view_dir, from the camera) of transmittance
- * tau, without shadows: (ambient + a L_sun p(theta)) (1 - tau), per channel. */
+ * tau, without shadows: (ambient + a L_sun p(theta)) (1 - tau), per channel; L_sun times
+ * fog_sun_above_horizon. */
 void fog_inscatter_unshadowed(double tau, const double ambient[3], const fog_sun *sun,
                               const double view_dir[3], double out[3]);
 

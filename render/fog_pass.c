@@ -784,8 +784,9 @@ static int fog_pass_common_and_draw(const fog_pass *pass, GLuint prog, const cam
   const fog_sun *sun = &params->sun;
   glUniform3f(fog_loc(prog, "fog_sun_direction"), (float)sun->direction[0],
               (float)sun->direction[1], (float)sun->direction[2]);
-  glUniform3f(fog_loc(prog, "fog_sun_scatter"), (float)(sun->albedo * sun->radiance[0]),
-              (float)(sun->albedo * sun->radiance[1]), (float)(sun->albedo * sun->radiance[2]));
+  const double scatter = sun->albedo * fog_sun_above_horizon(sun->direction);
+  glUniform3f(fog_loc(prog, "fog_sun_scatter"), (float)(scatter * sun->radiance[0]),
+              (float)(scatter * sun->radiance[1]), (float)(scatter * sun->radiance[2]));
   glUniform1f(fog_loc(prog, "fog_phase_g"), (float)sun->phase_g);
   fog_pass_sun_shadow_uniforms(pass, prog, cam, params);
   if (fog_pass_has_lamps(params) || fog_pass_has_surface_lamps(params))

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <stdio.h>
 
+#include "render/fog_light.h"
 #include "render/frustum.h"
 #include "render/scene_internal.h"
 
@@ -646,6 +647,10 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
 
   float sun_dir[3] = {(float)geo->sun_direction[0], (float)geo->sun_direction[1],
                       (float)geo->sun_direction[2]};
+  /* a sun below the horizon lights nothing (the fog pass takes the same share) */
+  const float above = (float)fog_sun_above_horizon(geo->sun_direction);
+  const float sun_colour[3] = {above * geo->light.sun_colour[0], above * geo->light.sun_colour[1],
+                               above * geo->light.sun_colour[2]};
   /* Terrain and boxes, camera-relative: offset = terrain origin - camera (double). */
   float view[16], projection[16];
   camera_view_matrix(cam, view);
@@ -659,7 +664,7 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glUniformMatrix4fv(pass->u_view, 1, GL_FALSE, view);
   glUniformMatrix4fv(pass->u_projection, 1, GL_FALSE, projection);
   glUniform3fv(pass->u_sun_direction, 1, sun_dir);
-  glUniform3fv(pass->u_sun_colour, 1, geo->light.sun_colour);
+  glUniform3fv(pass->u_sun_colour, 1, sun_colour);
   glUniform3fv(pass->u_ambient, 1, geo->light.ambient);
   double shadow_m[4][4];
   float shadow_rows[16];
@@ -716,7 +721,7 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glUniform3fv(pass->u_sky_horizon, 1, geo->light.sky_horizon);
   glUniform3fv(pass->u_sky_zenith, 1, geo->light.sky_zenith);
   glUniform3fv(pass->u_sky_sun_direction, 1, sun_dir);
-  glUniform3fv(pass->u_sky_sun_colour, 1, geo->light.sun_colour);
+  glUniform3fv(pass->u_sky_sun_colour, 1, sun_colour);
   glBindVertexArray(gl_util_empty_vao());
   glDrawArrays(GL_TRIANGLES, 0, 3);
 

@@ -7,6 +7,9 @@
  *   rgb = tau S + in-scatter;
  * - energy: with a = 1 and no ambient no pixel gets more than L_sun max p (1 - tau);
  * - p integrates to 1 over the sphere (adaptive Simpson in double);
+ * - a sun below the horizon (elevation -5) lights nothing: the frame equals the frame with
+ *   a black sun, bit for bit, fog, surfaces and sky; with its centre on the horizon half
+ *   its disc shows, and the fog gets (L_amb + a L_sun p / 2)(1 - tau);
  * - `fogpipe render` writes the in-scatter as inscatter.R/G/B and the depth as Z too, and
  *   the camera as the standard worldToCamera and worldToNDC attributes: each pixel's
  *   surface point (the CPU camera ray at the depth) maps to that pixel's centre in NDC and
@@ -151,6 +154,38 @@ static void check_model(const char *path, const char *label) {
       excess = fmax(excess, lit.inscatter[3 * k + c] -
                                 sun.radiance[c] * max_p * (1 - lit.tau[k]) * (1 + 1e-6));
   CHECK(excess <= 0, "%s: a pixel gets %.3e more than the sun can give", label, excess);
+
+  /* below the horizon: the frame of a black sun, bit for bit */
+  static frame dark;
+  cfg.fog.albedo = 0.8, cfg.fog.colour[0] = amb[0];
+  cfg.light.sun_elevation = -5;
+  scene_config black = cfg;
+  black.light.sun_colour[0] = black.light.sun_colour[1] = black.light.sun_colour[2] = 0.0f;
+  if (render(&cfg, &lit, label) || render(&black, &dark, label)) return;
+  CHECK(!memcmp(lit.rgba, dark.rgba, sizeof lit.rgba) &&
+            !memcmp(lit.inscatter, dark.inscatter, sizeof lit.inscatter),
+        "%s: a sun 5 degrees below the horizon still lights the frame", label);
+  /* its centre on the horizon: half the disc, half the fog's sunlight */
+  cfg.light.sun_elevation = 0;
+  cfg.fog.colour[0] = cfg.fog.colour[1] = cfg.fog.colour[2] = 0.0f;
+  if (render(&cfg, &lit, label)) return;
+  const fog_sun level = scene_config_fog_sun(&cfg);
+  double half = 0;
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      const int k = py * W + px;
+      double d[3];
+      camera_ray(&cam, px, py, W, H, o, d);
+      const double p = hg(0.6, d[0] * level.direction[0] + d[1] * level.direction[1] +
+                                   d[2] * level.direction[2]);
+      for (int c = 0; c < 3; c++) {
+        const double want = 0.8 * level.radiance[c] * p / 2 * (1 - lit.tau[k]);
+        half = fmax(half, fabs(lit.inscatter[3 * k + c] - want) / fmax(want, 1e-3));
+      }
+    }
+  printf("%s: the sun on the horizon: max relative |in-scatter - a L_sun p (1 - tau) / 2| "
+         "%.2e\n", label, half);
+  CHECK(half <= 1e-5, "%s: a sun on the horizon is off half its light by %.3e", label, half);
 }
 
 /* p' = p M for the row vector p = (x, y, z, 1), M row-major (EXR's convention). */
