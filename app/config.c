@@ -11,6 +11,7 @@
 
 #include <errno.h>
 #include <ini.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -349,6 +350,27 @@ static int handle(void *user, const char *section, const char *key, const char *
   return ok;
 }
 
+/* Levenshtein distance of two short names (insertions, deletions, substitutions). */
+static int edit_distance(const char *a, const char *b) {
+  enum { MAX_NAME = 64 };
+  const size_t n = strlen(a), m = strlen(b);
+  if (n >= MAX_NAME || m >= MAX_NAME) return INT_MAX / 2;
+  int row[MAX_NAME];
+  for (size_t j = 0; j <= m; j++) row[j] = (int)j;
+  for (size_t i = 1; i <= n; i++) {
+    int diagonal = row[0];
+    row[0] = (int)i;
+    for (size_t j = 1; j <= m; j++) {
+      const int above = row[j];
+      const int substitute = diagonal + (a[i - 1] != b[j - 1]);
+      row[j] = substitute < above + 1 ? substitute : above + 1;
+      if (row[j - 1] + 1 < row[j]) row[j] = row[j - 1] + 1;
+      diagonal = above;
+    }
+  }
+  return row[m];
+}
+
 /* The spec of [section] key, or NULL after the error that says which sections or keys
  * there are. */
 static const key_spec *lookup_key(parse_state *s, const char *section, const char *key) {
@@ -363,13 +385,29 @@ static const key_spec *lookup_key(parse_state *s, const char *section, const cha
     else fail(s, section, key, "unknown section [%s]; sections are %s", section, sections);
     return NULL;
   }
+  /* the nearest key of the section (a typo: at most a third of its letters off), and the
+   * section's keys when they fit the message */
+  const char *nearest = NULL;
+  int nearest_distance = INT_MAX, count = 0;
   char known[400] = "";
+  bool cut = false;
   for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
     if (!strcmp(keys[i].section, section)) {
+      const int d = edit_distance(key, keys[i].key);
+      if (d < nearest_distance) nearest = keys[i].key, nearest_distance = d;
       size_t used = strlen(known);
-      snprintf(known + used, sizeof known - used, "%s%s", used ? ", " : "", keys[i].key);
+      int n = snprintf(known + used, sizeof known - used, "%s%s", used ? ", " : "", keys[i].key);
+      if (n < 0 || (size_t)n >= sizeof known - used) cut = true;
+      count++;
     }
-  fail(s, section, key, "unknown key; [%s] has %s", section, known);
+  char guess[96] = "";
+  if (nearest && 3 * nearest_distance <= (int)strlen(nearest))
+    snprintf(guess, sizeof guess, "did you mean '%s'? ", nearest);
+  if (cut)
+    fail(s, section, key, "unknown key; %s[%s] has %d keys (docs/config.md lists them)", guess,
+         section, count);
+  else
+    fail(s, section, key, "unknown key; %s[%s] has %s", guess, section, known);
   return NULL;
 }
 

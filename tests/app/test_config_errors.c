@@ -41,8 +41,15 @@ int main(void) {
   CHECK(mkdtemp(dir) != NULL, "mkdtemp");
   expect_error("; scene\n\n[fgo]\ndensity_scale = 1\n", "4: [fgo] density_scale: ",
                "unknown section [fgo]; sections are fog, box");
+  /* a typo gets the nearest key; a section's keys are listed when they fit the message */
   expect_error("[fog]\nbasis = linear\ndensty_scale = 2\n", "3: [fog] densty_scale: ",
-               "unknown key; [fog] has model, fogmap, channel, density_scale");
+               "unknown key; did you mean 'density_scale'? [fog] has ");
+  expect_error("[fog]\nwhatever = 2\n", "2: [fog] whatever: ",
+               "unknown key; [fog] has ");
+  expect_error("[fog]\nwhatever = 2\n", "2: [fog] whatever: ", "keys (docs/config.md lists them)");
+  expect_error("[camera]\nfovv = 50\n", "2: [camera] fovv: ",
+               "unknown key; did you mean 'fov'? [camera] has position, yaw, pitch, fov, look_at, "
+               "near, far");
   expect_error("[camera]\n# a comment\nfov = 50\n\nyaw = 1O\n", "5: [camera] yaw: ",
                "expected a number, got '1O'");
   expect_error("[fog]\nmu = 1.5\n", "2: [fog] mu: ", "expected a number from 0 to 1, got '1.5'");
