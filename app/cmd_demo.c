@@ -129,6 +129,12 @@ static bool panel_model(panel *ui, pipeline *pipe, const pipeline_timings *med,
     if (r.model.kind == FOG_MODEL_HEIGHT)
       panel_text(ui, "K %.4g at y0 %.1f, H %.1f", r.model.extinction, r.model.y0,
                  r.model.scale_height);
+    else if (r.model.kind == FOG_MODEL_RBF)
+      panel_text(ui, "%d Gaussians, refitted every %d steps", r.model.rbf_count,
+                 LIVE_RUNG_REFIT);
+    else if (r.model.kind == FOG_MODEL_QUADRIC)
+      panel_text(ui, "%d ellipsoids, refitted every %d steps", r.model.quadric_count,
+                 LIVE_RUNG_REFIT);
     else
       panel_text(ui, "K %.4g per unit", r.model.extinction);
     if (r.rays > 0)
@@ -334,8 +340,8 @@ typedef struct demo_options {
 
 /* 0 to go on, CLI_HELP, or the exit status of a bad command line. */
 static int parse_demo_options(int argc, char **argv, demo_options *o) {
-  static const char *const models[LIVE_RUNG_COUNT + 1] = {"fogmap", "homogeneous", "height",
-                                                          NULL};
+  static const char *const models[LIVE_RUNG_COUNT + 1] = {
+      "fogmap", "homogeneous", "height", "gaussians", "ellipsoids", NULL};
   int size[2] = {o->width, o->height};
   const cli_option options[] = {
       {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
@@ -349,7 +355,8 @@ static int parse_demo_options(int argc, char **argv, demo_options *o) {
       {.kind = CLI_CHOICE, .name = "--model", .value = "NAME", .target = &o->live_rung,
        .choices = models,
        .help = "start with the panel's model: fogmap (default),\n"
-               "homogeneous or height (fitted to the fog live)"},
+               "homogeneous, height, gaussians (16) or ellipsoids (4),\n"
+               "fitted to the fog live"},
       {.kind = CLI_TEXT, .name = "--screenshot", .value = "FILE", .target = &o->screenshot,
        .help = "after --frames frames, save the window as a PNG and quit"},
       {.kind = CLI_INT, .name = "--frames", .value = "N", .target = &o->frames, .min = 1,

@@ -2,9 +2,9 @@
  * a cheaper rung of the model ladder, fitted to it as it moves, with the rung's measured
  * error against it. What the panel's "model" menu runs in the pipeline (app/pipeline.c):
  *
- *   live_rung_fit(&fogmap_model, LIVE_RUNG_HEIGHT, &rung);       every few frames
- *   ...draw rung.model instead of the fogmap...
- *   live_rung_measure(&fogmap_model, &rung.model, &cam, w, h, depth, &rung);
+ *   live_rung_fit(&fogmap_model, LIVE_RUNG_HEIGHT, &rung);       every step (or every few)
+ *   ...draw live_rung_model(&rung) instead of the fogmap...
+ *   live_rung_measure(&fogmap_model, &cam, w, h, depth, &rung);  every few frames
  *
  * The fit is fit's (app/fit_density.h) on the model's extinction sampled over its box; the
  * error is |tau_rung - tau_fogmap| on a grid of the view's pixels, both exact CPU twins in
@@ -18,8 +18,19 @@ typedef enum live_rung_kind {
   LIVE_RUNG_FOGMAP = 0, /* the simulated fogmap itself */
   LIVE_RUNG_HOMOGENEOUS,
   LIVE_RUNG_HEIGHT,
+  LIVE_RUNG_GAUSSIANS,  /* LIVE_RUNG_GAUSSIAN_COUNT Gaussians (model rbf), fit's k-means */
+  LIVE_RUNG_ELLIPSOIDS, /* LIVE_RUNG_ELLIPSOID_COUNT uniform ellipsoids (model quadric) */
   LIVE_RUNG_COUNT,
 } live_rung_kind;
+
+#define LIVE_RUNG_GAUSSIAN_COUNT 16
+#define LIVE_RUNG_ELLIPSOID_COUNT 4
+
+/* Whether a rung is bounded fog that needs its own sun-shadow volume (Gaussians and
+ * ellipsoids; refitted every LIVE_RUNG_REFIT steps, not every step, for that volume's
+ * sake). */
+bool live_rung_bounded(live_rung_kind kind);
+#define LIVE_RUNG_REFIT 8
 
 /* The panel's names, indexed by live_rung_kind. */
 extern const char *const live_rung_names[LIVE_RUNG_COUNT];
@@ -30,15 +41,23 @@ extern const char *const live_rung_names[LIVE_RUNG_COUNT];
 
 typedef struct live_rung {
   live_rung_kind kind;
-  fog_model model;    /* the fitted analytic model (kind homogeneous or height) */
+  /* The fitted model's kind and numbers (homogeneous, height fog, rbf or quadric); its
+   * Gaussians and volumes are the arrays below: live_rung_model points the model at them. */
+  fog_model model;
+  fog_rbf rbfs[LIVE_RUNG_GAUSSIAN_COUNT];
+  fog_quadric quadrics[LIVE_RUNG_ELLIPSOID_COUNT];
   bool fitted;        /* false: the fog held nothing to fit (the model is then fog-free) */
   double max_error, mean_error; /* |delta tau| on the last measured view (NAN: none yet) */
   int rays;           /* that view's rays */
 } live_rung;
 
+/* r's model, pointing at r's own Gaussians and volumes (so take it from the copy in use). */
+fog_model live_rung_model(const live_rung *r);
+
 /* Fits the rung to the fogmap model's extinction sampled over its box (24 x 24 cells
  * across, 16 layers): homogeneous, the mean; height fog, fit_height's k, y0 and H (layers
- * that do not decay upwards fall back to the homogeneous mean). */
+ * that do not decay upwards fall back to the homogeneous mean); Gaussians and ellipsoids,
+ * fit_rbfs's and fit_ellipsoids's moments of the k-means clusters (docs/fit.md). */
 void live_rung_fit(const fog_model *fogmap, live_rung_kind kind, live_rung *out);
 
 /* The error of out->model against the fogmap seen by cam (width x height pixels, depth the

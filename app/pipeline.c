@@ -205,6 +205,11 @@ struct pipeline {
   long rung_step;
   int rung_frames;
   float *rung_depth;
+  /* A bounded rung's own sun-shadow volume (LIVE_RUNG_GAUSSIANS, _ELLIPSOIDS), for the sun
+   * rung_shadow_sun; rung_shadow_shown while the fog pass holds it rather than the fogmap's. */
+  fog_sun_shadow rung_shadow;
+  double rung_shadow_sun[3];
+  bool rung_shadow_shown;
 };
 
 #define LIVE_RUNG_INTERVAL 8
@@ -721,6 +726,7 @@ void pipeline_destroy(pipeline *p) {
   for (int s = 0; s < 2; s++) fog_pyramid_destroy(&p->slots[s].pyramid);
   for (int s = 0; s < 2; s++) fog_sun_shadow_destroy(&p->slots[s].sun_shadow);
   fog_sun_shadow_destroy(&p->shadow_volume);
+  fog_sun_shadow_destroy(&p->rung_shadow);
   transform_grid_destroy(&p->shadow_grid);
   free(p->rung_depth);
   plan_destroy(&p->cpu);
@@ -832,6 +838,7 @@ static int show_slot_shadow(pipeline *p, const pipeline_slot *slot, fog_error *e
   memcpy(p->shown_shadow_sun, slot->sun_shadow.sun, sizeof p->shown_shadow_sun);
   if (pipeline_fog_upload_sun_shadow(p->fog, &slot->sun_shadow, &rerr))
     return fog_error_wrap(err, &rerr, "upload: ");
+  p->rung_shadow_shown = false;
   return 0;
 }
 
@@ -858,6 +865,31 @@ static int relight(pipeline *p, const pipeline_params *params, fog_error *err) {
   if (kind == FOG_SUN_SHADOW_VOLUME &&
       pipeline_fog_upload_sun_shadow(p->fog, &p->shadow_volume, &rerr))
     return fog_error_wrap(err, &rerr, "upload: ");
+  if (kind == FOG_SUN_SHADOW_VOLUME) p->rung_shadow_shown = false;
+  p->last.sun_shadow = now_ms() - t0;
+  return 0;
+}
+
+/* A bounded rung's own sun-shadow volume, computed from its CPU twin when it was refitted,
+ * the sun moved, or the fog pass holds the fogmap's (GL thread, both cores). */
+static int show_rung_shadow(pipeline *p, const fog_model *rung, const double sun[3],
+                            bool refitted, fog_error *err) {
+  if (p->rung_shadow_shown && !refitted &&
+      !memcmp(sun, p->rung_shadow_sun, sizeof p->rung_shadow_sun))
+    return 0;
+  double t0 = now_ms();
+  fog_error rerr = {0};
+  const int n = p->config.shadow.resolution;
+  if (!p->rung_shadow.optical_depth &&
+      fog_sun_shadow_create(&p->rung_shadow, &(fog_sun_shadow_desc){.across = n, .along = n},
+                            &rerr))
+    return fog_error_wrap(err, &rerr, "live rung's sun shadow: ");
+  if (fog_sun_shadow_compute(&p->rung_shadow, rung, sun, 2, &rerr))
+    return fog_error_wrap(err, &rerr, "live rung's sun shadow: ");
+  if (pipeline_fog_upload_sun_shadow(p->fog, &p->rung_shadow, &rerr))
+    return fog_error_wrap(err, &rerr, "upload: ");
+  memcpy(p->rung_shadow_sun, sun, sizeof p->rung_shadow_sun);
+  p->rung_shadow_shown = true;
   p->last.sun_shadow = now_ms() - t0;
   return 0;
 }
@@ -1034,19 +1066,34 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
                                   .lod_method = FOG_LOD_SWITCH};
   const bool rung = params.live_rung > LIVE_RUNG_FOGMAP && params.live_rung < LIVE_RUNG_COUNT &&
                     p->shadow_grid.coefficients;
-  if (rung && ((int)p->rung.kind != params.live_rung || p->rung_step != p->shown_step)) {
+  /* bounded rungs every LIVE_RUNG_REFIT steps (their shadow volume is the cost) */
+  const long since = p->shown_step - p->rung_step;
+  const bool refit = rung && ((int)p->rung.kind != params.live_rung ||
+                              (live_rung_bounded(params.live_rung)
+                                   ? since < 0 || since >= LIVE_RUNG_REFIT
+                                   : since != 0));
+  if (refit) {
     live_rung_fit(&fogmap_model, (live_rung_kind)params.live_rung, &p->rung);
     p->rung_step = p->shown_step;
     p->rung_frames = LIVE_RUNG_INTERVAL; /* measure this frame */
   }
+  const fog_model rung_model = live_rung_model(&p->rung);
   fog_sun_shadow_kind self_shadow = p->shown_self_shadow;
   if (rung)
     self_shadow = self_shadow != FOG_SUN_SHADOW_NONE
-                      ? fog_sun_shadow_kind_of(&p->rung.model, sun.direction)
+                      ? fog_sun_shadow_kind_of(&rung_model, sun.direction)
                       : FOG_SUN_SHADOW_NONE;
+  if (rung && self_shadow == FOG_SUN_SHADOW_VOLUME &&
+      show_rung_shadow(p, &rung_model, sun.direction, refit, err))
+    return 1;
+  if (!rung && p->rung_shadow_shown) { /* back on the fogmap: its own volume again */
+    memset(p->shown_shadow_sun, 0, sizeof p->shown_shadow_sun);
+    if (relight(p, &params, err)) return 1;
+    p->rung_shadow_shown = false;
+  }
   pipeline_fog_settings settings = {
       .volume = &volume,
-      .rung = rung ? &p->rung.model : NULL,
+      .rung = rung ? &rung_model : NULL,
       .quadrics = quadrics,
       .quadric_count = quadric_count,
       .mu = params.mu,

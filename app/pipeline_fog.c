@@ -101,11 +101,24 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .model_quadrics = settings->quadrics,
       .model_quadric_count = settings->quadric_count,
   };
+  fog_quadric volumes[FOG_MAX_QUADRICS]; /* a quadric rung's, then those beside */
   if (settings->rung) {
-    params.model = settings->rung->kind;
-    params.model_extinction = settings->rung->extinction;
-    params.model_y0 = settings->rung->y0;
-    params.model_scale_height = settings->rung->scale_height;
+    const fog_model *rung = settings->rung;
+    params.model = rung->kind;
+    params.model_extinction = rung->extinction;
+    params.model_y0 = rung->y0;
+    params.model_scale_height = rung->scale_height;
+    params.model_rbfs = rung->rbfs;
+    params.model_rbf_count = rung->kind == FOG_MODEL_RBF ? rung->rbf_count : 0;
+    if (rung->kind == FOG_MODEL_QUADRIC) {
+      int n = 0;
+      for (int i = 0; i < rung->quadric_count && n < FOG_MAX_QUADRICS; i++)
+        volumes[n++] = rung->quadrics[i];
+      for (int i = 0; i < settings->quadric_count && n < FOG_MAX_QUADRICS; i++)
+        volumes[n++] = settings->quadrics[i];
+      params.model_quadrics = volumes;
+      params.model_quadric_count = n;
+    }
   }
   gl_target_bind(&fog->target);
   return fog_pass_draw(fog->pass, cam, &params, scene->color[0], scene->color[1], fog->width,

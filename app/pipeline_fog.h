@@ -36,8 +36,9 @@ typedef struct pipeline_fog_settings {
   const sun_shadow_map *shafts; /* fog_pass_params.shafts: NULL none */
   const lamp_shadow_maps *lamp_shadows; /* fog_pass_params.lamp_shadows: NULL none */
   fog_walk_settings walk;       /* fog_pass_params.walk */
-  /* An analytic model drawn in the fogmap's place (the demo's live rung; NULL: the fogmap):
-   * its kind, extinction, y0 and scale height. self_shadow is then that model's kind. */
+  /* A model drawn in the fogmap's place (the demo's live rung; NULL: the fogmap): its kind,
+   * extinction, y0 and scale height, Gaussians or quadric volumes (drawn before those
+   * beside). self_shadow is then that model's kind, and a volume the rung's own. */
   const fog_model *rung;
   /* fog_pass_params.model_quadrics: quadric volumes beside the fogmap (densities scaled) */
   const fog_quadric *quadrics;

@@ -7,6 +7,9 @@
  *     0.03, and the height rung, whose layers do not decay, falls back to it;
  *   - the reported error is measured (finite, on 144 rays; a height fog is not the patchy
  *     ground fog: its mean error is above 0.05);
+ *   - the bounded rungs (Gaussians, ellipsoids) are lit as themselves: their in-scatter is
+ *     (L_amb + a L_sun p(theta) mean T_s)(1 - tau) with T_s from their own sun-shadow volume
+ *     (the twin's mean along each pixel's ray, shafts off), not the fogmap's;
  *   - back on the fogmap the frame is the fogmap's again, bit for bit with a pipeline that
  *     never left it. Built by tests/app/pipeline.cmake. */
 #include <math.h>
@@ -14,9 +17,50 @@
 
 #include "app/live_rung.h"
 #include "pipeline_check_util.h"
+#include "render/fog_sun_shadow.h"
 #include "test_util.h"
 
 enum { W = 96, H = 54 };
+
+/* The largest |in-scatter - (L_amb + a L_sun p mean T_s)(1 - tau)| over the surface pixels,
+ * relative to the largest in-scatter, T_s from a volume computed here for the rung's model. */
+static double lit_as_itself(const scene_config *cfg, const camera *cam, const fog_model *rung,
+                            const float *tau, const float *depth, const float *inscatter) {
+  const fog_sun sun = scene_config_fog_sun(cfg);
+  const fog_sun_shadow_kind kind = fog_sun_shadow_kind_of(rung, sun.direction);
+  fog_sun_shadow volume = {0};
+  fog_error err = {0};
+  const int n = cfg->shadow.resolution;
+  if (kind != FOG_SUN_SHADOW_VOLUME ||
+      fog_sun_shadow_create(&volume, &(fog_sun_shadow_desc){.across = n, .along = n}, &err) ||
+      fog_sun_shadow_compute(&volume, rung, sun.direction, 2, &err)) {
+    fprintf(stderr, "no sun volume for the rung (kind %d): %s\n", kind, err.message);
+    return INFINITY;
+  }
+  double near, far, worst = 0.0, peak = 0.0;
+  camera_depth_range(cam, &near, &far);
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      const int k = py * W + px;
+      if (!(depth[k] < far)) continue;
+      double o[3], d[3];
+      camera_ray(cam, px, py, W, H, o, d);
+      const double mean = fog_sun_mean_transmittance(rung, kind, &volume,
+                                                     scene_config_light_rule(cfg), HUGE_VAL, o,
+                                                     d, depth[k]);
+      const double cos_theta = d[0] * sun.direction[0] + d[1] * sun.direction[1] +
+                               d[2] * sun.direction[2];
+      const double p = fog_phase_hg(sun.phase_g, cos_theta);
+      for (int c = 0; c < 3; c++) {
+        const double want =
+            (cfg->fog.colour[c] + sun.albedo * sun.radiance[c] * p * mean) * (1.0 - tau[k]);
+        worst = fmax(worst, fabs(inscatter[3 * k + c] - want));
+        peak = fmax(peak, want);
+      }
+    }
+  fog_sun_shadow_destroy(&volume);
+  return worst / fmax(peak, 1e-12);
+}
 
 int main(void) {
   scene_config cfg;
@@ -31,16 +75,20 @@ int main(void) {
                                                      .synchronous = true}, &perr);
   CHECK(p && plain, "pipeline_create: %s", perr.message);
   static float tau[W * H], depth[W * H], rgba[4 * W * H], plain_rgba[4 * W * H];
+  static float inscatter[3 * W * H];
   for (int kind = LIVE_RUNG_HOMOGENEOUS; p && plain && kind < LIVE_RUNG_COUNT; kind++) {
     pipeline_params params = pipeline_get_params(p);
     params.live_rung = kind;
+    params.shafts = false; /* T_s alone: the twin's mean has no shadow map */
     pipeline_set_params(p, &params);
     CHECK(!pipeline_check_frame(p, &cam,
-                                &(frame_pixels){.transmittance = tau, .depth = depth}) &&
+                                &(frame_pixels){.transmittance = tau, .depth = depth,
+                                                .inscatter = inscatter}) &&
               !pipeline_check_frame(plain, &cam, &(frame_pixels){.rgba = plain_rgba}),
           "frames failed");
     live_rung r;
     CHECK(pipeline_live_rung(p, &r) && r.fitted, "%s: no rung reported", live_rung_names[kind]);
+    const fog_model drawn = live_rung_model(&r);
     double worst = 0.0;
     double near, far;
     camera_depth_range(&cam, &near, &far);
@@ -50,7 +98,7 @@ int main(void) {
         if (!(t < far)) continue; /* the sky: read back at the far plane */
         double o[3], d[3];
         camera_ray(&cam, px, py, W, H, o, d);
-        worst = fmax(worst, fabs(exp(-fog_model_optical_depth(&r.model, o, d, t)) -
+        worst = fmax(worst, fabs(exp(-fog_model_optical_depth(&drawn, o, d, t)) -
                                  tau[py * W + px]));
       }
     printf("%s: %s K %.5g y0 %.3g H %.3g; GL vs its twin max |dtau| %.2e; against the fogmap "
@@ -59,12 +107,22 @@ int main(void) {
            r.model.scale_height, worst, r.max_error, r.mean_error, r.rays);
     CHECK(worst <= 2e-4, "%s: the pixels are not the fitted model's (%.3e)", live_rung_names[kind],
           worst);
+    if (live_rung_bounded(kind)) {
+      const double lit = lit_as_itself(&cfg, &cam, &drawn, tau, depth, inscatter);
+      printf("%s: in-scatter against its own T_s, max error %.2e of the largest\n",
+             live_rung_names[kind], lit);
+      CHECK(lit <= 2e-3, "%s: not lit as itself (%.3e of the largest in-scatter)",
+            live_rung_names[kind], lit);
+    }
     CHECK(r.rays == LIVE_RUNG_COLUMNS * LIVE_RUNG_ROWS && isfinite(r.max_error) &&
               r.mean_error > 0.05 && r.max_error <= 1.0,
           "%s: measured error max %g mean %g on %d rays", live_rung_names[kind], r.max_error,
           r.mean_error, r.rays);
-    CHECK(r.model.kind == (kind == LIVE_RUNG_HEIGHT ? FOG_MODEL_HEIGHT : FOG_MODEL_HOMOGENEOUS),
-          "%s: drew a %s", live_rung_names[kind], fog_model_table[r.model.kind].name);
+    static const fog_model_kind drawn_kind[LIVE_RUNG_COUNT] = {
+        [LIVE_RUNG_HOMOGENEOUS] = FOG_MODEL_HOMOGENEOUS, [LIVE_RUNG_HEIGHT] = FOG_MODEL_HEIGHT,
+        [LIVE_RUNG_GAUSSIANS] = FOG_MODEL_RBF, [LIVE_RUNG_ELLIPSOIDS] = FOG_MODEL_QUADRIC};
+    CHECK(r.model.kind == drawn_kind[kind], "%s: drew a %s", live_rung_names[kind],
+          fog_model_table[r.model.kind].name);
   }
   /* the fit on fog of known density: a general quadric that fills its box (Q = -1) at
    * 0.03 is homogeneous fog of 0.03 there; its layers do not decay, so the height rung
@@ -89,6 +147,7 @@ int main(void) {
     pipeline_params params = pipeline_get_params(p), plain_params = pipeline_get_params(plain);
     params.live_rung = LIVE_RUNG_FOGMAP;
     params.paused = plain_params.paused = true;
+    plain_params.shafts = params.shafts;
     pipeline_set_params(p, &params);
     pipeline_set_params(plain, &plain_params);
     CHECK(!pipeline_check_frame(p, &cam, &(frame_pixels){.rgba = rgba}) &&
