@@ -354,7 +354,7 @@ static int handle(void *user, const char *section, const char *key, const char *
 static int edit_distance(const char *a, const char *b) {
   enum { MAX_NAME = 64 };
   const size_t n = strlen(a), m = strlen(b);
-  if (n >= MAX_NAME || m >= MAX_NAME) return INT_MAX / 2;
+  if (n >= MAX_NAME || m >= MAX_NAME) return MAX_NAME; /* no key is that long: far */
   int row[MAX_NAME];
   for (size_t j = 0; j <= m; j++) row[j] = (int)j;
   for (size_t i = 1; i <= n; i++) {
@@ -388,7 +388,7 @@ static const key_spec *lookup_key(parse_state *s, const char *section, const cha
   /* the nearest key of the section (a typo: at most a third of its letters off), and the
    * section's keys when they fit the message */
   const char *nearest = NULL;
-  int nearest_distance = INT_MAX, count = 0;
+  int nearest_distance = INT_MAX / 4, count = 0;
   char known[400] = "";
   bool cut = false;
   for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
@@ -831,7 +831,10 @@ static int check_sources(parse_state *ps) {
     const char *input = cfg->fog.vdb;
     if (vdb_sequence_find(&input, 1, -1, -1, &seq, &serr)) {
       s.line = cfg->fog.vdb_line;
+      const bool first = !s.error_line;
       fail(&s, "fog", "vdb", "%s", serr.message);
+      /* not there (file access), or a pattern it cannot take */
+      if (first && serr.code) s.err->code = serr.code;
       return 1;
     }
     vdb_sequence_destroy(&seq);

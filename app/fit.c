@@ -182,9 +182,7 @@ static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *view
   status = 0;
 done:
   if (status) {
-    char reason[sizeof err->message];
-    snprintf(reason, sizeof reason, "%s", err->message);
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "rung %s: %.500s", rung->name, reason);
+    fog_error_wrap(err, err, "rung %s: ", rung->name);
   }
   held_model_destroy(&m);
   free(shot);

@@ -195,7 +195,9 @@ static int inscatter(const fit_views *v, const fog_model *model, const fit_light
   if (kind == FOG_SUN_SHADOW_HEIGHT) volume.sun[0] = sun->direction[0],
       volume.sun[1] = sun->direction[1], volume.sun[2] = sun->direction[2];
   const double ambient = (light->ambient[0] + light->ambient[1] + light->ambient[2]) / 3.0;
-  const double lsun = (sun->radiance[0] + sun->radiance[1] + sun->radiance[2]) / 3.0;
+  /* the renderer's L_sun: none from below the horizon */
+  const double lsun = (sun->radiance[0] + sun->radiance[1] + sun->radiance[2]) / 3.0 *
+                      fog_sun_above_horizon(sun->direction);
   fog_model m = *model;
   const bool radial = fog_model_about_eye(&m);
   for (int k = 0; k < v->count; k++) {

@@ -193,7 +193,9 @@ int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *p
     struct statvfs vfs;
     int full = statvfs(rec->folder, &vfs) == 0 &&
                (double)vfs.f_bavail * (double)vfs.f_frsize < frame_bytes(w, h);
-    return fog_fail(err, FOG_ERR_FILE_ACCESS, "cannot write frame %d: %s%s", frame, serr.message,
+    /* the writer's code (a full disk, or pixels no EXR may hold), the hint after its text */
+    return fog_fail(err, full || !serr.code ? FOG_ERR_FILE_ACCESS : serr.code,
+                    "cannot write frame %d: %s%s", frame, serr.message,
                     full ? " (the disk is full)" : "");
   }
   return 0;

@@ -352,10 +352,8 @@ static int perlin_fog(render_fog *fog, const scene_config *cfg, fog_error *err) 
   if (f->model != FOG_MODEL_PERLIN) /* the volumes' turbulence reads no box: any valid one */
     for (int a = 0; a < 3; a++) desc.lo[a] = -1.0, desc.hi[a] = 1.0;
   if (fog_perlin_create(&fog->perlin, &desc, err)) {
-    char reason[sizeof err->message];
-    snprintf(reason, sizeof reason, "%s", err->message);
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.200s:%d: [fog] model = %s: %.250s", cfg->path,
-             f->model_line, fog_model_table[f->model].name, reason);
+    fog_error_wrap(err, err, "%.200s:%d: [fog] model = %s: ", cfg->path, f->model_line,
+                   fog_model_table[f->model].name);
     return 1;
   }
   fog->params.model_perlin = &fog->perlin;
@@ -442,10 +440,7 @@ static int render_fog_create_model(render_fog *fog, const scene_config *cfg, fog
   int status = render_fog_create_map(fog, cfg, &map, err);
   fogmap_destroy(&map);
   if (status) { /* name the file: the GL's limits, the transform's sizes are about it */
-    char reason[sizeof err->message];
-    snprintf(reason, sizeof reason, "%s", err->message);
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.120s:%d: [fog] %s %.120s: %.250s", cfg->path, line,
-             key, path, reason);
+    fog_error_wrap(err, err, "%.120s:%d: [fog] %s %.120s: ", cfg->path, line, key, path);
   }
   return status;
 }

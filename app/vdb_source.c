@@ -72,7 +72,7 @@ int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, fog_error *
                               &inner) ||
       fogmap_create(&source->cache[0], source->place.width, source->place.height, &inner) ||
       fogmap_create(&source->cache[1], source->place.width, source->place.height, &inner)) {
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.300s: %.200s", desc->path, inner.message);
+    fog_error_wrap(err, &inner, "%.300s: ", desc->path);
     goto done;
   }
   status = 0;

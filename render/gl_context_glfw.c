@@ -65,7 +65,7 @@ gl_context *gl_context_glfw_create(const gl_context_desc *desc, fog_error *err) 
   glfw_context *ctx = calloc(1, sizeof *ctx);
   if (!ctx) {
     glfwTerminate();
-    fog_fail(err, FOG_ERR_GRAPHICS, "out of memory for the window context");
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the window context");
     return NULL;
   }
   ctx->base.backend = &glfw_backend;

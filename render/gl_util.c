@@ -200,7 +200,7 @@ int gl_util_check(const char *what, fog_error *err) {
 int gl_target_create(gl_target *target, const gl_target_desc *desc, fog_error *err) {
   *target = (gl_target){.width = desc->width, .height = desc->height};
   if (desc->width <= 0 || desc->height <= 0) {
-    fog_fail(err, FOG_ERR_GRAPHICS, "render target size %dx%d: expected > 0", desc->width,
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "render target size %dx%d: expected > 0", desc->width,
              desc->height);
     return 1;
   }

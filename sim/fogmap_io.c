@@ -137,11 +137,11 @@ int fogmap_save_png16(const char *path, const fogmap *map, float max_density, fo
   if (max_density == 0.0f) max_density = fogmap_max_density(map);
   if (max_density == 0.0f) max_density = 1.0f;
   if (!(max_density > 0.0f) || isinf(max_density))
-    return fog_fail(err, FOG_ERR_BAD_FILE,
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                     "%s: PNG full-scale density %g must be positive and finite", path,
                     (double)max_density);
   if (map->width <= 0 || map->height <= 0 || !map->density)
-    return fog_fail(err, FOG_ERR_BAD_FILE, "%s: fogmap is empty (%dx%d)", path, map->width,
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: fogmap is empty (%dx%d)", path, map->width,
                     map->height);
   size_t count = (size_t)map->width * (size_t)map->height;
   uint16_t *samples = malloc(count * sizeof *samples);

@@ -77,7 +77,7 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
     status = vdb_columns_resample(&out->columns, &out->fogmap_place, out->profile.thickness,
                                   &out->map, &inner);
   if (status) {
-    fog_fail(err, FOG_ERR_BAD_FILE, "%.200s: %.300s", path, inner.message);
+    fog_error_wrap(err, &inner, "%.200s: ", path);
     vdb_dense_grid_destroy(&grid);
     vdb_frame_destroy(out);
     return 1;

@@ -47,6 +47,9 @@ int main(void) {
   expect_error("[fog]\nwhatever = 2\n", "2: [fog] whatever: ",
                "unknown key; [fog] has ");
   expect_error("[fog]\nwhatever = 2\n", "2: [fog] whatever: ", "keys (docs/config.md lists them)");
+  expect_error("[fog]\nxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx = 2\n",
+               "2: [fog] xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx: ",
+               "unknown key; [fog] has "); /* longer than any key: no guess */
   expect_error("[camera]\nfovv = 50\n", "2: [camera] fovv: ",
                "unknown key; did you mean 'fov'? [camera] has position, yaw, pitch, fov, look_at, "
                "near, far");

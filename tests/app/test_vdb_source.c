@@ -184,11 +184,13 @@ static void test_config(void) {
         "missing pattern accepted");
   char want[300];
   snprintf(want, sizeof want, "%s/nothere/fluid_####.vdb", dir);
-  CHECK(strstr(err.message, ":3: [fog] vdb: ") && strstr(err.message, want), "message: %s",
-        err.message);
+  CHECK(strstr(err.message, ":3: [fog] vdb: ") && strstr(err.message, want) &&
+            err.code == FOG_ERR_FILE_ACCESS,
+        "message: %s (code %s)", err.message, fog_result_text(err.code));
   CHECK(load_text("[fog]\nvdb = gone.vdb\n", &cfg, &err) != 0, "missing file accepted");
-  CHECK(strstr(err.message, ":2: [fog] vdb: ") && strstr(err.message, "gone.vdb"), "message: %s",
-        err.message);
+  CHECK(strstr(err.message, ":2: [fog] vdb: ") && strstr(err.message, "gone.vdb") &&
+            err.code == FOG_ERR_FILE_ACCESS,
+        "message: %s (code %s)", err.message, fog_result_text(err.code));
   CHECK(load_text("[fog]\nvdb_up = x\n", &cfg, &err) != 0 && strstr(err.message, "z|y"),
         "vdb_up: %s", err.message);
   CHECK(load_text("[fog]\nvdb_loop = 2\n", &cfg, &err) != 0, "vdb_loop = 2 accepted");
