@@ -224,6 +224,11 @@ typedef struct parse_state {
    * (INI_ALLOW_MULTILINE) hands it over as more of that key's value; a list (V_LIST)
    * appends it. after_key: a key was read since the section began (libinih's prev_name). */
   bool continuation, after_key;
+  /* A quadric line is stored once it is whole: it may go on over indented lines (a general
+   * quadric's 17 numbers in full precision pass 199 bytes), so it waits for the next key or
+   * the end of the file (finish_quadric). */
+  char quadric_text[1024];
+  int quadric_line; /* its first line; 0: none waiting */
   fog_error *err;
   int key_line[sizeof keys / sizeof keys[0]]; /* where each key was last set (0: default) */
 } parse_state;
@@ -582,6 +587,35 @@ static int store_quadric(parse_state *s, const char *section, const char *key, c
   return 1;
 }
 
+/* The quadric line waiting (parse_state.quadric_text), stored with its first line's
+ * number in any message. */
+static int finish_quadric(parse_state *s) {
+  if (!s->quadric_line) return 1;
+  const int line = s->line;
+  s->line = s->quadric_line;
+  s->quadric_line = 0;
+  int ok = store_quadric(s, "fog", "quadric", s->quadric_text);
+  s->line = line;
+  return ok;
+}
+
+/* quadric = ...: the line waits for its indented continuations (finish_quadric). */
+static int hold_quadric(parse_state *s, const char *value) {
+  if (!s->continuation) {
+    s->quadric_line = s->line;
+    s->quadric_text[0] = '\0';
+  }
+  const size_t used = strlen(s->quadric_text);
+  int n = snprintf(s->quadric_text + used, sizeof s->quadric_text - used, "%s%s",
+                   used ? " " : "", value);
+  if (n < 0 || (size_t)n >= sizeof s->quadric_text - used) {
+    s->line = s->quadric_line;
+    return fail(s, "fog", "quadric", "the volume's lines hold more than %zu bytes",
+                sizeof s->quadric_text - 1);
+  }
+  return 1;
+}
+
 /* V_LAMP: lamp = X Y Z R G B [RADIUS]; spot = X Y Z R G B DX DY DZ INNER OUTER [RADIUS]
  * (half-angles in degrees); appended. */
 #define LAMP_RADIUS 0.5
@@ -708,9 +742,13 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
   const key_spec *k = lookup_key(s, section, key);
   if (!k) return 0;
   s->key_line[k - keys] = s->line;
-  if (s->continuation && k->kind != V_LIST) /* libinih hands an indented line to the key above */
+  /* a quadric line waiting is whole unless this line goes on with it */
+  if (!(s->continuation && k->kind == V_QUADRIC) && !finish_quadric(s)) return 0;
+  if (s->continuation && k->kind != V_LIST && k->kind != V_QUADRIC)
+    /* libinih hands an indented line to the key above */
     return fail(s, section, key, "an indented line goes on with the key above, and only a list "
-                "(profile_coefficients, perlin_wind) goes on over lines: unindent '%s'", value);
+                "(profile_coefficients, perlin_wind) or a quadric volume goes on over lines: "
+                "unindent '%s'", value);
   char *field = (char *)cfg + k->offset;
   double v[16];
   if (k->offset == F(fog.perlin_size)) cfg->fog.perlin_size_line = s->line;
@@ -766,7 +804,7 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
     case V_RBF:
       return store_rbf(s, section, key, value);
     case V_QUADRIC:
-      return store_quadric(s, section, key, value);
+      return hold_quadric(s, value);
     case V_RBF_EMITTER:
       return store_rbf_emitter(s, section, key, value);
     case V_LAMP:
@@ -965,6 +1003,7 @@ int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
   int status = ini_parse_stream(read_line, &s, handle, &s);
   fclose(s.file);
   free(s.whole_line);
+  if (!s.error_line && status == 0) finish_quadric(&s);
   if (s.error_line) return 1;
   if (status > 0) {
     fog_fail(err, FOG_ERR_BAD_CONFIG, "%s:%d: expected '[section]', 'key = value' or a comment",
@@ -1154,11 +1193,16 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
         fprintf(f, " %llu\n", (unsigned long long)e->seed);
       }
       break;
-    case V_QUADRIC: /* as written, each number in its shortest exact form (the line fits) */
+    case V_QUADRIC: /* as written, each number in its shortest exact form (at most 25
+                       bytes); a general quadric's 17 to 19 go on over indented lines, 6 a
+                       line, under the reader's 199 bytes */
       for (int i = 0; i < cfg->fog.quadric_count; i++) {
         const struct scene_quadric_line *line = &cfg->fog.quadric_lines[i];
         fprintf(f, "%s = %s", k->key, shapes[line->shape].name);
-        for (int c = 0; c < line->count; c++) write_number(f, line->numbers[c]);
+        for (int c = 0; c < line->count; c++) {
+          if (line->shape == SHAPE_GENERAL && c > 0 && c % 6 == 0) fputs("\n   ", f);
+          write_number(f, line->numbers[c]);
+        }
         fputc('\n', f);
       }
       break;

@@ -246,6 +246,65 @@ static bool cluster_cylinder(const fog_points *pts, const int *label, int cluste
   return true;
 }
 
+/* One cluster's weighted covariance (its centroid m), each cell's own size added on the
+ * diagonal as a uniform box's. */
+static bool cluster_covariance(const fog_points *pts, const int *label, int cluster,
+                               const double cell[3], double *w, double m[3], double cov[3][3]) {
+  double var[3];
+  if (!cluster_moments(pts, label, cluster, w, m, var)) return false;
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) cov[a][b] = 0.0;
+  for (size_t i = 0; i < pts->count; i++)
+    if (label[i] == cluster)
+      for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+          cov[a][b] += pts->w[i] * (pts->p[i][a] - m[a]) * (pts->p[i][b] - m[b]);
+  for (int a = 0; a < 3; a++) {
+    for (int b = 0; b < 3; b++) cov[a][b] /= *w;
+    cov[a][a] += cell[a] * cell[a] / 12.0;
+  }
+  return true;
+}
+
+/* One cluster's moments as a uniform ellipsoid in any orientation (a general quadric): the
+ * same mass, centroid and full covariance. A uniform ellipsoid {(x-m)^T S^-1 (x-m) <= 1}
+ * has covariance S/5, so S = 5 cov, its volume 4/3 pi sqrt(det S), its box m -+ sqrt(S_aa)
+ * per axis, and Q = (x-m)^T S^-1 (x-m) - 1 (-1 at the centre, 0 on the surface, as the
+ * shape constructors scale it) expands into the ten coefficients A..J. */
+static bool cluster_oriented(const fog_points *pts, const int *label, int cluster,
+                             const double cell[3], void *item) {
+  double w, m[3], cov[3][3], S[3][3];
+  if (!cluster_covariance(pts, label, cluster, cell, &w, m, cov)) return false;
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) S[a][b] = 5.0 * cov[a][b];
+  /* S^-1 by the adjugate: S is symmetric positive definite (the cells' boxes make it so) */
+  double P[3][3];
+  P[0][0] = S[1][1] * S[2][2] - S[1][2] * S[2][1];
+  P[0][1] = S[0][2] * S[2][1] - S[0][1] * S[2][2];
+  P[0][2] = S[0][1] * S[1][2] - S[0][2] * S[1][1];
+  P[1][1] = S[0][0] * S[2][2] - S[0][2] * S[2][0];
+  P[1][2] = S[0][2] * S[1][0] - S[0][0] * S[1][2];
+  P[2][2] = S[0][0] * S[1][1] - S[0][1] * S[1][0];
+  const double det = S[0][0] * P[0][0] + S[1][0] * P[0][1] + S[2][0] * P[0][2];
+  if (!(det > 0.0)) return false;
+  P[1][0] = P[0][1], P[2][0] = P[0][2], P[2][1] = P[1][2];
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) P[a][b] /= det;
+  double Pm[3];
+  for (int a = 0; a < 3; a++) Pm[a] = P[a][0] * m[0] + P[a][1] * m[1] + P[a][2] * m[2];
+  fog_quadric v = {
+      .q = {P[0][0], P[1][1], P[2][2], 2.0 * P[0][1], 2.0 * P[1][2], 2.0 * P[0][2],
+            -2.0 * Pm[0], -2.0 * Pm[1], -2.0 * Pm[2],
+            m[0] * Pm[0] + m[1] * Pm[1] + m[2] * Pm[2] - 1.0},
+      .density = w * cell[0] * cell[1] * cell[2] / (4.0 / 3.0 * PI * sqrt(det))};
+  for (int a = 0; a < 3; a++) {
+    const double half = sqrt(S[a][a]);
+    v.lo[a] = m[a] - half, v.hi[a] = m[a] + half;
+  }
+  *(fog_quadric *)item = v;
+  return true;
+}
+
 /* A bank of up to `count` items, one per cluster, made by `make` into out (items of `size`
  * bytes); how many (0: no fog, -1 out of memory). */
 static int fit_bank(const fit_samples *s, int count, void *out, size_t size,
@@ -271,6 +330,10 @@ int fit_ellipsoids(const fit_samples *s, int count, fog_quadric *out) {
 
 int fit_cylinders(const fit_samples *s, int count, fog_quadric *out) {
   return fit_bank(s, count, out, sizeof *out, cluster_cylinder);
+}
+
+int fit_oriented_ellipsoids(const fit_samples *s, int count, fog_quadric *out) {
+  return fit_bank(s, count, out, sizeof *out, cluster_oriented);
 }
 
 bool fit_ellipsoid(const fit_samples *s, double centre[3], double radii[3], double *density) {

@@ -53,6 +53,10 @@ int fit_ellipsoids(const fit_samples *s, int count, fog_quadric *out);
 /* The same with upright uniform cylinders (a cluster's horizontal and vertical variances
  * as a disc's and a height's). */
 int fit_cylinders(const fit_samples *s, int count, fog_quadric *out);
+/* The same with uniform ellipsoids in any orientation, general quadrics (A..J): each
+ * cluster's full covariance, not only its per-axis variances (a tilted bank, a leaning
+ * plume). */
+int fit_oriented_ellipsoids(const fit_samples *s, int count, fog_quadric *out);
 /* The ellipsoid: centre, semi-axes and density (edge 0: a hard edge); false without fog. */
 bool fit_ellipsoid(const fit_samples *s, double centre[3], double radii[3], double *density);
 

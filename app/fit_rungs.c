@@ -114,16 +114,27 @@ static int add_analytic_rungs(fit_result *r, const scene_config *input, const fi
 
 /* Banks of quadric volumes, one per cluster of the density (app/fit_density.h), of one
  * shape, and how a config line writes each (app/config.c's shapes). */
-typedef enum bank_shape { BANK_ELLIPSOIDS, BANK_CYLINDERS } bank_shape;
+typedef enum bank_shape { BANK_ELLIPSOIDS, BANK_CYLINDERS, BANK_ORIENTED } bank_shape;
 static const struct {
   const char *one, *many;
   int (*fit)(const fit_samples *, int, fog_quadric *);
 } bank_shapes[] = {[BANK_ELLIPSOIDS] = {"ellipsoid", "ellipsoids", fit_ellipsoids},
-                   [BANK_CYLINDERS] = {"cylinder", "cylinders", fit_cylinders}};
+                   [BANK_CYLINDERS] = {"cylinder", "cylinders", fit_cylinders},
+                   [BANK_ORIENTED] = {"oriented ellipsoid", "oriented ellipsoids",
+                                      fit_oriented_ellipsoids}};
 
-/* The config line of a fitted volume, from its box: ellipsoid X Y Z RX RY RZ DENSITY, or
- * cylinder X Y Z R HEIGHT DENSITY (standing on its base). */
+/* The config line of a fitted volume, from its box: ellipsoid X Y Z RX RY RZ DENSITY,
+ * cylinder X Y Z R HEIGHT DENSITY (standing on its base), or general A..J XMIN YMIN ZMIN
+ * XMAX YMAX ZMAX DENSITY. */
 static struct scene_quadric_line bank_line(bank_shape shape, const fog_quadric *v) {
+  if (shape == BANK_ORIENTED) {
+    struct scene_quadric_line line = {.shape = 4, .count = 17};
+    memcpy(line.numbers, v->q, sizeof v->q);
+    memcpy(line.numbers + 10, v->lo, sizeof v->lo);
+    memcpy(line.numbers + 13, v->hi, sizeof v->hi);
+    line.numbers[16] = v->density;
+    return line;
+  }
   double c[3], half[3];
   for (int a = 0; a < 3; a++) c[a] = 0.5 * (v->lo[a] + v->hi[a]), half[a] = 0.5 * (v->hi[a] - v->lo[a]);
   if (shape == BANK_CYLINDERS)
@@ -169,7 +180,8 @@ static int add_quadric_banks(fit_result *r, const scene_config *input, const fit
   return 0;
 }
 
-/* One ellipsoid of the density's moments, then banks of ellipsoids and of cylinders. */
+/* One ellipsoid of the density's moments, then banks of ellipsoids, of cylinders and of
+ * oriented ellipsoids. */
 static int add_quadric_rungs(fit_result *r, const scene_config *input, const fit_samples *s,
                              fog_error *err) {
   fit_rung *rung;
@@ -190,7 +202,8 @@ static int add_quadric_rungs(fit_result *r, const scene_config *input, const fit
   }
 
   return add_quadric_banks(r, input, s, BANK_ELLIPSOIDS, 2, err) ||
-         add_quadric_banks(r, input, s, BANK_CYLINDERS, 1, err);
+         add_quadric_banks(r, input, s, BANK_CYLINDERS, 1, err) ||
+         add_quadric_banks(r, input, s, BANK_ORIENTED, 1, err);
 }
 
 /* Banks of Gaussians of growing size, their amplitudes refined on the views. */
@@ -251,7 +264,7 @@ static int add_fogmap_rungs(fit_result *r, const scene_config *input, const fog_
     snprintf(r->scratch, sizeof r->scratch, "%s", "/tmp/fogpipe-fit-XXXXXX");
     fog_error serr = {0};
     if (!mkdtemp(r->scratch)) {
-      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "the fogmap rungs: no folder in /tmp");
+      fog_fail(err, FOG_ERR_FILE_ACCESS, "the fogmap rungs: no folder in /tmp");
       r->scratch[0] = '\0';
       fit_fogmap_destroy(&ff);
       return 1;

@@ -91,6 +91,54 @@ int main(void) {
               !memcmp(again.fog.quadrics, cfg.fog.quadrics, sizeof cfg.fog.quadrics[0] * 5),
           "written and loaded back, the volumes differ bit for bit");
   }
+  /* A general quadric in full precision passes a config line's 199 bytes: it goes on over
+   * indented lines (a comment between), is the same volume as the one-line form, written
+   * back over two lines, and a mistake in its second line names its first. */
+  {
+    static const double q[17] = {8.264462809917356e-05, 3.086419753086420e-03,
+                                 6.249999999999999e-04, -1.234567890123457e-04,
+                                 2.345678901234568e-05, -3.456789012345679e-06,
+                                 -4.567890123456789e-02, 5.678901234567890e-01,
+                                 -6.789012345678901e-02, -9.876543210987654e-01,
+                                 -1.110000000000001e+02, -3.330000000000001e+01,
+                                 -5.550000000000001e+01, 1.110000000000001e+02,
+                                 3.330000000000001e+01, 5.550000000000001e+01,
+                                 1.963600000000001e-02};
+    char line[1024] = "quadric = general";
+    for (int k = 0; k < 17; k++) snprintf(line + strlen(line), sizeof line - strlen(line), " %.16e", q[k]);
+    CHECK(strlen(line) > 199, "the one-line form is only %zu bytes", strlen(line));
+    f = fopen(path, "w");
+    fputs("[fog]\nmodel = quadric\nquadric = general", f);
+    for (int k = 0; k < 17; k++) {
+      if (k == 6) fputs("\n  ; the last coefficients, the box and the density\n ", f);
+      if (k == 12) fputs("\n ", f);
+      fprintf(f, " %.16e", q[k]);
+    }
+    fputs("\nquadric = sphere 0 0 0 5 0.1\n", f);
+    fclose(f);
+    scene_config split;
+    if (scene_config_load(path, &split, &err)) {
+      CHECK(0, "a general quadric over two lines: %s", err.message);
+    } else {
+      const fog_quadric *v = &split.fog.quadrics[0];
+      bool same = split.fog.quadric_count == 2 && v->density == q[16];
+      for (int k = 0; k < 10; k++) same = same && v->q[k] == q[k];
+      for (int a = 0; a < 3; a++) same = same && v->lo[a] == q[10 + a] && v->hi[a] == q[13 + a];
+      CHECK(same, "the two-line general quadric is not the one written (%d volumes)",
+            split.fog.quadric_count);
+      CHECK(scene_config_write(&split, copy, &err) == 0 &&
+                scene_config_load(copy, &again, &err) == 0 &&
+                !memcmp(again.fog.quadrics, split.fog.quadrics, 2 * sizeof split.fog.quadrics[0]),
+            "written back over two lines and read: %s", err.message);
+    }
+    f = fopen(path, "w");
+    fputs("[fog]\nmodel = quadric\nquadric = general 1 1 1 0 0 0 0 0 0 -1\n  -1 -1 -1 1 1\n"
+          "density_scale = 1\n", f);
+    fclose(f);
+    CHECK(scene_config_load(path, &split, &err) != 0 && strstr(err.message, "q.ini:3: [fog] quadric: ") &&
+              strstr(err.message, "16 numbers") == NULL && strstr(err.message, "17 to 19 numbers"),
+          "a short two-line general quadric: %s", err.message);
+  }
   unlink(copy), unlink(path), rmdir(dir);
   return test_finish("test_config_quadric");
 }
