@@ -14,6 +14,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include "app/free_camera.h"
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/panel.h"
@@ -35,55 +36,6 @@
 #define HEADLESS_WIDTH 640
 #define HEADLESS_HEIGHT 360
 
-
-/* ---- free camera ---- */
-
-typedef struct free_camera {
-  camera cam;
-  double speed; /* world units per second */
-  double last_x, last_y;
-  bool looking;
-} free_camera;
-
-static void free_camera_update(free_camera *fc, GLFWwindow *window, double dt, bool keyboard,
-                               bool mouse) {
-  camera *cam = &fc->cam;
-  double x = 0, y = 0;
-  glfwGetCursorPos(window, &x, &y);
-  bool middle = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
-  if (middle && mouse) {
-    if (fc->looking) {
-      cam->yaw += 0.004 * (x - fc->last_x);
-      cam->pitch -= 0.004 * (y - fc->last_y);
-    }
-    fc->looking = true;
-  } else {
-    fc->looking = false;
-  }
-  fc->last_x = x;
-  fc->last_y = y;
-  if (!keyboard) return;
-  const double turn = 1.2 * dt;
-  if (glfwGetKey(window, GLFW_KEY_LEFT) == GLFW_PRESS) cam->yaw -= turn;
-  if (glfwGetKey(window, GLFW_KEY_RIGHT) == GLFW_PRESS) cam->yaw += turn;
-  if (glfwGetKey(window, GLFW_KEY_UP) == GLFW_PRESS) cam->pitch += turn;
-  if (glfwGetKey(window, GLFW_KEY_DOWN) == GLFW_PRESS) cam->pitch -= turn;
-  const double limit = 1.5;
-  cam->pitch = cam->pitch > limit ? limit : cam->pitch < -limit ? -limit : cam->pitch;
-  /* camera.h: yaw = pitch = 0 looks along -Z, +X to the right, positive yaw toward +X. */
-  double forward[3] = {sin(cam->yaw) * cos(cam->pitch), sin(cam->pitch),
-                       -cos(cam->yaw) * cos(cam->pitch)};
-  double right[3] = {cos(cam->yaw), 0.0, sin(cam->yaw)};
-  double step = fc->speed * dt;
-  if (glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS) step *= 4.0;
-  double move[3] = {0, 0, 0};
-  int f = (glfwGetKey(window, GLFW_KEY_W) == GLFW_PRESS) - (glfwGetKey(window, GLFW_KEY_S) == GLFW_PRESS);
-  int r = (glfwGetKey(window, GLFW_KEY_D) == GLFW_PRESS) - (glfwGetKey(window, GLFW_KEY_A) == GLFW_PRESS);
-  int u = (glfwGetKey(window, GLFW_KEY_E) == GLFW_PRESS) - (glfwGetKey(window, GLFW_KEY_Q) == GLFW_PRESS);
-  for (int i = 0; i < 3; i++) move[i] = f * forward[i] + r * right[i];
-  move[1] += u;
-  for (int i = 0; i < 3; i++) cam->position[i] += step * move[i];
-}
 
 /* ---- the panel ---- */
 
@@ -514,7 +466,9 @@ static int demo_loop(gl_context *gl, pipeline *pipe, panel *ui, demo_ui *d,
     panel_contents(ui, pipe, d);
     bool keyboard = !panel_wants_keyboard(ui), mouse = !panel_wants_mouse(ui);
     if (keyboard) demo_keys(window, pipe, &in);
-    free_camera_update(&fc, window, dt, keyboard, mouse);
+    const free_camera_input input =
+        free_camera_read(window, FREE_CAMERA_LOOK_MIDDLE, keyboard, mouse);
+    free_camera_step(&fc, &input, dt);
     if (frame > 0 && d->placing_lamps) demo_lamps(window, pipe, &fc, d, mouse);
     else if (frame > 0) demo_paint(window, pipe, &fc, d, mouse, dt, &in);
 

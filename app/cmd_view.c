@@ -1,5 +1,6 @@
 /* fogpipe view CONFIG: the scene config in a window (GLFW) with a free camera:
- * W/A/S/D move, Q/E down/up, Shift faster, right mouse button + drag to look, Esc quits.
+ * The demo's free camera (app/free_camera.h): W/A/S/D move, Q/E down/up, Shift faster, right
+ * or middle drag or the arrow keys look around; Esc quits.
  * The fog is the config's fogmap as it is (no simulation: that is `fogpipe demo`), or its
  * other fog model; a volume's VDB sequence plays with P (or from the start with --play).
  * B turns on the Gaussian brush on an RBF scene (app/rbf_brush.h: paint, erase, copy).
@@ -14,6 +15,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include "app/free_camera.h"
 #include "app/cli.h"
 #include "app/cli_options.h"
 #include "app/cmd_view.h"
@@ -60,39 +62,6 @@ static int make_targets(view_state *v, int width, int height, fog_error *err) {
                        err))
     return 1;
   return 0;
-}
-
-/* Free-camera controls for one frame of dt seconds. */
-static void fly(GLFWwindow *window, camera *cam, double dt, double speed, double *last_x,
-                double *last_y, bool *dragging) {
-  double x, y;
-  glfwGetCursorPos(window, &x, &y);
-  bool look = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-  if (look && *dragging) {
-    cam->yaw += 0.004 * (x - *last_x);
-    cam->pitch -= 0.004 * (y - *last_y);
-    if (cam->pitch > 1.55) cam->pitch = 1.55;
-    if (cam->pitch < -1.55) cam->pitch = -1.55;
-  }
-  *dragging = look;
-  *last_x = x, *last_y = y;
-  double right[3], up[3], forward[3];
-  camera_basis(cam, 1, 1, right, up, forward);
-  double rl = sqrt(right[0] * right[0] + right[2] * right[2]);
-  double step = speed * dt;
-  if (glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS) step *= 4.0;
-  double move[3] = {0, 0, 0};
-  int w = glfwGetKey(window, GLFW_KEY_W) == GLFW_PRESS, s = glfwGetKey(window, GLFW_KEY_S) == GLFW_PRESS;
-  int a = glfwGetKey(window, GLFW_KEY_A) == GLFW_PRESS, d = glfwGetKey(window, GLFW_KEY_D) == GLFW_PRESS;
-  int q = glfwGetKey(window, GLFW_KEY_Q) == GLFW_PRESS, e = glfwGetKey(window, GLFW_KEY_E) == GLFW_PRESS;
-  /* Ctrl + a key is a command (the brush's Ctrl+S), not a step */
-  if (glfwGetKey(window, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
-      glfwGetKey(window, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS)
-    w = s = a = d = q = e = 0;
-  for (int k = 0; k < 3; k++) move[k] += (w - s) * forward[k] + (d - a) * right[k] / rl;
-  move[1] += e - q;
-  for (int k = 0; k < 3; k++) cam->position[k] += step * move[k];
-  if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, 1);
 }
 
 /* P toggles playing; while playing, the frame index position follows the clock at
@@ -369,11 +338,9 @@ static int view_loop(view_state *v, volume_playback *playback, rung_selector *se
   /* A key tapped between two polls still counts as pressed once: at a few frames a second
    * (software GL) a quick tap of B or [ fell between frames. */
   glfwSetInputMode(window, GLFW_STICKY_KEYS, GLFW_TRUE);
-  camera cam;
-  scene_config_camera(cfg, &cam);
-  double speed = 0.05 * fmax(cfg->terrain.size[0], cfg->terrain.size[1]);
-  double last_x = 0, last_y = 0, last_time = glfwGetTime();
-  bool dragging = false;
+  free_camera fc = {.speed = 0.05 * fmax(cfg->terrain.size[0], cfg->terrain.size[1])};
+  scene_config_camera(cfg, &fc.cam);
+  double last_time = glfwGetTime();
   int target_w = 0, target_h = 0;
   double fps = 0.0;
   for (int frame = 1; !gl_context_should_close(v->ctx); frame++) {
@@ -381,7 +348,10 @@ static int view_loop(view_state *v, volume_playback *playback, rung_selector *se
     double now = glfwGetTime();
     if (now > last_time) fps = fps > 0 ? 0.9 * fps + 0.1 / (now - last_time) : 1 / (now - last_time);
     if (sel->on && rung_selector_update(sel, v, window, cfg, fps, err)) return 1;
-    fly(window, &cam, now - last_time, speed, &last_x, &last_y, &dragging);
+    const free_camera_input input = free_camera_read(
+        window, FREE_CAMERA_LOOK_MIDDLE | FREE_CAMERA_LOOK_RIGHT, true, true);
+    free_camera_step(&fc, &input, now - last_time);
+    if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, 1);
     last_time = now;
     /* With --screenshot the sequence advances one VDB frame per drawn frame (the same
      * image every run), else with the clock. */
@@ -399,7 +369,7 @@ static int view_loop(view_state *v, volume_playback *playback, rung_selector *se
       return 1;
     /* the brush picks from the last frame's distances */
     if (frame > 1 && sel->shown < 0 &&
-        view_brush_update(brush, v, window, cfg, &cam, fog_time, err))
+        view_brush_update(brush, v, window, cfg, &fc.cam, fog_time, err))
       return 1;
     int fb_w, fb_h;
     gl_context_framebuffer_size(v->ctx, &fb_w, &fb_h);
@@ -410,10 +380,10 @@ static int view_loop(view_state *v, volume_playback *playback, rung_selector *se
       if (make_targets(v, w, h, err)) return 1;
       target_w = w, target_h = h;
     }
-    scene_pass_run(v->scene, &cam, &v->scene_target);
+    scene_pass_run(v->scene, &fc.cam, &v->scene_target);
     const gl_target *shown = &v->scene_target;
     if (v->has_fog) {
-      if (render_fog_draw(&v->fog, &cam, &v->scene_target, &v->fog_target, err)) return 1;
+      if (render_fog_draw(&v->fog, &fc.cam, &v->scene_target, &v->fog_target, err)) return 1;
       shown = &v->fog_target;
     }
     gl_presenter_draw(v->presenter, shown, fb_w, fb_h, GL_PRESENT_NEAREST);
@@ -503,7 +473,7 @@ int cmd_view(int argc, char **argv) {
       .about = "Opens the scene config in a window with a free camera (needs a display; for\n"
                "headless images use `fogpipe render`).\n"
                "  W A S D  move     Q E  down / up     Shift  4x faster\n"
-               "  right mouse button + drag  look around     Esc  quit\n"
+               "  right or middle drag, arrow keys  look around     Esc  quit\n"
                "  P  play / pause the VDB sequence of [fog] model = volume (from vdb_frame, looping\n"
                "     at vdb_fps, blended between frames)\n"
                "  B  the Gaussian brush of [fog] model = rbf (Fogshop's; the title shows it):\n"
