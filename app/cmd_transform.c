@@ -170,7 +170,7 @@ static int run_forward(const char *in, const char *channel, const char *dir,
     cli_fail("transform", "%s: %d levels is too many", in, desc.levels);
     goto done;
   }
-  if (transform_plan_create(&plan, &desc, &terr)) {
+  if (!(plan = transform_plan_create(&desc, &terr))) {
     cli_fail("transform", "%s: %s", in, terr.message);
     goto done;
   }
@@ -306,7 +306,7 @@ static int run_inverse(const char *dir, const char *out, int threads) {
   desc.threads = threads;
   transform_plan *plan;
   fog_error terr;
-  if (transform_plan_create(&plan, &desc, &terr))
+  if (!(plan = transform_plan_create(&desc, &terr)))
     return cli_fail("transform", "%s/transform.ini: %s", dir, terr.message);
   size_t W = (size_t)desc.width;
   fogmap map = {0};

@@ -318,7 +318,7 @@ static int plan_create(pipeline *p, int degree, int levels, fog_error *err) {
   fog_error terr = {0};
   transform_desc desc = {.width = w, .height = h, .levels = levels,
                          .basis = transform_basis_of_degree(degree), .boundary = boundary};
-  if (transform_plan_create(&c->plan, &desc, &terr))
+  if (!(c->plan = transform_plan_create(&desc, &terr)))
     return fog_error_wrap(err, &terr, "transform: ");
   c->coefficients = transform_alloc_floats((size_t)w * h);
   bool ok = c->coefficients != NULL;

@@ -25,7 +25,7 @@ pipeline_fog *pipeline_fog_create(fog_error *err) {
     fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     return NULL;
   }
-  if (fog_pass_create(&fog->pass, err)) {
+  if (!(fog->pass = fog_pass_create(err))) {
     free(fog);
     return NULL;
   }

@@ -270,7 +270,7 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, fog_error
   };
   fog->grid3d = &grid;
   fog_model model = render_fog_model(fog);
-  int status = fog_pass_create(&fog->pass, err) || fog_pass_upload_grid3d(fog->pass, &grid, err) ||
+  int status = !(fog->pass = fog_pass_create(err)) || fog_pass_upload_grid3d(fog->pass, &grid, err) ||
                render_fog_shadow(fog, cfg, &model, err);
   fog->grid3d = NULL;
   vdb_frame_destroy(&frame); /* the GL holds the grid now */
@@ -384,7 +384,7 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, fog_err
       .walk = scene_config_walk(cfg),
   };
   if (rbf && rbfs_at(fog, cfg, 0.0, err)) return 1;
-  if (fog_pass_create(&fog->pass, err) ||
+  if (!(fog->pass = fog_pass_create(err)) ||
       (uses_octaves(cfg) && perlin_fog(fog, cfg, err)))
     return 1;
   fog_model model = render_fog_model(fog);
@@ -468,7 +468,7 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
     fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the fog transform");
     goto done;
   }
-  if (transform_plan_create(&plan, &desc, &terr)) {
+  if (!(plan = transform_plan_create(&desc, &terr))) {
     fog_error_wrap(err, &terr, "%.200s: [fog] transform: ", cfg->path);
     goto done;
   }
@@ -533,7 +533,7 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
       .walk = scene_config_walk(cfg),
       .fetch = f->filtering == SCENE_FILTERING_HARDWARE ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
   };
-  if (fog_pass_create(&fog->pass, err)) goto done;
+  if (!(fog->pass = fog_pass_create(err))) goto done;
   if (fog_pass_upload_pyramid(fog->pass, &fog->pyramid, err)) goto done;
   fog_model model = render_fog_model(fog);
   if (render_fog_shadow(fog, cfg, &model, err)) goto done;

@@ -96,13 +96,13 @@ static int preview_create(preview *p, int map_w, int map_h, char *error, size_t 
                                          .color_formats = {GL_RGBA32F, GL_R32F}},
                        &err))
     goto fail;
-  if (fog_pass_create(&p->fog, &err)) goto fail;
+  if (!(p->fog = fog_pass_create(&err))) goto fail;
   fog_error terr = {0};
   p->levels = transform_max_levels(map_w, map_h, TRANSFORM_SYMMETRIC);
   if (p->levels > max_levels) p->levels = max_levels;
   transform_desc td = {.width = map_w, .height = map_h, .levels = p->levels,
                        .basis = TRANSFORM_LINEAR, .boundary = TRANSFORM_SYMMETRIC};
-  if (transform_plan_create(&p->plan, &td, &terr)) {
+  if (!(p->plan = transform_plan_create(&td, &terr))) {
     snprintf(error, size, "transform: %s", terr.message);
     return 1;
   }

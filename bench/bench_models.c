@@ -359,7 +359,7 @@ int bench_models(int argc, char **argv) {
   if (gl_target_create(&fog_target, &(gl_target_desc){.width = W, .height = H,
                                                       .color_formats = {GL_RGBA32F, GL_R32F}},
                        &rerr) ||
-      fog_pass_create(&pass, &rerr))
+      !(pass = fog_pass_create(&rerr)))
     goto gl_failed;
 
   /* The models: the RBFs are the banks config's (density_scale applied, as render does),

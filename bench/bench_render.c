@@ -400,14 +400,14 @@ int bench_render(int argc, char **argv) {
      * extension). */
     transform_desc desc = {.width = map.width, .height = map.height, .levels = 0,
                            .basis = transform_basis_of_degree(d)};
-    if (transform_plan_create(&plans[d], &desc, &terr) ||
+    if (!(plans[d] = transform_plan_create(&desc, &terr)) ||
         transform_grid_create_level(plans[d], 0, map.density, &full[d], &terr))
       goto transform_failed;
   }
   {
     transform_desc desc = {.width = map.width, .height = map.height, .levels = LOD_LEVELS,
                            .basis = TRANSFORM_LINEAR};
-    if (transform_plan_create(&lod_plan, &desc, &terr)) goto transform_failed;
+    if (!(lod_plan = transform_plan_create(&desc, &terr))) goto transform_failed;
     for (int l = 0; l <= LOD_LEVELS; l++) {
       int w, h;
       transform_level_size(lod_plan, l, &w, &h);
@@ -432,7 +432,7 @@ int bench_render(int argc, char **argv) {
   {
     transform_desc desc = {.width = ground.width, .height = ground.height, .levels = 0,
                            .basis = TRANSFORM_LINEAR};
-    if (transform_plan_create(&ground_plan, &desc, &terr) ||
+    if (!(ground_plan = transform_plan_create(&desc, &terr)) ||
         transform_grid_create_level(ground_plan, 0, ground.density, &ground_grid, &terr))
       goto transform_failed;
   }
@@ -453,7 +453,7 @@ int bench_render(int argc, char **argv) {
   for (int k = 0; k < EXTRA_COUNT; k++) {
     transform_desc desc = {.width = extra[k].width, .height = extra[k].height, .levels = 0,
                            .basis = TRANSFORM_LINEAR};
-    if (transform_plan_create(&extra_plan[k], &desc, &terr) ||
+    if (!(extra_plan[k] = transform_plan_create(&desc, &terr)) ||
         transform_grid_create_level(extra_plan[k], 0, extra[k].density, &extra_grid[k], &terr))
       goto transform_failed;
   }
@@ -500,7 +500,7 @@ int bench_render(int argc, char **argv) {
   if (!distance || !gpu_tau) goto out_of_memory;
   if (gl_target_read(&scene_target, 1, 1, distance, &rerr)) goto gl_failed;
   for (int p = 0; p < PASS_COUNT; p++) {
-    if (fog_pass_create(&passes[p], &rerr)) goto gl_failed;
+    if (!(passes[p] = fog_pass_create(&rerr))) goto gl_failed;
     if (p < 3 ? fog_pass_upload_grid(passes[p], 0, &full[p], &rerr)
         : p == 3 ? fog_pass_upload_lod(passes[p], &lod, &rerr)
         : fog_pass_upload_grid(passes[p], 0, p == 4 ? &ground_grid : &extra_grid[p - 5], &rerr))

@@ -51,8 +51,8 @@ static double time_transform(int n, int levels, transform_basis basis, int threa
                              direction dir, const float *in, float *coef, float *out) {
   transform_plan *plan;
   fog_error err;
-  if (transform_plan_create(&plan, &(transform_desc){.width = n, .height = n, .levels = levels,
-          .basis = basis, .threads = threads}, &err)) {
+  if (!(plan = transform_plan_create(&(transform_desc){.width = n, .height = n, .levels = levels,
+          .basis = basis, .threads = threads}, &err))) {
     fprintf(stderr, "fogpipe bench transform: %s\n", err.message);
     return NAN;
   }
@@ -86,8 +86,8 @@ static double time_transform(int n, int levels, transform_basis basis, int threa
 static void warm_up_two_threads(const float *in, float *coef, double seconds) {
   transform_plan *plan;
   fog_error err;
-  if (transform_plan_create(&plan, &(transform_desc){.width = 512, .height = 512, .levels = 3,
-          .threads = 2}, &err))
+  if (!(plan = transform_plan_create(&(transform_desc){.width = 512, .height = 512, .levels = 3,
+          .threads = 2}, &err)))
     return;
   double t0 = app_clock_seconds();
   while (app_clock_seconds() - t0 < seconds) transform_forward(plan, in, coef);
@@ -116,8 +116,8 @@ static void time_fused_vs_memcpy(int n, const float *in, float *coef, float *out
   transform_plan *plan;
   fog_error err;
   *fused_ms = *copy_ms = NAN;
-  if (transform_plan_create(&plan, &(transform_desc){.width = n, .height = n, .levels = 1,
-          .basis = TRANSFORM_LINEAR, .threads = 1}, &err)) {
+  if (!(plan = transform_plan_create(&(transform_desc){.width = n, .height = n, .levels = 1,
+          .basis = TRANSFORM_LINEAR, .threads = 1}, &err))) {
     fprintf(stderr, "fogpipe bench transform: %s\n", err.message);
     return;
   }

@@ -234,7 +234,7 @@ static GLuint fog_pass_variant_program(fog_pass *pass, const fog_pass_variant *v
   return program;
 }
 
-int fog_pass_create(fog_pass **out, fog_error *err) {
+static int pass_make(fog_pass **out, fog_error *err) {
   *out = NULL;
   fog_pass *pass = calloc(1, sizeof *pass);
   if (!pass) {
@@ -259,6 +259,11 @@ int fog_pass_create(fog_pass **out, fog_error *err) {
   }
   *out = pass;
   return 0;
+}
+
+fog_pass *fog_pass_create(fog_error *err) {
+  fog_pass *pass;
+  return pass_make(&pass, err) ? NULL : pass;
 }
 
 void fog_pass_destroy(fog_pass *pass) {

@@ -211,7 +211,7 @@ double fog_pass_depth_limit(double transmittance_cutoff);
 typedef struct fog_pass fog_pass;
 
 /* Compiles the default variant (manual fetch, exact). */
-int fog_pass_create(fog_pass **pass, fog_error *err);
+fog_pass *fog_pass_create(fog_error *err);
 void fog_pass_destroy(fog_pass *pass);
 
 /* Uploads grid into slot (0 .. FOG_PASS_MAX_GRIDS-1) as an R32F texture. Re-uploading a

@@ -96,7 +96,7 @@ int transform_max_levels(int width, int height, transform_boundary boundary);
 float *transform_alloc_floats(size_t count);
 
 /* Fails (naming the largest J that fits) when the size is too small for desc->levels. */
-int transform_plan_create(transform_plan **plan, const transform_desc *desc, fog_error *err);
+transform_plan *transform_plan_create(const transform_desc *desc, fog_error *err);
 void transform_plan_destroy(transform_plan *plan);
 const transform_desc *transform_plan_desc(const transform_plan *plan);
 

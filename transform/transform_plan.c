@@ -54,7 +54,7 @@ static int plan_dimension(transform_plan *p, int n, int *len, level_rules *rules
   return 0;
 }
 
-int transform_plan_create(transform_plan **out, const transform_desc *desc, fog_error *err) {
+static int plan_make(transform_plan **out, const transform_desc *desc, fog_error *err) {
   *out = NULL;
   transform_desc d = *desc;
   if (d.width <= 0 || d.height <= 0) {
@@ -127,6 +127,11 @@ int transform_plan_create(transform_plan **out, const transform_desc *desc, fog_
   }
   *out = p;
   return 0;
+}
+
+transform_plan *transform_plan_create(const transform_desc *desc, fog_error *err) {
+  transform_plan *plan;
+  return plan_make(&plan, desc, err) ? NULL : plan;
 }
 
 void transform_plan_destroy(transform_plan *p) {

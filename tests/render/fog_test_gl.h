@@ -41,7 +41,7 @@ static inline bool fog_test_gl_setup(fog_test_gl *gl, int width, int height, fog
   *gl = (fog_test_gl){.width = width, .height = height};
   gl->ctx = gl_context_create(&(gl_context_desc){0}, err);
   CHECK(gl->ctx != NULL, "headless context: %s", err->message);
-  if (gl->ctx) CHECK(fog_pass_create(&gl->pass, err) == 0, "fog_pass_create: %s", err->message);
+  if (gl->ctx) CHECK((gl->pass = fog_pass_create(err)) != NULL, "fog_pass_create: %s", err->message);
   if (gl->pass) {
     gl->has_target =
         gl_target_create(&gl->target,

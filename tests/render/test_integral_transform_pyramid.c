@@ -30,7 +30,7 @@ int main(void) {
     fog_error terr = {0};
     transform_plan *plan = NULL;
     transform_desc desc = {.width = MAP_W, .height = MAP_H, .levels = LEVELS, .basis = bases[b]};
-    CHECK(transform_plan_create(&plan, &desc, &terr) == 0, "plan: %s", terr.message);
+    CHECK((plan = transform_plan_create(&desc, &terr)) != NULL, "plan: %s", terr.message);
     if (!plan) continue;
     int degree = transform_basis_degree(bases[b]);
     float *approx[LEVELS + 1], *detail[LEVELS + 1];

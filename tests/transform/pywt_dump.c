@@ -14,10 +14,10 @@ int main(int argc, char **argv) {
   int w = atoi(argv[3]), h = atoi(argv[4]), J = atoi(argv[5]);
   transform_plan *plan;
   fog_error err;
-  if (transform_plan_create(&plan, &(transform_desc){.width = w, .height = h, .levels = J,
+  if (!(plan = transform_plan_create(&(transform_desc){.width = w, .height = h, .levels = J,
           .basis = basis, .boundary = TRANSFORM_PERIODIC,
           .decomposition = strcmp(argv[2], "standard") ? TRANSFORM_NONSTANDARD
-                                                       : TRANSFORM_STANDARD}, &err)) {
+                                                       : TRANSFORM_STANDARD}, &err))) {
     fprintf(stderr, "%s\n", err.message);
     return 1;
   }

@@ -10,8 +10,8 @@
 static void check(int b, int w, int h, int J) {
   transform_plan *plan;
   fog_error err;
-  CHECK(!transform_plan_create(&plan, &(transform_desc){.width = w, .height = h, .levels = J,
-      .basis = test_bases[b]}, &err), "%s", err.message);
+  CHECK((plan = transform_plan_create(&(transform_desc){.width = w, .height = h, .levels = J,
+      .basis = test_bases[b]}, &err)) != NULL, "%s", err.message);
   size_t n = (size_t)w * h;
   float *f = malloc(n * sizeof *f), *c = malloc(n * sizeof *c), *approx[12];
   transform_grid grids[12];

@@ -9,8 +9,8 @@
 static void refused(int w, int h, int J, transform_boundary mode, int largest) {
   transform_plan *plan = (transform_plan *)1;
   fog_error err = {0};
-  int rc = transform_plan_create(&plan, &(transform_desc){.width = w, .height = h,
-      .levels = J, .boundary = mode}, &err);
+  int rc = !(plan = transform_plan_create(&(transform_desc){.width = w, .height = h,
+      .levels = J, .boundary = mode}, &err));
   char want[64];
   snprintf(want, sizeof want, "largest J that fits is %d", largest);
   CHECK(rc != 0 && plan == NULL, "%dx%d J=%d accepted", w, h, J);
@@ -21,8 +21,8 @@ static void refused(int w, int h, int J, transform_boundary mode, int largest) {
   CHECK(transform_max_levels(w, h, mode) == largest, "max levels of %dx%d: %d, want %d", w, h,
         transform_max_levels(w, h, mode), largest);
   /* and the largest J itself is accepted */
-  rc = transform_plan_create(&plan, &(transform_desc){.width = w, .height = h,
-      .levels = largest, .boundary = mode}, &err);
+  rc = !(plan = transform_plan_create(&(transform_desc){.width = w, .height = h,
+      .levels = largest, .boundary = mode}, &err));
   CHECK(rc == 0, "%dx%d J=%d refused: %s", w, h, largest, err.message);
   if (!rc) transform_plan_destroy(plan);
 }
@@ -36,9 +36,9 @@ int main(void) {
   refused(17, 16, 1, TRANSFORM_PERIODIC, 0);   /* odd width */
   transform_plan *plan;
   fog_error err;
-  CHECK(transform_plan_create(&plan, &(transform_desc){.width = 0, .height = 4}, &err) != 0,
+  CHECK((plan = transform_plan_create(&(transform_desc){.width = 0, .height = 4}, &err)) == NULL,
         "0x4 accepted");
-  CHECK(transform_plan_create(&plan, &(transform_desc){.width = 4, .height = 4, .levels = -1},
-        &err) != 0, "negative levels accepted");
+  CHECK((plan = transform_plan_create(&(transform_desc){.width = 4, .height = 4, .levels = -1},
+        &err)) == NULL, "negative levels accepted");
   return test_finish("test_bad_size");
 }

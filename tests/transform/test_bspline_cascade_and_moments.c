@@ -17,8 +17,8 @@ static void cascade(int b) {
   const int N = 256, J = 6;
   transform_plan *plan;
   fog_error err;
-  CHECK(!transform_plan_create(&plan, &(transform_desc){.width = N, .height = N, .levels = J,
-      .basis = test_bases[b], .boundary = TRANSFORM_PERIODIC}, &err), "%s", err.message);
+  CHECK((plan = transform_plan_create(&(transform_desc){.width = N, .height = N, .levels = J,
+      .basis = test_bases[b], .boundary = TRANSFORM_PERIODIC}, &err)) != NULL, "%s", err.message);
   float *c = calloc((size_t)N * N, sizeof *c);
   int w0, h0;
   transform_level_size(plan, 0, &w0, &h0);
@@ -61,8 +61,8 @@ static void moments(int b, transform_decomposition dec) {
   const int W = 160, H = 144, J = 3;
   transform_plan *plan;
   fog_error err;
-  CHECK(!transform_plan_create(&plan, &(transform_desc){.width = W, .height = H, .levels = J,
-      .basis = test_bases[b], .decomposition = dec}, &err), "%s", err.message);
+  CHECK((plan = transform_plan_create(&(transform_desc){.width = W, .height = H, .levels = J,
+      .basis = test_bases[b], .decomposition = dec}, &err)) != NULL, "%s", err.message);
   int degree = transform_basis_degree(test_bases[b]);
   float *f = malloc(sizeof(float) * W * H), *c = malloc(sizeof(float) * W * H);
   for (int p = 0; p <= degree + 1; p++) {

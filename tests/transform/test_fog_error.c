@@ -76,9 +76,8 @@ static void wrap_keeps_the_cause(void) {
 static void a_library_failure_carries_its_code(void) {
   transform_plan *plan = NULL;
   fog_error err = {0};
-  int status = transform_plan_create(
-      &plan, &(transform_desc){.width = 6, .height = 6, .levels = 5, .basis = TRANSFORM_LINEAR},
-      &err);
+  int status = !(plan = transform_plan_create(&(transform_desc){.width = 6, .height = 6, .levels = 5, .basis = TRANSFORM_LINEAR},
+      &err));
   CHECK(status != 0 && plan == NULL, "a 6x6 grid took 5 levels");
   CHECK(err.code == FOG_ERR_INVALID_ARGUMENT, "code %s: %s", fog_result_text(err.code),
         err.message);

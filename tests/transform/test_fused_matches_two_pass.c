@@ -24,7 +24,7 @@ int main(void) {
       fog_error err;
       test_plan_pair(desc, &one, &two);
       desc.threads = 2;
-      CHECK(!transform_plan_create(&split, &desc, &err), "%s", err.message);
+      CHECK((split = transform_plan_create(&desc, &err)) != NULL, "%s", err.message);
       size_t n = (size_t)w * h;
       float *f = malloc(n * sizeof *f), *c1 = malloc(n * sizeof *f), *c2 = malloc(n * sizeof *f);
       test_fill_fogmap(f, w, h);

@@ -20,8 +20,8 @@ static void check(int b, transform_boundary mode, transform_decomposition dec, i
                   int J) {
   transform_plan *plan;
   fog_error err;
-  int rc = transform_plan_create(&plan, &(transform_desc){.width = w, .height = h,
-      .levels = J, .basis = test_bases[b], .boundary = mode, .decomposition = dec}, &err);
+  int rc = !(plan = transform_plan_create(&(transform_desc){.width = w, .height = h,
+      .levels = J, .basis = test_bases[b], .boundary = mode, .decomposition = dec}, &err));
   CHECK(rc == 0, "plan: %s", err.message);
   if (rc) return;
   char what[160];

@@ -12,9 +12,9 @@ static void check(transform_basis basis, transform_boundary mode, transform_deco
                   int w, int h, int levels, int threads) {
   transform_plan *plan;
   fog_error err;
-  int rc = transform_plan_create(&plan, &(transform_desc){.width = w, .height = h,
+  int rc = !(plan = transform_plan_create(&(transform_desc){.width = w, .height = h,
       .levels = levels, .basis = basis, .boundary = mode, .decomposition = dec,
-      .threads = threads}, &err);
+      .threads = threads}, &err));
   CHECK(rc == 0, "plan %dx%d J=%d: %s", w, h, levels, err.message);
   if (rc) return;
   size_t n = (size_t)w * h;

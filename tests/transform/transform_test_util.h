@@ -67,9 +67,9 @@ static inline void test_plan_pair(transform_desc d, transform_plan **fused,
                                   transform_plan **two_pass) {
   fog_error err;
   d.threads = 1;
-  CHECK(!transform_plan_create(fused, &d, &err), "%s", err.message);
+  CHECK((*fused = transform_plan_create(&d, &err)) != NULL, "%s", err.message);
   d.threads = 2, d.two_pass = 1;
-  CHECK(!transform_plan_create(two_pass, &d, &err), "%s", err.message);
+  CHECK((*two_pass = transform_plan_create(&d, &err)) != NULL, "%s", err.message);
 }
 
 static inline double test_max_abs(const float *a, size_t n) {
