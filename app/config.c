@@ -240,6 +240,8 @@ static int key_line(const parse_state *s, const char *section, const char *key) 
   return 0;
 }
 
+static int finish_quadric(parse_state *s);
+
 /* fgets-style reader for ini_parse_stream that counts lines. */
 static char *read_line(char *buffer, int size, void *stream) {
   parse_state *s = stream;
@@ -257,7 +259,8 @@ static char *read_line(char *buffer, int size, void *stream) {
     memcpy(buffer, s->whole_line, (size_t)n + 1);
   } else if (*p == ';' || *p == '#' || !*p) {
     snprintf(buffer, (size_t)size, ";\n");
-  } else if (!s->error_line) {
+  } else if (!s->error_line && (s->continuation || finish_quadric(s))) {
+    /* (a quadric held from above is whole: its own mistake comes first) */
     s->error_line = s->line;
     fog_fail(s->err, FOG_ERR_BAD_CONFIG,
              "%s:%d: the line is %zd bytes long; a config line other than a comment can hold "
@@ -601,6 +604,9 @@ static int finish_quadric(parse_state *s) {
 
 /* quadric = ...: the line waits for its indented continuations (finish_quadric). */
 static int hold_quadric(parse_state *s, const char *value) {
+  if (s->continuation && strchr(value, '='))
+    return fail(s, "fog", "quadric", "an indented line goes on with the volume above: unindent "
+                "'%s'", value);
   if (!s->continuation) {
     s->quadric_line = s->line;
     s->quadric_text[0] = '\0';
@@ -739,11 +745,13 @@ static int store_list(parse_state *s, const key_spec *k, const char *section, co
 static int handle_key(parse_state *s, const char *section, const char *key, const char *value) {
   scene_config *cfg = s->cfg;
   s->after_key = true;
+  /* a quadric line held is whole unless this line goes on with it: its mistakes come first */
+  const bool continues_quadric = s->continuation && !strcmp(section, "fog") &&
+                                 !strcmp(key, "quadric");
+  if (!continues_quadric && !finish_quadric(s)) return 0;
   const key_spec *k = lookup_key(s, section, key);
   if (!k) return 0;
   s->key_line[k - keys] = s->line;
-  /* a quadric line waiting is whole unless this line goes on with it */
-  if (!(s->continuation && k->kind == V_QUADRIC) && !finish_quadric(s)) return 0;
   if (s->continuation && k->kind != V_LIST && k->kind != V_QUADRIC)
     /* libinih hands an indented line to the key above */
     return fail(s, section, key, "an indented line goes on with the key above, and only a list "
@@ -1003,7 +1011,7 @@ int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
   int status = ini_parse_stream(read_line, &s, handle, &s);
   fclose(s.file);
   free(s.whole_line);
-  if (!s.error_line && status == 0) finish_quadric(&s);
+  if (!s.error_line) finish_quadric(&s); /* before a syntax error below it */
   if (s.error_line) return 1;
   if (status > 0) {
     fog_fail(err, FOG_ERR_BAD_CONFIG, "%s:%d: expected '[section]', 'key = value' or a comment",
@@ -1194,13 +1202,13 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
       }
       break;
     case V_QUADRIC: /* as written, each number in its shortest exact form (at most 25
-                       bytes); a general quadric's 17 to 19 go on over indented lines, 6 a
-                       line, under the reader's 199 bytes */
+                       bytes), 6 a line (a general quadric's 17 to 19, a shape's 7 to 9 with
+                       EDGE and NOISE), the rest on indented lines: under 199 bytes */
       for (int i = 0; i < cfg->fog.quadric_count; i++) {
         const struct scene_quadric_line *line = &cfg->fog.quadric_lines[i];
         fprintf(f, "%s = %s", k->key, shapes[line->shape].name);
         for (int c = 0; c < line->count; c++) {
-          if (line->shape == SHAPE_GENERAL && c > 0 && c % 6 == 0) fputs("\n   ", f);
+          if (c > 0 && c % 6 == 0) fputs("\n   ", f);
           write_number(f, line->numbers[c]);
         }
         fputc('\n', f);

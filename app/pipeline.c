@@ -209,6 +209,7 @@ struct pipeline {
    * rung_shadow_sun; rung_shadow_shown while the fog pass holds it rather than the fogmap's. */
   fog_sun_shadow rung_shadow;
   double rung_shadow_sun[3];
+  bool rung_shadow_valid; /* rung_shadow holds the fitted rung's volume for rung_shadow_sun */
   bool rung_shadow_shown;
 };
 
@@ -874,18 +875,25 @@ static int relight(pipeline *p, const pipeline_params *params, fog_error *err) {
  * the sun moved, or the fog pass holds the fogmap's (GL thread, both cores). */
 static int show_rung_shadow(pipeline *p, const fog_model *rung, const double sun[3],
                             bool refitted, fog_error *err) {
-  if (p->rung_shadow_shown && !refitted &&
-      !memcmp(sun, p->rung_shadow_sun, sizeof p->rung_shadow_sun))
-    return 0;
-  double t0 = now_ms();
   fog_error rerr = {0};
+  if (p->rung_shadow_valid && !refitted &&
+      !memcmp(sun, p->rung_shadow_sun, sizeof p->rung_shadow_sun)) {
+    /* the same volume: a step's upload of the fogmap's only covered it */
+    if (!p->rung_shadow_shown && pipeline_fog_upload_sun_shadow(p->fog, &p->rung_shadow, &rerr))
+      return fog_error_wrap(err, &rerr, "upload: ");
+    p->rung_shadow_shown = true;
+    return 0;
+  }
+  double t0 = now_ms();
   const int n = p->config.shadow.resolution;
   if (!p->rung_shadow.optical_depth &&
       fog_sun_shadow_create(&p->rung_shadow, &(fog_sun_shadow_desc){.across = n, .along = n},
                             &rerr))
     return fog_error_wrap(err, &rerr, "live rung's sun shadow: ");
+  p->rung_shadow_valid = false;
   if (fog_sun_shadow_compute(&p->rung_shadow, rung, sun, 2, &rerr))
     return fog_error_wrap(err, &rerr, "live rung's sun shadow: ");
+  p->rung_shadow_valid = true;
   if (pipeline_fog_upload_sun_shadow(p->fog, &p->rung_shadow, &rerr))
     return fog_error_wrap(err, &rerr, "upload: ");
   memcpy(p->rung_shadow_sun, sun, sizeof p->rung_shadow_sun);
@@ -1049,7 +1057,10 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
   pipeline_params params = p->params;
   pthread_mutex_unlock(&p->lock);
   fog_volume volume = volume_of(p, &params);
-  if (relight(p, &params, err)) return 1;
+  const bool rung = params.live_rung > LIVE_RUNG_FOGMAP && params.live_rung < LIVE_RUNG_COUNT &&
+                    p->shadow_grid.coefficients;
+  /* a bounded rung lights itself: the fogmap's volume waits until the menu returns to it */
+  if (!(rung && live_rung_bounded(params.live_rung)) && relight(p, &params, err)) return 1;
   fog_error rerr = {0};
   fog_sun sun = params.sun;
   memcpy(sun.direction, p->geometry.sun_direction, sizeof sun.direction);
@@ -1064,8 +1075,6 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
   fog_lod finest = {.levels = 0, .approx = &p->shadow_grid};
   const fog_model fogmap_model = {.kind = FOG_MODEL_FOGMAP, .volume = &volume, .lod = &finest,
                                   .lod_method = FOG_LOD_SWITCH};
-  const bool rung = params.live_rung > LIVE_RUNG_FOGMAP && params.live_rung < LIVE_RUNG_COUNT &&
-                    p->shadow_grid.coefficients;
   /* bounded rungs every LIVE_RUNG_REFIT steps (their shadow volume is the cost) */
   const long since = p->shown_step - p->rung_step;
   const bool refit = rung && ((int)p->rung.kind != params.live_rung ||
@@ -1074,18 +1083,23 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
                                    : since != 0));
   if (refit) {
     live_rung_fit(&fogmap_model, (live_rung_kind)params.live_rung, &p->rung);
+    /* the volumes beside the fogmap keep their places in the pass's FOG_MAX_QUADRICS */
+    if (p->rung.model.kind == FOG_MODEL_QUADRIC &&
+        p->rung.model.quadric_count > FOG_MAX_QUADRICS - quadric_count)
+      p->rung.model.quadric_count = FOG_MAX_QUADRICS - quadric_count;
     p->rung_step = p->shown_step;
     p->rung_frames = LIVE_RUNG_INTERVAL; /* measure this frame */
   }
   const fog_model rung_model = live_rung_model(&p->rung);
   fog_sun_shadow_kind self_shadow = p->shown_self_shadow;
-  if (rung)
-    self_shadow = self_shadow != FOG_SUN_SHADOW_NONE
+  if (rung) /* the rung's own kind, whatever the fogmap's volume on hand */
+    self_shadow = params.sun.albedo > 0 && params.fog_self_shadow
                       ? fog_sun_shadow_kind_of(&rung_model, sun.direction)
                       : FOG_SUN_SHADOW_NONE;
   if (rung && self_shadow == FOG_SUN_SHADOW_VOLUME &&
       show_rung_shadow(p, &rung_model, sun.direction, refit, err))
     return 1;
+  if (!rung) p->rung.kind = LIVE_RUNG_FOGMAP; /* a later rung is fitted anew (a reset between) */
   if (!rung && p->rung_shadow_shown) { /* back on the fogmap: its own volume again */
     memset(p->shown_shadow_sun, 0, sizeof p->shown_shadow_sun);
     if (relight(p, &params, err)) return 1;

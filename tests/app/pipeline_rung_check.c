@@ -9,7 +9,8 @@
  *     ground fog: its mean error is above 0.05);
  *   - the bounded rungs (Gaussians, ellipsoids) are lit as themselves: their in-scatter is
  *     (L_amb + a L_sun p(theta) mean T_s)(1 - tau) with T_s from their own sun-shadow volume
- *     (the twin's mean along each pixel's ray, shafts off), not the fogmap's;
+ *     (the twin's mean along each pixel's ray, shafts off), not the fogmap's; also paused,
+ *     when the sun moves and when the menu goes from one bounded rung to the other;
  *   - back on the fogmap the frame is the fogmap's again, bit for bit with a pipeline that
  *     never left it. Built by tests/app/pipeline.cmake. */
 #include <math.h>
@@ -141,6 +142,34 @@ int main(void) {
               fabs(e.model.extinction - 0.03) < 1e-14,
           "height fit of a filled box: %s K %g", fog_model_table[e.model.kind].name,
           e.model.extinction);
+  }
+  /* paused on a bounded rung, with no step between: the sun moves, then the menu changes
+   * rung; each frame is lit by the shown rung's own volume for the sun of the moment */
+  if (p) {
+    pipeline_params params = pipeline_get_params(p);
+    params.paused = true, params.shafts = false, params.live_rung = LIVE_RUNG_ELLIPSOIDS;
+    pipeline_set_params(p, &params);
+    CHECK(!pipeline_check_frame(p, &cam, &(frame_pixels){.transmittance = tau}), "frame");
+    scene_config moved = cfg;
+    for (int change = 0; change < 2; change++) {
+      if (change == 0) params.sun_azimuth += 40, moved.light.sun_azimuth = params.sun_azimuth;
+      else params.live_rung = LIVE_RUNG_GAUSSIANS;
+      pipeline_set_params(p, &params);
+      CHECK(!pipeline_check_frame(p, &cam,
+                                  &(frame_pixels){.transmittance = tau, .depth = depth,
+                                                  .inscatter = inscatter}),
+            "frame");
+      live_rung r;
+      CHECK(pipeline_live_rung(p, &r), "no rung");
+      const fog_model drawn = live_rung_model(&r);
+      const double lit = lit_as_itself(&moved, &cam, &drawn, tau, depth, inscatter);
+      printf("paused, %s: %s lit as itself within %.2e\n", change ? "the rung changed" : "the sun moved",
+             live_rung_names[r.kind], lit);
+      CHECK(lit <= 2e-3, "paused, %s: not lit as itself (%.3e)",
+            change ? "the rung changed" : "the sun moved", lit);
+    }
+    params.sun_azimuth -= 40; /* the plain pipeline's sun, for the comparison below */
+    pipeline_set_params(p, &params);
   }
   /* back on the fogmap: the fogmap's frame, bit for bit */
   if (p && plain) {

@@ -160,6 +160,15 @@ int main(void) {
     snprintf(prefix, sizeof prefix, "%d: [fog] rbf: ", 3 + SCENE_CONFIG_MAX_RBFS);
     expect_error(text, prefix, "at most 1024 Gaussians");
   }
+  /* A quadric volume may go on over indented lines, so it is stored at the next key: its
+   * mistake still comes before a later line's (an unknown key, a line that is no line), and
+   * an indented key after it is told to unindent. */
+  expect_error("[fog]\nmodel = quadric\nquadric = sphere 0 0 0 5\nbogus = 1\n",
+               "3: [fog] quadric: ", "(5 to 7 numbers)");
+  expect_error("[fog]\nmodel = quadric\nquadric = sphere 0 0 0 5\nthis is not a line\n",
+               "3: [fog] quadric: ", "(5 to 7 numbers)");
+  expect_error("[fog]\nmodel = quadric\nquadric = sphere 0 0 0 5 0.1\n  density_scale = 2\n",
+               "4: [fog] quadric: ", "unindent 'density_scale = 2'");
   /* The first error wins when there are several. */
   expect_error("[fog]\nmu = x\nbasis = y\n", "2: [fog] mu: ", "expected a number");
 

@@ -93,7 +93,8 @@ int main(void) {
   }
   /* A general quadric in full precision passes a config line's 199 bytes: it goes on over
    * indented lines (a comment between), is the same volume as the one-line form, written
-   * back over two lines, and a mistake in its second line names its first. */
+   * back over three lines (six numbers a line), and a mistake in its second line names its
+   * first. */
   {
     static const double q[17] = {8.264462809917356e-05, 3.086419753086420e-03,
                                  6.249999999999999e-04, -1.234567890123457e-04,
@@ -129,7 +130,7 @@ int main(void) {
       CHECK(scene_config_write(&split, copy, &err) == 0 &&
                 scene_config_load(copy, &again, &err) == 0 &&
                 !memcmp(again.fog.quadrics, split.fog.quadrics, 2 * sizeof split.fog.quadrics[0]),
-            "written back over two lines and read: %s", err.message);
+            "written back over three lines and read: %s", err.message);
     }
     f = fopen(path, "w");
     fputs("[fog]\nmodel = quadric\nquadric = general 1 1 1 0 0 0 0 0 0 -1\n  -1 -1 -1 1 1\n"
