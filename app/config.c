@@ -1125,6 +1125,21 @@ static void write_numbers(FILE *f, const char *key, const double *v, int n) {
   fputc('\n', f);
 }
 
+/* The quadric lines as written, each number in its shortest exact form (at most 25
+ * bytes), 6 a line (a general quadric's 17 to 19, a shape's 7 to 9 with EDGE and NOISE),
+ * the rest on indented lines: under the reader's 199 bytes. */
+static void write_quadrics(FILE *f, const scene_config *cfg, const char *key) {
+  for (int i = 0; i < cfg->fog.quadric_count; i++) {
+    const struct scene_quadric_line *line = &cfg->fog.quadric_lines[i];
+    fprintf(f, "%s = %s", key, shapes[line->shape].name);
+    for (int c = 0; c < line->count; c++) {
+      if (c > 0 && c % 6 == 0) fputs("\n   ", f);
+      write_number(f, line->numbers[c]);
+    }
+    fputc('\n', f);
+  }
+}
+
 static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
   if (key_unset(cfg, k)) return;
   const char *field = (const char *)cfg + k->offset;
@@ -1201,19 +1216,7 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
         fprintf(f, " %llu\n", (unsigned long long)e->seed);
       }
       break;
-    case V_QUADRIC: /* as written, each number in its shortest exact form (at most 25
-                       bytes), 6 a line (a general quadric's 17 to 19, a shape's 7 to 9 with
-                       EDGE and NOISE), the rest on indented lines: under 199 bytes */
-      for (int i = 0; i < cfg->fog.quadric_count; i++) {
-        const struct scene_quadric_line *line = &cfg->fog.quadric_lines[i];
-        fprintf(f, "%s = %s", k->key, shapes[line->shape].name);
-        for (int c = 0; c < line->count; c++) {
-          if (c > 0 && c % 6 == 0) fputs("\n   ", f);
-          write_number(f, line->numbers[c]);
-        }
-        fputc('\n', f);
-      }
-      break;
+    case V_QUADRIC: write_quadrics(f, cfg, k->key); break;
     case V_LAMP: /* the key's kind only: lamp lines, then spot lines */
       for (int i = 0; i < cfg->lamp_count; i++) {
         const scene_lamp_config *l = &cfg->lamps[i];

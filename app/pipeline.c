@@ -1034,6 +1034,44 @@ static int sync_surface_light(pipeline *p, fog_error *err) {
   return 0;
 }
 
+/* The live rung's frame (app/live_rung.h): refitted when due (bounded rungs every
+ * LIVE_RUNG_REFIT steps: their shadow volume is the cost), its self-shadow kind into
+ * *self_shadow and its own volume shown; back on the fogmap, the fogmap's volume again. */
+static int show_live_rung(pipeline *p, const pipeline_params *params, bool rung,
+                          const fog_model *fogmap_model, const double sun[3],
+                          int quadric_count, fog_sun_shadow_kind *self_shadow, fog_error *err) {
+  if (!rung) {
+    p->rung.kind = LIVE_RUNG_FOGMAP; /* a later rung is fitted anew (a reset between) */
+    if (!p->rung_shadow_shown) return 0;
+    memset(p->shown_shadow_sun, 0, sizeof p->shown_shadow_sun);
+    if (relight(p, params, err)) return 1;
+    *self_shadow = p->shown_self_shadow;
+    p->rung_shadow_shown = false;
+    return 0;
+  }
+  const long since = p->shown_step - p->rung_step;
+  const bool refit = (int)p->rung.kind != params->live_rung ||
+                     (live_rung_bounded(params->live_rung) ? since < 0 || since >= LIVE_RUNG_REFIT
+                                                           : since != 0);
+  if (refit) {
+    live_rung_fit(fogmap_model, (live_rung_kind)params->live_rung, &p->rung);
+    /* the volumes beside the fogmap keep their places in the pass's FOG_MAX_QUADRICS */
+    if (p->rung.model.kind == FOG_MODEL_QUADRIC &&
+        p->rung.model.quadric_count > FOG_MAX_QUADRICS - quadric_count)
+      p->rung.model.quadric_count = FOG_MAX_QUADRICS - quadric_count;
+    p->rung_step = p->shown_step;
+    p->rung_frames = LIVE_RUNG_INTERVAL; /* measure this frame */
+  }
+  const fog_model model = live_rung_model(&p->rung);
+  /* the rung's own kind, whatever the fogmap's volume on hand */
+  *self_shadow = params->sun.albedo > 0 && params->fog_self_shadow
+                     ? fog_sun_shadow_kind_of(&model, sun)
+                     : FOG_SUN_SHADOW_NONE;
+  if (*self_shadow == FOG_SUN_SHADOW_VOLUME && show_rung_shadow(p, &model, sun, refit, err))
+    return 1;
+  return 0;
+}
+
 int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
   double frame_start = now_ms();
   double upload_ms = 0.0;
@@ -1075,36 +1113,11 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
   fog_lod finest = {.levels = 0, .approx = &p->shadow_grid};
   const fog_model fogmap_model = {.kind = FOG_MODEL_FOGMAP, .volume = &volume, .lod = &finest,
                                   .lod_method = FOG_LOD_SWITCH};
-  /* bounded rungs every LIVE_RUNG_REFIT steps (their shadow volume is the cost) */
-  const long since = p->shown_step - p->rung_step;
-  const bool refit = rung && ((int)p->rung.kind != params.live_rung ||
-                              (live_rung_bounded(params.live_rung)
-                                   ? since < 0 || since >= LIVE_RUNG_REFIT
-                                   : since != 0));
-  if (refit) {
-    live_rung_fit(&fogmap_model, (live_rung_kind)params.live_rung, &p->rung);
-    /* the volumes beside the fogmap keep their places in the pass's FOG_MAX_QUADRICS */
-    if (p->rung.model.kind == FOG_MODEL_QUADRIC &&
-        p->rung.model.quadric_count > FOG_MAX_QUADRICS - quadric_count)
-      p->rung.model.quadric_count = FOG_MAX_QUADRICS - quadric_count;
-    p->rung_step = p->shown_step;
-    p->rung_frames = LIVE_RUNG_INTERVAL; /* measure this frame */
-  }
-  const fog_model rung_model = live_rung_model(&p->rung);
   fog_sun_shadow_kind self_shadow = p->shown_self_shadow;
-  if (rung) /* the rung's own kind, whatever the fogmap's volume on hand */
-    self_shadow = params.sun.albedo > 0 && params.fog_self_shadow
-                      ? fog_sun_shadow_kind_of(&rung_model, sun.direction)
-                      : FOG_SUN_SHADOW_NONE;
-  if (rung && self_shadow == FOG_SUN_SHADOW_VOLUME &&
-      show_rung_shadow(p, &rung_model, sun.direction, refit, err))
+  if (show_live_rung(p, &params, rung, &fogmap_model, sun.direction, quadric_count,
+                     &self_shadow, err))
     return 1;
-  if (!rung) p->rung.kind = LIVE_RUNG_FOGMAP; /* a later rung is fitted anew (a reset between) */
-  if (!rung && p->rung_shadow_shown) { /* back on the fogmap: its own volume again */
-    memset(p->shown_shadow_sun, 0, sizeof p->shown_shadow_sun);
-    if (relight(p, &params, err)) return 1;
-    p->rung_shadow_shown = false;
-  }
+  const fog_model rung_model = live_rung_model(&p->rung);
   pipeline_fog_settings settings = {
       .volume = &volume,
       .rung = rung ? &rung_model : NULL,
