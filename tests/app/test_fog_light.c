@@ -61,6 +61,13 @@ static void check_phase_normalised(void) {
 
 #include "frame_util.h"
 
+/* p(theta) of pixel (px, py)'s ray and the sun, g given. */
+static double pixel_phase(const camera *cam, int px, int py, const fog_sun *sun, double g) {
+  double o[3], d[3];
+  camera_ray(cam, px, py, W, H, o, d);
+  return hg(g, d[0] * sun->direction[0] + d[1] * sun->direction[1] + d[2] * sun->direction[2]);
+}
+
 /* S: the same scene and light without fog. */
 static int render_surface(const scene_config *cfg, frame *f, const char *label) {
   scene_config bare = *cfg;
@@ -123,10 +130,7 @@ static void check_model(const char *path, const char *label) {
   for (int py = 0; py < H; py++)
     for (int px = 0; px < W; px++) {
       const int k = py * W + px;
-      double d[3];
-      camera_ray(&cam, px, py, W, H, o, d);
-      const double p = hg(0.6, d[0] * sun.direction[0] + d[1] * sun.direction[1] +
-                                   d[2] * sun.direction[2]);
+      const double p = pixel_phase(&cam, px, py, &sun, 0.6);
       const double t = lit.tau[k];
       for (int c = 0; c < 3; c++) {
         const double want = (amb[c] + 0.8 * sun.radiance[c] * p) * (1 - t);
@@ -174,10 +178,7 @@ static void check_model(const char *path, const char *label) {
   for (int py = 0; py < H; py++)
     for (int px = 0; px < W; px++) {
       const int k = py * W + px;
-      double d[3];
-      camera_ray(&cam, px, py, W, H, o, d);
-      const double p = hg(0.6, d[0] * level.direction[0] + d[1] * level.direction[1] +
-                                   d[2] * level.direction[2]);
+      const double p = pixel_phase(&cam, px, py, &level, 0.6);
       for (int c = 0; c < 3; c++) {
         const double want = 0.8 * level.radiance[c] * p / 2 * (1 - lit.tau[k]);
         half = fmax(half, fabs(lit.inscatter[3 * k + c] - want) / fmax(want, 1e-3));
