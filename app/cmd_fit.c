@@ -112,7 +112,8 @@ static int parse(int argc, char **argv, fit_options *o) {
       .command = "fit",
       .usage = "INPUT --tolerance T [options]",
       .about = "Fits every model of the ladder that can represent the input's fog (homogeneous,\n"
-               "height, an ellipsoid and banks of 2 to 16, banks of 1 to 64 Gaussians, the\n"
+               "height, an ellipsoid and banks of 2 to 16, banks of 1 to 16 cylinders and of\n"
+               "1 to 16 oriented ellipsoids, banks of 1 to 64 Gaussians, the\n"
                "fogmap at three bases x three LOD factors (an analytic fog's density projected),\n"
                "the 3D volume), measures each on nine views around and inside\n"
                "the fog (max and mean |delta tau| against the input's own fog, exact integrals in\n"

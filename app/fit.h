@@ -12,7 +12,7 @@
  * bounds; for fog without an end, the terrain's footprint between [box] floor and top) the
  * reference's extinction is sampled and every rung that can represent it is fitted
  * (app/fit_density.h: homogeneous, height, one ellipsoid and banks of 2 to 16, banks of 1
- * to 64 Gaussians; the fogmap at three bases x three LOD factors: the input's fogmap or VDB,
+ * to 16 cylinders and of 1 to 16 oriented ellipsoids, banks of 1 to 64 Gaussians; the fogmap at three bases x three LOD factors: the input's fogmap or VDB,
  * or an analytic input's density projected (app/fit_fogmap.h); the volume where the input
  * has one; an analytic input as given). Each rung is then rendered:
  * its error on nine views (app/fit_views.h: max and mean |delta tau| against the

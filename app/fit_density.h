@@ -10,6 +10,9 @@
  *   ellipsoid    one quadric volume: the axis-aligned ellipsoid of the samples' mass,
  *                centroid and variances (a uniform ellipsoid's variance is a^2/5)
  *   ellipsoids K K quadric volumes: the same per cluster of rbf K's k-means
+ *   cylinders K  K upright cylinders: a cluster's horizontal and vertical variances
+ *   oriented K   K ellipsoids in any orientation (general quadrics): a cluster's full
+ *                covariance
  *
  * All on the CPU, in double, no GL. */
 #ifndef FOGPIPE_APP_FIT_DENSITY_H

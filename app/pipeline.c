@@ -199,7 +199,8 @@ struct pipeline {
   transform_grid shadow_grid;
   fog_sun_shadow shadow_volume;
   /* The demo's live rung (params.live_rung, app/live_rung.h): fitted to the finest grid of
-   * the shown step (shadow_grid) when the step or the kind changes, measured every
+   * the shown step (shadow_grid) when the kind changes and at every step (the bounded
+   * rungs every LIVE_RUNG_REFIT steps: show_live_rung), measured every
    * LIVE_RUNG_INTERVAL frames on the view's surface distances (rung_depth). */
   live_rung rung;
   long rung_step;

@@ -5,7 +5,8 @@
  * message a person can (naming the file, line or key and what was expected). Modelled on
  * OpenEXR Core's exr_result_t with its default messages.
  *
- * Libraries never print: a failing call fills its fog_error and returns non-zero. A caller
+ * Libraries never print: a failing call fills its fog_error and returns non-zero (a create
+ * of an opaque object: NULL). A caller
  * that fails because a callee did passes the callee's code on with fog_error_wrap, adding
  * its own context in front of the message. It lives in transform/, the library at the
  * bottom of the arrows, so that every other library can return it. */
@@ -42,16 +43,17 @@ int fog_fail(fog_error *err, fog_result code, const char *format, ...)
 #endif
     ;
 
-/* Fails because cause did: keeps cause's code, and the message becomes the formatted
- * context followed by cause's message ("transform: " + "levels must be ..."). err may be
- * cause itself. Returns 1. */
+/* Fails because cause did: keeps cause's code (FOG_ERR_INVALID_ARGUMENT where a cause
+ * set none), and the message becomes the formatted context followed by cause's message
+ * ("transform: " + "levels must be ..."). err may be cause itself. Returns 1. */
 int fog_error_wrap(fog_error *err, const fog_error *cause, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
 
-/* Fails with cause's code and message unchanged (err may be NULL). Returns 1. */
+/* Fails with cause's code and message unchanged (err may be NULL; a cause without a code
+ * gets FOG_ERR_INVALID_ARGUMENT). Returns 1. */
 int fog_error_pass(fog_error *err, const fog_error *cause);
 
 #ifdef __cplusplus
