@@ -273,23 +273,41 @@ static char *read_line(char *buffer, int size, void *stream) {
   return buffer;
 }
 
-static int fail(parse_state *s, const char *section, const char *key, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-static int fail(parse_state *s, const char *section, const char *key, const char *fmt, ...) {
+/* The first error of the file: FILE:LINE: [section] key: and the text, with `code` (a
+ * config's own mistake is FOG_ERR_BAD_CONFIG; a sound line naming a file that is not there,
+ * the file's). Returns 0 for the parser (stop). */
+static int vfail_as(parse_state *s, fog_result code, const char *section, const char *key,
+                    const char *fmt, va_list args) {
   if (s->error_line) return 0; /* keep the first error */
   s->error_line = s->line ? s->line : -1;
   char detail[sizeof s->err->message];
-  va_list args;
-  va_start(args, fmt);
   vsnprintf(detail, sizeof detail, fmt, args);
-  va_end(args);
   /* line 0: a check after parsing on a key the file does not set (its default) */
   if (s->line)
-    fog_fail(s->err, FOG_ERR_BAD_CONFIG, "%s:%d: [%s] %s: %s", s->path, s->line, section, key,
-             detail);
+    fog_fail(s->err, code, "%s:%d: [%s] %s: %s", s->path, s->line, section, key, detail);
   else
-    fog_fail(s->err, FOG_ERR_BAD_CONFIG, "%s: [%s] %s (its default): %s", s->path, section, key,
-             detail);
+    fog_fail(s->err, code, "%s: [%s] %s (its default): %s", s->path, section, key, detail);
+  return 0;
+}
+
+static int fail_as(parse_state *s, fog_result code, const char *section, const char *key,
+                   const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+static int fail_as(parse_state *s, fog_result code, const char *section, const char *key,
+                   const char *fmt, ...) {
+  va_list args;
+  va_start(args, fmt);
+  vfail_as(s, code, section, key, fmt, args);
+  va_end(args);
+  return 0;
+}
+
+static int fail(parse_state *s, const char *section, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static int fail(parse_state *s, const char *section, const char *key, const char *fmt, ...) {
+  va_list args;
+  va_start(args, fmt);
+  vfail_as(s, FOG_ERR_BAD_CONFIG, section, key, fmt, args);
+  va_end(args);
   return 0;
 }
 
@@ -833,9 +851,8 @@ static int check_file(parse_state *s, const char *section, const char *key, int 
     return 0;
   }
   s->line = line;
-  const bool first = !s->error_line;
-  fail(s, section, key, "cannot open '%s' (%s)", path, strerror(errno));
-  if (first) s->err->code = FOG_ERR_FILE_ACCESS; /* the line is sound; its file is not there */
+  /* the line is sound; its file is not there */
+  fail_as(s, FOG_ERR_FILE_ACCESS, section, key, "cannot open '%s' (%s)", path, strerror(errno));
   return 1;
 }
 
@@ -877,10 +894,8 @@ static int check_sources(parse_state *ps) {
     const char *input = cfg->fog.vdb;
     if (vdb_sequence_find(&input, 1, -1, -1, &seq, &serr)) {
       s.line = cfg->fog.vdb_line;
-      const bool first = !s.error_line;
-      fail(&s, "fog", "vdb", "%s", serr.message);
       /* not there (file access), or a pattern it cannot take */
-      if (first && serr.code) s.err->code = serr.code;
+      fail_as(&s, serr.code ? serr.code : FOG_ERR_BAD_CONFIG, "fog", "vdb", "%s", serr.message);
       return 1;
     }
     vdb_sequence_destroy(&seq);
