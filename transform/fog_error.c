@@ -55,7 +55,5 @@ int fog_error_wrap(fog_error *err, const fog_error *cause, const char *format, .
 }
 
 int fog_error_pass(fog_error *err, const fog_error *cause) {
-  if (err && err != cause) *err = *cause;
-  if (err && err->code == FOG_SUCCESS) err->code = FOG_ERR_INVALID_ARGUMENT;
-  return 1;
+  return fog_error_wrap(err, cause, "%s", ""); /* no context: the same code rule */
 }
