@@ -844,8 +844,9 @@ static int show_slot_shadow(pipeline *p, const pipeline_slot *slot, fog_error *e
   return 0;
 }
 
-/* The sun moved (or the albedo became > 0) since the volume on screen was computed, and
- * no step brought one for this sun: compute it here from the last step's finest grid. */
+/* The sun moved (or the albedo became > 0, or a live rung's volume took its place) since
+ * the volume on screen was computed, and no step brought one for this sun: compute it here
+ * from the last step's finest grid. */
 static int relight(pipeline *p, const pipeline_params *params, fog_error *err) {
   if (!(params->sun.albedo > 0) || !params->fog_self_shadow) {
     p->shown_self_shadow = FOG_SUN_SHADOW_NONE; /* switched off: at once */
@@ -854,7 +855,8 @@ static int relight(pipeline *p, const pipeline_params *params, fog_error *err) {
   if (!p->shadow_grid.coefficients) return 0;
   double sun[3];
   sun_direction_of(p, params, sun);
-  if (p->shown_self_shadow != FOG_SUN_SHADOW_NONE &&
+  /* (while a rung's volume is in the pass, the fogmap's must go back) */
+  if (p->shown_self_shadow != FOG_SUN_SHADOW_NONE && !p->rung_shadow_shown &&
       !memcmp(sun, p->shown_shadow_sun, sizeof sun))
     return 0;
   double t0 = now_ms();
@@ -1044,7 +1046,6 @@ static int show_live_rung(pipeline *p, const pipeline_params *params, bool rung,
   if (!rung) {
     p->rung.kind = LIVE_RUNG_FOGMAP; /* a later rung is fitted anew (a reset between) */
     if (!p->rung_shadow_shown) return 0;
-    memset(p->shown_shadow_sun, 0, sizeof p->shown_shadow_sun);
     if (relight(p, params, err)) return 1;
     *self_shadow = p->shown_self_shadow;
     p->rung_shadow_shown = false;
