@@ -38,7 +38,7 @@ static void compare_window_with_render(const char *bin, const char *dir, const c
   snprintf(headless, sizeof headless, "%s/render.png", dir);
   snprintf(command, sizeof command,
            "xvfb-run -a -s '-screen 0 640x480x24' '%s' view %s --size 160x90 "
-           "--render-scale 1 --screenshot '%s' --frames 2 %s",
+           "--render-scale 1 --hide-panel --screenshot '%s' --frames 2 %s",
            bin, config, shot, view_options);
   CHECK(system(command) == 0, "%s", command);
   snprintf(command, sizeof command, "'%s' render %s --out '%s' --size 160x90 %s", bin, config,
@@ -71,6 +71,35 @@ static void compare_window_with_render(const char *bin, const char *dir, const c
         "(mean difference %.3f/255)", config, view_options, largest_mean);
   unlink(shot);
   unlink(headless);
+}
+
+/* The window program's panel: over the image by default, gone with --hide-panel. Inside
+ * the panel's title bar (60, 25) the two screenshots differ; far right (300, 150) they do
+ * not. */
+static void panel_shown_unless_hidden(const char *bin, const char *dir) {
+  float *shot[2] = {NULL, NULL};
+  int w = 0, h = 0;
+  for (int hidden = 0; hidden < 2; hidden++) {
+    char command[1024], png[256];
+    snprintf(png, sizeof png, "%s/panel%d.png", dir, hidden);
+    snprintf(command, sizeof command,
+             "xvfb-run -a -s '-screen 0 640x480x24' '%s' view configs/default.ini --size 320x180 "
+             "--render-scale 1 %s --screenshot '%s' --frames 2 > /dev/null",
+             bin, hidden ? "--hide-panel" : "", png);
+    CHECK(system(command) == 0, "%s", command);
+    shot[hidden] = load(png, "G", &w, &h);
+    unlink(png);
+  }
+  if (shot[0] && shot[1] && w == 320 && h == 180) {
+    const float in_panel = fabsf(shot[0][25 * w + 60] - shot[1][25 * w + 60]);
+    const float outside = fabsf(shot[0][150 * w + 300] - shot[1][150 * w + 300]);
+    printf("panel: title bar differs by %.3f with it hidden, the scene by %.3f\n", in_panel,
+           outside);
+    CHECK(in_panel > 0.05f, "no panel in the view's window (%.3f)", in_panel);
+    CHECK(outside < 2.0f / 255.0f, "the scene beside the panel changed (%.3f)", outside);
+  }
+  free(shot[0]);
+  free(shot[1]);
 }
 
 int main(void) {
@@ -112,6 +141,7 @@ int main(void) {
                                true);
     compare_window_with_render(bin, dir, "configs/classic_fog.ini", "--fit 0.01 --rung 0", "",
                                false);
+    panel_shown_unless_hidden(bin, dir);
   }
   rmdir(dir);
   return test_finish("test_view_window");

@@ -1,0 +1,93 @@
+/* The one window program of `fogpipe demo` and `fogpipe view` (part of the executable):
+ * a GLFW window with the Dear ImGui panel (app/panel.h), the free camera
+ * (app/free_camera.h), the screenshot and one frame loop, over one of two fog sources:
+ *
+ *   simulated  the config's simulation in the live pipeline (app/pipeline.h), playing or
+ *              paused (Space): `demo` on a model with a pyramid (app/window_pipeline.c);
+ *   as held    the fog as the config holds it in a render session's fog (app/render_fog.h):
+ *              a volume's VDB sequence plays or not (P), RBF emitters and Perlin octaves
+ *              drift, the Gaussian brush paints, `--fit` steps through the model ladder:
+ *              `view`, and `demo` on the models without a simulation (app/window_session.c).
+ *
+ * A frame: poll, the panel (the shell's frame rate and the source's sections), the camera,
+ * the source's input (keys and mouse the panel does not hold), the source's draw into the
+ * back buffer, the panel over it, the screenshot when asked, the swap. */
+#ifndef FOGPIPE_APP_WINDOW_PROGRAM_H
+#define FOGPIPE_APP_WINDOW_PROGRAM_H
+
+#include <stdbool.h>
+
+#include "app/config.h"
+#include "app/fit.h"
+#include "app/free_camera.h"
+#include "app/panel.h"
+#include "render/gl_context.h"
+#include "transform/fog_error.h"
+
+typedef struct window_options {
+  const char *command;     /* "demo" or "view": messages begin "fogpipe COMMAND: " */
+  const char *config_path; /* the window's title; the brush saves NAME.painted.ini beside it */
+  int width, height;       /* the window, > 0 */
+  /* Render at this times the window size, > 0; 0: chosen from the renderer (1 on a GPU, 0.5
+   * on a software renderer with the simulated fog at half of that). */
+  double render_scale;
+  bool simulate;           /* the config's simulation (its model must have a pyramid) */
+  bool play;               /* as held: start playing a volume's VDB sequence */
+  int live_rung;           /* simulated: the panel's model (live_rung_kind) to start with */
+  bool hide_panel;         /* start with the panel hidden (Tab shows it) */
+  const char *screenshot;  /* save the last frame as a PNG and return; NULL: run */
+  int frames;              /* frames before the screenshot, >= 1 */
+  /* As held: `fogpipe fit` before the window opens (app/fit.h); the panel's rung menu, or [
+   * and ], step through the rungs, 0 returns to the config's own fog. */
+  bool fit;
+  double fit_tolerance;    /* > 0 */
+  int rung;                /* >= 0: start on this rung; -1: fit's pick */
+  /* Not NULL: a window that cannot open is not an error printed here; it is put here and
+   * window_program_run returns WINDOW_PROGRAM_NO_WINDOW (the demo records instead). */
+  fog_error *window_failure;
+} window_options;
+
+#define WINDOW_PROGRAM_NO_WINDOW (-1)
+
+/* Opens the window and runs until it closes or the screenshot is taken; errors printed as
+ * `fogpipe COMMAND: ...` (no display: "cannot open a window: ..."). cfg may be changed (the
+ * live terrain LOD on a software renderer). The process exit status, or
+ * WINDOW_PROGRAM_NO_WINDOW (see window_failure). */
+int window_program_run(scene_config *cfg, const window_options *opts);
+
+/* ---- the fog sources (app/window_pipeline.c, app/window_session.c) ---- */
+
+/* One frame as the sources see it. */
+typedef struct window_frame {
+  GLFWwindow *window;
+  gl_context *gl;
+  int index;             /* 0 for the first frame */
+  double now, dt;        /* glfwGetTime(); seconds since the last frame, at most 0.25 */
+  double fps;            /* smoothed frames per second */
+  int fb_w, fb_h;        /* the framebuffer, > 0 */
+  bool keyboard, mouse;  /* the panel does not hold them */
+  const free_camera *fc; /* moved for this frame */
+} window_frame;
+
+typedef struct window_source {
+  void *self;
+  int look_buttons;      /* FREE_CAMERA_LOOK_* the camera looks with */
+  double camera_speed;   /* world units per second */
+  /* The source's panel sections (inside the shell's window). */
+  void (*panel)(void *self, panel *ui, const window_frame *f);
+  /* Keys, mouse and time before the draw. */
+  int (*input)(void *self, const window_frame *f, fog_error *err);
+  /* The frame into the window's back buffer (fb_w x fb_h). */
+  int (*draw)(void *self, const window_frame *f, fog_error *err);
+  void (*destroy)(void *self);
+} window_source;
+
+/* The simulated source of cfg (its model has a pyramid) in the current window context. */
+int window_pipeline_source(window_source *src, gl_context *gl, scene_config *cfg,
+                           const window_options *opts, fog_error *err);
+/* The fog as cfg holds it, in the current window context; fit (NULL: none; taken over, even
+ * on failure) is the ladder that --fit made before the window opened. */
+int window_session_source(window_source *src, gl_context *gl, const scene_config *cfg,
+                          const window_options *opts, fit_result *fit, fog_error *err);
+
+#endif

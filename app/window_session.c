@@ -1,0 +1,437 @@
+/* The fog source "as held" of the window program (app/window_program.h): the scene config's
+ * fog as the file holds it, in a render session's fog (app/render_fog.h), no simulation.
+ * A volume's VDB sequence plays with P (or from the start with --play); RBF emitters' puffs
+ * and Perlin octaves drift with the clock; B turns on the Gaussian brush on an RBF scene
+ * (app/rbf_brush.h: paint, erase, copy); with --fit the panel's rung menu (or [ and ])
+ * steps through the model ladder. With --screenshot the clock is the frame count (a
+ * sequence advances one VDB frame per drawn frame, drifting fog 1/24 s): the same image
+ * every run. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <GLFW/glfw3.h>
+
+#include "app/rbf_brush.h"
+#include "app/render_fog.h"
+#include "app/render_frame.h"
+#include "app/vdb_source.h"
+#include "app/window_program.h"
+#include "render/gl_present.h"
+#include "render/render.h"
+#include "sim/sim.h"
+
+/* model = volume: its VDB sequence, played from the config's frame. */
+typedef struct volume_playback {
+  vdb_sequence sequence;
+  double shown;          /* frame index position on screen (vdb_sequence_position) */
+  bool playing;
+  double start_time;     /* when position `start` was on screen */
+  double start;
+  bool p_was_down;
+} volume_playback;
+
+typedef struct view_state {
+  const char *command; /* messages begin "fogpipe COMMAND: " */
+  scene_geometry geo;
+  bool geo_made;
+  scene_pass *scene;
+  render_fog fog;
+  bool has_fog;
+  gl_target scene_target, fog_target;
+  gl_presenter *presenter;
+} view_state;
+
+static int make_targets(view_state *v, int width, int height, fog_error *err) {
+  gl_target_destroy(&v->scene_target);
+  gl_target_destroy(&v->fog_target);
+  if (scene_target_create(&v->scene_target, width, height, err)) return 1;
+  if (v->has_fog &&
+      gl_target_create(&v->fog_target,
+                       &(gl_target_desc){.width = width, .height = height,
+                                         .color_formats = {GL_RGBA16F, GL_R32F}},
+                       err))
+    return 1;
+  return 0;
+}
+
+/* P toggles playing; while playing, the frame index position follows the clock at
+ * vdb_fps, wrapping around, between frames blended as record blends them. Loads and
+ * uploads only when the position changes. */
+static int volume_playback_update(volume_playback *pb, GLFWwindow *window, bool keyboard,
+                                  double now, render_fog *fog, const scene_config *cfg,
+                                  fog_error *err) {
+  bool p_down = keyboard && glfwGetKey(window, GLFW_KEY_P) == GLFW_PRESS;
+  if (p_down && !pb->p_was_down) {
+    pb->playing = !pb->playing;
+    pb->start_time = now;
+    pb->start = pb->shown;
+  }
+  pb->p_was_down = p_down;
+  if (!pb->playing) return 0;
+  const int count = pb->sequence.count;
+  double position = fmod(pb->start + (now - pb->start_time) * cfg->fog.vdb_fps, (double)count);
+  if (position == pb->shown) return 0;
+  pb->shown = position;
+  int a, b;
+  double w;
+  vdb_sequence_position(position, count, 1, &a, &b, &w);
+  return render_fog_set_volume_time(fog, cfg, &pb->sequence, a, b, w, err);
+}
+
+/* ---- the Gaussian brush (model = rbf; app/rbf_brush.h) ---- */
+
+enum { BRUSH_KEY_B, BRUSH_KEY_C, BRUSH_KEY_V, BRUSH_KEY_SMALLER, BRUSH_KEY_LARGER,
+       BRUSH_KEY_THINNER, BRUSH_KEY_DENSER, BRUSH_KEY_SAVE, BRUSH_KEYS };
+
+typedef struct view_brush {
+  const char *command;
+  bool on;
+  rbf_brush brush;
+  scene_config *painted;   /* the scene with the brush's Gaussians (owned; made at first B) */
+  const char *config_path; /* Ctrl+S writes NAME.painted.ini beside it */
+  bool stroke;             /* the left button went down on the surface */
+  double carried, last[3];
+  bool have_group;
+  double group[3];         /* where C picked a group up */
+  bool key_was_down[BRUSH_KEYS];
+} view_brush;
+
+/* The surface point under the cursor, from the scene target's distance (false: the sky). */
+static bool view_pick(const view_state *v, GLFWwindow *window, const camera *cam, double hit[3]) {
+  double x, y;
+  int win_w = 0, win_h = 0;
+  glfwGetCursorPos(window, &x, &y);
+  glfwGetWindowSize(window, &win_w, &win_h);
+  const int w = v->scene_target.width, h = v->scene_target.height;
+  int px = (int)(x * w / (win_w > 0 ? win_w : 1)), py = (int)(y * h / (win_h > 0 ? win_h : 1));
+  if (px < 0 || py < 0 || px >= w || py >= h) return false;
+  const float distance = gl_target_read_texel(&v->scene_target, 1, px, py);
+  if (!(distance < 0.5f * SCENE_SKY_DISTANCE)) return false;
+  double origin[3], dir[3];
+  camera_ray(cam, px, py, w, h, origin, dir);
+  for (int a = 0; a < 3; a++) hit[a] = origin[a] + distance * dir[a];
+  return true;
+}
+
+static bool brush_key(view_brush *b, GLFWwindow *window, int key, int which) {
+  bool down = glfwGetKey(window, key) == GLFW_PRESS;
+  bool pressed = down && !b->key_was_down[which];
+  b->key_was_down[which] = down;
+  return pressed;
+}
+
+static void brush_title(const view_brush *b, GLFWwindow *window) {
+  char title[320];
+  if (b->on)
+    snprintf(title, sizeof title,
+             "fogpipe %s: brush r %.3g c %.3g, %d Gaussians (drag paints, Shift erases, C/V "
+             "copy, -/= size, ,/. density, Ctrl+S saves, B off)",
+             b->command, b->brush.radius, b->brush.density, b->painted->fog.rbf_count);
+  else
+    snprintf(title, sizeof title, "fogpipe %s: %s", b->command, b->config_path);
+  glfwSetWindowTitle(window, title);
+}
+
+/* Ctrl+S: the painted scene as NAME.painted.ini beside the config. */
+static void brush_save(const view_brush *b) {
+  char path[SCENE_CONFIG_PATH_MAX + 16];
+  size_t n = strlen(b->config_path);
+  int stem = n > 4 && !strcmp(b->config_path + n - 4, ".ini") ? (int)(n - 4) : (int)n;
+  snprintf(path, sizeof path, "%.*s.painted.ini", stem, b->config_path);
+  fog_error werr;
+  if (scene_config_write(b->painted, path, &werr))
+    fprintf(stderr, "fogpipe %s: the brush: %s\n", b->command, werr.message);
+  else
+    printf("fogpipe %s: wrote %s (%d Gaussians)\n", b->command, path,
+           b->painted->fog.rbf_count);
+}
+
+/* B, the mouse and the brush's keys for one frame; the fog takes the changed Gaussians. */
+static int view_brush_update(view_brush *b, view_state *v, GLFWwindow *window,
+                             const scene_config *cfg, const camera *cam, double time,
+                             fog_error *err) {
+  if (brush_key(b, window, GLFW_KEY_B, BRUSH_KEY_B)) {
+    if (cfg->fog.model != FOG_MODEL_RBF || !v->has_fog) {
+      printf("fogpipe %s: the brush paints Gaussians: it needs [fog] model = rbf\n",
+             b->command);
+      return 0;
+    }
+    if (!b->painted) {
+      if (!(b->painted = malloc(sizeof *b->painted))) {
+        fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the brush");
+        return 1;
+      }
+      *b->painted = *cfg;
+      b->brush = rbf_brush_for(cfg->fog.rbfs, cfg->fog.rbf_count,
+                               fmax(cfg->terrain.size[0], cfg->terrain.size[1]), 0.02);
+    }
+    b->on = !b->on;
+    brush_title(b, window);
+  }
+  if (!b->on) return 0;
+  bool ctrl = glfwGetKey(window, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+              glfwGetKey(window, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+  bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+               glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+  rbf_brush *brush = &b->brush;
+  bool retitle = false;
+  if (brush_key(b, window, GLFW_KEY_MINUS, BRUSH_KEY_SMALLER)) brush->radius /= 1.25, retitle = true;
+  if (brush_key(b, window, GLFW_KEY_EQUAL, BRUSH_KEY_LARGER)) brush->radius *= 1.25, retitle = true;
+  if (brush_key(b, window, GLFW_KEY_COMMA, BRUSH_KEY_THINNER)) brush->density /= 1.25, retitle = true;
+  if (brush_key(b, window, GLFW_KEY_PERIOD, BRUSH_KEY_DENSER)) brush->density *= 1.25, retitle = true;
+  brush->spacing = brush->lift = 0.5 * brush->radius;
+  if (brush_key(b, window, GLFW_KEY_S, BRUSH_KEY_SAVE) && ctrl) brush_save(b);
+  scene_fog_config *f = &b->painted->fog;
+  rbf_bank bank = {.rbfs = f->rbfs, .count = f->rbf_count, .capacity = SCENE_CONFIG_MAX_RBFS};
+  int changed = 0;
+  double hit[3];
+  bool picked = view_pick(v, window, cam, hit);
+  if (brush_key(b, window, GLFW_KEY_C, BRUSH_KEY_C) && picked) {
+    b->have_group = true;
+    memcpy(b->group, hit, sizeof hit);
+  }
+  if (brush_key(b, window, GLFW_KEY_V, BRUSH_KEY_V) && picked && b->have_group)
+    changed += rbf_brush_copy(&bank, b->group, 2.0 * brush->radius, hit);
+  bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  if (left && picked && shift) {
+    changed += rbf_brush_erase(&bank, hit, 1.5 * brush->radius);
+  } else if (left && picked) {
+    if (!b->stroke) b->carried = rbf_brush_stroke_start(brush), memcpy(b->last, hit, sizeof hit);
+    changed += rbf_brush_stroke(&bank, brush, b->last, hit, &b->carried);
+    memcpy(b->last, hit, sizeof hit);
+  }
+  b->stroke = left && picked && !shift;
+  f->rbf_count = bank.count;
+  if (changed) {
+    if (render_fog_set_rbfs(&v->fog, b->painted, time, err)) return 1;
+    retitle = true;
+  }
+  if (retitle) brush_title(b, window);
+  return 0;
+}
+
+/* --fit: the rungs and the one shown (-1: the config's own fog). */
+typedef struct rung_selector {
+  fit_result fit;
+  bool on;
+  int shown;
+  int wanted; /* the panel's menu */
+  bool bracket_was_down[2];
+  bool zero_was_down;
+} rung_selector;
+
+/* The fog of rung `index` (-1: the config's) in place of the one shown. */
+static int show_rung(view_state *v, rung_selector *sel, int index, const scene_config *cfg,
+                     fog_error *err) {
+  const scene_config *shown = index < 0 ? cfg : sel->fit.rungs[index].config;
+  render_fog_destroy(&v->fog);
+  v->has_fog = false;
+  if (render_fog_create(&v->fog, shown, err)) return 1;
+  render_fog_set_shafts(&v->fog, shown, scene_pass_sun_shadow(v->scene));
+  render_fog_set_lamp_shadows(&v->fog, scene_pass_lamp_shadows(v->scene));
+  v->has_fog = true;
+  sel->shown = index;
+  if (index < 0)
+    printf("fogpipe %s: showing the config's own fog\n", v->command);
+  else
+    printf("fogpipe %s: showing rung %d: %s (max |dtau| %.3g, mean %.3g, %.2f ms in fit)\n",
+           v->command, index, sel->fit.rungs[index].name, sel->fit.rungs[index].max_error,
+           sel->fit.rungs[index].mean_error, sel->fit.rungs[index].ms);
+  return 0;
+}
+
+/* The panel's menu, or [ and ] step through the rungs, 0 returns to the config's fog; the
+ * title says which. */
+static int rung_selector_update(rung_selector *sel, view_state *v, GLFWwindow *window,
+                                const scene_config *cfg, double fps, bool keyboard,
+                                fog_error *err) {
+  static const int keys[2] = {GLFW_KEY_LEFT_BRACKET, GLFW_KEY_RIGHT_BRACKET};
+  int next = sel->wanted;
+  for (int k = 0; k < 2; k++) {
+    bool down = keyboard && glfwGetKey(window, keys[k]) == GLFW_PRESS;
+    if (down && !sel->bracket_was_down[k]) next += k ? 1 : -1;
+    sel->bracket_was_down[k] = down;
+  }
+  bool zero = keyboard && glfwGetKey(window, GLFW_KEY_0) == GLFW_PRESS;
+  if (zero && !sel->zero_was_down) next = -1;
+  sel->zero_was_down = zero;
+  if (next < -1) next = sel->fit.count - 1;
+  if (next >= sel->fit.count) next = -1;
+  sel->wanted = next;
+  if (next != sel->shown && show_rung(v, sel, next, cfg, err)) return 1;
+  char title[320];
+  if (sel->shown < 0)
+    snprintf(title, sizeof title, "fogpipe %s: the config's own fog, %.1f fps ([ ] rungs)",
+             v->command, fps);
+  else
+    snprintf(title, sizeof title,
+             "fogpipe %s: rung %d/%d %s: max |dtau| %.3g, %.2f ms in fit; %.1f fps ([ ] 0)",
+             v->command, sel->shown, sel->fit.count, sel->fit.rungs[sel->shown].name,
+             sel->fit.rungs[sel->shown].max_error, sel->fit.rungs[sel->shown].ms, fps);
+  glfwSetWindowTitle(window, title);
+  return 0;
+}
+
+/* ---- the source ---- */
+
+typedef struct session_source {
+  const scene_config *cfg;
+  double render_scale;
+  bool fixed_clock; /* --screenshot: time from the frame count */
+  view_state v;
+  volume_playback playback;
+  view_brush brush;
+  rung_selector sel;
+  const char *rung_names[FIT_MAX_RUNGS + 1]; /* the panel's menu: the config's fog, rungs */
+} session_source;
+
+static void source_destroy(void *self) {
+  session_source *s = self;
+  view_state *v = &s->v;
+  gl_presenter_destroy(v->presenter);
+  gl_target_destroy(&v->scene_target);
+  gl_target_destroy(&v->fog_target);
+  render_fog_destroy(&v->fog);
+  scene_pass_destroy(v->scene);
+  if (v->geo_made) scene_geometry_destroy(&v->geo);
+  if (s->playback.sequence.count) vdb_sequence_destroy(&s->playback.sequence);
+  if (s->sel.on) fit_result_destroy(&s->sel.fit);
+  free(s->brush.painted);
+  free(s);
+}
+
+/* What the fog is and how it moves; with --fit the rung menu. */
+static void source_panel(void *self, panel *ui, const window_frame *f) {
+  (void)f;
+  session_source *s = self;
+  if (!panel_header(ui, "fog as the config holds it", true)) return;
+  panel_text(ui, "model: %s (no simulation)", fog_model_table[s->cfg->fog.model].label);
+  if (s->playback.sequence.count) {
+    panel_checkbox(ui, "play the VDB sequence (P)", &s->playback.playing);
+    const int at = (int)s->playback.shown; /* between frames at and at + 1 */
+    panel_text(ui, "VDB frame %d (%d of %d)", s->playback.sequence.frames[at], at + 1,
+               s->playback.sequence.count);
+  }
+  if (s->cfg->fog.model == FOG_MODEL_RBF)
+    panel_text(ui, "B: the Gaussian brush (%s)", s->brush.on ? "on" : "off");
+  if (s->sel.on) {
+    int shown = s->sel.shown + 1;
+    if (panel_combo(ui, "rung", &shown, s->rung_names, s->sel.fit.count + 1))
+      s->sel.wanted = shown - 1;
+    if (s->sel.shown >= 0) {
+      const fit_rung *r = &s->sel.fit.rungs[s->sel.shown];
+      panel_text(ui, "|dtau| vs the config's fog: max %.3g, mean %.3g", r->max_error,
+                 r->mean_error);
+      panel_text(ui, "%.2f ms a frame in fit", r->ms);
+    }
+  }
+}
+
+static int source_input(void *self, const window_frame *f, fog_error *err) {
+  session_source *s = self;
+  view_state *v = &s->v;
+  const scene_config *cfg = s->cfg;
+  if (s->sel.on && rung_selector_update(&s->sel, v, f->window, cfg, f->fps, f->keyboard, err))
+    return 1;
+  /* With --screenshot the sequence advances one VDB frame per drawn frame (the same image
+   * every run), else with the clock. */
+  const double clock =
+      s->fixed_clock ? s->playback.start_time + f->index / cfg->fog.vdb_fps : f->now;
+  if (s->playback.sequence.count && s->sel.shown < 0 &&
+      volume_playback_update(&s->playback, f->window, f->keyboard, clock, &v->fog, cfg, err))
+    return 1;
+  /* RBF fog from emitters moves with the clock (with --screenshot at 24 frames a second:
+   * the same image every run) */
+  const double fog_time = s->fixed_clock ? f->index / 24.0 : f->now - s->playback.start_time;
+  const scene_config *fog_cfg = s->brush.painted ? s->brush.painted : cfg;
+  if (v->has_fog && s->sel.shown < 0 && render_fog_animated(fog_cfg) &&
+      render_fog_set_time(&v->fog, fog_cfg, fog_time, err))
+    return 1;
+  /* the brush picks from the last frame's distances */
+  return f->index > 0 && s->sel.shown < 0 && f->keyboard && f->mouse &&
+         view_brush_update(&s->brush, v, f->window, cfg, &f->fc->cam, fog_time, err);
+}
+
+static int source_draw(void *self, const window_frame *f, fog_error *err) {
+  session_source *s = self;
+  view_state *v = &s->v;
+  const int w = (int)fmax(1.0, floor(f->fb_w * s->render_scale));
+  const int h = (int)fmax(1.0, floor(f->fb_h * s->render_scale));
+  const gl_target *t = &v->scene_target;
+  if ((w != t->width || h != t->height || !t->framebuffer) && make_targets(v, w, h, err))
+    return 1;
+  scene_pass_run(v->scene, &f->fc->cam, &v->scene_target);
+  const gl_target *shown = &v->scene_target;
+  if (v->has_fog) {
+    if (render_fog_draw(&v->fog, &f->fc->cam, &v->scene_target, &v->fog_target, err)) return 1;
+    shown = &v->fog_target;
+  }
+  gl_presenter_draw(v->presenter, shown, f->fb_w, f->fb_h, GL_PRESENT_NEAREST);
+  return 0;
+}
+
+/* Scene, fog, playback and presenter in the current context. */
+static int session_open(session_source *s, const window_options *opts, fog_error *err) {
+  view_state *v = &s->v;
+  const scene_config *cfg = s->cfg;
+  if (render_scene_geometry_create(cfg, &v->geo, err)) return 1;
+  v->geo_made = true;
+  if (!(v->scene = scene_pass_create(&v->geo, err))) return 1;
+  const fog_lamps lamps = scene_config_fog_lamps(cfg);
+  if (scene_pass_set_lamp_shadows(v->scene, scene_config_lamp_shadow_size(cfg), err) ||
+      scene_pass_set_lamps(v->scene, &lamps, err))
+    return 1;
+  if (scene_config_has_fog(cfg)) {
+    if (render_fog_create(&v->fog, cfg, err)) return 1;
+    render_fog_set_shafts(&v->fog, cfg, scene_pass_sun_shadow(v->scene));
+    render_fog_set_lamp_shadows(&v->fog, scene_pass_lamp_shadows(v->scene));
+    v->has_fog = true;
+  }
+  volume_playback *playback = &s->playback;
+  playback->playing = opts->play;
+  playback->start_time = glfwGetTime();
+  if (cfg->fog.model == FOG_MODEL_VOLUME) {
+    if (render_fog_volume_sequence(cfg, &playback->sequence, err)) return 1;
+    /* render_fog_create showed vdb_frame (so it is in the sequence) */
+    playback->shown = playback->start = vdb_frame_index(
+        playback->sequence.frames, playback->sequence.count, cfg->fog.vdb_frame);
+  }
+  if (!(v->presenter = gl_presenter_create(err))) return 1;
+  const int first = opts->rung >= 0 ? opts->rung : s->sel.fit.chosen;
+  return s->sel.on && first >= 0 && show_rung(v, &s->sel, first, cfg, err);
+}
+
+int window_session_source(window_source *src, gl_context *gl, const scene_config *cfg,
+                          const window_options *opts, fit_result *fit, fog_error *err) {
+  (void)gl;
+  session_source *s = calloc(1, sizeof *s);
+  if (!s) {
+    if (fit) fit_result_destroy(fit);
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the window's fog");
+  }
+  s->cfg = cfg;
+  s->render_scale = opts->render_scale > 0 ? opts->render_scale : 0.5;
+  s->fixed_clock = opts->screenshot != NULL;
+  s->v.command = opts->command;
+  s->brush = (view_brush){.command = opts->command, .config_path = opts->config_path};
+  s->sel = (rung_selector){.shown = -1, .wanted = -1};
+  if (fit) {
+    s->sel.fit = *fit; /* taken over */
+    s->sel.on = true;
+    s->rung_names[0] = "the config's own fog";
+    for (int r = 0; r < fit->count; r++) s->rung_names[r + 1] = s->sel.fit.rungs[r].name;
+  }
+  if (session_open(s, opts, err)) {
+    source_destroy(s);
+    return 1;
+  }
+  s->sel.wanted = s->sel.shown;
+  *src = (window_source){
+      .self = s, .look_buttons = FREE_CAMERA_LOOK_MIDDLE | FREE_CAMERA_LOOK_RIGHT,
+      .camera_speed = 0.05 * fmax(cfg->terrain.size[0], cfg->terrain.size[1]),
+      .panel = source_panel, .input = source_input, .draw = source_draw,
+      .destroy = source_destroy};
+  return 0;
+}
