@@ -102,46 +102,27 @@ static bool panel_fog(panel *ui, pipeline_params *params, demo_ui *d) {
   return changed;
 }
 
-/* The sun (a time of day), its colour, albedo, phase and shadows. */
+/* The sun through the window program's section (pipeline_params hold it as the fog sees
+ * it: radiance = SCENE_SUN_IRRADIANCE_PER_COLOUR x [light] sun_colour; the pipeline relights
+ * the surfaces and the fog). */
 static bool panel_sunlight(panel *ui, pipeline_params *params) {
-  if (!panel_header(ui, "sunlight in the fog", true)) return false;
-  bool changed = false;
-  /* sigma_s = albedo K, Henyey-Greenstein g (docs/light.md); the sun (a time of day)
-   * lights the terrain and the fog */
-  float albedo = (float)params->sun.albedo, g = (float)params->sun.phase_g;
-  /* down to a sun just under the horizon (dusk: the fog's self-shadow turns opaque) */
-  changed |= panel_slider_float(ui, "sun azimuth", &params->sun_azimuth, -180.0f, 180.0f,
-                                "%.0f deg", false);
-  changed |= panel_slider_float(ui, "sun elevation", &params->sun_elevation, -5.0f, 90.0f,
-                                "%.1f deg", false);
-  if (panel_slider_float(ui, "albedo", &albedo, 0.0f, 1.0f, "%.2f", false)) {
-    params->sun.albedo = albedo;
-    changed = true;
-  }
-  if (panel_slider_float(ui, "phase g", &g, -0.95f, 0.95f, "%.2f", false)) {
-    params->sun.phase_g = g;
-    changed = true;
-  }
-  /* [light] sun_colour (HDR) as a hue and a strength: the surfaces' sun and pi x it the
-   * fog's (the pipeline relights both) */
-  float hue[3], strength = 0.0f;
-  for (int c = 0; c < 3; c++) {
-    hue[c] = (float)(params->sun.radiance[c] / SCENE_SUN_IRRADIANCE_PER_COLOUR);
-    strength = fmaxf(strength, hue[c]);
-  }
-  for (int c = 0; c < 3; c++) hue[c] = strength > 0.0f ? hue[c] / strength : 1.0f;
-  bool hue_changed = panel_color3(ui, "sun colour", hue);
-  if (panel_slider_float(ui, "sun strength", &strength, 0.0f, 10.0f, "%.2f", false) ||
-      hue_changed) {
-    for (int c = 0; c < 3; c++)
-      params->sun.radiance[c] = SCENE_SUN_IRRADIANCE_PER_COLOUR * hue[c] * strength;
-    changed = true;
-  }
-  /* T_s: the fog's shadow on itself and on the ground (albedo > 0) */
-  changed |= panel_checkbox(ui, "fog self-shadow", &params->fog_self_shadow);
-  panel_same_line(ui);
-  changed |= panel_checkbox(ui, "light shafts", &params->shafts);
-  return changed;
+  window_sunlight sun = {.azimuth = params->sun_azimuth, .elevation = params->sun_elevation,
+                         .albedo = (float)params->sun.albedo,
+                         .phase_g = (float)params->sun.phase_g,
+                         .self_shadow = params->fog_self_shadow, .shafts = params->shafts};
+  double colour[3];
+  for (int c = 0; c < 3; c++) colour[c] = params->sun.radiance[c] / SCENE_SUN_IRRADIANCE_PER_COLOUR;
+  window_sunlight_set_colour(&sun, colour);
+  if (!window_panel_sunlight(ui, &sun)) return false;
+  params->sun_azimuth = sun.azimuth;
+  params->sun_elevation = sun.elevation;
+  params->sun.albedo = sun.albedo;
+  params->sun.phase_g = sun.phase_g;
+  window_sunlight_colour(&sun, colour);
+  for (int c = 0; c < 3; c++) params->sun.radiance[c] = SCENE_SUN_IRRADIANCE_PER_COLOUR * colour[c];
+  params->fog_self_shadow = sun.self_shadow;
+  params->shafts = sun.shafts;
+  return true;
 }
 
 /* The transform's basis and levels, the LOD and the fog pass's resolution. */

@@ -30,6 +30,37 @@ static int save_screenshot(const window_options *o, const window_frame *f, fog_e
   return status;
 }
 
+bool window_panel_sunlight(panel *ui, window_sunlight *sun) {
+  if (!panel_header(ui, "sunlight in the fog", true)) return false;
+  bool changed = false;
+  /* down to a sun just under the horizon (dusk: the fog's self-shadow turns opaque) */
+  changed |= panel_slider_float(ui, "sun azimuth", &sun->azimuth, -180.0f, 180.0f, "%.0f deg",
+                                false);
+  changed |= panel_slider_float(ui, "sun elevation", &sun->elevation, -5.0f, 90.0f,
+                                "%.1f deg", false);
+  /* sigma_s = albedo K, Henyey-Greenstein g (docs/light.md) */
+  changed |= panel_slider_float(ui, "albedo", &sun->albedo, 0.0f, 1.0f, "%.2f", false);
+  changed |= panel_slider_float(ui, "phase g", &sun->phase_g, -0.95f, 0.95f, "%.2f", false);
+  changed |= panel_color3(ui, "sun colour", sun->hue);
+  changed |= panel_slider_float(ui, "sun strength", &sun->strength, 0.0f, 10.0f, "%.2f", false);
+  /* T_s: the fog's shadow on itself and on the ground (albedo > 0) */
+  changed |= panel_checkbox(ui, "fog self-shadow", &sun->self_shadow);
+  panel_same_line(ui);
+  changed |= panel_checkbox(ui, "light shafts", &sun->shafts);
+  return changed;
+}
+
+void window_sunlight_set_colour(window_sunlight *sun, const double colour[3]) {
+  sun->strength = 0.0f;
+  for (int c = 0; c < 3; c++) sun->strength = fmaxf(sun->strength, (float)colour[c]);
+  for (int c = 0; c < 3; c++)
+    sun->hue[c] = sun->strength > 0.0f ? (float)colour[c] / sun->strength : 1.0f;
+}
+
+void window_sunlight_colour(const window_sunlight *sun, double colour[3]) {
+  for (int c = 0; c < 3; c++) colour[c] = (double)sun->hue[c] * sun->strength;
+}
+
 /* The panel's window: the frame rate and the frame times the loop measures, then the
  * source's sections. */
 typedef struct window_shell {

@@ -57,6 +57,22 @@ int window_program_run(scene_config *cfg, const window_options *opts);
 
 /* ---- the fog sources (app/window_pipeline.c, app/window_session.c) ---- */
 
+/* The sun as the panel edits it, for either source: a time of day, its colour as a hue
+ * and a strength (the largest channel of [light] sun_colour), [fog] albedo and phase_g,
+ * [light] fog_self_shadow and shafts. */
+typedef struct window_sunlight {
+  float azimuth, elevation; /* degrees */
+  float albedo, phase_g;
+  float hue[3], strength;
+  bool self_shadow, shafts;
+} window_sunlight;
+/* The panel's "sunlight in the fog" section; true when the user changed a value. */
+bool window_panel_sunlight(panel *ui, window_sunlight *sun);
+/* [light] sun_colour (or a fog_sun's radiance over SCENE_SUN_IRRADIANCE_PER_COLOUR) as a
+ * hue and a strength, and back. */
+void window_sunlight_set_colour(window_sunlight *sun, const double colour[3]);
+void window_sunlight_colour(const window_sunlight *sun, double colour[3]);
+
 /* One frame as the sources see it. */
 typedef struct window_frame {
   GLFWwindow *window;

@@ -13,6 +13,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include "app/clock.h"
 #include "app/rbf_brush.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"
@@ -89,7 +90,8 @@ typedef struct view_brush {
   const char *command;
   bool on;
   rbf_brush brush;
-  scene_config *painted;   /* the scene with the brush's Gaussians (owned; made at first B) */
+  scene_config *painted;   /* the session's own config, whose Gaussians the brush edits */
+  bool started;            /* the brush's radius and density are set (at the first B) */
   const char *config_path; /* Ctrl+S writes NAME.painted.ini beside it */
   bool stroke;             /* the left button went down on the surface */
   double carried, last[3];
@@ -158,12 +160,8 @@ static int view_brush_update(view_brush *b, view_state *v, GLFWwindow *window,
              b->command);
       return 0;
     }
-    if (!b->painted) {
-      if (!(b->painted = malloc(sizeof *b->painted))) {
-        fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the brush");
-        return 1;
-      }
-      *b->painted = *cfg;
+    if (!b->started) {
+      b->started = true;
       b->brush = rbf_brush_for(cfg->fog.rbfs, cfg->fog.rbf_count,
                                fmax(cfg->terrain.size[0], cfg->terrain.size[1]), 0.02);
     }
@@ -222,16 +220,32 @@ typedef struct rung_selector {
   bool zero_was_down;
 } rung_selector;
 
-/* The fog of rung `index` (-1: the config's) in place of the one shown. */
-static int show_rung(view_state *v, rung_selector *sel, int index, const scene_config *cfg,
-                     fog_error *err) {
-  const scene_config *shown = index < 0 ? cfg : sel->fit.rungs[index].config;
+/* What the panel's sunlight section edits, from one config to another. */
+static void copy_sunlight(scene_config *to, const scene_config *from) {
+  to->light = from->light;
+  to->fog.albedo = from->fog.albedo;
+  to->fog.phase_g = from->fog.phase_g;
+  to->shadow.fog_self_shadow = from->shadow.fog_self_shadow;
+  to->shadow.shafts = from->shadow.shafts;
+}
+
+/* The fog of `shown` in place of the one shown, lit by the scene pass's shadow maps. */
+static int make_fog(view_state *v, const scene_config *shown, fog_error *err) {
   render_fog_destroy(&v->fog);
   v->has_fog = false;
   if (render_fog_create(&v->fog, shown, err)) return 1;
   render_fog_set_shafts(&v->fog, shown, scene_pass_sun_shadow(v->scene));
   render_fog_set_lamp_shadows(&v->fog, scene_pass_lamp_shadows(v->scene));
   v->has_fog = true;
+  return 0;
+}
+
+/* The fog of rung `index` (-1: the config's, cfg) in place of the one shown, in cfg's
+ * light. */
+static int show_rung(view_state *v, rung_selector *sel, int index, const scene_config *cfg,
+                     fog_error *err) {
+  if (index >= 0) copy_sunlight(sel->fit.rungs[index].config, cfg);
+  if (make_fog(v, index < 0 ? cfg : sel->fit.rungs[index].config, err)) return 1;
   sel->shown = index;
   if (index < 0)
     printf("fogpipe %s: showing the config's own fog\n", v->command);
@@ -277,7 +291,9 @@ static int rung_selector_update(rung_selector *sel, view_state *v, GLFWwindow *w
 /* ---- the source ---- */
 
 typedef struct session_source {
-  const scene_config *cfg;
+  scene_config *cfg; /* the config's own copy (owned): the brush and the panel edit it */
+  bool relight;      /* the panel moved the sun: the next input relights */
+  double relight_ms; /* the last relight's time (0: none yet) */
   double render_scale;
   bool fixed_clock; /* --screenshot: time from the frame count */
   view_state v;
@@ -298,7 +314,7 @@ static void source_destroy(void *self) {
   if (v->geo_made) scene_geometry_destroy(&v->geo);
   if (s->playback.sequence.count) vdb_sequence_destroy(&s->playback.sequence);
   if (s->sel.on) fit_result_destroy(&s->sel.fit);
-  free(s->brush.painted);
+  free(s->cfg);
   free(s);
 }
 
@@ -316,6 +332,27 @@ static void source_panel(void *self, panel *ui, const window_frame *f) {
   }
   if (s->cfg->fog.model == FOG_MODEL_RBF)
     panel_text(ui, "B: the Gaussian brush (%s)", s->brush.on ? "on" : "off");
+  window_sunlight sun = {.azimuth = (float)s->cfg->light.sun_azimuth,
+                         .elevation = (float)s->cfg->light.sun_elevation,
+                         .albedo = (float)s->cfg->fog.albedo,
+                         .phase_g = (float)s->cfg->fog.phase_g,
+                         .self_shadow = s->cfg->shadow.fog_self_shadow,
+                         .shafts = s->cfg->shadow.shafts};
+  double colour[3];
+  for (int c = 0; c < 3; c++) colour[c] = s->cfg->light.sun_colour[c];
+  window_sunlight_set_colour(&sun, colour);
+  if (window_panel_sunlight(ui, &sun)) {
+    s->cfg->light.sun_azimuth = sun.azimuth;
+    s->cfg->light.sun_elevation = sun.elevation;
+    window_sunlight_colour(&sun, colour);
+    for (int c = 0; c < 3; c++) s->cfg->light.sun_colour[c] = (float)colour[c];
+    s->cfg->fog.albedo = sun.albedo;
+    s->cfg->fog.phase_g = sun.phase_g;
+    s->cfg->shadow.fog_self_shadow = sun.self_shadow;
+    s->cfg->shadow.shafts = sun.shafts;
+    s->relight = true;
+  }
+  if (s->relight_ms > 0) panel_text(ui, "fog made again in the new light: %.0f ms", s->relight_ms);
   if (s->sel.on) {
     int shown = s->sel.shown + 1;
     if (panel_combo(ui, "rung", &shown, s->rung_names, s->sel.fit.count + 1))
@@ -329,10 +366,35 @@ static void source_panel(void *self, panel *ui, const window_frame *f) {
   }
 }
 
+/* The panel moved the sun: the surfaces' light and shadow map (the scene pass renders the
+ * map again when the sun differs), and the fog shown made again in the new light (its
+ * sun-shadow volume; a played volume at the time shown). */
+static int relight_now(session_source *s, fog_error *err) {
+  view_state *v = &s->v;
+  s->relight = false;
+  v->geo.light = s->cfg->light;
+  scene_light_sun_direction(&v->geo.light, v->geo.sun_direction);
+  if (!v->has_fog) return 0;
+  if (s->sel.shown >= 0) copy_sunlight(s->sel.fit.rungs[s->sel.shown].config, s->cfg);
+  if (make_fog(v, s->sel.shown < 0 ? s->cfg : s->sel.fit.rungs[s->sel.shown].config, err))
+    return 1;
+  const volume_playback *pb = &s->playback;
+  if (!pb->sequence.count || s->sel.shown >= 0) return 0;
+  int a, b;
+  double w;
+  vdb_sequence_position(pb->shown, pb->sequence.count, 1, &a, &b, &w);
+  return render_fog_set_volume_time(&v->fog, s->cfg, &pb->sequence, a, b, w, err);
+}
+
 static int source_input(void *self, const window_frame *f, fog_error *err) {
   session_source *s = self;
   view_state *v = &s->v;
   const scene_config *cfg = s->cfg;
+  if (s->relight) {
+    const double t0 = app_clock_seconds();
+    if (relight_now(s, err)) return 1;
+    s->relight_ms = 1e3 * (app_clock_seconds() - t0);
+  }
   if (s->sel.on && rung_selector_update(&s->sel, v, f->window, cfg, f->fps, f->keyboard, err))
     return 1;
   /* With --screenshot the sequence advances one VDB frame per drawn frame (the same image
@@ -345,9 +407,8 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
   /* RBF fog from emitters moves with the clock (with --screenshot at 24 frames a second:
    * the same image every run) */
   const double fog_time = s->fixed_clock ? f->index / 24.0 : f->now - s->playback.start_time;
-  const scene_config *fog_cfg = s->brush.painted ? s->brush.painted : cfg;
-  if (v->has_fog && s->sel.shown < 0 && render_fog_animated(fog_cfg) &&
-      render_fog_set_time(&v->fog, fog_cfg, fog_time, err))
+  if (v->has_fog && s->sel.shown < 0 && render_fog_animated(cfg) &&
+      render_fog_set_time(&v->fog, cfg, fog_time, err))
     return 1;
   /* the brush picks from the last frame's distances */
   return f->index > 0 && s->sel.shown < 0 && f->keyboard && f->mouse &&
@@ -411,11 +472,17 @@ int window_session_source(window_source *src, gl_context *gl, const scene_config
     if (fit) fit_result_destroy(fit);
     return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the window's fog");
   }
-  s->cfg = cfg;
+  if (!(s->cfg = malloc(sizeof *s->cfg))) {
+    free(s);
+    if (fit) fit_result_destroy(fit);
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the window's fog");
+  }
+  *s->cfg = *cfg;
   s->render_scale = opts->render_scale > 0 ? opts->render_scale : 0.5;
   s->fixed_clock = opts->screenshot != NULL;
   s->v.command = opts->command;
-  s->brush = (view_brush){.command = opts->command, .config_path = opts->config_path};
+  s->brush = (view_brush){.command = opts->command, .config_path = opts->config_path,
+                          .painted = s->cfg};
   s->sel = (rung_selector){.shown = -1, .wanted = -1};
   if (fit) {
     s->sel.fit = *fit; /* taken over */
