@@ -74,8 +74,8 @@ static void compare_window_with_render(const char *bin, const char *dir, const c
 }
 
 /* The window program's panel: over the image by default, gone with --hide-panel. Inside
- * the panel's title bar (60, 25) the two screenshots differ; far right (300, 150) they do
- * not. */
+ * the panel's title bar (60, 25) the two screenshots differ; right of the panel's 330
+ * pixels, at (440, 135), they do not. */
 static void panel_shown_unless_hidden(const char *bin, const char *dir) {
   float *shot[2] = {NULL, NULL};
   int w = 0, h = 0;
@@ -83,16 +83,17 @@ static void panel_shown_unless_hidden(const char *bin, const char *dir) {
     char command[1024], png[256];
     snprintf(png, sizeof png, "%s/panel%d.png", dir, hidden);
     snprintf(command, sizeof command,
-             "xvfb-run -a -s '-screen 0 640x480x24' '%s' view configs/default.ini --size 320x180 "
+             "xvfb-run -a -s '-screen 0 640x480x24' '%s' view configs/default.ini --size 480x270 "
              "--render-scale 1 %s --screenshot '%s' --frames 2 > /dev/null",
              bin, hidden ? "--hide-panel" : "", png);
     CHECK(system(command) == 0, "%s", command);
     shot[hidden] = load(png, "G", &w, &h);
     unlink(png);
   }
-  if (shot[0] && shot[1] && w == 320 && h == 180) {
+  CHECK(w == 480 && h == 270, "the screenshots are %dx%d, not 480x270", w, h);
+  if (shot[0] && shot[1] && w == 480 && h == 270) {
     const float in_panel = fabsf(shot[0][25 * w + 60] - shot[1][25 * w + 60]);
-    const float outside = fabsf(shot[0][150 * w + 300] - shot[1][150 * w + 300]);
+    const float outside = fabsf(shot[0][135 * w + 440] - shot[1][135 * w + 440]);
     printf("panel: title bar differs by %.3f with it hidden, the scene by %.3f\n", in_panel,
            outside);
     CHECK(in_panel > 0.05f, "no panel in the view's window (%.3f)", in_panel);
