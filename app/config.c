@@ -1307,6 +1307,14 @@ double scene_live_terrain_lod(double lod_error) {
   return lod_error > 0 ? fmax(2.0, 2.0 * lod_error) : 0.0;
 }
 
+fog_lamp_method scene_live_lamp_method(fog_lamp_method method) {
+  if (method.integral != FOG_LAMP_ANGLE) return method;
+  method.angle_pieces = method.angle_pieces < 4 ? method.angle_pieces : 4;
+  method.span_pieces = method.span_pieces < 4 ? method.span_pieces : 4;
+  method.shadow_steps = method.shadow_steps < 4 ? method.shadow_steps : 4;
+  return method;
+}
+
 fog_walk_settings scene_config_walk(const scene_config *cfg) {
   return (fog_walk_settings){
       .transmittance_cutoff = cfg->transmittance_cutoff,

@@ -67,23 +67,24 @@ typedef struct window_shell {
   panel *ui;
   bool shown, tab_was_down;
   float frame_ms[120];
-  int next;
+  int next, filled; /* the ring's next slot; how many it holds */
 } window_shell;
 
 static void shell_panel(window_shell *s, window_source *src, const window_frame *f) {
   if (f->index > 0) {
     s->frame_ms[s->next] = (float)(1e3 * f->dt);
     s->next = (s->next + 1) % 120;
+    if (s->filled < 120) s->filled++;
   }
   if (!s->shown) return;
   if (panel_window_begin(s->ui, "fogpipe", 10, 10, 330)) {
     float ordered[120], top = 34.0f; /* at least the 30 fps line's scale */
-    for (int i = 0; i < 120; i++) {
-      ordered[i] = s->frame_ms[(s->next + i) % 120];
+    for (int i = 0; i < s->filled; i++) { /* oldest first */
+      ordered[i] = s->frame_ms[(s->next - s->filled + i + 120) % 120];
       if (ordered[i] > top) top = ordered[i];
     }
     panel_text(s->ui, "%.1f fps (Tab hides the panel)", f->fps);
-    panel_plot(s->ui, "frame ms", ordered, 120, 1.1f * top);
+    panel_plot(s->ui, "frame ms", ordered, s->filled, 1.1f * top);
     src->panel(src->self, s->ui, f);
   }
   panel_window_end(s->ui);

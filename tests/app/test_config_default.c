@@ -16,7 +16,36 @@ static void write_file(const char *path, const char *text) {
   fclose(f);
 }
 
+/* The live demo's settings on a software renderer (scene_live_*): the lamps' integral is
+ * capped at 4 + 4 pieces and a 4-step walk; what is below stays, the other integrals and
+ * the depth table are untouched. */
+static void check_live_settings(void) {
+  const fog_lamp_method product = {.integral = FOG_LAMP_ANGLE, .angle_pieces = 8,
+                                   .span_pieces = 8, .depth_steps = 32, .shadow_steps = 8,
+                                   .march_steps = 64};
+  fog_lamp_method live = scene_live_lamp_method(product);
+  CHECK(live.angle_pieces == 4 && live.span_pieces == 4 && live.shadow_steps == 4 &&
+            live.depth_steps == 32 && live.march_steps == 64 && live.integral == FOG_LAMP_ANGLE,
+        "live lamps %d+%d, walk %d, table %d", live.angle_pieces, live.span_pieces,
+        live.shadow_steps, live.depth_steps);
+  fog_lamp_method small = product;
+  small.angle_pieces = 2, small.span_pieces = 0, small.shadow_steps = 1;
+  live = scene_live_lamp_method(small);
+  CHECK(live.angle_pieces == 2 && live.span_pieces == 0 && live.shadow_steps == 1,
+        "a cheaper method is kept: %d+%d, %d", live.angle_pieces, live.span_pieces,
+        live.shadow_steps);
+  fog_lamp_method march = product;
+  march.integral = FOG_LAMP_MARCH;
+  live = scene_live_lamp_method(march);
+  CHECK(!memcmp(&live, &march, sizeof live), "the march baseline is not the live rule's");
+  CHECK(scene_live_terrain_lod(0.0) == 0.0 && scene_live_terrain_lod(0.5) == 2.0 &&
+            scene_live_terrain_lod(3.0) == 6.0,
+        "live terrain LOD %g %g %g", scene_live_terrain_lod(0.0), scene_live_terrain_lod(0.5),
+        scene_live_terrain_lod(3.0));
+}
+
 int main(void) {
+  check_live_settings();
   scene_config cfg;
   fog_error err = {0};
   int status = scene_config_load("configs/default.ini", &cfg, &err);
