@@ -1307,6 +1307,34 @@ double scene_live_terrain_lod(double lod_error) {
   return lod_error > 0 ? fmax(2.0, 2.0 * lod_error) : 0.0;
 }
 
+scene_fog_shape scene_config_fog_shape(const scene_config *cfg) {
+  return (scene_fog_shape){.extinction = cfg->fog.density_scale,
+                           .profile = (fog_profile_kind)cfg->fog.profile,
+                           .y0 = cfg->fog.fog_height, .scale_height = cfg->fog.scale_height};
+}
+
+fog_volume scene_config_fog_volume(const scene_config *cfg, int map_width, int map_height,
+                                   const scene_fog_shape *shape) {
+  const scene_box_config *b = &cfg->box;
+  const scene_fog_config *f = &cfg->fog;
+  fog_volume v = {
+      .map_width = map_width, .map_height = map_height,
+      .origin_x = b->origin[0], .origin_z = b->origin[1], .cell_size = b->cell_size,
+      .extinction = shape->extinction,
+      .profile = {.kind = shape->profile, .y_floor = b->floor, .y_top = b->top,
+                  .y0 = shape->y0, .scale_height = shape->scale_height}};
+  if (shape->profile == FOG_PROFILE_BSPLINE && f->profile_count == 0) {
+    v.profile.kind = FOG_PROFILE_SLAB; /* no B-spline profile in the config to show */
+  } else if (shape->profile == FOG_PROFILE_BSPLINE) {
+    v.profile.count = f->profile_count;
+    v.profile.degree = f->profile_degree;
+    v.profile.coefficients = f->profile_coefficients;
+    v.profile.origin = f->profile_origin;
+    v.profile.spacing = f->profile_spacing;
+  }
+  return v;
+}
+
 fog_lamp_method scene_live_lamp_method(fog_lamp_method method) {
   if (method.integral != FOG_LAMP_ANGLE) return method;
   method.angle_pieces = method.angle_pieces < 4 ? method.angle_pieces : 4;

@@ -265,6 +265,21 @@ double scene_live_terrain_lod(double lod_error);
  * a walk of at most 4 steps to each lamp (docs/light.md: ~2x cheaper than 8 + 8 and 8, max
  * error 7.5e-3 of the peak against 1.4e-3 on the valley). */
 fog_lamp_method scene_live_lamp_method(fog_lamp_method method);
+/* The fogmap's extinction scale and vertical profile as they are shown: the config's own
+ * ([fog] density_scale, profile, fog_height, scale_height: scene_config_fog_shape), or the
+ * live demo's panel edits of them. */
+typedef struct scene_fog_shape {
+  double extinction;       /* per world unit for f = g = 1, >= 0 */
+  fog_profile_kind profile;
+  double y0, scale_height; /* the exponential profile's; scale_height > 0 */
+} scene_fog_shape;
+scene_fog_shape scene_config_fog_shape(const scene_config *cfg);
+/* The fogmap's fog_volume for a map of map_width x map_height samples: [box] places it,
+ * shape gives its extinction and profile; a B-spline profile takes the config's knots
+ * (pointing into cfg->fog: copy them where cfg does not outlive the volume), and becomes
+ * the slab where the config has none. */
+fog_volume scene_config_fog_volume(const scene_config *cfg, int map_width, int map_height,
+                                   const scene_fog_shape *shape);
 /* How the fog pass walks: [render] transmittance_cutoff, empty_skip, skip_below. */
 fog_walk_settings scene_config_walk(const scene_config *cfg);
 /* The sun as the fog sees it: [fog] albedo and phase_g, [light]'s resolved sun. */

@@ -793,28 +793,11 @@ const fogmap *pipeline_sim_density(const pipeline *p) {
 /* ---- the frame (GL thread) ---- */
 
 static fog_volume volume_of(const pipeline *p, const pipeline_params *params) {
-  const scene_box_config *b = &p->config.box;
-  fog_volume v = {
-      .map_width = p->cpu.base.width,
-      .map_height = p->cpu.base.height,
-      .origin_x = b->origin[0],
-      .origin_z = b->origin[1],
-      .cell_size = b->cell_size,
-      .extinction = params->density,
-      .profile = {.kind = (fog_profile_kind)params->profile_kind, .y_floor = b->floor,
-                  .y_top = b->top, .y0 = params->fog_height,
-                  .scale_height = params->scale_height > 0 ? params->scale_height : 1.0},
-  };
-  if (params->profile_kind == FOG_PROFILE_BSPLINE && p->config.fog.profile_count == 0) {
-    v.profile.kind = FOG_PROFILE_SLAB; /* no B-spline profile in the config to show */
-  } else if (params->profile_kind == FOG_PROFILE_BSPLINE) {
-    v.profile.count = p->config.fog.profile_count;
-    v.profile.degree = p->config.fog.profile_degree;
-    v.profile.coefficients = p->config.fog.profile_coefficients;
-    v.profile.origin = p->config.fog.profile_origin;
-    v.profile.spacing = p->config.fog.profile_spacing;
-  }
-  return v;
+  const scene_fog_shape shape = {
+      .extinction = params->density, .profile = (fog_profile_kind)params->profile_kind,
+      .y0 = params->fog_height,
+      .scale_height = params->scale_height > 0 ? params->scale_height : 1.0};
+  return scene_config_fog_volume(&p->config, p->cpu.base.width, p->cpu.base.height, &shape);
 }
 
 /* After a slot's grids went up: its shadow volume too, and a copy of its finest grid for

@@ -500,25 +500,13 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   fog->pyramid.levels = levels;
   fog->pyramid.degree = transform_basis_degree(desc.basis);
   fog->pyramid.has_details = levels > 0;
-  fog->volume = (fog_volume){
-      .map_width = map.width,
-      .map_height = map.height,
-      .origin_x = cfg->box.origin[0],
-      .origin_z = cfg->box.origin[1],
-      .cell_size = cfg->box.cell_size,
-      .extinction = f->density_scale,
-      .profile = {.kind = (fog_profile_kind)f->profile, .y_floor = cfg->box.floor,
-                  .y_top = cfg->box.top, .y0 = f->fog_height, .scale_height = f->scale_height},
-  };
-  if (f->profile == SCENE_PROFILE_BSPLINE) {
-    fog->volume.profile.count = f->profile_count;
-    fog->volume.profile.degree = f->profile_degree;
+  const scene_fog_shape shape = scene_config_fog_shape(cfg);
+  fog->volume = scene_config_fog_volume(cfg, map.width, map.height, &shape);
+  if (fog->volume.profile.kind == FOG_PROFILE_BSPLINE) {
     /* a copy: cfg may be a temporary (the VDB path) */
     memcpy(fog->profile_coefficients, f->profile_coefficients,
            (size_t)f->profile_count * sizeof(double));
     fog->volume.profile.coefficients = fog->profile_coefficients;
-    fog->volume.profile.origin = f->profile_origin;
-    fog->volume.profile.spacing = f->profile_spacing;
   }
   /* The LOD variants need the whole pyramid; with mu = 1 the switch method shows A_J only,
    * which is the fogmap itself. */
