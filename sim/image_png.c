@@ -198,6 +198,11 @@ int image_write_png(const char *path, int width, int height, int channels, const
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                     "%s: PNG writing takes 1 (grey), 3 (RGB) or 4 (RGBA) channels, not %d", path,
                     channels);
+  return png_write_floats(path, width, height, channels, interleaved, NULL, err);
+}
+
+int png_write_floats(const char *path, int width, int height, int channels, const float *values,
+                     const srgb8_encoder *srgb, fog_error *err) {
   if (width <= 0 || height <= 0)
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: image size %dx%d: both must be positive",
                     path, width, height);
@@ -207,9 +212,13 @@ int image_write_png(const char *path, int width, int height, int channels, const
     return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for a %dx%d PNG", path, width,
                     height);
   for (size_t i = 0; i < count; i++) {
-    float v = interleaved[i];
-    v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; /* clamps, and NaN -> 0 */
-    samples[i] = (uint8_t)(v * 255.0f + 0.5f); /* v in [0, 1]: rounds to nearest */
+    float v = values[i];
+    if (srgb && !(channels == 4 && i % 4 == 3)) { /* colour; alpha stays linear */
+      samples[i] = srgb8_encode(srgb, v);
+    } else {
+      v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; /* clamps, and NaN -> 0 */
+      samples[i] = (uint8_t)(v * 255.0f + 0.5f);   /* v in [0, 1]: rounds to nearest */
+    }
   }
   int status = png_write_samples(path, width, height, channels, 8, samples, err);
   free(samples);

@@ -62,30 +62,11 @@ int image_write_png_srgb(const char *path, int width, int height, int channels, 
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                     "%s: sRGB PNG writing takes 3 (RGB) or 4 (RGBA) channels, not %d", path,
                     channels);
-  if (width <= 0 || height <= 0)
-    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: image size %dx%d: both must be positive",
-                    path, width, height);
   static const char *const names[] = {"R", "G", "B", "A"};
   for (int c = 0; c < channels; c++)
     if (image_check_finite(path, names[c], linear + c, width, height, channels, FLT_MAX, err))
       return 1;
   srgb8_encoder encoder;
   srgb8_encoder_init(&encoder);
-  size_t count = (size_t)width * height * channels;
-  uint8_t *samples = malloc(count);
-  if (!samples)
-    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for a %dx%d PNG", path, width,
-                    height);
-  for (size_t i = 0; i < count; i++) {
-    float v = linear[i];
-    if (channels == 4 && i % 4 == 3) { /* alpha: linear */
-      v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
-      samples[i] = (uint8_t)(v * 255.0f + 0.5f);
-    } else {
-      samples[i] = srgb8_encode(&encoder, v);
-    }
-  }
-  int status = png_write_samples(path, width, height, channels, 8, samples, err);
-  free(samples);
-  return status;
+  return png_write_floats(path, width, height, channels, linear, &encoder, err);
 }
