@@ -3,6 +3,8 @@
 #include "bench/bench.h"
 #include "app/cli_options.h"
 #include "app/commands.h"
+#include "app/config.h"
+#include "render/gl_context.h"
 #include "render/fog_pass.h"
 
 #include <errno.h>
@@ -105,6 +107,17 @@ int bench_parse(const bench_command *c, int argc, char **argv) {
     return 1;
   }
   return -1;
+}
+
+int bench_open_scene(const char *stage, const char *config_path, scene_config *cfg,
+                     gl_context **gl) {
+  fog_error err = {0};
+  *gl = NULL;
+  if (!scene_config_load(config_path, cfg, &err))
+    *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &err);
+  if (*gl) return 0;
+  fprintf(stderr, "fogpipe bench %s: %s\n", stage, err.message);
+  return 1;
 }
 
 int bench_make_folder(const char *path, char *error, int size) {

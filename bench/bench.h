@@ -72,6 +72,13 @@ int bench_make_folder(const char *path, char *error, int size);
 void bench_tau_errors(const float *gpu, const double *ref, size_t n, double *rmse,
                       double *max_error, size_t *where);
 
+/* The scene config at config_path loaded into *cfg and a headless GL context for it
+ * (gl_context_destroy when done): 0, or 1 with `fogpipe bench STAGE: ...` printed. */
+struct scene_config;
+struct gl_context;
+int bench_open_scene(const char *stage, const char *config_path, struct scene_config *cfg,
+                     struct gl_context **gl);
+
 /* The density the simulation of the scene at config_path holds at frame `frame` (1-based, at
  * fps frames per second: what `fogpipe record` frame n shows), into *out (fogmap_create'd
  * here; fogmap_destroy it). Non-zero and a message when the scene has no simulation. */

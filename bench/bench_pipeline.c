@@ -147,17 +147,8 @@ int bench_pipeline(int argc, char **argv) {
   const int frames = image.frames < 5 ? 5 : image.frames;
   int live_divisor = divisor_index < 0 ? 0 : 1 << divisor_index;
   scene_config cfg;
-  fog_error cerr = {0};
-  if (scene_config_load(config_path, &cfg, &cerr)) {
-    fprintf(stderr, "fogpipe bench pipeline: %s\n", cerr.message);
-    return 1;
-  }
-  fog_error gerr = {0};
-  gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
-  if (!gl) {
-    fprintf(stderr, "fogpipe bench pipeline: %s\n", gerr.message);
-    return 1;
-  }
+  gl_context *gl;
+  if (bench_open_scene("pipeline", config_path, &cfg, &gl)) return 1;
   bench_print_build();
   const char *lp = getenv("LP_NUM_THREADS");
   printf("gl: %s, %s (LP_NUM_THREADS=%s)\n", gl_context_version(gl), gl_context_renderer(gl),

@@ -122,17 +122,8 @@ int bench_soak(int argc, char **argv) {
   const int width = options.width, height = options.height;
 
   scene_config cfg;
-  fog_error cerr = {0};
-  if (scene_config_load(config_path, &cfg, &cerr)) {
-    fprintf(stderr, "fogpipe bench soak: %s\n", cerr.message);
-    return 1;
-  }
-  fog_error gerr = {0};
-  gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
-  if (!gl) {
-    fprintf(stderr, "fogpipe bench soak: %s\n", gerr.message);
-    return 1;
-  }
+  gl_context *gl;
+  if (bench_open_scene("soak", config_path, &cfg, &gl)) return 1;
   fog_error perr = {0};
   /* As record_run builds it for the headless demo: worker thread, 1/24 s per frame, the
    * pipeline's default parameters (full-resolution fog). */

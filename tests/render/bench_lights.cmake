@@ -12,9 +12,5 @@ endif()
 bench_smoke_run(lights "^lights: ms_per_light=[0-9.]+ march_speedup_at_matched_error=([0-9.]+|nan) fogshop_halo_error_ratio=[0-9]+$"
                 --size 32x18 --frames 1)
 bench_smoke_expect_files(lights.csv lights_chart.csv lights_chart.png)
-bench_smoke_read_csv(lights.csv "scene,method,ms_per_frame,max_error,mean_error" 26)
-foreach(line IN LISTS bench_rows)
-  if(NOT line MATCHES "^(valley|tube),[a-z0-9+/ ]+,${finite},${finite},${finite}$")
-    message(FATAL_ERROR "lights.csv row without finite numbers: '${line}'")
-  endif()
-endforeach()
+bench_smoke_read_csv(lights.csv "scene,method,ms_per_frame,max_error,mean_error" 26
+  ROW "^(valley|tube),[a-z0-9+/ ]+,${finite},${finite},${finite}$")

@@ -40,9 +40,10 @@ function(bench_smoke_expect_files)
   endforeach()
 endfunction()
 
-# Reads OUT/CSV: fails unless it holds HEADER and ROWS rows. Sets bench_rows (the rows
-# without the header) in the caller.
+# Reads OUT/CSV: fails unless it holds HEADER and ROWS rows, and with `ROW REGEX` unless
+# every row matches REGEX. Sets bench_rows (the rows without the header) in the caller.
 function(bench_smoke_read_csv csv header rows)
+  cmake_parse_arguments(ARG "" "ROW" "" ${ARGN})
   file(STRINGS ${OUT}/${csv} lines)
   list(LENGTH lines count)
   math(EXPR expected "${rows} + 1")
@@ -54,6 +55,13 @@ function(bench_smoke_read_csv csv header rows)
     message(FATAL_ERROR "${csv} header: '${first}'")
   endif()
   list(REMOVE_AT lines 0)
+  if(ARG_ROW)
+    foreach(line IN LISTS lines)
+      if(NOT line MATCHES "${ARG_ROW}")
+        message(FATAL_ERROR "${csv} row without finite numbers: '${line}'")
+      endif()
+    endforeach()
+  endif()
   set(bench_rows "${lines}" PARENT_SCOPE)
 endfunction()
 
