@@ -83,9 +83,11 @@ static int parse_demo_options(int argc, char **argv, demo_options *o) {
        .choices = models,
        .help = "start with the panel's model: fogmap (default),\n"
                "homogeneous, height, gaussians (16) or ellipsoids (4),\n"
-               "fitted to the fog live"},
+               "fitted to the simulated fog live (a model without a\n"
+               "simulation shows its own fog)"},
       {.kind = CLI_FLAG, .name = "--paused", .target = &o->paused,
-       .help = "start with the simulation paused (Space plays it)"},
+       .help = "start with the simulation paused (Space plays it; P a\n"
+               "volume's VDB sequence)"},
       {.kind = CLI_FLAG, .name = "--hide-panel", .target = &o->hide_panel,
        .help = "start with the panel hidden (Tab shows it)"},
       {.kind = CLI_TEXT, .name = "--screenshot", .value = "FILE", .target = &o->screenshot,
@@ -143,10 +145,6 @@ int cmd_demo(int argc, char **argv) {
   /* Nothing to simulate in the other models: the window shows their fog as the config holds
    * it, playing what moves by itself (a volume's sequence, emitters, drifting noise). */
   const bool simulate = fog_model_table[config.fog.model].pyramid;
-  if (!simulate)
-    printf("fogpipe demo: %s's [fog] model has no simulation to animate: showing it as the "
-           "config holds it\n", o.config_path);
-  fflush(stdout);
   fog_error window_failure;
   /* --scale 0 (not given): the simulated source chooses by the renderer, the other 0.5 */
   const double scale = simulate || o.scale > 0 ? o.scale : 0.5;

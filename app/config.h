@@ -262,8 +262,8 @@ void scene_config_camera(const scene_config *cfg, camera *cam);
  * config's, at least 2 (0, the full mesh, stays 0). */
 double scene_live_terrain_lod(double lod_error);
 /* The lamps' integral the live demo uses on a software renderer: at most 4 + 4 pieces and
- * a walk of at most 4 steps to each lamp (docs/light.md: ~2x cheaper than 8 + 8 and 8, max
- * error 7.5e-3 of the peak against 1.4e-3 on the valley). */
+ * a walk of at most 4 steps to each lamp (`bench lights`' live row, docs/light.md: 2.6x
+ * cheaper than 8 + 8 and 8 on the valley, max error 7.6e-3 of the peak against 1.4e-3). */
 fog_lamp_method scene_live_lamp_method(fog_lamp_method method);
 /* The fogmap's extinction scale and vertical profile as they are shown: the config's own
  * ([fog] density_scale, profile, fog_height, scale_height: scene_config_fog_shape), or the

@@ -1,8 +1,8 @@
 /* The free camera of the window commands (`demo` and `view`): one set of controls.
  *
  *   W A S D     move along the view and across it; Q / E down / up; Shift 4x faster
- *   look        drag with a look button (middle; in `view` the right button too, which the
- *               demo keeps for erasing), or the arrow keys
+ *   look        drag with a look button (middle; over the fog as held, `view`'s, the right
+ *               button too, which the simulated fog keeps for erasing), or the arrow keys
  *   Ctrl + key  a command (the brush's Ctrl+S), not a step
  *
  * free_camera_step is the motion, pure (tested without a window); free_camera_read samples

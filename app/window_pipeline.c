@@ -189,11 +189,16 @@ typedef struct demo_input {
   bool space_down, n_down, r_down;
 } demo_input;
 
-/* Space pauses, N steps, R restarts (on the key's press). */
-static void demo_keys(GLFWwindow *window, pipeline *pipe, demo_input *in) {
-  bool space = glfwGetKey(window, GLFW_KEY_SPACE) == GLFW_PRESS;
-  bool n = glfwGetKey(window, GLFW_KEY_N) == GLFW_PRESS;
-  bool r = glfwGetKey(window, GLFW_KEY_R) == GLFW_PRESS;
+/* Space pauses, N steps, R restarts (on the key's press, while the panel does not hold the
+ * keyboard; read every frame, so a press GLFW latched meanwhile is let go). */
+static void demo_keys(GLFWwindow *window, bool keyboard, pipeline *pipe, demo_input *in) {
+  const bool space = glfwGetKey(window, GLFW_KEY_SPACE) == GLFW_PRESS;
+  const bool n = glfwGetKey(window, GLFW_KEY_N) == GLFW_PRESS;
+  const bool r = glfwGetKey(window, GLFW_KEY_R) == GLFW_PRESS;
+  if (!keyboard) {
+    in->space_down = space, in->n_down = n, in->r_down = r;
+    return;
+  }
   if (space && !in->space_down) {
     pipeline_params params = pipeline_get_params(pipe);
     params.paused = !params.paused;
@@ -295,12 +300,12 @@ static void source_panel(void *self, panel *ui, const window_frame *f) {
 static int source_input(void *self, const window_frame *f, fog_error *err) {
   (void)err;
   pipeline_source *s = self;
-  if (f->keyboard) demo_keys(f->window, s->pipe, &s->in);
+  demo_keys(f->window, f->keyboard, s->pipe, &s->in);
   /* the tools pick from the last frame's distances */
   if (f->index > 0 && s->ui.placing_lamps)
     demo_lamps(f->window, s->pipe, f->fc, &s->ui, f->mouse);
   else if (f->index > 0)
-    demo_paint(f->window, s->pipe, f->fc, &s->ui, f->mouse, f->dt, &s->in);
+    demo_paint(f->window, s->pipe, f->fc, &s->ui, f->mouse, fmin(f->dt, 0.25), &s->in);
   return 0;
 }
 
@@ -338,7 +343,7 @@ int window_pipeline_source(window_source *src, gl_context *gl, scene_config *cfg
      * the full mesh): turning the camera then costs ~15 % of a frame, not ~30 % */
     if (software) cfg->terrain.lod_error = scene_live_terrain_lod(cfg->terrain.lod_error);
     /* and integrates the lamps with fewer pieces and a shorter walk to each: half the
-     * lamps' cost (7 lamps at 960x540: 1.36 s -> 0.68 s a frame), the same picture */
+     * lamps' cost (night_lamps, 9 lights at 960x540: 1.36 s -> 0.71 s a frame) */
     if (software) cfg->lamp_method = scene_live_lamp_method(cfg->lamp_method);
   }
   pipeline_source *s = calloc(1, sizeof *s);

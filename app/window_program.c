@@ -103,7 +103,7 @@ static int window_loop(gl_context *gl, window_shell *shell, window_source *src,
   double last_time = glfwGetTime();
   for (int index = 0; !gl_context_should_close(gl); index++) {
     gl_context_poll_events(gl);
-    const double now = glfwGetTime(), dt = fmin(now - last_time, 0.25);
+    const double now = glfwGetTime(), dt = now - last_time;
     /* the first frame's dt is the set-up's tail, not a frame */
     if (index > 0 && now > last_time)
       f.fps = f.fps > 0 ? 0.9 * f.fps + 0.1 / (now - last_time) : 1 / (now - last_time);
@@ -116,14 +116,17 @@ static int window_loop(gl_context *gl, window_shell *shell, window_source *src,
     shell_panel(shell, src, &f);
     f.keyboard = !panel_wants_keyboard(shell->ui);
     f.mouse = !panel_wants_mouse(shell->ui);
+    /* keys read every frame (a press latched while the panel held them is let go) */
     const bool tab = glfwGetKey(window, GLFW_KEY_TAB) == GLFW_PRESS;
     if (f.keyboard && tab && !shell->tab_was_down) shell->shown = !shell->shown;
     shell->tab_was_down = tab;
-    if (f.keyboard && glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS)
-      glfwSetWindowShouldClose(window, 1);
+    const bool escape = glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS;
+    if (f.keyboard && escape) glfwSetWindowShouldClose(window, 1);
     const free_camera_input input =
         free_camera_read(window, src->look_buttons, f.keyboard, f.mouse);
-    free_camera_step(&fc, &input, dt);
+    /* real time up to a second a frame (a few frames a second on software GL), no jump
+     * across a longer stall */
+    free_camera_step(&fc, &input, fmin(dt, 1.0));
 
     if (src->input(src->self, &f, err) || src->draw(src->self, &f, err)) return 1;
     panel_end_frame(shell->ui);
@@ -169,6 +172,9 @@ int window_program_run(scene_config *cfg, const window_options *o) {
       *o->window_failure = err;
       return WINDOW_PROGRAM_NO_WINDOW;
     }
+  } else if (o->simulate && fit) {
+    fit_result_destroy(fit); /* --fit is the fog as held's: no command asks for both */
+    fog_fail(&err, FOG_ERR_INVALID_ARGUMENT, "--fit shows the fog as held, not a simulation");
   } else if (o->simulate ? window_pipeline_source(&src, gl, cfg, o, &err)
                          : window_session_source(&src, gl, cfg, o, fit, &err)) {
   } else if (!(shell.ui = panel_create(gl_context_glfw_window(gl)))) {

@@ -28,14 +28,17 @@ typedef struct window_options {
   const char *command;     /* "demo" or "view": messages begin "fogpipe COMMAND: " */
   const char *config_path; /* the window's title; the brush saves NAME.painted.ini beside it */
   int width, height;       /* the window, > 0 */
-  /* Render at this times the window size, > 0; 0: chosen from the renderer (1 on a GPU, 0.5
-   * on a software renderer with the simulated fog at half of that). */
+  /* Render at this times the window size, > 0; 0: the simulated source chooses from the
+   * renderer (1 on a GPU, 0.5 on a software renderer with the fog at half of that), the
+   * source as held takes 0.5. */
   double render_scale;
   bool simulate;           /* the config's simulation (its model must have a pyramid) */
-  bool play;               /* as held: start playing a volume's VDB sequence */
+  bool play;               /* start playing: the simulation, or a volume's VDB sequence */
   int live_rung;           /* simulated: the panel's model (live_rung_kind) to start with */
   bool hide_panel;         /* start with the panel hidden (Tab shows it) */
-  const char *screenshot;  /* save the last frame as a PNG and return; NULL: run */
+  /* Save the last frame as a PNG and return (NULL: run). The panel, when shown, is in it
+   * from the second frame on (ImGui sizes a window on its first). */
+  const char *screenshot;
   int frames;              /* frames before the screenshot, >= 1 */
   /* As held: `fogpipe fit` before the window opens (app/fit.h); the panel's rung menu, or [
    * and ], step through the rungs, 0 returns to the config's own fog. */
@@ -51,7 +54,7 @@ typedef struct window_options {
 
 /* Opens the window and runs until it closes or the screenshot is taken; errors printed as
  * `fogpipe COMMAND: ...` (no display: "cannot open a window: ..."). cfg may be changed (the
- * live terrain LOD on a software renderer). The process exit status, or
+ * live terrain LOD and lamp rule on a software renderer). The process exit status, or
  * WINDOW_PROGRAM_NO_WINDOW (see window_failure). */
 int window_program_run(scene_config *cfg, const window_options *opts);
 
@@ -78,7 +81,7 @@ typedef struct window_frame {
   GLFWwindow *window;
   gl_context *gl;
   int index;             /* 0 for the first frame */
-  double now, dt;        /* glfwGetTime(); seconds since the last frame, at most 0.25 */
+  double now, dt;        /* glfwGetTime(); seconds since the last frame */
   double fps;            /* smoothed frames per second */
   int fb_w, fb_h;        /* the framebuffer, > 0 */
   bool keyboard, mouse;  /* the panel does not hold them */

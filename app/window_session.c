@@ -4,8 +4,8 @@
  * and Perlin octaves drift with the clock; B turns on the Gaussian brush on an RBF scene
  * (app/rbf_brush.h: paint, erase, copy); with --fit the panel's rung menu (or [ and ])
  * steps through the model ladder. With --screenshot the clock is the frame count (a
- * sequence advances one VDB frame per drawn frame, drifting fog 1/24 s): the same image
- * every run. */
+ * sequence advances one VDB frame per drawn frame, drifting fog 1/24 s): the same fog every
+ * run (the panel's timings vary: --hide-panel for an image that repeats). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,6 +28,7 @@ typedef struct volume_playback {
   vdb_sequence sequence;
   double shown;          /* frame index position on screen (vdb_sequence_position) */
   bool playing;
+  bool toggle;           /* the panel's checkbox: toggle at the next update, as P does */
   double start_time;     /* when position `start` was on screen */
   double start;
   bool p_was_down;
@@ -63,8 +64,10 @@ static int make_targets(view_state *v, int width, int height, fog_error *err) {
 static int volume_playback_update(volume_playback *pb, GLFWwindow *window, bool keyboard,
                                   double now, render_fog *fog, const scene_config *cfg,
                                   fog_error *err) {
-  bool p_down = keyboard && glfwGetKey(window, GLFW_KEY_P) == GLFW_PRESS;
-  if (p_down && !pb->p_was_down) {
+  /* read every frame: a press latched while the panel held the keyboard is let go */
+  const bool p_down = glfwGetKey(window, GLFW_KEY_P) == GLFW_PRESS;
+  if ((keyboard && p_down && !pb->p_was_down) || pb->toggle) {
+    pb->toggle = false;
     pb->playing = !pb->playing;
     pb->start_time = now;
     pb->start = pb->shown;
@@ -117,12 +120,6 @@ static bool view_pick(const view_state *v, GLFWwindow *window, const camera *cam
   return true;
 }
 
-static bool brush_key(view_brush *b, GLFWwindow *window, int key, int which) {
-  bool down = glfwGetKey(window, key) == GLFW_PRESS;
-  bool pressed = down && !b->key_was_down[which];
-  b->key_was_down[which] = down;
-  return pressed;
-}
 
 static void brush_title(const view_brush *b, GLFWwindow *window) {
   char title[320];
@@ -150,11 +147,25 @@ static void brush_save(const view_brush *b) {
            b->painted->fog.rbf_count);
 }
 
-/* B, the mouse and the brush's keys for one frame; the fog takes the changed Gaussians. */
-static int view_brush_update(view_brush *b, view_state *v, GLFWwindow *window,
-                             const scene_config *cfg, const camera *cam, double time,
+/* B, the mouse and the brush's keys for one frame (acting only when `active` and the
+ * panel holds neither); the fog takes the changed Gaussians. */
+static int view_brush_update(view_brush *b, view_state *v, const window_frame *frame,
+                             bool active, const scene_config *cfg, double time,
                              fog_error *err) {
-  if (brush_key(b, window, GLFW_KEY_B, BRUSH_KEY_B)) {
+  static const int keys[BRUSH_KEYS] = {GLFW_KEY_B,     GLFW_KEY_C,     GLFW_KEY_V,
+                                       GLFW_KEY_MINUS, GLFW_KEY_EQUAL, GLFW_KEY_COMMA,
+                                       GLFW_KEY_PERIOD, GLFW_KEY_S};
+  GLFWwindow *window = frame->window;
+  const bool keyboard = active && frame->keyboard, mouse = active && frame->mouse;
+  bool pressed[BRUSH_KEYS];
+  /* Every key is read every frame: a press GLFW latched (sticky keys) while the panel held
+   * the keyboard is let go, not acted on later. */
+  for (int k = 0; k < BRUSH_KEYS; k++) {
+    const bool down = glfwGetKey(window, keys[k]) == GLFW_PRESS;
+    pressed[k] = keyboard && down && !b->key_was_down[k];
+    b->key_was_down[k] = down;
+  }
+  if (pressed[BRUSH_KEY_B]) {
     if (cfg->fog.model != FOG_MODEL_RBF || !v->has_fog) {
       printf("fogpipe %s: the brush paints Gaussians: it needs [fog] model = rbf\n",
              b->command);
@@ -168,29 +179,32 @@ static int view_brush_update(view_brush *b, view_state *v, GLFWwindow *window,
     b->on = !b->on;
     brush_title(b, window);
   }
-  if (!b->on) return 0;
+  if (!b->on || !mouse) {
+    b->stroke = false; /* a stroke ends where the mouse leaves the scene */
+    if (!b->on) return 0;
+  }
   bool ctrl = glfwGetKey(window, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
               glfwGetKey(window, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
   bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
                glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
   rbf_brush *brush = &b->brush;
   bool retitle = false;
-  if (brush_key(b, window, GLFW_KEY_MINUS, BRUSH_KEY_SMALLER)) brush->radius /= 1.25, retitle = true;
-  if (brush_key(b, window, GLFW_KEY_EQUAL, BRUSH_KEY_LARGER)) brush->radius *= 1.25, retitle = true;
-  if (brush_key(b, window, GLFW_KEY_COMMA, BRUSH_KEY_THINNER)) brush->density /= 1.25, retitle = true;
-  if (brush_key(b, window, GLFW_KEY_PERIOD, BRUSH_KEY_DENSER)) brush->density *= 1.25, retitle = true;
+  if (pressed[BRUSH_KEY_SMALLER]) brush->radius /= 1.25, retitle = true;
+  if (pressed[BRUSH_KEY_LARGER]) brush->radius *= 1.25, retitle = true;
+  if (pressed[BRUSH_KEY_THINNER]) brush->density /= 1.25, retitle = true;
+  if (pressed[BRUSH_KEY_DENSER]) brush->density *= 1.25, retitle = true;
   brush->spacing = brush->lift = 0.5 * brush->radius;
-  if (brush_key(b, window, GLFW_KEY_S, BRUSH_KEY_SAVE) && ctrl) brush_save(b);
+  if (pressed[BRUSH_KEY_SAVE] && ctrl) brush_save(b);
   scene_fog_config *f = &b->painted->fog;
   rbf_bank bank = {.rbfs = f->rbfs, .count = f->rbf_count, .capacity = SCENE_CONFIG_MAX_RBFS};
   int changed = 0;
   double hit[3];
-  bool picked = view_pick(v, window, cam, hit);
-  if (brush_key(b, window, GLFW_KEY_C, BRUSH_KEY_C) && picked) {
+  const bool picked = mouse && view_pick(v, window, &frame->fc->cam, hit);
+  if (pressed[BRUSH_KEY_C] && picked) {
     b->have_group = true;
     memcpy(b->group, hit, sizeof hit);
   }
-  if (brush_key(b, window, GLFW_KEY_V, BRUSH_KEY_V) && picked && b->have_group)
+  if (pressed[BRUSH_KEY_V] && picked && b->have_group)
     changed += rbf_brush_copy(&bank, b->group, 2.0 * brush->radius, hit);
   bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
   if (left && picked && shift) {
@@ -264,12 +278,12 @@ static int rung_selector_update(rung_selector *sel, view_state *v, GLFWwindow *w
   static const int keys[2] = {GLFW_KEY_LEFT_BRACKET, GLFW_KEY_RIGHT_BRACKET};
   int next = sel->wanted;
   for (int k = 0; k < 2; k++) {
-    bool down = keyboard && glfwGetKey(window, keys[k]) == GLFW_PRESS;
-    if (down && !sel->bracket_was_down[k]) next += k ? 1 : -1;
+    const bool down = glfwGetKey(window, keys[k]) == GLFW_PRESS; /* read: see the brush */
+    if (keyboard && down && !sel->bracket_was_down[k]) next += k ? 1 : -1;
     sel->bracket_was_down[k] = down;
   }
-  bool zero = keyboard && glfwGetKey(window, GLFW_KEY_0) == GLFW_PRESS;
-  if (zero && !sel->zero_was_down) next = -1;
+  const bool zero = glfwGetKey(window, GLFW_KEY_0) == GLFW_PRESS;
+  if (keyboard && zero && !sel->zero_was_down) next = -1;
   sel->zero_was_down = zero;
   if (next < -1) next = sel->fit.count - 1;
   if (next >= sel->fit.count) next = -1;
@@ -325,7 +339,8 @@ static void source_panel(void *self, panel *ui, const window_frame *f) {
   if (!panel_header(ui, "fog as the config holds it", true)) return;
   panel_text(ui, "model: %s (no simulation)", fog_model_table[s->cfg->fog.model].label);
   if (s->playback.sequence.count) {
-    panel_checkbox(ui, "play the VDB sequence (P)", &s->playback.playing);
+    bool playing = s->playback.playing;
+    if (panel_checkbox(ui, "play the VDB sequence (P)", &playing)) s->playback.toggle = true;
     const int at = (int)s->playback.shown; /* between frames at and at + 1 */
     panel_text(ui, "VDB frame %d (%d of %d)", s->playback.sequence.frames[at], at + 1,
                s->playback.sequence.count);
@@ -366,6 +381,17 @@ static void source_panel(void *self, panel *ui, const window_frame *f) {
   }
 }
 
+/* The config's fog, made again (render_fog_create shows vdb_frame), at the played volume's
+ * time on screen. */
+static int show_volume_time(session_source *s, fog_error *err) {
+  const volume_playback *pb = &s->playback;
+  if (!pb->sequence.count || s->sel.shown >= 0 || !s->v.has_fog) return 0;
+  int a, b;
+  double w;
+  vdb_sequence_position(pb->shown, pb->sequence.count, 1, &a, &b, &w);
+  return render_fog_set_volume_time(&s->v.fog, s->cfg, &pb->sequence, a, b, w, err);
+}
+
 /* The panel moved the sun: the surfaces' light and shadow map (the scene pass renders the
  * map again when the sun differs), and the fog shown made again in the new light (its
  * sun-shadow volume; a played volume at the time shown). */
@@ -376,14 +402,8 @@ static int relight_now(session_source *s, fog_error *err) {
   scene_light_sun_direction(&v->geo.light, v->geo.sun_direction);
   if (!v->has_fog) return 0;
   if (s->sel.shown >= 0) copy_sunlight(s->sel.fit.rungs[s->sel.shown].config, s->cfg);
-  if (make_fog(v, s->sel.shown < 0 ? s->cfg : s->sel.fit.rungs[s->sel.shown].config, err))
-    return 1;
-  const volume_playback *pb = &s->playback;
-  if (!pb->sequence.count || s->sel.shown >= 0) return 0;
-  int a, b;
-  double w;
-  vdb_sequence_position(pb->shown, pb->sequence.count, 1, &a, &b, &w);
-  return render_fog_set_volume_time(&v->fog, s->cfg, &pb->sequence, a, b, w, err);
+  return make_fog(v, s->sel.shown < 0 ? s->cfg : s->sel.fit.rungs[s->sel.shown].config, err) ||
+         show_volume_time(s, err);
 }
 
 static int source_input(void *self, const window_frame *f, fog_error *err) {
@@ -395,9 +415,12 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
     if (relight_now(s, err)) return 1;
     s->relight_ms = 1e3 * (app_clock_seconds() - t0);
   }
+  const int rung_before = s->sel.shown;
   if (s->sel.on && rung_selector_update(&s->sel, v, f->window, cfg, f->fps, f->keyboard, err))
     return 1;
-  /* With --screenshot the sequence advances one VDB frame per drawn frame (the same image
+  /* back from a rung: the config's fog at the time on screen */
+  if (s->sel.shown < 0 && rung_before >= 0 && show_volume_time(s, err)) return 1;
+  /* With --screenshot the sequence advances one VDB frame per drawn frame (the same fog
    * every run), else with the clock. */
   const double clock =
       s->fixed_clock ? s->playback.start_time + f->index / cfg->fog.vdb_fps : f->now;
@@ -405,14 +428,14 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
       volume_playback_update(&s->playback, f->window, f->keyboard, clock, &v->fog, cfg, err))
     return 1;
   /* RBF fog from emitters moves with the clock (with --screenshot at 24 frames a second:
-   * the same image every run) */
+   * the same fog every run) */
   const double fog_time = s->fixed_clock ? f->index / 24.0 : f->now - s->playback.start_time;
   if (v->has_fog && s->sel.shown < 0 && render_fog_animated(cfg) &&
       render_fog_set_time(&v->fog, cfg, fog_time, err))
     return 1;
   /* the brush picks from the last frame's distances */
-  return f->index > 0 && s->sel.shown < 0 && f->keyboard && f->mouse &&
-         view_brush_update(&s->brush, v, f->window, cfg, &f->fc->cam, fog_time, err);
+  return f->index > 0 &&
+         view_brush_update(&s->brush, v, f, s->sel.shown < 0, cfg, fog_time, err);
 }
 
 static int source_draw(void *self, const window_frame *f, fog_error *err) {

@@ -5,7 +5,8 @@
  *   - tube: configs/rbf_lamp_tube.ini, Fogshop's shaft scene (59 Gaussians, a lamp inside).
  * Rows per scene: unlit (no lamps: the baseline); ours at 4+4, 8+8 (the default), 12+12,
  * 16+16 and 32+32 pieces; uniform marching at 16..1024 samples (the tube to 4096); on the
- * tube Fogshop's approximation. Time: the fog pass, GL, glFinish before and after, median of --frames
+ * tube Fogshop's approximation; on the valley T's walk at 4 and 16 steps, the live demo's
+ * rule (scene_live_lamp_method: 4+4, walk 4) and unlit and ours at half resolution. Time: the fog pass, GL, glFinish before and after, median of --frames
  * rounds after a warm-up. Error: the lamps' in-scatter (the row's in-scatter minus the unlit
  * row's) against the CPU twin converged (64+64 pieces, 64 depth and 64 shadow steps; for
  * the tube's closed-form depths that is the independent reference to 1e-15,
@@ -352,6 +353,14 @@ int bench_lights(int argc, char **argv) {
         snprintf(r->name, sizeof r->name, "ours 8+8 walk %d", r->method.shadow_steps);
         snprintf(r->series, sizeof r->series, "valley ours 8+8 walk 4 and 16 steps");
       }
+    if (s == 0) { /* the live demo's rule on a software renderer (scene_live_lamp_method) */
+      lights_row *r = add_row(rows, &row_count, s, "ours", FOG_LAMP_ANGLE_PIECES, frames);
+      if (!r) goto out_of_memory;
+      r->method = scene_live_lamp_method(r->method);
+      snprintf(r->name, sizeof r->name, "ours live %d+%d walk %d", r->method.angle_pieces,
+               r->method.span_pieces, r->method.shadow_steps);
+      snprintf(r->series, sizeof r->series, "valley ours live rule");
+    }
     if (s == 0) { /* the live demo's setting: the fog at half resolution */
       scenes[s].unlit_half = malloc(3 * pixels * sizeof(float));
       if (!scenes[s].unlit_half) goto out_of_memory;

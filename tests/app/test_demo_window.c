@@ -49,9 +49,10 @@ int main(void) {
   fogmap_destroy(&g);
   fogmap_destroy(&b);
 
-  /* A model without a simulation opens the view window with the demo's own options: the
-   * screenshot is taken at the demo's --size and the demo exits (it used to hand the view a
-   * made-up command line without them, and ran until killed). */
+  /* A model without a simulation opens the same window over its fog as held (`view`'s
+   * source) with the demo's own options: the screenshot is taken at the demo's --size and
+   * the demo exits (it once handed the view a made-up command line without them, and ran
+   * until killed). */
   char view_png[600];
   snprintf(view_png, sizeof view_png, "%s/banks.png", root);
   snprintf(cmd, sizeof cmd,
