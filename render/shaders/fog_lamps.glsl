@@ -229,10 +229,16 @@ vec4 fog_lamp_lagrange_integrals(float u0, float u1) {
 // around the lamp where it crosses a node.
 float fog_lamp_piece_shadowed(int i, fog_ray r, float phi_a, float phi_b, float t0, float dt,
                               float ts, float hp, uint lit, vec4 visible) {
-  if (lit == 63u || (lit == 0u && any(greaterThan(visible, vec4(0.0)))))
-    return fog_lamp_piece(i, r, phi_a, phi_b, t0, dt, ts, hp, false, visible);
-  if (lit == 0u) return 0.0;
-  vec4 f = fog_lamp_node_values(i, r, phi_a, phi_b, t0, dt, ts, hp, false, bvec4(true));
+  const bool any_visible = any(greaterThan(visible, vec4(0.0)));
+  if (lit == 0u && !any_visible) return 0.0;
+  // The nodes' values are taken once, for both cases below: llvmpipe runs both branches of
+  // a lane group that mixes them, and the nodes (K, tau, T's walk) are the piece's cost.
+  const bool whole = lit == 63u || lit == 0u;
+  vec4 f = fog_lamp_node_values(i, r, phi_a, phi_b, t0, dt, ts, hp, false,
+                                whole ? greaterThan(visible, vec4(0.0)) : bvec4(true));
+  if (whole) /* all lit, or dark with V > 0 at a node: its 4 nodes of f V (fog_lamp_piece) */
+    return 0.5 * (phi_b - phi_a) *
+           dot(vec4(FOG_LAMP_GW[0], FOG_LAMP_GW[1], FOG_LAMP_GW[2], FOG_LAMP_GW[3]), f * visible);
   float dphi = phi_b - phi_a, start = -1.0, before_at = phi_a, total = 0.0;
   for (int k = 1; k <= 5; k++) {
     float at = k == 5 ? phi_b : fog_lamp_node(phi_a, phi_b, k - 1);
