@@ -145,6 +145,10 @@ int cmd_demo(int argc, char **argv) {
   /* Nothing to simulate in the other models: the window shows their fog as the config holds
    * it, playing what moves by itself (a volume's sequence, emitters, drifting noise). */
   const bool simulate = fog_model_table[config.fog.model].pyramid;
+  char note[SCENE_CONFIG_PATH_MAX + 96];
+  snprintf(note, sizeof note,
+           "%s's [fog] model has no simulation to animate: showing it as the config holds it",
+           o.config_path);
   fog_error window_failure;
   /* --scale 0 (not given): the simulated source chooses by the renderer, the other 0.5 */
   const double scale = simulate || o.scale > 0 ? o.scale : 0.5;
@@ -155,7 +159,8 @@ int cmd_demo(int argc, char **argv) {
                                  .live_rung = o.live_rung, .hide_panel = o.hide_panel,
                                  .screenshot = o.screenshot,
                                  .frames = o.frames > 0 ? o.frames : (simulate ? 30 : 1),
-                                 .rung = -1, .window_failure = &window_failure});
+                                 .rung = -1, .window_failure = &window_failure,
+                                 .note = simulate ? NULL : note});
   if (status != WINDOW_PROGRAM_NO_WINDOW) return status;
   char reason[sizeof window_failure.message + 16];
   snprintf(reason, sizeof reason, "no window (%s)", window_failure.message);

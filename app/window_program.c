@@ -140,6 +140,10 @@ static int window_loop(gl_context *gl, window_shell *shell, window_source *src,
 int window_program_run(scene_config *cfg, const window_options *o) {
   fog_error err = {0};
   fit_result fit_made, *fit = NULL;
+  if (o->fit && o->simulate) { /* --fit steps through the fog as held's rungs */
+    fprintf(stderr, "fogpipe %s: --fit shows the fog as held, not a simulation\n", o->command);
+    return 2;
+  }
   if (o->fit) { /* before the window: fit makes headless contexts of its own */
     if (fit_run(&(fit_desc){.input = cfg, .tolerance = o->fit_tolerance,
                             .rays_per_side = FIT_RAYS_PER_SIDE, .sample_side = FIT_SAMPLE_SIDE,
@@ -172,14 +176,13 @@ int window_program_run(scene_config *cfg, const window_options *o) {
       *o->window_failure = err;
       return WINDOW_PROGRAM_NO_WINDOW;
     }
-  } else if (o->simulate && fit) {
-    fit_result_destroy(fit); /* --fit is the fog as held's: no command asks for both */
-    fog_fail(&err, FOG_ERR_INVALID_ARGUMENT, "--fit shows the fog as held, not a simulation");
   } else if (o->simulate ? window_pipeline_source(&src, gl, cfg, o, &err)
                          : window_session_source(&src, gl, cfg, o, fit, &err)) {
   } else if (!(shell.ui = panel_create(gl_context_glfw_window(gl)))) {
     fog_fail(&err, FOG_ERR_GRAPHICS, "cannot start Dear ImGui on this window");
   } else {
+    if (o->note) printf("fogpipe %s: %s\n", o->command, o->note);
+    fflush(stdout);
     status = window_loop(gl, &shell, &src, cfg, o, &err);
   }
   if (status) fprintf(stderr, "fogpipe %s: %s\n", o->command, err.message);

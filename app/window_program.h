@@ -48,6 +48,7 @@ typedef struct window_options {
   /* Not NULL: a window that cannot open is not an error printed here; it is put here and
    * window_program_run returns WINDOW_PROGRAM_NO_WINDOW (the demo records instead). */
   fog_error *window_failure;
+  const char *note; /* printed as `fogpipe COMMAND: NOTE` once the window is open (or NULL) */
 } window_options;
 
 #define WINDOW_PROGRAM_NO_WINDOW (-1)

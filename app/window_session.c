@@ -62,17 +62,19 @@ static int make_targets(view_state *v, int width, int height, fog_error *err) {
  * vdb_fps, wrapping around, between frames blended as record blends them. Loads and
  * uploads only when the position changes. */
 static int volume_playback_update(volume_playback *pb, GLFWwindow *window, bool keyboard,
-                                  double now, render_fog *fog, const scene_config *cfg,
-                                  fog_error *err) {
-  /* read every frame: a press latched while the panel held the keyboard is let go */
+                                  bool active, double now, render_fog *fog,
+                                  const scene_config *cfg, fog_error *err) {
+  /* read every frame, whatever is shown: a press latched meanwhile is let go */
   const bool p_down = glfwGetKey(window, GLFW_KEY_P) == GLFW_PRESS;
-  if ((keyboard && p_down && !pb->p_was_down) || pb->toggle) {
+  const bool pressed = keyboard && p_down && !pb->p_was_down;
+  pb->p_was_down = p_down;
+  if (!active) return 0; /* a rung is shown: the sequence waits */
+  if (pressed || pb->toggle) {
     pb->toggle = false;
     pb->playing = !pb->playing;
     pb->start_time = now;
     pb->start = pb->shown;
   }
-  pb->p_was_down = p_down;
   if (!pb->playing) return 0;
   const int count = pb->sequence.count;
   double position = fmod(pb->start + (now - pb->start_time) * cfg->fog.vdb_fps, (double)count);
@@ -338,9 +340,10 @@ static void source_panel(void *self, panel *ui, const window_frame *f) {
   session_source *s = self;
   if (!panel_header(ui, "fog as the config holds it", true)) return;
   panel_text(ui, "model: %s (no simulation)", fog_model_table[s->cfg->fog.model].label);
-  if (s->playback.sequence.count) {
+  if (s->playback.sequence.count && s->sel.shown < 0) { /* a rung shown: the sequence waits */
     bool playing = s->playback.playing;
-    if (panel_checkbox(ui, "play the VDB sequence (P)", &playing)) s->playback.toggle = true;
+    if (panel_checkbox(ui, "play the VDB sequence (P)", &playing))
+      s->playback.toggle = !s->playback.toggle;
     const int at = (int)s->playback.shown; /* between frames at and at + 1 */
     panel_text(ui, "VDB frame %d (%d of %d)", s->playback.sequence.frames[at], at + 1,
                s->playback.sequence.count);
@@ -418,14 +421,17 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
   const int rung_before = s->sel.shown;
   if (s->sel.on && rung_selector_update(&s->sel, v, f->window, cfg, f->fps, f->keyboard, err))
     return 1;
-  /* back from a rung: the config's fog at the time on screen */
-  if (s->sel.shown < 0 && rung_before >= 0 && show_volume_time(s, err)) return 1;
+  /* back from a rung: the config's fog at the time on screen (playing, the update below
+   * loads the clock's) */
+  if (s->sel.shown < 0 && rung_before >= 0 && !s->playback.playing && show_volume_time(s, err))
+    return 1;
   /* With --screenshot the sequence advances one VDB frame per drawn frame (the same fog
    * every run), else with the clock. */
   const double clock =
       s->fixed_clock ? s->playback.start_time + f->index / cfg->fog.vdb_fps : f->now;
-  if (s->playback.sequence.count && s->sel.shown < 0 &&
-      volume_playback_update(&s->playback, f->window, f->keyboard, clock, &v->fog, cfg, err))
+  if (s->playback.sequence.count &&
+      volume_playback_update(&s->playback, f->window, f->keyboard, s->sel.shown < 0, clock,
+                             &v->fog, cfg, err))
     return 1;
   /* RBF fog from emitters moves with the clock (with --screenshot at 24 frames a second:
    * the same fog every run) */

@@ -62,6 +62,9 @@ int image_write_png_srgb(const char *path, int width, int height, int channels, 
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                     "%s: sRGB PNG writing takes 3 (RGB) or 4 (RGBA) channels, not %d", path,
                     channels);
+  if (width <= 0 || height <= 0) /* before the values are read */
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: image size %dx%d: both must be positive",
+                    path, width, height);
   static const char *const names[] = {"R", "G", "B", "A"};
   for (int c = 0; c < channels; c++)
     if (image_check_finite(path, names[c], linear + c, width, height, channels, FLT_MAX, err))

@@ -44,8 +44,54 @@ static void check_live_settings(void) {
         scene_live_terrain_lod(3.0));
 }
 
+/* The fogmap's volume (scene_config_fog_volume): [box] places it, the shape gives its
+ * extinction and profile, a B-spline takes the config's knots (pointing into it), and one
+ * without knots is the slab. */
+static void check_fog_volume(void) {
+  scene_config cfg;
+  scene_config_init(&cfg);
+  cfg.box.origin[0] = -300, cfg.box.origin[1] = 120, cfg.box.cell_size = 3.5;
+  cfg.box.floor = -4, cfg.box.top = 90;
+  cfg.fog.density_scale = 0.031, cfg.fog.profile = SCENE_PROFILE_EXPONENTIAL;
+  cfg.fog.fog_height = 12, cfg.fog.scale_height = 40;
+  scene_fog_shape shape = scene_config_fog_shape(&cfg);
+  fog_volume v = scene_config_fog_volume(&cfg, 200, 150, &shape);
+  CHECK(v.map_width == 200 && v.map_height == 150 && v.origin_x == -300 && v.origin_z == 120 &&
+            v.cell_size == 3.5 && v.extinction == 0.031 &&
+            v.profile.kind == FOG_PROFILE_EXPONENTIAL && v.profile.y_floor == -4 &&
+            v.profile.y_top == 90 && v.profile.y0 == 12 && v.profile.scale_height == 40,
+        "the config's volume: %dx%d at (%g, %g) cell %g K %g, profile %d [%g, %g] y0 %g H %g",
+        v.map_width, v.map_height, v.origin_x, v.origin_z, v.cell_size, v.extinction,
+        (int)v.profile.kind, v.profile.y_floor, v.profile.y_top, v.profile.y0,
+        v.profile.scale_height);
+  /* the live panel's shape: its own values over the config's box */
+  const scene_fog_shape live = {.extinction = 0.5, .profile = FOG_PROFILE_SLAB, .y0 = 1,
+                                .scale_height = 2};
+  v = scene_config_fog_volume(&cfg, 8, 8, &live);
+  CHECK(v.extinction == 0.5 && v.profile.kind == FOG_PROFILE_SLAB && v.origin_x == -300,
+        "a live shape: K %g, profile %d", v.extinction, (int)v.profile.kind);
+  /* a B-spline: the config's knots, in place */
+  cfg.fog.profile = SCENE_PROFILE_BSPLINE;
+  cfg.fog.profile_count = 3, cfg.fog.profile_degree = 2;
+  cfg.fog.profile_coefficients[0] = 1, cfg.fog.profile_coefficients[1] = 0.5;
+  cfg.fog.profile_coefficients[2] = 0.25;
+  cfg.fog.profile_origin = -2, cfg.fog.profile_spacing = 30;
+  shape = scene_config_fog_shape(&cfg);
+  v = scene_config_fog_volume(&cfg, 8, 8, &shape);
+  CHECK(v.profile.kind == FOG_PROFILE_BSPLINE && v.profile.count == 3 &&
+            v.profile.degree == 2 && v.profile.coefficients == cfg.fog.profile_coefficients &&
+            v.profile.origin == -2 && v.profile.spacing == 30,
+        "the B-spline profile: kind %d, %d knots of degree %d", (int)v.profile.kind,
+        v.profile.count, v.profile.degree);
+  cfg.fog.profile_count = 0; /* none in the config: the slab */
+  v = scene_config_fog_volume(&cfg, 8, 8, &shape);
+  CHECK(v.profile.kind == FOG_PROFILE_SLAB && v.profile.count == 0,
+        "a B-spline without knots is kind %d", (int)v.profile.kind);
+}
+
 int main(void) {
   check_live_settings();
+  check_fog_volume();
   scene_config cfg;
   fog_error err = {0};
   int status = scene_config_load("configs/default.ini", &cfg, &err);

@@ -1,9 +1,13 @@
 /* The table sRGB encoder (sim/fogmap.h: srgb8_encode) equals lround(255 srgb(x)) with the
  * IEC 61966-2-1 formula evaluated in double, for every float tried: a sweep of [0, 1.1],
  * random values, and the floats on either side of every table threshold; and the sRGB
- * PNG writer stores exactly those bytes (read back through libspng). */
+ * PNG writer stores exactly those bytes (read back through libspng), and refuses a bad size
+ * before reading a value. */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 #include "sim/image_io.h"
 #include "sim/sim.h"
@@ -70,5 +74,16 @@ int main(void) {
     fogmap_destroy(&back);
   }
   remove(path);
+  /* A bad size is refused before any value is read (with -2 x 3 the values' count once
+   * wrapped around and the finite check read past the buffer), and nothing is written. */
+  for (int k = 0; k < 2; k++) {
+    const int w = k ? -1 : -2, h = k ? -1 : 3;
+    fog_error size_err = {0};
+    CHECK(image_write_png_srgb(path, w, h, 3, k ? NULL : rgba, &size_err) != 0 &&
+              size_err.code == FOG_ERR_INVALID_ARGUMENT &&
+              strstr(size_err.message, "both must be positive"),
+          "size %dx%d: '%s'", w, h, size_err.message);
+    CHECK(access(path, F_OK) != 0, "a file was written for size %dx%d", w, h);
+  }
   return test_finish("test_srgb8");
 }
