@@ -236,9 +236,11 @@ typedef struct rung_selector {
   bool zero_was_down;
 } rung_selector;
 
-/* What the panel's sunlight section edits, from one config to another. */
-static void copy_sunlight(scene_config *to, const scene_config *from) {
+/* What the panel's light edits, from one config to another: the sun and the fog's ambient
+ * colour. */
+static void copy_light(scene_config *to, const scene_config *from) {
   to->light = from->light;
+  memcpy(to->fog.colour, from->fog.colour, sizeof to->fog.colour);
   to->fog.albedo = from->fog.albedo;
   to->fog.phase_g = from->fog.phase_g;
   to->shadow.fog_self_shadow = from->shadow.fog_self_shadow;
@@ -260,7 +262,7 @@ static int make_fog(view_state *v, const scene_config *shown, fog_error *err) {
  * light. */
 static int show_rung(view_state *v, rung_selector *sel, int index, const scene_config *cfg,
                      fog_error *err) {
-  if (index >= 0) copy_sunlight(sel->fit.rungs[index].config, cfg);
+  if (index >= 0) copy_light(sel->fit.rungs[index].config, cfg);
   if (make_fog(v, index < 0 ? cfg : sel->fit.rungs[index].config, err)) return 1;
   sel->shown = index;
   if (index < 0)
@@ -308,8 +310,9 @@ static int rung_selector_update(rung_selector *sel, view_state *v, GLFWwindow *w
 
 typedef struct session_source {
   scene_config *cfg; /* the config's own copy (owned): the brush and the panel edit it */
-  bool relight;      /* the panel moved the sun: the next input relights */
-  double relight_ms; /* the last relight's time (0: none yet) */
+  bool remake;       /* the panel changed the sun or the fog: the next input makes it again */
+  double remake_ms;  /* the last remake's time (0: none yet) */
+  float density_range[2]; /* the density slider's: the config's value / 100 .. x 100 */
   double render_scale;
   bool fixed_clock; /* --screenshot: time from the frame count */
   view_state v;
@@ -334,12 +337,12 @@ static void source_destroy(void *self) {
   free(s);
 }
 
-/* What the fog is and how it moves; with --fit the rung menu. */
-static void source_panel(void *self, panel *ui, const window_frame *f) {
-  (void)f;
-  session_source *s = self;
+/* What the fog is and how it moves, its density and ambient colour; with --fit the rung
+ * menu. An edit makes the fog again at the next input (s->remake). */
+static void panel_fog(session_source *s, panel *ui) {
   if (!panel_header(ui, "fog as the config holds it", true)) return;
-  panel_text(ui, "model: %s (no simulation)", fog_model_table[s->cfg->fog.model].label);
+  scene_fog_config *fog = &s->cfg->fog;
+  panel_text(ui, "model: %s (no simulation)", fog_model_table[fog->model].label);
   if (s->playback.sequence.count && s->sel.shown < 0) { /* a rung shown: the sequence waits */
     bool playing = s->playback.playing;
     if (panel_checkbox(ui, "play the VDB sequence (P)", &playing))
@@ -348,29 +351,17 @@ static void source_panel(void *self, panel *ui, const window_frame *f) {
     panel_text(ui, "VDB frame %d (%d of %d)", s->playback.sequence.frames[at], at + 1,
                s->playback.sequence.count);
   }
-  if (s->cfg->fog.model == FOG_MODEL_RBF)
+  if (fog->model == FOG_MODEL_RBF)
     panel_text(ui, "B: the Gaussian brush (%s)", s->brush.on ? "on" : "off");
-  window_sunlight sun = {.azimuth = (float)s->cfg->light.sun_azimuth,
-                         .elevation = (float)s->cfg->light.sun_elevation,
-                         .albedo = (float)s->cfg->fog.albedo,
-                         .phase_g = (float)s->cfg->fog.phase_g,
-                         .self_shadow = s->cfg->shadow.fog_self_shadow,
-                         .shafts = s->cfg->shadow.shafts};
-  double colour[3];
-  for (int c = 0; c < 3; c++) colour[c] = s->cfg->light.sun_colour[c];
-  window_sunlight_set_colour(&sun, colour);
-  if (window_panel_sunlight(ui, &sun)) {
-    s->cfg->light.sun_azimuth = sun.azimuth;
-    s->cfg->light.sun_elevation = sun.elevation;
-    window_sunlight_colour(&sun, colour);
-    for (int c = 0; c < 3; c++) s->cfg->light.sun_colour[c] = (float)colour[c];
-    s->cfg->fog.albedo = sun.albedo;
-    s->cfg->fog.phase_g = sun.phase_g;
-    s->cfg->shadow.fog_self_shadow = sun.self_shadow;
-    s->cfg->shadow.shafts = sun.shafts;
-    s->relight = true;
+  if (s->sel.shown < 0) { /* the config's own density (a rung has its fitted one) */
+    float density = (float)fog->density_scale;
+    if (panel_slider_float(ui, "density scale", &density, s->density_range[0],
+                           s->density_range[1], "%.4g", true)) {
+      fog->density_scale = density;
+      s->remake = true;
+    }
   }
-  if (s->relight_ms > 0) panel_text(ui, "fog made again in the new light: %.0f ms", s->relight_ms);
+  if (panel_color3(ui, "fog colour (ambient)", fog->colour)) s->remake = true;
   if (s->sel.on) {
     int shown = s->sel.shown + 1;
     if (panel_combo(ui, "rung", &shown, s->rung_names, s->sel.fit.count + 1))
@@ -384,6 +375,37 @@ static void source_panel(void *self, panel *ui, const window_frame *f) {
   }
 }
 
+/* The sun, as the simulated source's panel has it (window_panel_sunlight). */
+static void panel_sun(session_source *s, panel *ui) {
+  scene_config *cfg = s->cfg;
+  window_sunlight sun = {.azimuth = (float)cfg->light.sun_azimuth,
+                         .elevation = (float)cfg->light.sun_elevation,
+                         .albedo = (float)cfg->fog.albedo, .phase_g = (float)cfg->fog.phase_g,
+                         .self_shadow = cfg->shadow.fog_self_shadow,
+                         .shafts = cfg->shadow.shafts};
+  double colour[3];
+  for (int c = 0; c < 3; c++) colour[c] = cfg->light.sun_colour[c];
+  window_sunlight_set_colour(&sun, colour);
+  if (!window_panel_sunlight(ui, &sun)) return;
+  cfg->light.sun_azimuth = sun.azimuth;
+  cfg->light.sun_elevation = sun.elevation;
+  window_sunlight_colour(&sun, colour);
+  for (int c = 0; c < 3; c++) cfg->light.sun_colour[c] = (float)colour[c];
+  cfg->fog.albedo = sun.albedo;
+  cfg->fog.phase_g = sun.phase_g;
+  cfg->shadow.fog_self_shadow = sun.self_shadow;
+  cfg->shadow.shafts = sun.shafts;
+  s->remake = true;
+}
+
+static void source_panel(void *self, panel *ui, const window_frame *f) {
+  (void)f;
+  session_source *s = self;
+  panel_fog(s, ui);
+  panel_sun(s, ui);
+  if (s->remake_ms > 0) panel_text(ui, "fog made again after an edit: %.0f ms", s->remake_ms);
+}
+
 /* The config's fog, made again (render_fog_create shows vdb_frame), at the played volume's
  * time on screen. */
 static int show_volume_time(session_source *s, fog_error *err) {
@@ -395,16 +417,16 @@ static int show_volume_time(session_source *s, fog_error *err) {
   return render_fog_set_volume_time(&s->v.fog, s->cfg, &pb->sequence, a, b, w, err);
 }
 
-/* The panel moved the sun: the surfaces' light and shadow map (the scene pass renders the
- * map again when the sun differs), and the fog shown made again in the new light (its
- * sun-shadow volume; a played volume at the time shown). */
-static int relight_now(session_source *s, fog_error *err) {
+/* The panel changed the sun or the fog: the surfaces' light and shadow map (the scene pass
+ * renders the map again when the sun differs), and the fog shown made again (its sun-shadow
+ * volume; a played volume at the time shown; a rung in the same light). */
+static int remake_now(session_source *s, fog_error *err) {
   view_state *v = &s->v;
-  s->relight = false;
+  s->remake = false;
   v->geo.light = s->cfg->light;
   scene_light_sun_direction(&v->geo.light, v->geo.sun_direction);
   if (!v->has_fog) return 0;
-  if (s->sel.shown >= 0) copy_sunlight(s->sel.fit.rungs[s->sel.shown].config, s->cfg);
+  if (s->sel.shown >= 0) copy_light(s->sel.fit.rungs[s->sel.shown].config, s->cfg);
   return make_fog(v, s->sel.shown < 0 ? s->cfg : s->sel.fit.rungs[s->sel.shown].config, err) ||
          show_volume_time(s, err);
 }
@@ -413,10 +435,10 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
   session_source *s = self;
   view_state *v = &s->v;
   const scene_config *cfg = s->cfg;
-  if (s->relight) {
+  if (s->remake) {
     const double t0 = app_clock_seconds();
-    if (relight_now(s, err)) return 1;
-    s->relight_ms = 1e3 * (app_clock_seconds() - t0);
+    if (remake_now(s, err)) return 1;
+    s->remake_ms = 1e3 * (app_clock_seconds() - t0);
   }
   const int rung_before = s->sel.shown;
   if (s->sel.on && rung_selector_update(&s->sel, v, f->window, cfg, f->fps, f->keyboard, err))
@@ -507,6 +529,8 @@ int window_session_source(window_source *src, gl_context *gl, const scene_config
     return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the window's fog");
   }
   *s->cfg = *cfg;
+  const float density = cfg->fog.density_scale > 0 ? (float)cfg->fog.density_scale : 0.01f;
+  s->density_range[0] = density / 100.0f, s->density_range[1] = density * 100.0f;
   s->render_scale = opts->render_scale > 0 ? opts->render_scale : 0.5;
   s->fixed_clock = opts->screenshot != NULL;
   s->v.command = opts->command;
