@@ -78,7 +78,9 @@ static int parse_demo_options(int argc, char **argv, demo_options *o) {
        .help = "render at S times the window size, 0.25..1 (default 1 on\n"
                "a GPU; 0.5 on a software renderer such as llvmpipe, with\n"
                "the fog at half of that, upsampled by depth: the fog pass\n"
-               "costs per pixel; the panel changes both)"},
+               "costs per pixel; the panel changes both; there the terrain\n"
+               "LOD's error is doubled and the lamps take the live rule).\n"
+               "A model without a simulation: 0.5 unless given"},
       {.kind = CLI_CHOICE, .name = "--model", .value = "NAME", .target = &o->live_rung,
        .choices = models,
        .help = "start with the panel's model: fogmap (default),\n"
@@ -91,11 +93,13 @@ static int parse_demo_options(int argc, char **argv, demo_options *o) {
       {.kind = CLI_FLAG, .name = "--hide-panel", .target = &o->hide_panel,
        .help = "start with the panel hidden (Tab shows it)"},
       {.kind = CLI_TEXT, .name = "--screenshot", .value = "FILE", .target = &o->screenshot,
-       .help = "after --frames frames, save the window as a PNG and quit"},
+       .help = "after --frames frames, save the window as a PNG and quit\n"
+               "(the panel in it from the 2nd frame, unless hidden)"},
       {.kind = CLI_INT, .name = "--frames", .value = "N", .target = &o->frames, .min = 1,
        .max = 1000000,
-       .help = "frames before the screenshot (default 30); without a\n"
-               "display, frames recorded (default " CLI_TEXT_OF(HEADLESS_FRAMES) ")"},
+       .help = "frames before the screenshot (default 30; 1 for a model\n"
+               "without a simulation); without a display, frames recorded\n"
+               "(default " CLI_TEXT_OF(HEADLESS_FRAMES) ")"},
   };
   const cli_spec spec = {
       .command = "demo",
@@ -106,14 +110,18 @@ static int parse_demo_options(int argc, char **argv, demo_options *o) {
                "In the window:\n"
                "  W A S D         move (Q/E down/up, Shift faster)\n"
                "  middle drag     look around (or the arrow keys)\n"
-               "  left drag       paint fog on the terrain\n"
+               "  left drag       paint fog on the terrain (with the panel's lamp tool on:\n"
+               "                  place or drag a lamp; right click removes one)\n"
                "  right drag or Shift+left drag   erase fog\n"
                "  Space           pause / resume the simulation;  N: one step;  R: reset\n"
                "  Tab             hide / show the panel;  Esc: quit\n"
-               "The panel sets the basis, levels, mu, LOD method, density, colour, vertical\n"
-               "profile, wind, viscosity and emitter rate, and shows the per-stage timings; its\n"
+               "The panel shows the frame rate, a frame-time plot and the per-stage timings,\n"
+               "and sets the basis, levels, mu, LOD method, fog resolution, render scale,\n"
+               "density, colour, vertical profile, wind, turbulence, viscosity, emitter rate,\n"
+               "the sun (time of day, colour, albedo, g, self-shadow, shafts) and lamps; its\n"
                "model menu draws a cheaper model fitted to the fog live, with its error.\n"
-               "A model without a simulation opens in the same window as `fogpipe view` shows it.\n\n"
+               "A model without a simulation opens in the same window as `fogpipe view` shows it\n"
+               "(its panel: density, colour and the sun; P plays a volume's sequence).\n\n"
                "Without a display (no DISPLAY/WAYLAND_DISPLAY, or the window cannot open) the\n"
                "scene is recorded headless instead: " CLI_TEXT_OF(HEADLESS_FRAMES) " frames at "
                CLI_TEXT_OF(HEADLESS_WIDTH) "x" CLI_TEXT_OF(HEADLESS_HEIGHT) " into ./out/demo (or a\n"

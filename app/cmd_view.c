@@ -20,14 +20,16 @@ int cmd_view(int argc, char **argv) {
       {.kind = CLI_NUMBER, .name = "--render-scale", .value = "F", .target = &opts.render_scale,
        .min = 0.05, .max = 4,
        .help = "render at F times the window size, shown scaled up\n"
-               "(default 0.5: software GL is slow; 1 on a GPU)"},
+               "(default 0.5, for software GL; use 1 on a GPU)"},
       {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
        .help = "window size (default: [render] width and height)"},
       {.kind = CLI_FLAG, .name = "--play", .target = &opts.play,
        .help = "start playing the volume's sequence (with --screenshot: one\n"
                "VDB frame per drawn frame)"},
       {.kind = CLI_TEXT, .name = "--screenshot", .value = "FILE", .target = &opts.screenshot,
-       .help = "save the window's last frame as an 8-bit PNG and exit"},
+       .help = "save the window's last frame as an 8-bit PNG and exit (the\n"
+               "panel in it from the 2nd frame, unless hidden: --hide-panel\n"
+               "for the scene alone, an image that repeats)"},
       {.kind = CLI_FLAG, .name = "--hide-panel", .target = &opts.hide_panel,
        .help = "start with the panel hidden (Tab shows it)"},
       {.kind = CLI_INT, .name = "--frames", .value = "N", .target = &opts.frames, .min = 1,
@@ -47,8 +49,11 @@ int cmd_view(int argc, char **argv) {
       .command = "view",
       .usage = "CONFIG [--size WxH] [--render-scale F] [--play] [--hide-panel]\n"
                "                           [--screenshot FILE.png --frames N] [--fit T [--rung N]]",
-      .about = "Opens the scene config in a window with a free camera (needs a display; for\n"
-               "headless images use `fogpipe render`).\n"
+      .about = "Opens the scene config in a window with a free camera and the panel, its fog as\n"
+               "the config holds it (needs a display; for headless images use `fogpipe render`).\n"
+               "The panel (Tab) edits the fog's density scale and ambient colour and the sun\n"
+               "(time of day, colour, albedo, g, self-shadow, shafts); the fog is made again\n"
+               "after each edit.\n"
                "  W A S D  move     Q E  down / up     Shift  4x faster\n"
                "  right or middle drag, arrow keys  look around     Esc  quit\n"
                "  Tab  hide / show the panel\n"

@@ -1,5 +1,5 @@
 /* panel: a thin C interface over Dear ImGui (1.86, Debian's libimgui-dev with its GLFW and
- * OpenGL 3 backends), so the demo's parameter panel is written in C. Each widget function
+ * OpenGL 3 backends), so the window program's panel (demo and view) is written in C. Each widget function
  * is one ImGui call and returns true when the user changed the value this frame.
  *
  * Per frame, on the GL thread, after gl_context_poll_events():

@@ -11,8 +11,9 @@
  *   played     model = volume, play: a render session whose 3D grid moves through the VDB
  *              sequence, frame n at time (n - 1) / fps, blended between VDB frames
  *
- * `fogpipe record` and `fogpipe render` draw every frame through this; the window
- * programs (demo, view) use the same pipeline and session underneath.
+ * `fogpipe record` and `fogpipe render` draw every frame through this; the window program
+ * (demo, view: app/window_program.h) uses the same pipeline, or render_fog with a scene
+ * pass of its own for the fog as held.
  *
  * Lifecycle: player_create (makes its own headless GL context) → player_skip (once, for
  * --resume) → player_frame per frame → player_destroy. */

@@ -1,5 +1,5 @@
 /* The Gaussian brush (Zhou et al. 2007, Fogshop §6): an artist paints RBF fog onto the
- * scene, erases it and copies groups of Gaussians about, in `fogpipe view` on a
+ * scene, erases it and copies groups of Gaussians about, in `fogpipe view` (or `demo`) on a
  * `[fog] model = rbf` scene (app/window_session.c wires the mouse and keys to it).
  *
  *   rbf_bank bank = {.rbfs = cfg.fog.rbfs, .count = cfg.fog.rbf_count,

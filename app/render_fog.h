@@ -1,4 +1,5 @@
-/* The static fog of a scene config for one headless frame (`fogpipe render`): the config's
+/* The static fog of a scene config for headless frames (`fogpipe render`) and the window's
+ * fog as held (app/window_session.c, made again after each panel edit): the config's
  * fogmap, its wavelet pyramid (transform/), uploaded to the GL fog pass
  * (render/fog_pass.h). The live and recorded animation goes through app/pipeline.h
  * instead; this path renders the fogmap exactly as the file holds it, without a

@@ -18,7 +18,7 @@ typedef struct gl_presenter gl_presenter;
 
 typedef enum gl_present_scaling {
   GL_PRESENT_NEAREST = 0, /* every window pixel shows one texel (a crisp view) */
-  GL_PRESENT_BILINEAR,    /* the texture's own filter (the demo's reduced render scale) */
+  GL_PRESENT_BILINEAR,    /* the texture's own filter (the simulated demo's reduced scale) */
 } gl_present_scaling;
 
 gl_presenter *gl_presenter_create(fog_error *err);

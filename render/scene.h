@@ -74,7 +74,7 @@ typedef struct scene_geometry {
   terrain terrain;
   scene_box boxes[SCENE_MAX_BOXES];
   int box_count;
-  scene_light light;        /* the desc's (the demo's time of day moves it) */
+  scene_light light;        /* the desc's (the window panel's time of day moves it) */
   double sun_direction[3];  /* unit vector toward the sun, from azimuth and elevation */
 } scene_geometry;
 

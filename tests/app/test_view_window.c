@@ -2,7 +2,9 @@
  * Xvfb (when xvfb-run is installed) its --screenshot of the window (read from GL_BACK)
  * shows the same image as the headless `fogpipe render` PNG of the same config and size,
  * for the fogmap scene, the RBF fog banks and the plume volume: the window path and the
- * headless path agree. With --fit the window shows the chosen rung of the model ladder. Tolerance: 99% of 8-bit values within
+ * headless path agree (the screenshots with --hide-panel; by default the panel is over the
+ * image, a check of its own). With --fit the window shows the chosen rung of the model
+ * ladder. Tolerance: 99% of 8-bit values within
  * 2/255 and the mean within 0.5/255 (the window renders fog into RGBA16F, render into
  * RGBA32F: half-float rounding can move a value by one 8-bit step). */
 #define _POSIX_C_SOURCE 200809L
