@@ -1,7 +1,7 @@
 /* The fog source "as held" of the window program (app/window_program.h): the scene config's
  * fog as the file holds it, in a render session's fog (app/render_fog.h), no simulation.
  * A volume's VDB sequence plays with P (or from the start with --play); RBF emitters' puffs
- * and Perlin octaves drift with the clock; B turns on the Gaussian brush on an RBF scene
+ * and Perlin octaves drift, lamps on a path move and flicker with the clock; B turns on the Gaussian brush on an RBF scene
  * (app/rbf_brush.h: paint, erase, copy); with --fit the panel's rung menu (or [ and ])
  * steps through the model ladder. With --screenshot the clock is the frame count (a
  * sequence advances one VDB frame per drawn frame, drifting fog 1/24 s): the same fog every
@@ -312,6 +312,7 @@ typedef struct session_source {
   scene_config *cfg; /* the config's own copy (owned): the brush and the panel edit it */
   bool remake;       /* the panel changed the sun or the fog: the next input makes it again */
   double remake_ms;  /* the last remake's time (0: none yet) */
+  bool lamps_animated; /* [light] lamp_path or lamp_flicker: the lamps follow the clock */
   float density_range[2]; /* the density slider's: the config's value / 100 .. x 100 */
   double render_scale;
   bool fixed_clock; /* --screenshot: time from the frame count */
@@ -461,6 +462,13 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
   if (v->has_fog && s->sel.shown < 0 && render_fog_animated(cfg) &&
       render_fog_set_time(&v->fog, cfg, fog_time, err))
     return 1;
+  /* lamps that move or flicker ([light] lamp_path, lamp_flicker) on the same clock, as
+   * record shows them: the fog's in-scatter and the surfaces they light */
+  if (s->lamps_animated) {
+    const fog_lamps lamps = scene_config_fog_lamps_at(cfg, fog_time);
+    if (v->has_fog) v->fog.params.lamps = lamps;
+    if (scene_pass_set_lamps(v->scene, &lamps, err)) return 1;
+  }
   /* the brush picks from the last frame's distances */
   return f->index > 0 &&
          view_brush_update(&s->brush, v, f, s->sel.shown < 0, cfg, fog_time, err);
@@ -533,6 +541,7 @@ int window_session_source(window_source *src, gl_context *gl, const scene_config
   s->density_range[0] = density / 100.0f, s->density_range[1] = density * 100.0f;
   s->render_scale = opts->render_scale > 0 ? opts->render_scale : 0.5;
   s->fixed_clock = opts->screenshot != NULL;
+  s->lamps_animated = scene_config_lamps_animated(cfg);
   s->v.command = opts->command;
   s->brush = (view_brush){.command = opts->command, .config_path = opts->config_path,
                           .painted = s->cfg};

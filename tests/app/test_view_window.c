@@ -29,11 +29,12 @@ static float *load(const char *path, const char *channel, int *w, int *h) {
 }
 
 /* --screenshot of `view CONFIG VIEW_OPTIONS` under Xvfb against `render CONFIG
- * RENDER_OPTIONS`, 160x90: the same image (expect_same), or one whose mean differs by more
- * than 2/255 in some channel. */
-static void compare_window_with_render(const char *bin, const char *dir, const char *config,
-                                       const char *view_options, const char *render_options,
-                                       bool expect_same) {
+ * RENDER_OPTIONS` (record_frame 0: its sRGB PNG) or frame record_frame of `record CONFIG`
+ * (its linear EXR, clamped and sRGB-encoded as the window shows it), 160x90: the same image (expect_same), or one whose mean differs
+ * by more than 2/255 in some channel. */
+static void compare_window(const char *bin, const char *dir, const char *config,
+                           const char *view_options, const char *render_options,
+                           int record_frame, bool expect_same) {
   double largest_mean = 0.0;
   char command[1024], shot[256], headless[256];
   snprintf(shot, sizeof shot, "%s/window.png", dir);
@@ -43,8 +44,15 @@ static void compare_window_with_render(const char *bin, const char *dir, const c
            "--render-scale 1 --hide-panel --screenshot '%s' --frames 2 %s",
            bin, config, shot, view_options);
   CHECK(system(command) == 0, "%s", command);
-  snprintf(command, sizeof command, "'%s' render %s --out '%s' --size 160x90 %s", bin, config,
-           headless, render_options);
+  if (record_frame > 0) {
+    snprintf(headless, sizeof headless, "%s/rec/frame.%04d.exr", dir, record_frame);
+    snprintf(command, sizeof command,
+             "'%s' record %s --frames %d --out '%s/rec' --size 160x90 > /dev/null", bin, config,
+             record_frame, dir);
+  } else {
+    snprintf(command, sizeof command, "'%s' render %s --out '%s' --size 160x90 %s", bin, config,
+             headless, render_options);
+  }
   CHECK(system(command) == 0, "%s", command);
   const char *channels[3] = {"R", "G", "B"};
   for (int c = 0; c < 3; c++) {
@@ -52,6 +60,10 @@ static void compare_window_with_render(const char *bin, const char *dir, const c
     float *a = load(shot, channels[c], &w1, &h1), *b = load(headless, channels[c], &w2, &h2);
     CHECK(w1 == 160 && h1 == 90 && w2 == 160 && h2 == 90, "sizes %dx%d %dx%d", w1, h1, w2, h2);
     if (a && b && w1 == w2 && h1 == h2) {
+      for (int k = 0; k < w2 * h2 && record_frame > 0; k++) { /* linear -> sRGB, as shown */
+        const double x = fmin(fmax(b[k], 0.0), 1.0);
+        b[k] = (float)(x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055);
+      }
       int within = 0;
       double sum = 0, worst = 0;
       for (int k = 0; k < w1 * h1; k++) {
@@ -73,6 +85,10 @@ static void compare_window_with_render(const char *bin, const char *dir, const c
         "(mean difference %.3f/255)", config, view_options, largest_mean);
   unlink(shot);
   unlink(headless);
+  if (record_frame > 0) {
+    snprintf(command, sizeof command, "rm -rf '%s/rec'", dir);
+    CHECK(system(command) == 0, "%s", command);
+  }
 }
 
 /* The window program's panel: over the image by default, gone with --hide-panel. Inside
@@ -132,18 +148,35 @@ int main(void) {
     static const char *const configs[] = {"configs/default.ini", "configs/rbf_fog_banks.ini",
                                           "configs/vdb_plume_volume.ini"};
     for (size_t k = 0; k < sizeof configs / sizeof configs[0]; k++)
-      compare_window_with_render(bin, dir, configs[k], "", "", true);
+      compare_window(bin, dir, configs[k], "", "", 0, true);
     /* The plume's sequence played: from its vdb_frame 48, three drawn frames advance two
      * VDB frames, wrapping around to frame 2. */
-    compare_window_with_render(bin, dir, "configs/vdb_plume_volume.ini", "--play --frames 3",
-                               "--vdb-frame 2", true);
+    compare_window(bin, dir, "configs/vdb_plume_volume.ini", "--play --frames 3",
+                   "--vdb-frame 2", 0, true);
     /* --fit: the window shows a rung of the model ladder. Rung 1 of the linear fog is the
      * linear factor fitted to it (start and end to 1e-9: the config's own image); rung 0,
      * homogeneous fog, is not. */
-    compare_window_with_render(bin, dir, "configs/classic_fog.ini", "--fit 0.01 --rung 1", "",
-                               true);
-    compare_window_with_render(bin, dir, "configs/classic_fog.ini", "--fit 0.01 --rung 0", "",
-                               false);
+    compare_window(bin, dir, "configs/classic_fog.ini", "--fit 0.01 --rung 1", "", 0, true);
+    compare_window(bin, dir, "configs/classic_fog.ini", "--fit 0.01 --rung 0", "", 0, false);
+    /* A lamp on a path ([light] lamp_path): the window moves it on the clock record does.
+     * 13 drawn frames with --screenshot are scene time 12/24 s, record's frame 13: the lamp
+     * halfway, the same image; render (time 0) shows it at its start, another image. */
+    char lamp_ini[300];
+    snprintf(lamp_ini, sizeof lamp_ini, "%s/lamp_path.ini", dir);
+    FILE *ini = fopen(lamp_ini, "w");
+    CHECK(ini != NULL, "%s", lamp_ini);
+    if (ini) {
+      fputs("[camera]\nposition = 0 20 120\nlook_at = 0 10 0\nfov = 60\n"
+            "[fog]\nmodel = homogeneous\ndensity_scale = 0.01\nalbedo = 0.9\nphase_g = 0.3\n"
+            "colour = 0 0 0\n[light]\nsun_colour = 0.01 0.01 0.01\n"
+            "lamp = -40 10 0 3000 2500 2000\nlamp_path = 1 0 -40 10 0\n"
+            "lamp_path = 1 1 40 10 0\n",
+            ini);
+      fclose(ini);
+      compare_window(bin, dir, lamp_ini, "--frames 13", "", 13, true);
+      compare_window(bin, dir, lamp_ini, "--frames 13", "", 0, false);
+      unlink(lamp_ini);
+    }
     panel_shown_unless_hidden(bin, dir);
   }
   rmdir(dir);
