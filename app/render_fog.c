@@ -456,50 +456,16 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   int max_levels = transform_max_levels(map.width, map.height, boundary);
   if (levels > max_levels) levels = max_levels;
   if (levels > FOG_MAX_LEVELS) levels = FOG_MAX_LEVELS;
-  transform_plan *plan = NULL;
-  fog_error terr = {0};
-  transform_desc desc = {.width = map.width, .height = map.height, .levels = levels,
-                         .basis = transform_basis_of_degree(f->degree), .boundary = boundary};
-  size_t n = (size_t)map.width * map.height;
-  float *coefficients = transform_alloc_floats(n);
-  float *approx[FOG_MAX_LEVELS + 1] = {0}, *detail[FOG_MAX_LEVELS + 1] = {0};
   int status = 1;
-  if (!coefficients) {
-    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the fog transform");
-    goto done;
-  }
-  if (!(plan = transform_plan_create(&desc, &terr))) {
-    fog_error_wrap(err, &terr, "%.200s: [fog] transform: ", cfg->path);
-    goto done;
-  }
-  for (int l = 0; l <= levels; l++) {
-    int w, h;
-    transform_level_size(plan, l, &w, &h);
-    approx[l] = transform_alloc_floats((size_t)w * h);
-    detail[l] = transform_alloc_floats((size_t)w * h);
-    if (!approx[l] || !detail[l]) {
-      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the fog pyramid");
-      goto done;
-    }
-  }
   bool sum = f->lod == SCENE_LOD_SUM;
-  transform_forward(plan, map.density, coefficients);
-  transform_pyramid(plan, coefficients, approx);
-  /* fog_pass binds every slot of the pyramid (details too) whatever the LOD method. */
-  if (levels > 0) transform_details(plan, coefficients, detail);
-  for (int l = 0; l <= levels; l++) {
-    if (transform_grid_create_level(plan, l, approx[l], &fog->pyramid.approx[l], &terr) ||
-        (l > 0 &&
-         transform_grid_create_level(plan, l, detail[l], &fog->pyramid.detail[l], &terr))) {
-      fog_error_wrap(err, &terr, "fog pyramid: ");
-      goto done;
-    }
+  fog_error perr = {0};
+  if (fog_pyramid_create(&fog->pyramid, map.density, map.width, map.height, f->degree, levels,
+                         boundary, &perr)) {
+    fog_error_wrap(err, &perr, "%.200s: [fog] transform: ", cfg->path);
+    goto done;
   }
   fog->map_width = map.width;
   fog->map_height = map.height;
-  fog->pyramid.levels = levels;
-  fog->pyramid.degree = transform_basis_degree(desc.basis);
-  fog->pyramid.has_details = levels > 0;
   const scene_fog_shape shape = scene_config_fog_shape(cfg);
   fog->volume = scene_config_fog_volume(cfg, map.width, map.height, &shape);
   if (fog->volume.profile.kind == FOG_PROFILE_BSPLINE) {
@@ -528,9 +494,6 @@ int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap
   render_fog_beside(fog, cfg);
   status = 0;
 done:
-  for (int l = 0; l <= FOG_MAX_LEVELS; l++) free(approx[l]), free(detail[l]);
-  free(coefficients);
-  transform_plan_destroy(plan);
   if (status) {
     /* keep the message: render_fog_destroy clears the struct only */
     render_fog_destroy(fog);

@@ -111,6 +111,12 @@ typedef struct fog_pyramid {
   transform_grid detail[FOG_MAX_LEVELS + 1];
 } fog_pyramid;
 
+/* The pyramid of a density map (width x height samples, rows of width) in the B-spline basis
+ * of degree (0..2) with `levels` levels (0..FOG_MAX_LEVELS, and at most what the map's size
+ * allows: transform_max_levels): the approximations A_0..A_J and the deconstructed details
+ * D_1..D_J as grids (transform/). Errors in err (sizes, memory); *pyramid is then empty. */
+int fog_pyramid_create(fog_pyramid *pyramid, const float *density, int width, int height,
+                       int degree, int levels, transform_boundary boundary, fog_error *err);
 void fog_pyramid_destroy(fog_pyramid *pyramid);
 /* The pyramid as a fog_lod (detail from D_1) at LOD parameter mu. */
 fog_lod fog_pyramid_lod(const fog_pyramid *pyramid, double mu);
