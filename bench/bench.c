@@ -109,6 +109,26 @@ int bench_parse(const bench_command *c, int argc, char **argv) {
   return -1;
 }
 
+int bench_valley_scene(scene_geometry *geo, camera *cam, fog_error *err) {
+  scene_desc sdesc = {
+      .terrain = {.origin = {-600, 0, -600}, .size = {1200, 1200}, .height = 160,
+                  .resolution = 257, .seed = 4, .octaves = 6, .frequency = 2.2},
+      .boxes = {{.center = {-40, 60}, .size = {24, 30, 24}, .colour = {0.55f, 0.25f, 0.18f}},
+                {.center = {70, -30}, .size = {16, 70, 16}, .colour = SCENE_BOX_GREY}},
+      .box_count = 2,
+      .light = scene_light_default(),
+  };
+  sdesc.light.sun_azimuth = 150, sdesc.light.sun_elevation = 30;
+  if (scene_geometry_create(geo, &sdesc, err)) return 1;
+  *cam = (camera){.fov_y = 55.0 * 3.14159265358979323846 / 180.0,
+                  .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
+  cam->position[0] = 30.0;
+  cam->position[2] = 470.0;
+  cam->position[1] = terrain_height_at(&geo->terrain, cam->position[0], cam->position[2]) + 35.0;
+  camera_look_at(cam, (double[3]){-40.0, cam->position[1] - 45.0, -500.0});
+  return 0;
+}
+
 int bench_open_scene(const char *stage, const char *config_path, scene_config *cfg,
                      gl_context **gl) {
   fog_error err = {0};

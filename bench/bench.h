@@ -72,6 +72,15 @@ int bench_make_folder(const char *path, char *error, int size);
 void bench_tau_errors(const float *gpu, const double *ref, size_t n, double *rmse,
                       double *max_error, size_t *where);
 
+/* The valley the fogmap benches (render, paper) look at: a 1200-unit procedural terrain
+ * (257^2 samples), two boxes, the sun at azimuth 150 and 30 degrees up; the camera inside
+ * the fog near the map's +Z edge (the box [-512, 512]^2), 35 units above the ground, looking
+ * across the map towards -Z and slightly down: rays run up to ~1000 units through the fog.
+ * *geo: scene_geometry_destroy when done. */
+struct scene_geometry;
+struct camera;
+int bench_valley_scene(struct scene_geometry *geo, struct camera *cam, fog_error *err);
+
 /* The scene config at config_path loaded into *cfg and a headless GL context for it
  * (gl_context_destroy when done): 0, or 1 with `fogpipe bench STAGE: ...` printed. */
 struct scene_config;

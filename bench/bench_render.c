@@ -461,16 +461,8 @@ int bench_render(int argc, char **argv) {
   /* ---- GL: context, scene, fog passes ---- */
   ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
   if (!ctx) goto gl_failed;
-  scene_desc sdesc = {
-      .terrain = {.origin = {-600, 0, -600}, .size = {1200, 1200}, .height = 160,
-                  .resolution = 257, .seed = 4, .octaves = 6, .frequency = 2.2},
-      .boxes = {{.center = {-40, 60}, .size = {24, 30, 24}, .colour = {0.55f, 0.25f, 0.18f}},
-                {.center = {70, -30}, .size = {16, 70, 16}, .colour = SCENE_BOX_GREY}},
-      .box_count = 2,
-      .light = scene_light_default(),
-  };
-  sdesc.light.sun_azimuth = 150, sdesc.light.sun_elevation = 30;
-  if (scene_geometry_create(&geo, &sdesc, &rerr)) goto gl_failed;
+  camera cam;
+  if (bench_valley_scene(&geo, &cam, &rerr)) goto gl_failed;
   have_geo = 1;
   const fog_volume volume = {
       .map_width = map.width, .map_height = map.height, .origin_x = -512.0, .origin_z = -512.0,
@@ -479,14 +471,6 @@ int bench_render(int argc, char **argv) {
       .profile = {.kind = profile, .y_floor = 0.0, .y_top = 220.0, .y0 = 50.0,
                   .scale_height = 25.0},
   };
-  /* Inside the fog near the map's +Z edge, 35 units above the ground, looking across the
-   * map toward -Z and slightly down: rays run up to ~1000 units through the fog. */
-  camera cam = {.fov_y = 55.0 * 3.14159265358979323846 / 180.0,
-      .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
-  cam.position[0] = 30.0;
-  cam.position[2] = 470.0;
-  cam.position[1] = terrain_height_at(&geo.terrain, cam.position[0], cam.position[2]) + 35.0;
-  camera_look_at(&cam, (double[3]){-40.0, cam.position[1] - 45.0, -500.0});
 
   spass = scene_pass_create(&geo, &rerr);
   if (!spass || scene_target_create(&scene_target, W, H, &rerr)) goto gl_failed;

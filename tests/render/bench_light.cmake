@@ -7,10 +7,7 @@
 # chart CSV and PNG, the images to look at, and ends with its summary line. It asserts no
 # speed (and no accuracy: test_fog_shadow and test_gpu_froxel do).
 include(${CMAKE_CURRENT_LIST_DIR}/bench_smoke.cmake)
-if(NOT CMAKE_SCRIPT_MODE_FILE)
-  bench_smoke_add(light ${CMAKE_CURRENT_LIST_FILE} 300)
-  return()
-endif()
+bench_smoke_test(light 300)
 
 bench_smoke_run(light "^light: lit_over_unlit=[0-9.]+ lit_over_unlit_full=[0-9.]+ shadow_volume_ms=[0-9.]+ live_max_error=[0-9.e+-]+ froxel_error_ratio_at_equal_time=([0-9.]+|nan) march_speedup_at_matched_error=([0-9.]+|nan)$"
                 --size 48x27 --frames 1)

@@ -4,10 +4,7 @@
 # 16 steps, the live demo's rule and its unlit and ours at half resolution), the chart CSV and PNG, and
 # ends with its summary line. It asserts no speed (and no accuracy: test_lamp_accuracy does).
 include(${CMAKE_CURRENT_LIST_DIR}/bench_smoke.cmake)
-if(NOT CMAKE_SCRIPT_MODE_FILE)
-  bench_smoke_add(lights ${CMAKE_CURRENT_LIST_FILE} 600)
-  return()
-endif()
+bench_smoke_test(lights 600)
 
 bench_smoke_run(lights "^lights: ms_per_light=[0-9.]+ march_speedup_at_matched_error=([0-9.]+|nan) fogshop_halo_error_ratio=[0-9]+$"
                 --size 32x18 --frames 1)

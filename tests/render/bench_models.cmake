@@ -6,10 +6,7 @@
 # summary line, and its exact rows agree with the CPU model (max tau error <= 1e-4: a bench
 # comparing against the wrong reference fails here). It asserts no speed.
 include(${CMAKE_CURRENT_LIST_DIR}/bench_smoke.cmake)
-if(NOT CMAKE_SCRIPT_MODE_FILE)
-  bench_smoke_add(models ${CMAKE_CURRENT_LIST_FILE} 120)
-  return()
-endif()
+bench_smoke_test(models 120)
 
 set(num "[0-9]+[.]?[0-9]*") # no group: CMake keeps at most 9 per match
 bench_smoke_run(models "^models: rbf_exact_ms=${num} rbf_march_speedup_at_matched_error=${num} height_exact_ms=${num} height_march_speedup_at_matched_error=${num} volume_exact_ms=${num} volume_march_speedup_at_matched_error=${num} volume_empty_skip_speedup=${num} quadric_exact_ms=${num} quadric_march_speedup_at_matched_error=${num} rbf_64_ms=${num} rbf_3000_ms=${num} fit_s=${num} perlin_exact_ms=${num} perlin_march_speedup_at_matched_error=${num} perlin_paper_error=${num}$"

@@ -5,10 +5,7 @@
 # chart CSV and PNG, and ends with the summary line. It asserts no speed (speed targets
 # live in the benchmark itself).
 include(${CMAKE_CURRENT_LIST_DIR}/bench_smoke.cmake)
-if(NOT CMAKE_SCRIPT_MODE_FILE)
-  bench_smoke_add(render ${CMAKE_CURRENT_LIST_FILE} 120)
-  return()
-endif()
+bench_smoke_test(render 120)
 
 set(num "[0-9]+(\\.[0-9]+)?")
 bench_smoke_run(render "^render: exact_speedup_at_matched_error=${num} lod_switch_speedup_vs_sum=${num} lod_overhead_at_mu1=${num} empty_skip_speedup=${num} exact_speedup_at_matched_error_detailed=${num}$"

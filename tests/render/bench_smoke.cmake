@@ -13,6 +13,16 @@ function(bench_smoke_add stage script timeout)
     ENVIRONMENT "LP_NUM_THREADS=1;FOGPIPE_BIN=$<TARGET_FILE:fogpipe>" TIMEOUT ${timeout})
 endfunction()
 
+# The first line of a bench_STAGE.cmake after its include: configuring, it registers the
+# test and returns from the file; run as the test's script, it does nothing and the file's
+# checks follow. (A macro: its return() leaves the including file.)
+macro(bench_smoke_test stage timeout)
+  if(NOT CMAKE_SCRIPT_MODE_FILE)
+    bench_smoke_add(${stage} ${CMAKE_CURRENT_LIST_FILE} ${timeout})
+    return()
+  endif()
+endmacro()
+
 # Runs `fogpipe bench STAGE ARGS... --out OUT` (OUT emptied first); fails unless it exits 0
 # and its last line matches SUMMARY. Sets bench_output (the whole stdout) in the caller.
 function(bench_smoke_run stage summary)
