@@ -313,6 +313,7 @@ typedef struct session_source {
   bool remake;       /* the panel changed the sun or the fog: the next input makes it again */
   double remake_ms;  /* the last remake's time (0: none yet) */
   bool lamps_animated; /* [light] lamp_path or lamp_flicker: the lamps follow the clock */
+  double clock_start;  /* glfwGetTime() at the start: scene time 0 (P does not reset it) */
   float density_range[2]; /* the density slider's: the config's value / 100 .. x 100 */
   double render_scale;
   bool fixed_clock; /* --screenshot: time from the frame count */
@@ -458,7 +459,7 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
     return 1;
   /* RBF fog from emitters moves with the clock (with --screenshot at 24 frames a second:
    * the same fog every run) */
-  const double fog_time = s->fixed_clock ? f->index / 24.0 : f->now - s->playback.start_time;
+  const double fog_time = s->fixed_clock ? f->index / 24.0 : f->now - s->clock_start;
   if (v->has_fog && s->sel.shown < 0 && render_fog_animated(cfg) &&
       render_fog_set_time(&v->fog, cfg, fog_time, err))
     return 1;
@@ -511,7 +512,7 @@ static int session_open(session_source *s, const window_options *opts, fog_error
   }
   volume_playback *playback = &s->playback;
   playback->playing = opts->play;
-  playback->start_time = glfwGetTime();
+  playback->start_time = s->clock_start = glfwGetTime();
   if (cfg->fog.model == FOG_MODEL_VOLUME) {
     if (render_fog_volume_sequence(cfg, &playback->sequence, err)) return 1;
     /* render_fog_create showed vdb_frame (so it is in the sequence) */

@@ -3,7 +3,8 @@
  * shows the same image as the headless `fogpipe render` PNG of the same config and size,
  * for the fogmap scene, the RBF fog banks and the plume volume: the window path and the
  * headless path agree (the screenshots with --hide-panel; by default the panel is over the
- * image, a check of its own). With --fit the window shows the chosen rung of the model
+ * image, a check of its own), and a lamp on a path equals record's frame of the same scene
+ * time (the window's clock) and no neighbouring frame. With --fit the window shows the chosen rung of the model
  * ladder. Tolerance: 99% of 8-bit values within
  * 2/255 and the mean within 0.5/255 (the window renders fog into RGBA16F, render into
  * RGBA32F: half-float rounding can move a value by one 8-bit step). */
@@ -160,7 +161,8 @@ int main(void) {
     compare_window(bin, dir, "configs/classic_fog.ini", "--fit 0.01 --rung 0", "", 0, false);
     /* A lamp on a path ([light] lamp_path): the window moves it on the clock record does.
      * 13 drawn frames with --screenshot are scene time 12/24 s, record's frame 13: the lamp
-     * halfway, the same image; render (time 0) shows it at its start, another image. */
+     * halfway, the same image; record's frames 12 and 14 (the lamp 33 units either side: a
+     * clock one frame off) and render (time 0, the lamp at its start) are other images. */
     char lamp_ini[300];
     snprintf(lamp_ini, sizeof lamp_ini, "%s/lamp_path.ini", dir);
     FILE *ini = fopen(lamp_ini, "w");
@@ -169,11 +171,13 @@ int main(void) {
       fputs("[camera]\nposition = 0 20 120\nlook_at = 0 10 0\nfov = 60\n"
             "[fog]\nmodel = homogeneous\ndensity_scale = 0.01\nalbedo = 0.9\nphase_g = 0.3\n"
             "colour = 0 0 0\n[light]\nsun_colour = 0.01 0.01 0.01\n"
-            "lamp = -40 10 0 3000 2500 2000\nlamp_path = 1 0 -40 10 0\n"
-            "lamp_path = 1 1 40 10 0\n",
+            "lamp = -400 10 0 3000 2500 2000\nlamp_path = 1 0 -400 10 0\n"
+            "lamp_path = 1 1 400 10 0\n",
             ini);
       fclose(ini);
       compare_window(bin, dir, lamp_ini, "--frames 13", "", 13, true);
+      compare_window(bin, dir, lamp_ini, "--frames 13", "", 12, false);
+      compare_window(bin, dir, lamp_ini, "--frames 13", "", 14, false);
       compare_window(bin, dir, lamp_ini, "--frames 13", "", 0, false);
       unlink(lamp_ini);
     }
