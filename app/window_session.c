@@ -258,12 +258,18 @@ static int make_fog(view_state *v, const scene_config *shown, fog_error *err) {
   return 0;
 }
 
+/* The config whose fog rung `index` shows (-1: cfg itself), in cfg's light. */
+static const scene_config *rung_config(rung_selector *sel, int index, const scene_config *cfg) {
+  if (index < 0) return cfg;
+  copy_light(sel->fit.rungs[index].config, cfg);
+  return sel->fit.rungs[index].config;
+}
+
 /* The fog of rung `index` (-1: the config's, cfg) in place of the one shown, in cfg's
  * light. */
 static int show_rung(view_state *v, rung_selector *sel, int index, const scene_config *cfg,
                      fog_error *err) {
-  if (index >= 0) copy_light(sel->fit.rungs[index].config, cfg);
-  if (make_fog(v, index < 0 ? cfg : sel->fit.rungs[index].config, err)) return 1;
+  if (make_fog(v, rung_config(sel, index, cfg), err)) return 1;
   sel->shown = index;
   if (index < 0)
     printf("fogpipe %s: showing the config's own fog\n", v->command);
@@ -428,8 +434,7 @@ static int remake_now(session_source *s, fog_error *err) {
   v->geo.light = s->cfg->light;
   scene_light_sun_direction(&v->geo.light, v->geo.sun_direction);
   if (!v->has_fog) return 0;
-  if (s->sel.shown >= 0) copy_light(s->sel.fit.rungs[s->sel.shown].config, s->cfg);
-  return make_fog(v, s->sel.shown < 0 ? s->cfg : s->sel.fit.rungs[s->sel.shown].config, err) ||
+  return make_fog(v, rung_config(&s->sel, s->sel.shown, s->cfg), err) ||
          show_volume_time(s, err);
 }
 
