@@ -60,6 +60,7 @@ struct fog_pass {
   /* This GL's texture size limits, asked once: uploads past them fail naming the size, not
    * with a bare GL_INVALID_VALUE. */
   GLint max_texture_size, max_3d_texture_size;
+  long loop_cap; /* gl_util_loop_cap at creation (fog_pass_set_loop_cap) */
   /* The sun's optical-depth volume (fog_pass_upload_sun_shadow): R32F 3D texture and its
    * placement (optical_depth not kept). */
   GLuint sun_shadow;
@@ -250,6 +251,10 @@ static int pass_make(fog_pass **out, fog_error *err) {
   }
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &pass->max_texture_size);
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &pass->max_3d_texture_size);
+  if (gl_util_loop_cap(&pass->loop_cap, err)) {
+    free(pass);
+    return 1;
+  }
   /* The default variant: manual fetch, exact, linear grid, slab profile, one grid. */
   const fog_pass_variant default_variant = {.degree = 1, .single_grid = 1,
                                             .model = FOG_MODEL_FOGMAP, .reduced = 1};
@@ -265,6 +270,9 @@ fog_pass *fog_pass_create(fog_error *err) {
   fog_pass *pass;
   return pass_make(&pass, err) ? NULL : pass;
 }
+
+long fog_pass_loop_cap(const fog_pass *pass) { return pass->loop_cap; }
+void fog_pass_set_loop_cap(fog_pass *pass, long cap) { pass->loop_cap = cap; }
 
 void fog_pass_destroy(fog_pass *pass) {
   if (!pass) return;
@@ -1283,6 +1291,27 @@ static int fog_pass_check_light(const fog_pass *pass, const fog_pass_params *par
              "fog pass: lamp integral %d with model %d, %d march steps: expected FOG_LAMP_ANGLE, "
              "FOG_LAMP_FOGSHOP with FOG_MODEL_RBF, or FOG_LAMP_MARCH with >= 1 steps",
              (int)lamps->method.integral, (int)params->model, lamps->method.march_steps);
+    return 1;
+  }
+  /* llvmpipe ends a shader's loops past its cap and draws the lamps' light wrong */
+  static const char *const integral_names[] = {"angle", "fogshop", "march"};
+  const double loops = fog_pass_lamp_loop_bound(params);
+  if (loops > (double)pass->loop_cap - FOG_PASS_LOOP_RESERVE) {
+    char gaussians[40] = "";
+    if (params->model == FOG_MODEL_RBF)
+      snprintf(gaussians, sizeof gaussians, " (%d Gaussians)", params->model_rbf_count);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "fog pass: %d lamp%s (the %s integral: %d + %d pieces, %d shadow steps, %d "
+             "march steps) over %s fog%s may run %.0f loop iterations a pixel; this renderer "
+             "(%s) ends all of a shader's loops after %ld and would draw the lamps' light "
+             "wrong: expected a bound of at most %ld (fewer lamps, pieces or steps%s)",
+             lamps->count, lamps->count == 1 ? "" : "s", integral_names[lamps->method.integral],
+             lamps->method.angle_pieces, lamps->method.span_pieces,
+             lamps->method.shadow_steps, lamps->method.march_steps,
+             fog_model_table[params->model].name, gaussians, loops,
+             (const char *)glGetString(GL_RENDERER), pass->loop_cap,
+             pass->loop_cap - FOG_PASS_LOOP_RESERVE,
+             params->model == FOG_MODEL_RBF ? ", or fewer Gaussians" : "");
     return 1;
   }
   for (int i = 0; i < lamps->count; i++) {

@@ -214,6 +214,19 @@ typedef struct fog_pass fog_pass;
 fog_pass *fog_pass_create(fog_error *err);
 void fog_pass_destroy(fog_pass *pass);
 
+/* The renderer's loop cap (render/gl_util.h, gl_util_loop_cap), probed by fog_pass_create:
+ * 65535 iterations of all a shader's loops on llvmpipe, GL_UTIL_NO_LOOP_CAP on GPUs. A draw
+ * with lamps whose bound (fog_pass_lamp_loop_bound) passes it less FOG_PASS_LOOP_RESERVE
+ * (the view ray's own walk) is refused: past the cap the shader would end its loops early
+ * and draw the lamps' light wrong, without an error. set_loop_cap replaces the probed
+ * value (tests and benchmarks: GL_UTIL_NO_LOOP_CAP draws anything, as the GPUs do). */
+#define FOG_PASS_LOOP_RESERVE 8192
+long fog_pass_loop_cap(const fog_pass *pass);
+void fog_pass_set_loop_cap(fog_pass *pass, long cap);
+/* An upper bound of the loop iterations one pixel of the lamps' in-scatter runs, counted as
+ * llvmpipe counts them (render/fog_lamp_loops.c): 0 without lamps. */
+double fog_pass_lamp_loop_bound(const fog_pass_params *params);
+
 /* Uploads grid into slot (0 .. FOG_PASS_MAX_GRIDS-1) as an R32F texture. Re-uploading a
  * grid of the same size reuses the texture (glTexSubImage2D). */
 int fog_pass_upload_grid(fog_pass *pass, int slot, const transform_grid *grid, fog_error *err);

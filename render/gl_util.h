@@ -5,6 +5,7 @@
 #ifndef FOGPIPE_RENDER_GL_UTIL_H
 #define FOGPIPE_RENDER_GL_UTIL_H
 
+#include <limits.h>
 #include <stdbool.h>
 
 #include <GL/glcorearb.h>
@@ -75,5 +76,13 @@ GLuint gl_util_empty_vao(void);
  * a zero border (values outside the texture read as 0, as coefficients and densities
  * beyond a grid are), or GL_NEAREST for texelFetch-only textures. */
 void gl_util_texture_sampling(GLenum target, bool linear_zero_border);
+
+/* The most loop iterations one shader invocation runs before the renderer ends its loops
+ * early, measured by a probe shader (render/gl_loop_cap.c): 65535 on Mesa's llvmpipe, where
+ * every loop of a shader that was not unrolled counts against one budget and a shader past
+ * it draws wrong values without any error. GL_UTIL_NO_LOOP_CAP where the probe's 2^22
+ * iterations all ran. Restores the bindings it changes. */
+#define GL_UTIL_NO_LOOP_CAP LONG_MAX
+int gl_util_loop_cap(long *cap, fog_error *err);
 
 #endif
