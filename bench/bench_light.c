@@ -7,8 +7,9 @@
  *     product's default (8 x 2) at 24^3 and 96^3; the live setting (the fog pass at half
  *     resolution, upsampled, as the demo runs on a software renderer) at the default and
  *     half its segments, and a quarter of the resolution;
- *   - uniform marching of tau and in-scatter together (8..512 samples), and the engines'
- *     froxel grid (160 x 90 x 64 and 2x, FOG_INTEGRATOR_FROXEL) fed the same fog and light.
+ *   - uniform marching of tau and in-scatter together (8..512 samples, every power of 2),
+ *     and the engines' froxel grid (160 x 90 x 64 and 2x, FOG_INTEGRATOR_FROXEL) fed the
+ *     same fog and light.
  * Time: the fog pass, GL, glFinish before and after, median of --frames rounds after a
  * warm-up; the volume's CPU time (both cores) beside it. Error: the in-scattered radiance
  * against the CPU twin in double converged (FOG_BENCH_LIGHT_STEPS segments, a
@@ -44,8 +45,8 @@
 
 static const int step_counts[] = {2, 4, 8, 16, 32};
 static const int resolutions[] = {24, 48, 96};
-static const int march_samples[] = {8, 32, 128, 512};
-enum { STEP_COUNT = 5, RESOLUTION_COUNT = 3, MARCH_COUNT = 4, SCENE_COUNT = 2, MAX_ROWS = 54 };
+static const int march_samples[] = {8, 16, 32, 64, 128, 256, 512};
+enum { STEP_COUNT = 5, RESOLUTION_COUNT = 3, MARCH_COUNT = 7, SCENE_COUNT = 2, MAX_ROWS = 58 };
 /* Ours with two Gauss nodes a segment: 1 .. 16 segments (2 .. 32 samples). */
 enum { NODE_STEP_COUNT = 5 };
 /* The froxel baseline: the engines' 160 x 90 x 64 grid and one 2x finer in each axis. */
