@@ -10,6 +10,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include "app/lamp_tool.h"
 #include "app/live_rung.h"
 #include "app/pipeline.h"
 #include "app/window_program.h"
@@ -22,11 +23,8 @@ typedef struct demo_ui {
   float brush_strength; /* density per second at the stroke's centre line */
   float render_scale;
   bool has_bspline_profile;
-  /* The lamp tool: the mouse places (left), drags (left on a lamp) and removes (right)
-   * point lamps of this colour x intensity, `lamp_height` above the surface clicked. */
-  bool placing_lamps;
-  float lamp_colour[3], lamp_intensity, lamp_height;
-  int dragged_lamp; /* -1: none */
+  lamp_tool lamps;     /* the mouse places, drags and removes lamps (app/lamp_tool.h) */
+  bool lamps_animated; /* the config's lamps follow their paths: the tool is off */
 } demo_ui;
 
 /* The pipeline's stage timings (the shell shows the frame rate and its plot). */
@@ -144,18 +142,6 @@ static bool panel_wavelets(panel *ui, pipeline_params *params) {
   return changed;
 }
 
-/* Placing lamps with the mouse: their colour, intensity and height. */
-static void panel_lamps(panel *ui, const pipeline_params *params, demo_ui *d) {
-  if (!panel_header(ui, "lamps", false)) return;
-  panel_checkbox(ui, "place lamps with the mouse", &d->placing_lamps);
-  panel_color3(ui, "lamp colour", d->lamp_colour);
-  panel_slider_float(ui, "lamp intensity", &d->lamp_intensity, 10.0f, 20000.0f, "%.0f", true);
-  panel_slider_float(ui, "lamp height", &d->lamp_height, 0.5f, 100.0f, "%.1f", true);
-  panel_text(ui, "left: place / drag a lamp   right: remove");
-  panel_text(ui, "%d of %d lamps (scattered with albedo > 0)", params->lamps.count,
-             FOG_MAX_LAMPS);
-}
-
 /* The density brush. */
 static void panel_brush(panel *ui, demo_ui *d) {
   if (!panel_header(ui, "brush", false)) return;
@@ -175,7 +161,7 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
   changed |= panel_fog(ui, &params, d);
   changed |= panel_sunlight(ui, &params);
   changed |= panel_wavelets(ui, &params);
-  panel_lamps(ui, &params, d);
+  lamp_tool_panel(ui, &d->lamps, params.lamps.count, d->lamps_animated);
   panel_brush(ui, d);
   if (changed) pipeline_set_params(pipe, &params);
 }
@@ -242,44 +228,19 @@ static void demo_paint(GLFWwindow *window, pipeline *pipe, const free_camera *fc
   in->painting = true;
 }
 
-/* The lamp tool (the panel's "lamps"): left places a lamp above the surface under the
- * cursor, or drags the lamp nearest it (within 3 lamp heights, horizontally); right removes
- * that lamp. The pipeline lights the fog and the surfaces with the params' lamps. */
+/* The lamp tool (the panel's "lamps", app/lamp_tool.h) on the pipeline's lamps, which
+ * light the fog and the surfaces. */
 static void demo_lamps(GLFWwindow *window, pipeline *pipe, const free_camera *fc, demo_ui *d,
                        bool mouse) {
-  bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-  bool right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  const bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  const bool right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
   double hit[3];
-  if (!mouse || !(left || right) || !surface_under_cursor(window, pipe, fc, hit)) {
-    d->dragged_lamp = -1;
-    return;
-  }
+  const bool picked = mouse && (left || right) && surface_under_cursor(window, pipe, fc, hit);
   pipeline_params params = pipeline_get_params(pipe);
-  fog_lamps *lamps = &params.lamps;
-  int nearest = -1;
-  double best = 3.0 * d->lamp_height;
-  for (int i = 0; i < lamps->count; i++) {
-    double dx = lamps->lamp[i].position[0] - hit[0], dz = lamps->lamp[i].position[2] - hit[2];
-    if (sqrt(dx * dx + dz * dz) < best) best = sqrt(dx * dx + dz * dz), nearest = i;
-  }
-  if (right) {
-    if (nearest < 0) return;
-    for (int i = nearest; i + 1 < lamps->count; i++) lamps->lamp[i] = lamps->lamp[i + 1];
-    lamps->count--;
-    d->dragged_lamp = -1;
-  } else {
-    int moved = d->dragged_lamp >= 0 && d->dragged_lamp < lamps->count ? d->dragged_lamp : nearest;
-    if (moved < 0) { /* a new lamp */
-      if (lamps->count == FOG_MAX_LAMPS) return;
-      moved = lamps->count++;
-      lamps->lamp[moved] = (fog_lamp){.kind = FOG_LAMP_POINT, .radius = 0.5};
-      for (int c = 0; c < 3; c++)
-        lamps->lamp[moved].intensity[c] = d->lamp_colour[c] * d->lamp_intensity;
-    }
-    for (int c = 0; c < 3; c++) lamps->lamp[moved].position[c] = hit[c];
-    lamps->lamp[moved].position[1] += d->lamp_height;
-    d->dragged_lamp = moved;
-  }
+  const lamp_edit edit = lamp_tool_update(&d->lamps, left, right, picked ? hit : NULL,
+                                          &params.lamps);
+  if (edit.kind == LAMP_EDIT_NONE) return;
+  lamp_edit_apply(&edit, &params.lamps);
   pipeline_set_params(pipe, &params);
 }
 
@@ -302,7 +263,7 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
   pipeline_source *s = self;
   demo_keys(f->window, f->keyboard, s->pipe, &s->in);
   /* the tools pick from the last frame's distances */
-  if (f->index > 0 && s->ui.placing_lamps)
+  if (f->index > 0 && s->ui.lamps.placing)
     demo_lamps(f->window, s->pipe, f->fc, &s->ui, f->mouse);
   else if (f->index > 0)
     demo_paint(f->window, s->pipe, f->fc, &s->ui, f->mouse, fmin(f->dt, 0.25), &s->in);
@@ -349,9 +310,10 @@ int window_pipeline_source(window_source *src, gl_context *gl, scene_config *cfg
   }
   pipeline_source *s = calloc(1, sizeof *s);
   if (!s) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the window's fog");
+  const double scene_size = fmax(cfg->terrain.size[0], cfg->terrain.size[1]);
   s->ui = (demo_ui){.brush_radius = 30.0f, .brush_strength = 3.0f, .render_scale = (float)scale,
-                    .lamp_colour = {1.0f, 0.8f, 0.55f}, .lamp_intensity = 2000.0f,
-                    .lamp_height = 8.0f, .dragged_lamp = -1,
+                    .lamps = lamp_tool_for_scene(scene_size),
+                    .lamps_animated = scene_config_lamps_animated(cfg),
                     .has_bspline_profile = cfg->fog.profile_count > 0};
   int fb_w = 0, fb_h = 0;
   gl_context_framebuffer_size(gl, &fb_w, &fb_h);

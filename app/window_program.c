@@ -123,7 +123,9 @@ static int window_loop(gl_context *gl, window_shell *shell, window_source *src,
     const bool escape = glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS;
     if (f.keyboard && escape) glfwSetWindowShouldClose(window, 1);
     const free_camera_input input =
-        free_camera_read(window, src->look_buttons, f.keyboard, f.mouse);
+        free_camera_read(window, src->look_buttons_now ? src->look_buttons_now(src->self)
+                                                       : src->look_buttons,
+                         f.keyboard, f.mouse);
     /* real time up to a second a frame (a few frames a second on software GL), no jump
      * across a longer stall */
     free_camera_step(&fc, &input, fmin(dt, 1.0));

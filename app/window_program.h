@@ -92,6 +92,9 @@ typedef struct window_frame {
 typedef struct window_source {
   void *self;
   int look_buttons;      /* FREE_CAMERA_LOOK_* the camera looks with */
+  /* Optional (NULL: look_buttons always): the mask for this frame, when a tool takes a
+   * button (the lamp tool's right click removes a lamp). */
+  int (*look_buttons_now)(const void *self);
   double camera_speed;   /* world units per second */
   /* The source's panel sections (inside the shell's window). */
   void (*panel)(void *self, panel *ui, const window_frame *f);

@@ -1,8 +1,10 @@
 /* The fog source "as held" of the window program (app/window_program.h): the scene config's
  * fog as the file holds it, in a render session's fog (app/render_fog.h), no simulation.
  * A volume's VDB sequence plays with P (or from the start with --play); RBF emitters' puffs
- * and Perlin octaves drift, lamps on a path move and flicker with the clock; B turns on the Gaussian brush on an RBF scene
- * (app/rbf_brush.h: paint, erase, copy); with --fit the panel's rung menu (or [ and ])
+ * and Perlin octaves drift, lamps on a path move and flicker with the clock; the panel's
+ * lamp tool places, drags and removes lamps (app/lamp_tool.h) in the window's copy of the
+ * config; B turns on the Gaussian brush on an RBF scene (app/rbf_brush.h: paint, erase,
+ * copy); with --fit the panel's rung menu (or [ and ])
  * steps through the model ladder. With --screenshot the clock is the frame count (a
  * sequence advances one VDB frame per drawn frame, drifting fog 1/24 s): the same fog every
  * run (the panel's timings vary: --hide-panel for an image that repeats). */
@@ -14,6 +16,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app/clock.h"
+#include "app/lamp_tool.h"
 #include "app/rbf_brush.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"
@@ -240,6 +243,9 @@ typedef struct rung_selector {
  * colour. */
 static void copy_light(scene_config *to, const scene_config *from) {
   to->light = from->light;
+  memcpy(to->lamps, from->lamps, sizeof to->lamps);
+  to->lamp_count = from->lamp_count;
+  to->lamp_method = from->lamp_method;
   memcpy(to->fog.colour, from->fog.colour, sizeof to->fog.colour);
   to->fog.albedo = from->fog.albedo;
   to->fog.phase_g = from->fog.phase_g;
@@ -326,6 +332,8 @@ typedef struct session_source {
   view_state v;
   volume_playback playback;
   view_brush brush;
+  lamp_tool lamps;
+  char lamp_note[160]; /* why the last lamp was not placed ("": it was) */
   rung_selector sel;
   const char *rung_names[FIT_MAX_RUNGS + 1]; /* the panel's menu: the config's fog, rungs */
 } session_source;
@@ -411,6 +419,8 @@ static void source_panel(void *self, panel *ui, const window_frame *f) {
   session_source *s = self;
   panel_fog(s, ui);
   panel_sun(s, ui);
+  lamp_tool_panel(ui, &s->lamps, s->cfg->lamp_count, s->lamps_animated);
+  if (s->lamp_note[0]) panel_text(ui, "%s", s->lamp_note);
   if (s->remake_ms > 0) panel_text(ui, "fog made again after an edit: %.0f ms", s->remake_ms);
 }
 
@@ -436,6 +446,66 @@ static int remake_now(session_source *s, fog_error *err) {
   if (!v->has_fog) return 0;
   return make_fog(v, rung_config(&s->sel, s->sel.shown, s->cfg), err) ||
          show_volume_time(s, err);
+}
+
+/* The lamp tool's edit on the window's config (so a remade fog, a rung and a saved scene
+ * keep it), then on the surfaces and the fog shown. A lamp whose light this renderer could
+ * not draw (the fog pass's loop cap: many Gaussians on llvmpipe) is not placed. */
+static int apply_lamp_edit(session_source *s, const lamp_edit *e, fog_error *err) {
+  view_state *v = &s->v;
+  scene_config *cfg = s->cfg;
+  scene_config *edited = malloc(sizeof *edited);
+  if (!edited) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for a lamp");
+  memcpy(edited, cfg, sizeof *edited);
+  scene_lamp_config *lamp = &edited->lamps[e->index];
+  if (e->kind == LAMP_EDIT_PLACE) {
+    edited->lamp_count++;
+    *lamp = (scene_lamp_config){.radius = LAMP_TOOL_RADIUS};
+    memcpy(lamp->colour, e->intensity, sizeof lamp->colour);
+  }
+  if (e->kind == LAMP_EDIT_PLACE || e->kind == LAMP_EDIT_MOVE)
+    memcpy(lamp->position, e->position, sizeof lamp->position);
+  if (e->kind == LAMP_EDIT_REMOVE) {
+    for (int i = e->index; i + 1 < edited->lamp_count; i++) edited->lamps[i] = edited->lamps[i + 1];
+    edited->lamp_count--;
+  }
+  const fog_lamps lamps = scene_config_fog_lamps(edited);
+  if (v->has_fog) {
+    fog_pass_params p = v->fog.params;
+    p.lamps = lamps;
+    const double loops = fog_pass_lamp_loop_bound(&p);
+    if (loops > (double)fog_pass_loop_cap(v->fog.pass) - FOG_PASS_LOOP_RESERVE) {
+      snprintf(s->lamp_note, sizeof s->lamp_note,
+               "lamp not placed: %d lamp%s over this fog\nwould need ~%.0f shader loops a "
+               "pixel;\nthis renderer runs %ld (docs/platform.md)", lamps.count,
+               lamps.count == 1 ? "" : "s", loops,
+               fog_pass_loop_cap(v->fog.pass) - FOG_PASS_LOOP_RESERVE);
+      free(edited);
+      s->lamps.dragged = -1;
+      return 0;
+    }
+  }
+  s->lamp_note[0] = '\0';
+  memcpy(cfg, edited, sizeof *cfg);
+  free(edited);
+  if (scene_pass_set_lamps(v->scene, &lamps, err)) return 1;
+  if (v->has_fog) {
+    v->fog.params.lamps = lamps;
+    render_fog_set_lamp_shadows(&v->fog, scene_pass_lamp_shadows(v->scene));
+  }
+  return 0;
+}
+
+/* The lamp tool for one frame: the surface under the cursor from the last frame's
+ * distances. */
+static int session_lamps(session_source *s, const window_frame *f, fog_error *err) {
+  const bool left = glfwGetMouseButton(f->window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  const bool right = glfwGetMouseButton(f->window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  double hit[3];
+  const bool picked = f->mouse && (left || right) && view_pick(&s->v, f->window, &f->fc->cam, hit);
+  const fog_lamps shown = scene_config_fog_lamps(s->cfg);
+  const lamp_edit edit = lamp_tool_update(&s->lamps, left, right, picked ? hit : NULL, &shown);
+  return edit.kind == LAMP_EDIT_NONE ? 0 : apply_lamp_edit(s, &edit, err);
 }
 
 static int source_input(void *self, const window_frame *f, fog_error *err) {
@@ -475,9 +545,16 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
     if (v->has_fog) v->fog.params.lamps = lamps;
     if (scene_pass_set_lamps(v->scene, &lamps, err)) return 1;
   }
-  /* the brush picks from the last frame's distances */
+  /* the lamp tool and the brush pick from the last frame's distances */
+  if (f->index > 0 && s->lamps.placing) return session_lamps(s, f, err);
   return f->index > 0 &&
          view_brush_update(&s->brush, v, f, s->sel.shown < 0, cfg, fog_time, err);
+}
+
+/* The right button looks around, except while it removes lamps. */
+static int source_look_buttons(const void *self) {
+  const session_source *s = self;
+  return FREE_CAMERA_LOOK_MIDDLE | (s->lamps.placing ? 0 : FREE_CAMERA_LOOK_RIGHT);
 }
 
 static int source_draw(void *self, const window_frame *f, fog_error *err) {
@@ -548,6 +625,7 @@ int window_session_source(window_source *src, gl_context *gl, const scene_config
   s->render_scale = opts->render_scale > 0 ? opts->render_scale : 0.5;
   s->fixed_clock = opts->screenshot != NULL;
   s->lamps_animated = scene_config_lamps_animated(cfg);
+  s->lamps = lamp_tool_for_scene(fmax(cfg->terrain.size[0], cfg->terrain.size[1]));
   s->v.command = opts->command;
   s->brush = (view_brush){.command = opts->command, .config_path = opts->config_path,
                           .painted = s->cfg};
@@ -565,6 +643,7 @@ int window_session_source(window_source *src, gl_context *gl, const scene_config
   s->sel.wanted = s->sel.shown;
   *src = (window_source){
       .self = s, .look_buttons = FREE_CAMERA_LOOK_MIDDLE | FREE_CAMERA_LOOK_RIGHT,
+      .look_buttons_now = source_look_buttons,
       .camera_speed = 0.05 * fmax(cfg->terrain.size[0], cfg->terrain.size[1]),
       .panel = source_panel, .input = source_input, .draw = source_draw,
       .destroy = source_destroy};
