@@ -51,8 +51,10 @@ lamp_edit lamp_tool_update(lamp_tool *tool, bool left, bool right, const double 
 void lamp_edit_apply(const lamp_edit *edit, fog_lamps *lamps);
 
 /* The panel's "lamps" section (app/lamp_tool_panel.c, in the executable): the checkbox,
- * colour, intensity, height, the count; with `animated` lamps (the config's lamp_path or
- * lamp_flicker) the tool is off: they follow the clock. */
-void lamp_tool_panel(panel *ui, lamp_tool *tool, int lamp_count, bool animated);
+ * colour, intensity, height, the count and the source's note (NULL or "": none); with
+ * `animated` lamps (the config's lamp_path or lamp_flicker) the tool is off: they follow
+ * the clock. */
+void lamp_tool_panel(panel *ui, lamp_tool *tool, int lamp_count, bool animated,
+                     const char *note);
 
 #endif

@@ -2,8 +2,10 @@
  * ImGui adapter (the tool's rules are in the library, app/lamp_tool.c). */
 #include "app/lamp_tool.h"
 
-void lamp_tool_panel(panel *ui, lamp_tool *tool, int lamp_count, bool animated) {
+void lamp_tool_panel(panel *ui, lamp_tool *tool, int lamp_count, bool animated,
+                     const char *note) {
   if (!panel_header(ui, "lamps", false)) return;
+  if (note && note[0]) panel_text(ui, "%s", note);
   if (animated) {
     tool->placing = false;
     panel_text(ui, "%d lamps on the config's paths (lamp_path, lamp_flicker):", lamp_count);

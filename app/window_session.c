@@ -239,8 +239,8 @@ typedef struct rung_selector {
   bool zero_was_down;
 } rung_selector;
 
-/* What the panel's light edits, from one config to another: the sun and the fog's ambient
- * colour. */
+/* What the panel's light edits, from one config to another: the sun, the fog's ambient
+ * colour and the lamps (the lamp tool's). */
 static void copy_light(scene_config *to, const scene_config *from) {
   to->light = from->light;
   memcpy(to->lamps, from->lamps, sizeof to->lamps);
@@ -334,6 +334,7 @@ typedef struct session_source {
   view_brush brush;
   lamp_tool lamps;
   char lamp_note[160]; /* why the last lamp was not placed ("": it was) */
+  bool lamps_dropped;   /* the last frame's fog was drawn without the lamps' light */
   rung_selector sel;
   const char *rung_names[FIT_MAX_RUNGS + 1]; /* the panel's menu: the config's fog, rungs */
 } session_source;
@@ -419,8 +420,10 @@ static void source_panel(void *self, panel *ui, const window_frame *f) {
   session_source *s = self;
   panel_fog(s, ui);
   panel_sun(s, ui);
-  lamp_tool_panel(ui, &s->lamps, s->cfg->lamp_count, s->lamps_animated);
-  if (s->lamp_note[0]) panel_text(ui, "%s", s->lamp_note);
+  if (s->lamps_dropped) /* outside the lamps' section: it may be closed */
+    panel_text(ui, "the lamps' light in this fog is not drawn:\nit needs more shader loops "
+                   "a pixel than\nthis renderer runs (docs/platform.md)");
+  lamp_tool_panel(ui, &s->lamps, s->cfg->lamp_count, s->lamps_animated, s->lamp_note);
   if (s->remake_ms > 0) panel_text(ui, "fog made again after an edit: %.0f ms", s->remake_ms);
 }
 
@@ -470,7 +473,7 @@ static int apply_lamp_edit(session_source *s, const lamp_edit *e, fog_error *err
     edited->lamp_count--;
   }
   const fog_lamps lamps = scene_config_fog_lamps(edited);
-  if (v->has_fog) {
+  if (v->has_fog && e->kind == LAMP_EDIT_PLACE) { /* moving or removing adds no loops */
     fog_pass_params p = v->fog.params;
     p.lamps = lamps;
     const double loops = fog_pass_lamp_loop_bound(&p);
@@ -545,10 +548,11 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
     if (v->has_fog) v->fog.params.lamps = lamps;
     if (scene_pass_set_lamps(v->scene, &lamps, err)) return 1;
   }
-  /* the lamp tool and the brush pick from the last frame's distances */
-  if (f->index > 0 && s->lamps.placing) return session_lamps(s, f, err);
-  return f->index > 0 &&
-         view_brush_update(&s->brush, v, f, s->sel.shown < 0, cfg, fog_time, err);
+  /* the lamp tool and the brush pick from the last frame's distances; the brush's keys are
+   * read while the tool holds the mouse (a press latched then is let go) */
+  if (f->index > 0 && s->lamps.placing && session_lamps(s, f, err)) return 1;
+  return f->index > 0 && view_brush_update(&s->brush, v, f, s->sel.shown < 0 && !s->lamps.placing,
+                                           cfg, fog_time, err);
 }
 
 /* The right button looks around, except while it removes lamps. */
@@ -567,10 +571,22 @@ static int source_draw(void *self, const window_frame *f, fog_error *err) {
     return 1;
   scene_pass_run(v->scene, &f->fc->cam, &v->scene_target);
   const gl_target *shown = &v->scene_target;
-  if (v->has_fog) {
-    if (render_fog_draw(&v->fog, &f->fc->cam, &v->scene_target, &v->fog_target, err)) return 1;
-    shown = &v->fog_target;
+  s->lamps_dropped = false;
+  if (v->has_fog && render_fog_draw(&v->fog, &f->fc->cam, &v->scene_target, &v->fog_target,
+                                     err)) {
+    /* the fog pass refused the lamps' light (the renderer's loop cap: Gaussians painted
+     * with the brush, a rung's fog under the lamps): the fog without it, and a note */
+    if (err->code != FOG_ERR_UNSUPPORTED || v->fog.params.lamps.count == 0) return 1;
+    s->lamps_dropped = true;
+    const fog_lamps kept = v->fog.params.lamps;
+    v->fog.params.lamps.count = 0;
+    const int failed =
+        render_fog_draw(&v->fog, &f->fc->cam, &v->scene_target, &v->fog_target, err);
+    v->fog.params.lamps = kept;
+    if (failed) return 1;
+    *err = (fog_error){0};
   }
+  if (v->has_fog) shown = &v->fog_target;
   gl_presenter_draw(v->presenter, shown, f->fb_w, f->fb_h, GL_PRESENT_NEAREST);
   return 0;
 }

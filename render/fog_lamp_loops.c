@@ -1,55 +1,72 @@
-/* An upper bound of the loop iterations the lamps' in-scatter runs in one pixel
- * (fog_pass.h, fog_pass_lamp_loop_bound), counted as Mesa's llvmpipe counts them against
+/* Upper bounds of the loop iterations the lamps' in-scatter and the view ray run in one
+ * pixel (fog_pass.h, fog_pass_lamp_loop_bound, fog_pass_view_loop_bound), counted as Mesa's llvmpipe counts them against
  * its per-shader budget (gl_util_loop_cap): every iteration of every loop, and one more
  * for each time a loop is entered (the pass that finds its exit). Loops of constant count
- * are counted too, though the compiler may unroll them, so the bound errs high. Each term
- * follows the loops of fog_lamps.glsl and fog_models.glsl. */
+ * are counted too, though the compiler may unroll them (the bound errs high), except the
+ * 3 nodes of a noise cell, a small loop of constant count the compiler unrolls (counted,
+ * they made the bound refuse noisy volumes that test_render_fog_models draws right). Each
+ * term follows the loops of fog_lamps.glsl, fog_light.glsl and fog_models.glsl. */
 #include <math.h>
 
 #include "render/fog_pass.h"
 
-/* fog_quadric_weighted_turbulence over a stretch of length len: per octave a DDA over its
- * texel cells (at most len |d| s + 3 of them, |d|_1 <= sqrt 3), each with its 3 nodes. */
-static double noise_walk(const fog_perlin *perlin, double len) {
-  double loops = perlin->desc.octaves + 1;
-  for (int i = 0; i < perlin->desc.octaves; i++) {
-    double cells = len * sqrt(3.0) * fog_perlin_octave_scale(perlin, i) + 3;
-    loops += (cells + 1) * (1 + 4);
-  }
+/* fog_quadric_weighted_turbulence over the (at most 5) stretches of one volume along a
+ * segment no longer than `len`: per stretch and octave a DDA over the octave's texel cells
+ * (its entries and exits: 3 cells and a pass more than the stretch's length crosses, |d|_1
+ * <= sqrt 3 texels a unit length), the stretches' lengths summing to at most len; each cell's
+ * 3 nodes a loop of constant count (unrolled). */
+static double noise_walks(const fog_perlin *perlin, double len) {
+  const int octaves = perlin->desc.octaves;
+  double loops = 5.0 * (octaves + 1);
+  for (int i = 0; i < octaves; i++)
+    loops += 5.0 * (3 + 1) + len * sqrt(3.0) * fog_perlin_octave_scale(perlin, i);
   return loops;
 }
 
 /* The volumes' extinction at a point (fog_quadric_extinction_at) and their depth along a
- * segment no longer than any of their boxes' diagonals (fog_quadric_optical_depth_from). */
+ * segment no longer than any of their boxes' diagonals (fog_quadric_optical_depth_from:
+ * per volume its 5 stretches, and with noise their turbulence). */
+/* The volumes the draw reads (none without their array: fog_pass_check_model refuses it). */
+static int quadric_count(const fog_pass_params *p) {
+  return p->model_quadrics ? p->model_quadric_count : 0;
+}
+
 static double quadric_point(const fog_pass_params *p, bool noise) {
-  int q = p->model_quadric_count;
+  int q = quadric_count(p);
   return q + 1 + (noise ? 2 + p->model_perlin->desc.octaves + 1 : 0);
 }
 static double quadric_segment(const fog_pass_params *p, bool noise) {
-  double loops = p->model_quadric_count + 1;
-  for (int i = 0; i < p->model_quadric_count; i++) {
+  double loops = quadric_count(p) + 1;
+  for (int i = 0; i < quadric_count(p); i++) {
     const fog_quadric *v = &p->model_quadrics[i];
     double diagonal = 0;
     for (int a = 0; a < 3; a++) diagonal += (v->hi[a] - v->lo[a]) * (v->hi[a] - v->lo[a]);
-    loops += 6 + (noise && v->noise > 0 ? 5 * noise_walk(p->model_perlin, sqrt(diagonal)) : 0);
+    loops += 6 + (noise && v->noise > 0 ? noise_walks(p->model_perlin, sqrt(diagonal)) : 0);
   }
   return loops;
 }
 
-/* K at a point (fog_lamp_extinction) and, for the models with closed-form depths, one
- * segment's depth (fog_lamp_segment_depth). */
-static double point_loops(const fog_pass_params *p, bool noise) {
+/* K at a point (fog_lamp_extinction, fog_light_extinction: over RBF fog the Gaussians of
+ * the pixel's screen tile, at most `gaussians`) and, for the models with closed-form
+ * depths, one segment's depth (fog_lamp_segment_depth: every Gaussian). */
+static double point_loops(const fog_pass_params *p, bool noise, int gaussians) {
   double loops = 0;
-  if (p->model == FOG_MODEL_RBF) loops += p->model_rbf_count + 1; /* at most every Gaussian */
-  if (p->model == FOG_MODEL_PERLIN) loops += p->model_perlin->desc.octaves + 1;
-  if (p->model_quadric_count > 0) loops += quadric_point(p, noise);
+  if (p->model == FOG_MODEL_RBF) loops += gaussians + 1;
+  if (p->model == FOG_MODEL_PERLIN && p->model_perlin) loops += p->model_perlin->desc.octaves + 1;
+  if (quadric_count(p) > 0) loops += quadric_point(p, noise);
   return loops;
 }
 static double segment_loops(const fog_pass_params *p, bool noise) {
   double loops = 0;
   if (p->model == FOG_MODEL_RBF) loops += p->model_rbf_count + 1;
-  if (p->model_quadric_count > 0) loops += quadric_segment(p, noise);
+  if (quadric_count(p) > 0) loops += quadric_segment(p, noise);
   return loops;
+}
+
+/* Whether the draw has noise inside its volumes (the octaves given). */
+static bool noisy(const fog_pass_params *p) {
+  return p->model_perlin && quadric_count(p) > 0 &&
+         fog_quadric_noisy(p->model_quadrics, quadric_count(p));
 }
 
 static bool exact_depths(fog_model_kind m) {
@@ -59,24 +76,33 @@ static bool exact_depths(fog_model_kind m) {
 
 double fog_pass_lamp_loop_bound(const fog_pass_params *p) {
   const fog_lamps *lamps = &p->lamps;
-  if (lamps->count <= 0) return 0;
+  /* as the pass draws them: in the fog with albedo > 0 and not by the froxel baseline, on
+   * the surfaces with their attachment; the cubes serving the lamps there */
+  const bool in_fog = lamps->count > 0 && p->sun.albedo > 0 &&
+                      p->integrator != FOG_INTEGRATOR_FROXEL;
+  const bool on_surfaces = lamps->count > 0 && p->surface_lamps != 0;
+  if (!in_fog && !on_surfaces) return 0;
+  const bool cubes = p->lamp_shadows && p->lamp_shadows->count >= lamps->count;
   const fog_lamp_method *m = &lamps->method;
-  const bool noise = p->model_perlin && p->model_quadric_count > 0 &&
-                     fog_quadric_noisy(p->model_quadrics, p->model_quadric_count);
+  const bool noise = noisy(p);
   const bool exact = exact_depths(p->model);
-  const double point = point_loops(p, noise), segment = segment_loops(p, noise);
+  const double point = point_loops(p, noise, p->model_rbf_count),
+               segment = segment_loops(p, noise);
   /* T from a point to the lamp: the closed form, or the walk of shadow_steps */
   const double shadow = exact ? segment : m->shadow_steps + 1 + m->shadow_steps * point;
   /* the 4 nodes of a piece (their loop, K, tau from the camera, T) and with the shadow
-   * cubes the nodes' V, the lit flags and the edges' bisections */
+   * cubes the nodes' V, the lit flags and the edges' bisections. A loop's last pass, the
+   * one that finds its exit, runs its body masked, and every loop nested in it once more:
+   * EXIT_PASS_SITES for those a piece's and a lamp's last passes hold. */
+  enum { EXIT_PASS_SITES = 16 };
   const double node = point + (exact ? segment : 0) + shadow;
-  const double piece = 1 + 5 + 4 * node +
-                       (p->lamp_shadows ? 5 + 5 + 6 * (FOG_LAMP_EDGE_BISECTIONS + 1) : 0);
+  const double piece = 1 + 5 + 4 * node + EXIT_PASS_SITES +
+                       (cubes ? 5 + 5 + 6 * (FOG_LAMP_EDGE_BISECTIONS + 1) : 0);
   const double pieces = m->angle_pieces + m->span_pieces + 1; /* and the cut at the closest */
   double per_lamp = 0, table = 0;
   switch (m->integral) {
   case FOG_LAMP_ANGLE:
-    per_lamp = pieces * piece + 1;
+    per_lamp = pieces * piece + 1 + EXIT_PASS_SITES;
     if (!exact) table = m->depth_steps + 1 + m->depth_steps * point;
     break;
   case FOG_LAMP_FOGSHOP: /* the base's angle integral (both depths), then every Gaussian */
@@ -88,6 +114,30 @@ double fog_pass_lamp_loop_bound(const fog_pass_params *p) {
     break;
   }
   /* the surfaces' light dimmed by the fog between each lamp and the surface */
-  const double surfaces = p->surface_lamps ? lamps->count + 1 + lamps->count * shadow : 0;
-  return lamps->count + 1 + table + lamps->count * per_lamp + surfaces;
+  const double surfaces = on_surfaces ? lamps->count + 1 + lamps->count * shadow : 0;
+  if (!in_fog) return surfaces;
+  /* the lamps' span along the ray: over RBF fog its reach loops over the tile's Gaussians */
+  const double span = p->model == FOG_MODEL_RBF ? p->model_rbf_count + 1 : 0;
+  return lamps->count + 1 + EXIT_PASS_SITES + span + table + lamps->count * per_lamp +
+         surfaces;
+}
+
+double fog_pass_view_loop_bound(const fog_pass_params *p, int tile_gaussians) {
+  const bool noise = noisy(p);
+  const bool beside = p->model != FOG_MODEL_QUADRIC && quadric_count(p) > 0;
+  /* the RBFs' exact integral and reach over the tile's list */
+  double loops = p->model == FOG_MODEL_RBF ? 2.0 * (tile_gaussians + 1) : 0;
+  /* the sun's mean by segments (fog_light.glsl; the per-piece means walk with the view
+   * ray): K at each node, and towards the sun the quadrics beside in closed form */
+  const bool march = p->self_shadow == FOG_SUN_SHADOW_VOLUME ||
+                     p->self_shadow == FOG_SUN_SHADOW_HEIGHT ||
+                     (p->self_shadow == FOG_SUN_SHADOW_NONE && p->shafts);
+  const bool pieces = (p->model == FOG_MODEL_PERLIN || p->model == FOG_MODEL_VOLUME ||
+                       p->model == FOG_MODEL_FOGMAP) && p->shadow_pieces && !beside;
+  if (march && !pieces) {
+    const double node = point_loops(p, noise, tile_gaussians) +
+                        (beside ? quadric_segment(p, noise) : 0);
+    loops += p->shadow_steps + 1 + (double)p->shadow_steps * p->shadow_nodes * node;
+  }
+  return loops;
 }

@@ -852,6 +852,9 @@ static void buffer_texture_fill(GLuint *buffer, GLuint *texture, GLenum format, 
   glTexBuffer(GL_TEXTURE_BUFFER, format, *buffer);
 }
 
+static int fog_pass_check_loops(const fog_pass *pass, const fog_pass_params *params,
+                                int tile_gaussians, fog_error *err);
+
 /* FOG_MODEL_RBF's Gaussians (fog_models.glsl): per Gaussian two texels, the centre relative
  * to the camera (subtracted in double) with 1/radius, and the density; and per screen tile
  * of the width x height image the list of those its rays can see (render/fog_rbf_tiles.h). */
@@ -877,6 +880,10 @@ static int fog_pass_rbf_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
   if (fog_rbf_tiles_build(&pass->rbf_tiles, cam, width, height, params->model_rbfs, n, err))
     return 1;
   const fog_rbf_tiles *t = &pass->rbf_tiles;
+  uint32_t most = 0; /* the longest tile list: a pixel's loops over its Gaussians */
+  for (int k = 0; k < t->tiles_x * t->tiles_y; k++)
+    if (t->ranges[2 * k + 1] > most) most = t->ranges[2 * k + 1];
+  if (fog_pass_check_loops(pass, params, (int)most, err)) return 1;
   buffer_texture_fill(&pass->rbf_buffer, &pass->rbf_texture, GL_RGBA32F, pass->rbf_scratch,
                       (size_t)n * 8 * sizeof(float));
   buffer_texture_fill(&pass->rbf_index_buffer, &pass->rbf_index_texture, GL_R32UI, t->indices,
@@ -1254,6 +1261,41 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
                                  surface_colour, surface_distance, width, height, err);
 }
 
+/* llvmpipe ends all of a shader's loops past its cap (docs/platform.md) and the pixel comes
+ * out wrong without an error: a draw whose loops' bound (the lamps', the view ray's with up
+ * to tile_gaussians Gaussians a pixel) passes it less FOG_PASS_LOOP_RESERVE is refused. */
+static int fog_pass_check_loops(const fog_pass *pass, const fog_pass_params *params,
+                                int tile_gaussians, fog_error *err) {
+  static const char *const integral_names[] = {"angle", "fogshop", "march"};
+  const double lamps = fog_pass_lamp_loop_bound(params),
+               view = fog_pass_view_loop_bound(params, tile_gaussians);
+  if (lamps + view <= (double)pass->loop_cap - FOG_PASS_LOOP_RESERVE) return 0;
+  const fog_lamp_method *m = &params->lamps.method;
+  char gaussians[64] = "", sun[64] = "no sun's mean", lamp_text[160] = "no lamps";
+  if (params->lamps.count > 0)
+    snprintf(lamp_text, sizeof lamp_text,
+             "%.0f for %d lamp%s (the %s integral: %d + %d pieces, %d shadow steps, %d march "
+             "steps)", lamps, params->lamps.count, params->lamps.count == 1 ? "" : "s",
+             integral_names[m->integral], m->angle_pieces, m->span_pieces, m->shadow_steps,
+             m->march_steps);
+  if (params->self_shadow != FOG_SUN_SHADOW_NONE || params->shafts)
+    snprintf(sun, sizeof sun, "the sun's mean over %d shadow steps of %d nodes",
+             params->shadow_steps, params->shadow_nodes);
+  if (params->model == FOG_MODEL_RBF)
+    snprintf(gaussians, sizeof gaussians, " (%d Gaussians, up to %d in a screen tile)",
+             params->model_rbf_count, tile_gaussians);
+  fog_fail(err, FOG_ERR_UNSUPPORTED,
+           "fog pass: %s fog%s may run %.0f loop iterations a pixel: %s, and %.0f for the "
+           "view ray (%s); this renderer (%s) ends "
+           "all of a shader's loops after %ld and would draw them wrong: expected a bound of "
+           "at most %ld (fewer lamps, lamp pieces or steps, sun shadow steps%s)",
+           fog_model_table[params->model].name, gaussians, lamps + view, lamp_text, view, sun,
+           (const char *)glGetString(GL_RENDERER), pass->loop_cap,
+           pass->loop_cap - FOG_PASS_LOOP_RESERVE,
+           params->model == FOG_MODEL_RBF ? ", or fewer Gaussians" : "");
+  return 1;
+}
+
 /* The sun's shadow settings and the lamps, before anything is drawn. */
 static int fog_pass_check_light(const fog_pass *pass, const fog_pass_params *params,
                                 fog_error *err) {
@@ -1291,27 +1333,6 @@ static int fog_pass_check_light(const fog_pass *pass, const fog_pass_params *par
              "fog pass: lamp integral %d with model %d, %d march steps: expected FOG_LAMP_ANGLE, "
              "FOG_LAMP_FOGSHOP with FOG_MODEL_RBF, or FOG_LAMP_MARCH with >= 1 steps",
              (int)lamps->method.integral, (int)params->model, lamps->method.march_steps);
-    return 1;
-  }
-  /* llvmpipe ends a shader's loops past its cap and draws the lamps' light wrong */
-  static const char *const integral_names[] = {"angle", "fogshop", "march"};
-  const double loops = fog_pass_lamp_loop_bound(params);
-  if (loops > (double)pass->loop_cap - FOG_PASS_LOOP_RESERVE) {
-    char gaussians[40] = "";
-    if (params->model == FOG_MODEL_RBF)
-      snprintf(gaussians, sizeof gaussians, " (%d Gaussians)", params->model_rbf_count);
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "fog pass: %d lamp%s (the %s integral: %d + %d pieces, %d shadow steps, %d "
-             "march steps) over %s fog%s may run %.0f loop iterations a pixel; this renderer "
-             "(%s) ends all of a shader's loops after %ld and would draw the lamps' light "
-             "wrong: expected a bound of at most %ld (fewer lamps, pieces or steps%s)",
-             lamps->count, lamps->count == 1 ? "" : "s", integral_names[lamps->method.integral],
-             lamps->method.angle_pieces, lamps->method.span_pieces,
-             lamps->method.shadow_steps, lamps->method.march_steps,
-             fog_model_table[params->model].name, gaussians, loops,
-             (const char *)glGetString(GL_RENDERER), pass->loop_cap,
-             pass->loop_cap - FOG_PASS_LOOP_RESERVE,
-             params->model == FOG_MODEL_RBF ? ", or fewer Gaussians" : "");
     return 1;
   }
   for (int i = 0; i < lamps->count; i++) {
@@ -1443,6 +1464,9 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
       }
     }
   }
+  /* the loops' bound against the renderer's cap, once the settings it reads are checked
+   * (over RBF fog when the tiles are built: fog_pass_rbf_uniforms) */
+  if (params->model != FOG_MODEL_RBF && fog_pass_check_loops(pass, params, 0, err)) return 1;
   return 0;
 }
 

@@ -1,6 +1,6 @@
-/* Every shipped config with lamps draws on llvmpipe: the lamps' loop bound
- * (fog_pass_lamp_loop_bound, with the lamps' shadow cubes and the surfaces' dimming counted
- * in) stays below the renderer's cap less the view ray's reserve, so the fog pass's guard
+/* Every shipped config with lamps draws on llvmpipe: the lamps' and the view ray's loop
+ * bounds (fog_pass_lamp_loop_bound with the lamps' shadow cubes and the surfaces' dimming
+ * counted in, fog_pass_view_loop_bound with every Gaussian in one tile) stay below the renderer's cap less the view ray's reserve, so the fog pass's guard
  * (docs/platform.md, the loop cap) never refuses them. So does the simulated fogmap with
  * the most lamps the demo's lamp tool places (FOG_MAX_LAMPS) at the config's default
  * method: the lamp tool cannot trip the guard. */
@@ -17,14 +17,15 @@
 /* llvmpipe's cap (test_gpu_lamp_loop_cap measures it): the budget on any renderer. */
 #define LLVMPIPE_LOOP_CAP 65535.0
 
-static const lamp_shadow_maps some_cubes; /* only its address is read: cubes on */
+static const lamp_shadow_maps some_cubes = {.count = FOG_MAX_LAMPS}; /* cubes for all */
 
+/* The lamps' bound and the view ray's (every Gaussian in one screen tile). */
 static double worst_case_bound(const render_fog *fog, const fog_lamps *lamps) {
   fog_pass_params p = fog->params;
   p.lamps = *lamps;
   p.lamp_shadows = &some_cubes;
   p.surface_lamps = 1;
-  return fog_pass_lamp_loop_bound(&p);
+  return fog_pass_lamp_loop_bound(&p) + fog_pass_view_loop_bound(&p, p.model_rbf_count);
 }
 
 static void check_config(const char *path, bool all_lamps) {
@@ -57,6 +58,8 @@ static void check_config(const char *path, bool all_lamps) {
   CHECK(bound > 0 && bound <= LLVMPIPE_LOOP_CAP - FOG_PASS_LOOP_RESERVE,
         "%s: %d lamps bound at %.0f loop iterations: over llvmpipe's %.0f less the reserve %d",
         path, lamps.count, bound, LLVMPIPE_LOOP_CAP, FOG_PASS_LOOP_RESERVE);
+  CHECK(live_bound > 0 && live_bound <= bound, "%s: the live rule's bound %.0f is not below "
+        "the config's %.0f", path, live_bound, bound);
   render_fog_destroy(&fog);
   free(cfg);
 }

@@ -3,11 +3,14 @@
  * of a shader's loops once they have run 65535 iterations together, and the shader goes on
  * with what it has: a lamp's light over many Gaussians came out wrong without an error.
  *   - the probe finds 65535 on llvmpipe (and no cap where the probe's loop runs whole);
- *   - RBF fog with one lamp and as many Gaussians as the bound allows: the pass draws it,
- *     equal to the CPU twin (so the bound is not below what the shader runs);
+ *   - RBF fog with one lamp and as many Gaussians as a bound of the cap less 1024 allows
+ *     (the pass's reserve lifted for it): the pass draws it, equal to the CPU twin (so the
+ *     bound is not below what the shader runs by more than that);
  *   - with ~1.3x the cap in the bound: the pass refuses, naming the cap; drawn anyway (the
  *     cap lifted), the image is wrong (so the guard protects something real, and the bound
- *     is within 1.3x of what the shader runs). */
+ *     is within 1.3x of what the shader runs);
+ *   - the sun's mean along the ray (K at every node loops over the pixel's Gaussians): 8
+ *     steps of 2 nodes over 100 Gaussians drawn, 1024 steps refused. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -74,12 +77,17 @@ static int count_wrong(const float *rgba, const camera *cam, const fog_pass_para
   return wrong;
 }
 
+/* The draw's bound as the pass counts it, every Gaussian in the pixel's tile. */
+static double bound_of(const fog_pass_params *p) {
+  return fog_pass_lamp_loop_bound(p) + fog_pass_view_loop_bound(p, p->model_rbf_count);
+}
+
 /* The most Gaussians whose bound is at most `loops`. */
 static int gaussians_within(double loops) {
   int n = 1;
   while (n < MAX_GAUSSIANS) {
     fog_pass_params p = params_with(n + 1);
-    if (fog_pass_lamp_loop_bound(&p) > loops) break;
+    if (bound_of(&p) > loops) break;
     n++;
   }
   return n;
@@ -112,17 +120,24 @@ int main(void) {
   fog_test_gl_ground_distance(&gl, &cam, 0.5, dist);
   fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
 
-  /* as many Gaussians as the guard allows: drawn, and right */
-  const int under = gaussians_within((double)cap - FOG_PASS_LOOP_RESERVE);
+  /* as many Gaussians as a bound of the cap less VIEW_SLACK allows (the pass's reserve
+   * lifted to that for the draw): drawn, and right, so the bound is not below what the
+   * shader runs by more than that slack (this view ray's own walk is a few hundred) */
+  enum { VIEW_SLACK = 1024 };
+  const int allowed = gaussians_within((double)cap - FOG_PASS_LOOP_RESERVE);
+  const int under = gaussians_within((double)cap - VIEW_SLACK);
+  fog_pass_set_loop_cap(gl.pass, cap + FOG_PASS_LOOP_RESERVE - VIEW_SLACK);
   fog_pass_params p = params_with(under);
   double worst;
   CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, surface_tex, dist_tex, tau, &err) == 0 &&
             gl_target_read(&gl.target, 0, 4, rgba, &err) == 0,
-        "%d Gaussians (bound %.0f): %s", under, fog_pass_lamp_loop_bound(&p), err.message);
+        "%d Gaussians (bound %.0f): %s", under, bound_of(&p), err.message);
   int wrong = count_wrong(rgba, &cam, &p, dist, &worst);
   printf("%d Gaussians, bound %.0f loop iterations: %d values off the twin (max %.2e of the "
-         "peak)\n", under, fog_pass_lamp_loop_bound(&p), wrong, worst);
-  CHECK(under >= 200, "the guard allows only %d Gaussians with one lamp", under);
+         "peak)\n", under, bound_of(&p), wrong, worst);
+  fog_pass_set_loop_cap(gl.pass, cap);
+  printf("the guard allows %d Gaussians with one lamp\n", allowed);
+  CHECK(allowed >= 200, "the guard allows only %d Gaussians with one lamp", allowed);
   CHECK(wrong == 0, "%d Gaussians within the guard's bound: %d values wrong (max %.2e of the "
         "peak): the bound is below what the shader runs", under, wrong, worst);
 
@@ -132,9 +147,11 @@ int main(void) {
   err = (fog_error){0};
   CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, surface_tex, dist_tex, tau, &err) != 0,
         "%d Gaussians (bound %.0f) were drawn past the cap %ld", over,
-        fog_pass_lamp_loop_bound(&p), cap);
-  CHECK(strstr(err.message, "loop iterations") && strstr(err.message, "65535") &&
-            strstr(err.message, "Gaussians"),
+        bound_of(&p), cap);
+  char cap_text[32];
+  snprintf(cap_text, sizeof cap_text, "after %ld", cap);
+  CHECK(err.code == FOG_ERR_UNSUPPORTED && strstr(err.message, "loop iterations") &&
+            strstr(err.message, cap_text) && strstr(err.message, "Gaussians"),
         "the refusal does not name the loops, the cap and the Gaussians: %s", err.message);
   printf("refused: %s\n", err.message);
   fog_pass_set_loop_cap(gl.pass, GL_UTIL_NO_LOOP_CAP);
@@ -143,10 +160,25 @@ int main(void) {
         "%d Gaussians, the cap lifted: %s", over, err.message);
   wrong = count_wrong(rgba, &cam, &p, dist, &worst);
   printf("%d Gaussians, bound %.0f, drawn past the cap: %d values off the twin (max %.2e of "
-         "the peak)\n", over, fog_pass_lamp_loop_bound(&p), wrong, worst);
+         "the peak)\n", over, bound_of(&p), wrong, worst);
   CHECK(wrong > 0 && worst > 1e-3, "%d Gaussians past the cap drew right (%d values off, max "
         "%.2e): the bound is more than 1.3x what the shader runs", over, wrong, worst);
   fog_pass_set_loop_cap(gl.pass, cap);
+
+  /* the sun's mean along the ray over 100 Gaussians: K at each of its steps' nodes loops
+   * over the pixel's tile; 8 steps of 2 nodes are drawn, 1024 refused (no lamps) */
+  p = params_with(100);
+  p.lamps.count = 0;
+  p.self_shadow = FOG_SUN_SHADOW_HEIGHT, p.shadow_steps = 8, p.shadow_nodes = 2;
+  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, surface_tex, dist_tex, tau, &err) == 0,
+        "the sun's mean, 8 steps over 100 Gaussians: %s", err.message);
+  p.shadow_steps = 1024;
+  err = (fog_error){0};
+  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, surface_tex, dist_tex, tau, &err) != 0 &&
+            strstr(err.message, "the sun's mean over 1024 shadow steps of 2 nodes"),
+        "the sun's mean, 1024 steps of 2 nodes over 100 Gaussians (bound %.0f): %s",
+        bound_of(&p), err.message[0] ? err.message : "drawn");
+  printf("refused: %s\n", err.message);
 
   glDeleteTextures(1, &surface_tex);
   glDeleteTextures(1, &dist_tex);
