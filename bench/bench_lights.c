@@ -101,13 +101,13 @@ static void scene_destroy(lights_scene *s) {
   free(s->cfg);
 }
 
-/* The lamps' converged in-scatter at the error pixels (the CPU twin), with V (NULL: 1), into
- * out (3 per error pixel); returns its largest value. */
-static double scene_reference(const lights_scene *s, int W, int H, fog_lamp_visibility_fn visible,
-                              const void *user, double *out) {
+/* The lamps' in-scatter at the error pixels by the CPU twin of `method`, with V (NULL: 1),
+ * into out (3 per error pixel); returns its largest value. */
+static double lamps_twin(const lights_scene *s, const fog_lamp_method *method, int W, int H,
+                         fog_lamp_visibility_fn visible, const void *user, double *out) {
   const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
   fog_lamps lamps = s->lamps;
-  lamps.method = converged;
+  lamps.method = *method;
   double peak = 0;
   for (int j = 0; j < rows; j++)
     for (int i = 0; i < cols; i++) {
@@ -126,50 +126,52 @@ static double scene_reference(const lights_scene *s, int W, int H, fog_lamp_visi
   return peak;
 }
 
+/* The converged twin (the reference). */
+static double scene_reference(const lights_scene *s, int W, int H, fog_lamp_visibility_fn visible,
+                              const void *user, double *out) {
+  return lamps_twin(s, &converged, W, H, visible, user, out);
+}
+
+/* Row r's max and mean error: its lamps' in-scatter at the error pixels (3 each) against the
+ * reference, relative to the reference's peak. */
+static void set_errors(lights_row *r, const lights_scene *s, const double *lamps, int count) {
+  double worst = 0, sum = 0;
+  for (int k = 0; k < 3 * count; k++) {
+    double e = fabs(lamps[k] - s->reference[k]);
+    if (!(e == e)) e = HUGE_VAL;
+    worst = fmax(worst, e);
+    sum += e;
+  }
+  r->max_error = worst / s->peak;
+  r->mean_error = sum / (3.0 * count) / s->peak;
+}
+
+/* A drawn row: its in-scatter less the unlit row's. NAN errors when out of memory. */
 static void row_errors(lights_row *r, const lights_scene *s, const float *inscatter, int W, int H) {
   const float *unlit = r->divisor > 1 ? s->unlit_half : s->unlit;
   const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
-  double worst = 0, sum = 0;
+  double *lamps = malloc((size_t)cols * rows * 3 * sizeof(double));
+  r->max_error = r->mean_error = NAN;
+  if (!lamps) return;
   for (int j = 0; j < rows; j++)
     for (int i = 0; i < cols; i++) {
       size_t k = (size_t)(j * ERROR_STRIDE) * W + i * ERROR_STRIDE;
-      for (int c = 0; c < 3; c++) {
-        double lamps = (double)inscatter[3 * k + c] - unlit[3 * k + c];
-        double e = fabs(lamps - s->reference[((size_t)j * cols + i) * 3 + c]);
-        if (!(e == e)) e = HUGE_VAL;
-        worst = fmax(worst, e);
-        sum += e;
-      }
+      for (int c = 0; c < 3; c++)
+        lamps[((size_t)j * cols + i) * 3 + c] = (double)inscatter[3 * k + c] - unlit[3 * k + c];
     }
-  r->max_error = worst / s->peak;
-  r->mean_error = sum / (3.0 * cols * rows) / s->peak;
+  set_errors(r, s, lamps, cols * rows);
+  free(lamps);
 }
 
-/* A row past the loop cap: its method's CPU twin at the error pixels against the reference
- * (the same pixels and measure as row_errors). */
+/* A row past the loop cap: its method's CPU twin at the error pixels. */
 static void row_errors_twin(lights_row *r, const lights_scene *s, int W, int H) {
   const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
-  fog_lamps lamps = s->lamps;
-  lamps.method = r->method;
-  double worst = 0, sum = 0;
-  for (int j = 0; j < rows; j++)
-    for (int i = 0; i < cols; i++) {
-      int px = i * ERROR_STRIDE, py = j * ERROR_STRIDE;
-      size_t k = (size_t)py * W + px;
-      double o[3], d[3], v[3];
-      camera_ray(&s->drawn.cam, px, py, W, H, o, d);
-      double ts = s->drawn.distance[k] >= 1e29f ? HUGE_VAL : (double)s->drawn.distance[k];
-      fog_lamps_inscatter(&s->model, &lamps, s->fog.params.sun.albedo, s->fog.params.sun.phase_g,
-                          o, d, ts, v);
-      for (int c = 0; c < 3; c++) {
-        double e = fabs(v[c] - s->reference[((size_t)j * cols + i) * 3 + c]);
-        if (!(e == e)) e = HUGE_VAL;
-        worst = fmax(worst, e);
-        sum += e;
-      }
-    }
-  r->max_error = worst / s->peak;
-  r->mean_error = sum / (3.0 * cols * rows) / s->peak;
+  double *lamps = malloc((size_t)cols * rows * 3 * sizeof(double));
+  r->max_error = r->mean_error = NAN;
+  if (!lamps) return;
+  lamps_twin(s, &r->method, W, H, NULL, NULL, lamps);
+  set_errors(r, s, lamps, cols * rows);
+  free(lamps);
 }
 
 /* Whether row r's loops pass the renderer's cap (fog_pass.h, FOG_PASS_LOOP_RESERVE). */
