@@ -41,6 +41,12 @@ typedef struct lamp_edit {
 
 #define LAMP_TOOL_RADIUS 0.5
 
+/* What the window says when the fog pass refused the lamps' light (the renderer's loop
+ * cap) and the frame was drawn without it. */
+#define LAMP_TOOL_DROPPED_NOTE                                                         \
+  "the lamps' light in this fog is not drawn:\nit needs more shader loops a pixel than\n" \
+  "this renderer runs (docs/platform.md)"
+
 /* One frame of the tool: the buttons held, the surface point under the cursor (NULL: none,
  * over the sky or the panel) and the lamps shown. Left places a lamp `height` above hit,
  * or (within 3 heights of a lamp, horizontally, or while dragging one) moves it there;

@@ -184,6 +184,9 @@ struct pipeline {
    * (shown_lamps_time; NAN before the first frame), on the surfaces and in the fog. Else the
    * params' lamps (the demo places them), shown_lamps what the surfaces have now. */
   bool lamps_animated;
+  /* Live: the last frame's fog was drawn without the lamps' light, which the renderer's
+   * loop cap refused (docs/platform.md); recordings fail instead. */
+  bool lamps_dropped;
   fog_lamps shown_lamps;
   double shown_lamps_time;
   timing_ring timings;
@@ -784,6 +787,8 @@ int pipeline_skip(pipeline *p, long steps, fog_error *err) {
   return 0;
 }
 
+bool pipeline_lamps_dropped(const pipeline *p) { return p->lamps_dropped; }
+
 bool pipeline_simulates(const pipeline *p) { return p->cpu.sim != NULL; }
 
 const fogmap *pipeline_sim_density(const pipeline *p) {
@@ -1123,8 +1128,17 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
       .lamp_shadows = scene_pass_lamp_shadows(p->scene),
       .walk = scene_config_walk(&p->config),
   };
-  if (pipeline_fog_render(p->fog, cam, &p->scene_target, &settings, &rerr))
-    return fog_error_wrap(err, &rerr, "render: ");
+  int refused = pipeline_fog_render(p->fog, cam, &p->scene_target, &settings, &rerr);
+  p->lamps_dropped = false;
+  if (refused && p->live && rerr.code == FOG_ERR_UNSUPPORTED && settings.lamps.count > 0) {
+    /* the lamps' light over this fog (a live rung's Gaussians or volumes under many lamps)
+     * passes the renderer's loop cap: the live view draws the fog without it */
+    settings.lamps.count = 0;
+    p->lamps_dropped = true;
+    rerr = (fog_error){0};
+    refused = pipeline_fog_render(p->fog, cam, &p->scene_target, &settings, &rerr);
+  }
+  if (refused) return fog_error_wrap(err, &rerr, "render: ");
   /* llvmpipe (and GPUs) run the commands asynchronously: finish so the render time is
    * the time of this frame's drawing, not of the next read-back. */
   gl_finish();

@@ -125,6 +125,10 @@ long pipeline_step_index(const pipeline *p);
 int pipeline_skip(pipeline *p, long steps, fog_error *err);
 /* Whether frames come from the simulation (else from a VDB or fogmap sequence). */
 bool pipeline_simulates(const pipeline *p);
+/* Live only: the last frame drew the fog without the lamps' light, which the renderer's
+ * loop cap refused (docs/platform.md; the fog pass's FOG_ERR_UNSUPPORTED). A recording
+ * fails with the fog pass's error instead. */
+bool pipeline_lamps_dropped(const pipeline *p);
 /* The simulation's density after the last step or skip (what the transform of that frame
  * reads); NULL when nothing is simulated. */
 const struct fogmap *pipeline_sim_density(const pipeline *p);

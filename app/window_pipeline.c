@@ -161,6 +161,7 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
   changed |= panel_fog(ui, &params, d);
   changed |= panel_sunlight(ui, &params);
   changed |= panel_wavelets(ui, &params);
+  if (pipeline_lamps_dropped(pipe)) panel_text(ui, "%s", LAMP_TOOL_DROPPED_NOTE);
   lamp_tool_panel(ui, &d->lamps, params.lamps.count, d->lamps_animated, NULL);
   panel_brush(ui, d);
   if (changed) pipeline_set_params(pipe, &params);

@@ -246,6 +246,8 @@ static void copy_light(scene_config *to, const scene_config *from) {
   memcpy(to->lamps, from->lamps, sizeof to->lamps);
   to->lamp_count = from->lamp_count;
   to->lamp_method = from->lamp_method;
+  if (to->fog.model != FOG_MODEL_RBF && to->lamp_method.integral == FOG_LAMP_FOGSHOP)
+    to->lamp_method.integral = FOG_LAMP_ANGLE; /* Fogshop's is for Gaussians only */
   memcpy(to->fog.colour, from->fog.colour, sizeof to->fog.colour);
   to->fog.albedo = from->fog.albedo;
   to->fog.phase_g = from->fog.phase_g;
@@ -421,8 +423,7 @@ static void source_panel(void *self, panel *ui, const window_frame *f) {
   panel_fog(s, ui);
   panel_sun(s, ui);
   if (s->lamps_dropped) /* outside the lamps' section: it may be closed */
-    panel_text(ui, "the lamps' light in this fog is not drawn:\nit needs more shader loops "
-                   "a pixel than\nthis renderer runs (docs/platform.md)");
+    panel_text(ui, "%s", LAMP_TOOL_DROPPED_NOTE);
   lamp_tool_panel(ui, &s->lamps, s->cfg->lamp_count, s->lamps_animated, s->lamp_note);
   if (s->remake_ms > 0) panel_text(ui, "fog made again after an edit: %.0f ms", s->remake_ms);
 }
@@ -474,9 +475,14 @@ static int apply_lamp_edit(session_source *s, const lamp_edit *e, fog_error *err
   }
   const fog_lamps lamps = scene_config_fog_lamps(edited);
   if (v->has_fog && e->kind == LAMP_EDIT_PLACE) { /* moving or removing adds no loops */
+    /* the bound the pass will check: with a shadow cube for every lamp (the scene pass
+     * renders the new one), and the view ray's loops over every Gaussian */
     fog_pass_params p = v->fog.params;
     p.lamps = lamps;
-    const double loops = fog_pass_lamp_loop_bound(&p);
+    lamp_shadow_maps cubes = {.count = lamps.count};
+    if (scene_config_lamp_shadow_size(edited) > 0) p.lamp_shadows = &cubes;
+    const double loops =
+        fog_pass_lamp_loop_bound(&p) + fog_pass_view_loop_bound(&p, p.model_rbf_count);
     if (loops > (double)fog_pass_loop_cap(v->fog.pass) - FOG_PASS_LOOP_RESERVE) {
       snprintf(s->lamp_note, sizeof s->lamp_note,
                "lamp not placed: %d lamp%s over this fog\nwould need ~%.0f shader loops a "
@@ -575,14 +581,18 @@ static int source_draw(void *self, const window_frame *f, fog_error *err) {
   if (v->has_fog && render_fog_draw(&v->fog, &f->fc->cam, &v->scene_target, &v->fog_target,
                                      err)) {
     /* the fog pass refused the lamps' light (the renderer's loop cap: Gaussians painted
-     * with the brush, a rung's fog under the lamps): the fog without it, and a note */
-    if (err->code != FOG_ERR_UNSUPPORTED || v->fog.params.lamps.count == 0) return 1;
+     * with the brush, a rung's fog under the lamps): the fog without it, and a note; if
+     * the view ray alone is still too much, without the sun's shadow in the fog too */
+    if (err->code != FOG_ERR_UNSUPPORTED) return 1;
     s->lamps_dropped = true;
-    const fog_lamps kept = v->fog.params.lamps;
+    const fog_pass_params kept = v->fog.params;
     v->fog.params.lamps.count = 0;
-    const int failed =
-        render_fog_draw(&v->fog, &f->fc->cam, &v->scene_target, &v->fog_target, err);
-    v->fog.params.lamps = kept;
+    int failed = render_fog_draw(&v->fog, &f->fc->cam, &v->scene_target, &v->fog_target, err);
+    if (failed && err->code == FOG_ERR_UNSUPPORTED) { /* the sun's mean over the Gaussians */
+      v->fog.params.self_shadow = FOG_SUN_SHADOW_NONE, v->fog.params.shafts = NULL;
+      failed = render_fog_draw(&v->fog, &f->fc->cam, &v->scene_target, &v->fog_target, err);
+    }
+    v->fog.params = kept;
     if (failed) return 1;
     *err = (fog_error){0};
   }

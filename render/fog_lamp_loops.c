@@ -127,6 +127,12 @@ double fog_pass_view_loop_bound(const fog_pass_params *p, int tile_gaussians) {
   const bool beside = p->model != FOG_MODEL_QUADRIC && quadric_count(p) > 0;
   /* the RBFs' exact integral and reach over the tile's list */
   double loops = p->model == FOG_MODEL_RBF ? 2.0 * (tile_gaussians + 1) : 0;
+  /* marching (the volume's step, `volume_step`; the benches' march_steps): its samples,
+   * the volume's at most 16384 a ray (fog_grid3d_optical_depth_march), each a K */
+  if (p->integrator == FOG_INTEGRATOR_MARCH)
+    loops += p->model == FOG_MODEL_VOLUME
+                 ? 16384 + 1
+                 : (p->march_steps + 1.0) * (1 + point_loops(p, noise, tile_gaussians));
   /* the sun's mean by segments (fog_light.glsl; the per-piece means walk with the view
    * ray): K at each node, and towards the sun the quadrics beside in closed form */
   const bool march = p->self_shadow == FOG_SUN_SHADOW_VOLUME ||

@@ -227,8 +227,8 @@ void fog_pass_set_loop_cap(fog_pass *pass, long cap);
  * llvmpipe counts them (render/fog_lamp_loops.c): 0 without lamps. */
 double fog_pass_lamp_loop_bound(const fog_pass_params *params);
 /* The same for the view ray's loops that grow with the draw's settings: over RBF fog the
- * Gaussians of the pixel's screen tile (at most tile_gaussians), and the sun's mean along
- * the ray (shadow_steps x shadow_nodes points of K). The pass adds it to the lamps' (over
+ * Gaussians of the pixel's screen tile (at most tile_gaussians), marching's samples, and
+ * the sun's mean along the ray (shadow_steps x shadow_nodes points of K). The pass adds it to the lamps' (over
  * RBF fog once the tiles are built). */
 double fog_pass_view_loop_bound(const fog_pass_params *params, int tile_gaussians);
 
