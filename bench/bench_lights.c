@@ -1,26 +1,27 @@
-/* fogpipe bench lights: lamps in the fog (docs/light.md, Lamps), speed against accuracy,
- * side by side in one run, on two scenes:
+/* fogpipe bench lights: lamps in the fog (docs/light.md, Lamps), speed against accuracy, side
+ * by side in one run, on two scenes:
  *   - valley: configs/night_lamps.ini, 9 lamps (a spot among them) in the default scene's
  *     fogmap (static: the simulation's initial fog, through `render`'s fog);
  *   - tube: configs/rbf_lamp_tube.ini, Fogshop's shaft scene (59 Gaussians, a lamp inside).
  * Rows per scene: unlit (no lamps: the baseline); ours at 4+4, 8+8 (the default), 12+12,
  * 16+16 and 32+32 pieces; uniform marching at 16..1024 samples (the tube to 4096); on the
  * tube Fogshop's approximation; on the valley T's walk at 4 and 16 steps, the live demo's
- * rule (scene_live_lamp_method: 4+4, walk 4) and unlit and ours at half resolution. Time:
- * the fog pass, GL, glFinish before and after, median of --frames rounds after a warm-up.
- * A row whose loops pass the renderer's cap (llvmpipe: 65535 a pixel, docs/platform.md;
- * marching at 1024 and 4096) is not drawn: the shader would end its loops early. Its error
- * is its method's CPU twin's (equal to the GL's, test_gpu_lamps), its time extrapolated
- * linearly in the samples from the scene's drawn marching rows, marked so. Error: the lamps' in-scatter (the row's in-scatter minus the unlit
- * row's) against the CPU twin converged (64+64 pieces, 64 depth and 64 shadow steps; for
- * the tube's closed-form depths that is the independent reference to 1e-15,
- * test_lamp_accuracy) on every 16th pixel of every 16th row, max and mean relative to the
- * largest. The halo (test_lamp_accuracy's scene, g 0.7): the CPU twins of ours and
- * Fogshop's against the converged twin.
+ * rule (scene_live_lamp_method: 4+4, walk 4) and unlit and ours at half resolution.
+ * Time: the fog pass, GL, glFinish before and after, median of --frames rounds after a
+ * warm-up. A row whose loops pass the renderer's cap (llvmpipe: 65535 a pixel,
+ * docs/platform.md; marching at 1024 and 4096) is not drawn: the shader would end its loops
+ * early. Its error is its method's CPU twin's (equal to the GL's, test_gpu_lamps), its time
+ * extrapolated linearly in the samples from the scene's drawn marching rows, marked so.
+ * Error: the lamps' in-scatter (the row's in-scatter minus the unlit row's) against the CPU
+ * twin converged (64+64 pieces, 64 depth and 64 shadow steps; for the tube's closed-form
+ * depths that is the independent reference to 1e-15, test_lamp_accuracy) on every 16th pixel
+ * of every 16th row, max and mean relative to the largest. The halo (test_lamp_accuracy's
+ * scene, g 0.7): the CPU twins of ours and Fogshop's against the converged twin.
  * Writes lights.csv and lights_chart.{csv,png}. Last line:
  * `lights: ms_per_light=A march_speedup_at_matched_error=B fogshop_halo_error_ratio=C`:
- * A = (valley, ours default - unlit) / its lamps, scaled to 640x360 by pixels; B = on the tube, the cheapest marching
- * within 1e-3 of the peak / our cheapest within it; C = Fogshop's max halo error / ours. */
+ * A = (valley, ours default - unlit) / its lamps, scaled to 640x360 by pixels; B = on the
+ * tube, the cheapest marching within 1e-3 of the peak / our cheapest within it; C =
+ * Fogshop's max halo error / ours. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -44,6 +45,9 @@ static const int march_samples[] = {16, 64, 256, 1024, 4096};
 static const fog_lamp_method converged = {.integral = FOG_LAMP_ANGLE, .angle_pieces = 64,
                                           .span_pieces = 64, .depth_steps = 64,
                                           .shadow_steps = 64};
+
+/* The error pixels along a side of n pixels: every ERROR_STRIDE-th. */
+static int error_count(int n) { return (n + ERROR_STRIDE - 1) / ERROR_STRIDE; }
 
 typedef struct lights_row {
   int scene;
@@ -105,7 +109,7 @@ static void scene_destroy(lights_scene *s) {
  * into out (3 per error pixel); returns its largest value. */
 static double lamps_twin(const lights_scene *s, const fog_lamp_method *method, int W, int H,
                          fog_lamp_visibility_fn visible, const void *user, double *out) {
-  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  const int cols = error_count(W), rows = error_count(H);
   fog_lamps lamps = s->lamps;
   lamps.method = *method;
   double peak = 0;
@@ -149,7 +153,7 @@ static void set_errors(lights_row *r, const lights_scene *s, const double *lamps
 /* A drawn row: its in-scatter less the unlit row's. NAN errors when out of memory. */
 static void row_errors(lights_row *r, const lights_scene *s, const float *inscatter, int W, int H) {
   const float *unlit = r->divisor > 1 ? s->unlit_half : s->unlit;
-  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  const int cols = error_count(W), rows = error_count(H);
   double *lamps = malloc((size_t)cols * rows * 3 * sizeof(double));
   r->max_error = r->mean_error = NAN;
   if (!lamps) return;
@@ -165,7 +169,7 @@ static void row_errors(lights_row *r, const lights_scene *s, const float *inscat
 
 /* A row past the loop cap: its method's CPU twin at the error pixels. */
 static void row_errors_twin(lights_row *r, const lights_scene *s, int W, int H) {
-  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  const int cols = error_count(W), rows = error_count(H);
   double *lamps = malloc((size_t)cols * rows * 3 * sizeof(double));
   r->max_error = r->mean_error = NAN;
   if (!lamps) return;
@@ -244,7 +248,9 @@ static lights_row *add_row(lights_row *rows, int *count, int scene, const char *
   else if (!strcmp(kind, "march")) snprintf(r->name, sizeof r->name, "march %d", n);
   else snprintf(r->name, sizeof r->name, "%s", kind);
   snprintf(r->series, sizeof r->series, "%s %s", scene_names[scene],
-           !strcmp(kind, "ours") ? "ours 4+4..32+32" : !strcmp(kind, "march") ? "marching (timed)" : kind);
+           !strcmp(kind, "ours")    ? "ours 4+4..32+32"
+           : !strcmp(kind, "march") ? "marching (timed)"
+                                    : kind);
   r->times = malloc((size_t)frames * sizeof(double));
   return r->times ? r : NULL;
 }
@@ -297,7 +303,7 @@ static double exact_visible(const void *user, int i, const double x[3]) {
  * against the twin converged with V by exact ray casts. Returns 0, or 1 on a GL error. */
 static int shadow_rows(lights_scene *s, const lights_row *plain, int W, int H, int frames,
                        float *inscatter, const gl_target *out, fog_error *err) {
-  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  const int cols = error_count(W), rows = error_count(H);
   double *times = malloc((size_t)frames * sizeof(double));
   if (!times) {
     fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
@@ -392,7 +398,7 @@ int bench_lights(int argc, char **argv) {
   char error[1024] = "";
   int status = 1, row_count = 0, live_rows[2] = {0, 0};
   size_t pixels = (size_t)W * H;
-  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows_e = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  const int cols = error_count(W), rows_e = error_count(H);
   fog_error rerr = {0};
   lights_scene scenes[SCENE_COUNT] = {{0}};
   lights_row rows[MAX_ROWS] = {{0}};

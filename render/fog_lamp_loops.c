@@ -1,11 +1,11 @@
-/* Upper bounds of the loop iterations the lamps' in-scatter and the view ray run in one
- * pixel (fog_pass.h, fog_pass_lamp_loop_bound, fog_pass_view_loop_bound), counted as Mesa's llvmpipe counts them against
- * its per-shader budget (gl_util_loop_cap): every iteration of every loop, and one more
- * for each time a loop is entered (the pass that finds its exit). Loops of constant count
- * are counted too, though the compiler may unroll them (the bound errs high), except the
- * 3 nodes of a noise cell, a small loop of constant count the compiler unrolls (counted,
- * they made the bound refuse noisy volumes that test_render_fog_models draws right). Each
- * term follows the loops of fog_lamps.glsl, fog_light.glsl and fog_models.glsl. */
+/* Upper bounds of the loop iterations the lamps' in-scatter and the view ray run in one pixel
+ * (fog_pass.h, fog_pass_lamp_loop_bound, fog_pass_view_loop_bound), counted as Mesa's llvmpipe
+ * counts them against its per-shader budget (gl_util_loop_cap): every iteration of every loop,
+ * and one more for each time a loop is entered (the pass that finds its exit). Loops of
+ * constant count are counted too, though the compiler may unroll them (the bound errs high),
+ * except the 3 nodes of a noise cell, a small loop of constant count the compiler unrolls
+ * (counted, they made the bound refuse noisy volumes that test_render_fog_models draws right).
+ * Each term follows the loops of fog_lamps.glsl, fog_light.glsl and fog_models.glsl. */
 #include <math.h>
 
 #include "render/fog_pass.h"

@@ -1,10 +1,10 @@
-/* The live demo under the renderer's loop cap (docs/platform.md): 16 lamps placed through
- * the params (the demo's lamp tool) over the model menu's 16-Gaussian rung pass llvmpipe's
- * cap. A live pipeline draws that frame without the lamps' light in the fog and says so
- * (pipeline_lamps_dropped): its in-scatter equals that of the same frame with no lamps; a recording pipeline
- * (not live) fails with the fog pass's FOG_ERR_UNSUPPORTED; over the fogmap itself the 16
- * lamps are drawn. On a renderer without a cap every frame draws its lamps. Built by
- * tests/app/pipeline.cmake. */
+/* The live demo under the renderer's loop cap (docs/platform.md): 16 lamps placed through the
+ * params (the demo's lamp tool) over the model menu's 16-Gaussian rung pass llvmpipe's cap. A
+ * live pipeline draws that frame without the lamps' light in the fog and says so
+ * (pipeline_lamps_dropped): its in-scatter equals that of the same frame with no lamps; a
+ * recording pipeline (not live) fails with the fog pass's FOG_ERR_UNSUPPORTED; over the fogmap
+ * itself the 16 lamps are drawn. On a renderer without a cap every frame draws its lamps.
+ * Built by tests/app/pipeline.cmake. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

@@ -1,9 +1,9 @@
-/* Every shipped config with lamps draws on llvmpipe: the lamps' and the view ray's loop
- * bounds (fog_pass_lamp_loop_bound with the lamps' shadow cubes and the surfaces' dimming
- * counted in, fog_pass_view_loop_bound with every Gaussian in one tile) stay below the renderer's cap less the view ray's reserve, so the fog pass's guard
- * (docs/platform.md, the loop cap) never refuses them. So does the simulated fogmap with
- * the most lamps the demo's lamp tool places (FOG_MAX_LAMPS) at the config's default
- * method: the lamp tool cannot trip the guard. */
+/* Every shipped config with lamps draws on llvmpipe: the lamps' and the view ray's loop bounds
+ * (fog_pass_lamp_loop_bound with the lamps' shadow cubes and the surfaces' dimming counted in,
+ * fog_pass_view_loop_bound with every Gaussian in one tile) stay below the renderer's cap less
+ * the view ray's reserve, so the fog pass's guard (docs/platform.md, the loop cap) never
+ * refuses them. So does the simulated fogmap with the most lamps the demo's lamp tool places
+ * (FOG_MAX_LAMPS) at the config's default method: the lamp tool cannot trip the guard. */
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
