@@ -481,14 +481,13 @@ static int apply_lamp_edit(session_source *s, const lamp_edit *e, fog_error *err
     p.lamps = lamps;
     lamp_shadow_maps cubes = {.count = lamps.count};
     if (scene_config_lamp_shadow_size(edited) > 0) p.lamp_shadows = &cubes;
-    const double loops =
-        fog_pass_lamp_loop_bound(&p) + fog_pass_view_loop_bound(&p, p.model_rbf_count);
-    if (loops > (double)fog_pass_loop_cap(v->fog.pass) - FOG_PASS_LOOP_RESERVE) {
+    const double loops = fog_pass_loop_bound(&p, p.model_rbf_count);
+    if (loops > fog_pass_loops_allowed(v->fog.pass)) {
       snprintf(s->lamp_note, sizeof s->lamp_note,
                "lamp not placed: %d lamp%s over this fog\nwould need ~%.0f shader loops a "
                "pixel;\nthis renderer runs %ld (docs/platform.md)", lamps.count,
                lamps.count == 1 ? "" : "s", loops,
-               fog_pass_loop_cap(v->fog.pass) - FOG_PASS_LOOP_RESERVE);
+               (long)fog_pass_loops_allowed(v->fog.pass));
       free(edited);
       s->lamps.dragged = -1;
       return 0;

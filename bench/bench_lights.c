@@ -178,14 +178,13 @@ static void row_errors_twin(lights_row *r, const lights_scene *s, int W, int H) 
   free(lamps);
 }
 
-/* Whether row r's loops pass the renderer's cap (fog_pass.h, FOG_PASS_LOOP_RESERVE). */
+/* Whether row r's loops pass what the renderer allows (fog_pass.h, fog_pass_loops_allowed). */
 static bool row_beyond_cap(const lights_scene *s, const lights_row *r) {
   fog_pass_params p = s->fog.params;
   p.lamps = s->lamps;
   p.lamps.method = r->method;
-  const double loops =
-      fog_pass_lamp_loop_bound(&p) + fog_pass_view_loop_bound(&p, p.model_rbf_count);
-  return !r->unlit && loops > (double)fog_pass_loop_cap(s->fog.pass) - FOG_PASS_LOOP_RESERVE;
+  return !r->unlit &&
+         fog_pass_loop_bound(&p, p.model_rbf_count) > fog_pass_loops_allowed(s->fog.pass);
 }
 
 /* The drawn marching rows' time, ms = a + b N by least squares, at the rows beyond the cap

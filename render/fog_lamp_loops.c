@@ -122,6 +122,10 @@ double fog_pass_lamp_loop_bound(const fog_pass_params *p) {
          surfaces;
 }
 
+double fog_pass_loop_bound(const fog_pass_params *p, int tile_gaussians) {
+  return fog_pass_lamp_loop_bound(p) + fog_pass_view_loop_bound(p, tile_gaussians);
+}
+
 double fog_pass_view_loop_bound(const fog_pass_params *p, int tile_gaussians) {
   const bool noise = noisy(p);
   const bool beside = p->model != FOG_MODEL_QUADRIC && quadric_count(p) > 0;

@@ -273,6 +273,9 @@ fog_pass *fog_pass_create(fog_error *err) {
 
 long fog_pass_loop_cap(const fog_pass *pass) { return pass->loop_cap; }
 void fog_pass_set_loop_cap(fog_pass *pass, long cap) { pass->loop_cap = cap; }
+double fog_pass_loops_allowed(const fog_pass *pass) {
+  return (double)pass->loop_cap - FOG_PASS_LOOP_RESERVE;
+}
 
 void fog_pass_destroy(fog_pass *pass) {
   if (!pass) return;
@@ -1269,7 +1272,7 @@ static int fog_pass_check_loops(const fog_pass *pass, const fog_pass_params *par
   static const char *const integral_names[] = {"angle", "fogshop", "march"};
   const double lamps = fog_pass_lamp_loop_bound(params),
                view = fog_pass_view_loop_bound(params, tile_gaussians);
-  if (lamps + view <= (double)pass->loop_cap - FOG_PASS_LOOP_RESERVE) return 0;
+  if (lamps + view <= fog_pass_loops_allowed(pass)) return 0;
   const fog_lamp_method *m = &params->lamps.method;
   char gaussians[64] = "", sun[64] = "no sun's mean", lamp_text[160] = "no lamps";
   if (params->lamps.count > 0)
@@ -1291,7 +1294,7 @@ static int fog_pass_check_loops(const fog_pass *pass, const fog_pass_params *par
            "at most %ld (fewer lamps, lamp pieces or steps, sun shadow steps%s)",
            fog_model_table[params->model].name, gaussians, lamps + view, lamp_text, view, sun,
            (const char *)glGetString(GL_RENDERER), pass->loop_cap,
-           pass->loop_cap - FOG_PASS_LOOP_RESERVE,
+           (long)fog_pass_loops_allowed(pass),
            params->model == FOG_MODEL_RBF ? ", or fewer Gaussians" : "");
   return 1;
 }

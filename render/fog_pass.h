@@ -223,6 +223,9 @@ void fog_pass_destroy(fog_pass *pass);
 #define FOG_PASS_LOOP_RESERVE 8192
 long fog_pass_loop_cap(const fog_pass *pass);
 void fog_pass_set_loop_cap(fog_pass *pass, long cap);
+/* The most loop iterations a pixel's bound may reach on this pass: the cap less the
+ * reserve (what the draw checks; callers that plan a draw ask the same). */
+double fog_pass_loops_allowed(const fog_pass *pass);
 /* An upper bound of the loop iterations one pixel of the lamps' in-scatter runs, counted as
  * llvmpipe counts them (render/fog_lamp_loops.c): 0 without lamps. */
 double fog_pass_lamp_loop_bound(const fog_pass_params *params);
@@ -231,6 +234,8 @@ double fog_pass_lamp_loop_bound(const fog_pass_params *params);
  * the sun's mean along the ray (shadow_steps x shadow_nodes points of K). The pass adds it to the lamps' (over
  * RBF fog once the tiles are built). */
 double fog_pass_view_loop_bound(const fog_pass_params *params, int tile_gaussians);
+/* Both, what the draw compares with fog_pass_loops_allowed. */
+double fog_pass_loop_bound(const fog_pass_params *params, int tile_gaussians);
 
 /* Uploads grid into slot (0 .. FOG_PASS_MAX_GRIDS-1) as an R32F texture. Re-uploading a
  * grid of the same size reuses the texture (glTexSubImage2D). */

@@ -25,7 +25,7 @@ static double worst_case_bound(const render_fog *fog, const fog_lamps *lamps) {
   p.lamps = *lamps;
   p.lamp_shadows = &some_cubes;
   p.surface_lamps = 1;
-  return fog_pass_lamp_loop_bound(&p) + fog_pass_view_loop_bound(&p, p.model_rbf_count);
+  return fog_pass_loop_bound(&p, p.model_rbf_count);
 }
 
 static void check_config(const char *path, bool all_lamps) {

@@ -79,7 +79,7 @@ static int count_wrong(const float *rgba, const camera *cam, const fog_pass_para
 
 /* The draw's bound as the pass counts it, every Gaussian in the pixel's tile. */
 static double bound_of(const fog_pass_params *p) {
-  return fog_pass_lamp_loop_bound(p) + fog_pass_view_loop_bound(p, p->model_rbf_count);
+  return fog_pass_loop_bound(p, p->model_rbf_count);
 }
 
 /* The most Gaussians whose bound is at most `loops`. */
