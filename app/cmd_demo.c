@@ -17,6 +17,7 @@
 #include "app/cmd_record.h"
 #include "app/commands.h"
 #include "app/config.h"
+#include "app/render_fog.h"
 #include "app/live_rung.h"
 #include "app/recorder.h"
 #include "app/window_program.h"
@@ -154,9 +155,9 @@ int cmd_demo(int argc, char **argv) {
    * it, playing what moves by itself (a volume's sequence, emitters, drifting noise). */
   const bool simulate = fog_model_table[config.fog.model].pyramid;
   char note[SCENE_CONFIG_PATH_MAX + 96];
-  snprintf(note, sizeof note,
-           "%s's [fog] model has no simulation to animate: showing it as the config holds it",
-           o.config_path);
+  snprintf(note, sizeof note, "%s's [fog] model has no fogmap to simulate: showing it as the "
+           "config holds it%s", o.config_path,
+           render_fog_animated(&config) ? ", moving by itself" : "");
   fog_error window_failure;
   /* --scale 0 (not given): the simulated source chooses by the renderer, the other 0.5 */
   const double scale = simulate || o.scale > 0 ? o.scale : 0.5;

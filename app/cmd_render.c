@@ -51,6 +51,7 @@ static int write_png(const char *out, int width, int height, const float *rgba, 
 int cmd_render(int argc, char **argv) {
   const char *out = NULL;
   int size[2] = {0, 0}, vdb_frame = -2;
+  double time = 0.0;
   const cli_option options[] = {
       {.kind = CLI_TEXT, .name = "--out", .value = "FILE", .target = &out,
        .help = "output image: .exr (channels R G B A as half; transmittance,\n"
@@ -64,10 +65,15 @@ int cmd_render(int argc, char **argv) {
        .max = INT_MAX,
        .help = "with a [fog] vdb sequence: render its frame number N (as in the\n"
                "file names; default: [fog] vdb_frame, else the last frame)"},
+      {.kind = CLI_NUMBER, .name = "--time", .value = "SECONDS", .target = &time, .min = 0,
+       .max = 1e6,
+       .help = "the scene's time (default 0): where moving lamps, RBF puffs and\n"
+               "drifting Perlin noise are, as `record` shows them at that time (a\n"
+               "fogmap or volume is drawn as its file holds it)"},
   };
   const cli_spec spec = {
       .command = "render",
-      .usage = "CONFIG --out FILE.exr|FILE.png [--size WxH] [--vdb-frame N]",
+      .usage = "CONFIG --out FILE.exr|FILE.png [--size WxH] [--vdb-frame N] [--time SECONDS]",
       .about = "Renders one frame of the scene config headless (EGL; no display needed).",
       .operand = "CONFIG", .min_operands = 1, .max_operands = 1,
       .options = options, .option_count = sizeof options / sizeof options[0],
@@ -110,12 +116,15 @@ int cmd_render(int argc, char **argv) {
     fprintf(stderr, "fogpipe render: out of memory for a %dx%d image\n", width, height);
     goto done;
   }
-  /* Frame 1 of the scene as its files hold it: no simulation step. */
+  /* The scene as its files hold it, no simulation step: frame 1 (time 0), or at --time T
+   * frame 2 at 1/T frames a second (time T; a render session draws any frame directly). */
   fog_error err = {0};
   player *frames = player_create(&(player_desc){.config = &cfg, .width = width,
-                                                .height = height, .fps = 24.0},
+                                                .height = height,
+                                                .fps = time > 0.0 ? 1.0 / time : 24.0},
                                  &err);
-  if (!frames || player_frame(frames, 1, &frame, &err)) {
+  const int n = time > 0.0 ? 2 : 1;
+  if (!frames || player_skip(frames, n - 1, &err) || player_frame(frames, n, &frame, &err)) {
     fprintf(stderr, "fogpipe render: %s\n", err.message);
     player_destroy(frames);
     goto done;

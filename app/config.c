@@ -100,6 +100,7 @@ static const key_spec keys[] = {
     {"fog", "rbf", V_RBF, 0, 0, WORLD, NULL, 0, 0},
     {"fog", "quadric", V_QUADRIC, 0, 0, WORLD, NULL, 0, 0},
     {"fog", "rbf_emitter", V_RBF_EMITTER, 0, 0, WORLD, NULL, 0, 0},
+    {"fog", "rbf_carrier", V_ENUM, F(fog.rbf_carrier), 0, 0, "wind|sim", 0, 0},
     {"fog", "rbf_base", V_DOUBLE, F(fog.rbf_base), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"fog", "volume_step", V_DOUBLE, F(fog.volume_step), 0, WORLD, NULL, 0, 0},
     {"fog", "perlin_octaves", V_INT, F(fog.perlin_octaves), 1, FOG_PERLIN_MAX_OCTAVES, NULL, 0, 0},

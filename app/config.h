@@ -55,6 +55,11 @@ typedef enum scene_boundary {
   SCENE_BOUNDARY_PERIODIC,      /* "periodic" (the FFT simulation's domain) */
 } scene_boundary;
 
+typedef enum scene_rbf_carrier {
+  SCENE_RBF_CARRIER_WIND = 0, /* "wind": each emitter's wind, a closed form of time */
+  SCENE_RBF_CARRIER_SIM,      /* "sim": the [sim] flow plus the wind (app/rbf_carrier.h) */
+} scene_rbf_carrier;
+
 typedef struct scene_fog_config {
   fog_model_kind model;               /* a row of render/fog_models.def (its name in [fog] model) */
   int model_line;                     /* where model was set (0: default), for errors */
@@ -87,6 +92,7 @@ typedef struct scene_fog_config {
   /* and puffs from emitters carried by a wind (render/fog_rbf_emitter.h): the fog moves */
   fog_rbf_emitter rbf_emitters[SCENE_CONFIG_MAX_EMITTERS];
   int rbf_emitter_count;
+  scene_rbf_carrier rbf_carrier; /* what carries the puffs */
   double rbf_base;
   /* model = quadric: the volumes (densities before density_scale), from `quadric = SHAPE
    * ...` lines (docs/config.md), held as their ten coefficients and box. */

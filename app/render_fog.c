@@ -11,6 +11,7 @@
 void render_fog_destroy(render_fog *fog) {
   fog_pyramid_destroy(&fog->pyramid);
   free(fog->rbfs);
+  rbf_carrier_destroy(fog->carrier);
   if (fog->pass) fog_pass_destroy(fog->pass);
   for (int k = 0; k < 2; k++) vdb_frame_destroy(&fog->played[k]);
   fog_sun_shadow_destroy(&fog->sun_shadow);
@@ -279,6 +280,26 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, fog_error
 
 /* An analytic model of the ladder (docs/architecture.md, the model table): no fogmap and no transform, the pass's
  * parameters alone (render/fog_models.def lists the keys each reads; docs/config.md what they mean). */
+/* [fog] rbf_carrier = sim: the emitters' puffs at `time` carried by the [sim] flow over the
+ * terrain (app/rbf_carrier.h), after the rbf lines in fog->rbfs (room made); the flow made
+ * again when the config's emitters or [sim] keys changed. Returns their count, -1 on error. */
+static int carried_puffs(render_fog *fog, const scene_config *cfg, double time, fog_error *err) {
+  const rbf_carrier_desc desc = {
+      .emitters = cfg->fog.rbf_emitters, .emitter_count = cfg->fog.rbf_emitter_count,
+      .origin = {cfg->terrain.origin[0], cfg->terrain.origin[2]},
+      .size = {cfg->terrain.size[0], cfg->terrain.size[1]}, .grid = RBF_CARRIER_GRID,
+      .step = RBF_CARRIER_STEP, .wind = {cfg->sim.wind[0], cfg->sim.wind[1]},
+      .turbulence = cfg->sim.turbulence, .viscosity = cfg->sim.viscosity,
+      .seed = cfg->sim.seed};
+  if (fog->carrier && !rbf_carrier_serves(fog->carrier, &desc)) {
+    rbf_carrier_destroy(fog->carrier);
+    fog->carrier = NULL;
+  }
+  if (!fog->carrier && !(fog->carrier = rbf_carrier_create(&desc, err))) return -1;
+  return rbf_carrier_puffs(fog->carrier, time, fog->rbfs + fog->rbf_count,
+                           fog->rbf_capacity - fog->rbf_count, err);
+}
+
 /* model = rbf: the rbf lines and the emitters' puffs at `time`, density_scale applied. */
 static int rbfs_at(render_fog *fog, const scene_config *cfg, double time, fog_error *err) {
   const scene_fog_config *f = &cfg->fog;
@@ -294,9 +315,15 @@ static int rbfs_at(render_fog *fog, const scene_config *cfg, double time, fog_er
   }
   fog->rbf_count = 0;
   for (int i = 0; i < f->rbf_count; i++) fog->rbfs[fog->rbf_count++] = f->rbfs[i];
-  for (int e = 0; e < f->rbf_emitter_count; e++)
-    fog->rbf_count += fog_rbf_emitter_puffs(&f->rbf_emitters[e], time, fog->rbfs + fog->rbf_count,
-                                            n - fog->rbf_count);
+  if (f->rbf_carrier == SCENE_RBF_CARRIER_SIM && f->rbf_emitter_count > 0) {
+    int puffs = carried_puffs(fog, cfg, time, err);
+    if (puffs < 0) return 1;
+    fog->rbf_count += puffs;
+  } else {
+    for (int e = 0; e < f->rbf_emitter_count; e++)
+      fog->rbf_count += fog_rbf_emitter_puffs(&f->rbf_emitters[e], time,
+                                              fog->rbfs + fog->rbf_count, n - fog->rbf_count);
+  }
   for (int i = 0; i < fog->rbf_count; i++) fog->rbfs[i].density *= f->density_scale;
   fog->params.model_rbfs = fog->rbfs;
   fog->params.model_rbf_count = fog->rbf_count;

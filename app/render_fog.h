@@ -8,6 +8,7 @@
 #define FOGPIPE_APP_RENDER_FOG_H
 
 #include "app/config.h"
+#include "app/rbf_carrier.h"
 #include "render/fog_field.h"
 #include "sim/sim.h"
 #include "render/fog_pass.h"
@@ -24,6 +25,7 @@ typedef struct render_fog {
    * emitters' puffs at the time shown (render_fog_set_time); rbf_count of them */
   fog_rbf *rbfs;
   int rbf_count, rbf_capacity;
+  rbf_carrier *carrier; /* [fog] rbf_carrier = sim: the flow carrying the puffs (owned) */
   fog_quadric quadrics[FOG_MAX_QUADRICS]; /* params.model_quadrics, density_scale applied:
                                              model = quadric's, or those beside the model */
   fog_perlin perlin; /* model = perlin: params.model_perlin, its octaves uploaded */

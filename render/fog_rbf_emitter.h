@@ -33,4 +33,13 @@ int fog_rbf_emitter_count(const fog_rbf_emitter *e);
  * oldest first; returns count, or -1 when capacity is smaller. */
 int fog_rbf_emitter_puffs(const fog_rbf_emitter *e, double time, fog_rbf *out, int capacity);
 
+/* The pieces of a puff, for carriers other than the wind (app/rbf_carrier.h): the index k
+ * of the newest puff alive at `time` (the live ones are k - count + 1 .. k); puff k's
+ * birth time and birth position (the emitter plus its offset within `spread`); and its
+ * radius and density at `age` (centre untouched). */
+long fog_rbf_emitter_newest(const fog_rbf_emitter *e, double time);
+double fog_rbf_emitter_birth(const fog_rbf_emitter *e, long k);
+void fog_rbf_emitter_start(const fog_rbf_emitter *e, long k, double start[3]);
+void fog_rbf_emitter_shape(const fog_rbf_emitter *e, double age, fog_rbf *g);
+
 #endif

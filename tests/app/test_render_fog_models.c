@@ -238,38 +238,47 @@ int main(void) {
   }
 
   /* Fog that moves by itself (configs/rbf_emitter.ini: puffs from an emitter in the wind;
-   * configs/perlin_fog.ini: octaves of turbulence drifting): the frames change, and frame 3
-   * recorded alone (a farm's range) is frame 3 of the whole run, bit for bit (each frame a
-   * closed form of its time). */
-  static const char *const moving[2] = {"rbf_emitter", "perlin_fog"};
-  for (int c = 0; bin && c < 2; c++) {
+   * configs/perlin_fog.ini: octaves of turbulence drifting; configs/rbf_steam_eddies.ini:
+   * puffs carried by the simulation's flow): the frames change, and frame 3 recorded alone
+   * (a farm's range) is frame 3 of the whole run, bit for bit (each frame a closed form of
+   * its time, or the flow replayed from its start up to it), and so is `render --time 1`. */
+  static const char *const moving[3] = {"rbf_emitter", "perlin_fog", "rbf_steam_eddies"};
+  for (int c = 0; bin && c < 3; c++) {
     char command[1024], path[300];
     snprintf(command, sizeof command,
              "'%s' record configs/%s.ini --frames 3 --fps 2 --size 48x27 --out "
              "'%s/all' > /dev/null && '%s' record configs/%s.ini --frames 3-3 --fps 2 "
-             "--size 48x27 --out '%s/one' > /dev/null",
-             bin, moving[c], dir, bin, moving[c], dir);
+             "--size 48x27 --out '%s/one' > /dev/null && '%s' render configs/%s.ini "
+             "--time 1 --size 48x27 --out '%s/one/still.exr' > /dev/null",
+             bin, moving[c], dir, bin, moving[c], dir, bin, moving[c], dir);
     CHECK(system(command) == 0, "%s", command);
-    float *frames[3], *alone;
+    float *frames[3], *alone, *still;
     for (int n = 1; n <= 3; n++) {
       snprintf(path, sizeof path, "%s/all/frame.%04d.exr", dir, n);
       frames[n - 1] = load_exr_channel(path, "transmittance", 48, 27);
     }
     snprintf(path, sizeof path, "%s/one/frame.0003.exr", dir);
     alone = load_exr_channel(path, "transmittance", 48, 27);
-    double moved = 0.0, range = 0.0;
-    for (int k = 0; frames[0] && frames[2] && alone && k < 48 * 27; k++) {
+    snprintf(path, sizeof path, "%s/one/still.exr", dir);
+    still = load_exr_channel(path, "transmittance", 48, 27); /* render --time 1: frame 3's */
+    double moved = 0.0, range = 0.0, rendered = 0.0;
+    for (int k = 0; frames[0] && frames[2] && alone && still && k < 48 * 27; k++) {
       moved = fmax(moved, fabs((double)frames[2][k] - frames[0][k]));
       range = fmax(range, fabs((double)alone[k] - frames[2][k]));
+      rendered = fmax(rendered, fabs((double)still[k] - frames[2][k]));
     }
-    printf("%s: frame 3 differs from frame 1 by up to %.3f; recorded alone, by %g\n",
-           moving[c], moved, range);
-    CHECK(frames[0] && frames[2] && alone, "%s: the frames were not written", moving[c]);
+    printf("%s: frame 3 differs from frame 1 by up to %.3f; recorded alone, by %g; rendered "
+           "at its time, by %g\n", moving[c], moved, range, rendered);
+    CHECK(frames[0] && frames[2] && alone && still, "%s: the frames were not written",
+          moving[c]);
     CHECK(moved > 1e-3, "%s: the fog did not move (%.3e)", moving[c], moved);
     CHECK(range == 0.0, "%s: frame 3 alone differs from frame 3 of the run by %g", moving[c],
           range);
+    CHECK(rendered == 0.0, "%s: render --time 1 differs from frame 3 (time 1) by %g",
+          moving[c], rendered);
     for (int n = 0; n < 3; n++) free(frames[n]);
     free(alone);
+    free(still);
     snprintf(command, sizeof command, "rm -rf '%s/all' '%s/one'", dir, dir);
     CHECK(system(command) == 0, "cleanup");
   }

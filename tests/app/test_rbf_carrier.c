@@ -1,0 +1,169 @@
+/* RBF puffs carried by the simulation (app/rbf_carrier.h), against its documented meaning:
+ * - no flow (no [sim] wind, no turbulence): the puffs are the wind's closed form
+ *   (render/fog_rbf_emitter.h), centres to 1e-9, radii and densities bit for bit;
+ * - a uniform drift D: the wind's closed form with wind + D (the flow holds its mean at the
+ *   drift);
+ * - a turbulent flow: between two step times a puff moves by the step times the velocity at
+ *   its position, the velocity taken from a flow of our own (sim/fluid.h, the documented grid:
+ *   square cells, the domain's longer side RBF_CARRIER_GRID of them, world speeds over the
+ *   cell, stepped as often) sampled bilinearly and periodically here, plus the emitter's wind;
+ *   the eddies move the puffs off the wind's lines; and a time gives the same puffs bit for
+ *   bit whichever times were asked before it (forwards, backwards, or alone). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "app/rbf_carrier.h"
+#include "sim/sim.h"
+#include "test_util.h"
+
+enum { CAP = 512 };
+
+static const fog_rbf_emitter emitter = {.position = {30, 40, -50}, .rate = 20, .lifetime = 3,
+                                        .radius = 2, .density = 0.1, .spread = 3,
+                                        .diffusion = 0.5, .wind = {1.5, 0.8, -0.5}, .seed = 9};
+
+static rbf_carrier_desc desc_with(double wind_x, double wind_z, double turbulence) {
+  return (rbf_carrier_desc){.emitters = &emitter, .emitter_count = 1, .origin = {-200, -150},
+                            .size = {400, 300}, .grid = RBF_CARRIER_GRID,
+                            .step = RBF_CARRIER_STEP, .wind = {wind_x, wind_z},
+                            .turbulence = turbulence, .viscosity = 0.0, .seed = 5};
+}
+
+/* The carried puffs against the wind's closed form with the emitter's wind plus `drift`. */
+static void check_closed_form(const char *label, double drift_x, double drift_z,
+                              double tolerance) {
+  fog_error err = {0};
+  rbf_carrier_desc d = desc_with(drift_x, drift_z, 0.0);
+  rbf_carrier *c = rbf_carrier_create(&d, &err);
+  CHECK(c != NULL, "%s: %s", label, err.message);
+  if (!c) return;
+  fog_rbf_emitter moved = emitter;
+  moved.wind[0] += drift_x, moved.wind[2] += drift_z;
+  static fog_rbf got[CAP], want[CAP];
+  double worst = 0.0;
+  bool shapes = true;
+  for (int f = 0; f < 40; f++) {
+    const double t = 0.123 * f;
+    const int n = rbf_carrier_puffs(c, t, got, CAP, &err);
+    CHECK(n == fog_rbf_emitter_puffs(&moved, t, want, CAP) && n == 60, "%s: %d puffs at %g",
+          label, n, t);
+    for (int i = 0; i < n && i < 60; i++) {
+      for (int a = 0; a < 3; a++) worst = fmax(worst, fabs(got[i].centre[a] - want[i].centre[a]));
+      shapes = shapes && got[i].radius == want[i].radius && got[i].density == want[i].density;
+    }
+  }
+  printf("%s: centres within %.2e of the wind's closed form\n", label, worst);
+  CHECK(worst <= tolerance, "%s: centres off by %.3e", label, worst);
+  CHECK(shapes, "%s: radii or densities differ from the closed form's", label);
+  rbf_carrier_destroy(c);
+}
+
+/* Our own flow: the documented grid and units, sampled bilinearly and periodically. */
+typedef struct reference_flow {
+  fluid_sim *sim;
+  double cell;
+  int w, h;
+} reference_flow;
+
+static void reference_velocity(const reference_flow *r, const rbf_carrier_desc *d, double x,
+                               double z, double v[2]) {
+  double u = (x - d->origin[0]) / r->cell, s = (z - d->origin[1]) / r->cell;
+  int i = (int)floor(u), j = (int)floor(s);
+  double fx = u - i, fz = s - j;
+  i = ((i % r->w) + r->w) % r->w, j = ((j % r->h) + r->h) % r->h;
+  const int i1 = (i + 1) % r->w, j1 = (j + 1) % r->h;
+  const float *g[2] = {fluid_sim_velocity_x(r->sim), fluid_sim_velocity_z(r->sim)};
+  for (int a = 0; a < 2; a++)
+    v[a] = r->cell * ((1 - fz) * ((1 - fx) * g[a][j * r->w + i] + fx * g[a][j * r->w + i1]) +
+                      fz * ((1 - fx) * g[a][j1 * r->w + i] + fx * g[a][j1 * r->w + i1]));
+}
+
+static void check_turbulent_steps(void) {
+  fog_error err = {0};
+  const rbf_carrier_desc d = desc_with(4.0, -2.0, 12.0);
+  rbf_carrier *c = rbf_carrier_create(&d, &err);
+  CHECK(c != NULL, "turbulent: %s", err.message);
+  if (!c) return;
+  /* 400 x 300 at 64 cells on the longer side: cells of 6.25, 64 x 48 of them */
+  reference_flow r = {.cell = 400.0 / RBF_CARRIER_GRID, .w = 64, .h = 48};
+  r.sim = fluid_sim_create(&(fluid_sim_desc){.width = r.w, .height = r.h,
+                                             .dt = (float)RBF_CARRIER_STEP,
+                                             .wind_drift_x = (float)(4.0 / r.cell),
+                                             .wind_drift_z = (float)(-2.0 / r.cell),
+                                             .turbulence = (float)(12.0 / r.cell), .seed = 5},
+                           &err);
+  CHECK(r.sim != NULL, "reference flow: %s", err.message);
+  if (!r.sim) {
+    rbf_carrier_destroy(c);
+    return;
+  }
+  static fog_rbf before[CAP], after[CAP], alone[CAP], wind_only[CAP];
+  /* the flow starts at t = -lifetime; step s ends at -3 + s/30 */
+  const double start = -emitter.lifetime, dt = RBF_CARRIER_STEP;
+  long reference_steps = 0;
+  double worst_step = 0.0, worst_speed = 0.0, off_lines = 0.0;
+  for (int s = 100; s <= 160; s += 20) {
+    const double t0 = start + s * dt, t1 = start + (s + 1) * dt;
+    const int n0 = rbf_carrier_puffs(c, t0, before, CAP, &err);
+    const int n1 = rbf_carrier_puffs(c, t1, after, CAP, &err);
+    CHECK(n0 == 60 && n1 == 60, "turbulent: %d, %d puffs", n0, n1);
+    while (reference_steps < s) fluid_sim_step(r.sim, &err), reference_steps++;
+    /* the puffs alive at both times: after[i] is before[i + 1] (one puff born at most in a
+     * step at 20 a second: 1/30 s) when a puff was born between, else before[i] */
+    const int shift = fog_rbf_emitter_newest(&emitter, t1) - fog_rbf_emitter_newest(&emitter, t0);
+    for (int i = 0; i + shift < 60; i++) {
+      const fog_rbf *p = &before[i + shift], *q = &after[i];
+      double v[2];
+      reference_velocity(&r, &d, p->centre[0], p->centre[2], v);
+      const double want[3] = {p->centre[0] + dt * (v[0] + emitter.wind[0]),
+                              p->centre[1] + dt * emitter.wind[1],
+                              p->centre[2] + dt * (v[1] + emitter.wind[2])};
+      for (int a = 0; a < 3; a++) worst_step = fmax(worst_step, fabs(q->centre[a] - want[a]));
+      worst_speed = fmax(worst_speed, hypot(v[0] - 4.0, v[1] + 2.0));
+    }
+    /* the eddies carry puffs off the lines the drift and wind alone would give */
+    fog_rbf_emitter drifting = emitter;
+    drifting.wind[0] += 4.0, drifting.wind[2] -= 2.0;
+    fog_rbf_emitter_puffs(&drifting, t1, wind_only, CAP);
+    for (int i = 0; i < 60; i++)
+      off_lines = fmax(off_lines, hypot(after[i].centre[0] - wind_only[i].centre[0],
+                                        after[i].centre[2] - wind_only[i].centre[2]));
+  }
+  printf("turbulent: a step moves a puff as the reference flow says to %.2e; eddies up to "
+         "%.2f units/s; puffs up to %.2f off the drift's lines\n",
+         worst_step, worst_speed, off_lines);
+  CHECK(worst_step <= 1e-12, "turbulent: a step's move is off by %.3e", worst_step);
+  CHECK(worst_speed > 1.0, "turbulent: the flow has no eddies (%.3f)", worst_speed);
+  CHECK(off_lines > 0.5, "turbulent: the puffs follow the drift alone (%.3f)", off_lines);
+
+  /* Each time as a carrier of its own gives it, asked after a later time (so from the start
+   * again) and after an earlier one. */
+  const double times[3] = {2.71, 1.0, 2.71};
+  bool same = true;
+  for (int i = 0; i < 3; i++) {
+    rbf_carrier *fresh = rbf_carrier_create(&d, &err);
+    const int n = rbf_carrier_puffs(c, times[i], after, CAP, &err);
+    const int m = fresh ? rbf_carrier_puffs(fresh, times[i], alone, CAP, &err) : -1;
+    CHECK(n == 60 && m == 60, "turbulent: %d and %d puffs at %g", n, m, times[i]);
+    same = same && memcmp(after, alone, sizeof(fog_rbf) * 60) == 0;
+    rbf_carrier_destroy(fresh);
+  }
+  CHECK(same, "turbulent: the puffs at a time depend on the times asked before it");
+  const double t = 2.71;
+  CHECK(rbf_carrier_puffs(c, t, after, 59, &err) == -1, "too little room is refused");
+  rbf_carrier_destroy(c);
+  fluid_sim_destroy(r.sim);
+}
+
+int main(void) {
+  check_closed_form("no flow", 0.0, 0.0, 1e-9);
+  check_closed_form("uniform drift", 3.0, -1.5, 1e-5);
+  check_turbulent_steps();
+  fog_error err = {0};
+  rbf_carrier_desc bad = desc_with(0, 0, 0);
+  bad.size[1] = 0.0;
+  CHECK(rbf_carrier_create(&bad, &err) == NULL && strstr(err.message, "size"),
+        "a domain of no extent is refused naming it: '%s'", err.message);
+  return test_finish("test_rbf_carrier");
+}
