@@ -116,15 +116,13 @@ int cmd_render(int argc, char **argv) {
     fprintf(stderr, "fogpipe render: out of memory for a %dx%d image\n", width, height);
     goto done;
   }
-  /* The scene as its files hold it, no simulation step: frame 1 (time 0), or at --time T
-   * frame 2 at 1/T frames a second (time T; a render session draws any frame directly). */
+  /* The scene as its files hold it, no simulation step: frame 1, at time 0 or --time. */
   fog_error err = {0};
   player *frames = player_create(&(player_desc){.config = &cfg, .width = width,
-                                                .height = height,
-                                                .fps = time > 0.0 ? 1.0 / time : 24.0},
+                                                .height = height, .fps = 24.0,
+                                                .start_time = time},
                                  &err);
-  const int n = time > 0.0 ? 2 : 1;
-  if (!frames || player_skip(frames, n - 1, &err) || player_frame(frames, n, &frame, &err)) {
+  if (!frames || player_frame(frames, 1, &frame, &err)) {
     fprintf(stderr, "fogpipe render: %s\n", err.message);
     player_destroy(frames);
     goto done;

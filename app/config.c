@@ -5,6 +5,7 @@
  * the handler right after reading a key's line, so the count is that key's line. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "app/config.h"
+#include "app/rbf_carrier.h"
 
 #include "render/render.h"
 #include "sim/sim.h"
@@ -367,6 +368,7 @@ static int handle(void *user, const char *section, const char *key, const char *
   scene_config *cfg = s->cfg;
   if (!strcmp(section, "fog") && !strcmp(key, "profile")) cfg->fog.profile_set = true;
   if (!strcmp(section, "fog") && !strcmp(key, "model")) cfg->fog.model_line = s->line;
+  if (!strcmp(section, "fog") && !strcmp(key, "rbf_carrier")) cfg->fog.rbf_carrier_line = s->line;
   if (!strcmp(section, "light") && !strcmp(key, "lamp_integral")) cfg->lamp_integral_line = s->line;
   if (!strcmp(section, "box")) {
     if (!strcmp(key, "origin")) cfg->box.origin_set = true;
@@ -918,6 +920,16 @@ static int check_models(parse_state *ps) {
          "'rbf_emitter = ...' line");
     return 1;
   }
+  for (int e = 0; cfg->fog.rbf_carrier == SCENE_RBF_CARRIER_SIM &&
+                  e < cfg->fog.rbf_emitter_count; e++)
+    if (cfg->fog.rbf_emitters[e].lifetime > RBF_CARRIER_MAX_LIFETIME) {
+      s.line = cfg->fog.rbf_carrier_line;
+      fail(&s, "fog", "rbf_carrier", "sim replays the flow from minus the longest LIFETIME "
+           "every time the fog is made: emitter %d's %g s is more than the %g s allowed with "
+           "it (use rbf_carrier = wind, or a shorter LIFETIME)", e + 1,
+           cfg->fog.rbf_emitters[e].lifetime, RBF_CARRIER_MAX_LIFETIME);
+      return 1;
+    }
   if (cfg->fog.model == FOG_MODEL_QUADRIC && cfg->fog.quadric_count == 0) {
     s.line = cfg->fog.model_line;
     fail(&s, "fog", "model", "quadric needs at least one 'quadric = SHAPE ...' line");

@@ -93,6 +93,7 @@ typedef struct scene_fog_config {
   fog_rbf_emitter rbf_emitters[SCENE_CONFIG_MAX_EMITTERS];
   int rbf_emitter_count;
   scene_rbf_carrier rbf_carrier; /* what carries the puffs */
+  int rbf_carrier_line;          /* the line that set it (0: default), for errors */
   double rbf_base;
   /* model = quadric: the volumes (densities before density_scale), from `quadric = SHAPE
    * ...` lines (docs/config.md), held as their ten coefficients and box. */

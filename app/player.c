@@ -13,7 +13,7 @@
 
 struct player {
   scene_config config;
-  double fps;
+  double fps, start_time;
   /* simulated: the pipeline and its context, and the fixed camera */
   gl_context *gl;
   pipeline *pipe;
@@ -67,10 +67,10 @@ static int create_session(player *p, const player_desc *desc, fog_error *err) {
 }
 
 player *player_create(const player_desc *desc, fog_error *err) {
-  if (!(desc->width > 0 && desc->height > 0 && desc->fps > 0)) {
+  if (!(desc->width > 0 && desc->height > 0 && desc->fps > 0 && desc->start_time >= 0)) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "player: %d x %d pixels at %g frames per second: expected sizes and a rate > 0",
-             desc->width, desc->height, desc->fps);
+             "player: %d x %d pixels at %g frames per second from %g s: expected sizes and a "
+             "rate > 0, a time >= 0", desc->width, desc->height, desc->fps, desc->start_time);
     return NULL;
   }
   player *p = calloc(1, sizeof *p);
@@ -80,6 +80,7 @@ player *player_create(const player_desc *desc, fog_error *err) {
   }
   p->config = *desc->config;
   p->fps = desc->fps;
+  p->start_time = desc->start_time;
   scene_config_camera(&p->config, &p->cam); /* the session's scene takes the same one */
   /* (a fogmap config without a fogmap simulates from the emitters alone) */
   const bool simulated = desc->play && fog_model_table[p->config.fog.model].pyramid;
@@ -115,20 +116,20 @@ int player_frame(player *p, int n, const frame_pixels *out, fog_error *err) {
     return 0;
   }
   const scene_fog_config *f = &p->config.fog;
+  const double time = p->start_time + (n - 1) / p->fps;
   {
     fog_error terr = {0};
-    if (render_session_set_time(p->session, (n - 1) / p->fps, &terr)) {
+    if (render_session_set_time(p->session, time, &terr)) {
       fog_error_pass(err, &terr);
       return 1;
     }
   }
   if (p->sequence.count) {
-    /* Output frame n shows time (n - 1) / fps, between two VDB frames at vdb_fps, as a
+    /* Output frame n shows its time, between two VDB frames at vdb_fps, as a
      * VDB fogmap sequence plays (vdb_sequence_position). */
     int a = 0, b = 0;
     double w = 0.0;
-    vdb_sequence_position((n - 1) / p->fps * f->vdb_fps, p->sequence.count, f->vdb_loop, &a,
-                          &b, &w);
+    vdb_sequence_position(time * f->vdb_fps, p->sequence.count, f->vdb_loop, &a, &b, &w);
     if (render_fog_set_volume_time(render_session_fog(p->session), &p->config, &p->sequence,
                                    a, b, w, err))
       return 1;

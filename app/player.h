@@ -32,6 +32,9 @@ typedef struct player_desc {
   const scene_config *config; /* copied */
   int width, height;          /* > 0 */
   double fps;                 /* output frames per second of scene time, > 0 */
+  /* The scene time of frame 1, seconds (>= 0), for a source that is not simulated: frame n
+   * shows start_time + (n - 1) / fps (`render --time`). A simulation starts at 0. */
+  double start_time;
   bool play;                  /* the scene's time passes: a fogmap simulates, a volume plays */
   bool synchronous;           /* the pipeline's CPU stages on the GL thread */
 } player_desc;

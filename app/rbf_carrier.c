@@ -81,14 +81,14 @@ static void puff_velocity(const rbf_carrier *c, const fog_rbf_emitter *e, const 
   velocity[2] = flow[1] + e->wind[2];
 }
 
-/* The centre of puff `slot` (puff k, born at `born`) at time t, the flow at time `now`
- * (<= t): its displacement at now plus its velocity times the time since now (or since its
- * birth, for a puff born after now: then it has no displacement yet). */
 /* Puff k's slot: k % count, k may be negative (puffs born before the flow's start). */
 static carried_puff *slot_of(const carried_emitter *ce, long k) {
   return &ce->ring[((k % ce->count) + ce->count) % ce->count];
 }
 
+/* The centre of puff k (born at `born`) at time t, the flow at time `now` (<= t): its
+ * displacement at now plus its velocity times the time since now (or since its birth, for a
+ * puff born after now: then it has no displacement yet). */
 static void puff_centre(const rbf_carrier *c, const carried_emitter *ce, long k, double born,
                         double now, double t, double centre[3]) {
   const carried_puff *p = slot_of(ce, k);
@@ -101,9 +101,19 @@ static void puff_centre(const rbf_carrier *c, const carried_emitter *ce, long k,
   for (int a = 0; a < 3; a++) centre[a] += velocity[a] * since;
 }
 
+/* Back to the start: the flow's first state, no puff carried yet. */
+static void restart(rbf_carrier *c) {
+  fluid_sim_reset(c->flow);
+  c->steps = 0;
+  for (int e = 0; e < c->emitter_count; e++)
+    for (int i = 0; i < c->emitters[e].count; i++) c->emitters[e].ring[i].k = NO_PUFF;
+}
+
 /* One step of the puffs (by the flow as it is now) and then of the flow. */
 static int step(rbf_carrier *c, fog_error *err) {
-  const double now = rbf_carrier_time(c), next = now + c->desc.step;
+  /* both as rbf_carrier_time computes a step's time, the one way every path takes */
+  const double now = rbf_carrier_time(c);
+  const double next = c->start + (double)(c->steps + 1) * c->desc.step;
   for (int e = 0; e < c->emitter_count; e++) {
     carried_emitter *ce = &c->emitters[e];
     const long newest = fog_rbf_emitter_newest(&ce->emitter, next);
@@ -119,17 +129,12 @@ static int step(rbf_carrier *c, fog_error *err) {
     }
   }
   fog_error serr = {0};
-  if (fluid_sim_step(c->flow, &serr)) return fog_error_wrap(err, &serr, "rbf carrier: ");
+  if (fluid_sim_step(c->flow, &serr)) {
+    restart(c); /* the puffs moved but the flow did not: start again rather than drift */
+    return fog_error_wrap(err, &serr, "rbf carrier: ");
+  }
   c->steps++;
   return 0;
-}
-
-/* Back to the start: the flow's first state, no puff carried yet. */
-static void restart(rbf_carrier *c) {
-  fluid_sim_reset(c->flow);
-  c->steps = 0;
-  for (int e = 0; e < c->emitter_count; e++)
-    for (int i = 0; i < c->emitters[e].count; i++) c->emitters[e].ring[i].k = NO_PUFF;
 }
 
 rbf_carrier *rbf_carrier_create(const rbf_carrier_desc *d, fog_error *err) {
@@ -181,12 +186,18 @@ rbf_carrier *rbf_carrier_create(const rbf_carrier_desc *d, fog_error *err) {
   c->start = -longest;
   /* The flow in cells: the world's speeds over the cell size, viscosity over its square. */
   fog_error serr = {0};
+  /* The turbulence's shape set here, not left to the solver's zeros: its largest eddies a
+   * quarter of the shorter side, Kolmogorov's -5/3 spectrum, and the fluid's fluctuations
+   * pulled toward it at 2 per second (sim/fluid.h). */
   c->flow = fluid_sim_create(
       &(fluid_sim_desc){.width = c->width, .height = c->height, .dt = (float)d->step,
                         .viscosity = (float)(d->viscosity / (c->cell * c->cell)),
                         .wind_drift_x = (float)(d->wind[0] / c->cell),
                         .wind_drift_z = (float)(d->wind[1] / c->cell),
                         .turbulence = (float)(d->turbulence / c->cell),
+                        .turbulence_scale = 0.25f * (float)(c->width < c->height ? c->width
+                                                                                 : c->height),
+                        .turbulence_slope = -5.0f / 3.0f, .wind_coupling = 2.0f,
                         .seed = d->seed},
       &serr);
   if (!c->flow) {
@@ -208,12 +219,13 @@ void rbf_carrier_destroy(rbf_carrier *c) {
 
 int rbf_carrier_puffs(rbf_carrier *c, double time, fog_rbf *out, int capacity, fog_error *err) {
   if (c->puff_count > capacity || !(time >= 0.0)) {
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "rbf carrier: %d puffs at time %g into room for %d",
-             c->puff_count, time, capacity);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "rbf carrier: %s (%d puffs, room for %d, time %g)",
+             time >= 0.0 ? "too little room" : "a time before 0", c->puff_count, capacity,
+             time);
     return -1;
   }
-  /* the last step at or before `time` (a step's time is start + n step exactly as computed
-   * here and in step(), so whichever way a time is reached it is the same step) */
+  /* the last step at or before `time`: one expression for every caller, so whichever way a
+   * time is reached it is the same step */
   const long target = (long)floor((time - c->start) / c->desc.step + 1e-9);
   if (target < c->steps) restart(c);
   while (c->steps < target)

@@ -24,20 +24,28 @@
 #include "render/fog_rbf_emitter.h"
 
 /* The flow's grid (cells on the longer side of the domain) and step: fine enough for eddies
- * a quarter of the domain across, cheap enough to replay a minute in a second. */
+ * a quarter of the domain across (16 cells), cheap enough to replay a minute in a second. */
 #define RBF_CARRIER_GRID 64
 #define RBF_CARRIER_STEP (1.0 / 30.0)
+/* The longest LIFETIME a config may give an emitter whose puffs the flow carries: the fog's
+ * every making replays the flow for that long first (9000 steps, ~4 s here). */
+#define RBF_CARRIER_MAX_LIFETIME 300.0
 
 typedef struct rbf_carrier_desc {
   const fog_rbf_emitter *emitters; /* copied at create */
   int emitter_count;               /* >= 1 */
-  /* The flow's domain: world x, z of its corner and its extent (> 0), periodic (what leaves
-   * one side enters the other); puffs outside it take the velocity of the periodic copy. */
+  /* The flow's domain: world x, z of its corner and its extent (> 0). Square cells cover
+   * it, the longer side `grid` of them and each side's count rounded up to an even one of 8
+   * or more, and the flow is periodic over those cells (what leaves one side enters the
+   * other; the period exceeds the extent by less than two cells): puffs outside take the
+   * velocity of the periodic copy. */
   double origin[2], size[2];
   int grid;         /* cells on the longer side (>= 8): RBF_CARRIER_GRID */
   double step;      /* seconds (> 0): RBF_CARRIER_STEP */
   double wind[2];   /* the flow's mean drift, world units per second (x, z) */
-  double turbulence;/* rms speed of the synthesised turbulence, world units per second (>= 0) */
+  double turbulence;/* rms speed of the synthesised turbulence, world units per second (>= 0):
+                       its largest eddies a quarter of the shorter side across, Kolmogorov's
+                       -5/3 spectrum, the flow pulled toward it at 2 a second (sim/wind.h) */
   double viscosity; /* kinematic, world units^2 per second (>= 0) */
   uint64_t seed;    /* the turbulence's phases */
 } rbf_carrier_desc;

@@ -1,6 +1,7 @@
 /* The static fog of a scene config (render_fog.h). */
 #include "app/render_fog.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -278,8 +279,6 @@ static int render_volume_fog(render_fog *fog, const scene_config *cfg, fog_error
   return status;
 }
 
-/* An analytic model of the ladder (docs/architecture.md, the model table): no fogmap and no transform, the pass's
- * parameters alone (render/fog_models.def lists the keys each reads; docs/config.md what they mean). */
 /* [fog] rbf_carrier = sim: the emitters' puffs at `time` carried by the [sim] flow over the
  * terrain (app/rbf_carrier.h), after the rbf lines in fog->rbfs (room made); the flow made
  * again when the config's emitters or [sim] keys changed. Returns their count, -1 on error. */
@@ -388,6 +387,9 @@ static int perlin_fog(render_fog *fog, const scene_config *cfg, fog_error *err) 
   return fog_pass_upload_perlin(fog->pass, &fog->perlin, err);
 }
 
+/* An analytic model of the ladder (docs/architecture.md, the model table): no fogmap and no
+ * transform, the pass's parameters alone (render/fog_models.def lists the keys each reads;
+ * docs/config.md what they mean). */
 static int render_analytic_fog(render_fog *fog, const scene_config *cfg, fog_error *err) {
   const scene_fog_config *f = &cfg->fog;
   bool rbf = f->model == FOG_MODEL_RBF;
@@ -410,7 +412,10 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, fog_err
       .lamps = scene_config_fog_lamps(cfg),
       .walk = scene_config_walk(cfg),
   };
-  if (rbf && rbfs_at(fog, cfg, 0.0, err)) return 1;
+  /* a carrier kept from the fog this one replaces (render_fog_remake) goes on from its own
+   * time, not from 0: asking 0 would replay its flow from the start */
+  const double time = fog->carrier ? fmax(0.0, rbf_carrier_time(fog->carrier)) : 0.0;
+  if (rbf && rbfs_at(fog, cfg, time, err)) return 1;
   if (!(fog->pass = fog_pass_create(err)) ||
       (uses_octaves(cfg) && perlin_fog(fog, cfg, err)))
     return 1;
@@ -432,16 +437,28 @@ static void render_fog_beside(render_fog *fog, const scene_config *cfg) {
   fog->params.model_quadric_count = f->quadric_count;
 }
 
-static int render_fog_create_model(render_fog *fog, const scene_config *cfg, fog_error *err);
+static int render_fog_create_model(render_fog *fog, const scene_config *cfg, rbf_carrier *kept,
+                                   fog_error *err);
 
 int render_fog_create(render_fog *fog, const scene_config *cfg, fog_error *err) {
-  int status = render_fog_create_model(fog, cfg, err);
+  int status = render_fog_create_model(fog, cfg, NULL, err);
   if (!status) render_fog_beside(fog, cfg);
   return status;
 }
 
-static int render_fog_create_model(render_fog *fog, const scene_config *cfg, fog_error *err) {
-  *fog = (render_fog){0};
+int render_fog_remake(render_fog *fog, const scene_config *cfg, fog_error *err) {
+  rbf_carrier *kept = fog->carrier;
+  fog->carrier = NULL;
+  render_fog_destroy(fog);
+  int status = render_fog_create_model(fog, cfg, kept, err);
+  if (!status) render_fog_beside(fog, cfg);
+  return status;
+}
+
+/* kept: a carrier of RBF puffs the fog takes over (NULL: none). */
+static int render_fog_create_model(render_fog *fog, const scene_config *cfg, rbf_carrier *kept,
+                                   fog_error *err) {
+  *fog = (render_fog){.carrier = kept};
   const scene_fog_config *f = &cfg->fog;
   if (f->model == FOG_MODEL_VOLUME) {
     int status = render_volume_fog(fog, cfg, err);

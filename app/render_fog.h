@@ -59,6 +59,10 @@ int render_fog_create(render_fog *fog, const scene_config *cfg, fog_error *err);
 int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap *map,
                           fog_error *err);
 void render_fog_destroy(render_fog *fog);
+/* The fog of cfg in place of fog's (destroyed; on failure fog is as destroyed), keeping the
+ * flow that carries RBF puffs ([fog] rbf_carrier = sim): the new fog goes on from the flow's
+ * time instead of replaying it from its start, as a window's edits need. */
+int render_fog_remake(render_fog *fog, const scene_config *cfg, fog_error *err);
 /* model = volume: cfg->fog.vdb as a sequence (vdb_sequence_destroy when done). Errors
  * name [fog] vdb's file:line. */
 int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, fog_error *err);
@@ -77,9 +81,11 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
 int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg, const vdb_sequence *seq,
                                int a, int b, double w, fog_error *err);
 /* Whether the fog changes with time by itself: model = rbf with emitters (puffs carried by
- * the wind), model = perlin (its octaves drift). */
+ * the wind or the simulation's flow), model = perlin (its octaves drift). */
 bool render_fog_animated(const scene_config *cfg);
-/* model = rbf with emitters: the puffs at `time` seconds from now on; model = perlin: its
+/* model = rbf with emitters: the puffs at `time` seconds from now on (carried by the flow,
+ * [fog] rbf_carrier = sim: a time before the last asked replays the flow from its start,
+ * app/rbf_carrier.h); model = perlin: its
  * octaves where they have drifted by then (and the sun's volume
  * of the fog's shadow, where the model has one). For the fog made by render_fog_create from
  * cfg; nothing to do for other fog. */

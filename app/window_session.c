@@ -257,9 +257,8 @@ static void copy_light(scene_config *to, const scene_config *from) {
 
 /* The fog of `shown` in place of the one shown, lit by the scene pass's shadow maps. */
 static int make_fog(view_state *v, const scene_config *shown, fog_error *err) {
-  render_fog_destroy(&v->fog);
   v->has_fog = false;
-  if (render_fog_create(&v->fog, shown, err)) return 1;
+  if (render_fog_remake(&v->fog, shown, err)) return 1;
   render_fog_set_shafts(&v->fog, shown, scene_pass_sun_shadow(v->scene));
   render_fog_set_lamp_shadows(&v->fog, scene_pass_lamp_shadows(v->scene));
   v->has_fog = true;

@@ -3,12 +3,15 @@
  *   (render/fog_rbf_emitter.h), centres to 1e-9, radii and densities bit for bit;
  * - a uniform drift D: the wind's closed form with wind + D (the flow holds its mean at the
  *   drift);
- * - a turbulent flow: between two step times a puff moves by the step times the velocity at
- *   its position, the velocity taken from a flow of our own (sim/fluid.h, the documented grid:
- *   square cells, the domain's longer side RBF_CARRIER_GRID of them, world speeds over the
- *   cell, stepped as often) sampled bilinearly and periodically here, plus the emitter's wind;
- *   the eddies move the puffs off the wind's lines; and a time gives the same puffs bit for
- *   bit whichever times were asked before it (forwards, backwards, or alone). */
+ * - a turbulent flow: between two step times (and to a time between them) a puff moves by
+ *   the time times the velocity at its position, the velocity taken from a flow of our own
+ *   (sim/fluid.h, the documented grid: square cells, the domain's longer side
+ *   RBF_CARRIER_GRID of them, world speeds over the cell and viscosity over its square, the
+ *   largest eddies a quarter of the shorter side, stepped as often) sampled bilinearly and
+ *   periodically here, plus the emitter's wind: two emitters of different lifetimes whose
+ *   puffs cross the domain's edges; the eddies move the puffs off the wind's lines; and a time
+ *   gives the same puffs bit for bit whichever times were asked before it (forwards,
+ *   backwards, or alone). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -79,61 +82,103 @@ static void reference_velocity(const reference_flow *r, const rbf_carrier_desc *
                       fz * ((1 - fx) * g[a][j1 * r->w + i] + fx * g[a][j1 * r->w + i1]));
 }
 
+/* Two emitters near the domain's edges, their puffs crossing them (the flow is periodic:
+ * x past 200 and z below -150 wrap), the second living shorter than the first (the flow starts
+ * at minus the longer lifetime). */
+static const fog_rbf_emitter edge_emitters[2] = {
+    {.position = {185, 40, 20}, .rate = 20, .lifetime = 3, .radius = 2, .density = 0.1,
+     .spread = 3, .diffusion = 0.5, .wind = {6, 0.8, -0.5}, .seed = 9},
+    {.position = {-20, 10, -140}, .rate = 10, .lifetime = 2, .radius = 1, .density = 0.2,
+     .spread = 2, .diffusion = 0.0, .wind = {-1, 0.2, -8}, .seed = 4}};
+enum { EDGE_PUFFS = 60 + 20 };
+
+/* A puff's move over `span` seconds from p by the reference flow plus its emitter's wind. */
+static double move_error(const reference_flow *r, const rbf_carrier_desc *d,
+                         const fog_rbf_emitter *e, const fog_rbf *p, const fog_rbf *q,
+                         double span, double *speed) {
+  double v[2], worst = 0.0;
+  reference_velocity(r, d, p->centre[0], p->centre[2], v);
+  const double want[3] = {p->centre[0] + span * (v[0] + e->wind[0]),
+                          p->centre[1] + span * e->wind[1],
+                          p->centre[2] + span * (v[1] + e->wind[2])};
+  for (int a = 0; a < 3; a++) worst = fmax(worst, fabs(q->centre[a] - want[a]));
+  *speed = fmax(*speed, hypot(v[0] - 4.0, v[1] + 2.0));
+  return worst;
+}
+
 static void check_turbulent_steps(void) {
   fog_error err = {0};
-  const rbf_carrier_desc d = desc_with(4.0, -2.0, 12.0);
+  rbf_carrier_desc d = desc_with(4.0, -2.0, 12.0);
+  d.emitters = edge_emitters, d.emitter_count = 2;
+  d.viscosity = 30.0; /* world units^2 a second: 30 / 6.25^2 in the flow's cells */
   rbf_carrier *c = rbf_carrier_create(&d, &err);
   CHECK(c != NULL, "turbulent: %s", err.message);
   if (!c) return;
-  /* 400 x 300 at 64 cells on the longer side: cells of 6.25, 64 x 48 of them */
+  /* 400 x 300 at 64 cells on the longer side: cells of 6.25, 64 x 48 of them; the
+   * turbulence's largest eddies 12 cells (a quarter of 48), Kolmogorov's slope, the
+   * fluctuations pulled toward it at 2 a second (app/rbf_carrier.h) */
   reference_flow r = {.cell = 400.0 / RBF_CARRIER_GRID, .w = 64, .h = 48};
   r.sim = fluid_sim_create(&(fluid_sim_desc){.width = r.w, .height = r.h,
                                              .dt = (float)RBF_CARRIER_STEP,
+                                             .viscosity = (float)(30.0 / (r.cell * r.cell)),
                                              .wind_drift_x = (float)(4.0 / r.cell),
                                              .wind_drift_z = (float)(-2.0 / r.cell),
-                                             .turbulence = (float)(12.0 / r.cell), .seed = 5},
+                                             .turbulence = (float)(12.0 / r.cell),
+                                             .turbulence_scale = 12.0f,
+                                             .turbulence_slope = -5.0f / 3.0f,
+                                             .wind_coupling = 2.0f, .seed = 5},
                            &err);
   CHECK(r.sim != NULL, "reference flow: %s", err.message);
   if (!r.sim) {
     rbf_carrier_destroy(c);
     return;
   }
-  static fog_rbf before[CAP], after[CAP], alone[CAP], wind_only[CAP];
-  /* the flow starts at t = -lifetime; step s ends at -3 + s/30 */
-  const double start = -emitter.lifetime, dt = RBF_CARRIER_STEP;
+  static fog_rbf before[CAP], after[CAP], between[CAP], alone[CAP], wind_only[CAP];
+  /* the flow starts at t = -3 (the longer lifetime); step s ends at -3 + s/30 */
+  const double start = -3.0, dt = RBF_CARRIER_STEP;
   long reference_steps = 0;
-  double worst_step = 0.0, worst_speed = 0.0, off_lines = 0.0;
+  double worst_step = 0.0, worst_between = 0.0, worst_speed = 0.0, off_lines = 0.0;
+  int wrapped = 0;
   for (int s = 100; s <= 160; s += 20) {
-    const double t0 = start + s * dt, t1 = start + (s + 1) * dt;
+    const double t0 = start + s * dt, t1 = start + (s + 1) * dt, tm = t0 + 0.4 * dt;
     const int n0 = rbf_carrier_puffs(c, t0, before, CAP, &err);
+    const int nm = rbf_carrier_puffs(c, tm, between, CAP, &err);
     const int n1 = rbf_carrier_puffs(c, t1, after, CAP, &err);
-    CHECK(n0 == 60 && n1 == 60, "turbulent: %d, %d puffs", n0, n1);
+    CHECK(n0 == EDGE_PUFFS && nm == EDGE_PUFFS && n1 == EDGE_PUFFS, "turbulent: %d, %d, %d "
+          "puffs", n0, nm, n1);
     while (reference_steps < s) fluid_sim_step(r.sim, &err), reference_steps++;
-    /* the puffs alive at both times: after[i] is before[i + 1] (one puff born at most in a
-     * step at 20 a second: 1/30 s) when a puff was born between, else before[i] */
-    const int shift = fog_rbf_emitter_newest(&emitter, t1) - fog_rbf_emitter_newest(&emitter, t0);
-    for (int i = 0; i + shift < 60; i++) {
-      const fog_rbf *p = &before[i + shift], *q = &after[i];
-      double v[2];
-      reference_velocity(&r, &d, p->centre[0], p->centre[2], v);
-      const double want[3] = {p->centre[0] + dt * (v[0] + emitter.wind[0]),
-                              p->centre[1] + dt * emitter.wind[1],
-                              p->centre[2] + dt * (v[1] + emitter.wind[2])};
-      for (int a = 0; a < 3; a++) worst_step = fmax(worst_step, fabs(q->centre[a] - want[a]));
-      worst_speed = fmax(worst_speed, hypot(v[0] - 4.0, v[1] + 2.0));
+    /* the puffs alive at both times: emitter by emitter, oldest first, so puff i at the
+     * later time is puff i + (puffs born between) at the earlier */
+    for (int e = 0, first = 0; e < 2; first += fog_rbf_emitter_count(&edge_emitters[e]), e++) {
+      const fog_rbf_emitter *em = &edge_emitters[e];
+      const int count = fog_rbf_emitter_count(em);
+      const int shift = fog_rbf_emitter_newest(em, t1) - fog_rbf_emitter_newest(em, t0);
+      const int shift_m = fog_rbf_emitter_newest(em, tm) - fog_rbf_emitter_newest(em, t0);
+      for (int i = 0; i + shift < count; i++)
+        worst_step = fmax(worst_step, move_error(&r, &d, em, &before[first + i + shift],
+                                                 &after[first + i], dt, &worst_speed));
+      for (int i = 0; i + shift_m < count; i++)
+        worst_between = fmax(worst_between, move_error(&r, &d, em, &before[first + i + shift_m],
+                                                       &between[first + i], 0.4 * dt,
+                                                       &worst_speed));
+      for (int i = 0; i < count; i++)
+        wrapped += after[first + i].centre[0] > 200.0 || after[first + i].centre[2] < -150.0;
     }
     /* the eddies carry puffs off the lines the drift and wind alone would give */
-    fog_rbf_emitter drifting = emitter;
+    fog_rbf_emitter drifting = edge_emitters[0];
     drifting.wind[0] += 4.0, drifting.wind[2] -= 2.0;
     fog_rbf_emitter_puffs(&drifting, t1, wind_only, CAP);
     for (int i = 0; i < 60; i++)
       off_lines = fmax(off_lines, hypot(after[i].centre[0] - wind_only[i].centre[0],
                                         after[i].centre[2] - wind_only[i].centre[2]));
   }
-  printf("turbulent: a step moves a puff as the reference flow says to %.2e; eddies up to "
-         "%.2f units/s; puffs up to %.2f off the drift's lines\n",
-         worst_step, worst_speed, off_lines);
+  printf("turbulent: a step moves a puff as the reference flow says to %.2e, part of a step "
+         "to %.2e (%d puffs past the domain's edge); eddies up to %.2f units/s; puffs up to "
+         "%.2f off the drift's lines\n",
+         worst_step, worst_between, wrapped, worst_speed, off_lines);
   CHECK(worst_step <= 1e-12, "turbulent: a step's move is off by %.3e", worst_step);
+  CHECK(worst_between <= 1e-12, "turbulent: a part step's move is off by %.3e", worst_between);
+  CHECK(wrapped > 20, "turbulent: only %d puffs crossed the domain's edge", wrapped);
   CHECK(worst_speed > 1.0, "turbulent: the flow has no eddies (%.3f)", worst_speed);
   CHECK(off_lines > 0.5, "turbulent: the puffs follow the drift alone (%.3f)", off_lines);
 
@@ -145,13 +190,16 @@ static void check_turbulent_steps(void) {
     rbf_carrier *fresh = rbf_carrier_create(&d, &err);
     const int n = rbf_carrier_puffs(c, times[i], after, CAP, &err);
     const int m = fresh ? rbf_carrier_puffs(fresh, times[i], alone, CAP, &err) : -1;
-    CHECK(n == 60 && m == 60, "turbulent: %d and %d puffs at %g", n, m, times[i]);
-    same = same && memcmp(after, alone, sizeof(fog_rbf) * 60) == 0;
+    CHECK(n == EDGE_PUFFS && m == EDGE_PUFFS, "turbulent: %d and %d puffs at %g", n, m,
+          times[i]);
+    same = same && memcmp(after, alone, sizeof(fog_rbf) * EDGE_PUFFS) == 0;
     rbf_carrier_destroy(fresh);
   }
   CHECK(same, "turbulent: the puffs at a time depend on the times asked before it");
-  const double t = 2.71;
-  CHECK(rbf_carrier_puffs(c, t, after, 59, &err) == -1, "too little room is refused");
+  CHECK(rbf_carrier_puffs(c, 2.71, after, EDGE_PUFFS - 1, &err) == -1,
+        "too little room is refused");
+  CHECK(rbf_carrier_puffs(c, -0.5, after, CAP, &err) == -1 && strstr(err.message, "before 0"),
+        "a time before 0 is refused saying so: '%s'", err.message);
   rbf_carrier_destroy(c);
   fluid_sim_destroy(r.sim);
 }
