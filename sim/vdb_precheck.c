@@ -496,7 +496,7 @@ static int decode_chunk(vdb_in *in, int blosc, uint64_t size, uint64_t bytes, co
                     in->path);
   }
   const uint64_t chunk = in->pos;
-  char phrase[256];
+  char phrase[384]; /* the longest `what` (223 bytes) and the words around it */
   snprintf(phrase, sizeof phrase, "the %s chunk of %" PRIu64 " bytes of %s", kind, size, what);
   int bad = get(in, packed, size, phrase);
   long long got = -1;
@@ -527,7 +527,7 @@ static int decode_chunk(vdb_in *in, int blosc, uint64_t size, uint64_t bytes, co
  * trusts the header. With `decode` (the topology's chunks) the chunk is decoded too. */
 static int read_chunk(vdb_in *in, uint32_t compression, uint64_t bytes, int decode,
                       const char *what) {
-  char phrase[256];
+  char phrase[384]; /* the longest `what` (223 bytes) and the words around it */
   if (!(compression & (COMPRESS_BLOSC | COMPRESS_ZIP))) {
     snprintf(phrase, sizeof phrase, "%s (%" PRIu64 " bytes)", what, bytes);
     return skip(in, bytes, phrase);
