@@ -1356,6 +1356,11 @@ fog_lamp_method scene_live_lamp_method(fog_lamp_method method) {
   return method;
 }
 
+void scene_config_live_software(scene_config *cfg) {
+  cfg->terrain.lod_error = scene_live_terrain_lod(cfg->terrain.lod_error);
+  cfg->lamp_method = scene_live_lamp_method(cfg->lamp_method);
+}
+
 fog_walk_settings scene_config_walk(const scene_config *cfg) {
   return (fog_walk_settings){
       .transmittance_cutoff = cfg->transmittance_cutoff,

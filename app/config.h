@@ -272,6 +272,9 @@ double scene_live_terrain_lod(double lod_error);
  * a walk of at most 4 steps to each lamp (`bench lights`' live row, docs/light.md: 2.6x
  * cheaper than 8 + 8 and 8 on the valley, max error 7.6e-3 of the peak against 1.4e-3). */
 fog_lamp_method scene_live_lamp_method(fog_lamp_method method);
+/* Both, in cfg: the live demo's settings on a software renderer (the window and `bench
+ * pipeline`, which measures it). */
+void scene_config_live_software(scene_config *cfg);
 /* The fogmap's extinction scale and vertical profile as they are shown: the config's own
  * ([fog] density_scale, profile, fog_height, scale_height: scene_config_fog_shape), or the
  * live demo's panel edits of them. */

@@ -302,12 +302,11 @@ int window_pipeline_source(window_source *src, gl_context *gl, scene_config *cfg
     scale = software ? 0.5 : 1.0;
     fog_divisor = software ? 2 : 1;
     /* and lets the terrain's LOD show twice its pixel error (unless the config asks for
-     * the full mesh): turning the camera then costs ~15 % of a frame, not ~30 % */
-    if (software) cfg->terrain.lod_error = scene_live_terrain_lod(cfg->terrain.lod_error);
-    /* and integrates the lamps with fewer pieces and a shorter walk to each: half the
-     * lamps' cost (night_lamps, 9 lights at 960x540: 1.36 s -> 0.71 s a frame, measured
-     * before fog_lamps.glsl's shadowed pieces took their nodes once) */
-    if (software) cfg->lamp_method = scene_live_lamp_method(cfg->lamp_method);
+     * the full mesh): turning the camera then costs ~15 % of a frame, not ~30 %; and
+     * integrates the lamps with fewer pieces and a shorter walk to each: half the lamps'
+     * cost (night_lamps, 9 lights at 960x540: 1.36 s -> 0.71 s a frame, measured before
+     * fog_lamps.glsl's shadowed pieces took their nodes once) */
+    if (software) scene_config_live_software(cfg);
   }
   pipeline_source *s = calloc(1, sizeof *s);
   if (!s) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the window's fog");

@@ -157,10 +157,11 @@ int bench_pipeline(int argc, char **argv) {
   fflush(stdout);
 
   if (!live_divisor) live_divisor = gl_context_is_software(gl) ? 2 : 1;
-  /* The live runs take the demo's terrain LOD too (2x the pixel error on software GL). */
-  scene_config live_cfg = cfg, full_mesh_cfg = cfg;
-  if (gl_context_is_software(gl))
-    live_cfg.terrain.lod_error = scene_live_terrain_lod(cfg.terrain.lod_error);
+  /* The live runs take the demo's settings on software GL too: the terrain LOD at 2x the
+   * pixel error and the lamps' live rule (the fourth run the full mesh with that rule). */
+  scene_config live_cfg = cfg;
+  if (gl_context_is_software(gl)) scene_config_live_software(&live_cfg);
+  scene_config full_mesh_cfg = live_cfg;
   full_mesh_cfg.terrain.lod_error = 0.0;
   /* Three runs: full-resolution fog (what `record` renders) and the live demo's setting,
    * with the camera still (the scene pass reused), then the live setting with the camera
