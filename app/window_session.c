@@ -360,7 +360,10 @@ static void source_destroy(void *self) {
 static void panel_fog(session_source *s, panel *ui) {
   if (!panel_header(ui, "fog as the config holds it", true)) return;
   scene_fog_config *fog = &s->cfg->fog;
-  panel_text(ui, "model: %s (no simulation)", fog_model_table[fog->model].label);
+  const bool carried = fog->model == FOG_MODEL_RBF && fog->rbf_emitter_count > 0 &&
+                       fog->rbf_carrier == SCENE_RBF_CARRIER_SIM;
+  panel_text(ui, "model: %s (%s)", fog_model_table[fog->model].label,
+             carried ? "puffs carried by the simulation's flow" : "no simulation");
   if (s->playback.sequence.count && s->sel.shown < 0) { /* a rung shown: the sequence waits */
     bool playing = s->playback.playing;
     if (panel_checkbox(ui, "play the VDB sequence (P)", &playing))
