@@ -1,8 +1,9 @@
 /* The lamps' in-scatter (render/fog_lamp.h, fog_lamps.glsl) on the GL pass against its CPU
  * twin (fog_lamps_inscatter, double), pixel by pixel, for every fog model: a point lamp
  * and a spot lamp inside the fog, the sun's radiance and the fog colour 0 and a black
- * surface, so the pass's colour is the lamps' in-scatter alone; and with quadric volumes
- * beside the height fog and the volume. Also: albedo 0 draws
+ * surface, so the pass's colour is the lamps' in-scatter alone (Perlin turbulence fog too,
+ * its octaves drifted to a time); and with quadric volumes beside the height fog and the
+ * volume. Also: albedo 0 draws
  * nothing (the lamps scatter with the fog's albedo), and the spot's cone really cuts. */
 #include <math.h>
 #include <stdio.h>
@@ -197,6 +198,32 @@ int main(void) {
     const char *name = k ? "volume, quadrics beside" : "height, quadrics beside";
     double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, name);
     CHECK(peak > 0.05, "%s: peak in-scatter %g", name, peak);
+  }
+  /* Perlin turbulence fog (the model table's last row), its octaves drifted to a time */
+  {
+    fog_perlin_desc pd = fog_perlin_desc_default();
+    pd.octaves = 3;
+    pd.lo[0] = -20.0, pd.hi[0] = 140.0, pd.lo[1] = 0.0, pd.hi[1] = 30.0;
+    pd.lo[2] = -120.0, pd.hi[2] = 40.0;
+    fog_perlin perlin;
+    CHECK(fog_perlin_create(&perlin, &pd, &err) == 0 &&
+              fog_pass_upload_perlin(gl.pass, &perlin, &err) == 0,
+          "perlin: %s", err.message);
+    camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1,
+        .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
+    camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
+    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
+    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+    fog_model m = {.kind = FOG_MODEL_PERLIN, .extinction = 0.03, .y0 = 4.0,
+                   .scale_height = 6.0, .perlin = &perlin, .time = 12.5};
+    fog_pass_params params = {.model = FOG_MODEL_PERLIN, .model_extinction = m.extinction,
+                              .model_y0 = m.y0, .model_scale_height = m.scale_height,
+                              .model_perlin = &perlin, .model_time = m.time, .sun = sun,
+                              .lamps = two_lamps((double[3]){40, 4, -15},
+                                                 (double[3]){55, 12, -30})};
+    double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "perlin");
+    CHECK(peak > 0.05, "perlin: peak in-scatter %g", peak);
+    fog_perlin_destroy(&perlin);
   }
   free(grid_values);
   glDeleteTextures(1, &surface_tex);
