@@ -89,13 +89,14 @@ static bool panel_fog(panel *ui, pipeline_params *params, demo_ui *d) {
   bool changed = false;
   changed |= panel_slider_float(ui, "density", &params->density, 0.0001f, 1.0f, "%.4f", true);
   changed |= panel_color3(ui, "colour", params->fog_colour);
-  /* fog_profile_kind order; the B-spline profile only when the config has one. */
-  static const char *const profiles[] = {"slab", "exponential", "B-spline (config)"};
-  changed |= panel_combo(ui, "profile", &params->profile_kind, profiles,
-                         d->has_bspline_profile ? 3 : 2);
-  if (params->profile_kind == FOG_PROFILE_EXPONENTIAL) {
-    changed |= panel_slider_float(ui, "fog height", &params->fog_height, -50.0f, 200.0f, "%.1f", false);
-    changed |= panel_slider_float(ui, "scale height", &params->scale_height, 1.0f, 200.0f, "%.1f", true);
+  window_profile profile = {.kind = params->profile_kind, .fog_height = params->fog_height,
+                            .scale_height = params->scale_height,
+                            .has_bspline = d->has_bspline_profile};
+  if (window_panel_profile(ui, &profile, false)) {
+    params->profile_kind = profile.kind;
+    params->fog_height = profile.fog_height;
+    params->scale_height = profile.scale_height;
+    changed = true;
   }
   return changed;
 }
@@ -127,12 +128,13 @@ static bool panel_sunlight(panel *ui, pipeline_params *params) {
 static bool panel_wavelets(panel *ui, pipeline_params *params) {
   if (!panel_header(ui, "wavelets", true)) return false;
   bool changed = false;
-  static const char *const bases[] = {"Haar (degree 0)", "linear (CDF 5/3)", "quadratic (bior3.3)"};
-  changed |= panel_combo(ui, "basis", &params->degree, bases, 3);
-  changed |= panel_slider_int(ui, "levels J", &params->levels, 0, 7);
-  changed |= panel_slider_float(ui, "mu", &params->mu, 0.0f, 1.0f, "%.3f", false);
-  static const char *const methods[] = {"sum of details (paper)", "switch A_l (ours)"};
-  changed |= panel_combo(ui, "LOD", &params->lod_method, methods, 2);
+  window_wavelets w = {.degree = params->degree, .levels = params->levels, .mu = params->mu,
+                       .lod_method = params->lod_method};
+  if (window_panel_wavelets(ui, &w)) {
+    params->degree = w.degree, params->levels = w.levels, params->mu = w.mu;
+    params->lod_method = w.lod_method;
+    changed = true;
+  }
   static const char *const divisors[] = {"full", "1/2", "1/4"};
   int divisor_index = params->fog_resolution_divisor >= 4 ? 2 : params->fog_resolution_divisor >= 2;
   if (panel_combo(ui, "fog resolution", &divisor_index, divisors, 3)) {

@@ -50,6 +50,33 @@ bool window_panel_sunlight(panel *ui, window_sunlight *sun) {
   return changed;
 }
 
+bool window_panel_profile(panel *ui, window_profile *profile, bool kind_fixed) {
+  bool changed = false;
+  /* fog_profile_kind order; the B-spline profile only when the config has one */
+  static const char *const kinds[] = {"slab", "exponential", "B-spline (config)"};
+  if (!kind_fixed)
+    changed |= panel_combo(ui, "profile", &profile->kind, kinds, profile->has_bspline ? 3 : 2);
+  if (profile->kind == FOG_PROFILE_EXPONENTIAL) {
+    changed |= panel_slider_float(ui, "fog height", &profile->fog_height, -50.0f, 200.0f,
+                                  "%.1f", false);
+    changed |= panel_slider_float(ui, "scale height", &profile->scale_height, 1.0f, 200.0f,
+                                  "%.1f", true);
+  }
+  return changed;
+}
+
+bool window_panel_wavelets(panel *ui, window_wavelets *w) {
+  bool changed = false;
+  static const char *const bases[] = {"Haar (degree 0)", "linear (CDF 5/3)",
+                                      "quadratic (bior3.3)"};
+  changed |= panel_combo(ui, "basis", &w->degree, bases, 3);
+  changed |= panel_slider_int(ui, "levels J", &w->levels, 0, FOG_MAX_LEVELS);
+  changed |= panel_slider_float(ui, "mu", &w->mu, 0.0f, 1.0f, "%.3f", false);
+  static const char *const methods[] = {"sum of details (paper)", "switch A_l (ours)"};
+  changed |= panel_combo(ui, "LOD", &w->lod_method, methods, 2);
+  return changed;
+}
+
 void window_sunlight_set_colour(window_sunlight *sun, const double colour[3]) {
   sun->strength = 0.0f;
   for (int c = 0; c < 3; c++) sun->strength = fmaxf(sun->strength, (float)colour[c]);

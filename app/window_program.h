@@ -77,6 +77,28 @@ bool window_panel_sunlight(panel *ui, window_sunlight *sun);
 void window_sunlight_set_colour(window_sunlight *sun, const double colour[3]);
 void window_sunlight_colour(const window_sunlight *sun, double colour[3]);
 
+/* The fog's vertical profile as the panel edits it, for either source: fog_profile_kind
+ * (the B-spline only offered when the config has one) and the exponential profile's
+ * [fog] fog_height and scale_height. */
+typedef struct window_profile {
+  int kind;
+  float fog_height, scale_height;
+  bool has_bspline;
+} window_profile;
+/* The profile's controls (no header of their own); true when the user changed a value.
+ * With kind_fixed the kind is not offered (a model whose profile is always exponential). */
+bool window_panel_profile(panel *ui, window_profile *profile, bool kind_fixed);
+
+/* The fogmap's wavelet transform and LOD as the panel edits them, for either source:
+ * [fog] basis (degree), levels, mu and lod (fog_lod_method). */
+typedef struct window_wavelets {
+  int degree, levels;
+  float mu;
+  int lod_method;
+} window_wavelets;
+/* The basis, levels J, mu and LOD controls (no header of their own); true on a change. */
+bool window_panel_wavelets(panel *ui, window_wavelets *wavelets);
+
 /* One frame as the sources see it. */
 typedef struct window_frame {
   GLFWwindow *window;

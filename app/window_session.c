@@ -355,8 +355,39 @@ static void source_destroy(void *self) {
   free(s);
 }
 
-/* What the fog is and how it moves, its density and ambient colour; with --fit the rung
- * menu. An edit makes the fog again at the next input (s->remake). */
+/* The config's vertical profile and, for a fogmap, its wavelets, as the simulated source's
+ * panel has them (window_panel_profile, window_panel_wavelets): the height fog's and Perlin
+ * fog's exponential falloff; a fogmap's profile (a VDB's comes with its frames) and its
+ * basis, levels, mu and LOD. An edit makes the fog again (s->remake). */
+static void panel_fog_shape(session_source *s, panel *ui) {
+  scene_fog_config *fog = &s->cfg->fog;
+  const bool fogmap = fog->model == FOG_MODEL_FOGMAP;
+  const bool falloff = fog->model == FOG_MODEL_HEIGHT || fog->model == FOG_MODEL_PERLIN;
+  if (falloff || (fogmap && !fog->vdb[0])) {
+    window_profile profile = {.kind = falloff ? FOG_PROFILE_EXPONENTIAL : (int)fog->profile,
+                              .fog_height = (float)fog->fog_height,
+                              .scale_height = (float)fog->scale_height,
+                              .has_bspline = fog->profile_count > 0};
+    if (window_panel_profile(ui, &profile, falloff)) {
+      if (fogmap) fog->profile = (scene_profile)profile.kind;
+      fog->fog_height = profile.fog_height;
+      fog->scale_height = profile.scale_height;
+      s->remake = true;
+    }
+  }
+  if (!fogmap || !panel_header(ui, "wavelets", false)) return;
+  window_wavelets w = {.degree = fog->degree, .levels = fog->levels, .mu = (float)fog->mu,
+                       .lod_method = (int)fog->lod};
+  if (window_panel_wavelets(ui, &w)) {
+    fog->degree = w.degree, fog->levels = w.levels, fog->mu = w.mu;
+    fog->lod = (scene_lod)w.lod_method;
+    s->remake = true;
+  }
+}
+
+/* What the fog is and how it moves, its density and ambient colour, its profile and
+ * wavelets; with --fit the rung menu. An edit makes the fog again at the next input
+ * (s->remake). */
 static void panel_fog(session_source *s, panel *ui) {
   if (!panel_header(ui, "fog as the config holds it", true)) return;
   scene_fog_config *fog = &s->cfg->fog;
@@ -383,6 +414,7 @@ static void panel_fog(session_source *s, panel *ui) {
     }
   }
   if (panel_color3(ui, "fog colour (ambient)", fog->colour)) s->remake = true;
+  if (s->sel.shown < 0) panel_fog_shape(s, ui);
   if (s->sel.on) {
     int shown = s->sel.shown + 1;
     if (panel_combo(ui, "rung", &shown, s->rung_names, s->sel.fit.count + 1))
