@@ -909,6 +909,20 @@ static int check_sources(parse_state *ps) {
   return 0;
 }
 
+/* The lowest point the view can reach: the camera, the terrain's base, the fog box's floor. */
+static double scene_lowest_point(const scene_config *cfg) {
+  return fmin(cfg->camera.position[1], fmin(cfg->terrain.origin[1], cfg->box.floor));
+}
+
+double scene_config_min_scale_height(const scene_config *cfg) {
+  /* K0 e^{-(y - y0)/H} grows without bound below y0: down to the lowest point it must stay
+   * under MAX_EXTINCTION, log K0 + (y0 - low)/H <= log MAX_EXTINCTION */
+  const double rise = cfg->fog.fog_height - scene_lowest_point(cfg);
+  if (!(cfg->fog.density_scale > 0) || rise <= 0) return 0.0;
+  const double room = log(MAX_EXTINCTION) - log(cfg->fog.density_scale);
+  return room > 0 ? rise / room : HUGE_VAL;
+}
+
 /* What each fog model needs of the other keys. */
 static int check_models(parse_state *ps) {
   parse_state s = *ps;
@@ -998,12 +1012,9 @@ static int check_models(parse_state *ps) {
     }
   }
   if (cfg->fog.model == FOG_MODEL_HEIGHT || cfg->fog.model == FOG_MODEL_PERLIN) {
-    /* K0 e^{-(y - y0)/H} grows without bound below y0: where the view can reach (down to
-     * the camera, the terrain's base and the fog box's floor) it must stay a float. */
-    double low = fmin(cfg->camera.position[1], fmin(cfg->terrain.origin[1], cfg->box.floor));
+    double low = scene_lowest_point(cfg);
     double exponent = (cfg->fog.fog_height - low) / cfg->fog.scale_height;
-    if (cfg->fog.density_scale > 0 &&
-        log(cfg->fog.density_scale) + exponent > log(MAX_EXTINCTION)) {
+    if (cfg->fog.scale_height < scene_config_min_scale_height(cfg)) {
       s.line = cfg->fog.model_line;
       fail(&s, "fog", "model", "height fog of density_scale %g, fog_height %g and "
            "scale_height %g reaches exp(%.3g) times density_scale at y = %g (the scene's "

@@ -272,6 +272,11 @@ double scene_live_terrain_lod(double lod_error);
  * a walk of at most 4 steps to each lamp (`bench lights`' live row, docs/light.md: 2.6x
  * cheaper than 8 + 8 and 8 on the valley, max error 7.6e-3 of the peak against 1.4e-3). */
 fog_lamp_method scene_live_lamp_method(fog_lamp_method method);
+/* Height and Perlin fog (K0 e^{-(y - y0)/H} below y0): the smallest [fog] scale_height that
+ * keeps the extinction a float down to the lowest point the view reaches (the camera, the
+ * terrain's base, the box's floor); 0 when any does. A config below it is refused; the
+ * window's panel holds its slider above it. */
+double scene_config_min_scale_height(const scene_config *cfg);
 /* Both, in cfg: the live demo's settings on a software renderer (the window and `bench
  * pipeline`, which measures it). */
 void scene_config_live_software(scene_config *cfg);

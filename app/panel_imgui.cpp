@@ -81,11 +81,13 @@ extern "C" bool panel_checkbox(panel *, const char *label, bool *value) {
 }
 extern "C" bool panel_slider_float(panel *, const char *label, float *value, float min,
                                    float max, const char *format, bool logarithmic) {
+  /* AlwaysClamp: a value typed with Ctrl+click stays in [min, max] too */
   return ImGui::SliderFloat(label, value, min, max, format ? format : "%.3f",
-                            logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
+                            ImGuiSliderFlags_AlwaysClamp |
+                                (logarithmic ? ImGuiSliderFlags_Logarithmic : 0));
 }
 extern "C" bool panel_slider_int(panel *, const char *label, int *value, int min, int max) {
-  return ImGui::SliderInt(label, value, min, max);
+  return ImGui::SliderInt(label, value, min, max, "%d", ImGuiSliderFlags_AlwaysClamp);
 }
 extern "C" bool panel_combo(panel *, const char *label, int *current, const char *const *items,
                             int count) {

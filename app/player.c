@@ -67,10 +67,13 @@ static int create_session(player *p, const player_desc *desc, fog_error *err) {
 }
 
 player *player_create(const player_desc *desc, fog_error *err) {
-  if (!(desc->width > 0 && desc->height > 0 && desc->fps > 0 && desc->start_time >= 0)) {
+  const bool simulated = desc->play && fog_model_table[desc->config->fog.model].pyramid;
+  if (!(desc->width > 0 && desc->height > 0 && desc->fps > 0 && desc->start_time >= 0) ||
+      (simulated && desc->start_time != 0)) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "player: %d x %d pixels at %g frames per second from %g s: expected sizes and a "
-             "rate > 0, a time >= 0", desc->width, desc->height, desc->fps, desc->start_time);
+             "rate > 0, a time >= 0 (0 for a simulation, which starts there)", desc->width,
+             desc->height, desc->fps, desc->start_time);
     return NULL;
   }
   player *p = calloc(1, sizeof *p);
@@ -83,7 +86,6 @@ player *player_create(const player_desc *desc, fog_error *err) {
   p->start_time = desc->start_time;
   scene_config_camera(&p->config, &p->cam); /* the session's scene takes the same one */
   /* (a fogmap config without a fogmap simulates from the emitters alone) */
-  const bool simulated = desc->play && fog_model_table[p->config.fog.model].pyramid;
   if (simulated ? create_simulated(p, desc, err) : create_session(p, desc, err)) {
     player_destroy(p);
     return NULL;

@@ -439,6 +439,7 @@ static void render_fog_beside(render_fog *fog, const scene_config *cfg) {
 
 static int render_fog_create_model(render_fog *fog, const scene_config *cfg, rbf_carrier *kept,
                                    fog_error *err);
+static int render_file_fog(render_fog *fog, const scene_config *cfg, fog_error *err);
 
 int render_fog_create(render_fog *fog, const scene_config *cfg, fog_error *err) {
   int status = render_fog_create_model(fog, cfg, NULL, err);
@@ -466,7 +467,18 @@ static int render_fog_create_model(render_fog *fog, const scene_config *cfg, rbf
     return status;
   }
   if (f->model != FOG_MODEL_FOGMAP) return render_analytic_fog(fog, cfg, err);
-  if (f->vdb[0]) return render_vdb_fog(fog, cfg, err);
+  /* The fogmap's paths begin from a zeroed fog (render_fog_create_map): the carrier goes
+   * back in after them, for the fog after this one (a window's rung, then its config). */
+  fog->carrier = NULL;
+  int status = f->vdb[0] ? render_vdb_fog(fog, cfg, err) : render_file_fog(fog, cfg, err);
+  if (status) rbf_carrier_destroy(kept);
+  else fog->carrier = kept;
+  return status;
+}
+
+/* The fogmap of cfg's file ([fog] fogmap, or a bake's frame 1). */
+static int render_file_fog(render_fog *fog, const scene_config *cfg, fog_error *err) {
+  const scene_fog_config *f = &cfg->fog;
   /* A bake ([fog] sequence) shows its frame 1 as a still (record plays it). */
   char first[SCENE_CONFIG_PATH_MAX + 32];
   const bool baked = f->sequence[0] && scene_config_sequence_path(f->sequence, 1, first,

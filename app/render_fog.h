@@ -59,9 +59,10 @@ int render_fog_create(render_fog *fog, const scene_config *cfg, fog_error *err);
 int render_fog_create_map(render_fog *fog, const scene_config *cfg, const fogmap *map,
                           fog_error *err);
 void render_fog_destroy(render_fog *fog);
-/* The fog of cfg in place of fog's (destroyed; on failure fog is as destroyed), keeping the
- * flow that carries RBF puffs ([fog] rbf_carrier = sim): the new fog goes on from the flow's
- * time instead of replaying it from its start, as a window's edits need. */
+/* The fog of cfg in place of fog's (destroyed), keeping the flow that carries RBF puffs
+ * ([fog] rbf_carrier = sim), through fog of other models too: the new fog goes on from the
+ * flow's time instead of replaying it from its start, as a window's edits and rungs need.
+ * On failure, as after a failed render_fog_create, render_fog_destroy frees what is left. */
 int render_fog_remake(render_fog *fog, const scene_config *cfg, fog_error *err);
 /* model = volume: cfg->fog.vdb as a sequence (vdb_sequence_destroy when done). Errors
  * name [fog] vdb's file:line. */

@@ -372,6 +372,9 @@ static void panel_fog_shape(session_source *s, panel *ui) {
       if (fogmap) fog->profile = (scene_profile)profile.kind;
       fog->fog_height = profile.fog_height;
       fog->scale_height = profile.scale_height;
+      /* the height and Perlin fog grow below their fog height: kept a float (as loaded) */
+      if (falloff)
+        fog->scale_height = fmax(fog->scale_height, 1.001 * scene_config_min_scale_height(s->cfg));
       s->remake = true;
     }
   }

@@ -2,7 +2,8 @@
  * puffs carried by the simulation's flow (configs/rbf_steam_eddies.ini) the remade fog keeps
  * the flow where it was (the same carrier, at the same time: no replay from the start, which
  * after minutes in a window would cost seconds a frame) and shows the same puffs at the same
- * time, bit for bit; a config whose flow differs ([sim] seed) gets a flow of its own. */
+ * time, bit for bit, also after a fog of another model between (a fogmap: a window's rung);
+ * a config whose flow differs ([sim] seed) gets a flow of its own. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -39,6 +40,15 @@ int main(void) {
             memcmp(before, fog.rbfs, sizeof *before * (size_t)count) == 0,
         "the remade fog's puffs at 5 s differ from the first's");
   printf("remade: the same flow at %.4f s, %d puffs the same bit for bit\n", flow_time, count);
+
+  /* Through a fogmap's fog and back (a window's rung): the flow is still the one at 5 s. */
+  static scene_config fogmap_cfg;
+  CHECK(scene_config_load("configs/default.ini", &fogmap_cfg, &err) == 0, "%s", err.message);
+  CHECK(render_fog_remake(&fog, &fogmap_cfg, &err) == 0, "to the fogmap: %s", err.message);
+  CHECK(render_fog_remake(&fog, &cfg, &err) == 0, "and back: %s", err.message);
+  CHECK(fog.carrier && rbf_carrier_time(fog.carrier) == flow_time,
+        "after a fogmap's fog the flow is at %g s, not %g",
+        fog.carrier ? rbf_carrier_time(fog.carrier) : 0, flow_time);
 
   cfg.sim.seed += 1; /* another flow */
   CHECK(render_fog_remake(&fog, &cfg, &err) == 0 && render_fog_set_time(&fog, &cfg, 5.0, &err) == 0,

@@ -205,10 +205,11 @@ int main(void) {
     pd.octaves = 3;
     pd.lo[0] = -20.0, pd.hi[0] = 140.0, pd.lo[1] = 0.0, pd.hi[1] = 30.0;
     pd.lo[2] = -120.0, pd.hi[2] = 40.0;
-    fog_perlin perlin;
+    fog_perlin perlin = {0};
     CHECK(fog_perlin_create(&perlin, &pd, &err) == 0 &&
               fog_pass_upload_perlin(gl.pass, &perlin, &err) == 0,
           "perlin: %s", err.message);
+    if (!perlin.texels) return test_finish("test_gpu_lamps");
     camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1,
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
