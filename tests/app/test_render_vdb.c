@@ -45,7 +45,10 @@ int main(void) {
   fog_error cerr;
   CHECK(scene_config_load(CONFIG, &cfg, &cerr) == 0, "%s", cerr.message);
   vdb_source source;
-  CHECK(vdb_source_open_config(&source, &cfg, &cerr) == 0, "%s", cerr.message);
+  if (vdb_source_open_config(&source, &cfg, &cerr)) { /* the bake missing: nothing to check */
+    CHECK(0, "%s", cerr.message);
+    return test_finish("test_render_vdb");
+  }
   vdb_source_apply_config(&source, &cfg);
   double lo[3] = {cfg.box.origin[0], cfg.box.floor, cfg.box.origin[1]};
   double hi[3] = {lo[0] + source.place.width * cfg.box.cell_size, cfg.box.top,
