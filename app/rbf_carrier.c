@@ -224,6 +224,12 @@ int rbf_carrier_puffs(rbf_carrier *c, double time, fog_rbf *out, int capacity, f
              time);
     return -1;
   }
+  if (time > RBF_CARRIER_MAX_TIME) {
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "time %g s is past the %g s the simulation's "
+             "flow is replayed to (from its start, for every time asked)", time,
+             RBF_CARRIER_MAX_TIME);
+    return -1;
+  }
   /* the last step at or before `time`: one expression for every caller, so whichever way a
    * time is reached it is the same step */
   const long target = (long)floor((time - c->start) / c->desc.step + 1e-9);

@@ -30,6 +30,9 @@
 /* The longest LIFETIME a config may give an emitter whose puffs the flow carries: the fog's
  * every making replays the flow for that long first (9000 steps, ~4 s here). */
 #define RBF_CARRIER_MAX_LIFETIME 300.0
+/* The latest time the carrier replays its flow to (an hour: 108000 steps, ~50 s here); a
+ * later one is refused rather than run for hours (a time given in ms, say). */
+#define RBF_CARRIER_MAX_TIME 3600.0
 
 typedef struct rbf_carrier_desc {
   const fog_rbf_emitter *emitters; /* copied at create */
@@ -60,8 +63,9 @@ void rbf_carrier_destroy(rbf_carrier *carrier);
 bool rbf_carrier_serves(const rbf_carrier *carrier, const rbf_carrier_desc *desc);
 /* How many puffs the emitters hold together (the sum of fog_rbf_emitter_count). */
 int rbf_carrier_count(const rbf_carrier *carrier);
-/* The puffs alive at `time` (>= 0), emitter by emitter, oldest first, into out[0 .. count):
- * returns count, or -1 (err set) when capacity is smaller or the flow fails. */
+/* The puffs alive at `time` (0 to RBF_CARRIER_MAX_TIME), emitter by emitter, oldest first,
+ * into out[0 .. count): returns count, or -1 (err set) when capacity is smaller, the time
+ * out of range or the flow fails. */
 int rbf_carrier_puffs(rbf_carrier *carrier, double time, fog_rbf *out, int capacity,
                       fog_error *err);
 /* The flow's velocity at world (x, z), world units per second, as the puffs take it (the

@@ -295,8 +295,12 @@ static int carried_puffs(render_fog *fog, const scene_config *cfg, double time, 
     fog->carrier = NULL;
   }
   if (!fog->carrier && !(fog->carrier = rbf_carrier_create(&desc, err))) return -1;
-  return rbf_carrier_puffs(fog->carrier, time, fog->rbfs + fog->rbf_count,
-                           fog->rbf_capacity - fog->rbf_count, err);
+  const int count = rbf_carrier_puffs(fog->carrier, time, fog->rbfs + fog->rbf_count,
+                                      fog->rbf_capacity - fog->rbf_count, err);
+  if (count < 0)
+    fog_error_wrap(err, err, "%.200s:%d: [fog] rbf_carrier: ", cfg->path,
+                   cfg->fog.rbf_carrier_line);
+  return count;
 }
 
 /* model = rbf: the rbf lines and the emitters' puffs at `time`, density_scale applied. */

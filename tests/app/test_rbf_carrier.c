@@ -200,6 +200,9 @@ static void check_turbulent_steps(void) {
         "too little room is refused");
   CHECK(rbf_carrier_puffs(c, -0.5, after, CAP, &err) == -1 && strstr(err.message, "before 0"),
         "a time before 0 is refused saying so: '%s'", err.message);
+  CHECK(rbf_carrier_puffs(c, RBF_CARRIER_MAX_TIME + 1, after, CAP, &err) == -1 &&
+            strstr(err.message, "past the 3600 s"),
+        "a time past the replay's bound is refused saying so: '%s'", err.message);
   rbf_carrier_destroy(c);
   fluid_sim_destroy(r.sim);
 }
