@@ -8,11 +8,12 @@
 
 #include "sim/sim.h"
 
-/* One live puff's state: its index k and its displacement from its birth position at the
+/* One live puff's state: its index k, its birth position (kept: the emitter's hash and
+ * rejection sampling once a puff, not twice a step) and its displacement from there at the
  * flow's time. */
 typedef struct carried_puff {
   long k; /* NO_PUFF: none */
-  double offset[3];
+  double start[3], offset[3];
 } carried_puff;
 
 #define NO_PUFF LONG_MIN
@@ -92,9 +93,12 @@ static carried_puff *slot_of(const carried_emitter *ce, long k) {
 static void puff_centre(const rbf_carrier *c, const carried_emitter *ce, long k, double born,
                         double now, double t, double centre[3]) {
   const carried_puff *p = slot_of(ce, k);
-  double start[3], velocity[3];
-  fog_rbf_emitter_start(&ce->emitter, k, start);
   const bool carried = p->k == k;
+  double start[3], velocity[3];
+  if (carried)
+    for (int a = 0; a < 3; a++) start[a] = p->start[a];
+  else
+    fog_rbf_emitter_start(&ce->emitter, k, start);
   for (int a = 0; a < 3; a++) centre[a] = start[a] + (carried ? p->offset[a] : 0.0);
   puff_velocity(c, &ce->emitter, centre, velocity);
   const double since = t - (carried ? now : fmax(born, now));
@@ -122,10 +126,9 @@ static int step(rbf_carrier *c, fog_error *err) {
       const double born = fog_rbf_emitter_birth(&ce->emitter, k);
       puff_centre(c, ce, k, born, now, next, centre);
       carried_puff *p = slot_of(ce, k);
-      double start[3];
-      fog_rbf_emitter_start(&ce->emitter, k, start);
+      if (p->k != k) fog_rbf_emitter_start(&ce->emitter, k, p->start); /* its first step */
       p->k = k;
-      for (int a = 0; a < 3; a++) p->offset[a] = centre[a] - start[a];
+      for (int a = 0; a < 3; a++) p->offset[a] = centre[a] - p->start[a];
     }
   }
   fog_error serr = {0};
