@@ -51,11 +51,9 @@ bool rbf_carrier_serves(const rbf_carrier *c, const rbf_carrier_desc *d) {
   return true;
 }
 
-int rbf_carrier_count(const rbf_carrier *c) { return c->puff_count; }
-
 /* The flow's velocity at world (x, z): bilinear between the cells' points (cell (i, j) at
  * the integer point, sim/fluid.h), periodic, in world units per second. */
-void rbf_carrier_flow(const rbf_carrier *c, double x, double z, double velocity[2]) {
+static void flow_velocity(const rbf_carrier *c, double x, double z, double velocity[2]) {
   const double u = (x - c->desc.origin[0]) / c->cell, v = (z - c->desc.origin[1]) / c->cell;
   const double fu = floor(u), fv = floor(v), su = u - fu, sv = v - fv;
   const long w = c->width, h = c->height;
@@ -76,7 +74,7 @@ void rbf_carrier_flow(const rbf_carrier *c, double x, double z, double velocity[
 static void puff_velocity(const rbf_carrier *c, const fog_rbf_emitter *e, const double p[3],
                           double velocity[3]) {
   double flow[2];
-  rbf_carrier_flow(c, p[0], p[2], flow);
+  flow_velocity(c, p[0], p[2], flow);
   velocity[0] = flow[0] + e->wind[0];
   velocity[1] = e->wind[1];
   velocity[2] = flow[1] + e->wind[2];

@@ -62,16 +62,11 @@ void rbf_carrier_destroy(rbf_carrier *carrier);
 /* Whether a carrier made from `desc` would be this one (the same emitters, domain, grid, step
  * and flow settings): a caller whose config may have changed makes a new one when not. */
 bool rbf_carrier_serves(const rbf_carrier *carrier, const rbf_carrier_desc *desc);
-/* How many puffs the emitters hold together (the sum of fog_rbf_emitter_count). */
-int rbf_carrier_count(const rbf_carrier *carrier);
 /* The puffs alive at `time` (0 to RBF_CARRIER_MAX_TIME), emitter by emitter, oldest first,
  * into out[0 .. count): returns count, or -1 (err set) when capacity is smaller, the time
  * out of range or the flow fails. */
 int rbf_carrier_puffs(rbf_carrier *carrier, double time, fog_rbf *out, int capacity,
                       fog_error *err);
-/* The flow's velocity at world (x, z), world units per second, as the puffs take it (the
- * emitters' winds not added): for tests. */
-void rbf_carrier_flow(const rbf_carrier *carrier, double x, double z, double velocity[2]);
 /* The time the flow has reached (a step's), for tests. */
 double rbf_carrier_time(const rbf_carrier *carrier);
 
