@@ -266,22 +266,21 @@ static fluid_sim_desc sim_desc(pipeline *p, const pipeline_params *params, const
   cpu_stages *c = &p->cpu;
   const double cell = p->config.box.cell_size > 0 ? p->config.box.cell_size : 1.0;
   for (int e = 0; e < c->emitter_count; e++) c->emitters[e].rate = params->emitter_rate;
-  return (fluid_sim_desc){
-      .width = c->base.width,
-      .height = c->base.height,
-      .dt = (float)(p->frame_seconds / p->steps_per_frame),
-      .viscosity = params->viscosity,
-      /* The config's wind is in world units per second; the sim's in cells per second. */
-      .wind_drift_x = (float)(params->wind[0] / cell),
-      .wind_drift_z = (float)(params->wind[1] / cell),
-      .turbulence = (float)(params->turbulence / cell),
-      .seed = p->config.sim.seed,
-      .emitters = c->emitters,
-      .emitter_count = c->emitter_count,
-      .relaxation = 0.05f,
-      .dissipation = 0.02f,
-      .base = start,
-  };
+  /* The turbulence's shape (largest eddies, slope, coupling) is the solver's default. */
+  fluid_sim_desc d = fluid_sim_desc_default(c->base.width, c->base.height);
+  d.dt = (float)(p->frame_seconds / p->steps_per_frame);
+  d.viscosity = params->viscosity;
+  /* The config's wind is in world units per second; the sim's in cells per second. */
+  d.wind_drift_x = (float)(params->wind[0] / cell);
+  d.wind_drift_z = (float)(params->wind[1] / cell);
+  d.turbulence = (float)(params->turbulence / cell);
+  d.seed = p->config.sim.seed;
+  d.emitters = c->emitters;
+  d.emitter_count = c->emitter_count;
+  d.relaxation = 0.05f;
+  d.dissipation = 0.02f;
+  d.base = start;
+  return d;
 }
 
 static int sim_create(pipeline *p, const pipeline_params *params, const fogmap *start,

@@ -187,20 +187,17 @@ rbf_carrier *rbf_carrier_create(const rbf_carrier_desc *d, fog_error *err) {
   c->start = -longest;
   /* The flow in cells: the world's speeds over the cell size, viscosity over its square. */
   fog_error serr = {0};
-  /* The turbulence's shape set here, not left to the solver's zeros: its largest eddies a
+  /* The turbulence's shape is the solver's default (sim/fluid.h): its largest eddies a
    * quarter of the shorter side, Kolmogorov's -5/3 spectrum, and the fluid's fluctuations
-   * pulled toward it at 2 per second (sim/fluid.h). */
-  c->flow = fluid_sim_create(
-      &(fluid_sim_desc){.width = c->width, .height = c->height, .dt = (float)d->step,
-                        .viscosity = (float)(d->viscosity / (c->cell * c->cell)),
-                        .wind_drift_x = (float)(d->wind[0] / c->cell),
-                        .wind_drift_z = (float)(d->wind[1] / c->cell),
-                        .turbulence = (float)(d->turbulence / c->cell),
-                        .turbulence_scale = 0.25f * (float)(c->width < c->height ? c->width
-                                                                                 : c->height),
-                        .turbulence_slope = -5.0f / 3.0f, .wind_coupling = 2.0f,
-                        .seed = d->seed},
-      &serr);
+   * pulled toward it at 2 per second. */
+  fluid_sim_desc flow = fluid_sim_desc_default(c->width, c->height);
+  flow.dt = (float)d->step;
+  flow.viscosity = (float)(d->viscosity / (c->cell * c->cell));
+  flow.wind_drift_x = (float)(d->wind[0] / c->cell);
+  flow.wind_drift_z = (float)(d->wind[1] / c->cell);
+  flow.turbulence = (float)(d->turbulence / c->cell);
+  flow.seed = d->seed;
+  c->flow = fluid_sim_create(&flow, &serr);
   if (!c->flow) {
     rbf_carrier_destroy(c);
     fog_error_wrap(err, &serr, "rbf carrier: ");

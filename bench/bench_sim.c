@@ -36,10 +36,10 @@ static int measure(int n, fluid_advection scheme, int rounds, sim_figures *out) 
                                      {0.7f * n, 0.8f * n, n / 50.0f, 3.0f}};
   /* A realistic load: turbulence of n/16 cells/s and drift n/32 cells/s at dt 1/30
    * (about 0.5-2 cells per step), three emitters, relaxation and dissipation on. */
-  fluid_sim_desc desc = {.width = n, .height = n, .turbulence = n / 16.0f,
-                         .wind_drift_x = n / 32.0f, .viscosity = 0.05f, .seed = 11,
-                         .advection = scheme, .emitters = emitters, .emitter_count = 3,
-                         .relaxation = 0.05f, .dissipation = 0.02f};
+  fluid_sim_desc desc = fluid_sim_desc_default(n, n);
+  desc.turbulence = n / 16.0f, desc.wind_drift_x = n / 32.0f, desc.viscosity = 0.05f;
+  desc.seed = 11, desc.advection = scheme, desc.emitters = emitters, desc.emitter_count = 3;
+  desc.relaxation = 0.05f, desc.dissipation = 0.02f;
   fluid_sim *sim = fluid_sim_create(&desc, &err);
   /* The FFT hook leaves an unnormalised velocity behind, so it runs on its own copy. */
   fluid_sim *probe = sim ? fluid_sim_create(&desc, &err) : NULL;

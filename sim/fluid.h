@@ -70,18 +70,20 @@ typedef struct fluid_stroke {
   float amount; /* density at the centre line; negative erases */
 } fluid_stroke;
 
-/* Zero is default for every field. */
+/* Start from fluid_sim_desc_default(width, height), which sets every field, and change
+ * what differs: each value is taken as given (0 viscosity is inviscid, 0 coupling a free
+ * fluid, 0 slope a flat spectrum), never read as "use the default". */
 typedef struct fluid_sim_desc {
-  int width, height;     /* grid; 0: 256; both even and >= 8 */
-  float dt;              /* fixed step, seconds; 0: 1/30 */
+  int width, height;     /* grid; both even and >= 8 */
+  float dt;              /* fixed step, seconds; > 0 */
   float viscosity;       /* kinematic, cells^2 per second; 0: inviscid */
   float wind_drift_x;    /* the mean flow, cells per second */
   float wind_drift_z;
   float turbulence;      /* rms speed of the synthesised turbulence, cells/s; 0: none */
-  float turbulence_scale;/* largest eddy wavelength, cells; 0: min(width, height)/4 */
-  float turbulence_slope;/* energy spectrum exponent; 0: -5/3 (Kolmogorov) */
+  float turbulence_scale;/* largest eddy wavelength, cells; > 4 */
+  float turbulence_slope;/* energy spectrum exponent (finite); -5/3 is Kolmogorov's */
   float wind_coupling;   /* rate (1/s) at which the fluid's fluctuations relax toward the
-                            turbulence; 0: 2; negative: no coupling (free fluid) */
+                            turbulence; >= 0, 0: no coupling (a free fluid) */
   uint64_t seed;         /* turbulence phases; 0 means 1 */
   fluid_advection advection;
   const fluid_emitter *emitters; /* copied at create */
@@ -96,6 +98,12 @@ typedef struct fluid_sim_desc {
 
 typedef struct fluid_sim fluid_sim;
 
+/* Every field set: the given grid, dt 1/30 s, no viscosity, wind or sources, turbulence
+ * shaped (should it be turned on) with its largest eddies a quarter of the shorter side,
+ * Kolmogorov's -5/3 slope and a coupling of 2 per second, seed 1, monotone cubic
+ * advection, reproducible FFT plans, no relaxation, dissipation or base. */
+fluid_sim_desc fluid_sim_desc_default(int width, int height);
+
 /* Validates the desc, allocates every buffer and makes the FFTW plans. NULL on error
  * (err says which field is wrong). */
 fluid_sim *fluid_sim_create(const fluid_sim_desc *desc, fog_error *err);
@@ -107,8 +115,7 @@ void fluid_sim_destroy(fluid_sim *sim);
  * its fluctuations; its mean becomes the new drift (the solver holds the mean flow at
  * the drift), so the new drift is what advects from the next step on. The base fogmap
  * stays (desc->base must be NULL). width, height, seed, emitter_count and fft_planning
- * are fixed at create: a desc that changes one (after defaults: 0 width is 256) is
- * refused with err naming the field, as is an invalid desc (as fluid_sim_create); a
+ * are fixed at create: a desc that changes one is refused with err naming the field, as is an invalid desc (as fluid_sim_create); a
  * refused call leaves the sim untouched. Returns 0 on success. fluid_sim_reset then goes
  * back to the base with the new parameters. */
 int fluid_sim_set_params(fluid_sim *sim, const fluid_sim_desc *desc, fog_error *err);

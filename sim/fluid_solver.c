@@ -10,12 +10,16 @@
 
 static const double two_pi = 6.283185307179586476925286766559;
 
+fluid_sim_desc fluid_sim_desc_default(int width, int height) {
+  return (fluid_sim_desc){.width = width, .height = height, .dt = 1.0f / 30.0f,
+                          .turbulence_scale = 0.25f * (float)(width < height ? width : height),
+                          .turbulence_slope = -5.0f / 3.0f, .wind_coupling = 2.0f, .seed = 1,
+                          .advection = FLUID_ADVECT_MONOTONE_CUBIC,
+                          .fft_planning = FLUID_FFT_REPRODUCIBLE};
+}
+
 static int resolve_desc(const fluid_sim_desc *in, fluid_sim_desc *d, fog_error *err) {
   *d = *in;
-  if (!d->width) d->width = 256;
-  if (!d->height) d->height = 256;
-  if (d->dt == 0) d->dt = 1.0f / 30.0f;
-  if (d->wind_coupling == 0) d->wind_coupling = 2.0f;
   if (d->advection == FLUID_ADVECT_DEFAULT) d->advection = FLUID_ADVECT_MONOTONE_CUBIC;
   if (d->width < 8 || d->height < 8 || (d->width & 1) || (d->height & 1)) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
@@ -31,8 +35,9 @@ static int resolve_desc(const fluid_sim_desc *in, fluid_sim_desc *d, fog_error *
       !isfinite(d->dissipation))
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                     "fluid sim: relaxation and dissipation must be >= 0 and finite");
-  if (!isfinite(d->wind_coupling))
-    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fluid sim: wind_coupling must be finite");
+  if (!(d->wind_coupling >= 0) || !isfinite(d->wind_coupling))
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "fluid sim: wind_coupling must be >= 0 (0: none) and finite");
   if (d->advection != FLUID_ADVECT_BILINEAR && d->advection != FLUID_ADVECT_MONOTONE_CUBIC &&
       d->advection != FLUID_ADVECT_MACCORMACK && d->advection != FLUID_ADVECT_MACCORMACK_BILINEAR)
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,

@@ -36,8 +36,7 @@ static int check_desc(const wind_desc *desc, fog_error *err) {
              "wind grid %dx%d: both sides must be even and at least 8", w, h);
     return 1;
   }
-  const double scale = desc->scale > 0 ? desc->scale : 0.25 * (w < h ? w : h);
-  const double slope = desc->slope != 0 ? desc->slope : -5.0 / 3.0;
+  const double scale = desc->scale, slope = desc->slope;
   if (!(scale > 4.0) || !isfinite(slope) || !isfinite(desc->turbulence) ||
       desc->turbulence < 0 || !isfinite(desc->drift_x) || !isfinite(desc->drift_z)) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
@@ -55,8 +54,7 @@ static int check_desc(const wind_desc *desc, fog_error *err) {
 static void spectrum_tables(wind_field *wind, const wind_desc *desc, int write_phases) {
   const int w = wind->width, h = wind->height, mx = wind->modes_x;
   const size_t modes = (size_t)mx * h;
-  const double scale = desc->scale > 0 ? desc->scale : 0.25 * (w < h ? w : h);
-  const double slope = desc->slope != 0 ? desc->slope : -5.0 / 3.0;
+  const double scale = desc->scale, slope = desc->slope;
   wind->drift_x = desc->drift_x;
   wind->drift_z = desc->drift_z;
   wind->turbulence = desc->turbulence;

@@ -23,8 +23,8 @@ typedef struct wind_desc {
   int width, height;      /* periodic grid, both even and >= 8 */
   float drift_x, drift_z; /* constant wind, cells per second */
   float turbulence;       /* rms speed of the turbulent part, cells per second; 0: none */
-  float scale;            /* largest eddy wavelength, cells; 0: min(width, height)/4; > 4 */
-  float slope;            /* spectrum exponent of E(k); 0: -5/3 */
+  float scale;            /* largest eddy wavelength, cells; > 4 */
+  float slope;            /* spectrum exponent of E(k), finite: -5/3 is Kolmogorov's, 0 flat */
   uint64_t seed;          /* 0 means the default seed 1 */
 } wind_desc;
 

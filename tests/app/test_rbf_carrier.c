@@ -118,16 +118,14 @@ static void check_turbulent_steps(void) {
    * turbulence's largest eddies 12 cells (a quarter of 48), Kolmogorov's slope, the
    * fluctuations pulled toward it at 2 a second (app/rbf_carrier.h) */
   reference_flow r = {.cell = 400.0 / RBF_CARRIER_GRID, .w = 64, .h = 48};
-  r.sim = fluid_sim_create(&(fluid_sim_desc){.width = r.w, .height = r.h,
-                                             .dt = (float)RBF_CARRIER_STEP,
-                                             .viscosity = (float)(30.0 / (r.cell * r.cell)),
-                                             .wind_drift_x = (float)(4.0 / r.cell),
-                                             .wind_drift_z = (float)(-2.0 / r.cell),
-                                             .turbulence = (float)(12.0 / r.cell),
-                                             .turbulence_scale = 12.0f,
-                                             .turbulence_slope = -5.0f / 3.0f,
-                                             .wind_coupling = 2.0f, .seed = 5},
-                           &err);
+  fluid_sim_desc flow = {.width = r.w, .height = r.h, .dt = (float)RBF_CARRIER_STEP,
+                         .viscosity = (float)(30.0 / (r.cell * r.cell)),
+                         .wind_drift_x = (float)(4.0 / r.cell),
+                         .wind_drift_z = (float)(-2.0 / r.cell),
+                         .turbulence = (float)(12.0 / r.cell), .turbulence_scale = 12.0f,
+                         .turbulence_slope = -5.0f / 3.0f, .wind_coupling = 2.0f, .seed = 5,
+                         .advection = FLUID_ADVECT_MONOTONE_CUBIC};
+  r.sim = fluid_sim_create(&flow, &err);
   CHECK(r.sim != NULL, "reference flow: %s", err.message);
   if (!r.sim) {
     rbf_carrier_destroy(c);

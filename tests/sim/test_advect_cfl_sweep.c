@@ -73,11 +73,10 @@ int main(void) {
                                        FLUID_ADVECT_MACCORMACK};
   for (int s = 0; s < 3; s++)
     for (size_t d = 0; d < sizeof dts / sizeof *dts; d++) {
-      fluid_sim *sim = fluid_sim_create(
-          &(fluid_sim_desc){.width = N, .height = N, .dt = dts[d], .turbulence = 40.0f,
-                            .turbulence_scale = 32.0f, .seed = 5, .advection = fschemes[s],
-                            .base = &base},
-          &err);
+      fluid_sim_desc desc = fluid_sim_desc_default(N, N);
+      desc.dt = dts[d], desc.turbulence = 40.0f, desc.turbulence_scale = 32.0f;
+      desc.seed = 5, desc.advection = fschemes[s], desc.base = &base;
+      fluid_sim *sim = fluid_sim_create(&desc, &err);
       CHECK(sim != NULL, "create: %s", err.message);
       if (!sim) continue;
       int bad = 0;

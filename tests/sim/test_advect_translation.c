@@ -58,10 +58,10 @@ static double run(fluid_advection scheme, float vx, float vz, float dt, int step
       base.density[z * N + x] = (float)periodic_blob(x, z, x0, z0, sigma);
       mass0 += base.density[z * N + x];
     }
-  fluid_sim *sim = fluid_sim_create(
-      &(fluid_sim_desc){.width = N, .height = N, .dt = dt, .wind_drift_x = vx,
-                        .wind_drift_z = vz, .advection = scheme, .base = &base},
-      &err);
+  fluid_sim_desc desc = fluid_sim_desc_default(N, N);
+  desc.dt = dt, desc.wind_drift_x = vx, desc.wind_drift_z = vz;
+  desc.advection = scheme, desc.base = &base;
+  fluid_sim *sim = fluid_sim_create(&desc, &err);
   CHECK(sim != NULL, "fluid_sim_create: %s", err.message);
   fogmap_destroy(&base);
   if (!sim) return 1e9;

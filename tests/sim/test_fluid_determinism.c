@@ -38,10 +38,11 @@ int main(void) {
                                       FLUID_ADVECT_MACCORMACK,
                                       FLUID_ADVECT_MACCORMACK_BILINEAR};
   for (int s = 0; s < 4; s++) {
-    fluid_sim_desc desc = {.width = N, .height = N, .viscosity = 0.1f, .wind_drift_x = 5,
-                           .wind_drift_z = 1, .turbulence = 15, .seed = 1234,
-                           .advection = schemes[s], .emitters = emitters, .emitter_count = 2,
-                           .relaxation = 0.2f, .dissipation = 0.05f, .base = &base};
+    fluid_sim_desc desc = fluid_sim_desc_default(N, N);
+    desc.viscosity = 0.1f, desc.wind_drift_x = 5, desc.wind_drift_z = 1;
+    desc.turbulence = 15, desc.seed = 1234, desc.advection = schemes[s];
+    desc.emitters = emitters, desc.emitter_count = 2;
+    desc.relaxation = 0.2f, desc.dissipation = 0.05f, desc.base = &base;
     fluid_sim *a = fluid_sim_create(&desc, &err);
     fluid_sim *b = fluid_sim_create(&desc, &err);
     desc.seed = 1235;

@@ -30,11 +30,10 @@ int main(void) {
   const fluid_advection schemes[3] = {FLUID_ADVECT_BILINEAR, FLUID_ADVECT_MONOTONE_CUBIC,
                                       FLUID_ADVECT_MACCORMACK};
   for (int s = 0; s < 3; s++) {
-    fluid_sim *sim = fluid_sim_create(
-        &(fluid_sim_desc){.width = W, .height = H, .viscosity = 0.5f, .wind_drift_x = 4.0f,
-                          .wind_drift_z = -2.5f, .turbulence = 20.0f, .seed = 7,
-                          .advection = schemes[s]},
-        &err);
+    fluid_sim_desc desc = fluid_sim_desc_default(W, H);
+    desc.viscosity = 0.5f, desc.wind_drift_x = 4.0f, desc.wind_drift_z = -2.5f;
+    desc.turbulence = 20.0f, desc.seed = 7, desc.advection = schemes[s];
+    fluid_sim *sim = fluid_sim_create(&desc, &err);
     CHECK(sim != NULL, "create: %s", err.message);
     if (!sim) continue;
     double worst_spectral = 0, worst_fd = 0;

@@ -16,11 +16,10 @@ enum { N = 64, STEPS = 30 };
 
 static float *run(fluid_fft_planning planning) {
   fog_error err;
-  fluid_sim *sim = fluid_sim_create(
-      &(fluid_sim_desc){.width = N, .height = N, .turbulence = 10, .seed = 9,
-                        .fft_planning = planning,
-                        .emitters = &(fluid_emitter){20, 20, 3, 2}, .emitter_count = 1},
-      &err);
+  fluid_sim_desc desc = fluid_sim_desc_default(N, N);
+  desc.turbulence = 10, desc.seed = 9, desc.fft_planning = planning;
+  desc.emitters = &(fluid_emitter){20, 20, 3, 2}, desc.emitter_count = 1;
+  fluid_sim *sim = fluid_sim_create(&desc, &err);
   CHECK(sim != NULL, "create: %s", err.message);
   if (!sim) return NULL;
   for (int s = 0; s < STEPS; s++) fluid_sim_step(sim, &err);

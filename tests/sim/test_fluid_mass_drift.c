@@ -36,10 +36,10 @@ int main(void) {
   const double bound[4] = {2e-3, 6e-4, 2.5e-3, 1.5e-3};
   for (int s = 0; s < 4; s++) {
     /* 300 steps of 1/30 s in turbulence of rms 8 cells/s (CFL ~0.3-1 per step). */
-    fluid_sim *sim = fluid_sim_create(
-        &(fluid_sim_desc){.width = N, .height = N, .turbulence = 8.0f, .wind_drift_x = 3.0f,
-                          .seed = 3, .advection = schemes[s], .base = &base},
-        &err);
+    fluid_sim_desc desc = fluid_sim_desc_default(N, N);
+    desc.turbulence = 8.0f, desc.wind_drift_x = 3.0f, desc.seed = 3;
+    desc.advection = schemes[s], desc.base = &base;
+    fluid_sim *sim = fluid_sim_create(&desc, &err);
     CHECK(sim != NULL, "create: %s", err.message);
     if (!sim) continue;
     double mass0 = 0, mass = 0, worst = 0;

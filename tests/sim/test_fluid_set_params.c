@@ -63,15 +63,15 @@ int main(void) {
                            {.x = 40, .z = 50, .radius = 5, .rate = 0.5f}};
     fluid_emitter eb[2] = {{.x = 20, .z = 30, .radius = 2, .rate = 4},
                            {.x = 5, .z = 60, .radius = 6, .rate = 2}};
-    fluid_sim_desc a = {.width = N, .height = N, .wind_drift_x = 1.5f, .wind_drift_z = -0.5f,
-                        .seed = 5, .emitters = ea, .emitter_count = 2, .dissipation = 0.1f,
-                        .base = &base};
-    fluid_sim_desc b = {.width = N, .height = N, .wind_drift_x = -2.25f, .wind_drift_z = 0.75f,
-                        .viscosity = 0.5f, .turbulence = 4.0f, .turbulence_scale = 20.0f,
-                        .turbulence_slope = -3.0f, .wind_coupling = 1.0f, .seed = 5,
-                        .advection = FLUID_ADVECT_MACCORMACK, .emitters = eb,
-                        .emitter_count = 2, .relaxation = 0.1f, .dissipation = 0.02f,
-                        .base = &base};
+    fluid_sim_desc a = fluid_sim_desc_default(N, N);
+    a.wind_drift_x = 1.5f, a.wind_drift_z = -0.5f, a.seed = 5;
+    a.emitters = ea, a.emitter_count = 2, a.dissipation = 0.1f, a.base = &base;
+    fluid_sim_desc b = {.width = N, .height = N, .dt = 1.0f / 30, .wind_drift_x = -2.25f,
+                        .wind_drift_z = 0.75f, .viscosity = 0.5f, .turbulence = 4.0f,
+                        .turbulence_scale = 20.0f, .turbulence_slope = -3.0f,
+                        .wind_coupling = 1.0f, .seed = 5, .advection = FLUID_ADVECT_MACCORMACK,
+                        .emitters = eb, .emitter_count = 2, .relaxation = 0.1f,
+                        .dissipation = 0.02f, .base = &base};
     fluid_sim *set = fluid_sim_create(&a, &err);
     CHECK(set != NULL, "create A: %s", err.message);
     fluid_sim *fresh = fluid_sim_create(&b, &err);
@@ -106,8 +106,8 @@ int main(void) {
    * then -64 cells/s = 2 cells per step along -z. Integer displacements: the scheme
    * reproduces the shifted samples up to float rounding. */
   {
-    fluid_sim_desc d = {.width = N, .height = N, .dt = 1.0f / 32, .wind_drift_x = 32.0f,
-                        .wind_coupling = -1.0f, .base = &base};
+    fluid_sim_desc d = fluid_sim_desc_default(N, N);
+    d.dt = 1.0f / 32, d.wind_drift_x = 32.0f, d.wind_coupling = 0, d.base = &base;
     fluid_sim *sim = fluid_sim_create(&d, &err);
     CHECK(sim != NULL, "create: %s", err.message);
     if (sim) {
@@ -150,8 +150,8 @@ int main(void) {
 
   /* 3. The velocity's fluctuations stay; refusals leave everything as it was. */
   {
-    fluid_sim_desc d = {.width = N, .height = N, .wind_drift_x = 1.0f, .wind_coupling = -1.0f,
-                        .seed = 9, .base = &base};
+    fluid_sim_desc d = fluid_sim_desc_default(N, N);
+    d.wind_drift_x = 1.0f, d.wind_coupling = 0, d.seed = 9, d.base = &base;
     fluid_sim *sim = fluid_sim_create(&d, &err);
     CHECK(sim != NULL, "create: %s", err.message);
     if (sim) {
@@ -180,22 +180,23 @@ int main(void) {
       CHECK(kept, "a drift change did not keep the fluctuations (velocity - mean shift)");
 
       take(sim, &before);
+      /* Each differs from the sim's settings (d) in one field. */
       struct {
         fluid_sim_desc desc;
         const char *field;
-      } refused[] = {
-          {{.width = 2 * N, .height = N}, "width"},
-          {{.width = N, .height = N, .seed = 10}, "seed"},
-          {{.width = N, .height = N, .seed = 9, .emitter_count = 1,
-            .emitters = &(fluid_emitter){.x = 1, .z = 1, .radius = 1, .rate = 1}},
-           "emitter_count"},
-          {{.width = N, .height = N, .seed = 9, .fft_planning = FLUID_FFT_MEASURED_WISDOM},
-           "fft_planning"},
-          {{.width = N, .height = N, .seed = 9, .base = &base}, "base"},
-          {{.width = N, .height = N, .seed = 9, .viscosity = -1}, "viscosity"},
-          {{.width = N, .height = N, .seed = 9, .turbulence = 1, .turbulence_scale = 3},
-           "scale"},
-      };
+      } refused[] = {{d, "width"}, {d, "seed"}, {d, "emitter_count"}, {d, "fft_planning"},
+                     {d, "base"},  {d, "viscosity"}, {d, "scale"}, {d, "dt"},
+                     {d, "wind_coupling"}};
+      refused[0].desc.width = 2 * N;
+      refused[1].desc.seed = 10;
+      refused[2].desc.emitter_count = 1;
+      refused[2].desc.emitters = &(fluid_emitter){.x = 1, .z = 1, .radius = 1, .rate = 1};
+      refused[3].desc.fft_planning = FLUID_FFT_MEASURED_WISDOM;
+      refused[4].desc.base = &base;
+      refused[5].desc.viscosity = -1;
+      refused[6].desc.turbulence = 1, refused[6].desc.turbulence_scale = 3;
+      refused[7].desc.dt = 0; /* not "the default step": there is none */
+      refused[8].desc.wind_coupling = -1;
       for (size_t r = 0; r < sizeof refused / sizeof *refused; r++) {
         err.message[0] = 0;
         int status = fluid_sim_set_params(sim, &refused[r].desc, &err);

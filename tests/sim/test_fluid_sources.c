@@ -20,10 +20,10 @@ int main(void) {
   const float dt = 0.05f;
   /* Emitter near a corner: its Gaussian wraps onto the opposite sides. */
   const fluid_emitter em = {2.0f, 61.0f, 3.0f, 4.0f};
-  fluid_sim *sim = fluid_sim_create(
-      &(fluid_sim_desc){.width = N, .height = N, .dt = dt, .emitters = &em,
-                        .emitter_count = 1, .advection = FLUID_ADVECT_BILINEAR},
-      &err);
+  fluid_sim_desc desc = fluid_sim_desc_default(N, N);
+  desc.dt = dt, desc.emitters = &em, desc.emitter_count = 1;
+  desc.advection = FLUID_ADVECT_BILINEAR;
+  fluid_sim *sim = fluid_sim_create(&desc, &err);
   CHECK(sim != NULL, "create: %s", err.message);
   for (int s = 0; s < 10; s++) fluid_sim_step(sim, &err);
   double worst = 0;
@@ -67,9 +67,9 @@ int main(void) {
   base.density[5] = NAN;
   base.density[6] = -3.0f;
   base.density[7] = INFINITY;
-  sim = fluid_sim_create(&(fluid_sim_desc){.width = N, .height = N, .dt = dt, .base = &base,
-                                           .relaxation = 1.5f},
-                         &err);
+  desc = fluid_sim_desc_default(N, N);
+  desc.dt = dt, desc.base = &base, desc.relaxation = 1.5f;
+  sim = fluid_sim_create(&desc, &err);
   CHECK(sim != NULL, "create: %s", err.message);
   rho = fluid_sim_density(sim)->density;
   CHECK(rho[5] == 0.0f && rho[6] == 0.0f && rho[7] == FLT_MAX, "sanitised base %g %g %g",
@@ -83,9 +83,8 @@ int main(void) {
         rho[30 * N + 30], exact);
   fluid_sim_destroy(sim);
 
-  sim = fluid_sim_create(&(fluid_sim_desc){.width = N, .height = N, .dt = dt, .base = &base,
-                                           .dissipation = 0.7f},
-                         &err);
+  desc.relaxation = 0, desc.dissipation = 0.7f;
+  sim = fluid_sim_create(&desc, &err);
   for (int s = 0; s < 30; s++) fluid_sim_step(sim, &err);
   exact = 2.0 * exp(-0.7 * 30 * dt);
   rho = fluid_sim_density(sim)->density;
@@ -93,15 +92,22 @@ int main(void) {
   fluid_sim_destroy(sim);
 
   /* Bad descs are refused with a message naming the problem. */
-  CHECK(!fluid_sim_create(&(fluid_sim_desc){.width = 63}, &err) && strstr(err.message, "even"),
-        "odd width: %s", err.message);
+  desc = fluid_sim_desc_default(63, N);
+  CHECK(!fluid_sim_create(&desc, &err) && strstr(err.message, "even"), "odd width: %s",
+        err.message);
   fogmap small;
   fogmap_create(&small, 32, 32, &err);
-  CHECK(!fluid_sim_create(&(fluid_sim_desc){.width = N, .height = N, .base = &small}, &err) &&
+  desc = fluid_sim_desc_default(N, N);
+  desc.base = &small;
+  CHECK(!fluid_sim_create(&desc, &err) &&
             strstr(err.message, "base"),
         "mismatched base: %s", err.message);
-  CHECK(!fluid_sim_create(&(fluid_sim_desc){.dt = -1}, &err) && strstr(err.message, "dt"),
-        "negative dt: %s", err.message);
+  desc = fluid_sim_desc_default(N, N);
+  desc.dt = -1;
+  CHECK(!fluid_sim_create(&desc, &err) && strstr(err.message, "dt"), "negative dt: %s",
+        err.message);
+  /* A zero-filled desc is refused, not read as "the defaults" (sim/fluid.h). */
+  CHECK(!fluid_sim_create(&(fluid_sim_desc){0}, &err), "a zero desc was taken");
   fogmap_destroy(&small);
   fogmap_destroy(&base);
   return test_finish("test_fluid_sources");

@@ -2,8 +2,8 @@
  * divergence-free (spectrally, for the central-difference symbol the solver uses, and by
  * real-space central differences), its rms speed is the one requested, it has no energy
  * outside the band, and its shell-summed energy spectrum follows the requested slope
- * (least-squares fit in log-log) — for Kolmogorov's -5/3 and for -3. Also after the
- * phases have advanced (the animation keeps all of this). */
+ * (least-squares fit in log-log) — for Kolmogorov's -5/3, for -3 and for 0 (flat). Also
+ * after the phases have advanced (the animation keeps all of this). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -80,5 +80,6 @@ int main(void) {
   check_wind(-5.0f / 3.0f, 64.0f, 0);
   check_wind(-5.0f / 3.0f, 64.0f, 100); /* animated: phases advanced 100 steps */
   check_wind(-3.0f, 32.0f, 10);
+  check_wind(0.0f, 32.0f, 0); /* slope 0 is a flat spectrum, not "the default slope" */
   return test_finish("test_fluid_wind_spectrum");
 }
