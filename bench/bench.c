@@ -112,7 +112,8 @@ int bench_parse(const bench_command *c, int argc, char **argv) {
 int bench_valley_scene(scene_geometry *geo, camera *cam, fog_error *err) {
   scene_desc sdesc = {
       .terrain = {.origin = {-600, 0, -600}, .size = {1200, 1200}, .height = 160,
-                  .resolution = 257, .seed = 4, .octaves = 6, .frequency = 2.2},
+                  .resolution = 257, .seed = 4, .octaves = 6, .frequency = 2.2,
+                  .persistence = 0.5},
       .boxes = {{.center = {-40, 60}, .size = {24, 30, 24}, .colour = {0.55f, 0.25f, 0.18f}},
                 {.center = {70, -30}, .size = {16, 70, 16}, .colour = SCENE_BOX_GREY}},
       .box_count = 2,

@@ -42,9 +42,16 @@ static double value_noise(double x, double z, uint32_t seed) {
 int terrain_create(terrain *t, const terrain_desc *desc, fog_error *err) {
   *t = (terrain){0};
   for (int k = 0; k < 3; k++) t->origin[k] = desc->origin[k];
-  t->size[0] = desc->size[0] > 0 ? desc->size[0] : 1000.0;
-  t->size[1] = desc->size[1] > 0 ? desc->size[1] : 1000.0;
-  t->height = desc->height > 0 ? desc->height : 150.0;
+  t->size[0] = desc->size[0];
+  t->size[1] = desc->size[1];
+  t->height = desc->height;
+  if (!(t->size[0] > 0 && t->size[1] > 0 && t->height >= 0) || !isfinite(t->size[0]) ||
+      !isfinite(t->size[1]) || !isfinite(t->height)) {
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "terrain size %g x %g, height %g: expected a finite size > 0 and height >= 0",
+             t->size[0], t->size[1], t->height);
+    return 1;
+  }
   if (desc->heights) {
     if (desc->heights_width < 2 || desc->heights_height < 2) {
       fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "terrain heights are %dx%d: expected at least 2x2",
@@ -54,11 +61,19 @@ int terrain_create(terrain *t, const terrain_desc *desc, fog_error *err) {
     t->resolution_x = desc->heights_width;
     t->resolution_z = desc->heights_height;
   } else {
-    int n = desc->resolution > 0 ? desc->resolution : 257;
+    int n = desc->resolution;
     if (n < 2 || n > TERRAIN_MAX_RESOLUTION) {
       fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                "terrain resolution %d: expected 2 to %d vertices per side", n,
                TERRAIN_MAX_RESOLUTION);
+      return 1;
+    }
+    if (desc->octaves < 1 || desc->octaves > 16 || !(desc->frequency > 0) ||
+        !isfinite(desc->frequency) || !(desc->persistence > 0 && desc->persistence <= 1)) {
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+               "terrain fBm: %d octaves, frequency %g, persistence %g: expected 1 to 16 "
+               "octaves, a finite frequency > 0 and a persistence in (0, 1]",
+               desc->octaves, desc->frequency, desc->persistence);
       return 1;
     }
     t->resolution_x = t->resolution_z = n;
@@ -83,9 +98,8 @@ int terrain_create(terrain *t, const terrain_desc *desc, fog_error *err) {
       t->h[k] = v != v ? 0.0f : v < 0 ? 0.0f : v > 1 ? 1.0f : v;
     }
   } else {
-    int octaves = desc->octaves > 0 ? desc->octaves : 6;
-    double frequency = desc->frequency > 0 ? desc->frequency : 3.0;
-    double persistence = desc->persistence > 0 ? desc->persistence : 0.5;
+    const int octaves = desc->octaves;
+    const double frequency = desc->frequency, persistence = desc->persistence;
     double total = 0.0, amplitude = 1.0;
     for (int o = 0; o < octaves; o++, amplitude *= persistence) total += amplitude;
     for (int j = 0; j < t->resolution_z; j++)

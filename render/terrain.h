@@ -20,17 +20,20 @@
  * buffers fail (a terrain of 7750 crashed in the driver). */
 #define TERRAIN_MAX_RESOLUTION 7681
 
+/* Every value is taken as given (a scene config supplies its own defaults): a zero is
+ * refused where it means nothing, never read as "the default". */
 typedef struct terrain_desc {
   double origin[3];  /* world position of vertex (0, 0) at h = 0 (the min corner) */
-  double size[2];    /* extent in X and Z; 0: 1000 x 1000 */
-  double height;     /* world height of h = 1; 0: 150 */
+  double size[2];    /* extent in X and Z, > 0 */
+  double height;     /* world height of h = 1, >= 0 (0: flat) */
   /* Heights from an image (e.g. a 16-bit grey PNG loaded by the app), values in [0, 1],
    * row-major, top image row = z index 0. NULL: procedural. */
   const float *heights;
   int heights_width, heights_height;
-  /* Procedural terrain (heights == NULL): grid vertices per side (0: 257), fBm of value
-   * noise: octaves (0: 6), features across the terrain at the first octave (0: 3),
-   * amplitude falloff per octave (0: 0.5), seed. */
+  /* Procedural terrain (heights == NULL): grid vertices per side (2 to
+   * TERRAIN_MAX_RESOLUTION), fBm of value noise: octaves (1 to 16), features across the
+   * terrain at the first octave (> 0), amplitude falloff per octave (in (0, 1]), seed.
+   * Unread with heights. */
   int resolution;
   int octaves;
   double frequency;

@@ -221,7 +221,8 @@ int main(void) {
   if (!ctx) return test_finish("test_lamp_shadow_map");
   scene_desc desc = {
       .terrain = {.origin = {-300, -20, -300}, .size = {600, 600}, .height = 60,
-                  .resolution = 129, .seed = 3},
+                  .resolution = 129, .seed = 3, .octaves = 6, .frequency = 3,
+                  .persistence = 0.5},
       .boxes = {{.center = {0, 0}, .size = {12, 30, 8}, .colour = SCENE_BOX_GREY},
                 {.center = {30, 25}, .size = {6, 45, 6}, .colour = SCENE_BOX_GREY},
                 {.center = {-25, 30}, .size = {20, 10, 4}, .colour = SCENE_BOX_GREY}},

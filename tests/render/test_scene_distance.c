@@ -32,7 +32,9 @@ static void test_dda_matches_brute_force(void) {
   fog_error err = {0};
   terrain t;
   int status = terrain_create(&t, &(terrain_desc){.origin = {-200, 10, -300}, .size = {400, 600},
-                                                  .height = 120, .resolution = 65, .seed = 7},
+                                                  .height = 120, .resolution = 65, .seed = 7,
+                                                  .octaves = 6, .frequency = 3,
+                                                  .persistence = 0.5},
                               &err);
   CHECK(status == 0, "terrain: %s", err.message);
   if (status) return;
@@ -172,7 +174,8 @@ int main(void) {
 
   scene_desc desc = {
       .terrain = {.origin = {-500, -20, -500}, .size = {1000, 1000}, .height = 160,
-                  .resolution = 129, .seed = 3},
+                  .resolution = 129, .seed = 3, .octaves = 6, .frequency = 3,
+                  .persistence = 0.5},
       .boxes = {{.center = {0, -120}, .size = {30, 40, 20}, .colour = SCENE_BOX_GREY},
                 {.center = {60, -200}, .size = {15, 80, 15}, .colour = {0.6f, 0.2f, 0.1f}}},
       .box_count = 2,

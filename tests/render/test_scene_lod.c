@@ -24,7 +24,8 @@ int main(void) {
   if (!ctx) return test_finish("test_scene_lod");
   scene_desc desc = {
       .terrain = {.origin = {-600, 0, -600}, .size = {1200, 1200}, .height = 160,
-                  .resolution = 257, .seed = 4, .octaves = 6, .frequency = 2.2},
+                  .resolution = 257, .seed = 4, .octaves = 6, .frequency = 2.2,
+                  .persistence = 0.5},
       .light = scene_light_default(),
   };
   desc.light.sun_azimuth = 150, desc.light.sun_elevation = 30;

@@ -75,7 +75,8 @@ static double post_shadow_found(double width, gl_context *ctx) {
   fog_error err = {0};
   scene_desc desc = {
       .terrain = {.origin = {-2000, 0, -2000}, .size = {4000, 4000}, .height = 1e-3,
-                  .resolution = 9, .seed = 1},
+                  .resolution = 9, .seed = 1, .octaves = 6, .frequency = 3,
+                  .persistence = 0.5},
       .boxes = {{.center = {0, 0}, .size = {width, 40, width}, .colour = SCENE_BOX_GREY}},
       .box_count = 1,
       .light = scene_light_default(),
@@ -117,7 +118,8 @@ int main(void) {
   if (!ctx) return test_finish("test_sun_shadow_map");
   scene_desc desc = {
       .terrain = {.origin = {-500, -20, -500}, .size = {1000, 1000}, .height = 160,
-                  .resolution = 129, .seed = 3},
+                  .resolution = 129, .seed = 3, .octaves = 6, .frequency = 3,
+                  .persistence = 0.5},
       .boxes = {{.center = {0, -120}, .size = {30, 40, 20}, .colour = SCENE_BOX_GREY},
                 {.center = {60, -200}, .size = {15, 80, 15}, .colour = SCENE_BOX_GREY}},
       .box_count = 2,
