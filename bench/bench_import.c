@@ -370,7 +370,8 @@ int bench_import(int argc, char **argv) {
       {.kind = CLI_TEXT, .name = "--vdb-render", .value = "PATH", .target = &exe,
        .help = "the vdb_render to time (default /usr/bin/vdb_render)"},
       {.kind = CLI_TEXT, .name = "--images", .value = "DIR", .target = &images,
-       .help = "keep both preview images there (fogpipe.png, vdb_render.png)"},
+       .help = "keep both preview images there (fogpipe.png, vdb_render.png; the\n"
+               "folder is created if missing)"},
       {.kind = CLI_SECTION,
        .name = "preview variants (default: native 64x64 fogmap, B-spline profile with one knot\n"
                "per layer, exact integral):"},
@@ -400,6 +401,12 @@ int bench_import(int argc, char **argv) {
   if (exit_status >= 0) return exit_status;
   const int march = march_flag, exponential = exponential_flag;
 
+  char folder_error[512];
+  if (images && bench_make_folder(images, folder_error, sizeof folder_error)) {
+    /* refused before the work, not found out as a failed preview after it */
+    fprintf(stderr, "fogpipe bench import: --images %s: %s\n", images, folder_error);
+    return 1;
+  }
   bench_print_build();
   const char *pattern = FOGPIPE_SOURCE_DIR "/../shared/data/vdb/groundfog/data/fluid_data_####.vdb";
   const char *inputs[] = {pattern};
@@ -469,7 +476,7 @@ int bench_import(int argc, char **argv) {
   const char *vdb = seq.paths[n - 1];
   char dir[512];
   if (images) {
-    snprintf(dir, sizeof dir, "%s", images);
+    snprintf(dir, sizeof dir, "%s", images); /* made at the start */
   } else {
     snprintf(dir, sizeof dir, "/tmp/fogpipe_bench_import_XXXXXX");
     if (!mkdtemp(dir)) {
