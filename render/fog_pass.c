@@ -523,13 +523,11 @@ int fog_pass_upload_sun_shadow(fog_pass *pass, const fog_sun_shadow *shadow, fog
   /* Across the sunlight a zero border (no fog beside the box), along it the edge samples
    * (nothing before the sun-side face, the whole column past the far one): what
    * fog_sun_shadow_depth_at assumes. */
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-  const float zero[4] = {0, 0, 0, 0};
-  glTexParameterfv(GL_TEXTURE_3D, GL_TEXTURE_BORDER_COLOR, zero);
+  gl_util_set_sampling(GL_TEXTURE_3D,
+                       &(gl_sampling){.filter = GL_LINEAR,
+                                      .wrap = {GL_CLAMP_TO_BORDER, GL_CLAMP_TO_BORDER,
+                                               GL_CLAMP_TO_EDGE},
+                                      .border = {0, 0, 0, 0}});
   glBindTexture(GL_TEXTURE_3D, 0);
   pass->sun_shadow_place = *shadow;
   pass->sun_shadow_place.optical_depth = NULL;
@@ -1068,11 +1066,10 @@ static int fog_pass_froxel_fit(fog_pass *pass, const fog_froxel_grid *g, fog_err
   glBindTexture(GL_TEXTURE_3D, pass->froxel_volume);
   glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA32F, g->columns, g->rows, g->slices, 0, GL_RGBA,
                GL_FLOAT, NULL);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  gl_util_set_sampling(GL_TEXTURE_3D,
+                       &(gl_sampling){.filter = GL_LINEAR,
+                                      .wrap = {GL_CLAMP_TO_EDGE, GL_CLAMP_TO_EDGE,
+                                               GL_CLAMP_TO_EDGE}});
   glBindTexture(GL_TEXTURE_3D, 0);
   GLint caller = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &caller);

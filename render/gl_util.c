@@ -313,14 +313,24 @@ GLuint gl_util_empty_vao(void) {
   return vao;
 }
 
+void gl_util_set_sampling(GLenum target, const gl_sampling *s) {
+  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, s->filter);
+  glTexParameteri(target, GL_TEXTURE_MAG_FILTER, s->filter);
+  glTexParameteri(target, GL_TEXTURE_WRAP_S, s->wrap[0]);
+  glTexParameteri(target, GL_TEXTURE_WRAP_T, s->wrap[1]);
+  if (target == GL_TEXTURE_3D) glTexParameteri(target, GL_TEXTURE_WRAP_R, s->wrap[2]);
+  glTexParameterfv(target, GL_TEXTURE_BORDER_COLOR, s->border);
+  glTexParameteri(target, GL_TEXTURE_COMPARE_MODE,
+                  s->compare ? GL_COMPARE_REF_TO_TEXTURE : GL_NONE);
+  if (s->compare) glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+}
+
 void gl_util_texture_sampling(GLenum target, bool linear_zero_border) {
-  GLint filter = linear_zero_border ? GL_LINEAR : GL_NEAREST;
-  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filter);
-  glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
-  if (!linear_zero_border) return;
-  static const float border[4] = {0, 0, 0, 0};
-  glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-  glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-  if (target == GL_TEXTURE_3D) glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_BORDER);
-  glTexParameterfv(target, GL_TEXTURE_BORDER_COLOR, border);
+  /* texelFetch ignores wrapping and the border: only the filter matters there */
+  const GLint filter = linear_zero_border ? GL_LINEAR : GL_NEAREST;
+  gl_util_set_sampling(target,
+                       &(gl_sampling){.filter = filter,
+                                      .wrap = {GL_CLAMP_TO_BORDER, GL_CLAMP_TO_BORDER,
+                                               GL_CLAMP_TO_BORDER},
+                                      .border = {0, 0, 0, 0}});
 }

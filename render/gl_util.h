@@ -72,9 +72,19 @@ int gl_util_read_pixels(GLenum read_buffer, int width, int height, int channels,
  * Created on first use (and again when a new context no longer knows it). */
 GLuint gl_util_empty_vao(void);
 
-/* Sampling of the texture bound to `target` (2D, 2D array or 3D): GL_LINEAR filtering with
- * a zero border (values outside the texture read as 0, as coefficients and densities
- * beyond a grid are), or GL_NEAREST for texelFetch-only textures. */
+/* How the texture bound to a target is sampled, every field given. */
+typedef struct gl_sampling {
+  GLint filter;     /* GL_LINEAR or GL_NEAREST, minifying and magnifying (no mipmaps) */
+  GLint wrap[3];    /* S, T, R; R is set on 3D textures only */
+  float border[4];  /* what GL_CLAMP_TO_BORDER reads outside */
+  bool compare;     /* depth comparison for sampler*Shadow: passes when ref <= stored */
+} gl_sampling;
+void gl_util_set_sampling(GLenum target, const gl_sampling *sampling);
+
+/* The common case of gl_util_set_sampling, for the texture bound to `target` (2D, 2D
+ * array or 3D): GL_LINEAR filtering with a zero border (values outside the texture read
+ * as 0, as coefficients and densities beyond a grid are), or GL_NEAREST for
+ * texelFetch-only textures. */
 void gl_util_texture_sampling(GLenum target, bool linear_zero_border);
 
 /* The most loop iterations one shader invocation runs before the renderer ends its loops

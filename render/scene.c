@@ -311,15 +311,11 @@ static int shadow_map_create(scene_pass *pass, fog_error *err) {
   pass->shadow.texture = tex;
   glBindTexture(GL_TEXTURE_2D, tex);
   glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT32F, pass->shadow.size, pass->shadow.size);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   /* beyond the map: depth 1, nothing in front of the sun */
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-  const float far_border[4] = {1, 1, 1, 1};
-  glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, far_border);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  gl_util_set_sampling(GL_TEXTURE_2D,
+                       &(gl_sampling){.filter = GL_LINEAR,
+                                      .wrap = {GL_CLAMP_TO_BORDER, GL_CLAMP_TO_BORDER},
+                                      .border = {1, 1, 1, 1}, .compare = true});
   glBindTexture(GL_TEXTURE_2D, 0);
   glGenFramebuffers(1, &pass->shadow_framebuffer);
   glBindFramebuffer(GL_FRAMEBUFFER, pass->shadow_framebuffer);

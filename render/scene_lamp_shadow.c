@@ -32,12 +32,10 @@ static int lamp_shadows_allocate(scene_pass *pass, int count, fog_error *err) {
   glBindTexture(GL_TEXTURE_CUBE_MAP_ARRAY, tex);
   glTexStorage3D(GL_TEXTURE_CUBE_MAP_ARRAY, 1, GL_DEPTH_COMPONENT32F, maps->size, maps->size,
                  6 * maps->capacity);
-  glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  glTexParameteri(GL_TEXTURE_CUBE_MAP_ARRAY, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  gl_util_set_sampling(GL_TEXTURE_CUBE_MAP_ARRAY,
+                       &(gl_sampling){.filter = GL_LINEAR,
+                                      .wrap = {GL_CLAMP_TO_EDGE, GL_CLAMP_TO_EDGE},
+                                      .compare = true});
   glBindTexture(GL_TEXTURE_CUBE_MAP_ARRAY, 0);
   /* the 2 x 2 filter reads across a face's edge into its neighbour, not a clamped texel */
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
