@@ -61,6 +61,10 @@ static int take_value(const cli_spec *spec, const cli_option *o, const char *tex
 
 int cli_parse(const cli_spec *spec, int argc, char **argv, const char **operands, int *count) {
   *count = 0;
+  bool seen[CLI_MAX_OPTIONS] = {false}; /* by row: for the required ones */
+  if (spec->option_count > CLI_MAX_OPTIONS)
+    return cli_fail(spec->command, "%d option rows: at most %d (CLI_MAX_OPTIONS)",
+                    spec->option_count, CLI_MAX_OPTIONS);
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -81,6 +85,7 @@ int cli_parse(const cli_spec *spec, int argc, char **argv, const char **operands
     }
     const cli_option *o = find(spec, a);
     if (!o) return cli_usage_error(spec->command, "unknown option '%s'", a);
+    seen[o - spec->options] = true;
     if (o->given) *o->given = true;
     if (o->kind == CLI_FLAG) {
       *(bool *)o->target = true;
@@ -92,6 +97,12 @@ int cli_parse(const cli_spec *spec, int argc, char **argv, const char **operands
   }
   if (*count < spec->min_operands)
     return cli_usage_error(spec->command, "no %s given", spec->operand);
+  for (int k = 0; k < spec->option_count; k++) {
+    const cli_option *o = &spec->options[k];
+    if (o->required && !seen[k])
+      return cli_usage_error(spec->command, "%s%s%s is required", o->name, o->value ? " " : "",
+                             o->value ? o->value : "");
+  }
   return 0;
 }
 

@@ -28,9 +28,9 @@ typedef struct bake_job {
 static int parse_bake_options(int argc, char **argv, bake_job *job) {
   const cli_option options[] = {
       {.kind = CLI_INT, .name = "--frames", .value = "N", .target = &job->frames, .min = 1,
-       .max = 9999999, .help = "frames to bake, 1 to 9999999 (required)"},
+       .max = 9999999, .required = true, .help = "frames to bake, 1 to 9999999 (required)"},
       {.kind = CLI_TEXT, .name = "--out", .value = "DIR", .target = &job->out,
-       .help = "the bake's folder (created if missing; required)"},
+       .required = true, .help = "the bake's folder (created if missing; required)"},
       {.kind = CLI_NUMBER, .name = "--fps", .value = "F", .target = &job->fps,
        .min = 1.0 / PIPELINE_MAX_FRAME_SECONDS, .max = 1000,
        .help = "frames per second of simulated time, as record's --fps (default 24)"},
@@ -45,8 +45,6 @@ static int parse_bake_options(int argc, char **argv, bake_job *job) {
       .options = options, .option_count = sizeof options / sizeof options[0]};
   int operands = 0, parsed = cli_parse(&spec, argc, argv, &job->config_path, &operands);
   if (parsed) return parsed;
-  if (!job->frames) return cli_usage_error("bake", "--frames N is required");
-  if (!job->out) return cli_usage_error("bake", "--out DIR is required");
   return 0;
 }
 

@@ -85,9 +85,9 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
        .parse = parse_blob, .help = "one Gaussian blob (repeatable, at most 256 blobs in all)"},
       {.kind = CLI_SECTION, .name = "output:"},
       {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
-       .help = "fogmap size in cells (required)"},
+       .required = true, .help = "fogmap size in cells (required)"},
       {.kind = CLI_TEXT, .name = "--out", .value = "FILE", .target = &o->out,
-       .help = ".exr: one float channel \"Y\" (exactly what fogmap_load reads);\n"
+       .required = true, .help = ".exr: one float channel \"Y\" (exactly what fogmap_load reads);\n"
                ".png: 16-bit grey, density / png-max * 65535 (required)"},
       {.kind = CLI_FLAG, .name = "--half", .target = &half,
        .help = "EXR: store the channel as 16-bit half floats"},
@@ -143,8 +143,6 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
   o->width = size[0], o->height = size[1];
   if (!o->perlin && !o->random_blobs && !o->blob_count)
     return cli_usage_error("design", "say what to design: --perlin, --blobs N and/or --blob X,Z,SIGMA,PEAK");
-  if (!o->width) return cli_usage_error("design", "--size WxH is required");
-  if (!o->out) return cli_usage_error("design", "--out FILE.exr or FILE.png is required");
   if (!cli_ends_with(o->out, ".png") && !cli_ends_with(o->out, ".exr"))
     return cli_usage_error("design", "--out '%s': the name must end in .exr or .png", o->out);
   if (o->random_blobs + o->blob_count > max_blobs)

@@ -29,12 +29,12 @@ int cmd_record(int argc, char **argv) {
   int frames[3] = {0, 0, 0}, size[2] = {0, 0};
   const cli_option options[] = {
       {.kind = CLI_RANGE, .name = "--frames", .value = "N|A-B", .target = frames, .min = 1,
-       .max = 9999999,
+       .max = 9999999, .required = true,
        .help = "frames 1..N, or only A..B (required): a range renders\n"
                "exactly those frames of the full run, bit for bit, so\n"
                "ranges can go to different machines (docs/farm.md)"},
       {.kind = CLI_TEXT, .name = "--out", .value = "DIR", .target = &job.out,
-       .help = "output folder, created if missing (required)"},
+       .required = true, .help = "output folder, created if missing (required)"},
       {.kind = CLI_NUMBER, .name = "--fps", .value = "F", .target = &job.fps,
        .min = 1.0 / PIPELINE_MAX_FRAME_SECONDS, .max = 1000,
        .help = "frames per second of simulated time (default 24)"},
@@ -67,8 +67,6 @@ int cmd_record(int argc, char **argv) {
       .options = options, .option_count = sizeof options / sizeof options[0]};
   int operands = 0, parsed = cli_parse(&spec, argc, argv, &job.config_path, &operands);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
-  if (!frames[1]) return cli_usage_error("record", "--frames N is required");
-  if (!job.out) return cli_usage_error("record", "--out DIR is required");
   /* N (frames 1..N) or A-B (frames A..B, for a farm's job array) */
   job.first_frame = frames[2] ? 1 : frames[0], job.frames = frames[1];
   job.width = size[0], job.height = size[1];

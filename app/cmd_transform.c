@@ -369,7 +369,7 @@ int cmd_transform(int argc, char **argv) {
       {.kind = CLI_INT, .name = "--threads", .value = "1|2", .target = &desc.threads, .min = 1,
        .max = 2, .help = "default 1"},
       {.kind = CLI_TEXT, .name = "--out", .value = "DIR|FILE", .target = &out,
-       .help = "output folder (forward) or EXR file (--inverse)"},
+       .required = true, .help = "output folder (forward) or EXR file (--inverse)"},
       {.kind = CLI_TEXT, .name = "--inverse", .value = "DIR", .target = &inverse,
        .help = "reconstruct from DIR"},
   };
@@ -392,7 +392,6 @@ int cmd_transform(int argc, char **argv) {
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   desc.basis = (transform_basis)basis, desc.boundary = (transform_boundary)mode;
   desc.decomposition = standard ? TRANSFORM_STANDARD : TRANSFORM_NONSTANDARD;
-  if (!out) return cli_usage_error("transform", "--out is required");
   if (inverse) {
     if (in) return cli_usage_error("transform", "--inverse takes no input fogmap (%s)", in);
     if (channel) return cli_usage_error("transform", "--inverse reads its folder's own channels; "

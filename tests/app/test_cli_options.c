@@ -1,7 +1,8 @@
 /* The option tables (app/cli_options.h): cli_parse stores every kind of value where its row
  * says, refuses what the row does not allow with exit status 2 (unknown options, missing
  * values, numbers out of range or with trailing text, unknown choices, too many or too few
- * operands), answers --help with CLI_HELP, and cli_print_help lists every row (sections,
+ * operands, a required option left out), answers --help with CLI_HELP (even without the
+ * required option), and cli_print_help lists every row (sections,
  * options with their values and each line of their help). */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
@@ -17,7 +18,7 @@ typedef struct values {
   int count, size[2], range[3], choice;
   double number;
   float ratio;
-  const char *text, *custom;
+  const char *text, *custom, *out;
 } values;
 
 static int parse_upper(const char *command, const char *option, const char *text, void *target) {
@@ -49,6 +50,8 @@ static int run(values *v, const char **operands, int *count, const char *line) {
        .choices = choices, .help = "a choice"},
       {.kind = CLI_CUSTOM, .name = "--name", .value = "NAME", .target = &v->custom,
        .parse = parse_upper, .help = "a custom value"},
+      {.kind = CLI_TEXT, .name = "--out", .value = "DIR", .target = &v->out, .required = true,
+       .help = "required"},
   };
   const cli_spec spec = {.command = "test", .usage = "FILE... [options]", .about = "About.",
                          .operand = "FILE", .min_operands = 1, .max_operands = 2,
@@ -87,7 +90,7 @@ int main(void) {
   int count;
   int status = run(&v, operands, &count,
                    "a.ini --flag --count 7 --number -0.5 --ratio 1.5 --size 640x360 "
-                   "--frames 3-9 --text hello --colour blue --name Fog b.ini");
+                   "--frames 3-9 --text hello --colour blue --name Fog b.ini --out o");
   CHECK(status == 0, "a full line: status %d", status);
   CHECK(count == 2 && !strcmp(operands[0], "a.ini") && !strcmp(operands[1], "b.ini"),
         "operands");
@@ -98,27 +101,29 @@ int main(void) {
         v.range[1]);
   CHECK(!strcmp(v.text, "hello") && v.choice == 2 && !strcmp(v.custom, "Fog"),
         "text, choice, custom");
-  CHECK(run(&v, operands, &count, "a.ini --frames 5") == 0 && v.range[0] == 5 &&
+  CHECK(run(&v, operands, &count, "a.ini --frames 5 --out o") == 0 && v.range[0] == 5 &&
             v.range[1] == 5 && v.range[2] == 1,
         "a single frame");
-  CHECK(run(&v, operands, &count, "a.ini") == 0 && !v.given_number && v.count == -1,
+  CHECK(run(&v, operands, &count, "a.ini --out o") == 0 && !v.given_number && v.count == -1,
         "untouched without the options");
   CHECK(run(&v, operands, &count, "--help") == CLI_HELP, "--help");
   CHECK(run(&v, operands, &count, "a.ini -h") == CLI_HELP, "-h");
 
   const char *bad[] = {
-      "a.ini --bogus",          /* unknown */
-      "a.ini --count",          /* no value */
-      "a.ini --count 10",       /* out of range */
-      "a.ini --count 3x",       /* trailing text */
-      "a.ini --number nan",     /* not finite */
-      "a.ini --ratio 2.5",      /* float out of range */
-      "a.ini --size 0x10",      /* size */
-      "a.ini --frames 9-3",     /* range backwards */
-      "a.ini --colour purple",  /* unknown choice */
-      "a.ini --name fog",       /* custom refusal */
-      "a.ini b.ini c.ini",      /* too many operands */
-      "--flag",                 /* too few */
+      "a.ini --bogus --out o",        /* unknown */
+      "a.ini --count",                /* no value */
+      "a.ini --count 10 --out o",     /* out of range */
+      "a.ini --count 3x --out o",     /* trailing text */
+      "a.ini --number nan --out o",   /* not finite */
+      "a.ini --ratio 2.5 --out o",    /* float out of range */
+      "a.ini --size 0x10 --out o",    /* size */
+      "a.ini --frames 9-3 --out o",   /* range backwards */
+      "a.ini --colour purple --out o", /* unknown choice */
+      "a.ini --name fog --out o",     /* custom refusal */
+      "a.ini b.ini c.ini --out o",    /* too many operands */
+      "--flag --out o",               /* too few */
+      "a.ini --flag",                 /* no --out */
+      "a.ini --text --out",           /* --out only as --text's value */
   };
   for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
     CHECK(run(&v, operands, &count, bad[k]) == 2, "'%s' was not refused with 2", bad[k]);
