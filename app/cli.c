@@ -52,6 +52,7 @@ bool cli_parse_double(const char *text, double min, double max, double *value) {
   errno = 0;
   double v = strtod(text, &end);
   if (errno || end == text || *end || !isfinite(v) || !(v >= min && v <= max)) return false;
+  if (strpbrk(text, "xX")) return false; /* strtod reads hexadecimal too: decimal only */
   *value = v;
   return true;
 }

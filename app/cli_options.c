@@ -85,6 +85,8 @@ int cli_parse(const cli_spec *spec, int argc, char **argv, const char **operands
     }
     const cli_option *o = find(spec, a);
     if (!o) return cli_usage_error(spec->command, "unknown option '%s'", a);
+    if (seen[o - spec->options] && o->kind != CLI_FLAG && !o->repeats)
+      return cli_usage_error(spec->command, "%s given twice (which value was meant?)", a);
     seen[o - spec->options] = true;
     if (o->given) *o->given = true;
     if (o->kind == CLI_FLAG) {

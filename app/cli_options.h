@@ -34,6 +34,8 @@ typedef struct cli_option {
   int (*parse)(const char *command, const char *option, const char *text, void *target);
   bool *given; /* optional: set when the option was on the command line */
   bool required; /* cli_parse refuses a line without it: "--out DIR is required" */
+  bool repeats;  /* may be given more than once (each value parsed in turn); any other
+                    option with a value is refused the second time, not overwritten */
 } cli_option;
 
 /* The most rows (options and sections) one command's table may have. */
@@ -60,7 +62,8 @@ typedef struct cli_spec {
 /* Reads argv[1 .. argc) by spec: options (with `--name VALUE`), "--help"/"-h", and the
  * operands into operands[0 .. *count) (at most spec->max_operands; anything starting with
  * '-' is an option). Returns 0, CLI_HELP, or 2 with the message printed (an unknown option,
- * a missing or bad value, too few or too many operands, a required option not given). */
+ * a missing or bad value, too few or too many operands, a required option not given, an
+ * option with a value given twice). */
 int cli_parse(const cli_spec *spec, int argc, char **argv, const char **operands, int *count);
 
 /* The --help text: usage, about, the options table by sections, the footer. */

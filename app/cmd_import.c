@@ -159,6 +159,8 @@ static int parse_options(int argc, char **argv, import_options *o) {
   o->up = (vdb_up_axis)(up_axis % 2);
   o->profile.kind = (vdb_profile_kind)profile;
   if (!o->out && !o->list) return cli_usage_error("import", "--out DIR is required");
+  if (o->resolution && o->cell) /* one would be dropped without a word */
+    return cli_usage_error("import", "--resolution and --cell are alternatives: give one");
   return 0;
 }
 

@@ -396,6 +396,9 @@ int cmd_transform(int argc, char **argv) {
     if (in) return cli_usage_error("transform", "--inverse takes no input fogmap (%s)", in);
     if (channel) return cli_usage_error("transform", "--inverse reads its folder's own channels; "
                                  "--channel is for a forward transform");
+    if (!cli_ends_with(out, ".exr")) /* what it writes, whatever the name says */
+      return cli_usage_error("transform", "--out '%s': --inverse writes an EXR file: expected "
+                             "a name ending in .exr", out);
     return run_inverse(inverse, out, desc.threads);
   }
   if (!in) return cli_usage_error("transform", "no input fogmap given");

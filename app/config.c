@@ -255,7 +255,18 @@ static char *read_line(char *buffer, int size, void *stream) {
    * comment became a key. Here a whole line is read: a long comment or blank line is
    * passed on cut short (it means nothing), a long line with content is an error. */
   const char *p = s->whole_line + strspn(s->whole_line, " \t\r\n");
-  if (*p == '[') s->after_key = false; /* a section starts: no key to go on */
+  if (*p == '[') {
+    s->after_key = false; /* a section starts: no key to go on */
+    /* libinih takes "[fog] x" and "[fog]]" as [fog], ignoring the rest: refuse them */
+    const char *close = strchr(p, ']');
+    const char *rest = close ? close + 1 + strspn(close + 1, " \t\r\n") : NULL;
+    if (!s->error_line && close && *rest && *rest != ';' && *rest != '#') {
+      s->error_line = s->line;
+      fog_fail(s->err, FOG_ERR_BAD_CONFIG, "%s:%d: expected '[section]', got '%.*s'", s->path,
+               s->line, (int)strcspn(p, "\r\n"), p);
+      return NULL;
+    }
+  }
   s->continuation = s->after_key && p > s->whole_line && *p && *p != ';' && *p != '#';
   if (n < size) {
     memcpy(buffer, s->whole_line, (size_t)n + 1);
@@ -326,6 +337,8 @@ static int parse_numbers(const char *text, double *out, int max) {
     errno = 0;
     double v = strtod(p, &end);
     if (end == p || errno == ERANGE || !isfinite(v)) return -1;
+    if (memchr(p, 'x', (size_t)(end - p)) || memchr(p, 'X', (size_t)(end - p)))
+      return -1; /* strtod reads hexadecimal too; numbers here are decimal */
     if (*end && *end != ' ' && *end != '\t' && *end != ',') return -1;
     out[count++] = v;
     p = end;
@@ -772,6 +785,13 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
   if (!continues_quadric && !finish_quadric(s)) return 0;
   const key_spec *k = lookup_key(s, section, key);
   if (!k) return 0;
+  /* A value key given twice is a mistake (which one did the author mean?); the appending
+   * keys (boxes, RBFs, quadrics, emitters, lamps) and a list's continuation lines repeat. */
+  const bool appends = k->kind == V_OBJECT || k->kind == V_RBF || k->kind == V_QUADRIC ||
+                       k->kind == V_RBF_EMITTER || k->kind == V_LAMP ||
+                       k->kind == V_LAMP_PATH || k->kind == V_LAMP_FLICKER;
+  if (s->key_line[k - keys] && !appends && !s->continuation)
+    return fail(s, section, key, "given twice (first on line %d)", s->key_line[k - keys]);
   s->key_line[k - keys] = s->line;
   if (s->continuation && k->kind != V_LIST && k->kind != V_QUADRIC)
     /* libinih hands an indented line to the key above */
@@ -812,10 +832,9 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
     case V_ENUM:
       return store_enum(s, k, section, key, value, (int *)field);
     case V_PATH:
-      if (!value[0]) {
-        field[0] = '\0';
-        return 1;
-      }
+      if (!value[0]) /* not "none": a path left empty is more likely a slip */
+        return fail(s, section, key, "expected a file path, got nothing (leave the key out "
+                    "for none)");
       if (!resolve_path(s, value, field, k->size))
         return fail(s, section, key, "the path resolved against the config's folder is longer "
                     "than %zu characters: '%.60s...'", k->size - 1, value);
@@ -1051,7 +1070,9 @@ int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
   fclose(s.file);
   free(s.whole_line);
   if (!s.error_line) finish_quadric(&s); /* before a syntax error below it */
-  if (s.error_line) return 1;
+  /* libinih reads on past a line it cannot parse ("[fog" with no "]") and reports its first
+   * error's line as status: when that comes before ours, it is the first mistake. */
+  if (s.error_line && !(status > 0 && status < s.error_line)) return 1;
   if (status > 0) {
     fog_fail(err, FOG_ERR_BAD_CONFIG, "%s:%d: expected '[section]', 'key = value' or a comment",
              path, status);
@@ -1068,6 +1089,13 @@ int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
     s.line = top > floor_line ? top : floor_line;
     fail(&s, "box", top > floor_line ? "top" : "floor", "top (%g) must be above floor (%g)",
          cfg->box.top, cfg->box.floor);
+    return 1;
+  }
+  const double *eye = cfg->camera.position, *at = cfg->camera.look_at;
+  if (cfg->camera.look_at_set && eye[0] == at[0] && eye[1] == at[1] && eye[2] == at[2]) {
+    s.line = key_line(&s, "camera", "look_at"); /* no direction to look in */
+    fail(&s, "camera", "look_at", "(%g, %g, %g) is the camera's position: expected another "
+         "point", at[0], at[1], at[2]);
     return 1;
   }
   if (cfg->fog.profile == SCENE_PROFILE_BSPLINE && cfg->fog.profile_count == 0) {

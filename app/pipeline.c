@@ -15,6 +15,7 @@
 #include "app/clock.h"
 #include "app/live_rung.h"
 #include "app/pipeline_fog.h"
+#include "app/render_frame.h"
 #include "app/vdb_source.h"
 #include "render/fog_pass.h"
 #include "render/gl_present.h"
@@ -585,16 +586,14 @@ static pipeline_params params_from_config(const scene_config *cfg) {
 
 static int load_scene(pipeline *p, fog_error *err) {
   const scene_config *cfg = &p->config;
-  fogmap heights = {0};
-  fog_error serr = {0};
-  if (cfg->terrain.heightmap[0] && fogmap_load(cfg->terrain.heightmap, NULL, &heights, &serr))
-    return fog_error_wrap(err, &serr, "%.200s:%d: [terrain] heightmap: ", cfg->path,
-                          cfg->terrain.heightmap_line);
+  float *heights = NULL;
+  int heights_width = 0, heights_height = 0;
+  if (render_frame_load_heightmap(cfg, &heights, &heights_width, &heights_height, err)) return 1;
   scene_desc desc;
-  scene_config_scene_desc(cfg, heights.density, heights.width, heights.height, &desc);
+  scene_config_scene_desc(cfg, heights, heights_width, heights_height, &desc);
   fog_error rerr = {0};
   int status = scene_geometry_create(&p->geometry, &desc, &rerr);
-  fogmap_destroy(&heights);
+  free(heights); /* the geometry has its copy */
   if (status) return fog_error_wrap(err, &rerr, "scene: ");
   p->geometry_made = true;
   p->scene = scene_pass_create(&p->geometry, &rerr);

@@ -22,6 +22,14 @@ int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *w
                    cfg->terrain.heightmap_line);
     return 1;
   }
+  if (map.width < 2 || map.height < 2) { /* the terrain's grid needs two vertices a side */
+    fog_fail(err, FOG_ERR_BAD_FILE,
+             "%.200s:%d: [terrain] heightmap: %s is %dx%d pixels: expected at least 2x2",
+             cfg->path, cfg->terrain.heightmap_line, cfg->terrain.heightmap, map.width,
+             map.height);
+    fogmap_destroy(&map);
+    return 1;
+  }
   *heights = map.density; /* ownership moves to the caller */
   *width = map.width;
   *height = map.height;

@@ -1,7 +1,7 @@
 /* The option tables (app/cli_options.h): cli_parse stores every kind of value where its row
  * says, refuses what the row does not allow with exit status 2 (unknown options, missing
  * values, numbers out of range or with trailing text, unknown choices, too many or too few
- * operands, a required option left out), answers --help with CLI_HELP (even without the
+ * operands, a required option left out, a value given twice), answers --help with CLI_HELP (even without the
  * required option), and cli_print_help lists every row (sections,
  * options with their values and each line of their help). */
 #define _POSIX_C_SOURCE 200809L
@@ -106,6 +106,8 @@ int main(void) {
         "a single frame");
   CHECK(run(&v, operands, &count, "a.ini --out o") == 0 && !v.given_number && v.count == -1,
         "untouched without the options");
+  CHECK(run(&v, operands, &count, "a.ini --flag --flag --out o") == 0 && v.flag,
+        "a flag twice is still the flag");
   CHECK(run(&v, operands, &count, "--help") == CLI_HELP, "--help");
   CHECK(run(&v, operands, &count, "a.ini -h") == CLI_HELP, "-h");
 
@@ -124,6 +126,7 @@ int main(void) {
       "--flag --out o",               /* too few */
       "a.ini --flag",                 /* no --out */
       "a.ini --text --out",           /* --out only as --text's value */
+      "a.ini --count 2 --count 3 --out o", /* twice */
   };
   for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
     CHECK(run(&v, operands, &count, bad[k]) == 2, "'%s' was not refused with 2", bad[k]);

@@ -21,7 +21,8 @@ int main(void) {
   double d = -7;
   CHECK(cli_parse_double("0.25", 0, 1, &d) && d == 0.25, "0.25");
   CHECK(cli_parse_double("1e-3", 0, 1, &d) && d == 1e-3, "1e-3");
-  const char *bad_doubles[] = {"", "nan", "inf", "1e400", "2", "-0.5", "0.5x", ".", " 0.5"};
+  const char *bad_doubles[] = {"", "nan", "inf", "1e400", "2", "-0.5", "0.5x", ".", " 0.5",
+                               "0x1p-1" /* hexadecimal: strtod reads it, we do not */};
   d = -7;
   for (size_t i = 0; i < sizeof bad_doubles / sizeof bad_doubles[0]; i++, d = -7)
     CHECK(!cli_parse_double(bad_doubles[i], 0, 1, &d) && d == -7, "'%s' read as a number",
