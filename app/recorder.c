@@ -154,6 +154,44 @@ int recorder_complete_frames(const recorder *rec, int first, int last, fog_error
   return done;
 }
 
+/* The frame number of a file name NAME.NNNN.exr (4 digits or more), or 0. */
+static int frame_number_of(const recorder *rec, const char *file) {
+  const size_t n = strlen(rec->name);
+  if (strncmp(file, rec->name, n) != 0 || file[n] != '.') return 0;
+  const char *digits = file + n + 1;
+  size_t count = strspn(digits, "0123456789");
+  if (count < 4 || count > 9 || strcmp(digits + count, ".exr") != 0) return 0;
+  return atoi(digits);
+}
+
+int recorder_check_other_frames(const recorder *rec, int first, int last, fog_error *err) {
+  DIR *dir = opendir(rec->folder);
+  if (!dir) return 0; /* a new folder: nothing in it */
+  int status = 0;
+  struct dirent *entry;
+  while (!status && (entry = readdir(dir))) {
+    const int frame = frame_number_of(rec, entry->d_name);
+    if (frame <= 0 || (frame >= first && frame <= last)) continue;
+    char path[1400], identity[sizeof rec->identity] = "";
+    snprintf(path, sizeof path, "%s/%s", rec->folder, entry->d_name);
+    fog_error serr = {0};
+    const int read = image_read_exr_string(path, RECORDER_IDENTITY_ATTRIBUTE, identity,
+                                           sizeof identity, &serr);
+    const bool other = read == 0 ? strcmp(identity, rec->identity) != 0
+                                 : strstr(serr.message, "no string attribute") != NULL;
+    if (other) {
+      fog_fail(err, FOG_ERR_BAD_FILE,
+               "%s, outside frames %d-%d, was recorded from %s: it would stay beside this "
+               "run's frames, two sequences in one folder (use another --out folder, or "
+               "remove the old frames)",
+               path, first, last, identity[0] ? "another scene or settings" : "another program");
+      status = -1;
+    }
+  }
+  closedir(dir);
+  return status;
+}
+
 int recorder_remove_stale_temporaries(const recorder *rec) {
   DIR *dir = opendir(rec->folder);
   if (!dir) return 0;

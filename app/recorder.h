@@ -68,6 +68,13 @@ void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size
  * differs, or it has none): resuming would mix two sequences. */
 int recorder_complete_frames(const recorder *rec, int first, int last, fog_error *err);
 
+/* 0, or -1 with err naming the first frame of the folder outside first..last that was
+ * recorded from another scene or settings (its identity differs from rec->identity, or it
+ * has none): the run would leave it beside its own frames, one folder holding two
+ * sequences. Frames inside the range are rewritten, frames of this recording (a farm's
+ * other ranges) belong; a frame whose header cannot be read is not judged. */
+int recorder_check_other_frames(const recorder *rec, int first, int last, fog_error *err);
+
 /* Removes temporary files a killed run (SIGKILL, power loss) may have left beside the
  * frames: image_write_exr's ".NAME.NNNN.exr.tmp.XXXXXX". Returns how many were removed. */
 int recorder_remove_stale_temporaries(const recorder *rec);

@@ -6,7 +6,9 @@
  *   left as it was.
  * - A frame truncated on disk (size > 0) is not counted as complete: --resume renders it
  *   again, and the folder again equals the full run byte for byte.
- * - A frame without the recording identity (an older fogpipe, another program) is refused. */
+ * - A frame without the recording identity (an older fogpipe, another program) is refused.
+ * - A plain run of another scene over part of the frames is refused before it renders:
+ *   the rest would stay, two sequences in one folder. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
@@ -96,6 +98,14 @@ int main(void) {
   stat(frame5, &after);
   CHECK(before.st_mtime == after.st_mtime && before.st_size == after.st_size,
         "the refused resume touched the frames");
+  status = record_wait(start(other, "1-12", split, NULL, log[3]));
+  CHECK(status == 1 && record_log_contains(log[3], ", outside frames 1-12, was recorded from "
+                                                   "another scene or settings"),
+        "another scene over frames 1-12 of 24: exit %d", status);
+  if (status != 1) record_print_log(log[3]);
+  stat(frame5, &after);
+  CHECK(before.st_mtime == after.st_mtime && before.st_size == after.st_size,
+        "the refused run touched the frames");
 
   /* A frame cut short on disk is rendered again by --resume. */
   CHECK(truncate(frame5, before.st_size / 2) == 0, "truncate");
