@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <strings.h>
 
 static void print_message(const char *command, const char *format, va_list args) {
@@ -116,4 +117,12 @@ int cli_range(const char *command, const char *option, const char *text, long mi
 bool cli_ends_with(const char *s, const char *suffix) {
   size_t n = strlen(s), m = strlen(suffix);
   return n >= m && strcasecmp(s + n - m, suffix) == 0;
+}
+
+int cli_output_file(const char *command, const char *option, const char *path) {
+  struct stat st;
+  if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+    return cli_usage_error(command, "%s '%s': a folder of that name is there; expected a file "
+                           "name", option, path);
+  return 0;
 }

@@ -21,6 +21,11 @@ int cli_usage_error(const char *command, const char *format, ...)
 /* Images and windows: 1 to CLI_MAX_SIZE pixels a side. */
 #define CLI_MAX_SIZE 16384
 
+/* An output file's path that names an existing folder: refused with the usage message
+ * (returns 2) before any work, not found out when the finished file is renamed onto it.
+ * 0 otherwise. */
+int cli_output_file(const char *command, const char *option, const char *path);
+
 /* Whether s ends with suffix, ignoring case (".EXR" is ".exr"). */
 bool cli_ends_with(const char *s, const char *suffix);
 

@@ -146,6 +146,7 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
     return cli_usage_error("design", "say what to design: --perlin, --blobs N and/or --blob X,Z,SIGMA,PEAK");
   if (!cli_ends_with(o->out, ".png") && !cli_ends_with(o->out, ".exr"))
     return cli_usage_error("design", "--out '%s': the name must end in .exr or .png", o->out);
+  if (cli_output_file("design", "--out", o->out)) return 2;
   if (o->random_blobs + o->blob_count > max_blobs)
     return cli_usage_error("design", "more than 256 blobs");
   return 0;

@@ -47,6 +47,7 @@ static int parse_tolerances(const char *command, const char *option, const char 
 static int parse_ini(const char *command, const char *option, const char *text, void *target) {
   if (!cli_ends_with(text, ".ini"))
     return cli_usage_error(command, "%s '%s': expected a .ini file", option, text);
+  if (cli_output_file(command, option, text)) return 2;
   *(const char **)target = text;
   return 0;
 }
@@ -54,6 +55,7 @@ static int parse_ini(const char *command, const char *option, const char *text, 
 static int parse_png(const char *command, const char *option, const char *text, void *target) {
   if (!cli_ends_with(text, ".png"))
     return cli_usage_error(command, "%s '%s': expected a .png file", option, text);
+  if (cli_output_file(command, option, text)) return 2;
   *(const char **)target = text;
   return 0;
 }

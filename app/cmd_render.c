@@ -54,7 +54,7 @@ int cmd_render(int argc, char **argv) {
   double time = 0.0;
   const cli_option options[] = {
       {.kind = CLI_TEXT, .name = "--out", .value = "FILE", .target = &out,
-       .help = "output image: .exr (channels R G B A as half; transmittance,\n"
+       .required = true, .help = "output image: .exr (channels R G B A as half; transmittance,\n"
                "depth (and Z, the same), inscatter.R/G/B as float; depth =\n"
                "distance along the view ray to the first surface, the far plane\n"
                "for the sky; RGB = transmittance x surface + inscatter) or .png\n"
@@ -81,13 +81,13 @@ int cmd_render(int argc, char **argv) {
   const char *config_path = NULL;
   int operands = 0, parsed = cli_parse(&spec, argc, argv, &config_path, &operands);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
-  if (!out) return cli_usage_error("render", "no --out FILE given");
   int width = size[0], height = size[1];
   bool exr = cli_ends_with(out, ".exr");
   if (!exr && !cli_ends_with(out, ".png")) {
     fprintf(stderr, "fogpipe render: --out '%s': expected a .exr or .png file name\n", out);
     return 2;
   }
+  if (cli_output_file("render", "--out", out)) return 2;
 
   scene_config cfg;
   fog_error cfg_err;

@@ -399,6 +399,7 @@ int cmd_transform(int argc, char **argv) {
     if (!cli_ends_with(out, ".exr")) /* what it writes, whatever the name says */
       return cli_usage_error("transform", "--out '%s': --inverse writes an EXR file: expected "
                              "a name ending in .exr", out);
+    if (cli_output_file("transform", "--out", out)) return 2;
     return run_inverse(inverse, out, desc.threads);
   }
   if (!in) return cli_usage_error("transform", "no input fogmap given");

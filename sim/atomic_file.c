@@ -19,7 +19,8 @@ int atomic_file_open(atomic_file *file, const char *path, fog_error *err) {
   const char *slash = strrchr(path, '/');
   int folder_len = slash ? (int)(slash - path) + 1 : 0;
   const char *name = path + folder_len;
-  if (!*name)
+  struct stat st;
+  if (!*name || (stat(path, &st) == 0 && S_ISDIR(st.st_mode)))
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: is a folder name, expected a file name",
                     path);
   int n = snprintf(file->temp_path, sizeof file->temp_path, "%.*s.%s.tmp.XXXXXX", folder_len,

@@ -1,7 +1,12 @@
 /* The option-value parsers every command uses (app/cli.h): whole texts only, ranges
- * inclusive, no overflow, and the bad value's exit status 2. */
+ * inclusive, no overflow, and the bad value's exit status 2; an output file's name that
+ * is an existing folder is refused before any work. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include <limits.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "app/cli.h"
 #include "test_util.h"
@@ -59,5 +64,14 @@ int main(void) {
   double x = -1;
   CHECK(cli_number("test", "--x", "0.1", 0.1, 1000, &x) == 0 && x == 0.1, "0.1");
   CHECK(cli_number("test", "--x", "1e-9", 0.1, 1000, &x) == 2 && x == 0.1, "1e-9");
+
+  char folder[] = "/tmp/fogpipe-cli-values-XXXXXX", png[64];
+  CHECK(mkdtemp(folder) != NULL, "mkdtemp");
+  snprintf(png, sizeof png, "%s/x.png", folder);
+  CHECK(cli_output_file("test", "--out", png) == 0, "a new file's name was refused");
+  CHECK(mkdir(png, 0700) == 0, "mkdir %s", png);
+  CHECK(cli_output_file("test", "--out", png) == 2, "a folder named x.png was taken as a file");
+  rmdir(png);
+  rmdir(folder);
   return test_finish("test_cli_values");
 }
