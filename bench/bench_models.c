@@ -280,7 +280,7 @@ static int rbf_scale_rows(fog_pass *pass, const render_scene *sc, gl_target *tar
 static int time_fit(double *seconds, char *error, int size) {
   scene_config cfg;
   fog_error cerr;
-  if (scene_config_load("configs/vdb_plume_volume.ini", &cfg, &cerr)) {
+  if (scene_config_load(FOGPIPE_SOURCE_DIR "/configs/vdb_plume_volume.ini", &cfg, &cerr)) {
     snprintf(error, (size_t)size, "%s", cerr.message);
     return 1;
   }
