@@ -71,8 +71,8 @@ typedef struct fluid_stroke {
 } fluid_stroke;
 
 /* Start from fluid_sim_desc_default(width, height), which sets every field, and change
- * what differs: each value is taken as given (0 viscosity is inviscid, 0 coupling a free
- * fluid, 0 slope a flat spectrum), never read as "use the default". */
+ * what differs: each physical value is taken as given (0 viscosity is inviscid, 0
+ * coupling a free fluid, 0 slope a flat spectrum), never read as "use the default". */
 typedef struct fluid_sim_desc {
   int width, height;     /* grid; both even and >= 8 */
   float dt;              /* fixed step, seconds; > 0 */
@@ -81,7 +81,7 @@ typedef struct fluid_sim_desc {
   float wind_drift_z;
   float turbulence;      /* rms speed of the synthesised turbulence, cells/s; 0: none */
   float turbulence_scale;/* largest eddy wavelength, cells; > 4 */
-  float turbulence_slope;/* energy spectrum exponent (finite); -5/3 is Kolmogorov's */
+  double turbulence_slope; /* energy spectrum exponent (finite); -5/3 is Kolmogorov's */
   float wind_coupling;   /* rate (1/s) at which the fluid's fluctuations relax toward the
                             turbulence; >= 0, 0: no coupling (a free fluid) */
   uint64_t seed;         /* turbulence phases; 0 means 1 */
@@ -115,9 +115,10 @@ void fluid_sim_destroy(fluid_sim *sim);
  * its fluctuations; its mean becomes the new drift (the solver holds the mean flow at
  * the drift), so the new drift is what advects from the next step on. The base fogmap
  * stays (desc->base must be NULL). width, height, seed, emitter_count and fft_planning
- * are fixed at create: a desc that changes one is refused with err naming the field, as is an invalid desc (as fluid_sim_create); a
- * refused call leaves the sim untouched. Returns 0 on success. fluid_sim_reset then goes
- * back to the base with the new parameters. */
+ * are fixed at create: a desc that changes one is refused with err naming the field, as
+ * is an invalid desc (as fluid_sim_create); a refused call leaves the sim untouched.
+ * Returns 0 on success. fluid_sim_reset then goes back to the base with the new
+ * parameters. */
 int fluid_sim_set_params(fluid_sim *sim, const fluid_sim_desc *desc, fog_error *err);
 /* Back to the state after create: density = base (or 0), velocity = the drift, time 0,
  * initial turbulence phases. */

@@ -13,7 +13,7 @@ static const double two_pi = 6.283185307179586476925286766559;
 fluid_sim_desc fluid_sim_desc_default(int width, int height) {
   return (fluid_sim_desc){.width = width, .height = height, .dt = 1.0f / 30.0f,
                           .turbulence_scale = 0.25f * (float)(width < height ? width : height),
-                          .turbulence_slope = -5.0f / 3.0f, .wind_coupling = 2.0f, .seed = 1,
+                          .turbulence_slope = -5.0 / 3.0, .wind_coupling = 2.0f, .seed = 1,
                           .advection = FLUID_ADVECT_MONOTONE_CUBIC,
                           .fft_planning = FLUID_FFT_REPRODUCIBLE};
 }

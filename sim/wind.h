@@ -24,7 +24,7 @@ typedef struct wind_desc {
   float drift_x, drift_z; /* constant wind, cells per second */
   float turbulence;       /* rms speed of the turbulent part, cells per second; 0: none */
   float scale;            /* largest eddy wavelength, cells; > 4 */
-  float slope;            /* spectrum exponent of E(k), finite: -5/3 is Kolmogorov's, 0 flat */
+  double slope;           /* spectrum exponent of E(k), finite: -5/3 Kolmogorov's, 0 flat */
   uint64_t seed;          /* 0 means the default seed 1 */
 } wind_desc;
 

@@ -1,9 +1,9 @@
 /* The option tables (app/cli_options.h): cli_parse stores every kind of value where its row
  * says, refuses what the row does not allow with exit status 2 (unknown options, missing
  * values, numbers out of range or with trailing text, unknown choices, too many or too few
- * operands, a required option left out, a value given twice), answers --help with CLI_HELP (even without the
- * required option), and cli_print_help lists every row (sections,
- * options with their values and each line of their help). */
+ * operands, a required option left out, a value given twice), answers --help with
+ * CLI_HELP (even without the required option), and cli_print_help lists every row
+ * (sections, options with their values and each line of their help). */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>

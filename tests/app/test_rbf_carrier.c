@@ -123,7 +123,7 @@ static void check_turbulent_steps(void) {
                          .wind_drift_x = (float)(4.0 / r.cell),
                          .wind_drift_z = (float)(-2.0 / r.cell),
                          .turbulence = (float)(12.0 / r.cell), .turbulence_scale = 12.0f,
-                         .turbulence_slope = -5.0f / 3.0f, .wind_coupling = 2.0f, .seed = 5,
+                         .turbulence_slope = -5.0 / 3.0, .wind_coupling = 2.0f, .seed = 5,
                          .advection = FLUID_ADVECT_MONOTONE_CUBIC};
   r.sim = fluid_sim_create(&flow, &err);
   CHECK(r.sim != NULL, "reference flow: %s", err.message);
