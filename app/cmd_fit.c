@@ -33,6 +33,10 @@ typedef struct fit_options {
 static int parse_tolerances(const char *command, const char *option, const char *text,
                             void *target) {
   fit_options *o = target;
+  const size_t n = strlen(text);
+  if (!n || text[0] == ',' || text[n - 1] == ',' || strstr(text, ",,")) /* strtok skips them */
+    return cli_usage_error(command, "%s '%s': expected numbers separated by single commas",
+                           option, text);
   char list[256], *save = NULL;
   snprintf(list, sizeof list, "%s", text);
   o->tolerance_count = 0;
@@ -69,7 +73,7 @@ static int parse(int argc, char **argv, fit_options *o) {
   int by_mean = 0, size[2] = {FIT_WIDTH, FIT_HEIGHT};
   const cli_option options[] = {
       {.kind = CLI_CUSTOM, .name = "--tolerance", .value = "T[,T..]", .target = o,
-       .parse = parse_tolerances,
+       .parse = parse_tolerances, .required = true,
        .help = "max |delta tau| allowed on every ray (required, > 0); more\n"
                "values print the pick at each (the first one's is written)"},
       {.kind = CLI_CHOICE, .name = "--by", .value = "max|mean", .target = &by_mean, .choices = by,
@@ -127,7 +131,6 @@ static int parse(int argc, char **argv, fit_options *o) {
       .options = options, .option_count = sizeof options / sizeof options[0]};
   int operands = 0, parsed = cli_parse(&spec, argc, argv, &o->input, &operands);
   if (parsed) return parsed;
-  if (o->tolerance_count < 1) return cli_usage_error("fit", "no --tolerance T given");
   o->desc.by_mean = by_mean;
   o->desc.width = size[0], o->desc.height = size[1];
   o->desc.tolerance = o->tolerance[0];

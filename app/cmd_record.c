@@ -242,10 +242,8 @@ static int record_into(const record_job *job, recorder *rec) {
            (unsigned long long)scene_config_fingerprint(&config), width, height, fps);
   const int first = job->first_frame > 0 ? job->first_frame : 1, last = job->frames;
   fog_error oerr = {0};
-  if (recorder_check_other_frames(rec, first, last, &oerr)) {
-    fprintf(stderr, "fogpipe %s: %s\n", job->command, oerr.message);
-    return 1;
-  }
+  if (recorder_check_other_frames(rec, first, last, &oerr)) /* said, not refused: see h */
+    fprintf(stderr, "fogpipe %s: warning: %s\n", job->command, oerr.message);
   int done = first - 1; /* the last frame on disk of the range */
   if (job->resume) {
     fog_error rerr = {0};

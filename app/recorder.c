@@ -181,9 +181,9 @@ int recorder_check_other_frames(const recorder *rec, int first, int last, fog_er
                                  : strstr(serr.message, "no string attribute") != NULL;
     if (other) {
       fog_fail(err, FOG_ERR_BAD_FILE,
-               "%s, outside frames %d-%d, was recorded from %s: it would stay beside this "
-               "run's frames, two sequences in one folder (use another --out folder, or "
-               "remove the old frames)",
+               "%s, outside frames %d-%d, was recorded from %s: it stays beside this "
+               "run's frames, two recordings in one folder (remove the old frames if that is "
+               "not meant)",
                path, first, last, identity[0] ? "another scene or settings" : "another program");
       status = -1;
     }

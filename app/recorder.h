@@ -70,9 +70,11 @@ int recorder_complete_frames(const recorder *rec, int first, int last, fog_error
 
 /* 0, or -1 with err naming the first frame of the folder outside first..last that was
  * recorded from another scene or settings (its identity differs from rec->identity, or it
- * has none): the run would leave it beside its own frames, one folder holding two
- * sequences. Frames inside the range are rewritten, frames of this recording (a farm's
- * other ranges) belong; a frame whose header cannot be read is not judged. */
+ * has none): the run will leave it beside its own frames, one folder holding two
+ * recordings (record warns; a bake's config rendering the frames a simulating scene left
+ * off is one such folder, made on purpose). Frames inside the range are rewritten, frames
+ * of this recording (a farm's other ranges) belong; a frame whose header cannot be read
+ * is not judged. */
 int recorder_check_other_frames(const recorder *rec, int first, int last, fog_error *err);
 
 /* Removes temporary files a killed run (SIGKILL, power loss) may have left beside the

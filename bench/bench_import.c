@@ -401,12 +401,6 @@ int bench_import(int argc, char **argv) {
   if (exit_status >= 0) return exit_status;
   const int march = march_flag, exponential = exponential_flag;
 
-  char folder_error[512];
-  if (images && bench_make_folder(images, folder_error, sizeof folder_error)) {
-    /* refused before the work, not found out as a failed preview after it */
-    fprintf(stderr, "fogpipe bench import: --images %s: %s\n", images, folder_error);
-    return 1;
-  }
   bench_print_build();
   const char *pattern = FOGPIPE_SOURCE_DIR "/../shared/data/vdb/groundfog/data/fluid_data_####.vdb";
   const char *inputs[] = {pattern};
@@ -414,6 +408,13 @@ int bench_import(int argc, char **argv) {
   fog_error err = {0};
   if (vdb_sequence_find(inputs, 1, -1, -1, &seq, &err)) {
     fprintf(stderr, "fogpipe bench import: %s\n", err.message);
+    return 1;
+  }
+  char folder_error[512];
+  if (images && bench_make_folder(images, folder_error, sizeof folder_error)) {
+    /* refused before the work, not found out as a failed preview after it */
+    fprintf(stderr, "fogpipe bench import: --images: %s\n", folder_error);
+    vdb_sequence_destroy(&seq);
     return 1;
   }
   /* 1. Import per frame: read alone, and the whole frame load. */
