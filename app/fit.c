@@ -287,11 +287,10 @@ int fit_run(const fit_desc *d, fit_result *r, fog_error *err) {
   /* The density the static rungs fit: the frames' mean. */
   for (int f = 0; f < frame_count; f++) {
     fit_samples one;
-    if (fit_samples_create(f ? &one : &samples, &refs[f].model, r->lo, r->hi, d->sample_side) ||
-        fit_views_create(&views[f], &refs[f].model, r->lo, r->hi, d->rays_per_side)) {
-      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the fit's samples and rays");
+    if (fit_samples_create(f ? &one : &samples, &refs[f].model, r->lo, r->hi, d->sample_side,
+                           err) ||
+        fit_views_create(&views[f], &refs[f].model, r->lo, r->hi, d->rays_per_side, err))
       goto done;
-    }
     if (f) {
       size_t n = (size_t)one.n[0] * one.n[1] * one.n[2];
       for (size_t i = 0; i < n; i++) samples.k[i] += one.k[i];

@@ -18,16 +18,16 @@ void fit_sample_position(const fit_samples *s, int i, int j, int l, double p[3])
 }
 
 int fit_samples_create(fit_samples *s, const fog_model *model, const double lo[3],
-                       const double hi[3], int max_side) {
+                       const double hi[3], int max_side, fog_error *err) {
   double longest = 0.0;
   for (int a = 0; a < 3; a++) longest = fmax(longest, hi[a] - lo[a]);
   int n[3];
   for (int a = 0; a < 3; a++) n[a] = (int)ceil(max_side * (hi[a] - lo[a]) / longest);
-  return fit_samples_create_grid(s, model, lo, hi, n);
+  return fit_samples_create_grid(s, model, lo, hi, n, err);
 }
 
 int fit_samples_create_grid(fit_samples *s, const fog_model *model, const double lo[3],
-                            const double hi[3], const int n[3]) {
+                            const double hi[3], const int n[3], fog_error *err) {
   *s = (fit_samples){0};
   for (int a = 0; a < 3; a++) {
     s->lo[a] = lo[a], s->hi[a] = hi[a];
@@ -35,7 +35,9 @@ int fit_samples_create_grid(fit_samples *s, const fog_model *model, const double
     s->cell[a] = (hi[a] - lo[a]) / s->n[a];
   }
   s->k = malloc(sample_count(s) * sizeof *s->k);
-  if (!s->k) return 1;
+  if (!s->k)
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for %dx%dx%d density samples",
+                    s->n[0], s->n[1], s->n[2]);
   size_t at = 0;
   for (int l = 0; l < s->n[2]; l++)
     for (int j = 0; j < s->n[1]; j++)

@@ -31,12 +31,12 @@ typedef struct fit_samples {
 
 /* Samples the model's pointwise extinction (fog_light_extinction_at) at the centres of a
  * grid over [lo, hi] with `max_side` cells along its longest side (the others in
- * proportion, at least 2). Non-zero: out of memory (nothing allocated). */
+ * proportion, at least 2). Non-zero with err set: out of memory (nothing allocated). */
 int fit_samples_create(fit_samples *s, const fog_model *model, const double lo[3],
-                       const double hi[3], int max_side);
+                       const double hi[3], int max_side, fog_error *err);
 /* The same on a grid of n[a] cells along axis a (at least 2). */
 int fit_samples_create_grid(fit_samples *s, const fog_model *model, const double lo[3],
-                            const double hi[3], const int n[3]);
+                            const double hi[3], const int n[3], fog_error *err);
 void fit_samples_destroy(fit_samples *s);
 /* The centre of cell (i, j, l). */
 void fit_sample_position(const fit_samples *s, int i, int j, int l, double p[3]);

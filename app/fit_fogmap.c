@@ -13,10 +13,9 @@ int fit_fogmap_project(const fog_model *model, const double lo[3], const double 
   const int n[3] = {(int)ceil(side * (hi[0] - lo[0]) / wide), FIT_FOGMAP_LAYERS,
                     (int)ceil(side * (hi[2] - lo[2]) / wide)};
   fit_samples samples;
-  if (fit_samples_create_grid(&samples, model, lo, hi, n)) {
-    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory projecting the fog to a fogmap");
-    return 1;
-  }
+  fog_error serr = {0};
+  if (fit_samples_create_grid(&samples, model, lo, hi, n, &serr))
+    return fog_error_wrap(err, &serr, "projecting the fog to a fogmap: ");
   const fit_samples *s = &samples;
   const int nx = s->n[0], ny = s->n[1], nz = s->n[2];
   _Static_assert(FIT_FOGMAP_LAYERS <= SCENE_CONFIG_MAX_PROFILE, "a config holds the profile");
@@ -26,7 +25,6 @@ int fit_fogmap_project(const fog_model *model, const double lo[3], const double 
                    .y_min = s->lo[1], .layer_height = s->cell[1]};
   c.tau = calloc((size_t)nx * nz, sizeof *c.tau);
   c.layer_mass = calloc((size_t)ny, sizeof *c.layer_mass);
-  fog_error serr = {0};
   int status = 1;
   if (!c.tau || !c.layer_mass) {
     fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory projecting the fog to a fogmap");

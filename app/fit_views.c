@@ -53,7 +53,7 @@ void fit_views_destroy(fit_views *v) {
 }
 
 int fit_views_create(fit_views *v, const fog_model *reference, const double lo[3],
-                     const double hi[3], int rays_per_side) {
+                     const double hi[3], int rays_per_side, fog_error *err) {
   *v = (fit_views){0};
   const size_t most = (size_t)FIT_VIEW_COUNT * rays_per_side * rays_per_side;
   v->origin = malloc(most * sizeof *v->origin);
@@ -62,7 +62,8 @@ int fit_views_create(fit_views *v, const fog_model *reference, const double lo[3
   v->reference = malloc(most * sizeof *v->reference);
   if (!v->origin || !v->dir || !v->length || !v->reference) {
     fit_views_destroy(v);
-    return 1;
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for %zu rays of the fit's views",
+                    most);
   }
   const double half = tan(PI / 6.0); /* 60 degrees across */
   fog_model ref = *reference; /* a classic factor's eye: each view's camera */

@@ -24,9 +24,9 @@ typedef struct fit_views {
   double *light;      /* lit inputs: the reference's in-scatter along each (fit_views_light) */
 } fit_views;
 
-/* Non-zero: out of memory (nothing allocated). */
+/* Non-zero with err set: out of memory (nothing allocated). */
 int fit_views_create(fit_views *v, const fog_model *reference, const double lo[3],
-                     const double hi[3], int rays_per_side);
+                     const double hi[3], int rays_per_side, fog_error *err);
 void fit_views_destroy(fit_views *v);
 /* The rung's max and mean |delta tau| against the reference. */
 void fit_views_measure(const fit_views *v, const fog_model *rung, double *max_error,

@@ -37,9 +37,10 @@ void live_rung_fit(const fog_model *fogmap, live_rung_kind kind, live_rung *out)
   *out = (live_rung){.kind = kind, .max_error = NAN, .mean_error = NAN};
   double lo[3], hi[3];
   fit_samples s;
+  fog_error unused; /* out of memory leaves the rung unfitted, as its result says */
   /* 24 x 24 across, 16 layers: a ground fog is thin beside its footprint */
   if (kind == LIVE_RUNG_FOGMAP || !fog_model_bounds(fogmap, lo, hi) ||
-      fit_samples_create_grid(&s, fogmap, lo, hi, (const int[3]){24, 16, 24}))
+      fit_samples_create_grid(&s, fogmap, lo, hi, (const int[3]){24, 16, 24}, &unused))
     return;
   if (live_rung_bounded(kind)) {
     out->fitted = fit_shapes(&s, out);

@@ -44,7 +44,7 @@ void render_scene_destroy(render_scene *s) {
   *s = (render_scene){0};
 }
 
-int render_scene_geometry_create(const scene_config *cfg, scene_geometry *geo, fog_error *err) {
+int render_scene_geometry_create(scene_geometry *geo, const scene_config *cfg, fog_error *err) {
   float *heights = NULL;
   int hw = 0, hh = 0;
   fog_error ferr;
@@ -64,7 +64,7 @@ int render_scene_create(render_scene *s, const scene_config *cfg, int width, int
   *s = (render_scene){.width = width, .height = height};
   scene_config_camera(cfg, &s->cam);
   int status = 1;
-  if (render_scene_geometry_create(cfg, &s->geo, err)) goto done;
+  if (render_scene_geometry_create(&s->geo, cfg, err)) goto done;
   s->have_geo = true;
   s->pass = scene_pass_create(&s->geo, err);
   if (!s->pass || scene_target_create(&s->target, width, height, err)) goto done;

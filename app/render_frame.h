@@ -32,7 +32,7 @@ typedef struct render_scene {
 
 /* The config's terrain (its heightmap loaded) and boxes as geometry. Errors name the
  * heightmap's file:line. */
-int render_scene_geometry_create(const scene_config *cfg, scene_geometry *geo, fog_error *err);
+int render_scene_geometry_create(scene_geometry *geo, const scene_config *cfg, fog_error *err);
 /* Loads the config's heightmap, builds the geometry and draws it. Errors name the
  * heightmap's file:line. */
 int render_scene_create(render_scene *scene, const scene_config *cfg, int width, int height,

@@ -641,7 +641,7 @@ static int source_draw(void *self, const window_frame *f, fog_error *err) {
 static int session_open(session_source *s, const window_options *opts, fog_error *err) {
   view_state *v = &s->v;
   const scene_config *cfg = s->cfg;
-  if (render_scene_geometry_create(cfg, &v->geo, err)) return 1;
+  if (render_scene_geometry_create(&v->geo, cfg, err)) return 1;
   v->geo_made = true;
   if (!(v->scene = scene_pass_create(&v->geo, err))) return 1;
   const fog_lamps lamps = scene_config_fog_lamps(cfg);

@@ -39,11 +39,13 @@ int fog_occupancy_build(const transform_grid *grid, float *bound) {
   return empty;
 }
 
-int fog_occupancy_create(fog_occupancy *o, const transform_grid *grid) {
+int fog_occupancy_create(fog_occupancy *o, const transform_grid *grid, fog_error *err) {
   int bw, bh;
   fog_occupancy_size(grid->width, grid->height, grid->degree, &bw, &bh);
   float *bound = malloc((size_t)bw * (size_t)bh * sizeof *bound);
-  if (!bound) return 1;
+  if (!bound)
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for a %dx%d occupancy map", bw,
+                    bh);
   fog_occupancy_build(grid, bound);
   *o = (fog_occupancy){.width = bw, .height = bh, .degree = grid->degree, .bound = bound};
   return 0;

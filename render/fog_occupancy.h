@@ -40,8 +40,8 @@ void fog_occupancy_size(int width, int height, int degree, int *blocks_w, int *b
  * blocks are empty (bound 0). */
 int fog_occupancy_build(const transform_grid *grid, float *bound);
 
-/* Owned form for the CPU twin: 0 on success, non-zero when out of memory. */
-int fog_occupancy_create(fog_occupancy *occupancy, const transform_grid *grid);
+/* Owned form for the CPU twin: 0 on success, non-zero with err set when out of memory. */
+int fog_occupancy_create(fog_occupancy *occupancy, const transform_grid *grid, fog_error *err);
 void fog_occupancy_destroy(fog_occupancy *occupancy);
 
 /* The bound of the block holding knot cell (cx, cz); 0 outside the grid's blocks. */

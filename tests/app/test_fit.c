@@ -236,7 +236,7 @@ static void test_projected_fogmap(void) {
     map_mass *= f.place.cell_size * f.place.cell_size * f.profile.thickness;
     fit_samples s;
     const int n[3] = {48, FIT_FOGMAP_LAYERS, 48};
-    CHECK(fit_samples_create_grid(&s, &model, r.lo, r.hi, n) == 0, "samples");
+    CHECK(fit_samples_create_grid(&s, &model, r.lo, r.hi, n, &err) == 0, "samples");
     double sample_mass = 0.0;
     for (int i = 0; i < n[0] * n[1] * n[2]; i++) sample_mass += s.k[i];
     sample_mass *= s.cell[0] * s.cell[1] * s.cell[2];
@@ -511,7 +511,8 @@ static void test_amplitudes(void) {
   double lo[3], hi[3];
   CHECK(fog_model_bounds(&reference, lo, hi), "bounds");
   fit_views views;
-  CHECK(fit_views_create(&views, &reference, lo, hi, 16) == 0, "views");
+  fog_error err = {0};
+  CHECK(fit_views_create(&views, &reference, lo, hi, 16, &err) == 0, "views: %s", err.message);
   fog_rbf guess[2] = {truth[0], truth[1]};
   guess[0].density = 0.05, guess[1].density = 0.002;
   CHECK(fit_views_rbf_amplitudes(&views, 1, guess, 2) == 0, "out of memory");

@@ -103,7 +103,7 @@ static void check_shafts(bool homogeneous) {
   const fog_pass_params *params = &fog->params;
   scene_geometry geo;
   fog_error rerr = {0};
-  CHECK(!render_scene_geometry_create(&cfg, &geo, &rerr), "%s", rerr.message);
+  CHECK(!render_scene_geometry_create(&geo, &cfg, &rerr), "%s", rerr.message);
   exact_sun exact = {&geo};
   camera cam;
   scene_config_camera(&cfg, &cam);
@@ -299,7 +299,7 @@ int main(void) {
     c->label = "fogmap, camera inside the fog, sun 60 deg up";
     scene_geometry geo;
     fog_error gerr = {0};
-    if (render_scene_geometry_create(&c->cfg, &geo, &gerr)) {
+    if (render_scene_geometry_create(&geo, &c->cfg, &gerr)) {
       CHECK(0, "%s", gerr.message);
     } else {
       double best[3] = {0, HUGE_VAL, 0};

@@ -89,7 +89,7 @@ static double check_against_twin(const scene_config *cfg, const frame *lit, cons
                                  double *twin_out, double mean_bound, int off_share) {
   scene_geometry geo;
   fog_error rerr = {0};
-  CHECK(!render_scene_geometry_create(cfg, &geo, &rerr), "%s", rerr.message);
+  CHECK(!render_scene_geometry_create(&geo, cfg, &rerr), "%s", rerr.message);
   const fog_lamps lamps = scene_config_fog_lamps(cfg);
   const exact_lamps exact = {&geo, &lamps};
   const fog_model model = {.kind = FOG_MODEL_HOMOGENEOUS, .extinction = cfg->fog.density_scale};
@@ -144,7 +144,7 @@ int main(void) {
   {
     scene_geometry geo;
     fog_error rerr = {0};
-    CHECK(!render_scene_geometry_create(&cfg, &geo, &rerr), "%s", rerr.message);
+    CHECK(!render_scene_geometry_create(&geo, &cfg, &rerr), "%s", rerr.message);
     const fog_lamps lamps = scene_config_fog_lamps(&cfg);
     const fog_lamp *l = &lamps.lamp[0];
     const double k = cfg.fog.density_scale;

@@ -122,7 +122,8 @@ int main(void) {
           fog_volume v = fog_test_patch_volume(kinds[k]);
           transform_grid g = fog_test_patch_grid(degree, sp ? 2.0 : 1.0, eps);
           fog_occupancy o;
-          CHECK(fog_occupancy_create(&o, &g) == 0, "occupancy: out of memory");
+          fog_error oerr = {0};
+          CHECK(fog_occupancy_create(&o, &g, &oerr) == 0, "occupancy: %s", oerr.message);
           if (k == 1) bound_covers_f(&v, &g, &o);
           for (int r = 0; r < 400; r++) {
             double cam[3], dir[3];
