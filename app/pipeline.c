@@ -586,16 +586,9 @@ static pipeline_params params_from_config(const scene_config *cfg) {
 
 static int load_scene(pipeline *p, fog_error *err) {
   const scene_config *cfg = &p->config;
-  float *heights = NULL;
-  int heights_width = 0, heights_height = 0;
-  if (render_frame_load_heightmap(cfg, &heights, &heights_width, &heights_height, err)) return 1;
-  scene_desc desc;
-  scene_config_scene_desc(cfg, heights, heights_width, heights_height, &desc);
-  fog_error rerr = {0};
-  int status = scene_geometry_create(&p->geometry, &desc, &rerr);
-  free(heights); /* the geometry has its copy */
-  if (status) return fog_error_wrap(err, &rerr, "scene: ");
+  if (render_scene_geometry_create(&p->geometry, cfg, err)) return 1;
   p->geometry_made = true;
+  fog_error rerr = {0};
   p->scene = scene_pass_create(&p->geometry, &rerr);
   /* Terrain LOD in the live demo only: recordings draw the full mesh (their depth is the
    * exact first hit, as render's). */

@@ -477,7 +477,7 @@ int bench_import(int argc, char **argv) {
   const char *vdb = seq.paths[n - 1];
   char dir[512];
   if (images) {
-    snprintf(dir, sizeof dir, "%s", images); /* made at the start */
+    snprintf(dir, sizeof dir, "%s", images); /* made once the data was found */
   } else {
     snprintf(dir, sizeof dir, "/tmp/fogpipe_bench_import_XXXXXX");
     if (!mkdtemp(dir)) {
