@@ -145,3 +145,10 @@ void cli_print_help(const cli_spec *spec, FILE *out) {
   fprintf(out, "  %-*s%s\n", HELP_COLUMN - 2, "--help", "this text");
   if (spec->footer) fprintf(out, "\n%s\n", spec->footer);
 }
+
+int cli_parse_one(const cli_spec *spec, int argc, char **argv, const char **operand) {
+  const char *given = NULL;
+  int count = 0, parsed = cli_parse(spec, argc, argv, &given, &count);
+  if (!parsed && count) *operand = given;
+  return parsed;
+}

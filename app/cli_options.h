@@ -52,6 +52,10 @@ typedef struct cli_spec {
   const char *footer; /* after the options (may be NULL) */
 } cli_spec;
 
+/* A spec's option rows from a table: `CLI_OPTIONS(options)` in its initialiser. */
+#define CLI_OPTIONS(table) \
+  .options = (table), .option_count = (int)(sizeof(table) / sizeof(*(table)))
+
 /* A numeric macro as text, for defaults in help strings: "default " CLI_TEXT_OF(N). */
 #define CLI_TEXT_OF_(x) #x
 #define CLI_TEXT_OF(x) CLI_TEXT_OF_(x)
@@ -65,6 +69,9 @@ typedef struct cli_spec {
  * a missing or bad value, too few or too many operands, a required option not given, an
  * option with a value given twice). */
 int cli_parse(const cli_spec *spec, int argc, char **argv, const char **operands, int *count);
+/* cli_parse for a command with at most one operand: it goes to *operand (left as it was when
+ * none is given; operand may be NULL when spec->max_operands is 0). */
+int cli_parse_one(const cli_spec *spec, int argc, char **argv, const char **operand);
 
 /* The --help text: usage, about, the options table by sections, the footer. */
 void cli_print_help(const cli_spec *spec, FILE *out);

@@ -42,8 +42,8 @@ static int parse_bake_options(int argc, char **argv, bake_job *job) {
                "(DIR/fog.0001.exr ...) and DIR/bake.ini, the scene playing them. Render ranges\n"
                "of it on a farm: fogpipe record DIR/bake.ini --frames A-B --out FRAMES/",
       .operand = "CONFIG", .min_operands = 1, .max_operands = 1,
-      .options = options, .option_count = sizeof options / sizeof options[0]};
-  int operands = 0, parsed = cli_parse(&spec, argc, argv, &job->config_path, &operands);
+      CLI_OPTIONS(options)};
+  int parsed = cli_parse_one(&spec, argc, argv, &job->config_path);
   if (parsed) return parsed;
   return 0;
 }

@@ -128,8 +128,8 @@ static int parse_demo_options(int argc, char **argv, demo_options *o) {
                CLI_TEXT_OF(HEADLESS_WIDTH) "x" CLI_TEXT_OF(HEADLESS_HEIGHT) " into ./out/demo (or a\n"
                "temporary folder if that is not writable).",
       .operand = "CONFIG", .min_operands = 0, .max_operands = 1,
-      .options = options, .option_count = sizeof options / sizeof options[0]};
-  int operands = 0, parsed = cli_parse(&spec, argc, argv, &o->config_path, &operands);
+      CLI_OPTIONS(options)};
+  int parsed = cli_parse_one(&spec, argc, argv, &o->config_path);
   if (parsed) return parsed;
   o->width = size[0], o->height = size[1];
   if (!o->config_path) o->config_path = DEFAULT_CONFIG;

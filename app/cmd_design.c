@@ -135,10 +135,8 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
                "blobs c*exp(-|x-b|^2/(2 sigma^2)), or, with both, the turbulence multiplied by\n"
                "(--blob-base + the blob sum): turbulence modulated by Gaussian banks.\n"
                "Positions and sizes are in fogmap cells; cell (x, z) is at (x, z), z = image row.",
-      .operand = "operand", .min_operands = 0, .max_operands = 0,
-      .options = options, .option_count = sizeof options / sizeof options[0]};
-  const char *none = NULL;
-  int operands = 0, parsed = cli_parse(&spec, argc, argv, &none, &operands);
+      CLI_OPTIONS(options)};
+  int parsed = cli_parse_one(&spec, argc, argv, NULL);
   if (parsed) return parsed;
   o->perlin = perlin, o->half = half, o->seed = seed;
   o->width = size[0], o->height = size[1];

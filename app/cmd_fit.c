@@ -128,8 +128,8 @@ static int parse(int argc, char **argv, fit_options *o) {
                "INPUT: a scene config (.ini), or a VDB file or sequence (a #### pattern, a folder)\n"
                "whose frame is fitted as a 3D volume.",
       .operand = "INPUT", .min_operands = 1, .max_operands = 1,
-      .options = options, .option_count = sizeof options / sizeof options[0]};
-  int operands = 0, parsed = cli_parse(&spec, argc, argv, &o->input, &operands);
+      CLI_OPTIONS(options)};
+  int parsed = cli_parse_one(&spec, argc, argv, &o->input);
   if (parsed) return parsed;
   o->desc.by_mean = by_mean;
   o->desc.width = size[0], o->desc.height = size[1];

@@ -152,7 +152,7 @@ static int parse_options(int argc, char **argv, import_options *o) {
                "INPUT: a .vdb file, a folder (every *.vdb), a #### or printf pattern\n"
                "       (data/fluid_data_####.vdb, data/fluid_data_%04d.vdb) or a glob ('data/*.vdb').",
       .operand = "INPUT", .min_operands = 1, .max_operands = max_inputs,
-      .options = options, .option_count = sizeof options / sizeof options[0]};
+      CLI_OPTIONS(options)};
   int parsed = cli_parse(&spec, argc, argv, o->inputs, &o->input_count);
   if (parsed) return parsed;
   o->first = frames[0], o->last = frames[1];

@@ -64,8 +64,8 @@ int cmd_record(int argc, char **argv) {
                "(blended between frames); Perlin fog, noisy quadric volumes and RBF emitters\n"
                "move with time; the other analytic models stand still.",
       .operand = "CONFIG", .min_operands = 1, .max_operands = 1,
-      .options = options, .option_count = sizeof options / sizeof options[0]};
-  int operands = 0, parsed = cli_parse(&spec, argc, argv, &job.config_path, &operands);
+      CLI_OPTIONS(options)};
+  int parsed = cli_parse_one(&spec, argc, argv, &job.config_path);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   /* N (frames 1..N) or A-B (frames A..B, for a farm's job array) */
   job.first_frame = frames[2] ? 1 : frames[0], job.frames = frames[1];

@@ -76,10 +76,10 @@ int cmd_render(int argc, char **argv) {
       .usage = "CONFIG --out FILE.exr|FILE.png [--size WxH] [--vdb-frame N] [--time SECONDS]",
       .about = "Renders one frame of the scene config headless (EGL; no display needed).",
       .operand = "CONFIG", .min_operands = 1, .max_operands = 1,
-      .options = options, .option_count = sizeof options / sizeof options[0],
+      CLI_OPTIONS(options),
       .footer = "The config format is described in docs/config.md."};
   const char *config_path = NULL;
-  int operands = 0, parsed = cli_parse(&spec, argc, argv, &config_path, &operands);
+  int parsed = cli_parse_one(&spec, argc, argv, &config_path);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   int width = size[0], height = size[1];
   bool exr = cli_ends_with(out, ".exr");

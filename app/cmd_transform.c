@@ -386,9 +386,9 @@ int cmd_transform(int argc, char **argv) {
                "  transform.ini           basis, levels, mode, sizes, grid origins, energies\n"
                "With --inverse, reads such a folder and writes the reconstructed fogmap EXR.",
       .operand = "IN", .min_operands = 0, .max_operands = 1,
-      .options = options, .option_count = sizeof options / sizeof options[0]};
+      CLI_OPTIONS(options)};
   const char *in = NULL;
-  int operands = 0, parsed = cli_parse(&spec, argc, argv, &in, &operands);
+  int parsed = cli_parse_one(&spec, argc, argv, &in);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   desc.basis = (transform_basis)basis, desc.boundary = (transform_boundary)mode;
   desc.decomposition = standard ? TRANSFORM_STANDARD : TRANSFORM_NONSTANDARD;

@@ -64,15 +64,13 @@ int cmd_view(int argc, char **argv) {
                "     C picks up the group under the cursor and V puts a copy of it down there,\n"
                "     - and = size, , and . density, Ctrl+S writes CONFIG.painted.ini",
       .operand = "CONFIG", .min_operands = 1, .max_operands = 1,
-      .options = options, .option_count = sizeof options / sizeof options[0]};
-  const char *config_path = NULL;
-  int operands = 0, parsed = cli_parse(&spec, argc, argv, &config_path, &operands);
+      CLI_OPTIONS(options)};
+  int parsed = cli_parse_one(&spec, argc, argv, &opts.config_path);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
-  opts.config_path = config_path;
   if (opts.rung >= 0 && !opts.fit) return cli_usage_error("view", "--rung needs --fit T");
   scene_config cfg;
   fog_error cfg_err;
-  if (scene_config_load(config_path, &cfg, &cfg_err)) {
+  if (scene_config_load(opts.config_path, &cfg, &cfg_err)) {
     fprintf(stderr, "fogpipe view: %s\n", cfg_err.message);
     return 1;
   }

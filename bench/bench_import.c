@@ -396,7 +396,7 @@ int bench_import(int argc, char **argv) {
                "the GL context and shaders made once before (an open viewer's situation; the cold\n"
                "first frame is printed too); vdb_render = the whole command (its own read, ray\n"
                "march with lighting, PNG) with -light given all 6 numbers.",
-      .options = options, .option_count = sizeof options / sizeof options[0]};
+      CLI_OPTIONS(options)};
   int exit_status = bench_parse(&command, argc, argv);
   if (exit_status >= 0) return exit_status;
   const int march = march_flag, exponential = exponential_flag;

@@ -140,7 +140,7 @@ int bench_pipeline(int argc, char **argv) {
                "thread and on the GL thread, with the camera still and turning. Last line:\n"
                "pipeline: fps=C cpu_stage_share=D fps_moving_camera=E moving_over_still=R\n"
                "(R = E / C, target >= 0.85).",
-      .options = options, .option_count = sizeof options / sizeof options[0]};
+      CLI_OPTIONS(options)};
   int exit_status = bench_parse(&command, argc, argv);
   if (exit_status >= 0) return exit_status;
   const int width = image.width, height = image.height;

@@ -55,7 +55,7 @@ static int run(values *v, const char **operands, int *count, const char *line) {
   };
   const cli_spec spec = {.command = "test", .usage = "FILE... [options]", .about = "About.",
                          .operand = "FILE", .min_operands = 1, .max_operands = 2,
-                         .options = options, .option_count = sizeof options / sizeof options[0],
+                         CLI_OPTIONS(options),
                          .footer = "Footer."};
   char buffer[512], *argv[32];
   snprintf(buffer, sizeof buffer, "test %s", line);
@@ -130,5 +130,23 @@ int main(void) {
   };
   for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
     CHECK(run(&v, operands, &count, bad[k]) == 2, "'%s' was not refused with 2", bad[k]);
+
+  /* cli_parse_one: the one operand where asked, the caller's default kept without one */
+  bool flag = false;
+  const cli_option one_options[] = {{.kind = CLI_FLAG, .name = "--flag", .target = &flag}};
+  const cli_spec one = {.command = "one", .operand = "CONFIG", .max_operands = 1,
+                        CLI_OPTIONS(one_options)};
+  CHECK(one.option_count == 1, "CLI_OPTIONS counts %d rows", one.option_count);
+  char *with[] = {"one", "--flag", "a.ini"}, *without[] = {"one", "--flag"};
+  char *two[] = {"one", "a.ini", "b.ini"};
+  const char *config = "default.ini";
+  CHECK(cli_parse_one(&one, 2, without, &config) == 0 && !strcmp(config, "default.ini") && flag,
+        "no operand: '%s' kept", config);
+  CHECK(cli_parse_one(&one, 3, with, &config) == 0 && !strcmp(config, "a.ini"), "operand '%s'",
+        config);
+  CHECK(cli_parse_one(&one, 3, two, &config) == 2, "two operands refused");
+  const cli_spec none = {.command = "none", CLI_OPTIONS(one_options)};
+  CHECK(cli_parse_one(&none, 2, without, NULL) == 0 && cli_parse_one(&none, 3, with, NULL) == 2,
+        "no operands taken: NULL target, an operand refused");
   return test_finish("test_cli_options");
 }
