@@ -130,6 +130,11 @@ int bench_valley_scene(scene_geometry *geo, camera *cam, fog_error *err) {
   return 0;
 }
 
+int bench_report(const char *stage, int status, const fog_error *err) {
+  if (status) fprintf(stderr, "fogpipe bench %s: %s\n", stage, err->message);
+  return status;
+}
+
 int bench_open_scene(const char *stage, const char *config_path, scene_config *cfg,
                      gl_context **gl) {
   fog_error err = {0};

@@ -340,12 +340,12 @@ int bench_light(int argc, char **argv) {
                                                        .color_formats = {GL_RGBA32F, GL_R32F,
                                                                          GL_RGBA32F}},
                                &rerr))
-    goto gl_failed;
+    goto done;
   /* the product's default light settings ([light] shadow_steps, shadow_nodes) */
   scene_config defaults;
   scene_config_init(&defaults);
   for (int s = 0; s < SCENE_COUNT; s++) {
-    if (scene_create(&scenes[s], scene_configs[s], W, H, &rerr)) goto gl_failed;
+    if (scene_create(&scenes[s], scene_configs[s], W, H, &rerr)) goto done;
     const int D = defaults.shadow.steps, N = defaults.shadow.nodes;
     if (!add_row(rows, &row_count, s, 0, 1, 1, 1, frames) ||
         !add_row(rows, &row_count, s, 0, 1, 1, 2, frames))
@@ -388,7 +388,7 @@ int bench_light(int argc, char **argv) {
     light_scene *s = &scenes[r->scene];
     if (upload_for(s, r, &rerr) || draw_row(s, r, &out, &rerr) ||
         gl_target_read(&out, 1, 1, tau, &rerr) || gl_target_read(&out, 2, 3, inscatter, &rerr))
-      goto gl_failed;
+      goto done;
     if (!s->reference && scene_reference(s, tau, W, H)) goto out_of_memory;
     row_errors(r, s, inscatter, W, H);
     /* to look at: ours live, ours at 96^3 x 64 steps (near the reference), froxels 1x */
@@ -398,12 +398,9 @@ int bench_light(int argc, char **argv) {
       snprintf(path, sizeof path, "%s/light_%s_%s.png", options.out_dir, scene_names[r->scene],
                in_scene == ROW_LIVE ? "ours_live" : in_scene == ROW_NEAR_CONVERGED ? "ours_96_64"
                                                                                    : "froxels_1x");
-      fog_error serr;
-      if (gl_target_read(&out, 0, 3, inscatter, &rerr)) goto gl_failed;
-      if (image_write_png_srgb(path, W, H, 3, inscatter, &serr)) {
-        fprintf(stderr, "fogpipe bench light: %s\n", serr.message);
+      if (gl_target_read(&out, 0, 3, inscatter, &rerr) ||
+          image_write_png_srgb(path, W, H, 3, inscatter, &rerr))
         goto done;
-      }
     }
   }
   timing_user user = {scenes, rows, &out};
@@ -411,7 +408,7 @@ int bench_light(int argc, char **argv) {
                                           .prepare = timing_prepare, .draw = timing_draw,
                                           .times = timing_times},
                       &rerr))
-    goto gl_failed;
+    goto done;
   for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
 
   bench_print_build();
@@ -457,7 +454,7 @@ int bench_light(int argc, char **argv) {
                       .log_y = true};
   if (write_table(table, rows, row_count, error, sizeof error) ||
       chart_write(&chart, points, row_count, chart_csv, chart_png, error, sizeof error)) {
-    fprintf(stderr, "fogpipe bench light: %s\n", error);
+    fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", error);
     goto done;
   }
   printf("\nCSV: %s, %s; PNG: %s\n", table, chart_csv, chart_png);
@@ -513,16 +510,13 @@ int bench_light(int argc, char **argv) {
   goto done;
 
 out_of_memory:
-  fprintf(stderr, "fogpipe bench light: out of memory\n");
-  goto done;
-gl_failed:
-  fprintf(stderr, "fogpipe bench light: %s\n", rerr.message);
+  fog_fail(&rerr, FOG_ERR_OUT_OF_MEMORY, "out of memory");
 done:
+  free(tau);
+  free(inscatter);
   for (int i = 0; i < row_count; i++) free(rows[i].times);
   for (int s = 0; s < SCENE_COUNT; s++) scene_destroy(&scenes[s]);
   if (out.framebuffer) gl_target_destroy(&out);
   if (ctx) gl_context_destroy(ctx);
-  free(tau);
-  free(inscatter);
-  return status;
+  return bench_report("light", status, &rerr);
 }

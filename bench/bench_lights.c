@@ -409,9 +409,9 @@ int bench_lights(int argc, char **argv) {
                                                        .color_formats = {GL_RGBA32F, GL_R32F,
                                                                          GL_RGBA32F}},
                                &rerr))
-    goto gl_failed;
+    goto done;
   for (int s = 0; s < SCENE_COUNT; s++) {
-    if (scene_create(&scenes[s], s, W, H, &rerr)) goto gl_failed;
+    if (scene_create(&scenes[s], s, W, H, &rerr)) goto done;
     scenes[s].unlit = malloc(3 * pixels * sizeof(float));
     scenes[s].reference = malloc((size_t)cols * rows_e * 3 * sizeof(double));
     if (!scenes[s].unlit || !scenes[s].reference || !add_row(rows, &row_count, s, "unlit", 8, frames))
@@ -462,14 +462,14 @@ int bench_lights(int argc, char **argv) {
       continue;
     }
     if (draw_row(s, r, &out, &rerr) || gl_target_read(&out, 2, 3, into, &rerr))
-      goto gl_failed;
+      goto done;
     if (!r->unlit) row_errors(r, s, inscatter, W, H);
   }
   timing_user user = {scenes, rows, &out};
   if (bench_time_rows(&(bench_timed_rows){.count = row_count, .frames = frames, .user = &user,
                                           .draw = timing_draw, .times = timing_times},
                       &rerr))
-    goto gl_failed;
+    goto done;
   for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
   double fits[SCENE_COUNT][2];
   for (int s = 0; s < SCENE_COUNT; s++) extrapolate_march_times(rows, row_count, s, fits[s]);
@@ -506,7 +506,7 @@ int bench_lights(int argc, char **argv) {
                       .log_y = true};
   if (write_table(table, rows, row_count, error, sizeof error) ||
       chart_write(&chart, points, point_count, chart_csv, chart_png, error, sizeof error)) {
-    fprintf(stderr, "fogpipe bench lights: %s\n", error);
+    fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", error);
     goto done;
   }
   for (int s = 0; s < SCENE_COUNT; s++)
@@ -551,7 +551,7 @@ int bench_lights(int argc, char **argv) {
            MATCHED_ERROR, march_ms, ours_ms,
            b[s] == b[s] ? "ratio below" : "nan: one of them never gets there");
   }
-  if (shadow_rows(&scenes[0], &rows[2], W, H, frames, inscatter, &out, &rerr)) goto gl_failed;
+  if (shadow_rows(&scenes[0], &rows[2], W, H, frames, inscatter, &out, &rerr)) goto done;
   double halo_ours, halo_fogshop;
   double c = halo_ratio(&halo_ours, &halo_fogshop);
   printf("halo (g 0.7, CPU twins): ours max error %.2e, Fogshop's %.2e of the peak\n", halo_ours,
@@ -562,15 +562,12 @@ int bench_lights(int argc, char **argv) {
   goto done;
 
 out_of_memory:
-  fprintf(stderr, "fogpipe bench lights: out of memory\n");
-  goto done;
-gl_failed:
-  fprintf(stderr, "fogpipe bench lights: %s\n", rerr.message);
+  fog_fail(&rerr, FOG_ERR_OUT_OF_MEMORY, "out of memory");
 done:
   for (int i = 0; i < row_count; i++) free(rows[i].times);
   for (int s = 0; s < SCENE_COUNT; s++) scene_destroy(&scenes[s]);
   if (out.framebuffer) gl_target_destroy(&out);
   if (ctx) gl_context_destroy(ctx);
   free(inscatter);
-  return status;
+  return bench_report("lights", status, &rerr);
 }

@@ -353,14 +353,14 @@ int bench_models(int argc, char **argv) {
   int row_count = 0;
   if (!gpu_tau) goto out_of_memory;
   ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
-  if (!ctx) goto gl_failed;
+  if (!ctx) goto done;
   for (int k = 0; k < SCENE_COUNT; k++)
-    if (scene_create(&scenes[k], scene_configs[k], W, H, &rerr)) goto gl_failed;
+    if (scene_create(&scenes[k], scene_configs[k], W, H, &rerr)) goto done;
   if (gl_target_create(&fog_target, &(gl_target_desc){.width = W, .height = H,
                                                       .color_formats = {GL_RGBA32F, GL_R32F}},
                        &rerr) ||
       !(pass = fog_pass_create(&rerr)))
-    goto gl_failed;
+    goto done;
 
   /* The models: the RBFs are the banks config's (density_scale applied, as render does),
    * the volume the plume config's VDB frame. */
@@ -373,7 +373,7 @@ int bench_models(int argc, char **argv) {
   volume_grid_desc grid;
   if (render_fog_load_volume(scenes[1].cfg, &frame, &grid, &rerr) ||
       fog_pass_upload_grid3d(pass, &grid, &rerr))
-    goto gl_failed;
+    goto done;
   fog_quadric quadrics[QUADRIC_COUNT], noisy[QUADRIC_COUNT];
   bench_quadrics(quadrics);
   for (int q = 0; q < QUADRIC_COUNT; q++) noisy[q] = quadrics[q], noisy[q].noise = 0.8;
@@ -390,7 +390,7 @@ int bench_models(int argc, char **argv) {
   perlin_desc.lo[1] = -10.0, perlin_desc.hi[1] = 70.0;
   if (fog_perlin_create(&perlin, &perlin_desc, &rerr) ||
       fog_pass_upload_perlin(pass, &perlin, &rerr))
-    goto gl_failed;
+    goto done;
   double voxel = HUGE_VAL;
   for (int a = 0; a < 3; a++) voxel = fmin(voxel, fabs(frame.world.step[a]));
   const double *eye = scenes[0].drawn.cam.position; /* the classic factors' */
@@ -471,7 +471,7 @@ int bench_models(int argc, char **argv) {
     if (fog_pass_draw(pass, &sc->cam, &r->params, sc->target.color[0], sc->target.color[1], W,
                       H, &rerr) ||
         gl_target_read(&fog_target, 1, 1, gpu_tau, &rerr))
-      goto gl_failed;
+      goto done;
     bench_tau_errors(gpu_tau, references[r->model], pixels, &r->rmse, &r->max_error, &where);
   }
   timing_user user = {scenes, rows, pass, &fog_target, W, H};
@@ -479,14 +479,14 @@ int bench_models(int argc, char **argv) {
                                           .prepare = timing_prepare, .draw = timing_draw,
                                           .times = timing_times},
                       &rerr))
-    goto gl_failed;
+    goto done;
   for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
   static fog_rbf scale_rbfs[64 + 3000];
   rbf_scale_row scale[2] = {{.count = 64, .rbfs = scale_rbfs},
                             {.count = 3000, .rbfs = scale_rbfs + 64}};
   if (rbf_scale_rows(pass, &scenes[0].drawn, &fog_target, W, H, frames, scale, 2, gpu_tau,
                      &rerr))
-    goto gl_failed;
+    goto done;
 
   bench_print_build();
   printf("GL: %s, %s, %s; %dx%d, median of %d frames after 1 warm-up (glFinish before and after)\n",
@@ -522,7 +522,7 @@ int bench_models(int argc, char **argv) {
                       .y_label = "max |tau - CPU reference|", .log_x = true, .log_y = true};
   if (write_table(table, rows, row_count, error, sizeof error) ||
       chart_write(&chart, points, row_count, chart_csv, chart_png, error, sizeof error)) {
-    fprintf(stderr, "fogpipe bench models: %s\n", error);
+    fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", error);
     goto done;
   }
   printf("\nCSV: %s, %s; PNG: %s\n", table, chart_csv, chart_png);
@@ -572,10 +572,7 @@ int bench_models(int argc, char **argv) {
   goto done;
 
 out_of_memory:
-  fprintf(stderr, "fogpipe bench models: out of memory\n");
-  goto done;
-gl_failed:
-  fprintf(stderr, "fogpipe bench models: %s\n", rerr.message);
+  fog_fail(&rerr, FOG_ERR_OUT_OF_MEMORY, "out of memory");
 done:
   for (int i = 0; i < row_count; i++) free(rows[i].times);
   for (int m = 0; m < MODEL_COUNT; m++) free(references[m]);
@@ -586,5 +583,5 @@ done:
   for (int k = 0; k < SCENE_COUNT; k++) scene_destroy(&scenes[k]);
   if (ctx) gl_context_destroy(ctx);
   free(gpu_tau);
-  return status;
+  return bench_report("models", status, &rerr);
 }

@@ -426,7 +426,7 @@ int bench_render(int argc, char **argv) {
   }
   fog_lod lod = {.levels = LOD_LEVELS, .approx = approx, .detail = detail, .mu = 1.0};
   if (fogmap_load(ground_path, &(fogmap_load_desc){0}, &ground, &serr)) {
-    fprintf(stderr, "fogpipe bench render: %s\n", serr.message);
+    fog_error_pass(&rerr, &serr);
     goto done;
   }
   {
@@ -442,12 +442,12 @@ int bench_render(int argc, char **argv) {
   if (fogmap_create(&extra[EXTRA_DETAILED], map.width, map.height, &serr) ||
       designed_fog_perlin(&extra[EXTRA_DETAILED],
                           &(perlin_fog_desc){.octaves = 4, .feature_size = 16.0f, .gain = 1.0f}, &serr)) {
-    fprintf(stderr, "fogpipe bench render: detailed fog: %s\n", serr.message);
+    fog_error_wrap(&rerr, &serr, "detailed fog: ");
     goto done;
   }
   if (bench_simulated_density(source_file("configs", "default.ini"), SIMULATED_FRAME, 24.0,
                               &extra[EXTRA_SIMULATED], message, sizeof message)) {
-    fprintf(stderr, "fogpipe bench render: simulated fog: %s\n", message);
+    fog_fail(&rerr, FOG_ERR_BAD_FILE, "simulated fog: %s", message);
     goto done;
   }
   for (int k = 0; k < EXTRA_COUNT; k++) {
@@ -460,9 +460,9 @@ int bench_render(int argc, char **argv) {
 
   /* ---- GL: context, scene, fog passes ---- */
   ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &rerr);
-  if (!ctx) goto gl_failed;
+  if (!ctx) goto done;
   camera cam;
-  if (bench_valley_scene(&geo, &cam, &rerr)) goto gl_failed;
+  if (bench_valley_scene(&geo, &cam, &rerr)) goto done;
   have_geo = 1;
   const fog_volume volume = {
       .map_width = map.width, .map_height = map.height, .origin_x = -512.0, .origin_z = -512.0,
@@ -473,22 +473,22 @@ int bench_render(int argc, char **argv) {
   };
 
   spass = scene_pass_create(&geo, &rerr);
-  if (!spass || scene_target_create(&scene_target, W, H, &rerr)) goto gl_failed;
+  if (!spass || scene_target_create(&scene_target, W, H, &rerr)) goto done;
   if (gl_target_create(&fog_target, &(gl_target_desc){.width = W, .height = H,
                                                        .color_formats = {GL_RGBA32F, GL_R32F}},
                        &rerr))
-    goto gl_failed;
+    goto done;
   scene_pass_run(spass, &cam, &scene_target);
   distance = malloc(pixels * sizeof(float));
   gpu_tau = malloc(pixels * sizeof(float));
   if (!distance || !gpu_tau) goto out_of_memory;
-  if (gl_target_read(&scene_target, 1, 1, distance, &rerr)) goto gl_failed;
+  if (gl_target_read(&scene_target, 1, 1, distance, &rerr)) goto done;
   for (int p = 0; p < PASS_COUNT; p++) {
-    if (!(passes[p] = fog_pass_create(&rerr))) goto gl_failed;
+    if (!(passes[p] = fog_pass_create(&rerr))) goto done;
     if (p < 3 ? fog_pass_upload_grid(passes[p], 0, &full[p], &rerr)
         : p == 3 ? fog_pass_upload_lod(passes[p], &lod, &rerr)
         : fog_pass_upload_grid(passes[p], 0, p == 4 ? &ground_grid : &extra_grid[p - 5], &rerr))
-      goto gl_failed;
+      goto done;
   }
 
   /* ---- the CPU references, one per model ---- */
@@ -644,7 +644,7 @@ int bench_render(int argc, char **argv) {
     if (fog_pass_draw(passes[r->pass], &cam, &r->params, scene_target.color[0],
                       scene_target.color[1], W, H, &rerr) ||
         gl_target_read(&fog_target, 1, 1, gpu_tau, &rerr))
-      goto gl_failed;
+      goto done;
     size_t where;
     bench_tau_errors(gpu_tau, references[r->reference], pixels, &r->rmse, &r->max_error,
                &r->worst_pixel);
@@ -673,10 +673,10 @@ int bench_render(int argc, char **argv) {
                                           .prepare = timing_prepare, .draw = timing_draw,
                                           .times = timing_times},
                       &rerr))
-    goto gl_failed;
+    goto done;
   for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
   bench_upload_timing upload = {0};
-  if (bench_time_uploads(&lod, 21, &upload, &rerr)) goto gl_failed;
+  if (bench_time_uploads(&lod, 21, &upload, &rerr)) goto done;
 
   /* ---- report ---- */
   double full_cells = 0.0, tau_mean = 0.0;
@@ -745,7 +745,7 @@ int bench_render(int argc, char **argv) {
                       .log_x = true, .log_y = true};
   if (write_table_csv(csv_path, rows, row_count, error, sizeof error) ||
       chart_write(&chart, points, point_count, chart_csv, chart_png, error, sizeof error)) {
-    fprintf(stderr, "fogpipe bench render: %s\n", error);
+    fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", error);
     goto done;
   }
 
@@ -826,13 +826,9 @@ int bench_render(int argc, char **argv) {
   goto done;
 
 out_of_memory:
-  fprintf(stderr, "fogpipe bench render: out of memory\n");
-  goto done;
+  fog_fail(&rerr, FOG_ERR_OUT_OF_MEMORY, "out of memory");
 transform_failed:
-  fprintf(stderr, "fogpipe bench render: transform: %s\n", terr.message);
-  goto done;
-gl_failed:
-  fprintf(stderr, "fogpipe bench render: %s\n", rerr.message);
+  fog_error_wrap(&rerr, &terr, "transform: ");
 done:
   for (int i = 0; i < row_count; i++) free(rows[i].times);
   for (int r = 0; r < REFERENCE_COUNT; r++) free(references[r]);
@@ -867,5 +863,5 @@ done:
   transform_plan_destroy(lod_plan);
   free(coefficients);
   fogmap_destroy(&map);
-  return status;
+  return bench_report("render", status, &rerr);
 }
