@@ -1,6 +1,7 @@
 /* Shared GL set-up for the fog pass tests: a headless context, the fog pass, a W x H
  * target (colour RGBA32F + transmittance R32F, what fog_pass_draw writes) and the input
- * textures the pass reads (surface colour and surface distance, rows uploaded top first).
+ * textures the pass reads (gl.surface_tex, gl.dist_tex: surface colour and distance, rows
+ * uploaded top first).
  *
  *   fog_test_gl gl;
  *   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_x");
@@ -25,16 +26,35 @@ typedef struct fog_test_gl {
   gl_target target;
   bool has_target;
   int width, height;
+  /* the pass's inputs, width x height: the surface colour (RGBA32F, all zero until a test
+   * uploads its own) and the surface distance (R32F, undefined until uploaded) */
+  GLuint surface_tex, dist_tex;
 } fog_test_gl;
 
+/* A width x height texture with NEAREST filtering: no mipmaps, so without it the texture
+ * would be incomplete and texelFetch would read 0. data may be NULL (contents undefined). */
+static inline GLuint fog_test_gl_texture(const fog_test_gl *gl, GLenum internal, GLenum format,
+                                         const float *data) {
+  GLuint t;
+  glGenTextures(1, &t);
+  glBindTexture(GL_TEXTURE_2D, t);
+  glTexImage2D(GL_TEXTURE_2D, 0, internal, gl->width, gl->height, 0, format, GL_FLOAT, data);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  return t;
+}
+
 static inline void fog_test_gl_teardown(fog_test_gl *gl) {
+  if (gl->surface_tex) glDeleteTextures(1, &gl->surface_tex);
+  if (gl->dist_tex) glDeleteTextures(1, &gl->dist_tex);
   if (gl->has_target) gl_target_destroy(&gl->target);
   if (gl->pass) fog_pass_destroy(gl->pass);
   if (gl->ctx) gl_context_destroy(gl->ctx);
   *gl = (fog_test_gl){0};
 }
 
-/* CHECKs each step (context, pass, target) and returns true when all three exist. On
+/* CHECKs each step (context, pass, target) and returns true when all three exist (and
+ * the two input textures are made). On
  * false it has released what it made and the test should return test_finish(...) at
  * once (the failures are recorded). */
 static inline bool fog_test_gl_setup(fog_test_gl *gl, int width, int height, fog_error *err) {
@@ -50,21 +70,20 @@ static inline bool fog_test_gl_setup(fog_test_gl *gl, int width, int height, fog
                          err) == 0;
     CHECK(gl->has_target, "target: %s", err->message);
   }
-  if (!gl->has_target) fog_test_gl_teardown(gl);
-  return gl->has_target;
-}
-
-/* A width x height texture with NEAREST filtering: no mipmaps, so without it the texture
- * would be incomplete and texelFetch would read 0. data may be NULL (contents undefined). */
-static inline GLuint fog_test_gl_texture(const fog_test_gl *gl, GLenum internal, GLenum format,
-                                         const float *data) {
-  GLuint t;
-  glGenTextures(1, &t);
-  glBindTexture(GL_TEXTURE_2D, t);
-  glTexImage2D(GL_TEXTURE_2D, 0, internal, gl->width, gl->height, 0, format, GL_FLOAT, data);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  return t;
+  if (!gl->has_target) {
+    fog_test_gl_teardown(gl);
+    return false;
+  }
+  float *zeros = calloc((size_t)width * height * 4, sizeof(float));
+  CHECK(zeros != NULL, "out of memory");
+  if (!zeros) {
+    fog_test_gl_teardown(gl);
+    return false;
+  }
+  gl->surface_tex = fog_test_gl_texture(gl, GL_RGBA32F, GL_RGBA, zeros);
+  gl->dist_tex = fog_test_gl_texture(gl, GL_R32F, GL_RED, NULL);
+  free(zeros);
+  return true;
 }
 
 /* Uploads an image stored rows top first (as camera_ray's pixel rows and the CPU
@@ -104,20 +123,20 @@ static inline double fog_test_gl_pixel_ray(const fog_test_gl *gl, const camera *
   return t >= 1e29f ? HUGE_VAL : (double)t;
 }
 
-/* Draws the fog pass into the target and reads its transmittance (attachment 1, rows
- * top first) into tau. The target is first cleared to -1, which no transmittance or
- * colour can be, so a pixel the pass leaves unwritten fails any comparison instead of
- * showing the previous draw. Returns 0 on success (err says what failed): the caller
+/* Draws the fog pass (over gl's surface_tex and dist_tex) into the target and reads its
+ * transmittance (attachment 1, rows top first) into tau. The target is first cleared to -1,
+ * which no transmittance or colour can be, so a pixel the pass leaves unwritten fails any
+ * comparison instead of showing the previous draw. Returns 0 on success (err says what failed): the caller
  * CHECKs it, so a failure names the test's own line and case. */
 static inline int fog_test_gl_draw_tau(fog_test_gl *gl, const camera *cam,
-                                       const fog_pass_params *params, GLuint colour_tex,
-                                       GLuint distance_tex, float *tau, fog_error *err) {
+                                       const fog_pass_params *params, float *tau,
+                                       fog_error *err) {
   gl_target_bind(&gl->target);
   static const float unwritten[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
   glClearBufferfv(GL_COLOR, 0, unwritten);
   glClearBufferfv(GL_COLOR, 1, unwritten);
-  if (fog_pass_draw(gl->pass, cam, params, colour_tex, distance_tex, gl->width, gl->height,
-                    err))
+  if (fog_pass_draw(gl->pass, cam, params, gl->surface_tex, gl->dist_tex, gl->width,
+                    gl->height, err))
     return 1;
   return gl_target_read(&gl->target, 1, 1, tau, err);
 }

@@ -28,9 +28,9 @@ typedef struct drawn {
   float rgba[4 * W * H], tau[W * H];
 } drawn;
 
-static int draw(fog_test_gl *gl, const camera *cam, const fog_pass_params *params,
-                GLuint colour_tex, GLuint dist_tex, drawn *out, fog_error *err) {
-  if (fog_test_gl_draw_tau(gl, cam, params, colour_tex, dist_tex, out->tau, err)) return 1;
+static int draw(fog_test_gl *gl, const camera *cam, const fog_pass_params *params, drawn *out,
+                fog_error *err) {
+  if (fog_test_gl_draw_tau(gl, cam, params, out->tau, err)) return 1;
   return gl_target_read(&gl->target, 0, 4, out->rgba, err);
 }
 
@@ -42,9 +42,7 @@ int main(void) {
   static drawn whole, cut;
   for (int i = 0; i < W * H; i++)
     for (int c = 0; c < 4; c++) surface[4 * i + c] = c < 3 ? (float)fog_test_range(0, 2) : 1.0f;
-  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, NULL);
-  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
-  fog_test_gl_upload_flipped(&gl, surface_tex, GL_RGBA, 4, surface);
+  fog_test_gl_upload_flipped(&gl, gl.surface_tex, GL_RGBA, 4, surface);
 
   fog_volume v = fog_test_volume(FOG_PROFILE_EXPONENTIAL);
   v.extinction = 1.5; /* thick: tau 1e-4 within ~ten world units */
@@ -67,7 +65,7 @@ int main(void) {
   cam.position[2] = 0.5 * (lo[2] + hi[2]);
   camera_look_at(&cam, (double[3]){hi[0], 1.5, 0.5 * (lo[2] + hi[2]) + 8.0});
   fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-  fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+  fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
 
   const double cutoffs[2] = {FOG_PASS_TRANSMITTANCE_CUTOFF, 1e-2};
   const char *names[5] = {"one grid", "one grid (hardware)", "LOD switching", "volume",
@@ -100,7 +98,7 @@ int main(void) {
       params.sun = (fog_sun){.albedo = 0.8, .phase_g = 0.5,
                              .radiance = {3.0f, 2.8f, 2.4f},
                              .direction = {sun_dir[0], sun_dir[1], sun_dir[2]}};
-    CHECK(draw(&gl, &cam, &params, surface_tex, dist_tex, &whole, &err) == 0, "%s: %s",
+    CHECK(draw(&gl, &cam, &params, &whole, &err) == 0, "%s: %s",
           names[mode], err.message);
     int past = 0;
     for (int k = 0; k < W * H; k++) past += whole.tau[k] < 1e-5f;
@@ -109,7 +107,7 @@ int main(void) {
     for (int ci = 0; ci < 2; ci++) {
       const double c = cutoffs[ci];
       params.walk.transmittance_cutoff = c;
-      CHECK(draw(&gl, &cam, &params, surface_tex, dist_tex, &cut, &err) == 0, "%s: %s",
+      CHECK(draw(&gl, &cam, &params, &cut, &err) == 0, "%s: %s",
             names[mode], err.message);
       double worst_tau = 0.0, worst_ratio = 0.0;
       int outside = 0;
@@ -142,8 +140,6 @@ int main(void) {
   }
   for (int l = 0; l <= LEVELS; l++) transform_grid_destroy(&grids[l]);
   for (int l = 0; l < LEVELS; l++) transform_grid_destroy(&grid_details[l]);
-  glDeleteTextures(1, &surface_tex);
-  glDeleteTextures(1, &dist_tex);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_early_stop");
 }

@@ -21,10 +21,6 @@ int main(void) {
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_far_camera");
   float *dist = malloc(sizeof(float) * W * H), *tau = malloc(sizeof(float) * W * H);
-  float *surface = calloc((size_t)W * H * 4, sizeof(float));
-  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, NULL);
-  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
-  fog_test_gl_upload_flipped(&gl, surface_tex, GL_RGBA, 4, surface);
 
   transform_grid approx[J + 1], detail[J];
   fog_test_pyramid(1, J, approx, detail);
@@ -44,7 +40,7 @@ int main(void) {
     cam.position[2] = centre[2] + 0.8 * D;
     camera_look_at(&cam, centre);
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
     for (int method = -1; method <= 1; method++) { /* -1: the finest grid alone */
       /* the one-grid draw reads slot 0, which the pyramid's A_0 occupies: upload each
        * before the draws that read it */
@@ -55,7 +51,7 @@ int main(void) {
         CHECK(fog_pass_upload_lod(gl.pass, &lod, &err) == 0, "upload: %s", err.message);
       fog_pass_params params = {.volume = &v, .levels = method < 0 ? 0 : J,
                                 .lod_method = method < 0 ? 0 : method, .mu = lod.mu};
-      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
             "draw: %s", err.message);
       double worst = 0.0, min_tau = 1.0;
       for (int py = 0; py < H; py++)
@@ -82,7 +78,6 @@ int main(void) {
   for (int l = 0; l < J; l++) transform_grid_destroy(&detail[l]);
   free(dist);
   free(tau);
-  free(surface);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_far_camera");
 }

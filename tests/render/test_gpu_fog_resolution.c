@@ -67,9 +67,8 @@ int main(void) {
       if (px >= 37 && px < 71 && py >= 21 && py < 45) distance[py * W + px] = 20.0f;
     }
   for (int k = 0; k < W * H; k++) colour[4 * k + 0] = colour[4 * k + 1] = colour[4 * k + 2] = 0.5f;
-  GLuint tex[2] = {fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, colour),
-                   fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL)};
-  fog_test_gl_upload_flipped(&gl, tex[1], GL_RED, 1, distance);
+  fog_test_gl_upload_flipped(&gl, gl.surface_tex, GL_RGBA, 4, colour);
+  fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, distance);
 
   float *tau[4], *rgba[2];
   for (int k = 0; k < 4; k++) tau[k] = malloc(sizeof(float) * W * H);
@@ -78,7 +77,7 @@ int main(void) {
   for (int k = 0; k < 4; k++) {
     fog_pass_params params = {.volume = &v, .fog_colour = {0.8f, 0.8f, 0.9f},
                               .resolution_divisor = divisors[k]};
-    CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tex[0], tex[1], tau[k], &err) == 0,
+    CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau[k], &err) == 0,
           "draw divisor %d: %s", divisors[k], err.message);
     if (k < 2) CHECK(gl_target_read(&gl.target, 0, 4, rgba[k], &err) == 0, "read: %s", err.message);
   }
@@ -126,7 +125,7 @@ int main(void) {
                                 .model_scale_height = 6.0, .model_perlin = &perlin,
                                 .model_time = 3.0, .fog_colour = {0.8f, 0.8f, 0.9f},
                                 .resolution_divisor = divisors[k]};
-      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tex[0], tex[1], tau[k], &err) == 0,
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau[k], &err) == 0,
             "model %d divisor %d: %s", m, divisors[k], err.message);
     }
     double model_mean2, model_mean4, full_min = 1.0;
@@ -173,7 +172,7 @@ int main(void) {
         fog_pass_params params = {.volume = &v, .resolution_divisor = divisors[k + 1],
                                   .sun = {.albedo = 0.9, .phase_g = 0.3}};
         if (with) params.lamps = lamps;
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tex[0], tex[1], tau[0], &err) == 0 &&
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau[0], &err) == 0 &&
                   gl_target_read(&gl.target, 0, 4, with ? lit[k] : dark, &err) == 0,
               "lamps divisor %d: %s", divisors[k + 1], err.message);
       }
@@ -208,7 +207,7 @@ int main(void) {
   for (int c = 0; c < 2; c++) {
     fog_pass_params params = {
         .volume = &v, .walk = {.transmittance_cutoff = c ? 0.0 : FOG_PASS_TRANSMITTANCE_CUTOFF}};
-    CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tex[0], tex[1], tau[0], &err) == 0,
+    CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau[0], &err) == 0,
           "draw: %s", err.message);
     for (int k = 0; k < W * H; k++) {
       double o[3] = {cam.position[0], cam.position[1], cam.position[2]};
@@ -237,7 +236,7 @@ int main(void) {
       fog_lod_method lm = method ? FOG_LOD_SWITCH : FOG_LOD_SUM_OF_DETAILS;
       lod.mu = mus[m];
       fog_pass_params params = {.volume = &v, .levels = J, .lod_method = lm, .mu = mus[m]};
-      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tex[0], tex[1], tau[0], &err) == 0,
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau[0], &err) == 0,
             "draw: %s", err.message);
       double worst = 0.0;
       for (int k = 0; k < W * H; k++) {
@@ -252,7 +251,6 @@ int main(void) {
   for (int l = 0; l <= J; l++) transform_grid_destroy(&approx[l]);
   for (int l = 0; l < J; l++) transform_grid_destroy(&detail[l]);
 
-  glDeleteTextures(2, tex);
   transform_grid_destroy(&grid);
   fog_test_gl_teardown(&gl);
   for (int k = 0; k < 4; k++) free(tau[k]);

@@ -66,9 +66,7 @@ int main(void) {
     surface[4 * i + 2] = 0.9f - 0.5f * (float)((i / W) / (double)H);
     surface[4 * i + 3] = 1.0f;
   }
-  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, NULL);
-  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
-  fog_test_gl_upload_flipped(&gl, surface_tex, GL_RGBA, 4, surface);
+  fog_test_gl_upload_flipped(&gl, gl.surface_tex, GL_RGBA, 4, surface);
 
   /* Profiles: slab, exponential, and B-splines of degree 2, 1 and 0 (degrees 0 and 1, what
    * `fogpipe import` fits, take their own closed form in the walk). */
@@ -103,11 +101,11 @@ int main(void) {
       }
       camera_look_at(&cam, target_pos);
       fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-      fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+      fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
       for (int method = 0; method <= 1; method++) {
         fog_pass_params params = {.volume = &v, .levels = J, .lod_method = method, .mu = lod.mu,
                                   .fog_colour = {0.7f, 0.75f, 0.8f}};
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
               "draw: %s", err.message);
         CHECK(gl_target_read(&gl.target, 0, 4, colour, &err) == 0, "read: %s", err.message);
         double min_tau = 1.0;
@@ -146,7 +144,7 @@ int main(void) {
         }
         /* Hardware-filtered fetch (degree 0 uses texelFetch in both variants). */
         params.fetch = FOG_FETCH_HARDWARE;
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau_other, &err) ==
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau_other, &err) ==
                   0,
               "draw (hardware): %s", err.message);
         if (method == 1) {
@@ -170,10 +168,10 @@ int main(void) {
           .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
       camera_look_at(&cam, (double[3]){130.0, ground_y, -30.0});
       fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-      fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+      fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
       fog_pass_params params = {.volume = &v, .levels = J, .lod_method = FOG_LOD_SWITCH,
                                 .mu = lod.mu};
-      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
             "draw after re-upload: %s", err.message);
       reference_lod_tau(&cam, dist, &v, &lod, FOG_LOD_SWITCH, want);
       double worst = max_tau_error(want, tau, NULL, NULL);
@@ -202,14 +200,14 @@ int main(void) {
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){1024.0, 0.5, 44.0});
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
     fog_pass_params params = {.volume = &v};
     /* Only the middle 32 x 12 pixels (around the horizon, the longest rays): llvmpipe needs
      * ~2 s per full frame of such rays. The scissor limits the helper's clear too. */
     enum { X0 = W / 2 - 16, Y0 = H / 2 - 6 };
     glEnable(GL_SCISSOR_TEST);
     glScissor(X0, H - Y0 - 12, 32, 12);
-    CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
+    CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
           "draw long rays: %s", err.message);
     glDisable(GL_SCISSOR_TEST);
     double worst = 0.0, min_tau = 1.0;
@@ -241,7 +239,7 @@ int main(void) {
           .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
       camera_look_at(&cam, (double[3]){80.0, view ? 0.0 : 6.0, -60.0});
       fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-      fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+      fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
       fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
       if (model == FOG_MODEL_RBF)
         m = (fog_model){.kind = model, .extinction = view ? 0.002 : 0.0, .rbfs = rbfs,
@@ -250,7 +248,7 @@ int main(void) {
       fog_pass_params params = {.model = model, .model_extinction = m.extinction,
                                 .model_y0 = m.y0, .model_scale_height = m.scale_height,
                                 .model_rbfs = m.rbfs, .model_rbf_count = m.rbf_count};
-      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
             "draw model %d: %s", model, err.message);
       double min_tau = 1.0;
       for (int py = 0; py < H; py++)
@@ -270,7 +268,7 @@ int main(void) {
         /* The exact walk sampling with the hardware's filter instead of the corners (float
          * weights on llvmpipe: as exact; a GPU's 8-bit weights would need ~1e-3). */
         params.fetch = FOG_FETCH_HARDWARE;
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
               "draw volume, hardware filtering: %s", err.message);
         double eh = max_tau_error(want, tau, NULL, NULL);
         printf("model %d view %d exact with hardware filtering: max |dtau| %.2e\n", model, view,
@@ -280,7 +278,7 @@ int main(void) {
         /* The volume's march against its CPU twin (the same samples, in double). */
         params.integrator = FOG_INTEGRATOR_MARCH;
         params.model_grid3d_step = 0.7;
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
               "draw volume marched: %s", err.message);
         for (int py = 0; py < H; py++)
           for (int px = 0; px < W; px++) {
@@ -301,7 +299,7 @@ int main(void) {
       for (int k = 0; k < 2; k++) {
         params.integrator = FOG_INTEGRATOR_MARCH;
         params.march_steps = k ? 1024 : 16;
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
               "draw model %d marched: %s", model, err.message);
         march_error[k] = max_tau_error(want, tau, NULL, NULL);
       }
@@ -326,7 +324,7 @@ int main(void) {
                                  "expected a march step > 0"};
     for (int k = 0; k < 3; k++) {
       fog_error e = {0};
-      CHECK(fog_test_gl_draw_tau(&gl, &cam, &bad[k], surface_tex, dist_tex, tau, &e) != 0 &&
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &bad[k], tau, &e) != 0 &&
                 strstr(e.message, said[k]),
             "bad model parameters %d: '%s' lacks '%s'", k, e.message, said[k]);
     }
@@ -334,7 +332,7 @@ int main(void) {
     const camera unset = {.position = {10.0, 3.0, 20.0}};
     const fog_pass_params fine = {.model = FOG_MODEL_HOMOGENEOUS, .model_extinction = 0.01};
     fog_error e = {0};
-    CHECK(fog_test_gl_draw_tau(&gl, &unset, &fine, surface_tex, dist_tex, tau, &e) != 0 &&
+    CHECK(fog_test_gl_draw_tau(&gl, &unset, &fine, tau, &e) != 0 &&
               strstr(e.message, "expected 0 < fov < pi and 0 < near < far"),
           "a camera of fov 0: '%s'", e.message);
   }
@@ -344,8 +342,6 @@ int main(void) {
          worst_hw[2]);
   CHECK(worst_colour <= 1e-5, "composited colour differs from eq. 4 by %.3e", worst_colour);
   free(grid_values);
-  glDeleteTextures(1, &surface_tex);
-  glDeleteTextures(1, &dist_tex);
   fog_test_gl_teardown(&gl);
   free(dist);
   free(tau);

@@ -33,9 +33,9 @@ static double max_rel_error(const float *got, const float *want, int n) {
   return worst / peak;
 }
 
-static int draw(fog_test_gl *gl, const camera *cam, const fog_pass_params *params, GLuint colour,
-                GLuint distance, float *rgba, float *tau, fog_error *err) {
-  if (fog_test_gl_draw_tau(gl, cam, params, colour, distance, tau, err)) return 1;
+static int draw(fog_test_gl *gl, const camera *cam, const fog_pass_params *params, float *rgba,
+                float *tau, fog_error *err) {
+  if (fog_test_gl_draw_tau(gl, cam, params, tau, err)) return 1;
   return gl_target_read(&gl->target, 0, 4, rgba, err);
 }
 
@@ -46,14 +46,11 @@ int main(void) {
   float *dist = malloc(sizeof(float) * W * H), *rgba = malloc(sizeof(float) * 4 * W * H),
         *tau = malloc(sizeof(float) * W * H), *want = malloc(sizeof(float) * 4 * W * H),
         *exact = malloc(sizeof(float) * 4 * W * H);
-  float *black = calloc(4 * W * H, sizeof(float));
-  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, black);
-  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
   camera cam = {.position = {0.0, 3.0, 0.0}, .fov_y = 1.0, .near_plane = CAMERA_DEFAULT_NEAR,
                 .far_plane = CAMERA_DEFAULT_FAR};
   camera_look_at(&cam, (double[3]){100.0, 1.0, 30.0});
   fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-  fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+  fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
 
   /* 1. Homogeneous fog, ambient light only: the closed form of the grid and its lookup. */
   {
@@ -65,7 +62,7 @@ int main(void) {
                               .integrator = FOG_INTEGRATOR_FROXEL,
                               .froxel = {.columns = 40, .rows = 24, .slices = slices,
                                          .near_distance = near, .far_distance = far}};
-    CHECK(draw(&gl, &cam, &params, surface_tex, dist_tex, rgba, tau, &err) == 0, "froxel draw: %s",
+    CHECK(draw(&gl, &cam, &params, rgba, tau, &err) == 0, "froxel draw: %s",
           err.message);
     for (int i = 0; i < W * H; i++) {
       double t = fmin(dist[i] >= 1e29f ? HUGE_VAL : dist[i], far);
@@ -103,7 +100,7 @@ int main(void) {
         .self_shadow = FOG_SUN_SHADOW_HEIGHT, .shadow_steps = 512, .shadow_nodes = 2};
     double norm = sqrt(0.93 * 0.93 + 0.25 * 0.25 + 0.27 * 0.27);
     for (int a = 0; a < 3; a++) params.sun.direction[a] /= norm;
-    CHECK(draw(&gl, &cam, &params, surface_tex, dist_tex, exact, tau, &err) == 0,
+    CHECK(draw(&gl, &cam, &params, exact, tau, &err) == 0,
           "exact draw: %s", err.message);
     double errors[3];
     for (int level = 0; level < 3; level++) {
@@ -111,7 +108,7 @@ int main(void) {
       params.integrator = FOG_INTEGRATOR_FROXEL;
       params.froxel = (fog_froxel_grid){.columns = 40 * s, .rows = 24 * s, .slices = 32 * s,
                                         .near_distance = 0.5, .far_distance = 400.0};
-      CHECK(draw(&gl, &cam, &params, surface_tex, dist_tex, rgba, tau, &err) == 0,
+      CHECK(draw(&gl, &cam, &params, rgba, tau, &err) == 0,
             "froxel draw %dx: %s", s, err.message);
       errors[level] = max_rel_error(rgba, exact, 4 * W * H);
       printf("height fog, low sun: froxels %dx%dx%d: max error %.2e of the largest in-scatter\n",
@@ -133,14 +130,12 @@ int main(void) {
       fog_pass_params params = {.model = FOG_MODEL_HOMOGENEOUS, .model_extinction = 0.01,
                                 .integrator = FOG_INTEGRATOR_FROXEL, .froxel = bad[k]};
       fog_error e = {0};
-      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &e) != 0 &&
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &e) != 0 &&
                 strstr(e.message, "0 < near < far"),
             "bad froxel grid %d: '%s'", k, e.message);
     }
   }
-  glDeleteTextures(1, &surface_tex);
-  glDeleteTextures(1, &dist_tex);
-  free(dist), free(rgba), free(tau), free(want), free(exact), free(black);
+  free(dist), free(rgba), free(tau), free(want), free(exact);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_froxel");
 }

@@ -111,14 +111,12 @@ int main(void) {
   fill_gaussians();
   static float dist[W * H], surface[4 * W * H], rgba[4 * W * H], tau[W * H];
   for (int i = 0; i < W * H; i++) surface[4 * i + 3] = 1.0f; /* black, opaque */
-  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, NULL);
-  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
-  fog_test_gl_upload_flipped(&gl, surface_tex, GL_RGBA, 4, surface);
+  fog_test_gl_upload_flipped(&gl, gl.surface_tex, GL_RGBA, 4, surface);
   camera cam = {.position = {5.0, 4.0, 25.0}, .fov_y = 1.1, .near_plane = CAMERA_DEFAULT_NEAR,
                 .far_plane = CAMERA_DEFAULT_FAR};
   camera_look_at(&cam, (double[3]){60.0, 5.0, -40.0});
   fog_test_gl_ground_distance(&gl, &cam, 0.5, dist);
-  fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+  fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
 
   /* as many Gaussians as a bound of the cap less VIEW_SLACK allows (the pass's reserve
    * lifted to that for the draw): drawn, and right, so the bound is not below what the
@@ -129,7 +127,7 @@ int main(void) {
   fog_pass_set_loop_cap(gl.pass, cap + FOG_PASS_LOOP_RESERVE - VIEW_SLACK);
   fog_pass_params p = params_with(under);
   double worst;
-  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, surface_tex, dist_tex, tau, &err) == 0 &&
+  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, tau, &err) == 0 &&
             gl_target_read(&gl.target, 0, 4, rgba, &err) == 0,
         "%d Gaussians (bound %.0f): %s", under, bound_of(&p), err.message);
   int wrong = count_wrong(rgba, &cam, &p, dist, &worst);
@@ -145,7 +143,7 @@ int main(void) {
   const int over = gaussians_within(1.3 * (double)cap);
   p = params_with(over);
   err = (fog_error){0};
-  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, surface_tex, dist_tex, tau, &err) != 0,
+  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, tau, &err) != 0,
         "%d Gaussians (bound %.0f) were drawn past the cap %ld", over,
         bound_of(&p), cap);
   char cap_text[32];
@@ -155,7 +153,7 @@ int main(void) {
         "the refusal does not name the loops, the cap and the Gaussians: %s", err.message);
   printf("refused: %s\n", err.message);
   fog_pass_set_loop_cap(gl.pass, GL_UTIL_NO_LOOP_CAP);
-  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, surface_tex, dist_tex, tau, &err) == 0 &&
+  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, tau, &err) == 0 &&
             gl_target_read(&gl.target, 0, 4, rgba, &err) == 0,
         "%d Gaussians, the cap lifted: %s", over, err.message);
   wrong = count_wrong(rgba, &cam, &p, dist, &worst);
@@ -170,18 +168,16 @@ int main(void) {
   p = params_with(100);
   p.lamps.count = 0;
   p.self_shadow = FOG_SUN_SHADOW_HEIGHT, p.shadow_steps = 8, p.shadow_nodes = 2;
-  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, surface_tex, dist_tex, tau, &err) == 0,
+  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, tau, &err) == 0,
         "the sun's mean, 8 steps over 100 Gaussians: %s", err.message);
   p.shadow_steps = 1024;
   err = (fog_error){0};
-  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, surface_tex, dist_tex, tau, &err) != 0 &&
+  CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, tau, &err) != 0 &&
             strstr(err.message, "the sun's mean over 1024 shadow steps of 2 nodes"),
         "the sun's mean, 1024 steps of 2 nodes over 100 Gaussians (bound %.0f): %s",
         bound_of(&p), err.message[0] ? err.message : "drawn");
   printf("refused: %s\n", err.message);
 
-  glDeleteTextures(1, &surface_tex);
-  glDeleteTextures(1, &dist_tex);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_lamp_loop_cap");
 }

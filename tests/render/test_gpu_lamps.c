@@ -42,11 +42,11 @@ static fog_lamps two_lamps(const double point[3], const double spot[3]) {
 /* Draws params and compares every pixel's colour with the twin; returns the image's
  * largest in-scatter (for the albedo-0 and cone checks). */
 static double compare(fog_test_gl *gl, const camera *cam, const fog_pass_params *params,
-                      const fog_model *m, GLuint surface_tex, GLuint dist_tex, const float *dist,
+                      const fog_model *m, const float *dist,
                       const char *name) {
   static float rgba[4 * W * H], tau[W * H];
   fog_error err = {0};
-  CHECK(fog_test_gl_draw_tau(gl, cam, params, surface_tex, dist_tex, tau, &err) == 0 &&
+  CHECK(fog_test_gl_draw_tau(gl, cam, params, tau, &err) == 0 &&
             gl_target_read(&gl->target, 0, 4, rgba, &err) == 0,
         "%s: %s", name, err.message);
   double worst = 0.0, peak = 0.0, worst_rel = 0.0;
@@ -83,9 +83,7 @@ int main(void) {
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_lamps");
   static float dist[W * H], surface[4 * W * H];
   for (int i = 0; i < W * H; i++) surface[4 * i + 3] = 1.0f; /* black, opaque */
-  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, NULL);
-  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
-  fog_test_gl_upload_flipped(&gl, surface_tex, GL_RGBA, 4, surface);
+  fog_test_gl_upload_flipped(&gl, gl.surface_tex, GL_RGBA, 4, surface);
   const fog_sun sun = {.albedo = 0.8, .phase_g = 0.4, .direction = {0, 1, 0}};
 
   /* The fogmap: the test box (x 100..160, z -50..-10), exponential profile. */
@@ -100,20 +98,20 @@ int main(void) {
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){160.0, 3.0, -24.0});
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
     fog_pass_params params = {.model = FOG_MODEL_FOGMAP, .volume = &v, .sun = sun,
                               .lamps = two_lamps((double[3]){122, 3, -28},
                                                  (double[3]){140, 10, -33})};
-    double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "fogmap");
+    double peak = compare(&gl, &cam, &params, &m, dist, "fogmap");
     CHECK(peak > 0.05, "fogmap: peak in-scatter %g: the lamps do not reach the view", peak);
     /* uniform marching (the bench's baseline) */
     params.lamps.method.integral = FOG_LAMP_MARCH;
     params.lamps.method.march_steps = 48;
-    compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "fogmap, marched");
+    compare(&gl, &cam, &params, &m, dist, "fogmap, marched");
     params.lamps.method.integral = FOG_LAMP_ANGLE;
     /* albedo 0: the lamps scatter nothing */
     params.sun.albedo = 0.0;
-    double none = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "fogmap, albedo 0");
+    double none = compare(&gl, &cam, &params, &m, dist, "fogmap, albedo 0");
     CHECK(none == 0.0, "albedo 0: in-scatter %g", none);
     /* the spot turned away from the view, the point lamp gone: nothing but what the cone's
      * outside leaks (smoothstep: exactly 0) */
@@ -123,7 +121,7 @@ int main(void) {
     params.lamps.lamp[0].axis[0] = 0, params.lamps.lamp[0].axis[1] = 1,
     params.lamps.lamp[0].axis[2] = 0;
     params.lamps.lamp[0].position[1] = 60.0; /* above the box, shining up */
-    double away = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "fogmap, spot away");
+    double away = compare(&gl, &cam, &params, &m, dist, "fogmap, spot away");
     CHECK(away == 0.0, "a spot shining away from all fog: in-scatter %g", away);
     transform_grid_destroy(&grid);
   }
@@ -147,7 +145,7 @@ int main(void) {
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
     fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
     if (model == FOG_MODEL_RBF)
       m = (fog_model){.kind = model, .extinction = 0.002, .rbfs = rbfs, .rbf_count = FOG_TEST_RBF_COUNT};
@@ -169,15 +167,15 @@ int main(void) {
                               .model_quadric_count = m.quadric_count, .sun = sun,
                               .lamps = two_lamps((double[3]){40, 4, -15},
                                                  (double[3]){55, 12, -30})};
-    double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, names[model]);
+    double peak = compare(&gl, &cam, &params, &m, dist, names[model]);
     CHECK(peak > 0.05, "%s: peak in-scatter %g: the lamps do not reach the view", names[model],
           peak);
     if (model == FOG_MODEL_RBF) { /* Fogshop's approximation, the bench's comparison */
       params.lamps.method.integral = FOG_LAMP_FOGSHOP;
-      compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "rbf, Fogshop's approximation");
+      compare(&gl, &cam, &params, &m, dist, "rbf, Fogshop's approximation");
       params.lamps.method.integral = FOG_LAMP_MARCH;
       params.lamps.method.march_steps = 48;
-      compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "rbf, marched");
+      compare(&gl, &cam, &params, &m, dist, "rbf, marched");
     }
   }
   /* the quadrics beside the height fog (closed-form depths) and the volume (marched T) */
@@ -187,7 +185,7 @@ int main(void) {
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
     fog_model m = {.kind = model, .extinction = 0.01, .y0 = 4.0, .scale_height = 6.0,
                    .grid3d = k ? &grid3d : NULL, .quadrics = quadrics, .quadric_count = 3};
     fog_pass_params params = {.model = model, .model_extinction = m.extinction,
@@ -196,7 +194,7 @@ int main(void) {
                               .lamps = two_lamps((double[3]){40, 4, -15},
                                                  (double[3]){55, 12, -30})};
     const char *name = k ? "volume, quadrics beside" : "height, quadrics beside";
-    double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, name);
+    double peak = compare(&gl, &cam, &params, &m, dist, name);
     CHECK(peak > 0.05, "%s: peak in-scatter %g", name, peak);
   }
   /* Perlin turbulence fog (the model table's last row), its octaves drifted to a time */
@@ -214,7 +212,7 @@ int main(void) {
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
     fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
     fog_model m = {.kind = FOG_MODEL_PERLIN, .extinction = 0.03, .y0 = 4.0,
                    .scale_height = 6.0, .perlin = &perlin, .time = 12.5};
     fog_pass_params params = {.model = FOG_MODEL_PERLIN, .model_extinction = m.extinction,
@@ -222,13 +220,11 @@ int main(void) {
                               .model_perlin = &perlin, .model_time = m.time, .sun = sun,
                               .lamps = two_lamps((double[3]){40, 4, -15},
                                                  (double[3]){55, 12, -30})};
-    double peak = compare(&gl, &cam, &params, &m, surface_tex, dist_tex, dist, "perlin");
+    double peak = compare(&gl, &cam, &params, &m, dist, "perlin");
     CHECK(peak > 0.05, "perlin: peak in-scatter %g", peak);
     fog_perlin_destroy(&perlin);
   }
   free(grid_values);
-  glDeleteTextures(1, &surface_tex);
-  glDeleteTextures(1, &dist_tex);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_lamps");
 }

@@ -22,10 +22,6 @@ int main(void) {
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_lod_every_level_count");
   float *dist = malloc(sizeof(float) * W * H), *tau = malloc(sizeof(float) * W * H);
   float *tau_sum = malloc(sizeof(float) * W * H);
-  float *surface = calloc((size_t)W * H * 4, sizeof(float));
-  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, NULL);
-  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
-  fog_test_gl_upload_flipped(&gl, surface_tex, GL_RGBA, 4, surface);
   fog_volume v = fog_test_volume(FOG_PROFILE_EXPONENTIAL);
   double lo[3], hi[3];
   fog_volume_box(&v, lo, hi);
@@ -50,12 +46,11 @@ int main(void) {
       }
       camera_look_at(&cam, target);
       fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-      fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+      fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
       for (int method = 0; method <= 1; method++) {
         fog_pass_params params = {.volume = &v, .levels = J, .lod_method = method,
                                   .mu = lod.mu};
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex,
-                                   method ? tau : tau_sum, &err) == 0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, method ? tau : tau_sum, &err) == 0,
               "J = %d draw: %s", J, err.message);
         const float *got = method ? tau : tau_sum;
         double worst = 0.0, min_tau = 1.0;
@@ -86,12 +81,9 @@ int main(void) {
   }
   printf("J = 1..%d: max |dtau| vs CPU %.2e, sum vs switching %.2e\n", MAX_J, worst_cpu,
          worst_methods);
-  glDeleteTextures(1, &surface_tex);
-  glDeleteTextures(1, &dist_tex);
   fog_test_gl_teardown(&gl);
   free(dist);
   free(tau);
   free(tau_sum);
-  free(surface);
   return test_finish("test_gpu_lod_every_level_count");
 }

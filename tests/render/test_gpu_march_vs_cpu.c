@@ -18,11 +18,10 @@ int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_march_vs_cpu");
-  float *zeros = calloc((size_t)W * H * 4, sizeof(float)), *sky = malloc(sizeof(float) * W * H);
+  float *sky = malloc(sizeof(float) * W * H);
   float *tau = malloc(sizeof(float) * W * H);
   for (int i = 0; i < W * H; i++) sky[i] = 1e30f;
-  GLuint tex[2] = {fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, zeros),
-                   fog_test_gl_texture(&gl, GL_R32F, GL_RED, sky)};
+  fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, sky);
 
   for (int degree = 0; degree <= 2; degree += 1) {
     transform_grid approx[J + 1], detail[J];
@@ -42,7 +41,7 @@ int main(void) {
         fog_pass_params params = {.volume = &v, .levels = J, .lod_method = FOG_LOD_SWITCH,
                                   .mu = lod.mu, .integrator = FOG_INTEGRATOR_MARCH,
                                   .march_steps = steps, .march_jitter = jitter, .frame = 7};
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tex[0], tex[1], tau, &err) == 0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
               "draw: %s", err.message);
         double worst = 0.0, vs_exact = 0.0;
         int over = 0;
@@ -79,9 +78,7 @@ int main(void) {
     for (int l = 0; l <= J; l++) transform_grid_destroy(&approx[l]);
     for (int l = 0; l < J; l++) transform_grid_destroy(&detail[l]);
   }
-  glDeleteTextures(2, tex);
   fog_test_gl_teardown(&gl);
-  free(zeros);
   free(sky);
   free(tau);
   return test_finish("test_gpu_march_vs_cpu");

@@ -25,9 +25,6 @@ int main(void) {
   CHECK(fog_perlin_create(&perlin, &desc, &err) == 0, "create: %s", err.message);
   CHECK(fog_pass_upload_perlin(gl.pass, &perlin, &err) == 0, "upload: %s", err.message);
   float *dist = malloc(sizeof(float) * W * H), *tau = malloc(sizeof(float) * W * H);
-  float *surface = calloc(4 * W * H, sizeof(float));
-  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, surface);
-  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
   for (int view = 0; view < 2; view++)
     for (int integral = 0; integral < 2; integral++)
       for (int when = 0; when < 2; when++) {
@@ -36,12 +33,12 @@ int main(void) {
                       .far_plane = CAMERA_DEFAULT_FAR};
         camera_look_at(&cam, (double[3]){60.0, 2.0, -40.0});
         fog_test_gl_ground_distance(&gl, &cam, -0.5, dist);
-        fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+        fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
         fog_pass_params params = {.model = FOG_MODEL_PERLIN, .model_extinction = 0.06,
                                   .model_y0 = 1.0, .model_scale_height = 8.0,
                                   .model_perlin = &perlin, .model_time = when ? 37.25 : 0.0,
                                   .model_perlin_integral = (fog_perlin_integral)integral};
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
               "draw: %s", err.message);
         fog_perlin_medium m = {.extinction = 0.06, .y0 = 1.0, .scale_height = 8.0,
                                .time = params.model_time,
@@ -66,7 +63,7 @@ int main(void) {
           for (int q = 0; q < 2; q++) {
             params.integrator = FOG_INTEGRATOR_MARCH;
             params.march_steps = q ? 1024 : 16;
-            CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &err) == 0,
+            CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
                   "march: %s", err.message);
             errors[q] = 0;
             for (int i = 0; i < W * H; i++) errors[q] = fmax(errors[q], fabs(tau[i] - exact[i]));
@@ -89,13 +86,11 @@ int main(void) {
     fog_pass_params params = {.model = FOG_MODEL_PERLIN, .model_extinction = 0.06,
                               .model_scale_height = 8.0, .model_perlin = &other};
     fog_error e = {0};
-    CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, tau, &e) != 0,
+    CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &e) != 0,
           "octaves not uploaded: drawn");
     fog_perlin_destroy(&other);
   }
-  glDeleteTextures(1, &surface_tex);
-  glDeleteTextures(1, &dist_tex);
-  free(dist), free(tau), free(surface);
+  free(dist), free(tau);
   fog_perlin_destroy(&perlin);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_perlin");

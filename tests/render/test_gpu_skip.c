@@ -61,10 +61,6 @@ int main(void) {
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_skip");
   float *dist = malloc(sizeof(float) * W * H), *plain = malloc(sizeof(float) * W * H);
   float *skipped = malloc(sizeof(float) * W * H);
-  float *surface = calloc((size_t)W * H * 4, sizeof(float));
-  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, NULL);
-  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
-  fog_test_gl_upload_flipped(&gl, surface_tex, GL_RGBA, 4, surface);
   const fog_profile_kind kinds[3] = {FOG_PROFILE_SLAB, FOG_PROFILE_EXPONENTIAL,
                                      FOG_PROFILE_BSPLINE};
   int draws = 0, differing_below = 0;
@@ -99,7 +95,7 @@ int main(void) {
           }
           camera_look_at(&cam, target);
           fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-          fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+          fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
           /* single grid (the finest), then LOD by both methods */
           for (int mode = 0; mode < 3; mode++)
             for (int fetch = 0; fetch <= (degree > 0 && mode == 0); fetch++) {
@@ -114,11 +110,11 @@ int main(void) {
                                         .mu = lod.mu,
                                         .fetch = fetch ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
                                         .walk = {.skip = FOG_SKIP_NONE}};
-              CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, plain,
+              CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, plain,
                                          &err) == 0, "draw: %s", err.message);
               params.walk.skip = eps > 0 ? FOG_SKIP_BELOW : FOG_SKIP_EMPTY;
               params.walk.skip_below = eps;
-              CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, skipped,
+              CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, skipped,
                                          &err) == 0, "draw: %s", err.message);
               draws++;
               int mismatched = 0;
@@ -197,16 +193,16 @@ int main(void) {
       cam.position[2] = box.origin_z + (view ? -10.0 : 3.0);
       camera_look_at(&cam, target);
       fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-      fog_test_gl_upload_flipped(&gl, dist_tex, GL_RED, 1, dist);
+      fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
       for (int fetch = 0; fetch <= 1; fetch++) {
         fog_pass_params params = {.model = FOG_MODEL_VOLUME,
                                   .fetch = fetch ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
                                   .walk = {.skip = FOG_SKIP_NONE}};
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, plain, &err) == 0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, plain, &err) == 0,
               "volume draw: %s", err.message);
         params.walk = (fog_walk_settings){.skip = eps > 0 ? FOG_SKIP_BELOW : FOG_SKIP_EMPTY,
                                           .skip_below = eps};
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, surface_tex, dist_tex, skipped, &err) == 0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, skipped, &err) == 0,
               "volume draw: %s", err.message);
         volume_pairs++;
         int mismatched = 0, changed = 0;
@@ -248,9 +244,7 @@ int main(void) {
          "|delta| / bound %.3f\n", draws, worst_cpu, differing_below, worst_ratio);
   CHECK(differing_below > 1000, "eps > 0 changed only %d pixels: were blocks skipped?",
         differing_below);
-  glDeleteTextures(1, &surface_tex);
-  glDeleteTextures(1, &dist_tex);
-  free(dist), free(plain), free(skipped), free(surface);
+  free(dist), free(plain), free(skipped);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_skip");
 }

@@ -35,7 +35,7 @@ static double depth_of(const fog_rbf *g, const uint32_t *listed, int n, const do
 }
 
 static void check_view(const fog_rbf *g, int count, const camera *cam, const char *label,
-                       fog_test_gl *gl, GLuint surface_tex, GLuint dist_tex) {
+                       fog_test_gl *gl) {
   fog_rbf_tiles tiles = {0};
   fog_error err = {0};
   if (fog_rbf_tiles_build(&tiles, cam, W, H, g, count, &err)) {
@@ -77,9 +77,9 @@ static void check_view(const fog_rbf *g, int count, const camera *cam, const cha
       double t = surface_distance(o, d);
       dist[py * W + px] = t < 1e29 ? (float)t : 1e30f;
     }
-  fog_test_gl_upload_flipped(gl, dist_tex, GL_RED, 1, dist);
+  fog_test_gl_upload_flipped(gl, gl->dist_tex, GL_RED, 1, dist);
   fog_pass_params params = {.model = FOG_MODEL_RBF, .model_rbfs = g, .model_rbf_count = count};
-  if (fog_test_gl_draw_tau(gl, cam, &params, surface_tex, dist_tex, tau, &err)) {
+  if (fog_test_gl_draw_tau(gl, cam, &params, tau, &err)) {
     CHECK(0, "%s: draw: %s", label, err.message);
   } else {
     double gl_worst = 0.0, min_tau = 1.0, max_tau = 0.0;
@@ -102,9 +102,6 @@ int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_rbf_tiles");
-  static float black[4 * W * H];
-  GLuint surface_tex = fog_test_gl_texture(&gl, GL_RGBA32F, GL_RGBA, black);
-  GLuint dist_tex = fog_test_gl_texture(&gl, GL_R32F, GL_RED, NULL);
   /* Banks of small Gaussians over a 1000 x 1000 valley, 0..60 high (Fogshop's scenes are
    * thousands of Gaussians of a few units). */
   static fog_rbf g[N];
@@ -118,17 +115,15 @@ int main(void) {
   camera above = {.position = {-300, 260, 400}, .fov_y = 0.9,
       .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
   camera_look_at(&above, (double[3]){50, 0, -100});
-  check_view(g, N, &inside, "3000 Gaussians, camera inside the banks", &gl, surface_tex, dist_tex);
-  check_view(g, N, &above, "3000 Gaussians, from above", &gl, surface_tex, dist_tex);
+  check_view(g, N, &inside, "3000 Gaussians, camera inside the banks", &gl);
+  check_view(g, N, &above, "3000 Gaussians, from above", &gl);
   /* A config's scale: a dozen large banks ahead of the camera. */
   fog_rbf banks[12];
   for (int i = 0; i < 12; i++)
     banks[i] = (fog_rbf){.centre = {fog_test_range(-250, 250), fog_test_range(0, 40),
                                     fog_test_range(-300, 200)},
                          .radius = fog_test_range(40, 90), .density = fog_test_range(0.01, 0.03)};
-  check_view(banks, 12, &inside, "12 Gaussians", &gl, surface_tex, dist_tex);
-  glDeleteTextures(1, &surface_tex);
-  glDeleteTextures(1, &dist_tex);
+  check_view(banks, 12, &inside, "12 Gaussians", &gl);
   fog_test_gl_teardown(&gl);
   return test_finish("test_rbf_tiles");
 }
