@@ -12,17 +12,26 @@
 
 static char dir[] = "/tmp/fogpipe_config_errors_XXXXXX";
 
-/* Writes text to DIR/bad.ini, loads it, and checks the message starts with
- * "DIR/bad.ini:<prefix>" and contains `detail`. */
-static void expect_error(const char *text, const char *prefix, const char *detail) {
-  char path[256], want[512];
-  snprintf(path, sizeof path, "%s/bad.ini", dir);
+/* Writes text to DIR/bad.ini (path), loads it into cfg and removes it: the load's status. */
+static int load_text(const char *text, char path[256], scene_config *cfg, fog_error *err) {
+  snprintf(path, 256, "%s/bad.ini", dir);
   FILE *f = fopen(path, "w");
+  CHECK(f != NULL, "cannot write %s", path);
+  if (!f) return -1;
   fputs(text, f);
   fclose(f);
+  int status = scene_config_load(path, cfg, err);
+  unlink(path);
+  return status;
+}
+
+/* Loads text from DIR/bad.ini and checks the message starts with "DIR/bad.ini:<prefix>" and
+ * contains `detail`. */
+static void expect_error(const char *text, const char *prefix, const char *detail) {
+  char path[256], want[512];
   scene_config cfg;
   fog_error err = {0};
-  int status = scene_config_load(path, &cfg, &err);
+  int status = load_text(text, path, &cfg, &err);
   snprintf(want, sizeof want, "%s:%s", path, prefix);
   CHECK(status != 0, "accepted: %s", text);
   CHECK(strncmp(err.message, want, strlen(want)) == 0, "message '%s' does not start with '%s'",
@@ -34,7 +43,6 @@ static void expect_error(const char *text, const char *prefix, const char *detai
       !strncmp(detail, "cannot open '", 13) ? FOG_ERR_FILE_ACCESS : FOG_ERR_BAD_CONFIG;
   CHECK(err.code == want_code, "'%s': code %d (%s), expected %s", err.message, err.code,
         fog_result_text(err.code), fog_result_text(want_code));
-  unlink(path);
 }
 
 int main(void) {
@@ -127,17 +135,12 @@ int main(void) {
     expect_error(text, "3: [fog] bogus: ", "unknown key");
     snprintf(text, sizeof text, "[fog]\n; %0300d\n[camera]\nfov = 40\n", 0);
     char path[256];
-    snprintf(path, sizeof path, "%s/long.ini", dir);
-    FILE *f = fopen(path, "w");
-    fputs(text, f);
-    fclose(f);
     scene_config cfg;
     fog_error err = {0};
-    CHECK(scene_config_load(path, &cfg, &err) == 0, "a long comment: %s", err.message);
+    CHECK(load_text(text, path, &cfg, &err) == 0, "a long comment: %s", err.message);
     CHECK(cfg.fog.density_scale == 1.0 && cfg.camera.fov == 40.0,
           "a long comment changed the scene: density_scale %g, fov %g", cfg.fog.density_scale,
           cfg.camera.fov);
-    unlink(path);
     snprintf(text, sizeof text, "[fog]\nfog_height = %0250d\n", 1);
     expect_error(text, "2: the line is 264 bytes long", "at most 199");
   }
