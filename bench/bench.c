@@ -178,14 +178,21 @@ void bench_tau_errors(const float *gpu, const double *ref, size_t n, double *rms
 }
 
 int bench_time_rows(const bench_timed_rows *t, fog_error *err) {
-  for (int f = 0; f < t->frames; f++)
-    for (int i = 0; i < t->count; i++) {
-      if (t->prepare && t->prepare(t->user, i, f, err)) return 1;
+  double *seconds = malloc(sizeof(double) * (size_t)t->count * (size_t)t->frames);
+  if (!seconds) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
+  int status = 0;
+  for (int f = 0; f < t->frames && !status; f++)
+    for (int i = 0; i < t->count && !status; i++) {
+      status = t->prepare ? t->prepare(t->user, i, f, err) : 0;
       fog_pass_finish();
       double t0 = app_clock_seconds();
-      if (t->draw(t->user, i, err)) return 1;
+      status = status ? status : t->draw(t->user, i, err);
       fog_pass_finish();
-      t->times(t->user, i)[f] = app_clock_seconds() - t0;
+      seconds[(size_t)i * t->frames + f] = app_clock_seconds() - t0;
     }
-  return 0;
+  for (int i = 0; i < t->count && !status; i++)
+    *(double *)((char *)t->ms + (size_t)i * t->ms_stride) =
+        1e3 * bench_median(seconds + (size_t)i * t->frames, t->frames);
+  free(seconds);
+  return status;
 }

@@ -53,14 +53,17 @@ int bench_parse(const bench_command *command, int argc, char **argv);
 /* GL draws timed side by side: `frames` rounds, each drawing every row once, so a host that
  * slows down during the run slows every row alike. Per row and round: prepare (untimed, may
  * be NULL: uploads, binding the target, the round's jitter), then draw between two
- * glFinish (fog_pass_finish), its seconds into times(user, row)[round]. Stops at the first
- * error (err filled by the callback). */
+ * glFinish (fog_pass_finish). Row i's median over the rounds, in milliseconds, goes to
+ * ms[i * ms_stride bytes]: a field of the caller's row structs (`.ms = &rows[0].ms,
+ * .ms_stride = sizeof rows[0]`). Stops at the first error (err filled by the callback, or
+ * out of memory). */
 typedef struct bench_timed_rows {
   int count, frames;
   void *user;
   int (*prepare)(void *user, int row, int round, fog_error *err);
   int (*draw)(void *user, int row, fog_error *err);
-  double *(*times)(void *user, int row);
+  double *ms;
+  size_t ms_stride;
 } bench_timed_rows;
 int bench_time_rows(const bench_timed_rows *rows, fog_error *err);
 /* A stage's way out: when status is non-zero, prints "fogpipe bench STAGE: " and err's

@@ -78,7 +78,6 @@ typedef struct light_row {
   int nodes;      /* ours: samples per segment (1 midpoint, 2 Gauss-Legendre) */
   bool pieces;    /* ours per piece of the exact walk */
   char series[64];
-  double *times;
   double ms, max_error, mean_error;
 } light_row;
 
@@ -264,7 +263,6 @@ static int timing_draw(void *user, int row, fog_error *err) {
   timing_user *u = user;
   return draw_row(&u->scenes[u->rows[row].scene], &u->rows[row], u->out, err);
 }
-static double *timing_times(void *user, int row) { return ((timing_user *)user)->rows[row].times; }
 
 /* B's partner on one scene's rows: the most accurate of our settings (any resolution) whose
  * fog pass costs no more time than the froxel baseline's 1x grid; NULL where none does. */
@@ -297,7 +295,7 @@ static int write_table(const char *path, const light_row *rows, int count, char 
 }
 
 static light_row *add_row(light_row *rows, int *count, int scene, int resolution, int steps,
-                          int nodes, int divisor, int frames) {
+                          int nodes, int divisor) {
   light_row *r = &rows[(*count)++];
   *r = (light_row){.scene = scene, .resolution = resolution, .steps = steps, .divisor = divisor,
                    .march = steps < 0, .nodes = nodes};
@@ -310,8 +308,7 @@ static light_row *add_row(light_row *rows, int *count, int scene, int resolution
            : resolution != 48 ? "ours 24^3 / 96^3 volume"
            : nodes == 2       ? "ours 48^3 2 nodes x 1..16 steps"
                               : "ours 48^3 midpoints 2..32 steps");
-  r->times = malloc((size_t)frames * sizeof(double));
-  return r->times ? r : NULL;
+  return r;
 }
 
 int bench_light(int argc, char **argv) {
@@ -347,36 +344,31 @@ int bench_light(int argc, char **argv) {
   for (int s = 0; s < SCENE_COUNT; s++) {
     if (scene_create(&scenes[s], scene_configs[s], W, H, &rerr)) goto done;
     const int D = defaults.shadow.steps, N = defaults.shadow.nodes;
-    if (!add_row(rows, &row_count, s, 0, 1, 1, 1, frames) ||
-        !add_row(rows, &row_count, s, 0, 1, 1, 2, frames))
-      goto out_of_memory;
+    add_row(rows, &row_count, s, 0, 1, 1, 1);
+    add_row(rows, &row_count, s, 0, 1, 1, 2);
     for (int q = 0; q < STEP_COUNT; q++)
-      if (!add_row(rows, &row_count, s, 48, step_counts[q], 1, 1, frames)) goto out_of_memory;
+      add_row(rows, &row_count, s, 48, step_counts[q], 1, 1);
     for (int q = 0; q < NODE_STEP_COUNT; q++)
-      if (!add_row(rows, &row_count, s, 48, 1 << q, 2, 1, frames)) goto out_of_memory;
-    if (!add_row(rows, &row_count, s, 24, D, N, 1, frames) ||
-        !add_row(rows, &row_count, s, 96, D, N, 1, frames) ||
-        !add_row(rows, &row_count, s, 48, D, N, 2, frames) ||
-        !add_row(rows, &row_count, s, 48, (D + 1) / 2, N, 2, frames) ||
-        !add_row(rows, &row_count, s, 96, 64, 2, 1, frames))
-      goto out_of_memory;
+      add_row(rows, &row_count, s, 48, 1 << q, 2, 1);
+    add_row(rows, &row_count, s, 24, D, N, 1);
+    add_row(rows, &row_count, s, 96, D, N, 1);
+    add_row(rows, &row_count, s, 48, D, N, 2);
+    add_row(rows, &row_count, s, 48, (D + 1) / 2, N, 2);
+    add_row(rows, &row_count, s, 96, 64, 2, 1);
     /* ours at a quarter of the resolution (the fogmap's walk; the volume ignores it) */
-    if (!add_row(rows, &row_count, s, 48, D, N, 4, frames) ||
-        !add_row(rows, &row_count, s, 48, (D + 1) / 2, N, 4, frames))
-      goto out_of_memory;
+    add_row(rows, &row_count, s, 48, D, N, 4);
+    add_row(rows, &row_count, s, 48, (D + 1) / 2, N, 4);
     /* ours per piece of the exact walk, two nodes */
-    light_row *piece_row = add_row(rows, &row_count, s, 48, D, 2, 1, frames);
-    if (!piece_row) goto out_of_memory;
+    light_row *piece_row = add_row(rows, &row_count, s, 48, D, 2, 1);
     piece_row->pieces = true;
     snprintf(piece_row->series, sizeof piece_row->series, "%s ours 48^3 per piece",
              scene_names[s]);
     /* uniform marching of tau and the in-scatter together (negative steps: the marcher) */
     for (int q = 0; q < MARCH_COUNT; q++)
-      if (!add_row(rows, &row_count, s, 48, -march_samples[q], 1, 1, frames)) goto out_of_memory;
+      add_row(rows, &row_count, s, 48, -march_samples[q], 1, 1);
     /* the froxel baseline, fed the same density, sun, T_s volume and shadow map */
     for (int q = 1; q <= FROXEL_COUNT; q++) {
-      light_row *r = add_row(rows, &row_count, s, 48, 1, 1, 1, frames);
-      if (!r) goto out_of_memory;
+      light_row *r = add_row(rows, &row_count, s, 48, 1, 1, 1);
       r->froxel = q;
       snprintf(r->series, sizeof r->series, "%s froxels 160x90x64 / 2x", scene_names[s]);
     }
@@ -406,10 +398,9 @@ int bench_light(int argc, char **argv) {
   timing_user user = {scenes, rows, &out};
   if (bench_time_rows(&(bench_timed_rows){.count = row_count, .frames = frames, .user = &user,
                                           .prepare = timing_prepare, .draw = timing_draw,
-                                          .times = timing_times},
+                                          .ms = &rows[0].ms, .ms_stride = sizeof rows[0]},
                       &rerr))
     goto done;
-  for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
 
   bench_print_build();
   printf("GL: %s, %s, %s; %dx%d, fog pass median of %d frames after 1 warm-up\n",
@@ -514,7 +505,6 @@ out_of_memory:
 done:
   free(tau);
   free(inscatter);
-  for (int i = 0; i < row_count; i++) free(rows[i].times);
   for (int s = 0; s < SCENE_COUNT; s++) scene_destroy(&scenes[s]);
   if (out.framebuffer) gl_target_destroy(&out);
   if (ctx) gl_context_destroy(ctx);

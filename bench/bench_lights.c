@@ -59,7 +59,6 @@ typedef struct lights_row {
    * extrapolated from the scene's drawn marching rows (linear in the samples). */
   bool beyond_cap;
   char name[32], series[48];
-  double *times;
   double ms, max_error, mean_error;
 } lights_row;
 
@@ -228,10 +227,8 @@ static int timing_draw(void *user, int row, fog_error *err) {
   if (u->rows[row].beyond_cap) return 0;
   return draw_row(&u->scenes[u->rows[row].scene], &u->rows[row], u->out, err);
 }
-static double *timing_times(void *user, int row) { return ((timing_user *)user)->rows[row].times; }
 
-static lights_row *add_row(lights_row *rows, int *count, int scene, const char *kind, int n,
-                           int frames) {
+static lights_row *add_row(lights_row *rows, int *count, int scene, const char *kind, int n) {
   lights_row *r = &rows[(*count)++];
   *r = (lights_row){.scene = scene,
                     .method = {.integral = FOG_LAMP_ANGLE, .angle_pieces = n, .span_pieces = n,
@@ -250,8 +247,7 @@ static lights_row *add_row(lights_row *rows, int *count, int scene, const char *
            !strcmp(kind, "ours")    ? "ours 4+4..32+32"
            : !strcmp(kind, "march") ? "marching (timed)"
                                     : kind);
-  r->times = malloc((size_t)frames * sizeof(double));
-  return r->times ? r : NULL;
+  return r;
 }
 
 /* C: the halo of test_lamp_accuracy (a Gaussian of radius 2, the lamp 0.5 radii off its
@@ -320,7 +316,6 @@ static int shadow_rows(lights_scene *s, const lights_row *plain, int W, int H, i
   s->peak = scene_reference(s, W, H, exact_visible, &exact, shadowed);
   s->reference = shadowed;
   lights_row with = *plain, without = *plain;
-  with.times = without.times = times;
   int failed = 0;
   /* the cubes */
   fog_lamps nudged = s->lamps;
@@ -414,24 +409,22 @@ int bench_lights(int argc, char **argv) {
     if (scene_create(&scenes[s], s, W, H, &rerr)) goto done;
     scenes[s].unlit = malloc(3 * pixels * sizeof(float));
     scenes[s].reference = malloc((size_t)cols * rows_e * 3 * sizeof(double));
-    if (!scenes[s].unlit || !scenes[s].reference || !add_row(rows, &row_count, s, "unlit", 8, frames))
-      goto out_of_memory;
+    if (!scenes[s].unlit || !scenes[s].reference) goto out_of_memory;
+    add_row(rows, &row_count, s, "unlit", 8);
     for (size_t q = 0; q < sizeof piece_counts / sizeof piece_counts[0]; q++)
-      if (!add_row(rows, &row_count, s, "ours", piece_counts[q], frames)) goto out_of_memory;
+      add_row(rows, &row_count, s, "ours", piece_counts[q]);
     for (size_t q = 0; q < sizeof march_samples / sizeof march_samples[0] - (s == 0); q++)
-      if (!add_row(rows, &row_count, s, "march", march_samples[q], frames)) goto out_of_memory;
-    if (s == 1 && !add_row(rows, &row_count, s, "fogshop", 8, frames)) goto out_of_memory;
+      add_row(rows, &row_count, s, "march", march_samples[q]);
+    if (s == 1) add_row(rows, &row_count, s, "fogshop", 8);
     if (s == 0) /* T's walk to the lamp (the fogmap's): 4 and 16 steps beside the default 8 */
       for (int q = 0; q < 2; q++) {
-        lights_row *r = add_row(rows, &row_count, s, "ours", FOG_LAMP_ANGLE_PIECES, frames);
-        if (!r) goto out_of_memory;
+        lights_row *r = add_row(rows, &row_count, s, "ours", FOG_LAMP_ANGLE_PIECES);
         r->method.shadow_steps = q ? 16 : 4;
         snprintf(r->name, sizeof r->name, "ours 8+8 walk %d", r->method.shadow_steps);
         snprintf(r->series, sizeof r->series, "valley ours 8+8 walk 4 and 16 steps");
       }
     if (s == 0) { /* the live demo's rule on a software renderer (scene_live_lamp_method) */
-      lights_row *r = add_row(rows, &row_count, s, "ours", FOG_LAMP_ANGLE_PIECES, frames);
-      if (!r) goto out_of_memory;
+      lights_row *r = add_row(rows, &row_count, s, "ours", FOG_LAMP_ANGLE_PIECES);
       r->method = scene_live_lamp_method(r->method);
       snprintf(r->name, sizeof r->name, "ours live %d+%d walk %d", r->method.angle_pieces,
                r->method.span_pieces, r->method.shadow_steps);
@@ -441,8 +434,8 @@ int bench_lights(int argc, char **argv) {
       scenes[s].unlit_half = malloc(3 * pixels * sizeof(float));
       if (!scenes[s].unlit_half) goto out_of_memory;
       for (int live = 0; live < 2; live++) {
-        lights_row *r = add_row(rows, &row_count, s, live ? "ours" : "unlit", FOG_LAMP_ANGLE_PIECES, frames);
-        if (!r) goto out_of_memory;
+        lights_row *r = add_row(rows, &row_count, s, live ? "ours" : "unlit",
+                                FOG_LAMP_ANGLE_PIECES);
         r->divisor = 2;
         live_rows[live] = row_count - 1;
         snprintf(r->name, sizeof r->name, "%s 1/2", live ? "ours 8+8" : "unlit");
@@ -467,10 +460,10 @@ int bench_lights(int argc, char **argv) {
   }
   timing_user user = {scenes, rows, &out};
   if (bench_time_rows(&(bench_timed_rows){.count = row_count, .frames = frames, .user = &user,
-                                          .draw = timing_draw, .times = timing_times},
+                                          .draw = timing_draw, .ms = &rows[0].ms,
+                                          .ms_stride = sizeof rows[0]},
                       &rerr))
     goto done;
-  for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
   double fits[SCENE_COUNT][2];
   for (int s = 0; s < SCENE_COUNT; s++) extrapolate_march_times(rows, row_count, s, fits[s]);
 
@@ -564,7 +557,6 @@ int bench_lights(int argc, char **argv) {
 out_of_memory:
   fog_fail(&rerr, FOG_ERR_OUT_OF_MEMORY, "out of memory");
 done:
-  for (int i = 0; i < row_count; i++) free(rows[i].times);
   for (int s = 0; s < SCENE_COUNT; s++) scene_destroy(&scenes[s]);
   if (out.framebuffer) gl_target_destroy(&out);
   if (ctx) gl_context_destroy(ctx);

@@ -99,7 +99,6 @@ typedef struct model_row {
   bool paper;       /* Perlin: Zdrojewska's single sample (FOG_PERLIN_PAPER) */
   char series[48];
   fog_pass_params params;
-  double *times;
   double ms, rmse, max_error;
 } model_row;
 
@@ -185,7 +184,6 @@ static int timing_draw(void *user, int row, fog_error *err) {
   return fog_pass_draw(u->pass, &sc->cam, &u->rows[row].params, sc->target.color[0],
                        sc->target.color[1], u->width, u->height, err);
 }
-static double *timing_times(void *user, int row) { return ((timing_user *)user)->rows[row].times; }
 
 /* Gaussian banks at scale (render/fog_rbf_tiles.h): `count` Gaussians spread over the
  * valley of scene_configs[0] (radii shrinking as the count grows, so the fog's amount stays
@@ -458,8 +456,6 @@ int bench_models(int argc, char **argv) {
           .model_grid3d_step = m == 3 && s >= 0 ? volume_steps[s] * voxel : 0.0,
           .walk = {.transmittance_cutoff = FOG_PASS_TRANSMITTANCE_CUTOFF,
                    .skip = s == -3 ? FOG_SKIP_NONE : FOG_SKIP_EMPTY}};
-      r->times = malloc((size_t)frames * sizeof(double));
-      if (!r->times) goto out_of_memory;
     }
   }
   /* Warm-up (shader JIT) with the error read-back, then the timed rounds interleaved. */
@@ -477,10 +473,9 @@ int bench_models(int argc, char **argv) {
   timing_user user = {scenes, rows, pass, &fog_target, W, H};
   if (bench_time_rows(&(bench_timed_rows){.count = row_count, .frames = frames, .user = &user,
                                           .prepare = timing_prepare, .draw = timing_draw,
-                                          .times = timing_times},
+                                          .ms = &rows[0].ms, .ms_stride = sizeof rows[0]},
                       &rerr))
     goto done;
-  for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
   static fog_rbf scale_rbfs[64 + 3000];
   rbf_scale_row scale[2] = {{.count = 64, .rbfs = scale_rbfs},
                             {.count = 3000, .rbfs = scale_rbfs + 64}};
@@ -574,7 +569,6 @@ int bench_models(int argc, char **argv) {
 out_of_memory:
   fog_fail(&rerr, FOG_ERR_OUT_OF_MEMORY, "out of memory");
 done:
-  for (int i = 0; i < row_count; i++) free(rows[i].times);
   for (int m = 0; m < MODEL_COUNT; m++) free(references[m]);
   vdb_frame_destroy(&frame);
   fog_perlin_destroy(&perlin);

@@ -46,14 +46,13 @@ enum { T1_ROWS = T1_PYRAMIDS + 1, T2_ROWS = 2 * LEVEL_COUNT * MU_COUNT, T3_ROWS 
 typedef struct paper_row {
   int pyramid;            /* index into the pyramids */
   fog_pass_params params; /* levels, mu, method; the raw row marches */
-  double *times, ms;
+  double ms;
 } paper_row;
 
 typedef struct paper_run {
   fog_pyramid pyramids[PYRAMIDS];
   fog_volume volumes[PYRAMIDS];
   paper_row rows[ROWS];
-  double *times;
   fog_pass *pass;
   const camera *cam;
   const gl_target *scene, *target;
@@ -75,7 +74,6 @@ static int timing_draw(void *user, int row, fog_error *err) {
   return fog_pass_draw(p->pass, p->cam, &p->rows[row].params, p->scene->color[0],
                        p->scene->color[1], p->width, p->height, err);
 }
-static double *timing_times(void *user, int row) { return ((paper_run *)user)->rows[row].times; }
 
 /* The pyramids of the three tables, of one Perlin fog made at each size. */
 static int make_pyramids(paper_run *p, fog_error *err) {
@@ -109,7 +107,7 @@ static int make_pyramids(paper_run *p, fog_error *err) {
 }
 
 /* The rows in table order; each pyramid's volume places its map in the same box. */
-static void make_rows(paper_run *p, int frames) {
+static void make_rows(paper_run *p) {
   for (int i = 0; i < PYRAMIDS; i++) {
     const int n = i < T1_PYRAMIDS ? sizes[i % SIZE_COUNT]
                   : i < T1_PYRAMIDS + T2_PYRAMIDS ? 64
@@ -147,7 +145,6 @@ static void make_rows(paper_run *p, int frames) {
     row->params.fog_colour[0] = 0.75f, row->params.fog_colour[1] = 0.78f;
     row->params.fog_colour[2] = 0.82f;
     row->params.walk.transmittance_cutoff = 0.0; /* whole rays: see the header */
-    row->times = p->times + (size_t)i * frames;
   }
 }
 
@@ -223,7 +220,7 @@ static double print_table3(const paper_run *p, FILE *csv) {
 static int run_paper(paper_run *p, const char *renderer, int W, int H, int frames,
                      const char *out_dir, fog_error *err) {
   if (make_pyramids(p, err)) return 1;
-  make_rows(p, frames);
+  make_rows(p);
   scene_geometry geo = {0};
   camera cam;
   scene_pass *spass = NULL;
@@ -249,10 +246,10 @@ static int run_paper(paper_run *p, const char *renderer, int W, int H, int frame
     if (!status)
         status = bench_time_rows(&(bench_timed_rows){.count = ROWS, .frames = frames, .user = p,
                                                    .prepare = timing_prepare, .draw = timing_draw,
-                                                   .times = timing_times},
+                                                   .ms = &p->rows[0].ms,
+                                                   .ms_stride = sizeof p->rows[0]},
                                err);
   }
-  for (int i = 0; i < ROWS && !status; i++) p->rows[i].ms = 1e3 * bench_median(p->rows[i].times, frames);
   char path[1100], message[1200];
   snprintf(path, sizeof path, "%s/paper.csv", out_dir);
   FILE *csv = status ? NULL : chart_csv_open(path, message, sizeof message);
@@ -306,20 +303,16 @@ int bench_paper(int argc, char **argv) {
   fog_error err = {0};
   gl_context *ctx = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &err);
   paper_run *p = calloc(1, sizeof *p);
-  double *times = calloc((size_t)ROWS * options.frames, sizeof(double));
   int status = 1;
-  if (!p || !times) {
+  if (!p) {
     fog_fail(&err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
   } else if (ctx) {
     bench_print_build();
-    p->times = times;
     status = run_paper(p, gl_context_renderer(ctx), options.width, options.height,
                        options.frames, options.out_dir, &err);
   }
-  if (status) fprintf(stderr, "fogpipe bench paper: %s\n", err.message);
   for (int i = 0; p && i < PYRAMIDS; i++) fog_pyramid_destroy(&p->pyramids[i]);
-  free(times);
   free(p);
   if (ctx) gl_context_destroy(ctx);
-  return status;
+  return bench_report("paper", status, &err);
 }

@@ -235,7 +235,6 @@ typedef struct bench_row {
   int reference;       /* index of the same-model CPU reference */
   int full_reference;  /* LOD rows: the full model's reference; -1 otherwise */
   double chart_x_key;  /* order within the series */
-  double *times;
   double ms, rmse, max_error, rmse_full, max_full;
   size_t worst_pixel;         /* where max_error is (rows top first) */
   double worst_gpu, worst_cpu; /* tau there */
@@ -264,7 +263,6 @@ static int timing_draw(void *user, int row, fog_error *err) {
   return fog_pass_draw(u->passes[r->pass], u->cam, &r->params, u->scene->color[0],
                        u->scene->color[1], u->width, u->height, err);
 }
-static double *timing_times(void *user, int row) { return ((timing_user *)user)->rows[row].times; }
 
 static uint64_t fnv1a(const void *data, size_t bytes) {
   const unsigned char *p = data;
@@ -632,10 +630,6 @@ int bench_render(int argc, char **argv) {
     r->params.integrator = FOG_INTEGRATOR_MARCH;
     r->params.march_steps = detailed_steps[s];
   }
-  for (int i = 0; i < row_count; i++) {
-    rows[i].times = malloc((size_t)frames * sizeof(double));
-    if (!rows[i].times) goto out_of_memory;
-  }
 
   /* Warm-up round (shader JIT on first draw of each variant) and the error read-back. */
   for (int i = 0; i < row_count; i++) {
@@ -671,10 +665,9 @@ int bench_render(int argc, char **argv) {
   timing_user user = {rows, passes, &cam, &scene_target, &fog_target, W, H};
   if (bench_time_rows(&(bench_timed_rows){.count = row_count, .frames = frames, .user = &user,
                                           .prepare = timing_prepare, .draw = timing_draw,
-                                          .times = timing_times},
+                                          .ms = &rows[0].ms, .ms_stride = sizeof rows[0]},
                       &rerr))
     goto done;
-  for (int i = 0; i < row_count; i++) rows[i].ms = 1e3 * bench_median(rows[i].times, frames);
   bench_upload_timing upload = {0};
   if (bench_time_uploads(&lod, 21, &upload, &rerr)) goto done;
 
@@ -830,7 +823,6 @@ out_of_memory:
 transform_failed:
   fog_error_wrap(&rerr, &terr, "transform: ");
 done:
-  for (int i = 0; i < row_count; i++) free(rows[i].times);
   for (int r = 0; r < REFERENCE_COUNT; r++) free(references[r]);
   free(distance);
   free(gpu_tau);
