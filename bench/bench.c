@@ -135,6 +135,13 @@ int bench_report(const char *stage, int status, const fog_error *err) {
   return status;
 }
 
+int bench_load_source_config(const char *name, scene_config **cfg, fog_error *err) {
+  char path[1024];
+  snprintf(path, sizeof path, "%s/configs/%s", FOGPIPE_SOURCE_DIR, name);
+  if (!(*cfg = malloc(sizeof **cfg))) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
+  return scene_config_load(path, *cfg, err);
+}
+
 int bench_open_scene(const char *stage, const char *config_path, scene_config *cfg,
                      gl_context **gl) {
   fog_error err = {0};

@@ -96,17 +96,7 @@ typedef struct light_scene {
 } light_scene;
 
 static int scene_create(light_scene *s, const char *name, int W, int H, fog_error *err) {
-  char path[1024];
-  snprintf(path, sizeof path, "%s/configs/%s", FOGPIPE_SOURCE_DIR, name);
-  fog_error cerr;
-  if (!(s->cfg = malloc(sizeof *s->cfg))) {
-    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
-    return 1;
-  }
-  if (scene_config_load(path, s->cfg, &cerr)) {
-    fog_error_pass(err, &cerr);
-    return 1;
-  }
+  if (bench_load_source_config(name, &s->cfg, err)) return 1;
   scene_config *cfg = s->cfg;
   cfg->fog.albedo = cfg->fog.albedo > 0 ? cfg->fog.albedo : 0.9;
   cfg->shadow.fog_self_shadow = 1;

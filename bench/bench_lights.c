@@ -75,17 +75,7 @@ typedef struct lights_scene {
 } lights_scene;
 
 static int scene_create(lights_scene *s, int index, int W, int H, fog_error *err) {
-  char path[1024];
-  snprintf(path, sizeof path, "%s/configs/%s", FOGPIPE_SOURCE_DIR, scene_configs[index]);
-  fog_error cerr;
-  if (!(s->cfg = malloc(sizeof *s->cfg))) {
-    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
-    return 1;
-  }
-  if (scene_config_load(path, s->cfg, &cerr)) {
-    fog_error_pass(err, &cerr);
-    return 1;
-  }
+  if (bench_load_source_config(scene_configs[index], &s->cfg, err)) return 1;
   if (render_scene_create(&s->drawn, s->cfg, W, H, err) || render_fog_create(&s->fog, s->cfg, err))
     return 1;
   s->model = render_fog_model(&s->fog);

@@ -109,19 +109,8 @@ typedef struct bench_scene {
 } bench_scene;
 
 static int scene_create(bench_scene *s, const char *name, int W, int H, fog_error *err) {
-  char path[1024];
-  snprintf(path, sizeof path, "%s/configs/%s", FOGPIPE_SOURCE_DIR, name);
-  fog_error cerr;
-  s->cfg = malloc(sizeof *s->cfg);
-  if (!s->cfg) {
-    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
-    return 1;
-  }
-  if (scene_config_load(path, s->cfg, &cerr)) {
-    fog_error_pass(err, &cerr);
-    return 1;
-  }
-  return render_scene_create(&s->drawn, s->cfg, W, H, err);
+  return bench_load_source_config(name, &s->cfg, err) ||
+         render_scene_create(&s->drawn, s->cfg, W, H, err);
 }
 
 static void scene_destroy(bench_scene *s) {
