@@ -64,6 +64,19 @@ void bench_print_build(void) {
          __GNUC__, __GNUC_MINOR__);
 }
 
+void bench_print_gl(gl_context *ctx, int width, int height, int frames) {
+  bench_print_build();
+  printf("GL: %s, %s, %s; %dx%d, median of %d frames after 1 warm-up (glFinish before and "
+         "after)\n", gl_context_platform(ctx), gl_context_version(ctx), gl_context_renderer(ctx),
+         width, height, frames);
+}
+
+void bench_outputs_in(bench_outputs *o, const char *dir, const char *stage) {
+  snprintf(o->table, sizeof o->table, "%s/%s.csv", dir, stage);
+  snprintf(o->chart_csv, sizeof o->chart_csv, "%s/%s_chart.csv", dir, stage);
+  snprintf(o->chart_png, sizeof o->chart_png, "%s/%s_chart.png", dir, stage);
+}
+
 int bench_parse(const bench_command *c, int argc, char **argv) {
   enum { max_rows = 32 };
   cli_option rows[max_rows];

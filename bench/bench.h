@@ -22,6 +22,16 @@
 double bench_median(double *values, int n);
 /* Prints one line naming the build measured (type, -march=native or portable, compiler). */
 void bench_print_build(void);
+/* The build's line, then the GL's: "GL: platform, version, renderer; WxH, median of N frames
+ * after 1 warm-up (glFinish before and after)". */
+struct gl_context;
+void bench_print_gl(struct gl_context *ctx, int width, int height, int frames);
+/* A stage's table and chart files in its --out folder: DIR/STAGE.csv, DIR/STAGE_chart.csv
+ * and DIR/STAGE_chart.png. */
+typedef struct bench_outputs {
+  char table[4200], chart_csv[4200], chart_png[4200];
+} bench_outputs;
+void bench_outputs_in(bench_outputs *outputs, const char *dir, const char *stage);
 /* The options of the image benches (render, models, light, lights, soak): --size WxH,
  * --frames N, --out DIR. */
 typedef struct bench_image_options {

@@ -392,10 +392,7 @@ int bench_light(int argc, char **argv) {
                       &rerr))
     goto done;
 
-  bench_print_build();
-  printf("GL: %s, %s, %s; %dx%d, fog pass median of %d frames after 1 warm-up\n",
-         gl_context_platform(ctx), gl_context_version(ctx), gl_context_renderer(ctx), W, H,
-         frames);
+  bench_print_gl(ctx, W, H, frames);
   printf("error: in-scatter vs the CPU twin converged (%d segments, a %d^3 volume) on every\n"
          "%dth pixel of every %dth row, relative to the largest in-scatter in view\n\n",
          FOG_BENCH_LIGHT_STEPS, FOG_BENCH_LIGHT_VOLUME, ERROR_STRIDE, ERROR_STRIDE);
@@ -424,21 +421,21 @@ int bench_light(int argc, char **argv) {
     points[i] = (chart_point){.series = r->series, .x = r->ms,
                               .y = r->max_error > 1e-6 ? r->max_error : 1e-6};
   }
-  char table[4200], chart_csv[4200], chart_png[4200], title[128];
-  snprintf(table, sizeof table, "%s/light.csv", options.out_dir);
-  snprintf(chart_csv, sizeof chart_csv, "%s/light_chart.csv", options.out_dir);
-  snprintf(chart_png, sizeof chart_png, "%s/light_chart.png", options.out_dir);
+  char title[128];
+  bench_outputs files;
+  bench_outputs_in(&files, options.out_dir, "light");
   snprintf(title, sizeof title, "self-shadowed sunlight %dx%d: max in-scatter error vs fog pass ms",
            W, H);
   chart_desc chart = {.title = title, .x_label = "fog pass per frame (ms)",
                       .y_label = "max |in-scatter - reference| / max in-scatter", .log_x = true,
                       .log_y = true};
-  if (write_table(table, rows, row_count, error, sizeof error) ||
-      chart_write(&chart, points, row_count, chart_csv, chart_png, error, sizeof error)) {
+  if (write_table(files.table, rows, row_count, error, sizeof error) ||
+      chart_write(&chart, points, row_count, files.chart_csv, files.chart_png, error,
+                  sizeof error)) {
     fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", error);
     goto done;
   }
-  printf("\nCSV: %s, %s; PNG: %s\n", table, chart_csv, chart_png);
+  printf("\nCSV: %s, %s; PNG: %s\n", files.table, files.chart_csv, files.chart_png);
   /* The default scene's rows: unlit at full and half resolution, ours at the product's
    * defaults (48^3, [light] shadow_steps and shadow_nodes) at full and half (live). */
   const light_row *unlit_full = &rows[ROW_UNLIT_FULL], *unlit_half = &rows[ROW_UNLIT_HALF],

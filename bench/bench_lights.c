@@ -457,10 +457,7 @@ int bench_lights(int argc, char **argv) {
   double fits[SCENE_COUNT][2];
   for (int s = 0; s < SCENE_COUNT; s++) extrapolate_march_times(rows, row_count, s, fits[s]);
 
-  bench_print_build();
-  printf("GL: %s, %s, %s; %dx%d, fog pass median of %d frames after 1 warm-up\n",
-         gl_context_platform(ctx), gl_context_version(ctx), gl_context_renderer(ctx), W, H,
-         frames);
+  bench_print_gl(ctx, W, H, frames);
   printf("error: the lamps' in-scatter vs the CPU twin converged (64+64 pieces, 64 depth and\n"
          "shadow steps) on every %dth pixel of every %dth row, relative to its largest value\n\n",
          ERROR_STRIDE, ERROR_STRIDE);
@@ -479,16 +476,16 @@ int bench_lights(int argc, char **argv) {
       points[point_count++] = (chart_point){.series = r->series, .x = r->ms,
                                             .y = r->max_error > 1e-7 ? r->max_error : 1e-7};
   }
-  char table[4200], chart_csv[4200], chart_png[4200], title[128];
-  snprintf(table, sizeof table, "%s/lights.csv", options.out_dir);
-  snprintf(chart_csv, sizeof chart_csv, "%s/lights_chart.csv", options.out_dir);
-  snprintf(chart_png, sizeof chart_png, "%s/lights_chart.png", options.out_dir);
+  char title[128];
+  bench_outputs files;
+  bench_outputs_in(&files, options.out_dir, "lights");
   snprintf(title, sizeof title, "lamps in the fog %dx%d: max in-scatter error vs fog pass ms", W, H);
   chart_desc chart = {.title = title, .x_label = "fog pass per frame (ms)",
                       .y_label = "max |lamp in-scatter - reference| / max", .log_x = true,
                       .log_y = true};
-  if (write_table(table, rows, row_count, error, sizeof error) ||
-      chart_write(&chart, points, point_count, chart_csv, chart_png, error, sizeof error)) {
+  if (write_table(files.table, rows, row_count, error, sizeof error) ||
+      chart_write(&chart, points, point_count, files.chart_csv, files.chart_png, error,
+                  sizeof error)) {
     fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", error);
     goto done;
   }
@@ -502,7 +499,7 @@ int bench_lights(int argc, char **argv) {
                fits[s][0], fits[s][1]);
         break;
       }
-  printf("\nCSV: %s, %s; PNG: %s\n", table, chart_csv, chart_png);
+  printf("\nCSV: %s, %s; PNG: %s\n", files.table, files.chart_csv, files.chart_png);
   /* A: the valley's default (row 2: ours 8+8) over its unlit row (0), per lamp, at 640x360:
    * the lamps' work is per pixel, so scaled from W x H by the pixel count. */
   const double per_light = (rows[2].ms - rows[0].ms) / scenes[0].lamps.count *

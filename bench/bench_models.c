@@ -472,10 +472,7 @@ int bench_models(int argc, char **argv) {
                      &rerr))
     goto done;
 
-  bench_print_build();
-  printf("GL: %s, %s, %s; %dx%d, median of %d frames after 1 warm-up (glFinish before and after)\n",
-         gl_context_platform(ctx), gl_context_version(ctx), gl_context_renderer(ctx), W, H,
-         frames);
+  bench_print_gl(ctx, W, H, frames);
   printf("scenes: configs/%s (terrain, boxes, camera): homogeneous K = %g; height\n"
          "K = %g exp(-(y - %g)/%g); rbf: the config's %d Gaussians; configs/%s: the volume,\n"
          "%dx%dx%d voxels of %g, marched at %g..%g voxels. Errors: tau vs the double-precision\n"
@@ -497,19 +494,19 @@ int bench_models(int argc, char **argv) {
     points[i] = (chart_point){.series = r->series, .x = r->ms,
                               .y = r->max_error > ERROR_FLOOR ? r->max_error : ERROR_FLOOR};
   }
-  char table[4200], chart_csv[4200], chart_png[4200], title[128];
-  snprintf(table, sizeof table, "%s/models.csv", out_dir);
-  snprintf(chart_csv, sizeof chart_csv, "%s/models_chart.csv", out_dir);
-  snprintf(chart_png, sizeof chart_png, "%s/models_chart.png", out_dir);
+  char title[128];
+  bench_outputs files;
+  bench_outputs_in(&files, out_dir, "models");
   snprintf(title, sizeof title, "fog models %dx%d: max tau error vs GL time (exact and marched)", W, H);
   chart_desc chart = {.title = title, .x_label = "GL time per frame (ms)",
                       .y_label = "max |tau - CPU reference|", .log_x = true, .log_y = true};
-  if (write_table(table, rows, row_count, error, sizeof error) ||
-      chart_write(&chart, points, row_count, chart_csv, chart_png, error, sizeof error)) {
+  if (write_table(files.table, rows, row_count, error, sizeof error) ||
+      chart_write(&chart, points, row_count, files.chart_csv, files.chart_png, error,
+                  sizeof error)) {
     fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", error);
     goto done;
   }
-  printf("\nCSV: %s, %s; PNG: %s\n", table, chart_csv, chart_png);
+  printf("\nCSV: %s, %s; PNG: %s\n", files.table, files.chart_csv, files.chart_png);
   double exact_ms[MODEL_COUNT] = {0}, speedup[MODEL_COUNT] = {0}, unskipped_ms = 0.0;
   double paper_error = NAN, paper_ms = NAN;
   for (int i = 0; i < row_count; i++)

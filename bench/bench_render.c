@@ -678,10 +678,7 @@ int bench_render(int argc, char **argv) {
   lod_cells(&volume, &lod, &cam, distance, W, H, 1.0, at_1);
   full_cells = at_1[1].cells;
   for (size_t k = 0; k < pixels; k++) tau_mean += references[1][k] / (double)pixels;
-  bench_print_build();
-  printf("GL: %s, %s, %s; %dx%d, median of %d frames after 1 warm-up (glFinish before and after)\n",
-         gl_context_platform(ctx), gl_context_version(ctx), gl_context_renderer(ctx), W, H,
-         frames);
+  bench_print_gl(ctx, W, H, frames);
   printf("scene: %s %dx%d, cell %g, extinction %g, %s fog (y0 %g, H %g); terrain\n"
          "distance from the scene pass; mean tau %.3f; mean cells crossed per ray (full map,\n"
          "linear) %.1f; CPU reference (double, 2 threads, once per model) %.1f s\n",
@@ -724,10 +721,9 @@ int bench_render(int argc, char **argv) {
     points[point_count++] = (chart_point){.series = r->series, .x = r->ms,
                                           .y = y > ERROR_FLOOR ? y : ERROR_FLOOR};
   }
-  char csv_path[4200], chart_csv[4200], chart_png[4200], error[1024];
-  snprintf(csv_path, sizeof csv_path, "%s/render.csv", out_dir);
-  snprintf(chart_csv, sizeof chart_csv, "%s/render_chart.csv", out_dir);
-  snprintf(chart_png, sizeof chart_png, "%s/render_chart.png", out_dir);
+  char error[1024];
+  bench_outputs files;
+  bench_outputs_in(&files, out_dir, "render");
   /* (gnuplot's enhanced text: no underscores in labels) */
   char title[256];
   snprintf(title, sizeof title,
@@ -736,8 +732,9 @@ int bench_render(int argc, char **argv) {
                       .x_label = "GL time per frame (ms)",
                       .y_label = "max |tau - CPU reference|",
                       .log_x = true, .log_y = true};
-  if (write_table_csv(csv_path, rows, row_count, error, sizeof error) ||
-      chart_write(&chart, points, point_count, chart_csv, chart_png, error, sizeof error)) {
+  if (write_table_csv(files.table, rows, row_count, error, sizeof error) ||
+      chart_write(&chart, points, point_count, files.chart_csv, files.chart_png, error,
+                  sizeof error)) {
     fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", error);
     goto done;
   }
@@ -760,8 +757,8 @@ int bench_render(int argc, char **argv) {
          "pixel-unpack buffer %.3f ms (%.2fx)\n",
          LOD_LEVELS, upload.textures, upload.bytes / 1e6, upload.direct_ms, upload.staged_ms,
          upload.direct_ms / upload.staged_ms);
-  printf("\nCSV: %s (table), %s (chart data)\nPNG: %s; tau image: %s/render_tau.png\n", csv_path,
-         chart_csv, chart_png, out_dir);
+  printf("\nCSV: %s (table), %s (chart data)\nPNG: %s; tau image: %s/render_tau.png\n",
+         files.table, files.chart_csv, files.chart_png, out_dir);
   if (!matched_sample)
     printf("note: no ray marching reached max error <= 1e-3; X uses the most accurate one\n");
   for (int k = 0; k < EXTRA_COUNT; k++)
