@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "render/render.h"
+#include "scene_test_gl.h"
 #include "test_util.h"
 
 enum { W = 200, H = 120 };
@@ -216,9 +217,6 @@ int main(void) {
   check_faces();
   check_lagrange();
   fog_error err = {0};
-  gl_context *ctx = gl_context_create(NULL, &err);
-  CHECK(ctx != NULL, "context: %s", err.message);
-  if (!ctx) return test_finish("test_lamp_shadow_map");
   scene_desc desc = {
       .terrain = {.origin = {-300, -20, -300}, .size = {600, 600}, .height = 60,
                   .resolution = 129, .seed = 3, .octaves = 6, .frequency = 3,
@@ -229,15 +227,9 @@ int main(void) {
       .box_count = 3,
       .light = scene_light_default(),
   };
-  scene_geometry geo;
-  if (scene_geometry_create(&geo, &desc, &err)) {
-    CHECK(0, "geometry: %s", err.message);
-    return test_finish("test_lamp_shadow_map");
-  }
-  scene_pass *pass = scene_pass_create(&geo, &err);
-  gl_target target;
-  CHECK(pass && scene_target_create(&target, W, H, &err) == 0, "pass: %s", err.message);
-  const double ground = terrain_height_at(&geo.terrain, 5, 15);
+  scene_test_gl s;
+  if (!scene_test_gl_open(&s, &desc, W, H, &err)) return test_finish("test_lamp_shadow_map");
+  const double ground = terrain_height_at(&s.geo.terrain, 5, 15);
   camera cam = {.position = {5, ground + 90, 95}, .fov_y = 1.1, .yaw = 0.0, .pitch = -0.75,
                 .near_plane = 0.1, .far_plane = 100000};
   static float share[4 * W * H], share_a[4 * W * H], share_b[4 * W * H];
@@ -252,12 +244,12 @@ int main(void) {
   }
   const fog_lamp *cases[2] = {&point, &spot};
   const char *names[2] = {"point lamp among the boxes", "spot over the hills"};
-  for (int k = 0; k < 2 && pass; k++) {
-    lamp_stats st = compare(&geo, pass, &target, &cam, cases[k], share);
+  for (int k = 0; k < 2; k++) {
+    lamp_stats st = compare(&s.geo, s.pass, &s.target, &cam, cases[k], share);
     double wrong = st.facing ? (double)st.wrong / st.facing : 1.0;
-    CHECK(scene_pass_set_lamp_shadows(pass, 0, &err) == 0, "%s", err.message);
-    lamp_stats off = compare(&geo, pass, &target, &cam, cases[k], share);
-    CHECK(scene_pass_set_lamp_shadows(pass, LAMP_SHADOW_SIZE, &err) == 0, "%s", err.message);
+    CHECK(scene_pass_set_lamp_shadows(s.pass, 0, &err) == 0, "%s", err.message);
+    lamp_stats off = compare(&s.geo, s.pass, &s.target, &cam, cases[k], share);
+    CHECK(scene_pass_set_lamp_shadows(s.pass, LAMP_SHADOW_SIZE, &err) == 0, "%s", err.message);
     printf("%s: %d pixels face it, %d in its exact shadow; the cube disagrees on %d (%.2f %%), "
            "without the cube %d\n", names[k], st.facing, st.shadowed, st.wrong, 100 * wrong,
            off.wrong);
@@ -268,15 +260,15 @@ int main(void) {
   }
   /* two lamps at once: each reads its own cube, the shares add (on surfaces: the sky does
    * not write attachment 3) */
-  if (pass) {
-    compare(&geo, pass, &target, &cam, &point, share_a);
-    compare(&geo, pass, &target, &cam, &spot, share_b);
+  {
+    compare(&s.geo, s.pass, &s.target, &cam, &point, share_a);
+    compare(&s.geo, s.pass, &s.target, &cam, &spot, share_b);
     const fog_lamps both = {.lamp = {point, spot}, .count = 2};
-    CHECK(scene_pass_set_lamps(pass, &both, &err) == 0, "lamps: %s", err.message);
-    scene_pass_run(pass, &cam, &target);
-    CHECK(gl_target_read(&target, 3, 4, share, &err) == 0, "read: %s", err.message);
+    CHECK(scene_pass_set_lamps(s.pass, &both, &err) == 0, "lamps: %s", err.message);
+    scene_pass_run(s.pass, &cam, &s.target);
+    CHECK(gl_target_read(&s.target, 3, 4, share, &err) == 0, "read: %s", err.message);
     static float distance[W * H];
-    CHECK(gl_target_read(&target, 1, 1, distance, &err) == 0, "read: %s", err.message);
+    CHECK(gl_target_read(&s.target, 1, 1, distance, &err) == 0, "read: %s", err.message);
     double worst = 0, peak = 0;
     for (int k = 0; k < W * H; k++)
       for (int c = 0; c < 3 && distance[k] < SCENE_SKY_DISTANCE; c++) {
@@ -287,9 +279,6 @@ int main(void) {
     printf("two lamps: max |both - (each alone summed)| = %.3e of a peak %.3e\n", worst, peak);
     CHECK(worst <= 1e-3 * peak, "two lamps' shares do not add: %.3e", worst);
   }
-  gl_target_destroy(&target);
-  scene_pass_destroy(pass);
-  scene_geometry_destroy(&geo);
-  gl_context_destroy(ctx);
+  scene_test_gl_teardown(&s);
   return test_finish("test_lamp_shadow_map");
 }

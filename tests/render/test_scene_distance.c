@@ -14,6 +14,7 @@
 #include <stdlib.h>
 
 #include "render/render.h"
+#include "scene_test_gl.h"
 #include "test_util.h"
 
 static bool close_enough(double gl, double cpu) {
@@ -168,39 +169,22 @@ int main(void) {
   test_dda_matches_brute_force();
 
   fog_error err = {0};
-  gl_context *ctx = gl_context_create(NULL, &err);
-  CHECK(ctx != NULL, "context: %s", err.message);
-  if (!ctx) return test_finish("test_scene_distance");
-
-  scene_desc desc = {
-      .terrain = {.origin = {-500, -20, -500}, .size = {1000, 1000}, .height = 160,
-                  .resolution = 129, .seed = 3, .octaves = 6, .frequency = 3,
-                  .persistence = 0.5},
-      .boxes = {{.center = {0, -120}, .size = {30, 40, 20}, .colour = SCENE_BOX_GREY},
-                {.center = {60, -200}, .size = {15, 80, 15}, .colour = {0.6f, 0.2f, 0.1f}}},
-      .box_count = 2,
-      .light = scene_light_default(),
-  };
-  scene_geometry geo;
-  int status = scene_geometry_create(&geo, &desc, &err);
-  CHECK(status == 0, "geometry: %s", err.message);
-  if (status) return test_finish("test_scene_distance");
-  scene_pass *pass = scene_pass_create(&geo, &err);
-  CHECK(pass != NULL, "pass: %s", err.message);
+  scene_desc desc = scene_test_valley();
+  desc.boxes[1].colour[0] = 0.6f, desc.boxes[1].colour[1] = 0.2f, desc.boxes[1].colour[2] = 0.1f;
   enum { W = 160, H = 90 };
-  gl_target target;
-  CHECK(scene_target_create(&target, W, H, &err) == 0, "target: %s", err.message);
+  scene_test_gl s;
+  if (!scene_test_gl_open(&s, &desc, W, H, &err)) return test_finish("test_scene_distance");
   /* A camera above the terrain looking over the boxes toward the horizon (sky visible). */
   camera cam = {.position = {-20, 0, 60}, .fov_y = 1.0,
       .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
-  cam.position[1] = terrain_height_at(&geo.terrain, -20, 60) + 40;
+  cam.position[1] = terrain_height_at(&s.geo.terrain, -20, 60) + 40;
   cam.yaw = 0.15;
   cam.pitch = -0.12;
-  if (pass) {
+  {
     float *distance = malloc(sizeof(float) * W * H);
     float *colour = malloc(sizeof(float) * W * H * 4);
-    view_stats v = compare_view(&geo, pass, &target, &cam, 3, distance);
-    CHECK(gl_target_read(&target, 0, 4, colour, &err) == 0, "read: %s", err.message);
+    view_stats v = compare_view(&s.geo, s.pass, &s.target, &cam, 3, distance);
+    CHECK(gl_target_read(&s.target, 0, 4, colour, &err) == 0, "read: %s", err.message);
     printf("%d pixels sampled: %d sky, %d on boxes, %d on silhouette edges, %d wrong\n",
            v.sampled, v.sky, v.boxes, v.edge, v.failed);
     CHECK(v.failed == 0, "%d of %d sampled pixels: GL distance != CPU distance", v.failed,
@@ -218,14 +202,11 @@ int main(void) {
         bad_colour++;
     }
     CHECK(bad_colour == 0, "%d pixels with a black, negative or non-opaque colour", bad_colour);
-    test_culled_views(&geo, pass, &target, distance);
+    test_culled_views(&s.geo, s.pass, &s.target, distance);
     free(distance);
     free(colour);
   }
   CHECK(gl_util_check("scene pass", &err) == 0, "%s", err.message);
-  gl_target_destroy(&target);
-  scene_pass_destroy(pass);
-  scene_geometry_destroy(&geo);
-  gl_context_destroy(ctx);
+  scene_test_gl_teardown(&s);
   return test_finish("test_scene_distance");
 }

@@ -13,15 +13,13 @@
 #include <stdlib.h>
 
 #include "render/render.h"
+#include "scene_test_gl.h"
 #include "test_util.h"
 
 enum { W = 320, H = 180 };
 
 int main(void) {
   fog_error err = {0};
-  gl_context *ctx = gl_context_create(&(gl_context_desc){0}, &err);
-  CHECK(ctx != NULL, "context: %s", err.message);
-  if (!ctx) return test_finish("test_scene_lod");
   scene_desc desc = {
       .terrain = {.origin = {-600, 0, -600}, .size = {1200, 1200}, .height = 160,
                   .resolution = 257, .seed = 4, .octaves = 6, .frequency = 2.2,
@@ -29,11 +27,8 @@ int main(void) {
       .light = scene_light_default(),
   };
   desc.light.sun_azimuth = 150, desc.light.sun_elevation = 30;
-  scene_geometry geo;
-  CHECK(scene_geometry_create(&geo, &desc, &err) == 0, "geometry: %s", err.message);
-  scene_pass *pass = scene_pass_create(&geo, &err);
-  gl_target target;
-  CHECK(pass && scene_target_create(&target, W, H, &err) == 0, "pass: %s", err.message);
+  scene_test_gl s;
+  if (!scene_test_gl_open(&s, &desc, W, H, &err)) return test_finish("test_scene_lod");
   static float full[W * H], lod[W * H];
   const double views[4][6] = {{0, 230, 560, 0, 30, -60},
                               {-300, 0, 400, 200, 0, -500},
@@ -45,18 +40,18 @@ int main(void) {
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     for (int c = 0; c < 3; c++) cam.position[c] = views[v][c];
     if (views[v][1] == 0)
-      cam.position[1] = terrain_height_at(&geo.terrain, cam.position[0], cam.position[2]) + 25.0;
+      cam.position[1] = terrain_height_at(&s.geo.terrain, cam.position[0], cam.position[2]) + 25.0;
     camera_look_at(&cam, &views[v][3]);
-    CHECK(scene_pass_set_terrain_lod(pass, 0.0, &err) == 0, "%s", err.message);
-    scene_pass_run(pass, &cam, &target);
-    const long full_triangles = scene_pass_triangles_drawn(pass);
-    CHECK(gl_target_read(&target, 1, 1, full, &err) == 0, "%s", err.message);
+    CHECK(scene_pass_set_terrain_lod(s.pass, 0.0, &err) == 0, "%s", err.message);
+    scene_pass_run(s.pass, &cam, &s.target);
+    const long full_triangles = scene_pass_triangles_drawn(s.pass);
+    CHECK(gl_target_read(&s.target, 1, 1, full, &err) == 0, "%s", err.message);
     const double ppu = H / (2.0 * tan(0.5 * cam.fov_y));
     for (int b = 0; b < 2; b++) {
-      CHECK(scene_pass_set_terrain_lod(pass, budgets[b], &err) == 0, "%s", err.message);
-      scene_pass_run(pass, &cam, &target);
-      const long triangles = scene_pass_triangles_drawn(pass);
-      CHECK(gl_target_read(&target, 1, 1, lod, &err) == 0, "%s", err.message);
+      CHECK(scene_pass_set_terrain_lod(s.pass, budgets[b], &err) == 0, "%s", err.message);
+      scene_pass_run(s.pass, &cam, &s.target);
+      const long triangles = scene_pass_triangles_drawn(s.pass);
+      CHECK(gl_target_read(&s.target, 1, 1, lod, &err) == 0, "%s", err.message);
       int holes = 0, terrain_pixels = 0, over = 0;
       double worst_px = 0.0;
       for (int y = 0; y < H; y++)
@@ -80,7 +75,7 @@ int main(void) {
           camera_ray(&cam, x, y, W, H, o, d);
           double p[3];
           for (int c = 0; c < 3; c++) p[c] = o[c] + lod[k] * d[c];
-          double dy_world = fabs(p[1] - terrain_height_at(&geo.terrain, p[0], p[2]));
+          double dy_world = fabs(p[1] - terrain_height_at(&s.geo.terrain, p[0], p[2]));
           double px = dy_world * ppu / lod[k];
           worst_px = fmax(worst_px, px);
           over += px > 2.0 * budgets[b];
@@ -98,9 +93,6 @@ int main(void) {
               budgets[b], triangles, full_triangles);
     }
   }
-  gl_target_destroy(&target);
-  scene_pass_destroy(pass);
-  scene_geometry_destroy(&geo);
-  gl_context_destroy(ctx);
+  scene_test_gl_teardown(&s);
   return test_finish("test_scene_lod");
 }

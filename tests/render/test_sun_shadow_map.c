@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "render/render.h"
+#include "scene_test_gl.h"
 #include "test_util.h"
 
 enum { W = 200, H = 120 };
@@ -68,10 +69,9 @@ static void set_sun(scene_geometry *geo, double azimuth_deg, double elevation_de
   scene_light_sun_direction(&geo->light, geo->sun_direction);
 }
 
-/* The exact shadow of a post of the given width: the fraction of its exactly shadowed
- * ground pixels the GL finds dark. */
-static double post_shadow_found(double width, gl_context *ctx) {
-  (void)ctx;
+/* The exact shadow of a post of the given width (its own scene, in the current context): the
+ * fraction of its exactly shadowed ground pixels the GL finds dark. */
+static double post_shadow_found(double width) {
   fog_error err = {0};
   scene_desc desc = {
       .terrain = {.origin = {-2000, 0, -2000}, .size = {4000, 4000}, .height = 1e-3,
@@ -82,65 +82,40 @@ static double post_shadow_found(double width, gl_context *ctx) {
       .light = scene_light_default(),
   };
   desc.light.sun_azimuth = 90, desc.light.sun_elevation = 20;
-  scene_geometry geo;
-  if (scene_geometry_create(&geo, &desc, &err)) {
-    CHECK(0, "geometry: %s", err.message);
-    return NAN;
-  }
-  scene_pass *pass = scene_pass_create(&geo, &err);
-  gl_target target;
-  CHECK(pass && scene_target_create(&target, W, H, &err) == 0, "pass: %s", err.message);
+  scene_test_gl s;
+  if (!scene_test_gl_setup(&s, &desc, W, H, &err)) return NAN;
   /* looking down at the ground west of the post, where its shadow falls */
   camera cam = {.position = {-60, 12, 0.01}, .fov_y = 1.0, .yaw = -0.5 * pi, .pitch = -1.45,
                 .near_plane = 0.1, .far_plane = 1000};
   static float share[3 * W * H];
-  shadow_stats st = compare(&geo, pass, &target, &cam, share);
+  shadow_stats st = compare(&s.geo, s.pass, &s.target, &cam, share);
   int found = 0;
   for (int py = 0; py < H; py++)
     for (int px = 0; px < W; px++)
-      if (exact_shadow(&geo, &cam, px, py) == 1) {
+      if (exact_shadow(&s.geo, &cam, px, py) == 1) {
         const float *c = &share[3 * (py * W + px)];
         found += c[0] + c[1] + c[2] < 0.1f; /* lit ground: ~1.0 */
       }
   double fraction = st.shadowed ? (double)found / st.shadowed : NAN;
   printf("a post %.2f wide (%.2f shadow-map texels): %d exactly shadowed pixels, the map "
          "darkens %.0f %% of them\n", width, width / st.texel, st.shadowed, 100 * fraction);
-  gl_target_destroy(&target);
-  scene_pass_destroy(pass);
-  scene_geometry_destroy(&geo);
+  scene_test_gl_teardown(&s);
   return fraction;
 }
 
 int main(void) {
   fog_error err = {0};
-  gl_context *ctx = gl_context_create(NULL, &err);
-  CHECK(ctx != NULL, "context: %s", err.message);
-  if (!ctx) return test_finish("test_sun_shadow_map");
-  scene_desc desc = {
-      .terrain = {.origin = {-500, -20, -500}, .size = {1000, 1000}, .height = 160,
-                  .resolution = 129, .seed = 3, .octaves = 6, .frequency = 3,
-                  .persistence = 0.5},
-      .boxes = {{.center = {0, -120}, .size = {30, 40, 20}, .colour = SCENE_BOX_GREY},
-                {.center = {60, -200}, .size = {15, 80, 15}, .colour = SCENE_BOX_GREY}},
-      .box_count = 2,
-      .light = scene_light_default(),
-  };
-  scene_geometry geo;
-  if (scene_geometry_create(&geo, &desc, &err)) {
-    CHECK(0, "geometry: %s", err.message);
-    return test_finish("test_sun_shadow_map");
-  }
-  scene_pass *pass = scene_pass_create(&geo, &err);
-  gl_target target;
-  CHECK(pass && scene_target_create(&target, W, H, &err) == 0, "pass: %s", err.message);
+  const scene_desc desc = scene_test_valley();
+  scene_test_gl s;
+  if (!scene_test_gl_open(&s, &desc, W, H, &err)) return test_finish("test_sun_shadow_map");
   camera cam = {.position = {-20, 0, 60}, .fov_y = 1.0, .yaw = 0.15, .pitch = -0.25,
                 .near_plane = 0.1, .far_plane = 100000};
-  cam.position[1] = terrain_height_at(&geo.terrain, -20, 60) + 60;
+  cam.position[1] = terrain_height_at(&s.geo.terrain, -20, 60) + 60;
   static float share[3 * W * H];
   const double suns[3][2] = {{90, 12}, {-60, 18}, {170, 25}};
-  for (int k = 0; k < 3 && pass; k++) {
-    set_sun(&geo, suns[k][0], suns[k][1]);
-    shadow_stats st = compare(&geo, pass, &target, &cam, share);
+  for (int k = 0; k < 3; k++) {
+    set_sun(&s.geo, suns[k][0], suns[k][1]);
+    shadow_stats st = compare(&s.geo, s.pass, &s.target, &cam, share);
     double wrong = st.lit_faces ? (double)st.wrong / st.lit_faces : 1.0;
     printf("sun azimuth %g, elevation %g: %d pixels face the sun, %d in the exact shadow; "
            "the map disagrees on %d (%.2f %%; texel %.2f units)\n", suns[k][0], suns[k][1],
@@ -149,13 +124,10 @@ int main(void) {
     CHECK(wrong < 0.03, "sun %d: the map disagrees with the ray casts on %.2f %%", k, 100 * wrong);
   }
   /* the post scene's map: ~2 units a texel (a 4000-unit ground on 2048 texels) */
-  double thin = post_shadow_found(0.8, ctx), wide = post_shadow_found(16, ctx);
+  double thin = post_shadow_found(0.8), wide = post_shadow_found(16);
   CHECK(wide > 0.8, "a post 8 texels wide: only %.0f %% of its shadow", 100 * wide);
   CHECK(thin < 0.5 && thin < wide, "a sub-texel post's shadow is found as well as a wide one's (%.2f, %.2f)",
         thin, wide);
-  gl_target_destroy(&target);
-  scene_pass_destroy(pass);
-  scene_geometry_destroy(&geo);
-  gl_context_destroy(ctx);
+  scene_test_gl_teardown(&s);
   return test_finish("test_sun_shadow_map");
 }
