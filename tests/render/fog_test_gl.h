@@ -29,6 +29,7 @@ typedef struct fog_test_gl {
   /* the pass's inputs, width x height: the surface colour (RGBA32F, all zero until a test
    * uploads its own) and the surface distance (R32F, undefined until uploaded) */
   GLuint surface_tex, dist_tex;
+  float *dist; /* width x height, rows top first: the distances fog_test_gl_set_ground sent */
 } fog_test_gl;
 
 /* A width x height texture with NEAREST filtering: no mipmaps, so without it the texture
@@ -45,6 +46,7 @@ static inline GLuint fog_test_gl_texture(const fog_test_gl *gl, GLenum internal,
 }
 
 static inline void fog_test_gl_teardown(fog_test_gl *gl) {
+  free(gl->dist);
   if (gl->surface_tex) glDeleteTextures(1, &gl->surface_tex);
   if (gl->dist_tex) glDeleteTextures(1, &gl->dist_tex);
   if (gl->has_target) gl_target_destroy(&gl->target);
@@ -75,8 +77,10 @@ static inline bool fog_test_gl_setup(fog_test_gl *gl, int width, int height, fog
     return false;
   }
   float *zeros = calloc((size_t)width * height * 4, sizeof(float));
-  CHECK(zeros != NULL, "out of memory");
-  if (!zeros) {
+  gl->dist = calloc((size_t)width * height, sizeof(float));
+  CHECK(zeros && gl->dist, "out of memory");
+  if (!zeros || !gl->dist) {
+    free(zeros);
     fog_test_gl_teardown(gl);
     return false;
   }
@@ -113,21 +117,27 @@ static inline void fog_test_gl_ground_distance(const fog_test_gl *gl, const came
     }
 }
 
-/* Pixel (px, py)'s ray (rows top first) and its surface distance from dist (as
- * fog_test_gl_ground_distance writes it): HUGE_VAL for the sky. */
-static inline double fog_test_gl_pixel_ray(const fog_test_gl *gl, const camera *cam,
-                                           const float *dist, int px, int py, double o[3],
-                                           double d[3]) {
+/* The ground plane y = ground_y under cam as the pass's surface: its distances into gl->dist
+ * and uploaded to gl->dist_tex. */
+static inline void fog_test_gl_set_ground(fog_test_gl *gl, const camera *cam, double ground_y) {
+  fog_test_gl_ground_distance(gl, cam, ground_y, gl->dist);
+  fog_test_gl_upload_flipped(gl, gl->dist_tex, GL_RED, 1, gl->dist);
+}
+
+/* Pixel (px, py)'s ray (rows top first) and its surface distance from gl->dist: HUGE_VAL for
+ * the sky. */
+static inline double fog_test_gl_pixel_ray(const fog_test_gl *gl, const camera *cam, int px,
+                                           int py, double o[3], double d[3]) {
   camera_ray(cam, px, py, gl->width, gl->height, o, d);
-  float t = dist[py * gl->width + px];
+  float t = gl->dist[py * gl->width + px];
   return t >= 1e29f ? HUGE_VAL : (double)t;
 }
 
 /* Draws the fog pass (over gl's surface_tex and dist_tex) into the target and reads its
  * transmittance (attachment 1, rows top first) into tau. The target is first cleared to -1,
  * which no transmittance or colour can be, so a pixel the pass leaves unwritten fails any
- * comparison instead of showing the previous draw. Returns 0 on success (err says what failed): the caller
- * CHECKs it, so a failure names the test's own line and case. */
+ * comparison instead of showing the previous draw. Returns 0 on success (err says what
+ * failed): the caller CHECKs it, so a failure names the test's own line and case. */
 static inline int fog_test_gl_draw_tau(fog_test_gl *gl, const camera *cam,
                                        const fog_pass_params *params, float *tau,
                                        fog_error *err) {

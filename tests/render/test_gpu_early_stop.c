@@ -38,7 +38,7 @@ int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_early_stop");
-  static float dist[W * H], surface[4 * W * H];
+  static float surface[4 * W * H];
   static drawn whole, cut;
   for (int i = 0; i < W * H; i++)
     for (int c = 0; c < 4; c++) surface[4 * i + c] = c < 3 ? (float)fog_test_range(0, 2) : 1.0f;
@@ -64,8 +64,7 @@ int main(void) {
   cam.position[1] = 2.5;
   cam.position[2] = 0.5 * (lo[2] + hi[2]);
   camera_look_at(&cam, (double[3]){hi[0], 1.5, 0.5 * (lo[2] + hi[2]) + 8.0});
-  fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-  fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+  fog_test_gl_set_ground(&gl, &cam, ground_y);
 
   const double cutoffs[2] = {FOG_PASS_TRANSMITTANCE_CUTOFF, 1e-2};
   const char *names[5] = {"one grid", "one grid (hardware)", "LOD switching", "volume",

@@ -20,7 +20,7 @@ int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_far_camera");
-  float *dist = malloc(sizeof(float) * W * H), *tau = malloc(sizeof(float) * W * H);
+  static float tau[W * H];
 
   transform_grid approx[J + 1], detail[J];
   fog_test_pyramid(1, J, approx, detail);
@@ -39,8 +39,7 @@ int main(void) {
     cam.position[1] = centre[1] + 0.02 * D;
     cam.position[2] = centre[2] + 0.8 * D;
     camera_look_at(&cam, centre);
-    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+    fog_test_gl_set_ground(&gl, &cam, ground_y);
     for (int method = -1; method <= 1; method++) { /* -1: the finest grid alone */
       /* the one-grid draw reads slot 0, which the pyramid's A_0 occupies: upload each
        * before the draws that read it */
@@ -58,7 +57,7 @@ int main(void) {
         for (int px = 0; px < W; px++) {
           double o[3], d[3];
           camera_ray(&cam, px, py, W, H, o, d);
-          float ts = dist[py * W + px];
+          float ts = gl.dist[py * W + px];
           double t_surface = ts >= 1e29f ? HUGE_VAL : ts;
           double depth = method < 0
                              ? fog_optical_depth(&v, &approx[J], o, d, 0.0, t_surface)
@@ -76,8 +75,6 @@ int main(void) {
   }
   for (int l = 0; l <= J; l++) transform_grid_destroy(&approx[l]);
   for (int l = 0; l < J; l++) transform_grid_destroy(&detail[l]);
-  free(dist);
-  free(tau);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_far_camera");
 }

@@ -56,10 +56,8 @@ int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_fog_vs_cpu");
-  float *dist = malloc(sizeof(float) * W * H), *tau = malloc(sizeof(float) * W * H);
-  float *colour = malloc(sizeof(float) * W * H * 4), *surface = malloc(sizeof(float) * W * H * 4);
-  float *tau_other = malloc(sizeof(float) * W * H);
-  double *want = malloc(sizeof(double) * W * H);
+  static float tau[W * H], tau_other[W * H], colour[4 * W * H], surface[4 * W * H];
+  static double want[W * H];
   for (int i = 0; i < W * H; i++) {
     surface[4 * i + 0] = 0.2f + 0.6f * (float)((i % W) / (double)W);
     surface[4 * i + 1] = 0.3f;
@@ -100,8 +98,7 @@ int main(void) {
         cam.position[2] = hi[2] + 30.0;
       }
       camera_look_at(&cam, target_pos);
-      fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-      fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+      fog_test_gl_set_ground(&gl, &cam, ground_y);
       for (int method = 0; method <= 1; method++) {
         fog_pass_params params = {.volume = &v, .levels = J, .lod_method = method, .mu = lod.mu,
                                   .fog_colour = {0.7f, 0.75f, 0.8f}};
@@ -115,7 +112,7 @@ int main(void) {
          * anything. */
         CHECK(min_tau < 0.7, "degree %d inside %d: min tau %.3f: no fog in view", degree, inside,
               min_tau);
-        reference_lod_tau(&cam, dist, &v, &lod, method, want);
+        reference_lod_tau(&cam, gl.dist, &v, &lod, method, want);
         double worst = max_tau_error(want, tau, &wx, &wy);
         for (int py = 0; py < H; py++)
           for (int px = 0; px < W; px++) {
@@ -167,13 +164,12 @@ int main(void) {
       camera cam = {.position = {60.0, 20.0, 30.0}, .fov_y = 1.0,
           .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
       camera_look_at(&cam, (double[3]){130.0, ground_y, -30.0});
-      fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-      fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+      fog_test_gl_set_ground(&gl, &cam, ground_y);
       fog_pass_params params = {.volume = &v, .levels = J, .lod_method = FOG_LOD_SWITCH,
                                 .mu = lod.mu};
       CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
             "draw after re-upload: %s", err.message);
-      reference_lod_tau(&cam, dist, &v, &lod, FOG_LOD_SWITCH, want);
+      reference_lod_tau(&cam, gl.dist, &v, &lod, FOG_LOD_SWITCH, want);
       double worst = max_tau_error(want, tau, NULL, NULL);
       printf("degree %d after re-upload (same size): max |dtau| %.2e\n", degree, worst);
       CHECK(worst <= 2e-4, "degree %d after re-upload: max |dtau| %.3e", degree, worst);
@@ -199,8 +195,7 @@ int main(void) {
     camera cam = {.position = {2.0, 1.5, 20.0}, .fov_y = 0.6,
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){1024.0, 0.5, 44.0});
-    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+    fog_test_gl_set_ground(&gl, &cam, ground_y);
     fog_pass_params params = {.volume = &v};
     /* Only the middle 32 x 12 pixels (around the horizon, the longest rays): llvmpipe needs
      * ~2 s per full frame of such rays. The scissor limits the helper's clear too. */
@@ -214,7 +209,7 @@ int main(void) {
     for (int py = Y0; py < Y0 + 12; py++)
       for (int px = X0; px < X0 + 32; px++) {
         double o[3], d[3];
-        double t_surface = pixel_ray(&cam, dist, px, py, o, d);
+        double t_surface = pixel_ray(&cam, gl.dist, px, py, o, d);
         double want_k = fog_transmittance(fog_optical_depth(&v, &g, o, d, 0.0, t_surface));
         worst = fmax(worst, fabs(want_k - tau[py * W + px]));
         min_tau = fmin(min_tau, want_k);
@@ -238,8 +233,7 @@ int main(void) {
       camera cam = {.position = {10.0, view ? 40.0 : 3.0, 20.0}, .fov_y = 1.1,
           .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
       camera_look_at(&cam, (double[3]){80.0, view ? 0.0 : 6.0, -60.0});
-      fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-      fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+      fog_test_gl_set_ground(&gl, &cam, ground_y);
       fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
       if (model == FOG_MODEL_RBF)
         m = (fog_model){.kind = model, .extinction = view ? 0.002 : 0.0, .rbfs = rbfs,
@@ -254,7 +248,7 @@ int main(void) {
       for (int py = 0; py < H; py++)
         for (int px = 0; px < W; px++) {
           double o[3], d[3];
-          double t_surface = pixel_ray(&cam, dist, px, py, o, d);
+          double t_surface = pixel_ray(&cam, gl.dist, px, py, o, d);
           want[py * W + px] = fog_transmittance(fog_model_optical_depth(&m, o, d, t_surface));
           min_tau = fmin(min_tau, tau[py * W + px]);
         }
@@ -283,7 +277,7 @@ int main(void) {
         for (int py = 0; py < H; py++)
           for (int px = 0; px < W; px++) {
             double o[3], d[3];
-            double t_surface = pixel_ray(&cam, dist, px, py, o, d);
+            double t_surface = pixel_ray(&cam, gl.dist, px, py, o, d);
             want[py * W + px] = fog_transmittance(
                 fog_grid3d_optical_depth_march(&grid3d, 0.7, o, d, t_surface));
           }
@@ -343,11 +337,5 @@ int main(void) {
   CHECK(worst_colour <= 1e-5, "composited colour differs from eq. 4 by %.3e", worst_colour);
   free(grid_values);
   fog_test_gl_teardown(&gl);
-  free(dist);
-  free(tau);
-  free(tau_other);
-  free(want);
-  free(colour);
-  free(surface);
   return test_finish("test_gpu_fog_vs_cpu");
 }

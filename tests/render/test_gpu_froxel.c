@@ -43,14 +43,11 @@ int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_froxel");
-  float *dist = malloc(sizeof(float) * W * H), *rgba = malloc(sizeof(float) * 4 * W * H),
-        *tau = malloc(sizeof(float) * W * H), *want = malloc(sizeof(float) * 4 * W * H),
-        *exact = malloc(sizeof(float) * 4 * W * H);
+  static float rgba[4 * W * H], tau[W * H], want[4 * W * H], exact[4 * W * H];
   camera cam = {.position = {0.0, 3.0, 0.0}, .fov_y = 1.0, .near_plane = CAMERA_DEFAULT_NEAR,
                 .far_plane = CAMERA_DEFAULT_FAR};
   camera_look_at(&cam, (double[3]){100.0, 1.0, 30.0});
-  fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-  fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+  fog_test_gl_set_ground(&gl, &cam, ground_y);
 
   /* 1. Homogeneous fog, ambient light only: the closed form of the grid and its lookup. */
   {
@@ -65,7 +62,7 @@ int main(void) {
     CHECK(draw(&gl, &cam, &params, rgba, tau, &err) == 0, "froxel draw: %s",
           err.message);
     for (int i = 0; i < W * H; i++) {
-      double t = fmin(dist[i] >= 1e29f ? HUGE_VAL : dist[i], far);
+      double t = fmin(gl.dist[i] >= 1e29f ? HUGE_VAL : gl.dist[i], far);
       double f = slices * log(t / near) / log(far / near), T;
       if (f >= 1) {
         int k = (int)floor(f);
@@ -135,7 +132,6 @@ int main(void) {
             "bad froxel grid %d: '%s'", k, e.message);
     }
   }
-  free(dist), free(rgba), free(tau), free(want), free(exact);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_froxel");
 }

@@ -109,14 +109,13 @@ int main(void) {
   }
 
   fill_gaussians();
-  static float dist[W * H], surface[4 * W * H], rgba[4 * W * H], tau[W * H];
+  static float surface[4 * W * H], rgba[4 * W * H], tau[W * H];
   for (int i = 0; i < W * H; i++) surface[4 * i + 3] = 1.0f; /* black, opaque */
   fog_test_gl_upload_flipped(&gl, gl.surface_tex, GL_RGBA, 4, surface);
   camera cam = {.position = {5.0, 4.0, 25.0}, .fov_y = 1.1, .near_plane = CAMERA_DEFAULT_NEAR,
                 .far_plane = CAMERA_DEFAULT_FAR};
   camera_look_at(&cam, (double[3]){60.0, 5.0, -40.0});
-  fog_test_gl_ground_distance(&gl, &cam, 0.5, dist);
-  fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+  fog_test_gl_set_ground(&gl, &cam, 0.5);
 
   /* as many Gaussians as a bound of the cap less VIEW_SLACK allows (the pass's reserve
    * lifted to that for the draw): drawn, and right, so the bound is not below what the
@@ -130,7 +129,7 @@ int main(void) {
   CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, tau, &err) == 0 &&
             gl_target_read(&gl.target, 0, 4, rgba, &err) == 0,
         "%d Gaussians (bound %.0f): %s", under, bound_of(&p), err.message);
-  int wrong = count_wrong(rgba, &cam, &p, dist, &worst);
+  int wrong = count_wrong(rgba, &cam, &p, gl.dist, &worst);
   printf("%d Gaussians, bound %.0f loop iterations: %d values off the twin (max %.2e of the "
          "peak)\n", under, bound_of(&p), wrong, worst);
   fog_pass_set_loop_cap(gl.pass, cap);
@@ -156,7 +155,7 @@ int main(void) {
   CHECK(fog_test_gl_draw_tau(&gl, &cam, &p, tau, &err) == 0 &&
             gl_target_read(&gl.target, 0, 4, rgba, &err) == 0,
         "%d Gaussians, the cap lifted: %s", over, err.message);
-  wrong = count_wrong(rgba, &cam, &p, dist, &worst);
+  wrong = count_wrong(rgba, &cam, &p, gl.dist, &worst);
   printf("%d Gaussians, bound %.0f, drawn past the cap: %d values off the twin (max %.2e of "
          "the peak)\n", over, bound_of(&p), wrong, worst);
   CHECK(wrong > 0 && worst > 1e-3, "%d Gaussians past the cap drew right (%d values off, max "

@@ -81,7 +81,7 @@ int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_lamps");
-  static float dist[W * H], surface[4 * W * H];
+  static float surface[4 * W * H];
   for (int i = 0; i < W * H; i++) surface[4 * i + 3] = 1.0f; /* black, opaque */
   fog_test_gl_upload_flipped(&gl, gl.surface_tex, GL_RGBA, 4, surface);
   const fog_sun sun = {.albedo = 0.8, .phase_g = 0.4, .direction = {0, 1, 0}};
@@ -97,21 +97,20 @@ int main(void) {
     camera cam = {.position = {96.0, 4.0, -30.0}, .fov_y = 1.1,
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){160.0, 3.0, -24.0});
-    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+    fog_test_gl_set_ground(&gl, &cam, ground_y);
     fog_pass_params params = {.model = FOG_MODEL_FOGMAP, .volume = &v, .sun = sun,
                               .lamps = two_lamps((double[3]){122, 3, -28},
                                                  (double[3]){140, 10, -33})};
-    double peak = compare(&gl, &cam, &params, &m, dist, "fogmap");
+    double peak = compare(&gl, &cam, &params, &m, gl.dist, "fogmap");
     CHECK(peak > 0.05, "fogmap: peak in-scatter %g: the lamps do not reach the view", peak);
     /* uniform marching (the bench's baseline) */
     params.lamps.method.integral = FOG_LAMP_MARCH;
     params.lamps.method.march_steps = 48;
-    compare(&gl, &cam, &params, &m, dist, "fogmap, marched");
+    compare(&gl, &cam, &params, &m, gl.dist, "fogmap, marched");
     params.lamps.method.integral = FOG_LAMP_ANGLE;
     /* albedo 0: the lamps scatter nothing */
     params.sun.albedo = 0.0;
-    double none = compare(&gl, &cam, &params, &m, dist, "fogmap, albedo 0");
+    double none = compare(&gl, &cam, &params, &m, gl.dist, "fogmap, albedo 0");
     CHECK(none == 0.0, "albedo 0: in-scatter %g", none);
     /* the spot turned away from the view, the point lamp gone: nothing but what the cone's
      * outside leaks (smoothstep: exactly 0) */
@@ -121,7 +120,7 @@ int main(void) {
     params.lamps.lamp[0].axis[0] = 0, params.lamps.lamp[0].axis[1] = 1,
     params.lamps.lamp[0].axis[2] = 0;
     params.lamps.lamp[0].position[1] = 60.0; /* above the box, shining up */
-    double away = compare(&gl, &cam, &params, &m, dist, "fogmap, spot away");
+    double away = compare(&gl, &cam, &params, &m, gl.dist, "fogmap, spot away");
     CHECK(away == 0.0, "a spot shining away from all fog: in-scatter %g", away);
     transform_grid_destroy(&grid);
   }
@@ -144,8 +143,7 @@ int main(void) {
     camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1,
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
-    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+    fog_test_gl_set_ground(&gl, &cam, ground_y);
     fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
     if (model == FOG_MODEL_RBF)
       m = (fog_model){.kind = model, .extinction = 0.002, .rbfs = rbfs, .rbf_count = FOG_TEST_RBF_COUNT};
@@ -167,15 +165,15 @@ int main(void) {
                               .model_quadric_count = m.quadric_count, .sun = sun,
                               .lamps = two_lamps((double[3]){40, 4, -15},
                                                  (double[3]){55, 12, -30})};
-    double peak = compare(&gl, &cam, &params, &m, dist, names[model]);
+    double peak = compare(&gl, &cam, &params, &m, gl.dist, names[model]);
     CHECK(peak > 0.05, "%s: peak in-scatter %g: the lamps do not reach the view", names[model],
           peak);
     if (model == FOG_MODEL_RBF) { /* Fogshop's approximation, the bench's comparison */
       params.lamps.method.integral = FOG_LAMP_FOGSHOP;
-      compare(&gl, &cam, &params, &m, dist, "rbf, Fogshop's approximation");
+      compare(&gl, &cam, &params, &m, gl.dist, "rbf, Fogshop's approximation");
       params.lamps.method.integral = FOG_LAMP_MARCH;
       params.lamps.method.march_steps = 48;
-      compare(&gl, &cam, &params, &m, dist, "rbf, marched");
+      compare(&gl, &cam, &params, &m, gl.dist, "rbf, marched");
     }
   }
   /* the quadrics beside the height fog (closed-form depths) and the volume (marched T) */
@@ -184,8 +182,7 @@ int main(void) {
     camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1,
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
-    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+    fog_test_gl_set_ground(&gl, &cam, ground_y);
     fog_model m = {.kind = model, .extinction = 0.01, .y0 = 4.0, .scale_height = 6.0,
                    .grid3d = k ? &grid3d : NULL, .quadrics = quadrics, .quadric_count = 3};
     fog_pass_params params = {.model = model, .model_extinction = m.extinction,
@@ -194,7 +191,7 @@ int main(void) {
                               .lamps = two_lamps((double[3]){40, 4, -15},
                                                  (double[3]){55, 12, -30})};
     const char *name = k ? "volume, quadrics beside" : "height, quadrics beside";
-    double peak = compare(&gl, &cam, &params, &m, dist, name);
+    double peak = compare(&gl, &cam, &params, &m, gl.dist, name);
     CHECK(peak > 0.05, "%s: peak in-scatter %g", name, peak);
   }
   /* Perlin turbulence fog (the model table's last row), its octaves drifted to a time */
@@ -211,8 +208,7 @@ int main(void) {
     camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1,
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
-    fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-    fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+    fog_test_gl_set_ground(&gl, &cam, ground_y);
     fog_model m = {.kind = FOG_MODEL_PERLIN, .extinction = 0.03, .y0 = 4.0,
                    .scale_height = 6.0, .perlin = &perlin, .time = 12.5};
     fog_pass_params params = {.model = FOG_MODEL_PERLIN, .model_extinction = m.extinction,
@@ -220,7 +216,7 @@ int main(void) {
                               .model_perlin = &perlin, .model_time = m.time, .sun = sun,
                               .lamps = two_lamps((double[3]){40, 4, -15},
                                                  (double[3]){55, 12, -30})};
-    double peak = compare(&gl, &cam, &params, &m, dist, "perlin");
+    double peak = compare(&gl, &cam, &params, &m, gl.dist, "perlin");
     CHECK(peak > 0.05, "perlin: peak in-scatter %g", peak);
     fog_perlin_destroy(&perlin);
   }

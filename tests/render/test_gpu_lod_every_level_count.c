@@ -20,8 +20,7 @@ int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_lod_every_level_count");
-  float *dist = malloc(sizeof(float) * W * H), *tau = malloc(sizeof(float) * W * H);
-  float *tau_sum = malloc(sizeof(float) * W * H);
+  static float tau[W * H], tau_sum[W * H];
   fog_volume v = fog_test_volume(FOG_PROFILE_EXPONENTIAL);
   double lo[3], hi[3];
   fog_volume_box(&v, lo, hi);
@@ -45,8 +44,7 @@ int main(void) {
         cam.position[2] = hi[2] + 12.0;
       }
       camera_look_at(&cam, target);
-      fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-      fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+      fog_test_gl_set_ground(&gl, &cam, ground_y);
       for (int method = 0; method <= 1; method++) {
         fog_pass_params params = {.volume = &v, .levels = J, .lod_method = method,
                                   .mu = lod.mu};
@@ -57,7 +55,7 @@ int main(void) {
         for (int py = 0; py < H; py++)
           for (int px = 0; px < W; px++) {
             double o[3], d[3];
-            double t_surface = fog_test_gl_pixel_ray(&gl, &cam, dist, px, py, o, d);
+            double t_surface = fog_test_gl_pixel_ray(&gl, &cam, px, py, o, d);
             double want = fog_transmittance(
                 fog_optical_depth_lod(&v, &lod, (fog_lod_method)method, o, d, t_surface));
             worst = fmax(worst, fabs(want - got[py * W + px]));
@@ -82,8 +80,5 @@ int main(void) {
   printf("J = 1..%d: max |dtau| vs CPU %.2e, sum vs switching %.2e\n", MAX_J, worst_cpu,
          worst_methods);
   fog_test_gl_teardown(&gl);
-  free(dist);
-  free(tau);
-  free(tau_sum);
   return test_finish("test_gpu_lod_every_level_count");
 }

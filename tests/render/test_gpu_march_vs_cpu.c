@@ -18,8 +18,7 @@ int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_march_vs_cpu");
-  float *sky = malloc(sizeof(float) * W * H);
-  float *tau = malloc(sizeof(float) * W * H);
+  static float sky[W * H], tau[W * H];
   for (int i = 0; i < W * H; i++) sky[i] = 1e30f;
   fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, sky);
 
@@ -79,7 +78,5 @@ int main(void) {
     for (int l = 0; l < J; l++) transform_grid_destroy(&detail[l]);
   }
   fog_test_gl_teardown(&gl);
-  free(sky);
-  free(tau);
   return test_finish("test_gpu_march_vs_cpu");
 }

@@ -59,8 +59,7 @@ int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_skip");
-  float *dist = malloc(sizeof(float) * W * H), *plain = malloc(sizeof(float) * W * H);
-  float *skipped = malloc(sizeof(float) * W * H);
+  static float plain[W * H], skipped[W * H];
   const fog_profile_kind kinds[3] = {FOG_PROFILE_SLAB, FOG_PROFILE_EXPONENTIAL,
                                      FOG_PROFILE_BSPLINE};
   int draws = 0, differing_below = 0;
@@ -94,8 +93,7 @@ int main(void) {
             target[2] = lo[2] + 0.6 * (hi[2] - lo[2]);
           }
           camera_look_at(&cam, target);
-          fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-          fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+          fog_test_gl_set_ground(&gl, &cam, ground_y);
           /* single grid (the finest), then LOD by both methods */
           for (int mode = 0; mode < 3; mode++)
             for (int fetch = 0; fetch <= (degree > 0 && mode == 0); fetch++) {
@@ -128,7 +126,7 @@ int main(void) {
                   double o[3], d[3], t0, t1;
                   camera_ray(&cam, px, py, W, H, o, d);
                   double len = fog_box_entry_exit(&v, o, d, &t0, &t1)
-                                   ? fmax(0.0, fmin(t1, dist[i]) - fmax(t0, 0.0)) : 0.0;
+                                   ? fmax(0.0, fmin(t1, gl.dist[i]) - fmax(t0, 0.0)) : 0.0;
                   /* the bound on optical depth, per grid the walk reads (LOD: each segment
                    * or band covers at most the ray; sum of details reads 1 + J grids) */
                   double bound = eps * v.extinction * profile_max(&v.profile) * len *
@@ -149,7 +147,7 @@ int main(void) {
                     double o[3], d[3];
                     camera_ray(&cam, px, py, W, H, o, d);
                     double want = fog_transmittance(
-                        fog_optical_depth(&v, &grids[LEVELS], o, d, 0.0, dist[py * W + px]));
+                        fog_optical_depth(&v, &grids[LEVELS], o, d, 0.0, gl.dist[py * W + px]));
                     worst = fmax(worst, fabs(want - skipped[py * W + px]));
                   }
                 worst_cpu = fmax(worst_cpu, worst);
@@ -192,8 +190,7 @@ int main(void) {
       cam.position[1] = view ? 60.0 : 8.0;
       cam.position[2] = box.origin_z + (view ? -10.0 : 3.0);
       camera_look_at(&cam, target);
-      fog_test_gl_ground_distance(&gl, &cam, ground_y, dist);
-      fog_test_gl_upload_flipped(&gl, gl.dist_tex, GL_RED, 1, dist);
+      fog_test_gl_set_ground(&gl, &cam, ground_y);
       for (int fetch = 0; fetch <= 1; fetch++) {
         fog_pass_params params = {.model = FOG_MODEL_VOLUME,
                                   .fetch = fetch ? FOG_FETCH_HARDWARE : FOG_FETCH_MANUAL,
@@ -212,7 +209,7 @@ int main(void) {
             const int i = py * W + px;
             double o[3], d[3];
             camera_ray(&cam, px, py, W, H, o, d);
-            double t_surface = dist[i] >= 1e29f ? HUGE_VAL : dist[i];
+            double t_surface = gl.dist[i] >= 1e29f ? HUGE_VAL : gl.dist[i];
             if (eps == 0.0f) {
               mismatched += memcmp(&plain[i], &skipped[i], sizeof(float)) != 0;
               if (fetch == 0)
@@ -244,7 +241,6 @@ int main(void) {
          "|delta| / bound %.3f\n", draws, worst_cpu, differing_below, worst_ratio);
   CHECK(differing_below > 1000, "eps > 0 changed only %d pixels: were blocks skipped?",
         differing_below);
-  free(dist), free(plain), free(skipped);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_skip");
 }
