@@ -185,4 +185,25 @@ static inline volume_grid_desc fog_test_scene_volume(float **values) {
                             .index_offset = {25.0, -15.0, 0.0}};
 }
 
+/* The scene's Gaussians and volume together (drawn in that order; grid_values malloc'ed:
+ * free it), and its models: homogeneous and height fog at K 0.02 (height: y0 4, scale
+ * height 6), the Gaussians over a base of rbf_base, the volume. */
+typedef struct fog_test_models {
+  fog_rbf rbfs[FOG_TEST_RBF_COUNT];
+  float *grid_values;
+  volume_grid_desc grid3d;
+} fog_test_models;
+static inline void fog_test_scene_models(fog_test_models *s) {
+  fog_test_scene_rbfs(s->rbfs);
+  s->grid3d = fog_test_scene_volume(&s->grid_values);
+}
+static inline fog_model fog_test_scene_model(const fog_test_models *s, fog_model_kind kind,
+                                             double rbf_base) {
+  if (kind == FOG_MODEL_RBF)
+    return (fog_model){.kind = kind, .extinction = rbf_base, .rbfs = s->rbfs,
+                       .rbf_count = FOG_TEST_RBF_COUNT};
+  if (kind == FOG_MODEL_VOLUME) return (fog_model){.kind = kind, .grid3d = &s->grid3d};
+  return (fog_model){.kind = kind, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
+}
+
 #endif

@@ -223,22 +223,17 @@ int main(void) {
   /* The analytic models of the ladder (fog_models.h) through the same pass; the RBFs are
    * a dozen Gaussians between the camera and the view's far side, over no base (view 0:
    * the sky stays finite) and over a thin one (view 1). */
-  fog_rbf rbfs[FOG_TEST_RBF_COUNT];
-  fog_test_scene_rbfs(rbfs);
-  float *grid_values;
-  volume_grid_desc grid3d = fog_test_scene_volume(&grid_values);
-  CHECK(fog_pass_upload_grid3d(gl.pass, &grid3d, &err) == 0, "volume upload: %s", err.message);
+  fog_test_models scene;
+  fog_test_scene_models(&scene);
+  CHECK(fog_pass_upload_grid3d(gl.pass, &scene.grid3d, &err) == 0, "volume upload: %s",
+        err.message);
   for (int model = FOG_MODEL_HOMOGENEOUS; model <= FOG_MODEL_VOLUME; model++)
     for (int view = 0; view < 2; view++) {
       camera cam = {.position = {10.0, view ? 40.0 : 3.0, 20.0}, .fov_y = 1.1,
           .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
       camera_look_at(&cam, (double[3]){80.0, view ? 0.0 : 6.0, -60.0});
       fog_test_gl_set_ground(&gl, &cam, ground_y);
-      fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
-      if (model == FOG_MODEL_RBF)
-        m = (fog_model){.kind = model, .extinction = view ? 0.002 : 0.0, .rbfs = rbfs,
-                        .rbf_count = FOG_TEST_RBF_COUNT};
-      if (model == FOG_MODEL_VOLUME) m = (fog_model){.kind = model, .grid3d = &grid3d};
+      fog_model m = fog_test_scene_model(&scene, model, view ? 0.002 : 0.0);
       fog_pass_params params = {.model = model, .model_extinction = m.extinction,
                                 .model_y0 = m.y0, .model_scale_height = m.scale_height,
                                 .model_rbfs = m.rbfs, .model_rbf_count = m.rbf_count};
@@ -279,7 +274,7 @@ int main(void) {
             double o[3], d[3];
             double t_surface = pixel_ray(&cam, gl.dist, px, py, o, d);
             want[py * W + px] = fog_transmittance(
-                fog_grid3d_optical_depth_march(&grid3d, 0.7, o, d, t_surface));
+                fog_grid3d_optical_depth_march(&scene.grid3d, 0.7, o, d, t_surface));
           }
         double e = max_tau_error(want, tau, NULL, NULL);
         printf("model %d view %d marched at 0.7: max |dtau| vs its CPU twin %.2e\n", model,
@@ -312,7 +307,7 @@ int main(void) {
     fog_rbf flat = {.centre = {0, 0, 0}, .radius = 0.0, .density = 1.0};
     const fog_pass_params bad[3] = {
         {.model = FOG_MODEL_RBF, .model_rbfs = &flat, .model_rbf_count = 1},
-        {.model = FOG_MODEL_RBF, .model_rbfs = rbfs, .model_rbf_count = FOG_MAX_RBFS + 1},
+        {.model = FOG_MODEL_RBF, .model_rbfs = scene.rbfs, .model_rbf_count = FOG_MAX_RBFS + 1},
         {.model = FOG_MODEL_VOLUME, .integrator = FOG_INTEGRATOR_MARCH}};
     const char *const said[3] = {"expected radius > 0", "expected 0..4096",
                                  "expected a march step > 0"};
@@ -335,7 +330,7 @@ int main(void) {
   printf("hardware fetch: max |dtau| degree 0 %.2e, 1 %.2e, 2 %.2e\n", worst_hw[0], worst_hw[1],
          worst_hw[2]);
   CHECK(worst_colour <= 1e-5, "composited colour differs from eq. 4 by %.3e", worst_colour);
-  free(grid_values);
+  free(scene.grid_values);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_fog_vs_cpu");
 }

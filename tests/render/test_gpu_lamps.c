@@ -126,11 +126,10 @@ int main(void) {
   }
 
   /* The analytic models and the volume (the scene of test_gpu_fog_vs_cpu). */
-  fog_rbf rbfs[FOG_TEST_RBF_COUNT];
-  fog_test_scene_rbfs(rbfs);
-  float *grid_values;
-  volume_grid_desc grid3d = fog_test_scene_volume(&grid_values);
-  CHECK(fog_pass_upload_grid3d(gl.pass, &grid3d, &err) == 0, "volume upload: %s", err.message);
+  fog_test_models scene;
+  fog_test_scene_models(&scene);
+  CHECK(fog_pass_upload_grid3d(gl.pass, &scene.grid3d, &err) == 0, "volume upload: %s",
+        err.message);
   /* quadric volumes near the lamps: a soft sphere around the first, a hard cylinder, and a
    * soft cone the second's light crosses */
   const fog_quadric quadrics[3] = {
@@ -144,10 +143,7 @@ int main(void) {
         .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
     fog_test_gl_set_ground(&gl, &cam, ground_y);
-    fog_model m = {.kind = model, .extinction = 0.02, .y0 = 4.0, .scale_height = 6.0};
-    if (model == FOG_MODEL_RBF)
-      m = (fog_model){.kind = model, .extinction = 0.002, .rbfs = rbfs, .rbf_count = FOG_TEST_RBF_COUNT};
-    if (model == FOG_MODEL_VOLUME) m = (fog_model){.kind = model, .grid3d = &grid3d};
+    fog_model m = fog_test_scene_model(&scene, model, 0.002);
     if (model == FOG_MODEL_QUADRIC)
       m = (fog_model){.kind = model, .quadrics = quadrics, .quadric_count = 3};
     /* the classic factors: radial about the camera, the lamps' light marched through them */
@@ -184,7 +180,7 @@ int main(void) {
     camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
     fog_test_gl_set_ground(&gl, &cam, ground_y);
     fog_model m = {.kind = model, .extinction = 0.01, .y0 = 4.0, .scale_height = 6.0,
-                   .grid3d = k ? &grid3d : NULL, .quadrics = quadrics, .quadric_count = 3};
+                   .grid3d = k ? &scene.grid3d : NULL, .quadrics = quadrics, .quadric_count = 3};
     fog_pass_params params = {.model = model, .model_extinction = m.extinction,
                               .model_y0 = m.y0, .model_scale_height = m.scale_height,
                               .model_quadrics = quadrics, .model_quadric_count = 3, .sun = sun,
@@ -220,7 +216,7 @@ int main(void) {
     CHECK(peak > 0.05, "perlin: peak in-scatter %g", peak);
     fog_perlin_destroy(&perlin);
   }
-  free(grid_values);
+  free(scene.grid_values);
   fog_test_gl_teardown(&gl);
   return test_finish("test_gpu_lamps");
 }
