@@ -24,20 +24,29 @@ static inline double fog_test_range(double a, double b) { return a + (b - a) * f
 /* A W x H fogmap box: 24 x 16 fine samples of 2.5 world units at (100, -50). */
 enum { FOG_TEST_W = 24, FOG_TEST_H = 16 };
 
-/* A random degree-d grid at the given spacing covering the box with a ghost margin of
- * d+1 coarse cells (and an arbitrary sub-cell origin offset). */
-static inline transform_grid fog_test_grid(int degree, double spacing, double offset) {
+/* A zero degree-d grid at the given spacing covering a box of width x height fine samples
+ * with a ghost margin of d+1 coarse cells, its origin moved by (du, dv). */
+static inline transform_grid fog_test_margin_grid(int degree, double spacing, int width,
+                                                  int height, double du, double dv) {
   transform_grid g;
   fog_error err;
   int margin = degree + 1;
-  int w = (int)ceil(FOG_TEST_W / spacing) + 2 * margin + 1;
-  int h = (int)ceil(FOG_TEST_H / spacing) + 2 * margin + 1;
+  int w = (int)ceil(width / spacing) + 2 * margin + 1;
+  int h = (int)ceil(height / spacing) + 2 * margin + 1;
   transform_grid_create(&g, w, h, &err);
   g.degree = degree;
   g.spacing = spacing;
-  g.origin_u = -0.5 - margin * spacing + offset;
-  g.origin_v = -0.5 - margin * spacing - 0.37 * offset;
-  for (int i = 0; i < w * h; i++) g.coefficients[i] = (float)fog_test_uniform();
+  g.origin_u = -0.5 - margin * spacing + du;
+  g.origin_v = -0.5 - margin * spacing + dv;
+  return g;
+}
+
+/* A random degree-d grid at the given spacing covering the box with a ghost margin of
+ * d+1 coarse cells (and an arbitrary sub-cell origin offset). */
+static inline transform_grid fog_test_grid(int degree, double spacing, double offset) {
+  transform_grid g =
+      fog_test_margin_grid(degree, spacing, FOG_TEST_W, FOG_TEST_H, offset, -0.37 * offset);
+  for (int i = 0; i < g.width * g.height; i++) g.coefficients[i] = (float)fog_test_uniform();
   return g;
 }
 
@@ -110,16 +119,9 @@ static inline fog_volume fog_test_volume(fog_profile_kind kind) {
 enum { FOG_TEST_PATCH_W = 180, FOG_TEST_PATCH_H = 120 };
 
 static inline transform_grid fog_test_patch_grid(int degree, double spacing, float background) {
-  transform_grid g;
-  fog_error err;
-  int margin = degree + 1;
-  int w = (int)ceil(FOG_TEST_PATCH_W / spacing) + 2 * margin + 1;
-  int h = (int)ceil(FOG_TEST_PATCH_H / spacing) + 2 * margin + 1;
-  transform_grid_create(&g, w, h, &err);
-  g.degree = degree;
-  g.spacing = spacing;
-  g.origin_u = -0.5 - margin * spacing + 0.3;
-  g.origin_v = -0.5 - margin * spacing - 0.11;
+  transform_grid g =
+      fog_test_margin_grid(degree, spacing, FOG_TEST_PATCH_W, FOG_TEST_PATCH_H, 0.3, -0.11);
+  const int w = g.width, h = g.height;
   for (int i = 0; i < w * h; i++)
     g.coefficients[i] =
         background > 0 ? (float)(background * (0.5 + 0.5 * fog_test_uniform())) : 0.0f;
