@@ -35,6 +35,37 @@ static double rbf_exact(const double p[3], const double sun[3]) {
   return fog_rbf_optical_depth(0.0, rbfs, 3, p, sun, HUGE_VAL);
 }
 
+/* The exact depth towards the sun from p, by the test's own reference. */
+typedef double (*exact_depth)(const double p[3], const double sun[3], const void *user);
+
+/* Makes *s, the across x across x along volume of m towards sun, and compares it at every
+ * step[0]-th, step[1]-th, step[2]-th sample with exact: the largest |error| into *worst,
+ * the largest exact depth into *peak. The caller destroys *s. */
+static void sample_errors(fog_sun_shadow *s, const fog_model *m, const double sun[3],
+                          int across, int along, const int step[3], exact_depth exact,
+                          const void *user, double *worst, double *peak) {
+  fog_error err;
+  CHECK(!fog_sun_shadow_create(s, &(fog_sun_shadow_desc){.across = across, .along = along},
+                               &err),
+        "%s", err.message);
+  CHECK(!fog_sun_shadow_compute(s, m, sun, 2, &err), "%s", err.message);
+  *worst = 0.0, *peak = 0.0;
+  for (int k = 0; k < along; k += step[2])
+    for (int j = 0; j < across; j += step[1])
+      for (int i = 0; i < across; i += step[0]) {
+        double p[3];
+        sample_position(s, i, j, k, p);
+        double want = exact(p, sun, user);
+        *peak = fmax(*peak, want);
+        *worst = fmax(*worst, fabs(fog_sun_shadow_depth_at(s, p) - want));
+      }
+}
+
+static double rbf_exact_of(const double p[3], const double sun[3], const void *user) {
+  (void)user;
+  return rbf_exact(p, sun);
+}
+
 /* Max |interpolated - exact| over random points of the fog's bounds, at resolution n. */
 static double rbf_interpolation_error(const fog_model *m, const double sun[3], int n) {
   fog_sun_shadow s;
@@ -60,20 +91,9 @@ static void test_rbf(void) {
     double sun[3];
     unit(sun_dirs[d], sun);
     fog_sun_shadow s;
-    fog_error err;
-    CHECK(!fog_sun_shadow_create(&s, &(fog_sun_shadow_desc){.across = 24, .along = 20}, &err),
-          "%s", err.message);
-    CHECK(!fog_sun_shadow_compute(&s, &m, sun, 2, &err), "%s", err.message);
-    double worst = 0.0, peak = 0.0;
-    for (int k = 0; k < 20; k += 3)
-      for (int j = 0; j < 24; j += 5)
-        for (int i = 0; i < 24; i += 2) {
-          double p[3];
-          sample_position(&s, i, j, k, p);
-          double exact = rbf_exact(p, sun);
-          peak = fmax(peak, exact);
-          worst = fmax(worst, fabs(fog_sun_shadow_depth_at(&s, p) - exact));
-        }
+    double worst, peak;
+    sample_errors(&s, &m, sun, 24, 20, (const int[3]){2, 5, 3}, rbf_exact_of, NULL, &worst,
+                  &peak);
     printf("rbf sun %d: at the samples max |error| %.3g of a peak depth %.3g\n", d, worst, peak);
     CHECK(peak > 0.2 && worst <= 2e-6 * peak, "sun %d: sample error %g, peak %g", d, worst, peak);
     /* Across the sunlight outside the box: no fog on that line; beyond the far face: the
@@ -98,6 +118,15 @@ static void test_rbf(void) {
   }
 }
 
+typedef struct fogmap_fog {
+  const fog_volume *volume;
+  const transform_grid *grid;
+} fogmap_fog;
+static double fogmap_exact(const double p[3], const double sun[3], const void *user) {
+  const fogmap_fog *f = user;
+  return fog_optical_depth(f->volume, f->grid, p, sun, 0.0, HUGE_VAL);
+}
+
 static void test_fogmap(void) {
   fog_test_rng = 0xABCDEFull;
   for (int pk = 0; pk < 3; pk++) {
@@ -109,20 +138,9 @@ static void test_fogmap(void) {
     unit(sun_dirs[pk], sun);
     CHECK(fog_sun_shadow_kind_of(&m, sun) == FOG_SUN_SHADOW_VOLUME, "fogmap: a volume");
     fog_sun_shadow s;
-    fog_error err;
-    CHECK(!fog_sun_shadow_create(&s, &(fog_sun_shadow_desc){.across = 20, .along = 33}, &err),
-          "%s", err.message);
-    CHECK(!fog_sun_shadow_compute(&s, &m, sun, 2, &err), "%s", err.message);
-    double worst = 0.0, peak = 0.0;
-    for (int k = 0; k < 33; k += 4)
-      for (int j = 0; j < 20; j += 3)
-        for (int i = 0; i < 20; i += 3) {
-          double p[3];
-          sample_position(&s, i, j, k, p);
-          double exact = fog_optical_depth(&v, &g, p, sun, 0.0, HUGE_VAL);
-          peak = fmax(peak, exact);
-          worst = fmax(worst, fabs(fog_sun_shadow_depth_at(&s, p) - exact));
-        }
+    double worst, peak;
+    sample_errors(&s, &m, sun, 20, 33, (const int[3]){3, 3, 4}, fogmap_exact,
+                  &(fogmap_fog){&v, &g}, &worst, &peak);
     printf("fogmap profile %d: at the samples max |error| %.3g of a peak depth %.3g\n", pk, worst,
            peak);
     CHECK(peak > 0.2 && worst <= 2e-6 * peak, "profile %d: %g of %g", pk, worst, peak);
