@@ -61,27 +61,25 @@ int main(void) {
         printf("b=%+.9f c0=%6.2f: closed %.2e, series %.2e, quadrature %.2e\n", bb, c0, ec, es, eq);
       }
     }
-    /* Far below: closed form alone fails (cancellation), quadrature and the switch do not. */
-    const double small[3] = {1e-2, 1e-4, 1e-6};
-    for (int i = 0; i < 3; i++) {
-      fog_exp_moments_closed(c0, small[i], n, closed);
-      fog_exp_moments(c0, small[i], n, picked);
-      series_moments(c0, small[i], n, ref);
-      double ec = max_rel_error(closed, ref, n), ep = max_rel_error(picked, ref, n);
-      printf("b=%.0e c0=%6.2f: closed form alone %.2e, switched %.2e\n", small[i], c0, ec, ep);
-      CHECK(ec > 1e-6, "closed form unexpectedly accurate at b=%g: %.2e", small[i], ec);
-      CHECK(ep <= 1e-14, "switched moments at b=%g: %.2e", small[i], ep);
-    }
-    /* Far above: the closed form is exact, 8-node quadrature alone is not. */
-    const double large[3] = {6.0, 20.0, 60.0};
-    for (int i = 0; i < 3; i++) {
-      fog_exp_moments_quadrature(c0, large[i], n, quad);
-      fog_exp_moments(c0, large[i], n, picked);
-      series_moments(c0, large[i], n, ref);
-      double eq = max_rel_error(quad, ref, n), ep = max_rel_error(picked, ref, n);
-      printf("b=%g c0=%6.2f: quadrature alone %.2e, switched %.2e\n", large[i], c0, eq, ep);
-      CHECK(ep <= 1e-12, "switched moments at b=%g: %.2e", large[i], ep);
-      if (large[i] >= 20.0) CHECK(eq > 1e-6, "quadrature unexpectedly accurate at b=%g", large[i]);
+    /* Away from the switch, each method alone against the switched moments: far below the
+     * closed form fails (cancellation), far above 8-node quadrature does (from b = 20); the
+     * switch never does. */
+    const double away[6] = {1e-2, 1e-4, 1e-6, 6.0, 20.0, 60.0};
+    for (int i = 0; i < 6; i++) {
+      const double b = away[i];
+      const bool below = b < FOG_EXP_SWITCH;
+      double alone[8];
+      if (below) fog_exp_moments_closed(c0, b, n, alone);
+      else fog_exp_moments_quadrature(c0, b, n, alone);
+      fog_exp_moments(c0, b, n, picked);
+      series_moments(c0, b, n, ref);
+      double ea = max_rel_error(alone, ref, n), ep = max_rel_error(picked, ref, n);
+      printf("b=%g c0=%6.2f: %s alone %.2e, switched %.2e\n", b, c0,
+             below ? "closed form" : "quadrature", ea, ep);
+      CHECK(ep <= (below ? 1e-14 : 1e-12), "switched moments at b=%g: %.2e", b, ep);
+      if (below || b >= 20.0)
+        CHECK(ea > 1e-6, "%s unexpectedly accurate at b=%g: %.2e",
+              below ? "closed form" : "quadrature", b, ea);
     }
   }
   /* Whole rays through exponential fog with per-piece |b| on both sides of the switch:
