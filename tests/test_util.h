@@ -26,4 +26,37 @@ static inline int test_finish(const char *name) {
   return test_checks_failed ? 1 : 0;
 }
 
+/* Scratch folders, for the tests that define _POSIX_C_SOURCE 200809L (mkdtemp, dirent). */
+#if defined(_POSIX_C_SOURCE) && _POSIX_C_SOURCE >= 200809L
+#include <dirent.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* mkdtemp on a "/tmp/NAME-XXXXXX" template (filled in place): 1, or 0 having said why. */
+static inline int test_scratch_folder(char *template_path) {
+  if (mkdtemp(template_path)) return 1;
+  perror("mkdtemp");
+  return 0;
+}
+
+/* Entries in a folder besides . and ..; -1 when it does not exist. */
+static inline int test_folder_entries(const char *folder) {
+  DIR *dir = opendir(folder);
+  if (!dir) return -1;
+  int n = 0;
+  struct dirent *e;
+  while ((e = readdir(dir)))
+    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) n++;
+  closedir(dir);
+  return n;
+}
+
+/* rm -rf path (a scratch folder and what a test left in it). */
+static inline void test_remove_tree(const char *path) {
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", path);
+  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", path);
+}
+#endif
+
 #endif

@@ -20,18 +20,11 @@
 #include <unistd.h>
 
 #include "sim/sim.h"
+#include "test_util.h"
 
 /* Small and short, so the tests stay fast on llvmpipe. */
 #define RECORD_TEST_CONFIG "configs/default.ini"
 #define RECORD_TEST_SIZE "64x36"
-
-/* The test's scratch folder: mkdtemp on a "/tmp/...-XXXXXX" template (filled in place).
- * Returns 0, having said why, when it cannot be made. */
-static inline int record_temp_folder(char *template_path) {
-  if (mkdtemp(template_path)) return 1;
-  perror("mkdtemp");
-  return 0;
-}
 
 static inline const char *record_bin(void) {
   const char *bin = getenv("FOGPIPE_BIN");
@@ -140,23 +133,6 @@ static inline int record_count_files(const char *out, int *frames) {
   return others;
 }
 
-/* Entries in a folder besides . and ..; -1 when it does not exist. */
-static inline int record_folder_entries(const char *folder) {
-  DIR *dir = opendir(folder);
-  if (!dir) return -1;
-  int n = 0;
-  struct dirent *e;
-  while ((e = readdir(dir)))
-    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) n++;
-  closedir(dir);
-  return n;
-}
-
-static inline void record_remove_tree(const char *path) {
-  char cmd[1200];
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", path);
-  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", path);
-}
 
 static inline void record_sleep_ms(int ms) {
   struct timespec ts = {.tv_sec = ms / 1000, .tv_nsec = (long)(ms % 1000) * 1000000L};

@@ -39,7 +39,7 @@ int main(void) {
   CHECK(cases != NULL, "cannot open %s/cases.txt (run from the source folder)", CORPUS);
   if (!cases) return test_finish("test_bad_input_corpus");
   char root[] = "/tmp/fogpipe-bad-input-XXXXXX";
-  if (!record_temp_folder(root)) return 1;
+  if (!test_scratch_folder(root)) return 1;
   char line[2048];
   int number = 0, run = 0;
   while (fgets(line, sizeof line, cases)) {
@@ -61,7 +61,7 @@ int main(void) {
              record_bin(), args, log);
     int status = system(command);
     int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    int left = record_folder_entries(out_dir);
+    int left = test_folder_entries(out_dir);
     int found = record_log_contains(log, fragment);
     CHECK(code == want, "cases.txt:%d: `fogpipe %s` exited %d, expected %d", number, args,
           code, want);
@@ -73,6 +73,6 @@ int main(void) {
   }
   fclose(cases);
   CHECK(run >= 20, "only %d cases ran", run);
-  record_remove_tree(root);
+  test_remove_tree(root);
   return test_finish("test_bad_input_corpus");
 }

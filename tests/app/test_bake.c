@@ -21,7 +21,7 @@ static int run(const char *command, const char *log) {
 
 int main(void) {
   char root[] = "/tmp/fogpipe-bake-XXXXXX";
-  if (!record_temp_folder(root)) return 1;
+  if (!test_scratch_folder(root)) return 1;
   char bake[600], whole[600], range[600], log[600], command[3000], ini[700];
   snprintf(bake, sizeof bake, "%s/bake", root);
   snprintf(whole, sizeof whole, "%s/whole", root);
@@ -101,6 +101,6 @@ int main(void) {
   snprintf(none, sizeof none, "%s/none", root);
   struct stat st;
   CHECK(stat(none, &st) != 0, "the refused bake left %s", none);
-  record_remove_tree(root);
+  test_remove_tree(root);
   return test_finish("test_bake");
 }

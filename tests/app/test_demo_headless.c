@@ -9,7 +9,7 @@ enum { frames = 2 };
 
 int main(void) {
   char root[] = "/tmp/fogpipe-demo-headless-XXXXXX";
-  if (!record_temp_folder(root)) return 1;
+  if (!test_scratch_folder(root)) return 1;
   char source[1024], config[1200], log[600];
   if (!getcwd(source, sizeof source)) return 1;
   snprintf(config, sizeof config, "%s/configs/default.ini", source);
@@ -60,6 +60,6 @@ int main(void) {
     CHECK(record_hash_frame(path, &w, &h) != 0 && w > 0 && h > 0, "frame %s unreadable", path);
   }
   if (status != 0 || display_lines != 1) record_print_log(log);
-  record_remove_tree(root);
+  test_remove_tree(root);
   return test_finish("test_demo_headless");
 }

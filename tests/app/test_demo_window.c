@@ -11,7 +11,7 @@ int main(void) {
     return 77;
   }
   char root[] = "/tmp/fogpipe-demo-window-XXXXXX";
-  if (!record_temp_folder(root)) return 1;
+  if (!test_scratch_folder(root)) return 1;
   char png[600], log[600], cmd[2400];
   snprintf(png, sizeof png, "%s/window.png", root);
   snprintf(log, sizeof log, "%s/demo.log", root);
@@ -68,6 +68,6 @@ int main(void) {
         "the view's screenshot: %s (%dx%d, expected 320x180)", err.message, shot.width,
         shot.height);
   fogmap_destroy(&shot);
-  record_remove_tree(root);
+  test_remove_tree(root);
   return test_finish("test_demo_window");
 }

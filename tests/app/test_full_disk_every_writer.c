@@ -48,7 +48,7 @@ static void check_command(const char *root, const char *name, const char *const 
   CHECK(status > 0 && status < 128, "%s with a %ld-byte file limit exited with %d", name,
         limit, status);
   CHECK(record_log_contains(log, folder), "%s: the message does not name %s", name, folder);
-  int left = record_folder_entries(folder);
+  int left = test_folder_entries(folder);
   if (left < 0) left = 0; /* never made: nothing left */
   CHECK(left == 0, "%s with a %ld-byte limit left %d entries in %s", name, limit, left,
         folder);
@@ -60,7 +60,7 @@ static void check_command(const char *root, const char *name, const char *const 
 
 int main(void) {
   char root[] = "/tmp/fogpipe-full-disk-XXXXXX";
-  if (!record_temp_folder(root)) return 1;
+  if (!test_scratch_folder(root)) return 1;
   char render_dir[600], render_out[700], transform_dir[600], import_dir[600];
   snprintf(render_dir, sizeof render_dir, "%s/render", root);
   snprintf(render_out, sizeof render_out, "%s/frame.exr", render_dir);
@@ -79,6 +79,6 @@ int main(void) {
     const char *import[] = {"", "import", VDB_FRAME, "--out", import_dir, NULL};
     check_command(root, "import", import, import_dir, limits[i]);
   }
-  record_remove_tree(root);
+  test_remove_tree(root);
   return test_finish("test_full_disk_every_writer");
 }

@@ -11,7 +11,7 @@ enum { frames = 5 };
 
 int main(void) {
   char root[] = "/tmp/fogpipe-record-det-XXXXXX";
-  if (!record_temp_folder(root)) return 1;
+  if (!test_scratch_folder(root)) return 1;
   enum { runs = 3 };
   char out[runs][512], log[runs][512];
   uint64_t hashes[runs][frames] = {{0}};
@@ -43,6 +43,6 @@ int main(void) {
   int distinct = 0;
   for (int f = 1; f < frames; f++) distinct += hashes[0][f] != hashes[0][0];
   CHECK(distinct > 0, "all %d frames are identical: the fog does not move", frames);
-  record_remove_tree(root);
+  test_remove_tree(root);
   return test_finish("test_record_deterministic");
 }

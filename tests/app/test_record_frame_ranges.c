@@ -59,7 +59,7 @@ static int differing_files(const char *a, const char *b) {
 
 int main(void) {
   char root[] = "/tmp/fogpipe-record-ranges-XXXXXX";
-  if (!record_temp_folder(root)) return 1;
+  if (!test_scratch_folder(root)) return 1;
   char whole[600], split[600], log[4][700];
   snprintf(whole, sizeof whole, "%s/whole", root);
   snprintf(split, sizeof split, "%s/split", root);
@@ -135,6 +135,6 @@ int main(void) {
   stat(frame20, &after);
   CHECK(before.st_mtime == after.st_mtime && before.st_size == after.st_size,
         "a run of frames 1-12 touched frame 20");
-  record_remove_tree(root);
+  test_remove_tree(root);
   return test_finish("test_record_frame_ranges");
 }

@@ -60,7 +60,7 @@ static int record_with_path(const char *bin_dir, const char *out, const char *vi
 
 int main(void) {
   char root[] = "/tmp/fogpipe-record-preview-XXXXXX";
-  if (!record_temp_folder(root)) return 1;
+  if (!test_scratch_folder(root)) return 1;
   char bin[600], out[600], video[600], log[600], script[700];
   snprintf(bin, sizeof bin, "%s/bin", root);
   mkdir(bin, 0755);
@@ -152,6 +152,6 @@ int main(void) {
   } else {
     printf("(no /usr/bin/ffmpeg: the real encoder is not exercised)\n");
   }
-  record_remove_tree(root);
+  test_remove_tree(root);
   return test_finish("test_record_preview");
 }

@@ -9,7 +9,7 @@ enum { frames = 24 };
 
 int main(void) {
   char root[] = "/tmp/fogpipe-record-resume-XXXXXX";
-  if (!record_temp_folder(root)) return 1;
+  if (!test_scratch_folder(root)) return 1;
   char whole[512], cut[512], log_whole[512], log_cut[512], log_resume[512];
   snprintf(whole, sizeof whole, "%s/whole", root);
   snprintf(cut, sizeof cut, "%s/cut", root);
@@ -93,6 +93,6 @@ int main(void) {
   }
   CHECK(differing == 0, "%d of %d frames differ between the resumed and the uninterrupted run",
         differing, frames);
-  record_remove_tree(root);
+  test_remove_tree(root);
   return test_finish("test_record_resume");
 }

@@ -21,7 +21,7 @@ static void expect_refused(const char *out, const char *log, const char *what) {
 
 int main(void) {
   char root[] = "/tmp/fogpipe-record-unwritable-XXXXXX";
-  if (!record_temp_folder(root)) return 1;
+  if (!test_scratch_folder(root)) return 1;
   char log[600], file[600], under_file[700];
   snprintf(log, sizeof log, "%s/record.log", root);
   snprintf(file, sizeof file, "%s/a-file", root);
@@ -41,6 +41,6 @@ int main(void) {
   } else {
     expect_refused("/proc", log, "/proc (refuses new files)");
   }
-  record_remove_tree(root);
+  test_remove_tree(root);
   return test_finish("test_record_unwritable");
 }

@@ -11,7 +11,7 @@
 
 int main(void) {
   char root[] = "/tmp/fogpipe-record-full-XXXXXX";
-  if (!record_temp_folder(root)) return 1;
+  if (!test_scratch_folder(root)) return 1;
   char out[600], log[600];
   snprintf(out, sizeof out, "%s/frames", root);
   snprintf(log, sizeof log, "%s/record.log", root);
@@ -37,6 +37,6 @@ int main(void) {
   CHECK(frame_files == 0 && others <= 0,
         "%d frame files and %d other files left in %s, expected none", frame_files, others,
         out);
-  record_remove_tree(root);
+  test_remove_tree(root);
   return test_finish("test_record_write_fails");
 }

@@ -289,10 +289,7 @@ static void test_failed_writes(void) {
 
 int main(void) {
   snprintf(folder, sizeof folder, "/tmp/fogmap_bad_input.XXXXXX");
-  if (!mkdtemp(folder)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  if (!test_scratch_folder(folder)) return 1;
   test_bad_files();
   test_failed_writes();
   CHECK(rmdir(folder) == 0, "temporary folder %s not empty afterwards", folder);

@@ -367,10 +367,7 @@ static void test_exr_tiled(void) {
 
 int main(void) {
   snprintf(folder, sizeof folder, "/tmp/fogmap_roundtrip.XXXXXX");
-  if (!mkdtemp(folder)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  if (!test_scratch_folder(folder)) return 1;
   test_exr_float_bit_exact();
   test_exr_channels_half_and_sorted();
   test_png8_exact();

@@ -33,17 +33,6 @@ static int run(const char *command, char *errors, size_t size) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-static int count_entries(const char *path) {
-  DIR *d = opendir(path);
-  if (!d) return -1;
-  int n = 0;
-  struct dirent *e;
-  while ((e = readdir(d)))
-    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) n++;
-  closedir(d);
-  return n;
-}
-
 /* The value of "key = ..." in the sidecar (first occurrence). */
 static int ini_value(const char *path, const char *key, char *out, size_t size) {
   FILE *f = fopen(path, "r");
@@ -65,7 +54,7 @@ int main(void) {
   const char *bin = getenv("FOGPIPE_BIN");
   if (!bin) bin = "build/fogpipe";
   snprintf(dir, sizeof dir, "/tmp/test_vdb_import_XXXXXX");
-  if (!mkdtemp(dir)) return 1;
+  if (!test_scratch_folder(dir)) return 1;
   char cmd[4096], errors[4096], out[512];
 
   /* 1. frames 40..48 of the ground fog, resampled to 50 cells */
@@ -75,7 +64,7 @@ int main(void) {
            "--resolution 50 --out '%s' --name gf", bin, out);
   int status = run(cmd, errors, sizeof errors);
   CHECK(status == 0, "import failed (%d): %s", status, errors);
-  CHECK(count_entries(out) == 10, "%d files in %s, expected 9 EXR + 1 ini", count_entries(out), out);
+  CHECK(test_folder_entries(out) == 10, "%d files in %s, expected 9 EXR + 1 ini", test_folder_entries(out), out);
   char ini[600], value[8192];
   snprintf(ini, sizeof ini, "%s/gf.ini", out);
   double cell = 0, thickness = 0;
@@ -118,7 +107,7 @@ int main(void) {
   CHECK(status != 0, "import of a bad sequence succeeded");
   CHECK(strstr(errors, "fluid_data_0004.vdb") && strstr(errors, "frame 4"),
         "message lacks the file or frame: %s", errors);
-  CHECK(count_entries(out) <= 0, "%d entries left in %s", count_entries(out), out);
+  CHECK(test_folder_entries(out) <= 0, "%d entries left in %s", test_folder_entries(out), out);
 
   /* 3. missing frames inside the range */
   snprintf(cmd, sizeof cmd, "rm '%s/fluid_data_0004.vdb'", bad);
@@ -128,14 +117,14 @@ int main(void) {
   status = run(cmd, errors, sizeof errors);
   CHECK(status != 0 && strstr(errors, "missing: 4"), "missing frame 4 not reported (%d): %s",
         status, errors);
-  CHECK(count_entries(out) <= 0, "%d entries left in %s", count_entries(out), out);
+  CHECK(test_folder_entries(out) <= 0, "%d entries left in %s", test_folder_entries(out), out);
   snprintf(cmd, sizeof cmd,
            "'%s' import '%s/fluid_data_####.vdb' --out '%s' --config none --skip-missing", bin,
            bad, out);
   status = run(cmd, errors, sizeof errors);
   CHECK(status == 0 && strstr(errors, "missing"), "--skip-missing (%d): %s", status, errors);
-  CHECK(count_entries(out) == 5, "%d files after --skip-missing, expected 4 EXR + ini",
-        count_entries(out));
+  CHECK(test_folder_entries(out) == 5, "%d files after --skip-missing, expected 4 EXR + ini",
+        test_folder_entries(out));
 
   /* 4. no such grid: the message lists the grids */
   snprintf(out, sizeof out, "%s/out_grid", dir);
@@ -144,9 +133,8 @@ int main(void) {
   status = run(cmd, errors, sizeof errors);
   CHECK(status != 0 && strstr(errors, "fluid_data_0001.vdb") && strstr(errors, "density, flame"),
         "no such grid (%d): %s", status, errors);
-  CHECK(count_entries(out) <= 0, "%d entries left in %s", count_entries(out), out);
+  CHECK(test_folder_entries(out) <= 0, "%d entries left in %s", test_folder_entries(out), out);
 
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+  test_remove_tree(dir);
   return test_finish("test_vdb_import_command");
 }

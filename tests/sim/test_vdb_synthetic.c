@@ -225,15 +225,10 @@ static void test_exponential_profile(void) {
 
 int main(void) {
   snprintf(dir, sizeof dir, "/tmp/test_vdb_synthetic_XXXXXX");
-  if (!mkdtemp(dir)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  if (!test_scratch_folder(dir)) return 1;
   test_blob();
   test_tiles_vs_voxels();
   test_exponential_profile();
-  char cmd[512];
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+  test_remove_tree(dir);
   return test_finish("test_vdb_synthetic");
 }
