@@ -115,8 +115,7 @@ static void check_shafts(bool homogeneous) {
     for (int px = 0; px < W; px++) {
       const int k = py * W + px;
       double o[3], d[3];
-      camera_ray(&cam, px, py, W, H, o, d);
-      double t_surface = lit.depth[k] >= 0.999 * cam.far_plane ? HUGE_VAL : lit.depth[k];
+      double t_surface = frame_pixel_ray(&lit, &cam, px, py, o, d);
       double mean = fog_sun_mean_light(&model, params->self_shadow, &fog->sun_shadow,
                                        fog_pass_light_rule(params),
                                        fog_pass_depth_limit(params->walk.transmittance_cutoff), o, d,
@@ -209,8 +208,7 @@ static void check_case(model_case *mc) {
     for (int px = 0; px < W; px++) {
       const int k = py * W + px;
       double o[3], d[3];
-      camera_ray(&cam, px, py, W, H, o, d);
-      double t_surface = lit.depth[k] >= 0.999 * cam.far_plane ? HUGE_VAL : lit.depth[k];
+      double t_surface = frame_pixel_ray(&lit, &cam, px, py, o, d);
       double mean = fog_sun_mean_transmittance(&model, params->self_shadow, volume,
                                                fog_pass_light_rule(params),
                                                fog_pass_depth_limit(params->walk.transmittance_cutoff), o,

@@ -101,8 +101,7 @@ static double check_against_twin(const scene_config *cfg, const frame *lit, cons
     for (int px = 0; px < W; px++) {
       const int k = py * W + px;
       double o[3], d[3], want[3];
-      camera_ray(&cam, px, py, W, H, o, d);
-      double t_surface = lit->depth[k] >= 0.999 * cam.far_plane ? HUGE_VAL : lit->depth[k];
+      double t_surface = frame_pixel_ray(lit, &cam, px, py, o, d);
       fog_lamps_inscatter_shadowed(&model, &lamps, cfg->fog.albedo, cfg->fog.phase_g, o, d,
                                    t_surface, exact_visible, &exact, want);
       for (int c = 0; c < 3; c++) twin_out[3 * k + c] = want[c], peak = fmax(peak, want[c]);

@@ -208,8 +208,7 @@ int main(void) {
           for (int px = 0; px < W; px++) {
             const int i = py * W + px;
             double o[3], d[3];
-            camera_ray(&cam, px, py, W, H, o, d);
-            double t_surface = gl.dist[i] >= 1e29f ? HUGE_VAL : gl.dist[i];
+            double t_surface = fog_test_gl_pixel_ray(&gl, &cam, px, py, o, d);
             if (eps == 0.0f) {
               mismatched += memcmp(&plain[i], &skipped[i], sizeof(float)) != 0;
               if (fetch == 0)
