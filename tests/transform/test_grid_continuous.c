@@ -92,14 +92,6 @@ static void check(int b, transform_boundary mode, transform_decomposition dec, i
 int main(void) {
   const int sizes[][2] = {{2, 2}, {3, 5}, {7, 6}, {16, 16}, {21, 13}, {32, 24}, {37, 40},
                           {64, 48}};
-  for (int b = 0; b < 3; b++)
-    for (int mode = 0; mode < 2; mode++)
-      for (int dec = 0; dec < 2; dec++)
-        for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) {
-          int w = sizes[s][0], h = sizes[s][1];
-          int jmax = transform_max_levels(w, h, (transform_boundary)mode);
-          for (int J = 1; J <= jmax; J++)
-            check(b, (transform_boundary)mode, (transform_decomposition)dec, w, h, J);
-        }
+  test_each_transform(sizes, sizeof sizes / sizeof sizes[0], 1, check);
   return test_finish("test_grid_continuous");
 }

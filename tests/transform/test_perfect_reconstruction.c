@@ -42,19 +42,15 @@ static void check(transform_basis basis, transform_boundary mode, transform_deco
   transform_plan_destroy(plan);
 }
 
+static void check_one_thread(int b, transform_boundary mode, transform_decomposition dec, int w,
+                             int h, int levels) {
+  check(test_bases[b], mode, dec, w, h, levels, 1);
+}
+
 int main(void) {
   const int sizes[][2] = {{1, 1}, {2, 3}, {5, 7}, {16, 16}, {17, 9}, {33, 20}, {48, 40},
                           {64, 64}, {67, 35}, {96, 128}};
-  for (int b = 0; b < 3; b++)
-    for (int mode = 0; mode < 2; mode++)
-      for (int dec = 0; dec < 2; dec++)
-        for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) {
-          int w = sizes[s][0], h = sizes[s][1];
-          int jmax = transform_max_levels(w, h, (transform_boundary)mode);
-          for (int J = 0; J <= jmax; J++)
-            check(test_bases[b], (transform_boundary)mode, (transform_decomposition)dec, w, h,
-                  J, 1);
-        }
+  test_each_transform(sizes, sizeof sizes / sizeof sizes[0], 0, check_one_thread);
   /* two threads on sizes big enough to use them */
   for (int b = 0; b < 3; b++)
     for (int dec = 0; dec < 2; dec++) {

@@ -60,6 +60,24 @@ static const transform_basis test_bases[3] = {TRANSFORM_HAAR, TRANSFORM_LINEAR,
                                               TRANSFORM_QUADRATIC};
 static const char *const test_basis_names[3] = {"haar", "linear", "quadratic"};
 
+/* Calls check(b, mode, dec, w, h, levels) for every basis (b indexes test_bases), boundary
+ * mode and decomposition, every size of sizes[0 .. count) and every level count from
+ * first_level to the most the size allows. */
+typedef void (*test_transform_case)(int b, transform_boundary mode, transform_decomposition dec,
+                                    int w, int h, int levels);
+static inline void test_each_transform(const int (*sizes)[2], size_t count, int first_level,
+                                       test_transform_case check) {
+  for (int b = 0; b < 3; b++)
+    for (int mode = 0; mode < 2; mode++)
+      for (int dec = 0; dec < 2; dec++)
+        for (size_t s = 0; s < count; s++) {
+          const int w = sizes[s][0], h = sizes[s][1];
+          const int most = transform_max_levels(w, h, (transform_boundary)mode);
+          for (int J = first_level; J <= most; J++)
+            check(b, (transform_boundary)mode, (transform_decomposition)dec, w, h, J);
+        }
+}
+
 /* The same transform planned with single-pass levels on one thread, and as the two-pass
  * reference (rows, then strips of columns, on two threads): the pair the fused-level
  * tests compare. Fails the test with the plan's message. */
