@@ -1,0 +1,12 @@
+# The Debian packages the fogpipe libraries build on, found once for the main build and for
+# the fuzz build (tests/fuzz/CMakeLists.txt), which needs no more than these. The main build
+# adds the GL, window and panel packages after them.
+find_package(PkgConfig REQUIRED)
+find_package(Threads REQUIRED)
+pkg_check_modules(OPENEXR REQUIRED IMPORTED_TARGET OpenEXR)
+pkg_check_modules(SPNG REQUIRED IMPORTED_TARGET spng)
+pkg_check_modules(FFTW3F REQUIRED IMPORTED_TARGET fftw3f)
+pkg_check_modules(INIH REQUIRED IMPORTED_TARGET inih)
+# Debian's OpenVDB ships only a find module (docs/platform.md).
+list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
+find_package(OpenVDB REQUIRED)
