@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <time.h>
 
 typedef struct bench_stage {
@@ -64,6 +65,48 @@ void bench_print_build(void) {
          __GNUC__, __GNUC_MINOR__);
 }
 
+/* The first folder level a run's --out made (bench_parse), and the path down to --out: what
+ * remove_unused_out_folder takes away again at exit when the stage wrote nothing into it
+ * (it failed before its first file), so a failed run leaves no empty folder behind. */
+static char made_first[4096], made_out[4096];
+
+static void remove_unused_out_folder(void) {
+  char level[4096];
+  snprintf(level, sizeof level, "%s", made_out);
+  /* rmdir removes only empty folders: from --out up to the first level this run made */
+  while (made_first[0] && rmdir(level) == 0 && strcmp(level, made_first) != 0) {
+    char *slash = strrchr(level, '/');
+    if (!slash || slash == level) break;
+    *slash = 0;
+  }
+}
+
+/* mkdir -p; *first_made (when not NULL, size 4096) gets the first level it made ("" if none). */
+static int make_folder(const char *path, char *first_made, char *error, int size) {
+  char buffer[4096];
+  snprintf(buffer, sizeof buffer, "%s", path);
+  if (first_made) first_made[0] = 0;
+  for (char *p = buffer + 1;; p++) {
+    char c = *p;
+    if (c == '/' || c == 0) {
+      *p = 0;
+      if (mkdir(buffer, 0777) == 0) {
+        if (first_made && !first_made[0]) snprintf(first_made, 4096, "%s", buffer);
+      } else if (errno != EEXIST) {
+        snprintf(error, (size_t)size, "%.900s: cannot create the folder (%s)", buffer,
+                 strerror(errno));
+        return 1;
+      }
+      *p = c;
+      if (!c) return 0;
+    }
+  }
+}
+
+int bench_make_folder(const char *path, char *error, int size) {
+  return make_folder(path, NULL, error, size);
+}
+
 void bench_print_gl(gl_context *ctx, int width, int height, int frames) {
   bench_print_build();
   printf("GL: %s, %s, %s; %dx%d, median of %d frames after 1 warm-up (glFinish before and "
@@ -99,7 +142,8 @@ int bench_parse(const bench_command *c, int argc, char **argv) {
     rows[n++] = (cli_option){.kind = CLI_SIZE, .name = "--size", .value = "WxH",
                              .target = &image->width, .help = size_help};
     rows[n++] = (cli_option){.kind = CLI_INT, .name = "--frames", .value = "N",
-                             .target = &image->frames, .min = 1, .max = 100000000,
+                             .target = &image->frames,
+                             .min = c->frames_min > 0 ? c->frames_min : 1, .max = 100000000,
                              .help = frames_help};
     if (!c->without_out)
       rows[n++] = (cli_option){.kind = CLI_TEXT, .name = "--out", .value = "DIR",
@@ -115,9 +159,13 @@ int bench_parse(const bench_command *c, int argc, char **argv) {
   int parsed = cli_parse(&spec, argc, argv, c->operands ? c->operands : &none, &count);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   char error[1024];
-  if (image && image->out_dir && bench_make_folder(image->out_dir, error, sizeof error)) {
-    fprintf(stderr, "fogpipe bench %s: %s\n", c->stage, error);
-    return 1;
+  if (image && image->out_dir) {
+    if (make_folder(image->out_dir, made_first, error, sizeof error)) {
+      fprintf(stderr, "fogpipe bench %s: %s\n", c->stage, error);
+      return 1;
+    }
+    snprintf(made_out, sizeof made_out, "%s", image->out_dir);
+    if (made_first[0]) atexit(remove_unused_out_folder);
   }
   return -1;
 }
@@ -166,22 +214,6 @@ int bench_open_scene(const char *stage, const char *config_path, scene_config *c
   return 1;
 }
 
-int bench_make_folder(const char *path, char *error, int size) {
-  char buffer[4096];
-  snprintf(buffer, sizeof buffer, "%s", path);
-  for (char *p = buffer + 1;; p++) {
-    char c = *p;
-    if (c == '/' || c == 0) {
-      *p = 0;
-      if (mkdir(buffer, 0777) != 0 && errno != EEXIST) {
-        snprintf(error, (size_t)size, "%.900s: cannot create the folder (%s)", buffer, strerror(errno));
-        return 1;
-      }
-      *p = c;
-      if (!c) return 0;
-    }
-  }
-}
 
 void bench_tau_errors(const float *gpu, const double *ref, size_t n, double *rmse,
                       double *max_error, size_t *where) {

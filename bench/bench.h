@@ -44,7 +44,8 @@ typedef struct bench_image_options {
  * --frames and --out rows first (their defaults, the values in *image, in the help), then
  * the stage's own rows. usage follows "fogpipe bench STAGE "; about and footer frame the
  * options in --help. Operands (at most max_operands, named operand) go to operands.
- * Creates image->out_dir when set. Returns -1 when the stage should run, else the
+ * Creates image->out_dir when set (and removes what it made at exit if the stage wrote
+ * nothing there). Returns -1 when the stage should run, else the
  * process's exit status (0 after --help, 2 for a bad command line, 1 when the folder
  * cannot be made). */
 typedef struct bench_command {
@@ -52,6 +53,7 @@ typedef struct bench_command {
   bench_image_options *image;      /* NULL: the stage takes no image options */
   bool without_out;                /* the image options but --out (a stage writing no files) */
   const char *frames_help, *out_help; /* the image rows' help (NULL: generic) */
+  int frames_min;                  /* the least --frames the stage measures with (0: 1) */
   const struct cli_option *options; /* the stage's own rows */
   int option_count;
   const char *operand;

@@ -134,7 +134,7 @@ int bench_pipeline(int argc, char **argv) {
   };
   const bench_command command = {
       .stage = "pipeline", .usage = "[options]", .image = &image, .without_out = true,
-      .frames_help = "measured frames per mode (at least 5; at most ~20 s each)",
+      .frames_help = "measured frames per mode (at least 5; at most ~20 s each)", .frames_min = 5,
       .about = "Per-stage ms (sim, transform, upload, render, frame; medians) and fps of a scene\n"
                "rendered headless through the whole pipeline, with the CPU stages in the worker\n"
                "thread and on the GL thread, with the camera still and turning. Last line:\n"
@@ -144,7 +144,7 @@ int bench_pipeline(int argc, char **argv) {
   int exit_status = bench_parse(&command, argc, argv);
   if (exit_status >= 0) return exit_status;
   const int width = image.width, height = image.height;
-  const int frames = image.frames < 5 ? 5 : image.frames;
+  const int frames = image.frames;
   int live_divisor = divisor_index < 0 ? 0 : 1 << divisor_index;
   scene_config cfg;
   gl_context *gl;
