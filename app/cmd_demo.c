@@ -51,7 +51,7 @@ static int record_instead(const char *config_path, int frames, const char *reaso
   printf("fogpipe demo: %s: recording %d frame%s of %s headless into %s instead\n", reason,
          frames, frames == 1 ? "" : "s", config_path, folder);
   fflush(stdout);
-  record_job job = {.command = "demo", .config_path = config_path, .frames = frames,
+  record_job job = {.command = "demo", .config_path = config_path, .frames = frames, .fps = 24,
                     .out = folder, .width = HEADLESS_WIDTH, .height = HEADLESS_HEIGHT,
                     .quiet = !isatty(fileno(stdout))};
   return record_run(&job);

@@ -25,7 +25,7 @@ static volatile sig_atomic_t interrupted;
 static void on_interrupt(int signal_number) { interrupted = signal_number; }
 
 int cmd_record(int argc, char **argv) {
-  record_job job = {.command = "record"};
+  record_job job = {.command = "record", .fps = 24};
   int frames[3] = {0, 0, 0}, size[2] = {0, 0};
   const cli_option options[] = {
       {.kind = CLI_RANGE, .name = "--frames", .value = "N|A-B", .target = frames, .min = 1,
@@ -36,6 +36,7 @@ int cmd_record(int argc, char **argv) {
       {.kind = CLI_TEXT, .name = "--out", .value = "DIR", .target = &job.out,
        .required = true, .help = "output folder, created if missing (required)"},
       {.kind = CLI_NUMBER, .name = "--fps", .value = "F", .target = &job.fps,
+       .given = &job.fps_given,
        .min = 1.0 / PIPELINE_MAX_FRAME_SECONDS, .max = 1000,
        .help = "frames per second of simulated time (default 24)"},
       {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
@@ -85,7 +86,7 @@ static void resume_hint(const record_job *job, char *text, size_t size) {
                          job->config_path, job->first_frame, job->frames, job->out)
               : snprintf(text, size, "fogpipe record %s --frames %d --out %s", job->config_path,
                          job->frames, job->out);
-  if (job->fps > 0) n += snprintf(text + n, size - (size_t)n, " --fps %g", job->fps);
+  if (job->fps_given) n += snprintf(text + n, size - (size_t)n, " --fps %g", job->fps);
   if (job->width > 0)
     n += snprintf(text + n, size - (size_t)n, " --size %dx%d", job->width, job->height);
   if (job->preview) n += snprintf(text + n, size - (size_t)n, " --preview %s", job->preview);
@@ -237,7 +238,7 @@ static int record_into(const record_job *job, recorder *rec) {
   int width, height;
   if (open_output(job, rec, &config, &width, &height)) return 1;
   /* What every frame carries in its header, and --resume checks frame by frame. */
-  const double fps = job->fps > 0 ? job->fps : 24.0;
+  const double fps = job->fps;
   snprintf(rec->identity, sizeof rec->identity, "scene %016llx size %dx%d fps %.17g",
            (unsigned long long)scene_config_fingerprint(&config), width, height, fps);
   const int first = job->first_frame > 0 ? job->first_frame : 1, last = job->frames;

@@ -14,7 +14,8 @@ typedef struct record_job {
   int first_frame;         /* the range first_frame..frames (farm jobs); 0: 1 */
   int frames;              /* the last frame (with first_frame 1: the frame count) */
   const char *out;
-  double fps;              /* 0: 24 */
+  double fps;              /* frames per second of simulated time (> 0; --fps, 24) */
+  bool fps_given;          /* --fps was on the command line (the resume hint repeats it) */
   int width, height;       /* 0: the config's size */
   bool resume;
   const char *preview;     /* video path or NULL */

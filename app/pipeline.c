@@ -624,11 +624,11 @@ pipeline *pipeline_create(const pipeline_desc *desc, fog_error *err) {
   }
   p->width = desc->width > 0 ? desc->width : p->config.width;
   p->height = desc->height > 0 ? desc->height : p->config.height;
-  p->frame_seconds = desc->frame_seconds > 0 ? desc->frame_seconds : 1.0 / 24.0;
-  if (!(p->frame_seconds <= PIPELINE_MAX_FRAME_SECONDS)) {
+  p->frame_seconds = desc->frame_seconds;
+  if (!(p->frame_seconds > 0 && p->frame_seconds <= PIPELINE_MAX_FRAME_SECONDS)) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "a frame of %g s of simulated time: expected at most %g s (240 steps of 1/24 s)",
-             p->frame_seconds, PIPELINE_MAX_FRAME_SECONDS);
+             "a frame of %g s of simulated time: expected more than 0 and at most %g s (240 "
+             "steps of 1/24 s)", p->frame_seconds, PIPELINE_MAX_FRAME_SECONDS);
     free(p);
     return NULL;
   }

@@ -40,8 +40,8 @@ typedef struct pipeline_desc {
   const scene_config *config; /* the scene (copied; the pipeline keeps its own) */
   int width, height;          /* render size; 0: the config's image size */
   bool synchronous;           /* run sim + transform on the GL thread (default: worker) */
-  double frame_seconds;       /* simulated seconds per frame, up to PIPELINE_MAX_FRAME_SECONDS;
-                               * 0: 1/24 (a frame rate, not a physical quantity) */
+  double frame_seconds;       /* simulated seconds per frame, > 0 and at most
+                               * PIPELINE_MAX_FRAME_SECONDS (1/24: a recording's default) */
   bool time_passes;           /* also time the scene pass alone (one extra glFinish) */
   /* A live view (the demo): the sun's optical-depth volume is refreshed every few steps
    * (and at once when the sun or the shadow setting changes), not every step. false (a

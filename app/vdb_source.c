@@ -19,7 +19,10 @@ void vdb_source_destroy(vdb_source *source) {
 
 int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, fog_error *err) {
   *source = (vdb_source){.cached = {-1, -1}};
-  source->fps = desc->fps > 0 ? desc->fps : 24.0;
+  if (!(desc->fps > 0 && desc->fps < INFINITY))
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: playback at %g frames per second: "
+                    "expected a positive rate", desc->path, desc->fps);
+  source->fps = desc->fps;
   source->loop = desc->loop;
   vdb_sequence seq;
   const char *input = desc->path;

@@ -28,7 +28,7 @@ typedef struct vdb_source_desc {
   const char *path;     /* a file, a folder, a #### or %04d pattern or a glob */
   const char *grid;     /* NULL: "density" */
   vdb_up_axis up;       /* 0: Z-up (Blender / Mantaflow) */
-  double fps;           /* frames per second of playback; 0: 24 */
+  double fps;           /* frames per second of playback (> 0; configs: [fog] vdb_fps, 24) */
   int resolution;       /* fogmap cells along the longer side; 0: native (one per column) */
   int loop;             /* 1: time wraps around (last frame blends into the first);
                            0: times before the first / after the last frame hold it */

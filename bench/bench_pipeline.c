@@ -84,6 +84,7 @@ static int measure(const scene_config *cfg, int width, int height, int fog_divis
     for (int k = 0; k < PIPELINE_TIMING_FIELDS; k++)
       s[m].stage[k] = storage + (size_t)(PIPELINE_TIMING_FIELDS * m + k) * frames;
     p[m] = pipeline_create(&(pipeline_desc){.config = cfg, .width = width, .height = height,
+                                            .frame_seconds = 1.0 / 24.0,
                                             .synchronous = m == 1, .time_passes = true,
                                             .live = true},
                            &err);

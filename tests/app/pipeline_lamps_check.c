@@ -28,6 +28,7 @@ static void sixteen_lamps(pipeline_params *params) {
 static int live_frame(const scene_config *cfg, const camera *cam, int kind, bool lamps,
                       bool live, float *inscatter, bool *dropped, fog_error *err) {
   pipeline *p = pipeline_create(&(pipeline_desc){.config = cfg, .width = W, .height = H,
+                                                 .frame_seconds = 1.0 / 24.0,
                                                  .synchronous = true, .live = live}, err);
   if (!p) return 1;
   pipeline_params params = pipeline_get_params(p);

@@ -23,7 +23,9 @@ enum { W = 96, H = 54 };
 static pipeline *make(const scene_config *cfg) {
   fog_error err = {0};
   pipeline *p = pipeline_create(
-      &(pipeline_desc){.config = cfg, .width = W, .height = H, .synchronous = true}, &err);
+      &(pipeline_desc){.config = cfg, .width = W, .height = H, .frame_seconds = 1.0 / 24.0,
+                       .synchronous = true},
+      &err);
   if (!p) fprintf(stderr, "pipeline_create: %s\n", err.message);
   return p;
 }

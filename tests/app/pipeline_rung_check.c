@@ -70,10 +70,9 @@ int main(void) {
   CHECK(gl != NULL, "no GL context");
   if (!gl) return test_finish("pipeline_rung_check");
   fog_error perr = {0};
-  pipeline *p = pipeline_create(&(pipeline_desc){.config = &cfg, .width = W, .height = H,
-                                                 .synchronous = true}, &perr);
-  pipeline *plain = pipeline_create(&(pipeline_desc){.config = &cfg, .width = W, .height = H,
-                                                     .synchronous = true}, &perr);
+  const pipeline_desc desc = {.config = &cfg, .width = W, .height = H,
+                              .frame_seconds = 1.0 / 24.0, .synchronous = true};
+  pipeline *p = pipeline_create(&desc, &perr), *plain = pipeline_create(&desc, &perr);
   CHECK(p && plain, "pipeline_create: %s", perr.message);
   static float tau[W * H], depth[W * H], rgba[4 * W * H], plain_rgba[4 * W * H];
   static float inscatter[3 * W * H];

@@ -36,10 +36,11 @@ static void check_paused_change(const scene_config *cfg, const scene_config *bor
                                 const camera *cam,
                                 void (*change)(pipeline_params *), const char *what) {
   fog_error perr = {0};
-  pipeline *changed_p = pipeline_create(&(pipeline_desc){.config = cfg, .width = W, .height = H,
-                                                         .synchronous = true}, &perr);
-  pipeline *born = pipeline_create(&(pipeline_desc){.config = born_cfg, .width = W,
-                                                    .height = H, .synchronous = true}, &perr);
+  pipeline_desc desc = {.config = cfg, .width = W, .height = H, .frame_seconds = 1.0 / 24.0,
+                        .synchronous = true};
+  pipeline *changed_p = pipeline_create(&desc, &perr);
+  desc.config = born_cfg;
+  pipeline *born = pipeline_create(&desc, &perr);
   CHECK(changed_p && born, "pipeline_create: %s", perr.message);
   if (changed_p && born) {
     static float a[4 * W * H], b[4 * W * H], before[4 * W * H];
@@ -104,7 +105,8 @@ int main(void) {
   const scene_config shadowed = cfg;
   cfg.shadow.fog_self_shadow = 0, cfg.shadow.shafts = 0;
   fog_error perr = {0};
-  const pipeline_desc desc = {.config = &cfg, .width = W, .height = H, .synchronous = true};
+  const pipeline_desc desc = {.config = &cfg, .width = W, .height = H,
+                              .frame_seconds = 1.0 / 24.0, .synchronous = true};
   pipeline *moved = pipeline_create(&desc, &perr), *still = pipeline_create(&desc, &perr);
   CHECK(moved && still, "pipeline_create: %s", perr.message);
   if (!moved || !still) return test_finish("pipeline_sun_check");

@@ -323,8 +323,9 @@ int main(void) {
   fog_error cerr;
   CHECK(scene_config_load("configs/rbf_fog_banks.ini", &cfg, &cerr) == 0, "%s", cerr.message);
   fog_error perr = {0};
-  pipeline *p = pipeline_create(&(pipeline_desc){.config = &cfg, .width = 32, .height = 18},
-                                &perr);
+  pipeline *p = pipeline_create(
+      &(pipeline_desc){.config = &cfg, .width = 32, .height = 18, .frame_seconds = 1.0 / 24.0},
+      &perr);
   CHECK(p == NULL, "the pipeline accepted model = rbf");
   if (p) pipeline_destroy(p);
   char want[128];
@@ -332,6 +333,18 @@ int main(void) {
            cfg.fog.model_line);
   CHECK(cfg.fog.model_line > 0 && strstr(perr.message, want) == perr.message,
         "pipeline error '%s' does not start with '%s'", perr.message, want);
+  /* A frame's simulated time has no "0 means the default": 0 and past the most are refused. */
+  CHECK(scene_config_load("configs/default.ini", &cfg, &cerr) == 0, "%s", cerr.message);
+  const double bad_seconds[2] = {0.0, 2.0 * PIPELINE_MAX_FRAME_SECONDS};
+  for (int k = 0; k < 2; k++) {
+    p = pipeline_create(&(pipeline_desc){.config = &cfg, .width = 32, .height = 18,
+                                         .frame_seconds = bad_seconds[k]},
+                        &perr);
+    CHECK(p == NULL && perr.code == FOG_ERR_INVALID_ARGUMENT &&
+              strstr(perr.message, "expected more than 0 and at most"),
+          "frame_seconds %g: %s", bad_seconds[k], p ? "accepted" : perr.message);
+    if (p) pipeline_destroy(p);
+  }
   rmdir(dir);
   return test_finish("test_render_fog_models");
 }

@@ -48,6 +48,10 @@ static int load_frame(const vdb_source *s, int number, fogmap *out) {
 static void test_sequence(void) {
   vdb_source s;
   fog_error err = {0};
+  /* a playback rate is given, never "0 means 24" */
+  CHECK(vdb_source_open(&s, &(vdb_source_desc){.path = PATTERN, .fps = 0}, &err) != 0 &&
+            strstr(err.message, "expected a positive rate"),
+        "fps 0: %s", err.message);
   int status = vdb_source_open(&s, &(vdb_source_desc){.path = PATTERN, .fps = 24}, &err);
   CHECK(status == 0, "open: %s", err.message);
   if (status) return;
