@@ -13,16 +13,37 @@ static const cli_option *find(const cli_spec *spec, const char *name) {
   return NULL;
 }
 
-static int choice_error(const cli_spec *spec, const cli_option *o, const char *text) {
-  char expected[256] = "";
+/* "a, b or c" of a NULL-terminated list, into text. */
+static void list_text(const char *const *items, char *text, size_t size) {
   size_t used = 0;
-  for (int c = 0; o->choices[c]; c++) {
-    const char *sep = !c ? "" : o->choices[c + 1] ? ", " : " or ";
-    int n = snprintf(expected + used, sizeof expected - used, "%s%s", sep, o->choices[c]);
-    if (n < 0 || (size_t)n >= sizeof expected - used) break;
+  text[0] = 0;
+  for (int c = 0; items[c]; c++) {
+    const char *sep = !c ? "" : items[c + 1] ? ", " : " or ";
+    int n = snprintf(text + used, size - used, "%s%s", sep, items[c]);
+    if (n < 0 || (size_t)n >= size - used) break;
     used += (size_t)n;
   }
+}
+
+static int choice_error(const cli_spec *spec, const cli_option *o, const char *text) {
+  char expected[256];
+  list_text(o->choices, expected, sizeof expected);
   return cli_usage_error(spec->command, "%s '%s': expected %s", o->name, text, expected);
+}
+
+/* An output file's name: one of the row's extensions, and not a folder. */
+static int take_output(const cli_spec *spec, const cli_option *o, const char *text) {
+  bool known = false;
+  for (int e = 0; o->extensions[e] && !known; e++) known = cli_ends_with(text, o->extensions[e]);
+  if (!known) {
+    char expected[256];
+    list_text(o->extensions, expected, sizeof expected);
+    return cli_usage_error(spec->command, "%s '%s': expected a %s file name", o->name, text,
+                           expected);
+  }
+  if (cli_output_file(spec->command, o->name, text)) return 2;
+  *(const char **)o->target = text;
+  return 0;
 }
 
 /* One option's value into its target: 0, or 2 with the message printed. */
@@ -50,6 +71,7 @@ static int take_value(const cli_spec *spec, const cli_option *o, const char *tex
       if (!*text) return cli_usage_error(cmd, "%s: expected a value, got ''", o->name);
       *(const char **)o->target = text;
       return 0;
+    case CLI_OUTPUT: return take_output(spec, o, text);
     case CLI_CHOICE:
       for (int c = 0; o->choices[c]; c++)
         if (!strcmp(text, o->choices[c])) return *ints = c, 0;

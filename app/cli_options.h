@@ -19,6 +19,8 @@ typedef enum cli_kind {
   CLI_RANGE,   /* A or A-B in [min, max]: ((int *)target)[0] first, [1] last, [2] 1 for
                 * A alone (first = last = A), 0 for A-B */
   CLI_TEXT,    /* *(const char **)target = the text (a path, a name) */
+  CLI_OUTPUT,  /* *(const char **)target = a file name to write: it ends in one of
+                * extensions (NULL-terminated: ".exr", ".png") and is no existing folder */
   CLI_CHOICE,  /* *(int *)target = the index of the text in choices (NULL-terminated) */
   CLI_CUSTOM,  /* parse(command, name, text, target): 0, or 2 with its message printed */
 } cli_kind;
@@ -31,6 +33,7 @@ typedef struct cli_option {
   void *target;
   double min, max;                 /* CLI_INT, CLI_NUMBER, CLI_RANGE */
   const char *const *choices;      /* CLI_CHOICE */
+  const char *const *extensions;   /* CLI_OUTPUT */
   int (*parse)(const char *command, const char *option, const char *text, void *target);
   bool *given; /* optional: set when the option was on the command line */
   bool required; /* cli_parse refuses a line without it: "--out DIR is required" */

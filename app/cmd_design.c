@@ -87,7 +87,8 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
       {.kind = CLI_SECTION, .name = "output:"},
       {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
        .required = true, .help = "fogmap size in cells (required)"},
-      {.kind = CLI_TEXT, .name = "--out", .value = "FILE", .target = &o->out,
+      {.kind = CLI_OUTPUT, .name = "--out", .value = "FILE", .target = &o->out,
+       .extensions = (const char *const[]){".exr", ".png", NULL},
        .required = true, .help = ".exr: one float channel \"Y\" (exactly what fogmap_load reads);\n"
                ".png: 16-bit grey, density / png-max * 65535 (required)"},
       {.kind = CLI_FLAG, .name = "--half", .target = &half,
@@ -142,9 +143,6 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
   o->width = size[0], o->height = size[1];
   if (!o->perlin && !o->random_blobs && !o->blob_count)
     return cli_usage_error("design", "say what to design: --perlin, --blobs N and/or --blob X,Z,SIGMA,PEAK");
-  if (!cli_ends_with(o->out, ".png") && !cli_ends_with(o->out, ".exr"))
-    return cli_usage_error("design", "--out '%s': the name must end in .exr or .png", o->out);
-  if (cli_output_file("design", "--out", o->out)) return 2;
   if (o->random_blobs + o->blob_count > max_blobs)
     return cli_usage_error("design", "more than 256 blobs");
   return 0;

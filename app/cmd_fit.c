@@ -48,22 +48,6 @@ static int parse_tolerances(const char *command, const char *option, const char 
   return 0;
 }
 
-static int parse_ini(const char *command, const char *option, const char *text, void *target) {
-  if (!cli_ends_with(text, ".ini"))
-    return cli_usage_error(command, "%s '%s': expected a .ini file", option, text);
-  if (cli_output_file(command, option, text)) return 2;
-  *(const char **)target = text;
-  return 0;
-}
-
-static int parse_png(const char *command, const char *option, const char *text, void *target) {
-  if (!cli_ends_with(text, ".png"))
-    return cli_usage_error(command, "%s '%s': expected a .png file", option, text);
-  if (cli_output_file(command, option, text)) return 2;
-  *(const char **)target = text;
-  return 0;
-}
-
 static int parse(int argc, char **argv, fit_options *o) {
   *o = (fit_options){.density_scale = 1.0, .frame = -1,
                      .desc = {.rays_per_side = FIT_RAYS_PER_SIDE, .sample_side = FIT_SAMPLE_SIDE,
@@ -79,13 +63,13 @@ static int parse(int argc, char **argv, fit_options *o) {
       {.kind = CLI_CHOICE, .name = "--by", .value = "max|mean", .target = &by_mean, .choices = by,
        .help = "the tolerance bounds each rung's max error (default) or\n"
                "its mean error over the rays"},
-      {.kind = CLI_CUSTOM, .name = "--out", .value = "FILE.ini", .target = &o->out,
-       .parse = parse_ini,
+      {.kind = CLI_OUTPUT, .name = "--out", .value = "FILE.ini", .target = &o->out,
+       .extensions = (const char *const[]){".ini", NULL},
        .help = "write the scene with the chosen model (nothing is written\n"
                "when none is within T); a fogmap projected from an\n"
                "analytic fog goes beside it as FILE.fogmap.exr"},
-      {.kind = CLI_CUSTOM, .name = "--chart", .value = "FILE.png", .target = &o->chart,
-       .parse = parse_png, .help = "error against ms, one series per family (and FILE.csv)"},
+      {.kind = CLI_OUTPUT, .name = "--chart", .value = "FILE.png", .target = &o->chart,
+       .extensions = (const char *const[]){".png", NULL}, .help = "error against ms, one series per family (and FILE.csv)"},
       {.kind = CLI_SECTION, .name = "VDB input:"},
       {.kind = CLI_TEXT, .name = "--grid", .value = "NAME", .target = &o->grid,
        .help = "float grid (default density)"},

@@ -53,7 +53,8 @@ int cmd_render(int argc, char **argv) {
   int size[2] = {0, 0}, vdb_frame = -2;
   double time = 0.0;
   const cli_option options[] = {
-      {.kind = CLI_TEXT, .name = "--out", .value = "FILE", .target = &out,
+      {.kind = CLI_OUTPUT, .name = "--out", .value = "FILE", .target = &out,
+       .extensions = (const char *const[]){".exr", ".png", NULL},
        .required = true, .help = "output image: .exr (channels R G B A as half; transmittance,\n"
                "depth (and Z, the same), inscatter.R/G/B as float; depth =\n"
                "distance along the view ray to the first surface, the far plane\n"
@@ -83,11 +84,6 @@ int cmd_render(int argc, char **argv) {
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   int width = size[0], height = size[1];
   bool exr = cli_ends_with(out, ".exr");
-  if (!exr && !cli_ends_with(out, ".png")) {
-    fprintf(stderr, "fogpipe render: --out '%s': expected a .exr or .png file name\n", out);
-    return 2;
-  }
-  if (cli_output_file("render", "--out", out)) return 2;
 
   scene_config cfg;
   fog_error cfg_err;

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "app/cli.h"
 #include "app/cli_options.h"
@@ -148,5 +149,24 @@ int main(void) {
   const cli_spec none = {.command = "none", CLI_OPTIONS(one_options)};
   CHECK(cli_parse_one(&none, 2, without, NULL) == 0 && cli_parse_one(&none, 3, with, NULL) == 2,
         "no operands taken: NULL target, an operand refused");
+
+  /* CLI_OUTPUT: a file name with one of the row's extensions (any case), no existing folder */
+  const char *image = NULL;
+  const cli_option out_rows[] = {{.kind = CLI_OUTPUT, .name = "--out", .value = "FILE",
+                                  .target = &image,
+                                  .extensions = (const char *const[]){".exr", ".png", NULL}}};
+  const cli_spec out_spec = {.command = "out", CLI_OPTIONS(out_rows)};
+  char *good[] = {"out", "--out", "/tmp/fogpipe-cli-image.PNG"};
+  char *wrong[] = {"out", "--out", "/tmp/fogpipe-cli-image.jpg"};
+  char scratch[] = "/tmp/fogpipe-cli-options-XXXXXX", dir_exr[64];
+  CHECK(test_scratch_folder(scratch), "scratch folder");
+  snprintf(dir_exr, sizeof dir_exr, "%s/d.exr", scratch);
+  CHECK(mkdir(dir_exr, 0700) == 0, "mkdir %s", dir_exr);
+  char *folder[] = {"out", "--out", dir_exr};
+  CHECK(cli_parse_one(&out_spec, 3, good, NULL) == 0 && image == good[2], "a .PNG name: '%s'",
+        image ? image : "(none)");
+  CHECK(cli_parse_one(&out_spec, 3, wrong, NULL) == 2, "a .jpg name was taken");
+  CHECK(cli_parse_one(&out_spec, 3, folder, NULL) == 2, "a folder d.exr was taken as a file");
+  test_remove_tree(scratch);
   return test_finish("test_cli_options");
 }
