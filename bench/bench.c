@@ -73,10 +73,12 @@ static char made_first[4096], made_out[4096];
 static void remove_unused_out_folder(void) {
   char level[4096];
   snprintf(level, sizeof level, "%s", made_out);
-  /* rmdir removes only empty folders: from --out up to the first level this run made */
-  while (made_first[0] && rmdir(level) == 0 && strcmp(level, made_first) != 0) {
+  /* rmdir removes only empty folders: from --out up to the first level this run made,
+   * stopping at one that holds something (a level past a failed mkdir is passed over) */
+  while (made_first[0]) {
+    if (rmdir(level) != 0 && (errno == ENOTEMPTY || errno == EEXIST)) break;
     char *slash = strrchr(level, '/');
-    if (!slash || slash == level) break;
+    if (!strcmp(level, made_first) || !slash || slash == level) break;
     *slash = 0;
   }
 }
@@ -85,6 +87,7 @@ static void remove_unused_out_folder(void) {
 static int make_folder(const char *path, char *first_made, char *error, int size) {
   char buffer[4096];
   snprintf(buffer, sizeof buffer, "%s", path);
+  for (size_t n = strlen(buffer); n > 1 && buffer[n - 1] == '/'; n--) buffer[n - 1] = 0;
   if (first_made) first_made[0] = 0;
   for (char *p = buffer + 1;; p++) {
     char c = *p;
@@ -160,11 +163,13 @@ int bench_parse(const bench_command *c, int argc, char **argv) {
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   char error[1024];
   if (image && image->out_dir) {
-    if (make_folder(image->out_dir, made_first, error, sizeof error)) {
+    snprintf(made_out, sizeof made_out, "%s", image->out_dir);
+    for (size_t n = strlen(made_out); n > 1 && made_out[n - 1] == '/'; n--) made_out[n - 1] = 0;
+    if (make_folder(made_out, made_first, error, sizeof error)) {
       fprintf(stderr, "fogpipe bench %s: %s\n", c->stage, error);
+      remove_unused_out_folder(); /* the levels made before the one that failed */
       return 1;
     }
-    snprintf(made_out, sizeof made_out, "%s", image->out_dir);
     if (made_first[0]) atexit(remove_unused_out_folder);
   }
   return -1;
@@ -213,7 +218,6 @@ int bench_open_scene(const char *stage, const char *config_path, scene_config *c
   fprintf(stderr, "fogpipe bench %s: %s\n", stage, err.message);
   return 1;
 }
-
 
 void bench_tau_errors(const float *gpu, const double *ref, size_t n, double *rmse,
                       double *max_error, size_t *where) {

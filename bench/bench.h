@@ -99,12 +99,12 @@ struct scene_geometry;
 struct camera;
 int bench_valley_scene(struct scene_geometry *geo, struct camera *cam, fog_error *err);
 
-/* The scene config at config_path loaded into *cfg and a headless GL context for it
- * (gl_context_destroy when done): 0, or 1 with `fogpipe bench STAGE: ...` printed. */
 struct scene_config;
 /* configs/NAME of the source tree, loaded into a new *cfg (the caller free()s it, also after
  * a failure): 0, or 1 with err filled. */
 int bench_load_source_config(const char *name, struct scene_config **cfg, fog_error *err);
+/* The scene config at config_path loaded into *cfg and a headless GL context for it
+ * (gl_context_destroy when done): 0, or 1 with `fogpipe bench STAGE: ...` printed. */
 struct gl_context;
 int bench_open_scene(const char *stage, const char *config_path, struct scene_config *cfg,
                      struct gl_context **gl);

@@ -817,6 +817,7 @@ int bench_render(int argc, char **argv) {
 
 out_of_memory:
   fog_fail(&rerr, FOG_ERR_OUT_OF_MEMORY, "out of memory");
+  goto done;
 transform_failed:
   fog_error_wrap(&rerr, &terr, "transform: ");
 done:

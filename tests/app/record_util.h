@@ -133,7 +133,6 @@ static inline int record_count_files(const char *out, int *frames) {
   return others;
 }
 
-
 static inline void record_sleep_ms(int ms) {
   struct timespec ts = {.tv_sec = ms / 1000, .tv_nsec = (long)(ms % 1000) * 1000000L};
   nanosleep(&ts, NULL);

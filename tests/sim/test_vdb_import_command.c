@@ -64,7 +64,8 @@ int main(void) {
            "--resolution 50 --out '%s' --name gf", bin, out);
   int status = run(cmd, errors, sizeof errors);
   CHECK(status == 0, "import failed (%d): %s", status, errors);
-  CHECK(test_folder_entries(out) == 10, "%d files in %s, expected 9 EXR + 1 ini", test_folder_entries(out), out);
+  CHECK(test_folder_entries(out) == 10, "%d files in %s, expected 9 EXR + 1 ini",
+        test_folder_entries(out), out);
   char ini[600], value[8192];
   snprintf(ini, sizeof ini, "%s/gf.ini", out);
   double cell = 0, thickness = 0;
