@@ -359,10 +359,8 @@ int bench_render(int argc, char **argv) {
   /* ---- the fogmap, its full grid per basis and the linear LOD pyramid ---- */
   fogmap map = {0};
   fog_error serr;
-  if (fogmap_load(fogmap_path, &(fogmap_load_desc){0}, &map, &serr)) {
-    fprintf(stderr, "fogpipe bench render: %s\n", serr.message);
-    return 1;
-  }
+  if (fogmap_load(fogmap_path, &(fogmap_load_desc){0}, &map, &serr))
+    return bench_report("render", 1, &serr);
   int status = 1;
   fog_error terr = {0};
   fogmap ground = {0};
