@@ -69,7 +69,8 @@ static int parse(int argc, char **argv, fit_options *o) {
                "when none is within T); a fogmap projected from an\n"
                "analytic fog goes beside it as FILE.fogmap.exr"},
       {.kind = CLI_OUTPUT, .name = "--chart", .value = "FILE.png", .target = &o->chart,
-       .extensions = (const char *const[]){".png", NULL}, .help = "error against ms, one series per family (and FILE.csv)"},
+       .extensions = (const char *const[]){".png", NULL},
+       .help = "error against ms, one series per family (and FILE.csv)"},
       {.kind = CLI_SECTION, .name = "VDB input:"},
       {.kind = CLI_TEXT, .name = "--grid", .value = "NAME", .target = &o->grid,
        .help = "float grid (default density)"},
