@@ -9,6 +9,38 @@
 #include "render/render.h"
 #include "sim/sim.h"
 
+/* A heightmap is one channel of heights. A grey image saved with alpha, or as RGB(A) whose
+ * colour channels agree (as image editors often write it), is that channel; an RGB image
+ * whose channels differ is refused, naming a pixel where they do. */
+static int load_heights(const char *path, fogmap *map, fog_error *err) {
+  fog_error first;
+  if (!fogmap_load(path, &(fogmap_load_desc){0}, map, &first)) return 0;
+  fog_error ignored;
+  if (!fogmap_load(path, &(fogmap_load_desc){.channel = "grey"}, map, &ignored)) return 0;
+  if (fogmap_load(path, &(fogmap_load_desc){.channel = "R"}, map, &ignored))
+    return fog_error_pass(err, &first); /* not a colour image: the first reason stands */
+  static const char *const others[2] = {"G", "B"};
+  for (int k = 0; k < 2; k++) {
+    fogmap other;
+    if (fogmap_load(path, &(fogmap_load_desc){.channel = others[k]}, &other, err)) {
+      fogmap_destroy(map);
+      return 1;
+    }
+    size_t n = (size_t)map->width * map->height, i = 0;
+    while (i < n && other.density[i] == map->density[i]) i++;
+    fogmap_destroy(&other);
+    if (i < n) {
+      fog_fail(err, FOG_ERR_BAD_FILE,
+               "%s: its R and %s channels differ at pixel (%d, %d): expected a grey image "
+               "(one channel of heights)", path, others[k], (int)(i % (size_t)map->width),
+               (int)(i / (size_t)map->width));
+      fogmap_destroy(map);
+      return 1;
+    }
+  }
+  return 0;
+}
+
 int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *width, int *height,
                                 fog_error *err) {
   *heights = NULL;
@@ -17,7 +49,7 @@ int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *w
   fogmap map;
   fog_error serr;
   /* A 16-bit grey PNG reads as value / 65535: heights in [0, 1]. */
-  if (fogmap_load(cfg->terrain.heightmap, &(fogmap_load_desc){0}, &map, &serr)) {
+  if (load_heights(cfg->terrain.heightmap, &map, &serr)) {
     fog_error_wrap(err, &serr, "%.200s:%d: [terrain] heightmap: ", cfg->path,
                    cfg->terrain.heightmap_line);
     return 1;

@@ -61,7 +61,8 @@ int render_frame(const scene_config *cfg, int width, int height, const frame_pix
                  render_frame_info *info, fog_error *err);
 
 /* The heightmap of cfg (if any) as heights in [0, 1]: *heights is malloc'd (NULL and
- * sizes 0 for a procedural terrain). */
+ * sizes 0 for a procedural terrain). A grey image may come with alpha or as RGB(A) whose
+ * colour channels agree; one whose colour channels differ is refused. */
 int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *width, int *height,
                                 fog_error *err);
 

@@ -1,0 +1,74 @@
+/* A heightmap is one channel of heights (app/render_frame.h): a grey PNG and the same grey
+ * saved as RGB and as RGBA with equal colour channels give the same heights, byte for byte;
+ * an RGB PNG whose channels differ is refused naming the config line, the file and a pixel
+ * where they differ. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/config.h"
+#include "app/render_frame.h"
+#include "sim/sim.h"
+#include "test_util.h"
+
+enum { W = 9, H = 7 };
+
+static char dir[] = "/tmp/fogpipe-heightmap-XXXXXX";
+
+/* Writes PNG `name` of `channels` (1: the grey heights; 3, 4: copies of them in every
+ * channel, with pixel (5, 2)'s G raised by g_off) and a config naming it, and loads the
+ * heightmap: the load's status, its heights into *out and its message into err. */
+static int load(const char *name, int channels, const float *grey, float g_off, float **out,
+                int *w, int *h, fog_error *err) {
+  float pixels[W * H * 4];
+  for (int i = 0; i < W * H; i++)
+    for (int c = 0; c < channels; c++)
+      pixels[i * channels + c] = grey[i];
+  if (channels >= 3) pixels[(2 * W + 5) * channels + 1] += g_off;
+  char png[256], ini[256], text[512];
+  snprintf(png, sizeof png, "%s/%s.png", dir, name);
+  snprintf(ini, sizeof ini, "%s/%s.ini", dir, name);
+  fog_error werr;
+  CHECK(image_write_png(png, W, H, channels, pixels, &werr) == 0, "%s", werr.message);
+  snprintf(text, sizeof text, "; %s\n[terrain]\nheightmap = %s\n", name, png);
+  FILE *f = fopen(ini, "w");
+  CHECK(f != NULL, "cannot write %s", ini);
+  if (!f) return 1;
+  fputs(text, f);
+  fclose(f);
+  scene_config cfg;
+  CHECK(scene_config_load(ini, &cfg, err) == 0, "%s: %s", ini, err->message);
+  return render_frame_load_heightmap(&cfg, out, w, h, err);
+}
+
+int main(void) {
+  if (!test_scratch_folder(dir)) return 1;
+  float grey[W * H];
+  for (int i = 0; i < W * H; i++) grey[i] = (float)((i * 37) % 256) / 255.0f;
+  float *want = NULL, *got = NULL;
+  int w, h;
+  fog_error err = {0};
+  CHECK(load("grey", 1, grey, 0.0f, &want, &w, &h, &err) == 0 && w == W && h == H,
+        "grey PNG: %s", err.message);
+  const int colour[2] = {3, 4};
+  for (int k = 0; k < 2 && want; k++) {
+    char name[16];
+    snprintf(name, sizeof name, "colour%d", colour[k]);
+    got = NULL;
+    CHECK(load(name, colour[k], grey, 0.0f, &got, &w, &h, &err) == 0 && w == W && h == H &&
+              !memcmp(got, want, sizeof(float) * W * H),
+          "%d channels with R = G = B: %s", colour[k], got ? "other heights" : err.message);
+    free(got);
+    got = NULL;
+    snprintf(name, sizeof name, "tinted%d", colour[k]);
+    int status = load(name, colour[k], grey, 0.2f, &got, &w, &h, &err);
+    CHECK(status != 0 && got == NULL && strstr(err.message, "[terrain] heightmap: ") &&
+              strstr(err.message, name) && strstr(err.message, "differ at pixel (5, 2)"),
+          "%d channels, G raised at (5, 2): %s", colour[k], status ? err.message : "accepted");
+    free(got);
+  }
+  free(want);
+  test_remove_tree(dir);
+  return test_finish("test_heightmap_channels");
+}
