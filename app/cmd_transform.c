@@ -157,7 +157,8 @@ static int run_forward(const char *in, const char *channel, const char *dir,
                        transform_desc desc) {
   fogmap map;
   fog_error serr;
-  if (fogmap_load(in, &(fogmap_load_desc){.channel = channel}, &map, &serr))
+  if (fogmap_load(in, &(fogmap_load_desc){.channel = channel, .channel_setting = "--channel"},
+                  &map, &serr))
     return cli_fail("transform", "%s", serr.message);
   desc.width = map.width, desc.height = map.height;
   transform_plan *plan = NULL;

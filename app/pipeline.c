@@ -230,7 +230,8 @@ static int make_base(const scene_config *cfg, fogmap *base, fog_error *err) {
   fog_error serr = {0};
   if (cfg->fog.fogmap[0]) {
     fogmap loaded = {0};
-    fogmap_load_desc desc = {.channel = cfg->fog.channel[0] ? cfg->fog.channel : NULL};
+    fogmap_load_desc desc = {.channel = cfg->fog.channel[0] ? cfg->fog.channel : NULL,
+                             .channel_setting = "[fog] channel"};
     if (fogmap_load(cfg->fog.fogmap, &desc, &loaded, &serr))
       return fog_error_wrap(err, &serr, "%.200s:%d: [fog] fogmap: ", cfg->path,
                             cfg->fog.fogmap_line);
@@ -390,7 +391,8 @@ static int load_sequence_frame(pipeline *p, long n, fogmap *map, fog_error *err)
   fogmap loaded = {0};
   fog_error serr = {0};
   /* the config's channel, as render reads the sequence's first frame */
-  const fogmap_load_desc desc = {.channel = cfg->fog.channel[0] ? cfg->fog.channel : NULL};
+  const fogmap_load_desc desc = {.channel = cfg->fog.channel[0] ? cfg->fog.channel : NULL,
+                                 .channel_setting = "[fog] channel"};
   if (fogmap_load(path, &desc, &loaded, &serr))
     return fog_error_wrap(err, &serr, "%s:%d: [fog] sequence: frame %ld: ", cfg->path,
                           cfg->fog.sequence_line, n);

@@ -492,7 +492,8 @@ static int render_file_fog(render_fog *fog, const scene_config *cfg, fog_error *
   const int line = baked ? f->sequence_line : f->fogmap_line;
   fogmap map = {0};
   fog_error serr;
-  fogmap_load_desc load = {.channel = f->channel[0] ? f->channel : NULL};
+  fogmap_load_desc load = {.channel = f->channel[0] ? f->channel : NULL,
+                           .channel_setting = "[fog] channel"};
   if (fogmap_load(path, &load, &map, &serr)) {
     fog_error_wrap(err, &serr, "%.200s:%d: [fog] %s: ", cfg->path, line, key);
     return 1;

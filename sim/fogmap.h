@@ -28,6 +28,9 @@ typedef struct fogmap_load_desc {
    * PNG, grey+alpha uses grey only if named "grey"), or loading fails naming the
    * channels that exist. */
   const char *channel;
+  /* Where the caller's user names the channel ("[fog] channel", "--channel"): that error
+   * says so. NULL: the caller offers no choice, and the error names no setting. */
+  const char *channel_setting;
 } fogmap_load_desc;
 
 /* Densities above this are refused when loading (the first such pixel is named): the

@@ -88,9 +88,10 @@ int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, fog
   if (size == 0) {
     status = fog_fail(err, FOG_ERR_BAD_FILE, "%s: empty file; expected a PNG or EXR image", path);
   } else if (size >= 8 && !memcmp(bytes, png_magic, 8)) {
-    status = png_read_channel(path, bytes, size, d.channel, &width, &height, &pixels, err);
+    status = png_read_channel(path, bytes, size, d.channel, d.channel_setting, &width, &height,
+                              &pixels, err);
   } else if (size >= 4 && !memcmp(bytes, exr_magic, 4)) {
-    status = exr_read_channel(path, d.channel, &width, &height, &pixels, err);
+    status = exr_read_channel(path, d.channel, d.channel_setting, &width, &height, &pixels, err);
   } else {
     status = fog_fail(err, FOG_ERR_BAD_FILE, "%s: not a PNG or EXR image (looks like %s)", path,
                       other_kind(bytes, size));

@@ -173,6 +173,7 @@ static int exr_read_layout(exr_context_t ctxt, const char *path, exr_stream *str
 /* The channel to load: the one named, or the only one; half or float, full resolution. */
 static const exr_attr_chlist_entry_t *exr_pick_channel(const exr_attr_chlist_t *list,
                                                        const char *path, const char *channel,
+                                                       const char *channel_setting,
                                                        fog_error *err) {
   char names[256];
   list_channels(list, names, sizeof names);
@@ -180,11 +181,11 @@ static const exr_attr_chlist_entry_t *exr_pick_channel(const exr_attr_chlist_t *
   if (list->num_channels == 0)
     return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR has no channels", path), NULL;
   if (!channel) {
+    char hint[128];
     if (list->num_channels != 1)
-      return fog_fail(err, FOG_ERR_BAD_FILE,
-                      "%s: EXR has %d channels (%s); name the one to load (fogmap "
-                      "channel)",
-                      path, list->num_channels, names),
+      return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR has %d channels (%s); name the one to load%s",
+                      path, list->num_channels, names,
+                      image_channel_setting_hint(channel_setting, hint, sizeof hint)),
              NULL;
     entry = &list->entries[0];
   } else {
@@ -272,8 +273,8 @@ static exr_result_t exr_read_chunks(exr_context_t ctxt, exr_storage_t storage,
   return rv;
 }
 
-int exr_read_channel(const char *path, const char *channel, int *width_out, int *height_out,
-                     float **pixels, fog_error *err) {
+int exr_read_channel(const char *path, const char *channel, const char *channel_setting,
+                     int *width_out, int *height_out, float **pixels, fog_error *err) {
   exr_stream stream;
   exr_context_initializer_t init;
   if (open_read_stream(path, &stream, &init, err)) return 1;
@@ -291,7 +292,7 @@ int exr_read_channel(const char *path, const char *channel, int *width_out, int 
   int64_t width = 0, height = 0;
   if (exr_read_layout(ctxt, path, &stream, &storage, &window, &list, &width, &height, err))
     goto done;
-  const exr_attr_chlist_entry_t *entry = exr_pick_channel(list, path, channel, err);
+  const exr_attr_chlist_entry_t *entry = exr_pick_channel(list, path, channel, channel_setting, err);
   if (!entry) goto done;
   out = calloc((size_t)width * (size_t)height, sizeof *out);
   if (!out) {

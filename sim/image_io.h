@@ -9,6 +9,7 @@
 #define FOGPIPE_SIM_IMAGE_IO_H
 
 #include <stddef.h>
+#include <stdio.h>
 #include <stdint.h>
 
 #include "sim/fogmap.h"
@@ -31,11 +32,22 @@ int atomic_file_commit(atomic_file *file, fog_error *err);
 void atomic_file_abandon(atomic_file *file);
 
 /* Decoded single-channel float images: both readers allocate *pixels (width*height
- * floats, top row first) only on success. */
+ * floats, top row first) only on success. channel_setting: how the caller's user names
+ * the channel (fogmap_load_desc), named by the error an image of several channels gives
+ * when channel is NULL; NULL names none. */
 int png_read_channel(const char *path, const unsigned char *bytes, size_t size, const char *channel,
-                     int *width, int *height, float **pixels, fog_error *err);
-int exr_read_channel(const char *path, const char *channel, int *width, int *height, float **pixels,
+                     const char *channel_setting, int *width, int *height, float **pixels,
                      fog_error *err);
+int exr_read_channel(const char *path, const char *channel, const char *channel_setting,
+                     int *width, int *height, float **pixels, fog_error *err);
+/* ", with SETTING" when the caller names one, "" otherwise: the end of the ambiguous-channel
+ * error ("name the one to load, with [fog] channel"). */
+static inline const char *image_channel_setting_hint(const char *channel_setting, char *buffer,
+                                                     size_t size) {
+  if (!channel_setting || !*channel_setting) return "";
+  snprintf(buffer, size, ", with %s", channel_setting);
+  return buffer;
+}
 
 /* Writes an 8- or 16-bit PNG of interleaved samples (uint8_t or host-endian uint16_t). */
 int png_write_samples(const char *path, int width, int height, int channels, int bit_depth,

@@ -39,7 +39,8 @@ static void list_names(const png_layout *layout, char *out, size_t size) {
 }
 
 int png_read_channel(const char *path, const unsigned char *bytes, size_t size, const char *channel,
-                     int *width, int *height, float **pixels, fog_error *err) {
+                     const char *channel_setting, int *width, int *height, float **pixels,
+                     fog_error *err) {
   spng_ctx *ctx = spng_ctx_new(0);
   if (!ctx)
     return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory starting the PNG decoder", path);
@@ -82,9 +83,9 @@ int png_read_channel(const char *path, const unsigned char *bytes, size_t size, 
   int pick = -1;
   if (!channel) {
     if (layout.channels != 1) {
-      fog_fail(err, FOG_ERR_BAD_FILE,
-               "%s: %s PNG has channels %s; name the one to load (fogmap channel)", path,
-               layout.kind, names);
+      char hint[128];
+      fog_fail(err, FOG_ERR_BAD_FILE, "%s: %s PNG has channels %s; name the one to load%s", path,
+               layout.kind, names, image_channel_setting_hint(channel_setting, hint, sizeof hint));
       goto done;
     }
     pick = 0;

@@ -15,7 +15,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   int width = 0, height = 0;
   float *pixels = NULL;
   fog_error err;
-  if (png_read_channel("fuzz.png", data + 1, size - 1, channel, &width, &height, &pixels,
+  if (png_read_channel("fuzz.png", data + 1, size - 1, channel, NULL, &width, &height, &pixels,
                        &err) == 0) {
     /* Every pixel must be there and be a sample / (2^depth - 1). */
     if (width <= 0 || height <= 0 || !pixels) abort();
