@@ -1,5 +1,6 @@
 /* A heightmap is one channel of heights (app/render_frame.h): a grey PNG and the same grey
- * saved as RGB and as RGBA with equal colour channels give the same heights, byte for byte;
+ * saved as grey with alpha, as RGB and as RGBA with equal colour channels give the same
+ * heights, byte for byte (the alpha, whatever it holds, is not a height);
  * an RGB PNG whose channels differ is refused naming the config line, the file and a pixel
  * where they differ. */
 #define _POSIX_C_SOURCE 200809L
@@ -9,6 +10,7 @@
 
 #include "app/config.h"
 #include "app/render_frame.h"
+#include "sim/image_io.h"
 #include "sim/sim.h"
 #include "test_util.h"
 
@@ -30,7 +32,16 @@ static int load(const char *name, int channels, const float *grey, float g_off, 
   snprintf(png, sizeof png, "%s/%s.png", dir, name);
   snprintf(ini, sizeof ini, "%s/%s.ini", dir, name);
   fog_error werr;
-  CHECK(image_write_png(png, W, H, channels, pixels, &werr) == 0, "%s", werr.message);
+  if (channels == 2) { /* grey + alpha: 8-bit samples (image_write_png takes 1, 3 or 4) */
+    unsigned char samples[W * H * 2];
+    for (int i = 0; i < W * H; i++) {
+      samples[2 * i] = (unsigned char)(grey[i] * 255.0f + 0.5f);
+      samples[2 * i + 1] = (unsigned char)(255 - (i * 53) % 256); /* not the grey */
+    }
+    CHECK(png_write_samples(png, W, H, 2, 8, samples, &werr) == 0, "%s", werr.message);
+  } else {
+    CHECK(image_write_png(png, W, H, channels, pixels, &werr) == 0, "%s", werr.message);
+  }
   snprintf(text, sizeof text, "; %s\n[terrain]\nheightmap = %s\n", name, png);
   FILE *f = fopen(ini, "w");
   CHECK(f != NULL, "cannot write %s", ini);
@@ -51,6 +62,12 @@ int main(void) {
   fog_error err = {0};
   CHECK(load("grey", 1, grey, 0.0f, &want, &w, &h, &err) == 0 && w == W && h == H,
         "grey PNG: %s", err.message);
+  if (want) {
+    CHECK(load("grey_alpha", 2, grey, 0.0f, &got, &w, &h, &err) == 0 && w == W && h == H &&
+              !memcmp(got, want, sizeof(float) * W * H),
+          "grey + alpha: %s", got ? "other heights" : err.message);
+    free(got);
+  }
   const int colour[2] = {3, 4};
   for (int k = 0; k < 2 && want; k++) {
     char name[16];
