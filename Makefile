@@ -38,6 +38,11 @@ clean:
 
 # libFuzzer harnesses (tests/fuzz/, docs/reliability.md): each target for FUZZ_SECONDS.
 FUZZ_SECONDS ?= 60
-.PHONY: fuzz
+.PHONY: fuzz fuzz-regressions
 fuzz: deps
 	@bash tests/fuzz/run.sh all $(FUZZ_SECONDS)
+
+# Every harness built and run once over its seeds and regression inputs (no fuzzing; CI
+# runs it, so the harnesses keep building against the libraries they test).
+fuzz-regressions: deps
+	@bash tests/fuzz/run.sh regressions

@@ -1,6 +1,6 @@
 # The Debian packages the fogpipe libraries build on, found once for the main build and for
-# the fuzz build (tests/fuzz/CMakeLists.txt), which needs no more than these. The main build
-# adds the GL, window and panel packages after them.
+# the fuzz build (tests/fuzz/CMakeLists.txt). Each adds the GL and window packages after
+# them (fogpipe_render); the main build also the panel's.
 find_package(PkgConfig REQUIRED)
 find_package(Threads REQUIRED)
 pkg_check_modules(OPENEXR REQUIRED IMPORTED_TARGET OpenEXR)

@@ -1,19 +1,15 @@
 /* libFuzzer harness: command-line options.
  *
- * fogpipe has no single option parser yet (each app/cmd_*.c parses its own argv; a later
- * refactor unifies them), so this fuzzes what is separable today without running a
- * command:
- *  - fogpipe import: parse_options (app/cmd_import.c), the whole argv stage of the
- *    command, into an import_options struct; nothing is read or written there.
- *  - fogpipe design: its value parsers (parse_numbers, parse_int with the bounds the
- *    command uses, the --out suffix test, the option table); its argv loop itself is
- *    fused with the work (it allocates up to 16384^2 fogmaps and writes --out), so only
- *    the helpers are called.
- * The commands are reached through fuzz_options_import.c and fuzz_options_design.c, which
- * #include the command's source file to call its static functions. Not fuzzed: the argv
- * loops of transform, render, view, demo, bench and record, which are fused with running
- * the command (they read and write the files named on the command line); record
- * (app/cmd_record.c) is also being rewritten. See docs/reliability.md.
+ * Every command reads its argv with the one table parser (app/cli_options.c: cli_parse,
+ * cli_parse_one) and its own rows. This fuzzes two commands whose argv stage is a function
+ * of its own, run without running the command:
+ *  - fogpipe import: parse_options (app/cmd_import.c), into an import_options struct;
+ *  - fogpipe design: parse_design_options (app/cmd_design.c), into a design_options
+ *    struct, plus the value parsers its rows use on every argument;
+ * each checked against what it promises the command on success. Nothing is read or
+ * written there (an output row only stats its path). The commands are reached through
+ * fuzz_options_import.c and fuzz_options_design.c, which #include the command's source
+ * file to call its static functions. See docs/reliability.md.
  *
  * Input: byte 0 chooses the parser (even: import, odd: design); the rest is argv[1..],
  * split at NUL bytes (at most 64 arguments; argv[0] is the command name). */
