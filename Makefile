@@ -3,7 +3,7 @@ BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: deps build demo test test-sanitize bench clean
+.PHONY: deps build demo test test-sanitize clean
 
 deps:
 	@bash scripts/install-deps.sh

@@ -1,8 +1,8 @@
 #!/bin/sh
 # The device machine's one prepared run (see bench/gpu_kit.sh): on a real GPU, the kit's GL
 # tests (GPU against the double-precision CPU references, pixel by pixel) and the render,
-# pipeline and models benches, their outputs copied to $OUT. Run from the repository root with
-# build/gpu-kit carried; about 3 minutes on llvmpipe, far less on a GPU.
+# pipeline, models and light benches, their outputs copied to $OUT. Run from the repository
+# root with build/gpu-kit carried; 11 minutes on llvmpipe here (2026-12-06), far less on a GPU.
 set -u
 out=${OUT:-build/gpu-check}
 mkdir -p "$out"
@@ -42,3 +42,8 @@ echo "bench pipeline: exit $?"; grep -E '^GL|^pipeline:' "$out/bench_pipeline.tx
 "$kit/bin/fogpipe" bench models >"$out/bench_models.txt" 2>&1
 echo "bench models: exit $?"; grep -E '^GL|^models:' "$out/bench_models.txt"
 cp build/bench/models/models.csv build/bench/models/models_chart.png "$out/" 2>/dev/null
+# the sun's light in the fog: ours, marching and the froxel grid side by side (issue 15's
+# figures B and C are limited by llvmpipe's costs; this is where a GPU would show them)
+"$kit/bin/fogpipe" bench light >"$out/bench_light.txt" 2>&1
+echo "bench light: exit $?"; grep -E '^GL|^light:' "$out/bench_light.txt"
+cp build/bench/light/light.csv build/bench/light/light_chart.png "$out/" 2>/dev/null
