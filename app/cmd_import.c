@@ -43,9 +43,13 @@ typedef struct import_options {
 } import_options;
 
 /* --name: a plain file name (the outputs' base in DIR). */
+/* --name: the files' base name. Not hidden ('.': the frames would be dot files, which the
+ * move into place and every folder listing pass over), and no '#' or '%', which the
+ * sidecar's `files` pattern and every frame pattern reader take for the frame number. */
 static int parse_name(const char *command, const char *option, const char *text, void *target) {
-  if (!*text || strchr(text, '/'))
-    return cli_usage_error(command, "%s '%s': a plain file name", option, text);
+  if (!*text || strchr(text, '/') || text[0] == '.' || strpbrk(text, "#%"))
+    return cli_usage_error(command, "%s '%s': expected a plain file name (no '/', '#' or '%%', "
+                           "not starting with '.')", option, text);
   *(const char **)target = text;
   return 0;
 }

@@ -4,6 +4,7 @@
 #include <ctype.h>
 #include <glob.h>
 #include <inttypes.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -88,10 +89,13 @@ static int find_conversion(const char *pattern, int *start, int *end) {
 
 /* fluid_data_####.vdb -> fluid_data_%04d.vdb (a '%' of the name becomes "%%"). */
 static int hashes_to_printf(const char *in, char *out, size_t out_size) {
-  const char *h = strchr(in, '#');
-  if (!h) return 0;
-  size_t n = 0;
-  while (h[n] == '#') n++;
+  /* The last run of '#' in the file name: a '#' in a folder's name ("take#2/") is itself. */
+  const char *slash = strrchr(in, '/'), *name = slash ? slash + 1 : in;
+  const char *last = strrchr(name, '#');
+  if (!last) return 0;
+  const char *h = last;
+  while (h > name && h[-1] == '#') h--;
+  size_t n = (size_t)(last - h) + 1;
   size_t used = 0;
   for (const char *p = in; *p && used + 2 < out_size; p++) {
     if (p == h) {
@@ -193,7 +197,17 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
     char pattern[4096];
     int matched = 0, status = 0, s, e;
     struct stat st;
-    if (hashes_to_printf(in, pattern, sizeof pattern)) {
+    /* A path that exists is itself, even where its name holds '#', '%' or '*' (a folder
+     * "take#2"); only a path that does not is read as a pattern. */
+    const bool exists = stat(in, &st) == 0;
+    if (exists && S_ISDIR(st.st_mode)) {
+      snprintf(pattern, sizeof pattern, "%s/*.vdb", in);
+      status = add_glob(&list, pattern, &matched);
+    } else if (exists) {
+      long f = frame_of(in, NULL, NULL);
+      status = push(&list, f < 0 ? list.count : (int)f, in);
+      matched = 1;
+    } else if (hashes_to_printf(in, pattern, sizeof pattern)) {
       status = add_pattern(&list, pattern, first, last, &matched);
     } else if (find_conversion(in, &s, &e)) {
       status = add_pattern(&list, in, first, last, &matched);
@@ -209,13 +223,6 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
         goto fail;
       }
       status = add_glob(&list, in, &matched);
-    } else if (stat(in, &st) == 0 && S_ISDIR(st.st_mode)) {
-      snprintf(pattern, sizeof pattern, "%s/*.vdb", in);
-      status = add_glob(&list, pattern, &matched);
-    } else if (stat(in, &st) == 0) {
-      long f = frame_of(in, NULL, NULL);
-      status = push(&list, f < 0 ? list.count : (int)f, in);
-      matched = 1;
     } else {
       fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: no such file or directory", in);
       goto fail;
@@ -233,12 +240,21 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
     }
   }
   qsort(list.items, (size_t)list.count, sizeof *list.items, by_frame);
-  /* Keep the range; drop a later duplicate of the same path. */
+  /* Keep the range; drop a later duplicate of the same path (sorted by frame, then path,
+   * so copies are neighbours). Two files of one frame number are an error: one of them
+   * would silently stand for both. */
   int kept = 0;
   for (int i = 0; i < list.count; i++) {
     entry it = list.items[i];
     int in_range = (first < 0 || it.frame >= first) && (last < 0 || it.frame <= last);
     int duplicate = kept > 0 && !strcmp(list.items[kept - 1].path, it.path);
+    if (in_range && !duplicate && kept > 0 && list.items[kept - 1].frame == it.frame) {
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "frame %d twice: %s and %s (one file a frame number)",
+               it.frame, list.items[kept - 1].path, it.path);
+      for (int j = i; j < list.count; j++) free(list.items[j].path);
+      list.count = kept;
+      goto fail;
+    }
     if (in_range && !duplicate)
       list.items[kept++] = it;
     else
