@@ -905,6 +905,24 @@ static int check_sources(parse_state *ps) {
            "whose frame 1 exists (fog.####.exr)", cfg->fog.sequence);
       return 1;
     }
+    /* Frame n of a recording shows file n and the last file stays past the end: a file
+     * missing inside the run would end it early and leave the later files unplayed. */
+    vdb_sequence seq;
+    fog_error serr = {0};
+    const char *input = cfg->fog.sequence;
+    if (!vdb_sequence_find(&input, 1, 1, -1, &seq, &serr)) {
+      const int missing = seq.missing_count ? seq.missing[0] : 0;
+      const int last = seq.count ? seq.frames[seq.count - 1] : 0;
+      vdb_sequence_destroy(&seq);
+      if (missing) {
+        char path[SCENE_CONFIG_PATH_MAX + 32];
+        scene_config_sequence_path(cfg->fog.sequence, missing, path, sizeof path);
+        s.line = cfg->fog.sequence_line;
+        fail(&s, "fog", "sequence", "frame %d (%s) is missing, but the files run to frame "
+             "%d: expected frames 1 to %d without a gap", missing, path, last, last);
+        return 1;
+      }
+    }
   }
   if (cfg->fog.fogmap[0] &&
       check_file(&s, "fog", "fogmap", cfg->fog.fogmap_line, cfg->fog.fogmap))
@@ -1114,10 +1132,14 @@ int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
 }
 
 bool scene_config_sequence_path(const char *pattern, long n, char *out, size_t size) {
-  const char *hash = strchr(pattern, '#');
-  if (!hash) return false;
-  int digits = 0;
-  while (hash[digits] == '#') digits++;
+  /* The last run of '#' in the file name, as vdb_sequence_find reads it: a folder's '#'
+   * ("take#2/fog.####.exr") is itself. */
+  const char *slash = strrchr(pattern, '/'), *name = slash ? slash + 1 : pattern;
+  const char *last = strrchr(name, '#');
+  if (!last) return false;
+  const char *hash = last;
+  while (hash > name && hash[-1] == '#') hash--;
+  int digits = (int)(last - hash) + 1;
   char buffer[SCENE_CONFIG_PATH_MAX + 32];
   int length = snprintf(buffer, sizeof buffer, "%.*s%0*ld%s", (int)(hash - pattern), pattern,
                         digits, n, hash + digits);

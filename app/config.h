@@ -241,9 +241,9 @@ bool scene_config_has_fog(const scene_config *cfg);
 /* Whether [section] key is a key configs may set. */
 bool scene_config_knows_key(const char *section, const char *key);
 
-/* The path of frame n of a `[fog] sequence` pattern: its run of #s replaced by n, zero-
- * padded to the run's length. False when the pattern has no # or out (size bytes) is too
- * small. */
+/* The path of frame n of a `[fog] sequence` pattern: the last run of #s in its file name
+ * replaced by n, zero-padded to the run's length (a folder's '#' is itself). False when the
+ * file name has no # or out (size bytes) is too small. */
 bool scene_config_sequence_path(const char *pattern, long n, char *out, size_t size);
 
 /* Writes cfg as a config file that loads back into the same scene (the same fingerprint):

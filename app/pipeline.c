@@ -398,11 +398,12 @@ static int load_sequence_frame(pipeline *p, long n, fogmap *map, fog_error *err)
                           cfg->fog.sequence_line, n);
   const fogmap *first = &p->cpu.base;
   if (first->density && (loaded.width != first->width || loaded.height != first->height)) {
-    fogmap_destroy(&loaded);
-    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-                    "%s:%d: [fog] sequence: frame %ld (%s) is %dx%d, frame 1 %dx%d", cfg->path,
-                    cfg->fog.sequence_line, n, path, loaded.width, loaded.height, first->width,
-                    first->height);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "%s:%d: [fog] sequence: frame %ld (%s) is %dx%d, frame 1 %dx%d: expected every "
+             "frame the size of frame 1", cfg->path, cfg->fog.sequence_line, n, path,
+             loaded.width, loaded.height, first->width, first->height);
+    fogmap_destroy(&loaded); /* after the message, which names its size */
+    return 1;
   }
   fogmap_destroy(map);
   *map = loaded;

@@ -249,8 +249,9 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
     int in_range = (first < 0 || it.frame >= first) && (last < 0 || it.frame <= last);
     int duplicate = kept > 0 && !strcmp(list.items[kept - 1].path, it.path);
     if (in_range && !duplicate && kept > 0 && list.items[kept - 1].frame == it.frame) {
-      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "frame %d twice: %s and %s (one file a frame number)",
-               it.frame, list.items[kept - 1].path, it.path);
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+               "frame %d twice: %s and %s (one file a frame number)", it.frame,
+               list.items[kept - 1].path, it.path);
       for (int j = i; j < list.count; j++) free(list.items[j].path);
       list.count = kept;
       goto fail;

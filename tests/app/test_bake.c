@@ -2,7 +2,8 @@
  * and a config that plays them. A range recorded from the bake, with no simulation before
  * it, has the pixels of the same frames of one full simulated run, every channel, bit for
  * bit. A bad bake (a model without a simulation) is refused and leaves no folder behind;
- * the bake's config loads back to the same scene but its fog. */
+ * the bake's config loads back to the same scene but its fog. The bake's folder is named
+ * "bake#1": a '#' of a folder is itself, not the frame number of the fogmaps' pattern. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
@@ -23,7 +24,7 @@ int main(void) {
   char root[] = "/tmp/fogpipe-bake-XXXXXX";
   if (!test_scratch_folder(root)) return 1;
   char bake[600], whole[600], range[600], log[600], command[3000], ini[700];
-  snprintf(bake, sizeof bake, "%s/bake", root);
+  snprintf(bake, sizeof bake, "%s/bake#1", root);
   snprintf(whole, sizeof whole, "%s/whole", root);
   snprintf(range, sizeof range, "%s/range", root);
   snprintf(log, sizeof log, "%s/log.txt", root);
