@@ -9,6 +9,7 @@
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -22,6 +23,7 @@
 #include "app/recorder.h"
 #include "app/window_program.h"
 #include "render/fog_models.h"
+#include "sim/sim.h"
 
 #define DEFAULT_CONFIG FOGPIPE_SOURCE_DIR "/configs/default.ini"
 #define HEADLESS_FRAMES 48
@@ -30,12 +32,47 @@
 
 /* ---- headless fallback ---- */
 
-static int record_instead(const char *config_path, int frames, const char *reason) {
+typedef struct headless_job {
+  const char *config_path;
+  int frames, width, height;
+  const char *screenshot; /* the last frame as a PNG too, or NULL */
+} headless_job;
+
+/* The recording's last frame (its linear R, G, B) as an 8-bit sRGB PNG at `png`: what the
+ * window's screenshot would have held, without the panel. */
+static int last_frame_png(const recorder *rec, int frame, const char *png) {
+  char path[PATH_MAX + 64];
+  recorder_frame_path(rec, frame, path, sizeof path);
+  static const char *const channels[3] = {"R", "G", "B"};
+  fogmap plane[3] = {{0}};
+  fog_error err = {0};
+  int status = 0;
+  for (int c = 0; c < 3 && !status; c++)
+    status = fogmap_load(path, &(fogmap_load_desc){.channel = channels[c]}, &plane[c], &err);
+  float *rgb = status ? NULL : malloc(sizeof(float) * 3 * plane[0].width * plane[0].height);
+  if (!status && !rgb) status = fog_fail(&err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory", png);
+  if (!status) {
+    const size_t n = (size_t)plane[0].width * plane[0].height;
+    for (size_t i = 0; i < n; i++)
+      for (int c = 0; c < 3; c++) rgb[3 * i + c] = plane[c].density[i];
+    status = image_write_png_srgb(png, plane[0].width, plane[0].height, 3, rgb, &err);
+  }
+  free(rgb);
+  for (int c = 0; c < 3; c++) fogmap_destroy(&plane[c]);
+  if (status) {
+    fprintf(stderr, "fogpipe demo: --screenshot: %s\n", err.message);
+    return 1;
+  }
+  printf("fogpipe demo: wrote %s (frame %d of the recording)\n", png, frame);
+  return 0;
+}
+
+static int record_instead(const headless_job *h, const char *reason) {
   char folder[PATH_MAX + 1] = "out/demo";
   recorder probe;
   fog_error rerr = {0};
-  if (recorder_open(&probe, &(recorder_desc){.folder = folder, .width = HEADLESS_WIDTH,
-                                             .height = HEADLESS_HEIGHT},
+  if (recorder_open(&probe, &(recorder_desc){.folder = folder, .width = h->width,
+                                             .height = h->height},
                     &rerr)) {
     char temp[] = "/tmp/fogpipe-demo-XXXXXX";
     if (!mkdtemp(temp)) {
@@ -49,17 +86,28 @@ static int record_instead(const char *config_path, int frames, const char *reaso
   char absolute[PATH_MAX];
   if (realpath(folder, absolute)) snprintf(folder, sizeof folder, "%s", absolute);
   printf("fogpipe demo: %s: recording %d frame%s of %s headless into %s instead\n", reason,
-         frames, frames == 1 ? "" : "s", config_path, folder);
+         h->frames, h->frames == 1 ? "" : "s", h->config_path, folder);
   fflush(stdout);
-  record_job job = {.command = "demo", .config_path = config_path, .frames = frames, .fps = 24,
-                    .out = folder, .width = HEADLESS_WIDTH, .height = HEADLESS_HEIGHT,
+  record_job job = {.command = "demo", .config_path = h->config_path, .frames = h->frames,
+                    .fps = 24, .out = folder, .width = h->width, .height = h->height,
                     .quiet = !isatty(fileno(stdout))};
-  return record_run(&job);
+  int status = record_run(&job);
+  recorder done;
+  if (!status && h->screenshot &&
+      !recorder_open(&done, &(recorder_desc){.folder = folder, .width = h->width,
+                                             .height = h->height},
+                     &rerr))
+    status = last_frame_png(&done, h->frames, h->screenshot);
+  return status;
 }
+
+typedef struct demo_options demo_options;
+static int demo_headless(const demo_options *o, const headless_job *h, const char *reason);
 
 typedef struct demo_options {
   const char *config_path, *screenshot;
   int width, height, frames; /* frames 0: HEADLESS_FRAMES headless, 30 before a screenshot */
+  bool size_given;           /* --size: the headless recording's size too */
   double scale;              /* 0: chosen from the renderer */
   int live_rung;             /* live_rung_kind the panel starts with */
   bool paused;               /* start with the simulation (or a volume's sequence) paused */
@@ -70,10 +118,11 @@ typedef struct demo_options {
 static int parse_demo_options(int argc, char **argv, demo_options *o) {
   static const char *const models[LIVE_RUNG_COUNT + 1] = {
       "fogmap", "homogeneous", "height", "gaussians", "ellipsoids", NULL};
-  int size[2] = {o->width, o->height};
+  int size[2] = {0, 0};
   const cli_option options[] = {
       {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
-       .help = "window size (default 1280x720)"},
+       .help = "window size (default 1280x720; without a display, the\n"
+               "recording's, default " CLI_TEXT_OF(HEADLESS_WIDTH) "x" CLI_TEXT_OF(HEADLESS_HEIGHT) ")"},
       {.kind = CLI_NUMBER, .name = "--scale", .value = "S", .target = &o->scale, .min = 0.25,
        .max = 1.0,
        .help = "render at S times the window size, 0.25..1 (default 1 on\n"
@@ -93,9 +142,11 @@ static int parse_demo_options(int argc, char **argv, demo_options *o) {
                "volume's VDB sequence)"},
       {.kind = CLI_FLAG, .name = "--hide-panel", .target = &o->hide_panel,
        .help = "start with the panel hidden (Tab shows it)"},
-      {.kind = CLI_TEXT, .name = "--screenshot", .value = "FILE", .target = &o->screenshot,
+      {.kind = CLI_OUTPUT, .name = "--screenshot", .value = "FILE.png", .target = &o->screenshot,
+       .extensions = (const char *const[]){".png", NULL},
        .help = "after --frames frames, save the window as a PNG and quit\n"
-               "(the panel in it from the 2nd frame, unless hidden)"},
+               "(the panel in it from the 2nd frame, unless hidden);\n"
+               "without a display, the recording's last frame"},
       {.kind = CLI_INT, .name = "--frames", .value = "N", .target = &o->frames, .min = 1,
        .max = 1000000,
        .help = "frames before the screenshot (default 30; 1 for a model\n"
@@ -131,9 +182,24 @@ static int parse_demo_options(int argc, char **argv, demo_options *o) {
       CLI_OPTIONS(options)};
   int parsed = cli_parse_one(&spec, argc, argv, &o->config_path);
   if (parsed) return parsed;
-  o->width = size[0], o->height = size[1];
+  o->size_given = size[0] > 0;
+  if (o->size_given) o->width = size[0], o->height = size[1];
   if (!o->config_path) o->config_path = DEFAULT_CONFIG;
   return 0;
+}
+
+/* The recording instead of the window: the options only a window has are named, not
+ * silently dropped. */
+static int demo_headless(const demo_options *o, const headless_job *h, const char *reason) {
+  char unused[128] = "";
+  if (o->scale > 0) strcat(unused, " --scale");
+  if (o->live_rung != LIVE_RUNG_FOGMAP) strcat(unused, " --model");
+  if (o->paused) strcat(unused, " --paused");
+  if (o->hide_panel) strcat(unused, " --hide-panel");
+  if (unused[0])
+    fprintf(stderr, "fogpipe demo: without a window,%s %s no effect\n", unused,
+            strchr(unused + 1, ' ') ? "have" : "has");
+  return record_instead(h, reason);
 }
 
 int cmd_demo(int argc, char **argv) {
@@ -146,10 +212,13 @@ int cmd_demo(int argc, char **argv) {
     fprintf(stderr, "fogpipe demo: %s\n", cerr.message);
     return 1;
   }
-  const int headless_frames = o.frames ? o.frames : HEADLESS_FRAMES;
+  const headless_job headless = {
+      .config_path = o.config_path, .frames = o.frames ? o.frames : HEADLESS_FRAMES,
+      .width = o.size_given ? o.width : HEADLESS_WIDTH,
+      .height = o.size_given ? o.height : HEADLESS_HEIGHT, .screenshot = o.screenshot};
   const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
   if (!(display && *display) && !(wayland && *wayland))
-    return record_instead(o.config_path, headless_frames,
+    return demo_headless(&o, &headless,
                           "no display (DISPLAY and WAYLAND_DISPLAY are unset)");
   /* Nothing to simulate in the other models: the window shows their fog as the config holds
    * it, playing what moves by itself (a volume's sequence, emitters, drifting noise). */
@@ -173,5 +242,5 @@ int cmd_demo(int argc, char **argv) {
   if (status != WINDOW_PROGRAM_NO_WINDOW) return status;
   char reason[sizeof window_failure.message + 16];
   snprintf(reason, sizeof reason, "no window (%s)", window_failure.message);
-  return record_instead(o.config_path, headless_frames, reason);
+  return demo_headless(&o, &headless, reason);
 }

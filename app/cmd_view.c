@@ -26,7 +26,8 @@ int cmd_view(int argc, char **argv) {
       {.kind = CLI_FLAG, .name = "--play", .target = &opts.play,
        .help = "start playing the volume's sequence (with --screenshot: one\n"
                "VDB frame per drawn frame)"},
-      {.kind = CLI_TEXT, .name = "--screenshot", .value = "FILE", .target = &opts.screenshot,
+      {.kind = CLI_OUTPUT, .name = "--screenshot", .value = "FILE.png",
+       .target = &opts.screenshot, .extensions = (const char *const[]){".png", NULL},
        .help = "save the window's last frame as an 8-bit PNG and exit (the\n"
                "panel in it from the 2nd frame, unless hidden: --hide-panel\n"
                "for the scene alone, an image that repeats)"},

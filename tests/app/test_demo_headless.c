@@ -1,11 +1,84 @@
 /* `fogpipe demo` without a display (DISPLAY and WAYLAND_DISPLAY unset) says so in ONE line,
  * records the scene headless into ./out/demo instead, exits 0, and prints where the frames
  * are; the frames it names exist and are readable. Run in a fresh temporary folder (the
- * recording goes to ./out/demo there). */
+ * recording goes to ./out/demo there). With --size, the recording has that size; with
+ * --screenshot, the PNG holds the last frame's R, G, B encoded as sRGB (against the IEC
+ * 61966-2-1 formula here, within one level); a window-only option is named as having no
+ * effect. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
+#include <math.h>
+#include <stdbool.h>
+
+#include "sim/sim.h"
+
 enum { frames = 2 };
+
+/* fogpipe demo ARGS... in root without a display, its output into log; the exit status. */
+static int run_demo(const char *bin, const char *root, const char *log, char *const args[]) {
+  pid_t pid = fork();
+  if (pid == 0) {
+    if (chdir(root) != 0) _exit(126);
+    unsetenv("DISPLAY");
+    unsetenv("WAYLAND_DISPLAY");
+    int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    execv(bin, args);
+    _exit(127);
+  }
+  return record_wait(pid);
+}
+
+static bool log_says(const char *log, const char *text) {
+  FILE *f = fopen(log, "r");
+  char line[2048];
+  bool found = false;
+  while (f && fgets(line, sizeof line, f)) found = found || strstr(line, text);
+  if (f) fclose(f);
+  return found;
+}
+
+/* --size 96x54 --screenshot: the frames' size, and the PNG against the last frame. */
+static void check_screenshot(const char *bin, const char *config, const char *root) {
+  char log[700], folder[700], png[700], frame[800];
+  snprintf(log, sizeof log, "%s/shot.log", root);
+  snprintf(folder, sizeof folder, "%s/out/demo", root);
+  snprintf(png, sizeof png, "%s/shot.png", root);
+  test_remove_tree(folder);
+  char *const args[] = {(char *)bin, "demo", (char *)config, "--frames", "2", "--size", "96x54",
+                        "--screenshot", "shot.png", "--paused", NULL};
+  int status = run_demo(bin, root, log, args);
+  CHECK(status == 0, "demo --screenshot without a display exited with %d", status);
+  CHECK(log_says(log, "--paused has no effect"), "--paused dropped without a word");
+  int w = 0, h = 0;
+  record_frame_path(folder, frames, frame, sizeof frame);
+  CHECK(record_hash_frame(frame, &w, &h) != 0 && w == 96 && h == 54,
+        "frame %s is %dx%d, expected --size 96x54", frame, w, h);
+  static const char *const names[3] = {"R", "G", "B"};
+  double worst = 0;
+  for (int c = 0; c < 3; c++) {
+    fogmap linear = {0}, encoded = {0};
+    fog_error err = {0};
+    if (fogmap_load(frame, &(fogmap_load_desc){.channel = names[c]}, &linear, &err) ||
+        fogmap_load(png, &(fogmap_load_desc){.channel = names[c]}, &encoded, &err)) {
+      CHECK(0, "channel %s: %s", names[c], err.message);
+      fogmap_destroy(&linear);
+      continue;
+    }
+    CHECK(encoded.width == 96 && encoded.height == 54, "shot.png is %dx%d", encoded.width,
+          encoded.height);
+    for (int i = 0; i < 96 * 54 && encoded.width == 96 && encoded.height == 54; i++) {
+      double x = fmin(fmax(linear.density[i], 0.0), 1.0);
+      double srgb = x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;
+      worst = fmax(worst, fabs(255.0 * encoded.density[i] - 255.0 * srgb));
+    }
+    fogmap_destroy(&linear);
+    fogmap_destroy(&encoded);
+  }
+  CHECK(worst <= 0.5 + 1e-6, "shot.png differs from the last frame by %.3f levels", worst);
+}
 
 int main(void) {
   char root[] = "/tmp/fogpipe-demo-headless-XXXXXX";
@@ -21,18 +94,8 @@ int main(void) {
   else
     snprintf(bin_abs, sizeof bin_abs, "%s/%s", source, bin);
 
-  pid_t pid = fork();
-  if (pid == 0) {
-    if (chdir(root) != 0) _exit(126);
-    unsetenv("DISPLAY");
-    unsetenv("WAYLAND_DISPLAY");
-    int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(fd, 1);
-    dup2(fd, 2);
-    execl(bin_abs, bin_abs, "demo", config, "--frames", "2", (char *)NULL);
-    _exit(127);
-  }
-  int status = record_wait(pid);
+  char *const args[] = {bin_abs, "demo", config, "--frames", "2", NULL};
+  int status = run_demo(bin_abs, root, log, args);
   CHECK(status == 0, "demo without a display exited with %d", status);
 
   /* Exactly one line about the missing display, and it names the output folder. */
@@ -60,6 +123,7 @@ int main(void) {
     CHECK(record_hash_frame(path, &w, &h) != 0 && w > 0 && h > 0, "frame %s unreadable", path);
   }
   if (status != 0 || display_lines != 1) record_print_log(log);
+  check_screenshot(bin_abs, config, root);
   test_remove_tree(root);
   return test_finish("test_demo_headless");
 }
