@@ -8,6 +8,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "app/chart.h"
 #include "app/cli.h"
@@ -198,15 +199,18 @@ static int write_chart(const fit_result *r, const char *png) {
   return 0;
 }
 
-/* The folder FILE goes into exists (checked before the fit, which takes seconds). */
-static bool folder_exists(const char *file) {
+/* Why FILE cannot be written into its folder, or NULL: checked before the fit, which takes
+ * seconds to minutes, not found out at its end. */
+static const char *folder_problem(const char *file) {
   char folder[PATH_MAX];
   snprintf(folder, sizeof folder, "%s", file);
   char *slash = strrchr(folder, '/');
-  if (!slash) return true;
-  *(slash == folder ? slash + 1 : slash) = '\0';
+  if (!slash) snprintf(folder, sizeof folder, ".");
+  else *(slash == folder ? slash + 1 : slash) = '\0';
   struct stat st;
-  return stat(folder, &st) == 0 && S_ISDIR(st.st_mode);
+  if (stat(folder, &st) != 0 || !S_ISDIR(st.st_mode)) return "its folder does not exist";
+  if (access(folder, W_OK | X_OK) != 0) return "its folder is not writable";
+  return NULL;
 }
 
 /* The chosen rung's scene to `out`; a fogmap projected into the fit's scratch folder goes
@@ -247,9 +251,10 @@ int cmd_fit(int argc, char **argv) {
   int status = parse(argc, argv, &o);
   if (status) return status < 0 ? 0 : status;
   const char *outputs[2] = {o.out, o.chart};
-  for (int i = 0; i < 2; i++)
-    if (outputs[i] && !folder_exists(outputs[i]))
-      return cli_fail("fit", "%s: cannot write: its folder does not exist", outputs[i]);
+  for (int i = 0; i < 2; i++) {
+    const char *problem = outputs[i] ? folder_problem(outputs[i]) : NULL;
+    if (problem) return cli_fail("fit", "%s: cannot write: %s", outputs[i], problem);
+  }
   scene_config *cfg = malloc(sizeof *cfg);
   if (!cfg) return cli_fail("fit", "out of memory");
   if ((status = load_input(&o, cfg))) {

@@ -24,6 +24,18 @@ static volatile sig_atomic_t interrupted;
 
 static void on_interrupt(int signal_number) { interrupted = signal_number; }
 
+/* Whether --preview names the --out folder itself (which may not exist yet): the video
+ * would be renamed onto the frames' folder after the whole recording. */
+static bool same_path(const char *preview, const char *out) {
+  size_t p = strlen(preview), o = strlen(out);
+  while (p > 1 && preview[p - 1] == '/') p--;
+  while (o > 1 && out[o - 1] == '/') o--;
+  if (p != o || strncmp(preview, out, p)) return false;
+  cli_usage_error("record", "--preview '%s': that is the --out folder; expected a video file "
+                  "name (out.mp4)", preview);
+  return true;
+}
+
 int cmd_record(int argc, char **argv) {
   record_job job = {.command = "record", .fps = 24};
   int frames[3] = {0, 0, 0}, size[2] = {0, 0};
@@ -71,6 +83,9 @@ int cmd_record(int argc, char **argv) {
   /* N (frames 1..N) or A-B (frames A..B, for a farm's job array) */
   job.first_frame = frames[2] ? 1 : frames[0], job.frames = frames[1];
   job.width = size[0], job.height = size[1];
+  if (job.preview && (cli_output_file("record", "--preview", job.preview) ||
+                      same_path(job.preview, job.out)))
+    return 2;
   if (job.preview && job.first_frame > 1) {
     fprintf(stderr, "fogpipe record: --preview encodes a whole sequence; it takes --frames N, "
             "not a range (encode the joined ranges afterwards)\n");

@@ -16,6 +16,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/statvfs.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -328,9 +329,18 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
                         "preview: ffmpeg stopped reading frames (see its message above)");
   }
   if (pipe) {
-    int rc = pclose(pipe);
-    if (!status && rc != 0)
-      status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: ffmpeg failed (exit status %d)", rc);
+    int rc = pclose(pipe); /* a wait status: ffmpeg's exit code, or the signal it died of */
+    if (!status && rc != 0) {
+      if (rc > 0 && WIFEXITED(rc))
+        status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: ffmpeg failed (exit status %d)",
+                          WEXITSTATUS(rc));
+      else if (rc > 0 && WIFSIGNALED(rc))
+        status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: ffmpeg was killed (signal %d)",
+                          WTERMSIG(rc));
+      else
+        status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: ffmpeg failed (%s)",
+                          rc < 0 ? strerror(errno) : "unknown wait status");
+    }
   }
   sigaction(SIGPIPE, &previous, NULL);
   free(rgb);

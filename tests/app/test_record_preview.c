@@ -3,8 +3,9 @@
  * frames' R, G, B channels through the sRGB transfer function (IEC 61966-2-1, written here
  * independently), frame after frame, at the size and rate asked for; the video appears
  * under its own name only when ffmpeg succeeded. A failing ffmpeg makes record fail with
- * a message, leaves no video (nor its temporary), and keeps the frames. Where a real ffmpeg
- * is installed (/usr/bin/ffmpeg), it also encodes a playable file. */
+ * a message naming ffmpeg's exit code, leaves no video (nor its temporary), and keeps the
+ * frames. Where a real ffmpeg is installed (/usr/bin/ffmpeg), it also encodes a playable
+ * file. */
 #include "tests/app/record_util.h" /* first: it sets _POSIX_C_SOURCE */
 
 #include <math.h>
@@ -133,7 +134,8 @@ int main(void) {
     text[n] = '\0';
     fclose(f);
   }
-  CHECK(strstr(text, "ffmpeg failed"), "no 'ffmpeg failed' message:\n%s", text);
+  CHECK(strstr(text, "ffmpeg failed (exit status 3)"),
+        "no 'ffmpeg failed (exit status 3)' message (its own exit code):\n%s", text);
   snprintf(partial, sizeof partial, "%s/broken.partial.mp4", root);
   CHECK(file_size(video2) < 0 && file_size(partial) < 0, "a video was left after a failure");
   int frame_files = 0;
