@@ -189,6 +189,21 @@ int cmd_design(int argc, char **argv) {
   fogmap map = {0};
   int status = design_fogmap(&o, &map, &err);
   float max = status ? 0.0f : fogmap_max_density(&map);
+  /* What fogmap_load refuses (render, transform, record) is not written: a peak of 1e30
+   * would make a file no other command reads. */
+  if (!status && !(max <= FOGMAP_MAX_DENSITY))
+    status = fog_fail(&err, FOG_ERR_INVALID_ARGUMENT,
+                      "%s: the designed fog peaks at %g, above the %g a fogmap may hold "
+                      "(lower the blobs' PEAK, --gain or --base)", o.out, (double)max,
+                      (double)FOGMAP_MAX_DENSITY);
+  if (!status && png && o.png_max > 0 && max > o.png_max) {
+    size_t clipped = 0;
+    for (size_t i = 0; i < (size_t)o.width * (size_t)o.height; i++)
+      clipped += map.density[i] > o.png_max;
+    fprintf(stderr, "fogpipe design: warning: %zu cell%s above --png-max %g (the map peaks at "
+            "%g) stored as 65535, i.e. %g\n", clipped, clipped == 1 ? "" : "s", o.png_max,
+            (double)max, o.png_max);
+  }
   if (!status) {
     if (png) {
       status = fogmap_save_png16(o.out, &map, (float)o.png_max, &err);

@@ -127,7 +127,7 @@ static int parse_options(int argc, char **argv, import_options *o) {
       {.kind = CLI_CHOICE, .name = "--profile-per", .value = "sequence|frame",
        .target = &o->profile_per_frame, .choices = per,
        .help = "one g for the whole sequence (default) or one per\n"
-               "frame ([profile.####] sections in NAME.ini)"},
+               "frame ([fog.####] sections in NAME.ini)"},
       {.kind = CLI_SECTION, .name = "report:"},
       {.kind = CLI_FLAG, .name = "--report", .target = &o->report,
        .help = "also compare the 2.5D model with a CPU ray march of the 3D\n"

@@ -349,7 +349,7 @@ int cmd_transform(int argc, char **argv) {
   /* in the enums' order: transform_basis, transform_boundary */
   static const char *const bases[] = {"linear", "haar", "quadratic", NULL};
   static const char *const modes[] = {"symmetric", "periodic", NULL};
-  int basis = TRANSFORM_LINEAR, mode = TRANSFORM_SYMMETRIC;
+  int basis = -1, mode = -1; /* -1: not given (linear, symmetric) */
   bool standard = false;
   const cli_option options[] = {
       {.kind = CLI_CHOICE, .name = "--basis", .value = "haar|linear|quadratic", .target = &basis,
@@ -391,7 +391,12 @@ int cmd_transform(int argc, char **argv) {
   const char *in = NULL;
   int parsed = cli_parse_one(&spec, argc, argv, &in);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
-  desc.basis = (transform_basis)basis, desc.boundary = (transform_boundary)mode;
+  if (inverse && (basis >= 0 || mode >= 0 || standard || desc.levels >= 0))
+    return cli_usage_error("transform", "--inverse reads the basis, levels, mode and "
+                           "decomposition from its folder's transform.ini; --basis, --levels, "
+                           "--mode and --standard are for a forward transform");
+  desc.basis = basis >= 0 ? (transform_basis)basis : TRANSFORM_LINEAR;
+  desc.boundary = mode >= 0 ? (transform_boundary)mode : TRANSFORM_SYMMETRIC;
   desc.decomposition = standard ? TRANSFORM_STANDARD : TRANSFORM_NONSTANDARD;
   if (inverse) {
     if (in) return cli_usage_error("transform", "--inverse takes no input fogmap (%s)", in);
