@@ -230,7 +230,10 @@ static void remove_dir(const char *dir) {
   rmdir(dir);
 }
 
-/* The profile in docs/config.md's [fog] keys (render/fog_field.h's fog_profile). */
+/* The profile in docs/config.md's [fog] keys (render/fog_field.h's fog_profile), so that the
+ * section loads in a scene config as it is: the coefficients go on over indented lines (a
+ * config line holds at most 199 bytes; a plume's 40-odd numbers take ~600), and what is only
+ * information (the support, the integral) is a comment. */
 static void write_profile(FILE *f, const char *section, const vdb_profile *p) {
   fprintf(f, "[%s]\n", section);
   if (p->kind == VDB_PROFILE_EXPONENTIAL) {
@@ -243,12 +246,13 @@ static void write_profile(FILE *f, const char *section, const vdb_profile *p) {
     fprintf(f, "profile = bspline\nprofile_degree = %d\nprofile_origin = %.9g\n"
                "profile_spacing = %.9g\nprofile_coefficients =",
             p->degree, p->origin, p->spacing);
-    for (int k = 0; k < p->count; k++) fprintf(f, " %.9g", p->values[k]);
+    for (int k = 0; k < p->count; k++)
+      fprintf(f, "%s %.9g", k > 0 && k % 8 == 0 ? "\n   " : "", p->values[k]);
     fprintf(f, "\n");
   }
   fprintf(f, "; the profile's support and its integral (f * thickness = column optical depth)\n");
-  fprintf(f, "profile_bottom = %.9g\nprofile_top = %.9g\nthickness = %.9g\n\n", p->y_bottom,
-          p->y_top, p->thickness);
+  fprintf(f, "; profile_bottom = %.9g\n; profile_top = %.9g\n; thickness = %.9g\n\n",
+          p->y_bottom, p->y_top, p->thickness);
 }
 
 static int write_sidecar(const char *path, const import_options *o, const vdb_sequence *seq,
@@ -270,9 +274,10 @@ static int write_sidecar(const char *path, const import_options *o, const vdb_se
   }
   fprintf(f, "; fogpipe import: K(x,y,z) = density_scale * f(x,z) * g(y) with max g = 1.\n"
              "; f: %s.####.exr (channel Y), the extinction per world unit where g = 1.\n"
-             "; [box] and [fog] use the keys and meanings of docs/config.md: add\n"
-             "; 'fogmap = %s.0048.exr' to [fog] and they place and shape frame 48.\n\n",
-          o->name, o->name);
+             "; [box] and [fog] are scene config sections (docs/config.md): copied into a\n"
+             "; scene with 'fogmap = %s.%04d.exr' added to [fog], they place and shape\n"
+             "; frame %d. [sequence] records this import (it is not a scene section).\n\n",
+          o->name, o->name, seq->frames[0], seq->frames[0]);
   fprintf(f, "[sequence]\nfiles = %s.%%04d.exr\nchannel = Y\n", o->name);
   fprintf(f, "first_frame = %d\nlast_frame = %d\nframe_count = %d\n", seq->frames[0],
           seq->frames[seq->count - 1], seq->count);

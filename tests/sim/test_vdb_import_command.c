@@ -71,7 +71,7 @@ int main(void) {
   double cell = 0, thickness = 0;
   int width = 0;
   if (!ini_value(ini, "cell_size", value, sizeof value)) cell = atof(value);
-  if (!ini_value(ini, "thickness", value, sizeof value)) thickness = atof(value);
+  if (!ini_value(ini, "; thickness", value, sizeof value)) thickness = atof(value);
   if (!ini_value(ini, "width", value, sizeof value)) width = atoi(value);
   CHECK(width == 50 && fabs(cell - 6.0 / 50) < 1e-9, "sidecar: width %d, cell %g", width, cell);
   CHECK(!ini_value(ini, "mass", value, sizeof value), "sidecar has no mass line");
