@@ -276,11 +276,17 @@ int fit_views_rbf_amplitudes(const fit_views *v, int count, fog_rbf *g, int n) {
         for (int j = 0; j < n; j++) a[(size_t)i * n + j] += w * depth[i] * depth[j];
       }
     }
+  /* A Gaussian the views hardly see (its depth ~1e-80 along every ray: small and away from
+   * them) has a diagonal ~1e-160, and one step of the solve would give it an amplitude of
+   * ~1e80 that no view checks (and no config holds): it keeps the moments' amplitude. */
+  double largest = 0.0;
+  for (int i = 0; i < n; i++) largest = fmax(largest, a[(size_t)i * n + i]);
+  const double seen = 1e-12 * largest;
   for (int sweep = 0; sweep < 500; sweep++) { /* projected Gauss-Seidel from the moments */
     double change = 0.0, size = 0.0;
     for (int i = 0; i < n; i++) {
       double diag = a[(size_t)i * n + i];
-      if (!(diag > 0.0)) continue;
+      if (!(diag > seen)) continue;
       double r = b[i];
       for (int j = 0; j < n; j++) r -= a[(size_t)i * n + j] * g[j].density;
       double next = fmax(0.0, g[i].density + r / diag);
