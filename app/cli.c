@@ -50,9 +50,8 @@ bool cli_parse_long(const char *text, long min, long max, long *value) {
 bool cli_parse_double(const char *text, double min, double max, double *value) {
   if (starts_with_space(text)) return false;
   char *end;
-  errno = 0;
-  double v = strtod(text, &end);
-  if (errno || end == text || *end || !isfinite(v) || !(v >= min && v <= max)) return false;
+  double v = strtod(text, &end); /* overflow: infinite, refused; underflow: the nearest */
+  if (end == text || *end || !isfinite(v) || !(v >= min && v <= max)) return false;
   if (strpbrk(text, "xX")) return false; /* strtod reads hexadecimal too: decimal only */
   *value = v;
   return true;

@@ -334,9 +334,10 @@ static int parse_numbers(const char *text, double *out, int max) {
     if (!*p) return count;
     if (count == max) return -1;
     char *end;
-    errno = 0;
     double v = strtod(p, &end);
-    if (end == p || errno == ERANGE || !isfinite(v)) return -1;
+    /* no ERANGE test: an overflow is infinite (refused), an underflow (1e-320) the number
+     * nearest it, which the key's range then takes or names */
+    if (end == p || !isfinite(v)) return -1;
     if (memchr(p, 'x', (size_t)(end - p)) || memchr(p, 'X', (size_t)(end - p)))
       return -1; /* strtod reads hexadecimal too; numbers here are decimal */
     if (*end && *end != ' ' && *end != '\t' && *end != ',') return -1;

@@ -181,8 +181,10 @@ int vdb_fogmap_place_fit(double x0, double x1, double z0, double z1, int resolut
              x1, z0, z1, cell);
     return 1;
   }
-  /* ceil with a tolerance, so that an exact multiple gives no extra empty cell */
-  const double w = ceil(sx / cell - 1e-6), h = ceil(sz / cell - 1e-6);
+  /* ceil with a tolerance, so that an exact multiple gives no extra empty cell; at least
+   * one cell (a cell wider than the domain is one cell, not "-0": the tolerance took the
+   * ratio below 0) */
+  const double w = fmax(1.0, ceil(sx / cell - 1e-6)), h = fmax(1.0, ceil(sz / cell - 1e-6));
   if (w < 1 || h < 1 || w * h > (double)(1 << 28)) {
     fog_fail(err, FOG_ERR_BAD_FILE, "a fogmap of %.0f x %.0f cells (cell %g) is out of range", w, h,
              cell);

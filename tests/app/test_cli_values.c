@@ -26,6 +26,9 @@ int main(void) {
   double d = -7;
   CHECK(cli_parse_double("0.25", 0, 1, &d) && d == 0.25, "0.25");
   CHECK(cli_parse_double("1e-3", 0, 1, &d) && d == 1e-3, "1e-3");
+  /* below double's normal range (strtod: ERANGE) but a number inside [0, 1]: the nearest */
+  CHECK(cli_parse_double("1e-320", 0, 1, &d) && d > 0 && d < 1e-319, "1e-320: %g", d);
+  CHECK(cli_parse_double("1e-400", 0, 1, &d) && d == 0, "1e-400: %g", d);
   const char *bad_doubles[] = {"", "nan", "inf", "1e400", "2", "-0.5", "0.5x", ".", " 0.5",
                                "0x1p-1" /* hexadecimal: strtod reads it, we do not */};
   d = -7;

@@ -143,6 +143,10 @@ int main(void) {
           cfg.camera.fov);
     snprintf(text, sizeof text, "[fog]\nfog_height = %0250d\n", 1);
     expect_error(text, "2: the line is 264 bytes long", "at most 199");
+    /* below double's normal range (strtod: ERANGE), inside the key's: a number */
+    CHECK(load_text("[fog]\nmodel = homogeneous\ndensity_scale = 1e-320\n", path, &cfg,
+                    &err) == 0 && cfg.fog.density_scale > 0 && cfg.fog.density_scale < 1e-319,
+          "density_scale = 1e-320: %s", err.message);
   }
   expect_error("; banks\n[fog]\nmodel = rbf\nrbf_base = 0.01\n", "3: [fog] model: ",
                "rbf needs at least one 'rbf = X Y Z RADIUS DENSITY' or 'rbf_emitter = ...' line");
