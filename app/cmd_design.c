@@ -145,6 +145,13 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
     return cli_usage_error("design", "say what to design: --perlin, --blobs N and/or --blob X,Z,SIGMA,PEAK");
   if (o->random_blobs + o->blob_count > max_blobs)
     return cli_usage_error("design", "more than 256 blobs");
+  /* an option the output or the design does not use would be dropped without a word */
+  const bool png = cli_ends_with(o->out, ".png");
+  if (half && png) return cli_usage_error("design", "--half stores an EXR's channel: not for .png");
+  if (o->png_max > 0 && !png)
+    return cli_usage_error("design", "--png-max scales a .png: an EXR keeps the densities");
+  if (o->blob_base > 0 && !o->random_blobs && !o->blob_count)
+    return cli_usage_error("design", "--blob-base is added to the blobs: give --blob or --blobs");
   return 0;
 }
 

@@ -79,6 +79,7 @@ static int parse_options(int argc, char **argv, import_options *o) {
   static const char *const profiles[] = {"bspline", "exponential", NULL};
   static const char *const degrees[] = {"1", "0", NULL}, *const per[] = {"sequence", "frame", NULL};
   int frames[3] = {-1, -1, 0}, up_axis = VDB_UP_Z, profile = VDB_PROFILE_BSPLINE;
+  int degree = -1; /* -1: not given (hats) */
   const cli_option options[] = {
       {.kind = CLI_SECTION, .name = "input:"},
       {.kind = CLI_TEXT, .name = "--grid", .value = "NAME", .target = &o->grid,
@@ -122,7 +123,7 @@ static int parse_options(int argc, char **argv, import_options *o) {
        .min = 1, .max = VDB_PROFILE_MAX_KNOTS,
        .help = "B-spline coefficients (default one per voxel layer, max 64)"},
       {.kind = CLI_CHOICE, .name = "--profile-degree", .value = "0|1",
-       .target = &o->profile.degree_box, .choices = degrees,
+       .target = &degree, .choices = degrees,
        .help = "B-spline degree (default 1: hats; 0: the layer histogram)"},
       {.kind = CLI_CHOICE, .name = "--profile-per", .value = "sequence|frame",
        .target = &o->profile_per_frame, .choices = per,
@@ -165,6 +166,14 @@ static int parse_options(int argc, char **argv, import_options *o) {
   if (!o->out && !o->list) return cli_usage_error("import", "--out DIR is required");
   if (o->resolution && o->cell) /* one would be dropped without a word */
     return cli_usage_error("import", "--resolution and --cell are alternatives: give one");
+  /* options of a mode that is off would be dropped without a word too */
+  if ((o->report_frame >= 0 || o->report_rays > 0) && !o->report)
+    return cli_usage_error("import", "--report-frame and --report-rays set up --report: give "
+                           "--report too");
+  if (o->profile.kind == VDB_PROFILE_EXPONENTIAL && (o->profile.knots > 0 || degree >= 0))
+    return cli_usage_error("import", "--profile-knots and --profile-degree shape the B-spline "
+                           "profile: not with --profile exponential");
+  o->profile.degree_box = degree == 1;
   return 0;
 }
 

@@ -15,6 +15,7 @@
 #include "app/cli.h"
 #include "app/cli_options.h"
 #include "app/commands.h"
+#include "app/recorder.h"
 #include "sim/sim.h"
 #include "transform/transform.h"
 
@@ -153,6 +154,27 @@ static int write_manifest(const char *dir, transform_plan *plan, const char *inp
   return 0;
 }
 
+/* The files of levels past J that an earlier, deeper transform into DIR left: they are this
+ * command's own names, and beside a transform.ini of J levels they would be read as its. */
+static void remove_deeper_levels(const char *dir, int levels) {
+  int removed = 0;
+  char path[4400];
+  for (int l = levels + 1; l <= 60; l++) {
+    char names[5][64];
+    snprintf(names[0], sizeof names[0], "approx_%d.exr", l);
+    snprintf(names[1], sizeof names[1], "deconstructed_%d.exr", l);
+    for (int o = 0; o < 3; o++)
+      snprintf(names[2 + o], sizeof names[2 + o], "detail_%d_%s.exr", l, orientation_names[o]);
+    for (int k = 0; k < 5; k++) {
+      snprintf(path, sizeof path, "%s/%s", dir, names[k]);
+      removed += unlink(path) == 0;
+    }
+  }
+  if (removed)
+    printf("removed %d file%s of an earlier transform with more levels than %d\n", removed,
+           removed == 1 ? "" : "s", levels);
+}
+
 static int run_forward(const char *in, const char *channel, const char *dir,
                        transform_desc desc) {
   fogmap map;
@@ -195,9 +217,11 @@ static int run_forward(const char *in, const char *channel, const char *dir,
   transform_pyramid(plan, coef, approx);
   transform_details(plan, coef, detail);
   transform_detail_energy(plan, coef, energy);
-  /* only now touch DIR */
-  if (mkdir(dir, 0755) && errno != EEXIST) {
-    cli_fail("transform", "%s: cannot create folder: %s", dir, strerror(errno));
+  /* only now touch DIR (and its parents, as import and record make theirs) */
+  fog_error ferr = {0};
+  char created[1024] = "";
+  if (recorder_make_folders(dir, created, sizeof created, &ferr)) {
+    cli_fail("transform", "%s", ferr.message);
     goto done;
   }
   char name[64];
@@ -220,6 +244,7 @@ static int run_forward(const char *in, const char *channel, const char *dir,
     }
   }
   if (write_manifest(dir, plan, in, energy)) goto done;
+  remove_deeper_levels(dir, J);
   status = 0;
 done:
   for (int l = 0; l < 64; l++) free(approx[l]), free(detail[l]);

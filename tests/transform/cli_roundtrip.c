@@ -106,6 +106,26 @@ int main(void) {
   CHECK(strstr(err, "detail_2_xy.exr") != NULL, "message does not name the file: %s", err);
   CHECK(!exists(out), "output written by a failed inverse");
 
+  /* the folder with its parents; then a shallower transform into it: the deeper levels
+   * an earlier run left are removed, not kept beside a transform.ini of fewer levels */
+  snprintf(dir, sizeof dir, "%s/a/b/levels", tmp);
+  snprintf(args, sizeof args, "data/fogmap_sample.exr --levels 3 --out %s", dir);
+  rc = run(args, err, sizeof err);
+  CHECK(rc == 0, "into a folder whose parents do not exist: %s", err);
+  snprintf(args, sizeof args, "data/fogmap_sample.exr --levels 1 --out %s", dir);
+  rc = run(args, err, sizeof err);
+  CHECK(rc == 0, "the shallower transform: %s", err);
+  static const char *const stale[] = {"approx_2.exr", "approx_3.exr", "deconstructed_2.exr",
+                                      "detail_2_x.exr", "detail_3_xy.exr"};
+  for (size_t k = 0; k < sizeof stale / sizeof stale[0]; k++) {
+    char path[600];
+    snprintf(path, sizeof path, "%s/%s", dir, stale[k]);
+    CHECK(!exists(path), "%s of the 3-level transform left beside the 1-level one", stale[k]);
+  }
+  char kept[600];
+  snprintf(kept, sizeof kept, "%s/detail_1_xy.exr", dir);
+  CHECK(exists(kept), "the 1-level transform's own detail_1_xy.exr is missing");
+
   char cmd[400];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
   if (system(cmd)) fprintf(stderr, "could not clean %s\n", tmp);
