@@ -3,9 +3,11 @@
  * 2.5D model with a ray march of the original 3D grid. Everything is written into a
  * temporary folder inside --out and renamed into place only when every frame worked. */
 #define _POSIX_C_SOURCE 200809L
+#include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
 #include <limits.h>
+#include <stdbool.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -524,6 +526,36 @@ static int place_sequence(const import_options *o, const vdb_frame *frames, int 
                               fmax(c0->cell_x, c0->cell_z), place, err);
 }
 
+/* Frames NAME.####.exr in out that this import did not write: an earlier import's, of
+ * other frames, placed and normalised by another NAME.ini. Named, not removed (importing a
+ * sequence in parts into one folder is a way to work), as record warns of another
+ * recording's frames. */
+static void warn_other_frames(const import_options *o, const vdb_sequence *seq) {
+  DIR *d = opendir(o->out);
+  if (!d) return;
+  const size_t n = strlen(o->name);
+  int others = 0, first = INT_MAX, last = INT_MIN;
+  struct dirent *e;
+  while ((e = readdir(d))) {
+    const char *s = e->d_name;
+    int frame, used = 0;
+    if (strncmp(s, o->name, n) || s[n] != '.' || !isdigit((unsigned char)s[n + 1]) ||
+        sscanf(s + n + 1, "%d.exr%n", &frame, &used) != 1 || used == 0 ||
+        s[n + 1 + used] != '\0')
+      continue;
+    bool ours = false;
+    for (int i = 0; i < seq->count && !ours; i++) ours = seq->frames[i] == frame;
+    if (ours) continue;
+    others++;
+    first = frame < first ? frame : first, last = frame > last ? frame : last;
+  }
+  closedir(d);
+  if (others)
+    fprintf(stderr, "fogpipe import: warning: %s also holds %d frame%s of another import "
+            "(%s.%04d.exr .. %s.%04d.exr), which %s.ini does not describe\n", o->out, others,
+            others == 1 ? "" : "s", o->name, first, o->name, last, o->name);
+}
+
 /* Every file in temp_dir is complete: moves them into out. 0 or the exit status. */
 static int move_into_place(const char *temp_dir, const char *out) {
   DIR *d = opendir(temp_dir);
@@ -646,6 +678,7 @@ int cmd_import(int argc, char **argv) {
   if (o.report && (status = run_report(&o, &seq, frames, &place, profile, temp_dir))) goto done;
   if ((status = move_into_place(temp_dir, o.out))) goto done;
   print_summary(&o, &seq, frames, &place, profile, mass_min, mass_max);
+  warn_other_frames(&o, &seq);
 done:
   if (temp_dir[0]) remove_dir(temp_dir);
   if (status && created_out) rmdir(o.out); /* a folder made for a failed import goes too */

@@ -2,7 +2,8 @@
  * same mass as the voxels (f·cell²·thickness summed = the sidecar's mass per frame, which
  * test_vdb_real_files checks against the voxel sum); bad input (a non-VDB file in the
  * sequence, missing frames, no such grid) exits non-zero, names the file and frame, and
- * leaves nothing in --out. */
+ * leaves nothing in --out; an import into a folder that holds other frames of the same
+ * name keeps them and says so. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <math.h>
@@ -135,6 +136,19 @@ int main(void) {
   CHECK(status != 0 && strstr(errors, "fluid_data_0001.vdb") && strstr(errors, "density, flame"),
         "no such grid (%d): %s", status, errors);
   CHECK(test_folder_entries(out) <= 0, "%d entries left in %s", test_folder_entries(out), out);
+
+  /* 5. frame 48 alone into the folder of 1.'s frames 40..48: it says the other 8 are there,
+   * kept, and not described by the new gf.ini */
+  snprintf(out, sizeof out, "%s/good", dir);
+  snprintf(cmd, sizeof cmd,
+           "'%s' import ../shared/data/vdb/groundfog/data/fluid_data_0048.vdb --resolution 50 "
+           "--out '%s' --name gf", bin, out);
+  status = run(cmd, errors, sizeof errors);
+  CHECK(status == 0 && strstr(errors, "also holds 8 frames of another import") &&
+            strstr(errors, "gf.0040.exr .. gf.0047.exr"),
+        "no word of the earlier frames (%d): %s", status, errors);
+  CHECK(test_folder_entries(out) == 10, "%d files: the earlier frames must stay",
+        test_folder_entries(out));
 
   test_remove_tree(dir);
   return test_finish("test_vdb_import_command");
