@@ -26,6 +26,13 @@ int cli_usage_error(const char *command, const char *format, ...)
  * 0 otherwise. */
 int cli_output_file(const char *command, const char *option, const char *path);
 
+/* An output file that is one of the command's inputs (the same file, however spelt):
+ * refused with the usage message (returns 2) before any work, naming the input (`what`,
+ * e.g. "the config's [fog] fogmap"), instead of replacing it. 0 otherwise, or when either
+ * does not exist. */
+int cli_output_not_input(const char *command, const char *option, const char *out,
+                         const char *input, const char *what);
+
 /* Whether s ends with suffix, ignoring case (".EXR" is ".exr"). */
 bool cli_ends_with(const char *s, const char *suffix);
 

@@ -329,6 +329,18 @@ static int run_inverse(const char *dir, const char *out, int threads) {
   transform_desc desc;
   char msg[8448];
   if (read_manifest(dir, &desc, msg, sizeof msg)) return cli_fail("transform", "%s", msg);
+  /* --out must not replace a file of the folder it reads (approx_0.exr: the next inverse
+   * would fail; any other: the folder would no longer be its transform.ini's) */
+  for (int l = 0; l <= desc.levels; l++)
+    for (int k = 0; k < 5; k++) {
+      char name[64], input[4400];
+      if (k == 0) snprintf(name, sizeof name, "approx_%d.exr", l);
+      else if (k == 1) snprintf(name, sizeof name, "deconstructed_%d.exr", l);
+      else snprintf(name, sizeof name, "detail_%d_%s.exr", l, orientation_names[k - 2]);
+      snprintf(input, sizeof input, "%s/%s", dir, name);
+      if (cli_output_not_input("transform", "--out", out, input, "a file of the --inverse folder"))
+        return 2;
+    }
   desc.threads = threads;
   transform_plan *plan;
   fog_error terr;

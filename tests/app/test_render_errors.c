@@ -1,7 +1,8 @@
 /* `fogpipe render` with a bad config: non-zero exit, the message names FILE:LINE: [section]
  * key, and no output file (nor a temporary) is left in the output folder. The same for a
  * fogmap that exists but is not an image (found only when rendering), and for a missing
- * config; and --help lists every option. */
+ * config; --out naming the config's own fogmap is refused and leaves it as it was; and
+ * --help lists every option. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <stdlib.h>
@@ -11,6 +12,7 @@
 #include "test_util.h"
 
 static char dir[] = "/tmp/fogpipe_render_errors_XXXXXX";
+static char text_of_own[2048];
 
 static int files_in(const char *folder) {
   DIR *d = opendir(folder);
@@ -26,6 +28,13 @@ static void read_text(const char *path, char *text, size_t size) {
   size_t n = f ? fread(text, 1, size - 1, f) : 0;
   text[n] = '\0';
   if (f) fclose(f);
+}
+
+static size_t read_bytes(const char *path, char *bytes, size_t size) {
+  FILE *f = fopen(path, "rb");
+  size_t n = f ? fread(bytes, 1, size, f) : 0;
+  if (f) fclose(f);
+  return n;
 }
 
 /* Runs fogpipe render on DIR/bad.ini holding `config`; checks exit != 0, stderr contains
@@ -73,6 +82,33 @@ int main(void) {
   expect_failure(bin, "[fog]\n\nfogmap = notanimage.png\n", "fogpipe render: %s/bad.ini:3: [fog] fogmap: ");
   unlink(path);
   expect_failure(bin, "[terrain]\nsize = 100\n", "[terrain] size: expected two numbers");
+
+  /* --out is the config's fogmap, spelt otherwise: refused, the fogmap's bytes unchanged */
+  {
+    char map[300], ini[300], command[1024], err_path[300];
+    static char before[65536], after[65536];
+    snprintf(map, sizeof map, "%s/map.exr", dir);
+    snprintf(ini, sizeof ini, "%s/own.ini", dir);
+    snprintf(err_path, sizeof err_path, "%s/own.txt", dir);
+    snprintf(command, sizeof command, "'%s' design --perlin --size 16x16 --out '%s' > /dev/null",
+             bin, map);
+    CHECK(system(command) == 0, "design failed");
+    FILE *g = fopen(ini, "w");
+    fputs("[fog]\nfogmap = map.exr\n", g);
+    fclose(g);
+    size_t size_before = read_bytes(map, before, sizeof before);
+    snprintf(command, sizeof command,
+             "'%s' render '%s' --out '%s/out/../map.exr' --size 32x18 2> '%s'", bin, ini, dir,
+             err_path);
+    int status = system(command);
+    read_text(err_path, text_of_own, sizeof text_of_own);
+    size_t size_after = read_bytes(map, after, sizeof after);
+    CHECK(status != 0 && strstr(text_of_own, "is the config's [fog] fogmap"),
+          "render over its own fogmap: status %d, '%s'", status, text_of_own);
+    CHECK(size_before > 0 && size_before == size_after && !memcmp(before, after, size_after),
+          "the fogmap was rewritten (%zu bytes, now %zu)", size_before, size_after);
+    unlink(map), unlink(ini), unlink(err_path);
+  }
 
   /* --help names every option. */
   char command[512], text[4096], out_path[256];

@@ -1,7 +1,9 @@
 /* `fogpipe transform` end to end (FOGPIPE_BIN): forward to a folder and --inverse back
  * reproduce the fogmap (<= 1e-6 relative) for every basis, both modes and both
- * decompositions; bad input (a missing file, too many levels, a folder missing a band)
- * fails with "fogpipe transform: <file>: <what>", a non-zero exit, and writes nothing. */
+ * decompositions; bad input (a missing file, too many levels, a folder missing a band, an
+ * --inverse --out that is a file of its folder) fails with a message naming the file, a
+ * non-zero exit, and writes nothing; --out's parents are made, and a shallower transform
+ * removes the deeper levels an earlier one left. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -125,6 +127,19 @@ int main(void) {
   char kept[600];
   snprintf(kept, sizeof kept, "%s/detail_1_xy.exr", dir);
   CHECK(exists(kept), "the 1-level transform's own detail_1_xy.exr is missing");
+
+  /* --inverse's --out a file of the folder it reads: refused before it replaces it */
+  snprintf(out, sizeof out, "%s/linear_full/approx_0.exr", tmp);
+  struct stat before, after;
+  CHECK(stat(out, &before) == 0, "no %s", out);
+  snprintf(args, sizeof args, "--inverse %s/linear_full --out %s", tmp, out);
+  rc = run(args, err, sizeof err);
+  CHECK(rc != 0 && strstr(err, "a file of the --inverse folder"),
+        "--out replacing the folder's approx_0.exr (%d): %s", rc, err);
+  CHECK(stat(out, &after) == 0 && after.st_size == before.st_size &&
+            after.st_mtim.tv_sec == before.st_mtim.tv_sec &&
+            after.st_mtim.tv_nsec == before.st_mtim.tv_nsec,
+        "approx_0.exr was rewritten");
 
   char cmd[400];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
