@@ -40,7 +40,12 @@
 
 #define FOG_BENCH_LIGHT_STEPS 1024
 #define FOG_BENCH_LIGHT_VOLUME 160
-#define ERROR_STRIDE 8 /* the error on every 8th pixel of every 8th row */
+/* The error on every 8th pixel of every 8th row, from 256 pixels wide; a smaller image
+ * keeps about 32 samples a row (down to every pixel), or a smoke size's 2 x 2 samples
+ * could all miss the fog and leave the errors 0 / 0. */
+static int error_stride(int width) {
+  return width >= 256 ? 8 : (width / 32 > 1 ? width / 32 : 1);
+}
 #define MATCHED_ERROR 1e-2 /* the 1e-3 is below the converged twin's own floor */
 
 static const int step_counts[] = {2, 4, 8, 16, 32};
@@ -146,14 +151,15 @@ static double phase_hg(double g, double mu) {
 /* The converged in-scatter at the error pixels, with tau from the GL's unlit draw (tau is
  * the same exact integral in every row). */
 static int scene_reference(light_scene *s, const float *tau, int W, int H) {
-  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  const int stride = error_stride(W);
+  const int cols = (W + stride - 1) / stride, rows = (H + stride - 1) / stride;
   if (!(s->reference = malloc((size_t)cols * rows * 3 * sizeof(double)))) return 1;
   const fog_pass_params *p = &s->fog.params;
   const fog_sun *sun = &p->sun;
   s->peak = 0;
   for (int j = 0; j < rows; j++)
     for (int i = 0; i < cols; i++) {
-      int px = i * ERROR_STRIDE, py = j * ERROR_STRIDE;
+      int px = i * stride, py = j * stride;
       size_t k = (size_t)py * W + px;
       double o[3], d[3];
       camera_ray(&s->drawn.cam, px, py, W, H, o, d);
@@ -174,11 +180,12 @@ static int scene_reference(light_scene *s, const float *tau, int W, int H) {
 }
 
 static void row_errors(light_row *r, const light_scene *s, const float *inscatter, int W, int H) {
-  const int cols = (W + ERROR_STRIDE - 1) / ERROR_STRIDE, rows = (H + ERROR_STRIDE - 1) / ERROR_STRIDE;
+  const int stride = error_stride(W);
+  const int cols = (W + stride - 1) / stride, rows = (H + stride - 1) / stride;
   double worst = 0, sum = 0;
   for (int j = 0; j < rows; j++)
     for (int i = 0; i < cols; i++) {
-      size_t k = (size_t)(j * ERROR_STRIDE) * W + i * ERROR_STRIDE;
+      size_t k = (size_t)(j * stride) * W + i * stride;
       for (int c = 0; c < 3; c++) {
         double e = fabs(inscatter[3 * k + c] - s->reference[((size_t)j * cols + i) * 3 + c]);
         if (!(e == e)) e = HUGE_VAL;
@@ -395,7 +402,7 @@ int bench_light(int argc, char **argv) {
   bench_print_gl(ctx, W, H, frames);
   printf("error: in-scatter vs the CPU twin converged (%d segments, a %d^3 volume) on every\n"
          "%dth pixel of every %dth row, relative to the largest in-scatter in view\n\n",
-         FOG_BENCH_LIGHT_STEPS, FOG_BENCH_LIGHT_VOLUME, ERROR_STRIDE, ERROR_STRIDE);
+         FOG_BENCH_LIGHT_STEPS, FOG_BENCH_LIGHT_VOLUME, error_stride(W), error_stride(W));
   for (int s = 0; s < SCENE_COUNT; s++)
     printf("%s: sun volume CPU ms (2 threads) %.1f (24^3) %.1f (48^3) %.1f (96^3)\n",
            scene_configs[s], scenes[s].volume_ms[0], scenes[s].volume_ms[1],

@@ -9,7 +9,8 @@
  * Summary line: `soak: frames=N rss_1k_mb=A rss_end_mb=B growth_mb=C
  * growth_per_1k_frames_kb=D heap_growth_per_1k_frames_kb=E`, A and B the peak RSS after
  * frame 1,000 and after frame N, C = B - A, D = C per 1,000 frames after frame 1,000 (in
- * KB), E the same for the malloc heap in use. The run fails (exit 1) when D or E exceeds
+ * KB), E the same for the malloc heap in use; A, C, D and E are nan in a run of 1,000
+ * frames or fewer. The run fails (exit 1) when D or E exceeds
  * SOAK_MAX_GROWTH_KB_PER_1K: a leak of about 64 bytes per frame.
  *
  * Why E: after start-up the allocator holds ~25 MB of freed, still-resident chunks (the
@@ -25,6 +26,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <fcntl.h>
 #include <malloc.h>
+#include <math.h>
 #include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -224,9 +226,13 @@ int bench_soak(int argc, char **argv) {
              "%+.1f KB (threshold %.0f KB each)\n",
              failed ? "FAIL" : "ok", SOAK_BASELINE_FRAME, growth_per_1k, heap_per_1k,
              SOAK_MAX_GROWTH_KB_PER_1K);
+    /* figures of frame 1,000 on are nan before it: 0.0 would read as "no growth" */
+    const double unmeasured = NAN;
     printf("soak: frames=%ld rss_1k_mb=%.2f rss_end_mb=%.2f growth_mb=%.2f "
            "growth_per_1k_frames_kb=%.1f heap_growth_per_1k_frames_kb=%.1f\n",
-           done, base.max_mb, last.max_mb, growth_mb, growth_per_1k, heap_per_1k);
+           done, measured ? base.max_mb : unmeasured, last.max_mb,
+           measured ? growth_mb : unmeasured, measured ? growth_per_1k : unmeasured,
+           measured ? heap_per_1k : unmeasured);
     if (!status && failed) status = 1;
   }
   free(buffer);
