@@ -132,10 +132,14 @@ int cmd_bake(int argc, char **argv) {
     recorder_remove_created_folders(&folders);
     return status;
   }
-  /* A longer bake made here before must not play on past this one's end. */
-  char path[SCENE_CONFIG_PATH_MAX + 32];
-  for (long n = (long)job.frames + 1;
-       scene_config_sequence_path(pattern, n, path, sizeof path) && unlink(path) == 0; n++) {
+  /* A longer bake made here before must not play on past this one's end: every later file
+   * the pattern matches goes, past any gap in them too (the config refuses a gap). */
+  vdb_sequence later;
+  fog_error lerr = {0};
+  const char *input = pattern;
+  if (!vdb_sequence_find(&input, 1, job.frames + 1, -1, &later, &lerr)) {
+    for (int i = 0; i < later.count; i++) unlink(later.paths[i]);
+    vdb_sequence_destroy(&later);
   }
   printf("baked %d frame%s of %s: %s and %s; render a range: fogpipe record %s --frames A-B "
          "--out FRAMES/\n", job.frames, job.frames == 1 ? "" : "s", job.config_path, pattern, ini,

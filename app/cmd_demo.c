@@ -40,9 +40,11 @@ typedef struct headless_job {
 
 /* The recording's last frame (its linear R, G, B) as an 8-bit sRGB PNG at `png`: what the
  * window's screenshot would have held, without the panel. */
-static int last_frame_png(const recorder *rec, int frame, const char *png) {
+static int last_frame_png(const char *folder, int frame, const char *png) {
+  recorder rec = {.name = "frame"}; /* recorder_open's default name */
   char path[PATH_MAX + 64];
-  recorder_frame_path(rec, frame, path, sizeof path);
+  snprintf(rec.folder, sizeof rec.folder, "%s", folder);
+  recorder_frame_path(&rec, frame, path, sizeof path);
   static const char *const channels[3] = {"R", "G", "B"};
   fogmap plane[3] = {{0}};
   fog_error err = {0};
@@ -92,12 +94,7 @@ static int record_instead(const headless_job *h, const char *reason) {
                     .fps = 24, .out = folder, .width = h->width, .height = h->height,
                     .quiet = !isatty(fileno(stdout))};
   int status = record_run(&job);
-  recorder done;
-  if (!status && h->screenshot &&
-      !recorder_open(&done, &(recorder_desc){.folder = folder, .width = h->width,
-                                             .height = h->height},
-                     &rerr))
-    status = last_frame_png(&done, h->frames, h->screenshot);
+  if (!status && h->screenshot) status = last_frame_png(folder, h->frames, h->screenshot);
   return status;
 }
 
@@ -122,7 +119,8 @@ static int parse_demo_options(int argc, char **argv, demo_options *o) {
   const cli_option options[] = {
       {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
        .help = "window size (default 1280x720; without a display, the\n"
-               "recording's, default " CLI_TEXT_OF(HEADLESS_WIDTH) "x" CLI_TEXT_OF(HEADLESS_HEIGHT) ")"},
+               "recording's, default " CLI_TEXT_OF(HEADLESS_WIDTH) "x"
+               CLI_TEXT_OF(HEADLESS_HEIGHT) ")"},
       {.kind = CLI_NUMBER, .name = "--scale", .value = "S", .target = &o->scale, .min = 0.25,
        .max = 1.0,
        .help = "render at S times the window size, 0.25..1 (default 1 on\n"

@@ -44,7 +44,6 @@ typedef struct import_options {
   int report_frame, report_rays;
 } import_options;
 
-/* --name: a plain file name (the outputs' base in DIR). */
 /* --name: the files' base name. Not hidden ('.': the frames would be dot files, which the
  * move into place and every folder listing pass over), and no '#' or '%', which the
  * sidecar's `files` pattern and every frame pattern reader take for the frame number. */
@@ -285,10 +284,11 @@ static int write_sidecar(const char *path, const import_options *o, const vdb_se
   }
   fprintf(f, "; fogpipe import: K(x,y,z) = density_scale * f(x,z) * g(y) with max g = 1.\n"
              "; f: %s.####.exr (channel Y), the extinction per world unit where g = 1.\n"
-             "; [box] and [fog] are scene config sections (docs/config.md): copied into a\n"
-             "; scene with 'fogmap = %s.%04d.exr' added to [fog], they place and shape\n"
-             "; frame %d. [sequence] records this import (it is not a scene section).\n\n",
-          o->name, o->name, seq->frames[0], seq->frames[0]);
+             "; [box] and [fog%s] are scene config sections (docs/config.md): copied into\n"
+             "; a scene as [box] and [fog], with 'fogmap = %s.%04d.exr' added to [fog],\n"
+             "; they place and shape frame %d. [sequence] records this import (it is not\n"
+             "; a scene section).\n\n",
+          o->name, profile ? "" : ".####", o->name, seq->frames[0], seq->frames[0]);
   fprintf(f, "[sequence]\nfiles = %s.%%04d.exr\nchannel = Y\n", o->name);
   fprintf(f, "first_frame = %d\nlast_frame = %d\nframe_count = %d\n", seq->frames[0],
           seq->frames[seq->count - 1], seq->count);

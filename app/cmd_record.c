@@ -24,9 +24,10 @@ static volatile sig_atomic_t interrupted;
 
 static void on_interrupt(int signal_number) { interrupted = signal_number; }
 
-/* Whether --preview names the --out folder itself (which may not exist yet): the video
- * would be renamed onto the frames' folder after the whole recording. */
-static bool same_path(const char *preview, const char *out) {
+/* Refuses (true, the usage message printed) a --preview that names the --out folder itself
+ * (which may not exist yet): the video would be renamed onto the frames' folder after the
+ * whole recording. */
+static bool refuse_preview_in_out(const char *preview, const char *out) {
   size_t p = strlen(preview), o = strlen(out);
   while (p > 1 && preview[p - 1] == '/') p--;
   while (o > 1 && out[o - 1] == '/') o--;
@@ -84,7 +85,7 @@ int cmd_record(int argc, char **argv) {
   job.first_frame = frames[2] ? 1 : frames[0], job.frames = frames[1];
   job.width = size[0], job.height = size[1];
   if (job.preview && (cli_output_file("record", "--preview", job.preview) ||
-                      same_path(job.preview, job.out)))
+                      refuse_preview_in_out(job.preview, job.out)))
     return 2;
   if (job.preview && job.first_frame > 1) {
     fprintf(stderr, "fogpipe record: --preview encodes a whole sequence; it takes --frames N, "

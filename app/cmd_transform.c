@@ -154,12 +154,18 @@ static int write_manifest(const char *dir, transform_plan *plan, const char *inp
   return 0;
 }
 
-/* The files of levels past J that an earlier, deeper transform into DIR left: they are this
- * command's own names, and beside a transform.ini of J levels they would be read as its. */
-static void remove_deeper_levels(const char *dir, int levels) {
+static int read_manifest(const char *dir, transform_desc *desc, char *msg, size_t msg_size);
+
+/* The files of levels J+1 .. earlier_levels that an earlier, deeper transform into DIR left
+ * (its transform.ini said so): beside a transform.ini of J levels they would be read as
+ * this one's. Only that transform's own names, and never the input (`in` may be one). */
+static void remove_deeper_levels(const char *dir, int levels, int earlier_levels,
+                                 const char *in) {
   int removed = 0;
   char path[4400];
-  for (int l = levels + 1; l <= 60; l++) {
+  struct stat input;
+  const bool have_input = stat(in, &input) == 0;
+  for (int l = levels + 1; l <= earlier_levels; l++) {
     char names[5][64];
     snprintf(names[0], sizeof names[0], "approx_%d.exr", l);
     snprintf(names[1], sizeof names[1], "deconstructed_%d.exr", l);
@@ -167,6 +173,10 @@ static void remove_deeper_levels(const char *dir, int levels) {
       snprintf(names[2 + o], sizeof names[2 + o], "detail_%d_%s.exr", l, orientation_names[o]);
     for (int k = 0; k < 5; k++) {
       snprintf(path, sizeof path, "%s/%s", dir, names[k]);
+      struct stat st;
+      if (stat(path, &st) != 0 ||
+          (have_input && st.st_dev == input.st_dev && st.st_ino == input.st_ino))
+        continue;
       removed += unlink(path) == 0;
     }
   }
@@ -217,6 +227,11 @@ static int run_forward(const char *in, const char *channel, const char *dir,
   transform_pyramid(plan, coef, approx);
   transform_details(plan, coef, detail);
   transform_detail_energy(plan, coef, energy);
+  /* an earlier transform into DIR, whose deeper levels go once this one is written */
+  transform_desc earlier;
+  char earlier_msg[256];
+  const int earlier_levels =
+      read_manifest(dir, &earlier, earlier_msg, sizeof earlier_msg) ? -1 : earlier.levels;
   /* only now touch DIR (and its parents, as import and record make theirs) */
   fog_error ferr = {0};
   char created[1024] = "";
@@ -244,7 +259,7 @@ static int run_forward(const char *in, const char *channel, const char *dir,
     }
   }
   if (write_manifest(dir, plan, in, energy)) goto done;
-  remove_deeper_levels(dir, J);
+  remove_deeper_levels(dir, J, earlier_levels, in);
   status = 0;
 done:
   for (int l = 0; l < 64; l++) free(approx[l]), free(detail[l]);

@@ -292,7 +292,8 @@ int exr_read_channel(const char *path, const char *channel, const char *channel_
   int64_t width = 0, height = 0;
   if (exr_read_layout(ctxt, path, &stream, &storage, &window, &list, &width, &height, err))
     goto done;
-  const exr_attr_chlist_entry_t *entry = exr_pick_channel(list, path, channel, channel_setting, err);
+  const exr_attr_chlist_entry_t *entry =
+      exr_pick_channel(list, path, channel, channel_setting, err);
   if (!entry) goto done;
   out = calloc((size_t)width * (size_t)height, sizeof *out);
   if (!out) {

@@ -254,11 +254,14 @@ typedef struct vdb_sequence {
 } vdb_sequence;
 
 /* inputs: files, directories (every *.vdb inside), printf patterns (fluid_data_%04d.vdb),
- * #### patterns (fluid_data_####.vdb) or globs (fluid_data_*.vdb). first/last: a frame
- * range (last < 0: open). Missing frames inside the range are listed, not an error
- * here. Fails when nothing matches (naming the input), and for more than 2^20 frames
- * from the first to the last (the range, or the frame numbers found). A printf pattern has
- * one integer conversion and otherwise only "%%" (else it is a file name or glob). */
+ * #### patterns (fluid_data_####.vdb) or globs (fluid_data_*.vdb). A path that exists is
+ * itself, whatever its name holds; a #### pattern's frame number is the last run of '#' in
+ * its file name (a folder's '#' is itself). first/last: a frame range (last < 0: open).
+ * Missing frames inside the range are listed, not an error here; two files whose names
+ * number one frame are (the same file however spelt is one). Fails when nothing matches
+ * (naming the input), and for more than 2^20 frames from the first to the last (the
+ * range, or the frame numbers found). A printf pattern has one integer conversion and
+ * otherwise only "%%" (else it is a file name or glob). */
 int vdb_sequence_find(const char *const *inputs, int input_count, int first, int last,
                       vdb_sequence *out, fog_error *err);
 void vdb_sequence_destroy(vdb_sequence *sequence);

@@ -185,7 +185,7 @@ int vdb_fogmap_place_fit(double x0, double x1, double z0, double z1, int resolut
    * one cell (a cell wider than the domain is one cell, not "-0": the tolerance took the
    * ratio below 0) */
   const double w = fmax(1.0, ceil(sx / cell - 1e-6)), h = fmax(1.0, ceil(sz / cell - 1e-6));
-  if (w < 1 || h < 1 || w * h > (double)(1 << 28)) {
+  if (w * h > (double)(1 << 28)) {
     fog_fail(err, FOG_ERR_BAD_FILE, "a fogmap of %.0f x %.0f cells (cell %g) is out of range", w, h,
              cell);
     return 1;

@@ -34,6 +34,14 @@ static long frame_of(const char *path, int *digits_start, int *digits_len) {
   return strtol(start, NULL, 10);
 }
 
+/* The same file however spelt (device and inode), or the same string. */
+static bool same_file(const char *a, const char *b) {
+  struct stat sa, sb;
+  if (!strcmp(a, b)) return true;
+  return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
+}
+
 typedef struct entry {
   int frame;
   char *path;
@@ -240,15 +248,18 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
     }
   }
   qsort(list.items, (size_t)list.count, sizeof *list.items, by_frame);
-  /* Keep the range; drop a later duplicate of the same path (sorted by frame, then path,
-   * so copies are neighbours). Two files of one frame number are an error: one of them
-   * would silently stand for both. */
+  /* Keep the range; drop a later duplicate of the same file (sorted by frame, then path,
+   * so copies are neighbours; "d//f.vdb" and "./d/f.vdb" are one file too). Two files
+   * whose names number one frame are an error: one would silently stand for both. (A
+   * name without digits is numbered by its place in the list; it clashes with nothing.) */
   int kept = 0;
   for (int i = 0; i < list.count; i++) {
     entry it = list.items[i];
     int in_range = (first < 0 || it.frame >= first) && (last < 0 || it.frame <= last);
-    int duplicate = kept > 0 && !strcmp(list.items[kept - 1].path, it.path);
-    if (in_range && !duplicate && kept > 0 && list.items[kept - 1].frame == it.frame) {
+    const entry *previous = kept > 0 ? &list.items[kept - 1] : NULL;
+    int duplicate = previous && previous->frame == it.frame && same_file(previous->path, it.path);
+    if (in_range && !duplicate && previous && previous->frame == it.frame &&
+        frame_of(previous->path, NULL, NULL) >= 0 && frame_of(it.path, NULL, NULL) >= 0) {
       fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                "frame %d twice: %s and %s (one file a frame number)", it.frame,
                list.items[kept - 1].path, it.path);

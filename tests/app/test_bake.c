@@ -84,13 +84,21 @@ int main(void) {
             baked.box.cell_size == original.box.cell_size && baked.fog.levels == original.fog.levels,
         "bake.ini is not the scene playing its frames");
 
-  /* Baking fewer frames into the same folder leaves no frame of the longer bake to play. */
+  /* Baking fewer frames into the same folder leaves no frame of the longer bake to play,
+   * past a gap in them too (a stray fog.0012.exr: its bake.ini would be refused for the
+   * gap at 9), and the shorter bake's config loads. */
+  char stray[700];
+  snprintf(stray, sizeof stray, "%s/fog.0012.exr", bake);
+  snprintf(command, sizeof command, "cp '%s' '%s'", p1, stray);
+  CHECK(system(command) == 0, "cannot make %s", stray);
   snprintf(command, sizeof command, "'%s' bake %s --frames 3 --out '%s'", record_bin(),
            RECORD_TEST_CONFIG, bake);
   CHECK(run(command, log) == 0, "the second, shorter bake failed");
   char stale[700];
   snprintf(stale, sizeof stale, "%s/fog.0004.exr", bake);
   CHECK(access(stale, F_OK) != 0, "the shorter bake left %s of the longer one", stale);
+  CHECK(access(stray, F_OK) != 0, "the shorter bake left %s past the gap", stray);
+  CHECK(scene_config_load(ini, &baked, &err) == 0, "the shorter bake's config: %s", err.message);
 
   /* Nothing to bake: refused, no folder made. */
   char none[600];

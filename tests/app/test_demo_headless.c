@@ -3,8 +3,8 @@
  * are; the frames it names exist and are readable. Run in a fresh temporary folder (the
  * recording goes to ./out/demo there). With --size, the recording has that size; with
  * --screenshot, the PNG holds the last frame's R, G, B encoded as sRGB (against the IEC
- * 61966-2-1 formula here, within one level); a window-only option is named as having no
- * effect. */
+ * 61966-2-1 formula here, within half a level: the nearest); a window-only option is named
+ * as having no effect. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 

@@ -1,6 +1,6 @@
 /* `fogpipe import`'s sidecar says its [box] and [fog] are scene config sections: copied into
  * a scene with `fogmap = NAME.FRAME.exr` added to [fog], they load (scene_config_load) and
- * hold the sidecar's placement and every profile coefficient. The plume's frame 48 has a
+ * hold every profile coefficient the sidecar lists. The plume's frame 48 has a
  * profile of 64 coefficients, a line of ~600 bytes where a config line holds 199: the
  * sidecar wraps it over indented lines. */
 #include "tests/app/record_util.h" /* first: it sets _POSIX_C_SOURCE */

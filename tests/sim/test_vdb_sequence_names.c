@@ -5,7 +5,8 @@
  *   - in a pattern, the frame number is the last run of '#' of the file name, never a
  *     '#' of a folder;
  *   - two different files of one frame number are refused, naming both (one would stand
- *     for the other); the same file given twice is one frame. */
+ *     for the other); the same file given twice, however spelt ("d//f", "./d/f"), is one
+ *     frame; a name without digits (numbered by its place) clashes with no frame. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <string.h>
@@ -46,6 +47,8 @@ int main(void) {
   touch("take#2/fluid_0003.vdb");
   touch("shot#48.vdb");
   touch("other_0002.vdb");
+  touch("fog.vdb");
+  touch("a##_0007.vdb");
   vdb_sequence seq;
   fog_error err;
 
@@ -93,6 +96,29 @@ int main(void) {
     vdb_sequence_destroy(&seq);
   } else {
     CHECK(0, "the same file twice: %s", err.message);
+  }
+  const char *spellings[] = {"take#2//fluid_0002.vdb", "./take#2/fluid_0002.vdb"};
+  if (!find(spellings, 2, &seq, &err)) {
+    CHECK(seq.count == 1, "one file in two spellings: %d frames", seq.count);
+    vdb_sequence_destroy(&seq);
+  } else {
+    CHECK(0, "one file in two spellings: %s", err.message);
+  }
+  const char *unnumbered[] = {"take#2/fluid_0001.vdb", "fog.vdb"};
+  if (!find(unnumbered, 2, &seq, &err)) {
+    CHECK(seq.count == 2, "a numbered file and fog.vdb: %d frames", seq.count);
+    vdb_sequence_destroy(&seq);
+  } else {
+    CHECK(0, "a numbered file and fog.vdb (no digits): %s", err.message);
+  }
+  /* two runs of '#' in the name: the last is the frame number, the first is itself */
+  const char *two_runs[] = {"a##_####.vdb"};
+  if (!find(two_runs, 1, &seq, &err)) {
+    CHECK(seq.count == 1 && seq.frames[0] == 7 && strstr(seq.paths[0], "a##_0007.vdb"),
+          "a##_####.vdb: %d frames", seq.count);
+    vdb_sequence_destroy(&seq);
+  } else {
+    CHECK(0, "a##_####.vdb: %s", err.message);
   }
   test_remove_tree(dir);
   return test_finish("test_vdb_sequence_names");
