@@ -25,16 +25,37 @@ static void touch(const char *name) {
   if (f) fclose(f);
 }
 
-/* The sequence of the inputs (names relative to dir): 0, or 1 with its error in err. */
-static int find(const char *const *names, int count, vdb_sequence *seq, fog_error *err) {
-  char paths[4][512];
-  const char *inputs[4];
-  for (int i = 0; i < count; i++) {
-    snprintf(paths[i], sizeof paths[i], "%s/%s", dir, names[i]);
-    inputs[i] = paths[i];
+/* One case: inputs (names relative to dir) and what the finder must give: `frames` files,
+ * file `at` of frame `frame` whose path holds `path`; frames 0: refused, its message
+ * holding `path`. */
+typedef struct names_case {
+  const char *label;
+  const char *inputs[2];
+  int frames, at, frame;
+  const char *path;
+} names_case;
+
+static void check_case(const names_case *c) {
+  char paths[2][512];
+  const char *inputs[2];
+  int count = 0;
+  for (; count < 2 && c->inputs[count]; count++) {
+    snprintf(paths[count], sizeof paths[count], "%s/%s", dir, c->inputs[count]);
+    inputs[count] = paths[count];
   }
-  *err = (fog_error){0};
-  return vdb_sequence_find(inputs, count, -1, -1, seq, err);
+  vdb_sequence seq;
+  fog_error err = {0};
+  int status = vdb_sequence_find(inputs, count, -1, -1, &seq, &err);
+  if (c->frames == 0) {
+    CHECK(status != 0 && strstr(err.message, c->path), "%s: %s", c->label,
+          status ? err.message : "accepted");
+  } else {
+    CHECK(status == 0 && seq.count == c->frames && seq.frames[c->at] == c->frame &&
+              strstr(seq.paths[c->at], c->path),
+          "%s: %s (%d frames)", c->label, status ? err.message : "other frames",
+          status ? 0 : seq.count);
+  }
+  if (status == 0) vdb_sequence_destroy(&seq);
 }
 
 int main(void) {
@@ -42,84 +63,36 @@ int main(void) {
   char folder[512];
   snprintf(folder, sizeof folder, "%s/take#2", dir);
   CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
-  touch("take#2/fluid_0001.vdb");
-  touch("take#2/fluid_0002.vdb");
-  touch("take#2/fluid_0003.vdb");
-  touch("shot#48.vdb");
-  touch("other_0002.vdb");
-  touch("fog.vdb");
-  touch("a##_0007.vdb");
-  vdb_sequence seq;
-  fog_error err;
-
-  const char *folder_input[] = {"take#2"};
-  if (!find(folder_input, 1, &seq, &err)) {
-    CHECK(seq.count == 3 && seq.frames[0] == 1 && seq.frames[2] == 3,
-          "the folder take#2: %d frames", seq.count);
-    vdb_sequence_destroy(&seq);
-  } else {
-    CHECK(0, "the folder take#2: %s", err.message);
-  }
-  const char *file_input[] = {"take#2/fluid_0002.vdb"};
-  if (!find(file_input, 1, &seq, &err)) {
-    CHECK(seq.count == 1 && seq.frames[0] == 2 && strstr(seq.paths[0], "take#2/fluid_0002"),
-          "the file take#2/fluid_0002.vdb: %d frames", seq.count);
-    vdb_sequence_destroy(&seq);
-  } else {
-    CHECK(0, "the file take#2/fluid_0002.vdb: %s", err.message);
-  }
-  const char *hash_name[] = {"shot#48.vdb"};
-  if (!find(hash_name, 1, &seq, &err)) {
-    CHECK(seq.count == 1 && strstr(seq.paths[0], "shot#48.vdb"), "shot#48.vdb: %d frames",
-          seq.count);
-    vdb_sequence_destroy(&seq);
-  } else {
-    CHECK(0, "the file shot#48.vdb: %s", err.message);
-  }
-  const char *pattern[] = {"take#2/fluid_####.vdb"};
-  if (!find(pattern, 1, &seq, &err)) {
-    CHECK(seq.count == 3 && seq.frames[1] == 2 && strstr(seq.paths[1], "take#2/fluid_0002.vdb"),
-          "the pattern take#2/fluid_####.vdb: %d frames", seq.count);
-    vdb_sequence_destroy(&seq);
-  } else {
-    CHECK(0, "the pattern take#2/fluid_####.vdb: %s", err.message);
-  }
-  const char *same_frame[] = {"take#2/fluid_0002.vdb", "other_0002.vdb"};
-  int status = find(same_frame, 2, &seq, &err);
-  CHECK(status != 0 && strstr(err.message, "frame 2 twice") &&
-            strstr(err.message, "take#2/fluid_0002.vdb") && strstr(err.message, "other_0002.vdb"),
-        "two files of frame 2: %s", status ? err.message : "accepted");
-  if (!status) vdb_sequence_destroy(&seq);
-  const char *same_file[] = {"take#2/fluid_0002.vdb", "take#2/fluid_0002.vdb"};
-  if (!find(same_file, 2, &seq, &err)) {
-    CHECK(seq.count == 1, "the same file twice: %d frames", seq.count);
-    vdb_sequence_destroy(&seq);
-  } else {
-    CHECK(0, "the same file twice: %s", err.message);
-  }
-  const char *spellings[] = {"take#2//fluid_0002.vdb", "./take#2/fluid_0002.vdb"};
-  if (!find(spellings, 2, &seq, &err)) {
-    CHECK(seq.count == 1, "one file in two spellings: %d frames", seq.count);
-    vdb_sequence_destroy(&seq);
-  } else {
-    CHECK(0, "one file in two spellings: %s", err.message);
-  }
-  const char *unnumbered[] = {"take#2/fluid_0001.vdb", "fog.vdb"};
-  if (!find(unnumbered, 2, &seq, &err)) {
-    CHECK(seq.count == 2, "a numbered file and fog.vdb: %d frames", seq.count);
-    vdb_sequence_destroy(&seq);
-  } else {
-    CHECK(0, "a numbered file and fog.vdb (no digits): %s", err.message);
-  }
-  /* two runs of '#' in the name: the last is the frame number, the first is itself */
-  const char *two_runs[] = {"a##_####.vdb"};
-  if (!find(two_runs, 1, &seq, &err)) {
-    CHECK(seq.count == 1 && seq.frames[0] == 7 && strstr(seq.paths[0], "a##_0007.vdb"),
-          "a##_####.vdb: %d frames", seq.count);
-    vdb_sequence_destroy(&seq);
-  } else {
-    CHECK(0, "a##_####.vdb: %s", err.message);
-  }
+  static const char *const files[] = {"take#2/fluid_0001.vdb", "take#2/fluid_0002.vdb",
+                                      "take#2/fluid_0003.vdb", "shot#48.vdb", "other_0002.vdb",
+                                      "fog.vdb", "a##_0007.vdb"};
+  for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) touch(files[i]);
+  static const names_case cases[] = {
+      {"the folder take#2", {"take#2"}, 3, 2, 3, "take#2/fluid_0003.vdb"},
+      {"the file take#2/fluid_0002.vdb", {"take#2/fluid_0002.vdb"}, 1, 0, 2,
+       "take#2/fluid_0002.vdb"},
+      {"the file shot#48.vdb", {"shot#48.vdb"}, 1, 0, 48, "shot#48.vdb"},
+      {"the pattern take#2/fluid_####.vdb", {"take#2/fluid_####.vdb"}, 3, 1, 2,
+       "take#2/fluid_0002.vdb"},
+      /* two runs of '#' in the name: the last is the frame number, the first is itself */
+      {"the pattern a##_####.vdb", {"a##_####.vdb"}, 1, 0, 7, "a##_0007.vdb"},
+      {"two files of frame 2", {"take#2/fluid_0002.vdb", "other_0002.vdb"}, 0, 0, 0,
+       "frame 2 twice"},
+      {"the same file twice", {"take#2/fluid_0002.vdb", "take#2/fluid_0002.vdb"}, 1, 0, 2,
+       "fluid_0002.vdb"},
+      {"one file in two spellings", {"take#2//fluid_0002.vdb", "./take#2/fluid_0002.vdb"}, 1, 0,
+       2, "fluid_0002.vdb"},
+      {"a numbered file and fog.vdb (no digits)", {"take#2/fluid_0001.vdb", "fog.vdb"}, 2, 1, 1,
+       "fluid_0001.vdb"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) check_case(&cases[i]);
+  /* the refusal names both files */
+  check_case(&(names_case){"two files of frame 2, the first named",
+                           {"take#2/fluid_0002.vdb", "other_0002.vdb"}, 0, 0, 0,
+                           "take#2/fluid_0002.vdb"});
+  check_case(&(names_case){"two files of frame 2, the second named",
+                           {"take#2/fluid_0002.vdb", "other_0002.vdb"}, 0, 0, 0,
+                           "other_0002.vdb"});
   test_remove_tree(dir);
   return test_finish("test_vdb_sequence_names");
 }
