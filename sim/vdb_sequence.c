@@ -249,20 +249,28 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
   }
   qsort(list.items, (size_t)list.count, sizeof *list.items, by_frame);
   /* Keep the range; drop a later duplicate of the same file (sorted by frame, then path,
-   * so copies are neighbours; "d//f.vdb" and "./d/f.vdb" are one file too). Two files
-   * whose names number one frame are an error: one would silently stand for both. (A
-   * name without digits is numbered by its place in the list; it clashes with nothing.) */
+   * so copies are neighbours; "d//f.vdb" and "./d/f.vdb" are one file too). Two files of
+   * one frame number are an error: one would silently stand for both. A name without
+   * digits is numbered by its place in the list, which can be a numbered file's frame:
+   * that message says so. */
   int kept = 0;
   for (int i = 0; i < list.count; i++) {
     entry it = list.items[i];
     int in_range = (first < 0 || it.frame >= first) && (last < 0 || it.frame <= last);
     const entry *previous = kept > 0 ? &list.items[kept - 1] : NULL;
     int duplicate = previous && previous->frame == it.frame && same_file(previous->path, it.path);
-    if (in_range && !duplicate && previous && previous->frame == it.frame &&
-        frame_of(previous->path, NULL, NULL) >= 0 && frame_of(it.path, NULL, NULL) >= 0) {
-      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-               "frame %d twice: %s and %s (one file a frame number)", it.frame,
-               list.items[kept - 1].path, it.path);
+    if (in_range && !duplicate && previous && previous->frame == it.frame) {
+      const bool numbered = frame_of(previous->path, NULL, NULL) >= 0 &&
+                            frame_of(it.path, NULL, NULL) >= 0;
+      if (numbered)
+        fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                 "frame %d twice: %s and %s (one file a frame number)", it.frame,
+                 previous->path, it.path);
+      else
+        fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                 "frame %d twice: %s and %s (a name without digits takes its place in the "
+                 "list as its frame: number every file, or import them apart)", it.frame,
+                 previous->path, it.path);
       for (int j = i; j < list.count; j++) free(list.items[j].path);
       list.count = kept;
       goto fail;

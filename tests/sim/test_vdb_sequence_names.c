@@ -6,7 +6,8 @@
  *     '#' of a folder;
  *   - two different files of one frame number are refused, naming both (one would stand
  *     for the other); the same file given twice, however spelt ("d//f", "./d/f"), is one
- *     frame; a name without digits (numbered by its place) clashes with no frame. */
+ *     frame; a name without digits takes its place in the list as its frame, and where a
+ *     numbered file has that frame the refusal says so. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <string.h>
@@ -82,8 +83,10 @@ int main(void) {
        "fluid_0002.vdb"},
       {"one file in two spellings", {"take#2//fluid_0002.vdb", "./take#2/fluid_0002.vdb"}, 1, 0,
        2, "fluid_0002.vdb"},
-      {"a numbered file and fog.vdb (no digits)", {"take#2/fluid_0001.vdb", "fog.vdb"}, 2, 1, 1,
-       "fluid_0001.vdb"},
+      {"fog.vdb (no digits, place 1) and a file of frame 1", {"take#2/fluid_0001.vdb", "fog.vdb"},
+       0, 0, 0, "a name without digits takes its place"},
+      {"fog.vdb (no digits, place 0) and a file of frame 2", {"fog.vdb", "take#2/fluid_0002.vdb"},
+       2, 0, 0, "fog.vdb"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) check_case(&cases[i]);
   /* the refusal names both files */
