@@ -242,7 +242,7 @@ static void remove_dir(const char *dir) {
 
 /* The profile in docs/config.md's [fog] keys (render/fog_field.h's fog_profile), so that the
  * section loads in a scene config as it is: the coefficients go on over indented lines (a
- * config line holds at most 199 bytes; a plume's 40-odd numbers take ~600), and what is only
+ * config line holds at most 199 bytes; the plume's 64 numbers took 590), and what is only
  * information (the support, the integral) is a comment. */
 static void write_profile(FILE *f, const char *section, const vdb_profile *p) {
   fprintf(f, "[%s]\n", section);
