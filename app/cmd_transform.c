@@ -156,6 +156,14 @@ static int write_manifest(const char *dir, transform_plan *plan, const char *inp
 
 static int read_manifest(const char *dir, transform_desc *desc, char *msg, size_t msg_size);
 
+/* The folder's file of level l, kind k (0 approx, 1 deconstructed, 2..4 detail x, y, xy)
+ * into path. */
+static void level_file(const char *dir, int l, int k, char *path, size_t size) {
+  if (k == 0) snprintf(path, size, "%s/approx_%d.exr", dir, l);
+  else if (k == 1) snprintf(path, size, "%s/deconstructed_%d.exr", dir, l);
+  else snprintf(path, size, "%s/detail_%d_%s.exr", dir, l, orientation_names[k - 2]);
+}
+
 /* The files of levels J+1 .. earlier_levels that an earlier, deeper transform into DIR left
  * (its transform.ini said so): beside a transform.ini of J levels they would be read as
  * this one's. Only that transform's own names, and never the input (`in` may be one). */
@@ -166,13 +174,8 @@ static void remove_deeper_levels(const char *dir, int levels, int earlier_levels
   struct stat input;
   const bool have_input = stat(in, &input) == 0;
   for (int l = levels + 1; l <= earlier_levels; l++) {
-    char names[5][64];
-    snprintf(names[0], sizeof names[0], "approx_%d.exr", l);
-    snprintf(names[1], sizeof names[1], "deconstructed_%d.exr", l);
-    for (int o = 0; o < 3; o++)
-      snprintf(names[2 + o], sizeof names[2 + o], "detail_%d_%s.exr", l, orientation_names[o]);
     for (int k = 0; k < 5; k++) {
-      snprintf(path, sizeof path, "%s/%s", dir, names[k]);
+      level_file(dir, l, k, path, sizeof path);
       struct stat st;
       if (stat(path, &st) != 0 ||
           (have_input && st.st_dev == input.st_dev && st.st_ino == input.st_ino))
@@ -187,6 +190,13 @@ static void remove_deeper_levels(const char *dir, int levels, int earlier_levels
 
 static int run_forward(const char *in, const char *channel, const char *dir,
                        transform_desc desc) {
+  /* the input must not be one of the files this writes (transform P/approx_0.exr --out P) */
+  for (int l = 0; l <= desc.levels && l <= 60; l++)
+    for (int k = 0; k < 5; k++) {
+      char output[4400];
+      level_file(dir, l, k, output, sizeof output);
+      if (cli_output_not_input("transform", "--out", output, in, "the input fogmap")) return 2;
+    }
   fogmap map;
   fog_error serr;
   if (fogmap_load(in, &(fogmap_load_desc){.channel = channel, .channel_setting = "--channel"},
@@ -348,11 +358,8 @@ static int run_inverse(const char *dir, const char *out, int threads) {
    * would fail; any other: the folder would no longer be its transform.ini's) */
   for (int l = 0; l <= desc.levels; l++)
     for (int k = 0; k < 5; k++) {
-      char name[64], input[4400];
-      if (k == 0) snprintf(name, sizeof name, "approx_%d.exr", l);
-      else if (k == 1) snprintf(name, sizeof name, "deconstructed_%d.exr", l);
-      else snprintf(name, sizeof name, "detail_%d_%s.exr", l, orientation_names[k - 2]);
-      snprintf(input, sizeof input, "%s/%s", dir, name);
+      char input[4400];
+      level_file(dir, l, k, input, sizeof input);
       if (cli_output_not_input("transform", "--out", out, input, "a file of the --inverse folder"))
         return 2;
     }

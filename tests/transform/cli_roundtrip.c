@@ -1,7 +1,7 @@
 /* `fogpipe transform` end to end (FOGPIPE_BIN): forward to a folder and --inverse back
  * reproduce the fogmap (<= 1e-6 relative) for every basis, both modes and both
  * decompositions; bad input (a missing file, too many levels, a folder missing a band, an
- * --inverse --out that is a file of its folder) fails with a message naming the file, a
+ * --inverse --out that is a file of its folder, a forward input that it would write) fails with a message naming the file, a
  * non-zero exit, and writes nothing; --out's parents are made, and a shallower transform
  * removes the deeper levels an earlier one left. */
 #define _POSIX_C_SOURCE 200809L
@@ -140,6 +140,22 @@ int main(void) {
             after.st_mtim.tv_sec == before.st_mtim.tv_sec &&
             after.st_mtim.tv_nsec == before.st_mtim.tv_nsec,
         "approx_0.exr was rewritten");
+
+  /* the forward input is a file the transform would write (the sample map copied in as
+   * own/approx_0.exr): refused, the input kept */
+  char own[400], copy[900];
+  snprintf(own, sizeof own, "%s/own/approx_0.exr", tmp);
+  snprintf(copy, sizeof copy, "mkdir -p '%s/own' && cp data/fogmap_sample.exr '%s'", tmp, own);
+  CHECK(system(copy) == 0, "cannot make %s", own);
+  CHECK(stat(own, &before) == 0, "no %s", own);
+  snprintf(args, sizeof args, "%s --levels 1 --out %s/own", own, tmp);
+  rc = run(args, err, sizeof err);
+  CHECK(rc != 0 && strstr(err, "is the input fogmap"),
+        "a forward transform over its own input (%d): %s", rc, err);
+  CHECK(stat(own, &after) == 0 && after.st_size == before.st_size &&
+            after.st_mtim.tv_sec == before.st_mtim.tv_sec &&
+            after.st_mtim.tv_nsec == before.st_mtim.tv_nsec,
+        "own/approx_0.exr, the input, was rewritten");
 
   char cmd[400];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
