@@ -118,11 +118,15 @@ bool cli_ends_with(const char *s, const char *suffix) {
   return n >= m && strcasecmp(s + n - m, suffix) == 0;
 }
 
+bool cli_same_file(const char *a, const char *b) {
+  struct stat sa, sb;
+  return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
+}
+
 int cli_output_not_input(const char *command, const char *option, const char *out,
                          const char *input, const char *what) {
-  struct stat a, b;
-  if (!input || !*input || stat(out, &a) != 0 || stat(input, &b) != 0) return 0;
-  if (a.st_dev != b.st_dev || a.st_ino != b.st_ino) return 0;
+  if (!input || !*input || !cli_same_file(out, input)) return 0;
   return cli_usage_error(command, "%s '%s' is %s (%s): writing it would replace the input",
                          option, out, what, input);
 }

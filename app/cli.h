@@ -26,6 +26,9 @@ int cli_usage_error(const char *command, const char *format, ...)
  * 0 otherwise. */
 int cli_output_file(const char *command, const char *option, const char *path);
 
+/* Whether a and b name one existing file, however spelt (device and inode). */
+bool cli_same_file(const char *a, const char *b);
+
 /* An output file that is one of the command's inputs (the same file, however spelt):
  * refused with the usage message (returns 2) before any work, naming the input (`what`,
  * e.g. "the config's [fog] fogmap"), instead of replacing it. 0 otherwise, or when either

@@ -171,18 +171,11 @@ static void remove_deeper_levels(const char *dir, int levels, int earlier_levels
                                  const char *in) {
   int removed = 0;
   char path[4400];
-  struct stat input;
-  const bool have_input = stat(in, &input) == 0;
-  for (int l = levels + 1; l <= earlier_levels; l++) {
+  for (int l = levels + 1; l <= earlier_levels; l++)
     for (int k = 0; k < 5; k++) {
       level_file(dir, l, k, path, sizeof path);
-      struct stat st;
-      if (stat(path, &st) != 0 ||
-          (have_input && st.st_dev == input.st_dev && st.st_ino == input.st_ino))
-        continue;
-      removed += unlink(path) == 0;
+      if (!cli_same_file(path, in)) removed += unlink(path) == 0;
     }
-  }
   if (removed)
     printf("removed %d file%s of an earlier transform with more levels than %d\n", removed,
            removed == 1 ? "" : "s", levels);
