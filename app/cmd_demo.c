@@ -38,34 +38,22 @@ typedef struct headless_job {
   const char *screenshot; /* the last frame as a PNG too, or NULL */
 } headless_job;
 
-/* The recording's last frame (its linear R, G, B) as an 8-bit sRGB PNG at `png`: what the
- * window's screenshot would have held, without the panel. */
-static int last_frame_png(const char *folder, int frame, const char *png) {
-  recorder rec = {.name = "frame"}; /* recorder_open's default name */
-  char path[PATH_MAX + 64];
+/* The recording's last frame (its linear R, G, B) as an 8-bit sRGB PNG at h->screenshot:
+ * what the window's screenshot would have held, without the panel. */
+static int last_frame_png(const headless_job *h, const char *folder) {
+  recorder rec = {.name = "frame", .width = h->width, .height = h->height}; /* as opened */
   snprintf(rec.folder, sizeof rec.folder, "%s", folder);
-  recorder_frame_path(&rec, frame, path, sizeof path);
-  static const char *const channels[3] = {"R", "G", "B"};
-  fogmap plane[3] = {{0}};
   fog_error err = {0};
-  int status = 0;
-  for (int c = 0; c < 3 && !status; c++)
-    status = fogmap_load(path, &(fogmap_load_desc){.channel = channels[c]}, &plane[c], &err);
-  float *rgb = status ? NULL : malloc(sizeof(float) * 3 * plane[0].width * plane[0].height);
-  if (!status && !rgb) status = fog_fail(&err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory", png);
-  if (!status) {
-    const size_t n = (size_t)plane[0].width * plane[0].height;
-    for (size_t i = 0; i < n; i++)
-      for (int c = 0; c < 3; c++) rgb[3 * i + c] = plane[c].density[i];
-    status = image_write_png_srgb(png, plane[0].width, plane[0].height, 3, rgb, &err);
-  }
+  float *rgb = malloc(sizeof(float) * 3 * (size_t)h->width * (size_t)h->height);
+  int status = rgb ? recorder_read_rgb(&rec, h->frames, rgb, &err)
+                   : fog_fail(&err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory", h->screenshot);
+  if (!status) status = image_write_png_srgb(h->screenshot, h->width, h->height, 3, rgb, &err);
   free(rgb);
-  for (int c = 0; c < 3; c++) fogmap_destroy(&plane[c]);
   if (status) {
     fprintf(stderr, "fogpipe demo: --screenshot: %s\n", err.message);
     return 1;
   }
-  printf("fogpipe demo: wrote %s (frame %d of the recording)\n", png, frame);
+  printf("fogpipe demo: wrote %s (frame %d of the recording)\n", h->screenshot, h->frames);
   return 0;
 }
 
@@ -94,7 +82,7 @@ static int record_instead(const headless_job *h, const char *reason) {
                     .fps = 24, .out = folder, .width = h->width, .height = h->height,
                     .quiet = !isatty(fileno(stdout))};
   int status = record_run(&job);
-  if (!status && h->screenshot) status = last_frame_png(folder, h->frames, h->screenshot);
+  if (!status && h->screenshot) status = last_frame_png(h, folder);
   return status;
 }
 

@@ -3,7 +3,6 @@
  * 2.5D model with a ray march of the original 3D grid. Everything is written into a
  * temporary folder inside --out and renamed into place only when every frame worked. */
 #define _POSIX_C_SOURCE 200809L
-#include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
 #include <limits.h>
@@ -21,6 +20,7 @@
 #include "app/clock.h"
 #include "app/commands.h"
 #include "app/chart.h"
+#include "app/recorder.h"
 #include "render/render.h"
 #include "sim/sim.h"
 
@@ -533,16 +533,13 @@ static int place_sequence(const import_options *o, const vdb_frame *frames, int 
 static void warn_other_frames(const import_options *o, const vdb_sequence *seq) {
   DIR *d = opendir(o->out);
   if (!d) return;
-  const size_t n = strlen(o->name);
+  recorder frames = {0}; /* the same NAME.####.exr naming as a recording's */
+  snprintf(frames.name, sizeof frames.name, "%s", o->name);
   int others = 0, first = INT_MAX, last = INT_MIN;
   struct dirent *e;
   while ((e = readdir(d))) {
-    const char *s = e->d_name;
-    int frame, used = 0;
-    if (strncmp(s, o->name, n) || s[n] != '.' || !isdigit((unsigned char)s[n + 1]) ||
-        sscanf(s + n + 1, "%d.exr%n", &frame, &used) != 1 || used == 0 ||
-        s[n + 1 + used] != '\0')
-      continue;
+    const int frame = recorder_frame_number(&frames, e->d_name);
+    if (frame < 0) continue;
     bool ours = false;
     for (int i = 0; i < seq->count && !ours; i++) ours = seq->frames[i] == frame;
     if (ours) continue;

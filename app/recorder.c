@@ -156,13 +156,33 @@ int recorder_complete_frames(const recorder *rec, int first, int last, fog_error
 }
 
 /* The frame number of a file name NAME.NNNN.exr (4 digits or more), or 0. */
-static int frame_number_of(const recorder *rec, const char *file) {
+int recorder_frame_number(const recorder *rec, const char *file) {
   const size_t n = strlen(rec->name);
-  if (strncmp(file, rec->name, n) != 0 || file[n] != '.') return 0;
+  if (strncmp(file, rec->name, n) != 0 || file[n] != '.') return -1;
   const char *digits = file + n + 1;
   size_t count = strspn(digits, "0123456789");
-  if (count < 4 || count > 9 || strcmp(digits + count, ".exr") != 0) return 0;
+  if (count < 4 || count > 9 || strcmp(digits + count, ".exr") != 0) return -1;
   return atoi(digits);
+}
+
+int recorder_read_rgb(const recorder *rec, int frame, float *rgb, fog_error *err) {
+  static const char *const names[3] = {"R", "G", "B"};
+  char path[1200];
+  recorder_frame_path(rec, frame, path, sizeof path);
+  for (int c = 0; c < 3; c++) {
+    fogmap plane = {0};
+    if (fogmap_load(path, &(fogmap_load_desc){.channel = names[c]}, &plane, err)) return 1;
+    if (plane.width != rec->width || plane.height != rec->height) {
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "frame %s is %dx%d, expected %dx%d", path,
+               plane.width, plane.height, rec->width, rec->height);
+      fogmap_destroy(&plane);
+      return 1;
+    }
+    const size_t n = (size_t)plane.width * plane.height;
+    for (size_t i = 0; i < n; i++) rgb[3 * i + c] = plane.density[i];
+    fogmap_destroy(&plane);
+  }
+  return 0;
 }
 
 int recorder_check_other_frames(const recorder *rec, int first, int last, fog_error *err) {
@@ -171,7 +191,7 @@ int recorder_check_other_frames(const recorder *rec, int first, int last, fog_er
   int status = 0;
   struct dirent *entry;
   while (!status && (entry = readdir(dir))) {
-    const int frame = frame_number_of(rec, entry->d_name);
+    const int frame = recorder_frame_number(rec, entry->d_name);
     if (frame <= 0 || (frame >= first && frame <= last)) continue;
     char path[1400], identity[sizeof rec->identity] = "";
     snprintf(path, sizeof path, "%s/%s", rec->folder, entry->d_name);
@@ -296,7 +316,11 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   append_quoted(cmd, sizeof cmd, temp);
   size_t n = (size_t)w * (size_t)h;
   uint8_t *rgb = malloc(n * 3);
-  if (!rgb) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the preview");
+  float *linear = malloc(n * 3 * sizeof *linear);
+  if (!rgb || !linear) {
+    free(rgb), free(linear);
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the preview");
+  }
   srgb8_encoder encoder; /* linear frames -> 8-bit sRGB video */
   srgb8_encoder_init(&encoder);
   struct sigaction ignore = {.sa_handler = SIG_IGN}, previous;
@@ -305,25 +329,13 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   int status = 0;
   if (!pipe)
     status = fog_fail(err, FOG_ERR_FILE_ACCESS, "cannot start ffmpeg: %s", strerror(errno));
-  static const char *const names[3] = {"R", "G", "B"};
-  char path[1200];
   for (int frame = 1; frame <= frame_count && !status; frame++) {
-    recorder_frame_path(rec, frame, path, sizeof path);
-    for (int c = 0; c < 3 && !status; c++) {
-      fogmap plane = {0};
-      fog_error serr = {0};
-      if (fogmap_load(path, &(fogmap_load_desc){.channel = names[c]}, &plane, &serr)) {
-        status = fog_error_wrap(err, &serr, "preview: cannot read back frame %d: ", frame);
-        break;
-      }
-      if (plane.width != w || plane.height != h)
-        status =
-            fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "preview: frame %s is %dx%d, expected %dx%d",
-                     path, plane.width, plane.height, w, h);
-      for (size_t i = 0; i < n && !status; i++)
-        rgb[3 * i + c] = srgb8_encode(&encoder, plane.density[i]);
-      fogmap_destroy(&plane);
+    fog_error serr = {0};
+    if (recorder_read_rgb(rec, frame, linear, &serr)) {
+      status = fog_error_wrap(err, &serr, "preview: cannot read back frame %d: ", frame);
+      break;
     }
+    for (size_t i = 0; i < 3 * n; i++) rgb[i] = srgb8_encode(&encoder, linear[i]);
     if (!status && fwrite(rgb, 3, n, pipe) != n)
       status = fog_fail(err, FOG_ERR_FILE_ACCESS,
                         "preview: ffmpeg stopped reading frames (see its message above)");
@@ -344,6 +356,7 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   }
   sigaction(SIGPIPE, &previous, NULL);
   free(rgb);
+  free(linear);
   if (!status && rename(temp, video_path) != 0)
     status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: cannot rename %s to %s: %s", temp,
                       video_path, strerror(errno));

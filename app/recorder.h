@@ -60,6 +60,12 @@ int recorder_open(recorder *rec, const recorder_desc *desc, fog_error *err);
 
 /* Path of 1-based frame number `frame`: FOLDER/NAME.%04d.exr. */
 void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size);
+/* The frame number of a file name NAME.####.exr (4 to 9 digits) in rec's folder, -1 for
+ * any other name. */
+int recorder_frame_number(const recorder *rec, const char *file);
+/* Frame `frame`'s linear R, G, B read back into rgb (rec->width x rec->height x 3,
+ * interleaved, top row first); non-zero with err set (unreadable, another size). */
+int recorder_read_rgb(const recorder *rec, int frame, float *rgb, fog_error *err);
 
 /* The last frame of the consecutive run first, first + 1, ... last already in the folder
  * (first - 1 when there is none). A frame counts when it decodes in every channel (a file
