@@ -1133,14 +1133,10 @@ int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
 }
 
 bool scene_config_sequence_path(const char *pattern, long n, char *out, size_t size) {
-  /* The last run of '#' in the file name, as vdb_sequence_find reads it: a folder's '#'
-   * ("take#2/fog.####.exr") is itself. */
-  const char *slash = strrchr(pattern, '/'), *name = slash ? slash + 1 : pattern;
-  const char *last = strrchr(name, '#');
-  if (!last) return false;
-  const char *hash = last;
-  while (hash > name && hash[-1] == '#') hash--;
-  int digits = (int)(last - hash) + 1;
+  size_t at, run; /* the run vdb_sequence_find reads as the frame number */
+  if (!vdb_pattern_hash_run(pattern, &at, &run)) return false;
+  const char *hash = pattern + at;
+  const int digits = (int)run;
   char buffer[SCENE_CONFIG_PATH_MAX + 32];
   int length = snprintf(buffer, sizeof buffer, "%.*s%0*ld%s", (int)(hash - pattern), pattern,
                         digits, n, hash + digits);

@@ -25,6 +25,7 @@
 #ifndef FOGPIPE_SIM_VDB_IMPORT_H
 #define FOGPIPE_SIM_VDB_IMPORT_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 /* fogmap.h has no C++ guard of its own: include it with C linkage from here. */
@@ -264,6 +265,9 @@ typedef struct vdb_sequence {
  * otherwise only "%%" (else it is a file name or glob). */
 int vdb_sequence_find(const char *const *inputs, int input_count, int first, int last,
                       vdb_sequence *out, fog_error *err);
+/* The run of '#' that stands for the frame number in a #### pattern: the last run in its
+ * file name (a folder's '#' is itself). False when the file name has none. */
+bool vdb_pattern_hash_run(const char *pattern, size_t *start, size_t *length);
 void vdb_sequence_destroy(vdb_sequence *sequence);
 
 /* The config beside a Blender cache file: DIR/data/fluid_data_0048.vdb ->

@@ -96,14 +96,20 @@ static int find_conversion(const char *pattern, int *start, int *end) {
 }
 
 /* fluid_data_####.vdb -> fluid_data_%04d.vdb (a '%' of the name becomes "%%"). */
-static int hashes_to_printf(const char *in, char *out, size_t out_size) {
-  /* The last run of '#' in the file name: a '#' in a folder's name ("take#2/") is itself. */
-  const char *slash = strrchr(in, '/'), *name = slash ? slash + 1 : in;
+bool vdb_pattern_hash_run(const char *pattern, size_t *start, size_t *length) {
+  const char *slash = strrchr(pattern, '/'), *name = slash ? slash + 1 : pattern;
   const char *last = strrchr(name, '#');
-  if (!last) return 0;
-  const char *h = last;
-  while (h > name && h[-1] == '#') h--;
-  size_t n = (size_t)(last - h) + 1;
+  if (!last) return false;
+  const char *first = last;
+  while (first > name && first[-1] == '#') first--;
+  *start = (size_t)(first - pattern), *length = (size_t)(last - first) + 1;
+  return true;
+}
+
+static int hashes_to_printf(const char *in, char *out, size_t out_size) {
+  size_t at, n;
+  if (!vdb_pattern_hash_run(in, &at, &n)) return 0;
+  const char *h = in + at;
   size_t used = 0;
   for (const char *p = in; *p && used + 2 < out_size; p++) {
     if (p == h) {
