@@ -23,7 +23,8 @@ int fuzz_import_parse(int argc, char **argv) {
   return status;
 }
 
-/* Never called by parse_options: the import command's GPU report and chart. */
+/* Never called by parse_options: the import command's GPU report, chart and the
+ * stale-frames warning (app/recorder.c). */
 double app_clock_seconds(void) { abort(); }
 int chart_write(const chart_desc *desc, const chart_point *points, int count,
                 const char *csv_path, const char *png_path, char *error, int error_size) {
@@ -41,3 +42,4 @@ int volume_march_view(volume_march *march, const volume_view_desc *view, float *
                       fog_error *err) {
   abort();
 }
+int recorder_frame_number(const recorder *rec, const char *file) { abort(); }
