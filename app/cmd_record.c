@@ -270,10 +270,11 @@ static int record_into(const record_job *job, recorder *rec) {
               "another --out folder)\n", job->command, rerr.message);
       return 1;
     }
-    recorder_remove_stale_temporaries(rec);
     if (done == last)
       printf("all %d frames are already complete in %s\n", last - first + 1, rec->folder);
   }
+  /* What a killed run of this range left; other ranges' temporaries may be live. */
+  recorder_remove_stale_temporaries(rec, first, last);
   if (done < last) {
     player *src = start_player(job, &config, width, height, fps, first, done);
     if (!src) return 1;

@@ -118,39 +118,56 @@ void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size
   snprintf(path, size, "%s/%s.%04d.exr", rec->folder, rec->name, frame);
 }
 
+/* What the file at PATH holds: 0 when it carries rec's identity, 1 when its header cannot
+ * be read (cut short or damaged: rendered again), -1 with err set when it was recorded
+ * from another scene or settings or carries no identity at all. */
+static int frame_identity(const recorder *rec, const char *path, fog_error *err) {
+  char identity[sizeof rec->identity] = "";
+  fog_error serr = {0};
+  if (image_read_exr_string(path, RECORDER_IDENTITY_ATTRIBUTE, identity, sizeof identity,
+                            &serr) == 0) {
+    if (strcmp(identity, rec->identity) == 0) return 0;
+    fog_fail(err, FOG_ERR_BAD_FILE,
+             "%s was recorded from another scene or settings (%s; this run: %s)", path, identity,
+             rec->identity);
+    return -1;
+  }
+  if (strstr(serr.message, "no string attribute")) {
+    fog_fail(err, FOG_ERR_BAD_FILE,
+             "%s carries no recording identity (made by an older fogpipe or another "
+             "program): cannot tell it belongs to this scene",
+             path);
+    return -1;
+  }
+  return 1;
+}
+
 int recorder_complete_frames(const recorder *rec, int first, int last, fog_error *err) {
   int done = first - 1;
+  bool run = true; /* still inside the consecutive run of complete frames */
   char path[1200];
   for (int frame = first; frame <= last; frame++) {
     recorder_frame_path(rec, frame, path, sizeof path);
     struct stat st;
-    if (stat(path, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0) break;
-    char identity[sizeof rec->identity] = "";
-    fog_error serr = {0};
-    if (image_read_exr_string(path, RECORDER_IDENTITY_ATTRIBUTE, identity, sizeof identity,
-                              &serr) == 0 &&
-        strcmp(identity, rec->identity) != 0)
-    {
-      fog_fail(err, FOG_ERR_BAD_FILE,
-               "%s was recorded from another scene or settings (%s; this run: %s)", path, identity,
-               rec->identity);
-      return -1;
+    if (stat(path, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0) {
+      run = false;
+      continue;
     }
-    if (!identity[0] && strstr(serr.message, "no string attribute")) {
-      fog_fail(err, FOG_ERR_BAD_FILE,
-               "%s carries no recording identity (made by an older fogpipe or another "
-               "program): cannot tell it belongs to this scene",
-               path);
-      return -1;
-    }
+    /* Every frame of the range is judged, also past a gap: resuming rewrites those. */
+    const int identity = frame_identity(rec, path, err);
+    if (identity < 0) return -1;
+    if (!run) continue;
     /* Every chunk decodes: loading one channel decodes them all. */
     fogmap probe = {0};
-    if (identity[0] == '\0' || fogmap_load(path, &(fogmap_load_desc){.channel = "A"}, &probe, &serr))
-      break; /* damaged: rendered again */
-    int size_ok = probe.width == rec->width && probe.height == rec->height;
+    fog_error serr = {0};
+    if (identity > 0 || fogmap_load(path, &(fogmap_load_desc){.channel = "A"}, &probe, &serr)) {
+      run = false; /* damaged: rendered again */
+      continue;
+    }
+    const bool size_ok = probe.width == rec->width && probe.height == rec->height;
     fogmap_destroy(&probe);
-    if (!size_ok) break;
-    done = frame;
+    if (size_ok) done = frame;
+    else run = false;
   }
   return done;
 }
@@ -213,16 +230,22 @@ int recorder_check_other_frames(const recorder *rec, int first, int last, fog_er
   return status;
 }
 
-int recorder_remove_stale_temporaries(const recorder *rec) {
+int recorder_remove_stale_temporaries(const recorder *rec, int first, int last) {
   DIR *dir = opendir(rec->folder);
   if (!dir) return 0;
   char prefix[160];
   snprintf(prefix, sizeof prefix, ".%s.", rec->name);
+  const size_t n = strlen(prefix);
   int removed = 0;
   struct dirent *entry;
   while ((entry = readdir(dir))) {
+    /* .NAME.NNNN.exr.tmp.XXXXXX, NNNN (4 to 9 digits) in first..last */
     const char *name = entry->d_name;
-    if (strncmp(name, prefix, strlen(prefix)) != 0 || !strstr(name, ".exr.tmp.")) continue;
+    if (strncmp(name, prefix, n) != 0) continue;
+    const size_t digits = strspn(name + n, "0123456789");
+    if (digits < 4 || digits > 9 || strncmp(name + n + digits, ".exr.tmp.", 9) != 0) continue;
+    const int frame = atoi(name + n);
+    if (frame < first || frame > last) continue;
     char path[1400];
     snprintf(path, sizeof path, "%s/%s", rec->folder, name);
     removed += unlink(path) == 0;

@@ -70,8 +70,9 @@ int recorder_read_rgb(const recorder *rec, int frame, float *rgb, fog_error *err
 /* The last frame of the consecutive run first, first + 1, ... last already in the folder
  * (first - 1 when there is none). A frame counts when it decodes in every channel (a file
  * truncated by hand or by a broken disk is rendered again) and carries rec->identity.
- * -1 with err set when a frame there was made from another recording (its identity
- * differs, or it has none): resuming would mix two sequences. */
+ * -1 with err set when any frame of first..last there, before or after a gap, was made
+ * from another recording (its identity differs, or it has none): resuming would rewrite
+ * it or mix two sequences. */
 int recorder_complete_frames(const recorder *rec, int first, int last, fog_error *err);
 
 /* 0, or -1 with err naming the first frame of the folder outside first..last that was
@@ -83,9 +84,11 @@ int recorder_complete_frames(const recorder *rec, int first, int last, fog_error
  * is not judged. */
 int recorder_check_other_frames(const recorder *rec, int first, int last, fog_error *err);
 
-/* Removes temporary files a killed run (SIGKILL, power loss) may have left beside the
- * frames: image_write_exr's ".NAME.NNNN.exr.tmp.XXXXXX". Returns how many were removed. */
-int recorder_remove_stale_temporaries(const recorder *rec);
+/* Removes the temporary files a killed run (SIGKILL, power loss) may have left beside
+ * frames first..last: image_write_exr's ".NAME.NNNN.exr.tmp.XXXXXX". Only this range's: a
+ * farm's other jobs write their own ranges into the folder at the same time, and their
+ * temporaries are live. Returns how many were removed. */
+int recorder_remove_stale_temporaries(const recorder *rec, int first, int last);
 
 /* Writes frame number `frame` (1-based). Channels: R, G, B, A as half; transmittance,
  * depth (also as Z, what compositors read) and inscatter.R/G/B as 32-bit float. `scratch`

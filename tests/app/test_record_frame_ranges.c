@@ -8,7 +8,10 @@
  *   again, and the folder again equals the full run byte for byte.
  * - A frame without the recording identity (an older fogpipe, another program) is refused.
  * - A plain run of another scene over part of the frames warns, naming a frame it leaves
- *   of the other recording, and leaves that frame as it was. */
+ *   of the other recording, and leaves that frame as it was.
+ * - --resume judges every frame of its range, also past a gap: another scene's frame
+ *   there is refused, not rendered over.
+ * - A run removes the temporaries a killed run left for its own range only. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
@@ -135,6 +138,40 @@ int main(void) {
   stat(frame20, &after);
   CHECK(before.st_mtime == after.st_mtime && before.st_size == after.st_size,
         "a run of frames 1-12 touched frame 20");
+  /* A frame of another scene after a gap in the range: --resume would render over it.
+   * Refused, naming it, and the gap stays (nothing is rendered). */
+  char frame6[700], frame9[700];
+  record_frame_path(split, 6, frame6, sizeof frame6);
+  record_frame_path(split, 9, frame9, sizeof frame9);
+  CHECK(unlink(frame6) == 0, "unlink %s", frame6);
+  status = record_wait(start(other, "9-9", split, NULL, log[3]));
+  CHECK(status == 0, "another scene's frame 9 into the split folder: exit %d", status);
+  stat(frame9, &before);
+  status = record_wait(start(RECORD_TEST_CONFIG, "24", split, "--resume", log[3]));
+  CHECK(status == 1 && record_log_contains(log[3], "cannot resume") &&
+            record_log_contains(log[3], "frame.0009.exr was recorded from another scene"),
+        "--resume over a gap, then another scene's frame 9: exit %d", status);
+  if (status != 1) record_print_log(log[3]);
+  stat(frame9, &after);
+  CHECK(before.st_mtime == after.st_mtime && before.st_size == after.st_size &&
+            stat(frame6, &after) != 0,
+        "the refused resume rendered frames");
+
+  /* A killed run's temporary of this range is removed; another range's (a farm's other
+   * job, writing now) is left alone. */
+  char temps[600], mine[700], theirs[700];
+  snprintf(temps, sizeof temps, "%s/temps", root);
+  snprintf(mine, sizeof mine, "%s/.frame.0002.exr.tmp.AbC123", temps);
+  snprintf(theirs, sizeof theirs, "%s/.frame.0007.exr.tmp.XyZ789", temps);
+  mkdir(temps, 0755);
+  fclose(fopen(mine, "w"));
+  fclose(fopen(theirs, "w"));
+  status = record_wait(start(RECORD_TEST_CONFIG, "1-3", temps, "--resume", log[3]));
+  CHECK(status == 0, "--resume of 1-3 beside temporaries: exit %d", status);
+  if (status) record_print_log(log[3]);
+  CHECK(stat(mine, &after) != 0, "the stale temporary of frame 2 stayed");
+  CHECK(stat(theirs, &after) == 0, "frame 7's temporary, another range's, was removed");
+
   test_remove_tree(root);
   return test_finish("test_record_frame_ranges");
 }
