@@ -246,6 +246,32 @@ static int write_scene(const fit_result *r, const fit_rung *g, const char *out) 
   return status;
 }
 
+/* An output (the scene, the fogmap beside it, the chart and its CSV) that is one of the
+ * fit's inputs (the INPUT, the scene's fogmap or heightmap): refused (2) before the fit
+ * instead of replacing it at its end. */
+static int refuse_output_input(const fit_options *o, const scene_config *cfg) {
+  char beside[PATH_MAX] = "", csv[PATH_MAX] = "";
+  if (o->out)
+    snprintf(beside, sizeof beside, "%.*s.fogmap.exr", (int)(strlen(o->out) - 4), o->out);
+  if (o->chart) snprintf(csv, sizeof csv, "%.*s.csv", (int)(strlen(o->chart) - 4), o->chart);
+  const struct {
+    const char *option, *path;
+  } outputs[] = {{"--out", o->out}, {"--out", beside}, {"--chart", o->chart}, {"--chart", csv}};
+  const struct {
+    const char *path, *what;
+  } inputs[] = {{o->input, "the INPUT"},
+                {cfg->fog.fogmap, "the scene's [fog] fogmap"},
+                {cfg->terrain.heightmap, "the scene's [terrain] heightmap"}};
+  for (size_t i = 0; i < sizeof outputs / sizeof *outputs; i++) {
+    if (!outputs[i].path || !outputs[i].path[0]) continue;
+    for (size_t j = 0; j < sizeof inputs / sizeof *inputs; j++)
+      if (cli_output_not_input("fit", outputs[i].option, outputs[i].path, inputs[j].path,
+                               inputs[j].what))
+        return 2;
+  }
+  return 0;
+}
+
 int cmd_fit(int argc, char **argv) {
   fit_options o;
   int status = parse(argc, argv, &o);
@@ -257,7 +283,7 @@ int cmd_fit(int argc, char **argv) {
   }
   scene_config *cfg = malloc(sizeof *cfg);
   if (!cfg) return cli_fail("fit", "out of memory");
-  if ((status = load_input(&o, cfg))) {
+  if ((status = load_input(&o, cfg)) || (status = refuse_output_input(&o, cfg))) {
     free(cfg);
     return status;
   }

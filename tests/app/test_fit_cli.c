@@ -2,8 +2,9 @@
  * model and its fitted parameters, --chart writes the PNG and its CSV; a fogmap projected
  * from an analytic input (Perlin fog, 15x the fogmap's time) is written beside the scene
  * as SCENE.fogmap.exr, which the scene names; bad input (a
- * missing VDB, a bad config key, no tolerance, an unwritable --out) fails with a message
- * naming the file or option, and leaves no file behind. */
+ * missing VDB, a bad config key, no tolerance, an unwritable --out, an --out that would
+ * replace an input) fails with a message naming the file or option, and leaves no file
+ * behind. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <math.h>
@@ -128,6 +129,28 @@ int main(void) {
   snprintf(args, sizeof args, "'%s' --tolerance 0.1 --out '%s' %s", ini, unwritable, fast);
   status = fit(bin, args, out, err, sizeof out);
   CHECK(status != 0 && strstr(err, unwritable), "unwritable --out: exit %d, %s", status, err);
+
+  /* --out the INPUT itself, spelt otherwise: refused before the fit, the input kept */
+  char before[8192], after[8192], same[300];
+  read_text(ini, before, sizeof before);
+  snprintf(same, sizeof same, "%s/./constant.ini", dir);
+  snprintf(args, sizeof args, "'%s' --tolerance 0.5 --out '%s' %s", ini, same, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  read_text(ini, after, sizeof after);
+  CHECK(status == 2 && strstr(err, "is the INPUT") && !strstr(out, "chosen"),
+        "--out the input: exit %d, %s%s", status, out, err);
+  CHECK(!strcmp(before, after), "the input was rewritten:\n%s", after);
+  /* --out whose fogmap beside it (OUT.fogmap.exr) would be the scene's fogmap: the same */
+  char map[300], cp[700];
+  snprintf(map, sizeof map, "%s/other.fogmap.exr", dir);
+  snprintf(cp, sizeof cp, "cp data/fogmap_sample.exr '%s'", map);
+  CHECK(system(cp) == 0, "%s", cp);
+  snprintf(same, sizeof same, "%s/map.ini", dir);
+  write_file(same, "[fog]\nmodel = fogmap\nfogmap = other.fogmap.exr\n");
+  snprintf(args, sizeof args, "'%s' --tolerance 0.5 --out '%s/other.ini' %s", same, dir, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  CHECK(status == 2 && strstr(err, "is the scene's [fog] fogmap"),
+        "--out beside the scene's fogmap: exit %d, %s%s", status, out, err);
 
   char command[512];
   snprintf(command, sizeof command, "rm -rf '%s'", dir);
