@@ -2,10 +2,15 @@
 #define _POSIX_C_SOURCE 200809L
 #include "app/chart.h"
 
+#include <errno.h>
+#include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+extern char **environ;
 
 FILE *chart_csv_open(const char *path, char *error, int size) {
   char temp[4200];
@@ -47,15 +52,64 @@ static int collect_series(const chart_point *points, int count, const char **nam
   return n;
 }
 
-/* A gnuplot single-quoted string: a quote inside is doubled ("a rung's time"). */
-static void put_quoted(FILE *f, const char *prefix, const char *text) {
-  fprintf(f, "%s'", prefix);
+/* A gnuplot single-quoted string: a quote inside is doubled ("a rung's time", a folder
+ * "bob's"); nothing else is special between single quotes. */
+static void put_string(FILE *f, const char *text) {
+  fputc('\'', f);
   for (const char *c = text ? text : ""; *c; c++) fputs(*c == '\'' ? "''" : (char[2]){*c, 0}, f);
-  fputs("'\n", f);
+  fputc('\'', f);
+}
+
+static void put_quoted(FILE *f, const char *prefix, const char *text) {
+  fputs(prefix, f);
+  put_string(f, text);
+  fputc('\n', f);
+}
+
+/* Runs `gnuplot SCRIPT` without a shell (a path is never command text), its stdout and
+ * stderr into output. Returns the exit status, 127 when gnuplot cannot be started. */
+static int run_gnuplot(const char *script_path, char *output, size_t size) {
+  int fds[2];
+  output[0] = '\0';
+  if (pipe(fds) != 0) return 127;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
+  posix_spawn_file_actions_addclose(&actions, fds[0]);
+  posix_spawn_file_actions_addclose(&actions, fds[1]);
+  char *argv[] = {"gnuplot", (char *)script_path, NULL};
+  pid_t pid;
+  const int spawned = posix_spawnp(&pid, "gnuplot", &actions, NULL, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(fds[1]);
+  size_t used = 0;
+  for (ssize_t got; (got = read(fds[0], output + used, size - 1 - used)) > 0;) {
+    used += (size_t)got;
+    if (used == size - 1) { /* keep the start; drain the rest */
+      char sink[512];
+      while (read(fds[0], sink, sizeof sink) > 0) {
+      }
+      break;
+    }
+  }
+  output[used] = '\0';
+  close(fds[0]);
+  if (spawned != 0) return 127;
+  int status;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return 127;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 int chart_write(const chart_desc *desc, const chart_point *points, int count,
                 const char *csv_path, const char *png_path, char *error, int error_size) {
+  /* gnuplot ends a command at a line break, also inside quotes */
+  if (png_path && (strchr(png_path, '\n') || strchr(csv_path, '\n'))) {
+    snprintf(error, (size_t)error_size, "%.900s: a chart path cannot hold a line break",
+             png_path);
+    return 1;
+  }
   if (write_csv(points, count, csv_path, error, error_size)) return 1;
   if (!png_path) return 0;
 
@@ -68,10 +122,10 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
     return 1;
   }
   int width = desc->width ? desc->width : 960, height = desc->height ? desc->height : 600;
-  fprintf(script,
-          "set terminal pngcairo size %d,%d font 'sans,10'\nset output '%s'\n"
-          "set datafile separator ','\nset key below\nset colorsequence podo\nset grid\n",
-          width, height, temp_png);
+  fprintf(script, "set terminal pngcairo size %d,%d font 'sans,10'\n", width, height);
+  put_quoted(script, "set output ", temp_png);
+  fprintf(script, "set datafile separator ','\nset key below\nset colorsequence podo\n"
+                  "set grid\n");
   put_quoted(script, "set title ", desc->title);
   put_quoted(script, "set xlabel ", desc->x_label);
   put_quoted(script, "set ylabel ", desc->y_label);
@@ -81,26 +135,37 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
   const char *names[64];
   int series = collect_series(points, count, names, 64);
   fprintf(script, "plot ");
-  for (int s = 0; s < series; s++)
-    fprintf(script,
-            "%s'%s' using ($0>=0 && strcol(1) eq '%s' ? $2 : NaN):3 with linespoints "
-            "title '%s'",
-            s ? ", \\\n     " : "", csv_path, names[s], names[s]);
+  for (int s = 0; s < series; s++) {
+    fputs(s ? ", \\\n     " : "", script);
+    put_string(script, csv_path);
+    fputs(" using ($0>=0 && strcol(1) eq ", script);
+    put_string(script, names[s]);
+    fputs(" ? $2 : NaN):3 with linespoints title ", script);
+    put_string(script, names[s]);
+  }
   fprintf(script, "\n");
-  fclose(script);
+  const int written = fclose(script) == 0;
 
-  char command[8192];
-  snprintf(command, sizeof command, "gnuplot '%s' 2>&1", script_path);
-  FILE *pipe = popen(command, "r");
-  char output[1024] = "";
-  size_t used = pipe ? fread(output, 1, sizeof output - 1, pipe) : 0;
-  output[used] = 0;
-  int status = pipe ? pclose(pipe) : -1;
+  char output[1024];
+  const int status = written ? run_gnuplot(script_path, output, sizeof output) : -1;
   remove(script_path);
-  if (status != 0 || rename(temp_png, png_path) != 0) {
+  if (status == 0 && rename(temp_png, png_path) != 0) {
+    snprintf(error, (size_t)error_size, "%s: cannot move the finished chart onto it: %s",
+             png_path, strerror(errno));
     remove(temp_png);
-    snprintf(error, (size_t)error_size,
-             "%s: gnuplot failed (install Debian's gnuplot-nox): %.300s", png_path, output);
+    return 1;
+  }
+  if (status != 0) {
+    remove(temp_png);
+    if (!written)
+      snprintf(error, (size_t)error_size, "%s: cannot write the gnuplot script (disk full?)",
+               script_path);
+    else if (status == 127)
+      snprintf(error, (size_t)error_size,
+               "%s: gnuplot could not be run (install Debian's gnuplot-nox)", png_path);
+    else
+      snprintf(error, (size_t)error_size, "%s: gnuplot failed (exit %d): %.300s", png_path,
+               status, output);
     return 1;
   }
   return 0;

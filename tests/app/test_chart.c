@@ -1,0 +1,66 @@
+/* app/chart.c: a chart whose folder and series names hold a quote, or shell text, is drawn
+ * (a real PNG, its CSV the data of record) and nothing of the path is run as a command;
+ * no temporary or script is left; a path with a line break is refused, nothing written. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "app/chart.h"
+#include "test_util.h"
+
+static bool exists(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0;
+}
+
+int main(void) {
+  char root[] = "/tmp/fogpipe-chart-XXXXXX";
+  if (!test_scratch_folder(root)) return 1;
+  /* The scratch folder is the working folder: a command the path let run makes PWNED there. */
+  CHECK(chdir(root) == 0, "chdir %s", root);
+  char folder[600], png[700], csv[700], marker[600];
+  snprintf(marker, sizeof marker, "%s/PWNED", root);
+  /* one folder name that breaks a shell's single quotes and would run `touch` if it did */
+  snprintf(folder, sizeof folder, "%s/it'$(touch PWNED)'s \"x\"", root);
+  CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
+  snprintf(png, sizeof png, "%s/chart.png", folder);
+  snprintf(csv, sizeof csv, "%s/chart.csv", folder);
+  const chart_point points[] = {{.series = "a rung's time", .x = 1, .y = 1e-3},
+                                {.series = "a rung's time", .x = 2, .y = 1e-4},
+                                {.series = "other", .x = 3, .y = 1e-2}};
+  const chart_desc desc = {.title = "it's a chart", .x_label = "ms", .y_label = "error",
+                           .log_y = true};
+  char error[1024] = "";
+  int status = chart_write(&desc, points, 3, csv, png, error, sizeof error);
+  CHECK(status == 0, "chart_write: %s", error);
+  CHECK(!exists(marker), "the path ran as shell text: %s exists", marker);
+  FILE *f = fopen(png, "rb");
+  unsigned char magic[8] = {0};
+  CHECK(f && fread(magic, 1, 8, f) == 8 && !memcmp(magic, "\x89PNG\r\n\x1a\n", 8),
+        "%s is not a PNG", png);
+  if (f) fclose(f);
+  char text[256] = "";
+  f = fopen(csv, "r");
+  size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+  text[n] = '\0';
+  if (f) fclose(f);
+  CHECK(!strcmp(text, "series,x,y\na rung's time,1,0.001\na rung's time,2,0.0001\n"
+                      "other,3,0.01\n"),
+        "CSV: %s", text);
+  CHECK(test_folder_entries(folder) == 2, "%d files beside the chart (a script or temporary "
+        "left?)", test_folder_entries(folder));
+
+  /* a line break would end gnuplot's command inside the quotes: refused */
+  char broken[600], broken_csv[600];
+  snprintf(broken, sizeof broken, "%s/two\nlines.png", root);
+  snprintf(broken_csv, sizeof broken_csv, "%s/two\nlines.csv", root);
+  status = chart_write(&desc, points, 3, broken_csv, broken, error, sizeof error);
+  CHECK(status != 0 && strstr(error, "line break"), "a path with a line break: %d %s", status,
+        error);
+  CHECK(!exists(broken) && !exists(broken_csv), "a refused chart left a file");
+  CHECK(chdir("/") == 0, "chdir /");
+  test_remove_tree(root);
+  return test_finish("test_chart");
+}
