@@ -24,6 +24,23 @@ static volatile sig_atomic_t interrupted;
 
 static void on_interrupt(int signal_number) { interrupted = signal_number; }
 
+/* SIGINT and SIGTERM set `interrupted` (the work in hand finishes or stops cleanly) until
+ * restore_interrupts puts the previous handlers back. */
+static void catch_interrupts(struct sigaction *old_int, struct sigaction *old_term) {
+  struct sigaction action = {.sa_handler = on_interrupt};
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  interrupted = 0;
+  sigaction(SIGINT, &action, old_int);
+  sigaction(SIGTERM, &action, old_term);
+}
+
+static void restore_interrupts(const struct sigaction *old_int,
+                               const struct sigaction *old_term) {
+  sigaction(SIGINT, old_int, NULL);
+  sigaction(SIGTERM, old_term, NULL);
+}
+
 /* Refuses (true, the usage message printed) a --preview that names the --out folder itself
  * (which may not exist yet): the video would be renamed onto the frames' folder after the
  * whole recording. */
@@ -182,12 +199,8 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
   float *inscatter = buffer + 6 * n, *scratch = buffer + 9 * n;
   const frame_pixels out = {.rgba = rgba, .transmittance = transmittance, .depth = depth,
                             .inscatter = inscatter};
-  struct sigaction action = {.sa_handler = on_interrupt}, old_int, old_term;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESTART;
-  interrupted = 0;
-  sigaction(SIGINT, &action, &old_int);
-  sigaction(SIGTERM, &action, &old_term);
+  struct sigaction old_int, old_term;
+  catch_interrupts(&old_int, &old_term);
   fog_error perr = {0};
   fog_error rerr = {0};
   recorder_progress progress;
@@ -221,13 +234,13 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
     }
   }
   if (!status && !job->quiet) recorder_progress_end(&progress);
-  sigaction(SIGINT, &old_int, NULL);
-  sigaction(SIGTERM, &old_term, NULL);
+  restore_interrupts(&old_int, &old_term);
   free(buffer);
   return status;
 }
 
-/* The summary line, and the preview video when asked for. 0 or 1 (printed). */
+/* The summary line, and the preview video when asked for. 0, 1 (printed) or 130 (the
+ * encode interrupted: no video, the frames kept). */
 static int finish_output(const record_job *job, const recorder *rec, int width, int height,
                          double fps, int first, int last) {
   char first_path[1200], last_path[1200];
@@ -240,10 +253,21 @@ static int finish_output(const record_job *job, const recorder *rec, int width, 
   if (!recorder_have_ffmpeg()) {
     printf("note: ffmpeg is not installed, so no preview video was written "
            "(apt-get install ffmpeg)\n");
-  } else if (recorder_write_preview(rec, job->frames, fps, job->preview, &rerr)) {
-    fprintf(stderr, "fogpipe %s: %s\n", job->command, rerr.message);
-    return 1;
   } else {
+    struct sigaction old_int, old_term;
+    catch_interrupts(&old_int, &old_term);
+    const int failed = recorder_write_preview(rec, job->frames, fps, job->preview,
+                                              &interrupted, &rerr);
+    restore_interrupts(&old_int, &old_term);
+    if (failed && interrupted) {
+      fprintf(stderr, "fogpipe %s: interrupted while encoding the preview: no video written "
+              "(the frames in %s are kept)\n", job->command, rec->folder);
+      return 130;
+    }
+    if (failed) {
+      fprintf(stderr, "fogpipe %s: %s\n", job->command, rerr.message);
+      return 1;
+    }
     printf("preview: %s\n", job->preview);
   }
   return 0;

@@ -317,7 +317,7 @@ static void append_quoted(char *cmd, size_t size, const char *s) {
 }
 
 int recorder_write_preview(const recorder *rec, int frame_count, double fps, const char *video_path,
-                           fog_error *err) {
+                           const volatile sig_atomic_t *stop, fog_error *err) {
   if (!recorder_have_ffmpeg())
     return fog_fail(err, FOG_ERR_UNSUPPORTED,
                     "ffmpeg is not installed: no preview written (apt-get install ffmpeg)");
@@ -353,6 +353,10 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   if (!pipe)
     status = fog_fail(err, FOG_ERR_FILE_ACCESS, "cannot start ffmpeg: %s", strerror(errno));
   for (int frame = 1; frame <= frame_count && !status; frame++) {
+    if (stop && *stop) {
+      status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: stopped before frame %d", frame);
+      break;
+    }
     fog_error serr = {0};
     if (recorder_read_rgb(rec, frame, linear, &serr)) {
       status = fog_error_wrap(err, &serr, "preview: cannot read back frame %d: ", frame);
@@ -380,6 +384,8 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   sigaction(SIGPIPE, &previous, NULL);
   free(rgb);
   free(linear);
+  if (!status && stop && *stop) /* during ffmpeg's last writes */
+    status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: stopped while ffmpeg finished");
   if (!status && rename(temp, video_path) != 0)
     status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: cannot rename %s to %s: %s", temp,
                       video_path, strerror(errno));

@@ -16,6 +16,7 @@
 
 #include "transform/fog_error.h"
 #include "app/frame_exr.h"
+#include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
 
@@ -101,9 +102,11 @@ bool recorder_have_ffmpeg(void);
 
 /* Encodes frames 1..frame_count of the folder into an H.264 video at `fps` by reading each
  * EXR's R, G, B back and piping 8-bit sRGB to ffmpeg (so a resumed recording gets the same
- * preview as an uninterrupted one). Written to a temporary name and renamed. */
+ * preview as an uninterrupted one). Written to a temporary name and renamed; when *stop
+ * (NULL: never) becomes non-zero (a signal handler's flag) it stops, and nothing is left
+ * at either name. */
 int recorder_write_preview(const recorder *rec, int frame_count, double fps, const char *video_path,
-                           fog_error *err);
+                           const volatile sig_atomic_t *stop, fog_error *err);
 
 /* Progress of a sequence: on a terminal one line redrawn in place with a bar and the ETA;
  * otherwise one plain line per frame (logs stay readable). */

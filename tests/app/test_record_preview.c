@@ -4,7 +4,7 @@
  * independently), frame after frame, at the size and rate asked for; the video appears
  * under its own name only when ffmpeg succeeded. A failing ffmpeg makes record fail with
  * a message naming ffmpeg's exit code, leaves no video (nor its temporary), and keeps the
- * frames. Where a real ffmpeg is installed (/usr/bin/ffmpeg), it also encodes a playable
+ * frames; so does a SIGTERM during the encode (exit 130). Where a real ffmpeg is installed (/usr/bin/ffmpeg), it also encodes a playable
  * file. */
 #include "tests/app/record_util.h" /* first: it sets _POSIX_C_SOURCE */
 
@@ -35,9 +35,9 @@ static long file_size(const char *path) {
   return stat(path, &st) == 0 ? (long)st.st_size : -1;
 }
 
-/* Runs record with ffmpeg looked up first in bin_dir. */
-static int record_with_path(const char *bin_dir, const char *out, const char *video,
-                            const char *log) {
+/* Starts record with ffmpeg looked up first in bin_dir; its pid. */
+static pid_t start_with_path(const char *bin_dir, const char *out, const char *video,
+                             const char *log) {
   const char *old = getenv("PATH");
   char path[4096];
   snprintf(path, sizeof path, "%s:%s", bin_dir, old ? old : "/usr/bin:/bin");
@@ -53,10 +53,15 @@ static int record_with_path(const char *bin_dir, const char *out, const char *vi
     execv(argv[0], (char *const *)argv);
     _exit(127);
   }
-  int status = record_wait(pid);
   if (saved) setenv("PATH", saved, 1);
   free(saved);
-  return status;
+  return pid;
+}
+
+/* Runs record with ffmpeg looked up first in bin_dir; its exit status. */
+static int record_with_path(const char *bin_dir, const char *out, const char *video,
+                            const char *log) {
+  return record_wait(start_with_path(bin_dir, out, video, log));
 }
 
 int main(void) {
@@ -143,7 +148,43 @@ int main(void) {
   CHECK(frame_files == frames, "%d frames kept after the failed preview, expected %d",
         frame_files, frames);
 
-  /* 3. The real ffmpeg, where installed. */
+  /* 3. SIGTERM while ffmpeg encodes: exit 130 saying so, no video nor its temporary; the
+   * frames stay. The stand-in writes part of its output, says so, and takes its time. */
+  char started[700];
+  snprintf(started, sizeof started, "%s/started", bin);
+  CHECK(write_script(script, "#!/bin/sh\n"
+                             "for a in \"$@\"; do out=\"$a\"; done\n"
+                             "head -c 100 > \"$out\"\n"
+                             "touch \"$(dirname \"$0\")/started\"\n"
+                             "sleep 1\n"
+                             "cat >> \"$out\"\n"),
+        "cannot write %s", script);
+  char out4[600], video4[600];
+  snprintf(out4, sizeof out4, "%s/frames4", root);
+  snprintf(video4, sizeof video4, "%s/cut.mp4", root);
+  pid_t pid = start_with_path(bin, out4, video4, log);
+  struct stat st;
+  for (int waited = 0; waited < 60000 && stat(started, &st) != 0; waited += 5) {
+    if (waitpid(pid, NULL, WNOHANG) == pid) break;
+    record_sleep_ms(5);
+  }
+  kill(pid, SIGTERM);
+  status = record_wait(pid);
+  f = fopen(log, "r");
+  size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+  text[n] = '\0';
+  if (f) fclose(f);
+  CHECK(status == 130 && strstr(text, "interrupted while encoding the preview"),
+        "SIGTERM during the encode: exit %d:\n%s", status, text);
+  snprintf(partial, sizeof partial, "%s/cut.partial.mp4", root);
+  CHECK(file_size(video4) < 0 && file_size(partial) < 0,
+        "an interrupted encode left %s (%ld bytes) or its temporary (%ld)", video4,
+        file_size(video4), file_size(partial));
+  record_count_files(out4, &frame_files);
+  CHECK(frame_files == frames, "%d frames kept after the interrupted preview, expected %d",
+        frame_files, frames);
+
+  /* 4. The real ffmpeg, where installed. */
   if (access("/usr/bin/ffmpeg", X_OK) == 0) {
     char out3[600], video3[600];
     snprintf(out3, sizeof out3, "%s/frames3", root);
