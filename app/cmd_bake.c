@@ -3,7 +3,15 @@
  * that plays them (DIR/bake.ini, `[fog] sequence`). The simulation is sequential; the
  * bake is not: a farm job renders any range of it with `fogpipe record DIR/bake.ini
  * --frames A-B` without simulating the frames before A (docs/farm.md). Frame n of that
- * recording equals frame n of `fogpipe record CONFIG --fps F`, bit for bit. */
+ * recording equals frame n of `fogpipe record CONFIG --fps F`, bit for bit.
+ *
+ * A bake into a folder that holds one already replaces it whole or not at all: the frames
+ * are simulated into a staging folder inside DIR and moved into place only when all are
+ * written, so a failed or interrupted bake (Ctrl-C, SIGTERM: exit 130) leaves the old bake
+ * as it was, never old and new frames under one bake.ini. */
+#define _POSIX_C_SOURCE 200809L
+#include <signal.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -62,6 +70,10 @@ static void remove_frames(const char *pattern, int written) {
     if (scene_config_sequence_path(pattern, n, path, sizeof path)) unlink(path);
 }
 
+static volatile sig_atomic_t interrupted;
+
+static void on_interrupt(int signal_number) { interrupted = signal_number; }
+
 /* Simulates frame after frame and writes each density; *written counts the files. */
 static int bake_frames(const bake_job *job, const scene_config *cfg, const char *pattern,
                        int *written) {
@@ -76,6 +88,10 @@ static int bake_frames(const bake_job *job, const scene_config *cfg, const char 
                                 &perr);
   int status = p ? 0 : cli_fail("bake", "%s", perr.message);
   for (int n = 1; !status && n <= job->frames; n++) {
+    if (interrupted) {
+      status = 130;
+      break;
+    }
     if (pipeline_skip(p, 1, &perr)) {
       status = cli_fail("bake", "frame %d: %s", n, perr.message);
       break;
@@ -118,19 +134,63 @@ int cmd_bake(int argc, char **argv) {
   char pattern[SCENE_CONFIG_PATH_MAX], ini[SCENE_CONFIG_PATH_MAX + 16];
   frame_pattern(&job, pattern, sizeof pattern);
   snprintf(ini, sizeof ini, "%s/bake.ini", job.out);
+  /* The frames go to DIR/.bake-staging.XXXXXX first (same file system: moved by rename). */
+  char staging[SCENE_CONFIG_PATH_MAX], staged[SCENE_CONFIG_PATH_MAX + 32];
+  snprintf(staging, sizeof staging, "%s/.bake-staging.XXXXXX", job.out);
+  if (!mkdtemp(staging)) {
+    recorder_remove_created_folders(&folders);
+    return cli_fail("bake", "%s: cannot make a staging folder in it: %s", job.out,
+                    strerror(errno));
+  }
+  snprintf(staged, sizeof staged, "%s%s", staging, pattern + strlen(job.out));
+  struct sigaction action = {.sa_handler = on_interrupt}, old_int, old_term;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  sigaction(SIGINT, &action, &old_int);
+  sigaction(SIGTERM, &action, &old_term);
   int written = 0;
-  int status = bake_frames(&job, &cfg, pattern, &written);
-  if (!status) {
+  int status = bake_frames(&job, &cfg, staged, &written);
+  sigaction(SIGINT, &old_int, NULL);
+  sigaction(SIGTERM, &old_term, NULL);
+  if (status) {
+    remove_frames(staged, written);
+    rmdir(staging);
+    recorder_remove_created_folders(&folders);
+    if (status == 130)
+      fprintf(stderr, "fogpipe bake: interrupted after %d of %d frames: nothing of this bake "
+              "kept%s\n", written, job.frames, folders.created[0] ? "" : " (the folder is as "
+              "it was)");
+    return status;
+  }
+  /* Into place: the old bake.ini goes first, so that until the new one is written the
+   * folder is no bake at all rather than a mix of two. */
+  if (unlink(ini) != 0 && errno != ENOENT) {
+    status = cli_fail("bake", "%s: cannot replace it: %s", ini, strerror(errno));
+  }
+  for (int n = 1; !status && n <= job.frames; n++) {
+    char from[SCENE_CONFIG_PATH_MAX + 32], to[SCENE_CONFIG_PATH_MAX + 32];
+    scene_config_sequence_path(staged, n, from, sizeof from);
+    scene_config_sequence_path(pattern, n, to, sizeof to);
+    if (rename(from, to) != 0)
+      status = cli_fail("bake", "cannot move %s to %s: %s (%s holds no bake now)", from, to,
+                        strerror(errno), job.out);
+  }
+  if (status) {
+    remove_frames(staged, written);
+    rmdir(staging);
+    return status;
+  }
+  rmdir(staging);
+  {
     /* The same scene with the frames as its fog (density_scale, box, profile as they are). */
     scene_config baked = cfg;
     baked.fog.fogmap[0] = '\0';
     snprintf(baked.fog.sequence, sizeof baked.fog.sequence, "%s", pattern);
-    if (scene_config_write(&baked, ini, &cerr)) status = cli_fail("bake", "%s", cerr.message);
-  }
-  if (status) {
-    remove_frames(pattern, written);
-    recorder_remove_created_folders(&folders);
-    return status;
+    if (scene_config_write(&baked, ini, &cerr)) {
+      remove_frames(pattern, job.frames);
+      recorder_remove_created_folders(&folders);
+      return cli_fail("bake", "%s", cerr.message);
+    }
   }
   /* A longer bake made here before must not play on past this one's end: every later file
    * the pattern matches goes, past any gap in them too (the config refuses a gap). */

@@ -3,7 +3,8 @@
  * it, has the pixels of the same frames of one full simulated run, every channel, bit for
  * bit. A bad bake (a model without a simulation) is refused and leaves no folder behind;
  * the bake's config loads back to the same scene but its fog. The bake's folder is named
- * "bake#1": a '#' of a folder is itself, not the frame number of the fogmaps' pattern. */
+ * "bake#1": a '#' of a folder is itself, not the frame number of the fogmaps' pattern. A
+ * re-bake interrupted half-way leaves the old bake as it was. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
@@ -100,6 +101,47 @@ int main(void) {
   CHECK(access(stray, F_OK) != 0, "the shorter bake left %s past the gap", stray);
   CHECK(scene_config_load(ini, &baked, &err) == 0, "the shorter bake's config: %s", err.message);
 
+  /* A re-bake interrupted (SIGTERM) once it has written frames: exit 130, and the folder
+   * holds the old bake as it was: its bake.ini and frames, none of the new frames (a long
+   * bake's are fog.######.exr), no staging folder. */
+  char before_ini[4096] = "", after_ini[4096] = "";
+  FILE *f = fopen(ini, "r");
+  size_t n = f ? fread(before_ini, 1, sizeof before_ini - 1, f) : 0;
+  before_ini[n] = '\0';
+  if (f) fclose(f);
+  struct stat st, old_frame;
+  stat(p1, &old_frame);
+  const int entries = test_folder_entries(bake);
+  pid_t pid = fork();
+  if (pid == 0) {
+    int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) dup2(fd, 1), dup2(fd, 2), close(fd);
+    execl(record_bin(), record_bin(), "bake", RECORD_TEST_CONFIG, "--frames", "100000",
+          "--out", bake, (char *)NULL);
+    _exit(127);
+  }
+  /* the staging folder (or, before the fix, the first new frame), then a few frames more */
+  char first_new[700];
+  snprintf(first_new, sizeof first_new, "%s/fog.000001.exr", bake);
+  for (int waited = 0; waited < 60000 && test_folder_entries(bake) <= entries; waited += 5)
+    record_sleep_ms(5);
+  record_sleep_ms(400);
+  kill(pid, SIGTERM);
+  int status = record_wait(pid);
+  CHECK(status == 130 && record_log_contains(log, "interrupted"),
+        "the interrupted re-bake exited %d", status);
+  f = fopen(ini, "r");
+  n = f ? fread(after_ini, 1, sizeof after_ini - 1, f) : 0;
+  after_ini[n] = '\0';
+  if (f) fclose(f);
+  CHECK(n > 0 && !strcmp(before_ini, after_ini), "the interrupted re-bake changed bake.ini");
+  CHECK(stat(p1, &st) == 0 && st.st_mtime == old_frame.st_mtime &&
+            st.st_size == old_frame.st_size,
+        "the interrupted re-bake changed %s", p1);
+  CHECK(access(first_new, F_OK) != 0, "the interrupted re-bake left %s", first_new);
+  CHECK(test_folder_entries(bake) == entries, "the interrupted re-bake left %d files, had %d",
+        test_folder_entries(bake), entries);
+
   /* Nothing to bake: refused, no folder made. */
   char none[600];
   snprintf(none, sizeof none, "%s/none/deeper", root);
@@ -108,7 +150,6 @@ int main(void) {
   CHECK(run(command, log) == 1 && record_log_contains(log, "nothing to bake"),
         "a bake of an analytic model was not refused");
   snprintf(none, sizeof none, "%s/none", root);
-  struct stat st;
   CHECK(stat(none, &st) != 0, "the refused bake left %s", none);
   test_remove_tree(root);
   return test_finish("test_bake");
