@@ -3,12 +3,14 @@
  * Headless (EGL), deterministic EXR sequence recording. Ctrl-C finishes the current frame
  * and exits with 130; --resume re-runs the simulation (without rendering) up to the last
  * complete frame and continues, giving the frames an uninterrupted run gives. */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 /* realpath */
 #include <errno.h>
+#include <limits.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "app/commands.h"
 #include "app/config.h"
@@ -41,14 +43,43 @@ static void restore_interrupts(const struct sigaction *old_int,
   sigaction(SIGTERM, old_term, NULL);
 }
 
+/* PATH with its folder resolved (realpath) where that folder exists, and without trailing
+ * slashes: two spellings of one place compare equal ("./rec", "rec/", "/abs/rec"). */
+static void resolved_path(const char *path, char *out, size_t size) {
+  char copy[PATH_MAX], folder[PATH_MAX], real[PATH_MAX];
+  snprintf(copy, sizeof copy, "%s", path);
+  for (size_t n = strlen(copy); n > 1 && copy[n - 1] == '/'; n--) copy[n - 1] = '\0';
+  const char *slash = strrchr(copy, '/');
+  const char *base = slash ? slash + 1 : copy;
+  const size_t folder_length = !slash ? 0 : slash == copy ? 1 : (size_t)(slash - copy);
+  memcpy(folder, slash ? copy : ".", slash ? folder_length : 1);
+  folder[slash ? folder_length : 1] = '\0';
+  if (!strcmp(base, ".") || !strcmp(base, "..") || !realpath(folder, real)) {
+    snprintf(out, size, "%s", copy);
+    return;
+  }
+  snprintf(out, size, "%s%s%s", real, strcmp(real, "/") ? "/" : "", base);
+}
+
 /* Refuses (true, the usage message printed) a --preview that names the --out folder itself
- * (which may not exist yet): the video would be renamed onto the frames' folder after the
- * whole recording. */
+ * (which may not exist yet, spelt any way): the video would be renamed onto the frames'
+ * folder after the whole recording. (An existing folder is cli_output_file's refusal.) */
 static bool refuse_preview_in_out(const char *preview, const char *out) {
-  size_t p = strlen(preview), o = strlen(out);
-  while (p > 1 && preview[p - 1] == '/') p--;
-  while (o > 1 && out[o - 1] == '/') o--;
-  if (p != o || strncmp(preview, out, p)) return false;
+  char p[2 * PATH_MAX + 2], o[2 * PATH_MAX + 2];
+  resolved_path(preview, p, sizeof p);
+  resolved_path(out, o, sizeof o);
+  if (strcmp(p, o) != 0) {
+    /* the folder must be there now, not found missing by ffmpeg after the recording */
+    char folder[PATH_MAX];
+    snprintf(folder, sizeof folder, "%s", preview);
+    char *slash = strrchr(folder, '/');
+    if (!slash) return false;
+    slash[slash == folder] = '\0';
+    struct stat st;
+    if (stat(folder, &st) == 0 && S_ISDIR(st.st_mode)) return false;
+    cli_usage_error("record", "--preview '%s': its folder %s does not exist", preview, folder);
+    return true;
+  }
   cli_usage_error("record", "--preview '%s': that is the --out folder; expected a video file "
                   "name (out.mp4)", preview);
   return true;
