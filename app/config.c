@@ -233,6 +233,7 @@ typedef struct parse_state {
   int quadric_line; /* its first line; 0: none waiting */
   fog_error *err;
   int key_line[sizeof keys / sizeof keys[0]]; /* where each key was last set (0: default) */
+  int flicker_line[FOG_MAX_LAMPS]; /* each lamp's lamp_flicker line (0: none) */
 } parse_state;
 
 /* The line of [section] key (0: not in the file: its default). */
@@ -751,6 +752,11 @@ static int store_lamp_flicker(parse_state *s, const char *section, const char *k
                 "got '%s'", value);
   if (n == 4 && !(v[3] >= 0 && v[3] <= 4294967295.0 && v[3] == floor(v[3])))
     return fail(s, section, key, "expected SEED an integer from 0 to 4294967295, got '%s'", value);
+  /* a lamp has one flicker: a second line would replace the first without a word */
+  int *line = &s->flicker_line[lamp - s->cfg->lamps];
+  if (*line)
+    return fail(s, section, key, "lamp %g has a flicker already (line %d)", v[0], *line);
+  *line = s->line;
   lamp->flicker_amount = v[1], lamp->flicker_rate = v[2];
   lamp->flicker_seed = n == 4 ? (unsigned)v[3] : 1u;
   return 1;
