@@ -144,16 +144,44 @@ int cmd_record(int argc, char **argv) {
 }
 
 /* The command line that continues this recording. */
+/* s as one shell word into out: as it is when every character is plain, else in single
+ * quotes (a quote inside becomes '\'') so that the hint can be pasted whatever the path. */
+static const char *shell_word(const char *s, char *out, size_t size) {
+  const char *plain = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./:=@%+,-";
+  if (*s && strspn(s, plain) == strlen(s)) return s;
+  size_t used = 0;
+  out[used++] = '\'';
+  for (; *s && used + 6 < size; s++) {
+    if (*s == '\'') {
+      memcpy(out + used, "'\\''", 4);
+      used += 4;
+    } else {
+      out[used++] = *s;
+    }
+  }
+  out[used++] = '\'';
+  out[used] = '\0';
+  return out;
+}
+
 static void resume_hint(const record_job *job, char *text, size_t size) {
+  char config[PATH_MAX + 64], out[PATH_MAX + 64];
+  const char *config_word = shell_word(job->config_path, config, sizeof config);
+  const char *out_word = shell_word(job->out, out, sizeof out);
   int n = job->first_frame > 1
-              ? snprintf(text, size, "fogpipe record %s --frames %d-%d --out %s",
-                         job->config_path, job->first_frame, job->frames, job->out)
-              : snprintf(text, size, "fogpipe record %s --frames %d --out %s", job->config_path,
-                         job->frames, job->out);
-  if (job->fps_given) n += snprintf(text + n, size - (size_t)n, " --fps %g", job->fps);
+              ? snprintf(text, size, "fogpipe record %s --frames %d-%d --out %s", config_word,
+                         job->first_frame, job->frames, out_word)
+              : snprintf(text, size, "fogpipe record %s --frames %d --out %s", config_word,
+                         job->frames, out_word);
+  /* in full: the frames' identity holds the rate to the last digit */
+  if (job->fps_given) n += snprintf(text + n, size - (size_t)n, " --fps %.17g", job->fps);
   if (job->width > 0)
     n += snprintf(text + n, size - (size_t)n, " --size %dx%d", job->width, job->height);
-  if (job->preview) n += snprintf(text + n, size - (size_t)n, " --preview %s", job->preview);
+  if (job->preview) {
+    char preview[PATH_MAX + 64];
+    n += snprintf(text + n, size - (size_t)n, " --preview %s",
+                  shell_word(job->preview, preview, sizeof preview));
+  }
   snprintf(text + n, size - (size_t)n, " --resume");
 }
 
@@ -255,7 +283,7 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
       if (!job->quiet) recorder_progress_update(&progress, done - first + 1);
       if (interrupted && done < last) {
         if (!job->quiet) recorder_progress_end(&progress);
-        char hint[2048];
+        char hint[4 * PATH_MAX];
         resume_hint(job, hint, sizeof hint);
         fprintf(stderr,
                 "fogpipe %s: interrupted: %d of %d frames complete in %s; to finish: %s\n",

@@ -1,7 +1,8 @@
 /* `fogpipe record` interrupted by SIGINT finishes the frame it is on and exits with 130,
  * leaving only whole frames (every one readable in every channel, no temporary files);
- * `--resume` then completes the sequence, and the result has the same pixels, frame by
- * frame, as an uninterrupted recording. A resume with another --size is refused. */
+ * `--resume` (the command the interrupt printed, run by a shell: the folder's name holds a
+ * space and a quote) then completes the sequence, and the result has the same pixels,
+ * frame by frame, as an uninterrupted recording. A resume with another --size is refused. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
@@ -12,7 +13,8 @@ int main(void) {
   if (!test_scratch_folder(root)) return 1;
   char whole[512], cut[512], log_whole[512], log_cut[512], log_resume[512];
   snprintf(whole, sizeof whole, "%s/whole", root);
-  snprintf(cut, sizeof cut, "%s/cut", root);
+  /* a folder name a shell would split or unquote: the printed resume command quotes it */
+  snprintf(cut, sizeof cut, "%s/cut it's", root);
   snprintf(log_whole, sizeof log_whole, "%s/whole.log", root);
   snprintf(log_cut, sizeof log_cut, "%s/cut.log", root);
   snprintf(log_resume, sizeof log_resume, "%s/resume.log", root);
@@ -67,8 +69,21 @@ int main(void) {
   CHECK(after_mismatch == done, "the refused resume changed the folder: %d frames, had %d",
         after_mismatch, done);
 
-  status = record_run(cut, frames, "--resume", log_resume);
-  CHECK(status == 0, "record --resume exited with %d", status);
+  /* The command the interrupt printed, run as printed (by a shell), resumes. */
+  char text[8192] = "", command[9000];
+  FILE *f = fopen(log_cut, "r");
+  size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+  text[n] = '\0';
+  if (f) fclose(f);
+  const char *hint = strstr(text, "to finish: fogpipe ");
+  char *end = hint ? strchr(hint, '\n') : NULL;
+  if (end) *end = '\0';
+  CHECK(hint != NULL, "no resume command printed:\n%s", text);
+  snprintf(command, sizeof command, "'%s'%s > '%s' 2>&1", record_bin(),
+           hint ? hint + strlen("to finish: fogpipe") : " --help", log_resume);
+  status = system(command);
+  status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  CHECK(status == 0, "the printed resume command exited with %d: %s", status, command);
   if (status != 0) record_print_log(log_resume);
   status = record_run(whole, frames, NULL, log_whole);
   CHECK(status == 0, "uninterrupted record exited with %d", status);
