@@ -18,6 +18,16 @@ set -euo pipefail
 : "${FOGPIPE:?set FOGPIPE to the fogpipe binary}" "${CONFIG:?set CONFIG}" "${OUT:?set OUT}"
 : "${FRAMES:?set FRAMES, the last frame of the shot}" "${CHUNK:=24}"
 task=${SLURM_ARRAY_TASK_ID:?not run as a Slurm array task (sbatch --array=0-N)}
+# Whole decimal numbers (bash reads 0240 as octal; 10# reads it as 240), FRAMES and CHUNK
+# at least 1: a task with nothing to do must not pass as a finished one.
+for check in FRAMES:1 CHUNK:1 task:0; do
+  name=${check%:*} min=${check#*:} value=${!name}
+  if [[ ! $value =~ ^[0-9]+$ ]] || ((10#$value < min)); then
+    echo "slurm_record.sh: $name='$value': expected a whole number from $min" >&2
+    exit 2
+  fi
+  printf -v "$name" '%d' "$((10#$value))"
+done
 first=$((task * CHUNK + 1))
 last=$(((task + 1) * CHUNK))
 ((last > FRAMES)) && last=$FRAMES

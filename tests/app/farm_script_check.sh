@@ -29,4 +29,17 @@ FOGPIPE=$bin CONFIG=configs/default.ini FRAMES=24 CHUNK=10 SIZE=64x36 OUT=$root/
   SLURM_ARRAY_TASK_ID=1 bash scripts/farm/slurm_record.sh > "$root/requeue.log" 2>&1
 grep -q "already complete" "$root/requeue.log" || { cat "$root/requeue.log"; echo "FAIL: a requeued task re-rendered its frames"; exit 1; }
 [[ $(stat -c %Y "$root/farm/frame.0011.exr") == "$before" ]] || { echo "FAIL: frame 11 rewritten"; exit 1; }
+# Bad numbers are refused, not read as octal or as an empty shot that "finished".
+for bad in "FRAMES=0" "FRAMES=24x" "CHUNK=0"; do
+  if env FOGPIPE=$bin CONFIG=configs/default.ini FRAMES=24 CHUNK=10 OUT=$root/bad "$bad" \
+    SLURM_ARRAY_TASK_ID=0 bash scripts/farm/slurm_record.sh > "$root/bad.log" 2>&1; then
+    echo "FAIL: $bad was accepted"; exit 1
+  fi
+  grep -q "expected a whole number" "$root/bad.log" || { cat "$root/bad.log"; echo "FAIL: $bad: no message"; exit 1; }
+done
+[[ ! -e $root/bad ]] || { echo "FAIL: a refused task made its folder"; exit 1; }
+# FRAMES=0024 is 24 (not octal 20): task 2 renders 21-24 and says so.
+FOGPIPE=$bin CONFIG=configs/default.ini FRAMES=0024 CHUNK=010 SIZE=64x36 OUT=$root/farm \
+  SLURM_ARRAY_TASK_ID=2 bash scripts/farm/slurm_record.sh > "$root/octal.log" 2>&1
+grep -q "frames 21-24 of 24" "$root/octal.log" || { cat "$root/octal.log"; echo "FAIL: 0024 not read as 24"; exit 1; }
 echo "farm_script_check: 24 frames from 4 array tasks equal the full run byte for byte; a requeue keeps them"
