@@ -138,3 +138,24 @@ int cli_output_file(const char *command, const char *option, const char *path) {
                            "name", option, path);
   return 0;
 }
+
+const char *cli_shell_word(const char *s, char *out, size_t size) {
+  const char *plain = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./:=@%+,-";
+  if (*s && strspn(s, plain) == strlen(s)) {
+    snprintf(out, size, "%s", s);
+    return out;
+  }
+  size_t used = 0;
+  out[used++] = '\'';
+  for (; *s && used + 6 < size; s++) {
+    if (*s == '\'') {
+      memcpy(out + used, "'\\''", 4);
+      used += 4;
+    } else {
+      out[used++] = *s;
+    }
+  }
+  out[used++] = '\'';
+  out[used] = '\0';
+  return out;
+}

@@ -17,6 +17,7 @@ int cli_usage_error(const char *command, const char *format, ...)
  * pointer and returns 2 (the exit status of a bad command line), else stores and returns 0. */
 
 #include <stdbool.h>
+#include <stddef.h>
 
 /* Images and windows: 1 to CLI_MAX_SIZE pixels a side. */
 #define CLI_MAX_SIZE 16384
@@ -35,6 +36,11 @@ bool cli_same_file(const char *a, const char *b);
  * does not exist. */
 int cli_output_not_input(const char *command, const char *option, const char *out,
                          const char *input, const char *what);
+
+/* s as one POSIX shell word into out (size bytes): as it is when every character is plain
+ * (letters, digits, _ . / : = @ % + , -), else in single quotes with a quote inside as
+ * '\''. Returns out. For commands printed for a user to paste, or handed to sh -c. */
+const char *cli_shell_word(const char *s, char *out, size_t size);
 
 /* Whether s ends with suffix, ignoring case (".EXR" is ".exr"). */
 bool cli_ends_with(const char *s, const char *suffix);

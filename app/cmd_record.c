@@ -144,30 +144,10 @@ int cmd_record(int argc, char **argv) {
 }
 
 /* The command line that continues this recording. */
-/* s as one shell word into out: as it is when every character is plain, else in single
- * quotes (a quote inside becomes '\'') so that the hint can be pasted whatever the path. */
-static const char *shell_word(const char *s, char *out, size_t size) {
-  const char *plain = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./:=@%+,-";
-  if (*s && strspn(s, plain) == strlen(s)) return s;
-  size_t used = 0;
-  out[used++] = '\'';
-  for (; *s && used + 6 < size; s++) {
-    if (*s == '\'') {
-      memcpy(out + used, "'\\''", 4);
-      used += 4;
-    } else {
-      out[used++] = *s;
-    }
-  }
-  out[used++] = '\'';
-  out[used] = '\0';
-  return out;
-}
-
 static void resume_hint(const record_job *job, char *text, size_t size) {
   char config[PATH_MAX + 64], out[PATH_MAX + 64];
-  const char *config_word = shell_word(job->config_path, config, sizeof config);
-  const char *out_word = shell_word(job->out, out, sizeof out);
+  const char *config_word = cli_shell_word(job->config_path, config, sizeof config);
+  const char *out_word = cli_shell_word(job->out, out, sizeof out);
   int n = job->first_frame > 1
               ? snprintf(text, size, "fogpipe record %s --frames %d-%d --out %s", config_word,
                          job->first_frame, job->frames, out_word)
@@ -180,7 +160,7 @@ static void resume_hint(const record_job *job, char *text, size_t size) {
   if (job->preview) {
     char preview[PATH_MAX + 64];
     n += snprintf(text + n, size - (size_t)n, " --preview %s",
-                  shell_word(job->preview, preview, sizeof preview));
+                  cli_shell_word(job->preview, preview, sizeof preview));
   }
   snprintf(text + n, size - (size_t)n, " --resume");
 }

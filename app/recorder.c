@@ -2,6 +2,7 @@
  * preview and the progress display. See app/recorder.h for the lifecycle. */
 #define _POSIX_C_SOURCE 200809L
 #include "app/recorder.h"
+#include "app/cli.h"
 
 #include "app/frame_exr.h"
 
@@ -300,22 +301,6 @@ bool recorder_have_ffmpeg(void) {
   return false;
 }
 
-/* Appends s to the shell command in single quotes (a ' becomes '\''). */
-static void append_quoted(char *cmd, size_t size, const char *s) {
-  size_t used = strlen(cmd);
-  if (used + 1 < size) cmd[used++] = '\'';
-  for (; *s && used + 5 < size; s++) {
-    if (*s == '\'') {
-      memcpy(cmd + used, "'\\''", 4);
-      used += 4;
-    } else {
-      cmd[used++] = *s;
-    }
-  }
-  if (used + 1 < size) cmd[used++] = '\'';
-  cmd[used] = '\0';
-}
-
 int recorder_write_preview(const recorder *rec, int frame_count, double fps, const char *video_path,
                            const volatile sig_atomic_t *stop, fog_error *err) {
   if (!recorder_have_ffmpeg())
@@ -336,7 +321,8 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
            "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgb24 -s %dx%d -r %g -i - "
            "-vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -pix_fmt yuv420p ",
            w, h, fps > 0 ? fps : 24.0);
-  append_quoted(cmd, sizeof cmd, temp);
+  char word[2 * sizeof temp + 8];
+  strncat(cmd, cli_shell_word(temp, word, sizeof word), sizeof cmd - strlen(cmd) - 1);
   size_t n = (size_t)w * (size_t)h;
   uint8_t *rgb = malloc(n * 3);
   float *linear = malloc(n * 3 * sizeof *linear);
