@@ -46,9 +46,28 @@ static const fit_rung *rung_named(const fit_result *r, const char *name) {
   return NULL;
 }
 
-static const char *chosen_family(const fit_result *r, double tolerance) {
-  int i = fit_choose(r, tolerance, false);
-  return i < 0 ? "(none)" : r->rungs[i].family;
+/* The choice at `tolerance`, as far as it is not a measured time: a rung of family `want`
+ * holds the fog within the tolerance, and fit_choose took a rung within it that no other
+ * within it beats by more than the tie factor (1.25) in measured GL time. Which of several
+ * rungs within the tolerance is fastest is a timing, not a property a test can hold on a
+ * shared machine (a sanitizer run under load once timed "rbf 1" at 5.1 ms and "rbf 2" at
+ * 0.5): when another family wins on time, it is said, not failed. */
+static void check_choice(const fit_result *r, double tolerance, const char *want) {
+  double best = HUGE_VAL;
+  for (int i = 0; i < r->count; i++)
+    if (!strcmp(r->rungs[i].family, want)) best = fmin(best, r->rungs[i].max_error);
+  CHECK(best <= tolerance, "no %s rung within %g (best %g)", want, tolerance, best);
+  const int c = fit_choose(r, tolerance, false);
+  CHECK(c >= 0 && r->rungs[c].max_error <= tolerance, "at %g: chose %d", tolerance, c);
+  if (c < 0) return;
+  for (int i = 0; i < r->count; i++)
+    if (r->rungs[i].max_error <= tolerance)
+      CHECK(r->rungs[c].ms <= 1.25 * r->rungs[i].ms, "at %g: chose %s (%.2f ms), %s within "
+            "it took %.2f", tolerance, r->rungs[c].name, r->rungs[c].ms, r->rungs[i].name,
+            r->rungs[i].ms);
+  if (strcmp(r->rungs[c].family, want))
+    printf("note: at %g %s was measured faster than %s (within the tolerance too)\n",
+           tolerance, r->rungs[c].name, want);
 }
 
 static void print_table(const char *title, const fit_result *r) {
@@ -82,8 +101,7 @@ static void test_constant(void) {
   CHECK(h && h->max_error < 1e-9, "homogeneous error %g", h ? h->max_error : NAN);
   CHECK(!rung_named(&r, "height"), "a constant density has no height fog");
   CHECK(!r.lit && h && isnan(h->light_error), "unlit: no in-scatter error");
-  CHECK(!strcmp(chosen_family(&r, 0.01), "homogeneous"), "picked %s",
-        chosen_family(&r, 0.01));
+  check_choice(&r, 0.01, "homogeneous");
   fit_result_destroy(&r);
 }
 
@@ -106,7 +124,7 @@ static void test_height(void) {
   const fit_rung *k = rung_named(&r, "homogeneous");
   CHECK(k && k->max_error > 0.01, "homogeneous holds the column? error %g",
         k ? k->max_error : NAN);
-  CHECK(!strcmp(chosen_family(&r, 0.01), "height"), "picked %s", chosen_family(&r, 0.01));
+  check_choice(&r, 0.01, "height");
   fit_result_destroy(&r);
 }
 
@@ -132,8 +150,7 @@ static void test_classic(void) {
               "linear from %.12g to %.12g", f->fog_start, f->fog_end);
       CHECK(g->max_error < 1e-6, "%s error %g", g->name, g->max_error);
     }
-    const char *want = exp2 ? "exp2" : "linear", *got = chosen_family(&r, 0.01);
-    CHECK(!strcmp(got, want), "picked %s, want %s", got, want);
+    check_choice(&r, 0.01, exp2 ? "exp2" : "linear");
     fit_result_destroy(&r);
   }
 }
@@ -151,7 +168,7 @@ static void test_ground_fog(void) {
   const fit_rung *same = rung_named(&r, "fogmap linear mu 1"); /* the input's settings */
   CHECK(same && same->max_error < 1e-6, "the input's own fogmap: error %g",
         same ? same->max_error : NAN);
-  CHECK(!strcmp(chosen_family(&r, 0.01), "fogmap"), "picked %s", chosen_family(&r, 0.01));
+  check_choice(&r, 0.01, "fogmap");
   fit_result_destroy(&r);
 }
 
@@ -182,9 +199,9 @@ static void test_gaussian(void) {
     CHECK(fabs(b->radius / 25 - 1) < 0.01, "radius %.6g, want 25", b->radius);
     CHECK(fabs(b->density / 0.05 - 1) < 0.01, "density %.6g, want 0.05", b->density);
   }
-  CHECK(!strcmp(chosen_family(&r, 0.01), "rbf"), "picked %s", chosen_family(&r, 0.01));
-  CHECK(r.chosen >= 0 && r.rungs[r.chosen].config->fog.rbf_count == 1,
-        "picked %d Gaussians", r.chosen >= 0 ? r.rungs[r.chosen].config->fog.rbf_count : -1);
+  check_choice(&r, 0.01, "rbf");
+  CHECK(g && g->config->fog.rbf_count == 1 && g->max_error <= 0.01,
+        "one Gaussian holds it? error %g", g ? g->max_error : NAN);
   fit_result_destroy(&r);
 }
 
@@ -417,10 +434,8 @@ static void test_plume(const char *folder) {
   if (!run("tall plume", &cfg, &r)) return;
   const fit_rung *v = rung_named(&r, "volume");
   CHECK(v && v->max_error < 1e-9, "the volume's own error %g", v ? v->max_error : NAN);
-  CHECK(!strcmp(chosen_family(&r, 0.01), "volume"), "T = 0.01 picked %s",
-        chosen_family(&r, 0.01));
-  CHECK(!strcmp(chosen_family(&r, 0.5), "fogmap"), "T = 0.5 picked %s",
-        chosen_family(&r, 0.5));
+  check_choice(&r, 0.01, "volume");
+  check_choice(&r, 0.5, "fogmap");
   fit_result_destroy(&r);
 }
 
@@ -485,8 +500,7 @@ static void test_sequence(const char *folder) {
   /* (the grid is the Gaussian trilinear at 1/4 sigma: within 0.05 of the analytic one) */
   CHECK(g2 && g2->max_error < 0.05, "frames 1-2: one Gaussian's error %g",
         g2 ? g2->max_error : NAN);
-  CHECK(!strcmp(chosen_family(&r2, 0.05), "rbf"), "frames 1-2 picked %s",
-        chosen_family(&r2, 0.05));
+  check_choice(&r2, 0.05, "rbf");
   CHECK(g3 && g3->max_error > 0.3, "frames 1-3: one still Gaussian's error %g",
         g3 ? g3->max_error : NAN);
   CHECK(v3 && v3->max_error < 1e-9, "frames 1-3: the volume's error %g",
@@ -496,8 +510,7 @@ static void test_sequence(const char *folder) {
   const fit_rung *m3 = rung_named(&r3, "fogmap linear mu 1");
   CHECK(m3 && m3->max_error < 1e-4, "frames 1-3: the played fogmap's error %g",
         m3 ? m3->max_error : NAN);
-  CHECK(!strcmp(chosen_family(&r3, 0.05), "fogmap"), "frames 1-3 picked %s",
-        chosen_family(&r3, 0.05));
+  check_choice(&r3, 0.05, "fogmap");
   fit_result_destroy(&r2);
   fit_result_destroy(&r3);
 }
