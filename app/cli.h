@@ -42,6 +42,13 @@ int cli_output_not_input(const char *command, const char *option, const char *ou
  * '\''. Returns out. For commands printed for a user to paste, or handed to sh -c. */
 const char *cli_shell_word(const char *s, char *out, size_t size);
 
+/* An output that is one of the files the scene config reads (the config, its fogmap,
+ * heightmap or VDB file, a frame of its [fog] sequence, existing or not): refused with the
+ * usage message (returns 2) before any work, naming the key. 0 otherwise. */
+struct scene_config;
+int cli_output_not_scene_input(const char *command, const char *option, const char *out,
+                               const struct scene_config *cfg);
+
 /* Whether s ends with suffix, ignoring case (".EXR" is ".exr"). */
 bool cli_ends_with(const char *s, const char *suffix);
 

@@ -198,6 +198,8 @@ int cmd_demo(int argc, char **argv) {
     fprintf(stderr, "fogpipe demo: %s\n", cerr.message);
     return 1;
   }
+  if (o.screenshot && cli_output_not_scene_input("demo", "--screenshot", o.screenshot, &config))
+    return 2;
   const headless_job headless = {
       .config_path = o.config_path, .frames = o.frames ? o.frames : HEADLESS_FRAMES,
       .width = o.size_given ? o.width : HEADLESS_WIDTH,

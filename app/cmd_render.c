@@ -91,10 +91,7 @@ int cmd_render(int argc, char **argv) {
     fprintf(stderr, "fogpipe render: %s\n", cfg_err.message);
     return 1;
   }
-  if (cli_output_not_input("render", "--out", out, cfg.fog.fogmap, "the config's [fog] fogmap") ||
-      cli_output_not_input("render", "--out", out, cfg.terrain.heightmap,
-                           "the config's [terrain] heightmap"))
-    return 2;
+  if (cli_output_not_scene_input("render", "--out", out, &cfg)) return 2;
   if (width == 0) width = cfg.width, height = cfg.height;
   if (vdb_frame != -2) {
     if (!cfg.fog.vdb[0]) {

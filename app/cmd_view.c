@@ -75,6 +75,8 @@ int cmd_view(int argc, char **argv) {
     fprintf(stderr, "fogpipe view: %s\n", cfg_err.message);
     return 1;
   }
+  if (opts.screenshot && cli_output_not_scene_input("view", "--screenshot", opts.screenshot, &cfg))
+    return 2;
   opts.width = size[0] > 0 ? size[0] : cfg.width;
   opts.height = size[1] > 0 ? size[1] : cfg.height;
   return window_program_run(&cfg, &opts);

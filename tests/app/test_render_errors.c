@@ -7,6 +7,7 @@
 #include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "test_util.h"
@@ -108,6 +109,57 @@ int main(void) {
     CHECK(size_before > 0 && size_before == size_after && !memcmp(before, after, size_after),
           "the fogmap was rewritten (%zu bytes, now %zu)", size_before, size_after);
     unlink(map), unlink(ini), unlink(err_path);
+  }
+
+  /* Other outputs over a scene's inputs: render --out a frame of its [fog] sequence;
+   * view --screenshot its heightmap; demo --screenshot its fogmap. Each refused (exit 2,
+   * the key named) before any window or frame, and the file kept byte for byte. */
+  {
+    char frame[300], heightmap[300], fogmap[300], ini[300], command[1400], err_path[300];
+    static char before[3][300000], after[300000];
+    static char text[4096];
+    snprintf(frame, sizeof frame, "%s/fog.0001.exr", dir);
+    snprintf(heightmap, sizeof heightmap, "%s/hm.png", dir);
+    snprintf(fogmap, sizeof fogmap, "%s/fm.png", dir);
+    snprintf(ini, sizeof ini, "%s/inputs.ini", dir);
+    snprintf(err_path, sizeof err_path, "%s/inputs.txt", dir);
+    snprintf(command, sizeof command,
+             "cp data/fogmap_sample.exr '%s' && cp data/heightmap.png '%s' && "
+             "cp data/fogmap_sample.png '%s'", frame, heightmap, fogmap);
+    CHECK(system(command) == 0, "%s", command);
+    const char *kept[3] = {frame, heightmap, fogmap};
+    size_t sizes[3];
+    for (int i = 0; i < 3; i++) sizes[i] = read_bytes(kept[i], before[i], sizeof before[i]);
+    const struct {
+      const char *config, *args, *key;
+      int file;
+    } cases[] = {
+        {"[fog]\nsequence = fog.####.exr\n", "render '%s' --size 32x18 --out '%s/out/../fog.0001.exr'",
+         "is a frame of the config's [fog] sequence", 0},
+        {"[terrain]\nheightmap = hm.png\n", "view '%s' --size 32x18 --screenshot '%s/./hm.png'",
+         "is the config's [terrain] heightmap", 1},
+        {"[fog]\nfogmap = fm.png\n", "demo '%s' --size 32x18 --frames 1 --screenshot '%s/fm.png'",
+         "is the config's [fog] fogmap", 2},
+    };
+    for (int c = 0; c < 3; c++) {
+      FILE *g = fopen(ini, "w");
+      fputs(cases[c].config, g);
+      fclose(g);
+      char args[700];
+      snprintf(args, sizeof args, cases[c].args, ini, dir);
+      snprintf(command, sizeof command, "'%s' %s > /dev/null 2> '%s'", bin, args, err_path);
+      int status = system(command);
+      status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      read_text(err_path, text, sizeof text);
+      size_t size_after = read_bytes(kept[cases[c].file], after, sizeof after);
+      CHECK(status == 2 && strstr(text, cases[c].key), "%s: status %d, '%s'", args, status,
+            text);
+      CHECK(sizes[cases[c].file] > 0 && size_after == sizes[cases[c].file] &&
+                !memcmp(before[cases[c].file], after, size_after),
+            "%s rewrote %s", args, kept[cases[c].file]);
+    }
+    for (int i = 0; i < 3; i++) unlink(kept[i]);
+    unlink(ini), unlink(err_path);
   }
 
   /* --help names every option. */
