@@ -265,6 +265,15 @@ static void write_profile(FILE *f, const char *section, const vdb_profile *p) {
           p->y_bottom, p->y_top, p->thickness);
 }
 
+/* [section]: where the fogmap lies (every frame's) and the profile's support. */
+static void write_box(FILE *f, const char *section, const vdb_fogmap_place *place,
+                      const vdb_profile *p) {
+  fprintf(f, "[%s]\n; origin: world X Z of the outer corner of fogmap cell (0, 0); row = Z\n",
+          section);
+  fprintf(f, "origin = %.9g %.9g\ncell_size = %.9g\nfloor = %.9g\ntop = %.9g\n\n",
+          place->origin_x, place->origin_z, place->cell_size, p->y_bottom, p->y_top);
+}
+
 static int write_sidecar(const char *path, const import_options *o, const vdb_sequence *seq,
                          const vdb_frame *frames, const vdb_fogmap_place *place,
                          const vdb_profile *profile, fog_error *err) {
@@ -275,20 +284,14 @@ static int write_sidecar(const char *path, const import_options *o, const vdb_se
     fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: cannot write", path);
     return 1;
   }
-  /* The box spans every frame's profile support (one box for the whole sequence). */
-  double floor_y = INFINITY, top_y = -INFINITY;
-  for (int i = 0; i < seq->count; i++) {
-    const vdb_profile *g = profile ? profile : &frames[i].profile;
-    floor_y = fmin(floor_y, g->y_bottom);
-    top_y = fmax(top_y, g->y_top);
-  }
   fprintf(f, "; fogpipe import: K(x,y,z) = density_scale * f(x,z) * g(y) with max g = 1.\n"
              "; f: %s.####.exr (channel Y), the extinction per world unit where g = 1.\n"
-             "; [box] and [fog%s] are scene config sections (docs/config.md): copied into\n"
+             "; [box%s] and [fog%s] are scene config sections (docs/config.md): copied into\n"
              "; a scene as [box] and [fog], with 'fogmap = %s.%04d.exr' added to [fog],\n"
              "; they place and shape frame %d. [sequence] records this import (it is not\n"
              "; a scene section).\n\n",
-          o->name, profile ? "" : ".####", o->name, seq->frames[0], seq->frames[0]);
+          o->name, profile ? "" : ".####", profile ? "" : ".####", o->name, seq->frames[0],
+          seq->frames[0]);
   fprintf(f, "[sequence]\nfiles = %s.%%04d.exr\nchannel = Y\n", o->name);
   fprintf(f, "first_frame = %d\nlast_frame = %d\nframe_count = %d\n", seq->frames[0],
           seq->frames[seq->count - 1], seq->count);
@@ -305,15 +308,19 @@ static int write_sidecar(const char *path, const import_options *o, const vdb_se
   fprintf(f, "; density x volume of each frame (the column integral's total), in frame order\nmass =");
   for (int i = 0; i < seq->count; i++) fprintf(f, " %.9g", frames[i].columns.mass);
   fprintf(f, "\n\n");
-  fprintf(f, "[box]\n; origin: world X Z of the outer corner of fogmap cell (0, 0); row = Z\n");
-  fprintf(f, "origin = %.9g %.9g\ncell_size = %.9g\nfloor = %.9g\ntop = %.9g\n\n",
-          place->origin_x, place->origin_z, place->cell_size, floor_y, top_y);
   if (profile) {
+    /* one profile for the sequence: its support is the box's height */
+    write_box(f, "box", place, profile);
     write_profile(f, "fog", profile);
   } else {
-    fprintf(f, "; one profile per frame: [fog.####]\n\n");
+    /* A profile per frame, and the box's height per frame with it: a slab fills the box
+     * floor to top, and the exponential profile is 1 from the floor up, so a box spanning
+     * every frame's support would add fog below or above a frame's own. */
+    fprintf(f, "; one box height and profile per frame: [box.####] and [fog.####]\n\n");
     for (int i = 0; i < seq->count; i++) {
       char section[64];
+      snprintf(section, sizeof section, "box.%04d", seq->frames[i]);
+      write_box(f, section, place, &frames[i].profile);
       snprintf(section, sizeof section, "fog.%04d", seq->frames[i]);
       write_profile(f, section, &frames[i].profile);
     }
