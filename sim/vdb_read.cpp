@@ -250,6 +250,15 @@ extern "C" int vdb_read_dense(const char *path, const vdb_read_desc *desc, vdb_d
     openvdb::GridPtrVecPtr meta = file.readAllGridMetadata();
     openvdb::GridBase::Ptr base = file.readGrid(name);
     file.close();
+    // A level set holds distances to a surface (negative inside, the background a band's
+    // width outside), which read as density would render a hollow shell.
+    if (base->getGridClass() == openvdb::GRID_LEVEL_SET) {
+      fog_fail(err, FOG_ERR_BAD_FILE,
+               "%s: grid '%s' is a level set (signed distances to a surface), not fog "
+               "density: convert it to a fog volume first (OpenVDB's vdb_tool -ls2fog, "
+               "Houdini's VDB Convert)", path, name);
+      return 1;
+    }
     double voxel_size[3], translation[3];
     int status;
     if (base->isType<openvdb::FloatGrid>()) {

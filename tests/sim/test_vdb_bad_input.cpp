@@ -1,6 +1,6 @@
 // Bad VDB input gives a clear error naming the file, never a crash or an exception:
 // missing files, non-VDB bytes, truncated files, no such grid (the message lists the
-// grids that exist), a vector grid named as density, empty grids, NaN/Inf voxels, absurd
+// grids that exist), a vector grid named as density, a level set, empty grids, NaN/Inf voxels, absurd
 // dimensions, a broken Mantaflow config. (C++ only to write the odd grids via OpenVDB.)
 #include <openvdb/openvdb.h>
 
@@ -104,6 +104,16 @@ int main() {
     v->tree().setValue(openvdb::Coord(1, 2, 3), openvdb::Vec3s(1, 0, 0));
     write_grid(dir + "/vector_density.vdb", v);
     expect_failure(dir + "/vector_density.vdb", nullptr, {"vec3s"});
+  }
+  // a level set (signed distances) is no density: it would render a hollow shell
+  {
+    openvdb::FloatGrid::Ptr g = openvdb::FloatGrid::create(0.3f);
+    g->setName("density");
+    g->setGridClass(openvdb::GRID_LEVEL_SET);
+    g->tree().setValue(openvdb::Coord(0, 0, 0), -0.1f);
+    g->tree().setValue(openvdb::Coord(1, 0, 0), 0.1f);
+    write_grid(dir + "/level_set.vdb", g);
+    expect_failure(dir + "/level_set.vdb", nullptr, {"is a level set", "-ls2fog"});
   }
   // empty grids: Mantaflow's 'flame' and one of our own
   expect_failure(real, "flame", {"empty"});
