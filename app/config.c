@@ -152,6 +152,8 @@ static const key_spec keys[] = {
     {"light", "shadow_steps", V_INT, F(shadow.steps), 1, 1024, NULL, 0, 0},
     {"light", "shadow_nodes", V_INT, F(shadow.nodes), 1, 2, NULL, 0, 0},
     {"light", "shadow_pieces", V_ENUM, F(shadow.pieces), 0, 0, "off|on|auto", 0, 0},
+    {"light", "shaft_samples", V_INT, F(shadow.shaft_samples), 1, FOG_PASS_MAX_SHAFT_SAMPLES,
+     NULL, 0, 0},
     {"light", "lamp", V_LAMP, 0, -WORLD, WORLD, NULL, 0, 0},
     {"light", "spot", V_LAMP, 0, -WORLD, WORLD, NULL, 0, 0},
     {"light", "lamp_path", V_LAMP_PATH, 0, -WORLD, WORLD, NULL, 0, 0},
@@ -198,7 +200,7 @@ void scene_config_init(scene_config *cfg) {
                   .seed = 1, .lod_error = 1.0},
       .light = scene_light_default(),
       .shadow = {.fog_self_shadow = 1, .shafts = 1, .resolution = 48, .steps = 8, .nodes = 2,
-                 .pieces = 2, .lamp_shadows = 1, .lamp_shadow_size = LAMP_SHADOW_SIZE},
+                 .shaft_samples = 8, .pieces = 2, .lamp_shadows = 1, .lamp_shadow_size = LAMP_SHADOW_SIZE},
       .lamp_method = {.angle_pieces = FOG_LAMP_ANGLE_PIECES,
                       .span_pieces = FOG_LAMP_SPAN_PIECES, .march_steps = 64, .depth_steps = FOG_LAMP_DEPTH_STEPS,
                       .shadow_steps = FOG_LAMP_SHADOW_STEPS},
@@ -1440,7 +1442,7 @@ fog_light_rule scene_config_light_rule(const scene_config *cfg) {
   bool pieces = cfg->shadow.pieces == 1 ||
                 (cfg->shadow.pieces == 2 && cfg->fog.model == FOG_MODEL_PERLIN);
   return (fog_light_rule){.steps = cfg->shadow.steps, .nodes = cfg->shadow.nodes,
-                          .pieces = pieces};
+                          .pieces = pieces, .shaft_samples = cfg->shadow.shaft_samples};
 }
 
 fog_sun scene_config_fog_sun(const scene_config *cfg) {

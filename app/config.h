@@ -183,6 +183,7 @@ typedef struct scene_shadow_config {
   int steps;           /* segments of the view ray's T_s mean (fog_light.glsl) */
   int nodes;           /* its samples per segment: 1 midpoint, 2 Gauss-Legendre (or per
                           piece, with pieces) */
+  int shaft_samples;   /* V's samples a segment (fog_light_rule.shaft_samples) */
   int pieces;          /* the mean per piece of the exact walk (Perlin fog and the volume):
                           0 off, 1 on, 2 auto (on for Perlin fog only:
                           scene_config_light_rule resolves it) */

@@ -1118,6 +1118,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
       .shadow_steps = p->config.shadow.steps,
       .shadow_nodes = p->config.shadow.nodes,
       .shadow_pieces = scene_config_light_rule(&p->config).pieces,
+      .shaft_samples = p->config.shadow.shaft_samples,
       .shafts = params.sun.albedo > 0 && params.shafts ? scene_pass_sun_shadow(p->scene) : NULL,
       .lamp_shadows = scene_pass_lamp_shadows(p->scene),
       .walk = scene_config_walk(&p->config),

@@ -93,6 +93,7 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
       .shadow_steps = settings->shadow_steps,
       .shadow_nodes = settings->shadow_nodes,
       .shadow_pieces = settings->shadow_pieces,
+      .shaft_samples = settings->shaft_samples,
       .shafts = settings->shafts,
       .lamp_shadows = settings->lamp_shadows,
       .walk = settings->walk,

@@ -33,6 +33,7 @@ typedef struct pipeline_fog_settings {
   fog_sun_shadow_kind self_shadow;
   int shadow_steps, shadow_nodes;
   bool shadow_pieces;
+  int shaft_samples; /* fog_pass_params.shaft_samples */
   const sun_shadow_map *shafts; /* fog_pass_params.shafts: NULL none */
   const lamp_shadow_maps *lamp_shadows; /* fog_pass_params.lamp_shadows: NULL none */
   fog_walk_settings walk;       /* fog_pass_params.walk */

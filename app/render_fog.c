@@ -216,6 +216,7 @@ static int render_fog_shadow(render_fog *fog, const scene_config *cfg, const fog
   p->shadow_steps = cfg->shadow.steps;
   p->shadow_nodes = cfg->shadow.nodes;
   p->shadow_pieces = scene_config_light_rule(cfg).pieces;
+  p->shaft_samples = cfg->shadow.shaft_samples;
   fog->ground_shadow = p->self_shadow != FOG_SUN_SHADOW_NONE;
   if (p->self_shadow != FOG_SUN_SHADOW_VOLUME) return 0;
   const int n = cfg->shadow.resolution;

@@ -148,6 +148,8 @@ double fog_pass_view_loop_bound(const fog_pass_params *p, int tile_gaussians) {
     const double node = point_loops(p, noise, tile_gaussians) +
                         (beside ? quadric_segment(p, noise) : 0);
     loops += p->shadow_steps + 1 + (double)p->shadow_steps * p->shadow_nodes * node;
+    /* V's points a segment: a loop of their own */
+    if (p->shafts && p->shaft_samples > 1) loops += (double)p->shadow_steps * (p->shaft_samples + 1);
   }
   return loops;
 }

@@ -112,6 +112,7 @@ typedef struct fog_pass_variant {
   int froxel;             /* FOG_FROXEL: 0 none, 1 the froxel grid's fill, 2 its lookup */
   int shadow_nodes;       /* FOG_SHADOW_NODES: the light mean's nodes a segment or piece */
   int shadow_pieces;      /* FOG_SHADOW_PIECES: 1 the mean per piece of the exact walk */
+  int shaft_samples;      /* FOG_SHAFT_SAMPLES: V's points a segment (1: at the nodes) */
   int lamp_shadows;       /* FOG_LAMP_SHADOWS: 1 the lamps' shadow cubes (lamp_shadow.glsl) */
   int quadrics_beside;    /* FOG_QUADRICS_BESIDE: 1 quadric volumes beside the model's fog */
   int quadric_noise;      /* FOG_QUADRIC_NOISE: 1 noise inside the quadric volumes (compiled
@@ -145,12 +146,14 @@ static const struct {
     {"FOG_FROXEL", offsetof(fog_pass_variant, froxel), 2},
     {"FOG_SHADOW_NODES", offsetof(fog_pass_variant, shadow_nodes), 3},
     {"FOG_SHADOW_PIECES", offsetof(fog_pass_variant, shadow_pieces), 1},
+    {"FOG_SHAFT_SAMPLES", offsetof(fog_pass_variant, shaft_samples), 5},
     {"FOG_LAMP_SHADOWS", offsetof(fog_pass_variant, lamp_shadows), 1},
     {"FOG_QUADRICS_BESIDE", offsetof(fog_pass_variant, quadrics_beside), 1},
     {"FOG_QUADRIC_NOISE", offsetof(fog_pass_variant, quadric_noise), 1},
 };
 #define VARIANT_FIELD_COUNT (int)(sizeof variant_fields / sizeof variant_fields[0])
 _Static_assert(FOG_MODEL_COUNT <= 16 && FOG_MAX_LEVELS < 8 && FOG_PROFILE_BSPLINE < 4 &&
+                   FOG_PASS_MAX_SHAFT_SAMPLES < 32 &&
                    FOG_SUN_SHADOW_OPAQUE < 4 && FOG_LAMP_MARCH < 4,
                "a fog_pass_variant field outgrew its bits of the key");
 
@@ -158,7 +161,7 @@ static int variant_field(const fog_pass_variant *v, int f) {
   return *(const int *)((const char *)v + variant_fields[f].offset);
 }
 
-/* The fields packed into bits, in variant_fields' order (37 of the 64; fog_pass_create
+/* The fields packed into bits, in variant_fields' order (42 of the 64; fog_pass_create
  * checks the sum). */
 static int variant_key_bits(void) {
   int bits = 0;
@@ -1112,6 +1115,7 @@ static int fog_pass_draw_froxel(fog_pass *pass, const fog_pass_variant *variant,
   fill.surface_sun = fill.surface_lamps = 0;
   fill.froxel = 1, lookup.froxel = 2;
   fill.shadow_nodes = lookup.shadow_nodes = params->shadow_nodes;
+  fill.shaft_samples = lookup.shaft_samples = params->shafts ? params->shaft_samples : 1;
   lookup.lamp_shadows = fog_pass_has_lamp_shadows(params); /* the surfaces' lamp weights */
   GLuint fill_prog = fog_pass_variant_program(pass, &fill, err);
   GLuint lookup_prog = fill_prog ? fog_pass_variant_program(pass, &lookup, err) : 0;
@@ -1226,6 +1230,7 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
                                  int height, fog_error *err) {
   variant.reduced = divisor > 1 ? divisor : 1;
   variant.shadow_nodes = params->shadow_nodes;
+  variant.shaft_samples = params->shafts ? params->shaft_samples : 1;
   variant.lamp_shadows = fog_pass_has_lamp_shadows(params);
   variant.quadrics_beside = fog_pass_quadrics_beside(params);
   variant.quadric_noise = fog_pass_quadric_noise(params);
@@ -1302,12 +1307,15 @@ static int fog_pass_check_light(const fog_pass *pass, const fog_pass_params *par
   if ((unsigned)params->self_shadow > FOG_SUN_SHADOW_OPAQUE ||
       ((params->self_shadow != FOG_SUN_SHADOW_NONE || params->shafts) &&
        (params->shadow_steps < 1 || params->shadow_nodes < 1 || params->shadow_nodes > 2)) ||
+      (params->shafts &&
+       (params->shaft_samples < 1 || params->shaft_samples > FOG_PASS_MAX_SHAFT_SAMPLES)) ||
       (params->self_shadow == FOG_SUN_SHADOW_VOLUME && !pass->sun_shadow)) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "fog pass: self-shadow %d with %d steps of %d nodes: expected a "
-             "fog_sun_shadow_kind, >= 1 steps of 1 or 2 nodes and, for the volume, "
-             "fog_pass_upload_sun_shadow first",
-             (int)params->self_shadow, params->shadow_steps, params->shadow_nodes);
+             "fog pass: self-shadow %d with %d steps of %d nodes, %d shaft samples: expected "
+             "a fog_sun_shadow_kind, >= 1 steps of 1 or 2 nodes, 1 to %d shaft samples and, "
+             "for the volume, fog_pass_upload_sun_shadow first",
+             (int)params->self_shadow, params->shadow_steps, params->shadow_nodes,
+             params->shaft_samples, FOG_PASS_MAX_SHAFT_SAMPLES);
     return 1;
   }
   const fog_lamps *lamps = &params->lamps;

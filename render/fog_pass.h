@@ -106,6 +106,8 @@ typedef struct fog_walk_settings {
 
 /* The benches' and the preview's marching sample count (fog_pass_params.march_steps). */
 #define FOG_PASS_MARCH_STEPS 64
+/* fog_pass_params.shaft_samples: at most (a variant's key holds it in 5 bits) */
+#define FOG_PASS_MAX_SHAFT_SAMPLES 16
 
 typedef struct fog_pass_params {
   fog_model_kind model;      /* FOG_MODEL_FOGMAP (default) or an analytic model */
@@ -158,6 +160,8 @@ typedef struct fog_pass_params {
   int shadow_nodes; /* samples per segment: 1 the midpoint, 2 two Gauss-Legendre nodes
                        (fog_sun_mean_transmittance); per piece with shadow_pieces */
   bool shadow_pieces; /* FOG_MODEL_PERLIN, _VOLUME, _FOGMAP: the mean per piece of the exact walk */
+  int shaft_samples;  /* with shafts, by segments: V's mean over this many points a segment
+                         (fog_light_rule.shaft_samples), 1 .. FOG_PASS_MAX_SHAFT_SAMPLES */
   /* Optional (0: none): an RGBA texture of the surfaces' sun-lit share of their colour
    * (scene pass attachment 2, width x height); the fog's shadow takes (1 - T_s(P)) of it. */
   GLuint surface_sun;
@@ -197,7 +201,7 @@ typedef struct fog_pass_params {
 /* The CPU twin's rule for the pass's mean (fog_sun_mean_light). */
 static inline fog_light_rule fog_pass_light_rule(const fog_pass_params *p) {
   return (fog_light_rule){.steps = p->shadow_steps, .nodes = p->shadow_nodes,
-                          .pieces = p->shadow_pieces};
+                          .pieces = p->shadow_pieces, .shaft_samples = p->shaft_samples};
 }
 
 #define FOG_PASS_TRANSMITTANCE_CUTOFF 1e-4

@@ -248,6 +248,10 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
   /* the Gauss nodes' offset from the middle, in segments: 1/(2 sqrt 3) */
   const double g = 0.28867513459481288225;
   double dt = (t1 - t0) / steps, before = 0.0, weights = 0.0, lit = 0.0;
+  /* V apart from T_s: its mean over the segment's shaft_samples points multiplies the
+   * segment's T_s (the nodes then see T_s alone) */
+  const int shaft_samples = visible && rule.shaft_samples > 1 ? rule.shaft_samples : 1;
+  const fog_sun_visibility_fn node_visible = shaft_samples > 1 ? NULL : visible;
   for (int i = 0; i < steps && before < depth_limit; i++) {
     double mid = t0 + (i + 0.5) * dt, step_depth, light;
     if (nodes == 2) {
@@ -262,12 +266,23 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
       double da = fmax(la * (ka - 0.5 * slope * la), 0.0), db = da + g * dt * (ka + kb);
       double sa = ka * exp(-da), sb = kb * exp(-db);
       light = sa + sb > 0.0
-                  ? (sa * sun_light_at(m, kind, volume, o, d, ta, visible, user) +
-                     sb * sun_light_at(m, kind, volume, o, d, tb, visible, user)) / (sa + sb)
+                  ? (sa * sun_light_at(m, kind, volume, o, d, ta, node_visible, user) +
+                     sb * sun_light_at(m, kind, volume, o, d, tb, node_visible, user)) /
+                        (sa + sb)
                   : 0.0;
     } else {
       step_depth = fmax(extinction_on_ray(m, o, d, mid), 0.0) * dt;
-      light = sun_light_at(m, kind, volume, o, d, mid, visible, user);
+      light = sun_light_at(m, kind, volume, o, d, mid, node_visible, user);
+    }
+    if (shaft_samples > 1) {
+      double seen = 0.0;
+      for (int k = 0; k < shaft_samples; k++) {
+        const double t = mid + ((k + 0.5) / shaft_samples - 0.5) * dt;
+        double p[3];
+        for (int a = 0; a < 3; a++) p[a] = o[a] + t * d[a];
+        seen += visible(user, p);
+      }
+      light *= seen / shaft_samples;
     }
     double w = exp(-before) * -expm1(-step_depth);
     weights += w;

@@ -101,6 +101,11 @@ typedef struct fog_light_rule {
   int steps;   /* >= 1 */
   int nodes;   /* segments: 1 or 2; pieces: 1 .. FOG_PIECE_MAX_NODES */
   bool pieces;
+  /* Segments: V, the sun's visibility, as the mean of this many equally spaced points of
+   * the segment (V is 0 or 1 along a ray, with edges a segment cannot follow: the shafts
+   * of thin obstacles alias into ghost copies at the nodes); 1 or less: V at the nodes
+   * with T_s. Per piece: unused. */
+  int shaft_samples;
 } fog_light_rule;
 
 /* The tau K-weighted mean of T_s along the ray o + t d up to t_surface: `steps` equal

@@ -149,6 +149,22 @@ float fog_sun_light_at(vec3 dir, float t) {
   return exp(-fog_sun_optical_depth(t * dir)) * fog_sun_visible(t * dir);
 }
 
+// The segments' nodes see T_s alone when V has points of its own (FOG_SHAFT_SAMPLES > 1,
+// a specialisation constant: 1 keeps V at the nodes, as fog_sun_light_at).
+#if FOG_SHAFTS == 1 && FOG_SHAFT_SAMPLES > 1
+float fog_sun_node_light(vec3 dir, float t) { return exp(-fog_sun_optical_depth(t * dir)); }
+// V's mean over FOG_SHAFT_SAMPLES equally spaced points of the segment centred at mid.
+float fog_sun_segment_visible(vec3 dir, float mid, float dt) {
+  float seen = 0.0;
+  for (int k = 0; k < FOG_SHAFT_SAMPLES; k++)
+    seen += fog_sun_visible((mid + ((float(k) + 0.5) / float(FOG_SHAFT_SAMPLES) - 0.5) * dt) * dir);
+  return seen / float(FOG_SHAFT_SAMPLES);
+}
+#else
+float fog_sun_node_light(vec3 dir, float t) { return fog_sun_light_at(dir, t); }
+float fog_sun_segment_visible(vec3 dir, float mid, float dt) { return 1.0; }
+#endif
+
 #if FOG_MODEL_KIND == FOG_MODEL_PERLIN || FOG_MODEL_KIND == FOG_MODEL_VOLUME || \
     FOG_MODEL_KIND == FOG_MODEL_FOGMAP
 const int fog_piece_nodes = FOG_SHADOW_NODES > 0 ? FOG_SHADOW_NODES : 1;
@@ -364,14 +380,15 @@ float fog_sun_mean_transmittance(fog_ray r) {
       // no negative depth: a steep K extrapolated back dipped below 0 and e^{-da} overflowed
       float da = max(la * (ka - 0.5 * slope * la), 0.0), db = da + g * dt * (ka + kb);
       float sa = ka * exp(-da), sb = kb * exp(-db);
-      light = sa + sb > 0.0 ? (sa * fog_sun_light_at(r.dir, ta) + sb * fog_sun_light_at(r.dir, tb)) /
+      light = sa + sb > 0.0 ? (sa * fog_sun_node_light(r.dir, ta) + sb * fog_sun_node_light(r.dir, tb)) /
                                   (sa + sb)
                             : 0.0;
     }
 #else
     step_depth = max(fog_light_extinction(r.dir, mid), 0.0) * dt;
-    light = fog_sun_light_at(r.dir, mid);
+    light = fog_sun_node_light(r.dir, mid);
 #endif
+    light *= fog_sun_segment_visible(r.dir, mid, dt);
     float w = exp(-before) * step_depth * fog_exprel(step_depth);  // 1 - e^-x, no cancellation
     weights += w;
     lit += w * light;

@@ -10,7 +10,9 @@
  *   - a signed extinction (a wavelet approximation's ringing: here a Gaussian of negative
  *     density beside a positive one) keeps the mean a mean: within [0, 1] on every ray,
  *     the sunlit Gaussian's light where the other is in shadow (the signed weights nearly
- *     cancelled and made it 70 on one of fit's views). */
+ *     cancelled and made it 70 on one of fit's views);
+ *   - V apart from T_s at shaft_samples points a segment converges to the exact mean of a
+ *     shadow edge inside a segment, within the segment's share over 2M. */
 #include <math.h>
 #include <stdio.h>
 
@@ -65,7 +67,45 @@ static void steep_dense_fog(void) {
   }
 }
 
+/* The sun reaches x < -3.3 only: a shadow edge inside a segment, off every node. */
+static double lit_before_edge(const void *user, const double p[3]) {
+  (void)user;
+  return p[0] < -3.3 ? 1.0 : 0.0;
+}
+
+/* V apart from T_s ([light] shaft_samples): thin homogeneous fog (K dt = 0.0015: tau K
+ * nearly even across a segment) along x from -60 for 120 units, lit up to x = -3.3
+ * (t = 56.7), 8 segments of two nodes. The exact tau K-weighted mean of V is
+ * (1 - e^{-K 56.7}) / (1 - e^{-K 120}). At the nodes (shaft_samples 1) the segment [45, 60]
+ * holding the edge counts as half lit (one node each side) where 78 % of it is; with M
+ * points its lit part is known to 1/(2M) of its length, so the mean errs by at most that
+ * segment's share of the weight over 2M, plus its share times K dt for tau K's slope. */
+static void shaft_samples_converge(void) {
+  const double K = 1e-4, dt = 15.0, o[3] = {-60, 0, 0}, d[3] = {1, 0, 0};
+  const fog_model m = {.kind = FOG_MODEL_HOMOGENEOUS, .extinction = K};
+  const double exact = -expm1(-K * 56.7) / -expm1(-K * 120.0);
+  const double share = (exp(-K * 45.0) - exp(-K * 60.0)) / -expm1(-K * 120.0);
+  double at_nodes = 0.0;
+  for (int samples = 1; samples <= 16; samples *= 2) {
+    const fog_light_rule rule = {.steps = 8, .nodes = 2, .shaft_samples = samples};
+    const double mean = fog_sun_mean_light(&m, FOG_SUN_SHADOW_NONE, NULL, rule, HUGE_VAL, o, d,
+                                           120.0, lit_before_edge, NULL);
+    const double error = fabs(mean - exact), bound = share / (2.0 * samples) + share * K * dt;
+    printf("shafts: %2d point%s a segment: mean %.6f, exact %.6f, error %.2e (bound %.2e)\n",
+           samples, samples == 1 ? " " : "s", mean, exact, error, bound);
+    if (samples == 1) {
+      at_nodes = error;
+      CHECK(error > 0.2 * share, "at the nodes the edge's segment should be half lit: %g",
+            error);
+    } else {
+      CHECK(error <= bound, "%d points: error %.3e, bound %.3e", samples, error, bound);
+    }
+    if (samples == 16) CHECK(error < 0.25 * at_nodes, "16 points: %.3e", error);
+  }
+}
+
 int main(void) {
+  shaft_samples_converge();
   const double sun_dir_raw[3] = {0.8, 0.3, -0.5};
   double sun[3], n = 0;
   for (int a = 0; a < 3; a++) n += sun_dir_raw[a] * sun_dir_raw[a];
