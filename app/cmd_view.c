@@ -16,6 +16,7 @@
 int cmd_view(int argc, char **argv) {
   window_options opts = {.command = "view", .render_scale = 0.5, .frames = 1, .rung = -1};
   int size[2] = {0, 0};
+  bool frames_given = false;
   const cli_option options[] = {
       {.kind = CLI_NUMBER, .name = "--render-scale", .value = "F", .target = &opts.render_scale,
        .min = 0.05, .max = 4,
@@ -34,7 +35,7 @@ int cmd_view(int argc, char **argv) {
       {.kind = CLI_FLAG, .name = "--hide-panel", .target = &opts.hide_panel,
        .help = "start with the panel hidden (Tab shows it)"},
       {.kind = CLI_INT, .name = "--frames", .value = "N", .target = &opts.frames, .min = 1,
-       .max = 1000000, .help = "frames to draw before the screenshot (default 1)"},
+       .max = 1000000, .given = &frames_given, .help = "frames to draw before the screenshot (default 1)"},
       {.kind = CLI_NUMBER, .name = "--fit", .value = "T", .target = &opts.fit_tolerance,
        .min = 1e-12, .max = 1.0, .given = &opts.fit,
        .help = "first run `fogpipe fit` on the scene at tolerance T, then show\n"
@@ -69,6 +70,10 @@ int cmd_view(int argc, char **argv) {
   int parsed = cli_parse_one(&spec, argc, argv, &opts.config_path);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   if (opts.rung >= 0 && !opts.fit) return cli_usage_error("view", "--rung needs --fit T");
+  /* without a screenshot the window runs until closed: a frame count would be dropped */
+  if (frames_given && !opts.screenshot)
+    return cli_usage_error("view", "--frames N counts the frames before --screenshot FILE.png; "
+                           "without it the window stays open");
   scene_config cfg;
   fog_error cfg_err;
   if (scene_config_load(opts.config_path, &cfg, &cfg_err)) {
