@@ -381,9 +381,12 @@ static int run_inverse(const char *dir, const char *out, int threads) {
       if (read_into(dir, name, bw, bh, map.density + (size_t)y * W + x, W)) goto done;
     }
   transform_inverse(plan, map.density, map.density);
-  /* densities are never negative: float rounding just below 0 is clamped */
-  for (size_t i = 0; i < W * (size_t)desc.height; i++)
+  /* densities are never negative, nor above what fogmap_load takes: float rounding just
+   * past either bound (a peak of 1e12 came back as 1.0000003e12) is clamped */
+  for (size_t i = 0; i < W * (size_t)desc.height; i++) {
     if (!(map.density[i] > 0.0f)) map.density[i] = 0.0f;
+    if (map.density[i] > FOGMAP_MAX_DENSITY) map.density[i] = FOGMAP_MAX_DENSITY;
+  }
   if (fogmap_save_exr(out, &map, &serr)) {
     cli_fail("transform", "%s", serr.message);
     goto done;

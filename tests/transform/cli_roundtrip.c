@@ -3,7 +3,8 @@
  * decompositions; bad input (a missing file, too many levels, a folder missing a band, an
  * --inverse --out that is a file of its folder, a forward input that it would write) fails with a message naming the file, a
  * non-zero exit, and writes nothing; --out's parents are made, and a shallower transform
- * removes the deeper levels an earlier one left. */
+ * removes the deeper levels an earlier one left; an inverse of a map at the largest density
+ * loads again. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -154,6 +155,27 @@ int main(void) {
   CHECK(system(copy) == 0, "cannot make %s", own);
   snprintf(args, sizeof args, "%s --levels 1 --out %s/own", own, tmp);
   refused_and_kept(args, own, "is the input fogmap");
+
+  /* a map at fogmap_load's largest density (1e12): the quadratic inverse's rounding came
+   * back just above it (1.0000003e12), a file no command could load */
+  char peak[400], peak_dir[400], peak_out[400], design[1200];
+  snprintf(peak, sizeof peak, "%s/peak.exr", tmp);
+  snprintf(peak_dir, sizeof peak_dir, "%s/peak", tmp);
+  snprintf(peak_out, sizeof peak_out, "%s/peak_back.exr", tmp);
+  snprintf(design, sizeof design, "'%s' design --blob 3,3,2,1e12 --size 16x16 --out '%s' > /dev/null",
+           bin, peak);
+  CHECK(system(design) == 0, "%s", design);
+  snprintf(args, sizeof args, "%s --levels 3 --basis quadratic --out %s", peak, peak_dir);
+  rc = run(args, err, sizeof err);
+  CHECK(rc == 0, "forward of the 1e12 peak: %s", err);
+  snprintf(args, sizeof args, "--inverse %s --out %s", peak_dir, peak_out);
+  rc = run(args, err, sizeof err);
+  CHECK(rc == 0, "inverse of the 1e12 peak: %s", err);
+  fogmap back = {0};
+  fog_error lerr = {0};
+  CHECK(fogmap_load(peak_out, NULL, &back, &lerr) == 0, "the inverse does not load: %s",
+        lerr.message);
+  fogmap_destroy(&back);
 
   char cmd[400];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
