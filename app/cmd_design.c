@@ -211,6 +211,23 @@ int cmd_design(int argc, char **argv) {
             "%g) stored as 65535, i.e. %g\n", clipped, clipped == 1 ? "" : "s", o.png_max,
             (double)max, o.png_max);
   }
+  /* Half floats keep 11 bits from 6.1e-5 up (the smallest normal); below, fewer, and under
+   * 2.98e-8 (half the smallest subnormal) nothing: said, as the PNG's clipping is, for the
+   * cells that matter (within 2^-10 of the peak: a Gaussian's far tail does not). */
+  if (!status && o.half) {
+    size_t coarse = 0, zeroed = 0;
+    for (size_t i = 0; i < (size_t)o.width * (size_t)o.height; i++) {
+      const float v = map.density[i];
+      if (!(v >= max * 0x1p-10f)) continue;
+      coarse += v > 0.0f && v < 6.103515625e-05f;
+      zeroed += v > 0.0f && v < 2.98023224e-08f;
+    }
+    if (coarse)
+      fprintf(stderr, "fogpipe design: warning: --half: %zu cell%s below 6.1e-05 (the smallest "
+              "normal half) stored with fewer bits, %zu of them as 0 (the map peaks at %g; "
+              "without --half the EXR keeps 32-bit floats)\n", coarse, coarse == 1 ? "" : "s",
+              zeroed, (double)max);
+  }
   if (!status) {
     if (png) {
       status = fogmap_save_png16(o.out, &map, (float)o.png_max, &err);

@@ -133,6 +133,30 @@ static void test_sample_data(void) {
   fogmap_destroy(&exr);
 }
 
+/* --half: a map whose cells that matter lie below the smallest normal half (6.1e-5) is
+ * written with a warning naming the loss (a peak of 1e-9 stored as all zeros); a map
+ * peaking at 1, whose Gaussian tails alone go below it, without one. The half file holds
+ * what the warning says. */
+static void test_half_precision(void) {
+  char path[256], args[512], output[4096];
+  snprintf(path, sizeof path, "%s/half.exr", folder);
+  snprintf(args, sizeof args, "--blob 1,1,1,1e-9 --size 4x4 --half --out '%s'", path);
+  int status = run_design(args, output, sizeof output);
+  CHECK(status == 0 && strstr(output, "warning: --half: 16 cells below 6.1e-05") &&
+            strstr(output, "16 of them as 0"),
+        "a 1e-9 peak in half floats: exit %d, %s", status, output);
+  fogmap map = {0};
+  fog_error err = {0};
+  CHECK(fogmap_load(path, NULL, &map, &err) == 0 && fogmap_max_density(&map) == 0.0f,
+        "the half file: %s, peak %g", err.message, map.density ? fogmap_max_density(&map) : -1);
+  fogmap_destroy(&map);
+  unlink(path);
+  snprintf(args, sizeof args, "--blob 8,8,3,1 --size 16x16 --half --out '%s'", path);
+  status = run_design(args, output, sizeof output);
+  CHECK(status == 0 && !strstr(output, "warning"), "a peak of 1 in half floats: %s", output);
+  unlink(path);
+}
+
 int main(void) {
   bin = getenv("FOGPIPE_BIN");
   if (!bin || access(bin, X_OK) != 0) {
@@ -144,6 +168,7 @@ int main(void) {
   test_output_matches_library();
   test_bad_options();
   test_sample_data();
+  test_half_precision();
   CHECK(rmdir(folder) == 0, "temporary folder %s not empty afterwards", folder);
   return test_finish("test_designed_command");
 }
