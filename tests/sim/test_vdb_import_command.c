@@ -3,13 +3,15 @@
  * test_vdb_real_files checks against the voxel sum); bad input (a non-VDB file in the
  * sequence, missing frames, no such grid) exits non-zero, names the file and frame, and
  * leaves nothing in --out; an import into a folder that holds other frames of the same
- * name keeps them and says so. */
+ * name keeps them and says so; a re-import that cannot finish replaces none of the earlier
+ * import's files. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "sim/sim.h"
@@ -149,6 +151,40 @@ int main(void) {
         "no word of the earlier frames (%d): %s", status, errors);
   CHECK(test_folder_entries(out) == 10, "%d files: the earlier frames must stay",
         test_folder_entries(out));
+
+  /* 6. a re-import that cannot finish (a folder where its frame 44 goes) replaces nothing:
+   * the earlier import's files are kept byte for byte, no replaced copy is left */
+  {
+    char frame44[700], sidecar_before[8192] = "", sidecar_after[8192] = "", gf40[700];
+    snprintf(frame44, sizeof frame44, "%s/gf.0044.exr", out);
+    snprintf(gf40, sizeof gf40, "%s/gf.0040.exr", out);
+    struct stat before40, after40;
+    stat(gf40, &before40);
+    FILE *f = fopen(ini, "r");
+    size_t n = f ? fread(sidecar_before, 1, sizeof sidecar_before - 1, f) : 0;
+    sidecar_before[n] = '\0';
+    if (f) fclose(f);
+    snprintf(cmd, sizeof cmd, "rm '%s' && mkdir -p '%s/keep'", frame44, frame44);
+    CHECK(system(cmd) == 0, "%s", cmd);
+    const int entries = test_folder_entries(out);
+    snprintf(cmd, sizeof cmd,
+             "'%s' import ../shared/data/vdb/groundfog/data/fluid_data_%%04d.vdb --frames 40-48 "
+             "--resolution 40 --out '%s' --name gf", bin, out);
+    status = run(cmd, errors, sizeof errors);
+    f = fopen(ini, "r");
+    n = f ? fread(sidecar_after, 1, sizeof sidecar_after - 1, f) : 0;
+    sidecar_after[n] = '\0';
+    if (f) fclose(f);
+    stat(gf40, &after40);
+    CHECK(status != 0 && strstr(errors, "gf.0044.exr") && strstr(errors, "nothing"),
+          "a folder in the way (%d): %s", status, errors);
+    CHECK(n > 0 && !strcmp(sidecar_before, sidecar_after), "the failed import replaced gf.ini");
+    CHECK(before40.st_size == after40.st_size && before40.st_mtime == after40.st_mtime &&
+              before40.st_ino == after40.st_ino,
+          "the failed import replaced gf.0040.exr");
+    CHECK(test_folder_entries(out) == entries, "%d entries after the failed import, had %d",
+          test_folder_entries(out), entries);
+  }
 
   test_remove_tree(dir);
   return test_finish("test_vdb_import_command");
