@@ -148,12 +148,26 @@ int cmd_bake(int argc, char **argv) {
   action.sa_flags = SA_RESTART;
   sigaction(SIGINT, &action, &old_int);
   sigaction(SIGTERM, &action, &old_term);
+  interrupted = 0;
   int written = 0;
   int status = bake_frames(&job, &cfg, staged, &written);
-  sigaction(SIGINT, &old_int, NULL);
-  sigaction(SIGTERM, &old_term, NULL);
+  /* The new bake.ini into the staging folder too (naming the frames where they will be):
+   * a config that cannot be written fails here, with the old bake untouched. */
+  char staged_ini[SCENE_CONFIG_PATH_MAX + 16];
+  snprintf(staged_ini, sizeof staged_ini, "%s/bake.ini", staging);
+  if (!status) {
+    /* The same scene with the frames as its fog (density_scale, box, profile as they are). */
+    scene_config baked = cfg;
+    baked.fog.fogmap[0] = '\0';
+    snprintf(baked.fog.sequence, sizeof baked.fog.sequence, "%s", pattern);
+    if (scene_config_write(&baked, staged_ini, &cerr))
+      status = cli_fail("bake", "%s", cerr.message);
+  }
   if (status) {
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
     remove_frames(staged, written);
+    unlink(staged_ini);
     rmdir(staging);
     recorder_remove_created_folders(&folders);
     if (status == 130)
@@ -162,36 +176,35 @@ int cmd_bake(int argc, char **argv) {
               "it was)");
     return status;
   }
-  /* Into place: the old bake.ini goes first, so that until the new one is written the
-   * folder is no bake at all rather than a mix of two. */
-  if (unlink(ini) != 0 && errno != ENOENT) {
-    status = cli_fail("bake", "%s: cannot replace it: %s", ini, strerror(errno));
-  }
-  for (int n = 1; !status && n <= job.frames; n++) {
+  /* Into place, with SIGINT and SIGTERM held until it is done (renames: moments): the old
+   * bake.ini goes first, so that until the new one is in the folder is no bake at all
+   * rather than a mix of two; the new bake.ini last. */
+  sigset_t hold, previous_mask;
+  sigemptyset(&hold);
+  sigaddset(&hold, SIGINT);
+  sigaddset(&hold, SIGTERM);
+  sigprocmask(SIG_BLOCK, &hold, &previous_mask);
+  if (unlink(ini) != 0 && errno != ENOENT)
+    status = cli_fail("bake", "%s: cannot replace it: %s; the old bake is as it was", ini,
+                      strerror(errno));
+  int moved = 0;
+  for (int n = 1; !status && n <= job.frames; n++, moved++) {
     char from[SCENE_CONFIG_PATH_MAX + 32], to[SCENE_CONFIG_PATH_MAX + 32];
     scene_config_sequence_path(staged, n, from, sizeof from);
     scene_config_sequence_path(pattern, n, to, sizeof to);
     if (rename(from, to) != 0)
-      status = cli_fail("bake", "cannot move %s to %s: %s (%s holds no bake now)", from, to,
-                        strerror(errno), job.out);
+      status = cli_fail("bake", "cannot move %s to %s: %s; %s holds no bake now (its frames "
+                        "1-%d are the new bake's, the rest of it is in %s with its bake.ini)",
+                        from, to, strerror(errno), job.out, moved, staging);
   }
-  if (status) {
-    remove_frames(staged, written);
-    rmdir(staging);
-    return status;
-  }
-  rmdir(staging);
-  {
-    /* The same scene with the frames as its fog (density_scale, box, profile as they are). */
-    scene_config baked = cfg;
-    baked.fog.fogmap[0] = '\0';
-    snprintf(baked.fog.sequence, sizeof baked.fog.sequence, "%s", pattern);
-    if (scene_config_write(&baked, ini, &cerr)) {
-      remove_frames(pattern, job.frames);
-      recorder_remove_created_folders(&folders);
-      return cli_fail("bake", "%s", cerr.message);
-    }
-  }
+  if (!status && rename(staged_ini, ini) != 0)
+    status = cli_fail("bake", "cannot move %s to %s: %s; the new bake's frames are in place",
+                      staged_ini, ini, strerror(errno));
+  if (!status) rmdir(staging);
+  sigprocmask(SIG_SETMASK, &previous_mask, NULL); /* one held now sets `interrupted` */
+  sigaction(SIGINT, &old_int, NULL);
+  sigaction(SIGTERM, &old_term, NULL);
+  if (status) return status;
   /* A longer bake made here before must not play on past this one's end: every later file
    * the pattern matches goes, past any gap in them too (the config refuses a gap). */
   vdb_sequence later;
