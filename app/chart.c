@@ -60,6 +60,14 @@ static void put_string(FILE *f, const char *text) {
   fputc('\'', f);
 }
 
+/* A path as a gnuplot string: a relative one behind "./", since gnuplot runs `set output
+ * '|cmd'` and `plot '<cmd'` (and with spaces before them) as shell commands. */
+static void put_path(FILE *f, const char *path) {
+  char text[4200];
+  snprintf(text, sizeof text, "%s%s", path[0] == '/' ? "" : "./", path);
+  put_string(f, text);
+}
+
 static void put_quoted(FILE *f, const char *prefix, const char *text) {
   fputs(prefix, f);
   put_string(f, text);
@@ -78,7 +86,10 @@ static int run_gnuplot(const char *script_path, char *output, size_t size) {
   posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
   posix_spawn_file_actions_addclose(&actions, fds[0]);
   posix_spawn_file_actions_addclose(&actions, fds[1]);
-  char *argv[] = {"gnuplot", (char *)script_path, NULL};
+  /* gnuplot loads a file argument '<cmd' through a shell too */
+  char script[4200];
+  snprintf(script, sizeof script, "%s%s", script_path[0] == '/' ? "" : "./", script_path);
+  char *argv[] = {"gnuplot", script, NULL};
   pid_t pid;
   const int spawned = posix_spawnp(&pid, "gnuplot", &actions, NULL, argv, environ);
   posix_spawn_file_actions_destroy(&actions);
@@ -123,7 +134,9 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
   }
   int width = desc->width ? desc->width : 960, height = desc->height ? desc->height : 600;
   fprintf(script, "set terminal pngcairo size %d,%d font 'sans,10'\n", width, height);
-  put_quoted(script, "set output ", temp_png);
+  fputs("set output ", script);
+  put_path(script, temp_png);
+  fputc('\n', script);
   fprintf(script, "set datafile separator ','\nset key below\nset colorsequence podo\n"
                   "set grid\n");
   put_quoted(script, "set title ", desc->title);
@@ -137,7 +150,7 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
   fprintf(script, "plot ");
   for (int s = 0; s < series; s++) {
     fputs(s ? ", \\\n     " : "", script);
-    put_string(script, csv_path);
+    put_path(script, csv_path);
     fputs(" using ($0>=0 && strcol(1) eq ", script);
     put_string(script, names[s]);
     fputs(" ? $2 : NaN):3 with linespoints title ", script);

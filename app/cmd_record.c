@@ -27,12 +27,12 @@ static volatile sig_atomic_t interrupted;
 static void on_interrupt(int signal_number) { interrupted = signal_number; }
 
 /* SIGINT and SIGTERM set `interrupted` (the work in hand finishes or stops cleanly) until
- * restore_interrupts puts the previous handlers back. */
+ * restore_interrupts puts the previous handlers back. The flag is not cleared: one raised
+ * during the frames still stops the preview after them. */
 static void catch_interrupts(struct sigaction *old_int, struct sigaction *old_term) {
   struct sigaction action = {.sa_handler = on_interrupt};
   sigemptyset(&action.sa_mask);
   action.sa_flags = SA_RESTART;
-  interrupted = 0;
   sigaction(SIGINT, &action, old_int);
   sigaction(SIGTERM, &action, old_term);
 }
@@ -63,7 +63,8 @@ static void resolved_path(const char *path, char *out, size_t size) {
 
 /* Refuses (true, the usage message printed) a --preview that names the --out folder itself
  * (which may not exist yet, spelt any way): the video would be renamed onto the frames'
- * folder after the whole recording. (An existing folder is cli_output_file's refusal.) */
+ * folder after the whole recording; or one whose folder neither exists nor is the --out
+ * folder or above it. (An existing folder is cli_output_file's refusal.) */
 static bool refuse_preview_in_out(const char *preview, const char *out) {
   char p[2 * PATH_MAX + 2], o[2 * PATH_MAX + 2];
   resolved_path(preview, p, sizeof p);
@@ -77,7 +78,13 @@ static bool refuse_preview_in_out(const char *preview, const char *out) {
     slash[slash == folder] = '\0';
     struct stat st;
     if (stat(folder, &st) == 0 && S_ISDIR(st.st_mode)) return false;
-    cli_usage_error("record", "--preview '%s': its folder %s does not exist", preview, folder);
+    /* the --out folder or one above it: record makes those (mkdir -p) before the video */
+    char f[2 * PATH_MAX + 2];
+    resolved_path(folder, f, sizeof f);
+    const size_t n = strlen(f);
+    if (strncmp(o, f, n) == 0 && (o[n] == '\0' || o[n] == '/')) return false;
+    cli_usage_error("record", "--preview '%s': its folder %s does not exist (nor is it the "
+                    "--out folder, which record makes)", preview, folder);
     return true;
   }
   cli_usage_error("record", "--preview '%s': that is the --out folder; expected a video file "
@@ -239,6 +246,7 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
   const frame_pixels out = {.rgba = rgba, .transmittance = transmittance, .depth = depth,
                             .inscatter = inscatter};
   struct sigaction old_int, old_term;
+  interrupted = 0;
   catch_interrupts(&old_int, &old_term);
   fog_error perr = {0};
   fog_error rerr = {0};
@@ -292,6 +300,10 @@ static int finish_output(const record_job *job, const recorder *rec, int width, 
   if (!recorder_have_ffmpeg()) {
     printf("note: ffmpeg is not installed, so no preview video was written "
            "(apt-get install ffmpeg)\n");
+  } else if (interrupted) { /* during the last frame: the frames are whole, no encode */
+    fprintf(stderr, "fogpipe %s: interrupted: all frames are complete in %s; no preview "
+            "video written\n", job->command, rec->folder);
+    return 130;
   } else {
     struct sigaction old_int, old_term;
     catch_interrupts(&old_int, &old_term);

@@ -52,6 +52,20 @@ int main(void) {
   CHECK(test_folder_entries(folder) == 2, "%d files beside the chart (a script or temporary "
         "left?)", test_folder_entries(folder));
 
+  /* gnuplot's own commands in a name: `set output '|cmd'` and `plot '<cmd'` pipe through a
+   * shell; relative names here (the working folder is the scratch one) */
+  const char *piped[2][2] = {{"|touch PIPED_OUT", "chart"}, {"<touch PIPED_CSV", "x"}};
+  for (int i = 0; i < 2; i++) {
+    CHECK(mkdir(piped[i][0], 0755) == 0, "mkdir %s", piped[i][0]);
+    char p_png[700], p_csv[700];
+    snprintf(p_png, sizeof p_png, "%s/%s.png", piped[i][0], piped[i][1]);
+    snprintf(p_csv, sizeof p_csv, "%s/%s.csv", piped[i][0], piped[i][1]);
+    status = chart_write(&desc, points, 3, p_csv, p_png, error, sizeof error);
+    CHECK(status == 0 && access(p_png, F_OK) == 0, "chart %s: %s", p_png, error);
+  }
+  CHECK(access("PIPED_OUT", F_OK) != 0 && access("PIPED_CSV", F_OK) != 0,
+        "a '|' or '<' name ran a command");
+
   /* a line break would end gnuplot's command inside the quotes: refused */
   char broken[600], broken_csv[600];
   snprintf(broken, sizeof broken, "%s/two\nlines.png", root);

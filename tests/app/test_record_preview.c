@@ -184,7 +184,19 @@ int main(void) {
   CHECK(frame_files == frames, "%d frames kept after the interrupted preview, expected %d",
         frame_files, frames);
 
-  /* 4. The real ffmpeg, where installed. */
+  /* 4. The video inside the --out folder record is to make (it does not exist yet): taken,
+   * as record makes the folder before the video. */
+  CHECK(write_script(script, "#!/bin/sh\nfor a in \"$@\"; do out=\"$a\"; done\ncat > \"$out\"\n"),
+        "cannot write %s", script);
+  char out5[600], video5[700];
+  snprintf(out5, sizeof out5, "%s/new/frames5", root);
+  snprintf(video5, sizeof video5, "%s/preview.mp4", out5);
+  status = record_with_path(bin, out5, video5, log);
+  CHECK(status == 0 && file_size(video5) == expected,
+        "a preview inside the --out folder to be made: exit %d, %ld bytes", status,
+        file_size(video5));
+
+  /* 5. The real ffmpeg, where installed. */
   if (access("/usr/bin/ffmpeg", X_OK) == 0) {
     char out3[600], video3[600];
     snprintf(out3, sizeof out3, "%s/frames3", root);
