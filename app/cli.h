@@ -39,7 +39,8 @@ int cli_output_not_input(const char *command, const char *option, const char *ou
 
 /* s as one POSIX shell word into out (size bytes): as it is when every character is plain
  * (letters, digits, _ . / : = @ % + , -), else in single quotes with a quote inside as
- * '\''. Returns out. For commands printed for a user to paste, or handed to sh -c. */
+ * '\''. Returns out. For commands printed for a user to paste, or handed to sh -c. size
+ * must be at least 4 strlen(s) + 3 (every character a quote), or the word is cut short. */
 const char *cli_shell_word(const char *s, char *out, size_t size);
 
 /* An output that is one of the files the scene config reads (the config, its fogmap,

@@ -152,7 +152,7 @@ int cmd_record(int argc, char **argv) {
 
 /* The command line that continues this recording. */
 static void resume_hint(const record_job *job, char *text, size_t size) {
-  char config[PATH_MAX + 64], out[PATH_MAX + 64];
+  char config[4 * PATH_MAX + 8], out[4 * PATH_MAX + 8];
   const char *config_word = cli_shell_word(job->config_path, config, sizeof config);
   const char *out_word = cli_shell_word(job->out, out, sizeof out);
   int n = job->first_frame > 1
@@ -165,7 +165,7 @@ static void resume_hint(const record_job *job, char *text, size_t size) {
   if (job->width > 0)
     n += snprintf(text + n, size - (size_t)n, " --size %dx%d", job->width, job->height);
   if (job->preview) {
-    char preview[PATH_MAX + 64];
+    char preview[4 * PATH_MAX + 8];
     n += snprintf(text + n, size - (size_t)n, " --preview %s",
                   cli_shell_word(job->preview, preview, sizeof preview));
   }
@@ -271,7 +271,7 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
       if (!job->quiet) recorder_progress_update(&progress, done - first + 1);
       if (interrupted && done < last) {
         if (!job->quiet) recorder_progress_end(&progress);
-        char hint[4 * PATH_MAX];
+        char hint[13 * PATH_MAX];
         resume_hint(job, hint, sizeof hint);
         fprintf(stderr,
                 "fogpipe %s: interrupted: %d of %d frames complete in %s; to finish: %s\n",

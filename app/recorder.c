@@ -315,13 +315,13 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   else
     snprintf(temp, sizeof temp, "%s.partial", video_path);
   const int w = rec->width, h = rec->height;
-  char cmd[4096];
+  char cmd[8192]; /* the quoted temporary takes up to 4 x its 1200 bytes */
   /* yuv420p needs even sizes: pad odd ones by one pixel. */
   snprintf(cmd, sizeof cmd,
            "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgb24 -s %dx%d -r %g -i - "
            "-vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -pix_fmt yuv420p ",
            w, h, fps > 0 ? fps : 24.0);
-  char word[2 * sizeof temp + 8];
+  char word[4 * sizeof temp + 8];
   strncat(cmd, cli_shell_word(temp, word, sizeof word), sizeof cmd - strlen(cmd) - 1);
   size_t n = (size_t)w * (size_t)h;
   uint8_t *rgb = malloc(n * 3);
