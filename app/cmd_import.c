@@ -698,6 +698,14 @@ int cmd_import(int argc, char **argv) {
     }
     profile = &seq_profile;
   }
+  /* The fog pass holds a fogmap with a cell of border each side in one texture: past 16384
+   * texels (llvmpipe's limit and many GPUs') no render loads it. Said, not refused: a
+   * GPU with a larger limit may. */
+  if (place.width > 16382 || place.height > 16382)
+    fprintf(stderr, "fogpipe import: warning: a %dx%d fogmap needs a %d-texel texture side to "
+            "render; llvmpipe and many GPUs take at most 16384 (a coarser --cell or "
+            "--resolution up to 16382 keeps it renderable)\n", place.width, place.height,
+            (place.width > place.height ? place.width : place.height) + 2);
   /* Pass 2: resample and write into a temporary folder beside the results. */
   struct stat out_stat;
   created_out = stat(o.out, &out_stat) != 0;
