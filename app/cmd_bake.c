@@ -197,6 +197,16 @@ int cmd_bake(int argc, char **argv) {
                         "1-%d are the new bake's, the rest of it is in %s with its bake.ini)",
                         from, to, strerror(errno), job.out, moved, staging);
   }
+  /* A longer bake made here before must not play on past this one's end: every later file
+   * the pattern matches goes, past any gap in them too (the config refuses a gap), before
+   * the new bake.ini names the pattern. */
+  vdb_sequence later;
+  fog_error lerr = {0};
+  const char *input = pattern;
+  if (!status && !vdb_sequence_find(&input, 1, job.frames + 1, -1, &later, &lerr)) {
+    for (int i = 0; i < later.count; i++) unlink(later.paths[i]);
+    vdb_sequence_destroy(&later);
+  }
   if (!status && rename(staged_ini, ini) != 0)
     status = cli_fail("bake", "cannot move %s to %s: %s; the new bake's frames are in place",
                       staged_ini, ini, strerror(errno));
@@ -205,15 +215,6 @@ int cmd_bake(int argc, char **argv) {
   sigaction(SIGINT, &old_int, NULL);
   sigaction(SIGTERM, &old_term, NULL);
   if (status) return status;
-  /* A longer bake made here before must not play on past this one's end: every later file
-   * the pattern matches goes, past any gap in them too (the config refuses a gap). */
-  vdb_sequence later;
-  fog_error lerr = {0};
-  const char *input = pattern;
-  if (!vdb_sequence_find(&input, 1, job.frames + 1, -1, &later, &lerr)) {
-    for (int i = 0; i < later.count; i++) unlink(later.paths[i]);
-    vdb_sequence_destroy(&later);
-  }
   printf("baked %d frame%s of %s: %s and %s; render a range: fogpipe record %s --frames A-B "
          "--out FRAMES/\n", job.frames, job.frames == 1 ? "" : "s", job.config_path, pattern, ini,
          ini);
