@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "app/cli.h"
+#include "app/staged_move.h"
 #include "app/cli_options.h"
 #include "app/clock.h"
 #include "app/commands.h"
@@ -225,20 +226,6 @@ static int make_dirs(const char *path) {
   return stat(buf, &st) || !S_ISDIR(st.st_mode);
 }
 
-static void remove_dir(const char *dir) {
-  DIR *d = opendir(dir);
-  if (d) {
-    struct dirent *e;
-    char path[4096];
-    while ((e = readdir(d))) {
-      if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-      snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-      unlink(path);
-    }
-    closedir(d);
-  }
-  rmdir(dir);
-}
 
 /* The profile in docs/config.md's [fog] keys (render/fog_field.h's fog_profile), so that the
  * section loads in a scene config as it is: the coefficients go on over indented lines (a
@@ -561,82 +548,6 @@ static void warn_other_frames(const import_options *o, const vdb_sequence *seq) 
 }
 
 /* Every file in temp_dir is complete: moves them into out. 0 or the exit status. */
-static int compare_names(const void *a, const void *b) {
-  return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-/* The staged files into OUT, all or none: a file of OUT they replace must be a file (a
- * folder in the way is refused before anything moves) and is kept aside until every new
- * one is in; the sidecar (NAME.ini) goes last, so it never names frames not yet there. On
- * a failure the replaced files come back. */
-static int move_into_place(const char *temp_dir, const char *out) {
-  DIR *d = opendir(temp_dir);
-  if (!d) return cli_fail("import", "%s: %s", temp_dir, strerror(errno));
-  char **names = NULL;
-  int count = 0, capacity = 0, status = 0;
-  for (struct dirent *e; (e = readdir(d));) {
-    if (e->d_name[0] == '.') continue;
-    if (count == capacity) {
-      char **grown = realloc(names, sizeof *names * (capacity = capacity ? 2 * capacity : 64));
-      if (!grown) abort();
-      names = grown;
-    }
-    if (!(names[count++] = strdup(e->d_name))) abort();
-  }
-  closedir(d);
-  /* frames in order, the .ini (the one name not ending in .exr) last */
-  qsort(names, count, sizeof *names, compare_names);
-  for (int i = 0; i + 1 < count; i++)
-    if (cli_ends_with(names[i], ".ini")) {
-      char *ini = names[i];
-      memmove(names + i, names + i + 1, sizeof *names * (count - i - 1));
-      names[count - 1] = ini;
-      break;
-    }
-  char from[4400], to[4400], aside[4500];
-  for (int i = 0; i < count && !status; i++) {
-    snprintf(to, sizeof to, "%s/%s", out, names[i]);
-    struct stat st;
-    if (lstat(to, &st) == 0 && !S_ISREG(st.st_mode))
-      status = cli_fail("import", "%s: not a file (a folder or link is in the way); nothing "
-                        "in %s was replaced", to, out);
-  }
-  bool *replaced = calloc(count ? count : 1, sizeof *replaced);
-  if (!replaced) abort();
-  int moved = 0;
-  for (; moved < count && !status; moved++) {
-    snprintf(from, sizeof from, "%s/%s", temp_dir, names[moved]);
-    snprintf(to, sizeof to, "%s/%s", out, names[moved]);
-    snprintf(aside, sizeof aside, "%s/.%s.replaced", out, names[moved]);
-    if (rename(to, aside) == 0) replaced[moved] = true;
-    else if (errno != ENOENT) {
-      status = cli_fail("import", "%s: cannot replace it: %s", to, strerror(errno));
-      break;
-    }
-    if (rename(from, to)) {
-      status = cli_fail("import", "%s: cannot move into place: %s; %s is as it was", to,
-                        strerror(errno), out);
-      if (replaced[moved] && rename(aside, to) == 0) replaced[moved] = false;
-      break;
-    }
-  }
-  /* undo (status) or finish: the replaced files back, or gone */
-  for (int i = 0; i < count; i++) {
-    snprintf(to, sizeof to, "%s/%s", out, names[i]);
-    snprintf(aside, sizeof aside, "%s/.%s.replaced", out, names[i]);
-    if (status && i < moved) {
-      if (replaced[i]) rename(aside, to);
-      else unlink(to);
-    } else if (replaced[i]) {
-      unlink(aside);
-    }
-    free(names[i]);
-  }
-  free(replaced);
-  free(names);
-  return status;
-}
-
 static void print_summary(const import_options *o, const vdb_sequence *seq,
                           const vdb_frame *frames, const vdb_fogmap_place *place,
                           const vdb_profile *profile, double mass_min, double mass_max) {
@@ -746,11 +657,11 @@ int cmd_import(int argc, char **argv) {
     goto done;
   }
   if (o.report && (status = run_report(&o, &seq, frames, &place, profile, temp_dir))) goto done;
-  if ((status = move_into_place(temp_dir, o.out))) goto done;
+  if ((status = staged_move_into_place("import", temp_dir, o.out))) goto done;
   print_summary(&o, &seq, frames, &place, profile, mass_min, mass_max);
   warn_other_frames(&o, &seq);
 done:
-  if (temp_dir[0]) remove_dir(temp_dir);
+  if (temp_dir[0]) staged_remove(temp_dir);
   if (status && created_out) rmdir(o.out); /* a folder made for a failed import goes too */
   fogmap_destroy(&map);
   for (int i = 0; i < seq.count; i++) vdb_frame_destroy(&frames[i]);

@@ -13,6 +13,7 @@
 #include <OpenEXR/openexr.h>
 
 #include "app/cli.h"
+#include "app/staged_move.h"
 #include "app/cli_options.h"
 #include "app/commands.h"
 #include "app/recorder.h"
@@ -202,6 +203,7 @@ static int run_forward(const char *in, const char *channel, const char *dir,
   size_t n = (size_t)map.width * map.height;
   float *coef = NULL, *approx[64] = {0}, *detail[64] = {0}, *band = NULL;
   double *energy = NULL;
+  char staging[4200] = "";
   if (desc.levels > 60) {
     cli_fail("transform", "%s: %d levels is too many", in, desc.levels);
     goto done;
@@ -242,15 +244,23 @@ static int run_forward(const char *in, const char *channel, const char *dir,
     cli_fail("transform", "%s", ferr.message);
     goto done;
   }
+  /* every file into a staging folder in DIR, then moved in all or none: a run that fails
+   * part-way leaves an earlier transform in DIR whole, not a mix under its manifest */
+  snprintf(staging, sizeof staging, "%s/.transform.XXXXXX", dir);
+  if (!mkdtemp(staging)) {
+    cli_fail("transform", "%s: cannot make a staging folder in it: %s", dir, strerror(errno));
+    staging[0] = '\0';
+    goto done;
+  }
   char name[64];
   for (int l = 0; l <= J; l++) {
     int w, h;
     transform_level_size(plan, l, &w, &h);
     snprintf(name, sizeof name, "approx_%d.exr", l);
-    if (write_exr(dir, name, w, h, approx[l])) goto done;
+    if (write_exr(staging, name, w, h, approx[l])) goto done;
     if (l == 0) continue;
     snprintf(name, sizeof name, "deconstructed_%d.exr", l);
-    if (write_exr(dir, name, w, h, detail[l])) goto done;
+    if (write_exr(staging, name, w, h, detail[l])) goto done;
     for (int o = 0; o < 3; o++) {
       int x, y, bw, bh;
       transform_band_rect(plan, l, (transform_orientation)o, &x, &y, &bw, &bh);
@@ -258,13 +268,15 @@ static int run_forward(const char *in, const char *channel, const char *dir,
         memcpy(band + (size_t)j * bw, coef + (size_t)(y + j) * map.width + x,
                sizeof(float) * (size_t)bw);
       snprintf(name, sizeof name, "detail_%d_%s.exr", l, orientation_names[o]);
-      if (write_exr(dir, name, bw, bh, band)) goto done;
+      if (write_exr(staging, name, bw, bh, band)) goto done;
     }
   }
-  if (write_manifest(dir, plan, in, energy)) goto done;
+  if (write_manifest(staging, plan, in, energy)) goto done;
+  if (staged_move_into_place("transform", staging, dir)) goto done;
   remove_deeper_levels(dir, J, earlier_levels, in);
   status = 0;
 done:
+  if (staging[0]) staged_remove(staging);
   for (int l = 0; l < 64; l++) free(approx[l]), free(detail[l]);
   free(coef), free(band), free(energy);
   transform_plan_destroy(plan);

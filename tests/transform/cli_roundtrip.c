@@ -6,6 +6,7 @@
  * removes the deeper levels an earlier one left; an inverse of a map at the largest density
  * loads again. */
 #define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -155,6 +156,36 @@ int main(void) {
   CHECK(system(copy) == 0, "cannot make %s", own);
   snprintf(args, sizeof args, "%s --levels 1 --out %s/own", own, tmp);
   refused_and_kept(args, own, "is the input fogmap");
+
+  /* a forward run that cannot finish (a folder where its detail_2_xy.exr goes) replaces
+   * nothing of the transform in the folder: its manifest and levels as they were, and the
+   * folder still inverts to its own input */
+  {
+    char folder[400], manifest[500], approx[500], blocker[1000], back[500];
+    snprintf(folder, sizeof folder, "%s/linear_full", tmp);
+    snprintf(manifest, sizeof manifest, "%s/transform.ini", folder);
+    snprintf(approx, sizeof approx, "%s/approx_0.exr", folder);
+    snprintf(blocker, sizeof blocker, "rm -f '%s/detail_2_xy.exr' && mkdir -p '%s/detail_2_xy.exr/x'",
+             folder, folder);
+    struct stat m0, a0, m1, a1;
+    stat(manifest, &m0), stat(approx, &a0);
+    CHECK(system(blocker) == 0, "%s", blocker);
+    snprintf(args, sizeof args, "data/fogmap_sample.exr --basis haar --levels 3 --out %s",
+             folder);
+    rc = run(args, err, sizeof err);
+    CHECK(rc != 0 && strstr(err, "detail_2_xy.exr"), "a folder in the way (%d): %s", rc, err);
+    CHECK(stat(manifest, &m1) == 0 && stat(approx, &a1) == 0 && m1.st_ino == m0.st_ino &&
+              m1.st_mtime == m0.st_mtime && a1.st_ino == a0.st_ino && a1.st_size == a0.st_size,
+          "the failed forward replaced the folder's transform.ini or approx_0.exr");
+    DIR *d = opendir(folder);
+    int hidden = 0;
+    for (struct dirent *e; d && (e = readdir(d));)
+      hidden += e->d_name[0] == '.' && strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
+    if (d) closedir(d);
+    CHECK(hidden == 0, "%d hidden files or folders left in %s", hidden, folder);
+    snprintf(back, sizeof back, "rm -rf '%s/detail_2_xy.exr'", folder);
+    CHECK(system(back) == 0, "%s", back);
+  }
 
   /* a map at fogmap_load's largest density (1e12): the quadratic inverse's rounding came
    * back just above it (1.0000003e12), a file no command could load */
