@@ -60,12 +60,18 @@ static void put_string(FILE *f, const char *text) {
   fputc('\'', f);
 }
 
-/* A path as a gnuplot string: a relative one behind "./", since gnuplot runs `set output
- * '|cmd'` and `plot '<cmd'` (and with spaces before them) as shell commands. */
+/* path as gnuplot may be given it: a relative one behind "./", since gnuplot runs `set
+ * output '|cmd'`, `plot '<cmd'` (spaces before them too) and a script argument `<cmd` as
+ * shell commands. Returns out. */
+static const char *gnuplot_path(const char *path, char *out, size_t size) {
+  snprintf(out, size, "%s%s", path[0] == '/' ? "" : "./", path);
+  return out;
+}
+
+/* A path as a gnuplot string (gnuplot_path, quoted). */
 static void put_path(FILE *f, const char *path) {
   char text[4200];
-  snprintf(text, sizeof text, "%s%s", path[0] == '/' ? "" : "./", path);
-  put_string(f, text);
+  put_string(f, gnuplot_path(path, text, sizeof text));
 }
 
 static void put_quoted(FILE *f, const char *prefix, const char *text) {
@@ -86,10 +92,8 @@ static int run_gnuplot(const char *script_path, char *output, size_t size) {
   posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
   posix_spawn_file_actions_addclose(&actions, fds[0]);
   posix_spawn_file_actions_addclose(&actions, fds[1]);
-  /* gnuplot loads a file argument '<cmd' through a shell too */
   char script[4200];
-  snprintf(script, sizeof script, "%s%s", script_path[0] == '/' ? "" : "./", script_path);
-  char *argv[] = {"gnuplot", script, NULL};
+  char *argv[] = {"gnuplot", (char *)gnuplot_path(script_path, script, sizeof script), NULL};
   pid_t pid;
   const int spawned = posix_spawnp(&pid, "gnuplot", &actions, NULL, argv, environ);
   posix_spawn_file_actions_destroy(&actions);
