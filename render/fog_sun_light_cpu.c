@@ -181,19 +181,55 @@ double fog_sun_mean_transmittance(const fog_model *m, fog_sun_shadow_kind kind,
   return fog_sun_mean_light(m, kind, volume, rule, depth_limit, o, d, t_surface, NULL, NULL);
 }
 
-/* T_s V at a point, for fog_perlin_light_integral. */
+/* V for the per-piece walks (fog_shaft_visible in fog_light.glsl): linear between
+ * steps x shaft_samples equally spaced points of the ray's fog span, the pieces' nodes
+ * reading it. The points follow the span, not the fog's cells: V at the nodes, pinned to
+ * the cells' planes, drew the cells' outlines into the shadows as jagged bands. The nodes
+ * come in increasing t, so each point is looked up about once. */
+typedef struct shaft_line {
+  int count;    /* points; 0: V at the nodes */
+  double t0, dv; /* the span's start, the points' spacing */
+  long k;       /* the points k and k + 1 held in lo and hi (-2: none yet) */
+  double lo, hi;
+} shaft_line;
+
+/* T_s V at a point, for the per-piece walks. */
 typedef struct sun_light_user {
   const fog_model *m;
   fog_sun_shadow_kind kind;
   const fog_sun_shadow *volume;
   fog_sun_visibility_fn visible;
   const void *user;
+  const double *o, *d;
+  shaft_line line;
 } sun_light_user;
 
+static double shaft_point(const sun_light_user *u, long k) {
+  const double t = u->line.t0 + (k + 0.5) * u->line.dv;
+  double p[3];
+  for (int a = 0; a < 3; a++) p[a] = u->o[a] + t * u->d[a];
+  return u->visible(u->user, p);
+}
+
+static double shaft_visible(sun_light_user *u, const double p[3]) {
+  shaft_line *line = &u->line;
+  double t = 0.0, dd = 0.0;
+  for (int a = 0; a < 3; a++) t += (p[a] - u->o[a]) * u->d[a], dd += u->d[a] * u->d[a];
+  const double x = fmin(fmax((t / dd - line->t0) / line->dv - 0.5, 0.0), line->count - 1.0);
+  const long k = (long)x < line->count - 2 ? (long)x : line->count - 2;
+  if (k != line->k) {
+    line->lo = k == line->k + 1 ? line->hi : shaft_point(u, k);
+    line->hi = shaft_point(u, k + 1);
+    line->k = k;
+  }
+  return line->lo + (line->hi - line->lo) * (x - (double)k);
+}
+
 static double sun_light_point(const void *user, const double p[3]) {
-  const sun_light_user *u = user;
-  return exp(-fog_sun_optical_depth(u->m, u->kind, u->volume, p)) *
-         (u->visible ? u->visible(u->user, p) : 1.0);
+  sun_light_user *u = (sun_light_user *)user; /* the walk's user: this call's own state */
+  const double v = !u->visible ? 1.0 : u->line.count > 0 ? shaft_visible(u, p)
+                                                         : u->visible(u->user, p);
+  return exp(-fog_sun_optical_depth(u->m, u->kind, u->volume, p)) * v;
 }
 
 /* T_s V at the ray's point t. */
@@ -222,7 +258,12 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
                       (m->kind == FOG_MODEL_VOLUME && m->grid3d) ||
                       (m->kind == FOG_MODEL_FOGMAP && m->volume && m->lod))) {
     /* per piece of the exact walk: S over 1 - e^{-D} of the same walk */
-    sun_light_user u = {m, kind, volume, visible, user};
+    sun_light_user u = {m, kind, volume, visible, user, o, d, {.count = 0}};
+    double t0, t1;
+    if (visible && rule.shaft_samples > 1 && fog_light_span(m, o, d, t_surface, &t0, &t1)) {
+      const int count = rule.steps * rule.shaft_samples;
+      u.line = (shaft_line){.count = count, .t0 = t0, .dv = (t1 - t0) / count, .k = -2};
+    }
     double D, S;
     if (m->kind == FOG_MODEL_FOGMAP) {
       /* the approximation fog_light_extinction_at reads */

@@ -104,7 +104,9 @@ typedef struct fog_light_rule {
   /* Segments: V, the sun's visibility, as the mean of this many equally spaced points of
    * the segment (V is 0 or 1 along a ray, with edges a segment cannot follow: the shafts
    * of thin obstacles alias into ghost copies at the nodes); 1 or less: V at the nodes
-   * with T_s. Per piece: unused. */
+   * with T_s. Per piece: V linear between steps x shaft_samples equally spaced points of
+   * the ray's fog span, the nodes reading it (at the nodes alone, pinned to the fog's
+   * cells, the shadows' edges followed the cells' outlines). */
   int shaft_samples;
 } fog_light_rule;
 

@@ -167,6 +167,41 @@ float fog_sun_segment_visible(vec3 dir, float mid, float dt) { return 1.0; }
 
 #if FOG_MODEL_KIND == FOG_MODEL_PERLIN || FOG_MODEL_KIND == FOG_MODEL_VOLUME || \
     FOG_MODEL_KIND == FOG_MODEL_FOGMAP
+#if FOG_SHAFTS == 1 && FOG_SHAFT_SAMPLES > 1
+// V for the per-piece means (fog_shaft_line in C): linear between fog_shadow_steps x
+// FOG_SHAFT_SAMPLES equally spaced points of the ray's fog span, the pieces' nodes reading
+// it. The points follow the span, not the fog's cells: V at the nodes, pinned to the cells'
+// planes, drew the cells' outlines into the shadows as jagged bands. One ray's line at a
+// time; the nodes come in increasing t, so each point is looked up about once.
+float fog_shaft_t0, fog_shaft_dv, fog_shaft_lo, fog_shaft_hi;
+int fog_shaft_count, fog_shaft_k;
+void fog_shaft_begin(vec3 dir, float t0, float t1) {
+  fog_shaft_count = fog_shadow_steps * FOG_SHAFT_SAMPLES;
+  fog_shaft_t0 = t0;
+  fog_shaft_dv = (t1 - t0) / float(fog_shaft_count);
+  fog_shaft_k = -2;
+}
+float fog_shaft_point(vec3 dir, int k) {
+  return fog_sun_visible((fog_shaft_t0 + (float(k) + 0.5) * fog_shaft_dv) * dir);
+}
+float fog_shaft_visible(vec3 dir, float t) {
+  float u = clamp((t - fog_shaft_t0) / fog_shaft_dv - 0.5, 0.0, float(fog_shaft_count - 1));
+  int k = min(int(u), fog_shaft_count - 2);
+  if (k != fog_shaft_k) {
+    fog_shaft_lo = k == fog_shaft_k + 1 ? fog_shaft_hi : fog_shaft_point(dir, k);
+    fog_shaft_hi = fog_shaft_point(dir, k + 1);
+    fog_shaft_k = k;
+  }
+  return mix(fog_shaft_lo, fog_shaft_hi, u - float(k));
+}
+#else
+void fog_shaft_begin(vec3 dir, float t0, float t1) {}
+float fog_shaft_visible(vec3 dir, float t) { return 1.0; }
+#endif
+#endif
+
+#if FOG_MODEL_KIND == FOG_MODEL_PERLIN || FOG_MODEL_KIND == FOG_MODEL_VOLUME || \
+    FOG_MODEL_KIND == FOG_MODEL_FOGMAP
 const int fog_piece_nodes = FOG_SHADOW_NODES > 0 ? FOG_SHADOW_NODES : 1;
 uniform float fog_piece_x[4], fog_piece_w[4];
 uniform mat4 fog_piece_partial;
@@ -180,7 +215,9 @@ float fog_piece_light(float K[4], float h, float at, vec3 dir, float D, inout fl
   for (int j = 0; j < fog_piece_nodes; j++) {
     float dj = 0.0;
     for (int q = 0; q < fog_piece_nodes; q++) dj += fog_piece_partial[j][q] * K[q];
-    S += h * fog_piece_w[j] * K[j] * exp(-(D + h * dj)) * fog_sun_light_at(dir, at + h * fog_piece_x[j]);
+    float tj = at + h * fog_piece_x[j];
+    S += h * fog_piece_w[j] * K[j] * exp(-(D + h * dj)) * fog_sun_node_light(dir, tj) *
+         fog_shaft_visible(dir, tj);
     piece += h * fog_piece_w[j] * K[j];
   }
   return piece;
@@ -196,6 +233,7 @@ float fog_piece_light(float K[4], float h, float at, vec3 dir, float D, inout fl
 float fog_fogmap_sun_mean(fog_ray r) {
   float t0, t1;
   if (!fog_light_span(r, t0, t1)) return 1.0;
+  fog_shaft_begin(r.dir, t0, t1);
   fog_ray_walk w = fog_walk_start(fog_lod_method == FOG_LOD_SWITCH ? fog_levels : 0, r.dir_d,
                                   double(t0));
   float len = t1 - t0, t = 0.0, D = 0.0, S = 0.0;
@@ -240,6 +278,7 @@ float fog_grid3d_sun_mean(fog_ray r) {
   vec3 u0, du;
   float t0, t1;
   if (!fog_grid3d_stretch(r.dir, r.t_surface, u0, du, t0, t1)) return 1.0;
+  fog_shaft_begin(r.dir, t0, t1);
   vec3 ue = u0 + t0 * du;
   fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
            az = fog_axis_start(ue.z, du.z, 0.0);
@@ -279,6 +318,7 @@ float fog_perlin_sun_mean(fog_ray r) {
   t0 = max(t0, 0.0);
   t1 = min(t1, r.t_surface);
   if (!(t1 > t0)) return 1.0;
+  fog_shaft_begin(r.dir, t0, t1);
   vec3 dir = r.dir;
   vec3 ue[FOG_PERLIN_MAX_OCTAVES], du[FOG_PERLIN_MAX_OCTAVES];
   vec3 next[FOG_PERLIN_MAX_OCTAVES], delta[FOG_PERLIN_MAX_OCTAVES];

@@ -76,16 +76,21 @@ static double exact_visible(const void *user, const double p[3]) {
  * than 1e-2 of the largest in-scatter and the mean error. */
 /* The light shafts of configs/default.ini's scene: its fogmap (homogeneous: false), or a
  * homogeneous fog with the fog's self-shadow off, whose rays to the sky never end (the span
- * stops at an optical depth of FOG_LIGHT_SPAN_DEPTH: without that they had no shafts). */
-static void check_shafts(bool homogeneous) {
+ * stops at an optical depth of FOG_LIGHT_SPAN_DEPTH: without that they had no shafts).
+ * Or, with perlin, configs/perlin_fog.ini's hills' shadows in its fog, per piece of the
+ * walk (V linear between the span's points). */
+static void check_shafts(bool homogeneous, bool perlin) {
   static frame lit, unshafted;
   scene_config cfg;
   fog_error cerr;
-  if (scene_config_load("configs/default.ini", &cfg, &cerr)) {
+  const char *path = perlin ? "configs/perlin_fog.ini" : "configs/default.ini";
+  const char *name = perlin ? "perlin, per piece" : homogeneous ? "homogeneous" : "fogmap";
+  if (scene_config_load(path, &cfg, &cerr)) {
     CHECK(0, "%s", cerr.message);
     return;
   }
   CHECK(cfg.shadow.shafts == 1, "[light] shafts: expected on by default");
+  if (perlin) CHECK(scene_config_light_rule(&cfg).pieces, "perlin: not per piece by default");
   if (homogeneous) {
     cfg.fog.model = FOG_MODEL_HOMOGENEOUS, cfg.fog.density_scale = 0.002;
     cfg.shadow.fog_self_shadow = 0;
@@ -141,13 +146,16 @@ static void check_shafts(bool homogeneous) {
   }
   printf("shafts (%s): the terrain's shadows take up to %.3f of the in-scatter; GL (shadow "
          "map) vs the twin with exact ray casts: max %.3e, mean %.3e of the largest "
-         "in-scatter, %d of %d pixels off by > 1e-2\n", homogeneous ? "homogeneous" : "fogmap",
-         shafted, worst, sum / (W * H), off_pixels, W * H);
-  printf("shafts (%s): towards the sky up to %.3f\n", homogeneous ? "homogeneous" : "fogmap",
-         shafted_sky);
+         "in-scatter, %d of %d pixels off by > 1e-2\n", name, shafted, worst, sum / (W * H),
+         off_pixels, W * H);
+  printf("shafts (%s): towards the sky up to %.3f\n", name, shafted_sky);
   if (homogeneous) CHECK(shafted_sky > 0.01, "no shafts towards the sky (%.3e)", shafted_sky);
   CHECK(shafted > 0.02, "no shafts in view (%.3e)", shafted);
-  CHECK(sum / (W * H) < 2e-3, "shafts: mean error %.3e", sum / (W * H));
+  /* Perlin fog's shafts are thick with the hills' shadow edges (the map's texels against
+   * exact casts: measured mean 6.7e-4; with the shader's V at the pieces' nodes against
+   * the twin's line, 1.05e-3) */
+  const double mean_bound = perlin ? 8.5e-4 : 2e-3;
+  CHECK(sum / (W * H) < mean_bound, "shafts (%s): mean error %.3e", name, sum / (W * H));
   CHECK(off_pixels * 50 < W * H, "shafts: %d pixels off by > 1e-2", off_pixels);
   scene_geometry_destroy(&geo);
   render_session_destroy(session);
@@ -371,7 +379,8 @@ int main(void) {
     }
   }
   for (int i = 0; i < n; i++) check_case(&cases[i]);
-  check_shafts(false);
-  check_shafts(true);
+  check_shafts(false, false);
+  check_shafts(true, false);
+  check_shafts(false, true);
   return test_finish("test_fog_shadow");
 }
