@@ -14,6 +14,7 @@
 
 #include "app/commands.h"
 #include "app/config.h"
+#include "app/frame_exr.h"
 #include "app/pipeline.h"
 #include "app/player.h"
 #include "app/cli.h"
@@ -251,22 +252,24 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
   fog_error perr = {0};
   fog_error rerr = {0};
   recorder_progress progress;
-  int status = 0;
+  int status = 0, float_frames = 0, first_float = 0;
   if (!job->quiet) recorder_progress_begin(&progress, stdout, done - first + 1, last - first + 1);
   for (int frame = done + 1; frame <= last && !status; frame++) {
     recorder_frame pixels = {.rgba = rgba, .transmittance = transmittance, .depth = depth,
                              .inscatter = inscatter};
+    bool beauty_float = false;
     camera_exr_matrices(player_camera(src), width, height, pixels.world_to_camera,
                         pixels.world_to_ndc);
     if (player_frame(src, frame, &out, &perr)) {
       if (!job->quiet) recorder_progress_end(&progress);
       fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, perr.message);
       status = 1;
-    } else if (recorder_write_frame(rec, frame, &pixels, scratch, &rerr)) {
+    } else if (recorder_write_frame(rec, frame, &pixels, scratch, &beauty_float, &rerr)) {
       if (!job->quiet) recorder_progress_end(&progress);
       fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
       status = 1;
     } else {
+      if (beauty_float && !float_frames++) first_float = frame;
       done = frame;
       if (!job->quiet) recorder_progress_update(&progress, done - first + 1);
       if (interrupted && done < last) {
@@ -281,6 +284,10 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
     }
   }
   if (!status && !job->quiet) recorder_progress_end(&progress);
+  if (float_frames)
+    fprintf(stderr, "fogpipe %s: %d frame%s (the first: %d) written with R G B A as 32-bit "
+            "float: some pixels are brighter than half-float holds (%g)\n", cmd, float_frames,
+            float_frames == 1 ? "" : "s", first_float, (double)FRAME_EXR_HALF_MAX);
   restore_interrupts(&old_int, &old_term);
   free(buffer);
   return status;

@@ -25,13 +25,17 @@ static int write_exr(const char *out, int width, int height, const frame_pixels 
   float *planes = malloc((size_t)width * height * FRAME_EXR_PLANES * sizeof(float));
   if (!planes) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
   image_channel channels[FRAME_EXR_CHANNELS];
-  frame_exr_channels(frame->rgba, frame->transmittance, frame->depth, frame->inscatter, width,
-                     height, false, planes, channels);
+  const bool beauty_float = frame_exr_channels(frame->rgba, frame->transmittance, frame->depth,
+                                               frame->inscatter, width, height, false, planes,
+                                               channels);
   image_exr_matrix matrices[2] = {{.name = "worldToCamera"}, {.name = "worldToNDC"}};
   camera_exr_matrices(cam, width, height, matrices[0].m, matrices[1].m);
   const image_exr_header header = {.matrices = matrices, .matrix_count = 2};
   int status = image_write_exr_with(out, width, height, channels, FRAME_EXR_CHANNELS, &header,
                                     err);
+  if (!status && beauty_float)
+    fprintf(stderr, "fogpipe render: %s: R G B A written as 32-bit float: some pixels are "
+            "brighter than half-float holds (%g)\n", out, (double)FRAME_EXR_HALF_MAX);
   free(planes);
   return status;
 }
@@ -55,7 +59,8 @@ int cmd_render(int argc, char **argv) {
   const cli_option options[] = {
       {.kind = CLI_OUTPUT, .name = "--out", .value = "FILE", .target = &out,
        .extensions = (const char *const[]){".exr", ".png", NULL},
-       .required = true, .help = "output image: .exr (channels R G B A as half; transmittance,\n"
+       .required = true, .help = "output image: .exr (channels R G B A as half, as float where\n"
+               "a pixel is beyond half's range; transmittance,\n"
                "depth (and Z, the same), inscatter.R/G/B as float; depth =\n"
                "distance along the view ray to the first surface, the far plane\n"
                "for the sky; RGB = transmittance x surface + inscatter) or .png\n"

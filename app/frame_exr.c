@@ -1,9 +1,10 @@
 /* The EXR layout of a frame (app/frame_exr.h). */
 #include "app/frame_exr.h"
 
+#include <math.h>
 #include <stddef.h>
 
-void frame_exr_channels(const float *rgba, const float *transmittance, const float *depth,
+bool frame_exr_channels(const float *rgba, const float *transmittance, const float *depth,
                         const float *inscatter, int width, int height, bool bottom_up,
                         float *scratch, image_channel channels[FRAME_EXR_CHANNELS]) {
   const size_t n = (size_t)width * (size_t)height;
@@ -18,11 +19,16 @@ void frame_exr_channels(const float *rgba, const float *transmittance, const flo
       for (int c = 0; c < 3; c++) plane[6 + c][dst + x] = inscatter[3 * (src + x) + c];
     }
   }
+  /* a non-finite value stays half: the writer refuses it, naming the pixel */
+  bool beyond_half = false;
+  for (size_t k = 0; k < 4 * n && !beyond_half; k++)
+    beyond_half = isfinite(rgba[k]) && fabsf(rgba[k]) > FRAME_EXR_HALF_MAX;
+  const int half = !beyond_half;
   const image_channel layout[FRAME_EXR_CHANNELS] = {
-      {.name = "R", .pixels = plane[0], .as_half = 1},
-      {.name = "G", .pixels = plane[1], .as_half = 1},
-      {.name = "B", .pixels = plane[2], .as_half = 1},
-      {.name = "A", .pixels = plane[3], .as_half = 1},
+      {.name = "R", .pixels = plane[0], .as_half = half},
+      {.name = "G", .pixels = plane[1], .as_half = half},
+      {.name = "B", .pixels = plane[2], .as_half = half},
+      {.name = "A", .pixels = plane[3], .as_half = half},
       {.name = "transmittance", .pixels = plane[4], .as_half = 0},
       {.name = "depth", .pixels = plane[5], .as_half = 0},
       {.name = "Z", .pixels = plane[5], .as_half = 0},
@@ -31,4 +37,5 @@ void frame_exr_channels(const float *rgba, const float *transmittance, const flo
       {.name = "inscatter.B", .pixels = plane[8], .as_half = 0},
   };
   for (int c = 0; c < FRAME_EXR_CHANNELS; c++) channels[c] = layout[c];
+  return beyond_half;
 }

@@ -256,11 +256,13 @@ int recorder_remove_stale_temporaries(const recorder *rec, int first, int last) 
 }
 
 int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *pixels,
-                         float *scratch, fog_error *err) {
+                         float *scratch, bool *beauty_float, fog_error *err) {
   const int w = rec->width, h = rec->height;
   image_channel channels[FRAME_EXR_CHANNELS];
-  frame_exr_channels(pixels->rgba, pixels->transmittance, pixels->depth, pixels->inscatter, w,
-                     h, pixels->bottom_up, scratch, channels);
+  const bool as_float = frame_exr_channels(pixels->rgba, pixels->transmittance, pixels->depth,
+                                           pixels->inscatter, w, h, pixels->bottom_up, scratch,
+                                           channels);
+  if (beauty_float) *beauty_float = as_float;
   char path[1200];
   recorder_frame_path(rec, frame, path, sizeof path);
   fog_error serr = {0};

@@ -91,11 +91,13 @@ int recorder_check_other_frames(const recorder *rec, int first, int last, fog_er
  * temporaries are live. Returns how many were removed. */
 int recorder_remove_stale_temporaries(const recorder *rec, int first, int last);
 
-/* Writes frame number `frame` (1-based). Channels: R, G, B, A as half; transmittance,
- * depth (also as Z, what compositors read) and inscatter.R/G/B as 32-bit float. `scratch`
- * must hold RECORDER_PLANES*width*height floats (no allocation per frame). On failure (disk full, folder removed) nothing is left at the frame's path. */
+/* Writes frame number `frame` (1-based). Channels: R, G, B, A as half (as 32-bit float
+ * where a value lies beyond half's range: *beauty_float, if not NULL, says which);
+ * transmittance, depth (also as Z, what compositors read) and inscatter.R/G/B as 32-bit
+ * float. `scratch` must hold RECORDER_PLANES*width*height floats (no allocation per
+ * frame). On failure (disk full, folder removed) nothing is left at the frame's path. */
 int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *pixels,
-                         float *scratch, fog_error *err);
+                         float *scratch, bool *beauty_float, fog_error *err);
 
 /* True when an `ffmpeg` executable is on PATH. */
 bool recorder_have_ffmpeg(void);
