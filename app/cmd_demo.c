@@ -47,7 +47,14 @@ static int last_frame_png(const headless_job *h, const char *folder) {
   float *rgb = malloc(sizeof(float) * 3 * (size_t)h->width * (size_t)h->height);
   int status = rgb ? recorder_read_rgb(&rec, h->frames, rgb, &err)
                    : fog_fail(&err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory", h->screenshot);
-  if (!status) status = image_write_png_srgb(h->screenshot, h->width, h->height, 3, rgb, &err);
+  /* through the config's display transform, as the window shows it */
+  scene_config cfg;
+  if (!status) status = scene_config_load(h->config_path, &cfg, &err);
+  if (!status) {
+    const display_transform display = scene_config_display(&cfg);
+    display_map_values(&display, rgb, rgb, 3 * (size_t)h->width * (size_t)h->height);
+    status = image_write_png_srgb(h->screenshot, h->width, h->height, 3, rgb, &err);
+  }
   free(rgb);
   if (status) {
     fprintf(stderr, "fogpipe demo: --screenshot: %s\n", err.message);

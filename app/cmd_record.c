@@ -295,8 +295,8 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
 
 /* The summary line, and the preview video when asked for. 0, 1 (printed) or 130 (the
  * encode interrupted: no video, the frames kept). */
-static int finish_output(const record_job *job, const recorder *rec, int width, int height,
-                         double fps, int first, int last) {
+static int finish_output(const record_job *job, const recorder *rec, const scene_config *config,
+                         int width, int height, double fps, int first, int last) {
   char first_path[1200], last_path[1200];
   recorder_frame_path(rec, first, first_path, sizeof first_path);
   recorder_frame_path(rec, last, last_path, sizeof last_path);
@@ -314,7 +314,8 @@ static int finish_output(const record_job *job, const recorder *rec, int width, 
   } else {
     struct sigaction old_int, old_term;
     catch_interrupts(&old_int, &old_term);
-    const int failed = recorder_write_preview(rec, job->frames, fps, job->preview,
+    const display_transform display = scene_config_display(config);
+    const int failed = recorder_write_preview(rec, job->frames, fps, job->preview, &display,
                                               &interrupted, &rerr);
     restore_interrupts(&old_int, &old_term);
     if (failed && interrupted) {
@@ -364,7 +365,7 @@ static int record_into(const record_job *job, recorder *rec) {
     player_destroy(src);
     if (status) return status;
   }
-  return finish_output(job, rec, width, height, fps, first, last);
+  return finish_output(job, rec, &config, width, height, fps, first, last);
 }
 
 int record_run(const record_job *job) {

@@ -40,13 +40,14 @@ static int write_exr(const char *out, int width, int height, const frame_pixels 
   return status;
 }
 
-/* 8-bit sRGB RGB. */
-static int write_png(const char *out, int width, int height, const float *rgba, fog_error *err) {
+/* 8-bit sRGB RGB through the config's display transform. */
+static int write_png(const char *out, int width, int height, const float *rgba,
+                     const display_transform *display, fog_error *err) {
   size_t pixels = (size_t)width * height;
   float *rgb = malloc(pixels * 3 * sizeof(float));
   if (!rgb) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
   for (size_t k = 0; k < pixels; k++)
-    for (int c = 0; c < 3; c++) rgb[3 * k + c] = rgba[4 * k + c];
+    for (int c = 0; c < 3; c++) rgb[3 * k + c] = display_map(display, rgba[4 * k + c]);
   int status = image_write_png_srgb(out, width, height, 3, rgb, err);
   free(rgb);
   return status;
@@ -134,8 +135,9 @@ int cmd_render(int argc, char **argv) {
   const camera cam = *player_camera(frames);
   player_destroy(frames);
   fog_error werr = {0};
+  const display_transform display = scene_config_display(&cfg);
   if (exr ? write_exr(out, width, height, &frame, &cam, &werr)
-          : write_png(out, width, height, rgba, &werr)) {
+          : write_png(out, width, height, rgba, &display, &werr)) {
     fprintf(stderr, "fogpipe render: %s\n", werr.message);
     goto done;
   }

@@ -171,6 +171,8 @@ static const key_spec keys[] = {
     {"render", "transmittance_cutoff", V_DOUBLE, F(transmittance_cutoff), 0, 0.5, NULL, 0, 0},
     {"render", "empty_skip", V_ENUM, F(empty_skip), 0, 0, "off|on", 0, 0},
     {"render", "skip_below", V_DOUBLE, F(skip_below), 0, MAX_EXTINCTION, NULL, 0, 0},
+    {"render", "exposure", V_DOUBLE, F(exposure), -20, 20, NULL, 0, 0},
+    {"render", "tone_map", V_ENUM, F(tone_map), 0, 0, "clamp|aces|reinhard", 0, 0},
     {"sim", "wind", V_DOUBLE2, F(sim.wind), -WORLD, WORLD, NULL, 0, 0},
     {"sim", "turbulence", V_DOUBLE, F(sim.turbulence), 0, WORLD, NULL, 0, 0},
     {"sim", "viscosity", V_DOUBLE, F(sim.viscosity), 0, WORLD, NULL, 0, 0},
@@ -209,6 +211,8 @@ void scene_config_init(scene_config *cfg) {
       .transmittance_cutoff = FOG_PASS_TRANSMITTANCE_CUTOFF,
       .empty_skip = 1,
       .skip_below = 0.0,
+      .exposure = 0.0,
+      .tone_map = DISPLAY_CLAMP,
   };
   memcpy(cfg->fog.perlin_wind, perlin.wind, sizeof perlin.wind); /* a drift per octave */
 }
@@ -1425,6 +1429,11 @@ fog_lamp_method scene_live_lamp_method(fog_lamp_method method) {
 void scene_config_live_software(scene_config *cfg) {
   cfg->terrain.lod_error = scene_live_terrain_lod(cfg->terrain.lod_error);
   cfg->lamp_method = scene_live_lamp_method(cfg->lamp_method);
+}
+
+display_transform scene_config_display(const scene_config *cfg) {
+  return (display_transform){.exposure = cfg->exposure,
+                             .tone_map = (display_tone_map)cfg->tone_map};
 }
 
 fog_walk_settings scene_config_walk(const scene_config *cfg) {

@@ -18,6 +18,7 @@
 #include <stdint.h>
 
 #include "render/camera.h"
+#include "render/display.h"
 #include "render/fog_lamp.h"
 #include "render/fog_light.h"
 #include "render/fog_models.h"
@@ -233,6 +234,10 @@ typedef struct scene_config {
   double transmittance_cutoff;
   int empty_skip;
   double skip_below;
+  /* [render] the display transform of PNGs, the window and the preview video
+   * (render/display.h): exposure in stops, tone_map a display_tone_map */
+  double exposure;
+  int tone_map;
   scene_sim_config sim;
 } scene_config;
 
@@ -296,6 +301,8 @@ scene_fog_shape scene_config_fog_shape(const scene_config *cfg);
  * the slab where the config has none. */
 fog_volume scene_config_fog_volume(const scene_config *cfg, int map_width, int map_height,
                                    const scene_fog_shape *shape);
+/* [render] exposure and tone_map. */
+display_transform scene_config_display(const scene_config *cfg);
 /* How the fog pass walks: [render] transmittance_cutoff, empty_skip, skip_below. */
 fog_walk_settings scene_config_walk(const scene_config *cfg);
 /* The sun as the fog sees it: [fog] albedo and phase_g, [light]'s resolved sun. */

@@ -1179,7 +1179,8 @@ int pipeline_read_frame(pipeline *p, const frame_pixels *out, fog_error *err) {
 
 int pipeline_present(pipeline *p, int width, int height, fog_error *err) {
   fog_error rerr = {0};
-  if (pipeline_fog_present(p->fog, width, height, &rerr))
+  const display_transform display = scene_config_display(&p->config);
+  if (pipeline_fog_present(p->fog, width, height, &display, &rerr))
     return fog_error_wrap(err, &rerr, "present: ");
   return 0;
 }

@@ -134,10 +134,12 @@ int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, floa
   return 0;
 }
 
-int pipeline_fog_present(pipeline_fog *fog, int width, int height, fog_error *err) {
+int pipeline_fog_present(pipeline_fog *fog, int width, int height,
+                         const display_transform *display, fog_error *err) {
   /* made on the first present: headless recordings never show a window */
   if (!fog->presenter && !(fog->presenter = gl_presenter_create(err))) return 1;
   if (fog->target.framebuffer)
-    gl_presenter_draw(fog->presenter, &fog->target, width, height, GL_PRESENT_BILINEAR);
+    gl_presenter_draw(fog->presenter, &fog->target, width, height, GL_PRESENT_BILINEAR,
+                      display);
   return 0;
 }

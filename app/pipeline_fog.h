@@ -9,6 +9,7 @@
 #include <stdbool.h>
 
 #include "render/camera.h"
+#include "render/display.h"
 #include "render/fog_field.h"
 #include "render/fog_light.h"
 #include "render/fog_pass.h"
@@ -61,7 +62,9 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
 /* Rows top first; any pointer may be NULL (inscatter: 3 floats a pixel). */
 int pipeline_fog_read(pipeline_fog *fog, float *rgba, float *transmittance, float *inscatter,
                       fog_error *err);
-/* Blits the fog target's colour to the default framebuffer at width x height. */
-int pipeline_fog_present(pipeline_fog *fog, int width, int height, fog_error *err);
+/* Draws the fog target's colour to the default framebuffer at width x height through the
+ * display transform. */
+int pipeline_fog_present(pipeline_fog *fog, int width, int height,
+                         const display_transform *display, fog_error *err);
 
 #endif

@@ -304,7 +304,8 @@ bool recorder_have_ffmpeg(void) {
 }
 
 int recorder_write_preview(const recorder *rec, int frame_count, double fps, const char *video_path,
-                           const volatile sig_atomic_t *stop, fog_error *err) {
+                           const display_transform *display, const volatile sig_atomic_t *stop,
+                           fog_error *err) {
   if (!recorder_have_ffmpeg())
     return fog_fail(err, FOG_ERR_UNSUPPORTED,
                     "ffmpeg is not installed: no preview written (apt-get install ffmpeg)");
@@ -350,6 +351,7 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
       status = fog_error_wrap(err, &serr, "preview: cannot read back frame %d: ", frame);
       break;
     }
+    display_map_values(display, linear, linear, 3 * n);
     for (size_t i = 0; i < 3 * n; i++) rgb[i] = srgb8_encode(&encoder, linear[i]);
     if (!status && fwrite(rgb, 3, n, pipe) != n)
       status = fog_fail(err, FOG_ERR_FILE_ACCESS,

@@ -16,6 +16,7 @@
 
 #include "transform/fog_error.h"
 #include "app/frame_exr.h"
+#include "render/display.h"
 #include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -103,12 +104,13 @@ int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *p
 bool recorder_have_ffmpeg(void);
 
 /* Encodes frames 1..frame_count of the folder into an H.264 video at `fps` by reading each
- * EXR's R, G, B back and piping 8-bit sRGB to ffmpeg (so a resumed recording gets the same
- * preview as an uninterrupted one). Written to a temporary name and renamed; when *stop
- * (NULL: never) becomes non-zero (a signal handler's flag) it stops, and nothing is left
- * at either name. */
+ * EXR's R, G, B back and piping them through the display transform as 8-bit sRGB to ffmpeg
+ * (so a resumed recording gets the same preview as an uninterrupted one). Written to a
+ * temporary name and renamed; when *stop (NULL: never) becomes non-zero (a signal
+ * handler's flag) it stops, and nothing is left at either name. */
 int recorder_write_preview(const recorder *rec, int frame_count, double fps, const char *video_path,
-                           const volatile sig_atomic_t *stop, fog_error *err);
+                           const display_transform *display, const volatile sig_atomic_t *stop,
+                           fog_error *err);
 
 /* Progress of a sequence: on a terminal one line redrawn in place with a bar and the ETA;
  * otherwise one plain line per frame (logs stay readable). */

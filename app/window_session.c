@@ -633,7 +633,8 @@ static int source_draw(void *self, const window_frame *f, fog_error *err) {
     *err = (fog_error){0};
   }
   if (v->has_fog) shown = &v->fog_target;
-  gl_presenter_draw(v->presenter, shown, f->fb_w, f->fb_h, GL_PRESENT_NEAREST);
+  const display_transform display = scene_config_display(s->cfg);
+  gl_presenter_draw(v->presenter, shown, f->fb_w, f->fb_h, GL_PRESENT_NEAREST, &display);
   return 0;
 }
 

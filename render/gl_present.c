@@ -7,7 +7,7 @@
 
 struct gl_presenter {
   GLuint program;
-  GLint u_image, u_image_per_pixel, u_bilinear;
+  GLint u_image, u_image_per_pixel, u_bilinear, u_exposure_scale, u_tone_map;
 };
 
 gl_presenter *gl_presenter_create(fog_error *err) {
@@ -24,6 +24,8 @@ gl_presenter *gl_presenter_create(fog_error *err) {
   p->u_image = glGetUniformLocation(p->program, "image");
   p->u_image_per_pixel = glGetUniformLocation(p->program, "image_per_pixel");
   p->u_bilinear = glGetUniformLocation(p->program, "bilinear");
+  p->u_exposure_scale = glGetUniformLocation(p->program, "exposure_scale");
+  p->u_tone_map = glGetUniformLocation(p->program, "tone_map");
   return p;
 }
 
@@ -34,7 +36,7 @@ void gl_presenter_destroy(gl_presenter *p) {
 }
 
 void gl_presenter_draw(gl_presenter *p, const gl_target *source, int width, int height,
-                       gl_present_scaling scaling) {
+                       gl_present_scaling scaling, const display_transform *display) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glViewport(0, 0, width, height);
   glDisable(GL_DEPTH_TEST);
@@ -45,6 +47,8 @@ void gl_presenter_draw(gl_presenter *p, const gl_target *source, int width, int 
   glUniform1i(p->u_image, 0);
   glUniform2f(p->u_image_per_pixel, (float)source->width / width, (float)source->height / height);
   glUniform1i(p->u_bilinear, scaling == GL_PRESENT_BILINEAR);
+  glUniform1f(p->u_exposure_scale, (float)exp2(display->exposure)); /* as display_map */
+  glUniform1i(p->u_tone_map, (int)display->tone_map);
   glBindVertexArray(gl_util_empty_vao());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);

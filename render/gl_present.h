@@ -1,5 +1,5 @@
 /* Window output: a linear-colour texture drawn over the whole default framebuffer with the
- * sRGB transfer function (IEC 61966-2-1), as `fogpipe render` encodes its PNGs, and the
+ * display transform (render/display.h) and the sRGB transfer function (IEC 61966-2-1), as `fogpipe render` encodes its PNGs, and the
  * window read back for screenshots. The app draws windows through this and never calls GL
  * itself.
  *
@@ -12,6 +12,7 @@
 
 #include <stdbool.h>
 
+#include "render/display.h"
 #include "render/gl_util.h"
 
 typedef struct gl_presenter gl_presenter;
@@ -23,9 +24,10 @@ typedef enum gl_present_scaling {
 
 gl_presenter *gl_presenter_create(fog_error *err);
 void gl_presenter_destroy(gl_presenter *presenter);
-/* Draws colour attachment 0 of source scaled to the window's width x height. */
+/* Draws colour attachment 0 of source scaled to the window's width x height, through the
+ * display transform (render/display.h). */
 void gl_presenter_draw(gl_presenter *presenter, const gl_target *source, int width, int height,
-                       gl_present_scaling scaling);
+                       gl_present_scaling scaling, const display_transform *display);
 /* The default framebuffer's back buffer as RGB floats, rows top first. */
 int gl_read_window(int width, int height, float *rgb, fog_error *err);
 /* One texel of colour attachment `attachment` of target at image pixel (x, y), row 0 at the

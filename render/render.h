@@ -8,6 +8,7 @@
 #include "transform/fog_error.h"
 #include "render/gl_context.h"
 #include "render/gl_util.h"
+#include "render/display.h"
 #include "render/gl_present.h"
 #include "render/terrain.h"
 #include "render/terrain_lod.h"

@@ -1,10 +1,23 @@
 #version 430 core
 // Shows a linear colour texture in a window (render/gl_present.h): scaled to the viewport,
-// nearest texel or the texture's bilinear filter, and the sRGB transfer function
-// (IEC 61966-2-1), as `fogpipe render` applies for PNG output.
+// nearest texel or the texture's bilinear filter, the display transform (render/display.h:
+// exposure, tone map) and the sRGB transfer function (IEC 61966-2-1), as `fogpipe render`
+// applies for PNG output.
 uniform sampler2D image;
 uniform vec2 image_per_pixel;  // image size / viewport size
 uniform int bilinear;          // 1: texture() at the pixel's centre; 0: its texel
+uniform float exposure_scale;  // 2^exposure
+uniform int tone_map;          // display_tone_map: 0 clamp, 1 ACES fit, 2 Reinhard
+
+// display_map in render/display.c
+vec3 display_map(vec3 linear) {
+  vec3 x = max(linear * exposure_scale, vec3(0.0));
+  if (tone_map == 1)  // Narkowicz's fit of the ACES filmic curve (2015)
+    x = (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
+  else if (tone_map == 2)  // Reinhard et al. 2002, eq. 3
+    x = x / (1.0 + x);
+  return min(x, vec3(1.0));
+}
 
 layout(location = 0) out vec4 colour;
 
@@ -23,5 +36,5 @@ void main() {
     ivec2 p = min(ivec2(gl_FragCoord.xy * image_per_pixel), size - 1);
     c = texelFetch(image, p, 0).rgb;
   }
-  colour = vec4(srgb_encode(c), 1.0);
+  colour = vec4(srgb_encode(display_map(c)), 1.0);
 }

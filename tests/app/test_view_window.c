@@ -148,8 +148,10 @@ int main(void) {
     printf("xvfb-run is not installed: the window comparison is not run\n");
   } else {
     /* The fogmap scene, and two other rungs of the model ladder. */
+    /* quadric_volumes: its tone_map = aces, the window's shader against render's C */
     static const char *const configs[] = {"configs/default.ini", "configs/rbf_fog_banks.ini",
-                                          "configs/vdb_plume_volume.ini"};
+                                          "configs/vdb_plume_volume.ini",
+                                          "configs/quadric_volumes.ini"};
     for (size_t k = 0; k < sizeof configs / sizeof configs[0]; k++)
       compare_window(bin, dir, configs[k], "", "", 0, true);
     /* The plume's sequence played: from its vdb_frame 48, three drawn frames advance two
