@@ -326,6 +326,22 @@ done:
   return status;
 }
 
+/* The library's ZIP compression, then the raw bytes wherever the stream did not come out
+ * smaller. A reader takes a chunk exactly as long as its raw bytes for raw; OpenEXR Core
+ * 3.1.5 (Debian 12's) kept a deflate stream of exactly that length, so such a chunk read
+ * back as garbage (5e29 in a 6x6 wavelet band; fixed upstream in 3.2). */
+static _Thread_local exr_result_t (*library_compress)(exr_encode_pipeline_t *encode);
+static exr_result_t compress_or_keep_raw(exr_encode_pipeline_t *encode) {
+  exr_result_t rv = library_compress(encode);
+  if (rv == EXR_ERR_SUCCESS && encode->compressed_buffer != encode->packed_buffer &&
+      encode->compressed_bytes >= encode->packed_bytes &&
+      encode->compressed_alloc_size >= encode->packed_bytes) {
+    memcpy(encode->compressed_buffer, encode->packed_buffer, encode->packed_bytes);
+    encode->compressed_bytes = encode->packed_bytes;
+  }
+  return rv;
+}
+
 static int by_name(const void *a, const void *b) {
   return strcmp(((const image_channel *)a)->name, ((const image_channel *)b)->name);
 }
@@ -425,6 +441,10 @@ int image_write_exr_with(const char *path, int width, int height, const image_ch
       initialised = 1;
       rv = exr_encoding_choose_default_routines(ctxt, part, &encode);
       if (rv != EXR_ERR_SUCCESS) break;
+      if (encode.compress_fn) {
+        library_compress = encode.compress_fn; /* the same routine for every ZIP part */
+        encode.compress_fn = compress_or_keep_raw;
+      }
     }
     rv = exr_encoding_run(ctxt, part, &encode);
   }
