@@ -222,11 +222,73 @@ struct pipeline {
 
 /* ---- the CPU stages (run by the worker, or inline when synchronous) ---- */
 
+/* The smallest side the simulation takes a fogmap at: even, and large enough for the
+ * solver's default turbulence scale (a quarter of the shorter side, > 4 cells). */
+#define MIN_SIM_SIDE 32
+/* The largest: the FFT solver's grids beyond it are too slow to be live. */
+#define MAX_SIM_SIDE 2048
+
+/* The map bilinear between its cells' centres (clamped at its edges) at (u, v) in cells. */
+static double bilinear_at(const fogmap *m, double u, double v) {
+  u = fmin(fmax(u, 0.0), m->width - 1.0), v = fmin(fmax(v, 0.0), m->height - 1.0);
+  const int x0 = (int)u, z0 = (int)v;
+  const int x1 = x0 + 1 < m->width ? x0 + 1 : x0, z1 = z0 + 1 < m->height ? z0 + 1 : z0;
+  const double fu = u - x0, fv = v - z0;
+  const float *d = m->density;
+  const size_t w = (size_t)m->width;
+  return (1 - fv) * ((1 - fu) * d[z0 * w + x0] + fu * d[z0 * w + x1]) +
+         fv * ((1 - fu) * d[z1 * w + x0] + fu * d[z1 * w + x1]);
+}
+
+/* A fogmap the solver cannot take at its own size, on a grid it can, covering the same
+ * world: k times finer (for odd sides or sides under MIN_SIM_SIDE; the map bilinear at the
+ * finer cells' centres, close to what its B-spline draws) or k times coarser (the mean of
+ * k x k cells, past MAX_SIM_SIDE; the last row and column padded with no fog), cell_size
+ * divided or multiplied by k. Resampled to a fixed 256^2 at the same cell size, a 9 x 9 map
+ * drew 28x too large. */
+static int fit_to_solver(const fogmap *loaded, double *cell_size, fogmap *base,
+                         fog_error *err) {
+  const int w = loaded->width, h = loaded->height, larger = w > h ? w : h;
+  int up = 1, down = 1;
+  if (larger > MAX_SIM_SIDE) {
+    down = (larger + MAX_SIM_SIDE - 1) / MAX_SIM_SIDE;
+  } else {
+    while ((w * up) % 2 || (h * up) % 2 || w * up < MIN_SIM_SIDE || h * up < MIN_SIM_SIDE) up++;
+  }
+  int nw = up * ((w + down - 1) / down), nh = up * ((h + down - 1) / down);
+  nw += nw % 2, nh += nh % 2;
+  if (nw < 8) nw = 8; /* a 1-cell-wide map made smaller still: at least the solver's 8 */
+  if (nh < 8) nh = 8;
+  fog_error serr = {0};
+  if (fogmap_create(base, nw, nh, &serr)) return fog_error_pass(err, &serr);
+  for (int z = 0; z < nh; z++)
+    for (int x = 0; x < nw; x++) {
+      if (up > 1) {
+        base->density[(size_t)z * nw + x] =
+            x < up * w && z < up * h
+                ? (float)bilinear_at(loaded, (x + 0.5) / up - 0.5, (z + 0.5) / up - 0.5)
+                : 0.0f; /* the padding to an even side */
+        continue;
+      }
+      double sum = 0.0;
+      int count = 0;
+      for (int dz = 0; dz < down; dz++)
+        for (int dx = 0; dx < down; dx++) {
+          const int sx = (x / up) * down + dx, sz = (z / up) * down + dz;
+          if (sx < w && sz < h) sum += loaded->density[(size_t)sz * w + sx];
+          count++;
+        }
+      base->density[(size_t)z * nw + x] = (float)(sum / count);
+    }
+  *cell_size = *cell_size / up * down;
+  return 0;
+}
+
 /* The base density the simulation starts from and relaxes toward: the config's fogmap
- * when it has one (its own size when the FFT solver accepts it: even, >= 8; otherwise
- * resampled to DEFAULT_GRID² by nearest cell), else Perlin turbulence (Zdrojewska 2004)
- * so the first frame already has structure. */
-static int make_base(const scene_config *cfg, fogmap *base, fog_error *err) {
+ * when it has one (its own size when the FFT solver accepts it; otherwise fit_to_solver,
+ * which also sets the pipeline's cell size), else Perlin turbulence (Zdrojewska 2004) so
+ * the first frame already has structure. */
+static int make_base(scene_config *cfg, fogmap *base, fog_error *err) {
   fog_error serr = {0};
   if (cfg->fog.fogmap[0]) {
     fogmap loaded = {0};
@@ -235,24 +297,16 @@ static int make_base(const scene_config *cfg, fogmap *base, fog_error *err) {
     if (fogmap_load(cfg->fog.fogmap, &desc, &loaded, &serr))
       return fog_error_wrap(err, &serr, "%.200s:%d: [fog] fogmap: ", cfg->path,
                             cfg->fog.fogmap_line);
-    bool usable = loaded.width % 2 == 0 && loaded.height % 2 == 0 && loaded.width >= 8 &&
-                  loaded.height >= 8 && loaded.width <= 2048 && loaded.height <= 2048;
+    bool usable = loaded.width % 2 == 0 && loaded.height % 2 == 0 &&
+                  loaded.width >= MIN_SIM_SIDE && loaded.height >= MIN_SIM_SIDE &&
+                  loaded.width <= MAX_SIM_SIDE && loaded.height <= MAX_SIM_SIDE;
     if (usable) {
       *base = loaded;
       return 0;
     }
-    const int n = DEFAULT_GRID;
-    if (fogmap_create(base, n, n, &serr)) {
-      fogmap_destroy(&loaded);
-      return fog_error_pass(err, &serr);
-    }
-    for (int z = 0; z < n; z++)
-      for (int x = 0; x < n; x++) {
-        int sx = (int)((x + 0.5) * loaded.width / n), sz = (int)((z + 0.5) * loaded.height / n);
-        base->density[z * n + x] = loaded.density[sz * loaded.width + sx];
-      }
+    int status = fit_to_solver(&loaded, &cfg->box.cell_size, base, err);
     fogmap_destroy(&loaded);
-    return 0;
+    return status;
   }
   const int n = DEFAULT_GRID;
   if (fogmap_create(base, n, n, &serr)) return fog_error_pass(err, &serr);

@@ -161,12 +161,14 @@ rbf_carrier *rbf_carrier_create(const rbf_carrier_desc *d, fog_error *err) {
   }
   c->desc = *d;
   c->desc.emitters = NULL;
-  /* square cells, the longer side `grid` of them; the sim wants even sides of 8 or more */
+  /* square cells, the longer side `grid` of them; the sim wants even sides, and its
+   * default turbulence (eddies a quarter of the shorter side) more than 4 cells: at least
+   * 18 (a 1000 x 200 terrain's 64 x 14 was refused; the flow reaches past the terrain) */
   c->cell = fmax(d->size[0], d->size[1]) / d->grid;
   int sides[2];
   for (int a = 0; a < 2; a++) {
     sides[a] = (int)ceil(d->size[a] / c->cell - 1e-9);
-    sides[a] = sides[a] < 8 ? 8 : sides[a] + sides[a] % 2;
+    sides[a] = sides[a] < 18 ? 18 : sides[a] + sides[a] % 2;
   }
   c->width = sides[0], c->height = sides[1];
   double longest = 0.0;

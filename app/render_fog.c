@@ -295,7 +295,11 @@ static int carried_puffs(render_fog *fog, const scene_config *cfg, double time, 
     rbf_carrier_destroy(fog->carrier);
     fog->carrier = NULL;
   }
-  if (!fog->carrier && !(fog->carrier = rbf_carrier_create(&desc, err))) return -1;
+  if (!fog->carrier && !(fog->carrier = rbf_carrier_create(&desc, err))) {
+    fog_error_wrap(err, err, "%.200s:%d: [fog] rbf_carrier: ", cfg->path,
+                   cfg->fog.rbf_carrier_line);
+    return -1;
+  }
   const int count = rbf_carrier_puffs(fog->carrier, time, fog->rbfs + fog->rbf_count,
                                       fog->rbf_capacity - fog->rbf_count, err);
   if (count < 0)

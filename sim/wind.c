@@ -37,14 +37,18 @@ static int check_desc(const wind_desc *desc, fog_error *err) {
     return 1;
   }
   const double scale = desc->scale, slope = desc->slope;
-  if (!(scale > 4.0) || !isfinite(slope) || !isfinite(desc->turbulence) ||
-      desc->turbulence < 0 || !isfinite(desc->drift_x) || !isfinite(desc->drift_z)) {
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "wind: turbulence scale %g must exceed 4 cells; turbulence %g must be >= 0; "
-             "drift and slope must be finite",
-             scale, desc->turbulence);
-    return 1;
-  }
+  /* one message per fault: a list of every rule blamed turbulence on a grid too small */
+  if (!(scale > 4.0))
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "wind: turbulence scale (its largest eddies) %g cells: expected more than "
+                    "4 (by default a quarter of the %dx%d grid's shorter side)", scale, w, h);
+  if (!isfinite(desc->turbulence) || desc->turbulence < 0)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "wind: turbulence %g: expected >= 0",
+                    desc->turbulence);
+  if (!isfinite(slope) || !isfinite(desc->drift_x) || !isfinite(desc->drift_z))
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "wind: drift (%g, %g) and slope %g must be finite", desc->drift_x,
+                    desc->drift_z, slope);
   return 0;
 }
 

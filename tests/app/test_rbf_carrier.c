@@ -210,6 +210,18 @@ int main(void) {
   check_closed_form("uniform drift", 3.0, -1.5, 1e-5);
   check_turbulent_steps();
   fog_error err = {0};
+  /* a long narrow domain (1000 x 200: 64 x 14 cells at RBF_CARRIER_GRID) was refused, its
+   * shorter side too small for the flow's default eddies; it is given 18 */
+  rbf_carrier_desc narrow = desc_with(2, 0, 5);
+  narrow.size[0] = 1000, narrow.size[1] = 200, narrow.origin[0] = -500;
+  rbf_carrier *c = rbf_carrier_create(&narrow, &err);
+  CHECK(c != NULL, "a 1000 x 200 domain: %s", err.message);
+  if (c) {
+    static fog_rbf puffs[CAP];
+    const int n = rbf_carrier_puffs(c, 1.5, puffs, CAP, &err);
+    CHECK(n == fog_rbf_emitter_count(&emitter), "narrow: %d puffs: %s", n, err.message);
+    rbf_carrier_destroy(c);
+  }
   rbf_carrier_desc bad = desc_with(0, 0, 0);
   bad.size[1] = 0.0;
   CHECK(rbf_carrier_create(&bad, &err) == NULL && strstr(err.message, "size"),
