@@ -524,7 +524,10 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
     fluid_sim_paint(c->sim, &r->strokes[s], &serr); /* bad strokes are dropped */
 
   double t0 = now_ms(), c0 = thread_cpu_ms();
-  for (int s = 0; s < p->steps_per_frame && c->sim; s++)
+  /* Frame n shows the fog after n - 1 frames of simulation, at time (n - 1)/fps as the
+   * lamps' and a VDB sequence's clocks: the first frame is the base itself. (It was one
+   * frame in, ahead of moving lamps; docs/farm.md.) */
+  for (int s = 0; c->steps > 0 && s < p->steps_per_frame && c->sim; s++)
     if (fluid_sim_step(c->sim, &serr)) return fog_error_wrap(err, &serr, "simulation: ");
   c->steps++;
   if (c->has_vdb &&
@@ -827,7 +830,7 @@ int pipeline_skip(pipeline *p, long steps, fog_error *err) {
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "pipeline_skip after the first frame");
   fog_error serr = {0};
   for (long s = 0; s < steps; s++) {
-    for (int k = 0; k < p->steps_per_frame && p->cpu.sim; k++)
+    for (int k = 0; p->cpu.steps > 0 && k < p->steps_per_frame && p->cpu.sim; k++)
       if (fluid_sim_step(p->cpu.sim, &serr)) return fog_error_wrap(err, &serr, "simulation: ");
     p->cpu.steps++;
   }
