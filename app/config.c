@@ -550,12 +550,14 @@ static int store_rbf_emitter(parse_state *s, const char *section, const char *ke
   fog_rbf_emitter e = {.position = {v[0], v[1], v[2]}, .rate = v[3], .lifetime = v[4],
                        .radius = v[5], .density = v[6], .spread = v[7], .diffusion = v[8],
                        .wind = {v[9], v[10], v[11]}, .seed = n == 13 ? (uint64_t)v[12] : 0};
-  int puffs = fog_rbf_emitter_count(&e);
+  /* in double: RATE x LIFETIME can pass INT_MAX (1e7 x 1e7), where the count's int cast
+   * is undefined and came out negative */
+  double puffs = ceil(e.rate * e.lifetime - 1e-9);
   for (int i = 0; i < cfg->fog.rbf_emitter_count; i++)
     puffs += fog_rbf_emitter_count(&cfg->fog.rbf_emitters[i]);
   if (puffs + SCENE_CONFIG_MAX_RBFS > FOG_MAX_RBFS)
-    return fail(s, section, key, "RATE x LIFETIME: %d puffs alive at once in all, expected at "
-                "most %d", puffs, FOG_MAX_RBFS - SCENE_CONFIG_MAX_RBFS);
+    return fail(s, section, key, "RATE x LIFETIME: %.6g puffs alive at once in all, expected "
+                "at most %d", puffs, FOG_MAX_RBFS - SCENE_CONFIG_MAX_RBFS);
   cfg->fog.rbf_emitters[cfg->fog.rbf_emitter_count++] = e;
   return 1;
 }

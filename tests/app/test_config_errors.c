@@ -158,6 +158,10 @@ int main(void) {
                "2: [fog] rbf_emitter: ", "SEED (1.5): expected a whole number");
   expect_error("[fog]\nrbf_emitter = 0 10 0 400 25 5 0.06 4 25 -7 1 0\n", "2: [fog] rbf_emitter: ",
                "RATE x LIFETIME: 10000 puffs alive at once in all, expected at most 3072");
+  /* 1e14 puffs: past INT_MAX, where an int count came out negative and was let through */
+  expect_error("[fog]\nrbf_emitter = 0 20 -50 1e7 1e7 5 0.01 1 0 0 0 0\n",
+               "2: [fog] rbf_emitter: ",
+               "RATE x LIFETIME: 1e+14 puffs alive at once in all, expected at most 3072");
   expect_error("[fog]\n\nmodel = volume\n", "3: [fog] model: ",
                "volume needs a 'vdb = FILE or PATTERN' line");
   {
