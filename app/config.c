@@ -1433,6 +1433,8 @@ void scene_config_live_software(scene_config *cfg) {
   cfg->lamp_method = scene_live_lamp_method(cfg->lamp_method);
 }
 
+uint64_t scene_config_sim_seed(const scene_config *cfg) { return (uint64_t)cfg->sim.seed + 1; }
+
 display_transform scene_config_display(const scene_config *cfg) {
   return (display_transform){.exposure = cfg->exposure,
                              .tone_map = (display_tone_map)cfg->tone_map};

@@ -301,6 +301,9 @@ scene_fog_shape scene_config_fog_shape(const scene_config *cfg);
  * the slab where the config has none. */
 fog_volume scene_config_fog_volume(const scene_config *cfg, int map_width, int map_height,
                                    const scene_fog_shape *shape);
+/* The solver's seed for [sim] seed: seed + 1, since the solver takes 0 for 1 (every config
+ * seed its own turbulence; the default 0 keeps the solver's default 1). */
+uint64_t scene_config_sim_seed(const scene_config *cfg);
 /* [render] exposure and tone_map. */
 display_transform scene_config_display(const scene_config *cfg);
 /* How the fog pass walks: [render] transmittance_cutoff, empty_skip, skip_below. */

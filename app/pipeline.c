@@ -310,7 +310,7 @@ static int make_base(scene_config *cfg, fogmap *base, fog_error *err) {
   }
   const int n = DEFAULT_GRID;
   if (fogmap_create(base, n, n, &serr)) return fog_error_pass(err, &serr);
-  perlin_fog_desc perlin = {.seed = cfg->sim.seed ? cfg->sim.seed : 7, .octaves = 4,
+  perlin_fog_desc perlin = {.seed = (uint64_t)cfg->sim.seed + 7, .octaves = 4,
                             .feature_size = n / 4.0f, .gain = 1.2f, .base = 0.05f};
   if (designed_fog_perlin(base, &perlin, &serr)) return fog_error_pass(err, &serr);
   return 0;
@@ -330,7 +330,7 @@ static fluid_sim_desc sim_desc(pipeline *p, const pipeline_params *params, const
   d.wind_drift_x = (float)(params->wind[0] / cell);
   d.wind_drift_z = (float)(params->wind[1] / cell);
   d.turbulence = (float)(params->turbulence / cell);
-  d.seed = p->config.sim.seed;
+  d.seed = scene_config_sim_seed(&p->config);
   d.emitters = c->emitters;
   d.emitter_count = c->emitter_count;
   d.relaxation = 0.05f;

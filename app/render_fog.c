@@ -290,7 +290,7 @@ static int carried_puffs(render_fog *fog, const scene_config *cfg, double time, 
       .size = {cfg->terrain.size[0], cfg->terrain.size[1]}, .grid = RBF_CARRIER_GRID,
       .step = RBF_CARRIER_STEP, .wind = {cfg->sim.wind[0], cfg->sim.wind[1]},
       .turbulence = cfg->sim.turbulence, .viscosity = cfg->sim.viscosity,
-      .seed = cfg->sim.seed};
+      .seed = scene_config_sim_seed(cfg)};
   if (fog->carrier && !rbf_carrier_serves(fog->carrier, &desc)) {
     rbf_carrier_destroy(fog->carrier);
     fog->carrier = NULL;
