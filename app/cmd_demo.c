@@ -82,6 +82,14 @@ static int record_instead(const headless_job *h, const char *reason) {
   /* Print where the frames are as an absolute path: the user may not know the cwd. */
   char absolute[PATH_MAX];
   if (realpath(folder, absolute)) snprintf(folder, sizeof folder, "%s", absolute);
+  /* out/demo holds the last demo's recording: an earlier, longer run's later frames would
+   * stay beside this one's */
+  recorder previous = {.name = "frame"};
+  snprintf(previous.folder, sizeof previous.folder, "%s", folder);
+  const int cleared = recorder_remove_frames(&previous);
+  if (cleared > 0)
+    printf("fogpipe demo: removed %d frame%s of an earlier demo from %s\n", cleared,
+           cleared == 1 ? "" : "s", folder);
   printf("fogpipe demo: %s: recording %d frame%s of %s headless into %s instead\n", reason,
          h->frames, h->frames == 1 ? "" : "s", h->config_path, folder);
   fflush(stdout);
@@ -143,7 +151,8 @@ static int parse_demo_options(int argc, char **argv, demo_options *o) {
       {.kind = CLI_INT, .name = "--frames", .value = "N", .target = &o->frames, .min = 1,
        .max = 1000000,
        .help = "frames before the screenshot (default 30; 1 for a model\n"
-               "without a simulation); without a display, frames recorded\n"
+               "without a simulation); without --screenshot, the window\n"
+               "closes after N frames; without a display, frames recorded\n"
                "(default " CLI_TEXT_OF(HEADLESS_FRAMES) ")"},
   };
   const cli_spec spec = {
@@ -232,6 +241,7 @@ int cmd_demo(int argc, char **argv) {
                                  .live_rung = o.live_rung, .hide_panel = o.hide_panel,
                                  .screenshot = o.screenshot,
                                  .frames = o.frames > 0 ? o.frames : (simulate ? 30 : 1),
+                                 .quit_after_frames = o.frames > 0 && !o.screenshot,
                                  .rung = -1, .window_failure = &window_failure,
                                  .note = simulate ? NULL : note});
   if (status != WINDOW_PROGRAM_NO_WINDOW) return status;

@@ -231,6 +231,21 @@ int recorder_check_other_frames(const recorder *rec, int first, int last, fog_er
   return status;
 }
 
+int recorder_remove_frames(const recorder *rec) {
+  DIR *dir = opendir(rec->folder);
+  if (!dir) return 0;
+  int removed = 0;
+  struct dirent *entry;
+  while ((entry = readdir(dir))) {
+    if (recorder_frame_number(rec, entry->d_name) <= 0) continue;
+    char path[1400];
+    snprintf(path, sizeof path, "%s/%s", rec->folder, entry->d_name);
+    removed += unlink(path) == 0;
+  }
+  closedir(dir);
+  return removed;
+}
+
 int recorder_remove_stale_temporaries(const recorder *rec, int first, int last) {
   DIR *dir = opendir(rec->folder);
   if (!dir) return 0;

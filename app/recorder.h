@@ -86,6 +86,12 @@ int recorder_complete_frames(const recorder *rec, int first, int last, fog_error
  * is not judged. */
 int recorder_check_other_frames(const recorder *rec, int first, int last, fog_error *err);
 
+/* Removes every frame file of rec's name from its folder (NAME.NNNN.exr; nothing else):
+ * for a folder that holds one throwaway recording at a time (the headless demo's
+ * out/demo), so that a shorter run does not leave an earlier run's later frames beside
+ * its own. Returns how many were removed. */
+int recorder_remove_frames(const recorder *rec);
+
 /* Removes the temporary files a killed run (SIGKILL, power loss) may have left beside
  * frames first..last: image_write_exr's ".NAME.NNNN.exr.tmp.XXXXXX". Only this range's: a
  * farm's other jobs write their own ranges into the folder at the same time, and their

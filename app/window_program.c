@@ -162,6 +162,7 @@ static int window_loop(gl_context *gl, window_shell *shell, window_source *src,
     if (o->screenshot && index + 1 >= o->frames) return save_screenshot(o, &f, err);
     gl_context_swap_buffers(gl);
     if (gl_util_check("window frame", err)) return 1;
+    if (o->quit_after_frames && index + 1 >= o->frames) return 0;
   }
   return 0;
 }

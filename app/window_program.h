@@ -40,6 +40,9 @@ typedef struct window_options {
    * from the second frame on (ImGui sizes a window on its first). */
   const char *screenshot;
   int frames;              /* frames before the screenshot, >= 1 */
+  /* Without a screenshot: close the window after `frames` frames (`demo --frames N`); false:
+   * run until it is closed. */
+  bool quit_after_frames;
   /* As held: `fogpipe fit` before the window opens (app/fit.h); the panel's rung menu, or [
    * and ], step through the rungs, 0 returns to the config's own fog. */
   bool fit;

@@ -4,7 +4,7 @@
  * recording goes to ./out/demo there). With --size, the recording has that size; with
  * --screenshot, the PNG holds the last frame's R, G, B encoded as sRGB (against the IEC
  * 61966-2-1 formula here, within half a level: the nearest); a window-only option is named
- * as having no effect. */
+ * as having no effect; a shorter run after a longer one leaves only its own frames. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
@@ -123,6 +123,15 @@ int main(void) {
     CHECK(record_hash_frame(path, &w, &h) != 0 && w > 0 && h > 0, "frame %s unreadable", path);
   }
   if (status != 0 || display_lines != 1) record_print_log(log);
+  /* A shorter run after it: out/demo holds its one frame, not the earlier run's frame 2
+   * beside it (they were left), and says what it removed. */
+  char *const again[] = {bin_abs, "demo", config, "--frames", "1", NULL};
+  status = run_demo(bin_abs, root, log, again);
+  CHECK(status == 0, "the second demo exited with %d", status);
+  others = record_count_files(out, &frame_files);
+  CHECK(frame_files == 1 && others == 0, "after a 1-frame run: %d frames and %d other files",
+        frame_files, others);
+  CHECK(log_says(log, "removed 2 frames of an earlier demo"), "the clearing is not said");
   check_screenshot(bin_abs, config, root);
   test_remove_tree(root);
   return test_finish("test_demo_headless");

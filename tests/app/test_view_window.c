@@ -13,6 +13,7 @@
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "sim/sim.h"
@@ -186,6 +187,16 @@ int main(void) {
       unlink(lamp_ini);
     }
     panel_shown_unless_hidden(bin, dir);
+    /* `demo --frames N` without --screenshot closes the window after N frames (it was
+     * dropped: the window ran until closed) */
+    char command[1024];
+    snprintf(command, sizeof command,
+             "timeout 120 xvfb-run -a -s '-screen 0 640x480x24' '%s' demo configs/default.ini "
+             "--frames 3 --size 160x90 > /dev/null 2>&1", bin);
+    const int status = system(command);
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0,
+          "demo --frames 3 without --screenshot: exit %d (124: still open after 120 s)",
+          WIFEXITED(status) ? WEXITSTATUS(status) : -1);
   }
   rmdir(dir);
   return test_finish("test_view_window");
