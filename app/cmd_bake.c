@@ -75,8 +75,10 @@ static volatile sig_atomic_t interrupted;
 static void on_interrupt(int signal_number) { interrupted = signal_number; }
 
 /* Simulates frame after frame and writes each density; *written counts the files. */
+/* Writes the frames; *cell_size receives the cell size of the simulated grid (the
+ * config's, or the pipeline's own for a map it simulates finer or coarser). */
 static int bake_frames(const bake_job *job, const scene_config *cfg, const char *pattern,
-                       int *written) {
+                       int *written, double *cell_size) {
   fog_error gerr = {0};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
   if (!gl) return cli_fail("bake", "%s", gerr.message);
@@ -87,6 +89,11 @@ static int bake_frames(const bake_job *job, const scene_config *cfg, const char 
                                                  .synchronous = true},
                                 &perr);
   int status = p ? 0 : cli_fail("bake", "%s", perr.message);
+  if (p) {
+    int cells_x, cells_z;
+    double origin_x, origin_z;
+    pipeline_fog_extent(p, &cells_x, &cells_z, &origin_x, &origin_z, cell_size);
+  }
   for (int n = 1; !status && n <= job->frames; n++) {
     if (interrupted) {
       status = 130;
@@ -150,7 +157,8 @@ int cmd_bake(int argc, char **argv) {
   sigaction(SIGTERM, &action, &old_term);
   interrupted = 0;
   int written = 0;
-  int status = bake_frames(&job, &cfg, staged, &written);
+  double cell_size = cfg.box.cell_size;
+  int status = bake_frames(&job, &cfg, staged, &written, &cell_size);
   /* The new bake.ini into the staging folder too (naming the frames where they will be):
    * a config that cannot be written fails here, with the old bake untouched. */
   char staged_ini[SCENE_CONFIG_PATH_MAX + 16];
@@ -159,6 +167,11 @@ int cmd_bake(int argc, char **argv) {
     /* The same scene with the frames as its fog (density_scale, box, profile as they are). */
     scene_config baked = cfg;
     baked.fog.fogmap[0] = '\0';
+    /* the frames' cells: a map simulated k times finer or coarser covers the same world */
+    if (cell_size != cfg.box.cell_size) {
+      baked.box.cell_size = cell_size;
+      baked.box.cell_size_set = true;
+    }
     snprintf(baked.fog.sequence, sizeof baked.fog.sequence, "%s", pattern);
     if (scene_config_write(&baked, staged_ini, &cerr))
       status = cli_fail("bake", "%s", cerr.message);

@@ -125,8 +125,9 @@ int cmd_record(int argc, char **argv) {
       .command = "record",
       .usage = "CONFIG --frames N --out DIR [options]",
       .about = "Renders the scene CONFIG headless (EGL, no window) for N frames and writes an\n"
-               "OpenEXR sequence DIR/frame.0001.exr ... (channels R,G,B,A half; transmittance,\n"
-               "depth, Z, inscatter.R/G/B float). The same config gives bit-identical pixels\n"
+               "OpenEXR sequence DIR/frame.0001.exr ... (channels R,G,B,A half, or float in a\n"
+               "frame brighter than half holds; transmittance, depth, Z, inscatter.R/G/B\n"
+               "float). The same config gives bit-identical pixels\n"
                "every run. Each frame is written to a temporary file and renamed, so no partial\n"
                "frame ever exists. Ctrl-C finishes the current frame and stops (exit status\n"
                "130); --resume goes on. A fogmap scene is simulated (or its [fog] vdb sequence\n"

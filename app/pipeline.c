@@ -125,6 +125,8 @@ typedef struct cpu_stages {
    * sequence holds its last frame (and the worker may run a frame ahead). */
   bool has_sequence;
   long sequence_count;
+  /* sim cells per fogmap cell: 1, or k (1/k) for a map simulated k times finer (coarser) */
+  double finer;
   fogmap sequence_map;
 } cpu_stages;
 
@@ -241,12 +243,14 @@ static double bilinear_at(const fogmap *m, double u, double v) {
 }
 
 /* A fogmap the solver cannot take at its own size, on a grid it can, covering the same
- * world: k times finer (for odd sides or sides under MIN_SIM_SIDE; the map bilinear at the
- * finer cells' centres, close to what its B-spline draws) or k times coarser (the mean of
- * k x k cells, past MAX_SIM_SIDE; the last row and column padded with no fog), cell_size
- * divided or multiplied by k. Resampled to a fixed 256^2 at the same cell size, a 9 x 9 map
- * drew 28x too large. */
-static int fit_to_solver(const fogmap *loaded, double *cell_size, fogmap *base,
+ * world: k times finer (odd sides or sides under MIN_SIM_SIDE; the map bilinear at the
+ * finer cells' centres, close to what its B-spline draws), as it is with an odd side padded
+ * by a row or column of no fog (where k times finer would pass MAX_SIM_SIDE), or k times
+ * coarser (the mean of k x k cells, past MAX_SIM_SIDE, padded likewise). cell_size is
+ * divided or multiplied by k and *finer receives the sim cells per map cell (k, 1, 1/k).
+ * A map that no such grid holds (4100 x 40: 14 cells across once coarse) is refused.
+ * (Resampled to a fixed 256^2 at the same cell size, a 9 x 9 map drew 28x too large.) */
+static int fit_to_solver(const fogmap *loaded, double *cell_size, double *finer, fogmap *base,
                          fog_error *err) {
   const int w = loaded->width, h = loaded->height, larger = w > h ? w : h;
   int up = 1, down = 1;
@@ -254,33 +258,34 @@ static int fit_to_solver(const fogmap *loaded, double *cell_size, fogmap *base,
     down = (larger + MAX_SIM_SIDE - 1) / MAX_SIM_SIDE;
   } else {
     while ((w * up) % 2 || (h * up) % 2 || w * up < MIN_SIM_SIDE || h * up < MIN_SIM_SIDE) up++;
+    if (larger * up > MAX_SIM_SIDE) up = 1; /* padded instead */
   }
   int nw = up * ((w + down - 1) / down), nh = up * ((h + down - 1) / down);
   nw += nw % 2, nh += nh % 2;
-  if (nw < 8) nw = 8; /* a 1-cell-wide map made smaller still: at least the solver's 8 */
-  if (nh < 8) nh = 8;
+  if (nw < MIN_SIM_SIDE || nh < MIN_SIM_SIDE || nw > MAX_SIM_SIDE || nh > MAX_SIM_SIDE)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "a %dx%d map cannot be simulated: no grid of %d to %d square cells a side "
+                    "covers it (render and view draw it as it is)", w, h, MIN_SIM_SIDE,
+                    MAX_SIM_SIDE);
   fog_error serr = {0};
   if (fogmap_create(base, nw, nh, &serr)) return fog_error_pass(err, &serr);
   for (int z = 0; z < nh; z++)
     for (int x = 0; x < nw; x++) {
       if (up > 1) {
         base->density[(size_t)z * nw + x] =
-            x < up * w && z < up * h
-                ? (float)bilinear_at(loaded, (x + 0.5) / up - 0.5, (z + 0.5) / up - 0.5)
-                : 0.0f; /* the padding to an even side */
+            (float)bilinear_at(loaded, (x + 0.5) / up - 0.5, (z + 0.5) / up - 0.5);
         continue;
       }
-      double sum = 0.0;
-      int count = 0;
+      double sum = 0.0; /* down x down cells, those past the map's edge no fog */
       for (int dz = 0; dz < down; dz++)
         for (int dx = 0; dx < down; dx++) {
-          const int sx = (x / up) * down + dx, sz = (z / up) * down + dz;
+          const int sx = x * down + dx, sz = z * down + dz;
           if (sx < w && sz < h) sum += loaded->density[(size_t)sz * w + sx];
-          count++;
         }
-      base->density[(size_t)z * nw + x] = (float)(sum / count);
+      base->density[(size_t)z * nw + x] = (float)(sum / ((double)down * down));
     }
   *cell_size = *cell_size / up * down;
+  *finer = (double)up / down;
   return 0;
 }
 
@@ -288,7 +293,8 @@ static int fit_to_solver(const fogmap *loaded, double *cell_size, fogmap *base,
  * when it has one (its own size when the FFT solver accepts it; otherwise fit_to_solver,
  * which also sets the pipeline's cell size), else Perlin turbulence (Zdrojewska 2004) so
  * the first frame already has structure. */
-static int make_base(scene_config *cfg, fogmap *base, fog_error *err) {
+static int make_base(scene_config *cfg, fogmap *base, double *finer, fog_error *err) {
+  *finer = 1.0;
   fog_error serr = {0};
   if (cfg->fog.fogmap[0]) {
     fogmap loaded = {0};
@@ -304,9 +310,11 @@ static int make_base(scene_config *cfg, fogmap *base, fog_error *err) {
       *base = loaded;
       return 0;
     }
-    int status = fit_to_solver(&loaded, &cfg->box.cell_size, base, err);
+    int status = fit_to_solver(&loaded, &cfg->box.cell_size, finer, base, &serr);
     fogmap_destroy(&loaded);
-    return status;
+    return status ? fog_error_wrap(err, &serr, "%.200s:%d: [fog] fogmap: ", cfg->path,
+                                   cfg->fog.fogmap_line)
+                  : 0;
   }
   const int n = DEFAULT_GRID;
   if (fogmap_create(base, n, n, &serr)) return fog_error_pass(err, &serr);
@@ -325,7 +333,9 @@ static fluid_sim_desc sim_desc(pipeline *p, const pipeline_params *params, const
   /* The turbulence's shape (largest eddies, slope, coupling) is the solver's default. */
   fluid_sim_desc d = fluid_sim_desc_default(c->base.width, c->base.height);
   d.dt = (float)(p->frame_seconds / p->steps_per_frame);
-  d.viscosity = params->viscosity;
+  /* the config's viscosity is in map cells^2 a second; a map simulated k times finer has
+   * k^2 times as many sim cells^2 */
+  d.viscosity = (float)(params->viscosity * c->finer * c->finer);
   /* The config's wind is in world units per second; the sim's in cells per second. */
   d.wind_drift_x = (float)(params->wind[0] / cell);
   d.wind_drift_z = (float)(params->wind[1] / cell);
@@ -706,6 +716,7 @@ pipeline *pipeline_create(const pipeline_desc *desc, fog_error *err) {
   pthread_cond_init(&p->changed, NULL);
 
   cpu_stages *c = &p->cpu;
+  c->finer = 1.0; /* the config's cells, unless make_base simulates the map finer */
   if (p->config.fog.sequence[0]) {
     /* A bake: frame 1 gives the grid's size, the files are read as the frames come. */
     c->has_sequence = true;
@@ -738,7 +749,7 @@ pipeline *pipeline_create(const pipeline_desc *desc, fog_error *err) {
       pipeline_destroy(p);
       return NULL;
     }
-  } else if (make_base(&p->config, &c->base, err)) {
+  } else if (make_base(&p->config, &c->base, &c->finer, err)) {
     pipeline_destroy(p);
     return NULL;
   }

@@ -50,9 +50,10 @@ int recorder_make_folders(const char *path, char *created, size_t created_size, 
   return 0;
 }
 
-/* Bytes of one uncompressed frame: 4 half channels + 6 float channels per pixel. */
+/* Bytes of one uncompressed frame at most: 10 float channels per pixel (R G B A go as
+ * half unless a value passes half's range, frame_exr_channels). */
 static double frame_bytes(int width, int height) {
-  return (double)width * (double)height * (4 * 2 + 6 * 4);
+  return (double)width * (double)height * (10 * 4);
 }
 
 int recorder_open(recorder *rec, const recorder_desc *desc, fog_error *err) {

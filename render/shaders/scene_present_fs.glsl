@@ -11,7 +11,8 @@ uniform int tone_map;          // display_tone_map: 0 clamp, 1 ACES fit, 2 Reinh
 
 // display_map in render/display.c
 vec3 display_map(vec3 linear) {
-  vec3 x = max(linear * exposure_scale, vec3(0.0));
+  // NaN and negative to 0, as in C (max() leaves NaN undefined)
+  vec3 x = mix(max(linear * exposure_scale, vec3(0.0)), vec3(0.0), isnan(linear));
   if (tone_map == 1)  // Narkowicz's fit of the ACES filmic curve (2015)
     x = (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
   else if (tone_map == 2)  // Reinhard et al. 2002, eq. 3

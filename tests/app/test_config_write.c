@@ -57,6 +57,18 @@ int main(void) {
     CHECK(scene_config_load(first, &b, &err) == 0, "%s written: %s", path, err.message);
     CHECK(scene_config_fingerprint(&a) == scene_config_fingerprint(&b),
           "%s: the written config is another scene", path);
+    /* the display keys, which the fingerprint leaves out, written too */
+    CHECK(a.exposure == b.exposure && a.tone_map == b.tone_map,
+          "%s: exposure or tone_map lost in writing", path);
+    /* ... left out: another exposure or tone map is the same scene for --resume; another
+     * image size is not */
+    scene_config shown = a;
+    shown.exposure += 1.5, shown.tone_map = (shown.tone_map + 1) % 3;
+    CHECK(scene_config_fingerprint(&shown) == scene_config_fingerprint(&a),
+          "%s: the display transform changes the fingerprint", path);
+    shown.width += 2;
+    CHECK(scene_config_fingerprint(&shown) != scene_config_fingerprint(&a),
+          "%s: the image size does not change the fingerprint", path);
     CHECK(scene_config_write(&b, second, &err) == 0, "%s: second write: %s", path, err.message);
     CHECK(scene_config_load(second, &c, &err) == 0 &&
               scene_config_fingerprint(&c) == scene_config_fingerprint(&a),

@@ -11,7 +11,7 @@
  *   - a fan of neighbouring rays (pixels) across one edge: the error varies smoothly from
  *     ray to ray with the line, as it does not with V at the pieces' nodes, whose places
  *     follow the fog's texel planes (the jagged bands of configs/perlin_fog.ini's hill
- *     shadows): the fan's total variation of the error is checked smaller. */
+ *     shadows): the fan's total variation of the error is checked 5x smaller (10x measured). */
 #include <math.h>
 #include <stdio.h>
 
@@ -122,7 +122,7 @@ static void smooth_across_pixels(const setup *s) {
   printf("a fan of 240 rays across one edge: the error's total variation %.2e with V at the "
          "nodes (worst %.2e), %.2e with the line of 64 points (worst %.2e)\n", total[0],
          worst[0], total[1], worst[1]);
-  CHECK(total[1] < 0.5 * total[0], "the line's error is no smoother across the fan: %.3e vs "
+  CHECK(total[1] < 0.2 * total[0], "the line's error is no smoother across the fan: %.3e vs "
         "%.3e", total[1], total[0]);
 }
 
