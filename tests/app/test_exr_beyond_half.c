@@ -15,6 +15,7 @@
 #include "app/frame_exr.h"
 #include "exr_channel_util.h"
 #include "record_util.h"
+#include "test_bin.h"
 
 enum { W = 64, H = 36 };
 
@@ -40,12 +41,7 @@ static void channels_rule(void) {
 static int run(const char *args, char *output, size_t size) {
   char command[2048];
   snprintf(command, sizeof command, "%s %s 2>&1", record_bin(), args);
-  FILE *p = popen(command, "r");
-  if (!p) return -1;
-  size_t n = fread(output, 1, size - 1, p);
-  output[n] = '\0';
-  int status = pclose(p);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return test_run_output(command, output, size);
 }
 
 static double largest(const float *v) {

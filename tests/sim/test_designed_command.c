@@ -12,6 +12,7 @@
 
 #include "sim/designed_fog.h"
 #include "sim/fogmap.h"
+#include "test_bin.h"
 #include "test_util.h"
 
 static char folder[64];
@@ -21,12 +22,7 @@ static const char *bin;
 static int run_design(const char *args, char *output, size_t size) {
   char command[2048];
   snprintf(command, sizeof command, "'%s' design %s 2>&1", bin, args);
-  FILE *p = popen(command, "r");
-  if (!p) return -1;
-  size_t n = fread(output, 1, size - 1, p);
-  output[n] = '\0';
-  int status = pclose(p);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return test_run_output(command, output, size);
 }
 
 static void test_output_matches_library(void) {
