@@ -247,7 +247,7 @@ static int write_scene(const fit_result *r, const fit_rung *g, const char *out) 
 }
 
 /* An output (the scene, the fogmap beside it, the chart and its CSV) that is one of the
- * fit's inputs (the INPUT, the scene's fogmap or heightmap): refused (2) before the fit
+ * fit's inputs (the INPUT, the files its scene reads): refused (2) before the fit
  * instead of replacing it at its end. */
 static int refuse_output_input(const fit_options *o, const scene_config *cfg) {
   char beside[PATH_MAX] = "", csv[PATH_MAX] = "";
@@ -257,17 +257,13 @@ static int refuse_output_input(const fit_options *o, const scene_config *cfg) {
   const struct {
     const char *option, *path;
   } outputs[] = {{"--out", o->out}, {"--out", beside}, {"--chart", o->chart}, {"--chart", csv}};
-  const struct {
-    const char *path, *what;
-  } inputs[] = {{o->input, "the INPUT"},
-                {cfg->fog.fogmap, "the scene's [fog] fogmap"},
-                {cfg->terrain.heightmap, "the scene's [terrain] heightmap"}};
+  /* INPUT first (it is also the scene's config: the message names what was given), then
+   * what the scene reads, as render, record and view guard theirs */
   for (size_t i = 0; i < sizeof outputs / sizeof *outputs; i++) {
     if (!outputs[i].path || !outputs[i].path[0]) continue;
-    for (size_t j = 0; j < sizeof inputs / sizeof *inputs; j++)
-      if (cli_output_not_input("fit", outputs[i].option, outputs[i].path, inputs[j].path,
-                               inputs[j].what))
-        return 2;
+    if (cli_output_not_input("fit", outputs[i].option, outputs[i].path, o->input, "the INPUT") ||
+        cli_output_not_scene_input("fit", outputs[i].option, outputs[i].path, cfg))
+      return 2;
   }
   return 0;
 }

@@ -149,7 +149,7 @@ int main(void) {
   write_file(same, "[fog]\nmodel = fogmap\nfogmap = other.fogmap.exr\n");
   snprintf(args, sizeof args, "'%s' --tolerance 0.5 --out '%s/other.ini' %s", same, dir, fast);
   status = fit(bin, args, out, err, sizeof out);
-  CHECK(status == 2 && strstr(err, "is the scene's [fog] fogmap"),
+  CHECK(status == 2 && strstr(err, "is the config's [fog] fogmap"),
         "--out beside the scene's fogmap: exit %d, %s%s", status, out, err);
 
   char command[512];
