@@ -47,7 +47,8 @@ static int write_png(const char *out, int width, int height, const float *rgba,
   float *rgb = malloc(pixels * 3 * sizeof(float));
   if (!rgb) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
   for (size_t k = 0; k < pixels; k++)
-    for (int c = 0; c < 3; c++) rgb[3 * k + c] = display_map(display, rgba[4 * k + c]);
+    for (int c = 0; c < 3; c++) rgb[3 * k + c] = rgba[4 * k + c];
+  display_map_values(display, rgb, rgb, 3 * pixels);
   int status = image_write_png_srgb(out, width, height, 3, rgb, err);
   free(rgb);
   return status;

@@ -7,12 +7,11 @@ display_transform display_transform_default(void) {
   return (display_transform){.exposure = 0.0, .tone_map = DISPLAY_CLAMP};
 }
 
-float display_map(const display_transform *t, float linear) {
-  /* exp2(0) is 1 exactly: at 0 stops the clamp gives today's images bit for bit */
-  const float x = linear * (float)exp2(t->exposure);
+/* x already scaled by 2^exposure. */
+static float tone_map(display_tone_map curve, float x) {
   if (!(x > 0.0f)) return 0.0f; /* negative, zero, NaN */
   float y;
-  switch (t->tone_map) {
+  switch (curve) {
     case DISPLAY_ACES:
       /* K. Narkowicz, "ACES Filmic Tone Mapping Curve" (2015): x(ax + b) / (x(cx + d) + e) */
       y = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
@@ -27,6 +26,12 @@ float display_map(const display_transform *t, float linear) {
   return y < 1.0f ? y : 1.0f; /* inf in: 1 */
 }
 
+float display_map(const display_transform *t, float linear) {
+  /* exp2(0) is 1 exactly: at 0 stops the clamp gives today's images bit for bit */
+  return tone_map(t->tone_map, linear * (float)exp2(t->exposure));
+}
+
 void display_map_values(const display_transform *t, const float *linear, float *out, size_t n) {
-  for (size_t i = 0; i < n; i++) out[i] = display_map(t, linear[i]);
+  const float scale = (float)exp2(t->exposure); /* once, not per value */
+  for (size_t i = 0; i < n; i++) out[i] = tone_map(t->tone_map, linear[i] * scale);
 }
