@@ -53,7 +53,8 @@ static int last_frame_png(const headless_job *h, const char *folder) {
   if (!status) {
     const display_transform display = scene_config_display(&cfg);
     display_map_values(&display, rgb, rgb, 3 * (size_t)h->width * (size_t)h->height);
-    status = image_write_png_srgb(h->screenshot, h->width, h->height, 3, rgb, &err);
+    status = image_write_png_srgb(h->screenshot, h->width, h->height, 3, rgb,
+                                  display.dither ? SRGB8_DITHER : SRGB8_ROUND, &err);
   }
   free(rgb);
   if (status) {

@@ -49,7 +49,8 @@ static int write_png(const char *out, int width, int height, const float *rgba,
   for (size_t k = 0; k < pixels; k++)
     for (int c = 0; c < 3; c++) rgb[3 * k + c] = rgba[4 * k + c];
   display_map_values(display, rgb, rgb, 3 * pixels);
-  int status = image_write_png_srgb(out, width, height, 3, rgb, err);
+  int status = image_write_png_srgb(out, width, height, 3, rgb,
+                                    display->dither ? SRGB8_DITHER : SRGB8_ROUND, err);
   free(rgb);
   return status;
 }

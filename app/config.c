@@ -173,6 +173,7 @@ static const key_spec keys[] = {
     {"render", "skip_below", V_DOUBLE, F(skip_below), 0, MAX_EXTINCTION, NULL, 0, 0},
     {"render", "exposure", V_DOUBLE, F(exposure), -20, 20, NULL, 0, 0},
     {"render", "tone_map", V_ENUM, F(tone_map), 0, 0, "clamp|aces|reinhard", 0, 0},
+    {"render", "dither", V_ENUM, F(dither), 0, 0, "off|on", 0, 0},
     {"sim", "wind", V_DOUBLE2, F(sim.wind), -WORLD, WORLD, NULL, 0, 0},
     {"sim", "turbulence", V_DOUBLE, F(sim.turbulence), 0, WORLD, NULL, 0, 0},
     {"sim", "viscosity", V_DOUBLE, F(sim.viscosity), 0, WORLD, NULL, 0, 0},
@@ -213,6 +214,7 @@ void scene_config_init(scene_config *cfg) {
       .skip_below = 0.0,
       .exposure = 0.0,
       .tone_map = DISPLAY_CLAMP,
+      .dither = 1,
   };
   memcpy(cfg->fog.perlin_wind, perlin.wind, sizeof perlin.wind); /* a drift per octave */
 }
@@ -1437,7 +1439,8 @@ uint64_t scene_config_sim_seed(const scene_config *cfg) { return (uint64_t)cfg->
 
 display_transform scene_config_display(const scene_config *cfg) {
   return (display_transform){.exposure = cfg->exposure,
-                             .tone_map = (display_tone_map)cfg->tone_map};
+                             .tone_map = (display_tone_map)cfg->tone_map,
+                             .dither = cfg->dither != 0};
 }
 
 fog_walk_settings scene_config_walk(const scene_config *cfg) {
@@ -1612,7 +1615,7 @@ uint64_t scene_config_fingerprint(const scene_config *cfg) {
     const key_spec *k = &keys[i];
     /* the display transform changes no EXR pixel: a preview's exposure may change between
      * a run and its --resume or a farm's ranges */
-    if (k->offset == F(exposure) || k->offset == F(tone_map)) continue;
+    if (k->offset == F(exposure) || k->offset == F(tone_map) || k->offset == F(dither)) continue;
     const char *field = (const char *)cfg + k->offset;
     h = fnv(h, k->section, strlen(k->section) + 1);
     h = fnv(h, k->key, strlen(k->key) + 1);

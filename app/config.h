@@ -235,9 +235,10 @@ typedef struct scene_config {
   int empty_skip;
   double skip_below;
   /* [render] the display transform of PNGs, the window and the preview video
-   * (render/display.h): exposure in stops, tone_map a display_tone_map */
+   * (render/display.h): exposure in stops, tone_map a display_tone_map, dither 1 on */
   double exposure;
   int tone_map;
+  int dither;
   scene_sim_config sim;
 } scene_config;
 
@@ -304,7 +305,7 @@ fog_volume scene_config_fog_volume(const scene_config *cfg, int map_width, int m
 /* The solver's seed for [sim] seed: seed + 1, since the solver takes 0 for 1 (every config
  * seed its own turbulence; the default 0 keeps the solver's default 1). */
 uint64_t scene_config_sim_seed(const scene_config *cfg);
-/* [render] exposure and tone_map. */
+/* [render] exposure, tone_map and dither. */
 display_transform scene_config_display(const scene_config *cfg);
 /* How the fog pass walks: [render] transmittance_cutoff, empty_skip, skip_below. */
 fog_walk_settings scene_config_walk(const scene_config *cfg);

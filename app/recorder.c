@@ -345,12 +345,12 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   size_t n = (size_t)w * (size_t)h;
   uint8_t *rgb = malloc(n * 3);
   float *linear = malloc(n * 3 * sizeof *linear);
-  if (!rgb || !linear) {
-    free(rgb), free(linear);
+  srgb8_encoder *encoder = malloc(sizeof *encoder); /* linear frames -> 8-bit sRGB video */
+  if (!rgb || !linear || !encoder) {
+    free(rgb), free(linear), free(encoder);
     return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the preview");
   }
-  srgb8_encoder encoder; /* linear frames -> 8-bit sRGB video */
-  srgb8_encoder_init(&encoder);
+  srgb8_encoder_init(encoder);
   struct sigaction ignore = {.sa_handler = SIG_IGN}, previous;
   sigaction(SIGPIPE, &ignore, &previous); /* a dying ffmpeg must not kill us */
   FILE *pipe = popen(cmd, "w");
@@ -368,7 +368,11 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
       break;
     }
     display_map_values(display, linear, linear, 3 * n);
-    for (size_t i = 0; i < 3 * n; i++) rgb[i] = srgb8_encode(&encoder, linear[i]);
+    for (size_t i = 0; i < 3 * n; i++) {
+      const int x = (int)(i / 3 % (size_t)w), y = (int)(i / 3 / (size_t)w);
+      rgb[i] = display->dither ? srgb8_encode_dithered(encoder, linear[i], x, y)
+                               : srgb8_encode(encoder, linear[i]);
+    }
     if (!status && fwrite(rgb, 3, n, pipe) != n)
       status = fog_fail(err, FOG_ERR_FILE_ACCESS,
                         "preview: ffmpeg stopped reading frames (see its message above)");
@@ -390,6 +394,7 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   sigaction(SIGPIPE, &previous, NULL);
   free(rgb);
   free(linear);
+  free(encoder);
   if (!status && stop && *stop) /* during ffmpeg's last writes */
     status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: stopped while ffmpeg finished");
   if (!status && rename(temp, video_path) != 0)

@@ -388,7 +388,7 @@ int bench_light(int argc, char **argv) {
                in_scene == ROW_LIVE ? "ours_live" : in_scene == ROW_NEAR_CONVERGED ? "ours_96_64"
                                                                                    : "froxels_1x");
       if (gl_target_read(&out, 0, 3, inscatter, &rerr) ||
-          image_write_png_srgb(path, W, H, 3, inscatter, &rerr))
+          image_write_png_srgb(path, W, H, 3, inscatter, SRGB8_DITHER, &rerr))
         goto done;
     }
   }

@@ -4,7 +4,7 @@
 #include <math.h>
 
 display_transform display_transform_default(void) {
-  return (display_transform){.exposure = 0.0, .tone_map = DISPLAY_CLAMP};
+  return (display_transform){.exposure = 0.0, .tone_map = DISPLAY_CLAMP, .dither = true};
 }
 
 /* x already scaled by 2^exposure. */

@@ -8,6 +8,7 @@
 #ifndef FOGPIPE_RENDER_DISPLAY_H
 #define FOGPIPE_RENDER_DISPLAY_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 typedef enum display_tone_map {
@@ -19,9 +20,12 @@ typedef enum display_tone_map {
 typedef struct display_transform {
   double exposure; /* stops: the colour is scaled by 2^exposure before the tone map */
   display_tone_map tone_map;
+  /* 8-bit output (PNG, window, preview video) dithered with the 8 x 8 Bayer matrix
+   * (sim/image.h: srgb8_encode_dithered) rather than rounded: no bands in dark gradients */
+  bool dither;
 } display_transform;
 
-/* 0 stops, clamp: the linear colour as it is, clipped to [0, 1]. */
+/* 0 stops, clamp, dithered: the linear colour as it is, clipped to [0, 1]. */
 display_transform display_transform_default(void);
 
 /* One channel's display value in [0, 1] (negative and NaN input give 0). */

@@ -7,7 +7,7 @@
 
 struct gl_presenter {
   GLuint program;
-  GLint u_image, u_image_per_pixel, u_bilinear, u_exposure_scale, u_tone_map;
+  GLint u_image, u_image_per_pixel, u_bilinear, u_exposure_scale, u_tone_map, u_dither, u_top_row;
 };
 
 gl_presenter *gl_presenter_create(fog_error *err) {
@@ -26,6 +26,8 @@ gl_presenter *gl_presenter_create(fog_error *err) {
   p->u_bilinear = glGetUniformLocation(p->program, "bilinear");
   p->u_exposure_scale = glGetUniformLocation(p->program, "exposure_scale");
   p->u_tone_map = glGetUniformLocation(p->program, "tone_map");
+  p->u_dither = glGetUniformLocation(p->program, "dither");
+  p->u_top_row = glGetUniformLocation(p->program, "top_row");
   return p;
 }
 
@@ -49,6 +51,8 @@ void gl_presenter_draw(gl_presenter *p, const gl_target *source, int width, int 
   glUniform1i(p->u_bilinear, scaling == GL_PRESENT_BILINEAR);
   glUniform1f(p->u_exposure_scale, (float)exp2(display->exposure)); /* as display_map */
   glUniform1i(p->u_tone_map, (int)display->tone_map);
+  glUniform1i(p->u_dither, display->dither);
+  glUniform1i(p->u_top_row, height - 1);
   glBindVertexArray(gl_util_empty_vao());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);

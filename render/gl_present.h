@@ -1,6 +1,7 @@
 /* Window output: a linear-colour texture drawn over the whole default framebuffer with the
- * display transform (render/display.h) and the sRGB transfer function (IEC 61966-2-1), as `fogpipe render` encodes its PNGs, and the
- * window read back for screenshots. The app draws windows through this and never calls GL
+ * display transform (render/display.h), the sRGB transfer function (IEC 61966-2-1) and its
+ * 8-bit dither, as `fogpipe render` encodes its PNGs, and the window read back for
+ * screenshots. The app draws windows through this and never calls GL
  * itself.
  *
  *   gl_presenter_create()   compiles the program (a current GL context)

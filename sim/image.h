@@ -66,18 +66,33 @@ int image_write_png(const char *path, int width, int height, int channels, const
  * lround(255 srgb(x)) of the formula in double: threshold[k] is the smallest float whose
  * encoding is k; start[] holds the encoding at the bottom of each float interval with the
  * same top 16 bits (exponent and 7 mantissa bits, 0.8 % wide, where the encoding rises by
- * at most one level), so encoding is a lookup and one comparison instead of a pow. */
+ * at most one level), so encoding is a lookup and one comparison instead of a pow.
+ *
+ * Dithered, the pixel (x, y) adds the 8 x 8 Bayer matrix's (b + 1/2)/64 - 1/2 to
+ * 255 srgb(x) before rounding: floor(255 srgb(x) + (b + 1/2)/64), exactly, by a threshold
+ * table per level b. A smooth gradient then averages to its true value over each 8 x 8
+ * tile (within 1/128 of a level) instead of stepping in bands a level apart, which dark
+ * fog glows show at 8 bits; black, white and values on a level stay as they are. */
+enum { SRGB8_DITHER_LEVELS = 64 };
 typedef struct srgb8_encoder {
   float threshold[257];          /* threshold[0] unused; threshold[256] = +infinity */
   unsigned char start[0x3F81];   /* indexed by the float's bits >> 16, for 0 <= x <= 1 */
+  /* dither[b][k]: the smallest float whose dithered encoding at level b is >= k */
+  float dither[SRGB8_DITHER_LEVELS][257];
 } srgb8_encoder;
 void srgb8_encoder_init(srgb8_encoder *encoder);
 unsigned char srgb8_encode(const srgb8_encoder *encoder, float linear);
+/* The Bayer level b in [0, 64) of pixel (x, y), x and y >= 0, the top row y = 0. */
+int srgb8_dither_level(int x, int y);
+unsigned char srgb8_encode_dithered(const srgb8_encoder *encoder, float linear, int x, int y);
+
+/* How 8-bit sRGB output quantises: rounding each value, or ordered dithering. */
+typedef enum srgb8_quantise { SRGB8_ROUND = 0, SRGB8_DITHER } srgb8_quantise;
 
 /* Writes an 8-bit sRGB PNG (3 RGB or 4 RGBA: alpha stays linear) from linear interleaved
  * floats (clamped to [0, 1]), top row first; temporary file + rename. NaN or infinite
  * values are refused as image_write_exr refuses them (clamping would hide them). */
 int image_write_png_srgb(const char *path, int width, int height, int channels, const float *linear,
-                         fog_error *err);
+                         srgb8_quantise quantise, fog_error *err);
 
 #endif

@@ -54,11 +54,11 @@ int png_write_samples(const char *path, int width, int height, int channels, int
                       const void *samples, fog_error *err);
 
 /* Writes an 8-bit PNG of interleaved float values: each clamped to [0, 1] and rounded
- * (NaN -> 0), or with srgb (not NULL) sRGB-encoded by it, alpha (the 4th of 4 channels)
- * staying linear. The caller checked the channels; the size is checked here. */
+ * (NaN -> 0), or with srgb (not NULL) sRGB-encoded by it (dithered or rounded by
+ * quantise), alpha (the 4th of 4 channels) staying linear. The caller checked the channels; the size is checked here. */
 struct srgb8_encoder;
 int png_write_floats(const char *path, int width, int height, int channels, const float *values,
-                     const struct srgb8_encoder *srgb, fog_error *err);
+                     const struct srgb8_encoder *srgb, srgb8_quantise quantise, fog_error *err);
 
 /* Fails naming the first pixel (x, y) of an interleaved image (stride values per pixel, the
  * channel's value first) that is NaN or whose magnitude exceeds limit (FLT_MAX: infinite;

@@ -199,11 +199,11 @@ int image_write_png(const char *path, int width, int height, int channels, const
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                     "%s: PNG writing takes 1 (grey), 3 (RGB) or 4 (RGBA) channels, not %d", path,
                     channels);
-  return png_write_floats(path, width, height, channels, interleaved, NULL, err);
+  return png_write_floats(path, width, height, channels, interleaved, NULL, SRGB8_ROUND, err);
 }
 
 int png_write_floats(const char *path, int width, int height, int channels, const float *values,
-                     const srgb8_encoder *srgb, fog_error *err) {
+                     const srgb8_encoder *srgb, srgb8_quantise quantise, fog_error *err) {
   if (width <= 0 || height <= 0)
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: image size %dx%d: both must be positive",
                     path, width, height);
@@ -215,7 +215,11 @@ int png_write_floats(const char *path, int width, int height, int channels, cons
   for (size_t i = 0; i < count; i++) {
     float v = values[i];
     if (srgb && !(channels == 4 && i % 4 == 3)) { /* colour; alpha stays linear */
-      samples[i] = srgb8_encode(srgb, v);
+      const size_t pixel = i / (size_t)channels;
+      samples[i] = quantise == SRGB8_DITHER
+                       ? srgb8_encode_dithered(srgb, v, (int)(pixel % (size_t)width),
+                                               (int)(pixel / (size_t)width))
+                       : srgb8_encode(srgb, v);
     } else {
       v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; /* clamps, and NaN -> 0 */
       samples[i] = (uint8_t)(v * 255.0f + 0.5f);   /* v in [0, 1]: rounds to nearest */

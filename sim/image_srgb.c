@@ -47,6 +47,19 @@ void srgb8_encoder_init(srgb8_encoder *e) {
     memcpy(&x, &bits, sizeof x);
     e->start[i] = search(e, x);
   }
+  for (int b = 0; b < SRGB8_DITHER_LEVELS; b++) {
+    const double offset = (b + 0.5) / SRGB8_DITHER_LEVELS;
+    e->dither[b][0] = 0.0f;
+    for (int k = 1; k < 256; k++) {
+      /* the smallest float x with floor(255 srgb(x) + offset) >= k, as threshold[] above */
+      float x = (float)linear_from_srgb((k - offset) / 255.0);
+      while (x > 0 && floor(255.0 * srgb_from_linear(nextafterf(x, 0.0f)) + offset) >= k)
+        x = nextafterf(x, 0.0f);
+      while (floor(255.0 * srgb_from_linear(x) + offset) < k) x = nextafterf(x, 2.0f);
+      e->dither[b][k] = x;
+    }
+    e->dither[b][256] = INFINITY;
+  }
 }
 
 unsigned char srgb8_encode(const srgb8_encoder *e, float linear) {
@@ -56,8 +69,27 @@ unsigned char srgb8_encode(const srgb8_encoder *e, float linear) {
   return (unsigned char)(k + (e->threshold[k + 1] <= linear)); /* at most one level up */
 }
 
+int srgb8_dither_level(int x, int y) {
+  /* Bayer's recursive matrix M_2n = [4M_n, 4M_n + 2; 4M_n + 3, 4M_n + 1]: the coordinates'
+   * low bits pick the level's high bits, bit-interleaving x ^ y with y */
+  int level = 0;
+  for (int bit = 0; bit < 3; bit++)
+    level = level << 2 | ((x ^ y) >> bit & 1) << 1 | (y >> bit & 1);
+  return level;
+}
+
+unsigned char srgb8_encode_dithered(const srgb8_encoder *e, float linear, int x, int y) {
+  if (!(linear > 0.0f)) return 0; /* and NaN */
+  if (linear >= 1.0f) return 255;
+  const float *level = e->dither[srgb8_dither_level(x, y)];
+  int k = srgb8_encode(e, linear); /* the offset moves it by at most one level */
+  if (linear >= level[k + 1]) k++;
+  else if (linear < level[k]) k--;
+  return (unsigned char)k;
+}
+
 int image_write_png_srgb(const char *path, int width, int height, int channels, const float *linear,
-                         fog_error *err) {
+                         srgb8_quantise quantise, fog_error *err) {
   if (channels != 3 && channels != 4)
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                     "%s: sRGB PNG writing takes 3 (RGB) or 4 (RGBA) channels, not %d", path,
@@ -69,7 +101,11 @@ int image_write_png_srgb(const char *path, int width, int height, int channels, 
   for (int c = 0; c < channels; c++)
     if (image_check_finite(path, names[c], linear + c, width, height, channels, FLT_MAX, err))
       return 1;
-  srgb8_encoder encoder;
-  srgb8_encoder_init(&encoder);
-  return png_write_floats(path, width, height, channels, linear, &encoder, err);
+  srgb8_encoder *encoder = malloc(sizeof *encoder); /* 83 KB of tables */
+  if (!encoder)
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for the sRGB tables", path);
+  srgb8_encoder_init(encoder);
+  int status = png_write_floats(path, width, height, channels, linear, encoder, quantise, err);
+  free(encoder);
+  return status;
 }

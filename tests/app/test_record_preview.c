@@ -1,7 +1,7 @@
 /* `fogpipe record --preview VIDEO` hands ffmpeg exactly the recorded frames: a stand-in
  * ffmpeg first on PATH keeps its arguments and the raw rgb24 stream, which must be the
- * frames' R, G, B channels through the sRGB transfer function (IEC 61966-2-1, written here
- * independently), frame after frame, at the size and rate asked for; the video appears
+ * frames' R, G, B channels through the sRGB transfer function (IEC 61966-2-1) and the
+ * ordered dither (tests/reference/srgb8_dither_reference.h), frame after frame, at the size and rate asked for; the video appears
  * under its own name only when ffmpeg succeeded. A failing ffmpeg makes record fail with
  * a message naming ffmpeg's exit code, leaves no video (nor its temporary), and keeps the
  * frames; so does a SIGTERM during the encode (exit 130). Where a real ffmpeg is installed (/usr/bin/ffmpeg), it also encodes a playable
@@ -11,6 +11,7 @@
 #include <math.h>
 
 #include "tests/app/exr_channel_util.h"
+#include "tests/reference/srgb8_dither_reference.h"
 #include "tests/test_util.h"
 
 enum { frames = 3, width = 64, height = 36 };
@@ -21,13 +22,6 @@ static int write_script(const char *path, const char *text) {
   fputs(text, f);
   fclose(f);
   return chmod(path, 0755) == 0;
-}
-
-static unsigned char srgb8(float linear) {
-  if (!(linear > 0.0f)) return 0;
-  if (linear >= 1.0f) return 255;
-  double s = linear <= 0.0031308 ? 12.92 * linear : 1.055 * pow(linear, 1.0 / 2.4) - 0.055;
-  return (unsigned char)lround(s * 255.0);
 }
 
 static long file_size(const char *path) {
@@ -117,11 +111,13 @@ int main(void) {
       float *plane = load_exr_channel(frame, names[c], width, height);
       if (!plane) continue;
       for (int i = 0; i < width * height; i++)
-        mismatches += stream[((size_t)k * width * height + i) * 3 + c] != srgb8(plane[i]);
+        mismatches += stream[((size_t)k * width * height + i) * 3 + c] !=
+                      reference_srgb8_dithered(plane[i], i % width, i / width);
       free(plane);
     }
   }
-  CHECK(mismatches == 0, "%ld stream bytes differ from sRGB(frame R, G, B)", mismatches);
+  CHECK(mismatches == 0, "%ld stream bytes differ from sRGB(frame R, G, B), dithered",
+        mismatches);
   free(stream);
 
   /* 2. A failing ffmpeg: record fails, says so, leaves no video; the frames stay. */

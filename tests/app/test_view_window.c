@@ -5,7 +5,8 @@
  * headless path agree (the screenshots with --hide-panel; by default the panel is over the
  * image, a check of its own), and a lamp on a path equals record's frame of the same scene
  * time (the window's clock) and no neighbouring frame. With --fit the window shows the chosen rung of the model
- * ladder. Tolerance: 99% of 8-bit values within
+ * ladder. The window dithers its 8 bits as render's PNG does, byte for byte on a flat scene.
+ * Tolerance elsewhere: 99% of 8-bit values within
  * 2/255 and the mean within 0.5/255 (the window renders fog into RGBA16F, render into
  * RGBA32F: half-float rounding can move a value by one 8-bit step). */
 #define _POSIX_C_SOURCE 200809L
@@ -125,6 +126,53 @@ static void panel_shown_unless_hidden(const char *bin, const char *dir) {
   free(shot[1]);
 }
 
+/* The window's 8-bit dither (scene_present_fs.glsl) is render's (sim/image_srgb.c) pixel for
+ * pixel: a scene of one flat colour inside dense fog, 255 srgb(13/64) = 124.45 (13/64 is
+ * exact in half and float, so the window's RGBA16F holds what render's RGBA32F holds),
+ * dithers to levels 124 and 125 in the Bayer pattern, byte for byte the same in both
+ * (a mirrored or shifted pattern, or none, differs at thousands of pixels). */
+static void dither_as_render(const char *bin, const char *dir) {
+  char ini[300], shot[300], png[300], command[1400];
+  snprintf(ini, sizeof ini, "%s/flat.ini", dir);
+  snprintf(shot, sizeof shot, "%s/flat_window.png", dir);
+  snprintf(png, sizeof png, "%s/flat_render.png", dir);
+  FILE *f = fopen(ini, "w");
+  CHECK(f != NULL, "%s", ini);
+  if (!f) return;
+  fputs("[camera]\nposition = 0 20 120\nlook_at = 0 10 0\nfov = 60\n[fog]\n"
+        "model = homogeneous\ndensity_scale = 50\ncolour = 0.203125 0.203125 0.203125\n",
+        f);
+  fclose(f);
+  snprintf(command, sizeof command,
+           "xvfb-run -a -s '-screen 0 640x480x24' '%s' view '%s' --size 160x90 --render-scale 1 "
+           "--hide-panel --screenshot '%s' --frames 2 > /dev/null && '%s' render '%s' --out '%s' "
+           "--size 160x90 > /dev/null",
+           bin, ini, shot, bin, ini, png);
+  CHECK(system(command) == 0, "%s", command);
+  int w[2] = {0}, h[2] = {0};
+  float *window = load(shot, "R", &w[0], &h[0]), *rendered = load(png, "R", &w[1], &h[1]);
+  if (window && rendered && w[0] == w[1] && h[0] == h[1]) {
+    long differ = 0, up = 0, other = 0;
+    for (int i = 0; i < w[0] * h[0]; i++) {
+      const long a = lrintf(255.0f * window[i]), b = lrintf(255.0f * rendered[i]);
+      differ += a != b;
+      up += b == 125;
+      other += b != 124 && b != 125;
+    }
+    const double share = (double)up / (w[0] * h[0]);
+    CHECK(differ == 0, "%ld of %d window pixels differ from render's dithered PNG", differ,
+          w[0] * h[0]);
+    CHECK(other == 0 && fabs(share - 0.4466) < 0.02,
+          "render's flat 124.45 is not dithered to 124 and 125 (%.3f at 125, %ld others)",
+          share, other);
+  } else {
+    CHECK(0, "%s and %s: missing or of different sizes", shot, png);
+  }
+  free(window);
+  free(rendered);
+  unlink(ini), unlink(shot), unlink(png);
+}
+
 int main(void) {
   char dir[] = "/tmp/fogpipe_view_XXXXXX";
   const char *bin = test_bin_and_folder(dir);
@@ -187,6 +235,7 @@ int main(void) {
       unlink(lamp_ini);
     }
     panel_shown_unless_hidden(bin, dir);
+    dither_as_render(bin, dir);
     /* `demo --frames N` without --screenshot closes the window after N frames (it was
      * dropped: the window ran until closed) */
     char command[1024];

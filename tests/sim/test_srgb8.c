@@ -56,7 +56,7 @@ int main(void) {
     for (int c = 0; c < 4; c++) rgba[4 * i + c] = (float)((i * 7 + c * 13) % 97) / 90.0f;
   const char *path = "/tmp/fogpipe-test-srgb8.png";
   fog_error err = {0};
-  CHECK(image_write_png_srgb(path, W, H, 4, rgba, &err) == 0, "write: %s", err.message);
+  CHECK(image_write_png_srgb(path, W, H, 4, rgba, SRGB8_ROUND, &err) == 0, "write: %s", err.message);
   static const char *const names[4] = {"R", "G", "B", "A"};
   for (int c = 0; c < 4; c++) {
     fogmap back = {0};
@@ -79,7 +79,7 @@ int main(void) {
   for (int k = 0; k < 2; k++) {
     const int w = k ? -1 : -2, h = k ? -1 : 3;
     fog_error size_err = {0};
-    CHECK(image_write_png_srgb(path, w, h, 3, k ? NULL : rgba, &size_err) != 0 &&
+    CHECK(image_write_png_srgb(path, w, h, 3, k ? NULL : rgba, SRGB8_DITHER, &size_err) != 0 &&
               size_err.code == FOG_ERR_INVALID_ARGUMENT &&
               strstr(size_err.message, "both must be positive"),
           "size %dx%d: '%s'", w, h, size_err.message);
