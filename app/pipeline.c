@@ -1236,11 +1236,12 @@ int pipeline_read_frame(pipeline *p, const frame_pixels *out, fog_error *err) {
     if (gl_target_read(&p->scene_target, 1, 1, depth, &rerr))
       return fog_error_wrap(err, &rerr, "read-back: ");
     /* The sky's distance is SCENE_SKY_DISTANCE (1e30); EXR readers and compositors want
-     * a finite far value: the camera's far plane. */
+     * a finite far value: the camera's far plane. Only the sky: the far plane is a z-plane,
+     * so a surface near the frame's edge may lie further along its ray (render_frame's rule). */
     double near, far;
     camera_depth_range(&p->last_camera, &near, &far);
     for (size_t i = 0, n = (size_t)p->width * p->height; i < n; i++)
-      if (!(depth[i] < far)) depth[i] = (float)far;
+      if (!(depth[i] < SCENE_SKY_DISTANCE)) depth[i] = (float)far;
   }
   return 0;
 }

@@ -7,7 +7,8 @@
  * silhouette pixel): per channel, 99% of pixels within 2e-3 (half-float steps near 1 are
  * 1e-3), every pixel within 0.35, and the mean absolute difference below 2e-3.
  * Independent checks: the depth channel equals the CPU ray cast (scene_geometry) at
- * sampled pixels away from silhouettes; transmittance lies in [0, 1] and the fog is there.
+ * sampled pixels away from silhouettes; transmittance lies in [0, 1] and the fog is there;
+ * record's frame 1 of the scene (with a nearer far plane) holds render's depth exactly.
  *
  * FOGPIPE_UPDATE_GOLDEN=1 rewrites the reference from this run (after a deliberate change
  * to the scene, the fog pass or default.ini: look at the image first). */
@@ -42,6 +43,55 @@ static void compare(const char *name, const float *got, const float *want) {
   CHECK(within >= 0.99 * W * H, "%s: only %d of %d pixels within 2e-3", name, within, W * H);
   CHECK(worst <= 0.35, "%s: a pixel differs by %g", name, worst);
   CHECK(sum / (W * H) < 2e-3, "%s: mean difference %g", name, sum / (W * H));
+}
+
+/* record's frame 1 writes the depth render writes: a surface's ray distance, not cut at the
+ * far plane (a z-plane: near the frame's edges a visible surface lies further along its ray
+ * than `far`); only the sky becomes `far`. default.ini with far = 600, at 64x36. */
+static void record_depth_as_render(const char *bin, const char *dir) {
+  char ini[300], exr[300], command[1400], cwd[512];
+  snprintf(ini, sizeof ini, "%s/far600.ini", dir);
+  snprintf(exr, sizeof exr, "%s/far600.exr", dir);
+  CHECK(getcwd(cwd, sizeof cwd) != NULL, "getcwd");
+  FILE *in = fopen("configs/default.ini", "r"), *out = fopen(ini, "w");
+  CHECK(in && out, "configs/default.ini or %s", ini);
+  if (!in || !out) {
+    if (in) fclose(in);
+    if (out) fclose(out);
+    return;
+  }
+  char line[512];
+  while (fgets(line, sizeof line, in))
+    if (strncmp(line, "fogmap = ../", 12) == 0)
+      fprintf(out, "fogmap = %s/%s", cwd, line + 12); /* the sample fogmap from here */
+    else
+      fputs(line, out);
+  fputs("[camera]\nfar = 600\n", out);
+  fclose(in);
+  fclose(out);
+  snprintf(command, sizeof command,
+           "'%s' render '%s' --out '%s' --size 64x36 > /dev/null && '%s' record '%s' --frames 1 "
+           "--size 64x36 --out '%s/far600' > /dev/null",
+           bin, ini, exr, bin, ini, dir);
+  CHECK(system(command) == 0, "%s", command);
+  char frame[400];
+  snprintf(frame, sizeof frame, "%s/far600/frame.0001.exr", dir);
+  float *rendered = load_exr_channel(exr, "depth", 64, 36);
+  float *recorded = load_exr_channel(frame, "depth", 64, 36);
+  if (rendered && recorded) {
+    int differ = 0, beyond_far = 0;
+    for (int k = 0; k < 64 * 36; k++) {
+      differ += rendered[k] != recorded[k];
+      beyond_far += rendered[k] > 600.0f;
+    }
+    CHECK(beyond_far > 0, "no surface beyond the far plane's distance: the check cannot bite");
+    CHECK(differ == 0, "record's depth differs from render's at %d of %d pixels (%d of "
+          "render's lie beyond 600)", differ, 64 * 36, beyond_far);
+  }
+  free(rendered);
+  free(recorded);
+  snprintf(command, sizeof command, "rm -rf '%s/far600' '%s' '%s'", dir, ini, exr);
+  CHECK(system(command) == 0, "%s", command);
 }
 
 int main(void) {
@@ -117,6 +167,7 @@ int main(void) {
     CHECK(checked > W * H / 8 && wrong == 0, "depth: %d of %d wrong", wrong, checked);
     scene_geometry_destroy(&geo);
   }
+  record_depth_as_render(bin, dir);
   for (int c = 0; c < 4; c++) free(got[c]), free(want[c]);
   free(alpha);
   free(depth);
