@@ -136,7 +136,7 @@ int cmd_bake(int argc, char **argv) {
   recorder folders = {.folder = ""};
   snprintf(folders.folder, sizeof folders.folder, "%s", job.out);
   fog_error rerr = {0};
-  if (recorder_make_folders(job.out, folders.created, sizeof folders.created, &rerr))
+  if (out_folder_make(job.out, folders.created, sizeof folders.created, &rerr))
     return cli_fail("bake", "%s", rerr.message);
   char pattern[SCENE_CONFIG_PATH_MAX], ini[SCENE_CONFIG_PATH_MAX + 16];
   frame_pattern(&job, pattern, sizeof pattern);

@@ -15,6 +15,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "app/out_folder.h"
 #include "app/cli.h"
 #include "app/staged_move.h"
 #include "app/cli_options.h"
@@ -211,21 +212,6 @@ static int list_grids(const import_options *o) {
   vdb_sequence_destroy(&seq);
   return status;
 }
-
-static int make_dirs(const char *path) {
-  char buf[4096];
-  snprintf(buf, sizeof buf, "%s", path);
-  for (char *p = buf + 1; *p; p++) {
-    if (*p != '/') continue;
-    *p = 0;
-    if (mkdir(buf, 0777) && errno != EEXIST) return 1;
-    *p = '/';
-  }
-  if (mkdir(buf, 0777) && errno != EEXIST) return 1;
-  struct stat st;
-  return stat(buf, &st) || !S_ISDIR(st.st_mode);
-}
-
 
 /* The profile in docs/config.md's [fog] keys (render/fog_field.h's fog_profile), so that the
  * section loads in a scene config as it is: the coefficients go on over indented lines (a
@@ -578,7 +564,8 @@ int cmd_import(int argc, char **argv) {
     return missing;
   }
 
-  int status = 0, created_out = 0, loaded = 0;
+  int status = 0, loaded = 0;
+  char created_out[OUT_FOLDER_PATH_MAX] = ""; /* the outermost folder of --out this run made */
   char temp_dir[4200] = "";
   vdb_frame *frames = calloc((size_t)seq.count, sizeof *frames);
   fogmap map = {0};
@@ -618,10 +605,9 @@ int cmd_import(int argc, char **argv) {
             "--resolution up to 16382 keeps it renderable)\n", place.width, place.height,
             (place.width > place.height ? place.width : place.height) + 2);
   /* Pass 2: resample and write into a temporary folder beside the results. */
-  struct stat out_stat;
-  created_out = stat(o.out, &out_stat) != 0;
-  if (make_dirs(o.out)) {
-    status = cli_fail("import", "%s: cannot create the output folder: %s", o.out, strerror(errno));
+  fog_error folder_err = {0};
+  if (out_folder_make(o.out, created_out, sizeof created_out, &folder_err)) {
+    status = cli_fail("import", "--out: %s", folder_err.message);
     goto done;
   }
   snprintf(temp_dir, sizeof temp_dir, "%s/.%s.import.XXXXXX", o.out, o.name);
@@ -662,7 +648,7 @@ int cmd_import(int argc, char **argv) {
   warn_other_frames(&o, &seq);
 done:
   if (temp_dir[0]) staged_remove(temp_dir);
-  if (status && created_out) rmdir(o.out); /* a folder made for a failed import goes too */
+  if (status) out_folder_remove(o.out, created_out); /* folders made for a failed import go */
   fogmap_destroy(&map);
   for (int i = 0; i < seq.count; i++) vdb_frame_destroy(&frames[i]);
   free(frames);

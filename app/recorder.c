@@ -5,6 +5,7 @@
 #include "app/cli.h"
 
 #include "app/frame_exr.h"
+#include "app/out_folder.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -24,32 +25,6 @@
 #include "app/clock.h"
 #include "sim/sim.h"
 
-/* mkdir -p: creates each missing component of path; created gets the first one it made. */
-int recorder_make_folders(const char *path, char *created, size_t created_size, fog_error *err) {
-  char partial[1024];
-  size_t n = strlen(path);
-  if (n == 0 || n >= sizeof partial)
-    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "output folder name is empty or too long");
-  memcpy(partial, path, n + 1);
-  for (size_t i = 1; i <= n; i++) {
-    if (partial[i] != '/' && partial[i] != '\0') continue;
-    char saved = partial[i];
-    partial[i] = '\0';
-    if (mkdir(partial, 0777) == 0) {
-      if (!created[0]) snprintf(created, created_size, "%s", partial);
-    } else if (errno != EEXIST) {
-      return fog_fail(err, FOG_ERR_FILE_ACCESS, "cannot create the output folder %s: %s", partial,
-                      strerror(errno));
-    }
-    partial[i] = saved;
-  }
-  struct stat st;
-  if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode))
-    return fog_fail(err, FOG_ERR_FILE_ACCESS, "the output path %s exists and is not a folder",
-                    path);
-  return 0;
-}
-
 /* Bytes of one uncompressed frame at most: 10 float channels per pixel (R G B A go as
  * half unless a value passes half's range, frame_exr_channels). */
 static double frame_bytes(int width, int height) {
@@ -63,12 +38,16 @@ int recorder_open(recorder *rec, const recorder_desc *desc, fog_error *err) {
   if (desc->width <= 0 || desc->height <= 0)
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "frame size %dx%d is not positive", desc->width,
                     desc->height);
+  if (strlen(desc->folder) >= sizeof rec->folder)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "the output folder's name is %zu bytes long, more than the %zu taken: "
+                    "%.60s...", strlen(desc->folder), sizeof rec->folder - 1, desc->folder);
   snprintf(rec->folder, sizeof rec->folder, "%s", desc->folder);
   /* Strip trailing slashes so paths read FOLDER/NAME.0001.exr. */
   for (size_t n = strlen(rec->folder); n > 1 && rec->folder[n - 1] == '/'; n--)
     rec->folder[n - 1] = '\0';
   snprintf(rec->name, sizeof rec->name, "%s", desc->name && *desc->name ? desc->name : "frame");
-  if (recorder_make_folders(rec->folder, rec->created, sizeof rec->created, err)) return 1;
+  if (out_folder_make(rec->folder, rec->created, sizeof rec->created, err)) return 1;
 
   /* Prove the folder is writable: access() alone is fooled by read-only mounts and full
    * disks, so create a probe file, write a block, flush it to disk and remove it. */
@@ -104,16 +83,7 @@ int recorder_open(recorder *rec, const recorder_desc *desc, fog_error *err) {
 }
 
 void recorder_remove_created_folders(const recorder *rec) {
-  if (!rec->created[0]) return;
-  char path[sizeof rec->folder];
-  snprintf(path, sizeof path, "%s", rec->folder);
-  size_t root = strlen(rec->created);
-  /* rmdir refuses a folder that is not empty: frames and other files always stay. */
-  while (strlen(path) >= root && rmdir(path) == 0) {
-    char *slash = strrchr(path, '/');
-    if (!slash || slash == path) break;
-    *slash = '\0';
-  }
+  out_folder_remove(rec->folder, rec->created);
 }
 
 void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size) {

@@ -14,6 +14,7 @@
 #ifndef FOGPIPE_APP_RECORDER_H
 #define FOGPIPE_APP_RECORDER_H
 
+#include "app/out_folder.h"
 #include "transform/fog_error.h"
 #include "app/frame_exr.h"
 #include "render/display.h"
@@ -28,8 +29,8 @@ typedef struct recorder_desc {
 } recorder_desc;
 
 typedef struct recorder {
-  char folder[1024];
-  char created[1024]; /* the outermost folder recorder_open made ("" if all existed) */
+  char folder[OUT_FOLDER_PATH_MAX];
+  char created[OUT_FOLDER_PATH_MAX]; /* the outermost folder recorder_open made ("" if all existed) */
   char name[128];
   int width, height;
   /* What the frames are made from (the caller sets it after opening): written into every
@@ -138,8 +139,5 @@ void recorder_progress_end(recorder_progress *p);
 /* Removes the folders recorder_open made, innermost first, as long as they are empty (a
  * failed run's frames are never removed). */
 void recorder_remove_created_folders(const recorder *rec);
-/* mkdir -p path; created (created_size bytes, "" to start) gets the first folder it made,
- * for recorder_remove_created_folders. */
-int recorder_make_folders(const char *path, char *created, size_t created_size, fog_error *err);
 
 #endif

@@ -29,5 +29,6 @@ set(FOGPIPE_FUZZ_uni_LIBS fogpipe_sim)
 # Command-line options: the parsers of the commands that have a separable parse stage
 # (fuzz_options.c says which and why).
 set(FOGPIPE_FUZZ_options_SOURCES tests/fuzz/fuzz_options.c tests/fuzz/fuzz_options_import.c
-    tests/fuzz/fuzz_options_design.c app/cli.c app/cli_options.c app/staged_move.c)
+    tests/fuzz/fuzz_options_design.c app/cli.c app/cli_options.c app/out_folder.c
+    app/staged_move.c)
 set(FOGPIPE_FUZZ_options_LIBS fogpipe_vdb m)
