@@ -3,6 +3,7 @@
  * float) or as an 8-bit sRGB PNG. */
 #include <math.h>
 #include <errno.h>
+#include <float.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -43,6 +44,10 @@ static int write_exr(const char *out, int width, int height, const frame_pixels 
 /* 8-bit sRGB RGB through the config's display transform. */
 static int write_png(const char *out, int width, int height, const float *rgba,
                      const display_transform *display, fog_error *err) {
+  /* refused as the EXR writer refuses it: the display transform would draw NaN black */
+  static const char *const names[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; c++)
+    if (image_check_finite(out, names[c], rgba + c, width, height, 4, FLT_MAX, err)) return 1;
   size_t pixels = (size_t)width * height;
   float *rgb = malloc(pixels * 3 * sizeof(float));
   if (!rgb) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");

@@ -89,6 +89,14 @@ unsigned char srgb8_encode_dithered(const srgb8_encoder *encoder, float linear, 
 /* How 8-bit sRGB output quantises: rounding each value, or ordered dithering. */
 typedef enum srgb8_quantise { SRGB8_ROUND = 0, SRGB8_DITHER } srgb8_quantise;
 
+/* Fails naming the first pixel (x, y) of an interleaved image (stride values per pixel, the
+ * channel's value first) that is NaN or whose magnitude exceeds limit (FLT_MAX: infinite;
+ * 65504: what a half channel cannot hold). channel names it in the message, path the file
+ * that was to hold it. For a caller that maps values before writing them (a display
+ * transform turns NaN into black): check first. */
+int image_check_finite(const char *path, const char *channel, const float *values, int width,
+                       int height, int stride, float limit, fog_error *err);
+
 /* Writes an 8-bit sRGB PNG (3 RGB or 4 RGBA: alpha stays linear) from linear interleaved
  * floats (clamped to [0, 1]), top row first; temporary file + rename. NaN or infinite
  * values are refused as image_write_exr refuses them (clamping would hide them). */

@@ -60,10 +60,4 @@ struct srgb8_encoder;
 int png_write_floats(const char *path, int width, int height, int channels, const float *values,
                      const struct srgb8_encoder *srgb, srgb8_quantise quantise, fog_error *err);
 
-/* Fails naming the first pixel (x, y) of an interleaved image (stride values per pixel, the
- * channel's value first) that is NaN or whose magnitude exceeds limit (FLT_MAX: infinite;
- * 65504: what a half channel cannot hold). channel names it in the message. */
-int image_check_finite(const char *path, const char *channel, const float *values, int width,
-                       int height, int stride, float limit, fog_error *err);
-
 #endif
