@@ -16,6 +16,8 @@
 #include "app/config.h"
 #include "app/frame_exr.h"
 #include "app/player.h"
+#include "app/render_fog.h"
+#include "app/vdb_source.h"
 #include "sim/sim.h"
 
 /* The frame's EXR (app/frame_exr.h) with the camera as the standard header matrices.
@@ -111,6 +113,19 @@ int cmd_render(int argc, char **argv) {
       fprintf(stderr, "fogpipe render: --vdb-frame: %s has no [fog] vdb\n", config_path);
       return 2;
     }
+    /* a frame the sequence lacks is the command line's mistake, not the config's */
+    vdb_sequence seq;
+    fog_error seq_err = {0};
+    if (render_fog_volume_sequence(&cfg, &seq, &seq_err)) {
+      fprintf(stderr, "fogpipe render: %s\n", seq_err.message);
+      return 1;
+    }
+    const bool found = vdb_frame_index(seq.frames, seq.count, vdb_frame) >= 0;
+    if (!found)
+      fprintf(stderr, "fogpipe render: --vdb-frame %d: %s has no such frame (frames %d..%d)\n",
+              vdb_frame, cfg.fog.vdb, seq.frames[0], seq.frames[seq.count - 1]);
+    vdb_sequence_destroy(&seq);
+    if (!found) return 2;
     cfg.fog.vdb_frame = vdb_frame;
   }
 
