@@ -80,9 +80,10 @@ static void put_quoted(FILE *f, const char *prefix, const char *text) {
   fputc('\n', f);
 }
 
-/* Runs `gnuplot SCRIPT` without a shell (a path is never command text), its stdout and
- * stderr into output. Returns the exit status, 127 when gnuplot cannot be started. */
-static int run_gnuplot(const char *script_path, char *output, size_t size) {
+/* Runs gnuplot with argv (argv[0] "gnuplot") without a shell (a path is never command
+ * text), its stdout and stderr into output. Returns the exit status, 127 when gnuplot
+ * cannot be started. */
+static int run_gnuplot(char *const argv[], char *output, size_t size) {
   int fds[2];
   output[0] = '\0';
   if (pipe(fds) != 0) return 127;
@@ -92,8 +93,6 @@ static int run_gnuplot(const char *script_path, char *output, size_t size) {
   posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
   posix_spawn_file_actions_addclose(&actions, fds[0]);
   posix_spawn_file_actions_addclose(&actions, fds[1]);
-  char script[4200];
-  char *argv[] = {"gnuplot", (char *)gnuplot_path(script_path, script, sizeof script), NULL};
   pid_t pid;
   const int spawned = posix_spawnp(&pid, "gnuplot", &actions, NULL, argv, environ);
   posix_spawn_file_actions_destroy(&actions);
@@ -163,8 +162,9 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
   fprintf(script, "\n");
   const int written = fclose(script) == 0;
 
-  char output[1024];
-  const int status = written ? run_gnuplot(script_path, output, sizeof output) : -1;
+  char output[1024], script_arg[4200];
+  char *argv[] = {"gnuplot", (char *)gnuplot_path(script_path, script_arg, sizeof script_arg), NULL};
+  const int status = written ? run_gnuplot(argv, output, sizeof output) : -1;
   remove(script_path);
   if (status == 0 && rename(temp_png, png_path) != 0) {
     snprintf(error, (size_t)error_size, "%s: cannot move the finished chart onto it: %s",
@@ -186,4 +186,13 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
     return 1;
   }
   return 0;
+}
+
+bool chart_can_draw(char *error, int error_size) {
+  char output[256];
+  char *argv[] = {"gnuplot", "--version", NULL};
+  if (run_gnuplot(argv, output, sizeof output) == 0) return true;
+  snprintf(error, (size_t)error_size,
+           "gnuplot could not be run to draw the chart (install Debian's gnuplot-nox)");
+  return false;
 }

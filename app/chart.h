@@ -31,4 +31,8 @@ typedef struct chart_desc {
 int chart_write(const chart_desc *desc, const chart_point *points, int count,
                 const char *csv_path, const char *png_path, char *error, int error_size);
 
+/* Whether gnuplot runs (`gnuplot --version`): a command asks before its work, so that a
+ * chart it cannot draw does not cost the run. false with a message in error otherwise. */
+bool chart_can_draw(char *error, int error_size);
+
 #endif

@@ -277,6 +277,9 @@ int cmd_fit(int argc, char **argv) {
     const char *problem = outputs[i] ? folder_problem(outputs[i]) : NULL;
     if (problem) return cli_fail("fit", "%s: cannot write: %s", outputs[i], problem);
   }
+  char chart_error[256];
+  if (o.chart && !chart_can_draw(chart_error, sizeof chart_error)) /* before the fit */
+    return cli_fail("fit", "--chart: %s", chart_error);
   scene_config *cfg = malloc(sizeof *cfg);
   if (!cfg) return cli_fail("fit", "out of memory");
   if ((status = load_input(&o, cfg)) || (status = refuse_output_input(&o, cfg))) {

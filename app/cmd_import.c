@@ -553,6 +553,9 @@ int cmd_import(int argc, char **argv) {
   int parsed = parse_options(argc, argv, &o);
   if (parsed) return parsed < 0 ? 0 : parsed;
   if (o.list) return list_grids(&o);
+  char chart_error[256];
+  if (o.report && !chart_can_draw(chart_error, sizeof chart_error)) /* before the import */
+    return cli_fail("import", "--report: %s", chart_error);
 
   fog_error err = {0};
   vdb_sequence seq;

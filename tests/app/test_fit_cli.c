@@ -3,8 +3,8 @@
  * from an analytic input (Perlin fog, 15x the fogmap's time) is written beside the scene
  * as SCENE.fogmap.exr, which the scene names; bad input (a
  * missing VDB, a bad config key, no tolerance, an unwritable --out, an --out that would
- * replace an input) fails with a message naming the file or option, and leaves no file
- * behind. */
+ * replace an input, --chart without gnuplot) fails with a message naming the file or
+ * option, and leaves no file behind. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <math.h>
@@ -67,6 +67,26 @@ int main(void) {
   CHECK(strstr(out, "chosen: homogeneous") != NULL, "stdout: %s", out);
   CHECK(strstr(out, "at tolerance 0.5: ") != NULL, "stdout: %s", out);
   CHECK(exists(chart) && exists(csv), "no chart %s / %s", chart, csv);
+  {
+    /* no gnuplot on PATH: --chart is refused before the fit, and nothing is written */
+    char scene2[256], chart2[256], csv2[256], command[2048];
+    snprintf(scene2, sizeof scene2, "%s/nochart.ini", dir);
+    snprintf(chart2, sizeof chart2, "%s/nochart.png", dir);
+    snprintf(csv2, sizeof csv2, "%s/nochart.csv", dir);
+    snprintf(command, sizeof command,
+             "env PATH=/nonexistent '%s' fit '%s' --tolerance 0.01 --out '%s' --chart '%s' %s "
+             "> '%s/out.txt' 2> '%s/err.txt'",
+             bin, ini, scene2, chart2, fast, dir, dir);
+    const int rc = system(command);
+    char path[300];
+    snprintf(path, sizeof path, "%s/err.txt", dir);
+    read_text(path, err, sizeof err);
+    CHECK(WIFEXITED(rc) && WEXITSTATUS(rc) == 1 &&
+              strstr(err, "fogpipe fit: --chart: gnuplot could not be run"),
+          "without gnuplot: exit %d, stderr: %s", WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, err);
+    CHECK(!exists(scene2) && !exists(chart2) && !exists(csv2),
+          "without gnuplot the fit still wrote its scene or chart's CSV");
+  }
   scene_config cfg;
   fog_error cerr;
   CHECK(scene_config_load(scene, &cfg, &cerr) == 0, "%s", cerr.message);

@@ -30,6 +30,7 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
                 const char *csv_path, const char *png_path, char *error, int error_size) {
   abort();
 }
+bool chart_can_draw(char *error, int error_size) { abort(); }
 gl_context *gl_context_create(const gl_context_desc *desc, fog_error *err) {
   abort();
 }
