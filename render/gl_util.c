@@ -236,6 +236,16 @@ int gl_target_create(gl_target *target, const gl_target_desc *desc, fog_error *e
                            0);
   }
   glBindTexture(GL_TEXTURE_2D, (GLuint)caller_texture);
+  /* before the completeness check, which a texture without storage fails cryptically */
+  if (glGetError() == GL_OUT_OF_MEMORY) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY,
+             "out of GPU memory for a %dx%d render target (%d colour textures%s): try a "
+             "smaller size", desc->width, desc->height, target->color_count,
+             desc->depth ? " and depth" : "");
+    gl_target_destroy(target);
+    return 1;
+  }
   if (target->color_count) glDrawBuffers(target->color_count, buffers);
   GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
