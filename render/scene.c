@@ -732,8 +732,8 @@ int scene_target_create(gl_target *target, int width, int height, fog_error *err
   return gl_target_create(target,
                           &(gl_target_desc){.width = width,
                                             .height = height,
-                                            .color_formats = {GL_RGBA16F, GL_R32F,
-                                                              GL_RGBA16F, GL_RGBA32F},
+                                            .color_formats = {GL_RGBA32F, GL_R32F,
+                                                              GL_RGBA32F, GL_RGBA32F},
                                             .depth = true},
                           err);
 }

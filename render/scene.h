@@ -4,10 +4,11 @@
  *     distance along any ray: the reference the GL distance texture is tested against and
  *     what CPU fog references clip their rays with;
  *   - scene_pass (GL): rasterises that geometry into a render target holding
- *       attachment 0: surface colour, RGBA16F (linear, lit; sky where nothing is hit),
+ *       attachment 0: surface colour, RGBA32F (linear, lit; sky where nothing is hit;
+ *                     float: a lamp-lit surface may pass half's 65504),
  *       attachment 1: surface DISTANCE, R32F: Euclidean distance from the camera to the
  *                     first surface along the pixel's ray (SCENE_SKY_DISTANCE for sky),
- *       attachment 2: the sun-lit share of the colour, RGBA16F (0 for the sky): what the
+ *       attachment 2: the sun-lit share of the colour, RGBA32F (0 for the sky): what the
  *                     fog's shadow on the surfaces dims (fog_pass_params.surface_sun),
  *       a depth buffer (DEPTH32F).
  *     The fog pass (render/fog_pass.h) reads the colour and distance textures.

@@ -86,6 +86,25 @@ int main(void) {
   CHECK(pixels > 200, "only %d lit ground pixels", pixels);
   CHECK(worst < 1e-3, "relative error x T %.3e (half-float colours: 2^-11 and a few)", worst);
 
+  /* The surface colour is linear in the lamp's intensity past half float's 65504 (the
+   * scene pass's colour target once clipped a lamp-lit ground there): 1e5 x the lamp, 1e5 x
+   * every lit pixel, to float precision. */
+  static float bright[4 * W * H];
+  if (render(dir, "lamp = 5 8 -3 4000 4000 4000 0.5\n", 0.0, clear, depth) ||
+      render(dir, "lamp = 5 8 -3 4e8 4e8 4e8 0.5\n", 0.0, bright, depth))
+    return test_finish("test_lamp_surface");
+  double worst_scale = 0.0, brightest = 0.0;
+  for (int i = 0; i < W * H; i++) {
+    if (!(clear[4 * i] > 0.02f) || depth[i] >= 1e5f) continue;
+    worst_scale = fmax(worst_scale, fabs(bright[4 * i] / (1e5 * clear[4 * i]) - 1.0));
+    brightest = fmax(brightest, bright[4 * i]);
+  }
+  printf("a lamp 1e5 x brighter: every lit pixel 1e5 x brighter within %.2e (brightest %.3g)\n",
+         worst_scale, brightest);
+  CHECK(brightest > 65504.0 && worst_scale < 1e-5,
+        "1e5 x the lamp: a lit pixel off 1e5 x by %.3e relative (brightest %.6g)", worst_scale,
+        brightest);
+
   /* Two lamps, red near and blue far: per channel the weighted mean of their T. */
   const char *two = "lamp = 5 8 -3 4000 0 0 0.5\nlamp = -30 6 -20 0 0 40000 0.5\n";
   const double lamps[2][3] = {{5, 8, -3}, {-30, 6, -20}};
