@@ -133,10 +133,9 @@ int cmd_bake(int argc, char **argv) {
                                           "its ranges directly)"
                                         : "its model has no simulation (record its ranges "
                                           "directly)");
-  recorder folders = {.folder = ""};
-  snprintf(folders.folder, sizeof folders.folder, "%s", job.out);
+  out_folder folders;
   fog_error rerr = {0};
-  if (out_folder_make(job.out, folders.created, sizeof folders.created, &rerr))
+  if (out_folder_make(&folders, job.out, &rerr))
     return cli_fail("bake", "%s", rerr.message);
   char pattern[SCENE_CONFIG_PATH_MAX], ini[SCENE_CONFIG_PATH_MAX + 16];
   frame_pattern(&job, pattern, sizeof pattern);
@@ -145,7 +144,7 @@ int cmd_bake(int argc, char **argv) {
   char staging[SCENE_CONFIG_PATH_MAX], staged[SCENE_CONFIG_PATH_MAX + 32];
   snprintf(staging, sizeof staging, "%s/.bake-staging.XXXXXX", job.out);
   if (!mkdtemp(staging)) {
-    recorder_remove_created_folders(&folders);
+    out_folder_undo(&folders);
     return cli_fail("bake", "%s: cannot make a staging folder in it: %s", job.out,
                     strerror(errno));
   }
@@ -182,10 +181,10 @@ int cmd_bake(int argc, char **argv) {
     remove_frames(staged, written);
     unlink(staged_ini);
     rmdir(staging);
-    recorder_remove_created_folders(&folders);
+    out_folder_undo(&folders);
     if (status == 130)
       fprintf(stderr, "fogpipe bake: interrupted after %d of %d frames: nothing of this bake "
-              "kept%s\n", written, job.frames, folders.created[0] ? "" : " (the folder is as "
+              "kept%s\n", written, job.frames, folders.any ? "" : " (the folder is as "
               "it was)");
     return status;
   }

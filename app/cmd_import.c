@@ -61,6 +61,8 @@ static int parse_name(const char *command, const char *option, const char *text,
 static int parse_voxels(const char *command, const char *option, const char *text, void *target) {
   double m;
   if (cli_number(command, option, text, 1, 1e300, &m)) return 2;
+  if (m != floor(m)) /* a count: 1.9 is not taken as 1 */
+    return cli_usage_error(command, "%s '%s': expected a whole number of voxels", option, text);
   *(long long *)target = m < 0x1p62 ? (long long)m : 1LL << 62;
   return 0;
 }
@@ -298,7 +300,8 @@ static int write_sidecar(const char *path, const import_options *o, const vdb_se
       write_profile(f, section, &frames[i].profile);
     }
   }
-  if (fclose(f) != 0 || rename(temp, path) != 0) {
+  const bool lost = ferror(f) != 0; /* a flush that failed before the close */
+  if (fclose(f) != 0 || lost || rename(temp, path) != 0) {
     remove(temp);
     fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: write failed", path);
     return 1;
@@ -568,7 +571,7 @@ int cmd_import(int argc, char **argv) {
   }
 
   int status = 0, loaded = 0;
-  char created_out[OUT_FOLDER_PATH_MAX] = ""; /* the outermost folder of --out this run made */
+  out_folder made = {0}; /* the folders of --out this run made */
   char temp_dir[4200] = "";
   vdb_frame *frames = calloc((size_t)seq.count, sizeof *frames);
   fogmap map = {0};
@@ -609,7 +612,7 @@ int cmd_import(int argc, char **argv) {
             (place.width > place.height ? place.width : place.height) + 2);
   /* Pass 2: resample and write into a temporary folder beside the results. */
   fog_error folder_err = {0};
-  if (out_folder_make(o.out, created_out, sizeof created_out, &folder_err)) {
+  if (out_folder_make(&made, o.out, &folder_err)) {
     status = cli_fail("import", "--out: %s", folder_err.message);
     goto done;
   }
@@ -651,7 +654,7 @@ int cmd_import(int argc, char **argv) {
   warn_other_frames(&o, &seq);
 done:
   if (temp_dir[0]) staged_remove(temp_dir);
-  if (status) out_folder_remove(o.out, created_out); /* folders made for a failed import go */
+  if (status) out_folder_undo(&made); /* folders made for a failed import go too */
   fogmap_destroy(&map);
   for (int i = 0; i < seq.count; i++) vdb_frame_destroy(&frames[i]);
   free(frames);

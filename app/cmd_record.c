@@ -198,11 +198,10 @@ static int open_output(const record_job *job, recorder *rec, scene_config *confi
   /* The size comes from the config: check the free space again for that size. */
   *width = config->width;
   *height = config->height;
-  char created[sizeof rec->created]; /* the first open made the folders */
-  snprintf(created, sizeof created, "%s", rec->created);
+  const out_folder made = rec->made; /* the first open made the folders */
   int failed = recorder_open(
       rec, &(recorder_desc){.folder = job->out, .width = *width, .height = *height}, &rerr);
-  snprintf(rec->created, sizeof rec->created, "%s", created);
+  rec->made = made;
   if (failed) fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
   return failed;
 }

@@ -204,7 +204,7 @@ static int run_forward(const char *in, const char *channel, const char *dir,
   float *coef = NULL, *approx[64] = {0}, *detail[64] = {0}, *band = NULL;
   double *energy = NULL;
   char staging[4200] = "";
-  char created[OUT_FOLDER_PATH_MAX] = ""; /* the outermost folder of DIR this run made */
+  out_folder made = {0}; /* the folders of DIR this run made */
   if (desc.levels > 60) {
     cli_fail("transform", "%s: %d levels is too many", in, desc.levels);
     goto done;
@@ -240,7 +240,7 @@ static int run_forward(const char *in, const char *channel, const char *dir,
       read_manifest(dir, &earlier, earlier_msg, sizeof earlier_msg) ? -1 : earlier.levels;
   /* only now touch DIR (and its parents, as import and record make theirs) */
   fog_error ferr = {0};
-  if (out_folder_make(dir, created, sizeof created, &ferr)) {
+  if (out_folder_make(&made, dir, &ferr)) {
     cli_fail("transform", "%s", ferr.message);
     goto done;
   }
@@ -277,7 +277,7 @@ static int run_forward(const char *in, const char *channel, const char *dir,
   status = 0;
 done:
   if (staging[0]) staged_remove(staging);
-  if (status) out_folder_remove(dir, created); /* a folder made for a failed run goes too */
+  if (status) out_folder_undo(&made); /* folders made for a failed run go too */
   for (int l = 0; l < 64; l++) free(approx[l]), free(detail[l]);
   free(coef), free(band), free(energy);
   transform_plan_destroy(plan);

@@ -47,7 +47,7 @@ int recorder_open(recorder *rec, const recorder_desc *desc, fog_error *err) {
   for (size_t n = strlen(rec->folder); n > 1 && rec->folder[n - 1] == '/'; n--)
     rec->folder[n - 1] = '\0';
   snprintf(rec->name, sizeof rec->name, "%s", desc->name && *desc->name ? desc->name : "frame");
-  if (out_folder_make(rec->folder, rec->created, sizeof rec->created, err)) return 1;
+  if (out_folder_make(&rec->made, rec->folder, err)) return 1;
 
   /* Prove the folder is writable: access() alone is fooled by read-only mounts and full
    * disks, so create a probe file, write a block, flush it to disk and remove it. */
@@ -83,7 +83,7 @@ int recorder_open(recorder *rec, const recorder_desc *desc, fog_error *err) {
 }
 
 void recorder_remove_created_folders(const recorder *rec) {
-  out_folder_remove(rec->folder, rec->created);
+  out_folder_undo(&rec->made);
 }
 
 void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size) {
@@ -338,11 +338,12 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
       break;
     }
     display_map_values(display, linear, linear, 3 * n);
-    for (size_t i = 0; i < 3 * n; i++) {
-      const int x = (int)(i / 3 % (size_t)w), y = (int)(i / 3 / (size_t)w);
-      rgb[i] = display->dither ? srgb8_encode_dithered(encoder, linear[i], x, y)
-                               : srgb8_encode(encoder, linear[i]);
-    }
+    size_t i = 0;
+    for (int y = 0; y < h; y++)
+      for (int x = 0; x < w; x++)
+        for (int c = 0; c < 3; c++, i++)
+          rgb[i] = display->dither ? srgb8_encode_dithered(encoder, linear[i], x, y)
+                                   : srgb8_encode(encoder, linear[i]);
     if (!status && fwrite(rgb, 3, n, pipe) != n)
       status = fog_fail(err, FOG_ERR_FILE_ACCESS,
                         "preview: ffmpeg stopped reading frames (see its message above)");

@@ -30,7 +30,7 @@ typedef struct recorder_desc {
 
 typedef struct recorder {
   char folder[OUT_FOLDER_PATH_MAX];
-  char created[OUT_FOLDER_PATH_MAX]; /* the outermost folder recorder_open made ("" if all existed) */
+  out_folder made; /* the folders recorder_open made, for recorder_remove_created_folders */
   char name[128];
   int width, height;
   /* What the frames are made from (the caller sets it after opening): written into every

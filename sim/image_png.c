@@ -212,19 +212,19 @@ int png_write_floats(const char *path, int width, int height, int channels, cons
   if (!samples)
     return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for a %dx%d PNG", path, width,
                     height);
-  for (size_t i = 0; i < count; i++) {
-    float v = values[i];
-    if (srgb && !(channels == 4 && i % 4 == 3)) { /* colour; alpha stays linear */
-      const size_t pixel = i / (size_t)channels;
-      samples[i] = quantise == SRGB8_DITHER
-                       ? srgb8_encode_dithered(srgb, v, (int)(pixel % (size_t)width),
-                                               (int)(pixel / (size_t)width))
-                       : srgb8_encode(srgb, v);
-    } else {
-      v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; /* clamps, and NaN -> 0 */
-      samples[i] = (uint8_t)(v * 255.0f + 0.5f);   /* v in [0, 1]: rounds to nearest */
-    }
-  }
+  size_t i = 0;
+  for (int y = 0; y < height; y++)
+    for (int x = 0; x < width; x++)
+      for (int c = 0; c < channels; c++, i++) {
+        float v = values[i];
+        if (srgb && !(channels == 4 && c == 3)) { /* colour; alpha stays linear */
+          samples[i] = quantise == SRGB8_DITHER ? srgb8_encode_dithered(srgb, v, x, y)
+                                                : srgb8_encode(srgb, v);
+        } else {
+          v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; /* clamps, and NaN -> 0 */
+          samples[i] = (uint8_t)(v * 255.0f + 0.5f);   /* v in [0, 1]: rounds to nearest */
+        }
+      }
   int status = png_write_samples(path, width, height, channels, 8, samples, err);
   free(samples);
   return status;

@@ -69,14 +69,15 @@ unsigned char srgb8_encode(const srgb8_encoder *e, float linear) {
   return (unsigned char)(k + (e->threshold[k + 1] <= linear)); /* at most one level up */
 }
 
-int srgb8_dither_level(int x, int y) {
-  /* Bayer's recursive matrix M_2n = [4M_n, 4M_n + 2; 4M_n + 3, 4M_n + 1]: the coordinates'
-   * low bits pick the level's high bits, bit-interleaving x ^ y with y */
-  int level = 0;
-  for (int bit = 0; bit < 3; bit++)
-    level = level << 2 | ((x ^ y) >> bit & 1) << 1 | (y >> bit & 1);
-  return level;
-}
+/* Bayer's recursive matrix M_2n = [4M_n, 4M_n + 2; 4M_n + 3, 4M_n + 1] at n = 8, [y][x]
+ * (the GLSL twin computes it by bit-interleaving x ^ y with y) */
+static const unsigned char bayer8[8][8] = {
+    {0, 32, 8, 40, 2, 34, 10, 42},   {48, 16, 56, 24, 50, 18, 58, 26},
+    {12, 44, 4, 36, 14, 46, 6, 38},  {60, 28, 52, 20, 62, 30, 54, 22},
+    {3, 35, 11, 43, 1, 33, 9, 41},   {51, 19, 59, 27, 49, 17, 57, 25},
+    {15, 47, 7, 39, 13, 45, 5, 37},  {63, 31, 55, 23, 61, 29, 53, 21}};
+
+int srgb8_dither_level(int x, int y) { return bayer8[y & 7][x & 7]; }
 
 unsigned char srgb8_encode_dithered(const srgb8_encoder *e, float linear, int x, int y) {
   if (!(linear > 0.0f)) return 0; /* and NaN */
