@@ -163,7 +163,8 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
   const int written = fclose(script) == 0;
 
   char output[1024], script_arg[4200];
-  char *argv[] = {"gnuplot", (char *)gnuplot_path(script_path, script_arg, sizeof script_arg), NULL};
+  char *argv[] = {"gnuplot", (char *)gnuplot_path(script_path, script_arg, sizeof script_arg),
+                  NULL};
   const int status = written ? run_gnuplot(argv, output, sizeof output) : -1;
   remove(script_path);
   if (status == 0 && rename(temp_png, png_path) != 0) {
@@ -191,8 +192,13 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
 bool chart_can_draw(char *error, int error_size) {
   char output[256];
   char *argv[] = {"gnuplot", "--version", NULL};
-  if (run_gnuplot(argv, output, sizeof output) == 0) return true;
-  snprintf(error, (size_t)error_size,
-           "gnuplot could not be run to draw the chart (install Debian's gnuplot-nox)");
+  const int status = run_gnuplot(argv, output, sizeof output);
+  if (status == 0) return true;
+  if (status == 127)
+    snprintf(error, (size_t)error_size,
+             "gnuplot could not be run to draw the chart (install Debian's gnuplot-nox)");
+  else /* there, but broken: what it said */
+    snprintf(error, (size_t)error_size, "gnuplot --version failed (exit %d): %.150s", status,
+             output);
   return false;
 }

@@ -1241,7 +1241,7 @@ int pipeline_read_frame(pipeline *p, const frame_pixels *out, fog_error *err) {
     double near, far;
     camera_depth_range(&p->last_camera, &near, &far);
     for (size_t i = 0, n = (size_t)p->width * p->height; i < n; i++)
-      if (!(depth[i] < SCENE_SKY_DISTANCE)) depth[i] = (float)far;
+      if (depth[i] >= SCENE_SKY_DISTANCE) depth[i] = (float)far;
   }
   return 0;
 }

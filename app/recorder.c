@@ -307,7 +307,7 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   char cmd[8192]; /* the quoted temporary takes up to 4 x its 1200 bytes */
   /* yuv420p needs even sizes: pad odd ones by one pixel. */
   snprintf(cmd, sizeof cmd,
-           "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgb24 -s %dx%d -r %.10g -i - "
+           "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgb24 -s %dx%d -r %.17g -i - "
            "-vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -pix_fmt yuv420p ",
            w, h, fps > 0 ? fps : 24.0);
   char word[4 * sizeof temp + 8];

@@ -236,13 +236,27 @@ int gl_target_create(gl_target *target, const gl_target_desc *desc, fog_error *e
                            0);
   }
   glBindTexture(GL_TEXTURE_2D, (GLuint)caller_texture);
-  /* before the completeness check, which a texture without storage fails cryptically */
-  if (glGetError() == GL_OUT_OF_MEMORY) {
+  /* before the completeness check, which a texture without storage fails cryptically; every
+   * queued error read, the first other one reported below */
+  GLenum first_error = GL_NO_ERROR;
+  bool out_of_memory = false;
+  for (GLenum e; (e = glGetError()) != GL_NO_ERROR;) {
+    out_of_memory |= e == GL_OUT_OF_MEMORY;
+    if (first_error == GL_NO_ERROR && e != GL_OUT_OF_MEMORY) first_error = e;
+  }
+  if (out_of_memory) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     fog_fail(err, FOG_ERR_OUT_OF_MEMORY,
              "out of GPU memory for a %dx%d render target (%d colour textures%s): try a "
              "smaller size", desc->width, desc->height, target->color_count,
              desc->depth ? " and depth" : "");
+    gl_target_destroy(target);
+    return 1;
+  }
+  if (first_error != GL_NO_ERROR) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    fog_fail(err, FOG_ERR_GRAPHICS, "creating a %dx%d render target: GL error 0x%x",
+             desc->width, desc->height, first_error);
     gl_target_destroy(target);
     return 1;
   }

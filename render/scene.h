@@ -135,8 +135,8 @@ long scene_pass_triangles_drawn(const scene_pass *pass);
  * height field: no ray from there meets a back face first). */
 bool scene_terrain_back_faces_hidden(const terrain *t, const camera *cam);
 
-/* A render target with the scene pass's layout (RGBA16F colour, R32F distance, RGBA16F
- * sun-lit share, depth). */
+/* A render target with the scene pass's layout (RGBA32F colour, R32F distance, RGBA32F
+ * sun-lit share, RGBA32F lamps' share, depth). */
 int scene_target_create(gl_target *target, int width, int height, fog_error *err);
 
 #endif

@@ -62,6 +62,8 @@ int image_read_exr_matrix(const char *path, const char *name, float m[16], fog_e
 int image_write_png(const char *path, int width, int height, int channels, const float *interleaved,
                     fog_error *err);
 
+enum { SRGB8_DITHER_LEVELS = 64 }; /* the 8 x 8 Bayer matrix's levels */
+
 /* The sRGB transfer function (IEC 61966-2-1) to 8 bits, by table, for every float exactly
  * lround(255 srgb(x)) of the formula in double: threshold[k] is the smallest float whose
  * encoding is k; start[] holds the encoding at the bottom of each float interval with the
@@ -73,7 +75,6 @@ int image_write_png(const char *path, int width, int height, int channels, const
  * table per level b. A smooth gradient then averages to its true value over each 8 x 8
  * tile (within 1/128 of a level) instead of stepping in bands a level apart, which dark
  * fog glows show at 8 bits; black, white and values on a level stay as they are. */
-enum { SRGB8_DITHER_LEVELS = 64 };
 typedef struct srgb8_encoder {
   float threshold[257];          /* threshold[0] unused; threshold[256] = +infinity */
   unsigned char start[0x3F81];   /* indexed by the float's bits >> 16, for 0 <= x <= 1 */
@@ -98,7 +99,8 @@ int image_check_finite(const char *path, const char *channel, const float *value
                        int height, int stride, float limit, fog_error *err);
 
 /* Writes an 8-bit sRGB PNG (3 RGB or 4 RGBA: alpha stays linear) from linear interleaved
- * floats (clamped to [0, 1]), top row first; temporary file + rename. NaN or infinite
+ * floats (clamped to [0, 1]), top row first, each colour value rounded or dithered as
+ * quantise says; temporary file + rename. NaN or infinite
  * values are refused as image_write_exr refuses them (clamping would hide them). */
 int image_write_png_srgb(const char *path, int width, int height, int channels, const float *linear,
                          srgb8_quantise quantise, fog_error *err);

@@ -55,7 +55,8 @@ int png_write_samples(const char *path, int width, int height, int channels, int
 
 /* Writes an 8-bit PNG of interleaved float values: each clamped to [0, 1] and rounded
  * (NaN -> 0), or with srgb (not NULL) sRGB-encoded by it (dithered or rounded by
- * quantise), alpha (the 4th of 4 channels) staying linear. The caller checked the channels; the size is checked here. */
+ * quantise), alpha (the 4th of 4 channels) staying linear. The caller checked the
+ * channels; the size is checked here. */
 struct srgb8_encoder;
 int png_write_floats(const char *path, int width, int height, int channels, const float *values,
                      const struct srgb8_encoder *srgb, srgb8_quantise quantise, fog_error *err);

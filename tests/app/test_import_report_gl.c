@@ -1,11 +1,13 @@
 /* `fogpipe import --report` marches the 3D reference twice, on the CPU in double and on the
  * GL as a 3D texture (render/volume_march.h), over the same rays: on a real Mantaflow frame
  * the two agree to 1e-3 in transmittance at every elevation (they share rays and sample
- * points, so what is left is float rounding and the hardware's trilinear weights). */
+ * points, so what is left is float rounding and the hardware's trilinear weights). Without
+ * gnuplot, --report is refused before any work. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 
 #include "tests/test_util.h"
 
@@ -42,5 +44,23 @@ int main(void) {
   CHECK(rows == 9, "%d report rows with a GL agreement, expected 9", rows);
   CHECK(worst <= 1e-3, "GL vs CPU 3D march: max |dT| = %.3g", worst);
   printf("GL vs CPU 3D march over 9 elevations: max |dT| %.2g\n", worst);
+
+  /* Without gnuplot on PATH --report is refused before the import: exit 1, the option
+   * named, no output folder made. */
+  snprintf(command, sizeof command,
+           "out=$(mktemp -d /tmp/fogpipe-report-XXXXXX) && env PATH=/nonexistent %s import "
+           "../shared/data/vdb/groundfog/data/fluid_data_####.vdb --frames 41 "
+           "--out \"$out/fog\" --report 2>&1; status=$?; "
+           "if [ -e \"$out/fog\" ]; then echo LEFT; fi; rm -rf \"$out\"; exit $status",
+           bin && *bin ? bin : "build/fogpipe");
+  p = popen(command, "r");
+  char text[2048] = "";
+  size_t n = p ? fread(text, 1, sizeof text - 1, p) : 0;
+  text[n] = '\0';
+  status = p ? pclose(p) : -1;
+  CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 1 &&
+            strstr(text, "fogpipe import: --report: gnuplot could not be run") &&
+            !strstr(text, "LEFT"),
+        "import --report without gnuplot: status %d, output: %s", status, text);
   return test_finish("test_import_report_gl");
 }

@@ -1,11 +1,12 @@
 /* `fogpipe record --preview VIDEO` hands ffmpeg exactly the recorded frames: a stand-in
  * ffmpeg first on PATH keeps its arguments and the raw rgb24 stream, which must be the
  * frames' R, G, B channels through the sRGB transfer function (IEC 61966-2-1) and the
- * ordered dither (tests/reference/srgb8_dither_reference.h), frame after frame, at the size and rate asked for; the video appears
- * under its own name only when ffmpeg succeeded. A failing ffmpeg makes record fail with
- * a message naming ffmpeg's exit code, leaves no video (nor its temporary), and keeps the
- * frames; so does a SIGTERM during the encode (exit 130). Where a real ffmpeg is installed (/usr/bin/ffmpeg), it also encodes a playable
- * file. */
+ * ordered dither (tests/reference/srgb8_dither_reference.h), frame after frame, at the
+ * size and rate asked for; the video appears under its own name only when ffmpeg
+ * succeeded. A failing ffmpeg makes record fail with a message naming ffmpeg's exit code,
+ * leaves no video (nor its temporary), and keeps the frames; so does a SIGTERM during the
+ * encode (exit 130). Where a real ffmpeg is installed (/usr/bin/ffmpeg), it also encodes a
+ * playable file. */
 #include "tests/app/record_util.h" /* first: it sets _POSIX_C_SOURCE */
 
 #include <math.h>

@@ -5,7 +5,8 @@
  * headless path agree (the screenshots with --hide-panel; by default the panel is over the
  * image, a check of its own), and a lamp on a path equals record's frame of the same scene
  * time (the window's clock) and no neighbouring frame. With --fit the window shows the chosen rung of the model
- * ladder. The window dithers its 8 bits as render's PNG does, byte for byte on a flat scene.
+ * ladder. The window dithers its 8 bits as render's PNG does, byte for byte on a flat scene,
+ * and with [render] dither = off both round.
  * Tolerance elsewhere: 99% of 8-bit values within
  * 2/255 and the mean within 0.5/255 (the window renders fog into RGBA16F, render into
  * RGBA32F: half-float rounding can move a value by one 8-bit step). */
@@ -168,6 +169,19 @@ static void dither_as_render(const char *bin, const char *dir) {
   } else {
     CHECK(0, "%s and %s: missing or of different sizes", shot, png);
   }
+  free(window);
+  free(rendered);
+  /* [render] dither = off: rounded, 124 everywhere, in the window as in the PNG */
+  f = fopen(ini, "a");
+  CHECK(f != NULL, "%s", ini);
+  if (f) fputs("[render]\ndither = off\n", f), fclose(f);
+  CHECK(system(command) == 0, "%s", command);
+  window = load(shot, "R", &w[0], &h[0]), rendered = load(png, "R", &w[1], &h[1]);
+  long not_124 = 0;
+  for (int i = 0; window && rendered && i < w[0] * h[0] && w[0] == w[1] && h[0] == h[1]; i++)
+    not_124 += (lrintf(255.0f * window[i]) != 124) + (lrintf(255.0f * rendered[i]) != 124);
+  CHECK(window && rendered && not_124 == 0,
+        "dither = off: %ld window or PNG values are not the nearest level 124", not_124);
   free(window);
   free(rendered);
   unlink(ini), unlink(shot), unlink(png);

@@ -56,7 +56,8 @@ int main(void) {
     for (int c = 0; c < 4; c++) rgba[4 * i + c] = (float)((i * 7 + c * 13) % 97) / 90.0f;
   const char *path = "/tmp/fogpipe-test-srgb8.png";
   fog_error err = {0};
-  CHECK(image_write_png_srgb(path, W, H, 4, rgba, SRGB8_ROUND, &err) == 0, "write: %s", err.message);
+  CHECK(image_write_png_srgb(path, W, H, 4, rgba, SRGB8_ROUND, &err) == 0, "write: %s",
+        err.message);
   static const char *const names[4] = {"R", "G", "B", "A"};
   for (int c = 0; c < 4; c++) {
     fogmap back = {0};
