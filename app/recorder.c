@@ -315,12 +315,11 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   size_t n = (size_t)w * (size_t)h;
   uint8_t *rgb = malloc(n * 3);
   float *linear = malloc(n * 3 * sizeof *linear);
-  srgb8_encoder *encoder = malloc(sizeof *encoder); /* linear frames -> 8-bit sRGB video */
-  if (!rgb || !linear || !encoder) {
-    free(rgb), free(linear), free(encoder);
+  const srgb8_encoder *encoder = srgb8_encoder_shared(); /* linear frames -> 8-bit video */
+  if (!rgb || !linear) {
+    free(rgb), free(linear);
     return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the preview");
   }
-  srgb8_encoder_init(encoder);
   struct sigaction ignore = {.sa_handler = SIG_IGN}, previous;
   sigaction(SIGPIPE, &ignore, &previous); /* a dying ffmpeg must not kill us */
   FILE *pipe = popen(cmd, "w");
@@ -365,7 +364,6 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   sigaction(SIGPIPE, &previous, NULL);
   free(rgb);
   free(linear);
-  free(encoder);
   if (!status && stop && *stop) /* during ffmpeg's last writes */
     status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: stopped while ffmpeg finished");
   if (!status && rename(temp, video_path) != 0)

@@ -82,6 +82,8 @@ typedef struct srgb8_encoder {
   float dither[SRGB8_DITHER_LEVELS][257];
 } srgb8_encoder;
 void srgb8_encoder_init(srgb8_encoder *encoder);
+/* One encoder for the process, made on first use (thread-safe; never freed). */
+const srgb8_encoder *srgb8_encoder_shared(void);
 unsigned char srgb8_encode(const srgb8_encoder *encoder, float linear);
 /* The Bayer level b in [0, 64) of pixel (x, y), x and y >= 0, the top row y = 0. */
 int srgb8_dither_level(int x, int y);
