@@ -174,6 +174,7 @@ static const key_spec keys[] = {
     {"render", "exposure", V_DOUBLE, F(exposure), -20, 20, NULL, 0, 0},
     {"render", "tone_map", V_ENUM, F(tone_map), 0, 0, "clamp|aces|reinhard", 0, 0},
     {"render", "dither", V_ENUM, F(dither), 0, 0, "off|on", 0, 0},
+    {"render", "supersample", V_INT, F(supersample), 1, 4, NULL, 0, 0},
     {"sim", "wind", V_DOUBLE2, F(sim.wind), -WORLD, WORLD, NULL, 0, 0},
     {"sim", "turbulence", V_DOUBLE, F(sim.turbulence), 0, WORLD, NULL, 0, 0},
     {"sim", "viscosity", V_DOUBLE, F(sim.viscosity), 0, WORLD, NULL, 0, 0},
@@ -215,6 +216,7 @@ void scene_config_init(scene_config *cfg) {
       .exposure = 0.0,
       .tone_map = DISPLAY_CLAMP,
       .dither = 1,
+      .supersample = 1,
   };
   memcpy(cfg->fog.perlin_wind, perlin.wind, sizeof perlin.wind); /* a drift per octave */
 }

@@ -239,6 +239,9 @@ typedef struct scene_config {
   double exposure;
   int tone_map;
   int dither;
+  /* [render] supersample k (1 to 4): render and record draw k x k samples a pixel
+   * (app/supersample.h); the window draws one */
+  int supersample;
   scene_sim_config sim;
 } scene_config;
 

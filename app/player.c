@@ -7,6 +7,7 @@
 #include "app/pipeline.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"
+#include "app/supersample.h"
 #include "app/vdb_source.h"
 #include "render/gl_context.h"
 #include "sim/sim.h"
@@ -14,6 +15,8 @@
 struct player {
   scene_config config;
   double fps, start_time;
+  int width, height; /* the frames'; the sources draw supersample times finer */
+  int supersample;
   /* simulated: the pipeline and its context, and the fixed camera */
   gl_context *gl;
   pipeline *pipe;
@@ -39,8 +42,9 @@ static int create_simulated(player *p, const player_desc *desc, fog_error *err) 
   snprintf(p->gl_description, sizeof p->gl_description, "%s, %s, %s",
            gl_context_platform(p->gl), gl_context_version(p->gl), gl_context_renderer(p->gl));
   fog_error perr = {0};
-  p->pipe = pipeline_create(&(pipeline_desc){.config = &p->config, .width = desc->width,
-                                             .height = desc->height,
+  p->pipe = pipeline_create(&(pipeline_desc){.config = &p->config,
+                                             .width = desc->width * p->supersample,
+                                             .height = desc->height * p->supersample,
                                              .frame_seconds = 1.0 / desc->fps,
                                              .synchronous = desc->synchronous},
                             &perr);
@@ -56,7 +60,8 @@ static int create_session(player *p, const player_desc *desc, fog_error *err) {
       render_fog_volume_sequence(&p->config, &p->sequence, err))
     return 1;
   fog_error ferr = {0};
-  p->session = render_session_create(&p->config, desc->width, desc->height, &ferr);
+  p->session = render_session_create(&p->config, desc->width * p->supersample,
+                                     desc->height * p->supersample, &ferr);
   if (!p->session) {
     fog_error_pass(err, &ferr);
     return 1;
@@ -82,6 +87,17 @@ player *player_create(const player_desc *desc, fog_error *err) {
     return NULL;
   }
   p->config = *desc->config;
+  p->width = desc->width, p->height = desc->height;
+  p->supersample = desc->config->supersample;
+  if (desc->width * (long)p->supersample > PLAYER_MAX_SIDE ||
+      desc->height * (long)p->supersample > PLAYER_MAX_SIDE) {
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "%s: [render] supersample = %d draws %dx%d pixels for %dx%d: more than %d a side",
+             desc->config->path, p->supersample, desc->width * p->supersample,
+             desc->height * p->supersample, desc->width, desc->height, PLAYER_MAX_SIDE);
+    free(p);
+    return NULL;
+  }
   p->fps = desc->fps;
   p->start_time = desc->start_time;
   scene_config_camera(&p->config, &p->cam); /* the session's scene takes the same one */
@@ -107,7 +123,20 @@ int player_skip(player *p, long frames, fog_error *err) {
   return 0;
 }
 
+static int draw_frame(player *p, int n, const frame_pixels *out, fog_error *err);
+
 int player_frame(player *p, int n, const frame_pixels *out, fog_error *err) {
+  if (p->supersample == 1) return draw_frame(p, n, out, err);
+  frame_pixels fine;
+  if (supersample_buffers(out, p->width, p->height, p->supersample, &fine, err)) return 1;
+  const int status = draw_frame(p, n, &fine, err);
+  if (!status) supersample_reduce(&fine, p->width, p->height, p->supersample, out);
+  supersample_free(&fine);
+  return status;
+}
+
+/* Frame n at the sources' size (supersample times the frames'). */
+static int draw_frame(player *p, int n, const frame_pixels *out, fog_error *err) {
   if (p->pipe) {
     fog_error perr = {0};
     if (pipeline_frame(p->pipe, &p->cam, true, &perr) ||

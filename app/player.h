@@ -28,6 +28,8 @@
 
 typedef struct player player;
 
+enum { PLAYER_MAX_SIDE = 16384 }; /* pixels a side the sources draw, supersampled */
+
 typedef struct player_desc {
   const scene_config *config; /* copied */
   int width, height;          /* > 0 */
@@ -52,7 +54,8 @@ bool player_is_sequential(const player *player);
  * draws any frame directly and ignores it. */
 int player_skip(player *player, long frames, fog_error *err);
 /* Draws frame n (1-based; a sequential source: the one after the last drawn or skipped) and
- * reads it back, rows top first, any output may be NULL: rgba (4 linear floats a pixel),
+ * reads it back, rows top first, [render] supersample^2 samples a pixel (app/supersample.h),
+ * any output may be NULL: rgba (4 linear floats a pixel),
  * the transmittance (1 where no fog) and the depth (distance along the view ray to the first
  * surface; the camera's far plane for the sky). */
 int player_frame(player *player, int n, const frame_pixels *out, fog_error *err);
