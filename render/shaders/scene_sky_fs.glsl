@@ -17,9 +17,15 @@ void main() {
   // The ray of camera_ray() (render/camera.h).
   vec2 ndc = 2.0 * gl_FragCoord.xy / viewport_size - 1.0;
   vec3 dir = normalize(camera_forward + ndc.x * camera_right + ndc.y * camera_up);
-  float up = max(dir.y, 0.0);
-  vec3 sky = mix(sky_horizon, sky_zenith, sqrt(up));
-  if (dir.y < 0.0) sky = sky_horizon * mix(1.0, 0.6, min(-dir.y * 4.0, 1.0));
+  // Brightest at the horizon and smooth through it: sqrt(up) above and a linear darkening
+  // below met there at a kink, which read as a bright line drawn along every horizon.
+  // Both sides now leave the horizon colour with zero slope: a haze band that turns to
+  // the zenith colour by ~15 degrees up, and darkens by 0.6 down to ~15 degrees below.
+  vec3 sky;
+  if (dir.y >= 0.0)
+    sky = mix(sky_horizon, sky_zenith, 1.0 - exp(-(dir.y * dir.y) / 0.045));
+  else
+    sky = sky_horizon * mix(1.0, 0.6, smoothstep(0.0, 0.25, -dir.y));
   float c = dot(dir, sun_direction);
   sky += sun_colour * (0.25 * pow(max(c, 0.0), 64.0) + 4.0 * smoothstep(0.99985, 0.99992, c));
   colour = vec4(sky, 1.0);
