@@ -39,7 +39,8 @@ typedef struct headless_job {
 } headless_job;
 
 /* The recording's last frame (its linear R, G, B) as an 8-bit sRGB PNG at h->screenshot:
- * what the window's screenshot would have held, without the panel. */
+ * what the window's screenshot would have held, without the panel (and supersampled if the
+ * config says so: the fallback records as `record` does). */
 static int last_frame_png(const headless_job *h, const char *folder) {
   recorder rec = {.name = "frame", .width = h->width, .height = h->height}; /* as opened */
   snprintf(rec.folder, sizeof rec.folder, "%s", folder);

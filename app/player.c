@@ -17,6 +17,7 @@ struct player {
   double fps, start_time;
   int width, height; /* the frames'; the sources draw supersample times finer */
   int supersample;
+  frame_pixels fine; /* supersampled: the sources' frame, every output, made once */
   /* simulated: the pipeline and its context, and the fixed camera */
   gl_context *gl;
   pipeline *pipe;
@@ -33,6 +34,7 @@ void player_destroy(player *p) {
   gl_context_destroy(p->gl);
   render_session_destroy(p->session);
   if (p->sequence.count) vdb_sequence_destroy(&p->sequence);
+  supersample_free(&p->fine);
   free(p);
 }
 
@@ -89,14 +91,25 @@ player *player_create(const player_desc *desc, fog_error *err) {
   p->config = *desc->config;
   p->width = desc->width, p->height = desc->height;
   p->supersample = desc->config->supersample;
-  if (desc->width * (long)p->supersample > PLAYER_MAX_SIDE ||
-      desc->height * (long)p->supersample > PLAYER_MAX_SIDE) {
+  const long fine_width = (long)desc->width * p->supersample,
+             fine_height = (long)desc->height * p->supersample;
+  if (p->supersample < 1 || p->supersample > 4 || fine_width > PLAYER_MAX_SIDE ||
+      fine_height > PLAYER_MAX_SIDE) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "%s: [render] supersample = %d draws %dx%d pixels for %dx%d: more than %d a side",
-             desc->config->path, p->supersample, desc->width * p->supersample,
-             desc->height * p->supersample, desc->width, desc->height, PLAYER_MAX_SIDE);
+             "%s: [render] supersample = %d draws %ldx%ld pixels for %dx%d: expected 1 to 4, "
+             "and at most %d a side", desc->config->path, p->supersample, fine_width,
+             fine_height, desc->width, desc->height, PLAYER_MAX_SIDE);
     free(p);
     return NULL;
+  }
+  if (p->supersample > 1) {
+    float probe = 0.0f; /* every output: a caller may ask for any of them, frame by frame */
+    const frame_pixels all = {.rgba = &probe, .transmittance = &probe, .depth = &probe,
+                              .inscatter = &probe};
+    if (supersample_buffers(&all, desc->width, desc->height, p->supersample, &p->fine, err)) {
+      free(p);
+      return NULL;
+    }
   }
   p->fps = desc->fps;
   p->start_time = desc->start_time;
@@ -127,12 +140,14 @@ static int draw_frame(player *p, int n, const frame_pixels *out, fog_error *err)
 
 int player_frame(player *p, int n, const frame_pixels *out, fog_error *err) {
   if (p->supersample == 1) return draw_frame(p, n, out, err);
-  frame_pixels fine;
-  if (supersample_buffers(out, p->width, p->height, p->supersample, &fine, err)) return 1;
-  const int status = draw_frame(p, n, &fine, err);
-  if (!status) supersample_reduce(&fine, p->width, p->height, p->supersample, out);
-  supersample_free(&fine);
-  return status;
+  const frame_pixels fine = { /* only what out asks for is read back */
+      .rgba = out->rgba ? p->fine.rgba : NULL,
+      .transmittance = out->transmittance ? p->fine.transmittance : NULL,
+      .depth = out->depth ? p->fine.depth : NULL,
+      .inscatter = out->inscatter ? p->fine.inscatter : NULL};
+  if (draw_frame(p, n, &fine, err)) return 1;
+  supersample_reduce(&fine, p->width, p->height, p->supersample, out);
+  return 0;
 }
 
 /* Frame n at the sources' size (supersample times the frames'). */

@@ -204,7 +204,8 @@ int gl_target_create(gl_target *target, const gl_target_desc *desc, fog_error *e
              desc->height);
     return 1;
   }
-  glGetError();
+  while (glGetError() != GL_NO_ERROR) {
+  } /* every flag an earlier call left: the errors read below are this target's */
   /* The textures are made on the active unit: its binding is put back afterwards, so
    * making a target never unbinds a texture a pass has bound there. */
   GLint caller_texture = 0;
@@ -255,8 +256,8 @@ int gl_target_create(gl_target *target, const gl_target_desc *desc, fog_error *e
   }
   if (first_error != GL_NO_ERROR) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    fog_fail(err, FOG_ERR_GRAPHICS, "creating a %dx%d render target: GL error 0x%x",
-             desc->width, desc->height, first_error);
+    fog_fail(err, FOG_ERR_GRAPHICS, "creating a %dx%d render target: %s (0x%x)", desc->width,
+             desc->height, gl_error_name(first_error), first_error);
     gl_target_destroy(target);
     return 1;
   }

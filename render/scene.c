@@ -137,8 +137,6 @@ typedef struct vertex {
   float albedo[3];
 } vertex;
 
-/* Terrain albedo from slope and height: grass in the valleys, rock on steep slopes, snow
- * on the highest flat parts. Linear reflectances. */
 /* The terrain's vertices, relative to its origin, with smooth normals and albedo. */
 static void terrain_mesh_vertices(const terrain *t, vertex *vertices) {
   int rx = t->resolution_x, rz = t->resolution_z;

@@ -153,7 +153,7 @@ int fogmap_save_png16(const char *path, const fogmap *map, float max_density, fo
     v = v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; /* clamps, and NaN -> 0 */
     samples[i] = (uint16_t)lrint(v * 65535.0);
   }
-  int status = png_write_samples(path, map->width, map->height, 1, 16, samples, err);
+  int status = png_write_samples(path, map->width, map->height, 1, 16, false, samples, err);
   free(samples);
   return status;
 }

@@ -8,6 +8,7 @@
 #ifndef FOGPIPE_SIM_IMAGE_IO_H
 #define FOGPIPE_SIM_IMAGE_IO_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdint.h>
@@ -49,9 +50,10 @@ static inline const char *image_channel_setting_hint(const char *channel_setting
   return buffer;
 }
 
-/* Writes an 8- or 16-bit PNG of interleaved samples (uint8_t or host-endian uint16_t). */
+/* Writes an 8- or 16-bit PNG of interleaved samples (uint8_t or host-endian uint16_t);
+ * dithered: 8-bit samples with an ordered dither in them (deflated another way). */
 int png_write_samples(const char *path, int width, int height, int channels, int bit_depth,
-                      const void *samples, fog_error *err);
+                      bool dithered, const void *samples, fog_error *err);
 
 /* Writes an 8-bit PNG of interleaved float values: each clamped to [0, 1] and rounded
  * (NaN -> 0), or with srgb (not NULL) sRGB-encoded by it (dithered or rounded by

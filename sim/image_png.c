@@ -143,7 +143,7 @@ done:
 }
 
 int png_write_samples(const char *path, int width, int height, int channels, int bit_depth,
-                      const void *samples, fog_error *err) {
+                      bool dithered, const void *samples, fog_error *err) {
   static const uint8_t color_types[5] = {0, SPNG_COLOR_TYPE_GRAYSCALE,
                                          SPNG_COLOR_TYPE_GRAYSCALE_ALPHA,
                                          SPNG_COLOR_TYPE_TRUECOLOR,
@@ -166,13 +166,14 @@ int png_write_samples(const char *path, int width, int height, int channels, int
   int e = spng_set_option(ctx, SPNG_ENCODE_TO_BUFFER, 1);
   /* 8-bit images are previews and frames to look at: fast zlib (level 1) after the Sub
    * filter, several times faster than libspng's default (every filter, default effort).
-   * Dithered (the default output) the Bayer pattern leaves no runs: run-length matches
-   * alone (Z_RLE) then take 11.4 ms / 223 kB for a 640x480 night render, the default
-   * strategy 10.5 ms / 171 kB; rounded, Z_RLE was 6.6 ms / 85 kB against 7.0 ms / 103 kB.
-   * 16-bit PNGs are fogmap data: default effort. */
+   * Rounded, run-length matches alone (Z_RLE) are best: 6.6 ms / 85 kB for a 640x480
+   * night render against 7.0 ms / 103 kB with the default strategy. Dithered, the Bayer
+   * pattern leaves no runs: Z_RLE takes 11.4 ms / 223 kB, the default strategy 10.5 ms /
+   * 171 kB. 16-bit PNGs are fogmap data: default effort. */
   if (!e && bit_depth == 8) e = spng_set_option(ctx, SPNG_IMG_COMPRESSION_LEVEL, 1);
   if (!e && bit_depth == 8)
-    e = spng_set_option(ctx, SPNG_IMG_COMPRESSION_STRATEGY, Z_DEFAULT_STRATEGY);
+    e = spng_set_option(ctx, SPNG_IMG_COMPRESSION_STRATEGY,
+                        dithered ? Z_DEFAULT_STRATEGY : Z_RLE);
   if (!e && bit_depth == 8) e = spng_set_option(ctx, SPNG_FILTER_CHOICE, SPNG_FILTER_CHOICE_SUB);
   if (!e) e = spng_set_ihdr(ctx, &ihdr);
   if (!e) e = spng_encode_image(ctx, samples, size, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
@@ -227,7 +228,8 @@ int png_write_floats(const char *path, int width, int height, int channels, cons
           samples[i] = (uint8_t)(v * 255.0f + 0.5f);   /* v in [0, 1]: rounds to nearest */
         }
       }
-  int status = png_write_samples(path, width, height, channels, 8, samples, err);
+  int status = png_write_samples(path, width, height, channels, 8,
+                                 srgb && quantise == SRGB8_DITHER, samples, err);
   free(samples);
   return status;
 }

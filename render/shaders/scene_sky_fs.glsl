@@ -20,7 +20,8 @@ void main() {
   // Brightest at the horizon and smooth through it: sqrt(up) above and a linear darkening
   // below met there at a kink, which read as a bright line drawn along every horizon.
   // Both sides now leave the horizon colour with zero slope: a haze band that turns to
-  // the zenith colour by ~15 degrees up, and darkens by 0.6 down to ~15 degrees below.
+  // the zenith colour above (3/4 of the way by 15 degrees, 93 % by 20), and darkens to 0.6
+  // of it by ~15 degrees below.
   vec3 sky;
   if (dir.y >= 0.0)
     sky = mix(sky_horizon, sky_zenith, 1.0 - exp(-(dir.y * dir.y) / 0.045));

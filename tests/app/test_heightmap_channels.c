@@ -38,7 +38,7 @@ static int load(const char *name, int channels, const float *grey, float g_off, 
       samples[2 * i] = (unsigned char)(grey[i] * 255.0f + 0.5f);
       samples[2 * i + 1] = (unsigned char)(255 - (i * 53) % 256); /* not the grey */
     }
-    CHECK(png_write_samples(png, W, H, 2, 8, samples, &werr) == 0, "%s", werr.message);
+    CHECK(png_write_samples(png, W, H, 2, 8, false, samples, &werr) == 0, "%s", werr.message);
   } else {
     CHECK(image_write_png(png, W, H, channels, pixels, &werr) == 0, "%s", werr.message);
   }

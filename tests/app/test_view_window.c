@@ -177,6 +177,8 @@ static void dither_as_render(const char *bin, const char *dir) {
   if (f) fputs("[render]\ndither = off\n", f), fclose(f);
   CHECK(system(command) == 0, "%s", command);
   window = load(shot, "R", &w[0], &h[0]), rendered = load(png, "R", &w[1], &h[1]);
+  CHECK(window && rendered && w[0] == w[1] && h[0] == h[1] && w[0] > 0,
+        "dither = off: %s and %s missing or of different sizes", shot, png);
   long not_124 = 0;
   for (int i = 0; window && rendered && i < w[0] * h[0] && w[0] == w[1] && h[0] == h[1]; i++)
     not_124 += (lrintf(255.0f * window[i]) != 124) + (lrintf(255.0f * rendered[i]) != 124);
