@@ -372,6 +372,6 @@ int record_run(const record_job *job) {
   recorder rec = {.folder = ""};
   int status = record_into(job, &rec);
   /* A run that failed before writing a frame leaves no folder of its own making behind. */
-  if (status == 1) recorder_remove_created_folders(&rec);
+  if (status == 1) out_folder_undo(&rec.made); /* empty ones, innermost first */
   return status;
 }

@@ -82,10 +82,6 @@ int recorder_open(recorder *rec, const recorder_desc *desc, fog_error *err) {
   return 0;
 }
 
-void recorder_remove_created_folders(const recorder *rec) {
-  out_folder_undo(&rec->made);
-}
-
 void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size) {
   snprintf(path, size, "%s/%s.%04d.exr", rec->folder, rec->name, frame);
 }

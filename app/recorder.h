@@ -30,7 +30,7 @@ typedef struct recorder_desc {
 
 typedef struct recorder {
   char folder[OUT_FOLDER_PATH_MAX];
-  out_folder made; /* the folders recorder_open made, for recorder_remove_created_folders */
+  out_folder made; /* the folders recorder_open made (out_folder_undo removes them) */
   char name[128];
   int width, height;
   /* What the frames are made from (the caller sets it after opening): written into every
@@ -134,10 +134,5 @@ void recorder_progress_begin(recorder_progress *p, FILE *out, int first, int tot
 void recorder_progress_update(recorder_progress *p, int done);
 /* Ends the in-place line on a terminal. */
 void recorder_progress_end(recorder_progress *p);
-
-
-/* Removes the folders recorder_open made, innermost first, as long as they are empty (a
- * failed run's frames are never removed). */
-void recorder_remove_created_folders(const recorder *rec);
 
 #endif

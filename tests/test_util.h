@@ -26,6 +26,16 @@ static inline int test_finish(const char *name) {
   return test_checks_failed ? 1 : 0;
 }
 
+/* Writes text to path (a config or script a test needs), recording a failed check when it
+ * cannot: 1 when written, else 0. */
+static inline int test_write_text(const char *path, const char *text) {
+  FILE *f = fopen(path, "w");
+  int written = f && fputs(text, f) >= 0;
+  if (f && fclose(f) != 0) written = 0;
+  CHECK(written, "cannot write %s", path);
+  return written;
+}
+
 /* Scratch folders, for the tests that define _POSIX_C_SOURCE 200809L (mkdtemp, dirent). */
 #if defined(_POSIX_C_SOURCE) && _POSIX_C_SOURCE >= 200809L
 #include <dirent.h>

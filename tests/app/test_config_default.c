@@ -10,12 +10,6 @@
 #include "app/config.h"
 #include "test_util.h"
 
-static void write_file(const char *path, const char *text) {
-  FILE *f = fopen(path, "w");
-  fputs(text, f);
-  fclose(f);
-}
-
 /* The live demo's settings on a software renderer (scene_live_*): the lamps' integral is
  * capped at 4 + 4 pieces and a 4-step walk; what is below stays, the other integrals and
  * the depth table are untouched. */
@@ -134,7 +128,7 @@ int main(void) {
   CHECK(mkdtemp(dir) != NULL, "mkdtemp");
   char path[256], map[256];
   snprintf(path, sizeof path, "%s/empty.ini", dir);
-  write_file(path, "; nothing\n");
+  test_write_text(path, "; nothing\n");
   scene_config empty, defaults;
   scene_config_init(&defaults);
   CHECK(scene_config_load(path, &empty, &err) == 0, "empty: %s", err.message);
@@ -143,9 +137,10 @@ int main(void) {
   CHECK(defaults.fog.fogmap[0] == '\0', "no fog by default");
 
   snprintf(map, sizeof map, "%s/map.png", dir);
-  write_file(map, "not really a png; the config only checks that it opens");
+  test_write_text(map, "not really a png; the config only checks that it opens");
   snprintf(path, sizeof path, "%s/rel.ini", dir);
-  write_file(path, "[fog]\nfogmap = map.png\nbasis = quadratic\n[camera]\nposition = 1, 2, 3\n");
+  test_write_text(path,
+                  "[fog]\nfogmap = map.png\nbasis = quadratic\n[camera]\nposition = 1, 2, 3\n");
   CHECK(scene_config_load(path, &cfg, &err) == 0, "rel: %s", err.message);
   CHECK(!strcmp(cfg.fog.fogmap, map), "relative fogmap resolved to '%s', expected '%s'",
         cfg.fog.fogmap, map);
@@ -165,7 +160,7 @@ int main(void) {
           "default sun direction (%g %g %g)", sun.direction[0], sun.direction[1],
           sun.direction[2]);
     snprintf(path, sizeof path, "%s/zero.ini", dir);
-    write_file(path, "[light]\nsun_elevation = 0\nsun_colour = 0 0 0\nambient = 0 0 0\n"
+    test_write_text(path, "[light]\nsun_elevation = 0\nsun_colour = 0 0 0\nambient = 0 0 0\n"
                      "[objects]\nbox = 0 0 1 1 1 0 0 0\n");
     CHECK(scene_config_load(path, &cfg, &err) == 0, "zero: %s", err.message);
     const fog_sun zero = scene_config_fog_sun(&cfg);

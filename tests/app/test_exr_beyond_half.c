@@ -62,13 +62,10 @@ int main(void) {
   snprintf(config, sizeof config, "%s/hot.ini", dir);
   snprintf(exr, sizeof exr, "%s/hot.exr", dir);
   snprintf(frames, sizeof frames, "%s/frames", dir);
-  FILE *f = fopen(config, "w");
-  CHECK(f != NULL, "cannot write %s", config);
-  if (!f) return test_finish("test_exr_beyond_half");
-  fputs("[camera]\nposition = 0 20 100\nlook_at = 0 10 0\n"
-        "[light]\nlamp = 0 10 60 1e9 1e9 1e9 0.5\n"
-        "[fog]\nmodel = homogeneous\ndensity_scale = 0.01\nalbedo = 0.9\n", f);
-  fclose(f);
+  if (!test_write_text(config, "[camera]\nposition = 0 20 100\nlook_at = 0 10 0\n"
+                               "[light]\nlamp = 0 10 60 1e9 1e9 1e9 0.5\n"
+                               "[fog]\nmodel = homogeneous\ndensity_scale = 0.01\nalbedo = 0.9\n"))
+    return test_finish("test_exr_beyond_half");
 
   snprintf(args, sizeof args, "render %s --out %s --size %dx%d", config, exr, W, H);
   int status = run(args, output, sizeof output);

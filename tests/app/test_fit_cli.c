@@ -43,11 +43,6 @@ static int fit(const char *bin, const char *args, char *out, char *err, size_t s
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-static void write_file(const char *path, const char *text) {
-  FILE *f = fopen(path, "w");
-  if (f) fputs(text, f), fclose(f);
-}
-
 int main(void) {
   const char *bin = test_bin_and_folder(dir);
   if (!bin) return test_finish("test_fit_cli");
@@ -57,7 +52,7 @@ int main(void) {
   snprintf(scene, sizeof scene, "%s/scene.ini", dir);
   snprintf(chart, sizeof chart, "%s/fit.png", dir);
   snprintf(csv, sizeof csv, "%s/fit.csv", dir);
-  write_file(ini, "[fog]\nmodel = homogeneous\ndensity_scale = 0.004\n");
+  test_write_text(ini, "[fog]\nmodel = homogeneous\ndensity_scale = 0.004\n");
 
   /* a constant fog: homogeneous, written and charted */
   snprintf(args, sizeof args, "'%s' --tolerance 0.01,0.5 --out '%s' --chart '%s' %s", ini, scene,
@@ -123,7 +118,7 @@ int main(void) {
   /* a bad config key: FILE:LINE named */
   char bad[256];
   snprintf(bad, sizeof bad, "%s/bad.ini", dir);
-  write_file(bad, "[fog]\nmodel = homogeneous\ndensity_scael = 0.004\n");
+  test_write_text(bad, "[fog]\nmodel = homogeneous\ndensity_scael = 0.004\n");
   snprintf(args, sizeof args, "'%s' --tolerance 0.1 --out '%s' %s", bad, missing_out, fast);
   status = fit(bin, args, out, err, sizeof out);
   char want[300];
@@ -166,7 +161,7 @@ int main(void) {
   snprintf(cp, sizeof cp, "cp data/fogmap_sample.exr '%s'", map);
   CHECK(system(cp) == 0, "%s", cp);
   snprintf(same, sizeof same, "%s/map.ini", dir);
-  write_file(same, "[fog]\nmodel = fogmap\nfogmap = other.fogmap.exr\n");
+  test_write_text(same, "[fog]\nmodel = fogmap\nfogmap = other.fogmap.exr\n");
   snprintf(args, sizeof args, "'%s' --tolerance 0.5 --out '%s/other.ini' %s", same, dir, fast);
   status = fit(bin, args, out, err, sizeof out);
   CHECK(status == 2 && strstr(err, "is the config's [fog] fogmap"),

@@ -17,12 +17,6 @@
 
 enum { W = 48, H = 27 };
 
-static void write_file(const char *path, const char *text) {
-  FILE *f = fopen(path, "w");
-  fputs(text, f);
-  fclose(f);
-}
-
 /* Frame n of cfg through the player (after frames 1..n-1). */
 static int frame_of(const scene_config *cfg, double fps, int n, float *rgba) {
   fog_error err = {0};
@@ -71,7 +65,7 @@ static void check_path(const char *name, const scene_config *cfg, double fps, in
 
 int main(void) {
   const char *ini = "/tmp/fogpipe_lamp_animation.ini";
-  write_file(ini,
+  test_write_text(ini,
              "[camera]\nposition = 0 20 120\nlook_at = 0 10 0\nfov = 60\n"
              "[fog]\nmodel = homogeneous\ndensity_scale = 0.01\nalbedo = 0.9\nphase_g = 0.3\n"
              "colour = 0 0 0\n"
@@ -111,7 +105,7 @@ int main(void) {
              "[light]\nsun_colour = 0.01 0.01 0.01\n"
              "lamp = -30 10 0 3000 2500 2000\nlamp_path = 1 0 -30 10 0\nlamp_path = 1 1 30 10 0\n",
              cwd);
-  write_file(ini, text);
+  test_write_text(ini, text);
   CHECK(scene_config_load(ini, &cfg, &err) == 0, "%s", err.message);
   check_path("pipeline (fogmap)", &cfg, 2.0, 3);
   remove(ini);

@@ -20,14 +20,10 @@ int main(void) {
   char dir[] = "/tmp/fogpipe_sky_XXXXXX", path[300];
   if (!mkdtemp(dir)) return 1;
   snprintf(path, sizeof path, "%s/sky.ini", dir);
-  FILE *f = fopen(path, "w");
-  CHECK(f != NULL, "%s", path);
-  if (!f) return test_finish("test_sky_horizon");
-  fputs("[camera]\nposition = 0 50 0\nlook_at = 0 50 -100\nfov = 60\n"
-        "[terrain]\norigin = 5000 0 5000\nsize = 10 10\nheight = 1\nresolution = 2\n"
-        "[light]\nsun_colour = 0 0 0\n",
-        f);
-  fclose(f);
+  if (!test_write_text(path, "[camera]\nposition = 0 50 0\nlook_at = 0 50 -100\nfov = 60\n"
+                             "[terrain]\norigin = 5000 0 5000\nsize = 10 10\nheight = 1\n"
+                             "resolution = 2\n[light]\nsun_colour = 0 0 0\n"))
+    return test_finish("test_sky_horizon");
   scene_config cfg;
   fog_error err = {0};
   CHECK(scene_config_load(path, &cfg, &err) == 0, "%s", err.message);
