@@ -49,6 +49,13 @@ const char *cli_shell_word(const char *s, char *out, size_t size);
 struct scene_config;
 int cli_output_not_scene_input(const char *command, const char *option, const char *out,
                                const struct scene_config *cfg);
+/* The same for a command that writes a sequence of files, out_pattern a #### pattern
+ * (record's FOLDER/frame.####.exr, bake's FOLDER/fog.####.exr): refused when a file the
+ * config reads is one of its files, or the config's own [fog] sequence or VDB pattern names
+ * the same files (the same folder, prefix and suffix). option names where the folder came
+ * from. */
+int cli_sequence_not_scene_input(const char *command, const char *option, const char *out_pattern,
+                                 const struct scene_config *cfg);
 
 /* Whether s ends with suffix, ignoring case (".EXR" is ".exr"). */
 bool cli_ends_with(const char *s, const char *suffix);

@@ -1,5 +1,6 @@
 /* An output path that is one of the files a scene config reads: refused before any work
- * (render --out, view and demo --screenshot), instead of replacing the scene's input. */
+ * (render --out, view and demo --screenshot, record's and bake's frames), instead of
+ * replacing the scene's input. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <string.h>
@@ -47,5 +48,52 @@ int cli_output_not_scene_input(const char *command, const char *option, const ch
     return cli_usage_error(command, "%s '%s' is a frame of the config's [fog] sequence (%s): "
                            "writing it would replace the input", option, out,
                            cfg->fog.sequence);
+  return 0;
+}
+
+/* Splits a #### pattern into its folder ("./" when it has none), the file name's prefix
+ * before the run and its suffix after it. False when the file name has no run. */
+static bool pattern_parts(const char *pattern, char *folder, size_t folder_size,
+                          const char **prefix, size_t *prefix_length, const char **suffix) {
+  size_t start, length;
+  if (!vdb_pattern_hash_run(pattern, &start, &length)) return false;
+  const char *slash = strrchr(pattern, '/');
+  const size_t base = slash ? (size_t)(slash - pattern) + 1 : 0;
+  snprintf(folder, folder_size, "%.*s", slash ? (int)base : 2, slash ? pattern : "./");
+  *prefix = pattern + base, *prefix_length = start - base, *suffix = pattern + start + length;
+  return true;
+}
+
+/* Whether two #### patterns name the same files: the same folder (by device and inode),
+ * prefix and suffix, whatever the number of '#'. */
+static bool same_sequence(const char *a, const char *b) {
+  char folder_a[SCENE_CONFIG_PATH_MAX], folder_b[SCENE_CONFIG_PATH_MAX];
+  const char *prefix_a, *prefix_b, *suffix_a, *suffix_b;
+  size_t length_a, length_b;
+  return pattern_parts(a, folder_a, sizeof folder_a, &prefix_a, &length_a, &suffix_a) &&
+         pattern_parts(b, folder_b, sizeof folder_b, &prefix_b, &length_b, &suffix_b) &&
+         length_a == length_b && !strncmp(prefix_a, prefix_b, length_a) &&
+         !strcmp(suffix_a, suffix_b) && cli_same_file(folder_a, folder_b);
+}
+
+int cli_sequence_not_scene_input(const char *command, const char *option, const char *out_pattern,
+                                 const scene_config *cfg) {
+  const struct {
+    const char *path, *key;
+  } inputs[] = {{cfg->path, "the config itself"},
+                {cfg->fog.fogmap, "the config's [fog] fogmap"},
+                {cfg->terrain.heightmap, "the config's [terrain] heightmap"},
+                {cfg->fog.vdb, "the config's [fog] vdb"},
+                {cfg->fog.sequence, "the config's [fog] sequence"}};
+  for (size_t i = 0; i < sizeof inputs / sizeof *inputs; i++) {
+    const char *input = inputs[i].path;
+    if (!input[0]) continue;
+    size_t start, length;
+    const bool is_pattern = vdb_pattern_hash_run(input, &start, &length);
+    if (is_pattern ? same_sequence(input, out_pattern) : in_sequence(input, out_pattern))
+      return cli_usage_error(command, "%s: the files %s would be written include %s (%s): "
+                             "writing them would replace the input; choose another folder",
+                             option, out_pattern, inputs[i].key, input);
+  }
   return 0;
 }

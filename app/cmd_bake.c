@@ -133,13 +133,17 @@ int cmd_bake(int argc, char **argv) {
                                           "its ranges directly)"
                                         : "its model has no simulation (record its ranges "
                                           "directly)");
+  char pattern[SCENE_CONFIG_PATH_MAX], ini[SCENE_CONFIG_PATH_MAX + 16];
+  frame_pattern(&job, pattern, sizeof pattern);
+  snprintf(ini, sizeof ini, "%s/bake.ini", job.out);
+  /* the frames, a longer bake's later frames it removes, and bake.ini: none an input */
+  if (cli_sequence_not_scene_input("bake", "--out", pattern, &cfg) ||
+      cli_output_not_scene_input("bake", "--out", ini, &cfg))
+    return 2;
   out_folder folders;
   fog_error rerr = {0};
   if (out_folder_make(&folders, job.out, &rerr))
     return cli_fail("bake", "%s", rerr.message);
-  char pattern[SCENE_CONFIG_PATH_MAX], ini[SCENE_CONFIG_PATH_MAX + 16];
-  frame_pattern(&job, pattern, sizeof pattern);
-  snprintf(ini, sizeof ini, "%s/bake.ini", job.out);
   /* The frames go to DIR/.bake-staging.XXXXXX first (same file system: moved by rename). */
   char staging[SCENE_CONFIG_PATH_MAX], staged[SCENE_CONFIG_PATH_MAX + 32];
   snprintf(staging, sizeof staging, "%s/.bake-staging.XXXXXX", job.out);
@@ -165,7 +169,7 @@ int cmd_bake(int argc, char **argv) {
   if (!status) {
     /* The same scene with the frames as its fog (density_scale, box, profile as they are). */
     scene_config baked = cfg;
-    baked.fog.fogmap[0] = '\0';
+    baked.fog.fogmap[0] = baked.fog.channel[0] = '\0'; /* the frames hold one channel, Y */
     /* the frames' cells: a map simulated k times finer or coarser covers the same world */
     if (cell_size != cfg.box.cell_size) {
       baked.box.cell_size = cell_size;

@@ -194,6 +194,9 @@ static int open_output(const record_job *job, recorder *rec, scene_config *confi
     fprintf(stderr, "fogpipe %s: %s\n", cmd, cerr.message);
     return 1;
   }
+  char frames[PATH_MAX + 32];
+  snprintf(frames, sizeof frames, "%s/%s.####.exr", rec->folder, rec->name);
+  if (cli_sequence_not_scene_input(cmd, "--out", frames, config)) return 2;
   if (*width > 0 && *height > 0) return 0;
   /* The size comes from the config: check the free space again for that size. */
   *width = config->width;
@@ -335,7 +338,8 @@ static int finish_output(const record_job *job, const recorder *rec, const scene
 static int record_into(const record_job *job, recorder *rec) {
   scene_config config;
   int width, height;
-  if (open_output(job, rec, &config, &width, &height)) return 1;
+  const int opened = open_output(job, rec, &config, &width, &height);
+  if (opened) return opened;
   /* What every frame carries in its header, and --resume checks frame by frame. */
   const double fps = job->fps;
   snprintf(rec->identity, sizeof rec->identity, "scene %016llx size %dx%d fps %.17g",
@@ -372,6 +376,6 @@ int record_run(const record_job *job) {
   recorder rec = {.folder = ""};
   int status = record_into(job, &rec);
   /* A run that failed before writing a frame leaves no folder of its own making behind. */
-  if (status == 1) out_folder_undo(&rec.made); /* empty ones, innermost first */
+  if (status == 1 || status == 2) out_folder_undo(&rec.made); /* empty ones, innermost first */
   return status;
 }

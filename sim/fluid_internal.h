@@ -7,6 +7,7 @@
 #include <math.h>
 
 #include "sim/fluid.h"
+#include "sim/fogmap.h"
 
 struct fluid_sim {
   fluid_sim_desc desc; /* defaults resolved; emitters points at our copy, base is NULL */
@@ -47,9 +48,11 @@ struct fluid_sim {
 #define FLUID_DENSITY_FLOOR 1e-20f
 
 static inline float fluid_clean_density(float v) {
-  /* Comparisons, not fminf/fmaxf (libm calls without -ffast-math). NaN fails v > 0. */
+  /* Comparisons, not fminf/fmaxf (libm calls without -ffast-math). NaN fails v > 0. At
+   * most what a loaded fogmap may hold: a baked frame loads back, and the transforms' and
+   * the renderer's float sums stay finite. */
   v = v > 0.0f ? v : 0.0f;
-  v = v < FLT_MAX ? v : FLT_MAX;
+  v = v < FOGMAP_MAX_DENSITY ? v : FOGMAP_MAX_DENSITY;
   return v < FLUID_DENSITY_FLOOR ? 0.0f : v;
 }
 
