@@ -22,10 +22,14 @@ double fog_homogeneous_optical_depth(double extinction, double length) {
 double fog_height_optical_depth(double extinction, double y0, double scale_height,
                                 double camera_y, double dir_y, double length) {
   if (extinction == 0.0) return 0.0;
-  double k = extinction * exp(-(camera_y - y0) / scale_height);
   double a = dir_y / scale_height;
-  if (isinf(length)) return a > 0.0 ? k / a : HUGE_VAL;
-  return k * length * fog_exprel(a * length);
+  if (isinf(length)) return a > 0.0 ? extinction * exp(-(camera_y - y0) / scale_height) / a
+                                    : HUGE_VAL;
+  /* downwards from the lower end, as the GLSL (no 0 * inf far above the fog) */
+  if (a < 0.0)
+    return extinction * exp(-(camera_y + dir_y * length - y0) / scale_height) * length *
+           fog_exprel(-a * length);
+  return extinction * exp(-(camera_y - y0) / scale_height) * length * fog_exprel(a * length);
 }
 
 static const double half_sqrt_pi = 0.88622692545275801365; /* int_0^inf e^{-u^2} du */

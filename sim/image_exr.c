@@ -398,10 +398,12 @@ int image_write_exr_with(const char *path, int width, int height, const image_ch
   if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(ctxt, "fogpipe", EXR_STORAGE_SCANLINE, &part);
   if (rv == EXR_ERR_SUCCESS)
     rv = exr_initialize_required_attr_simple(ctxt, part, width, height, EXR_COMPRESSION_ZIP);
+  /* pLinear 0: scene-linear light is perceived logarithmically (the hint B44 and DWA
+   * compression act on when a compositor saves the file again), as OpenEXR's own default */
   for (int c = 0; rv == EXR_ERR_SUCCESS && c < channel_count; c++)
     rv = exr_add_channel(ctxt, part, sorted[c].name,
                          sorted[c].as_half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT,
-                         EXR_PERCEPTUALLY_LINEAR, 1, 1);
+                         EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
   for (int k = 0; rv == EXR_ERR_SUCCESS && k < header->string_count; k++)
     rv = exr_attr_set_string(ctxt, part, header->strings[k].name, header->strings[k].value);
   for (int k = 0; rv == EXR_ERR_SUCCESS && k < header->matrix_count; k++) {

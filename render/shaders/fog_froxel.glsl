@@ -31,7 +31,7 @@ void fog_froxel_fill(ivec2 cell) {
   vec3 dir = vec3(dir_d);
   fog_rbf_tile = ivec2((vec2(cell) + 0.5) * fog_viewport / vec2(fog_froxel_size.xy)) /
                  max(fog_rbf_tile_size, 1);
-  vec3 sun = fog_sun_scatter * fog_phase_hg(fog_phase_g, dot(dir, fog_sun_direction));
+  vec3 sun = fog_sun_scatter * fog_phase_hg(fog_phase_g, dir, fog_sun_direction);
   vec3 light = vec3(0.0);
   float transmittance = 1.0, t_a = fog_froxel_near;
   for (int k = 0; k < fog_froxel_size.z; k++) {

@@ -149,7 +149,10 @@ vec4 fog_lamp_node_values(int i, fog_ray r, float phi_a, float phi_b, float t0, 
   vec4 f = vec4(0.0);
   for (int n = 0; n < 4; n++) {
     if (!need[n]) continue;
-    float t = ts + hp * tan(fog_lamp_node(phi_a, phi_b, n));
+    // within the span: by a lamp of tiny radius on the ray (h' ~ 1e-7 of it) atan rounds
+    // past pi/2, where tan turns negative and the node fell far behind the camera (NaN)
+    float t = clamp(ts + hp * tan(fog_lamp_node(phi_a, phi_b, n)), t0,
+                    t0 + dt * float(fog_lamp_depth_steps));
     vec3 x = t * r.dir;
     float spot = fog_lamp_spot(i, x);
     if (!(spot > 0.0)) continue;
@@ -157,7 +160,7 @@ vec4 fog_lamp_node_values(int i, fog_ray r, float phi_a, float phi_b, float t0, 
     if (!(k > 0.0)) continue;
     vec3 to_lamp = s - x;
     float dist = length(to_lamp);
-    float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
+    vec3 towards_lamp = dist > 0.0 ? to_lamp / dist : r.dir;  // at the lamp: cos theta 1
 #if FOG_LAMP_EXACT_DEPTH
     float depth = fog_lamp_segment_depth(vec3(0.0), r.dir, t);
     float shadow = fog_lamp_shadow_depth(i, x);
@@ -180,7 +183,7 @@ vec4 fog_lamp_node_values(int i, fog_ray r, float phi_a, float phi_b, float t0, 
     if (depth >= 1e29 || k >= 1e29) continue;
     float shadow = fog_lamp_shadow_depth(i, x);
 #endif
-    f[n] = exp(-depth) * k * fog_phase_hg(fog_phase_g, cos_theta) * spot * exp(-shadow);
+    f[n] = exp(-depth) * k * fog_phase_hg(fog_phase_g, towards_lamp, r.dir) * spot * exp(-shadow);
   }
   return f;
 }
@@ -323,10 +326,10 @@ float fog_lamp_fogshop_gaussians(int i, fog_ray r, float t0, float t1) {
     float t = clamp(tc, t0, t1);
     vec3 x = t * r.dir, to_lamp = s - x;
     float dist = length(to_lamp);
-    float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
+    vec3 towards_lamp = dist > 0.0 ? to_lamp / dist : r.dir;  // at the lamp: cos theta 1
     float shadow = fog_lamp_shadow_depth(i, x);
     sum += depth * exp(-fog_lamp_segment_depth(vec3(0.0), r.dir, t) - shadow) *
-           fog_phase_hg(fog_phase_g, cos_theta) * fog_lamp_spot(i, x) /
+           fog_phase_hg(fog_phase_g, towards_lamp, r.dir) * fog_lamp_spot(i, x) /
            (dist * dist + fog_lamp_cone[i].z);
   }
   return sum;
@@ -351,9 +354,9 @@ float fog_lamp_march(int i, fog_ray r, float t0, float t1) {
     if (!(k > 0.0) || !(lit > 0.0)) continue;
     vec3 to_lamp = s - x;
     float dist = length(to_lamp);
-    float cos_theta = dist > 0.0 ? dot(to_lamp, r.dir) / dist : 1.0;
+    vec3 towards_lamp = dist > 0.0 ? to_lamp / dist : r.dir;  // at the lamp: cos theta 1
     float shadow = fog_lamp_shadow_depth(i, x);
-    sum += tau * k * fog_phase_hg(fog_phase_g, cos_theta) * lit *
+    sum += tau * k * fog_phase_hg(fog_phase_g, towards_lamp, r.dir) * lit *
            exp(-shadow) / (dist * dist + fog_lamp_cone[i].z);
   }
   return sum * dt;

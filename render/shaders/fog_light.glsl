@@ -20,7 +20,10 @@ uniform mat4 fog_sun_visibility_from_relative;  // sun_shadow_map_matrix at the 
 uniform float fog_sun_visibility_bias;          // depth units: one texel's world size
 float fog_sun_visible(vec3 p) {
   vec3 q = (fog_sun_visibility_from_relative * vec4(p, 1.0)).xyz;
-  return texture(fog_sun_visibility, vec3(q.xy, q.z - fog_sun_visibility_bias));
+  // Depth at most 1 (the map's far side): GL does not clamp the reference of a float depth
+  // texture, and fog past the far side (beyond the scene's bounds, away from the sun) would
+  // fail the compare against the cleared map and its border, 1, and stay dark.
+  return texture(fog_sun_visibility, vec3(q.xy, min(q.z - fog_sun_visibility_bias, 1.0)));
 }
 #else
 float fog_sun_visible(vec3 p) { return 1.0; }

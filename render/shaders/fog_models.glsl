@@ -70,14 +70,19 @@ float fog_homogeneous_optical_depth(float extinction, float length) {
 }
 
 // int_0^L k exp(-(y_c + t dir_y - y0)/H) dt = k e^{-(y_c - y0)/H} L exprel(dir_y L / H);
-// camera-relative: y_c = 0, y0 = fog_model_y0. length >= 1e29 means no surface.
+// camera-relative: y_c = 0, y0 = fog_model_y0. length >= 1e29 means no surface. A ray
+// going down is taken from its lower end, k e^{-(y_c + dir_y L - y0)/H} L exprel(-dir_y L/H)
+// (the same integral): seen from far above the fog, e^{-(y_c - y0)/H} underflows to 0 in
+// float while exprel(dir_y L / H) overflows, and their product was NaN.
 float fog_height_optical_depth(float extinction, float y0, float scale_height, float dir_y,
                                float length) {
   if (extinction == 0.0) return 0.0;  // no fog, even to infinity (as the C twin)
-  float k = extinction * exp(y0 / scale_height);
   float a = dir_y / scale_height;
-  if (length >= 1e29) return a > 0.0 ? k / a : 1e30;
-  return k * length * fog_exprel(a * length);
+  if (length >= 1e29) return a > 0.0 ? extinction * exp(y0 / scale_height) / a : 1e30;
+  if (a < 0.0)
+    return extinction * exp((y0 - dir_y * length) / scale_height) * length *
+           fog_exprel(-a * length);
+  return extinction * exp(y0 / scale_height) * length * fog_exprel(a * length);
 }
 
 // erfc(z) for z >= 0: Numerical Recipes' erfcc (a Chebyshev fit; relative error < 1.2e-7

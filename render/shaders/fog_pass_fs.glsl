@@ -243,10 +243,16 @@ bool fog_upsampled_depth(ivec2 pixel, float t, out float optical_depth, out floa
 }
 #endif
 
-// Henyey-Greenstein, per steradian (fog_phase_hg in render/fog_light.c).
-float fog_phase_hg(float g, float cos_theta) {
-  float denom = 1.0 + g * g - 2.0 * g * cos_theta;
-  return (1.0 - g * g) / (4.0 * 3.14159265358979 * denom * sqrt(denom));
+// Henyey-Greenstein, per steradian (fog_phase_hg in render/fog_light.c), between the unit
+// directions u and v (cos theta = u . v): 1 + g^2 - 2 g cos theta as (1 - g)^2 + g |u - v|^2,
+// or (1 + g)^2 - g |u + v|^2 for g < 0, the same in exact arithmetic. The sum of three
+// terms cancels in float where the peak is (g near +-1, u near +-v): at g = 0.999 looking
+// at the sun it lost 10 % of the glow.
+float fog_phase_hg(float g, vec3 u, vec3 v) {
+  vec3 d = g >= 0.0 ? u - v : u + v;
+  float s = 1.0 - abs(g);
+  float denom = s * s + abs(g) * dot(d, d);
+  return s * (1.0 + abs(g)) / (4.0 * 3.14159265358979 * denom * sqrt(denom));
 }
 
 #include "fog_lamps.glsl"
@@ -271,9 +277,8 @@ void main() {
   vec4 surface = texelFetch(fog_surface_colour, pixel, 0);
   float t_surface = texelFetch(fog_surface_distance, pixel, 0).r;
   float optical_depth = 0.0, k_end = 0.0;
-  // cos theta between the sun and this pixel's view direction: constant along the ray
+  // the pixel's view direction: its angle to the sun is constant along the ray
   dvec3 view_dir = normalize(fog_camera_forward + ndc.x * fog_camera_right + ndc.y * fog_camera_up);
-  float cos_sun = dot(vec3(view_dir), fog_sun_direction);
   bool walk = FOG_FROXEL == 0;  // the froxel lookup walks nothing
   float sun_light = 1.0;  // the T_s mean of the ray (fog_light.glsl)
   vec3 lamp_light = vec3(0.0);  // the lamps' in-scatter, upsampled (or walked below)
@@ -352,7 +357,7 @@ void main() {
   vec3 inscatter = froxel.rgb;
 #else
   vec3 inscatter =
-      (fog_colour + fog_sun_scatter * fog_phase_hg(fog_phase_g, cos_sun) * sun_light) * (1.0 - tau);
+      (fog_colour + fog_sun_scatter * fog_phase_hg(fog_phase_g, vec3(view_dir), fog_sun_direction) * sun_light) * (1.0 - tau);
 #endif
 #if FOG_LAMPS
   // the lamps: upsampled from the reduced pass, or the pixel's own (a loop of at most one

@@ -65,6 +65,14 @@ float pack_normal(vec3 n) {
 
 void main() {
   vec3 n = normalize(v_normal);
+  // The side the camera sees: the boxes are drawn two-sided (a camera inside one sees its
+  // inner faces), and their faces' windings differ, so by geometry rather than
+  // gl_FrontFacing: the triangle's own normal turned towards the camera. An inner face
+  // lit as its outer face would take the sun through the box and no light from a lamp
+  // inside it.
+  vec3 face = cross(dFdx(v_relative), dFdy(v_relative));
+  if (dot(face, v_relative) > 0.0) face = -face;
+  if (dot(n, face) < 0.0) n = -n;
   float lambert = max(dot(n, sun_direction), 0.0);
   // Hemispherical ambient: full sky light facing up, a third of it facing down.
   vec3 sky_light = ambient * mix(0.33, 1.0, 0.5 + 0.5 * n.y);

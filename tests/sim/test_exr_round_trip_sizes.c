@@ -3,7 +3,8 @@
  * up to 2^24 levels), as 32-bit float and as half, written and read back value for value.
  * Some of these ZIP chunks deflate to exactly their raw length; OpenEXR Core 3.1.5 wrote the
  * stream anyway and every reader took it for raw bytes (a 6x6 wavelet band read back
- * 5e29), so image_write_exr keeps the raw bytes there. */
+ * 5e29), so image_write_exr keeps the raw bytes there. Every channel is marked pLinear 0
+ * (scene-linear light, which B44 and DWA compress in a log space), as OpenEXR's default. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdint.h>
@@ -12,8 +13,26 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <openexr.h>
+
 #include "sim/sim.h"
 #include "test_util.h"
+
+/* The number of channels of the file at path marked perceptually linear (pLinear 1); -1
+ * when it cannot be read. */
+static int perceptually_linear_channels(const char *path) {
+  exr_context_t ctxt;
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  if (exr_start_read(&ctxt, path, &init) != EXR_ERR_SUCCESS) return -1;
+  const exr_attr_chlist_t *channels = NULL;
+  int marked = -1;
+  if (exr_get_channels(ctxt, 0, &channels) == EXR_ERR_SUCCESS) {
+    marked = 0;
+    for (int c = 0; c < channels->num_channels; c++) marked += channels->entries[c].p_linear != 0;
+  }
+  exr_finish(&ctxt);
+  return marked;
+}
 
 static uint64_t state = 0x9e3779b97f4a7c15ull;
 static uint32_t next_random(void) {
@@ -62,6 +81,14 @@ int main(void) {
                    w, h, levels[l]);
           fogmap_destroy(&map);
         }
+  /* three channels, half and float */
+  const image_channel rgb[3] = {{.name = "R", .pixels = pixels, .as_half = 1},
+                                {.name = "G", .pixels = pixels, .as_half = 1},
+                                {.name = "depth", .pixels = pixels}};
+  fog_error err = {0};
+  CHECK(image_write_exr(path, 4, 4, rgb, 3, &err) == 0, "%s", err.message);
+  const int marked = perceptually_linear_channels(path);
+  CHECK(marked == 0, "%d of 3 channels marked perceptually linear (pLinear 1)", marked);
   unlink(path);
   rmdir(dir);
   printf("%d EXRs of 1..12 x 1..12, float and half: %d not read back as written\n", files,
