@@ -119,6 +119,23 @@ static int bake_frames(const bake_job *job, const scene_config *cfg, const char 
   return status;
 }
 
+/* The scene cfg with the frames (pattern, simulated on cells cell_size wide) as its fog, as
+ * a config at path: 0, or 1 (printed). */
+static int write_bake_ini(const scene_config *cfg, const char *pattern, double cell_size,
+                          const char *path) {
+  /* The same scene with the frames as its fog (density_scale, box, profile as they are). */
+  scene_config baked = *cfg;
+  baked.fog.fogmap[0] = baked.fog.channel[0] = '\0'; /* the frames hold one channel, Y */
+  /* the frames' cells: a map simulated k times finer or coarser covers the same world */
+  if (cell_size != cfg->box.cell_size) {
+    baked.box.cell_size = cell_size;
+    baked.box.cell_size_set = true;
+  }
+  snprintf(baked.fog.sequence, sizeof baked.fog.sequence, "%s", pattern);
+  fog_error err = {0};
+  return scene_config_write(&baked, path, &err) ? cli_fail("bake", "%s", err.message) : 0;
+}
+
 int cmd_bake(int argc, char **argv) {
   bake_job job = {.fps = 24.0};
   int parsed = parse_bake_options(argc, argv, &job);
@@ -161,24 +178,15 @@ int cmd_bake(int argc, char **argv) {
   interrupted = 0;
   int written = 0;
   double cell_size = cfg.box.cell_size;
-  int status = bake_frames(&job, &cfg, staged, &written, &cell_size);
   /* The new bake.ini into the staging folder too (naming the frames where they will be):
-   * a config that cannot be written fails here, with the old bake untouched. */
+   * written once before the frames, so that a scene that cannot be written as a config
+   * (a line too long, a folder whose name a config cuts short) fails before the
+   * simulation, and again after them with the cells they were simulated on. */
   char staged_ini[SCENE_CONFIG_PATH_MAX + 16];
   snprintf(staged_ini, sizeof staged_ini, "%s/bake.ini", staging);
-  if (!status) {
-    /* The same scene with the frames as its fog (density_scale, box, profile as they are). */
-    scene_config baked = cfg;
-    baked.fog.fogmap[0] = baked.fog.channel[0] = '\0'; /* the frames hold one channel, Y */
-    /* the frames' cells: a map simulated k times finer or coarser covers the same world */
-    if (cell_size != cfg.box.cell_size) {
-      baked.box.cell_size = cell_size;
-      baked.box.cell_size_set = true;
-    }
-    snprintf(baked.fog.sequence, sizeof baked.fog.sequence, "%s", pattern);
-    if (scene_config_write(&baked, staged_ini, &cerr))
-      status = cli_fail("bake", "%s", cerr.message);
-  }
+  int status = write_bake_ini(&cfg, pattern, cell_size, staged_ini);
+  if (!status) status = bake_frames(&job, &cfg, staged, &written, &cell_size);
+  if (!status) status = write_bake_ini(&cfg, pattern, cell_size, staged_ini);
   if (status) {
     sigaction(SIGINT, &old_int, NULL);
     sigaction(SIGTERM, &old_term, NULL);

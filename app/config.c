@@ -279,6 +279,10 @@ static char *read_line(char *buffer, int size, void *stream) {
     }
   }
   s->continuation = s->after_key && p > s->whole_line && *p && *p != ';' && *p != '#';
+  /* the line's bytes without its end (\n or \r\n), which libinih strips anyway: a line of
+   * 199 bytes fits the buffer whatever ends it */
+  while (n > 0 && (s->whole_line[n - 1] == '\n' || s->whole_line[n - 1] == '\r')) n--;
+  s->whole_line[n] = '\0';
   if (n < size) {
     memcpy(buffer, s->whole_line, (size_t)n + 1);
   } else if (*p == ';' || *p == '#' || !*p) {
@@ -1201,6 +1205,16 @@ static bool key_unset(const scene_config *cfg, const key_spec *k) {
          (o == F(box.floor) && !cfg->box.floor_set) || (o == F(box.top) && !cfg->box.top_set);
 }
 
+/* An exponent without its '+' and leading zeros: "1e+20" as "1e20", "1.5e-05" as "1.5e-5". */
+static void compact_exponent(char *number) {
+  char *e = strchr(number, 'e');
+  if (!e) return;
+  char *digits = e + 1 + (e[1] == '+' || e[1] == '-');
+  char *first = digits + strspn(digits, "0");
+  if (!*first) first--; /* e+00: keep one 0 */
+  memmove(e[1] == '+' ? e + 1 : digits, first, strlen(first) + 1);
+}
+
 /* " x" in the shortest form that reads back as x (lines with many numbers stay short). */
 static void write_number(FILE *f, double x) {
   char number[32];
@@ -1208,6 +1222,7 @@ static void write_number(FILE *f, double x) {
     snprintf(number, sizeof number, "%.*g", digits, x);
     if (strtod(number, NULL) == x) break;
   }
+  compact_exponent(number);
   fprintf(f, " %s", number);
 }
 
@@ -1218,6 +1233,7 @@ static void write_float(FILE *f, float x) {
     snprintf(number, sizeof number, "%.*g", digits, (double)x);
     if ((float)strtod(number, NULL) == x) break;
   }
+  compact_exponent(number);
   fprintf(f, " %s", number);
 }
 
@@ -1356,23 +1372,73 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
   }
 }
 
+/* The longest line the reader takes: libinih's buffer (INI_MAX_LINE, 200 in Debian's
+ * build) less its terminating NUL. */
+enum { SCENE_CONFIG_LINE_MAX = INI_MAX_LINE - 1 };
+
+/* Whether the written text reads back as written: no line past the reader's 199 bytes (a
+ * lamp line of long numbers can pass it once written in full, with its radius), and no
+ * value that a ';' after a blank would cut short (a path through a folder "a ;b"). 0, or 1
+ * naming the line. */
+static int check_written_text(const char *text, const char *path, fog_error *err) {
+  int number = 0;
+  for (const char *line = text; *line;) {
+    const size_t length = strcspn(line, "\n");
+    number++;
+    if (line[0] != ';') {
+      const char *cut = NULL;
+      for (size_t i = 1; i < length && !cut; i++)
+        if (line[i] == ';' && (line[i - 1] == ' ' || line[i - 1] == '\t')) cut = line + i;
+      if (length > SCENE_CONFIG_LINE_MAX)
+        return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                        "%.400s: the scene cannot be written as a config: its line %d "
+                        "('%.40s...') would be %zu bytes, more than a config line holds (%d)",
+                        path, number, line, length, SCENE_CONFIG_LINE_MAX);
+      if (cut)
+        return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                        "%.400s: the scene cannot be written as a config: its line %d "
+                        "('%.*s') holds ' ;', which a config reads as the start of a comment "
+                        "(rename the folder)",
+                        path, number, (int)(length < 300 ? length : 300), line);
+    }
+    line += length + (line[length] == '\n');
+  }
+  return 0;
+}
+
 int scene_config_write(const scene_config *cfg, const char *path, fog_error *err) {
+  /* the text first, checked, then the file */
+  char *text = NULL;
+  size_t text_size = 0;
+  FILE *m = open_memstream(&text, &text_size);
+  if (!m) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%.400s: out of memory", path);
+  fprintf(m, "; written by fogpipe (scene_config_write): every key of the scene\n");
+  const char *section = "";
+  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+    if (strcmp(keys[i].section, section)) {
+      section = keys[i].section;
+      fprintf(m, "%s[%s]\n", i ? "\n" : "", section);
+    }
+    write_key(m, cfg, &keys[i]);
+  }
+  if (ferror(m) | fclose(m)) {
+    free(text);
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%.400s: out of memory", path);
+  }
+  if (check_written_text(text, path, err)) {
+    free(text);
+    return 1;
+  }
   char temp[SCENE_CONFIG_PATH_MAX + 16];
   snprintf(temp, sizeof temp, "%s.tmp", path);
   FILE *f = fopen(temp, "w");
   if (!f) {
     fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: cannot write: %s", path, strerror(errno));
+    free(text);
     return 1;
   }
-  fprintf(f, "; written by fogpipe (scene_config_write): every key of the scene\n");
-  const char *section = "";
-  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
-    if (strcmp(keys[i].section, section)) {
-      section = keys[i].section;
-      fprintf(f, "%s[%s]\n", i ? "\n" : "", section);
-    }
-    write_key(f, cfg, &keys[i]);
-  }
+  fputs(text, f);
+  free(text);
   if (ferror(f) | fclose(f) || rename(temp, path)) {
     remove(temp);
     fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: write failed (disk full?)", path);

@@ -142,7 +142,16 @@ int main(void) {
           "a long comment changed the scene: density_scale %g, fov %g", cfg.fog.density_scale,
           cfg.camera.fov);
     snprintf(text, sizeof text, "[fog]\nfog_height = %0250d\n", 1);
-    expect_error(text, "2: the line is 264 bytes long", "at most 199");
+    expect_error(text, "2: the line is 263 bytes long", "at most 199");
+    /* 199 bytes hold, whatever ends the line (\n, \r\n or the file); 200 do not */
+    const char *ends[3] = {"\n", "\r\n", ""};
+    for (int e = 0; e < 3; e++) {
+      snprintf(text, sizeof text, "[fog]\nfog_height = %0186d%s", 7, ends[e]);
+      CHECK(load_text(text, path, &cfg, &err) == 0 && cfg.fog.fog_height == 7.0,
+            "a line of 199 bytes ending %d: %s", e, err.message);
+    }
+    snprintf(text, sizeof text, "[fog]\nfog_height = %0187d\r\n", 7);
+    expect_error(text, "2: the line is 200 bytes long", "at most 199");
     /* below double's normal range (strtod: ERANGE), inside the key's: a number */
     CHECK(load_text("[fog]\nmodel = homogeneous\ndensity_scale = 1e-320\n", path, &cfg,
                     &err) == 0 && cfg.fog.density_scale > 0 && cfg.fog.density_scale < 1e-319,

@@ -127,6 +127,35 @@ int main(void) {
             scene_config_load(written, &again, &err) == 0 &&
             scene_config_fingerprint(&again) == scene_config_fingerprint(&back),
         "a spot lamp written and read back: %s", err.message);
+  /* exponents written short ("1.23456789012e-5", not e-05): a spot line of eleven such
+   * numbers, 193 bytes, stays under 199 once written with its radius (it took 208) */
+  char spot[300] = "[light]\nspot =";
+  for (int k = 0; k < 10; k++) strcat(spot, " 1.23456789012e-5");
+  strcat(spot, " 2.23456789012e-5\n"); /* OUTER > INNER */
+  CHECK(load_text(written, spot, &back, &err) == 0, "eleven short numbers: %s", err.message);
+  CHECK(scene_config_write(&back, written, &err) == 0 &&
+            scene_config_load(written, &again, &err) == 0 &&
+            scene_config_fingerprint(&again) == scene_config_fingerprint(&back),
+        "a spot of eleven 1.23456789012e-5 written and read back: %s", err.message);
+  /* a spot line of 188 bytes that takes 203 once written (each .12345678901234 as
+   * 0.12345678901234, and the radius): refused, naming the line, and nothing written (a
+   * config that would not load again) */
+  strcpy(spot, "[light]\nspot = -.12345678901234 -.12345678901234 -.12345678901234 "
+               ".12345678901234 .12345678901234 .12345678901234 -.12345678901234 "
+               "-.12345678901234 -.12345678901234 .12345678901234 .22345678901234\n");
+  CHECK(strlen(spot) - strlen("[light]\n\n") <= 199, "the spot line is %zu bytes", strlen(spot));
+  CHECK(load_text(written, spot, &back, &err) == 0, "eleven long numbers: %s", err.message);
+  unlink(written);
+  CHECK(scene_config_write(&back, written, &err) != 0 &&
+            strstr(err.message, "more than a config line holds") && access(written, F_OK) != 0,
+        "a spot line past 199 bytes once written: %s", err.message);
+  /* a path through a folder "a ;b": a config would cut it at the ';' */
+  unlink(written);
+  snprintf(back.fog.fogmap, sizeof back.fog.fogmap, "%s/a ;b/m.exr", dir);
+  back.lamp_count = 0;
+  CHECK(scene_config_write(&back, written, &err) != 0 && strstr(err.message, "' ;'") &&
+            access(written, F_OK) != 0,
+        "a fogmap path with ' ;' written: %s", err.message);
   unlink(written);
   char bad[700];
   snprintf(bad, sizeof bad, "%s/missing/x.ini", dir);

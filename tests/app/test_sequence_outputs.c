@@ -2,7 +2,8 @@
  * bake.ini; record: frame.####.exr) refuse a folder where one of those files is a file the
  * scene reads, before any work, and leave it as it was: a fogmap named like a frame, or
  * the config itself named bake.ini. And a bake of one channel of a colour fogmap plays
- * back: its bake.ini names the frames (one channel, Y) without the input's [fog] channel. */
+ * back: its bake.ini names the frames (one channel, Y) without the input's [fog] channel.
+ * A bake into a folder whose name a config cuts short is refused before it simulates. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdbool.h>
 #include <stdio.h>
@@ -105,6 +106,15 @@ int main(void) {
            dir);
   CHECK(test_run_output(line, output, sizeof output) == 0 && strstr(output, "scene + fog"),
         "the bake of channel G does not render: %s", output);
+
+  /* a folder whose name a config would cut short ("x ;y": ';' after a blank starts a
+   * comment): refused before the simulation, the folder it made removed */
+  snprintf(line, sizeof line, "'%s' bake '%s' --frames 2 --out '%s/x ;y' 2>&1", bin, ini, dir);
+  int status = test_run_output(line, output, sizeof output);
+  snprintf(path, sizeof path, "%s/x ;y", dir);
+  CHECK(status == 1 && strstr(output, "' ;'") && !strstr(output, "frame") &&
+            stat(path, &st) != 0,
+        "bake --out 'x ;y': exit %d, %s", status, output);
 
   test_remove_tree(dir);
   return test_finish("test_sequence_outputs");
