@@ -74,7 +74,10 @@ static int parse_velocity(const char *command, const char *option, const char *t
 /* 0 to go on, CLI_HELP, or the exit status of a bad command line. */
 static int parse_design_options(int argc, char **argv, design_options *o) {
   int size[2] = {0, 0}, seed = 1;
-  bool perlin = false, half = false;
+  bool perlin = false, half = false, seed_given = false;
+  /* the turbulence's options, in this order: given without --perlin they would do nothing */
+  enum { NOISE_OPTIONS = 8 };
+  bool noise_given[NOISE_OPTIONS] = {false};
   const cli_option options[] = {
       {.kind = CLI_SECTION, .name = "what:"},
       {.kind = CLI_FLAG, .name = "--perlin", .target = &perlin,
@@ -99,27 +102,27 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
                "load the PNG with density_scale D to get densities back)"},
       {.kind = CLI_SECTION, .name = "Perlin turbulence:"},
       {.kind = CLI_INT, .name = "--seed", .value = "N", .target = &seed, .min = 0,
-       .max = 0x7fffffff,
+       .max = 0x7fffffff, .given = &seed_given,
        .help = "permutation seed, also places random blobs (default 1;\n"
                "0 is Perlin's reference permutation)"},
       {.kind = CLI_FLOAT, .name = "--time", .value = "T", .target = &o->noise.time, .min = -1e9,
-       .max = 1e9, .help = "animation time (default 0)"},
+       .max = 1e9, .given = &noise_given[0], .help = "animation time (default 0)"},
       {.kind = CLI_CUSTOM, .name = "--velocity", .value = "VX,VZ", .target = o->noise.velocity,
-       .parse = parse_velocity,
+       .parse = parse_velocity, .given = &noise_given[1],
        .help = "drift of the noise in cells per unit time (default 0,0)"},
       {.kind = CLI_FLOAT, .name = "--feature-size", .value = "S", .target = &o->noise.feature_size,
-       .min = 1e-3, .max = 1e9,
+       .min = 1e-3, .max = 1e9, .given = &noise_given[2],
        .help = "noise lattice spacing in cells, the largest eddies (default 32)"},
       {.kind = CLI_INT, .name = "--octaves", .value = "N", .target = &o->noise.octaves, .min = 1,
-       .max = 30, .help = "turbulence octaves (default 4)"},
+       .max = 30, .given = &noise_given[3], .help = "turbulence octaves (default 4)"},
       {.kind = CLI_FLOAT, .name = "--gain", .value = "G", .target = &o->noise.gain, .min = 1e-9,
-       .max = 1e9, .help = "turbulence gain (default 1)"},
+       .max = 1e9, .given = &noise_given[4], .help = "turbulence gain (default 1)"},
       {.kind = CLI_FLOAT, .name = "--base", .value = "B", .target = &o->noise.base, .min = 0,
-       .max = 1e9, .help = "density added to the turbulence (default 0)"},
+       .max = 1e9, .given = &noise_given[5], .help = "density added to the turbulence (default 0)"},
       {.kind = CLI_FLOAT, .name = "--slice", .value = "S", .target = &o->noise.slice, .min = -1e9,
-       .max = 1e9, .help = "the noise's third coordinate (default 0)"},
+       .max = 1e9, .given = &noise_given[6], .help = "the noise's third coordinate (default 0)"},
       {.kind = CLI_FLOAT, .name = "--slice-rate", .value = "R", .target = &o->noise.slice_rate,
-       .min = -1e9, .max = 1e9,
+       .min = -1e9, .max = 1e9, .given = &noise_given[7],
        .help = "slice change per unit time: evolving, not only drifting fog"},
       {.kind = CLI_SECTION, .name = "blobs:"},
       {.kind = CLI_NUMBER, .name = "--blob-base", .value = "B", .target = &o->blob_base,
@@ -152,6 +155,16 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
     return cli_usage_error("design", "--png-max scales a .png: an EXR keeps the densities");
   if (o->blob_base > 0 && !o->random_blobs && !o->blob_count)
     return cli_usage_error("design", "--blob-base is added to the blobs: give --blob or --blobs");
+  static const char *const noise_names[NOISE_OPTIONS] = {
+      "--time", "--velocity", "--feature-size", "--octaves", "--gain", "--base", "--slice",
+      "--slice-rate"};
+  for (int i = 0; i < NOISE_OPTIONS && !o->perlin; i++)
+    if (noise_given[i])
+      return cli_usage_error("design", "%s shapes the Perlin turbulence: give --perlin",
+                             noise_names[i]);
+  if (seed_given && !o->perlin && !o->random_blobs)
+    return cli_usage_error("design", "--seed draws the Perlin permutation and places random "
+                           "blobs: give --perlin or --blobs N");
   return 0;
 }
 

@@ -3,6 +3,7 @@
 #define _XOPEN_SOURCE 700 /* realpath */
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +28,7 @@ typedef struct fit_options {
   int tolerance_count;
   double density_scale;
   int up, frame;
+  bool vdb_option_given; /* --grid, --up, --frame or --density-scale (even at its default) */
   fit_desc desc;
 } fit_options;
 
@@ -74,11 +76,13 @@ static int parse(int argc, char **argv, fit_options *o) {
        .help = "error against ms, one series per family (and FILE.csv)"},
       {.kind = CLI_SECTION, .name = "VDB input:"},
       {.kind = CLI_TEXT, .name = "--grid", .value = "NAME", .target = &o->grid,
-       .help = "float grid (default density)"},
+       .given = &o->vdb_option_given, .help = "float grid (default density)"},
       {.kind = CLI_CHOICE, .name = "--up", .value = "z|y", .target = &o->up, .choices = up,
+       .given = &o->vdb_option_given,
        .help = "the file's up axis (default z: Blender/Mantaflow)"},
       {.kind = CLI_INT, .name = "--frame", .value = "N", .target = &o->frame, .min = 0,
-       .max = INT_MAX, .help = "frame number of a sequence (default: the last)"},
+       .max = INT_MAX, .given = &o->vdb_option_given,
+       .help = "frame number of a sequence (default: the last)"},
       {.kind = CLI_SECTION, .name = "sequences (a VDB INPUT, or a config's [fog] vdb):"},
       {.kind = CLI_TEXT, .name = "--frames", .value = "all|A-B[:S]", .target = &o->frames,
        .help = "fit over these frame numbers (every S-th), the worst frame\n"
@@ -86,7 +90,8 @@ static int parse(int argc, char **argv, fit_options *o) {
                "the fogmap and the volume play the frames (default: one\n"
                "frame, --frame or the config's vdb_frame)"},
       {.kind = CLI_NUMBER, .name = "--density-scale", .value = "S", .target = &o->density_scale,
-       .min = 1e-12, .max = 1e12, .help = "extinction per unit of the grid's value (default 1)"},
+       .min = 1e-12, .max = 1e12, .given = &o->vdb_option_given,
+       .help = "extinction per unit of the grid's value (default 1)"},
       {.kind = CLI_SECTION, .name = "measurement:"},
       {.kind = CLI_INT, .name = "--rays", .value = "N", .target = &o->desc.rays_per_side,
        .min = 1, .max = 1024,
@@ -128,7 +133,7 @@ static int load_input(const fit_options *o, scene_config *cfg) {
   if (cli_ends_with(o->input, ".ini")) {
     fog_error err;
     if (scene_config_load(o->input, cfg, &err)) return cli_fail("fit", "%s", err.message);
-    if (o->grid || o->up || o->frame >= 0 || o->density_scale != 1.0)
+    if (o->vdb_option_given)
       return cli_usage_error("fit", "--grid, --up, --frame and --density-scale are for a VDB "
                              "INPUT; a config sets them in [fog]");
     return 0;
@@ -268,6 +273,10 @@ static int refuse_output_input(const fit_options *o, const scene_config *cfg) {
   return 0;
 }
 
+static volatile sig_atomic_t stop_signal;
+
+static void on_stop(int signal_number) { stop_signal = signal_number; }
+
 int cmd_fit(int argc, char **argv) {
   fit_options o;
   int status = parse(argc, argv, &o);
@@ -296,8 +305,23 @@ int cmd_fit(int argc, char **argv) {
   fit_result r;
   fog_error err;
   double t0 = app_clock_seconds();
-  if (fit_run(&o.desc, &r, &err)) {
+  /* Ctrl-C or SIGTERM: the fit stops after the rung it is measuring and removes its
+   * scratch folder (a projected fogmap), then exits 130 */
+  struct sigaction action = {.sa_handler = on_stop}, old_int, old_term;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  sigaction(SIGINT, &action, &old_int);
+  sigaction(SIGTERM, &action, &old_term);
+  o.desc.stop = &stop_signal;
+  status = fit_run(&o.desc, &r, &err);
+  sigaction(SIGINT, &old_int, NULL);
+  sigaction(SIGTERM, &old_term, NULL);
+  if (status) {
     free(cfg), free(frames);
+    if (stop_signal) {
+      fprintf(stderr, "fogpipe fit: interrupted (%s): nothing written\n", err.message);
+      return 130;
+    }
     return cli_fail("fit", "%s: %s", o.input, err.message);
   }
   printf("fogpipe fit: %s, tolerance %g on the %s |dtau|\n", o.input, o.tolerance[0],

@@ -331,10 +331,15 @@ int fit_run(const fit_desc *d, fit_result *r, fog_error *err) {
   camera.fov = 60.0;
   camera.near_plane = 1e-3 * reach;
   camera.far_plane = 1e3 * reach;
-  for (int i = 0; i < r->count; i++)
+  for (int i = 0; i < r->count; i++) {
+    if (d->stop && *d->stop) {
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "stopped after %d of %d rungs", i, r->count);
+      goto done;
+    }
     if (measure_rung(&r->rungs[i], d, views, frame_count, r->lit ? &light : NULL, &camera,
                      pixels, err))
       goto done;
+  }
   r->chosen = fit_choose(r, d->tolerance, d->by_mean);
   status = 0;
 done:

@@ -24,6 +24,8 @@
 #ifndef FOGPIPE_APP_FIT_H
 #define FOGPIPE_APP_FIT_H
 
+#include <signal.h>
+
 #include "transform/fog_error.h"
 #include "app/config.h"
 
@@ -40,6 +42,9 @@ typedef struct fit_desc {
    * the frames); NULL: the input's own frame ([fog] vdb_frame). Timed at the last. */
   const int *frames;
   int frame_count;
+  /* Set by the caller (its SIGINT/SIGTERM handler) to stop: fit_run then fails after the
+   * rung it is measuring, its scratch folder removed. NULL: it runs to the end. */
+  const volatile sig_atomic_t *stop;
 } fit_desc;
 
 /* The command's defaults. */
@@ -72,9 +77,10 @@ typedef struct fit_result {
   int frame_count;   /* frames measured */
   bool lit;          /* the in-scatter was measured too */
   /* A folder the rungs' own files live in (the fogmap projected from an analytic input,
-   * app/fit_fogmap.h), their configs naming them; "" when no rung has one. Removed by
+   * app/fit_fogmap.h), their configs naming them, in $TMPDIR (else /tmp); "" when no rung
+   * has one. Removed by
    * fit_result_destroy: a config written from such a rung must take its files along. */
-  char scratch[64];
+  char scratch[512];
 } fit_result;
 
 /* Errors name the input's file (and line where a key is at fault) or the rung that failed

@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "app/fit_rungs.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
@@ -261,10 +262,13 @@ static int add_fogmap_rungs(fit_result *r, const scene_config *input, const fog_
   if (projected_status > 0) return 1;
   if (projected_status < 0) projects = false; /* no fog to project: no fogmap rungs */
   if (projects) {
-    snprintf(r->scratch, sizeof r->scratch, "%s", "/tmp/fogpipe-fit-XXXXXX");
+    const char *temporary = getenv("TMPDIR");
+    if (!temporary || !*temporary) temporary = "/tmp";
+    const int n = snprintf(r->scratch, sizeof r->scratch, "%s/fogpipe-fit-XXXXXX", temporary);
     fog_error serr = {0};
-    if (!mkdtemp(r->scratch)) {
-      fog_fail(err, FOG_ERR_FILE_ACCESS, "the fogmap rungs: no folder in /tmp");
+    if (n >= (int)sizeof r->scratch || !mkdtemp(r->scratch)) {
+      fog_fail(err, FOG_ERR_FILE_ACCESS, "the fogmap rungs: no folder in %.400s (TMPDIR): %s",
+               temporary, n >= (int)sizeof r->scratch ? "its path is too long" : strerror(errno));
       r->scratch[0] = '\0';
       fit_fogmap_destroy(&ff);
       return 1;

@@ -4,7 +4,8 @@
  * as SCENE.fogmap.exr, which the scene names; bad input (a
  * missing VDB, a bad config key, no tolerance, an unwritable --out, an --out that would
  * replace an input, --chart without gnuplot) fails with a message naming the file or
- * option, and leaves no file behind. */
+ * option, and leaves no file behind; a fit stopped by SIGTERM exits 130 and removes its
+ * scratch folder (in $TMPDIR). */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <math.h>
@@ -166,6 +167,25 @@ int main(void) {
   status = fit(bin, args, out, err, sizeof out);
   CHECK(status == 2 && strstr(err, "is the config's [fog] fogmap"),
         "--out beside the scene's fogmap: exit %d, %s%s", status, out, err);
+
+  /* SIGTERM while the rungs are measured: exit 130, the scratch folder of the projected
+   * fogmap (in $TMPDIR) removed. The signal goes once that folder exists. */
+  char tmp[300], stopped[4096];
+  snprintf(tmp, sizeof tmp, "%s/tmp", dir);
+  CHECK(mkdir(tmp, 0777) == 0, "cannot make %s", tmp);
+  snprintf(stopped, sizeof stopped,
+           "TMPDIR='%s' '%s' fit configs/perlin_fog.ini --tolerance 0.01 > '%s/out.txt' "
+           "2> '%s/err.txt' & pid=$!; i=0; while [ $i -lt 1000 ] && ! ls '%s' | grep -q "
+           "fogpipe-fit; do sleep 0.01; i=$((i+1)); done; kill -TERM $pid; wait $pid; "
+           "exit $?",
+           tmp, bin, dir, dir, tmp);
+  status = system(stopped);
+  status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  snprintf(args, sizeof args, "%s/err.txt", dir);
+  read_text(args, err, sizeof err);
+  CHECK(status == 130 && strstr(err, "interrupted") && test_folder_entries(tmp) == 0,
+        "SIGTERM during the fit: exit %d, %d files left in TMPDIR, %s", status,
+        test_folder_entries(tmp), err);
 
   char command[512];
   snprintf(command, sizeof command, "rm -rf '%s'", dir);
