@@ -291,8 +291,8 @@ static int fit_to_solver(const fogmap *loaded, double *cell_size, double *finer,
 
 /* The base density the simulation starts from and relaxes toward: the config's fogmap
  * when it has one (its own size when the FFT solver accepts it; otherwise fit_to_solver,
- * which also sets the pipeline's cell size), else Perlin turbulence (Zdrojewska 2004) so
- * the first frame already has structure. */
+ * which also sets the pipeline's cell size), else clear air on a 256 x 256 grid: a config
+ * without fog has none, as `render` draws it, until emitters or the brush make some. */
 static int make_base(scene_config *cfg, fogmap *base, double *finer, fog_error *err) {
   *finer = 1.0;
   fog_error serr = {0};
@@ -317,10 +317,7 @@ static int make_base(scene_config *cfg, fogmap *base, double *finer, fog_error *
                   : 0;
   }
   const int n = DEFAULT_GRID;
-  if (fogmap_create(base, n, n, &serr)) return fog_error_pass(err, &serr);
-  perlin_fog_desc perlin = {.seed = (uint64_t)cfg->sim.seed + 7, .octaves = 4,
-                            .feature_size = n / 4.0f, .gain = 1.2f, .base = 0.05f};
-  if (designed_fog_perlin(base, &perlin, &serr)) return fog_error_pass(err, &serr);
+  if (fogmap_create(base, n, n, &serr)) return fog_error_pass(err, &serr); /* zeros */
   return 0;
 }
 

@@ -1,0 +1,49 @@
+/* A config without fog (no fogmap, VDB or sequence, the fogmap model) has none in every
+ * command, as docs/config.md says of an empty file: `render` draws the scene alone, and
+ * `record`, which simulates a fogmap scene, starts from clear air, so its frames have
+ * transmittance 1 everywhere (with no emitters nothing makes fog), frame 1 as render's. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "exr_channel_util.h"
+#include "test_bin.h"
+#include "test_util.h"
+
+enum { W = 32, H = 18 };
+
+static char dir[] = "/tmp/fogpipe_no_fog_XXXXXX";
+
+/* The smallest transmittance of an EXR's pixels (2 after a failed check). */
+static double least_transmittance(const char *path) {
+  float *t = load_exr_channel(path, "transmittance", W, H);
+  double least = t ? 1.0 : 2.0;
+  for (int k = 0; t && k < W * H; k++) least = t[k] < least ? t[k] : least;
+  free(t);
+  return least;
+}
+
+int main(void) {
+  const char *bin = test_bin_and_folder(dir);
+  if (!bin) return test_finish("test_no_fog_config");
+  char ini[300], line[1200], output[4096], path[400];
+  snprintf(ini, sizeof ini, "%s/plain.ini", dir);
+  test_write_text(ini, "[render]\nwidth = 32\nheight = 18\n[terrain]\nresolution = 17\n");
+  snprintf(line, sizeof line, "'%s' render '%s' --out '%s/r.exr' 2>&1", bin, ini, dir);
+  CHECK(test_run_output(line, output, sizeof output) == 0 && strstr(output, "no fog"),
+        "render: %s", output);
+  snprintf(path, sizeof path, "%s/r.exr", dir);
+  CHECK(least_transmittance(path) == 1.0, "render drew fog: transmittance %g",
+        least_transmittance(path));
+  snprintf(line, sizeof line, "'%s' record '%s' --frames 3 --out '%s/rec' 2>&1", bin, ini, dir);
+  CHECK(test_run_output(line, output, sizeof output) == 0, "record: %s", output);
+  for (int f = 1; f <= 3; f++) {
+    snprintf(path, sizeof path, "%s/rec/frame.%04d.exr", dir, f);
+    const double least = least_transmittance(path);
+    CHECK(least == 1.0, "record frame %d has fog: transmittance down to %g", f, least);
+  }
+  test_remove_tree(dir);
+  return test_finish("test_no_fog_config");
+}
