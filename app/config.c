@@ -399,6 +399,7 @@ static int handle(void *user, const char *section, const char *key, const char *
   if (!strcmp(section, "fog") && !strcmp(key, "model")) cfg->fog.model_line = s->line;
   if (!strcmp(section, "fog") && !strcmp(key, "rbf_carrier")) cfg->fog.rbf_carrier_line = s->line;
   if (!strcmp(section, "light") && !strcmp(key, "lamp_integral")) cfg->lamp_integral_line = s->line;
+  if (!strcmp(section, "render") && !strcmp(key, "supersample")) cfg->supersample_line = s->line;
   if (!strcmp(section, "box")) {
     if (!strcmp(key, "origin")) cfg->box.origin_set = true;
     if (!strcmp(key, "cell_size")) cfg->box.cell_size_set = true;

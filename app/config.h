@@ -242,6 +242,7 @@ typedef struct scene_config {
   /* [render] supersample k (1 to 4): render and record draw k x k samples a pixel
    * (app/supersample.h); the window draws one */
   int supersample;
+  int supersample_line; /* the line that set it (0: the default), for the player's error */
   scene_sim_config sim;
 } scene_config;
 

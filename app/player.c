@@ -96,9 +96,10 @@ player *player_create(const player_desc *desc, fog_error *err) {
   if (p->supersample < 1 || p->supersample > 4 || fine_width > PLAYER_MAX_SIDE ||
       fine_height > PLAYER_MAX_SIDE) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "%s: [render] supersample = %d draws %ldx%ld pixels for %dx%d: expected 1 to 4, "
-             "and at most %d a side", desc->config->path, p->supersample, fine_width,
-             fine_height, desc->width, desc->height, PLAYER_MAX_SIDE);
+             "%s:%d: [render] supersample = %d draws %ldx%ld pixels for %dx%d: expected 1 to "
+             "4, and at most %d a side", desc->config->path, desc->config->supersample_line,
+             p->supersample, fine_width, fine_height, desc->width, desc->height,
+             PLAYER_MAX_SIDE);
     free(p);
     return NULL;
   }
