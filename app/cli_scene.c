@@ -34,15 +34,25 @@ static bool in_sequence(const char *out, const char *pattern) {
   return count >= 1 && strcmp(digits + count, suffix) == 0;
 }
 
+/* The files a scene config reads, each with the words that name it in a refusal; the
+ * [fog] sequence (a #### pattern) last. */
+typedef struct scene_input {
+  const char *path, *what;
+} scene_input;
+enum { SCENE_INPUTS = 5 };
+static void scene_inputs(const scene_config *cfg, scene_input inputs[SCENE_INPUTS]) {
+  inputs[0] = (scene_input){cfg->path, "the config itself"};
+  inputs[1] = (scene_input){cfg->fog.fogmap, "the config's [fog] fogmap"};
+  inputs[2] = (scene_input){cfg->terrain.heightmap, "the config's [terrain] heightmap"};
+  inputs[3] = (scene_input){cfg->fog.vdb, "a file of the config's [fog] vdb"};
+  inputs[4] = (scene_input){cfg->fog.sequence, "the config's [fog] sequence"};
+}
+
 int cli_output_not_scene_input(const char *command, const char *option, const char *out,
                                const scene_config *cfg) {
-  const struct {
-    const char *path, *what;
-  } inputs[] = {{cfg->path, "the config itself"},
-                {cfg->fog.fogmap, "the config's [fog] fogmap"},
-                {cfg->terrain.heightmap, "the config's [terrain] heightmap"},
-                {cfg->fog.vdb, "a file of the config's [fog] vdb"}};
-  for (size_t i = 0; i < sizeof inputs / sizeof *inputs; i++)
+  scene_input inputs[SCENE_INPUTS];
+  scene_inputs(cfg, inputs);
+  for (int i = 0; i < SCENE_INPUTS - 1; i++)
     if (cli_output_not_input(command, option, out, inputs[i].path, inputs[i].what)) return 2;
   if (cfg->fog.sequence[0] && in_sequence(out, cfg->fog.sequence))
     return cli_usage_error(command, "%s '%s' is a frame of the config's [fog] sequence (%s): "
@@ -78,14 +88,9 @@ static bool same_sequence(const char *a, const char *b) {
 
 int cli_sequence_not_scene_input(const char *command, const char *option, const char *out_pattern,
                                  const scene_config *cfg) {
-  const struct {
-    const char *path, *key;
-  } inputs[] = {{cfg->path, "the config itself"},
-                {cfg->fog.fogmap, "the config's [fog] fogmap"},
-                {cfg->terrain.heightmap, "the config's [terrain] heightmap"},
-                {cfg->fog.vdb, "the config's [fog] vdb"},
-                {cfg->fog.sequence, "the config's [fog] sequence"}};
-  for (size_t i = 0; i < sizeof inputs / sizeof *inputs; i++) {
+  scene_input inputs[SCENE_INPUTS];
+  scene_inputs(cfg, inputs);
+  for (int i = 0; i < SCENE_INPUTS; i++) {
     const char *input = inputs[i].path;
     if (!input[0]) continue;
     size_t start, length;
@@ -93,7 +98,7 @@ int cli_sequence_not_scene_input(const char *command, const char *option, const 
     if (is_pattern ? same_sequence(input, out_pattern) : in_sequence(input, out_pattern))
       return cli_usage_error(command, "%s: the files %s would be written include %s (%s): "
                              "writing them would replace the input; choose another folder",
-                             option, out_pattern, inputs[i].key, input);
+                             option, out_pattern, inputs[i].what, input);
   }
   return 0;
 }

@@ -51,24 +51,31 @@ static void expect_refused(const char *bin, const char *command, const char *arg
   CHECK(same_stat(input, &before), "%s %s changed %s", command, args, input);
 }
 
+static const char *const scene = "[render]\nwidth = 32\nheight = 18\n[terrain]\nresolution = 17\n";
+
+/* `command CONFIG --frames N --out DIR` refused, where CONFIG (DIR/config) names the
+ * fogmap DIR/map: one of the files the command would write (or remove). */
+static void refused_fogmap(const char *bin, const char *command, const char *map,
+                           const char *config, int frames) {
+  char path[300], ini[300], text[600], args[1200];
+  snprintf(path, sizeof path, "%s/%s", dir, map);
+  CHECK(write_fogmap(path, 0.01f, false) == 0, "cannot write %s", path);
+  snprintf(ini, sizeof ini, "%s/%s", dir, config);
+  snprintf(text, sizeof text, "%s[fog]\nfogmap = %s\n", scene, map);
+  test_write_text(ini, text);
+  snprintf(args, sizeof args, "'%s' --frames %d --out '%s'", ini, frames, dir);
+  expect_refused(bin, command, args, path, "[fog] fogmap");
+}
+
 int main(void) {
   const char *bin = test_bin_and_folder(dir);
   if (!bin) return test_finish("test_sequence_outputs");
   char path[300], ini[300], args[1200], line[2048], output[4096];
-  const char *scene = "[render]\nwidth = 32\nheight = 18\n[terrain]\nresolution = 17\n";
 
-  /* a fogmap named as bake's second frame, in the folder the bake is to fill */
-  snprintf(path, sizeof path, "%s/fog.0002.exr", dir);
-  CHECK(write_fogmap(path, 0.01f, false) == 0, "cannot write %s", path);
-  snprintf(ini, sizeof ini, "%s/frame_named.ini", dir);
-  char text[600];
-  snprintf(text, sizeof text, "%s[fog]\nfogmap = fog.0002.exr\n", scene);
-  test_write_text(ini, text);
-  snprintf(args, sizeof args, "'%s' --frames 2 --out '%s'", ini, dir);
-  expect_refused(bin, "bake", args, path, "[fog] fogmap");
-  /* and a frame past the bake's end, which a bake removes as a longer bake's leftover */
-  snprintf(args, sizeof args, "'%s' --frames 1 --out '%s'", ini, dir);
-  expect_refused(bin, "bake", args, path, "[fog] fogmap");
+  /* a fogmap named as bake's second frame, in the folder the bake is to fill; and a frame
+   * past the bake's end, which a bake removes as a longer bake's leftover */
+  refused_fogmap(bin, "bake", "fog.0002.exr", "frame_named.ini", 2);
+  refused_fogmap(bin, "bake", "fog.0002.exr", "frame_named.ini", 1);
 
   /* the config itself as the bake's bake.ini (its fogmap in another folder) */
   snprintf(path, sizeof path, "%s/maps", dir);
@@ -76,19 +83,14 @@ int main(void) {
   snprintf(path, sizeof path, "%s/maps/m.exr", dir);
   CHECK(write_fogmap(path, 0.01f, false) == 0, "cannot write %s", path);
   snprintf(ini, sizeof ini, "%s/bake.ini", dir);
+  char text[600];
   snprintf(text, sizeof text, "%s[fog]\nfogmap = maps/m.exr\n", scene);
   test_write_text(ini, text);
   snprintf(args, sizeof args, "'%s' --frames 1 --out '%s'", ini, dir);
   expect_refused(bin, "bake", args, ini, "the config itself");
 
   /* record: a fogmap named as its frame 2 */
-  snprintf(path, sizeof path, "%s/frame.0002.exr", dir);
-  CHECK(write_fogmap(path, 0.01f, false) == 0, "cannot write %s", path);
-  snprintf(ini, sizeof ini, "%s/record_named.ini", dir);
-  snprintf(text, sizeof text, "%s[fog]\nfogmap = frame.0002.exr\n", scene);
-  test_write_text(ini, text);
-  snprintf(args, sizeof args, "'%s' --frames 2 --out '%s'", ini, dir);
-  expect_refused(bin, "record", args, path, "[fog] fogmap");
+  refused_fogmap(bin, "record", "frame.0002.exr", "record_named.ini", 2);
   snprintf(path, sizeof path, "%s/frame.0001.exr", dir);
   struct stat st;
   CHECK(stat(path, &st) != 0, "the refused record wrote %s", path);
