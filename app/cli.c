@@ -139,6 +139,20 @@ int cli_output_file(const char *command, const char *option, const char *path) {
   return 0;
 }
 
+int cli_output_in_folder(const char *command, const char *option, const char *path) {
+  /* its folder must be there: found now, not when the file is written after the work */
+  struct stat st;
+  const char *slash = strrchr(path, '/');
+  if (slash && slash > path) {
+    char folder[4096];
+    snprintf(folder, sizeof folder, "%.*s", (int)(slash - path), path);
+    if (stat(folder, &st) != 0 || !S_ISDIR(st.st_mode))
+      return cli_usage_error(command, "%s '%s': there is no folder '%s' to write it in", option,
+                             path, folder);
+  }
+  return 0;
+}
+
 const char *cli_shell_word(const char *s, char *out, size_t size) {
   const char *plain = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./:=@%+,-";
   if (*s && strspn(s, plain) == strlen(s)) {

@@ -26,6 +26,9 @@ int cli_usage_error(const char *command, const char *format, ...)
  * (returns 2) before any work, not found out when the finished file is renamed onto it.
  * 0 otherwise. */
 int cli_output_file(const char *command, const char *option, const char *path);
+/* An output file's path whose folder is not there (for a command that makes no folders):
+ * refused the same way, before any work. 0 otherwise. */
+int cli_output_in_folder(const char *command, const char *option, const char *path);
 
 /* Whether a and b name one existing file, however spelt (device and inode). */
 bool cli_same_file(const char *a, const char *b);

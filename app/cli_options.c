@@ -41,7 +41,9 @@ static int take_output(const cli_spec *spec, const cli_option *o, const char *te
     return cli_usage_error(spec->command, "%s '%s': expected a %s file name", o->name, text,
                            expected);
   }
-  if (cli_output_file(spec->command, o->name, text)) return 2;
+  if (cli_output_file(spec->command, o->name, text) ||
+      cli_output_in_folder(spec->command, o->name, text))
+    return 2;
   *(const char **)o->target = text;
   return 0;
 }

@@ -84,6 +84,20 @@ static int record_instead(const headless_job *h, const char *reason) {
   /* Print where the frames are as an absolute path: the user may not know the cwd. */
   char absolute[PATH_MAX];
   if (realpath(folder, absolute)) snprintf(folder, sizeof folder, "%s", absolute);
+  /* none of the frames to be written or cleared may be a file the scene reads: checked
+   * before the earlier frames go (record_run checks again, too late for those) */
+  scene_config *config = malloc(sizeof *config);
+  fog_error cerr = {0};
+  if (!config || scene_config_load(h->config_path, config, &cerr)) {
+    fprintf(stderr, "fogpipe demo: %s\n", config ? cerr.message : "out of memory");
+    free(config);
+    return 1;
+  }
+  char frames[PATH_MAX + 32];
+  snprintf(frames, sizeof frames, "%s/frame.####.exr", folder);
+  const int refused = cli_sequence_not_scene_input("demo", "the recording folder", frames, config);
+  free(config);
+  if (refused) return refused;
   /* out/demo holds the last demo's recording: an earlier, longer run's later frames would
    * stay beside this one's */
   recorder previous = {.name = "frame"};

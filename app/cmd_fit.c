@@ -307,21 +307,27 @@ int cmd_fit(int argc, char **argv) {
   double t0 = app_clock_seconds();
   /* Ctrl-C or SIGTERM: the fit stops after the rung it is measuring and removes its
    * scratch folder (a projected fogmap), then exits 130 */
-  struct sigaction action = {.sa_handler = on_stop}, old_int, old_term;
+  /* a second signal ends the process at once (SA_RESETHAND); an ignored one stays so */
+  struct sigaction action = {.sa_handler = on_stop, .sa_flags = SA_RESTART | SA_RESETHAND},
+                   old_int, old_term;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESTART;
-  sigaction(SIGINT, &action, &old_int);
-  sigaction(SIGTERM, &action, &old_term);
+  sigaction(SIGINT, NULL, &old_int);
+  sigaction(SIGTERM, NULL, &old_term);
+  if (old_int.sa_handler != SIG_IGN) sigaction(SIGINT, &action, NULL);
+  if (old_term.sa_handler != SIG_IGN) sigaction(SIGTERM, &action, NULL);
   o.desc.stop = &stop_signal;
   status = fit_run(&o.desc, &r, &err);
   sigaction(SIGINT, &old_int, NULL);
   sigaction(SIGTERM, &old_term, NULL);
+  if (stop_signal) { /* during the last rung too: its result is not what was asked for */
+    if (!status) fit_result_destroy(&r);
+    free(cfg), free(frames);
+    fprintf(stderr, "fogpipe fit: interrupted%s%s%s: nothing written\n", status ? " (" : "",
+            status ? err.message : "", status ? ")" : "");
+    return 130;
+  }
   if (status) {
     free(cfg), free(frames);
-    if (stop_signal) {
-      fprintf(stderr, "fogpipe fit: interrupted (%s): nothing written\n", err.message);
-      return 130;
-    }
     return cli_fail("fit", "%s: %s", o.input, err.message);
   }
   printf("fogpipe fit: %s, tolerance %g on the %s |dtau|\n", o.input, o.tolerance[0],

@@ -67,13 +67,24 @@ static int parse_voxels(const char *command, const char *option, const char *tex
   return 0;
 }
 
-/* --offset X,Y,Z */
+/* The bounds a scene config holds for world positions and cell sizes (app/config.c's
+ * WORLD and MIN_LENGTH): a sidecar past them would not load. */
+enum { SIDECAR_WORLD = 10000000 };
+static const double sidecar_min_cell = 1e-4;
+
+/* --offset X,Y,Z: three decimal numbers, each as cli_number reads one */
 static int parse_offset(const char *command, const char *option, const char *text, void *target) {
   double *v = target;
-  char tail;
-  if (sscanf(text, "%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &tail) != 3 || !isfinite(v[0]) ||
-      !isfinite(v[1]) || !isfinite(v[2]))
-    return cli_usage_error(command, "%s '%s': expected X,Y,Z", option, text);
+  char part[3][64];
+  const char *at = text;
+  for (int k = 0; k < 3; k++) {
+    const size_t n = strcspn(at, ",");
+    if (n >= sizeof part[k] || (k < 2 && at[n] != ',') || (k == 2 && at[n] != '\0'))
+      return cli_usage_error(command, "%s '%s': expected X,Y,Z", option, text);
+    snprintf(part[k], sizeof part[k], "%.*s", (int)n, at);
+    if (cli_number(command, option, part[k], -SIDECAR_WORLD, SIDECAR_WORLD, &v[k])) return 2;
+    at += n + 1;
+  }
   return 0;
 }
 
@@ -116,8 +127,8 @@ static int parse_options(int argc, char **argv, import_options *o) {
       {.kind = CLI_INT, .name = "--resolution", .value = "N", .target = &o->resolution,
        .min = 1, .max = CLI_MAX_SIZE,
        .help = "fogmap cells along the longer side (default: one per voxel)"},
-      {.kind = CLI_NUMBER, .name = "--cell", .value = "SIZE", .target = &o->cell, .min = 1e-12,
-       .max = 1e12, .help = "or a world cell size"},
+      {.kind = CLI_NUMBER, .name = "--cell", .value = "SIZE", .target = &o->cell, .min = 1e-4,
+       .max = SIDECAR_WORLD, .help = "or a world cell size"},
       {.kind = CLI_CUSTOM, .name = "--name", .value = "NAME", .target = &o->name,
        .parse = parse_name, .help = "output base name (default fog)"},
       {.kind = CLI_CHOICE, .name = "--profile", .value = "bspline|exponential",
@@ -252,6 +263,17 @@ static void write_box(FILE *f, const char *section, const vdb_fogmap_place *plac
 static int write_sidecar(const char *path, const import_options *o, const vdb_sequence *seq,
                          const vdb_frame *frames, const vdb_fogmap_place *place,
                          const vdb_profile *profile, fog_error *err) {
+  const vdb_profile *g = profile ? profile : &frames[seq->count - 1].profile;
+  const double far = fmax(fmax(fabs(place->origin_x), fabs(place->origin_z)),
+                          fmax(fabs(g->y_bottom), fabs(g->y_top)));
+  if (!(place->cell_size >= sidecar_min_cell && place->cell_size <= SIDECAR_WORLD &&
+        far <= SIDECAR_WORLD))
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "the placement gives cells of %.6g at (%.6g, %.6g), heights %.6g to %.6g: "
+                    "a scene config holds cells of %g to %g and positions within +-%g; "
+                    "change --scale, --cell or --offset",
+                    place->cell_size, place->origin_x, place->origin_z, g->y_bottom, g->y_top,
+                    sidecar_min_cell, (double)SIDECAR_WORLD, (double)SIDECAR_WORLD);
   char temp[4400];
   snprintf(temp, sizeof temp, "%s.tmp", path);
   FILE *f = fopen(temp, "w");

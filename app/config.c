@@ -1408,6 +1408,14 @@ static int check_written_text(const char *text, const char *path, fog_error *err
 }
 
 int scene_config_write(const scene_config *cfg, const char *path, fog_error *err) {
+  /* a line break in a path or name would start a line of its own */
+  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+    if ((keys[i].kind == V_PATH || keys[i].kind == V_STRING) &&
+        strpbrk((const char *)cfg + keys[i].offset, "\r\n"))
+      return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                      "%.400s: the scene cannot be written as a config: its [%s] %s holds a "
+                      "line break",
+                      path, keys[i].section, keys[i].key);
   /* the text first, checked, then the file */
   char *text = NULL;
   size_t text_size = 0;

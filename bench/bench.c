@@ -101,9 +101,16 @@ static int make_folder(const char *path, char *first_made, char *error, int size
         return 1;
       }
       *p = c;
-      if (!c) return 0;
+      if (!c) break;
     }
   }
+  /* there already, it must be a folder: a file of that name fails now, not after the bench */
+  struct stat st;
+  if (stat(buffer, &st) != 0 || !S_ISDIR(st.st_mode)) {
+    snprintf(error, (size_t)size, "%.900s: exists and is not a folder", buffer);
+    return 1;
+  }
+  return 0;
 }
 
 int bench_make_folder(const char *path, char *error, int size) {

@@ -63,7 +63,7 @@ void fluid_emission_fill(fluid_sim *sim) {
 
 /* After advection, per cell: + emission, relaxation toward the base (exact decay of
  * d rho/dt = r (base - rho) over dt), dissipation (exact decay of d rho/dt = -d rho), and
- * the clamp that keeps the density in [0, FLT_MAX], turns NaN into 0 and flushes
+ * the clamp that keeps the density in [0, FOGMAP_MAX_DENSITY], turns NaN into 0 and flushes
  * would-be subnormals to 0. */
 void fluid_density_sources(fluid_sim *sim, float *density) {
   const size_t n = (size_t)sim->width * sim->height;

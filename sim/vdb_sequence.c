@@ -171,6 +171,7 @@ static int add_pattern(entry_list *list, const char *pattern, int first, int las
       i = e - 1;
       continue;
     }
+    if (strchr("*?[\\", pattern[i])) globbed[used++] = '\\'; /* a folder "take[1]" is itself */
     globbed[used++] = pattern[i];
     if (pattern[i] == '%') i++; /* "%%" names one '%' */
   }
@@ -215,7 +216,13 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
      * "take#2"); only a path that does not is read as a pattern. */
     const bool exists = stat(in, &st) == 0;
     if (exists && S_ISDIR(st.st_mode)) {
-      snprintf(pattern, sizeof pattern, "%s/*.vdb", in);
+      /* the folder's name as it is: glob's own characters in it ("take[1]") escaped */
+      size_t used = 0;
+      for (const char *c = in; *c && used + 8 < sizeof pattern; c++) {
+        if (strchr("*?[\\", *c)) pattern[used++] = '\\';
+        pattern[used++] = *c;
+      }
+      snprintf(pattern + used, sizeof pattern - used, "/*.vdb");
       status = add_glob(&list, pattern, &matched);
     } else if (exists) {
       long f = frame_of(in, NULL, NULL);

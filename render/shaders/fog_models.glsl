@@ -545,11 +545,10 @@ float fog_perlin_optical_depth(vec3 dir, float length) {
   t0 = max(t0, 0.0);
   t1 = min(t1, length);
   if (!(t1 > t0)) return 0.0;
-  if (fog_perlin_paper != 0) {
-    float len = t1 - t0, a = dir.y / fog_model_scale_height;
-    float k = fog_model_extinction * exp(-(t0 * dir.y - fog_model_y0) / fog_model_scale_height);
-    return fog_perlin_turbulence(t1 * dir) * k * len * fog_exprel(a * len);
-  }
+  if (fog_perlin_paper != 0) /* the height fog from t0 on (no 0 * inf from far above) */
+    return fog_perlin_turbulence(t1 * dir) *
+           fog_height_optical_depth(fog_model_extinction, fog_model_y0 - t0 * dir.y,
+                                    fog_model_scale_height, dir.y, t1 - t0);
   // sum is the depth over the extinction: what is left of the opacity budget, in octave i's
   // units, is (limit / K - sum) 2^i (not (limit - sum) / K 2^i, which mixed the units and
   // dropped the finer octaves wherever K < 1 and the fog was thin: up to 5.8e-2 in tau)

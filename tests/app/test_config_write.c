@@ -156,6 +156,11 @@ int main(void) {
   CHECK(scene_config_write(&back, written, &err) != 0 && strstr(err.message, "' ;'") &&
             access(written, F_OK) != 0,
         "a fogmap path with ' ;' written: %s", err.message);
+  /* and through a folder "a\nb": its second half would be a line of its own */
+  snprintf(back.fog.fogmap, sizeof back.fog.fogmap, "%s/a\nb/m.exr", dir);
+  CHECK(scene_config_write(&back, written, &err) != 0 && strstr(err.message, "line break") &&
+            access(written, F_OK) != 0,
+        "a fogmap path with a line break written: %s", err.message);
   unlink(written);
   char bad[700];
   snprintf(bad, sizeof bad, "%s/missing/x.ini", dir);

@@ -4,7 +4,8 @@
  * recording goes to ./out/demo there). With --size, the recording has that size; with
  * --screenshot, the PNG holds the last frame's R, G, B encoded as sRGB and dithered, the
  * very codes of tests/reference/srgb8_dither_reference.h; a window-only option is named
- * as having no effect; a shorter run after a longer one leaves only its own frames. */
+ * as having no effect; a shorter run after a longer one leaves only its own frames; a scene
+ * whose fogmap is one of out/demo's frames is refused before anything there is cleared. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
@@ -133,6 +134,20 @@ int main(void) {
         frame_files, others);
   CHECK(log_says(log, "removed 2 frames of an earlier demo"), "the clearing is not said");
   check_screenshot(bin_abs, config, root);
+  /* a scene whose fogmap is a frame of out/demo: refused before the earlier frames are
+   * cleared (they were, the fogmap with them) */
+  char map[800], scene[800];
+  snprintf(map, sizeof map, "%s/out/demo/frame.0002.exr", root);
+  snprintf(scene, sizeof scene, "%s/in_out.ini", root);
+  char copy[2000];
+  snprintf(copy, sizeof copy, "cp data/fogmap_sample.exr '%s'", map);
+  CHECK(system(copy) == 0, "%s", copy);
+  test_write_text(scene, "[fog]\nfogmap = out/demo/frame.0002.exr\n");
+  char *const in_out[] = {bin_abs, "demo", scene, "--frames", "2", NULL};
+  status = run_demo(bin_abs, root, log, in_out);
+  CHECK(status == 2 && log_says(log, "would replace the input") && access(map, F_OK) == 0,
+        "demo recording over its own fogmap: exit %d, the fogmap %s", status,
+        access(map, F_OK) == 0 ? "kept" : "gone");
   test_remove_tree(root);
   return test_finish("test_demo_headless");
 }

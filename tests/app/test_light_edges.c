@@ -3,7 +3,8 @@
  *   fog above the ground, however far past the sun's shadow map the fog lies (rays up into
  *   a low sun and rays onto the ground: their in-scatter as with shafts off);
  * - height fog seen from far above its base (300 units over 2-unit scale heights):
- *   finite, and tau per pixel the closed form of the exponential's integral;
+ *   finite, and tau per pixel the closed form of the exponential's integral; Perlin fog's
+ *   one-sample integral (the paper's) over it from 500 up, finite;
  * - a camera inside a box sees its inner faces lit as inner faces: the roof from below gets
  *   no sun (it faces away from it, and the roof shadows it), the back wall gets a lamp
  *   inside the box as the Lambertian formula says;
@@ -114,6 +115,20 @@ static void check_height_fog_from_above(void) {
   CHECK(fabs(twin - 0.025) <= 1e-15, "the C twin from 2000 up: %.17g, expected 0.025", twin);
 }
 
+/* Zdrojewska's one-sample Perlin integral (perlin_integral = paper) over the same height
+ * fog, entering a tall box from above: finite too. */
+static void check_perlin_paper_from_above(void) {
+  static frame f;
+  scene_config cfg;
+  if (!load("[camera]\nposition = 0 500 0\npitch = -60\n[terrain]\nheight = 0.000001\n"
+            "[box]\ntop = 200\n[fog]\nmodel = perlin\nperlin_integral = paper\n"
+            "density_scale = 0.01\nfog_height = 0\nscale_height = 2\n",
+            &cfg) ||
+      render(&cfg, &f, "Perlin fog (paper) from above"))
+    return;
+  CHECK(all_finite(&f), "Perlin fog's paper integral from 500 units up: not finite");
+}
+
 static void check_inside_a_box(void) {
   static frame f;
   scene_config cfg;
@@ -193,6 +208,7 @@ int main(void) {
   if (!test_scratch_folder(dir)) return test_finish("test_light_edges");
   check_shafts_past_the_map();
   check_height_fog_from_above();
+  check_perlin_paper_from_above();
   check_inside_a_box();
   check_lamp_at_the_camera();
   check_sharp_phase();

@@ -208,6 +208,18 @@ int main(void) {
   CHECK(status != 0, "view without a display exited 0");
   CHECK(strstr(text, "fogpipe view: cannot open a window: no display") == text, "stderr: %s", text);
   CHECK(strchr(text, '\n') == text + strlen(text) - 1, "not one line: %s", text);
+  /* and with --fit, said before the fit runs (it printed its rungs first, for seconds) */
+  snprintf(command, sizeof command,
+           "env -u DISPLAY -u WAYLAND_DISPLAY '%s' view configs/vdb_groundfog.ini --fit 0.1 "
+           "> '%s' 2>&1", bin, path);
+  status = system(command);
+  f = fopen(path, "r");
+  n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+  text[n] = '\0';
+  if (f) fclose(f);
+  unlink(path);
+  CHECK(status != 0 && strstr(text, "no display") && !strstr(text, "rung"),
+        "view --fit without a display: %s", text);
 
   if (system("command -v xvfb-run > /dev/null 2>&1") != 0) {
     printf("xvfb-run is not installed: the window comparison is not run\n");

@@ -1,7 +1,8 @@
 /* How vdb_sequence_find reads its inputs' names (sim/vdb_import.h), on empty files in a
  * scratch folder (the finder lists names; it opens nothing):
  *   - a path that exists is itself: a folder or a file whose name holds '#' is not a
- *     frame pattern ("take#2/", "shot#48.vdb");
+ *     frame pattern ("take#2/", "shot#48.vdb"), nor one whose name holds '[', '*' or '?'
+ *     a glob ("take[1]*?/");
  *   - in a pattern, the frame number is the last run of '#' of the file name, never a
  *     '#' of a folder;
  *   - two different files of one frame number are refused, naming both (one would stand
@@ -64,9 +65,12 @@ int main(void) {
   char folder[512];
   snprintf(folder, sizeof folder, "%s/take#2", dir);
   CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
+  snprintf(folder, sizeof folder, "%s/take[1]*?", dir);
+  CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
   static const char *const files[] = {"take#2/fluid_0001.vdb", "take#2/fluid_0002.vdb",
                                       "take#2/fluid_0003.vdb", "shot#48.vdb", "other_0002.vdb",
-                                      "fog.vdb", "a##_0007.vdb"};
+                                      "fog.vdb", "a##_0007.vdb", "take[1]*?/fluid_0004.vdb",
+                                      "take[1]*?/fluid_0005.vdb"};
   for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) touch(files[i]);
   static const names_case cases[] = {
       {"the folder take#2", {"take#2"}, 3, 2, 3, "take#2/fluid_0003.vdb"},
@@ -77,6 +81,10 @@ int main(void) {
        "take#2/fluid_0002.vdb"},
       /* two runs of '#' in the name: the last is the frame number, the first is itself */
       {"the pattern a##_####.vdb", {"a##_####.vdb"}, 1, 0, 7, "a##_0007.vdb"},
+      /* glob's own characters in a folder's name are themselves ("take[1]" is no class) */
+      {"the folder take[1]*?", {"take[1]*?"}, 2, 1, 5, "take[1]*?/fluid_0005.vdb"},
+      {"the pattern take[1]*?/fluid_####.vdb", {"take[1]*?/fluid_####.vdb"}, 2, 0, 4,
+       "take[1]*?/fluid_0004.vdb"},
       {"two files of frame 2", {"take#2/fluid_0002.vdb", "other_0002.vdb"}, 0, 0, 0,
        "frame 2 twice"},
       {"the same file twice", {"take#2/fluid_0002.vdb", "take#2/fluid_0002.vdb"}, 1, 0, 2,
