@@ -83,15 +83,15 @@ static int parse(int argc, char **argv, fit_options *o) {
       {.kind = CLI_INT, .name = "--frame", .value = "N", .target = &o->frame, .min = 0,
        .max = INT_MAX, .given = &o->vdb_option_given,
        .help = "frame number of a sequence (default: the last)"},
+      {.kind = CLI_NUMBER, .name = "--density-scale", .value = "S", .target = &o->density_scale,
+       .min = 1e-12, .max = 1e12, .given = &o->vdb_option_given,
+       .help = "extinction per unit of the grid's value (default 1)"},
       {.kind = CLI_SECTION, .name = "sequences (a VDB INPUT, or a config's [fog] vdb):"},
       {.kind = CLI_TEXT, .name = "--frames", .value = "all|A-B[:S]", .target = &o->frames,
        .help = "fit over these frame numbers (every S-th), the worst frame\n"
                "deciding: the static rungs fit the frames' mean density,\n"
                "the fogmap and the volume play the frames (default: one\n"
                "frame, --frame or the config's vdb_frame)"},
-      {.kind = CLI_NUMBER, .name = "--density-scale", .value = "S", .target = &o->density_scale,
-       .min = 1e-12, .max = 1e12, .given = &o->vdb_option_given,
-       .help = "extinction per unit of the grid's value (default 1)"},
       {.kind = CLI_SECTION, .name = "measurement:"},
       {.kind = CLI_INT, .name = "--rays", .value = "N", .target = &o->desc.rays_per_side,
        .min = 1, .max = 1024,

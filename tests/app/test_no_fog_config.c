@@ -1,7 +1,8 @@
 /* A config without fog (no fogmap, VDB or sequence, the fogmap model) has none in every
  * command, as docs/config.md says of an empty file: `render` draws the scene alone, and
  * `record`, which simulates a fogmap scene, starts from clear air, so its frames have
- * transmittance 1 everywhere (with no emitters nothing makes fog), frame 1 as render's. */
+ * transmittance 1 everywhere (with no emitters nothing makes fog), frame 1 as render's;
+ * `bake` of it writes frames of density 0 (the demo runs the same pipeline). */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
@@ -43,6 +44,22 @@ int main(void) {
     snprintf(path, sizeof path, "%s/rec/frame.%04d.exr", dir, f);
     const double least = least_transmittance(path);
     CHECK(least == 1.0, "record frame %d has fog: transmittance down to %g", f, least);
+  }
+  /* bake simulates the same clear air: every frame's density 0 */
+  snprintf(line, sizeof line, "'%s' bake '%s' --frames 2 --out '%s/bake' 2>&1", bin, ini, dir);
+  CHECK(test_run_output(line, output, sizeof output) == 0, "bake: %s", output);
+  for (int f = 1; f <= 2; f++) {
+    snprintf(path, sizeof path, "%s/bake/fog.%04d.exr", dir, f);
+    fogmap map = {0};
+    fog_error err = {0};
+    double most = -1;
+    if (fogmap_load(path, &(fogmap_load_desc){0}, &map, &err) == 0) {
+      most = 0;
+      for (int k = 0; k < map.width * map.height; k++)
+        most = map.density[k] > most ? map.density[k] : most;
+      fogmap_destroy(&map);
+    }
+    CHECK(most == 0.0, "bake frame %d: densest cell %g (%s)", f, most, err.message);
   }
   test_remove_tree(dir);
   return test_finish("test_no_fog_config");
