@@ -199,8 +199,11 @@ static size_t terrain_mesh_tiles(scene_pass *pass, const terrain *t, const verte
   return k;
 }
 
-/* The boxes: 6 faces x 4 vertices with flat normals, from vertex `base` on. Returns the
- * number of indices written. */
+/* The boxes: 5 faces x 4 vertices with flat normals, from vertex `base` on. Returns the
+ * number of indices written. No bottom face: a box stands at the lowest terrain height
+ * under it, so the terrain hides that face from outside and is the floor seen from inside,
+ * where on flat ground the face lay in the terrain's plane and fought it for depth
+ * (stripes). */
 static size_t box_mesh(const scene_geometry *geo, size_t base, vertex *vertices,
                        GLuint *indices) {
   const double *origin = geo->terrain.origin;
@@ -209,6 +212,7 @@ static size_t box_mesh(const scene_geometry *geo, size_t base, vertex *vertices,
     const scene_box *box = &geo->boxes[b];
     for (int axis = 0; axis < 3; axis++)
       for (int side = 0; side < 2; side++) {
+        if (axis == 1 && side == 0) continue; /* the bottom */
         int u = (axis + 1) % 3, w = (axis + 2) % 3;
         for (int corner = 0; corner < 4; corner++) {
           double p[3];
@@ -236,13 +240,13 @@ static int upload_geometry(scene_pass *pass, fog_error *err) {
   const terrain *t = &geo->terrain;
   int rx = t->resolution_x, rz = t->resolution_z;
   size_t terrain_vertices = (size_t)rx * rz;
-  size_t vertex_count = terrain_vertices + 24 * (size_t)geo->box_count;
+  size_t vertex_count = terrain_vertices + 20 * (size_t)geo->box_count;
   size_t tiles_x = (size_t)(rx - 1 + TILE - 1) / TILE;
   size_t tiles = tiles_x * ((size_t)(rz - 1 + TILE - 1) / TILE);
   /* per row of quads, one strip per tile: 2 indices per vertex column and a restart; per
    * box face a 4-index strip and a restart */
   size_t index_count = (size_t)(rz - 1) * (2 * (size_t)(rx - 1) + 3 * tiles_x) +
-                       30 * (size_t)geo->box_count;
+                       25 * (size_t)geo->box_count;
   vertex *vertices = malloc(vertex_count * sizeof *vertices);
   GLuint *indices = malloc(index_count * sizeof *indices);
   pass->tiles = malloc(tiles * sizeof *pass->tiles);
@@ -497,7 +501,7 @@ static GLsizei lod_tiles(scene_pass *pass, const camera *cam, int width, int hei
   size_t n = 0;
   for (int v = 0; v < visible; v++)
     n += terrain_lod_emit(lod, pass->lod_order[v].tile, pass->lod_indices + n);
-  pass->triangles_drawn = 12L * pass->geo->box_count + (long)(n / 3);
+  pass->triangles_drawn = 10L * pass->geo->box_count + (long)(n / 3);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, pass->lod_index_buffer);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(n * sizeof(uint32_t)), pass->lod_indices,
                GL_STREAM_DRAW);
@@ -537,7 +541,7 @@ static GLsizei cull_tiles(scene_pass *pass, const camera *cam, int width, int he
   frustum_from_camera(&f, cam, width, height);
   long triangles = 0;
   GLsizei n = scene_tile_ranges(pass, cam->position, frustum_culled, &f, &triangles);
-  pass->triangles_drawn = 12L * pass->geo->box_count + triangles;
+  pass->triangles_drawn = 10L * pass->geo->box_count + triangles;
   return n;
 }
 

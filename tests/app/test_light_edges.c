@@ -7,7 +7,8 @@
  *   one-sample integral (the paper's) over it from 500 up, finite;
  * - a camera inside a box sees its inner faces lit as inner faces: the roof from below gets
  *   no sun (it faces away from it, and the roof shadows it), the back wall gets a lamp
- *   inside the box as the Lambertian formula says;
+ *   inside the box as the Lambertian formula says; its floor is the terrain (boxes have
+ *   no bottom face, which fought flat ground for depth);
  * - a lamp of radius 0.001 at the camera, in height fog: every pixel finite;
  * - phase_g = 0.999 looking into the sun: the in-scatter is (L_amb + a L_sun p)(1 - tau)
  *   with Henyey-Greenstein's p in double, within 1e-4, at the peak too. */
@@ -141,6 +142,27 @@ static void check_inside_a_box(void) {
     const float *c = &f.rgba[4 * ((H / 2) * W + W / 2)];
     CHECK(c[0] < 1e-6f && c[1] < 1e-6f && c[2] < 1e-6f,
           "the roof's inner face takes the sun: %g %g %g", c[0], c[1], c[2]);
+  }
+  /* looking down at the floor inside the white box, lit by the sky alone: the terrain,
+   * green, and nowhere the box's own white bottom, which lay in the flat terrain's plane and
+   * won the depth test in stripes */
+  snprintf(text, sizeof text, "%s[camera]\nposition = 0 20 -50\npitch = -80\n"
+           "[light]\nsun_elevation = -10\nambient = 1 1 1\n", box);
+  if (load(text, &cfg) && !render(&cfg, &f, "inside a box, the floor")) {
+    camera cam;
+    scene_config_camera(&cfg, &cam);
+    int grey = 0, floor = 0;
+    for (int py = 0; py < H; py++)
+      for (int px = 0; px < W; px++) {
+        double o[3], d[3];
+        const double t = frame_pixel_ray(&f, &cam, px, py, o, d);
+        if (!(o[1] + t * d[1] < 0.01)) continue; /* a wall */
+        const float *c = &f.rgba[4 * (py * W + px)];
+        floor++;
+        grey += fabsf(c[0] - c[2]) < 0.01f && fabsf(c[1] - c[2]) < 0.01f;
+      }
+    CHECK(floor > W * H / 2 && grey == 0,
+          "%d of %d floor pixels are the box's white bottom, not the terrain", grey, floor);
   }
   /* a lamp inside, 20 units from the back wall on the camera's axis */
   snprintf(text, sizeof text, "%s[camera]\nposition = 0 20 -40\n"
