@@ -96,66 +96,85 @@ static int parse_options(int argc, char **argv, import_options *o) {
   static const char *const degrees[] = {"1", "0", NULL}, *const per[] = {"sequence", "frame", NULL};
   int frames[3] = {-1, -1, 0}, up_axis = VDB_UP_Z, profile = VDB_PROFILE_BSPLINE;
   int degree = -1; /* -1: not given (hats) */
+  bool import_given = false; /* an option of the import itself, which --list does not read */
   const cli_option options[] = {
       {.kind = CLI_SECTION, .name = "input:"},
-      {.kind = CLI_TEXT, .name = "--grid", .value = "NAME", .target = &o->grid,
+      {.kind = CLI_TEXT, .name = "--grid",
+       .given = &import_given, .value = "NAME", .target = &o->grid,
        .help = "float grid to read (default density)"},
       {.kind = CLI_RANGE, .name = "--frames", .value = "A-B | A", .target = frames, .min = 0,
        .max = INT_MAX,
        .help = "frame range (default: all found); frames missing inside\n"
                "the range are an error"},
-      {.kind = CLI_FLAG, .name = "--skip-missing", .target = &o->skip_missing,
+      {.kind = CLI_FLAG, .name = "--skip-missing",
+       .given = &import_given, .target = &o->skip_missing,
        .help = "warn about missing frames instead of failing"},
       {.kind = CLI_FLAG, .name = "--list", .target = &o->list,
        .help = "list every grid of every input file and exit"},
-      {.kind = CLI_CUSTOM, .name = "--max-voxels", .value = "N", .target = &o->max_voxels,
+      {.kind = CLI_CUSTOM, .name = "--max-voxels",
+       .given = &import_given, .value = "N", .target = &o->max_voxels,
        .parse = parse_voxels,
        .help = "refuse grids whose dense box is larger (default 268435456)"},
       {.kind = CLI_SECTION, .name = "placement:"},
-      {.kind = CLI_CHOICE, .name = "--up", .value = "z|y", .target = &up_axis, .choices = up,
+      {.kind = CLI_CHOICE, .name = "--up",
+       .given = &import_given, .value = "z|y", .target = &up_axis, .choices = up,
        .help = "the file's up axis: z = Blender/Mantaflow (default),\n"
                "y = Houdini/EmberGen. Z-up maps (x,y,z) to (x, z, -y)"},
-      {.kind = CLI_NUMBER, .name = "--scale", .value = "S", .target = &o->scale, .min = 1e-12,
+      {.kind = CLI_NUMBER, .name = "--scale",
+       .given = &import_given, .value = "S", .target = &o->scale, .min = 1e-12,
        .max = 1e12, .help = "world scale of the source (default 1)"},
-      {.kind = CLI_CUSTOM, .name = "--offset", .value = "X,Y,Z", .target = o->offset,
+      {.kind = CLI_CUSTOM, .name = "--offset",
+       .given = &import_given, .value = "X,Y,Z", .target = o->offset,
        .parse = parse_offset, .help = "fogpipe-world offset added last (default 0,0,0)"},
-      {.kind = CLI_TEXT, .name = "--config", .value = "FILE|none", .target = &o->config,
+      {.kind = CLI_TEXT, .name = "--config",
+       .given = &import_given, .value = "FILE|none", .target = &o->config,
        .help = "Mantaflow config_####.uni (default: ../config/config_####.uni\n"
                "beside each data/ file when present; it places the domain\n"
                "and replaces adaptive domains' wrong VDB voxel size)"},
       {.kind = CLI_SECTION, .name = "fogmap and profile:"},
-      {.kind = CLI_INT, .name = "--resolution", .value = "N", .target = &o->resolution,
+      {.kind = CLI_INT, .name = "--resolution",
+       .given = &import_given, .value = "N", .target = &o->resolution,
        .min = 1, .max = CLI_MAX_SIZE,
        .help = "fogmap cells along the longer side (default: one per voxel)"},
-      {.kind = CLI_NUMBER, .name = "--cell", .value = "SIZE", .target = &o->cell, .min = 1e-4,
+      {.kind = CLI_NUMBER, .name = "--cell",
+       .given = &import_given, .value = "SIZE", .target = &o->cell, .min = 1e-4,
        .max = SIDECAR_WORLD, .help = "or a world cell size"},
-      {.kind = CLI_CUSTOM, .name = "--name", .value = "NAME", .target = &o->name,
+      {.kind = CLI_CUSTOM, .name = "--name",
+       .given = &import_given, .value = "NAME", .target = &o->name,
        .parse = parse_name, .help = "output base name (default fog)"},
-      {.kind = CLI_CHOICE, .name = "--profile", .value = "bspline|exponential",
+      {.kind = CLI_CHOICE, .name = "--profile",
+       .given = &import_given, .value = "bspline|exponential",
        .target = &profile, .choices = profiles,
        .help = "g(y): centred B-spline of the mean vertical density\n"
                "(default) or a moment-fitted exponential"},
-      {.kind = CLI_INT, .name = "--profile-knots", .value = "N", .target = &o->profile.knots,
+      {.kind = CLI_INT, .name = "--profile-knots",
+       .given = &import_given, .value = "N", .target = &o->profile.knots,
        .min = 1, .max = VDB_PROFILE_MAX_KNOTS,
        .help = "B-spline coefficients (default one per voxel layer, max 64)"},
-      {.kind = CLI_CHOICE, .name = "--profile-degree", .value = "0|1",
+      {.kind = CLI_CHOICE, .name = "--profile-degree",
+       .given = &import_given, .value = "0|1",
        .target = &degree, .choices = degrees,
        .help = "B-spline degree (default 1: hats; 0: the layer histogram)"},
-      {.kind = CLI_CHOICE, .name = "--profile-per", .value = "sequence|frame",
+      {.kind = CLI_CHOICE, .name = "--profile-per",
+       .given = &import_given, .value = "sequence|frame",
        .target = &o->profile_per_frame, .choices = per,
        .help = "one g for the whole sequence (default) or one per\n"
                "frame ([fog.####] sections in NAME.ini)"},
       {.kind = CLI_SECTION, .name = "report:"},
-      {.kind = CLI_FLAG, .name = "--report", .target = &o->report,
+      {.kind = CLI_FLAG, .name = "--report",
+       .given = &import_given, .target = &o->report,
        .help = "also compare the 2.5D model with a CPU ray march of the 3D\n"
                "grid: transmittance error per view elevation 5..90 deg, as\n"
                "a table, DIR/NAME.report.csv and DIR/NAME.report.png"},
-      {.kind = CLI_INT, .name = "--report-frame", .value = "N", .target = &o->report_frame,
+      {.kind = CLI_INT, .name = "--report-frame",
+       .given = &import_given, .value = "N", .target = &o->report_frame,
        .min = 0, .max = INT_MAX, .help = "the frame to report on (default: the last)"},
-      {.kind = CLI_INT, .name = "--report-rays", .value = "N", .target = &o->report_rays,
+      {.kind = CLI_INT, .name = "--report-rays",
+       .given = &import_given, .value = "N", .target = &o->report_rays,
        .min = 1, .max = 1024, .help = "rays per side of each view (default 48)"},
       {.kind = CLI_SECTION, .name = "other:"},
-      {.kind = CLI_TEXT, .name = "--out", .value = "DIR", .target = &o->out,
+      {.kind = CLI_TEXT, .name = "--out",
+       .given = &import_given, .value = "DIR", .target = &o->out,
        .help = "the output folder (required, but for --list)"},
       {.kind = CLI_FLAG, .name = "--verbose", .target = &o->verbose,
        .help = "one line per frame (mass, voxels)"},
@@ -180,6 +199,9 @@ static int parse_options(int argc, char **argv, import_options *o) {
   o->up = (vdb_up_axis)(up_axis % 2);
   o->profile.kind = (vdb_profile_kind)profile;
   if (!o->out && !o->list) return cli_usage_error("import", "--out DIR is required");
+  if (o->list && import_given) /* they would be dropped without a word */
+    return cli_usage_error("import", "--list only lists the inputs' grids (of --frames): "
+                           "the other options are for an import");
   if (o->resolution && o->cell) /* one would be dropped without a word */
     return cli_usage_error("import", "--resolution and --cell are alternatives: give one");
   /* options of a mode that is off would be dropped without a word too */
