@@ -3,6 +3,7 @@
  * replacing the scene's input. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -11,7 +12,8 @@
 #include "sim/vdb_import.h"
 
 /* Whether out names a file of the frame pattern (FOLDER/PREFIX###SUFFIX: the same folder,
- * however spelt, and PREFIX digits SUFFIX), existing or not. */
+ * however spelt, and PREFIX digits SUFFIX, the digits as the pattern writes a number:
+ * padded with zeros to the run's length, no more), existing or not. */
 static bool in_sequence(const char *out, const char *pattern) {
   size_t start, length;
   if (!vdb_pattern_hash_run(pattern, &start, &length)) return cli_same_file(out, pattern);
@@ -31,7 +33,10 @@ static bool in_sequence(const char *out, const char *pattern) {
   if (start < pattern_base || strncmp(base, prefix, prefix_length) != 0) return false;
   const char *digits = base + prefix_length;
   const size_t count = strspn(digits, "0123456789");
-  return count >= 1 && strcmp(digits + count, suffix) == 0;
+  if (count < 1 || count > 18 || strcmp(digits + count, suffix) != 0) return false;
+  char written[32]; /* frame.2.exr and frame.00002.exr are no frames of frame.####.exr */
+  snprintf(written, sizeof written, "%0*lld", (int)length, strtoll(digits, NULL, 10));
+  return strlen(written) == count && strncmp(written, digits, count) == 0;
 }
 
 /* The files a scene config reads, each with the words that name it in a refusal; the

@@ -6,6 +6,7 @@
 #include <inttypes.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,9 +51,15 @@ typedef struct entry {
 typedef struct entry_list {
   entry *items;
   int count, capacity;
+  char too_large[4096]; /* a file whose frame number an int does not hold */
 } entry_list;
 
-static int push(entry_list *list, int frame, const char *path) {
+/* 0, 1 (out of memory) or 2: frame past INT_MAX (the path kept in list->too_large). */
+static int push(entry_list *list, long frame, const char *path) {
+  if (frame > INT_MAX) {
+    snprintf(list->too_large, sizeof list->too_large, "%s", path);
+    return 2;
+  }
   if (list->count == list->capacity) {
     int cap = list->capacity ? 2 * list->capacity : 64;
     entry *items = realloc(list->items, (size_t)cap * sizeof *items);
@@ -62,7 +69,7 @@ static int push(entry_list *list, int frame, const char *path) {
   }
   char *copy = strdup(path);
   if (!copy) return 1;
-  list->items[list->count++] = (entry){.frame = frame, .path = copy};
+  list->items[list->count++] = (entry){.frame = (int)frame, .path = copy};
   return 0;
 }
 
@@ -134,9 +141,10 @@ static int add_glob(entry_list *list, const char *pattern, int *matched) {
   if (status != 0) return 1;
   for (size_t i = 0; i < g.gl_pathc; i++) {
     long f = frame_of(g.gl_pathv[i], NULL, NULL);
-    if (push(list, f < 0 ? list->count : (int)f, g.gl_pathv[i])) {
+    const int pushed = push(list, f < 0 ? list->count : f, g.gl_pathv[i]);
+    if (pushed) {
       globfree(&g);
-      return 1;
+      return pushed;
     }
     (*matched)++;
   }
@@ -226,7 +234,7 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
       status = add_glob(&list, pattern, &matched);
     } else if (exists) {
       long f = frame_of(in, NULL, NULL);
-      status = push(&list, f < 0 ? list.count : (int)f, in);
+      status = push(&list, f < 0 ? list.count : f, in);
       matched = 1;
     } else if (hashes_to_printf(in, pattern, sizeof pattern)) {
       status = add_pattern(&list, pattern, first, last, &matched);
@@ -246,6 +254,11 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
       status = add_glob(&list, in, &matched);
     } else {
       fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: no such file or directory", in);
+      goto fail;
+    }
+    if (status == 2) {
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: its frame number is past %d", list.too_large,
+               INT_MAX);
       goto fail;
     }
     if (status) {

@@ -94,6 +94,19 @@ int main(void) {
   snprintf(path, sizeof path, "%s/frame.0001.exr", dir);
   struct stat st;
   CHECK(stat(path, &st) != 0, "the refused record wrote %s", path);
+  /* a fogmap named frame.2.exr is none of record's frames (frame.0002.exr is): it runs */
+  snprintf(ini, sizeof ini, "%s/record_unpadded.ini", dir);
+  snprintf(line, sizeof line, "'%s' record '%s' --frames 2 --out '%s/beside' 2>&1", bin, ini,
+           dir);
+  char beside[300];
+  snprintf(beside, sizeof beside, "%s/beside", dir);
+  CHECK(mkdir(beside, 0777) == 0, "cannot make %s", beside);
+  snprintf(path, sizeof path, "%s/beside/frame.2.exr", dir);
+  CHECK(write_fogmap(path, 0.01f, false) == 0, "cannot write %s", path);
+  snprintf(text, sizeof text, "%s[fog]\nfogmap = beside/frame.2.exr\n", scene);
+  test_write_text(ini, text);
+  CHECK(test_run_output(line, output, sizeof output) == 0,
+        "record beside a fogmap frame.2.exr (not frame.0002.exr) refused: %s", output);
 
   /* one channel of a colour PNG, baked and played back */
   snprintf(path, sizeof path, "%s/colour.png", dir);

@@ -8,7 +8,8 @@
  *   - two different files of one frame number are refused, naming both (one would stand
  *     for the other); the same file given twice, however spelt ("d//f", "./d/f"), is one
  *     frame; a name without digits takes its place in the list as its frame, and where a
- *     numbered file has that frame the refusal says so. */
+ *     numbered file has that frame the refusal says so; a frame number past INT_MAX is
+ *     refused. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <string.h>
@@ -70,7 +71,7 @@ int main(void) {
   static const char *const files[] = {"take#2/fluid_0001.vdb", "take#2/fluid_0002.vdb",
                                       "take#2/fluid_0003.vdb", "shot#48.vdb", "other_0002.vdb",
                                       "fog.vdb", "a##_0007.vdb", "take[1]*?/fluid_0004.vdb",
-                                      "take[1]*?/fluid_0005.vdb"};
+                                      "take[1]*?/fluid_0005.vdb", "big_4294967297.vdb"};
   for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) touch(files[i]);
   static const names_case cases[] = {
       {"the folder take#2", {"take#2"}, 3, 2, 3, "take#2/fluid_0003.vdb"},
@@ -85,6 +86,8 @@ int main(void) {
       {"the folder take[1]*?", {"take[1]*?"}, 2, 1, 5, "take[1]*?/fluid_0005.vdb"},
       {"the pattern take[1]*?/fluid_####.vdb", {"take[1]*?/fluid_####.vdb"}, 2, 0, 4,
        "take[1]*?/fluid_0004.vdb"},
+      /* a frame number an int does not hold: refused, not wrapped to frame 1 */
+      {"the file big_4294967297.vdb", {"big_4294967297.vdb"}, 0, 0, 0, "past 2147483647"},
       {"two files of frame 2", {"take#2/fluid_0002.vdb", "other_0002.vdb"}, 0, 0, 0,
        "frame 2 twice"},
       {"the same file twice", {"take#2/fluid_0002.vdb", "take#2/fluid_0002.vdb"}, 1, 0, 2,
