@@ -79,9 +79,16 @@ static int parse_offset(const char *command, const char *option, const char *tex
   const char *at = text;
   for (int k = 0; k < 3; k++) {
     const size_t n = strcspn(at, ",");
-    if (n >= sizeof part[k] || (k < 2 && at[n] != ',') || (k == 2 && at[n] != '\0'))
+    if ((k < 2 && at[n] != ',') || (k == 2 && at[n] != '\0'))
       return cli_usage_error(command, "%s '%s': expected X,Y,Z", option, text);
-    snprintf(part[k], sizeof part[k], "%.*s", (int)n, at);
+    /* blanks around a number ("1, 2, 3"), not inside it */
+    const size_t lead = strspn(at, " \t");
+    size_t end = n;
+    while (end > lead && (at[end - 1] == ' ' || at[end - 1] == '\t')) end--;
+    if (end - lead >= sizeof part[k])
+      return cli_usage_error(command, "%s '%s': expected X,Y,Z (numbers of at most %zu "
+                             "characters)", option, text, sizeof part[k] - 1);
+    snprintf(part[k], sizeof part[k], "%.*s", (int)(end - lead), at + lead);
     if (cli_number(command, option, part[k], -SIDECAR_WORLD, SIDECAR_WORLD, &v[k])) return 2;
     at += n + 1;
   }
@@ -176,7 +183,8 @@ static int parse_options(int argc, char **argv, import_options *o) {
       {.kind = CLI_TEXT, .name = "--out",
        .given = &import_given, .value = "DIR", .target = &o->out,
        .help = "the output folder (required, but for --list)"},
-      {.kind = CLI_FLAG, .name = "--verbose", .target = &o->verbose,
+      {.kind = CLI_FLAG, .name = "--verbose",
+       .given = &import_given, .target = &o->verbose,
        .help = "one line per frame (mass, voxels)"},
   };
   const cli_spec spec = {
@@ -285,17 +293,28 @@ static void write_box(FILE *f, const char *section, const vdb_fogmap_place *plac
 static int write_sidecar(const char *path, const import_options *o, const vdb_sequence *seq,
                          const vdb_frame *frames, const vdb_fogmap_place *place,
                          const vdb_profile *profile, fog_error *err) {
-  const vdb_profile *g = profile ? profile : &frames[seq->count - 1].profile;
-  const double far = fmax(fmax(fabs(place->origin_x), fabs(place->origin_z)),
-                          fmax(fabs(g->y_bottom), fabs(g->y_top)));
-  if (!(place->cell_size >= sidecar_min_cell && place->cell_size <= SIDECAR_WORLD &&
-        far <= SIDECAR_WORLD))
-    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-                    "the placement gives cells of %.6g at (%.6g, %.6g), heights %.6g to %.6g: "
-                    "a scene config holds cells of %g to %g and positions within +-%g; "
-                    "change --scale, --cell or --offset",
-                    place->cell_size, place->origin_x, place->origin_z, g->y_bottom, g->y_top,
-                    sidecar_min_cell, (double)SIDECAR_WORLD, (double)SIDECAR_WORLD);
+  /* every profile written (the sequence's, or each frame's) and the fogmap's place */
+  for (int i = profile ? seq->count - 1 : 0; i < seq->count; i++) {
+    const vdb_profile *g = profile ? profile : &frames[i].profile;
+    const bool exponential = g->kind == VDB_PROFILE_EXPONENTIAL;
+    const double far = fmax(fmax(fabs(place->origin_x), fabs(place->origin_z)),
+                            fmax(fmax(fabs(g->y_bottom), fabs(g->y_top)),
+                                 exponential ? 0.0 : fabs(g->origin)));
+    /* the profile's length as written: an exponential of no height is written as a slab */
+    const double length = exponential ? (g->scale_height > 0 ? g->scale_height : place->cell_size)
+                                      : g->spacing;
+    const double smallest = fmin(place->cell_size, length);
+    if (!(smallest >= sidecar_min_cell && place->cell_size <= SIDECAR_WORLD &&
+          far <= SIDECAR_WORLD))
+      return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                      "the placement gives cells of %.6g at (%.6g, %.6g), heights %.6g to "
+                      "%.6g and a profile %s of %.6g: a scene config holds lengths of %g to %g "
+                      "and positions within +-%g; change --scale, --cell or --offset",
+                      place->cell_size, place->origin_x, place->origin_z, g->y_bottom, g->y_top,
+                      exponential ? "scale height" : "knot spacing",
+                      length, sidecar_min_cell,
+                      (double)SIDECAR_WORLD, (double)SIDECAR_WORLD);
+  }
   char temp[4400];
   snprintf(temp, sizeof temp, "%s.tmp", path);
   FILE *f = fopen(temp, "w");

@@ -147,6 +147,7 @@ int recorder_frame_number(const recorder *rec, const char *file) {
   const char *digits = file + n + 1;
   size_t count = strspn(digits, "0123456789");
   if (count < 4 || count > 9 || strcmp(digits + count, ".exr") != 0) return -1;
+  if (count > 4 && digits[0] == '0') return -1; /* frame.00002.exr: not a name %04d writes */
   return atoi(digits);
 }
 

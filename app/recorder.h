@@ -63,8 +63,9 @@ int recorder_open(recorder *rec, const recorder_desc *desc, fog_error *err);
 
 /* Path of 1-based frame number `frame`: FOLDER/NAME.%04d.exr. */
 void recorder_frame_path(const recorder *rec, int frame, char *path, size_t size);
-/* The frame number of a file name NAME.####.exr (4 to 9 digits) in rec's folder, -1 for
- * any other name. */
+/* The frame number of a file name NAME.####.exr (4 to 9 digits, as %04d writes them: no
+ * leading zero past 4) in rec's folder, -1 for any other name: the files a run may clear
+ * are the files it may write, which the check against the scene's inputs covers. */
 int recorder_frame_number(const recorder *rec, const char *file);
 /* Frame `frame`'s linear R, G, B read back into rgb (rec->width x rec->height x 3,
  * interleaved, top row first); non-zero with err set (unreadable, another size). */

@@ -51,12 +51,15 @@ typedef struct entry {
 typedef struct entry_list {
   entry *items;
   int count, capacity;
+  int last;             /* the range's last frame, -1: open */
   char too_large[4096]; /* a file whose frame number an int does not hold */
 } entry_list;
 
-/* 0, 1 (out of memory) or 2: frame past INT_MAX (the path kept in list->too_large). */
+/* 0, 1 (out of memory) or 2: frame past INT_MAX in an open range (the path kept in
+ * list->too_large; a closed range leaves it out, as every frame past its end). */
 static int push(entry_list *list, long frame, const char *path) {
   if (frame > INT_MAX) {
+    if (list->last >= 0) return 0;
     snprintf(list->too_large, sizeof list->too_large, "%s", path);
     return 2;
   }
@@ -209,7 +212,7 @@ static int add_pattern(entry_list *list, const char *pattern, int first, int las
 int vdb_sequence_find(const char *const *inputs, int input_count, int first, int last,
                       vdb_sequence *out, fog_error *err) {
   *out = (vdb_sequence){0};
-  entry_list list = {0};
+  entry_list list = {.last = last};
   if (first >= 0 && last >= 0 && (int64_t)last - first + 1 > max_span) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "frames %d..%d: more than %d frames", first, last,
              max_span);

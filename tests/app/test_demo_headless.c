@@ -148,6 +148,15 @@ int main(void) {
   CHECK(status == 2 && log_says(log, "would replace the input") && access(map, F_OK) == 0,
         "demo recording over its own fogmap: exit %d, the fogmap %s", status,
         access(map, F_OK) == 0 ? "kept" : "gone");
+  /* frame.00002.exr is no name the demo writes, so it is neither refused nor cleared */
+  char unpadded[800];
+  snprintf(unpadded, sizeof unpadded, "%s/out/demo/frame.00002.exr", root);
+  CHECK(rename(map, unpadded) == 0, "cannot rename %s", map);
+  test_write_text(scene, "[fog]\nfogmap = out/demo/frame.00002.exr\n");
+  status = run_demo(bin_abs, root, log, in_out);
+  CHECK(status == 0 && access(unpadded, F_OK) == 0,
+        "demo beside a fogmap frame.00002.exr: exit %d, the fogmap %s", status,
+        access(unpadded, F_OK) == 0 ? "kept" : "gone");
   test_remove_tree(root);
   return test_finish("test_demo_headless");
 }

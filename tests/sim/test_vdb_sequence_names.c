@@ -107,6 +107,19 @@ int main(void) {
   check_case(&(names_case){"two files of frame 2, the second named",
                            {"take#2/fluid_0002.vdb", "other_0002.vdb"}, 0, 0, 0,
                            "other_0002.vdb"});
+  /* with a closed range, a frame number past INT_MAX is past its end: left out, as any */
+  {
+    char big[512], two[512];
+    snprintf(big, sizeof big, "%s/big_4294967297.vdb", dir);
+    snprintf(two, sizeof two, "%s/take#2/fluid_0002.vdb", dir);
+    const char *inputs[2] = {big, two};
+    vdb_sequence seq;
+    fog_error err = {0};
+    const int status = vdb_sequence_find(inputs, 2, 2, 2, &seq, &err);
+    CHECK(status == 0 && seq.count == 1 && seq.frames[0] == 2,
+          "frames 2-2 beside a frame past INT_MAX: %s", status ? err.message : "other frames");
+    if (!status) vdb_sequence_destroy(&seq);
+  }
   test_remove_tree(dir);
   return test_finish("test_vdb_sequence_names");
 }
