@@ -153,6 +153,11 @@ int cli_output_in_folder(const char *command, const char *option, const char *pa
   return 0;
 }
 
+bool cli_display_available(void) {
+  const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
+  return (display && *display) || (wayland && *wayland);
+}
+
 const char *cli_shell_word(const char *s, char *out, size_t size) {
   const char *plain = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./:=@%+,-";
   if (*s && strspn(s, plain) == strlen(s)) {

@@ -60,6 +60,10 @@ int cli_output_not_scene_input(const char *command, const char *option, const ch
 int cli_sequence_not_scene_input(const char *command, const char *option, const char *out_pattern,
                                  const struct scene_config *cfg);
 
+/* Whether a window could open: DISPLAY or WAYLAND_DISPLAY set (demo and view check it
+ * before any work; without one demo records headless, view fails). */
+bool cli_display_available(void);
+
 /* Whether s ends with suffix, ignoring case (".EXR" is ".exr"). */
 bool cli_ends_with(const char *s, const char *suffix);
 

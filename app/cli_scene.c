@@ -11,26 +11,39 @@
 #include "app/config.h"
 #include "sim/vdb_import.h"
 
+/* Splits a #### pattern into its folder ("./" when it has none), the file name's prefix
+ * before the run of '#', the run's length and the suffix after it. False when the file
+ * name has no run. */
+static bool pattern_parts(const char *pattern, char *folder, size_t folder_size,
+                          const char **prefix, size_t *prefix_length, size_t *run_length,
+                          const char **suffix) {
+  size_t start, length;
+  if (!vdb_pattern_hash_run(pattern, &start, &length)) return false;
+  const char *slash = strrchr(pattern, '/');
+  const size_t base = slash ? (size_t)(slash - pattern) + 1 : 0;
+  snprintf(folder, folder_size, "%.*s", slash ? (int)base : 2, slash ? pattern : "./");
+  *prefix = pattern + base, *prefix_length = start - base, *suffix = pattern + start + length;
+  *run_length = length;
+  return true;
+}
+
 /* Whether out names a file of the frame pattern (FOLDER/PREFIX###SUFFIX: the same folder,
  * however spelt, and PREFIX digits SUFFIX, the digits as the pattern writes a number:
  * padded with zeros to the run's length, no more), existing or not. */
 static bool in_sequence(const char *out, const char *pattern) {
-  size_t start, length;
-  if (!vdb_pattern_hash_run(pattern, &start, &length)) return cli_same_file(out, pattern);
-  const char *pattern_slash = strrchr(pattern, '/');
-  const char *out_slash = strrchr(out, '/');
-  const size_t pattern_base = pattern_slash ? (size_t)(pattern_slash - pattern) + 1 : 0;
-  const char *base = out_slash ? out_slash + 1 : out;
-  /* the folders: compared by device and inode */
   char pattern_folder[SCENE_CONFIG_PATH_MAX], out_folder[SCENE_CONFIG_PATH_MAX];
-  snprintf(pattern_folder, sizeof pattern_folder, "%.*s", pattern_slash ? (int)pattern_base : 2,
-           pattern_slash ? pattern : "./");
+  const char *prefix, *suffix;
+  size_t prefix_length, length;
+  if (!pattern_parts(pattern, pattern_folder, sizeof pattern_folder, &prefix, &prefix_length,
+                     &length, &suffix))
+    return cli_same_file(out, pattern);
+  /* the folders: compared by device and inode */
+  const char *out_slash = strrchr(out, '/');
+  const char *base = out_slash ? out_slash + 1 : out;
   snprintf(out_folder, sizeof out_folder, "%.*s", out_slash ? (int)(base - out) : 2,
            out_slash ? out : "./");
   if (!cli_same_file(pattern_folder, out_folder)) return false;
-  const char *prefix = pattern + pattern_base, *suffix = pattern + start + length;
-  const size_t prefix_length = start - pattern_base;
-  if (start < pattern_base || strncmp(base, prefix, prefix_length) != 0) return false;
+  if (strncmp(base, prefix, prefix_length) != 0) return false;
   const char *digits = base + prefix_length;
   const size_t count = strspn(digits, "0123456789");
   if (count < 1 || count > 18 || strcmp(digits + count, suffix) != 0) return false;
@@ -66,27 +79,14 @@ int cli_output_not_scene_input(const char *command, const char *option, const ch
   return 0;
 }
 
-/* Splits a #### pattern into its folder ("./" when it has none), the file name's prefix
- * before the run and its suffix after it. False when the file name has no run. */
-static bool pattern_parts(const char *pattern, char *folder, size_t folder_size,
-                          const char **prefix, size_t *prefix_length, const char **suffix) {
-  size_t start, length;
-  if (!vdb_pattern_hash_run(pattern, &start, &length)) return false;
-  const char *slash = strrchr(pattern, '/');
-  const size_t base = slash ? (size_t)(slash - pattern) + 1 : 0;
-  snprintf(folder, folder_size, "%.*s", slash ? (int)base : 2, slash ? pattern : "./");
-  *prefix = pattern + base, *prefix_length = start - base, *suffix = pattern + start + length;
-  return true;
-}
-
 /* Whether two #### patterns name the same files: the same folder (by device and inode),
  * prefix and suffix, whatever the number of '#'. */
 static bool same_sequence(const char *a, const char *b) {
   char folder_a[SCENE_CONFIG_PATH_MAX], folder_b[SCENE_CONFIG_PATH_MAX];
   const char *prefix_a, *prefix_b, *suffix_a, *suffix_b;
-  size_t length_a, length_b;
-  return pattern_parts(a, folder_a, sizeof folder_a, &prefix_a, &length_a, &suffix_a) &&
-         pattern_parts(b, folder_b, sizeof folder_b, &prefix_b, &length_b, &suffix_b) &&
+  size_t length_a, length_b, run_a, run_b;
+  return pattern_parts(a, folder_a, sizeof folder_a, &prefix_a, &length_a, &run_a, &suffix_a) &&
+         pattern_parts(b, folder_b, sizeof folder_b, &prefix_b, &length_b, &run_b, &suffix_b) &&
          length_a == length_b && !strncmp(prefix_a, prefix_b, length_a) &&
          !strcmp(suffix_a, suffix_b) && cli_same_file(folder_a, folder_b);
 }

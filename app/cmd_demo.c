@@ -34,6 +34,7 @@
 
 typedef struct headless_job {
   const char *config_path;
+  const scene_config *config; /* as loaded from config_path (the command's) */
   int frames, width, height;
   const char *screenshot; /* the last frame as a PNG too, or NULL */
 } headless_job;
@@ -49,10 +50,8 @@ static int last_frame_png(const headless_job *h, const char *folder) {
   int status = rgb ? recorder_read_rgb(&rec, h->frames, rgb, &err)
                    : fog_fail(&err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory", h->screenshot);
   /* through the config's display transform, as the window shows it */
-  scene_config cfg;
-  if (!status) status = scene_config_load(h->config_path, &cfg, &err);
   if (!status) {
-    const display_transform display = scene_config_display(&cfg);
+    const display_transform display = scene_config_display(h->config);
     display_map_values(&display, rgb, rgb, 3 * (size_t)h->width * (size_t)h->height);
     status = image_write_png_srgb(h->screenshot, h->width, h->height, 3, rgb,
                                   display.dither ? SRGB8_DITHER : SRGB8_ROUND, &err);
@@ -86,17 +85,10 @@ static int record_instead(const headless_job *h, const char *reason) {
   if (realpath(folder, absolute)) snprintf(folder, sizeof folder, "%s", absolute);
   /* none of the frames to be written or cleared may be a file the scene reads: checked
    * before the earlier frames go (record_run checks again, too late for those) */
-  scene_config *config = malloc(sizeof *config);
-  fog_error cerr = {0};
-  if (!config || scene_config_load(h->config_path, config, &cerr)) {
-    fprintf(stderr, "fogpipe demo: %s\n", config ? cerr.message : "out of memory");
-    free(config);
-    return 1;
-  }
   char frames[PATH_MAX + 32];
   snprintf(frames, sizeof frames, "%s/frame.####.exr", folder);
-  const int refused = cli_sequence_not_scene_input("demo", "the recording folder", frames, config);
-  free(config);
+  const int refused =
+      cli_sequence_not_scene_input("demo", "the recording folder", frames, h->config);
   if (refused) return refused;
   /* out/demo holds the last demo's recording: an earlier, longer run's later frames would
    * stay beside this one's */
@@ -233,11 +225,10 @@ int cmd_demo(int argc, char **argv) {
   if (o.screenshot && cli_output_not_scene_input("demo", "--screenshot", o.screenshot, &config))
     return 2;
   const headless_job headless = {
-      .config_path = o.config_path, .frames = o.frames ? o.frames : HEADLESS_FRAMES,
+      .config_path = o.config_path, .config = &config, .frames = o.frames ? o.frames : HEADLESS_FRAMES,
       .width = o.size_given ? o.width : HEADLESS_WIDTH,
       .height = o.size_given ? o.height : HEADLESS_HEIGHT, .screenshot = o.screenshot};
-  const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
-  if (!(display && *display) && !(wayland && *wayland))
+  if (!cli_display_available())
     return demo_headless(&o, &headless,
                           "no display (DISPLAY and WAYLAND_DISPLAY are unset)");
   /* Nothing to simulate in the other models: the window shows their fog as the config holds

@@ -5,7 +5,6 @@
  * last one as seen in the window (read from GL_BACK before the swap) and exits: for tests
  * and for looking at a scene without sitting at the display (xvfb-run). */
 #include <stdio.h>
-#include <stdlib.h>
 
 #include "app/cli.h"
 #include "app/cli_options.h"
@@ -86,8 +85,7 @@ int cmd_view(int argc, char **argv) {
   opts.width = size[0] > 0 ? size[0] : cfg.width;
   opts.height = size[1] > 0 ? size[1] : cfg.height;
   /* no display: said now, not after --fit's minutes of work (the window opens after it) */
-  const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
-  if (!(display && *display) && !(wayland && *wayland)) {
+  if (!cli_display_available()) {
     fprintf(stderr, "fogpipe view: cannot open a window: no display (DISPLAY and "
             "WAYLAND_DISPLAY are unset); for headless rendering use `fogpipe render`, or run "
             "under xvfb-run\n");
