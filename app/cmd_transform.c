@@ -231,6 +231,9 @@ static int run_forward(const char *in, const char *channel, const char *dir,
   }
   transform_forward(plan, map.density, coef);
   transform_pyramid(plan, coef, approx);
+  /* A_J is the fogmap: its copy, not the reconstruction (which rounds 0 to -1e-9, a value
+   * no fogmap holds). The coarser A_l stay the transform's own, signed (docs/transform.md) */
+  memcpy(approx[J], map.density, sizeof(float) * n);
   transform_details(plan, coef, detail);
   transform_detail_energy(plan, coef, energy);
   /* an earlier transform into DIR, whose deeper levels go once this one is written */

@@ -551,9 +551,11 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
                           : c->has_sequence ? &c->sequence_map
                                             : fluid_sim_density(c->sim);
   transform_forward(c->plan, density->density, c->coefficients);
-  transform_pyramid(c->plan, c->coefficients, c->approx);
-  if (p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS)
-    transform_details(c->plan, c->coefficients, c->detail);
+  /* non-negative levels, the density itself as A_J (transform_density_pyramid) */
+  if (transform_density_pyramid(
+          c->plan, density->density, c->coefficients, c->approx,
+          p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS ? c->detail : NULL))
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "transform: out of memory");
   fog_error terr = {0};
   for (int l = 0; l <= c->levels; l++) {
     if (transform_grid_export(c->plan, l, c->approx[l], &slot->pyramid.approx[l], &terr))

@@ -170,8 +170,12 @@ static int preview_frame(preview *p, const char *vdb, const char *png, double ti
   }
   double t1 = app_clock_seconds();
   transform_forward(p->plan, frame.map.density, p->coefficients);
-  transform_pyramid(p->plan, p->coefficients, p->approx);
-  if (p->levels > 0) transform_details(p->plan, p->coefficients, p->detail);
+  if (transform_density_pyramid(p->plan, frame.map.density, p->coefficients, p->approx,
+                                p->levels > 0 ? p->detail : NULL)) {
+    snprintf(error, size, "transform: out of memory");
+    vdb_frame_destroy(&frame);
+    return 1;
+  }
   fog_error terr = {0};
   for (int l = 0; l <= p->levels; l++) {
     transform_grid_export(p->plan, l, p->approx[l], &p->approx_grid[l], &terr);

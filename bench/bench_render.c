@@ -412,8 +412,9 @@ int bench_render(int argc, char **argv) {
       if (!level_approx[l] || !level_detail[l]) goto out_of_memory;
     }
     transform_forward(lod_plan, map.density, coefficients);
-    transform_pyramid(lod_plan, coefficients, level_approx);
-    transform_details(lod_plan, coefficients, level_detail);
+    if (transform_density_pyramid(lod_plan, map.density, coefficients, level_approx,
+                                  level_detail))
+      goto out_of_memory;
     for (int l = 0; l <= LOD_LEVELS; l++)
       if (transform_grid_create_level(lod_plan, l, level_approx[l], &approx[l], &terr) ||
           (l > 0 &&
