@@ -928,11 +928,11 @@ static bool fog_pass_quadric_noise(const fog_pass_params *p) {
 
 /* The quadric volumes camera-relative (fog_models.glsl), of FOG_MODEL_QUADRIC or beside
  * another model: Q(camera + p) = p.(M p) + 2 g.p + c0 with g = M camera + l and c0 =
- * Q(camera), in double (the shader keeps g and c0 in double). */
+ * Q(camera), in double (the shader keeps M, g and c0 in double). */
 static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
                                       const fog_pass_params *params) {
-  float diag[FOG_MAX_QUADRICS][3], off[FOG_MAX_QUADRICS][4], edge[FOG_MAX_QUADRICS];
-  float noise[FOG_MAX_QUADRICS];
+  double diag[FOG_MAX_QUADRICS][3], off[FOG_MAX_QUADRICS][3];
+  float density[FOG_MAX_QUADRICS], edge[FOG_MAX_QUADRICS], noise[FOG_MAX_QUADRICS];
   float lo[FOG_MAX_QUADRICS][3], hi[FOG_MAX_QUADRICS][3];
   double grad_c0[FOG_MAX_QUADRICS][4];
   const double *o = cam->position;
@@ -946,13 +946,13 @@ static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
     fog_quadric_matrix(v, m, l);
     for (int r = 0; r < 3; r++) {
       grad_c0[i][r] = m[r][0] * o[0] + m[r][1] * o[1] + m[r][2] * o[2] + l[r];
-      diag[i][r] = (float)m[r][r];
+      diag[i][r] = m[r][r];
       lo[i][r] = (float)(v->lo[r] - o[r]);
       hi[i][r] = (float)(v->hi[r] - o[r]);
     }
     grad_c0[i][3] = fog_quadric_value(v, o);
-    off[i][0] = (float)m[0][1], off[i][1] = (float)m[1][2], off[i][2] = (float)m[0][2];
-    off[i][3] = (float)v->density;
+    off[i][0] = m[0][1], off[i][1] = m[1][2], off[i][2] = m[0][2];
+    density[i] = (float)v->density;
     edge[i] = (float)v->edge;
     /* without octaves (fog_pass_check_model refuses that) the volume stays homogeneous */
     noise[i] = params->model_perlin ? (float)v->noise : 0.0f;
@@ -961,8 +961,9 @@ static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
   /* the noise reads the octaves' sampler: it must name its own unit even when unused */
   glUniform1i(fog_loc(prog, "fog_perlin_texels"), UNIT_PERLIN);
   if (n > 0) {
-    glUniform3fv(fog_loc(prog, "fog_quadric_diag"), n, &diag[0][0]);
-    glUniform4fv(fog_loc(prog, "fog_quadric_off"), n, &off[0][0]);
+    glUniform3dv(fog_loc(prog, "fog_quadric_diag"), n, &diag[0][0]);
+    glUniform3dv(fog_loc(prog, "fog_quadric_off"), n, &off[0][0]);
+    glUniform1fv(fog_loc(prog, "fog_quadric_density"), n, density);
     glUniform1fv(fog_loc(prog, "fog_quadric_edge"), n, edge);
     glUniform1fv(fog_loc(prog, "fog_quadric_noise"), n, noise);
     glUniform4dv(fog_loc(prog, "fog_quadric_grad_c0"), n, &grad_c0[0][0]);

@@ -44,10 +44,13 @@ uniform sampler3D fog_grid3d_occupancy;        // R32F brick bounds (FOG_SKIP)
 uniform ivec3 fog_grid3d_bricks;
 // FOG_MODEL_QUADRIC (fog_pass_quadric_uniforms): Q at camera-relative p is
 // p.(M p) + 2 g.p + c0, M symmetric, c0 = Q(camera) and g = M camera + l, computed in double
-// on the CPU and kept in double here (far from the camera Q's terms cancel).
+// on the CPU and kept in double here, M too: far from the camera Q's terms cancel, and M's
+// float rounding, 6e-8 relative, grew by (distance/size)^2 there (a sheet 900 units off, 0.3
+// thick, drawn with tau 0.39 where the ray misses it).
 uniform int fog_quadric_count;
-uniform vec3 fog_quadric_diag[FOG_MAX_QUADRICS];   // M's diagonal
-uniform vec4 fog_quadric_off[FOG_MAX_QUADRICS];    // M's xy, yz, xz; w: density
+uniform dvec3 fog_quadric_diag[FOG_MAX_QUADRICS];  // M's diagonal
+uniform dvec3 fog_quadric_off[FOG_MAX_QUADRICS];   // M's xy, yz, xz
+uniform float fog_quadric_density[FOG_MAX_QUADRICS];
 uniform float fog_quadric_edge[FOG_MAX_QUADRICS];
 uniform float fog_quadric_noise[FOG_MAX_QUADRICS];  // the turbulence's share (fog_quadric.noise)
 uniform dvec4 fog_quadric_grad_c0[FOG_MAX_QUADRICS];  // g; w: c0
@@ -153,10 +156,9 @@ bool fog_slab(vec3 lo, vec3 hi, vec3 origin, vec3 dir, out float t0, out float t
 }
 
 // Quadric volume i's symmetric matrix M.
-mat3 fog_quadric_matrix(int i) {
-  vec3 d = fog_quadric_diag[i];
-  vec4 o = fog_quadric_off[i];
-  return mat3(d.x, o.x, o.z, o.x, d.y, o.y, o.z, o.y, d.z);
+dmat3 fog_quadric_matrix(int i) {
+  dvec3 d = fog_quadric_diag[i], o = fog_quadric_off[i];
+  return dmat3(d.x, o.x, o.z, o.x, d.y, o.y, o.z, o.y, d.z);
 }
 
 // The roots of a t^2 + 2 b t + c = 0 without cancellation (fog_quadric_cpu.c's
@@ -231,13 +233,13 @@ float fog_quadric_span(float a, float b, float c, float density, float edge, flo
 float fog_quadric_optical_depth_from(vec3 origin, vec3 dir, float length) {
   float sum = 0.0;
   for (int i = 0; i < fog_quadric_count; i++) {
-    float t0, t1, density = fog_quadric_off[i].w;
+    float t0, t1, density = fog_quadric_density[i];
     if (!(density > 0.0) ||
         !fog_slab(fog_quadric_lo[i], fog_quadric_hi[i], origin, dir, t0, t1)) continue;
     t0 = max(t0, 0.0);
     t1 = min(t1, length);
     if (!(t1 > t0)) continue;
-    dmat3 m = dmat3(fog_quadric_matrix(i));
+    dmat3 m = fog_quadric_matrix(i);
     dvec3 g = fog_quadric_grad_c0[i].xyz, x = dvec3(origin), w = dvec3(dir);
     double a = dot(w, m * w), b = dot(w, m * x + g);
     double c = dot(x, m * x) + 2.0 * dot(g, x) + fog_quadric_grad_c0[i].w;
@@ -258,10 +260,10 @@ float fog_quadric_extinction_at(vec3 p) {
     if (any(lessThan(p, fog_quadric_lo[i])) || any(greaterThan(p, fog_quadric_hi[i]))) continue;
     // in double: Q's terms far from the camera cancel (fog_quadric_optical_depth_from)
     dvec3 x = dvec3(p), g = fog_quadric_grad_c0[i].xyz;
-    float q = float(dot(x, dmat3(fog_quadric_matrix(i)) * x) + 2.0 * dot(g, x) +
+    float q = float(dot(x, fog_quadric_matrix(i) * x) + 2.0 * dot(g, x) +
                     fog_quadric_grad_c0[i].w);
     if (!(q < 0.0)) continue;
-    float edge = fog_quadric_edge[i], density = fog_quadric_off[i].w;
+    float edge = fog_quadric_edge[i], density = fog_quadric_density[i];
     float ki = edge > 0.0 ? density * min(1.0, -q / edge) : density;
     k += ki;
     noisy += ki * fog_quadric_noise[i];

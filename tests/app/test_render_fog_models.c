@@ -188,6 +188,16 @@ int main(void) {
     check_config(path, fogs[k][0]);
     unlink(path);
   }
+  /* a sheet 0.34 thick seen from 900 units: Q's matrix in float (6e-8 relative) grew by
+   * (distance/size)^2 once re-centred, and the GL drew tau 0.39 where the ray misses it */
+  char sheet[256];
+  snprintf(sheet, sizeof sheet, "%s/sheet.ini", dir);
+  CHECK(test_write_text(sheet, "[camera]\nposition = 0 2400 800\nlook_at = 0 2000 0\nfov = 60\n"
+                               "[fog]\nmodel = quadric\n"
+                               "quadric = ellipsoid 0 2000 0 300 0.342 300 2\n"),
+        "%s", sheet);
+  check_config(sheet, "quadric, a thin sheet far off");
+  unlink(sheet);
   check_config("configs/rbf_fog_banks.ini", "rbf (configs/rbf_fog_banks.ini)");
   check_config("configs/vdb_plume_volume.ini", "volume (configs/vdb_plume_volume.ini)");
   check_config("configs/quadric_volumes.ini", "quadric (configs/quadric_volumes.ini)");
