@@ -147,7 +147,9 @@ double fog_grid3d_optical_depth_march(const volume_grid_desc *g, double step,
                                       double length) {
   double u0[3], du[3], t0, t1;
   if (!grid3d_stretch(g, camera, dir, length, u0, du, &t0, &t1)) return 0.0;
-  int n = (int)ceil((t1 - t0) / step);
+  /* at most 16384 samples, as the GLSL twin (fog_models.glsl): clamped in double, since a
+   * fine step's count overflowed int (INT_MIN: no samples, no fog) */
+  int n = (int)fmin(fmax(ceil((t1 - t0) / step), 1.0), 16384.0);
   double dt = (t1 - t0) / n, sum = 0.0;
   for (int s = 0; s < n; s++) {
     double t = t0 + (s + 0.5) * dt, u[3];

@@ -597,7 +597,7 @@ float fog_model_extinction_at(vec3 p) {
 // fallen below e^-36 of its peak (RBFs: 6 radii past the farthest centre; height fog going
 // up: 36 scale heights above y0; quadrics: where the ray leaves their boxes). Infinite where the fog does not end (a homogeneous base,
 // height fog level or going down): the marcher then reports it opaque, as the exact
-// integral is.
+// integral is (clear where the extinction is 0).
 float fog_model_reach(vec3 dir) {
   if (fog_model == FOG_MODEL_LINEAR) return fog_model_end;  // opaque from there on
   if (fog_model == FOG_MODEL_HEIGHT)
@@ -627,7 +627,7 @@ float fog_model_reach(vec3 dir) {
 // shifts the samples (0.5 = midpoint), as fog_optical_depth_march does for the fogmap.
 float fog_model_optical_depth_march(vec3 dir, float t_surface, int steps, float jitter) {
   float length = min(t_surface, fog_model_reach(dir));
-  if (length >= 1e29) return 1e30;
+  if (length >= 1e29) return fog_model_extinction > 0.0 ? 1e30 : 0.0;  // no fog: clear sky
   float dt = length / float(steps), sum = 0.0;
   for (int i = 0; i < steps; i++)
     sum += fog_model_extinction_at((float(i) + jitter) * dt * dir);

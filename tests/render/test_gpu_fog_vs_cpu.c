@@ -280,6 +280,23 @@ int main(void) {
         printf("model %d view %d marched at 0.7: max |dtau| vs its CPU twin %.2e\n", model,
                view, e);
         CHECK(e <= 2e-4, "volume march view %d: max |dtau| %.3e", view, e);
+        if (view == 0) {
+          /* a step so fine that both twins take their cap of 16384 samples a ray (the C
+           * twin's count overflowed int there: no samples, tau 1) */
+          params.model_grid3d_step = 1e-12;
+          CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
+                "draw volume marched finely: %s", err.message);
+          for (int py = 0; py < H; py++)
+            for (int px = 0; px < W; px++) {
+              double o[3], d[3];
+              double t_surface = pixel_ray(&cam, gl.dist, px, py, o, d);
+              want[py * W + px] = fog_transmittance(
+                  fog_grid3d_optical_depth_march(&scene.grid3d, 1e-12, o, d, t_surface));
+            }
+          e = max_tau_error(want, tau, NULL, NULL);
+          printf("volume marched at 1e-12 (capped): max |dtau| vs its CPU twin %.2e\n", e);
+          CHECK(e <= 2e-4, "volume march at the cap: max |dtau| %.3e", e);
+        }
         continue;
       }
       /* The same model ray-marched (the bench's alternative): it converges to the exact
@@ -300,6 +317,25 @@ int main(void) {
             "model %d view %d: marching does not converge (%.3e, %.3e)", model, view,
             march_error[0], march_error[1]);
     }
+  /* Fog of extinction 0 marched is no fog, the sky too (the marcher's infinite reach once
+   * made the sky opaque there while the exact integral said clear). */
+  {
+    camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1,
+        .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
+    camera_look_at(&cam, (double[3]){80.0, 6.0, -60.0});
+    fog_test_gl_set_ground(&gl, &cam, ground_y);
+    const fog_model_kind clear[3] = {FOG_MODEL_HOMOGENEOUS, FOG_MODEL_HEIGHT, FOG_MODEL_EXP2};
+    for (int k = 0; k < 3; k++) {
+      const fog_pass_params params = {.model = clear[k], .model_extinction = 0.0,
+                                      .model_scale_height = 10.0,
+                                      .integrator = FOG_INTEGRATOR_MARCH, .march_steps = 16};
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0, "clear model %d: %s",
+            clear[k], err.message);
+      double lowest = 1.0;
+      for (int i = 0; i < W * H; i++) lowest = fmin(lowest, tau[i]);
+      CHECK(lowest == 1.0, "model %d of extinction 0, marched: tau down to %g", clear[k], lowest);
+    }
+  }
   /* Bad model parameters are refused before anything is drawn, saying what was expected. */
   {
     camera cam = {.position = {10.0, 3.0, 20.0}, .fov_y = 1.1,
