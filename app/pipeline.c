@@ -1269,6 +1269,8 @@ pipeline_params pipeline_get_params(const pipeline *p) {
 
 void pipeline_set_params(pipeline *p, const pipeline_params *params) {
   pthread_mutex_lock(&p->lock);
+  /* a step asked for while paused and not yet taken does not play after a later pause */
+  if (!params->paused) p->step_requests = 0;
   p->params = *params;
   p->params_version++;
   pthread_cond_broadcast(&p->changed);
@@ -1277,7 +1279,9 @@ void pipeline_set_params(pipeline *p, const pipeline_params *params) {
 
 void pipeline_step_once(pipeline *p) {
   pthread_mutex_lock(&p->lock);
-  p->step_requests++;
+  /* running, the simulation steps anyway: N pressed then used to queue steps that played
+   * after the next pause */
+  if (p->params.paused) p->step_requests++;
   pthread_cond_broadcast(&p->changed);
   pthread_mutex_unlock(&p->lock);
 }
@@ -1289,16 +1293,40 @@ void pipeline_reset(pipeline *p) {
   pthread_mutex_unlock(&p->lock);
 }
 
+/* Clips the segment a-b to [lo, hi] on both axes (Liang-Barsky); false when it misses. */
+static bool clip_segment(double a[2], double b[2], const double lo[2], const double hi[2]) {
+  double t0 = 0.0, t1 = 1.0;
+  for (int k = 0; k < 2; k++) {
+    const double d = b[k] - a[k];
+    if (d == 0.0) {
+      if (a[k] < lo[k] || a[k] > hi[k]) return false;
+      continue;
+    }
+    double ta = (lo[k] - a[k]) / d, tb = (hi[k] - a[k]) / d;
+    if (ta > tb) { const double s = ta; ta = tb; tb = s; }
+    t0 = fmax(t0, ta), t1 = fmin(t1, tb);
+  }
+  if (t0 > t1) return false;
+  const double a0[2] = {a[0], a[1]};
+  for (int k = 0; k < 2; k++) a[k] = a0[k] + t0 * (b[k] - a0[k]), b[k] = a0[k] + t1 * (b[k] - a0[k]);
+  return true;
+}
+
 void pipeline_paint(pipeline *p, double x0, double z0, double x1, double z1, double radius,
                     double amount) {
   /* World to sim cells: cell (x, z) sits at world origin + (x + 1/2) cell_size. */
   const scene_box_config *b = &p->config.box;
   double cell = b->cell_size > 0 ? b->cell_size : 1.0;
+  double a[2] = {(x0 - b->origin[0]) / cell - 0.5, (z0 - b->origin[1]) / cell - 0.5};
+  double e[2] = {(x1 - b->origin[0]) / cell - 0.5, (z1 - b->origin[1]) / cell - 0.5};
+  /* The stroke's centre line within the fog's box: the periodic simulation would wrap a
+   * stroke beside the box onto its far side (a cursor 80 units past the west edge painted
+   * fog 1000 units east). A brush's rim over the edge still wraps, as the fog does. */
+  const double lo[2] = {-0.5, -0.5},
+               hi[2] = {p->cpu.base.width - 0.5, p->cpu.base.height - 0.5};
+  if (!clip_segment(a, e, lo, hi)) return;
   fluid_stroke stroke = {
-      .x0 = (float)((x0 - b->origin[0]) / cell - 0.5),
-      .z0 = (float)((z0 - b->origin[1]) / cell - 0.5),
-      .x1 = (float)((x1 - b->origin[0]) / cell - 0.5),
-      .z1 = (float)((z1 - b->origin[1]) / cell - 0.5),
+      .x0 = (float)a[0], .z0 = (float)a[1], .x1 = (float)e[0], .z1 = (float)e[1],
       .radius = (float)(radius / cell),
       .amount = (float)amount,
   };

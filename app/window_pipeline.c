@@ -42,7 +42,10 @@ static bool panel_model(panel *ui, pipeline *pipe, const pipeline_timings *med,
                         pipeline_params *params) {
   if (!panel_header(ui, "model", true)) return false;
   bool changed = false;
-  changed |= panel_combo(ui, "model", &params->live_rung, live_rung_names, LIVE_RUNG_COUNT);
+  /* "##rung": the header above is "model" too, and one ImGui ID for both kept the combo
+   * from ever opening with the mouse */
+  changed |= panel_combo(ui, "model##rung", &params->live_rung, live_rung_names,
+                         LIVE_RUNG_COUNT);
   live_rung r;
   if (pipeline_live_rung(pipe, &r)) {
     if (r.model.kind == FOG_MODEL_HEIGHT)

@@ -121,9 +121,11 @@ static void shell_panel(window_shell *s, window_source *src, const window_frame 
 static int window_loop(gl_context *gl, window_shell *shell, window_source *src,
                        const scene_config *cfg, const window_options *o, fog_error *err) {
   GLFWwindow *window = gl_context_glfw_window(gl);
-  /* A key tapped between two polls still counts as pressed once: at a few frames a second
-   * (software GL) a quick tap fell between frames. */
+  /* A key tapped or a button clicked between two polls still counts as pressed once: at a
+   * few frames a second (software GL) a quick tap fell between frames, and the lamp tool
+   * missed clicks (0 of 2 placed at 16 fps). */
   glfwSetInputMode(window, GLFW_STICKY_KEYS, GLFW_TRUE);
+  glfwSetInputMode(window, GLFW_STICKY_MOUSE_BUTTONS, GLFW_TRUE);
   free_camera fc = {.speed = src->camera_speed};
   scene_config_camera(cfg, &fc.cam);
   window_frame f = {.window = window, .gl = gl, .fc = &fc};
@@ -136,7 +138,10 @@ static int window_loop(gl_context *gl, window_shell *shell, window_source *src,
       f.fps = f.fps > 0 ? 0.9 * f.fps + 0.1 / (now - last_time) : 1 / (now - last_time);
     last_time = now;
     gl_context_framebuffer_size(gl, &f.fb_w, &f.fb_h);
-    if (f.fb_w < 1 || f.fb_h < 1) continue; /* minimised */
+    if (f.fb_w < 1 || f.fb_h < 1) { /* minimised: wait for events, not spin a core */
+      glfwWaitEventsTimeout(0.1);
+      continue;
+    }
     f.index = index, f.now = now, f.dt = dt;
 
     panel_begin_frame(shell->ui);
@@ -158,6 +163,9 @@ static int window_loop(gl_context *gl, window_shell *shell, window_source *src,
     free_camera_step(&fc, &input, fmin(dt, 1.0));
 
     if (src->input(src->self, &f, err) || src->draw(src->self, &f, err)) return 1;
+    /* a click latched by the sticky buttons and not read this frame (no tool took it, or
+     * the panel held the mouse) is let go, not acted on frames later */
+    for (int b = GLFW_MOUSE_BUTTON_1; b <= GLFW_MOUSE_BUTTON_3; b++) glfwGetMouseButton(window, b);
     panel_end_frame(shell->ui);
     if (o->screenshot && index + 1 >= o->frames) return save_screenshot(o, &f, err);
     gl_context_swap_buffers(gl);
