@@ -76,6 +76,11 @@ int staged_move_into_place(const char *command, const char *temp_dir, const char
     if (status && i < moved) {
       if (replaced[i]) rename(aside, to);
       else unlink(to);
+    } else if (status && i == moved) {
+      /* the file whose move failed: `to` is the original (or nothing); an original set
+       * aside whose return failed above is tried once more, and else left where it is,
+       * never removed */
+      if (replaced[i]) rename(aside, to);
     } else if (replaced[i]) {
       unlink(aside);
     }

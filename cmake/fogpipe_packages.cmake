@@ -7,6 +7,9 @@ pkg_check_modules(OPENEXR REQUIRED IMPORTED_TARGET OpenEXR)
 pkg_check_modules(SPNG REQUIRED IMPORTED_TARGET spng)
 pkg_check_modules(FFTW3F REQUIRED IMPORTED_TARGET fftw3f)
 pkg_check_modules(INIH REQUIRED IMPORTED_TARGET inih)
-# Debian's OpenVDB ships only a find module (docs/platform.md).
-list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
+# Debian's OpenVDB ships only a find module (docs/platform.md), in the multiarch folder
+# (x86_64-linux-gnu, aarch64-linux-gnu, ...).
+file(GLOB FOGPIPE_OPENVDB_MODULES /usr/lib/*/cmake/OpenVDB)
+list(APPEND CMAKE_MODULE_PATH /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB
+     ${FOGPIPE_OPENVDB_MODULES})
 find_package(OpenVDB REQUIRED)
