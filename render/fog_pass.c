@@ -1294,11 +1294,13 @@ static int fog_pass_check_loops(const fog_pass *pass, const fog_pass_params *par
            "fog pass: %s fog%s may run %.0f loop iterations a pixel: %s, and %.0f for the "
            "view ray (%s); this renderer (%s) ends "
            "all of a shader's loops after %ld and would draw them wrong: expected a bound of "
-           "at most %ld (fewer lamps, lamp pieces or steps, sun shadow steps%s)",
+           "at most %ld (fewer lamps, lamp pieces or steps, sun shadow steps%s%s)",
            fog_model_table[params->model].name, gaussians, lamps + view, lamp_text, view, sun,
            (const char *)glGetString(GL_RENDERER), pass->loop_cap,
            (long)fog_pass_loops_allowed(pass),
-           params->model == FOG_MODEL_RBF ? ", or fewer Gaussians" : "");
+           params->model == FOG_MODEL_RBF ? ", or fewer Gaussians" : "",
+           params->model_perlin ? "; for the turbulence a larger perlin_feature, fewer "
+                                  "perlin_octaves or a smaller fog box" : "");
   return 1;
 }
 
