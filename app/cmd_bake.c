@@ -239,8 +239,12 @@ int cmd_bake(int argc, char **argv) {
   sigaction(SIGINT, &old_int, NULL);
   sigaction(SIGTERM, &old_term, NULL);
   if (status) return status;
-  printf("baked %d frame%s of %s: %s and %s; render a range: fogpipe record %s --frames A-B "
+  /* bake.ini holds no rate (file n plays at frame n), but the scene's own clock (lamps on
+   * a path, flicker) runs at record's --fps: the hint names the bake's */
+  char rate[64] = "";
+  if (job.fps != 24.0) snprintf(rate, sizeof rate, " --fps %.17g", job.fps);
+  printf("baked %d frame%s of %s: %s and %s; render a range: fogpipe record %s%s --frames A-B "
          "--out FRAMES/\n", job.frames, job.frames == 1 ? "" : "s", job.config_path, pattern, ini,
-         ini);
+         ini, rate);
   return 0;
 }

@@ -34,6 +34,17 @@ int main(void) {
   snprintf(command, sizeof command, "'%s' bake %s --frames %d --out '%s'", record_bin(),
            RECORD_TEST_CONFIG, FRAMES, bake);
   CHECK(run(command, log) == 0, "bake failed");
+  CHECK(record_log_contains(log, "render a range: fogpipe record") &&
+            !record_log_contains(log, "--fps"),
+        "the default bake's hint names a rate");
+  /* a bake at another rate says to record it at that rate (bake.ini holds none, but lamps
+   * on a path run on the scene's clock) */
+  char slow[600];
+  snprintf(slow, sizeof slow, "%s/slow", root);
+  snprintf(command, sizeof command, "'%s' bake %s --frames 1 --fps 12 --out '%s'", record_bin(),
+           RECORD_TEST_CONFIG, slow);
+  CHECK(run(command, log) == 0 && record_log_contains(log, "bake.ini --fps 12 --frames A-B"),
+        "a bake at 12 fps does not say to record it at 12");
   snprintf(command, sizeof command, "'%s' record %s --frames %d --size %s --out '%s'",
            record_bin(), RECORD_TEST_CONFIG, FRAMES, RECORD_TEST_SIZE, whole);
   CHECK(run(command, log) == 0, "the full simulated record failed");
