@@ -89,6 +89,7 @@ typedef struct pipeline_slot {
   fog_sun_shadow_kind self_shadow;
   fog_sun_shadow sun_shadow;
   bool shadow_fresh; /* computed at this step (else the one on screen stays) */
+  float shadow_shape[4]; /* shadow_shape_of the params it was computed with (when fresh) */
   double sun_shadow_ms;
 } pipeline_slot;
 
@@ -100,9 +101,10 @@ typedef struct pipeline_slot {
 
 /* What the worker owns: the simulation, the transform plan and its scratch arrays. */
 typedef struct cpu_stages {
-  /* the last sun volume computed: its step, sun and kind (LIVE_SHADOW_INTERVAL) */
+  /* the last sun volume computed: its step, sun, fog shape and kind (LIVE_SHADOW_INTERVAL) */
   long shadow_step;
   double shadow_sun[3];
+  float shadow_shape[4];
   bool shadow_on;
   fog_sun_shadow_kind shadow_kind;
   fluid_sim *sim;
@@ -202,6 +204,7 @@ struct pipeline {
    * here (shadow_volume, shadow_grid). */
   fog_sun_shadow_kind shown_self_shadow;
   double shown_shadow_sun[3];
+  float shown_shadow_shape[4]; /* shadow_shape_of the params the volume shown was made with */
   transform_grid shadow_grid;
   fog_sun_shadow shadow_volume;
   /* The demo's live rung (params.live_rung, app/live_rung.h): fitted to the finest grid of
@@ -481,6 +484,15 @@ static void sun_direction_of(const pipeline *p, const pipeline_params *params, d
   scene_light_sun_direction(&light, dir);
 }
 
+/* What the fog's sun-shadow volume depends on besides the sun and the fog's grid: the
+ * density and the vertical profile (volume_of). A volume is remade when any of them
+ * changed, not only the sun: a density typed in while paused kept the old volume, and the
+ * fog lost its self-shadow. */
+static void shadow_shape_of(const pipeline_params *params, float shape[4]) {
+  shape[0] = params->density, shape[1] = (float)params->profile_kind;
+  shape[2] = params->fog_height, shape[3] = params->scale_height;
+}
+
 /* The fog's shadow of a step (docs/light.md) for the unit direction sun (of params'
  * angles): only with albedo > 0 and [light] fog_self_shadow on; the volume is computed from
  * the finest grid (threads: the worker's one, or both cores when the GL thread waits). */
@@ -569,8 +581,11 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
   double sun[3];
   sun_direction_of(p, &p->applied, sun);
   const bool on = p->applied.sun.albedo > 0 && p->applied.fog_self_shadow;
+  float shape[4];
+  shadow_shape_of(&p->applied, shape);
   slot->shadow_fresh = !p->live || c->shadow_step == 0 || on != c->shadow_on ||
                        memcmp(sun, c->shadow_sun, sizeof sun) ||
+                       memcmp(shape, c->shadow_shape, sizeof shape) ||
                        c->steps - c->shadow_step >= LIVE_SHADOW_INTERVAL;
   if (slot->shadow_fresh) {
     if (compute_shadow(p, &p->applied, &slot->pyramid.approx[slot->pyramid.levels], sun,
@@ -578,6 +593,8 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
       return 1;
     c->shadow_step = c->steps, c->shadow_on = on, c->shadow_kind = slot->self_shadow;
     memcpy(c->shadow_sun, sun, sizeof sun);
+    memcpy(c->shadow_shape, shape, sizeof shape);
+    memcpy(slot->shadow_shape, shape, sizeof shape);
   } else {
     slot->self_shadow = c->shadow_kind;
   }
@@ -887,6 +904,7 @@ static int show_slot_shadow(pipeline *p, const pipeline_slot *slot, fog_error *e
          (size_t)finest->width * finest->height * sizeof *coefficients);
   if (!slot->shadow_fresh || slot->self_shadow != FOG_SUN_SHADOW_VOLUME) return 0;
   memcpy(p->shown_shadow_sun, slot->sun_shadow.sun, sizeof p->shown_shadow_sun);
+  memcpy(p->shown_shadow_shape, slot->shadow_shape, sizeof p->shown_shadow_shape);
   if (pipeline_fog_upload_sun_shadow(p->fog, &slot->sun_shadow, &rerr))
     return fog_error_wrap(err, &rerr, "upload: ");
   p->rung_shadow_shown = false;
@@ -903,10 +921,13 @@ static int relight(pipeline *p, const pipeline_params *params, fog_error *err) {
   }
   if (!p->shadow_grid.coefficients) return 0;
   double sun[3];
+  float shape[4];
   sun_direction_of(p, params, sun);
+  shadow_shape_of(params, shape);
   /* (while a rung's volume is in the pass, the fogmap's must go back) */
   if (p->shown_self_shadow != FOG_SUN_SHADOW_NONE && !p->rung_shadow_shown &&
-      !memcmp(sun, p->shown_shadow_sun, sizeof sun))
+      !memcmp(sun, p->shown_shadow_sun, sizeof sun) &&
+      !memcmp(shape, p->shown_shadow_shape, sizeof shape))
     return 0;
   double t0 = now_ms();
   fog_sun_shadow_kind kind;
@@ -914,6 +935,7 @@ static int relight(pipeline *p, const pipeline_params *params, fog_error *err) {
     return 1;
   p->shown_self_shadow = kind;
   memcpy(p->shown_shadow_sun, sun, sizeof sun);
+  memcpy(p->shown_shadow_shape, shape, sizeof shape);
   fog_error rerr = {0};
   if (kind == FOG_SUN_SHADOW_VOLUME &&
       pipeline_fog_upload_sun_shadow(p->fog, &p->shadow_volume, &rerr))

@@ -5,7 +5,11 @@
  *    and three more steps ran); while paused, one N is one step;
  *  - a stroke whose centre line lies beside the fog's box paints nothing (the periodic
  *    simulation wrapped it onto the box's far side, 1000 units from the cursor), and a
- *    stroke across the edge paints the inside part. */
+ *    stroke across the edge paints the inside part;
+ *  - a density typed in while paused relights the fog (its sun-shadow volume made again):
+ *    the frame equals, colour and transmittance, that of a pipeline whose config had that
+ *    density from the start (the volume once stayed the old density's, keyed on the sun
+ *    alone). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -113,6 +117,39 @@ static void check_paint_edges(const scene_config *cfg, const camera *cam) {
   CHECK(east == 0.0, "a stroke across the west edge painted %g on the far side", east);
 }
 
+static void check_paused_density(const scene_config *cfg, const camera *cam) {
+  scene_config denser = *cfg;
+  denser.fog.density_scale = 3.0 * cfg->fog.density_scale;
+  pipeline *edited = make(cfg), *made = make(&denser);
+  CHECK(edited && made, "pipelines not created");
+  static float rgba_a[4 * W * H], tau_a[W * H], rgba_b[4 * W * H], tau_b[W * H];
+  if (edited && made) {
+    set_paused(edited, true);
+    set_paused(made, true);
+    CHECK(!frame(edited, cam), "first frame");
+    pipeline_params params = pipeline_get_params(edited);
+    params.density = pipeline_get_params(made).density;
+    pipeline_set_params(edited, &params);
+    CHECK(!pipeline_check_frame(edited, cam, &(frame_pixels){.rgba = rgba_a, .transmittance = tau_a}) &&
+              !pipeline_check_frame(made, cam, &(frame_pixels){.rgba = rgba_b, .transmittance = tau_b}),
+          "paused frames");
+    CHECK(pipeline_step_index(edited) == 1 && pipeline_step_index(made) == 1,
+          "paused pipelines stepped (%ld, %ld)", pipeline_step_index(edited),
+          pipeline_step_index(made));
+    double colour = 0.0, transmittance = 0.0;
+    for (int k = 0; k < W * H; k++) {
+      transmittance = fmax(transmittance, fabs(tau_a[k] - tau_b[k]));
+      for (int c = 0; c < 3; c++)
+        colour = fmax(colour, fabs(rgba_a[4 * k + c] - rgba_b[4 * k + c]));
+    }
+    CHECK(transmittance <= 1e-6 && colour <= 1e-5,
+          "a density typed in while paused: |dtau| %g, |dcolour| %g against the config's",
+          transmittance, colour);
+  }
+  if (edited) pipeline_destroy(edited);
+  if (made) pipeline_destroy(made);
+}
+
 int main(void) {
   scene_config cfg;
   camera cam;
@@ -120,6 +157,7 @@ int main(void) {
   if (!gl) return 1;
   check_steps(&cfg, &cam);
   check_paint_edges(&cfg, &cam);
+  check_paused_density(&cfg, &cam);
   gl_context_destroy(gl);
   return test_finish("pipeline_controls_check");
 }
