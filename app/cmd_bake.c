@@ -23,6 +23,7 @@
 #include "app/config.h"
 #include "app/pipeline.h"
 #include "app/recorder.h"
+#include "app/stop_signals.h"
 #include "render/gl_context.h"
 #include "sim/sim.h"
 
@@ -70,12 +71,7 @@ static void remove_frames(const char *pattern, int written) {
     if (scene_config_sequence_path(pattern, n, path, sizeof path)) unlink(path);
 }
 
-static volatile sig_atomic_t interrupted;
-
-static void on_interrupt(int signal_number) { interrupted = signal_number; }
-
-/* Simulates frame after frame and writes each density; *written counts the files. */
-/* Writes the frames; *cell_size receives the cell size of the simulated grid (the
+/* Simulates frame after frame and writes each density; *written counts the files; *cell_size receives the cell size of the simulated grid (the
  * config's, or the pipeline's own for a map it simulates finer or coarser). */
 static int bake_frames(const bake_job *job, const scene_config *cfg, const char *pattern,
                        int *written, double *cell_size) {
@@ -95,7 +91,7 @@ static int bake_frames(const bake_job *job, const scene_config *cfg, const char 
     pipeline_fog_extent(p, &cells_x, &cells_z, &origin_x, &origin_z, cell_size);
   }
   for (int n = 1; !status && n <= job->frames; n++) {
-    if (interrupted) {
+    if (stop_signals_caught()) {
       status = 130;
       break;
     }
@@ -170,12 +166,9 @@ int cmd_bake(int argc, char **argv) {
                     strerror(errno));
   }
   snprintf(staged, sizeof staged, "%s%s", staging, pattern + strlen(job.out));
-  struct sigaction action = {.sa_handler = on_interrupt}, old_int, old_term;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESTART;
-  sigaction(SIGINT, &action, &old_int);
-  sigaction(SIGTERM, &action, &old_term);
-  interrupted = 0;
+  stop_signals stop;
+  stop_signals_clear();
+  stop_signals_catch(&stop, false);
   int written = 0;
   double cell_size = cfg.box.cell_size;
   /* The new bake.ini into the staging folder too (naming the frames where they will be):
@@ -188,8 +181,7 @@ int cmd_bake(int argc, char **argv) {
   if (!status) status = bake_frames(&job, &cfg, staged, &written, &cell_size);
   if (!status) status = write_bake_ini(&cfg, pattern, cell_size, staged_ini);
   if (status) {
-    sigaction(SIGINT, &old_int, NULL);
-    sigaction(SIGTERM, &old_term, NULL);
+    stop_signals_restore(&stop);
     remove_frames(staged, written);
     unlink(staged_ini);
     rmdir(staging);
@@ -203,11 +195,7 @@ int cmd_bake(int argc, char **argv) {
   /* Into place, with SIGINT and SIGTERM held until it is done (renames: moments): the old
    * bake.ini goes first, so that until the new one is in the folder is no bake at all
    * rather than a mix of two; the new bake.ini last. */
-  sigset_t hold, previous_mask;
-  sigemptyset(&hold);
-  sigaddset(&hold, SIGINT);
-  sigaddset(&hold, SIGTERM);
-  sigprocmask(SIG_BLOCK, &hold, &previous_mask);
+  stop_signals_hold(&stop);
   if (unlink(ini) != 0 && errno != ENOENT)
     status = cli_fail("bake", "%s: cannot replace it: %s; the old bake is as it was", ini,
                       strerror(errno));
@@ -235,9 +223,8 @@ int cmd_bake(int argc, char **argv) {
     status = cli_fail("bake", "cannot move %s to %s: %s; the new bake's frames are in place",
                       staged_ini, ini, strerror(errno));
   if (!status) rmdir(staging);
-  sigprocmask(SIG_SETMASK, &previous_mask, NULL); /* one held now sets `interrupted` */
-  sigaction(SIGINT, &old_int, NULL);
-  sigaction(SIGTERM, &old_term, NULL);
+  stop_signals_release(&stop); /* one held now only sets the flag */
+  stop_signals_restore(&stop);
   if (status) return status;
   /* bake.ini holds no rate (file n plays at frame n), but the scene's own clock (lamps on
    * a path, flicker) runs at record's --fps: the hint names the bake's */

@@ -18,6 +18,7 @@
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/fit.h"
+#include "app/stop_signals.h"
 #include "app/render_fog.h"
 #include "sim/sim.h"
 
@@ -273,10 +274,6 @@ static int refuse_output_input(const fit_options *o, const scene_config *cfg) {
   return 0;
 }
 
-static volatile sig_atomic_t stop_signal;
-
-static void on_stop(int signal_number) { stop_signal = signal_number; }
-
 int cmd_fit(int argc, char **argv) {
   fit_options o;
   int status = parse(argc, argv, &o);
@@ -307,19 +304,14 @@ int cmd_fit(int argc, char **argv) {
   double t0 = app_clock_seconds();
   /* Ctrl-C or SIGTERM: the fit stops after the rung it is measuring and removes its
    * scratch folder (a projected fogmap), then exits 130 */
-  /* a second signal ends the process at once (SA_RESETHAND); an ignored one stays so */
-  struct sigaction action = {.sa_handler = on_stop, .sa_flags = SA_RESTART | SA_RESETHAND},
-                   old_int, old_term;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, NULL, &old_int);
-  sigaction(SIGTERM, NULL, &old_term);
-  if (old_int.sa_handler != SIG_IGN) sigaction(SIGINT, &action, NULL);
-  if (old_term.sa_handler != SIG_IGN) sigaction(SIGTERM, &action, NULL);
-  o.desc.stop = &stop_signal;
+  /* a second signal ends the process at once; an ignored one stays so */
+  stop_signals stop;
+  stop_signals_clear();
+  stop_signals_catch(&stop, true);
+  o.desc.stop = stop_signals_flag();
   status = fit_run(&o.desc, &r, &err);
-  sigaction(SIGINT, &old_int, NULL);
-  sigaction(SIGTERM, &old_term, NULL);
-  if (stop_signal) { /* during the last rung too: its result is not what was asked for */
+  stop_signals_restore(&stop);
+  if (stop_signals_caught()) { /* during the last rung too: its result is not what was asked for */
     if (!status) fit_result_destroy(&r);
     free(cfg), free(frames);
     fprintf(stderr, "fogpipe fit: interrupted%s%s%s: nothing written\n", status ? " (" : "",

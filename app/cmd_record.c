@@ -21,28 +21,12 @@
 #include "app/cli_options.h"
 #include "app/cmd_record.h"
 #include "app/recorder.h"
+#include "app/stop_signals.h"
 #include "sim/sim.h"
 
-static volatile sig_atomic_t interrupted;
-
-static void on_interrupt(int signal_number) { interrupted = signal_number; }
-
-/* SIGINT and SIGTERM set `interrupted` (the work in hand finishes or stops cleanly) until
- * restore_interrupts puts the previous handlers back. The flag is not cleared: one raised
- * during the frames still stops the preview after them. */
-static void catch_interrupts(struct sigaction *old_int, struct sigaction *old_term) {
-  struct sigaction action = {.sa_handler = on_interrupt};
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESTART;
-  sigaction(SIGINT, &action, old_int);
-  sigaction(SIGTERM, &action, old_term);
-}
-
-static void restore_interrupts(const struct sigaction *old_int,
-                               const struct sigaction *old_term) {
-  sigaction(SIGINT, old_int, NULL);
-  sigaction(SIGTERM, old_term, NULL);
-}
+/* SIGINT and SIGTERM set the stop flag (app/stop_signals.h: the work in hand finishes or
+ * stops cleanly) until the previous handlers are back. The flag is cleared once, before the
+ * frames: one raised during them still stops the preview after them. */
 
 /* PATH with its folder resolved (realpath) where that folder exists, and without trailing
  * slashes: two spellings of one place compare equal ("./rec", "rec/", "/abs/rec"). */
@@ -249,9 +233,9 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
   float *inscatter = buffer + 6 * n, *scratch = buffer + 9 * n;
   const frame_pixels out = {.rgba = rgba, .transmittance = transmittance, .depth = depth,
                             .inscatter = inscatter};
-  struct sigaction old_int, old_term;
-  interrupted = 0;
-  catch_interrupts(&old_int, &old_term);
+  stop_signals stop;
+  stop_signals_clear();
+  stop_signals_catch(&stop, false);
   fog_error perr = {0};
   fog_error rerr = {0};
   recorder_progress progress;
@@ -275,7 +259,7 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
       if (beauty_float && !float_frames++) first_float = frame;
       done = frame;
       if (!job->quiet) recorder_progress_update(&progress, done - first + 1);
-      if (interrupted && done < last) {
+      if (stop_signals_caught() && done < last) {
         if (!job->quiet) recorder_progress_end(&progress);
         char hint[13 * PATH_MAX];
         resume_hint(job, hint, sizeof hint);
@@ -291,7 +275,7 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
     fprintf(stderr, "fogpipe %s: %d frame%s (the first: %d) written with R G B A as 32-bit "
             "float: some pixels are brighter than half-float holds (%g)\n", cmd, float_frames,
             float_frames == 1 ? "" : "s", first_float, (double)FRAME_EXR_HALF_MAX);
-  restore_interrupts(&old_int, &old_term);
+  stop_signals_restore(&stop);
   free(buffer);
   return status;
 }
@@ -310,18 +294,18 @@ static int finish_output(const record_job *job, const recorder *rec, const scene
   if (!recorder_have_ffmpeg()) {
     printf("note: ffmpeg is not installed, so no preview video was written "
            "(apt-get install ffmpeg)\n");
-  } else if (interrupted) { /* during the last frame: the frames are whole, no encode */
+  } else if (stop_signals_caught()) { /* during the last frame: the frames are whole, no encode */
     fprintf(stderr, "fogpipe %s: interrupted: all frames are complete in %s; no preview "
             "video written\n", job->command, rec->folder);
     return 130;
   } else {
-    struct sigaction old_int, old_term;
-    catch_interrupts(&old_int, &old_term);
+    stop_signals stop;
+    stop_signals_catch(&stop, false);
     const display_transform display = scene_config_display(config);
     const int failed = recorder_write_preview(rec, job->frames, fps, job->preview, &display,
-                                              &interrupted, &rerr);
-    restore_interrupts(&old_int, &old_term);
-    if (failed && interrupted) {
+                                              stop_signals_flag(), &rerr);
+    stop_signals_restore(&stop);
+    if (failed && stop_signals_caught()) {
       fprintf(stderr, "fogpipe %s: interrupted while encoding the preview: no video written "
               "(the frames in %s are kept)\n", job->command, rec->folder);
       return 130;

@@ -14,6 +14,7 @@
 
 #include "app/cli.h"
 #include "app/staged_move.h"
+#include "app/stop_signals.h"
 #include "app/cli_options.h"
 #include "app/commands.h"
 #include "app/out_folder.h"
@@ -205,6 +206,11 @@ static int run_forward(const char *in, const char *channel, const char *dir,
   double *energy = NULL;
   char staging[4200] = "";
   out_folder made = {0}; /* the folders of DIR this run made */
+  /* Ctrl-C or SIGTERM: the staging folder goes and DIR stays as it was (exit 130); they
+   * are held while the files move into place */
+  stop_signals stop;
+  stop_signals_clear();
+  stop_signals_catch(&stop, false);
   if (desc.levels > 60) {
     cli_fail("transform", "%s: %d levels is too many", in, desc.levels);
     goto done;
@@ -259,6 +265,7 @@ static int run_forward(const char *in, const char *channel, const char *dir,
   for (int l = 0; l <= J; l++) {
     int w, h;
     transform_level_size(plan, l, &w, &h);
+    if (stop_signals_caught()) goto interrupted;
     snprintf(name, sizeof name, "approx_%d.exr", l);
     if (write_exr(staging, name, w, h, approx[l])) goto done;
     if (l == 0) continue;
@@ -275,12 +282,22 @@ static int run_forward(const char *in, const char *channel, const char *dir,
     }
   }
   if (write_manifest(staging, plan, in, energy)) goto done;
-  if (staged_move_into_place("transform", staging, dir)) goto done;
-  remove_deeper_levels(dir, J, earlier_levels, in);
-  status = 0;
+  if (stop_signals_caught()) goto interrupted;
+  stop_signals_hold(&stop);
+  if (!staged_move_into_place("transform", staging, dir)) {
+    remove_deeper_levels(dir, J, earlier_levels, in);
+    status = 0;
+  }
+  stop_signals_release(&stop);
+  goto done;
+interrupted:
+  fprintf(stderr, "fogpipe transform: interrupted: nothing written%s\n",
+          made.any ? "" : " (the folder is as it was)");
+  status = 130;
 done:
   if (staging[0]) staged_remove(staging);
   if (status) out_folder_undo(&made); /* folders made for a failed run go too */
+  stop_signals_restore(&stop);
   for (int l = 0; l < 64; l++) free(approx[l]), free(detail[l]);
   free(coef), free(band), free(energy);
   transform_plan_destroy(plan);

@@ -1330,7 +1330,10 @@ static bool clip_segment(double a[2], double b[2], const double lo[2], const dou
   }
   if (t0 > t1) return false;
   const double a0[2] = {a[0], a[1]};
-  for (int k = 0; k < 2; k++) a[k] = a0[k] + t0 * (b[k] - a0[k]), b[k] = a0[k] + t1 * (b[k] - a0[k]);
+  for (int k = 0; k < 2; k++) {
+    const double d = b[k] - a0[k];
+    a[k] = a0[k] + t0 * d, b[k] = a0[k] + t1 * d;
+  }
   return true;
 }
 

@@ -33,8 +33,10 @@ static double noise_walks(const fog_perlin *perlin, double len) {
 static double perlin_walks(const fog_pass_params *p) {
   const fog_perlin *perlin = p->model_perlin;
   double diagonal = 0;
-  for (int a = 0; a < 3; a++)
-    diagonal += (perlin->desc.hi[a] - perlin->desc.lo[a]) * (perlin->desc.hi[a] - perlin->desc.lo[a]);
+  for (int a = 0; a < 3; a++) {
+    const double extent = perlin->desc.hi[a] - perlin->desc.lo[a];
+    diagonal += extent * extent;
+  }
   const double climb = 2.0 * (perlin->desc.hi[1] - perlin->desc.lo[1]) / p->model_scale_height;
   double loops = perlin->desc.octaves + 1;
   for (int i = 0; i < perlin->desc.octaves; i++) {

@@ -130,8 +130,9 @@ static void check_paused_density(const scene_config *cfg, const camera *cam) {
     pipeline_params params = pipeline_get_params(edited);
     params.density = pipeline_get_params(made).density;
     pipeline_set_params(edited, &params);
-    CHECK(!pipeline_check_frame(edited, cam, &(frame_pixels){.rgba = rgba_a, .transmittance = tau_a}) &&
-              !pipeline_check_frame(made, cam, &(frame_pixels){.rgba = rgba_b, .transmittance = tau_b}),
+    const frame_pixels a = {.rgba = rgba_a, .transmittance = tau_a},
+                       b = {.rgba = rgba_b, .transmittance = tau_b};
+    CHECK(!pipeline_check_frame(edited, cam, &a) && !pipeline_check_frame(made, cam, &b),
           "paused frames");
     CHECK(pipeline_step_index(edited) == 1 && pipeline_step_index(made) == 1,
           "paused pipelines stepped (%ld, %ld)", pipeline_step_index(edited),
