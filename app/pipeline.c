@@ -203,6 +203,7 @@ struct pipeline {
    * from, so that a sun moved while the worker has no new step (paused) re-lights the fog
    * here (shadow_volume, shadow_grid). */
   fog_sun_shadow_kind shown_self_shadow;
+  int levels_most; /* the most levels the fogmap's size allows (and FOG_MAX_LEVELS) */
   double shown_shadow_sun[3];
   float shown_shadow_shape[4]; /* shadow_shape_of the params the volume shown was made with */
   transform_grid shadow_grid;
@@ -374,17 +375,25 @@ static void plan_destroy(cpu_stages *c) {
   }
 }
 
+static transform_boundary boundary_of(const pipeline *p) {
+  return p->config.fog.boundary == SCENE_BOUNDARY_PERIODIC ? TRANSFORM_PERIODIC
+                                                           : TRANSFORM_SYMMETRIC;
+}
+
+/* The levels the fogmap's size allows (and the renderer's cap), for `levels` asked. */
+static int levels_allowed(const pipeline *p, int levels) {
+  const int most = transform_max_levels(p->cpu.base.width, p->cpu.base.height, boundary_of(p));
+  if (levels > most) levels = most;
+  if (levels > FOG_MAX_LEVELS) levels = FOG_MAX_LEVELS;
+  return levels < 0 ? 0 : levels;
+}
+
 static int plan_create(pipeline *p, int degree, int levels, fog_error *err) {
   cpu_stages *c = &p->cpu;
   plan_destroy(c);
   const int w = c->base.width, h = c->base.height;
-  transform_boundary boundary = p->config.fog.boundary == SCENE_BOUNDARY_PERIODIC
-                                    ? TRANSFORM_PERIODIC
-                                    : TRANSFORM_SYMMETRIC;
-  int max_levels = transform_max_levels(w, h, boundary);
-  if (levels > max_levels) levels = max_levels;
-  if (levels > FOG_MAX_LEVELS) levels = FOG_MAX_LEVELS;
-  if (levels < 0) levels = 0;
+  const transform_boundary boundary = boundary_of(p);
+  levels = levels_allowed(p, levels);
   fog_error terr = {0};
   transform_desc desc = {.width = w, .height = h, .levels = levels,
                          .basis = transform_basis_of_degree(degree), .boundary = boundary};
@@ -782,6 +791,7 @@ pipeline *pipeline_create(const pipeline_desc *desc, fog_error *err) {
     return NULL;
   }
   p->params.levels = c->levels; /* clamped to what the grid allows */
+  p->levels_most = levels_allowed(p, FOG_MAX_LEVELS); /* set once: read under the lock */
   p->applied = p->params;
   fog_error rerr = {0};
   p->fog = pipeline_fog_create(&rerr);
@@ -868,6 +878,8 @@ int pipeline_skip(pipeline *p, long steps, fog_error *err) {
 bool pipeline_lamps_dropped(const pipeline *p) { return p->lamps_dropped; }
 
 bool pipeline_simulates(const pipeline *p) { return p->cpu.sim != NULL; }
+
+bool pipeline_has_bspline_profile(const pipeline *p) { return p->config.fog.profile_count > 0; }
 
 const fogmap *pipeline_sim_density(const pipeline *p) {
   return p->cpu.sim ? fluid_sim_density(p->cpu.sim) : NULL;
@@ -1294,6 +1306,10 @@ void pipeline_set_params(pipeline *p, const pipeline_params *params) {
   /* a step asked for while paused and not yet taken does not play after a later pause */
   if (!params->paused) p->step_requests = 0;
   p->params = *params;
+  /* the levels the map allows: the panel shows them, and the worker does not remake its
+   * plan on every later edit because the levels asked differ from the plan's */
+  if (p->params.levels > p->levels_most) p->params.levels = p->levels_most;
+  if (p->params.levels < 0) p->params.levels = 0;
   p->params_version++;
   pthread_cond_broadcast(&p->changed);
   pthread_mutex_unlock(&p->lock);

@@ -133,6 +133,10 @@ bool pipeline_lamps_dropped(const pipeline *p);
  * reads); NULL when nothing is simulated. */
 const struct fogmap *pipeline_sim_density(const pipeline *p);
 
+/* Whether the fog's vertical profile is a B-spline: the config's, or a VDB sequence's
+ * (whose frames bring theirs; the config the caller holds does not show it). */
+bool pipeline_has_bspline_profile(const pipeline *p);
+
 pipeline_params pipeline_get_params(const pipeline *p);
 void pipeline_set_params(pipeline *p, const pipeline_params *params);
 /* While paused: advance one step. */

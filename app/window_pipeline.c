@@ -20,9 +20,11 @@
 
 typedef struct demo_ui {
   float brush_radius;   /* world units */
+  float brush_range[2]; /* the radius slider's: a quarter cell to 50 cells */
   float brush_strength; /* density per second at the stroke's centre line */
+  float density_range[2]; /* the density slider's: the scene's density / 100 .. x 100 */
   float render_scale;
-  bool has_bspline_profile;
+  bool has_bspline_profile; /* the pipeline's fog has one (a VDB's frames bring theirs) */
   lamp_tool lamps;     /* the mouse places, drags and removes lamps (app/lamp_tool.h) */
   bool lamps_animated; /* the config's lamps follow their paths: the tool is off */
 } demo_ui;
@@ -78,6 +80,10 @@ static bool panel_simulation(panel *ui, pipeline *pipe, pipeline_params *params)
   if (panel_button(ui, "step")) pipeline_step_once(pipe);
   panel_same_line(ui);
   if (panel_button(ui, "reset")) pipeline_reset(pipe);
+  if (!pipeline_simulates(pipe)) { /* a VDB or baked sequence plays: no forces */
+    panel_text(ui, "played frames: nothing simulated");
+    return changed;
+  }
   changed |= panel_slider_float(ui, "wind x", &params->wind[0], -40.0f, 40.0f, "%.1f", false);
   changed |= panel_slider_float(ui, "wind z", &params->wind[1], -40.0f, 40.0f, "%.1f", false);
   changed |= panel_slider_float(ui, "turbulence", &params->turbulence, 0.0f, 40.0f, "%.2f", false);
@@ -90,7 +96,8 @@ static bool panel_simulation(panel *ui, pipeline *pipe, pipeline_params *params)
 static bool panel_fog(panel *ui, pipeline_params *params, demo_ui *d) {
   if (!panel_header(ui, "fog", true)) return false;
   bool changed = false;
-  changed |= panel_slider_float(ui, "density", &params->density, 0.0001f, 1.0f, "%.4f", true);
+  changed |= panel_slider_float(ui, "density", &params->density, d->density_range[0],
+                                d->density_range[1], "%.4g", true);
   changed |= panel_color3(ui, "colour", params->fog_colour);
   window_profile profile = {.kind = params->profile_kind, .fog_height = params->fog_height,
                             .scale_height = params->scale_height,
@@ -148,11 +155,16 @@ static bool panel_wavelets(panel *ui, pipeline_params *params) {
 }
 
 /* The density brush. */
-static void panel_brush(panel *ui, demo_ui *d) {
+static void panel_brush(panel *ui, pipeline *pipe, demo_ui *d) {
   if (!panel_header(ui, "brush", false)) return;
-  panel_slider_float(ui, "radius", &d->brush_radius, 1.0f, 200.0f, "%.0f", true);
-  panel_slider_float(ui, "strength", &d->brush_strength, 0.1f, 20.0f, "%.1f", true);
-  panel_text(ui, "left drag: paint   right / shift: erase");
+  if (!pipeline_simulates(pipe)) { /* strokes paint into the simulation */
+    panel_text(ui, "played frames: nothing to paint");
+  } else {
+    panel_slider_float(ui, "radius", &d->brush_radius, d->brush_range[0], d->brush_range[1],
+                       "%.3g", true);
+    panel_slider_float(ui, "strength", &d->brush_strength, 0.1f, 20.0f, "%.1f", true);
+    panel_text(ui, "left drag: paint   right / shift: erase");
+  }
   panel_slider_float(ui, "render scale", &d->render_scale, 0.25f, 1.0f, "%.2f", false);
 }
 
@@ -168,7 +180,7 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
   changed |= panel_wavelets(ui, &params);
   if (pipeline_lamps_dropped(pipe)) panel_text(ui, "%s", LAMP_TOOL_DROPPED_NOTE);
   lamp_tool_panel(ui, &d->lamps, params.lamps.count, d->lamps_animated, NULL);
-  panel_brush(ui, d);
+  panel_brush(ui, pipe, d);
   if (changed) pipeline_set_params(pipe, &params);
 }
 
@@ -316,10 +328,9 @@ int window_pipeline_source(window_source *src, gl_context *gl, scene_config *cfg
   pipeline_source *s = calloc(1, sizeof *s);
   if (!s) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the window's fog");
   const double scene_size = fmax(cfg->terrain.size[0], cfg->terrain.size[1]);
-  s->ui = (demo_ui){.brush_radius = 30.0f, .brush_strength = 3.0f, .render_scale = (float)scale,
+  s->ui = (demo_ui){.brush_strength = 3.0f, .render_scale = (float)scale,
                     .lamps = lamp_tool_for_scene(scene_size),
-                    .lamps_animated = scene_config_lamps_animated(cfg),
-                    .has_bspline_profile = cfg->fog.profile_count > 0};
+                    .lamps_animated = scene_config_lamps_animated(cfg)};
   int fb_w = 0, fb_h = 0;
   gl_context_framebuffer_size(gl, &fb_w, &fb_h);
   s->pipe = pipeline_create(&(pipeline_desc){.config = cfg,
@@ -331,13 +342,26 @@ int window_pipeline_source(window_source *src, gl_context *gl, scene_config *cfg
     free(s);
     return 1;
   }
+  /* Sized to the scene the pipeline made (a VDB's frames bring their own box, profile and
+   * density): the brush 7.5 cells wide (30 units on the default 4-unit cells), the density
+   * slider around the scene's, the profile menu with the frames' B-spline. */
+  int cells_x, cells_z;
+  double origin_x, origin_z, cell;
+  pipeline_fog_extent(s->pipe, &cells_x, &cells_z, &origin_x, &origin_z, &cell);
+  s->ui.brush_radius = (float)(7.5 * cell);
+  s->ui.brush_range[0] = (float)(0.25 * cell), s->ui.brush_range[1] = (float)(50.0 * cell);
   pipeline_params initial = pipeline_get_params(s->pipe);
+  const float density = initial.density > 0 ? initial.density : 0.01f;
+  s->ui.density_range[0] = density / 100.0f, s->ui.density_range[1] = density * 100.0f;
+  s->ui.has_bspline_profile = pipeline_has_bspline_profile(s->pipe);
   initial.fog_resolution_divisor = fog_divisor;
   initial.live_rung = opts->live_rung;
   initial.paused = !opts->play;
   pipeline_set_params(s->pipe, &initial);
   *src = (window_source){.self = s, .look_buttons = FREE_CAMERA_LOOK_MIDDLE,
-                         .camera_speed = 80.0, .panel = source_panel, .input = source_input,
+                         /* 80 units a second over the default 1200-unit terrain */
+                         .camera_speed = scene_size / 15.0, .panel = source_panel,
+                         .input = source_input,
                          .draw = source_draw, .destroy = source_destroy};
   return 0;
 }

@@ -6,6 +6,8 @@
  *  - a stroke whose centre line lies beside the fog's box paints nothing (the periodic
  *    simulation wrapped it onto the box's far side, 1000 units from the cursor), and a
  *    stroke across the edge paints the inside part;
+ *  - levels asked past what the map allows read back as the levels it allows (the panel
+ *    showed the asked count while the transform used fewer);
  *  - a density typed in while paused relights the fog (its sun-shadow volume made again):
  *    the frame equals, colour and transmittance, that of a pipeline whose config had that
  *    density from the start (the volume once stayed the old density's, keyed on the sun
@@ -67,6 +69,13 @@ static void check_steps(const scene_config *cfg, const camera *cam) {
   CHECK(!frame(p, cam), "a paused frame");
   CHECK(pipeline_step_index(p) == running + 1, "N, Space, Space: step %ld, then %ld",
         running + 1, pipeline_step_index(p));
+  pipeline_params params = pipeline_get_params(p);
+  const int levels = params.levels;
+  params.levels = 99;
+  pipeline_set_params(p, &params);
+  const int shown = pipeline_get_params(p).levels;
+  CHECK(shown >= levels && shown <= 7, "levels 99 asked (the map allows %d..7): %d shown",
+        levels, shown);
   pipeline_destroy(p);
 }
 
