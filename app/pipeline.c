@@ -1383,8 +1383,11 @@ bool pipeline_pick_surface(pipeline *p, const camera *cam, int px, int py, doubl
   /* One texel of the distance texture. */
   const float distance = gl_target_read_texel(&p->scene_target, 1, px, py);
   if (!(distance < 0.5f * SCENE_SKY_DISTANCE)) return false;
+  /* along the ray of the camera the distances were drawn from (the window's camera has
+   * moved since: 120 units off at 500 turning at 5 fps); cam until a scene is drawn */
+  const camera *drawn = p->scene_camera.fov_y > 0 ? &p->scene_camera : cam;
   double origin[3], dir[3];
-  camera_ray(cam, px, py, p->width, p->height, origin, dir);
+  camera_ray(drawn, px, py, p->width, p->height, origin, dir);
   for (int i = 0; i < 3; i++) world[i] = origin[i] + distance * dir[i];
   return true;
 }

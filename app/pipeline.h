@@ -149,8 +149,9 @@ void pipeline_reset(pipeline *p);
 void pipeline_paint(pipeline *p, double x0, double z0, double x1, double z1, double radius,
                     double amount);
 
-/* Distance along the ray through image pixel (px, py) (row 0 at the top) to the first
- * surface of the last frame, from its depth texture; returns false for the sky. */
+/* The first surface of the last frame under image pixel (px, py) (row 0 at the top), from
+ * its depth texture along the ray of the camera that frame was drawn from (cam before the
+ * first frame); returns false for the sky. */
 bool pipeline_pick_surface(pipeline *p, const camera *cam, int px, int py, double world[3]);
 
 /* Moving medians of the last frames; `last` (may be NULL) gets the last frame's values. */

@@ -45,6 +45,9 @@ typedef struct view_state {
   render_fog fog;
   bool has_fog;
   gl_target scene_target, fog_target;
+  /* the camera scene_target was drawn from: a pick reads its distances along its rays */
+  camera drawn_camera;
+  bool drawn;
   gl_presenter *presenter;
 } view_state;
 
@@ -119,8 +122,10 @@ static bool view_pick(const view_state *v, GLFWwindow *window, const camera *cam
   if (px < 0 || py < 0 || px >= w || py >= h) return false;
   const float distance = gl_target_read_texel(&v->scene_target, 1, px, py);
   if (!(distance < 0.5f * SCENE_SKY_DISTANCE)) return false;
+  /* the distance is the last frame's, so its ray is too: the camera has moved since (0.24
+   * rad a frame turning at 5 fps: 120 units off at 500) */
   double origin[3], dir[3];
-  camera_ray(cam, px, py, w, h, origin, dir);
+  camera_ray(v->drawn ? &v->drawn_camera : cam, px, py, w, h, origin, dir);
   for (int a = 0; a < 3; a++) hit[a] = origin[a] + distance * dir[a];
   return true;
 }
@@ -612,6 +617,7 @@ static int source_draw(void *self, const window_frame *f, fog_error *err) {
   if ((w != t->width || h != t->height || !t->framebuffer) && make_targets(v, w, h, err))
     return 1;
   scene_pass_run(v->scene, &f->fc->cam, &v->scene_target);
+  v->drawn_camera = f->fc->cam, v->drawn = true;
   const gl_target *shown = &v->scene_target;
   s->lamps_dropped = false;
   if (v->has_fog && render_fog_draw(&v->fog, &f->fc->cam, &v->scene_target, &v->fog_target,

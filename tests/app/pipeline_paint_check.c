@@ -1,7 +1,8 @@
 /* The pipeline's picking and painting (what the demo's mouse does), headless:
  *  - pipeline_pick_surface at a pixel returns the point on that pixel's camera ray at the
  *    distance the CPU scene geometry gives (scene_geometry_pixel_distance), so the brush
- *    lands where the cursor is;
+ *    lands where the cursor is, and along the drawn frame's ray when the camera has moved
+ *    since;
  *  - a painted stroke there lowers the transmittance at that pixel in the next frame
  *    compared with an identical pipeline that was not painted, and leaves a pixel far from
  *    the stroke unchanged; erasing raises it.
@@ -62,6 +63,15 @@ int main(void) {
   CHECK(fabs(got - expected) <= 1e-3 * expected, "picked distance %.6f, CPU geometry %.6f", got,
         expected);
   scene_geometry_destroy(&geo);
+  /* A camera moved since that frame (the window's, a frame later) picks the same point:
+   * the distance read is along the drawn camera's ray. */
+  camera moved = cam;
+  moved.position[0] += 50.0;
+  double again[3];
+  CHECK(pipeline_pick_surface(painted, &moved, px, py, again) &&
+            fabs(again[0] - hit[0]) + fabs(again[1] - hit[1]) + fabs(again[2] - hit[2]) < 1e-9,
+        "a moved camera picked (%g, %g, %g), the drawn frame's point is (%g, %g, %g)", again[0],
+        again[1], again[2], hit[0], hit[1], hit[2]);
 
   /* Paint a dense stroke at the picked point; the plain pipeline steps the same. */
   pipeline_paint(painted, hit[0] - 10, hit[2], hit[0] + 10, hit[2], 40.0, 20.0);
