@@ -224,15 +224,19 @@ int rbf_carrier_puffs(rbf_carrier *c, double time, fog_rbf *out, int capacity, f
              time);
     return -1;
   }
-  if (time > RBF_CARRIER_MAX_TIME) {
+  /* the last step at or before `time`: one expression for every caller, so whichever way a
+   * time is reached it is the same step. What is bounded is the flow replayed to reach it
+   * (from the start, or on from the step reached): a window open for hours steps on a frame
+   * at a time, but a time asked out of the blue (in ms, say) is refused, not run for hours */
+  const double steps_to = (time - c->start) / c->desc.step + 1e-9;
+  const double from = steps_to < (double)c->steps ? 0.0 : (double)c->steps;
+  if ((steps_to - from) * c->desc.step > RBF_CARRIER_MAX_TIME) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "time %g s is past the %g s the simulation's "
-             "flow is replayed to (from its start, for every time asked)", time,
-             RBF_CARRIER_MAX_TIME);
+             "flow is replayed (from %s)", time, RBF_CARRIER_MAX_TIME,
+             from > 0 ? "the time reached" : "its start");
     return -1;
   }
-  /* the last step at or before `time`: one expression for every caller, so whichever way a
-   * time is reached it is the same step */
-  const long target = (long)floor((time - c->start) / c->desc.step + 1e-9);
+  const long target = (long)floor(steps_to);
   if (target < c->steps) restart(c);
   while (c->steps < target)
     if (step(c, err)) return -1;

@@ -31,8 +31,9 @@
 /* The longest LIFETIME a config may give an emitter whose puffs the flow carries: the fog's
  * every making replays the flow for that long first (9000 steps, ~2 s here). */
 #define RBF_CARRIER_MAX_LIFETIME 300.0
-/* The latest time the carrier replays its flow to (an hour: 108000 steps, ~22 s here); a
- * later one is refused rather than run for hours (a time given in ms, say). */
+/* The most flow the carrier replays to reach a time asked (an hour: 108000 steps, ~22 s
+ * here), from its start or on from the time it reached: a time further is refused rather
+ * than run for hours (a time given in ms, say); a window stepping on runs for ever. */
 #define RBF_CARRIER_MAX_TIME 3600.0
 
 typedef struct rbf_carrier_desc {

@@ -198,10 +198,30 @@ static void check_turbulent_steps(void) {
         "too little room is refused");
   CHECK(rbf_carrier_puffs(c, -0.5, after, CAP, &err) == -1 && strstr(err.message, "before 0"),
         "a time before 0 is refused saying so: '%s'", err.message);
-  CHECK(rbf_carrier_puffs(c, RBF_CARRIER_MAX_TIME + 1, after, CAP, &err) == -1 &&
+  CHECK(rbf_carrier_puffs(c, RBF_CARRIER_MAX_TIME + 100, after, CAP, &err) == -1 &&
             strstr(err.message, "past the 3600 s"),
         "a time past the replay's bound is refused saying so: '%s'", err.message);
   rbf_carrier_destroy(c);
+  /* a carrier stepping on (a window open for hours) goes past the bound; a jump of more
+   * than the bound from where it is, or a time that needs a replay from the start past
+   * it, is refused (coarse 10 s steps, so that an hour is 360) */
+  rbf_carrier_desc coarse = d;
+  coarse.step = 10.0;
+  rbf_carrier *on = rbf_carrier_create(&coarse, &err);
+  CHECK(on != NULL, "coarse carrier: %s", err.message);
+  if (on) {
+    bool stepped = true;
+    for (double t = 600.0; t <= RBF_CARRIER_MAX_TIME + 1200.0 && stepped; t += 600.0)
+      stepped = rbf_carrier_puffs(on, t, after, CAP, &err) >= 0;
+    CHECK(stepped, "a carrier stepping on past %g s: %s", RBF_CARRIER_MAX_TIME, err.message);
+    CHECK(rbf_carrier_puffs(on, 3.0 * RBF_CARRIER_MAX_TIME, after, CAP, &err) == -1 &&
+              strstr(err.message, "from the time reached"),
+          "a jump past the bound from the time reached: '%s'", err.message);
+    CHECK(rbf_carrier_puffs(on, RBF_CARRIER_MAX_TIME + 10.0, after, CAP, &err) == -1 &&
+              strstr(err.message, "from its start"),
+          "a time behind the one reached, past the bound from the start: '%s'", err.message);
+    rbf_carrier_destroy(on);
+  }
   fluid_sim_destroy(r.sim);
 }
 
