@@ -110,10 +110,11 @@ static int parse(int argc, char **argv, fit_options *o) {
       .command = "fit",
       .usage = "INPUT --tolerance T [options]",
       .about = "Fits every model of the ladder that can represent the input's fog (homogeneous,\n"
+               "the classic linear and exp2 factors fitted on the views,\n"
                "height, an ellipsoid and banks of 2 to 16, banks of 1 to 16 cylinders and of\n"
                "1 to 16 oriented ellipsoids, banks of 1 to 64 Gaussians, the\n"
                "fogmap at three bases x three LOD factors (an analytic fog's density projected),\n"
-               "the 3D volume), measures each on nine views around and inside\n"
+               "the 3D volume, the input as given), measures each on nine views around and inside\n"
                "the fog (max and mean |delta tau| against the input's own fog, exact integrals in\n"
                "double) and times it on the GL (headless), prints the table and picks the fastest\n"
                "within the tolerance (docs/fit.md).\n\n"

@@ -915,6 +915,15 @@ static int check_sources(parse_state *ps) {
          cfg->fog.fogmap_line, cfg->fog.vdb_line);
     return 1;
   }
+  if (cfg->fog.vdb[0] && cfg->fog.model != FOG_MODEL_FOGMAP &&
+      cfg->fog.model != FOG_MODEL_VOLUME) {
+    /* the other models draw no VDB: it was read and ignored (and fit measured against it) */
+    s.line = cfg->fog.vdb_line;
+    fail(&s, "fog", "vdb", "a VDB sequence is drawn by model = fogmap (projected) or volume, "
+         "not by model = %s (line %d)", fog_model_table[cfg->fog.model].name,
+         cfg->fog.model_line);
+    return 1;
+  }
   if (cfg->fog.sequence[0] && (cfg->fog.fogmap[0] || cfg->fog.vdb[0] ||
                                cfg->fog.model != FOG_MODEL_FOGMAP)) {
     s.line = cfg->fog.sequence_line;

@@ -30,7 +30,23 @@ typedef struct held_model {
   vdb_frame frame;
   volume_grid_desc grid;
   bool has_frame;
+  fog_quadric quadrics[FOG_MAX_QUADRICS]; /* the volume's quadrics beside, density scaled */
 } held_model;
+
+/* A volume read from its file with the config's quadric volumes beside it, as the renderer
+ * draws them (render_fog_beside: each density times density_scale). Without them a plume
+ * beside an opaque sphere was fitted, measured and written as the plume alone. */
+static void held_volume(held_model *m, const scene_config *cfg) {
+  m->model = (fog_model){.kind = FOG_MODEL_VOLUME, .grid3d = &m->grid};
+  const scene_fog_config *f = &cfg->fog;
+  if (f->quadric_count == 0) return;
+  for (int i = 0; i < f->quadric_count; i++) {
+    m->quadrics[i] = f->quadrics[i];
+    m->quadrics[i].density *= f->density_scale;
+  }
+  m->model.quadrics = m->quadrics;
+  m->model.quadric_count = f->quadric_count;
+}
 
 static void held_model_destroy(held_model *m) {
   render_session_destroy(m->session);
@@ -51,7 +67,7 @@ static int reference_create(held_model *r, const scene_config *cfg, fog_error *e
       return 1;
     }
     r->has_frame = true;
-    r->model = (fog_model){.kind = FOG_MODEL_VOLUME, .grid3d = &r->grid};
+    held_volume(r, cfg);
     return 0;
   }
   if (!scene_config_has_fog(cfg)) {
@@ -112,7 +128,7 @@ static int rung_model_create(held_model *m, const scene_config *cfg, const fit_d
     held_model_destroy(m);
     return 1;
   }
-  m->model = (fog_model){.kind = FOG_MODEL_VOLUME, .grid3d = &m->grid};
+  held_volume(m, cfg);
   return 0;
 }
 
@@ -284,10 +300,17 @@ int fit_run(const fit_desc *d, fit_result *r, fog_error *err) {
       r->hi[a] = f ? fmax(r->hi[a], hi[a]) : hi[a];
     }
   }
-  /* The density the static rungs fit: the frames' mean. */
+  /* The density the static rungs fit: the frames' mean. A classic factor's fog lies about
+   * an eye: the scene's camera's (the views measure each from its own camera); it was the
+   * world's origin, where no view stands. */
+  camera input_camera;
+  scene_config_camera(d->input, &input_camera);
   for (int f = 0; f < frame_count; f++) {
     fit_samples one;
-    if (fit_samples_create(f ? &one : &samples, &refs[f].model, r->lo, r->hi, d->sample_side,
+    fog_model sampled = refs[f].model;
+    if (fog_model_about_eye(&sampled))
+      memcpy(sampled.eye, input_camera.position, sizeof sampled.eye);
+    if (fit_samples_create(f ? &one : &samples, &sampled, r->lo, r->hi, d->sample_side,
                            err) ||
         fit_views_create(&views[f], &refs[f].model, r->lo, r->hi, d->rays_per_side, err))
       goto done;

@@ -38,13 +38,18 @@ int fit_samples_create_grid(fit_samples *s, const fog_model *model, const double
   if (!s->k)
     return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for %dx%dx%d density samples",
                     s->n[0], s->n[1], s->n[2]);
+  /* K where the fog is opaque (a classic linear factor past fog_end: infinite) is taken
+   * as opaque within one sample cell, depth 40 across it: an infinite sample made every
+   * moment-fitted rung infinite, and the fog pass refused it, ending the whole fit */
+  const double opaque = 40.0 / fmin(fmin(s->cell[0], s->cell[1]), s->cell[2]);
   size_t at = 0;
   for (int l = 0; l < s->n[2]; l++)
     for (int j = 0; j < s->n[1]; j++)
       for (int i = 0; i < s->n[0]; i++) {
         double p[3];
         fit_sample_position(s, i, j, l, p);
-        s->k[at++] = fog_light_extinction_at(model, p);
+        const double k = fog_light_extinction_at(model, p);
+        s->k[at++] = k < opaque ? k : opaque; /* NaN too: the models give none */
       }
   return 0;
 }

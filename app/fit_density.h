@@ -31,7 +31,8 @@ typedef struct fit_samples {
 
 /* Samples the model's pointwise extinction (fog_light_extinction_at) at the centres of a
  * grid over [lo, hi] with `max_side` cells along its longest side (the others in
- * proportion, at least 2). Non-zero with err set: out of memory (nothing allocated). */
+ * proportion, at least 2); opaque fog (an infinite K) as 40 / the shortest cell side.
+ * Non-zero with err set: out of memory (nothing allocated). */
 int fit_samples_create(fit_samples *s, const fog_model *model, const double lo[3],
                        const double hi[3], int max_side, fog_error *err);
 /* The same on a grid of n[a] cells along axis a (at least 2). */

@@ -319,7 +319,10 @@ int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *re
     if (c) *c = *input, c->fog.model = FOG_MODEL_VOLUME, c->fog.volume_step = 0.0;
     if (!(rung = add_rung(r, c, "volume", err))) return 1;
     snprintf(rung->params, sizeof rung->params, "the 3D grid, exact");
-  } else if (in->model != FOG_MODEL_FOGMAP) {
+  } else {
+    /* the input as it is: a fogmap too (its own basis, levels, mu and LOD, or a baked
+     * sequence), which the fixed fogmap rungs above match only by chance: without it an
+     * exact input could end with no rung within a tight tolerance */
     scene_config *c = malloc(sizeof *c);
     if (c) *c = *input;
     if (!(rung = add_rung(r, c, fog_model_table[in->model].name, err))) return 1;

@@ -5,7 +5,13 @@
  * missing VDB, a bad config key, no tolerance, an unwritable --out, an --out that would
  * replace an input, --chart without gnuplot) fails with a message naming the file or
  * option, and leaves no file behind; a fit stopped by SIGTERM exits 130 and removes its
- * scratch folder (in $TMPDIR). */
+ * scratch folder (in $TMPDIR). And the references:
+ *  - a VDB plume beside an opaque quadric sphere is measured with the sphere: the fit's
+ *    domain reaches the sphere (it was fitted, measured and written as the plume alone);
+ *  - classic linear fog ending 500 units from the camera fits (infinite samples past
+ *    fog_end, about the world's origin, ended the fit in an error);
+ *  - a fogmap input at its own settings (lod = sum) is a rung of its own, error 0: a tight
+ *    tolerance picks it (no fixed fogmap rung matched it, and nothing was written). */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <math.h>
@@ -167,6 +173,52 @@ int main(void) {
   status = fit(bin, args, out, err, sizeof out);
   CHECK(status == 2 && strstr(err, "is the config's [fog] fogmap"),
         "--out beside the scene's fogmap: exit %d, %s%s", status, out, err);
+
+  /* the VDB reference with the quadric volumes beside it */
+  char plume[300], text[16384];
+  snprintf(plume, sizeof plume, "%s/plume_sphere.ini", dir);
+  snprintf(text, sizeof text,
+           "[camera]\nposition = 0 1.5 6\nlook_at = 0 1.2 0\n"
+           "[fog]\nmodel = volume\nvdb = %s/../shared/data/vdb/plume/data/fluid_data_0048.vdb\n"
+           "density_scale = 6\nquadric = sphere 3 1.5 0 0.6 5\n",
+           FOGPIPE_SOURCE_DIR);
+  test_write_text(plume, text);
+  snprintf(args, sizeof args, "'%s' --tolerance 0.5 --by mean --rays 4 --samples 8 --size 32x18 "
+           "--timed 1", plume);
+  status = fit(bin, args, out, err, sizeof out);
+  const char *domain = strstr(out, "domain [");
+  double x_lo = 0.0, x_hi = 0.0;
+  CHECK(status == 0 && domain && sscanf(domain, "domain [%lf, %lf]", &x_lo, &x_hi) == 2 &&
+            x_hi >= 3.6 - 1e-9,
+        "plume beside a sphere at x 2.4..3.6: exit %d, domain x to %g: %s%s", status, x_hi, out,
+        err);
+
+  /* classic linear fog: its samples about the camera, opaque past fog_end */
+  char classic[300];
+  snprintf(classic, sizeof classic, "%s/classic.ini", dir);
+  test_write_text(classic, "[camera]\nposition = 0 120 400\nlook_at = 0 20 -100\n"
+                           "[terrain]\nsize = 1000 1000\nheight = 120\n"
+                           "[fog]\nmodel = linear\nfog_start = 100\nfog_end = 500\n");
+  snprintf(args, sizeof args, "'%s' --tolerance 0.05 %s", classic, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  CHECK(status == 0 && strstr(out, "linear as given"), "classic fog ending at 500: exit %d, %s%s",
+        status, out, err);
+
+  /* a fogmap input at its own settings */
+  char summed[300], summed_pick[300];
+  snprintf(summed, sizeof summed, "%s/summed.ini", dir);
+  snprintf(summed_pick, sizeof summed_pick, "%s/summed_pick.ini", dir);
+  snprintf(text, sizeof text,
+           "[fog]\nfogmap = %s/data/fogmap_sample.png\ndensity_scale = 0.02\nlevels = 2\n"
+           "lod = sum\nmu = 0.7\nprofile = exponential\nfog_height = 50\nscale_height = 25\n"
+           "[box]\norigin = -512 -512\ncell_size = 4\n",
+           FOGPIPE_SOURCE_DIR);
+  test_write_text(summed, text);
+  snprintf(args, sizeof args, "'%s' --tolerance 0.0001 --by mean --out '%s' %s", summed,
+           summed_pick, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  CHECK(status == 0 && strstr(out, "chosen: fogmap as given") && exists(summed_pick),
+        "a fogmap at its own settings: exit %d, %s%s", status, out, err);
 
   /* SIGTERM while the rungs are measured: exit 130, the scratch folder of the projected
    * fogmap (in $TMPDIR) removed. The signal goes once that folder exists. */
