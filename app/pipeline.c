@@ -575,8 +575,8 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
   /* non-negative levels, the density itself as A_J (transform_density_pyramid) */
   if (transform_density_pyramid(
           c->plan, density->density, c->coefficients, c->approx,
-          p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS ? c->detail : NULL))
-    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "transform: out of memory");
+          p->applied.lod_method == FOG_LOD_SUM_OF_DETAILS ? c->detail : NULL, err))
+    return 1;
   fog_error terr = {0};
   for (int l = 0; l <= c->levels; l++) {
     if (transform_grid_export(c->plan, l, c->approx[l], &slot->pyramid.approx[l], &terr))

@@ -170,9 +170,10 @@ static int preview_frame(preview *p, const char *vdb, const char *png, double ti
   }
   double t1 = app_clock_seconds();
   transform_forward(p->plan, frame.map.density, p->coefficients);
+  fog_error perr = {0};
   if (transform_density_pyramid(p->plan, frame.map.density, p->coefficients, p->approx,
-                                p->levels > 0 ? p->detail : NULL)) {
-    snprintf(error, size, "transform: out of memory");
+                                p->levels > 0 ? p->detail : NULL, &perr)) {
+    snprintf(error, size, "%s", perr.message);
     vdb_frame_destroy(&frame);
     return 1;
   }

@@ -413,8 +413,8 @@ int bench_render(int argc, char **argv) {
     }
     transform_forward(lod_plan, map.density, coefficients);
     if (transform_density_pyramid(lod_plan, map.density, coefficients, level_approx,
-                                  level_detail))
-      goto out_of_memory;
+                                  level_detail, &terr))
+      goto transform_failed;
     for (int l = 0; l <= LOD_LEVELS; l++)
       if (transform_grid_create_level(lod_plan, l, level_approx[l], &approx[l], &terr) ||
           (l > 0 &&

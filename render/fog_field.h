@@ -100,8 +100,9 @@ typedef struct fog_lod {
   double mu; /* in [0, 1] */
 } fog_lod;
 
-/* One pyramid's grids, owned, indexed as the transform makes them (transform_pyramid,
- * transform_details): approx[l] = A_l for l = 0..levels, detail[l] = D_l for l = 1..levels
+/* One pyramid's grids, owned, indexed as the transform makes them (its density pyramid,
+ * transform_density_pyramid: levels clamped at 0, A_J the fogmap itself): approx[l] = A_l
+ * for l = 0..levels, detail[l] = D_l for l = 1..levels
  * (detail[0] unused; none at all unless has_details: approximation switching does not
  * read them). The simulation's steps, a fogmap's or a VDB frame's pyramid alike. */
 typedef struct fog_pyramid {

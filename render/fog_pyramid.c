@@ -30,8 +30,8 @@ int fog_pyramid_create(fog_pyramid *pyramid, const float *density, int width, in
     transform_forward(plan, density, coefficients);
     /* non-negative levels (a ray never gains light) and the fogmap itself as A_J; fog_pass
      * binds every slot of the pyramid (details too) whatever the LOD method */
-    if (transform_density_pyramid(plan, density, coefficients, approx, detail))
-      status = fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the fog pyramid");
+    if (transform_density_pyramid(plan, density, coefficients, approx, detail, &terr))
+      status = fog_error_wrap(err, &terr, "fog pyramid: ");
   }
   for (int l = 0; l <= levels && !status; l++)
     if (transform_grid_create_level(plan, l, approx[l], &pyramid->approx[l], &terr) ||

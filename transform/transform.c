@@ -1,7 +1,7 @@
 /* The 2D Mallat transform (forward, inverse; standard and non-standard), the
  * approximation pyramid, the deconstructed details (Giroud & Biri §4.4), per-band
  * energies and the renderable grids of every level. None of these allocate, but for
- * transform_density_pyramid's zero band when it clamps a level. */
+ * transform_density_pyramid's zero band, made once a plan (its first clamp). */
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -182,34 +182,44 @@ int transform_details(transform_plan *p, const float *coefficients, float *const
 
 /* The renderer's pyramid (transform.h). Clamping the B-spline coefficients clamps the
  * function: degree 0-2 B-splines are non-negative, so non-negative coefficients give fog
- * >= 0 everywhere. D_l is rewritten only next to a level that changed; elsewhere the
- * synthesis's D_l already equals A_l - refine(A_{l-1}). */
+ * >= 0 everywhere. The levels are synthesised up to J - 1 only (A_J is the fogmap, and its
+ * synthesis was 3/4 of the work). D_l is rewritten only next to a level that changed;
+ * elsewhere the synthesis's D_l already equals A_l - refine(A_{l-1}). */
 int transform_density_pyramid(transform_plan *p, const float *fogmap, const float *coefficients,
-                              float *const *approx, float *const *detail) {
-  if (p->desc.decomposition != TRANSFORM_NONSTANDARD) return 1;
+                              float *const *approx, float *const *detail, fog_error *err) {
+  if (p->desc.decomposition != TRANSFORM_NONSTANDARD)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "transform: the density pyramid needs the non-standard decomposition");
   const int J = p->levels;
-  transform_pyramid(p, coefficients, approx);
+  const size_t W = (size_t)p->desc.width;
+  transform_copy_block(approx[0], (size_t)p->len_w[0], coefficients, W, p->len_w[0],
+                       p->len_h[0]);
+  for (int l = 1; l < J; l++)
+    inverse_level(p, l, approx[l - 1], (size_t)p->len_w[l - 1], coefficients, approx[l],
+                  (size_t)p->len_w[l]);
+  memcpy(approx[J], fogmap, sizeof(float) * W * (size_t)p->desc.height);
   if (detail && J > 0) transform_details(p, coefficients, detail);
-  memcpy(approx[J], fogmap, sizeof(float) * (size_t)p->desc.width * (size_t)p->desc.height);
   bool clamped_below = false; /* level l - 1 changed */
-  float *zeros = NULL;
   for (int l = 0; l <= J; l++) {
-    size_t count = (size_t)p->len_w[l] * (size_t)p->len_h[l];
+    const size_t count = (size_t)p->len_w[l] * (size_t)p->len_h[l];
     bool clamped = false;
     for (size_t i = 0; l < J && i < count; i++)
       if (approx[l][i] < 0.0f) approx[l][i] = 0.0f, clamped = true;
     if (detail && l > 0 && (clamped || clamped_below)) {
-      /* D_l = A_l - refine(A_{l-1}): one synthesis step of A_{l-1} with band l zero */
-      if (!zeros && !(zeros = calloc((size_t)p->desc.width * (size_t)p->desc.height,
-                                     sizeof *zeros)))
-        return 1;
-      inverse_level(p, l, approx[l - 1], (size_t)p->len_w[l - 1], zeros, detail[l],
+      /* D_l = A_l - refine(A_{l-1}): one synthesis step of A_{l-1} with band l zero (the
+       * plan's zero band, made on the first clamp and kept) */
+      if (!p->zero_band) {
+        if (!(p->zero_band = transform_alloc_floats(W * (size_t)p->desc.height)))
+          return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "transform: out of memory for a "
+                          "%dx%d zero band", p->desc.width, p->desc.height);
+        memset(p->zero_band, 0, sizeof(float) * W * (size_t)p->desc.height);
+      }
+      inverse_level(p, l, approx[l - 1], (size_t)p->len_w[l - 1], p->zero_band, detail[l],
                     (size_t)p->len_w[l]);
       for (size_t i = 0; i < count; i++) detail[l][i] = approx[l][i] - detail[l][i];
     }
     clamped_below = clamped;
   }
-  free(zeros);
   return 0;
 }
 

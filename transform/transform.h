@@ -127,16 +127,19 @@ int transform_pyramid(transform_plan *plan, const float *coefficients, float *co
  * filters, i.e. the three orientations merged into one scaling grid at level l, so
  * that A_l = refine(A_{l-1}) + D_l and, as functions, A_l = A_0 + D_1 + ... + D_l. */
 int transform_details(transform_plan *plan, const float *coefficients, float *const *detail);
-/* The pyramid the renderer draws as fog (non-standard decomposition only; 1 otherwise or
- * out of memory): transform_pyramid and, with detail != NULL, transform_details, then
- *  - approx[J] = the fogmap itself (not its reconstruction, which rounds 0 to -1e-9);
+/* The pyramid the renderer draws as fog (non-standard decomposition only; else, or out of
+ * memory, non-zero with err set):
+ *  - approx[l] = A_l as transform_pyramid makes it, and approx[J] the fogmap itself (its
+ *    synthesis is skipped: the reconstruction rounds 0 to -1e-9, and cost 3/4 of the work);
  *  - approx[l] (l < J) clamped at 0: the linear and quadratic bases' filters have negative
  *    taps, so a coarse A_l dips below 0 next to a sharp edge (-0.18 on a ground fog of
  *    peak 1), and a ray through it would leave the fog with transmittance > 1;
- *  - detail[l] = A_l - refine(A_{l-1}) of the clamped levels, so that the sum of details
- *    still telescopes: A_0 + D_1 + ... + D_l = A_l, the same fog as switching. */
+ *  - with detail != NULL, transform_details' D_l, rewritten next to a clamped level as
+ *    D_l = A_l - refine(A_{l-1}), so that the sum of details still telescopes: A_0 + D_1 +
+ *    ... + D_l = A_l, the same fog as switching.
+ * The first clamp that rewrites a D_l allocates the plan's zero band (kept with it). */
 int transform_density_pyramid(transform_plan *plan, const float *fogmap, const float *coefficients,
-                              float *const *approx, float *const *detail);
+                              float *const *approx, float *const *detail, fog_error *err);
 /* energy[3*l + o] = sum of squared coefficients of band l, orientation o (l = 1..J;
  * entries 0..2 are set to zero). For LOD decisions; coefficients are unnormalised. */
 void transform_detail_energy(const transform_plan *plan, const float *coefficients,

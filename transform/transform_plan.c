@@ -146,6 +146,7 @@ void transform_plan_destroy(transform_plan *p) {
     free(p->scratch[t].level);
     free(p->scratch[t].level2);
   }
+  free(p->zero_band);
   free(p->len_w);
   free(p->len_h);
   free(p->rules_w);

@@ -57,6 +57,7 @@ struct transform_plan {
   int *len_w, *len_h;             /* [0..J] */
   level_rules *rules_w, *rules_h; /* [0..J] */
   transform_scratch scratch[2];
+  float *zero_band; /* width x height zeros (transform_density_pyramid), NULL until needed */
   /* the second thread (desc.threads == 2): job number `posted` is the worker's to run
    * once it differs from what it last ran; `finished` is the last one it completed.
    * Either side spins a few tens of microseconds before sleeping on a condition

@@ -61,7 +61,7 @@ static void check(int b, transform_boundary mode, int w, int h, int J) {
     transform_level_size(plan, l, &lw, &lh);
     for (size_t i = 0; i < (size_t)lw * lh; i++) dip = fmin(dip, plain[l][i]);
   }
-  CHECK(!transform_density_pyramid(plan, f, c, approx, detail), "%s: refused", what);
+  CHECK(!transform_density_pyramid(plan, f, c, approx, detail, &err), "%s: %s", what, err.message);
   CHECK(!memcmp(approx[J], f, n * sizeof *f), "%s: A_J is not the fogmap", what);
   if (b == 0) {
     CHECK(dip >= 0.0, "%s: Haar's averages dipped to %g", what, dip);
@@ -122,8 +122,9 @@ int main(void) {
   if (standard) {
     float *f = calloc(32 * 32, sizeof *f), *c = calloc(32 * 32, sizeof *c);
     float *levels[3] = {calloc(64, 4), calloc(256, 4), calloc(1024, 4)};
-    CHECK(transform_density_pyramid(standard, f, c, levels, NULL) != 0,
-          "the standard decomposition was taken");
+    CHECK(transform_density_pyramid(standard, f, c, levels, NULL, &err) != 0 &&
+              strstr(err.message, "non-standard"),
+          "the standard decomposition was taken: '%s'", err.message);
     for (int l = 0; l < 3; l++) free(levels[l]);
     free(f), free(c);
     transform_plan_destroy(standard);
