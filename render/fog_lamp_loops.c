@@ -23,27 +23,47 @@ static double noise_walks(const fog_perlin *perlin, double len) {
   return loops;
 }
 
-/* Perlin fog's exact optical depth along a view ray (fog_perlin_octave_depth): per octave a
- * DDA over the texel cells the ray crosses in the fog's box (at most its diagonal long, |d|_1
- * <= sqrt 3 texels a unit length, 3 cells and a pass more), each cell a piece whose height
- * cuts are a loop of their own: at least 1 and an exit pass a piece, and 2 more for each
- * scale height the piece climbs (the ray climbs at most the box's height). A texel as fine
- * as perlin_feature = 1 over a 20 km box came to 10^6 and the walk stopped short silently,
- * 63 % of the fog missing on long rays. */
-static double perlin_walks(const fog_pass_params *p) {
+/* Perlin fog's walks along a view ray cross, per octave, the texel cells a ray crosses in
+ * the fog's box (at most its diagonal long, |d|_1 <= sqrt 3 texels a unit length: 3 cells
+ * and a pass more); each piece's height cuts are a loop of their own, at least 1 a piece
+ * and 2 more for each scale height the ray climbs (at most the box's height). A texel as
+ * fine as perlin_feature = 1 over a 20 km box came to 10^6, past llvmpipe's cap, and the
+ * walks stopped short silently: 63 % of the fog missing on long rays. */
+static void perlin_cells(const fog_pass_params *p, double *cells, double *climb) {
   const fog_perlin *perlin = p->model_perlin;
   double diagonal = 0;
   for (int a = 0; a < 3; a++) {
     const double extent = perlin->desc.hi[a] - perlin->desc.lo[a];
     diagonal += extent * extent;
   }
-  const double climb = 2.0 * (perlin->desc.hi[1] - perlin->desc.lo[1]) / p->model_scale_height;
-  double loops = perlin->desc.octaves + 1;
-  for (int i = 0; i < perlin->desc.octaves; i++) {
-    const double cells = sqrt(diagonal) * sqrt(3.0) * fog_perlin_octave_scale(perlin, i) + 4;
-    loops += cells + 2 * cells + climb + 1;
-  }
-  return loops;
+  *cells = 0;
+  for (int i = 0; i < perlin->desc.octaves; i++)
+    *cells += sqrt(diagonal) * sqrt(3.0) * fog_perlin_octave_scale(perlin, i) + 4;
+  *climb = 2.0 * (perlin->desc.hi[1] - perlin->desc.lo[1]) / p->model_scale_height;
+}
+
+/* The view ray's depth (fog_perlin_octave_depth): octave by octave, a piece a cell, each
+ * its cuts' loop and exit pass. */
+static double perlin_walks(const fog_pass_params *p) {
+  double cells, climb;
+  perlin_cells(p, &cells, &climb);
+  const int octaves = p->model_perlin->desc.octaves;
+  return octaves + 1 + octaves * (1 + climb) + 3 * cells;
+}
+
+/* The sun's mean per piece (fog_perlin_sun_mean): one walk over every octave's planes, a
+ * piece between any two; per piece three loops over the octaves (the next plane, the cells,
+ * the step) and its cuts; per cut the nodes, each a loop over the octaves, and the piece's
+ * light (the nodes, each over the nodes). Counted from the review of the first bound: the
+ * shipped perlin_fog.ini at perlin_feature = 20 passed the view walk's bound and drew the
+ * sun's mean cut short. */
+static double perlin_sun_walk(const fog_pass_params *p) {
+  double cells, climb;
+  perlin_cells(p, &cells, &climb);
+  const double octave_loop = p->model_perlin->desc.octaves + 1;
+  const double nodes = (p->shadow_nodes > 0 ? p->shadow_nodes : 1) + 1;
+  const double cuts = cells + climb;
+  return 1 + cells * (3 * octave_loop + 1) + cuts * (1 + nodes * octave_loop + nodes * nodes);
 }
 
 /* The volumes' extinction at a point (fog_quadric_extinction_at) and their depth along a
@@ -149,17 +169,43 @@ double fog_pass_loop_bound(const fog_pass_params *p, int tile_gaussians) {
   return fog_pass_lamp_loop_bound(p) + fog_pass_view_loop_bound(p, tile_gaussians);
 }
 
+/* The sun's mean along the view ray (fog_light.glsl): by segments, or per piece of the
+ * model's own walk. */
+static bool sun_mean(const fog_pass_params *p) {
+  return p->self_shadow == FOG_SUN_SHADOW_VOLUME || p->self_shadow == FOG_SUN_SHADOW_HEIGHT ||
+         (p->self_shadow == FOG_SUN_SHADOW_NONE && p->shafts);
+}
+static bool sun_pieces(const fog_pass_params *p) {
+  const bool beside = p->model != FOG_MODEL_QUADRIC && quadric_count(p) > 0;
+  return (p->model == FOG_MODEL_PERLIN || p->model == FOG_MODEL_VOLUME ||
+          p->model == FOG_MODEL_FOGMAP) && p->shadow_pieces && !beside;
+}
+
+double fog_pass_turbulence_loop_bound(const fog_pass_params *p) {
+  if (p->integrator == FOG_INTEGRATOR_MARCH || !p->model_perlin) return 0;
+  double loops = 0;
+  if (p->model == FOG_MODEL_PERLIN) {
+    if (p->model_perlin_integral == FOG_PERLIN_EXACT) loops += perlin_walks(p);
+    if (sun_mean(p) && sun_pieces(p)) loops += perlin_sun_walk(p);
+  }
+  for (int i = 0; noisy(p) && i < quadric_count(p); i++) {
+    const fog_quadric *v = &p->model_quadrics[i];
+    double diagonal = 0;
+    for (int a = 0; a < 3; a++) diagonal += (v->hi[a] - v->lo[a]) * (v->hi[a] - v->lo[a]);
+    if (v->noise > 0) loops += noise_walks(p->model_perlin, sqrt(diagonal));
+  }
+  return loops;
+}
+
 double fog_pass_view_loop_bound(const fog_pass_params *p, int tile_gaussians) {
   const bool noise = noisy(p);
   const bool beside = p->model != FOG_MODEL_QUADRIC && quadric_count(p) > 0;
   /* the RBFs' exact integral and reach over the tile's list */
   double loops = p->model == FOG_MODEL_RBF ? 2.0 * (tile_gaussians + 1) : 0;
-  /* the exact walks of the view ray itself: Perlin fog's octaves, the quadric volumes'
-   * stretches and their noise */
+  /* the exact walks of the view ray itself: Perlin fog's octaves (and the sun's mean per
+   * piece with them), the quadric volumes' stretches and their noise */
   if (p->integrator != FOG_INTEGRATOR_MARCH) {
-    if (p->model == FOG_MODEL_PERLIN && p->model_perlin &&
-        p->model_perlin_integral == FOG_PERLIN_EXACT)
-      loops += perlin_walks(p);
+    if (p->model == FOG_MODEL_PERLIN) loops += fog_pass_turbulence_loop_bound(p);
     if (quadric_count(p) > 0) loops += quadric_segment(p, noise);
   }
   /* marching (the volume's step, `volume_step`; the benches' march_steps): its samples,
@@ -170,11 +216,7 @@ double fog_pass_view_loop_bound(const fog_pass_params *p, int tile_gaussians) {
                  : (p->march_steps + 1.0) * (1 + point_loops(p, noise, tile_gaussians));
   /* the sun's mean by segments (fog_light.glsl; the per-piece means walk with the view
    * ray): K at each node, and towards the sun the quadrics beside in closed form */
-  const bool march = p->self_shadow == FOG_SUN_SHADOW_VOLUME ||
-                     p->self_shadow == FOG_SUN_SHADOW_HEIGHT ||
-                     (p->self_shadow == FOG_SUN_SHADOW_NONE && p->shafts);
-  const bool pieces = (p->model == FOG_MODEL_PERLIN || p->model == FOG_MODEL_VOLUME ||
-                       p->model == FOG_MODEL_FOGMAP) && p->shadow_pieces && !beside;
+  const bool march = sun_mean(p), pieces = sun_pieces(p);
   if (march && !pieces) {
     const double node = point_loops(p, noise, tile_gaussians) +
                         (beside ? quadric_segment(p, noise) : 0);

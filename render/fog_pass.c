@@ -1276,6 +1276,10 @@ static int fog_pass_check_loops(const fog_pass *pass, const fog_pass_params *par
   const double lamps = fog_pass_lamp_loop_bound(params),
                view = fog_pass_view_loop_bound(params, tile_gaussians);
   if (lamps + view <= fog_pass_loops_allowed(pass)) return 0;
+  /* whether the turbulence's walks are what pass the cap (then the hint says what lowers
+   * them; else the lamps or the sun's steps do) */
+  const bool turbulence_over =
+      lamps + view - fog_pass_turbulence_loop_bound(params) <= fog_pass_loops_allowed(pass);
   const fog_lamp_method *m = &params->lamps.method;
   char gaussians[64] = "", sun[64] = "no sun's mean", lamp_text[160] = "no lamps";
   if (params->lamps.count > 0)
@@ -1299,8 +1303,12 @@ static int fog_pass_check_loops(const fog_pass *pass, const fog_pass_params *par
            (const char *)glGetString(GL_RENDERER), pass->loop_cap,
            (long)fog_pass_loops_allowed(pass),
            params->model == FOG_MODEL_RBF ? ", or fewer Gaussians" : "",
-           params->model_perlin ? "; for the turbulence a larger perlin_feature, fewer "
-                                  "perlin_octaves or a smaller fog box" : "");
+           !turbulence_over ? ""
+           : params->model == FOG_MODEL_PERLIN
+               ? "; the turbulence's walks alone pass it: a larger perlin_feature, fewer "
+                 "perlin_octaves or a smaller fog box"
+               : "; the volumes' noise walks alone pass it: a larger perlin_feature, smaller "
+                 "noisy volumes or NOISE 0");
   return 1;
 }
 

@@ -238,6 +238,10 @@ double fog_pass_lamp_loop_bound(const fog_pass_params *params);
  * the sun's mean along the ray (shadow_steps x shadow_nodes points of K). The pass adds it to the lamps' (over
  * RBF fog once the tiles are built). */
 double fog_pass_view_loop_bound(const fog_pass_params *params, int tile_gaussians);
+/* The part of both that is the turbulence's walks: Perlin fog's octaves along the view ray
+ * and with its sun's mean per piece, and the noise of quadric volumes (what a larger
+ * perlin_feature shortens). */
+double fog_pass_turbulence_loop_bound(const fog_pass_params *params);
 /* Both, what the draw compares with fog_pass_loops_allowed. */
 double fog_pass_loop_bound(const fog_pass_params *params, int tile_gaussians);
 
