@@ -71,8 +71,9 @@ static void remove_frames(const char *pattern, int written) {
     if (scene_config_sequence_path(pattern, n, path, sizeof path)) unlink(path);
 }
 
-/* Simulates frame after frame and writes each density; *written counts the files; *cell_size receives the cell size of the simulated grid (the
- * config's, or the pipeline's own for a map it simulates finer or coarser). */
+/* Simulates frame after frame and writes each density; *written counts the files and
+ * *cell_size receives the cell size of the simulated grid (the config's, or the
+ * pipeline's own for a map it simulates finer or coarser). */
 static int bake_frames(const bake_job *job, const scene_config *cfg, const char *pattern,
                        int *written, double *cell_size) {
   fog_error gerr = {0};

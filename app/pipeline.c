@@ -923,9 +923,10 @@ static int show_slot_shadow(pipeline *p, const pipeline_slot *slot, fog_error *e
   return 0;
 }
 
-/* The sun moved (or the albedo became > 0, or a live rung's volume took its place) since
- * the volume on screen was computed, and no step brought one for this sun: compute it here
- * from the last step's finest grid. */
+/* The sun moved, or the fog's density or profile changed (shadow_shape_of), or the albedo
+ * became > 0, or a live rung's volume took its place, since the volume on screen was
+ * computed, and no step brought one for them: compute it here from the last step's finest
+ * grid. */
 static int relight(pipeline *p, const pipeline_params *params, fog_error *err) {
   if (!(params->sun.albedo > 0) || !params->fog_self_shadow) {
     p->shown_self_shadow = FOG_SUN_SHADOW_NONE; /* switched off: at once */
@@ -1360,16 +1361,19 @@ void pipeline_paint(pipeline *p, double x0, double z0, double x1, double z1, dou
   double cell = b->cell_size > 0 ? b->cell_size : 1.0;
   double a[2] = {(x0 - b->origin[0]) / cell - 0.5, (z0 - b->origin[1]) / cell - 0.5};
   double e[2] = {(x1 - b->origin[0]) / cell - 0.5, (z1 - b->origin[1]) / cell - 0.5};
-  /* The stroke's centre line within the fog's box: the periodic simulation would wrap a
-   * stroke beside the box onto its far side (a cursor 80 units past the west edge painted
-   * fog 1000 units east). A brush's rim over the edge still wraps, as the fog does. */
-  const double lo[2] = {-0.5, -0.5},
-               hi[2] = {p->cpu.base.width - 0.5, p->cpu.base.height - 0.5};
+  /* Only what falls in the fog's box: the periodic simulation wrapped a stroke beside the
+   * box onto its far side (a cursor 80 units past the west edge painted fog 1000 units
+   * east). The centre line is clipped to the box grown by the brush's radius (a cursor
+   * just outside still paints the brush's inside part), and no cell past an edge wraps. */
+  const double r = radius / cell;
+  const double lo[2] = {-0.5 - r, -0.5 - r},
+               hi[2] = {p->cpu.base.width - 0.5 + r, p->cpu.base.height - 0.5 + r};
   if (!clip_segment(a, e, lo, hi)) return;
   fluid_stroke stroke = {
       .x0 = (float)a[0], .z0 = (float)a[1], .x1 = (float)e[0], .z1 = (float)e[1],
-      .radius = (float)(radius / cell),
+      .radius = (float)r,
       .amount = (float)amount,
+      .within_grid = true,
   };
   pthread_mutex_lock(&p->lock);
   if (p->stroke_count < MAX_STROKES) p->strokes[p->stroke_count++] = stroke;

@@ -63,9 +63,13 @@ int staged_move_into_place(const char *command, const char *temp_dir, const char
       break;
     }
     if (rename(from, to)) {
-      status = cli_fail(command, "%s: cannot move into place: %s; %s is as it was", to,
-                        strerror(errno), out);
+      const int why = errno;
       if (replaced[moved] && rename(aside, to) == 0) replaced[moved] = false;
+      status = replaced[moved]
+                   ? cli_fail(command, "%s: cannot move into place: %s; the file it replaces "
+                              "is at %s", to, strerror(why), aside)
+                   : cli_fail(command, "%s: cannot move into place: %s; %s is as it was", to,
+                              strerror(why), out);
       break;
     }
   }
@@ -78,8 +82,8 @@ int staged_move_into_place(const char *command, const char *temp_dir, const char
       else unlink(to);
     } else if (status && i == moved) {
       /* the file whose move failed: `to` is the original (or nothing); an original set
-       * aside whose return failed above is tried once more, and else left where it is,
-       * never removed */
+       * aside whose return failed above is tried once more, and else left where it is (the
+       * message names it), never removed */
       if (replaced[i]) rename(aside, to);
     } else if (replaced[i]) {
       unlink(aside);

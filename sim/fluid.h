@@ -24,6 +24,7 @@
 #ifndef FOGPIPE_SIM_FLUID_H
 #define FOGPIPE_SIM_FLUID_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "sim/advect.h"
@@ -68,6 +69,9 @@ typedef struct fluid_stroke {
   float x0, z0, x1, z1;
   float radius; /* cells, > 0 */
   float amount; /* density at the centre line; negative erases */
+  /* true: cells past the grid's edges are left alone (a brush at the fog box's edge paints
+   * only inside it); false: they wrap around, as the periodic fluid does */
+  bool within_grid;
 } fluid_stroke;
 
 /* Start from fluid_sim_desc_default(width, height), which sets every field, and change

@@ -108,8 +108,10 @@ int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *s, fog_error *err) {
   float *rho = sim->density[sim->current];
   for (int dz = 0; dz < nz; dz++) {
     const float pz = (float)(z0 + dz);
+    if (s->within_grid && (z0 + dz < 0 || z0 + dz >= h)) continue;
     float *row = rho + (size_t)wrap(z0 + dz, h) * w;
     for (int dx = 0; dx < nx; dx++) {
+      if (s->within_grid && (x0 + dx < 0 || x0 + dx >= w)) continue;
       const float q = segment_distance2((float)(x0 + dx), pz, s->x0, s->z0, s->x1, s->z1) *
                       inv_r2;
       if (q >= 1.0f) continue;

@@ -3,9 +3,9 @@
  *  - N (pipeline_step_once) while running changes nothing: the simulation steps anyway,
  *    and after a pause no queued step plays (they used to: N three times, then Space,
  *    and three more steps ran); while paused, one N is one step;
- *  - a stroke whose centre line lies beside the fog's box paints nothing (the periodic
- *    simulation wrapped it onto the box's far side, 1000 units from the cursor), and a
- *    stroke across the edge paints the inside part;
+ *  - a stroke beside the fog's box paints nothing (the periodic simulation wrapped it onto
+ *    the box's far side, 1000 units from the cursor); a stroke across the edge, or just
+ *    outside it within the brush's radius, paints the inside part and nothing wraps;
  *  - levels asked past what the map allows read back as the levels it allows (the panel
  *    showed the asked count while the transform used fewer);
  *  - a density typed in while paused relights the fog (its sun-shadow volume made again):
@@ -117,13 +117,17 @@ static void check_paint_edges(const scene_config *cfg, const camera *cam) {
                  &east);
   CHECK(west == 0.0 && east == 0.0, "a stroke beside the box painted %g (west half), %g (east)",
         west, east);
-  /* across the edge: the inside part paints the west half; in the east half nothing lands
-   * but the brush's rim wrapped over the seam (30 units, a few cells more for the step's
-   * wind) */
-  painted_change(cfg, cam, west_edge - 80.0, west_edge + 100.0, cells_x / 2,
-                 cells_x - (int)ceil(30.0 / cell) - 4, &west, &east);
+  /* across the edge: the inside part paints the west half; nothing lands in the east half
+   * (a few cells at the seam left out for the step's wind) */
+  painted_change(cfg, cam, west_edge - 80.0, west_edge + 100.0, cells_x / 2, cells_x - 4,
+                 &west, &east);
   CHECK(west > 0.5, "a stroke across the west edge painted only %g inside", west);
   CHECK(east == 0.0, "a stroke across the west edge painted %g on the far side", east);
+  /* a dab 10 units outside, radius 30: its inside part, and nothing on the far side */
+  painted_change(cfg, cam, west_edge - 10.0, west_edge - 10.0, cells_x / 2, cells_x - 4,
+                 &west, &east);
+  CHECK(west > 0.05, "a dab just outside the west edge painted only %g inside", west);
+  CHECK(east == 0.0, "a dab just outside the west edge painted %g on the far side", east);
 }
 
 static void check_paused_density(const scene_config *cfg, const camera *cam) {

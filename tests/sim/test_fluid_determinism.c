@@ -14,9 +14,9 @@ enum { N = 96, STEPS = 90 };
 static void drive(fluid_sim *sim, int steps) {
   fog_error err;
   for (int s = 0; s < steps; s++) {
-    if (s == 10) fluid_sim_paint(sim, &(fluid_stroke){10, 10, 60, 40, 5, 0.8f}, &err);
+    if (s == 10) fluid_sim_paint(sim, &(fluid_stroke){10, 10, 60, 40, 5, 0.8f, false}, &err);
     if (s == 20) fluid_sim_add_impulse(sim, 48, 48, 8, 30, -10, &err);
-    if (s == 30) fluid_sim_paint(sim, &(fluid_stroke){20, 20, 40, 20, 6, -0.5f}, &err);
+    if (s == 30) fluid_sim_paint(sim, &(fluid_stroke){20, 20, 40, 20, 6, -0.5f, false}, &err);
     fluid_sim_step(sim, &err);
   }
 }

@@ -39,7 +39,7 @@ int main(void) {
   CHECK(worst <= 2e-3 * 10 * 4.0 * dt, "emitter max error %g", worst);
 
   /* Strokes: paint across the x seam, then erase more than is there. */
-  CHECK(!fluid_sim_paint(sim, &(fluid_stroke){58, 20, 70, 20, 4, 1.5f}, &err), "%s",
+  CHECK(!fluid_sim_paint(sim, &(fluid_stroke){58, 20, 70, 20, 4, 1.5f, false}, &err), "%s",
         err.message);
   const float *rho = fluid_sim_density(sim)->density;
   CHECK(fabsf(rho[20 * N + 62] - 1.5f) < 1e-6f, "stroke centre line %g", rho[20 * N + 62]);
@@ -48,14 +48,22 @@ int main(void) {
   CHECK(fabsf(rho[22 * N + 62] - 1.5f * 0.75f * 0.75f) < 1e-6f, "stroke falloff %g",
         rho[22 * N + 62]);
   CHECK(rho[25 * N + 62] == 0.0f, "outside the radius %g", rho[25 * N + 62]);
-  CHECK(!fluid_sim_paint(sim, &(fluid_stroke){50, 20, 75, 20, 6, -10.0f}, &err), "%s",
+  /* within_grid: the part past the seam is left out, not wrapped (the demo's brush at the
+   * fog box's edge) */
+  CHECK(!fluid_sim_paint(sim, &(fluid_stroke){58, 40, 70, 40, 4, 1.5f, true}, &err), "%s",
+        err.message);
+  CHECK(fabsf(rho[40 * N + 62] - 1.5f) < 1e-6f && rho[40 * N + 4] == 0.0f &&
+            rho[40 * N + 0] == 0.0f,
+        "a stroke within the grid: centre %g, past the seam %g, %g", rho[40 * N + 62],
+        rho[40 * N + 4], rho[40 * N + 0]);
+  CHECK(!fluid_sim_paint(sim, &(fluid_stroke){50, 20, 75, 20, 6, -10.0f, false}, &err), "%s",
         err.message);
   float lowest = INFINITY;
   for (int i = 0; i < N * N; i++) lowest = fminf(lowest, rho[i]);
   CHECK(lowest == 0.0f && rho[20 * N + 62] == 0.0f, "erase clamps at 0: %g", lowest);
-  CHECK(fluid_sim_paint(sim, &(fluid_stroke){NAN, 0, 1, 1, 2, 1}, &err) != 0,
+  CHECK(fluid_sim_paint(sim, &(fluid_stroke){NAN, 0, 1, 1, 2, 1, false}, &err) != 0,
         "NaN stroke refused");
-  CHECK(fluid_sim_paint(sim, &(fluid_stroke){0, 0, 1, 1, 0, 1}, &err) != 0,
+  CHECK(fluid_sim_paint(sim, &(fluid_stroke){0, 0, 1, 1, 0, 1, false}, &err) != 0,
         "zero radius refused");
   fluid_sim_destroy(sim);
 
@@ -75,7 +83,7 @@ int main(void) {
   rho = fluid_sim_density(sim)->density;
   CHECK(rho[5] == 0.0f && rho[6] == 0.0f && rho[7] == FOGMAP_MAX_DENSITY, "sanitised base %g %g %g",
         rho[5], rho[6], rho[7]);
-  CHECK(!fluid_sim_paint(sim, &(fluid_stroke){30, 30, 30, 30, 3, 4.0f}, &err), "paint");
+  CHECK(!fluid_sim_paint(sim, &(fluid_stroke){30, 30, 30, 30, 3, 4.0f, false}, &err), "paint");
   for (int s = 0; s < 20; s++) fluid_sim_step(sim, &err);
   rho = fluid_sim_density(sim)->density;
   /* rho(t) = base + (rho0 - base) exp(-r t) at the stroke's centre (rho0 = 6). */
