@@ -40,7 +40,8 @@ int fit_samples_create_grid(fit_samples *s, const fog_model *model, const double
                     s->n[0], s->n[1], s->n[2]);
   /* K where the fog is opaque (a classic linear factor past fog_end: infinite) is taken
    * as opaque within one sample cell, depth 40 across it: an infinite sample made every
-   * moment-fitted rung infinite, and the fog pass refused it, ending the whole fit */
+   * moment-fitted rung infinite, and the fog pass refused it, ending the whole fit. A
+   * finite K stays as it is, however dense. */
   const double opaque = 40.0 / fmin(fmin(s->cell[0], s->cell[1]), s->cell[2]);
   size_t at = 0;
   for (int l = 0; l < s->n[2]; l++)
@@ -49,7 +50,7 @@ int fit_samples_create_grid(fit_samples *s, const fog_model *model, const double
         double p[3];
         fit_sample_position(s, i, j, l, p);
         const double k = fog_light_extinction_at(model, p);
-        s->k[at++] = k < opaque ? k : opaque; /* NaN too: the models give none */
+        s->k[at++] = isinf(k) ? opaque : k;
       }
   return 0;
 }

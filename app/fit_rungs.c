@@ -303,6 +303,17 @@ static int add_fogmap_rungs(fit_result *r, const scene_config *input, const fog_
   return 0;
 }
 
+/* Whether the input is one of the fixed fogmap rungs (its own map at levels 3, switching,
+ * a mu of the ladder's: the default scene), which then stands for it as given. */
+static bool fixed_fogmap_rung(const scene_fog_config *in) {
+  if (in->model != FOG_MODEL_FOGMAP || !in->fogmap[0] || in->levels != 3 ||
+      in->lod != SCENE_LOD_SWITCH)
+    return false;
+  for (size_t m = 0; m < sizeof fogmap_mus / sizeof fogmap_mus[0]; m++)
+    if (in->mu == fogmap_mus[m]) return true;
+  return false;
+}
+
 /* The ladder's rungs for this input, in order, their parameters fitted to the samples; the
  * last rung is the richest: the 3D volume, or the input's own model. */
 int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *reference,
@@ -319,10 +330,10 @@ int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *re
     if (c) *c = *input, c->fog.model = FOG_MODEL_VOLUME, c->fog.volume_step = 0.0;
     if (!(rung = add_rung(r, c, "volume", err))) return 1;
     snprintf(rung->params, sizeof rung->params, "the 3D grid, exact");
-  } else {
+  } else if (!fixed_fogmap_rung(in)) {
     /* the input as it is: a fogmap too (its own basis, levels, mu and LOD, or a baked
-     * sequence), which the fixed fogmap rungs above match only by chance: without it an
-     * exact input could end with no rung within a tight tolerance */
+     * sequence), unless a fixed fogmap rung above is it: without it an exact input could
+     * end with no rung within a tight tolerance */
     scene_config *c = malloc(sizeof *c);
     if (c) *c = *input;
     if (!(rung = add_rung(r, c, fog_model_table[in->model].name, err))) return 1;

@@ -229,11 +229,14 @@ int rbf_carrier_puffs(rbf_carrier *c, double time, fog_rbf *out, int capacity, f
    * (from the start, or on from the step reached): a window open for hours steps on a frame
    * at a time, but a time asked out of the blue (in ms, say) is refused, not run for hours */
   const double steps_to = (time - c->start) / c->desc.step + 1e-9;
-  const double from = steps_to < (double)c->steps ? 0.0 : (double)c->steps;
-  if ((steps_to - from) * c->desc.step > RBF_CARRIER_MAX_TIME) {
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "time %g s is past the %g s the simulation's "
-             "flow is replayed (from %s)", time, RBF_CARRIER_MAX_TIME,
-             from > 0 ? "the time reached" : "its start");
+  const bool on = steps_to >= (double)c->steps && c->steps > 0; /* on from the step reached */
+  /* the flow beyond time 0 to replay: from the start its lifetime's lead-in is not counted
+   * (a time of 3600 s is reached as before) */
+  const double replay = on ? (steps_to - (double)c->steps) * c->desc.step : time;
+  if (replay > RBF_CARRIER_MAX_TIME) {
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "time %g s needs %g s of the simulation's flow "
+             "replayed (from %s), past the %g s it replays", time, replay,
+             on ? "the time reached" : "its start", RBF_CARRIER_MAX_TIME);
     return -1;
   }
   const long target = (long)floor(steps_to);

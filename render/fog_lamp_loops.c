@@ -181,13 +181,20 @@ static bool sun_pieces(const fog_pass_params *p) {
           p->model == FOG_MODEL_FOGMAP) && p->shadow_pieces && !beside;
 }
 
-double fog_pass_turbulence_loop_bound(const fog_pass_params *p) {
-  if (p->integrator == FOG_INTEGRATOR_MARCH || !p->model_perlin) return 0;
+/* Perlin fog's own walks along the view ray: its exact depth, and the sun's mean per piece
+ * (which runs under either integrator). */
+static double perlin_fog_walks(const fog_pass_params *p) {
+  if (p->model != FOG_MODEL_PERLIN || !p->model_perlin) return 0;
   double loops = 0;
-  if (p->model == FOG_MODEL_PERLIN) {
-    if (p->model_perlin_integral == FOG_PERLIN_EXACT) loops += perlin_walks(p);
-    if (sun_mean(p) && sun_pieces(p)) loops += perlin_sun_walk(p);
-  }
+  if (p->integrator != FOG_INTEGRATOR_MARCH && p->model_perlin_integral == FOG_PERLIN_EXACT)
+    loops += perlin_walks(p);
+  if (sun_mean(p) && sun_pieces(p)) loops += perlin_sun_walk(p);
+  return loops;
+}
+
+double fog_pass_turbulence_loop_bound(const fog_pass_params *p) {
+  double loops = perlin_fog_walks(p);
+  if (p->integrator == FOG_INTEGRATOR_MARCH) return loops;
   for (int i = 0; noisy(p) && i < quadric_count(p); i++) {
     const fog_quadric *v = &p->model_quadrics[i];
     double diagonal = 0;
@@ -202,12 +209,12 @@ double fog_pass_view_loop_bound(const fog_pass_params *p, int tile_gaussians) {
   const bool beside = p->model != FOG_MODEL_QUADRIC && quadric_count(p) > 0;
   /* the RBFs' exact integral and reach over the tile's list */
   double loops = p->model == FOG_MODEL_RBF ? 2.0 * (tile_gaussians + 1) : 0;
-  /* the exact walks of the view ray itself: Perlin fog's octaves (and the sun's mean per
-   * piece with them), the quadric volumes' stretches and their noise */
-  if (p->integrator != FOG_INTEGRATOR_MARCH) {
-    if (p->model == FOG_MODEL_PERLIN) loops += fog_pass_turbulence_loop_bound(p);
-    if (quadric_count(p) > 0) loops += quadric_segment(p, noise);
-  }
+  /* the walks of the view ray itself: Perlin fog's octaves and the sun's mean per piece
+   * with them; exact, the quadric volumes' stretches and their noise (quadric_segment: the
+   * noise walks once, not again through fog_pass_turbulence_loop_bound) */
+  loops += perlin_fog_walks(p);
+  if (p->integrator != FOG_INTEGRATOR_MARCH && quadric_count(p) > 0)
+    loops += quadric_segment(p, noise);
   /* marching (the volume's step, `volume_step`; the benches' march_steps): its samples,
    * the volume's at most 16384 a ray (fog_grid3d_optical_depth_march), each a K */
   if (p->integrator == FOG_INTEGRATOR_MARCH)

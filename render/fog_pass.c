@@ -1276,8 +1276,8 @@ static int fog_pass_check_loops(const fog_pass *pass, const fog_pass_params *par
   const double lamps = fog_pass_lamp_loop_bound(params),
                view = fog_pass_view_loop_bound(params, tile_gaussians);
   if (lamps + view <= fog_pass_loops_allowed(pass)) return 0;
-  /* whether the turbulence's walks are what pass the cap (then the hint says what lowers
-   * them; else the lamps or the sun's steps do) */
+  /* whether the draw would fit without the turbulence's walks (then the hint says what
+   * shortens them; else the lamps or the sun's steps must go down too) */
   const bool turbulence_over =
       lamps + view - fog_pass_turbulence_loop_bound(params) <= fog_pass_loops_allowed(pass);
   const fog_lamp_method *m = &params->lamps.method;
@@ -1305,10 +1305,11 @@ static int fog_pass_check_loops(const fog_pass *pass, const fog_pass_params *par
            params->model == FOG_MODEL_RBF ? ", or fewer Gaussians" : "",
            !turbulence_over ? ""
            : params->model == FOG_MODEL_PERLIN
-               ? "; the turbulence's walks alone pass it: a larger perlin_feature, fewer "
-                 "perlin_octaves or a smaller fog box"
-               : "; the volumes' noise walks alone pass it: a larger perlin_feature, smaller "
-                 "noisy volumes or NOISE 0");
+               ? "; without the turbulence's walks it would fit: a larger perlin_feature, "
+                 "fewer perlin_octaves, a smaller fog box, or for the sun's mean per piece "
+                 "shadow_pieces = off or shadow_nodes = 1"
+               : "; without the volumes' noise walks it would fit: a larger perlin_feature, "
+                 "smaller noisy volumes or NOISE 0");
   return 1;
 }
 

@@ -22,6 +22,16 @@ static void cover(float centre_lo, float centre_hi, float reach, int n, int *lo,
   if (*count > n) *count = n;
 }
 
+/* The cells of [centre_lo - reach, centre_hi + reach] inside [0, n): cover() caps the count
+ * at n but keeps a negative start, which wrapping makes every cell once and clipping would
+ * cut short (a stroke wider than the grid left its far cells unpainted). */
+static void within(float centre_lo, float centre_hi, float reach, int n, int *lo, int *count) {
+  const int first = (int)fmaxf(floorf(centre_lo - reach), 0.0f);
+  const int last = (int)fminf(ceilf(centre_hi + reach), (float)(n - 1));
+  *lo = first;
+  *count = last >= first ? last - first + 1 : 0;
+}
+
 int fluid_emission_build(fluid_sim *sim, fog_error *err) {
   if (!sim->desc.emitter_count) return 0;
   const int w = sim->width, h = sim->height;
@@ -104,6 +114,10 @@ int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *s, fog_error *err) {
   int x0, nx, z0, nz;
   cover(fminf(s->x0, s->x1), fmaxf(s->x0, s->x1), s->radius, w, &x0, &nx);
   cover(fminf(s->z0, s->z1), fmaxf(s->z0, s->z1), s->radius, h, &z0, &nz);
+  if (s->within_grid) { /* the grid's own cells of the reach, not n cells from its start */
+    within(fminf(s->x0, s->x1), fmaxf(s->x0, s->x1), s->radius, w, &x0, &nx);
+    within(fminf(s->z0, s->z1), fmaxf(s->z0, s->z1), s->radius, h, &z0, &nz);
+  }
   const float inv_r2 = 1.0f / (s->radius * s->radius);
   float *rho = sim->density[sim->current];
   for (int dz = 0; dz < nz; dz++) {

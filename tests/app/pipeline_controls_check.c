@@ -12,6 +12,7 @@
  *    the frame equals, colour and transmittance, that of a pipeline whose config had that
  *    density from the start (the volume once stayed the old density's, keyed on the sun
  *    alone). */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -20,6 +21,7 @@
 #include "app/pipeline.h"
 #include "pipeline_check_util.h"
 #include "sim/sim.h"
+#include "transform/transform.h"
 #include "test_util.h"
 
 enum { W = 64, H = 36 };
@@ -69,14 +71,33 @@ static void check_steps(const scene_config *cfg, const camera *cam) {
   CHECK(!frame(p, cam), "a paused frame");
   CHECK(pipeline_step_index(p) == running + 1, "N, Space, Space: step %ld, then %ld",
         running + 1, pipeline_step_index(p));
-  pipeline_params params = pipeline_get_params(p);
-  const int levels = params.levels;
-  params.levels = 99;
-  pipeline_set_params(p, &params);
-  const int shown = pipeline_get_params(p).levels;
-  CHECK(shown >= levels && shown <= 7, "levels 99 asked (the map allows %d..7): %d shown",
-        levels, shown);
   pipeline_destroy(p);
+  /* on a 24^2 map (fewer levels than the renderer's 7) */
+  char dir[] = "/tmp/fogpipe_controls_XXXXXX";
+  if (!test_scratch_folder(dir)) return;
+  scene_config small = *cfg;
+  snprintf(small.fog.fogmap, sizeof small.fog.fogmap, "%s/small.exr", dir);
+  fogmap map;
+  fog_error err = {0};
+  CHECK(!fogmap_create(&map, 24, 24, &err), "%s", err.message);
+  for (int i = 0; i < 24 * 24; i++) map.density[i] = (float)(i % 7) / 7.0f;
+  CHECK(!fogmap_save_exr(small.fog.fogmap, &map, &err), "%s", err.message);
+  fogmap_destroy(&map);
+  pipeline *q = make(&small);
+  test_remove_tree(dir);
+  CHECK(q != NULL, "a pipeline on a 24^2 map");
+  if (!q) return;
+  pipeline_params params = pipeline_get_params(q);
+  params.levels = 99;
+  pipeline_set_params(q, &params);
+  const int shown = pipeline_get_params(q).levels;
+  int cells_x, cells_z;
+  double origin_x, origin_z, cell;
+  pipeline_fog_extent(q, &cells_x, &cells_z, &origin_x, &origin_z, &cell);
+  const int most = transform_max_levels(cells_x, cells_z, TRANSFORM_SYMMETRIC);
+  CHECK(most < 7 && shown == most, "levels 99 asked on a %dx%d map (it allows %d): %d shown",
+        cells_x, cells_z, most, shown);
+  pipeline_destroy(q);
 }
 
 /* The density after one frame that painted world (x0, z) -> (x1, z), radius 30, amount 1,

@@ -56,6 +56,12 @@ int main(void) {
             rho[40 * N + 0] == 0.0f,
         "a stroke within the grid: centre %g, past the seam %g, %g", rho[40 * N + 62],
         rho[40 * N + 4], rho[40 * N + 0]);
+  /* one wider than the grid (a drag across the box in one frame): every cell on its line */
+  CHECK(!fluid_sim_paint(sim, &(fluid_stroke){-8.5f, 30, 71.5f, 30, 3, 1.0f, true}, &err), "%s",
+        err.message);
+  float thinnest = INFINITY;
+  for (int x = 0; x < N; x++) thinnest = fminf(thinnest, rho[30 * N + x]);
+  CHECK(thinnest >= 1.0f - 1e-6f, "a stroke across the whole grid left a cell at %g", thinnest);
   CHECK(!fluid_sim_paint(sim, &(fluid_stroke){50, 20, 75, 20, 6, -10.0f, false}, &err), "%s",
         err.message);
   float lowest = INFINITY;
