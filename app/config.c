@@ -132,7 +132,7 @@ static const key_spec keys[] = {
     {"terrain", "heightmap", V_PATH, F(terrain.heightmap), 0, 0, NULL, F(terrain.heightmap_line), sizeof(((scene_config *)0)->terrain.heightmap)},
     {"terrain", "origin", V_DOUBLE3, F(terrain.origin), -WORLD, WORLD, NULL, 0, 0},
     {"terrain", "size", V_DOUBLE2, F(terrain.size), 1e-6, WORLD, NULL, 0, 0},
-    {"terrain", "height", V_DOUBLE, F(terrain.height), 1e-6, WORLD, NULL, 0, 0},
+    {"terrain", "height", V_DOUBLE, F(terrain.height), 0, WORLD, NULL, 0, 0},
     {"terrain", "resolution", V_INT, F(terrain.resolution), 2, TERRAIN_MAX_RESOLUTION, NULL, 0, 0},
     {"terrain", "octaves", V_INT, F(terrain.octaves), 1, 16, NULL, 0, 0},
     {"terrain", "frequency", V_DOUBLE, F(terrain.frequency), 1e-6, 1e6, NULL, 0, 0},
@@ -1159,6 +1159,17 @@ int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
     s.line = near > far ? near : far;
     fail(&s, "camera", near > far ? "near" : "far", "near (%g) must be below far (%g)",
          cfg->camera.near_plane, cfg->camera.far_plane);
+    return 1;
+  }
+  /* The float depth buffer of a standard projection holds 1 - near/d: past d = near x 3.4e7
+   * it rounds to 1, the cleared depth, and surfaces vanish into the sky (near 1e-5 shredded
+   * the default terrain into speckles) */
+  if (cfg->camera.far_plane > SCENE_CAMERA_MAX_DEPTH_RATIO * cfg->camera.near_plane) {
+    s.line = near > far ? near : far;
+    fail(&s, "camera", near > far ? "near" : "far",
+         "far / near = %g: the depth buffer loses surfaces past near x 3.4e7; expected at "
+         "most %g (a larger near or a smaller far)",
+         cfg->camera.far_plane / cfg->camera.near_plane, SCENE_CAMERA_MAX_DEPTH_RATIO);
     return 1;
   }
   return 0;

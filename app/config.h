@@ -28,6 +28,9 @@
 
 #define SCENE_CONFIG_PATH_MAX 1024
 #define SCENE_CONFIG_MAX_PROFILE 64
+/* The most far / near a camera may have: the float depth buffer of a standard projection
+ * loses surfaces past near x 3.4e7 (they round to the cleared depth, 1) */
+#define SCENE_CAMERA_MAX_DEPTH_RATIO 1e7
 /* The most `rbf =` lines a config holds (a scene config is a value; the renderer takes
  * up to FOG_MAX_RBFS Gaussians from code: bench models' 3000-Gaussian banks). */
 #define SCENE_CONFIG_MAX_RBFS 1024

@@ -69,7 +69,7 @@ void camera_projection_matrix(const camera *cam, int width, int height, float m[
  * and world to OpenGL's clip space (divide by w: x, y in [-1, 1], y up, z in [-1, 1]). */
 void camera_exr_matrices(const camera *cam, int width, int height, float world_to_camera[16],
                          float world_to_ndc[16]);
-/* The near and far plane distances the projection uses (the defaults where 0). */
+/* The near and far plane distances the projection uses (the camera's own: set both). */
 void camera_depth_range(const camera *cam, double *near_plane, double *far_plane);
 
 #endif

@@ -63,7 +63,8 @@ void scene_geometry_bounds(const scene_geometry *geo, double lo[3], double hi[3]
       lo[c] = fmin(lo[c], geo->boxes[b].min[c]), hi[c] = fmax(hi[c], geo->boxes[b].max[c]);
 }
 
-/* Ray-box (slabs, Kay & Kajiya 1986): nearest s > 0 on the box's surface. */
+/* Ray-box (slabs, Kay & Kajiya 1986): nearest s > 0 on the box's surface, which has no
+ * bottom face (the GL draws none: it lay in flat ground's plane and z-fought it). */
 static bool box_hit(const scene_box *box, const double o[3], const double d[3], double *s,
                     int *axis, int *sign) {
   double s0 = -INFINITY, s1 = INFINITY;
@@ -79,11 +80,14 @@ static bool box_hit(const scene_box *box, const double o[3], const double d[3], 
     if (b < s1) s1 = b, a1 = k;
   }
   if (s0 > s1 || s1 <= 0) return false;
-  /* From outside: the entry face; from inside (camera in a box): the exit face, as the
-   * rasteriser draws both sides. */
-  if (s0 > 0) {
+  /* From outside: the entry face; from inside (camera in a box), or in through the open
+   * bottom: the exit face, as the rasteriser draws both sides; out through the bottom: no
+   * face at all. */
+  const bool in_through_bottom = a0 == 1 && d[1] > 0;
+  if (s0 > 0 && !in_through_bottom) {
     *s = s0, *axis = a0, *sign = d[a0] > 0 ? -1 : 1;
   } else {
+    if (a1 == 1 && d[1] < 0) return false;
     *s = s1, *axis = a1, *sign = d[a1] > 0 ? 1 : -1;
   }
   return true;
@@ -109,6 +113,10 @@ bool scene_geometry_intersect(const scene_geometry *geo, const double origin[3],
     }
   }
   if (found) *s = best;
+  /* the side the ray sees, as the shader turns the normal towards the camera: a box's
+   * inside seen from in it, the terrain from below */
+  if (found && normal && normal[0] * dir[0] + normal[1] * dir[1] + normal[2] * dir[2] > 0)
+    for (int c = 0; c < 3; c++) normal[c] = -normal[c];
   return found;
 }
 

@@ -87,8 +87,9 @@ void scene_geometry_bounds(const scene_geometry *geo, double lo[3], double hi[3]
 void scene_light_sun_direction(const scene_light *light, double sun_direction[3]);
 
 /* First hit along origin + s * dir (dir unit length: s is the Euclidean distance) for
- * s in (0, s_max], on the terrain mesh or a box. Returns true and sets *s (and the unit
- * normal if non-NULL). */
+ * s in (0, s_max], on the terrain mesh or a box (whose bottom is open, as the GL draws
+ * it). Returns true and sets *s (and if non-NULL the unit normal of the side the ray sees,
+ * facing against dir). */
 bool scene_geometry_intersect(const scene_geometry *geo, const double origin[3],
                               const double dir[3], double s_max, double *s, double normal[3]);
 /* The value the distance texture should hold at pixel (px, py) (row 0 at the top): the

@@ -1,7 +1,8 @@
 /* The light at the edges of its settings, each against an exact value written here:
- * - light shafts over flat ground change nothing: no surface stands between the sun and
- *   fog above the ground, however far past the sun's shadow map the fog lies (rays up into
- *   a low sun and rays onto the ground: their in-scatter as with shafts off);
+ * - light shafts over flat ground (a terrain of height 0) change nothing: no surface
+ *   stands between the sun and fog above the ground, however far past the sun's shadow
+ *   map the fog lies (rays up into a low sun and rays onto the ground: their in-scatter as
+ *   with shafts off);
  * - height fog seen from far above its base (300 units over 2-unit scale heights):
  *   finite, and tau per pixel the closed form of the exponential's integral; Perlin fog's
  *   one-sample integral (the paper's) over it from 500 up, finite;
@@ -49,7 +50,7 @@ static bool all_finite(const frame *f) {
 static void check_shafts_past_the_map(void) {
   static frame on, off;
   scene_config cfg;
-  if (!load("[camera]\nposition = 0 50 900\npitch = 3\n[terrain]\nheight = 0.000001\n"
+  if (!load("[camera]\nposition = 0 50 900\npitch = 3\n[terrain]\nheight = 0\n"
             "[light]\nsun_elevation = 10\nsun_azimuth = 0\nfog_self_shadow = off\n"
             "[fog]\nmodel = homogeneous\ndensity_scale = 0.002\nalbedo = 1\nphase_g = 0\n"
             "colour = 0 0 0\n",
