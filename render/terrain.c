@@ -154,6 +154,35 @@ double terrain_height_at(const terrain *t, double x, double z) {
   return t->origin[1] + t->height * h;
 }
 
+/* The surface is linear on each triangle, so its least height over the rectangle lies at a
+ * vertex of the rectangle cut by the mesh: a corner, a grid vertex inside, or where an edge
+ * crosses a grid line or a cell's diagonal (u + v = k in cell units). Outside the terrain
+ * the height is its edge's (clamped), which the clipped rectangle's border covers. */
+double terrain_lowest_in(const terrain *t, double x0, double x1, double z0, double z1) {
+  const double dx = spacing_x(t), dz = spacing_z(t);
+  const double nu = t->resolution_x - 1, nv = t->resolution_z - 1;
+  double u0 = fmin(fmax((x0 - t->origin[0]) / dx, 0.0), nu);
+  double u1 = fmin(fmax((x1 - t->origin[0]) / dx, 0.0), nu);
+  double v0 = fmin(fmax((z0 - t->origin[2]) / dz, 0.0), nv);
+  double v1 = fmin(fmax((z1 - t->origin[2]) / dz, 0.0), nv);
+#define AT(u, v) terrain_height_at(t, t->origin[0] + (u) * dx, t->origin[2] + (v) * dz)
+  double lowest = fmin(fmin(AT(u0, v0), AT(u1, v0)), fmin(AT(u0, v1), AT(u1, v1)));
+  for (int j = (int)ceil(v0); j <= (int)floor(v1); j++)
+    for (int i = (int)ceil(u0); i <= (int)floor(u1); i++) lowest = fmin(lowest, AT(i, j));
+  const double v_edges[2] = {v0, v1}, u_edges[2] = {u0, u1};
+  for (int e = 0; e < 2; e++) {
+    const double v = v_edges[e], u = u_edges[e];
+    for (int i = (int)ceil(u0); i <= (int)floor(u1); i++) lowest = fmin(lowest, AT(i, v));
+    for (int k = (int)ceil(u0 + v); k <= (int)floor(u1 + v); k++)
+      lowest = fmin(lowest, AT(k - v, v));
+    for (int j = (int)ceil(v0); j <= (int)floor(v1); j++) lowest = fmin(lowest, AT(u, j));
+    for (int k = (int)ceil(v0 + u); k <= (int)floor(v1 + u); k++)
+      lowest = fmin(lowest, AT(u, k - u));
+  }
+#undef AT
+  return lowest;
+}
+
 /* ---- intersection ---- */
 
 bool ray_triangle(const double origin[3], const double dir[3], const double a[3],

@@ -62,6 +62,8 @@ void terrain_vertex(const terrain *t, int i, int j, double p[3]);
 void terrain_albedo(double h, double normal_y, double relief, float out[3]);
 /* World height of the triangulated surface at (x, z) (clamped to the terrain's edge). */
 double terrain_height_at(const terrain *t, double x, double z);
+/* The least height of the surface over [x0, x1] x [z0, z1] (x0 <= x1, z0 <= z1), exact. */
+double terrain_lowest_in(const terrain *t, double x0, double x1, double z0, double z1);
 
 /* First hit of the ray origin + s * dir (dir need not be unit length), s in (0, s_max],
  * on the triangle mesh: walks the cells the ray crosses (2D DDA), so it costs O(cells
