@@ -20,6 +20,18 @@ static inline int pipeline_check_frame(pipeline *p, const camera *cam, const fra
   return 0;
 }
 
+/* A synchronous pipeline (each frame waits for its step) of width x height at 24 frames a
+ * second; NULL (the reason printed) when it cannot be made. */
+static inline pipeline *pipeline_check_make(const scene_config *cfg, int width, int height) {
+  fog_error err = {0};
+  pipeline *p = pipeline_create(&(pipeline_desc){.config = cfg, .width = width,
+                                                 .height = height, .frame_seconds = 1.0 / 24.0,
+                                                 .synchronous = true},
+                                &err);
+  if (!p) fprintf(stderr, "pipeline_create: %s\n", err.message);
+  return p;
+}
+
 /* NULL (the reason printed) when the config or the context fails. */
 static inline gl_context *pipeline_check_begin(const char *config_path, scene_config *cfg,
                                                camera *cam) {

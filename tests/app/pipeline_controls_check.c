@@ -26,15 +26,7 @@
 
 enum { W = 64, H = 36 };
 
-static pipeline *make(const scene_config *cfg) {
-  fog_error err = {0};
-  pipeline *p = pipeline_create(
-      &(pipeline_desc){.config = cfg, .width = W, .height = H, .frame_seconds = 1.0 / 24.0,
-                       .synchronous = true},
-      &err);
-  if (!p) fprintf(stderr, "pipeline_create: %s\n", err.message);
-  return p;
-}
+static pipeline *make(const scene_config *cfg) { return pipeline_check_make(cfg, W, H); }
 
 static int frame(pipeline *p, const camera *cam) {
   static float tau[W * H];

@@ -21,15 +21,7 @@
 
 enum { W = 96, H = 54 };
 
-static pipeline *make(const scene_config *cfg) {
-  fog_error err = {0};
-  pipeline *p = pipeline_create(
-      &(pipeline_desc){.config = cfg, .width = W, .height = H, .frame_seconds = 1.0 / 24.0,
-                       .synchronous = true},
-      &err);
-  if (!p) fprintf(stderr, "pipeline_create: %s\n", err.message);
-  return p;
-}
+static pipeline *make(const scene_config *cfg) { return pipeline_check_make(cfg, W, H); }
 
 static int frame(pipeline *p, const camera *cam, float *transmittance) {
   return pipeline_check_frame(p, cam, &(frame_pixels){.transmittance = transmittance});
