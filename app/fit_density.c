@@ -50,7 +50,7 @@ int fit_samples_create_grid(fit_samples *s, const fog_model *model, const double
         double p[3];
         fit_sample_position(s, i, j, l, p);
         const double k = fog_light_extinction_at(model, p);
-        s->k[at++] = isinf(k) ? opaque : k;
+        s->k[at++] = isfinite(k) ? k : opaque;
       }
   return 0;
 }

@@ -315,7 +315,8 @@ static bool fixed_fogmap_rung(const scene_fog_config *in) {
 }
 
 /* The ladder's rungs for this input, in order, their parameters fitted to the samples; the
- * last rung is the richest: the 3D volume, or the input's own model. */
+ * last rung is the richest: the 3D volume, or the input's own model (left out where a fixed
+ * fogmap rung is the input). */
 int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *reference,
                    const fit_samples *s, const fit_views *views, int view_sets, fog_error *err) {
   if (add_analytic_rungs(r, input, s, views, view_sets, err) ||

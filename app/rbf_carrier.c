@@ -235,7 +235,7 @@ int rbf_carrier_puffs(rbf_carrier *c, double time, fog_rbf *out, int capacity, f
   const double replay = on ? (steps_to - (double)c->steps) * c->desc.step : time;
   if (replay > RBF_CARRIER_MAX_TIME) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "time %g s needs %g s of the simulation's flow "
-             "replayed (from %s), past the %g s it replays", time, replay,
+             "beyond time 0 replayed (from %s); expected at most %g s", time, replay,
              on ? "the time reached" : "its start", RBF_CARRIER_MAX_TIME);
     return -1;
   }

@@ -31,9 +31,10 @@
 /* The longest LIFETIME a config may give an emitter whose puffs the flow carries: the fog's
  * every making replays the flow for that long first (9000 steps, ~2 s here). */
 #define RBF_CARRIER_MAX_LIFETIME 300.0
-/* The most flow the carrier replays to reach a time asked (an hour: 108000 steps, ~22 s
- * here), from its start or on from the time it reached: a time further is refused rather
- * than run for hours (a time given in ms, say); a window stepping on runs for ever. */
+/* The most flow beyond time 0 the carrier replays to reach a time asked (an hour: 108000
+ * steps, ~22 s here, plus the emitters' lead-in of at most RBF_CARRIER_MAX_LIFETIME), from
+ * its start or on from the time it reached: a time further is refused rather than run for
+ * hours (a time given in ms, say); a window stepping on runs for ever. */
 #define RBF_CARRIER_MAX_TIME 3600.0
 
 typedef struct rbf_carrier_desc {
@@ -63,7 +64,8 @@ void rbf_carrier_destroy(rbf_carrier *carrier);
 /* Whether a carrier made from `desc` would be this one (the same emitters, domain, grid, step
  * and flow settings): a caller whose config may have changed makes a new one when not. */
 bool rbf_carrier_serves(const rbf_carrier *carrier, const rbf_carrier_desc *desc);
-/* The puffs alive at `time` (0 to RBF_CARRIER_MAX_TIME), emitter by emitter, oldest first,
+/* The puffs alive at `time` (>= 0; at most RBF_CARRIER_MAX_TIME from the start or past the
+ * time reached, rbf_carrier.h's bound), emitter by emitter, oldest first,
  * into out[0 .. count): returns count, or -1 (err set) when capacity is smaller, the time
  * out of range or the flow fails. */
 int rbf_carrier_puffs(rbf_carrier *carrier, double time, fog_rbf *out, int capacity,

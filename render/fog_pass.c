@@ -1306,8 +1306,9 @@ static int fog_pass_check_loops(const fog_pass *pass, const fog_pass_params *par
            !turbulence_over ? ""
            : params->model == FOG_MODEL_PERLIN
                ? "; without the turbulence's walks it would fit: a larger perlin_feature, "
-                 "fewer perlin_octaves, a smaller fog box, or for the sun's mean per piece "
-                 "shadow_pieces = off or shadow_nodes = 1"
+                 "fewer perlin_octaves, a smaller fog box, smaller noisy quadric volumes or "
+                 "NOISE 0, or for the sun's mean per piece shadow_pieces = off or "
+                 "shadow_nodes = 1"
                : "; without the volumes' noise walks it would fit: a larger perlin_feature, "
                  "smaller noisy volumes or NOISE 0");
   return 1;

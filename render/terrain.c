@@ -167,8 +167,11 @@ double terrain_lowest_in(const terrain *t, double x0, double x1, double z0, doub
   double v1 = fmin(fmax((z1 - t->origin[2]) / dz, 0.0), nv);
 #define AT(u, v) terrain_height_at(t, t->origin[0] + (u) * dx, t->origin[2] + (v) * dz)
   double lowest = fmin(fmin(AT(u0, v0), AT(u1, v0)), fmin(AT(u0, v1), AT(u1, v1)));
+  float lowest_h = INFINITY; /* the grid vertices inside, read straight from the heights */
   for (int j = (int)ceil(v0); j <= (int)floor(v1); j++)
-    for (int i = (int)ceil(u0); i <= (int)floor(u1); i++) lowest = fmin(lowest, AT(i, j));
+    for (int i = (int)ceil(u0); i <= (int)floor(u1); i++)
+      lowest_h = fminf(lowest_h, t->h[(size_t)j * t->resolution_x + i]);
+  if (lowest_h < INFINITY) lowest = fmin(lowest, t->origin[1] + t->height * lowest_h);
   const double v_edges[2] = {v0, v1}, u_edges[2] = {u0, u1};
   for (int e = 0; e < 2; e++) {
     const double v = v_edges[e], u = u_edges[e];

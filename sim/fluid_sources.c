@@ -26,8 +26,9 @@ static void cover(float centre_lo, float centre_hi, float reach, int n, int *lo,
  * at n but keeps a negative start, which wrapping makes every cell once and clipping would
  * cut short (a stroke wider than the grid left its far cells unpainted). */
 static void within(float centre_lo, float centre_hi, float reach, int n, int *lo, int *count) {
-  const int first = (int)fmaxf(floorf(centre_lo - reach), 0.0f);
-  const int last = (int)fminf(ceilf(centre_hi + reach), (float)(n - 1));
+  /* clamped in float before the conversion: a reach far outside stays in int's range */
+  const int first = (int)fminf(fmaxf(floorf(centre_lo - reach), 0.0f), (float)n);
+  const int last = (int)fmaxf(fminf(ceilf(centre_hi + reach), (float)(n - 1)), -1.0f);
   *lo = first;
   *count = last >= first ? last - first + 1 : 0;
 }
@@ -112,11 +113,12 @@ int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *s, fog_error *err) {
   }
   const int w = sim->width, h = sim->height;
   int x0, nx, z0, nz;
-  cover(fminf(s->x0, s->x1), fmaxf(s->x0, s->x1), s->radius, w, &x0, &nx);
-  cover(fminf(s->z0, s->z1), fmaxf(s->z0, s->z1), s->radius, h, &z0, &nz);
   if (s->within_grid) { /* the grid's own cells of the reach, not n cells from its start */
     within(fminf(s->x0, s->x1), fmaxf(s->x0, s->x1), s->radius, w, &x0, &nx);
     within(fminf(s->z0, s->z1), fmaxf(s->z0, s->z1), s->radius, h, &z0, &nz);
+  } else {
+    cover(fminf(s->x0, s->x1), fmaxf(s->x0, s->x1), s->radius, w, &x0, &nx);
+    cover(fminf(s->z0, s->z1), fmaxf(s->z0, s->z1), s->radius, h, &z0, &nz);
   }
   const float inv_r2 = 1.0f / (s->radius * s->radius);
   float *rho = sim->density[sim->current];

@@ -66,12 +66,19 @@ static void check_steps(const scene_config *cfg, const camera *cam) {
   pipeline_destroy(p);
   /* on a 24^2 map (fewer levels than the renderer's 7) */
   char dir[] = "/tmp/fogpipe_controls_XXXXXX";
-  if (!test_scratch_folder(dir)) return;
+  if (!test_scratch_folder(dir)) {
+    CHECK(0, "no scratch folder");
+    return;
+  }
   scene_config small = *cfg;
   snprintf(small.fog.fogmap, sizeof small.fog.fogmap, "%s/small.exr", dir);
   fogmap map;
   fog_error err = {0};
-  CHECK(!fogmap_create(&map, 24, 24, &err), "%s", err.message);
+  if (fogmap_create(&map, 24, 24, &err)) {
+    CHECK(0, "%s", err.message);
+    test_remove_tree(dir);
+    return;
+  }
   for (int i = 0; i < 24 * 24; i++) map.density[i] = (float)(i % 7) / 7.0f;
   CHECK(!fogmap_save_exr(small.fog.fogmap, &map, &err), "%s", err.message);
   fogmap_destroy(&map);

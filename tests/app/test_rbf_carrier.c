@@ -199,7 +199,7 @@ static void check_turbulent_steps(void) {
   CHECK(rbf_carrier_puffs(c, -0.5, after, CAP, &err) == -1 && strstr(err.message, "before 0"),
         "a time before 0 is refused saying so: '%s'", err.message);
   CHECK(rbf_carrier_puffs(c, RBF_CARRIER_MAX_TIME + 100, after, CAP, &err) == -1 &&
-            strstr(err.message, "past the 3600 s"),
+            strstr(err.message, "expected at most 3600 s"),
         "a time past the replay's bound is refused saying so: '%s'", err.message);
   rbf_carrier_destroy(c);
   /* a carrier stepping on (a window open for hours) goes past the bound; a jump of more
@@ -207,6 +207,17 @@ static void check_turbulent_steps(void) {
    * it, is refused (coarse 10 s steps, so that an hour is 360) */
   rbf_carrier_desc coarse = d;
   coarse.step = 10.0;
+  /* from the start, a time of exactly the bound: its emitters' lead-in is not counted
+   * (a 20 s lifetime here; the first bound refused it) */
+  fog_rbf_emitter long_lived = d.emitters[0];
+  long_lived.lifetime = 20.0;
+  rbf_carrier_desc lead_in = coarse;
+  lead_in.emitters = &long_lived, lead_in.emitter_count = 1;
+  rbf_carrier *fresh_at_bound = rbf_carrier_create(&lead_in, &err);
+  CHECK(fresh_at_bound && rbf_carrier_puffs(fresh_at_bound, RBF_CARRIER_MAX_TIME, after, CAP,
+                                            &err) >= 0,
+        "a fresh carrier asked for %g s: '%s'", RBF_CARRIER_MAX_TIME, err.message);
+  rbf_carrier_destroy(fresh_at_bound);
   rbf_carrier *on = rbf_carrier_create(&coarse, &err);
   CHECK(on != NULL, "coarse carrier: %s", err.message);
   if (on) {

@@ -63,6 +63,21 @@ static void check_lowest(void) {
   /* a slope is at most 30 units over a 10-unit cell; a sample lies within 0.25 of a point */
   CHECK(above <= 1e-9 && gap <= 3.0 * 0.25, "lowest ground: %g above a sample, %g below all",
         above, gap);
+  /* and a box on it stands there */
+  scene_desc desc = {.terrain = {.origin = {-80, 5, -80}, .size = {160, 160}, .height = 30,
+                                 .heights = heights, .heights_width = N, .heights_height = N},
+                     .boxes = {{.center = {7, -13}, .size = {43, 8, 29}}},
+                     .box_count = 1,
+                     .light = scene_light_default()};
+  scene_geometry geo;
+  if (scene_geometry_create(&geo, &desc, &err)) {
+    CHECK(0, "%s", err.message);
+  } else {
+    const double want = terrain_lowest_in(&t, 7 - 21.5, 7 + 21.5, -13 - 14.5, -13 + 14.5);
+    CHECK(geo.boxes[0].min[1] == want, "a box on bumpy ground stands at %.9g, the lowest "
+          "point under it is %.9g", geo.boxes[0].min[1], want);
+    scene_geometry_destroy(&geo);
+  }
   terrain_destroy(&t);
 }
 
@@ -70,8 +85,9 @@ int main(void) {
   static float heights[9 * 9];
   scene_desc desc = {.terrain = {.origin = {-100, 0, -100}, .size = {200, 200}, .height = 1,
                                  .heights = heights, .heights_width = 9, .heights_height = 9},
-                     .boxes = {{.center = {0, 0}, .size = {20, 10, 20}}},
-                     .box_count = 1,
+                     .boxes = {{.center = {0, 0}, .size = {20, 10, 20}},
+                               {.center = {150, 0}, .size = {20, 10, 20}}},
+                     .box_count = 2,
                      .light = scene_light_default()};
   fog_error err = {0};
   scene_geometry geo;
@@ -85,6 +101,9 @@ int main(void) {
   check_hit(&geo, (double[3]){2, 4, 3}, east, 8, west, "a wall from inside");
   check_hit(&geo, (double[3]){2, 4, 3}, down, 4, up, "the ground from inside the box");
   check_hit(&geo, (double[3]){50, -5, 50}, up, 5, down, "the ground from below");
+  /* a box past the terrain's edge (x 140..160; the terrain ends at 100): from below it, in
+   * through the open bottom to the roof's underside */
+  check_hit(&geo, (double[3]){150, -5, 0}, up, 15, down, "a box's roof through its open bottom");
   scene_geometry_destroy(&geo);
   check_lowest();
   return test_finish("test_scene_box_sides");
