@@ -193,8 +193,9 @@ void render_fog_set_lamp_shadows(render_fog *fog, const lamp_shadow_maps *maps) 
 
 fog_model render_fog_model(render_fog *fog) {
   const fog_pass_params *p = &fog->params;
-  fog->lod = (fog_lod){.levels = fog->pyramid.levels, .approx = fog->pyramid.approx,
-                       .detail = fog->pyramid.detail, .mu = p->mu};
+  /* fog_lod's details start at D_1 (fog_pyramid_lod): this one passed the pyramid's unused
+   * slot 0 as D_1, an empty grid, and the sum of details walked it to NaN on the CPU */
+  fog->lod = fog_pyramid_lod(&fog->pyramid, p->mu);
   return (fog_model){.kind = p->model, .volume = &fog->volume, .lod = &fog->lod,
                      .lod_method = p->lod_method, .extinction = p->model_extinction,
                      .y0 = p->model_y0, .scale_height = p->model_scale_height,
