@@ -1497,6 +1497,15 @@ scene_fog_shape scene_config_fog_shape(const scene_config *cfg) {
                            .y0 = cfg->fog.fog_height, .scale_height = cfg->fog.scale_height};
 }
 
+int scene_config_fog_quadrics(const scene_config *cfg, fog_quadric out[FOG_MAX_QUADRICS]) {
+  const scene_fog_config *f = &cfg->fog;
+  for (int i = 0; i < f->quadric_count; i++) {
+    out[i] = f->quadrics[i];
+    out[i].density *= f->density_scale;
+  }
+  return f->quadric_count;
+}
+
 fog_volume scene_config_fog_volume(const scene_config *cfg, int map_width, int map_height,
                                    const scene_fog_shape *shape) {
   const scene_box_config *b = &cfg->box;

@@ -303,6 +303,9 @@ typedef struct scene_fog_shape {
   double y0, scale_height; /* the exponential profile's; scale_height > 0 */
 } scene_fog_shape;
 scene_fog_shape scene_config_fog_shape(const scene_config *cfg);
+/* [fog]'s quadric volumes with density_scale applied (their densities are before it) into
+ * out; returns their count. */
+int scene_config_fog_quadrics(const scene_config *cfg, fog_quadric out[FOG_MAX_QUADRICS]);
 /* The fogmap's fog_volume for a map of map_width x map_height samples: [box] places it,
  * shape gives its extinction and profile; a B-spline profile takes the config's knots
  * (pointing into cfg->fog: copy them where cfg does not outlive the volume), and becomes

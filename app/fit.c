@@ -38,14 +38,10 @@ typedef struct held_model {
  * beside an opaque sphere was fitted, measured and written as the plume alone. */
 static void held_volume(held_model *m, const scene_config *cfg) {
   m->model = (fog_model){.kind = FOG_MODEL_VOLUME, .grid3d = &m->grid};
-  const scene_fog_config *f = &cfg->fog;
-  if (f->quadric_count == 0) return;
-  for (int i = 0; i < f->quadric_count; i++) {
-    m->quadrics[i] = f->quadrics[i];
-    m->quadrics[i].density *= f->density_scale;
-  }
+  const int count = scene_config_fog_quadrics(cfg, m->quadrics);
+  if (count == 0) return;
   m->model.quadrics = m->quadrics;
-  m->model.quadric_count = f->quadric_count;
+  m->model.quadric_count = count;
 }
 
 static void held_model_destroy(held_model *m) {

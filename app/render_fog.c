@@ -404,10 +404,7 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, fog_err
   const scene_fog_config *f = &cfg->fog;
   bool rbf = f->model == FOG_MODEL_RBF;
   bool quadric = f->model == FOG_MODEL_QUADRIC;
-  for (int i = 0; quadric && i < f->quadric_count; i++) {
-    fog->quadrics[i] = f->quadrics[i];
-    fog->quadrics[i].density *= f->density_scale;
-  }
+  const int quadric_count = quadric ? scene_config_fog_quadrics(cfg, fog->quadrics) : 0;
   fog->params = (fog_pass_params){
       .model = f->model,
       .model_extinction = rbf ? f->rbf_base : f->density_scale,
@@ -416,7 +413,7 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, fog_err
       .model_fog_start = f->fog_start,
       .model_fog_end = f->fog_end,
       .model_quadrics = fog->quadrics,
-      .model_quadric_count = quadric ? f->quadric_count : 0,
+      .model_quadric_count = quadric_count,
       .fog_colour = {f->colour[0], f->colour[1], f->colour[2]},
       .sun = scene_config_fog_sun(cfg),
       .lamps = scene_config_fog_lamps(cfg),
@@ -437,14 +434,9 @@ static int render_analytic_fog(render_fog *fog, const scene_config *cfg, fog_err
  * densities times density_scale, as model = quadric takes them; the pass adds their depth,
  * extinction and shadow (fog_model_quadrics_beside). */
 static void render_fog_beside(render_fog *fog, const scene_config *cfg) {
-  const scene_fog_config *f = &cfg->fog;
-  if (f->model == FOG_MODEL_QUADRIC || f->quadric_count == 0) return;
-  for (int i = 0; i < f->quadric_count; i++) {
-    fog->quadrics[i] = f->quadrics[i];
-    fog->quadrics[i].density *= f->density_scale;
-  }
+  if (cfg->fog.model == FOG_MODEL_QUADRIC || cfg->fog.quadric_count == 0) return;
   fog->params.model_quadrics = fog->quadrics;
-  fog->params.model_quadric_count = f->quadric_count;
+  fog->params.model_quadric_count = scene_config_fog_quadrics(cfg, fog->quadrics);
 }
 
 static int render_fog_create_model(render_fog *fog, const scene_config *cfg, rbf_carrier *kept,
