@@ -148,18 +148,26 @@ int transform_inverse(transform_plan *p, const float *coefficients, float *fogma
   return 0;
 }
 
+/* A_0 .. A_top of the non-standard decomposition, each one synthesis step from the last. */
+static void incremental_approximations(transform_plan *p, const float *coefficients,
+                                       float *const *approx, int top) {
+  transform_copy_block(approx[0], (size_t)p->len_w[0], coefficients, (size_t)p->desc.width,
+                       p->len_w[0], p->len_h[0]);
+  for (int l = 1; l <= top; l++)
+    inverse_level(p, l, approx[l - 1], (size_t)p->len_w[l - 1], coefficients, approx[l],
+                  (size_t)p->len_w[l]);
+}
+
 int transform_pyramid(transform_plan *p, const float *coefficients, float *const *approx) {
+  if (p->desc.decomposition != TRANSFORM_STANDARD) {
+    incremental_approximations(p, coefficients, approx, p->levels);
+    return 0;
+  }
   size_t W = (size_t)p->desc.width;
-  transform_copy_block(approx[0], (size_t)p->len_w[0], coefficients, W, p->len_w[0], p->len_h[0]);
-  for (int l = 1; l <= p->levels; l++) {
+  for (int l = 0; l <= p->levels; l++) { /* standard: each level's block synthesised alone */
     int w = p->len_w[l], h = p->len_h[l];
     transform_copy_block(approx[l], (size_t)w, coefficients, W, w, h);
-    if (p->desc.decomposition == TRANSFORM_STANDARD) {
-      inverse_region(p, approx[l], (size_t)w, l);
-    } else { /* incremental: one synthesis step from A_{l-1} */
-      inverse_level(p, l, approx[l - 1], (size_t)p->len_w[l - 1], coefficients, approx[l],
-                    (size_t)w);
-    }
+    if (l > 0) inverse_region(p, approx[l], (size_t)w, l);
   }
   return 0;
 }
@@ -192,11 +200,7 @@ int transform_density_pyramid(transform_plan *p, const float *fogmap, const floa
                     "transform: the density pyramid needs the non-standard decomposition");
   const int J = p->levels;
   const size_t W = (size_t)p->desc.width;
-  transform_copy_block(approx[0], (size_t)p->len_w[0], coefficients, W, p->len_w[0],
-                       p->len_h[0]);
-  for (int l = 1; l < J; l++)
-    inverse_level(p, l, approx[l - 1], (size_t)p->len_w[l - 1], coefficients, approx[l],
-                  (size_t)p->len_w[l]);
+  incremental_approximations(p, coefficients, approx, J - 1);
   memcpy(approx[J], fogmap, sizeof(float) * W * (size_t)p->desc.height);
   if (detail && J > 0) transform_details(p, coefficients, detail);
   bool clamped_below = false; /* level l - 1 changed */
