@@ -11,6 +11,7 @@
 #include "app/config.h"
 #include "app/render_fog.h"
 #include "app/render_frame.h"
+#include "model_tau.h"
 #include "render/render.h"
 #include "test_util.h"
 
@@ -45,18 +46,8 @@ static void check(const char *dir, const char *lod) {
   const fog_model m = render_fog_model(render_session_fog(s));
   camera cam;
   scene_config_camera(&cfg, &cam);
-  double worst = 0, lowest = 1;
-  for (int py = 0; py < H; py++)
-    for (int px = 0; px < W; px++) {
-      double o[3], d[3];
-      camera_ray(&cam, px, py, W, H, o, d);
-      const double t = depth[py * W + px] >= 0.999 * cam.far_plane ? HUGE_VAL
-                                                                  : depth[py * W + px];
-      const double want = fog_transmittance(fog_model_optical_depth(&m, o, d, t));
-      const double e = fabs(want - tau[py * W + px]);
-      if (!(e <= worst)) worst = e; /* NaN sticks */
-      lowest = fmin(lowest, want);
-    }
+  const model_tau_error e = model_tau_compare(&m, &cam, tau, depth, W, H);
+  const double worst = e.worst, lowest = e.lowest;
   printf("lod %s, mu 0.6: max |dtau| %.2e (tau down to %.3f)\n", lod, worst, lowest);
   CHECK(worst <= 2e-4 && lowest < 0.9, "lod %s: max |dtau| %g against the GL, tau down to %g",
         lod, worst, lowest);

@@ -25,6 +25,7 @@
 #include "render/render.h"
 #include "sim/sim.h"
 #include "exr_channel_util.h"
+#include "model_tau.h"
 #include "test_util.h"
 
 enum { W = 96, H = 54 };
@@ -133,17 +134,8 @@ static void check_config(const char *path, const char *label) {
     grid = documented_volume(&cfg, &frame);
     m.grid3d = &grid;
   }
-  double worst = 0.0, min_tau = 1.0, max_tau = 0.0;
-  for (int py = 0; py < H; py++)
-    for (int px = 0; px < W; px++) {
-      double o[3], d[3];
-      camera_ray(&cam, px, py, W, H, o, d);
-      float t = depth[py * W + px];
-      double length = t >= cam.far_plane ? HUGE_VAL : t;
-      double want = fog_transmittance(fog_model_optical_depth(&m, o, d, length));
-      worst = fmax(worst, fabs(want - tau[py * W + px]));
-      min_tau = fmin(min_tau, want), max_tau = fmax(max_tau, want);
-    }
+  const model_tau_error e = model_tau_compare(&m, &cam, tau, depth, W, H);
+  const double worst = e.worst, min_tau = e.lowest, max_tau = e.highest;
   printf("%s: max |dtau| %.2e over %dx%d, tau from %.3f to %.3f\n", label, worst, W, H, min_tau,
          max_tau);
   CHECK(worst <= 2e-4, "%s: max |dtau| %.3e", label, worst);
