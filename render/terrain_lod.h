@@ -7,12 +7,17 @@
  * (and its far edge): the inner grid triangulated as terrain.h triangulates the full one
  * (diagonal (i+s, j)-(i, j+s)) and a ring one step wide between it and the tile's edges;
  * a tile too narrow for a ring at that step is a fan from a grid vertex inside it.
+ * A tile whose neighbours are at its level or finer is the step-s grid itself, triangulated
+ * as the full mesh (level 0 is the full mesh, triangle for triangle).
  * error[l] is the largest height difference between the level's mesh and the full mesh
- * at the full grid's vertices (each located in its level triangle).
+ * at the full grid's vertices (each located in its level triangle); seam_error the same for
+ * each ring side with its edge at a coarser neighbour's step.
  *
  * Level choice: the coarsest level whose error, seen from the camera at the tile box's
  * nearest point, spans at most max_pixels: error * pixels_per_unit / distance <= max_pixels
- * (pixels_per_unit = image height / (2 tan(fov_y / 2))).
+ * (pixels_per_unit = image height / (2 tan(fov_y / 2))); then, where a side's ring to a
+ * coarser neighbour would exceed that, the neighbour is made finer, so every tile as drawn,
+ * seams included, keeps within the budget at the grid's vertices.
  *
  * Seams: each tile edge carries the vertices of the coarser step of the two tiles sharing
  * it, so both sides of a seam have the same vertices and no T-junction, whatever the
@@ -39,8 +44,11 @@ typedef struct terrain_lod {
   const terrain *terrain;
   int tiles_x, tiles_z;
   float *error;  /* tiles x TERRAIN_LOD_LEVELS: world height error of each level */
+  float *inner_error; /* tiles x levels: the ring layout's inner grid */
+  float *seam_error;  /* tiles x 4 sides x levels l x edge levels L >= l: that side's ring */
   double *lo, *hi; /* tiles x 3: world boxes of the tiles' vertices */
   uint8_t *level; /* tiles: the level chosen by terrain_lod_choose (0 at creation) */
+  double *allowed; /* tiles: terrain_lod_choose's world error within the budget */
 } terrain_lod;
 
 int terrain_lod_create(terrain_lod *lod, const terrain *t, fog_error *err);
