@@ -173,10 +173,12 @@ static int add_pattern(entry_list *list, const char *pattern, int first, int las
   }
   /* Open range: glob the digits, then keep the names the pattern reproduces. */
   char globbed[4096];
-  size_t used = 0, digits_at = 0; /* where a matching name's digits start */
+  /* where a matching name's digits start: the name's characters before them, which the
+   * glob's escapes and the pattern's "%%" do not count one for one */
+  size_t used = 0, digits_at = 0, name_at = 0;
   for (int i = 0; pattern[i] && used + 8 < sizeof globbed; i++) {
     if (i == s) {
-      digits_at = used;
+      digits_at = name_at;
       memcpy(globbed + used, "[0-9]*", 6);
       used += 6;
       i = e - 1;
@@ -184,6 +186,7 @@ static int add_pattern(entry_list *list, const char *pattern, int first, int las
     }
     if (strchr("*?[\\", pattern[i])) globbed[used++] = '\\'; /* a folder "take[1]" is itself */
     globbed[used++] = pattern[i];
+    name_at++;
     if (pattern[i] == '%') i++; /* "%%" names one '%' */
   }
   globbed[used] = '\0';

@@ -2,7 +2,8 @@
  * scratch folder (the finder lists names; it opens nothing):
  *   - a path that exists is itself: a folder or a file whose name holds '#' is not a
  *     frame pattern ("take#2/", "shot#48.vdb"), nor one whose name holds '[', '*' or '?'
- *     a glob ("take[1]*?/");
+ *     a glob ("take[1]*?/"), and in a pattern below such a folder the frame number is
+ *     read where the name has it ("shot[a]/fluid_####.vdb" finds 0047, 1047 and 1048);
  *   - in a pattern, the frame number is the last run of '#' of the file name, never a
  *     '#' of a folder;
  *   - two different files of one frame number are refused, naming both (one would stand
@@ -68,10 +69,15 @@ int main(void) {
   CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
   snprintf(folder, sizeof folder, "%s/take[1]*?", dir);
   CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
+  snprintf(folder, sizeof folder, "%s/shot[a]", dir);
+  CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
   static const char *const files[] = {"take#2/fluid_0001.vdb", "take#2/fluid_0002.vdb",
                                       "take#2/fluid_0003.vdb", "shot#48.vdb", "other_0002.vdb",
                                       "fog.vdb", "a##_0007.vdb", "take[1]*?/fluid_0004.vdb",
-                                      "take[1]*?/fluid_0005.vdb", "big_4294967297.vdb"};
+                                      "take[1]*?/fluid_0005.vdb", "big_4294967297.vdb",
+                                      "shot[a]/fluid_0047.vdb", "shot[a]/fluid_1047.vdb",
+                                      "shot[a]/fluid_1048.vdb", "shot[a]/smoke_9.vdb",
+                                      "shot[a]/smoke_12.vdb"};
   for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) touch(files[i]);
   static const names_case cases[] = {
       {"the folder take#2", {"take#2"}, 3, 2, 3, "take#2/fluid_0003.vdb"},
@@ -86,6 +92,12 @@ int main(void) {
       {"the folder take[1]*?", {"take[1]*?"}, 2, 1, 5, "take[1]*?/fluid_0005.vdb"},
       {"the pattern take[1]*?/fluid_####.vdb", {"take[1]*?/fluid_####.vdb"}, 2, 0, 4,
        "take[1]*?/fluid_0004.vdb"},
+      /* the digits found where the name has them, not where the glob's escapes put them
+       * (frames without a leading 0 were dropped, an unpadded pattern matched nothing) */
+      {"the pattern shot[a]/fluid_####.vdb", {"shot[a]/fluid_####.vdb"}, 3, 2, 1048,
+       "shot[a]/fluid_1048.vdb"},
+      {"the pattern shot[a]/smoke_%d.vdb", {"shot[a]/smoke_%d.vdb"}, 2, 1, 12,
+       "shot[a]/smoke_12.vdb"},
       /* a frame number an int does not hold: refused, not wrapped to frame 1 */
       {"the file big_4294967297.vdb", {"big_4294967297.vdb"}, 0, 0, 0, "past 2147483647"},
       {"two files of frame 2", {"take#2/fluid_0002.vdb", "other_0002.vdb"}, 0, 0, 0,
