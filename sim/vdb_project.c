@@ -31,28 +31,47 @@ int vdb_world_map_make(const vdb_dense_grid *grid, const vdb_placement *desc, vd
           return 1;
         }
     int adaptive = 0;
+    for (int c = 0; c < 3; c++)
+      if (cfg->res[c] != cfg->base_res[c] || cfg->res_min[c] != 0) adaptive = 1;
+    /* A grid at k times the domain's resolution (Mantaflow's noise grid, k its upres
+     * factor) has voxels dx/k in world units, the object's scale times the cell (the
+     * shared bakes have scale 1): the cells are then dx/k and the domain res·k. Any other
+     * voxel size is a grid the config does not describe; placed by it, its mass would be
+     * off by the cube of the ratio. An adaptive domain's VDB voxel size is wrong anyway
+     * (domain size / current sub-box res) and is not read. */
+    int upres = 1;
+    for (int c = 0; c < 3 && !adaptive; c++) {
+      const double world_dx = fabs(cfg->obmat[c][c] * ((double)cfg->p1[c] - cfg->p0[c]) /
+                                   cfg->base_res[c]);
+      const double k = world_dx / grid->voxel_size[c];
+      const long whole = lround(k);
+      if (!(whole >= 1 && fabs(k - (double)whole) <= 1e-3 * k && (c == 0 || whole == upres))) {
+        fog_fail(err, FOG_ERR_BAD_FILE,
+                 "VDB voxel size %g on axis %d is neither the Mantaflow config's cell %g nor "
+                 "a whole fraction of it (a noise grid's): the config does not describe this "
+                 "grid; --config none places it from the VDB transform alone",
+                 grid->voxel_size[c], c, world_dx);
+        return 1;
+      }
+      upres = (int)whole;
+    }
     for (int c = 0; c < 3; c++) {
       /* Mantaflow cell n covers [n, n+1]·dx from the domain's min corner p0 (object
        * space), OpenVDB voxel n covers [n-.5, n+.5]: hence the + 0.5. An adaptive domain
-       * stores only the sub-box starting at base cell res_min (+ shift), and its VDB
-       * voxel size is wrong (domain size / current sub-box res): the true cell is
+       * stores only the sub-box starting at base cell res_min (+ shift): the true cell is
        * (p1 - p0) / base_res (test data README). */
-      const double dx = ((double)cfg->p1[c] - cfg->p0[c]) / cfg->base_res[c];
+      const double dx = ((double)cfg->p1[c] - cfg->p0[c]) / cfg->base_res[c] / upres;
       const double s = cfg->obmat[c][c], t = cfg->obmat[c][3];
-      const double first = cfg->res_min[c] + cfg->shift[c];
+      const double first = (double)(cfg->res_min[c] + cfg->shift[c]) * upres;
       B[c] = t + s * (cfg->p0[c] + (first + 0.5) * dx);
       S[c] = s * dx;
       out->domain_min[c] = 0;
-      out->domain_max[c] = cfg->res[c] - 1;
-      if (cfg->res[c] != cfg->base_res[c] || cfg->res_min[c] != 0) adaptive = 1;
-      /* The VDB's voxel size is in world units: the object's scale times dx (the shared
-       * bakes have scale 1, where both readings agree). */
-      const double world_dx = fabs(s * dx);
-      if (!adaptive && fabs(grid->voxel_size[c] - world_dx) > 1e-3 * world_dx)
-        snprintf(out->warning, sizeof out->warning,
-                 "VDB voxel size %g differs from the config's %g on axis %d: using the "
-                 "config", grid->voxel_size[c], world_dx, c);
+      out->domain_max[c] = cfg->res[c] * upres - 1;
     }
+    if (upres > 1)
+      snprintf(out->warning, sizeof out->warning,
+               "VDB voxels %g are 1/%d of the Mantaflow config's cells: placed as a noise "
+               "grid at %d x the domain's resolution", grid->voxel_size[0], upres, upres);
     if (adaptive)
       snprintf(out->warning, sizeof out->warning,
                "adaptive Mantaflow domain (res %d %d %d of %d %d %d): the VDB voxel size %g "

@@ -4,8 +4,9 @@
  * and the VDB's own voxel size be ignored. Checked on a config built in memory against the
  * placement worked out here by hand: voxel n of the sub-box is centred at
  * t + s (p0 + (res_min + shift + n + 1/2) (p1 - p0) / base_res) in Blender's Z-up world,
- * fogpipe (X, Y, Z) = (x, z, -y). Also: a non-adaptive config whose VDB voxel size
- * disagrees warns and uses the config; a rotated domain object is refused. */
+ * fogpipe (X, Y, Z) = (x, z, -y). Also: a non-adaptive config whose VDB voxel size is
+ * neither its cell nor a whole fraction of it is refused; one at half its cell is a noise
+ * grid of the doubled domain; a rotated domain object is refused. */
 #include <math.h>
 #include <string.h>
 
@@ -57,18 +58,39 @@ int main(void) {
   /* the true cell, not the VDB's 0.3: 3 * 2/64 = 0.09375 along x */
   CHECK(fabs(fabs(map.step[0]) - 0.09375) < 1e-12, "x cell %.6g, expected 0.09375", map.step[0]);
 
-  /* Whole domain (not adaptive), but the VDB claims another voxel size: the config wins,
-   * with a warning naming both sizes. */
+  /* Whole domain (not adaptive), but the VDB's voxels are neither the config's cells nor a
+   * whole fraction of them: the config does not describe the grid (placed by it, the mass
+   * would be off by the cube of the ratio): refused, naming both sizes and the way out. */
   mantaflow_config whole = adaptive_config();
   memcpy(whole.res, whole.base_res, sizeof whole.res);
   memset(whole.res_min, 0, sizeof whole.res_min);
   memset(whole.shift, 0, sizeof whole.shift);
   status = vdb_world_map_make(&grid, &(vdb_placement){.config = &whole}, &map, &err);
-  CHECK(status == 0, "whole-domain placement: %s", err.message);
-  CHECK(strstr(map.warning, "differs") != NULL && strstr(map.warning, "0.3") != NULL,
-        "no voxel-size warning: '%s'", map.warning);
-  CHECK(fabs(map.base[0] + map.step[0] * 3.0 - blender_world(&whole, 0, 3.0)) < 1e-9,
-        "whole-domain placement not from the config");
+  CHECK(status != 0 && strstr(err.message, "0.3") && strstr(err.message, "0.09375") &&
+            strstr(err.message, "--config none"),
+        "a grid the config does not describe: %s", status ? err.message : "accepted");
+
+  /* A noise grid: voxels half the config's cells on every axis (Mantaflow's upres 2): cell n
+   * of the doubled domain is centred at t + s (p0 + (n + 1/2) dx / 2), the domain's index
+   * box doubles, and a warning says so. */
+  grid.voxel_size[0] = 3.0 * 2.0 / 64 / 2, grid.voxel_size[1] = 3.0 * 2.0 / 64 / 2;
+  grid.voxel_size[2] = 3.0 * 1.5 / 32 / 2;
+  status = vdb_world_map_make(&grid, &(vdb_placement){.config = &whole}, &map, &err);
+  CHECK(status == 0 && strstr(map.warning, "noise grid"), "noise grid: %s",
+        status ? err.message : map.warning);
+  double noise_worst = 0;
+  for (int a = 0; a < 3 && status == 0; a++) {
+    const int c = source_of[a];
+    for (double u = -0.5; u <= 20.0; u += 0.75) {
+      const double dx = ((double)whole.p1[c] - whole.p0[c]) / whole.base_res[c] / 2;
+      const double want =
+          sign[a] * (whole.obmat[c][3] + whole.obmat[c][c] * (whole.p0[c] + (u + 0.5) * dx));
+      noise_worst = fmax(noise_worst, fabs(map.base[a] + map.step[a] * u - want));
+    }
+    CHECK(map.domain_max[c] == 2 * whole.res[c] - 1, "noise grid: domain on axis %d to %d, "
+          "expected %d", c, map.domain_max[c], 2 * whole.res[c] - 1);
+  }
+  CHECK(noise_worst < 1e-9, "noise grid placement off by %.3g world units", noise_worst);
 
   /* A config whose VDB voxel size agrees: no warning. */
   grid.voxel_size[0] = 3.0 * 2.0 / 64, grid.voxel_size[1] = 3.0 * 2.0 / 64;
