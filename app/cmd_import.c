@@ -491,11 +491,25 @@ static int run_report(const import_options *o, const vdb_sequence *seq, const vd
     points[report_rows + r] =
         (chart_point){"max |T 2.5D - T 3D|", rows[r].elevation_deg, rows[r].max_abs_error};
   }
+  /* Straight down both integrate the same columns, but only where the fogmap's cells are
+   * the grid's columns: resampled (--resolution, --cell) the 90 deg row is the resampling's */
+  const vdb_columns *c = &full.columns;
+  const double ox = (place->origin_x - c->origin_x) / c->cell_x,
+               oz = (place->origin_z - c->origin_z) / c->cell_z;
+  const bool native = fabs(place->cell_size - c->cell_x) <= 1e-6 * c->cell_x &&
+                      fabs(place->cell_size - c->cell_z) <= 1e-6 * c->cell_z &&
+                      fabs(ox - round(ox)) <= 1e-6 && fabs(oz - round(oz)) <= 1e-6;
   printf("(the last column compares the error with the fog's own contrast 1 - mean T_3D: near\n"
          " 0, f*g is enough for that view; a sizeable fraction means the vertical structure\n"
          " that f*g flattens shows, and the 3D grid should be rendered instead: a scene config\n"
-         " with [fog] model = volume and vdb = this file draws it in 3D (docs/config.md).\n"
-         " Straight down (90 deg) the model is exact by construction.)\n");
+         " with [fog] model = volume and vdb = this file draws it in 3D (docs/config.md).\n");
+  if (native)
+    printf(" Straight down (90 deg) the model is exact by construction.)\n");
+  else
+    printf(" Straight down (90 deg) the model is exact on the grid's own columns (%g x %g);\n"
+           " this fogmap's cells (%g) resample them, so the 90 deg row measures the\n"
+           " resampling, and the other rows include it.)\n",
+           c->cell_x, c->cell_z, place->cell_size);
   vdb_frame_destroy(&full);
   char csv[4200], png[4200], error[600], title[256];
   snprintf(csv, sizeof csv, "%s/%s.report.csv", temp_dir, o->name);
@@ -543,10 +557,23 @@ static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_fra
     if (f->negative_voxels)
       fprintf(stderr, "fogpipe import: warning: %s: %lld negative voxels clamped to 0\n",
               seq->paths[k], f->negative_voxels);
+    if (!o->config && k > 0 && !f->config_path[0] != !frames[0].config_path[0]) {
+      /* placed two ways (a few cells apart), the frames would jump */
+      const int with = f->config_path[0] ? k : 0, without = f->config_path[0] ? 0 : k;
+      const int status =
+          cli_fail("import", "frame %d: %s has no Mantaflow config beside it, but frame %d's "
+                   "%s has (%s): the frames would be placed two ways; give every frame its "
+                   "config, or --config FILE or --config none for all",
+                   seq->frames[without], seq->paths[without], seq->frames[with],
+                   seq->paths[with], frames[with].config_path);
+      vdb_frame_destroy(&frames[k]); /* not counted in *loaded yet */
+      return status;
+    }
     if (k == 0 && !f->config_path[0] && o->up == VDB_UP_Z &&
         !(o->config && !strcmp(o->config, "none")))
       fprintf(stderr, "fogpipe import: note: no Mantaflow config beside %s: placement from the "
-              "VDB transform alone (an adaptive-domain cache would be misplaced)\n",
+              "VDB transform alone (a Blender cache carries no domain placement: its domain's "
+              "corner lands on the origin, and an adaptive domain's sub-box is lost)\n",
               seq->paths[0]);
     if (o->verbose)
       printf("frame %4d: %s: %lld active voxels, mass %.6g, %dx%d columns, %d layers\n",

@@ -186,6 +186,46 @@ int main(void) {
           test_folder_entries(out), entries);
   }
 
+  /* 7. a sequence where only some frames have a Mantaflow config beside them (the others
+   * would be placed from the VDB transform, about a metre off): refused, naming a frame
+   * without one and one with, nothing written; --config none imports it */
+  {
+    char mixed[512];
+    snprintf(mixed, sizeof mixed, "%s/mixed", dir);
+    snprintf(cmd, sizeof cmd,
+             "mkdir -p '%s/data' '%s/config' && "
+             "cp ../shared/data/vdb/plume/data/fluid_data_004[678].vdb '%s/data/' && "
+             "cp ../shared/data/vdb/plume/config/config_004[67].uni '%s/config/'",
+             mixed, mixed, mixed, mixed);
+    CHECK(system(cmd) == 0, "setup failed: %s", cmd);
+    snprintf(out, sizeof out, "%s/out_mixed", dir);
+    snprintf(cmd, sizeof cmd, "'%s' import '%s/data/fluid_data_####.vdb' --out '%s'", bin, mixed,
+             out);
+    status = run(cmd, errors, sizeof errors);
+    CHECK(status != 0 && strstr(errors, "fluid_data_0048.vdb") && strstr(errors, "frame 46") &&
+              strstr(errors, "placed two ways"),
+          "frames with and without a config (%d): %s", status, errors);
+    CHECK(test_folder_entries(out) <= 0, "%d entries left in %s", test_folder_entries(out), out);
+    snprintf(cmd, sizeof cmd, "'%s' import '%s/data/fluid_data_####.vdb' --out '%s' --config none",
+             bin, mixed, out);
+    status = run(cmd, errors, sizeof errors);
+    CHECK(status == 0, "the same frames with --config none (%d): %s", status, errors);
+    /* a scene's [fog] vdb reads the frames the same way: refused as well */
+    char scene[600], image[600];
+    snprintf(scene, sizeof scene, "%s/mixed.ini", dir);
+    snprintf(image, sizeof image, "%s/mixed.png", dir);
+    FILE *f = fopen(scene, "w");
+    if (f) {
+      fprintf(f, "[fog]\nvdb = %s/data/fluid_data_####.vdb\n", mixed);
+      fclose(f);
+    }
+    snprintf(cmd, sizeof cmd, "'%s' render '%s' --size 32x18 --out '%s'", bin, scene, image);
+    status = run(cmd, errors, sizeof errors);
+    CHECK(status != 0 && strstr(errors, "fluid_data_0048.vdb") && strstr(errors, "placed two ways"),
+          "a scene's [fog] vdb of frames with and without a config (%d): %s", status, errors);
+    CHECK(access(image, F_OK) != 0, "the refused render left %s", image);
+  }
+
   test_remove_tree(dir);
   return test_finish("test_vdb_import_command");
 }
