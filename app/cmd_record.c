@@ -136,14 +136,22 @@ int cmd_record(int argc, char **argv) {
   return record_run(&job);
 }
 
-/* The command line that continues this recording. */
-static void resume_hint(const record_job *job, char *text, size_t size) {
+/* The command line that continues this recording, stopped after frame `done`: --resume,
+ * unless a frame still to do was recorded from another scene (this run was rendering over
+ * an older recording), which --resume refuses to render over: then the frames left as a
+ * range (ranges give the frames of a whole run), or with --preview, which encodes whole
+ * runs only, the whole run again. */
+static void resume_hint(const record_job *job, const recorder *rec, int done, char *text,
+                        size_t size) {
   char config[4 * PATH_MAX + 8], out[4 * PATH_MAX + 8];
   const char *config_word = cli_shell_word(job->config_path, config, sizeof config);
   const char *out_word = cli_shell_word(job->out, out, sizeof out);
-  int n = job->first_frame > 1
+  fog_error ignored = {0};
+  const bool foreign_ahead = recorder_complete_frames(rec, done + 1, job->frames, &ignored) < 0;
+  const int first = foreign_ahead && !job->preview ? done + 1 : job->first_frame;
+  int n = first > 1
               ? snprintf(text, size, "fogpipe record %s --frames %d-%d --out %s", config_word,
-                         job->first_frame, job->frames, out_word)
+                         first, job->frames, out_word)
               : snprintf(text, size, "fogpipe record %s --frames %d --out %s", config_word,
                          job->frames, out_word);
   /* in full: the frames' identity holds the rate to the last digit */
@@ -155,7 +163,7 @@ static void resume_hint(const record_job *job, char *text, size_t size) {
     n += snprintf(text + n, size - (size_t)n, " --preview %s",
                   cli_shell_word(job->preview, preview, sizeof preview));
   }
-  snprintf(text + n, size - (size_t)n, " --resume");
+  if (!foreign_ahead) snprintf(text + n, size - (size_t)n, " --resume");
 }
 
 /* The output folder first (an unwritable folder or a full disk is reported before any
@@ -262,7 +270,7 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
       if (stop_signals_caught() && done < last) {
         if (!job->quiet) recorder_progress_end(&progress);
         char hint[13 * PATH_MAX];
-        resume_hint(job, hint, sizeof hint);
+        resume_hint(job, rec, done, hint, sizeof hint);
         fprintf(stderr,
                 "fogpipe %s: interrupted: %d of %d frames complete in %s; to finish: %s\n",
                 cmd, done - first + 1, last - first + 1, rec->folder, hint);

@@ -2,7 +2,9 @@
  * leaving only whole frames (every one readable in every channel, no temporary files);
  * `--resume` (the command the interrupt printed, run by a shell: the folder's name holds a
  * space and a quote) then completes the sequence, and the result has the same pixels,
- * frame by frame, as an uninterrupted recording. A resume with another --size is refused. */
+ * frame by frame, as an uninterrupted recording. A resume with another --size is refused.
+ * Interrupted while rendering over another scene's recording, it prints the frames left as
+ * a range (--resume would refuse those frames), which finishes the same sequence. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
@@ -108,6 +110,60 @@ int main(void) {
   }
   CHECK(differing == 0, "%d of %d frames differ between the resumed and the uninterrupted run",
         differing, frames);
+
+  /* A run over another scene's recording (which a plain run rewrites), interrupted: --resume
+   * refuses to render over the other scene's frames still there, so the printed command is
+   * the frames left as a range; run as printed, the folder equals the uninterrupted run. */
+  char over[512], other[512], log_other[512], log_over[512], log_finish[512];
+  snprintf(over, sizeof over, "%s/over", root);
+  snprintf(other, sizeof other, "%s/other.ini", root);
+  snprintf(log_other, sizeof log_other, "%s/other.log", root);
+  snprintf(log_over, sizeof log_over, "%s/over.log", root);
+  snprintf(log_finish, sizeof log_finish, "%s/finish.log", root);
+  f = fopen(other, "w");
+  if (f) fputs("[fog]\nmodel = homogeneous\ndensity_scale = 0.01\n", f), fclose(f);
+  snprintf(command, sizeof command, "'%s' record '%s' --frames %d --out '%s' --size %s > '%s' 2>&1",
+           record_bin(), other, frames, over, RECORD_TEST_SIZE, log_other);
+  status = system(command);
+  CHECK(status == 0, "recording another scene: %s", command);
+  record_frame_path(over, 1, first, sizeof first);
+  struct stat theirs;
+  stat(first, &theirs);
+  pid = record_start(over, frames, NULL, log_over);
+  for (int waited = 0; waited < 60000; waited += 2) { /* until frame 1 is this run's */
+    if (stat(first, &st) == 0 && st.st_ino != theirs.st_ino) break;
+    if (waitpid(pid, NULL, WNOHANG) == pid) break;
+    record_sleep_ms(2);
+  }
+  kill(pid, SIGINT);
+  status = record_wait(pid);
+  CHECK(status == 130, "the run over another scene, interrupted, exited %d", status);
+  n = 0;
+  f = fopen(log_over, "r");
+  if (f) n = fread(text, 1, sizeof text - 1, f), fclose(f);
+  text[n] = '\0';
+  hint = strstr(text, "to finish: fogpipe ");
+  end = hint ? strchr(hint, '\n') : NULL;
+  if (end) *end = '\0';
+  CHECK(hint && !strstr(hint, "--resume") && strstr(hint, "-24 "),
+        "over another scene, the printed command: %s", hint ? hint : text);
+  snprintf(command, sizeof command, "'%s'%s > '%s' 2>&1", record_bin(),
+           hint ? hint + strlen("to finish: fogpipe") : " --help", log_finish);
+  status = system(command);
+  status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  CHECK(status == 0, "the printed command over another scene exited %d: %s", status, command);
+  if (status != 0) record_print_log(log_finish);
+  differing = 0;
+  for (int k = 1; k <= frames; k++) {
+    char a[600], b[600];
+    int w = 0, h = 0;
+    record_frame_path(over, k, a, sizeof a);
+    record_frame_path(whole, k, b, sizeof b);
+    const uint64_t ha = record_hash_frame(a, &w, &h), hb = record_hash_frame(b, &w, &h);
+    differing += ha == 0 || ha != hb;
+  }
+  CHECK(differing == 0, "over another scene, finished as printed: %d of %d frames differ from "
+        "the uninterrupted run", differing, frames);
   test_remove_tree(root);
   return test_finish("test_record_resume");
 }
