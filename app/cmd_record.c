@@ -50,6 +50,18 @@ static void resolved_path(const char *path, char *out, size_t size) {
  * (which may not exist yet, spelt any way): the video would be renamed onto the frames'
  * folder after the whole recording; or one whose folder neither exists nor is the --out
  * folder or above it. (An existing folder is cli_output_file's refusal.) */
+/* ffmpeg picks the container from the name's extension: one it cannot write would fail
+ * only after the whole recording, and a still image's (.png, .exr) could be one of the
+ * scene's inputs or one of the frames. */
+static bool refuse_preview_not_video(const char *preview) {
+  static const char *const videos[] = {".mp4", ".mkv", ".mov", ".m4v", ".avi", ".webm"};
+  for (size_t i = 0; i < sizeof videos / sizeof videos[0]; i++)
+    if (cli_ends_with(preview, videos[i])) return false;
+  cli_usage_error("record", "--preview '%s': expected a video file name ending in .mp4, .mkv, "
+                  ".mov, .m4v, .avi or .webm (ffmpeg takes the format from it)", preview);
+  return true;
+}
+
 static bool refuse_preview_in_out(const char *preview, const char *out) {
   char p[2 * PATH_MAX + 2], o[2 * PATH_MAX + 2];
   resolved_path(preview, p, sizeof p);
@@ -100,7 +112,8 @@ int cmd_record(int argc, char **argv) {
                "uninterrupted run)"},
       {.kind = CLI_TEXT, .name = "--preview", .value = "FILE", .target = &job.preview,
        .help = "also encode the finished sequence to a video with ffmpeg\n"
-               "(e.g. out.mp4; skipped with a note if ffmpeg is missing)"},
+               "(.mp4, .mkv, .mov, .m4v, .avi or .webm; skipped with a note\n"
+               "if ffmpeg is missing)"},
       {.kind = CLI_FLAG, .name = "--synchronous", .target = &job.synchronous,
        .help = "run the simulation and transform on the rendering thread\n"
                "instead of the worker thread (same frames; for comparison)"},
@@ -126,7 +139,8 @@ int cmd_record(int argc, char **argv) {
   job.first_frame = frames[2] ? 1 : frames[0], job.frames = frames[1];
   job.width = size[0], job.height = size[1];
   if (job.preview && (cli_output_file("record", "--preview", job.preview) ||
-                      refuse_preview_in_out(job.preview, job.out)))
+                      refuse_preview_in_out(job.preview, job.out) ||
+                      refuse_preview_not_video(job.preview)))
     return 2;
   if (job.preview && job.first_frame > 1) {
     fprintf(stderr, "fogpipe record: --preview encodes a whole sequence; it takes --frames N, "
