@@ -1358,35 +1358,31 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
       }
       break;
     case V_QUADRIC: write_quadrics(f, cfg, k->key); break;
-    case V_LAMP: /* the key's kind only: lamp lines, then spot lines */
-      for (int i = 0; i < cfg->lamp_count; i++) {
+    case V_LAMP: /* every lamp at the "lamp" key, in the array's order (the order the fog
+                  * sums them: a bake reads back bit for bit), each under its kind's key */
+      for (int i = 0; i < cfg->lamp_count && !strcmp(k->key, "lamp"); i++) {
         const scene_lamp_config *l = &cfg->lamps[i];
-        if (l->spot != !strcmp(k->key, "spot")) continue;
         const double lamp[7] = {l->position[0], l->position[1], l->position[2], l->colour[0],
                                 l->colour[1], l->colour[2], l->radius};
         const double spot[12] = {l->position[0], l->position[1], l->position[2], l->colour[0],
                                  l->colour[1], l->colour[2], l->axis[0], l->axis[1],
                                  l->axis[2], l->inner, l->outer, l->radius};
-        write_numbers(f, k->key, l->spot ? spot : lamp, l->spot ? 12 : 7);
+        write_numbers(f, l->spot ? "spot" : "lamp", l->spot ? spot : lamp, l->spot ? 12 : 7);
       }
       break;
-    case V_LAMP_PATH: /* lamp numbers in file order: the lamp lines, then the spot lines */
-      for (int i = 0, index = 0; i < 2 * cfg->lamp_count; i++) {
-        const scene_lamp_config *l = &cfg->lamps[i % cfg->lamp_count];
-        if (l->spot != (i >= cfg->lamp_count)) continue;
-        index++;
+    case V_LAMP_PATH: /* lamp numbers in file order: the array's, as written above */
+      for (int i = 0; i < cfg->lamp_count; i++) {
+        const scene_lamp_config *l = &cfg->lamps[i];
         for (int j = 0; j < l->key_count; j++)
-          write_numbers(f, k->key, (const double[5]){index, l->keys[j][0], l->keys[j][1],
+          write_numbers(f, k->key, (const double[5]){i + 1, l->keys[j][0], l->keys[j][1],
                                                      l->keys[j][2], l->keys[j][3]}, 5);
       }
       break;
     case V_LAMP_FLICKER:
-      for (int i = 0, index = 0; i < 2 * cfg->lamp_count; i++) {
-        const scene_lamp_config *l = &cfg->lamps[i % cfg->lamp_count];
-        if (l->spot != (i >= cfg->lamp_count)) continue;
-        index++;
+      for (int i = 0; i < cfg->lamp_count; i++) {
+        const scene_lamp_config *l = &cfg->lamps[i];
         if (l->flicker_amount > 0)
-          write_numbers(f, k->key, (const double[4]){index, l->flicker_amount, l->flicker_rate,
+          write_numbers(f, k->key, (const double[4]){i + 1, l->flicker_amount, l->flicker_rate,
                                                      l->flicker_seed}, 4);
       }
       break;
@@ -1755,10 +1751,11 @@ uint64_t scene_config_fingerprint(const scene_config *cfg) {
           h = fnv(h, cfg->objects[b].colour, sizeof cfg->objects[b].colour);
         }
         break;
-      case V_LAMP: /* the key's kind only, in file order (as written back) */
-        for (int i = 0; i < cfg->lamp_count; i++) {
+      case V_LAMP: /* every lamp at the "lamp" key, in the array's order (the order the fog
+                    * sums them in: interleaved lamp and spot lines differ in the last bit) */
+        for (int i = 0; i < cfg->lamp_count && !strcmp(k->key, "lamp"); i++) {
           const scene_lamp_config *l = &cfg->lamps[i];
-          if (l->spot != !strcmp(k->key, "spot")) continue;
+          h = fnv(h, &l->spot, sizeof l->spot);
           h = fnv(h, l->position, sizeof l->position);
           h = fnv(h, l->colour, sizeof l->colour);
           h = fnv(h, &l->radius, sizeof l->radius);
