@@ -43,10 +43,15 @@ double fog_light_extinction_at(const fog_model *m, const double p[3]) {
   return k;
 }
 
+/* The fogmap's approximation the light reads: A_J, the fog itself, for either LOD method
+ * (the sum of details at mu = 1 draws A_0 + D_1..D_J = A_J); A_0 at mu <= 0, where the
+ * pass draws A_0 alone (fog_pass.c, one-grid draws). */
+static int lit_slot(const fog_model *m) { return m->lod->mu <= 0.0 ? 0 : m->lod->levels; }
+
 static double model_extinction_at(const fog_model *m, const double p[3]) {
   switch (m->kind) {
     case FOG_MODEL_FOGMAP: {
-      int slot = m->lod_method == FOG_LOD_SWITCH ? m->lod->levels : 0;
+      int slot = lit_slot(m);
       return fog_extinction_point(m->volume, &m->lod->approx[slot], p);
     }
     case FOG_MODEL_VOLUME:
@@ -267,7 +272,7 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
     double D, S;
     if (m->kind == FOG_MODEL_FOGMAP) {
       /* the approximation fog_light_extinction_at reads */
-      int slot = m->lod_method == FOG_LOD_SWITCH ? m->lod->levels : 0;
+      int slot = lit_slot(m);
       S = fog_fogmap_light_integral(m->volume, &m->lod->approx[slot], o, d, t_surface,
                                     rule.nodes, depth_limit, sun_light_point, &u, &D);
     } else if (m->kind == FOG_MODEL_PERLIN) {

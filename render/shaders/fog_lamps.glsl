@@ -28,7 +28,7 @@ float fog_lamp_model_extinction(vec3 p) {
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
   if (any(lessThan(p, vec3(fog_box_min))) || any(greaterThan(p, vec3(fog_box_max)))) return 0.0;
   return fog_extinction_scale *
-         fog_extinction_at(fog_lod_method == FOG_LOD_SWITCH ? fog_levels : 0, p, 1.0);
+         fog_extinction_at(fog_levels, p, 1.0);
 #elif FOG_MODEL_KIND == FOG_MODEL_VOLUME
   return fog_grid3d_density(fog_grid3d_camera_index + fog_grid3d_index_from_world * p);
 #else

@@ -133,12 +133,13 @@ float fog_light_extinction(vec3 dir, float t) {
   const float beside = 0.0;
 #endif
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
-  // the finest approximation the draw reads (switching: A_J in slot J; else slot 0), zero
+  // A_J, the fog itself, for either LOD method (the sum of details at mu = 1 draws
+  // A_0 + D_1..D_J = A_J; a draw at mu <= 0 is A_0 alone, in slot 0 with fog_levels 0), zero
   // outside the box (fog_extinction_point in C: beside quadrics the span reaches past it)
   vec3 p = t * dir;
   if (any(lessThan(p, vec3(fog_box_min))) || any(greaterThan(p, vec3(fog_box_max)))) return beside;
   return fog_extinction_scale *
-         fog_extinction_at(fog_lod_method == FOG_LOD_SWITCH ? fog_levels : 0, dir, t) + beside;
+         fog_extinction_at(fog_levels, dir, t) + beside;
 #elif FOG_MODEL_KIND == FOG_MODEL_VOLUME
   return fog_grid3d_density(fog_grid3d_camera_index + t * (fog_grid3d_index_from_world * dir)) +
          beside;
@@ -237,7 +238,7 @@ float fog_fogmap_sun_mean(fog_ray r) {
   float t0, t1;
   if (!fog_light_span(r, t0, t1)) return 1.0;
   fog_shaft_begin(r.dir, t0, t1);
-  fog_ray_walk w = fog_walk_start(fog_lod_method == FOG_LOD_SWITCH ? fog_levels : 0, r.dir_d,
+  fog_ray_walk w = fog_walk_start(fog_levels, r.dir_d,
                                   double(t0));
   float len = t1 - t0, t = 0.0, D = 0.0, S = 0.0;
   for (int guard = 0; t < len && D < fog_depth_limit && guard < 65536; guard++) {
