@@ -266,6 +266,15 @@ static char *read_line(char *buffer, int size, void *stream) {
    * comment became a key. Here a whole line is read: a long comment or blank line is
    * passed on cut short (it means nothing), a long line with content is an error. */
   const char *p = s->whole_line + strspn(s->whole_line, " \t\r\n");
+  if (*p == '[' && p > s->whole_line && s->after_key && !s->error_line) {
+    /* libinih takes an indented line after a key as more of that key's value: the
+     * section would be lost and the key reported for what the header says */
+    s->error_line = s->line;
+    fog_fail(s->err, FOG_ERR_BAD_CONFIG, "%s:%d: '%.*s' is indented, which continues the key "
+             "above; a section header starts at the line's beginning", s->path, s->line,
+             (int)strcspn(p, "\r\n"), p);
+    return NULL;
+  }
   if (*p == '[') {
     s->after_key = false; /* a section starts: no key to go on */
     /* libinih takes "[fog] x" and "[fog]]" as [fog], ignoring the rest: refuse them */
