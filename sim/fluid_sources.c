@@ -2,6 +2,7 @@
  * velocity impulses, relaxation toward the base fogmap and dissipation. Everything wraps
  * around the periodic domain. */
 #include <float.h>
+#include <stdbool.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -14,12 +15,18 @@ static int wrap(int i, int n) {
 }
 
 /* The cells [lo, lo + count) along one axis covering [centre - reach, centre + reach],
- * at most one period (so no cell is visited twice). */
-static void cover(float centre_lo, float centre_hi, float reach, int n, int *lo, int *count) {
+ * at most one period (so no cell is visited twice); returns whether that took the whole
+ * period. Then the period is the one centred on the middle of the span, so each cell is
+ * taken at its image nearest the centre (a source whose reach passes half the grid, on
+ * one side from its centre, lost its other side to the far image). */
+static bool cover(float centre_lo, float centre_hi, float reach, int n, int *lo, int *count) {
   *lo = (int)floorf(centre_lo - reach);
   int hi = (int)ceilf(centre_hi + reach);
   *count = hi - *lo + 1;
-  if (*count > n) *count = n;
+  if (*count <= n) return false;
+  *lo = (int)floorf(0.5f * (centre_lo + centre_hi)) - n / 2;
+  *count = n;
+  return true;
 }
 
 /* The cells of [centre_lo - reach, centre_hi + reach] inside [0, n): cover() caps the count
@@ -113,12 +120,14 @@ int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *s, fog_error *err) {
   }
   const int w = sim->width, h = sim->height;
   int x0, nx, z0, nz;
+  bool wrap_x = false, wrap_z = false;
   if (s->within_grid) { /* the grid's own cells of the reach, not n cells from its start */
     within(fminf(s->x0, s->x1), fmaxf(s->x0, s->x1), s->radius, w, &x0, &nx);
     within(fminf(s->z0, s->z1), fmaxf(s->z0, s->z1), s->radius, h, &z0, &nz);
   } else {
-    cover(fminf(s->x0, s->x1), fmaxf(s->x0, s->x1), s->radius, w, &x0, &nx);
-    cover(fminf(s->z0, s->z1), fmaxf(s->z0, s->z1), s->radius, h, &z0, &nz);
+    /* an axis the reach wraps around: each cell at whichever image is nearest the segment */
+    wrap_x = cover(fminf(s->x0, s->x1), fmaxf(s->x0, s->x1), s->radius, w, &x0, &nx);
+    wrap_z = cover(fminf(s->z0, s->z1), fmaxf(s->z0, s->z1), s->radius, h, &z0, &nz);
   }
   const float inv_r2 = 1.0f / (s->radius * s->radius);
   float *rho = sim->density[sim->current];
@@ -128,8 +137,12 @@ int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *s, fog_error *err) {
     float *row = rho + (size_t)wrap(z0 + dz, h) * w;
     for (int dx = 0; dx < nx; dx++) {
       if (s->within_grid && (x0 + dx < 0 || x0 + dx >= w)) continue;
-      const float q = segment_distance2((float)(x0 + dx), pz, s->x0, s->z0, s->x1, s->z1) *
-                      inv_r2;
+      float d2 = INFINITY;
+      for (int ix = wrap_x ? -1 : 0; ix <= (wrap_x ? 1 : 0); ix++)
+        for (int iz = wrap_z ? -1 : 0; iz <= (wrap_z ? 1 : 0); iz++)
+          d2 = fminf(d2, segment_distance2((float)(x0 + dx + ix * w), pz + (float)(iz * h),
+                                           s->x0, s->z0, s->x1, s->z1));
+      const float q = d2 * inv_r2;
       if (q >= 1.0f) continue;
       /* A smooth compact brush: (1 - q)^2 is C1 at the rim, peak 1 on the centre line. */
       const float weight = (1.0f - q) * (1.0f - q);
@@ -152,13 +165,15 @@ int fluid_sim_add_impulse(fluid_sim *sim, float x, float z, float radius, float 
   int x0, nx, z0, nz;
   cover(x, x, 4.0f * radius, w, &x0, &nx);
   cover(z, z, 4.0f * radius, h, &z0, &nz);
-  const float inv_two_s2 = 1.0f / (2.0f * radius * radius);
+  /* in double: 1/(2 r^2) of a radius near float's least overflows float (0 x inf at the
+   * centre cell is a NaN) */
+  const double inv_two_s2 = 1.0 / (2.0 * (double)radius * radius);
   for (int dz = 0; dz < nz; dz++) {
-    const float ez = (float)(z0 + dz) - z;
+    const double ez = (double)(z0 + dz) - z;
     const size_t row = (size_t)wrap(z0 + dz, h) * w;
     for (int dx = 0; dx < nx; dx++) {
-      const float ex = (float)(x0 + dx) - x;
-      const float g = expf(-(ex * ex + ez * ez) * inv_two_s2);
+      const double ex = (double)(x0 + dx) - x;
+      const float g = (float)exp(-(ex * ex + ez * ez) * inv_two_s2);
       const size_t c = row + wrap(x0 + dx, w);
       sim->velocity[c] += du * g;
       sim->velocity[sim->stride + c] += dv * g;

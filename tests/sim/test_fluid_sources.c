@@ -106,6 +106,49 @@ int main(void) {
   CHECK(fabs(rho[100] - exact) < 1e-5 * exact, "dissipation %g vs %g", rho[100], exact);
   fluid_sim_destroy(sim);
 
+  /* Sources whose reach passes half the grid: each cell at its image nearest the source.
+   * An emitter of radius 10 (reach 40) at the middle of 64 cells: the closed form with the
+   * minimum-image distance on both sides (its far side came from the far image: 0.0015
+   * where 0.0198 is right); a stroke of reach past the period: its own end painted (its
+   * cells near the end were taken at the image before the start: +0.31 for +1); an impulse
+   * of a radius near float's least: finite velocity. */
+  {
+    const fluid_emitter wide = {32.0f, 32.0f, 10.0f, 4.0f};
+    fluid_sim_desc d = fluid_sim_desc_default(N, N);
+    d.dt = dt, d.emitters = &wide, d.emitter_count = 1, d.relaxation = 0, d.dissipation = 0;
+    d.advection = FLUID_ADVECT_BILINEAR;
+    fluid_sim *wsim = fluid_sim_create(&d, &err);
+    CHECK(wsim != NULL, "create: %s", err.message);
+    if (wsim) {
+      fluid_sim_step(wsim, &err);
+      const float *wr = fluid_sim_density(wsim)->density;
+      double werst = 0;
+      for (int x = 0; x < N; x++) {
+        double ex = fabs(x - 32.0);
+        ex = fmin(ex, N - ex);
+        const double want = 4.0 * dt * exp(-ex * ex / 200.0);
+        werst = fmax(werst, fabs(wr[32 * N + x] - want) / want);
+      }
+      CHECK(werst <= 1e-3, "an emitter reaching past half the grid: %.3g off", werst);
+      const float end_before = wr[10 * N + 60], past_before = wr[10 * N + 62];
+      CHECK(!fluid_sim_paint(wsim, &(fluid_stroke){0, 10, 60, 10, 6, 1.0f, false}, &err), "%s",
+            err.message);
+      const double past = (1 - 4.0 / 36) * (1 - 4.0 / 36); /* 2 cells past its end */
+      CHECK(fabs(wr[10 * N + 60] - end_before - 1.0) < 1e-5 &&
+                fabs(wr[10 * N + 62] - past_before - past) < 1e-5,
+            "a stroke of reach past the period: its end +%g (1), 2 cells past it +%g (%g)",
+            wr[10 * N + 60] - end_before, wr[10 * N + 62] - past_before, past);
+      CHECK(!fluid_sim_add_impulse(wsim, 20.0f, 20.0f, 1e-20f, 1.0f, 0.0f, &err), "%s",
+            err.message);
+      fluid_sim_step(wsim, &err);
+      const float *u = fluid_sim_velocity_x(wsim), *v = fluid_sim_velocity_z(wsim);
+      int bad = 0;
+      for (int c = 0; c < N * N; c++) bad += !isfinite(u[c]) || !isfinite(v[c]);
+      CHECK(bad == 0, "an impulse of radius 1e-20: %d cells of velocity not finite", bad);
+      fluid_sim_destroy(wsim);
+    }
+  }
+
   /* Bad descs are refused with a message naming the problem. */
   desc = fluid_sim_desc_default(63, N);
   CHECK(!fluid_sim_create(&desc, &err) && strstr(err.message, "even"), "odd width: %s",
