@@ -76,6 +76,13 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
   if (!status)
     status = vdb_columns_resample(&out->columns, &out->fogmap_place, out->profile.thickness,
                                   &out->map, &inner);
+  if (status && grid.negative_voxels > 0 && out->columns.mass <= 0) {
+    /* what the clamp took is the cause: say so (a signed grid, as a level set) */
+    fog_error clamped = inner;
+    fog_fail(&inner, clamped.code, "%.300s (%lld of its %lld active voxels were negative, "
+             "clamped to 0: a signed grid, not a density?)", clamped.message,
+             grid.negative_voxels, grid.active_voxels);
+  }
   if (status) {
     fog_error_wrap(err, &inner, "%.200s: ", path);
     vdb_dense_grid_destroy(&grid);
