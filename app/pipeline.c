@@ -214,6 +214,7 @@ struct pipeline {
    * LIVE_RUNG_INTERVAL frames on the view's surface distances (rung_depth). */
   live_rung rung;
   long rung_step;
+  float rung_shape[4]; /* shadow_shape_of the params the rung was fitted with */
   int rung_frames;
   float *rung_depth;
   /* A bounded rung's own sun-shadow volume (LIVE_RUNG_GAUSSIANS, _ELLIPSOIDS), for the sun
@@ -1136,10 +1137,16 @@ static int show_live_rung(pipeline *p, const pipeline_params *params, bool rung,
     return 0;
   }
   const long since = p->shown_step - p->rung_step;
+  /* the panel's density or profile (the fog the rung is fitted to and measured against)
+   * changed: refit now, also while paused, or its error measures how stale it is */
+  float shape[4];
+  shadow_shape_of(params, shape);
   const bool refit = (int)p->rung.kind != params->live_rung ||
+                     memcmp(shape, p->rung_shape, sizeof shape) ||
                      (live_rung_bounded(params->live_rung) ? since < 0 || since >= LIVE_RUNG_REFIT
                                                            : since != 0);
   if (refit) {
+    memcpy(p->rung_shape, shape, sizeof shape);
     live_rung_fit(fogmap_model, (live_rung_kind)params->live_rung, &p->rung);
     /* the volumes beside the fogmap keep their places in the pass's FOG_MAX_QUADRICS */
     if (p->rung.model.kind == FOG_MODEL_QUADRIC &&

@@ -170,6 +170,32 @@ int main(void) {
     params.sun_azimuth -= 40; /* the plain pipeline's sun, for the comparison below */
     pipeline_set_params(p, &params);
   }
+  /* paused on the homogeneous rung, the panel's density a tenth: the rung is refitted to
+   * the fog of the moment (its K a tenth), not kept from before (its error then measured
+   * how stale it was) */
+  if (p) {
+    pipeline_params params = pipeline_get_params(p);
+    params.paused = true, params.live_rung = LIVE_RUNG_HOMOGENEOUS;
+    pipeline_set_params(p, &params);
+    live_rung before, after;
+    CHECK(!pipeline_check_frame(p, &cam, &(frame_pixels){.transmittance = tau}) &&
+              pipeline_live_rung(p, &before),
+          "frame");
+    const float density = params.density;
+    params.density = 0.1f * density;
+    pipeline_set_params(p, &params);
+    CHECK(!pipeline_check_frame(p, &cam, &(frame_pixels){.transmittance = tau}) &&
+              pipeline_live_rung(p, &after),
+          "frame");
+    printf("paused, density a tenth: the homogeneous rung's K %.6g -> %.6g\n",
+           before.model.extinction, after.model.extinction);
+    CHECK(fabs(after.model.extinction - 0.1 * before.model.extinction) <=
+              1e-6 * before.model.extinction,
+          "paused, density a tenth: K %g, expected %g", after.model.extinction,
+          0.1 * before.model.extinction);
+    params.density = density;
+    pipeline_set_params(p, &params);
+  }
   /* back on the fogmap: the fogmap's frame, bit for bit */
   if (p && plain) {
     pipeline_params params = pipeline_get_params(p), plain_params = pipeline_get_params(plain);
