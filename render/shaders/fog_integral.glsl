@@ -307,6 +307,24 @@ fog_axis fog_axis_start(float x0, float dx, float offset) {
 
 float fog_axis_next(fog_axis a) { return (float(a.cell) + a.next_edge) * a.inv_dx; }
 
+// The exponential profile's breaks y0 + k H/2 (k: the y axis's cell): none below y0, where
+// g = 1 (cell -1 stands for all of it), and none past FOG_EXP_TOP half-heights above it,
+// where e^{-(y - y0)/H} < e^{-105} is below float's least (cell FOG_EXP_TOP stands for all
+// of that, and integrates to 0). A ray crossing many scale heights (H = 0.001 in a box 100
+// high: 2e5 breaks) ran past the walk's 65536 steps, and its fog vanished. The C twin
+// breaks at y0 alone.
+const int FOG_EXP_TOP = 210;
+void fog_profile_clamp(inout fog_axis y) {
+  if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL) y.cell = clamp(y.cell, -1, FOG_EXP_TOP);
+}
+float fog_profile_next(fog_axis y) {
+  if (fog_profile_kind == FOG_PROFILE_SLAB) return FOG_INFINITY;
+  if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL &&
+      ((y.cell <= -1 && y.step < 0) || (y.cell >= FOG_EXP_TOP && y.step > 0)))
+    return FOG_INFINITY;
+  return fog_axis_next(y);
+}
+
 struct fog_ray_walk {
   int grid;
   ivec2 size;        // fog_grid_size[grid]
@@ -376,6 +394,7 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
     // b = -dir_y half/H; below y0 c0 = b = 0 (J_k = int s^k ds), so both kinds of piece take
     // the same code (no masked second path). |b| <= 1/4 by the walk's breaks every H/2, so
     // the short series alone is exact (fog_exp_moments_walk).
+    if (w.y.cell >= FOG_EXP_TOP) return 0.0;  // e^{-(y - y0)/H} below float's least
     bool above = w.y_entry + mid * w.dir_y > fog_profile_y0;
     float c0 = above ? -(w.y_entry + mid * w.dir_y - fog_profile_y0) * fog_profile_inv_scale_height
                      : 0.0;
@@ -461,7 +480,7 @@ void fog_walk_cells(inout fog_ray_walk w, inout float t, float t_end, float t1,
                     inout float sum, float limit) {
   for (int guard = 0; t < t_end && sum < limit && guard < 65536; guard++) {
     float tx = fog_axis_next(w.x), tz = fog_axis_next(w.z);
-    float ty = (fog_profile_kind != FOG_PROFILE_SLAB) ? fog_axis_next(w.y) : FOG_INFINITY;
+    float ty = fog_profile_next(w.y);
     float t_next = min(min(t1, tx), min(tz, ty));
     if (t_next > t) sum += fog_piece_integral(w, t, t_next);
     if (tx <= t_next) w.x.cell += w.x.step;
@@ -493,7 +512,7 @@ float fog_walk_integral(inout fog_ray_walk w, float t0, float t1, float limit) {
       t = tb;
       fog_axis_sync(w.x, t);
       fog_axis_sync(w.z, t);
-      if (fog_profile_kind != FOG_PROFILE_SLAB) fog_axis_sync(w.y, t);
+      if (fog_profile_kind != FOG_PROFILE_SLAB) fog_axis_sync(w.y, t), fog_profile_clamp(w.y);
     } else {
       fog_walk_cells(w, t, tb > t ? tb : t1, t1, sum, limit);
     }
@@ -536,6 +555,7 @@ fog_ray_walk fog_walk_start(int grid, dvec3 dir, double t0) {
   else
     w.y = fog_axis_start(fog_profile_y_start + w.y_entry * fog_profile_inv_spacing,
                          dir_y * fog_profile_inv_spacing, fog_knot_offset(fog_profile_degree));
+  fog_profile_clamp(w.y);
   w.dir_y = dir_y;
   return w;
 }
@@ -568,6 +588,7 @@ fog_ray_walk fog_walk_coarser(fog_ray_walk w, int grid, float len) {
   n.z = fog_axis_start_inv((w.z.x0 + len * w.z.dx) * 0.5 + c.y, 0.5 * w.z.dx, 2.0 * w.z.inv_dx,
                            off);
   n.y = fog_axis_start_inv(w.y.x0 + len * w.y.dx, w.y.dx, w.y.inv_dx, w.y.offset);
+  fog_profile_clamp(n.y);
   n.y_entry = w.y_entry + len * w.dir_y;
   n.dir_y = w.dir_y;
   return n;

@@ -243,7 +243,7 @@ float fog_fogmap_sun_mean(fog_ray r) {
   float len = t1 - t0, t = 0.0, D = 0.0, S = 0.0;
   for (int guard = 0; t < len && D < fog_depth_limit && guard < 65536; guard++) {
     float tx = fog_axis_next(w.x), tz = fog_axis_next(w.z);
-    float ty = (fog_profile_kind != FOG_PROFILE_SLAB) ? fog_axis_next(w.y) : FOG_INFINITY;
+    float ty = fog_profile_next(w.y);
     float tn = min(min(len, tx), min(tz, ty));
     if (tn > t) {
 #if FOG_FETCH_HARDWARE
