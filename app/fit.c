@@ -175,8 +175,9 @@ static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *view
     }
     double max_error, mean_error;
     fit_views_measure(&views[f], &m.model, &max_error, &mean_error);
-    if (!(max_error <= worst)) worst = max_error;
-    if (!(mean_error <= worst_mean)) worst_mean = mean_error;
+    /* the worst frame's; a NaN sticks (a later finite frame would have dropped it) */
+    if (!isnan(worst) && !(max_error <= worst)) worst = max_error;
+    if (!isnan(worst_mean) && !(mean_error <= worst_mean)) worst_mean = mean_error;
     if (light) {
       double light_error;
       fog_error rerr = {0};
@@ -184,7 +185,7 @@ static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *view
         fog_error_wrap(err, &rerr, "the light: ");
         goto done;
       }
-      if (!(light_error <= worst_light)) worst_light = light_error;
+      if (!isnan(worst_light) && !(light_error <= worst_light)) worst_light = light_error;
     }
     if (last && time_session(m.session, d, pixels, &rung->ms, err)) goto done;
   }

@@ -145,7 +145,7 @@ static bool cluster_moments(const fog_points *pts, const int *label, int cluster
 }
 
 /* One cluster's moments as a Gaussian c e^{-|x - m|^2 / r^2}: mass M = c pi^{3/2} r^3 and
- * per-axis variance r^2 / 2 (the cells' own size added, each cell a uniform box). */
+ * per-axis variance r^2 / 2 (the points' own: the cells are points at their centres). */
 static bool cluster_gaussian(const fog_points *pts, const int *label, int cluster,
                              const double cell[3], void *item) {
   double w, m[3], var3[3];

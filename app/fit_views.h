@@ -56,8 +56,8 @@ int fit_views_measure_light(const fit_views *v, const fog_model *rung, const fit
 /* The classic fog factors on the rays of `count` views (frames): each view's camera is
  * their eye, as a classic fog's eye is the camera that draws it. Their parameters are
  * searched for the least max |delta tau| against the reference: the exp2 density around
- * the least-squares fit of (a L)^2 to the depth, the linear fog's start and end over a grid
- * in (0, twice the longest ray]. */
+ * the least-squares fit of (a L)^2 to the depth, the linear fog's start over [0, the
+ * longest ray) and its length from 1/32 to 8 longest rays (a grid, then a pattern search). */
 double fit_views_exp2(const fit_views *v, int count);
 void fit_views_linear(const fit_views *v, int count, double *start, double *end);
 

@@ -177,7 +177,7 @@ int transform_details(transform_plan *p, const float *coefficients, float *const
   for (int l = 1; l <= p->levels; l++) {
     int w = p->len_w[l], h = p->len_h[l];
     if (p->desc.decomposition == TRANSFORM_STANDARD) {
-      /* the bands whose coarser index is below l sit inside the block: all levels */
+      /* the bands whose finer index is at most l sit inside the block: all levels */
       transform_copy_block(detail[l], (size_t)w, coefficients, W, w, h);
       zero_block(detail[l], (size_t)w, p->len_w[l - 1], p->len_h[l - 1]);
       inverse_region(p, detail[l], (size_t)w, l);
@@ -264,10 +264,15 @@ static float apply_rule(const ghost_rule *r, const float *c, size_t step) {
 
 int transform_grid_export(const transform_plan *p, int level, const float *stored,
                           transform_grid *grid, fog_error *err) {
+  if (level < 0 || level > p->levels)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "grid level %d: expected 0..%d", level,
+                    p->levels);
   int gw, gh;
-  transform_grid_size(p, level, &gw, &gh);
-  if (level < 0 || level > p->levels || grid->width != gw || grid->height != gh ||
-      !grid->coefficients) {
+  transform_grid_size(p, level, &gw, &gh); /* reads level's sizes: checked above */
+  if (!grid->coefficients)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "grid for level %d has no coefficients",
+                    level);
+  if (grid->width != gw || grid->height != gh) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "grid for level %d must be %dx%d (transform_grid_size), got %dx%d", level, gw, gh,
              grid->width, grid->height);

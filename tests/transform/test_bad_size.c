@@ -40,5 +40,19 @@ int main(void) {
         "0x4 accepted");
   CHECK((plan = transform_plan_create(&(transform_desc){.width = 4, .height = 4, .levels = -1},
         &err)) == NULL, "negative levels accepted");
+  /* a grid export of a level the plan does not have is refused before any size is read
+   * (transform_grid_size read past the plan's level arrays first) */
+  if ((plan = transform_plan_create(&(transform_desc){.width = 16, .height = 16, .levels = 2},
+                                    &err))) {
+    float coefficients[64 * 64];
+    transform_grid grid = {.width = 64, .height = 64, .coefficients = coefficients};
+    for (int level = -1; level <= 3; level += 4) {
+      err = (fog_error){0};
+      CHECK(transform_grid_export(plan, level, coefficients, &grid, &err) != 0 &&
+                strstr(err.message, "expected 0..2"),
+            "grid export of level %d: %s", level, err.message);
+    }
+    transform_plan_destroy(plan);
+  }
   return test_finish("test_bad_size");
 }
