@@ -425,6 +425,13 @@ static double fog_walk_integral(fog_ray_walk *w, double t0, double t1) {
     return sum;
   }
   const int shift = w->grid->degree - w->grid->degree / 2;
+  /* Every crossing at the start stepped first (a walk starting on a block's edge, moving
+   * back across it, has its block exit at t: no block was ever jumped); only zero-length
+   * pieces go, so the sum is unchanged. */
+  fog_axis_sync(&w->x, t);
+  fog_axis_sync(&w->z, t);
+  if (w->profile->kind == FOG_PROFILE_BSPLINE) fog_axis_sync(&w->y, t);
+  fog_block_load(w);
   for (long guard = 0; t < t1 && guard < 100000000L; guard++) {
     double tb = fmin(t1, fmin(fog_axis_block_exit(&w->x, shift),
                               fog_axis_block_exit(&w->z, shift)));

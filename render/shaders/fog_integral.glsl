@@ -502,6 +502,12 @@ float fog_walk_integral(inout fog_ray_walk w, float t0, float t1, float limit) {
   float sum = 0.0, t = t0;
 #if FOG_SKIP
   const int shift = fog_degree - fog_degree / 2;
+  // Every crossing at the start stepped first (a walk starting on a block's edge, moving
+  // back across it, has its block exit at t: the block test below never held, and the
+  // whole ray was walked cell by cell). Only zero-length pieces go: the sum is unchanged.
+  fog_axis_sync(w.x, t);
+  fog_axis_sync(w.z, t);
+  if (fog_profile_kind != FOG_PROFILE_SLAB) fog_axis_sync(w.y, t), fog_profile_clamp(w.y);
   for (int guard = 0; t < t1 && sum < limit && guard < 65536; guard++) {
     // the block index clamped into the map (cells beyond it are zero)
     ivec2 block = clamp((ivec2(w.x.cell, w.z.cell) + shift) / FOG_OCCUPANCY_BLOCK, ivec2(0),

@@ -362,6 +362,9 @@ float fog_grid3d_optical_depth(vec3 dir, float length) {
   float len = t1 - t0, t = 0.0, sum = 0.0;
   // Early termination: the walks stop once the depth passes fog_depth_limit.
 #if FOG_SKIP
+  fog_axis_sync(ax, t);  // crossings at the start stepped first (fog_walk_integral)
+  fog_axis_sync(ay, t);
+  fog_axis_sync(az, t);
   // Brick by brick (render/fog_occupancy.h, fog_bricks_build), as the fogmap's walk goes
   // block by block (fog_walk_integral): an empty brick is jumped to where the ray leaves
   // it, every axis synced there; any other is walked cell by cell up to that exit.

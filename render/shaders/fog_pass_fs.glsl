@@ -139,11 +139,10 @@ float fog_optical_depth_lod(dvec3 dir, double t_in, double t_out, float t_surfac
   // walk starts where the last ended (fog_walk_coarser): one double set-up per pixel. No
   // branch on empty segments either: llvmpipe would run both sides.
 #if FOG_INTEGRATOR == 1
-  float sum = 0.0;  // the marcher: each segment on its own
+  float sum = 0.0;  // the marcher: each segment on its own, never cut (as its C twin)
   for (int l = J; l >= 0; l--) {
     double near_t = max((l == J) ? 0.0 : d[l + 1], start), far_t = d[l];
-    if (far_t > near_t && sum < fog_depth_limit)
-      sum += fog_grid_integral(l, dir, near_t, far_t, jitter, fog_depth_limit - sum);
+    if (far_t > near_t) sum += fog_grid_integral(l, dir, near_t, far_t, jitter, FOG_INFINITY);
   }
   return sum;
 #else
