@@ -162,6 +162,28 @@ float fog_optical_depth_lod(dvec3 dir, double t_in, double t_out, float t_surfac
 #endif
 }
 
+// d(optical depth)/dt at the surface t (inside the box) of the fogmap's integral, for the
+// reduced pass's first-order term: one grid, its K there; with LOD the segment ends
+// d_l = t mu^l move with t, so (d_l > start)
+//   switching:           A_0(t) + sum_l mu^l (A_l(d_l) - A_{l-1}(d_l)),
+//   the sum of details:  A_0(t) + sum_l mu^l D_l(d_l)   (at mu = 1: A_J(t)).
+// Until the sixteenth session it was A_0(t) for both: the sum at mu = 1 lacked its details.
+float fog_lod_depth_rate(vec3 dir, float t, double start) {
+  float rate = fog_extinction_at(0, dir, t);
+#if !FOG_SINGLE_GRID
+  float m = 1.0;
+  for (int l = 1; l <= FOG_MAX_LEVELS; l++) {  // constant bound: unrolled
+    m *= float(fog_mu);
+    float dl = t * m;
+    if (l <= fog_levels && double(dl) > start)
+      rate += m * (fog_lod_method == 0 ? fog_extinction_at(fog_levels + l, dir, dl)
+                                       : fog_extinction_at(l, dir, dl) -
+                                             fog_extinction_at(l - 1, dir, dl));
+  }
+#endif
+  return rate;
+}
+
 // A per-pixel hash in [0, 1) for the marcher's jitter (PCG-style integer hash).
 float fog_hash(uvec2 p, uint frame) {
   uint h = p.x * 1973u + p.y * 9277u + frame * 26699u;
@@ -310,7 +332,7 @@ void main() {
     // upsampling's first-order distance correction.
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
     if (t_surface < 1e29 && t_surface >= t_in && t_surface <= t_out)
-      k_end = fog_extinction_scale * fog_extinction_at(0, dir, t_surface);
+      k_end = fog_extinction_scale * fog_lod_depth_rate(dir, t_surface, max(t_in, 0.0));
 #if FOG_QUADRICS_BESIDE
     if (t_surface < 1e29) k_end += fog_quadric_extinction_at(t_surface * dir);
 #endif

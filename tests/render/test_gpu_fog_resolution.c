@@ -247,6 +247,22 @@ int main(void) {
       }
       printf("LOD %s mu %.1f: GPU vs CPU %.2e\n", method ? "switch" : "sum", mus[m], worst);
       CHECK(worst <= 2e-4, "LOD method %d mu %.1f: GPU vs CPU %.3e", method, mus[m], worst);
+      /* at divisor 2 against this full draw */
+      params.resolution_divisor = 2;
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau[1], &err) == 0, "draw: %s",
+            err.message);
+      double lod_mean, lod_max = cmp_max(tau[1], tau[0], &lod_mean);
+      printf("LOD %s mu %.1f: divisor 2 vs full max |dtau| %.3e mean %.2e\n",
+             method ? "switch" : "sum", mus[m], lod_max, lod_mean);
+      /* at mu = 1 both methods draw A_J: the same fog, so the same upsampling, whose
+       * first-order term is the depth's rate at the surface (the sum's read A_0 alone) */
+      if (m == 0 && method == 0) memcpy(tau[2], tau[1], sizeof(float) * W * H);
+      if (m == 0 && method == 1) {
+        const double same = cmp_max(tau[1], tau[2], NULL);
+        printf("LOD at mu 1, divisor 2: sum vs switch max |dtau| %.2e\n", same);
+        CHECK(same <= 1e-5, "LOD at mu 1, divisor 2: the sum of details upsampled another fog "
+              "(%.3e from switching)", same);
+      }
     }
   for (int l = 0; l <= J; l++) transform_grid_destroy(&approx[l]);
   for (int l = 0; l < J; l++) transform_grid_destroy(&detail[l]);
