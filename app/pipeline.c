@@ -33,14 +33,16 @@
 void pipeline_timings_to_array(const pipeline_timings *t, double v[PIPELINE_TIMING_FIELDS]) {
   const double fields[PIPELINE_TIMING_FIELDS] = {t->sim,   t->transform, t->upload,
                                                  t->render, t->frame,   t->scene,
-                                                 t->sim_cpu, t->transform_cpu, t->sun_shadow};
+                                                 t->sim_cpu, t->transform_cpu, t->sun_shadow,
+                                                 t->sun_shadow_cpu};
   memcpy(v, fields, sizeof fields);
 }
 
 pipeline_timings pipeline_timings_from_array(const double v[PIPELINE_TIMING_FIELDS]) {
   return (pipeline_timings){.sim = v[0], .transform = v[1], .upload = v[2], .render = v[3],
                             .frame = v[4], .scene = v[5], .sim_cpu = v[6],
-                            .transform_cpu = v[7], .sun_shadow = v[8]};
+                            .transform_cpu = v[7], .sun_shadow = v[8],
+                            .sun_shadow_cpu = v[9]};
 }
 
 typedef struct timing_ring {
@@ -90,7 +92,7 @@ typedef struct pipeline_slot {
   fog_sun_shadow sun_shadow;
   bool shadow_fresh; /* computed at this step (else the one on screen stays) */
   float shadow_shape[4]; /* shadow_shape_of the params it was computed with (when fresh) */
-  double sun_shadow_ms;
+  double sun_shadow_ms, sun_shadow_cpu_ms; /* 0 CPU when not fresh */
 } pipeline_slot;
 
 /* Live (pipeline_desc.live), the worker refreshes the sun's volume every
@@ -609,6 +611,7 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
     slot->self_shadow = c->shadow_kind;
   }
   slot->sun_shadow_ms = now_ms() - t2;
+  slot->sun_shadow_cpu_ms = slot->shadow_fresh ? thread_cpu_ms() - c2 : 0.0;
   slot->step = c->steps;
   slot->sim_ms = t1 - t0;
   slot->transform_ms = t2 - t1;
@@ -1011,6 +1014,7 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, fog_error *err) 
     p->last.transform = slot->transform_ms;
     p->last.sim_cpu = slot->sim_cpu_ms;
     p->last.transform_cpu = slot->transform_cpu_ms;
+    p->last.sun_shadow_cpu = slot->sun_shadow_cpu_ms;
     double t0 = now_ms();
     fog_error rerr = {0};
     if (pipeline_fog_upload(p->fog, &slot->pyramid, &rerr))
@@ -1051,6 +1055,7 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, fog_error *err) 
   p->last.transform = slot->transform_ms;
   p->last.sim_cpu = slot->sim_cpu_ms;
   p->last.transform_cpu = slot->transform_cpu_ms;
+  p->last.sun_shadow_cpu = slot->sun_shadow_cpu_ms;
   p->shown_step = slot->step;
   pthread_mutex_lock(&p->lock);
   slot->state = SLOT_FREE; /* the textures hold the copy now */

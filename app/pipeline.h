@@ -57,10 +57,14 @@ typedef struct pipeline_timings {
    * time also counts the time they waited for a core while the renderer ran. */
   double sim_cpu, transform_cpu;
   double sun_shadow; /* the sun's optical-depth volume of the step (docs/light.md) */
+  /* Its CPU time (thread CPU clock) for the step shown, 0 where the step reused the volume
+   * before it (live: every LIVE_SHADOW_INTERVAL steps): its mean over frames is the
+   * volume's share per step. */
+  double sun_shadow_cpu;
 } pipeline_timings;
 
 /* The timings as an array in field order, and back: for statistics taken per field. */
-#define PIPELINE_TIMING_FIELDS 9
+#define PIPELINE_TIMING_FIELDS 10
 void pipeline_timings_to_array(const pipeline_timings *t, double v[PIPELINE_TIMING_FIELDS]);
 pipeline_timings pipeline_timings_from_array(const double v[PIPELINE_TIMING_FIELDS]);
 
