@@ -881,7 +881,9 @@ int pipeline_skip(pipeline *p, long steps, fog_error *err) {
 
 bool pipeline_lamps_dropped(const pipeline *p) { return p->lamps_dropped; }
 
-bool pipeline_simulates(const pipeline *p) { return p->cpu.sim != NULL; }
+/* From what was fixed at creation, not from cpu.sim: a reset replaces that pointer in the
+ * worker while the panel asks every frame. */
+bool pipeline_simulates(const pipeline *p) { return !p->cpu.has_vdb && !p->cpu.has_sequence; }
 
 bool pipeline_has_bspline_profile(const pipeline *p) { return p->config.fog.profile_count > 0; }
 
@@ -1388,7 +1390,16 @@ void pipeline_paint(pipeline *p, double x0, double z0, double x1, double z1, dou
       .within_grid = true,
   };
   pthread_mutex_lock(&p->lock);
-  if (p->stroke_count < MAX_STROKES) p->strokes[p->stroke_count++] = stroke;
+  /* A brush held still queues the same stroke every frame: those add up in one (painting is
+   * linear in the amount), so a pause of any length keeps them; only MAX_STROKES different
+   * strokes wait for a step. */
+  fluid_stroke *last = p->stroke_count ? &p->strokes[p->stroke_count - 1] : NULL;
+  if (last && last->x0 == stroke.x0 && last->z0 == stroke.z0 && last->x1 == stroke.x1 &&
+      last->z1 == stroke.z1 && last->radius == stroke.radius &&
+      (last->amount > 0) == (stroke.amount > 0))
+    last->amount += stroke.amount;
+  else if (p->stroke_count < MAX_STROKES)
+    p->strokes[p->stroke_count++] = stroke;
   pthread_cond_broadcast(&p->changed);
   pthread_mutex_unlock(&p->lock);
   if (p->synchronous) return;

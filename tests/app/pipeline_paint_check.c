@@ -16,6 +16,7 @@
 #include "app/pipeline.h"
 #include "render/gl_context.h"
 #include "render/scene.h"
+#include "sim/sim.h"
 #include "pipeline_check_util.h"
 #include "test_util.h"
 
@@ -82,6 +83,39 @@ int main(void) {
         "erasing did not clear the fog under the brush: tau %g erased, %g plain",
         t_erased[centre], t_plain[centre]);
 
+  /* Paused, a brush held still for 300 frames queues its stroke 300 times: the next step
+   * paints all of it, as one stroke of 300 times the amount (the queue held 256 and
+   * dropped the rest, silently). */
+  pipeline *held = make(&cfg), *once = make(&cfg);
+  CHECK(held && once, "pipelines not created");
+  if (held && once) {
+    pipeline *both[2] = {held, once};
+    for (int k = 0; k < 2; k++) {
+      pipeline_params params = pipeline_get_params(both[k]);
+      params.paused = true;
+      pipeline_set_params(both[k], &params);
+      CHECK(!frame(both[k], &cam, t_plain), "paused frame failed");
+    }
+    for (int i = 0; i < 300; i++)
+      pipeline_paint(held, hit[0], hit[2], hit[0], hit[2], 30.0, 0.01);
+    pipeline_paint(once, hit[0], hit[2], hit[0], hit[2], 30.0, 300 * 0.01);
+    for (int k = 0; k < 2; k++) {
+      pipeline_step_once(both[k]);
+      CHECK(!frame(both[k], &cam, t_plain), "stepped frame failed");
+    }
+    const fogmap *a = pipeline_sim_density(held), *b = pipeline_sim_density(once);
+    double worst = 0, peak = 0;
+    for (int k = 0; a && b && k < a->width * a->height; k++) {
+      worst = fmax(worst, fabs(a->density[k] - b->density[k]));
+      peak = fmax(peak, b->density[k]);
+    }
+    printf("paused, a brush held 300 frames against one stroke of 300 times the amount: max "
+           "|d density| %.2e (peak %.3f)\n", worst, peak);
+    CHECK(a && b && peak > 1.0 && worst <= 1e-4 * peak,
+          "paused, a brush held 300 frames: %.3e off one stroke of the whole amount", worst);
+  }
+  pipeline_destroy(held);
+  pipeline_destroy(once);
   pipeline_destroy(painted);
   pipeline_destroy(plain);
   gl_context_destroy(gl);
