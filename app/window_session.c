@@ -575,9 +575,10 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
   if (s->sel.shown < 0 && rung_before >= 0 && !s->playback.playing && show_volume_time(s, err))
     return 1;
   /* With --screenshot the sequence advances one VDB frame per drawn frame (the same fog
-   * every run), else with the clock. */
-  const double clock =
-      s->fixed_clock ? s->playback.start_time + f->index / cfg->fog.vdb_fps : f->now;
+   * every run), else with the clock. The fixed clock counts from the session's start, not
+   * from the playback's (which a toggle moves to the clock: Play at frame i then jumped i
+   * frames ahead). */
+  const double clock = s->fixed_clock ? s->clock_start + f->index / cfg->fog.vdb_fps : f->now;
   if (s->playback.sequence.count &&
       volume_playback_update(&s->playback, f->window, f->keyboard, s->sel.shown < 0, clock,
                              &v->fog, cfg, err))

@@ -196,9 +196,14 @@ int main(void) {
     params.density = density;
     pipeline_set_params(p, &params);
   }
-  /* back on the fogmap: the fogmap's frame, bit for bit */
+  /* back on the fogmap: the fogmap's frame, bit for bit; the sun moved while a closed-form
+   * rung was shown (which leaves the fogmap's volume alone): relit on the way back */
   if (p && plain) {
     pipeline_params params = pipeline_get_params(p), plain_params = pipeline_get_params(plain);
+    params.live_rung = LIVE_RUNG_HOMOGENEOUS;
+    params.sun_azimuth += 25, plain_params.sun_azimuth = params.sun_azimuth;
+    pipeline_set_params(p, &params);
+    CHECK(!pipeline_check_frame(p, &cam, &(frame_pixels){.rgba = rgba}), "frame");
     params.live_rung = LIVE_RUNG_FOGMAP;
     params.paused = plain_params.paused = true;
     plain_params.shafts = params.shafts;
