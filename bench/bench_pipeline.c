@@ -68,12 +68,14 @@ static pipeline_timings medians(samples *s) {
 
 /* Both modes side by side: one pipeline with the worker thread, one synchronous, in the
  * same GL context, measured in alternating blocks of frames so that a busy machine slows
- * both alike. While the synchronous block runs, the threaded pipeline's worker is idle
- * (both its slots are full after at most two steps). */
+ * both alike. The threaded pipeline is paused while the synchronous block runs (its
+ * worker filled both slots there, taking cores from the synchronous frames, and handed
+ * the next threaded block two steps ready), and its first WARM frames after each pause
+ * are not recorded: the worker is back in its stride. */
 static int measure(const scene_config *cfg, int width, int height, int fog_divisor,
                    bool moving, int warmup, int frames, double max_seconds, run_result *threaded,
                    run_result *synchronous) {
-  enum { block = 4 };
+  enum { block = 8, warm = 2 };
   fog_error err = {0};
   pipeline *p[2] = {NULL, NULL};
   double *storage = malloc(sizeof(double) * 2 * PIPELINE_TIMING_FIELDS * (size_t)frames);
@@ -107,9 +109,22 @@ static int measure(const scene_config *cfg, int width, int height, int fog_divis
       if (pipeline_frame(p[m], &cam, true, &err)) goto done;
   double start = app_clock_seconds();
   while (s[1].n < frames && (s[1].n < 5 || app_clock_seconds() - start < 2.0 * max_seconds)) {
-    for (int m = 0; m < 2; m++)
+    for (int m = 0; m < 2; m++) {
+      if (m == 0) { /* the worker on again, and back in its stride */
+        pipeline_params params = pipeline_get_params(p[0]);
+        params.paused = false;
+        pipeline_set_params(p[0], &params);
+        for (int i = 0; i < warm; i++)
+          if (pipeline_frame(p[0], &cam, true, &err)) goto done;
+      }
       for (int i = 0; i < block && s[m].n < frames; i++)
         if (record_frame(p[m], &cam, moving, &s[m], &err)) goto done;
+      if (m == 0) { /* idle while the synchronous block runs */
+        pipeline_params params = pipeline_get_params(p[0]);
+        params.paused = true;
+        pipeline_set_params(p[0], &params);
+      }
+    }
   }
   threaded->frames = s[0].n, threaded->median = medians(&s[0]);
   synchronous->frames = s[1].n, synchronous->median = medians(&s[1]);
