@@ -1612,6 +1612,8 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
   glUniform1f(fog_loc(prog, "fog_profile_y_start"),
               bspline ? (float)((c[1] - p->origin) / p->spacing) : 0.0f);
   glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), bspline ? (float)(1.0 / p->spacing) : 0.0f);
+  glUniform1d(fog_loc(prog, "fog_profile_y0_d"), p->y0 - c[1]);
+  glUniform1d(fog_loc(prog, "fog_profile_y_start_d"), bspline ? (c[1] - p->origin) / p->spacing : 0.0);
   if (bspline) glUniform1fv(fog_loc(prog, "fog_profile_coefficients"), p->count, coefficients);
 
   glUniform1d(fog_loc(prog, "fog_mu"), J > 0 ? params->mu : 1.0);

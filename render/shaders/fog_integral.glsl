@@ -118,6 +118,10 @@ uniform float fog_profile_inv_scale_height; // 1 / H
 uniform int fog_profile_count;
 const int fog_profile_degree = FOG_PROFILE_DEGREE;
 uniform float fog_profile_y_start;      // B-spline: (camera y - origin) / spacing
+// The same two in double, for the walk's set-up (fog_walk_start): a camera high above the
+// fog has large camera-relative heights, whose float difference lost the profile
+// (100 km up: 3.6e-3 in tau).
+uniform double fog_profile_y0_d, fog_profile_y_start_d;
 uniform float fog_profile_inv_spacing;  // B-spline: 1 / spacing
 uniform float fog_profile_coefficients[FOG_PROFILE_MAX_COEFFICIENTS];
 
@@ -329,7 +333,8 @@ struct fog_ray_walk {
   int grid;
   ivec2 size;        // fog_grid_size[grid]
   fog_axis x, z, y;  // y: B-spline profile knots, or the exponential profile's breaks
-  float y_entry;     // camera-relative height where the walk starts (t' = 0: the box entry)
+  float y_entry;     // exponential profile: the height above y0 where the walk starts (t' =
+                     // 0: the box entry), from the double set-up; unused by the others
   float dir_y;
 };
 
@@ -395,8 +400,8 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
     // the same code (no masked second path). |b| <= 1/4 by the walk's breaks every H/2, so
     // the short series alone is exact (fog_exp_moments_walk).
     if (w.y.cell >= FOG_EXP_TOP) return 0.0;  // e^{-(y - y0)/H} below float's least
-    bool above = w.y_entry + mid * w.dir_y > fog_profile_y0;
-    float c0 = above ? -(w.y_entry + mid * w.dir_y - fog_profile_y0) * fog_profile_inv_scale_height
+    bool above = w.y_entry + mid * w.dir_y > 0.0;
+    float c0 = above ? -(w.y_entry + mid * w.dir_y) * fog_profile_inv_scale_height
                      : 0.0;
     float b = above ? -w.dir_y * half_len * fog_profile_inv_scale_height : 0.0;
     float c[5], moments[5];
@@ -550,16 +555,16 @@ fog_ray_walk fog_walk_start(int grid, dvec3 dir, double t0) {
   float dx = float(dxd), dz = float(dzd);
   w.x = fog_axis_start(float(fog_grid_x0[FOG_GRID(grid)].x + t0 * dxd), dx, off);
   w.z = fog_axis_start(float(fog_grid_x0[FOG_GRID(grid)].y + t0 * dzd), dz, off);
-  w.y_entry = float(t0 * dir.y);
+  w.y_entry = float(t0 * dir.y - fog_profile_y0_d);
   float dir_y = float(dir.y);
   if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL)
     // Breaks at y0 + k H/2: y0 (where g changes form) and, above it, pieces whose
     // exponent spans at most 1/2, |b| <= 1/4, where the moments' series (8 terms) is exact
     // in float (fog_piece_integral); the closed form is not needed.
-    w.y = fog_axis_start((w.y_entry - fog_profile_y0) * 2.0 * fog_profile_inv_scale_height,
+    w.y = fog_axis_start(w.y_entry * 2.0 * fog_profile_inv_scale_height,
                          dir_y * 2.0 * fog_profile_inv_scale_height, 0.0);
   else
-    w.y = fog_axis_start(fog_profile_y_start + w.y_entry * fog_profile_inv_spacing,
+    w.y = fog_axis_start(float(fog_profile_y_start_d + t0 * dir.y * double(fog_profile_inv_spacing)),
                          dir_y * fog_profile_inv_spacing, fog_knot_offset(fog_profile_degree));
   fog_profile_clamp(w.y);
   w.dir_y = dir_y;

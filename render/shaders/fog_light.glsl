@@ -255,8 +255,8 @@ float fog_fogmap_sun_mean(fog_ray r) {
       for (int j = 0; j < fog_piece_nodes; j++) {
         float tj = mid + h * fog_piece_x[j], g = 1.0;
         if (fog_profile_kind == FOG_PROFILE_EXPONENTIAL) {
-          float y = w.y_entry + tj * w.dir_y;
-          g = y > fog_profile_y0 ? exp(-(y - fog_profile_y0) * fog_profile_inv_scale_height) : 1.0;
+          float y = w.y_entry + tj * w.dir_y;  // above y0
+          g = y > 0.0 ? exp(-y * fog_profile_inv_scale_height) : 1.0;
         } else if (fog_profile_kind == FOG_PROFILE_BSPLINE) {
           g = fog_profile_bspline_value(w.y.cell, w.y.x0 + tj * w.y.dx);
         }

@@ -73,6 +73,45 @@ int main(void) {
       CHECK(worst <= 1e-5, "%.0f m, %s: max |dtau| %.3e", D, name, worst);
     }
   }
+  /* High above the fog, looking down: the camera-relative heights are large, and the
+   * profile's height above y0 (a steep one, H = 0.5 with y0 at 3.3) came from the float
+   * difference of two of them (100 km up: 3.6e-3 in tau). Both profiles, one grid. */
+  CHECK(fog_pass_upload_grid(gl.pass, 0, &approx[J], &err) == 0, "upload: %s", err.message);
+  const double altitudes[2] = {1e4, 1e5};
+  for (int k = 0; k < 2; k++)
+    for (int kind = 0; kind < 2; kind++) {
+      fog_volume steep = fog_test_volume(kind ? FOG_PROFILE_BSPLINE : FOG_PROFILE_EXPONENTIAL);
+      if (!kind) steep.profile.y0 = 3.3, steep.profile.scale_height = 0.5, steep.extinction = 0.15;
+      steep.profile.y_top = 40.17;
+      double slo[3], shi[3];
+      fog_volume_box(&steep, slo, shi);
+      const double A = altitudes[k];
+      camera cam = {.fov_y = 2.0 * atan(25.0 / A), .near_plane = CAMERA_DEFAULT_NEAR,
+                    .far_plane = 4.0 * A};
+      cam.position[0] = 0.5 * (slo[0] + shi[0]) + 0.013 * A;
+      cam.position[1] = A + 0.3;
+      cam.position[2] = 0.5 * (slo[2] + shi[2]) - 0.011 * A;
+      camera_look_at(&cam, (double[3]){0.5 * (slo[0] + shi[0]), 0.0, 0.5 * (slo[2] + shi[2])});
+      fog_test_gl_set_ground(&gl, &cam, ground_y);
+      fog_pass_params params = {.volume = &steep};
+      CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0, "draw: %s", err.message);
+      double worst = 0.0, min_tau = 1.0;
+      for (int py = 0; py < H; py++)
+        for (int px = 0; px < W; px++) {
+          double o[3], d[3];
+          camera_ray(&cam, px, py, W, H, o, d);
+          float ts = gl.dist[py * W + px];
+          double want = fog_transmittance(fog_optical_depth(&steep, &approx[J], o, d, 0.0,
+                                                            ts >= 1e29f ? HUGE_VAL : ts));
+          worst = fmax(worst, fabs(want - tau[py * W + px]));
+          min_tau = fmin(min_tau, want);
+        }
+      printf("camera %6.0f m up, %s profile: max |dtau| %.2e (min tau %.3f)\n", A,
+             kind ? "B-spline" : "exponential (H 0.5)", worst, min_tau);
+      CHECK(min_tau < 0.8, "%.0f m up: min tau %.3f: no fog in view", A, min_tau);
+      CHECK(worst <= 1e-5, "%.0f m up, %s profile: max |dtau| %.3e", A,
+            kind ? "B-spline" : "exponential", worst);
+    }
   for (int l = 0; l <= J; l++) transform_grid_destroy(&approx[l]);
   for (int l = 0; l < J; l++) transform_grid_destroy(&detail[l]);
   fog_test_gl_teardown(&gl);
