@@ -399,11 +399,16 @@ float fog_piece_integral(fog_ray_walk w, float ta, float tb) {
     // b = -dir_y half/H; below y0 c0 = b = 0 (J_k = int s^k ds), so both kinds of piece take
     // the same code (no masked second path). |b| <= 1/4 by the walk's breaks every H/2, so
     // the short series alone is exact (fog_exp_moments_walk).
-    if (w.y.cell >= FOG_EXP_TOP) return 0.0;  // e^{-(y - y0)/H} below float's least
     bool above = w.y_entry + mid * w.dir_y > 0.0;
     float c0 = above ? -(w.y_entry + mid * w.dir_y) * fog_profile_inv_scale_height
                      : 0.0;
     float b = above ? -w.dir_y * half_len * fog_profile_inv_scale_height : 0.0;
+    // Past FOG_EXP_TOP the piece is long (|b| unbounded) and e^{c0} below float's least:
+    // its moments are e^{-200} x 0 = 0 (selects, not an early return: llvmpipe runs the
+    // rest of the walk's body under a mask after one, 30 % slower).
+    bool capped = w.y.cell >= FOG_EXP_TOP;
+    c0 = capped ? -200.0 : c0;
+    b = capped ? 0.0 : b;
     float c[5], moments[5];
     fog_piece_monomials(w, cell, mid, half_len, c);
     fog_exp_moments_walk(c0, b, moments);
