@@ -249,6 +249,9 @@ static double fog_axis_next(const fog_axis *a) {
 
 static void fog_axis_step(fog_axis *a) { a->cell += (a->dx > 0.0) ? 1 : -1; }
 
+/* The GLSL walk's last exponential break above y0, in half scale heights (FOG_EXP_TOP). */
+#define FOG_EXP_BREAKS_TOP 210
+
 /* The cell the DDA would be in after walking to t: every crossing at or before t stepped,
  * the next one after t. From the position's floor (which float rounding may put one cell
  * off at a knot line), then corrected with the crossings themselves, the same formula the
@@ -548,19 +551,26 @@ double fog_fogmap_light_integral(const fog_volume *v, const transform_grid *g,
       partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES];
   fog_gauss_rule(nodes, gx, gw, partial);
   const fog_profile *p = &v->profile;
-  /* The exponential's breaks as the GLSL walk has them, y0 + k H/2: on a piece the exponent
-   * moves by at most 1/2, so a few nodes hold it. */
+  /* The exponential's breaks as the GLSL walk has them, y0 + k H/2 for k = 0..
+   * FOG_EXP_BREAKS_TOP (cell -1 is all of the fog below y0, where g = 1; cell
+   * FOG_EXP_BREAKS_TOP all above y0 + 105 H, where e^{-(y - y0)/H} is below float's least):
+   * on a piece the exponent moves by at most 1/2, so a few nodes hold it. */
   fog_axis breaks = {0};
   const bool exponential = p->kind == FOG_PROFILE_EXPONENTIAL;
-  if (exponential)
+  if (exponential) {
     fog_axis_start(&breaks, (w.y_camera - p->y0) * 2.0 / p->scale_height,
                    dir[1] * 2.0 / p->scale_height, 0.0, 0.0);
+    breaks.cell = breaks.cell < -1 ? -1 : breaks.cell > FOG_EXP_BREAKS_TOP ? FOG_EXP_BREAKS_TOP
+                                                                           : breaks.cell;
+  }
   const double scale = fog_extinction(v), len = t1 - t0;
   double t = 0.0, D = 0.0, S = 0.0;
   for (long guard = 0; t < len && D < depth_limit && guard < 100000000L; guard++) {
     double tx = fog_axis_next(&w.x), tz = fog_axis_next(&w.z);
+    const bool capped = (breaks.cell <= -1 && breaks.dx < 0.0) ||
+                        (breaks.cell >= FOG_EXP_BREAKS_TOP && breaks.dx > 0.0);
     double ty = p->kind == FOG_PROFILE_BSPLINE ? fog_axis_next(&w.y)
-                : exponential                  ? fog_axis_next(&breaks)
+                : exponential && !capped       ? fog_axis_next(&breaks)
                                                : HUGE_VAL;
     double tn = fmin(len, fmin(tx, fmin(tz, ty)));
     if (tn > t) {

@@ -1493,7 +1493,8 @@ static int fog_pass_check_model(const fog_pass *pass, const fog_pass_params *par
 
 /* The fogmap draw's grids and profile, before anything is drawn: reads[k] tells which slots
  * the LOD method reads (switching A_0..A_J, slots 0..J; the sum of details A_0 and D_1..D_J,
- * slots 0 and J+1..2J), each must have been uploaded. */
+ * slots 0 and J+1..2J, and A_J, slot J, which its light reads), each must have been
+ * uploaded. */
 static int fog_pass_check_fogmap(const fog_pass *pass, const fog_pass_params *params,
                                  bool reads[FOG_PASS_MAX_GRIDS], fog_error *err) {
   const fog_volume *v = params->volume;
@@ -1504,7 +1505,8 @@ static int fog_pass_check_fogmap(const fog_pass *pass, const fog_pass_params *pa
     return 1;
   }
   for (int k = 0; k < FOG_PASS_MAX_GRIDS; k++)
-    reads[k] = k < slots && ((k == 0) || (params->lod_method == FOG_LOD_SWITCH ? k <= J : k > J));
+    reads[k] = k < slots && ((k == 0) || k == J ||
+                             (params->lod_method == FOG_LOD_SWITCH ? k <= J : k > J));
   for (int k = 0; k < slots; k++)
     if (reads[k] && !pass->slots[k].texture) {
       fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "fog pass: grid slot %d (%s) was never uploaded", k,
@@ -1614,6 +1616,7 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
   glUniform1f(fog_loc(prog, "fog_profile_inv_spacing"), bspline ? (float)(1.0 / p->spacing) : 0.0f);
   glUniform1d(fog_loc(prog, "fog_profile_y0_d"), p->y0 - c[1]);
   glUniform1d(fog_loc(prog, "fog_profile_y_start_d"), bspline ? (c[1] - p->origin) / p->spacing : 0.0);
+  glUniform1d(fog_loc(prog, "fog_profile_inv_spacing_d"), bspline ? 1.0 / p->spacing : 0.0);
   if (bspline) glUniform1fv(fog_loc(prog, "fog_profile_coefficients"), p->count, coefficients);
 
   glUniform1d(fog_loc(prog, "fog_mu"), J > 0 ? params->mu : 1.0);

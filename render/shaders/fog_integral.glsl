@@ -121,7 +121,7 @@ uniform float fog_profile_y_start;      // B-spline: (camera y - origin) / spaci
 // The same two in double, for the walk's set-up (fog_walk_start): a camera high above the
 // fog has large camera-relative heights, whose float difference lost the profile
 // (100 km up: 3.6e-3 in tau).
-uniform double fog_profile_y0_d, fog_profile_y_start_d;
+uniform double fog_profile_y0_d, fog_profile_y_start_d, fog_profile_inv_spacing_d;
 uniform float fog_profile_inv_spacing;  // B-spline: 1 / spacing
 uniform float fog_profile_coefficients[FOG_PROFILE_MAX_COEFFICIENTS];
 
@@ -569,7 +569,7 @@ fog_ray_walk fog_walk_start(int grid, dvec3 dir, double t0) {
     w.y = fog_axis_start(w.y_entry * 2.0 * fog_profile_inv_scale_height,
                          dir_y * 2.0 * fog_profile_inv_scale_height, 0.0);
   else
-    w.y = fog_axis_start(float(fog_profile_y_start_d + t0 * dir.y * double(fog_profile_inv_spacing)),
+    w.y = fog_axis_start(float(fog_profile_y_start_d + t0 * dir.y * fog_profile_inv_spacing_d),
                          dir_y * fog_profile_inv_spacing, fog_knot_offset(fog_profile_degree));
   fog_profile_clamp(w.y);
   w.dir_y = dir_y;

@@ -82,6 +82,7 @@ int main(void) {
     for (int kind = 0; kind < 2; kind++) {
       fog_volume steep = fog_test_volume(kind ? FOG_PROFILE_BSPLINE : FOG_PROFILE_EXPONENTIAL);
       if (!kind) steep.profile.y0 = 3.3, steep.profile.scale_height = 0.5, steep.extinction = 0.15;
+      else steep.profile.spacing = 1.7; /* 1/spacing not a float: the set-up's in double */
       steep.profile.y_top = 40.17;
       double slo[3], shi[3];
       fog_volume_box(&steep, slo, shi);
