@@ -39,6 +39,7 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
   for (int a = 0; a < 3; a++) place.offset[a] = d.offset[a];
   place.config = cfg;
   int status = vdb_world_map_make(&grid, &place, &out->world, &inner);
+  bool projected = false; /* the columns exist (a failure after them may be their mass) */
   if (!status && d.grid_only) {
     out->grid = grid;
     out->active_voxels = grid.active_voxels;
@@ -52,6 +53,7 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
       box[3 + c] = out->world.domain_max[c];
     }
     status = vdb_columns_project(&grid, &out->world, cfg ? box : nullptr, &out->columns, &inner);
+    projected = !status;
   }
   if (!status) {
     if (d.fixed_profile)
@@ -76,7 +78,7 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
   if (!status)
     status = vdb_columns_resample(&out->columns, &out->fogmap_place, out->profile.thickness,
                                   &out->map, &inner);
-  if (status && grid.negative_voxels > 0 && out->columns.mass <= 0) {
+  if (status && projected && grid.negative_voxels > 0 && out->columns.mass <= 0) {
     /* what the clamp took is the cause: say so (a signed grid, as a level set) */
     fog_error clamped = inner;
     fog_fail(&inner, clamped.code, "%.300s (%lld of its %lld active voxels were negative, "

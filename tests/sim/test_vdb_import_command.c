@@ -224,6 +224,17 @@ int main(void) {
     CHECK(status != 0 && strstr(errors, "fluid_data_0048.vdb") && strstr(errors, "placed two ways"),
           "a scene's [fog] vdb of frames with and without a config (%d): %s", status, errors);
     CHECK(access(image, F_OK) != 0, "the refused render left %s", image);
+    /* and as a volume (model = volume plays the frames in 3D, loaded as they are shown) */
+    f = fopen(scene, "w");
+    if (f) {
+      fprintf(f, "[fog]\nmodel = volume\nvdb = %s/data/fluid_data_####.vdb\nvdb_frame = 46\n",
+              mixed);
+      fclose(f);
+    }
+    status = run(cmd, errors, sizeof errors);
+    CHECK(status != 0 && strstr(errors, "fluid_data_0048.vdb") && strstr(errors, "placed two ways"),
+          "a volume's [fog] vdb of frames with and without a config (%d): %s", status, errors);
+    CHECK(access(image, F_OK) != 0, "the refused render left %s", image);
   }
 
   test_remove_tree(dir);
