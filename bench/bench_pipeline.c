@@ -12,7 +12,7 @@
  * time + upload, medians, + the sun volume's CPU time, its mean per frame: the worker
  * computes it every LIVE_SHADOW_INTERVAL steps) / frame (the worker's wall-clock times
  * also count its waits for a core while llvmpipe's two render threads run, printed
- * beside; so is D without the volume, as it was until the sixteenth session) at the scene's fogmap
+ * beside; so is D without the volume, as it was until the fifteenth session) at the scene's fogmap
  * (256² in configs/default.ini), E the same as C with the camera turning every frame
  * (scene pass every frame, the terrain at the demo's LOD), R = E / C. A fourth run turns
  * with the full terrain mesh (LOD off) for the side-by-side before/after.
@@ -232,7 +232,9 @@ int bench_pipeline(int argc, char **argv) {
         printf("%-12s %14.3f %14.3f\n", " CPU time", t->median.transform_cpu,
                y->median.transform_cpu);
     }
-    printf("%-12s %14.3f %14.3f\n", " sun volume", t->sun_shadow_cpu_mean,
+    /* synchronous: the volume runs on 2 threads, and the GL thread's CPU clock sees its
+     * own share only */
+    printf("%-12s %14.3f %14.3f (GL thread's share)\n", " sun volume", t->sun_shadow_cpu_mean,
            y->sun_shadow_cpu_mean);
     printf("%-12s %14.3f %14.3f\n", " scene pass", t->median.scene, y->median.scene);
     printf("%-12s %14.3f %14.3f\n", " fog pass", t->median.render - t->median.scene,
@@ -248,7 +250,7 @@ int bench_pipeline(int argc, char **argv) {
     /* D from the stages' own CPU time: in the worker their wall time also counts the
      * waits for a core while llvmpipe's render threads run (both shown above). */
     /* ... and the sun's volume, which the worker computes every LIVE_SHADOW_INTERVAL steps
-     * (its CPU time's mean per frame; until the sixteenth session D left it out) */
+     * (its CPU time's mean per frame; until the fifteenth session D left it out) */
     double share = live->median.frame > 0 ? (live->median.sim_cpu + live->median.transform_cpu +
                                              live->sun_shadow_cpu_mean + live->median.upload) /
                                                 live->median.frame

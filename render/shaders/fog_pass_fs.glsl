@@ -167,7 +167,7 @@ float fog_optical_depth_lod(dvec3 dir, double t_in, double t_out, float t_surfac
 // d_l = t mu^l move with t, so (d_l > start)
 //   switching:           A_0(t) + sum_l mu^l (A_l(d_l) - A_{l-1}(d_l)),
 //   the sum of details:  A_0(t) + sum_l mu^l D_l(d_l)   (at mu = 1: A_J(t)).
-// Until the sixteenth session it was A_0(t) for both: the sum at mu = 1 lacked its details.
+// Until the fifteenth session it was A_0(t) for both: the sum at mu = 1 lacked its details.
 float fog_lod_depth_rate(vec3 dir, float t, double start) {
   float rate = fog_extinction_at(0, dir, t);
 #if !FOG_SINGLE_GRID

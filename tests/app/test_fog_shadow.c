@@ -284,7 +284,7 @@ static int load(const char *path, scene_config *cfg);
 
 /* The sum of details at mu = 1 draws A_0 + D_1..D_J = A_J, the fog switching at mu = 1
  * draws: the sun's and the lamps' in-scatter must be the same, within float rounding of
- * the two walks' tau (until the sixteenth session the lights of the sum read A_0: the
+ * the two walks' tau (until the fifteenth session the lights of the sum read A_0: the
  * default scene's sun 0.8 %, night_lamps' lamps 3.6 % of the peak off). */
 static void check_sum_lit_as_switch(const char *path) {
   static frame sum, sw;
@@ -365,7 +365,7 @@ int main(void) {
   }
   /* the sum of details: at mu = 1 it draws A_0 + D_1..D_J = A_J, the fog the light must
    * see (the reference's medium); at mu = 0.6 the GL against its twin. Both lit A_0, 8x
-   * coarser, until the sixteenth session (the reference check: 0.19 off) */
+   * coarser, until the fifteenth session (the reference check: 0.19 off) */
   for (int k = 0; k < 2; k++) {
     c = &cases[n];
     if (!load("configs/default.ini", &c->cfg)) {
