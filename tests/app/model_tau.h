@@ -1,12 +1,18 @@
 /* A frame's transmittance against a CPU fog_model, pixel by pixel: exp(-fog_model_optical_
  * depth) along each pixel's ray (camera_ray, rows top first) to the frame's depth, to
- * infinity where the depth is the far plane's (the sky). Header-only. */
+ * infinity where the depth is the far plane's (the sky); and a config's frame against its
+ * render session's twin. Header-only. */
 #ifndef FOGPIPE_TESTS_APP_MODEL_TAU_H
 #define FOGPIPE_TESTS_APP_MODEL_TAU_H
 
 #include <math.h>
+#include <stdlib.h>
 
+#include "app/config.h"
+#include "app/render_fog.h"
+#include "app/render_frame.h"
 #include "render/render.h"
+#include "test_util.h"
 
 typedef struct model_tau_error {
   double worst;          /* max |tau_model - tau_frame|; NaN if any pixel is NaN */
@@ -29,6 +35,32 @@ static inline model_tau_error model_tau_compare(const fog_model *m, const camera
       r.lowest = fmin(r.lowest, want), r.highest = fmax(r.highest, want);
     }
   return r;
+}
+
+/* The config `text`, written to `path`, rendered at width x height through a render
+ * session (`render`'s frame path) and compared with the session's own CPU twin
+ * (render_fog_model). 0 with *e set; 1 with err set. */
+static inline int model_tau_of_config(const char *path, const char *text, int width,
+                                      int height, model_tau_error *e, fog_error *err) {
+  scene_config cfg;
+  if (!test_write_text(path, text)) return fog_fail(err, FOG_ERR_FILE_ACCESS, "cannot write %s", path);
+  if (scene_config_load(path, &cfg, err)) return 1;
+  render_session *s = render_session_create(&cfg, width, height, err);
+  if (!s) return 1;
+  float *tau = malloc(sizeof(float) * (size_t)width * height),
+        *depth = malloc(sizeof(float) * (size_t)width * height);
+  int status = !tau || !depth ? fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory")
+               : render_session_frame(s, &(frame_pixels){.transmittance = tau, .depth = depth},
+                                      err);
+  if (!status) {
+    const fog_model m = render_fog_model(render_session_fog(s));
+    camera cam;
+    scene_config_camera(&cfg, &cam);
+    *e = model_tau_compare(&m, &cam, tau, depth, width, height);
+  }
+  free(tau), free(depth);
+  render_session_destroy(s);
+  return status;
 }
 
 #endif

@@ -16,6 +16,38 @@
 enum { W = 64, H = 36, J = 2 };
 static const double ground_y = 0.5;
 
+/* The drawn tau against the CPU's, depth(user, o, d, t_surface) along each pixel's ray to
+ * the surface the draw saw: the max |dtau| and (min_tau) the CPU's least tau. */
+typedef double (*cpu_depth_fn)(const void *user, const double o[3], const double d[3],
+                               double t_surface);
+static double max_dtau(const fog_test_gl *gl, const camera *cam, const float *tau,
+                       cpu_depth_fn depth, const void *user, double *min_tau) {
+  double worst = 0.0;
+  *min_tau = 1.0;
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      double o[3], d[3];
+      camera_ray(cam, px, py, W, H, o, d);
+      const float ts = gl->dist[py * W + px];
+      const double want = fog_transmittance(depth(user, o, d, ts >= 1e29f ? HUGE_VAL : ts));
+      worst = fmax(worst, fabs(want - tau[py * W + px]));
+      *min_tau = fmin(*min_tau, want);
+    }
+  return worst;
+}
+
+typedef struct far_case {
+  const fog_volume *v;
+  const fog_lod *lod;
+  const transform_grid *grid;
+  int method; /* -1: one grid */
+} far_case;
+static double far_depth(const void *user, const double o[3], const double d[3], double t) {
+  const far_case *c = user;
+  return c->method < 0 ? fog_optical_depth(c->v, c->grid, o, d, 0.0, t)
+                       : fog_optical_depth_lod(c->v, c->lod, c->method, o, d, t);
+}
+
 int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
@@ -52,20 +84,9 @@ int main(void) {
                                 .lod_method = method < 0 ? 0 : method, .mu = lod.mu};
       CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0,
             "draw: %s", err.message);
-      double worst = 0.0, min_tau = 1.0;
-      for (int py = 0; py < H; py++)
-        for (int px = 0; px < W; px++) {
-          double o[3], d[3];
-          camera_ray(&cam, px, py, W, H, o, d);
-          float ts = gl.dist[py * W + px];
-          double t_surface = ts >= 1e29f ? HUGE_VAL : ts;
-          double depth = method < 0
-                             ? fog_optical_depth(&v, &approx[J], o, d, 0.0, t_surface)
-                             : fog_optical_depth_lod(&v, &lod, method, o, d, t_surface);
-          double want = fog_transmittance(depth);
-          worst = fmax(worst, fabs(want - tau[py * W + px]));
-          min_tau = fmin(min_tau, want);
-        }
+      double min_tau;
+      const far_case fc = {.v = &v, .lod = &lod, .grid = &approx[J], .method = method};
+      const double worst = max_dtau(&gl, &cam, tau, far_depth, &fc, &min_tau);
       const char *name = method < 0 ? "one grid" : method == 0 ? "LOD sum" : "LOD switch";
       printf("camera %6.0f m away, %-10s: max |dtau| %.2e (min tau %.3f)\n", D, name, worst,
              min_tau);
@@ -96,17 +117,9 @@ int main(void) {
       fog_test_gl_set_ground(&gl, &cam, ground_y);
       fog_pass_params params = {.volume = &steep};
       CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau, &err) == 0, "draw: %s", err.message);
-      double worst = 0.0, min_tau = 1.0;
-      for (int py = 0; py < H; py++)
-        for (int px = 0; px < W; px++) {
-          double o[3], d[3];
-          camera_ray(&cam, px, py, W, H, o, d);
-          float ts = gl.dist[py * W + px];
-          double want = fog_transmittance(fog_optical_depth(&steep, &approx[J], o, d, 0.0,
-                                                            ts >= 1e29f ? HUGE_VAL : ts));
-          worst = fmax(worst, fabs(want - tau[py * W + px]));
-          min_tau = fmin(min_tau, want);
-        }
+      double min_tau;
+      const far_case fc = {.v = &steep, .grid = &approx[J], .method = -1};
+      const double worst = max_dtau(&gl, &cam, tau, far_depth, &fc, &min_tau);
       printf("camera %6.0f m up, %s profile: max |dtau| %.2e (min tau %.3f)\n", A,
              kind ? "B-spline" : "exponential (H 0.5)", worst, min_tau);
       CHECK(min_tau < 0.8, "%.0f m up: min tau %.3f: no fog in view", A, min_tau);
