@@ -547,6 +547,9 @@ static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_fra
   vdb_frame_desc desc = {.grid = o->grid, .up = o->up, .scale = o->scale,
                          .offset = {o->offset[0], o->offset[1], o->offset[2]},
                          .config = o->config, .profile = o->profile, .max_voxels = o->max_voxels};
+  /* each frame finds its config beside it, or none does (before any is read) */
+  if (!o->config && vdb_sequence_check_placement(seq, &err))
+    return cli_fail("import", "%s, or --config FILE or --config none for all", err.message);
   for (*loaded = 0; *loaded < seq->count; (*loaded)++) {
     const int k = *loaded;
     if (vdb_frame_load(seq->paths[k], &desc, &frames[k], &err))
@@ -557,18 +560,6 @@ static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_fra
     if (f->negative_voxels)
       fprintf(stderr, "fogpipe import: warning: %s: %lld negative voxels clamped to 0\n",
               seq->paths[k], f->negative_voxels);
-    if (!o->config && k > 0 && !f->config_path[0] != !frames[0].config_path[0]) {
-      /* placed two ways (a few cells apart), the frames would jump */
-      const int with = f->config_path[0] ? k : 0, without = f->config_path[0] ? 0 : k;
-      const int status =
-          cli_fail("import", "frame %d: %s has no Mantaflow config beside it, but frame %d's "
-                   "%s has (%s): the frames would be placed two ways; give every frame its "
-                   "config, or --config FILE or --config none for all",
-                   seq->frames[without], seq->paths[without], seq->frames[with],
-                   seq->paths[with], frames[with].config_path);
-      vdb_frame_destroy(&frames[k]); /* not counted in *loaded yet */
-      return status;
-    }
     if (k == 0 && !f->config_path[0] && o->up == VDB_UP_Z &&
         !(o->config && !strcmp(o->config, "none")))
       fprintf(stderr, "fogpipe import: note: no Mantaflow config beside %s: placement from the "

@@ -66,19 +66,12 @@ int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, fog_e
     fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, cfg->fog.vdb_line);
     return 1;
   }
-  /* Every frame placed one way (as the fogmap's vdb_source and `import` refuse): each
-   * frame finds its Mantaflow config beside it, or none does. */
-  char beside[SCENE_CONFIG_PATH_MAX + 64];
-  const bool first = !vdb_config_path_beside(seq->paths[0], beside, sizeof beside);
-  for (int i = 1; i < seq->count; i++)
-    if (!vdb_config_path_beside(seq->paths[i], beside, sizeof beside) != first) {
-      fog_fail(err, FOG_ERR_BAD_FILE, "%.200s:%d: [fog] vdb: %.300s: frame %d has %s Mantaflow "
-               "config beside it and frame %d %s: the frames would be placed two ways; give "
-               "every frame its config", cfg->path, cfg->fog.vdb_line, seq->paths[i],
-               seq->frames[i], first ? "no" : "a", seq->frames[0], first ? "has one" : "none");
-      vdb_sequence_destroy(seq);
-      return 1;
-    }
+  /* every frame placed one way, as the fogmap's vdb_source and `import` refuse */
+  if (vdb_sequence_check_placement(seq, &serr)) {
+    fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, cfg->fog.vdb_line);
+    vdb_sequence_destroy(seq);
+    return 1;
+  }
   return 0;
 }
 

@@ -50,20 +50,15 @@ int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, fog_error *
   /* Pass 1 (as `fogpipe import`): read, place and project every frame; keep its columns. */
   vdb_frame_desc frame_desc = {.grid = desc->grid, .up = desc->up};
   double x0 = INFINITY, x1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY, native = 0;
-  bool first_has_config = false;
+  /* placed two ways (a domain's corner apart), the frames would jump, as `import` refuses */
+  fog_error perr = {0};
+  if (vdb_sequence_check_placement(&seq, &perr)) {
+    fog_error_wrap(err, &perr, "%.300s: ", desc->path);
+    goto done;
+  }
   for (int i = 0; i < seq.count; i++) {
     vdb_frame frame;
     if (vdb_frame_load(seq.paths[i], &frame_desc, &frame, err)) goto done;
-    if (i == 0) first_has_config = frame.config_path[0] != '\0';
-    if (first_has_config != (frame.config_path[0] != '\0')) {
-      /* placed two ways (a few cells apart), the frames would jump (as `import` refuses) */
-      fog_fail(err, FOG_ERR_BAD_FILE, "%.300s: frame %d has %s Mantaflow config beside it "
-               "and frame %d %s: the frames would be placed two ways; give every frame its "
-               "config", seq.paths[i], seq.frames[i], first_has_config ? "no" : "a",
-               seq.frames[0], first_has_config ? "has one" : "none");
-      vdb_frame_destroy(&frame);
-      goto done;
-    }
     source->columns[i] = frame.columns;
     frame.columns = (vdb_columns){0};
     vdb_frame_destroy(&frame);

@@ -273,6 +273,10 @@ void vdb_sequence_destroy(vdb_sequence *sequence);
 /* The config beside a Blender cache file: DIR/data/fluid_data_0048.vdb ->
  * DIR/config/config_0048.uni. Returns 0 and fills out if such a file exists. */
 int vdb_config_path_beside(const char *vdb_path, char *out, size_t out_size);
+/* Whether every frame of the sequence is placed one way: each has its config beside it, or
+ * none has (frames placed both ways land a domain's corner apart, a metre on the plume).
+ * 1 with err naming a frame of each kind when not; 0 when they agree. */
+int vdb_sequence_check_placement(const vdb_sequence *seq, fog_error *err);
 
 /* ------------------------------------------------------------- one frame (C++ glue) */
 

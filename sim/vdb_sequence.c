@@ -375,3 +375,21 @@ int vdb_config_path_beside(const char *vdb_path, char *out, size_t out_size) {
   if (w <= 0 || (size_t)w >= out_size) return 1;
   return access(out, R_OK) == 0 ? 0 : 1;
 }
+
+int vdb_sequence_check_placement(const vdb_sequence *seq, fog_error *err) {
+  char first_config[4096], config[4096];
+  const bool first = seq->count > 0 &&
+                     !vdb_config_path_beside(seq->paths[0], first_config, sizeof first_config);
+  for (int i = 1; i < seq->count; i++) {
+    const bool has = !vdb_config_path_beside(seq->paths[i], config, sizeof config);
+    if (has == first) continue;
+    const int with = has ? i : 0, without = has ? 0 : i;
+    return fog_fail(err, FOG_ERR_BAD_FILE,
+                    "frame %d: %.300s has no Mantaflow config beside it, but frame %d's "
+                    "%.300s has (%.300s): the frames would be placed two ways; give every "
+                    "frame its config",
+                    seq->frames[without], seq->paths[without], seq->frames[with],
+                    seq->paths[with], has ? config : first_config);
+  }
+  return 0;
+}
