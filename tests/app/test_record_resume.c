@@ -10,6 +10,43 @@
 
 enum { frames = 24 };
 
+/* The command an interrupted run printed ("to finish: fogpipe ...") from its log, into
+ * hint; false when there is none. */
+static bool printed_hint(const char *log, char *hint, size_t size) {
+  char text[8192] = "";
+  FILE *f = fopen(log, "r");
+  size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+  text[n] = '\0';
+  if (f) fclose(f);
+  const char *at = strstr(text, "to finish: fogpipe ");
+  if (!at) return false;
+  snprintf(hint, size, "%.*s", (int)strcspn(at, "\n"), at);
+  return true;
+}
+
+/* The hint run as printed, by a shell (the binary in place of "fogpipe"): its exit status. */
+static int run_hint(const char *hint, const char *log, char *command, size_t size) {
+  snprintf(command, size, "'%s'%s > '%s' 2>&1", record_bin(),
+           hint + strlen("to finish: fogpipe"), log);
+  const int status = system(command);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/* Frames 1..frames of folders a and b that differ (or cannot be read), the first 3 named. */
+static int frames_differing(const char *a_folder, const char *b_folder) {
+  int differing = 0;
+  for (int k = 1; k <= frames; k++) {
+    char a[600], b[600];
+    int w = 0, h = 0;
+    record_frame_path(a_folder, k, a, sizeof a);
+    record_frame_path(b_folder, k, b, sizeof b);
+    const uint64_t ha = record_hash_frame(a, &w, &h), hb = record_hash_frame(b, &w, &h);
+    if ((ha == 0 || ha != hb) && differing++ < 3)
+      fprintf(stderr, "frame %d: %s and %s differ\n", k, a_folder, b_folder);
+  }
+  return differing;
+}
+
 int main(void) {
   char root[] = "/tmp/fogpipe-record-resume-XXXXXX";
   if (!test_scratch_folder(root)) return 1;
@@ -72,19 +109,9 @@ int main(void) {
         after_mismatch, done);
 
   /* The command the interrupt printed, run as printed (by a shell), resumes. */
-  char text[8192] = "", command[9000];
-  FILE *f = fopen(log_cut, "r");
-  size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
-  text[n] = '\0';
-  if (f) fclose(f);
-  const char *hint = strstr(text, "to finish: fogpipe ");
-  char *end = hint ? strchr(hint, '\n') : NULL;
-  if (end) *end = '\0';
-  CHECK(hint != NULL, "no resume command printed:\n%s", text);
-  snprintf(command, sizeof command, "'%s'%s > '%s' 2>&1", record_bin(),
-           hint ? hint + strlen("to finish: fogpipe") : " --help", log_resume);
-  status = system(command);
-  status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  char hint[8192] = "", command[9000] = "";
+  CHECK(printed_hint(log_cut, hint, sizeof hint), "no resume command printed");
+  status = hint[0] ? run_hint(hint, log_resume, command, sizeof command) : -1;
   CHECK(status == 0, "the printed resume command exited with %d: %s", status, command);
   if (status != 0) record_print_log(log_resume);
   status = record_run(whole, frames, NULL, log_whole);
@@ -97,17 +124,7 @@ int main(void) {
   CHECK(resumed_frames == frames && whole_frames == frames,
         "resumed run has %d frames, uninterrupted %d, expected %d", resumed_frames,
         whole_frames, frames);
-  int differing = 0;
-  for (int f = 1; f <= frames; f++) {
-    char a[600], b[600];
-    int w = 0, h = 0;
-    record_frame_path(cut, f, a, sizeof a);
-    record_frame_path(whole, f, b, sizeof b);
-    uint64_t ha = record_hash_frame(a, &w, &h), hb = record_hash_frame(b, &w, &h);
-    if (ha == 0 || ha != hb) {
-      if (differing++ < 3) fprintf(stderr, "frame %d: resumed and uninterrupted differ\n", f);
-    }
-  }
+  int differing = frames_differing(cut, whole);
   CHECK(differing == 0, "%d of %d frames differ between the resumed and the uninterrupted run",
         differing, frames);
 
@@ -120,7 +137,7 @@ int main(void) {
   snprintf(log_other, sizeof log_other, "%s/other.log", root);
   snprintf(log_over, sizeof log_over, "%s/over.log", root);
   snprintf(log_finish, sizeof log_finish, "%s/finish.log", root);
-  f = fopen(other, "w");
+  FILE *f = fopen(other, "w");
   if (f) fputs("[fog]\nmodel = homogeneous\ndensity_scale = 0.01\n", f), fclose(f);
   snprintf(command, sizeof command, "'%s' record '%s' --frames %d --out '%s' --size %s > '%s' 2>&1",
            record_bin(), other, frames, over, RECORD_TEST_SIZE, log_other);
@@ -138,30 +155,14 @@ int main(void) {
   kill(pid, SIGINT);
   status = record_wait(pid);
   CHECK(status == 130, "the run over another scene, interrupted, exited %d", status);
-  n = 0;
-  f = fopen(log_over, "r");
-  if (f) n = fread(text, 1, sizeof text - 1, f), fclose(f);
-  text[n] = '\0';
-  hint = strstr(text, "to finish: fogpipe ");
-  end = hint ? strchr(hint, '\n') : NULL;
-  if (end) *end = '\0';
-  CHECK(hint && !strstr(hint, "--resume") && strstr(hint, "-24 "),
-        "over another scene, the printed command: %s", hint ? hint : text);
-  snprintf(command, sizeof command, "'%s'%s > '%s' 2>&1", record_bin(),
-           hint ? hint + strlen("to finish: fogpipe") : " --help", log_finish);
-  status = system(command);
-  status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  hint[0] = '\0';
+  CHECK(printed_hint(log_over, hint, sizeof hint) && !strstr(hint, "--resume") &&
+            strstr(hint, "-24 "),
+        "over another scene, the printed command: %s", hint);
+  status = hint[0] ? run_hint(hint, log_finish, command, sizeof command) : -1;
   CHECK(status == 0, "the printed command over another scene exited %d: %s", status, command);
   if (status != 0) record_print_log(log_finish);
-  differing = 0;
-  for (int k = 1; k <= frames; k++) {
-    char a[600], b[600];
-    int w = 0, h = 0;
-    record_frame_path(over, k, a, sizeof a);
-    record_frame_path(whole, k, b, sizeof b);
-    const uint64_t ha = record_hash_frame(a, &w, &h), hb = record_hash_frame(b, &w, &h);
-    differing += ha == 0 || ha != hb;
-  }
+  differing = frames_differing(over, whole);
   CHECK(differing == 0, "over another scene, finished as printed: %d of %d frames differ from "
         "the uninterrupted run", differing, frames);
   test_remove_tree(root);
