@@ -58,6 +58,7 @@ typedef struct preview {
   gl_target scene_target, out_target;
   fog_pass *fog;
   transform_plan *plan;
+  int map_w, map_h; /* the fogmap's size the plan was made for */
   int levels;
   float *coefficients, *approx[max_levels + 1], *detail[max_levels + 1];
   transform_grid approx_grid[max_levels + 1], detail_grid[max_levels];
@@ -82,7 +83,7 @@ static camera preview_camera(void) {
 
 static int preview_create(preview *p, int map_w, int map_h, char *error, size_t size) {
   fog_error err = {0};
-  *p = (preview){0};
+  *p = (preview){.map_w = map_w, .map_h = map_h};
   p->ctx = gl_context_create(&(gl_context_desc){0}, &err);
   if (!p->ctx) goto fail;
   scene_desc sd = {.terrain = {.origin = {-20, 0, -20}, .size = {40, 40}, .height = 1,
@@ -169,6 +170,12 @@ static int preview_frame(preview *p, const char *vdb, const char *png, double ti
     return 1;
   }
   double t1 = app_clock_seconds();
+  if (frame.map.width != p->map_w || frame.map.height != p->map_h) {
+    snprintf(error, size, "%s: a %dx%d fogmap where the plan is %dx%d", vdb, frame.map.width,
+             frame.map.height, p->map_w, p->map_h);
+    vdb_frame_destroy(&frame);
+    return 1;
+  }
   transform_forward(p->plan, frame.map.density, p->coefficients);
   fog_error perr = {0};
   if (transform_density_pyramid(p->plan, frame.map.density, p->coefficients, p->approx,
@@ -202,7 +209,8 @@ static int preview_frame(preview *p, const char *vdb, const char *png, double ti
   /* The full-detail fogmap (A_J, what LOD mu = 1 shows) as one grid: the pyramid above
    * is what the LOD variants would upload. */
   fog_pass_params params = {.volume = &volume, .fog_colour = {0.8f, 0.8f, 0.8f},
-                            .integrator = p->integrator, .march_steps = FOG_PASS_MARCH_STEPS};
+                            .integrator = p->integrator, .march_steps = FOG_PASS_MARCH_STEPS,
+                            .walk = {.transmittance_cutoff = FOG_PASS_TRANSMITTANCE_CUTOFF}};
   int status = fog_pass_upload_grid(p->fog, 0, &p->finest, &rerr);
   double t2b = t2, t2c = t2;
   if (!status) {
@@ -499,12 +507,26 @@ int bench_import(int argc, char **argv) {
   preview p;
   char error[1024] = "";
   double cold = 0, warm[max_runs], parts[parts_count][max_runs];
+  const vdb_frame_desc frame_desc = {
+      .profile = {.kind = exponential ? VDB_PROFILE_EXPONENTIAL : VDB_PROFILE_BSPLINE,
+                  .knots = knots},
+      .resolution = resolution};
+  /* The fogmap's size at this --resolution sizes the transform plan (not timed). */
+  int map_w = 0, map_h = 0;
+  {
+    vdb_frame probe;
+    if (vdb_frame_load(vdb, &frame_desc, &probe, &err)) {
+      fprintf(stderr, "fogpipe bench import: %s\n", err.message);
+      vdb_sequence_destroy(&seq);
+      return 1;
+    }
+    map_w = probe.map.width, map_h = probe.map.height;
+    vdb_frame_destroy(&probe);
+  }
   const double t_cold = app_clock_seconds();
-  int gl_ok = !preview_create(&p, 64, 64, error, sizeof error);
+  int gl_ok = !preview_create(&p, map_w, map_h, error, sizeof error);
   p.integrator = march ? FOG_INTEGRATOR_MARCH : FOG_INTEGRATOR_EXACT;
-  p.frame_desc.profile.kind = exponential ? VDB_PROFILE_EXPONENTIAL : VDB_PROFILE_BSPLINE;
-  p.frame_desc.profile.knots = knots;
-  p.frame_desc.resolution = resolution;
+  p.frame_desc = frame_desc;
   double times[parts_count];
   if (gl_ok && !preview_frame(&p, vdb, ours_png, times, error, sizeof error)) {
     cold = app_clock_seconds() - t_cold;
