@@ -19,7 +19,8 @@
  * scene, g 0.7): the CPU twins of ours and Fogshop's against the converged twin.
  * Writes lights.csv and lights_chart.{csv,png}. Last line:
  * `lights: ms_per_light=A march_speedup_at_matched_error=B fogshop_halo_error_ratio=C`:
- * A = (valley, ours default - unlit) / its lamps, scaled to 640x360 by pixels; B = on the
+ * A = (valley, ours default - unlit) / its lamps, scaled to 640x360 by pixels, without the
+ * lamps' shadow cubes (on by default; the shadow rows measure them apart); B = on the
  * tube, the cheapest marching within 1e-3 of the peak / our cheapest within it; C =
  * Fogshop's max halo error / ours. */
 #define _POSIX_C_SOURCE 200809L

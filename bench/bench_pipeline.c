@@ -188,12 +188,12 @@ int bench_pipeline(int argc, char **argv) {
   if (gl_context_is_software(gl)) scene_config_live_software(&live_cfg);
   scene_config full_mesh_cfg = live_cfg;
   full_mesh_cfg.terrain.lod_error = 0.0;
-  /* Three runs: full-resolution fog (what `record` renders) and the live demo's setting,
+  /* Four runs: full-resolution fog (what `record` renders) and the live demo's setting,
    * with the camera still (the scene pass reused), then the live setting with the camera
-   * turning every frame (the scene pass every frame). Each with the CPU stages in the
-   * worker thread and on the GL thread: two warm-up frames (the first compiles the
-   * shaders), then up to `frames` frames or 20 s per mode, at least 5, the two modes
-   * alternating in blocks of 4 frames. */
+   * turning every frame (the scene pass every frame), with the terrain LOD and with the
+   * full mesh. Each with the CPU stages in the worker thread and on the GL thread: two
+   * warm-up frames (the first compiles the shaders), then up to `frames` frames or 20 s
+   * per mode, at least 5, the two modes alternating in blocks of 8 frames. */
   enum { RUNS = 4 };
   const int divisors[RUNS] = {1, live_divisor, live_divisor, live_divisor};
   const bool moving[RUNS] = {false, false, true, true};

@@ -1,9 +1,10 @@
 /* fogpipe bench sim: the FFT stable-fluid step against its FFT bound.
  *
- * At 256², 512² and 1024² (one thread), in interleaved rounds so machine noise hits all
- * figures alike, it times one full fluid_sim_step, the step's own FFTW plans executed
- * alone (forward r2c of u and v, inverse c2r of them: what one step runs) and the step's
- * own fused 3-field advection (u, v, density, same scheme) alone. The medians give
+ * At 256², 512² and 1024² (one thread; one size and scheme after another, the three parts
+ * of each interleaved round by round so machine noise hits them alike), it times one full
+ * fluid_sim_step, the step's own FFTW plans executed alone (forward r2c of u and v,
+ * inverse c2r of them: what one step runs) and the step's own fused 3-field advection (u,
+ * v, density, same scheme) alone. The medians give
  * ratio = step / (FFT + advection): how much the rest of the step (Fourier-space
  * forcing, viscosity and projection, wind phases, sources, clamp) costs on top of the
  * two unavoidable parts. Last line: `sim: step_ms_512=A ratio_to_fft_bound=B` for the
@@ -107,9 +108,10 @@ int bench_sim(int argc, char **argv) {
   if (exit_status >= 0) return exit_status;
   if (quick) rounds = rounds < 4 ? rounds : 4;
   bench_print_build();
-  printf("one thread; medians over %d timed calls per figure after warm-up; FFT = the\n"
-         "step's r2c(u,v) + c2r(u,v) plans alone; advect = its fused u, v, density pass\n",
-         rounds * 5);
+  printf("one thread; medians over %d timed calls per figure after warm-up (%d at 1024^2);\n"
+         "FFT = the step's r2c(u,v) + c2r(u,v) plans alone; advect = its fused u, v, density\n"
+         "pass\n",
+         rounds * 5, (rounds + 1) / 2 * 5);
   printf("%-6s %-20s %9s %9s %10s %10s %7s %10s\n", "grid", "scheme", "step ms", "FFT ms",
          "advect ms", "bound ms", "ratio", "ratio(min)");
   const int sizes[3] = {256, 512, 1024};
