@@ -1238,7 +1238,9 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
       .shadow_nodes = p->config.shadow.nodes,
       .shadow_pieces = scene_config_light_rule(&p->config).pieces,
       .shaft_samples = p->config.shadow.shaft_samples,
-      .shafts = params.sun.albedo > 0 && params.shafts ? scene_pass_sun_shadow(p->scene) : NULL,
+      .shafts = params.sun.albedo > 0 && params.shafts && fog_sun_above_horizon(sun.direction) > 0
+                    ? scene_pass_sun_shadow(p->scene)
+                    : NULL,
       .lamp_shadows = scene_pass_lamp_shadows(p->scene),
       .walk = scene_config_walk(&p->config),
   };

@@ -576,7 +576,8 @@ int render_fog_draw(render_fog *fog, const camera *cam, const gl_target *scene,
   fog->volume.profile.coefficients = fog->profile_coefficients;
   fog->params.surface_sun = fog->ground_shadow ? scene->color[2] : 0; /* 0: no attachment 2 */
   fog->params.surface_lamps = scene->color[3]; /* the lamps' share (0: none) */
-  fog->params.shafts = fog->shafts;
+  /* no shafts of a sun below the horizon (its light is 0 there; the look-ups cost) */
+  fog->params.shafts = fog_sun_above_horizon(fog->params.sun.direction) > 0 ? fog->shafts : NULL;
   fog->params.lamp_shadows = fog->lamp_shadows;
   return fog_pass_draw(fog->pass, cam, &fog->params, scene->color[0], scene->color[1],
                        scene->width, scene->height, err);

@@ -879,7 +879,9 @@ static int fog_pass_rbf_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
     float *texels = pass->rbf_scratch + 8 * (size_t)i;
     for (int a = 0; a < 3; a++) texels[a] = (float)(g->centre[a] - cam->position[a]);
     texels[3] = (float)(1.0 / g->radius);
-    texels[4] = (float)g->density, texels[5] = texels[6] = texels[7] = 0.0f;
+    /* y: its cull radius (< 0: too faint to reach the bound), the light span's (fog_light.glsl) */
+    texels[4] = (float)g->density, texels[5] = (float)fog_rbf_cull_radius(g, n);
+    texels[6] = texels[7] = 0.0f;
   }
   if (fog_rbf_tiles_build(&pass->rbf_tiles, cam, width, height, params->model_rbfs, n, err))
     return 1;

@@ -3,6 +3,7 @@
  * them, so the GL pass can be checked against it pixel by pixel. */
 #include <math.h>
 
+#include "render/fog_rbf_tiles.h"
 #include "render/fog_sun_shadow.h"
 
 /* The quadrics beside the model: their exact depth from p towards the sun. */
@@ -164,15 +165,31 @@ static bool model_light_span(const fog_model *m, const double o[3], const double
       *t0 = fmax(a, 0.0), *t1 = fmin(b, t_surface);
       break;
     }
+    case FOG_MODEL_RBF:
+      if (m->extinction == 0) {
+        /* Gaussians alone: the stretch of the ray inside their cull spheres
+         * (fog_rbf_cull_radius). Past its chord a Gaussian adds at most
+         * c r (sqrt(pi)/2) e^{-R^2/r^2} (erfc x <= e^{-x^2}), half the tiles' bound; from the
+         * camera to the farthest Gaussian, the mean's segments fell mostly on empty air */
+        double a = HUGE_VAL, b = 0.0;
+        for (int i = 0; i < m->rbf_count; i++) {
+          const double R = fog_rbf_cull_radius(&m->rbfs[i], m->rbf_count);
+          double v[3], tc = 0.0, h2 = 0.0;
+          for (int c = 0; c < 3; c++) v[c] = m->rbfs[i].centre[c] - o[c], tc += v[c] * d[c];
+          for (int c = 0; c < 3; c++) h2 += (v[c] - tc * d[c]) * (v[c] - tc * d[c]);
+          if (!(R > 0) || !(R * R - h2 > 0)) continue;
+          const double half_chord = sqrt(R * R - h2);
+          a = fmin(a, tc - half_chord), b = fmax(b, tc + half_chord);
+        }
+        *t0 = fmax(a, 0.0), *t1 = fmin(b, t_surface);
+      } else { /* a base never ends: as homogeneous fog below */
+        *t1 = fmin(t_surface, m->extinction > 0 ? FOG_LIGHT_SPAN_DEPTH / m->extinction : 0.0);
+      }
+      break;
     default: {
       /* homogeneous fog and an RBF base never end: up to an optical depth of
        * FOG_LIGHT_SPAN_DEPTH from the camera (the base alone reaches it there) */
       double reach = m->extinction > 0 ? FOG_LIGHT_SPAN_DEPTH / m->extinction : 0.0;
-      for (int i = 0; m->extinction == 0 && i < m->rbf_count; i++) {
-        double along = 0.0;
-        for (int a = 0; a < 3; a++) along += (m->rbfs[i].centre[a] - o[a]) * d[a];
-        reach = fmax(reach, along + 6.0 * m->rbfs[i].radius);
-      }
       *t1 = fmin(t_surface, reach);
     }
   }

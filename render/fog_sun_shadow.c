@@ -1,6 +1,7 @@
 /* The sun's optical-depth volume (render/fog_sun_shadow.h). */
 #include "render/fog_sun_shadow.h"
 
+#include "render/fog_light.h"
 #include "render/fog_rbf_tiles.h"
 
 #include <math.h>
@@ -11,6 +12,8 @@
 
 fog_sun_shadow_kind fog_sun_shadow_kind_of(const fog_model *m, const double sun_dir[3]) {
   double lo[3], hi[3];
+  /* a sun wholly below the horizon lights nothing: its T_s would be multiplied by 0 */
+  if (!(fog_sun_above_horizon(sun_dir) > 0)) return FOG_SUN_SHADOW_NONE;
   switch (m->kind) {
     case FOG_MODEL_HOMOGENEOUS:
       return m->extinction > 0 ? FOG_SUN_SHADOW_OPAQUE : FOG_SUN_SHADOW_NONE;
@@ -180,6 +183,26 @@ static void *shadow_rows(void *arg) {
   return NULL;
 }
 
+/* RBFs: each Gaussian's sphere of its cull radius (fog_rbf_cull_radius: past it a Gaussian
+ * adds less than 1e-6 / count to any line's optical depth), projected on the sun's frame.
+ * A sun ray from a point outside them misses every sphere, so the volume's zero there errs
+ * by less than 1e-6 in all. The 6-radius box of fog_model_bounds, projected through its
+ * corners on a slanted sun's axes, made the volume wider and its samples coarser (its error
+ * goes as their spacing squared). Leaves mn > mx when every Gaussian is too faint to matter
+ * (the caller then fits the bounds). */
+static void rbf_sun_extent(const fog_model *m, const double axis[3][3], double mn[3],
+                           double mx[3]) {
+  for (int i = 0; i < m->rbf_count; i++) {
+    const fog_rbf *g = &m->rbfs[i];
+    const double reach = fog_rbf_cull_radius(g, m->rbf_count);
+    if (!(reach > 0)) continue;
+    for (int a = 0; a < 3; a++) {
+      double d = g->centre[0] * axis[a][0] + g->centre[1] * axis[a][1] + g->centre[2] * axis[a][2];
+      mn[a] = fmin(mn[a], d - reach), mx[a] = fmax(mx[a], d + reach);
+    }
+  }
+}
+
 int fog_sun_shadow_compute(fog_sun_shadow *s, const fog_model *beside, const double sun_dir[3],
                            int threads, fog_error *err) {
   /* the model alone: the quadrics beside it add their exact depth at each lookup */
@@ -198,9 +221,12 @@ int fog_sun_shadow_compute(fog_sun_shadow *s, const fog_model *beside, const dou
   }
   for (int c = 0; c < 3; c++) s->sun[c] = sun_dir[c];
   sun_frame(sun_dir, s->axis);
-  /* The box's extent in the sun's frame, from its 8 corners. */
+  /* The box's extent in the sun's frame: RBFs from their spheres, the others from their
+   * bounds' 8 corners. */
   double mn[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, mx[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (int corner = 0; corner < 8; corner++) {
+  if (model->kind == FOG_MODEL_RBF) rbf_sun_extent(model, s->axis, mn, mx);
+  const bool fitted = mn[0] <= mx[0];
+  for (int corner = 0; corner < 8 && !fitted; corner++) {
     double p[3];
     for (int c = 0; c < 3; c++) p[c] = ((corner >> c) & 1) ? hi[c] : lo[c];
     for (int a = 0; a < 3; a++) {

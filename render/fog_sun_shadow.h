@@ -49,7 +49,8 @@ typedef struct fog_sun_shadow {
 } fog_sun_shadow;
 
 /* How a model's T_s is found for the unit direction sun_dir towards the sun: from the model
- * alone (quadrics beside it add their exact depth in fog_sun_optical_depth). */
+ * alone (quadrics beside it add their exact depth in fog_sun_optical_depth). NONE for a sun
+ * wholly below the horizon (fog_sun_above_horizon 0), which lights nothing. */
 fog_sun_shadow_kind fog_sun_shadow_kind_of(const fog_model *model, const double sun_dir[3]);
 
 /* The model's own fog lies inside [lo, hi] (false: it has no bound; quadrics beside it are

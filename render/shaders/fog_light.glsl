@@ -115,10 +115,37 @@ bool fog_model_light_span(fog_ray r, out float t0, out float t1) {
   t0 = 0.0;
   t1 = fog_model_extinction > 0.0 ? min(r.t_surface, sqrt(FOG_LIGHT_SPAN_DEPTH) / fog_model_extinction)
                                   : 0.0;
+#elif FOG_MODEL_KIND == FOG_MODEL_RBF
+  if (fog_model_extinction == 0.0) {
+    // Gaussians alone: the stretch of the ray inside their cull spheres (the chords of the
+    // pixel's tile's Gaussians; past a chord a Gaussian adds under half the tiles' bound),
+    // so that the mean's segments lie on the fog however far it is (fog_light_span in C)
+    t0 = 1e30;
+    t1 = 0.0;
+    uvec2 range = fog_rbf_tile_range();
+    for (uint j = range.x; j < range.x + range.y; j++) {
+      int i = int(texelFetch(fog_rbf_indices, int(j)).x);
+      vec3 b = fog_rbf_centre(i).xyz;
+      float R = fog_rbf_cull_radius(i), tc = dot(b, r.dir);
+      vec3 w = b - tc * r.dir;
+      float chord2 = R * R - dot(w, w);
+      if (R > 0.0 && chord2 > 0.0) {
+        float half_chord = sqrt(chord2);
+        t0 = min(t0, tc - half_chord);
+        t1 = max(t1, tc + half_chord);
+      }
+    }
+    t0 = max(t0, 0.0);
+    t1 = min(t1, r.t_surface);
+  } else {
+    // the fog never ends (the base): to FOG_LIGHT_SPAN_DEPTH from the camera
+    t0 = 0.0;
+    t1 = min(r.t_surface, min(fog_model_reach(r.dir), FOG_LIGHT_SPAN_DEPTH / fog_model_extinction));
+  }
 #else
   t0 = 0.0;
   t1 = min(r.t_surface, fog_model_reach(r.dir));
-#if FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS || FOG_MODEL_KIND == FOG_MODEL_RBF
+#if FOG_MODEL_KIND == FOG_MODEL_HOMOGENEOUS
   // the fog never ends (a homogeneous fog or base): to FOG_LIGHT_SPAN_DEPTH from the camera
   if (fog_model_extinction > 0.0) t1 = min(t1, FOG_LIGHT_SPAN_DEPTH / fog_model_extinction);
 #endif

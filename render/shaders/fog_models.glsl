@@ -110,6 +110,7 @@ float fog_erf_difference(float u0, float u1) {
 // Gaussian i: xyz its centre - camera, w 1/r; and its density.
 vec4 fog_rbf_centre(int i) { return texelFetch(fog_rbf_data, 2 * i); }
 float fog_rbf_density(int i) { return texelFetch(fog_rbf_data, 2 * i + 1).x; }
+float fog_rbf_cull_radius(int i) { return texelFetch(fog_rbf_data, 2 * i + 1).y; }
 
 // Gaussian i's int_0^L c exp(-|origin + t dir - b|^2 / r^2) dt: e^{-h^2/r^2} r sqrt(pi)/2
 // (erf(u1) - erf(u0)) (fog_rbf_optical_depth in C).

@@ -10,6 +10,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "render/fog_light.h"
+#include "render/fog_rbf_tiles.h"
 #include "render/fog_sun_shadow.h"
 #include "fog_test_scene.h"
 #include "test_util.h"
@@ -66,23 +68,87 @@ static double rbf_exact_of(const double p[3], const double sun[3], const void *u
   return rbf_exact(p, sun);
 }
 
-/* Max |interpolated - exact| over random points of the fog's bounds, at resolution n. */
+/* RMS of interpolated - exact over random points of the fog's bounds, at resolution n (the
+ * max over random points jumps with where they happen to fall). */
 static double rbf_interpolation_error(const fog_model *m, const double sun[3], int n) {
   fog_sun_shadow s;
   fog_error err;
   CHECK(!fog_sun_shadow_create(&s, &(fog_sun_shadow_desc){.across = n, .along = n}, &err),
         "%s", err.message);
   CHECK(!fog_sun_shadow_compute(&s, m, sun, 2, &err), "%s", err.message);
-  double lo[3], hi[3], worst = 0.0;
+  double lo[3], hi[3], sum = 0.0;
   fog_model_bounds(m, lo, hi);
   fog_test_rng = 0x1234567ull;
-  for (int q = 0; q < 4000; q++) {
+  const int count = 4000;
+  for (int q = 0; q < count; q++) {
     double p[3];
     for (int a = 0; a < 3; a++) p[a] = fog_test_range(0.75 * lo[a] + 0.25 * hi[a], 0.25 * lo[a] + 0.75 * hi[a]);
-    worst = fmax(worst, fabs(fog_sun_shadow_depth_at(&s, p) - rbf_exact(p, sun)));
+    const double e = fog_sun_shadow_depth_at(&s, p) - rbf_exact(p, sun);
+    sum += e * e;
   }
   fog_sun_shadow_destroy(&s);
-  return worst;
+  return sqrt(sum / count);
+}
+
+/* One Gaussian's volume spans its cull sphere on every axis of the sun's frame, whatever
+ * the sun: 2 R wide, centred on it (the 6-radius box through its corners was wider). */
+static void test_rbf_extent(void) {
+  const double R = fog_rbf_cull_radius(&rbfs[0], 1);
+  fog_model m = {.kind = FOG_MODEL_RBF, .rbfs = rbfs, .rbf_count = 1};
+  for (int d = 0; d < 3; d++) {
+    double sun[3];
+    unit(sun_dirs[d], sun);
+    fog_sun_shadow s;
+    fog_error err;
+    CHECK(!fog_sun_shadow_create(&s, &(fog_sun_shadow_desc){.across = 8, .along = 8}, &err) &&
+              !fog_sun_shadow_compute(&s, &m, sun, 1, &err),
+          "%s", err.message);
+    for (int a = 0; a < 3; a++) {
+      double centre = 0.0, origin = 0.0;
+      for (int c = 0; c < 3; c++)
+        centre += rbfs[0].centre[c] * s.axis[a][c], origin += s.origin[c] * s.axis[a][c];
+      CHECK(fabs(s.extent[a] - 2.0 * R) <= 1e-9 * R && fabs(origin - (centre - R)) <= 1e-9 * R,
+            "sun %d axis %d: extent %.9g from %.9g, expected %.9g from %.9g", d, a, s.extent[a],
+            origin, 2.0 * R, centre - R);
+    }
+    fog_sun_shadow_destroy(&s);
+  }
+}
+
+/* Small dense Gaussians far from the camera: the sun's mean at the product's 8 segments of
+ * two nodes against the same mean converged (2048 segments), on rays through them. Spread
+ * from the camera to the farthest Gaussian, 8 segments put one or two nodes in the fog (the
+ * mean off by up to 0.77); over the stretch inside their cull spheres they follow it. */
+static void test_rbf_light_span(void) {
+  static const fog_rbf far[3] = {{{690, 30, 40}, 8.0, 0.3}, {{720, 45, -30}, 12.0, 0.2},
+                                 {{705, 20, 0}, 10.0, 0.25}};
+  fog_model m = {.kind = FOG_MODEL_RBF, .rbfs = far, .rbf_count = 3};
+  double sun[3];
+  unit((const double[3]){-0.5, 0.45, 0.3}, sun);
+  fog_sun_shadow s;
+  fog_error err;
+  CHECK(!fog_sun_shadow_create(&s, &(fog_sun_shadow_desc){.across = 48, .along = 48}, &err) &&
+            !fog_sun_shadow_compute(&s, &m, sun, 2, &err),
+        "%s", err.message);
+  const double o[3] = {0, 25, 0};
+  double worst = 0.0;
+  for (int q = 0; q < 3; q++)
+    for (int k = -8; k <= 8; k++) {
+      double d[3];
+      for (int c = 0; c < 3; c++) d[c] = far[q].centre[c] - o[c];
+      d[1] += 1.2 * k, d[2] += 0.9 * k; /* across the Gaussian, within ~1.5 radii */
+      fog_test_unit(d);
+      const double coarse = fog_sun_mean_transmittance(
+          &m, FOG_SUN_SHADOW_VOLUME, &s, (fog_light_rule){.steps = 8, .nodes = 2}, 1e30, o, d,
+          1e30);
+      const double fine = fog_sun_mean_transmittance(
+          &m, FOG_SUN_SHADOW_VOLUME, &s, (fog_light_rule){.steps = 2048, .nodes = 2}, 1e30, o, d,
+          1e30);
+      worst = fmax(worst, fabs(coarse - fine));
+    }
+  printf("rbf far from the camera: 8 segments against 2048, max |mean difference| %.3g\n", worst);
+  CHECK(worst <= 0.05, "the sun's mean over far Gaussians: 8 segments off by %g", worst);
+  fog_sun_shadow_destroy(&s);
 }
 
 static void test_rbf(void) {
@@ -109,12 +175,12 @@ static void test_rbf(void) {
     CHECK(fog_sun_shadow_depth_at(&s, q) == 0.0, "outside across: %g", fog_sun_shadow_depth_at(&s, q));
     fog_sun_shadow_destroy(&s);
     /* Second order between the samples. */
-    double e32 = rbf_interpolation_error(&m, sun, 32), e64 = rbf_interpolation_error(&m, sun, 64),
-           e128 = rbf_interpolation_error(&m, sun, 128);
-    printf("rbf sun %d: between samples max |error| %.3g (32^3), %.3g (64^3), %.3g (128^3)\n", d,
-           e32, e64, e128);
-    CHECK(e32 > 3.0 * e64 && e64 > 3.0 * e128, "sun %d: not second order: %g %g %g", d, e32, e64,
-          e128);
+    double e48 = rbf_interpolation_error(&m, sun, 48), e96 = rbf_interpolation_error(&m, sun, 96),
+           e192 = rbf_interpolation_error(&m, sun, 192);
+    printf("rbf sun %d: between samples RMS error %.3g (48^3), %.3g (96^3), %.3g (192^3)\n", d,
+           e48, e96, e192);
+    CHECK(e48 > 3.0 * e96 && e96 > 3.0 * e192, "sun %d: not second order: %g %g %g", d, e48, e96,
+          e192);
   }
 }
 
@@ -157,9 +223,27 @@ static void test_kinds(void) {
   fog_model none = {.kind = FOG_MODEL_HOMOGENEOUS, .extinction = 0.0};
   CHECK(fog_sun_shadow_kind_of(&homogeneous, up) == FOG_SUN_SHADOW_OPAQUE, "homogeneous");
   CHECK(fog_sun_shadow_kind_of(&height, up) == FOG_SUN_SHADOW_HEIGHT, "height, sun up");
-  CHECK(fog_sun_shadow_kind_of(&height, down) == FOG_SUN_SHADOW_OPAQUE, "height, sun down");
+  /* the sun's disc half under the horizon still lights (fog_sun_above_horizon 0.5): the
+   * height fog towards it, along the ground, is opaque */
+  const double setting[3] = {1, 0, 0};
+  CHECK(fog_sun_above_horizon(setting) == 0.5, "half the disc: %g", fog_sun_above_horizon(setting));
+  CHECK(fog_sun_shadow_kind_of(&height, setting) == FOG_SUN_SHADOW_OPAQUE, "height, sun setting");
   CHECK(fog_sun_shadow_kind_of(&rbf_base, up) == FOG_SUN_SHADOW_OPAQUE, "rbf over a base");
   CHECK(fog_sun_shadow_kind_of(&none, up) == FOG_SUN_SHADOW_NONE, "no fog");
+  /* A sun wholly below the horizon lights nothing: no T_s for any model, so no volume is
+   * computed and no walk towards it is drawn (the same image: its light is 0). */
+  const double s5 = sin(5.0 * 3.14159265358979323846 / 180.0);
+  const double below[3] = {sqrt(1 - s5 * s5), -s5, 0};
+  const double just_below[3] = {1, -1.01 * sin(FOG_SUN_ANGULAR_RADIUS), 0};
+  fog_model bounded = {.kind = FOG_MODEL_RBF, .rbfs = rbfs, .rbf_count = 3};
+  CHECK(fog_sun_shadow_kind_of(&bounded, up) == FOG_SUN_SHADOW_VOLUME, "rbf: a volume");
+  const fog_model *models[] = {&homogeneous, &height, &rbf_base, &bounded};
+  for (int i = 0; i < 4; i++) {
+    CHECK(fog_sun_shadow_kind_of(models[i], down) == FOG_SUN_SHADOW_NONE, "model %d, sun down", i);
+    CHECK(fog_sun_shadow_kind_of(models[i], below) == FOG_SUN_SHADOW_NONE, "model %d, -5 deg", i);
+    CHECK(fog_sun_shadow_kind_of(models[i], just_below) == FOG_SUN_SHADOW_NONE,
+          "model %d, the disc just under", i);
+  }
   fog_sun_shadow s;
   fog_error err;
   CHECK(fog_sun_shadow_create(&s, &(fog_sun_shadow_desc){.across = 1, .along = 8}, &err) != 0 &&
@@ -168,6 +252,8 @@ static void test_kinds(void) {
 }
 
 int main(void) {
+  test_rbf_extent();
+  test_rbf_light_span();
   test_rbf();
   test_fogmap();
   test_kinds();
