@@ -98,9 +98,21 @@ float fog_erfc_nonnegative(float z) {
          t * (-0.82215223 + t * 0.17087277)))))))));
 }
 
+// erf(x) for |x| <= 0.5: its Taylor series to x^13 (relative error < 2e-9 there).
+float fog_erf_small(float x) {
+  float x2 = x * x;
+  return 1.12837916709551 * x *
+         (1.0 + x2 * (-1.0 / 3.0 + x2 * (0.1 + x2 * (-1.0 / 42.0 + x2 * (1.0 / 216.0 +
+          x2 * (-1.0 / 1320.0 + x2 * (1.0 / 9360.0)))))));
+}
+
 // erf(u1) - erf(u0) for u0 <= u1 (the C twin's cases): through erfc where both have the
-// same sign, 2 - erfc(|u0|) - erfc(u1) across 0.
+// same sign, 2 - erfc(|u0|) - erfc(u1) across 0; where both lie within 0.5 of 0, by the
+// series (there erfc is near 1 and a difference of two kept float's absolute 1e-7 only: a
+// Gaussian much wider than the ray's stretch, radius 1e6 over 1000 units, lost 3e-4 of its
+// depth).
 float fog_erf_difference(float u0, float u1) {
+  if (max(abs(u0), abs(u1)) <= 0.5) return fog_erf_small(u1) - fog_erf_small(u0);
   float e0 = fog_erfc_nonnegative(abs(u0)), e1 = fog_erfc_nonnegative(abs(u1));
   if (u0 >= 0.0) return e0 - e1;
   if (u1 <= 0.0) return e1 - e0;
