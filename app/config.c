@@ -988,9 +988,14 @@ static int check_sources(parse_state *ps) {
   return 0;
 }
 
-/* The lowest point the view can reach: the camera, the terrain's base, the fog box's floor. */
+/* Where the model's K0 e^{-(y - y0)/H} is largest in view: height fog (everywhere) at the
+ * lowest point a view ray reaches, the camera or the terrain's base; Perlin fog (0 outside
+ * [box] floor .. top) at the box's floor, wherever the camera is. (Both used to take the
+ * least of all three: a Perlin layer above the camera was refused for fog it has not, and
+ * the box, which height fog ignores, decided for it.) */
 static double scene_lowest_point(const scene_config *cfg) {
-  return fmin(cfg->camera.position[1], fmin(cfg->terrain.origin[1], cfg->box.floor));
+  if (cfg->fog.model == FOG_MODEL_PERLIN) return cfg->box.floor;
+  return fmin(cfg->camera.position[1], cfg->terrain.origin[1]);
 }
 
 double scene_config_min_scale_height(const scene_config *cfg) {
@@ -1095,10 +1100,13 @@ static int check_models(parse_state *ps) {
     double exponent = (cfg->fog.fog_height - low) / cfg->fog.scale_height;
     if (cfg->fog.scale_height < scene_config_min_scale_height(cfg)) {
       s.line = cfg->fog.model_line;
-      fail(&s, "fog", "model", "height fog of density_scale %g, fog_height %g and "
-           "scale_height %g reaches exp(%.3g) times density_scale at y = %g (the scene's "
-           "lowest point): over %g per unit, past what float holds; raise scale_height",
-           cfg->fog.density_scale, cfg->fog.fog_height, cfg->fog.scale_height, exponent, low,
+      fail(&s, "fog", "model", "%s fog of density_scale %g, fog_height %g and "
+           "scale_height %g reaches exp(%.3g) times density_scale at y = %g (%s): over %g "
+           "per unit, past what float holds; raise scale_height",
+           cfg->fog.model == FOG_MODEL_PERLIN ? "Perlin" : "height", cfg->fog.density_scale,
+           cfg->fog.fog_height, cfg->fog.scale_height, exponent, low,
+           cfg->fog.model == FOG_MODEL_PERLIN ? "[box] floor, the fog's lowest"
+                                              : "the lowest the view reaches",
            MAX_EXTINCTION);
       return 1;
     }

@@ -126,6 +126,26 @@ int main(void) {
                "expected a number from -1e+07 to 1e+07");
   expect_error("[fog]\nmodel = height\nfog_height = 30\nscale_height = 0.001\n",
                "2: [fog] model: ", "raise scale_height");
+  /* Where each model's fog is densest in view decides it: Perlin fog at its box's floor
+   * (a layer high above the camera is fine, one reaching below it is not), height fog at
+   * the camera or the terrain's base, whatever [box] says. */
+  {
+    static const char *const accepted[] = {
+        "[camera]\nposition = 0 55 0\n[box]\nfloor = 400\ntop = 480\n"
+        "[fog]\nmodel = perlin\nfog_height = 400\nscale_height = 12\ndensity_scale = 0.15\n",
+        "[camera]\nposition = 0 1250 0\n[terrain]\norigin = -500 1000 -500\n[fog]\n"
+        "model = height\nfog_height = 1100\nscale_height = 30\ndensity_scale = 0.02\n"};
+    for (int i = 0; i < 2; i++) {
+      char path[256];
+      scene_config cfg;
+      fog_error err = {0};
+      CHECK(load_text(accepted[i], path, &cfg, &err) == 0, "case %d refused: %s", i,
+            err.message);
+    }
+  }
+  expect_error("[camera]\nposition = 0 55 0\n[box]\nfloor = 100\ntop = 480\n"
+               "[fog]\nmodel = perlin\nfog_height = 400\nscale_height = 3\n",
+               "7: [fog] model: ", "at y = 100 ([box] floor, the fog's lowest)");
   /* Lines past libinih's 200-byte buffer: a long comment is a comment (its tail used to be
    * parsed as a key, and every later line number was off by one); a long key line is an
    * error naming its line. */
