@@ -201,17 +201,19 @@ struct pipeline {
   double last_frame_start;
   bool have_frame;
   camera last_camera;
-  /* The fog's shadow on screen: its kind, and a copy of the finest grid it was computed
-   * from, so that a sun moved while the worker has no new step (paused) re-lights the fog
-   * here (shadow_volume, shadow_grid). */
+  /* The fog's shadow on screen: its kind, and a copy of the approximations it was computed
+   * from (A_0 .. A_J: the volume walks the coarsest fine enough, fog_sun_shadow_compute), so
+   * that a sun moved while the worker has no new step (paused) re-lights the fog here
+   * (shadow_volume, shadow_grids) as the worker would. */
   fog_sun_shadow_kind shown_self_shadow;
   int levels_most; /* the most levels the fogmap's size allows (and FOG_MAX_LEVELS) */
   double shown_shadow_sun[3];
   float shown_shadow_shape[4]; /* shadow_shape_of the params the volume shown was made with */
-  transform_grid shadow_grid;
+  transform_grid shadow_grids[FOG_MAX_LEVELS + 1];
+  int shadow_levels; /* J of shadow_grids: shadow_grids[shadow_levels] is the finest */
   fog_sun_shadow shadow_volume;
   /* The demo's live rung (params.live_rung, app/live_rung.h): fitted to the finest grid of
-   * the shown step (shadow_grid) when the kind changes and at every step (the bounded
+   * the shown step (shadow_grids[shadow_levels]) when the kind changes and at every step (the bounded
    * rungs every LIVE_RUNG_REFIT steps: show_live_rung), measured every
    * LIVE_RUNG_INTERVAL frames on the view's surface distances (rung_depth). */
   live_rung rung;
@@ -507,14 +509,17 @@ static void shadow_shape_of(const pipeline_params *params, float shape[4]) {
 
 /* The fog's shadow of a step (docs/light.md) for the unit direction sun (of params'
  * angles): only with albedo > 0 and [light] fog_self_shadow on; the volume is computed from
- * the finest grid (threads: the worker's one, or both cores when the GL thread waits). */
+ * the step's approximations approx[0 .. levels], walking the coarsest fine enough for its
+ * columns as `render` does (threads: the worker's one, or both cores when the GL thread
+ * waits). */
 static int compute_shadow(const pipeline *p, const pipeline_params *params,
-                          const transform_grid *finest, const double sun[3], int threads,
-                          fog_sun_shadow_kind *kind, fog_sun_shadow *volume, fog_error *err) {
+                          const transform_grid *approx, int levels, const double sun[3],
+                          int threads, fog_sun_shadow_kind *kind, fog_sun_shadow *volume,
+                          fog_error *err) {
   *kind = FOG_SUN_SHADOW_NONE;
   if (!(params->sun.albedo > 0) || !params->fog_self_shadow) return 0;
   fog_volume v = volume_of(p, params);
-  fog_lod lod = {.levels = 0, .approx = finest, .mu = 1.0};
+  fog_lod lod = {.levels = levels, .approx = approx, .mu = 1.0};
   fog_model m = {.kind = FOG_MODEL_FOGMAP, .volume = &v, .lod = &lod};
   *kind = fog_sun_shadow_kind_of(&m, sun);
   if (*kind != FOG_SUN_SHADOW_VOLUME) return 0;
@@ -600,7 +605,7 @@ static int cpu_stages_run(pipeline *p, const worker_requests *r, pipeline_slot *
                        memcmp(shape, c->shadow_shape, sizeof shape) ||
                        c->steps - c->shadow_step >= LIVE_SHADOW_INTERVAL;
   if (slot->shadow_fresh) {
-    if (compute_shadow(p, &p->applied, &slot->pyramid.approx[slot->pyramid.levels], sun,
+    if (compute_shadow(p, &p->applied, slot->pyramid.approx, slot->pyramid.levels, sun,
                        p->synchronous ? 2 : 1, &slot->self_shadow, &slot->sun_shadow, err))
       return 1;
     c->shadow_step = c->steps, c->shadow_on = on, c->shadow_kind = slot->self_shadow;
@@ -824,7 +829,7 @@ void pipeline_destroy(pipeline *p) {
   for (int s = 0; s < 2; s++) fog_sun_shadow_destroy(&p->slots[s].sun_shadow);
   fog_sun_shadow_destroy(&p->shadow_volume);
   fog_sun_shadow_destroy(&p->rung_shadow);
-  transform_grid_destroy(&p->shadow_grid);
+  for (int l = 0; l <= FOG_MAX_LEVELS; l++) transform_grid_destroy(&p->shadow_grids[l]);
   free(p->rung_depth);
   plan_destroy(&p->cpu);
   if (p->cpu.sim) fluid_sim_destroy(p->cpu.sim);
@@ -901,25 +906,28 @@ static fog_volume volume_of(const pipeline *p, const pipeline_params *params) {
   return scene_config_fog_volume(&p->config, p->cpu.base.width, p->cpu.base.height, &shape);
 }
 
-/* After a slot's grids went up: its shadow volume too, and a copy of its finest grid for
- * re-lighting (GL thread; the slot is still held). */
+/* After a slot's grids went up: its shadow volume too, and a copy of its approximations
+ * for re-lighting (GL thread; the slot is still held). */
 static int show_slot_shadow(pipeline *p, const pipeline_slot *slot, fog_error *err) {
   fog_error rerr = {0};
   p->shown_self_shadow = slot->self_shadow;
   if (slot->shadow_fresh) p->last.sun_shadow = slot->sun_shadow_ms;
-  const transform_grid *finest = &slot->pyramid.approx[slot->pyramid.levels];
-  transform_grid *copy = &p->shadow_grid;
-  if (copy->width != finest->width || copy->height != finest->height) {
-    transform_grid_destroy(copy);
-    fog_error terr = {0};
-    if (transform_grid_create(copy, finest->width, finest->height, &terr))
-      return fog_error_wrap(err, &terr, "sun shadow: ");
+  for (int l = 0; l <= slot->pyramid.levels; l++) {
+    const transform_grid *from = &slot->pyramid.approx[l];
+    transform_grid *copy = &p->shadow_grids[l];
+    if (copy->width != from->width || copy->height != from->height) {
+      transform_grid_destroy(copy);
+      fog_error terr = {0};
+      if (transform_grid_create(copy, from->width, from->height, &terr))
+        return fog_error_wrap(err, &terr, "sun shadow: ");
+    }
+    float *coefficients = copy->coefficients;
+    *copy = *from;
+    copy->coefficients = coefficients;
+    memcpy(coefficients, from->coefficients,
+           (size_t)from->width * from->height * sizeof *coefficients);
   }
-  float *coefficients = copy->coefficients;
-  *copy = *finest;
-  copy->coefficients = coefficients;
-  memcpy(coefficients, finest->coefficients,
-         (size_t)finest->width * finest->height * sizeof *coefficients);
+  p->shadow_levels = slot->pyramid.levels;
   if (!slot->shadow_fresh || slot->self_shadow != FOG_SUN_SHADOW_VOLUME) return 0;
   memcpy(p->shown_shadow_sun, slot->sun_shadow.sun, sizeof p->shown_shadow_sun);
   memcpy(p->shown_shadow_shape, slot->shadow_shape, sizeof p->shown_shadow_shape);
@@ -938,7 +946,7 @@ static int relight(pipeline *p, const pipeline_params *params, fog_error *err) {
     p->shown_self_shadow = FOG_SUN_SHADOW_NONE; /* switched off: at once */
     return 0;
   }
-  if (!p->shadow_grid.coefficients) return 0;
+  if (!p->shadow_grids[p->shadow_levels].coefficients) return 0;
   double sun[3];
   float shape[4];
   sun_direction_of(p, params, sun);
@@ -950,7 +958,8 @@ static int relight(pipeline *p, const pipeline_params *params, fog_error *err) {
     return 0;
   double t0 = now_ms();
   fog_sun_shadow_kind kind;
-  if (compute_shadow(p, params, &p->shadow_grid, sun, 2, &kind, &p->shadow_volume, err))
+  if (compute_shadow(p, params, p->shadow_grids, p->shadow_levels, sun, 2, &kind,
+                     &p->shadow_volume, err))
     return 1;
   p->shown_self_shadow = kind;
   memcpy(p->shown_shadow_sun, sun, sizeof sun);
@@ -1196,7 +1205,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
   pthread_mutex_unlock(&p->lock);
   fog_volume volume = volume_of(p, &params);
   const bool rung = params.live_rung > LIVE_RUNG_FOGMAP && params.live_rung < LIVE_RUNG_COUNT &&
-                    p->shadow_grid.coefficients;
+                    p->shadow_grids[p->shadow_levels].coefficients;
   /* a rung lights itself (a bounded one by its own volume, the others in closed form): the
    * fogmap's volume waits until the menu returns to it, when relight sees the sun or the
    * shape it was made for changed (recomputing it for a closed-form rung cost 20-70 ms of
@@ -1213,7 +1222,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
     quadrics[i].density *= params.density;
   }
   /* The live rung: the fitted model drawn in the fogmap's place, lit as that model is. */
-  fog_lod finest = {.levels = 0, .approx = &p->shadow_grid};
+  fog_lod finest = {.levels = 0, .approx = &p->shadow_grids[p->shadow_levels]};
   const fog_model fogmap_model = {.kind = FOG_MODEL_FOGMAP, .volume = &volume, .lod = &finest,
                                   .lod_method = FOG_LOD_SWITCH};
   fog_sun_shadow_kind self_shadow = p->shown_self_shadow;
