@@ -269,6 +269,7 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
     bool beauty_float = false;
     camera_exr_matrices(player_camera(src), width, height, pixels.world_to_camera,
                         pixels.world_to_ndc);
+    pixels.view = *player_camera(src);
     if (player_frame(src, frame, &out, &perr)) {
       if (!job->quiet) recorder_progress_end(&progress);
       fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, perr.message);

@@ -29,8 +29,8 @@ static int write_exr(const char *out, int width, int height, const frame_pixels 
   if (!planes) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
   image_channel channels[FRAME_EXR_CHANNELS];
   const bool beauty_float = frame_exr_channels(frame->rgba, frame->transmittance, frame->depth,
-                                               frame->inscatter, width, height, false, planes,
-                                               channels);
+                                               frame->inscatter, cam, width, height, false,
+                                               planes, channels);
   image_exr_matrix matrices[2] = {{.name = "worldToCamera"}, {.name = "worldToNDC"}};
   camera_exr_matrices(cam, width, height, matrices[0].m, matrices[1].m);
   const image_exr_header header = {.matrices = matrices, .matrix_count = 2};

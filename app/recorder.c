@@ -243,8 +243,8 @@ int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *p
   const int w = rec->width, h = rec->height;
   image_channel channels[FRAME_EXR_CHANNELS];
   const bool as_float = frame_exr_channels(pixels->rgba, pixels->transmittance, pixels->depth,
-                                           pixels->inscatter, w, h, pixels->bottom_up, scratch,
-                                           channels);
+                                           pixels->inscatter, &pixels->view, w, h,
+                                           pixels->bottom_up, scratch, channels);
   if (beauty_float) *beauty_float = as_float;
   char path[1200];
   recorder_frame_path(rec, frame, path, sizeof path);

@@ -52,8 +52,9 @@ typedef struct recorder_frame {
   const float *depth;          /* width*height */
   const float *inscatter;      /* width*height*3: rgb = transmittance surface + inscatter */
   /* The camera (camera_exr_matrices), written as worldToCamera and worldToNDC so that a
-   * compositor can reproject the frame. */
+   * compositor can reproject the frame, and the Z channel's view axis. */
   float world_to_camera[16], world_to_ndc[16];
+  camera view;
   bool bottom_up;
 } recorder_frame;
 

@@ -92,16 +92,26 @@ void camera_view_matrix_world(const camera *cam, float m[16]) {
 
 void camera_exr_matrices(const camera *cam, int width, int height, float world_to_camera[16],
                          float world_to_ndc[16]) {
-  float projection[16];
-  camera_view_matrix_world(cam, world_to_camera);
+  float view[16], projection[16];
+  camera_view_matrix_world(cam, view);
   camera_projection_matrix(cam, width, height, projection);
-  /* column-major: (P V)[col c][row r] = sum_k P[k][r] V[c][k] */
-  for (int c = 0; c < 4; c++)
+  /* column-major: (P V)[col c][row r] = sum_k P[k][r] V[c][k], GL's clip space; then
+   * OpenEXR's NDC from it: x' = (x + w) / 2, y' = (w - y) / 2 (y down, the display window's
+   * upper left corner at (0, 0), its lower right at (1, 1)), z and w kept */
+  for (int c = 0; c < 4; c++) {
+    double clip[4];
     for (int r = 0; r < 4; r++) {
-      double sum = 0.0;
-      for (int k = 0; k < 4; k++) sum += (double)projection[4 * k + r] * world_to_camera[4 * c + k];
-      world_to_ndc[4 * c + r] = (float)sum;
+      clip[r] = 0.0;
+      for (int k = 0; k < 4; k++) clip[r] += (double)projection[4 * k + r] * view[4 * c + k];
     }
+    world_to_ndc[4 * c + 0] = (float)(0.5 * (clip[0] + clip[3]));
+    world_to_ndc[4 * c + 1] = (float)(0.5 * (clip[3] - clip[1]));
+    world_to_ndc[4 * c + 2] = (float)clip[2];
+    world_to_ndc[4 * c + 3] = (float)clip[3];
+    /* OpenEXR's camera space is RenderMan's: left-handed, looking down +Z (GL's z negated) */
+    for (int r = 0; r < 4; r++)
+      world_to_camera[4 * c + r] = r == 2 ? -view[4 * c + r] : view[4 * c + r];
+  }
 }
 
 void camera_depth_range(const camera *cam, double *near_plane, double *far_plane) {

@@ -63,10 +63,12 @@ void camera_ray(const camera *cam, double px, double py, int width, int height,
 void camera_view_matrix(const camera *cam, float m[16]);
 void camera_view_matrix_world(const camera *cam, float m[16]);
 void camera_projection_matrix(const camera *cam, int width, int height, float m[16]);
-/* The standard EXR header matrices of a frame (OpenEXR's worldToCamera and worldToNDC,
+/* The standard EXR header matrices of a frame as OpenEXR defines them (ImfStandardAttributes:
  * M44f for row vectors, p' = p M, row-major: the same 16 floats as GL's column-major
- * matrices for column vectors): world to camera (right-handed, looking down -Z, y up)
- * and world to OpenGL's clip space (divide by w: x, y in [-1, 1], y up, z in [-1, 1]). */
+ * matrices for column vectors): worldToCamera to RenderMan's camera space (left-handed: x
+ * right, y up, looking down +Z, points in front at z > 0), and worldToNDC to its NDC
+ * (divide by w: x right, y down, (0, 0) the image's upper left corner, (1, 1) its lower
+ * right; z is GL's clip z, which readers discard). */
 void camera_exr_matrices(const camera *cam, int width, int height, float world_to_camera[16],
                          float world_to_ndc[16]);
 /* The near and far plane distances the projection uses (the camera's own: set both). */

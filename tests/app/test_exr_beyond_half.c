@@ -27,7 +27,9 @@ static void channels_rule(void) {
     for (int i = 0; i < 16; i++) rgba[i] = 0.5f;
     rgba[9] = cases[k];
     image_channel channels[FRAME_EXR_CHANNELS];
-    const bool as_float = frame_exr_channels(rgba, one, one, rgba, 2, 2, false, scratch,
+    const camera cam = {.fov_y = 1.0, .near_plane = CAMERA_DEFAULT_NEAR,
+                        .far_plane = CAMERA_DEFAULT_FAR};
+    const bool as_float = frame_exr_channels(rgba, one, one, rgba, &cam, 2, 2, false, scratch,
                                              channels);
     CHECK(as_float == want[k], "a value of %g: as float %d, expected %d", (double)cases[k],
           as_float, want[k]);

@@ -195,7 +195,8 @@ static void row_times(const double p[3], const float m[16], double out[4]) {
     out[j] = p[0] * m[j] + p[1] * m[4 + j] + p[2] * m[8 + j] + m[12 + j];
 }
 
-static void check_camera_matrices(const char *exr, const scene_config *cfg, const float *depth) {
+static void check_camera_matrices(const char *exr, const scene_config *cfg, const float *depth,
+                                  const float *z) {
   float to_camera[16], to_ndc[16];
   fog_error err;
   if (image_read_exr_matrix(exr, "worldToCamera", to_camera, &err) ||
@@ -205,7 +206,7 @@ static void check_camera_matrices(const char *exr, const scene_config *cfg, cons
   }
   camera cam;
   scene_config_camera(cfg, &cam);
-  double worst_ndc = 0, worst_distance = 0;
+  double worst_ndc = 0, worst_distance = 0, worst_z = 0;
   int checked = 0;
   for (int py = 0; py < H; py += 3)
     for (int px = 0; px < W; px += 3) {
@@ -216,18 +217,27 @@ static void check_camera_matrices(const char *exr, const scene_config *cfg, cons
       for (int a = 0; a < 3; a++) p[a] = o[a] + d * dir[a];
       row_times(p, to_camera, c);
       row_times(p, to_ndc, n);
-      const double nx = 2 * (px + 0.5) / W - 1, ny = 1 - 2 * (py + 0.5) / H;
+      /* OpenEXR's NDC (ImfStandardAttributes): (0, 0) the upper left corner of the image,
+       * (1, 1) the lower right, y down */
+      const double nx = (px + 0.5) / W, ny = (py + 0.5) / H;
       worst_ndc = fmax(worst_ndc, fmax(fabs(n[0] / n[3] - nx), fabs(n[1] / n[3] - ny)));
       worst_distance = fmax(worst_distance,
                             fabs(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) - d) / d);
-      CHECK(c[2] < 0, "pixel (%d, %d): camera-space z %.3f, not in front (-Z)", px, py, c[2]);
+      /* its camera space is RenderMan's: left-handed, in front at z > 0; Z is that z */
+      CHECK(c[2] > 0, "pixel (%d, %d): camera-space z %.3f, not in front (+Z)", px, py, c[2]);
+      worst_z = fmax(worst_z, fabs(z[py * W + px] - c[2]) / c[2]);
       checked++;
     }
+  for (int k = 0; k < W * H; k++)
+    if (depth[k] >= cam.far_plane)
+      CHECK(z[k] == (float)cam.far_plane, "the sky's Z %g: expected the far plane %g",
+            (double)z[k], cam.far_plane);
   printf("camera matrices: %d surface points: max |NDC - pixel centre| %.2e, max relative "
-         "|distance - depth| %.2e\n", checked, worst_ndc, worst_distance);
+         "|distance - depth| %.2e, |Z - camera z| %.2e\n", checked, worst_ndc, worst_distance,
+         worst_z);
   CHECK(checked > 100, "only %d surface pixels", checked);
-  CHECK(worst_ndc < 1e-4 && worst_distance < 1e-5, "camera matrices off: %.3e NDC, %.3e depth",
-        worst_ndc, worst_distance);
+  CHECK(worst_ndc < 1e-4 && worst_distance < 1e-5 && worst_z < 1e-5,
+        "camera matrices off: %.3e NDC, %.3e depth, %.3e Z", worst_ndc, worst_distance, worst_z);
 }
 
 static void check_exr_channels(void) {
@@ -259,8 +269,9 @@ static void check_exr_channels(void) {
       free(v);
     }
     float *z = load_exr_channel(exr, "Z", W, H), *depth = load_exr_channel(exr, "depth", W, H);
-    CHECK(z && depth && !memcmp(z, depth, sizeof(float) * W * H), "%s: Z != depth", exr);
-    check_camera_matrices(exr, &cfg, want.depth);
+    CHECK(z && depth && !memcmp(depth, want.depth, sizeof(float) * W * H),
+          "%s: depth differs from render_frame's", exr);
+    if (z) check_camera_matrices(exr, &cfg, want.depth, z);
     free(z), free(depth);
   }
   /* record writes the same camera */
