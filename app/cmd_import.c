@@ -18,6 +18,7 @@
 #include "app/out_folder.h"
 #include "app/cli.h"
 #include "app/staged_move.h"
+#include "app/stop_signals.h"
 #include "app/cli_options.h"
 #include "app/clock.h"
 #include "app/commands.h"
@@ -45,6 +46,9 @@ typedef struct import_options {
   bool report;
   int report_frame, report_rays;
 } import_options;
+
+/* The exit status of an import stopped by SIGINT or SIGTERM (128 + SIGINT, as the shells). */
+enum { IMPORT_INTERRUPTED = 130 };
 
 /* --name: the files' base name. Not hidden ('.': the frames would be dot files, which the
  * move into place and every folder listing pass over), and no '#' or '%', which the
@@ -552,6 +556,7 @@ static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_fra
     return cli_fail("import", "%s, or --config FILE or --config none for all", err.message);
   for (*loaded = 0; *loaded < seq->count; (*loaded)++) {
     const int k = *loaded;
+    if (stop_signals_caught()) return IMPORT_INTERRUPTED;
     if (vdb_frame_load(seq->paths[k], &desc, &frames[k], &err))
       return cli_fail("import", "frame %d: %s", seq->frames[k], err.message);
     const vdb_frame *f = &frames[k];
@@ -660,6 +665,11 @@ int cmd_import(int argc, char **argv) {
     vdb_sequence_destroy(&seq);
     return cli_fail("import", "out of memory for %d frames", seq.count);
   }
+  /* Ctrl-C or SIGTERM: the staging folder and the folders this run made go, --out stays as
+   * it was (exit 130); held while the files move into place */
+  stop_signals stop;
+  stop_signals_clear();
+  stop_signals_catch(&stop, false);
   if ((status = load_frames(&o, &seq, frames, &loaded))) goto done;
   vdb_fogmap_place place;
   if (place_sequence(&o, frames, seq.count, &place, &err)) {
@@ -710,6 +720,10 @@ int cmd_import(int argc, char **argv) {
   double mass_min = INFINITY, mass_max = 0;
   for (int i = 0; i < seq.count; i++) {
     const vdb_profile *g = profile ? profile : &frames[i].profile;
+    if (stop_signals_caught()) {
+      status = IMPORT_INTERRUPTED;
+      goto done;
+    }
     if (vdb_columns_resample(&frames[i].columns, &place, g->thickness, &map, &err)) {
       status = cli_fail("import", "frame %d: %s: %s", seq.frames[i], seq.paths[i], err.message);
       goto done;
@@ -730,12 +744,23 @@ int cmd_import(int argc, char **argv) {
     goto done;
   }
   if (o.report && (status = run_report(&o, &seq, frames, &place, profile, temp_dir))) goto done;
-  if ((status = staged_move_into_place("import", temp_dir, o.out))) goto done;
+  if (stop_signals_caught()) {
+    status = IMPORT_INTERRUPTED;
+    goto done;
+  }
+  stop_signals_hold(&stop);
+  status = staged_move_into_place("import", temp_dir, o.out);
+  stop_signals_release(&stop);
+  if (status) goto done;
   print_summary(&o, &seq, frames, &place, profile, mass_min, mass_max);
   warn_other_frames(&o, &seq);
 done:
+  if (status == IMPORT_INTERRUPTED)
+    fprintf(stderr, "fogpipe import: interrupted: nothing written%s\n",
+            made.any ? "" : " (the folder is as it was)");
   if (temp_dir[0]) staged_remove(temp_dir);
   if (status) out_folder_undo(&made); /* folders made for a failed import go too */
+  stop_signals_restore(&stop);
   fogmap_destroy(&map);
   for (int i = 0; i < seq.count; i++) vdb_frame_destroy(&frames[i]);
   free(frames);

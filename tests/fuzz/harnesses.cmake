@@ -30,5 +30,5 @@ set(FOGPIPE_FUZZ_uni_LIBS fogpipe_sim)
 # (fuzz_options.c says which and why).
 set(FOGPIPE_FUZZ_options_SOURCES tests/fuzz/fuzz_options.c tests/fuzz/fuzz_options_import.c
     tests/fuzz/fuzz_options_design.c app/cli.c app/cli_options.c app/out_folder.c
-    app/staged_move.c)
+    app/staged_move.c app/stop_signals.c)
 set(FOGPIPE_FUZZ_options_LIBS fogpipe_vdb m)
