@@ -69,15 +69,17 @@ static int record_instead(const headless_job *h, const char *reason) {
   char folder[PATH_MAX + 1] = "out/demo";
   recorder probe;
   fog_error rerr = {0};
+  char temp[] = "/tmp/fogpipe-demo-XXXXXX";
+  bool made_temp = false;
   if (recorder_open(&probe, &(recorder_desc){.folder = folder, .width = h->width,
                                              .height = h->height},
                     &rerr)) {
-    char temp[] = "/tmp/fogpipe-demo-XXXXXX";
     if (!mkdtemp(temp)) {
       fprintf(stderr, "fogpipe demo: %s, and no folder to record into (%s)\n", reason,
               rerr.message);
       return 1;
     }
+    made_temp = true;
     snprintf(folder, sizeof folder, "%s", temp);
   }
   /* Print where the frames are as an absolute path: the user may not know the cwd. */
@@ -89,23 +91,22 @@ static int record_instead(const headless_job *h, const char *reason) {
   snprintf(frames, sizeof frames, "%s/frame.####.exr", folder);
   const int refused =
       cli_sequence_not_scene_input("demo", "the recording folder", frames, h->config);
-  if (refused) return refused;
-  /* out/demo holds the last demo's recording: an earlier, longer run's later frames would
-   * stay beside this one's */
-  recorder previous = {.name = "frame"};
-  snprintf(previous.folder, sizeof previous.folder, "%s", folder);
-  const int cleared = recorder_remove_frames(&previous);
-  if (cleared > 0)
-    printf("fogpipe demo: removed %d frame%s of an earlier demo from %s\n", cleared,
-           cleared == 1 ? "" : "s", folder);
+  if (refused) {
+    if (made_temp) rmdir(temp);
+    return refused;
+  }
   printf("fogpipe demo: %s: recording %d frame%s of %s headless into %s instead\n", reason,
          h->frames, h->frames == 1 ? "" : "s", h->config_path, folder);
   fflush(stdout);
+  /* out/demo holds the last demo's recording: an earlier, longer run's later frames would
+   * stay beside this one's, so they go, but only once this run's scene has loaded (a scene
+   * that fails to load used to leave the folder empty) */
   record_job job = {.command = "demo", .config_path = h->config_path, .frames = h->frames,
                     .fps = 24, .out = folder, .width = h->width, .height = h->height,
-                    .quiet = !isatty(fileno(stdout))};
+                    .quiet = !isatty(fileno(stdout)), .replace_earlier = true};
   int status = record_run(&job);
   if (!status && h->screenshot) status = last_frame_png(h, folder);
+  if (status && made_temp) rmdir(temp); /* left only if empty: frames written stay */
   return status;
 }
 

@@ -25,8 +25,9 @@
 #include "sim/sim.h"
 
 /* SIGINT and SIGTERM set the stop flag (app/stop_signals.h: the work in hand finishes or
- * stops cleanly) until the previous handlers are back. The flag is cleared once, before the
- * frames: one raised during them still stops the preview after them. */
+ * stops cleanly) until the previous handlers are back. The flag is cleared once, as
+ * record_run starts: one raised while the scene loads stops it before the first frame, one
+ * raised during the frames still stops the preview after them. */
 
 /* PATH with its folder resolved (realpath) where that folder exists, and without trailing
  * slashes: two spellings of one place compare equal ("./rec", "rec/", "/abs/rec"). */
@@ -216,26 +217,45 @@ static int open_output(const record_job *job, recorder *rec, scene_config *confi
 }
 
 /* The frames' source, moved on past frame done (a simulation re-runs those frames; the
- * other sources' frames are independent). NULL (printed) on failure. */
-static player *start_player(const record_job *job, const scene_config *config, int width,
-                            int height, double fps, int first, int done) {
+ * other sources' frames are independent). NULL on failure (printed, *status 1) or when
+ * SIGINT or SIGTERM came meanwhile (said with the command that resumes, *status 130): a
+ * range's catch-up may simulate thousands of frames, so it runs in parts and looks for a
+ * stop between them (a farm's preemption sends SIGTERM). */
+static player *start_player(const record_job *job, recorder *rec, const scene_config *config,
+                            int width, int height, double fps, int first, int done,
+                            int *status) {
   fog_error err = {0};
+  *status = 1;
   player *src = player_create(&(player_desc){.config = config, .width = width,
                                              .height = height, .fps = fps, .play = true,
                                              .synchronous = job->synchronous},
                               &err);
-  if (src && done > 0) {
-    if (player_is_sequential(src)) {
-      printf("%s frame %d: re-running the simulation to it\n",
-             done >= first ? "resuming after" : "starting after", done);
-      fflush(stdout);
-    }
-    if (player_skip(src, done, &err)) {
+  if (src && done > 0 && player_is_sequential(src)) {
+    printf("%s frame %d: re-running the simulation to it\n",
+           done >= first ? "resuming after" : "starting after", done);
+    fflush(stdout);
+  }
+  enum { SKIP_PART = 8 }; /* frames simulated between looks at the stop flag */
+  for (long skipped = 0; src && skipped < done; skipped += SKIP_PART) {
+    const long part = done - skipped < SKIP_PART ? done - skipped : SKIP_PART;
+    if (stop_signals_caught() || player_skip(src, part, &err)) {
       player_destroy(src);
       src = NULL;
     }
   }
-  if (!src) fprintf(stderr, "fogpipe %s: %s\n", job->command, err.message);
+  if (src && stop_signals_caught()) {
+    player_destroy(src);
+    src = NULL;
+  }
+  if (!src && stop_signals_caught()) {
+    char hint[13 * PATH_MAX];
+    resume_hint(job, rec, done, hint, sizeof hint);
+    fprintf(stderr, "fogpipe %s: interrupted before frame %d: nothing new written; to "
+            "finish: %s\n", job->command, done + 1, hint);
+    *status = 130;
+  } else if (!src) {
+    fprintf(stderr, "fogpipe %s: %s\n", job->command, err.message);
+  }
   return src;
 }
 
@@ -255,9 +275,6 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
   float *inscatter = buffer + 6 * n, *scratch = buffer + 9 * n;
   const frame_pixels out = {.rgba = rgba, .transmittance = transmittance, .depth = depth,
                             .inscatter = inscatter};
-  stop_signals stop;
-  stop_signals_clear();
-  stop_signals_catch(&stop, false);
   fog_error perr = {0};
   fog_error rerr = {0};
   recorder_progress progress;
@@ -298,7 +315,6 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
     fprintf(stderr, "fogpipe %s: %d frame%s (the first: %d) written with R G B A as 32-bit "
             "float: some pixels are brighter than half-float holds (%g)\n", cmd, float_frames,
             float_frames == 1 ? "" : "s", first_float, (double)FRAME_EXR_HALF_MAX);
-  stop_signals_restore(&stop);
   free(buffer);
   return status;
 }
@@ -353,8 +369,8 @@ static int record_into(const record_job *job, recorder *rec) {
            (unsigned long long)scene_config_fingerprint(&config), width, height, fps);
   const int first = job->first_frame > 0 ? job->first_frame : 1, last = job->frames;
   fog_error oerr = {0};
-  if (recorder_check_other_frames(rec, first, last, &oerr)) /* said, not refused: see h */
-    fprintf(stderr, "fogpipe %s: warning: %s\n", job->command, oerr.message);
+  if (!job->replace_earlier && recorder_check_other_frames(rec, first, last, &oerr))
+    fprintf(stderr, "fogpipe %s: warning: %s\n", job->command, oerr.message); /* see h */
   int done = first - 1; /* the last frame on disk of the range */
   if (job->resume) {
     fog_error rerr = {0};
@@ -370,8 +386,15 @@ static int record_into(const record_job *job, recorder *rec) {
   /* What a killed run of this range left; other ranges' temporaries may be live. */
   recorder_remove_stale_temporaries(rec, first, last);
   if (done < last) {
-    player *src = start_player(job, &config, width, height, fps, first, done);
-    if (!src) return 1;
+    int started = 0;
+    player *src = start_player(job, rec, &config, width, height, fps, first, done, &started);
+    if (!src) return started;
+    if (job->replace_earlier) {
+      const int cleared = recorder_remove_frames(rec);
+      if (cleared > 0)
+        printf("fogpipe %s: removed %d frame%s of an earlier run from %s\n", job->command,
+               cleared, cleared == 1 ? "" : "s", rec->folder);
+    }
     int status = record_frames(job, rec, src, width, height, first, done, last);
     player_destroy(src);
     if (status) return status;
@@ -381,8 +404,15 @@ static int record_into(const record_job *job, recorder *rec) {
 
 int record_run(const record_job *job) {
   recorder rec = {.folder = ""};
+  /* SIGINT and SIGTERM from the start: caught while the scene loads and a range's
+   * simulation catches up too (they used to end the process there, leaving its folders) */
+  stop_signals stop;
+  stop_signals_clear();
+  stop_signals_catch(&stop, false);
   int status = record_into(job, &rec);
-  /* A run that failed before writing a frame leaves no folder of its own making behind. */
-  if (status == 1 || status == 2) out_folder_undo(&rec.made); /* empty ones, innermost first */
+  stop_signals_restore(&stop);
+  /* A run that failed or stopped before writing a frame leaves no folder of its own making
+   * behind (only empty ones go, innermost first: written frames stay). */
+  if (status == 1 || status == 2 || status == 130) out_folder_undo(&rec.made);
   return status;
 }

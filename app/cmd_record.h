@@ -21,6 +21,9 @@ typedef struct record_job {
   const char *preview;     /* video path or NULL */
   bool quiet;              /* no per-frame progress */
   bool synchronous;        /* sim + transform on the GL thread (same frames, slower) */
+  /* demo: the folder's frames of an earlier run are removed, once the scene has loaded and
+   * before the first frame is written (a scene that fails to load leaves them), and said */
+  bool replace_earlier;
 } record_job;
 
 int record_run(const record_job *job);

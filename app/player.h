@@ -15,8 +15,9 @@
  * (demo, view: app/window_program.h) uses the same pipeline, or render_fog with a scene
  * pass of its own for the fog as held.
  *
- * Lifecycle: player_create (makes its own headless GL context) → player_skip (once, for
- * --resume) → player_frame per frame → player_destroy. */
+ * Lifecycle: player_create (makes its own headless GL context) → player_skip (for --resume
+ * or a range; in parts if need be: the frames add up) → player_frame per frame →
+ * player_destroy. */
 #ifndef FOGPIPE_APP_PLAYER_H
 #define FOGPIPE_APP_PLAYER_H
 

@@ -132,7 +132,23 @@ int main(void) {
   others = record_count_files(out, &frame_files);
   CHECK(frame_files == 1 && others == 0, "after a 1-frame run: %d frames and %d other files",
         frame_files, others);
-  CHECK(log_says(log, "removed 2 frames of an earlier demo"), "the clearing is not said");
+  CHECK(log_says(log, "removed 2 frames of an earlier run"), "the clearing is not said");
+  /* a scene that fails to load (its fogmap cut short) leaves the earlier frame in place:
+   * the clearing waits until the scene has loaded (it used to come first) */
+  {
+    char cut[800], broken[800], cmd[2000];
+    snprintf(cut, sizeof cut, "%s/cut.png", root);
+    snprintf(broken, sizeof broken, "%s/broken.ini", root);
+    snprintf(cmd, sizeof cmd, "head -c 500 data/fogmap_sample.png > '%s'", cut);
+    CHECK(system(cmd) == 0, "%s", cmd);
+    test_write_text(broken, "[fog]\nfogmap = cut.png\n");
+    char *const fails[] = {bin_abs, "demo", broken, "--frames", "2", NULL};
+    status = run_demo(bin_abs, root, log, fails);
+    others = record_count_files(out, &frame_files);
+    CHECK(status == 1 && log_says(log, "cut.png") && frame_files == 1 && others == 0,
+          "a scene that fails to load: exit %d, %d frames left (expected the earlier 1)", status,
+          frame_files);
+  }
   check_screenshot(bin_abs, config, root);
   /* a scene whose fogmap is a frame of out/demo: refused before the earlier frames are
    * cleared (they were, the fogmap with them) */
