@@ -217,6 +217,7 @@ static const char *folder_problem(const char *file) {
   struct stat st;
   if (stat(folder, &st) != 0 || !S_ISDIR(st.st_mode)) return "its folder does not exist";
   if (access(folder, W_OK | X_OK) != 0) return "its folder is not writable";
+  if (stat(file, &st) == 0 && S_ISDIR(st.st_mode)) return "a folder of that name is in the way";
   return NULL;
 }
 
@@ -279,8 +280,12 @@ int cmd_fit(int argc, char **argv) {
   fit_options o;
   int status = parse(argc, argv, &o);
   if (status) return status < 0 ? 0 : status;
-  const char *outputs[2] = {o.out, o.chart};
-  for (int i = 0; i < 2; i++) {
+  /* every file the run writes, checked before the fit (--chart's CSV beside its PNG) */
+  char chart_csv[PATH_MAX] = "";
+  if (o.chart)
+    snprintf(chart_csv, sizeof chart_csv, "%.*s.csv", (int)(strlen(o.chart) - 4), o.chart);
+  const char *outputs[3] = {o.out, o.chart, o.chart ? chart_csv : NULL};
+  for (int i = 0; i < 3; i++) {
     const char *problem = outputs[i] ? folder_problem(outputs[i]) : NULL;
     if (problem) return cli_fail("fit", "%s: cannot write: %s", outputs[i], problem);
   }
@@ -356,12 +361,14 @@ int cmd_fit(int argc, char **argv) {
     printf("chosen: %s (%s |dtau| %.3g <= %g, %.2f GL ms)\n", g->name,
            o.desc.by_mean ? "mean" : "max", o.desc.by_mean ? g->mean_error : g->max_error,
            o.tolerance[0], g->ms);
-    if (o.out && !(status = write_scene(&r, g, o.out))) printf("wrote %s\n", o.out);
   }
-  if (!status && o.chart) {
+  /* the chart first: a chart that cannot be written leaves --out as it was */
+  if (o.chart) {
     status = write_chart(&r, o.chart);
     if (!status) printf("chart %s\n", o.chart);
   }
+  if (!status && r.chosen >= 0 && o.out && !(status = write_scene(&r, &r.rungs[r.chosen], o.out)))
+    printf("wrote %s\n", o.out);
   printf("fit: %.1f s\n", app_clock_seconds() - t0);
   fit_result_destroy(&r);
   free(cfg), free(frames);

@@ -19,6 +19,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "app/config.h"
 #include "test_bin.h"
@@ -88,6 +89,26 @@ int main(void) {
           "without gnuplot: exit %d, stderr: %s", WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, err);
     CHECK(!exists(scene2) && !exists(chart2) && !exists(csv2),
           "without gnuplot the fit still wrote its scene or chart's CSV");
+  }
+  {
+    /* a folder where --chart's CSV goes: refused before the fit, naming it, and the --out of
+     * an earlier run kept (the fit used to run, replace --out, then fail on the CSV with
+     * "disk full?") */
+    char kept[256], chart3[256], csv3[256], before[64], after[64];
+    snprintf(kept, sizeof kept, "%s/kept.ini", dir);
+    snprintf(chart3, sizeof chart3, "%s/blocked.png", dir);
+    snprintf(csv3, sizeof csv3, "%s/blocked.csv", dir);
+    test_write_text(kept, "; an earlier fit\n");
+    CHECK(mkdir(csv3, 0755) == 0, "mkdir %s", csv3);
+    snprintf(args, sizeof args, "'%s' --tolerance 0.01 --out '%s' --chart '%s' %s", ini, kept,
+             chart3, fast);
+    status = fit(bin, args, out, err, sizeof out);
+    read_text(kept, after, sizeof after);
+    snprintf(before, sizeof before, "; an earlier fit\n");
+    CHECK(status != 0 && strstr(err, "blocked.csv") && strstr(err, "a folder of that name") &&
+              !strcmp(before, after) && !exists(chart3) && !strstr(out, "chosen:"),
+          "a folder at the chart's CSV: exit %d, stderr %s, --out '%s'", status, err, after);
+    rmdir(csv3);
   }
   scene_config cfg;
   fog_error cerr;
