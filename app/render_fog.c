@@ -72,6 +72,16 @@ int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, fog_e
     vdb_sequence_destroy(seq);
     return 1;
   }
+  /* every frame sound before any is drawn (the volume reads its frames as they play; the
+   * fogmap's source reads them all at once): a damaged frame 47 stopped a recording after
+   * 46 frames, and `fit` in the middle of its rungs (vdb_precheck_file: ~1 ms a file) */
+  for (int i = 0; i < seq->count; i++)
+    if (vdb_precheck_file(seq->paths[i], &serr)) {
+      fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: frame %d: ", cfg->path,
+                     cfg->fog.vdb_line, seq->frames[i]);
+      vdb_sequence_destroy(seq);
+      return 1;
+    }
   return 0;
 }
 
