@@ -51,12 +51,16 @@ typedef struct import_options {
 enum { IMPORT_INTERRUPTED = 130 };
 
 /* --name: the files' base name. Not hidden ('.': the frames would be dot files, which the
- * move into place and every folder listing pass over), and no '#' or '%', which the
- * sidecar's `files` pattern and every frame pattern reader take for the frame number. */
+ * move into place and every folder listing pass over), no '#' or '%', which the sidecar's
+ * `files` pattern and every frame pattern reader take for the frame number, no ';', which
+ * the sidecar's lines (a config) read after a blank as a comment, and no control character
+ * (a line break split the sidecar's lines). */
 static int parse_name(const char *command, const char *option, const char *text, void *target) {
-  if (!*text || strchr(text, '/') || text[0] == '.' || strpbrk(text, "#%"))
-    return cli_usage_error(command, "%s '%s': expected a plain file name (no '/', '#' or '%%', "
-                           "not starting with '.')", option, text);
+  bool control = false;
+  for (const char *c = text; *c; c++) control = control || (unsigned char)*c < 0x20 || *c == 0x7f;
+  if (!*text || strchr(text, '/') || text[0] == '.' || strpbrk(text, "#%;") || control)
+    return cli_usage_error(command, "%s '%s': expected a plain file name (no '/', '#', '%%', "
+                           "';' or control characters, not starting with '.')", option, text);
   *(const char **)target = text;
   return 0;
 }
