@@ -261,6 +261,13 @@ static char *read_line(char *buffer, int size, void *stream) {
   ssize_t n = getline(&s->whole_line, &s->whole_line_size, s->file);
   if (n < 0) return NULL;
   s->line++;
+  /* a NUL byte ends the line for libinih: the rest of it was dropped without a word */
+  if (strlen(s->whole_line) < (size_t)n && !s->error_line) {
+    s->error_line = s->line;
+    fog_fail(s->err, FOG_ERR_BAD_CONFIG, "%s:%d: a NUL byte at column %zu: expected text",
+             s->path, s->line, strlen(s->whole_line) + 1);
+    return NULL;
+  }
   /* libinih hands its reader a fixed buffer (INI_MAX_LINE, 200 bytes in Debian's build) and
    * used to parse the rest of a longer line as a line of its own, so the tail of a long
    * comment became a key. Here a whole line is read: a long comment or blank line is
@@ -1121,12 +1128,18 @@ int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
   const char *slash = strrchr(path, '/');
   if (slash) snprintf(s.folder, sizeof s.folder, "%.*s", (int)(slash - path), path);
   if (slash == path) snprintf(s.folder, sizeof s.folder, "/");
+  /* not a regular file: refused before fopen, which waits on a FIFO for a writer forever */
+  struct stat st;
+  if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+    fog_fail(err, FOG_ERR_BAD_CONFIG, "%s: not a config file (%s)", path,
+             S_ISDIR(st.st_mode) ? "a folder" : "not a regular file");
+    return 1;
+  }
   s.file = fopen(path, "r");
   if (!s.file) {
     fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot open the config (%s)", path, strerror(errno));
     return 1;
   }
-  struct stat st;
   if (fstat(fileno(s.file), &st) != 0 || !S_ISREG(st.st_mode)) {
     bool folder = fstat(fileno(s.file), &st) == 0 && S_ISDIR(st.st_mode);
     fog_fail(err, FOG_ERR_BAD_CONFIG, "%s: not a config file (%s)", path,

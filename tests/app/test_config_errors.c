@@ -4,6 +4,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "app/config.h"
@@ -126,6 +127,17 @@ int main(void) {
                "expected a number from -1e+07 to 1e+07");
   expect_error("[fog]\nmodel = height\nfog_height = 30\nscale_height = 0.001\n",
                "2: [fog] model: ", "raise scale_height");
+  /* a FIFO named as the config: refused at once (fopen waited for a writer forever) */
+  {
+    char fifo[300];
+    snprintf(fifo, sizeof fifo, "%s/pipe.ini", dir);
+    CHECK(mkfifo(fifo, 0644) == 0, "mkfifo %s", fifo);
+    scene_config cfg;
+    fog_error err = {0};
+    CHECK(scene_config_load(fifo, &cfg, &err) != 0 && strstr(err.message, "not a regular file"),
+          "a FIFO as the config: %s", err.message);
+    unlink(fifo);
+  }
   /* Where each model's fog is densest in view decides it: Perlin fog at its box's floor
    * (a layer high above the camera is fine, one reaching below it is not), height fog at
    * the camera or the terrain's base, whatever [box] says. */
