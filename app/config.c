@@ -52,7 +52,7 @@ typedef struct key_spec {
   size_t offset;
   double min, max;          /* allowed range for numbers (inclusive) */
   const char *names;        /* V_ENUM: "a|b|c" (value = index) */
-  size_t aux_offset;        /* V_PATH: line; V_LIST: count */
+  size_t aux_offset;        /* V_PATH and V_INT (when not 0): line; V_LIST: count */
   size_t size;              /* V_STRING / V_PATH buffer size */
 } key_spec;
 
@@ -115,7 +115,7 @@ static const key_spec keys[] = {
     {"fog", "vdb_grid", V_STRING, F(fog.vdb_grid), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.vdb_grid)},
     {"fog", "vdb_up", V_ENUM, F(fog.vdb_up), 0, 0, "z|y", 0, 0},
     {"fog", "vdb_fps", V_DOUBLE, F(fog.vdb_fps), 1e-6, 1e6, NULL, 0, 0},
-    {"fog", "vdb_frame", V_INT, F(fog.vdb_frame), -1, 1e9, NULL, 0, 0},
+    {"fog", "vdb_frame", V_INT, F(fog.vdb_frame), -1, 1e9, NULL, F(fog.vdb_frame_line), 0},
     {"fog", "vdb_resolution", V_INT, F(fog.vdb_resolution), 0, 16384, NULL, 0, 0},
     {"fog", "vdb_loop", V_INT, F(fog.vdb_loop), 0, 1, NULL, 0, 0},
     {"box", "origin", V_DOUBLE2, F(box.origin), -WORLD, WORLD, NULL, 0, 0},
@@ -868,6 +868,7 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
         *(int *)field = (int)v[0];
       else
         *(unsigned *)field = (unsigned)v[0];
+      if (k->aux_offset) *(int *)((char *)cfg + k->aux_offset) = s->line; /* its line */
       return 1;
     case V_ENUM:
       return store_enum(s, k, section, key, value, (int *)field);

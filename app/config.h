@@ -134,6 +134,7 @@ typedef struct scene_fog_config {
   int vdb_up;                         /* vdb_up_axis: 0 z (Blender), 1 y (Houdini) */
   double vdb_fps;                     /* playback rate of the sequence (frames per second) */
   int vdb_frame;                      /* frame number for a still render; -1: the last */
+  int vdb_frame_line;                 /* its line (0: not given) */
   int vdb_resolution;                 /* fogmap cells along the longer side; 0: native */
   int vdb_loop;                       /* 1: the sequence repeats; 0: holds its last frame */
 } scene_fog_config;

@@ -39,9 +39,10 @@ static int render_vdb_fog(render_fog *fog, const scene_config *cfg, fog_error *e
   }
   if (index < 0) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "%.200s:%d: [fog] vdb: no frame %d in the sequence (frames %d..%d)", cfg->path,
-             cfg->fog.vdb_line, cfg->fog.vdb_frame, source.frame_numbers[0],
-             source.frame_numbers[source.count - 1]);
+             "%.200s:%d: [fog] %s: no frame %d in the sequence (frames %d..%d)", cfg->path,
+             cfg->fog.vdb_frame_line ? cfg->fog.vdb_frame_line : cfg->fog.vdb_line,
+             cfg->fog.vdb_frame_line ? "vdb_frame" : "vdb", cfg->fog.vdb_frame,
+             source.frame_numbers[0], source.frame_numbers[source.count - 1]);
     goto done;
   }
   *placed = *cfg;
@@ -122,8 +123,10 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
   int status = 1;
   if (index < 0)
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "%.200s:%d: [fog] vdb: no frame %d in the sequence (frames %d..%d)", cfg->path,
-             f->vdb_line, f->vdb_frame, seq.frames[0], seq.frames[seq.count - 1]);
+             "%.200s:%d: [fog] %s: no frame %d in the sequence (frames %d..%d)", cfg->path,
+             f->vdb_frame_line ? f->vdb_frame_line : f->vdb_line,
+             f->vdb_frame_line ? "vdb_frame" : "vdb", f->vdb_frame, seq.frames[0],
+             seq.frames[seq.count - 1]);
   else
     status = load_volume_file(cfg, seq.paths[index], frame, grid, err);
   vdb_sequence_destroy(&seq);
