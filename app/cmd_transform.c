@@ -316,16 +316,28 @@ static int read_manifest(const char *dir, transform_desc *desc, char *msg, size_
              strerror(errno));
     return 1;
   }
-  int have = 0, lineno = 0, in_transform = 0, status = 0;
+  /* [transform]'s keys as write_manifest writes them: each at most once; the first four
+   * required. The [level N] sections are notes for a reader (not read). */
+  static const char *const keys[] = {"basis", "levels", "width", "height", "mode",
+                                     "decomposition", "degree"};
+  enum { KEY_COUNT = 7, REQUIRED = 15 };
+  int have = 0, lineno = 0, in_transform = 0, status = 0, degree = -1;
+  bool in_section = false;
   *desc = (transform_desc){0};
-  while (fgets(line, sizeof line, f)) {
+  while (!status && fgets(line, sizeof line, f)) {
     lineno++;
     char *s = line;
     while (*s == ' ' || *s == '\t') s++;
-    if (*s == '#' || *s == '\n' || !*s) continue;
+    if (*s == '#' || *s == ';' || *s == '\n' || *s == '\r' || !*s) continue;
     if (*s == '[') {
       in_transform = !strncmp(s, "[transform]", 11);
+      in_section = true;
       continue;
+    }
+    if (!in_section) {
+      snprintf(msg, msg_size, "%s:%d: expected a comment or '[transform]' first", path, lineno);
+      status = 1;
+      break;
     }
     if (!in_transform) continue;
     char key[64];
@@ -334,27 +346,45 @@ static int read_manifest(const char *dir, transform_desc *desc, char *msg, size_
       status = 1;
       break;
     }
+    int k = 0;
+    while (k < KEY_COUNT && strcmp(key, keys[k])) k++;
+    if (k == KEY_COUNT || (have >> k) & 1) {
+      snprintf(msg, msg_size, "%s:%d: [transform] %s: %s", path, lineno, key,
+               k == KEY_COUNT ? "unknown key" : "given twice");
+      status = 1;
+      break;
+    }
+    have |= 1 << k;
     int bad = 0;
-    if (!strcmp(key, "basis")) bad = parse_basis(word, &desc->basis), have |= 1;
-    else if (!strcmp(key, "levels")) bad = parse_int(word, &desc->levels), have |= 2;
-    else if (!strcmp(key, "width")) bad = parse_int(word, &desc->width), have |= 4;
-    else if (!strcmp(key, "height")) bad = parse_int(word, &desc->height), have |= 8;
-    else if (!strcmp(key, "mode")) {
+    if (k == 0) bad = parse_basis(word, &desc->basis);
+    else if (k == 1) bad = parse_int(word, &desc->levels);
+    else if (k == 2) bad = parse_int(word, &desc->width);
+    else if (k == 3) bad = parse_int(word, &desc->height);
+    else if (k == 4) {
       bad = strcmp(word, "symmetric") && strcmp(word, "periodic");
       desc->boundary = strcmp(word, "periodic") ? TRANSFORM_SYMMETRIC : TRANSFORM_PERIODIC;
-    } else if (!strcmp(key, "decomposition")) {
+    } else if (k == 5) {
       bad = strcmp(word, "standard") && strcmp(word, "nonstandard");
-      desc->decomposition = strcmp(word, "standard") ? TRANSFORM_NONSTANDARD : TRANSFORM_STANDARD;
+      desc->decomposition =
+          strcmp(word, "standard") ? TRANSFORM_NONSTANDARD : TRANSFORM_STANDARD;
+    } else {
+      bad = parse_int(word, &degree);
     }
     if (bad) {
       snprintf(msg, msg_size, "%s:%d: bad value \"%s\" for %s", path, lineno, word, key);
       status = 1;
-      break;
     }
   }
   fclose(f);
-  if (!status && have != 15) {
-    snprintf(msg, msg_size, "%s: [transform] needs basis, levels, width and height", path);
+  if (!status && (have & REQUIRED) != REQUIRED) {
+    snprintf(msg, msg_size,
+             "%s: [transform] needs basis, levels, width and height (missing:%s%s%s%s)", path,
+             have & 1 ? "" : " basis", have & 2 ? "" : " levels", have & 4 ? "" : " width",
+             have & 8 ? "" : " height");
+    status = 1;
+  } else if (!status && degree >= 0 && degree != transform_basis_degree(desc->basis)) {
+    snprintf(msg, msg_size, "%s: [transform] degree = %d contradicts basis = %s (degree %d)", path,
+             degree, basis_word(desc->basis), transform_basis_degree(desc->basis));
     status = 1;
   }
   return status;

@@ -213,6 +213,35 @@ int main(void) {
     CHECK(hidden == 0, "%d hidden files or folders left in %s", hidden, folder);
     snprintf(back, sizeof back, "rm -rf '%s/detail_2_xy.exr'", folder);
     CHECK(system(back) == 0, "%s", back);
+    /* a hand-edited transform.ini read strictly by --inverse: a key twice (the last one
+     * won), a degree against the basis, a line before any section, an unknown key, a
+     * missing key named; each refused, no output written (they used to invert to
+     * something else, exit 0) */
+    static const struct {
+      const char *edit, *says;
+    } edits[] = {
+        {"sed -i 's/^basis = .*/&\\nbasis = haar/'", "[transform] basis: given twice"},
+        {"sed -i 's/^degree = .*/degree = 0/'", "degree = 0 contradicts basis"},
+        {"sed -i '1i garbage'", ":1: expected a comment or '[transform]' first"},
+        {"sed -i 's/^mode = /mood = /'", "[transform] mood: unknown key"},
+        {"sed -i '/^levels = /d'", "(missing: levels)"},
+    };
+    char saved[400], edit[2400], inverse_out[400];
+    snprintf(saved, sizeof saved, "%s/transform.ini.saved", tmp);
+    snprintf(inverse_out, sizeof inverse_out, "%s/edited.exr", tmp);
+    snprintf(edit, sizeof edit, "cp '%s' '%s'", manifest, saved);
+    CHECK(system(edit) == 0, "%s", edit);
+    for (int e = 0; e < (int)(sizeof edits / sizeof edits[0]); e++) {
+      snprintf(edit, sizeof edit, "cp '%s' '%s' && %s '%s'", saved, manifest, edits[e].edit,
+               manifest);
+      CHECK(system(edit) == 0, "%s", edit);
+      snprintf(args, sizeof args, "--inverse %s --out %s", folder, inverse_out);
+      rc = run(args, err, sizeof err);
+      CHECK(rc != 0 && strstr(err, edits[e].says) && !exists(inverse_out),
+            "edit %d (%s): exit %d, stderr %s", e, edits[e].edit, rc, err);
+    }
+    snprintf(edit, sizeof edit, "mv '%s' '%s'", saved, manifest);
+    CHECK(system(edit) == 0, "%s", edit);
   }
 
   /* a map at fogmap_load's largest density (1e12): the quadratic inverse's rounding came
