@@ -88,17 +88,18 @@ static double model_extinction_at(const fog_model *m, const double p[3]) {
   }
 }
 
-/* The stretch of the ray that holds fog (fog_light_span): the box, the volume's support,
- * the height fog, homogeneous fog and an RBF base up to an optical depth of
- * FOG_LIGHT_SPAN_DEPTH (the rest weighs < e^-20), the RBFs' reach (6 radii), the quadrics'
- * boxes; the classic factors from the eye (o = eye): the linear fog's [start, end], the
- * exp2 fog to FOG_LIGHT_SPAN_DEPTH. */
+/* The stretch of the ray that holds fog (fog_light_span, fog_sun_span): the box, the
+ * volume's support, the height fog, homogeneous fog and an RBF base up to an optical depth
+ * of FOG_LIGHT_SPAN_DEPTH (the rest weighs < e^-20), the RBFs (chords: the chords of their
+ * cull spheres in front of o; else from o to their reach, 6 radii), the quadrics' boxes;
+ * the classic factors from the eye (o = eye): the linear fog's [start, end], the exp2 fog
+ * to FOG_LIGHT_SPAN_DEPTH. */
 static bool model_light_span(const fog_model *m, const double o[3], const double d[3],
-                             double t_surface, double *t0, double *t1);
+                             double t_surface, bool chords, double *t0, double *t1);
 
-bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
-                    double t_surface, double *t0, double *t1) {
-  bool some = model_light_span(m, o, d, t_surface, t0, t1);
+static bool light_span(const fog_model *m, const double o[3], const double d[3],
+                       double t_surface, bool chords, double *t0, double *t1) {
+  bool some = model_light_span(m, o, d, t_surface, chords, t0, t1);
   double lo[3], hi[3], a, b;
   if (!fog_model_quadrics_beside(m) ||
       !fog_quadric_bounds(m->quadrics, m->quadric_count, lo, hi))
@@ -113,8 +114,18 @@ bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
   return true;
 }
 
+bool fog_light_span(const fog_model *m, const double o[3], const double d[3],
+                    double t_surface, double *t0, double *t1) {
+  return light_span(m, o, d, t_surface, false, t0, t1);
+}
+
+bool fog_sun_span(const fog_model *m, const double o[3], const double d[3], double t_surface,
+                  double *t0, double *t1) {
+  return light_span(m, o, d, t_surface, true, t0, t1);
+}
+
 static bool model_light_span(const fog_model *m, const double o[3], const double d[3],
-                             double t_surface, double *t0, double *t1) {
+                             double t_surface, bool chords, double *t0, double *t1) {
   *t0 = 0.0;
   *t1 = t_surface;
   switch (m->kind) {
@@ -166,11 +177,14 @@ static bool model_light_span(const fog_model *m, const double o[3], const double
       break;
     }
     case FOG_MODEL_RBF:
-      if (m->extinction == 0) {
-        /* Gaussians alone: the stretch of the ray inside their cull spheres
-         * (fog_rbf_cull_radius). Past its chord a Gaussian adds at most
-         * c r (sqrt(pi)/2) e^{-R^2/r^2} (erfc x <= e^{-x^2}), half the tiles' bound; from the
-         * camera to the farthest Gaussian, the mean's segments fell mostly on empty air */
+      if (m->extinction == 0 && chords) {
+        /* The sun's mean over Gaussians alone: the stretch of the ray inside their cull
+         * spheres (fog_rbf_cull_radius) in front of o, as the GL's tile lists hold them.
+         * Past its chord a Gaussian adds at most c r (sqrt(pi)/2) e^{-R^2/r^2} (erfc x <=
+         * e^{-x^2}) of optical depth, half the tiles' bound, and the sun's light there at
+         * most that share; from the camera to the farthest Gaussian, the mean's segments
+         * fell mostly on empty air. (Not the lamps': a lamp's 1/d^2 near a Gaussian's tail
+         * can make light of depth under the bound.) */
         double a = HUGE_VAL, b = 0.0;
         for (int i = 0; i < m->rbf_count; i++) {
           const double R = fog_rbf_cull_radius(&m->rbfs[i], m->rbf_count);
@@ -179,9 +193,19 @@ static bool model_light_span(const fog_model *m, const double o[3], const double
           for (int c = 0; c < 3; c++) h2 += (v[c] - tc * d[c]) * (v[c] - tc * d[c]);
           if (!(R > 0) || !(R * R - h2 > 0)) continue;
           const double half_chord = sqrt(R * R - h2);
+          if (!(tc + half_chord > 0)) continue; /* behind o */
           a = fmin(a, tc - half_chord), b = fmax(b, tc + half_chord);
         }
         *t0 = fmax(a, 0.0), *t1 = fmin(b, t_surface);
+      } else if (m->extinction == 0) {
+        /* from o to the farthest Gaussian's reach (the lamps') */
+        double reach = 0.0;
+        for (int i = 0; i < m->rbf_count; i++) {
+          double along = 0.0;
+          for (int a = 0; a < 3; a++) along += (m->rbfs[i].centre[a] - o[a]) * d[a];
+          reach = fmax(reach, along + 6.0 * m->rbfs[i].radius);
+        }
+        *t1 = fmin(t_surface, reach);
       } else { /* a base never ends: as homogeneous fog below */
         *t1 = fmin(t_surface, m->extinction > 0 ? FOG_LIGHT_SPAN_DEPTH / m->extinction : 0.0);
       }
@@ -282,7 +306,7 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
     /* per piece of the exact walk: S over 1 - e^{-D} of the same walk */
     sun_light_user u = {m, kind, volume, visible, user, o, d, {.count = 0}};
     double t0, t1;
-    if (visible && rule.shaft_samples > 1 && fog_light_span(m, o, d, t_surface, &t0, &t1)) {
+    if (visible && rule.shaft_samples > 1 && fog_sun_span(m, o, d, t_surface, &t0, &t1)) {
       const int count = rule.steps * rule.shaft_samples;
       u.line = (shaft_line){.count = count, .t0 = t0, .dv = (t1 - t0) / count, .k = -2};
     }
@@ -307,7 +331,7 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
    * weights that nearly cancel made this "mean" 70 on a ray through such a region. */
   const int steps = rule.steps, nodes = rule.nodes;
   double t0, t1;
-  if (!fog_light_span(m, o, d, t_surface, &t0, &t1)) return 1.0;
+  if (!fog_sun_span(m, o, d, t_surface, &t0, &t1)) return 1.0;
   /* the Gauss nodes' offset from the middle, in segments: 1/(2 sqrt 3) */
   const double g = 0.28867513459481288225;
   double dt = (t1 - t0) / steps, before = 0.0, weights = 0.0, lit = 0.0;

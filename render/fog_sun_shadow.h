@@ -84,12 +84,16 @@ double fog_light_extinction_at(const fog_model *model, const double p[3]);
 /* Where the fog never ends (height fog, homogeneous fog, an RBF base) the light's span stops
  * at this optical depth from the camera: the rest weighs < e^-20 (2e-9). */
 #define FOG_LIGHT_SPAN_DEPTH 20.0
-/* The stretch [t0, t1] of the ray o + t d up to t_surface that holds fog, finite (fog_light_span
- * in GLSL; the sun's mean and the lamps' span): the box, the volume's support, the
- * quadrics' boxes, the RBFs' reach (6 radii), the endless models to FOG_LIGHT_SPAN_DEPTH,
- * joined with the boxes of the quadrics beside the model; false where it is empty. */
+/* The stretch [t0, t1] of the ray o + t d up to t_surface that holds fog, finite (the
+ * lamps' span; fog_light_span in GLSL): the box, the volume's support, the quadrics' boxes,
+ * from o to the RBFs' reach (6 radii), the endless models to FOG_LIGHT_SPAN_DEPTH, joined
+ * with the boxes of the quadrics beside the model; false where it is empty. */
 bool fog_light_span(const fog_model *model, const double o[3], const double d[3],
                     double t_surface, double *t0, double *t1);
+/* The same for the sun's mean (fog_sun_span in GLSL), but RBFs without a base: the hull of
+ * the chords of their cull spheres (fog_rbf_cull_radius) in front of o. */
+bool fog_sun_span(const fog_model *model, const double o[3], const double d[3],
+                  double t_surface, double *t0, double *t1);
 /* Optical depth towards the sun at world point p for a model's kind (volume: for _VOLUME
  * the volume, for _HEIGHT only its sun). With _VOLUME and _HEIGHT the quadrics beside the
  * model add their exact depth towards volume->sun (the volume holds the model alone). */

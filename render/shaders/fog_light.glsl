@@ -59,9 +59,9 @@ float fog_sun_optical_depth(vec3 p) {
 // The stretch [t0, t1] of the ray that holds the model's fog (finite), and K along it
 // (the sun's march and the lamps, fog_lamps.glsl); with quadrics beside the model, the
 // hull of both stretches (fog_light_span in C).
-bool fog_model_light_span(fog_ray r, out float t0, out float t1);
-bool fog_light_span(fog_ray r, out float t0, out float t1) {
-  bool some = fog_model_light_span(r, t0, t1);
+bool fog_model_light_span(fog_ray r, bool chords, out float t0, out float t1);
+bool fog_span_of(fog_ray r, bool chords, out float t0, out float t1) {
+  bool some = fog_model_light_span(r, chords, t0, t1);
 #if FOG_QUADRICS_BESIDE
   float a, b;
   if (fog_slab(fog_quadric_union_lo, fog_quadric_union_hi, vec3(0.0), r.dir, a, b)) {
@@ -76,7 +76,13 @@ bool fog_light_span(fog_ray r, out float t0, out float t1) {
 #endif
   return some;
 }
-bool fog_model_light_span(fog_ray r, out float t0, out float t1) {
+// the lamps' span (from the camera to the RBFs' reach) and the sun's (RBFs alone: their
+// cull spheres' chords), fog_light_span and fog_sun_span in C
+bool fog_light_span(fog_ray r, out float t0, out float t1) {
+  return fog_span_of(r, false, t0, t1);
+}
+bool fog_sun_span(fog_ray r, out float t0, out float t1) { return fog_span_of(r, true, t0, t1); }
+bool fog_model_light_span(fog_ray r, bool chords, out float t0, out float t1) {
 #if FOG_MODEL_KIND == FOG_MODEL_FOGMAP
   t0 = float(max(r.t_in, 0.0));
   t1 = min(float(r.t_out), r.t_surface);
@@ -116,10 +122,11 @@ bool fog_model_light_span(fog_ray r, out float t0, out float t1) {
   t1 = fog_model_extinction > 0.0 ? min(r.t_surface, sqrt(FOG_LIGHT_SPAN_DEPTH) / fog_model_extinction)
                                   : 0.0;
 #elif FOG_MODEL_KIND == FOG_MODEL_RBF
-  if (fog_model_extinction == 0.0) {
-    // Gaussians alone: the stretch of the ray inside their cull spheres (the chords of the
-    // pixel's tile's Gaussians; past a chord a Gaussian adds under half the tiles' bound),
-    // so that the mean's segments lie on the fog however far it is (fog_light_span in C)
+  if (fog_model_extinction == 0.0 && chords) {
+    // the sun's mean over Gaussians alone: the stretch of the ray inside their cull spheres
+    // (the chords of the pixel's tile's Gaussians, in front of the camera; past a chord a
+    // Gaussian adds under half the tiles' bound), so that the mean's segments lie on the
+    // fog however far it is (fog_sun_span in C)
     t0 = 1e30;
     t1 = 0.0;
     uvec2 range = fog_rbf_tile_range();
@@ -129,14 +136,17 @@ bool fog_model_light_span(fog_ray r, out float t0, out float t1) {
       float R = fog_rbf_cull_radius(i), tc = dot(b, r.dir);
       vec3 w = b - tc * r.dir;
       float chord2 = R * R - dot(w, w);
-      if (R > 0.0 && chord2 > 0.0) {
-        float half_chord = sqrt(chord2);
+      float half_chord = sqrt(max(chord2, 0.0));
+      if (R > 0.0 && chord2 > 0.0 && tc + half_chord > 0.0) {
         t0 = min(t0, tc - half_chord);
         t1 = max(t1, tc + half_chord);
       }
     }
     t0 = max(t0, 0.0);
     t1 = min(t1, r.t_surface);
+  } else if (fog_model_extinction == 0.0) {
+    t0 = 0.0;  // the lamps': from the camera to the farthest Gaussian's reach
+    t1 = min(r.t_surface, fog_model_reach(r.dir));
   } else {
     // the fog never ends (the base): to FOG_LIGHT_SPAN_DEPTH from the camera
     t0 = 0.0;
@@ -263,7 +273,7 @@ float fog_piece_light(float K[4], float h, float at, vec3 dir, float D, inout fl
 // nodes; S / (1 - e^{-D}) of the same walk. Nothing to alias: the pieces follow the fog.
 float fog_fogmap_sun_mean(fog_ray r) {
   float t0, t1;
-  if (!fog_light_span(r, t0, t1)) return 1.0;
+  if (!fog_sun_span(r, t0, t1)) return 1.0;
   fog_shaft_begin(r.dir, t0, t1);
   fog_ray_walk w = fog_walk_start(fog_levels, r.dir_d,
                                   double(t0));
@@ -433,7 +443,7 @@ float fog_sun_mean_transmittance(fog_ray r) {
   return fog_fogmap_sun_mean(r);
 #endif
   float t0, t1;
-  if (!fog_light_span(r, t0, t1)) return 1.0;
+  if (!fog_sun_span(r, t0, t1)) return 1.0;
   // A negative K (wavelet ringing, rounding) weighs nothing (fog_sun_mean_light in C).
   const float g = 0.28867513459481288;  // 1/(2 sqrt 3)
   float dt = (t1 - t0) / float(fog_shadow_steps), before = 0.0, weights = 0.0, lit = 0.0;

@@ -99,16 +99,19 @@ int main(void) {
   const double o[3] = {0, 80, 400}, d[3] = {-60.0 / 500, 0, -1};
   double t0, t1, dn[3] = {d[0], d[1], d[2]};
   unit(dn);
-  /* the sphere's chord on the ray (~433.6..573.6): the ray passes 80 above the Gaussian,
-   * past its cull radius, so the span is the volumes' alone (it used to run from the
-   * camera, t0 = 0) */
+  /* the sphere's chord on the ray (~433.6..573.6): the lamps' span holds it (from the
+   * camera on); the sun's too, and no more: the ray passes 80 above the Gaussian, past its
+   * cull radius, so the sun's span is the volumes' box alone */
   double v[3] = {centre[0] - o[0], centre[1] - o[1], centre[2] - o[2]};
   const double tc = v[0] * dn[0] + v[1] * dn[1] + v[2] * dn[2];
   const double half = sqrt(70.0 * 70.0 - (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - tc * tc));
-  CHECK(fog_light_span(&rbf, o, dn, HUGE_VAL, &t0, &t1) && t0 <= tc - half && t1 >= tc + half &&
+  CHECK(fog_light_span(&rbf, o, dn, HUGE_VAL, &t0, &t1) && t0 <= tc - half && t1 >= tc + half,
+        "the lamps' span %g..%g: expected it to hold the sphere's chord %g..%g", t0, t1,
+        tc - half, tc + half);
+  CHECK(fog_sun_span(&rbf, o, dn, HUGE_VAL, &t0, &t1) && t0 <= tc - half && t1 >= tc + half &&
             t0 > 400,
-        "the span %g..%g: expected it to hold the sphere's chord %g..%g", t0, t1, tc - half,
-        tc + half);
+        "the sun's span %g..%g: expected the sphere's chord %g..%g and the box", t0, t1,
+        tc - half, tc + half);
 
   /* the sun's volume holds the model alone */
   fog_sun_shadow with = {0}, alone = {0};

@@ -118,11 +118,13 @@ static void test_rbf_extent(void) {
 /* Small dense Gaussians far from the camera: the sun's mean at the product's 8 segments of
  * two nodes against the same mean converged (2048 segments), on rays through them. Spread
  * from the camera to the farthest Gaussian, 8 segments put one or two nodes in the fog (the
- * mean off by up to 0.77); over the stretch inside their cull spheres they follow it. */
+ * mean off by up to 0.44); over the stretch inside their cull spheres they follow it. A
+ * fourth Gaussian behind the camera, on the rays' lines, must not pull the span back to it
+ * (the GL's tile lists hold only what is in front). */
 static void test_rbf_light_span(void) {
-  static const fog_rbf far[3] = {{{690, 30, 40}, 8.0, 0.3}, {{720, 45, -30}, 12.0, 0.2},
-                                 {{705, 20, 0}, 10.0, 0.25}};
-  fog_model m = {.kind = FOG_MODEL_RBF, .rbfs = far, .rbf_count = 3};
+  static const fog_rbf far[4] = {{{690, 30, 40}, 8.0, 0.3}, {{720, 45, -30}, 12.0, 0.2},
+                                 {{705, 20, 0}, 10.0, 0.25}, {{-300, 25, 0}, 10.0, 0.3}};
+  fog_model m = {.kind = FOG_MODEL_RBF, .rbfs = far, .rbf_count = 4};
   double sun[3];
   unit((const double[3]){-0.5, 0.45, 0.3}, sun);
   fog_sun_shadow s;
