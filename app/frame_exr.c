@@ -27,8 +27,10 @@ bool frame_exr_channels(const float *rgba, const float *transmittance, const flo
         const double v = forward[a] + nx * right[a] + ny * up[a];
         len2 += v * v;
       }
-      const double d = depth[src + x];
-      plane[6][dst + x] = d >= cam->far_plane ? (float)cam->far_plane : (float)(d / sqrt(len2));
+      /* the sky is the far plane exactly as the frame holds it (a float): a surface at the
+       * frame's edge may lie further along its ray than the far plane, which is a z-plane */
+      const float d = depth[src + x], sky = (float)cam->far_plane;
+      plane[6][dst + x] = d == sky ? sky : (float)(d / sqrt(len2));
       for (int c = 0; c < 3; c++) plane[7 + c][dst + x] = inscatter[3 * (src + x) + c];
     }
   }

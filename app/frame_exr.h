@@ -21,8 +21,8 @@
 /* De-interleaves a frame read back (rgba: 4 floats a pixel, inscatter: 3; rows bottom up
  * as GL reads them, or top first) into FRAME_EXR_PLANES planes of scratch, top row first,
  * and lists the channels pointing at them. Z is depth times the cosine of each pixel
- * centre's ray to cam's view axis; the sky (depth at or past cam's far plane) is the far
- * plane in both. Returns true when R, G, B, A go as 32-bit float
+ * centre's ray to cam's view axis; the sky (depth equal to cam's far plane as a float, as
+ * the frames hold it) is the far plane in both. Returns true when R, G, B, A go as 32-bit float
  * instead: some finite value of theirs lies beyond FRAME_EXR_HALF_MAX (a lamp's core at
  * 1e9), which half would lose; the caller says so. */
 bool frame_exr_channels(const float *rgba, const float *transmittance, const float *depth,

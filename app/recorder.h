@@ -40,7 +40,7 @@ typedef struct recorder {
 } recorder;
 
 #define RECORDER_IDENTITY_ATTRIBUTE "fogpipeRecording"
-#define RECORDER_PLANES FRAME_EXR_PLANES /* R G B A, transmittance, depth, inscatter R G B */
+#define RECORDER_PLANES FRAME_EXR_PLANES /* R G B A, transmittance, depth, Z, inscatter R G B */
 
 /* One rendered frame as the GL pass reads it back: linear colour and alpha, transmittance
  * (fraction of the surface light that reaches the camera) and depth (distance along the
