@@ -405,10 +405,13 @@ static int record_into(const record_job *job, recorder *rec) {
 int record_run(const record_job *job) {
   recorder rec = {.folder = ""};
   /* SIGINT and SIGTERM from the start: caught while the scene loads and a range's
-   * simulation catches up too (they used to end the process there, leaving its folders) */
+   * simulation catches up too (they used to end the process there, leaving its folders).
+   * The load looks at the flag only once it is done: a second signal ends the process at
+   * once (a long load need not be waited for; a frame cut short leaves only a temporary,
+   * which the next run removes). */
   stop_signals stop;
   stop_signals_clear();
-  stop_signals_catch(&stop, false);
+  stop_signals_catch(&stop, true);
   int status = record_into(job, &rec);
   stop_signals_restore(&stop);
   /* A run that failed or stopped before writing a frame leaves no folder of its own making

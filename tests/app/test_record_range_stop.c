@@ -52,8 +52,15 @@ int main(void) {
   }
   nanosleep(&(struct timespec){.tv_nsec = 200000000}, NULL);
   kill(child, SIGTERM);
+  struct timespec sent, ended;
+  clock_gettime(CLOCK_MONOTONIC, &sent);
   int status = 0;
   waitpid(child, &status, 0);
+  clock_gettime(CLOCK_MONOTONIC, &ended);
+  /* within parts of the catch-up (8 frames), not after all 2999 of them (~10 s and more) */
+  const double seconds =
+      (double)(ended.tv_sec - sent.tv_sec) + 1e-9 * (double)(ended.tv_nsec - sent.tv_nsec);
+  CHECK(seconds < 2.0, "the stop took %.2f s after the signal", seconds);
   const bool stopped = WIFEXITED(status) && WEXITSTATUS(status) == 130;
   CHECK(stopped, "record stopped during its catch-up: %s %d",
         WIFSIGNALED(status) ? "killed by signal" : "exit",
