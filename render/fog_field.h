@@ -189,7 +189,8 @@ double fog_optical_depth_lod_march(const fog_volume *volume, const fog_lod *lod,
  * and frame: the same integer hash on both sides. */
 double fog_march_jitter(unsigned px, unsigned py_gl, unsigned frame);
 
-/* tau = exp(-optical depth) and the blend L = tau L(P) + L_fog (1 - tau) (Giroud & Biri
+/* tau = exp(-optical depth), a depth below 0 taken as 0 (no fog: signed bands cancelling
+ * below it make no light), and the blend L = tau L(P) + L_fog (1 - tau) (Giroud & Biri
  * eq. 4), per colour channel. */
 double fog_transmittance(double optical_depth);
 void fog_blend(double tau, const double surface[3], const double fog_colour[3], double out[3]);

@@ -712,7 +712,9 @@ double fog_optical_depth_lod_march(const fog_volume *v, const fog_lod *lod,
   return fog_lod_integral(v, lod, method, camera, dir, t_surface, steps < 1 ? 1 : steps, jitter);
 }
 
-double fog_transmittance(double optical_depth) { return exp(-optical_depth); }
+/* Extinction is never negative: an optical depth below 0 (signed detail bands summed,
+ * ringing) is no fog, not light made (the GL pass takes the same). */
+double fog_transmittance(double optical_depth) { return exp(-fmax(optical_depth, 0.0)); }
 
 void fog_blend(double tau, const double surface[3], const double fog_colour[3], double out[3]) {
   /* Giroud & Biri eq. 4: L(O) = tau(O,P) L(P) + L_fog (1 - tau(O,P)). */

@@ -355,7 +355,10 @@ void main() {
   vec4 froxel = fog_froxel_lookup(pixel, t_surface);
   float tau = froxel.a;
 #else
-  float tau = exp(-optical_depth);
+  // Extinction is never negative: a sum of signed detail bands (lod = sum) or a ringing
+  // basis may cancel below 0 in float, which drew transmittance above 1 and, past a density
+  // of ~1e7, NaN (fog_transmittance in C)
+  float tau = exp(-max(optical_depth, 0.0));
 #endif
 #if FOG_SURFACE_SUN
   // Fog shadows on the ground: the sun reaching P is attenuated by T_s(P).
