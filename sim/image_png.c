@@ -109,7 +109,8 @@ int png_read_channel(const char *path, const unsigned char *bytes, size_t size, 
                ihdr.width, ihdr.height);
       goto done;
     }
-    e = spng_decode_image(ctx, samples, decoded_size, fmt, 0);
+    /* an indexed image's alpha is its tRNS chunk's (without the flag A read 1 everywhere) */
+    e = spng_decode_image(ctx, samples, decoded_size, fmt, indexed ? SPNG_DECODE_TRNS : 0);
   }
   if (e) {
     fog_fail(err, FOG_ERR_BAD_FILE, "%s: PNG image data is damaged: %s", path, spng_strerror(e));
