@@ -18,7 +18,7 @@
  *     sum of deconstructed details and approximation switching;
  *   - two more fogmaps in the same box, each its exact linear walk and marching at N = 64 ..
  *     2048: detailed fog (Perlin turbulence, 256 x 256, feature size 16 cells, 4 octaves:
- *     what `fogpipe design --perlin --feature-size 16` makes; X2) and the default scene's
+ *     what `fogpipe design --perlin --feature-size 16 --seed 0` makes; X2) and the default scene's
  *     simulated fog at frame 48 (configs/default.ini's simulation at 24 fps; X printed);
  *   - the Mantaflow ground fog with and without empty-space skipping (S), and marched at
  *     N = 64 .. 2048 (X on a shipped scene, printed).
