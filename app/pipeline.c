@@ -787,13 +787,15 @@ pipeline *pipeline_create(const pipeline_desc *desc, fog_error *err) {
     pipeline_destroy(p);
     return NULL;
   }
-  const float n = (float)(c->base.width < c->base.height ? c->base.width : c->base.height);
   /* Three emitters spread over the map, upwind of its centre: the fog has sources to
-   * blow away from. Positions in cells; rates from the config. */
+   * blow away from. Positions in cells, x across the width and z across the height (on a
+   * 256 x 32 map they sat in its first 64 columns, placed by the shorter side); radii from
+   * the map's mean side; rates from the config. */
+  const float w = (float)c->base.width, h = (float)c->base.height, n = sqrtf(w * h);
   c->emitter_count = 3;
-  c->emitters[0] = (fluid_emitter){.x = 0.30f * n, .z = 0.35f * n, .radius = 0.03f * n};
-  c->emitters[1] = (fluid_emitter){.x = 0.55f * n, .z = 0.70f * n, .radius = 0.04f * n};
-  c->emitters[2] = (fluid_emitter){.x = 0.75f * n, .z = 0.30f * n, .radius = 0.025f * n};
+  c->emitters[0] = (fluid_emitter){.x = 0.30f * w, .z = 0.35f * h, .radius = 0.03f * n};
+  c->emitters[1] = (fluid_emitter){.x = 0.55f * w, .z = 0.70f * h, .radius = 0.04f * n};
+  c->emitters[2] = (fluid_emitter){.x = 0.75f * w, .z = 0.30f * h, .radius = 0.025f * n};
   if (sim_create(p, &p->params, &c->base, err) ||
       plan_create(p, p->params.degree, p->params.levels, err)) {
     pipeline_destroy(p);
