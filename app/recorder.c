@@ -248,6 +248,12 @@ int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *p
   if (beauty_float) *beauty_float = as_float;
   char path[1200];
   recorder_frame_path(rec, frame, path, sizeof path);
+  /* The folder again, should it be gone: a farm's ranges share it, and a range that failed
+   * or stopped before its first frame removes the empty folders it made while another
+   * range is still catching up to its own (mkdir -p; nothing when it is there). */
+  out_folder again = {0};
+  fog_error ferr = {0};
+  if (out_folder_make(&again, rec->folder, &ferr)) return fog_error_pass(err, &ferr);
   fog_error serr = {0};
   const image_exr_string identity = {RECORDER_IDENTITY_ATTRIBUTE, rec->identity};
   image_exr_matrix camera[2] = {{.name = "worldToCamera"}, {.name = "worldToNDC"}};

@@ -1,0 +1,66 @@
+/* Ranges of one recording share its folder (docs/farm.md): a range that fails or stops
+ * before its first frame removes the empty folders it made, while another range may still
+ * be catching up to its own first frame. That one makes the folder again when it writes:
+ * here the folder is removed while `record --frames 3000-3001` re-runs the simulation to
+ * frame 2999, and the range still writes both frames, exit 0 (it failed: "cannot create a
+ * file in folder", FOGPIPE_BIN). */
+#define _POSIX_C_SOURCE 200809L
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "test_util.h"
+
+static bool file_says(const char *path, const char *text) {
+  FILE *f = fopen(path, "r");
+  char line[4096];
+  bool found = false;
+  while (f && fgets(line, sizeof line, f)) found = found || strstr(line, text);
+  if (f) fclose(f);
+  return found;
+}
+
+int main(void) {
+  const char *bin = getenv("FOGPIPE_BIN");
+  if (!bin) {
+    fprintf(stderr, "FOGPIPE_BIN not set (run through ctest)\n");
+    return 1;
+  }
+  char root[] = "/tmp/fogpipe_record_gone_XXXXXX";
+  if (!test_scratch_folder(root)) return 1;
+  char out[300], log[300], frame[400];
+  snprintf(out, sizeof out, "%s/shot/frames", root);
+  snprintf(log, sizeof log, "%s.log", root);
+  const pid_t child = fork();
+  if (child == 0) {
+    if (!freopen(log, "w", stdout) || dup2(fileno(stdout), 2) < 0) _exit(126);
+    execl(bin, bin, "record", "configs/default.ini", "--frames", "3000-3001", "--size", "32x18",
+          "--out", out, (char *)NULL);
+    _exit(127);
+  }
+  int waited = 0;
+  while (!file_says(log, "re-running the simulation") && waited < 30000 &&
+         waitpid(child, NULL, WNOHANG) == 0) {
+    nanosleep(&(struct timespec){.tv_nsec = 1000000}, NULL);
+    waited++;
+  }
+  char shot[300];
+  snprintf(shot, sizeof shot, "%s/shot", root);
+  const bool removed = rmdir(out) == 0 && rmdir(shot) == 0; /* as another range's undo does */
+  int status = 0;
+  waitpid(child, &status, 0);
+  CHECK(removed, "the folders were not there to remove during the catch-up");
+  snprintf(frame, sizeof frame, "%s/frame.3001.exr", out);
+  struct stat st;
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  CHECK(code == 0 && stat(frame, &st) == 0, "the range after its folder went: exit %d, %s %s",
+        code, frame, stat(frame, &st) == 0 ? "written" : "missing");
+  unlink(log);
+  test_remove_tree(root);
+  return test_finish("test_record_folder_gone");
+}
