@@ -5,15 +5,9 @@
  * frames are being written then) on the ground-fog sequence at 2048 cells a side, whose 48
  * frames take several seconds to write. */
 #define _POSIX_C_SOURCE 200809L
-#include <signal.h>
-#include <stdbool.h>
-#include <stdio.h>
 #include <stdlib.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <time.h>
-#include <unistd.h>
 
+#include "child_util.h"
 #include "test_util.h"
 
 int main(void) {
@@ -28,39 +22,25 @@ int main(void) {
   char out[300], log[300];
   snprintf(out, sizeof out, "%s/imported", root);
   snprintf(log, sizeof log, "%s.log", root);
-  const pid_t child = fork();
-  if (child == 0) {
-    if (!freopen("/dev/null", "w", stdout) || !freopen(log, "w", stderr)) _exit(126);
-    execl(bin, bin, "import", sequence, "--resolution", "2048", "--out", out, (char *)NULL);
-    _exit(127);
-  }
+  char *const argv[] = {(char *)bin, "import", (char *)sequence, "--resolution", "2048",
+                        "--out", out, NULL};
+  const pid_t child = child_run(log, argv);
   /* wait for --out (the run writes its frames then), then stop it */
+  child_wait_for(child, log, NULL, out, 20.0);
   struct stat st;
-  int waited = 0;
-  while (stat(out, &st) != 0 && waited < 20000 && waitpid(child, NULL, WNOHANG) == 0) {
-    nanosleep(&(struct timespec){.tv_nsec = 1000000}, NULL);
-    waited++;
-  }
   kill(child, SIGTERM);
   int status = 0;
   waitpid(child, &status, 0);
-  const bool stopped = WIFEXITED(status) && WEXITSTATUS(status) == 130;
-  const bool finished = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  CHECK(stopped || finished, "import stopped by SIGTERM: %s %d",
-        WIFSIGNALED(status) ? "killed by signal" : "exit",
-        WIFSIGNALED(status) ? WTERMSIG(status) : WEXITSTATUS(status));
+  const bool stopped = child_exit_code(status) == 130, finished = child_exit_code(status) == 0;
+  CHECK(stopped || finished, "import stopped by SIGTERM: exit %d (-1: killed by a signal)",
+        child_exit_code(status));
   if (finished) {
     printf("the import finished before the signal: nothing tested\n");
   } else if (stopped) {
     CHECK(stat(out, &st) != 0, "%s is left after the stop (it made it)", out);
     CHECK(test_folder_entries(root) == 0, "%d entries left in %s", test_folder_entries(root),
           root);
-    FILE *f = fopen(log, "r");
-    char line[512] = "";
-    bool said = false;
-    while (f && fgets(line, sizeof line, f)) said = said || strstr(line, "interrupted");
-    if (f) fclose(f);
-    CHECK(said, "the stop is not said on stderr");
+    CHECK(child_log_says(log, "interrupted"), "the stop is not said on stderr");
   }
   unlink(log);
   test_remove_tree(root);

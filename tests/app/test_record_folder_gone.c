@@ -5,25 +5,10 @@
  * frame 2999, and the range still writes both frames, exit 0 (it failed: "cannot create a
  * file in folder", FOGPIPE_BIN). */
 #define _POSIX_C_SOURCE 200809L
-#include <stdbool.h>
-#include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <time.h>
-#include <unistd.h>
 
+#include "child_util.h"
 #include "test_util.h"
-
-static bool file_says(const char *path, const char *text) {
-  FILE *f = fopen(path, "r");
-  char line[4096];
-  bool found = false;
-  while (f && fgets(line, sizeof line, f)) found = found || strstr(line, text);
-  if (f) fclose(f);
-  return found;
-}
 
 int main(void) {
   const char *bin = getenv("FOGPIPE_BIN");
@@ -36,19 +21,10 @@ int main(void) {
   char out[300], log[300], frame[400];
   snprintf(out, sizeof out, "%s/shot/frames", root);
   snprintf(log, sizeof log, "%s.log", root);
-  const pid_t child = fork();
-  if (child == 0) {
-    if (!freopen(log, "w", stdout) || dup2(fileno(stdout), 2) < 0) _exit(126);
-    execl(bin, bin, "record", "configs/default.ini", "--frames", "3000-3001", "--size", "32x18",
-          "--out", out, (char *)NULL);
-    _exit(127);
-  }
-  int waited = 0;
-  while (!file_says(log, "re-running the simulation") && waited < 30000 &&
-         waitpid(child, NULL, WNOHANG) == 0) {
-    nanosleep(&(struct timespec){.tv_nsec = 1000000}, NULL);
-    waited++;
-  }
+  char *const argv[] = {(char *)bin, "record", "configs/default.ini", "--frames", "3000-3001",
+                        "--size", "32x18", "--out", out, NULL};
+  const pid_t child = child_run(log, argv);
+  child_wait_for(child, log, "re-running the simulation", NULL, 30.0);
   char shot[300];
   snprintf(shot, sizeof shot, "%s/shot", root);
   const bool removed = rmdir(out) == 0 && rmdir(shot) == 0; /* as another range's undo does */
@@ -57,7 +33,7 @@ int main(void) {
   CHECK(removed, "the folders were not there to remove during the catch-up");
   snprintf(frame, sizeof frame, "%s/frame.3001.exr", out);
   struct stat st;
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const int code = child_exit_code(status);
   CHECK(code == 0 && stat(frame, &st) == 0, "the range after its folder went: exit %d, %s %s",
         code, frame, stat(frame, &st) == 0 ? "written" : "missing");
   unlink(log);

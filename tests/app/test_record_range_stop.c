@@ -4,26 +4,10 @@
  * (thousands of frames on a farm's late range, where preemption sends SIGTERM) died with
  * the signal and left its empty folders. */
 #define _POSIX_C_SOURCE 200809L
-#include <signal.h>
-#include <stdbool.h>
-#include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <time.h>
-#include <unistd.h>
 
+#include "child_util.h"
 #include "test_util.h"
-
-static bool file_says(const char *path, const char *text) {
-  FILE *f = fopen(path, "r");
-  char line[4096];
-  bool found = false;
-  while (f && fgets(line, sizeof line, f)) found = found || strstr(line, text);
-  if (f) fclose(f);
-  return found;
-}
 
 int main(void) {
   const char *bin = getenv("FOGPIPE_BIN");
@@ -36,20 +20,11 @@ int main(void) {
   char out[300], log[300];
   snprintf(out, sizeof out, "%s/made/frames", root);
   snprintf(log, sizeof log, "%s.log", root);
-  const pid_t child = fork();
-  if (child == 0) {
-    if (!freopen(log, "w", stdout) || dup2(fileno(stdout), 2) < 0) _exit(126);
-    execl(bin, bin, "record", "configs/default.ini", "--frames", "3000-3001", "--size", "32x18",
-          "--out", out, (char *)NULL);
-    _exit(127);
-  }
+  char *const argv[] = {(char *)bin, "record", "configs/default.ini", "--frames", "3000-3001",
+                        "--size", "32x18", "--out", out, NULL};
+  const pid_t child = child_run(log, argv);
   /* wait until the catch-up has begun, then stop it */
-  int waited = 0;
-  while (!file_says(log, "re-running the simulation") && waited < 30000 &&
-         waitpid(child, NULL, WNOHANG) == 0) {
-    nanosleep(&(struct timespec){.tv_nsec = 1000000}, NULL);
-    waited++;
-  }
+  child_wait_for(child, log, "re-running the simulation", NULL, 30.0);
   nanosleep(&(struct timespec){.tv_nsec = 200000000}, NULL);
   kill(child, SIGTERM);
   struct timespec sent, ended;
@@ -61,12 +36,11 @@ int main(void) {
   const double seconds =
       (double)(ended.tv_sec - sent.tv_sec) + 1e-9 * (double)(ended.tv_nsec - sent.tv_nsec);
   CHECK(seconds < 2.0, "the stop took %.2f s after the signal", seconds);
-  const bool stopped = WIFEXITED(status) && WEXITSTATUS(status) == 130;
-  CHECK(stopped, "record stopped during its catch-up: %s %d",
-        WIFSIGNALED(status) ? "killed by signal" : "exit",
-        WIFSIGNALED(status) ? WTERMSIG(status) : WEXITSTATUS(status));
+  const bool stopped = child_exit_code(status) == 130;
+  CHECK(stopped, "record stopped during its catch-up: exit %d (-1: killed by a signal)",
+        child_exit_code(status));
   if (stopped) {
-    CHECK(file_says(log, "interrupted before frame 3000") && file_says(log, "--resume"),
+    CHECK(child_log_says(log, "interrupted before frame 3000") && child_log_says(log, "--resume"),
           "the stop and the command that resumes are not said");
     CHECK(test_folder_entries(root) == 0, "%d entries left in %s (its folders)",
           test_folder_entries(root), root);

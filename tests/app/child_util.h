@@ -1,0 +1,54 @@
+/* A fogpipe child process for the tests that stop or disturb a run midway: started with
+ * its output in a log, waited for until its log says something or a path appears. */
+#ifndef FOGPIPE_TEST_CHILD_UTIL_H
+#define FOGPIPE_TEST_CHILD_UTIL_H
+
+#include <signal.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+/* Whether a line of the file at path holds text. */
+static inline bool child_log_says(const char *path, const char *text) {
+  FILE *f = fopen(path, "r");
+  char line[4096];
+  bool found = false;
+  while (f && fgets(line, sizeof line, f)) found = found || strstr(line, text);
+  if (f) fclose(f);
+  return found;
+}
+
+/* argv[0] run with stdout and stderr into log; its pid. */
+static inline pid_t child_run(const char *log, char *const argv[]) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    if (!freopen(log, "w", stdout) || dup2(fileno(stdout), 2) < 0) _exit(126);
+    execv(argv[0], argv);
+    _exit(127);
+  }
+  return pid;
+}
+
+/* Waits up to seconds until the log says text (text not NULL) or path exists (else); false
+ * when the child ended first or the time ran out. */
+static inline bool child_wait_for(pid_t pid, const char *log, const char *text,
+                                  const char *path, double seconds) {
+  struct stat st;
+  for (long waited = 0; waited < (long)(seconds * 1000); waited++) {
+    if (text ? child_log_says(log, text) : stat(path, &st) == 0) return true;
+    if (waitpid(pid, NULL, WNOHANG) != 0) return false;
+    nanosleep(&(struct timespec){.tv_nsec = 1000000}, NULL);
+  }
+  return false;
+}
+
+/* The exit code of a waitpid status, -1 when the child was killed by a signal. */
+static inline int child_exit_code(int status) {
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+#endif
