@@ -8,17 +8,13 @@
 #include <stdlib.h>
 
 #include "child_util.h"
-#include "test_util.h"
+#include "test_bin.h"
 
 int main(void) {
-  const char *bin = getenv("FOGPIPE_BIN");
-  if (!bin) {
-    fprintf(stderr, "FOGPIPE_BIN not set (run through ctest)\n");
-    return 1;
-  }
   const char *sequence = "../shared/data/vdb/groundfog/data/fluid_data_####.vdb";
   char root[] = "/tmp/fogpipe_import_stop_XXXXXX";
-  if (!test_scratch_folder(root)) return 1;
+  const char *bin = test_bin_and_folder(root);
+  if (!bin) return test_finish("test_import_interrupt");
   char out[300], log[300];
   snprintf(out, sizeof out, "%s/imported", root);
   snprintf(log, sizeof log, "%s.log", root);

@@ -7,16 +7,12 @@
 #include <stdlib.h>
 
 #include "child_util.h"
-#include "test_util.h"
+#include "test_bin.h"
 
 int main(void) {
-  const char *bin = getenv("FOGPIPE_BIN");
-  if (!bin) {
-    fprintf(stderr, "FOGPIPE_BIN not set (run through ctest)\n");
-    return 1;
-  }
   char root[] = "/tmp/fogpipe_record_stop_XXXXXX";
-  if (!test_scratch_folder(root)) return 1;
+  const char *bin = test_bin_and_folder(root);
+  if (!bin) return test_finish("test_record_range_stop");
   char out[300], log[300];
   snprintf(out, sizeof out, "%s/made/frames", root);
   snprintf(log, sizeof log, "%s.log", root);

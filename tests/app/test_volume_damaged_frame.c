@@ -9,7 +9,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
-#include "test_util.h"
+#include "test_bin.h"
 
 /* Runs a shell command; its exit status, its stderr into err. */
 static int run(const char *command, const char *err_path, char *err, size_t size) {
@@ -22,13 +22,9 @@ static int run(const char *command, const char *err_path, char *err, size_t size
 }
 
 int main(void) {
-  const char *bin = getenv("FOGPIPE_BIN");
-  if (!bin) {
-    fprintf(stderr, "FOGPIPE_BIN not set (run through ctest)\n");
-    return 1;
-  }
   char root[] = "/tmp/fogpipe_volume_damaged_XXXXXX";
-  if (!test_scratch_folder(root)) return 1;
+  const char *bin = test_bin_and_folder(root);
+  if (!bin) return test_finish("test_volume_damaged_frame");
   char command[4096], ini[300], err_path[300], err[4096], out[300], folder[300];
   const char *source = "../shared/data/vdb/plume/data";
   snprintf(command, sizeof command,
