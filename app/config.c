@@ -1726,8 +1726,9 @@ static uint64_t fnv_file(uint64_t hash, const char *path) {
   return hash;
 }
 
-/* A VDB or fogmap sequence by its frame numbers and file sizes: bakes run to gigabytes, too
- * much to read at every start. */
+/* A VDB or fogmap sequence by its frame numbers and file sizes (bakes run to gigabytes, too
+ * much to read at every start; a re-bake of the same sizes goes unseen), and the bytes of
+ * the Mantaflow configs beside VDB frames. */
 static uint64_t fnv_vdb_sequence(uint64_t hash, const char *pattern) {
   vdb_sequence seq;
   fog_error serr = {0};
@@ -1737,6 +1738,11 @@ static uint64_t fnv_vdb_sequence(uint64_t hash, const char *pattern) {
     long long size = stat(seq.paths[i], &st) == 0 ? (long long)st.st_size : -1;
     hash = fnv(hash, &seq.frames[i], sizeof seq.frames[i]);
     hash = fnv(hash, &size, sizeof size);
+    /* the Mantaflow config beside a frame places it (a domain moved in Blender and baked
+     * again keeps its voxels' sizes): its bytes, a few hundred, count whole */
+    char config[4096];
+    if (!vdb_config_path_beside(seq.paths[i], config, sizeof config))
+      hash = fnv_file(hash, config);
   }
   vdb_sequence_destroy(&seq);
   return hash;

@@ -40,5 +40,6 @@ size=()
 fps=()
 [[ -n "${FPS:-}" ]] && fps=(--fps "$FPS")
 echo "task $task: frames $first-$last of $FRAMES on $(hostname)"
-exec "$FOGPIPE" record "$CONFIG" --frames "$first-$last" --out "$OUT" "${size[@]}" "${fps[@]}" \
-  --resume
+# ${a[@]+"${a[@]}"}: an empty array under set -u is an error before bash 4.4 (CentOS 7's 4.2)
+exec "$FOGPIPE" record "$CONFIG" --frames "$first-$last" --out "$OUT" ${size[@]+"${size[@]}"} \
+  ${fps[@]+"${fps[@]}"} --resume
