@@ -7,6 +7,7 @@
  * as having no effect; a shorter run after a longer one leaves only its own frames; a scene
  * whose fogmap is one of out/demo's frames is refused before anything there is cleared. */
 #include "tests/app/record_util.h"
+#include "tests/app/child_util.h"
 #include "tests/test_util.h"
 
 #include <math.h>
@@ -33,15 +34,6 @@ static int run_demo(const char *bin, const char *root, const char *log, char *co
   return record_wait(pid);
 }
 
-static bool log_says(const char *log, const char *text) {
-  FILE *f = fopen(log, "r");
-  char line[2048];
-  bool found = false;
-  while (f && fgets(line, sizeof line, f)) found = found || strstr(line, text);
-  if (f) fclose(f);
-  return found;
-}
-
 /* --size 96x54 --screenshot: the frames' size, and the PNG against the last frame. */
 static void check_screenshot(const char *bin, const char *config, const char *root) {
   char log[700], folder[700], png[700], frame[800];
@@ -53,7 +45,7 @@ static void check_screenshot(const char *bin, const char *config, const char *ro
                         "--screenshot", "shot.png", "--paused", NULL};
   int status = run_demo(bin, root, log, args);
   CHECK(status == 0, "demo --screenshot without a display exited with %d", status);
-  CHECK(log_says(log, "--paused has no effect"), "--paused dropped without a word");
+  CHECK(child_log_says(log, "--paused has no effect"), "--paused dropped without a word");
   int w = 0, h = 0;
   record_frame_path(folder, frames, frame, sizeof frame);
   CHECK(record_hash_frame(frame, &w, &h) != 0 && w == 96 && h == 54,
@@ -132,7 +124,7 @@ int main(void) {
   others = record_count_files(out, &frame_files);
   CHECK(frame_files == 1 && others == 0, "after a 1-frame run: %d frames and %d other files",
         frame_files, others);
-  CHECK(log_says(log, "removed 2 frames of an earlier run"), "the clearing is not said");
+  CHECK(child_log_says(log, "removed 2 frames of an earlier run"), "the clearing is not said");
   /* a scene that fails to load (its fogmap cut short) leaves the earlier frame in place:
    * the clearing waits until the scene has loaded (it used to come first) */
   {
@@ -145,7 +137,7 @@ int main(void) {
     char *const fails[] = {bin_abs, "demo", broken, "--frames", "2", NULL};
     status = run_demo(bin_abs, root, log, fails);
     others = record_count_files(out, &frame_files);
-    CHECK(status == 1 && log_says(log, "cut.png") && frame_files == 1 && others == 0,
+    CHECK(status == 1 && child_log_says(log, "cut.png") && frame_files == 1 && others == 0,
           "a scene that fails to load: exit %d, %d frames left (expected the earlier 1)", status,
           frame_files);
   }
@@ -161,7 +153,7 @@ int main(void) {
   test_write_text(scene, "[fog]\nfogmap = out/demo/frame.0002.exr\n");
   char *const in_out[] = {bin_abs, "demo", scene, "--frames", "2", NULL};
   status = run_demo(bin_abs, root, log, in_out);
-  CHECK(status == 2 && log_says(log, "would replace the input") && access(map, F_OK) == 0,
+  CHECK(status == 2 && child_log_says(log, "would replace the input") && access(map, F_OK) == 0,
         "demo recording over its own fogmap: exit %d, the fogmap %s", status,
         access(map, F_OK) == 0 ? "kept" : "gone");
   /* frame.00002.exr is no name the demo writes, so it is neither refused nor cleared */
