@@ -436,9 +436,11 @@ int bench_render(int argc, char **argv) {
 
   /* The detailed fog: Perlin turbulence at the sample map's size, so in the same box. The
    * simulated fog: the default scene's frame 48 (made before this bench's GL context). */
+  perlin_fog_desc detailed = perlin_fog_desc_default();  /* as `fogpipe design --perlin` */
+  detailed.seed = 0;
+  detailed.feature_size = 16.0f;
   if (fogmap_create(&extra[EXTRA_DETAILED], map.width, map.height, &serr) ||
-      designed_fog_perlin(&extra[EXTRA_DETAILED],
-                          &(perlin_fog_desc){.octaves = 4, .feature_size = 16.0f, .gain = 1.0f}, &serr)) {
+      designed_fog_perlin(&extra[EXTRA_DETAILED], &detailed, &serr)) {
     fog_error_wrap(&rerr, &serr, "detailed fog: ");
     goto done;
   }

@@ -91,8 +91,14 @@ double perlin_turbulence(const perlin_noise *noise, double x, double y, double z
   return sum;
 }
 
+/* Slice 1/3: octave o samples the plane 2^o / 3, whose fraction is 1/3 or 2/3 for every o,
+ * a third of a lattice cell from the lattice planes. On a plane (slice 0) improved noise is
+ * 0 at every lattice point of every octave, so the turbulence was 0 on a regular grid
+ * (one point every feature size), and the gradients without a z part drew straight ridges
+ * along the axes there. */
 perlin_fog_desc perlin_fog_desc_default(void) {
-  return (perlin_fog_desc){.octaves = 4, .feature_size = 32.0f, .gain = 1.0f};
+  return (perlin_fog_desc){.octaves = 4, .feature_size = 32.0f, .gain = 1.0f,
+                           .slice = 1.0f / 3.0f};
 }
 
 int designed_fog_perlin(fogmap *map, const perlin_fog_desc *desc, fog_error *err) {

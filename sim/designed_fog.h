@@ -50,7 +50,8 @@ typedef struct perlin_fog_desc {
   float base;           /* constant density added everywhere (>= 0) */
 } perlin_fog_desc;
 
-/* 4 octaves, eddies of 32 cells, gain 1; no base, still, seed 0. */
+/* 4 octaves, eddies of 32 cells, gain 1, slice 1/3 (off every octave's lattice planes);
+ * no base, still, seed 0. */
 perlin_fog_desc perlin_fog_desc_default(void);
 
 /* Overwrites every cell of map with base + gain * T((x - vx t) / s, (z - vz t) / s,

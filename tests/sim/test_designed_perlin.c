@@ -174,6 +174,44 @@ static void test_fog_animation(void) {
   fogmap_destroy(&at_t);
 }
 
+/* The default design's turbulence has no grid of zeros: on a lattice plane (slice 0)
+ * every octave's noise is 0 at every lattice point, so the fog was exactly `base` at one
+ * point every feature size; the default slice (1/3) lies off every octave's planes. */
+static void test_default_slice_off_lattice(void) {
+  const int size = 257, feature = 32;
+  fogmap map;
+  fog_error err;
+  CHECK(fogmap_create(&map, size, size, &err) == 0, "%s", err.message);
+  perlin_fog_desc desc = perlin_fog_desc_default();
+  CHECK(designed_fog_perlin(&map, &desc, &err) == 0, "%s", err.message);
+  double all = 0.0, lattice = 0.0;
+  int lattice_points = 0, zeros = 0;
+  for (int z = 0; z < size; z++)
+    for (int x = 0; x < size; x++) {
+      double v = map.density[(size_t)z * size + x];
+      all += v;
+      if (x % feature == 0 && z % feature == 0) {
+        lattice += v;
+        lattice_points++;
+        if (v < 1e-3) zeros++;
+      }
+    }
+  all /= (double)size * size;
+  lattice /= lattice_points;
+  CHECK(zeros <= lattice_points / 20, "%d of %d lattice points hold no fog", zeros,
+        lattice_points);
+  CHECK(lattice > 0.4 * all, "mean at the lattice points %g against %g over the map", lattice,
+        all);
+  /* slice 0 is still there for who asks: zero at every lattice point */
+  desc.slice = 0.0f;
+  CHECK(designed_fog_perlin(&map, &desc, &err) == 0, "%s", err.message);
+  for (int z = 0; z < size; z += feature)
+    for (int x = 0; x < size; x += feature)
+      CHECK(map.density[(size_t)z * size + x] == 0.0f, "slice 0: (%d, %d) = %g", x, z,
+            map.density[(size_t)z * size + x]);
+  fogmap_destroy(&map);
+}
+
 int main(void) {
   test_permutation();
   test_reference_value();
@@ -182,5 +220,6 @@ int main(void) {
   test_seed_determinism();
   test_bounded();
   test_fog_animation();
+  test_default_slice_off_lattice();
   return test_finish("test_designed_perlin");
 }
