@@ -88,7 +88,7 @@ static const key_spec keys[] = {
     {"fog", "boundary", V_ENUM, F(fog.boundary), 0, 0, "symmetric|periodic", 0, 0},
     {"fog", "profile", V_ENUM, F(fog.profile), 0, 0, "slab|exponential|bspline", 0, 0},
     {"fog", "fog_height", V_DOUBLE, F(fog.fog_height), -WORLD, WORLD, NULL, 0, 0},
-    {"fog", "scale_height", V_DOUBLE, F(fog.scale_height), MIN_LENGTH, WORLD, NULL, 0, 0},
+    {"fog", "scale_height", V_DOUBLE, F(fog.scale_height), MIN_LENGTH, SCENE_MAX_SCALE_HEIGHT, NULL, 0, 0},
     {"fog", "fog_start", V_DOUBLE, F(fog.fog_start), 0, WORLD, NULL, 0, 0},
     {"fog", "fog_end", V_DOUBLE, F(fog.fog_end), MIN_LENGTH, WORLD, NULL, 0, 0},
     {"fog", "profile_degree", V_INT, F(fog.profile_degree), 0, 3, NULL, 0, 0},
@@ -244,6 +244,7 @@ typedef struct parse_state {
   fog_error *err;
   int key_line[sizeof keys / sizeof keys[0]]; /* where each key was last set (0: default) */
   int flicker_line[FOG_MAX_LAMPS]; /* each lamp's lamp_flicker line (0: none) */
+  bool in_memory; /* scene_config_check: a scene, not a file; errors name the key alone */
 } parse_state;
 
 /* The line of [section] key (0: not in the file: its default). */
@@ -327,7 +328,9 @@ static int vfail_as(parse_state *s, fog_result code, const char *section, const 
   char detail[sizeof s->err->message];
   vsnprintf(detail, sizeof detail, fmt, args);
   /* line 0: a check after parsing on a key the file does not set (its default) */
-  if (s->line)
+  if (s->in_memory)
+    fog_fail(s->err, code, "[%s] %s: %s", section, key, detail);
+  else if (s->line)
     fog_fail(s->err, code, "%s:%d: [%s] %s: %s", s->path, s->line, section, key, detail);
   else
     fog_fail(s->err, code, "%s: [%s] %s (its default): %s", s->path, section, key, detail);
@@ -1122,6 +1125,12 @@ static int check_models(parse_state *ps) {
   return 0;
 }
 
+int scene_config_check(const scene_config *cfg, fog_error *err) {
+  /* check_models reads the scene alone (never writes it) */
+  parse_state s = {.cfg = (scene_config *)cfg, .path = cfg->path, .err = err, .in_memory = true};
+  return check_models(&s);
+}
+
 int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
   scene_config_init(cfg);
   snprintf(cfg->path, sizeof cfg->path, "%s", path);
@@ -1455,6 +1464,13 @@ static int check_written_text(const char *text, const char *path, fog_error *err
 }
 
 int scene_config_write(const scene_config *cfg, const char *path, fog_error *err) {
+  /* what the loader would refuse of the scene's numbers, not written (the files it names may
+   * come later: bake writes its config before its frames) */
+  fog_error check;
+  if (scene_config_check(cfg, &check))
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "%.400s: the scene cannot be written as a config that loads: %s", path,
+                    check.message);
   /* a line break in a path or name would start a line of its own */
   for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
     if ((keys[i].kind == V_PATH || keys[i].kind == V_STRING) &&

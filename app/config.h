@@ -265,6 +265,11 @@ bool scene_config_sequence_path(const char *pattern, long n, char *out, size_t s
  * every key with its value, in full precision, paths made absolute. Non-zero and err
  * naming the file when it cannot be written (nothing is left behind then). */
 int scene_config_write(const scene_config *cfg, const char *path, fog_error *err);
+/* The loader's checks of what each fog model needs of the other keys (scene_config_load
+ * runs them after reading a file), on a scene made in memory: 0, or 1 with err naming the
+ * key ("[fog] model: ..."). scene_config_write refuses a scene that fails them, which would
+ * be a config that does not load. */
+int scene_config_check(const scene_config *cfg, fog_error *err);
 
 /* Every documented default (docs/config.md). */
 void scene_config_init(scene_config *cfg);
@@ -292,6 +297,8 @@ fog_lamp_method scene_live_lamp_method(fog_lamp_method method);
  * terrain's base, the box's floor); 0 when any does. A config below it is refused; the
  * window's panel holds its slider above it. */
 double scene_config_min_scale_height(const scene_config *cfg);
+/* [fog] scale_height's largest (a world length) */
+#define SCENE_MAX_SCALE_HEIGHT 1e7
 /* Both, in cfg: the live demo's settings on a software renderer (the window and `bench
  * pipeline`, which measures it). */
 void scene_config_live_software(scene_config *cfg);

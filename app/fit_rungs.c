@@ -108,7 +108,19 @@ static int add_analytic_rungs(fit_result *r, const scene_config *input, const fi
     if (!(rung = add_rung(r, analytic_config(input, FOG_MODEL_HEIGHT), "height", err))) return 1;
     scene_fog_config *f = &rung->config->fog;
     f->density_scale = k, f->fog_height = y0, f->scale_height = scale_height;
-    snprintf(rung->params, sizeof rung->params, "K=%.6g y0=%.6g H=%.6g", k, y0, scale_height);
+    /* The scene draws the fog down to the lowest point its view reaches (the camera, the
+     * terrain's base), which the fog's domain need not: below y0 it grows as e^{(y0-y)/H},
+     * and a scene whose fog passes float there does not load (scene_config_min_scale_height:
+     * a fog floating 1000 above the terrain fitted H = 6.9 where 32.6 was the least). The rung
+     * takes the least H the scene draws, and its error is measured as drawn. */
+    const double least = scene_config_min_scale_height(rung->config);
+    if (scale_height < least) f->scale_height = 1.001 * least;
+    f->scale_height = fmin(f->scale_height, SCENE_MAX_SCALE_HEIGHT); /* the key's range */
+    snprintf(rung->params, sizeof rung->params, "K=%.6g y0=%.6g H=%.6g", k, y0, f->scale_height);
+    if (f->scale_height != scale_height)
+      snprintf(rung->params + strlen(rung->params), sizeof rung->params - strlen(rung->params),
+               " (fitted %.4g: %s)", scale_height,
+               scale_height < least ? "the least the scene holds" : "the key's largest");
   }
   return 0;
 }

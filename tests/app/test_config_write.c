@@ -124,6 +124,24 @@ int main(void) {
   for (int k = 0; k < SCENE_CONFIG_MAX_PROFILE; k++)
     cfg.fog.profile_coefficients[k] = (1.0 / (k + 3)) * pow(10.0, -(k % 19));
   scene_config back;
+  /* a scene the loader would refuse is not written (fit wrote a height fog overflowing
+   * float below it), and no file is left */
+  {
+    scene_config height;
+    scene_config_init(&height);
+    height.fog.model = FOG_MODEL_HEIGHT, height.fog.density_scale = 0.05;
+    height.fog.fog_height = 1000.0, height.fog.scale_height = 7.0; /* least: ~32 */
+    char refused[700];
+    snprintf(refused, sizeof refused, "%s/refused.ini", dir);
+    CHECK(scene_config_write(&height, refused, &err) != 0 &&
+              strstr(err.message, "refused.ini") && strstr(err.message, "scale_height"),
+          "an unloadable height fog written: %s", err.message);
+    CHECK(access(refused, F_OK) != 0, "%s left behind", refused);
+    height.fog.scale_height = 1.01 * scene_config_min_scale_height(&height);
+    CHECK(scene_config_write(&height, refused, &err) == 0 &&
+              scene_config_load(refused, &back, &err) == 0,
+          "the least H the scene holds: %s", err.message);
+  }
   CHECK(scene_config_write(&cfg, written, &err) == 0, "write: %s", err.message);
   CHECK(scene_config_load(written, &back, &err) == 0, "64 coefficients read back: %s", err.message);
   CHECK(back.fog.profile_count == SCENE_CONFIG_MAX_PROFILE &&

@@ -535,6 +535,37 @@ static void test_amplitudes(void) {
   fit_views_destroy(&views);
 }
 
+/* A fog floating far above the terrain (a cone of fog 1000 up, the terrain at 0): the height
+ * rung's fitted H made a config whose fog, grown as e^{(y0-y)/H} down to the terrain, passed
+ * float (the loader refuses it), and `fit --out` wrote it. Every rung now makes a scene
+ * that loads (scene_config_check, the loader's model checks); the height rung takes the
+ * least H the scene holds. */
+static void test_floating_fog(const char *folder) {
+  char path[512];
+  snprintf(path, sizeof path, "%s/floating.ini", folder);
+  test_write_text(path, "[fog]\nmodel = quadric\nquadric = cone 0 1000 0 40 20 0.05\n"
+                        "[camera]\nposition = 0 1010 100\n[terrain]\norigin = -500 0 -500\n");
+  scene_config cfg;
+  fog_error err;
+  const int loaded = scene_config_load(path, &cfg, &err);
+  CHECK(loaded == 0, "%s", err.message);
+  if (loaded) return;
+  fit_result r;
+  if (!run("floating cone", &cfg, &r)) return;
+  const fit_rung *h = rung_named(&r, "height");
+  CHECK(h != NULL, "the cone's layers decay: a height rung");
+  if (h) {
+    const double least = scene_config_min_scale_height(h->config);
+    CHECK(least > 1.0 && h->config->fog.scale_height >= least,
+          "height rung H %g below the least the scene holds, %g", h->config->fog.scale_height,
+          least);
+  }
+  for (int i = 0; i < r.count; i++)
+    CHECK(scene_config_check(r.rungs[i].config, &err) == 0, "rung %s: %s", r.rungs[i].name,
+          err.message);
+  fit_result_destroy(&r);
+}
+
 int main(void) {
   char folder[] = "/tmp/fogpipe_fit_XXXXXX";
   CHECK(mkdtemp(folder) != NULL, "mkdtemp");
@@ -549,6 +580,7 @@ int main(void) {
   test_oriented_ellipsoid(folder);
   test_plume(folder);
   test_sequence(folder);
+  test_floating_fog(folder);
   char command[256];
   snprintf(command, sizeof command, "rm -rf '%s'", folder);
   if (system(command)) fprintf(stderr, "could not remove %s\n", folder);
