@@ -62,8 +62,9 @@ static int parse(int argc, char **argv, fit_options *o) {
   const cli_option options[] = {
       {.kind = CLI_CUSTOM, .name = "--tolerance", .value = "T[,T..]", .target = o,
        .parse = parse_tolerances, .required = true,
-       .help = "max |delta tau| allowed on every ray (required, > 0); more\n"
-               "values print the pick at each (the first one's is written)"},
+       .help = "the |delta tau| allowed (required, 1e-12 to 1): on every ray,\n"
+               "or on average with --by mean; more values print the pick\n"
+               "at each (the first one's is written)"},
       {.kind = CLI_CHOICE, .name = "--by", .value = "max|mean", .target = &by_mean, .choices = by,
        .help = "the tolerance bounds each rung's max error (default) or\n"
                "its mean error over the rays"},
@@ -124,6 +125,9 @@ static int parse(int argc, char **argv, fit_options *o) {
       CLI_OPTIONS(options)};
   int parsed = cli_parse_one(&spec, argc, argv, &o->input);
   if (parsed) return parsed;
+  if (o->frames && o->frame >= 0) /* --frame defaults to -1 (the last); it was ignored */
+    return cli_usage_error("fit", "--frame fits one frame and --frames a range: give one of "
+                           "them");
   o->desc.by_mean = by_mean;
   o->desc.width = size[0], o->desc.height = size[1];
   o->desc.tolerance = o->tolerance[0];
@@ -191,15 +195,18 @@ static int sequence_frames(const fit_options *o, const scene_config *cfg, int **
   return 0;
 }
 
-static int write_chart(const fit_result *r, const char *png) {
+/* Each rung's error (the one --by chose by) against its time. */
+static int write_chart(const fit_result *r, bool by_mean, const char *png) {
   chart_point points[FIT_MAX_RUNGS];
   for (int i = 0; i < r->count; i++)
-    points[i] = (chart_point){.series = r->rungs[i].family, .x = r->rungs[i].ms,
-                              .y = fmax(r->rungs[i].max_error, 1e-4)};
+    points[i] = (chart_point){
+        .series = r->rungs[i].family, .x = r->rungs[i].ms,
+        .y = fmax(by_mean ? r->rungs[i].mean_error : r->rungs[i].max_error, 1e-4)};
   char csv[PATH_MAX], error[512];
   snprintf(csv, sizeof csv, "%.*s.csv", (int)(strlen(png) - 4), png);
   chart_desc desc = {.title = "fogpipe fit: each rung's error against its GL time",
-                     .x_label = "GL ms per frame", .y_label = "max |delta tau| (an exact rung at 1e-4)",
+                     .x_label = "GL ms per frame", .y_label = by_mean ? "mean |delta tau| (an exact rung at 1e-4)"
+                                        : "max |delta tau| (an exact rung at 1e-4)",
                      .log_y = true};
   if (chart_write(&desc, points, r->count, csv, png, error, sizeof error))
     return cli_fail("fit", "%s", error);
@@ -280,12 +287,16 @@ int cmd_fit(int argc, char **argv) {
   fit_options o;
   int status = parse(argc, argv, &o);
   if (status) return status < 0 ? 0 : status;
-  /* every file the run writes, checked before the fit (--chart's CSV beside its PNG) */
-  char chart_csv[PATH_MAX] = "";
+  /* every file the run writes, checked before the fit (--chart's CSV beside its PNG, and
+   * the fogmap a projected rung writes beside --out: a folder in its way was found after
+   * the whole fit) */
+  char chart_csv[PATH_MAX] = "", out_map[PATH_MAX] = "";
   if (o.chart)
     snprintf(chart_csv, sizeof chart_csv, "%.*s.csv", (int)(strlen(o.chart) - 4), o.chart);
-  const char *outputs[3] = {o.out, o.chart, o.chart ? chart_csv : NULL};
-  for (int i = 0; i < 3; i++) {
+  if (o.out)
+    snprintf(out_map, sizeof out_map, "%.*s.fogmap.exr", (int)(strlen(o.out) - 4), o.out);
+  const char *outputs[4] = {o.out, o.out ? out_map : NULL, o.chart, o.chart ? chart_csv : NULL};
+  for (int i = 0; i < 4; i++) {
     const char *problem = outputs[i] ? folder_problem(outputs[i]) : NULL;
     if (problem) return cli_fail("fit", "%s: cannot write: %s", outputs[i], problem);
   }
@@ -364,11 +375,18 @@ int cmd_fit(int argc, char **argv) {
   }
   /* the chart first: a chart that cannot be written leaves --out as it was */
   if (o.chart) {
-    status = write_chart(&r, o.chart);
+    status = write_chart(&r, o.desc.by_mean, o.chart);
     if (!status) printf("chart %s\n", o.chart);
   }
-  if (!status && r.chosen >= 0 && o.out && !(status = write_scene(&r, &r.rungs[r.chosen], o.out)))
-    printf("wrote %s\n", o.out);
+  if (!status && r.chosen >= 0 && o.out) {
+    if (!(status = write_scene(&r, &r.rungs[r.chosen], o.out))) {
+      printf("wrote %s\n", o.out);
+    } else if (o.chart) { /* a failed run leaves none of its outputs */
+      remove(o.chart);
+      remove(chart_csv);
+      printf("chart %s removed: the scene was not written\n", o.chart);
+    }
+  }
   printf("fit: %.1f s\n", app_clock_seconds() - t0);
   fit_result_destroy(&r);
   free(cfg), free(frames);

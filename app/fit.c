@@ -67,7 +67,7 @@ static int reference_create(held_model *r, const scene_config *cfg, fog_error *e
     return 0;
   }
   if (!scene_config_has_fog(cfg)) {
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.400s: the scene has no fog to fit", cfg->path);
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "the scene has no fog to fit"); /* the caller names the file */
     return 1;
   }
   fog_error ferr;

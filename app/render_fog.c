@@ -20,6 +20,31 @@ void render_fog_destroy(render_fog *fog) {
   *fog = (render_fog){0};
 }
 
+/* Where a VDB error comes from: "CONFIG:LINE: [fog] vdb: " for a config's line, or nothing
+ * for a VDB given on the command line (fit's INPUT: its path is the config's, line 0), whose
+ * own message names the file: "x.vdb:0: [fog] vdb:" pointed at a line nobody wrote. */
+static void vdb_error_wrap(fog_error *err, const fog_error *serr, const scene_config *cfg,
+                           const char *detail) {
+  if (cfg->fog.vdb_line > 0)
+    fog_error_wrap(err, serr, "%.200s:%d: [fog] vdb: %s", cfg->path, cfg->fog.vdb_line, detail);
+  else
+    fog_error_wrap(err, serr, "%s", detail);
+}
+
+/* "no frame N" of a sequence: at the config's vdb_frame or vdb line, or (a VDB on the
+ * command line: no line) at the sequence's pattern. */
+static void vdb_no_frame(fog_error *err, const scene_config *cfg, int first, int last) {
+  const scene_fog_config *f = &cfg->fog;
+  const int line = f->vdb_frame_line ? f->vdb_frame_line : f->vdb_line;
+  if (line > 0)
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "%.200s:%d: [fog] %s: no frame %d in the sequence (frames %d..%d)", cfg->path, line,
+             f->vdb_frame_line ? "vdb_frame" : "vdb", f->vdb_frame, first, last);
+  else
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.400s: no frame %d in the sequence (frames %d..%d)",
+             f->vdb, f->vdb_frame, first, last);
+}
+
 /* The fog of a `[fog] vdb` config: frame cfg->fog.vdb_frame of the sequence (the last by
  * default), placed and profiled by the sequence (vdb_source_apply_config). */
 static int render_vdb_fog(render_fog *fog, const scene_config *cfg, fog_error *err) {
@@ -38,18 +63,14 @@ static int render_vdb_fog(render_fog *fog, const scene_config *cfg, fog_error *e
     goto done;
   }
   if (index < 0) {
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "%.200s:%d: [fog] %s: no frame %d in the sequence (frames %d..%d)", cfg->path,
-             cfg->fog.vdb_frame_line ? cfg->fog.vdb_frame_line : cfg->fog.vdb_line,
-             cfg->fog.vdb_frame_line ? "vdb_frame" : "vdb", cfg->fog.vdb_frame,
-             source.frame_numbers[0], source.frame_numbers[source.count - 1]);
+    vdb_no_frame(err, cfg, source.frame_numbers[0], source.frame_numbers[source.count - 1]);
     goto done;
   }
   *placed = *cfg;
   vdb_source_apply_config(&source, placed);
   fog_error serr;
   if (vdb_source_fogmap_at(&source, index / source.fps, &map, &serr)) {
-    fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, cfg->fog.vdb_line);
+    vdb_error_wrap(err, &serr, cfg, "");
     goto done;
   }
   status = render_fog_create_map(fog, placed, &map, err);
@@ -64,12 +85,12 @@ int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, fog_e
   fog_error serr = {0};
   const char *input = cfg->fog.vdb;
   if (vdb_sequence_find(&input, 1, -1, -1, seq, &serr)) {
-    fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, cfg->fog.vdb_line);
+    vdb_error_wrap(err, &serr, cfg, "");
     return 1;
   }
   /* every frame placed one way, as the fogmap's vdb_source and `import` refuse */
   if (vdb_sequence_check_placement(seq, &serr)) {
-    fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, cfg->fog.vdb_line);
+    vdb_error_wrap(err, &serr, cfg, "");
     vdb_sequence_destroy(seq);
     return 1;
   }
@@ -78,8 +99,9 @@ int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, fog_e
    * 46 frames, and `fit` in the middle of its rungs (vdb_precheck_file: ~1 ms a file) */
   for (int i = 0; i < seq->count; i++)
     if (vdb_precheck_file(seq->paths[i], &serr)) {
-      fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: frame %d: ", cfg->path,
-                     cfg->fog.vdb_line, seq->frames[i]);
+      char detail[32];
+      snprintf(detail, sizeof detail, "frame %d: ", seq->frames[i]);
+      vdb_error_wrap(err, &serr, cfg, detail);
       vdb_sequence_destroy(seq);
       return 1;
     }
@@ -96,7 +118,7 @@ static int load_volume_file(const scene_config *cfg, const char *path, vdb_frame
                                        .up = f->vdb_up == 1 ? VDB_UP_Y : VDB_UP_Z,
                                        .keep_grid = 1, .grid_only = 1},
                      frame, &serr)) {
-    fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, f->vdb_line);
+    vdb_error_wrap(err, &serr, cfg, "");
     return 1;
   }
   vdb_dense_grid *g = &frame->grid;
@@ -122,11 +144,7 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
   int index = vdb_frame_index(seq.frames, seq.count, f->vdb_frame);
   int status = 1;
   if (index < 0)
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "%.200s:%d: [fog] %s: no frame %d in the sequence (frames %d..%d)", cfg->path,
-             f->vdb_frame_line ? f->vdb_frame_line : f->vdb_line,
-             f->vdb_frame_line ? "vdb_frame" : "vdb", f->vdb_frame, seq.frames[0],
-             seq.frames[seq.count - 1]);
+    vdb_no_frame(err, cfg, seq.frames[0], seq.frames[seq.count - 1]);
   else
     status = load_volume_file(cfg, seq.paths[index], frame, grid, err);
   vdb_sequence_destroy(&seq);

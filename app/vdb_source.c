@@ -181,7 +181,10 @@ int vdb_source_open_config(vdb_source *source, const scene_config *cfg, fog_erro
                           .resolution = f->vdb_resolution,
                           .loop = f->vdb_loop};
   if (vdb_source_open(source, &desc, &serr)) {
-    fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, f->vdb_line);
+    if (f->vdb_line > 0)
+      fog_error_wrap(err, &serr, "%.200s:%d: [fog] vdb: ", cfg->path, f->vdb_line);
+    else /* a VDB on the command line (fit's INPUT): its own message names the file */
+      fog_error_pass(err, &serr);
     return 1;
   }
   return 0;

@@ -110,6 +110,22 @@ int main(void) {
           "a folder at the chart's CSV: exit %d, stderr %s, --out '%s'", status, err, after);
     rmdir(csv3);
   }
+  {
+    /* a folder where a projected rung's fogmap goes beside --out (OUT.fogmap.exr): refused
+     * before the fit, naming it (it was found after the whole fit, the chart left behind) */
+    char blocked_out[256], blocked_map[256], chart4[256];
+    snprintf(blocked_out, sizeof blocked_out, "%s/q.ini", dir);
+    snprintf(blocked_map, sizeof blocked_map, "%s/q.fogmap.exr", dir);
+    snprintf(chart4, sizeof chart4, "%s/q.png", dir);
+    CHECK(mkdir(blocked_map, 0755) == 0, "mkdir %s", blocked_map);
+    snprintf(args, sizeof args, "configs/perlin_fog.ini --tolerance 0.04 --by mean --out '%s' "
+             "--chart '%s' %s", blocked_out, chart4, fast);
+    status = fit(bin, args, out, err, sizeof out);
+    CHECK(status != 0 && strstr(err, "q.fogmap.exr") && strstr(err, "a folder of that name") &&
+              !strstr(out, "chosen:") && !exists(blocked_out) && !exists(chart4),
+          "a folder at --out's fogmap: exit %d, stdout %s, stderr %s", status, out, err);
+    rmdir(blocked_map);
+  }
   scene_config cfg;
   fog_error cerr;
   CHECK(scene_config_load(scene, &cfg, &cerr) == 0, "%s", cerr.message);
@@ -142,6 +158,32 @@ int main(void) {
   CHECK(status != 0, "a missing VDB: exit 0");
   CHECK(strstr(err, "none_0001.vdb") != NULL, "stderr does not name the file: %s", err);
   CHECK(!exists(missing_out), "%s written", missing_out);
+
+  /* a VDB INPUT's own errors name the file and what it holds, not a config line nobody
+   * wrote ("x.vdb:0: [fog] vdb: x.vdb: no grid named ..."), nor the file twice */
+  snprintf(args, sizeof args, "../shared/data/vdb/groundfog/data/fluid_data_0048.vdb "
+           "--tolerance 0.1 --grid nosuch --out '%s' %s", missing_out, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  CHECK(status == 1 && strstr(err, "fluid_data_0048.vdb: no grid named 'nosuch'; the file has") &&
+            !strstr(err, ":0:") && !strstr(err, "[fog]") && !exists(missing_out),
+        "--grid nosuch: exit %d, stderr %s", status, err);
+  snprintf(args, sizeof args, "'../shared/data/vdb/groundfog/data/fluid_data_####.vdb' "
+           "--tolerance 0.1 --frame 999 --out '%s' %s", missing_out, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  CHECK(status == 1 && strstr(err, "fluid_data_####.vdb: no frame 999 in the sequence (frames 1..48)") &&
+            !strstr(err, ":0:") && !exists(missing_out),
+        "--frame 999: exit %d, stderr %s", status, err);
+  {
+    char nofog[256], twice[600];
+    snprintf(nofog, sizeof nofog, "%s/nofog.ini", dir);
+    test_write_text(nofog, "[fog]\nmodel = fogmap\n");
+    snprintf(args, sizeof args, "'%s' --tolerance 0.1 %s", nofog, fast);
+    status = fit(bin, args, out, err, sizeof out);
+    snprintf(twice, sizeof twice, "%s: %s", nofog, nofog);
+    CHECK(status == 1 && strstr(err, "nofog.ini: the scene has no fog to fit") &&
+              !strstr(err, twice),
+          "no fog: exit %d, stderr %s", status, err);
+  }
 
   /* a bad config key: FILE:LINE named */
   char bad[256];
