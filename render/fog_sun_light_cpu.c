@@ -155,7 +155,7 @@ static bool model_light_span(const fog_model *m, const double o[3], const double
       } else {
         double q = depth * dy / (k0 * H);
         reach = q >= 1.0 ? (dy > 0 ? fmax(m->y0 - o[1] + 36.0 * H, 0.0) / dy : HUGE_VAL)
-                         : -H / dy * log(1.0 - q);
+                         : -H / dy * log1p(-q); /* 1 - q loses a small q */
       }
       *t1 = fmin(t_surface, reach);
       break;

@@ -99,7 +99,12 @@ bool fog_model_light_span(fog_ray r, bool chords, out float t0, out float t1) {
     reach = FOG_LIGHT_DEPTH / k0;
   } else {
     float q = FOG_LIGHT_DEPTH * dy / (k0 * H);
-    reach = q >= 1.0 ? fog_model_reach(r.dir) : -H / dy * log(1.0 - q);
+    // -ln(1 - q) = q + q^2/2 + ...: by its series where 1 - q loses q in float (haze of
+    // scale height 1e7: q ~ 1e-8, 1 - q = 1, the span empty and the sun through opaque fog);
+    // the next term, q^4/5 of it, is below 2e-9 there
+    float series = FOG_LIGHT_DEPTH / k0 * (1.0 + q * (0.5 + q * (1.0 / 3.0 + q * 0.25)));
+    reach = q >= 1.0 ? fog_model_reach(r.dir)
+          : abs(q) < 0.01 ? series : -H / dy * log(1.0 - q);
   }
   t0 = 0.0;
   t1 = min(r.t_surface, reach);

@@ -227,6 +227,27 @@ static void check_sharp_phase(void) {
   CHECK(worst <= 1e-4, "the sharp phase function is off by %.3e relative", worst);
 }
 
+/* Height fog as dense near-homogeneous haze (scale height 1e7, K = 100): every ray is
+ * opaque within a fraction of a unit and the sun's way out is e^{-1e9}: the in-scatter is the
+ * ambient colour alone. The span of the sun's mean, -H/d_y ln(1 - q) with q = 20 d_y/(K H)
+ * ~ 1e-8, was ln(1) = 0 in float: empty, so its mean was 1 and the sun shone through. */
+static void check_near_homogeneous_height_fog(void) {
+  static frame f;
+  scene_config cfg;
+  if (!load("[camera]\nposition = 0 300 0\nlook_at = 0 300 -100\nfov = 55\n"
+            "[light]\nsun_elevation = 20\n[fog]\nmodel = height\ndensity_scale = 100\n"
+            "fog_height = 0\nscale_height = 1e7\nalbedo = 0.9\n",
+            &cfg) ||
+      render(&cfg, &f, "near-homogeneous height fog"))
+    return;
+  double worst = 0;
+  for (int k = 0; k < W * H; k++)
+    for (int c = 0; c < 3; c++)
+      worst = fmax(worst, fabs(f.inscatter[3 * k + c] - cfg.fog.colour[c]));
+  printf("height fog of scale height 1e7: max |in-scatter - the ambient colour| %.2e\n", worst);
+  CHECK(worst <= 1e-5, "the sun shines through opaque fog: in-scatter off by %.3e", worst);
+}
+
 int main(void) {
   if (!test_scratch_folder(dir)) return test_finish("test_light_edges");
   check_shafts_past_the_map();
@@ -235,6 +256,7 @@ int main(void) {
   check_inside_a_box();
   check_lamp_at_the_camera();
   check_sharp_phase();
+  check_near_homogeneous_height_fog();
   test_remove_tree(dir);
   return test_finish("test_light_edges");
 }
