@@ -71,9 +71,10 @@ int cmd_render(int argc, char **argv) {
        .extensions = (const char *const[]){".exr", ".png", NULL},
        .required = true, .help = "output image: .exr (channels R G B A as half, as float where\n"
                "a pixel is beyond half's range; transmittance,\n"
-               "depth (and Z, the same), inscatter.R/G/B as float; depth =\n"
-               "distance along the view ray to the first surface, the far plane\n"
-               "for the sky; RGB = transmittance x surface + inscatter) or .png\n"
+               "depth, Z, inscatter.R/G/B as float; depth = distance along\n"
+               "the view ray to the first surface, Z = its camera-space depth\n"
+               "along the view axis (the far plane for the sky, both); RGB =\n"
+               "transmittance x surface + inscatter) or .png\n"
                "(8-bit sRGB RGB)"},
       {.kind = CLI_SIZE, .name = "--size", .value = "WxH", .target = size,
        .help = "image size (default: [render] width and height of the config)"},

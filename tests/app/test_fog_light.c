@@ -10,7 +10,7 @@
  * - a sun below the horizon (elevation -5) lights nothing: the frame equals the frame with
  *   a black sun, bit for bit, fog, surfaces and sky; with its centre on the horizon half
  *   its disc shows, and the fog gets (L_amb + a L_sun p / 2)(1 - tau);
- * - `fogpipe render` writes the in-scatter as inscatter.R/G/B and the depth as Z too, and
+ * - `fogpipe render` writes the in-scatter as inscatter.R/G/B and the camera-space depth as Z, and
  *   the camera as the standard worldToCamera and worldToNDC attributes: each pixel's
  *   surface point (the CPU camera ray at the depth) maps to that pixel's centre in NDC and
  *   lies at that depth from the camera; `record` writes the same matrices. */
