@@ -257,6 +257,41 @@ static double lamp_piece_shadowed(const lamp_ray *r, double phi_a, double phi_b,
   return 0.5 * dphi * total;
 }
 
+/* The angles phi (t = ts + hp tan phi) where the ray o + t d crosses a spot's cones
+ * cos = cos_outer and cos = cos_inner (fog_lamp_cone_cuts in GLSL): the smoothstep's kinks,
+ * and the edges of a beam narrower than a piece's nodes (an outer half-angle of 2 degrees
+ * fell between them: the beam drawn dashed). With w = t d - s (s the lamp from o, a the
+ * axis), (w.a)^2 = c^2 |w|^2 is A t^2 + 2 B t + E = 0, A = alpha^2 - c^2,
+ * B = c^2 ts - alpha beta, E = beta^2 - c^2 |s|^2 (alpha = d.a, beta = s.a); a root counts
+ * where w.a has c's sign (the cone, not its mirror). Its discriminant
+ * B^2 - A E = c^2 (|beta d - alpha s|^2 - c^2 h^2), h the lamp's distance from the ray's
+ * line, from the two vectors' lengths: as B^2 - A E it cancelled in float for a ray grazing
+ * the cone near the lamp (2 ulps of B^2 left, the cuts inside the beam's sliver). A grazing
+ * ray whose discriminant rounds a little below 0 is cut at the grazing point. HUGE_VAL for
+ * none, and for a point lamp. */
+static void lamp_cone_cuts(const fog_lamp *lamp, const double s[3], const double d[3],
+                           double ts, double hp, const double h[3], double cuts[4]) {
+  for (int k = 0; k < 4; k++) cuts[k] = HUGE_VAL;
+  if (lamp->kind != FOG_LAMP_SPOT) return;
+  const double alpha = dot3(d, lamp->axis), beta = dot3(s, lamp->axis), sigma = dot3(s, s);
+  double u[3];
+  for (int k = 0; k < 3; k++) u[k] = beta * d[k] - alpha * s[k];
+  const double u2 = dot3(u, u), h2 = dot3(h, h);
+  for (int cone = 0; cone < 2; cone++) {
+    const double c = cone ? lamp->cos_inner : lamp->cos_outer, c2 = c * c;
+    const double a = alpha * alpha - c2, b = c2 * ts - alpha * beta, e = beta * beta - c2 * sigma;
+    const double disc = c2 * (u2 - c2 * h2);
+    if (!(disc >= -1e-4 * c2 * u2)) continue;
+    const double q = -(b + copysign(sqrt(fmax(disc, 0.0)), b));
+    const double roots[2] = {a != 0.0 ? q / a : HUGE_VAL, q != 0.0 ? e / q : HUGE_VAL};
+    for (int k = 0; k < 2; k++) {
+      const double t = roots[k];
+      if (isfinite(t) && (t * alpha - beta) * c >= 0.0)
+        cuts[2 * cone + k] = atan((t - ts) / hp);
+    }
+  }
+}
+
 /* One lamp, per unit a I, over [t0, t1] with the camera's depth table. */
 static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp_method *method,
                         double g, const double o[3], const double d[3], double t0, double t1,
@@ -271,19 +306,22 @@ static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp
   double phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp), total = 0.0;
   /* The pieces: the union of angle_pieces equal steps of phi (the halo) and span_pieces
    * equal steps of t (the fog far from the lamp, which phi compresses), merged in order,
-   * and a cut at phi = 0, the closest point, where the direction to the lamp turns (for a
-   * lamp on the ray the phase function jumps there). */
+   * and cuts at phi = 0, the closest point, where the direction to the lamp turns (for a
+   * lamp on the ray the phase function jumps there), and at a spot's cone crossings. */
   const int na = method->angle_pieces, nt = method->span_pieces;
-  double phi_a = phi0;
-  bool cut = !(phi0 < 0.0 && phi1 > 0.0);
+  double phi_a = phi0, cuts[5];
+  lamp_cone_cuts(lamp, s, d, ts, hp, hv, cuts);
+  cuts[4] = 0.0;
   const bool shadowed = vis && !base_only;
   bool lit_a = shadowed && lamp_visible_at(&r, phi0) >= 0.5; /* V at the piece's start */
   for (int ia = 1, it = 1; ia <= na || it <= nt;) {
     double next_a = ia <= na ? phi0 + ia * (phi1 - phi0) / na : HUGE_VAL;
     double next_t = it <= nt ? atan((t0 + it * (t1 - t0) / nt - ts) / hp) : HUGE_VAL;
-    double phi_b = next_a <= next_t ? next_a : next_t;
-    if (!cut && phi_b > 0.0) {
-      phi_b = 0.0, cut = true;
+    double phi_b = next_a <= next_t ? next_a : next_t, next_cut = HUGE_VAL;
+    for (int k = 0; k < 5; k++)
+      if (cuts[k] > phi_a && cuts[k] < next_cut) next_cut = cuts[k];
+    if (next_cut < phi_b) {
+      phi_b = next_cut;
     } else if (next_a <= next_t) {
       ia++;
     } else {

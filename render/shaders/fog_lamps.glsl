@@ -263,6 +263,34 @@ float fog_lamp_piece_shadowed(int i, fog_ray r, float phi_a, float phi_b, float 
 }
 #endif
 
+// The angles phi where the ray crosses spot i's cones cos = cos_outer and cos = cos_inner
+// (lamp_cone_cuts in C: the smoothstep's kinks, and a narrow beam's edges, which fell between
+// a piece's nodes); 1e30 for none, and for a point lamp. w = t dir - s: A t^2 + 2 B t + E = 0,
+// A = alpha^2 - c^2, B = c^2 ts - alpha beta, E = beta^2 - c^2 |s|^2, a root counting where
+// w.a has c's sign; B^2 - A E = c^2 (|beta dir - alpha s|^2 - c^2 h^2) from the vectors'
+// lengths (as B^2 - A E it cancelled in float for a ray grazing the cone near the lamp).
+vec4 fog_lamp_cone_cuts(int i, fog_ray r, float ts, float hp) {
+  vec4 cuts = vec4(1e30);
+  if (fog_lamp_axis[i].w == 0.0) return cuts;
+  vec3 s = fog_lamp_position[i], axis = fog_lamp_axis[i].xyz;
+  float alpha = dot(r.dir, axis), beta = dot(s, axis), sigma = dot(s, s);
+  vec3 u = beta * r.dir - alpha * s, h = s - ts * r.dir;
+  float u2 = dot(u, u), h2 = dot(h, h);
+  for (int cone = 0; cone < 2; cone++) {  // constant bound: unrolled
+    float c = fog_lamp_cone[i].x + (cone == 1 ? 1.0 / fog_lamp_cone[i].y : 0.0), c2 = c * c;
+    float a = alpha * alpha - c2, b = c2 * ts - alpha * beta, e = beta * beta - c2 * sigma;
+    float disc = c2 * (u2 - c2 * h2);
+    float q = -(b + (b >= 0.0 ? 1.0 : -1.0) * sqrt(max(disc, 0.0)));
+    vec2 roots = vec2(a != 0.0 ? q / a : 1e30, q != 0.0 ? e / q : 1e30);
+    for (int k = 0; k < 2; k++) {
+      float t = roots[k];
+      if (disc >= -1e-4 * c2 * u2 && abs(t) < 1e29 && (t * alpha - beta) * c >= 0.0)
+        cuts[2 * cone + k] = atan((t - ts) / hp);
+    }
+  }
+  return cuts;
+}
+
 // Lamp i's integral over the angle phi, without the factor a I / h': fog_lamp_piece on each
 // piece of fog_lamp_method's union of equal steps in phi and in t (with the shadow cubes,
 // fog_lamp_piece_shadowed: cut at V's edges).
@@ -272,7 +300,8 @@ float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, fl
   float phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp), lamp_sum = 0.0;
   const int na = fog_lamp_angle_pieces, nt = fog_lamp_span_pieces;
   float phi_a = phi0;
-  bool cut = !(phi0 < 0.0 && phi1 > 0.0);  // and a cut at phi = 0, the closest point
+  // and cuts at phi = 0, the closest point, and at a spot's cone crossings
+  vec4 cuts = fog_lamp_cone_cuts(i, r, ts, hp);
 #if FOG_LAMP_SHADOWS
   bool lit_a = !base_only && fog_lamp_visible_at(i, r, phi0, ts, hp) >= 0.5;  // at the start
 #endif
@@ -280,9 +309,11 @@ float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, fl
     float next_a = ia <= na ? phi0 + float(ia) * (phi1 - phi0) / float(na) : 1e30;
     float next_t = it <= nt ? atan((t0 + float(it) * (t1 - t0) / float(nt) - ts) / hp) : 1e30;
     float phi_b = min(next_a, next_t);
-    if (!cut && phi_b > 0.0) {
-      phi_b = 0.0;
-      cut = true;
+    vec4 ahead = mix(vec4(1e30), cuts, greaterThan(cuts, vec4(phi_a)));
+    float next_cut = min(min(min(ahead.x, ahead.y), min(ahead.z, ahead.w)),
+                         0.0 > phi_a ? 0.0 : 1e30);
+    if (next_cut < phi_b) {
+      phi_b = next_cut;
     } else if (next_a <= next_t) {
       ia++;
     } else {

@@ -4,7 +4,8 @@
  * surface, so the pass's colour is the lamps' in-scatter alone (Perlin turbulence fog too,
  * its octaves drifted to a time); and with quadric volumes beside the height fog and the
  * volume. Also: albedo 0 draws
- * nothing (the lamps scatter with the fog's albedo), and the spot's cone really cuts. */
+ * nothing (the lamps scatter with the fog's albedo), and the spot's cone really cuts; a narrow
+ * spot's beam across the view (its pieces cut at the cones, as the twin's). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -122,6 +123,16 @@ int main(void) {
     params.lamps.lamp[0].position[1] = 60.0; /* above the box, shining up */
     double away = compare(&gl, &cam, &params, &m, gl.dist, "fogmap, spot away");
     CHECK(away == 0.0, "a spot shining away from all fog: in-scatter %g", away);
+    /* a narrow spot (inner 2, outer 4 degrees) across the view: the pieces cut at the
+     * ray's crossings of its cones (fog_lamp_cone_cuts), as in the twin */
+    params.lamps.lamp[0].position[0] = 130, params.lamps.lamp[0].position[1] = 3,
+    params.lamps.lamp[0].position[2] = -48;
+    params.lamps.lamp[0].axis[0] = 0, params.lamps.lamp[0].axis[1] = 0,
+    params.lamps.lamp[0].axis[2] = 1;
+    params.lamps.lamp[0].cos_inner = cos(2 * 3.14159265358979 / 180);
+    params.lamps.lamp[0].cos_outer = cos(4 * 3.14159265358979 / 180);
+    double beam = compare(&gl, &cam, &params, &m, gl.dist, "fogmap, a narrow spot across");
+    CHECK(beam > 1e-3, "the narrow spot's beam is not in view: peak %g", beam);
     transform_grid_destroy(&grid);
   }
 

@@ -149,6 +149,27 @@ int main(void) {
     CHECK(e.fogshop >= 20 * e.ours, "shaft: Fogshop's %.3e, ours %.3e", e.fogshop, e.ours);
   }
 
+  /* A narrow spot (inner 1, outer 2 degrees; 3 and 5) shining along +x in thin homogeneous
+   * fog, the views sweeping across its beam: the pieces cut at the ray's crossings of the
+   * cones (a beam narrower than a piece's nodes fell between them: 0 to 3.65x the light) */
+  {
+    fog_model thin = {.kind = FOG_MODEL_HOMOGENEOUS, .extinction = 0.01};
+    const double o[3] = {0, 10, 60};
+    for (int k = 0; k < N; k++)
+      targets[k][0] = -30.0 + 60.0 * k / (N - 1), targets[k][1] = 10.0, targets[k][2] = 0.0;
+    const double pi = 3.14159265358979323846, cones[2][2] = {{1, 2}, {3, 5}};
+    for (int c = 0; c < 2; c++) {
+      fog_lamp spot = {.kind = FOG_LAMP_SPOT, .position = {-40, 10, 0}, .intensity = {1, 1, 1},
+                       .radius = 0.05, .axis = {1, 0, 0}, .cos_inner = cos(cones[c][0] * pi / 180),
+                       .cos_outer = cos(cones[c][1] * pi / 180)};
+      sweep_error e = sweep(c ? "spot 3/5 degrees across its beam" : "spot 1/2 degrees across "
+                            "its beam", &thin, &spot, 0.3, 0, o, (const double(*)[3])targets, N,
+                            200.0, false);
+      CHECK(e.ours <= 1e-4, "a narrow spot (%g/%g degrees): our error %.3e of the peak",
+            cones[c][0], cones[c][1], e.ours);
+    }
+  }
+
   /* Homogeneous fog: the lamp inside dense fog with the camera in it; behind the camera; on
    * the view ray (h = 0 at the sweep's middle ray); 10 km away in thin fog. */
   {
