@@ -47,8 +47,10 @@ if ! command -v apt-get >/dev/null 2>&1; then
   echo "install-deps: apt-get not found; fogpipe's set-up expects Debian 12. Missing: ${missing[*]}" >&2
   exit 1
 fi
-export DEBIAN_FRONTEND=noninteractive
-"${sudo[@]}" apt-get update -qq || { echo "install-deps: apt-get update failed (no network to the Debian mirror?)" >&2; exit 1; }
-"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null \
+# through env: sudo's default policy drops the caller's environment, and a debconf question
+# (libc6's restart prompt) would wait, unseen behind the silenced output
+apt=(env DEBIAN_FRONTEND=noninteractive apt-get)
+"${sudo[@]}" "${apt[@]}" update -qq || { echo "install-deps: apt-get update failed (no network to the Debian mirror?)" >&2; exit 1; }
+"${sudo[@]}" "${apt[@]}" install -y -qq --no-install-recommends "${missing[@]}" >/dev/null \
   || { echo "install-deps: apt-get install failed for: ${missing[*]}" >&2; exit 1; }
 echo "install-deps: done"
