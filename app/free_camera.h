@@ -16,7 +16,10 @@
 
 #define FREE_CAMERA_LOOK_RATE 0.004 /* radians of yaw or pitch per pixel dragged */
 #define FREE_CAMERA_TURN_RATE 1.2   /* radians per second with an arrow key */
-#define FREE_CAMERA_PITCH_LIMIT 1.55
+/* straight up or down at most: the camera's basis holds there (right is horizontal, from
+ * the yaw alone), so a config's pitch of -90 opens as `render` draws it (1.55 turned it to
+ * -88.8 degrees) */
+#define FREE_CAMERA_PITCH_LIMIT 1.5707963267948966
 #define FREE_CAMERA_FAST 4.0        /* Shift */
 
 /* One frame's input: the cursor, whether a look button is held, and the keys as -1/0/1. */

@@ -16,10 +16,15 @@ lamp_tool lamp_tool_for_scene(double scene_size) {
 lamp_edit lamp_tool_update(lamp_tool *tool, bool left, bool right, const double *hit,
                            const fog_lamps *lamps) {
   lamp_edit edit = {.kind = LAMP_EDIT_NONE, .index = -1};
-  if (!(left || right) || !hit) {
-    tool->dragged = -1;
-    return edit;
-  }
+  /* right acts once a press: held over several frames (a click lasts a few) it removed one
+   * lamp a frame, every lamp near the cursor */
+  const bool right_pressed = right && !tool->right_held;
+  tool->right_held = right;
+  /* a drag ends when left is let go; over the sky or the panel (no hit) it waits, so the
+   * lamp is picked up again where the cursor comes back (it was dropped, and a new lamp
+   * placed there) */
+  if (!left) tool->dragged = -1;
+  if (!(left || right) || !hit) return edit;
   int nearest = -1;
   double best = 3.0 * tool->height;
   for (int i = 0; i < lamps->count; i++) {
@@ -28,7 +33,8 @@ lamp_edit lamp_tool_update(lamp_tool *tool, bool left, bool right, const double 
   }
   if (right) {
     tool->dragged = -1;
-    if (nearest >= 0) edit = (lamp_edit){.kind = LAMP_EDIT_REMOVE, .index = nearest};
+    if (right_pressed && nearest >= 0)
+      edit = (lamp_edit){.kind = LAMP_EDIT_REMOVE, .index = nearest};
     return edit;
   }
   int moved = tool->dragged >= 0 && tool->dragged < lamps->count ? tool->dragged : nearest;

@@ -17,6 +17,7 @@ typedef struct lamp_tool {
   float intensity;
   float height;    /* above the surface clicked, world units */
   int dragged;     /* the lamp the held button moves; -1: none */
+  bool right_held; /* right was down the frame before (a removal is once a press) */
   /* the panel sliders' ranges, from the scene's size */
   float intensity_range[2], height_range[2];
 } lamp_tool;
@@ -49,8 +50,9 @@ typedef struct lamp_edit {
 
 /* One frame of the tool: the buttons held, the surface point under the cursor (NULL: none,
  * over the sky or the panel) and the lamps shown. Left places a lamp `height` above hit,
- * or (within 3 heights of a lamp, horizontally, or while dragging one) moves it there;
- * right removes the nearest within 3 heights. Nothing once FOG_MAX_LAMPS are placed. */
+ * or (within 3 heights of a lamp, horizontally, or while dragging one) moves it there; a
+ * drag lasts while left is held, across frames with no hit; right removes the nearest
+ * within 3 heights, once a press. Nothing once FOG_MAX_LAMPS are placed. */
 lamp_edit lamp_tool_update(lamp_tool *tool, bool left, bool right, const double *hit,
                            const fog_lamps *lamps);
 /* The edit applied to lamps (the pipeline's list). */

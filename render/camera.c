@@ -34,7 +34,9 @@ void camera_look_at(camera *cam, const double target[3]) {
   double d[3] = {target[0] - cam->position[0], target[1] - cam->position[1],
                  target[2] - cam->position[2]};
   double horizontal = sqrt(d[0] * d[0] + d[2] * d[2]);
-  cam->yaw = atan2(d[0], -d[2]);
+  /* straight up or down: yaw 0, as a pitch of +-90 draws (atan2(0, -0) is pi: the image
+   * turned half round, the window then showing another view than `render`) */
+  cam->yaw = horizontal > 0.0 ? atan2(d[0], -d[2]) : 0.0;
   cam->pitch = atan2(d[1], horizontal);
 }
 

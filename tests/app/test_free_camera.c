@@ -5,7 +5,7 @@
  *   - D moves along the image's right (level: camera_basis's right direction), E straight up;
  *   - a drag turns by 0.004 rad a pixel from the second frame held (the first only takes
  *     hold), none after release; the arrow keys turn at 1.2 rad/s;
- *   - the pitch stops at +-1.55 rad. */
+ *   - the pitch stops at +-pi/2 (straight up or down, where render's camera still draws). */
 #include <math.h>
 #include <stdio.h>
 

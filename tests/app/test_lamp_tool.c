@@ -1,7 +1,8 @@
 /* The window's lamp tool (app/lamp_tool.h), both sources' rules for the mouse: left places a
  * lamp `height` above the surface point, a held left drags the lamp it placed or picked
  * (even past the pick radius), left within 3 heights of a lamp (horizontally) picks it,
- * right removes the nearest within that radius (nothing farther), nothing over the sky or
+ * right removes the nearest within that radius (nothing farther) once a press however long
+ * it is held, a drag keeps its lamp across frames over the sky, nothing over the sky or
  * past FOG_MAX_LAMPS, and the edits applied keep the other lamps in order; a new lamp's
  * height and intensity follow the scene's size. */
 #include <math.h>
@@ -66,6 +67,7 @@ int main(void) {
   const double nowhere[3] = {-500, 0, -500};
   e = lamp_tool_update(&tool, false, true, nowhere, &lamps);
   CHECK(e.kind == LAMP_EDIT_NONE, "right far from the lamps: kind %d", (int)e.kind);
+  lamp_tool_update(&tool, false, false, NULL, &lamps);
   const double at_b[3] = {305, 0, 58};
   e = lamp_tool_update(&tool, false, true, at_b, &lamps);
   CHECK(e.kind == LAMP_EDIT_REMOVE && e.index == 0, "right by lamp 0: kind %d index %d",
@@ -74,6 +76,44 @@ int main(void) {
   lamp_edit_apply(&e, &lamps);
   CHECK(lamps.count == 1 && !memcmp(&lamps.lamp[0], &second, sizeof second),
         "after removing lamp 0: %d lamps, the second not moved down intact", lamps.count);
+  /* right held on over more frames (a click lasts a few): no more removals until the next
+   * press (it removed one lamp a frame, every lamp near the cursor) */
+  {
+    fog_lamps three = {.count = 3};
+    for (int i = 0; i < 3; i++)
+      three.lamp[i] = (fog_lamp){.kind = FOG_LAMP_POINT, .position = {30.0 * i, 10, 0}};
+    const double by_first[3] = {10, 0, 0};
+    lamp_tool_update(&tool, false, false, NULL, &three); /* the last press let go */
+    int removed = 0;
+    for (int frame = 0; frame < 4; frame++) {
+      lamp_edit r = lamp_tool_update(&tool, false, true, by_first, &three);
+      if (r.kind == LAMP_EDIT_REMOVE) removed++, lamp_edit_apply(&r, &three);
+    }
+    CHECK(removed == 1 && three.count == 2, "right held 4 frames removed %d lamps", removed);
+    lamp_tool_update(&tool, false, false, NULL, &three);
+    lamp_edit r = lamp_tool_update(&tool, false, true, by_first, &three);
+    CHECK(r.kind == LAMP_EDIT_REMOVE, "a second press removed nothing (kind %d)", (int)r.kind);
+    lamp_tool_update(&tool, false, false, NULL, &three);
+  }
+  /* a drag across the sky (no surface point for a frame) keeps its lamp: the cursor back on
+   * the ground far away moves it there, no second lamp placed */
+  {
+    fog_lamps one = {0};
+    const double start[3] = {0, 0, 0}, mid[3] = {100, 0, 0}, back[3] = {200, 0, 0};
+    lamp_edit r = lamp_tool_update(&tool, true, false, start, &one);
+    lamp_edit_apply(&r, &one);
+    r = lamp_tool_update(&tool, true, false, mid, &one);
+    lamp_edit_apply(&r, &one);
+    r = lamp_tool_update(&tool, true, false, NULL, &one);
+    CHECK(r.kind == LAMP_EDIT_NONE, "over the sky mid-drag: kind %d", (int)r.kind);
+    r = lamp_tool_update(&tool, true, false, back, &one);
+    CHECK(r.kind == LAMP_EDIT_MOVE && r.index == 0 && r.position[0] == 200,
+          "back on the ground mid-drag: kind %d index %d x %g, expected lamp 0 moved to 200",
+          (int)r.kind, r.index, r.position[0]);
+    lamp_edit_apply(&r, &one);
+    CHECK(one.count == 1, "a drag across the sky left %d lamps", one.count);
+    lamp_tool_update(&tool, false, false, NULL, &one);
+  }
   /* full: a click away from every lamp places nothing; one on a lamp still drags it */
   lamp_tool_update(&tool, false, false, NULL, &lamps);
   for (int i = lamps.count; i < FOG_MAX_LAMPS; i++) lamps.lamp[lamps.count++] = second;

@@ -68,6 +68,20 @@ int main(void) {
     n += want[i] * want[i];
   }
   for (int i = 0; i < 3; i++) CHECK(fabs(d[i] - want[i] / sqrt(n)) < 1e-12, "look_at centre ray");
+  /* look_at straight down or up: the view a pitch of -90 or 90 draws (yaw 0: +X to the
+   * right, -Z at the top looking down); atan2(0, -0) made the yaw pi, the image turned
+   * half round */
+  for (int up = 0; up < 2; up++) {
+    camera vertical = cam;
+    const double below[3] = {3, up ? 100 : -100, 5};
+    camera_look_at(&vertical, below);
+    CHECK(vertical.yaw == 0.0 && fabs(vertical.pitch - (up ? 1 : -1) * 1.5707963267948966) < 1e-15,
+          "look_at straight %s: yaw %g pitch %g, expected 0 and %s90 degrees", up ? "up" : "down",
+          vertical.yaw, vertical.pitch, up ? "" : "-");
+    camera_ray(&vertical, 99, 29.5, 100, 60, o, d); /* the right edge: towards +X */
+    CHECK(d[0] > 0.3, "look_at straight %s: the right edge looks along x %g", up ? "up" : "down",
+          d[0]);
+  }
   /* Orientation: yaw = pitch = 0 looks along -Z; row 0 looks up, column 0 to -X. */
   camera flat = {.position = {0, 0, 0},
                 .fov_y = CAMERA_DEFAULT_FOV_Y, .near_plane = CAMERA_DEFAULT_NEAR,
