@@ -5,11 +5,14 @@
  *   simulated  model = fogmap, play: the per-frame pipeline (app/pipeline.h), one
  *              simulation step per frame (a `[fog] vdb` sequence plays as fogmaps),
  *              then the transform, the upload and the scene + fog passes
- *   static     without play, the fogmap or volume as the file holds it (a VDB sequence:
- *              frame vdb_frame), or an analytic model (which has no time): a render
- *              session (app/render_frame.h) whose fog is made once
+ *   static     not simulated: without play, the fogmap or volume as the file holds it (a
+ *              VDB sequence: frame vdb_frame), or an analytic model, played or not: a
+ *              render session (app/render_frame.h) whose fog is made once; each frame
+ *              sets its time, start_time + (n - 1) / fps (render_session_set_time),
+ *              which moves Perlin fog, RBF emitters' puffs, noisy quadric volumes and
+ *              lamps on a lamp_path or flickering (the scene pass drawn again for them)
  *   played     model = volume, play: a render session whose 3D grid moves through the VDB
- *              sequence, frame n at time (n - 1) / fps, blended between VDB frames
+ *              sequence, frame n at that same time, blended between VDB frames
  *
  * `fogpipe record` and `fogpipe render` draw every frame through this; the window program
  * (demo, view: app/window_program.h) uses the same pipeline, or render_fog with a scene

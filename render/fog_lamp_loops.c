@@ -141,15 +141,20 @@ double fog_pass_lamp_loop_bound(const fog_pass_params *p) {
   const double node = point + (exact ? segment : 0) + shadow;
   const double piece = 1 + 5 + 4 * node + EXIT_PASS_SITES +
                        (cubes ? 5 + 5 + 6 * (FOG_LAMP_EDGE_BISECTIONS + 1) : 0);
-  const double pieces = m->angle_pieces + m->span_pieces + 1; /* and the cut at the closest */
+  /* and the cut at the closest point; a spot's 4 at its cones' crossings, found by two
+   * loops of two roots (fog_lamp_cone_cuts: unrolled, counted as if not) */
+  bool spots = false;
+  for (int i = 0; i < lamps->count; i++) spots |= lamps->lamp[i].kind == FOG_LAMP_SPOT;
+  const double pieces = m->angle_pieces + m->span_pieces + 1 + (spots ? 4 : 0);
+  const double cone_loops = spots ? 2 + 1 + 2 * (2 + 1) : 0;
   double per_lamp = 0, table = 0;
   switch (m->integral) {
   case FOG_LAMP_ANGLE:
-    per_lamp = pieces * piece + 1 + EXIT_PASS_SITES;
+    per_lamp = pieces * piece + 1 + EXIT_PASS_SITES + cone_loops;
     if (!exact) table = m->depth_steps + 1 + m->depth_steps * point;
     break;
   case FOG_LAMP_FOGSHOP: /* the base's angle integral (both depths), then every Gaussian */
-    per_lamp = pieces * (1 + 5 + 4 * 2 * segment) + 1 +
+    per_lamp = pieces * (1 + 5 + 4 * 2 * segment) + 1 + cone_loops +
                (p->model_rbf_count + 1) * (1 + 2 * segment);
     break;
   case FOG_LAMP_MARCH:

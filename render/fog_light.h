@@ -5,9 +5,12 @@
  * L_amb is the fog colour (isotropic ambient in-scatter), a the scattering albedo
  * (sigma_s = a K), p the Henyey-Greenstein phase function with cos theta = w_sun . w_view.
  * For a sun theta is constant along a view ray, so with T_s = V = 1 the integral is, for
- * any density, exactly (L_amb + a L_sun p(theta)) (1 - tau): int_0^d tau K du = 1 - tau.
- * That is what the renderer draws today (the fog's shadow on itself, T_s, and the terrain's,
- * V, are not in yet); a = 0 is Giroud & Biri's eq. 4 bit for bit. */
+ * any density, exactly (L_amb + a L_sun p(theta)) (1 - tau): int_0^d tau K du = 1 - tau
+ * (fog_inscatter_unshadowed below). The renderer draws the shadows too: T_s, the fog's on
+ * itself (render/fog_sun_shadow.h), and V, the terrain's and boxes' (light shafts:
+ * render/sun_shadow_map.h), through their tau K-weighted mean M along the ray:
+ * (L_amb + a L_sun p(theta) M) (1 - tau) (fog_sun_mean_light, fog_light.glsl); a = 0 is
+ * Giroud & Biri's eq. 4 bit for bit. */
 #ifndef FOGPIPE_RENDER_FOG_LIGHT_H
 #define FOGPIPE_RENDER_FOG_LIGHT_H
 

@@ -220,10 +220,12 @@ void fog_pass_destroy(fog_pass *pass);
 
 /* The renderer's loop cap (render/gl_util.h, gl_util_loop_cap), probed by fog_pass_create:
  * 65535 iterations of all a shader's loops on llvmpipe, GL_UTIL_NO_LOOP_CAP on GPUs. A draw
- * with lamps whose bound (fog_pass_lamp_loop_bound) passes it less FOG_PASS_LOOP_RESERVE
- * (the view ray's own walk) is refused: past the cap the shader would end its loops early
- * and draw the lamps' light wrong, without an error. set_loop_cap replaces the probed
- * value (tests and benchmarks: GL_UTIL_NO_LOOP_CAP draws anything, as the GPUs do). */
+ * whose bound (fog_pass_loop_bound: the lamps' loops and the view ray's own, an RBF tile's
+ * Gaussians, marching, the sun's mean, Perlin and noise walks) passes it less
+ * FOG_PASS_LOOP_RESERVE (the rest of the view ray's walk) is refused, with or without
+ * lamps: past the cap the shader would end its loops early and draw wrong, without an
+ * error. set_loop_cap replaces the probed value (tests and benchmarks: GL_UTIL_NO_LOOP_CAP
+ * draws anything, as the GPUs do). */
 #define FOG_PASS_LOOP_RESERVE 8192
 long fog_pass_loop_cap(const fog_pass *pass);
 void fog_pass_set_loop_cap(fog_pass *pass, long cap);

@@ -5,7 +5,8 @@
  *   - the probe finds 65535 on llvmpipe (and no cap where the probe's loop runs whole);
  *   - RBF fog with one lamp and as many Gaussians as a bound of the cap less 1024 allows
  *     (the pass's reserve lifted for it): the pass draws it, equal to the CPU twin (so the
- *     bound is not below what the shader runs by more than that);
+ *     bound is not below what the shader runs by more than that); the same with a spot
+ *     across the view (its pieces cut at its cones' crossings, counted);
  *   - with ~1.3x the cap in the bound: the pass refuses, naming the cap; drawn anyway (the
  *     cap lifted), the image is wrong (so the guard protects something real, and the bound
  *     is within 1.3x of what the shader runs);
@@ -33,6 +34,8 @@ static void fill_gaussians(void) {
                         .radius = fog_test_range(3, 8), .density = fog_test_range(0.002, 0.01)};
 }
 
+static bool with_spot; /* the lamp a spot across the view: its cones cut its pieces */
+
 static fog_pass_params params_with(int n) {
   fog_pass_params p = {.model = FOG_MODEL_RBF, .model_extinction = 0.001, .model_rbfs = rbfs,
                        .model_rbf_count = n,
@@ -44,6 +47,10 @@ static fog_pass_params params_with(int n) {
                                    .shadow_steps = FOG_LAMP_SHADOW_STEPS}};
   p.lamps.lamp[0] = (fog_lamp){.kind = FOG_LAMP_POINT, .position = {50, 6, -25},
                                .intensity = {400, 350, 300}, .radius = 0.5};
+  if (with_spot)
+    p.lamps.lamp[0] = (fog_lamp){.kind = FOG_LAMP_SPOT, .position = {20, 6, -25},
+                                 .intensity = {4000, 3500, 3000}, .radius = 0.5,
+                                 .axis = {1, 0, 0}, .cos_inner = cos(0.15), .cos_outer = cos(0.3)};
   return p;
 }
 
@@ -132,6 +139,21 @@ int main(void) {
   int wrong = count_wrong(rgba, &cam, &p, gl.dist, &worst);
   printf("%d Gaussians, bound %.0f loop iterations: %d values off the twin (max %.2e of the "
          "peak)\n", under, bound_of(&p), wrong, worst);
+  /* the same with a spot across the view: its 4 cuts at the cones' crossings counted */
+  with_spot = true;
+  const int under_spot = gaussians_within((double)cap - VIEW_SLACK);
+  fog_pass_params ps = params_with(under_spot);
+  CHECK(fog_test_gl_draw_tau(&gl, &cam, &ps, tau, &err) == 0 &&
+            gl_target_read(&gl.target, 0, 4, rgba, &err) == 0,
+        "a spot, %d Gaussians (bound %.0f): %s", under_spot, bound_of(&ps), err.message);
+  double worst_spot;
+  const int wrong_spot = count_wrong(rgba, &cam, &ps, gl.dist, &worst_spot);
+  printf("a spot, %d Gaussians, bound %.0f loop iterations: %d values off the twin (max %.2e "
+         "of the peak)\n", under_spot, bound_of(&ps), wrong_spot, worst_spot);
+  CHECK(wrong_spot == 0, "a spot, %d Gaussians within the guard's bound: %d values wrong (max "
+        "%.2e of the peak): the bound is below what the shader runs", under_spot, wrong_spot,
+        worst_spot);
+  with_spot = false;
   fog_pass_set_loop_cap(gl.pass, cap);
   printf("the guard allows %d Gaussians with one lamp\n", allowed);
   CHECK(allowed >= 200, "the guard allows only %d Gaussians with one lamp", allowed);
