@@ -114,6 +114,8 @@ typedef struct fog_pass_variant {
   int shadow_pieces;      /* FOG_SHADOW_PIECES: 1 the mean per piece of the exact walk */
   int shaft_samples;      /* FOG_SHAFT_SAMPLES: V's points a segment (1: at the nodes) */
   int lamp_shadows;       /* FOG_LAMP_SHADOWS: 1 the lamps' shadow cubes (lamp_shadow.glsl) */
+  int lamp_spots;         /* FOG_LAMP_SPOTS: 1 a spot among the lamps (its pieces cut at its
+                             cones: point lamps alone skip that code, 5 % of their time) */
   int quadrics_beside;    /* FOG_QUADRICS_BESIDE: 1 quadric volumes beside the model's fog */
   int quadric_noise;      /* FOG_QUADRIC_NOISE: 1 noise inside the quadric volumes (compiled
                              only then: llvmpipe runs an untaken branch's body under a mask,
@@ -148,6 +150,7 @@ static const struct {
     {"FOG_SHADOW_PIECES", offsetof(fog_pass_variant, shadow_pieces), 1},
     {"FOG_SHAFT_SAMPLES", offsetof(fog_pass_variant, shaft_samples), 5},
     {"FOG_LAMP_SHADOWS", offsetof(fog_pass_variant, lamp_shadows), 1},
+    {"FOG_LAMP_SPOTS", offsetof(fog_pass_variant, lamp_spots), 1},
     {"FOG_QUADRICS_BESIDE", offsetof(fog_pass_variant, quadrics_beside), 1},
     {"FOG_QUADRIC_NOISE", offsetof(fog_pass_variant, quadric_noise), 1},
 };
@@ -161,7 +164,7 @@ static int variant_field(const fog_pass_variant *v, int f) {
   return *(const int *)((const char *)v + variant_fields[f].offset);
 }
 
-/* The fields packed into bits, in variant_fields' order (42 of the 64; fog_pass_create
+/* The fields packed into bits, in variant_fields' order (43 of the 64; fog_pass_create
  * checks the sum). */
 static int variant_key_bits(void) {
   int bits = 0;
@@ -1235,6 +1238,9 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
   variant.shadow_nodes = params->shadow_nodes;
   variant.shaft_samples = params->shafts ? params->shaft_samples : 1;
   variant.lamp_shadows = fog_pass_has_lamp_shadows(params);
+  variant.lamp_spots = 0;
+  for (int i = 0; i < params->lamps.count; i++)
+    variant.lamp_spots |= params->lamps.lamp[i].kind == FOG_LAMP_SPOT;
   variant.quadrics_beside = fog_pass_quadrics_beside(params);
   variant.quadric_noise = fog_pass_quadric_noise(params);
   variant.shadow_pieces = (params->model == FOG_MODEL_PERLIN || params->model == FOG_MODEL_VOLUME ||

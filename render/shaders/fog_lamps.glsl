@@ -271,6 +271,7 @@ float fog_lamp_piece_shadowed(int i, fog_ray r, float phi_a, float phi_b, float 
 // lengths (as B^2 - A E it cancelled in float for a ray grazing the cone near the lamp).
 vec4 fog_lamp_cone_cuts(int i, fog_ray r, float ts, float hp) {
   vec4 cuts = vec4(1e30);
+#if FOG_LAMP_SPOTS  // point lamps alone: none (the code skipped: llvmpipe runs it masked)
   if (fog_lamp_axis[i].w == 0.0) return cuts;
   vec3 s = fog_lamp_position[i], axis = fog_lamp_axis[i].xyz;
   float alpha = dot(r.dir, axis), beta = dot(s, axis), sigma = dot(s, s);
@@ -288,6 +289,7 @@ vec4 fog_lamp_cone_cuts(int i, fog_ray r, float ts, float hp) {
         cuts[2 * cone + k] = atan((t - ts) / hp);
     }
   }
+#endif
   return cuts;
 }
 
@@ -309,9 +311,13 @@ float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, fl
     float next_a = ia <= na ? phi0 + float(ia) * (phi1 - phi0) / float(na) : 1e30;
     float next_t = it <= nt ? atan((t0 + float(it) * (t1 - t0) / float(nt) - ts) / hp) : 1e30;
     float phi_b = min(next_a, next_t);
+#if FOG_LAMP_SPOTS
     vec4 ahead = mix(vec4(1e30), cuts, greaterThan(cuts, vec4(phi_a)));
     float next_cut = min(min(min(ahead.x, ahead.y), min(ahead.z, ahead.w)),
                          0.0 > phi_a ? 0.0 : 1e30);
+#else
+    float next_cut = 0.0 > phi_a ? 0.0 : 1e30;
+#endif
     if (next_cut < phi_b) {
       phi_b = next_cut;
     } else if (next_a <= next_t) {

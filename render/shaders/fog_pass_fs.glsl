@@ -13,6 +13,7 @@
 //                                    optical depth and surface distance for
 //                                    the upsampling pass, FOG_UPSAMPLE 1)
 //   #define FOG_LAMPS 0|1            (1: point and spot lights, fog_lamps.glsl)
+//   #define FOG_LAMP_SPOTS 0|1       (1: a spot among them: pieces cut at its cones)
 //   #define FOG_SURFACE_LAMPS 0|1    (1: the fog dims the lamps' light on the surfaces)
 //   #define FOG_FROXEL 0|1|2         (the froxel baseline's fill and lookup, fog_froxel.glsl)
 //   #define FOG_SHADOW_NODES 1|2     (the light mean's nodes a segment or piece, fog_light.glsl)
