@@ -120,7 +120,8 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
       {.kind = CLI_FLOAT, .name = "--base", .value = "B", .target = &o->noise.base, .min = 0,
        .max = 1e9, .given = &noise_given[5], .help = "density added to the turbulence (default 0)"},
       {.kind = CLI_FLOAT, .name = "--slice", .value = "S", .target = &o->noise.slice, .min = -1e9,
-       .max = 1e9, .given = &noise_given[6], .help = "the noise's third coordinate (default 1/3: off every\n"
+       .max = 1e9, .given = &noise_given[6],
+       .help = "the noise's third coordinate (default 1/3: off every\n"
                "octave's lattice planes; on one, slice 0, the turbulence is 0\n"
                "on a grid one feature size apart)"},
       {.kind = CLI_FLOAT, .name = "--slice-rate", .value = "R", .target = &o->noise.slice_rate,

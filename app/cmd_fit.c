@@ -205,7 +205,8 @@ static int write_chart(const fit_result *r, bool by_mean, const char *png) {
   char csv[PATH_MAX], error[512];
   snprintf(csv, sizeof csv, "%.*s.csv", (int)(strlen(png) - 4), png);
   chart_desc desc = {.title = "fogpipe fit: each rung's error against its GL time",
-                     .x_label = "GL ms per frame", .y_label = by_mean ? "mean |delta tau| (an exact rung at 1e-4)"
+                     .x_label = "GL ms per frame",
+                     .y_label = by_mean ? "mean |delta tau| (an exact rung at 1e-4)"
                                         : "max |delta tau| (an exact rung at 1e-4)",
                      .log_y = true};
   if (chart_write(&desc, points, r->count, csv, png, error, sizeof error))

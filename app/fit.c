@@ -67,7 +67,8 @@ static int reference_create(held_model *r, const scene_config *cfg, fog_error *e
     return 0;
   }
   if (!scene_config_has_fog(cfg)) {
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "the scene has no fog to fit"); /* the caller names the file */
+    /* the caller names the file */
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "the scene has no fog to fit");
     return 1;
   }
   fog_error ferr;

@@ -105,13 +105,21 @@ static int add_analytic_rungs(fit_result *r, const scene_config *input, const fi
 
   double y0, scale_height;
   if (fit_height(s, &k, &y0, &scale_height)) {
-    if (!(rung = add_rung(r, analytic_config(input, FOG_MODEL_HEIGHT), "height", err))) return 1;
+    scene_config *c = analytic_config(input, FOG_MODEL_HEIGHT);
+    if (c) c->fog.density_scale = k, c->fog.fog_height = y0;
+    /* a scene that holds no H of the key's range (K past what float holds below y0): no
+     * height rung */
+    if (c && !(scene_config_min_scale_height(c) <= SCENE_MAX_SCALE_HEIGHT)) {
+      free(c);
+      return 0;
+    }
+    if (!(rung = add_rung(r, c, "height", err))) return 1;
     scene_fog_config *f = &rung->config->fog;
     f->density_scale = k, f->fog_height = y0, f->scale_height = scale_height;
     /* The scene draws the fog down to the lowest point its view reaches (the camera, the
      * terrain's base), which the fog's domain need not: below y0 it grows as e^{(y0-y)/H},
      * and a scene whose fog passes float there does not load (scene_config_min_scale_height:
-     * a fog floating 1000 above the terrain fitted H = 6.9 where 32.6 was the least). The rung
+     * a fog floating 1000 above the terrain fitted H = 6.9 where 32.5 was the least). The rung
      * takes the least H the scene draws, and its error is measured as drawn. */
     const double least = scene_config_min_scale_height(rung->config);
     if (scale_height < least) f->scale_height = 1.001 * least;
@@ -352,6 +360,15 @@ int fit_rungs_make(fit_result *r, const scene_config *input, const fog_model *re
     if (!(rung = add_rung(r, c, fog_model_table[in->model].name, err))) return 1;
     snprintf(rung->name, sizeof rung->name, "%s as given", fog_model_table[in->model].name);
     snprintf(rung->params, sizeof rung->params, "the input's own model");
+  }
+  /* Fogshop's lamp integral is for Gaussians alone: a rung of another model, or with quadric
+   * volumes beside its Gaussians, lights its lamps with ours (an rbf input with
+   * `lamp_integral = fogshop` made every other rung a scene the pass and the loader refuse) */
+  for (int i = 0; i < r->count; i++) {
+    scene_config *c = r->rungs[i].config;
+    if (c->lamp_method.integral == FOG_LAMP_FOGSHOP &&
+        (c->fog.model != FOG_MODEL_RBF || c->fog.quadric_count > 0))
+      c->lamp_method.integral = FOG_LAMP_ANGLE;
   }
   return 0;
 }

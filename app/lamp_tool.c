@@ -48,6 +48,11 @@ lamp_edit lamp_tool_update(lamp_tool *tool, bool left, bool right, const double 
   return edit;
 }
 
+void lamp_tool_idle(lamp_tool *tool) {
+  tool->dragged = -1;
+  tool->right_held = false;
+}
+
 void lamp_edit_apply(const lamp_edit *edit, fog_lamps *lamps) {
   switch (edit->kind) {
     case LAMP_EDIT_PLACE:

@@ -55,6 +55,9 @@ typedef struct lamp_edit {
  * within 3 heights, once a press. Nothing once FOG_MAX_LAMPS are placed. */
 lamp_edit lamp_tool_update(lamp_tool *tool, bool left, bool right, const double *hit,
                            const fog_lamps *lamps);
+/* A frame the tool is off (the panel's checkbox cleared): its drag and its right button
+ * forgotten, so that a press held when it was turned off does not hide the next one. */
+void lamp_tool_idle(lamp_tool *tool);
 /* The edit applied to lamps (the pipeline's list). */
 void lamp_edit_apply(const lamp_edit *edit, fog_lamps *lamps);
 

@@ -281,6 +281,7 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
   pipeline_source *s = self;
   demo_keys(f->window, f->keyboard, s->pipe, &s->in);
   /* the tools pick from the last frame's distances */
+  if (!s->ui.lamps.placing) lamp_tool_idle(&s->ui.lamps);
   if (f->index > 0 && s->ui.lamps.placing)
     demo_lamps(f->window, s->pipe, f->fc, &s->ui, f->mouse);
   else if (f->index > 0)

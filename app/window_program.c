@@ -188,7 +188,7 @@ int window_program_run(scene_config *cfg, const window_options *o) {
                             .width = FIT_WIDTH, .height = FIT_HEIGHT,
                             .timed_frames = FIT_TIMED_FRAMES},
                 &fit_made, &err)) {
-      fprintf(stderr, "fogpipe %s: --fit: %s\n", o->command, err.message);
+      fprintf(stderr, "fogpipe %s: --fit: %s: %s\n", o->command, cfg->path, err.message);
       return 1;
     }
     fit = &fit_made;

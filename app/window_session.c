@@ -598,6 +598,7 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
   }
   /* the lamp tool and the brush pick from the last frame's distances; the brush's keys are
    * read while the tool holds the mouse (a press latched then is let go) */
+  if (!s->lamps.placing) lamp_tool_idle(&s->lamps);
   if (f->index > 0 && s->lamps.placing && session_lamps(s, f, err)) return 1;
   return f->index > 0 && view_brush_update(&s->brush, v, f, s->sel.shown < 0 && !s->lamps.placing,
                                            cfg, fog_time, err);

@@ -266,9 +266,12 @@ static double lamp_piece_shadowed(const lamp_ray *r, double phi_a, double phi_b,
  * where w.a has c's sign (the cone, not its mirror). Its discriminant
  * B^2 - A E = c^2 (|beta d - alpha s|^2 - c^2 h^2), h the lamp's distance from the ray's
  * line, from the two vectors' lengths: as B^2 - A E it cancelled in float for a ray grazing
- * the cone near the lamp (2 ulps of B^2 left, the cuts inside the beam's sliver). A grazing
- * ray whose discriminant rounds a little below 0 is cut at the grazing point. HUGE_VAL for
- * none, and for a point lamp. */
+ * the cone near the lamp (2 ulps of B^2 left, the cuts inside the beam's sliver); this way
+ * it still loses ~1/sin^2 of the half-angle (u2 = h2 - (a.(s x d))^2), so below half a
+ * degree the tolerance below also cuts rays that miss the beam at their grazing point
+ * (harmless: a piece boundary more, counted in the loop bound). A grazing ray whose
+ * discriminant rounds a little below 0 is cut at the grazing point. HUGE_VAL for none, and
+ * for a point lamp. */
 static void lamp_cone_cuts(const fog_lamp *lamp, const double s[3], const double d[3],
                            double ts, double hp, const double h[3], double cuts[4]) {
   for (int k = 0; k < 4; k++) cuts[k] = HUGE_VAL;

@@ -50,7 +50,8 @@ fi
 # through env: sudo's default policy drops the caller's environment, and a debconf question
 # (libc6's restart prompt) would wait, unseen behind the silenced output
 apt=(env DEBIAN_FRONTEND=noninteractive apt-get)
-"${sudo[@]}" "${apt[@]}" update -qq || { echo "install-deps: apt-get update failed (no network to the Debian mirror?)" >&2; exit 1; }
+"${sudo[@]}" "${apt[@]}" update -qq ||
+  { echo "install-deps: apt-get update failed (no network to the Debian mirror?)" >&2; exit 1; }
 "${sudo[@]}" "${apt[@]}" install -y -qq --no-install-recommends "${missing[@]}" >/dev/null \
   || { echo "install-deps: apt-get install failed for: ${missing[*]}" >&2; exit 1; }
 echo "install-deps: done"

@@ -538,7 +538,7 @@ static void test_amplitudes(void) {
 /* A fog floating far above the terrain (a cone of fog 1000 up, the terrain at 0): the height
  * rung's fitted H made a config whose fog, grown as e^{(y0-y)/H} down to the terrain, passed
  * float (the loader refuses it), and `fit --out` wrote it. Every rung now makes a scene
- * that loads (scene_config_check, the loader's model checks); the height rung takes the
+ * that passes the loader's model checks (scene_config_check); the height rung takes the
  * least H the scene holds. */
 static void test_floating_fog(const char *folder) {
   char path[512];
@@ -566,6 +566,32 @@ static void test_floating_fog(const char *folder) {
   fit_result_destroy(&r);
 }
 
+/* Gaussian fog lit by a lamp with Fogshop's integral (for Gaussians alone): every other
+ * rung lights it with ours; they kept fogshop, which the pass and the loader refuse beside
+ * any other model, and the fit ended with an error. */
+static void test_fogshop_input(const char *folder) {
+  char path[512];
+  snprintf(path, sizeof path, "%s/fogshop.ini", folder);
+  test_write_text(path, "[fog]\nmodel = rbf\nrbf = 0 20 0 15 0.02\nalbedo = 0.8\n"
+                        "[light]\nlamp = 5 20 5 300 300 300\nlamp_integral = fogshop\n"
+                        "[camera]\nposition = 0 30 120\nlook_at = 0 20 0\n");
+  scene_config cfg;
+  fog_error err;
+  const int loaded = scene_config_load(path, &cfg, &err);
+  CHECK(loaded == 0, "%s", err.message);
+  if (loaded) return;
+  fit_result r;
+  if (!run("a Gaussian, fogshop's lamps", &cfg, &r)) return;
+  for (int i = 0; i < r.count; i++) {
+    const scene_config *c = r.rungs[i].config;
+    CHECK(scene_config_check(c, &err) == 0, "rung %s: %s", r.rungs[i].name, err.message);
+    if (c->fog.model == FOG_MODEL_RBF && c->fog.quadric_count == 0)
+      CHECK(c->lamp_method.integral == FOG_LAMP_FOGSHOP, "rung %s lost fogshop",
+            r.rungs[i].name);
+  }
+  fit_result_destroy(&r);
+}
+
 int main(void) {
   char folder[] = "/tmp/fogpipe_fit_XXXXXX";
   CHECK(mkdtemp(folder) != NULL, "mkdtemp");
@@ -581,6 +607,7 @@ int main(void) {
   test_plume(folder);
   test_sequence(folder);
   test_floating_fog(folder);
+  test_fogshop_input(folder);
   char command[256];
   snprintf(command, sizeof command, "rm -rf '%s'", folder);
   if (system(command)) fprintf(stderr, "could not remove %s\n", folder);

@@ -170,7 +170,8 @@ int main(void) {
   snprintf(args, sizeof args, "'../shared/data/vdb/groundfog/data/fluid_data_####.vdb' "
            "--tolerance 0.1 --frame 999 --out '%s' %s", missing_out, fast);
   status = fit(bin, args, out, err, sizeof out);
-  CHECK(status == 1 && strstr(err, "fluid_data_####.vdb: no frame 999 in the sequence (frames 1..48)") &&
+  CHECK(status == 1 &&
+            strstr(err, "fluid_data_####.vdb: no frame 999 in the sequence (frames 1..48)") &&
             !strstr(err, ":0:") && !exists(missing_out),
         "--frame 999: exit %d, stderr %s", status, err);
   {

@@ -93,6 +93,10 @@ int main(void) {
     lamp_tool_update(&tool, false, false, NULL, &three);
     lamp_edit r = lamp_tool_update(&tool, false, true, by_first, &three);
     CHECK(r.kind == LAMP_EDIT_REMOVE, "a second press removed nothing (kind %d)", (int)r.kind);
+    /* the tool turned off with right still held, then on: the next press removes one */
+    lamp_tool_idle(&tool);
+    r = lamp_tool_update(&tool, false, true, by_first, &three);
+    CHECK(r.kind == LAMP_EDIT_REMOVE, "a press after the tool was off: kind %d", (int)r.kind);
     lamp_tool_update(&tool, false, false, NULL, &three);
   }
   /* a drag across the sky (no surface point for a frame) keeps its lamp: the cursor back on

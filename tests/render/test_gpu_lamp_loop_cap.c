@@ -139,8 +139,15 @@ int main(void) {
   int wrong = count_wrong(rgba, &cam, &p, gl.dist, &worst);
   printf("%d Gaussians, bound %.0f loop iterations: %d values off the twin (max %.2e of the "
          "peak)\n", under, bound_of(&p), wrong, worst);
-  /* the same with a spot across the view: its 4 cuts at the cones' crossings counted */
-  with_spot = true;
+  /* the same with a spot across the view: its 4 cuts at the cones' crossings counted (the
+   * bound above the point lamp's; the draw right near the cap) */
+  {
+    const fog_pass_params point_lamp = params_with(under);
+    with_spot = true;
+    const fog_pass_params spot_lamp = params_with(under);
+    CHECK(bound_of(&spot_lamp) > bound_of(&point_lamp), "a spot's bound %.0f, a point lamp's "
+          "%.0f: its cone cuts not counted", bound_of(&spot_lamp), bound_of(&point_lamp));
+  }
   const int under_spot = gaussians_within((double)cap - VIEW_SLACK);
   fog_pass_params ps = params_with(under_spot);
   CHECK(fog_test_gl_draw_tau(&gl, &cam, &ps, tau, &err) == 0 &&
