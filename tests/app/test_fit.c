@@ -540,18 +540,26 @@ static void test_amplitudes(void) {
  * float (the loader refuses it), and `fit --out` wrote it. Every rung now makes a scene
  * that passes the loader's model checks (scene_config_check); the height rung takes the
  * least H the scene holds. */
-static void test_floating_fog(const char *folder) {
+/* The fit of a config written as `text` into folder/name (false: a failed check). */
+static bool run_text(const char *folder, const char *name, const char *text, fit_result *r) {
   char path[512];
-  snprintf(path, sizeof path, "%s/floating.ini", folder);
-  test_write_text(path, "[fog]\nmodel = quadric\nquadric = cone 0 1000 0 40 20 0.05\n"
-                        "[camera]\nposition = 0 1010 100\n[terrain]\norigin = -500 0 -500\n");
-  scene_config cfg;
+  snprintf(path, sizeof path, "%s/%s", folder, name);
+  test_write_text(path, text);
+  static scene_config cfg; /* the rungs' configs are copies: it may be reused */
   fog_error err;
   const int loaded = scene_config_load(path, &cfg, &err);
   CHECK(loaded == 0, "%s", err.message);
-  if (loaded) return;
+  return !loaded && run(name, &cfg, r);
+}
+
+static void test_floating_fog(const char *folder) {
   fit_result r;
-  if (!run("floating cone", &cfg, &r)) return;
+  if (!run_text(folder, "floating.ini",
+                "[fog]\nmodel = quadric\nquadric = cone 0 1000 0 40 20 0.05\n"
+                "[camera]\nposition = 0 1010 100\n[terrain]\norigin = -500 0 -500\n",
+                &r))
+    return;
+  fog_error err;
   const fit_rung *h = rung_named(&r, "height");
   CHECK(h != NULL, "the cone's layers decay: a height rung");
   if (h) {
@@ -570,18 +578,14 @@ static void test_floating_fog(const char *folder) {
  * rung lights it with ours; they kept fogshop, which the pass and the loader refuse beside
  * any other model, and the fit ended with an error. */
 static void test_fogshop_input(const char *folder) {
-  char path[512];
-  snprintf(path, sizeof path, "%s/fogshop.ini", folder);
-  test_write_text(path, "[fog]\nmodel = rbf\nrbf = 0 20 0 15 0.02\nalbedo = 0.8\n"
-                        "[light]\nlamp = 5 20 5 300 300 300\nlamp_integral = fogshop\n"
-                        "[camera]\nposition = 0 30 120\nlook_at = 0 20 0\n");
-  scene_config cfg;
-  fog_error err;
-  const int loaded = scene_config_load(path, &cfg, &err);
-  CHECK(loaded == 0, "%s", err.message);
-  if (loaded) return;
   fit_result r;
-  if (!run("a Gaussian, fogshop's lamps", &cfg, &r)) return;
+  if (!run_text(folder, "fogshop.ini",
+                "[fog]\nmodel = rbf\nrbf = 0 20 0 15 0.02\nalbedo = 0.8\n"
+                "[light]\nlamp = 5 20 5 300 300 300\nlamp_integral = fogshop\n"
+                "[camera]\nposition = 0 30 120\nlook_at = 0 20 0\n",
+                &r))
+    return;
+  fog_error err;
   for (int i = 0; i < r.count; i++) {
     const scene_config *c = r.rungs[i].config;
     CHECK(scene_config_check(c, &err) == 0, "rung %s: %s", r.rungs[i].name, err.message);
