@@ -107,9 +107,10 @@ static int add_analytic_rungs(fit_result *r, const scene_config *input, const fi
   if (fit_height(s, &k, &y0, &scale_height)) {
     scene_config *c = analytic_config(input, FOG_MODEL_HEIGHT);
     if (c) c->fog.density_scale = k, c->fog.fog_height = y0;
+    const double least = c ? scene_config_min_scale_height(c) : 0.0;
     /* a scene that holds no H of the key's range (K past what float holds below y0): no
      * height rung */
-    if (c && !(scene_config_min_scale_height(c) <= SCENE_MAX_SCALE_HEIGHT)) {
+    if (!(least <= SCENE_MAX_SCALE_HEIGHT)) {
       free(c);
       return 0;
     }
@@ -121,7 +122,6 @@ static int add_analytic_rungs(fit_result *r, const scene_config *input, const fi
      * and a scene whose fog passes float there does not load (scene_config_min_scale_height:
      * a fog floating 1000 above the terrain fitted H = 6.9 where 32.5 was the least). The rung
      * takes the least H the scene draws, and its error is measured as drawn. */
-    const double least = scene_config_min_scale_height(rung->config);
     if (scale_height < least) f->scale_height = 1.001 * least;
     f->scale_height = fmin(f->scale_height, SCENE_MAX_SCALE_HEIGHT); /* the key's range */
     snprintf(rung->params, sizeof rung->params, "K=%.6g y0=%.6g H=%.6g", k, y0, f->scale_height);

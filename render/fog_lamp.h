@@ -95,6 +95,9 @@ typedef struct fog_lamps {
 /* The same lamps: the count, and each lamp's kind, position, intensity, radius and cone
  * (field by field, not the bytes; the method is not compared). */
 bool fog_lamps_equal(const fog_lamps *a, const fog_lamps *b);
+/* Whether a spot is among the lamps (its pieces are cut at its cones: the pass's variant
+ * and its loop bound ask the same). */
+bool fog_lamps_have_spot(const fog_lamps *lamps);
 
 /* The lamps as the shaders take them (fog_lamps.glsl, scene_surface_fs.glsl): positions
  * relative to the camera (subtracted in double), intensity x scale, the spot's axis with

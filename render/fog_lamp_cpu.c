@@ -41,6 +41,12 @@ void fog_lamps_pack(const fog_lamps *lamps, const double camera[3], double inten
   }
 }
 
+bool fog_lamps_have_spot(const fog_lamps *lamps) {
+  for (int i = 0; i < lamps->count; i++)
+    if (lamps->lamp[i].kind == FOG_LAMP_SPOT) return true;
+  return false;
+}
+
 bool fog_lamps_equal(const fog_lamps *a, const fog_lamps *b) {
   if (a->count != b->count) return false;
   for (int i = 0; i < a->count && i < FOG_MAX_LAMPS; i++) {

@@ -143,8 +143,7 @@ double fog_pass_lamp_loop_bound(const fog_pass_params *p) {
                        (cubes ? 5 + 5 + 6 * (FOG_LAMP_EDGE_BISECTIONS + 1) : 0);
   /* and the cut at the closest point; a spot's 4 at its cones' crossings, found by two
    * loops of two roots (fog_lamp_cone_cuts: unrolled, counted as if not) */
-  bool spots = false;
-  for (int i = 0; i < lamps->count; i++) spots |= lamps->lamp[i].kind == FOG_LAMP_SPOT;
+  const bool spots = fog_lamps_have_spot(lamps);
   const double pieces = m->angle_pieces + m->span_pieces + 1 + (spots ? 4 : 0);
   const double cone_loops = spots ? 2 + 1 + 2 * (2 + 1) : 0;
   double per_lamp = 0, table = 0;

@@ -1238,9 +1238,7 @@ static int fog_pass_draw_variant(fog_pass *pass, fog_pass_variant variant, const
   variant.shadow_nodes = params->shadow_nodes;
   variant.shaft_samples = params->shafts ? params->shaft_samples : 1;
   variant.lamp_shadows = fog_pass_has_lamp_shadows(params);
-  variant.lamp_spots = 0;
-  for (int i = 0; i < params->lamps.count; i++)
-    variant.lamp_spots |= params->lamps.lamp[i].kind == FOG_LAMP_SPOT;
+  variant.lamp_spots = fog_lamps_have_spot(&params->lamps);
   variant.quadrics_beside = fog_pass_quadrics_beside(params);
   variant.quadric_noise = fog_pass_quadric_noise(params);
   variant.shadow_pieces = (params->model == FOG_MODEL_PERLIN || params->model == FOG_MODEL_VOLUME ||
