@@ -88,8 +88,10 @@ int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, fog_e
     vdb_error_wrap(err, &serr, cfg, "");
     return 1;
   }
-  /* every frame placed one way, as the fogmap's vdb_source and `import` refuse */
-  if (vdb_sequence_check_placement(seq, &serr)) {
+  /* every frame placed one way and no hole in the numbers, as the fogmap's vdb_source
+   * refuses (the player steps through the files in order: frames 3, 40 drew as neighbours) */
+  if (vdb_sequence_check_placement(seq, &serr) ||
+      vdb_sequence_check_gaps(seq, cfg->fog.vdb, &serr)) {
     vdb_error_wrap(err, &serr, cfg, "");
     vdb_sequence_destroy(seq);
     return 1;

@@ -29,14 +29,7 @@ int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, fog_error *
   if (vdb_sequence_find(&input, 1, -1, -1, &seq, err)) return 1;
   int status = 1;
   const vdb_columns **cols = NULL;
-  if (seq.missing_count) {
-    /* Playing across a hole would silently change the speed: refuse, like `import`. */
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "%.300s: %d frame%s missing inside %d..%d (the first: %d)", desc->path,
-             seq.missing_count, seq.missing_count == 1 ? "" : "s", seq.frames[0],
-             seq.frames[seq.count - 1], seq.missing[0]);
-    goto done;
-  }
+  if (vdb_sequence_check_gaps(&seq, desc->path, err)) goto done;
   source->count = seq.count;
   source->columns = calloc((size_t)seq.count, sizeof *source->columns);
   source->frame_numbers = malloc((size_t)seq.count * sizeof *source->frame_numbers);

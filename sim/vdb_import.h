@@ -277,6 +277,10 @@ int vdb_config_path_beside(const char *vdb_path, char *out, size_t out_size);
  * none has (frames placed both ways land a domain's corner apart, a metre on the plume).
  * 1 with err naming a frame of each kind when not; 0 when they agree. */
 int vdb_sequence_check_placement(const vdb_sequence *seq, fog_error *err);
+/* Whether the frame numbers run without a hole: a player steps through the files in order,
+ * so playing across a hole would silently change the speed. 1 with err naming `pattern`,
+ * the count and the first missing frame; 0 when there is none. */
+int vdb_sequence_check_gaps(const vdb_sequence *seq, const char *pattern, fog_error *err);
 
 /* ------------------------------------------------------------- one frame (C++ glue) */
 

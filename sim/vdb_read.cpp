@@ -115,6 +115,17 @@ int copy_to_dense(const GridT &grid, const char *path, long long max_voxels, vdb
              grid.getName().c_str());
     return 1;
   }
+  // Inactive voxels hold the background value, inside the active box and to infinity
+  // around it: a density that is not 0 there has no bounded fog to read (negative ones are
+  // clamped to 0 as the active voxels are).
+  const double background = (double)grid.background();
+  if (!(background <= 0)) {
+    fog_fail(err, FOG_ERR_BAD_FILE,
+             "%s: grid '%s' has the background value %g (what every inactive voxel holds, "
+             "out to infinity): expected 0, a fog volume's density outside the smoke",
+             path, grid.getName().c_str(), background);
+    return 1;
+  }
   // In 64 bits: CoordBBox::dim() is int and a damaged file's box spans up to 2^32 a side,
   // whose product overflowed long long too.
   const openvdb::Coord lo = box.min(), hi = box.max();

@@ -393,3 +393,11 @@ int vdb_sequence_check_placement(const vdb_sequence *seq, fog_error *err) {
   }
   return 0;
 }
+
+int vdb_sequence_check_gaps(const vdb_sequence *seq, const char *pattern, fog_error *err) {
+  if (!seq->missing_count) return 0;
+  return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                  "%.300s: %d frame%s missing inside %d..%d (the first: %d)", pattern,
+                  seq->missing_count, seq->missing_count == 1 ? "" : "s", seq->frames[0],
+                  seq->frames[seq->count - 1], seq->missing[0]);
+}

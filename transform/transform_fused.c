@@ -4,10 +4,11 @@
  * loop is a whole row: contiguous, vectorised), and every output row is written once,
  * already at its final place and scale. Memory traffic is one read of the level and
  * one write, as for a memcpy; the two-pass version (rows, then strips of columns)
- * moves the data twice. Same arithmetic, same boundary rules, same result bits as the
- * two-pass columns (tests/transform/test_fused_matches_two_pass.c). The CDF 5/3 level in
- * SIMD (transform_fused_linear.h) runs the other way round, column step first, without
- * a ring: the same coefficients to float rounding. */
+ * moves the data twice. Same lifting steps and boundary rules as the two-pass columns,
+ * the same coefficients to float rounding (tests/transform/test_fused_matches_two_pass.c;
+ * Haar's bits agree, the quadratic's step 3 sums its terms in another order, ~7e-7). The
+ * CDF 5/3 level in SIMD (transform_fused_linear.h) runs the other way round, column step
+ * first, without a ring. */
 #include <stdint.h>
 #include <string.h>
 

@@ -1,7 +1,8 @@
 // Bad VDB input gives a clear error naming the file, never a crash or an exception:
 // missing files, non-VDB bytes, truncated files, no such grid (the message lists the
-// grids that exist), a vector grid named as density, a level set, empty grids, NaN/Inf voxels, absurd
-// dimensions, a broken Mantaflow config. (C++ only to write the odd grids via OpenVDB.)
+// grids that exist), a vector grid named as density, a level set, empty grids, a
+// background other than 0, NaN/Inf voxels, absurd dimensions, a broken Mantaflow config.
+// (C++ only to write the odd grids via OpenVDB.)
 #include <openvdb/openvdb.h>
 
 #include <unistd.h>
@@ -134,6 +135,34 @@ int main() {
     g->tree().setValue(openvdb::Coord(4, 5, 6), std::numeric_limits<float>::infinity());
     write_grid(dir + "/inf.vdb", g);
     expect_failure(dir + "/inf.vdb", nullptr, {"non-finite", "(4, 5, 6)"});
+  }
+  // a background other than 0: every inactive voxel, out to infinity, holds it (the reader
+  // copied the active voxels alone and dropped it without a word); a negative background
+  // reads as 0, as negative active voxels do
+  {
+    openvdb::FloatGrid::Ptr g = openvdb::FloatGrid::create(0.5f);
+    g->setName("density");
+    g->tree().setValue(openvdb::Coord(0, 0, 0), 1.0f);
+    g->tree().setValue(openvdb::Coord(3, 2, 1), 1.0f);
+    write_grid(dir + "/background.vdb", g);
+    expect_failure(dir + "/background.vdb", nullptr, {"background value 0.5", "expected 0"});
+    openvdb::FloatGrid::Ptr n = openvdb::FloatGrid::create(-0.25f);
+    n->setName("density");
+    n->tree().setValue(openvdb::Coord(0, 0, 0), 1.0f);
+    n->tree().setValue(openvdb::Coord(3, 2, 1), 1.0f);
+    write_grid(dir + "/negative_background.vdb", n);
+    vdb_dense_grid dense;
+    fog_error err{};
+    CHECK(vdb_read_dense((dir + "/negative_background.vdb").c_str(), nullptr, &dense, &err) == 0,
+          "a negative background: %s", err.message);
+    if (!err.message[0]) {
+      double sum = 0;
+      const long long n_voxels = (long long)dense.dim[0] * dense.dim[1] * dense.dim[2];
+      for (long long i = 0; i < n_voxels; i++) sum += dense.values[i];
+      CHECK(n_voxels == 24 && sum == 2.0, "a negative background: %lld voxels, sum %g",
+            n_voxels, sum);
+      vdb_dense_grid_destroy(&dense);
+    }
   }
   // absurd dimensions: two voxels far apart span 2e5^3 voxels
   {

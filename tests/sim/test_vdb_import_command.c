@@ -237,6 +237,37 @@ int main(void) {
     CHECK(access(image, F_OK) != 0, "the refused render left %s", image);
   }
 
+  /* 8. a sequence with a hole in its numbers (46, 48): a scene's [fog] vdb refuses it as a
+   * fogmap and as a volume (the player steps through the files in order: 46 and 48 would
+   * play as neighbours, the speed silently changed), naming the pattern and the hole */
+  {
+    char gap[512], scene[600], image[600];
+    snprintf(gap, sizeof gap, "%s/gap", dir);
+    snprintf(cmd, sizeof cmd,
+             "mkdir -p '%s/data' '%s/config' && "
+             "cp ../shared/data/vdb/plume/data/fluid_data_004[68].vdb '%s/data/' && "
+             "cp ../shared/data/vdb/plume/config/config_004[68].uni '%s/config/'",
+             gap, gap, gap, gap);
+    CHECK(system(cmd) == 0, "setup failed: %s", cmd);
+    snprintf(scene, sizeof scene, "%s/gap.ini", dir);
+    snprintf(image, sizeof image, "%s/gap.png", dir);
+    snprintf(cmd, sizeof cmd, "'%s' render '%s' --size 32x18 --out '%s'", bin, scene, image);
+    for (int volume = 0; volume < 2; volume++) {
+      FILE *f = fopen(scene, "w");
+      if (f) {
+        fprintf(f, "[fog]\n%svdb = %s/data/fluid_data_####.vdb\nvdb_frame = 46\n",
+                volume ? "model = volume\n" : "", gap);
+        fclose(f);
+      }
+      status = run(cmd, errors, sizeof errors);
+      CHECK(status != 0 && strstr(errors, "fluid_data_####.vdb") &&
+                strstr(errors, "1 frame missing inside 46..48 (the first: 47)"),
+            "a %s's [fog] vdb with a hole in its frames (%d): %s",
+            volume ? "volume" : "fogmap", status, errors);
+      CHECK(access(image, F_OK) != 0, "the refused render left %s", image);
+    }
+  }
+
   test_remove_tree(dir);
   return test_finish("test_vdb_import_command");
 }
