@@ -147,7 +147,8 @@ int player_frame(player *p, int n, const frame_pixels *out, fog_error *err) {
       .depth = out->depth ? p->fine.depth : NULL,
       .inscatter = out->inscatter ? p->fine.inscatter : NULL};
   if (draw_frame(p, n, &fine, err)) return 1;
-  supersample_reduce(&fine, p->width, p->height, p->supersample, out);
+  supersample_reduce(&fine, p->width, p->height, p->supersample, (float)p->cam.far_plane,
+                     out);
   return 0;
 }
 

@@ -1,6 +1,7 @@
 /* Supersampled frames (app/supersample.h). */
 #include "app/supersample.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "sim/sim.h"
@@ -44,24 +45,28 @@ static void block_mean(const float *fine, int width, int height, int k, int chan
       }
 }
 
-static void block_nearest(const float *fine, int width, int height, int k, float *out) {
+/* The block's nearest surface; sky (the value the frame holds for no surface) only when
+ * every sample is sky: the sky is the far plane, and a surface at the frame's edge can lie
+ * further along its ray than that z-plane, so a plain minimum took the sky over it. */
+static void block_nearest(const float *fine, int width, int height, int k, float sky,
+                          float *out) {
   const size_t fine_width = (size_t)width * k;
   for (int y = 0; y < height; y++)
     for (int x = 0; x < width; x++) {
-      float nearest = fine[(size_t)y * k * fine_width + (size_t)x * k];
+      float nearest = INFINITY;
       for (int j = 0; j < k; j++)
         for (int i = 0; i < k; i++) {
           const float d = fine[(size_t)(y * k + j) * fine_width + (size_t)x * k + i];
-          if (d < nearest) nearest = d;
+          if (d != sky && d < nearest) nearest = d;
         }
-      out[(size_t)y * width + x] = nearest;
+      out[(size_t)y * width + x] = nearest == INFINITY ? sky : nearest;
     }
 }
 
-void supersample_reduce(const frame_pixels *fine, int width, int height, int k,
+void supersample_reduce(const frame_pixels *fine, int width, int height, int k, float sky,
                         const frame_pixels *out) {
   if (out->rgba) block_mean(fine->rgba, width, height, k, 4, out->rgba);
   if (out->transmittance) block_mean(fine->transmittance, width, height, k, 1, out->transmittance);
   if (out->inscatter) block_mean(fine->inscatter, width, height, k, 3, out->inscatter);
-  if (out->depth) block_nearest(fine->depth, width, height, k, out->depth);
+  if (out->depth) block_nearest(fine->depth, width, height, k, sky, out->depth);
 }
