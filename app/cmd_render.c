@@ -17,6 +17,7 @@
 #include "app/frame_exr.h"
 #include "app/player.h"
 #include "app/render_fog.h"
+#include "app/stop_signals.h"
 #include "app/vdb_source.h"
 #include "sim/sim.h"
 
@@ -130,6 +131,12 @@ int cmd_render(int argc, char **argv) {
     cfg.fog.vdb_frame = vdb_frame;
   }
 
+  /* Ctrl-C or SIGTERM while drawing: nothing written, exit 130 (a second one ends it at
+   * once, nothing to clean then); held while the file is written, so that it is whole
+   * (a signal there left .OUT.tmp.XXXXXX that no later run removes) */
+  stop_signals stop;
+  stop_signals_clear();
+  stop_signals_catch(&stop, true);
   size_t pixels = (size_t)width * height;
   float *rgba = malloc(pixels * 4 * sizeof(float));
   float *transmittance = malloc(pixels * sizeof(float));
@@ -159,8 +166,16 @@ int cmd_render(int argc, char **argv) {
   player_destroy(frames);
   fog_error werr = {0};
   const display_transform display = scene_config_display(&cfg);
-  if (exr ? write_exr(out, width, height, &frame, &cam, &werr)
-          : write_png(out, width, height, rgba, &display, &werr)) {
+  if (stop_signals_caught()) {
+    fprintf(stderr, "fogpipe render: interrupted: nothing written\n");
+    status = 130;
+    goto done;
+  }
+  stop_signals_hold(&stop);
+  const int written = exr ? write_exr(out, width, height, &frame, &cam, &werr)
+                          : write_png(out, width, height, rgba, &display, &werr);
+  stop_signals_release(&stop); /* one held now only sets the flag: the file is whole */
+  if (written) {
     fprintf(stderr, "fogpipe render: %s\n", werr.message);
     goto done;
   }
@@ -168,6 +183,7 @@ int cmd_render(int argc, char **argv) {
          scene_config_has_fog(&cfg) ? "scene + fog" : "scene only, no fog", gl_description);
   status = 0;
 done:
+  stop_signals_restore(&stop);
   free(rgba);
   free(transmittance);
   free(depth);
