@@ -40,6 +40,9 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
   place.config = cfg;
   int status = vdb_world_map_make(&grid, &place, &out->world, &inner);
   bool projected = false; /* the columns exist (a failure after them may be their mass) */
+  /* placing and boxing by the Mantaflow config: its errors name it (it was found beside
+   * the VDB, the user may not know it is read) */
+  bool placed_by_config = status && cfg;
   if (!status && d.grid_only) {
     out->grid = grid;
     out->active_voxels = grid.active_voxels;
@@ -54,6 +57,7 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
     }
     status = vdb_columns_project(&grid, &out->world, cfg ? box : nullptr, &out->columns, &inner);
     projected = !status;
+    placed_by_config = status && cfg;
   }
   if (!status) {
     if (d.fixed_profile)
@@ -86,7 +90,11 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
              grid.negative_voxels, grid.active_voxels);
   }
   if (status) {
-    fog_error_wrap(err, &inner, "%.200s: ", path);
+    if (placed_by_config)
+      fog_error_wrap(err, &inner, "%.200s (placed by its Mantaflow config %.200s): ", path,
+                     out->config_path);
+    else
+      fog_error_wrap(err, &inner, "%.200s: ", path);
     vdb_dense_grid_destroy(&grid);
     vdb_frame_destroy(out);
     return 1;

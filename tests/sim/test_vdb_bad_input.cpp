@@ -207,6 +207,29 @@ int main() {
     CHECK(cfg.base_res[2] == 64 && fabs(cfg.obmat[2][3] - 2.0f) < 1e-6,
           "plume config: base_res z %d, obmat z translation %g", cfg.base_res[2], cfg.obmat[2][3]);
   }
+  // a cache whose config beside it does not fit its voxels (0.1 against the plume's cell
+  // 0.0625): the error names that config, which was read without being asked for
+  {
+    const std::string mixed = dir + "/mixed";
+    std::string setup = "mkdir -p '" + mixed + "/data' '" + mixed + "/config' && cp "
+                        "../shared/data/vdb/plume/config/config_0001.uni '" + mixed +
+                        "/config/'";
+    CHECK(system(setup.c_str()) == 0, "setup failed: %s", setup.c_str());
+    openvdb::FloatGrid::Ptr g = openvdb::FloatGrid::create();
+    g->setName("density");
+    g->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+    g->tree().setValue(openvdb::Coord(0, 0, 0), 1.0f);
+    g->tree().setValue(openvdb::Coord(3, 2, 1), 1.0f);
+    const std::string vdb = mixed + "/data/fluid_data_0001.vdb";
+    write_grid(vdb, g);
+    vdb_frame f;
+    fog_error err{};
+    CHECK(vdb_frame_load(vdb.c_str(), nullptr, &f, &err) != 0, "a 0.1 voxel under the plume's "
+          "config loaded");
+    CHECK(strstr(err.message, vdb.c_str()) && strstr(err.message, "config_0001.uni") &&
+              strstr(err.message, "voxel size"),
+          "the error does not name the VDB, the config and the voxel size: %s", err.message);
+  }
   std::string cmd = "rm -rf '" + dir + "'";
   if (system(cmd.c_str()) != 0) fprintf(stderr, "could not remove %s\n", dir.c_str());
   return test_finish("test_vdb_bad_input");
