@@ -84,7 +84,7 @@ typedef struct fluid_sim_desc {
   float wind_drift_x;    /* the mean flow, cells per second */
   float wind_drift_z;
   float turbulence;      /* rms speed of the synthesised turbulence, cells/s; 0: none */
-  float turbulence_scale;/* largest eddy wavelength, cells; > 4 */
+  float turbulence_scale;/* largest eddy wavelength, cells; > 4 (with turbulence > 0) */
   double turbulence_slope; /* energy spectrum exponent (finite); -5/3 is Kolmogorov's */
   float wind_coupling;   /* rate (1/s) at which the fluid's fluctuations relax toward the
                             turbulence; >= 0, 0: no coupling (a free fluid) */

@@ -3,6 +3,7 @@
 
 #include <fftw3.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -29,6 +30,20 @@ void wind_field_destroy(wind_field *wind) {
   fftwf_free(wind);
 }
 
+/* Whether a mode of the w x h grid lies in the turbulence band (spectrum_tables' rule). */
+static bool band_has_mode(int w, int h, double scale) {
+  const double k0 = 1.0 / scale, k_max = 0.25;
+  for (int j = 0; j < h; j++)
+    for (int i = 0; i <= w / 2; i++) {
+      const int fz = signed_frequency(j, h);
+      const double kx = (double)i / w, kz = (double)fz / h, k = sqrt(kx * kx + kz * kz);
+      const double sx = wind_symbol(i, w), sz = wind_symbol(fz, h);
+      if (i != w / 2 && j != h / 2 && k >= k0 && k <= k_max && sx * sx + sz * sz > 0)
+        return true;
+    }
+  return false;
+}
+
 static int check_desc(const wind_desc *desc, fog_error *err) {
   const int w = desc->width, h = desc->height;
   if (w < 8 || h < 8 || (w & 1) || (h & 1)) {
@@ -38,12 +53,20 @@ static int check_desc(const wind_desc *desc, fog_error *err) {
   }
   const double scale = desc->scale, slope = desc->slope;
   /* one message per fault: a list of every rule blamed turbulence on a grid too small */
-  if (!(scale > 4.0))
+  if (!isfinite(desc->turbulence) || desc->turbulence < 0)
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "wind: turbulence %g: expected >= 0",
+                    desc->turbulence);
+  /* the scale shapes the eddies only: without turbulence any scale will do (the default, a
+   * quarter of the shorter side, is 4 or less on a grid of 16 or less) */
+  if (desc->turbulence > 0 && !(scale > 4.0))
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                     "wind: turbulence scale (its largest eddies) %g cells: expected more than "
                     "4 (by default a quarter of the %dx%d grid's shorter side)", scale, w, h);
-  if (!isfinite(desc->turbulence) || desc->turbulence < 0)
-    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "wind: turbulence %g: expected >= 0",
+  if (desc->turbulence > 0 && !band_has_mode(w, h, scale))
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "wind: turbulence scale %g cells on the %dx%d grid: no wave of the grid "
+                    "lies between that wavelength and 4 cells, so turbulence %g would have "
+                    "no eddy to drive (a larger scale, or a larger grid)", scale, w, h,
                     desc->turbulence);
   if (!isfinite(slope) || !isfinite(desc->drift_x) || !isfinite(desc->drift_z))
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
@@ -66,7 +89,8 @@ static void spectrum_tables(wind_field *wind, const wind_desc *desc, int write_p
   /* Wavenumbers in cycles per cell; the band runs from the largest eddy to a 4-cell
    * wavelength, well inside Nyquist (2 cells) where sin(k) still tracks k. */
   const double k0 = 1.0 / scale, k_max = 0.25;
-  const double omega0 = two_pi * desc->turbulence * k0; /* one turnover per scale/speed */
+  /* one turnover per scale/speed; none without turbulence (then the scale is unchecked) */
+  const double omega0 = desc->turbulence > 0 ? two_pi * desc->turbulence * k0 : 0.0;
   fluid_rng rng = {desc->seed ? desc->seed : 1};
   double energy = 0; /* mean |u|^2 in real space before normalisation */
   for (int j = 0; j < h; j++) {
@@ -93,7 +117,7 @@ static void spectrum_tables(wind_field *wind, const wind_desc *desc, int write_p
       }
       wind->amplitude_x[m] = (float)ax;
       wind->amplitude_z[m] = (float)az;
-      const double om = omega0 * (k > 0 ? pow(k / k0, 2.0 / 3.0) : 0.0);
+      const double om = omega0 > 0 && k > 0 ? omega0 * pow(k / k0, 2.0 / 3.0) : 0.0;
       wind->omega[m] = (float)(mirrored ? -om : om);
       if (write_phases) {
         wind->initial_phasor[2 * m] = (float)cos(phase);

@@ -3,10 +3,13 @@
  * real-space central differences), its rms speed is the one requested, it has no energy
  * outside the band, and its shell-summed energy spectrum follows the requested slope
  * (least-squares fit in log-log) — for Kolmogorov's -5/3, for -3 and for 0 (flat). Also
- * after the phases have advanced (the animation keeps all of this). */
+ * after the phases have advanced (the animation keeps all of this). Small grids take no
+ * turbulence without refusing the simulation, and a scale whose band holds no wave of the
+ * grid is refused. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "fluid_test_dft.h"
 #include "sim/sim.h"
@@ -76,7 +79,48 @@ static void check_wind(float slope, float scale, int advance_steps) {
   wind_field_destroy(wind);
 }
 
+/* Small grids: the default scale (a quarter of the shorter side, 2 to 4 cells on 8 to 16)
+ * is no reason to refuse a simulation without turbulence, and its wind is the drift alone;
+ * with turbulence such a scale is refused, and so is a scale with no wave of the grid in
+ * its band (10 x 10, scale 4.2: 12 cells/s of turbulence came out as none at all). */
+static void check_small_grids(void) {
+  for (int n = 8; n <= 16; n += 2) {
+    fog_error err = {0};
+    fluid_sim_desc d = fluid_sim_desc_default(n, n + 4);
+    d.turbulence = 0.0f;
+    fluid_sim *sim = fluid_sim_create(&d, &err);
+    CHECK(sim != NULL, "%dx%d without turbulence (scale %g): %s", n, n + 4,
+          (double)d.turbulence_scale, err.message);
+    if (sim) fluid_sim_destroy(sim);
+    wind_field *wind = wind_field_create(
+        &(wind_desc){.width = n, .height = n, .drift_x = 2.0f, .scale = 0.25f * n}, &err);
+    CHECK(wind != NULL, "wind %dx%d without turbulence: %s", n, n, err.message);
+    if (wind) {
+      float u[16 * 16], v[16 * 16];
+      wind_field_advance(wind, 0.5f);
+      wind_field_velocity(wind, u, v);
+      int off = 0;
+      for (int c = 0; c < n * n; c++)
+        off += !(fabsf(u[c] - 2.0f) < 1e-6f && fabsf(v[c]) < 1e-6f);
+      CHECK(off == 0, "wind %dx%d without turbulence: %d cells are not the drift", n, n, off);
+      wind_field_destroy(wind);
+    }
+    wind = wind_field_create(
+        &(wind_desc){.width = n, .height = n, .turbulence = 5.0f, .scale = 0.25f * n}, &err);
+    CHECK(!wind && strstr(err.message, "expected more than 4"), "%dx%d, turbulence, scale %g: "
+          "%s", n, n, 0.25 * n, wind ? "accepted" : err.message);
+    if (wind) wind_field_destroy(wind);
+  }
+  fog_error err = {0};
+  wind_field *wind = wind_field_create(
+      &(wind_desc){.width = 10, .height = 10, .turbulence = 12.0f, .scale = 4.2f}, &err);
+  CHECK(!wind && strstr(err.message, "no wave of the grid"), "10x10, scale 4.2: %s",
+        wind ? "accepted (no eddy to drive)" : err.message);
+  if (wind) wind_field_destroy(wind);
+}
+
 int main(void) {
+  check_small_grids();
   check_wind(-5.0f / 3.0f, 64.0f, 0);
   check_wind(-5.0f / 3.0f, 64.0f, 100); /* animated: phases advanced 100 steps */
   check_wind(-3.0f, 32.0f, 10);
