@@ -18,6 +18,18 @@
 /* The stage named argv[1] runs as `fogpipe bench STAGE` through cmd_bench (app/commands.h),
  * which this library defines. */
 
+/* Error pixel (i, j) of a grid of one every stride pixels in a width x height image: moved
+ * within its cell by (j mod 4, i mod 4) where stride >= 4, so that the pixels fall on every
+ * phase of a reduced pass's 2 x 2 and 4 x 4 blocks. A plain grid sat on one phase: at half
+ * resolution every sampled row lay on the traced samples' own row, and the vertical half of
+ * the upsampling (horizon, layer and shaft edges) was never measured. */
+static inline void bench_error_pixel(int i, int j, int stride, int width, int height, int *px,
+                                     int *py) {
+  const int dx = stride >= 4 ? j % 4 : 0, dy = stride >= 4 ? i % 4 : 0;
+  *px = i * stride + dx < width ? i * stride + dx : width - 1;
+  *py = j * stride + dy < height ? j * stride + dy : height - 1;
+}
+
 /* Median of n values (sorts the array in place). */
 double bench_median(double *values, int n);
 /* Prints one line naming the build measured (type, -march=native or portable, compiler). */

@@ -165,7 +165,8 @@ static int scene_reference(light_scene *s, const float *tau, int W, int H) {
   s->peak = 0;
   for (int j = 0; j < rows; j++)
     for (int i = 0; i < cols; i++) {
-      int px = i * stride, py = j * stride;
+      int px, py;
+      bench_error_pixel(i, j, stride, W, H, &px, &py);
       size_t k = (size_t)py * W + px;
       double o[3], d[3];
       camera_ray(&s->drawn.cam, px, py, W, H, o, d);
@@ -191,7 +192,9 @@ static void row_errors(light_row *r, const light_scene *s, const float *inscatte
   double worst = 0, sum = 0;
   for (int j = 0; j < rows; j++)
     for (int i = 0; i < cols; i++) {
-      size_t k = (size_t)(j * stride) * W + i * stride;
+      int px, py;
+      bench_error_pixel(i, j, stride, W, H, &px, &py);
+      size_t k = (size_t)py * W + px;
       for (int c = 0; c < 3; c++) {
         double e = fabs(inscatter[3 * k + c] - s->reference[((size_t)j * cols + i) * 3 + c]);
         if (!(e == e)) e = HUGE_VAL;
@@ -292,9 +295,11 @@ static const light_row *ours_at_froxel_time(const light_row *rows, const light_r
   return best;
 }
 
+/* froxel_1x (B's baseline) and froxel_2x told apart: their other columns are alike */
 static const char *row_method(const light_row *r) {
-  return !r->resolution ? "unlit" : r->march ? "march" : r->froxel ? "froxel"
-         : r->pieces ? "pieces" : "ours";
+  return !r->resolution ? "unlit" : r->march ? "march"
+         : r->froxel    ? (r->froxel > 1 ? "froxel_2x" : "froxel_1x")
+         : r->pieces    ? "pieces" : "ours";
 }
 
 static int write_table(const char *path, const light_row *rows, int count, char *error,
@@ -420,7 +425,8 @@ int bench_light(int argc, char **argv) {
 
   bench_print_gl(ctx, W, H, frames);
   printf("error: in-scatter vs the CPU twin converged (%d segments, a %d^3 volume) on every\n"
-         "%dth pixel of every %dth row, relative to the largest in-scatter in view\n\n",
+         "%dth pixel of every %dth row (moved up to 3 within its cell, onto every phase of the\n"
+         "reduced passes' blocks), relative to the largest in-scatter in view\n\n",
          FOG_BENCH_LIGHT_STEPS, FOG_BENCH_LIGHT_VOLUME, error_stride(W), error_stride(W));
   for (int s = 0; s < SCENE_COUNT; s++)
     printf("%s: sun volume ms (wall, 2 threads, median of %d) %.1f (24^3) %.1f (48^3) "
@@ -485,6 +491,10 @@ int bench_light(int argc, char **argv) {
     printf("note: %s within max error %g on the default scene; march_speedup_at_matched_error "
            "is nan\n", march_ms == march_ms ? "none of our settings is" : "no marching is",
            MATCHED_ERROR);
+  else /* said every run: the issue asks for 1e-3, which the reference cannot resolve */
+    printf("C matched at max error %g (not the issue's 1e-3: below the %d^3 reference's own "
+           "floor): the cheapest marching %.2f ms, ours %.2f ms\n", MATCHED_ERROR,
+           FOG_BENCH_LIGHT_VOLUME, march_ms, ours_ms);
   /* B on each scene: the froxel grid's error over ours at no more time */
   double froxel_ratio[SCENE_COUNT];
   for (int sc = 0; sc < SCENE_COUNT; sc++) {

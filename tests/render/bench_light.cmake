@@ -14,4 +14,4 @@ bench_smoke_run(light "^light: lit_over_unlit=[0-9.]+ lit_over_unlit_full=[0-9.]
 bench_smoke_expect_files(light.csv light_chart.csv light_chart.png light_default_froxels_1x.png
                          light_plume_ours_live.png)
 bench_smoke_read_csv(light.csv "scene,method,volume,steps,nodes,divisor,ms_per_frame,max_error,mean_error" 58
-  ROW "^[a-z_.]+,(unlit|ours|pieces|march|froxel),[0-9]+,[0-9]+,[12],[124],${finite},${finite},${finite}$")
+  ROW "^[a-z_.]+,(unlit|ours|pieces|march|froxel_1x|froxel_2x),[0-9]+,[0-9]+,[12],[124],${finite},${finite},${finite}$")
