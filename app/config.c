@@ -836,7 +836,7 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
                        k->kind == V_LAMP_PATH || k->kind == V_LAMP_FLICKER;
   if (s->key_line[k - keys] && !appends && !s->continuation)
     return fail(s, section, key, "given twice (first on line %d)", s->key_line[k - keys]);
-  s->key_line[k - keys] = s->line;
+  if (!s->continuation) s->key_line[k - keys] = s->line; /* the key's own line */
   if (s->continuation && k->kind != V_LIST && k->kind != V_QUADRIC)
     /* libinih hands an indented line to the key above */
     return fail(s, section, key, "an indented line goes on with the key above, and only a list "
