@@ -1177,7 +1177,11 @@ int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
   if (check_sources(&s) || check_models(&s)) return 1;
   /* the pairs below name the key the file set last (the other may be a default) */
   const int top = key_line(&s, "box", "top"), floor_line = key_line(&s, "box", "floor");
-  if (cfg->box.top <= cfg->box.floor) {
+  /* a VDB fills the one the file leaves unset (vdb_source_apply_config): the default is no
+   * mistake of the file's (top = -0.01 under a VDB whose floor is -0.047 was refused
+   * against the default floor 0) */
+  const bool vdb_fills_one = cfg->fog.vdb[0] && !(cfg->box.floor_set && cfg->box.top_set);
+  if (cfg->box.top <= cfg->box.floor && !vdb_fills_one) {
     s.line = top > floor_line ? top : floor_line;
     fail(&s, "box", top > floor_line ? "top" : "floor", "top (%g) must be above floor (%g)",
          cfg->box.top, cfg->box.floor);

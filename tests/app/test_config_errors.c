@@ -1,7 +1,8 @@
 /* Every kind of config error names FILE:LINE: [section] key and what was expected: the
  * exact prefix is checked for each, on files where the offending line is not the first
  * (comments and blank lines before it count). */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 /* realpath */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -154,6 +155,22 @@ int main(void) {
       CHECK(load_text(accepted[i], path, &cfg, &err) == 0, "case %d refused: %s", i,
             err.message);
     }
+  }
+  /* A VDB scene that sets [box] top alone, under the default floor 0 but above the VDB's
+   * floor (-0.047 on the ground fog), which fills the floor: no mistake of the file's (it was
+   * refused, "top (-0.01) must be above floor (0)"); with both set the pair is checked. */
+  {
+    char data[PATH_MAX], text[PATH_MAX + 128], path[256];
+    if (!realpath("../shared/data/vdb/groundfog/data", data)) snprintf(data, sizeof data, "?");
+    scene_config cfg;
+    fog_error err = {0};
+    snprintf(text, sizeof text, "[fog]\nvdb = %s/fluid_data_####.vdb\n[box]\ntop = -0.01\n",
+             data);
+    CHECK(load_text(text, path, &cfg, &err) == 0, "a VDB scene with top alone: %s",
+          err.message);
+    snprintf(text, sizeof text,
+             "[fog]\nvdb = %s/fluid_data_####.vdb\n[box]\nfloor = 0\ntop = -0.01\n", data);
+    expect_error(text, "5: [box] top: ", "top (-0.01) must be above floor (0)");
   }
   expect_error("[camera]\nposition = 0 55 0\n[box]\nfloor = 100\ntop = 480\n"
                "[fog]\nmodel = perlin\nfog_height = 400\nscale_height = 3\n",
