@@ -435,11 +435,15 @@ static int run_report(const import_options *o, const vdb_sequence *seq, const vd
                       const vdb_fogmap_place *place, const vdb_profile *seq_profile,
                       const char *temp_dir) {
   int index = seq->count - 1;
+  while (index > 0 && !frames[index].active_voxels) index--; /* the last frame with fog */
   if (o->report_frame >= 0) {
     index = -1;
     for (int i = 0; i < seq->count; i++)
       if (seq->frames[i] == o->report_frame) index = i;
     if (index < 0) return cli_fail("import", "--report-frame %d: no such frame imported", o->report_frame);
+    if (!frames[index].active_voxels)
+      return cli_fail("import", "--report-frame %d: %s has an empty grid: no fog to report on",
+                      o->report_frame, seq->paths[index]);
   }
   const vdb_profile *profile = seq_profile ? seq_profile : &frames[index].profile;
   fog_error err = {0};
@@ -552,9 +556,12 @@ static int check_missing(const import_options *o, const vdb_sequence *seq) {
 static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_frame *frames,
                        int *loaded) {
   fog_error err = {0};
+  /* a sequence's empty frame (before the smoke, or after it) is a frame without fog; a
+   * single file's is an error, and so is a sequence whose every frame is empty */
   vdb_frame_desc desc = {.grid = o->grid, .up = o->up, .scale = o->scale,
                          .offset = {o->offset[0], o->offset[1], o->offset[2]},
-                         .config = o->config, .profile = o->profile, .max_voxels = o->max_voxels};
+                         .config = o->config, .profile = o->profile, .max_voxels = o->max_voxels,
+                         .empty_ok = seq->count > 1};
   /* each frame finds its config beside it, or none does (before any is read) */
   if (!o->config && vdb_sequence_check_placement(seq, &err))
     return cli_fail("import", "%s, or --config FILE or --config none for all", err.message);
@@ -580,23 +587,45 @@ static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_fra
              seq->frames[k], seq->paths[k], f->active_voxels, f->columns.mass,
              f->columns.width, f->columns.height, f->columns.layers);
   }
+  /* an empty frame's own profile: its nearest frame's with fog (its fogmap is 0, and a
+   * player blending it with a neighbour then keeps the neighbour's shape) */
+  int with_fog = -1;
+  for (int k = 0; k < seq->count; k++)
+    if (frames[k].active_voxels) with_fog = k;
+  if (with_fog < 0)
+    return cli_fail("import", "%s: every frame's grid '%s' is empty (no active voxels)",
+                    o->inputs[0], o->grid ? o->grid : "density");
+  int empty = 0, first_empty = 0, last_empty = 0;
+  for (int k = 0; k < seq->count; k++) {
+    if (frames[k].active_voxels) continue;
+    int nearest = with_fog;
+    for (int j = 0; j < seq->count; j++)
+      if (frames[j].active_voxels && abs(j - k) < abs(nearest - k)) nearest = j;
+    frames[k].profile = frames[nearest].profile;
+    if (!empty++) first_empty = seq->frames[k];
+    last_empty = seq->frames[k];
+  }
+  if (empty)
+    fprintf(stderr, "fogpipe import: note: %d frame%s (%d..%d) hold%s an empty grid '%s': no "
+            "fog there\n", empty, empty == 1 ? "" : "s", first_empty, last_empty,
+            empty == 1 ? "s" : "", o->grid ? o->grid : "density");
   return 0;
 }
 
 /* One fogmap grid for the whole sequence: the union of the frames' footprints. */
 static int place_sequence(const import_options *o, const vdb_frame *frames, int count,
                           vdb_fogmap_place *place, fog_error *err) {
-  double x0 = INFINITY, x1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY;
+  double x0 = INFINITY, x1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY, native = 0;
   for (int i = 0; i < count; i++) {
     const vdb_columns *c = &frames[i].columns;
+    if (!c->width) continue; /* an empty frame: no footprint */
+    if (!(native > 0)) native = fmax(c->cell_x, c->cell_z);
     x0 = fmin(x0, c->origin_x);
     x1 = fmax(x1, c->origin_x + c->width * c->cell_x);
     z0 = fmin(z0, c->origin_z);
     z1 = fmax(z1, c->origin_z + c->height * c->cell_z);
   }
-  const vdb_columns *c0 = &frames[0].columns;
-  return vdb_fogmap_place_fit(x0, x1, z0, z1, o->resolution, o->cell,
-                              fmax(c0->cell_x, c0->cell_z), place, err);
+  return vdb_fogmap_place_fit(x0, x1, z0, z1, o->resolution, o->cell, native, place, err);
 }
 
 /* Frames NAME.####.exr in out that this import did not write: an earlier import's, of
@@ -688,8 +717,10 @@ int cmd_import(int argc, char **argv) {
       status = cli_fail("import", "out of memory");
       goto done;
     }
-    for (int i = 0; i < seq.count; i++) cols[i] = &frames[i].columns;
-    int s = vdb_profile_fit_columns(cols, seq.count, &o.profile, &seq_profile, &err);
+    int with_fog = 0; /* the frames with fog (an empty one has no layers) */
+    for (int i = 0; i < seq.count; i++)
+      if (frames[i].columns.width) cols[with_fog++] = &frames[i].columns;
+    int s = vdb_profile_fit_columns(cols, with_fog, &o.profile, &seq_profile, &err);
     free(cols);
     if (s) {
       status = cli_fail("import", "%s: %s", o.inputs[0], err.message);

@@ -15,7 +15,9 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
   vdb_read_desc read{};
   read.grid = d.grid;
   read.max_voxels = d.max_voxels;
+  read.empty_ok = d.empty_ok;
   if (vdb_read_dense(path, &read, &grid, err)) return 1;
+  const bool empty = grid.active_voxels == 0; /* only with empty_ok */
 
   mantaflow_config config{};
   const mantaflow_config *cfg = nullptr;
@@ -47,6 +49,22 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
     out->grid = grid;
     out->active_voxels = grid.active_voxels;
     out->negative_voxels = grid.negative_voxels;
+    return 0;
+  }
+  if (!status && empty) {
+    /* no fog: no columns (a footprint or layers here would widen the sequence's), the
+     * fixed profile or none, a zero fogmap on the sequence's grid where one is given */
+    vdb_dense_grid_destroy(&grid);
+    if (d.fixed_profile) out->profile = *d.fixed_profile;
+    if (d.place) {
+      out->fogmap_place = *d.place;
+      status = fogmap_create(&out->map, d.place->width, d.place->height, &inner);
+    }
+    if (status) {
+      fog_error_wrap(err, &inner, "%.200s: ", path);
+      vdb_frame_destroy(out);
+      return 1;
+    }
     return 0;
   }
   if (!status) {

@@ -74,6 +74,8 @@ typedef struct vdb_dense_grid {
 typedef struct vdb_read_desc {
   const char *grid;       /* NULL: "density" */
   long long max_voxels;   /* refuse bigger dense boxes; 0: 2^28 (1 GiB of floats) */
+  int empty_ok;           /* an empty grid (a sequence's frame before the smoke) reads as one
+                             voxel of 0 at index (0, 0, 0), active_voxels 0; else an error */
 } vdb_read_desc;
 
 /* Reads one float (or double) grid, leaf voxels and active tiles alike, half-float or
@@ -299,6 +301,11 @@ typedef struct vdb_frame_desc {
   int grid_only;              /* read and place the grid only (frame->grid and ->world; no
                                  columns, profile or fogmap): the 3D volume model */
   long long max_voxels;       /* 0: 2^28 */
+  int empty_ok;               /* an empty grid is a frame without fog (a sequence's frame
+                                 before or after the smoke): active_voxels 0, no columns
+                                 (width 0, mass 0), the fixed profile or none (count 0), a
+                                 zero fogmap where `place` is given; grid_only: one voxel of 0
+                                 (vdb_read_desc.empty_ok). Else an error naming the file */
 } vdb_frame_desc;
 
 typedef struct vdb_frame {

@@ -250,6 +250,10 @@ int vdb_columns_resample(const vdb_columns *columns, const vdb_fogmap_place *pla
     return 1;
   }
   const int sw = columns->width, sh = columns->height, dw = place->width, dh = place->height;
+  if (sw == 0 || sh == 0) { /* an empty frame's: no fog */
+    memset(map->density, 0, (size_t)dw * dh * sizeof *map->density);
+    return 0;
+  }
   /* Mass per column (tau × column area), redistributed along X then Z: the weights are
    * products of 1D overlap fractions, so the total is preserved exactly (Σ weights = 1
    * for every fully covered column). */

@@ -107,9 +107,20 @@ bool axis_aligned_map(const openvdb::GridBase &grid, const char *path, double vo
 }
 
 template <typename GridT>
-int copy_to_dense(const GridT &grid, const char *path, long long max_voxels, vdb_dense_grid *out,
-                  fog_error *err) {
+int copy_to_dense(const GridT &grid, const char *path, long long max_voxels, bool empty_ok,
+                  vdb_dense_grid *out, fog_error *err) {
   const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+  if ((box.empty() || grid.activeVoxelCount() == 0) && empty_ok) {
+    float *zero = (float *)calloc(1, sizeof(float));
+    if (!zero) {
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+      return 1;
+    }
+    *out = vdb_dense_grid{};
+    out->dim[0] = out->dim[1] = out->dim[2] = 1;
+    out->values = zero;
+    return 0;
+  }
   if (box.empty() || grid.activeVoxelCount() == 0) {
     fog_fail(err, FOG_ERR_BAD_FILE, "%s: grid '%s' is empty (no active voxels)", path,
              grid.getName().c_str());
@@ -243,6 +254,7 @@ extern "C" int vdb_read_dense(const char *path, const vdb_read_desc *desc, vdb_d
   *out = vdb_dense_grid{};
   const char *name = desc && desc->grid ? desc->grid : "density";
   const long long max_voxels = desc && desc->max_voxels > 0 ? desc->max_voxels : (1LL << 28);
+  const bool empty_ok = desc && desc->empty_ok;
   if (!check_readable(path, err)) return 1;
   try {
     openvdb::initialize();
@@ -275,11 +287,11 @@ extern "C" int vdb_read_dense(const char *path, const vdb_read_desc *desc, vdb_d
     if (base->isType<openvdb::FloatGrid>()) {
       if (!axis_aligned_map(*base, path, voxel_size, translation, err)) return 1;
       status = copy_to_dense(*openvdb::gridPtrCast<openvdb::FloatGrid>(base), path, max_voxels,
-                             out, err);
+                             empty_ok, out, err);
     } else if (base->isType<openvdb::DoubleGrid>()) {
       if (!axis_aligned_map(*base, path, voxel_size, translation, err)) return 1;
       status = copy_to_dense(*openvdb::gridPtrCast<openvdb::DoubleGrid>(base), path,
-                             max_voxels, out, err);
+                             max_voxels, empty_ok, out, err);
     } else {
       fog_fail(err, FOG_ERR_BAD_FILE,
                "%s: grid '%s' holds %s values, expected a scalar float grid (density); "

@@ -1,0 +1,134 @@
+// A VDB sequence whose first and last frames hold an empty density grid (a cache's frames
+// before the smoke is emitted and after it is gone: Mantaflow writes the grid with no
+// active voxels). `fogpipe import` and a scene's [fog] vdb play them as frames without fog:
+// their fogmaps are 0, and the sequence's fogmap grid is the footprint of the frames with
+// fog (an empty frame has none: it did not widen the grid). A sequence whose every frame is
+// empty, and a single empty file, are refused naming the grid. Before, the first empty
+// frame stopped the whole import ("grid 'density' is empty"). (C++ to write the grids.)
+#include <openvdb/openvdb.h>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+extern "C" {
+#include "sim/sim.h" /* fogmap.h has no C++ guard of its own */
+}
+#include "test_util.h"
+
+static std::string dir;
+
+static void write_frame(const std::string &path, int x0) {
+  openvdb::FloatGrid::Ptr g = openvdb::FloatGrid::create();
+  g->setName("density");
+  g->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+  for (int i = 0; i < 4 && x0 >= 0; i++)
+    for (int j = 0; j < 4; j++)
+      for (int k = 0; k < 4; k++) g->tree().setValue(openvdb::Coord(x0 + i, 20 + j, 30 + k), 1.0f);
+  openvdb::GridPtrVec grids;
+  grids.push_back(g);
+  openvdb::io::File(path).write(grids);
+}
+
+// Runs a shell command, its stdout and stderr into out; the exit status.
+static int run(const std::string &command, std::string &out) {
+  out.clear();
+  FILE *p = popen((command + " 2>&1").c_str(), "r");
+  if (!p) return -1;
+  char buffer[512];
+  while (fgets(buffer, sizeof buffer, p)) out += buffer;
+  const int status = pclose(p);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+static double fogmap_sum(const std::string &path, int *width) {
+  fogmap map{};
+  fog_error err{};
+  if (fogmap_load(path.c_str(), nullptr, &map, &err)) {
+    CHECK(false, "%s", err.message);
+    return -1;
+  }
+  double sum = 0;
+  for (int i = 0; i < map.width * map.height; i++) sum += map.density[i];
+  *width = map.width;
+  fogmap_destroy(&map);
+  return sum;
+}
+
+int main() {
+  const char *bin = getenv("FOGPIPE_BIN");
+  CHECK(bin != nullptr, "FOGPIPE_BIN is not set (run through ctest)");
+  char tmpl[] = "/tmp/test_vdb_empty_XXXXXX";
+  if (!bin || !mkdtemp(tmpl)) return test_finish("test_vdb_empty_frames");
+  dir = tmpl;
+  openvdb::initialize();
+  // frames 1 and 4 empty; 2 and 3 a 4^3 blob of density 1, the second 2 voxels further in x
+  mkdir((dir + "/seq").c_str(), 0755);
+  write_frame(dir + "/seq/s_0001.vdb", -1);
+  write_frame(dir + "/seq/s_0002.vdb", 10);
+  write_frame(dir + "/seq/s_0003.vdb", 12);
+  write_frame(dir + "/seq/s_0004.vdb", -1);
+  std::string out;
+  const std::string import = std::string("'") + bin + "' import '" + dir +
+                             "/seq/s_####.vdb' --config none --up y --out '" + dir + "/out'";
+  int status = run(import, out);
+  CHECK(status == 0, "import of a sequence with empty frames (%d): %s", status, out.c_str());
+  CHECK(out.find("2 frames (1..4) hold an empty grid 'density'") != std::string::npos,
+        "the empty frames are not named: %s", out.c_str());
+  if (status == 0) {
+    int widths[4] = {0, 0, 0, 0};
+    double sums[4];
+    for (int f = 0; f < 4; f++) {
+      char name[64];
+      snprintf(name, sizeof name, "/out/fog.%04d.exr", f + 1);
+      sums[f] = fogmap_sum(dir + name, &widths[f]);
+    }
+    CHECK(sums[0] == 0 && sums[3] == 0, "the empty frames' fogmaps hold %g and %g", sums[0],
+          sums[3]);
+    CHECK(sums[1] > 0 && sums[2] > 0 && fabs(sums[1] - sums[2]) < 1e-5 * sums[1],
+          "the blob's frames hold %g and %g (the same blob, moved)", sums[1], sums[2]);
+    // the footprint of the blobs: x 1.0 .. 1.6 at the native 0.1 (an empty frame's voxel at
+    // index 0 would have stretched it to 16 cells)
+    CHECK(widths[0] == 6 && widths[1] == 6, "the sequence's fogmap is %d cells wide, expected "
+          "6 (the blobs' footprint alone)", widths[1]);
+  }
+  // a scene playing the sequence, at an empty frame and at one with fog
+  for (int frame = 1; frame <= 2; frame++) {
+    const std::string scene = dir + "/scene.ini", image = dir + "/scene.png";
+    FILE *f = fopen(scene.c_str(), "w");
+    if (f) {
+      fprintf(f, "[fog]\nvdb = %s/seq/s_####.vdb\nvdb_up = y\nvdb_frame = %d\n", dir.c_str(),
+              frame);
+      fclose(f);
+    }
+    status = run(std::string("'") + bin + "' render '" + scene + "' --size 32x18 --out '" +
+                     image + "'", out);
+    CHECK(status == 0, "a scene at frame %d of the sequence (%d): %s", frame, status,
+          out.c_str());
+  }
+  // every frame empty: refused naming the grid, nothing written
+  mkdir((dir + "/none").c_str(), 0755);
+  write_frame(dir + "/none/s_0001.vdb", -1);
+  write_frame(dir + "/none/s_0002.vdb", -1);
+  status = run(std::string("'") + bin + "' import '" + dir +
+                   "/none/s_####.vdb' --config none --up y --out '" + dir + "/out_none'",
+               out);
+  CHECK(status != 0 && out.find("every frame's grid 'density' is empty") != std::string::npos,
+        "a sequence of empty frames (%d): %s", status, out.c_str());
+  struct stat st;
+  CHECK(stat((dir + "/out_none").c_str(), &st) != 0, "the refused import left its --out");
+  // one empty file: still an error
+  status = run(std::string("'") + bin + "' import '" + dir +
+                   "/none/s_0001.vdb' --config none --up y --out '" + dir + "/out_one'",
+               out);
+  CHECK(status != 0 && out.find("is empty") != std::string::npos, "one empty file (%d): %s",
+        status, out.c_str());
+  std::string cmd = "rm -rf '" + dir + "'";
+  if (system(cmd.c_str()) != 0) fprintf(stderr, "could not remove %s\n", dir.c_str());
+  return test_finish("test_vdb_empty_frames");
+}
