@@ -435,13 +435,13 @@ static int run_report(const import_options *o, const vdb_sequence *seq, const vd
                       const vdb_fogmap_place *place, const vdb_profile *seq_profile,
                       const char *temp_dir) {
   int index = seq->count - 1;
-  while (index > 0 && !frames[index].active_voxels) index--; /* the last frame with fog */
+  while (index > 0 && frames[index].empty) index--; /* the last frame with fog */
   if (o->report_frame >= 0) {
     index = -1;
     for (int i = 0; i < seq->count; i++)
       if (seq->frames[i] == o->report_frame) index = i;
     if (index < 0) return cli_fail("import", "--report-frame %d: no such frame imported", o->report_frame);
-    if (!frames[index].active_voxels)
+    if (frames[index].empty)
       return cli_fail("import", "--report-frame %d: %s has an empty grid: no fog to report on",
                       o->report_frame, seq->paths[index]);
   }
@@ -591,24 +591,28 @@ static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_fra
    * player blending it with a neighbour then keeps the neighbour's shape) */
   int with_fog = -1;
   for (int k = 0; k < seq->count; k++)
-    if (frames[k].active_voxels) with_fog = k;
+    if (!frames[k].empty) with_fog = k;
   if (with_fog < 0)
     return cli_fail("import", "%s: every frame's grid '%s' is empty (no active voxels)",
                     o->inputs[0], o->grid ? o->grid : "density");
-  int empty = 0, first_empty = 0, last_empty = 0;
+  int empty = 0;
+  char list[320] = "";
   for (int k = 0; k < seq->count; k++) {
-    if (frames[k].active_voxels) continue;
+    if (!frames[k].empty) continue;
     int nearest = with_fog;
     for (int j = 0; j < seq->count; j++)
-      if (frames[j].active_voxels && abs(j - k) < abs(nearest - k)) nearest = j;
+      if (!frames[j].empty && abs(j - k) < abs(nearest - k)) nearest = j;
     frames[k].profile = frames[nearest].profile;
-    if (!empty++) first_empty = seq->frames[k];
-    last_empty = seq->frames[k];
+    const size_t used = strlen(list);
+    if (used < 300) snprintf(list + used, sizeof list - used, "%s%d", empty ? " " : "",
+                             seq->frames[k]);
+    else if (!strstr(list, "..."))
+      snprintf(list + used, sizeof list - used, " ...");
+    empty++;
   }
   if (empty)
-    fprintf(stderr, "fogpipe import: note: %d frame%s (%d..%d) hold%s an empty grid '%s': no "
-            "fog there\n", empty, empty == 1 ? "" : "s", first_empty, last_empty,
-            empty == 1 ? "s" : "", o->grid ? o->grid : "density");
+    fprintf(stderr, "fogpipe import: note: no fog in %d frame%s (grid '%s' empty or all 0): "
+            "%s\n", empty, empty == 1 ? "" : "s", o->grid ? o->grid : "density", list);
   return 0;
 }
 

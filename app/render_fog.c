@@ -110,15 +110,18 @@ int render_fog_volume_sequence(const scene_config *cfg, vdb_sequence *seq, fog_e
   return 0;
 }
 
-/* One file of the sequence as the volume's grid (render_fog_load_volume). */
-static int load_volume_file(const scene_config *cfg, const char *path, vdb_frame *frame,
-                            volume_grid_desc *grid, fog_error *err) {
+/* One file of the sequence as the volume's grid (render_fog_load_volume). An empty grid
+ * in a sequence of more than one frame (before the smoke, or after it) is a frame without
+ * fog, as the fogmap's source plays it: one voxel of 0. */
+static int load_volume_file(const scene_config *cfg, const vdb_sequence *seq, int index,
+                            vdb_frame *frame, volume_grid_desc *grid, fog_error *err) {
   const scene_fog_config *f = &cfg->fog;
   fog_error serr = {0};
-  if (vdb_frame_load(path,
+  if (vdb_frame_load(seq->paths[index],
                      &(vdb_frame_desc){.grid = f->vdb_grid,
                                        .up = f->vdb_up == 1 ? VDB_UP_Y : VDB_UP_Z,
-                                       .keep_grid = 1, .grid_only = 1},
+                                       .keep_grid = 1, .grid_only = 1,
+                                       .empty_ok = seq->count > 1},
                      frame, &serr)) {
     vdb_error_wrap(err, &serr, cfg, "");
     return 1;
@@ -148,7 +151,7 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
   if (index < 0)
     vdb_no_frame(err, cfg, seq.frames[0], seq.frames[seq.count - 1]);
   else
-    status = load_volume_file(cfg, seq.paths[index], frame, grid, err);
+    status = load_volume_file(cfg, &seq, index, frame, grid, err);
   vdb_sequence_destroy(&seq);
   return status;
 }
@@ -215,7 +218,7 @@ static int played_frame(render_fog *fog, const scene_config *cfg, const vdb_sequ
     }
   int k = fog->played[0].grid.values && fog->played_index[0] == keep ? 1 : 0;
   vdb_frame_destroy(&fog->played[k]);
-  if (load_volume_file(cfg, seq->paths[index], &fog->played[k], &fog->played_grid[k], err))
+  if (load_volume_file(cfg, seq, index, &fog->played[k], &fog->played_grid[k], err))
     return 1;
   fog->played_index[k] = index;
   *slot = k;

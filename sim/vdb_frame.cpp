@@ -17,7 +17,7 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
   read.max_voxels = d.max_voxels;
   read.empty_ok = d.empty_ok;
   if (vdb_read_dense(path, &read, &grid, err)) return 1;
-  const bool empty = grid.active_voxels == 0; /* only with empty_ok */
+  bool empty = grid.active_voxels == 0; /* only with empty_ok */
 
   mantaflow_config config{};
   const mantaflow_config *cfg = nullptr;
@@ -51,9 +51,27 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
     out->negative_voxels = grid.negative_voxels;
     return 0;
   }
+  if (!status && !empty) {
+    int box[6];
+    for (int c = 0; c < 3; c++) {
+      box[c] = out->world.domain_min[c];
+      box[3 + c] = out->world.domain_max[c];
+    }
+    status = vdb_columns_project(&grid, &out->world, cfg ? box : nullptr, &out->columns, &inner);
+    projected = !status;
+    placed_by_config = status && cfg;
+    /* voxels all 0 (or negative, clamped): no fog either, in a sequence */
+    if (!status && d.empty_ok && !(out->columns.mass > 0)) {
+      vdb_columns_destroy(&out->columns);
+      empty = true;
+    }
+  }
   if (!status && empty) {
     /* no fog: no columns (a footprint or layers here would widen the sequence's), the
      * fixed profile or none, a zero fogmap on the sequence's grid where one is given */
+    out->empty = 1;
+    out->active_voxels = grid.active_voxels;
+    out->negative_voxels = grid.negative_voxels;
     vdb_dense_grid_destroy(&grid);
     if (d.fixed_profile) out->profile = *d.fixed_profile;
     if (d.place) {
@@ -66,16 +84,6 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
       return 1;
     }
     return 0;
-  }
-  if (!status) {
-    int box[6];
-    for (int c = 0; c < 3; c++) {
-      box[c] = out->world.domain_min[c];
-      box[3 + c] = out->world.domain_max[c];
-    }
-    status = vdb_columns_project(&grid, &out->world, cfg ? box : nullptr, &out->columns, &inner);
-    projected = !status;
-    placed_by_config = status && cfg;
   }
   if (!status) {
     if (d.fixed_profile)

@@ -80,9 +80,10 @@ typedef struct vdb_read_desc {
 
 /* Reads one float (or double) grid, leaf voxels and active tiles alike, half-float or
  * full, any compression OpenVDB supports. Fails naming the file (and the grids that
- * exist) for: no such grid, a non-scalar grid, an empty grid, NaN/Inf voxels (the first
- * is named), a rotated or sheared transform, more than max_voxels. Every OpenVDB
- * exception becomes err->message; nothing is allocated on failure. */
+ * exist) for: no such grid, a non-scalar grid, a level set, a background value above 0,
+ * an empty grid (unless desc->empty_ok), NaN/Inf voxels (the first is named), a rotated
+ * or sheared transform, more than max_voxels. Every OpenVDB exception becomes
+ * err->message; nothing is allocated on failure. */
 int vdb_read_dense(const char *path, const vdb_read_desc *desc, vdb_dense_grid *out,
                    fog_error *err);
 void vdb_dense_grid_destroy(vdb_dense_grid *grid);
@@ -317,6 +318,7 @@ typedef struct vdb_frame {
   fogmap map;
   char config_path[1024];     /* the config used, "" if none */
   long long active_voxels;    /* of the grid read (leaf voxels + tile voxels) */
+  int empty;                  /* no fog (empty_ok): an empty grid, or voxels all 0 */
   long long negative_voxels;  /* negative values clamped to 0 */
 } vdb_frame;
 

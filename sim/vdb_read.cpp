@@ -110,6 +110,17 @@ template <typename GridT>
 int copy_to_dense(const GridT &grid, const char *path, long long max_voxels, bool empty_ok,
                   vdb_dense_grid *out, fog_error *err) {
   const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+  // Inactive voxels hold the background value, inside the active box and to infinity
+  // around it: a density that is not 0 there has no bounded fog to read (negative ones are
+  // clamped to 0 as the active voxels are).
+  const double background = (double)grid.background();
+  if (!(background <= 0)) {
+    fog_fail(err, FOG_ERR_BAD_FILE,
+             "%s: grid '%s' has the background value %g (what every inactive voxel holds, "
+             "out to infinity): expected 0, a fog volume's density outside the smoke",
+             path, grid.getName().c_str(), background);
+    return 1;
+  }
   if ((box.empty() || grid.activeVoxelCount() == 0) && empty_ok) {
     float *zero = (float *)calloc(1, sizeof(float));
     if (!zero) {
@@ -124,17 +135,6 @@ int copy_to_dense(const GridT &grid, const char *path, long long max_voxels, boo
   if (box.empty() || grid.activeVoxelCount() == 0) {
     fog_fail(err, FOG_ERR_BAD_FILE, "%s: grid '%s' is empty (no active voxels)", path,
              grid.getName().c_str());
-    return 1;
-  }
-  // Inactive voxels hold the background value, inside the active box and to infinity
-  // around it: a density that is not 0 there has no bounded fog to read (negative ones are
-  // clamped to 0 as the active voxels are).
-  const double background = (double)grid.background();
-  if (!(background <= 0)) {
-    fog_fail(err, FOG_ERR_BAD_FILE,
-             "%s: grid '%s' has the background value %g (what every inactive voxel holds, "
-             "out to infinity): expected 0, a fog volume's density outside the smoke",
-             path, grid.getName().c_str(), background);
     return 1;
   }
   // In 64 bits: CoordBBox::dim() is int and a damaged file's box spans up to 2^32 a side,

@@ -3,8 +3,9 @@
 // active voxels). `fogpipe import` and a scene's [fog] vdb play them as frames without fog:
 // their fogmaps are 0, and the sequence's fogmap grid is the footprint of the frames with
 // fog (an empty frame has none: it did not widen the grid). A sequence whose every frame is
-// empty, and a single empty file, are refused naming the grid. Before, the first empty
-// frame stopped the whole import ("grid 'density' is empty"). (C++ to write the grids.)
+// empty, and a single empty file, are refused naming the grid. A frame whose voxels are all
+// 0 is one without fog too, and `model = volume` plays both as no fog. Before, the first
+// empty frame stopped the whole import ("grid 'density' is empty"). (C++ to write the grids.)
 #include <openvdb/openvdb.h>
 
 #include <sys/stat.h>
@@ -23,13 +24,15 @@ extern "C" {
 
 static std::string dir;
 
-static void write_frame(const std::string &path, int x0) {
+/* x0 < 0: no active voxel; else a 4^3 blob of `value` from index x0 along x */
+static void write_frame(const std::string &path, int x0, float value = 1.0f) {
   openvdb::FloatGrid::Ptr g = openvdb::FloatGrid::create();
   g->setName("density");
   g->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
   for (int i = 0; i < 4 && x0 >= 0; i++)
     for (int j = 0; j < 4; j++)
-      for (int k = 0; k < 4; k++) g->tree().setValue(openvdb::Coord(x0 + i, 20 + j, 30 + k), 1.0f);
+      for (int k = 0; k < 4; k++)
+        g->tree().setValue(openvdb::Coord(x0 + i, 20 + j, 30 + k), value);
   openvdb::GridPtrVec grids;
   grids.push_back(g);
   openvdb::io::File(path).write(grids);
@@ -73,23 +76,25 @@ int main() {
   write_frame(dir + "/seq/s_0002.vdb", 10);
   write_frame(dir + "/seq/s_0003.vdb", 12);
   write_frame(dir + "/seq/s_0004.vdb", -1);
+  write_frame(dir + "/seq/s_0005.vdb", 0, 0.0f); /* active voxels, all 0: no fog either */
   std::string out;
   const std::string import = std::string("'") + bin + "' import '" + dir +
                              "/seq/s_####.vdb' --config none --up y --out '" + dir + "/out'";
   int status = run(import, out);
   CHECK(status == 0, "import of a sequence with empty frames (%d): %s", status, out.c_str());
-  CHECK(out.find("2 frames (1..4) hold an empty grid 'density'") != std::string::npos,
+  CHECK(out.find("no fog in 3 frames (grid 'density' empty or all 0): 1 4 5") !=
+            std::string::npos,
         "the empty frames are not named: %s", out.c_str());
   if (status == 0) {
-    int widths[4] = {0, 0, 0, 0};
-    double sums[4];
-    for (int f = 0; f < 4; f++) {
+    int widths[5] = {0, 0, 0, 0, 0};
+    double sums[5];
+    for (int f = 0; f < 5; f++) {
       char name[64];
       snprintf(name, sizeof name, "/out/fog.%04d.exr", f + 1);
       sums[f] = fogmap_sum(dir + name, &widths[f]);
     }
-    CHECK(sums[0] == 0 && sums[3] == 0, "the empty frames' fogmaps hold %g and %g", sums[0],
-          sums[3]);
+    CHECK(sums[0] == 0 && sums[3] == 0 && sums[4] == 0, "the empty frames' fogmaps hold %g, "
+          "%g and %g", sums[0], sums[3], sums[4]);
     CHECK(sums[1] > 0 && sums[2] > 0 && fabs(sums[1] - sums[2]) < 1e-5 * sums[1],
           "the blob's frames hold %g and %g (the same blob, moved)", sums[1], sums[2]);
     // the footprint of the blobs: x 1.0 .. 1.6 at the native 0.1 (an empty frame's voxel at
@@ -97,19 +102,33 @@ int main() {
     CHECK(widths[0] == 6 && widths[1] == 6, "the sequence's fogmap is %d cells wide, expected "
           "6 (the blobs' footprint alone)", widths[1]);
   }
-  // a scene playing the sequence, at an empty frame and at one with fog
-  for (int frame = 1; frame <= 2; frame++) {
-    const std::string scene = dir + "/scene.ini", image = dir + "/scene.png";
-    FILE *f = fopen(scene.c_str(), "w");
-    if (f) {
-      fprintf(f, "[fog]\nvdb = %s/seq/s_####.vdb\nvdb_up = y\nvdb_frame = %d\n", dir.c_str(),
-              frame);
-      fclose(f);
+  // a scene playing the sequence as a fogmap and as a volume: its empty frames 1 and 4 look
+  // alike (no fog), frame 2 (fog) does not; the camera looks at the blob
+  for (int volume = 0; volume < 2; volume++) {
+    std::string images[3];
+    const int shown[3] = {1, 4, 2};
+    for (int i = 0; i < 3; i++) {
+      const std::string scene = dir + "/scene.ini";
+      images[i] = dir + "/scene_" + std::to_string(i) + ".png";
+      FILE *f = fopen(scene.c_str(), "w");
+      if (f) {
+        fprintf(f, "[camera]\nposition = 1.3 2.2 -1\nlook_at = 1.3 2.2 3.2\n"
+                "[fog]\n%svdb = %s/seq/s_####.vdb\nvdb_up = y\nvdb_frame = %d\n"
+                "density_scale = 40\n",
+                volume ? "model = volume\n" : "", dir.c_str(), shown[i]);
+        fclose(f);
+      }
+      status = run(std::string("'") + bin + "' render '" + scene + "' --size 32x18 --out '" +
+                       images[i] + "'", out);
+      CHECK(status == 0, "a %s scene at frame %d of the sequence (%d): %s",
+            volume ? "volume" : "fogmap", shown[i], status, out.c_str());
     }
-    status = run(std::string("'") + bin + "' render '" + scene + "' --size 32x18 --out '" +
-                     image + "'", out);
-    CHECK(status == 0, "a scene at frame %d of the sequence (%d): %s", frame, status,
-          out.c_str());
+    std::string same, differ;
+    run("cmp -s '" + images[0] + "' '" + images[1] + "' && echo same", same);
+    run("cmp -s '" + images[0] + "' '" + images[2] + "' || echo differ", differ);
+    CHECK(same == "same\n" && differ == "differ\n", "%s: frames 1 and 4 %s, frames 1 and 2 "
+          "%s", volume ? "volume" : "fogmap", same.empty() ? "differ" : "look alike",
+          differ.empty() ? "look alike (the blob not seen?)" : "differ");
   }
   // every frame empty: refused naming the grid, nothing written
   mkdir((dir + "/none").c_str(), 0755);
