@@ -53,6 +53,20 @@ static int ini_value(const char *path, const char *key, char *out, size_t size) 
   return !found;
 }
 
+/* A Blender cache at DIR/NAME (data/ and config/) of the plume's frames whose numbers
+ * match the globs (e.g. "004[68]"): its data and config globs apart. */
+static void plume_cache(const char *name, const char *data_frames, const char *config_frames,
+                        char *folder, size_t size) {
+  char cmd[2048];
+  snprintf(folder, size, "%s/%s", dir, name);
+  snprintf(cmd, sizeof cmd,
+           "mkdir -p '%s/data' '%s/config' && "
+           "cp ../shared/data/vdb/plume/data/fluid_data_%s.vdb '%s/data/' && "
+           "cp ../shared/data/vdb/plume/config/config_%s.uni '%s/config/'",
+           folder, folder, data_frames, folder, config_frames, folder);
+  CHECK(system(cmd) == 0, "setup failed: %s", cmd);
+}
+
 int main(void) {
   const char *bin = getenv("FOGPIPE_BIN");
   if (!bin) bin = "build/fogpipe";
@@ -191,13 +205,7 @@ int main(void) {
    * without one and one with, nothing written; --config none imports it */
   {
     char mixed[512];
-    snprintf(mixed, sizeof mixed, "%s/mixed", dir);
-    snprintf(cmd, sizeof cmd,
-             "mkdir -p '%s/data' '%s/config' && "
-             "cp ../shared/data/vdb/plume/data/fluid_data_004[678].vdb '%s/data/' && "
-             "cp ../shared/data/vdb/plume/config/config_004[67].uni '%s/config/'",
-             mixed, mixed, mixed, mixed);
-    CHECK(system(cmd) == 0, "setup failed: %s", cmd);
+    plume_cache("mixed", "004[678]", "004[67]", mixed, sizeof mixed);
     snprintf(out, sizeof out, "%s/out_mixed", dir);
     snprintf(cmd, sizeof cmd, "'%s' import '%s/data/fluid_data_####.vdb' --out '%s'", bin, mixed,
              out);
@@ -242,13 +250,7 @@ int main(void) {
    * play as neighbours, the speed silently changed), naming the pattern and the hole */
   {
     char gap[512], scene[600], image[600];
-    snprintf(gap, sizeof gap, "%s/gap", dir);
-    snprintf(cmd, sizeof cmd,
-             "mkdir -p '%s/data' '%s/config' && "
-             "cp ../shared/data/vdb/plume/data/fluid_data_004[68].vdb '%s/data/' && "
-             "cp ../shared/data/vdb/plume/config/config_004[68].uni '%s/config/'",
-             gap, gap, gap, gap);
-    CHECK(system(cmd) == 0, "setup failed: %s", cmd);
+    plume_cache("gap", "004[68]", "004[68]", gap, sizeof gap);
     snprintf(scene, sizeof scene, "%s/gap.ini", dir);
     snprintf(image, sizeof image, "%s/gap.png", dir);
     snprintf(cmd, sizeof cmd, "'%s' render '%s' --size 32x18 --out '%s'", bin, scene, image);
