@@ -97,7 +97,8 @@ player *player_create(const player_desc *desc, fog_error *err) {
       fine_height > PLAYER_MAX_SIDE) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
              "%s:%d: [render] supersample = %d draws %ldx%ld pixels for %dx%d: expected 1 to "
-             "4, and at most %d a side", desc->config->path, desc->config->supersample_line,
+             "4, and at most %d a side (a smaller supersample, or a smaller size: --size or "
+             "[render] width and height)", desc->config->path, desc->config->supersample_line,
              p->supersample, fine_width, fine_height, desc->width, desc->height,
              PLAYER_MAX_SIDE);
     free(p);
