@@ -774,7 +774,10 @@ pipeline *pipeline_create(const pipeline_desc *desc, fog_error *err) {
       return NULL;
     }
     c->has_vdb = true;
-    vdb_source_apply_config(&c->vdb, &p->config);
+    if (vdb_source_apply_config(&c->vdb, &p->config, err)) {
+      pipeline_destroy(p);
+      return NULL;
+    }
     p->params = params_from_config(&p->config);
     p->applied = p->params;
     fog_error serr = {0};

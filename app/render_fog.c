@@ -67,7 +67,7 @@ static int render_vdb_fog(render_fog *fog, const scene_config *cfg, fog_error *e
     goto done;
   }
   *placed = *cfg;
-  vdb_source_apply_config(&source, placed);
+  if (vdb_source_apply_config(&source, placed, err)) goto done;
   fog_error serr;
   if (vdb_source_fogmap_at(&source, index / source.fps, &map, &serr)) {
     vdb_error_wrap(err, &serr, cfg, "");

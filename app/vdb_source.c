@@ -191,7 +191,7 @@ int vdb_source_open_config(vdb_source *source, const scene_config *cfg, fog_erro
   return 0;
 }
 
-void vdb_source_apply_config(const vdb_source *source, scene_config *cfg) {
+int vdb_source_apply_config(const vdb_source *source, scene_config *cfg, fog_error *err) {
   const vdb_profile *g = &source->profile;
   scene_fog_config *f = &cfg->fog;
   scene_box_config *box = &cfg->box;
@@ -210,8 +210,14 @@ void vdb_source_apply_config(const vdb_source *source, scene_config *cfg) {
   }
   if (!box->floor_set) box->floor = bottom;
   if (!box->top_set) box->top = top;
-  if (box->top <= box->floor) box->top = box->floor + 1e-6; /* a file set only one of them */
-  if (f->profile_set) return;
+  if (box->top <= box->floor) /* the file set one of them (the loader checks a pair) */
+    return fog_fail(err, FOG_ERR_BAD_CONFIG,
+                    "%.300s: [box] %s = %g lies %s the VDB's fog, whose %s is %g: an empty "
+                    "box (set %s too, or move it)", cfg->path,
+                    box->top_set ? "top" : "floor", box->top_set ? box->top : box->floor,
+                    box->top_set ? "below" : "above", box->top_set ? "floor" : "top",
+                    box->top_set ? box->floor : box->top, box->top_set ? "floor" : "top");
+  if (f->profile_set) return 0;
   if (g->kind == VDB_PROFILE_BSPLINE) {
     f->profile = SCENE_PROFILE_BSPLINE;
     f->profile_degree = g->degree;
@@ -226,4 +232,5 @@ void vdb_source_apply_config(const vdb_source *source, scene_config *cfg) {
   } else {
     f->profile = SCENE_PROFILE_SLAB;
   }
+  return 0;
 }

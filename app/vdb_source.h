@@ -80,7 +80,9 @@ double vdb_source_duration(const vdb_source *source);
 int vdb_source_open_config(vdb_source *source, const scene_config *cfg, fog_error *err);
 /* Puts the source's placement and profile into cfg, except what the file set itself:
  * [box] origin and cell_size from the fogmap grid, floor and top from g's support, and
- * g as [fog] profile = bspline (or exponential), unless `profile` was set. */
-void vdb_source_apply_config(const vdb_source *source, scene_config *cfg);
+ * g as [fog] profile = bspline (or exponential), unless `profile` was set. 1 with err
+ * naming the config and the key when the file set one of floor and top and it does not
+ * lie on its side of the other, which g gave (an empty box). */
+int vdb_source_apply_config(const vdb_source *source, scene_config *cfg, fog_error *err);
 
 #endif

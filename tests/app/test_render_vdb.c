@@ -49,7 +49,7 @@ int main(void) {
     CHECK(0, "%s", cerr.message);
     return test_finish("test_render_vdb");
   }
-  vdb_source_apply_config(&source, &cfg);
+  CHECK(vdb_source_apply_config(&source, &cfg, &cerr) == 0, "apply: %s", cerr.message);
   double lo[3] = {cfg.box.origin[0], cfg.box.floor, cfg.box.origin[1]};
   double hi[3] = {lo[0] + source.place.width * cfg.box.cell_size, cfg.box.top,
                   lo[2] + source.place.height * cfg.box.cell_size};

@@ -148,7 +148,7 @@ static void test_config(void) {
   vdb_source s;
   CHECK(vdb_source_open_config(&s, &cfg, &err) == 0, "%s", err.message);
   scene_config applied = cfg;
-  vdb_source_apply_config(&s, &applied);
+  CHECK(vdb_source_apply_config(&s, &applied, &err) == 0, "apply: %s", err.message);
   CHECK(applied.box.origin[0] == s.place.origin_x && applied.box.origin[1] == s.place.origin_z &&
             applied.box.cell_size == s.place.cell_size,
         "box not from the VDB");
@@ -169,7 +169,7 @@ static void test_config(void) {
   CHECK(load_text(text, &cfg, &err) == 0, "%s", err.message);
   CHECK(vdb_source_open_config(&s, &cfg, &err) == 0, "%s", err.message);
   applied = cfg;
-  vdb_source_apply_config(&s, &applied);
+  CHECK(vdb_source_apply_config(&s, &applied, &err) == 0, "apply: %s", err.message);
   CHECK(applied.box.origin[0] == 5 && applied.box.origin[1] == 6 && applied.box.floor == -1,
         "explicit [box] overridden");
   CHECK(applied.fog.profile == SCENE_PROFILE_EXPONENTIAL, "explicit profile overridden");
