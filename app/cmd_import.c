@@ -616,22 +616,6 @@ static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_fra
   return 0;
 }
 
-/* One fogmap grid for the whole sequence: the union of the frames' footprints. */
-static int place_sequence(const import_options *o, const vdb_frame *frames, int count,
-                          vdb_fogmap_place *place, fog_error *err) {
-  double x0 = INFINITY, x1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY, native = 0;
-  for (int i = 0; i < count; i++) {
-    const vdb_columns *c = &frames[i].columns;
-    if (!c->width) continue; /* an empty frame: no footprint */
-    if (!(native > 0)) native = fmax(c->cell_x, c->cell_z);
-    x0 = fmin(x0, c->origin_x);
-    x1 = fmax(x1, c->origin_x + c->width * c->cell_x);
-    z0 = fmin(z0, c->origin_z);
-    z1 = fmax(z1, c->origin_z + c->height * c->cell_z);
-  }
-  return vdb_fogmap_place_fit(x0, x1, z0, z1, o->resolution, o->cell, native, place, err);
-}
-
 /* Frames NAME.####.exr in out that this import did not write: an earlier import's, of
  * other frames, placed and normalised by another NAME.ini. Named, not removed (importing a
  * sequence in parts into one folder is a way to work), as record warns of another
@@ -697,11 +681,14 @@ int cmd_import(int argc, char **argv) {
   out_folder made = {0}; /* the folders of --out this run made */
   char temp_dir[4200] = "";
   vdb_frame *frames = calloc((size_t)seq.count, sizeof *frames);
+  const vdb_columns **cols = malloc((size_t)seq.count * sizeof *cols); /* frames[i].columns */
   fogmap map = {0};
-  if (!frames) {
+  if (!frames || !cols) {
+    free(frames), free(cols);
     vdb_sequence_destroy(&seq);
     return cli_fail("import", "out of memory for %d frames", seq.count);
   }
+  for (int i = 0; i < seq.count; i++) cols[i] = &frames[i].columns;
   /* Ctrl-C or SIGTERM: the staging folder and the folders this run made go, --out stays as
    * it was (exit 130); held while the files move into place */
   stop_signals stop;
@@ -709,24 +696,15 @@ int cmd_import(int argc, char **argv) {
   stop_signals_catch(&stop, false);
   if ((status = load_frames(&o, &seq, frames, &loaded))) goto done;
   vdb_fogmap_place place;
-  if (place_sequence(&o, frames, seq.count, &place, &err)) {
+  /* one fogmap grid for the whole sequence: the union of the frames' footprints */
+  if (vdb_fogmap_place_fit_columns(cols, seq.count, o.resolution, o.cell, &place, &err)) {
     status = cli_fail("import", "%s", err.message);
     goto done;
   }
   vdb_profile seq_profile;
   const vdb_profile *profile = NULL;
   if (!o.profile_per_frame) {
-    const vdb_columns **cols = malloc((size_t)seq.count * sizeof *cols);
-    if (!cols) {
-      status = cli_fail("import", "out of memory");
-      goto done;
-    }
-    int with_fog = 0; /* the frames with fog (an empty one has no layers) */
-    for (int i = 0; i < seq.count; i++)
-      if (frames[i].columns.width) cols[with_fog++] = &frames[i].columns;
-    int s = vdb_profile_fit_columns(cols, with_fog, &o.profile, &seq_profile, &err);
-    free(cols);
-    if (s) {
+    if (vdb_profile_fit_columns(cols, seq.count, &o.profile, &seq_profile, &err)) {
       status = cli_fail("import", "%s: %s", o.inputs[0], err.message);
       goto done;
     }
@@ -803,6 +781,7 @@ done:
   fogmap_destroy(&map);
   for (int i = 0; i < seq.count; i++) vdb_frame_destroy(&frames[i]);
   free(frames);
+  free(cols);
   vdb_sequence_destroy(&seq);
   return status;
 }

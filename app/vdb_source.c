@@ -43,8 +43,7 @@ int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, fog_error *
   /* Pass 1 (as `fogpipe import`): read, place and project every frame; keep its columns. */
   /* a sequence's empty frame (before or after the smoke) is a frame without fog */
   vdb_frame_desc frame_desc = {.grid = desc->grid, .up = desc->up, .empty_ok = seq.count > 1};
-  double x0 = INFINITY, x1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY, native = 0;
-  int with_fog = 0; /* the frames whose grid is not empty, in cols */
+  int with_fog = 0; /* the frames whose grid is not empty */
   /* placed two ways (a domain's corner apart), the frames would jump, as `import` refuses */
   fog_error perr = {0};
   if (vdb_sequence_check_placement(&seq, &perr)) {
@@ -60,13 +59,8 @@ int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, fog_error *
     const vdb_columns *c = &source->columns[i];
     source->frame_numbers[i] = seq.frames[i];
     source->mass[i] = c->mass;
-    if (!c->width) continue; /* an empty frame: no footprint, no layers */
-    cols[with_fog++] = c;
-    x0 = fmin(x0, c->origin_x);
-    x1 = fmax(x1, c->origin_x + c->width * c->cell_x);
-    z0 = fmin(z0, c->origin_z);
-    z1 = fmax(z1, c->origin_z + c->height * c->cell_z);
-    if (!(native > 0)) native = fmax(c->cell_x, c->cell_z);
+    cols[i] = c;
+    with_fog += c->width > 0;
   }
   if (!with_fog) {
     fog_fail(err, FOG_ERR_BAD_FILE, "%.300s: every frame's grid '%s' is empty (no active "
@@ -76,9 +70,9 @@ int vdb_source_open(vdb_source *source, const vdb_source_desc *desc, fog_error *
   /* One fogmap grid (the union of the footprints) and one g for the whole sequence, so
    * that frames can be blended cell by cell and f·g stays comparable between frames. */
   fog_error inner = {0};
-  if (vdb_fogmap_place_fit(x0, x1, z0, z1, desc->resolution, 0.0, native, &source->place,
-                           &inner) ||
-      vdb_profile_fit_columns(cols, with_fog, &(vdb_profile_desc){0}, &source->profile,
+  if (vdb_fogmap_place_fit_columns(cols, seq.count, desc->resolution, 0.0, &source->place,
+                                   &inner) ||
+      vdb_profile_fit_columns(cols, seq.count, &(vdb_profile_desc){0}, &source->profile,
                               &inner) ||
       fogmap_create(&source->cache[0], source->place.width, source->place.height, &inner) ||
       fogmap_create(&source->cache[1], source->place.width, source->place.height, &inner)) {

@@ -191,6 +191,11 @@ typedef struct vdb_fogmap_place {
 int vdb_fogmap_place_fit(double x0, double x1, double z0, double z1, int resolution,
                          double cell_size, double native_cell, vdb_fogmap_place *out,
                          fog_error *err);
+/* One fogmap grid for a sequence's frames: vdb_fogmap_place_fit over the union of their
+ * footprints, the native cell the first frame's. Frames without fog (no columns: an empty
+ * grid, vdb_frame_desc.empty_ok) have no footprint and are passed over. */
+int vdb_fogmap_place_fit_columns(const vdb_columns *const *columns, int count, int resolution,
+                                 double cell_size, vdb_fogmap_place *out, fog_error *err);
 
 /* Area-weighted (conservative) resampling of tau/thickness onto place: every column's
  * optical depth × area is split over the fogmap cells by overlap area, so
@@ -241,7 +246,8 @@ typedef struct vdb_profile {
 int vdb_profile_fit(const double *layer_mass, int layers, double y_min, double layer_height,
                     const vdb_profile_desc *desc, vdb_profile *out, fog_error *err);
 /* The sequence profile: the summed vertical distribution of several frames (their layers
- * may start at different heights; the layer height must be the same). */
+ * may start at different heights; the layer height must be the same). Frames without fog
+ * (no layers) are passed over. */
 int vdb_profile_fit_columns(const vdb_columns *const *columns, int count,
                             const vdb_profile_desc *desc, vdb_profile *out, fog_error *err);
 double vdb_profile_eval(const vdb_profile *profile, double y);

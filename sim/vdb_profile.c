@@ -93,13 +93,16 @@ int vdb_profile_fit(const double *layer_mass, int layers, double y_min, double l
 
 int vdb_profile_fit_columns(const vdb_columns *const *columns, int count,
                             const vdb_profile_desc *desc, vdb_profile *out, fog_error *err) {
-  if (count <= 0) {
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "no frames to fit a profile to");
+  int first = 0; /* the first frame with fog (one without has no layers) */
+  while (first < count && !columns[first]->layers) first++;
+  if (first == count) {
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "no frames with fog to fit a profile to");
     return 1;
   }
-  const double h = columns[0]->layer_height;
-  double y0 = columns[0]->y_min, y1 = y0 + columns[0]->layers * h;
-  for (int i = 1; i < count; i++) {
+  const double h = columns[first]->layer_height;
+  double y0 = columns[first]->y_min, y1 = y0 + columns[first]->layers * h;
+  for (int i = first + 1; i < count; i++) {
+    if (!columns[i]->layers) continue;
     if (fabs(columns[i]->layer_height - h) > 1e-9 * h) {
       fog_fail(err, FOG_ERR_BAD_FILE,
                "frames have different layer heights (%g and %g): fit the profile per frame", h,
@@ -115,7 +118,8 @@ int vdb_profile_fit_columns(const vdb_columns *const *columns, int count,
     fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for %d layers", layers);
     return 1;
   }
-  for (int i = 0; i < count; i++) {
+  for (int i = first; i < count; i++) {
+    if (!columns[i]->layers) continue;
     const int shift = (int)lround((columns[i]->y_min - y0) / h);
     for (int l = 0; l < columns[i]->layers; l++) mass[shift + l] += columns[i]->layer_mass[l];
   }

@@ -185,6 +185,21 @@ void vdb_columns_destroy(vdb_columns *columns) {
   *columns = (vdb_columns){0};
 }
 
+int vdb_fogmap_place_fit_columns(const vdb_columns *const *columns, int count, int resolution,
+                                 double cell_size, vdb_fogmap_place *out, fog_error *err) {
+  double x0 = INFINITY, x1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY, native = 0;
+  for (int i = 0; i < count; i++) {
+    const vdb_columns *c = columns[i];
+    if (!c->width) continue; /* a frame without fog: no footprint */
+    if (!(native > 0)) native = fmax(c->cell_x, c->cell_z);
+    x0 = fmin(x0, c->origin_x);
+    x1 = fmax(x1, c->origin_x + c->width * c->cell_x);
+    z0 = fmin(z0, c->origin_z);
+    z1 = fmax(z1, c->origin_z + c->height * c->cell_z);
+  }
+  return vdb_fogmap_place_fit(x0, x1, z0, z1, resolution, cell_size, native, out, err);
+}
+
 int vdb_fogmap_place_fit(double x0, double x1, double z0, double z1, int resolution,
                          double cell_size, double native_cell, vdb_fogmap_place *out,
                          fog_error *err) {
