@@ -5,13 +5,41 @@
 #include <stddef.h>
 
 static volatile sig_atomic_t caught;
+/* Set before the handlers are installed and not changed while they are: */
+static volatile sig_atomic_t second_ends_process;
+/* While held: a second signal is kept here for the release. The mask holds a signal on
+ * the calling thread only, and a process-directed one goes to any thread that does not
+ * block it (llvmpipe's, FFTW's, the pipeline's worker), so the handler holds it too. */
+static volatile sig_atomic_t holding, held_second;
 
-static void on_stop(int signal_number) { caught = signal_number; }
+/* The default action of the signal: the process ends as the signal ends it (a shell sees
+ * 130). sigaction and raise are async-signal-safe (POSIX.1-2008 §2.4.3). */
+static void end_process(int signal_number) {
+  struct sigaction default_action = {.sa_handler = SIG_DFL};
+  sigemptyset(&default_action.sa_mask);
+  sigaction(signal_number, &default_action, NULL);
+  raise(signal_number);
+}
+
+static void on_stop(int signal_number) {
+  if (caught && second_ends_process) {
+    if (holding)
+      held_second = signal_number;
+    else
+      end_process(signal_number);
+    return;
+  }
+  caught = signal_number;
+}
 
 void stop_signals_catch(stop_signals *s, bool second_ends) {
-  struct sigaction action = {.sa_handler = on_stop,
-                             .sa_flags = SA_RESTART | (second_ends ? SA_RESETHAND : 0)};
+  /* The second signal is the handler's to act on, not SA_RESETHAND's: reset on the first
+   * delivery, the default action would end the process on any thread while held. */
+  struct sigaction action = {.sa_handler = on_stop, .sa_flags = SA_RESTART};
   sigemptyset(&action.sa_mask);
+  second_ends_process = second_ends;
+  holding = 0;
+  held_second = 0;
   sigaction(SIGINT, NULL, &s->old_int);
   sigaction(SIGTERM, NULL, &s->old_term);
   if (s->old_int.sa_handler != SIG_IGN) sigaction(SIGINT, &action, NULL);
@@ -29,10 +57,17 @@ void stop_signals_hold(stop_signals *s) {
   sigemptyset(&hold);
   sigaddset(&hold, SIGINT);
   sigaddset(&hold, SIGTERM);
+  holding = 1;
   sigprocmask(SIG_BLOCK, &hold, &s->held_from);
 }
 
-void stop_signals_release(stop_signals *s) { sigprocmask(SIG_SETMASK, &s->held_from, NULL); }
+void stop_signals_release(stop_signals *s) {
+  holding = 0;
+  sigprocmask(SIG_SETMASK, &s->held_from, NULL); /* one held on this thread arrives now */
+  const int second = held_second;
+  held_second = 0;
+  if (second) end_process(second);
+}
 
 void stop_signals_restore(const stop_signals *s) {
   sigaction(SIGINT, &s->old_int, NULL);

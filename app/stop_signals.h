@@ -16,14 +16,16 @@ typedef struct stop_signals {
 
 /* Catches SIGINT and SIGTERM from now on into the flag (not cleared: a signal during a
  * recording's frames still stops its preview after a second catch). second_ends: a second
- * signal ends the process at once (for work that polls seldom, such as fit's rungs). */
+ * signal ends the process at once (for work that polls seldom, such as fit's rungs), or at
+ * the release when it comes while held. */
 void stop_signals_catch(stop_signals *s, bool second_ends);
 /* The signal caught, or 0; and the flag back to 0. */
 int stop_signals_caught(void);
 void stop_signals_clear(void);
 /* The flag itself, for a library that polls a volatile (fit_desc.stop). */
 volatile sig_atomic_t *stop_signals_flag(void);
-/* SIGINT and SIGTERM held (delivered at release) around renames that must finish. */
+/* SIGINT and SIGTERM held (acted on at release) around writes and renames that must
+ * finish, whichever of the process's threads the kernel hands them to. */
 void stop_signals_hold(stop_signals *s);
 void stop_signals_release(stop_signals *s);
 /* The handlers as they were before stop_signals_catch. */
