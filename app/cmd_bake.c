@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "app/cli.h"
@@ -37,7 +38,8 @@ typedef struct bake_job {
 static int parse_bake_options(int argc, char **argv, bake_job *job) {
   const cli_option options[] = {
       {.kind = CLI_INT, .name = "--frames", .value = "N", .target = &job->frames, .min = 1,
-       .max = 9999999, .required = true, .help = "frames to bake, 1 to 9999999 (required)"},
+       .max = VDB_SEQUENCE_MAX_SPAN, .required = true,
+       .help = "frames to bake, 1 to 1048576, the most a sequence plays (required)"},
       {.kind = CLI_TEXT, .name = "--out", .value = "DIR", .target = &job->out,
        .required = true, .help = "the bake's folder (created if missing; required)"},
       {.kind = CLI_NUMBER, .name = "--fps", .value = "F", .target = &job->fps,
@@ -69,6 +71,22 @@ static void remove_frames(const char *pattern, int written) {
   char path[SCENE_CONFIG_PATH_MAX + 32];
   for (int n = 1; n <= written; n++)
     if (scene_config_sequence_path(pattern, n, path, sizeof path)) unlink(path);
+}
+
+/* The bake's targets (bake.ini and frames 1..frames) that exist must be files: a rename
+ * onto a folder fails, and it would fail half-way through moving the bake into place. */
+static int targets_are_files(const bake_job *job, const char *pattern, const char *ini) {
+  struct stat st;
+  if (lstat(ini, &st) == 0 && !S_ISREG(st.st_mode))
+    return !cli_fail("bake", "%s is not a file: expected the bake's bake.ini or nothing there",
+                     ini);
+  char path[SCENE_CONFIG_PATH_MAX + 32];
+  for (int n = 1; n <= job->frames; n++)
+    if (scene_config_sequence_path(pattern, n, path, sizeof path) && lstat(path, &st) == 0 &&
+        !S_ISREG(st.st_mode))
+      return !cli_fail("bake", "%s is not a file: expected frame %d of a bake or nothing "
+                       "there", path, n);
+  return 1;
 }
 
 /* Simulates frame after frame and writes each density; *written counts the files and
@@ -158,6 +176,10 @@ int cmd_bake(int argc, char **argv) {
   fog_error rerr = {0};
   if (out_folder_make(&folders, job.out, &rerr))
     return cli_fail("bake", "%s", rerr.message);
+  if (!targets_are_files(&job, pattern, ini)) { /* before the simulation, not after it */
+    out_folder_undo(&folders);
+    return 1;
+  }
   /* The frames go to DIR/.bake-staging.XXXXXX first (same file system: moved by rename). */
   char staging[SCENE_CONFIG_PATH_MAX], staged[SCENE_CONFIG_PATH_MAX + 32];
   snprintf(staging, sizeof staging, "%s/.bake-staging.XXXXXX", job.out);
@@ -197,9 +219,13 @@ int cmd_bake(int argc, char **argv) {
    * bake.ini goes first, so that until the new one is in the folder is no bake at all
    * rather than a mix of two; the new bake.ini last. */
   stop_signals_hold(&stop);
-  if (unlink(ini) != 0 && errno != ENOENT)
+  if (unlink(ini) != 0 && errno != ENOENT) {
     status = cli_fail("bake", "%s: cannot replace it: %s; the old bake is as it was", ini,
                       strerror(errno));
+    remove_frames(staged, written); /* the new one goes: nothing of it is in place */
+    unlink(staged_ini);
+    rmdir(staging);
+  }
   int moved = 0;
   for (int n = 1; !status && n <= job.frames; n++, moved++) {
     char from[SCENE_CONFIG_PATH_MAX + 32], to[SCENE_CONFIG_PATH_MAX + 32];

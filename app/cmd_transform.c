@@ -99,6 +99,14 @@ static int read_signed_exr(const char *path, int *w_out, int *h_out, float **pix
     snprintf(msg, msg_size, "%s: EXR decoding failed: %s", path, exr_get_default_error_message(rv));
     goto done;
   }
+  /* A coefficient NaN or infinite would come out of the inverse as a hole or a wall of
+   * fog (the final clamp makes NaN 0): a damaged file, refused naming the cell. */
+  for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+    if (!isfinite(out[i])) {
+      snprintf(msg, msg_size, "%s: value %g at x %zu, y %zu: expected finite coefficients",
+               path, out[i], i % (size_t)w, i / (size_t)w);
+      goto done;
+    }
   *w_out = w, *h_out = h, *pixels = out;
   out = NULL;
   status = 0;

@@ -270,8 +270,9 @@ typedef struct vdb_sequence {
  * Missing frames inside the range are listed, not an error here; two files whose names
  * number one frame are (the same file however spelt is one). Fails when nothing matches
  * (naming the input), and for more than 2^20 frames from the first to the last (the
- * range, or the frame numbers found). A printf pattern has one integer conversion and
- * otherwise only "%%" (else it is a file name or glob). */
+ * range, or the frame numbers found: VDB_SEQUENCE_MAX_SPAN). A printf pattern has one
+ * integer conversion and otherwise only "%%" (else it is a file name or glob). */
+enum { VDB_SEQUENCE_MAX_SPAN = 1 << 20 };
 int vdb_sequence_find(const char *const *inputs, int input_count, int first, int last,
                       vdb_sequence *out, fog_error *err);
 /* The run of '#' that stands for the frame number in a #### pattern: the last run in its

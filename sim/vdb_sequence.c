@@ -18,7 +18,7 @@
 /* At most this many frames from the first to the last (2^20: 12 hours at 24 fps): the
  * missing frames are listed one by one, and a glob matching unrelated files numbered 1
  * and 2000000000 asked for an 8 GB list (and overflowed int computing its size). */
-enum { max_span = 1 << 20 };
+enum { max_span = VDB_SEQUENCE_MAX_SPAN };
 
 /* The last run of digits in the file name (not the folders); -1 if none. */
 static long frame_of(const char *path, int *digits_start, int *digits_len) {

@@ -160,6 +160,25 @@ int main(void) {
   CHECK(test_folder_entries(bake) == entries, "the interrupted re-bake left %d files, had %d",
         test_folder_entries(bake), entries);
 
+  /* A bake whose bake.ini or a frame's name in the folder is a folder: refused before the
+   * simulation, naming it, and nothing of the new bake stays (it used to fail at the move:
+   * the whole bake was left in a hidden staging folder, or a folder without bake.ini). */
+  const char *const blockers[] = {"bake.ini", "fog.0002.exr"};
+  for (int b = 0; b < 2; b++) {
+    char blocked[700], blocker[800];
+    snprintf(blocked, sizeof blocked, "%s/blocked%d", root, b);
+    snprintf(blocker, sizeof blocker, "%s/%s", blocked, blockers[b]);
+    snprintf(command, sizeof command, "mkdir -p '%s'", blocker);
+    CHECK(system(command) == 0, "cannot make %s", blocker);
+    snprintf(command, sizeof command, "'%s' bake %s --frames 3 --out '%s'", record_bin(),
+             RECORD_TEST_CONFIG, blocked);
+    CHECK(run(command, log) == 1 && record_log_contains(log, "is not a file") &&
+              record_log_contains(log, blockers[b]),
+          "a bake onto a folder named %s was not refused naming it", blockers[b]);
+    CHECK(test_folder_entries(blocked) == 1, "the refused bake left %d entries in %s, had 1",
+          test_folder_entries(blocked), blocked);
+  }
+
   /* Nothing to bake: refused, no folder made. */
   char none[600];
   snprintf(none, sizeof none, "%s/none/deeper", root);

@@ -14,7 +14,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "sim/image_io.h" /* exr_read_channel: a detail file read as it is, signed */
 #include "sim/sim.h"
+#include "tests/sim/exr_unchecked_writer.h" /* NaN and infinity, as a damaged file */
 #include "test_util.h"
 
 static char tmp[256];
@@ -264,6 +266,29 @@ int main(void) {
   CHECK(fogmap_load(peak_out, NULL, &back, &lerr) == 0, "the inverse does not load: %s",
         lerr.message);
   fogmap_destroy(&back);
+
+  /* a coefficient file holding a NaN (or an infinity): refused naming the file and the
+   * cell, nothing written; the inverse made the NaN 0 (a hole in the fog), exit 0 */
+  const float bad_values[] = {NAN, INFINITY};
+  for (int b = 0; b < 2; b++) {
+    char detail[500], damaged_out[400];
+    snprintf(detail, sizeof detail, "%s/detail_1_x.exr", peak_dir);
+    snprintf(damaged_out, sizeof damaged_out, "%s/damaged_%d.exr", tmp, b);
+    int w = 0, h = 0;
+    float *values = NULL;
+    CHECK(exr_read_channel(detail, "Y", NULL, &w, &h, &values, &lerr) == 0, "%s: %s", detail,
+          lerr.message);
+    if (!values) break;
+    values[(size_t)w + 1] = bad_values[b]; /* x 1, y 1 */
+    CHECK(exr_write_unchecked(detail, "Y", w, h, values) == 0, "cannot write %s", detail);
+    free(values);
+    snprintf(args, sizeof args, "--inverse %s --out %s", peak_dir, damaged_out);
+    rc = run(args, err, sizeof err);
+    CHECK(rc != 0 && strstr(err, "detail_1_x.exr") && strstr(err, "x 1, y 1") &&
+              strstr(err, "finite"),
+          "an inverse of a coefficient %g (%d): %s", bad_values[b], rc, err);
+    CHECK(!exists(damaged_out), "output written by the inverse of a damaged folder");
+  }
 
   char cmd[400];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
