@@ -62,6 +62,25 @@ int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *w
     fogmap_destroy(&map);
     return 1;
   }
+  /* An EXR holds heights in metres as readily as in [0, 1]; the terrain clamps to [0, 1],
+   * which flattened every hill above 1 into a plateau without a word. */
+  size_t above = 0, count = (size_t)map.width * (size_t)map.height;
+  float largest = 0.0f;
+  for (size_t k = 0; k < count; k++) {
+    if (map.density[k] > 1.0f && !above) above = k + 1;
+    if (map.density[k] > largest) largest = map.density[k];
+  }
+  if (above) {
+    const size_t k = above - 1;
+    fog_fail(err, FOG_ERR_BAD_FILE,
+             "%.200s:%d: [terrain] heightmap: %s: pixel (%zu, %zu) is %g: expected heights "
+             "from 0 to 1, scaled by [terrain] height (the largest here is %g: divide the "
+             "map by it)",
+             cfg->path, cfg->terrain.heightmap_line, cfg->terrain.heightmap,
+             k % (size_t)map.width, k / (size_t)map.width, map.density[k], largest);
+    fogmap_destroy(&map);
+    return 1;
+  }
   *heights = map.density; /* ownership moves to the caller */
   *width = map.width;
   *height = map.height;
