@@ -121,9 +121,14 @@ int designed_fog_perlin(fogmap *map, const perlin_fog_desc *desc, fog_error *err
                     "Perlin fog: velocity, time and slice must be finite");
   perlin_noise noise;
   perlin_noise_init(&noise, d.seed);
-  /* Zdrojewska: the fog drifts by translating the noise domain, p - v t. */
-  double shift_x = (double)d.velocity[0] * d.time, shift_z = (double)d.velocity[1] * d.time;
-  double slice = (double)d.slice + (double)d.slice_rate * d.time;
+  /* Zdrojewska: the fog drifts by translating the noise domain, p - v t. The noise repeats
+   * every 256 lattice units on each axis (the permutation is indexed & 255, and octave o's
+   * 2^o · 256 is a multiple of 256), so the shift is taken modulo that period, exactly
+   * (fmod): a drift of 1e30 cells rounded x - v t to one value for every column. */
+  const double period = 256.0 * size;
+  double shift_x = fmod((double)d.velocity[0] * d.time, period);
+  double shift_z = fmod((double)d.velocity[1] * d.time, period);
+  double slice = fmod((double)d.slice + fmod((double)d.slice_rate * d.time, 256.0), 256.0);
   for (int z = 0; z < map->height; z++) {
     double pz = (z - shift_z) / size;
     float *row = map->density + (size_t)z * (size_t)map->width;

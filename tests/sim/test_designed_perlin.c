@@ -212,7 +212,40 @@ static void test_default_slice_off_lattice(void) {
   fogmap_destroy(&map);
 }
 
+/* A drift far past the noise's period (256 lattice units an axis) is the drift modulo it:
+ * 2^100 cells with feature size 16 (period 4096 = 2^12 cells) is no drift at all, bit for
+ * bit; and any long drift is still turbulence across a row (x - v t rounded to one value
+ * for every column, a map of constant rows). */
+static void test_long_drift(void) {
+  const int w = 40, h = 24;
+  fogmap still, far;
+  fog_error err;
+  CHECK(fogmap_create(&still, w, h, &err) == 0 && fogmap_create(&far, w, h, &err) == 0, "%s",
+        err.message);
+  perlin_fog_desc desc = perlin_fog_desc_default();
+  desc.feature_size = 16.0f;
+  CHECK(designed_fog_perlin(&still, &desc, &err) == 0, "%s", err.message);
+  desc.velocity[0] = 0x1p100f, desc.velocity[1] = -0x1p90f, desc.slice_rate = 0x1p80f;
+  desc.time = 1.0f;
+  CHECK(designed_fog_perlin(&far, &desc, &err) == 0, "%s", err.message);
+  CHECK(memcmp(still.density, far.density, sizeof(float) * (size_t)w * h) == 0,
+        "a drift of whole periods changed the fog");
+  desc.velocity[0] = 1e30f, desc.velocity[1] = 3e25f, desc.slice_rate = 0.0f;
+  CHECK(designed_fog_perlin(&far, &desc, &err) == 0, "%s", err.message);
+  int flat_rows = 0;
+  for (int z = 0; z < h; z++) {
+    float lo = far.density[z * w], hi = lo;
+    for (int x = 1; x < w; x++)
+      lo = fminf(lo, far.density[z * w + x]), hi = fmaxf(hi, far.density[z * w + x]);
+    if (hi - lo < 0.05f) flat_rows++;
+  }
+  CHECK(flat_rows == 0, "a drift of 1e30 cells: %d of %d rows flat", flat_rows, h);
+  fogmap_destroy(&still);
+  fogmap_destroy(&far);
+}
+
 int main(void) {
+  test_long_drift();
   test_permutation();
   test_reference_value();
   test_zero_on_lattice();
