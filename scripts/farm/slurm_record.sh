@@ -19,14 +19,16 @@ set -euo pipefail
 : "${FRAMES:?set FRAMES, the last frame of the shot}" "${CHUNK:=24}"
 task=${SLURM_ARRAY_TASK_ID:?not run as a Slurm array task (sbatch --array=0-N)}
 # Whole decimal numbers (bash reads 0240 as octal; 10# reads it as 240), FRAMES and CHUNK
-# at least 1: a task with nothing to do must not pass as a finished one.
+# at least 1: a task with nothing to do must not pass as a finished one. At most 7 digits
+# past leading zeros (record's frames end at 9999999): bash arithmetic wraps at 2^63, and
+# FRAMES=18446744073709551617 read as 1 finished "frames 1-1".
 for check in FRAMES:1 CHUNK:1 task:0; do
   name=${check%:*} min=${check#*:} value=${!name}
-  if [[ ! $value =~ ^[0-9]+$ ]] || ((10#$value < min)); then
-    echo "slurm_record.sh: $name='$value': expected a whole number from $min" >&2
+  if [[ ! $value =~ ^0*([0-9]{1,7})$ ]] || ((10#${BASH_REMATCH[1]} < min)); then
+    echo "slurm_record.sh: $name='$value': expected a whole number from $min to 9999999" >&2
     exit 2
   fi
-  printf -v "$name" '%d' "$((10#$value))"
+  printf -v "$name" '%d' "$((10#${BASH_REMATCH[1]}))"
 done
 first=$((task * CHUNK + 1))
 last=$(((task + 1) * CHUNK))

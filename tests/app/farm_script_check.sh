@@ -30,7 +30,7 @@ FOGPIPE=$bin CONFIG=configs/default.ini FRAMES=24 CHUNK=10 SIZE=64x36 OUT=$root/
 grep -q "already complete" "$root/requeue.log" || { cat "$root/requeue.log"; echo "FAIL: a requeued task re-rendered its frames"; exit 1; }
 [[ $(stat -c %Y "$root/farm/frame.0011.exr") == "$before" ]] || { echo "FAIL: frame 11 rewritten"; exit 1; }
 # Bad numbers are refused, not read as octal or as an empty shot that "finished".
-for bad in "FRAMES=0" "FRAMES=24x" "CHUNK=0"; do
+for bad in "FRAMES=0" "FRAMES=24x" "CHUNK=0" "FRAMES=18446744073709551617" "CHUNK=99999999999999999999"; do
   if env FOGPIPE=$bin CONFIG=configs/default.ini FRAMES=24 CHUNK=10 OUT=$root/bad "$bad" \
     SLURM_ARRAY_TASK_ID=0 bash scripts/farm/slurm_record.sh > "$root/bad.log" 2>&1; then
     echo "FAIL: $bad was accepted"; exit 1
