@@ -1542,6 +1542,14 @@ bool scene_config_has_fog(const scene_config *cfg) {
          cfg->fog.sequence[0];
 }
 
+bool scene_config_draws_density_scale(const scene_config *cfg) {
+  const char *keys = fog_model_table[cfg->fog.model].keys;
+  const size_t n = strlen("density_scale");
+  for (const char *k = strstr(keys, "density_scale"); k; k = strstr(k + 1, "density_scale"))
+    if ((k == keys || k[-1] == ' ') && (k[n] == ' ' || k[n] == '\0')) return true;
+  return false;
+}
+
 double scene_live_terrain_lod(double lod_error) {
   return lod_error > 0 ? fmax(2.0, 2.0 * lod_error) : 0.0;
 }

@@ -253,6 +253,11 @@ typedef struct scene_config {
 /* Whether the config has fog at all: a fogmap, a VDB sequence or an analytic model. */
 bool scene_config_has_fog(const scene_config *cfg);
 
+/* Whether [fog] density_scale changes what is drawn: the model reads it (its row's keys in
+ * render/fog_models.def; quadric lines beside a model come only with models that do). The
+ * window's density slider is shown only then: linear fog ignores it. */
+bool scene_config_draws_density_scale(const scene_config *cfg);
+
 /* Whether [section] key is a key configs may set. */
 bool scene_config_knows_key(const char *section, const char *key);
 

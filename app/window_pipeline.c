@@ -13,6 +13,7 @@
 #include "app/lamp_tool.h"
 #include "app/live_rung.h"
 #include "app/pipeline.h"
+#include "app/sun_hue.h"
 #include "app/window_program.h"
 #include "render/fog_field.h"
 
@@ -27,6 +28,7 @@ typedef struct demo_ui {
   bool has_bspline_profile; /* the pipeline's fog has one (a VDB's frames bring theirs) */
   lamp_tool lamps;     /* the mouse places, drags and removes lamps (app/lamp_tool.h) */
   bool lamps_animated; /* the config's lamps follow their paths: the tool is off */
+  float sun_hue[3];    /* the sun's last hue, kept while its strength is 0 (app/sun_hue.h) */
 } demo_ui;
 
 /* The pipeline's stage timings (the shell shows the frame rate and its plot). */
@@ -114,15 +116,18 @@ static bool panel_fog(panel *ui, pipeline_params *params, demo_ui *d) {
 /* The sun through the window program's section (pipeline_params hold it as the fog sees
  * it: radiance = SCENE_SUN_IRRADIANCE_PER_COLOUR x [light] sun_colour; the pipeline relights
  * the surfaces and the fog). */
-static bool panel_sunlight(panel *ui, pipeline_params *params) {
+static bool panel_sunlight(panel *ui, pipeline_params *params, float sun_hue[3]) {
   window_sunlight sun = {.azimuth = params->sun_azimuth, .elevation = params->sun_elevation,
                          .albedo = (float)params->sun.albedo,
                          .phase_g = (float)params->sun.phase_g,
+                         .hue = {sun_hue[0], sun_hue[1], sun_hue[2]},
                          .self_shadow = params->fog_self_shadow, .shafts = params->shafts};
   double colour[3];
   for (int c = 0; c < 3; c++) colour[c] = params->sun.radiance[c] / SCENE_SUN_IRRADIANCE_PER_COLOUR;
   window_sunlight_set_colour(&sun, colour);
-  if (!window_panel_sunlight(ui, &sun)) return false;
+  const bool changed = window_panel_sunlight(ui, &sun);
+  for (int c = 0; c < 3; c++) sun_hue[c] = sun.hue[c];
+  if (!changed) return false;
   params->sun_azimuth = sun.azimuth;
   params->sun_elevation = sun.elevation;
   params->sun.albedo = sun.albedo;
@@ -176,7 +181,7 @@ static void panel_contents(panel *ui, pipeline *pipe, demo_ui *d) {
   bool changed = panel_model(ui, pipe, &med, &params);
   changed |= panel_simulation(ui, pipe, &params);
   changed |= panel_fog(ui, &params, d);
-  changed |= panel_sunlight(ui, &params);
+  changed |= panel_sunlight(ui, &params, d->sun_hue);
   changed |= panel_wavelets(ui, &params);
   if (pipeline_lamps_dropped(pipe)) panel_text(ui, "%s", LAMP_TOOL_DROPPED_NOTE);
   lamp_tool_panel(ui, &d->lamps, params.lamps.count, d->lamps_animated, NULL);
@@ -331,7 +336,12 @@ int window_pipeline_source(window_source *src, gl_context *gl, scene_config *cfg
   const double scene_size = fmax(cfg->terrain.size[0], cfg->terrain.size[1]);
   s->ui = (demo_ui){.brush_strength = 3.0f, .render_scale = (float)scale,
                     .lamps = lamp_tool_for_scene(scene_size),
-                    .lamps_animated = scene_config_lamps_animated(cfg)};
+                    .lamps_animated = scene_config_lamps_animated(cfg),
+                    .sun_hue = {1.0f, 1.0f, 1.0f}};
+  const double sun_colour[3] = {cfg->light.sun_colour[0], cfg->light.sun_colour[1],
+                                cfg->light.sun_colour[2]};
+  float strength;
+  sun_hue_split(sun_colour, s->ui.sun_hue, &strength);
   int fb_w = 0, fb_h = 0;
   gl_context_framebuffer_size(gl, &fb_w, &fb_h);
   s->pipe = pipeline_create(&(pipeline_desc){.config = cfg,

@@ -8,6 +8,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include "app/sun_hue.h"
 #include "render/gl_present.h"
 #include "render/gl_util.h"
 #include "sim/sim.h"
@@ -78,14 +79,11 @@ bool window_panel_wavelets(panel *ui, window_wavelets *w) {
 }
 
 void window_sunlight_set_colour(window_sunlight *sun, const double colour[3]) {
-  sun->strength = 0.0f;
-  for (int c = 0; c < 3; c++) sun->strength = fmaxf(sun->strength, (float)colour[c]);
-  for (int c = 0; c < 3; c++)
-    sun->hue[c] = sun->strength > 0.0f ? (float)colour[c] / sun->strength : 1.0f;
+  sun_hue_split(colour, sun->hue, &sun->strength);
 }
 
 void window_sunlight_colour(const window_sunlight *sun, double colour[3]) {
-  for (int c = 0; c < 3; c++) colour[c] = (double)sun->hue[c] * sun->strength;
+  sun_hue_join(sun->hue, sun->strength, colour);
 }
 
 /* The panel's window: the frame rate and the frame times the loop measures, then the

@@ -76,7 +76,8 @@ typedef struct window_sunlight {
 /* The panel's "sunlight in the fog" section; true when the user changed a value. */
 bool window_panel_sunlight(panel *ui, window_sunlight *sun);
 /* [light] sun_colour (or a fog_sun's radiance over SCENE_SUN_IRRADIANCE_PER_COLOUR) as a
- * hue and a strength, and back. */
+ * hue and a strength, and back (app/sun_hue.h): set the hue to the source's last one
+ * first, which a colour of strength 0 keeps. */
 void window_sunlight_set_colour(window_sunlight *sun, const double colour[3]);
 void window_sunlight_colour(const window_sunlight *sun, double colour[3]);
 

@@ -21,6 +21,7 @@
 #include "app/render_fog.h"
 #include "app/render_frame.h"
 #include "app/vdb_source.h"
+#include "app/sun_hue.h"
 #include "app/window_program.h"
 #include "render/gl_present.h"
 #include "render/render.h"
@@ -333,6 +334,7 @@ typedef struct session_source {
   bool lamps_animated; /* [light] lamp_path or lamp_flicker: the lamps follow the clock */
   double clock_start;  /* glfwGetTime() at the start: scene time 0 (P does not reset it) */
   float density_range[2]; /* the density slider's: the config's value / 100 .. x 100 */
+  float sun_hue[3]; /* the sun's last hue, kept while its strength is 0 (app/sun_hue.h) */
   double render_scale;
   bool fixed_clock; /* --screenshot: time from the frame count */
   view_state v;
@@ -413,7 +415,9 @@ static void panel_fog(session_source *s, panel *ui) {
   }
   if (fog->model == FOG_MODEL_RBF)
     panel_text(ui, "B: the Gaussian brush (%s)", s->brush.on ? "on" : "off");
-  if (s->sel.shown < 0) { /* the config's own density (a rung has its fitted one) */
+  /* the config's own density (a rung has its fitted one), where it draws anything: linear
+   * fog reads fog_start and fog_end alone */
+  if (s->sel.shown < 0 && scene_config_draws_density_scale(s->cfg)) {
     float density = (float)fog->density_scale;
     if (panel_slider_float(ui, "density scale", &density, s->density_range[0],
                            s->density_range[1], "%.4g", true)) {
@@ -442,12 +446,15 @@ static void panel_sun(session_source *s, panel *ui) {
   window_sunlight sun = {.azimuth = (float)cfg->light.sun_azimuth,
                          .elevation = (float)cfg->light.sun_elevation,
                          .albedo = (float)cfg->fog.albedo, .phase_g = (float)cfg->fog.phase_g,
+                         .hue = {s->sun_hue[0], s->sun_hue[1], s->sun_hue[2]},
                          .self_shadow = cfg->shadow.fog_self_shadow,
                          .shafts = cfg->shadow.shafts};
   double colour[3];
   for (int c = 0; c < 3; c++) colour[c] = cfg->light.sun_colour[c];
   window_sunlight_set_colour(&sun, colour);
-  if (!window_panel_sunlight(ui, &sun)) return;
+  const bool changed = window_panel_sunlight(ui, &sun);
+  for (int c = 0; c < 3; c++) s->sun_hue[c] = sun.hue[c];
+  if (!changed) return;
   cfg->light.sun_azimuth = sun.azimuth;
   cfg->light.sun_elevation = sun.elevation;
   window_sunlight_colour(&sun, colour);
@@ -693,6 +700,11 @@ int window_session_source(window_source *src, gl_context *gl, const scene_config
   *s->cfg = *cfg;
   const float density = cfg->fog.density_scale > 0 ? (float)cfg->fog.density_scale : 0.01f;
   s->density_range[0] = density / 100.0f, s->density_range[1] = density * 100.0f;
+  const double sun_colour[3] = {cfg->light.sun_colour[0], cfg->light.sun_colour[1],
+                                cfg->light.sun_colour[2]};
+  float sun_strength;
+  s->sun_hue[0] = s->sun_hue[1] = s->sun_hue[2] = 1.0f;
+  sun_hue_split(sun_colour, s->sun_hue, &sun_strength);
   s->render_scale = opts->render_scale > 0 ? opts->render_scale : 0.5;
   s->fixed_clock = opts->screenshot != NULL;
   s->lamps_animated = scene_config_lamps_animated(cfg);
