@@ -9,4 +9,8 @@ double app_clock_seconds(void);
  * thread also waited for a core. */
 double app_thread_cpu_seconds(void);
 
+/* The median of n timings (n >= 1; for an even n the mean of the middle two), sorting
+ * values in place: one definition for the pipeline, fit and the benchmarks. */
+double app_median(double *values, int n);
+
 #endif

@@ -198,10 +198,13 @@ static int sequence_frames(const fit_options *o, const scene_config *cfg, int **
 /* Each rung's error (the one --by chose by) against its time. */
 static int write_chart(const fit_result *r, bool by_mean, const char *png) {
   chart_point points[FIT_MAX_RUNGS];
-  for (int i = 0; i < r->count; i++)
-    points[i] = (chart_point){
-        .series = r->rungs[i].family, .x = r->rungs[i].ms,
-        .y = fmax(by_mean ? r->rungs[i].mean_error : r->rungs[i].max_error, 1e-4)};
+  int count = 0;
+  for (int i = 0; i < r->count; i++) {
+    const double error = by_mean ? r->rungs[i].mean_error : r->rungs[i].max_error;
+    if (isnan(error)) continue; /* a rung that measured nothing (fmax would draw it exact) */
+    points[count++] = (chart_point){.series = r->rungs[i].family, .x = r->rungs[i].ms,
+                                    .y = fmax(error, 1e-4)};
+  }
   char csv[PATH_MAX], error[512];
   snprintf(csv, sizeof csv, "%.*s.csv", (int)(strlen(png) - 4), png);
   chart_desc desc = {.title = "fogpipe fit: each rung's error against its GL time",
@@ -209,8 +212,10 @@ static int write_chart(const fit_result *r, bool by_mean, const char *png) {
                      .y_label = by_mean ? "mean |delta tau| (an exact rung at 1e-4)"
                                         : "max |delta tau| (an exact rung at 1e-4)",
                      .log_y = true};
-  if (chart_write(&desc, points, r->count, csv, png, error, sizeof error))
+  if (chart_write(&desc, points, count, csv, png, error, sizeof error)) {
+    remove(csv); /* written before gnuplot ran: a failed run leaves none of its outputs */
     return cli_fail("fit", "%s", error);
+  }
   return 0;
 }
 

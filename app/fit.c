@@ -97,11 +97,6 @@ static bool fit_domain(const fog_model *m, const scene_config *cfg, double lo[3]
   return true;
 }
 
-static int compare_doubles(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 /* The volume from its file (and a session only when it is to be timed); any other model
  * from a session. */
 static int rung_model_create(held_model *m, const scene_config *cfg, const fit_desc *d, bool timed,
@@ -144,8 +139,7 @@ static int time_session(render_session *s, const fit_desc *d, float *pixels, dou
     }
     if (i >= 0) times[i] = 1e3 * (app_clock_seconds() - t0);
   }
-  qsort(times, (size_t)n, sizeof times[0], compare_doubles);
-  *ms = times[n / 2];
+  *ms = app_median(times, n);
   return 0;
 }
 
@@ -309,9 +303,12 @@ int fit_run(const fit_desc *d, fit_result *r, fog_error *err) {
     if (fog_model_about_eye(&sampled))
       memcpy(sampled.eye, input_camera.position, sizeof sampled.eye);
     if (fit_samples_create(f ? &one : &samples, &sampled, r->lo, r->hi, d->sample_side,
-                           err) ||
-        fit_views_create(&views[f], &refs[f].model, r->lo, r->hi, d->rays_per_side, err))
+                           err))
       goto done;
+    if (fit_views_create(&views[f], &refs[f].model, r->lo, r->hi, d->rays_per_side, err)) {
+      if (f) fit_samples_destroy(&one); /* frame 0's are samples, freed at done */
+      goto done;
+    }
     if (f) {
       size_t n = (size_t)one.n[0] * one.n[1] * one.n[2];
       for (size_t i = 0; i < n; i++) samples.k[i] += one.k[i];

@@ -58,17 +58,11 @@ static void timing_push(timing_ring *ring, const pipeline_timings *t) {
   if (ring->count < PIPELINE_TIMING_WINDOW) ring->count++;
 }
 
-static int compare_doubles(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 static double median_of(const double *values, int n) {
   if (n == 0) return 0.0;
   double sorted[PIPELINE_TIMING_WINDOW];
   memcpy(sorted, values, (size_t)n * sizeof *values);
-  qsort(sorted, (size_t)n, sizeof *sorted, compare_doubles);
-  return n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  return app_median(sorted, n);
 }
 
 static double now_ms(void) { return 1e3 * app_clock_seconds(); }

@@ -49,16 +49,6 @@ int cmd_bench(int argc, char **argv) {
 }
 
 
-static int compare_doubles(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-double bench_median(double *values, int n) {
-  qsort(values, (size_t)n, sizeof *values, compare_doubles);
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 void bench_print_build(void) {
   printf("build: %s, %s, gcc %d.%d\n", FOGPIPE_BUILD_TYPE,
          FOGPIPE_NATIVE_BUILD ? "-march=native" : "portable (no -march=native)",
@@ -255,7 +245,7 @@ int bench_time_rows(const bench_timed_rows *t, fog_error *err) {
     }
   for (int i = 0; i < t->count && !status; i++)
     *(double *)((char *)t->ms + (size_t)i * t->ms_stride) =
-        1e3 * bench_median(seconds + (size_t)i * t->frames, t->frames);
+        1e3 * app_median(seconds + (size_t)i * t->frames, t->frames);
   free(seconds);
   return status;
 }

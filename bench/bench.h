@@ -30,8 +30,6 @@ static inline void bench_error_pixel(int i, int j, int stride, int width, int he
   *py = j * stride + dy < height ? j * stride + dy : height - 1;
 }
 
-/* Median of n values (sorts the array in place). */
-double bench_median(double *values, int n);
 /* Prints one line naming the build measured (type, -march=native or portable, compiler). */
 void bench_print_build(void);
 /* The build's line, then the GL's: "GL: platform, version, renderer; WxH, median of N frames

@@ -477,8 +477,8 @@ int bench_import(int argc, char **argv) {
     vdb_sequence_destroy(&seq);
     return 1;
   }
-  const double read_median = bench_median(read_ms, n * runs);
-  const double frame_median = bench_median(frame_ms, n * runs);
+  const double read_median = app_median(read_ms, n * runs);
+  const double frame_median = app_median(frame_ms, n * runs);
   printf("\nimport of %s: %d frames x %d runs (after a warm-up), 64x64x16 half-float BLOSC\n",
          pattern, n, runs);
   printf("%-44s %10s\n", "stage", "median ms");
@@ -586,7 +586,7 @@ int bench_import(int argc, char **argv) {
   double ours_median = NAN;
   printf("%-52s %10s\n", "fogpipe preview (median of runs)", "ms");
   if (gl_ok) {
-    ours_median = bench_median(warm, preview_runs);
+    ours_median = app_median(warm, preview_runs);
     const char *const part_names[parts_count] = {
         "  import + project + profile (vdb_frame_load)", "  wavelet transform (linear, 3 levels)",
         "  upload + scene pass (GL, terrain + sky)",
@@ -594,33 +594,33 @@ int bench_import(int argc, char **argv) {
               : "  fog pass (GL, exact integral per pixel)",
         "  readback (RGBA32F)", "  PNG write"};
     for (int k = 0; k < parts_count; k++)
-      printf("%-52s %10.2f\n", part_names[k], 1e3 * bench_median(parts[k], preview_runs));
+      printf("%-52s %10.2f\n", part_names[k], 1e3 * app_median(parts[k], preview_runs));
     printf("%-52s %10.2f\n", "  total, warm (context + shaders made before)", 1e3 * ours_median);
     printf("%-52s %10.2f\n", "  first frame, cold (context + shader JIT included)", 1e3 * cold);
     if (other_ok)
       printf("%-52s %10.2f\n",
              march ? "  total, warm, with the exact fog pass instead"
                    : "  total, warm, with the 64-step ray-march fog pass",
-             1e3 * bench_median(other, preview_runs));
+             1e3 * app_median(other, preview_runs));
   }
   double cpu_median = NAN;
   if (cpu_ok) {
-    cpu_median = bench_median(cpu_total, preview_runs);
+    cpu_median = app_median(cpu_total, preview_runs);
     printf("%-52s %10.2f\n", "for comparison: this bench's CPU march of f*g, total",
            1e3 * cpu_median);
     printf("%-52s %10.2f\n", "  of which the march (2 threads, half-cell steps)",
-           1e3 * bench_median(cpu_render_s, preview_runs));
+           1e3 * app_median(cpu_render_s, preview_runs));
   }
   double speedup = NAN;
   if (theirs_ok) {
-    const double theirs_median = bench_median(theirs, preview_runs);
+    const double theirs_median = app_median(theirs, preview_runs);
     printf("%-52s %10.2f\n", "vdb_render (whole command, lit ray march, PNG)", 1e3 * theirs_median);
     if (gl_ok) {
       speedup = theirs_median / ours_median;
       printf("speedup vs vdb_render: %.1fx warm, %.1fx cold (GL fog pass, %s: the summary's B);\n"
              "  with the %s fog pass: %.1fx; with the CPU march of f*g: %.1fx\n",
              speedup, theirs_median / cold, march ? "ray march" : "exact",
-             march ? "exact" : "ray-march", other_ok ? theirs_median / bench_median(other, preview_runs) : NAN,
+             march ? "exact" : "ray-march", other_ok ? theirs_median / app_median(other, preview_runs) : NAN,
              theirs_median / cpu_median);
     } else {
       speedup = theirs_median / cpu_median;

@@ -132,7 +132,7 @@ static int scene_create(light_scene *s, const char *name, int W, int H, fog_erro
       if (fog_sun_shadow_compute(&s->volumes[r], &s->model, sun, 2, err)) return 1;
       if (k >= 0) runs[k] = 1e3 * (app_clock_seconds() - t0);
     }
-    s->volume_ms[r] = bench_median(runs, VOLUME_RUNS);
+    s->volume_ms[r] = app_median(runs, VOLUME_RUNS);
   }
   const int n = FOG_BENCH_LIGHT_VOLUME;
   return fog_sun_shadow_create(&s->converged, &(fog_sun_shadow_desc){.across = n, .along = n},

@@ -321,7 +321,7 @@ static int shadow_rows(lights_scene *s, const lights_row *plain, int W, int H, i
     fog_pass_finish();
     times[f] = app_clock_seconds() - t0;
   }
-  const double cube_ms = 1e3 * bench_median(times, frames);
+  const double cube_ms = 1e3 * app_median(times, frames);
   failed = failed || scene_pass_set_lamps(s->drawn.pass, &s->lamps, err);
   const lamp_shadow_maps *maps = scene_pass_lamp_shadows(s->drawn.pass);
   /* the fog pass with the cubes, then without, against the shadowed reference */
@@ -338,7 +338,7 @@ static int shadow_rows(lights_scene *s, const lights_row *plain, int W, int H, i
       fog_pass_finish();
       times[f] = app_clock_seconds() - t0;
     }
-    r->ms = 1e3 * bench_median(times, frames);
+    r->ms = 1e3 * app_median(times, frames);
   }
   s->fog.lamp_shadows = NULL;
   s->reference = unshadowed, s->peak = peak;

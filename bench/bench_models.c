@@ -265,7 +265,7 @@ static int rbf_scale_rows(fog_pass *pass, const render_scene *sc, gl_target *tar
       rows[r].full_stride = full_stride;
       fog_rbf_tiles_destroy(&tiles);
     }
-  for (int r = 0; r < count; r++) rows[r].ms = 1e3 * bench_median(times + r * frames, frames);
+  for (int r = 0; r < count; r++) rows[r].ms = 1e3 * app_median(times + r * frames, frames);
   free(times);
   return 0;
 }

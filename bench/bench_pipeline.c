@@ -67,7 +67,7 @@ static int record_frame(pipeline *p, const camera *still, bool moving, samples *
 
 static pipeline_timings medians(samples *s) {
   double medians[PIPELINE_TIMING_FIELDS];
-  for (int k = 0; k < PIPELINE_TIMING_FIELDS; k++) medians[k] = bench_median(s->stage[k], s->n);
+  for (int k = 0; k < PIPELINE_TIMING_FIELDS; k++) medians[k] = app_median(s->stage[k], s->n);
   return pipeline_timings_from_array(medians);
 }
 

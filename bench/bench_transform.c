@@ -75,7 +75,7 @@ static double time_transform(int n, int levels, transform_basis basis, int threa
     if (r >= 0) t[r] = dt;
   }
   transform_plan_destroy(plan);
-  return 1e3 * bench_median(t, reps);
+  return 1e3 * app_median(t, reps);
 }
 
 /* Keeps both cores busy with two-thread transforms for `seconds` before anything is
@@ -104,7 +104,7 @@ static double time_memcpy(int n, const float *in, float *out) {
     double dt = app_clock_seconds() - t0;
     if (r >= 0) t[r] = dt;
   }
-  return 1e3 * bench_median(t, reps);
+  return 1e3 * app_median(t, reps);
 }
 
 /* The bandwidth figure's two timings, interleaved: one fused level (1-level forward,
@@ -133,8 +133,8 @@ static void time_fused_vs_memcpy(int n, const float *in, float *coef, float *out
     if (r >= 0) tf[r] = t1 - t0, tc[r] = t2 - t1;
   }
   transform_plan_destroy(plan);
-  *fused_ms = 1e3 * bench_median(tf, PAIRS);
-  *copy_ms = 1e3 * bench_median(tc, PAIRS);
+  *fused_ms = 1e3 * app_median(tf, PAIRS);
+  *copy_ms = 1e3 * app_median(tc, PAIRS);
 }
 
 static double time_gsl(int n, const float *in) {
@@ -153,7 +153,7 @@ static double time_gsl(int n, const float *in) {
   free(data);
   gsl_wavelet_workspace_free(work);
   gsl_wavelet_free(w);
-  return 1e3 * bench_median(t, reps);
+  return 1e3 * app_median(t, reps);
 }
 
 /* PyWavelets wavedec2(bior2.2, level 3, float32), timed inside python on the same data

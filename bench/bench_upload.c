@@ -106,8 +106,8 @@ int bench_time_uploads(const fog_lod *lod, int rounds, bench_upload_timing *out,
     double t2 = app_clock_seconds();
     if (r >= 0) direct[r] = t1 - t0, staged[r] = t2 - t1;
   }
-  out->direct_ms = 1e3 * bench_median(direct, rounds);
-  out->staged_ms = 1e3 * bench_median(staged, rounds);
+  out->direct_ms = 1e3 * app_median(direct, rounds);
+  out->staged_ms = 1e3 * app_median(staged, rounds);
   out->bytes = total;
   out->textures = count;
   status = gl_util_check("bench upload", err);

@@ -111,6 +111,23 @@ int main(void) {
     rmdir(csv3);
   }
   {
+    /* the chart failing at gnuplot's output (a folder where its temporary PNG goes): exit 1,
+     * and neither the scene nor the chart's CSV (written before gnuplot ran, it was left) */
+    char scene5[256], chart5[256], csv5[256], temp5[256];
+    snprintf(scene5, sizeof scene5, "%s/late.ini", dir);
+    snprintf(chart5, sizeof chart5, "%s/late.png", dir);
+    snprintf(csv5, sizeof csv5, "%s/late.csv", dir);
+    snprintf(temp5, sizeof temp5, "%s/late.png.tmp", dir);
+    CHECK(mkdir(temp5, 0755) == 0, "mkdir %s", temp5);
+    snprintf(args, sizeof args, "'%s' --tolerance 0.01 --out '%s' --chart '%s' %s", ini,
+             scene5, chart5, fast);
+    status = fit(bin, args, out, err, sizeof out);
+    CHECK(status != 0 && !exists(scene5) && !exists(chart5) && !exists(csv5),
+          "a chart that failed at gnuplot: exit %d, scene %d, chart %d, CSV %d; stderr %s",
+          status, exists(scene5), exists(chart5), exists(csv5), err);
+    rmdir(temp5);
+  }
+  {
     /* a folder where a projected rung's fogmap goes beside --out (OUT.fogmap.exr): refused
      * before the fit, naming it (it was found after the whole fit, the chart left behind) */
     char blocked_out[256], blocked_map[256], chart4[256];
