@@ -423,7 +423,7 @@ double fog_lamp_inscatter_unit(const fog_model *m, const fog_lamp *lamp,
     return lamp_unit_fogshop(m, lamp, method, g, o, d, t0, t1);
   if (method->integral == FOG_LAMP_MARCH)
     return lamp_unit_march(m, lamp, method, g, o, d, t0, t1, NULL);
-  if (!exact_depths(m))
+  if (!exact_depths(m) && !fog_model_about_eye(m)) /* the classic factors: their own */
     depth_table(m, o, d, t0, (t1 - t0) / method->depth_steps, method->depth_steps, table);
   return lamp_unit(m, lamp, method, g, o, d, t0, t1, table, false, NULL);
 }
@@ -437,7 +437,7 @@ void fog_lamps_inscatter_shadowed(const fog_model *m, const fog_lamps *lamps, do
   if (lamps->count == 0 || !(albedo > 0.0) || !fog_light_span(m, o, d, t_surface, &t0, &t1))
     return;
   const fog_lamp_method *method = &lamps->method;
-  if (!exact_depths(m))
+  if (!exact_depths(m) && !fog_model_about_eye(m)) /* the classic factors: their own */
     depth_table(m, o, d, t0, (t1 - t0) / method->depth_steps, method->depth_steps, table);
   const bool fogshop = method->integral == FOG_LAMP_FOGSHOP && m->kind == FOG_MODEL_RBF;
   for (int i = 0; i < lamps->count; i++) {

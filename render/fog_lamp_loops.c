@@ -150,7 +150,8 @@ double fog_pass_lamp_loop_bound(const fog_pass_params *p) {
   switch (m->integral) {
   case FOG_LAMP_ANGLE:
     per_lamp = pieces * piece + 1 + EXIT_PASS_SITES + cone_loops;
-    if (!exact) table = m->depth_steps + 1 + m->depth_steps * point;
+    if (!exact && p->model != FOG_MODEL_LINEAR && p->model != FOG_MODEL_EXP2) /* their factor */
+      table = m->depth_steps + 1 + m->depth_steps * point;
     break;
   case FOG_LAMP_FOGSHOP: /* the base's angle integral (both depths), then every Gaussian */
     per_lamp = pieces * (1 + 5 + 4 * 2 * segment) + 1 + cone_loops +

@@ -404,7 +404,9 @@ float fog_lamp_march(int i, fog_ray r, float t0, float t1) {
 vec3 fog_lamps_light(fog_ray r) {
   float t0, t1;
   if (fog_lamp_count == 0 || !fog_light_span(r, t0, t1)) return vec3(0.0);
-#if !FOG_LAMP_EXACT_DEPTH && FOG_LAMP_INTEGRAL == 0
+// the table of depth from the camera; not for the classic factors (their closed form)
+#if !FOG_LAMP_EXACT_DEPTH && FOG_LAMP_INTEGRAL == 0 && FOG_MODEL_KIND != FOG_MODEL_LINEAR && \
+    FOG_MODEL_KIND != FOG_MODEL_EXP2
   int steps = fog_lamp_depth_steps;
   float dt = (t1 - t0) / float(steps);
   fog_lamp_table[0] = 0.0;
