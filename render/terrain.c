@@ -20,17 +20,23 @@ static uint32_t hash32(uint32_t x) {
   return x;
 }
 
-static double lattice(int32_t x, int32_t z, uint32_t seed) {
-  uint32_t h = hash32((uint32_t)x * 0x9E3779B1U ^ hash32((uint32_t)z + seed * 0x85EBCA77U));
+static double lattice(uint32_t x, uint32_t z, uint32_t seed) {
+  uint32_t h = hash32(x * 0x9E3779B1U ^ hash32(z + seed * 0x85EBCA77U));
   return (h >> 8) * (1.0 / 16777216.0);
 }
+
+/* The lattice index of a coordinate modulo 2^32, the hash's word (the same bits as an int32
+ * index where one fits): a cast to int32 overflowed once frequency x 2^(octaves - 1) passed
+ * 2^31 (1e6 and 16 octaves are allowed), undefined behaviour. The coordinate stays below
+ * 2^35 there, well inside int64. */
+static uint32_t lattice_index(double floored) { return (uint32_t)(int64_t)floored; }
 
 /* Quintic fade (Perlin 2002, "Improving noise"): C2-continuous value noise. */
 static double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 
 static double value_noise(double x, double z, uint32_t seed) {
   double fx = floor(x), fz = floor(z);
-  int32_t ix = (int32_t)fx, iz = (int32_t)fz;
+  uint32_t ix = lattice_index(fx), iz = lattice_index(fz);
   double u = fade(x - fx), v = fade(z - fz);
   double a = lattice(ix, iz, seed), b = lattice(ix + 1, iz, seed);
   double c = lattice(ix, iz + 1, seed), d = lattice(ix + 1, iz + 1, seed);

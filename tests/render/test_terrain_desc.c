@@ -48,5 +48,21 @@ int main(void) {
   expect_refused(d, "frequency", "frequency 0");
   d = hills, d.persistence = 0;
   expect_refused(d, "persistence", "persistence 0");
+  /* the finest noise the config allows (frequency 1e6, 16 octaves: lattice indices past
+   * 2^31, which overflowed an int32 cast; the sanitizer pass catches the cast): heights
+   * finite in [0, 1], varying */
+  terrain_desc finest = hills;
+  finest.frequency = 1e6, finest.octaves = 16, finest.resolution = 33;
+  CHECK(terrain_create(&t, &finest, &err) == 0, "the finest terrain: %s", err.message);
+  float lo = 1.0f, hi = 0.0f;
+  int bad = 0;
+  for (int k = 0; k < 33 * 33; k++) {
+    const float h = t.h[k];
+    if (!(h >= 0.0f && h <= 1.0f)) bad++;
+    lo = h < lo ? h : lo, hi = h > hi ? h : hi;
+  }
+  CHECK(bad == 0 && hi - lo > 0.1f, "the finest terrain: %d heights outside [0, 1], range %g",
+        bad, hi - lo);
+  terrain_destroy(&t);
   return test_finish("test_terrain_desc");
 }
