@@ -9,6 +9,7 @@
 #include "app/cli.h"
 #include "app/cli_options.h"
 #include "app/commands.h"
+#include "app/stop_signals.h"
 #include "sim/designed_fog.h"
 #include "sim/fogmap.h"
 
@@ -208,9 +209,21 @@ int cmd_design(int argc, char **argv) {
   int parsed = parse_design_options(argc, argv, &o);
   if (parsed) return parsed == CLI_HELP ? 0 : parsed;
   const int png = cli_ends_with(o.out, ".png");
+  /* Ctrl-C or SIGTERM while designing: nothing written, exit 130 (a second one ends it at
+   * once); held while the file is written, so that it is whole (a signal there left
+   * .OUT.tmp.XXXXXX, 64 MB at 4096x4096, that no later run removes) */
+  stop_signals stop;
+  stop_signals_clear();
+  stop_signals_catch(&stop, true);
   fog_error err;
   fogmap map = {0};
   int status = design_fogmap(&o, &map, &err);
+  if (!status && stop_signals_caught()) {
+    fprintf(stderr, "fogpipe design: interrupted: nothing written\n");
+    stop_signals_restore(&stop);
+    fogmap_destroy(&map);
+    return 130;
+  }
   float max = status ? 0.0f : fogmap_max_density(&map);
   /* What fogmap_load refuses (render, transform, record) is not written: a peak of 1e30
    * would make a file no other command reads. */
@@ -245,13 +258,16 @@ int cmd_design(int argc, char **argv) {
               zeroed, (double)max);
   }
   if (!status) {
+    stop_signals_hold(&stop);
     if (png) {
       status = fogmap_save_png16(o.out, &map, (float)o.png_max, &err);
     } else {
       image_channel y = {.name = "Y", .pixels = map.density, .as_half = o.half};
       status = image_write_exr(o.out, map.width, map.height, &y, 1, &err);
     }
+    stop_signals_release(&stop); /* one held now only sets the flag: the file is whole */
   }
+  stop_signals_restore(&stop);
   if (status) {
     fprintf(stderr, "fogpipe design: %s\n", err.message);
   } else {

@@ -414,7 +414,9 @@ static int read_into(const char *dir, const char *name, int w, int h, float *dst
   return 0;
 }
 
-static int run_inverse(const char *dir, const char *out, int threads) {
+/* stop: caught by the caller (Ctrl-C or SIGTERM while reading and inverting: nothing
+ * written, exit 130; held while the map is written, so that it is whole) */
+static int run_inverse(const char *dir, const char *out, int threads, stop_signals *stop) {
   transform_desc desc;
   char msg[8448];
   if (read_manifest(dir, &desc, msg, sizeof msg)) return cli_fail("transform", "%s", msg);
@@ -458,7 +460,15 @@ static int run_inverse(const char *dir, const char *out, int threads) {
     if (!(map.density[i] > 0.0f)) map.density[i] = 0.0f;
     if (map.density[i] > FOGMAP_MAX_DENSITY) map.density[i] = FOGMAP_MAX_DENSITY;
   }
-  if (fogmap_save_exr(out, &map, &serr)) {
+  if (stop_signals_caught()) {
+    fprintf(stderr, "fogpipe transform: interrupted: nothing written\n");
+    status = 130;
+    goto done;
+  }
+  stop_signals_hold(stop);
+  const int failed = fogmap_save_exr(out, &map, &serr);
+  stop_signals_release(stop); /* one held now only sets the flag: the file is whole */
+  if (failed) {
     cli_fail("transform", "%s", serr.message);
     goto done;
   }
@@ -532,7 +542,12 @@ int cmd_transform(int argc, char **argv) {
       return cli_usage_error("transform", "--out '%s': --inverse writes an EXR file: expected "
                              "a name ending in .exr", out);
     if (cli_output_file("transform", "--out", out)) return 2;
-    return run_inverse(inverse, out, desc.threads);
+    stop_signals stop;
+    stop_signals_clear();
+    stop_signals_catch(&stop, true);
+    const int status = run_inverse(inverse, out, desc.threads, &stop);
+    stop_signals_restore(&stop);
+    return status;
   }
   if (!in) return cli_usage_error("transform", "no input fogmap given");
   if (desc.levels < 0) return cli_usage_error("transform", "--levels is required");

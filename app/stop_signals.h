@@ -1,5 +1,5 @@
 /* Ctrl-C and SIGTERM while a command writes its outputs (record, bake, fit, transform,
- * import, render): caught into a flag the command polls between units of work, so that it
+ * import, render, design): caught into a flag the command polls between units of work, so that it
  * can remove what it half-made and exit 130 instead of dying with a staging folder or a
  * partial file left.
  * A signal the parent set to be ignored (nohup, a farm's scheduler) stays ignored. */

@@ -3,9 +3,11 @@
 #ifndef FOGPIPE_TEST_CHILD_UTIL_H
 #define FOGPIPE_TEST_CHILD_UTIL_H
 
+#include <dirent.h>
 #include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -44,6 +46,28 @@ static inline bool child_wait_for(pid_t pid, const char *log, const char *text,
     nanosleep(&(struct timespec){.tv_nsec = 1000000}, NULL);
   }
   return false;
+}
+
+/* Whether folder holds a file whose name starts with prefix. */
+static inline bool child_folder_has(const char *folder, const char *prefix) {
+  DIR *d = opendir(folder);
+  bool found = false;
+  for (struct dirent *e; d && !found && (e = readdir(d));)
+    found = !strncmp(e->d_name, prefix, strlen(prefix));
+  if (d) closedir(d);
+  return found;
+}
+
+/* Whether the process catches SIGTERM (its SigCgt mask in /proc), i.e. past its set-up. */
+static inline bool child_catches_term(pid_t pid) {
+  char path[64], line[256];
+  snprintf(path, sizeof path, "/proc/%d/status", (int)pid);
+  FILE *f = fopen(path, "r");
+  unsigned long long mask = 0;
+  while (f && fgets(line, sizeof line, f))
+    if (!strncmp(line, "SigCgt:", 7)) mask = strtoull(line + 7, NULL, 16);
+  if (f) fclose(f);
+  return mask & (1ULL << (SIGTERM - 1));
 }
 
 /* The exit code of a waitpid status, -1 when the child was killed by a signal. */
