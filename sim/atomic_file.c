@@ -1,7 +1,7 @@
 /* Atomic output files: write a temporary beside the target, rename when complete, so a
  * reader, a killed process or a full disk never leaves a half-written image at the target.
- * Not a power cut: nothing is fsynced before the rename (a frame a sync would cost more
- * than it is worth; the file system may then keep the name with data not yet on disk). */
+ * Not a power cut: nothing is fsynced before the rename (a sync a frame costs more than
+ * it is worth here; after a power cut the name may hold data never written to disk). */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <stdarg.h>
