@@ -307,13 +307,24 @@ double fog_piece_light(int n, const double w[FOG_PIECE_MAX_NODES],
                        const double partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES], double h,
                        const double K[FOG_PIECE_MAX_NODES], const double f[FOG_PIECE_MAX_NODES],
                        double *depth) {
-  double S = 0.0, piece = 0.0;
+  /* The piece's share of the ray's light is e^{-D}(1 - e^{-dD}) exactly, dD its Gauss
+   * depth, times the mean of f weighted by tau K at its nodes: the shares telescope to
+   * 1 - e^{-D}, so a ray lit throughout (f = 1) has a mean of exactly 1 however thick its
+   * pieces, as the segments' weights give. Gauss on tau K itself missed once a piece was
+   * optically thick (tau falls across it): a dense volume's lit mean was 0.07 to 1.37. A
+   * negative K (ringing) weighs nothing in the mean, as in the segments'. */
+  double piece = 0.0, weight = 0.0, weighted = 0.0, plain = 0.0;
   for (int j = 0; j < n; j++) {
     double dj = 0.0;
     for (int q = 0; q < n; q++) dj += partial[j][q] * K[q];
-    S += h * w[j] * K[j] * exp(-(*depth + h * dj)) * f[j];
+    const double wk = w[j] * fmax(K[j], 0.0) * exp(-h * dj);
+    weight += wk;
+    weighted += wk * f[j];
+    plain += w[j] * f[j];
     piece += h * w[j] * K[j];
   }
+  const double mean = weight > 0.0 ? weighted / weight : 0.5 * plain; /* weights sum to 2 */
+  const double S = exp(-*depth) * -expm1(-piece) * mean;
   *depth += piece;
   return S;
 }

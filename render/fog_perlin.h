@@ -102,8 +102,9 @@ typedef double (*fog_point_light_fn)(const void *user, const double x[3]);
 void fog_gauss_rule(int n, double x[FOG_PIECE_MAX_NODES], double w[FOG_PIECE_MAX_NODES],
                     double partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES]);
 /* One piece of a per-piece light walk (fog_gauss_rule's n nodes, half-length h, K[j] and the
- * light f[j] at the nodes): returns int tau K f over the piece, tau at node j e^{-(*depth +
- * h sum_q partial[j][q] K[q])}, and adds the piece's depth (the nodes' sum) to *depth. */
+ * light f[j] at the nodes): returns int tau K f over the piece as e^{-*depth}(1 - e^{-dD})
+ * times f's mean weighted by tau K at the nodes (tau at node j e^{-h sum_q partial[j][q]
+ * K[q]} within the piece), and adds the piece's depth dD (the nodes' sum) to *depth. */
 double fog_piece_light(int n, const double w[FOG_PIECE_MAX_NODES],
                        const double partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES], double h,
                        const double K[FOG_PIECE_MAX_NODES], const double f[FOG_PIECE_MAX_NODES],

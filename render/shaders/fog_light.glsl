@@ -253,19 +253,26 @@ uniform float fog_piece_x[4], fog_piece_w[4];
 uniform mat4 fog_piece_partial;
 
 // One piece of a per-piece mean (fog_piece_light in C): K at the piece's fog_piece_nodes
-// Gauss nodes, its half-length h and centre `at` along dir; tau at node j from the running
-// depth D plus the partial integral of K's polynomial through the nodes (fog_piece_partial).
-// Adds the piece's tau K T_s V to S and returns its optical depth.
+// Gauss nodes, its half-length h and centre `at` along dir. The piece's share of the light
+// is e^{-D}(1 - e^{-dD}) exactly, dD its Gauss depth, times T_s V's mean weighted by tau K at
+// the nodes (tau from the partial integral of K's polynomial, fog_piece_partial; a negative
+// K weighs nothing): a ray lit throughout has a mean of 1 however thick its pieces. Adds
+// the share to S and returns dD.
 float fog_piece_light(float K[4], float h, float at, vec3 dir, float D, inout float S) {
-  float piece = 0.0;
+  float piece = 0.0, weight = 0.0, weighted = 0.0, plain = 0.0;
   for (int j = 0; j < fog_piece_nodes; j++) {
     float dj = 0.0;
     for (int q = 0; q < fog_piece_nodes; q++) dj += fog_piece_partial[j][q] * K[q];
     float tj = at + h * fog_piece_x[j];
-    S += h * fog_piece_w[j] * K[j] * exp(-(D + h * dj)) * fog_sun_node_light(dir, tj) *
-         fog_shaft_visible(dir, tj);
+    float f = fog_sun_node_light(dir, tj) * fog_shaft_visible(dir, tj);
+    float wk = fog_piece_w[j] * max(K[j], 0.0) * exp(-h * dj);
+    weight += wk;
+    weighted += wk * f;
+    plain += fog_piece_w[j] * f;
     piece += h * fog_piece_w[j] * K[j];
   }
+  float mean = weight > 0.0 ? weighted / weight : 0.5 * plain;  // the weights sum to 2
+  S += exp(-D) * (piece * fog_exprel(piece)) * mean;
   return piece;
 }
 #endif

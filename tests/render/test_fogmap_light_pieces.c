@@ -11,11 +11,11 @@
  *     inside a piece wherever the sun's ray from the node crosses a knot line or the
  *     profile's breaks;
  *   - with the sun overhead over a Haar map in a slab, the sun's ray stays in the node's
- *     column and T_s is smooth on every piece: 3 nodes within 1e-8;
+ *     column and T_s is smooth on every piece: 3 nodes within 1e-7;
  *   - the walk's depth D is the optical depth: |e^{-D} - tau_ref| <= 1e-7 with 3 nodes (a
  *     piece's K is a polynomial of degree <= 5 but for the exponential's share);
- *   - with T_s = 1 the mean S / (1 - e^{-D}) tends to 1 (docs/light.md's identity; per
- *     piece it is the nodes' quadrature of int tau K): within 1e-5 with 3 nodes;
+ *   - with T_s = 1 the mean S / (1 - e^{-D}) is 1 (docs/light.md's identity: each piece
+ *     weighs e^{-D}(1 - e^{-dD}) exactly), within 1e-12 at 1, 2 and 3 nodes;
  *   - on a map that rings below zero the mean stays a mean (negative K weighs nothing). */
 #include <math.h>
 #include <stdio.h>
@@ -127,7 +127,9 @@ int main(void) {
     }
     printf("the sun overhead, Haar in a slab, 3 nodes: S within %.2e of the reference\n",
            worst_overhead);
-    CHECK(worst_overhead <= 1e-8, "the sun overhead: S off by %.3e", worst_overhead);
+    /* the piece's share exact, T_s's mean by the nodes: 3.1e-8 (Gauss on tau K T_s itself
+     * reached 1e-8 here, but not 1 for a lit ray through thick pieces) */
+    CHECK(worst_overhead <= 1e-7, "the sun overhead: S off by %.3e", worst_overhead);
     transform_grid_destroy(&g);
   }
   /* a map that rings below zero (as a linear or quadratic approximation does next to a
@@ -164,8 +166,12 @@ int main(void) {
     CHECK(worst[degree][1] < worst[degree][0] && worst[degree][2] < worst[degree][1],
           "%s: no convergence with the nodes: %.3e %.3e %.3e", bases[degree], worst[degree][0],
           worst[degree][1], worst[degree][2]);
-    CHECK(identity[degree][2] < identity[degree][0] && identity[degree][2] <= 1e-5,
-          "%s: the unlit mean off 1 by %.3e (3 nodes)", bases[degree], identity[degree][2]);
+    /* each piece weighs e^{-D}(1 - e^{-dD}) exactly: a ray lit throughout has a mean of 1
+     * at any node count (Gauss on tau K itself was off by 8.9e-3 at 1 node) */
+    CHECK(identity[degree][0] <= 1e-12 && identity[degree][1] <= 1e-12 &&
+              identity[degree][2] <= 1e-12,
+          "%s: the unlit mean off 1 by %.3e, %.3e, %.3e (1, 2, 3 nodes)", bases[degree],
+          identity[degree][0], identity[degree][1], identity[degree][2]);
   }
   printf("the walk's tau (3 nodes) off the reference's by %.2e\n", worst_tau);
   /* T_s has kinks inside a piece where the sun's ray crosses a knot line: a Haar map's
