@@ -1617,7 +1617,10 @@ fog_walk_settings scene_config_walk(const scene_config *cfg) {
       .transmittance_cutoff = cfg->transmittance_cutoff,
       .skip = !cfg->empty_skip ? FOG_SKIP_NONE
               : cfg->skip_below > 0 ? FOG_SKIP_BELOW : FOG_SKIP_EMPTY,
-      .skip_below = (float)cfg->skip_below,
+      /* the key bounds the fog before density_scale: the fogmap's cells are that (the pass
+       * applies the extinction), the volume's voxels are uploaded already scaled */
+      .skip_below = (float)(cfg->skip_below *
+                            (cfg->fog.model == FOG_MODEL_VOLUME ? cfg->fog.density_scale : 1.0)),
   };
 }
 

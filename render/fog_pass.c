@@ -1578,8 +1578,13 @@ static int fog_pass_fogmap_uniforms(fog_pass *pass, GLuint prog, const camera *c
   bind_sampler(prog, "fog_occupancy", UNIT_OCCUPANCY, GL_TEXTURE_2D,
                pass->slots[first].occupancy);
   glUniform2iv(fog_loc(prog, "fog_occupancy_size"), FOG_PASS_MAX_GRIDS, &blocks[0][0]);
+  /* Each grid the walk reads skips on its own. Switching reads one grid at each point of
+   * the ray; the sum of details adds J + 1 grids along it (A_0 and D_1..D_J), so each skips
+   * below skip_below / (J + 1) and the sum stays within the one bound (fog_pass.h). */
+  const float skip_below = params->walk.skip == FOG_SKIP_BELOW ? params->walk.skip_below : 0.0f;
   glUniform1f(fog_loc(prog, "fog_skip_below"),
-              params->walk.skip == FOG_SKIP_BELOW ? params->walk.skip_below : 0.0f);
+              J > 0 && params->lod_method == FOG_LOD_SUM_OF_DETAILS ? skip_below / (float)(J + 1)
+                                                                   : skip_below);
   if (J > 0) {
     if (fog_pass_update_layers(pass, slots, err)) return 1;
     bind_sampler(prog, "fog_grid_layers", UNIT_GRID_LAYERS, GL_TEXTURE_2D_ARRAY, pass->layers);

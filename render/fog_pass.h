@@ -82,8 +82,10 @@ typedef enum fog_skip {
   FOG_SKIP_EMPTY = 0, /* jump blocks of exact zeros: the same integral bit for bit; only
                          where at least FOG_SKIP_MIN_EMPTY_SHARE of the grids' blocks are
                          empty (below that, the walk without skipping is faster) */
-  FOG_SKIP_BELOW,     /* jump blocks whose bound of |f| is <= skip_below: |delta optical
-                         depth| <= skip_below * extinction * g_max * (ray length in the box) */
+  FOG_SKIP_BELOW,     /* jump blocks whose bound of |f| is <= skip_below (each of the J + 1
+                         grids the sum of details adds: <= skip_below / (J + 1)): |delta
+                         optical depth| <= skip_below * extinction * g_max * (ray length in
+                         the box); the volume: its voxels' values as uploaded, g_max 1 */
   FOG_SKIP_NONE,      /* walk every knot cell (the bench's comparison) */
 } fog_skip;
 

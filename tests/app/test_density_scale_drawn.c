@@ -4,9 +4,11 @@
  * reads fog_start and fog_end alone (the slider did nothing on classic_fog.ini); exp2,
  * homogeneous, height and quadric fog read it. */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "app/config.h"
 #include "app/render_frame.h"
@@ -72,6 +74,32 @@ int main(void) {
     CHECK(draws == (d > 1e-4), "%s: the predicate says %s, the pixels changed by %g",
           scenes[i][0], draws ? "it draws" : "it draws nothing", d);
     CHECK(draws || d == 0.0, "%s: density_scale moved pixels by %g", scenes[i][0], d);
+  }
+  /* [render] skip_below bounds the fog before density_scale: the fogmap's cells are that,
+   * the volume's voxels are uploaded scaled, so its walk's threshold is scaled too (it was
+   * compared with the scaled voxels as given: 10 x past the stated bound at 0.1) */
+  char cwd[400];
+  if (!getcwd(cwd, sizeof cwd)) cwd[0] = '\0';
+  const char *const walks[][2] = {
+      {"volume", "[fog]\nmodel = volume\nvdb = %s/../shared/data/vdb/plume/data/"
+                 "fluid_data_0048.vdb\ndensity_scale = 0.1\n[render]\nskip_below = 0.02\n"},
+      {"fogmap", "[fog]\nfogmap = %s/data/fogmap_sample.png\ndensity_scale = 0.1\n"
+                 "[render]\nskip_below = 0.02\n"}};
+  for (int w = 0; w < 2; w++) {
+    char path[600], text[1200];
+    snprintf(path, sizeof path, "%s/walk.ini", folder);
+    snprintf(text, sizeof text, walks[w][1], cwd);
+    scene_config cfg;
+    fog_error err;
+    if (!test_write_text(path, text)) continue;
+    if (scene_config_load(path, &cfg, &err)) {
+      CHECK(0, "%s: %s", walks[w][0], err.message);
+      continue;
+    }
+    const fog_walk_settings walk = scene_config_walk(&cfg);
+    const float expected = w == 0 ? 0.02f * 0.1f : 0.02f;
+    CHECK(walk.skip == FOG_SKIP_BELOW && fabsf(walk.skip_below - expected) <= 1e-9f,
+          "%s: the walk skips below %g, expected %g", walks[w][0], walk.skip_below, expected);
   }
   test_remove_tree(folder);
   return test_finish("test_density_scale_drawn");
