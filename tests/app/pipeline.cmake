@@ -1,5 +1,5 @@
-# The pipeline checks (not named test_*: they link the app's library, which the plain
-# tests/app/test_*.c do not, and run without the fogpipe binary's environment):
+# The pipeline checks (not named test_*: they run without the fogpipe binary's environment,
+# no FOGPIPE_BIN, and link the app's library alone, without the sim's and transform's beside):
 #   pipeline_paint_check  picking and painting (what the demo's mouse does)
 #   pipeline_sun_check    the demo's time of day relights terrain and fog
 #   pipeline_rung_check   the demo's model menu: a rung fitted to the fog live
