@@ -122,9 +122,9 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
   if (png_path && (strchr(png_path, '\n') || strchr(csv_path, '\n'))) {
     snprintf(error, (size_t)error_size, "%.900s: a chart path cannot hold a line break",
              png_path);
-    return 1;
+    return CHART_FAILED;
   }
-  if (write_csv(points, count, csv_path, error, error_size)) return 1;
+  if (write_csv(points, count, csv_path, error, error_size)) return CHART_FAILED;
   if (!png_path) return 0;
 
   char temp_png[4096], script_path[4096];
@@ -133,7 +133,7 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
   FILE *script = fopen(script_path, "w");
   if (!script) {
     snprintf(error, (size_t)error_size, "%s: cannot write the gnuplot script", script_path);
-    return 1;
+    return CHART_CSV_WRITTEN;
   }
   int width = desc->width ? desc->width : 960, height = desc->height ? desc->height : 600;
   fprintf(script, "set terminal pngcairo size %d,%d font 'sans,10'\n", width, height);
@@ -171,7 +171,7 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
     snprintf(error, (size_t)error_size, "%s: cannot move the finished chart onto it: %s",
              png_path, strerror(errno));
     remove(temp_png);
-    return 1;
+    return CHART_CSV_WRITTEN;
   }
   if (status != 0) {
     remove(temp_png);
@@ -184,7 +184,7 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
     else
       snprintf(error, (size_t)error_size, "%s: gnuplot failed (exit %d): %.300s", png_path,
                status, output);
-    return 1;
+    return CHART_CSV_WRITTEN;
   }
   return 0;
 }

@@ -26,8 +26,11 @@ typedef struct chart_desc {
 } chart_desc;
 
 /* Writes csv_path (columns series,x,y) and, when png_path is not NULL, the PNG chart.
- * Both are written to temporary names and renamed. Returns 0, or non-zero with a message
- * in error (size error_size) naming the file or the missing gnuplot. */
+ * Both are written to temporary names and renamed. Returns 0, or with a message in error
+ * (size error_size) naming the file or the missing gnuplot: CHART_FAILED (nothing
+ * written) or CHART_CSV_WRITTEN (the CSV is there, the PNG is not: a caller that must
+ * leave nothing removes it). */
+enum { CHART_FAILED = 1, CHART_CSV_WRITTEN = 2 };
 int chart_write(const chart_desc *desc, const chart_point *points, int count,
                 const char *csv_path, const char *png_path, char *error, int error_size);
 

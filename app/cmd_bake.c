@@ -10,6 +10,7 @@
  * written, so a failed or interrupted bake (Ctrl-C, SIGTERM: exit 130) leaves the old bake
  * as it was, never old and new frames under one bake.ini. */
 #define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
 #include <signal.h>
 #include <errno.h>
 #include <stdio.h>
@@ -73,16 +74,36 @@ static void remove_frames(const char *pattern, int written) {
     if (scene_config_sequence_path(pattern, n, path, sizeof path)) unlink(path);
 }
 
+/* Removes DIR/fog.N.exr for every N > frames (any number of digits, as the sequence
+ * lister reads them). */
+static void remove_later_frames(const char *dir, int frames) {
+  DIR *d = opendir(dir);
+  for (struct dirent *e; d && (e = readdir(d));) {
+    const char *name = e->d_name;
+    const size_t n = strlen(name);
+    if (n < 9 || strncmp(name, "fog.", 4) || strcmp(name + n - 4, ".exr")) continue;
+    long long number = 0;
+    size_t k = 4;
+    for (; k < n - 4 && name[k] >= '0' && name[k] <= '9' && k < 4 + 18; k++)
+      number = 10 * number + (name[k] - '0');
+    if (k != n - 4 || number <= frames) continue;
+    char path[SCENE_CONFIG_PATH_MAX + 300];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    unlink(path);
+  }
+  if (d) closedir(d);
+}
+
 /* The bake's targets (bake.ini and frames 1..frames) that exist must be files: a rename
  * onto a folder fails, and it would fail half-way through moving the bake into place. */
 static int targets_are_files(const bake_job *job, const char *pattern, const char *ini) {
   struct stat st;
-  if (lstat(ini, &st) == 0 && !S_ISREG(st.st_mode))
+  if (stat(ini, &st) == 0 && !S_ISREG(st.st_mode)) /* a link to a file is replaced */
     return !cli_fail("bake", "%s is not a file: expected the bake's bake.ini or nothing there",
                      ini);
   char path[SCENE_CONFIG_PATH_MAX + 32];
   for (int n = 1; n <= job->frames; n++)
-    if (scene_config_sequence_path(pattern, n, path, sizeof path) && lstat(path, &st) == 0 &&
+    if (scene_config_sequence_path(pattern, n, path, sizeof path) && stat(path, &st) == 0 &&
         !S_ISREG(st.st_mode))
       return !cli_fail("bake", "%s is not a file: expected frame %d of a bake or nothing "
                        "there", path, n);
@@ -237,15 +258,11 @@ int cmd_bake(int argc, char **argv) {
                         from, to, strerror(errno), job.out, moved, staging);
   }
   /* A longer bake made here before must not play on past this one's end: every later file
-   * the pattern matches goes, past any gap in them too (the config refuses a gap), before
-   * the new bake.ini names the pattern. */
-  vdb_sequence later;
-  fog_error lerr = {0};
-  const char *input = pattern;
-  if (!status && !vdb_sequence_find(&input, 1, job.frames + 1, -1, &later, &lerr)) {
-    for (int i = 0; i < later.count; i++) unlink(later.paths[i]);
-    vdb_sequence_destroy(&later);
-  }
+   * the pattern matches goes, past any gap in them too (the config refuses a gap) and
+   * however far its number (the sequence lister refuses spans past 2^20: a stray
+   * fog.2000000.exr was kept, and the new bake.ini would not load), before the new
+   * bake.ini names the pattern. */
+  if (!status) remove_later_frames(job.out, job.frames);
   if (!status && rename(staged_ini, ini) != 0)
     status = cli_fail("bake", "cannot move %s to %s: %s; the new bake's frames are in place",
                       staged_ini, ini, strerror(errno));

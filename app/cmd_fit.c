@@ -212,8 +212,10 @@ static int write_chart(const fit_result *r, bool by_mean, const char *png) {
                      .y_label = by_mean ? "mean |delta tau| (an exact rung at 1e-4)"
                                         : "max |delta tau| (an exact rung at 1e-4)",
                      .log_y = true};
-  if (chart_write(&desc, points, count, csv, png, error, sizeof error)) {
-    remove(csv); /* written before gnuplot ran: a failed run leaves none of its outputs */
+  const int charted = chart_write(&desc, points, count, csv, png, error, sizeof error);
+  if (charted) {
+    /* written before gnuplot ran: a failed run leaves none of its outputs */
+    if (charted == CHART_CSV_WRITTEN) remove(csv);
     return cli_fail("fit", "%s", error);
   }
   return 0;

@@ -2,15 +2,17 @@
 #define _POSIX_C_SOURCE 200809L
 #include "app/stop_signals.h"
 
+#include <stdatomic.h>
 #include <stddef.h>
 
 static volatile sig_atomic_t caught;
-/* Set before the handlers are installed and not changed while they are: */
-static volatile sig_atomic_t second_ends_process;
+/* The handler runs on whichever thread the kernel picks, so the state it shares with the
+ * holding thread is lock-free atomics (async-signal-safe, and no data race in C11). */
+static atomic_int second_ends_process;
 /* While held: a second signal is kept here for the release. The mask holds a signal on
  * the calling thread only, and a process-directed one goes to any thread that does not
  * block it (llvmpipe's, FFTW's, the pipeline's worker), so the handler holds it too. */
-static volatile sig_atomic_t holding, held_second;
+static atomic_int holding, held_second;
 
 /* The default action of the signal: the process ends as the signal ends it (a shell sees
  * 130). sigaction and raise are async-signal-safe (POSIX.1-2008 §2.4.3). */
@@ -22,11 +24,11 @@ static void end_process(int signal_number) {
 }
 
 static void on_stop(int signal_number) {
-  if (caught && second_ends_process) {
-    if (holding)
-      held_second = signal_number;
-    else
-      end_process(signal_number);
+  if (caught && atomic_load(&second_ends_process)) {
+    /* kept first, then the hold looked at: a release between the two reads it, or this
+     * sees the hold gone; either way the process ends (never neither) */
+    atomic_store(&held_second, signal_number);
+    if (!atomic_load(&holding)) end_process(signal_number);
     return;
   }
   caught = signal_number;
@@ -37,9 +39,10 @@ void stop_signals_catch(stop_signals *s, bool second_ends) {
    * delivery, the default action would end the process on any thread while held. */
   struct sigaction action = {.sa_handler = on_stop, .sa_flags = SA_RESTART};
   sigemptyset(&action.sa_mask);
-  second_ends_process = second_ends;
-  holding = 0;
-  held_second = 0;
+  s->old_second_ends = atomic_load(&second_ends_process) != 0; /* a catch inside another */
+  atomic_store(&second_ends_process, second_ends);
+  atomic_store(&holding, 0);
+  atomic_store(&held_second, 0);
   sigaction(SIGINT, NULL, &s->old_int);
   sigaction(SIGTERM, NULL, &s->old_term);
   if (s->old_int.sa_handler != SIG_IGN) sigaction(SIGINT, &action, NULL);
@@ -57,19 +60,19 @@ void stop_signals_hold(stop_signals *s) {
   sigemptyset(&hold);
   sigaddset(&hold, SIGINT);
   sigaddset(&hold, SIGTERM);
-  holding = 1;
+  atomic_store(&holding, 1);
   sigprocmask(SIG_BLOCK, &hold, &s->held_from);
 }
 
 void stop_signals_release(stop_signals *s) {
-  holding = 0;
+  atomic_store(&holding, 0);
   sigprocmask(SIG_SETMASK, &s->held_from, NULL); /* one held on this thread arrives now */
-  const int second = held_second;
-  held_second = 0;
+  const int second = atomic_exchange(&held_second, 0);
   if (second) end_process(second);
 }
 
 void stop_signals_restore(const stop_signals *s) {
   sigaction(SIGINT, &s->old_int, NULL);
   sigaction(SIGTERM, &s->old_term, NULL);
+  atomic_store(&second_ends_process, s->old_second_ends);
 }

@@ -12,6 +12,7 @@
 typedef struct stop_signals {
   struct sigaction old_int, old_term;
   sigset_t held_from; /* the mask before stop_signals_hold */
+  bool old_second_ends; /* an outer catch's second_ends, put back by stop_signals_restore */
 } stop_signals;
 
 /* Catches SIGINT and SIGTERM from now on into the flag (not cleared: a signal during a

@@ -99,10 +99,15 @@ int main(void) {
   /* Baking fewer frames into the same folder leaves no frame of the longer bake to play,
    * past a gap in them too (a stray fog.0012.exr: its bake.ini would be refused for the
    * gap at 9), and the shorter bake's config loads. */
-  char stray[700];
+  char stray[700], far[700];
   snprintf(stray, sizeof stray, "%s/fog.0012.exr", bake);
   snprintf(command, sizeof command, "cp '%s' '%s'", p1, stray);
   CHECK(system(command) == 0, "cannot make %s", stray);
+  /* and one numbered far past 2^20 frames (the sequence lister refuses such a span: the
+   * bake kept it, exit 0, and its bake.ini did not load) */
+  snprintf(far, sizeof far, "%s/fog.2000000.exr", bake);
+  snprintf(command, sizeof command, "cp '%s' '%s'", p1, far);
+  CHECK(system(command) == 0, "cannot make %s", far);
   snprintf(command, sizeof command, "'%s' bake %s --frames 3 --out '%s'", record_bin(),
            RECORD_TEST_CONFIG, bake);
   CHECK(run(command, log) == 0, "the second, shorter bake failed");
@@ -110,6 +115,7 @@ int main(void) {
   snprintf(stale, sizeof stale, "%s/fog.0004.exr", bake);
   CHECK(access(stale, F_OK) != 0, "the shorter bake left %s of the longer one", stale);
   CHECK(access(stray, F_OK) != 0, "the shorter bake left %s past the gap", stray);
+  CHECK(access(far, F_OK) != 0, "the shorter bake left %s", far);
   CHECK(scene_config_load(ini, &baked, &err) == 0, "the shorter bake's config: %s", err.message);
 
   /* A re-bake interrupted (SIGTERM) once it has simulated frames (of the old frames' names:
