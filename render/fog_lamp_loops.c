@@ -54,7 +54,8 @@ static double perlin_walks(const fog_pass_params *p) {
 /* The sun's mean per piece (fog_perlin_sun_mean): one walk over every octave's planes, a
  * piece between any two; per piece three loops over the octaves (the next plane, the cells,
  * the step) and its cuts; per cut the nodes, each a loop over the octaves, and the piece's
- * light (the nodes, each over the nodes). Counted from the review of the first bound: the
+ * light (the nodes, each over the nodes, then the nodes again: fog_piece_light's mean).
+ * Counted from the review of the first bound: the
  * shipped perlin_fog.ini at perlin_feature = 20 passed the view walk's bound and drew the
  * sun's mean cut short. */
 static double perlin_sun_walk(const fog_pass_params *p) {
@@ -63,7 +64,8 @@ static double perlin_sun_walk(const fog_pass_params *p) {
   const double octave_loop = p->model_perlin->desc.octaves + 1;
   const double nodes = (p->shadow_nodes > 0 ? p->shadow_nodes : 1) + 1;
   const double cuts = cells + climb;
-  return 1 + cells * (3 * octave_loop + 1) + cuts * (1 + nodes * octave_loop + nodes * nodes);
+  return 1 + cells * (3 * octave_loop + 1) +
+         cuts * (1 + nodes * octave_loop + nodes * nodes + nodes);
 }
 
 /* The volumes' extinction at a point (fog_quadric_extinction_at) and their depth along a

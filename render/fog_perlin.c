@@ -313,11 +313,16 @@ double fog_piece_light(int n, const double w[FOG_PIECE_MAX_NODES],
    * pieces, as the segments' weights give. Gauss on tau K itself missed once a piece was
    * optically thick (tau falls across it): a dense volume's lit mean was 0.07 to 1.37. A
    * negative K (ringing) weighs nothing in the mean, as in the segments'. */
-  double piece = 0.0, weight = 0.0, weighted = 0.0, plain = 0.0;
+  double piece = 0.0, weight = 0.0, weighted = 0.0, plain = 0.0, hd[FOG_PIECE_MAX_NODES];
+  double least = INFINITY; /* tau within the piece relative to its largest: no underflow */
   for (int j = 0; j < n; j++) {
     double dj = 0.0;
     for (int q = 0; q < n; q++) dj += partial[j][q] * K[q];
-    const double wk = w[j] * fmax(K[j], 0.0) * exp(-h * dj);
+    hd[j] = h * dj;
+    least = fmin(least, hd[j]);
+  }
+  for (int j = 0; j < n; j++) {
+    const double wk = w[j] * fmax(K[j], 0.0) * exp(least - hd[j]);
     weight += wk;
     weighted += wk * f[j];
     plain += w[j] * f[j];

@@ -259,13 +259,17 @@ uniform mat4 fog_piece_partial;
 // K weighs nothing): a ray lit throughout has a mean of 1 however thick its pieces. Adds
 // the share to S and returns dD.
 float fog_piece_light(float K[4], float h, float at, vec3 dir, float D, inout float S) {
-  float piece = 0.0, weight = 0.0, weighted = 0.0, plain = 0.0;
+  float piece = 0.0, weight = 0.0, weighted = 0.0, plain = 0.0, hd[4], least = 3.0e38;
   for (int j = 0; j < fog_piece_nodes; j++) {
     float dj = 0.0;
     for (int q = 0; q < fog_piece_nodes; q++) dj += fog_piece_partial[j][q] * K[q];
+    hd[j] = h * dj;
+    least = min(least, hd[j]);  // tau relative to the piece's largest: no underflow
+  }
+  for (int j = 0; j < fog_piece_nodes; j++) {
     float tj = at + h * fog_piece_x[j];
     float f = fog_sun_node_light(dir, tj) * fog_shaft_visible(dir, tj);
-    float wk = fog_piece_w[j] * max(K[j], 0.0) * exp(-h * dj);
+    float wk = fog_piece_w[j] * max(K[j], 0.0) * exp(least - hd[j]);
     weight += wk;
     weighted += wk * f;
     plain += fog_piece_w[j] * f;
