@@ -246,6 +246,9 @@ typedef struct parse_state {
   int key_line[sizeof keys / sizeof keys[0]]; /* where each key was last set (0: default) */
   int flicker_line[FOG_MAX_LAMPS]; /* each lamp's lamp_flicker line (0: none) */
   bool in_memory; /* scene_config_check: a scene, not a file; errors name the key alone */
+  /* scene_config_write's check of its own text: the files it names are not looked at (bake
+   * writes its config before its frames) */
+  bool no_files;
 } parse_state;
 
 /* The line of [section] key (0: not in the file: its default). */
@@ -954,7 +957,15 @@ static int check_sources(parse_state *ps) {
          "vdb or other model beside it");
     return 1;
   }
-  if (cfg->fog.sequence[0]) {
+  if (cfg->fog.sequence[0] && s.no_files) {
+    char first[SCENE_CONFIG_PATH_MAX + 32];
+    if (!scene_config_sequence_path(cfg->fog.sequence, 1, first, sizeof first)) {
+      s.line = cfg->fog.sequence_line;
+      fail(&s, "fog", "sequence", "%s: expected a pattern with #s for the frame number "
+           "(fog.####.exr)", cfg->fog.sequence);
+      return 1;
+    }
+  } else if (cfg->fog.sequence[0]) {
     if (sequence_first_frame(cfg->fog.sequence) < 0) {
       s.line = cfg->fog.sequence_line;
       fail(&s, "fog", "sequence", "%s: expected a pattern with #s for the frame number "
@@ -985,6 +996,7 @@ static int check_sources(parse_state *ps) {
       return 1;
     }
   }
+  if (s.no_files) return 0;
   if (cfg->fog.fogmap[0] &&
       check_file(&s, "fog", "fogmap", cfg->fog.fogmap_line, cfg->fog.fogmap))
     return 1;
@@ -1139,13 +1151,11 @@ int scene_config_check(const scene_config *cfg, fog_error *err) {
   return check_models(&s);
 }
 
+static int load_stream(const char *path, FILE *file, bool no_files, scene_config *cfg,
+                       fog_error *err);
+
 int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
   scene_config_init(cfg);
-  snprintf(cfg->path, sizeof cfg->path, "%s", path);
-  parse_state s = {.cfg = cfg, .path = path, .err = err};
-  const char *slash = strrchr(path, '/');
-  if (slash) snprintf(s.folder, sizeof s.folder, "%.*s", (int)(slash - path), path);
-  if (slash == path) snprintf(s.folder, sizeof s.folder, "/");
   /* not a regular file: refused before fopen, which waits on a FIFO for a writer forever */
   struct stat st;
   if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
@@ -1153,20 +1163,34 @@ int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
              S_ISDIR(st.st_mode) ? "a folder" : "not a regular file");
     return 1;
   }
-  s.file = fopen(path, "r");
-  if (!s.file) {
+  FILE *file = fopen(path, "r");
+  if (!file) {
     fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot open the config (%s)", path, strerror(errno));
     return 1;
   }
-  if (fstat(fileno(s.file), &st) != 0 || !S_ISREG(st.st_mode)) {
-    bool folder = fstat(fileno(s.file), &st) == 0 && S_ISDIR(st.st_mode);
+  if (fstat(fileno(file), &st) != 0 || !S_ISREG(st.st_mode)) {
+    bool folder = fstat(fileno(file), &st) == 0 && S_ISDIR(st.st_mode);
     fog_fail(err, FOG_ERR_BAD_CONFIG, "%s: not a config file (%s)", path,
              folder ? "a folder" : "not a regular file");
-    fclose(s.file);
+    fclose(file);
     return 1;
   }
+  const int status = load_stream(path, file, false, cfg, err);
+  fclose(file);
+  return status;
+}
+
+/* The config in file as if read from path (its folder resolves relative paths); no_files:
+ * the files it names are not looked at. */
+static int load_stream(const char *path, FILE *file, bool no_files, scene_config *cfg,
+                       fog_error *err) {
+  scene_config_init(cfg);
+  snprintf(cfg->path, sizeof cfg->path, "%s", path);
+  parse_state s = {.cfg = cfg, .path = path, .err = err, .file = file, .no_files = no_files};
+  const char *slash = strrchr(path, '/');
+  if (slash) snprintf(s.folder, sizeof s.folder, "%.*s", (int)(slash - path), path);
+  if (slash == path) snprintf(s.folder, sizeof s.folder, "/");
   int status = ini_parse_stream(read_line, &s, handle, &s);
-  fclose(s.file);
   free(s.whole_line);
   if (!s.error_line) finish_quadric(&s); /* before a syntax error below it */
   /* libinih reads on past a line it cannot parse ("[fog" with no "]") and reports its first
@@ -1513,6 +1537,21 @@ int scene_config_write(const scene_config *cfg, const char *path, fog_error *err
     free(text);
     return 1;
   }
+  /* The text loads: read back as the loader reads a file (the files it names aside), so
+   * that no key's own range is missed (a brush's Gaussian shrunk by '-' below the least
+   * RADIUS wrote "wrote NAME.painted.ini", a file that did not load). */
+  scene_config *back = malloc(sizeof *back);
+  FILE *reader = back ? fmemopen(text, text_size, "r") : NULL;
+  fog_error berr = {0};
+  const int loads = reader && !load_stream(path, reader, true, back, &berr);
+  if (reader) fclose(reader);
+  free(back);
+  if (!loads) {
+    free(text);
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+                    "%.400s: not written: the scene's config would not load (%s)", path,
+                    reader ? berr.message : "out of memory");
+  }
   char temp[SCENE_CONFIG_PATH_MAX + 16];
   snprintf(temp, sizeof temp, "%s.tmp", path);
   FILE *f = fopen(temp, "w");
@@ -1523,9 +1562,14 @@ int scene_config_write(const scene_config *cfg, const char *path, fog_error *err
   }
   fputs(text, f);
   free(text);
-  if (ferror(f) | fclose(f) || rename(temp, path)) {
+  errno = 0;
+  const bool flushed = !(ferror(f) | fclose(f));
+  if (!flushed || rename(temp, path)) {
+    const int why = errno;
     remove(temp);
-    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: write failed (disk full?)", path);
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: %s: %s", path,
+             flushed ? "cannot move the written config onto it" : "write failed",
+             why ? strerror(why) : "disk full?");
     return 1;
   }
   return 0;

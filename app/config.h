@@ -267,8 +267,10 @@ bool scene_config_knows_key(const char *section, const char *key);
 bool scene_config_sequence_path(const char *pattern, long n, char *out, size_t size);
 
 /* Writes cfg as a config file that loads back into the same scene (the same fingerprint):
- * every key with its value, in full precision, paths made absolute. Non-zero and err
- * naming the file when it cannot be written (nothing is left behind then). */
+ * every key with its value, in full precision, paths made absolute. The text is read back
+ * as the loader reads a file (every key's range and the cross-key checks; the files it
+ * names are not looked at) before anything is written. Non-zero and err naming the file
+ * (and the key) when it cannot be written (nothing is left behind then). */
 int scene_config_write(const scene_config *cfg, const char *path, fog_error *err);
 /* The loader's checks of what each fog model needs of the other keys (scene_config_load
  * runs them after reading a file), on a scene made in memory: 0, or 1 with err naming the

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "app/config.h"
@@ -141,6 +142,17 @@ int main(void) {
     CHECK(scene_config_write(&height, refused, &err) == 0 &&
               scene_config_load(refused, &back, &err) == 0,
           "the least H the scene holds: %s", err.message);
+    unlink(refused);
+    /* a key out of its own range (a brush's Gaussian shrunk by '-' past the least RADIUS,
+     * 1e-4): refused naming the key, no file (it was written, and did not load) */
+    scene_config small;
+    scene_config_init(&small);
+    small.fog.model = FOG_MODEL_RBF, small.fog.rbf_count = 1;
+    small.fog.rbfs[0] = (fog_rbf){.centre = {0, 10, 0}, .radius = 1e-5, .density = 0.1};
+    CHECK(scene_config_write(&small, refused, &err) != 0 && strstr(err.message, "refused.ini") &&
+              strstr(err.message, "[fog] rbf") && strstr(err.message, "RADIUS"),
+          "a Gaussian of radius 1e-5 written: %s", err.message);
+    CHECK(access(refused, F_OK) != 0, "%s left behind", refused);
   }
   CHECK(scene_config_write(&cfg, written, &err) == 0, "write: %s", err.message);
   CHECK(scene_config_load(written, &back, &err) == 0, "64 coefficients read back: %s", err.message);
@@ -235,6 +247,14 @@ int main(void) {
             access(written, F_OK) != 0,
         "a fogmap path with a line break written: %s", err.message);
   unlink(written);
+  /* onto a folder of that name: the reason said (it was "write failed (disk full?)") */
+  char folder[700];
+  snprintf(folder, sizeof folder, "%s/taken.ini", dir);
+  CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
+  CHECK(scene_config_write(&cfg, folder, &err) != 0 && strstr(err.message, "taken.ini") &&
+            strstr(err.message, "directory"),
+        "a config written onto a folder: %s", err.message);
+  rmdir(folder);
   char bad[700];
   snprintf(bad, sizeof bad, "%s/missing/x.ini", dir);
   CHECK(scene_config_write(&cfg, bad, &err) != 0 && strstr(err.message, bad),
