@@ -22,6 +22,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -1274,21 +1275,65 @@ static int sequence_first_frame(const char *pattern) {
 
 /* ---- writing a config back (scene_config_write) ---- */
 
-static void write_path(FILE *f, const char *key, const char *path) {
-  char *absolute = realpath(path, NULL);
-  /* a pattern does not resolve: make its folder absolute */
-  if (!absolute) {
-    const char *slash = strrchr(path, '/');
-    char folder[SCENE_CONFIG_PATH_MAX];
-    snprintf(folder, sizeof folder, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
-    char *base = realpath(folder[0] ? folder : "/", NULL);
-    if (base) fprintf(f, "%s = %s/%s\n", key, base, slash ? slash + 1 : path);
-    else fprintf(f, "%s = %s\n", key, path);
-    free(base);
-    return;
+/* The working folder as the shell names it: $PWD when it is "." (getcwd resolves links). */
+static bool logical_cwd(char *out, size_t size) {
+  const char *pwd = getenv("PWD");
+  struct stat a, b;
+  if (pwd && pwd[0] == '/' && stat(pwd, &a) == 0 && stat(".", &b) == 0 && a.st_dev == b.st_dev &&
+      a.st_ino == b.st_ino && strlen(pwd) < size) {
+    snprintf(out, size, "%s", pwd);
+    return true;
   }
-  fprintf(f, "%s = %s\n", key, absolute);
-  free(absolute);
+  return getcwd(out, size) != NULL;
+}
+
+/* path made absolute as its user spells it: a relative one under the logical working folder,
+ * "." dropped, and "dir/.." removed only where dir is no link (through a link, ".." leaves
+ * the link's target). realpath resolved every link: a bake.ini named /mnt/nfs1/... where
+ * the user typed /shared/..., which a farm node mounting /shared elsewhere lacks. False
+ * when it does not fit. */
+static bool logical_absolute(const char *path, char *out, size_t size) {
+  char joined[2 * SCENE_CONFIG_PATH_MAX + 2], cwd[SCENE_CONFIG_PATH_MAX];
+  if (path[0] == '/')
+    snprintf(joined, sizeof joined, "%s", path);
+  else if (logical_cwd(cwd, sizeof cwd))
+    snprintf(joined, sizeof joined, "%s/%s", cwd, path);
+  else
+    return false;
+  size_t used = 0; /* out holds "/a/b" for the components kept so far */
+  out[0] = '\0';
+  for (char *part = joined; *part;) {
+    char *end = strchr(part, '/');
+    const size_t n = end ? (size_t)(end - part) : strlen(part);
+    if (n == 0 || (n == 1 && part[0] == '.')) {
+    } else if (n == 2 && part[0] == '.' && part[1] == '.' && used > 0 &&
+               strcmp(strrchr(out, '/') + 1, "..")) {
+      struct stat st;
+      if (lstat(out, &st) == 0 && !S_ISLNK(st.st_mode)) {
+        used = (size_t)(strrchr(out, '/') - out);
+        out[used] = '\0';
+      } else if (used + 3 < size) {
+        memcpy(out + used, "/..", 4), used += 3;
+      } else {
+        return false;
+      }
+    } else {
+      if (used + 1 + n >= size) return false;
+      out[used] = '/';
+      memcpy(out + used + 1, part, n);
+      used += 1 + n;
+      out[used] = '\0';
+    }
+    if (!end) break;
+    part = end + 1;
+  }
+  if (used == 0) snprintf(out, size, "/");
+  return true;
+}
+
+static void write_path(FILE *f, const char *key, const char *path) {
+  char absolute[SCENE_CONFIG_PATH_MAX + 64];
+  fprintf(f, "%s = %s\n", key, logical_absolute(path, absolute, sizeof absolute) ? absolute : path);
 }
 
 /* Keys whose being set changes what the scene does (a VDB sequence places the fog and

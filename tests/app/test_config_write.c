@@ -247,6 +247,34 @@ int main(void) {
             access(written, F_OK) != 0,
         "a fogmap path with a line break written: %s", err.message);
   unlink(written);
+  /* a path through a link is written through the link, as its user spelt it, not through
+   * the link's target (realpath wrote /mnt/nfs1/... for /shared/...: a farm node that
+   * mounts /shared elsewhere lacks that path); "folder/.." collapsed */
+  {
+    static char text[65536];
+    char real[700], link[700], map[800], original[800], rewritten[800];
+    snprintf(real, sizeof real, "%s/real", dir);
+    snprintf(link, sizeof link, "%s/link", dir);
+    snprintf(map, sizeof map, "%s/real/fog.png", dir);
+    snprintf(original, sizeof original, "%s/linked.ini", dir);
+    snprintf(rewritten, sizeof rewritten, "%s/relinked.ini", dir);
+    snprintf(text, sizeof text, "cp data/fogmap_sample.png '%s'", map);
+    CHECK(mkdir(real, 0755) == 0 && symlink("real", link) == 0 && system(text) == 0,
+          "cannot make %s and %s", real, link);
+    scene_config linked;
+    CHECK(load_text(original, "[fog]\nfogmap = real/../link/./fog.png\n", &linked, &err) == 0,
+          "a fogmap through a link: %s", err.message);
+    CHECK(scene_config_write(&linked, rewritten, &err) == 0, "write: %s", err.message);
+    FILE *f = fopen(rewritten, "r");
+    size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    text[n] = '\0';
+    if (f) fclose(f);
+    char expected[800];
+    snprintf(expected, sizeof expected, "fogmap = %s/link/fog.png\n", dir);
+    CHECK(strstr(text, expected) != NULL, "the fogmap is not written through the link: "
+          "expected '%s' in the config", expected);
+    unlink(rewritten), unlink(original), unlink(map), unlink(link), rmdir(real);
+  }
   /* onto a folder of that name: the reason said (it was "write failed (disk full?)") */
   char folder[700];
   snprintf(folder, sizeof folder, "%s/taken.ini", dir);
