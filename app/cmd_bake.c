@@ -10,9 +10,10 @@
  * written, so a failed or interrupted bake (Ctrl-C, SIGTERM: exit 130) leaves the old bake
  * as it was, never old and new frames under one bake.ini. */
 #define _POSIX_C_SOURCE 200809L
+#include <ctype.h>
 #include <dirent.h>
-#include <signal.h>
 #include <errno.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,19 +75,29 @@ static void remove_frames(const char *pattern, int written) {
     if (scene_config_sequence_path(pattern, n, path, sizeof path)) unlink(path);
 }
 
-/* Removes DIR/fog.N.exr for every N > frames (any number of digits, as the sequence
- * lister reads them). */
-static void remove_later_frames(const char *dir, int frames) {
+/* Removes every file of pattern's folder that pattern names with a number above frames,
+ * whatever its count of digits (as the sequence lister reads them). */
+static void remove_later_frames(const char *pattern, int frames) {
+  size_t at, run;
+  const char *slash = strrchr(pattern, '/');
+  if (!slash || !vdb_pattern_hash_run(pattern, &at, &run)) return;
+  char dir[SCENE_CONFIG_PATH_MAX];
+  snprintf(dir, sizeof dir, "%.*s", (int)(slash - pattern), pattern);
+  const char *prefix = slash + 1, *suffix = pattern + at + run;
+  const size_t prefix_length = (size_t)(pattern + at - prefix), suffix_length = strlen(suffix);
   DIR *d = opendir(dir);
   for (struct dirent *e; d && (e = readdir(d));) {
     const char *name = e->d_name;
     const size_t n = strlen(name);
-    if (n < 9 || strncmp(name, "fog.", 4) || strcmp(name + n - 4, ".exr")) continue;
+    if (n <= prefix_length + suffix_length || strncmp(name, prefix, prefix_length) ||
+        strcmp(name + n - suffix_length, suffix))
+      continue;
     long long number = 0;
-    size_t k = 4;
-    for (; k < n - 4 && name[k] >= '0' && name[k] <= '9' && k < 4 + 18; k++)
+    size_t k = prefix_length;
+    for (; k < n - suffix_length && isdigit((unsigned char)name[k]) && k < prefix_length + 18;
+         k++)
       number = 10 * number + (name[k] - '0');
-    if (k != n - 4 || number <= frames) continue;
+    if (k != n - suffix_length || number <= frames) continue;
     char path[SCENE_CONFIG_PATH_MAX + 300];
     snprintf(path, sizeof path, "%s/%s", dir, name);
     unlink(path);
@@ -262,7 +273,7 @@ int cmd_bake(int argc, char **argv) {
    * however far its number (the sequence lister refuses spans past 2^20: a stray
    * fog.2000000.exr was kept, and the new bake.ini would not load), before the new
    * bake.ini names the pattern. */
-  if (!status) remove_later_frames(job.out, job.frames);
+  if (!status) remove_later_frames(pattern, job.frames);
   if (!status && rename(staged_ini, ini) != 0)
     status = cli_fail("bake", "cannot move %s to %s: %s; the new bake's frames are in place",
                       staged_ini, ini, strerror(errno));

@@ -3,7 +3,7 @@
  * Line numbers: Debian's libinih is built without INI_HANDLER_LINENO, so we parse through
  * ini_parse_stream with our own reader that reads whole lines and counts them; inih calls
  * the handler right after reading a key's line, so the count is that key's line. */
-#define _XOPEN_SOURCE 700 /* realpath */
+#define _XOPEN_SOURCE 700 /* lstat, getcwd, fmemopen, open_memstream */
 #include "app/config.h"
 #include "app/rbf_carrier.h"
 

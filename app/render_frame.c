@@ -65,14 +65,10 @@ int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *w
   /* An EXR holds heights in metres as readily as in [0, 1]; the terrain clamps to [0, 1],
    * which flattened every hill above 1 into a plateau without a word. A resampling
    * filter's overshoot of up to 1 % is clamped as before. */
-  size_t above = 0, count = (size_t)map.width * (size_t)map.height;
-  float largest = 0.0f;
-  for (size_t k = 0; k < count; k++) {
-    if (map.density[k] > 1.01f && !above) above = k + 1;
-    if (map.density[k] > largest) largest = map.density[k];
-  }
-  if (above) {
-    const size_t k = above - 1;
+  const float largest = fogmap_max_density(&map);
+  if (largest > 1.01f) {
+    size_t k = 0;
+    while (!(map.density[k] > 1.01f)) k++; /* the first pixel above */
     fog_fail(err, FOG_ERR_BAD_FILE,
              "%.200s:%d: [terrain] heightmap: %s: pixel (%zu, %zu) is %g: expected heights "
              "from 0 to 1, scaled by [terrain] height (the largest here is %g: divide the "
