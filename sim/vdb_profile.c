@@ -91,6 +91,13 @@ int vdb_profile_fit(const double *layer_mass, int layers, double y_min, double l
   return 0;
 }
 
+/* (y_min - y0) / h, snapped to the whole number within 1e-6 of it: frames on one voxel
+ * lattice differ by rounding in their world heights. */
+static double layer_offset(double y_min, double y0, double h) {
+  const double offset = (y_min - y0) / h, whole = round(offset);
+  return fabs(offset - whole) < 1e-6 ? whole : offset;
+}
+
 int vdb_profile_fit_columns(const vdb_columns *const *columns, int count,
                             const vdb_profile_desc *desc, vdb_profile *out, fog_error *err) {
   int first = 0; /* the first frame with fog (one without has no layers) */
@@ -100,7 +107,7 @@ int vdb_profile_fit_columns(const vdb_columns *const *columns, int count,
     return 1;
   }
   const double h = columns[first]->layer_height;
-  double y0 = columns[first]->y_min, y1 = y0 + columns[first]->layers * h;
+  double y0 = columns[first]->y_min;
   for (int i = first + 1; i < count; i++) {
     if (!columns[i]->layers) continue;
     if (fabs(columns[i]->layer_height - h) > 1e-9 * h) {
@@ -110,9 +117,18 @@ int vdb_profile_fit_columns(const vdb_columns *const *columns, int count,
       return 1;
     }
     y0 = fmin(y0, columns[i]->y_min);
-    y1 = fmax(y1, columns[i]->y_min + columns[i]->layers * h);
   }
-  const int layers = (int)lround((y1 - y0) / h);
+  /* Each frame's layers start `offset` layers above y0: a whole number on the lowest
+   * frame's lattice (to rounding), where each layer lands on one; a fraction where a
+   * container moved by part of a voxel, where each layer's mass is shared between the two
+   * layers it overlaps by the overlap. The array spans every frame's top (rounding each
+   * frame's offset apart from the span wrote one past its end). */
+  int layers = 0;
+  for (int i = first; i < count; i++) {
+    if (!columns[i]->layers) continue;
+    const int top = (int)ceil(layer_offset(columns[i]->y_min, y0, h)) + columns[i]->layers;
+    if (top > layers) layers = top;
+  }
   double *mass = calloc((size_t)layers, sizeof(double));
   if (!mass) {
     fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for %d layers", layers);
@@ -120,8 +136,13 @@ int vdb_profile_fit_columns(const vdb_columns *const *columns, int count,
   }
   for (int i = first; i < count; i++) {
     if (!columns[i]->layers) continue;
-    const int shift = (int)lround((columns[i]->y_min - y0) / h);
-    for (int l = 0; l < columns[i]->layers; l++) mass[shift + l] += columns[i]->layer_mass[l];
+    const double offset = layer_offset(columns[i]->y_min, y0, h);
+    const int base = (int)floor(offset);
+    const double above = offset - base; /* the share of each layer in the one above */
+    for (int l = 0; l < columns[i]->layers; l++) {
+      mass[base + l] += (1 - above) * columns[i]->layer_mass[l];
+      if (above > 0) mass[base + l + 1] += above * columns[i]->layer_mass[l];
+    }
   }
   int status = vdb_profile_fit(mass, layers, y0, h, desc, out, err);
   free(mass);
