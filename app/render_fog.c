@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "app/vdb_source.h"
+#include "app/volume_blend.h"
 #include "sim/sim.h"
 
 void render_fog_destroy(render_fog *fog) {
@@ -156,56 +157,6 @@ int render_fog_load_volume(const scene_config *cfg, vdb_frame *frame, volume_gri
   return status;
 }
 
-/* Frames a and b share their voxels' placement (the same VDB transform and up axis), so
- * their grids can be laid over each other index by index. */
-static bool same_placement(const vdb_frame *a, const vdb_frame *b) {
-  for (int k = 0; k < 3; k++)
-    if (a->world.index_axis[k] != b->world.index_axis[k] ||
-        a->world.base[k] != b->world.base[k] || a->world.step[k] != b->world.step[k])
-      return false;
-  return true;
-}
-
-/* (1 - w) a + w b on the union of the two grids' index boxes (zero beyond each), into
- * out (malloc'd values); the placement is a's with the union's corner. */
-static int blend_grids(const vdb_frame *fa, const volume_grid_desc *a, const vdb_frame *fb,
-                       const volume_grid_desc *b, double w, volume_grid_desc *out, fog_error *err) {
-  const vdb_dense_grid *ga = &fa->grid, *gb = &fb->grid;
-  int lo[3], dim[3];
-  for (int c = 0; c < 3; c++) {
-    lo[c] = ga->index_min[c] < gb->index_min[c] ? ga->index_min[c] : gb->index_min[c];
-    int hi_a = ga->index_min[c] + ga->dim[c], hi_b = gb->index_min[c] + gb->dim[c];
-    dim[c] = (hi_a > hi_b ? hi_a : hi_b) - lo[c];
-  }
-  size_t n = (size_t)dim[0] * dim[1] * dim[2];
-  float *values = calloc(n, sizeof *values);
-  if (!values) {
-    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory blending two volume frames");
-    return 1;
-  }
-  const vdb_dense_grid *grids[2] = {ga, gb};
-  const float *sources[2] = {a->values, b->values};
-  const double weights[2] = {1.0 - w, w};
-  for (int s = 0; s < 2; s++) {
-    const vdb_dense_grid *g = grids[s];
-    for (int k = 0; k < g->dim[2]; k++)
-      for (int j = 0; j < g->dim[1]; j++)
-        for (int i = 0; i < g->dim[0]; i++) {
-          size_t to = ((size_t)(k + g->index_min[2] - lo[2]) * dim[1] + j + g->index_min[1] -
-                       lo[1]) * dim[0] + i + g->index_min[0] - lo[0];
-          values[to] += (float)(weights[s] *
-                                sources[s][((size_t)k * g->dim[1] + j) * g->dim[0] + i]);
-        }
-  }
-  *out = *a;
-  for (int c = 0; c < 3; c++) {
-    out->dim[c] = dim[c];
-    out->index_offset[c] += ga->index_min[c] - lo[c]; /* index u counts from the union's corner */
-  }
-  out->values = values;
-  return 0;
-}
-
 /* Sequence index `index` from the two-frame cache (a slot is loaded when it holds a grid),
  * read into the slot that does not hold `keep` (the other frame of the pair being shown)
  * when it is not there. */
@@ -279,8 +230,8 @@ int render_fog_set_volume_time(render_fog *fog, const scene_config *cfg, const v
   volume_grid_desc blended = {.values = NULL};
   if (w > 0.0 && b != a) {
     if (played_frame(fog, cfg, seq, b, a, &sb, err)) return 1;
-    if (same_placement(&fog->played[sa], &fog->played[sb])) {
-      if (blend_grids(&fog->played[sa], &fog->played_grid[sa], &fog->played[sb],
+    if (volume_blend_placed_alike(&fog->played[sa], &fog->played[sb])) {
+      if (volume_blend(&fog->played[sa], &fog->played_grid[sa], &fog->played[sb],
                       &fog->played_grid[sb], w, &blended, err))
         return 1;
       shown = &blended;
