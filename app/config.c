@@ -9,6 +9,7 @@
 
 #include "render/render.h"
 #include "sim/sim.h"
+#include "sim/vdb_import.h"
 
 #include <errno.h>
 #include <ini.h>
@@ -58,6 +59,8 @@ typedef struct key_spec {
 } key_spec;
 
 #define F(member) offsetof(scene_config, member)
+_Static_assert(SCENE_MAX_SCALE_HEIGHT == VDB_PROFILE_MAX_SCALE_HEIGHT,
+               "an import's fitted scale height must load as [fog] scale_height");
 /* The bounds of the numbers a config may hold: past them float (in which the GPU works)
  * overflows or loses the scene, and pixels turn NaN. WORLD: world coordinates and lengths
  * (a float still resolves 1 unit at 1e7). MIN_LENGTH: the smallest scale of a feature

@@ -213,6 +213,10 @@ typedef enum vdb_profile_kind {
   VDB_PROFILE_EXPONENTIAL = 1,  /* exp(-(y - y_bottom)/scale_height) on [y_bottom, y_top] */
 } vdb_profile_kind;
 
+/* The largest exponential scale height fitted: a scene config's largest (app/config.h's
+ * SCENE_MAX_SCALE_HEIGHT, a world length), so that an import's sidecar loads. */
+#define VDB_PROFILE_MAX_SCALE_HEIGHT 1e7
+
 typedef struct vdb_profile_desc {
   vdb_profile_kind kind;
   int knots;              /* B-spline coefficients; 0: one per voxel layer (max 64) */

@@ -1,4 +1,6 @@
-/* The sequence profile over frames whose layers start at different heights
+/* Fitting the vertical profile (sim/vdb_profile.c).
+ *
+ * The sequence profile over frames whose layers start at different heights
  * (vdb_profile_fit_columns): every frame's mass lands in the layers it overlaps, and the
  * summed array spans every frame's top. Reference: the mass per layer of y0 + j·h
  * computed by interval overlap with each frame's layers, fitted by vdb_profile_fit.
@@ -67,7 +69,31 @@ static void check_case(const char *name, frame *frames, int count, double h) {
           name, k, got.values[k], want.values[k]);
 }
 
+/* Nearly uniform fog in large units: a 20 m column of 50 layers, the bottom one 1.2e-5
+ * denser. The exponential's scale height stays within what a scene config takes
+ * (it was 1.4e7: the import's sidecar did not load), and its thickness is the closed form
+ * of the scale height given, within the data's own: the column's mass per unit g. */
+static void check_flat_exponential(void) {
+  double mass[50];
+  for (int l = 0; l < 50; l++) mass[l] = 0.4 * (l == 0 ? 1 + 1.2e-5 : 1);
+  vdb_profile p;
+  fog_error err = {0};
+  const vdb_profile_desc desc = {.kind = VDB_PROFILE_EXPONENTIAL};
+  CHECK(!vdb_profile_fit(mass, 50, 0.0, 0.4, &desc, &p, &err), "flat exponential: %s",
+        err.message);
+  CHECK(p.scale_height > 0 && p.scale_height <= 1e7,
+        "flat exponential: scale height %.9g, expected in (0, 1e7] (a scene's largest)",
+        p.scale_height);
+  const double closed = p.scale_height * -expm1(-20.0 / p.scale_height);
+  CHECK(fabs(p.thickness - closed) <= 1e-12 * closed,
+        "flat exponential: thickness %.17g, expected H (1 - e^{-L/H}) = %.17g", p.thickness,
+        closed);
+  CHECK(fabs(p.thickness - 20.0) < 1e-4, "flat exponential: thickness %.9g, expected about 20",
+        p.thickness);
+}
+
 int main(void) {
+  check_flat_exponential();
   const double h = 0.1;
   frame frames[3];
   /* Half a layer apart (the first frame's span (2.0 + 0.05) / 0.1 rounds to 20.4999...). */
@@ -84,5 +110,5 @@ int main(void) {
   frames[1] = (frame){.y_min = 0.0, .layers = 4, .mass = {7, 0, 1, 2}};
   frames[2] = (frame){.y_min = 0.7, .layers = 3, .mass = {3, 3, 9}};
   check_case("one lattice", frames, 3, h);
-  return test_finish("test_vdb_profile_lattice");
+  return test_finish("test_vdb_profile_fit");
 }
