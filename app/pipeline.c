@@ -1046,7 +1046,9 @@ static int take_slot(pipeline *p, bool wait, double *upload_ms, fog_error *err) 
   bool must_wait = (wait && (!p->params.paused || p->step_requests > 0)) || !p->have_frame;
   while (must_wait && slot->state != SLOT_READY && !p->worker_error.code)
     pthread_cond_wait(&p->changed, &p->lock);
-  if (p->worker_error.code) {
+  /* the worker's error is a later frame's when this one is ready (it steps one ahead: a
+   * damaged bake file after the last frame asked for failed the frame before it) */
+  if (p->worker_error.code && slot->state != SLOT_READY) {
     fog_error_pass(err, &p->worker_error);
     pthread_mutex_unlock(&p->lock);
     return -1;
