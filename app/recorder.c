@@ -155,18 +155,20 @@ int recorder_read_rgb(const recorder *rec, int frame, float *rgb, fog_error *err
   static const char *const names[3] = {"R", "G", "B"};
   char path[1200];
   recorder_frame_path(rec, frame, path, sizeof path);
+  /* the raw channels (fogmap_load refused a lamp-lit pixel past 1e12 as a fog density) */
   for (int c = 0; c < 3; c++) {
-    fogmap plane = {0};
-    if (fogmap_load(path, &(fogmap_load_desc){.channel = names[c]}, &plane, err)) return 1;
-    if (plane.width != rec->width || plane.height != rec->height) {
-      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "frame %s is %dx%d, expected %dx%d", path,
-               plane.width, plane.height, rec->width, rec->height);
-      fogmap_destroy(&plane);
+    int width = 0, height = 0;
+    float *plane = NULL;
+    if (image_read_exr_channel(path, names[c], &width, &height, &plane, err)) return 1;
+    if (width != rec->width || height != rec->height) {
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "frame %s is %dx%d, expected %dx%d", path, width,
+               height, rec->width, rec->height);
+      free(plane);
       return 1;
     }
-    const size_t n = (size_t)plane.width * plane.height;
-    for (size_t i = 0; i < n; i++) rgb[3 * i + c] = plane.density[i];
-    fogmap_destroy(&plane);
+    const size_t n = (size_t)width * height;
+    for (size_t i = 0; i < n; i++) rgb[3 * i + c] = plane[i];
+    free(plane);
   }
   return 0;
 }

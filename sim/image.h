@@ -54,6 +54,11 @@ int image_write_exr_with(const char *path, int width, int height, const image_ch
  * naming the file when it is not a readable EXR or has no such string attribute. */
 int image_read_exr_string(const char *path, const char *name, char *value, size_t size,
                           fog_error *err);
+/* Reads channel `channel` of an EXR as floats (*pixels malloc'd, width*height, top row
+ * first), its values as they are: an image's light, unlike a fogmap (sim/fogmap.h), may be
+ * past 1e12. Fails naming the file when it is unreadable or has no such channel. */
+int image_read_exr_channel(const char *path, const char *channel, int *width, int *height,
+                           float **pixels, fog_error *err);
 /* Reads the M44f attribute name of part 0 (image_exr_matrix's layout). */
 int image_read_exr_matrix(const char *path, const char *name, float m[16], fog_error *err);
 

@@ -513,6 +513,11 @@ static int read_header_attribute(const char *path, const header_query *q, fog_er
   return status;
 }
 
+int image_read_exr_channel(const char *path, const char *channel, int *width, int *height,
+                           float **pixels, fog_error *err) {
+  return exr_read_channel(path, channel, NULL, width, height, pixels, err);
+}
+
 int image_read_exr_string(const char *path, const char *name, char *value, size_t size,
                           fog_error *err) {
   return read_header_attribute(path, &(header_query){.name = name, .text = value, .size = size},
