@@ -121,11 +121,46 @@ static int targets_are_files(const bake_job *job, const char *pattern, const cha
   return 1;
 }
 
-/* Simulates frame after frame and writes each density; *written counts the files and
- * *cell_size receives the cell size of the simulated grid (the config's, or the
- * pipeline's own for a map it simulates finer or coarser). */
+/* The scene cfg with the frames (pattern, simulated on cells cell_size wide) as its fog, as
+ * a config at path: 0, or 1 (printed). */
+static int write_bake_ini(const scene_config *cfg, const char *pattern, double cell_size,
+                          const char *path, const char *shown_path) {
+  /* The same scene with the frames as its fog (density_scale, box, profile as they are). */
+  scene_config baked = *cfg;
+  baked.fog.fogmap[0] = baked.fog.channel[0] = '\0'; /* the frames hold one channel, Y */
+  /* the frames' cells: a map simulated k times finer or coarser covers the same world */
+  if (cell_size != cfg->box.cell_size) {
+    baked.box.cell_size = cell_size;
+    baked.box.cell_size_set = true;
+  }
+  snprintf(baked.fog.sequence, sizeof baked.fog.sequence, "%s", pattern);
+  fog_error err = {0};
+  if (!scene_config_write(&baked, path, &err)) return 0;
+  /* the error names the staging folder's file: say bake.ini's own name, and why the cells
+   * differ from the config's where they do */
+  char message[sizeof err.message + 512] = "";
+  size_t used = 0;
+  for (const char *from = err.message; *from && used + 1 < sizeof message;) {
+    const char *at = strstr(from, path);
+    const size_t plain = at ? (size_t)(at - from) : strlen(from);
+    used += (size_t)snprintf(message + used, sizeof message - used, "%.*s%s", (int)plain, from,
+                             at ? shown_path : "");
+    from = at ? at + strlen(path) : from + plain;
+  }
+  char why[160] = "";
+  if (cell_size != cfg->box.cell_size)
+    snprintf(why, sizeof why, " (the %s map is simulated on cells %g wide, the config's %g)",
+             cell_size < cfg->box.cell_size ? "small" : "large", cell_size, cfg->box.cell_size);
+  return cli_fail("bake", "%s%s", message, why);
+}
+
+/* Writes bake.ini at ini (the scene playing final_pattern, on the cells of the simulated
+ * grid: the config's, or the pipeline's own for a map it simulates finer or coarser), then
+ * simulates frame after frame and writes each density at pattern; *written counts the
+ * files. */
 static int bake_frames(const bake_job *job, const scene_config *cfg, const char *pattern,
-                       int *written, double *cell_size) {
+                       const char *final_pattern, const char *ini, const char *shown_ini,
+                       int *written) {
   fog_error gerr = {0};
   gl_context *gl = gl_context_create(&(gl_context_desc){.kind = GL_CONTEXT_HEADLESS}, &gerr);
   if (!gl) return cli_fail("bake", "%s", gerr.message);
@@ -137,9 +172,14 @@ static int bake_frames(const bake_job *job, const scene_config *cfg, const char 
                                 &perr);
   int status = p ? 0 : cli_fail("bake", "%s", perr.message);
   if (p) {
+    /* bake.ini before the frames, naming them where they will be, on the cells the
+     * pipeline simulates: a scene that cannot be written as a config (a line too long, a
+     * folder whose name a config cuts short, a map simulated finer whose cells fall below
+     * the least [box] cell_size) fails before the simulation, not after it */
     int cells_x, cells_z;
-    double origin_x, origin_z;
-    pipeline_fog_extent(p, &cells_x, &cells_z, &origin_x, &origin_z, cell_size);
+    double origin_x, origin_z, cell_size;
+    pipeline_fog_extent(p, &cells_x, &cells_z, &origin_x, &origin_z, &cell_size);
+    status = write_bake_ini(cfg, final_pattern, cell_size, ini, shown_ini);
   }
   for (int n = 1; !status && n <= job->frames; n++) {
     if (stop_signals_caught()) {
@@ -164,23 +204,6 @@ static int bake_frames(const bake_job *job, const scene_config *cfg, const char 
   pipeline_destroy(p);
   gl_context_destroy(gl);
   return status;
-}
-
-/* The scene cfg with the frames (pattern, simulated on cells cell_size wide) as its fog, as
- * a config at path: 0, or 1 (printed). */
-static int write_bake_ini(const scene_config *cfg, const char *pattern, double cell_size,
-                          const char *path) {
-  /* The same scene with the frames as its fog (density_scale, box, profile as they are). */
-  scene_config baked = *cfg;
-  baked.fog.fogmap[0] = baked.fog.channel[0] = '\0'; /* the frames hold one channel, Y */
-  /* the frames' cells: a map simulated k times finer or coarser covers the same world */
-  if (cell_size != cfg->box.cell_size) {
-    baked.box.cell_size = cell_size;
-    baked.box.cell_size_set = true;
-  }
-  snprintf(baked.fog.sequence, sizeof baked.fog.sequence, "%s", pattern);
-  fog_error err = {0};
-  return scene_config_write(&baked, path, &err) ? cli_fail("bake", "%s", err.message) : 0;
 }
 
 int cmd_bake(int argc, char **argv) {
@@ -225,16 +248,10 @@ int cmd_bake(int argc, char **argv) {
   stop_signals_clear();
   stop_signals_catch(&stop, false);
   int written = 0;
-  double cell_size = cfg.box.cell_size;
-  /* The new bake.ini into the staging folder too (naming the frames where they will be):
-   * written once before the frames, so that a scene that cannot be written as a config
-   * (a line too long, a folder whose name a config cuts short) fails before the
-   * simulation, and again after them with the cells they were simulated on. */
+  /* The new bake.ini into the staging folder too (bake_frames writes it first) */
   char staged_ini[SCENE_CONFIG_PATH_MAX + 16];
   snprintf(staged_ini, sizeof staged_ini, "%s/bake.ini", staging);
-  int status = write_bake_ini(&cfg, pattern, cell_size, staged_ini);
-  if (!status) status = bake_frames(&job, &cfg, staged, &written, &cell_size);
-  if (!status) status = write_bake_ini(&cfg, pattern, cell_size, staged_ini);
+  int status = bake_frames(&job, &cfg, staged, pattern, staged_ini, ini, &written);
   if (status) {
     stop_signals_restore(&stop);
     remove_frames(staged, written);
