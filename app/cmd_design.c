@@ -1,5 +1,6 @@
 /* fogpipe design: writes a designed fogmap (Perlin turbulence, Gaussian blobs, or
  * turbulence modulated by blobs) to EXR or PNG. */
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -15,14 +16,19 @@
 
 enum { max_blobs = 256 };
 
-/* Parses exactly `count` comma-separated finite numbers. */
+/* Parses exactly `count` comma-separated numbers, each as every option reads one
+ * (cli_parse_double: decimal, no blanks) and within float's range (blobs and velocities
+ * are floats: 1e39 turned infinite past the check, 0x1p2 and " 1" were taken). */
 static int parse_numbers(const char *text, double *values, int count) {
   const char *p = text;
   for (int i = 0; i < count; i++) {
-    char *end;
-    values[i] = strtod(p, &end);
-    if (end == p || !isfinite(values[i])) return 1;
-    p = end;
+    const size_t length = strcspn(p, ",");
+    char part[64];
+    if (length == 0 || length >= sizeof part) return 1;
+    memcpy(part, p, length);
+    part[length] = '\0';
+    if (!cli_parse_double(part, -FLT_MAX, FLT_MAX, &values[i])) return 1;
+    p += length;
     if (i + 1 < count) {
       if (*p != ',') return 1;
       p++;
@@ -53,9 +59,11 @@ typedef struct design_options {
 static int parse_blob(const char *command, const char *option, const char *text, void *target) {
   design_options *o = target;
   double v[4];
-  if (parse_numbers(text, v, 4) || !(v[2] > 0) || !(v[3] >= 0))
-    return cli_usage_error(command, "%s '%s': expected X,Z,SIGMA,PEAK with SIGMA > 0 and "
-                           "PEAK >= 0", option, text);
+  /* SIGMA of at least 1e-6 cells: 1e-50 became a float 0 past the check */
+  if (parse_numbers(text, v, 4) || !(v[2] >= 1e-6) || !(v[3] >= 0))
+    return cli_usage_error(command, "%s '%s': expected X,Z,SIGMA,PEAK, decimal numbers (in "
+                           "cells) with SIGMA >= 1e-6 and PEAK >= 0, each at most %g in size",
+                           option, text, (double)FLT_MAX);
   if (o->blob_count >= max_blobs) return cli_usage_error(command, "more than %d blobs", max_blobs);
   o->blobs[o->blob_count++] = (fog_blob){(float)v[0], (float)v[1], (float)v[2], (float)v[3]};
   return 0;
@@ -66,7 +74,8 @@ static int parse_velocity(const char *command, const char *option, const char *t
                           void *target) {
   double v[2];
   if (parse_numbers(text, v, 2))
-    return cli_usage_error(command, "%s '%s': expected VX,VZ (two numbers)", option, text);
+    return cli_usage_error(command, "%s '%s': expected VX,VZ (two decimal numbers, each at "
+                           "most %g in size)", option, text, (double)FLT_MAX);
   float *velocity = target;
   velocity[0] = (float)v[0], velocity[1] = (float)v[1];
   return 0;
