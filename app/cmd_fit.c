@@ -24,7 +24,8 @@
 
 typedef struct fit_options {
   const char *input, *out, *chart, *grid;
-  const char *frames; /* --frames all|A-B[:STEP] */
+  const char *frames; /* --frames all|A|A-B[:S], read into the three below */
+  long frames_first, frames_last, frames_step;
   double tolerance[8]; /* --tolerance T[,T...]: the first picks --out */
   int tolerance_count;
   double density_scale;
@@ -32,6 +33,36 @@ typedef struct fit_options {
   bool vdb_option_given; /* --grid, --up, --frame or --density-scale (even at its default) */
   fit_desc desc;
 } fit_options;
+
+/* --frames all|A|A-B, each with an optional :S (every S-th frame), read before any work
+ * (`all:2` was refused as "all", and a config input without a sequence said so before
+ * the syntax). */
+static int parse_frames(fit_options *o) {
+  o->frames_first = 0, o->frames_last = INT_MAX, o->frames_step = 1;
+  if (!o->frames) return 0;
+  char text[64];
+  bool ok = strlen(o->frames) < sizeof text;
+  if (ok) {
+    snprintf(text, sizeof text, "%s", o->frames);
+    char *colon = strchr(text, ':');
+    if (colon) {
+      *colon = '\0';
+      ok = cli_parse_long(colon + 1, 1, INT_MAX, &o->frames_step);
+    }
+    if (ok && strcmp(text, "all")) {
+      char *dash = strchr(text, '-');
+      if (dash) *dash = '\0';
+      ok = dash != text && cli_parse_long(text, 0, INT_MAX, &o->frames_first);
+      o->frames_last = o->frames_first;
+      if (ok && dash) ok = cli_parse_long(dash + 1, o->frames_first, INT_MAX, &o->frames_last);
+    }
+  }
+  if (!ok)
+    return cli_usage_error("fit", "--frames '%s': expected all, A or A-B (whole numbers, 0 <= "
+                           "A <= B <= %d), each optionally followed by :S for every S-th "
+                           "frame (S >= 1)", o->frames, INT_MAX);
+  return 0;
+}
 
 /* --tolerance T[,T...]: up to 8 values in (0, 1]. */
 static int parse_tolerances(const char *command, const char *option, const char *text,
@@ -89,7 +120,7 @@ static int parse(int argc, char **argv, fit_options *o) {
        .min = 1e-12, .max = 1e12, .given = &o->vdb_option_given,
        .help = "extinction per unit of the grid's value (default 1)"},
       {.kind = CLI_SECTION, .name = "sequences (a VDB INPUT, or a config's [fog] vdb):"},
-      {.kind = CLI_TEXT, .name = "--frames", .value = "all|A-B[:S]", .target = &o->frames,
+      {.kind = CLI_TEXT, .name = "--frames", .value = "all|A|A-B[:S]", .target = &o->frames,
        .help = "fit over these frame numbers (every S-th), the worst frame\n"
                "deciding: the static rungs fit the frames' mean density,\n"
                "the fogmap and the volume play the frames (default: one\n"
@@ -125,6 +156,7 @@ static int parse(int argc, char **argv, fit_options *o) {
       CLI_OPTIONS(options)};
   int parsed = cli_parse_one(&spec, argc, argv, &o->input);
   if (parsed) return parsed;
+  if (parse_frames(o)) return 2;
   if (o->frames && o->frame >= 0) /* --frame defaults to -1 (the last); it was ignored */
     return cli_usage_error("fit", "--frame fits one frame and --frames a range: give one of "
                            "them");
@@ -165,25 +197,14 @@ static int sequence_frames(const fit_options *o, const scene_config *cfg, int **
   if (!o->frames) return 0;
   if (!cfg->fog.vdb[0])
     return cli_usage_error("fit", "--frames: the input has no VDB sequence ([fog] vdb)");
-  int first = INT_MIN, last = INT_MAX, step = 1;
-  if (strcmp(o->frames, "all")) {
-    char range[64];
-    snprintf(range, sizeof range, "%s", o->frames);
-    char *colon = strchr(range, ':');
-    if (colon) {
-      *colon = '\0';
-      if (cli_int("fit", "--frames' step", colon + 1, 1, INT_MAX, &step)) return 2;
-    }
-    bool single;
-    if (cli_range("fit", "--frames", range, 0, INT_MAX, &first, &last, &single)) return 2;
-  }
   vdb_sequence seq;
   fog_error rerr = {0};
   if (render_fog_volume_sequence(cfg, &seq, &rerr)) return cli_fail("fit", "%s", rerr.message);
   int *list = malloc(sizeof *list * (size_t)seq.count);
   int n = 0, seen = 0;
   for (int i = 0; list && i < seq.count; i++)
-    if (seq.frames[i] >= first && seq.frames[i] <= last && seen++ % step == 0)
+    if (seq.frames[i] >= o->frames_first && seq.frames[i] <= o->frames_last &&
+        seen++ % o->frames_step == 0)
       list[n++] = seq.frames[i];
   vdb_sequence_destroy(&seq);
   if (!list) return cli_fail("fit", "out of memory");

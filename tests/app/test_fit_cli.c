@@ -226,6 +226,18 @@ int main(void) {
   CHECK(status == 2 && strstr(err, "--frames") && strstr(err, "no VDB sequence"),
         "--frames without a sequence: exit %d, %s", status, err);
 
+  /* --frames' syntax read before the input: a malformed range is named as such (it said
+   * "no VDB sequence"), and all:S is every S-th frame (it was refused as "all") */
+  snprintf(args, sizeof args, "'%s' --tolerance 0.1 --frames x %s", ini, fast);
+  status = fit(bin, args, out, err, sizeof out);
+  CHECK(status == 2 && strstr(err, "--frames 'x': expected all, A or A-B"),
+        "--frames x: exit %d, %s", status, err);
+  snprintf(args, sizeof args, "'../shared/data/vdb/groundfog/data/fluid_data_####.vdb' "
+           "--tolerance 0.1 --frames all:24 %s", fast);
+  status = fit(bin, args, out, err, sizeof out);
+  CHECK(status == 0 && strstr(out, "2 frames (1..25;"), "--frames all:24: exit %d, %s %s",
+        status, out, err);
+
   /* an --out that cannot be written: the path named, nothing left */
   char unwritable[256];
   snprintf(unwritable, sizeof unwritable, "%s/no/such/folder/scene.ini", dir);
