@@ -676,6 +676,16 @@ int cmd_import(int argc, char **argv) {
     vdb_sequence_destroy(&seq);
     return missing;
   }
+  /* --report-frame among the frames found, before any is read (it was checked after every
+   * frame had been imported) */
+  bool report_frame_found = o.report_frame < 0;
+  for (int i = 0; i < seq.count; i++) report_frame_found |= seq.frames[i] == o.report_frame;
+  if (!report_frame_found) {
+    const int first = seq.frames[0], last = seq.frames[seq.count - 1];
+    vdb_sequence_destroy(&seq);
+    return cli_usage_error("import", "--report-frame %d: no such frame among those imported "
+                           "(%d..%d)", o.report_frame, first, last);
+  }
 
   int status = 0, loaded = 0;
   out_folder made = {0}; /* the folders of --out this run made */

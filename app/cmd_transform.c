@@ -541,7 +541,9 @@ int cmd_transform(int argc, char **argv) {
     if (!cli_ends_with(out, ".exr")) /* what it writes, whatever the name says */
       return cli_usage_error("transform", "--out '%s': --inverse writes an EXR file: expected "
                              "a name ending in .exr", out);
-    if (cli_output_file("transform", "--out", out)) return 2;
+    if (cli_output_file("transform", "--out", out) ||
+        cli_output_in_folder("transform", "--out", out))
+      return 2;
     stop_signals stop;
     stop_signals_clear();
     stop_signals_catch(&stop, true);

@@ -169,6 +169,18 @@ int main(void) {
   CHECK(system(command) == 0, "--help exit status");
   read_text(out_path, text, sizeof text);
   CHECK(strstr(text, "--out") && strstr(text, "--size") && strstr(text, "--help"), "help: %s", text);
+  /* `fogpipe help render` is the same text (it printed the list of commands) */
+  char same[4096];
+  snprintf(command, sizeof command, "'%s' help render > '%s'", bin, out_path);
+  CHECK(system(command) == 0, "help render: exit status");
+  read_text(out_path, same, sizeof same);
+  CHECK(!strcmp(text, same), "help render: %s", same);
+  snprintf(command, sizeof command, "'%s' help nosuch > '%s' 2>&1", bin, out_path);
+  const int unknown = system(command);
+  read_text(out_path, same, sizeof same);
+  CHECK(WIFEXITED(unknown) && WEXITSTATUS(unknown) == 2 &&
+            strstr(same, "unknown command 'nosuch'"),
+        "help nosuch: %s", same);
   unlink(out_path);
   snprintf(path, sizeof path, "%s/stderr.txt", dir);
   unlink(path);
