@@ -18,7 +18,7 @@ may_be_nan=' soak.rss_1k_mb soak.growth_mb soak.growth_per_1k_frames_kb
   soak.heap_growth_per_1k_frames_kb transform.speedup_vs_pywt '
 table='
 transform |  |
-sim | --quick |
+sim | --quick --rounds 1 |
 pipeline | --size 64x36 --frames 5 |
 soak | --size 32x18 --frames 20 |
 import | --runs 1 --preview-runs 1 --images @OUT@ | fogpipe.png vdb_render.png
