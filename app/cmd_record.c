@@ -161,8 +161,7 @@ static void resume_hint(const record_job *job, const recorder *rec, int done, ch
   char config[4 * PATH_MAX + 8], out[4 * PATH_MAX + 8];
   const char *config_word = cli_shell_word(job->config_path, config, sizeof config);
   const char *out_word = cli_shell_word(job->out, out, sizeof out);
-  fog_error ignored = {0};
-  const bool foreign_ahead = recorder_complete_frames(rec, done + 1, job->frames, &ignored) < 0;
+  const bool foreign_ahead = recorder_frames_foreign(rec, done + 1, job->frames);
   const int first = foreign_ahead && !job->preview ? done + 1 : job->first_frame;
   int n = first > 1
               ? snprintf(text, size, "fogpipe record %s --frames %d-%d --out %s", config_word,

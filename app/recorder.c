@@ -140,6 +140,19 @@ int recorder_complete_frames(const recorder *rec, int first, int last, fog_error
   return done;
 }
 
+bool recorder_frames_foreign(const recorder *rec, int first, int last) {
+  char path[1200];
+  for (int frame = first; frame <= last; frame++) {
+    recorder_frame_path(rec, frame, path, sizeof path);
+    struct stat st;
+    fog_error ignored = {0};
+    if (stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0 &&
+        frame_identity(rec, path, &ignored) < 0)
+      return true;
+  }
+  return false;
+}
+
 /* The frame number of a file name NAME.NNNN.exr (4 digits or more), or 0. */
 int recorder_frame_number(const recorder *rec, const char *file) {
   const size_t n = strlen(rec->name);

@@ -79,6 +79,10 @@ int recorder_read_rgb(const recorder *rec, int frame, float *rgb, fog_error *err
  * from another recording (its identity differs, or it has none): resuming would rewrite
  * it or mix two sequences. */
 int recorder_complete_frames(const recorder *rec, int first, int last, fog_error *err);
+/* Whether a frame of first..last was recorded from another scene or settings (or carries
+ * no identity): headers only, no pixels decoded (the stop's resume hint asks it of every
+ * frame still ahead, which decoding took seconds a hundred frames). */
+bool recorder_frames_foreign(const recorder *rec, int first, int last);
 
 /* 0, or -1 with err naming the first frame of the folder outside first..last that was
  * recorded from another scene or settings (its identity differs from rec->identity, or it
