@@ -293,6 +293,13 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
     } else if (recorder_write_frame(rec, frame, &pixels, scratch, &beauty_float, &rerr)) {
       if (!job->quiet) recorder_progress_end(&progress);
       fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
+      if (done >= first) { /* a full disk: the frames written stay whole, as after Ctrl-C */
+        char hint[13 * PATH_MAX];
+        resume_hint(job, rec, done, hint, sizeof hint);
+        fprintf(stderr, "fogpipe %s: %d of %d frames complete in %s; to finish once the "
+                "frame can be written: %s\n", cmd, done - first + 1, last - first + 1,
+                rec->folder, hint);
+      }
       status = 1;
     } else {
       if (beauty_float && !float_frames++) first_float = frame;

@@ -2,7 +2,8 @@
  * (RLIMIT_FSIZE, with SIGXFSZ ignored so write() returns EFBIG as on a full disk) lets
  * the folder probe's 4 KiB through but not a frame. record must stop with a message
  * naming the frame, a non-zero status, and leave no frame and no temporary file (and not
- * the empty folder it made). */
+ * the empty folder it made). Failing at frame 2 (a folder in the way of its file), it says
+ * how to finish from the frame written, as a stop by Ctrl-C does. */
 #include "tests/app/record_util.h"
 
 #include <sys/resource.h>
@@ -37,6 +38,21 @@ int main(void) {
   CHECK(frame_files == 0 && others <= 0,
         "%d frame files and %d other files left in %s, expected none", frame_files, others,
         out);
+
+  /* frame 1 written, frame 2 failing: the command that finishes the run */
+  char blocker[700];
+  snprintf(blocker, sizeof blocker, "%s/frame.0002.exr", out);
+  CHECK(mkdir(out, 0755) == 0 && mkdir(blocker, 0755) == 0, "cannot make %s", blocker);
+  char command[3000];
+  snprintf(command, sizeof command, "'%s' record %s --frames 3 --out '%s' --size %s > '%s' 2>&1",
+           record_bin(), RECORD_TEST_CONFIG, out, RECORD_TEST_SIZE, log);
+  status = system(command);
+  CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 1 &&
+            record_log_contains(log, "cannot write frame 2") &&
+            record_log_contains(log, "1 of 3 frames complete in") &&
+            record_log_contains(log, "--resume"),
+        "a write failing at frame 2: no command to finish from frame 1");
+  if (!record_log_contains(log, "--resume")) record_print_log(log);
   test_remove_tree(root);
   return test_finish("test_record_write_fails");
 }
