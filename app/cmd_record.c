@@ -29,22 +29,38 @@
  * record_run starts: one raised while the scene loads stops it before the first frame, one
  * raised during the frames still stops the preview after them. */
 
-/* PATH with its folder resolved (realpath) where that folder exists, and without trailing
- * slashes: two spellings of one place compare equal ("./rec", "rec/", "/abs/rec"). */
+/* PATH with its deepest existing folder resolved (realpath) and the rest appended, without
+ * "." parts, repeated or trailing slashes: two spellings of one place compare equal
+ * ("./rec", "rec/", "/abs/rec"), also where folders are still to be made ("renders/shot1"
+ * with no renders/ stayed relative, and never matched its resolved parent). */
 static void resolved_path(const char *path, char *out, size_t size) {
-  char copy[PATH_MAX], folder[PATH_MAX], real[PATH_MAX];
+  char copy[PATH_MAX], real[PATH_MAX];
   snprintf(copy, sizeof copy, "%s", path);
   for (size_t n = strlen(copy); n > 1 && copy[n - 1] == '/'; n--) copy[n - 1] = '\0';
-  const char *slash = strrchr(copy, '/');
-  const char *base = slash ? slash + 1 : copy;
-  const size_t folder_length = !slash ? 0 : slash == copy ? 1 : (size_t)(slash - copy);
-  memcpy(folder, slash ? copy : ".", slash ? folder_length : 1);
-  folder[slash ? folder_length : 1] = '\0';
-  if (!strcmp(base, ".") || !strcmp(base, "..") || !realpath(folder, real)) {
-    snprintf(out, size, "%s", copy);
-    return;
+  /* the folders from the top down: head = copy[0, cut), the part realpath resolves */
+  size_t cut = strrchr(copy, '/') ? (size_t)(strrchr(copy, '/') - copy) : 0;
+  for (;;) {
+    char head[PATH_MAX];
+    const size_t n = cut == 0 && copy[0] == '/' ? 1 : cut;
+    memcpy(head, n ? copy : ".", n ? n : 1);
+    head[n ? n : 1] = '\0';
+    if (realpath(head, real)) break;
+    if (n <= 1) { /* not even "." or "/" resolves: as written */
+      snprintf(out, size, "%s", copy);
+      return;
+    }
+    while (cut > 0 && copy[cut - 1] != '/') cut--;
+    if (cut > 0) cut--; /* onto the slash before the last part */
   }
-  snprintf(out, size, "%s%s%s", real, strcmp(real, "/") ? "/" : "", base);
+  size_t used = (size_t)snprintf(out, size, "%s", real);
+  for (char *part = copy + cut; *part && used < size;) {
+    while (*part == '/') part++;
+    const size_t length = strcspn(part, "/");
+    if (length && !(length == 1 && part[0] == '.'))
+      used += (size_t)snprintf(out + used, size - used, "%s%.*s",
+                               used && out[used - 1] == '/' ? "" : "/", (int)length, part);
+    part += length;
+  }
 }
 
 /* Refuses (true, the usage message printed) a --preview that names the --out folder itself

@@ -9,6 +9,7 @@
  * playable file. */
 #include "tests/app/record_util.h" /* first: it sets _POSIX_C_SOURCE */
 
+#include <limits.h>
 #include <math.h>
 
 #include "tests/app/exr_channel_util.h"
@@ -192,6 +193,21 @@ int main(void) {
   CHECK(status == 0 && file_size(video5) == expected,
         "a preview inside the --out folder to be made: exit %d, %ld bytes", status,
         file_size(video5));
+
+  /* 4b. The same, spelt relative to the working folder and two new folders deep
+   * (new2/shot and new2/shot.mp4): the --out stayed relative while the video's folder was
+   * resolved, and the preview was refused as "its folder does not exist". */
+  char cwd[PATH_MAX], up[PATH_MAX] = "", out6[PATH_MAX + 700], video6[PATH_MAX + 800];
+  CHECK(getcwd(cwd, sizeof cwd) != NULL, "getcwd");
+  for (const char *c = cwd; *c; c++)
+    if (*c == '/' && c[1]) strcat(up, "../");
+  snprintf(out6, sizeof out6, "%s%s/new2/shot", up, root + 1);
+  snprintf(video6, sizeof video6, "%s.mp4", out6);
+  status = record_with_path(bin, out6, video6, log);
+  CHECK(status == 0 && file_size(video6) == expected,
+        "a preview beside the --out folder, both two new folders deep, relative: exit %d, "
+        "%ld bytes", status, file_size(video6));
+  if (status) record_print_log(log);
 
   /* 5. The real ffmpeg, where installed. */
   if (access("/usr/bin/ffmpeg", X_OK) == 0) {
