@@ -1,6 +1,7 @@
 /* VDB placement and projection: index -> fogpipe world (Y up), the column integral
  * tau(x,z) = ∫ρ dy of a dense grid, and its area-weighted (conservative) resampling onto
  * a fogmap grid. See sim/vdb_import.h for the conventions. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -305,12 +306,20 @@ int vdb_columns_resample(const vdb_columns *columns, const vdb_fogmap_place *pla
   }
   /* f = τ / T: the mean optical depth per cell area divided by the profile thickness. */
   const double inv = 1.0 / (place->cell_size * place->cell_size * thickness);
+  int status = 0;
   for (size_t n = 0; n < (size_t)dw * dh; n++) {
     const double f = mass[n] * inv;
-    map->density[n] = f > 0 ? (float)f : 0.0f;
+    /* what fogmap_load takes back (a cell past it was written, and the map did not load) */
+    if (!(f <= FLT_MAX && (float)f <= FOGMAP_MAX_DENSITY) && !status)
+      status = fog_fail(err, FOG_ERR_BAD_FILE,
+                        "fogmap cell (%d, %d) would hold %.6g, more than a fogmap holds (%g): "
+                        "the grid's densities are too large (scale them down)",
+                        (int)(n % (size_t)dw), (int)(n / (size_t)dw), f,
+                        (double)FOGMAP_MAX_DENSITY);
+    map->density[n] = f > 0 && !status ? (float)f : 0.0f;
   }
   free(rows);
   free(mass);
   free(src);
-  return 0;
+  return status;
 }
