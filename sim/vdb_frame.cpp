@@ -114,6 +114,12 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
     fog_fail(&inner, clamped.code, "%.300s (%lld of its %lld active voxels were negative, "
              "clamped to 0: a signed grid, not a density?)", clamped.message,
              grid.negative_voxels, grid.active_voxels);
+  } else if (status && projected && !(out->columns.mass > 0)) {
+    /* voxels all 0: the grid holds no fog (a sequence's frame before the smoke plays as
+     * none; one file alone has nothing to import) */
+    fog_error zero = inner;
+    fog_fail(&inner, zero.code, "%.300s (its %lld active voxels are all 0: the grid holds no "
+             "fog)", zero.message, grid.active_voxels);
   }
   if (status) {
     if (placed_by_config)

@@ -147,6 +147,14 @@ int main() {
                out);
   CHECK(status != 0 && out.find("is empty") != std::string::npos, "one empty file (%d): %s",
         status, out.c_str());
+  // one file whose voxels are all 0: the error says the grid holds no fog (it said only
+  // "cannot fit a vertical profile: total mass 0")
+  status = run(std::string("'") + bin + "' import '" + dir +
+                   "/seq/s_0005.vdb' --config none --up y --out '" + dir + "/out_zero'",
+               out);
+  CHECK(status != 0 && out.find("active voxels are all 0: the grid holds no fog") !=
+                           std::string::npos,
+        "one file of zeros (%d): %s", status, out.c_str());
   std::string cmd = "rm -rf '" + dir + "'";
   if (system(cmd.c_str()) != 0) fprintf(stderr, "could not remove %s\n", dir.c_str());
   return test_finish("test_vdb_empty_frames");
