@@ -33,7 +33,7 @@
 
 typedef enum fluid_advection {
   /* FLUID_ADVECT_MONOTONE_CUBIC: nearly MacCormack's accuracy (better at small CFL) for
-   * about a third of its cost (docs/simulation.md). */
+   * about 0.55 of its cost a step (docs/simulation.md). */
   FLUID_ADVECT_DEFAULT = 0,
   FLUID_ADVECT_BILINEAR = ADVECT_BILINEAR,
   FLUID_ADVECT_MONOTONE_CUBIC = ADVECT_MONOTONE_CUBIC,
@@ -56,6 +56,12 @@ typedef enum fluid_fft_planning {
 
 /* A Gaussian emitter: adds rate * dt * exp(-r^2 / (2 radius^2)) density per step (cut
  * at 4 radii; tabulated at create and again by fluid_sim_set_params). */
+/* Positions and radii of emitters, strokes and impulses: within 1e6 cells of the grid's
+ * origin (a source wraps around the periodic grid; past this its cell span overflowed an
+ * int: a radius of 3.75e8 covered no cell). Impulses: at most 1e12 cells/s a component. */
+#define FLUID_MAX_REACH 1e6
+#define FLUID_MAX_IMPULSE 1e12
+
 typedef struct fluid_emitter {
   float x, z;   /* centre, cells */
   float radius; /* Gaussian sigma, cells (> 0) */
@@ -85,7 +91,7 @@ typedef struct fluid_sim_desc {
   float wind_drift_z;
   float turbulence;      /* rms speed of the synthesised turbulence, cells/s; 0: none */
   float turbulence_scale;/* largest eddy wavelength, cells; > 4 (with turbulence > 0) */
-  double turbulence_slope; /* energy spectrum exponent (finite); -5/3 is Kolmogorov's */
+  double turbulence_slope; /* energy spectrum exponent, -20 to 20; -5/3 is Kolmogorov's */
   float wind_coupling;   /* rate (1/s) at which the fluid's fluctuations relax toward the
                             turbulence; >= 0, 0: no coupling (a free fluid) */
   uint64_t seed;         /* turbulence phases; 0 means 1 */

@@ -51,10 +51,12 @@ static int resolve_desc(const fluid_sim_desc *in, fluid_sim_desc *d, fog_error *
                     "fluid sim: emitter_count > 0 needs an emitters array");
   for (int e = 0; e < d->emitter_count; e++) {
     const fluid_emitter *em = &d->emitters[e];
-    if (!isfinite(em->x) || !isfinite(em->z) || !(em->radius > 0) || !isfinite(em->radius) ||
-        !(em->rate >= 0) || !isfinite(em->rate)) {
+    if (!(fabsf(em->x) <= FLUID_MAX_REACH) || !(fabsf(em->z) <= FLUID_MAX_REACH) ||
+        !(em->radius > 0) || !(em->radius <= FLUID_MAX_REACH) || !(em->rate >= 0) ||
+        !isfinite(em->rate)) {
       fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-               "fluid sim: emitter %d: position must be finite, radius > 0, rate >= 0", e);
+               "fluid sim: emitter %d: position within %g cells, radius > 0 and at most that, "
+               "rate >= 0 and finite", e, FLUID_MAX_REACH);
       return 1;
     }
   }

@@ -14,17 +14,25 @@ static int wrap(int i, int n) {
   return i < 0 ? i + n : i;
 }
 
+static bool within_reach(float v) { return fabsf(v) <= FLUID_MAX_REACH; }
+
 /* The cells [lo, lo + count) along one axis covering [centre - reach, centre + reach],
  * at most one period (so no cell is visited twice); returns whether that took the whole
  * period. Then the period is the one centred on the middle of the span, so each cell is
  * taken at its image nearest the centre (a source whose reach passes half the grid, on
  * one side from its centre, lost its other side to the far image). */
 static bool cover(float centre_lo, float centre_hi, float reach, int n, int *lo, int *count) {
-  *lo = (int)floorf(centre_lo - reach);
-  int hi = (int)ceilf(centre_hi + reach);
-  *count = hi - *lo + 1;
-  if (*count <= n) return false;
-  *lo = (int)floorf(0.5f * (centre_lo + centre_hi)) - n / 2;
+  /* in double: centres and reaches are within FLUID_MAX_REACH cells (fluid.h), so the span
+   * fits an int, but its count did not for a reach near float's */
+  const double a = floor((double)centre_lo - reach), b = ceil((double)centre_hi + reach);
+  if (b - a + 1 <= n) {
+    *lo = (int)a;
+    *count = (int)(b - a) + 1;
+    return false;
+  }
+  /* [mid - n/2, mid + n/2): every cell's image nearest the middle (from floor(mid) - n/2, a
+   * centre at 32.99 on 64 cells took cell 0 at its far image: 0.0043 instead of 0.0082) */
+  *lo = (int)ceil(0.5 * ((double)centre_lo + centre_hi) - 0.5 * n);
   *count = n;
   return true;
 }
@@ -112,10 +120,12 @@ static float segment_distance2(float px, float pz, float ax, float az, float bx,
 }
 
 int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *s, fog_error *err) {
-  if (!isfinite(s->x0) || !isfinite(s->z0) || !isfinite(s->x1) || !isfinite(s->z1) ||
-      !isfinite(s->amount) || !(s->radius > 0) || !isfinite(s->radius)) {
+  if (!within_reach(s->x0) || !within_reach(s->z0) || !within_reach(s->x1) ||
+      !within_reach(s->z1) || !isfinite(s->amount) || !(s->radius > 0) ||
+      !within_reach(s->radius)) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "fluid sim: stroke needs finite end points and amount and a radius > 0");
+             "fluid sim: stroke needs end points and a radius > 0 within %g cells and a finite "
+             "amount", FLUID_MAX_REACH);
     return 1;
   }
   const int w = sim->width, h = sim->height;
@@ -155,10 +165,12 @@ int fluid_sim_paint(fluid_sim *sim, const fluid_stroke *s, fog_error *err) {
 
 int fluid_sim_add_impulse(fluid_sim *sim, float x, float z, float radius, float du, float dv,
                           fog_error *err) {
-  if (!isfinite(x) || !isfinite(z) || !isfinite(du) || !isfinite(dv) || !(radius > 0) ||
-      !isfinite(radius)) {
+  /* |du|, |dv| up to FLUID_MAX_IMPULSE: two of 3e38 made the velocity infinite, then NaN */
+  if (!within_reach(x) || !within_reach(z) || !(fabsf(du) <= FLUID_MAX_IMPULSE) ||
+      !(fabsf(dv) <= FLUID_MAX_IMPULSE) || !(radius > 0) || !within_reach(radius)) {
     fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-             "fluid sim: impulse needs a finite position and velocity and a radius > 0");
+             "fluid sim: impulse needs a position and a radius > 0 within %g cells and a "
+             "velocity of at most %g cells/s", FLUID_MAX_REACH, FLUID_MAX_IMPULSE);
     return 1;
   }
   const int w = sim->width, h = sim->height;

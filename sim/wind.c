@@ -68,10 +68,15 @@ static int check_desc(const wind_desc *desc, fog_error *err) {
                     "lies between that wavelength and 4 cells, so turbulence %g would have "
                     "no eddy to drive (a larger scale, or a larger grid)", scale, w, h,
                     desc->turbulence);
-  if (!isfinite(slope) || !isfinite(desc->drift_x) || !isfinite(desc->drift_z))
-    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-                    "wind: drift (%g, %g) and slope %g must be finite", desc->drift_x,
-                    desc->drift_z, slope);
+  if (!isfinite(desc->drift_x) || !isfinite(desc->drift_z))
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "wind: drift (%g, %g) must be finite",
+                    desc->drift_x, desc->drift_z);
+  /* |slope| <= 20 (Kolmogorov's -5/3, Kraichnan's -3 well inside): the amplitudes
+   * k^((slope - 1)/2), stored as float before their normalisation, overflowed at -64 (every
+   * velocity NaN) and a slope of 1000 left no turbulence at all */
+  if (!(fabs(slope) <= WIND_MAX_SLOPE))
+    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "wind: slope %g: expected -%g to %g", slope,
+                    WIND_MAX_SLOPE, WIND_MAX_SLOPE);
   return 0;
 }
 

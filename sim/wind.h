@@ -19,12 +19,15 @@
 
 #include "sim/fogmap.h" /* fog_error */
 
+#define WIND_MAX_SLOPE 20.0
+
 typedef struct wind_desc {
   int width, height;      /* periodic grid, both even and >= 8 */
   float drift_x, drift_z; /* constant wind, cells per second */
   float turbulence;       /* rms speed of the turbulent part, cells per second; 0: none */
   float scale;            /* largest eddy wavelength, cells; > 4 */
-  double slope;           /* spectrum exponent of E(k), finite: -5/3 Kolmogorov's, 0 flat */
+  double slope;           /* spectrum exponent of E(k), |slope| <= WIND_MAX_SLOPE: -5/3
+                             Kolmogorov's, 0 flat */
   uint64_t seed;          /* 0 means the default seed 1 */
 } wind_desc;
 

@@ -149,6 +149,51 @@ int main(void) {
     }
   }
 
+  /* A Gaussian wider than half the grid, at a centre between cells: each cell takes its
+   * image nearest the centre (the period started at floor(centre) - N/2, so cell 0 of an
+   * emitter at 32.99 took its far image: 0.0043 of 0.0082). One step, one image a cell. */
+  const float centres[2] = {32.99f, 31.3f};
+  for (int k = 0; k < 2; k++) {
+    const fluid_emitter wide = {centres[k], 32.0f, 10.0f, 1.0f};
+    fluid_sim_desc wd = fluid_sim_desc_default(N, N);
+    wd.dt = 1.0f, wd.emitters = &wide, wd.emitter_count = 1;
+    fluid_sim *wsim = fluid_sim_create(&wd, &err);
+    CHECK(wsim != NULL, "a wide emitter: %s", err.message);
+    if (!wsim) continue;
+    fluid_sim_step(wsim, &err);
+    const float *d = fluid_sim_density(wsim)->density;
+    double worst = 0;
+    for (int x = 0; x < N; x++) {
+      double dx = fabs(x - (double)centres[k]);
+      dx = fmin(dx, N - dx);
+      const double exact = exp(-dx * dx / 200.0);
+      worst = fmax(worst, fabs(d[32 * N + x] - exact) / exact);
+    }
+    CHECK(worst < 1e-5, "an emitter of sigma 10 at x = %g: worst relative error %.3g (a cell "
+          "at its far image)", (double)centres[k], worst);
+    fluid_sim_destroy(wsim);
+  }
+  /* Sources past FLUID_MAX_REACH are refused (a radius of 3.75e8 overflowed the cell count
+   * and covered no cell; an impulse of 3e38 made the velocity infinite) */
+  {
+    const fluid_emitter huge = {32.0f, 32.0f, 3.75e8f, 1.0f};
+    fluid_sim_desc hd = fluid_sim_desc_default(N, N);
+    hd.emitters = &huge, hd.emitter_count = 1;
+    CHECK(!fluid_sim_create(&hd, &err) && strstr(err.message, "emitter 0"),
+          "an emitter of radius 3.75e8: %s", err.message);
+    fluid_sim_desc id = fluid_sim_desc_default(N, N);
+    fluid_sim *isim = fluid_sim_create(&id, &err);
+    CHECK(isim && fluid_sim_add_impulse(isim, 32, 32, 3.75e8f, 1, 0, &err) &&
+              fluid_sim_add_impulse(isim, 32, 32, 3, 3e38f, 0, &err) &&
+              fluid_sim_paint(isim, &(fluid_stroke){0, 0, 1e9f, 0, 2, 1, false}, &err),
+          "an impulse of radius 3.75e8 or of 3e38 cells/s, or a stroke to 1e9, was taken");
+    fluid_sim_destroy(isim);
+    fluid_sim_desc sd = fluid_sim_desc_default(N, N);
+    sd.turbulence = 1.0, sd.turbulence_slope = -64.0;
+    CHECK(!fluid_sim_create(&sd, &err) && strstr(err.message, "slope"),
+          "a turbulence slope of -64 (every velocity NaN): %s", err.message);
+  }
+
   /* Bad descs are refused with a message naming the problem. */
   desc = fluid_sim_desc_default(63, N);
   CHECK(!fluid_sim_create(&desc, &err) && strstr(err.message, "even"), "odd width: %s",
