@@ -524,19 +524,26 @@ int bench_lights(int argc, char **argv) {
          live->max_error, live->mean_error);
   /* B: on each scene the cheapest marching within MATCHED_ERROR over our cheapest. */
   double b[SCENE_COUNT];
+  bool b_extrapolated[SCENE_COUNT]; /* the matched march's time fitted, not drawn */
   for (int s = 0; s < SCENE_COUNT; s++) {
     double march_ms = NAN, ours_ms = NAN;
+    b_extrapolated[s] = false;
     for (int i = 0; i < row_count; i++) {
       const lights_row *r = &rows[i];
       if (r->scene != s || r->unlit || r->divisor > 1 || r->method.integral == FOG_LAMP_FOGSHOP ||
           !(r->max_error <= MATCHED_ERROR) || !isfinite(r->ms))
         continue;
-      double *best = r->method.integral == FOG_LAMP_MARCH ? &march_ms : &ours_ms;
-      if (!(*best <= r->ms)) *best = r->ms;
+      const bool march = r->method.integral == FOG_LAMP_MARCH;
+      double *best = march ? &march_ms : &ours_ms;
+      if (!(*best <= r->ms)) {
+        *best = r->ms;
+        if (march) b_extrapolated[s] = r->beyond_cap;
+      }
     }
     b[s] = march_ms / ours_ms;
-    printf("%s: cheapest within %g: marching %.2f ms, ours %.2f ms (%s)\n", scene_names[s],
-           MATCHED_ERROR, march_ms, ours_ms,
+    printf("%s: cheapest within %g: marching %.2f ms%s, ours %.2f ms (%s)\n", scene_names[s],
+           MATCHED_ERROR, march_ms,
+           b_extrapolated[s] ? " (extrapolated: past llvmpipe's loop cap)" : "", ours_ms,
            b[s] == b[s] ? "ratio below" : "nan: one of them never gets there");
   }
   if (shadow_rows(&scenes[0], &rows[2], W, H, frames, inscatter, &out, &rerr)) goto done;
@@ -544,8 +551,11 @@ int bench_lights(int argc, char **argv) {
   double c = halo_ratio(&halo_ours, &halo_fogshop);
   printf("halo (g 0.7, CPU twins): ours max error %.2e, Fogshop's %.2e of the peak\n", halo_ours,
          halo_fogshop);
+  /* march_time_extrapolated=1: B's marching time is the fit of the drawn rows' times (its
+   * loops pass llvmpipe's cap), not a measurement */
   printf("lights: ms_per_light=%.2f march_speedup_at_matched_error=%.2f "
-         "fogshop_halo_error_ratio=%.0f\n", per_light, b[1], c);
+         "fogshop_halo_error_ratio=%.0f march_time_extrapolated=%d\n", per_light, b[1], c,
+         b_extrapolated[1] ? 1 : 0);
   status = 0;
   goto done;
 

@@ -8,7 +8,7 @@
 include(${CMAKE_CURRENT_LIST_DIR}/bench_smoke.cmake)
 bench_smoke_test(lights 600)
 
-bench_smoke_run(lights "^lights: ms_per_light=[0-9.]+ march_speedup_at_matched_error=([0-9.]+|nan) fogshop_halo_error_ratio=[0-9]+$"
+bench_smoke_run(lights "^lights: ms_per_light=[0-9.]+ march_speedup_at_matched_error=([0-9.]+|nan) fogshop_halo_error_ratio=[0-9]+ march_time_extrapolated=[01]$"
                 --size 32x18 --frames 1)
 bench_smoke_expect_files(lights.csv lights_chart.csv lights_chart.png)
 bench_smoke_read_csv(lights.csv "scene,method,ms_per_frame,max_error,mean_error,timed" 27
