@@ -47,7 +47,7 @@
 static int error_stride(int width) {
   return width >= 256 ? 8 : (width / 32 > 1 ? width / 32 : 1);
 }
-#define MATCHED_ERROR 1e-2 /* the issue's 1e-3 is below the converged twin's own floor */
+#define MATCHED_ERROR 1e-2 /* the issue's 1e-3 is below the 48^3 sun volume's floor (7e-3) */
 
 static const int step_counts[] = {2, 4, 8, 16, 32};
 static const int resolutions[] = {24, 48, 96};
@@ -278,13 +278,18 @@ static int timing_draw(void *user, int row, fog_error *err) {
   return draw_row(&u->scenes[u->rows[row].scene], &u->rows[row], u->out, err);
 }
 
-/* B's partner on one scene's rows: the most accurate of our settings (any resolution) whose
- * fog pass costs no more time than the froxel baseline's 1x grid; NULL where none does. */
+/* B's partner on one scene's rows: the most accurate of our settings (any image
+ * resolution) whose fog pass costs no more time than the froxel baseline's 1x grid and
+ * reads no finer sun volume than the froxels are fed (the 96^3 volume's CPU compute, 45-115
+ * ms a refresh, is in no row's time: a 96^3 row made the plume's B 50.7); NULL where none
+ * does. */
 static const light_row *ours_at_froxel_time(const light_row *rows, const light_row *froxel) {
   const light_row *best = NULL;
   for (int i = 0; i < SCENE_ROWS; i++) {
     const light_row *r = &rows[i];
-    if (!r->resolution || r->march || r->froxel || r->ms > froxel->ms) continue;
+    if (!r->resolution || r->march || r->froxel || r->ms > froxel->ms ||
+        r->resolution > froxel->resolution)
+      continue;
     if (!best || r->max_error < best->max_error) best = r;
   }
   return best;
@@ -486,9 +491,10 @@ int bench_light(int argc, char **argv) {
     printf("note: %s within max error %g on the default scene; march_speedup_at_matched_error "
            "is nan\n", march_ms == march_ms ? "none of our settings is" : "no marching is",
            MATCHED_ERROR);
-  else /* said every run: the issue asks for 1e-3, which the reference cannot resolve */
-    printf("C matched at max error %g (not the issue's 1e-3: below the %d^3 reference's own "
-           "floor): the cheapest marching %.2f ms, ours %.2f ms\n", MATCHED_ERROR,
+  else /* said every run: the issue asks for 1e-3, below what the 48^3 sun volume allows */
+    printf("C matched at max error %g (not the issue's 1e-3: the 48^3 sun volume both methods "
+           "read has an error floor of about 7e-3 against the %d^3 reference): the cheapest "
+           "marching %.2f ms, ours %.2f ms\n", MATCHED_ERROR,
            FOG_BENCH_LIGHT_VOLUME, march_ms, ours_ms);
   /* B on each scene: the froxel grid's error over ours at no more time */
   double froxel_ratio[SCENE_COUNT];
@@ -499,9 +505,11 @@ int bench_light(int argc, char **argv) {
     froxel_ratio[sc] = ours ? froxel->max_error / ours->max_error : NAN;
     if (ours)
       printf("%s: froxels 1x %.2f ms, max error %.2e (mean %.2e); ours at no more time: %s %d "
-             "steps at %s, %.2f ms, max %.2e (mean %.2e): max ratio %.2f, mean ratio %.2f\n",
+             "steps on the %d^3 volume at %s, %.2f ms, max %.2e (mean %.2e): max ratio %.2f, "
+             "mean ratio %.2f\n",
              scene_configs[sc], froxel->ms, froxel->max_error, froxel->mean_error,
              ours->divisor > 1 ? "the reduced pass" : "full resolution", ours->steps,
+             ours->resolution,
              ours->divisor > 2 ? "1/4" : ours->divisor > 1 ? "1/2" : "1/1", ours->ms,
              ours->max_error, ours->mean_error, froxel_ratio[sc],
              froxel->mean_error / ours->mean_error);
