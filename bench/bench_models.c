@@ -24,9 +24,10 @@
  * ... height_exact_ms=... height_march_speedup_at_matched_error=... volume_exact_ms=...
  * volume_march_speedup_at_matched_error=... volume_empty_skip_speedup=... quadric_exact_ms=...
  * quadric_march_speedup_at_matched_error=... rbf_64_ms=... rbf_3000_ms=... fit_s=...
- * perlin_exact_ms=... perlin_march_speedup_at_matched_error=... perlin_paper_error=...`, a
- * speedup being the time of the cheapest
- * marching with max error <= 1e-3 over the exact time. */
+ * perlin_exact_ms=... perlin_march_speedup_at_matched_error=... perlin_paper_error=...
+ * unmatched=...`, a speedup being the time of the cheapest marching with max error <= 1e-3
+ * over the exact time (the most accurate marching's where none gets there: unmatched names
+ * those models). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -254,11 +255,14 @@ static int rbf_scale_rows(fog_pass *pass, const render_scene *sc, gl_target *tar
           for (uint32_t j = 0; j < range[1]; j++)
             depth += fog_rbf_optical_depth(0.0, &rows[r].rbfs[tiles.indices[range[0] + j]], 1,
                                            o, d, ts);
-          worst = fmax(worst, fabs(exp(-depth) - gpu_tau[k]));
+          /* a NaN pixel is an infinite error (fmax drops a NaN) */
+          const double listed = fabs(exp(-depth) - gpu_tau[k]);
+          worst = fmax(worst, listed == listed ? listed : INFINITY);
           rows[r].listed_share += range[1] / ((double)rows[r].count * W * H);
           if (px % full_stride || py % full_stride) continue;
           const double all = fog_rbf_optical_depth(0.0, rows[r].rbfs, rows[r].count, o, d, ts);
-          worst_all = fmax(worst_all, fabs(exp(-all) - gpu_tau[k]));
+          const double whole = fabs(exp(-all) - gpu_tau[k]);
+          worst_all = fmax(worst_all, whole == whole ? whole : INFINITY);
         }
       rows[r].listed_error = worst;
       rows[r].max_error = worst_all;
@@ -317,11 +321,13 @@ int bench_models(int argc, char **argv) {
           "volume_march_speedup_at_matched_error=F volume_empty_skip_speedup=S\n"
           "quadric_exact_ms=M quadric_march_speedup_at_matched_error=Q rbf_64_ms=R64\n"
           "rbf_3000_ms=R fit_s=S perlin_exact_ms=P perlin_march_speedup_at_matched_error=PM\n"
-          "perlin_paper_error=E: B, D, F, Q, PM = time of the cheapest ray marching with max tau error <=\n"
-          "1e-3 / the exact integral's time; S = the volume's exact walk without empty-space\n"
-          "skipping / with it; M: 8 quadric volumes; R64, R: 64 and 3000 Gaussians spread over\n"
-          "the valley, culled per screen tile (target R <= 4 R64); S: seconds for `fogpipe fit`\n"
-          "on configs/vdb_plume_volume.ini's VDB frame at its defaults (target <= 30); P: Perlin\n"
+          "perlin_paper_error=E unmatched=LIST: B, D, F, Q, PM = time of the cheapest ray\n"
+          "marching with max tau error <= 1e-3 / the exact integral's time (where none gets\n"
+          "there, the most accurate one's: LIST names those models, lower bounds; none);\n"
+          "S = the volume's exact walk without empty-space skipping / with it; M: 8 quadric\n"
+          "volumes; R64, R: 64 and 3000 Gaussians spread over the valley, culled per screen tile\n"
+          "(target R <= 4 R64); S: seconds for `fogpipe fit` on configs/vdb_plume_volume.ini's\n"
+          "VDB frame at its defaults (target <= 30); P: Perlin\n"
           "turbulence fog (4 octaves) over the valley; E: max |tau error| of Zdrojewska's single\n"
           "sample against the ray integral."};
   int exit_status = bench_parse(&command, argc, argv);
@@ -520,10 +526,16 @@ int bench_models(int argc, char **argv) {
   double paper_error = NAN, paper_ms = NAN;
   for (int i = 0; i < row_count; i++)
     if (rows[i].paper) paper_error = rows[i].max_error, paper_ms = rows[i].ms;
+  /* the models whose "matched" speedup is the most accurate march's (none within
+   * MATCHED_ERROR): lower bounds, named in the summary */
+  char unmatched[256] = "";
   for (int m = 1; m < MODEL_COUNT; m++) {
     if (!marched(m)) continue;
     bool matched;
     speedup[m] = march_speedup(rows, row_count, m, &matched);
+    if (!matched && m != QUADRIC_NOISE)
+      snprintf(unmatched + strlen(unmatched), sizeof unmatched - strlen(unmatched), "%s%s",
+               unmatched[0] ? "+" : "", model_name(m));
     for (int i = 0; i < row_count; i++)
       if (rows[i].model == m && !rows[i].setting && !rows[i].hardware && !rows[i].paper) {
         if (rows[i].unskipped)
@@ -560,10 +572,10 @@ int bench_models(int argc, char **argv) {
          "volume_empty_skip_speedup=%.2f quadric_exact_ms=%.3f "
          "quadric_march_speedup_at_matched_error=%.2f rbf_64_ms=%.3f rbf_3000_ms=%.3f "
          "fit_s=%.2f perlin_exact_ms=%.3f perlin_march_speedup_at_matched_error=%.2f "
-         "perlin_paper_error=%.4f\n",
+         "perlin_paper_error=%.4f unmatched=%s\n",
          exact_ms[2], speedup[2], exact_ms[1], speedup[1], exact_ms[3], speedup[3],
          unskipped_ms / exact_ms[3], exact_ms[4], speedup[4], scale[0].ms, scale[1].ms, fit_s,
-         exact_ms[PERLIN], speedup[PERLIN], paper_error);
+         exact_ms[PERLIN], speedup[PERLIN], paper_error, unmatched[0] ? unmatched : "none");
   status = 0;
   goto done;
 

@@ -9,7 +9,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/bench_smoke.cmake)
 bench_smoke_test(models 120)
 
 set(num "[0-9]+[.]?[0-9]*") # no group: CMake keeps at most 9 per match
-bench_smoke_run(models "^models: rbf_exact_ms=${num} rbf_march_speedup_at_matched_error=${num} height_exact_ms=${num} height_march_speedup_at_matched_error=${num} volume_exact_ms=${num} volume_march_speedup_at_matched_error=${num} volume_empty_skip_speedup=${num} quadric_exact_ms=${num} quadric_march_speedup_at_matched_error=${num} rbf_64_ms=${num} rbf_3000_ms=${num} fit_s=${num} perlin_exact_ms=${num} perlin_march_speedup_at_matched_error=${num} perlin_paper_error=${num}$"
+bench_smoke_run(models "^models: rbf_exact_ms=${num} rbf_march_speedup_at_matched_error=${num} height_exact_ms=${num} height_march_speedup_at_matched_error=${num} volume_exact_ms=${num} volume_march_speedup_at_matched_error=${num} volume_empty_skip_speedup=${num} quadric_exact_ms=${num} quadric_march_speedup_at_matched_error=${num} rbf_64_ms=${num} rbf_3000_ms=${num} fit_s=${num} perlin_exact_ms=${num} perlin_march_speedup_at_matched_error=${num} perlin_paper_error=${num} unmatched=(none|[a-z0-9+]+)$"
                 --size 32x18 --frames 1)
 bench_smoke_expect_files(models.csv models_chart.csv models_chart.png)
 bench_smoke_read_csv(models.csv "model,method,setting,ms_per_frame,rmse,max_error" 47)
