@@ -1,5 +1,5 @@
 # `fogpipe bench render` smoke test: the benchmark runs at a tiny size, exits 0, writes a
-# table CSV whose rows hold finite numbers (all 56 rows: 14 marching, 5 exact, 3 ground fog, 2 thresholds, 12 LOD,
+# table CSV whose rows hold finite numbers (all 57 rows: 14 marching, 5 exact and 1 exact of whole rays, 3 ground fog, 2 thresholds, 12 LOD,
 # the detailed and the simulated fog's exact walk and 6 marchings each, 6 marchings of the
 # ground fog), the
 # chart CSV and PNG, and ends with the summary line. It asserts no speed (speed targets
@@ -21,9 +21,9 @@ if(NOT bench_output MATCHES "tau images identical bit for bit")
   message(FATAL_ERROR "the ground fog rows with and without skipping differ")
 endif()
 
-# The table: header + 56 rows; every number finite (no nan/inf), errors and times >= 0.
+# The table: header + 57 rows; every number finite (no nan/inf), errors and times >= 0.
 bench_smoke_expect_files(render.csv render_chart.csv render_chart.png render_tau.png)
-bench_smoke_read_csv(render.csv "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full" 56)
+bench_smoke_read_csv(render.csv "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full" 57)
 foreach(line IN LISTS bench_rows)
   # method,setting,ms,rmse,max[,rmse_full,max_full] (the last two only for LOD rows)
   if(NOT line MATCHES "^[^,]+,[^,]+,${finite},${finite},${finite},(${finite},${finite}|,)$")
