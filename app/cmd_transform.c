@@ -46,11 +46,16 @@ static int parse_int(const char *s, int *out) {
 /* ---- a signed EXR channel reader (fogmap_load rejects negative values, but detail
  * coefficients are signed): channel "Y" of a scanline EXR, half or float. ---- */
 
+/* OpenEXR's errors said by this command's own messages, not printed a second time */
+static void quiet_exr_error(exr_const_context_t ctxt, exr_result_t code, const char *msg) {
+  (void)ctxt, (void)code, (void)msg;
+}
+
 static int read_signed_exr(const char *path, int *w_out, int *h_out, float **pixels,
                            char *msg, size_t msg_size) {
   exr_context_t ctxt = NULL;
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-  init.error_handler_fn = NULL;
+  init.error_handler_fn = quiet_exr_error; /* NULL is OpenEXR's own, which prints */
   exr_decode_pipeline_t decode = EXR_DECODE_PIPELINE_INITIALIZER;
   int initialised = 0, status = 1;
   float *out = NULL;
@@ -136,7 +141,11 @@ static int write_manifest(const char *dir, transform_plan *plan, const char *inp
   snprintf(temp, sizeof temp, "%s/.transform.ini.tmp.%ld", dir, (long)getpid());
   FILE *f = fopen(temp, "w");
   if (!f) return cli_fail("transform", "%s: cannot write: %s", temp, strerror(errno));
-  fprintf(f, "# fogpipe transform of %s (docs/transform.md)\n[transform]\n", input);
+  /* the input's name in a comment line: a control character in it (a line break) would
+   * end the comment and make a manifest the reader refuses */
+  fprintf(f, "# fogpipe transform of ");
+  for (const char *c = input; *c; c++) fputc((unsigned char)*c < 0x20 || *c == 0x7f ? '?' : *c, f);
+  fprintf(f, " (docs/transform.md)\n[transform]\n");
   fprintf(f, "basis = %s\ndegree = %d\nlevels = %d\nmode = %s\ndecomposition = %s\n",
           basis_word(d->basis), transform_basis_degree(d->basis), d->levels,
           d->boundary == TRANSFORM_PERIODIC ? "periodic" : "symmetric",
@@ -389,6 +398,12 @@ static int read_manifest(const char *dir, transform_desc *desc, char *msg, size_
              "%s: [transform] needs basis, levels, width and height (missing:%s%s%s%s)", path,
              have & 1 ? "" : " basis", have & 2 ? "" : " levels", have & 4 ? "" : " width",
              have & 8 ? "" : " height");
+    status = 1;
+  } else if (!status && (int64_t)desc->width * desc->height > (int64_t)1 << 28) {
+    /* what read_signed_exr takes: the plan and the map were made from the manifest's size
+     * before any band was read (width = 1000000, height = 20000: 80 GB cleared) */
+    snprintf(msg, msg_size, "%s: [transform] width x height %d x %d is more than a fogmap's "
+             "%lld cells", path, desc->width, desc->height, (long long)1 << 28);
     status = 1;
   } else if (!status && degree >= 0 && degree != transform_basis_degree(desc->basis)) {
     snprintf(msg, msg_size, "%s: [transform] degree = %d contradicts basis = %s (degree %d)", path,

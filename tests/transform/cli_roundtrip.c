@@ -151,6 +151,7 @@ int main(void) {
   rc = run(args, err, sizeof err);
   CHECK(rc != 0, "inverse of an incomplete folder accepted");
   CHECK(strstr(err, "detail_2_xy.exr") != NULL, "message does not name the file: %s", err);
+  CHECK(!strstr(err, "EXR_ERR"), "OpenEXR's own message printed beside ours: %s", err);
   CHECK(!exists(out), "output written by a failed inverse");
 
   /* the folder with its parents; then a shallower transform into it: the deeper levels
@@ -288,6 +289,33 @@ int main(void) {
               strstr(err, "finite"),
           "an inverse of a coefficient %g (%d): %s", bad_values[b], rc, err);
     CHECK(!exists(damaged_out), "output written by the inverse of a damaged folder");
+  }
+
+  /* an input named with a line break: the folder's transform.ini still reads back (the name
+   * went raw into its comment line, and the line after it was refused) */
+  {
+    char odd[400], odd_dir[400], odd_out[400], copy_cmd[1200];
+    snprintf(odd, sizeof odd, "%s/bad\nname.exr", tmp);
+    snprintf(odd_dir, sizeof odd_dir, "%s/odd", tmp);
+    snprintf(odd_out, sizeof odd_out, "%s/odd.exr", tmp);
+    snprintf(copy_cmd, sizeof copy_cmd, "cp data/fogmap_sample.exr '%s'", odd);
+    CHECK(system(copy_cmd) == 0, "cannot make %s", odd);
+    snprintf(args, sizeof args, "'%s' --levels 1 --out %s", odd, odd_dir);
+    CHECK(run(args, err, sizeof err) == 0, "forward of a name with a line break: %s", err);
+    snprintf(args, sizeof args, "--inverse %s --out %s", odd_dir, odd_out);
+    CHECK(run(args, err, sizeof err) == 0 && exists(odd_out),
+          "inverse of the folder of a name with a line break: %s", err);
+    /* a manifest naming a size past a fogmap's: refused before anything is made for it */
+    char manifest[500];
+    snprintf(manifest, sizeof manifest, "%s/transform.ini", odd_dir);
+    FILE *m = fopen(manifest, "w");
+    if (m) {
+      fputs("[transform]\nbasis = linear\nlevels = 1\nwidth = 1000000\nheight = 20000\n", m);
+      fclose(m);
+    }
+    snprintf(args, sizeof args, "--inverse %s --out %s/huge.exr", odd_dir, tmp);
+    CHECK(run(args, err, sizeof err) != 0 && strstr(err, "more than a fogmap's"),
+          "a manifest of 1000000 x 20000: %s", err);
   }
 
   char cmd[400];
