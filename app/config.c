@@ -12,10 +12,12 @@
 #include "sim/vdb_import.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <ini.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -52,7 +54,8 @@ typedef struct key_spec {
   const char *section, *key;
   value_kind kind;
   size_t offset;
-  double min, max;          /* allowed range for numbers (inclusive) */
+  double min, max;          /* allowed range for numbers (inclusive); V_STRING: min is
+                               the least length */
   const char *names;        /* V_ENUM: "a|b|c" (value = index) */
   size_t aux_offset;        /* V_PATH and V_INT (when not 0): line; V_LIST: count */
   size_t size;              /* V_STRING / V_PATH buffer size */
@@ -117,7 +120,7 @@ static const key_spec keys[] = {
     {"fog", "perlin_integral", V_ENUM, F(fog.perlin_integral), 0, 0, "exact|paper", 0, 0},
     {"fog", "sequence", V_PATH, F(fog.sequence), 0, 0, NULL, F(fog.sequence_line), sizeof(((scene_config *)0)->fog.sequence)},
     {"fog", "vdb", V_PATH, F(fog.vdb), 0, 0, NULL, F(fog.vdb_line), sizeof(((scene_config *)0)->fog.vdb)},
-    {"fog", "vdb_grid", V_STRING, F(fog.vdb_grid), 0, 0, NULL, 0, sizeof(((scene_config *)0)->fog.vdb_grid)},
+    {"fog", "vdb_grid", V_STRING, F(fog.vdb_grid), 1, 0, NULL, 0, sizeof(((scene_config *)0)->fog.vdb_grid)},
     {"fog", "vdb_up", V_ENUM, F(fog.vdb_up), 0, 0, "z|y", 0, 0},
     {"fog", "vdb_fps", V_DOUBLE, F(fog.vdb_fps), 1e-6, 1e6, NULL, 0, 0},
     {"fog", "vdb_frame", V_INT, F(fog.vdb_frame), -1, 1e9, NULL, F(fog.vdb_frame_line), 0},
@@ -897,6 +900,11 @@ static int handle_key(parse_state *s, const char *section, const char *key, cons
     case V_STRING:
       if (strlen(value) >= k->size)
         return fail(s, section, key, "expected at most %zu characters, got '%s'", k->size - 1, value);
+      /* min: the least length (vdb_grid = nothing read "density" as a fogmap and no grid
+       * at all as a volume, and was dropped when written back) */
+      if (strlen(value) < k->min)
+        return fail(s, section, key, "expected a name, got nothing (leave the key out for "
+                    "the default)");
       snprintf(field, k->size, "%s", value);
       return 1;
     case V_LIST:
@@ -1600,11 +1608,34 @@ int scene_config_write(const scene_config *cfg, const char *path, fog_error *err
                     "%.400s: not written: the scene's config would not load (%s)", path,
                     reader ? berr.message : "out of memory");
   }
-  char temp[SCENE_CONFIG_PATH_MAX + 16];
-  snprintf(temp, sizeof temp, "%s.tmp", path);
-  FILE *f = fopen(temp, "w");
-  if (!f) {
+  /* A temporary of its own beside the target (PATH.tmp was shared by two writers and
+   * replaced a user's file of that name), hidden, made with O_EXCL and mode 0666 so the
+   * umask applies as to any new file; a config written over keeps its mode (it became
+   * 0644). Renamed onto the target once whole. */
+  char temp[SCENE_CONFIG_PATH_MAX + 64];
+  const char *slash = strrchr(path, '/');
+  const int folder_length = slash ? (int)(slash - path) + 1 : 0;
+  static atomic_uint serial;
+  int fd = -1;
+  for (int attempt = 0; attempt < 100 && fd < 0; attempt++) {
+    snprintf(temp, sizeof temp, "%.*s.%s.tmp.%ld.%u", folder_length, path, path + folder_length,
+             (long)getpid(), atomic_fetch_add(&serial, 1u));
+    fd = open(temp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+    if (fd < 0 && errno != EEXIST) break;
+  }
+  if (fd < 0) {
     fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: cannot write: %s", path, strerror(errno));
+    free(text);
+    return 1;
+  }
+  struct stat target;
+  if (stat(path, &target) == 0 && S_ISREG(target.st_mode)) fchmod(fd, target.st_mode & 07777);
+  FILE *f = fdopen(fd, "w");
+  if (!f) {
+    const int why = errno;
+    close(fd);
+    unlink(temp);
+    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: cannot write: %s", path, strerror(why));
     free(text);
     return 1;
   }
@@ -1614,7 +1645,7 @@ int scene_config_write(const scene_config *cfg, const char *path, fog_error *err
   const bool flushed = !(ferror(f) | fclose(f));
   if (!flushed || rename(temp, path)) {
     const int why = errno;
-    remove(temp);
+    unlink(temp);
     fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: %s: %s", path,
              flushed ? "cannot move the written config onto it" : "write failed",
              why ? strerror(why) : "disk full?");

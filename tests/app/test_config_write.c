@@ -287,6 +287,34 @@ int main(void) {
   snprintf(bad, sizeof bad, "%s/missing/x.ini", dir);
   CHECK(scene_config_write(&cfg, bad, &err) != 0 && strstr(err.message, bad),
         "an unwritable path: %s", err.message);
+  /* the temporary is the write's own: a user's NAME.tmp beside it is left as it was (it
+   * was the temporary, and replaced); a config written over keeps its mode (it became
+   * 0644), a new one takes the umask as any new file */
+  {
+    char target[700], user_tmp[720];
+    snprintf(target, sizeof target, "%s/moded.ini", dir);
+    snprintf(user_tmp, sizeof user_tmp, "%s.tmp", target);
+    test_write_text(user_tmp, "a user's own file\n");
+    test_write_text(target, "[fog]\n");
+    CHECK(chmod(target, 0600) == 0, "chmod %s", target);
+    CHECK(scene_config_write(&cfg, target, &err) == 0, "write over %s: %s", target, err.message);
+    struct stat st;
+    CHECK(stat(target, &st) == 0 && (st.st_mode & 07777) == 0600,
+          "a config of mode 0600 written over: mode %o", (unsigned)(st.st_mode & 07777));
+    char *kept = read_text(user_tmp);
+    CHECK(kept && !strcmp(kept, "a user's own file\n"), "%s was replaced: '%s'", user_tmp,
+          kept ? kept : "(gone)");
+    free(kept);
+    unlink(target);
+    const mode_t old_mask = umask(027);
+    CHECK(scene_config_write(&cfg, target, &err) == 0, "write %s: %s", target, err.message);
+    umask(old_mask);
+    CHECK(stat(target, &st) == 0 && (st.st_mode & 07777) == 0640,
+          "a new config under umask 027: mode %o, expected 640", (unsigned)(st.st_mode & 07777));
+    unlink(target), unlink(user_tmp);
+    CHECK(test_folder_entries(dir) == 0, "the writes left %d entries in %s",
+          test_folder_entries(dir), dir);
+  }
   rmdir(dir);
   return test_finish("test_config_write");
 }
