@@ -463,7 +463,8 @@ int scene_pass_set_terrain_lod(scene_pass *pass, double max_pixels, fog_error *e
   if (max_pixels > 0 && !pass->lod.level) {
     if (terrain_lod_create(&pass->lod, &pass->geo->terrain, err)) return 1;
     const size_t tiles = (size_t)pass->lod.tiles_x * pass->lod.tiles_z;
-    pass->lod_indices = malloc(tiles * terrain_lod_max_indices() * sizeof *pass->lod_indices);
+    pass->lod_indices =
+        malloc(terrain_lod_all_max_indices(&pass->lod) * sizeof *pass->lod_indices);
     pass->lod_order = malloc(tiles * sizeof *pass->lod_order);
     if (!pass->lod_indices || !pass->lod_order) {
       fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the terrain's LOD mesh");

@@ -327,6 +327,11 @@ size_t terrain_lod_max_indices(void) {
   return 6 * (size_t)(2 * TERRAIN_LOD_TILE - 1) * (2 * TERRAIN_LOD_TILE - 1);
 }
 
+size_t terrain_lod_all_max_indices(const terrain_lod *lod) {
+  const terrain *t = lod->terrain;
+  return 6 * (size_t)(t->resolution_x - 1) * (size_t)(t->resolution_z - 1);
+}
+
 size_t terrain_lod_emit(const terrain_lod *lod, int tile, uint32_t *indices) {
   const int tx = tile % lod->tiles_x, tz = tile / lod->tiles_x, level = lod->level[tile];
   /* each edge at the coarser step of the two tiles that share it: both emit the same

@@ -60,6 +60,10 @@ void terrain_lod_choose(terrain_lod *lod, const double camera[3], double pixels_
 
 /* The most indices terrain_lod_emit writes for one tile (a remainder tile's level 0). */
 size_t terrain_lod_max_indices(void);
+/* The most it writes for all of lod's tiles together: the full mesh's, 6 a quad (no tile
+ * at any level, seams included, emits more than its quads at level 0). tiles x
+ * terrain_lod_max_indices() was 3.75x that: 5.3 GB at the largest terrain. */
+size_t terrain_lod_all_max_indices(const terrain_lod *lod);
 /* Tile `tile`'s triangles at its level, stitched to its coarser neighbours: vertex indices
  * j * resolution_x + i, three per triangle, counter-clockwise seen from above (the full
  * mesh's winding). Returns the number of indices written. */

@@ -37,9 +37,13 @@ static int edge_cmp(const void *x, const void *y) {
 static long check_mesh(const terrain_lod *lod, const char *what) {
   const terrain *t = lod->terrain;
   const int rx = t->resolution_x, rz = t->resolution_z, tiles = lod->tiles_x * lod->tiles_z;
-  uint32_t *idx = malloc((size_t)tiles * terrain_lod_max_indices() * sizeof *idx);
+  /* the whole mesh's bound (the sanitizer pass catches a write past it) */
+  const size_t bound = terrain_lod_all_max_indices(lod);
+  uint32_t *idx = malloc(bound * sizeof *idx);
   size_t n = 0;
   for (int k = 0; k < tiles; k++) n += terrain_lod_emit(lod, k, idx + n);
+  CHECK(n <= bound, "%s: %zu indices emitted, past terrain_lod_all_max_indices' %zu", what, n,
+        bound);
   const long triangles = (long)(n / 3);
   edge *edges = malloc(n * sizeof *edges);
   double area = 0.0;
@@ -103,7 +107,7 @@ static void check_full_mesh(terrain_lod *lod) {
   const terrain *t = lod->terrain;
   const int rx = t->resolution_x, rz = t->resolution_z, tiles = lod->tiles_x * lod->tiles_z;
   memset(lod->level, 0, (size_t)tiles);
-  uint32_t *idx = malloc((size_t)tiles * terrain_lod_max_indices() * sizeof *idx);
+  uint32_t *idx = malloc(terrain_lod_all_max_indices(lod) * sizeof *idx);
   size_t n = 0;
   for (int k = 0; k < tiles; k++) n += terrain_lod_emit(lod, k, idx + n);
   const size_t want_count = 2 * (size_t)(rx - 1) * (rz - 1);
