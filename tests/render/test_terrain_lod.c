@@ -107,9 +107,12 @@ static void check_full_mesh(terrain_lod *lod) {
   const terrain *t = lod->terrain;
   const int rx = t->resolution_x, rz = t->resolution_z, tiles = lod->tiles_x * lod->tiles_z;
   memset(lod->level, 0, (size_t)tiles);
-  uint32_t *idx = malloc(terrain_lod_all_max_indices(lod) * sizeof *idx);
+  const size_t bound = terrain_lod_all_max_indices(lod);
+  uint32_t *idx = malloc(bound * sizeof *idx);
   size_t n = 0;
   for (int k = 0; k < tiles; k++) n += terrain_lod_emit(lod, k, idx + n);
+  CHECK(n <= bound, "level 0: %zu indices emitted, past terrain_lod_all_max_indices' %zu", n,
+        bound);
   const size_t want_count = 2 * (size_t)(rx - 1) * (rz - 1);
   triangle *got = malloc(n / 3 * sizeof *got), *want = malloc(want_count * sizeof *want);
   for (size_t f = 0; f < n / 3; f++) got[f] = canonical(idx[3 * f], idx[3 * f + 1], idx[3 * f + 2]);
