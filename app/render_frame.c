@@ -14,15 +14,23 @@
  * whose channels differ is refused, naming a pixel where they do. */
 static int load_heights(const char *path, fogmap *map, fog_error *err) {
   fog_error first;
-  if (!fogmap_load(path, &(fogmap_load_desc){0}, map, &first)) return 0;
+  if (!fogmap_load(path, &(fogmap_load_desc){.values_are = "heights"}, map, &first)) return 0;
   fog_error ignored;
-  if (!fogmap_load(path, &(fogmap_load_desc){.channel = "grey"}, map, &ignored)) return 0;
-  if (fogmap_load(path, &(fogmap_load_desc){.channel = "R"}, map, &ignored))
+  if (!fogmap_load(path, &(fogmap_load_desc){.channel = "grey", .values_are = "heights"}, map,
+                   &ignored))
+    return 0;
+  /* an EXR's grey is Y (a Y + A EXR was refused, asking to name a channel no key names) */
+  if (!fogmap_load(path, &(fogmap_load_desc){.channel = "Y", .values_are = "heights"}, map,
+                   &ignored))
+    return 0;
+  if (fogmap_load(path, &(fogmap_load_desc){.channel = "R", .values_are = "heights"}, map,
+                  &ignored))
     return fog_error_pass(err, &first); /* not a colour image: the first reason stands */
   static const char *const others[2] = {"G", "B"};
   for (int k = 0; k < 2; k++) {
     fogmap other;
-    if (fogmap_load(path, &(fogmap_load_desc){.channel = others[k]}, &other, err)) {
+    if (fogmap_load(path, &(fogmap_load_desc){.channel = others[k], .values_are = "heights"},
+                    &other, err)) {
       fogmap_destroy(map);
       return 1;
     }

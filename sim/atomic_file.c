@@ -25,8 +25,10 @@ int atomic_file_open(atomic_file *file, const char *path, fog_error *err) {
   if (!*name || (stat(path, &st) == 0 && S_ISDIR(st.st_mode)))
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: is a folder name, expected a file name",
                     path);
-  int n = snprintf(file->temp_path, sizeof file->temp_path, "%.*s.%s.tmp.XXXXXX", folder_len,
-                   path, name);
+  /* the name cut to 200 bytes in the temporary's: ".NAME.tmp.XXXXXX" of a legal 245-byte
+   * NAME passed the file system's 255 ("File name too long" for a name that is not) */
+  int n = snprintf(file->temp_path, sizeof file->temp_path, "%.*s.%.200s.tmp.XXXXXX",
+                   folder_len, path, name);
   if (n < 0 || (size_t)n >= sizeof file->temp_path)
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: file name too long", path);
   file->fd = mkstemp(file->temp_path);

@@ -31,6 +31,8 @@ typedef struct fogmap_load_desc {
   /* Where the caller's user names the channel ("[fog] channel", "--channel"): that error
    * says so. NULL: the caller offers no choice, and the error names no setting. */
   const char *channel_setting;
+  /* What the values are, for the error naming a bad one ("heights"); NULL: "densities". */
+  const char *values_are;
 } fogmap_load_desc;
 
 /* Densities above this are refused when loading (the first such pixel is named): the

@@ -111,8 +111,9 @@ int fogmap_load(const char *path, const fogmap_load_desc *desc, fogmap *out, fog
                          : v < 0.0f ? "is negative"
                                     : "is too large";
       fog_fail(err, FOG_ERR_BAD_FILE,
-               "%s: pixel (%d, %d) %s (%.9g); densities must be finite, >= 0 and at most %g", path, x,
-               z, what, (double)v, (double)FOGMAP_MAX_DENSITY);
+               "%s: pixel (%d, %d) %s (%.9g); %s must be finite, >= 0 and at most %g", path, x,
+               z, what, (double)v, d.values_are ? d.values_are : "densities",
+               (double)FOGMAP_MAX_DENSITY);
       free(pixels);
       return 1;
     }

@@ -1,7 +1,8 @@
 /* OpenEXR through the OpenEXR 3 Core C API (openexr.h).
  *
  * Reading: part 0, one channel (half or float) to float; scanline files, and tiled files
- * at their full-resolution level (0, 0). Writing: one scanline part, ZIP compression
+ * at their full-resolution level (0, 0); the image is the display window, the data window
+ * placed in it (zero where there is no data). Writing: one scanline part, ZIP compression
  * (lossless, 16 scanlines per chunk; smooth fog compresses well and every EXR reader
  * supports it), channels sorted by name as EXR requires.
  *
@@ -202,12 +203,19 @@ static const exr_attr_chlist_entry_t *exr_pick_channel(const exr_attr_chlist_t *
                     "half or float",
                     path, entry->name.str),
            NULL;
-  if (entry->x_sampling != 1 || entry->y_sampling != 1)
-    return fog_fail(err, FOG_ERR_BAD_FILE,
-                    "%s: EXR channel \"%s\" is subsampled (%d x %d); expected one value "
-                    "per pixel",
-                    path, entry->name.str, entry->x_sampling, entry->y_sampling),
-           NULL;
+  /* any channel subsampled, not only the one loaded: OpenEXR Core (3.1) decodes the others
+   * wrongly beside it and reads past its buffer (a luminance/chroma file's Y came back
+   * 1, 0.5, 0, ... for a constant 0.5) */
+  for (int c = 0; c < list->num_channels; c++) {
+    const exr_attr_chlist_entry_t *e = &list->entries[c];
+    if (e->x_sampling != 1 || e->y_sampling != 1)
+      return fog_fail(err, FOG_ERR_BAD_FILE,
+                      "%s: EXR channel \"%s\" is subsampled (%d x %d), which this reader "
+                      "cannot decode beside the others; expected one value per pixel in every "
+                      "channel (save it without chroma subsampling)",
+                      path, e->name.str, e->x_sampling, e->y_sampling),
+             NULL;
+  }
   return entry;
 }
 
@@ -312,6 +320,37 @@ int exr_read_channel(const char *path, const char *channel, const char *channel_
     fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR pixel data unreadable (damaged or truncated?): %s",
              path, exr_reason(&stream, rv));
     goto done;
+  }
+  /* The image is the display window: the data window placed in it at its offset, zero
+   * (no fog) where it holds no data, cropped where it reaches past (a file cropped to its
+   * non-empty pixels was stretched over the whole fog box) */
+  exr_attr_box2i_t display;
+  if (exr_get_display_window(ctxt, 0, &display) == EXR_ERR_SUCCESS &&
+      (display.min.x != window.min.x || display.min.y != window.min.y ||
+       display.max.x != window.max.x || display.max.y != window.max.y)) {
+    const int64_t dw = (int64_t)display.max.x - display.min.x + 1,
+                  dh = (int64_t)display.max.y - display.min.y + 1;
+    if (dw <= 0 || dh <= 0 || dw > 1 << 20 || dh > 1 << 20 || dw * dh > (int64_t)1 << 28) {
+      fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR display window %lldx%lld: expected a size "
+               "from 1x1 to a fogmap's largest", path, (long long)dw, (long long)dh);
+      goto done;
+    }
+    float *placed = calloc((size_t)dw * (size_t)dh, sizeof *placed);
+    if (!placed) {
+      fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for a %lldx%lld fogmap", path,
+               (long long)dw, (long long)dh);
+      goto done;
+    }
+    for (int64_t y = 0; y < height; y++) {
+      const int64_t py = (int64_t)window.min.y - display.min.y + y;
+      if (py < 0 || py >= dh) continue;
+      for (int64_t x = 0; x < width; x++) {
+        const int64_t px = (int64_t)window.min.x - display.min.x + x;
+        if (px >= 0 && px < dw) placed[py * dw + px] = out[y * width + x];
+      }
+    }
+    free(out);
+    out = placed, width = dw, height = dh;
   }
   *width_out = (int)width;
   *height_out = (int)height;

@@ -2,7 +2,8 @@
  * saved as grey with alpha, as RGB and as RGBA with equal colour channels give the same
  * heights, byte for byte (the alpha, whatever it holds, is not a height);
  * an RGB PNG whose channels differ is refused naming the config line, the file and a pixel
- * where they differ. */
+ * where they differ. An EXR of Y and A is its Y (it was refused, asking to name a channel
+ * no key names), and a bad value is named as a height, not a density. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
@@ -83,6 +84,40 @@ int main(void) {
     CHECK(status != 0 && got == NULL && strstr(err.message, "[terrain] heightmap: ") &&
               strstr(err.message, name) && strstr(err.message, "differ at pixel (5, 2)"),
           "%d channels, G raised at (5, 2): %s", colour[k], status ? err.message : "accepted");
+    free(got);
+  }
+  /* an EXR of Y (the heights) and A */
+  if (want) {
+    char exr[400], ini[400];
+    snprintf(exr, sizeof exr, "%s/grey_alpha.exr", dir);
+    snprintf(ini, sizeof ini, "%s/grey_alpha_exr.ini", dir);
+    float alpha[W * H];
+    for (int i = 0; i < W * H; i++) alpha[i] = 1.0f;
+    const image_channel channels[2] = {{.name = "Y", .pixels = want}, {.name = "A", .pixels = alpha}};
+    fog_error werr = {0};
+    CHECK(image_write_exr(exr, W, H, channels, 2, &werr) == 0, "%s", werr.message);
+    char text[600];
+    snprintf(text, sizeof text, "[terrain]\nheightmap = %s\n", exr);
+    test_write_text(ini, text);
+    scene_config cfg;
+    got = NULL;
+    CHECK(scene_config_load(ini, &cfg, &err) == 0 &&
+              render_frame_load_heightmap(&cfg, &got, &w, &h, &err) == 0 && w == W && h == H &&
+              !memcmp(got, want, sizeof(float) * W * H),
+          "an EXR of Y and A: %s", got ? "other heights" : err.message);
+    free(got);
+    /* a negative height: named as a height */
+    float bad[W * H];
+    memcpy(bad, want, sizeof bad);
+    bad[W + 1] = -0.01f;
+    const image_channel one = {.name = "Y", .pixels = bad};
+    CHECK(image_write_exr(exr, W, H, &one, 1, &werr) == 0, "%s", werr.message);
+    got = NULL;
+    CHECK(scene_config_load(ini, &cfg, &err) == 0 &&
+              render_frame_load_heightmap(&cfg, &got, &w, &h, &err) != 0 &&
+              strstr(err.message, "pixel (1, 1) is negative") &&
+              strstr(err.message, "heights must be"),
+          "a negative height: %s", got ? "accepted" : err.message);
     free(got);
   }
   free(want);

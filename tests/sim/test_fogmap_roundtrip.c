@@ -19,10 +19,10 @@
 static char folder[64];
 
 static const char *in_folder(const char *name) {
-  static char path[4][256];
+  static char path[4][512];
   static int next;
   char *p = path[next++ % 4];
-  snprintf(p, 256, "%s/%s", folder, name);
+  snprintf(p, 512, "%s/%s", folder, name);
   return p;
 }
 
@@ -365,6 +365,21 @@ static void test_exr_tiled(void) {
   unlink(path);
 }
 
+/* A file name the file system takes (245 bytes) is written: its temporary's name cut the
+ * name short (".NAME.tmp.XXXXXX" passed 255: "File name too long" for a legal name). */
+static void test_long_name(void) {
+  char name[250];
+  memset(name, 'a', 241);
+  memcpy(name + 241, ".exr", 5); /* 245 bytes */
+  fogmap map;
+  fog_error err = {0};
+  CHECK(fogmap_create(&map, 2, 2, &err) == 0, "%s", err.message);
+  const char *path = in_folder(name);
+  CHECK(fogmap_save_exr(path, &map, &err) == 0, "a 245-byte file name: %s", err.message);
+  fogmap_destroy(&map);
+  unlink(path);
+}
+
 int main(void) {
   snprintf(folder, sizeof folder, "/tmp/fogmap_roundtrip.XXXXXX");
   if (!test_scratch_folder(folder)) return 1;
@@ -373,6 +388,7 @@ int main(void) {
   test_png8_exact();
   test_png16_exact();
   test_exr_tiled();
+  test_long_name();
   CHECK(rmdir(folder) == 0, "temporary folder %s not empty afterwards", folder);
   return test_finish("test_fogmap_roundtrip");
 }
