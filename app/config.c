@@ -1249,7 +1249,8 @@ static int load_stream(const char *path, FILE *file, bool no_files, scene_config
          cfg->camera.near_plane, cfg->camera.far_plane);
     return 1;
   }
-  /* The float depth buffer of a standard projection holds 1 - near/d: past d = near x 3.4e7
+  /* The scene pass's float depth buffer holds 1 - near/d (its projection's far is at
+   * infinity, camera_projection_matrix_infinite; far is a clip distance): past d = near x 3.4e7
    * it rounds to 1, the cleared depth, and surfaces vanish into the sky (near 1e-5 shredded
    * the default terrain into speckles) */
   if (cfg->camera.far_plane > SCENE_CAMERA_MAX_DEPTH_RATIO * cfg->camera.near_plane) {
@@ -1618,7 +1619,8 @@ int scene_config_write(const scene_config *cfg, const char *path, fog_error *err
   static atomic_uint serial;
   int fd = -1;
   for (int attempt = 0; attempt < 100 && fd < 0; attempt++) {
-    snprintf(temp, sizeof temp, "%.*s.%s.tmp.%ld.%u", folder_length, path, path + folder_length,
+    snprintf(temp, sizeof temp, "%.*s.%.200s.tmp.%ld.%u", folder_length, path,
+             path + folder_length,
              (long)getpid(), atomic_fetch_add(&serial, 1u));
     fd = open(temp, O_WRONLY | O_CREAT | O_EXCL, 0666);
     if (fd < 0 && errno != EEXIST) break;

@@ -92,6 +92,14 @@ void camera_view_matrix_world(const camera *cam, float m[16]) {
   m[14] = (float)(f[0] * p[0] + f[1] * p[1] + f[2] * p[2]);
 }
 
+void camera_projection_matrix_infinite(const camera *cam, int width, int height, float m[16]) {
+  camera_projection_matrix(cam, width, height, m);
+  /* far -> infinity: clip z = -z_e - 2n, window depth 1 - n/d, below 1 (the sky's depth)
+   * for every d a config allows (d < 1e7 n: 1 - 1e-7 is a float below 1) */
+  m[10] = -1.0f;
+  m[14] = (float)(-2.0 * cam->near_plane);
+}
+
 void camera_exr_matrices(const camera *cam, int width, int height, float world_to_camera[16],
                          float world_to_ndc[16]) {
   float view[16], projection[16];

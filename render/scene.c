@@ -1,6 +1,7 @@
 /* The scene: CPU geometry (terrain + boxes, exact ray hits) and its GL pass. */
 #include "render/scene.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -362,6 +363,9 @@ static void shadow_map_render(scene_pass *pass) {
               (float)(o[2] - map->centre[2]));
   glUniformMatrix4fv(pass->u_view, 1, GL_FALSE, view);
   glUniformMatrix4fv(pass->u_projection, 1, GL_FALSE, projection);
+  /* no far cut here (GL_CLIP_DISTANCE0 is off, but llvmpipe clipped the map's triangles by
+   * the distance the shader writes all the same: the shafts changed) */
+  glUniform1f(pass->u_far_plane, FLT_MAX);
   glActiveTexture(GL_TEXTURE0); /* not the map itself while it is the target */
   glBindTexture(GL_TEXTURE_2D, 0);
   glUniform1i(pass->u_sun_visibility, 0);
@@ -394,6 +398,7 @@ scene_pass *scene_pass_create(const scene_geometry *geo, fog_error *err) {
   pass->u_offset = glGetUniformLocation(s, "offset");
   pass->u_view = glGetUniformLocation(s, "view_rotation");
   pass->u_projection = glGetUniformLocation(s, "projection");
+  pass->u_far_plane = glGetUniformLocation(s, "far_plane");
   pass->u_sun_direction = glGetUniformLocation(s, "sun_direction");
   pass->u_sun_colour = glGetUniformLocation(s, "sun_colour");
   pass->u_ambient = glGetUniformLocation(s, "ambient");
@@ -645,7 +650,7 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   /* Terrain and boxes, camera-relative: offset = terrain origin - camera (double). */
   float view[16], projection[16];
   camera_view_matrix(cam, view);
-  camera_projection_matrix(cam, w, h, projection);
+  camera_projection_matrix_infinite(cam, w, h, projection);
   const double *o = geo->terrain.origin;
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -654,6 +659,9 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
               (float)(o[2] - cam->position[2]));
   glUniformMatrix4fv(pass->u_view, 1, GL_FALSE, view);
   glUniformMatrix4fv(pass->u_projection, 1, GL_FALSE, projection);
+  /* the far plane as a clip distance (the projection's is at infinity) */
+  glUniform1f(pass->u_far_plane, (float)cam->far_plane);
+  glEnable(GL_CLIP_DISTANCE0);
   glUniform3fv(pass->u_sun_direction, 1, sun_dir);
   glUniform3fv(pass->u_sun_colour, 1, sun_colour);
   glUniform3fv(pass->u_ambient, 1, geo->light.ambient);
@@ -697,6 +705,7 @@ void scene_pass_run(scene_pass *pass, const camera *cam, const gl_target *target
   glDrawElements(GL_TRIANGLE_STRIP, pass->index_count - pass->box_first, GL_UNSIGNED_INT,
                  (const void *)(uintptr_t)(pass->box_first * sizeof(GLuint)));
   glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+  glDisable(GL_CLIP_DISTANCE0);
   glBindVertexArray(0);
 
   /* Sky last: a full-screen triangle at depth 1 (the far plane), rays from the same basis

@@ -42,7 +42,7 @@ struct scene_pass {
   GLuint shadow_framebuffer;
   bool shadow_rendered;
   /* uniform locations */
-  GLint u_offset, u_view, u_projection, u_sun_direction, u_sun_colour, u_ambient;
+  GLint u_offset, u_view, u_projection, u_far_plane, u_sun_direction, u_sun_colour, u_ambient;
   GLint u_sun_from_relative, u_sun_visibility, u_sun_normal_offset, u_lod_lift;
   GLint u_lamp_count, u_lamp_position, u_lamp_intensity, u_lamp_axis, u_lamp_cone;
   fog_lamps lamps; /* scene_pass_set_lamps: they light the surfaces too */
