@@ -89,7 +89,7 @@ static void test_bad_options(void) {
       {"--perlin --size 0x5", "--size"},
       {"--perlin --size 64x64 --bogus 3", "unknown option '--bogus'"},
       {"--perlin --size 64x64 --octaves many", "--octaves"},
-      {"--blob 1,2,0,1 --size 64x64", "SIGMA > 0"},
+      {"--blob 1,2,0,1 --size 64x64", "SIGMA >= 1e-6"},
       {"--size 64x64", "--perlin"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
