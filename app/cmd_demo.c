@@ -239,6 +239,11 @@ int cmd_demo(int argc, char **argv) {
   snprintf(note, sizeof note, "%s's [fog] model has no fogmap to simulate: showing it as the "
            "config holds it%s", o.config_path,
            render_fog_animated(&config) ? ", moving by itself" : "");
+  /* --paused holds the simulation or a volume's sequence: said, not dropped, where the
+   * scene has neither (what moves by itself, drifting noise or emitters, moves on) */
+  if (o.paused && !simulate && config.fog.model != FOG_MODEL_VOLUME)
+    fprintf(stderr, "fogpipe demo: --paused has no effect: %s has no simulation or VDB "
+            "sequence to hold\n", o.config_path);
   fog_error window_failure;
   /* --scale 0 (not given): the simulated source chooses by the renderer, the other 0.5 */
   const double scale = simulate || o.scale > 0 ? o.scale : 0.5;

@@ -82,6 +82,10 @@ int cmd_view(int argc, char **argv) {
   }
   if (opts.screenshot && cli_output_not_scene_input("view", "--screenshot", opts.screenshot, &cfg))
     return 2;
+  /* --play plays a volume's VDB sequence: said, not dropped, on another model */
+  if (opts.play && cfg.fog.model != FOG_MODEL_VOLUME)
+    fprintf(stderr, "fogpipe view: --play has no effect: it plays the VDB sequence of [fog] "
+            "model = volume (%s's fog is drawn as the config holds it)\n", opts.config_path);
   opts.width = size[0] > 0 ? size[0] : cfg.width;
   opts.height = size[1] > 0 ? size[1] : cfg.height;
   /* no display: said now, not after --fit's minutes of work (the window opens after it) */

@@ -2,8 +2,9 @@
 #include <GLFW/glfw3.h>
 
 #include "app/free_camera.h"
+#include "app/window_keys.h"
 
-static int held(GLFWwindow *window, int key) { return glfwGetKey(window, key) == GLFW_PRESS; }
+static int held(GLFWwindow *window, int key) { return window_key_down(key); }
 
 free_camera_input free_camera_read(GLFWwindow *window, int look_buttons, bool keyboard,
                                    bool mouse) {

@@ -11,6 +11,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app/lamp_tool.h"
+#include "app/window_keys.h"
 #include "app/live_rung.h"
 #include "app/pipeline.h"
 #include "app/sun_hue.h"
@@ -201,9 +202,9 @@ typedef struct demo_input {
 /* Space pauses, N steps, R restarts (on the key's press, while the panel does not hold the
  * keyboard; read every frame, so a press GLFW latched meanwhile is let go). */
 static void demo_keys(GLFWwindow *window, bool keyboard, pipeline *pipe, demo_input *in) {
-  const bool space = glfwGetKey(window, GLFW_KEY_SPACE) == GLFW_PRESS;
-  const bool n = glfwGetKey(window, GLFW_KEY_N) == GLFW_PRESS;
-  const bool r = glfwGetKey(window, GLFW_KEY_R) == GLFW_PRESS;
+  const bool space = window_key_down(GLFW_KEY_SPACE);
+  const bool n = window_key_down(GLFW_KEY_N);
+  const bool r = window_key_down(GLFW_KEY_R);
   if (!keyboard) {
     in->space_down = space, in->n_down = n, in->r_down = r;
     return;
@@ -236,8 +237,8 @@ static void demo_paint(GLFWwindow *window, pipeline *pipe, const free_camera *fc
                        const demo_ui *d, bool mouse, double dt, demo_input *in) {
   bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
   bool right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-  bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
-               glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+  bool shift = window_key_down(GLFW_KEY_LEFT_SHIFT) ||
+               window_key_down(GLFW_KEY_RIGHT_SHIFT);
   double hit[3];
   if (!mouse || !(left || right) || !surface_under_cursor(window, pipe, fc, hit)) {
     in->painting = false;

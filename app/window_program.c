@@ -1,6 +1,7 @@
 /* The one window program of `demo` and `view` (app/window_program.h): the window, the
  * panel's shell, the camera, the screenshot and the frame loop; the fog sources draw. */
 #include "app/window_program.h"
+#include "app/window_keys.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -146,11 +147,13 @@ static int window_loop(gl_context *gl, window_shell *shell, window_source *src,
     shell_panel(shell, src, &f);
     f.keyboard = !panel_wants_keyboard(shell->ui);
     f.mouse = !panel_wants_mouse(shell->ui);
-    /* keys read every frame (a press latched while the panel held them is let go) */
-    const bool tab = glfwGetKey(window, GLFW_KEY_TAB) == GLFW_PRESS;
+    /* every key read once, for every reader of this frame (app/window_keys.h); read every
+     * frame, a press latched while the panel held the keyboard is let go */
+    window_keys_read(window);
+    const bool tab = window_key_down(GLFW_KEY_TAB);
     if (f.keyboard && tab && !shell->tab_was_down) shell->shown = !shell->shown;
     shell->tab_was_down = tab;
-    const bool escape = glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS;
+    const bool escape = window_key_down(GLFW_KEY_ESCAPE);
     if (f.keyboard && escape) glfwSetWindowShouldClose(window, 1);
     const free_camera_input input =
         free_camera_read(window, src->look_buttons_now ? src->look_buttons_now(src->self)

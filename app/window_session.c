@@ -16,6 +16,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app/clock.h"
+#include "app/window_keys.h"
 #include "app/lamp_tool.h"
 #include "app/rbf_brush.h"
 #include "app/render_fog.h"
@@ -72,7 +73,7 @@ static int volume_playback_update(volume_playback *pb, GLFWwindow *window, bool 
                                   bool active, double now, render_fog *fog,
                                   const scene_config *cfg, fog_error *err) {
   /* read every frame, whatever is shown: a press latched meanwhile is let go */
-  const bool p_down = glfwGetKey(window, GLFW_KEY_P) == GLFW_PRESS;
+  const bool p_down = window_key_down(GLFW_KEY_P);
   const bool pressed = keyboard && p_down && !pb->p_was_down;
   pb->p_was_down = p_down;
   if (!active) return 0; /* a rung is shown: the sequence waits */
@@ -149,7 +150,12 @@ static void brush_save(const view_brush *b) {
   char path[SCENE_CONFIG_PATH_MAX + 16];
   size_t n = strlen(b->config_path);
   int stem = n > 4 && !strcmp(b->config_path + n - 4, ".ini") ? (int)(n - 4) : (int)n;
-  snprintf(path, sizeof path, "%.*s.painted.ini", stem, b->config_path);
+  if (snprintf(path, sizeof path, "%.*s.painted.ini", stem, b->config_path) >=
+      (int)sizeof path) { /* cut short, it would name another file */
+    fprintf(stderr, "fogpipe %s: the brush: %s: the path is too long for its .painted.ini "
+            "(more than %zu characters)\n", b->command, b->config_path, sizeof path - 1);
+    return;
+  }
   fog_error werr;
   if (scene_config_write(b->painted, path, &werr))
     fprintf(stderr, "fogpipe %s: the brush: %s\n", b->command, werr.message);
@@ -172,7 +178,7 @@ static int view_brush_update(view_brush *b, view_state *v, const window_frame *f
   /* Every key is read every frame: a press GLFW latched (sticky keys) while the panel held
    * the keyboard is let go, not acted on later. */
   for (int k = 0; k < BRUSH_KEYS; k++) {
-    const bool down = glfwGetKey(window, keys[k]) == GLFW_PRESS;
+    const bool down = window_key_down(keys[k]);
     pressed[k] = keyboard && down && !b->key_was_down[k];
     b->key_was_down[k] = down;
   }
@@ -194,10 +200,10 @@ static int view_brush_update(view_brush *b, view_state *v, const window_frame *f
     b->stroke = false; /* a stroke ends where the mouse leaves the scene */
     if (!b->on) return 0;
   }
-  bool ctrl = glfwGetKey(window, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
-              glfwGetKey(window, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
-  bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
-               glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+  bool ctrl = window_key_down(GLFW_KEY_LEFT_CONTROL) ||
+              window_key_down(GLFW_KEY_RIGHT_CONTROL);
+  bool shift = window_key_down(GLFW_KEY_LEFT_SHIFT) ||
+               window_key_down(GLFW_KEY_RIGHT_SHIFT);
   rbf_brush *brush = &b->brush;
   bool retitle = false;
   if (pressed[BRUSH_KEY_SMALLER]) brush->radius /= 1.25, retitle = true;
@@ -301,11 +307,11 @@ static int rung_selector_update(rung_selector *sel, view_state *v, GLFWwindow *w
   static const int keys[2] = {GLFW_KEY_LEFT_BRACKET, GLFW_KEY_RIGHT_BRACKET};
   int next = sel->wanted;
   for (int k = 0; k < 2; k++) {
-    const bool down = glfwGetKey(window, keys[k]) == GLFW_PRESS; /* read: see the brush */
+    const bool down = window_key_down(keys[k]); /* read: see the brush */
     if (keyboard && down && !sel->bracket_was_down[k]) next += k ? 1 : -1;
     sel->bracket_was_down[k] = down;
   }
-  const bool zero = glfwGetKey(window, GLFW_KEY_0) == GLFW_PRESS;
+  const bool zero = window_key_down(GLFW_KEY_0);
   if (keyboard && zero && !sel->zero_was_down) next = -1;
   sel->zero_was_down = zero;
   if (next < -1) next = sel->fit.count - 1;
