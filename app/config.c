@@ -62,7 +62,7 @@ typedef struct key_spec {
 } key_spec;
 
 #define F(member) offsetof(scene_config, member)
-_Static_assert(SCENE_MAX_SCALE_HEIGHT == VDB_PROFILE_MAX_SCALE_HEIGHT,
+_Static_assert((long long)SCENE_MAX_SCALE_HEIGHT == (long long)VDB_PROFILE_MAX_SCALE_HEIGHT,
                "an import's fitted scale height must load as [fog] scale_height");
 /* The bounds of the numbers a config may hold: past them float (in which the GPU works)
  * overflows or loses the scene, and pixels turn NaN. WORLD: world coordinates and lengths
@@ -273,6 +273,12 @@ static char *read_line(char *buffer, int size, void *stream) {
   ssize_t n = getline(&s->whole_line, &s->whole_line_size, s->file);
   if (n < 0) return NULL;
   s->line++;
+  /* a UTF-8 byte order mark (an editor's) is not text: the first line's checks below looked
+   * past it at nothing ("[fog] x" was taken as [fog]) */
+  if (s->line == 1 && n >= 3 && !memcmp(s->whole_line, "\xEF\xBB\xBF", 3)) {
+    memmove(s->whole_line, s->whole_line + 3, (size_t)n - 2);
+    n -= 3;
+  }
   /* a NUL byte ends the line for libinih: the rest of it was dropped without a word */
   if (strlen(s->whole_line) < (size_t)n && !s->error_line) {
     s->error_line = s->line;
@@ -403,6 +409,9 @@ static int numbers(parse_state *s, const key_spec *k, const char *section, const
         return fail(s, section, key, "expected a number >= %g, got '%s'", k->min, value);
       if (k->min <= -BIG)
         return fail(s, section, key, "expected a number <= %g, got '%s'", k->max, value);
+      if (k->kind == V_INT || k->kind == V_UINT) /* in full: %g printed 4.29497e+09 */
+        return fail(s, section, key, "expected a whole number from %.0f to %.0f, got '%s'",
+                    k->min, k->max, value);
       return fail(s, section, key, "expected a number from %g to %g, got '%s'", k->min, k->max,
                   value);
     }
@@ -1132,8 +1141,11 @@ static int check_models(parse_state *ps) {
       return 1;
     }
     if (cfg->fog.model == FOG_MODEL_PERLIN && !(cfg->box.top > cfg->box.floor)) {
-      s.line = key_line(&s, "box", "top");
-      fail(&s, "box", "top", "Perlin fog fills the terrain's footprint between [box] floor and "
+      /* the one of the two the config sets last (only floor set: top has no line) */
+      const int top = key_line(&s, "box", "top"), floor_line = key_line(&s, "box", "floor");
+      const char *named = floor_line > top ? "floor" : "top";
+      s.line = floor_line > top ? floor_line : top;
+      fail(&s, "box", named, "Perlin fog fills the terrain's footprint between [box] floor and "
            "top: expected top above floor, got floor %g and top %g", cfg->box.floor, cfg->box.top);
       return 1;
     }
@@ -1619,9 +1631,13 @@ int scene_config_write(const scene_config *cfg, const char *path, fog_error *err
   static atomic_uint serial;
   int fd = -1;
   for (int attempt = 0; attempt < 100 && fd < 0; attempt++) {
-    snprintf(temp, sizeof temp, "%.*s.%.200s.tmp.%ld.%u", folder_length, path,
-             path + folder_length,
-             (long)getpid(), atomic_fetch_add(&serial, 1u));
+    const int n = snprintf(temp, sizeof temp, "%.*s.%.200s.tmp.%ld.%u", folder_length, path,
+                           path + folder_length, (long)getpid(),
+                           atomic_fetch_add(&serial, 1u));
+    if (n < 0 || (size_t)n >= sizeof temp) { /* cut short it would name another file */
+      errno = ENAMETOOLONG;
+      break;
+    }
     fd = open(temp, O_WRONLY | O_CREAT | O_EXCL, 0666);
     if (fd < 0 && errno != EEXIST) break;
   }
@@ -1663,8 +1679,10 @@ bool scene_config_knows_key(const char *section, const char *key) {
 }
 
 bool scene_config_has_fog(const scene_config *cfg) {
+  /* quadric volumes are drawn beside every model: beside a fogmap model with no fogmap
+   * too (render drew the scene alone where record drew them) */
   return cfg->fog.model != FOG_MODEL_FOGMAP || cfg->fog.fogmap[0] || cfg->fog.vdb[0] ||
-         cfg->fog.sequence[0];
+         cfg->fog.sequence[0] || cfg->fog.quadric_count > 0;
 }
 
 bool scene_config_draws_density_scale(const scene_config *cfg) {

@@ -485,6 +485,14 @@ static int render_file_fog(render_fog *fog, const scene_config *cfg, fog_error *
   fog_error serr;
   fogmap_load_desc load = {.channel = f->channel[0] ? f->channel : NULL,
                            .channel_setting = "[fog] channel"};
+  if (!path[0]) {
+    /* no fogmap, quadric volumes beside: clear air, as the pipeline's simulation starts
+     * from (app/pipeline.c: 256 x 256 cells of 0) */
+    if (fogmap_create(&map, 256, 256, &serr)) return fog_error_pass(err, &serr);
+    const int status = render_fog_create_map(fog, cfg, &map, err);
+    fogmap_destroy(&map);
+    return status;
+  }
   if (fogmap_load(path, &load, &map, &serr)) {
     fog_error_wrap(err, &serr, "%.200s:%d: [fog] %s: ", cfg->path, line, key);
     return 1;

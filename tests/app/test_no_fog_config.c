@@ -2,8 +2,11 @@
  * command, as docs/config.md says of an empty file: `render` draws the scene alone, and
  * `record`, which simulates a fogmap scene, starts from clear air, so its frames have
  * transmittance 1 everywhere (with no emitters nothing makes fog), frame 1 as render's;
- * `bake` of it writes frames of density 0 (the demo runs the same pipeline). */
+ * `bake` of it writes frames of density 0 (the demo runs the same pipeline). Quadric
+ * volumes beside that model are fog (docs/config.md: beside every model): `render` draws
+ * them as `record` does, frame 1's transmittance the same (render drew the scene alone). */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -61,6 +64,30 @@ int main(void) {
     }
     CHECK(most == 0.0, "bake frame %d: densest cell %g (%s)", f, most, err.message);
   }
+  /* quadric volumes beside the fogmap model with no fogmap: render draws them as record */
+  snprintf(ini, sizeof ini, "%s/quadric.ini", dir);
+  test_write_text(ini, "[render]\nwidth = 32\nheight = 18\n[terrain]\nresolution = 17\n"
+                       "[camera]\nposition = 0 60 -200\nlook_at = 0 40 -60\n"
+                       "[fog]\nquadric = sphere 0 40 -60 40 0.5\n");
+  snprintf(line, sizeof line, "'%s' render '%s' --out '%s/q.exr' 2>&1", bin, ini, dir);
+  CHECK(test_run_output(line, output, sizeof output) == 0 && strstr(output, "scene + fog"),
+        "render of quadrics beside the fogmap model: %s", output);
+  snprintf(line, sizeof line, "'%s' record '%s' --frames 1 --out '%s/qrec' 2>&1", bin, ini, dir);
+  CHECK(test_run_output(line, output, sizeof output) == 0, "record: %s", output);
+  snprintf(path, sizeof path, "%s/q.exr", dir);
+  float *rendered = load_exr_channel(path, "transmittance", W, H);
+  snprintf(path, sizeof path, "%s/qrec/frame.0001.exr", dir);
+  float *recorded = load_exr_channel(path, "transmittance", W, H);
+  double least = 1.0, worst = 0.0;
+  for (int k = 0; rendered && recorded && k < W * H; k++) {
+    least = rendered[k] < least ? rendered[k] : least;
+    const double d = rendered[k] - recorded[k];
+    worst = fabs(d) > worst ? fabs(d) : worst;
+  }
+  CHECK(rendered && recorded && least < 0.5 && worst < 1e-5,
+        "quadrics beside the fogmap model: render's transmittance down to %g, %g from "
+        "record's frame 1", least, worst);
+  free(rendered), free(recorded);
   test_remove_tree(dir);
   return test_finish("test_no_fog_config");
 }
