@@ -148,7 +148,7 @@ static int write_bake_ini(const scene_config *cfg, const char *pattern, double c
     from = at ? at + strlen(path) : from + plain;
   }
   char why[160] = "";
-  if (cell_size != cfg->box.cell_size)
+  if (cell_size != cfg->box.cell_size && strstr(err.message, "cell_size"))
     snprintf(why, sizeof why, " (the %s map is simulated on cells %g wide, the config's %g)",
              cell_size < cfg->box.cell_size ? "small" : "large", cell_size, cfg->box.cell_size);
   return cli_fail("bake", "%s%s", message, why);

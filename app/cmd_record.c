@@ -45,7 +45,8 @@ static void resolved_path(const char *path, char *out, size_t size) {
     memcpy(head, n ? copy : ".", n ? n : 1);
     head[n ? n : 1] = '\0';
     if (realpath(head, real)) break;
-    if (n <= 1) { /* not even "." or "/" resolves: as written */
+    if (cut == 0) { /* not even "." or "/" resolves: as written (a one-letter top folder
+                       "r" is a head of length 1 too: tried, not taken for the top) */
       snprintf(out, size, "%s", copy);
       return;
     }

@@ -2,7 +2,9 @@
  * until glfwGetKey reads it, and the first read of a frame takes it: the camera read S and
  * Ctrl before the brush did, so a quick Ctrl+S tap never saved. Every key is read once a
  * frame into this snapshot, and every reader of that frame asks the snapshot. One window a
- * process (the window program's). */
+ * process (the window program's). Debian's Dear ImGui 1.86 backend reads no key with
+ * glfwGetKey; later ones read the modifiers in their key callback, which would take a
+ * latched Ctrl before the snapshot (app/window_ctrl_s_tap would say so). */
 #ifndef FOGPIPE_APP_WINDOW_KEYS_H
 #define FOGPIPE_APP_WINDOW_KEYS_H
 

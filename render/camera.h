@@ -65,8 +65,8 @@ void camera_view_matrix_world(const camera *cam, float m[16]);
 void camera_projection_matrix(const camera *cam, int width, int height, float m[16]);
 /* The same with the far plane at infinity (the scene pass, which cuts at far with a clip
  * distance): the finite far put window depths within float rounding of 1, the sky's, over
- * the last 2.5 % of far at near/far 1e-6 and 10 % at 1e-7, and the sky took those
- * surfaces. */
+ * the last 2.5 % of far at near/far 1e-6 and 45 % at 1e-7 (llvmpipe), and the sky took
+ * those surfaces. */
 void camera_projection_matrix_infinite(const camera *cam, int width, int height, float m[16]);
 /* The standard EXR header matrices of a frame as OpenEXR defines them (ImfStandardAttributes:
  * M44f for row vectors, p' = p M, row-major: the same 16 floats as GL's column-major

@@ -7,6 +7,7 @@
  * leaves no video (nor its temporary), and keeps the frames; so does a SIGTERM during the
  * encode (exit 130). Where a real ffmpeg is installed (/usr/bin/ffmpeg), it also encodes a
  * playable file. */
+#define _XOPEN_SOURCE 700 /* realpath */
 #include "tests/app/record_util.h" /* first: it sets _POSIX_C_SOURCE */
 
 #include <limits.h>
@@ -208,6 +209,26 @@ int main(void) {
         "a preview beside the --out folder, both two new folders deep, relative: exit %d, "
         "%ld bytes", status, file_size(video6));
   if (status) record_print_log(log);
+
+  /* 4c. The same from the folder itself, the first missing folder a one-letter name (r/shot
+   * and r/shot.mp4): "r" was taken for the top it could not resolve, as written */
+  {
+    char *abs_bin = realpath(record_bin(), NULL), *abs_config = realpath(RECORD_TEST_CONFIG, NULL);
+    char command[3000], video7[700];
+    snprintf(command, sizeof command,
+             "cd '%s' && PATH='%s':\"$PATH\" '%s' record '%s' --frames 3 --out r/shot --size %s "
+             "--fps 12 --preview r/shot.mp4 > '%s' 2>&1",
+             root, bin, abs_bin ? abs_bin : "", abs_config ? abs_config : "", RECORD_TEST_SIZE,
+             log);
+    const int rc = system(command);
+    snprintf(video7, sizeof video7, "%s/r/shot.mp4", root);
+    CHECK(abs_bin && abs_config && WIFEXITED(rc) && WEXITSTATUS(rc) == 0 &&
+              file_size(video7) == expected,
+          "a preview beside --out r/shot, relative, r/ missing: exit %d, %ld bytes",
+          WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, file_size(video7));
+    if (!(WIFEXITED(rc) && WEXITSTATUS(rc) == 0)) record_print_log(log);
+    free(abs_bin), free(abs_config);
+  }
 
   /* 5. The real ffmpeg, where installed. */
   if (access("/usr/bin/ffmpeg", X_OK) == 0) {
