@@ -67,6 +67,15 @@ static inline int record_run(const char *out, int frames, const char *extra, con
   return record_wait(record_start(out, frames, extra, log_path));
 }
 
+/* Runs a shell command line, its output into log_path: its exit status (-1 where it did
+ * not exit). */
+static inline int record_shell(const char *command, const char *log_path) {
+  char line[4096];
+  snprintf(line, sizeof line, "%s >'%s' 2>&1", command, log_path);
+  const int status = system(line);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 static inline void record_print_log(const char *log_path) {
   FILE *f = fopen(log_path, "r");
   if (!f) return;

@@ -14,11 +14,9 @@
 enum { FRAMES = 8, FIRST = 5 };
 
 static int run(const char *command, const char *log) {
-  char line[4096];
-  snprintf(line, sizeof line, "%s >'%s' 2>&1", command, log);
-  int status = system(line);
+  const int status = record_shell(command, log);
   if (status != 0) record_print_log(log);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return status;
 }
 
 int main(void) {

@@ -73,6 +73,7 @@ static int render_surface(const scene_config *cfg, frame *f, const char *label) 
   scene_config bare = *cfg;
   bare.fog.model = FOG_MODEL_FOGMAP;
   bare.fog.fogmap[0] = bare.fog.vdb[0] = bare.fog.sequence[0] = '\0';
+  bare.fog.quadric_count = 0; /* quadric volumes are fog beside any model */
   return render(&bare, f, label);
 }
 

@@ -43,6 +43,7 @@ static int render_surface(const scene_config *cfg, frame *f, bool sunless, const
   scene_config bare = *cfg;
   bare.fog.model = FOG_MODEL_FOGMAP;
   bare.fog.fogmap[0] = bare.fog.vdb[0] = bare.fog.sequence[0] = '\0';
+  bare.fog.quadric_count = 0; /* quadric volumes are fog beside any model */
   if (sunless) bare.light.sun_colour[0] = bare.light.sun_colour[1] = bare.light.sun_colour[2] = 0.0f;
   return render(&bare, f, label);
 }

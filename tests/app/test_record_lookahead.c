@@ -6,13 +6,6 @@
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
-static int run(const char *command, const char *log) {
-  char line[4096];
-  snprintf(line, sizeof line, "%s >'%s' 2>&1", command, log);
-  const int status = system(line);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 int main(void) {
   char root[] = "/tmp/fogpipe-lookahead-XXXXXX";
   if (!test_scratch_folder(root)) return 1;
@@ -24,13 +17,13 @@ int main(void) {
   snprintf(last, sizeof last, "%s/fog.0004.exr", bake);
   snprintf(command, sizeof command, "'%s' bake %s --frames 4 --out '%s'", record_bin(),
            RECORD_TEST_CONFIG, bake);
-  CHECK(run(command, log) == 0, "the bake failed");
+  CHECK(record_shell(command, log) == 0, "the bake failed");
   CHECK(truncate(last, 200) == 0, "cannot damage %s", last);
   for (int pass = 0; pass < 2; pass++) { /* threaded, then --synchronous */
     const char *mode = pass ? " --synchronous" : "";
     snprintf(command, sizeof command, "'%s' record '%s' --frames 3 --size %s --out '%s'%s",
              record_bin(), ini, RECORD_TEST_SIZE, out, mode);
-    const int status = run(command, log);
+    const int status = record_shell(command, log);
     if (status != 0) record_print_log(log);
     CHECK(status == 0, "record%s --frames 3 of a bake whose frame 4 is damaged: exit %d", mode,
           status);
@@ -42,7 +35,7 @@ int main(void) {
     snprintf(command, sizeof command,
              "'%s' record '%s' --frames 4 --size %s --out '%s-4%s'%s", record_bin(), ini,
              RECORD_TEST_SIZE, out, mode[0] ? "s" : "", mode);
-    CHECK(run(command, log) == 1 && record_log_contains(log, "frame 4") &&
+    CHECK(record_shell(command, log) == 1 && record_log_contains(log, "frame 4") &&
               record_log_contains(log, "fog.0004.exr"),
           "record%s --frames 4 did not fail at frame 4 naming its file", mode);
     snprintf(command, sizeof command, "rm -rf '%s'", out);

@@ -80,28 +80,34 @@ static void check_placed(const char *what, const fogmap *f, int w, int h, int x0
   CHECK(wrong == 0, "%s: %d pixels not where the data window puts them", what, wrong);
 }
 
+/* A Y channel of v on data inside display, loaded: v on `placed` (display coordinates from
+ * its corner), 0 elsewhere. */
+static void windowed(const char *dir, const char *name, exr_attr_box2i_t display,
+                     exr_attr_box2i_t data, float v, exr_attr_box2i_t placed) {
+  char path[400];
+  snprintf(path, sizeof path, "%s/%s.exr", dir, name);
+  const char *y_only[1] = {"Y"};
+  const int full[1] = {1};
+  CHECK(write_exr(path, 1, y_only, full, display, data, v) == 0, "cannot write %s", path);
+  fogmap f;
+  fog_error err = {0};
+  CHECK(fogmap_load(path, NULL, &f, &err) == 0, "%s: %s", name, err.message);
+  if (err.code) return;
+  check_placed(name, &f, display.max.x - display.min.x + 1, display.max.y - display.min.y + 1,
+               placed.min.x, placed.min.y, placed.max.x, placed.max.y, v);
+  fogmap_destroy(&f);
+}
+
 int main(void) {
   char dir[] = "/tmp/fogpipe-exr-windows-XXXXXX";
   if (!test_scratch_folder(dir)) return 1;
   char path[300];
-  const char *y_only[1] = {"Y"};
-  const int full[1] = {1};
   fogmap f;
   fog_error err = {0};
-  /* the data window inside the display window, off its corner */
-  snprintf(path, sizeof path, "%s/inside.exr", dir);
-  CHECK(write_exr(path, 1, y_only, full, box(0, 0, 9, 9),
-                  box(2, 3, 5, 7), 2.0f) == 0, "cannot write %s", path);
-  CHECK(fogmap_load(path, NULL, &f, &err) == 0, "%s", err.message);
-  check_placed("a data window inside the display", &f, 10, 10, 2, 3, 5, 7, 2.0f);
-  fogmap_destroy(&f);
-  /* both off the origin, the data window reaching past the display on two sides */
-  snprintf(path, sizeof path, "%s/past.exr", dir);
-  CHECK(write_exr(path, 1, y_only, full, box(10, 20, 17, 25),
-                  box(14, 18, 21, 22), 3.0f) == 0, "cannot write %s", path);
-  CHECK(fogmap_load(path, NULL, &f, &err) == 0, "%s", err.message);
-  check_placed("a data window past the display", &f, 8, 6, 4, 0, 7, 2, 3.0f);
-  fogmap_destroy(&f);
+  /* the data window inside the display window, off its corner; then both off the origin,
+   * the data window reaching past the display on two sides */
+  windowed(dir, "inside", box(0, 0, 9, 9), box(2, 3, 5, 7), 2.0f, box(2, 3, 5, 7));
+  windowed(dir, "past", box(10, 20, 17, 25), box(14, 18, 21, 22), 3.0f, box(4, 0, 7, 2));
   /* a subsampled chroma channel beside a full one: refused, naming it */
   snprintf(path, sizeof path, "%s/chroma.exr", dir);
   const char *yca[3] = {"A", "BY", "Y"};
