@@ -249,15 +249,18 @@ static int list_grids(const import_options *o) {
     printf("  %-16s %-8s %-12s %-10s %-30s %s\n", "name", "type", "class", "voxel",
            "active bbox", "active voxels");
     for (int g = 0; g < count && g < 64; g++) {
-      char box[64];
-      if (info[g].bbox_min[0] > info[g].bbox_max[0])
+      char box[64], voxels[32];
+      snprintf(voxels, sizeof voxels, "%lld", info[g].active_voxels);
+      if (info[g].active_voxels < 0)
+        snprintf(box, sizeof box, "(not read)"), snprintf(voxels, sizeof voxels, "?");
+      else if (info[g].bbox_min[0] > info[g].bbox_max[0])
         snprintf(box, sizeof box, "(empty)");
       else
         snprintf(box, sizeof box, "[%d,%d,%d]..[%d,%d,%d]", info[g].bbox_min[0],
                  info[g].bbox_min[1], info[g].bbox_min[2], info[g].bbox_max[0],
                  info[g].bbox_max[1], info[g].bbox_max[2]);
-      printf("  %-16s %-8s %-12s %-10.6g %-30s %lld\n", info[g].name, info[g].value_type,
-             info[g].grid_class, info[g].voxel_size[0], box, info[g].active_voxels);
+      printf("  %-16s %-8s %-12s %-10.6g %-30s %s\n", info[g].name, info[g].value_type,
+             info[g].grid_class, info[g].voxel_size[0], box, voxels);
     }
   }
   vdb_sequence_destroy(&seq);

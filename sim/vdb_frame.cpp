@@ -101,6 +101,9 @@ extern "C" int vdb_frame_load(const char *path, const vdb_frame_desc *desc, vdb_
                                     c.origin_z + c.height * c.cell_z, d.resolution, d.cell_size,
                                     c.cell_x > c.cell_z ? c.cell_x : c.cell_z,
                                     &out->fogmap_place, &inner);
+      // the footprint came from the config's domain: its errors name it (a damaged res
+      // made a fogmap of 16777280 x 64 cells, the config unnamed)
+      placed_by_config = placed_by_config || (status && cfg);
     }
   }
   if (!status)

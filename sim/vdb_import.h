@@ -43,7 +43,9 @@ typedef struct vdb_grid_info {
   char grid_class[32];   /* "fog volume", "level set", "staggered", "unknown" */
   double voxel_size[3];  /* from the grid's transform */
   int bbox_min[3], bbox_max[3];  /* active voxels incl. tiles, inclusive; empty: min > max */
-  long long active_voxels;       /* voxels in leaves and in active tiles */
+  long long active_voxels;       /* voxels in leaves and in active tiles; -1 (and min > max):
+                                    not known (a grid other than float or double whose file
+                                    holds no statistics: its tree is not read) */
 } vdb_grid_info;
 
 /* Checks (in C, without OpenVDB, in about a millisecond) that a .vdb file's header,

@@ -2,6 +2,7 @@
  * tau(x,z) = ∫ρ dy of a dense grid, and its area-weighted (conservative) resampling onto
  * a fogmap grid. See sim/vdb_import.h for the conventions. */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -55,6 +56,19 @@ int vdb_world_map_make(const vdb_dense_grid *grid, const vdb_placement *desc, vd
         return 1;
       }
       upres = (int)whole;
+    }
+    /* the domain in voxels (res x upres) and its first voxel must fit an int: a damaged or
+     * foreign config's upres of 2^29 overflowed them (undefined, then "0x0 columns") */
+    for (int c = 0; c < 3; c++) {
+      const long long cells = (long long)cfg->res[c] * upres,
+                      first = ((long long)cfg->res_min[c] + cfg->shift[c]) * upres;
+      if (cells > INT_MAX / 2 || first > INT_MAX / 2 || first < -(long long)(INT_MAX / 2)) {
+        fog_fail(err, FOG_ERR_BAD_FILE,
+                 "the Mantaflow config's domain of %d cells x %d (the VDB's voxels a 1/%d of "
+                 "a cell) on axis %d is too large to place (damaged?); --config none places "
+                 "the grid from the VDB transform alone", cfg->res[c], upres, upres, c);
+        return 1;
+      }
     }
     for (int c = 0; c < 3; c++) {
       /* Mantaflow cell n covers [n, n+1]·dx from the domain's min corner p0 (object
@@ -141,9 +155,10 @@ int vdb_columns_project(const vdb_dense_grid *grid, const vdb_world_map *map, co
   out->tau = calloc((size_t)out->width * (size_t)out->height, sizeof(double));
   out->layer_mass = calloc((size_t)out->layers, sizeof(double));
   if (!out->tau || !out->layer_mass) {
+    /* the sizes said before the destroy zeroes them (it said "0x0") */
+    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for %dx%d columns of %d layers",
+             out->width, out->height, out->layers);
     vdb_columns_destroy(out);
-    fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for %dx%d columns", out->width,
-             out->height);
     return 1;
   }
   /* World-ordered cell number of source index n along fogpipe axis a: n - lo when the

@@ -216,7 +216,15 @@ extern "C" int vdb_list_grids(const char *path, vdb_grid_info *grids, int capaci
     openvdb::initialize();
     openvdb::io::File file(path);
     file.open(false);  // no delayed loading: a truncated file fails here, not later
-    openvdb::GridPtrVecPtr all = file.getGrids();
+    // The metadata and transforms, and the trees of float and double grids only: the
+    // pre-check walks no other tree (a damaged bool grid's tree took 1.1 GB to read). A
+    // grid's box and count come from its file statistics where it has them.
+    openvdb::GridPtrVecPtr all = file.readAllGridMetadata();
+    for (auto &g : *all) {
+      const bool walked = g->valueType() == "float" || g->valueType() == "double";
+      if (walked && !g->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT))
+        g = file.readGrid(g->getName());
+    }
     file.close();
     int n = 0;
     for (const auto &g : *all) {
@@ -229,12 +237,27 @@ extern "C" int vdb_list_grids(const char *path, vdb_grid_info *grids, int capaci
                  openvdb::GridBase::gridClassToString(g->getGridClass()).c_str());
         const openvdb::Vec3d vs = g->voxelSize();
         for (int a = 0; a < 3; a++) info->voxel_size[a] = vs[a];
-        const openvdb::CoordBBox box = g->evalActiveVoxelBoundingBox();
-        for (int a = 0; a < 3; a++) {
-          info->bbox_min[a] = box.min()[a];
-          info->bbox_max[a] = box.max()[a];
+        const auto count = g->getMetadata<openvdb::Int64Metadata>(
+            openvdb::GridBase::META_FILE_VOXEL_COUNT);
+        const auto lo = g->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
+        const auto hi = g->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
+        if (count && lo && hi) {
+          for (int a = 0; a < 3; a++) {
+            info->bbox_min[a] = lo->value()[a];
+            info->bbox_max[a] = hi->value()[a];
+          }
+          info->active_voxels = (long long)count->value();
+        } else if (g->valueType() == "float" || g->valueType() == "double") {
+          const openvdb::CoordBBox box = g->evalActiveVoxelBoundingBox();
+          for (int a = 0; a < 3; a++) {
+            info->bbox_min[a] = box.min()[a];
+            info->bbox_max[a] = box.max()[a];
+          }
+          info->active_voxels = (long long)g->activeVoxelCount();
+        } else {  // no statistics and a tree not read: unknown
+          info->bbox_min[0] = 1, info->bbox_max[0] = 0;
+          info->active_voxels = -1;
         }
-        info->active_voxels = (long long)g->activeVoxelCount();
       }
       n++;
     }
@@ -271,6 +294,18 @@ extern "C" int vdb_read_dense(const char *path, const vdb_read_desc *desc, vdb_d
     // and a later read then takes its lengths from whatever the variables held (a 1.1 GB
     // string in Transform::read; tests/fuzz/regressions/vdb/).
     openvdb::GridPtrVecPtr meta = file.readAllGridMetadata();
+    // The type from the metadata, before the tree is read: the pre-check walks float and
+    // double trees only, and a damaged bool or mask tree allocated a node for every bit
+    // of its masks (4 KB of damage: 1.1 GB and 2 s before "holds bool values")
+    for (const auto &g : *meta)
+      if (g->getName() == name && g->valueType() != "float" && g->valueType() != "double") {
+        fog_fail(err, FOG_ERR_BAD_FILE,
+                 "%s: grid '%s' holds %s values, expected a scalar float grid (density); "
+                 "the file has: %s",
+                 path, name, g->valueType().c_str(), type_names(meta).c_str());
+        file.close();
+        return 1;
+      }
     openvdb::GridBase::Ptr base = file.readGrid(name);
     file.close();
     // A level set holds distances to a surface (negative inside, the background a band's

@@ -53,6 +53,7 @@ typedef struct entry_list {
   int count, capacity;
   int last;             /* the range's last frame, -1: open */
   char too_large[4096]; /* a file whose frame number an int does not hold */
+  char unnumbered[4096]; /* a name without digits among numbered ones (add_glob) */
 } entry_list;
 
 /* 0, 1 (out of memory) or 2: frame past INT_MAX in an open range (the path kept in
@@ -137,11 +138,25 @@ static int hashes_to_printf(const char *in, char *out, size_t out_size) {
   return 1;
 }
 
+/* 0, 1 (out of memory), 2 (push's), or 3: a name without digits among numbered ones (kept
+ * in list->unnumbered): numbered by its place it became a frame of the sequence
+ * (fog_preview.vdb beside fog_0000 and fog_0001 played as frame 2). Names are numbered by
+ * place only where none has digits. */
 static int add_glob(entry_list *list, const char *pattern, int *matched) {
   glob_t g;
   int status = glob(pattern, 0, NULL, &g);
   if (status == GLOB_NOMATCH) return 0;
   if (status != 0) return 1;
+  size_t numbered = 0, first_unnumbered = g.gl_pathc;
+  for (size_t i = 0; i < g.gl_pathc; i++) {
+    if (frame_of(g.gl_pathv[i], NULL, NULL) >= 0) numbered++;
+    else if (first_unnumbered == g.gl_pathc) first_unnumbered = i;
+  }
+  if (numbered > 0 && first_unnumbered < g.gl_pathc) {
+    snprintf(list->unnumbered, sizeof list->unnumbered, "%s", g.gl_pathv[first_unnumbered]);
+    globfree(&g);
+    return 3;
+  }
   for (size_t i = 0; i < g.gl_pathc; i++) {
     long f = frame_of(g.gl_pathv[i], NULL, NULL);
     const int pushed = push(list, f < 0 ? list->count : f, g.gl_pathv[i]);
@@ -265,6 +280,13 @@ int vdb_sequence_find(const char *const *inputs, int input_count, int first, int
     if (status == 2) {
       fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: its frame number is past %d", list.too_large,
                INT_MAX);
+      goto fail;
+    }
+    if (status == 3) {
+      fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+               "%s: no frame number in its name, beside numbered files in %s (a frame is the "
+               "last run of digits in a name): move it out or number it",
+               list.unnumbered, in);
       goto fail;
     }
     if (status) {

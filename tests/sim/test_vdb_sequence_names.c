@@ -10,7 +10,10 @@
  *     for the other); the same file given twice, however spelt ("d//f", "./d/f"), is one
  *     frame; a name without digits takes its place in the list as its frame, and where a
  *     numbered file has that frame the refusal says so; a frame number past INT_MAX is
- *     refused. */
+ *     refused;
+ *   - a folder or wildcard matching a name without digits beside numbered names is refused,
+ *     naming it (fog_preview.vdb beside fog_0000 and fog_0001 played as frame 2); where no
+ *     name has digits they are numbered by place. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <string.h>
@@ -71,13 +74,19 @@ int main(void) {
   CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
   snprintf(folder, sizeof folder, "%s/shot[a]", dir);
   CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
+  snprintf(folder, sizeof folder, "%s/mixed", dir);
+  CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
+  snprintf(folder, sizeof folder, "%s/plain", dir);
+  CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
   static const char *const files[] = {"take#2/fluid_0001.vdb", "take#2/fluid_0002.vdb",
                                       "take#2/fluid_0003.vdb", "shot#48.vdb", "other_0002.vdb",
                                       "fog.vdb", "a##_0007.vdb", "take[1]*?/fluid_0004.vdb",
                                       "take[1]*?/fluid_0005.vdb", "big_4294967297.vdb",
                                       "shot[a]/fluid_0047.vdb", "shot[a]/fluid_1047.vdb",
                                       "shot[a]/fluid_1048.vdb", "shot[a]/smoke_9.vdb",
-                                      "shot[a]/smoke_12.vdb"};
+                                      "shot[a]/smoke_12.vdb", "mixed/fog_0000.vdb",
+                                      "mixed/fog_0001.vdb", "mixed/fog_preview.vdb",
+                                      "plain/a.vdb", "plain/b.vdb"};
   for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) touch(files[i]);
   static const names_case cases[] = {
       {"the folder take#2", {"take#2"}, 3, 2, 3, "take#2/fluid_0003.vdb"},
@@ -110,6 +119,11 @@ int main(void) {
        0, 0, 0, "a name without digits takes its place"},
       {"fog.vdb (no digits, place 0) and a file of frame 2", {"fog.vdb", "take#2/fluid_0002.vdb"},
        2, 0, 0, "fog.vdb"},
+      {"the folder mixed (fog_preview.vdb beside numbered frames)", {"mixed"}, 0, 0, 0,
+       "fog_preview.vdb: no frame number in its name"},
+      {"the wildcard mixed/fog_*.vdb", {"mixed/fog_*.vdb"}, 0, 0, 0,
+       "fog_preview.vdb: no frame number in its name"},
+      {"the folder plain (no name with digits: by place)", {"plain"}, 2, 1, 1, "plain/b.vdb"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) check_case(&cases[i]);
   /* the refusal names both files */
