@@ -53,9 +53,9 @@ int cmd_view(int argc, char **argv) {
                "                           [--screenshot FILE.png --frames N] [--fit T [--rung N]]",
       .about = "Opens the scene config in a window with a free camera and the panel, its fog as\n"
                "the config holds it (needs a display; for headless images use `fogpipe render`).\n"
-               "The panel (Tab) edits the fog's density scale and ambient colour and the sun\n"
-               "(time of day, colour, albedo, g, self-shadow, shafts); the fog is made again\n"
-               "after each edit.\n"
+               "The panel (Tab) edits the fog's density scale, ambient colour, profile and\n"
+               "wavelets, the sun (time of day, colour, albedo, g, self-shadow, shafts) and the\n"
+               "lamps (the lamp tool); the fog is made again after each edit.\n"
                "  W A S D  move     Q E  down / up     Shift  4x faster\n"
                "  right or middle drag, arrow keys  look around     Esc  quit\n"
                "  Tab  hide / show the panel\n"

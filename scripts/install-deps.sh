@@ -21,8 +21,8 @@ packages=(
   libgsl-dev python3 python3-numpy python3-pywt
   # speed/accuracy charts (CSV -> PNG)
   gnuplot-nox
-  # screenshots of the real window without a display
-  xvfb xauth
+  # screenshots of the real window without a display; XTest keys for the window's tests
+  xvfb xauth libxtst6
   # fuzzing (make fuzz): clang and its libFuzzer/sanitizer runtimes (only recommended by clang)
   clang libclang-rt-14-dev
 )
