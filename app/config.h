@@ -306,6 +306,9 @@ fog_lamp_method scene_live_lamp_method(fog_lamp_method method);
 double scene_config_min_scale_height(const scene_config *cfg);
 /* [fog] scale_height's largest (a world length) */
 #define SCENE_MAX_SCALE_HEIGHT 1e7
+/* The clear air a fogmap scene without a map starts from: SCENE_CLEAR_AIR_CELLS square
+ * cells of 0 (the pipeline's simulation; render's quadric volumes beside it) */
+#define SCENE_CLEAR_AIR_CELLS 256
 /* Both, in cfg: the live demo's settings on a software renderer (the window and `bench
  * pipeline`, which measures it). */
 void scene_config_live_software(scene_config *cfg);

@@ -26,7 +26,6 @@
 
 /* The fog pass holds A_0..A_J and D_1..D_J in FOG_PASS_MAX_GRIDS texture slots. */
 #define MAX_STROKES 256
-#define DEFAULT_GRID 256
 
 /* ---- timings: a ring of the last PIPELINE_TIMING_WINDOW frames, medians on demand ---- */
 
@@ -319,7 +318,7 @@ static int make_base(scene_config *cfg, fogmap *base, double *finer, fog_error *
                                    cfg->fog.fogmap_line)
                   : 0;
   }
-  const int n = DEFAULT_GRID;
+  const int n = SCENE_CLEAR_AIR_CELLS;
   if (fogmap_create(base, n, n, &serr)) return fog_error_pass(err, &serr); /* zeros */
   return 0;
 }

@@ -486,9 +486,10 @@ static int render_file_fog(render_fog *fog, const scene_config *cfg, fog_error *
   fogmap_load_desc load = {.channel = f->channel[0] ? f->channel : NULL,
                            .channel_setting = "[fog] channel"};
   if (!path[0]) {
-    /* no fogmap, quadric volumes beside: clear air, as the pipeline's simulation starts
-     * from (app/pipeline.c: 256 x 256 cells of 0) */
-    if (fogmap_create(&map, 256, 256, &serr)) return fog_error_pass(err, &serr);
+    /* no fogmap, quadric volumes beside: the clear air the pipeline's simulation starts
+     * from */
+    if (fogmap_create(&map, SCENE_CLEAR_AIR_CELLS, SCENE_CLEAR_AIR_CELLS, &serr))
+      return fog_error_pass(err, &serr);
     const int status = render_fog_create_map(fog, cfg, &map, err);
     fogmap_destroy(&map);
     return status;
