@@ -2,6 +2,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "app/chart.h"
 
+#include "sim/atomic_file.h"
+
 #include <errno.h>
 #include <spawn.h>
 #include <stdio.h>
@@ -12,33 +14,37 @@
 
 extern char **environ;
 
-FILE *chart_csv_open(const char *path, char *error, int size) {
-  char temp[4200];
-  snprintf(temp, sizeof temp, "%.4000s.tmp", path);
-  FILE *f = fopen(temp, "w");
-  if (!f) snprintf(error, (size_t)size, "%.900s: cannot write (folder missing or not writable)", path);
-  return f;
+int chart_table_open(chart_table *table, const char *path, char *error, int size) {
+  *table = (chart_table){.path = path};
+  table->stream = open_memstream(&table->text, &table->length);
+  if (!table->stream) snprintf(error, (size_t)size, "%.900s: out of memory", path);
+  return table->stream ? 0 : 1;
 }
 
-int chart_csv_close(FILE *f, const char *path, char *error, int size) {
-  char temp[4200];
-  snprintf(temp, sizeof temp, "%.4000s.tmp", path);
-  if (fclose(f) != 0 || rename(temp, path) != 0) {
-    remove(temp);
-    snprintf(error, (size_t)size, "%.900s: write failed (disk full?)", path);
-    return 1;
+int chart_table_write(chart_table *table, char *error, int size) {
+  const bool whole = !(ferror(table->stream) | fclose(table->stream));
+  fog_error err = {0};
+  int status = 0;
+  if (!whole) {
+    snprintf(error, (size_t)size, "%.900s: out of memory", table->path);
+    status = 1;
+  } else if (atomic_file_write(table->path, table->text, table->length, &err)) {
+    snprintf(error, (size_t)size, "%s", err.message);
+    status = 1;
   }
-  return 0;
+  free(table->text);
+  *table = (chart_table){0};
+  return status;
 }
 
 static int write_csv(const chart_point *points, int count, const char *path, char *error,
                      int error_size) {
-  FILE *file = chart_csv_open(path, error, error_size);
-  if (!file) return 1;
-  fprintf(file, "series,x,y\n");
+  chart_table table;
+  if (chart_table_open(&table, path, error, error_size)) return 1;
+  fprintf(table.stream, "series,x,y\n");
   for (int i = 0; i < count; i++)
-    fprintf(file, "%s,%.9g,%.9g\n", points[i].series, points[i].x, points[i].y);
-  return chart_csv_close(file, path, error, error_size);
+    fprintf(table.stream, "%s,%.9g,%.9g\n", points[i].series, points[i].x, points[i].y);
+  return chart_table_write(&table, error, error_size);
 }
 
 /* Series names in first-appearance order. */
@@ -127,18 +133,35 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
   if (write_csv(points, count, csv_path, error, error_size)) return CHART_FAILED;
   if (!png_path) return 0;
 
-  char temp_png[4096], script_path[4096];
-  snprintf(temp_png, sizeof temp_png, "%s.tmp", png_path);
-  snprintf(script_path, sizeof script_path, "%s.gp", png_path);
-  FILE *script = fopen(script_path, "w");
+  /* gnuplot draws into the PNG's temporary and runs a script written to a temporary of
+   * its own: neither is a name a user's file could have ("chart.png.tmp" and
+   * "chart.png.gp" were written over and removed) */
+  atomic_file png, script_file;
+  fog_error ferr = {0};
+  char script_name[4200];
+  snprintf(script_name, sizeof script_name, "%.4000s.gp", png_path);
+  if (atomic_file_open(&png, png_path, &ferr)) {
+    snprintf(error, (size_t)error_size, "%s", ferr.message);
+    return CHART_CSV_WRITTEN;
+  }
+  if (atomic_file_open(&script_file, script_name, &ferr)) {
+    atomic_file_abandon(&png);
+    snprintf(error, (size_t)error_size, "%s", ferr.message);
+    return CHART_CSV_WRITTEN;
+  }
+  const char *script_path = script_file.temp_path;
+  FILE *script = fdopen(script_file.fd, "w");
   if (!script) {
+    atomic_file_abandon(&script_file);
+    atomic_file_abandon(&png);
     snprintf(error, (size_t)error_size, "%s: cannot write the gnuplot script", script_path);
     return CHART_CSV_WRITTEN;
   }
+  script_file.fd = -1; /* the stream's now */
   int width = desc->width ? desc->width : 960, height = desc->height ? desc->height : 600;
   fprintf(script, "set terminal pngcairo size %d,%d font 'sans,10'\n", width, height);
   fputs("set output ", script);
-  put_path(script, temp_png);
+  put_path(script, png.temp_path);
   fputc('\n', script);
   fprintf(script, "set datafile separator ','\nset key below\nset colorsequence podo\n"
                   "set grid\n");
@@ -160,30 +183,28 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
     put_string(script, names[s]);
   }
   fprintf(script, "\n");
-  const int written = fclose(script) == 0;
+  const int written = !(ferror(script) | fclose(script));
 
   char output[1024], script_arg[4200];
   char *argv[] = {"gnuplot", (char *)gnuplot_path(script_path, script_arg, sizeof script_arg),
                   NULL};
   const int status = written ? run_gnuplot(argv, output, sizeof output) : -1;
-  remove(script_path);
-  if (status == 0 && rename(temp_png, png_path) != 0) {
-    snprintf(error, (size_t)error_size, "%s: cannot move the finished chart onto it: %s",
-             png_path, strerror(errno));
-    remove(temp_png);
-    return CHART_CSV_WRITTEN;
-  }
+  atomic_file_abandon(&script_file); /* removes the script */
   if (status != 0) {
-    remove(temp_png);
+    atomic_file_abandon(&png);
     if (!written)
       snprintf(error, (size_t)error_size, "%s: cannot write the gnuplot script (disk full?)",
-               script_path);
+               script_name);
     else if (status == 127)
       snprintf(error, (size_t)error_size,
                "%s: gnuplot could not be run (install Debian's gnuplot-nox)", png_path);
     else
       snprintf(error, (size_t)error_size, "%s: gnuplot failed (exit %d): %.300s", png_path,
                status, output);
+    return CHART_CSV_WRITTEN;
+  }
+  if (atomic_file_commit(&png, &ferr)) {
+    snprintf(error, (size_t)error_size, "%s", ferr.message);
     return CHART_CSV_WRITTEN;
   }
   return 0;

@@ -7,11 +7,17 @@
 #include <stdbool.h>
 #include <stdio.h>
 
-/* A table written whole or not at all: chart_csv_open writes to PATH.tmp (NULL and a
- * message if it cannot), chart_csv_close closes it and renames it to PATH (non-zero and a
- * message, the temporary removed, if that fails). */
-FILE *chart_csv_open(const char *path, char *error, int size);
-int chart_csv_close(FILE *f, const char *path, char *error, int size);
+/* A table written whole or not at all: chart_table_open gives a stream in memory to print
+ * to; chart_table_write writes it to path through sim/atomic_file.h (non-zero and a
+ * message naming the file if that fails, the file as it was) and frees it, either way. */
+typedef struct chart_table {
+  FILE *stream;     /* print the table here */
+  const char *path; /* not owned */
+  char *text;
+  size_t length;
+} chart_table;
+int chart_table_open(chart_table *table, const char *path, char *error, int size);
+int chart_table_write(chart_table *table, char *error, int size);
 
 typedef struct chart_point {
   const char *series; /* points of one series are joined in the order given */

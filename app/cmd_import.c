@@ -326,13 +326,12 @@ static int write_sidecar(const char *path, const import_options *o, const vdb_se
                       length, sidecar_min_cell,
                       (double)SIDECAR_WORLD, (double)SIDECAR_WORLD);
   }
-  char temp[4400];
-  snprintf(temp, sizeof temp, "%s.tmp", path);
-  FILE *f = fopen(temp, "w");
-  if (!f) {
-    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: cannot write", path);
-    return 1;
-  }
+  /* printed in memory, then written whole (sim/atomic_file.h: "NAME.tmp" beside it was
+   * a name a user's file could have) */
+  char *text = NULL;
+  size_t text_size = 0;
+  FILE *f = open_memstream(&text, &text_size);
+  if (!f) return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%.400s: out of memory", path);
   fprintf(f, "; fogpipe import: K(x,y,z) = density_scale * f(x,z) * g(y) with max g = 1.\n"
              "; f: %s.####.exr (channel Y), the extinction per world unit where g = 1.\n"
              "; [box%s] and [fog%s] are scene config sections (docs/config.md): copied into\n"
@@ -374,13 +373,13 @@ static int write_sidecar(const char *path, const import_options *o, const vdb_se
       write_profile(f, section, &frames[i].profile);
     }
   }
-  const bool lost = ferror(f) != 0; /* a flush that failed before the close */
-  if (fclose(f) != 0 || lost || rename(temp, path) != 0) {
-    remove(temp);
-    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: write failed", path);
-    return 1;
+  if (ferror(f) | fclose(f)) {
+    free(text);
+    return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%.400s: out of memory", path);
   }
-  return 0;
+  const int failed = atomic_file_write(path, text, text_size, err);
+  free(text);
+  return failed;
 }
 
 /* The report's 3D reference marched again on the GL (render/volume_march.h: the grid as a

@@ -136,11 +136,12 @@ static int write_exr(const char *dir, const char *name, int w, int h, const floa
 static int write_manifest(const char *dir, transform_plan *plan, const char *input,
                           const double *energy) {
   const transform_desc *d = transform_plan_desc(plan);
-  char path[4096], temp[4200];
+  char path[4096];
   snprintf(path, sizeof path, "%s/transform.ini", dir);
-  snprintf(temp, sizeof temp, "%s/.transform.ini.tmp.%ld", dir, (long)getpid());
-  FILE *f = fopen(temp, "w");
-  if (!f) return cli_fail("transform", "%s: cannot write: %s", temp, strerror(errno));
+  char *text = NULL;
+  size_t text_size = 0;
+  FILE *f = open_memstream(&text, &text_size); /* written whole below */
+  if (!f) return cli_fail("transform", "%s: out of memory", path);
   /* the input's name in a comment line: a control character in it (a line break) would
    * end the comment and make a manifest the reader refuses */
   fprintf(f, "# fogpipe transform of ");
@@ -164,13 +165,14 @@ static int write_manifest(const char *dir, transform_plan *plan, const char *inp
       fprintf(f, "energy_x = %.17g\nenergy_y = %.17g\nenergy_xy = %.17g\n", energy[3 * l],
               energy[3 * l + 1], energy[3 * l + 2]);
   }
-  int bad = ferror(f);
-  bad |= fclose(f) != 0;
-  if (bad || rename(temp, path)) {
-    unlink(temp);
-    return cli_fail("transform", "%s: cannot write: %s", path, strerror(errno));
+  if (ferror(f) | fclose(f)) {
+    free(text);
+    return cli_fail("transform", "%s: out of memory", path);
   }
-  return 0;
+  fog_error err = {0};
+  const int failed = atomic_file_write(path, text, text_size, &err);
+  free(text);
+  return failed ? cli_fail("transform", "%s", err.message) : 0;
 }
 
 static int read_manifest(const char *dir, transform_desc *desc, char *msg, size_t msg_size);

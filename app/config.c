@@ -1621,55 +1621,11 @@ int scene_config_write(const scene_config *cfg, const char *path, fog_error *err
                     "%.400s: not written: the scene's config would not load (%s)", path,
                     reader ? berr.message : "out of memory");
   }
-  /* A temporary of its own beside the target (PATH.tmp was shared by two writers and
-   * replaced a user's file of that name), hidden, made with O_EXCL and mode 0666 so the
-   * umask applies as to any new file; a config written over keeps its mode (it became
-   * 0644). Renamed onto the target once whole. */
-  char temp[SCENE_CONFIG_PATH_MAX + 64];
-  const char *slash = strrchr(path, '/');
-  const int folder_length = slash ? (int)(slash - path) + 1 : 0;
-  static atomic_uint serial;
-  int fd = -1;
-  for (int attempt = 0; attempt < 100 && fd < 0; attempt++) {
-    const int n = snprintf(temp, sizeof temp, "%.*s.%.200s.tmp.%ld.%u", folder_length, path,
-                           path + folder_length, (long)getpid(),
-                           atomic_fetch_add(&serial, 1u));
-    if (n < 0 || (size_t)n >= sizeof temp) { /* cut short it would name another file */
-      errno = ENAMETOOLONG;
-      break;
-    }
-    fd = open(temp, O_WRONLY | O_CREAT | O_EXCL, 0666);
-    if (fd < 0 && errno != EEXIST) break;
-  }
-  if (fd < 0) {
-    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: cannot write: %s", path, strerror(errno));
-    free(text);
-    return 1;
-  }
-  struct stat target;
-  if (stat(path, &target) == 0 && S_ISREG(target.st_mode)) fchmod(fd, target.st_mode & 07777);
-  FILE *f = fdopen(fd, "w");
-  if (!f) {
-    const int why = errno;
-    close(fd);
-    unlink(temp);
-    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: cannot write: %s", path, strerror(why));
-    free(text);
-    return 1;
-  }
-  fputs(text, f);
+  /* written whole or not at all, a config written over keeping its mode
+   * (sim/atomic_file.h) */
+  const int failed = atomic_file_write(path, text, text_size, err);
   free(text);
-  errno = 0;
-  const bool flushed = !(ferror(f) | fclose(f));
-  if (!flushed || rename(temp, path)) {
-    const int why = errno;
-    unlink(temp);
-    fog_fail(err, FOG_ERR_FILE_ACCESS, "%.400s: %s: %s", path,
-             flushed ? "cannot move the written config onto it" : "write failed",
-             why ? strerror(why) : "disk full?");
-    return 1;
-  }
-  return 0;
+  return failed;
 }
 
 bool scene_config_knows_key(const char *section, const char *key) {

@@ -91,7 +91,7 @@ int bench_time_rows(const bench_timed_rows *rows, fog_error *err);
 /* A stage's way out: when status is non-zero, prints "fogpipe bench STAGE: " and err's
  * message to stderr. Returns status. */
 int bench_report(const char *stage, int status, const fog_error *err);
-/* Tables: chart_csv_open / chart_csv_close (app/chart.h). */
+/* Tables: chart_table_open / chart_table_write (app/chart.h). */
 #include "app/chart.h"
 /* mkdir -p; non-zero and a message naming the folder on failure. */
 int bench_make_folder(const char *path, char *error, int size);

@@ -304,15 +304,16 @@ static const char *row_method(const light_row *r) {
 
 static int write_table(const char *path, const light_row *rows, int count, char *error,
                        int size) {
-  FILE *f = chart_csv_open(path, error, size);
-  if (!f) return 1;
+  chart_table table;
+  if (chart_table_open(&table, path, error, size)) return 1;
+  FILE *f = table.stream;
   fprintf(f, "scene,method,volume,steps,nodes,divisor,ms_per_frame,max_error,mean_error\n");
   for (int i = 0; i < count; i++)
     fprintf(f, "%s,%s,%d,%d,%d,%d,%.6g,%.6g,%.6g\n", scene_configs[rows[i].scene],
             row_method(&rows[i]),
             rows[i].resolution, rows[i].steps, rows[i].nodes,
             rows[i].divisor, rows[i].ms, rows[i].max_error, rows[i].mean_error);
-  return chart_csv_close(f, path, error, size);
+  return chart_table_write(&table, error, size);
 }
 
 static light_row *add_row(light_row *rows, int *count, int scene, int resolution, int steps,

@@ -361,8 +361,9 @@ static int shadow_rows(lights_scene *s, const lights_row *plain, int W, int H, i
 }
 
 static int write_table(const char *path, const lights_row *rows, int count, char *error, int size) {
-  FILE *f = chart_csv_open(path, error, size);
-  if (!f) return 1;
+  chart_table table;
+  if (chart_table_open(&table, path, error, size)) return 1;
+  FILE *f = table.stream;
   fprintf(f, "scene,method,ms_per_frame,max_error,mean_error,timed\n");
   for (int i = 0; i < count; i++) {
     char errors[64] = ","; /* an unlit row has no lamps' error: empty, not a perfect 0 */
@@ -371,7 +372,7 @@ static int write_table(const char *path, const lights_row *rows, int count, char
     fprintf(f, "%s,%s,%.6g,%s,%s\n", scene_names[rows[i].scene], rows[i].name, rows[i].ms,
             errors, rows[i].beyond_cap ? "extrapolated" : "measured");
   }
-  return chart_csv_close(f, path, error, size);
+  return chart_table_write(&table, error, size);
 }
 
 int bench_lights(int argc, char **argv) {

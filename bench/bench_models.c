@@ -146,13 +146,14 @@ static double march_speedup(const model_row *rows, int count, int model, bool *m
 
 static int write_table(const char *path, const model_row *rows, int count, char *error,
                        int size) {
-  FILE *f = chart_csv_open(path, error, size);
-  if (!f) return 1;
+  chart_table table;
+  if (chart_table_open(&table, path, error, size)) return 1;
+  FILE *f = table.stream;
   fprintf(f, "model,method,setting,ms_per_frame,rmse,max_error\n");
   for (int i = 0; i < count; i++)
     fprintf(f, "%s,%s,%g,%.6g,%.6g,%.6g\n", model_name(rows[i].model), row_method(&rows[i]),
             rows[i].setting, rows[i].ms, rows[i].rmse, rows[i].max_error);
-  return chart_csv_close(f, path, error, size);
+  return chart_table_write(&table, error, size);
 }
 
 /* bench_time_rows' callbacks: the fog target bound, then the row's fog pass timed. */

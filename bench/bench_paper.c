@@ -252,15 +252,17 @@ static int run_paper(paper_run *p, const char *renderer, int W, int H, int frame
   }
   char path[1100], message[1200];
   snprintf(path, sizeof path, "%s/paper.csv", out_dir);
-  FILE *csv = status ? NULL : chart_csv_open(path, message, sizeof message);
-  if (!status && !csv) status = fog_fail(err, FOG_ERR_FILE_ACCESS, "%s", message);
+  chart_table table = {0};
+  if (!status && chart_table_open(&table, path, message, sizeof message))
+    status = fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s", message);
   if (!status) {
+    FILE *csv = table.stream;
     fprintf(csv, "table,fog,size,levels,mu,method,fps,normalised\n");
     printf("bench paper: %dx%d, %s\n", W, H, renderer);
     print_table1(p, csv);
     print_table2(p, csv);
     const double gain = print_table3(p, csv);
-    if (chart_csv_close(csv, path, message, sizeof message))
+    if (chart_table_write(&table, message, sizeof message))
       status = fog_fail(err, FOG_ERR_FILE_ACCESS, "%s", message);
     const paper_row *t2 = &p->rows[T1_ROWS];
     const double sum_j3 = fps_of(&t2[3 * MU_COUNT]) / fps_of(&t2[0]);

@@ -273,8 +273,9 @@ static uint64_t fnv1a(const void *data, size_t bytes) {
 
 static int write_table_csv(const char *path, const bench_row *rows, int count, char *error,
                            int size) {
-  FILE *f = chart_csv_open(path, error, size);
-  if (!f) return 1;
+  chart_table table;
+  if (chart_table_open(&table, path, error, size)) return 1;
+  FILE *f = table.stream;
   fprintf(f, "method,setting,ms_per_frame,rmse,max_error,rmse_vs_full,max_error_vs_full\n");
   for (int i = 0; i < count; i++) {
     const bench_row *r = &rows[i];
@@ -284,7 +285,7 @@ static int write_table_csv(const char *path, const bench_row *rows, int count, c
     else
       fprintf(f, ",\n");
   }
-  return chart_csv_close(f, path, error, size);
+  return chart_table_write(&table, error, size);
 }
 
 /* The cheapest marching row on `pass` with max error <= 1e-3 (*matched), else the most

@@ -1,41 +1,52 @@
-/* Atomic output files: write a temporary beside the target, rename when complete, so a
- * reader, a killed process or a full disk never leaves a half-written image at the target.
- * Not a power cut: nothing is fsynced before the rename (a sync a frame costs more than
- * it is worth here; after a power cut the name may hold data never written to disk). */
+/* Atomic output files (sim/atomic_file.h). Not a power cut: nothing is fsynced before the
+ * rename (a sync a frame costs more than it is worth here; after a power cut the name may
+ * hold data never written to disk). */
 #define _POSIX_C_SOURCE 200809L
+#include "sim/atomic_file.h"
+
 #include <errno.h>
-#include <stdarg.h>
+#include <fcntl.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include <stdlib.h>
-
-#include "sim/image_io.h"
 
 int atomic_file_open(atomic_file *file, const char *path, fog_error *err) {
   *file = (atomic_file){.path = path, .fd = -1};
   if (!path || !*path) return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "no output file name given");
-  /* ".NAME.tmp.XXXXXX" in the target's folder: the same file system, so rename is atomic;
-   * hidden, so a folder listing during a long write is not confusing. */
+  /* ".NAME.tmp.PID.N" in the target's folder: the same file system, so rename is atomic;
+   * hidden, so a folder listing during a long write is not confusing; the process and a
+   * serial in it, so two writers (threads or processes) never share one, and O_EXCL, so
+   * a stale temporary of a killed process or a user's file is never written through. */
   const char *slash = strrchr(path, '/');
-  int folder_len = slash ? (int)(slash - path) + 1 : 0;
+  const int folder_len = slash ? (int)(slash - path) + 1 : 0;
   const char *name = path + folder_len;
   struct stat st;
   if (!*name || (stat(path, &st) == 0 && S_ISDIR(st.st_mode)))
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: is a folder name, expected a file name",
                     path);
-  /* the name cut to 200 bytes in the temporary's: ".NAME.tmp.XXXXXX" of a legal 245-byte
-   * NAME passed the file system's 255 ("File name too long" for a name that is not) */
-  int n = snprintf(file->temp_path, sizeof file->temp_path, "%.*s.%.200s.tmp.XXXXXX",
-                   folder_len, path, name);
-  if (n < 0 || (size_t)n >= sizeof file->temp_path)
-    return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: file name too long", path);
-  file->fd = mkstemp(file->temp_path);
+  static atomic_uint serial;
+  int why = 0;
+  for (int attempt = 0; attempt < 100 && file->fd < 0; attempt++) {
+    /* the name cut to 200 bytes in the temporary's: the suffix on a legal 245-byte NAME
+     * passed the file system's 255 ("File name too long" for a name that is not) */
+    const int n = snprintf(file->temp_path, sizeof file->temp_path, "%.*s.%.200s.tmp.%ld.%u",
+                           folder_len, path, name, (long)getpid(),
+                           atomic_fetch_add(&serial, 1u));
+    if (n < 0 || (size_t)n >= sizeof file->temp_path) {
+      file->temp_path[0] = '\0';
+      return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: file name too long", path);
+    }
+    /* 0666: the kernel takes the umask off, as for any new file */
+    file->fd = open(file->temp_path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    why = file->fd < 0 ? errno : 0;
+    if (file->fd < 0 && why != EEXIST) break;
+  }
   if (file->fd < 0) {
-    int e = errno;
+    file->temp_path[0] = '\0';
     return fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: cannot create a file in folder '%.*s': %s", path,
-                    folder_len ? folder_len : 1, folder_len ? path : ".", strerror(e));
+                    folder_len ? folder_len : 1, folder_len ? path : ".", strerror(why));
   }
   return 0;
 }
@@ -70,9 +81,10 @@ int atomic_file_commit(atomic_file *file, fog_error *err) {
     atomic_file_abandon(file);
     return fog_fail(err, FOG_ERR_FILE_ACCESS, "%s: write failed: %s", file->path, strerror(e));
   }
-  /* mkstemp makes 0600; images are for sharing (the process umask is not readable
-   * thread-safely, so use the common 0644). */
-  fchmod(file->fd, 0644);
+  /* a file written over keeps its mode (a private 0600 config stays private) */
+  struct stat target;
+  if (stat(file->path, &target) == 0 && S_ISREG(target.st_mode))
+    fchmod(file->fd, target.st_mode & 07777);
   int status = close(file->fd);
   file->fd = -1;
   if (status != 0) {
@@ -90,4 +102,11 @@ int atomic_file_commit(atomic_file *file, fog_error *err) {
   }
   file->temp_path[0] = '\0';
   return 0;
+}
+
+int atomic_file_write(const char *path, const void *bytes, size_t size, fog_error *err) {
+  atomic_file file;
+  if (atomic_file_open(&file, path, err)) return 1;
+  atomic_file_pwrite(&file, bytes, size, 0); /* a failure is remembered for the commit */
+  return atomic_file_commit(&file, err);
 }

@@ -1,10 +1,6 @@
 /* Internal to the sim library (not part of its public API, not included by sim/sim.h):
- * the pieces fogmap_io.c, image_png.c and image_exr.c share.
- *
- * Output files are written through an atomic_file: a temporary ".NAME.tmp.XXXXXX" made
- * with mkstemp in the target's own folder (so rename(2) is atomic: same file system),
- * renamed over the target only once everything was written; any failure unlinks the
- * temporary and leaves the target as it was. */
+ * the pieces fogmap_io.c, image_png.c and image_exr.c share. Their output files are
+ * written through sim/atomic_file.h. */
 #ifndef FOGPIPE_SIM_IMAGE_IO_H
 #define FOGPIPE_SIM_IMAGE_IO_H
 
@@ -13,24 +9,8 @@
 #include <stdio.h>
 #include <stdint.h>
 
+#include "sim/atomic_file.h" /* every writer here writes through one */
 #include "sim/fogmap.h"
-
-typedef struct atomic_file {
-  const char *path;     /* the target (not owned) */
-  char temp_path[4096]; /* the temporary beside it */
-  int fd;               /* -1 once closed */
-  int write_errno;      /* first failed write's errno, 0 if none */
-} atomic_file;
-
-/* Creates the temporary; fails naming the target's folder and the reason. */
-int atomic_file_open(atomic_file *file, const char *path, fog_error *err);
-/* pwrite of all n bytes at offset; on failure remembers errno (the first one) and fails. */
-int atomic_file_pwrite(atomic_file *file, const void *bytes, size_t n, uint64_t offset);
-/* Closes, sets the usual 0644 permissions and renames over the target; on failure (a
- * remembered write error, close or rename failing) removes the temporary and fails. */
-int atomic_file_commit(atomic_file *file, fog_error *err);
-/* Closes and removes the temporary (after a failure elsewhere). */
-void atomic_file_abandon(atomic_file *file);
 
 /* Decoded single-channel float images: both readers allocate *pixels (width*height
  * floats, top row first) only on success. channel_setting: how the caller's user names

@@ -4,6 +4,7 @@
 #ifndef FOGPIPE_SIM_H
 #define FOGPIPE_SIM_H
 
+#include "sim/atomic_file.h"
 #include "sim/image.h"
 #include "sim/fogmap.h"
 #include "sim/fluid.h"

@@ -1,6 +1,7 @@
 /* app/chart.c: a chart whose folder and series names hold a quote, or shell text, is drawn
  * (a real PNG, its CSV the data of record) and nothing of the path is run as a command;
- * no temporary or script is left; a path with a line break is refused, nothing written. */
+ * no temporary or script is left, and a user's file beside it is never one; a path with a
+ * line break is refused, nothing written. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <string.h>
@@ -51,6 +52,31 @@ int main(void) {
         "CSV: %s", text);
   CHECK(test_folder_entries(folder) == 2, "%d files beside the chart (a script or temporary "
         "left?)", test_folder_entries(folder));
+
+  /* the temporaries are the write's own: a user's files named as the old ones were
+   * (NAME.tmp, NAME.gp) are left as they were (they were written over and removed) */
+  {
+    const char *users[3] = {"chart.png.tmp", "chart.png.gp", "chart.csv.tmp"};
+    char paths[3][800];
+    for (int i = 0; i < 3; i++) {
+      snprintf(paths[i], sizeof paths[i], "%s/%s", folder, users[i]);
+      test_write_text(paths[i], "a user's own file\n");
+    }
+    status = chart_write(&desc, points, 3, csv, png, error, sizeof error);
+    CHECK(status == 0, "chart_write beside a user's files: %s", error);
+    for (int i = 0; i < 3; i++) {
+      char kept[64] = "";
+      FILE *k = fopen(paths[i], "r");
+      size_t got = k ? fread(kept, 1, sizeof kept - 1, k) : 0;
+      kept[got] = '\0';
+      if (k) fclose(k);
+      CHECK(!strcmp(kept, "a user's own file\n"), "%s was written over or removed: '%s'",
+            users[i], kept);
+      unlink(paths[i]);
+    }
+    CHECK(test_folder_entries(folder) == 2, "%d files beside the chart after a second write",
+          test_folder_entries(folder));
+  }
 
   /* gnuplot's own commands in a name: `set output '|cmd'` and `plot '<cmd'` pipe through a
    * shell; relative names here (the working folder is the scratch one) */

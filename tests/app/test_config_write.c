@@ -280,7 +280,7 @@ int main(void) {
   snprintf(folder, sizeof folder, "%s/taken.ini", dir);
   CHECK(mkdir(folder, 0755) == 0, "mkdir %s", folder);
   CHECK(scene_config_write(&cfg, folder, &err) != 0 && strstr(err.message, "taken.ini") &&
-            strstr(err.message, "directory"),
+            strstr(err.message, "folder"),
         "a config written onto a folder: %s", err.message);
   rmdir(folder);
   char bad[700];

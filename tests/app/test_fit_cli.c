@@ -111,21 +111,35 @@ int main(void) {
     rmdir(csv3);
   }
   {
-    /* the chart failing at gnuplot's output (a folder where its temporary PNG goes): exit 1,
-     * and neither the scene nor the chart's CSV (written before gnuplot ran, it was left) */
-    char scene5[256], chart5[256], csv5[256], temp5[256];
+    /* the chart failing at gnuplot's drawing (a gnuplot on PATH that answers --version
+     * and fails to draw): exit 1, and neither the scene nor the chart's CSV (written
+     * before gnuplot ran, it was left) */
+    char scene5[256], chart5[256], csv5[256], fake[256], command[2048];
     snprintf(scene5, sizeof scene5, "%s/late.ini", dir);
     snprintf(chart5, sizeof chart5, "%s/late.png", dir);
     snprintf(csv5, sizeof csv5, "%s/late.csv", dir);
-    snprintf(temp5, sizeof temp5, "%s/late.png.tmp", dir);
-    CHECK(mkdir(temp5, 0755) == 0, "mkdir %s", temp5);
-    snprintf(args, sizeof args, "'%s' --tolerance 0.01 --out '%s' --chart '%s' %s", ini,
-             scene5, chart5, fast);
-    status = fit(bin, args, out, err, sizeof out);
-    CHECK(status != 0 && !exists(scene5) && !exists(chart5) && !exists(csv5),
+    snprintf(fake, sizeof fake, "%s/fakebin", dir);
+    snprintf(command, sizeof command, "%s/gnuplot", fake);
+    CHECK(mkdir(fake, 0755) == 0, "mkdir %s", fake);
+    test_write_text(command, "#!/bin/sh\n[ \"$1\" = --version ] && { echo 'gnuplot 5.4'; "
+                             "exit 0; }\necho 'cannot draw' >&2\nexit 1\n");
+    CHECK(chmod(command, 0755) == 0, "chmod %s", command);
+    snprintf(command, sizeof command,
+             "env PATH='%s':\"$PATH\" '%s' fit '%s' --tolerance 0.01 --out '%s' --chart '%s' %s "
+             "> '%s/out.txt' 2> '%s/err.txt'",
+             fake, bin, ini, scene5, chart5, fast, dir, dir);
+    const int rc = system(command);
+    status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+    char path[300];
+    snprintf(path, sizeof path, "%s/err.txt", dir);
+    read_text(path, err, sizeof err);
+    CHECK(status != 0 && strstr(err, "gnuplot failed") && !exists(scene5) && !exists(chart5) &&
+              !exists(csv5),
           "a chart that failed at gnuplot: exit %d, scene %d, chart %d, CSV %d; stderr %s",
           status, exists(scene5), exists(chart5), exists(csv5), err);
-    rmdir(temp5);
+    snprintf(path, sizeof path, "%s/gnuplot", fake);
+    unlink(path);
+    rmdir(fake);
   }
   {
     /* a folder where a projected rung's fogmap goes beside --out (OUT.fogmap.exr): refused
