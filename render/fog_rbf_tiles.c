@@ -69,7 +69,9 @@ int fog_rbf_tiles_build(fog_rbf_tiles *t, const camera *cam, int width, int heig
       /* The tile's corner pixels (GL rows: y_gl = height - 1 - image row), their rays, and
        * the cone around them: axis their normalised sum, half-angle theta the widest corner.
        * A sphere at angle phi from the axis meets the cone when phi <= theta + beta, i.e.
-       * cos phi >= cos(theta + beta) (always when theta + beta >= pi). */
+       * cos phi >= cos(theta + beta) (always when theta + beta >= pi). The cone holds every
+       * ray of the tile while theta < 90 degrees: a cap that small is convex on the sphere,
+       * and the tile's rays are the convex hull of its corners'. */
       const int x[2] = {i * T, (i + 1) * T - 1 < width - 1 ? (i + 1) * T - 1 : width - 1};
       const int y[2] = {j * T, (j + 1) * T - 1 < height - 1 ? (j + 1) * T - 1 : height - 1};
       double corner[4][3], axis[3] = {0, 0, 0}, unused[3];
@@ -94,7 +96,9 @@ int fog_rbf_tiles_build(fog_rbf_tiles *t, const camera *cam, int width, int heig
       for (int g = 0; g < count; g++) {
         const seen_from *f = &from[g];
         if (f->culled) continue;
-        bool seen = f->around;
+        /* past 90 degrees the cap round the axis is not convex: rays between two corners
+         * leave it (a field of view past ~140 on a small image), so the tile lists all */
+        bool seen = f->around || cos_theta < 0.0;
         if (!seen) {
           double cos_sum = cos_theta * f->cos_beta - sin_theta * f->sin_beta; /* cos(theta+beta) */
           bool past_pi = cos_theta * f->sin_beta + sin_theta * f->cos_beta < 0.0 && cos_sum < 0.0;

@@ -98,7 +98,53 @@ static void check_view(const fog_rbf *g, int count, const camera *cam, const cha
   fog_rbf_tiles_destroy(&tiles);
 }
 
+/* A field of view past 140 degrees on a small image: a tile's rays then spread more than
+ * 90 degrees from its axis, where a cone through the corners no longer holds the rays
+ * between them (a unit Gaussian on pixel (15, 5)'s ray at fov 160, 24x11, was left off
+ * its tile: tau 1.000 for 0.170). One Gaussian on every pixel's ray, CPU lists only. */
+static void check_wide_field(void) {
+  enum { w = 24, h = 11 };
+  camera wide = {.position = {0, 1000, 0}, .fov_y = 160.0 * 3.14159265358979323846 / 180.0,
+                 .near_plane = CAMERA_DEFAULT_NEAR, .far_plane = CAMERA_DEFAULT_FAR};
+  camera_look_at(&wide, (double[3]){0, 1000, -1});
+  static fog_rbf on_rays[w * h];
+  for (int py = 0; py < h; py++)
+    for (int px = 0; px < w; px++) {
+      double o[3], d[3];
+      camera_ray(&wide, px, py, w, h, o, d);
+      fog_rbf *g = &on_rays[py * w + px];
+      *g = (fog_rbf){.radius = 1.0, .density = 1.0};
+      for (int a = 0; a < 3; a++) g->centre[a] = o[a] + 50.0 * d[a];
+    }
+  fog_rbf_tiles tiles = {0};
+  fog_error err = {0};
+  if (fog_rbf_tiles_build(&tiles, &wide, w, h, on_rays, w * h, &err)) {
+    CHECK(0, "wide field: %s", err.message);
+    return;
+  }
+  double worst = 0.0;
+  int worst_x = 0, worst_y = 0;
+  for (int py = 0; py < h; py++)
+    for (int px = 0; px < w; px++) {
+      double o[3], d[3];
+      camera_ray(&wide, px, py, w, h, o, d);
+      const int y_gl = h - 1 - py;
+      const uint32_t *range = &tiles.ranges[2 * ((size_t)(y_gl / FOG_RBF_TILE_SIZE) *
+                                                     tiles.tiles_x + px / FOG_RBF_TILE_SIZE)];
+      const double all = depth_of(on_rays, NULL, w * h, o, d, HUGE_VAL);
+      const double listed = depth_of(on_rays, tiles.indices + range[0], (int)range[1], o, d,
+                                     HUGE_VAL);
+      if (fabs(all - listed) > worst) worst = fabs(all - listed), worst_x = px, worst_y = py;
+    }
+  printf("fov 160 at %dx%d: |all - listed| <= %.2e (pixel %d, %d)\n", w, h, worst, worst_x,
+         worst_y);
+  CHECK(worst <= FOG_RBF_CULL_BOUND, "fov 160 at %dx%d: pixel (%d, %d) misses %.3e of depth",
+        w, h, worst_x, worst_y, worst);
+  fog_rbf_tiles_destroy(&tiles);
+}
+
 int main(void) {
+  check_wide_field();
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_rbf_tiles");
