@@ -2,6 +2,7 @@
  * image_exr.c), scale, and validate every density before handing out a fogmap. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -145,13 +146,18 @@ int fogmap_save_png16(const char *path, const fogmap *map, float max_density, fo
   if (map->width <= 0 || map->height <= 0 || !map->density)
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%s: fogmap is empty (%dx%d)", path, map->width,
                     map->height);
+  /* a NaN or infinite cell is refused, as the EXR writer refuses it (it was stored as 0
+   * or full scale, a file that no longer said what the map held) */
+  if (image_check_finite(path, "density", map->density, map->width, map->height, 1, FLT_MAX,
+                         err))
+    return 1;
   size_t count = (size_t)map->width * (size_t)map->height;
   uint16_t *samples = malloc(count * sizeof *samples);
   if (!samples)
     return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for a 16-bit PNG", path);
   for (size_t i = 0; i < count; i++) {
     double v = (double)map->density[i] / max_density;
-    v = v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; /* clamps, and NaN -> 0 */
+    v = v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; /* clamps */
     samples[i] = (uint16_t)lrint(v * 65535.0);
   }
   int status = png_write_samples(path, map->width, map->height, 1, 16, false, samples, err);
