@@ -528,7 +528,10 @@ static int apply_lamp_edit(session_source *s, const lamp_edit *e, fog_error *err
     for (int i = e->index; i + 1 < edited->lamp_count; i++) edited->lamps[i] = edited->lamps[i + 1];
     edited->lamp_count--;
   }
-  const fog_lamps lamps = scene_config_fog_lamps(edited);
+  fog_lamps lamps = scene_config_fog_lamps(edited);
+  /* integrated as the fog shown integrates them: a rung not of Gaussians draws Fogshop
+   * lamps by angle (copy_light), and the pass refuses Fogshop's method on it */
+  if (v->has_fog) lamps.method = v->fog.params.lamps.method;
   if (v->has_fog && e->kind == LAMP_EDIT_PLACE) { /* moving or removing adds no loops */
     /* the bound the pass will check: with a shadow cube for every lamp (the scene pass
      * renders the new one), and the view ray's loops over every Gaussian */
@@ -605,8 +608,11 @@ static int source_input(void *self, const window_frame *f, fog_error *err) {
   /* lamps that move or flicker ([light] lamp_path, lamp_flicker) on the same clock, as
    * record shows them: the fog's in-scatter and the surfaces they light */
   if (s->lamps_animated) {
-    const fog_lamps lamps = scene_config_fog_lamps_at(cfg, fog_time);
-    if (v->has_fog) v->fog.params.lamps = lamps;
+    fog_lamps lamps = scene_config_fog_lamps_at(cfg, fog_time);
+    if (v->has_fog) {
+      lamps.method = v->fog.params.lamps.method; /* the shown fog's (as the lamp tool's) */
+      v->fog.params.lamps = lamps;
+    }
     if (scene_pass_set_lamps(v->scene, &lamps, err)) return 1;
   }
   /* the lamp tool and the brush pick from the last frame's distances; the brush's keys are

@@ -262,6 +262,28 @@ int main(void) {
       compare_window(bin, dir, lamp_ini, "--frames 13", "", 0, false);
       unlink(lamp_ini);
     }
+    /* Fogshop's lamps (Gaussian fog only) moving on a path, under --fit's homogeneous
+     * rung: the rung draws them by angle, each frame too (the window closed on frame 1,
+     * "lamp integral 1 with model 1": the moved lamps took the config's method) */
+    char fogshop_ini[300], fogshop_shot[300], fogshop_command[1024];
+    snprintf(fogshop_ini, sizeof fogshop_ini, "%s/fogshop_path.ini", dir);
+    snprintf(fogshop_shot, sizeof fogshop_shot, "%s/fogshop.png", dir);
+    test_write_text(fogshop_ini,
+                    "[camera]\nposition = 0 20 120\nlook_at = 0 10 0\n"
+                    "[fog]\nmodel = rbf\nrbf = 0 10 0 30 0.02\ncolour = 0 0 0\nalbedo = 0.9\n"
+                    "[light]\nsun_colour = 0.01 0.01 0.01\nlamp = -40 10 0 3000 2500 2000\n"
+                    "lamp_path = 1 0 -40 10 0\nlamp_path = 1 1 40 10 0\n"
+                    "lamp_integral = fogshop\n");
+    snprintf(fogshop_command, sizeof fogshop_command,
+             "xvfb-run -a -s '-screen 0 640x480x24' '%s' view '%s' --fit 0.5 --rung 0 "
+             "--size 64x48 --hide-panel --frames 2 --screenshot '%s' > /dev/null 2>&1",
+             bin, fogshop_ini, fogshop_shot);
+    const int fogshop_status = system(fogshop_command);
+    CHECK(WIFEXITED(fogshop_status) && WEXITSTATUS(fogshop_status) == 0 &&
+              access(fogshop_shot, F_OK) == 0,
+          "view --fit --rung 0 over Fogshop lamps on a path: exit %d",
+          WIFEXITED(fogshop_status) ? WEXITSTATUS(fogshop_status) : -1);
+    unlink(fogshop_ini), unlink(fogshop_shot);
     panel_shown_unless_hidden(bin, dir);
     dither_as_render(bin, dir);
     /* `demo --frames N` without --screenshot closes the window after N frames (it was
