@@ -222,7 +222,8 @@ static int write_chart(const fit_result *r, bool by_mean, const char *png) {
   int count = 0;
   for (int i = 0; i < r->count; i++) {
     const double error = by_mean ? r->rungs[i].mean_error : r->rungs[i].max_error;
-    if (isnan(error)) continue; /* a rung that measured nothing (fmax would draw it exact) */
+    /* a rung that measured nothing (fmax would draw it exact), or was not timed */
+    if (isnan(error) || isnan(r->rungs[i].ms)) continue;
     points[count++] = (chart_point){.series = r->rungs[i].family, .x = r->rungs[i].ms,
                                     .y = fmax(error, 1e-4)};
   }
@@ -382,8 +383,11 @@ int cmd_fit(int argc, char **argv) {
     const fit_rung *g = &r.rungs[i];
     char light[24] = "";
     if (r.lit) snprintf(light, sizeof light, " %10.3e", g->light_error);
-    printf("%c %-24s %12.3e %12.3e %10.2f%s  %s\n", i == r.chosen ? '*' : ' ', g->name,
-           g->max_error, g->mean_error, g->ms, light, g->params);
+    /* three digits: the tie rule (FIT_TIE) can be checked on the printed times */
+    char ms[16] = "refused"; /* not drawn by this renderer (the parameters say why) */
+    if (!isnan(g->ms)) snprintf(ms, sizeof ms, "%.3g", g->ms);
+    printf("%c %-24s %12.3e %12.3e %10s%s  %s\n", i == r.chosen ? '*' : ' ', g->name,
+           g->max_error, g->mean_error, ms, light, g->params);
   }
   if (r.lit)
     printf("(light err: the lit in-scatter's max error, relative to the reference's brightest "
@@ -398,7 +402,7 @@ int cmd_fit(int argc, char **argv) {
     printf("no rung within %g: nothing written\n", o.tolerance[0]);
   } else {
     const fit_rung *g = &r.rungs[r.chosen];
-    printf("chosen: %s (%s |dtau| %.3g <= %g, %.2f GL ms)\n", g->name,
+    printf("chosen: %s (%s |dtau| %.3g <= %g, %.3g GL ms)\n", g->name,
            o.desc.by_mean ? "mean" : "max", o.desc.by_mean ? g->mean_error : g->max_error,
            o.tolerance[0], g->ms);
   }

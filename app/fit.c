@@ -80,10 +80,27 @@ static int reference_create(held_model *r, const scene_config *cfg, fog_error *e
   return 0;
 }
 
-/* The fog's bounds; for fog without an end, the terrain's footprint between the box's
- * floor and top; joined with the quadric volumes beside it. */
+/* Whether the model holds any fog: a volume with a voxel that is not zero; any other
+ * model is taken to (its samples and rays say whether it is zero). */
+static bool holds_fog(const fog_model *m) {
+  if (m->kind != FOG_MODEL_VOLUME || !m->grid3d) return true;
+  const volume_grid_desc *g = m->grid3d;
+  const size_t n = (size_t)g->dim[0] * g->dim[1] * g->dim[2];
+  for (size_t i = 0; i < n; i++)
+    if (g->values[i] != 0.0f) return true;
+  return false;
+}
+
+/* The fog's bounds; Gaussians over an RBF base: theirs (the base is the same in any box;
+ * the terrain's footprint, 0 to 50 high, never sampled a tube of them at 300, nor did its
+ * rays find one 60 across in 1000: fitted as the base alone); for other fog without an
+ * end, the terrain's footprint between the box's floor and top; joined with the quadric
+ * volumes beside it. */
 static bool fit_domain(const fog_model *m, const scene_config *cfg, double lo[3], double hi[3]) {
-  if (!fog_model_bounds(m, lo, hi)) {
+  fog_model gaussians = *m;
+  gaussians.extinction = 0.0; /* the Gaussians' own bounds, without the base */
+  if (!fog_model_bounds(m, lo, hi) &&
+      !(m->kind == FOG_MODEL_RBF && fog_model_bounds(&gaussians, lo, hi))) {
     const scene_terrain_config *t = &cfg->terrain;
     lo[0] = t->origin[0], hi[0] = t->origin[0] + t->size[0];
     lo[2] = t->origin[2], hi[2] = t->origin[2] + t->size[1];
@@ -159,6 +176,11 @@ static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *view
   held_model m = {0};
   double worst = 0.0, worst_mean = 0.0, worst_light = light ? 0.0 : NAN;
   int status = 1;
+  /* A rung this renderer refuses with the scene's lamps (llvmpipe's loop cap: the
+   * ellipsoids under night_lamps' 9 lamps) is measured without them, as lamps are no part
+   * of the error, and not timed: its time is NaN, so it is never chosen (a scene that
+   * does not draw), and the other rungs stand (the whole fit failed). */
+  bool refused = false;
   for (int f = 0; f < frame_count; f++) {
     const bool last = f == frame_count - 1;
     if (f == 0 || follows) {
@@ -166,7 +188,13 @@ static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *view
       *shot = *rung->config;
       shot->camera = *camera;
       if (follows) shot->fog.vdb_frame = d->frames[f];
-      if (rung_model_create(&m, shot, d, last || !follows, err)) goto done;
+      if (refused) shot->lamp_count = 0;
+      if (rung_model_create(&m, shot, d, last || !follows, err)) {
+        if (refused || shot->lamp_count == 0 || err->code != FOG_ERR_UNSUPPORTED) goto done;
+        refused = true;
+        shot->lamp_count = 0;
+        if (rung_model_create(&m, shot, d, last || !follows, err)) goto done;
+      }
     }
     double max_error, mean_error;
     fit_views_measure(&views[f], &m.model, &max_error, &mean_error);
@@ -182,7 +210,16 @@ static int measure_rung(fit_rung *rung, const fit_desc *d, const fit_views *view
       }
       if (!isnan(worst_light) && !(light_error <= worst_light)) worst_light = light_error;
     }
-    if (last && time_session(m.session, d, pixels, &rung->ms, err)) goto done;
+    if (last && !refused && time_session(m.session, d, pixels, &rung->ms, err)) {
+      if (shot->lamp_count == 0 || err->code != FOG_ERR_UNSUPPORTED) goto done;
+      refused = true;
+    }
+  }
+  if (refused) {
+    rung->ms = NAN;
+    const size_t used = strlen(rung->params);
+    snprintf(rung->params + used, sizeof rung->params - used, "%s(refused by this renderer "
+             "with the scene's lamps: not timed, not chosen)", used ? " " : "");
   }
   rung->max_error = worst;
   rung->mean_error = worst_mean;
@@ -275,22 +312,27 @@ int fit_run(const fit_desc *d, fit_result *r, fog_error *err) {
     fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory");
     goto done;
   }
-  /* The references, frame by frame, and the domain that holds them all. */
+  /* The references, frame by frame, and the domain that holds them all: an empty frame
+   * (a bake's first ones) holds nothing (its grid, one zero voxel at index 0, stretched
+   * the domain 3.4 times a side to the origin) */
+  bool any_fog = false;
   for (int f = 0; f < frame_count; f++) {
     *framed = *d->input;
     if (d->frames) framed->fog.vdb_frame = d->frames[f];
     if (reference_create(&refs[f], framed, err)) goto done;
+    if (!holds_fog(&refs[f].model) && (f < frame_count - 1 || any_fog)) continue;
     double lo[3], hi[3];
-    if (!fit_domain(&refs[f].model, d->input, lo, hi)) {
+    if (!holds_fog(&refs[f].model) || !fit_domain(&refs[f].model, d->input, lo, hi)) {
       fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-               "%.400s: the fog has no extent to fit (an empty grid, or [box] floor >= top)",
-               d->input->path);
+               "%.400s: the fog has no extent to fit (%s)", d->input->path,
+               frame_count > 1 ? "every frame's grid is empty" : "an empty grid, or [box] floor >= top");
       goto done;
     }
     for (int a = 0; a < 3; a++) {
-      r->lo[a] = f ? fmin(r->lo[a], lo[a]) : lo[a];
-      r->hi[a] = f ? fmax(r->hi[a], hi[a]) : hi[a];
+      r->lo[a] = any_fog ? fmin(r->lo[a], lo[a]) : lo[a];
+      r->hi[a] = any_fog ? fmax(r->hi[a], hi[a]) : hi[a];
     }
+    any_fog = true;
   }
   /* The density the static rungs fit: the frames' mean. A classic factor's fog lies about
    * an eye: the scene's camera's (the views measure each from its own camera); it was the
@@ -317,6 +359,19 @@ int fit_run(const fit_desc *d, fit_result *r, fog_error *err) {
   }
   for (size_t i = 0, n = (size_t)samples.n[0] * samples.n[1] * samples.n[2]; i < n; i++)
     samples.k[i] /= frame_count;
+  /* No fog on any sample nor on any view ray: nothing to fit (every rung scored 0, and a
+   * linear fog starting past the domain's far side, opaque beyond it, could be chosen) */
+  bool seen = false;
+  for (size_t i = 0, n = (size_t)samples.n[0] * samples.n[1] * samples.n[2]; i < n && !seen; i++)
+    seen = samples.k[i] != 0.0;
+  for (int f = 0; f < frame_count && !seen; f++)
+    for (int k = 0; k < views[f].count && !seen; k++) seen = views[f].reference[k] < 1.0;
+  if (!seen) {
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
+             "%.400s: the fog is zero everywhere the fit looks (every sample, every view "
+             "ray): nothing to fit", d->input->path);
+    goto done;
+  }
   r->rays = views[0].count;
   /* A lit input: the reference's in-scatter on every frame's rays. */
   const scene_fog_config *fog = &d->input->fog;

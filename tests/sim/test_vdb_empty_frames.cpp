@@ -5,7 +5,9 @@
 // fog (an empty frame has none: it did not widen the grid). A sequence whose every frame is
 // empty, and a single empty file, are refused naming the grid. A frame whose voxels are all
 // 0 is one without fog too, and `model = volume` plays both as no fog. Before, the first
-// empty frame stopped the whole import ("grid 'density' is empty"). (C++ to write the grids.)
+// empty frame stopped the whole import ("grid 'density' is empty"). `fogpipe fit` over the
+// frames: an empty one leaves the domain as it was; all empty, refused. (C++ to write the
+// grids.)
 #include <openvdb/openvdb.h>
 
 #include <sys/stat.h>
@@ -101,6 +103,33 @@ int main() {
     // index 0 would have stretched it to 16 cells)
     CHECK(widths[0] == 6 && widths[1] == 6, "the sequence's fogmap is %d cells wide, expected "
           "6 (the blobs' footprint alone)", widths[1]);
+  }
+  // fit over the frames: an empty frame adds nothing to the domain (its one zero voxel at
+  // index 0 stretched it 3.4 times a side), and frames that are all empty are refused (a
+  // linear fog past the domain, or homogeneous fog of 0, was chosen)
+  {
+    std::string domains[2];
+    const char *ranges[2] = {"2-3", "1-3"};
+    for (int i = 0; i < 2; i++) {
+      const std::string fit = std::string("'") + bin + "' fit '" + dir +
+                              "/seq/s_####.vdb' --frames " + ranges[i] +
+                              " --tolerance 0.05 --rays 4 --samples 8 --size 16x9 --timed 1";
+      status = run(fit, out);
+      const size_t at = out.find("domain [");
+      CHECK(status == 0 && at != std::string::npos, "fit --frames %s (%d): %s", ranges[i],
+            status, out.c_str());
+      if (at != std::string::npos) domains[i] = out.substr(at, out.find(';', at) - at);
+    }
+    CHECK(!domains[0].empty() && domains[0] == domains[1],
+          "fit's domain over frames 2-3 '%s', over 1-3 '%s'", domains[0].c_str(),
+          domains[1].c_str());
+    const std::string empty_fit = std::string("'") + bin + "' fit '" + dir +
+                                  "/seq/s_####.vdb' --frames 4-5 --tolerance 0.05 --rays 4 "
+                                  "--samples 8 --size 16x9 --timed 1";
+    status = run(empty_fit, out);
+    CHECK(status == 1 && out.find("every frame's grid is empty") != std::string::npos &&
+              out.find("chosen") == std::string::npos,
+          "fit over empty frames 4-5 (%d): %s", status, out.c_str());
   }
   // a scene playing the sequence as a fogmap and as a volume: its empty frames 1 and 4 look
   // alike (no fog), frame 2 (fog) does not; the camera looks at the blob
