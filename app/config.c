@@ -747,11 +747,14 @@ static int store_lamp(parse_state *s, const char *section, const char *key, cons
     if (!(len > 1e-9 && len <= WORLD))
       return fail(s, section, key, "expected a direction DX DY DZ of non-zero length, got '%s'",
                   value);
-    /* the cone's edge is a ramp between the cosines (the fog pass refuses equal ones):
-     * 10 and 10.00000000000001 differ, their cosines do not */
-    if (!(v[9] >= 0 && v[9] < v[10] && v[10] <= 180 && cos(v[9] * DEG) > cos(v[10] * DEG)))
+    /* the cone's edge is a ramp between the cosines, which the shaders take as float: the
+     * fog pass refuses cosines closer than FOG_SPOT_MIN_COSINE_GAP (10 and
+     * 10.00000000000001 differ, their cosines do not; a 0.01 degree cone was dark) */
+    if (!(v[9] >= 0 && v[9] < v[10] && v[10] <= 180 &&
+          cos(v[9] * DEG) - cos(v[10] * DEG) >= FOG_SPOT_MIN_COSINE_GAP))
       return fail(s, section, key, "expected half-angles 0 <= INNER < OUTER <= 180 (degrees) "
-                  "whose cosines differ, got %.17g and %.17g", v[9], v[10]);
+                  "whose cosines differ by %g or more (an outer cone of 0.26 about an inner "
+                  "0), got %.17g and %.17g", FOG_SPOT_MIN_COSINE_GAP, v[9], v[10]);
     for (int i = 0; i < 3; i++) lamp.axis[i] = v[6 + i];
     lamp.inner = v[9], lamp.outer = v[10];
   }

@@ -47,8 +47,9 @@ typedef struct fog_lamp {
   double intensity[3]; /* radiant intensity per channel (colour x intensity), linear */
   double radius;       /* > 0: the falloff is 1 / (d^2 + radius^2) */
   double axis[3];      /* FOG_LAMP_SPOT: unit, the direction it shines */
-  /* FOG_LAMP_SPOT: cosines of the cone's half-angles, cos_inner > cos_outer: full light
-   * inside the inner cone, none outside the outer, smoothstep between. */
+  /* FOG_LAMP_SPOT: cosines of the cone's half-angles, cos_inner >= cos_outer +
+   * FOG_SPOT_MIN_COSINE_GAP: full light inside the inner cone, none outside the outer,
+   * smoothstep between. */
   double cos_inner, cos_outer;
 } fog_lamp;
 
@@ -85,6 +86,13 @@ typedef struct fog_lamp_method {
 #define FOG_LAMP_SPAN_PIECES 8
 #define FOG_LAMP_DEPTH_STEPS 32
 #define FOG_LAMP_SHADOW_STEPS 8
+
+/* The least cos_inner - cos_outer of a spot: the shaders take the cosines as float, in
+ * which 1 - cos of a 0.01 degree cone is 0 (the beam vanished on the GPU where the CPU drew
+ * it) and a 0.05 degree one is a few ulps (its edge 17 % off); at 1e-5 (an outer
+ * half-angle of 0.26 degrees about an inner 0) the float cosine's rounding is 1 % of the
+ * ramp. */
+#define FOG_SPOT_MIN_COSINE_GAP 1e-5
 
 typedef struct fog_lamps {
   fog_lamp lamp[FOG_MAX_LAMPS];

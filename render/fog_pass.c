@@ -1364,11 +1364,12 @@ static int fog_pass_check_light(const fog_pass *pass, const fog_pass_params *par
   }
   for (int i = 0; i < lamps->count; i++) {
     const fog_lamp *l = &lamps->lamp[i];
-    if (!(l->radius > 0) || (l->kind == FOG_LAMP_SPOT && !(l->cos_inner > l->cos_outer))) {
+    if (!(l->radius > 0) ||
+        (l->kind == FOG_LAMP_SPOT && !(l->cos_inner - l->cos_outer >= FOG_SPOT_MIN_COSINE_GAP))) {
       fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
-               "fog pass: lamp %d: radius %g, cone cosines %g > %g: expected radius > 0 and, "
-               "for a spot, cos_inner > cos_outer",
-               i, l->radius, l->cos_inner, l->cos_outer);
+               "fog pass: lamp %d: radius %g, cone cosines %.17g > %.17g: expected radius > 0 "
+               "and, for a spot, cos_inner >= cos_outer + %g",
+               i, l->radius, l->cos_inner, l->cos_outer, FOG_SPOT_MIN_COSINE_GAP);
       return 1;
     }
   }
