@@ -60,6 +60,7 @@ struct fog_pass {
   /* This GL's texture size limits, asked once: uploads past them fail naming the size, not
    * with a bare GL_INVALID_VALUE. */
   GLint max_texture_size, max_3d_texture_size;
+  GLint max_texture_buffer_size; /* texels: the Gaussians' tile lists are one buffer texture */
   long loop_cap; /* gl_util_loop_cap at creation (fog_pass_set_loop_cap) */
   /* The sun's optical-depth volume (fog_pass_upload_sun_shadow): R32F 3D texture and its
    * placement (optical_depth not kept). */
@@ -257,6 +258,7 @@ static int pass_make(fog_pass **out, fog_error *err) {
   }
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &pass->max_texture_size);
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &pass->max_3d_texture_size);
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &pass->max_texture_buffer_size);
   if (gl_util_loop_cap(&pass->loop_cap, err)) {
     free(pass);
     return 1;
@@ -893,6 +895,15 @@ static int fog_pass_rbf_uniforms(fog_pass *pass, GLuint prog, const camera *cam,
   for (int k = 0; k < t->tiles_x * t->tiles_y; k++)
     if (t->ranges[2 * k + 1] > most) most = t->ranges[2 * k + 1];
   if (fog_pass_check_loops(pass, params, (int)most, err)) return 1;
+  /* GL clamps a buffer texture to its limit and a fetch past it reads 0 (Gaussian 0, over
+   * and over, for the lists past it): refused. 3000 puffs at 15360 x 8640 (3840 x 2160,
+   * supersample 4) list 147M, llvmpipe takes 134M. */
+  if (t->index_count > (size_t)pass->max_texture_buffer_size)
+    return fog_fail(err, FOG_ERR_UNSUPPORTED,
+                    "fog pass: the %d Gaussians' tile lists hold %zu entries at %dx%d, more "
+                    "than this renderer's buffer texture takes (%d): fewer Gaussians, or a "
+                    "smaller image or supersample", n, t->index_count, width, height,
+                    (int)pass->max_texture_buffer_size);
   buffer_texture_fill(&pass->rbf_buffer, &pass->rbf_texture, GL_RGBA32F, pass->rbf_scratch,
                       (size_t)n * 8 * sizeof(float));
   buffer_texture_fill(&pass->rbf_index_buffer, &pass->rbf_index_texture, GL_R32UI, t->indices,

@@ -13,6 +13,10 @@ double fog_rbf_cull_radius(const fog_rbf *g, int count) {
 
 static int grow(fog_rbf_tiles *t, size_t need, fog_error *err) {
   if (need <= t->index_capacity) return 0;
+  if (need > UINT32_MAX) { /* a tile's first index is a uint32 */
+    fog_fail(err, FOG_ERR_UNSUPPORTED, "RBF tiles: %zu indices, more than 2^32", need);
+    return 1;
+  }
   size_t capacity = t->index_capacity ? t->index_capacity : 4096;
   while (capacity < need) capacity *= 2;
   uint32_t *more = realloc(t->indices, capacity * sizeof *more);
