@@ -213,10 +213,11 @@ int main(void) {
   CHECK(scene_config_fingerprint(&swapped) != scene_config_fingerprint(&back),
         "the fingerprint does not see the lamps' order");
   /* exponents written short ("1.23456789012e-5", not e-05): a spot line of eleven such
+   * (the last e+1: a cone's cosines 1e-5 apart)
    * numbers, 193 bytes, stays under 199 once written with its radius (it took 208) */
   char spot[300] = "[light]\nspot =";
   for (int k = 0; k < 10; k++) strcat(spot, " 1.23456789012e-5");
-  strcat(spot, " 2.23456789012e-5\n"); /* OUTER > INNER */
+  strcat(spot, " 2.23456789012e+1\n"); /* OUTER > INNER, cosines 1e-5 apart or more */
   CHECK(load_text(written, spot, &back, &err) == 0, "eleven short numbers: %s", err.message);
   CHECK(scene_config_write(&back, written, &err) == 0 &&
             scene_config_load(written, &again, &err) == 0 &&
@@ -227,7 +228,7 @@ int main(void) {
    * config that would not load again) */
   strcpy(spot, "[light]\nspot = -.12345678901234 -.12345678901234 -.12345678901234 "
                ".12345678901234 .12345678901234 .12345678901234 -.12345678901234 "
-               "-.12345678901234 -.12345678901234 .12345678901234 .22345678901234\n");
+               "-.12345678901234 -.12345678901234 .12345678901234 .92345678901234\n");
   CHECK(strlen(spot) - strlen("[light]\n\n") <= 199, "the spot line is %zu bytes", strlen(spot));
   CHECK(load_text(written, spot, &back, &err) == 0, "eleven long numbers: %s", err.message);
   unlink(written);
