@@ -838,6 +838,11 @@ static void fog_pass_volume_uniforms(const fog_pass *pass, GLuint prog, const ca
   bind_sampler(prog, "fog_grid3d", UNIT_GRID3D, GL_TEXTURE_3D, pass->grid3d);
   glUniformMatrix3fv(fog_loc(prog, "fog_grid3d_index_from_world"), 1, GL_FALSE, m);
   glUniform3f(fog_loc(prog, "fog_grid3d_camera_index"), (float)u[0], (float)u[1], (float)u[2]);
+  double m_d[9]; /* column-major, as volume_grid_gl_matrix */
+  for (int c = 0; c < 3; c++)
+    for (int a = 0; a < 3; a++) m_d[3 * a + c] = g->index_from_world[c][a];
+  glUniformMatrix3dv(fog_loc(prog, "fog_grid3d_index_from_world_d"), 1, GL_FALSE, m_d);
+  glUniform3d(fog_loc(prog, "fog_grid3d_camera_index_d"), u[0], u[1], u[2]);
   glUniform3f(fog_loc(prog, "fog_grid3d_dims"), (float)g->dim[0], (float)g->dim[1],
               (float)g->dim[2]);
   glUniform1f(fog_loc(prog, "fog_grid3d_step"), (float)params->model_grid3d_step);
