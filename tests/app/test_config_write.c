@@ -213,8 +213,8 @@ int main(void) {
   CHECK(scene_config_fingerprint(&swapped) != scene_config_fingerprint(&back),
         "the fingerprint does not see the lamps' order");
   /* exponents written short ("1.23456789012e-5", not e-05): a spot line of eleven such
-   * (the last e+1: a cone's cosines 1e-5 apart)
-   * numbers, 193 bytes, stays under 199 once written with its radius (it took 208) */
+   * numbers (the last e+1: a cone's cosines 1e-5 apart), 193 bytes, stays under 199 once
+   * written with its radius (it took 208) */
   char spot[300] = "[light]\nspot =";
   for (int k = 0; k < 10; k++) strcat(spot, " 1.23456789012e-5");
   strcat(spot, " 2.23456789012e+1\n"); /* OUTER > INNER, cosines 1e-5 apart or more */
