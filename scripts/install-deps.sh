@@ -30,8 +30,11 @@ packages=(
 missing=()
 for p in "${packages[@]}"; do
   [[ $p == \#* ]] && continue
-  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
-  [[ $status == "install ok installed" ]] || missing+=("$p")
+  # one line per installed architecture ("ii" installed, "hi" installed and held): the full
+  # ${Status} of a package held, or installed for two architectures (i386 multiarch), read
+  # as missing, and every run asked sudo again
+  status=$(dpkg-query -W -f='${db:Status-Abbrev}\n' "$p" 2>/dev/null || true)
+  [[ $status =~ (^|$'\n')[ih]i ]] || missing+=("$p")
 done
 [[ ${#missing[@]} -eq 0 ]] && exit 0
 
