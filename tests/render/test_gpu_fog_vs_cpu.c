@@ -56,7 +56,11 @@ int main(void) {
   fog_error err = {0};
   fog_test_gl gl;
   if (!fog_test_gl_setup(&gl, W, H, &err)) return test_finish("test_gpu_fog_vs_cpu");
-  static float tau[W * H], tau_other[W * H], colour[4 * W * H], surface[4 * W * H];
+  static float tau[W * H], tau_other[W * H], tau_hw[W * H], colour[4 * W * H],
+      surface[4 * W * H];
+  /* a GPU's texture filter weighs with 8 bits; llvmpipe's in full float, as exact */
+  const bool float_filter = strstr((const char *)glGetString(GL_RENDERER), "llvmpipe") != NULL;
+  const double hardware_bound = float_filter ? 2e-4 : 2e-2;
   static double want[W * H];
   for (int i = 0; i < W * H; i++) {
     surface[4 * i + 0] = 0.2f + 0.6f * (float)((i % W) / (double)W);
@@ -139,17 +143,17 @@ int main(void) {
           if (e > worst_methods) worst_methods = e;
           CHECK(e <= 2e-5, "GPU LOD methods differ by %.3e (degree %d inside %d)", e, degree, inside);
         }
-        /* Hardware-filtered fetch (degree 0 uses texelFetch in both variants). */
+        /* Hardware-filtered fetch (degree 0 uses texelFetch in both variants), into a
+         * buffer of its own: it overwrote method 0's image, so the methods' comparison
+         * above read the hardware image */
         params.fetch = FOG_FETCH_HARDWARE;
-        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau_other, &err) ==
-                  0,
+        CHECK(fog_test_gl_draw_tau(&gl, &cam, &params, tau_hw, &err) == 0,
               "draw (hardware): %s", err.message);
-        if (method == 1) {
-          /* want still holds this view's method-1 reference */
-          double e = max_tau_error(want, tau_other, NULL, NULL);
-          if (e > worst_hw[degree]) worst_hw[degree] = e;
-          CHECK(e <= 2e-2, "hardware fetch degree %d: max |dtau| %.3e", degree, e);
-        }
+        /* want still holds this view's reference of this method */
+        double e_hw = max_tau_error(want, tau_hw, NULL, NULL);
+        if (e_hw > worst_hw[degree]) worst_hw[degree] = e_hw;
+        CHECK(e_hw <= hardware_bound, "hardware fetch degree %d method %d: max |dtau| %.3e "
+              "(bound %g)", degree, method, e_hw, hardware_bound);
       }
     }
     /* Streaming: new coefficients of the same size go through glTexSubImage2D into the

@@ -58,13 +58,15 @@ int main(void) {
             vs_exact = fmax(vs_exact, fabs(exact - want));
           }
         if (!jitter) march_error[si] = vs_exact;
-        printf("degree %d, %3d steps, jitter %d: GPU vs CPU march %.2e; march vs exact %.2e\n",
-               degree, steps, jitter, worst, vs_exact);
+        printf("degree %d, %3d steps, jitter %d: GPU vs CPU march %.2e (%d pixels over 2e-4); "
+               "march vs exact %.2e\n", degree, steps, jitter, worst, over, vs_exact);
         /* A degree-0 grid is discontinuous: a sample landing within float rounding of a knot
          * line may take the other side's value on the GPU (one step's worth of one jump), so
-         * there a few pixels may differ; everywhere else float rounding only. */
+         * there a few pixels may differ; everywhere else float rounding only. Measured: at
+         * most 1.6e-3 (256 steps) on a few pixels; the bound was 9 / steps and 1 % of the
+         * pixels (0.56 in tau at 16 steps), now 3 / steps and 10 pixels. */
         if (degree == 0)
-          CHECK(over <= W * H / 100 && worst <= 0.05 * 1.5 * 2.0 * 60.0 / steps,
+          CHECK(over <= 10 && worst <= 3.0 / steps,
                 "degree 0 steps %d jitter %d: %d pixels over 2e-4, worst %.3e", steps, jitter, over,
                 worst);
         else
