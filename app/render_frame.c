@@ -1,6 +1,7 @@
 /* One headless frame of a scene config (render_frame.h). */
 #include "app/render_frame.h"
 
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,23 +10,34 @@
 #include "render/render.h"
 #include "sim/sim.h"
 
+/* Whether a load by channel name failed for want of the channel (image_exr.c's and
+ * image_png.c's "has no channel" message), not for its values. */
+static bool channel_missing(const fog_error *e) {
+  return strstr(e->message, "has no channel") != NULL;
+}
+
 /* A heightmap is one channel of heights. A grey image saved with alpha, or as RGB(A) whose
  * colour channels agree (as image editors often write it), is that channel; an RGB image
- * whose channels differ is refused, naming a pixel where they do. */
+ * whose channels differ is refused, naming a pixel where they do. A channel that is there
+ * but holds a bad height is refused for that (it was "name the one to load", a channel no
+ * key names). */
 static int load_heights(const char *path, fogmap *map, fog_error *err) {
   fog_error first;
   if (!fogmap_load(path, &(fogmap_load_desc){.values_are = "heights"}, map, &first)) return 0;
-  fog_error ignored;
+  fog_error named;
   if (!fogmap_load(path, &(fogmap_load_desc){.channel = "grey", .values_are = "heights"}, map,
-                   &ignored))
+                   &named))
     return 0;
+  if (!channel_missing(&named)) return fog_error_pass(err, &named);
   /* an EXR's grey is Y (a Y + A EXR was refused, asking to name a channel no key names) */
   if (!fogmap_load(path, &(fogmap_load_desc){.channel = "Y", .values_are = "heights"}, map,
-                   &ignored))
+                   &named))
     return 0;
+  if (!channel_missing(&named)) return fog_error_pass(err, &named);
   if (fogmap_load(path, &(fogmap_load_desc){.channel = "R", .values_are = "heights"}, map,
-                  &ignored))
-    return fog_error_pass(err, &first); /* not a colour image: the first reason stands */
+                  &named))
+    /* not a colour image: the first reason stands */
+    return fog_error_pass(err, channel_missing(&named) ? &first : &named);
   static const char *const others[2] = {"G", "B"};
   for (int k = 0; k < 2; k++) {
     fogmap other;
@@ -62,11 +74,16 @@ int render_frame_load_heightmap(const scene_config *cfg, float **heights, int *w
                    cfg->terrain.heightmap_line);
     return 1;
   }
-  if (map.width < 2 || map.height < 2) { /* the terrain's grid needs two vertices a side */
+  /* the terrain's grid needs two vertices a side, and its mesh stays under 2 GiB (the
+   * terrain refused a larger one without the file, line or key) */
+  if (map.width < 2 || map.height < 2 ||
+      (double)map.width * map.height >
+          (double)TERRAIN_MAX_RESOLUTION * TERRAIN_MAX_RESOLUTION) {
     fog_fail(err, FOG_ERR_BAD_FILE,
-             "%.200s:%d: [terrain] heightmap: %s is %dx%d pixels: expected at least 2x2",
-             cfg->path, cfg->terrain.heightmap_line, cfg->terrain.heightmap, map.width,
-             map.height);
+             "%.200s:%d: [terrain] heightmap: %s is %dx%d pixels: expected at least 2x2 and "
+             "at most %d x %d pixels in all", cfg->path, cfg->terrain.heightmap_line,
+             cfg->terrain.heightmap, map.width, map.height, TERRAIN_MAX_RESOLUTION,
+             TERRAIN_MAX_RESOLUTION);
     fogmap_destroy(&map);
     return 1;
   }

@@ -3,7 +3,8 @@
  * heights, byte for byte (the alpha, whatever it holds, is not a height);
  * an RGB PNG whose channels differ is refused naming the config line, the file and a pixel
  * where they differ. An EXR of Y and A is its Y (it was refused, asking to name a channel
- * no key names), and a bad value is named as a height, not a density. */
+ * no key names), and a bad value is named as a height, not a density, also in an EXR of
+ * Y and A; a heightmap past the terrain's largest grid is refused naming its line. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
@@ -118,6 +119,35 @@ int main(void) {
               strstr(err.message, "pixel (1, 1) is negative") &&
               strstr(err.message, "heights must be"),
           "a negative height: %s", got ? "accepted" : err.message);
+    free(got);
+    /* the same in an EXR of Y and A: the bad height is said (it was "EXR has 2 channels;
+     * name the one to load", a channel no key names) */
+    const image_channel two[2] = {{.name = "Y", .pixels = bad}, {.name = "A", .pixels = alpha}};
+    CHECK(image_write_exr(exr, W, H, two, 2, &werr) == 0, "%s", werr.message);
+    got = NULL;
+    CHECK(scene_config_load(ini, &cfg, &err) == 0 &&
+              render_frame_load_heightmap(&cfg, &got, &w, &h, &err) != 0 &&
+              strstr(err.message, "pixel (1, 1) is negative") &&
+              !strstr(err.message, "name the one"),
+          "a negative height in an EXR of Y and A: %s", got ? "accepted" : err.message);
+    free(got);
+    /* past the terrain's 7681 x 7681 vertices: refused naming the line, key and file (the
+     * terrain refused it naming none of them) */
+    enum { BIG = 7682 };
+    unsigned char *samples = calloc((size_t)BIG * BIG, 1);
+    char big[400];
+    snprintf(big, sizeof big, "%s/big.png", dir);
+    CHECK(samples && png_write_samples(big, BIG, BIG, 1, 8, false, samples, &werr) == 0,
+          "%s", werr.message);
+    free(samples);
+    snprintf(text, sizeof text, "[terrain]\nheightmap = %s\n", big);
+    test_write_text(ini, text);
+    got = NULL;
+    CHECK(scene_config_load(ini, &cfg, &err) == 0 &&
+              render_frame_load_heightmap(&cfg, &got, &w, &h, &err) != 0 &&
+              strstr(err.message, ":2: [terrain] heightmap: ") && strstr(err.message, "big.png") &&
+              strstr(err.message, "at most 7681 x 7681"),
+          "a 7682 x 7682 heightmap: %s", got ? "accepted" : err.message);
     free(got);
   }
   free(want);
