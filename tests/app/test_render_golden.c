@@ -2,10 +2,10 @@
  * the channels it promises, and matches the stored reference
  * tests/render/data/default_128x72.exr (R, G, B half; transmittance float).
  *
- * Tolerance (llvmpipe output is bit-identical run to run, so here the difference is 0;
- * the slack is for other GL drivers, whose rasterisers may pick the other surface at a
- * silhouette pixel): per channel, 99% of pixels within 2e-3 (half-float steps near 1 are
- * 1e-3), every pixel within 0.35, and the mean absolute difference below 2e-3.
+ * Tolerance: on llvmpipe (bit-identical run to run) every pixel within 2e-3 in R, G, B
+ * (half-float steps near 1 are 1e-3) and 2e-4 in transmittance; on other GL drivers, whose
+ * rasterisers may pick the other surface at a silhouette pixel, per channel 99% of pixels
+ * within 2e-3, every pixel within 0.35, and the mean absolute difference below 2e-3.
  * Independent checks: the depth channel equals the CPU ray cast (scene_geometry) at
  * sampled pixels away from silhouettes; transmittance lies in [0, 1] and the fog is there;
  * record's frame 1 of the scene (with a nearer far plane) holds render's depth exactly.
@@ -28,7 +28,9 @@
 #define H 72
 #define REFERENCE "tests/render/data/default_128x72.exr"
 
-static void compare(const char *name, const float *got, const float *want) {
+/* strict: on llvmpipe, whose output is the same run to run, every pixel within it (0: a
+ * GPU's rasteriser, the slack below). */
+static void compare(const char *name, const float *got, const float *want, double strict) {
   if (!got || !want) return;
   int within = 0;
   double worst = 0, sum = 0;
@@ -43,6 +45,9 @@ static void compare(const char *name, const float *got, const float *want) {
   CHECK(within >= 0.99 * W * H, "%s: only %d of %d pixels within 2e-3", name, within, W * H);
   CHECK(worst <= 0.35, "%s: a pixel differs by %g", name, worst);
   CHECK(sum / (W * H) < 2e-3, "%s: mean difference %g", name, sum / (W * H));
+  if (strict > 0)
+    CHECK(worst <= strict, "%s: a pixel differs by %g, more than %g on llvmpipe (a change "
+          "to the image: look at it, then FOGPIPE_UPDATE_GOLDEN=1)", name, worst, strict);
 }
 
 /* record's frame 1 writes the depth render writes: a surface's ray distance, not cut at the
@@ -100,10 +105,23 @@ int main(void) {
   if (!bin) return test_finish("test_render_golden");
   char out[256], command[1024];
   snprintf(out, sizeof out, "%s/default.exr", dir);
-  snprintf(command, sizeof command, "'%s' render configs/default.ini --out '%s' --size %dx%d",
-           bin, out, W, H);
+  char log[300], said[1024] = "";
+  snprintf(log, sizeof log, "%s/render.txt", dir);
+  snprintf(command, sizeof command,
+           "'%s' render configs/default.ini --out '%s' --size %dx%d > '%s'", bin, out, W, H, log);
   int status = system(command);
   CHECK(status == 0, "'%s' exited with %d", command, status);
+  FILE *said_file = fopen(log, "r");
+  if (said_file) {
+    said[fread(said, 1, sizeof said - 1, said_file)] = '\0';
+    fclose(said_file);
+  }
+  unlink(log);
+  /* llvmpipe draws the same bits every run: every pixel within a half-float step near 1
+   * (RGB) and the project's GL-vs-CPU bound (transmittance). The slack alone let a change
+   * of 0.02 in G and 4.7e-4 in tau (boxes standing 0.12 lower) pass unseen. */
+  const bool llvmpipe = strstr(said, "llvmpipe") != NULL;
+  printf("renderer: %s\n", llvmpipe ? "llvmpipe (every pixel checked)" : "other (slack)");
 
   static const char *const names[] = {"R", "G", "B", "transmittance"};
   float *got[4] = {0}, *want[4] = {0};
@@ -119,7 +137,7 @@ int main(void) {
   }
   for (int c = 0; c < 4; c++) {
     want[c] = load_exr_channel(REFERENCE, names[c], W, H);
-    compare(names[c], got[c], want[c]);
+    compare(names[c], got[c], want[c], !llvmpipe ? 0.0 : c < 3 ? 2e-3 : 2e-4);
   }
 
   if (got[3] && alpha) {
