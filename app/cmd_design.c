@@ -220,7 +220,7 @@ int cmd_design(int argc, char **argv) {
   const int png = cli_ends_with(o.out, ".png");
   /* Ctrl-C or SIGTERM while designing: nothing written, exit 130 (a second one ends it at
    * once); held while the file is written, so that it is whole (a signal there left
-   * .OUT.tmp.XXXXXX, 64 MB at 4096x4096, that no later run removes) */
+   * .OUT.tmp.PID.N, 64 MB at 4096x4096, that no later run removes) */
   stop_signals stop;
   stop_signals_clear();
   stop_signals_catch(&stop, true);

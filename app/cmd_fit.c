@@ -186,8 +186,16 @@ static int load_input(const fit_options *o, scene_config *cfg) {
   cfg->fog.vdb_up = o->up;
   cfg->fog.vdb_frame = o->frame;
   cfg->fog.density_scale = o->density_scale;
+  return 0; /* its scene once the frames are known (place_input_scene) */
+}
+
+/* A VDB input's scene around the frames to fit that hold fog. */
+static int place_input_scene(const fit_options *o, scene_config *cfg, const int *frames,
+                             int frame_count) {
+  if (cli_ends_with(o->input, ".ini")) return 0;
   fog_error err;
-  if (fit_scene_for_volume(cfg, &err)) return cli_fail("fit", "%s", err.message);
+  if (fit_scene_for_volume(cfg, frames, frame_count, &err))
+    return cli_fail("fit", "%s", err.message);
   return 0;
 }
 
@@ -341,7 +349,9 @@ int cmd_fit(int argc, char **argv) {
   }
   o.desc.input = cfg;
   int *frames = NULL;
-  if ((status = sequence_frames(&o, cfg, &frames, &o.desc.frame_count))) {
+  if ((status = sequence_frames(&o, cfg, &frames, &o.desc.frame_count)) ||
+      (status = place_input_scene(&o, cfg, frames, o.desc.frame_count))) {
+    free(frames);
     free(cfg);
     return status;
   }
@@ -399,7 +409,13 @@ int cmd_fit(int argc, char **argv) {
   }
   status = 0;
   if (r.chosen < 0) {
-    printf("no rung within %g: nothing written\n", o.tolerance[0]);
+    bool refused_within = false; /* within T but not drawn here with the scene's lamps */
+    for (int i = 0; i < r.count; i++)
+      refused_within |= isnan(r.rungs[i].ms) && (o.desc.by_mean ? r.rungs[i].mean_error
+                                                                  : r.rungs[i].max_error) <=
+                                                    o.tolerance[0];
+    printf("no rung within %g%s: nothing written\n", o.tolerance[0],
+           refused_within ? " that this renderer draws with the scene's lamps" : "");
   } else {
     const fit_rung *g = &r.rungs[r.chosen];
     printf("chosen: %s (%s |dtau| %.3g <= %g, %.3g GL ms)\n", g->name,

@@ -133,7 +133,7 @@ int cmd_render(int argc, char **argv) {
 
   /* Ctrl-C or SIGTERM while drawing: nothing written, exit 130 (a second one ends it at
    * once, nothing to clean then); held while the file is written, so that it is whole
-   * (a signal there left .OUT.tmp.XXXXXX that no later run removes) */
+   * (a signal there left .OUT.tmp.PID.N that no later run removes) */
   stop_signals stop;
   stop_signals_clear();
   stop_signals_catch(&stop, true);

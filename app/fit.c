@@ -80,15 +80,21 @@ static int reference_create(held_model *r, const scene_config *cfg, fog_error *e
   return 0;
 }
 
-/* Whether the model holds any fog: a volume with a voxel that is not zero; any other
- * model is taken to (its samples and rays say whether it is zero). */
-static bool holds_fog(const fog_model *m) {
-  if (m->kind != FOG_MODEL_VOLUME || !m->grid3d) return true;
+/* Whether a volume's grid is empty (every voxel 0: an empty VDB frame is one zero voxel
+ * at index 0, whose box is no fog's). */
+static bool empty_grid(const fog_model *m) {
+  if (m->kind != FOG_MODEL_VOLUME || !m->grid3d) return false;
   const volume_grid_desc *g = m->grid3d;
   const size_t n = (size_t)g->dim[0] * g->dim[1] * g->dim[2];
   for (size_t i = 0; i < n; i++)
-    if (g->values[i] != 0.0f) return true;
-  return false;
+    if (g->values[i] != 0.0f) return false;
+  return true;
+}
+
+/* Whether the model holds any fog: an empty grid with no quadric volumes beside it does
+ * not; any other model is taken to (its samples and rays say whether it is zero). */
+static bool holds_fog(const fog_model *m) {
+  return !empty_grid(m) || (fog_model_quadrics_beside(m) && m->quadric_count > 0);
 }
 
 /* The fog's bounds; Gaussians over an RBF base: theirs (the base is the same in any box;
@@ -99,6 +105,10 @@ static bool holds_fog(const fog_model *m) {
 static bool fit_domain(const fog_model *m, const scene_config *cfg, double lo[3], double hi[3]) {
   fog_model gaussians = *m;
   gaussians.extinction = 0.0; /* the Gaussians' own bounds, without the base */
+  double qlo[3], qhi[3];
+  if (empty_grid(m)) /* the quadric volumes beside it alone */
+    return fog_model_quadrics_beside(m) &&
+           fog_quadric_bounds(m->quadrics, m->quadric_count, lo, hi);
   if (!fog_model_bounds(m, lo, hi) &&
       !(m->kind == FOG_MODEL_RBF && fog_model_bounds(&gaussians, lo, hi))) {
     const scene_terrain_config *t = &cfg->terrain;
@@ -106,7 +116,7 @@ static bool fit_domain(const fog_model *m, const scene_config *cfg, double lo[3]
     lo[2] = t->origin[2], hi[2] = t->origin[2] + t->size[1];
     lo[1] = cfg->box.floor, hi[1] = cfg->box.top;
   }
-  double qlo[3], qhi[3]; /* and the quadric volumes beside the model */
+  /* and the quadric volumes beside the model */
   if (fog_model_quadrics_beside(m) && fog_quadric_bounds(m->quadrics, m->quadric_count, qlo, qhi))
     for (int a = 0; a < 3; a++) lo[a] = fmin(lo[a], qlo[a]), hi[a] = fmax(hi[a], qhi[a]);
   for (int a = 0; a < 3; a++)
@@ -245,14 +255,36 @@ int fit_choose(const fit_result *r, double tolerance, bool by_mean) {
   return -1;
 }
 
-int fit_scene_for_volume(scene_config *cfg, fog_error *err) {
-  held_model ref;
-  if (reference_create(&ref, cfg, err)) return 1;
+int fit_scene_for_volume(scene_config *cfg, const int *frames, int frame_count,
+                         fog_error *err) {
+  /* around every frame that holds fog (the default frame, the last, was often an empty
+   * one: the scene stood around its zero voxel at the origin) */
   double lo[3], hi[3], position[3], target[3];
-  bool ok = fit_domain(&ref.model, cfg, lo, hi);
-  held_model_destroy(&ref);
-  if (!ok) {
-    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.400s: the grid holds no fog", cfg->path);
+  bool any = false;
+  const int shown = cfg->fog.vdb_frame;
+  for (int f = 0; f < (frames ? frame_count : 1); f++) {
+    if (frames) cfg->fog.vdb_frame = frames[f];
+    held_model ref;
+    if (reference_create(&ref, cfg, err)) {
+      cfg->fog.vdb_frame = shown;
+      return 1;
+    }
+    double flo[3], fhi[3];
+    if (holds_fog(&ref.model) && fit_domain(&ref.model, cfg, flo, fhi)) {
+      for (int a = 0; a < 3; a++) {
+        lo[a] = any ? fmin(lo[a], flo[a]) : flo[a];
+        hi[a] = any ? fmax(hi[a], fhi[a]) : fhi[a];
+      }
+      any = true;
+    }
+    held_model_destroy(&ref);
+  }
+  cfg->fog.vdb_frame = shown;
+  if (!any) {
+    fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "%.400s: %s", cfg->path,
+             frames && frame_count > 1 ? "the fog has no extent to fit (every frame's grid is "
+                                         "empty)"
+                                       : "the grid holds no fog");
     return 1;
   }
   double reach = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));

@@ -89,8 +89,10 @@ int fit_run(const fit_desc *desc, fit_result *result, fog_error *err);
 void fit_result_destroy(fit_result *result);
 /* The pick at another tolerance from the same measurements (fit_run's rule); -1: none. */
 int fit_choose(const fit_result *result, double tolerance, bool by_mean);
-/* A scene around a VDB frame (cfg: model = volume, [fog] vdb set): a low procedural ground
+/* A scene around a VDB frame (cfg: model = volume, [fog] vdb set), or around the frames
+ * that hold fog among frames[0..frame_count) (NULL: the config's): a low procedural ground
  * (bumps of 1 % of the grid's reach) just under the grid, no boxes, and the camera of view 0 (app/fit_views.h), so the fog is in sight. */
-int fit_scene_for_volume(scene_config *cfg, fog_error *err);
+int fit_scene_for_volume(scene_config *cfg, const int *frames, int frame_count,
+                         fog_error *err);
 
 #endif

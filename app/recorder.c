@@ -238,7 +238,7 @@ int recorder_remove_stale_temporaries(const recorder *rec, int first, int last) 
   int removed = 0;
   struct dirent *entry;
   while ((entry = readdir(dir))) {
-    /* .NAME.NNNN.exr.tmp.XXXXXX, NNNN (4 to 9 digits) in first..last */
+    /* .NAME.NNNN.exr.tmp.PID.N, NNNN (4 to 9 digits) in first..last */
     const char *name = entry->d_name;
     if (strncmp(name, prefix, n) != 0) continue;
     const size_t digits = strspn(name + n, "0123456789");

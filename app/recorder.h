@@ -100,7 +100,7 @@ int recorder_check_other_frames(const recorder *rec, int first, int last, fog_er
 int recorder_remove_frames(const recorder *rec);
 
 /* Removes the temporary files a killed run (SIGKILL, power loss) may have left beside
- * frames first..last: image_write_exr's ".NAME.NNNN.exr.tmp.XXXXXX". Only this range's: a
+ * frames first..last: image_write_exr's ".NAME.NNNN.exr.tmp.PID.N". Only this range's: a
  * farm's other jobs write their own ranges into the folder at the same time, and their
  * temporaries are live. Returns how many were removed. */
 int recorder_remove_stale_temporaries(const recorder *rec, int first, int last);

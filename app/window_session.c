@@ -251,6 +251,20 @@ typedef struct rung_selector {
   bool zero_was_down;
 } rung_selector;
 
+/* A rung's time in fit as said: "1.25 ms", or not timed where the renderer refused it with
+ * the scene's lamps (its ms is NaN: "nan ms"). */
+typedef struct rung_time_text {
+  char text[40];
+} rung_time_text;
+static rung_time_text rung_time(const fit_rung *r) {
+  rung_time_text t;
+  if (isnan(r->ms))
+    snprintf(t.text, sizeof t.text, "not timed (refused with the lamps)");
+  else
+    snprintf(t.text, sizeof t.text, "%.2f ms", r->ms);
+  return t;
+}
+
 /* What the panel's light edits, from one config to another: the sun, the fog's ambient
  * colour and the lamps (the lamp tool's). */
 static void copy_light(scene_config *to, const scene_config *from) {
@@ -293,9 +307,9 @@ static int show_rung(view_state *v, rung_selector *sel, int index, const scene_c
   if (index < 0)
     printf("fogpipe %s: showing the config's own fog\n", v->command);
   else
-    printf("fogpipe %s: showing rung %d: %s (max |dtau| %.3g, mean %.3g, %.2f ms in fit)\n",
+    printf("fogpipe %s: showing rung %d: %s (max |dtau| %.3g, mean %.3g, %s in fit)\n",
            v->command, index, sel->fit.rungs[index].name, sel->fit.rungs[index].max_error,
-           sel->fit.rungs[index].mean_error, sel->fit.rungs[index].ms);
+           sel->fit.rungs[index].mean_error, rung_time(&sel->fit.rungs[index]).text);
   return 0;
 }
 
@@ -324,9 +338,10 @@ static int rung_selector_update(rung_selector *sel, view_state *v, GLFWwindow *w
              v->command, fps);
   else
     snprintf(title, sizeof title,
-             "fogpipe %s: rung %d/%d %s: max |dtau| %.3g, %.2f ms in fit; %.1f fps ([ ] 0)",
+             "fogpipe %s: rung %d/%d %s: max |dtau| %.3g, %s in fit; %.1f fps ([ ] 0)",
              v->command, sel->shown, sel->fit.count, sel->fit.rungs[sel->shown].name,
-             sel->fit.rungs[sel->shown].max_error, sel->fit.rungs[sel->shown].ms, fps);
+             sel->fit.rungs[sel->shown].max_error, rung_time(&sel->fit.rungs[sel->shown]).text,
+             fps);
   glfwSetWindowTitle(window, title);
   return 0;
 }
@@ -441,7 +456,7 @@ static void panel_fog(session_source *s, panel *ui) {
       const fit_rung *r = &s->sel.fit.rungs[s->sel.shown];
       panel_text(ui, "|dtau| vs the config's fog: max %.3g, mean %.3g", r->max_error,
                  r->mean_error);
-      panel_text(ui, "%.2f ms a frame in fit", r->ms);
+      panel_text(ui, "%s a frame in fit", rung_time(r).text);
     }
   }
 }

@@ -1,7 +1,9 @@
 /* Output files written whole or not at all: a temporary ".NAME.tmp.PID.N" in the target's
  * own folder (so rename(2) is atomic: same file system), renamed over the target only
  * once everything was written; any failure removes the temporary and leaves the target as
- * it was. Every file fogpipe writes goes through here: images, configs, sidecars, CSVs.
+ * it was. fogpipe's outputs go through here: images, configs, the import sidecar, the
+ * transform manifest, CSVs and charts (FFTW's wisdom cache and the recorder's write probe
+ * are its own, private files).
  *
  * Permissions: a new file gets 0666 less the process umask, as any file a program
  * creates (the temporary is made with O_EXCL and that mode, so the kernel applies the

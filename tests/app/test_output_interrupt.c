@@ -1,7 +1,7 @@
 /* Commands that write one output file, stopped by SIGTERM (FOGPIPE_BIN): `render`, `design`
  * and `transform --inverse`. While the file is written the signal waits until it is whole:
  * exit 0, the file there, no temporary beside it (they died with the signal and left
- * .OUT.tmp.XXXXXX, which no later run removes: 16 MB for a 2048x1152 render, 16 MB for a
+ * .OUT.tmp.PID.N, which no later run removes: 16 MB for a 2048x1152 render, 16 MB for a
  * 2048x2048 map). While the work before it runs: exit 130, saying nothing was written, and
  * nothing there. */
 #define _POSIX_C_SOURCE 200809L

@@ -366,7 +366,7 @@ static void test_exr_tiled(void) {
 }
 
 /* A file name the file system takes (245 bytes) is written: its temporary's name cut the
- * name short (".NAME.tmp.XXXXXX" passed 255: "File name too long" for a legal name). */
+ * name short (".NAME.tmp.PID.N" passed 255: "File name too long" for a legal name). */
 static void test_long_name(void) {
   char name[250];
   memset(name, 'a', 241);

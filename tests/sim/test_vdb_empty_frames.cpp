@@ -131,6 +131,22 @@ int main() {
               out.find("chosen") == std::string::npos,
           "fit over empty frames 4-5 (%d): %s", status, out.c_str());
   }
+  // an empty frame with a quadric volume beside it has fog: fitted, its domain the
+  // sphere's box (the empty grid adds nothing)
+  {
+    const std::string scene = dir + "/quadric_beside.ini";
+    FILE *f = fopen(scene.c_str(), "w");
+    if (f) {
+      fprintf(f, "[fog]\nmodel = volume\nvdb = %s/seq/s_####.vdb\nvdb_frame = 1\nvdb_up = y\n"
+              "quadric = sphere 5 6 -7 2 0.3\n", dir.c_str());
+      fclose(f);
+    }
+    status = run(std::string("'") + bin + "' fit '" + scene +
+                     "' --tolerance 0.05 --rays 4 --samples 8 --size 16x9 --timed 1",
+                 out);
+    CHECK(status == 0 && out.find("domain [3, 7] x [4, 8] x [-9, -5]") != std::string::npos,
+          "an empty frame beside a sphere (%d): %s", status, out.c_str());
+  }
   // a scene playing the sequence as a fogmap and as a volume: its empty frames 1 and 4 look
   // alike (no fog), frame 2 (fog) does not; the camera looks at the blob
   for (int volume = 0; volume < 2; volume++) {
