@@ -18,13 +18,6 @@
 /* A variant is one compiled program (fog_pass_variant below). A draw uses one or two, the
  * render bench a few dozen; they are kept, looked up by key. */
 #define FOG_PASS_MAX_VARIANTS 256
-/* A volume's view rays are set up in double when the camera is this many index units
- * (voxels) from the grid's origin, a quadric volume's when it is this many of the volume's
- * sizes away: nearer, float loses ~6e-8 of that (test_gpu_far_camera: the volume 8e-7 in
- * tau at 50 voxels, 1.2e-5 at 800, 1.5e-4 at 10^4; the quadrics 1.5e-5 at 200 sizes), and
- * the double set-up cost the exact walks 10-18 % on llvmpipe. */
-#define FOG_FAR_SETUP_VOXELS 256.0
-#define FOG_FAR_SETUP_SIZES 64.0
 
 typedef struct fog_pass_variant_entry {
   uint64_t key;
@@ -845,15 +838,7 @@ static void fog_pass_volume_uniforms(const fog_pass *pass, GLuint prog, const ca
   bind_sampler(prog, "fog_grid3d", UNIT_GRID3D, GL_TEXTURE_3D, pass->grid3d);
   glUniformMatrix3fv(fog_loc(prog, "fog_grid3d_index_from_world"), 1, GL_FALSE, m);
   glUniform3f(fog_loc(prog, "fog_grid3d_camera_index"), (float)u[0], (float)u[1], (float)u[2]);
-  double m_d[9]; /* column-major, as volume_grid_gl_matrix */
-  for (int c = 0; c < 3; c++)
-    for (int a = 0; a < 3; a++) m_d[3 * a + c] = g->index_from_world[c][a];
-  glUniformMatrix3dv(fog_loc(prog, "fog_grid3d_index_from_world_d"), 1, GL_FALSE, m_d);
-  glUniform3d(fog_loc(prog, "fog_grid3d_camera_index_d"), u[0], u[1], u[2]);
-  /* the set-up in double only where float loses: |u0| 6e-8 of a voxel, 1.2e-5 in tau at 800
-   * index units (a camera 2 km away), 8e-7 at 50 */
-  const double reach = fmax(fabs(u[0]), fmax(fabs(u[1]), fabs(u[2])));
-  glUniform1i(fog_loc(prog, "fog_grid3d_far"), reach > FOG_FAR_SETUP_VOXELS);
+
   glUniform3f(fog_loc(prog, "fog_grid3d_dims"), (float)g->dim[0], (float)g->dim[1],
               (float)g->dim[2]);
   glUniform1f(fog_loc(prog, "fog_grid3d_step"), (float)params->model_grid3d_step);
@@ -969,7 +954,6 @@ static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
   double grad_c0[FOG_MAX_QUADRICS][4];
   const double *o = cam->position;
   const int n = params->model_quadric_count;
-  bool far = false; /* a volume FOG_FAR_SETUP_SIZES away: its rays set up in double */
   double union_lo[3], union_hi[3];
   if (!fog_quadric_bounds(params->model_quadrics, n, union_lo, union_hi))
     for (int a = 0; a < 3; a++) union_lo[a] = union_hi[a] = o[a];
@@ -983,11 +967,7 @@ static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
       lo[i][r] = (float)(v->lo[r] - o[r]);
       hi[i][r] = (float)(v->hi[r] - o[r]);
     }
-    double size = HUGE_VAL, away = 0.0;
-    for (int r = 0; r < 3; r++)
-      size = fmin(size, v->hi[r] - v->lo[r]),
-      away = fmax(away, fmax(fabs(v->lo[r] - o[r]), fabs(v->hi[r] - o[r])));
-    far |= !(away <= FOG_FAR_SETUP_SIZES * size);
+
     grad_c0[i][3] = fog_quadric_value(v, o);
     off[i][0] = m[0][1], off[i][1] = m[1][2], off[i][2] = m[0][2];
     density[i] = (float)v->density;
@@ -996,7 +976,6 @@ static void fog_pass_quadric_uniforms(GLuint prog, const camera *cam,
     noise[i] = params->model_perlin ? (float)v->noise : 0.0f;
   }
   glUniform1i(fog_loc(prog, "fog_quadric_count"), n);
-  glUniform1i(fog_loc(prog, "fog_quadric_far"), far);
   /* the noise reads the octaves' sampler: it must name its own unit even when unused */
   glUniform1i(fog_loc(prog, "fog_perlin_texels"), UNIT_PERLIN);
   if (n > 0) {

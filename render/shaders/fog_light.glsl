@@ -87,9 +87,8 @@ bool fog_model_light_span(fog_ray r, bool chords, out float t0, out float t1) {
   t0 = float(max(r.t_in, 0.0));
   t1 = min(float(r.t_out), r.t_surface);
 #elif FOG_MODEL_KIND == FOG_MODEL_VOLUME
-  vec3 ue, du;
-  float len;
-  if (!fog_grid3d_stretch(r.dir_d, r.t_surface, ue, du, t0, t1, len)) return false;
+  vec3 u0, du;
+  if (!fog_grid3d_stretch(r.dir, r.t_surface, u0, du, t0, t1)) return false;
 #elif FOG_MODEL_KIND == FOG_MODEL_HEIGHT
   // Up to the surface, or where the ray's optical depth reaches FOG_LIGHT_DEPTH (the rest
   // weighs < e^-20): D(L) = K e^{y0/H} H (1 - e^{-w_y L / H}) / w_y, inverted.
@@ -333,13 +332,14 @@ float fog_fogmap_sun_mean(fog_ray r) {
 // fog_piece_nodes Gauss nodes a cell piece, tau at a node from the running depth and the
 // piece's polynomial through its nodes; S / (1 - e^{-D}) of the same walk.
 float fog_grid3d_sun_mean(fog_ray r) {
-  vec3 ue, du;
-  float t0, t1, len;
-  if (!fog_grid3d_stretch(r.dir_d, r.t_surface, ue, du, t0, t1, len)) return 1.0;
+  vec3 u0, du;
+  float t0, t1;
+  if (!fog_grid3d_stretch(r.dir, r.t_surface, u0, du, t0, t1)) return 1.0;
   fog_shaft_begin(r.dir, t0, t1);
+  vec3 ue = u0 + t0 * du;
   fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
            az = fog_axis_start(ue.z, du.z, 0.0);
-  float t = 0.0, D = 0.0, S = 0.0;
+  float len = t1 - t0, t = 0.0, D = 0.0, S = 0.0;
   for (int guard = 0; t < len && D < fog_depth_limit && guard < 65536; guard++) {
     float tx = fog_axis_next(ax), ty = fog_axis_next(ay), tz = fog_axis_next(az);
     float tn = min(min(len, tx), min(ty, tz));

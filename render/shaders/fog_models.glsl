@@ -38,11 +38,6 @@ uniform sampler3D fog_grid3d;                  // FOG_MODEL_VOLUME: RG32F, voxel
                                                // along x at texel i + 1 (a ring of zeros)
 uniform mat3 fog_grid3d_index_from_world;      // index position u = M p + offset
 uniform vec3 fog_grid3d_camera_index;          // u at the camera (double on the CPU)
-// the same in double: a view ray's stretch and entry are set up in them (a camera 20 km
-// away lost 2e-4 of tau in float, 100 km away 1.2e-3), the points of the lights in float
-uniform dmat3 fog_grid3d_index_from_world_d;
-uniform dvec3 fog_grid3d_camera_index_d;
-uniform bool fog_grid3d_far;  // the camera 256 index units or more from the grid: in double
 uniform vec3 fog_grid3d_dims;
 uniform float fog_grid3d_step;                 // world units (the march)
 uniform sampler3D fog_grid3d_occupancy;        // R32F brick bounds (FOG_SKIP)
@@ -60,7 +55,6 @@ uniform float fog_quadric_edge[FOG_MAX_QUADRICS];
 uniform float fog_quadric_noise[FOG_MAX_QUADRICS];  // the turbulence's share (fog_quadric.noise)
 uniform dvec4 fog_quadric_grad_c0[FOG_MAX_QUADRICS];  // g; w: c0
 uniform vec3 fog_quadric_lo[FOG_MAX_QUADRICS];     // the clip box, camera-relative
-uniform bool fog_quadric_far;  // a volume 64 of its sizes or more away: its rays in double
 uniform vec3 fog_quadric_hi[FOG_MAX_QUADRICS];
 uniform vec3 fog_quadric_union_lo, fog_quadric_union_hi;  // all the boxes
 
@@ -174,18 +168,6 @@ bool fog_slab(vec3 lo, vec3 hi, vec3 origin, vec3 dir, out float t0, out float t
   return t0 <= t1;
 }
 
-// fog_slab from the camera (origin 0) in double (fog_quadric_optical_depth_d).
-bool fog_slab_d(dvec3 lo, dvec3 hi, dvec3 dir, out double t0, out double t1) {
-  dvec3 ta = lo / dir, tb = hi / dir;
-  bvec3 parallel = equal(dir, dvec3(0.0));
-  bvec3 inside = bvec3(uvec3(lessThanEqual(lo, dvec3(0.0))) & uvec3(greaterThanEqual(hi, dvec3(0.0))));
-  dvec3 reach = mix(dvec3(-1e30), dvec3(1e30), inside);
-  dvec3 a = mix(min(ta, tb), -reach, parallel), b = mix(max(ta, tb), reach, parallel);
-  t0 = max(max(a.x, a.y), a.z);
-  t1 = min(min(b.x, b.y), b.z);
-  return t0 <= t1;
-}
-
 // Quadric volume i's symmetric matrix M.
 dmat3 fog_quadric_matrix(int i) {
   dvec3 d = fog_quadric_diag[i], o = fog_quadric_off[i];
@@ -255,56 +237,29 @@ float fog_quadric_span(float a, float b, float c, float density, float edge, flo
   return sum;
 }
 
-// Volume i's part of the optical depth from camera-relative x along unit w over [t0, t1]:
-// Q along the ray set up in double and re-centred on the stretch's start t0 (Q(t0 + s) =
-// a s^2 + 2 b' s + c'): far from the camera Q's terms are large and cancel (c0 ~
-// (distance/size)^2), and in float a grazing ray's roots moved by ~1e-2 units; re-centred,
-// the float pieces see Q's own range. start = x + t0 w, dir = w, rounded (the noise's).
-float fog_quadric_part(int i, dvec3 x, dvec3 w, double t0, double t1, vec3 start, vec3 dir) {
-  dmat3 m = fog_quadric_matrix(i);
-  dvec3 g = fog_quadric_grad_c0[i].xyz;
-  double a = dot(w, m * w), b = dot(w, m * x + g);
-  double c = dot(x, m * x) + 2.0 * dot(g, x) + fog_quadric_grad_c0[i].w;
-  return fog_quadric_span(float(a), float(b + a * t0), float((a * t0 + 2.0 * b) * t0 + c),
-                          fog_quadric_density[i], fog_quadric_edge[i], fog_quadric_noise[i],
-                          start, dir, 0.0, float(t1 - t0));
-}
-
 // The quadric volumes' exact optical depth from camera-relative `origin` along unit dir
-// for length (>= 1e29: through every box): fog_quadric_optical_depth in C. The lights'
-// paths from points in the fog; the slab in float.
+// for length (>= 1e29: through every box): fog_quadric_optical_depth in C. Q along the ray
+// is set up in double and re-centred on the stretch's start t0 (Q(t0 + s) = a s^2 + 2 b' s +
+// c'): far from the camera Q's terms are large and cancel (c0 ~ (distance/size)^2), and in
+// float a grazing ray's roots moved by ~1e-2 units; re-centred, the float pieces see Q's own
+// range.
 float fog_quadric_optical_depth_from(vec3 origin, vec3 dir, float length) {
   float sum = 0.0;
   for (int i = 0; i < fog_quadric_count; i++) {
-    float t0, t1;
-    if (!(fog_quadric_density[i] > 0.0) ||
+    float t0, t1, density = fog_quadric_density[i];
+    if (!(density > 0.0) ||
         !fog_slab(fog_quadric_lo[i], fog_quadric_hi[i], origin, dir, t0, t1)) continue;
     t0 = max(t0, 0.0);
     t1 = min(t1, length);
-    if (t1 > t0)
-      sum += fog_quadric_part(i, dvec3(origin), dvec3(dir), double(t0), double(t1),
-                              origin + t0 * dir, dir);
-  }
-  return sum;
-}
-
-// The same for the camera's own ray along the unit dir_d, the slab and the stretch in
-// double too: far from the camera the float slab's t0 (and the rounded direction) moved
-// the set-up (a camera 20 km away lost 4e-4 of tau, 100 km away 1.8e-3).
-float fog_quadric_optical_depth_d(dvec3 dir_d, float length) {
-  vec3 dir = vec3(dir_d);
-  // near, float loses ~(distance / size) 6e-8 of a volume's size: the float slab (the
-  // double one cost the walk 10-18 % on llvmpipe)
-  if (!fog_quadric_far) return fog_quadric_optical_depth_from(vec3(0.0), dir, length);
-  float sum = 0.0;
-  for (int i = 0; i < fog_quadric_count; i++) {
-    double t0, t1;
-    if (!(fog_quadric_density[i] > 0.0) ||
-        !fog_slab_d(dvec3(fog_quadric_lo[i]), dvec3(fog_quadric_hi[i]), dir_d, t0, t1))
-      continue;
-    t0 = max(t0, 0.0LF);
-    t1 = min(t1, double(length));
-    if (t1 > t0) sum += fog_quadric_part(i, dvec3(0.0), dir_d, t0, t1, vec3(t0 * dir_d), dir);
+    if (!(t1 > t0)) continue;
+    dmat3 m = fog_quadric_matrix(i);
+    dvec3 g = fog_quadric_grad_c0[i].xyz, x = dvec3(origin), w = dvec3(dir);
+    double a = dot(w, m * w), b = dot(w, m * x + g);
+    double c = dot(x, m * x) + 2.0 * dot(g, x) + fog_quadric_grad_c0[i].w;
+    double s = double(t0);
+    sum += fog_quadric_span(float(a), float(b + a * s), float((a * s + 2.0 * b) * s + c), density,
+                            fog_quadric_edge[i], fog_quadric_noise[i], origin + t0 * dir, dir,
+                            0.0, t1 - t0);
   }
   return sum;
 }
@@ -334,43 +289,21 @@ float fog_quadric_extinction_at(vec3 p) {
 }
 
 // The ray's stretch [t0, t1] inside the volume's support (index coordinates in [-1, dim])
-// and [0, length], its length len = t1 - t0, its entry ue (the index position at t0) and
-// du, the index position moving as ue + (t - t0) du (the C twin's grid3d_stretch). With the
-// camera far from the grid, set up in double from the unit dir_d and rounded once, as
-// fog_walk_start does the fogmap's: there the camera's index position is large and u0 + t0
-// du cancels. Parallel axes are selected, not branched on, as in fog_box_entry_exit.
-bool fog_grid3d_stretch(dvec3 dir_d, float length, out vec3 ue, out vec3 du, out float t0,
-                        out float t1, out float len) {
-  if (!fog_grid3d_far) {  // near: float loses ~|u0| 6e-8 of a voxel (the double set-up cost
-                          // the plume's walk 10-17 % on llvmpipe)
-    du = fog_grid3d_index_from_world * vec3(dir_d);
-    vec3 u0 = fog_grid3d_camera_index;
-    vec3 ta = (-1.0 - u0) / du, tb = (fog_grid3d_dims - u0) / du;
-    bvec3 parallel = equal(du, vec3(0.0));
-    bvec3 inside = bvec3(uvec3(greaterThanEqual(u0, vec3(-1.0))) &
-                         uvec3(lessThanEqual(u0, fog_grid3d_dims)));
-    vec3 reach = mix(vec3(-1e30), vec3(1e30), inside);
-    vec3 lo = mix(min(ta, tb), -reach, parallel), hi = mix(max(ta, tb), reach, parallel);
-    t0 = max(max(max(lo.x, lo.y), lo.z), 0.0);
-    t1 = min(min(min(hi.x, hi.y), hi.z), length);
-    ue = u0 + t0 * du;
-    len = t1 - t0;
-    return t0 < t1;
-  }
-  dvec3 du_d = fog_grid3d_index_from_world_d * dir_d;
-  dvec3 u0 = fog_grid3d_camera_index_d, dims = dvec3(fog_grid3d_dims);
-  dvec3 ta = (-1.0 - u0) / du_d, tb = (dims - u0) / du_d;
-  bvec3 parallel = equal(du_d, dvec3(0.0));
-  bvec3 inside = bvec3(uvec3(greaterThanEqual(u0, dvec3(-1.0))) &
-                       uvec3(lessThanEqual(u0, dims)));
-  dvec3 reach = mix(dvec3(-1e30), dvec3(1e30), inside);
-  dvec3 lo = mix(min(ta, tb), -reach, parallel), hi = mix(max(ta, tb), reach, parallel);
-  double t0_d = max(max(max(lo.x, lo.y), lo.z), 0.0LF);
-  double t1_d = min(min(min(hi.x, hi.y), hi.z), double(length));
-  ue = vec3(u0 + t0_d * du_d);
-  du = vec3(du_d);
-  t0 = float(t0_d), t1 = float(t1_d), len = float(t1_d - t0_d);
-  return t0_d < t1_d;
+// and [0, length], with index position u0 + t du (the C twin's grid3d_stretch). Parallel
+// axes are selected, not branched on, as in fog_box_entry_exit.
+bool fog_grid3d_stretch(vec3 dir, float length, out vec3 u0, out vec3 du, out float t0,
+                        out float t1) {
+  du = fog_grid3d_index_from_world * dir;
+  u0 = fog_grid3d_camera_index;
+  vec3 ta = (-1.0 - u0) / du, tb = (fog_grid3d_dims - u0) / du;
+  bvec3 parallel = equal(du, vec3(0.0));
+  bvec3 inside = bvec3(uvec3(greaterThanEqual(u0, vec3(-1.0))) &
+                       uvec3(lessThanEqual(u0, fog_grid3d_dims)));
+  vec3 reach = mix(vec3(-1e30), vec3(1e30), inside);
+  vec3 lo = mix(min(ta, tb), -reach, parallel), hi = mix(max(ta, tb), reach, parallel);
+  t0 = max(max(max(lo.x, lo.y), lo.z), 0.0);
+  t1 = min(min(min(hi.x, hi.y), hi.z), length);
+  return t0 < t1;
 }
 
 // The hardware's trilinear filter at index position u (the march).
@@ -432,13 +365,14 @@ void fog_grid3d_cells(inout fog_axis ax, inout fog_axis ay, inout fog_axis az, v
   }
 }
 
-float fog_grid3d_optical_depth(dvec3 dir_d, float length) {
-  vec3 ue, du;  // the entry: small index coordinates from here on
-  float t0, t1, len;
-  if (!fog_grid3d_stretch(dir_d, length, ue, du, t0, t1, len)) return 0.0;
+float fog_grid3d_optical_depth(vec3 dir, float length) {
+  vec3 u0, du;
+  float t0, t1;
+  if (!fog_grid3d_stretch(dir, length, u0, du, t0, t1)) return 0.0;
+  vec3 ue = u0 + t0 * du;  // the entry: small index coordinates from here on
   fog_axis ax = fog_axis_start(ue.x, du.x, 0.0), ay = fog_axis_start(ue.y, du.y, 0.0),
            az = fog_axis_start(ue.z, du.z, 0.0);
-  float t = 0.0, sum = 0.0;
+  float len = t1 - t0, t = 0.0, sum = 0.0;
   // Early termination: the walks stop once the depth passes fog_depth_limit.
 #if FOG_SKIP
   fog_axis_sync(ax, t);  // crossings at the start stepped first (fog_walk_integral)
@@ -469,15 +403,15 @@ float fog_grid3d_optical_depth(dvec3 dir_d, float length) {
 
 // The volume marched (fog_grid3d_optical_depth_march in C): the stretch cut into
 // n = ceil(stretch / step) equal steps, trilinear samples at their midpoints.
-float fog_grid3d_optical_depth_march(dvec3 dir_d, float length) {
-  vec3 ue, du;
-  float t0, t1, len;
-  if (!fog_grid3d_stretch(dir_d, length, ue, du, t0, t1, len)) return 0.0;
+float fog_grid3d_optical_depth_march(vec3 dir, float length) {
+  vec3 u0, du;
+  float t0, t1;
+  if (!fog_grid3d_stretch(dir, length, u0, du, t0, t1)) return 0.0;
   // at most 16384 samples a ray (docs/config.md, volume_step): a finer step overflowed the
   // count and summed away its own terms in float
-  int n = int(clamp(ceil(len / fog_grid3d_step), 1.0, 16384.0));
-  float dt = len / float(n), sum = 0.0;
-  for (int s = 0; s < n; s++) sum += fog_grid3d_density(ue + ((float(s) + 0.5) * dt) * du);
+  int n = int(clamp(ceil((t1 - t0) / fog_grid3d_step), 1.0, 16384.0));
+  float dt = (t1 - t0) / float(n), sum = 0.0;
+  for (int s = 0; s < n; s++) sum += fog_grid3d_density(u0 + (t0 + (float(s) + 0.5) * dt) * du);
   return sum * dt;
 }
 
@@ -737,9 +671,9 @@ float fog_model_depth_height(fog_ray r) {
 float fog_model_depth_rbf(fog_ray r) {
   return fog_rbf_optical_depth(fog_model_extinction, r.dir, r.t_surface);
 }
-float fog_model_depth_volume(fog_ray r) { return fog_grid3d_optical_depth(r.dir_d, r.t_surface); }
+float fog_model_depth_volume(fog_ray r) { return fog_grid3d_optical_depth(r.dir, r.t_surface); }
 float fog_model_depth_quadric(fog_ray r) {
-  return fog_quadric_optical_depth_d(r.dir_d, r.t_surface);
+  return fog_quadric_optical_depth_from(vec3(0.0), r.dir, r.t_surface);
 }
 // The classic factors from the camera (Zdrojewska eq. 2, 4): -ln f(d).
 float fog_linear_depth(float d) {
@@ -769,5 +703,5 @@ float fog_model_march_exp2(fog_ray r) { return fog_model_march_homogeneous(r); }
 float fog_model_depth_perlin(fog_ray r) { return fog_perlin_optical_depth(r.dir, r.t_surface); }
 float fog_model_march_perlin(fog_ray r) { return fog_model_march_homogeneous(r); }
 float fog_model_march_volume(fog_ray r) {
-  return fog_grid3d_optical_depth_march(r.dir_d, r.t_surface);
+  return fog_grid3d_optical_depth_march(r.dir, r.t_surface);
 }

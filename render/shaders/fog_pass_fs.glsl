@@ -325,7 +325,7 @@ void main() {
     optical_depth = fog_model_optical_depth(fog_ray(dir_d, dir, t_in, t_out, t_surface, jitter));
 #if FOG_QUADRICS_BESIDE
     // quadric volumes beside the model's fog: their exact depth adds
-    optical_depth += fog_quadric_optical_depth_d(dir_d, t_surface);
+    optical_depth += fog_quadric_optical_depth_from(vec3(0.0), dir, t_surface);
 #endif
 #if FOG_REDUCED > 1
     // And the extinction where the ray meets the surface (the fogmap's A_0, 0 outside its
