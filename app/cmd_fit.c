@@ -411,9 +411,8 @@ int cmd_fit(int argc, char **argv) {
   if (r.chosen < 0) {
     bool refused_within = false; /* within T but not drawn here with the scene's lamps */
     for (int i = 0; i < r.count; i++)
-      refused_within |= isnan(r.rungs[i].ms) && (o.desc.by_mean ? r.rungs[i].mean_error
-                                                                  : r.rungs[i].max_error) <=
-                                                    o.tolerance[0];
+      refused_within |= isnan(r.rungs[i].ms) &&
+                        fit_within(&r.rungs[i], o.tolerance[0], o.desc.by_mean);
     printf("no rung within %g%s: nothing written\n", o.tolerance[0],
            refused_within ? " that this renderer draws with the scene's lamps" : "");
   } else {

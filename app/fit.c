@@ -244,14 +244,17 @@ done:
   return status;
 }
 
+bool fit_within(const fit_rung *rung, double tolerance, bool by_mean) {
+  return (by_mean ? rung->mean_error : rung->max_error) <= tolerance;
+}
+
 int fit_choose(const fit_result *r, double tolerance, bool by_mean) {
   double fastest = HUGE_VAL;
-#define WITHIN(g) ((by_mean ? (g).mean_error : (g).max_error) <= tolerance)
   for (int i = 0; i < r->count; i++)
-    if (WITHIN(r->rungs[i])) fastest = fmin(fastest, r->rungs[i].ms);
+    if (fit_within(&r->rungs[i], tolerance, by_mean)) fastest = fmin(fastest, r->rungs[i].ms);
   for (int i = 0; i < r->count; i++) /* ladder order: the simplest of the ties */
-    if (WITHIN(r->rungs[i]) && r->rungs[i].ms <= FIT_TIE * fastest) return i;
-#undef WITHIN
+    if (fit_within(&r->rungs[i], tolerance, by_mean) && r->rungs[i].ms <= FIT_TIE * fastest)
+      return i;
   return -1;
 }
 

@@ -89,6 +89,9 @@ int fit_run(const fit_desc *desc, fit_result *result, fog_error *err);
 void fit_result_destroy(fit_result *result);
 /* The pick at another tolerance from the same measurements (fit_run's rule); -1: none. */
 int fit_choose(const fit_result *result, double tolerance, bool by_mean);
+/* Whether a rung's error (max or mean |dtau|) is within the tolerance: fit_choose's rule,
+ * refused rungs included (they are never chosen: their time is NaN). */
+bool fit_within(const fit_rung *rung, double tolerance, bool by_mean);
 /* A scene around a VDB frame (cfg: model = volume, [fog] vdb set), or around the frames
  * that hold fog among frames[0..frame_count) (NULL: the config's): a low procedural ground
  * (bumps of 1 % of the grid's reach) just under the grid, no boxes, and the camera of view 0 (app/fit_views.h), so the fog is in sight. */

@@ -13,7 +13,7 @@
 /* Whether a load by channel name failed for want of the channel (image_exr.c's and
  * image_png.c's "has no channel" message), not for its values. */
 static bool channel_missing(const fog_error *e) {
-  return strstr(e->message, "has no channel") != NULL;
+  return e->code == FOG_ERR_NO_SUCH_CHANNEL;
 }
 
 /* A heightmap is one channel of heights. A grey image saved with alpha, or as RGB(A) whose

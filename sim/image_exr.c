@@ -193,7 +193,7 @@ static const exr_attr_chlist_entry_t *exr_pick_channel(const exr_attr_chlist_t *
     for (int c = 0; c < list->num_channels; c++)
       if (!strcmp(list->entries[c].name.str, channel)) entry = &list->entries[c];
     if (!entry)
-      return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR has no channel \"%s\"; it has %s", path,
+      return fog_fail(err, FOG_ERR_NO_SUCH_CHANNEL, "%s: EXR has no channel \"%s\"; it has %s", path,
                       channel, names),
              NULL;
   }

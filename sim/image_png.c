@@ -93,7 +93,7 @@ int png_read_channel(const char *path, const unsigned char *bytes, size_t size, 
     for (int c = 0; c < layout.channels; c++)
       if (!strcmp(channel, layout.names[c])) pick = c;
     if (pick < 0) {
-      fog_fail(err, FOG_ERR_BAD_FILE, "%s: %s PNG has no channel \"%s\"; it has %s", path,
+      fog_fail(err, FOG_ERR_NO_SUCH_CHANNEL, "%s: %s PNG has no channel \"%s\"; it has %s", path,
                layout.kind, channel, names);
       goto done;
     }

@@ -23,6 +23,8 @@ const char *fog_result_text(fog_result code) {
       return "graphics error";
     case FOG_ERR_UNSUPPORTED:
       return "not supported";
+    case FOG_ERR_NO_SUCH_CHANNEL:
+      return "no such channel";
     case FOG_RESULT_COUNT:
       break;
   }

@@ -24,6 +24,8 @@ typedef enum fog_result {
   FOG_ERR_BAD_CONFIG, /* a scene config's line or key is wrong (the message names it) */
   FOG_ERR_GRAPHICS, /* the GL, EGL or GLFW refused (context, shader, framebuffer) */
   FOG_ERR_UNSUPPORTED, /* built without the feature, or a feature not available here */
+  FOG_ERR_NO_SUCH_CHANNEL, /* an image has no channel of the name asked for (it may have
+                            * others: a caller can try another name) */
   FOG_RESULT_COUNT
 } fog_result;
 
