@@ -346,17 +346,19 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
       double ka = fmax(extinction_on_ray(m, o, d, ta), 0.0),
              kb = fmax(extinction_on_ray(m, o, d, tb), 0.0);
       step_depth = 0.5 * dt * (ka + kb);
-      /* depths from the segment's start to the nodes, K linear through them */
-      double la = (0.5 - g) * dt, slope = (kb - ka) / (2.0 * g * dt);
-      /* a steep K extrapolated back to the start can dip below 0 (and e^{-da} overflow):
-       * no depth is negative */
-      double da = fmax(la * (ka - 0.5 * slope * la), 0.0), db = da + g * dt * (ka + kb);
-      double sa = ka * exp(-da), sb = kb * exp(-db);
+      /* The nodes weigh K e^{-d}, d the depth from the segment's start, K linear through
+       * them: only their ratio counts, so each is taken relative to node a's,
+       * K_a : K_b e^{-(d_b - d_a)} with d_b - d_a = g dt (K_a + K_b) (the trapezoid between
+       * them). Absolute weights underflowed together in a dense segment (d ~ 745; in the
+       * shader's float, ~90) and its light became 0; the depth to node a, extrapolated
+       * back, went negative on a steep K and overflowed. */
+      double sa = ka, sb = kb * exp(-g * dt * (ka + kb));
+      double lb = sun_light_at(m, kind, volume, o, d, tb, node_visible, user);
+      /* sa + sb = 0 with K_b > 0: node a holds no fog, node b all of the weight */
       light = sa + sb > 0.0
                   ? (sa * sun_light_at(m, kind, volume, o, d, ta, node_visible, user) +
-                     sb * sun_light_at(m, kind, volume, o, d, tb, node_visible, user)) /
-                        (sa + sb)
-                  : 0.0;
+                     sb * lb) / (sa + sb)
+                  : lb;
     } else {
       step_depth = fmax(extinction_on_ray(m, o, d, mid), 0.0) * dt;
       light = sun_light_at(m, kind, volume, o, d, mid, node_visible, user);

@@ -441,7 +441,7 @@ float fog_perlin_sun_mean(fog_ray r) {
 // fog_shadow_steps equal segments of fog_shadow_nodes samples (fog_sun_mean_light in C):
 // 1, the midpoint; 2, the Gauss-Legendre nodes m -+ dt/(2 sqrt 3), the segment's depth
 // their 2-node sum and its T_s V theirs weighted by K e^{-d} (d from the segment's start to
-// the node, K linear through the nodes). Segment i weighs e^{-D_i} (1 - e^{-dD_i}) either
+// the node, K linear through the nodes; taken relative to node a's). Segment i weighs e^{-D_i} (1 - e^{-dD_i}) either
 // way, so with T_s V = 1 the mean is 1.
 // FOG_SHADOW_NODES (1 or 2) and FOG_SHADOW_PIECES are specialisation constants: as a
 // uniform, the two-node branch cost the one-node loop 40 % on llvmpipe.
@@ -473,13 +473,12 @@ float fog_sun_mean_transmittance(fog_ray r) {
       float ka = max(fog_light_extinction(r.dir, ta), 0.0),
             kb = max(fog_light_extinction(r.dir, tb), 0.0);
       step_depth = 0.5 * dt * (ka + kb);
-      float la = (0.5 - g) * dt, slope = (kb - ka) / (2.0 * g * dt);
-      // no negative depth: a steep K extrapolated back dipped below 0 and e^{-da} overflowed
-      float da = max(la * (ka - 0.5 * slope * la), 0.0), db = da + g * dt * (ka + kb);
-      float sa = ka * exp(-da), sb = kb * exp(-db);
-      light = sa + sb > 0.0 ? (sa * fog_sun_node_light(r.dir, ta) + sb * fog_sun_node_light(r.dir, tb)) /
-                                  (sa + sb)
-                            : 0.0;
+      // the nodes' weights relative to node a's, K_a : K_b e^{-g dt (K_a + K_b)}: absolute
+      // ones (e^{-d} from the segment's start) underflowed together past d ~ 90 and a dense
+      // segment drew no light (fog_sun_mean_light in C)
+      float sa = ka, sb = kb * exp(-g * dt * (ka + kb));
+      float lb = fog_sun_node_light(r.dir, tb);
+      light = sa + sb > 0.0 ? (sa * fog_sun_node_light(r.dir, ta) + sb * lb) / (sa + sb) : lb;
     }
 #else
     step_depth = max(fog_light_extinction(r.dir, mid), 0.0) * dt;
