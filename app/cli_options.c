@@ -119,7 +119,14 @@ int cli_parse(const cli_spec *spec, int argc, char **argv, const char **operands
     }
     if (i + 1 >= argc)
       return cli_usage_error(spec->command, "%s needs a value (%s)", a, o->value);
-    if (take_value(spec, o, argv[++i])) return 2;
+    /* `--out --synchronous` (a value left out) took the next option as a folder's name,
+     * ran without it and exited 0; a number, size or range refuses such a value itself */
+    const char *value = argv[++i];
+    if ((o->kind == CLI_TEXT || o->kind == CLI_OUTPUT) && !strncmp(value, "--", 2))
+      return cli_usage_error(spec->command,
+                             "%s needs a value (%s), got the option '%s' (a name that starts "
+                             "with '--' is written ./%s)", a, o->value, value, value);
+    if (take_value(spec, o, value)) return 2;
   }
   if (*count < spec->min_operands)
     return cli_usage_error(spec->command, "no %s given", spec->operand);
