@@ -193,6 +193,16 @@ int bench_valley_scene(scene_geometry *geo, camera *cam, fog_error *err) {
   return 0;
 }
 
+int bench_write_chart(const chart_desc *desc, const chart_point *points, int count,
+                      const bench_outputs *files, bool *drawn, char *error, int error_size) {
+  char why[256];
+  *drawn = chart_can_draw(why, sizeof why);
+  if (!*drawn)
+    printf("chart: the PNG is not drawn (%s); its points are in %s\n", why, files->chart_csv);
+  return chart_write(desc, points, count, files->chart_csv, *drawn ? files->chart_png : NULL,
+                     error, error_size) != 0;
+}
+
 int bench_report(const char *stage, int status, const fog_error *err) {
   if (status) fprintf(stderr, "fogpipe bench %s: %s\n", stage, err->message);
   return status;

@@ -93,6 +93,12 @@ int bench_time_rows(const bench_timed_rows *rows, fog_error *err);
 int bench_report(const char *stage, int status, const fog_error *err);
 /* Tables: chart_table_open / chart_table_write (app/chart.h). */
 #include "app/chart.h"
+/* A stage's chart: the points' CSV always, the PNG where gnuplot runs; without gnuplot (the
+ * GPU kit ships none) the PNG is skipped with a note on stdout (*drawn false). A stage of
+ * minutes keeps its figures when its files fail: it says so, goes on and prints its summary
+ * line, then fails (bench_report) after it. Returns 0, or 1 with error set. */
+int bench_write_chart(const chart_desc *desc, const chart_point *points, int count,
+                      const bench_outputs *files, bool *drawn, char *error, int error_size);
 /* mkdir -p; non-zero and a message naming the folder on failure. */
 int bench_make_folder(const char *path, char *error, int size);
 /* RMSE and max of |gpu - ref| over n values (a NaN from the GL counts as the worst), and

@@ -52,6 +52,13 @@ static int measure(int n, fluid_advection scheme, int rounds, sim_figures *out) 
   const int per_round = 5, total = rounds * per_round;
   double *step = malloc(sizeof(double) * total), *fft = malloc(sizeof(double) * total);
   double *adv = malloc(sizeof(double) * total);
+  if (!step || !fft || !adv) {
+    fprintf(stderr, "fogpipe bench sim: out of memory for %d timings\n", total);
+    free(step), free(fft), free(adv);
+    fluid_sim_destroy(sim);
+    fluid_sim_destroy(probe);
+    return 1;
+  }
   /* Warm-up: caches, page faults, and a developed flow (1 s of simulated time). */
   for (int s = 0; s < 30; s++) fluid_sim_step(sim, &err), fluid_sim_step(probe, &err);
   for (int s = 0; s < 3; s++) fluid_sim_profile_transforms(probe);
