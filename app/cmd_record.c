@@ -277,6 +277,17 @@ static player *start_player(const record_job *job, recorder *rec, const scene_co
 
 /* Frames done+1 .. last into rec; SIGINT/SIGTERM end the frame being drawn, then stop with
  * the command that resumes. 0, 1 (printed) or 130 (interrupted). */
+
+/* After a frame failed: the frames written stay whole (as after Ctrl-C), and the command
+ * that finishes the run once `when` (a full disk, a missing input). */
+static void say_complete(const record_job *job, const recorder *rec, int first, int done,
+                         int last, const char *when) {
+  if (done < first) return;
+  char hint[13 * PATH_MAX];
+  resume_hint(job, rec, done, hint, sizeof hint);
+  fprintf(stderr, "fogpipe %s: %d of %d frames complete in %s; to finish once %s: %s\n",
+          job->command, done - first + 1, last - first + 1, rec->folder, when, hint);
+}
 static int record_frames(const record_job *job, recorder *rec, player *src, int width,
                          int height, int first, int done, int last) {
   const char *cmd = job->command;
@@ -306,17 +317,12 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
     if (player_frame(src, frame, &out, &perr)) {
       if (!job->quiet) recorder_progress_end(&progress);
       fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, perr.message);
+      say_complete(job, rec, first, done, last, "the frame can be made");
       status = 1;
     } else if (recorder_write_frame(rec, frame, &pixels, scratch, &beauty_float, &rerr)) {
       if (!job->quiet) recorder_progress_end(&progress);
       fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
-      if (done >= first) { /* a full disk: the frames written stay whole, as after Ctrl-C */
-        char hint[13 * PATH_MAX];
-        resume_hint(job, rec, done, hint, sizeof hint);
-        fprintf(stderr, "fogpipe %s: %d of %d frames complete in %s; to finish once the "
-                "frame can be written: %s\n", cmd, done - first + 1, last - first + 1,
-                rec->folder, hint);
-      }
+      say_complete(job, rec, first, done, last, "the frame can be written");
       status = 1;
     } else {
       if (beauty_float && !float_frames++) first_float = frame;
@@ -436,6 +442,13 @@ int record_run(const record_job *job) {
   stop_signals_clear();
   stop_signals_catch(&stop, true);
   int status = record_into(job, &rec);
+  /* stopped during the last frame (or after it): nothing is missing, but the run was
+   * interrupted, as its status says (it exited 0 as if no signal had come) */
+  if (status == 0 && stop_signals_caught()) {
+    fprintf(stderr, "fogpipe %s: interrupted after the last frame: every frame asked for is "
+            "complete in %s\n", job->command, rec.folder);
+    status = 130;
+  }
   stop_signals_restore(&stop);
   /* A run that failed or stopped before writing a frame leaves no folder of its own making
    * behind (only empty ones go, innermost first: written frames stay). */

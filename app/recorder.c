@@ -52,8 +52,11 @@ int recorder_open(recorder *rec, const recorder_desc *desc, fog_error *err) {
   /* Prove the folder is writable: access() alone is fooled by read-only mounts and full
    * disks, so create a probe file, write a block, flush it to disk and remove it. */
   char probe[1200];
-  snprintf(probe, sizeof probe, "%s/.fogpipe-write-probe-%ld.tmp", rec->folder, (long)getpid());
-  int fd = open(probe, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+  /* a name of its own (mkstemp: O_EXCL): a farm's tasks on other nodes, or in containers,
+   * share the folder and may share a PID; one unlinking another's probe made its fsync
+   * fail on NFS (ESTALE) and the task abort */
+  snprintf(probe, sizeof probe, "%s/.fogpipe-write-probe-XXXXXX", rec->folder);
+  int fd = mkstemp(probe);
   if (fd < 0)
     return fog_fail(err, FOG_ERR_FILE_ACCESS, "the output folder %s is not writable: %s",
                     rec->folder, strerror(errno));
@@ -153,7 +156,7 @@ bool recorder_frames_foreign(const recorder *rec, int first, int last) {
   return false;
 }
 
-/* The frame number of a file name NAME.NNNN.exr (4 digits or more), or 0. */
+/* The frame number of a file name NAME.NNNN.exr (4 digits or more), or -1. */
 int recorder_frame_number(const recorder *rec, const char *file) {
   const size_t n = strlen(rec->name);
   if (strncmp(file, rec->name, n) != 0 || file[n] != '.') return -1;

@@ -109,7 +109,8 @@ int recorder_remove_stale_temporaries(const recorder *rec, int first, int last);
  * where a value lies beyond half's range: *beauty_float, if not NULL, says which);
  * transmittance, depth (also as Z, what compositors read) and inscatter.R/G/B as 32-bit
  * float. `scratch` must hold RECORDER_PLANES*width*height floats (no allocation per
- * frame). On failure (disk full, folder removed) nothing is left at the frame's path. */
+ * frame). On failure (disk full, folder removed) no partial file is left: a frame already
+ * at the path (a --resume or range run's) stays as it was, whole. */
 int recorder_write_frame(const recorder *rec, int frame, const recorder_frame *pixels,
                          float *scratch, bool *beauty_float, fog_error *err);
 

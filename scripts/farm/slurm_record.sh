@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # One task of a Slurm job array: renders one frame range of a fogpipe recording into a
-# shared folder. Every frame is rendered exactly as one full run renders it (bit for bit),
-# so the ranges can run on any machines, in any order, at the same time.
+# shared folder. Every frame is rendered exactly as one full run renders it (bit for bit,
+# on nodes with the same fogpipe build and GL driver: docs/farm.md), so the ranges can run
+# on any such machines, in any order, at the same time.
 #
 #   FOGPIPE=/opt/fogpipe/build/fogpipe CONFIG=shot01.ini FRAMES=240 CHUNK=24 \
 #   OUT=/shared/renders/shot01 SIZE=1920x1080 \

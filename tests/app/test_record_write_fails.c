@@ -35,8 +35,9 @@ int main(void) {
   if (status == 0 || !record_log_contains(log, "frame 1")) record_print_log(log);
   int frame_files = 0;
   int others = record_count_files(out, &frame_files); /* -1: the folder record made is gone */
-  CHECK(frame_files == 0 && others <= 0,
-        "%d frame files and %d other files left in %s, expected none", frame_files, others,
+  CHECK(frame_files == 0 && others == -1,
+        "%d frame files and %d other files left in %s (-1: the folder gone), expected the "
+        "folder gone", frame_files, others,
         out);
 
   /* frame 1 written, frame 2 failing: the command that finishes the run */
