@@ -35,6 +35,10 @@ static int parse_basis(const char *s, transform_basis *b) {
   return 0;
 }
 
+/* --levels and the manifest's levels: at most 60 (a 2^60-wide map); the manifest took up
+ * to 1000000, and checking 5 (L + 1) output names for it stalled --inverse for 25 s. */
+enum { TRANSFORM_CLI_MAX_LEVELS = 60 };
+
 /* A whole number 0..1000000 of a pyramid's sidecar file: non-zero when it is not one. */
 static int parse_int(const char *s, int *out) {
   long v;
@@ -327,7 +331,11 @@ done:
 /* ---- inverse ---- */
 
 static int read_manifest(const char *dir, transform_desc *desc, char *msg, size_t msg_size) {
-  char path[4096], line[512], word[64];
+  char path[4096], word[64];
+  /* lines of any length: the comment names the input, whose path may be long (a 512-byte
+   * buffer split it and read its rest as a key line: the folder could not be inverted) */
+  char *line = NULL;
+  size_t line_size = 0;
   snprintf(path, sizeof path, "%s/transform.ini", dir);
   FILE *f = fopen(path, "r");
   if (!f) {
@@ -343,7 +351,7 @@ static int read_manifest(const char *dir, transform_desc *desc, char *msg, size_
   int have = 0, lineno = 0, in_transform = 0, status = 0, degree = -1;
   bool in_section = false;
   *desc = (transform_desc){0};
-  while (!status && fgets(line, sizeof line, f)) {
+  while (!status && getline(&line, &line_size, f) >= 0) {
     lineno++;
     char *s = line;
     while (*s == ' ' || *s == '\t') s++;
@@ -376,7 +384,8 @@ static int read_manifest(const char *dir, transform_desc *desc, char *msg, size_
     have |= 1 << k;
     int bad = 0;
     if (k == 0) bad = parse_basis(word, &desc->basis);
-    else if (k == 1) bad = parse_int(word, &desc->levels);
+    else if (k == 1)
+      bad = parse_int(word, &desc->levels) || desc->levels > TRANSFORM_CLI_MAX_LEVELS;
     else if (k == 2) bad = parse_int(word, &desc->width);
     else if (k == 3) bad = parse_int(word, &desc->height);
     else if (k == 4) {
@@ -394,6 +403,7 @@ static int read_manifest(const char *dir, transform_desc *desc, char *msg, size_
       status = 1;
     }
   }
+  free(line);
   fclose(f);
   if (!status && (have & REQUIRED) != REQUIRED) {
     snprintf(msg, msg_size,
@@ -508,7 +518,7 @@ int cmd_transform(int argc, char **argv) {
       {.kind = CLI_CHOICE, .name = "--basis", .value = "haar|linear|quadratic", .target = &basis,
        .choices = bases, .help = "B-spline degree 0, 1 (CDF 5/3), 2 (bior3.3);\ndefault linear"},
       {.kind = CLI_INT, .name = "--levels", .value = "J", .target = &desc.levels, .min = 0,
-       .max = 60,
+       .max = TRANSFORM_CLI_MAX_LEVELS,
        .help = "decomposition levels (required; too many for\n"
                "the size is an error naming the largest J)"},
       {.kind = CLI_CHOICE, .name = "--mode", .value = "symmetric|periodic", .target = &mode,

@@ -23,7 +23,7 @@ transform_basis transform_basis_of_degree(int degree) {
 static int max_levels_1d(int n, transform_boundary boundary) {
   int j = 0;
   while (n >= 2 && (boundary != TRANSFORM_PERIODIC || n % 2 == 0)) {
-    n = (n + 1) / 2;
+    n = n / 2 + n % 2; /* (n + 1) / 2 overflowed at INT_MAX and looped for ever */
     j++;
   }
   return j;
@@ -44,7 +44,7 @@ static int plan_dimension(transform_plan *p, int n, int *len, level_rules *rules
   len[p->levels] = n;
   rules[p->levels] = ghost_rules_finest(d->basis, d->boundary, n);
   for (int l = p->levels; l >= 1; l--) {
-    len[l - 1] = (len[l] + 1) / 2;
+    len[l - 1] = len[l] / 2 + len[l] % 2;
     if (ghost_rules_coarsen(d->basis, d->boundary, len[l], &rules[l], &rules[l - 1])) {
       fog_fail(err, FOG_ERR_INVALID_ARGUMENT,
                "internal: singular boundary rule at level %d (length %d)", l, len[l]);

@@ -228,6 +228,8 @@ int main(void) {
         {"sed -i '1i garbage'", ":1: expected a comment or '[transform]' first"},
         {"sed -i 's/^mode = /mood = /'", "[transform] mood: unknown key"},
         {"sed -i '/^levels = /d'", "(missing: levels)"},
+        /* at most 60 (--levels' own limit): 1000000 stalled --inverse 25 s on its names */
+        {"sed -i 's/^levels = .*/levels = 1000000/'", "bad value \"1000000\" for levels"},
     };
     char saved[400], edit[2400], inverse_out[400];
     snprintf(saved, sizeof saved, "%s/transform.ini.saved", tmp);
@@ -316,6 +318,32 @@ int main(void) {
     snprintf(args, sizeof args, "--inverse %s --out %s/huge.exr", odd_dir, tmp);
     CHECK(run(args, err, sizeof err) != 0 && strstr(err, "more than a fogmap's"),
           "a manifest of 1000000 x 20000: %s", err);
+  }
+
+  /* an input path longer than the manifest reader's line was (512 bytes: the comment that
+   * names the input split, and its rest was refused as a key line): the folder inverts, and
+   * a shallower forward into it still removes the deeper levels (it read no manifest and
+   * kept them) */
+  {
+    char long_in[700], long_dir[400], long_out[400], copy_cmd[800], stale_level[500];
+    char long_args[1600];
+    int n = snprintf(long_in, sizeof long_in, "%s/", tmp);
+    for (int k = 0; k < 260; k++) n += snprintf(long_in + n, sizeof long_in - n, "./");
+    snprintf(long_in + n, sizeof long_in - n, "long.exr");
+    snprintf(long_dir, sizeof long_dir, "%s/long", tmp);
+    snprintf(long_out, sizeof long_out, "%s/long_back.exr", tmp);
+    snprintf(stale_level, sizeof stale_level, "%s/approx_2.exr", long_dir);
+    snprintf(copy_cmd, sizeof copy_cmd, "cp data/fogmap_sample.exr '%s'", long_in);
+    CHECK(system(copy_cmd) == 0, "cannot make %s", long_in);
+    snprintf(long_args, sizeof long_args, "'%s' --levels 2 --out %s", long_in, long_dir);
+    CHECK(run(long_args, err, sizeof err) == 0, "forward of a %zu-byte path: %s", strlen(long_in),
+          err);
+    snprintf(long_args, sizeof long_args, "'%s' --levels 1 --out %s", long_in, long_dir);
+    CHECK(run(long_args, err, sizeof err) == 0 && !exists(stale_level),
+          "a shallower forward of the long path left approx_2.exr (%s)", err);
+    snprintf(long_args, sizeof long_args, "--inverse %s --out %s", long_dir, long_out);
+    CHECK(run(long_args, err, sizeof err) == 0 && exists(long_out),
+          "inverse of the folder of a %zu-byte path: %s", strlen(long_in), err);
   }
 
   char cmd[400];

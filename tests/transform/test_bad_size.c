@@ -1,5 +1,6 @@
 /* A size too small for J levels is refused with a message naming the largest J that
  * fits (symmetric: every split needs >= 2 samples; periodic: also an even length). */
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -34,6 +35,10 @@ int main(void) {
   refused(1, 64, 1, TRANSFORM_SYMMETRIC, 0);
   refused(48, 40, 4, TRANSFORM_PERIODIC, 3);   /* 40 = 8 * 5 */
   refused(17, 16, 1, TRANSFORM_PERIODIC, 0);   /* odd width */
+  /* the largest int: halving it as (n + 1) / 2 overflowed and never reached 1 */
+  CHECK(transform_max_levels(INT_MAX, INT_MAX, TRANSFORM_SYMMETRIC) == 31,
+        "INT_MAX: %d levels, expected 31", transform_max_levels(INT_MAX, INT_MAX,
+                                                                TRANSFORM_SYMMETRIC));
   transform_plan *plan;
   fog_error err;
   CHECK((plan = transform_plan_create(&(transform_desc){.width = 0, .height = 4}, &err)) == NULL,

@@ -53,7 +53,13 @@ static void check(transform_basis basis, transform_boundary mode, transform_deco
   for (size_t i = 0; i < n; i++) diff = fmax(diff, fabs((double)r[i] - c[i]));
   CHECK(diff <= bound * test_max_abs(c, n), "in-place forward differs by %.3g (%dx%d J=%d)", diff,
         w, h, levels);
+  /* and the in-place inverse (the CLI's --inverse) gives the map back as well */
   transform_inverse(plan, r, r);
+  double back = 0.0;
+  for (size_t i = 0; i < n; i++) back = fmax(back, fabs((double)r[i] - f[i]));
+  back /= test_max_abs(f, n);
+  CHECK(back <= bound, "in-place inverse %dx%d J=%d: error %.3g (bound %.3g)", w, h, levels,
+        back, bound);
   free(f), free(c), free(r);
   transform_plan_destroy(plan);
 }
