@@ -442,8 +442,8 @@ static int handle(void *user, const char *section, const char *key, const char *
   if (!strcmp(section, "box")) {
     if (!strcmp(key, "origin")) cfg->box.origin_set = true;
     if (!strcmp(key, "cell_size")) cfg->box.cell_size_set = true;
-    if (!strcmp(key, "floor")) cfg->box.floor_set = true;
-    if (!strcmp(key, "top")) cfg->box.top_set = true;
+    if (!strcmp(key, "floor")) cfg->box.floor_set = true, cfg->box.floor_line = s->line;
+    if (!strcmp(key, "top")) cfg->box.top_set = true, cfg->box.top_line = s->line;
   }
   return ok;
 }
@@ -1121,37 +1121,40 @@ static int check_models(parse_state *ps) {
     fail(&s, "fog", "model", "volume needs a 'vdb = FILE or PATTERN' line (the 3D grid)");
     return 1;
   }
-  if (cfg->fog.model == FOG_MODEL_LINEAR && !(cfg->fog.fog_end > cfg->fog.fog_start)) {
-    s.line = cfg->fog.model_line;
-    fail(&s, "fog", "model", "linear fog needs fog_end above fog_start, got fog_start = %g "
-         "and fog_end = %g", cfg->fog.fog_start, cfg->fog.fog_end);
+  /* Keys of a model other than the scene's are checked all the same (docs/config.md): a
+   * scene switched to that model later (the viewer, fit's rungs, an edit) must not meet
+   * an error its config was loaded with. The one of the pair set last is named. */
+  if (!(cfg->fog.fog_end > cfg->fog.fog_start)) {
+    const int start = key_line(&s, "fog", "fog_start"), end = key_line(&s, "fog", "fog_end");
+    s.line = end > start ? end : start;
+    fail(&s, "fog", end > start ? "fog_end" : "fog_start", "linear fog needs fog_end above "
+         "fog_start, got fog_start = %g and fog_end = %g", cfg->fog.fog_start,
+         cfg->fog.fog_end);
     return 1;
   }
   /* the octaves: Perlin fog's, or the turbulence inside quadric volumes with NOISE */
-  if (cfg->fog.model == FOG_MODEL_PERLIN ||
-      fog_quadric_noisy(cfg->fog.quadrics, cfg->fog.quadric_count)) {
-    int n = cfg->fog.perlin_size, winds = cfg->fog.perlin_wind_count;
-    if (n & (n - 1)) {
-      s.line = cfg->fog.perlin_size_line;
-      fail(&s, "fog", "perlin_size", "expected a power of two (8, 16, 32, 64 or 128), got %d", n);
-      return 1;
-    }
-    if (winds != 3 && (winds % 3 || winds < 3 * cfg->fog.perlin_octaves)) {
-      s.line = cfg->fog.perlin_wind_line;
-      fail(&s, "fog", "perlin_wind", "expected 3 numbers (one drift for every octave) or 3 per "
-           "octave (%d numbers for %d octaves), got %d numbers", 3 * cfg->fog.perlin_octaves,
-           cfg->fog.perlin_octaves, winds);
-      return 1;
-    }
-    if (cfg->fog.model == FOG_MODEL_PERLIN && !(cfg->box.top > cfg->box.floor)) {
-      /* the one of the two the config sets last (only floor set: top has no line) */
-      const int top = key_line(&s, "box", "top"), floor_line = key_line(&s, "box", "floor");
-      const char *named = floor_line > top ? "floor" : "top";
-      s.line = floor_line > top ? floor_line : top;
-      fail(&s, "box", named, "Perlin fog fills the terrain's footprint between [box] floor and "
-           "top: expected top above floor, got floor %g and top %g", cfg->box.floor, cfg->box.top);
-      return 1;
-    }
+  const int octave_size = cfg->fog.perlin_size, winds = cfg->fog.perlin_wind_count;
+  if (octave_size & (octave_size - 1)) {
+    s.line = cfg->fog.perlin_size_line;
+    fail(&s, "fog", "perlin_size", "expected a power of two (8, 16, 32, 64 or 128), got %d",
+         octave_size);
+    return 1;
+  }
+  if (winds != 3 && (winds % 3 || winds < 3 * cfg->fog.perlin_octaves)) {
+    s.line = cfg->fog.perlin_wind_line;
+    fail(&s, "fog", "perlin_wind", "expected 3 numbers (one drift for every octave) or 3 per "
+         "octave (%d numbers for %d octaves), got %d numbers", 3 * cfg->fog.perlin_octaves,
+         cfg->fog.perlin_octaves, winds);
+    return 1;
+  }
+  if (cfg->fog.model == FOG_MODEL_PERLIN && !(cfg->box.top > cfg->box.floor)) {
+    /* the one of the two the config sets last (only floor set: top has no line) */
+    const int top = key_line(&s, "box", "top"), floor_line = key_line(&s, "box", "floor");
+    const char *named = floor_line > top ? "floor" : "top";
+    s.line = floor_line > top ? floor_line : top;
+    fail(&s, "box", named, "Perlin fog fills the terrain's footprint between [box] floor and "
+         "top: expected top above floor, got floor %g and top %g", cfg->box.floor, cfg->box.top);
+    return 1;
   }
   if (cfg->fog.model == FOG_MODEL_HEIGHT || cfg->fog.model == FOG_MODEL_PERLIN) {
     double low = scene_lowest_point(cfg);

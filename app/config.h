@@ -147,6 +147,7 @@ typedef struct scene_box_config {
   double floor, top;
   /* Set in the file (a VDB places the box itself unless these are set). */
   bool origin_set, cell_size_set, floor_set, top_set;
+  int floor_line, top_line; /* where floor and top were set (0: not in the file), for errors */
 } scene_box_config;
 
 typedef struct scene_camera_config {

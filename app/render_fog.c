@@ -501,7 +501,7 @@ static int render_file_fog(render_fog *fog, const scene_config *cfg, fog_error *
   int status = render_fog_create_map(fog, cfg, &map, err);
   fogmap_destroy(&map);
   if (status) { /* name the file: the GL's limits, the transform's sizes are about it */
-    fog_error_wrap(err, err, "%.120s:%d: [fog] %s %.120s: ", cfg->path, line, key, path);
+    fog_error_wrap(err, err, "%.120s:%d: [fog] %s: %.120s: ", cfg->path, line, key, path);
   }
   return status;
 }

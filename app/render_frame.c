@@ -248,7 +248,12 @@ int render_session_frame(render_session *s, const frame_pixels *out, fog_error *
   const render_scene *sc = &s->scene;
   size_t pixels = (size_t)sc->width * sc->height;
   if (s->has_fog) {
-    if (render_fog_draw(&s->fog, &sc->cam, &sc->target, &s->fog_target, &rerr)) goto fail;
+    if (render_fog_draw(&s->fog, &sc->cam, &sc->target, &s->fog_target, &rerr)) {
+      /* the scene's settings refused (the loop cap names the keys to change): say whose */
+      if (rerr.code == FOG_ERR_UNSUPPORTED)
+        fog_error_wrap(&rerr, &rerr, "%.300s: ", s->config.path);
+      goto fail;
+    }
     if (out->rgba && gl_target_read(&s->fog_target, 0, 4, out->rgba, &rerr)) goto fail;
     if (out->transmittance && gl_target_read(&s->fog_target, 1, 1, out->transmittance, &rerr))
       goto fail;

@@ -204,13 +204,17 @@ int vdb_source_apply_config(const vdb_source *source, scene_config *cfg, fog_err
   }
   if (!box->floor_set) box->floor = bottom;
   if (!box->top_set) box->top = top;
-  if (box->top <= box->floor) /* the file set one of them (the loader checks a pair) */
+  if (box->top <= box->floor) { /* the file set one of them (the loader checks a pair) */
+    const int line = box->top_set ? box->top_line : box->floor_line; /* 0: set in code */
+    char at[16] = "";
+    if (line > 0) snprintf(at, sizeof at, ":%d", line);
     return fog_fail(err, FOG_ERR_BAD_CONFIG,
-                    "%.300s: [box] %s = %g lies %s the VDB's fog, whose %s is %g: an empty "
-                    "box (set %s too, or move it)", cfg->path,
+                    "%.300s%s: [box] %s = %g lies %s the VDB's fog, whose %s is %g: an empty "
+                    "box (set %s too, or move it)", cfg->path, at,
                     box->top_set ? "top" : "floor", box->top_set ? box->top : box->floor,
                     box->top_set ? "below" : "above", box->top_set ? "floor" : "top",
                     box->top_set ? box->floor : box->top, box->top_set ? "floor" : "top");
+  }
   if (f->profile_set) return 0;
   if (g->kind == VDB_PROFILE_BSPLINE) {
     f->profile = SCENE_PROFILE_BSPLINE;

@@ -91,8 +91,16 @@ int main(void) {
                "expected one of fogmap|homogeneous|height|rbf|volume|quadric|linear|exp2|perlin, got "
                "'clouds'");
   /* The linear fog factor ends after it starts. */
-  expect_error("[fog]\nfog_start = 500\nmodel = linear\nfog_end = 400\n", "3: [fog] model: ",
+  expect_error("[fog]\nfog_start = 500\nmodel = linear\nfog_end = 400\n", "4: [fog] fog_end: ",
                "linear fog needs fog_end above fog_start, got fog_start = 500 and fog_end = 400");
+  /* a model's keys are checked whatever the scene's model (docs/config.md): a switch to it
+   * later must not meet an error the config loaded with */
+  expect_error("[fog]\nfog_end = 100\nmodel = homogeneous\nfog_start = 500\n",
+               "4: [fog] fog_start: ", "linear fog needs fog_end above fog_start");
+  expect_error("[fog]\nmodel = homogeneous\nperlin_size = 48\n", "3: [fog] perlin_size: ",
+               "expected a power of two");
+  expect_error("[fog]\nmodel = homogeneous\nperlin_wind = 1 2 3 4 5\n",
+               "3: [fog] perlin_wind: ", "expected 3 numbers");
   expect_error("[fog]\nmodel = linear\nfog_start = -1\n", "3: [fog] fog_start: ", "");
   expect_error("[fog]\nmodel = rbf\nrbf = 0 10 0 50\n", "3: [fog] rbf: ",
                "expected X Y Z RADIUS DENSITY (5 numbers), got '0 10 0 50'");
