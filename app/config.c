@@ -1387,25 +1387,41 @@ static void compact_exponent(char *number) {
   memmove(e[1] == '+' ? e + 1 : digits, first, strlen(first) + 1);
 }
 
-/* " x" in the shortest form that reads back as x (lines with many numbers stay short). */
-static void write_number(FILE *f, double x) {
-  char number[32];
-  for (int digits = 1; digits <= 17; digits++) {
-    snprintf(number, sizeof number, "%.*g", digits, x);
-    if (strtod(number, NULL) == x) break;
+/* x's shortest text that reads back as x (as a float with single): the fewest significant
+ * digits, written as %g writes them or positionally, whichever is shorter ("50", not
+ * "5e1"; "1e3", not "1000"; "100" on a tie). Lines of many numbers stay short: a written
+ * config line must not outgrow the line it was read from. */
+static void shortest_number(double x, bool single, char number[32]) {
+  const int most = single ? 9 : 17;
+  for (int digits = 1; digits <= most; digits++) {
+    snprintf(number, 32, "%.*g", digits, x);
+    const double back = strtod(number, NULL);
+    if (single ? (float)back == (float)x : back == x) break;
   }
   compact_exponent(number);
+  if (!strchr(number, 'e')) return;
+  char plain[64];
+  for (int decimals = 0; decimals <= 20; decimals++) {
+    const int n = snprintf(plain, sizeof plain, "%.*f", decimals, x);
+    if (n >= 32 || n >= (int)strlen(number) + 1) return; /* no shorter, or too long */
+    const double back = strtod(plain, NULL);
+    if (single ? (float)back == (float)x : back == x) {
+      if (n <= (int)strlen(number)) memcpy(number, plain, (size_t)n + 1);
+      return;
+    }
+  }
+}
+
+static void write_number(FILE *f, double x) {
+  char number[32];
+  shortest_number(x, false, number);
   fprintf(f, " %s", number);
 }
 
 /* A float in the shortest form that reads back as the same float. */
 static void write_float(FILE *f, float x) {
   char number[32];
-  for (int digits = 1; digits <= 9; digits++) {
-    snprintf(number, sizeof number, "%.*g", digits, (double)x);
-    if ((float)strtod(number, NULL) == x) break;
-  }
-  compact_exponent(number);
+  shortest_number((double)x, true, number);
   fprintf(f, " %s", number);
 }
 
@@ -1505,7 +1521,9 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
                                     e->diffusion, e->wind[0], e->wind[1], e->wind[2]};
         fprintf(f, "%s =", k->key);
         for (int c = 0; c < 12; c++) write_number(f, numbers[c]);
-        fprintf(f, " %llu\n", (unsigned long long)e->seed);
+        /* SEED only where it is not the default 0: the line stays as long as it was read */
+        if (e->seed) fprintf(f, " %llu", (unsigned long long)e->seed);
+        fputc('\n', f);
       }
       break;
     case V_QUADRIC: write_quadrics(f, cfg, k->key); break;
@@ -1518,7 +1536,10 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
         const double spot[12] = {l->position[0], l->position[1], l->position[2], l->colour[0],
                                  l->colour[1], l->colour[2], l->axis[0], l->axis[1],
                                  l->axis[2], l->inner, l->outer, l->radius};
-        write_numbers(f, l->spot ? "spot" : "lamp", l->spot ? spot : lamp, l->spot ? 12 : 7);
+        /* RADIUS only where it is not the default: a line read without one stays as long */
+        const int omitted = l->radius == LAMP_RADIUS;
+        write_numbers(f, l->spot ? "spot" : "lamp", l->spot ? spot : lamp,
+                      (l->spot ? 12 : 7) - omitted);
       }
       break;
     case V_LAMP_PATH: /* lamp numbers in file order: the array's, as written above */

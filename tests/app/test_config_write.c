@@ -223,12 +223,40 @@ int main(void) {
             scene_config_load(written, &again, &err) == 0 &&
             scene_config_fingerprint(&again) == scene_config_fingerprint(&back),
         "a spot of eleven 1.23456789012e-5 written and read back: %s", err.message);
-  /* a spot line of 188 bytes that takes 203 once written (each .12345678901234 as
-   * 0.12345678901234, and the radius): refused, naming the line, and nothing written (a
-   * config that would not load again) */
+  /* a spot line of 198 bytes without a radius, each number in its shortest form: written
+   * back no longer (the writer added the default radius, 202 bytes, and refused the scene:
+   * bake, fit --out and the viewer's save could not write a config that loads) */
+  strcpy(spot, "[light]\nspot = -1234.56789012345 -1234.56789012345 -1234.56789012345 "
+               "1.23456789012345 1.23456789012345 1.23456789012345 0.12345678901234 "
+               "0.12345678901234 0.12345678901234 1.23456789012e-5 22.345678901234567\n");
+  CHECK(strlen(spot) - strlen("[light]\n\n") == 198, "the spot line is %zu bytes",
+        strlen(spot) - strlen("[light]\n\n"));
+  CHECK(load_text(written, spot, &back, &err) == 0, "a 198-byte spot: %s", err.message);
+  CHECK(scene_config_write(&back, written, &err) == 0 &&
+            scene_config_load(written, &again, &err) == 0 &&
+            scene_config_fingerprint(&again) == scene_config_fingerprint(&back),
+        "a 198-byte spot without a radius written and read back: %s", err.message);
+  /* numbers in their shortest text: 50 as 50 (not 5e1), 1000 as 1e3, 100 as 100 */
+  {
+    scene_config numbers = back;
+    numbers.fog.fog_height = 50.0, numbers.fog.fog_end = 1000.0, numbers.fog.fog_start = 100.0;
+    CHECK(scene_config_write(&numbers, written, &err) == 0, "%s", err.message);
+    FILE *w = fopen(written, "r");
+    char line[512];
+    int found = 0;
+    while (w && fgets(line, sizeof line, w))
+      found += !strcmp(line, "fog_height = 50\n") + !strcmp(line, "fog_end = 1e3\n") +
+               !strcmp(line, "fog_start = 100\n");
+    if (w) fclose(w);
+    CHECK(found == 3, "%d of fog_height = 50, fog_end = 1e3, fog_start = 100 written so",
+          found);
+  }
+  /* a spot line of 192 bytes that takes 204 once written (each .12345678901234 as
+   * 0.12345678901234, and its radius .25 as 0.25): refused, naming the line, and nothing
+   * written (a config that would not load again) */
   strcpy(spot, "[light]\nspot = -.12345678901234 -.12345678901234 -.12345678901234 "
                ".12345678901234 .12345678901234 .12345678901234 -.12345678901234 "
-               "-.12345678901234 -.12345678901234 .12345678901234 .92345678901234\n");
+               "-.12345678901234 -.12345678901234 .12345678901234 .92345678901234 .25\n");
   CHECK(strlen(spot) - strlen("[light]\n\n") <= 199, "the spot line is %zu bytes", strlen(spot));
   CHECK(load_text(written, spot, &back, &err) == 0, "eleven long numbers: %s", err.message);
   unlink(written);
