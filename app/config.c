@@ -305,7 +305,7 @@ static char *read_line(char *buffer, int size, void *stream) {
     /* libinih takes "[fog] x" and "[fog]]" as [fog], ignoring the rest: refuse them */
     const char *close = strchr(p, ']');
     const char *rest = close ? close + 1 + strspn(close + 1, " \t\r\n") : NULL;
-    if (!s->error_line && close && *rest && *rest != ';' && *rest != '#') {
+    if (!s->error_line && close && ((*rest && *rest != ';' && *rest != '#') || close == p + 1)) {
       s->error_line = s->line;
       fog_fail(s->err, FOG_ERR_BAD_CONFIG, "%s:%d: expected '[section]', got '%.*s'", s->path,
                s->line, (int)strcspn(p, "\r\n"), p);
@@ -313,6 +313,15 @@ static char *read_line(char *buffer, int size, void *stream) {
     }
   }
   s->continuation = s->after_key && p > s->whole_line && *p && *p != ';' && *p != '#';
+  /* libinih also splits a key from its value at ':' ("density_scale: 0.5" loaded as a key):
+   * a config's keys take '=' alone (a value may hold ':', a path's) */
+  if (*p != '[' && *p != ';' && *p != '#' && *p && !s->continuation && !s->error_line &&
+      p[strcspn(p, "=:")] == ':') {
+    s->error_line = s->line;
+    fog_fail(s->err, FOG_ERR_BAD_CONFIG, "%s:%d: expected KEY = VALUE, got '%.*s' (a key "
+             "takes '=', not ':')", s->path, s->line, (int)strcspn(p, "\r\n"), p);
+    return NULL;
+  }
   /* the line's bytes without its end (\n or \r\n), which libinih strips anyway: a line of
    * 199 bytes fits the buffer whatever ends it */
   while (n > 0 && (s->whole_line[n - 1] == '\n' || s->whole_line[n - 1] == '\r')) n--;
@@ -381,7 +390,14 @@ static int parse_numbers(const char *text, double *out, int max) {
   int count = 0;
   const char *p = text;
   for (;;) {
-    while (*p == ' ' || *p == '\t' || *p == ',') p++;
+    /* numbers apart by blanks and at most one comma ("1,,2" read as two numbers: a list
+     * lost one silently); a comma may lead or end a line (a list over several lines) */
+    while (*p == ' ' || *p == '\t') p++;
+    if (*p == ',') {
+      p++;
+      while (*p == ' ' || *p == '\t') p++;
+      if (*p == ',') return -1;
+    }
     if (!*p) return count;
     if (count == max) return -1;
     char *end;
@@ -629,7 +645,7 @@ static const struct {
                                  "A B C D E F G H I J XMIN YMIN ZMIN XMAX YMAX ZMAX DENSITY", 17}};
 static int store_quadric(parse_state *s, const char *section, const char *key, const char *value) {
   scene_config *cfg = s->cfg;
-  size_t word = strcspn(value, " \t");
+  size_t word = strcspn(value, " \t,"); /* "sphere, 0 0 0 10 0.1" as numbers are written */
   int kind = -1;
   for (int i = 0; i < (int)(sizeof shapes / sizeof shapes[0]); i++)
     if (strlen(shapes[i].name) == word && !strncmp(value, shapes[i].name, word)) kind = i;
@@ -637,7 +653,9 @@ static int store_quadric(parse_state *s, const char *section, const char *key, c
     return fail(s, section, key, "expected a shape (sphere, ellipsoid, cylinder, cone or "
                 "general) and its numbers, got '%s'", value);
   double v[19];
-  const int want = shapes[kind].count, n = parse_numbers(value + word, v, want + 2);
+  const char *rest = value + word + strspn(value + word, " \t");
+  if (*rest == ',') rest++;
+  const int want = shapes[kind].count, n = parse_numbers(rest, v, want + 2);
   if (n < want || n > want + 2)
     return fail(s, section, key, "expected %s %s [EDGE [NOISE]] (%d to %d numbers), got '%s'",
                 shapes[kind].name, shapes[kind].numbers, want, want + 2, value);

@@ -93,6 +93,26 @@ int main(void) {
   /* The linear fog factor ends after it starts. */
   expect_error("[fog]\nfog_start = 500\nmodel = linear\nfog_end = 400\n", "4: [fog] fog_end: ",
                "linear fog needs fog_end above fog_start, got fog_start = 500 and fog_end = 400");
+  /* ':' is not a key's separator (libinih takes it), and '[]' names no section */
+  expect_error("[fog]\ndensity_scale: 0.5\n", "2: expected KEY = VALUE, got 'density_scale: 0.5'",
+               "");
+  expect_error("[]\ndensity_scale = 0.5\n", "1: expected '[section]', got '[]'", "");
+  /* two commas in a row: an error, not a number left out (a list lost one silently) */
+  expect_error("[fog]\ndensity_scale = 0.5,,\n", "2: [fog] density_scale: ", "");
+  expect_error("[camera]\nposition = 0,,150, 480\n", "2: [camera] position: ", "");
+  {
+    /* one comma between numbers, after a quadric's shape, and ending a list's line */
+    char path[256];
+    scene_config cfg;
+    fog_error err = {0};
+    CHECK(load_text("[fog]\nmodel = quadric\nquadric = sphere, 0, 50, 0, 30, 0.1\n"
+                    "profile = bspline\nprofile_degree = 1\nprofile_coefficients = 1, 2,\n"
+                    "  3, 4\n", path, &cfg, &err) == 0 &&
+              cfg.fog.quadric_count == 1 && cfg.fog.profile_count == 4 &&
+              cfg.fog.profile_coefficients[3] == 4.0,
+          "commas as documented: %s (quadrics %d, coefficients %d)", err.message,
+          cfg.fog.quadric_count, cfg.fog.profile_count);
+  }
   /* a model's keys are checked whatever the scene's model (docs/config.md): a switch to it
    * later must not meet an error the config loaded with */
   expect_error("[fog]\nfog_end = 100\nmodel = homogeneous\nfog_start = 500\n",
