@@ -80,8 +80,12 @@ void fluid_emission_fill(fluid_sim *sim) {
       float *row = sim->emission + (size_t)wrap(z0 + dz, h) * w;
       for (int dx = 0; dx < nx; dx++) {
         const double ex = (x0 + dx) - (double)em->x;
-        row[wrap(x0 + dx, w)] +=
-            (float)((double)em->rate * sim->desc.dt * exp(-(ex * ex + ez * ez) * inv_two_s2));
+        /* at most what a cell may hold: a step's amount past FLT_MAX was inf, and
+         * relaxation's 0 x (base - inf) made the emitter's centre NaN, then 0 */
+        float *cell = &row[wrap(x0 + dx, w)];
+        *cell = (float)fmin((double)*cell + (double)em->rate * sim->desc.dt *
+                                                exp(-(ex * ex + ez * ez) * inv_two_s2),
+                            (double)FOGMAP_MAX_DENSITY);
       }
     }
   }

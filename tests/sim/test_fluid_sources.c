@@ -38,6 +38,25 @@ int main(void) {
   printf("emitter after 10 steps: max error %.3g (peak %.3g)\n", worst, 10 * 4.0 * dt);
   CHECK(worst <= 2e-3 * 10 * 4.0 * dt, "emitter max error %g", worst);
 
+  /* An emitter whose step's amount passes FLT_MAX (rate 3e38, dt 2: the public API allows
+   * it): its centre holds the most a cell may (1e12), not 0 (inf, then relaxation's
+   * 0 x -inf made it NaN, cleaned to 0: a hole where the most fog is) */
+  {
+    const fluid_emitter huge = {16.0f, 16.0f, 2.0f, 3e38f};
+    fluid_sim_desc hd = fluid_sim_desc_default(32, 32);
+    hd.dt = 2.0f, hd.emitters = &huge, hd.emitter_count = 1;
+    fluid_sim *hs = fluid_sim_create(&hd, &err);
+    CHECK(hs != NULL, "create: %s", err.message);
+    if (hs) {
+      fluid_sim_step(hs, &err);
+      const float *hr = fluid_sim_density(hs)->density;
+      CHECK(hr[16 * 32 + 16] == FOGMAP_MAX_DENSITY && hr[16 * 32 + 17] == FOGMAP_MAX_DENSITY,
+            "a huge emitter's centre %g and neighbour %g, expected %g", hr[16 * 32 + 16],
+            hr[16 * 32 + 17], FOGMAP_MAX_DENSITY);
+      fluid_sim_destroy(hs);
+    }
+  }
+
   /* Strokes: paint across the x seam, then erase more than is there. */
   CHECK(!fluid_sim_paint(sim, &(fluid_stroke){58, 20, 70, 20, 4, 1.5f, false}, &err), "%s",
         err.message);
