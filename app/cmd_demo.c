@@ -20,6 +20,7 @@
 #include "app/config.h"
 #include "app/render_fog.h"
 #include "app/live_rung.h"
+#include "app/out_folder.h"
 #include "app/recorder.h"
 #include "app/window_program.h"
 #include "render/fog_models.h"
@@ -67,13 +68,15 @@ static int last_frame_png(const headless_job *h, const char *folder) {
 
 static int record_instead(const headless_job *h, const char *reason) {
   char folder[PATH_MAX + 1] = "out/demo";
-  recorder probe;
+  recorder probe = {0}; /* its made: the folders a failed run takes away again */
   fog_error rerr = {0};
   char temp[] = "/tmp/fogpipe-demo-XXXXXX";
   bool made_temp = false;
   if (recorder_open(&probe, &(recorder_desc){.folder = folder, .width = h->width,
                                              .height = h->height},
                     &rerr)) {
+    out_folder_undo(&probe.made);
+    probe = (recorder){0};
     if (!mkdtemp(temp)) {
       fprintf(stderr, "fogpipe demo: %s, and no folder to record into (%s)\n", reason,
               rerr.message);
@@ -93,6 +96,7 @@ static int record_instead(const headless_job *h, const char *reason) {
       cli_sequence_not_scene_input("demo", "the recording folder", frames, h->config);
   if (refused) {
     if (made_temp) rmdir(temp);
+    out_folder_undo(&probe.made);
     return refused;
   }
   printf("fogpipe demo: %s: recording %d frame%s of %s headless into %s instead\n", reason,
@@ -107,6 +111,8 @@ static int record_instead(const headless_job *h, const char *reason) {
   int status = record_run(&job);
   if (!status && h->screenshot) status = last_frame_png(h, folder);
   if (status && made_temp) rmdir(temp); /* left only if empty: frames written stay */
+  /* out/demo (and out/) made for a run that failed: gone again while empty, as record's */
+  if (status) out_folder_undo(&probe.made);
   return status;
 }
 

@@ -74,7 +74,7 @@ _Static_assert((long long)SCENE_MAX_SCALE_HEIGHT == (long long)VDB_PROFILE_MAX_S
 #define WORLD 1e7
 #define MIN_LENGTH 1e-4
 #define MAX_EXTINCTION 1e12
-#define MAX_RADIANCE 1e4
+#define MAX_RADIANCE SCENE_CONFIG_MAX_RADIANCE
 /* "|fogmap|homogeneous|...": the model table's names in kind order (V_ENUM's value is the
  * index, so the kind); keys[] reads it from its second character. */
 static const char model_names[] =

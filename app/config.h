@@ -28,6 +28,9 @@
 
 #define SCENE_CONFIG_PATH_MAX 1024
 #define SCENE_CONFIG_MAX_PROFILE 64
+/* The most a colour key may hold (sun_colour, colour, ambient, the sky): under half
+ * float's 65504, which the recordings' R G B hold. */
+#define SCENE_CONFIG_MAX_RADIANCE 1e4
 /* The most far / near a camera may have: the float depth buffer of a standard projection
  * loses surfaces past near x 3.4e7 (they round to the cleared depth, 1) */
 #define SCENE_CAMERA_MAX_DEPTH_RATIO 1e7

@@ -96,7 +96,7 @@ extern "C" bool panel_combo(panel *, const char *label, int *current, const char
 extern "C" bool panel_color3(panel *, const char *label, float rgb[3]) {
   // ImGui (1.86) leaves a channel typed after Ctrl+click unclamped: -100 made negative
   // light, and a config the brush's Ctrl+S refused. Held to [0, 1e4], the configs' colour
-  // range (app/config.c's MAX_RADIANCE).
+  // range (SCENE_CONFIG_MAX_RADIANCE).
   const bool changed = ImGui::ColorEdit3(label, rgb);
   for (int c = 0; c < 3; c++) rgb[c] = rgb[c] >= 0.0f ? (rgb[c] <= 1e4f ? rgb[c] : 1e4f) : 0.0f;
   return changed;

@@ -7,6 +7,7 @@
  * what it holds (the caller's last hue), so that a sun dimmed to 0 and up again comes back
  * in its colour, not white. */
 void sun_hue_split(const double colour[3], float hue[3], float *strength);
+/* Each channel at most SCENE_CONFIG_MAX_RADIANCE (a hue channel may be typed past 1). */
 void sun_hue_join(const float hue[3], float strength, double colour[3]);
 
 #endif

@@ -129,7 +129,9 @@ static int window_loop(gl_context *gl, window_shell *shell, window_source *src,
   scene_config_camera(cfg, &fc.cam);
   window_frame f = {.window = window, .gl = gl, .fc = &fc};
   double last_time = glfwGetTime();
-  for (int index = 0; !gl_context_should_close(gl); index++) {
+  /* index counts the frames drawn: waits while minimised are none of --frames, of
+   * --screenshot's frame or of the scene's clock (they counted, and a sequence jumped) */
+  for (int index = 0; !gl_context_should_close(gl);) {
     gl_context_poll_events(gl);
     const double now = glfwGetTime(), dt = now - last_time;
     /* the first frame's dt is the set-up's tail, not a frame */
@@ -172,6 +174,7 @@ static int window_loop(gl_context *gl, window_shell *shell, window_source *src,
     gl_context_swap_buffers(gl);
     if (gl_util_check("window frame", err)) return 1;
     if (o->quit_after_frames && index + 1 >= o->frames) return 0;
+    index++;
   }
   return 0;
 }

@@ -5,7 +5,8 @@
  * --screenshot, the PNG holds the last frame's R, G, B encoded as sRGB and dithered, the
  * very codes of tests/reference/srgb8_dither_reference.h; a window-only option is named
  * as having no effect; a shorter run after a longer one leaves only its own frames; a scene
- * whose fogmap is one of out/demo's frames is refused before anything there is cleared. */
+ * whose fogmap is one of out/demo's frames is refused before anything there is cleared; a
+ * scene that fails leaves no out/demo behind. */
 #include "tests/app/record_util.h"
 #include "tests/app/child_util.h"
 #include "tests/test_util.h"
@@ -165,6 +166,23 @@ int main(void) {
   CHECK(status == 0 && access(unpadded, F_OK) == 0,
         "demo beside a fogmap frame.00002.exr: exit %d, the fogmap %s", status,
         access(unpadded, F_OK) == 0 ? "kept" : "gone");
+  /* a scene that fails to load, in a folder without out/: exit 1 and no out/demo (nor out/)
+   * left empty behind (the folder probe's were never taken away) */
+  char fresh[700], broken[800], fresh_out[800];
+  snprintf(fresh, sizeof fresh, "%s/fresh", root);
+  snprintf(broken, sizeof broken, "%s/broken.ini", fresh);
+  snprintf(fresh_out, sizeof fresh_out, "%s/out", fresh);
+  CHECK(mkdir(fresh, 0755) == 0, "cannot make %s", fresh);
+  char cut[800], cut_cmd[2000];
+  snprintf(cut, sizeof cut, "%s/cut.exr", fresh);
+  snprintf(cut_cmd, sizeof cut_cmd, "head -c 100 data/fogmap_sample.exr > '%s'", cut);
+  CHECK(system(cut_cmd) == 0, "%s", cut_cmd);
+  test_write_text(broken, "[fog]\nfogmap = cut.exr\n"); /* loads; its file fails to */
+  char *const failing[] = {bin_abs, "demo", broken, "--frames", "1", "--size", "32x18", NULL};
+  status = run_demo(bin_abs, fresh, log, failing);
+  CHECK(status == 1 && access(fresh_out, F_OK) != 0,
+        "demo of a scene that fails: exit %d, %s %s", status, fresh_out,
+        access(fresh_out, F_OK) == 0 ? "left behind" : "gone");
   test_remove_tree(root);
   return test_finish("test_demo_headless");
 }

@@ -1,7 +1,8 @@
 /* `fogpipe demo` opens its window (under Xvfb: xvfb-run must be installed, otherwise the
  * test is skipped with ctest's code 77), renders a few frames with the Dear ImGui panel
  * and saves a screenshot: the PNG has the window's size, the panel's corner (dark ImGui
- * window) differs from the scene on the right, and the image is not a flat colour. */
+ * window) differs from the same run's with --hide-panel while the scene on the right
+ * agrees, and the image is not a flat colour. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
@@ -39,12 +40,42 @@ int main(void) {
       hi = v > hi ? v : hi;
     }
     CHECK(hi - lo > 0.3, "the window is a flat colour (range %g)", hi - lo);
-    /* The panel sits at (10, 10); sample inside its title bar and far right (the scene). */
-    int panel = 25 * r.width + 60, scene = 135 * r.width + 440;
-    double dp = fabs(r.density[panel] - r.density[scene]) + fabs(g.density[panel] - g.density[scene]) +
-                fabs(b.density[panel] - b.density[scene]);
-    CHECK(dp > 0.05, "no panel visible: pixel (60,25) equals the scene at (440,135)");
   }
+  /* The panel sits at (10, 10): the same run with --hide-panel differs inside its title bar
+   * (60, 25) and agrees far right (440, 135), the scene in both. (Comparing (60, 25) with
+   * (440, 135) of one image passed with no panel at all: sky against terrain.) */
+  char bare[600];
+  snprintf(bare, sizeof bare, "%s/no_panel.png", root);
+  snprintf(cmd, sizeof cmd,
+           "xvfb-run -a -s '-screen 0 800x600x24' '%s' demo configs/default.ini --size 480x270 "
+           "--scale 0.25 --frames 3 --hide-panel --screenshot '%s' >'%s' 2>&1",
+           record_bin(), bare, log);
+  status = system(cmd);
+  CHECK(status == 0, "the demo with --hide-panel failed (status %d)", status);
+  fogmap br = {0}, bg = {0}, bb = {0};
+  const int bare_loaded = loaded &&
+                          !fogmap_load(bare, &(fogmap_load_desc){.channel = "R"}, &br, &err) &&
+                          !fogmap_load(bare, &(fogmap_load_desc){.channel = "G"}, &bg, &err) &&
+                          !fogmap_load(bare, &(fogmap_load_desc){.channel = "B"}, &bb, &err) &&
+                          br.width == r.width && br.height == r.height;
+  CHECK(bare_loaded, "the --hide-panel screenshot: %s", err.message);
+  if (bare_loaded) {
+    const int panel = 25 * r.width + 60, scene = 135 * r.width + 440;
+    double at_panel = 0.0, at_scene = 0.0;
+    const fogmap *with[3] = {&r, &g, &b}, *without[3] = {&br, &bg, &bb};
+    for (int c = 0; c < 3; c++) {
+      at_panel += fabs(with[c]->density[panel] - without[c]->density[panel]);
+      at_scene += fabs(with[c]->density[scene] - without[c]->density[scene]);
+    }
+    printf("with the panel and without: (60,25) differs by %.3f, (440,135) by %.3f\n",
+           at_panel, at_scene);
+    CHECK(at_panel > 0.05, "no panel visible: pixel (60,25) is the same without the panel "
+          "(differs by %g)", at_panel);
+    CHECK(at_scene < 0.02, "the scene at (440,135) differs between the runs by %g", at_scene);
+  }
+  fogmap_destroy(&br);
+  fogmap_destroy(&bg);
+  fogmap_destroy(&bb);
   fogmap_destroy(&r);
   fogmap_destroy(&g);
   fogmap_destroy(&b);

@@ -33,5 +33,11 @@ int main(void) {
   CHECK(fabs(stored[0] - 2.0) < 1e-6 && fabs(stored[1] - 1.0) < 1e-6 &&
             fabs(stored[2] - 0.4) < 1e-6,
         "the sunset came back as %g %g %g, expected 2 1 0.4", stored[0], stored[1], stored[2]);
+  /* a hue channel typed to 1e4 (the panel holds a typed channel to the configs' range)
+   * at strength 10: the colour stays within what sun_colour may hold */
+  const float typed[3] = {1e4f, 1.0f, 0.5f};
+  sun_hue_join(typed, 10.0f, stored);
+  CHECK(stored[0] == 1e4 && stored[1] == 10.0 && stored[2] == 5.0,
+        "typed hue x 10: %g %g %g, expected 1e4 10 5", stored[0], stored[1], stored[2]);
   return test_finish("test_sun_hue");
 }
