@@ -193,14 +193,24 @@ int bench_valley_scene(scene_geometry *geo, camera *cam, fog_error *err) {
   return 0;
 }
 
-int bench_write_chart(const chart_desc *desc, const chart_point *points, int count,
-                      const bench_outputs *files, bool *drawn, char *error, int error_size) {
-  char why[256];
-  *drawn = chart_can_draw(why, sizeof why);
-  if (!*drawn)
-    printf("chart: the PNG is not drawn (%s); its points are in %s\n", why, files->chart_csv);
-  return chart_write(desc, points, count, files->chart_csv, *drawn ? files->chart_png : NULL,
-                     error, error_size) != 0;
+void bench_write_files(bench_files_written *w, int table_failed, const chart_desc *desc,
+                       const chart_point *points, int count, const bench_outputs *files) {
+  w->failed = table_failed != 0, w->drawn = false;
+  if (!w->failed) {
+    char why[256];
+    w->drawn = chart_can_draw(why, sizeof why);
+    if (!w->drawn)
+      printf("chart: the PNG is not drawn (%s); its points are in %s\n", why,
+             files->chart_csv);
+    w->failed = chart_write(desc, points, count, files->chart_csv,
+                            w->drawn ? files->chart_png : NULL, w->error,
+                            (int)sizeof w->error) != 0;
+  }
+  if (w->failed) printf("files: %s (the figures follow)\n", w->error);
+}
+
+int bench_files_report(const bench_files_written *w, fog_error *err) {
+  return w->failed ? fog_fail(err, FOG_ERR_FILE_ACCESS, "%s", w->error) : 0;
 }
 
 int bench_report(const char *stage, int status, const fog_error *err) {

@@ -93,12 +93,22 @@ int bench_time_rows(const bench_timed_rows *rows, fog_error *err);
 int bench_report(const char *stage, int status, const fog_error *err);
 /* Tables: chart_table_open / chart_table_write (app/chart.h). */
 #include "app/chart.h"
-/* A stage's chart: the points' CSV always, the PNG where gnuplot runs; without gnuplot (the
- * GPU kit ships none) the PNG is skipped with a note on stdout (*drawn false). A stage of
- * minutes keeps its figures when its files fail: it says so, goes on and prints its summary
- * line, then fails (bench_report) after it. Returns 0, or 1 with error set. */
-int bench_write_chart(const chart_desc *desc, const chart_point *points, int count,
-                      const bench_outputs *files, bool *drawn, char *error, int error_size);
+/* A stage's table and chart, written after its timing. The chart's CSV always, its PNG
+ * where gnuplot runs; without gnuplot (the GPU kit ships none) the PNG is skipped with a
+ * note on stdout (drawn false). A stage of minutes keeps its figures when its files fail:
+ * failed and error say so, the stage prints "files: ERROR (the figures follow)", goes on
+ * to its summary line and fails after it (bench_files_report). */
+typedef struct bench_files_written {
+  bool failed, drawn;
+  char error[1024];
+} bench_files_written;
+/* table_failed: the stage's table writer's status (its message in written->error). */
+void bench_write_files(bench_files_written *written, int table_failed,
+                       const chart_desc *desc, const chart_point *points, int count,
+                       const bench_outputs *files);
+/* The stage's status once its summary line is out: 0, or 1 with err naming the file that
+ * failed. */
+int bench_files_report(const bench_files_written *written, fog_error *err);
 /* mkdir -p; non-zero and a message naming the folder on failure. */
 int bench_make_folder(const char *path, char *error, int size);
 /* RMSE and max of |gpu - ref| over n values (a NaN from the GL counts as the worst), and

@@ -345,7 +345,6 @@ int bench_light(int argc, char **argv) {
   int exit_status = bench_parse(&command, argc, argv);
   if (exit_status >= 0) return exit_status;
   const int W = options.width, H = options.height, frames = options.frames;
-  char error[1024] = "";
   int status = 1, row_count = 0;
   size_t pixels = (size_t)W * H;
   fog_error rerr = {0};
@@ -463,16 +462,14 @@ int bench_light(int argc, char **argv) {
   chart_desc chart = {.title = title, .x_label = "fog pass per frame (ms)",
                       .y_label = "max |in-scatter - reference| / max in-scatter", .log_x = true,
                       .log_y = true};
-  /* a file that fails costs the stage its status, not its figures (bench_write_chart) */
-  bool drawn = false;
-  const bool files_failed =
-      write_table(files.table, rows, row_count, error, sizeof error) ||
-      bench_write_chart(&chart, points, row_count, &files, &drawn, error, sizeof error);
-  char files_error[sizeof error];
-  snprintf(files_error, sizeof files_error, "%s", error);
-  if (files_failed) printf("files: %s (the figures follow)\n", files_error);
+  /* a file that fails costs the stage its status, not its figures */
+  bench_files_written written;
+  bench_write_files(&written,
+                    write_table(files.table, rows, row_count, written.error,
+                                 sizeof written.error),
+                    &chart, points, row_count, &files);
   printf("\nCSV: %s, %s; PNG: %s\n", files.table, files.chart_csv,
-         drawn ? files.chart_png : "not drawn");
+         written.drawn ? files.chart_png : "not drawn");
   /* The default scene's rows: unlit at full and half resolution, ours at the product's
    * defaults (48^3, [light] shadow_steps and shadow_nodes) at full and half (live). */
   const light_row *unlit_full = &rows[ROW_UNLIT_FULL], *unlit_half = &rows[ROW_UNLIT_HALF],
@@ -534,8 +531,7 @@ int bench_light(int argc, char **argv) {
          live->ms / unlit_half->ms, ours_full ? ours_full->ms / unlit_full->ms : NAN,
          scenes[0].volume_ms[1],
          live->max_error, froxel_ratio[0], march_ms / ours_ms);
-  status = 0;
-  if (files_failed) status = fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", files_error);
+  status = bench_files_report(&written, &rerr);
   goto done;
 
 out_of_memory:

@@ -387,7 +387,6 @@ int bench_lights(int argc, char **argv) {
   int exit_status = bench_parse(&command, argc, argv);
   if (exit_status >= 0) return exit_status;
   const int W = options.width, H = options.height, frames = options.frames;
-  char error[1024] = "";
   int status = 1, row_count = 0, live_rows[2] = {0, 0};
   size_t pixels = (size_t)W * H;
   const int cols = error_count(W), rows_e = error_count(H);
@@ -492,14 +491,12 @@ int bench_lights(int argc, char **argv) {
   chart_desc chart = {.title = title, .x_label = "fog pass per frame (ms)",
                       .y_label = "max |lamp in-scatter - reference| / max", .log_x = true,
                       .log_y = true};
-  /* a file that fails costs the stage its status, not its figures (bench_write_chart) */
-  bool drawn = false;
-  const bool files_failed =
-      write_table(files.table, rows, row_count, error, sizeof error) ||
-      bench_write_chart(&chart, points, point_count, &files, &drawn, error, sizeof error);
-  char files_error[sizeof error];
-  snprintf(files_error, sizeof files_error, "%s", error);
-  if (files_failed) printf("files: %s (the figures follow)\n", files_error);
+  /* a file that fails costs the stage its status, not its figures */
+  bench_files_written written;
+  bench_write_files(&written,
+                    write_table(files.table, rows, row_count, written.error,
+                                 sizeof written.error),
+                    &chart, points, point_count, &files);
   for (int s = 0; s < SCENE_COUNT; s++)
     for (int i = 0; i < row_count; i++)
       if (rows[i].scene == s && rows[i].beyond_cap) {
@@ -511,7 +508,7 @@ int bench_lights(int argc, char **argv) {
         break;
       }
   printf("\nCSV: %s, %s; PNG: %s\n", files.table, files.chart_csv,
-         drawn ? files.chart_png : "not drawn");
+         written.drawn ? files.chart_png : "not drawn");
   /* A: the valley's default (row 2: ours 8+8) over its unlit row (0), per lamp, at 640x360:
    * the lamps' work is per pixel, so scaled from W x H by the pixel count. */
   const double per_light = (rows[2].ms - rows[0].ms) / scenes[0].lamps.count *
@@ -560,8 +557,7 @@ int bench_lights(int argc, char **argv) {
   printf("lights: ms_per_light=%.2f march_speedup_at_matched_error=%.2f "
          "fogshop_halo_error_ratio=%.0f march_time_extrapolated=%d\n", per_light, b[1], c,
          b_extrapolated[1] ? 1 : 0);
-  status = 0;
-  if (files_failed) status = fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", files_error);
+  status = bench_files_report(&written, &rerr);
   goto done;
 
 out_of_memory:

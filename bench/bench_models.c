@@ -516,16 +516,14 @@ int bench_models(int argc, char **argv) {
   snprintf(title, sizeof title, "fog models %dx%d: max tau error vs GL time (exact and marched)", W, H);
   chart_desc chart = {.title = title, .x_label = "GL time per frame (ms)",
                       .y_label = "max |tau - CPU reference|", .log_x = true, .log_y = true};
-  /* a file that fails costs the stage its status, not its figures (bench_write_chart) */
-  bool drawn = false;
-  const bool files_failed =
-      write_table(files.table, rows, row_count, error, sizeof error) ||
-      bench_write_chart(&chart, points, row_count, &files, &drawn, error, sizeof error);
-  char files_error[sizeof error];
-  snprintf(files_error, sizeof files_error, "%s", error);
-  if (files_failed) printf("files: %s (the figures follow)\n", files_error);
+  /* a file that fails costs the stage its status, not its figures */
+  bench_files_written written;
+  bench_write_files(&written,
+                    write_table(files.table, rows, row_count, written.error,
+                                 sizeof written.error),
+                    &chart, points, row_count, &files);
   printf("\nCSV: %s, %s; PNG: %s\n", files.table, files.chart_csv,
-         drawn ? files.chart_png : "not drawn");
+         written.drawn ? files.chart_png : "not drawn");
   double exact_ms[MODEL_COUNT] = {0}, speedup[MODEL_COUNT] = {0}, unskipped_ms = 0.0;
   double paper_error = NAN, paper_ms = NAN;
   for (int i = 0; i < row_count; i++)
@@ -580,8 +578,7 @@ int bench_models(int argc, char **argv) {
          exact_ms[2], speedup[2], exact_ms[1], speedup[1], exact_ms[3], speedup[3],
          unskipped_ms / exact_ms[3], exact_ms[4], speedup[4], scale[0].ms, scale[1].ms, fit_s,
          exact_ms[PERLIN], speedup[PERLIN], paper_error, unmatched[0] ? unmatched : "none");
-  status = 0;
-  if (files_failed) status = fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", files_error);
+  status = bench_files_report(&written, &rerr);
   goto done;
 
 out_of_memory:

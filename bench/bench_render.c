@@ -730,7 +730,6 @@ int bench_render(int argc, char **argv) {
     points[point_count++] = (chart_point){.series = r->series, .x = r->ms,
                                           .y = y > ERROR_FLOOR ? y : ERROR_FLOOR};
   }
-  char error[1024];
   bench_outputs files;
   bench_outputs_in(&files, out_dir, "render");
   /* (gnuplot's enhanced text: no underscores in labels) */
@@ -741,14 +740,12 @@ int bench_render(int argc, char **argv) {
                       .x_label = "GL time per frame (ms)",
                       .y_label = "max |tau - CPU reference|",
                       .log_x = true, .log_y = true};
-  /* a file that fails costs the stage its status, not its figures (bench_write_chart) */
-  bool drawn = false;
-  const bool files_failed =
-      write_table_csv(files.table, rows, row_count, error, sizeof error) ||
-      bench_write_chart(&chart, points, point_count, &files, &drawn, error, sizeof error);
-  char files_error[sizeof error];
-  snprintf(files_error, sizeof files_error, "%s", error);
-  if (files_failed) printf("files: %s (the figures follow)\n", files_error);
+  /* a file that fails costs the stage its status, not its figures */
+  bench_files_written written;
+  bench_write_files(&written,
+                    write_table_csv(files.table, rows, row_count, written.error,
+                                 sizeof written.error),
+                    &chart, points, point_count, &files);
 
   /* X: the cheapest marching of the sample map with max error <= 1e-3 over the exact linear
    * walk; X2 the same on the detailed fog. */
@@ -769,7 +766,7 @@ int bench_render(int argc, char **argv) {
          LOD_LEVELS, upload.textures, upload.bytes / 1e6, upload.direct_ms, upload.staged_ms,
          upload.direct_ms / upload.staged_ms);
   printf("\nCSV: %s (table), %s (chart data)\nPNG: %s; tau image: %s/render_tau.png\n",
-         files.table, files.chart_csv, drawn ? files.chart_png : "not drawn", out_dir);
+         files.table, files.chart_csv, written.drawn ? files.chart_png : "not drawn", out_dir);
   if (!matched_sample)
     printf("note: no ray marching reached max error <= 1e-3; X uses the most accurate one\n");
   for (int k = 0; k < EXTRA_COUNT; k++)
@@ -825,8 +822,7 @@ int bench_render(int argc, char **argv) {
          "lod_overhead_at_mu1=%.3f empty_skip_speedup=%.3f "
          "exact_speedup_at_matched_error_detailed=%.3f\n",
          X, Y, Z, S, X2);
-  status = 0;
-  if (files_failed) status = fog_fail(&rerr, FOG_ERR_FILE_ACCESS, "%s", files_error);
+  status = bench_files_report(&written, &rerr);
   goto done;
 
 out_of_memory:
