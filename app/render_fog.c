@@ -129,7 +129,19 @@ static int load_volume_file(const scene_config *cfg, const vdb_sequence *seq, in
   }
   vdb_dense_grid *g = &frame->grid;
   const vdb_world_map *w = &frame->world;
-  size_t n = (size_t)g->dim[0] * g->dim[1] * g->dim[2];
+  size_t n = (size_t)g->dim[0] * g->dim[1] * g->dim[2], fog = 0;
+  while (fog < n && !(g->values[fog] > 0.0f)) fog++;
+  if (fog == n && seq->count == 1) {
+    /* one file alone with nothing to draw: what a wrong [fog] vdb_grid looks like (as a
+     * fogmap, and to import, it is refused the same way; a sequence plays such a frame) */
+    fog_fail(err, FOG_ERR_BAD_FILE, "%.300s:%d: [fog] vdb: %.300s: grid '%s' holds no fog "
+             "(its %lld active voxels are all 0%s)", cfg->path, f->vdb_line,
+             seq->paths[index], f->vdb_grid[0] ? f->vdb_grid : "density", g->active_voxels,
+             g->negative_voxels > 0 ? " once its negative ones are clamped: a signed grid, "
+                                      "not a density?" : "");
+    vdb_frame_destroy(frame);
+    return 1;
+  }
   for (size_t i = 0; i < n; i++) g->values[i] = (float)(f->density_scale * g->values[i]);
   /* u_c = (p_a - base_a) / step_a - index_min_c for the world axis a fed by index axis c. */
   *grid = (volume_grid_desc){.dim = {g->dim[0], g->dim[1], g->dim[2]}, .values = g->values};
