@@ -601,9 +601,14 @@ static int load_frames(const import_options *o, const vdb_sequence *seq, vdb_fra
   char list[320] = "";
   for (int k = 0; k < seq->count; k++) {
     if (!frames[k].empty) continue;
-    int nearest = with_fog;
+    /* nearest by frame number (frames 1, 2 and 9 of a --skip-missing run: 2 takes 1's,
+     * not 9's, which was as near in the list); a tie goes to the earlier frame */
+    int nearest = -1;
+    const long long at = seq->frames[k];
     for (int j = 0; j < seq->count; j++)
-      if (!frames[j].empty && abs(j - k) < abs(nearest - k)) nearest = j;
+      if (!frames[j].empty &&
+          (nearest < 0 || llabs(seq->frames[j] - at) < llabs(seq->frames[nearest] - at)))
+        nearest = j;
     frames[k].profile = frames[nearest].profile;
     const size_t used = strlen(list);
     if (used < 300) snprintf(list + used, sizeof list - used, "%s%d", empty ? " " : "",

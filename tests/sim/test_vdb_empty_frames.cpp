@@ -6,8 +6,9 @@
 // empty, and a single empty file, are refused naming the grid. A frame whose voxels are all
 // 0 is one without fog too, and `model = volume` plays both as no fog. Before, the first
 // empty frame stopped the whole import ("grid 'density' is empty"). `fogpipe fit` over the
-// frames: an empty one leaves the domain as it was; all empty, refused. (C++ to write the
-// grids.)
+// frames: an empty one leaves the domain as it was; all empty, refused. With
+// --skip-missing over frames 1, 2 and 9, the empty frame 2 takes frame 1's profile (the
+// nearest by number, not by place in the list). (C++ to write the grids.)
 #include <openvdb/openvdb.h>
 
 #include <sys/stat.h>
@@ -26,15 +27,17 @@ extern "C" {
 
 static std::string dir;
 
-/* x0 < 0: no active voxel; else a 4^3 blob of `value` from index x0 along x */
-static void write_frame(const std::string &path, int x0, float value = 1.0f) {
+/* x0 < 0: no active voxel; else a 4^3 blob of `value` from index x0 along x, y0 along y,
+ * times 1 + rise j at its j-th layer up */
+static void write_frame(const std::string &path, int x0, float value = 1.0f, int y0 = 20,
+                        float rise = 0.0f) {
   openvdb::FloatGrid::Ptr g = openvdb::FloatGrid::create();
   g->setName("density");
   g->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
   for (int i = 0; i < 4 && x0 >= 0; i++)
     for (int j = 0; j < 4; j++)
       for (int k = 0; k < 4; k++)
-        g->tree().setValue(openvdb::Coord(x0 + i, 20 + j, 30 + k), value);
+        g->tree().setValue(openvdb::Coord(x0 + i, y0 + j, 30 + k), value * (1.0f + rise * j));
   openvdb::GridPtrVec grids;
   grids.push_back(g);
   openvdb::io::File(path).write(grids);
@@ -103,6 +106,37 @@ int main() {
     // index 0 would have stretched it to 16 cells)
     CHECK(widths[0] == 6 && widths[1] == 6, "the sequence's fogmap is %d cells wide, expected "
           "6 (the blobs' footprint alone)", widths[1]);
+  }
+  // --skip-missing over frames 1, 2 (empty) and 9, each its own profile: frame 2 takes
+  // frame 1's, the nearest by number (it took 9's, as near in the list)
+  {
+    mkdir((dir + "/gap").c_str(), 0755);
+    write_frame(dir + "/gap/g_0001.vdb", 10, 1.0f, 20); /* even */
+    write_frame(dir + "/gap/g_0002.vdb", -1);
+    write_frame(dir + "/gap/g_0009.vdb", 10, 1.0f, 20, 3.0f); /* denser upward */
+    const std::string gap = std::string("'") + bin + "' import '" + dir +
+                            "/gap/g_####.vdb' --config none --up y --skip-missing "
+                            "--profile-per frame --out '" + dir + "/gap_out'";
+    status = run(gap, out);
+    CHECK(status == 0, "import of frames 1, 2, 9 (%d): %s", status, out.c_str());
+    std::string sidecar, line;
+    FILE *f = fopen((dir + "/gap_out/fog.ini").c_str(), "r");
+    char buffer[4096];
+    while (f && fgets(buffer, sizeof buffer, f)) sidecar += buffer;
+    if (f) fclose(f);
+    // each frame's section's profile line
+    auto profile_of = [&](const char *section) {
+      const size_t at = sidecar.find(section);
+      if (at == std::string::npos) return std::string();
+      const size_t key = sidecar.find("profile_coefficients", at);
+      return key == std::string::npos ? std::string()
+                                      : sidecar.substr(key, sidecar.find('\n', key) - key);
+    };
+    const std::string one = profile_of("[fog.0001]"), two = profile_of("[fog.0002]"),
+                      nine = profile_of("[fog.0009]");
+    CHECK(!one.empty() && one != nine && two == one,
+          "frame 2's profile '%s', frame 1's '%s', frame 9's '%s'", two.c_str(), one.c_str(),
+          nine.c_str());
   }
   // fit over the frames: an empty frame adds nothing to the domain (its one zero voxel at
   // index 0 stretched it 3.4 times a side), and frames that are all empty are refused (a
