@@ -64,7 +64,9 @@ static int parse_blob(const char *command, const char *option, const char *text,
     return cli_usage_error(command, "%s '%s': expected X,Z,SIGMA,PEAK, decimal numbers (in "
                            "cells) with SIGMA >= 1e-6 and PEAK >= 0, each at most %g in size",
                            option, text, (double)FLT_MAX);
-  if (o->blob_count >= max_blobs) return cli_usage_error(command, "more than %d blobs", max_blobs);
+  if (o->blob_count >= max_blobs)
+    return cli_usage_error(command, "%s: more than %d blobs (--blob and --blobs N together)",
+                           option, max_blobs);
   o->blobs[o->blob_count++] = (fog_blob){(float)v[0], (float)v[1], (float)v[2], (float)v[3]};
   return 0;
 }
@@ -85,6 +87,7 @@ static int parse_velocity(const char *command, const char *option, const char *t
 static int parse_design_options(int argc, char **argv, design_options *o) {
   int size[2] = {0, 0}, seed = 1;
   bool perlin = false, half = false, seed_given = false;
+  bool blob_base_given = false; /* 0 too: an option of the blobs needs blobs */
   /* the turbulence's options, in this order: given without --perlin they would do nothing */
   enum { NOISE_OPTIONS = 8 };
   bool noise_given[NOISE_OPTIONS] = {false};
@@ -139,7 +142,7 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
        .help = "slice change per unit time: evolving, not only drifting fog"},
       {.kind = CLI_SECTION, .name = "blobs:"},
       {.kind = CLI_NUMBER, .name = "--blob-base", .value = "B", .target = &o->blob_base,
-       .min = 0, .max = 1e9,
+       .min = 0, .max = 1e9, .given = &blob_base_given,
        .help = "density added to the blob sum (default 0; with --perlin it\n"
                "is the turbulence left between the banks)"},
   };
@@ -160,13 +163,15 @@ static int parse_design_options(int argc, char **argv, design_options *o) {
   if (!o->perlin && !o->random_blobs && !o->blob_count)
     return cli_usage_error("design", "say what to design: --perlin, --blobs N and/or --blob X,Z,SIGMA,PEAK");
   if (o->random_blobs + o->blob_count > max_blobs)
-    return cli_usage_error("design", "more than 256 blobs");
+    return cli_usage_error("design", "--blobs %d and %d --blob: %d blobs, expected at most %d",
+                           o->random_blobs, o->blob_count, o->random_blobs + o->blob_count,
+                           max_blobs);
   /* an option the output or the design does not use would be dropped without a word */
   const bool png = cli_ends_with(o->out, ".png");
   if (half && png) return cli_usage_error("design", "--half stores an EXR's channel: not for .png");
   if (o->png_max > 0 && !png)
     return cli_usage_error("design", "--png-max scales a .png: an EXR keeps the densities");
-  if (o->blob_base > 0 && !o->random_blobs && !o->blob_count)
+  if (blob_base_given && !o->random_blobs && !o->blob_count)
     return cli_usage_error("design", "--blob-base is added to the blobs: give --blob or --blobs");
   static const char *const noise_names[NOISE_OPTIONS] = {
       "--time", "--velocity", "--feature-size", "--octaves", "--gain", "--base", "--slice",
@@ -202,9 +207,9 @@ static int design_fogmap(design_options *o, fogmap *map, fog_error *err) {
   if (!status && o->blob_count) {
     fogmap *target = o->perlin ? &banks : map;
     if (o->perlin) status = fogmap_create(&banks, (int)width, (int)height, err);
-    if (!status)
-      status = designed_fog_blobs(
-          target, &(blob_fog_desc){.blobs = o->blobs, .blob_count = o->blob_count}, err);
+    blob_fog_desc blobs = blob_fog_desc_default();
+    blobs.blobs = o->blobs, blobs.blob_count = o->blob_count;
+    if (!status) status = designed_fog_blobs(target, &blobs, err);
     for (size_t i = 0; !status && i < (size_t)width * (size_t)height; i++)
       target->density[i] += (float)o->blob_base;
     if (!status && o->perlin) status = designed_fog_multiply(map, &banks, err);

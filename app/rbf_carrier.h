@@ -41,10 +41,11 @@ typedef struct rbf_carrier_desc {
   const fog_rbf_emitter *emitters; /* copied at create */
   int emitter_count;               /* >= 1 */
   /* The flow's domain: world x, z of its corner and its extent (> 0). Square cells cover
-   * it, the longer side `grid` of them and each side's count rounded up to an even one of 8
-   * or more, and the flow is periodic over those cells (what leaves one side enters the
-   * other; the period exceeds the extent by less than two cells, or more where a side has
-   * under 8): puffs outside take the velocity of the periodic copy. */
+   * it, the longer side `grid` of them and each side's count rounded up to an even one of 18
+   * or more (the simulation's least side), and the flow is periodic over those cells (what
+   * leaves one side enters the other; the period exceeds the extent by less than two cells,
+   * or more where a side has under 18): puffs outside take the velocity of the periodic
+   * copy. */
   double origin[2], size[2];
   int grid;         /* cells on the longer side (>= 8): RBF_CARRIER_GRID */
   double step;      /* seconds (> 0): RBF_CARRIER_STEP */

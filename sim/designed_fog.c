@@ -140,9 +140,13 @@ int designed_fog_perlin(fogmap *map, const perlin_fog_desc *desc, fog_error *err
   return 0;
 }
 
+blob_fog_desc blob_fog_desc_default(void) {
+  return (blob_fog_desc){.blobs = NULL, .blob_count = 0, .add = 0, .cutoff = BLOB_FOG_CUTOFF};
+}
+
 int designed_fog_blobs(fogmap *map, const blob_fog_desc *desc, fog_error *err) {
-  blob_fog_desc d = desc ? *desc : (blob_fog_desc){0};
-  double cutoff = d.cutoff != 0.0f ? d.cutoff : 6.0;
+  const blob_fog_desc d = desc ? *desc : blob_fog_desc_default();
+  const double cutoff = d.cutoff;
   if (!map || !map->density || map->width <= 0 || map->height <= 0)
     return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "Gaussian blobs: the fogmap is empty");
   if (d.blob_count < 0 || (d.blob_count > 0 && !d.blobs))

@@ -66,13 +66,19 @@ typedef struct fog_blob {
   float peak;   /* c >= 0 */
 } fog_blob;
 
+/* Every field is a value (no "0 means default"): start from blob_fog_desc_default(). */
 typedef struct blob_fog_desc {
   const fog_blob *blobs;
   int blob_count;
   int add;       /* 0: the map is overwritten with the blob sum; 1: blobs are added to it */
-  float cutoff;  /* each blob is evaluated within cutoff * sigma of its centre (beyond it
-                  * exp(-cutoff²/2) is dropped); 0 means 6 (a relative 1.5e-8) */
+  float cutoff;  /* > 0: each blob is evaluated within cutoff * sigma of its centre (beyond
+                  * it exp(-cutoff²/2) is dropped); the default 6 drops a relative 1.5e-8 */
 } blob_fog_desc;
+
+/* The cutoff that drops a relative 1.5e-8 of each blob. */
+#define BLOB_FOG_CUTOFF 6.0f
+/* No blobs, overwrite, cutoff BLOB_FOG_CUTOFF. */
+blob_fog_desc blob_fog_desc_default(void);
 
 /* Splats the blobs into map (point samples at cell positions). The total over an infinite
  * grid is 2πσ²c per blob up to an exp(-2π²σ²) aliasing term (Poisson summation), so mass

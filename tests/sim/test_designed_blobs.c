@@ -9,6 +9,9 @@
 #include "sim/fogmap.h"
 #include "test_util.h"
 
+/* The blobs at the default cutoff. */
+#define BLOBS(b, n) (&(blob_fog_desc){.blobs = (b), .blob_count = (n), .cutoff = BLOB_FOG_CUTOFF})
+
 static const double pi = 3.14159265358979323846;
 
 static void moments(const fogmap *m, double *mass, double *cx, double *cz) {
@@ -37,7 +40,7 @@ static void test_mass_and_centroid(void) {
   CHECK(fogmap_create(&map, 140, 110, &err) == 0, "%s", err.message);
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     const fog_blob *b = &cases[i];
-    CHECK(designed_fog_blobs(&map, &(blob_fog_desc){.blobs = b, .blob_count = 1}, &err) == 0,
+    CHECK(designed_fog_blobs(&map, BLOBS(b, 1), &err) == 0,
           "%s", err.message);
     double mass, cx, cz;
     moments(&map, &mass, &cx, &cz);
@@ -70,16 +73,18 @@ static void test_superposition_and_cutoff(void) {
   fogmap_create(&both, 64, 64, &err);
   fog_blob blobs[2] = {{.x = 20, .z = 30, .sigma = 4, .peak = 1},
                        {.x = 26.5f, .z = 33, .sigma = 2.5f, .peak = 0.5f}};
-  designed_fog_blobs(&one, &(blob_fog_desc){.blobs = &blobs[0], .blob_count = 1}, &err);
-  designed_fog_blobs(&two, &(blob_fog_desc){.blobs = &blobs[1], .blob_count = 1}, &err);
-  CHECK(designed_fog_blobs(&both, &(blob_fog_desc){.blobs = blobs, .blob_count = 2}, &err) == 0,
+  designed_fog_blobs(&one, BLOBS(&blobs[0], 1), &err);
+  designed_fog_blobs(&two, BLOBS(&blobs[1], 1), &err);
+  CHECK(designed_fog_blobs(&both, BLOBS(blobs, 2), &err) == 0,
         "%s", err.message);
   int sum_ok = 1;
   for (int i = 0; i < 64 * 64; i++)
     if (fabsf(both.density[i] - (one.density[i] + two.density[i])) > 1e-7f) sum_ok = 0;
   CHECK(sum_ok, "two blobs are not the sum of each");
   /* add mode: onto what is there */
-  designed_fog_blobs(&one, &(blob_fog_desc){.blobs = &blobs[1], .blob_count = 1, .add = 1},
+  designed_fog_blobs(&one,
+                     &(blob_fog_desc){.blobs = &blobs[1], .blob_count = 1, .add = 1,
+                                      .cutoff = BLOB_FOG_CUTOFF},
                      &err);
   CHECK(!memcmp(one.density, both.density, sizeof(float) * 64 * 64),
         "add mode differs from splatting both");
@@ -111,18 +116,22 @@ static void test_bad_blobs(void) {
   fogmap_create(&map, 16, 16, &err);
   map.density[3] = 7.0f;
   fog_blob bad[2] = {{.x = 5, .z = 5, .sigma = 1, .peak = 1}, {.x = 5, .z = 5, .sigma = 0}};
-  CHECK(designed_fog_blobs(&map, &(blob_fog_desc){.blobs = bad, .blob_count = 2}, &err) != 0 &&
+  CHECK(designed_fog_blobs(&map, BLOBS(bad, 2), &err) != 0 &&
             strstr(err.message, "blob 1") && strstr(err.message, "sigma"),
         "sigma 0 accepted: %s", err.message);
+  /* a cutoff of 0 is refused (it meant 6: no physical value means "default") */
+  CHECK(designed_fog_blobs(&map, &(blob_fog_desc){.blobs = bad, .blob_count = 1}, &err) != 0 &&
+            strstr(err.message, "cutoff"),
+        "cutoff 0 accepted: %s", err.message);
   bad[1] = (fog_blob){.x = 5, .z = 5, .sigma = 1, .peak = -1};
-  CHECK(designed_fog_blobs(&map, &(blob_fog_desc){.blobs = bad, .blob_count = 2}, &err) != 0 &&
+  CHECK(designed_fog_blobs(&map, BLOBS(bad, 2), &err) != 0 &&
             strstr(err.message, "peak"),
         "negative peak accepted");
   CHECK(map.density[3] == 7.0f && map.density[5 * 16 + 5] == 0.0f, "failed call changed the map");
   /* blobs far away (or huge) do nothing and do not overflow the index arithmetic */
   fog_blob far[2] = {{.x = 1e30f, .z = -1e30f, .sigma = 1, .peak = 1},
                      {.x = -500, .z = 8, .sigma = 3, .peak = 1}};
-  CHECK(designed_fog_blobs(&map, &(blob_fog_desc){.blobs = far, .blob_count = 2}, &err) == 0,
+  CHECK(designed_fog_blobs(&map, BLOBS(far, 2), &err) == 0,
         "%s", err.message);
   int zero = 1;
   for (int i = 0; i < 256; i++) zero &= map.density[i] == 0.0f;

@@ -46,7 +46,9 @@ static void test_output_matches_library(void) {
                                                   .base = 0.1f, .gain = 0.8f, .slice = 0.3f},
                       &err);
   fog_blob blobs[2] = {{20, 15, 6, 1}, {40.5f, 30, 9, 0.5f}};
-  designed_fog_blobs(&banks, &(blob_fog_desc){.blobs = blobs, .blob_count = 2}, &err);
+  designed_fog_blobs(&banks,
+                     &(blob_fog_desc){.blobs = blobs, .blob_count = 2, .cutoff = BLOB_FOG_CUTOFF},
+                     &err);
   for (int i = 0; i < 64 * 48; i++) banks.density[i] += 0.2f;
   designed_fog_multiply(&expect, &banks, &err);
 
