@@ -613,7 +613,11 @@ static int store_rbf_emitter(parse_state *s, const char *section, const char *ke
     return fail(s, section, key, "at most %d emitters", SCENE_CONFIG_MAX_EMITTERS);
   fog_rbf_emitter e = {.position = {v[0], v[1], v[2]}, .rate = v[3], .lifetime = v[4],
                        .radius = v[5], .density = v[6], .spread = v[7], .diffusion = v[8],
-                       .wind = {v[9], v[10], v[11]}, .seed = n == 13 ? (uint64_t)v[12] : 0};
+                       .wind = {v[9], v[10], v[11]},
+                       /* without SEED, its place among the emitters (0 for the first): two
+                        * emitters without one put every puff at the same offset, each plume
+                        * a copy of the other */
+                       .seed = n == 13 ? (uint64_t)v[12] : (uint64_t)cfg->fog.rbf_emitter_count};
   /* in double: RATE x LIFETIME can pass INT_MAX (1e7 x 1e7), where the count's int cast
    * is undefined and came out negative */
   double puffs = ceil(e.rate * e.lifetime - 1e-9);
@@ -1539,8 +1543,9 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
                                     e->diffusion, e->wind[0], e->wind[1], e->wind[2]};
         fprintf(f, "%s =", k->key);
         for (int c = 0; c < 12; c++) write_number(f, numbers[c]);
-        /* SEED only where it is not the default 0: the line stays as long as it was read */
-        if (e->seed) fprintf(f, " %llu", (unsigned long long)e->seed);
+        /* SEED only where it is not the default (its place): the line stays as long as it
+         * was read */
+        if (e->seed != (uint64_t)i) fprintf(f, " %llu", (unsigned long long)e->seed);
         fputc('\n', f);
       }
       break;

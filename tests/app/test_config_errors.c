@@ -113,6 +113,19 @@ int main(void) {
           "commas as documented: %s (quadrics %d, coefficients %d)", err.message,
           cfg.fog.quadric_count, cfg.fog.profile_count);
   }
+  {
+    /* emitters without SEED: each its place among them (the same seed made every puff of
+     * the second a copy of the first's, moved) */
+    char path[256];
+    scene_config cfg;
+    fog_error err = {0};
+    CHECK(load_text("[fog]\nmodel = rbf\nrbf_emitter = 0 10 0 2 3 1 0.1 4 0 1 0 0\n"
+                    "rbf_emitter = 100 10 0 2 3 1 0.1 4 0 1 0 0\n"
+                    "rbf_emitter = 50 10 0 2 3 1 0.1 4 0 1 0 0 9\n", path, &cfg, &err) == 0 &&
+              cfg.fog.rbf_emitter_count == 3 && cfg.fog.rbf_emitters[0].seed == 0 &&
+              cfg.fog.rbf_emitters[1].seed == 1 && cfg.fog.rbf_emitters[2].seed == 9,
+          "emitters' seeds: %s (%d emitters)", err.message, cfg.fog.rbf_emitter_count);
+  }
   /* a model's keys are checked whatever the scene's model (docs/config.md): a switch to it
    * later must not meet an error the config loaded with */
   expect_error("[fog]\nfog_end = 100\nmodel = homogeneous\nfog_start = 500\n",
