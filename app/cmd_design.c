@@ -203,12 +203,13 @@ static int design_fogmap(design_options *o, fogmap *map, fog_error *err) {
   fogmap banks = {0};
   int status = fogmap_create(map, (int)width, (int)height, err);
   o->noise.seed = (uint64_t)o->seed;
+  o->noise.stop = stop_signals_flag(); /* Ctrl-C stops between rows, not after all of them */
   if (!status && o->perlin) status = designed_fog_perlin(map, &o->noise, err);
   if (!status && o->blob_count) {
     fogmap *target = o->perlin ? &banks : map;
     if (o->perlin) status = fogmap_create(&banks, (int)width, (int)height, err);
     blob_fog_desc blobs = blob_fog_desc_default();
-    blobs.blobs = o->blobs, blobs.blob_count = o->blob_count;
+    blobs.blobs = o->blobs, blobs.blob_count = o->blob_count, blobs.stop = stop_signals_flag();
     if (!status) status = designed_fog_blobs(target, &blobs, err);
     for (size_t i = 0; !status && i < (size_t)width * (size_t)height; i++)
       target->density[i] += (float)o->blob_base;
@@ -232,7 +233,7 @@ int cmd_design(int argc, char **argv) {
   fog_error err;
   fogmap map = {0};
   int status = design_fogmap(&o, &map, &err);
-  if (!status && stop_signals_caught()) {
+  if (stop_signals_caught()) { /* between rows (the design fails, "stopped") or after */
     fprintf(stderr, "fogpipe design: interrupted: nothing written\n");
     stop_signals_restore(&stop);
     fogmap_destroy(&map);

@@ -130,6 +130,9 @@ int designed_fog_perlin(fogmap *map, const perlin_fog_desc *desc, fog_error *err
   double shift_z = fmod((double)d.velocity[1] * d.time, period);
   double slice = fmod((double)d.slice + fmod((double)d.slice_rate * d.time, 256.0), 256.0);
   for (int z = 0; z < map->height; z++) {
+    if (d.stop && *d.stop)
+      return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "Perlin fog: stopped at row %d of %d",
+                      z, map->height);
     double pz = (z - shift_z) / size;
     float *row = map->density + (size_t)z * (size_t)map->width;
     for (int x = 0; x < map->width; x++) {
@@ -179,6 +182,9 @@ int designed_fog_blobs(fogmap *map, const blob_fog_desc *desc, fog_error *err) {
     if (lo_x > hi_x || lo_z > hi_z) continue;
     int x0 = (int)lo_x, x1 = (int)hi_x, z0 = (int)lo_z, z1 = (int)hi_z;
     for (int z = z0; z <= z1; z++) {
+      if (d.stop && *d.stop)
+        return fog_fail(err, FOG_ERR_INVALID_ARGUMENT, "Gaussian blobs: stopped at blob %d",
+                        i);
       double dz = z - (double)b->z;
       float *row = map->density + (size_t)z * (size_t)map->width;
       for (int x = x0; x <= x1; x++) {

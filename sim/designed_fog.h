@@ -15,6 +15,7 @@
 #ifndef FOGPIPE_SIM_DESIGNED_FOG_H
 #define FOGPIPE_SIM_DESIGNED_FOG_H
 
+#include <signal.h>
 #include <stdint.h>
 
 #include "sim/fogmap.h"
@@ -48,6 +49,10 @@ typedef struct perlin_fog_desc {
   float slice_rate;     /* slice change per unit time: the fog also evolves, not only drifts */
   float gain;           /* density = base + gain * turbulence, > 0 */
   float base;           /* constant density added everywhere (>= 0) */
+  /* Set by the caller (its SIGINT/SIGTERM handler) to stop between rows: the call fails,
+   * "stopped", the map part written (NULL: runs to the end). A 16384² map of 30 octaves
+   * takes minutes. */
+  const volatile sig_atomic_t *stop;
 } perlin_fog_desc;
 
 /* 4 octaves, eddies of 32 cells, gain 1, slice 1/3 (off every octave's lattice planes);
@@ -73,6 +78,7 @@ typedef struct blob_fog_desc {
   int add;       /* 0: the map is overwritten with the blob sum; 1: blobs are added to it */
   float cutoff;  /* > 0: each blob is evaluated within cutoff * sigma of its centre (beyond
                   * it exp(-cutoff²/2) is dropped); the default 6 drops a relative 1.5e-8 */
+  const volatile sig_atomic_t *stop; /* as perlin_fog_desc's: looked at between rows */
 } blob_fog_desc;
 
 /* The cutoff that drops a relative 1.5e-8 of each blob. */

@@ -3,7 +3,7 @@
  * exit 0, the file there, no temporary beside it (they died with the signal and left
  * .OUT.tmp.PID.N, which no later run removes: 16 MB for a 2048x1152 render, 16 MB for a
  * 2048x2048 map). While the work before it runs: exit 130, saying nothing was written, and
- * nothing there. */
+ * nothing there; a long design stops between its rows, within seconds. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdlib.h>
 
@@ -83,6 +83,35 @@ int main(void) {
   char *const design[] = {(char *)bin, "design", "--perlin", "--size", "2048x2048", "--out",
                           map, NULL};
   stop_twice("design", design, root, map, ".map.exr.tmp", 10000000, log);
+
+  /* a design of ~20 s (4096x4096, 30 octaves) stops between its rows: exit 130 within
+   * seconds of the signal (it looked at the signal only once all of it was computed) */
+  {
+    char *const slow[] = {(char *)bin, "design", "--perlin", "--octaves", "30", "--size",
+                          "4096x4096", "--out", map, NULL};
+    const pid_t child = child_run(log, slow);
+    bool ready = false;
+    for (long waited = 0; waited < 120000 && !ready; waited++) {
+      ready = child_catches_term(child);
+      if (!ready && waitpid(child, NULL, WNOHANG) != 0) break;
+      if (!ready) nanosleep(&(struct timespec){.tv_nsec = 500000}, NULL);
+    }
+    nanosleep(&(struct timespec){.tv_nsec = 200000000}, NULL); /* into the rows */
+    struct timespec sent, ended;
+    clock_gettime(CLOCK_MONOTONIC, &sent);
+    if (ready) kill(child, SIGTERM);
+    int status = 0;
+    waitpid(child, &status, 0);
+    clock_gettime(CLOCK_MONOTONIC, &ended);
+    const double seconds =
+        (double)(ended.tv_sec - sent.tv_sec) + 1e-9 * (double)(ended.tv_nsec - sent.tv_nsec);
+    printf("design of 4096x4096, 30 octaves: stopped %.3f s after the signal\n", seconds);
+    fflush(stdout); /* not again by the next child's freopen */
+    CHECK(ready && child_exit_code(status) == 130 && seconds < 5.0,
+          "a long design stopped: exit %d, %.2f s after the signal", child_exit_code(status),
+          seconds);
+    CHECK(stat(map, &(struct stat){0}) != 0, "the stopped design wrote %s", map);
+  }
 
   /* transform --inverse of that map's pyramid: reads 13 files, writes 16 MB */
   snprintf(command, sizeof command,
