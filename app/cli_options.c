@@ -122,10 +122,15 @@ int cli_parse(const cli_spec *spec, int argc, char **argv, const char **operands
     /* `--out --synchronous` (a value left out) took the next option as a folder's name,
      * ran without it and exited 0; a number, size or range refuses such a value itself */
     const char *value = argv[++i];
-    if ((o->kind == CLI_TEXT || o->kind == CLI_OUTPUT) && !strncmp(value, "--", 2))
-      return cli_usage_error(spec->command,
-                             "%s needs a value (%s), got the option '%s' (a name that starts "
-                             "with '--' is written ./%s)", a, o->value, value, value);
+    if ((o->kind == CLI_TEXT || o->kind == CLI_OUTPUT) && !strncmp(value, "--", 2)) {
+      /* a path may be written ./--x; a grid's or channel's name has no such way */
+      const bool path = o->kind == CLI_OUTPUT || (o->value && (strstr(o->value, "DIR") ||
+                                                               strstr(o->value, "FILE")));
+      char hint[300] = "";
+      if (path) snprintf(hint, sizeof hint, " (a file that starts with '--' is ./%.200s)", value);
+      return cli_usage_error(spec->command, "%s needs a value (%s), got the option '%s'%s", a,
+                             o->value, value, hint);
+    }
     if (take_value(spec, o, value)) return 2;
   }
   if (*count < spec->min_operands)

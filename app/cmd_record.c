@@ -275,9 +275,6 @@ static player *start_player(const record_job *job, recorder *rec, const scene_co
   return src;
 }
 
-/* Frames done+1 .. last into rec; SIGINT/SIGTERM end the frame being drawn, then stop with
- * the command that resumes. 0, 1 (printed) or 130 (interrupted). */
-
 /* After a frame failed: the frames written stay whole (as after Ctrl-C), and the command
  * that finishes the run once `when` (a full disk, a missing input). */
 static void say_complete(const record_job *job, const recorder *rec, int first, int done,
@@ -288,6 +285,9 @@ static void say_complete(const record_job *job, const recorder *rec, int first, 
   fprintf(stderr, "fogpipe %s: %d of %d frames complete in %s; to finish once %s: %s\n",
           job->command, done - first + 1, last - first + 1, rec->folder, when, hint);
 }
+
+/* Frames done+1 .. last into rec; SIGINT/SIGTERM end the frame being drawn, then stop with
+ * the command that resumes. 0, 1 (printed) or 130 (interrupted). */
 static int record_frames(const record_job *job, recorder *rec, player *src, int width,
                          int height, int first, int done, int last) {
   const char *cmd = job->command;

@@ -244,6 +244,8 @@ typedef struct parse_state {
    * (INI_ALLOW_MULTILINE) hands it over as more of that key's value; a list (V_LIST)
    * appends it. after_key: a key was read since the section began (libinih's prev_name). */
   bool continuation, after_key;
+  bool list_comma_open; /* the list line before ended with a comma (a list's next line may
+                         * not start with one: two in a row) */
   /* A quadric line is stored once it is whole: it may go on over indented lines (a general
    * quadric's 17 numbers in full precision pass 199 bytes), so it waits for the next key or
    * the end of the file (finish_quadric). */
@@ -657,9 +659,9 @@ static int store_quadric(parse_state *s, const char *section, const char *key, c
     return fail(s, section, key, "expected a shape (sphere, ellipsoid, cylinder, cone or "
                 "general) and its numbers, got '%s'", value);
   double v[19];
-  const char *rest = value + word + strspn(value + word, " \t");
-  if (*rest == ',') rest++;
-  const int want = shapes[kind].count, n = parse_numbers(rest, v, want + 2);
+  /* parse_numbers takes the one comma after the shape ("sphere, 0 50 0 30 0.1") and
+   * refuses a second */
+  const int want = shapes[kind].count, n = parse_numbers(value + word, v, want + 2);
   if (n < want || n > want + 2)
     return fail(s, section, key, "expected %s %s [EDGE [NOISE]] (%d to %d numbers), got '%s'",
                 shapes[kind].name, shapes[kind].numbers, want, want + 2, value);
@@ -852,6 +854,15 @@ static int store_list(parse_state *s, const key_spec *k, const char *section, co
                       const char *value) {
   int *count = (int *)((char *)s->cfg + k->aux_offset);
   const int had = s->continuation ? *count : 0;
+  /* a comma may end one line or start the next, not both (parse_numbers' one comma) */
+  const char *first = value + strspn(value, " \t");
+  if (had && s->list_comma_open && *first == ',')
+    return fail(s, section, key, "two commas in a row (one ends the line above), got '%s'",
+                value);
+  const size_t length = strcspn(value, ";\r\n");
+  size_t end = length;
+  while (end > 0 && (value[end - 1] == ' ' || value[end - 1] == '\t')) end--;
+  s->list_comma_open = end > 0 && value[end - 1] == ',';
   double *field = (double *)((char *)s->cfg + k->offset) + had;
   int n = parse_numbers(value, field, SCENE_CONFIG_MAX_PROFILE - had);
   if (n < 1)
@@ -1412,7 +1423,8 @@ static void compact_exponent(char *number) {
 /* x's shortest text that reads back as x (as a float with single): the fewest significant
  * digits, written as %g writes them or positionally, whichever is shorter ("50", not
  * "5e1"; "1e3", not "1000"; "100" on a tie). Lines of many numbers stay short: a written
- * config line must not outgrow the line it was read from. */
+ * line is no longer than the line it was read from unless that one wrote numbers shorter
+ * still (".5", read back as 0.5). */
 static void shortest_number(double x, bool single, char number[32]) {
   const int most = single ? 9 : 17;
   for (int digits = 1; digits <= most; digits++) {
@@ -1507,10 +1519,7 @@ static void write_key(FILE *f, const scene_config *cfg, const key_spec *k) {
       int length = fprintf(f, "%s =", k->key);
       for (int i = 0; i < count; i++) {
         char number[32];
-        for (int digits = 1; digits <= 17; digits++) { /* write_number's shortest form */
-          snprintf(number, sizeof number, "%.*g", digits, d[i]);
-          if (strtod(number, NULL) == d[i]) break;
-        }
+        shortest_number(d[i], false, number); /* write_number's form */
         if (length + 1 + (int)strlen(number) > 120) length = fprintf(f, "\n   ");
         length += fprintf(f, " %s", number);
       }

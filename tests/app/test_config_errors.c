@@ -100,6 +100,10 @@ int main(void) {
   /* two commas in a row: an error, not a number left out (a list lost one silently) */
   expect_error("[fog]\ndensity_scale = 0.5,,\n", "2: [fog] density_scale: ", "");
   expect_error("[camera]\nposition = 0,,150, 480\n", "2: [camera] position: ", "");
+  expect_error("[fog]\nmodel = quadric\nquadric = sphere,,0 50 0 30 0.1\n",
+               "3: [fog] quadric: ", "");
+  expect_error("[fog]\nperlin_wind = 10, 0, 3,\n  , -7, 0.5, 11\n", "3: [fog] perlin_wind: ",
+               "two commas in a row");
   {
     /* one comma between numbers, after a quadric's shape, and ending a list's line */
     char path[256];

@@ -240,16 +240,17 @@ int main(void) {
   {
     scene_config numbers = back;
     numbers.fog.fog_height = 50.0, numbers.fog.fog_end = 1000.0, numbers.fog.fog_start = 100.0;
+    numbers.fog.perlin_wind[0] = 50.0; /* a list's numbers too (they were %g's: 5e+01) */
     CHECK(scene_config_write(&numbers, written, &err) == 0, "%s", err.message);
     FILE *w = fopen(written, "r");
     char line[512];
     int found = 0;
     while (w && fgets(line, sizeof line, w))
       found += !strcmp(line, "fog_height = 50\n") + !strcmp(line, "fog_end = 1e3\n") +
-               !strcmp(line, "fog_start = 100\n");
+               !strcmp(line, "fog_start = 100\n") + !strncmp(line, "perlin_wind = 50 ", 17);
     if (w) fclose(w);
-    CHECK(found == 3, "%d of fog_height = 50, fog_end = 1e3, fog_start = 100 written so",
-          found);
+    CHECK(found == 4, "%d of fog_height = 50, fog_end = 1e3, fog_start = 100, perlin_wind = 50 "
+          "... written so", found);
   }
   /* a spot line of 192 bytes that takes 204 once written (each .12345678901234 as
    * 0.12345678901234, and its radius .25 as 0.25): refused, naming the line, and nothing

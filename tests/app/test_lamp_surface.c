@@ -5,7 +5,8 @@
  * without fog (K = 0) the ratio is exp(-K (t + |P - lamp|)), t the pixel's surface distance:
  * an analytic reference. Then two lamps of different colours, whose per-channel weights the
  * fog pass recovers from the scene pass's packed normal: each channel's ratio lies between
- * the two lamps' own transmittances (it is their weighted mean). */
+ * the two lamps' own transmittances (it is their weighted mean); two white lamps, each
+ * channel the weighted mean itself, the weights cos / (d^2 + r^2). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -133,6 +134,45 @@ int main(void) {
          "1e-5 (1 + 1/T)\n",
          checked, outside);
   CHECK(checked > 200 && outside == 0, "%d of %d channel values off", outside, checked);
+
+  /* Two white lamps, 10 x apart in intensity: every channel the weighted mean
+   * sum I g T / sum I g, g = cos / (d^2 + r^2) on the flat ground (the coloured pair above
+   * gives each channel one lamp, where any weights pass) */
+  const char *white = "lamp = 5 8 -3 4000 4000 4000 0.5\nlamp = -30 6 -20 40000 40000 40000 0.5\n";
+  const double intensity[2] = {4000.0, 40000.0}, r2 = 0.25;
+  if (render(dir, white, 0.0, clear, depth) || render(dir, white, k, fogged, depth))
+    return test_finish("test_lamp_surface");
+  double worst_mean = 0.0, spread = 0.0;
+  int means = 0;
+  for (int py = 0; py < H; py++)
+    for (int px = 0; px < W; px++) {
+      int i = py * W + px;
+      if (depth[i] >= 1e5f || !(clear[4 * i] > 0.02f)) continue;
+      double o[3], d[3], p[3], weight = 0.0, weighted = 0.0, t[2];
+      camera_ray(&cam, px, py, W, H, o, d);
+      for (int a = 0; a < 3; a++) p[a] = o[a] + depth[i] * d[a];
+      for (int l = 0; l < 2; l++) {
+        const double to[3] = {lamps[l][0] - p[0], lamps[l][1] - p[1], lamps[l][2] - p[2]};
+        const double d2 = to[0] * to[0] + to[1] * to[1] + to[2] * to[2];
+        const double g = fmax(to[1] / sqrt(d2), 0.0) / (d2 + r2); /* the ground's normal: up */
+        t[l] = exp(-k * sqrt(d2));
+        weight += intensity[l] * g, weighted += intensity[l] * g * t[l];
+      }
+      const double want = weighted / weight, tau = exp(-k * depth[i]);
+      spread = fmax(spread, fabs(t[0] - t[1]) / want);
+      for (int c = 0; c < 3; c++) {
+        const double got = fogged[4 * i + c] / (tau * clear[4 * i + c]);
+        worst_mean = fmax(worst_mean, fabs(got / want - 1.0) / (1.0 + 1.0 / want));
+        means++;
+      }
+    }
+  printf("two white lamps: %d channel values, worst |T / (sum I g T / sum I g) - 1| / (1 + 1/T) "
+         "%.2e (the lamps' T differ by up to %.2f of it)\n", means, worst_mean, spread);
+  /* measured 4.5e-5: the ground is the terrain of height 0.001, whose bumps tilt its normal
+   * ~1e-4 from up; a weight without its cosine or falloff is off by 10 % and more */
+  CHECK(means > 600 && spread > 0.3 && worst_mean < 2e-4,
+        "two white lamps: a channel off the weighted mean by %.3e (of %d; spread %.2f)",
+        worst_mean, means, spread);
   rmdir(dir);
   return test_finish("test_lamp_surface");
 }
