@@ -107,7 +107,9 @@ int main(void) {
              cwd);
   test_write_text(ini, text);
   CHECK(scene_config_load(ini, &cfg, &err) == 0, "%s", err.message);
-  check_path("pipeline (fogmap)", &cfg, 2.0, 3);
+  /* at 24 fps, where the pipeline's (n - 1) x (1/fps) and (n - 1) / fps differ in their
+   * last bit from frame 6 on (the frames still agree: the lamps reach the GPU as floats) */
+  check_path("pipeline (fogmap)", &cfg, 24.0, 7);
   remove(ini);
   return test_finish("test_lamp_animation");
 }
