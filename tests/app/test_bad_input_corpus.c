@@ -63,11 +63,15 @@ int main(void) {
     int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     int left = test_folder_entries(out_dir);
     int found = record_log_contains(log, fragment);
+    /* a sanitizer's report on the way out (make test-sanitize) is no expected error */
+    const int sanitizer = record_log_contains(log, "Sanitizer") ||
+                          record_log_contains(log, "runtime error:");
+    CHECK(!sanitizer, "cases.txt:%d: a sanitizer reported on `fogpipe %s`", number, args);
     CHECK(code == want, "cases.txt:%d: `fogpipe %s` exited %d, expected %d", number, args,
           code, want);
     CHECK(found, "cases.txt:%d: the output lacks \"%s\"", number, fragment);
     CHECK(left == 0, "cases.txt:%d: %d entries left in the output folder", number, left);
-    if (code != want || !found || left) record_print_log(log);
+    if (code != want || !found || left || sanitizer) record_print_log(log);
     printf("case %2d: exit %d, %s\n", number, code, found ? "message as expected" : "MESSAGE DIFFERS");
     run++;
   }

@@ -17,6 +17,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   const char *path = fuzz_memfd_path(data + 1, size - 1);
   fogmap map;
   fog_error err;
+  memset(&err, 0x55, sizeof err); /* a message that is not terminated shows up below */
   if (fogmap_load(path, &desc, &map, &err) == 0) {
     if (map.width <= 0 || map.height <= 0 || !map.density) abort();
     size_t count = (size_t)map.width * (size_t)map.height;

@@ -15,6 +15,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   int width = 0, height = 0;
   float *pixels = NULL;
   fog_error err;
+  memset(&err, 0x55, sizeof err); /* a message that is not terminated shows up below */
   if (png_read_channel("fuzz.png", data + 1, size - 1, channel, NULL, &width, &height, &pixels,
                        &err) == 0) {
     /* Every pixel must be there and be a sample / (2^depth - 1). */

@@ -1,8 +1,9 @@
 /* libFuzzer's driver, replaced for the ordinary build (tests/fuzz/harnesses.cmake): runs a
  * harness's LLVMFuzzerTestOneInput once on each file named, or on each file of each folder
  * named, in name order, as `fuzz_TARGET FILE...` does under libFuzzer. A harness aborts on a
- * broken promise; this driver adds a non-zero exit for an unreadable or empty argument
- * list, so a corpus that went missing does not pass as zero inputs replayed. */
+ * broken promise; this driver adds a non-zero exit for an unreadable argument, an empty
+ * folder or an empty argument list, so a corpus that went missing does not pass as zero
+ * inputs replayed, and counts the inputs the harness turned away unrun (its -1). */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <stdint.h>
@@ -14,6 +15,8 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 /* Defined by the harnesses that need set-up (fuzz_config.c); weak, as libFuzzer has it. */
 __attribute__((weak)) int LLVMFuzzerInitialize(int *argc, char ***argv);
+
+static int rejected; /* inputs the harness returned -1 for: not run */
 
 static int replay_file(const char *path) {
   FILE *f = fopen(path, "rb");
@@ -43,7 +46,7 @@ static int replay_file(const char *path) {
   if (!exact) abort();
   memcpy(exact, data, size);
   free(data);
-  LLVMFuzzerTestOneInput(exact, size);
+  rejected += LLVMFuzzerTestOneInput(exact, size) == -1;
   free(exact);
   return 0;
 }
@@ -97,6 +100,9 @@ int main(int argc, char **argv) {
       if (n < 0) {
         fprintf(stderr, "fuzz replay: cannot list %s\n", argv[i]);
         failures++;
+      } else if (n == 0) { /* a corpus or regressions folder emptied: nothing replayed */
+        fprintf(stderr, "fuzz replay: %s holds no input\n", argv[i]);
+        failures++;
       }
       inputs += n > 0 ? n : 0;
     } else {
@@ -104,6 +110,7 @@ int main(int argc, char **argv) {
       inputs++;
     }
   }
-  printf("fuzz replay: %d inputs run, %d unreadable\n", inputs, failures);
+  printf("fuzz replay: %d inputs, %d turned away by the harness unrun, %d unreadable or "
+         "missing\n", inputs, rejected, failures);
   return failures || inputs == 0;
 }
