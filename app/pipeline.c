@@ -1143,7 +1143,8 @@ static int sync_surface_light(pipeline *p, fog_error *err) {
  * *self_shadow and its own volume shown; back on the fogmap, the fogmap's volume again. */
 static int show_live_rung(pipeline *p, const pipeline_params *params, bool rung,
                           const fog_model *fogmap_model, const double sun[3],
-                          int quadric_count, fog_sun_shadow_kind *self_shadow, fog_error *err) {
+                          const fog_quadric *beside, int quadric_count,
+                          fog_sun_shadow_kind *self_shadow, fog_error *err) {
   if (!rung) {
     p->rung.kind = LIVE_RUNG_FOGMAP; /* a later rung is fitted anew (a reset between) */
     if (!p->rung_shadow_shown) return 0;
@@ -1171,7 +1172,19 @@ static int show_live_rung(pipeline *p, const pipeline_params *params, bool rung,
     p->rung_step = p->shown_step;
     p->rung_frames = LIVE_RUNG_INTERVAL; /* measure this frame */
   }
-  const fog_model model = live_rung_model(&p->rung);
+  fog_model model = live_rung_model(&p->rung);
+  /* An ellipsoids rung draws the [fog] quadric volumes beside it as its own (the pass has
+   * no volumes beside a quadric model, so no exact sun depth through them): they are in
+   * its sun volume too, or they neither cast nor received the sun's shadow on this rung
+   * alone (pipeline_fog.c draws the same list). */
+  fog_quadric lit[FOG_MAX_QUADRICS];
+  if (model.kind == FOG_MODEL_QUADRIC && quadric_count > 0) {
+    int n = 0;
+    for (int i = 0; i < model.quadric_count && n < FOG_MAX_QUADRICS; i++)
+      lit[n++] = model.quadrics[i];
+    for (int i = 0; i < quadric_count && n < FOG_MAX_QUADRICS; i++) lit[n++] = beside[i];
+    model.quadrics = lit, model.quadric_count = n;
+  }
   /* the rung's own kind, whatever the fogmap's volume on hand */
   *self_shadow = params->sun.albedo > 0 && params->fog_self_shadow
                      ? fog_sun_shadow_kind_of(&model, sun)
@@ -1226,7 +1239,7 @@ int pipeline_frame(pipeline *p, const camera *cam, bool wait, fog_error *err) {
   const fog_model fogmap_model = {.kind = FOG_MODEL_FOGMAP, .volume = &volume, .lod = &finest,
                                   .lod_method = FOG_LOD_SWITCH};
   fog_sun_shadow_kind self_shadow = p->shown_self_shadow;
-  if (show_live_rung(p, &params, rung, &fogmap_model, sun.direction, quadric_count,
+  if (show_live_rung(p, &params, rung, &fogmap_model, sun.direction, quadrics, quadric_count,
                      &self_shadow, err))
     return 1;
   const fog_model rung_model = live_rung_model(&p->rung);

@@ -12,7 +12,9 @@
  *     (the twin's mean along each pixel's ray, shafts off), not the fogmap's; also paused,
  *     when the sun moves and when the menu goes from one bounded rung to the other;
  *   - back on the fogmap the frame is the fogmap's again, bit for bit with a pipeline that
- *     never left it. Built by tests/app/pipeline.cmake. */
+ *     never left it;
+ *   - a [fog] quadric volume beside the fogmap, on the ellipsoids rung: lit with the rung's
+ *     volumes, its sun volume of them all. Built by tests/app/pipeline.cmake. */
 #include <math.h>
 #include <stdio.h>
 
@@ -220,6 +222,46 @@ int main(void) {
   }
   pipeline_destroy(p);
   pipeline_destroy(plain);
+  /* a [fog] quadric volume beside the fogmap, in view, on the ellipsoids rung: the rung
+   * draws it as one of its own volumes, and lights it so, its sun volume made of the
+   * fitted ellipsoids and the sphere (it was of the ellipsoids alone: the sphere cast and
+   * received no sun shadow on this rung) */
+  {
+    scene_config beside = cfg;
+    double right[3], up[3], forward[3], centre[3];
+    camera_basis(&cam, W, H, right, up, forward);
+    for (int a = 0; a < 3; a++) centre[a] = cam.position[a] + 120.0 * forward[a];
+    beside.fog.quadrics[beside.fog.quadric_count++] =
+        fog_quadric_sphere(centre, 25.0, 0.05, 0.0);
+    const pipeline_desc beside_desc = {.config = &beside, .width = W, .height = H,
+                                       .frame_seconds = 1.0 / 24.0, .synchronous = true};
+    pipeline *q = pipeline_create(&beside_desc, &perr);
+    CHECK(q != NULL, "pipeline with a quadric beside: %s", perr.message);
+    if (q) {
+      pipeline_params params = pipeline_get_params(q);
+      params.shafts = false, params.live_rung = LIVE_RUNG_ELLIPSOIDS;
+      pipeline_set_params(q, &params);
+      CHECK(!pipeline_check_frame(q, &cam,
+                                  &(frame_pixels){.transmittance = tau, .depth = depth,
+                                                  .inscatter = inscatter}),
+            "frame with a quadric beside");
+      live_rung r;
+      CHECK(pipeline_live_rung(q, &r) && r.fitted && r.model.kind == FOG_MODEL_QUADRIC,
+            "no ellipsoids rung reported");
+      /* what the pass draws: the fitted volumes, then the one beside at the live density */
+      fog_quadric all[FOG_MAX_QUADRICS];
+      const fog_model fitted = live_rung_model(&r);
+      int n = 0;
+      for (int i = 0; i < fitted.quadric_count; i++) all[n++] = fitted.quadrics[i];
+      all[n] = beside.fog.quadrics[beside.fog.quadric_count - 1];
+      all[n++].density *= params.density;
+      const fog_model drawn = {.kind = FOG_MODEL_QUADRIC, .quadrics = all, .quadric_count = n};
+      const double lit = lit_as_itself(&beside, &cam, &drawn, tau, depth, inscatter);
+      printf("ellipsoids beside a quadric volume: lit with it within %.2e\n", lit);
+      CHECK(lit <= 2e-3, "ellipsoids with a quadric beside: not lit with it (%.3e)", lit);
+      pipeline_destroy(q);
+    }
+  }
   gl_context_destroy(gl);
   return test_finish("pipeline_rung_check");
 }
