@@ -45,6 +45,13 @@ if [[ $(id -u) -ne 0 ]]; then
     echo "install-deps: not root and no sudo; install these packages first: ${missing[*]}" >&2
     exit 1
   fi
+  # sudo asking for a password with no terminal to ask on failed as "apt-get update
+  # failed (no network...)": say what it is
+  if ! sudo -n true 2>/dev/null && ! [[ -t 0 ]]; then
+    echo "install-deps: sudo needs a password and there is no terminal to ask on; run" \
+         "'sudo apt-get install ${missing[*]}' first (or make from a terminal)" >&2
+    exit 1
+  fi
 fi
 if ! command -v apt-get >/dev/null 2>&1; then
   echo "install-deps: apt-get not found; fogpipe's set-up expects Debian 12. Missing: ${missing[*]}" >&2
