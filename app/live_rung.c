@@ -20,6 +20,18 @@ fog_model live_rung_model(const live_rung *r) {
   return m;
 }
 
+fog_model live_rung_with_beside(const fog_model *rung, const fog_quadric *beside, int count,
+                                fog_quadric out[FOG_MAX_QUADRICS]) {
+  fog_model m = *rung;
+  if (m.kind != FOG_MODEL_QUADRIC) return m;
+  int n = 0;
+  for (int i = 0; i < rung->quadric_count && n < FOG_MAX_QUADRICS; i++)
+    out[n++] = rung->quadrics[i];
+  for (int i = 0; i < count && n < FOG_MAX_QUADRICS; i++) out[n++] = beside[i];
+  m.quadrics = out, m.quadric_count = n;
+  return m;
+}
+
 /* Gaussians or ellipsoids; false: none fitted (no fog, or out of memory). */
 static bool fit_shapes(const fit_samples *s, live_rung *out) {
   if (out->kind == LIVE_RUNG_GAUSSIANS) {

@@ -53,6 +53,12 @@ typedef struct live_rung {
 
 /* r's model, pointing at r's own Gaussians and volumes (so take it from the copy in use). */
 fog_model live_rung_model(const live_rung *r);
+/* The model a rung is drawn and lit as: a quadric rung's fitted volumes, then the [fog]
+ * quadric volumes beside the fogmap (the pass has no volumes beside a quadric model, so
+ * they are its own), at most FOG_MAX_QUADRICS, in out; any other rung as it is (its
+ * volumes beside are drawn beside it). */
+fog_model live_rung_with_beside(const fog_model *rung, const fog_quadric *beside, int count,
+                                fog_quadric out[FOG_MAX_QUADRICS]);
 
 /* Fits the rung to the fogmap model's extinction sampled over its box (24 x 24 cells
  * across, 16 layers): homogeneous, the mean; height fog, fit_height's k, y0 and H (layers

@@ -1172,19 +1172,12 @@ static int show_live_rung(pipeline *p, const pipeline_params *params, bool rung,
     p->rung_step = p->shown_step;
     p->rung_frames = LIVE_RUNG_INTERVAL; /* measure this frame */
   }
-  fog_model model = live_rung_model(&p->rung);
-  /* An ellipsoids rung draws the [fog] quadric volumes beside it as its own (the pass has
-   * no volumes beside a quadric model, so no exact sun depth through them): they are in
-   * its sun volume too, or they neither cast nor received the sun's shadow on this rung
-   * alone (pipeline_fog.c draws the same list). */
+  /* lit as drawn: an ellipsoids rung's sun volume holds the [fog] quadric volumes beside
+   * the fogmap too (drawn as its own, with no exact sun depth through them, they neither
+   * cast nor received the sun's shadow on this rung alone) */
   fog_quadric lit[FOG_MAX_QUADRICS];
-  if (model.kind == FOG_MODEL_QUADRIC && quadric_count > 0) {
-    int n = 0;
-    for (int i = 0; i < model.quadric_count && n < FOG_MAX_QUADRICS; i++)
-      lit[n++] = model.quadrics[i];
-    for (int i = 0; i < quadric_count && n < FOG_MAX_QUADRICS; i++) lit[n++] = beside[i];
-    model.quadrics = lit, model.quadric_count = n;
-  }
+  const fog_model fitted = live_rung_model(&p->rung);
+  const fog_model model = live_rung_with_beside(&fitted, beside, quadric_count, lit);
   /* the rung's own kind, whatever the fogmap's volume on hand */
   *self_shadow = params->sun.albedo > 0 && params->fog_self_shadow
                      ? fog_sun_shadow_kind_of(&model, sun)

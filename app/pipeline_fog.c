@@ -1,5 +1,6 @@
 /* pipeline_fog: adapter from the pipeline to the GL fog pass; see app/pipeline_fog.h. */
 #include "app/pipeline_fog.h"
+#include "app/live_rung.h"
 
 #include "render/fog_pass.h"
 #include "render/gl_present.h"
@@ -112,13 +113,10 @@ int pipeline_fog_render(pipeline_fog *fog, const camera *cam, const gl_target *s
     params.model_rbfs = rung->rbfs;
     params.model_rbf_count = rung->kind == FOG_MODEL_RBF ? rung->rbf_count : 0;
     if (rung->kind == FOG_MODEL_QUADRIC) {
-      int n = 0;
-      for (int i = 0; i < rung->quadric_count && n < FOG_MAX_QUADRICS; i++)
-        volumes[n++] = rung->quadrics[i];
-      for (int i = 0; i < settings->quadric_count && n < FOG_MAX_QUADRICS; i++)
-        volumes[n++] = settings->quadrics[i];
-      params.model_quadrics = volumes;
-      params.model_quadric_count = n;
+      const fog_model drawn =
+          live_rung_with_beside(rung, settings->quadrics, settings->quadric_count, volumes);
+      params.model_quadrics = drawn.quadrics;
+      params.model_quadric_count = drawn.quadric_count;
     }
   }
   gl_target_bind(&fog->target);
