@@ -110,6 +110,13 @@ double fog_quadric_value(const fog_quadric *v, const double p[3]);
  * weight a quintic, which 3 Gauss-Legendre nodes integrate exactly. */
 double fog_quadric_optical_depth(const fog_quadric *v, int count, const fog_quadric_noise *noise,
                                  const double o[3], const double d[3], double length);
+/* Where a ray o + t d crosses a volume's surfaces inside (t0, t1): Q = 0, Q = -edge, and
+ * the faces of its clip box where Q < 0 there (K jumps or kinks at each, and is smooth
+ * between): at most FOG_QUADRIC_MAX_CUTS, unsorted; returns how many. The sun's mean cuts
+ * its segments there (fog_sun_mean_light). */
+#define FOG_QUADRIC_MAX_CUTS (6 * FOG_MAX_QUADRICS)
+int fog_quadric_cuts(const fog_quadric *v, int count, const double o[3], const double d[3],
+                     double t0, double t1, double cuts[FOG_QUADRIC_MAX_CUTS]);
 /* K at p: the sum of the volumes' extinctions. */
 double fog_quadric_extinction_at(const fog_quadric *v, int count, const fog_quadric_noise *noise,
                                  const double p[3]);

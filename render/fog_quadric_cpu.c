@@ -206,6 +206,37 @@ double fog_quadric_optical_depth(const fog_quadric *v, int count, const fog_quad
   return sum;
 }
 
+int fog_quadric_cuts(const fog_quadric *v, int count, const double o[3], const double d[3],
+                     double t0, double t1, double cuts[FOG_QUADRIC_MAX_CUTS]) {
+  int n = 0;
+  for (int i = 0; i < count && i < FOG_MAX_QUADRICS; i++) {
+    double lo[3], hi[3], s0, s1;
+    for (int k = 0; k < 3; k++) lo[k] = v[i].lo[k] - o[k], hi[k] = v[i].hi[k] - o[k];
+    if (!(v[i].density > 0.0) || !fog_slab_entry_exit(lo, hi, d, &s0, &s1)) continue;
+    const double a0 = fmax(s0, t0), a1 = fmin(s1, t1);
+    if (!(a1 > a0)) continue;
+    /* Q(a0 + u) = a u^2 + 2 b u + c, re-centred as fog_quadric_optical_depth */
+    const double start[3] = {o[0] + a0 * d[0], o[1] + a0 * d[1], o[2] + a0 * d[2]};
+    double m[3][3], l[3], a = 0.0, b = 0.0;
+    fog_quadric_matrix(&v[i], m, l);
+    for (int r = 0; r < 3; r++) {
+      a += d[r] * (m[r][0] * d[0] + m[r][1] * d[1] + m[r][2] * d[2]);
+      b += d[r] * (m[r][0] * start[0] + m[r][1] * start[1] + m[r][2] * start[2] + l[r]);
+    }
+    const double c = fog_quadric_value(&v[i], start), len = a1 - a0;
+    /* the box's faces clip fog only where Q < 0 there (a cylinder's caps) */
+    if (s0 > t0 && c < 0.0) cuts[n++] = a0;
+    if (s1 < t1 && (a * len + 2.0 * b) * len + c < 0.0) cuts[n++] = a1;
+    double root[2];
+    for (int level = 0; level < (v[i].edge > 0.0 ? 2 : 1); level++) {
+      const int k = quadratic_roots(a, b, level ? c + v[i].edge : c, root);
+      for (int j = 0; j < k; j++)
+        if (root[j] > 0.0 && root[j] < len) cuts[n++] = a0 + root[j];
+    }
+  }
+  return n;
+}
+
 double fog_quadric_extinction_at(const fog_quadric *v, int count, const fog_quadric_noise *noise,
                                  const double p[3]) {
   /* K = sum c_i w_i (1 - n_i + n_i T/T_mean) = sum c_i w_i + (T/T_mean - 1) sum c_i w_i n_i,

@@ -334,25 +334,42 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
   if (!fog_sun_span(m, o, d, t_surface, &t0, &t1)) return 1.0;
   /* the Gauss nodes' offset from the middle, in segments: 1/(2 sqrt 3) */
   const double g = 0.28867513459481288225;
-  double dt = (t1 - t0) / steps, before = 0.0, weights = 0.0, lit = 0.0;
+  /* Segments are cut where the ray crosses a quadric volume's surface: K jumps or kinks
+   * there, and two nodes cannot integrate a step. A hard-edged sphere thick enough to hold
+   * its weight in the first few units past its edge drew concentric rings at 8 segments
+   * (the nodes slid across the edge with the chord's length): across a fan of rays the
+   * worst error fell from 0.49 to 4.5e-2 of 1 - tau once cut (test_sun_mean_cuts). */
+  double cuts[FOG_QUADRIC_MAX_CUTS];
+  const int cut_count = m->quadrics && m->quadric_count > 0
+                            ? fog_quadric_cuts(m->quadrics, m->quadric_count, o, d, t0, t1, cuts)
+                            : 0;
+  double dt = (t1 - t0) / steps, before = 0.0, weights = 0.0, lit = 0.0, start = t0;
   /* V apart from T_s: its mean over the segment's shaft_samples points multiplies the
    * segment's T_s (the nodes then see T_s alone) */
   const int shaft_samples = visible && rule.shaft_samples > 1 ? rule.shaft_samples : 1;
   const fog_sun_visibility_fn node_visible = shaft_samples > 1 ? NULL : visible;
-  for (int i = 0; i < steps && before < depth_limit; i++) {
-    double mid = t0 + (i + 0.5) * dt, step_depth, light;
+  for (int i = 0; i < steps && before < depth_limit;) {
+    /* [start, end]: the rest of equal segment i up to the next cut */
+    const double step_end = i + 1 < steps ? t0 + (i + 1) * dt : t1;
+    double end = step_end;
+    for (int c = 0; c < cut_count; c++)
+      if (cuts[c] > start && cuts[c] < end) end = cuts[c];
+    if (end >= step_end) i++;
+    const double len = end - start, mid = 0.5 * (start + end);
+    double step_depth, light;
+    start = end;
     if (nodes == 2) {
-      double ta = mid - g * dt, tb = mid + g * dt;
+      double ta = mid - g * len, tb = mid + g * len;
       double ka = fmax(extinction_on_ray(m, o, d, ta), 0.0),
              kb = fmax(extinction_on_ray(m, o, d, tb), 0.0);
-      step_depth = 0.5 * dt * (ka + kb);
+      step_depth = 0.5 * len * (ka + kb);
       /* The nodes weigh K e^{-d}, d the depth from the segment's start, K linear through
        * them: only their ratio counts, so each is taken relative to node a's,
-       * K_a : K_b e^{-(d_b - d_a)} with d_b - d_a = g dt (K_a + K_b) (the trapezoid between
+       * K_a : K_b e^{-(d_b - d_a)} with d_b - d_a = g len (K_a + K_b) (the trapezoid between
        * them). Absolute weights underflowed together in a dense segment (d ~ 745; in the
        * shader's float, ~90) and its light became 0; the depth to node a, extrapolated
        * back, went negative on a steep K and overflowed. */
-      double sa = ka, sb = kb * exp(-g * dt * (ka + kb));
+      double sa = ka, sb = kb * exp(-g * len * (ka + kb));
       double lb = sun_light_at(m, kind, volume, o, d, tb, node_visible, user);
       /* sa + sb = 0 with K_b > 0: node a holds no fog, node b all of the weight */
       light = sa + sb > 0.0
@@ -360,13 +377,13 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
                      sb * lb) / (sa + sb)
                   : lb;
     } else {
-      step_depth = fmax(extinction_on_ray(m, o, d, mid), 0.0) * dt;
+      step_depth = fmax(extinction_on_ray(m, o, d, mid), 0.0) * len;
       light = sun_light_at(m, kind, volume, o, d, mid, node_visible, user);
     }
     if (shaft_samples > 1) {
       double seen = 0.0;
       for (int k = 0; k < shaft_samples; k++) {
-        const double t = mid + ((k + 0.5) / shaft_samples - 0.5) * dt;
+        const double t = mid + ((k + 0.5) / shaft_samples - 0.5) * len;
         double p[3];
         for (int a = 0; a < 3; a++) p[a] = o[a] + t * d[a];
         seen += visible(user, p);

@@ -6,8 +6,8 @@
 // (1 - tau) times the mean of T_s weighted by tau K (the weights integrate to 1 - tau), the
 // transmittance tau stays the model's exact integral and with T_s = 1 the in-scatter is
 // exactly (L_amb + a L_sun p) (1 - tau) (the identity of docs/light.md). The mean is taken
-// over fog_shadow_steps equal segments of the ray's fog span (fog_sun_mean_transmittance
-// below: one or two samples each).
+// over fog_shadow_steps equal segments of the ray's fog span, cut at quadric volumes'
+// surfaces (fog_sun_mean_transmittance below: one or two samples each).
 uniform sampler3D fog_sun_shadow_map;   // R32F optical depth towards the sun
 uniform mat3 fog_sun_shadow_to_tex;     // fog_sun_shadow_tex_map's M
 uniform vec3 fog_sun_shadow_tex_camera; // M (camera - origin) + offset, in double on the CPU
@@ -438,7 +438,8 @@ float fog_perlin_sun_mean(fog_ray r) {
 #endif
 
 // The tau K-weighted mean of T_s V along the ray (1 where the ray holds no fog), over
-// fog_shadow_steps equal segments of fog_shadow_nodes samples (fog_sun_mean_light in C):
+// fog_shadow_steps equal segments, cut at the quadrics' surfaces, of fog_shadow_nodes
+// samples (fog_sun_mean_light in C):
 // 1, the midpoint; 2, the Gauss-Legendre nodes m -+ dt/(2 sqrt 3), the segment's depth
 // their 2-node sum and its T_s V theirs weighted by K e^{-d} (d from the segment's start to
 // the node, K linear through the nodes; taken relative to node a's). Segment i weighs e^{-D_i} (1 - e^{-dD_i}) either
@@ -463,28 +464,44 @@ float fog_sun_mean_transmittance(fog_ray r) {
   // A negative K (wavelet ringing, rounding) weighs nothing (fog_sun_mean_light in C).
   const float g = 0.28867513459481288;  // 1/(2 sqrt 3)
   float dt = (t1 - t0) / float(fog_shadow_steps), before = 0.0, weights = 0.0, lit = 0.0;
+  float start = t0;
+#if FOG_MODEL_KIND == FOG_MODEL_QUADRIC || FOG_QUADRICS_BESIDE
+  // segments cut where the ray crosses a quadric's surface: K jumps or kinks there (a hard
+  // edge inside a segment drew rings; fog_sun_mean_light in C)
+  float cuts[FOG_QUADRIC_MAX_CUTS];
+  int cut_count = fog_quadric_cuts(r.dir, t0, t1, cuts);
+#else
+  float cuts[1];
+  const int cut_count = 0;
+#endif
   // Past an optical depth of fog_depth_limit (early termination) the rest weighs less than
   // the transmittance cut-off: stop there.
-  for (int i = 0; i < fog_shadow_steps && before < fog_depth_limit; i++) {
-    float mid = t0 + (float(i) + 0.5) * dt, step_depth, light;
+  for (int i = 0; i < fog_shadow_steps && before < fog_depth_limit;) {
+    // [start, end]: the rest of equal segment i up to the next cut
+    float step_end = i + 1 < fog_shadow_steps ? t0 + float(i + 1) * dt : t1, end = step_end;
+    for (int c = 0; c < cut_count; c++)
+      if (cuts[c] > start && cuts[c] < end) end = cuts[c];
+    if (end >= step_end) i++;
+    float len = end - start, mid = 0.5 * (start + end), step_depth, light;
+    start = end;
 #if FOG_SHADOW_NODES == 2
     {
-      float ta = mid - g * dt, tb = mid + g * dt;
+      float ta = mid - g * len, tb = mid + g * len;
       float ka = max(fog_light_extinction(r.dir, ta), 0.0),
             kb = max(fog_light_extinction(r.dir, tb), 0.0);
-      step_depth = 0.5 * dt * (ka + kb);
-      // the nodes' weights relative to node a's, K_a : K_b e^{-g dt (K_a + K_b)}: absolute
+      step_depth = 0.5 * len * (ka + kb);
+      // the nodes' weights relative to node a's, K_a : K_b e^{-g len (K_a + K_b)}: absolute
       // ones (e^{-d} from the segment's start) underflowed together past d ~ 90 and a dense
       // segment drew no light (fog_sun_mean_light in C)
-      float sa = ka, sb = kb * exp(-g * dt * (ka + kb));
+      float sa = ka, sb = kb * exp(-g * len * (ka + kb));
       float lb = fog_sun_node_light(r.dir, tb);
       light = sa + sb > 0.0 ? (sa * fog_sun_node_light(r.dir, ta) + sb * lb) / (sa + sb) : lb;
     }
 #else
-    step_depth = max(fog_light_extinction(r.dir, mid), 0.0) * dt;
+    step_depth = max(fog_light_extinction(r.dir, mid), 0.0) * len;
     light = fog_sun_node_light(r.dir, mid);
 #endif
-    light *= fog_sun_segment_visible(r.dir, mid, dt);
+    light *= fog_sun_segment_visible(r.dir, mid, len);
     float w = exp(-before) * step_depth * fog_exprel(step_depth);  // 1 - e^-x, no cancellation
     weights += w;
     lit += w * light;

@@ -264,6 +264,37 @@ float fog_quadric_optical_depth_from(vec3 origin, vec3 dir, float length) {
   return sum;
 }
 
+// Where the view ray (from the camera, unit dir) crosses the volumes' surfaces inside
+// (t0, t1): Q = 0, Q = -edge, and the clip box's faces where Q < 0 there (K jumps or kinks
+// at each): fog_quadric_cuts in C. Unsorted; returns how many. The sun's mean cuts its
+// segments there.
+#define FOG_QUADRIC_MAX_CUTS (6 * FOG_MAX_QUADRICS)
+int fog_quadric_cuts(vec3 dir, float t0, float t1, out float cuts[FOG_QUADRIC_MAX_CUTS]) {
+  int n = 0;
+  for (int i = 0; i < fog_quadric_count; i++) {
+    float s0, s1;
+    if (!(fog_quadric_density[i] > 0.0) ||
+        !fog_slab(fog_quadric_lo[i], fog_quadric_hi[i], vec3(0.0), dir, s0, s1)) continue;
+    float a0 = max(s0, t0), a1 = min(s1, t1);
+    if (!(a1 > a0)) continue;
+    // Q(a0 + u) = a u^2 + 2 b u + c, re-centred in double (fog_quadric_optical_depth_from)
+    dmat3 m = fog_quadric_matrix(i);
+    dvec3 w = dvec3(dir);
+    double qa = dot(w, m * w), qb = dot(w, fog_quadric_grad_c0[i].xyz), s = double(a0);
+    float a = float(qa), b = float(qb + qa * s),
+          c = float((qa * s + 2.0 * qb) * s + fog_quadric_grad_c0[i].w), len = a1 - a0;
+    if (s0 > t0 && c < 0.0) cuts[n++] = a0;
+    if (s1 < t1 && (a * len + 2.0 * b) * len + c < 0.0) cuts[n++] = a1;
+    for (int level = 0; level < (fog_quadric_edge[i] > 0.0 ? 2 : 1); level++) {
+      float r0, r1;
+      int k = fog_quadratic_roots(a, b, level == 1 ? c + fog_quadric_edge[i] : c, r0, r1);
+      if (k > 0 && r0 > 0.0 && r0 < len) cuts[n++] = a0 + r0;
+      if (k > 1 && r1 > 0.0 && r1 < len) cuts[n++] = a0 + r1;
+    }
+  }
+  return n;
+}
+
 // K at camera-relative p: the volumes' extinctions summed (fog_quadric_extinction_at).
 float fog_quadric_extinction_at(vec3 p) {
   // K = sum c_i w_i (1 - n_i + n_i T/T_mean) = sum c_i w_i + (T/T_mean - 1) sum c_i w_i n_i:
