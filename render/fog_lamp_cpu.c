@@ -316,18 +316,26 @@ static double lamp_unit(const fog_model *m, const fog_lamp *lamp, const fog_lamp
   /* The pieces: the union of angle_pieces equal steps of phi (the halo) and span_pieces
    * equal steps of t (the fog far from the lamp, which phi compresses), merged in order,
    * and cuts at phi = 0, the closest point, where the direction to the lamp turns (for a
-   * lamp on the ray the phase function jumps there), and at a spot's cone crossings. */
+   * lamp on the ray the phase function jumps there), at a spot's cone crossings, and where
+   * the ray crosses a quadric volume's surface (K's steps and kinks: a hard-edged sphere
+   * lit by a lamp drew rings, as under the sun; fog_sun_mean_light). */
   const int na = method->angle_pieces, nt = method->span_pieces;
-  double phi_a = phi0, cuts[5];
+  double phi_a = phi0, cuts[5 + FOG_QUADRIC_MAX_CUTS];
   lamp_cone_cuts(lamp, s, d, ts, hp, hv, cuts);
   cuts[4] = 0.0;
+  int cut_count = 5;
+  if (m->quadrics && m->quadric_count > 0 && !base_only) {
+    const int n = fog_quadric_cuts(m->quadrics, m->quadric_count, o, d, t0, t1, cuts + 5);
+    for (int k = 0; k < n; k++) cuts[5 + k] = atan((cuts[5 + k] - ts) / hp);
+    cut_count += n;
+  }
   const bool shadowed = vis && !base_only;
   bool lit_a = shadowed && lamp_visible_at(&r, phi0) >= 0.5; /* V at the piece's start */
   for (int ia = 1, it = 1; ia <= na || it <= nt;) {
     double next_a = ia <= na ? phi0 + ia * (phi1 - phi0) / na : HUGE_VAL;
     double next_t = it <= nt ? atan((t0 + it * (t1 - t0) / nt - ts) / hp) : HUGE_VAL;
     double phi_b = next_a <= next_t ? next_a : next_t, next_cut = HUGE_VAL;
-    for (int k = 0; k < 5; k++)
+    for (int k = 0; k < cut_count; k++)
       if (cuts[k] > phi_a && cuts[k] < next_cut) next_cut = cuts[k];
     if (next_cut < phi_b) {
       phi_b = next_cut;

@@ -302,8 +302,14 @@ float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, fl
   float phi0 = atan((t0 - ts) / hp), phi1 = atan((t1 - ts) / hp), lamp_sum = 0.0;
   const int na = fog_lamp_angle_pieces, nt = fog_lamp_span_pieces;
   float phi_a = phi0;
-  // and cuts at phi = 0, the closest point, and at a spot's cone crossings
+  // and cuts at phi = 0, the closest point, at a spot's cone crossings, and where the ray
+  // crosses a quadric volume's surface (K's steps and kinks: fog_lamp_cpu.c's lamp_unit)
   vec4 cuts = fog_lamp_cone_cuts(i, r, ts, hp);
+#if FOG_MODEL_KIND == FOG_MODEL_QUADRIC || FOG_QUADRICS_BESIDE
+  float quadric_cuts[FOG_QUADRIC_MAX_CUTS];
+  int quadric_cut_count = base_only ? 0 : fog_quadric_cuts(r.dir, t0, t1, quadric_cuts);
+  for (int c = 0; c < quadric_cut_count; c++) quadric_cuts[c] = atan((quadric_cuts[c] - ts) / hp);
+#endif
 #if FOG_LAMP_SHADOWS
   bool lit_a = !base_only && fog_lamp_visible_at(i, r, phi0, ts, hp) >= 0.5;  // at the start
 #endif
@@ -317,6 +323,10 @@ float fog_lamp_angle_integral(int i, fog_ray r, float t0, float t1, float ts, fl
                          0.0 > phi_a ? 0.0 : 1e30);
 #else
     float next_cut = 0.0 > phi_a ? 0.0 : 1e30;
+#endif
+#if FOG_MODEL_KIND == FOG_MODEL_QUADRIC || FOG_QUADRICS_BESIDE
+    for (int c = 0; c < quadric_cut_count; c++)
+      if (quadric_cuts[c] > phi_a && quadric_cuts[c] < next_cut) next_cut = quadric_cuts[c];
 #endif
     if (next_cut < phi_b) {
       phi_b = next_cut;
