@@ -314,12 +314,22 @@ static int record_frames(const record_job *job, recorder *rec, player *src, int 
     camera_exr_matrices(player_camera(src), width, height, pixels.world_to_camera,
                         pixels.world_to_ndc);
     pixels.view = *player_camera(src);
-    if (player_frame(src, frame, &out, &perr)) {
+    int drawn = player_frame(src, frame, &out, &perr), written = 0;
+    if (!drawn) {
+      /* SIGINT and SIGTERM held while the frame's file is written and renamed into place:
+       * a second one (which ends the process at once) killed it mid-write and left a
+       * partial .frame.N.exr.tmp.PID.N no later run of another range removes */
+      stop_signals held;
+      stop_signals_hold(&held);
+      written = recorder_write_frame(rec, frame, &pixels, scratch, &beauty_float, &rerr);
+      stop_signals_release(&held);
+    }
+    if (drawn) {
       if (!job->quiet) recorder_progress_end(&progress);
       fprintf(stderr, "fogpipe %s: frame %d: %s\n", cmd, frame, perr.message);
       say_complete(job, rec, first, done, last, "the frame can be made");
       status = 1;
-    } else if (recorder_write_frame(rec, frame, &pixels, scratch, &beauty_float, &rerr)) {
+    } else if (written) {
       if (!job->quiet) recorder_progress_end(&progress);
       fprintf(stderr, "fogpipe %s: %s\n", cmd, rerr.message);
       say_complete(job, rec, first, done, last, "the frame can be written");
@@ -436,8 +446,8 @@ int record_run(const record_job *job) {
   /* SIGINT and SIGTERM from the start: caught while the scene loads and a range's
    * simulation catches up too (they used to end the process there, leaving its folders).
    * The load looks at the flag only once it is done: a second signal ends the process at
-   * once (a long load need not be waited for; a frame cut short leaves only a temporary,
-   * which the next run removes). */
+   * once (a long load need not be waited for); while a frame's file is written it waits
+   * for the file (record_frames). */
   stop_signals stop;
   stop_signals_clear();
   stop_signals_catch(&stop, true);

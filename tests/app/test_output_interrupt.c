@@ -122,6 +122,39 @@ int main(void) {
   char *const inverse[] = {(char *)bin, "transform", "--inverse", pyramid, "--out", back, NULL};
   stop_twice("transform --inverse", inverse, root, back, ".back.exr.tmp", 10000000, log);
 
+  /* record: two SIGTERMs 10 ms apart while a frame's file is written (the second ends the
+   * process): the frame is whole first, no temporary left beside it (one died mid-write
+   * and left a partial .frame.0001.exr.tmp.PID.N; two sent together merge into one) */
+  {
+    char frames[300];
+    snprintf(frames, sizeof frames, "%s/frames", root);
+    char *const record[] = {(char *)bin, "record", config, "--out", frames, "--frames", "2",
+                            "--size", "1920x1080", NULL};
+    const pid_t child = child_run(log, record);
+    bool seen = false;
+    for (long waited = 0; waited < 240000 && !seen; waited++) {
+      seen = child_folder_has(frames, ".frame.0001.exr.tmp");
+      if (!seen && waitpid(child, NULL, WNOHANG) != 0) break;
+      if (!seen) nanosleep(&(struct timespec){.tv_nsec = 250000}, NULL);
+    }
+    if (seen) {
+      kill(child, SIGTERM);
+      nanosleep(&(struct timespec){.tv_nsec = 10000000}, NULL);
+      kill(child, SIGTERM);
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    char whole[400];
+    snprintf(whole, sizeof whole, "%s/frame.0001.exr", frames);
+    struct stat st;
+    CHECK(seen, "record: the frame's temporary never appeared (exit %d)",
+          child_exit_code(status));
+    CHECK(!child_folder_has(frames, ".frame.0001.exr.tmp"), "record: two signals during the "
+          "write left a temporary in %s (exit %d)", frames, child_exit_code(status));
+    CHECK(stat(whole, &st) == 0 && st.st_size > 1000000, "record: frame 1 is not there whole "
+          "(exit %d)", child_exit_code(status));
+  }
+
   unlink(log);
   test_remove_tree(root);
   return test_finish("test_output_interrupt");
