@@ -254,6 +254,7 @@ typedef struct parse_state {
   fog_error *err;
   int key_line[sizeof keys / sizeof keys[0]]; /* where each key was last set (0: default) */
   int flicker_line[FOG_MAX_LAMPS]; /* each lamp's lamp_flicker line (0: none) */
+  int box_line[SCENE_MAX_BOXES];   /* each [objects] box's line */
   bool in_memory; /* scene_config_check: a scene, not a file; errors name the key alone */
   /* scene_config_write's check of its own text: the files it names are not looked at (bake
    * writes its config before its frames) */
@@ -562,6 +563,7 @@ static int store_box(parse_state *s, const char *section, const char *key, const
   }
   if (cfg->object_count == SCENE_MAX_BOXES)
     return fail(s, section, key, "at most %d boxes", SCENE_MAX_BOXES);
+  s->box_line[cfg->object_count] = s->line;
   scene_box_desc *b = &cfg->objects[cfg->object_count++];
   *b = (scene_box_desc){.center = {v[0], v[1]}, .size = {v[2], v[3], v[4]},
                         .colour = SCENE_BOX_GREY};
@@ -1217,6 +1219,32 @@ int scene_config_check(const scene_config *cfg, fog_error *err) {
 static int load_stream(const char *path, FILE *file, bool no_files, scene_config *cfg,
                        fog_error *err);
 
+/* A box farther from the terrain than the terrain's own size (on either axis) is refused:
+ * the sun's shadow map is fitted around the terrain and every box, and one such box
+ * stretched its texels ~200x (a box at 2e5 beside the 1000-unit default terrain took the
+ * hills' shadows off the ground, with no word said). */
+static int check_boxes_near_terrain(parse_state *s) {
+  const scene_config *cfg = s->cfg;
+  const double *o = cfg->terrain.origin, *size = cfg->terrain.size;
+  for (int i = 0; i < cfg->object_count; i++) {
+    const scene_box_desc *b = &cfg->objects[i];
+    const double x0 = b->center[0] - 0.5 * b->size[0], x1 = b->center[0] + 0.5 * b->size[0];
+    const double z0 = b->center[1] - 0.5 * b->size[2], z1 = b->center[1] + 0.5 * b->size[2];
+    const double gap_x = fmax(0.0, fmax(o[0] - x1, x0 - (o[0] + size[0])));
+    const double gap_z = fmax(0.0, fmax(o[2] - z1, z0 - (o[2] + size[1])));
+    if (gap_x > size[0] || gap_z > size[1]) {
+      s->line = s->box_line[i];
+      fail(s, "objects", "box", "its footprint (x %g to %g, z %g to %g) lies %g units "
+                  "beyond the terrain (x %g to %g, z %g to %g), farther than the terrain's own "
+                  "size: the sun's shadow map holds the terrain and every box, and would lose "
+                  "the terrain's shadows; expected a box on or near the terrain", x0, x1, z0,
+                  z1, fmax(gap_x, gap_z), o[0], o[0] + size[0], o[2], o[2] + size[1]);
+      return 1;
+    }
+  }
+  return 0;
+}
+
 int scene_config_load(const char *path, scene_config *cfg, fog_error *err) {
   scene_config_init(cfg);
   /* not a regular file: refused before fopen, which waits on a FIFO for a writer forever */
@@ -1281,6 +1309,7 @@ static int load_stream(const char *path, FILE *file, bool no_files, scene_config
          cfg->box.top, cfg->box.floor);
     return 1;
   }
+  if (check_boxes_near_terrain(&s)) return 1;
   const double *eye = cfg->camera.position, *at = cfg->camera.look_at;
   if (cfg->camera.look_at_set && eye[0] == at[0] && eye[1] == at[1] && eye[2] == at[2]) {
     s.line = key_line(&s, "camera", "look_at"); /* no direction to look in */
