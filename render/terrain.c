@@ -318,7 +318,11 @@ void terrain_albedo(double h, double normal_y, double relief, float out[3]) {
   const float grass[3] = {0.09f, 0.17f, 0.05f}, dry[3] = {0.22f, 0.22f, 0.10f},
               rock[3] = {0.26f, 0.24f, 0.22f}, snow[3] = {0.85f, 0.87f, 0.90f};
   double rockiness = fmin(fmax((0.88 - normal_y) / 0.12, 0.0), 1.0);
-  double dryness = fmin(fmax((h - 0.35) / 0.3, 0.0), 1.0);
+  /* drier up the slopes of hills; none on flat ground or a field's bumps, where h is noise
+   * no one can see (a flat plane showed blotches): none below 1 unit of relief, all of it
+   * from 10 */
+  double dryness = fmin(fmax((h - 0.35) / 0.3, 0.0), 1.0) *
+                   fmin(fmax((relief - 1.0) / 9.0, 0.0), 1.0);
   double snowiness = fmin(fmax((h - 0.78) / 0.08, 0.0), 1.0) * (normal_y > 0.75 ? 1.0 : 0.0);
   /* snow caps hills, not the top of a field's centimetre bumps: none below 10 units of
    * relief, all of it from 40 (the default valley's 160 keeps every cap) */

@@ -57,8 +57,9 @@ void terrain_destroy(terrain *t);
 void terrain_vertex(const terrain *t, int i, int j, double p[3]);
 /* The ground's albedo (linear rgb) at normalised height h (0 to 1) with a normal whose y is
  * normal_y, on a terrain whose h = 1 lies relief world units up: grass, drier up the
- * slopes, rock where steep, snow on the upper fifth of hills with 10 to 40 units of relief
- * or more (a nearly flat field's bumps stay grass). */
+ * slopes of hills (from 1 unit of relief, in full from 10), rock where steep, snow on the upper
+ * fifth of hills with 10 to 40 units of relief or more (flat ground and a field's bumps
+ * stay grass). */
 void terrain_albedo(double h, double normal_y, double relief, float out[3]);
 /* World height of the triangulated surface at (x, z) (clamped to the terrain's edge). */
 double terrain_height_at(const terrain *t, double x, double z);
