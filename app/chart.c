@@ -5,6 +5,7 @@
 #include "sim/atomic_file.h"
 
 #include <errno.h>
+#include <math.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -128,6 +129,13 @@ int chart_write(const chart_desc *desc, const chart_point *points, int count,
   if (png_path && (strchr(png_path, '\n') || strchr(csv_path, '\n'))) {
     snprintf(error, (size_t)error_size, "%.900s: a chart path cannot hold a line break",
              png_path);
+    return CHART_FAILED;
+  }
+  int drawable = 0;
+  for (int i = 0; i < count; i++) drawable += isfinite(points[i].x) && isfinite(points[i].y);
+  if (png_path && drawable == 0) {
+    snprintf(error, (size_t)error_size, "%.900s: nothing to chart: none of the %d point%s has "
+             "a finite x and y", png_path, count, count == 1 ? "" : "s");
     return CHART_FAILED;
   }
   if (write_csv(points, count, csv_path, error, error_size)) return CHART_FAILED;

@@ -31,11 +31,19 @@ typedef struct chart_desc {
   int width, height;  /* pixels; 0 means 960 x 600 */
 } chart_desc;
 
+/* y raised to floor (a log axis's exact rows), a NaN y kept NaN: the chart leaves that
+ * point out (raised to the floor, an error that was not measured drew as the most accurate
+ * row). */
+static inline double chart_floor(double y, double floor) {
+  return y != y || y > floor ? y : floor;
+}
+
 /* Writes csv_path (columns series,x,y) and, when png_path is not NULL, the PNG chart.
  * Both are written to temporary names and renamed. Returns 0, or with a message in error
  * (size error_size) naming the file or the missing gnuplot: CHART_FAILED (nothing
  * written) or CHART_CSV_WRITTEN (the CSV is there, the PNG is not: a caller that must
- * leave nothing removes it). */
+ * leave nothing removes it). With a PNG asked for, points of which none has a finite x and
+ * y are CHART_FAILED (gnuplot took a bare `plot` for a syntax error). */
 enum { CHART_FAILED = 1, CHART_CSV_WRITTEN = 2 };
 int chart_write(const chart_desc *desc, const chart_point *points, int count,
                 const char *csv_path, const char *png_path, char *error, int error_size);

@@ -452,7 +452,7 @@ int bench_light(int argc, char **argv) {
            r->divisor > 2 ? "1/4" : r->divisor > 1 ? "1/2" : "full", r->ms, r->max_error,
            r->mean_error);
     points[i] = (chart_point){.series = r->series, .x = r->ms,
-                              .y = r->max_error > 1e-6 ? r->max_error : 1e-6};
+                              .y = chart_floor(r->max_error, 1e-6)};
   }
   char title[128];
   bench_outputs files;

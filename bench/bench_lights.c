@@ -482,7 +482,7 @@ int bench_lights(int argc, char **argv) {
            r->beyond_cap ? "*" : " ", r->max_error, r->mean_error);
     if (isfinite(r->ms))
       points[point_count++] = (chart_point){.series = r->series, .x = r->ms,
-                                            .y = r->max_error > 1e-7 ? r->max_error : 1e-7};
+                                            .y = chart_floor(r->max_error, 1e-7)};
   }
   char title[128];
   bench_outputs files;

@@ -508,7 +508,7 @@ int bench_models(int argc, char **argv) {
     printf("%-12s %-14s %8s %10.2f %10.2e %10.2e\n", model_name(r->model), row_method(r),
            setting, r->ms, r->rmse, r->max_error);
     points[i] = (chart_point){.series = r->series, .x = r->ms,
-                              .y = r->max_error > ERROR_FLOOR ? r->max_error : ERROR_FLOOR};
+                              .y = chart_floor(r->max_error, ERROR_FLOOR)};
   }
   char title[128];
   bench_outputs files;

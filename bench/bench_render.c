@@ -728,7 +728,7 @@ int bench_render(int argc, char **argv) {
     const bench_row *r = &rows[i];
     double y = r->full_reference >= 0 ? r->max_full : r->max_error;
     points[point_count++] = (chart_point){.series = r->series, .x = r->ms,
-                                          .y = y > ERROR_FLOOR ? y : ERROR_FLOOR};
+                                          .y = chart_floor(y, ERROR_FLOOR)};
   }
   bench_outputs files;
   bench_outputs_in(&files, out_dir, "render");

@@ -1,8 +1,11 @@
 /* app/chart.c: a chart whose folder and series names hold a quote, or shell text, is drawn
  * (a real PNG, its CSV the data of record) and nothing of the path is run as a command;
  * no temporary or script is left, and a user's file beside it is never one; a path with a
- * line break is refused, nothing written. */
+ * line break is refused, nothing written; a chart with no finite point is refused with a
+ * clear message, nothing written (gnuplot failed on a bare `plot`: `fit --chart` whose every
+ * rung was refused); chart_floor keeps a NaN (not measured) out of the chart. */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -100,6 +103,27 @@ int main(void) {
   CHECK(status != 0 && strstr(error, "line break"), "a path with a line break: %d %s", status,
         error);
   CHECK(!exists(broken) && !exists(broken_csv), "a refused chart left a file");
+
+  /* nothing to draw: refused, said as such, nothing written */
+  {
+    const chart_point unmeasured[] = {{.series = "a", .x = 1, .y = NAN},
+                                      {.series = "a", .x = INFINITY, .y = 1}};
+    char empty_png[700], empty_csv[700];
+    snprintf(empty_png, sizeof empty_png, "%s/empty.png", root);
+    snprintf(empty_csv, sizeof empty_csv, "%s/empty.csv", root);
+    for (int count = 0; count <= 2; count += 2) {
+      error[0] = '\0';
+      status = chart_write(&desc, unmeasured, count, empty_csv, empty_png, error, sizeof error);
+      CHECK(status == CHART_FAILED && strstr(error, "nothing to chart"), "%d points, none "
+            "finite: status %d, '%s'", count, status, error);
+      CHECK(!exists(empty_png) && !exists(empty_csv), "%d points, none finite: a file written",
+            count);
+    }
+  }
+  CHECK(isnan(chart_floor(NAN, 1e-6)) && chart_floor(1e-9, 1e-6) == 1e-6 &&
+            chart_floor(0.5, 1e-6) == 0.5,
+        "chart_floor: %g %g %g", chart_floor(NAN, 1e-6), chart_floor(1e-9, 1e-6),
+        chart_floor(0.5, 1e-6));
   CHECK(chdir("/") == 0, "chdir /");
   test_remove_tree(root);
   return test_finish("test_chart");
