@@ -648,6 +648,15 @@ static void warn_other_frames(const import_options *o, const vdb_sequence *seq) 
     fprintf(stderr, "fogpipe import: warning: %s also holds %d frame%s of another import "
             "(%s.%04d.exr .. %s.%04d.exr), which %s.ini does not describe\n", o->out, others,
             others == 1 ? "" : "s", o->name, first, o->name, last, o->name);
+  /* an earlier run's report, kept beside an import it does not describe */
+  if (!o->report)
+    for (int k = 0; k < 2; k++) {
+      char path[PATH_MAX + 32];
+      snprintf(path, sizeof path, "%s/%s.report.%s", o->out, o->name, k ? "png" : "csv");
+      if (access(path, F_OK) == 0)
+        fprintf(stderr, "fogpipe import: warning: %s is an earlier import's report, which "
+                "does not describe this one (run with --report to write this one's)\n", path);
+    }
 }
 
 /* Every file in temp_dir is complete: moves them into out. 0 or the exit status. */

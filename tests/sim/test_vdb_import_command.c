@@ -165,6 +165,16 @@ int main(void) {
         "no word of the earlier frames (%d): %s", status, errors);
   CHECK(test_folder_entries(out) == 10, "%d files: the earlier frames must stay",
         test_folder_entries(out));
+  /* 5b. an earlier --report run's report beside an import without --report: said, kept */
+  {
+    char report[700];
+    snprintf(report, sizeof report, "%s/gf.report.csv", out);
+    test_write_text(report, "an earlier import's report\n");
+    status = run(cmd, errors, sizeof errors);
+    CHECK(status == 0 && strstr(errors, "gf.report.csv is an earlier import's report"),
+          "no word of the earlier report (%d): %s", status, errors);
+    unlink(report);
+  }
 
   /* 6. a re-import that cannot finish (a folder where its frame 44 goes) replaces nothing:
    * the earlier import's files are kept byte for byte, no replaced copy is left */
