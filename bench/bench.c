@@ -200,8 +200,10 @@ void bench_write_files(bench_files_written *w, int table_failed, const chart_des
     char why[256];
     w->drawn = chart_can_draw(why, sizeof why);
     if (!w->drawn)
-      printf("chart: the PNG is not drawn (%s); its points are in %s\n", why,
-             files->chart_csv);
+      printf("chart: the PNG is not drawn (%s); its points are in %s%s%s\n", why,
+             files->chart_csv,
+             access(files->chart_png, F_OK) == 0 ? "; the PNG there is an earlier run's: " : "",
+             access(files->chart_png, F_OK) == 0 ? files->chart_png : "");
     w->failed = chart_write(desc, points, count, files->chart_csv,
                             w->drawn ? files->chart_png : NULL, w->error,
                             (int)sizeof w->error) != 0;
