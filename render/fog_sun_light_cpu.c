@@ -348,21 +348,34 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
    * segment's T_s (the nodes then see T_s alone) */
   const int shaft_samples = visible && rule.shaft_samples > 1 ? rule.shaft_samples : 1;
   const fog_sun_visibility_fn node_visible = shaft_samples > 1 ? NULL : visible;
+  /* A piece deeper than FOG_SUN_PIECE_MAX_DEPTH is halved until it is not (at most steps
+   * halvings a ray): thick fog's weight lies in the first units past where it starts, and
+   * two nodes on a piece whose e^{-D} falls by e^{-2} or more missed it (a thick sphere's
+   * lit side erred by 4.5e-2 at 8 segments; halved, 1.6e-2). Thin fog never halves. */
+  int halvings = 0;
   for (int i = 0; i < steps && before < depth_limit;) {
     /* [start, end]: the rest of equal segment i up to the next cut */
     const double step_end = i + 1 < steps ? t0 + (i + 1) * dt : t1;
     double end = step_end;
     for (int c = 0; c < cut_count; c++)
       if (cuts[c] > start && cuts[c] < end) end = cuts[c];
+    double len, mid, step_depth, ka = 0.0, kb = 0.0, light;
+    for (;;) {
+      len = end - start, mid = 0.5 * (start + end);
+      if (nodes == 2) {
+        ka = fmax(extinction_on_ray(m, o, d, mid - g * len), 0.0);
+        kb = fmax(extinction_on_ray(m, o, d, mid + g * len), 0.0);
+        step_depth = 0.5 * len * (ka + kb);
+      } else {
+        step_depth = fmax(extinction_on_ray(m, o, d, mid), 0.0) * len;
+      }
+      if (!(step_depth > FOG_SUN_PIECE_MAX_DEPTH) || halvings >= steps) break;
+      end = start + 0.5 * len, halvings++;
+    }
     if (end >= step_end) i++;
-    const double len = end - start, mid = 0.5 * (start + end);
-    double step_depth, light;
     start = end;
     if (nodes == 2) {
-      double ta = mid - g * len, tb = mid + g * len;
-      double ka = fmax(extinction_on_ray(m, o, d, ta), 0.0),
-             kb = fmax(extinction_on_ray(m, o, d, tb), 0.0);
-      step_depth = 0.5 * len * (ka + kb);
+      const double ta = mid - g * len, tb = mid + g * len;
       /* The nodes weigh K e^{-d}, d the depth from the segment's start, K linear through
        * them: only their ratio counts, so each is taken relative to node a's,
        * K_a : K_b e^{-(d_b - d_a)} with d_b - d_a = g len (K_a + K_b) (the trapezoid between
@@ -377,7 +390,6 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
                      sb * lb) / (sa + sb)
                   : lb;
     } else {
-      step_depth = fmax(extinction_on_ray(m, o, d, mid), 0.0) * len;
       light = sun_light_at(m, kind, volume, o, d, mid, node_visible, user);
     }
     if (shaft_samples > 1) {

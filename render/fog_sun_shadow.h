@@ -102,6 +102,10 @@ double fog_sun_optical_depth(const fog_model *model, fog_sun_shadow_kind kind,
 /* How the view ray's mean of T_s V is taken (docs/light.md): `steps` equal segments of
  * `nodes` samples, or with `pieces` (Perlin fog, the volume, the fogmap; not with quadrics
  * beside them) per piece of the exact walk with `nodes` Gauss nodes each (steps unused). */
+/* The segments' pieces (fog_sun_mean_light, fog_light.glsl): one whose optical depth
+ * exceeds this is halved, at most steps halvings a ray (the shader's constant too). */
+#define FOG_SUN_PIECE_MAX_DEPTH 1.0
+
 typedef struct fog_light_rule {
   int steps;   /* >= 1 */
   int nodes;   /* segments: 1 or 2; pieces: 1 .. FOG_PIECE_MAX_NODES */

@@ -476,20 +476,36 @@ float fog_sun_mean_transmittance(fog_ray r) {
 #endif
   // Past an optical depth of fog_depth_limit (early termination) the rest weighs less than
   // the transmittance cut-off: stop there.
+  // A piece deeper than FOG_SUN_PIECE_MAX_DEPTH is halved until it is not, at most
+  // fog_shadow_steps halvings a ray (fog_sun_mean_light in C: thick fog's weight lies in
+  // the first units past its start, which two nodes missed).
+  const float max_depth = 1.0;  // FOG_SUN_PIECE_MAX_DEPTH (render/fog_sun_shadow.h)
+  int halvings = 0;
   for (int i = 0; i < fog_shadow_steps && before < fog_depth_limit;) {
     // [start, end]: the rest of equal segment i up to the next cut
     float step_end = i + 1 < fog_shadow_steps ? t0 + float(i + 1) * dt : t1, end = step_end;
     for (int c = 0; c < cut_count; c++)
       if (cuts[c] > start && cuts[c] < end) end = cuts[c];
+    float len, mid, step_depth, ka = 0.0, kb = 0.0, light;
+    for (;;) {
+      len = end - start;
+      mid = 0.5 * (start + end);
+#if FOG_SHADOW_NODES == 2
+      ka = max(fog_light_extinction(r.dir, mid - g * len), 0.0);
+      kb = max(fog_light_extinction(r.dir, mid + g * len), 0.0);
+      step_depth = 0.5 * len * (ka + kb);
+#else
+      step_depth = max(fog_light_extinction(r.dir, mid), 0.0) * len;
+#endif
+      if (!(step_depth > max_depth) || halvings >= fog_shadow_steps) break;
+      end = start + 0.5 * len;
+      halvings++;
+    }
     if (end >= step_end) i++;
-    float len = end - start, mid = 0.5 * (start + end), step_depth, light;
     start = end;
 #if FOG_SHADOW_NODES == 2
     {
       float ta = mid - g * len, tb = mid + g * len;
-      float ka = max(fog_light_extinction(r.dir, ta), 0.0),
-            kb = max(fog_light_extinction(r.dir, tb), 0.0);
-      step_depth = 0.5 * len * (ka + kb);
       // the nodes' weights relative to node a's, K_a : K_b e^{-g len (K_a + K_b)}: absolute
       // ones (e^{-d} from the segment's start) underflowed together past d ~ 90 and a dense
       // segment drew no light (fog_sun_mean_light in C)
@@ -498,7 +514,6 @@ float fog_sun_mean_transmittance(fog_ray r) {
       light = sa + sb > 0.0 ? (sa * fog_sun_node_light(r.dir, ta) + sb * lb) / (sa + sb) : lb;
     }
 #else
-    step_depth = max(fog_light_extinction(r.dir, mid), 0.0) * len;
     light = fog_sun_node_light(r.dir, mid);
 #endif
     light *= fog_sun_segment_visible(r.dir, mid, len);
