@@ -58,7 +58,8 @@ static double bank_error(const fit_views *views, int view_sets, const fog_rbf *g
   for (int f = 0; f < view_sets; f++) {
     double max_error, mean_error;
     fit_views_measure(&views[f], &m, &max_error, &mean_error);
-    worst = fmax(worst, max_error);
+    /* NaN sticks: fmax drops it, and a bank measured NaN on a frame read as fine */
+    if (!isnan(worst) && !(max_error <= worst)) worst = max_error;
   }
   return worst;
 }

@@ -108,7 +108,8 @@ void fit_views_measure(const fit_views *v, const fog_model *rung, double *max_er
     if (radial) memcpy(m.eye, v->origin[k], sizeof m.eye); /* the view's camera */
     double tau = exp(-fog_model_optical_depth(&m, v->origin[k], v->dir[k], v->length[k]));
     double e = fabs(tau - v->reference[k]);
-    if (!(e <= worst)) worst = e; /* NaN sticks */
+    /* NaN sticks (a NaN worst is not <= e either: the next ray overwrote it) */
+    if (!isnan(worst) && !(e <= worst)) worst = e;
     sum += e;
   }
   *max_error = worst;
@@ -242,7 +243,7 @@ int fit_views_measure_light(const fit_views *v, const fog_model *rung, const fit
   double worst = 0.0, brightest = 0.0;
   for (int k = 0; k < v->count; k++) {
     double e = fabs(mine[k] - v->light[k]);
-    if (!(e <= worst)) worst = e;
+    if (!isnan(worst) && !(e <= worst)) worst = e; /* NaN sticks */
     brightest = fmax(brightest, v->light[k]);
   }
   free(mine);

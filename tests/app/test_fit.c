@@ -21,7 +21,9 @@
  *   over a sequence the worst frame decides (a blob that moves in its last frame: one
  *   still Gaussian for frames 1-2, the played fogmap for 1-3).
  * The views' errors are checked against the answers too: the rung that is the input has
- * error ~0 and the others are measured, not assumed. */
+ * error ~0 and the others are measured, not assumed; a ray whose tau is NaN makes the max
+ * NaN (the ray after it overwrote the NaN and the larger errors before it: a rung with a
+ * NaN ray could be chosen by its max). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -596,8 +598,25 @@ static void test_fogshop_input(const char *folder) {
   fit_result_destroy(&r);
 }
 
+/* Three rays through homogeneous fog of K 0.1 (tau e^{-1} along 10 units); the second's
+ * length NaN. References 0 (error 0.37), e^{-1} and e^{-1} (error 0 on the third). */
+static void test_nan_ray(void) {
+  double origin[3][3] = {{0, 0, 0}, {0, 1, 0}, {0, 2, 0}}, dir[3][3] = {{1, 0, 0}, {1, 0, 0},
+                                                                         {1, 0, 0}};
+  double length[3] = {10.0, NAN, 10.0}, reference[3] = {0.0, exp(-1.0), exp(-1.0)};
+  const fit_views v = {.count = 3, .origin = origin, .dir = dir, .length = length,
+                       .reference = reference};
+  const fog_model rung = {.kind = FOG_MODEL_HOMOGENEOUS, .extinction = 0.1};
+  double max_error, mean_error;
+  fit_views_measure(&v, &rung, &max_error, &mean_error);
+  printf("a NaN ray among errors 0.37 and 0: max %g, mean %g\n", max_error, mean_error);
+  CHECK(isnan(max_error) && isnan(mean_error), "a NaN ray: max %g, mean %g (expected NaN: the "
+        "rung measured nothing there)", max_error, mean_error);
+}
+
 int main(void) {
   char folder[] = "/tmp/fogpipe_fit_XXXXXX";
+  test_nan_ray();
   CHECK(mkdtemp(folder) != NULL, "mkdtemp");
   test_constant();
   test_amplitudes();
