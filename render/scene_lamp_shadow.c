@@ -106,9 +106,15 @@ int scene_lamp_shadows_update(scene_pass *pass, fog_error *err) {
   glUseProgram(pass->lamp_shadow_program);
   glBindVertexArray(pass->vao);
   glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+  /* Not clipped at the near plane: the depth written is the distance over far (gl_FragDepth),
+   * and a lamp a hair inside a wall or roof (the lamp tool puts one there about half the
+   * time) had the face looking into it draw nothing nearer than 1 cm: the light escaped
+   * through the surface in a 90-degree pyramid (test_lamp_in_surface). */
+  glEnable(GL_DEPTH_CLAMP);
   for (int i = 0; i < count; i++)
     if (i >= maps->count || !lamp_shadow_same_placement(&maps->rendered[i], &pass->lamps.lamp[i]))
       render_cube(pass, i, lo, hi);
+  glDisable(GL_DEPTH_CLAMP);
   glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
   glBindVertexArray(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
