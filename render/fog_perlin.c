@@ -314,15 +314,20 @@ double fog_piece_light(int n, const double w[FOG_PIECE_MAX_NODES],
    * optically thick (tau falls across it): a dense volume's lit mean was 0.07 to 1.37. A
    * negative K (ringing) weighs nothing in the mean, as in the segments'. */
   double piece = 0.0, weight = 0.0, weighted = 0.0, plain = 0.0, hd[FOG_PIECE_MAX_NODES];
-  double least = INFINITY; /* tau within the piece relative to its largest: no underflow */
+  /* tau within the piece relative to the largest of the nodes that weigh (K > 0): no
+   * underflow. Relative to an empty node's, a dense node's e^{least - hd} underflowed (from
+   * h K ~ 1290 in double, ~90 in float), every weight was 0 and the mean fell back to the
+   * plain average: denser fog drew half-lit. */
+  double least = INFINITY;
   for (int j = 0; j < n; j++) {
     double dj = 0.0;
     for (int q = 0; q < n; q++) dj += partial[j][q] * K[q];
     hd[j] = h * dj;
-    least = fmin(least, hd[j]);
+    if (K[j] > 0.0) least = fmin(least, hd[j]);
   }
   for (int j = 0; j < n; j++) {
-    const double wk = w[j] * fmax(K[j], 0.0) * exp(least - hd[j]);
+    /* 0 for an empty node: e^{least - hd} may overflow there, and 0 x inf is NaN */
+    const double wk = K[j] > 0.0 ? w[j] * K[j] * exp(least - hd[j]) : 0.0;
     weight += wk;
     weighted += wk * f[j];
     plain += w[j] * f[j];

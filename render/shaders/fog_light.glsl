@@ -264,12 +264,15 @@ float fog_piece_light(float K[4], float h, float at, vec3 dir, float D, inout fl
     float dj = 0.0;
     for (int q = 0; q < fog_piece_nodes; q++) dj += fog_piece_partial[j][q] * K[q];
     hd[j] = h * dj;
-    least = min(least, hd[j]);  // tau relative to the piece's largest: no underflow
+    // tau relative to the largest of the nodes that weigh (K > 0): no underflow (relative
+    // to an empty node's, a dense node's weight underflowed and the piece drew half-lit)
+    if (K[j] > 0.0) least = min(least, hd[j]);
   }
   for (int j = 0; j < fog_piece_nodes; j++) {
     float tj = at + h * fog_piece_x[j];
     float f = fog_sun_node_light(dir, tj) * fog_shaft_visible(dir, tj);
-    float wk = fog_piece_w[j] * max(K[j], 0.0) * exp(least - hd[j]);
+    // 0 for an empty node: e^{least - hd} may overflow there (0 x inf is NaN)
+    float wk = K[j] > 0.0 ? fog_piece_w[j] * K[j] * exp(least - hd[j]) : 0.0;
     weight += wk;
     weighted += wk * f;
     plain += fog_piece_w[j] * f;

@@ -5,7 +5,12 @@
  * thick: through a dense volume the fully lit mean was 0.07 (1 node) and 1.37 (2 nodes,
  * brighter than the sun allows). And a light that is half 0, half 1 along the ray gives a
  * mean between 0 and 1. The volume's walk (fog_grid3d_light_integral) and the fogmap's
- * (fog_fogmap_light_integral) share the piece rule. */
+ * (fog_fogmap_light_integral) share the piece rule.
+ * A piece whose first node holds no fog (K 0: a wavelet approximation's ringing clamped)
+ * and whose second is dense puts all of its weight on the second: with the light 0 at the
+ * first node and 1 at the second the mean is 1 at any density (the weights were taken
+ * relative to the empty node's; the dense node's underflowed from h K ~ 1290 on, both were
+ * 0, and the mean fell back to the plain average 0.5: denser fog drew half-lit). */
 #include <math.h>
 #include <stdio.h>
 
@@ -50,6 +55,23 @@ int main(void) {
         CHECK(half >= 0.0 && half <= 1.0, "density %g, %d nodes: a half-lit mean of %g",
               densities[k], nodes, half);
       }
+  }
+  {
+    double x[FOG_PIECE_MAX_NODES], w[FOG_PIECE_MAX_NODES];
+    double partial[FOG_PIECE_MAX_NODES][FOG_PIECE_MAX_NODES];
+    fog_gauss_rule(2, x, w, partial);
+    double worst = 0.0;
+    for (double K1 = 10.0; K1 <= 1e6; K1 *= 10.0) {
+      const double K[FOG_PIECE_MAX_NODES] = {0.0, K1}, f[FOG_PIECE_MAX_NODES] = {0.0, 1.0};
+      double D = 0.0;
+      const double S = fog_piece_light(2, w, partial, 0.5, K, f, &D);
+      const double mean = S / -expm1(-D);
+      CHECK(fabs(mean - 1.0) < 1e-12, "K = {0, %g}: mean %.6f, expected 1 (all the weight on "
+            "the fogged node)", K1, mean);
+      worst = fmax(worst, fabs(mean - 1.0));
+    }
+    printf("an empty node beside a dense one (K 10 .. 1e6): the mean within %.1e of 1\n",
+           worst);
   }
   return test_finish("test_piece_light_mean");
 }
