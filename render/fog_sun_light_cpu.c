@@ -31,9 +31,9 @@ double fog_sun_optical_depth(const fog_model *m, fog_sun_shadow_kind kind,
   }
 }
 
-/* K at p, as the shadow mean samples it: the fogmap's finest approximation the draw reads
- * (switching: A_J; the sum of details: A_0), the volume trilinear, the analytic models
- * pointwise. */
+/* K at p, as the shadow mean samples it: the fogmap's approximation the light reads
+ * (lit_slot: A_J for either LOD method, A_0 at mu <= 0), the volume trilinear, the analytic
+ * models pointwise. */
 static double model_extinction_at(const fog_model *m, const double p[3]);
 
 double fog_light_extinction_at(const fog_model *m, const double p[3]) {

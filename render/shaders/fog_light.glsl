@@ -214,9 +214,9 @@ float fog_sun_segment_visible(vec3 dir, float mid, float dt) { return 1.0; }
 #if FOG_MODEL_KIND == FOG_MODEL_PERLIN || FOG_MODEL_KIND == FOG_MODEL_VOLUME || \
     FOG_MODEL_KIND == FOG_MODEL_FOGMAP
 #if FOG_SHAFTS == 1 && FOG_SHAFT_SAMPLES > 1
-// V for the per-piece means (fog_shaft_line in C): linear between fog_shadow_steps x
-// FOG_SHAFT_SAMPLES equally spaced points of the ray's fog span, the pieces' nodes reading
-// it. The points follow the span, not the fog's cells: V at the nodes, pinned to the cells'
+// V for the per-piece means (shaft_line and shaft_visible in fog_sun_light_cpu.c): linear
+// between fog_shadow_steps x FOG_SHAFT_SAMPLES equally spaced points of the ray's fog span,
+// the pieces' nodes reading it. The points follow the span, not the fog's cells: V at the nodes, pinned to the cells'
 // planes, drew the cells' outlines into the shadows as jagged bands. One ray's line at a
 // time; the nodes come in increasing t, so each point is looked up about once.
 float fog_shaft_t0, fog_shaft_dv, fog_shaft_lo, fog_shaft_hi;
