@@ -269,17 +269,26 @@ static const char *folder_problem(const char *file) {
 /* The chosen rung's scene to `out`; a fogmap projected into the fit's scratch folder goes
  * beside it first, as OUT.fogmap.exr (without .ini), and the scene names that copy. On
  * failure neither file is left. */
-static int write_scene(const fit_result *r, const fit_rung *g, const char *out) {
+/* The chosen rung's config at out. fitted_frame >= 0: the last frame the fit measured (and
+ * timed), written as its vdb_frame: the rung's own was the input's, -1 (the sequence's
+ * last), and `render` drew a frame the fit never looked at. */
+static int write_scene(const fit_result *r, const fit_rung *g, const char *out,
+                       int fitted_frame) {
   const char *map = g->config->fog.fogmap;
   const size_t n = strlen(r->scratch);
-  fog_error werr;
-  if (!(n && g->config->fog.model == FOG_MODEL_FOGMAP && !strncmp(map, r->scratch, n))) {
-    if (scene_config_write(g->config, out, &werr)) return cli_fail("fit", "%s", werr.message);
-    return 0;
-  }
+  const bool projected = n && g->config->fog.model == FOG_MODEL_FOGMAP &&
+                         !strncmp(map, r->scratch, n);
   scene_config *c = malloc(sizeof *c);
   if (!c) return cli_fail("fit", "out of memory");
   *c = *g->config;
+  if (fitted_frame >= 0 && c->fog.vdb[0]) c->fog.vdb_frame = fitted_frame;
+  fog_error werr;
+  if (!projected) {
+    const int status = scene_config_write(c, out, &werr) ? cli_fail("fit", "%s", werr.message)
+                                                         : 0;
+    free(c);
+    return status;
+  }
   snprintf(c->fog.fogmap, sizeof c->fog.fogmap, "%.*s.fogmap.exr",
            (int)(strlen(out) - strlen(".ini")), out);
   fogmap copy = {0};
@@ -367,8 +376,8 @@ int cmd_fit(int argc, char **argv) {
   stop_signals_catch(&stop, true);
   o.desc.stop = stop_signals_flag();
   status = fit_run(&o.desc, &r, &err);
-  stop_signals_restore(&stop);
   if (stop_signals_caught()) { /* during the last rung too: its result is not what was asked for */
+    stop_signals_restore(&stop);
     if (!status) fit_result_destroy(&r);
     free(cfg), free(frames);
     fprintf(stderr, "fogpipe fit: interrupted%s%s%s: nothing written\n", status ? " (" : "",
@@ -376,6 +385,7 @@ int cmd_fit(int argc, char **argv) {
     return 130;
   }
   if (status) {
+    stop_signals_restore(&stop);
     free(cfg), free(frames);
     return cli_fail("fit", "%s: %s", o.input, err.message);
   }
@@ -421,13 +431,19 @@ int cmd_fit(int argc, char **argv) {
            o.desc.by_mean ? "mean" : "max", o.desc.by_mean ? g->mean_error : g->max_error,
            o.tolerance[0], g->ms);
   }
+  /* SIGINT and SIGTERM held while the outputs are written (gnuplot, the scene, its fogmap):
+   * the default action ended the process there and left the chart's CSV, gnuplot's
+   * temporaries and the scratch folder behind. The outputs finish, then a held signal acts
+   * (a second one ends the process; one alone only sets the flag: the fit is done). */
+  stop_signals_hold(&stop);
   /* the chart first: a chart that cannot be written leaves --out as it was */
   if (o.chart) {
     status = write_chart(&r, o.desc.by_mean, o.chart);
     if (!status) printf("chart %s\n", o.chart);
   }
   if (!status && r.chosen >= 0 && o.out) {
-    if (!(status = write_scene(&r, &r.rungs[r.chosen], o.out))) {
+    const int fitted_frame = frames ? frames[r.frame_count - 1] : -1;
+    if (!(status = write_scene(&r, &r.rungs[r.chosen], o.out, fitted_frame))) {
       printf("wrote %s\n", o.out);
     } else if (o.chart) { /* a failed run leaves none of its outputs */
       remove(o.chart);
@@ -436,7 +452,13 @@ int cmd_fit(int argc, char **argv) {
     }
   }
   printf("fit: %.1f s\n", app_clock_seconds() - t0);
-  fit_result_destroy(&r);
+  fit_result_destroy(&r); /* removes the scratch folder */
+  stop_signals_release(&stop);
+  stop_signals_restore(&stop);
   free(cfg), free(frames);
+  if (!status && stop_signals_caught()) { /* the outputs are whole; the run was stopped */
+    fprintf(stderr, "fogpipe fit: interrupted after the fit: its outputs are complete\n");
+    return 130;
+  }
   return status;
 }

@@ -307,6 +307,19 @@ int main(void) {
   status = fit(bin, args, out, err, sizeof out);
   CHECK(status == 0 && strstr(out, "2 frames (1..25;"), "--frames all:24: exit %d, %s %s",
         status, out, err);
+  /* the chosen rung plays the sequence: its config shows the last frame fitted, not the
+   * input's default -1 (the sequence's last, 48, which the fit never looked at) */
+  {
+    char played[256], text[8192];
+    snprintf(played, sizeof played, "%s/played.ini", dir);
+    snprintf(args, sizeof args, "'../shared/data/vdb/groundfog/data/fluid_data_####.vdb' "
+             "--tolerance 1e-9 --frames 1-25:24 --out '%s' %s", played, fast);
+    status = fit(bin, args, out, err, sizeof out);
+    read_text(played, text, sizeof text);
+    CHECK(status == 0 && strstr(out, "chosen: volume") && strstr(text, "\nvdb_frame = 25\n"),
+          "--frames 1-25:24: exit %d, the config's frame: %s", status,
+          strstr(text, "vdb_frame") ? strstr(text, "vdb_frame") : "(none)");
+  }
 
   /* an --out that cannot be written: the path named, nothing left */
   char unwritable[256];
