@@ -73,6 +73,9 @@ static int parse_tolerances(const char *command, const char *option, const char 
     return cli_usage_error(command, "%s '%s': expected numbers separated by single commas",
                            option, text);
   char list[256], *save = NULL;
+  if (n >= sizeof list) /* cut, a value changed without a word (0.25 read as 0.2) */
+    return cli_usage_error(command, "%s: %zu characters; expected at most %zu", option, n,
+                           sizeof list - 1);
   snprintf(list, sizeof list, "%s", text);
   o->tolerance_count = 0;
   for (char *t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
