@@ -103,7 +103,8 @@ double fog_sun_optical_depth(const fog_model *model, fog_sun_shadow_kind kind,
  * `nodes` samples, or with `pieces` (Perlin fog, the volume, the fogmap; not with quadrics
  * beside them) per piece of the exact walk with `nodes` Gauss nodes each (steps unused). */
 /* The segments' pieces (fog_sun_mean_light, fog_light.glsl): one whose optical depth
- * exceeds this is halved, at most steps halvings a ray (the shader's constant too). */
+ * exceeds this is cut where its estimated depth reaches it, at most steps cuts a ray (the
+ * shader's constant too). */
 #define FOG_SUN_PIECE_MAX_DEPTH 1.0
 
 typedef struct fog_light_rule {

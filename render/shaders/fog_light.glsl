@@ -479,11 +479,12 @@ float fog_sun_mean_transmittance(fog_ray r) {
 #endif
   // Past an optical depth of fog_depth_limit (early termination) the rest weighs less than
   // the transmittance cut-off: stop there.
-  // A piece deeper than FOG_SUN_PIECE_MAX_DEPTH is halved until it is not, at most
-  // fog_shadow_steps halvings a ray (fog_sun_mean_light in C: thick fog's weight lies in
-  // the first units past its start, which two nodes missed).
+  // A piece deeper than FOG_SUN_PIECE_MAX_DEPTH is cut where its estimated depth reaches
+  // it, until it is not, at most fog_shadow_steps cuts a ray (fog_sun_mean_light in C:
+  // thick fog's weight lies in the first units past its start, which two nodes missed; the
+  // cut meets the piece's end at the limit, so the mean stays continuous across pixels).
   const float max_depth = 1.0;  // FOG_SUN_PIECE_MAX_DEPTH (render/fog_sun_shadow.h)
-  int halvings = 0;
+  int deep_cuts = 0;
   for (int i = 0; i < fog_shadow_steps && before < fog_depth_limit;) {
     // [start, end]: the rest of equal segment i up to the next cut
     float step_end = i + 1 < fog_shadow_steps ? t0 + float(i + 1) * dt : t1, end = step_end;
@@ -500,9 +501,9 @@ float fog_sun_mean_transmittance(fog_ray r) {
 #else
       step_depth = max(fog_light_extinction(r.dir, mid), 0.0) * len;
 #endif
-      if (!(step_depth > max_depth) || halvings >= fog_shadow_steps) break;
-      end = start + 0.5 * len;
-      halvings++;
+      if (!(step_depth > max_depth) || deep_cuts >= fog_shadow_steps) break;
+      end = start + len * (max_depth / step_depth);
+      deep_cuts++;
     }
     if (end >= step_end) i++;
     start = end;
