@@ -76,7 +76,9 @@ static void remove_frames(const char *pattern, int written) {
 }
 
 /* Removes every file of pattern's folder that pattern names with a number above frames,
- * whatever its count of digits (as the sequence lister reads them). */
+ * whatever its count of digits (as the sequence lister reads them), and every one written
+ * with another count of digits than pattern's: an earlier bake's (a rebake of 5 frames over
+ * one of 10001 left fog.00001 .. fog.00005 beside the new fog.0001 .. fog.0005). */
 static void remove_later_frames(const char *pattern, int frames) {
   size_t at, run;
   const char *slash = strrchr(pattern, '/');
@@ -97,7 +99,7 @@ static void remove_later_frames(const char *pattern, int frames) {
     for (; k < n - suffix_length && isdigit((unsigned char)name[k]) && k < prefix_length + 18;
          k++)
       number = 10 * number + (name[k] - '0');
-    if (k != n - suffix_length || number <= frames) continue;
+    if (k != n - suffix_length || (number <= frames && k - prefix_length == run)) continue;
     char path[SCENE_CONFIG_PATH_MAX + 300];
     snprintf(path, sizeof path, "%s/%s", dir, name);
     unlink(path);
@@ -302,8 +304,9 @@ int cmd_bake(int argc, char **argv) {
    * a path, flicker) runs at record's --fps: the hint names the bake's */
   char rate[64] = "";
   if (job.fps != 24.0) snprintf(rate, sizeof rate, " --fps %.17g", job.fps);
+  char quoted[4 * sizeof ini + 3];
   printf("baked %d frame%s of %s: %s and %s; render a range: fogpipe record %s%s --frames A-B "
          "--out FRAMES/\n", job.frames, job.frames == 1 ? "" : "s", job.config_path, pattern, ini,
-         ini, rate);
+         cli_shell_word(ini, quoted, sizeof quoted), rate);
   return 0;
 }

@@ -3,8 +3,10 @@
  * it, has the pixels of the same frames of one full simulated run, every channel, bit for
  * bit. A bad bake (a model without a simulation) is refused and leaves no folder behind;
  * the bake's config loads back to the same scene but its fog. The bake's folder is named
- * "bake#1": a '#' of a folder is itself, not the frame number of the fogmaps' pattern. A
- * re-bake interrupted half-way leaves the old bake as it was. */
+ * "bake#1": a '#' of a folder is itself, not the frame number of the fogmaps' pattern, and
+ * the closing hint quotes the path for a shell (it was pasted as two words). A re-bake
+ * interrupted half-way leaves the old bake as it was; a bake over one written with another
+ * count of digits (fog.00001.exr of a bake of 10001 frames) removes that one's frames. */
 #include "tests/app/record_util.h"
 #include "tests/test_util.h"
 
@@ -35,14 +37,28 @@ int main(void) {
   CHECK(record_log_contains(log, "render a range: fogpipe record") &&
             !record_log_contains(log, "--fps"),
         "the default bake's hint names a rate");
+  {
+    char quoted[800];
+    snprintf(quoted, sizeof quoted, "render a range: fogpipe record '%s' --frames A-B", ini);
+    CHECK(record_log_contains(log, quoted), "the hint does not quote %s for a shell", ini);
+  }
   /* a bake at another rate says to record it at that rate (bake.ini holds none, but lamps
    * on a path run on the scene's clock) */
   char slow[600];
   snprintf(slow, sizeof slow, "%s/slow", root);
+  char earlier[2][700];
+  CHECK(mkdir(slow, 0755) == 0, "mkdir %s", slow);
+  for (int i = 0; i < 2; i++) {
+    snprintf(earlier[i], sizeof earlier[i], "%s/fog.%05d.exr", slow, i ? 9 : 1);
+    test_write_text(earlier[i], "an earlier bake's frame\n");
+  }
   snprintf(command, sizeof command, "'%s' bake %s --frames 1 --fps 12 --out '%s'", record_bin(),
            RECORD_TEST_CONFIG, slow);
   CHECK(run(command, log) == 0 && record_log_contains(log, "bake.ini --fps 12 --frames A-B"),
         "a bake at 12 fps does not say to record it at 12");
+  for (int i = 0; i < 2; i++)
+    CHECK(access(earlier[i], F_OK) != 0, "%s, of an earlier bake of another count of digits, "
+          "is left beside the new bake", earlier[i]);
   snprintf(command, sizeof command, "'%s' record %s --frames %d --size %s --out '%s'",
            record_bin(), RECORD_TEST_CONFIG, FRAMES, RECORD_TEST_SIZE, whole);
   CHECK(run(command, log) == 0, "the full simulated record failed");
