@@ -316,14 +316,29 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   if (!recorder_have_ffmpeg())
     return fog_fail(err, FOG_ERR_UNSUPPORTED,
                     "ffmpeg is not installed: no preview written (apt-get install ffmpeg)");
-  /* ffmpeg picks the container from the extension, so the temporary name keeps it. */
+  /* ffmpeg picks the container from the extension, so the temporary name keeps it; made
+   * unique and created here, O_EXCL (NAME.partial.PID.N.EXT): a fixed NAME.partial.EXT wrote
+   * over (and on a failure removed) a user's file of that name, and two runs shared it. */
   char temp[1200];
   const char *dot = strrchr(video_path, '.');
   const char *slash = strrchr(video_path, '/');
-  if (dot && (!slash || dot > slash))
-    snprintf(temp, sizeof temp, "%.*s.partial%s", (int)(dot - video_path), video_path, dot);
-  else
-    snprintf(temp, sizeof temp, "%s.partial", video_path);
+  const char *extension = dot && (!slash || dot > slash) ? dot : "";
+  int reserved = -1, why = 0;
+  for (unsigned serial = 0; serial < 100 && reserved < 0; serial++) {
+    const int length = snprintf(temp, sizeof temp, "%.*s.partial.%ld.%u%s",
+                                (int)(strlen(video_path) - strlen(extension)), video_path,
+                                (long)getpid(), serial, extension);
+    if (length < 0 || (size_t)length >= sizeof temp)
+      return fog_fail(err, FOG_ERR_FILE_ACCESS, "preview %s: the path is too long", video_path);
+    /* 0666: the kernel takes the umask off, as for any new file */
+    reserved = open(temp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    why = reserved < 0 ? errno : 0;
+    if (reserved < 0 && why != EEXIST) break;
+  }
+  if (reserved < 0)
+    return fog_fail(err, FOG_ERR_FILE_ACCESS, "preview %s: cannot create its temporary %s: %s",
+                    video_path, temp, strerror(why));
+  close(reserved); /* ffmpeg -y writes it */
   const int w = rec->width, h = rec->height;
   char cmd[8192]; /* the quoted temporary takes up to 4 x its 1200 bytes */
   /* yuv420p needs even sizes: pad odd ones by one pixel. */
@@ -339,6 +354,7 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
   const srgb8_encoder *encoder = srgb8_encoder_shared(); /* linear frames -> 8-bit video */
   if (!rgb || !linear) {
     free(rgb), free(linear);
+    unlink(temp);
     return fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "out of memory for the preview");
   }
   struct sigaction ignore = {.sa_handler = SIG_IGN}, previous;
@@ -372,14 +388,14 @@ int recorder_write_preview(const recorder *rec, int frame_count, double fps, con
     int rc = pclose(pipe); /* a wait status: ffmpeg's exit code, or the signal it died of */
     if (!status && rc != 0) {
       if (rc > 0 && WIFEXITED(rc))
-        status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: ffmpeg failed (exit status %d)",
-                          WEXITSTATUS(rc));
+        status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview %s: ffmpeg failed (exit status %d)",
+                          video_path, WEXITSTATUS(rc));
       else if (rc > 0 && WIFSIGNALED(rc))
-        status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: ffmpeg was killed (signal %d)",
-                          WTERMSIG(rc));
+        status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview %s: ffmpeg was killed (signal %d)",
+                          video_path, WTERMSIG(rc));
       else
-        status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview: ffmpeg failed (%s)",
-                          rc < 0 ? strerror(errno) : "unknown wait status");
+        status = fog_fail(err, FOG_ERR_FILE_ACCESS, "preview %s: ffmpeg failed (%s)",
+                          video_path, rc < 0 ? strerror(errno) : "unknown wait status");
     }
   }
   sigaction(SIGPIPE, &previous, NULL);

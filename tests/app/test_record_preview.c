@@ -5,11 +5,14 @@
  * size and rate asked for; the video appears under its own name only when ffmpeg
  * succeeded. A failing ffmpeg makes record fail with a message naming ffmpeg's exit code,
  * leaves no video (nor its temporary), and keeps the frames; so does a SIGTERM during the
- * encode (exit 130). Where a real ffmpeg is installed (/usr/bin/ffmpeg), it also encodes a
- * playable file. */
+ * encode (exit 130). The temporary is the run's own (NAME.partial.PID.N.EXT, created
+ * exclusively): a user's NAME.partial.EXT beside the video is left as it was (it was
+ * written over, and removed with a failed encode). Where a real ffmpeg is installed
+ * (/usr/bin/ffmpeg), it also encodes a playable file. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "tests/app/record_util.h" /* first: it sets _POSIX_C_SOURCE */
 
+#include <dirent.h>
 #include <limits.h>
 #include <math.h>
 
@@ -25,6 +28,16 @@ static int write_script(const char *path, const char *text) {
   fputs(text, f);
   fclose(f);
   return chmod(path, 0755) == 0;
+}
+
+/* Entries of folder whose name starts with prefix. */
+static int entries_starting(const char *folder, const char *prefix) {
+  DIR *d = opendir(folder);
+  if (!d) return -1;
+  int n = 0;
+  for (struct dirent *e; (e = readdir(d));) n += !strncmp(e->d_name, prefix, strlen(prefix));
+  closedir(d);
+  return n;
 }
 
 static long file_size(const char *path) {
@@ -84,9 +97,8 @@ int main(void) {
   long expected = (long)frames * width * height * 3;
   CHECK(file_size(video) == expected, "%s: %ld bytes, expected %ld (3 frames of 64x36 rgb24)",
         video, file_size(video), expected);
-  char partial[700];
-  snprintf(partial, sizeof partial, "%s/preview.partial.mp4", root);
-  CHECK(file_size(partial) < 0, "the temporary %s was left behind", partial);
+  CHECK(entries_starting(root, "preview.partial") == 0, "a temporary preview.partial* was left "
+        "behind");
 
   char args_path[700], args[4096] = "";
   snprintf(args_path, sizeof args_path, "%s/args", bin);
@@ -123,12 +135,16 @@ int main(void) {
         mismatches);
   free(stream);
 
-  /* 2. A failing ffmpeg: record fails, says so, leaves no video; the frames stay. */
+  /* 2. A failing ffmpeg: record fails, says so, leaves no video; the frames stay; a user's
+   * broken.partial.mp4 beside it stays as it was. */
   CHECK(write_script(script, "#!/bin/sh\ncat > /dev/null\necho 'no encoder' >&2\nexit 3\n"),
         "cannot write %s", script);
   char out2[600], video2[600];
   snprintf(out2, sizeof out2, "%s/frames2", root);
   snprintf(video2, sizeof video2, "%s/broken.mp4", root);
+  char users[700];
+  snprintf(users, sizeof users, "%s/broken.partial.mp4", root);
+  test_write_text(users, "a user's own file\n");
   status = record_with_path(bin, out2, video2, log);
   CHECK(status != 0, "record succeeded although ffmpeg failed");
   char text[4096] = "";
@@ -140,8 +156,10 @@ int main(void) {
   }
   CHECK(strstr(text, "ffmpeg failed (exit status 3)"),
         "no 'ffmpeg failed (exit status 3)' message (its own exit code):\n%s", text);
-  snprintf(partial, sizeof partial, "%s/broken.partial.mp4", root);
-  CHECK(file_size(video2) < 0 && file_size(partial) < 0, "a video was left after a failure");
+  CHECK(file_size(video2) < 0 && entries_starting(root, "broken.partial.") == 1,
+        "a video or a temporary was left after a failure");
+  CHECK(file_size(users) == 18, "the user's %s was written over or removed (%ld bytes)", users,
+        file_size(users));
   int frame_files = 0;
   record_count_files(out2, &frame_files);
   CHECK(frame_files == frames, "%d frames kept after the failed preview, expected %d",
@@ -175,10 +193,9 @@ int main(void) {
   if (f) fclose(f);
   CHECK(status == 130 && strstr(text, "interrupted while encoding the preview"),
         "SIGTERM during the encode: exit %d:\n%s", status, text);
-  snprintf(partial, sizeof partial, "%s/cut.partial.mp4", root);
-  CHECK(file_size(video4) < 0 && file_size(partial) < 0,
-        "an interrupted encode left %s (%ld bytes) or its temporary (%ld)", video4,
-        file_size(video4), file_size(partial));
+  CHECK(file_size(video4) < 0 && entries_starting(root, "cut.partial") == 0,
+        "an interrupted encode left %s (%ld bytes) or its temporary", video4,
+        file_size(video4));
   record_count_files(out4, &frame_files);
   CHECK(frame_files == frames, "%d frames kept after the interrupted preview, expected %d",
         frame_files, frames);
