@@ -173,11 +173,17 @@ static int exr_read_layout(exr_context_t ctxt, const char *path, exr_stream *str
 
 /* The channel to load: the one named, or the only one; half or float, full resolution. */
 static const exr_attr_chlist_entry_t *exr_pick_channel(const exr_attr_chlist_t *list,
-                                                       const char *path, const char *channel,
+                                                       int parts, const char *path,
+                                                       const char *channel,
                                                        const char *channel_setting,
                                                        fog_error *err) {
-  char names[256];
-  list_channels(list, names, sizeof names);
+  char names[320];
+  list_channels(list, names, 256);
+  /* a multi-part file: only its first part is read (a channel in another part was reported
+   * missing with part 0's list alone) */
+  if (parts > 1)
+    snprintf(names + strlen(names), sizeof names - strlen(names),
+             " in its first part (of %d; the others are not read)", parts);
   const exr_attr_chlist_entry_t *entry = NULL;
   if (list->num_channels == 0)
     return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR has no channels", path), NULL;
@@ -300,8 +306,10 @@ int exr_read_channel(const char *path, const char *channel, const char *channel_
   int64_t width = 0, height = 0;
   if (exr_read_layout(ctxt, path, &stream, &storage, &window, &list, &width, &height, err))
     goto done;
+  int parts = 1;
+  exr_get_count(ctxt, &parts);
   const exr_attr_chlist_entry_t *entry =
-      exr_pick_channel(list, path, channel, channel_setting, err);
+      exr_pick_channel(list, parts, path, channel, channel_setting, err);
   if (!entry) goto done;
   out = calloc((size_t)width * (size_t)height, sizeof *out);
   if (!out) {
@@ -314,6 +322,18 @@ int exr_read_channel(const char *path, const char *channel, const char *channel_
                        &out_of_memory);
   if (out_of_memory) {
     fog_fail(err, FOG_ERR_OUT_OF_MEMORY, "%s: out of memory for an EXR chunk", path);
+    goto done;
+  }
+  exr_compression_t compression = EXR_COMPRESSION_NONE;
+  if (rv != EXR_ERR_SUCCESS && exr_get_compression(ctxt, 0, &compression) == EXR_ERR_SUCCESS &&
+      (compression == EXR_COMPRESSION_DWAA || compression == EXR_COMPRESSION_DWAB)) {
+    /* OpenEXR Core 3.1 (Debian 12) cannot decode DWA; its last message blamed the data, and
+     * a good file from a compositor read as damaged */
+    int major = 0, minor = 0, patch = 0;
+    exr_get_library_version(&major, &minor, &patch, NULL);
+    fog_fail(err, FOG_ERR_UNSUPPORTED, "%s: %s compression, which this OpenEXR (%d.%d.%d) cannot "
+             "decode: save the fogmap with ZIP, PIZ or no compression", path,
+             compression == EXR_COMPRESSION_DWAA ? "DWAA" : "DWAB", major, minor, patch);
     goto done;
   }
   if (rv != EXR_ERR_SUCCESS) {

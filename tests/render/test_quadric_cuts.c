@@ -122,16 +122,24 @@ static fog_quadric shape_quadric(const shape *s) {
                      : fog_quadric_sphere(s->centre, s->r, s->density, s->edge);
 }
 
+/* The shapes as the renderer's quadric model (q: room for 4), and the sun's unit
+ * direction. */
+static fog_model shapes_model(const shapes *all, fog_quadric q[4], double sun[3]) {
+  const double towards[3] = {0.6, 0.5, -0.6};
+  double n = 0.0;
+  for (int a = 0; a < 3; a++) n += towards[a] * towards[a];
+  for (int a = 0; a < 3; a++) sun[a] = towards[a] / sqrt(n);
+  for (int i = 0; i < all->count; i++) q[i] = shape_quadric(&all->shape[i]);
+  return (fog_model){.kind = FOG_MODEL_QUADRIC, .quadrics = q, .quadric_count = all->count};
+}
+
 /* The fan: rays from o0 + k step_o along d0 + k step_d. Returns the worst error. */
 static double check_fan(const char *label, const shapes *all, const double o0[3],
                         const double step_o[3], const double d0[3], const double step_d[3],
                         double bound) {
-  double sun[3] = {0.6, 0.5, -0.6}, n = 0.0;
-  for (int a = 0; a < 3; a++) n += sun[a] * sun[a];
-  for (int a = 0; a < 3; a++) sun[a] /= sqrt(n);
+  double sun[3];
   fog_quadric q[4];
-  for (int i = 0; i < all->count; i++) q[i] = shape_quadric(&all->shape[i]);
-  const fog_model m = {.kind = FOG_MODEL_QUADRIC, .quadrics = q, .quadric_count = all->count};
+  const fog_model m = shapes_model(all, q, sun);
   const light_ref_medium medium = shape_medium(all);
   light_ref_sun_point exact = {.medium = &medium, .sun = {sun[0], sun[1], sun[2]},
                                .tol = 1e-12};
@@ -241,12 +249,9 @@ static double largest_step(const fog_model *m, const light_ref_sun_point *exact,
 
 static void check_fine_fan(const shapes *all, const double o[3], const double d0[3],
                            const double d1[3]) {
-  double sun[3] = {0.6, 0.5, -0.6}, n = 0.0;
-  for (int a = 0; a < 3; a++) n += sun[a] * sun[a];
-  for (int a = 0; a < 3; a++) sun[a] /= sqrt(n);
+  double sun[3];
   fog_quadric q[4];
-  for (int i = 0; i < all->count; i++) q[i] = shape_quadric(&all->shape[i]);
-  const fog_model m = {.kind = FOG_MODEL_QUADRIC, .quadrics = q, .quadric_count = all->count};
+  const fog_model m = shapes_model(all, q, sun);
   const light_ref_medium medium = shape_medium(all);
   const light_ref_sun_point exact = {.medium = &medium, .sun = {sun[0], sun[1], sun[2]},
                                      .tol = 1e-10};
