@@ -75,10 +75,10 @@ static void remove_frames(const char *pattern, int written) {
     if (scene_config_sequence_path(pattern, n, path, sizeof path)) unlink(path);
 }
 
-/* Removes every file of pattern's folder that pattern names with a number above frames,
- * whatever its count of digits (as the sequence lister reads them), and every one written
- * with another count of digits than pattern's: an earlier bake's (a rebake of 5 frames over
- * one of 10001 left fog.00001 .. fog.00005 beside the new fog.0001 .. fog.0005). */
+/* Removes every frame an earlier bake wrote into pattern's folder that is not one of this
+ * bake's: a number above frames, or another count of digits than pattern's (a rebake of 5
+ * frames over one of 10001 left fog.00001 .. fog.00005 beside the new fog.0001 ..
+ * fog.0005). Names no bake writes (fewer than 4 digits, frame 0) are kept. */
 static void remove_later_frames(const char *pattern, int frames) {
   size_t at, run;
   const char *slash = strrchr(pattern, '/');
@@ -99,7 +99,11 @@ static void remove_later_frames(const char *pattern, int frames) {
     for (; k < n - suffix_length && isdigit((unsigned char)name[k]) && k < prefix_length + 18;
          k++)
       number = 10 * number + (name[k] - '0');
-    if (k != n - suffix_length || (number <= frames && k - prefix_length == run)) continue;
+    /* a name a bake writes (at least 4 digits, frames from 1: fog.1.exr or fog.00000.exr is
+     * nobody's frame, kept) and not one of this bake's frames */
+    const size_t digits = k - prefix_length;
+    const bool bakes_name = digits >= 4 && number >= 1;
+    if (k != n - suffix_length || !bakes_name || (number <= frames && digits == run)) continue;
     char path[SCENE_CONFIG_PATH_MAX + 300];
     snprintf(path, sizeof path, "%s/%s", dir, name);
     unlink(path);

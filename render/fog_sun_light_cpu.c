@@ -373,7 +373,9 @@ double fog_sun_mean_light(const fog_model *m, fog_sun_shadow_kind kind,
         step_depth = fmax(extinction_on_ray(m, o, d, mid), 0.0) * len;
       }
       if (!(step_depth > FOG_SUN_PIECE_MAX_DEPTH) || deep_cuts >= steps) break;
-      end = start + len * (FOG_SUN_PIECE_MAX_DEPTH / step_depth), deep_cuts++;
+      /* at least 1/64 of the piece: past K ~ 2e6 the cut 1/K on would round to nothing in
+       * the shader's float, which would spend its cuts on empty pieces */
+      end = start + len * fmax(FOG_SUN_PIECE_MAX_DEPTH / step_depth, 1.0 / 64.0), deep_cuts++;
     }
     if (end >= step_end) i++;
     start = end;

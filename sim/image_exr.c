@@ -177,21 +177,20 @@ static const exr_attr_chlist_entry_t *exr_pick_channel(const exr_attr_chlist_t *
                                                        const char *channel,
                                                        const char *channel_setting,
                                                        fog_error *err) {
-  char names[320];
-  list_channels(list, names, 256);
+  char names[256], where[80] = "";
+  list_channels(list, names, sizeof names);
   /* a multi-part file: only its first part is read (a channel in another part was reported
    * missing with part 0's list alone) */
   if (parts > 1)
-    snprintf(names + strlen(names), sizeof names - strlen(names),
-             " in its first part (of %d; the others are not read)", parts);
+    snprintf(where, sizeof where, " in its first part (of %d; the others are not read)", parts);
   const exr_attr_chlist_entry_t *entry = NULL;
   if (list->num_channels == 0)
     return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR has no channels", path), NULL;
   if (!channel) {
     char hint[128];
     if (list->num_channels != 1)
-      return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR has %d channels (%s); name the one to load%s",
-                      path, list->num_channels, names,
+      return fog_fail(err, FOG_ERR_BAD_FILE, "%s: EXR has %d channels (%s)%s; name the one to "
+                      "load%s", path, list->num_channels, names, where,
                       image_channel_setting_hint(channel_setting, hint, sizeof hint)),
              NULL;
     entry = &list->entries[0];
@@ -199,8 +198,8 @@ static const exr_attr_chlist_entry_t *exr_pick_channel(const exr_attr_chlist_t *
     for (int c = 0; c < list->num_channels; c++)
       if (!strcmp(list->entries[c].name.str, channel)) entry = &list->entries[c];
     if (!entry)
-      return fog_fail(err, FOG_ERR_NO_SUCH_CHANNEL, "%s: EXR has no channel \"%s\"; it has %s", path,
-                      channel, names),
+      return fog_fail(err, FOG_ERR_NO_SUCH_CHANNEL, "%s: EXR has no channel \"%s\"; it has %s%s",
+                      path, channel, names, where),
              NULL;
   }
   if (entry->pixel_type != EXR_PIXEL_HALF && entry->pixel_type != EXR_PIXEL_FLOAT)
@@ -325,12 +324,14 @@ int exr_read_channel(const char *path, const char *channel, const char *channel_
     goto done;
   }
   exr_compression_t compression = EXR_COMPRESSION_NONE;
-  if (rv != EXR_ERR_SUCCESS && exr_get_compression(ctxt, 0, &compression) == EXR_ERR_SUCCESS &&
+  int major = 0, minor = 0, patch = 0;
+  exr_get_library_version(&major, &minor, &patch, NULL);
+  /* OpenEXR Core before 3.2 (3.1 in Debian 12) cannot decode DWA; its last message blamed
+   * the data, and a good file from a compositor read as damaged (a later library that
+   * decodes DWA fails only on a damaged file, said as such below) */
+  if (rv != EXR_ERR_SUCCESS && (major < 3 || (major == 3 && minor < 2)) &&
+      exr_get_compression(ctxt, 0, &compression) == EXR_ERR_SUCCESS &&
       (compression == EXR_COMPRESSION_DWAA || compression == EXR_COMPRESSION_DWAB)) {
-    /* OpenEXR Core 3.1 (Debian 12) cannot decode DWA; its last message blamed the data, and
-     * a good file from a compositor read as damaged */
-    int major = 0, minor = 0, patch = 0;
-    exr_get_library_version(&major, &minor, &patch, NULL);
     fog_fail(err, FOG_ERR_UNSUPPORTED, "%s: %s compression, which this OpenEXR (%d.%d.%d) cannot "
              "decode: save the fogmap with ZIP, PIZ or no compression", path,
              compression == EXR_COMPRESSION_DWAA ? "DWAA" : "DWAB", major, minor, patch);

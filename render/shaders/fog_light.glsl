@@ -502,7 +502,7 @@ float fog_sun_mean_transmittance(fog_ray r) {
       step_depth = max(fog_light_extinction(r.dir, mid), 0.0) * len;
 #endif
       if (!(step_depth > max_depth) || deep_cuts >= fog_shadow_steps) break;
-      end = start + len * (max_depth / step_depth);
+      end = start + len * max(max_depth / step_depth, 1.0 / 64.0);  // >= 1/64: no empty pieces
       deep_cuts++;
     }
     if (end >= step_end) i++;

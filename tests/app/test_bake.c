@@ -52,6 +52,13 @@ int main(void) {
     snprintf(earlier[i], sizeof earlier[i], "%s/fog.%05d.exr", slow, i ? 9 : 1);
     test_write_text(earlier[i], "an earlier bake's frame\n");
   }
+  /* names no bake writes (fewer than 4 digits, frame 0): a user's, kept */
+  const char *kept_names[3] = {"fog.1.exr", "fog.012.exr", "fog.00000.exr"};
+  char kept[3][700];
+  for (int i = 0; i < 3; i++) {
+    snprintf(kept[i], sizeof kept[i], "%s/%s", slow, kept_names[i]);
+    test_write_text(kept[i], "a user's file\n");
+  }
   snprintf(command, sizeof command, "'%s' bake %s --frames 1 --fps 12 --out '%s'", record_bin(),
            RECORD_TEST_CONFIG, slow);
   CHECK(run(command, log) == 0 && record_log_contains(log, "bake.ini --fps 12 --frames A-B"),
@@ -59,6 +66,8 @@ int main(void) {
   for (int i = 0; i < 2; i++)
     CHECK(access(earlier[i], F_OK) != 0, "%s, of an earlier bake of another count of digits, "
           "is left beside the new bake", earlier[i]);
+  for (int i = 0; i < 3; i++)
+    CHECK(access(kept[i], F_OK) == 0, "%s, a name no bake writes, was removed", kept[i]);
   snprintf(command, sizeof command, "'%s' record %s --frames %d --size %s --out '%s'",
            record_bin(), RECORD_TEST_CONFIG, FRAMES, RECORD_TEST_SIZE, whole);
   CHECK(run(command, log) == 0, "the full simulated record failed");
