@@ -139,6 +139,22 @@ static double weighted_turbulence(const fog_quadric_noise *noise, const double o
   return sum;
 }
 
+/* Q along the ray o + t d re-centred on t0: start = o + t0 d and Q(t0 + u) = a u^2 + 2 b u +
+ * c (from a far origin Q(o)'s terms are (distance / size)^2 and cancel; taken at the
+ * stretch's start they do not). */
+static void ray_quadratic(const fog_quadric *v, const double o[3], const double d[3], double t0,
+                          double start[3], double *a, double *b, double *c) {
+  double m[3][3], l[3];
+  fog_quadric_matrix(v, m, l);
+  for (int r = 0; r < 3; r++) start[r] = o[r] + t0 * d[r];
+  *a = *b = 0.0;
+  for (int r = 0; r < 3; r++) {
+    *a += d[r] * (m[r][0] * d[0] + m[r][1] * d[1] + m[r][2] * d[2]);
+    *b += d[r] * (m[r][0] * start[0] + m[r][1] * start[1] + m[r][2] * start[2] + l[r]);
+  }
+  *c = fog_quadric_value(v, start);
+}
+
 /* int_{t0}^{t1} of one volume's K along Q(t) = a t^2 + 2 b t + c (from o, unit d): the
  * breaks at Q = 0 and Q = -edge sorted by the GLSL twin's network (a sort without dynamic
  * indexing there); per piece K's weight, 0, density or density (-Q/edge), and with noise
@@ -190,18 +206,9 @@ double fog_quadric_optical_depth(const fog_quadric *v, int count, const fog_quad
     /* Q along the ray from where it enters the box, its coefficients taken there: from a
      * far origin, Q(o)'s terms are (distance / size)^2 and cancel (a unit sphere 1e6 away
      * lost 7.8e-4 of its depth, 1e7 away 7.6e-2; the GLSL twin re-centres as well) */
-    const double start[3] = {o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2]};
-    double m[3][3], l[3], ms[3];
-    fog_quadric_matrix(&v[i], m, l);
-    for (int r = 0; r < 3; r++)
-      ms[r] = m[r][0] * start[0] + m[r][1] * start[1] + m[r][2] * start[2] + l[r];
-    double a = 0.0, b = 0.0;
-    for (int r = 0; r < 3; r++) {
-      a += d[r] * (m[r][0] * d[0] + m[r][1] * d[1] + m[r][2] * d[2]);
-      b += d[r] * ms[r];
-    }
-    sum += span_integral(&v[i], noise, a, b, fog_quadric_value(&v[i], start), start, d, 0.0,
-                         t1 - t0);
+    double start[3], a, b, c;
+    ray_quadratic(&v[i], o, d, t0, start, &a, &b, &c);
+    sum += span_integral(&v[i], noise, a, b, c, start, d, 0.0, t1 - t0);
   }
   return sum;
 }
@@ -216,14 +223,9 @@ int fog_quadric_cuts(const fog_quadric *v, int count, const double o[3], const d
     const double a0 = fmax(s0, t0), a1 = fmin(s1, t1);
     if (!(a1 > a0)) continue;
     /* Q(a0 + u) = a u^2 + 2 b u + c, re-centred as fog_quadric_optical_depth */
-    const double start[3] = {o[0] + a0 * d[0], o[1] + a0 * d[1], o[2] + a0 * d[2]};
-    double m[3][3], l[3], a = 0.0, b = 0.0;
-    fog_quadric_matrix(&v[i], m, l);
-    for (int r = 0; r < 3; r++) {
-      a += d[r] * (m[r][0] * d[0] + m[r][1] * d[1] + m[r][2] * d[2]);
-      b += d[r] * (m[r][0] * start[0] + m[r][1] * start[1] + m[r][2] * start[2] + l[r]);
-    }
-    const double c = fog_quadric_value(&v[i], start), len = a1 - a0;
+    double start[3], a, b, c;
+    ray_quadratic(&v[i], o, d, a0, start, &a, &b, &c);
+    const double len = a1 - a0;
     /* the box's faces clip fog only where Q < 0 there (a cylinder's caps) */
     if (s0 > t0 && c < 0.0) cuts[n++] = a0;
     if (s1 < t1 && (a * len + 2.0 * b) * len + c < 0.0) cuts[n++] = a1;
